@@ -1,0 +1,78 @@
+#include "engine/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glad/gl.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace engine {
+namespace {
+
+MeshData unitQuadXZ() {
+  MeshData quad;
+  quad.positions = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}};
+  quad.normals.assign(4, glm::vec3(0, 1, 0));
+  quad.indices = {0, 2, 1, 0, 3, 2};
+  quad.boundsMin = {-1, 0, -1};
+  quad.boundsMax = {1, 0, 1};
+  return quad;
+}
+
+}  // namespace
+
+glm::vec3 shade(const glm::vec3& albedo, const glm::vec3& normal, const Light& light) {
+  return albedo * (light.ambient + light.diffuse * std::max(glm::dot(normal, light.towardsLight), 0.0f));
+}
+
+Renderer::Renderer(const std::filesystem::path& shaderDir, const RenderStyle& style)
+    : style_(style),
+      meshProgram_(shaderDir / "mesh.vert", shaderDir / "mesh.frag"),
+      groundProgram_(shaderDir / "ground.vert", shaderDir / "ground.frag"),
+      groundQuad_(unitQuadXZ()),
+      lines_(shaderDir) {}
+
+void Renderer::beginFrame(const glm::ivec2& framebufferSize) {
+  glViewport(0, 0, framebufferSize.x, framebufferSize.y);
+  const glm::vec3& c = style_.clearColor;
+  glClearColor(c.r, c.g, c.b, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+}
+
+void Renderer::drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, float height) {
+  // Snap the quad's centre to the grid so the lines stay put as the camera moves.
+  const float snap = style_.gridSpacing;
+  const glm::vec3 centre{std::floor(eye.x / snap) * snap, height, std::floor(eye.z / snap) * snap};
+  const glm::mat4 model = glm::scale(glm::translate(glm::mat4(1.0f), centre),
+                                     glm::vec3(style_.groundExtent, 1.0f, style_.groundExtent));
+  groundProgram_.use();
+  groundProgram_.set("uViewProjection", viewProjection);
+  groundProgram_.set("uModel", model);
+  groundProgram_.set("uColor", style_.groundColor);
+  groundProgram_.set("uGridColor", style_.gridColor);
+  groundProgram_.set("uGridSpacing", style_.gridSpacing);
+  groundProgram_.set("uTowardsLight", style_.light.towardsLight);
+  groundProgram_.set("uAmbient", style_.light.ambient);
+  groundProgram_.set("uDiffuse", style_.light.diffuse);
+  groundQuad_.draw();
+}
+
+void Renderer::drawMesh(const GpuMesh& mesh, const glm::mat4& viewProjection, const glm::mat4& model,
+                        const glm::vec3& albedo) {
+  meshProgram_.use();
+  meshProgram_.set("uViewProjection", viewProjection);
+  meshProgram_.set("uModel", model);
+  meshProgram_.set("uColor", albedo);
+  meshProgram_.set("uTowardsLight", style_.light.towardsLight);
+  meshProgram_.set("uAmbient", style_.light.ambient);
+  meshProgram_.set("uDiffuse", style_.light.diffuse);
+  mesh.draw();
+}
+
+void Renderer::endFrame(const glm::mat4& viewProjection) { lines_.flush(viewProjection); }
+
+}  // namespace engine
