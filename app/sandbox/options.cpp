@@ -1,0 +1,74 @@
+#include "options.h"
+
+#include <charconv>
+
+namespace sandbox {
+namespace {
+
+constexpr int kMaxFrames = 1000000;
+
+}  // namespace
+
+std::string usage() {
+  return "usage: sandbox [SCENE] [--screenshot FILE] [--frames N] [--data DIR]\n"
+         "  SCENE              built-in scene to open (default: the first one)\n"
+         "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
+         "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
+         "                     each frame advances the simulation by one step\n"
+         "  --data DIR         folder holding shaders/ and assets/ (default: the source tree)\n"
+         "  --help             show this text\n";
+}
+
+ParsedOptions parseOptions(const std::vector<std::string>& args) {
+  ParsedOptions out;
+  Options& o = out.options;
+  bool framesGiven = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](const char* what) -> const std::string* {
+      if (i + 1 >= args.size()) {
+        out.error = a + " needs " + what;
+        return nullptr;
+      }
+      return &args[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--screenshot") {
+      const std::string* v = value("a file name");
+      if (v == nullptr) return out;
+      o.screenshot = *v;
+    } else if (a == "--frames") {
+      const std::string* v = value("a number of frames");
+      if (v == nullptr) return out;
+      int n = 0;
+      const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
+      if (ec != std::errc() || end != v->data() + v->size() || n < 1 || n > kMaxFrames) {
+        out.error = "--frames: '" + *v + "' is not a whole number from 1 to " + std::to_string(kMaxFrames);
+        return out;
+      }
+      o.frames = n;
+      framesGiven = true;
+    } else if (a == "--data") {
+      const std::string* v = value("a folder");
+      if (v == nullptr) return out;
+      o.dataDir = *v;
+    } else if (a.size() > 1 && a[0] == '-') {
+      out.error = "unknown option '" + a + "'";
+      return out;
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      out.error = "one scene only; got '" + o.scene + "' and '" + a + "'";
+      return out;
+    }
+  }
+  if (framesGiven && !o.screenshot) out.error = "--frames needs --screenshot FILE";
+  return out;
+}
+
+std::filesystem::path dataDir(const Options& options) {
+  return options.dataDir.empty() ? std::filesystem::path(SANDBOX_DATA_DIR) : options.dataDir;
+}
+
+}  // namespace sandbox

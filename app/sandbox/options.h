@@ -1,0 +1,30 @@
+#pragma once
+// The sandbox's command line:
+//   sandbox [SCENE] [--screenshot FILE] [--frames N] [--data DIR] [--help]
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sandbox {
+
+struct Options {
+  std::string scene;                                ///< empty: the default scene
+  std::optional<std::filesystem::path> screenshot;  ///< render, write this PNG, exit
+  int frames = 60;        ///< frames rendered before the screenshot; one physics step each
+  std::filesystem::path dataDir;  ///< holds shaders/ and assets/; empty: the build's default
+  bool help = false;
+};
+
+struct ParsedOptions {
+  Options options;
+  std::string error;  ///< empty on success; otherwise what is wrong with which argument
+};
+
+ParsedOptions parseOptions(const std::vector<std::string>& args);
+/// The usage text printed by --help and after an error.
+std::string usage();
+/// The folder holding shaders/ and assets/: options.dataDir, or the one set at build time.
+std::filesystem::path dataDir(const Options& options);
+
+}  // namespace sandbox

@@ -1,0 +1,59 @@
+#include "panel.h"
+
+#include <imgui.h>
+
+#include "scenes/scene.h"
+
+namespace sandbox {
+
+void drawPanel(scenes::Scene& scene, PanelState& state) {
+  phys::World& world = scene.world;
+  ImGui::SetNextWindowPos(ImVec2(kPanelPosition.x, kPanelPosition.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(kPanelSize.x, kPanelSize.y), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(1.0f);  // opaque, so the scene behind never hides the text
+  ImGui::Begin("Simulation", nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove |
+                                          ImGuiWindowFlags_NoCollapse);
+  ImGui::TextWrapped("%s: %s", scene.name.c_str(), scene.description.c_str());
+  ImGui::Text("t = %.2f s, step %ld", world.time(), world.stepCount());
+
+  ImGui::Checkbox("Pause", &state.paused);
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) state.stepOnce = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) state.resetRequested = true;
+
+  // The sliders edit copies and hand them back through the setters, which validate; the
+  // ranges below keep every value valid, so the setters never refuse one.
+  phys::SolverSettings solver = world.solverSettings();
+  bool solverChanged = ImGui::SliderInt("iterations", &solver.iterations, 1, 32);
+  solverChanged |= ImGui::SliderInt("substeps", &solver.substeps, 1, 32);
+  if (solverChanged) world.setSolverSettings(solver);
+
+  phys::WorldSettings settings = world.worldSettings();
+  float damping = static_cast<float>(settings.damping);
+  float gravity = static_cast<float>(-settings.gravity.y);
+  bool worldChanged = ImGui::SliderFloat("damping (1/s)", &damping, 0.0f, 5.0f);
+  worldChanged |= ImGui::SliderFloat("gravity (m/s^2)", &gravity, 0.0f, 30.0f);
+  if (worldChanged) {
+    settings.damping = damping;
+    settings.gravity.y = -gravity;
+    world.setWorldSettings(settings);
+  }
+
+  ImGui::Checkbox("draw sticks", &state.drawSticks);
+  ImGui::SameLine();
+  ImGui::Checkbox("draw particles", &state.drawParticles);
+
+  ImGui::Separator();
+  ImGui::Text("frame %.2f ms, physics %.3f ms", state.frameMs, state.stepMs);
+  ImGui::Text("%zu particles, %zu sticks, %zu boxes", world.particles().size(),
+              world.sticks().size(), world.boxes().size());
+  if (!world.boxes().empty()) {
+    const phys::Vec3 c = world.boxPose(0).center;
+    ImGui::Text("box 0 at (%.3f, %.3f, %.3f) m", c.x, c.y, c.z);
+  }
+  ImGui::TextDisabled("W/A/S/D/Q/E move, right mouse looks");
+  ImGui::End();
+}
+
+}  // namespace sandbox

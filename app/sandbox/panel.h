@@ -1,0 +1,30 @@
+#pragma once
+// The sandbox's ImGui panel: where it sits, and what it shows and changes.
+#include <glm/vec2.hpp>
+
+namespace scenes {
+struct Scene;
+}
+
+namespace sandbox {
+
+/// Placement of the panel, in window pixels from the top-left corner. Fixed for now (panel
+/// layout persistence comes with the sandbox issue), so tests know where to look.
+inline constexpr glm::vec2 kPanelPosition{10.0f, 10.0f};
+inline constexpr glm::vec2 kPanelSize{340.0f, 330.0f};
+
+/// What the panel can ask the sandbox to do this frame.
+struct PanelState {
+  bool paused = false;
+  bool stepOnce = false;      ///< set by the Step button; cleared by the sandbox
+  bool resetRequested = false;
+  bool drawSticks = false;
+  bool drawParticles = true;
+  float frameMs = 0.0f;       ///< unit: ms; last frame, for display
+  float stepMs = 0.0f;        ///< unit: ms; physics time in the last frame
+};
+
+/// Draws the panel; edits of solver and world settings go straight into the scene's world.
+void drawPanel(scenes::Scene& scene, PanelState& state);
+
+}  // namespace sandbox
