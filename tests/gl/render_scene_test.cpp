@@ -1,0 +1,147 @@
+// The sandbox program renders the default scene to a PNG under Xvfb, and the pixels are where
+// the scene, the camera and the style say they should be: sky in the corner, lit ground, the
+// box where the physics puts it, a particle, and the ImGui panel in its rectangle.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include "body_colors.h"
+#include "engine/camera.h"
+#include "engine/image.h"
+#include "engine/renderer.h"
+#include "panel.h"
+#include "scenes/scene.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kFrames = 90;  // 1.5 s: the box has landed and is tumbling
+
+struct Rendered {
+  engine::Image image;
+  scenes::Scene scene;             // stepped as far as the sandbox stepped it
+  engine::FirstPersonCamera camera;
+};
+
+// Runs the real program once for the whole suite.
+const Rendered& rendered() {
+  static const Rendered result = [] {
+    fs::create_directories(OUTPUT_DIR);
+    const fs::path png = fs::path(OUTPUT_DIR) / "default-scene.png";
+    fs::remove(png);
+    const std::string command = std::string("'") + SANDBOX_EXE + "' --screenshot '" + png.string() +
+                                "' --frames " + std::to_string(kFrames) + " --data '" + DATA_DIR + "'";
+    if (std::system(command.c_str()) != 0) throw std::runtime_error("sandbox failed: " + command);
+    scenes::Scene scene = scenes::makeBuiltinScene(scenes::defaultSceneName());
+    for (int i = 0; i < kFrames; ++i) scene.world.step();  // one step per screenshot frame
+    const auto camera = engine::FirstPersonCamera::lookingAt(scene.camera.eye, scene.camera.target);
+    return Rendered{engine::readPng(png), std::move(scene), camera};
+  }();
+  return result;
+}
+
+// Pixel (column, row from the top) where a world point lands.
+glm::ivec2 toPixel(const Rendered& r, const glm::vec3& world) {
+  const float w = static_cast<float>(r.image.width), h = static_cast<float>(r.image.height);
+  const glm::vec3 p = glm::project(world, r.camera.view(), r.camera.projection(w / h), glm::vec4(0, 0, w, h));
+  return {static_cast<int>(p.x), static_cast<int>(h - p.y)};
+}
+
+glm::ivec3 to8bit(const glm::vec3& c) { return glm::ivec3(glm::round(c * 255.0f)); }
+
+void expectColor(const glm::u8vec4& got, const glm::ivec3& want, int tolerance, const char* what) {
+  EXPECT_NEAR(got.r, want.r, tolerance) << what;
+  EXPECT_NEAR(got.g, want.g, tolerance) << what;
+  EXPECT_NEAR(got.b, want.b, tolerance) << what;
+}
+
+TEST(RenderScene, WritesAWindowSizedPng) {
+  EXPECT_EQ(rendered().image.width, 1280);
+  EXPECT_EQ(rendered().image.height, 720);
+}
+
+TEST(RenderScene, SkyInTheTopRightCornerIsTheClearColour) {
+  const Rendered& r = rendered();
+  expectColor(r.image.pixel(r.image.width - 1, 0), to8bit(engine::RenderStyle{}.clearColor), 1, "sky");
+}
+
+TEST(RenderScene, GroundIsLitFromAbove) {
+  const Rendered& r = rendered();
+  const engine::RenderStyle style;
+  const glm::ivec3 want = to8bit(engine::shade(style.groundColor, {0, 1, 0}, style.light));
+  // Centres of grid cells, away from the lines, the box and the panel.
+  for (const glm::vec3 p : {glm::vec3(2.5f, 0, 2.5f), glm::vec3(-1.5f, 0, 3.5f), glm::vec3(3.5f, 0, -2.5f)}) {
+    const glm::ivec2 px = toPixel(r, p);
+    ASSERT_TRUE(px.x >= 0 && px.x < r.image.width && px.y >= 0 && px.y < r.image.height);
+    expectColor(r.image.pixel(px.x, px.y), want, 3, "ground");
+  }
+}
+
+TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
+  const Rendered& r = rendered();
+  const phys::BoxPose pose = r.scene.world.boxPose(0);
+  const glm::ivec2 centre = toPixel(r, glm::vec3(pose.center));
+  int boxLike = 0;
+  for (int dy = -4; dy <= 4; ++dy) {
+    for (int dx = -4; dx <= 4; ++dx) {
+      const glm::u8vec4 p = r.image.pixel(centre.x + dx, centre.y + dy);
+      boxLike += sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(boxLike, 81) << "box centre projects to " << centre.x << ", " << centre.y;
+  // And not where it started: the screenshot shows the simulated state, not the initial one.
+  const glm::ivec2 start = toPixel(r, {0.0f, 3.0f, 0.0f});
+  const glm::u8vec4 p = r.image.pixel(start.x, start.y);
+  EXPECT_FALSE(sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b));
+}
+
+TEST(RenderScene, LooseParticlesAreDrawn) {
+  const Rendered& r = rendered();
+  const auto& world = r.scene.world;
+  const phys::ParticleId firstLoose = world.boxes().back().firstCorner + 8;
+  ASSERT_LT(firstLoose, world.particles().size());
+  for (phys::ParticleId i = firstLoose; i < world.particles().size(); ++i) {
+    const glm::ivec2 px = toPixel(r, glm::vec3(world.particles().position[i]) +
+                                         glm::vec3(0.0f, sandbox::kParticleDrawSize * 0.25f, 0.0f));
+    const glm::u8vec4 p = r.image.pixel(px.x, px.y);
+    EXPECT_TRUE(sandbox::looksLike(sandbox::kParticleColor, p.r, p.g, p.b))
+        << "particle " << i << " at pixel " << px.x << ", " << px.y << " is " << int(p.r) << " " << int(p.g)
+        << " " << int(p.b);
+  }
+}
+
+TEST(RenderScene, ImGuiPanelFillsItsRectangle) {
+  const Rendered& r = rendered();
+  ImGui::CreateContext();
+  ImGui::StyleColorsDark();
+  const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  ImGui::DestroyContext();
+  const glm::ivec3 want = to8bit({bg.x, bg.y, bg.z});  // drawn opaque: SetNextWindowBgAlpha(1)
+
+  auto countIn = [&](int x0, int y0, int w, int h, int& background, int& bright) {
+    background = bright = 0;
+    for (int y = y0; y < y0 + h; ++y) {
+      for (int x = x0; x < x0 + w; ++x) {
+        const glm::u8vec4 p = r.image.pixel(x, y);
+        if (std::abs(p.r - want.r) <= 2 && std::abs(p.g - want.g) <= 2 && std::abs(p.b - want.b) <= 2) ++background;
+        if (p.r > 200 && p.g > 200 && p.b > 200) ++bright;
+      }
+    }
+  };
+  const int x0 = static_cast<int>(sandbox::kPanelPosition.x), y0 = static_cast<int>(sandbox::kPanelPosition.y);
+  const int w = static_cast<int>(sandbox::kPanelSize.x), h = static_cast<int>(sandbox::kPanelSize.y);
+  int background = 0, bright = 0;
+  countIn(x0, y0, w, h, background, bright);
+  EXPECT_GT(background, w * h / 2) << "the panel's background should fill most of its rectangle";
+  EXPECT_GT(bright, 200) << "the panel should show text";
+  // Just right of the panel the scene shows, not the panel.
+  countIn(x0 + w + 5, y0, 50, h, background, bright);
+  EXPECT_LT(background, 50);
+}
+
+}  // namespace
