@@ -1,37 +1,39 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "passes.h"
 
 namespace phys::detail {
 
-void collideGround(Particles& p, Real groundHeight, std::span<Real> depth) {
-  const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Real penetration = groundHeight - p.position[i].y;
-    if (penetration <= 0.0 || p.inverseMass[i] == 0.0) continue;
-    p.position[i].y = groundHeight;
-    depth[i] = std::max(depth[i], penetration);
+void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
+                   std::span<Real> normalPush) {
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const Embedding& e = contacts[c].point;
+    const Real depth = height - glm::dot(n, embeddedPosition(p.position, e));
+    if (depth <= 0.0) continue;
+    moveEmbedded(p.position, p.inverseMass, e, depth * n);
+    normalPush[c] += depth;
   }
 }
 
-// Jakobsen 2001, "Friction": the tangential part of this substep's motion (x - x*) is cut in
-// proportion to how deep the particle went, by editing x* so the velocity changes and the
-// position does not.
-void applyGroundFriction(Particles& p, std::span<const Real> depth, Real staticFriction,
-                         Real dynamicFriction) {
-  const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (depth[i] <= 0.0) continue;
-    Vec3 slide = p.position[i] - p.previous[i];
-    slide.y = 0.0;
-    const Real slideLength = std::sqrt(slide.x * slide.x + slide.z * slide.z);
+// Jakobsen 2001, "Friction", made Coulomb: the push out of the ground summed over a substep's
+// iterations is the normal impulse times h / m, and the tangential cut is bounded by mu times it.
+void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
+                         std::span<const Real> normalPush) {
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const Real push = normalPush[c];
+    if (push <= 0.0) continue;
+    const Embedding& e = contacts[c].point;
+    Vec3 slide = embeddedPosition(p.position, e) - embeddedPosition(p.previous, e);
+    slide -= glm::dot(slide, n) * n;
+    const Real slideLength = glm::length(slide);
     if (slideLength == 0.0) continue;
+    const Material& mu = contacts[c].combined;
     Real cut = 1.0;  // static: stop the slide entirely
-    if (slideLength > staticFriction * depth[i]) {
-      cut = std::min(1.0, dynamicFriction * depth[i] / slideLength);
-    }
-    p.previous[i] += cut * slide;
+    if (slideLength > mu.staticFriction * push) cut = std::min(1.0, mu.dynamicFriction * push / slideLength);
+    moveEmbedded(p.position, p.inverseMass, e, -cut * slide);
   }
 }
 

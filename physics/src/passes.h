@@ -1,29 +1,53 @@
 #pragma once
-// The phases of one substep, each a free function over the world's arrays so that
-// World::step reads like the algorithm and each phase can be timed and tested alone.
+// The phases of one substep, each a free function over the world's arrays, so World::step
+// reads like the algorithm and each phase can be timed and tested alone. None allocates.
 #include <span>
 
+#include "physics/constraints.h"
 #include "physics/particles.h"
-#include "physics/world.h"
+#include "physics/settings.h"
 
 namespace phys::detail {
 
-/// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a h^2, with
+/// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).
-void integrate(Particles& p, const Vec3& gravity, Real damping, Real h);
+void integrate(Particles& p, const WorldSettings& world, Real h);
 
-/// One Gauss-Seidel pass over the sticks, each moved along its current direction in
-/// proportion to the inverse masses (REFERENCES.md: the corrected form of Jakobsen's listing).
-void relaxSticks(Particles& p, std::span<const Stick> sticks);
+/// The length a stick or range stick must be moved to, or a negative number when the current
+/// length is within its bounds (nothing to do).
+inline Real stickTarget(const Stick& s, Real length) {
+  if (length < s.minLength) return s.minLength;
+  if (length > s.maxLength) return s.maxLength;
+  return -1.0;
+}
 
-/// Projects every particle below the ground plane back onto it and records in depth[i] the
-/// deepest penetration seen this substep (friction needs it: Jakobsen, "Friction").
-void collideGround(Particles& p, Real groundHeight, std::span<Real> depth);
+/// Jakobsen: each stick in turn, along its current direction, in proportion to inverse mass.
+void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks);
+/// Every stick's correction from the same positions, then each particle moved by the mean of
+/// its corrections. delta and count are scratch, one per particle.
+void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<Vec3> delta, std::span<Real> count);
+/// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
+/// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
+/// zeroed at the start of each substep.
+void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h);
+/// SHAKE (Ryckaert, Ciccotti, Berendsen 1977): each stick moved along its direction at the
+/// start of the substep (x* after integration), by the root of a scalar quadratic.
+void relaxShake(Particles& p, std::span<const Stick> sticks);
 
-/// Cuts the tangential motion of each particle that touched the ground, in proportion to its
-/// penetration depth: stops it when it is within mu_s * depth, else shortens it by mu_d * depth.
-/// Never reverses it.
-void applyGroundFriction(Particles& p, std::span<const Real> depth, Real staticFriction,
-                         Real dynamicFriction);
+/// Projects every contact point below the ground plane n . x = height back onto it, adding the
+/// distance moved to normalPush (friction needs it: Jakobsen, "Friction").
+void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
+                   std::span<Real> normalPush);
+/// Cuts the tangential motion (x - x*) of each contact point that was pushed this substep:
+/// stops it when it is within mu_s * push, else shortens it by mu_d * push. Edits x* only, so
+/// the velocity changes and the position does not; never reverses the motion.
+void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
+                         std::span<const Real> normalPush);
+
+/// Current position of an embedded point.
+Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);
+/// Moves an embedded point by D through its particles in `x` (positions or previous
+/// positions), each in proportion to weight * inverse mass (REFERENCES.md).
+void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& D);
 
 }  // namespace phys::detail

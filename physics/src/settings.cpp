@@ -3,25 +3,44 @@
 #include <cmath>
 #include <sstream>
 
+#include <glm/geometric.hpp>
+
+#include "physics/box.h"
+
 namespace phys {
 namespace {
 
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// Joins the reasons with "; " (the caller prefixes what was being checked).
+std::string joined(const std::ostringstream& why) {
+  std::string out = why.str();
+  if (!out.empty()) out.resize(out.size() - 2);
+  return out;
+}
+
+bool finiteNonNegative(Real v) { return std::isfinite(v) && v >= 0.0; }
+
 }  // namespace
+
+std::string validate(const Material& m) {
+  std::ostringstream why;
+  if (!finiteNonNegative(m.staticFriction)) why << "static friction must be finite and >= 0; ";
+  if (!finiteNonNegative(m.dynamicFriction)) why << "dynamic friction must be finite and >= 0; ";
+  return joined(why);
+}
 
 std::string validate(const WorldSettings& s) {
   std::ostringstream why;
   if (!finite(s.gravity)) why << "gravity must be finite; ";
-  if (!std::isfinite(s.damping) || s.damping < 0.0) why << "damping must be finite and >= 0 (1/s); ";
+  if (!finite(s.gravityPoint)) why << "gravityPoint must be finite; ";
+  if (!finiteNonNegative(s.gravityStrength)) why << "gravityStrength must be finite and >= 0 (m/s^2); ";
+  if (!finiteNonNegative(s.damping)) why << "damping must be finite and >= 0 (1/s); ";
+  if (!finite(s.groundNormal) || glm::length(s.groundNormal) < 1e-9) why << "groundNormal must be finite and non-zero; ";
   if (!std::isfinite(s.groundHeight)) why << "groundHeight must be finite; ";
-  if (!std::isfinite(s.groundStaticFriction) || s.groundStaticFriction < 0.0)
-    why << "groundStaticFriction must be finite and >= 0; ";
-  if (!std::isfinite(s.groundDynamicFriction) || s.groundDynamicFriction < 0.0)
-    why << "groundDynamicFriction must be finite and >= 0; ";
-  std::string out = why.str();
-  if (!out.empty()) out.resize(out.size() - 2);
-  return out;
+  if (const std::string m = validate(s.groundMaterial); !m.empty()) why << "groundMaterial: " << m << "; ";
+  if (!(s.bound > 0.0)) why << "bound must be > 0 (m); ";
+  return joined(why);
 }
 
 std::string validate(const SolverSettings& s) {
@@ -29,9 +48,33 @@ std::string validate(const SolverSettings& s) {
   if (!std::isfinite(s.dt) || s.dt <= 0.0) why << "dt must be finite and > 0 (s); ";
   if (s.substeps < 1) why << "substeps must be >= 1; ";
   if (s.iterations < 1) why << "iterations must be >= 1; ";
-  std::string out = why.str();
-  if (!out.empty()) out.resize(out.size() - 2);
-  return out;
+  if (!finiteNonNegative(s.featureEpsilon)) why << "featureEpsilon must be finite and >= 0 (m); ";
+  return joined(why);
+}
+
+std::string_view toString(SolverMethod method) {
+  switch (method) {
+    case SolverMethod::GaussSeidel: return "gauss-seidel";
+    case SolverMethod::Jacobi: return "jacobi";
+    case SolverMethod::Xpbd: return "xpbd";
+    case SolverMethod::Shake: return "shake";
+  }
+  return "?";
+}
+
+std::optional<SolverMethod> parseSolverMethod(std::string_view name) {
+  for (SolverMethod m : {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Xpbd, SolverMethod::Shake}) {
+    if (name == toString(m)) return m;
+  }
+  return std::nullopt;
+}
+
+std::string_view toString(GravityMode mode) { return mode == GravityMode::Point ? "point" : "uniform"; }
+
+std::optional<GravityMode> parseGravityMode(std::string_view name) {
+  if (name == "uniform") return GravityMode::Uniform;
+  if (name == "point") return GravityMode::Point;
+  return std::nullopt;
 }
 
 }  // namespace phys

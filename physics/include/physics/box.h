@@ -1,18 +1,34 @@
 #pragma once
-// A rigid box made of its 8 corner particles braced by sticks (the seed's model).
-#include <array>
+// Rigid boxes made of particles, in two models a scene chooses per box.
+#include <string>
 
+#include "physics/settings.h"
 #include "physics/types.h"
 
 namespace phys {
 
+enum class BoxModel {
+  /// The seed's: 8 corner particles braced by 22 sticks (docs/physics.md says which and why).
+  Corners,
+  /// Jakobsen's: 4 particles and 6 sticks forming a tetrahedron; the 8 corners are embedded by
+  /// fixed barycentric weights.
+  Tetra,
+};
+
+std::string_view toString(BoxModel model);  ///< "corners", "tetra"
+std::optional<BoxModel> parseBoxModel(std::string_view name);
+
 /// What a box is when it is created.
 struct BoxDesc {
+  std::string name;                  ///< for reports and dumps; may be empty
   Vec3 center{0.0};                  ///< unit: m
   Vec3 size{1.0};                    ///< unit: m; full edge lengths, each > 0
   Quat orientation{1.0, 0.0, 0.0, 0.0};
-  Vec3 velocity{0.0};                ///< unit: m/s; of every corner at creation
-  Real mass = 1.0;                   ///< unit: kg; spread evenly over the corners
+  Vec3 velocity{0.0};                ///< unit: m/s; of the centre at creation
+  Vec3 angularVelocity{0.0};         ///< unit: rad/s; world frame, at creation
+  Real mass = 1.0;                   ///< unit: kg; spread evenly over the particles
+  BoxModel model = BoxModel::Corners;
+  Material material;
 };
 
 /// Where a box is: read back from its particles.
@@ -21,17 +37,24 @@ struct BoxPose {
   Quat orientation{1.0, 0.0, 0.0, 0.0};
 };
 
-/// A box in the world. Corner k sits at (+-hx, +-hy, +-hz) in the body frame, with bit 0 of k
-/// choosing the sign of x, bit 1 of y and bit 2 of z (set bit = positive).
+/// A box in the world. Its particles are consecutive from firstParticle; its 8 corners are
+/// embeddings from firstCorner in World::corners(). Corner k sits at (+-hx, +-hy, +-hz) in the
+/// body frame, bit 0 of k choosing the sign of x, bit 1 of y and bit 2 of z (set = positive).
 struct Box {
-  ParticleId firstCorner = 0;  ///< the 8 corners are consecutive particles from here
-  Vec3 halfExtents{0.5};       ///< unit: m
+  std::string name;
+  BoxModel model = BoxModel::Corners;
+  ParticleId firstParticle = 0;
+  int particleCount = 0;  ///< 8 (corners) or 4 (tetra)
+  std::uint32_t firstCorner = 0;
+  Vec3 halfExtents{0.5};  ///< unit: m
+  Material material;
 };
-
-/// Number of sticks that brace one box (see box.cpp for which ones and why).
-inline constexpr int kBoxStickCount = 22;
 
 /// Body-frame position of corner k of a box with the given half extents.
 Vec3 boxCornerLocal(const Vec3& halfExtents, int k);
+/// Body-frame rest position of particle j of a box of the given model.
+Vec3 boxParticleLocal(BoxModel model, const Vec3& halfExtents, int j);
+/// Particles per box of the given model.
+int boxParticleCount(BoxModel model);
 
 }  // namespace phys

@@ -1,34 +1,71 @@
 #pragma once
 // Every tunable of the world and the solver, with its default and unit. The sandbox's panels,
-// the scene loader and the tests read the defaults from here and nowhere else.
+// the scene loader, the lab and the tests read the defaults from here and nowhere else.
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "physics/types.h"
 
 namespace phys {
 
-/// Forces and the ground: what the world is like.
+/// Where gravity points: one vector everywhere, or towards a point with a fixed strength.
+enum class GravityMode { Uniform, Point };
+
+/// How the constraints are relaxed (docs/physics.md compares them).
+enum class SolverMethod {
+  GaussSeidel,  ///< Jakobsen: project each stick in turn along its current direction
+  Jacobi,       ///< every stick from the same positions, corrections averaged per particle
+  Xpbd,         ///< Gauss-Seidel with a Lagrange multiplier per stick, honouring compliance
+  Shake,        ///< project along each stick's direction at the start of the substep
+};
+
+/// Coulomb friction coefficients; a contact uses the geometric mean of its two materials'.
+struct Material {
+  Real staticFriction = 0.6;   ///< unitless; tangential motion below mu_s * normal push stops
+  Real dynamicFriction = 0.5;  ///< unitless; above it, the motion is cut by mu_d * normal push
+};
+
+/// Forces, the ground and the world's extent.
 struct WorldSettings {
-  Vec3 gravity{0.0, -9.81, 0.0};  ///< unit: m/s^2
+  GravityMode gravityMode = GravityMode::Uniform;
+  Vec3 gravity{0.0, -9.81, 0.0};     ///< unit: m/s^2; the acceleration in Uniform mode
+  Vec3 gravityPoint{0.0, 5.0, 0.0};  ///< unit: m; what Point mode pulls towards
+  Real gravityStrength = 9.81;       ///< unit: m/s^2; the pull's magnitude in Point mode
   /// The seed's "wind resistance": velocity decays as exp(-damping * t). It acts on velocity
   /// only (REFERENCES.md: Jakobsen's "1.99" form pulls resting particles towards the origin).
-  Real damping = 0.0;               ///< unit: 1/s
-  bool ground = true;               ///< false: nothing below, bodies fall for ever
-  Real groundHeight = 0.0;          ///< unit: m; the ground is the plane y = groundHeight
-  Real groundStaticFriction = 0.8;  ///< unitless; tangential motion up to mu_s * depth stops
-  Real groundDynamicFriction = 0.6; ///< unitless; otherwise it is cut by mu_d * depth
+  Real damping = 0.0;                ///< unit: 1/s
+  bool ground = true;                ///< false: nothing below, bodies fall for ever
+  Vec3 groundNormal{0.0, 1.0, 0.0};  ///< unit vector; the ground is { x : n . x = groundHeight }
+  Real groundHeight = 0.0;           ///< unit: m
+  Material groundMaterial;
+  /// A particle farther than this from the origin along any axis is frozen and reported.
+  Real bound = 1.0e6;                ///< unit: m
 };
 
 /// How the equations are stepped and relaxed.
 struct SolverSettings {
+  SolverMethod method = SolverMethod::GaussSeidel;
   Real dt = 1.0 / 60.0;  ///< unit: s; time advanced by one World::step()
   int substeps = 1;      ///< integrations per step, each of dt / substeps
   int iterations = 3;    ///< relaxation passes per substep (the seed's 3)
+  /// Vertices within this distance of the deepest one count as one contact feature (the seed's
+  /// 0.01); used by box-box contact classification.
+  Real featureEpsilon = 0.01;  ///< unit: m
 };
 
 /// Empty when the settings can be stepped; otherwise says which field is wrong and why.
 std::string validate(const WorldSettings& settings);
 /// Empty when the settings can be stepped; otherwise says which field is wrong and why.
 std::string validate(const SolverSettings& settings);
+/// Empty when the coefficients are finite and >= 0.
+std::string validate(const Material& material);
+
+/// "gauss-seidel", "jacobi", "xpbd", "shake": the names scene files and the lab use.
+std::string_view toString(SolverMethod method);
+std::optional<SolverMethod> parseSolverMethod(std::string_view name);
+/// "uniform", "point".
+std::string_view toString(GravityMode mode);
+std::optional<GravityMode> parseGravityMode(std::string_view name);
 
 }  // namespace phys

@@ -1,11 +1,16 @@
 #pragma once
-// The world: particles, sticks between them, boxes made of particles, and the step that moves
-// them. One step is Jakobsen's loop run substeps times: forces and Verlet integration, then a
-// few relaxation passes over the sticks and the ground, then ground friction.
+// The world: particles, sticks between them, boxes made of particles, the ground, and the step
+// that moves them. One step is Jakobsen's loop run `substeps` times: integrate, relax the
+// sticks and the ground contacts `iterations` times, apply ground friction, guard.
+#include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "physics/box.h"
+#include "physics/constraints.h"
+#include "physics/debug_draw.h"
+#include "physics/metrics.h"
 #include "physics/particles.h"
 #include "physics/settings.h"
 
@@ -17,13 +22,15 @@ struct ParticleDesc {
   Vec3 velocity{0.0};  ///< unit: m/s, at the time of creation
   Real mass = 1.0;     ///< unit: kg; > 0 unless pinned
   bool pinned = false; ///< a pinned particle never moves (inverse mass 0)
+  std::string name;    ///< for reports and dumps; may be empty
 };
 
-/// Keeps two particles at a fixed distance (Jakobsen's stick constraint).
-struct Stick {
-  ParticleId a = 0;
-  ParticleId b = 0;
-  Real length = 0.0;  ///< unit: m
+/// What the guard did to a particle that went bad.
+struct FreezeReport {
+  std::string name;     ///< the box's name, else the particle's, else "particle N"
+  std::string reason;   ///< "non-finite position" or "left the world bound of B m"
+  ParticleId particle;  ///< the first bad particle
+  Real time;            ///< unit: s; simulated time of the substep that caught it
 };
 
 class World {
@@ -34,10 +41,13 @@ class World {
   /// Adds one particle; throws std::invalid_argument on a non-finite input or a bad mass.
   ParticleId addParticle(const ParticleDesc& desc);
   /// Adds a stick at the particles' current distance.
-  void addStick(ParticleId a, ParticleId b);
-  /// Adds a stick of the given rest length (unit: m, finite and >= 0).
-  void addStick(ParticleId a, ParticleId b, Real length);
-  /// Adds a box of 8 corner particles and kBoxStickCount sticks; throws on bad input.
+  void addStick(ParticleId a, ParticleId b, Real compliance = 0.0);
+  /// Adds a stick of the given rest length (unit: m, finite and > 0).
+  void addStick(ParticleId a, ParticleId b, Real length, Real compliance);
+  /// Adds a range stick: no force while minLength <= |xb - xa| <= maxLength. minLength 0 or
+  /// maxLength kNoMaxLength makes it one-sided. Needs 0 <= minLength <= maxLength, maxLength > 0.
+  void addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength, Real compliance = 0.0);
+  /// Adds a box of the chosen model; throws std::invalid_argument on bad input and adds nothing.
   BoxId addBox(const BoxDesc& desc);
 
   /// Advances the world by solverSettings().dt.
@@ -46,30 +56,72 @@ class World {
   /// Replaces the world settings; throws std::invalid_argument (and keeps the old ones) if bad.
   void setWorldSettings(const WorldSettings& settings);
   /// Replaces the solver settings; throws std::invalid_argument (and keeps the old ones) if bad.
+  /// A new dt or substep count keeps every particle's velocity.
   void setSolverSettings(const SolverSettings& settings);
+  /// Called once for each particle or body the guard freezes.
+  void setFreezeCallback(std::function<void(const FreezeReport&)> callback);
 
   const WorldSettings& worldSettings() const { return world_; }
   const SolverSettings& solverSettings() const { return solver_; }
   const Particles& particles() const { return particles_; }
   std::span<const Stick> sticks() const { return sticks_; }
   std::span<const Box> boxes() const { return boxes_; }
-  Real time() const { return time_; }     ///< unit: s; simulated time since creation
+  /// Every box's corners, 8 per box from Box::firstCorner.
+  std::span<const Embedding> corners() const { return corners_; }
+  /// Every point that collides with the ground.
+  std::span<const GroundContact> groundContacts() const { return contactPoints_; }
+  const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
+  /// Freezes so far, oldest first.
+  std::span<const FreezeReport> freezes() const { return freezes_; }
+  Real time() const { return time_; }  ///< unit: s; simulated time since creation
   long stepCount() const { return steps_; }
 
   /// Velocity of a particle over its last substep. unit: m/s
   Vec3 velocity(ParticleId id) const;
-  /// Centre and orientation of a box, fitted to its corner particles.
+  /// Current position of an embedded point (a box corner, say). unit: m
+  Vec3 position(const Embedding& point) const;
+  /// Centre and orientation of a box, fitted to its particles (polar decomposition).
   BoxPose boxPose(BoxId id) const;
+  /// Acceleration of gravity at a point, in the current mode. unit: m/s^2
+  Vec3 gravityAt(const Vec3& x) const;
+
+  Metrics metrics() const;
+  /// Where the time of the last step() went.
+  const Profile& profile() const { return profile_; }
+  /// FNV-1a hash of every position and previous position: equal hashes, equal states.
+  std::uint64_t stateHash() const;
+  /// Draws what the flags ask for through the given interface.
+  void debugDraw(DebugDraw& draw, const DebugDrawFlags& flags = {}) const;
 
  private:
   Real substepDt() const { return solver_.dt / solver_.substeps; }
+  void addContactPoint(const Embedding& point, const Material& material, std::int32_t body);
+  void combineMaterials();
+  void relax(Real h);
+  void guard();
+  void freeze(ParticleId bad, const std::string& reason);
 
   WorldSettings world_;
   SolverSettings solver_;
   Particles particles_;
+  std::vector<std::string> particleName_;
+  std::vector<std::int32_t> particleBody_;  // box index, or -1 for a loose particle
   std::vector<Stick> sticks_;
   std::vector<Box> boxes_;
-  std::vector<Real> groundDepth_;  // per particle, deepest ground penetration this substep
+  std::vector<Embedding> corners_;
+
+  std::vector<GroundContact> contactPoints_;  // loose particles and box corners
+  std::vector<Real> normalPush_;  // per contact point: total ground correction this substep (m)
+  std::vector<std::uint8_t> touched_;  // per contact point: touched the ground in the last step
+
+  // Solver scratch, sized when things are added so the step never allocates.
+  std::vector<Real> lambda_;          // per stick: XPBD multiplier
+  std::vector<Vec3> jacobiDelta_;     // per particle
+  std::vector<Real> jacobiCount_;     // per particle
+
+  std::function<void(const FreezeReport&)> onFreeze_;
+  std::vector<FreezeReport> freezes_;
+  Profile profile_;
   Real time_ = 0.0;
   long steps_ = 0;
 };

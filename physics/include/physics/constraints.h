@@ -1,0 +1,46 @@
+#pragma once
+// Constraint definitions, kept apart from particle state.
+#include <array>
+#include <limits>
+
+#include "physics/settings.h"
+#include "physics/types.h"
+
+namespace phys {
+
+/// Keeps the distance between two particles within [minLength, maxLength]. A stick proper
+/// (Jakobsen's) has minLength == maxLength; a range stick (the softer joint the seed wished
+/// for) has minLength < maxLength, and is one-sided when minLength is 0 or maxLength infinite.
+struct Stick {
+  ParticleId a = 0;
+  ParticleId b = 0;
+  Real minLength = 0.0;  ///< unit: m
+  Real maxLength = 0.0;  ///< unit: m; may be infinite
+  /// Inverse stiffness (XPBD's alpha), honoured by SolverMethod::Xpbd; 0 is rigid.
+  Real compliance = 0.0;  ///< unit: m/N
+
+  bool isRange() const { return minLength != maxLength; }
+};
+
+inline constexpr Real kNoMaxLength = std::numeric_limits<Real>::infinity();
+
+/// A point carried by up to 4 particles as the affine combination sum(weight[i] * x[i]), with
+/// weights summing to 1: a particle itself (one weight of 1), a box corner embedded in a
+/// tetrahedron (four barycentric weights). Moving the point by D moves particle i by
+/// weight[i] * w_i * D / sum_j(weight[j]^2 w_j) (REFERENCES.md, Jakobsen): no matrix inverse,
+/// and it cannot blow up for a point inside the body.
+struct Embedding {
+  std::array<ParticleId, 4> particle{};
+  std::array<Real, 4> weight{};
+  int count = 0;
+};
+
+/// A point that collides with the ground: a loose particle or a box corner.
+struct GroundContact {
+  Embedding point;
+  Material material;   ///< the body's own
+  Material combined;   ///< geometric mean with the ground's, kept current by the world
+  std::int32_t body = -1;  ///< box index, or -1 for a loose particle
+};
+
+}  // namespace phys

@@ -1,0 +1,33 @@
+#pragma once
+// What the world can tell about itself: accuracy figures, and where the step's time went.
+#include <cstdint>
+
+#include "physics/types.h"
+
+namespace phys {
+
+/// Figures of the current state (World::metrics()).
+struct Metrics {
+  Real kineticEnergy = 0.0;    ///< unit: J; from Verlet velocities, pinned particles excluded
+  Real potentialEnergy = 0.0;  ///< unit: J; m g h (uniform) or m s |x - p| (point gravity)
+  Real maxConstraintError = 0.0;  ///< unitless; max over sticks of |violation| / rest length
+  Real rmsConstraintError = 0.0;  ///< unitless; root mean square of the same
+  Real maxPenetration = 0.0;   ///< unit: m; deepest contact point below the ground now
+  Real maxSpeed = 0.0;         ///< unit: m/s
+  int contacts = 0;            ///< contact points that touched the ground in the last step
+  int frozen = 0;              ///< particles frozen by the guard so far
+
+  Real energy() const { return kineticEnergy + potentialEnergy; }
+};
+
+/// Wall-clock time of each phase of the last World::step(), summed over its substeps.
+struct Profile {
+  double integrate = 0.0;    ///< unit: ms
+  double constraints = 0.0;  ///< unit: ms; relaxation of the sticks
+  double contacts = 0.0;     ///< unit: ms; ground projection, all iterations
+  double friction = 0.0;     ///< unit: ms
+  double guard = 0.0;        ///< unit: ms; NaN and bound checks
+  double total = 0.0;        ///< unit: ms; the whole step
+};
+
+}  // namespace phys

@@ -1,0 +1,41 @@
+// World::debugDraw: what the physics knows, through the interface the renderer implements.
+#include <algorithm>
+
+#include "physics/world.h"
+
+namespace phys {
+
+void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
+  const auto& x = particles_.position;
+  if (flags.constraints) {
+    for (const Stick& s : sticks_) draw.line(x[s.a], x[s.b], s.isRange() ? colors::kRange : colors::kStick);
+  }
+  if (flags.particles) {
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      const bool frozen = particles_.inverseMass[i] == 0.0 &&
+                          std::any_of(freezes_.begin(), freezes_.end(), [&](const FreezeReport& f) {
+                            const std::int32_t body = particleBody_[f.particle];
+                            return f.particle == i || (body >= 0 && body == particleBody_[i]);
+                          });
+      draw.point(x[i], 0.05, frozen ? colors::kFrozen : colors::kParticle);
+    }
+  }
+  if (flags.contacts) {
+    for (std::size_t c = 0; c < contactPoints_.size(); ++c) {
+      if (touched_[c] != 0) draw.point(position(contactPoints_[c].point), 0.08, colors::kContact);
+    }
+  }
+  if (flags.bounds) {
+    for (const Box& box : boxes_) {
+      Vec3 lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 p = position(corners_[box.firstCorner + k]);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
+      draw.box((lo + hi) * 0.5, Quat(1.0, 0.0, 0.0, 0.0), (hi - lo) * 0.5, colors::kBounds);
+    }
+  }
+}
+
+}  // namespace phys

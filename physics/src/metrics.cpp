@@ -1,0 +1,75 @@
+// World::metrics and World::stateHash: read-only figures of the current state.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+
+#include "passes.h"
+#include "physics/world.h"
+
+namespace phys {
+
+Metrics World::metrics() const {
+  Metrics m;
+  const Real h = substepDt();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const Real w = particles_.inverseMass[i];
+    if (w == 0.0) continue;
+    const Real mass = 1.0 / w;
+    const Vec3& x = particles_.position[i];
+    const Vec3& xPrevious = particles_.previous[i];
+    const Vec3 v = (x - xPrevious) / h;
+    const Real speed = glm::length(v);
+    m.maxSpeed = std::max(m.maxSpeed, speed);
+    // Verlet knows the velocity half a substep back, at t - h/2; take the potential there too,
+    // at the midpoint of x* and x. Pairing both at the same instant makes the energy of an
+    // exact trajectory exact to O(h^2); pairing v(t - h/2) with x(t) would be off by O(h).
+    m.kineticEnergy += 0.5 * mass * speed * speed;
+    const Vec3 xHalf = 0.5 * (x + xPrevious);
+    // Uniform gravity has potential -m g . x; the fixed-strength pull, m s |x - p|.
+    m.potentialEnergy += world_.gravityMode == GravityMode::Uniform
+                             ? -mass * glm::dot(world_.gravity, xHalf)
+                             : mass * world_.gravityStrength * glm::length(xHalf - world_.gravityPoint);
+  }
+  Real sumSquares = 0.0;
+  for (const Stick& s : sticks_) {
+    const Real length = glm::length(particles_.position[s.b] - particles_.position[s.a]);
+    Real violation = 0.0;
+    if (length < s.minLength) violation = (s.minLength - length) / s.minLength;
+    else if (length > s.maxLength) violation = (length - s.maxLength) / s.maxLength;
+    m.maxConstraintError = std::max(m.maxConstraintError, violation);
+    sumSquares += violation * violation;
+  }
+  if (!sticks_.empty()) m.rmsConstraintError = std::sqrt(sumSquares / static_cast<Real>(sticks_.size()));
+  if (world_.ground) {
+    for (const GroundContact& c : contactPoints_) {
+      const Real depth = world_.groundHeight - glm::dot(world_.groundNormal, position(c.point));
+      m.maxPenetration = std::max(m.maxPenetration, depth);
+    }
+  }
+  m.contacts = static_cast<int>(std::count(touched_.begin(), touched_.end(), std::uint8_t{1}));
+  m.frozen = 0;
+  for (const FreezeReport& f : freezes_) {
+    const std::int32_t body = particleBody_[f.particle];
+    m.frozen += body >= 0 ? boxes_[static_cast<std::size_t>(body)].particleCount : 1;
+  }
+  return m;
+}
+
+// FNV-1a, 64 bit, over the bytes of every position and previous position.
+std::uint64_t World::stateHash() const {
+  std::uint64_t hash = 14695981039346656037ull;
+  auto mix = [&hash](const std::vector<Vec3>& values) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+    for (std::size_t i = 0; i < values.size() * sizeof(Vec3); ++i) {
+      hash ^= bytes[i];
+      hash *= 1099511628211ull;
+    }
+  };
+  mix(particles_.position);
+  mix(particles_.previous);
+  return hash;
+}
+
+}  // namespace phys

@@ -1,0 +1,14 @@
+#pragma once
+#include <glm/mat3x3.hpp>
+
+#include "physics/types.h"
+
+namespace phys::detail {
+
+/// The rotation nearest to A (the orthogonal factor of its polar decomposition), by Higham's
+/// iteration X <- (X + X^-T) / 2. A is the shape-matching matrix sum m (x - c) r^T of a body, so
+/// it is R S with S symmetric positive definite while the body is not inverted; if it is
+/// (det A <= 0), falls back to Gram-Schmidt on A's columns.
+glm::dmat3 nearestRotation(const glm::dmat3& A);
+
+}  // namespace phys::detail

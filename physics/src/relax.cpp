@@ -1,0 +1,106 @@
+// The four ways to relax sticks. Each is one pass over all sticks; the caller repeats it.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "passes.h"
+
+namespace phys::detail {
+
+// Jakobsen 2001, "Advanced Character Physics", stick constraint, with the sign of the printed
+// listing corrected (REFERENCES.md): s = (|d| - r) / (|d| (w1 + w2)); x1 += w1 s d; x2 -= w2 s d.
+void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks) {
+  for (const Stick& s : sticks) {
+    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
+    if (w1 + w2 == 0.0) continue;
+    const Vec3 delta = p.position[s.b] - p.position[s.a];
+    const Real length = glm::length(delta);
+    const Real target = stickTarget(s, length);
+    if (target < 0.0 || length == 0.0) continue;  // within bounds, or no direction to push along
+    const Real k = (length - target) / (length * (w1 + w2));
+    p.position[s.a] += (w1 * k) * delta;
+    p.position[s.b] -= (w2 * k) * delta;
+  }
+}
+
+// Jacobi with averaging (Müller et al. 2007 discuss both orders; averaging by the number of
+// constraints on a particle keeps the sum of corrections from overshooting).
+void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<Vec3> delta, std::span<Real> count) {
+  std::fill(delta.begin(), delta.end(), Vec3(0.0));
+  std::fill(count.begin(), count.end(), 0.0);
+  for (const Stick& s : sticks) {
+    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
+    if (w1 + w2 == 0.0) continue;
+    const Vec3 d = p.position[s.b] - p.position[s.a];
+    const Real length = glm::length(d);
+    const Real target = stickTarget(s, length);
+    if (target < 0.0 || length == 0.0) continue;
+    const Real k = (length - target) / (length * (w1 + w2));
+    delta[s.a] += (w1 * k) * d;
+    delta[s.b] -= (w2 * k) * d;
+    count[s.a] += 1.0;
+    count[s.b] += 1.0;
+  }
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (count[i] > 0.0) p.position[i] += delta[i] / count[i];
+  }
+}
+
+// XPBD, Macklin, Müller and Chentanez 2016, eq. 18: dlambda = (-C - a~ lambda) / (sum w + a~),
+// a~ = compliance / h^2; gradient of C = |x2 - x1| - r is -n for x1 and +n for x2.
+void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h) {
+  const Real inverseH2 = 1.0 / (h * h);
+  for (std::size_t c = 0; c < sticks.size(); ++c) {
+    const Stick& s = sticks[c];
+    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
+    if (w1 + w2 == 0.0) continue;
+    const Vec3 d = p.position[s.b] - p.position[s.a];
+    const Real length = glm::length(d);
+    const Real target = stickTarget(s, length);
+    if (target < 0.0 || length == 0.0) continue;
+    const Real alpha = s.compliance * inverseH2;
+    const Real dLambda = (-(length - target) - alpha * lambda[c]) / (w1 + w2 + alpha);
+    lambda[c] += dLambda;
+    const Vec3 n = d / length;
+    p.position[s.a] -= (w1 * dLambda) * n;
+    p.position[s.b] += (w2 * dLambda) * n;
+  }
+}
+
+// SHAKE for one stick: move x1 by -w1 g r and x2 by +w2 g r, where r is the stick at the start
+// of the substep, with g the root of |d + (w1 + w2) g r|^2 = L^2 nearest zero. Where no root
+// exists (the stick turned too far within one substep), fall back to Jakobsen's projection.
+void relaxShake(Particles& p, std::span<const Stick> sticks) {
+  for (const Stick& s : sticks) {
+    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
+    const Real w = w1 + w2;
+    if (w == 0.0) continue;
+    const Vec3 d = p.position[s.b] - p.position[s.a];
+    const Real length = glm::length(d);
+    const Real target = stickTarget(s, length);
+    if (target < 0.0) continue;
+    const Vec3 r = p.previous[s.b] - p.previous[s.a];
+    const Real qa = w * w * glm::dot(r, r);
+    const Real qb = 2.0 * w * glm::dot(d, r);
+    const Real qc = glm::dot(d, d) - target * target;
+    const Real discriminant = qb * qb - 4.0 * qa * qc;
+    if (qa > 0.0 && discriminant >= 0.0) {
+      // The numerically stable pair of roots; keep the smaller in magnitude.
+      const Real q = -0.5 * (qb + std::copysign(std::sqrt(discriminant), qb));
+      Real g = 0.0;
+      if (q != 0.0) {
+        const Real g1 = q / qa, g2 = qc / q;
+        g = std::abs(g1) < std::abs(g2) ? g1 : g2;
+      }
+      p.position[s.a] -= (w1 * g) * r;
+      p.position[s.b] += (w2 * g) * r;
+    } else if (length > 0.0) {
+      const Real k = (length - target) / (length * w);
+      p.position[s.a] += (w1 * k) * d;
+      p.position[s.b] -= (w2 * k) * d;
+    }
+  }
+}
+
+}  // namespace phys::detail
