@@ -2,6 +2,8 @@
 
 #include <charconv>
 
+#include "scenes/scene.h"
+
 namespace sandbox {
 namespace {
 
@@ -11,7 +13,7 @@ constexpr int kMaxFrames = 1000000;
 
 std::string usage() {
   return "usage: sandbox [SCENE] [--screenshot FILE] [--frames N] [--data DIR]\n"
-         "  SCENE              built-in scene to open (default: the first one)\n"
+         "  SCENE              a scene file, or the name of one in assets/scenes/ (default: falling-box)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
          "                     each frame advances the simulation by one step\n"
@@ -69,6 +71,11 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
 
 std::filesystem::path dataDir(const Options& options) {
   return options.dataDir.empty() ? std::filesystem::path(SANDBOX_DATA_DIR) : options.dataDir;
+}
+
+std::filesystem::path scenePath(const Options& options) {
+  const std::string_view name = options.scene.empty() ? scenes::kDefaultScene : std::string_view(options.scene);
+  return scenes::resolveScene(name, scenes::sceneDirectory(dataDir(options)));
 }
 
 }  // namespace sandbox

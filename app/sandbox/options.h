@@ -9,7 +9,7 @@
 namespace sandbox {
 
 struct Options {
-  std::string scene;                                ///< empty: the default scene
+  std::string scene;  ///< a scene file, or a name in assets/scenes/; empty: the default scene
   std::optional<std::filesystem::path> screenshot;  ///< render, write this PNG, exit
   int frames = 60;        ///< frames rendered before the screenshot; one physics step each
   std::filesystem::path dataDir;  ///< holds shaders/ and assets/; empty: the build's default
@@ -26,5 +26,7 @@ ParsedOptions parseOptions(const std::vector<std::string>& args);
 std::string usage();
 /// The folder holding shaders/ and assets/: options.dataDir, or the one set at build time.
 std::filesystem::path dataDir(const Options& options);
+/// The scene file to open: options.scene as a path or a name in assets/scenes/, else the default.
+std::filesystem::path scenePath(const Options& options);
 
 }  // namespace sandbox

@@ -25,7 +25,10 @@ void drawPanel(scenes::Scene& scene, PanelState& state) {
   // The sliders edit copies and hand them back through the setters, which validate; the
   // ranges below keep every value valid, so the setters never refuse one.
   phys::SolverSettings solver = world.solverSettings();
-  bool solverChanged = ImGui::SliderInt("iterations", &solver.iterations, 1, 32);
+  int method = static_cast<int>(solver.method);
+  bool solverChanged = ImGui::Combo("method", &method, "gauss-seidel\0jacobi\0xpbd\0shake\0");
+  solver.method = static_cast<phys::SolverMethod>(method);
+  solverChanged |= ImGui::SliderInt("iterations", &solver.iterations, 1, 32);
   solverChanged |= ImGui::SliderInt("substeps", &solver.substeps, 1, 32);
   if (solverChanged) world.setSolverSettings(solver);
 
@@ -48,10 +51,11 @@ void drawPanel(scenes::Scene& scene, PanelState& state) {
   ImGui::Text("frame %.2f ms, physics %.3f ms", state.frameMs, state.stepMs);
   ImGui::Text("%zu particles, %zu sticks, %zu boxes", world.particles().size(),
               world.sticks().size(), world.boxes().size());
-  if (!world.boxes().empty()) {
-    const phys::Vec3 c = world.boxPose(0).center;
-    ImGui::Text("box 0 at (%.3f, %.3f, %.3f) m", c.x, c.y, c.z);
-  }
+  const phys::Metrics m = world.metrics();
+  ImGui::Text("energy %.3f J, max speed %.3f m/s", m.energy(), m.maxSpeed);
+  ImGui::Text("stick error max %.2e rms %.2e", m.maxConstraintError, m.rmsConstraintError);
+  ImGui::Text("contacts %d, frozen %d", m.contacts, m.frozen);
+  if (!state.loadError.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "%s", state.loadError.c_str());
   ImGui::TextDisabled("W/A/S/D/Q/E move, right mouse looks");
   ImGui::End();
 }

@@ -1,5 +1,7 @@
 #pragma once
 // The sandbox's ImGui panel: where it sits, and what it shows and changes.
+#include <string>
+
 #include <glm/vec2.hpp>
 
 namespace scenes {
@@ -11,7 +13,7 @@ namespace sandbox {
 /// Placement of the panel, in window pixels from the top-left corner. Fixed for now (panel
 /// layout persistence comes with the sandbox issue), so tests know where to look.
 inline constexpr glm::vec2 kPanelPosition{10.0f, 10.0f};
-inline constexpr glm::vec2 kPanelSize{340.0f, 330.0f};
+inline constexpr glm::vec2 kPanelSize{360.0f, 400.0f};
 
 /// What the panel can ask the sandbox to do this frame.
 struct PanelState {
@@ -22,6 +24,7 @@ struct PanelState {
   bool drawParticles = true;
   float frameMs = 0.0f;       ///< unit: ms; last frame, for display
   float stepMs = 0.0f;        ///< unit: ms; physics time in the last frame
+  std::string loadError;      ///< the last failed reload's message, shown until one succeeds
 };
 
 /// Draws the panel; edits of solver and world settings go straight into the scene's world.

@@ -65,8 +65,10 @@ Sandbox::~Sandbox() {
 }
 
 void Sandbox::loadScene() {
-  const std::string name = options_.scene.empty() ? scenes::defaultSceneName() : options_.scene;
-  scene_ = std::make_unique<scenes::Scene>(scenes::makeBuiltinScene(name));
+  // A scene that fails to load (at Reset, after the file was edited) leaves the current world
+  // as it was; at start-up there is none, so the error ends the program.
+  auto loaded = std::make_unique<scenes::Scene>(scenes::loadSceneFile(scenePath(options_)));
+  scene_ = std::move(loaded);
   camera_ = engine::FirstPersonCamera::lookingAt(scene_->camera.eye, scene_->camera.target);
   accumulator_ = 0.0;
 }
@@ -139,7 +141,7 @@ void Sandbox::renderFrame() {
   std::vector<bool> inBox(world.particles().size(), false);
   for (phys::BoxId id = 0; id < boxes.size(); ++id) {
     renderer_->drawMesh(*boxMesh_, viewProjection, boxModelMatrix(world.boxPose(id), boxes[id].halfExtents * 2.0), kBoxColor);
-    for (int k = 0; k < 8; ++k) inBox[boxes[id].firstCorner + k] = true;
+    for (int k = 0; k < boxes[id].particleCount; ++k) inBox[boxes[id].firstParticle + k] = true;
   }
   if (panel_.drawParticles) {
     const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(kParticleDrawSize));
@@ -176,8 +178,14 @@ int Sandbox::run() {
     panel_.frameMs = frameSeconds * 1000.0f;
 
     if (panel_.resetRequested) {
-      loadScene();
       panel_.resetRequested = false;
+      try {
+        loadScene();
+        panel_.loadError.clear();
+      } catch (const scenes::LoadError& e) {
+        panel_.loadError = e.what();
+        std::cerr << "sandbox: " << e.what() << " (keeping the current world)\n";
+      }
     }
     advancePhysics(frameSeconds);
     if (!options_.screenshot) moveCamera(frameSeconds);

@@ -37,7 +37,8 @@ const Rendered& rendered() {
     const std::string command = std::string("'") + SANDBOX_EXE + "' --screenshot '" + png.string() +
                                 "' --frames " + std::to_string(kFrames) + " --data '" + DATA_DIR + "'";
     if (std::system(command.c_str()) != 0) throw std::runtime_error("sandbox failed: " + command);
-    scenes::Scene scene = scenes::makeBuiltinScene(scenes::defaultSceneName());
+    scenes::Scene scene = scenes::loadSceneFile(
+        scenes::resolveScene(scenes::kDefaultScene, scenes::sceneDirectory(DATA_DIR)));
     for (int i = 0; i < kFrames; ++i) scene.world.step();  // one step per screenshot frame
     const auto camera = engine::FirstPersonCamera::lookingAt(scene.camera.eye, scene.camera.target);
     return Rendered{engine::readPng(png), std::move(scene), camera};
@@ -103,7 +104,7 @@ TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
 TEST(RenderScene, LooseParticlesAreDrawn) {
   const Rendered& r = rendered();
   const auto& world = r.scene.world;
-  const phys::ParticleId firstLoose = world.boxes().back().firstCorner + 8;
+  const phys::ParticleId firstLoose = world.boxes().back().firstParticle + world.boxes().back().particleCount;
   ASSERT_LT(firstLoose, world.particles().size());
   for (phys::ParticleId i = firstLoose; i < world.particles().size(); ++i) {
     const glm::ivec2 px = toPixel(r, glm::vec3(world.particles().position[i]) +

@@ -1,5 +1,10 @@
 #pragma once
-// A scene: a world ready to step, plus where a viewer's camera starts.
+// Scenes: a world ready to step, built from an XML scene file (docs/scene-format.md), plus
+// where a viewer's camera starts and which bodies have names. The sandbox, the lab and the
+// tests all load scenes through here, so a file means the same world everywhere.
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,22 +17,54 @@ namespace scenes {
 
 /// Where the camera starts, in metres.
 struct CameraStart {
-  glm::vec3 eye{0.0f, 2.0f, 8.0f};
+  glm::vec3 eye{0.0f, 2.5f, 7.0f};
   glm::vec3 target{0.0f, 1.0f, 0.0f};
+};
+
+/// A body a scene file gave a name (its own, or a generator's "stack[3]").
+struct NamedBody {
+  enum class Kind { Box, Particle };
+  std::string name;
+  Kind kind = Kind::Box;
+  std::uint32_t index = 0;  ///< phys::BoxId or phys::ParticleId
 };
 
 struct Scene {
   std::string name;
-  std::string description;  ///< one line, shown by the sandbox
+  std::string description;  ///< one line; may be empty
+  std::filesystem::path file;  ///< where it was loaded from; empty for a string
   phys::World world;
   CameraStart camera;
+  std::vector<NamedBody> bodies;  ///< every named body, in file order
 };
 
-/// Names of the scenes built in code, default first.
-std::vector<std::string> builtinSceneNames();
-/// The scene the sandbox opens with no argument.
-std::string defaultSceneName();
-/// Builds a built-in scene; throws std::invalid_argument naming the known scenes if unknown.
-Scene makeBuiltinScene(std::string_view name);
+/// A scene file that cannot be loaded. what() reads "file:line: <element> attribute 'a': why"
+/// (the attribute part only when one attribute is to blame).
+class LoadError : public std::runtime_error {
+ public:
+  LoadError(std::string file, int line, std::string attribute, const std::string& message);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }  ///< 1-based; 0 when the file could not be read at all
+  const std::string& attribute() const { return attribute_; }
+
+ private:
+  std::string file_;
+  int line_;
+  std::string attribute_;
+};
+
+/// Loads a scene file; throws LoadError and builds nothing on any error.
+Scene loadSceneFile(const std::filesystem::path& file);
+/// Loads a scene from text (tests, and files already in memory); `displayName` stands for the
+/// file name in errors.
+Scene loadSceneText(std::string_view xml, const std::string& displayName);
+
+/// The folder of the project's scenes: <data dir>/assets/scenes.
+std::filesystem::path sceneDirectory(const std::filesystem::path& dataDir);
+/// A path as given if it names an existing file; otherwise <sceneDir>/<name>.xml (so
+/// "pendulum" finds assets/scenes/pendulum.xml). Does not check that the result exists.
+std::filesystem::path resolveScene(std::string_view nameOrPath, const std::filesystem::path& sceneDir);
+/// The scene the sandbox opens with no argument, as a name for resolveScene.
+inline constexpr std::string_view kDefaultScene = "falling-box";
 
 }  // namespace scenes

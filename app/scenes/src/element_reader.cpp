@@ -1,0 +1,188 @@
+#include "element_reader.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace scenes::detail {
+namespace {
+
+std::vector<std::string_view> splitWhitespace(std::string_view text) {
+  std::vector<std::string_view> parts;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    const std::size_t start = i;
+    while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    if (i > start) parts.push_back(text.substr(start, i - start));
+  }
+  return parts;
+}
+
+std::string withUnit(std::string_view unit) { return unit.empty() ? "" : " (" + std::string(unit) + ")"; }
+
+}  // namespace
+
+LineIndex::LineIndex(const char* begin, std::size_t size) : begin_(begin) {
+  for (std::size_t i = 0; i < size; ++i) {
+    if (begin[i] == '\n') newlines_.push_back(i);
+  }
+}
+
+int LineIndex::lineOf(const char* p) const {
+  if (p == nullptr || p < begin_) return 0;
+  const auto offset = static_cast<std::size_t>(p - begin_);
+  return static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin()) + 1;
+}
+
+std::optional<phys::Real> parseReal(std::string_view text) {
+  if (text.empty()) return std::nullopt;
+  if (text.front() == '+') text.remove_prefix(1);  // from_chars does not take a leading '+'
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+ElementReader::ElementReader(const pugi::xml_node& node, const LineIndex& lines, const std::string& file)
+    : node_(node), lines_(lines), file_(file) {}
+
+int ElementReader::line() const {
+  // In-place parsing leaves names pointing into our buffer.
+  return lines_.lineOf(node_.name());
+}
+
+void ElementReader::fail(const std::string& message) const {
+  throw LoadError(file_, line(), "", "<" + std::string(node_.name()) + ">: " + message);
+}
+
+void ElementReader::fail(std::string_view attribute, const std::string& message) const {
+  int at = line();
+  for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
+    if (attribute == a.name()) at = lines_.lineOf(a.name());
+  }
+  throw LoadError(file_, at, std::string(attribute),
+                  "<" + std::string(node_.name()) + "> attribute '" + std::string(attribute) + "': " + message);
+}
+
+pugi::xml_attribute ElementReader::find(std::string_view name) {
+  asked_.emplace_back(name);
+  for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
+    if (name == a.name()) return a;
+  }
+  return {};
+}
+
+bool ElementReader::has(std::string_view name) const {
+  for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
+    if (name == a.name()) return true;
+  }
+  return false;
+}
+
+std::optional<std::string> ElementReader::text(std::string_view name) {
+  const pugi::xml_attribute a = find(name);
+  if (!a) return std::nullopt;
+  return std::string(a.value());
+}
+
+std::string ElementReader::requiredText(std::string_view name) {
+  std::optional<std::string> value = text(name);
+  if (!value) fail(name, "is required");
+  if (value->empty()) fail(name, "must not be empty");
+  return *value;
+}
+
+std::optional<phys::Real> ElementReader::number(std::string_view name, std::string_view unit) {
+  const std::optional<std::string> raw = text(name);
+  if (!raw) return std::nullopt;
+  const std::optional<phys::Real> value = parseReal(*raw);
+  if (!value) fail(name, "'" + *raw + "' is not a finite number" + withUnit(unit));
+  return value;
+}
+
+phys::Real ElementReader::requiredNumber(std::string_view name, std::string_view unit) {
+  const std::optional<phys::Real> value = number(name, unit);
+  if (!value) fail(name, "is required" + withUnit(unit));
+  return *value;
+}
+
+std::optional<long> ElementReader::integer(std::string_view name, long min, long max) {
+  const std::optional<std::string> raw = text(name);
+  if (!raw) return std::nullopt;
+  long value = 0;
+  const auto [end, ec] = std::from_chars(raw->data(), raw->data() + raw->size(), value);
+  if (ec != std::errc() || end != raw->data() + raw->size() || value < min || value > max) {
+    fail(name, "'" + *raw + "' must be a whole number from " + std::to_string(min) + " to " + std::to_string(max));
+  }
+  return value;
+}
+
+long ElementReader::requiredInteger(std::string_view name, long min, long max) {
+  const std::optional<long> value = integer(name, min, max);
+  if (!value) fail(name, "is required (a whole number from " + std::to_string(min) + " to " + std::to_string(max) + ")");
+  return *value;
+}
+
+std::optional<phys::Vec3> ElementReader::vector(std::string_view name, std::string_view unit, bool allowScalar) {
+  const std::optional<std::string> raw = text(name);
+  if (!raw) return std::nullopt;
+  const std::vector<std::string_view> parts = splitWhitespace(*raw);
+  const std::string expected = allowScalar ? "one or three finite numbers" : "three finite numbers";
+  if (parts.size() != 3 && !(allowScalar && parts.size() == 1)) {
+    fail(name, "'" + *raw + "' must be " + expected + withUnit(unit));
+  }
+  phys::Vec3 v(0.0);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::optional<phys::Real> x = parseReal(parts[i]);
+    if (!x) fail(name, "'" + *raw + "' must be " + expected + withUnit(unit));
+    v[static_cast<int>(i)] = *x;
+  }
+  if (parts.size() == 1) v = phys::Vec3(v.x);
+  return v;
+}
+
+phys::Vec3 ElementReader::requiredVector(std::string_view name, std::string_view unit, bool allowScalar) {
+  const std::optional<phys::Vec3> value = vector(name, unit, allowScalar);
+  if (!value) fail(name, "is required" + withUnit(unit));
+  return *value;
+}
+
+std::optional<glm::ivec3> ElementReader::integers3(std::string_view name, int min, int max) {
+  const std::optional<std::string> raw = text(name);
+  if (!raw) return std::nullopt;
+  const std::vector<std::string_view> parts = splitWhitespace(*raw);
+  const std::string expected = "three whole numbers from " + std::to_string(min) + " to " + std::to_string(max);
+  if (parts.size() != 3) fail(name, "'" + *raw + "' must be " + expected);
+  glm::ivec3 v(0);
+  for (int i = 0; i < 3; ++i) {
+    const std::string_view p = parts[static_cast<std::size_t>(i)];
+    const auto [end, ec] = std::from_chars(p.data(), p.data() + p.size(), v[i]);
+    if (ec != std::errc() || end != p.data() + p.size() || v[i] < min || v[i] > max) {
+      fail(name, "'" + *raw + "' must be " + expected);
+    }
+  }
+  return v;
+}
+
+std::optional<bool> ElementReader::boolean(std::string_view name) {
+  const std::optional<std::string> raw = text(name);
+  if (!raw) return std::nullopt;
+  if (*raw == "true") return true;
+  if (*raw == "false") return false;
+  fail(name, "'" + *raw + "' must be true or false");
+}
+
+void ElementReader::rejectUnknownAttributes() const {
+  for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
+    if (std::find(asked_.begin(), asked_.end(), a.name()) == asked_.end()) {
+      std::string known;
+      for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
+      fail(a.name(), "unknown attribute" + (known.empty() ? std::string(" (the element takes none)")
+                                                                  : " (known: " + known + ")"));
+    }
+  }
+}
+
+}  // namespace scenes::detail

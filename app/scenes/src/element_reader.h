@@ -1,0 +1,70 @@
+#pragma once
+// Reads one XML element's attributes strictly: every attribute must be asked for (an unknown
+// one is an error), numbers must parse whole and be finite, and every error names the file,
+// the line of the offending attribute and its name.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <pugixml.hpp>
+
+#include "physics/types.h"
+#include "scenes/scene.h"
+
+namespace scenes::detail {
+
+/// Maps a pointer into the parsed buffer back to a 1-based line number.
+class LineIndex {
+ public:
+  LineIndex(const char* begin, std::size_t size);
+  int lineOf(const char* p) const;
+
+ private:
+  const char* begin_;
+  std::vector<std::size_t> newlines_;  // offsets of '\n'
+};
+
+class ElementReader {
+ public:
+  ElementReader(const pugi::xml_node& node, const LineIndex& lines, const std::string& file);
+
+  /// Errors name this element's line, or the attribute's when one is given.
+  [[noreturn]] void fail(const std::string& message) const;
+  [[noreturn]] void fail(std::string_view attribute, const std::string& message) const;
+
+  bool has(std::string_view name) const;
+  std::optional<std::string> text(std::string_view name);
+  std::string requiredText(std::string_view name);
+  /// A finite number; `unit` goes into the error message ("m", "kg", ...).
+  std::optional<phys::Real> number(std::string_view name, std::string_view unit);
+  phys::Real requiredNumber(std::string_view name, std::string_view unit);
+  /// A whole number in [min, max].
+  std::optional<long> integer(std::string_view name, long min, long max);
+  long requiredInteger(std::string_view name, long min, long max);
+  /// Three finite numbers separated by white space; with allowScalar, one number stands for
+  /// three equal ones.
+  std::optional<phys::Vec3> vector(std::string_view name, std::string_view unit, bool allowScalar = false);
+  phys::Vec3 requiredVector(std::string_view name, std::string_view unit, bool allowScalar = false);
+  /// Three whole numbers in [min, max].
+  std::optional<glm::ivec3> integers3(std::string_view name, int min, int max);
+  std::optional<bool> boolean(std::string_view name);
+
+  /// Call once every attribute has been read: any attribute not asked for is an error.
+  void rejectUnknownAttributes() const;
+  int line() const;
+  const std::string& file() const { return file_; }
+
+ private:
+  pugi::xml_attribute find(std::string_view name);
+
+  pugi::xml_node node_;
+  const LineIndex& lines_;
+  const std::string& file_;
+  std::vector<std::string> asked_;
+};
+
+/// Parses a whole finite number; nullopt for anything else (junk after it, NaN, infinity).
+std::optional<phys::Real> parseReal(std::string_view text);
+
+}  // namespace scenes::detail

@@ -1,0 +1,141 @@
+#include "generators.h"
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace scenes::detail {
+namespace {
+
+std::string member(const std::string& name, long i) { return name + "[" + std::to_string(i) + "]"; }
+
+void addBox(ElementReader& e, BuildContext& ctx, phys::BoxDesc desc, const std::string& name) {
+  desc.name = name;
+  const phys::BoxId id = ctx.world.addBox(desc);
+  ctx.addName(e, name, NamedBody::Kind::Box, id);
+}
+
+}  // namespace
+
+phys::BoxDesc readBoxCommon(ElementReader& e) {
+  phys::BoxDesc d;
+  if (auto size = e.vector("size", "m", true)) {
+    if (size->x <= 0.0 || size->y <= 0.0 || size->z <= 0.0) e.fail("size", "sizes must be > 0 (m)");
+    d.size = *size;
+  }
+  if (auto mass = e.number("mass", "kg")) {
+    if (*mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
+    d.mass = *mass;
+  }
+  if (auto model = e.text("model")) {
+    const auto parsed = phys::parseBoxModel(*model);
+    if (!parsed) e.fail("model", "'" + *model + "' must be corners or tetra");
+    d.model = *parsed;
+  }
+  if (auto mu = e.number("friction", "")) {
+    if (*mu < 0.0) e.fail("friction", "must be >= 0");
+    d.material = {*mu, *mu};
+  }
+  if (auto mu = e.number("static-friction", "")) {
+    if (*mu < 0.0) e.fail("static-friction", "must be >= 0");
+    d.material.staticFriction = *mu;
+  }
+  if (auto mu = e.number("dynamic-friction", "")) {
+    if (*mu < 0.0) e.fail("dynamic-friction", "must be >= 0");
+    d.material.dynamicFriction = *mu;
+  }
+  if (auto euler = e.vector("euler", "degrees")) d.orientation = glm::dquat(glm::radians(*euler));
+  return d;
+}
+
+// Boxes one on another, the bottom one resting on the plane y = pos.y.
+void generateStack(ElementReader& e, BuildContext& ctx) {
+  const std::string name = e.text("name").value_or("stack");
+  const phys::Vec3 pos = e.requiredVector("pos", "m");
+  const long count = e.requiredInteger("count", 1, kMaxStack);
+  phys::BoxDesc box = readBoxCommon(e);
+  e.rejectUnknownAttributes();
+  for (long i = 0; i < count; ++i) {
+    box.center = pos + phys::Vec3(0.0, box.size.y * (static_cast<double>(i) + 0.5), 0.0);
+    addBox(e, ctx, box, member(name, i));
+  }
+}
+
+// Rows of boxes along x, each one shorter, resting on y = pos.y, centred on pos.
+void generatePyramid(ElementReader& e, BuildContext& ctx) {
+  const std::string name = e.text("name").value_or("pyramid");
+  const phys::Vec3 pos = e.requiredVector("pos", "m");
+  const long base = e.requiredInteger("base", 1, kMaxPyramidBase);
+  phys::BoxDesc box = readBoxCommon(e);
+  e.rejectUnknownAttributes();
+  long index = 0;
+  for (long row = 0; row < base; ++row) {
+    const long inRow = base - row;
+    for (long i = 0; i < inRow; ++i) {
+      const double x = (static_cast<double>(i) - 0.5 * static_cast<double>(inRow - 1)) * box.size.x;
+      box.center = pos + phys::Vec3(x, box.size.y * (static_cast<double>(row) + 0.5), 0.0);
+      addBox(e, ctx, box, member(name, index++));
+    }
+  }
+}
+
+// count.x by count.y by count.z boxes, centred on pos in x and z, the bottom layer on y = pos.y;
+// spacing (default: the size, so they touch) between centres.
+void generateGrid(ElementReader& e, BuildContext& ctx) {
+  const std::string name = e.text("name").value_or("grid");
+  const phys::Vec3 pos = e.requiredVector("pos", "m");
+  const std::optional<glm::ivec3> count = e.integers3("count", 1, kMaxGridSide);
+  if (!count) e.fail("count", "is required (three whole numbers)");
+  if (static_cast<long>(count->x) * count->y * count->z > kMaxGridBoxes) {
+    e.fail("count", "makes more than " + std::to_string(kMaxGridBoxes) + " boxes");
+  }
+  phys::BoxDesc box = readBoxCommon(e);
+  const phys::Vec3 spacing = e.vector("spacing", "m", true).value_or(box.size);
+  if (spacing.x <= 0.0 || spacing.y <= 0.0 || spacing.z <= 0.0) e.fail("spacing", "must be > 0 (m)");
+  e.rejectUnknownAttributes();
+  long index = 0;
+  for (int j = 0; j < count->y; ++j) {
+    for (int k = 0; k < count->z; ++k) {
+      for (int i = 0; i < count->x; ++i) {
+        box.center = pos + phys::Vec3((i - 0.5 * (count->x - 1)) * spacing.x, 0.5 * box.size.y + j * spacing.y,
+                                      (k - 0.5 * (count->z - 1)) * spacing.z);
+        addBox(e, ctx, box, member(name, index++));
+      }
+    }
+  }
+}
+
+// Particles from pos along direction (default straight down), one link length apart, joined
+// by sticks; the first pinned unless pinned="false"; the last weighs end-mass.
+void generateChain(ElementReader& e, BuildContext& ctx) {
+  const std::string name = e.text("name").value_or("chain");
+  const phys::Vec3 pos = e.requiredVector("pos", "m");
+  const long links = e.requiredInteger("links", 1, kMaxChainLinks);
+  const double length = e.requiredNumber("length", "m");
+  if (length <= 0.0) e.fail("length", "must be > 0 (m)");
+  const double mass = e.number("mass", "kg").value_or(1.0);
+  if (mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
+  const double endMass = e.number("end-mass", "kg").value_or(mass);
+  if (endMass <= 0.0) e.fail("end-mass", "must be > 0 (kg)");
+  const bool pinned = e.boolean("pinned").value_or(true);
+  const double compliance = e.number("compliance", "m/N").value_or(0.0);
+  if (compliance < 0.0) e.fail("compliance", "must be >= 0 (m/N)");
+  phys::Vec3 direction = e.vector("direction", "").value_or(phys::Vec3(0.0, -1.0, 0.0));
+  const double directionLength = glm::length(direction);
+  if (directionLength < 1e-9) e.fail("direction", "must not be zero");
+  direction /= directionLength;
+  e.rejectUnknownAttributes();
+  phys::ParticleId previous = 0;
+  for (long i = 0; i <= links; ++i) {
+    phys::ParticleDesc p;
+    p.position = pos + direction * (length * static_cast<double>(i));
+    p.mass = i == links ? endMass : mass;
+    p.pinned = i == 0 && pinned;
+    p.name = member(name, i);
+    const phys::ParticleId id = ctx.world.addParticle(p);
+    ctx.addName(e, p.name, NamedBody::Kind::Particle, id);
+    if (i > 0) ctx.world.addStick(previous, id, length, compliance);
+    previous = id;
+  }
+}
+
+}  // namespace scenes::detail

@@ -1,0 +1,35 @@
+#pragma once
+// The scene file's generators: many bodies from one element. Each reads its own attributes
+// and adds to the world under construction; members are named "<name>[i]".
+#include <functional>
+#include <string>
+
+#include "element_reader.h"
+#include "physics/world.h"
+
+namespace scenes::detail {
+
+/// What the generators need from the loader: the world, and a way to register a name (which
+/// the loader checks for uniqueness).
+struct BuildContext {
+  phys::World& world;
+  std::function<void(ElementReader&, const std::string& name, NamedBody::Kind, std::uint32_t index)> addName;
+};
+
+/// Limits on what one generator may make; a larger count is an error that says so.
+inline constexpr long kMaxStack = 1000;
+inline constexpr long kMaxPyramidBase = 200;      // 20100 boxes
+inline constexpr int kMaxGridSide = 100;          // per axis
+inline constexpr long kMaxGridBoxes = 100000;
+inline constexpr long kMaxChainLinks = 100000;
+inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
+
+/// Reads the attributes every box-making element shares (size, mass, model, friction...).
+phys::BoxDesc readBoxCommon(ElementReader& e);
+
+void generateStack(ElementReader& e, BuildContext& ctx);
+void generatePyramid(ElementReader& e, BuildContext& ctx);
+void generateGrid(ElementReader& e, BuildContext& ctx);
+void generateChain(ElementReader& e, BuildContext& ctx);
+
+}  // namespace scenes::detail

@@ -1,0 +1,283 @@
+// Scene files (docs/scene-format.md): strict XML read into a new world. Any error throws
+// LoadError naming file, line and attribute, and the half-built world is thrown away with it.
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "element_reader.h"
+#include "generators.h"
+#include "scenes/scene.h"
+
+namespace scenes {
+namespace {
+
+using detail::BuildContext;
+using detail::ElementReader;
+using detail::LineIndex;
+
+constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
+constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "stack", "pyramid", "grid", "chain"};
+
+bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+void readWorld(ElementReader& e, phys::WorldSettings& w) {
+  if (auto g = e.vector("gravity", "m/s^2")) w.gravity = *g;
+  if (auto mode = e.text("gravity-mode")) {
+    const auto parsed = phys::parseGravityMode(*mode);
+    if (!parsed) e.fail("gravity-mode", "'" + *mode + "' must be uniform or point");
+    w.gravityMode = *parsed;
+  }
+  if (auto p = e.vector("gravity-point", "m")) w.gravityPoint = *p;
+  if (auto s = e.number("gravity-strength", "m/s^2")) {
+    if (*s < 0.0) e.fail("gravity-strength", "must be >= 0 (m/s^2)");
+    w.gravityStrength = *s;
+  }
+  if (auto d = e.number("damping", "1/s")) {
+    if (*d < 0.0) e.fail("damping", "must be >= 0 (1/s)");
+    w.damping = *d;
+  }
+  if (auto b = e.number("bound", "m")) {
+    if (*b <= 0.0) e.fail("bound", "must be > 0 (m)");
+    w.bound = *b;
+  }
+  e.rejectUnknownAttributes();
+}
+
+void readSolver(ElementReader& e, phys::SolverSettings& s) {
+  if (auto method = e.text("method")) {
+    const auto parsed = phys::parseSolverMethod(*method);
+    if (!parsed) e.fail("method", "'" + *method + "' must be gauss-seidel, jacobi, xpbd or shake");
+    s.method = *parsed;
+  }
+  if (auto n = e.integer("iterations", 1, 1000)) s.iterations = static_cast<int>(*n);
+  if (auto n = e.integer("substeps", 1, 1000)) s.substeps = static_cast<int>(*n);
+  if (auto dt = e.number("dt", "s")) {
+    if (*dt <= 0.0 || *dt > 1.0) e.fail("dt", "must be > 0 and <= 1 (s)");
+    s.dt = *dt;
+  }
+  if (auto eps = e.number("epsilon", "m")) {
+    if (*eps < 0.0) e.fail("epsilon", "must be >= 0 (m)");
+    s.featureEpsilon = *eps;
+  }
+  e.rejectUnknownAttributes();
+}
+
+void readGround(ElementReader& e, phys::WorldSettings& w) {
+  w.ground = true;
+  if (auto h = e.number("height", "m")) w.groundHeight = *h;
+  if (auto n = e.vector("normal", "")) {
+    if (glm::length(*n) < 1e-9) e.fail("normal", "must not be zero");
+    w.groundNormal = glm::normalize(*n);
+  }
+  if (auto mu = e.number("friction", "")) {
+    if (*mu < 0.0) e.fail("friction", "must be >= 0");
+    w.groundMaterial = {*mu, *mu};
+  }
+  if (auto mu = e.number("static-friction", "")) {
+    if (*mu < 0.0) e.fail("static-friction", "must be >= 0");
+    w.groundMaterial.staticFriction = *mu;
+  }
+  if (auto mu = e.number("dynamic-friction", "")) {
+    if (*mu < 0.0) e.fail("dynamic-friction", "must be >= 0");
+    w.groundMaterial.dynamicFriction = *mu;
+  }
+  e.rejectUnknownAttributes();
+}
+
+void readCamera(ElementReader& e, CameraStart& c) {
+  if (auto eye = e.vector("eye", "m")) c.eye = glm::vec3(*eye);
+  if (auto target = e.vector("target", "m")) c.target = glm::vec3(*target);
+  if (glm::length(c.eye - c.target) < 1e-6f) e.fail("target", "must differ from eye");
+  e.rejectUnknownAttributes();
+}
+
+class Builder {
+ public:
+  Builder(Scene& scene, const LineIndex& lines, const std::string& file)
+      : scene_(scene), lines_(lines), file_(file),
+        ctx_{scene.world, [this](ElementReader& e, const std::string& name, NamedBody::Kind kind, std::uint32_t index) {
+               addName(e, name, kind, index);
+             }} {}
+
+  void body(const pugi::xml_node& node) {
+    ElementReader e(node, lines_, file_);
+    const std::string_view kind = node.name();
+    if (kind == "particle") particle(e);
+    else if (kind == "stick") stick(e);
+    else if (kind == "box") box(e);
+    else if (kind == "stack") detail::generateStack(e, ctx_);
+    else if (kind == "pyramid") detail::generatePyramid(e, ctx_);
+    else if (kind == "grid") detail::generateGrid(e, ctx_);
+    else if (kind == "chain") detail::generateChain(e, ctx_);
+    if (scene_.world.particles().size() > detail::kMaxParticles) {
+      e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
+    }
+  }
+
+ private:
+  void addName(ElementReader& e, const std::string& name, NamedBody::Kind kind, std::uint32_t index) {
+    if (name.empty()) return;
+    const auto [it, inserted] = byName_.emplace(name, scene_.bodies.size());
+    if (!inserted) e.fail("name", "'" + name + "' is already the name of another body");
+    scene_.bodies.push_back({name, kind, index});
+  }
+
+  phys::ParticleId particleNamed(ElementReader& e, std::string_view attribute) {
+    const std::string name = e.requiredText(attribute);
+    const auto it = byName_.find(name);
+    if (it == byName_.end() || scene_.bodies[it->second].kind != NamedBody::Kind::Particle) {
+      e.fail(attribute, "'" + name + "' is not the name of a particle defined above");
+    }
+    return scene_.bodies[it->second].index;
+  }
+
+  void particle(ElementReader& e) {
+    phys::ParticleDesc p;
+    p.name = e.text("name").value_or("");
+    p.position = e.requiredVector("pos", "m");
+    p.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
+    p.pinned = e.boolean("pinned").value_or(false);
+    if (auto mass = e.number("mass", "kg")) {
+      if (*mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
+      p.mass = *mass;
+    }
+    e.rejectUnknownAttributes();
+    const phys::ParticleId id = scene_.world.addParticle(p);
+    addName(e, p.name, NamedBody::Kind::Particle, id);
+  }
+
+  void stick(ElementReader& e) {
+    const phys::ParticleId a = particleNamed(e, "a");
+    const phys::ParticleId b = particleNamed(e, "b");
+    if (a == b) e.fail("b", "must name a different particle from a");
+    const std::optional<std::string> length = e.text("length");
+    const std::optional<double> min = e.number("min", "m");
+    const std::optional<double> max = e.number("max", "m");
+    const double compliance = e.number("compliance", "m/N").value_or(0.0);
+    if (compliance < 0.0) e.fail("compliance", "must be >= 0 (m/N)");
+    e.rejectUnknownAttributes();
+    if (min || max) {
+      if (length) e.fail("length", "give length, or min and/or max, not both");
+      if (min && *min < 0.0) e.fail("min", "must be >= 0 (m)");
+      if (max && *max <= 0.0) e.fail("max", "must be > 0 (m)");
+      if (min && max && *min > *max) e.fail("max", "must be >= min");
+      scene_.world.addRange(a, b, min.value_or(0.0), max.value_or(phys::kNoMaxLength), compliance);
+      return;
+    }
+    if (!length || *length == "auto") {
+      if (glm::length(scene_.world.particles().position[b] - scene_.world.particles().position[a]) <= 0.0) {
+        e.fail("length", "auto needs the particles apart");
+      }
+      scene_.world.addStick(a, b, compliance);
+      return;
+    }
+    const std::optional<double> value = detail::parseReal(*length);
+    if (!value || *value <= 0.0) e.fail("length", "'" + *length + "' must be auto or a number > 0 (m)");
+    scene_.world.addStick(a, b, *value, compliance);
+  }
+
+  void box(ElementReader& e) {
+    const std::string name = e.text("name").value_or("");
+    phys::BoxDesc d = detail::readBoxCommon(e);
+    d.center = e.requiredVector("pos", "m");
+    d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
+    d.angularVelocity = glm::radians(e.vector("angular-velocity", "degrees/s").value_or(phys::Vec3(0.0)));
+    e.rejectUnknownAttributes();
+    d.name = name;
+    const phys::BoxId id = scene_.world.addBox(d);
+    addName(e, name, NamedBody::Kind::Box, id);
+  }
+
+  Scene& scene_;
+  const LineIndex& lines_;
+  const std::string& file_;
+  BuildContext ctx_;
+  std::map<std::string, std::size_t, std::less<>> byName_;
+};
+
+Scene build(std::vector<char>& buffer, const std::string& file) {
+  pugi::xml_document doc;
+  const std::size_t size = buffer.size();
+  const LineIndex lines(buffer.data(), size);
+  const pugi::xml_parse_result parsed = doc.load_buffer_inplace(buffer.data(), size, pugi::parse_default, pugi::encoding_utf8);
+  if (!parsed) {
+    throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
+                    std::string("not well-formed XML: ") + parsed.description());
+  }
+  const pugi::xml_node root = doc.document_element();
+  if (std::string_view(root.name()) != "scene") {
+    throw LoadError(file, lines.lineOf(root.name()), "", "the root element must be <scene>, not <" + std::string(root.name()) + ">");
+  }
+  ElementReader sceneReader(root, lines, file);
+  const std::string name = sceneReader.requiredText("name");
+  const std::string description = sceneReader.text("description").value_or("");
+  sceneReader.rejectUnknownAttributes();
+
+  // Settings first, whatever their place in the file: bodies take their initial velocity under
+  // the world's gravity and step.
+  phys::WorldSettings worldSettings;
+  worldSettings.ground = false;  // a scene has a ground only if it says so
+  phys::SolverSettings solverSettings;
+  CameraStart camera;
+  std::vector<pugi::xml_node> bodies;
+  std::map<std::string, int, std::less<>> seen;
+  for (pugi::xml_node child = root.first_child(); child; child = child.next_sibling()) {
+    ElementReader e(child, lines, file);
+    if (child.type() != pugi::node_element) e.fail("unexpected text inside <scene>");
+    const std::string_view kind = child.name();
+    if (child.first_child()) e.fail("takes no child elements or text");
+    if (isOneOf(kind, kSettingsElements)) {
+      if (seen[std::string(kind)]++ > 0) e.fail("appears more than once");
+      if (kind == "world") readWorld(e, worldSettings);
+      else if (kind == "solver") readSolver(e, solverSettings);
+      else if (kind == "ground") readGround(e, worldSettings);
+      else readCamera(e, camera);
+    } else if (isOneOf(kind, kBodyElements)) {
+      bodies.push_back(child);
+    } else {
+      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, stack, pyramid, grid, chain)");
+    }
+  }
+
+  Scene scene{name, description, file, phys::World(worldSettings, solverSettings), camera, {}};
+  Builder builder(scene, lines, file);
+  for (const pugi::xml_node& node : bodies) {
+    try {
+      builder.body(node);
+    } catch (const std::invalid_argument& e) {  // the physics refused a value we did not check
+      throw LoadError(file, lines.lineOf(node.name()), "", "<" + std::string(node.name()) + ">: " + e.what());
+    }
+  }
+  return scene;
+}
+
+}  // namespace
+
+LoadError::LoadError(std::string file, int line, std::string attribute, const std::string& message)
+    : std::runtime_error(file + ":" + std::to_string(line) + ": " + message),
+      file_(std::move(file)),
+      line_(line),
+      attribute_(std::move(attribute)) {}
+
+Scene loadSceneText(std::string_view xml, const std::string& displayName) {
+  std::vector<char> buffer(xml.begin(), xml.end());
+  return build(buffer, displayName);
+}
+
+Scene loadSceneFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw LoadError(file.string(), 0, "", "cannot open the scene file");
+  std::vector<char> buffer((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw LoadError(file.string(), 0, "", "cannot read the scene file");
+  Scene scene = build(buffer, file.string());
+  scene.file = file;
+  return scene;
+}
+
+}  // namespace scenes

@@ -1,0 +1,103 @@
+// Bad scene files: each error names the file, the line and the attribute, and nothing loads.
+#include <gtest/gtest.h>
+
+#include "scenes/scene.h"
+
+namespace {
+
+struct BadScene {
+  const char* what;
+  const char* xml;        // line 1 is <scene ...>, so the culprit's line is easy to count
+  int line;
+  const char* attribute;  // "" when the element as a whole is wrong
+  const char* says;       // a piece of the message
+};
+
+const BadScene kCases[] = {
+    {"unknown element", "<scene name='s'>\n<ground/>\n<boxx pos='0 0 0'/>\n</scene>", 3, "", "unknown element"},
+    {"unknown attribute", "<scene name='s'>\n<box pos='0 1 0'\n colour='red'/>\n</scene>", 3, "colour",
+     "unknown attribute"},
+    {"missing required attribute", "<scene name='s'>\n\n<box size='1'/>\n</scene>", 3, "pos", "is required"},
+    {"malformed vector", "<scene name='s'>\n<box pos='0 1 x'/>\n</scene>", 2, "pos", "three finite numbers"},
+    {"two numbers for a vector", "<scene name='s'>\n<box pos='0 1'/>\n</scene>", 2, "pos", "three finite numbers"},
+    {"NaN", "<scene name='s'>\n<particle pos='0 0 0' mass='nan'/>\n</scene>", 2, "mass", "not a finite number"},
+    {"infinity", "<scene name='s'>\n<world damping='inf'/>\n</scene>", 2, "damping", "not a finite number"},
+    {"junk after a number", "<scene name='s'>\n<solver dt='0.01s'/>\n</scene>", 2, "dt", "not a finite number"},
+    {"negative size", "<scene name='s'>\n<box pos='0 0 0' size='1 -1 1'/>\n</scene>", 2, "size", "> 0"},
+    {"negative mass", "<scene name='s'>\n<box pos='0 0 0' mass='-2'/>\n</scene>", 2, "mass", "> 0"},
+    {"count above the limit", "<scene name='s'>\n<stack pos='0 0 0' count='1001'/>\n</scene>", 2, "count",
+     "from 1 to 1000"},
+    {"grid too large", "<scene name='s'>\n<grid pos='0 0 0' count='100 100 100'/>\n</scene>", 2, "count",
+     "more than 100000"},
+    {"bad model", "<scene name='s'>\n<box pos='0 0 0' model='sphere'/>\n</scene>", 2, "model", "corners or tetra"},
+    {"bad method", "<scene name='s'>\n<solver method='magic'/>\n</scene>", 2, "method", "gauss-seidel"},
+    {"zero iterations", "<scene name='s'>\n<solver iterations='0'/>\n</scene>", 2, "iterations", "from 1 to 1000"},
+    {"not XML", "<scene name='s'>\n<box pos='0 0 0'>\n</scene>", 3, "", "not well-formed XML"},
+    {"wrong root", "<world/>", 1, "", "root element must be <scene>"},
+    {"scene without a name", "<scene>\n</scene>", 1, "name", "is required"},
+    {"duplicate name", "<scene name='s'>\n<box name='a' pos='0 0 0'/>\n<box name='a' pos='0 2 0'/>\n</scene>", 3,
+     "name", "already the name"},
+    {"generator name clash", "<scene name='s'>\n<box name='stack[1]' pos='9 0 0'/>\n<stack pos='0 0 0' count='3'/>\n</scene>",
+     3, "name", "already the name"},
+    {"stick to a missing particle", "<scene name='s'>\n<particle name='a' pos='0 0 0'/>\n<stick a='a' b='zz'/>\n</scene>",
+     3, "b", "'zz' is not the name of a particle"},
+    {"stick to a box", "<scene name='s'>\n<particle name='a' pos='0 0 0'/>\n<box name='b' pos='1 0 0'/>\n<stick a='a' b='b'/>\n</scene>",
+     4, "b", "not the name of a particle"},
+    {"length and min together", "<scene name='s'>\n<particle name='a' pos='0 0 0'/><particle name='b' pos='1 0 0'/>\n<stick a='a' b='b' length='1' min='0.5'/>\n</scene>",
+     3, "length", "not both"},
+    {"min above max", "<scene name='s'>\n<particle name='a' pos='0 0 0'/><particle name='b' pos='1 0 0'/>\n<stick a='a' b='b' min='2' max='1'/>\n</scene>",
+     3, "max", ">= min"},
+    {"settings twice", "<scene name='s'>\n<world/>\n<world/>\n</scene>", 3, "", "more than once"},
+    {"text in an element", "<scene name='s'>\n<box pos='0 0 0'>big</box>\n</scene>", 2, "", "no child"},
+    {"bad boolean", "<scene name='s'>\n<particle pos='0 0 0' pinned='yes'/>\n</scene>", 2, "pinned", "true or false"},
+    {"zero ground normal", "<scene name='s'>\n<ground normal='0 0 0'/>\n</scene>", 2, "normal", "not be zero"},
+};
+
+TEST(SceneErrors, EachNamesFileLineAndAttribute) {
+  for (const BadScene& c : kCases) {
+    try {
+      scenes::loadSceneText(c.xml, "bad.xml");
+      ADD_FAILURE() << c.what << ": loaded";
+    } catch (const scenes::LoadError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(e.file(), "bad.xml") << c.what;
+      EXPECT_EQ(e.line(), c.line) << c.what << ": " << message;
+      EXPECT_EQ(e.attribute(), c.attribute) << c.what << ": " << message;
+      EXPECT_EQ(message.rfind("bad.xml:" + std::to_string(c.line) + ": ", 0), 0u) << c.what << ": " << message;
+      if (*c.attribute != '\0') {
+        EXPECT_NE(message.find(std::string("attribute '") + c.attribute + "'"), std::string::npos) << message;
+      }
+      EXPECT_NE(message.find(c.says), std::string::npos) << c.what << ": " << message;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << c.what << ": wrong exception: " << e.what();
+    }
+  }
+}
+
+TEST(SceneErrors, MissingFileIsNamed) {
+  try {
+    scenes::loadSceneFile("/nonexistent/scene.xml");
+    FAIL();
+  } catch (const scenes::LoadError& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/scene.xml:0: cannot open the scene file");
+  }
+}
+
+TEST(SceneErrors, GarbageNeverCrashes) {
+  // Truncations of a valid scene at every byte: each loads or throws LoadError, nothing else.
+  const std::string good =
+      "<scene name='s'><world gravity='0 -9.81 0'/><ground/><box name='b' pos='0 1 0' size='1 2 3'/>"
+      "<particle name='p' pos='0 3 0'/><particle name='q' pos='1 3 0'/><stick a='p' b='q'/>"
+      "<chain pos='0 5 0' links='3' length='0.5'/></scene>";
+  int loaded = 0;
+  for (std::size_t n = 0; n <= good.size(); ++n) {
+    try {
+      scenes::loadSceneText(good.substr(0, n), "cut.xml");
+      ++loaded;
+    } catch (const scenes::LoadError&) {
+    }
+  }
+  EXPECT_EQ(loaded, 1);  // only the whole text
+}
+
+}  // namespace

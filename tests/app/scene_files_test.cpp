@@ -1,0 +1,151 @@
+// Scene files: every element and generator builds what docs/scene-format.md says, and every
+// scene in assets/scenes/ loads and steps.
+#include <cmath>
+#include <filesystem>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "scenes/scene.h"
+
+namespace {
+
+using phys::Vec3;
+
+scenes::Scene load(const std::string& body, const std::string& head = "") {
+  return scenes::loadSceneText("<scene name=\"t\">" + head + body + "</scene>", "test.xml");
+}
+
+TEST(SceneFiles, EveryProjectSceneLoadsAndStepsWithoutNaN) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(scenes::sceneDirectory(DATA_DIR))) {
+    if (entry.path().extension() != ".xml") continue;
+    ++count;
+    scenes::Scene scene = scenes::loadSceneFile(entry.path());
+    EXPECT_EQ(scene.name, entry.path().stem().string()) << "a scene's name matches its file";
+    for (int i = 0; i < 300; ++i) scene.world.step();
+    const phys::Metrics m = scene.world.metrics();
+    EXPECT_TRUE(std::isfinite(m.energy())) << entry.path();
+    EXPECT_EQ(m.frozen, 0) << entry.path();
+  }
+  EXPECT_GE(count, 6);
+}
+
+TEST(SceneFiles, DefaultsComeFromThePhysicsSettings) {
+  const scenes::Scene s = load("");
+  EXPECT_FALSE(s.world.worldSettings().ground);  // no <ground>, no ground
+  EXPECT_EQ(s.world.worldSettings().gravity, phys::WorldSettings{}.gravity);
+  EXPECT_EQ(s.world.solverSettings().iterations, phys::SolverSettings{}.iterations);
+  EXPECT_EQ(s.world.solverSettings().method, phys::SolverMethod::GaussSeidel);
+}
+
+TEST(SceneFiles, WorldSolverGroundAndCamera) {
+  const scenes::Scene s = load("",
+                               "<world gravity=\"0 -3 0\" gravity-mode=\"point\" gravity-point=\"1 2 3\" "
+                               "gravity-strength=\"4\" damping=\"0.5\" bound=\"500\"/>"
+                               "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\"/>"
+                               "<ground height=\"-1\" normal=\"0 2 0\" static-friction=\"0.9\" dynamic-friction=\"0.3\"/>"
+                               "<camera eye=\"1 2 3\" target=\"0 0 0\"/>");
+  const phys::WorldSettings& w = s.world.worldSettings();
+  EXPECT_EQ(w.gravity, Vec3(0, -3, 0));
+  EXPECT_EQ(w.gravityMode, phys::GravityMode::Point);
+  EXPECT_EQ(w.gravityPoint, Vec3(1, 2, 3));
+  EXPECT_EQ(w.gravityStrength, 4.0);
+  EXPECT_EQ(w.damping, 0.5);
+  EXPECT_EQ(w.bound, 500.0);
+  EXPECT_TRUE(w.ground);
+  EXPECT_EQ(w.groundHeight, -1.0);
+  EXPECT_EQ(w.groundNormal, Vec3(0, 1, 0));
+  EXPECT_EQ(w.groundMaterial.staticFriction, 0.9);
+  EXPECT_EQ(w.groundMaterial.dynamicFriction, 0.3);
+  const phys::SolverSettings& v = s.world.solverSettings();
+  EXPECT_EQ(v.method, phys::SolverMethod::Shake);
+  EXPECT_EQ(v.iterations, 7);
+  EXPECT_EQ(v.substeps, 4);
+  EXPECT_EQ(v.dt, 0.01);
+  EXPECT_EQ(v.featureEpsilon, 0.02);
+  EXPECT_EQ(s.camera.eye, glm::vec3(1, 2, 3));
+}
+
+TEST(SceneFiles, ParticlesSticksAndRanges) {
+  const scenes::Scene s = load(
+      "<particle name=\"a\" pos=\"0 0 0\" pinned=\"true\"/>"
+      "<particle name=\"b\" pos=\"3 0 0\" mass=\"2\" velocity=\"0 1 0\"/>"
+      "<particle name=\"c\" pos=\"0 4 0\"/>"
+      "<stick a=\"a\" b=\"b\"/>"
+      "<stick a=\"b\" b=\"c\" length=\"5.5\" compliance=\"0.001\"/>"
+      "<stick a=\"a\" b=\"c\" min=\"1\" max=\"2\"/>"
+      "<stick a=\"a\" b=\"c\" min=\"1\"/>"
+      "<stick a=\"a\" b=\"c\" max=\"2\"/>");
+  const auto& p = s.world.particles();
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p.inverseMass[0], 0.0);
+  EXPECT_EQ(p.inverseMass[1], 0.5);
+  const auto sticks = s.world.sticks();
+  ASSERT_EQ(sticks.size(), 5u);
+  EXPECT_EQ(sticks[0].minLength, 3.0);  // auto: the distance at load
+  EXPECT_EQ(sticks[0].maxLength, 3.0);
+  EXPECT_EQ(sticks[1].minLength, 5.5);
+  EXPECT_EQ(sticks[1].compliance, 0.001);
+  EXPECT_EQ(sticks[2].minLength, 1.0);
+  EXPECT_EQ(sticks[2].maxLength, 2.0);
+  EXPECT_EQ(sticks[3].maxLength, phys::kNoMaxLength);
+  EXPECT_EQ(sticks[4].minLength, 0.0);
+  ASSERT_EQ(s.bodies.size(), 3u);
+  EXPECT_EQ(s.bodies[2].name, "c");
+}
+
+TEST(SceneFiles, BoxWithEveryAttribute) {
+  const scenes::Scene s = load(
+      "<box name=\"b\" pos=\"1 2 3\" size=\"0.5 1 2\" euler=\"0 90 0\" mass=\"4\" model=\"tetra\" "
+      "friction=\"0.3\" velocity=\"1 0 0\" angular-velocity=\"0 0 0\"/>"
+      "<box pos=\"0 5 0\" size=\"2\" static-friction=\"0.7\"/>");
+  ASSERT_EQ(s.world.boxes().size(), 2u);
+  const phys::Box& b = s.world.boxes()[0];
+  EXPECT_EQ(b.name, "b");
+  EXPECT_EQ(b.model, phys::BoxModel::Tetra);
+  EXPECT_EQ(b.halfExtents, Vec3(0.25, 0.5, 1.0));
+  EXPECT_EQ(b.material.staticFriction, 0.3);
+  const phys::BoxPose pose = s.world.boxPose(0);
+  EXPECT_LT(glm::length(pose.center - Vec3(1, 2, 3)), 1e-12);
+  EXPECT_NEAR(std::abs(pose.orientation.y), std::sin(M_PI / 4), 1e-9);  // 90 degrees about y
+  EXPECT_EQ(s.world.boxes()[1].halfExtents, Vec3(1.0));                 // one number, a cube
+  EXPECT_EQ(s.world.boxes()[1].material.staticFriction, 0.7);
+  EXPECT_EQ(s.world.boxes()[1].model, phys::BoxModel::Corners);
+  ASSERT_EQ(s.bodies.size(), 1u);  // the unnamed box has no entry
+}
+
+TEST(SceneFiles, GeneratorsNameTheirMembersAndPlaceThemOnTheFloor) {
+  const scenes::Scene s = load(
+      "<stack pos=\"0 0 0\" count=\"10\" size=\"0.5\"/>"
+      "<pyramid name=\"p\" pos=\"5 0 0\" base=\"4\" size=\"1\" model=\"tetra\"/>"
+      "<grid pos=\"-5 0 0\" count=\"3 3 3\" size=\"1\" spacing=\"1.1\"/>"
+      "<chain pos=\"0 10 0\" links=\"5\" length=\"0.5\" mass=\"1\" end-mass=\"100\"/>");
+  EXPECT_EQ(s.world.boxes().size(), 10u + 10u + 27u);
+  auto find = [&](const std::string& name) {
+    for (const auto& b : s.bodies) {
+      if (b.name == name) return b;
+    }
+    ADD_FAILURE() << "no body named " << name;
+    return scenes::NamedBody{};
+  };
+  EXPECT_NEAR(s.world.boxPose(find("stack[9]").index).center.y, 0.25 + 9 * 0.5, 1e-12);
+  EXPECT_NEAR(s.world.boxPose(find("stack[0]").index).center.y, 0.25, 1e-12);
+  EXPECT_NEAR(s.world.boxPose(find("p[9]").index).center.y, 3.5, 1e-12);  // the top of the pyramid
+  EXPECT_NEAR(s.world.boxPose(find("p[9]").index).center.x, 5.0, 1e-12);
+  EXPECT_NEAR(s.world.boxPose(find("grid[26]").index).center.y, 0.5 + 2 * 1.1, 1e-12);
+  const scenes::NamedBody end = find("chain[5]");
+  EXPECT_EQ(end.kind, scenes::NamedBody::Kind::Particle);
+  EXPECT_NEAR(s.world.particles().position[end.index].y, 10.0 - 2.5, 1e-12);
+  EXPECT_EQ(s.world.particles().inverseMass[end.index], 0.01);
+  EXPECT_EQ(s.world.particles().inverseMass[find("chain[0]").index], 0.0);  // pinned by default
+}
+
+TEST(ScenePaths, NamesResolveInTheSceneFolderAndPathsAsGiven) {
+  const auto dir = scenes::sceneDirectory(DATA_DIR);
+  EXPECT_EQ(scenes::resolveScene("pendulum", dir), dir / "pendulum.xml");
+  EXPECT_EQ(scenes::resolveScene("x/y.xml", dir), std::filesystem::path("x/y.xml"));
+  EXPECT_TRUE(std::filesystem::exists(scenes::resolveScene(scenes::kDefaultScene, dir)));
+}
+
+}  // namespace
