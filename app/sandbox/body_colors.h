@@ -6,7 +6,6 @@ namespace sandbox {
 
 inline constexpr glm::vec3 kBoxColor{0.90f, 0.50f, 0.15f};       ///< orange
 inline constexpr glm::vec3 kParticleColor{0.20f, 0.35f, 0.85f};  ///< blue
-inline constexpr glm::vec3 kStickColor{0.90f, 0.10f, 0.10f};     ///< red: the seed's constraint colour
 inline constexpr float kParticleDrawSize = 0.08f;                ///< unit: m; edge of a particle's cube
 
 /// True when an 8-bit pixel has the hue of `color` under some light level: the lighting

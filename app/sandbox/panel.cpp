@@ -43,9 +43,13 @@ void drawPanel(scenes::Scene& scene, PanelState& state) {
     world.setWorldSettings(settings);
   }
 
-  ImGui::Checkbox("draw sticks", &state.drawSticks);
+  ImGui::Checkbox("sticks", &state.drawSticks);
   ImGui::SameLine();
-  ImGui::Checkbox("draw particles", &state.drawParticles);
+  ImGui::Checkbox("contacts", &state.drawContacts);
+  ImGui::SameLine();
+  ImGui::Checkbox("bounds", &state.drawBounds);
+  ImGui::SameLine();
+  ImGui::Checkbox("particles", &state.drawParticles);
 
   ImGui::Separator();
   ImGui::Text("frame %.2f ms, physics %.3f ms", state.frameMs, state.stepMs);

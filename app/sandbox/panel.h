@@ -20,8 +20,10 @@ struct PanelState {
   bool paused = false;
   bool stepOnce = false;      ///< set by the Step button; cleared by the sandbox
   bool resetRequested = false;
-  bool drawSticks = false;
-  bool drawParticles = true;
+  bool drawSticks = false;     ///< every stick, red (range sticks orange)
+  bool drawContacts = false;   ///< points that touched the ground in the last step, green
+  bool drawBounds = false;     ///< each box's axis-aligned bounding box, grey
+  bool drawParticles = true;   ///< loose particles as small cubes
   float frameMs = 0.0f;       ///< unit: ms; last frame, for display
   float stepMs = 0.0f;        ///< unit: ms; physics time in the last frame
   std::string loadError;      ///< the last failed reload's message, shown until one succeeds

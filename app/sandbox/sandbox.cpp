@@ -15,6 +15,7 @@
 #include "body_colors.h"
 #include "engine/error.h"
 #include "engine/image.h"
+#include "engine/physics_debug_draw.h"
 
 namespace sandbox {
 namespace {
@@ -136,7 +137,11 @@ void Sandbox::renderFrame() {
   const phys::World& world = scene_->world;
 
   renderer_->beginFrame(size);
-  renderer_->drawGround(viewProjection, camera_.position, static_cast<float>(world.worldSettings().groundHeight));
+  const phys::WorldSettings& settings = world.worldSettings();
+  if (settings.ground) {
+    renderer_->drawGround(viewProjection, camera_.position, glm::vec3(settings.groundNormal),
+                          static_cast<float>(settings.groundHeight));
+  }
   const auto boxes = world.boxes();
   std::vector<bool> inBox(world.particles().size(), false);
   for (phys::BoxId id = 0; id < boxes.size(); ++id) {
@@ -151,12 +156,8 @@ void Sandbox::renderFrame() {
       renderer_->drawMesh(*boxMesh_, viewProjection, model, kParticleColor);
     }
   }
-  if (panel_.drawSticks) {
-    const auto& pos = world.particles().position;
-    for (const phys::Stick& s : world.sticks()) {
-      renderer_->lines().addLine(glm::vec3(pos[s.a]), glm::vec3(pos[s.b]), kStickColor);
-    }
-  }
+  engine::PhysicsDebugDraw debugDraw(renderer_->lines());
+  world.debugDraw(debugDraw, {panel_.drawSticks, false, panel_.drawContacts, panel_.drawBounds});
   glDisable(GL_DEPTH_TEST);  // debug lines show through bodies, as in the seed's constraint mode
   renderer_->endFrame(viewProjection);
 

@@ -6,6 +6,8 @@
 #include <glad/gl.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 namespace engine {
 namespace {
@@ -18,6 +20,15 @@ MeshData unitQuadXZ() {
   quad.boundsMin = {-1, 0, -1};
   quad.boundsMax = {1, 0, 1};
   return quad;
+}
+
+// The shortest rotation taking (0, 1, 0) to the unit vector n.
+glm::mat3 rotationFromUp(const glm::vec3& n) {
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  const float c = glm::dot(up, n);
+  if (c > 0.999999f) return glm::mat3(1.0f);
+  if (c < -0.999999f) return glm::mat3_cast(glm::angleAxis(glm::pi<float>(), glm::vec3(1.0f, 0.0f, 0.0f)));
+  return glm::mat3_cast(glm::angleAxis(std::acos(c), glm::normalize(glm::cross(up, n))));
 }
 
 }  // namespace
@@ -43,15 +54,25 @@ void Renderer::beginFrame(const glm::ivec2& framebufferSize) {
   glDisable(GL_BLEND);
 }
 
-void Renderer::drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, float height) {
+void Renderer::drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, const glm::vec3& normal,
+                          float height) {
+  // The plane's frame: the rotation taking world up to its normal carries x and z into it.
+  const glm::mat3 rotation = rotationFromUp(normal);
+  const glm::vec3 origin = normal * height;
+  const glm::vec3 overEye = eye - (glm::dot(normal, eye) - height) * normal;
   // Snap the quad's centre to the grid so the lines stay put as the camera moves.
   const float snap = style_.gridSpacing;
-  const glm::vec3 centre{std::floor(eye.x / snap) * snap, height, std::floor(eye.z / snap) * snap};
-  const glm::mat4 model = glm::scale(glm::translate(glm::mat4(1.0f), centre),
+  const glm::vec2 planeCentre{std::floor(glm::dot(rotation[0], overEye - origin) / snap) * snap,
+                              std::floor(glm::dot(rotation[2], overEye - origin) / snap) * snap};
+  const glm::vec3 centre = origin + rotation[0] * planeCentre.x + rotation[2] * planeCentre.y;
+  const glm::mat4 model = glm::scale(glm::translate(glm::mat4(1.0f), centre) * glm::mat4(rotation),
                                      glm::vec3(style_.groundExtent, 1.0f, style_.groundExtent));
   groundProgram_.use();
   groundProgram_.set("uViewProjection", viewProjection);
   groundProgram_.set("uModel", model);
+  groundProgram_.set("uNormal", normal);
+  groundProgram_.set("uPlaneOffset", glm::vec3(planeCentre.x, 0.0f, planeCentre.y));
+  groundProgram_.set("uExtent", style_.groundExtent);
   groundProgram_.set("uColor", style_.groundColor);
   groundProgram_.set("uGridColor", style_.gridColor);
   groundProgram_.set("uGridSpacing", style_.gridSpacing);

@@ -41,8 +41,9 @@ class Renderer {
 
   /// Sets the viewport, clears colour and depth, enables depth testing.
   void beginFrame(const glm::ivec2& framebufferSize);
-  /// The ground plane y = height, centred under the camera's (x, z) so it never ends.
-  void drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, float height);
+  /// The ground plane { x : normal . x = height } (normal of unit length), centred under the
+  /// camera so it never ends. For the normal (0, 1, 0) the grid lines lie on whole x and z.
+  void drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, const glm::vec3& normal, float height);
   void drawMesh(const GpuMesh& mesh, const glm::mat4& viewProjection, const glm::mat4& model,
                 const glm::vec3& albedo);
   /// Lines collected this frame; drawn by endFrame().
