@@ -6,20 +6,38 @@
 #include "passes.h"
 
 namespace phys::detail {
+namespace {
+
+// What every method needs to know of one stick before it corrects it.
+struct StickState {
+  Real w1, w2;   // inverse masses
+  Vec3 d;        // x2 - x1
+  Real length;   // |d|
+  Real target;   // the length to move to
+};
+
+// False when the stick needs no correction: both ends pinned, or within its bounds.
+bool measure(const Particles& p, const Stick& s, StickState& out) {
+  out.w1 = p.inverseMass[s.a];
+  out.w2 = p.inverseMass[s.b];
+  if (out.w1 + out.w2 == 0.0) return false;
+  out.d = p.position[s.b] - p.position[s.a];
+  out.length = glm::length(out.d);
+  out.target = stickTarget(s, out.length);
+  return out.target >= 0.0;
+}
+
+}  // namespace
 
 // Jakobsen 2001, "Advanced Character Physics", stick constraint, with the sign of the printed
 // listing corrected (REFERENCES.md): s = (|d| - r) / (|d| (w1 + w2)); x1 += w1 s d; x2 -= w2 s d.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks) {
+  StickState m;
   for (const Stick& s : sticks) {
-    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
-    if (w1 + w2 == 0.0) continue;
-    const Vec3 delta = p.position[s.b] - p.position[s.a];
-    const Real length = glm::length(delta);
-    const Real target = stickTarget(s, length);
-    if (target < 0.0 || length == 0.0) continue;  // within bounds, or no direction to push along
-    const Real k = (length - target) / (length * (w1 + w2));
-    p.position[s.a] += (w1 * k) * delta;
-    p.position[s.b] -= (w2 * k) * delta;
+    if (!measure(p, s, m) || m.length == 0.0) continue;  // no direction to push along at 0
+    const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2));
+    p.position[s.a] += (m.w1 * k) * m.d;
+    p.position[s.b] -= (m.w2 * k) * m.d;
   }
 }
 
@@ -28,16 +46,12 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks) {
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<Vec3> delta, std::span<Real> count) {
   std::fill(delta.begin(), delta.end(), Vec3(0.0));
   std::fill(count.begin(), count.end(), 0.0);
+  StickState m;
   for (const Stick& s : sticks) {
-    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
-    if (w1 + w2 == 0.0) continue;
-    const Vec3 d = p.position[s.b] - p.position[s.a];
-    const Real length = glm::length(d);
-    const Real target = stickTarget(s, length);
-    if (target < 0.0 || length == 0.0) continue;
-    const Real k = (length - target) / (length * (w1 + w2));
-    delta[s.a] += (w1 * k) * d;
-    delta[s.b] -= (w2 * k) * d;
+    if (!measure(p, s, m) || m.length == 0.0) continue;
+    const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2));
+    delta[s.a] += (m.w1 * k) * m.d;
+    delta[s.b] -= (m.w2 * k) * m.d;
     count[s.a] += 1.0;
     count[s.b] += 1.0;
   }
@@ -51,20 +65,16 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<Vec3> de
 // a~ = compliance / h^2; gradient of C = |x2 - x1| - r is -n for x1 and +n for x2.
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h) {
   const Real inverseH2 = 1.0 / (h * h);
+  StickState m;
   for (std::size_t c = 0; c < sticks.size(); ++c) {
     const Stick& s = sticks[c];
-    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
-    if (w1 + w2 == 0.0) continue;
-    const Vec3 d = p.position[s.b] - p.position[s.a];
-    const Real length = glm::length(d);
-    const Real target = stickTarget(s, length);
-    if (target < 0.0 || length == 0.0) continue;
+    if (!measure(p, s, m) || m.length == 0.0) continue;
     const Real alpha = s.compliance * inverseH2;
-    const Real dLambda = (-(length - target) - alpha * lambda[c]) / (w1 + w2 + alpha);
+    const Real dLambda = (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
     lambda[c] += dLambda;
-    const Vec3 n = d / length;
-    p.position[s.a] -= (w1 * dLambda) * n;
-    p.position[s.b] += (w2 * dLambda) * n;
+    const Vec3 n = m.d / m.length;
+    p.position[s.a] -= (m.w1 * dLambda) * n;
+    p.position[s.b] += (m.w2 * dLambda) * n;
   }
 }
 
@@ -72,14 +82,11 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lamb
 // of the substep, with g the root of |d + (w1 + w2) g r|^2 = L^2 nearest zero. Where no root
 // exists (the stick turned too far within one substep), fall back to Jakobsen's projection.
 void relaxShake(Particles& p, std::span<const Stick> sticks) {
+  StickState m;
   for (const Stick& s : sticks) {
-    const Real w1 = p.inverseMass[s.a], w2 = p.inverseMass[s.b];
-    const Real w = w1 + w2;
-    if (w == 0.0) continue;
-    const Vec3 d = p.position[s.b] - p.position[s.a];
-    const Real length = glm::length(d);
-    const Real target = stickTarget(s, length);
-    if (target < 0.0) continue;
+    if (!measure(p, s, m)) continue;
+    const Real w1 = m.w1, w2 = m.w2, w = w1 + w2, length = m.length, target = m.target;
+    const Vec3& d = m.d;
     const Vec3 r = p.previous[s.b] - p.previous[s.a];
     const Real qa = w * w * glm::dot(r, r);
     const Real qb = 2.0 * w * glm::dot(d, r);

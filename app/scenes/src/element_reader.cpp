@@ -174,6 +174,17 @@ std::optional<bool> ElementReader::boolean(std::string_view name) {
   fail(name, "'" + *raw + "' must be true or false");
 }
 
+void ElementReader::material(phys::Material& m) {
+  auto coefficient = [this](std::string_view name) {
+    const std::optional<phys::Real> mu = number(name, "");
+    if (mu && *mu < 0.0) fail(name, "must be >= 0");
+    return mu;
+  };
+  if (auto mu = coefficient("friction")) m = {*mu, *mu};
+  if (auto mu = coefficient("static-friction")) m.staticFriction = *mu;
+  if (auto mu = coefficient("dynamic-friction")) m.dynamicFriction = *mu;
+}
+
 void ElementReader::rejectUnknownAttributes() const {
   for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
     if (std::find(asked_.begin(), asked_.end(), a.name()) == asked_.end()) {

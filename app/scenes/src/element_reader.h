@@ -9,6 +9,7 @@
 
 #include <pugixml.hpp>
 
+#include "physics/settings.h"
 #include "physics/types.h"
 #include "scenes/scene.h"
 
@@ -49,6 +50,9 @@ class ElementReader {
   /// Three whole numbers in [min, max].
   std::optional<glm::ivec3> integers3(std::string_view name, int min, int max);
   std::optional<bool> boolean(std::string_view name);
+  /// friction (both coefficients), then static-friction and dynamic-friction (each alone), all
+  /// >= 0, over what `material` already holds.
+  void material(phys::Material& material);
 
   /// Call once every attribute has been read: any attribute not asked for is an error.
   void rejectUnknownAttributes() const;

@@ -31,18 +31,7 @@ phys::BoxDesc readBoxCommon(ElementReader& e) {
     if (!parsed) e.fail("model", "'" + *model + "' must be corners or tetra");
     d.model = *parsed;
   }
-  if (auto mu = e.number("friction", "")) {
-    if (*mu < 0.0) e.fail("friction", "must be >= 0");
-    d.material = {*mu, *mu};
-  }
-  if (auto mu = e.number("static-friction", "")) {
-    if (*mu < 0.0) e.fail("static-friction", "must be >= 0");
-    d.material.staticFriction = *mu;
-  }
-  if (auto mu = e.number("dynamic-friction", "")) {
-    if (*mu < 0.0) e.fail("dynamic-friction", "must be >= 0");
-    d.material.dynamicFriction = *mu;
-  }
+  e.material(d.material);
   if (auto euler = e.vector("euler", "degrees")) d.orientation = glm::dquat(glm::radians(*euler));
   return d;
 }

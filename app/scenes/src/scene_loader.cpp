@@ -75,18 +75,7 @@ void readGround(ElementReader& e, phys::WorldSettings& w) {
     if (glm::length(*n) < 1e-9) e.fail("normal", "must not be zero");
     w.groundNormal = glm::normalize(*n);
   }
-  if (auto mu = e.number("friction", "")) {
-    if (*mu < 0.0) e.fail("friction", "must be >= 0");
-    w.groundMaterial = {*mu, *mu};
-  }
-  if (auto mu = e.number("static-friction", "")) {
-    if (*mu < 0.0) e.fail("static-friction", "must be >= 0");
-    w.groundMaterial.staticFriction = *mu;
-  }
-  if (auto mu = e.number("dynamic-friction", "")) {
-    if (*mu < 0.0) e.fail("dynamic-friction", "must be >= 0");
-    w.groundMaterial.dynamicFriction = *mu;
-  }
+  e.material(w.groundMaterial);
   e.rejectUnknownAttributes();
 }
 
