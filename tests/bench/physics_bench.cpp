@@ -1,0 +1,62 @@
+// Step cost of the physics library, per method and box model, on scenes large enough that the
+// per-step overhead does not dominate. Run: build/release/tests/physics_bench
+// (CTest runs it once, briefly, only to keep it building and running.)
+#include <benchmark/benchmark.h>
+
+#include "physics/world.h"
+
+namespace {
+
+// side^3 boxes resting in a block on the ground (no box-box collision yet: they sit on the
+// ground side by side, one layer, so every box has ground contacts).
+phys::World restingBoxes(phys::SolverMethod method, phys::BoxModel model, int side) {
+  phys::SolverSettings s;
+  s.method = method;
+  phys::World world({}, s);
+  for (int i = 0; i < side; ++i) {
+    for (int k = 0; k < side; ++k) {
+      phys::BoxDesc box;
+      box.model = model;
+      box.center = {1.5 * i, 0.5, 1.5 * k};
+      world.addBox(box);
+    }
+  }
+  for (int i = 0; i < 30; ++i) world.step();  // settle into contact
+  return world;
+}
+
+void BM_RestingBoxes(benchmark::State& state) {
+  const auto method = static_cast<phys::SolverMethod>(state.range(0));
+  const auto model = static_cast<phys::BoxModel>(state.range(1));
+  phys::World world = restingBoxes(method, model, 32);  // 1024 boxes
+  for (auto _ : state) world.step();
+  state.counters["boxes"] = static_cast<double>(world.boxes().size());
+  state.counters["particles"] = static_cast<double>(world.particles().size());
+  state.SetLabel(std::string(toString(method)) + "/" + std::string(toString(model)));
+}
+BENCHMARK(BM_RestingBoxes)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
+// A long chain: sticks only, the relaxation loop alone.
+void BM_Chain(benchmark::State& state) {
+  phys::SolverSettings s;
+  s.method = static_cast<phys::SolverMethod>(state.range(0));
+  phys::WorldSettings w;
+  w.ground = false;
+  phys::World world(w, s);
+  phys::ParticleId previous = world.addParticle({phys::Vec3(0.0), phys::Vec3(0.0), 0.0, true});
+  for (int i = 1; i <= 10000; ++i) {
+    const auto p = world.addParticle({phys::Vec3(0.01 * i, 0.0, 0.0)});
+    world.addStick(previous, p);
+    previous = p;
+  }
+  for (auto _ : state) world.step();
+  state.SetLabel(std::string(toString(s.method)));
+  state.SetItemsProcessed(state.iterations() * 10000 * s.iterations);  // stick projections
+}
+BENCHMARK(BM_Chain)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,118 @@
+// The lab's reports in-process: JSON numbers and strings, the JSON object's keys, the median,
+// the summary, the CSV dump of a hand-built world, and the atomic write.
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "lab_test_util.h"
+#include "report.h"
+#include "run.h"
+
+namespace {
+
+using lab_testing::parseFlatJson;
+
+// The keys the issue fixes, in the order the lab writes them.
+const std::vector<std::string> kJsonKeys = {
+    "scene",          "method",          "iterations",          "substeps",     "dt",
+    "steps",          "particles",       "constraints",         "bodies",       "contacts",
+    "ms_per_step",    "max_constraint_error", "rms_constraint_error", "max_penetration", "max_speed",
+    "energy_initial", "energy_final",    "frozen",              "hash"};
+
+TEST(LabReport, JsonNumbersRoundTripAndNonFiniteIsNull) {
+  EXPECT_EQ(lab::jsonNumber(0.1), "0.10000000000000001");
+  EXPECT_EQ(std::strtod(lab::jsonNumber(1.0 / 3.0).c_str(), nullptr), 1.0 / 3.0);
+  EXPECT_EQ(lab::jsonNumber(2.0), "2");
+  EXPECT_EQ(lab::jsonNumber(std::numeric_limits<double>::quiet_NaN()), "null");
+  EXPECT_EQ(lab::jsonNumber(std::numeric_limits<double>::infinity()), "null");
+  EXPECT_EQ(lab::jsonNumber(-std::numeric_limits<double>::infinity()), "null");
+}
+
+TEST(LabReport, JsonStringsAreEscaped) {
+  EXPECT_EQ(lab::jsonString("plain"), "\"plain\"");
+  EXPECT_EQ(lab::jsonString("a\"b\\c"), "\"a\\\"b\\\\c\"");
+  EXPECT_EQ(lab::jsonString("tab\there\n"), "\"tab\\u0009here\\u000a\"");
+  EXPECT_EQ(lab::jsonString("caf\xc3\xa9"), "\"caf\xc3\xa9\"");
+}
+
+TEST(LabReport, HashIsSixteenHexDigits) {
+  EXPECT_EQ(lab::hexHash(0), "0000000000000000");
+  EXPECT_EQ(lab::hexHash(0xcbf29ce484222325ULL), "cbf29ce484222325");
+  EXPECT_EQ(lab::hexHash(~0ULL), "ffffffffffffffff");
+}
+
+TEST(LabReport, Median) {
+  EXPECT_EQ(lab::median({}), 0.0);
+  EXPECT_EQ(lab::median({4.0}), 4.0);
+  EXPECT_EQ(lab::median({5.0, 1.0, 3.0}), 3.0);
+  EXPECT_EQ(lab::median({4.0, 1.0, 3.0, 100.0}), 3.5);
+}
+
+TEST(LabReport, JsonHasEveryKeyInOrderEvenWhenFiguresAreNotFinite) {
+  lab::RunResult r;
+  r.scene = "we\"ird";
+  r.steps = 3;
+  r.hash = 42;
+  r.energyInitial = std::numeric_limits<double>::quiet_NaN();
+  r.final.maxSpeed = std::numeric_limits<double>::infinity();
+  r.final.kineticEnergy = std::numeric_limits<double>::infinity();
+  const std::string json = lab::jsonText(r);
+  EXPECT_EQ(json.back(), '\n');
+  EXPECT_EQ(json.find('\n'), json.size() - 1) << "one line";
+  const auto j = parseFlatJson(json);
+  ASSERT_TRUE(j) << json;
+  EXPECT_EQ(j->keys, kJsonKeys);
+  EXPECT_EQ(j->values.at("energy_initial"), "null");
+  EXPECT_EQ(j->values.at("max_speed"), "null");
+  EXPECT_EQ(j->values.at("energy_final"), "null");
+  EXPECT_EQ(j->values.at("scene"), "\"we\\\"ird\"");
+  EXPECT_EQ(j->values.at("hash"), "\"000000000000002a\"");
+}
+
+TEST(LabReport, SummaryNamesPhasesFreezesAndHash) {
+  lab::RunResult r;
+  r.scene = "s";
+  r.steps = 2;
+  r.hash = 0xabc;
+  r.phaseSums = {1.0, 2.0, 3.0, 4.0, 5.0, 16.0};
+  r.medianStepMs = 8.0;
+  r.final.frozen = 1;
+  r.freezes.push_back({"runaway", "left the world bound of 10 m", 0, 0.25});
+  const std::string s = lab::summaryText(r);
+  for (const char* part : {"median 8 ms", "integrate 1 ms", "constraints 2 ms", "contacts 3 ms", "friction 4 ms",
+                           "guard 5 ms", "runaway: left the world bound of 10 m", "t=0.25 s", "0000000000000abc"}) {
+    EXPECT_NE(s.find(part), std::string::npos) << part << "\n" << s;
+  }
+}
+
+TEST(LabReport, DumpHasHeaderAndOneRowPerNamedBody) {
+  phys::WorldSettings ws;
+  ws.ground = false;
+  phys::World world(ws);
+  phys::BoxDesc box;
+  box.center = {1.0, 2.0, 3.0};
+  const phys::BoxId b = world.addBox(box);
+  world.addParticle({{0.0, 0.0, 0.0}, phys::Vec3(0.0), 1.0});  // unnamed: not dumped
+  const phys::ParticleId p = world.addParticle({{4.0, 5.0, 6.0}, phys::Vec3(0.0), 1.0});
+  const std::vector<scenes::NamedBody> bodies = {{"crate", scenes::NamedBody::Kind::Box, b},
+                                                 {"p,\"q\"", scenes::NamedBody::Kind::Particle, p}};
+  const std::string csv = lab::dumpCsv(world, bodies);
+  EXPECT_EQ(csv, "name,x,y,z,qw,qx,qy,qz\n"
+                 "crate,1,2,3,1,0,0,0\n"
+                 "\"p,\"\"q\"\"\",4,5,6,1,0,0,0\n")
+      << csv;
+}
+
+TEST(LabReport, AtomicWriteReplacesAndLeavesNoTemporary) {
+  const lab_testing::TempDir dir;
+  const std::filesystem::path file = dir.write("out.csv", "old");
+  lab::writeFileAtomically(file, "new\n");
+  EXPECT_EQ(lab_testing::readFile(file), "new\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.csv.tmp")));
+  EXPECT_THROW(lab::writeFileAtomically(dir.file("no/such/folder/out.csv"), "x"), std::runtime_error);
+}
+
+}  // namespace

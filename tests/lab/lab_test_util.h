@@ -1,0 +1,226 @@
+#pragma once
+// Helpers shared by the lab tests: the scene texts (in one place, so a change of the scene
+// format, docs/scene-format.md, is one edit), temporary files, running the real program, and
+// reading its one-line JSON back.
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+namespace lab_testing {
+
+/// Standard gravity, as the scenes below state it. unit: m/s^2
+inline constexpr double kGravity = 9.81;
+/// Where the free-falling particle starts. unit: m
+inline constexpr double kDropHeight = 5.0;
+
+/// One particle "p" at kDropHeight, and no ground under it (a scene without <ground> has
+/// none), so it falls freely however long the run.
+inline std::string freeFallScene() {
+  return "<scene name=\"t\">\n"
+         "  <world gravity=\"0 -9.81 0\"/>\n"
+         "  <solver/>\n"
+         "  <particle name=\"p\" pos=\"0 5 0\" mass=\"1\"/>\n"
+         "</scene>\n";
+}
+
+/// Named bodies of both kinds for the dump, an unnamed particle that must not be dumped, and
+/// a stick; the box rests on the ground.
+inline std::string namedBodiesScene() {
+  return "<scene name=\"named\">\n"
+         "  <world/>\n"
+         "  <ground/>\n"
+         "  <box name=\"crate\" pos=\"0 0.5 0\" size=\"1 1 1\"/>\n"
+         "  <particle name=\"a\" pos=\"2 3 0\" mass=\"1\"/>\n"
+         "  <particle name=\"b,&quot;odd&quot;\" pos=\"3 3 0\" mass=\"1\"/>\n"
+         "  <particle pos=\"4 3 0\" mass=\"1\"/>\n"
+         "  <stick a=\"a\" b=\"b,&quot;odd&quot;\" length=\"auto\"/>\n"
+         "</scene>\n";
+}
+
+/// A particle shot out of a world bounded at 10 m, for the guard to freeze.
+inline std::string escapingScene() {
+  return "<scene name=\"escape\">\n"
+         "  <world bound=\"10\"/>\n"
+         "  <particle name=\"runaway\" pos=\"0 5 0\" velocity=\"100 0 0\" mass=\"1\"/>\n"
+         "</scene>\n";
+}
+
+/// A scene whose line 3 is wrong (a position that is not three numbers).
+inline std::string badSceneLine3() {
+  return "<scene name=\"bad\">\n"
+         "  <world/>\n"
+         "  <particle name=\"p\" pos=\"0 five 0\" mass=\"1\"/>\n"
+         "</scene>\n";
+}
+
+/// A fresh folder for this test's files, removed at the end of the test. CTest may run the
+/// cases in parallel processes, so the name carries the process id and the test's name.
+class TempDir {
+ public:
+  TempDir() {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("lab_tests_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  /// A path inside the folder.
+  std::filesystem::path file(const std::string& name) const { return path_ / name; }
+  /// Writes text to a file in the folder and returns its path.
+  std::filesystem::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(path_ / name, std::ios::binary) << text;
+    return path_ / name;
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// A whole file as a string ("" when it cannot be read).
+inline std::string readFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// What the real program did.
+struct ProcessResult {
+  int exitCode = -1;
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+/// Runs `lab ARGS` through the shell (ARGS already quoted), stdout and stderr apart.
+inline ProcessResult runLab(const std::string& args, const TempDir& dir) {
+  ProcessResult r;
+  const std::filesystem::path errFile = dir.file("stderr.txt");
+  const std::string command = std::string("'") + LAB_EXE + "' " + args + " 2>'" + errFile.string() + "'";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 512> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) r.out += buffer.data();
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = readFile(errFile);
+  return r;
+}
+
+/// A path quoted for the shell.
+inline std::string quoted(const std::filesystem::path& p) {
+  // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about "'" + std::string.
+  std::string s = "'";
+  s += p.string();
+  s += '\'';
+  return s;
+}
+
+/// One flat JSON object: each key's raw value text (strings keep their quotes), in file
+/// order in `keys`. Enough for the lab's output, which has no nesting; nullopt when the text
+/// is not such an object.
+struct FlatJson {
+  std::vector<std::string> keys;
+  std::map<std::string, std::string> values;
+};
+
+inline std::optional<FlatJson> parseFlatJson(const std::string& text) {
+  FlatJson j;
+  std::size_t i = 0;
+  auto skipSpace = [&] {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\n' || text[i] == '\t' || text[i] == '\r')) ++i;
+  };
+  // A string literal starting at i, quotes included; escapes are kept as written.
+  auto stringAt = [&]() -> std::optional<std::string> {
+    if (i >= text.size() || text[i] != '"') return std::nullopt;
+    const std::size_t start = i++;
+    while (i < text.size() && text[i] != '"') {
+      if (static_cast<unsigned char>(text[i]) < 0x20) return std::nullopt;
+      i += text[i] == '\\' ? 2 : 1;
+    }
+    if (i >= text.size()) return std::nullopt;
+    ++i;
+    return text.substr(start, i - start);
+  };
+  skipSpace();
+  if (i >= text.size() || text[i++] != '{') return std::nullopt;
+  for (;;) {
+    skipSpace();
+    const std::optional<std::string> key = stringAt();
+    if (!key) return std::nullopt;
+    skipSpace();
+    if (i >= text.size() || text[i++] != ':') return std::nullopt;
+    skipSpace();
+    std::string value;
+    if (i < text.size() && text[i] == '"') {
+      const std::optional<std::string> s = stringAt();
+      if (!s) return std::nullopt;
+      value = *s;
+    } else {
+      const std::size_t start = i;
+      while (i < text.size() && text[i] != ',' && text[i] != '}' && text[i] != ' ' && text[i] != '\n') ++i;
+      value = text.substr(start, i - start);
+      // A JSON number or literal: null, or something strtod reads whole (JSON's grammar is
+      // stricter, but the lab writes %.17g or integers, which strtod covers).
+      if (value != "null" && value != "true" && value != "false") {
+        char* end = nullptr;
+        std::strtod(value.c_str(), &end);
+        if (value.empty() || end != value.c_str() + value.size() || value.find_first_of("in") != std::string::npos) {
+          return std::nullopt;
+        }
+      }
+    }
+    const std::string name = key->substr(1, key->size() - 2);
+    if (j.values.count(name) != 0) return std::nullopt;
+    j.keys.push_back(name);
+    j.values[name] = value;
+    skipSpace();
+    if (i < text.size() && text[i] == ',') {
+      ++i;
+      continue;
+    }
+    if (i < text.size() && text[i] == '}') {
+      ++i;
+      break;
+    }
+    return std::nullopt;
+  }
+  skipSpace();
+  if (i != text.size()) return std::nullopt;
+  return j;
+}
+
+/// A JSON number value as a double (NaN for null or a string).
+inline double number(const FlatJson& j, const std::string& key) {
+  const auto it = j.values.find(key);
+  if (it == j.values.end() || it->second == "null" || it->second.starts_with("\"")) return std::nan("");
+  return std::strtod(it->second.c_str(), nullptr);
+}
+
+/// A JSON string value without its quotes ("" when missing or not a string).
+inline std::string text(const FlatJson& j, const std::string& key) {
+  const auto it = j.values.find(key);
+  if (it == j.values.end() || !it->second.starts_with("\"")) return "";
+  return it->second.substr(1, it->second.size() - 2);
+}
+
+}  // namespace lab_testing
