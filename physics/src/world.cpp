@@ -69,12 +69,21 @@ void World::setWorldSettings(const WorldSettings& settings) {
 void World::setSolverSettings(const SolverSettings& settings) {
   const std::string why = validate(settings);
   require(why.empty(), "SolverSettings: " + why);
-  // x - x* is velocity times the substep; keep the velocity when the substep changes.
-  const Real scale = (settings.dt / settings.substeps) / substepDt();
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    particles_.previous[i] = particles_.position[i] - scale * (particles_.position[i] - particles_.previous[i]);
-  }
+  const Real hOld = substepDt(), hNew = settings.dt / settings.substeps;
+  if (hNew != hOld) keepVelocities(hOld, hNew);
   solver_ = settings;
+}
+
+// x - x* is the velocity half a substep back, times the substep: (x - x*) = v(t - h/2) h. A new
+// substep h' needs v(t - h'/2) = v(t - h/2) + a (h - h') / 2, with a gravity: exact for a body in
+// free flight. A body resting on the ground gets the same small term, g (h - h') h' / 2 in
+// position, always less than the g h'^2 its next integration adds, which the ground takes up.
+void World::keepVelocities(Real hOld, Real hNew) {
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    Vec3 halfStepVelocity = (particles_.position[i] - particles_.previous[i]) / hOld;
+    if (particles_.inverseMass[i] != 0.0) halfStepVelocity += gravityAt(particles_.position[i]) * ((hOld - hNew) / 2);
+    particles_.previous[i] = particles_.position[i] - halfStepVelocity * hNew;
+  }
 }
 
 void World::setFreezeCallback(std::function<void(const FreezeReport&)> callback) { onFreeze_ = std::move(callback); }

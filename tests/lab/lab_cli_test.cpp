@@ -94,12 +94,9 @@ TEST(LabRun, FreeFallingParticleMatchesClosedForm) {
   }
 }
 
-// Disabled: fails by 0.029 m. --dt and --substeps reach the built world through
-// World::setSolverSettings, which keeps each particle's Verlet velocity (x - x*) / h. That is
-// the velocity half an OLD substep back (World::addParticle sets x* for the old h), so the
-// particle starts with g (h_old - h_new) / 2 upwards: 0.065 m/s for 1/60 s -> 1/300 s. A
-// physics fix; enable this test when World::setSolverSettings re-centres x* for the new h.
-TEST(LabRun, DISABLED_FreeFallMatchesClosedFormWithDtAndSubstepOverrides) {
+// --dt and --substeps reach the built world through World::setSolverSettings, which must keep
+// the free particle's velocity exact across the change of substep.
+TEST(LabRun, FreeFallMatchesClosedFormWithDtAndSubstepOverrides) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());
   double dt = 0.0;

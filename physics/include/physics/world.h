@@ -56,7 +56,7 @@ class World {
   /// Replaces the world settings; throws std::invalid_argument (and keeps the old ones) if bad.
   void setWorldSettings(const WorldSettings& settings);
   /// Replaces the solver settings; throws std::invalid_argument (and keeps the old ones) if bad.
-  /// A new dt or substep count keeps every particle's velocity.
+  /// A new dt or substep count keeps every particle's velocity (exactly in free flight).
   void setSolverSettings(const SolverSettings& settings);
   /// Called once for each particle or body the guard freezes.
   void setFreezeCallback(std::function<void(const FreezeReport&)> callback);
@@ -97,6 +97,7 @@ class World {
   Real substepDt() const { return solver_.dt / solver_.substeps; }
   void addContactPoint(const Embedding& point, const Material& material, std::int32_t body);
   void combineMaterials();
+  void keepVelocities(Real hOld, Real hNew);
   void relax(Real h);
   void guard();
   void freeze(ParticleId bad, const std::string& reason);

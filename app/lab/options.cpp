@@ -1,0 +1,125 @@
+#include "options.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace lab {
+namespace {
+
+// Whole numbers only: from_chars rejects signs, spaces, exponents and trailing junk, which is
+// what makes "--steps 1e3" or "--steps 10x" an error instead of a silent 1 or 10.
+std::optional<int> parseInt(const std::string& text, int low, int high) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || n < low || n > high) return std::nullopt;
+  return n;
+}
+
+// from_chars reads "inf" and "nan" too; the range test (written so that NaN fails it) and
+// isfinite turn both away.
+std::optional<double> parseDt(const std::string& text) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) || !(v > 0.0 && v <= kMaxDt)) {
+    return std::nullopt;
+  }
+  return v;
+}
+
+// Everything after "run". Returns the error, or "" when the options are good.
+std::string parseRun(const std::vector<std::string>& args, std::size_t first, RunOptions& o) {
+  for (std::size_t i = first; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    // The value of option `a`, or nullptr when there is none. A following "--word" is taken
+    // as a forgotten value, not as a file called "--json".
+    auto value = [&]() -> const std::string* {
+      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
+      return &args[++i];
+    };
+    auto missing = [&](const char* what) { return a + " needs " + what; };
+    auto wholeNumber = [&](const std::string& v, int high) {
+      return a + ": '" + v + "' is not a whole number from 1 to " + std::to_string(high);
+    };
+    if (a == "--steps" || a == "--iterations" || a == "--substeps") {
+      const std::string* v = value();
+      if (v == nullptr) return missing("a whole number");
+      const int high = a == "--steps" ? kMaxSteps : kMaxIterations;
+      const std::optional<int> n = parseInt(*v, 1, high);
+      if (!n) return wholeNumber(*v, high);
+      if (a == "--steps") o.steps = *n;
+      else if (a == "--iterations") o.iterations = *n;
+      else o.substeps = *n;
+    } else if (a == "--dt") {
+      const std::string* v = value();
+      if (v == nullptr) return missing("a time step in seconds");
+      o.dt = parseDt(*v);
+      if (!o.dt) return a + ": '" + *v + "' is not a finite number of seconds > 0 and <= 1";
+    } else if (a == "--method") {
+      const std::string* v = value();
+      if (v == nullptr) return missing("a method (gauss-seidel, jacobi, xpbd or shake)");
+      o.method = phys::parseSolverMethod(*v);
+      if (!o.method) return a + ": unknown method '" + *v + "' (gauss-seidel, jacobi, xpbd or shake)";
+    } else if (a == "--json") {
+      o.json = true;
+    } else if (a == "--dump") {
+      const std::string* v = value();
+      if (v == nullptr) return missing("a file name");
+      o.dump = *v;
+    } else if (a == "--data") {
+      const std::string* v = value();
+      if (v == nullptr) return missing("a folder");
+      o.dataDir = *v;
+    } else if (a.size() > 1 && a[0] == '-') {
+      return "unknown option '" + a + "'";
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      return "run takes one SCENE; got '" + o.scene + "' and '" + a + "'";
+    }
+  }
+  if (o.scene.empty()) return "run needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  return {};
+}
+
+}  // namespace
+
+std::string usage() {
+  return "usage: lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]\n"
+         "                     [--json] [--dump FILE] [--data DIR]\n"
+         "       lab help\n"
+         "  SCENE           a scene file, or a name in <data>/assets/scenes (NAME.xml)\n"
+         "  --steps N       steps to run, 1 to 10000000 (default 600)\n"
+         "  --dt S          seconds per step, finite, > 0 and <= 1 (default: the scene's)\n"
+         "  --method M      gauss-seidel, jacobi, xpbd or shake (default: the scene's)\n"
+         "  --iterations K  relaxation passes per substep, 1 to 1000 (default: the scene's)\n"
+         "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"
+         "  --json          print one JSON object instead of the summary\n"
+         "  --dump FILE     write each named body's final pose to FILE as CSV\n"
+         "  --data DIR      folder holding assets/ (default: the source tree)\n"
+         "  --help          show this text\n";
+}
+
+ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
+  ParsedCommand out;
+  // Help wins wherever it is, so "lab run x --help" shows the usage instead of running.
+  for (const std::string& a : args) {
+    if (a == "--help" || a == "-h") return out;
+  }
+  if (args.empty()) {
+    out.error = "no command (run or help)";
+  } else if (args[0] == "help") {
+    out.command = Command::Help;
+  } else if (args[0] == "run") {
+    out.command = Command::Run;
+    out.error = parseRun(args, 1, out.run);
+  } else {
+    out.error = "unknown command '" + args[0] + "' (run or help)";
+  }
+  return out;
+}
+
+std::filesystem::path dataDir(const RunOptions& options) {
+  return options.dataDir.empty() ? std::filesystem::path(LAB_DATA_DIR) : options.dataDir;
+}
+
+}  // namespace lab

@@ -1,0 +1,53 @@
+#pragma once
+// The lab's command line (docs/lab.md):
+//   lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]
+//                 [--json] [--dump FILE] [--data DIR]
+//   lab help | lab --help
+// Parsing never touches the file system, so every bad argument is caught (exit 2) before a
+// scene is loaded or a step is run.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/settings.h"
+
+namespace lab {
+
+/// Limits of the numeric options, shared by the parser, the usage text and the tests.
+inline constexpr int kMaxSteps = 10000000;
+inline constexpr int kMaxIterations = 1000;  ///< also the limit of --substeps
+inline constexpr double kMaxDt = 1.0;         ///< unit: s
+inline constexpr int kDefaultSteps = 600;     ///< 10 s at the default dt of 1/60 s
+
+/// What `lab run` was asked to do. Unset overrides keep the scene's own solver settings.
+struct RunOptions {
+  std::string scene;                          ///< a file, or a name in <data>/assets/scenes
+  int steps = kDefaultSteps;                  ///< World::step() calls
+  std::optional<double> dt;                   ///< unit: s
+  std::optional<phys::SolverMethod> method;   ///< relaxation method
+  std::optional<int> iterations;              ///< relaxation passes per substep
+  std::optional<int> substeps;                ///< integrations per step
+  bool json = false;                          ///< one JSON object instead of the summary
+  std::optional<std::filesystem::path> dump;  ///< CSV of the named bodies' final poses
+  std::filesystem::path dataDir;              ///< holds assets/; empty: the build's default
+};
+
+/// The command the arguments name.
+enum class Command { Help, Run };
+
+/// The parser's answer: a command and its options, or an error.
+struct ParsedCommand {
+  Command command = Command::Help;  ///< meaningless when error is set
+  RunOptions run;                   ///< filled for Command::Run
+  std::string error;  ///< empty on success; otherwise one line naming the bad argument
+};
+
+/// Parses the arguments after the program name.
+ParsedCommand parseCommandLine(const std::vector<std::string>& args);
+/// The usage text printed by help and after a command-line error.
+std::string usage();
+/// The folder holding assets/: options.dataDir, or the source tree set at build time.
+std::filesystem::path dataDir(const RunOptions& options);
+
+}  // namespace lab

@@ -1,0 +1,196 @@
+#include "report.h"
+
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace lab {
+namespace {
+
+// printf-style %.{digits}g, for the summary's rounded figures and the exact ones of JSON/CSV.
+std::string num(double value, int digits = 6) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+// "1 substep" but "3 substeps".
+std::string count(std::size_t n, const char* singular, const char* plural) {
+  return std::to_string(n) + " " + (n == 1 ? singular : plural);
+}
+
+// A phase's summed time and its share of the summed step totals.
+std::string phase(const char* name, double ms, double totalMs) {
+  std::string s = std::string(name) + " " + num(ms, 4) + " ms";
+  if (totalMs > 0.0) s += " (" + num(100.0 * ms / totalMs, 3) + "%)";
+  return s;
+}
+
+// RFC 4180: a field with a comma, quote or line break is quoted, its quotes doubled.
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// Summaries stay readable when the guard froze thousands of particles.
+constexpr std::size_t kMaxFreezesListed = 10;
+
+}  // namespace
+
+std::string jsonNumber(double value) { return std::isfinite(value) ? num(value, 17) : "null"; }
+
+std::string jsonString(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buffer;
+    } else {
+      out += c;  // UTF-8 passes through as it is
+    }
+  }
+  return out + "\"";
+}
+
+std::string hexHash(std::uint64_t hash) {
+  char buffer[24];
+  std::snprintf(buffer, sizeof buffer, "%016" PRIx64, hash);
+  return buffer;
+}
+
+std::string jsonText(const RunResult& r) {
+  const phys::Metrics& m = r.final;
+  std::string s = "{";
+  // Keys in the order docs/lab.md lists them; values already in their JSON form.
+  auto field = [&](const char* key, const std::string& value) {
+    s += s.size() > 1 ? ",\"" : "\"";
+    s += key;
+    s += "\":";
+    s += value;
+  };
+  field("scene", jsonString(r.scene));
+  field("method", jsonString(phys::toString(r.solver.method)));
+  field("iterations", std::to_string(r.solver.iterations));
+  field("substeps", std::to_string(r.solver.substeps));
+  field("dt", jsonNumber(r.solver.dt));
+  field("steps", std::to_string(r.steps));
+  field("particles", std::to_string(r.particles));
+  field("constraints", std::to_string(r.constraints));
+  field("bodies", std::to_string(r.bodies));
+  field("contacts", std::to_string(m.contacts));
+  field("ms_per_step", jsonNumber(r.msPerStep));
+  field("max_constraint_error", jsonNumber(m.maxConstraintError));
+  field("rms_constraint_error", jsonNumber(m.rmsConstraintError));
+  field("max_penetration", jsonNumber(m.maxPenetration));
+  field("max_speed", jsonNumber(m.maxSpeed));
+  field("energy_initial", jsonNumber(r.energyInitial));
+  field("energy_final", jsonNumber(m.energy()));
+  field("frozen", std::to_string(m.frozen));
+  field("hash", jsonString(hexHash(r.hash)));
+  return s + "}\n";
+}
+
+std::string summaryText(const RunResult& r) {
+  const phys::Metrics& m = r.final;
+  const phys::Profile& p = r.phaseSums;
+  std::string s;
+  s += "scene        " + r.scene + (r.file.empty() ? "" : " (" + r.file.string() + ")") + "\n";
+  s += "solver       " + std::string(phys::toString(r.solver.method)) + ", " +
+       count(static_cast<std::size_t>(r.solver.iterations), "iteration", "iterations") + ", " +
+       count(static_cast<std::size_t>(r.solver.substeps), "substep", "substeps") + ", dt " + num(r.solver.dt) +
+       " s\n";
+  s += "world        " + count(r.particles, "particle", "particles") + ", " +
+       count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
+  s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " + num(r.simulatedTime) +
+       " s simulated, in " + num(r.wallMs, 4) + " ms wall: " + num(r.msPerStep, 4) + " ms/step\n";
+  // Profile::total is the physics' own clock per step; the wall time above also holds the
+  // loop around it. The median shrugs off the odd step the scheduler interrupted.
+  s += "step time    median " + num(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";
+  s += "phases       summed over the run: " +
+       phase("integrate", p.integrate, p.total) + ", " + phase("constraints", p.constraints, p.total) + ", " +
+       phase("contacts", p.contacts, p.total) + ", " + phase("friction", p.friction, p.total) + ", " +
+       phase("guard", p.guard, p.total) + ", " +
+       // What the phases leave of the total: the step's own bookkeeping and clock reads.
+       phase("other", p.total - (p.integrate + p.constraints + p.contacts + p.friction + p.guard), p.total) + "\n";
+  s += "contacts     " + std::to_string(m.contacts) + " in the last step, max penetration " +
+       num(m.maxPenetration) + " m\n";
+  s += "constraints  error max " + num(m.maxConstraintError) + ", rms " + num(m.rmsConstraintError) +
+       " (of rest length)\n";
+  s += "speed        max " + num(m.maxSpeed) + " m/s\n";
+  s += "energy       initial " + num(r.energyInitial) + " J, final " + num(m.energy()) + " J (change " +
+       num(m.energy() - r.energyInitial) + " J)\n";
+  if (r.freezes.empty()) {
+    s += "frozen       none\n";
+  } else {
+    s += "frozen       " + count(static_cast<std::size_t>(m.frozen), "particle", "particles") + " in " +
+         count(r.freezes.size(), "report", "reports") + "\n";
+    for (std::size_t i = 0; i < r.freezes.size() && i < kMaxFreezesListed; ++i) {
+      const phys::FreezeReport& f = r.freezes[i];
+      s += "  t=" + num(f.time) + " s  " + f.name + ": " + f.reason + "\n";
+    }
+    if (r.freezes.size() > kMaxFreezesListed) {
+      s += "  ... and " + std::to_string(r.freezes.size() - kMaxFreezesListed) + " more\n";
+    }
+  }
+  s += "hash         " + hexHash(r.hash) + "\n";
+  return s;
+}
+
+std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody> bodies) {
+  std::string s = "name,x,y,z,qw,qx,qy,qz\n";
+  for (const scenes::NamedBody& b : bodies) {
+    phys::BoxPose pose;  // a particle keeps the identity orientation
+    if (b.kind == scenes::NamedBody::Kind::Box) {
+      pose = world.boxPose(b.index);
+    } else {
+      pose.center = world.particles().position.at(b.index);
+    }
+    const phys::Vec3& c = pose.center;
+    const phys::Quat& q = pose.orientation;
+    s += csvField(b.name);
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about "," + std::string here.
+    for (double v : {c.x, c.y, c.z, q.w, q.x, q.y, q.z}) {
+      s += ',';
+      s += num(v, 17);
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+void writeFileAtomically(const std::filesystem::path& file, std::string_view text) {
+  std::filesystem::path tmp = file;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);
+      throw std::runtime_error("cannot write " + tmp.string());
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error("cannot rename " + tmp.string() + " to " + file.string() + ": " + ec.message());
+  }
+}
+
+}  // namespace lab

@@ -1,0 +1,45 @@
+#pragma once
+// Stepping a loaded scene under the lab's overrides, and what the run measured.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "options.h"
+#include "physics/world.h"
+#include "scenes/scene.h"
+
+namespace lab {
+
+/// Everything `lab run` reports, gathered once so the summary, the JSON and the tests agree.
+struct RunResult {
+  std::string scene;                 ///< the scene's name
+  std::filesystem::path file;        ///< where it was loaded from
+  phys::SolverSettings solver;       ///< after the overrides
+  int steps = 0;                     ///< World::step() calls made
+  double simulatedTime = 0.0;        ///< unit: s; World::time() at the end
+  std::size_t particles = 0;         ///< world.particles().size()
+  std::size_t constraints = 0;       ///< world.sticks().size()
+  std::size_t bodies = 0;            ///< world.boxes().size()
+  double energyInitial = 0.0;        ///< unit: J; before the first step
+  phys::Metrics final;               ///< after the last step
+  double wallMs = 0.0;               ///< unit: ms; the whole stepping loop, steady_clock
+  double msPerStep = 0.0;            ///< unit: ms; wallMs / steps
+  double medianStepMs = 0.0;         ///< unit: ms; median of the steps' Profile::total
+  phys::Profile phaseSums;           ///< unit: ms; each phase summed over the run
+  std::vector<phys::FreezeReport> freezes;  ///< the guard's reports, oldest first
+  std::uint64_t hash = 0;            ///< World::stateHash() at the end
+};
+
+/// Puts the options' overrides into the world's solver settings; rethrows the
+/// std::invalid_argument of World::setSolverSettings when the world refuses them.
+void applyOverrides(phys::World& world, const RunOptions& options);
+
+/// Applies the overrides, then steps the scene's world options.steps times and measures it.
+/// Throws std::invalid_argument (from applyOverrides) before any step when they are refused.
+RunResult runScene(scenes::Scene& scene, const RunOptions& options);
+
+/// Median of the values (the mean of the middle two for an even count); 0 when empty.
+double median(std::vector<double> values);
+
+}  // namespace lab
