@@ -120,11 +120,11 @@ std::string summaryText(const RunResult& r) {
   // loop around it. The median shrugs off the odd step the scheduler interrupted.
   s += "step time    median " + num(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";
   s += "phases       summed over the run: " +
-       phase("integrate", p.integrate, p.total) + ", " + phase("constraints", p.constraints, p.total) + ", " +
-       phase("contacts", p.contacts, p.total) + ", " + phase("friction", p.friction, p.total) + ", " +
+       phase("integrate", p.integrate, p.total) + ", " + phase("collide", p.collide, p.total) + ", " +
+       phase("constraints", p.constraints, p.total) + ", " + phase("contacts", p.contacts, p.total) + ", " + phase("friction", p.friction, p.total) + ", " +
        phase("guard", p.guard, p.total) + ", " +
        // What the phases leave of the total: the step's own bookkeeping and clock reads.
-       phase("other", p.total - (p.integrate + p.constraints + p.contacts + p.friction + p.guard), p.total) + "\n";
+       phase("other", p.total - (p.integrate + p.collide + p.constraints + p.contacts + p.friction + p.guard), p.total) + "\n";
   s += "contacts     " + std::to_string(m.contacts) + " in the last step, max penetration " +
        num(m.maxPenetration) + " m\n";
   s += "constraints  error max " + num(m.maxConstraintError) + ", rms " + num(m.rmsConstraintError) +

@@ -53,6 +53,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options) {
     stepTotals.push_back(p.total);
     r.phaseSums.integrate += p.integrate;
     r.phaseSums.constraints += p.constraints;
+    r.phaseSums.collide += p.collide;
     r.phaseSums.contacts += p.contacts;
     r.phaseSums.friction += p.friction;
     r.phaseSums.guard += p.guard;

@@ -157,7 +157,7 @@ void Sandbox::renderFrame() {
     }
   }
   engine::PhysicsDebugDraw debugDraw(renderer_->lines());
-  world.debugDraw(debugDraw, {panel_.drawSticks, false, panel_.drawContacts, panel_.drawBounds});
+  world.debugDraw(debugDraw, {panel_.drawSticks, false, panel_.drawContacts, panel_.drawContacts, panel_.drawBounds});
   glDisable(GL_DEPTH_TEST);  // debug lines show through bodies, as in the seed's constraint mode
   renderer_->endFrame(viewProjection);
 

@@ -24,6 +24,17 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     for (std::size_t c = 0; c < contactPoints_.size(); ++c) {
       if (touched_[c] != 0) draw.point(position(contactPoints_[c].point), 0.08, colors::kContact);
     }
+    for (const BodyContact& c : bodyContacts_) {
+      const Vec3 p = position(c.pointA);
+      const Color color = colors::kFeature[c.kind % 6];
+      draw.point(p, 0.05, color);
+      draw.line(p, p + 0.25 * c.normal, color);
+    }
+  }
+  if (flags.movedVertices) {
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      if (movedByBoxContact_[i] != 0) draw.point(x[i], 0.1, colors::kContact);
+    }
   }
   if (flags.bounds) {
     for (const Box& box : boxes_) {

@@ -49,6 +49,12 @@ Metrics World::metrics() const {
     }
   }
   m.contacts = static_cast<int>(std::count(touched_.begin(), touched_.end(), std::uint8_t{1}));
+  for (std::size_t k = 0; k < bodyContacts_.size(); ++k) {
+    const BodyContact& c = bodyContacts_[k];
+    const Real gap = glm::dot(c.normal, position(c.pointB) - position(c.pointA));
+    m.maxPenetration = std::max(m.maxPenetration, -gap);
+    if (bodyPush_[k] > 0.0) ++m.contacts;
+  }
   m.frozen = 0;
   for (const FreezeReport& f : freezes_) {
     const std::int32_t body = particleBody_[f.particle];

@@ -44,6 +44,16 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
                          std::span<const Real> normalPush);
 
+/// Pushes each pair of contact points apart along its normal until n . (pB - pA) >= -slop, moving
+/// both bodies' particles by their embedding weights and inverse masses; adds the distance to
+/// push. `moved` marks the particles a correction touched.
+void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real slop, std::span<Real> push,
+                       std::span<std::uint8_t> moved);
+/// Coulomb friction between the bodies of each contact that was pushed, as for the ground: the
+/// tangential part of the relative motion this substep is stopped within mu_s * push, else
+/// shortened by mu_d * push.
+void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push);
+
 /// Current position of an embedded point.
 Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);
 /// Moves an embedded point by D through its particles in `x` (positions or previous

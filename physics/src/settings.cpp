@@ -49,6 +49,7 @@ std::string validate(const SolverSettings& s) {
   if (s.substeps < 1) why << "substeps must be >= 1; ";
   if (s.iterations < 1) why << "iterations must be >= 1; ";
   if (!finiteNonNegative(s.featureEpsilon)) why << "featureEpsilon must be finite and >= 0 (m); ";
+  if (!finiteNonNegative(s.contactSlop)) why << "contactSlop must be finite and >= 0 (m); ";
   return joined(why);
 }
 

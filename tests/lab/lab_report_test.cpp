@@ -77,13 +77,14 @@ TEST(LabReport, SummaryNamesPhasesFreezesAndHash) {
   r.scene = "s";
   r.steps = 2;
   r.hash = 0xabc;
-  r.phaseSums = {1.0, 2.0, 3.0, 4.0, 5.0, 16.0};
+  r.phaseSums = {.integrate = 1.0, .constraints = 2.0, .collide = 6.0, .contacts = 3.0, .friction = 4.0,
+                 .guard = 5.0, .total = 22.0};
   r.medianStepMs = 8.0;
   r.final.frozen = 1;
   r.freezes.push_back({"runaway", "left the world bound of 10 m", 0, 0.25});
   const std::string s = lab::summaryText(r);
   for (const char* part : {"median 8 ms", "integrate 1 ms", "constraints 2 ms", "contacts 3 ms", "friction 4 ms",
-                           "guard 5 ms", "runaway: left the world bound of 10 m", "t=0.25 s", "0000000000000abc"}) {
+                           "collide 6 ms", "guard 5 ms", "runaway: left the world bound of 10 m", "t=0.25 s", "0000000000000abc"}) {
     EXPECT_NE(s.find(part), std::string::npos) << part << "\n" << s;
   }
 }

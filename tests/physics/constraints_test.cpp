@@ -143,7 +143,7 @@ TEST(Metrics, ContactsAndPenetrationOnTheGround) {
   EXPECT_LE(m.maxPenetration, 1e-12);
   const phys::Profile& p = world.profile();
   EXPECT_GT(p.total, 0.0);
-  EXPECT_GE(p.total, p.integrate + p.constraints + p.contacts + p.friction + p.guard - 1e-6);
+  EXPECT_GE(p.total, p.integrate + p.collide + p.constraints + p.contacts + p.friction + p.guard - 1e-6);
 }
 
 class RecordingDraw : public phys::DebugDraw {
@@ -170,14 +170,14 @@ TEST(DebugDraw, DrawsWhatTheFlagsAskFor) {
   world.addBox(box);
   world.step();
   RecordingDraw all;
-  world.debugDraw(all, {true, true, true, true});
+  world.debugDraw(all, {true, true, true, false, true});
   EXPECT_EQ(all.lines, 22 + 6);
   EXPECT_EQ(all.red, 28);
   EXPECT_EQ(all.points, 12 + 8);  // particles, then the 8 bottom corners touching the ground
   EXPECT_EQ(all.green, 8);
   EXPECT_EQ(all.boxes, 2);
   RecordingDraw none;
-  world.debugDraw(none, {false, false, false, false});
+  world.debugDraw(none, {false, false, false, false, false});
   EXPECT_EQ(none.lines + none.points + none.boxes, 0);
 }
 

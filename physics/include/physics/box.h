@@ -29,6 +29,9 @@ struct BoxDesc {
   Real mass = 1.0;                   ///< unit: kg; spread evenly over the particles
   BoxModel model = BoxModel::Corners;
   Material material;
+  /// Collision filtering: two boxes collide when each one's group has a bit in the other's mask.
+  std::uint32_t collisionGroup = 1;
+  std::uint32_t collisionMask = 0xffffffffu;
 };
 
 /// Where a box is: read back from its particles.
@@ -48,6 +51,8 @@ struct Box {
   std::uint32_t firstCorner = 0;
   Vec3 halfExtents{0.5};  ///< unit: m
   Material material;
+  std::uint32_t collisionGroup = 1;
+  std::uint32_t collisionMask = 0xffffffffu;
 };
 
 /// Body-frame position of corner k of a box with the given half extents.

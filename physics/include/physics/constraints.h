@@ -35,6 +35,18 @@ struct Embedding {
   int count = 0;
 };
 
+/// A contact between two boxes for one substep: a point embedded in each, kept apart along the
+/// normal (from A towards B): n . (pointB - pointA) >= 0.
+struct BodyContact {
+  Embedding pointA;
+  Embedding pointB;
+  Vec3 normal{0.0};
+  Material combined;       ///< geometric mean of the two boxes' materials
+  std::int32_t boxA = -1;  ///< for debug drawing and reports
+  std::int32_t boxB = -1;
+  std::uint8_t kind = 0;   ///< ContactKind, for debug drawing
+};
+
 /// A point that collides with the ground: a loose particle or a box corner.
 struct GroundContact {
   Embedding point;

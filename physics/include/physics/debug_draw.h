@@ -16,6 +16,10 @@ inline constexpr Color kParticle{0.20f, 0.35f, 0.85f};  ///< blue
 inline constexpr Color kContact{0.10f, 0.85f, 0.20f};   ///< green: the seed's collision markers
 inline constexpr Color kBounds{0.60f, 0.60f, 0.60f};    ///< grey
 inline constexpr Color kFrozen{0.85f, 0.10f, 0.85f};    ///< magenta
+/// Box-box contact points and normals, by ContactKind: face-face, face-edge, face-vertex,
+/// edge-edge, edge-vertex, vertex-vertex.
+inline constexpr Color kFeature[6] = {{0.10f, 0.85f, 0.85f}, {0.20f, 0.55f, 1.00f}, {0.60f, 0.40f, 1.00f},
+                                      {1.00f, 0.85f, 0.10f}, {1.00f, 0.55f, 0.10f}, {1.00f, 1.00f, 1.00f}};
 }  // namespace colors
 
 class DebugDraw {
@@ -32,7 +36,8 @@ class DebugDraw {
 struct DebugDrawFlags {
   bool constraints = true;  ///< sticks red, range sticks orange
   bool particles = false;   ///< every particle; frozen ones magenta
-  bool contacts = true;     ///< contact points that touched the ground in the last step
+  bool contacts = true;     ///< ground contact points that were pushed, box-box contact points and normals
+  bool movedVertices = false;  ///< particles a box-box contact moved in the last step (the seed's green markers)
   bool bounds = false;      ///< each box's axis-aligned bounding box
 };
 

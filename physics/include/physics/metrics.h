@@ -12,9 +12,9 @@ struct Metrics {
   Real potentialEnergy = 0.0;  ///< unit: J; m g h (uniform) or m s |x - p| (point gravity)
   Real maxConstraintError = 0.0;  ///< unitless; max over sticks of |violation| / rest length
   Real rmsConstraintError = 0.0;  ///< unitless; root mean square of the same
-  Real maxPenetration = 0.0;   ///< unit: m; deepest contact point below the ground now
+  Real maxPenetration = 0.0;   ///< unit: m; deepest point below the ground or inside another box now
   Real maxSpeed = 0.0;         ///< unit: m/s
-  int contacts = 0;            ///< contact points that touched the ground in the last step
+  int contacts = 0;            ///< ground contact points pushed, and box-box contact points, in the last step
   int frozen = 0;              ///< particles frozen by the guard so far
 
   Real energy() const { return kineticEnergy + potentialEnergy; }
@@ -24,7 +24,8 @@ struct Metrics {
 struct Profile {
   double integrate = 0.0;    ///< unit: ms
   double constraints = 0.0;  ///< unit: ms; relaxation of the sticks
-  double contacts = 0.0;     ///< unit: ms; ground projection, all iterations
+  double collide = 0.0;      ///< unit: ms; box frames, broad phase and narrow phase
+  double contacts = 0.0;     ///< unit: ms; contact projection (ground and box-box), all iterations
   double friction = 0.0;     ///< unit: ms
   double guard = 0.0;        ///< unit: ms; NaN and bound checks
   double total = 0.0;        ///< unit: ms; the whole step

@@ -52,6 +52,9 @@ struct SolverSettings {
   /// Vertices within this distance of the deepest one count as one contact feature (the seed's
   /// 0.01); used by box-box contact classification.
   Real featureEpsilon = 0.01;  ///< unit: m
+  /// Overlap two boxes may keep without being pushed apart. Without it, boxes touching side by
+  /// side fight over a zero gap every substep and never come to rest.
+  Real contactSlop = 0.001;  ///< unit: m
 };
 
 /// Empty when the settings can be stepped; otherwise says which field is wrong and why.

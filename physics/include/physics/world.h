@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "physics/box.h"
+#include "physics/collision.h"
 #include "physics/constraints.h"
 #include "physics/debug_draw.h"
 #include "physics/metrics.h"
@@ -50,6 +51,9 @@ class World {
   /// Adds a box of the chosen model; throws std::invalid_argument on bad input and adds nothing.
   BoxId addBox(const BoxDesc& desc);
 
+  /// Keeps two boxes from colliding with each other (the parts of a ragdoll joined by a joint).
+  void ignoreCollision(BoxId a, BoxId b);
+
   /// Advances the world by solverSettings().dt.
   void step();
 
@@ -70,6 +74,12 @@ class World {
   std::span<const Embedding> corners() const { return corners_; }
   /// Every point that collides with the ground.
   std::span<const GroundContact> groundContacts() const { return contactPoints_; }
+  /// Box-box contacts of the last substep.
+  std::span<const BodyContact> bodyContacts() const { return bodyContacts_; }
+  /// Each box as an oriented box, fitted at the start of the last substep.
+  std::span<const Obb> boxFrames() const { return frames_; }
+  /// Box pairs whose bounds overlapped in the last substep (the broad phase's output).
+  std::size_t broadPhasePairs() const { return pairs_.size(); }
   const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
   /// Freezes so far, oldest first.
   std::span<const FreezeReport> freezes() const { return freezes_; }
@@ -99,6 +109,12 @@ class World {
   void combineMaterials();
   void keepVelocities(Real hOld, Real hNew);
   void relax(Real h);
+  void updateBoxFrames();
+  void findBoxPairs();
+  void buildBoxContacts();
+  void separateWithoutVelocity(BoxId a, BoxId b, std::span<const BodyContact> contacts);
+  Embedding embedInBox(BoxId box, const Vec3& point) const;
+  bool collides(BoxId a, BoxId b) const;
   void guard();
   void freeze(ParticleId bad, const std::string& reason);
 
@@ -113,6 +129,19 @@ class World {
 
   std::vector<GroundContact> contactPoints_;  // loose particles and box corners
   std::vector<Real> normalPush_;  // per contact point: total ground correction this substep (m)
+
+  // Box-box collision, rebuilt every substep into storage that keeps its capacity.
+  std::vector<Obb> frames_;                 // per box
+  struct Interval {
+    Real min, max;  // x extent of a box's bounds
+    BoxId box;
+  };
+  std::vector<Interval> sweep_;             // sweep-and-prune list, kept sorted between substeps
+  std::vector<std::pair<BoxId, BoxId>> pairs_;
+  std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
+  std::vector<BodyContact> bodyContacts_;
+  std::vector<Real> bodyPush_;              // per body contact: total push this substep (m)
+  std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
   std::vector<std::uint8_t> touched_;  // per contact point: touched the ground in the last step
 
   // Solver scratch, sized when things are added so the step never allocates.

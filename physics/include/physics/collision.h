@@ -1,0 +1,85 @@
+#pragma once
+// Box-box narrow phase: the separating-axis test over the 15 axes of two oriented boxes, the
+// contact feature on each side, and the contact points. Pure geometry on oriented boxes, so it
+// is tested on its own; World turns the points into constraints on particles.
+#include <array>
+
+#include <glm/mat3x3.hpp>
+
+#include "physics/types.h"
+
+namespace phys {
+
+/// An oriented box: centre, unit axes (columns) and half extents.
+struct Obb {
+  Vec3 center{0.0};
+  glm::dmat3 axes{1.0};
+  Vec3 halfExtents{0.5};
+
+  Vec3 corner(int k) const;  ///< corner k, bits 0/1/2 choosing +x/+y/+z as in box.h
+};
+
+/// Which of the 15 axes separated least: 0-2 faces of A, 3-5 faces of B, 6 + 3 i + j the cross
+/// product of A's axis i and B's axis j.
+struct SatResult {
+  bool overlap = false;  ///< true also when apart by less than the margin (depth < 0)
+  int axis = -1;
+  Real depth = 0.0;      ///< unit: m; penetration along the axis when overlapping
+  Vec3 normal{0.0};      ///< unit vector from A towards B
+};
+
+/// Tolerances that bias the choice towards face axes, so the contact normal does not flip
+/// between a face and an edge axis of nearly equal depth from one step to the next
+/// (the same idea as qu3e's and Box2D's relative and absolute tolerances).
+inline constexpr Real kFaceBiasRelative = 0.95;
+inline constexpr Real kFaceBiasAbsolute = 0.01;  ///< unit: m
+
+/// The separating-axis test; stops at the first axis that separates. Boxes less than `margin`
+/// apart count as touching (depth down to -margin), so a resting contact that a relaxation pass
+/// left a hair open is still found in the next substep.
+SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0);
+
+/// The feature each box meets the other with, seen along the contact normal.
+enum class Feature { Vertex = 1, Edge = 2, Face = 4 };
+enum class ContactKind { FaceFace, FaceEdge, FaceVertex, EdgeEdge, EdgeVertex, VertexVertex };
+const char* toString(ContactKind kind);
+
+/// The vertices of `box` within `epsilon` of its extreme in direction `direction`: 1 is a
+/// vertex, 2 an edge, 3 or more a face (the seed's classification, with its epsilon).
+struct SupportFeature {
+  Feature feature = Feature::Vertex;
+  int count = 0;
+  std::array<int, 4> corners{};  ///< corner indices; for a face in winding order
+};
+SupportFeature supportFeature(const Obb& box, const Vec3& direction, Real epsilon);
+ContactKind classify(Feature a, Feature b);
+
+/// One point of contact: where it is on A and on B. n . (onB - onA) = -depth < 0 while they
+/// overlap; the response pushes the two apart along the normal until that is 0.
+struct ContactPoint {
+  Vec3 onA{0.0};
+  Vec3 onB{0.0};
+  Real depth = 0.0;  ///< unit: m
+};
+
+struct BoxContact {
+  ContactKind kind = ContactKind::FaceFace;
+  SatResult sat;
+  int count = 0;
+  std::array<ContactPoint, 8> points;
+};
+
+/// Finds the contact of two boxes along the SAT normal: face-face and face-edge by clipping
+/// the incident feature against the reference face's sides (up to 8 points), face-vertex by
+/// projecting the vertex, edge-edge by the closest points of the two edges, edge-vertex and
+/// vertex-vertex by the closest point to the vertex. Boxes within featureEpsilon count as
+/// touching (see satTest). False when the boxes are apart.
+bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& out);
+
+/// Keeps at most 4 of a contact's points: the deepest, the farthest from it, and the two that
+/// span the largest area with them. The solver uses this, so a face contact has 4 points
+/// whether the faces meet square (4 clipped) or turned (up to 8), and its stiffness does not
+/// jump from one substep to the next as the clipped polygon gains and loses corners.
+void reduceToFourPoints(BoxContact& contact);
+
+}  // namespace phys

@@ -1,0 +1,67 @@
+// Box-box contacts as constraints on particles: both contact points are embedded in their
+// bodies, and each correction is the weighted projection of REFERENCES.md applied to the pair:
+// lambda = -C / (sum_A c_i^2 w_i + sum_B c_j^2 w_j), x_i(A) -= c_i w_i lambda n,
+// x_j(B) += c_j w_j lambda n. No matrix inverse, so nothing to go singular when faces align.
+#include <glm/geometric.hpp>
+
+#include "passes.h"
+
+namespace phys::detail {
+namespace {
+
+Real weightSum(const Particles& p, const Embedding& e) {
+  Real sum = 0.0;
+  for (int i = 0; i < e.count; ++i) sum += e.weight[i] * e.weight[i] * p.inverseMass[e.particle[i]];
+  return sum;
+}
+
+// Moves the two points of a contact in opposite directions: A by -lambda, B by +lambda (a vector
+// in position units per unit of weight), through their particles in `x`.
+void movePair(std::vector<Vec3>& x, const Particles& p, const BodyContact& c, const Vec3& lambda) {
+  for (int i = 0; i < c.pointA.count; ++i) {
+    x[c.pointA.particle[i]] -= (c.pointA.weight[i] * p.inverseMass[c.pointA.particle[i]]) * lambda;
+  }
+  for (int j = 0; j < c.pointB.count; ++j) {
+    x[c.pointB.particle[j]] += (c.pointB.weight[j] * p.inverseMass[c.pointB.particle[j]]) * lambda;
+  }
+}
+
+}  // namespace
+
+void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real slop, std::span<Real> push,
+                       std::span<std::uint8_t> moved) {
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const BodyContact& c = contacts[k];
+    const Real gap = glm::dot(c.normal, embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA)) + slop;
+    if (gap >= 0.0) continue;
+    const Real denominator = weightSum(p, c.pointA) + weightSum(p, c.pointB);
+    if (denominator == 0.0) continue;  // both sides pinned or frozen
+    movePair(p.position, p, c, (-gap / denominator) * c.normal);
+    push[k] += -gap;
+    for (int i = 0; i < c.pointA.count; ++i) moved[c.pointA.particle[i]] = 1;
+    for (int j = 0; j < c.pointB.count; ++j) moved[c.pointB.particle[j]] = 1;
+  }
+}
+
+void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push) {
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    if (push[k] <= 0.0) continue;
+    const BodyContact& c = contacts[k];
+    const Vec3 motionA = embeddedPosition(p.position, c.pointA) - embeddedPosition(p.previous, c.pointA);
+    const Vec3 motionB = embeddedPosition(p.position, c.pointB) - embeddedPosition(p.previous, c.pointB);
+    Vec3 slide = motionB - motionA;
+    slide -= glm::dot(slide, c.normal) * c.normal;
+    const Real slideLength = glm::length(slide);
+    if (slideLength == 0.0) continue;
+    const Real denominator = weightSum(p, c.pointA) + weightSum(p, c.pointB);
+    if (denominator == 0.0) continue;
+    Real cut = 1.0;
+    if (slideLength > c.combined.staticFriction * push[k]) {
+      cut = std::min(1.0, c.combined.dynamicFriction * push[k] / slideLength);
+    }
+    // Shrink the relative slide by cut: B moves back, A moves along, by their weights.
+    movePair(p.position, p, c, (cut / denominator) * slide * -1.0);
+  }
+}
+
+}  // namespace phys::detail

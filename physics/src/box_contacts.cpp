@@ -1,0 +1,259 @@
+// Contact features and points of two overlapping boxes, along the normal the SAT found.
+// One function per feature case; each fills onA / onB so that n . (onB - onA) = -depth.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "physics/collision.h"
+
+namespace phys {
+namespace {
+
+struct Polygon {
+  std::array<Vec3, 8> v;
+  int n = 0;
+};
+
+// Sutherland-Hodgman: keep the part of the polygon with dot(plane, p) <= offset. Works for a
+// segment (2 points) and a point (1) as well.
+Polygon clip(const Polygon& in, const Vec3& plane, Real offset) {
+  Polygon out;
+  if (in.n == 1) {
+    if (glm::dot(plane, in.v[0]) <= offset) out.v[out.n++] = in.v[0];
+    return out;
+  }
+  const int edges = in.n == 2 ? 1 : in.n;  // a segment is one edge, not a closed loop
+  for (int i = 0; i < edges; ++i) {
+    const Vec3& p = in.v[i];
+    const Vec3& q = in.v[(i + 1) % in.n];
+    const Real dp = glm::dot(plane, p) - offset, dq = glm::dot(plane, q) - offset;
+    if (dp <= 0.0 && out.n < 8) out.v[out.n++] = p;
+    // A crossing strictly inside the edge only: an end on the plane is kept as itself.
+    if (((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) && out.n < 8) out.v[out.n++] = p + (q - p) * (dp / (dp - dq));
+    if (in.n == 2 && dq <= 0.0 && out.n < 8) out.v[out.n++] = q;
+  }
+  return out;
+}
+
+// Closest points of segments p1-q1 and p2-q2 (Ericson, "Real-Time Collision Detection" 5.1.9).
+void closestPointsOfSegments(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, Vec3& c1, Vec3& c2) {
+  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const Real a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
+  Real s = 0.0, t = 0.0;
+  if (a <= 1e-18 && e <= 1e-18) {
+    c1 = p1;
+    c2 = p2;
+    return;
+  }
+  if (a <= 1e-18) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const Real c = glm::dot(d1, r);
+    if (e <= 1e-18) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const Real b = glm::dot(d1, d2), denom = a * e - b * b;
+      s = denom > 1e-18 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  c1 = p1 + d1 * s;
+  c2 = p2 + d2 * t;
+}
+
+int faceAxis(const Obb& box, const Vec3& direction, Real& sign) {
+  int best = 0;
+  Real bestDot = -1.0;
+  for (int i = 0; i < 3; ++i) {
+    const Real d = glm::dot(box.axes[i], direction);
+    if (std::abs(d) > bestDot) {
+      bestDot = std::abs(d);
+      best = i;
+      sign = d >= 0.0 ? 1.0 : -1.0;
+    }
+  }
+  return best;
+}
+
+// The 4 corners of the face of `box` on side `sign` of `axis`, in order around the face.
+std::array<int, 4> faceCorners(int axis, Real sign) {
+  const int bit = 1 << axis, u = 1 << ((axis + 1) % 3), v = 1 << ((axis + 2) % 3);
+  const int base = sign > 0.0 ? bit : 0;
+  return {base, base | u, base | u | v, base | v};
+}
+
+// Face cases: clip the incident feature against the reference face's four side planes; each
+// point below the reference plane is a contact, with its partner on that plane.
+void faceContact(const Obb& reference, const Vec3& referenceNormal, const Polygon& incident, bool referenceIsA,
+                 Real margin, BoxContact& out) {
+  Real sign = 1.0;
+  const int axis = faceAxis(reference, referenceNormal, sign);
+  const Vec3 n = reference.axes[axis] * sign;  // outward normal of the reference face
+  const Real planeOffset = glm::dot(n, reference.center) + reference.halfExtents[axis];
+  Polygon p = incident;
+  for (int k = 1; k <= 2; ++k) {
+    const int side = (axis + k) % 3;
+    const Vec3& s = reference.axes[side];
+    const Real c = glm::dot(s, reference.center);
+    p = clip(p, s, c + reference.halfExtents[side]);
+    p = clip(p, -s, -c + reference.halfExtents[side]);
+  }
+  out.count = 0;
+  auto add = [&](const Vec3& point) {
+    const Real depth = planeOffset - glm::dot(n, point);
+    if (depth < -margin || out.count >= 8) return;
+    const Vec3 onReference = point + depth * n;
+    ContactPoint& c = out.points[out.count++];
+    c.depth = depth;
+    c.onA = referenceIsA ? onReference : point;
+    c.onB = referenceIsA ? point : onReference;
+  };
+  for (int i = 0; i < p.n; ++i) add(p.v[i]);
+  if (out.count == 0) {
+    // The incident feature overlaps the reference box beside the reference face (a corner
+    // poking in near its edge): clipping leaves nothing, so keep its deepest vertex.
+    int deepest = 0;
+    for (int i = 1; i < incident.n; ++i) {
+      if (glm::dot(n, incident.v[i]) < glm::dot(n, incident.v[deepest])) deepest = i;
+    }
+    add(incident.v[deepest]);
+  }
+  out.sat.normal = referenceIsA ? n : -n;  // keep "from A towards B"
+}
+
+Polygon featurePolygon(const Obb& box, const SupportFeature& f) {
+  Polygon p;
+  p.n = static_cast<int>(f.feature);
+  for (int i = 0; i < p.n; ++i) p.v[i] = box.corner(f.corners[i]);
+  return p;
+}
+
+// Edge and vertex cases: one point, the closest points of the two features.
+void closestFeatureContact(const Obb& a, const SupportFeature& fa, const Obb& b, const SupportFeature& fb,
+                           BoxContact& out) {
+  const Vec3 a0 = a.corner(fa.corners[0]), a1 = fa.feature == Feature::Edge ? a.corner(fa.corners[1]) : a0;
+  const Vec3 b0 = b.corner(fb.corners[0]), b1 = fb.feature == Feature::Edge ? b.corner(fb.corners[1]) : b0;
+  ContactPoint& c = out.points[0];
+  closestPointsOfSegments(a0, a1, b0, b1, c.onA, c.onB);
+  c.depth = -glm::dot(out.sat.normal, c.onB - c.onA);
+  out.count = 1;
+}
+
+}  // namespace
+
+const char* toString(ContactKind kind) {
+  switch (kind) {
+    case ContactKind::FaceFace: return "face-face";
+    case ContactKind::FaceEdge: return "face-edge";
+    case ContactKind::FaceVertex: return "face-vertex";
+    case ContactKind::EdgeEdge: return "edge-edge";
+    case ContactKind::EdgeVertex: return "edge-vertex";
+    case ContactKind::VertexVertex: return "vertex-vertex";
+  }
+  return "?";
+}
+
+SupportFeature supportFeature(const Obb& box, const Vec3& direction, Real epsilon) {
+  Real extreme = -1e300;
+  std::array<Real, 8> along{};
+  for (int k = 0; k < 8; ++k) {
+    along[k] = glm::dot(box.corner(k), direction);
+    extreme = std::max(extreme, along[k]);
+  }
+  SupportFeature f;
+  std::array<int, 8> near{};
+  for (int k = 0; k < 8; ++k) {
+    if (along[k] >= extreme - epsilon) near[f.count++] = k;
+  }
+  if (f.count >= 3 || (f.count == 2 && std::popcount(static_cast<unsigned>(near[0] ^ near[1])) != 1)) {
+    Real sign = 1.0;
+    const int axis = faceAxis(box, direction, sign);  // sets sign: not inside the call below
+    f.feature = Feature::Face;
+    f.corners = faceCorners(axis, sign);
+  } else {
+    f.feature = f.count == 2 ? Feature::Edge : Feature::Vertex;
+    f.corners = {near[0], near[1], 0, 0};
+  }
+  return f;
+}
+
+ContactKind classify(Feature a, Feature b) {
+  const Feature hi = std::max(a, b), lo = std::min(a, b);
+  if (hi == Feature::Face) return lo == Feature::Face ? ContactKind::FaceFace
+                                  : lo == Feature::Edge ? ContactKind::FaceEdge : ContactKind::FaceVertex;
+  if (hi == Feature::Edge) return lo == Feature::Edge ? ContactKind::EdgeEdge : ContactKind::EdgeVertex;
+  return ContactKind::VertexVertex;
+}
+
+bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& out) {
+  out.sat = satTest(a, b, featureEpsilon);
+  out.count = 0;
+  if (!out.sat.overlap) return false;
+  const Vec3 n = out.sat.normal;
+  const SupportFeature fa = supportFeature(a, n, featureEpsilon);
+  const SupportFeature fb = supportFeature(b, -n, featureEpsilon);
+  out.kind = classify(fa.feature, fb.feature);
+  if (fa.feature == Feature::Face || fb.feature == Feature::Face) {
+    // Both faces: the reference is the one whose normal the SAT chose (or the better aligned).
+    Real signA = 1.0, signB = 1.0;
+    const Real alignA = std::abs(glm::dot(a.axes[faceAxis(a, n, signA)], n));
+    const Real alignB = std::abs(glm::dot(b.axes[faceAxis(b, -n, signB)], n));
+    const bool referenceIsA = fa.feature == Feature::Face &&
+                              (fb.feature != Feature::Face || (out.sat.axis < 3) || (out.sat.axis >= 6 && alignA >= alignB));
+    if (referenceIsA) faceContact(a, n, featurePolygon(b, fb), true, featureEpsilon, out);
+    else faceContact(b, -n, featurePolygon(a, fa), false, featureEpsilon, out);
+  } else {
+    closestFeatureContact(a, fa, b, fb, out);
+  }
+  return out.count > 0;
+}
+
+// The deepest, the one farthest from it, then the two that span the largest area with those
+// (the choice Bullet makes).
+void reduceToFourPoints(BoxContact& c) {
+  if (c.count <= 4) return;
+  const Vec3 n = c.sat.normal;
+  std::array<int, 4> keep{};
+  keep[0] = 0;
+  for (int i = 1; i < c.count; ++i) {
+    if (c.points[i].depth > c.points[keep[0]].depth) keep[0] = i;
+  }
+  auto at = [&c](int i) { return c.points[i].onB; };
+  Real best = -1.0;
+  for (int i = 0; i < c.count; ++i) {
+    const Real d = glm::length(at(i) - at(keep[0]));
+    if (d > best) best = d, keep[1] = i;
+  }
+  best = -1.0;
+  for (int i = 0; i < c.count; ++i) {
+    const Real area = std::abs(glm::dot(glm::cross(at(i) - at(keep[0]), at(keep[1]) - at(keep[0])), n));
+    if (area > best) best = area, keep[2] = i;
+  }
+  // The fourth on the other side of the line from keep[0] to keep[1] than keep[2].
+  const Vec3 side = glm::cross(at(keep[1]) - at(keep[0]), n);
+  const Real sideOfThird = glm::dot(at(keep[2]) - at(keep[0]), side);
+  best = -1.0;
+  keep[3] = keep[2];
+  for (int i = 0; i < c.count; ++i) {
+    const Real s = glm::dot(at(i) - at(keep[0]), side);
+    if (s * sideOfThird < 0.0 && std::abs(s) > best) best = std::abs(s), keep[3] = i;
+  }
+  std::array<ContactPoint, 4> kept;
+  int count = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (std::find(keep.begin(), keep.begin() + k, keep[k]) == keep.begin() + k) kept[count++] = c.points[keep[k]];
+  }
+  for (int k = 0; k < count; ++k) c.points[k] = kept[k];
+  c.count = count;
+}
+
+}  // namespace phys

@@ -1,0 +1,179 @@
+// Box-box contact in motion: the seed's singular face-to-face case, random overlaps, and the
+// project's stack and box-of-boxes scenes standing for 10 s.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "physics/world.h"
+#include "scenes/scene.h"
+
+namespace {
+
+using phys::Vec3;
+
+scenes::Scene projectScene(const char* name) {
+  return scenes::loadSceneFile(scenes::resolveScene(name, scenes::sceneDirectory(DATA_DIR)));
+}
+
+// The seed inverted a 4x4 matrix of a face's corners to place a contact, which is singular
+// when two faces meet exactly aligned, and then guessed until "objects fly off to infinity".
+// Here the same meeting must not gain energy, and both boxes come to rest where they should.
+// The energy may rise by what the contact slop allows: the upper box sinking into the lower by
+// up to the slop and being held there, m g slop. The corners model then rests; the tetra model
+// keeps a small wobble (its contact points are carried by weights of both signs, up to 1.5, and
+// a few passes do not settle them), bounded here and recorded in docs/physics.md.
+TEST(BoxContact, AlignedFaceToFaceGainsNoEnergyAndRests) {
+  for (auto model : {phys::BoxModel::Corners, phys::BoxModel::Tetra}) {
+    phys::World world;
+    phys::BoxDesc lower, upper;
+    lower.model = upper.model = model;
+    lower.center = {0.0, 0.5, 0.0};
+    upper.center = {0.0, 1.5, 0.0};  // exactly on top: faces coincide
+    world.addBox(lower);
+    world.addBox(upper);
+    const double e0 = world.metrics().energy();
+    double most = e0;
+    for (int i = 0; i < 300; ++i) {
+      world.step();
+      most = std::max(most, world.metrics().energy());
+    }
+    const double slopEnergy = 2.0 * 9.81 * world.solverSettings().contactSlop;
+    EXPECT_LE(most, e0 + slopEnergy) << toString(model);
+    EXPECT_NEAR(world.boxPose(1).center.y, 1.5, 0.01) << toString(model);
+    std::printf("aligned face to face, %s: upper box off centre by %.4f m, max speed %.4f m/s after 5 s\n",
+                std::string(toString(model)).c_str(), std::abs(world.boxPose(1).center.x), world.metrics().maxSpeed);
+    if (model == phys::BoxModel::Corners) {
+      EXPECT_NEAR(world.boxPose(1).center.x, 0.0, 1e-4);
+      EXPECT_LT(world.metrics().maxSpeed, 1e-3);
+    } else {
+      EXPECT_NEAR(world.boxPose(1).center.x, 0.0, 0.05);
+      EXPECT_LT(world.metrics().maxSpeed, 0.2);
+    }
+  }
+}
+
+// Overlap of two oriented boxes along the SAT's axis, for a box moved along a direction.
+phys::Obb obbOf(const phys::BoxDesc& d) {
+  phys::Obb o;
+  o.center = d.center;
+  o.axes = glm::mat3_cast(d.orientation);
+  o.halfExtents = d.size * 0.5;
+  return o;
+}
+
+TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
+  std::mt19937 random(12345);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), size(0.3, 1.5);
+  int separated = 0;
+  double fastest = 0.0, worstOverlap = 0.0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    phys::BoxDesc a, b;
+    a.size = {size(random), size(random), size(random)};
+    b.size = {size(random), size(random), size(random)};
+    a.orientation = glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+    b.orientation = glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+    a.model = trial % 2 == 0 ? phys::BoxModel::Corners : phys::BoxModel::Tetra;
+    b.model = trial % 3 == 0 ? phys::BoxModel::Corners : phys::BoxModel::Tetra;
+    const Vec3 direction = glm::normalize(Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+    const double smallest = std::min({a.size.x, a.size.y, a.size.z, b.size.x, b.size.y, b.size.z});
+    const double target = unit(random) * 0.25 * smallest;  // up to 25% of the smaller box
+    // Move b out along the direction until the SAT overlap is the target (it shrinks as b leaves).
+    double lo = 0.0, hi = 4.0;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      b.center = direction * mid;
+      const phys::SatResult r = phys::satTest(obbOf(a), obbOf(b));
+      if (r.overlap && r.depth > target) lo = mid;
+      else hi = mid;
+    }
+    b.center = direction * hi;
+
+    phys::WorldSettings ws;
+    ws.ground = false;
+    ws.gravity = Vec3(0.0);
+    phys::World world(ws);
+    world.addBox(a);
+    world.addBox(b);
+    for (int i = 0; i < 60; ++i) {
+      world.step();
+      fastest = std::max(fastest, world.metrics().maxSpeed);
+    }
+    // Separated: the contact points are apart to within the slop, and the boxes fitted to the
+    // particles overlap by less than the feature epsilon (a box bent by its sticks' residual
+    // error differs from its fitted frame by millimetres).
+    const phys::SatResult after = phys::satTest(world.boxFrames()[0], world.boxFrames()[1]);
+    const double overlap = after.overlap ? after.depth : 0.0;
+    worstOverlap = std::max(worstOverlap, overlap);
+    const bool apart = world.metrics().maxPenetration <= world.solverSettings().contactSlop + 1e-4 &&
+                       overlap <= world.solverSettings().featureEpsilon;
+    separated += apart ? 1 : 0;
+    for (const Vec3& p : world.particles().position) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+  }
+  std::printf("1000 random overlaps: %d separated within 60 steps, worst overlap left %.4f m, fastest %.4f m/s\n",
+              separated, worstOverlap, fastest);
+  EXPECT_EQ(separated, 1000);
+  EXPECT_LT(fastest, 5.0);
+}
+
+// The largest distance any box moved between two moments, in units of its own size.
+struct Standing {
+  double topDrift;      // m, the last box of the scene, from 2 s to 10 s
+  double worstDrift;    // the largest drift of any box over its smallest edge
+  double maxPenetration;
+};
+
+Standing standFor10Seconds(scenes::Scene scene) {
+  phys::World& w = scene.world;
+  while (w.time() < 2.0) w.step();
+  std::vector<Vec3> settled;
+  for (phys::BoxId b = 0; b < w.boxes().size(); ++b) settled.push_back(w.boxPose(b).center);
+  Standing s{0.0, 0.0, 0.0};
+  while (w.time() < 10.0) {
+    w.step();
+    s.maxPenetration = std::max(s.maxPenetration, w.metrics().maxPenetration);
+  }
+  for (phys::BoxId b = 0; b < w.boxes().size(); ++b) {
+    const Vec3 half = w.boxes()[b].halfExtents;
+    const double drift = glm::length(w.boxPose(b).center - settled[b]);
+    s.worstDrift = std::max(s.worstDrift, drift / (2.0 * std::min({half.x, half.y, half.z})));
+  }
+  s.topDrift = glm::length(w.boxPose(static_cast<phys::BoxId>(w.boxes().size() - 1)).center - settled.back());
+  EXPECT_EQ(w.metrics().frozen, 0);
+  return s;
+}
+
+TEST(Stacking, TenBoxStackStandsFor10Seconds) {
+  const Standing s = standFor10Seconds(projectScene("stack"));
+  std::printf("stack of 10 (8 substeps x 1 iteration): top drift %.5f m from 2 s to 10 s, max overlap %.4f m\n",
+              s.topDrift, s.maxPenetration);
+  EXPECT_LT(s.topDrift, 0.05 * 1.0);  // 5% of the 1 m box
+  EXPECT_LT(s.maxPenetration, 0.01);
+}
+
+TEST(Stacking, SeedsBoxOfBoxesStandsFor10Seconds) {
+  const Standing s = standFor10Seconds(projectScene("box-of-boxes"));
+  std::printf("box of boxes (3 iterations, 1 substep): worst drift %.4f of a box's size, max overlap %.4f m\n",
+              s.worstDrift, s.maxPenetration);
+  EXPECT_LT(s.worstDrift, 0.05);
+  EXPECT_LT(s.maxPenetration, 0.01);
+}
+
+// Where the seed's settings fail: the same stack at 3 iterations and 1 substep does not stand
+// (it wobbles and starts to topple within 10 s). Recorded so the docs can point at it; if it
+// ever stands, the docs are out of date.
+TEST(Stacking, TenBoxStackAtTheSeedsSettingsDoesNotStand) {
+  scenes::Scene scene = projectScene("stack");
+  phys::SolverSettings seed = scene.world.solverSettings();
+  seed.iterations = 3;
+  seed.substeps = 1;
+  scene.world.setSolverSettings(seed);
+  const Standing s = standFor10Seconds(std::move(scene));
+  std::printf("stack of 10 at 3 iterations x 1 substep: top drift %.3f m\n", s.topDrift);
+  EXPECT_GT(s.topDrift, 0.05);
+}
+
+}  // namespace

@@ -1,0 +1,264 @@
+// Box-box narrow phase: the separating-axis test on each of its 15 axes, the six contact
+// feature cases, and face clipping, on constructed cases whose answers are known.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "physics/collision.h"
+
+namespace {
+
+using phys::Obb;
+using phys::Real;
+using phys::Vec3;
+
+// The shortest rotation taking unit vector `from` to unit vector `to` (not parallel).
+glm::dquat rotationBetween(const Vec3& from, const Vec3& to) {
+  return glm::angleAxis(std::acos(glm::dot(from, to)), glm::normalize(glm::cross(from, to)));
+}
+
+Obb box(const Vec3& center, const Vec3& half, const glm::dvec3& eulerDegrees = glm::dvec3(0.0)) {
+  Obb b;
+  b.center = center;
+  b.halfExtents = half;
+  b.axes = glm::mat3_cast(glm::dquat(glm::radians(eulerDegrees)));
+  return b;
+}
+
+Vec3 axisOf(const Obb& a, const Obb& b, int index) {
+  if (index < 3) return a.axes[index];
+  if (index < 6) return b.axes[index - 3];
+  const int i = (index - 6) / 3, j = (index - 6) % 3;
+  return glm::normalize(glm::cross(a.axes[i], b.axes[j]));
+}
+
+Real projectedRadius(const Obb& o, const Vec3& axis) {
+  return o.halfExtents.x * std::abs(glm::dot(o.axes[0], axis)) + o.halfExtents.y * std::abs(glm::dot(o.axes[1], axis)) +
+         o.halfExtents.z * std::abs(glm::dot(o.axes[2], axis));
+}
+
+// Places b along `axis` from a so that they overlap by exactly `depth` along it.
+void placeAlong(const Obb& a, Obb& b, const Vec3& axis, Real depth) {
+  b.center = a.center + axis * (projectedRadius(a, axis) + projectedRadius(b, axis) - depth);
+}
+
+// Each of the 15 axes made the axis of least overlap: face axes with boxes pushed together
+// along that face's normal, edge axes with two long thin rods crossing, each long along the
+// edge of the pair.
+std::pair<Obb, Obb> caseFor(int index) {
+  if (index < 3) {
+    glm::dvec3 turn(0.0);
+    turn[index] = 10.0;  // B turned about A's axis: its faces are not A's
+    Obb a = box(Vec3(0.0), Vec3(0.5)), b = box(Vec3(0.0), Vec3(0.4, 0.45, 0.35), turn);
+    return {a, b};
+  }
+  if (index < 6) return {box(Vec3(0.0), Vec3(0.5, 0.6, 0.7), {5, 10, 15}), box(Vec3(0.0), Vec3(0.5), {20, 30, 40})};
+  const int i = (index - 6) / 3, j = (index - 6) % 3;
+  Vec3 ha(0.1), hb(0.1);
+  ha[i] = 2.0;
+  hb[j] = 2.0;
+  return {box(Vec3(0.0), ha), box(Vec3(0.0), hb, {35, 55, 25})};
+}
+
+TEST(Sat, EachOfTheFifteenAxesIsFoundWithItsDepth) {
+  const Real depth = 0.03;
+  for (int index = 0; index < 15; ++index) {
+    auto [a, b] = caseFor(index);
+    const Vec3 axis = axisOf(a, b, index);
+    placeAlong(a, b, axis, depth);
+    const phys::SatResult r = phys::satTest(a, b);
+    ASSERT_TRUE(r.overlap) << "axis " << index;
+    EXPECT_EQ(r.axis, index);
+    EXPECT_NEAR(r.depth, depth, 1e-12) << "axis " << index;
+    EXPECT_NEAR(glm::dot(r.normal, axis), 1.0, 1e-12) << "normal points from A to B, axis " << index;
+  }
+}
+
+TEST(Sat, SeparatedAlongEachAxisIsNoContact) {
+  for (int index = 0; index < 15; ++index) {
+    auto [a, b] = caseFor(index);
+    const Vec3 axis = axisOf(a, b, index);
+    placeAlong(a, b, axis, -0.02);  // 2 cm apart along that axis
+    EXPECT_FALSE(phys::satTest(a, b).overlap) << "axis " << index;
+    EXPECT_FALSE(phys::satTest(a, b, 0.01).overlap) << "a 1 cm margin does not reach 2 cm, axis " << index;
+    EXPECT_TRUE(phys::satTest(a, b, 0.03).overlap) << "a 3 cm margin does, axis " << index;
+  }
+}
+
+TEST(Sat, NearlyEqualEdgeAxisLosesToTheFace) {
+  // Two cubes face to face, B turned 45 degrees about the normal: the face axis and an
+  // edge axis are about as deep; the face wins, so the normal is the face's.
+  const Obb a = box(Vec3(0.0), Vec3(0.5));
+  const Obb b = box(Vec3(0.0, 0.99, 0.0), Vec3(0.5), {0, 45, 0});
+  const phys::SatResult r = phys::satTest(a, b);
+  ASSERT_TRUE(r.overlap);
+  EXPECT_EQ(r.axis, 1);
+  EXPECT_NEAR(r.depth, 0.01, 1e-12);
+}
+
+TEST(Features, SupportFeatureIsFaceEdgeOrVertexWithinEpsilon) {
+  const Obb b = box(Vec3(0.0), Vec3(0.5));
+  const phys::SupportFeature face = phys::supportFeature(b, {0, 1, 0}, 0.01);
+  EXPECT_EQ(face.feature, phys::Feature::Face);
+  for (int k : face.corners) EXPECT_TRUE(k & 2) << "top corners only";
+  const phys::SupportFeature edge = phys::supportFeature(b, glm::normalize(Vec3(1, 1, 0)), 0.01);
+  EXPECT_EQ(edge.feature, phys::Feature::Edge);
+  EXPECT_EQ(std::min(edge.corners[0], edge.corners[1]), 3);
+  EXPECT_EQ(std::max(edge.corners[0], edge.corners[1]), 7);
+  const phys::SupportFeature vertex = phys::supportFeature(b, glm::normalize(Vec3(1, 1, 1)), 0.01);
+  EXPECT_EQ(vertex.feature, phys::Feature::Vertex);
+  EXPECT_EQ(vertex.corners[0], 7);
+  // Tilted by 0.005 over a 1 m face: still a face within the seed's 0.01; by 0.03, an edge.
+  EXPECT_EQ(phys::supportFeature(b, glm::normalize(Vec3(0.005, 1, 0)), 0.01).feature, phys::Feature::Face);
+  EXPECT_EQ(phys::supportFeature(b, glm::normalize(Vec3(0.03, 1, 0)), 0.01).feature, phys::Feature::Edge);
+}
+
+TEST(Features, EachOfTheSixCasesIsClassified) {
+  const Obb cube = box(Vec3(0.0), Vec3(0.5));
+  const Obb turned = box(Vec3(0.0), Vec3(0.5), {30, 40, 25});  // generic: a vertex along any n
+  const Vec3 up(0, 1, 0), diagonal = glm::normalize(Vec3(1, 1, 0)), generic = glm::normalize(Vec3(0.3, 1.0, 0.2));
+  struct Case {
+    Obb a;
+    Obb b;
+    Vec3 n;
+    phys::ContactKind kind;
+  };
+  const Case cases[] = {
+      {cube, cube, up, phys::ContactKind::FaceFace},
+      {cube, cube, diagonal, phys::ContactKind::EdgeEdge},
+      {cube, turned, up, phys::ContactKind::FaceVertex},
+      {cube, box(Vec3(0.0), Vec3(0.5), {0, 0, 45}), up, phys::ContactKind::FaceEdge},
+      {cube, turned, diagonal, phys::ContactKind::EdgeVertex},
+      {turned, turned, generic, phys::ContactKind::VertexVertex},
+  };
+  for (const Case& c : cases) {
+    const auto fa = phys::supportFeature(c.a, c.n, 0.01), fb = phys::supportFeature(c.b, -c.n, 0.01);
+    EXPECT_EQ(phys::classify(fa.feature, fb.feature), c.kind) << phys::toString(c.kind);
+  }
+  EXPECT_EQ(phys::classify(phys::Feature::Edge, phys::Feature::Face), phys::ContactKind::FaceEdge);
+  EXPECT_EQ(phys::classify(phys::Feature::Vertex, phys::Feature::Face), phys::ContactKind::FaceVertex);
+  EXPECT_EQ(phys::classify(phys::Feature::Vertex, phys::Feature::Edge), phys::ContactKind::EdgeVertex);
+}
+
+void expectSeparatesAlongNormal(const phys::BoxContact& c) {
+  for (int i = 0; i < c.count; ++i) {
+    const phys::ContactPoint& p = c.points[i];
+    EXPECT_NEAR(glm::dot(c.sat.normal, p.onB - p.onA), -p.depth, 1e-12);
+  }
+}
+
+TEST(Contacts, FaceFaceAlignedGivesTheFourCorners) {
+  const Obb a = box(Vec3(0.0), Vec3(0.5)), b = box(Vec3(0.0, 0.98, 0.0), Vec3(0.5));
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
+  EXPECT_EQ(c.kind, phys::ContactKind::FaceFace);
+  ASSERT_EQ(c.count, 4);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(c.points[i].depth, 0.02, 1e-12);
+    EXPECT_NEAR(std::abs(c.points[i].onB.x), 0.5, 1e-12);
+    EXPECT_NEAR(std::abs(c.points[i].onB.z), 0.5, 1e-12);
+  }
+  expectSeparatesAlongNormal(c);
+}
+
+TEST(Contacts, FaceFaceTurned45ClipsToAnOctagon) {
+  const Obb a = box(Vec3(0.0), Vec3(0.5)), b = box(Vec3(0.0, 0.99, 0.0), Vec3(0.5), {0, 45, 0});
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
+  EXPECT_EQ(c.kind, phys::ContactKind::FaceFace);
+  ASSERT_EQ(c.count, 8);
+  // The square |x|, |z| <= 0.5 meets the diamond |x| + |z| <= 0.707 at (+-0.5, +-0.207) and
+  // (+-0.207, +-0.5).
+  const Real inner = std::sqrt(0.5) - 0.5;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3& p = c.points[i].onB;
+    const Real big = std::max(std::abs(p.x), std::abs(p.z)), small = std::min(std::abs(p.x), std::abs(p.z));
+    EXPECT_NEAR(big, 0.5, 1e-9);
+    EXPECT_NEAR(small, inner, 1e-9);
+    EXPECT_NEAR(p.y, 0.49, 1e-9);
+    EXPECT_NEAR(c.points[i].onA.y, 0.5, 1e-9);
+  }
+  expectSeparatesAlongNormal(c);
+}
+
+TEST(Contacts, ReductionKeepsFourPointsSpanningTheOctagon) {
+  const Obb a = box(Vec3(0.0), Vec3(0.5)), b = box(Vec3(0.0, 0.99, 0.0), Vec3(0.5), {0, 45, 0});
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
+  const phys::BoxContact all = c;
+  phys::reduceToFourPoints(c);
+  ASSERT_EQ(c.count, 4);
+  // Each kept point is one of the octagon's, and the four span a quadrilateral of at least
+  // 0.4 m^2 of the octagon's 0.83 (two opposite corners of it would give only a sliver).
+  for (int i = 0; i < 4; ++i) {
+    bool found = false;
+    for (int j = 0; j < all.count; ++j) found |= glm::length(all.points[j].onB - c.points[i].onB) < 1e-12;
+    EXPECT_TRUE(found);
+  }
+  auto area = [&](int i, int j, int k) {
+    return 0.5 * glm::length(glm::cross(c.points[j].onB - c.points[i].onB, c.points[k].onB - c.points[i].onB));
+  };
+  const double quad = std::max(area(0, 1, 2) + area(0, 1, 3), std::max(area(0, 2, 1) + area(0, 2, 3), area(0, 3, 1) + area(0, 3, 2)));
+  EXPECT_GT(quad, 0.4);
+}
+
+TEST(Contacts, FaceFaceOffsetClipsToTheOverlap) {
+  const Obb a = box(Vec3(0.0), Vec3(0.5)), b = box(Vec3(0.6, 0.99, 0.3), Vec3(0.5));
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
+  ASSERT_EQ(c.count, 4);
+  std::vector<std::pair<Real, Real>> got;
+  for (int i = 0; i < 4; ++i) got.emplace_back(std::round(c.points[i].onB.x * 1e9) / 1e9, std::round(c.points[i].onB.z * 1e9) / 1e9);
+  std::sort(got.begin(), got.end());
+  const std::vector<std::pair<Real, Real>> expected{{0.1, -0.2}, {0.1, 0.5}, {0.5, -0.2}, {0.5, 0.5}};
+  EXPECT_EQ(got, expected);
+}
+
+TEST(Contacts, FaceEdgeGivesTheEdgesEnds) {
+  // A cube turned 45 degrees about z rests an edge along z on a wide slab.
+  const Obb a = box(Vec3(0.0), Vec3(2.0, 0.5, 2.0));
+  const Obb b = box(Vec3(0.0, 0.5 + std::sqrt(0.5) - 0.01, 0.0), Vec3(0.5), {0, 0, 45});
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
+  EXPECT_EQ(c.kind, phys::ContactKind::FaceEdge);
+  ASSERT_EQ(c.count, 2);
+  EXPECT_NEAR(std::abs(c.points[0].onB.z), 0.5, 1e-9);
+  EXPECT_NEAR(c.points[0].onB.z, -c.points[1].onB.z, 1e-9);
+  EXPECT_NEAR(c.points[0].depth, 0.01, 1e-9);
+  expectSeparatesAlongNormal(c);
+}
+
+TEST(Contacts, FaceVertexGivesTheVertex) {
+  // A cube standing on a corner: turn it so its diagonal (1, 1, 1) points straight down.
+  const glm::dquat q = rotationBetween(glm::normalize(Vec3(-1, -1, -1)), Vec3(0, -1, 0));
+  Obb b;
+  b.axes = glm::mat3_cast(q);
+  b.halfExtents = Vec3(0.5);
+  b.center = Vec3(0.0, 0.5 + std::sqrt(0.75) - 0.01, 0.0);
+  const Obb a = box(Vec3(0.0), Vec3(2.0, 0.5, 2.0));
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
+  EXPECT_EQ(c.kind, phys::ContactKind::FaceVertex);
+  ASSERT_EQ(c.count, 1);
+  EXPECT_NEAR(c.points[0].onB.y, 0.49, 1e-9);
+  EXPECT_NEAR(c.points[0].onA.y, 0.5, 1e-9);
+  EXPECT_NEAR(c.points[0].depth, 0.01, 1e-9);
+}
+
+TEST(Contacts, EdgeEdgeGivesTheClosestPointsOfTheEdges) {
+  auto [a, b] = caseFor(6 + 3 * 0 + 2);  // A long in x, B long in z (turned)
+  const Vec3 axis = axisOf(a, b, 6 + 2);
+  placeAlong(a, b, axis, 0.02);
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
+  EXPECT_EQ(c.kind, phys::ContactKind::EdgeEdge);
+  ASSERT_EQ(c.count, 1);
+  EXPECT_NEAR(c.points[0].depth, 0.02, 1e-9);
+  EXPECT_NEAR(glm::length(c.points[0].onB - c.points[0].onA), 0.02, 1e-9);  // along the normal
+  expectSeparatesAlongNormal(c);
+}
+
+}  // namespace
