@@ -43,7 +43,7 @@ TEST(SceneFiles, WorldSolverGroundAndCamera) {
   const scenes::Scene s = load("",
                                "<world gravity=\"0 -3 0\" gravity-mode=\"point\" gravity-point=\"1 2 3\" "
                                "gravity-strength=\"4\" damping=\"0.5\" bound=\"500\"/>"
-                               "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\"/>"
+                               "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\" slop=\"0.002\"/>"
                                "<ground height=\"-1\" normal=\"0 2 0\" static-friction=\"0.9\" dynamic-friction=\"0.3\"/>"
                                "<camera eye=\"1 2 3\" target=\"0 0 0\"/>");
   const phys::WorldSettings& w = s.world.worldSettings();
@@ -64,6 +64,7 @@ TEST(SceneFiles, WorldSolverGroundAndCamera) {
   EXPECT_EQ(v.substeps, 4);
   EXPECT_EQ(v.dt, 0.01);
   EXPECT_EQ(v.featureEpsilon, 0.02);
+  EXPECT_EQ(v.contactSlop, 0.002);
   EXPECT_EQ(s.camera.eye, glm::vec3(1, 2, 3));
 }
 

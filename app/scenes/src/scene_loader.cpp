@@ -65,6 +65,10 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
     if (*eps < 0.0) e.fail("epsilon", "must be >= 0 (m)");
     s.featureEpsilon = *eps;
   }
+  if (auto slop = e.number("slop", "m")) {
+    if (*slop < 0.0) e.fail("slop", "must be >= 0 (m)");
+    s.contactSlop = *slop;
+  }
   e.rejectUnknownAttributes();
 }
 
