@@ -23,7 +23,7 @@ run: build
 	@if [ -n "$$DISPLAY$$WAYLAND_DISPLAY" ]; then \
 	  $(BUILD_DIR)/app/sandbox/sandbox $(SCENE); \
 	else \
-	  echo "no display: rendering the default scene under Xvfb instead"; \
+	  echo "no display: rendering $(if $(SCENE),$(SCENE),the default scene) under Xvfb instead"; \
 	  xvfb-run -a -s "-screen 0 1600x1200x24" $(BUILD_DIR)/app/sandbox/sandbox $(SCENE) \
 	    --screenshot $(SCREENSHOT) --frames 120 && \
 	  echo "screenshot: $(abspath $(SCREENSHOT))"; \

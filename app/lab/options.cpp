@@ -20,7 +20,8 @@ std::optional<int> parseInt(const std::string& text, int low, int high) {
 std::optional<double> parseDt(const std::string& text) {
   double v = 0.0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) || !(v > 0.0 && v <= kMaxDt)) {
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) ||
+      !(v >= phys::kMinDt && v <= phys::kMaxDt)) {
     return std::nullopt;
   }
   return v;
@@ -43,7 +44,7 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
     if (a == "--steps" || a == "--iterations" || a == "--substeps") {
       const std::string* v = value();
       if (v == nullptr) return missing("a whole number");
-      const int high = a == "--steps" ? kMaxSteps : kMaxIterations;
+      const int high = a == "--steps" ? kMaxSteps : a == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
       const std::optional<int> n = parseInt(*v, 1, high);
       if (!n) return wholeNumber(*v, high);
       if (a == "--steps") o.steps = *n;
@@ -53,7 +54,7 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
       const std::string* v = value();
       if (v == nullptr) return missing("a time step in seconds");
       o.dt = parseDt(*v);
-      if (!o.dt) return a + ": '" + *v + "' is not a finite number of seconds > 0 and <= 1";
+      if (!o.dt) return a + ": '" + *v + "' is not a number of seconds from 1e-06 to 1";
     } else if (a == "--method") {
       const std::string* v = value();
       if (v == nullptr) return missing("a method (gauss-seidel, jacobi, xpbd or shake)");
@@ -89,7 +90,7 @@ std::string usage() {
          "       lab help\n"
          "  SCENE           a scene file, or a name in <data>/assets/scenes (NAME.xml)\n"
          "  --steps N       steps to run, 1 to 10000000 (default 600)\n"
-         "  --dt S          seconds per step, finite, > 0 and <= 1 (default: the scene's)\n"
+         "  --dt S          seconds per step, 1e-06 to 1 (default: the scene's)\n"
          "  --method M      gauss-seidel, jacobi, xpbd or shake (default: the scene's)\n"
          "  --iterations K  relaxation passes per substep, 1 to 1000 (default: the scene's)\n"
          "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"

@@ -16,8 +16,8 @@ namespace lab {
 
 /// Limits of the numeric options, shared by the parser, the usage text and the tests.
 inline constexpr int kMaxSteps = 10000000;
-inline constexpr int kMaxIterations = 1000;  ///< also the limit of --substeps
-inline constexpr double kMaxDt = 1.0;         ///< unit: s
+// --iterations, --substeps and --dt take the physics' own ranges (phys::kMaxIterations,
+// phys::kMaxSubsteps, phys::kMinDt, phys::kMaxDt in physics/settings.h).
 inline constexpr int kDefaultSteps = 600;     ///< 10 s at the default dt of 1/60 s
 
 /// What `lab run` was asked to do. Unset overrides keep the scene's own solver settings.

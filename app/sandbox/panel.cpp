@@ -32,13 +32,16 @@ void drawPanel(scenes::Scene& scene, PanelState& state) {
   solverChanged |= ImGui::SliderInt("substeps", &solver.substeps, 1, 32);
   if (solverChanged) world.setSolverSettings(solver);
 
+  // Each slider writes back only its own field, so touching one never rounds the other
+  // through float (9.81 would become 9.8100004 and the run would no longer match the lab's).
   phys::WorldSettings settings = world.worldSettings();
   float damping = static_cast<float>(settings.damping);
   float gravity = static_cast<float>(-settings.gravity.y);
-  bool worldChanged = ImGui::SliderFloat("damping (1/s)", &damping, 0.0f, 5.0f);
-  worldChanged |= ImGui::SliderFloat("gravity (m/s^2)", &gravity, 0.0f, 30.0f);
-  if (worldChanged) {
+  if (ImGui::SliderFloat("damping (1/s)", &damping, 0.0f, 5.0f)) {
     settings.damping = damping;
+    world.setWorldSettings(settings);
+  }
+  if (ImGui::SliderFloat("gravity (m/s^2)", &gravity, 0.0f, 30.0f)) {
     settings.gravity.y = -gravity;
     world.setWorldSettings(settings);
   }

@@ -183,7 +183,7 @@ int Sandbox::run() {
       try {
         loadScene();
         panel_.loadError.clear();
-      } catch (const scenes::LoadError& e) {
+      } catch (const std::exception& e) {  // LoadError, or anything else: keep what we have
         panel_.loadError = e.what();
         std::cerr << "sandbox: " << e.what() << " (keeping the current world)\n";
       }

@@ -19,10 +19,12 @@ Real weightSum(const Particles& p, const Embedding& e) {
 // in position units per unit of weight), through their particles in `x`.
 void movePair(std::vector<Vec3>& x, const Particles& p, const BodyContact& c, const Vec3& lambda) {
   for (int i = 0; i < c.pointA.count; ++i) {
-    x[c.pointA.particle[i]] -= (c.pointA.weight[i] * p.inverseMass[c.pointA.particle[i]]) * lambda;
+    const Real w = p.inverseMass[c.pointA.particle[i]];
+    if (w != 0.0) x[c.pointA.particle[i]] -= (c.pointA.weight[i] * w) * lambda;
   }
   for (int j = 0; j < c.pointB.count; ++j) {
-    x[c.pointB.particle[j]] += (c.pointB.weight[j] * p.inverseMass[c.pointB.particle[j]]) * lambda;
+    const Real w = p.inverseMass[c.pointB.particle[j]];
+    if (w != 0.0) x[c.pointB.particle[j]] += (c.pointB.weight[j] * w) * lambda;
   }
 }
 
@@ -33,11 +35,12 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const BodyContact& c = contacts[k];
     const Real gap = glm::dot(c.normal, embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA)) + slop;
+    push[k] = 0.0;
     if (gap >= 0.0) continue;
     const Real denominator = weightSum(p, c.pointA) + weightSum(p, c.pointB);
     if (denominator == 0.0) continue;  // both sides pinned or frozen
     movePair(p.position, p, c, (-gap / denominator) * c.normal);
-    push[k] += -gap;
+    push[k] = -gap;
     for (int i = 0; i < c.pointA.count; ++i) moved[c.pointA.particle[i]] = 1;
     for (int j = 0; j < c.pointB.count; ++j) moved[c.pointB.particle[j]] = 1;
   }

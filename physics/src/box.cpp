@@ -5,13 +5,12 @@
 namespace phys {
 namespace {
 
-// The tetra model's particles sit on the body diagonals towards alternate corners 0, 3, 5, 6
-// (a regular tetrahedron for a cube), pulled in to 1/sqrt(3) of the way: four equal masses
-// there have the second moment m/3 diag(hx^2, hy^2, hz^2) of a solid box, so the body turns like
-// one. (The corners model's 8 corner masses have 3 times that; the ratios, hence a free body's
-// tumbling, are the same.)
+// The tetra model's particles sit at alternate corners 0, 3, 5, 6 (a regular tetrahedron for a
+// cube). Their second moment is m diag(hx^2, hy^2, hz^2), three times a solid box's, as for the
+// corners model; the ratios, hence a free body's tumbling, are a solid box's. Pulled in to
+// 1/sqrt(3) they would match a solid box exactly, but the corners' embedding weights would grow
+// to 1.55 and -1.05 and a resting box would not settle (docs/physics.md).
 constexpr int kTetraCorner[4] = {0, 3, 5, 6};
-const Real kTetraPull = 1.0;
 
 }  // namespace
 
@@ -30,7 +29,7 @@ Vec3 boxCornerLocal(const Vec3& halfExtents, int k) {
 
 Vec3 boxParticleLocal(BoxModel model, const Vec3& halfExtents, int j) {
   if (model == BoxModel::Corners) return boxCornerLocal(halfExtents, j);
-  return kTetraPull * boxCornerLocal(halfExtents, kTetraCorner[j]);
+  return boxCornerLocal(halfExtents, kTetraCorner[j]);
 }
 
 int boxParticleCount(BoxModel model) { return model == BoxModel::Corners ? 8 : 4; }

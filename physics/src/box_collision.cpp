@@ -165,6 +165,7 @@ void World::buildBoxContacts() {
     separateWithoutVelocity(a, b, std::span<const BodyContact>(bodyContacts_).subspan(first));
   }
   bodyPush_.assign(bodyContacts_.size(), 0.0);
+  bodyTouched_.assign(bodyContacts_.size(), 0);
 }
 
 // A deep overlap the pair already had at the start of the substep (measured in x*: more than

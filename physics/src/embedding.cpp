@@ -15,7 +15,8 @@ void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, co
   if (denominator == 0.0) return;  // every carrier pinned
   const Vec3 scaled = D / denominator;
   for (int i = 0; i < e.count; ++i) {
-    x[e.particle[i]] += (e.weight[i] * inverseMass[e.particle[i]]) * scaled;
+    const Real w = inverseMass[e.particle[i]];
+    if (w != 0.0) x[e.particle[i]] += (e.weight[i] * w) * scaled;  // a pinned one never moves
   }
 }
 

@@ -12,14 +12,15 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Embedding& e = contacts[c].point;
     const Real depth = height - glm::dot(n, embeddedPosition(p.position, e));
+    normalPush[c] = 0.0;
     if (depth <= 0.0) continue;
     moveEmbedded(p.position, p.inverseMass, e, depth * n);
-    normalPush[c] += depth;
+    normalPush[c] = depth;
   }
 }
 
-// Jakobsen 2001, "Friction", made Coulomb: the push out of the ground summed over a substep's
-// iterations is the normal impulse times h / m, and the tangential cut is bounded by mu times it.
+// Jakobsen 2001, "Friction", made Coulomb: a pass's push out of the ground is that pass's normal
+// impulse times h / m, and its tangential cut is bounded by mu times it.
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
                          std::span<const Real> normalPush) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {

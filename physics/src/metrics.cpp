@@ -9,6 +9,13 @@
 #include "physics/world.h"
 
 namespace phys {
+namespace {
+
+// The larger of the two, and NaN if either is: std::max(a, NaN) returns a, which would report a
+// world gone to NaN as calm.
+Real maxOf(Real a, Real b) { return (a >= b || std::isnan(a)) ? a : b; }
+
+}  // namespace
 
 Metrics World::metrics() const {
   Metrics m;
@@ -21,7 +28,7 @@ Metrics World::metrics() const {
     const Vec3& xPrevious = particles_.previous[i];
     const Vec3 v = (x - xPrevious) / h;
     const Real speed = glm::length(v);
-    m.maxSpeed = std::max(m.maxSpeed, speed);
+    m.maxSpeed = maxOf(m.maxSpeed, speed);
     // Verlet knows the velocity half a substep back, at t - h/2; take the potential there too,
     // at the midpoint of x* and x. Pairing both at the same instant makes the energy of an
     // exact trajectory exact to O(h^2); pairing v(t - h/2) with x(t) would be off by O(h).
@@ -38,22 +45,22 @@ Metrics World::metrics() const {
     Real violation = 0.0;
     if (length < s.minLength) violation = (s.minLength - length) / s.minLength;
     else if (length > s.maxLength) violation = (length - s.maxLength) / s.maxLength;
-    m.maxConstraintError = std::max(m.maxConstraintError, violation);
+    m.maxConstraintError = maxOf(m.maxConstraintError, violation);
     sumSquares += violation * violation;
   }
   if (!sticks_.empty()) m.rmsConstraintError = std::sqrt(sumSquares / static_cast<Real>(sticks_.size()));
   if (world_.ground) {
     for (const GroundContact& c : contactPoints_) {
       const Real depth = world_.groundHeight - glm::dot(world_.groundNormal, position(c.point));
-      m.maxPenetration = std::max(m.maxPenetration, depth);
+      m.maxPenetration = maxOf(m.maxPenetration, depth);
     }
   }
   m.contacts = static_cast<int>(std::count(touched_.begin(), touched_.end(), std::uint8_t{1}));
   for (std::size_t k = 0; k < bodyContacts_.size(); ++k) {
     const BodyContact& c = bodyContacts_[k];
     const Real gap = glm::dot(c.normal, position(c.pointB) - position(c.pointA));
-    m.maxPenetration = std::max(m.maxPenetration, -gap);
-    if (bodyPush_[k] > 0.0) ++m.contacts;
+    m.maxPenetration = maxOf(m.maxPenetration, -gap);
+    if (bodyTouched_[k] != 0) ++m.contacts;
   }
   m.frozen = 0;
   for (const FreezeReport& f : freezes_) {

@@ -23,9 +23,10 @@ inline Real stickTarget(const Stick& s, Real length) {
 
 /// Jakobsen: each stick in turn, along its current direction, in proportion to inverse mass.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks);
-/// Every stick's correction from the same positions, then each particle moved by the mean of
-/// its corrections. delta and count are scratch, one per particle.
-void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<Vec3> delta, std::span<Real> count);
+/// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
+/// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
+/// particle.
+void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Real> degree, std::span<Vec3> delta);
 /// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
 /// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
 /// zeroed at the start of each substep.
@@ -34,23 +35,24 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lamb
 /// start of the substep (x* after integration), by the root of a scalar quadratic.
 void relaxShake(Particles& p, std::span<const Stick> sticks);
 
-/// Projects every contact point below the ground plane n . x = height back onto it, adding the
-/// distance moved to normalPush (friction needs it: Jakobsen, "Friction").
+/// Projects every contact point below the ground plane n . x = height back onto it, writing the
+/// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
                    std::span<Real> normalPush);
-/// Cuts the tangential motion (x - x*) of each contact point that was pushed this substep:
-/// stops it when it is within mu_s * push, else shortens it by mu_d * push. Edits x* only, so
-/// the velocity changes and the position does not; never reverses the motion.
+/// Cuts the tangential motion (x - x*) of each contact point the last ground pass pushed: stops
+/// it when it is within mu_s * push, else shortens it by mu_d * push, by moving the point's
+/// particles back along it; never reverses it. Run after each ground pass, so the sticks
+/// relax what friction bends, and the cuts of all passes together stay within mu * the push.
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
                          std::span<const Real> normalPush);
 
 /// Pushes each pair of contact points apart along its normal until n . (pB - pA) >= -slop, moving
-/// both bodies' particles by their embedding weights and inverse masses; adds the distance to
-/// push. `moved` marks the particles a correction touched.
+/// both bodies' particles by their embedding weights and inverse masses; writes the distance
+/// into push (0 when not pushed). `moved` marks the particles a correction touched.
 void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real slop, std::span<Real> push,
                        std::span<std::uint8_t> moved);
-/// Coulomb friction between the bodies of each contact that was pushed, as for the ground: the
-/// tangential part of the relative motion this substep is stopped within mu_s * push, else
+/// Coulomb friction between the bodies of each contact the last pass pushed, as for the ground:
+/// the tangential part of the relative motion this substep is stopped within mu_s * push, else
 /// shortened by mu_d * push.
 void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push);
 

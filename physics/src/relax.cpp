@@ -1,4 +1,5 @@
 // The four ways to relax sticks. Each is one pass over all sticks; the caller repeats it.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -15,6 +16,14 @@ struct StickState {
   Real length;   // |d|
   Real target;   // the length to move to
 };
+
+// Jakobsen's projection of one measured stick. A pinned end (w = 0) is never written: 0 times
+// a non-finite correction would still be NaN, and a pinned particle must not move.
+void project(Particles& p, const Stick& s, const StickState& m) {
+  const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2));
+  if (m.w1 != 0.0) p.position[s.a] += (m.w1 * k) * m.d;
+  if (m.w2 != 0.0) p.position[s.b] -= (m.w2 * k) * m.d;
+}
 
 // False when the stick needs no correction: both ends pinned, or within its bounds.
 bool measure(const Particles& p, const Stick& s, StickState& out) {
@@ -35,29 +44,27 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks) {
   StickState m;
   for (const Stick& s : sticks) {
     if (!measure(p, s, m) || m.length == 0.0) continue;  // no direction to push along at 0
-    const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2));
-    p.position[s.a] += (m.w1 * k) * m.d;
-    p.position[s.b] -= (m.w2 * k) * m.d;
+    project(p, s, m);
   }
 }
 
-// Jacobi with averaging (Müller et al. 2007 discuss both orders; averaging by the number of
-// constraints on a particle keeps the sum of corrections from overshooting).
-void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<Vec3> delta, std::span<Real> count) {
+// Jacobi: every stick's correction from the same positions, summed per particle. Each stick's
+// pair of corrections is scaled by one factor, 1 / the larger number of sticks at either end,
+// so the two stay equal and opposite in momentum (averaging each particle by its own count
+// would not, and a free body would drift); the factor keeps a particle pulled by many sticks
+// from overshooting (Müller et al. 2007 discuss both orders).
+void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Real> degree, std::span<Vec3> delta) {
   std::fill(delta.begin(), delta.end(), Vec3(0.0));
-  std::fill(count.begin(), count.end(), 0.0);
   StickState m;
   for (const Stick& s : sticks) {
     if (!measure(p, s, m) || m.length == 0.0) continue;
-    const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2));
+    const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2) * std::max(degree[s.a], degree[s.b]));
     delta[s.a] += (m.w1 * k) * m.d;
     delta[s.b] -= (m.w2 * k) * m.d;
-    count[s.a] += 1.0;
-    count[s.b] += 1.0;
   }
   const std::size_t n = p.size();
   for (std::size_t i = 0; i < n; ++i) {
-    if (count[i] > 0.0) p.position[i] += delta[i] / count[i];
+    if (p.inverseMass[i] != 0.0) p.position[i] += delta[i];
   }
 }
 
@@ -69,12 +76,12 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lamb
   for (std::size_t c = 0; c < sticks.size(); ++c) {
     const Stick& s = sticks[c];
     if (!measure(p, s, m) || m.length == 0.0) continue;
-    const Real alpha = s.compliance * inverseH2;
+    const Real alpha = s.compliance * inverseH2;  // finite: compliance and h are bounded (settings.h)
     const Real dLambda = (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
     lambda[c] += dLambda;
     const Vec3 n = m.d / m.length;
-    p.position[s.a] -= (m.w1 * dLambda) * n;
-    p.position[s.b] += (m.w2 * dLambda) * n;
+    if (m.w1 != 0.0) p.position[s.a] -= (m.w1 * dLambda) * n;
+    if (m.w2 != 0.0) p.position[s.b] += (m.w2 * dLambda) * n;
   }
 }
 
@@ -100,12 +107,10 @@ void relaxShake(Particles& p, std::span<const Stick> sticks) {
         const Real g1 = q / qa, g2 = qc / q;
         g = std::abs(g1) < std::abs(g2) ? g1 : g2;
       }
-      p.position[s.a] -= (w1 * g) * r;
-      p.position[s.b] += (w2 * g) * r;
+      if (w1 != 0.0) p.position[s.a] -= (w1 * g) * r;
+      if (w2 != 0.0) p.position[s.b] += (w2 * g) * r;
     } else if (length > 0.0) {
-      const Real k = (length - target) / (length * w);
-      p.position[s.a] += (w1 * k) * d;
-      p.position[s.b] -= (w2 * k) * d;
+      project(p, s, m);
     }
   }
 }

@@ -6,11 +6,10 @@
 #include <glm/geometric.hpp>
 
 #include "physics/box.h"
+#include "physics/types.h"
 
 namespace phys {
 namespace {
-
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Joins the reasons with "; " (the caller prefixes what was being checked).
 std::string joined(const std::ostringstream& why) {
@@ -45,9 +44,11 @@ std::string validate(const WorldSettings& s) {
 
 std::string validate(const SolverSettings& s) {
   std::ostringstream why;
-  if (!std::isfinite(s.dt) || s.dt <= 0.0) why << "dt must be finite and > 0 (s); ";
-  if (s.substeps < 1) why << "substeps must be >= 1; ";
-  if (s.iterations < 1) why << "iterations must be >= 1; ";
+  if (!std::isfinite(s.dt) || s.dt < kMinDt || s.dt > kMaxDt) {
+    why << "dt must be from " << kMinDt << " to " << kMaxDt << " (s); ";
+  }
+  if (s.substeps < 1 || s.substeps > kMaxSubsteps) why << "substeps must be from 1 to " << kMaxSubsteps << "; ";
+  if (s.iterations < 1 || s.iterations > kMaxIterations) why << "iterations must be from 1 to " << kMaxIterations << "; ";
   if (!finiteNonNegative(s.featureEpsilon)) why << "featureEpsilon must be finite and >= 0 (m); ";
   if (!finiteNonNegative(s.contactSlop)) why << "contactSlop must be finite and >= 0 (m); ";
   return joined(why);

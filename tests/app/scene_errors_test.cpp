@@ -50,7 +50,14 @@ const BadScene kCases[] = {
     {"settings twice", "<scene name='s'>\n<world/>\n<world/>\n</scene>", 3, "", "more than once"},
     {"text in an element", "<scene name='s'>\n<box pos='0 0 0'>big</box>\n</scene>", 2, "", "no child"},
     {"bad boolean", "<scene name='s'>\n<particle pos='0 0 0' pinned='yes'/>\n</scene>", 2, "pinned", "true or false"},
-    {"zero ground normal", "<scene name='s'>\n<ground normal='0 0 0'/>\n</scene>", 2, "normal", "not be zero"},
+    {"zero ground normal", "<scene name='s'>\n<ground normal='0 0 0'/>\n</scene>", 2, "normal", "non-zero"},
+    {"overflowing ground normal", "<scene name='s'>\n<ground normal='1e300 1e300 0'/>\n</scene>", 2, "normal", "finite length"},
+    {"element after the root", "<scene name='s'>\n</scene>\n<box pos='0 5 0'/>", 3, "", "nothing may follow"},
+    {"text after the root", "<scene name='s'>\n</scene>\n\n  junk\n", 4, "", "nothing may follow"},
+    {"attribute twice", "<scene name='s'>\n<box pos='0 1 0'\n pos='0 50 0'/>\n</scene>", 3, "pos", "given twice"},
+    {"text inside scene", "<scene name='s'>\n<world/>\n  stray words\n</scene>", 3, "", "text: unexpected text"},
+    {"dt too small", "<scene name='s'>\n<solver dt='1e-200'/>\n</scene>", 2, "dt", "from 1e-06 to 1"},
+    {"compliance too large", "<scene name='s'>\n<particle name='a' pos='0 0 0'/><particle name='b' pos='1 0 0'/>\n<stick a='a' b='b' compliance='1e300'/>\n</scene>", 3, "compliance", "from 0 to 1e+06"},
 };
 
 TEST(SceneErrors, EachNamesFileLineAndAttribute) {

@@ -36,6 +36,12 @@ int LineIndex::lineOf(const char* p) const {
   return static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin()) + 1;
 }
 
+std::string formatNumber(phys::Real value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 std::optional<phys::Real> parseReal(std::string_view text) {
   if (text.empty()) return std::nullopt;
   if (text.front() == '+') text.remove_prefix(1);  // from_chars does not take a leading '+'
@@ -49,12 +55,25 @@ ElementReader::ElementReader(const pugi::xml_node& node, const LineIndex& lines,
     : node_(node), lines_(lines), file_(file) {}
 
 int ElementReader::line() const {
-  // In-place parsing leaves names pointing into our buffer.
-  return lines_.lineOf(node_.name());
+  // In-place parsing leaves names and values pointing into our buffer; a text node has no name.
+  if (node_.type() == pugi::node_element) return lines_.lineOf(node_.name());
+  const char* text = node_.value();
+  while (*text != '\0' && std::isspace(static_cast<unsigned char>(*text))) ++text;  // to the first word
+  return lines_.lineOf(text);
+}
+
+std::string ElementReader::what() const {
+  if (node_.type() != pugi::node_element) return "text";
+  // Appended piece by piece: "<" + std::string(name) + ">" trips GCC 12's -Wrestrict false
+  // positive (GCC bug 105329).
+  std::string out("<");
+  out.append(node_.name());
+  out.push_back('>');
+  return out;
 }
 
 void ElementReader::fail(const std::string& message) const {
-  throw LoadError(file_, line(), "", "<" + std::string(node_.name()) + ">: " + message);
+  throw LoadError(file_, line(), "", what() + ": " + message);
 }
 
 void ElementReader::fail(std::string_view attribute, const std::string& message) const {
@@ -62,8 +81,7 @@ void ElementReader::fail(std::string_view attribute, const std::string& message)
   for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
     if (attribute == a.name()) at = lines_.lineOf(a.name());
   }
-  throw LoadError(file_, at, std::string(attribute),
-                  "<" + std::string(node_.name()) + "> attribute '" + std::string(attribute) + "': " + message);
+  throw LoadError(file_, at, std::string(attribute), what() + " attribute '" + std::string(attribute) + "': " + message);
 }
 
 pugi::xml_attribute ElementReader::find(std::string_view name) {
@@ -187,6 +205,12 @@ void ElementReader::material(phys::Material& m) {
 
 void ElementReader::rejectUnknownAttributes() const {
   for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
+    // XML forbids an attribute twice, but pugixml keeps both and find() would read the first.
+    for (pugi::xml_attribute b = a.next_attribute(); b; b = b.next_attribute()) {
+      if (std::string_view(a.name()) == b.name()) {
+        throw LoadError(file_, lines_.lineOf(b.name()), a.name(), what() + " attribute '" + a.name() + "': given twice");
+      }
+    }
     if (std::find(asked_.begin(), asked_.end(), a.name()) == asked_.end()) {
       std::string known;
       for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;

@@ -57,6 +57,8 @@ class ElementReader {
   /// Call once every attribute has been read: any attribute not asked for is an error.
   void rejectUnknownAttributes() const;
   int line() const;
+  /// "<box>", or "text" for a text node: how messages name the node.
+  std::string what() const;
   const std::string& file() const { return file_; }
 
  private:
@@ -67,6 +69,9 @@ class ElementReader {
   const std::string& file_;
   std::vector<std::string> asked_;
 };
+
+/// A number as the error messages print it: "1e-06", "1000", "0.5".
+std::string formatNumber(phys::Real value);
 
 /// Parses a whole finite number; nullopt for anything else (junk after it, NaN, infinity).
 std::optional<phys::Real> parseReal(std::string_view text);

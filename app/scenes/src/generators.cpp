@@ -101,13 +101,15 @@ void generateChain(ElementReader& e, BuildContext& ctx) {
   const long links = e.requiredInteger("links", 1, kMaxChainLinks);
   const double length = e.requiredNumber("length", "m");
   if (length <= 0.0) e.fail("length", "must be > 0 (m)");
-  const double mass = e.number("mass", "kg").value_or(1.0);
+  const double mass = e.number("mass", "kg").value_or(phys::ParticleDesc{}.mass);
   if (mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
   const double endMass = e.number("end-mass", "kg").value_or(mass);
   if (endMass <= 0.0) e.fail("end-mass", "must be > 0 (kg)");
   const bool pinned = e.boolean("pinned").value_or(true);
   const double compliance = e.number("compliance", "m/N").value_or(0.0);
-  if (compliance < 0.0) e.fail("compliance", "must be >= 0 (m/N)");
+  if (compliance < 0.0 || compliance > phys::kMaxCompliance) {
+    e.fail("compliance", "must be from 0 to " + formatNumber(phys::kMaxCompliance) + " (m/N)");
+  }
   phys::Vec3 direction = e.vector("direction", "").value_or(phys::Vec3(0.0, -1.0, 0.0));
   const double directionLength = glm::length(direction);
   if (directionLength < 1e-9) e.fail("direction", "must not be zero");

@@ -1,6 +1,8 @@
 // Scene files (docs/scene-format.md): strict XML read into a new world. Any error throws
 // LoadError naming file, line and attribute, and the half-built world is thrown away with it.
+#include <cmath>
 #include <fstream>
+#include <optional>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -55,10 +57,12 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
     if (!parsed) e.fail("method", "'" + *method + "' must be gauss-seidel, jacobi, xpbd or shake");
     s.method = *parsed;
   }
-  if (auto n = e.integer("iterations", 1, 1000)) s.iterations = static_cast<int>(*n);
-  if (auto n = e.integer("substeps", 1, 1000)) s.substeps = static_cast<int>(*n);
+  if (auto n = e.integer("iterations", 1, phys::kMaxIterations)) s.iterations = static_cast<int>(*n);
+  if (auto n = e.integer("substeps", 1, phys::kMaxSubsteps)) s.substeps = static_cast<int>(*n);
   if (auto dt = e.number("dt", "s")) {
-    if (*dt <= 0.0 || *dt > 1.0) e.fail("dt", "must be > 0 and <= 1 (s)");
+    if (*dt < phys::kMinDt || *dt > phys::kMaxDt) {
+      e.fail("dt", "must be from " + detail::formatNumber(phys::kMinDt) + " to " + detail::formatNumber(phys::kMaxDt) + " (s)");
+    }
     s.dt = *dt;
   }
   if (auto eps = e.number("epsilon", "m")) {
@@ -76,8 +80,9 @@ void readGround(ElementReader& e, phys::WorldSettings& w) {
   w.ground = true;
   if (auto h = e.number("height", "m")) w.groundHeight = *h;
   if (auto n = e.vector("normal", "")) {
-    if (glm::length(*n) < 1e-9) e.fail("normal", "must not be zero");
-    w.groundNormal = glm::normalize(*n);
+    const double length = glm::length(*n);  // can overflow for components near 1e308
+    if (!std::isfinite(length) || length < 1e-9) e.fail("normal", "must be non-zero and of finite length");
+    w.groundNormal = *n / length;
   }
   e.material(w.groundMaterial);
   e.rejectUnknownAttributes();
@@ -153,7 +158,9 @@ class Builder {
     const std::optional<double> min = e.number("min", "m");
     const std::optional<double> max = e.number("max", "m");
     const double compliance = e.number("compliance", "m/N").value_or(0.0);
-    if (compliance < 0.0) e.fail("compliance", "must be >= 0 (m/N)");
+    if (compliance < 0.0 || compliance > phys::kMaxCompliance) {
+      e.fail("compliance", "must be from 0 to " + detail::formatNumber(phys::kMaxCompliance) + " (m/N)");
+    }
     e.rejectUnknownAttributes();
     if (min || max) {
       if (length) e.fail("length", "give length, or min and/or max, not both");
@@ -198,12 +205,39 @@ Scene build(std::vector<char>& buffer, const std::string& file) {
   pugi::xml_document doc;
   const std::size_t size = buffer.size();
   const LineIndex lines(buffer.data(), size);
+  // What follows the last '>' (before in-place parsing rewrites the buffer): only white space
+  // may.
+  std::string trailing;
+  int trailingLine = 0;
+  {
+    std::size_t end = size;
+    while (end > 0 && std::isspace(static_cast<unsigned char>(buffer[end - 1]))) --end;
+    std::size_t lastTag = end;
+    while (lastTag > 0 && buffer[lastTag - 1] != '>') --lastTag;
+    if (lastTag < end && lastTag > 0) {
+      trailing.assign(buffer.data() + lastTag, end - lastTag);
+      std::size_t first = lastTag;
+      while (std::isspace(static_cast<unsigned char>(buffer[first]))) ++first;
+      trailingLine = lines.lineOf(buffer.data() + first);
+    }
+  }
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(buffer.data(), size, pugi::parse_default, pugi::encoding_utf8);
   if (!parsed) {
     throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
                     std::string("not well-formed XML: ") + parsed.description());
   }
+  // pugixml drops text after the root element without a trace; look for it ourselves. The
+  // buffer was parsed in place, so scan a copy of its end made before parsing (see below).
+  if (!trailing.empty()) {
+    throw LoadError(file, trailingLine, "", "nothing may follow </scene> but comments and white space");
+  }
   const pugi::xml_node root = doc.document_element();
+  for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
+    if (top == root) continue;
+    // Anything beside the root (a second element, stray text) would otherwise vanish unread.
+    ElementReader stray(top, lines, file);
+    stray.fail("nothing may follow or precede <scene> but comments");
+  }
   if (std::string_view(root.name()) != "scene") {
     throw LoadError(file, lines.lineOf(root.name()), "", "the root element must be <scene>, not <" + std::string(root.name()) + ">");
   }
@@ -238,7 +272,13 @@ Scene build(std::vector<char>& buffer, const std::string& file) {
     }
   }
 
-  Scene scene{name, description, file, phys::World(worldSettings, solverSettings), camera, {}};
+  std::optional<Scene> built;
+  try {
+    built.emplace(Scene{name, description, file, phys::World(worldSettings, solverSettings), camera, {}});
+  } catch (const std::invalid_argument& e) {  // a combination the element checks did not catch
+    throw LoadError(file, lines.lineOf(root.name()), "", std::string("<scene>: ") + e.what());
+  }
+  Scene& scene = *built;
   Builder builder(scene, lines, file);
   for (const pugi::xml_node& node : bodies) {
     try {
@@ -247,7 +287,7 @@ Scene build(std::vector<char>& buffer, const std::string& file) {
       throw LoadError(file, lines.lineOf(node.name()), "", "<" + std::string(node.name()) + ">: " + e.what());
     }
   }
-  return scene;
+  return std::move(scene);
 }
 
 }  // namespace

@@ -43,6 +43,13 @@ struct WorldSettings {
   Real bound = 1.0e6;                ///< unit: m
 };
 
+/// Ranges validate() enforces, shared by the scene loader, the lab and the sandbox's sliders.
+inline constexpr int kMaxIterations = 1000;  ///< per substep
+inline constexpr int kMaxSubsteps = 1000;    ///< per step
+inline constexpr Real kMinDt = 1e-6;         ///< unit: s; below this h^2 and XPBD's alpha lose meaning
+inline constexpr Real kMaxDt = 1.0;          ///< unit: s
+inline constexpr Real kMaxCompliance = 1e6;  ///< unit: m/N; softer than this is no constraint at all
+
 /// How the equations are stepped and relaxed.
 struct SolverSettings {
   SolverMethod method = SolverMethod::GaussSeidel;

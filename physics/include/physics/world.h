@@ -60,7 +60,8 @@ class World {
   /// Replaces the world settings; throws std::invalid_argument (and keeps the old ones) if bad.
   void setWorldSettings(const WorldSettings& settings);
   /// Replaces the solver settings; throws std::invalid_argument (and keeps the old ones) if bad.
-  /// A new dt or substep count keeps every particle's velocity (exactly in free flight).
+  /// A new dt or substep count keeps every particle's velocity (exactly in free flight); more
+  /// passes per step first relax the stored error without changing any velocity.
   void setSolverSettings(const SolverSettings& settings);
   /// Called once for each particle or body the guard freezes.
   void setFreezeCallback(std::function<void(const FreezeReport&)> callback);
@@ -108,6 +109,7 @@ class World {
   void addContactPoint(const Embedding& point, const Material& material, std::int32_t body);
   void combineMaterials();
   void keepVelocities(Real hOld, Real hNew);
+  void settleWithoutVelocity();
   void relax(Real h);
   void updateBoxFrames();
   void findBoxPairs();
@@ -128,7 +130,7 @@ class World {
   std::vector<Embedding> corners_;
 
   std::vector<GroundContact> contactPoints_;  // loose particles and box corners
-  std::vector<Real> normalPush_;  // per contact point: total ground correction this substep (m)
+  std::vector<Real> normalPush_;  // per contact point: ground correction of the last pass (m)
 
   // Box-box collision, rebuilt every substep into storage that keeps its capacity.
   std::vector<Obb> frames_;                 // per box
@@ -140,14 +142,15 @@ class World {
   std::vector<std::pair<BoxId, BoxId>> pairs_;
   std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
   std::vector<BodyContact> bodyContacts_;
-  std::vector<Real> bodyPush_;              // per body contact: total push this substep (m)
+  std::vector<Real> bodyPush_;              // per body contact: push of the last pass (m)
+  std::vector<std::uint8_t> bodyTouched_;   // per body contact: pushed in this substep
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
   std::vector<std::uint8_t> touched_;  // per contact point: touched the ground in the last step
 
   // Solver scratch, sized when things are added so the step never allocates.
   std::vector<Real> lambda_;          // per stick: XPBD multiplier
   std::vector<Vec3> jacobiDelta_;     // per particle
-  std::vector<Real> jacobiCount_;     // per particle
+  std::vector<Real> degree_;          // per particle: sticks attached (Jacobi's scaling)
 
   std::function<void(const FreezeReport&)> onFreeze_;
   std::vector<FreezeReport> freezes_;
