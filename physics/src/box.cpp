@@ -34,4 +34,14 @@ Vec3 boxParticleLocal(BoxModel model, const Vec3& halfExtents, int j) {
 
 int boxParticleCount(BoxModel model) { return model == BoxModel::Corners ? 8 : 4; }
 
+std::array<Real, 4> tetraWeights(const Vec3& u) {
+  std::array<Real, 4> w{};
+  for (int j = 0; j < 4; ++j) {
+    const int k = kTetraCorner[j];
+    const Vec3 sign{(k & 1) ? 1.0 : -1.0, (k & 2) ? 1.0 : -1.0, (k & 4) ? 1.0 : -1.0};
+    w[j] = 0.25 * (1.0 + sign.x * u.x + sign.y * u.y + sign.z * u.z);
+  }
+  return w;
+}
+
 }  // namespace phys

@@ -22,12 +22,6 @@ Material combine(const Material& a, const Material& b) {
   return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
 }
 
-// The tetra model's particles sit at alternate corners with signs s_j; their barycentric
-// weights for a point at u (in units of the half extents) are (1 + s_j . u) / 4, because those
-// four sign vectors sum to zero and sum s_j s_j^T = 4 I.
-constexpr int kTetraCorner[4] = {0, 3, 5, 6};
-Vec3 cornerSigns(int k) { return {(k & 1) ? 1.0 : -1.0, (k & 2) ? 1.0 : -1.0, (k & 4) ? 1.0 : -1.0}; }
-
 }  // namespace
 
 void World::ignoreCollision(BoxId a, BoxId b) {
@@ -120,9 +114,10 @@ Embedding World::embedInBox(BoxId id, const Vec3& point) const {
   Embedding e;
   e.count = 4;
   if (box.model == BoxModel::Tetra) {
+    const std::array<Real, 4> w = tetraWeights(u);
     for (int j = 0; j < 4; ++j) {
       e.particle[j] = box.firstParticle + j;
-      e.weight[j] = 0.25 * (1.0 + glm::dot(cornerSigns(kTetraCorner[j]), u));
+      e.weight[j] = w[j];
     }
     return e;
   }

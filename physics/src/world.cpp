@@ -10,7 +10,6 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
 #include "passes.h"
@@ -246,14 +245,10 @@ BoxId World::addBox(const BoxDesc& desc) {
       corner.weight[0] = 1.0;
       corner.count = 1;
     } else {
-      // Barycentric weights of the corner in the rest tetrahedron: solve [r_j; 1] b = [c_k; 1].
-      // The four rest points are never coplanar, so the matrix is always invertible.
-      glm::dmat4 m(0.0);
-      for (int j = 0; j < 4; ++j) m[j] = glm::dvec4(boxParticleLocal(desc.model, box.halfExtents, j), 1.0);
-      const glm::dvec4 b = glm::inverse(m) * glm::dvec4(boxCornerLocal(box.halfExtents, k), 1.0);
+      const std::array<Real, 4> w = tetraWeights(boxCornerLocal(Vec3(1.0), k));
       for (int j = 0; j < 4; ++j) {
         corner.particle[j] = box.firstParticle + j;
-        corner.weight[j] = b[j];
+        corner.weight[j] = w[j];
       }
       corner.count = 4;
     }

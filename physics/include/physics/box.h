@@ -1,6 +1,9 @@
 #pragma once
 // Rigid boxes made of particles, in two models a scene chooses per box.
+#include <array>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "physics/settings.h"
 #include "physics/types.h"
@@ -61,5 +64,10 @@ Vec3 boxCornerLocal(const Vec3& halfExtents, int k);
 Vec3 boxParticleLocal(BoxModel model, const Vec3& halfExtents, int j);
 /// Particles per box of the given model.
 int boxParticleCount(BoxModel model);
+/// Barycentric weights, over a tetra box's 4 particles, of the point at u in the box's frame
+/// (u in units of the half extents: the corners are at +-1). Closed form (1 + s_j . u) / 4 with
+/// s_j the particles' corner signs: those four sign vectors sum to zero and sum s_j s_j^T = 4 I.
+/// No matrix is inverted; the weights of a corner outside the tetrahedron are (1/2, 1/2, 1/2, -1/2).
+std::array<Real, 4> tetraWeights(const Vec3& u);
 
 }  // namespace phys
