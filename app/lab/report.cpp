@@ -94,6 +94,7 @@ std::string jsonText(const RunResult& r) {
   field("ms_per_step", jsonNumber(r.msPerStep));
   field("max_constraint_error", jsonNumber(m.maxConstraintError));
   field("rms_constraint_error", jsonNumber(m.rmsConstraintError));
+  field("max_joint_error", jsonNumber(m.maxJointError));
   field("max_penetration", jsonNumber(m.maxPenetration));
   field("max_speed", jsonNumber(m.maxSpeed));
   field("energy_initial", jsonNumber(r.energyInitial));
@@ -129,6 +130,7 @@ std::string summaryText(const RunResult& r) {
        num(m.maxPenetration) + " m\n";
   s += "constraints  error max " + num(m.maxConstraintError) + ", rms " + num(m.rmsConstraintError) +
        " (of rest length)\n";
+  if (r.joints > 0) s += "joints       " + count(r.joints, "link", "links") + ", max error " + num(m.maxJointError) + " m\n";
   s += "speed        max " + num(m.maxSpeed) + " m/s\n";
   s += "energy       initial " + num(r.energyInitial) + " J, final " + num(m.energy()) + " J (change " +
        num(m.energy() - r.energyInitial) + " J)\n";

@@ -37,7 +37,8 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options) {
   r.solver = world.solverSettings();
   r.steps = options.steps;
   r.particles = world.particles().size();
-  r.constraints = world.sticks().size();
+  r.constraints = world.sticks().size() + world.links().size();
+  r.joints = world.links().size();
   r.bodies = world.boxes().size();
   r.energyInitial = world.metrics().energy();
 

@@ -19,7 +19,8 @@ struct RunResult {
   int steps = 0;                     ///< World::step() calls made
   double simulatedTime = 0.0;        ///< unit: s; World::time() at the end
   std::size_t particles = 0;         ///< world.particles().size()
-  std::size_t constraints = 0;       ///< world.sticks().size()
+  std::size_t constraints = 0;       ///< sticks and links: world.sticks().size() + world.links().size()
+  std::size_t joints = 0;            ///< links (joints) alone
   std::size_t bodies = 0;            ///< world.boxes().size()
   double energyInitial = 0.0;        ///< unit: J; before the first step
   phys::Metrics final;               ///< after the last step

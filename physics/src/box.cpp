@@ -3,16 +3,6 @@
 #include <cmath>
 
 namespace phys {
-namespace {
-
-// The tetra model's particles sit at alternate corners 0, 3, 5, 6 (a regular tetrahedron for a
-// cube). Their second moment is m diag(hx^2, hy^2, hz^2), three times a solid box's, as for the
-// corners model; the ratios, hence a free body's tumbling, are a solid box's. Pulled in to
-// 1/sqrt(3) they would match a solid box exactly, but the corners' embedding weights would grow
-// to 1.55 and -1.05 and a resting box would not settle (docs/physics.md).
-constexpr int kTetraCorner[4] = {0, 3, 5, 6};
-
-}  // namespace
 
 std::string_view toString(BoxModel model) { return model == BoxModel::Tetra ? "tetra" : "corners"; }
 

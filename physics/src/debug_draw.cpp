@@ -9,6 +9,14 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
   const auto& x = particles_.position;
   if (flags.constraints) {
     for (const Stick& s : sticks_) draw.line(x[s.a], x[s.b], s.isRange() ? colors::kRange : colors::kStick);
+    for (const Link& link : links_) {
+      const Vec3 a = position(link.a), b = position(link.b);
+      if (link.isPin()) {
+        draw.point(a, 0.03, colors::kPin);
+      } else {
+        draw.line(a, b, colors::kRange);
+      }
+    }
   }
   if (flags.particles) {
     for (std::size_t i = 0; i < particles_.size(); ++i) {

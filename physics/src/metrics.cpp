@@ -49,6 +49,11 @@ Metrics World::metrics() const {
     sumSquares += violation * violation;
   }
   if (!sticks_.empty()) m.rmsConstraintError = std::sqrt(sumSquares / static_cast<Real>(sticks_.size()));
+  for (const Link& link : links_) {
+    const Real length = glm::length(position(link.b) - position(link.a));
+    const Real violation = length < link.minLength ? link.minLength - length : std::max(0.0, length - link.maxLength);
+    m.maxJointError = maxOf(m.maxJointError, violation);
+  }
   if (world_.ground) {
     for (const GroundContact& c : contactPoints_) {
       const Real depth = world_.groundHeight - glm::dot(world_.groundNormal, position(c.point));

@@ -3,6 +3,7 @@
 // reads like the algorithm and each phase can be timed and tested alone. None allocates.
 #include <span>
 
+#include "physics/box.h"
 #include "physics/constraints.h"
 #include "physics/particles.h"
 #include "physics/settings.h"
@@ -55,6 +56,15 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
 /// the tangential part of the relative motion this substep is stopped within mu_s * push, else
 /// shortened by mu_d * push.
 void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push);
+
+/// One pass over the joints, Gauss-Seidel in every method: each link's two points moved apart
+/// or together along their separation by the weighted projection of REFERENCES.md, a pin's all
+/// the way onto each other.
+void solveLinks(Particles& p, std::span<const Link> links);
+
+/// Pulls each box's particle velocities (x - x*) towards the box's rigid motion by `fraction`
+/// (0 nothing, 1 all the way), keeping its linear and angular momentum; edits x* only.
+void dampBodyMotion(Particles& p, std::span<const Box> boxes, Real fraction);
 
 /// Current position of an embedded point.
 Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);

@@ -51,6 +51,7 @@ std::string validate(const SolverSettings& s) {
   if (s.iterations < 1 || s.iterations > kMaxIterations) why << "iterations must be from 1 to " << kMaxIterations << "; ";
   if (!finiteNonNegative(s.featureEpsilon)) why << "featureEpsilon must be finite and >= 0 (m); ";
   if (!finiteNonNegative(s.contactSlop)) why << "contactSlop must be finite and >= 0 (m); ";
+  if (!(s.bodyDamping >= 0.0 && s.bodyDamping <= 1.0)) why << "bodyDamping must be from 0 to 1; ";
   return joined(why);
 }
 

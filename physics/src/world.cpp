@@ -83,6 +83,7 @@ void World::settleWithoutVelocity() {
   std::vector<Vec3> before = particles_.position;
   for (int pass = 0; pass < 4 * solver_.iterations * solver_.substeps && pass < 200; ++pass) {
     detail::relaxGaussSeidel(particles_, sticks_);
+    detail::solveLinks(particles_, links_);
     detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_);
     if (world_.ground) detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight, normalPush_);
   }
@@ -189,6 +190,38 @@ void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength,
   degree_[b] += 1.0;
 }
 
+void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real maxLength) {
+  for (const Embedding* e : {&a, &b}) {
+    require(e->count >= 1 && e->count <= 4, "addLink: an embedding needs 1 to 4 particles");
+    Real sum = 0.0;
+    for (int i = 0; i < e->count; ++i) {
+      require(e->particle[i] < particles_.size(), "addLink: particle ids must exist");
+      require(std::isfinite(e->weight[i]), "addLink: weights must be finite");
+      sum += e->weight[i];
+    }
+    require(std::abs(sum - 1.0) < 1e-9, "addLink: an embedding's weights must sum to 1");
+  }
+  require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
+  require(!std::isnan(maxLength) && maxLength >= minLength, "addLink: max length must be >= min length (m)");
+  links_.push_back({a, b, minLength, maxLength});
+}
+
+Embedding World::anchor(BoxId id, const Vec3& worldPoint) const {
+  require(id < boxes_.size(), "anchor: box id must exist");
+  require(finite(worldPoint), "anchor: the point must be finite");
+  const Box& box = boxes_[id];
+  const BoxPose pose = boxPose(id);
+  const Vec3 u = (glm::inverse(pose.orientation) * (worldPoint - pose.center)) / box.halfExtents;
+  const std::array<Real, 4> w = tetraWeights(u);
+  Embedding e;
+  e.count = 4;
+  for (int j = 0; j < 4; ++j) {
+    e.particle[j] = box.firstParticle + static_cast<ParticleId>(box.model == BoxModel::Tetra ? j : kTetraCorner[j]);
+    e.weight[j] = w[j];
+  }
+  return e;
+}
+
 BoxId World::addBox(const BoxDesc& desc) {
   require(finite(desc.center) && finite(desc.velocity) && finite(desc.angularVelocity),
           "addBox: center, velocity and angular velocity must be finite");
@@ -273,6 +306,9 @@ void World::relax(Real h) {
       case SolverMethod::Xpbd: detail::relaxXpbd(particles_, sticks_, lambda_, h); break;
       case SolverMethod::Shake: detail::relaxShake(particles_, sticks_); break;
     }
+    // Joints after the boxes' own sticks, so each pass ends its constraints with the links
+    // between bodies, then the contacts.
+    detail::solveLinks(particles_, links_);
     profile_.constraints += millisecondsSince(start);
 
     // Contacts, each pass followed by its friction, so the next pass's sticks relax what
@@ -322,6 +358,10 @@ void World::step() {
 
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     relax(h);
+
+    start = Clock::now();
+    detail::dampBodyMotion(particles_, boxes_, solver_.bodyDamping);
+    profile_.friction += millisecondsSince(start);
 
     time_ += h;
     start = Clock::now();

@@ -16,7 +16,8 @@ using namespace lab_testing;
 const std::vector<std::string> kJsonKeys = {
     "scene",          "method",          "iterations",          "substeps",     "dt",
     "steps",          "particles",       "constraints",         "bodies",       "contacts",
-    "ms_per_step",    "max_constraint_error", "rms_constraint_error", "max_penetration", "max_speed",
+    "ms_per_step",    "max_constraint_error", "rms_constraint_error", "max_joint_error", "max_penetration",
+    "max_speed",
     "energy_initial", "energy_final",    "frozen",              "hash"};
 
 // Runs lab with --json and parses its stdout, failing the test when it is not one object.

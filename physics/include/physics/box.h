@@ -58,6 +58,13 @@ struct Box {
   std::uint32_t collisionMask = 0xffffffffu;
 };
 
+/// The corners the tetra model's particles sit at: alternate corners, a regular tetrahedron for
+/// a cube. Their second moment is m diag(hx^2, hy^2, hz^2), three times a solid box's, as for the
+/// corners model; the ratios, hence a free body's tumbling, are a solid box's. Pulled in to
+/// 1/sqrt(3) they would match a solid box exactly, but the corners' embedding weights would grow
+/// to 1.55 and -1.05 and a resting box would not settle (docs/physics.md).
+inline constexpr int kTetraCorner[4] = {0, 3, 5, 6};
+
 /// Body-frame position of corner k of a box with the given half extents.
 Vec3 boxCornerLocal(const Vec3& halfExtents, int k);
 /// Body-frame rest position of particle j of a box of the given model.

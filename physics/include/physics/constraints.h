@@ -35,6 +35,20 @@ struct Embedding {
   int count = 0;
 };
 
+/// Keeps two embedded points, usually of two bodies, within [minLength, maxLength] of each
+/// other: a joint. maxLength 0 makes a pin, which holds the points together (a ball joint; two
+/// pins on a line make a hinge); a range link with minLength > 0 or a finite maxLength is a joint
+/// limit. A pin is a linear constraint, so its projection is exact for any direction, even
+/// when the two points coincide, where a stick's direction is undefined.
+struct Link {
+  Embedding a;
+  Embedding b;
+  Real minLength = 0.0;  ///< unit: m
+  Real maxLength = 0.0;  ///< unit: m; may be infinite (kNoMaxLength)
+
+  bool isPin() const { return maxLength == 0.0; }
+};
+
 /// A contact between two boxes for one substep: a point embedded in each, kept apart along the
 /// normal (from A towards B): n . (pointB - pointA) >= 0.
 struct BodyContact {

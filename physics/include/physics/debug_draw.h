@@ -12,6 +12,7 @@ struct Color {
 namespace colors {
 inline constexpr Color kStick{0.90f, 0.10f, 0.10f};     ///< red: the seed's constraint colour
 inline constexpr Color kRange{0.95f, 0.60f, 0.10f};     ///< orange: range sticks
+inline constexpr Color kPin{1.00f, 0.90f, 0.20f};       ///< yellow: joint pins
 inline constexpr Color kParticle{0.20f, 0.35f, 0.85f};  ///< blue
 inline constexpr Color kContact{0.10f, 0.85f, 0.20f};   ///< green: the seed's collision markers
 inline constexpr Color kBounds{0.60f, 0.60f, 0.60f};    ///< grey
@@ -34,7 +35,7 @@ class DebugDraw {
 
 /// What World::debugDraw draws.
 struct DebugDrawFlags {
-  bool constraints = true;  ///< sticks red, range sticks orange
+  bool constraints = true;  ///< sticks red, range sticks and joint limits orange, joint pins yellow
   bool particles = false;   ///< every particle; frozen ones magenta
   bool contacts = true;     ///< ground contact points that were pushed, box-box contact points and normals
   bool movedVertices = false;  ///< particles a box-box contact moved in the last step (the seed's green markers)

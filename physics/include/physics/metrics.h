@@ -12,6 +12,7 @@ struct Metrics {
   Real potentialEnergy = 0.0;  ///< unit: J; m g h (uniform) or m s |x - p| (point gravity)
   Real maxConstraintError = 0.0;  ///< unitless; max over sticks of |violation| / rest length
   Real rmsConstraintError = 0.0;  ///< unitless; root mean square of the same
+  Real maxJointError = 0.0;    ///< unit: m; max over links of the distance outside [min, max] (a pin's gap)
   Real maxPenetration = 0.0;   ///< unit: m; deepest point below the ground or inside another box now
   Real maxSpeed = 0.0;         ///< unit: m/s
   int contacts = 0;            ///< ground contact points pushed, and box-box contact points, in the last step

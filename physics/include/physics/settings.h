@@ -62,6 +62,12 @@ struct SolverSettings {
   /// Overlap two boxes may keep without being pushed apart. Without it, boxes touching side by
   /// side fight over a zero gap every substep and never come to rest.
   Real contactSlop = 0.001;  ///< unit: m
+  /// Share of each box's internal motion (its particles' velocities less the box's rigid
+  /// motion) removed at the end of each substep, keeping the box's momentum and angular
+  /// momentum (Müller et al. 2007, 3.5). 1 makes boxes move as rigid bodies; 0 is Jakobsen's
+  /// plain scheme, where what the passes leave of a box's deformation turns into vibration.
+  /// Ragdolls need it to come to rest; stacks creep with it (docs/physics.md), hence off.
+  Real bodyDamping = 0.0;  ///< unitless, 0 to 1
 };
 
 /// Empty when the settings can be stepped; otherwise says which field is wrong and why.

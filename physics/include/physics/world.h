@@ -51,6 +51,15 @@ class World {
   /// Adds a box of the chosen model; throws std::invalid_argument on bad input and adds nothing.
   BoxId addBox(const BoxDesc& desc);
 
+  /// Adds a joint between two embedded points (World::anchor gives them): a pin when maxLength
+  /// is 0, else a range. Needs 0 <= minLength <= maxLength; throws std::invalid_argument on bad
+  /// input and adds nothing.
+  void addLink(const Embedding& a, const Embedding& b, Real minLength = 0.0, Real maxLength = 0.0);
+  /// The point at `worldPoint` (unit: m) carried by the box from now on: barycentric weights over
+  /// the box's inscribed tetrahedron (its 4 particles, or corners 0, 3, 5, 6 of a corners box),
+  /// which exist for any point, inside the box or not, with no matrix to invert.
+  Embedding anchor(BoxId box, const Vec3& worldPoint) const;
+
   /// Keeps two boxes from colliding with each other (the parts of a ragdoll joined by a joint).
   void ignoreCollision(BoxId a, BoxId b);
 
@@ -71,6 +80,7 @@ class World {
   const Particles& particles() const { return particles_; }
   std::span<const Stick> sticks() const { return sticks_; }
   std::span<const Box> boxes() const { return boxes_; }
+  std::span<const Link> links() const { return links_; }
   /// Every box's corners, 8 per box from Box::firstCorner.
   std::span<const Embedding> corners() const { return corners_; }
   /// Every point that collides with the ground.
@@ -126,6 +136,7 @@ class World {
   std::vector<std::string> particleName_;
   std::vector<std::int32_t> particleBody_;  // box index, or -1 for a loose particle
   std::vector<Stick> sticks_;
+  std::vector<Link> links_;
   std::vector<Box> boxes_;
   std::vector<Embedding> corners_;
 

@@ -1,0 +1,78 @@
+#pragma once
+// Ragdolls: ten boxes joined by nine hinges, each hinge two pins on its axis (World::addLink)
+// and two one-sided range links, one at each stop of its angle. Two models a scene chooses:
+// `seed` builds the parts as corners boxes (80 particles, the seed's), `lean` as tetra boxes
+// (40 particles: the fewest of our box models that carry the same joints and limits).
+// docs/physics.md, "Ragdolls", draws the layout and lists the limits.
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "physics/world.h"
+
+namespace phys {
+
+enum class RagdollModel {
+  Seed,  ///< corners boxes: 8 particles and 22 sticks a part
+  Lean,  ///< tetra boxes: 4 particles and 6 sticks a part
+};
+
+std::string_view toString(RagdollModel model);  ///< "seed", "lean"
+std::optional<RagdollModel> parseRagdollModel(std::string_view name);
+
+/// The ten parts, in the order Ragdoll::parts holds them. Left is the ragdoll's own left (+x
+/// when it stands facing +z).
+enum class RagdollPart {
+  Head, Torso, UpperArmLeft, LowerArmLeft, UpperArmRight, LowerArmRight,
+  UpperLegLeft, LowerLegLeft, UpperLegRight, LowerLegRight,
+};
+inline constexpr int kRagdollParts = 10;
+inline constexpr int kRagdollHinges = 9;
+std::string_view toString(RagdollPart part);  ///< "head", "upper-arm-left", ...
+
+/// A ragdoll when it is created. At the identity orientation it stands upright on its feet,
+/// facing +z, 1.72 m tall at scale 1.
+struct RagdollDesc {
+  std::string name;           ///< its parts are named "<name>.head", "<name>.torso", ...
+  Vec3 hips{0.0};             ///< unit: m; where the bottom of the torso is (the hinge line of the hips)
+  Quat orientation{1.0, 0.0, 0.0, 0.0};
+  Real scale = 1.0;           ///< unitless; multiplies every length
+  Real mass = 70.0;           ///< unit: kg; the whole body's, split over the parts as in a person
+  RagdollModel model = RagdollModel::Seed;
+  Vec3 velocity{0.0};         ///< unit: m/s; of every part at creation
+  Material material;
+  std::uint32_t collisionGroup = 1;
+  std::uint32_t collisionMask = 0xffffffffu;
+};
+
+/// One hinge: the child part turns about `axis` relative to the parent, by an angle that is 0
+/// in the standing pose and positive by the right-hand rule (for the x axis: a part pointing
+/// down swings backwards).
+struct RagdollHinge {
+  RagdollPart parent = RagdollPart::Torso;
+  RagdollPart child = RagdollPart::Head;
+  Vec3 axis{1.0, 0.0, 0.0};       ///< unit vector in the parent's frame (the same in the child's at rest)
+  Vec3 reference{0.0, -1.0, 0.0};  ///< unit vector normal to axis, in both frames at rest
+  Real minAngle = 0.0;            ///< unit: rad
+  Real maxAngle = 0.0;            ///< unit: rad
+};
+
+/// What addRagdoll built.
+struct Ragdoll {
+  std::string name;
+  RagdollModel model = RagdollModel::Seed;
+  std::array<BoxId, kRagdollParts> parts{};
+  std::array<RagdollHinge, kRagdollHinges> hinges{};
+  BoxId part(RagdollPart p) const { return parts[static_cast<int>(p)]; }
+};
+
+/// Adds a ragdoll's boxes, pins and limits to the world, and keeps the parts that share a
+/// hinge from colliding with each other (the others do). Throws std::invalid_argument on bad
+/// input and adds nothing.
+Ragdoll addRagdoll(World& world, const RagdollDesc& desc);
+
+/// The hinge's angle now, from its two parts' poses. unit: rad, in (-pi, pi]
+Real hingeAngle(const World& world, const Ragdoll& ragdoll, const RagdollHinge& hinge);
+
+}  // namespace phys

@@ -1,0 +1,166 @@
+#include "physics/ragdoll.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace phys {
+namespace {
+
+constexpr Real kDegree = std::numbers::pi / 180.0;
+
+// The standing body at scale 1, in metres, feet on y = 0, facing +z; the hips (the torso's
+// bottom face) at y = 0.88. Mass fractions roughly a person's (hands in the forearms, feet in
+// the shins).
+struct PartLayout {
+  RagdollPart part;
+  Vec3 center;
+  Vec3 size;
+  Real massFraction;
+};
+constexpr Real kHipHeight = 0.88;
+constexpr PartLayout kParts[kRagdollParts] = {
+    {RagdollPart::Head, {0.0, 1.59, 0.0}, {0.18, 0.26, 0.20}, 0.08},
+    {RagdollPart::Torso, {0.0, 1.17, 0.0}, {0.34, 0.58, 0.20}, 0.30},
+    {RagdollPart::UpperArmLeft, {0.23, 1.30, 0.0}, {0.10, 0.32, 0.10}, 0.06},
+    {RagdollPart::LowerArmLeft, {0.23, 0.99, 0.0}, {0.09, 0.30, 0.09}, 0.05},
+    {RagdollPart::UpperArmRight, {-0.23, 1.30, 0.0}, {0.10, 0.32, 0.10}, 0.06},
+    {RagdollPart::LowerArmRight, {-0.23, 0.99, 0.0}, {0.09, 0.30, 0.09}, 0.05},
+    {RagdollPart::UpperLegLeft, {0.09, 0.66, 0.0}, {0.14, 0.44, 0.14}, 0.11},
+    {RagdollPart::LowerLegLeft, {0.09, 0.22, 0.0}, {0.12, 0.44, 0.12}, 0.09},
+    {RagdollPart::UpperLegRight, {-0.09, 0.66, 0.0}, {0.14, 0.44, 0.14}, 0.11},
+    {RagdollPart::LowerLegRight, {-0.09, 0.22, 0.0}, {0.12, 0.44, 0.12}, 0.09},
+};
+
+// Every hinge turns about x through `pivot`; its two pins sit `halfSpan` either side of the pivot
+// along x. The angle is positive by the right-hand rule about +x: a part hanging down swings
+// backwards (knees bend that way, elbows and hips the other). The limit links' points lie
+// `radius` from the pivot, in the plane of the reference direction (down for limbs, up for the
+// head), close enough to both parts that their embedding weights stay small.
+struct HingeLayout {
+  RagdollPart parent, child;
+  Vec3 pivot;
+  Real halfSpan;
+  Vec3 reference;
+  Real minDegrees, maxDegrees;
+  Real radius;
+};
+constexpr Vec3 kDown{0.0, -1.0, 0.0};
+constexpr Vec3 kUp{0.0, 1.0, 0.0};
+constexpr HingeLayout kHinges[kRagdollHinges] = {
+    {RagdollPart::Torso, RagdollPart::Head, {0.0, 1.46, 0.0}, 0.08, kUp, -30.0, 40.0, 0.10},
+    {RagdollPart::Torso, RagdollPart::UpperArmLeft, {0.20, 1.40, 0.0}, 0.08, kDown, -120.0, 40.0, 0.10},
+    {RagdollPart::UpperArmLeft, RagdollPart::LowerArmLeft, {0.23, 1.14, 0.0}, 0.07, kDown, -140.0, 0.0, 0.08},
+    {RagdollPart::Torso, RagdollPart::UpperArmRight, {-0.20, 1.40, 0.0}, 0.08, kDown, -120.0, 40.0, 0.10},
+    {RagdollPart::UpperArmRight, RagdollPart::LowerArmRight, {-0.23, 1.14, 0.0}, 0.07, kDown, -140.0, 0.0, 0.08},
+    {RagdollPart::Torso, RagdollPart::UpperLegLeft, {0.09, 0.88, 0.0}, 0.07, kDown, -110.0, 20.0, 0.10},
+    {RagdollPart::UpperLegLeft, RagdollPart::LowerLegLeft, {0.09, 0.44, 0.0}, 0.07, kDown, 0.0, 140.0, 0.10},
+    {RagdollPart::Torso, RagdollPart::UpperLegRight, {-0.09, 0.88, 0.0}, 0.07, kDown, -110.0, 20.0, 0.10},
+    {RagdollPart::UpperLegRight, RagdollPart::LowerLegRight, {-0.09, 0.44, 0.0}, 0.07, kDown, 0.0, 140.0, 0.10},
+};
+
+Vec3 rotateAboutX(const Vec3& v, Real angle) {
+  const Real c = std::cos(angle), s = std::sin(angle);
+  return {v.x, c * v.y - s * v.z, s * v.y + c * v.z};
+}
+
+// How far past a stop its limit link still catches the hinge (see addRagdoll).
+constexpr Real kStopReach = 60.0 * kDegree;
+
+void require(bool ok, const char* what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
+}  // namespace
+
+std::string_view toString(RagdollModel model) { return model == RagdollModel::Lean ? "lean" : "seed"; }
+
+std::optional<RagdollModel> parseRagdollModel(std::string_view name) {
+  if (name == "seed") return RagdollModel::Seed;
+  if (name == "lean") return RagdollModel::Lean;
+  return std::nullopt;
+}
+
+std::string_view toString(RagdollPart part) {
+  constexpr std::string_view kNames[kRagdollParts] = {
+      "head", "torso", "upper-arm-left", "lower-arm-left", "upper-arm-right", "lower-arm-right",
+      "upper-leg-left", "lower-leg-left", "upper-leg-right", "lower-leg-right"};
+  return kNames[static_cast<int>(part)];
+}
+
+Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
+  require(finite(desc.hips) && finite(desc.velocity), "addRagdoll: hips and velocity must be finite");
+  require(std::isfinite(desc.scale) && desc.scale > 0.0 && desc.scale < 1e6, "addRagdoll: scale must be > 0 and < 1e6");
+  require(std::isfinite(desc.mass) && desc.mass > 0.0, "addRagdoll: mass must be finite and > 0 (kg)");
+  const Real qLength = glm::length(desc.orientation);
+  require(std::isfinite(qLength) && qLength > 0.0, "addRagdoll: orientation must be a finite non-zero quaternion");
+  require(validate(desc.material).empty(), "addRagdoll: friction coefficients must be finite and >= 0");
+  const Quat q = desc.orientation / qLength;
+  // Where a point of the standing layout goes in the world.
+  auto place = [&](const Vec3& layout) { return desc.hips + q * ((layout - Vec3(0.0, kHipHeight, 0.0)) * desc.scale); };
+  for (const PartLayout& p : kParts) {
+    require(finite(place(p.center + p.size)) && finite(place(p.center - p.size)),
+            "addRagdoll: position or scale too large to represent");
+  }
+
+  Ragdoll ragdoll;
+  ragdoll.name = desc.name;
+  ragdoll.model = desc.model;
+  const std::string prefix = desc.name.empty() ? std::string("ragdoll") : desc.name;
+  for (const PartLayout& p : kParts) {
+    BoxDesc box;
+    box.name = prefix + "." + std::string(toString(p.part));
+    box.center = place(p.center);
+    box.size = p.size * desc.scale;
+    box.orientation = q;
+    box.velocity = desc.velocity;
+    box.mass = desc.mass * p.massFraction;
+    box.model = desc.model == RagdollModel::Lean ? BoxModel::Tetra : BoxModel::Corners;
+    box.material = desc.material;
+    box.collisionGroup = desc.collisionGroup;
+    box.collisionMask = desc.collisionMask;
+    ragdoll.parts[static_cast<int>(p.part)] = world.addBox(box);
+  }
+
+  for (int h = 0; h < kRagdollHinges; ++h) {
+    const HingeLayout& layout = kHinges[h];
+    const BoxId parent = ragdoll.part(layout.parent), child = ragdoll.part(layout.child);
+    // Two pins on the axis make the hinge.
+    for (const Real side : {-1.0, 1.0}) {
+      const Vec3 pin = place(layout.pivot + Vec3(side * layout.halfSpan, 0.0, 0.0));
+      world.addLink(world.anchor(parent, pin), world.anchor(child, pin));
+    }
+    // The limits: one one-sided range link at each stop. Q is fixed in the child at `radius`
+    // along the reference direction; P is fixed in the parent where Q would be had the hinge
+    // turned kStopReach past the stop. Seen from the pivot P and Q are |theta - phi| apart, so
+    // |P - Q| = 2 r sin(|theta - phi| / 2), which is r at the stop and less only within
+    // kStopReach beyond it: the link pushes P and Q apart to r there, turning the hinge back.
+    // Its push meets the arc of Q at kStopReach / 2 = 30 degrees, so most of it turns the
+    // hinge; a single link with both bounds would have to work near 180 degrees, where its
+    // push is almost all along the arm and a hard landing carries the hinge past it.
+    const Real minAngle = layout.minDegrees * kDegree, maxAngle = layout.maxDegrees * kDegree;
+    const Vec3 inChild = place(layout.pivot + layout.reference * layout.radius);
+    for (const Real stop : {minAngle - kStopReach, maxAngle + kStopReach}) {
+      const Vec3 inParent = place(layout.pivot + rotateAboutX(layout.reference, stop) * layout.radius);
+      world.addLink(world.anchor(parent, inParent), world.anchor(child, inChild), layout.radius * desc.scale, kNoMaxLength);
+    }
+    world.ignoreCollision(parent, child);
+    ragdoll.hinges[h] = {layout.parent, layout.child, Vec3(1.0, 0.0, 0.0), layout.reference, minAngle, maxAngle};
+  }
+  return ragdoll;
+}
+
+Real hingeAngle(const World& world, const Ragdoll& ragdoll, const RagdollHinge& hinge) {
+  const Quat parent = world.boxPose(ragdoll.part(hinge.parent)).orientation;
+  const Quat child = world.boxPose(ragdoll.part(hinge.child)).orientation;
+  const Vec3 axis = parent * hinge.axis;
+  const Vec3 from = parent * hinge.reference;
+  Vec3 to = child * hinge.reference;
+  to -= glm::dot(to, axis) * axis;  // a twist off the axis does not count
+  return std::atan2(glm::dot(axis, glm::cross(from, to)), glm::dot(from, to));
+}
+
+}  // namespace phys

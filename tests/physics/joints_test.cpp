@@ -1,0 +1,193 @@
+// Joints between bodies (World::addLink on points from World::anchor), and the damping of a
+// box's internal motion (SolverSettings::bodyDamping).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "passes.h"
+#include "test_util.h"
+
+namespace {
+
+using phys::Vec3;
+
+phys::BoxId addCube(phys::World& w, const Vec3& centre, phys::BoxModel model, double mass = 1.0) {
+  phys::BoxDesc d;
+  d.center = centre;
+  d.size = Vec3(1.0);
+  d.model = model;
+  d.mass = mass;
+  return w.addBox(d);
+}
+
+// An anchor is an affine combination of the box's particles: it follows the box exactly, inside
+// the box or outside it, and its weights sum to 1 with nothing inverted.
+TEST(Anchors, FollowTheirBoxWhereverThePointIs) {
+  for (auto model : {phys::BoxModel::Corners, phys::BoxModel::Tetra}) {
+    phys::World w = testing_phys::openSpace();
+    phys::BoxDesc d;
+    d.center = Vec3(1.0, 2.0, 3.0);
+    d.size = Vec3(0.4, 1.0, 2.0);
+    d.orientation = glm::dquat(glm::radians(Vec3(20.0, 40.0, -10.0)));
+    d.velocity = Vec3(1.0, 4.0, -2.0);
+    d.model = model;
+    const phys::BoxId box = w.addBox(d);
+    const Vec3 points[] = {Vec3(1.0, 2.0, 3.0), Vec3(1.1, 2.3, 3.9), Vec3(3.0, -1.0, 0.0)};
+    const phys::BoxPose before = w.boxPose(box);
+    phys::Embedding anchors[3];
+    Vec3 local[3];
+    for (int k = 0; k < 3; ++k) {
+      anchors[k] = w.anchor(box, points[k]);
+      EXPECT_NEAR(glm::length(w.position(anchors[k]) - points[k]), 0.0, 1e-12);
+      local[k] = glm::inverse(before.orientation) * (points[k] - before.center);
+    }
+    // Carried along: the same body-frame points after the box has flown for a second.
+    for (int i = 0; i < 60; ++i) w.step();
+    const phys::BoxPose after = w.boxPose(box);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(glm::length(w.position(anchors[k]) - (after.center + after.orientation * local[k])), 0.0, 1e-6)
+          << phys::toString(model) << " point " << k;
+    }
+  }
+}
+
+// A pin is a linear constraint: one projection brings its two points together exactly, moving
+// each body in inverse proportion to its mass, whatever direction the gap has (even none).
+TEST(Links, APinClosesItsGapInOnePassByInverseMass) {
+  phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 1), Vec3(0.0));
+  const phys::BoxId a = addCube(w, Vec3(0.0), phys::BoxModel::Tetra, 1.0);
+  const phys::BoxId b = addCube(w, Vec3(1.2, 0.0, 0.0), phys::BoxModel::Tetra, 3.0);
+  // The right face centre of a, the left face centre of b: 0.2 m apart along x.
+  w.addLink(w.anchor(a, Vec3(0.5, 0.0, 0.0)), w.anchor(b, Vec3(0.7, 0.0, 0.0)));
+  EXPECT_NEAR(w.metrics().maxJointError, 0.2, 1e-12);
+  w.step();
+  const phys::Link& pin = w.links()[0];
+  EXPECT_NEAR(glm::length(w.position(pin.b) - w.position(pin.a)), 0.0, 1e-12);
+  EXPECT_NEAR(w.metrics().maxJointError, 0.0, 1e-12);
+  // Momentum: the light box moved three times as far as the heavy one.
+  const double movedA = w.boxPose(a).center.x - 0.0, movedB = 1.2 - w.boxPose(b).center.x;
+  EXPECT_GT(movedA, 0.0);
+  EXPECT_NEAR(movedA * 1.0 - movedB * 3.0, 0.0, 1e-9);
+}
+
+TEST(Links, ARangeLinkActsOnlyOutsideItsBounds) {
+  phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 1), Vec3(0.0));
+  const phys::ParticleId p = w.addParticle({Vec3(0.0), Vec3(0.0), 1.0});
+  const phys::ParticleId q = w.addParticle({Vec3(1.0, 0.0, 0.0), Vec3(0.0), 1.0});
+  auto at = [](phys::ParticleId id) {
+    phys::Embedding e;
+    e.particle[0] = id;
+    e.weight[0] = 1.0;
+    e.count = 1;
+    return e;
+  };
+  w.addLink(at(p), at(q), 0.5, phys::kNoMaxLength);  // a one-sided stop: no closer than 0.5 m
+  w.step();
+  EXPECT_NEAR(w.particles().position[q].x, 1.0, 1e-12);  // 1 m apart: untouched
+  w.addLink(at(p), at(q), 0.0, 0.8);                      // and now no farther than 0.8 m
+  w.step();
+  EXPECT_NEAR(w.particles().position[q].x - w.particles().position[p].x, 0.8, 1e-12);
+}
+
+TEST(Links, BadInputIsRefusedAndNothingIsAdded) {
+  phys::World w = testing_phys::openSpace();
+  const phys::BoxId a = addCube(w, Vec3(0.0), phys::BoxModel::Corners);
+  const phys::Embedding good = w.anchor(a, Vec3(0.5, 0.0, 0.0));
+  phys::Embedding badWeights = good;
+  badWeights.weight[0] += 0.1;  // no longer sums to 1
+  phys::Embedding badId = good;
+  badId.particle[1] = 9999;
+  EXPECT_THROW(w.addLink(good, badWeights), std::invalid_argument);
+  EXPECT_THROW(w.addLink(good, badId), std::invalid_argument);
+  EXPECT_THROW(w.addLink(good, good, 0.5, 0.2), std::invalid_argument);
+  EXPECT_THROW(w.addLink(good, good, -1.0, 1.0), std::invalid_argument);
+  EXPECT_THROW((void)w.anchor(7, Vec3(0.0)), std::invalid_argument);
+  EXPECT_TRUE(w.links().empty());
+}
+
+// The pass itself: a box's particles with arbitrary velocities. Fully damped, what is left is
+// a rigid motion with the same momentum and angular momentum; half damped, half the rest.
+TEST(BodyDamping, LeavesTheRigidMotionWithTheSameMomenta) {
+  for (double fraction : {1.0, 0.5}) {
+    phys::Particles p;
+    phys::Box box;
+    box.particleCount = 8;
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 x = phys::boxCornerLocal(Vec3(0.5, 0.25, 1.0), k) + Vec3(3.0, 1.0, -2.0);
+      const Vec3 v(std::sin(1.0 + k), std::cos(2.0 * k), 0.3 * k - 1.0);  // anything, per particle
+      p.position.push_back(x);
+      p.previous.push_back(x - v * 0.01);
+      p.inverseMass.push_back(1.0 / (1.0 + 0.25 * k));
+    }
+    auto momenta = [&](Vec3& linear, Vec3& angular) {
+      linear = angular = Vec3(0.0);
+      for (int i = 0; i < 8; ++i) {
+        const double m = 1.0 / p.inverseMass[i];
+        linear += m * (p.position[i] - p.previous[i]);
+        angular += m * glm::cross(p.position[i], p.position[i] - p.previous[i]);
+      }
+    };
+    // Rate of change of the distance of each pair: zero for a rigid motion.
+    auto internal = [&] {
+      double worst = 0.0;
+      for (int i = 0; i < 8; ++i) {
+        for (int j = i + 1; j < 8; ++j) {
+          const Vec3 r = p.position[j] - p.position[i];
+          const Vec3 dv = (p.position[j] - p.previous[j]) - (p.position[i] - p.previous[i]);
+          worst = std::max(worst, std::abs(glm::dot(r, dv)) / glm::length(r));
+        }
+      }
+      return worst;
+    };
+    Vec3 linear0, angular0, linear1, angular1;
+    momenta(linear0, angular0);
+    const double before = internal();
+    const phys::Box boxes[] = {box};
+    phys::detail::dampBodyMotion(p, boxes, fraction);
+    momenta(linear1, angular1);
+    EXPECT_NEAR(glm::length(linear1 - linear0), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(angular1 - angular0), 0.0, 1e-12);
+    EXPECT_GT(before, 1e-3);
+    // Internal motion is linear in the velocities, so half damping leaves half of it.
+    EXPECT_NEAR(internal(), (1.0 - fraction) * before, 1e-12);
+  }
+}
+
+// In the world: one particle of a free box is displaced by 1 cm. Without body damping the
+// sticks' corrections keep ringing through the box; with it the box moves rigidly at once.
+TEST(BodyDamping, AKnockedBoxDoesNotRing) {
+  for (double damping : {0.0, 1.0}) {
+    phys::SolverSettings s = testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3);
+    s.bodyDamping = damping;
+    phys::World w = testing_phys::openSpace(s, Vec3(0.0));
+    phys::BoxDesc d;
+    d.velocity = Vec3(1.0, 0.0, 0.0);
+    d.angularVelocity = Vec3(0.0, 2.0, 0.0);
+    w.addBox(d);
+    w.step();
+    phys::Particles& p = const_cast<phys::Particles&>(w.particles());
+    p.position[0] += Vec3(0.0, 0.01, 0.0);
+    p.previous[0] += Vec3(0.0, 0.01, 0.0);  // displaced, not launched
+    w.step();
+    w.step();
+    double internal = 0.0;
+    for (phys::ParticleId i = 0; i < 8; ++i) {
+      for (phys::ParticleId j = i + 1; j < 8; ++j) {
+        const Vec3 r = w.particles().position[j] - w.particles().position[i];
+        internal = std::max(internal, std::abs(glm::dot(r, w.velocity(j) - w.velocity(i))) / glm::length(r));
+      }
+    }
+    std::printf("body damping %g: internal speed %.3g m/s after the knock\n", damping, internal);
+    if (damping == 1.0) {
+      EXPECT_LT(internal, 1e-9);
+    } else {
+      EXPECT_GT(internal, 0.01);  // still ringing at 10 cm/s
+    }
+  }
+}
+
+}  // namespace
