@@ -43,7 +43,7 @@ TEST(SceneFiles, WorldSolverGroundAndCamera) {
   const scenes::Scene s = load("",
                                "<world gravity=\"0 -3 0\" gravity-mode=\"point\" gravity-point=\"1 2 3\" "
                                "gravity-strength=\"4\" damping=\"0.5\" bound=\"500\"/>"
-                               "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\" slop=\"0.002\"/>"
+                               "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\" slop=\"0.002\" body-damping=\"0.25\"/>"
                                "<ground height=\"-1\" normal=\"0 2 0\" static-friction=\"0.9\" dynamic-friction=\"0.3\"/>"
                                "<camera eye=\"1 2 3\" target=\"0 0 0\"/>");
   const phys::WorldSettings& w = s.world.worldSettings();
@@ -65,6 +65,7 @@ TEST(SceneFiles, WorldSolverGroundAndCamera) {
   EXPECT_EQ(v.dt, 0.01);
   EXPECT_EQ(v.featureEpsilon, 0.02);
   EXPECT_EQ(v.contactSlop, 0.002);
+  EXPECT_EQ(v.bodyDamping, 0.25);
   EXPECT_EQ(s.camera.eye, glm::vec3(1, 2, 3));
 }
 
@@ -140,6 +141,33 @@ TEST(SceneFiles, GeneratorsNameTheirMembersAndPlaceThemOnTheFloor) {
   EXPECT_NEAR(s.world.particles().position[end.index].y, 10.0 - 2.5, 1e-12);
   EXPECT_EQ(s.world.particles().inverseMass[end.index], 0.01);
   EXPECT_EQ(s.world.particles().inverseMass[find("chain[0]").index], 0.0);  // pinned by default
+}
+
+TEST(SceneFiles, RagdollsAndTaperedPyramids) {
+  const scenes::Scene s = load(
+      "<ragdoll name=\"r\" pos=\"0 2 0\" model=\"seed\"/>"
+      "<ragdoll name=\"l\" pos=\"3 2 0\" euler=\"90 0 0\" scale=\"0.5\" mass=\"35\" model=\"lean\" friction=\"0.9\"/>"
+      "<pyramid name=\"p\" pos=\"-5 0 0\" base=\"2\" size=\"1\" taper=\"0.5\"/>");
+  EXPECT_EQ(s.world.boxes().size(), 10u + 10u + 3u);
+  EXPECT_EQ(s.world.particles().size(), 80u + 40u + 24u);
+  EXPECT_EQ(s.world.links().size(), 2u * 9u * 4u);  // per hinge: two pins and two stops
+  auto find = [&](const std::string& name) {
+    for (const auto& b : s.bodies) {
+      if (b.name == name) return b.index;
+    }
+    ADD_FAILURE() << "no body named " << name;
+    return 0u;
+  };
+  // Standing, the torso's bottom face is at pos: its centre 0.29 m (half its height) above.
+  EXPECT_NEAR(s.world.boxPose(find("r.torso")).center.y, 2.0 + 0.29, 1e-9);
+  EXPECT_NEAR(s.world.boxPose(find("r.head")).center.y, 2.0 + 0.71, 1e-9);
+  // Lying on its back at half scale: the head is 0.355 m along +z from the hips.
+  EXPECT_NEAR(s.world.boxPose(find("l.head")).center.z, 0.355, 1e-9);
+  EXPECT_EQ(s.world.boxes()[find("l.torso")].model, phys::BoxModel::Tetra);
+  EXPECT_EQ(s.world.boxes()[find("l.torso")].material.staticFriction, 0.9);
+  // The tapered pyramid: the top box half the size, resting on the row below.
+  EXPECT_NEAR(s.world.boxes()[find("p[2]")].halfExtents.x, 0.25, 1e-12);
+  EXPECT_NEAR(s.world.boxPose(find("p[2]")).center.y, 1.0 + 0.25, 1e-12);
 }
 
 TEST(ScenePaths, NamesResolveInTheSceneFolderAndPathsAsGiven) {

@@ -1,5 +1,9 @@
 #include "generators.h"
 
+#include <cmath>
+
+#include "physics/ragdoll.h"
+
 #include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -49,21 +53,29 @@ void generateStack(ElementReader& e, BuildContext& ctx) {
   }
 }
 
-// Rows of boxes along x, each one shorter, resting on y = pos.y, centred on pos.
+// Rows of boxes along x, each one box shorter, resting on y = pos.y, centred on pos. With
+// taper < 1 each row's boxes are that much smaller than the row's below (the seed's pyramid of
+// boxes that vary in size).
 void generatePyramid(ElementReader& e, BuildContext& ctx) {
   const std::string name = e.text("name").value_or("pyramid");
   const phys::Vec3 pos = e.requiredVector("pos", "m");
   const long base = e.requiredInteger("base", 1, kMaxPyramidBase);
+  const double taper = e.number("taper", "").value_or(1.0);
+  if (taper <= 0.0 || taper > 1.0) e.fail("taper", "must be > 0 and at most 1");
   phys::BoxDesc box = readBoxCommon(e);
   e.rejectUnknownAttributes();
+  const phys::Vec3 baseSize = box.size;
   long index = 0;
+  double bottom = pos.y;
   for (long row = 0; row < base; ++row) {
+    box.size = baseSize * std::pow(taper, static_cast<double>(row));
     const long inRow = base - row;
     for (long i = 0; i < inRow; ++i) {
       const double x = (static_cast<double>(i) - 0.5 * static_cast<double>(inRow - 1)) * box.size.x;
-      box.center = pos + phys::Vec3(x, box.size.y * (static_cast<double>(row) + 0.5), 0.0);
+      box.center = phys::Vec3(pos.x + x, bottom + 0.5 * box.size.y, pos.z);
       addBox(e, ctx, box, member(name, index++));
     }
+    bottom += box.size.y;
   }
 }
 
@@ -126,6 +138,36 @@ void generateChain(ElementReader& e, BuildContext& ctx) {
     ctx.addName(e, p.name, NamedBody::Kind::Particle, id);
     if (i > 0) ctx.world.addStick(previous, id, length, compliance);
     previous = id;
+  }
+}
+
+// Ten boxes joined by hinges (physics/ragdoll.h); pos is where its hips are, and at euler 0 it
+// stands on its feet facing +z. Parts are named "<name>.head", "<name>.torso", ...
+void generateRagdoll(ElementReader& e, BuildContext& ctx) {
+  phys::RagdollDesc d;
+  d.name = e.text("name").value_or("ragdoll");
+  d.hips = e.requiredVector("pos", "m");
+  if (auto euler = e.vector("euler", "degrees")) d.orientation = glm::dquat(glm::radians(*euler));
+  if (auto scale = e.number("scale", "")) {
+    if (*scale <= 0.0 || *scale > 1000.0) e.fail("scale", "must be > 0 and at most 1000");
+    d.scale = *scale;
+  }
+  if (auto mass = e.number("mass", "kg")) {
+    if (*mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
+    d.mass = *mass;
+  }
+  if (auto model = e.text("model")) {
+    const auto parsed = phys::parseRagdollModel(*model);
+    if (!parsed) e.fail("model", "'" + *model + "' must be seed or lean");
+    d.model = *parsed;
+  }
+  d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
+  e.material(d.material);
+  e.rejectUnknownAttributes();
+  const phys::Ragdoll ragdoll = phys::addRagdoll(ctx.world, d);
+  for (int i = 0; i < phys::kRagdollParts; ++i) {
+    const phys::BoxId id = ragdoll.parts[static_cast<std::size_t>(i)];
+    ctx.addName(e, ctx.world.boxes()[id].name, NamedBody::Kind::Box, id);
   }
 }
 

@@ -31,5 +31,7 @@ void generateStack(ElementReader& e, BuildContext& ctx);
 void generatePyramid(ElementReader& e, BuildContext& ctx);
 void generateGrid(ElementReader& e, BuildContext& ctx);
 void generateChain(ElementReader& e, BuildContext& ctx);
+/// Not a generator in name, but it makes ten named boxes from one element.
+void generateRagdoll(ElementReader& e, BuildContext& ctx);
 
 }  // namespace scenes::detail

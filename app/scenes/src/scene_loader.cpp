@@ -22,7 +22,7 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "stack", "pyramid", "grid", "chain"};
+constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "stack", "pyramid", "grid", "chain", "ragdoll"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -73,6 +73,10 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
     if (*slop < 0.0) e.fail("slop", "must be >= 0 (m)");
     s.contactSlop = *slop;
   }
+  if (auto damping = e.number("body-damping", "")) {
+    if (*damping < 0.0 || *damping > 1.0) e.fail("body-damping", "must be from 0 to 1");
+    s.bodyDamping = *damping;
+  }
   e.rejectUnknownAttributes();
 }
 
@@ -113,6 +117,7 @@ class Builder {
     else if (kind == "pyramid") detail::generatePyramid(e, ctx_);
     else if (kind == "grid") detail::generateGrid(e, ctx_);
     else if (kind == "chain") detail::generateChain(e, ctx_);
+    else if (kind == "ragdoll") detail::generateRagdoll(e, ctx_);
     if (scene_.world.particles().size() > detail::kMaxParticles) {
       e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
     }
@@ -268,7 +273,7 @@ Scene build(std::vector<char>& buffer, const std::string& file) {
     } else if (isOneOf(kind, kBodyElements)) {
       bodies.push_back(child);
     } else {
-      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, stack, pyramid, grid, chain)");
+      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, stack, pyramid, grid, chain, ragdoll)");
     }
   }
 
