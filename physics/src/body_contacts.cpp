@@ -9,23 +9,15 @@
 namespace phys::detail {
 namespace {
 
-Real weightSum(const Particles& p, const Embedding& e) {
-  Real sum = 0.0;
-  for (int i = 0; i < e.count; ++i) sum += e.weight[i] * e.weight[i] * p.inverseMass[e.particle[i]];
-  return sum;
+Real weightSum(const Particles& p, const BodyContact& c) {
+  return embeddedWeight(p.inverseMass, c.pointA) + embeddedWeight(p.inverseMass, c.pointB);
 }
 
 // Moves the two points of a contact in opposite directions: A by -lambda, B by +lambda (a vector
 // in position units per unit of weight), through their particles in `x`.
 void movePair(std::vector<Vec3>& x, const Particles& p, const BodyContact& c, const Vec3& lambda) {
-  for (int i = 0; i < c.pointA.count; ++i) {
-    const Real w = p.inverseMass[c.pointA.particle[i]];
-    if (w != 0.0) x[c.pointA.particle[i]] -= (c.pointA.weight[i] * w) * lambda;
-  }
-  for (int j = 0; j < c.pointB.count; ++j) {
-    const Real w = p.inverseMass[c.pointB.particle[j]];
-    if (w != 0.0) x[c.pointB.particle[j]] += (c.pointB.weight[j] * w) * lambda;
-  }
+  shiftEmbedded(x, p.inverseMass, c.pointA, -lambda);
+  shiftEmbedded(x, p.inverseMass, c.pointB, lambda);
 }
 
 }  // namespace
@@ -37,7 +29,7 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
     const Real gap = glm::dot(c.normal, embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA)) + slop;
     push[k] = 0.0;
     if (gap >= 0.0) continue;
-    const Real denominator = weightSum(p, c.pointA) + weightSum(p, c.pointB);
+    const Real denominator = weightSum(p, c);
     if (denominator == 0.0) continue;  // both sides pinned or frozen
     movePair(p.position, p, c, (-gap / denominator) * c.normal);
     push[k] = -gap;
@@ -56,7 +48,7 @@ void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std:
     slide -= glm::dot(slide, c.normal) * c.normal;
     const Real slideLength = glm::length(slide);
     if (slideLength == 0.0) continue;
-    const Real denominator = weightSum(p, c.pointA) + weightSum(p, c.pointB);
+    const Real denominator = weightSum(p, c);
     if (denominator == 0.0) continue;
     Real cut = 1.0;
     if (slideLength > c.combined.staticFriction * push[k]) {

@@ -8,16 +8,24 @@ Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e) {
   return p;
 }
 
-// REFERENCES.md (Jakobsen, "a point embedded in a stick", generalised): xi += ci wi D / sum cj^2 wj.
-void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& D) {
-  Real denominator = 0.0;
-  for (int i = 0; i < e.count; ++i) denominator += e.weight[i] * e.weight[i] * inverseMass[e.particle[i]];
-  if (denominator == 0.0) return;  // every carrier pinned
-  const Vec3 scaled = D / denominator;
+Real embeddedWeight(const std::vector<Real>& inverseMass, const Embedding& e) {
+  Real sum = 0.0;
+  for (int i = 0; i < e.count; ++i) sum += e.weight[i] * e.weight[i] * inverseMass[e.particle[i]];
+  return sum;
+}
+
+void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& step) {
   for (int i = 0; i < e.count; ++i) {
     const Real w = inverseMass[e.particle[i]];
-    if (w != 0.0) x[e.particle[i]] += (e.weight[i] * w) * scaled;  // a pinned one never moves
+    if (w != 0.0) x[e.particle[i]] += (e.weight[i] * w) * step;  // a pinned one never moves
   }
+}
+
+// REFERENCES.md (Jakobsen, "a point embedded in a stick", generalised): xi += ci wi D / sum cj^2 wj.
+void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& D) {
+  const Real denominator = embeddedWeight(inverseMass, e);
+  if (denominator == 0.0) return;  // every carrier pinned
+  shiftEmbedded(x, inverseMass, e, D / denominator);
 }
 
 }  // namespace phys::detail

@@ -8,22 +8,6 @@
 #include "passes.h"
 
 namespace phys::detail {
-namespace {
-
-Real weightSum(const Particles& p, const Embedding& e) {
-  Real sum = 0.0;
-  for (int i = 0; i < e.count; ++i) sum += e.weight[i] * e.weight[i] * p.inverseMass[e.particle[i]];
-  return sum;
-}
-
-void move(Particles& p, const Embedding& e, const Vec3& step) {
-  for (int i = 0; i < e.count; ++i) {
-    const Real w = p.inverseMass[e.particle[i]];
-    if (w != 0.0) p.position[e.particle[i]] += (e.weight[i] * w) * step;  // pinned: never written
-  }
-}
-
-}  // namespace
 
 void solveLinks(Particles& p, std::span<const Link> links) {
   for (const Link& link : links) {
@@ -35,11 +19,11 @@ void solveLinks(Particles& p, std::span<const Link> links) {
       if (target < 0.0 || length == 0.0) continue;  // within its bounds, or no direction to push along
       correction = gap * ((length - target) / length);
     }
-    const Real denominator = weightSum(p, link.a) + weightSum(p, link.b);
+    const Real denominator = embeddedWeight(p.inverseMass, link.a) + embeddedWeight(p.inverseMass, link.b);
     if (denominator == 0.0) continue;  // both ends pinned or frozen
     const Vec3 step = correction / denominator;
-    move(p, link.a, step);
-    move(p, link.b, -step);
+    shiftEmbedded(p.position, p.inverseMass, link.a, step);
+    shiftEmbedded(p.position, p.inverseMass, link.b, -step);
   }
 }
 

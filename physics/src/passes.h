@@ -68,6 +68,11 @@ void dampBodyMotion(Particles& p, std::span<const Box> boxes, Real fraction);
 
 /// Current position of an embedded point.
 Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);
+/// sum c_i^2 w_i over the point's particles: what the weighted projection divides by.
+Real embeddedWeight(const std::vector<Real>& inverseMass, const Embedding& e);
+/// Moves each particle of the point by c_i w_i step (a pinned one not at all): the weighted
+/// projection's update, without its division.
+void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& step);
 /// Moves an embedded point by D through its particles in `x` (positions or previous
 /// positions), each in proportion to weight * inverse mass (REFERENCES.md).
 void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& D);
