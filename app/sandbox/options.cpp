@@ -13,7 +13,7 @@ constexpr int kMaxFrames = 1000000;
 
 std::string usage() {
   return "usage: sandbox [SCENE] [--screenshot FILE] [--frames N] [--data DIR]\n"
-         "  SCENE              a scene file, or the name of one in assets/scenes/ (default: falling-box)\n"
+         "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
          "                     each frame advances the simulation by one step\n"

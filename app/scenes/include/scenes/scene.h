@@ -65,6 +65,6 @@ std::filesystem::path sceneDirectory(const std::filesystem::path& dataDir);
 /// "pendulum" finds assets/scenes/pendulum.xml). Does not check that the result exists.
 std::filesystem::path resolveScene(std::string_view nameOrPath, const std::filesystem::path& sceneDir);
 /// The scene the sandbox opens with no argument, as a name for resolveScene.
-inline constexpr std::string_view kDefaultScene = "falling-box";
+inline constexpr std::string_view kDefaultScene = "ragdoll";  // the seed's scene 1
 
 }  // namespace scenes
