@@ -129,6 +129,6 @@ TEST_P(RagdollDrop, LandsAndRestsWithoutSlidingOrBreakingItsJoints) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, RagdollDrop, testing::Values(phys::RagdollModel::Seed, phys::RagdollModel::Lean),
-                         [](const auto& info) { return std::string(phys::toString(info.param)); });
+                         [](const testing::TestParamInfo<phys::RagdollModel>& model) { return std::string(phys::toString(model.param)); });
 
 }  // namespace

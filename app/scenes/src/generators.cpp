@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "physics/ragdoll.h"
-
 #include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
+
+#include "physics/ragdoll.h"
 
 namespace scenes::detail {
 namespace {

@@ -27,7 +27,7 @@ struct Profile {
   double constraints = 0.0;  ///< unit: ms; relaxation of the sticks
   double collide = 0.0;      ///< unit: ms; box frames, broad phase and narrow phase
   double contacts = 0.0;     ///< unit: ms; contact projection (ground and box-box), all iterations
-  double friction = 0.0;     ///< unit: ms
+  double friction = 0.0;     ///< unit: ms; friction, and body damping (SolverSettings::bodyDamping)
   double guard = 0.0;        ///< unit: ms; NaN and bound checks
   double total = 0.0;        ///< unit: ms; the whole step
 };

@@ -3,7 +3,7 @@
 // and two one-sided range links, one at each stop of its angle. Two models a scene chooses:
 // `seed` builds the parts as corners boxes (80 particles, the seed's), `lean` as tetra boxes
 // (40 particles: the fewest of our box models that carry the same joints and limits).
-// docs/physics.md, "Ragdolls", draws the layout and lists the limits.
+// docs/physics.md, "Joints and ragdolls", draws the layout and lists the limits.
 #include <array>
 #include <optional>
 #include <string>
