@@ -33,6 +33,15 @@ void World::ignoreCollision(BoxId a, BoxId b) {
   if (at == ignoredPairs_.end() || *at != key) ignoredPairs_.insert(at, key);
 }
 
+std::vector<std::pair<BoxId, BoxId>> World::ignoredCollisions() const {
+  std::vector<std::pair<BoxId, BoxId>> out;
+  out.reserve(ignoredPairs_.size());
+  for (const std::uint64_t key : ignoredPairs_) {
+    out.emplace_back(static_cast<BoxId>(key >> 32), static_cast<BoxId>(key & 0xffffffffu));
+  }
+  return out;
+}
+
 bool World::collides(BoxId a, BoxId b) const {
   const Box& ba = boxes_[a];
   const Box& bb = boxes_[b];

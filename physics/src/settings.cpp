@@ -52,6 +52,10 @@ std::string validate(const SolverSettings& s) {
   if (!finiteNonNegative(s.featureEpsilon)) why << "featureEpsilon must be finite and >= 0 (m); ";
   if (!finiteNonNegative(s.contactSlop)) why << "contactSlop must be finite and >= 0 (m); ";
   if (!(s.bodyDamping >= 0.0 && s.bodyDamping <= 1.0)) why << "bodyDamping must be from 0 to 1; ";
+  if (!(s.restitution >= 0.0 && s.restitution <= 1.0)) why << "restitution must be from 0 to 1; ";
+  if (!(s.compliance >= 0.0 && s.compliance <= kMaxCompliance)) {
+    why << "compliance must be from 0 to " << kMaxCompliance << " (m/N); ";
+  }
   return joined(why);
 }
 

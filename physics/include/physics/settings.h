@@ -68,7 +68,17 @@ struct SolverSettings {
   /// plain scheme, where what the passes leave of a box's deformation turns into vibration.
   /// Ragdolls need it to come to rest; stacks creep with it (docs/physics.md), hence off.
   Real bodyDamping = 0.0;  ///< unitless, 0 to 1
+  /// Share of the normal speed a point keeps when it hits the ground or another box, reversed.
+  /// 0 is Jakobsen's plain projection (the point stops); 1 bounces without loss. Impacts slower
+  /// than kRestitutionMinSpeed never bounce, so resting contacts stay at rest.
+  Real restitution = 0.0;  ///< unitless, 0 to 1
+  /// Added to every stick's own compliance by the xpbd method (the others ignore compliance):
+  /// one knob that softens every stick and joint of the world at once.
+  Real compliance = 0.0;  ///< unit: m/N, 0 to kMaxCompliance
 };
+
+/// Below this normal speed an impact does not bounce (SolverSettings::restitution).
+inline constexpr Real kRestitutionMinSpeed = 0.5;  ///< unit: m/s
 
 /// Empty when the settings can be stepped; otherwise says which field is wrong and why.
 std::string validate(const WorldSettings& settings);

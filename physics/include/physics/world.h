@@ -62,6 +62,8 @@ class World {
 
   /// Keeps two boxes from colliding with each other (the parts of a ragdoll joined by a joint).
   void ignoreCollision(BoxId a, BoxId b);
+  /// Every pair ignoreCollision() was given, as (smaller id, larger id), sorted.
+  std::vector<std::pair<BoxId, BoxId>> ignoredCollisions() const;
 
   /// Advances the world by solverSettings().dt.
   void step();
