@@ -5,6 +5,7 @@
 // a few relaxation passes leave some deformation in each substep, and Verlet turns it into
 // velocity: contacts carried by weights of both signs (tetra boxes) and parts squeezed between
 // heavier ones then never come to rest. Removing that motion leaves the rigid one untouched.
+// The box's mass properties and rigid motion live here; restitution and the drag use them too.
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -12,49 +13,45 @@
 
 namespace phys::detail {
 
-namespace {
-
-bool movable(const Particles& p, const Box& box) {
-  for (int j = 0; j < box.particleCount; ++j) {
-    if (p.inverseMass[box.firstParticle + j] == 0.0) return false;  // pinned or frozen
+bool massProperties(const Particles& p, const Box& box, MassProperties& out) {
+  const ParticleId first = box.firstParticle, end = first + static_cast<ParticleId>(box.particleCount);
+  out = {};
+  for (ParticleId i = first; i < end; ++i) {
+    if (p.inverseMass[i] == 0.0) return false;  // pinned or frozen
+    const Real m = 1.0 / p.inverseMass[i];
+    out.mass += m;
+    out.centre += m * p.position[i];
   }
-  return true;
+  out.centre /= out.mass;
+  for (ParticleId i = first; i < end; ++i) {
+    const Vec3 r = p.position[i] - out.centre;
+    out.inertia += (1.0 / p.inverseMass[i]) * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
+  }
+  return std::abs(glm::determinant(out.inertia)) > 0.0;
 }
 
-}  // namespace
+RigidMotion rigidMotion(const Particles& p, const Box& box, const MassProperties& m) {
+  const ParticleId first = box.firstParticle, end = first + static_cast<ParticleId>(box.particleCount);
+  Vec3 momentum(0.0), angularMomentum(0.0);
+  for (ParticleId i = first; i < end; ++i) {
+    const Real mass = 1.0 / p.inverseMass[i];
+    momentum += mass * (p.position[i] - p.previous[i]);
+    angularMomentum += mass * glm::cross(p.position[i] - m.centre, p.position[i] - p.previous[i]);
+  }
+  return {momentum / m.mass, glm::inverse(m.inertia) * angularMomentum};
+}
 
 void dampBodyMotion(Particles& p, std::span<const Box> boxes, Real fraction) {
   if (fraction <= 0.0) return;
+  MassProperties m;
   for (const Box& box : boxes) {
-    if (!movable(p, box)) continue;
-    const ParticleId first = box.firstParticle, end = first + static_cast<ParticleId>(box.particleCount);
+    if (!massProperties(p, box, m)) continue;  // pinned, frozen or crushed flat: left alone
     // Motions are per substep (x - x*), so no h is needed: velocity times h throughout.
-    Real mass = 0.0;
-    Vec3 centre(0.0), momentum(0.0);
-    for (ParticleId i = first; i < end; ++i) {
-      const Real m = 1.0 / p.inverseMass[i];
-      mass += m;
-      centre += m * p.position[i];
-      momentum += m * (p.position[i] - p.previous[i]);
-    }
-    centre /= mass;
-    const Vec3 linear = momentum / mass;
-    Vec3 angular(0.0);
-    glm::dmat3 inertia(0.0);
-    for (ParticleId i = first; i < end; ++i) {
-      const Real m = 1.0 / p.inverseMass[i];
-      const Vec3 r = p.position[i] - centre;
-      angular += m * glm::cross(r, p.position[i] - p.previous[i]);
-      inertia += m * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
-    }
-    // Four or more particles not in one plane make the inertia positive definite; a box
-    // crushed flat does not, and is left alone.
-    if (!(std::abs(glm::determinant(inertia)) > 0.0)) continue;
-    const Vec3 omega = glm::inverse(inertia) * angular;
-    for (ParticleId i = first; i < end; ++i) {
-      const Vec3 rigid = linear + glm::cross(omega, p.position[i] - centre);
+    const RigidMotion rigid = rigidMotion(p, box, m);
+    for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount); ++i) {
+      const Vec3 target = rigid.linear + glm::cross(rigid.angular, p.position[i] - m.centre);
       const Vec3 motion = p.position[i] - p.previous[i];
-      p.previous[i] = p.position[i] - (motion + fraction * (rigid - motion));
+      p.previous[i] = p.position[i] - (motion + fraction * (target - motion));
     }
   }
 }

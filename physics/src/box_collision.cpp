@@ -170,6 +170,7 @@ void World::buildBoxContacts() {
   }
   bodyPush_.assign(bodyContacts_.size(), 0.0);
   bodyTouched_.assign(bodyContacts_.size(), 0);
+  bodyApproach_.assign(bodyContacts_.size(), 0.0);
 }
 
 // A deep overlap the pair already had at the start of the substep (measured in x*: more than

@@ -3,6 +3,8 @@
 // reads like the algorithm and each phase can be timed and tested alone. None allocates.
 #include <span>
 
+#include <glm/mat3x3.hpp>
+
 #include "physics/box.h"
 #include "physics/constraints.h"
 #include "physics/particles.h"
@@ -13,6 +15,14 @@ namespace phys::detail {
 /// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).
 void integrate(Particles& p, const WorldSettings& world, Real h);
+
+/// Pulls an embedded point towards `target` by a spring of the given stiffness (N/m) and
+/// damping (N s/m), stepped implicitly over the substep h, so it is stable at any stiffness:
+/// the point at most reaches the target. `box` is the box that carries the point, which then
+/// answers as a rigid body, or null (a loose particle): the point's carriers answer alone.
+/// Pinned and frozen particles do not move.
+void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3& target, Real stiffness, Real damping,
+               Real h);
 
 /// The length a stick or range stick must be moved to, or a negative number when the current
 /// length is within its bounds (nothing to do).
@@ -31,7 +41,8 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Re
 /// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
 /// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
 /// zeroed at the start of each substep.
-void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h);
+/// `compliance` (m/N, SolverSettings::compliance) is added to every stick's own.
+void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h, Real compliance);
 /// SHAKE (Ryckaert, Ciccotti, Berendsen 1977): each stick moved along its direction at the
 /// start of the substep (x* after integration), by the root of a scalar quadratic.
 void relaxShake(Particles& p, std::span<const Stick> sticks);
@@ -56,6 +67,59 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
 /// the tangential part of the relative motion this substep is stopped within mu_s * push, else
 /// shortened by mu_d * push.
 void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push);
+
+/// What restitution needs to know in a substep (SolverSettings::restitution).
+struct Restitution {
+  Real coefficient = 0.0;  // e, 0 to 1
+  Real minSpeed = 0.0;     // m/s: slower impacts do not bounce
+  Real h = 0.0;            // s: the substep
+};
+
+/// The change of a contact's normal separation speed (m/s, positive apart) that restitution asks
+/// for, from its separation speed now and its approach speed at the start of the substep. A fast
+/// impact leaves at e times its approach speed. A slow one only stops closing: then the box under
+/// a box that bounces, pushed down by the bounce, hands it back from the ground instead of
+/// carrying half of it into the ground.
+inline Real restitutionChange(Real separation, Real approach, const Restitution& r) {
+  if (approach > r.minSpeed) return r.coefficient * approach - separation;
+  return separation < 0.0 ? -separation : 0.0;
+}
+
+/// Normal speed (m/s) at which each ground contact point approaches the ground, from x - x*.
+void measureGroundApproach(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real h,
+                           std::span<Real> approach);
+/// Normal speed (m/s) at which the two points of each box-box contact approach each other.
+void measureBodyApproach(const Particles& p, std::span<const BodyContact> contacts, Real h, std::span<Real> approach);
+/// Fills each box's rigid state (RigidState) from its particles, with no changes yet.
+void measureRigidStates(const Particles& p, std::span<const Box> boxes, Real h, std::span<RigidState> rigid);
+/// One Gauss-Seidel pass of restitution over the ground contact points `pushed` in this substep:
+/// an impulse along n on each point's body gives the point the separation speed
+/// restitutionChange asks for. A box takes it in its rigid state, a loose particle in its x*.
+void restituteGround(Particles& p, std::span<RigidState> rigid, std::span<const GroundContact> contacts,
+                     const Vec3& n, std::span<const Real> approach, std::span<const std::uint8_t> pushed,
+                     const Restitution& r);
+/// restituteGround for box-box contacts: equal and opposite impulses on the two boxes.
+void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid, std::span<const BodyContact> contacts,
+                           std::span<const Real> approach, std::span<const std::uint8_t> pushed, const Restitution& r);
+/// Writes each box's velocity and spin changes into its particles' x*: x*_i -= (dv + dw x r_i) h.
+void applyRigidChanges(Particles& p, std::span<const Box> boxes, std::span<const RigidState> rigid, Real h);
+
+/// A box's mass (kg), centre of mass (m) and inertia tensor about it (kg m^2), from its particles now.
+struct MassProperties {
+  Real mass = 0.0;
+  Vec3 centre{0.0};
+  glm::dmat3 inertia{0.0};
+};
+/// False when the box cannot move as a rigid body: a particle pinned or frozen, or the box crushed
+/// flat (four or more particles not in one plane make the inertia positive definite).
+bool massProperties(const Particles& p, const Box& box, MassProperties& out);
+/// A box's rigid motion over the substep, from its particles' x - x*: the centre's (m), and the
+/// rotation (rad, about the centre) that keeps the particles' angular momentum. Velocities times h.
+struct RigidMotion {
+  Vec3 linear{0.0};
+  Vec3 angular{0.0};
+};
+RigidMotion rigidMotion(const Particles& p, const Box& box, const MassProperties& m);
 
 /// One pass over the joints, Gauss-Seidel in every method: each link's two points moved apart
 /// or together along their separation by the weighted projection of REFERENCES.md, a pin's all

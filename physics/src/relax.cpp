@@ -69,14 +69,15 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Re
 }
 
 // XPBD, Macklin, Müller and Chentanez 2016, eq. 18: dlambda = (-C - a~ lambda) / (sum w + a~),
-// a~ = compliance / h^2; gradient of C = |x2 - x1| - r is -n for x1 and +n for x2.
-void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h) {
+// a~ = compliance / h^2; gradient of C = |x2 - x1| - r is -n for x1 and +n for x2. The world's
+// compliance adds to each stick's: compliances in series add, as springs' inverse stiffnesses do.
+void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h, Real compliance) {
   const Real inverseH2 = 1.0 / (h * h);
   StickState m;
   for (std::size_t c = 0; c < sticks.size(); ++c) {
     const Stick& s = sticks[c];
     if (!measure(p, s, m) || m.length == 0.0) continue;
-    const Real alpha = s.compliance * inverseH2;  // finite: compliance and h are bounded (settings.h)
+    const Real alpha = (s.compliance + compliance) * inverseH2;  // finite: both and h are bounded (settings.h)
     const Real dLambda = (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
     lambda[c] += dLambda;
     const Vec3 n = m.d / m.length;

@@ -152,11 +152,7 @@ ParticleId World::addParticle(const ParticleDesc& desc) {
   movedByBoxContact_.push_back(0);
   jacobiDelta_.emplace_back(0.0);
   degree_.push_back(0.0);
-  Embedding self;
-  self.particle[0] = id;
-  self.weight[0] = 1.0;
-  self.count = 1;
-  addContactPoint(self, world_.groundMaterial, -1);
+  addContactPoint(embedParticle(id), world_.groundMaterial, -1);
   return id;
 }
 
@@ -164,6 +160,8 @@ void World::addContactPoint(const Embedding& point, const Material& material, st
   contactPoints_.push_back({point, material, body >= 0 ? combine(material, world_.groundMaterial) : world_.groundMaterial, body});
   normalPush_.push_back(0.0);
   touched_.push_back(0);
+  groundHit_.push_back(0);
+  groundApproach_.push_back(0.0);
 }
 
 void World::addStick(ParticleId a, ParticleId b, Real compliance) {
@@ -190,20 +188,44 @@ void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength,
   degree_[b] += 1.0;
 }
 
-void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real maxLength) {
-  for (const Embedding* e : {&a, &b}) {
-    require(e->count >= 1 && e->count <= 4, "addLink: an embedding needs 1 to 4 particles");
-    Real sum = 0.0;
-    for (int i = 0; i < e->count; ++i) {
-      require(e->particle[i] < particles_.size(), "addLink: particle ids must exist");
-      require(std::isfinite(e->weight[i]), "addLink: weights must be finite");
-      sum += e->weight[i];
-    }
-    require(std::abs(sum - 1.0) < 1e-9, "addLink: an embedding's weights must sum to 1");
+// An embedding must be an affine combination of existing particles; `who` prefixes the message.
+void World::checkEmbedding(const Embedding& e, const std::string& who) const {
+  require(e.count >= 1 && e.count <= 4, who + ": an embedding needs 1 to 4 particles");
+  Real sum = 0.0;
+  for (int i = 0; i < e.count; ++i) {
+    require(e.particle[i] < particles_.size(), who + ": particle ids must exist");
+    require(std::isfinite(e.weight[i]), who + ": weights must be finite");
+    sum += e.weight[i];
   }
+  require(std::abs(sum - 1.0) < 1e-9, who + ": an embedding's weights must sum to 1");
+}
+
+void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real maxLength) {
+  checkEmbedding(a, "addLink");
+  checkEmbedding(b, "addLink");
   require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
   require(!std::isnan(maxLength) && maxLength >= minLength, "addLink: max length must be >= min length (m)");
   links_.push_back({a, b, minLength, maxLength});
+}
+
+void World::setDrag(const Drag& drag) {
+  checkEmbedding(drag.point, "setDrag");
+  require(finite(drag.target), "setDrag: target must be finite");
+  require(std::isfinite(drag.stiffness) && drag.stiffness >= 0.0, "setDrag: stiffness must be finite and >= 0 (N/m)");
+  require(std::isfinite(drag.damping) && drag.damping >= 0.0, "setDrag: damping must be finite and >= 0 (N s/m)");
+  drag_ = drag;
+  // The box that carries the point answers the pull as a rigid body; a point carried by anything
+  // else (a loose particle, particles of several bodies) is moved through its carriers alone.
+  dragBox_ = particleBody_[drag.point.particle[0]];
+  for (int i = 1; i < drag.point.count; ++i) {
+    if (particleBody_[drag.point.particle[i]] != dragBox_) dragBox_ = -1;
+  }
+}
+
+void World::setDragTarget(const Vec3& target) {
+  require(drag_.has_value(), "setDragTarget: no drag is set");
+  require(finite(target), "setDragTarget: target must be finite");
+  drag_->target = target;
 }
 
 Embedding World::anchor(BoxId id, const Vec3& worldPoint) const {
@@ -266,6 +288,8 @@ BoxId World::addBox(const BoxDesc& desc) {
   contactPoints_.resize(contactsBefore);
   normalPush_.resize(contactsBefore);
   touched_.resize(contactsBefore);
+  groundHit_.resize(contactsBefore);
+  groundApproach_.resize(contactsBefore);
 
   const std::span<const Pair> pairs = desc.model == BoxModel::Corners ? std::span<const Pair>(kCornerSticks)
                                                                        : std::span<const Pair>(kTetraSticks);
@@ -292,6 +316,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   box.collisionMask = desc.collisionMask;
   boxes_.push_back(box);
   frames_.emplace_back();
+  rigid_.emplace_back();
   sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
   return static_cast<BoxId>(boxIndex);
 }
@@ -303,11 +328,12 @@ void World::relax(Real h) {
     switch (solver_.method) {
       case SolverMethod::GaussSeidel: detail::relaxGaussSeidel(particles_, sticks_); break;
       case SolverMethod::Jacobi: detail::relaxJacobi(particles_, sticks_, degree_, jacobiDelta_); break;
-      case SolverMethod::Xpbd: detail::relaxXpbd(particles_, sticks_, lambda_, h); break;
+      case SolverMethod::Xpbd: detail::relaxXpbd(particles_, sticks_, lambda_, h, solver_.compliance); break;
       case SolverMethod::Shake: detail::relaxShake(particles_, sticks_); break;
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links
-    // between bodies, then the contacts.
+    // between bodies, then the contacts. Links are rigid projections in every method, so the
+    // world's compliance, which XPBD adds to the sticks, does not soften them.
     detail::solveLinks(particles_, links_);
     profile_.constraints += millisecondsSince(start);
 
@@ -328,11 +354,31 @@ void World::relax(Real h) {
     if (ground) {
       detail::applyGroundFriction(particles_, contactPoints_, world_.groundNormal, normalPush_);
       for (std::size_t c = 0; c < touched_.size(); ++c) {
-        if (normalPush_[c] > 0.0) touched_[c] = 1;
+        if (normalPush_[c] > 0.0) touched_[c] = groundHit_[c] = 1;
       }
     }
     profile_.friction += millisecondsSince(start);
   }
+}
+
+// Restitution, after the position passes: each contact pushed in this substep that approached
+// faster than the threshold leaves at e times that speed; the slower ones only stop closing. A
+// velocity pass on the boxes as rigid bodies (restitution.cpp): only x* moves, so the passes'
+// positions stay. Gauss-Seidel, `iterations` times, because contacts share bodies: a box landing
+// on a box that rests on the ground must get its bounce back from the ground through the box below.
+// Impacts under 2 |g| h are the speed a resting contact gains in one substep, and never bounce
+// (Müller et al. 2020's threshold), so coarse steps and strong gravity do not make boxes hop.
+void World::restitute(Real h) {
+  const Real g = world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
+  const detail::Restitution r{solver_.restitution, std::max(kRestitutionMinSpeed, 2.0 * g * h), h};
+  detail::measureRigidStates(particles_, boxes_, h, rigid_);
+  for (int it = 0; it < solver_.iterations; ++it) {
+    detail::restituteBodyContacts(particles_, rigid_, bodyContacts_, bodyApproach_, bodyTouched_, r);
+    if (world_.ground) {
+      detail::restituteGround(particles_, rigid_, contactPoints_, world_.groundNormal, groundApproach_, groundHit_, r);
+    }
+  }
+  detail::applyRigidChanges(particles_, boxes_, rigid_, h);
 }
 
 void World::step() {
@@ -344,6 +390,11 @@ void World::step() {
   for (int s = 0; s < solver_.substeps; ++s) {
     auto start = Clock::now();
     detail::integrate(particles_, world_, h);
+    // The mouse spring is a force: applied with gravity, before the passes share it out.
+    if (drag_) {
+      const Box* box = dragBox_ >= 0 ? &boxes_[static_cast<std::size_t>(dragBox_)] : nullptr;
+      detail::applyDrag(particles_, box, drag_->point, drag_->target, drag_->stiffness, drag_->damping, h);
+    }
     profile_.integrate += millisecondsSince(start);
 
     // Contacts are found once per substep, from the integrated positions, and then kept
@@ -356,8 +407,25 @@ void World::step() {
     }
     profile_.collide += millisecondsSince(start);
 
+    // Restitution needs each contact's approach speed before the passes stop it.
+    const bool bounce = solver_.restitution > 0.0;
+    start = Clock::now();
+    std::fill(groundHit_.begin(), groundHit_.end(), std::uint8_t{0});
+    if (bounce) {
+      detail::measureBodyApproach(particles_, bodyContacts_, h, bodyApproach_);
+      if (world_.ground) {
+        detail::measureGroundApproach(particles_, contactPoints_, world_.groundNormal, h, groundApproach_);
+      }
+    }
+    profile_.contacts += millisecondsSince(start);
+
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     relax(h);
+    if (bounce) {
+      start = Clock::now();
+      restitute(h);
+      profile_.contacts += millisecondsSince(start);
+    }
 
     start = Clock::now();
     detail::dampBodyMotion(particles_, boxes_, solver_.bodyDamping);

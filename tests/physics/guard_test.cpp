@@ -81,7 +81,7 @@ TEST(Guard, PinnedEndOfANaNStickIsNeverWritten) {
   phys::detail::relaxJacobi(p, sticks, degree, delta);
   EXPECT_EQ(p.position[0], Vec3(0.0)) << "jacobi";
   p = fresh();
-  phys::detail::relaxXpbd(p, sticks, lambda, 1.0 / 60.0);
+  phys::detail::relaxXpbd(p, sticks, lambda, 1.0 / 60.0, 0.0);
   EXPECT_EQ(p.position[0], Vec3(0.0)) << "xpbd";
   p = fresh();
   phys::detail::relaxShake(p, sticks);

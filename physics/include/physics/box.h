@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include <glm/mat3x3.hpp>
+
 #include "physics/settings.h"
 #include "physics/types.h"
 
@@ -56,6 +58,19 @@ struct Box {
   Material material;
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
+};
+
+/// A box seen as a rigid body, from its particles at one instant: the scratch of restitution's
+/// velocity pass, which changes the velocities by impulses and then writes the changes into the
+/// particles' x* (World keeps one per box).
+struct RigidState {
+  Real inverseMass = 0.0;          ///< unit: 1/kg; 0 when the box cannot move (pinned, frozen, crushed flat)
+  Vec3 centre{0.0};                ///< unit: m; of mass
+  glm::dmat3 inverseInertia{0.0};  ///< unit: 1/(kg m^2); about the centre, world axes
+  Vec3 velocity{0.0};              ///< unit: m/s; of the centre
+  Vec3 spin{0.0};                  ///< unit: rad/s; about the centre
+  Vec3 velocityChange{0.0};        ///< unit: m/s; what the impulses added to velocity
+  Vec3 spinChange{0.0};            ///< unit: rad/s; what the impulses added to spin
 };
 
 /// The corners the tetra model's particles sit at: alternate corners, a regular tetrahedron for

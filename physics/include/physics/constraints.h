@@ -35,6 +35,15 @@ struct Embedding {
   int count = 0;
 };
 
+/// The embedding of a particle itself: one weight of 1.
+inline Embedding embedParticle(ParticleId id) {
+  Embedding e;
+  e.particle[0] = id;
+  e.weight[0] = 1.0;
+  e.count = 1;
+  return e;
+}
+
 /// Keeps two embedded points, usually of two bodies, within [minLength, maxLength] of each
 /// other: a joint. maxLength 0 makes a pin, which holds the points together (a ball joint; two
 /// pins on a line make a hinge); a range link with minLength > 0 or a finite maxLength is a joint

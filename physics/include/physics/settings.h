@@ -70,10 +70,13 @@ struct SolverSettings {
   Real bodyDamping = 0.0;  ///< unitless, 0 to 1
   /// Share of the normal speed a point keeps when it hits the ground or another box, reversed.
   /// 0 is Jakobsen's plain projection (the point stops); 1 bounces without loss. Impacts slower
-  /// than kRestitutionMinSpeed never bounce, so resting contacts stay at rest.
+  /// than kRestitutionMinSpeed, or than 2 |g| h (the speed a resting contact gains in a substep),
+  /// never bounce, so resting contacts stay at rest. The bounce is an impulse on the box as a
+  /// rigid body (docs/physics.md, "Restitution").
   Real restitution = 0.0;  ///< unitless, 0 to 1
   /// Added to every stick's own compliance by the xpbd method (the others ignore compliance):
-  /// one knob that softens every stick and joint of the world at once.
+  /// one knob that softens every stick of the world at once. Joints (links between bodies) are
+  /// rigid projections in every method and are not softened.
   Real compliance = 0.0;  ///< unit: m/N, 0 to kMaxCompliance
 };
 

@@ -1,8 +1,10 @@
 #pragma once
 // The world: particles, sticks between them, boxes made of particles, the ground, and the step
-// that moves them. One step is Jakobsen's loop run `substeps` times: integrate, relax the
-// sticks and the ground contacts `iterations` times, apply ground friction, guard.
+// that moves them. One step is Jakobsen's loop run `substeps` times: integrate (with the drag
+// spring), relax the sticks and the contacts `iterations` times with friction after each pass,
+// restitution, body damping, guard. Also the picking the sandbox needs: raycast and the drag.
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,6 +36,34 @@ struct FreezeReport {
   Real time;            ///< unit: s; simulated time of the substep that caught it
 };
 
+/// Defaults of the mouse spring (Drag): a 1 kg body follows about critically damped (1.1 times),
+/// a 20 kg ragdoll torso swings a little, and a 70 kg ragdoll hung from its torso sags 0.35 m.
+inline constexpr Real kDragStiffness = 2000.0;  ///< unit: N/m
+inline constexpr Real kDragDamping = 100.0;     ///< unit: N s/m
+
+/// A spring pulling one point (a particle, or a point of a box from World::anchor) towards a
+/// target: force k (target - p) - b v on the point, v its velocity. It is applied implicitly
+/// once per substep (docs/physics.md, "Drag"), so it is stable at any stiffness: an infinite
+/// one would put the point on the target every substep. Pinned particles never move.
+struct Drag {
+  Embedding point;                  ///< weights summing to 1 over existing particles
+  Vec3 target{0.0};                 ///< unit: m
+  Real stiffness = kDragStiffness;  ///< k, unit: N/m; finite, >= 0
+  Real damping = kDragDamping;      ///< b, unit: N s/m (force per velocity); finite, >= 0
+};
+
+/// Radius of the sphere World::raycast tests a loose particle against: a particle is a point,
+/// and a pick ray must be able to hit it.
+inline constexpr Real kPickRadius = 0.1;  ///< unit: m
+
+/// What World::raycast hit: a box or a loose particle (exactly one of the two is set).
+struct RayHit {
+  std::optional<BoxId> box;
+  std::optional<ParticleId> particle;  ///< a particle that belongs to no box
+  Real distance = 0.0;                 ///< unit: m; along the ray from its origin, 0 if it starts inside
+  Vec3 point{0.0};                     ///< unit: m; where the ray enters (the origin if it starts inside)
+};
+
 class World {
  public:
   /// Throws std::invalid_argument when either settings struct fails validate().
@@ -59,6 +89,23 @@ class World {
   /// the box's inscribed tetrahedron (its 4 particles, or corners 0, 3, 5, 6 of a corners box),
   /// which exist for any point, inside the box or not, with no matrix to invert.
   Embedding anchor(BoxId box, const Vec3& worldPoint) const;
+
+  /// Starts pulling a point with a spring, replacing any drag set before. Throws
+  /// std::invalid_argument (and keeps the old drag) on a bad embedding, a non-finite target or a
+  /// negative or non-finite stiffness or damping.
+  void setDrag(const Drag& drag);
+  /// Moves the target of the drag; throws std::invalid_argument if it is not finite or no drag is set.
+  void setDragTarget(const Vec3& target);
+  /// Stops the pull; does nothing if there is none.
+  void clearDrag() { drag_.reset(); }
+  const std::optional<Drag>& drag() const { return drag_; }
+
+  /// The nearest box or loose particle along the ray from `origin` in `direction` (any length;
+  /// distances are measured in metres along it) within maxDistance: boxes as their oriented box
+  /// (boxPose and half extents), loose particles as spheres of kPickRadius. A ray that starts
+  /// inside a box or sphere hits it at distance 0. Throws std::invalid_argument on a non-finite
+  /// origin, a zero or non-finite direction, or a negative or NaN maxDistance (infinity is fine).
+  std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, Real maxDistance) const;
 
   /// Keeps two boxes from colliding with each other (the parts of a ragdoll joined by a joint).
   void ignoreCollision(BoxId a, BoxId b);
@@ -123,6 +170,8 @@ class World {
   void keepVelocities(Real hOld, Real hNew);
   void settleWithoutVelocity();
   void relax(Real h);
+  void restitute(Real h);
+  void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBoxFrames();
   void findBoxPairs();
   void buildBoxContacts();
@@ -144,6 +193,8 @@ class World {
 
   std::vector<GroundContact> contactPoints_;  // loose particles and box corners
   std::vector<Real> normalPush_;  // per contact point: ground correction of the last pass (m)
+  std::vector<std::uint8_t> groundHit_;  // per contact point: pushed in this substep (restitution)
+  std::vector<Real> groundApproach_;     // per contact point: approach speed at the substep's start (m/s)
 
   // Box-box collision, rebuilt every substep into storage that keeps its capacity.
   std::vector<Obb> frames_;                 // per box
@@ -157,6 +208,8 @@ class World {
   std::vector<BodyContact> bodyContacts_;
   std::vector<Real> bodyPush_;              // per body contact: push of the last pass (m)
   std::vector<std::uint8_t> bodyTouched_;   // per body contact: pushed in this substep
+  std::vector<Real> bodyApproach_;          // per body contact: approach speed at the substep's start (m/s)
+  std::vector<RigidState> rigid_;           // per box: restitution's rigid-body view
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
   std::vector<std::uint8_t> touched_;  // per contact point: touched the ground in the last step
 
@@ -165,6 +218,8 @@ class World {
   std::vector<Vec3> jacobiDelta_;     // per particle
   std::vector<Real> degree_;          // per particle: sticks attached (Jacobi's scaling)
 
+  std::optional<Drag> drag_;
+  std::int32_t dragBox_ = -1;  // the box carrying the drag's point, or -1
   std::function<void(const FreezeReport&)> onFreeze_;
   std::vector<FreezeReport> freezes_;
   Profile profile_;
