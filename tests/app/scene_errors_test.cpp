@@ -62,6 +62,52 @@ const BadScene kCases[] = {
     {"text inside scene", "<scene name='s'>\n<world/>\n  stray words\n</scene>", 3, "", "text: unexpected text"},
     {"dt too small", "<scene name='s'>\n<solver dt='1e-200'/>\n</scene>", 2, "dt", "from 1e-06 to 1"},
     {"compliance too large", "<scene name='s'>\n<particle name='a' pos='0 0 0'/><particle name='b' pos='1 0 0'/>\n<stick a='a' b='b' compliance='1e300'/>\n</scene>", 3, "compliance", "from 0 to 1e+06"},
+    {"restitution above 1", "<scene name='s'>\n<solver\n restitution='1.5'/>\n</scene>", 3, "restitution",
+     "from 0 to 1"},
+    {"negative solver compliance", "<scene name='s'>\n<solver compliance='-1'/>\n</scene>", 2, "compliance",
+     "from 0 to 1e+06"},
+    {"link to an unknown box",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/>\n<link a='a'\n b='zz' point='0 0 0'/>\n</scene>", 4, "b",
+     "'zz' is not the name of a box or particle defined above"},
+    {"link above its box",
+     "<scene name='s'>\n<link a='a' b='b' point='0 0 0'/>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
+     "</scene>",
+     2, "a", "defined above"},
+    {"link from a box to itself",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/>\n<link a='a' b='a' point='0 0 0'/>\n</scene>", 3, "b",
+     "different body"},
+    {"link with point and a-point",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
+     "<link a='a' b='b' point='1 0 0'\n a-point='0 0 0' b-point='2 0 0'/>\n</scene>",
+     4, "a-point", "not both"},
+    {"link without a point",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n<link a='a' b='b'/>\n</scene>", 3,
+     "point", "is required"},
+    {"link with a-point alone",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
+     "<link a='a' b='b' a-point='0 0 0'/>\n</scene>",
+     3, "b-point", "is required with a-point"},
+    {"link max of zero",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
+     "<link a='a' b='b' point='1 0 0' max='0'/>\n</scene>",
+     3, "max", "> 0"},
+    {"link min above max",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
+     "<link a='a' b='b' a-point='0 0 0' b-point='2 0 0' min='2'\n max='1'/>\n</scene>",
+     4, "max", ">= min"},
+    {"link negative min",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
+     "<link a='a' b='b' point='1 0 0' min='-1'/>\n</scene>",
+     3, "min", ">= 0"},
+    {"no-collision of a box with itself",
+     "<scene name='s'>\n<box name='a' pos='0 0 0'/>\n<no-collision a='a'\n b='a'/>\n</scene>", 4, "b",
+     "different box"},
+    {"no-collision with a particle",
+     "<scene name='s'>\n<particle name='p' pos='0 0 0'/><box name='a' pos='0 0 0'/>\n"
+     "<no-collision a='p' b='a'/>\n</scene>",
+     3, "a", "'p' is not the name of a box defined above"},
+    {"collision group too large", "<scene name='s'>\n<box pos='0 0 0' group='4294967296'/>\n</scene>", 2, "group",
+     "from 0 to 4294967295"},
 };
 
 TEST(SceneErrors, EachNamesFileLineAndAttribute) {

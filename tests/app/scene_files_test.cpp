@@ -117,6 +117,50 @@ TEST(SceneFiles, BoxWithEveryAttribute) {
   ASSERT_EQ(s.bodies.size(), 1u);  // the unnamed box has no entry
 }
 
+TEST(SceneFiles, LinksAndPairsThatDoNotCollide) {
+  const scenes::Scene s = load(
+      "<box name=\"a\" pos=\"0 1 0\" euler=\"0 30 0\"/><box name=\"b\" pos=\"0 2.2 0\" model=\"tetra\"/>"
+      "<particle name=\"p\" pos=\"3 3 3\"/>"
+      "<link a=\"a\" b=\"b\" point=\"0.5 1.6 0\"/>"
+      "<link a=\"a\" b=\"b\" a-point=\"-0.5 1 0\" b-point=\"-0.5 2.2 0.5\" min=\"0.1\" max=\"2\"/>"
+      "<link a=\"b\" b=\"a\" a-point=\"0 2.2 0\" b-point=\"0 1 0\" min=\"0.5\"/>"
+      "<link a=\"a\" b=\"b\" a-point=\"0 1 0\" b-point=\"0 2.2 0\" max=\"1.5\"/>"
+      "<link a=\"p\" b=\"b\" point=\"0 2.7 0\"/>"
+      "<no-collision a=\"b\" b=\"a\"/>");
+  const auto links = s.world.links();
+  ASSERT_EQ(links.size(), 5u);
+  // A pin: both ends at the point, each carried by its own box.
+  EXPECT_TRUE(links[0].isPin());
+  EXPECT_LT(glm::length(s.world.position(links[0].a) - Vec3(0.5, 1.6, 0)), 1e-12);
+  EXPECT_LT(glm::length(s.world.position(links[0].b) - Vec3(0.5, 1.6, 0)), 1e-12);
+  EXPECT_EQ(links[0].a.particle[0], 0u);   // box a's corner 0
+  EXPECT_EQ(links[0].b.particle[0], 8u);   // box b's first particle
+  // Ranges: each end at its own point; one bound alone leaves the other open.
+  EXPECT_LT(glm::length(s.world.position(links[1].b) - Vec3(-0.5, 2.2, 0.5)), 1e-12);
+  EXPECT_EQ(links[1].minLength, 0.1);
+  EXPECT_EQ(links[1].maxLength, 2.0);
+  EXPECT_EQ(links[2].minLength, 0.5);
+  EXPECT_EQ(links[2].maxLength, phys::kNoMaxLength);
+  EXPECT_EQ(links[3].minLength, 0.0);
+  EXPECT_EQ(links[3].maxLength, 1.5);
+  // A loose particle is its own end.
+  EXPECT_EQ(links[4].a.count, 1);
+  EXPECT_EQ(links[4].a.particle[0], 12u);
+  EXPECT_EQ(s.world.ignoredCollisions(), (std::vector<std::pair<phys::BoxId, phys::BoxId>>{{0u, 1u}}));
+}
+
+TEST(SceneFiles, RestitutionComplianceAndCollisionGroups) {
+  const scenes::Scene s = load("<box pos=\"0 0 0\" group=\"6\" mask=\"0\"/><box pos=\"2 0 0\"/>",
+                               "<solver restitution=\"0.4\" compliance=\"1e-5\"/>");
+  EXPECT_EQ(s.world.solverSettings().restitution, 0.4);
+  EXPECT_EQ(s.world.solverSettings().compliance, 1e-5);
+  EXPECT_EQ(s.world.boxes()[0].collisionGroup, 6u);
+  EXPECT_EQ(s.world.boxes()[0].collisionMask, 0u);
+  EXPECT_EQ(s.world.boxes()[1].collisionGroup, phys::BoxDesc{}.collisionGroup);
+  EXPECT_EQ(s.world.boxes()[1].collisionMask, phys::BoxDesc{}.collisionMask);
+  EXPECT_EQ(load("").world.solverSettings().restitution, phys::SolverSettings{}.restitution);
+}
+
 TEST(SceneFiles, GeneratorsNameTheirMembersAndPlaceThemOnTheFloor) {
   const scenes::Scene s = load(
       "<stack pos=\"0 0 0\" count=\"10\" size=\"0.5\"/>"

@@ -5,6 +5,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "euler_angles.h"
 #include "physics/ragdoll.h"
 
 namespace scenes::detail {
@@ -36,7 +37,7 @@ phys::BoxDesc readBoxCommon(ElementReader& e) {
     d.model = *parsed;
   }
   e.material(d.material);
-  if (auto euler = e.vector("euler", "degrees")) d.orientation = glm::dquat(glm::radians(*euler));
+  if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
   return d;
 }
 
@@ -147,7 +148,7 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   phys::RagdollDesc d;
   d.name = e.text("name").value_or("ragdoll");
   d.hips = e.requiredVector("pos", "m");
-  if (auto euler = e.vector("euler", "degrees")) d.orientation = glm::dquat(glm::radians(*euler));
+  if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
   if (auto scale = e.number("scale", "")) {
     if (*scale <= 0.0 || *scale > 1000.0) e.fail("scale", "must be > 0 and at most 1000");
     d.scale = *scale;

@@ -22,7 +22,8 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "stack", "pyramid", "grid", "chain", "ragdoll"};
+constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "stack", "pyramid", "grid",
+                                              "chain", "ragdoll", "link", "no-collision"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -77,6 +78,16 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
     if (*damping < 0.0 || *damping > 1.0) e.fail("body-damping", "must be from 0 to 1");
     s.bodyDamping = *damping;
   }
+  if (auto restitution = e.number("restitution", "")) {
+    if (*restitution < 0.0 || *restitution > 1.0) e.fail("restitution", "must be from 0 to 1");
+    s.restitution = *restitution;
+  }
+  if (auto compliance = e.number("compliance", "m/N")) {
+    if (*compliance < 0.0 || *compliance > phys::kMaxCompliance) {
+      e.fail("compliance", "must be from 0 to " + detail::formatNumber(phys::kMaxCompliance) + " (m/N)");
+    }
+    s.compliance = *compliance;
+  }
   e.rejectUnknownAttributes();
 }
 
@@ -118,6 +129,8 @@ class Builder {
     else if (kind == "grid") detail::generateGrid(e, ctx_);
     else if (kind == "chain") detail::generateChain(e, ctx_);
     else if (kind == "ragdoll") detail::generateRagdoll(e, ctx_);
+    else if (kind == "link") link(e);
+    else if (kind == "no-collision") noCollision(e);
     if (scene_.world.particles().size() > detail::kMaxParticles) {
       e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
     }
@@ -138,6 +151,17 @@ class Builder {
       e.fail(attribute, "'" + name + "' is not the name of a particle defined above");
     }
     return scene_.bodies[it->second].index;
+  }
+
+  // A body that a <link> or <no-collision> names: defined above it, and of an allowed kind.
+  const NamedBody& bodyNamed(ElementReader& e, std::string_view attribute, bool particlesToo) {
+    const std::string name = e.requiredText(attribute);
+    const auto it = byName_.find(name);
+    if (it == byName_.end() || (!particlesToo && scene_.bodies[it->second].kind != NamedBody::Kind::Box)) {
+      const std::string kinds = particlesToo ? "box or particle" : "box";
+      e.fail(attribute, "'" + name + "' is not the name of a " + kinds + " defined above");
+    }
+    return scene_.bodies[it->second];
   }
 
   void particle(ElementReader& e) {
@@ -193,10 +217,58 @@ class Builder {
     d.center = e.requiredVector("pos", "m");
     d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
     d.angularVelocity = glm::radians(e.vector("angular-velocity", "degrees/s").value_or(phys::Vec3(0.0)));
+    constexpr long kAllBits = 0xffffffffL;  // collision groups and masks are 32-bit sets
+    if (auto group = e.integer("group", 0, kAllBits)) d.collisionGroup = static_cast<std::uint32_t>(*group);
+    if (auto mask = e.integer("mask", 0, kAllBits)) d.collisionMask = static_cast<std::uint32_t>(*mask);
     e.rejectUnknownAttributes();
     d.name = name;
     const phys::BoxId id = scene_.world.addBox(d);
     addName(e, name, NamedBody::Kind::Box, id);
+  }
+
+  // A joint between two bodies at world points: a pin (both points held together) unless min
+  // or max makes it a range. Boxes carry their point from now on (World::anchor); a loose
+  // particle is its own point.
+  void link(ElementReader& e) {
+    const NamedBody& a = bodyNamed(e, "a", true);
+    const NamedBody& b = bodyNamed(e, "b", true);
+    if (a.kind == b.kind && a.index == b.index) e.fail("b", "must name a different body from a");
+    const std::optional<phys::Vec3> point = e.vector("point", "m");
+    const std::optional<phys::Vec3> aPoint = e.vector("a-point", "m");
+    const std::optional<phys::Vec3> bPoint = e.vector("b-point", "m");
+    const std::optional<double> min = e.number("min", "m");
+    const std::optional<double> max = e.number("max", "m");
+    e.rejectUnknownAttributes();
+    if (point && (aPoint || bPoint)) {
+      e.fail(aPoint ? "a-point" : "b-point", "give point, or a-point and b-point, not both");
+    }
+    if (!point && !aPoint && !bPoint) e.fail("point", "is required, or a-point and b-point (m)");
+    if (!point && !aPoint) e.fail("a-point", "is required with b-point (m)");
+    if (!point && !bPoint) e.fail("b-point", "is required with a-point (m)");
+    if (min && *min < 0.0) e.fail("min", "must be >= 0 (m)");
+    if (max && *max <= 0.0) e.fail("max", "must be > 0 (m); a pin has neither min nor max");
+    if (min && max && *min > *max) e.fail("max", "must be >= min");
+    const phys::Embedding ea = embed(a, point ? *point : *aPoint);
+    const phys::Embedding eb = embed(b, point ? *point : *bPoint);
+    if (min || max) scene_.world.addLink(ea, eb, min.value_or(0.0), max.value_or(phys::kNoMaxLength));
+    else scene_.world.addLink(ea, eb, 0.0, 0.0);
+  }
+
+  phys::Embedding embed(const NamedBody& body, const phys::Vec3& point) const {
+    if (body.kind == NamedBody::Kind::Box) return scene_.world.anchor(body.index, point);
+    phys::Embedding self;
+    self.particle[0] = body.index;
+    self.weight[0] = 1.0;
+    self.count = 1;
+    return self;
+  }
+
+  void noCollision(ElementReader& e) {
+    const NamedBody& a = bodyNamed(e, "a", false);
+    const NamedBody& b = bodyNamed(e, "b", false);
+    if (a.index == b.index) e.fail("b", "must name a different box from a");
+    e.rejectUnknownAttributes();
+    scene_.world.ignoreCollision(a.index, b.index);
   }
 
   Scene& scene_;
@@ -273,7 +345,8 @@ Scene build(std::vector<char>& buffer, const std::string& file) {
     } else if (isOneOf(kind, kBodyElements)) {
       bodies.push_back(child);
     } else {
-      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, stack, pyramid, grid, chain, ragdoll)");
+      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, stack, pyramid, grid, "
+             "chain, ragdoll, link, no-collision)");
     }
   }
 

@@ -1,0 +1,329 @@
+// Saving a world as a scene file: settings, then every body in the order the world made them
+// (so a reload gives each particle, box and stick the same index, and the solver visits them
+// in the same order), then the sticks between loose particles, the links and the pairs kept
+// from colliding. Each box is saved as the rigid body fitted to its particles.
+#include "scenes/scene_writer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "atomic_file.h"
+#include "body_state.h"
+#include "element_writer.h"
+#include "euler_angles.h"
+#include "generators.h"
+
+namespace scenes {
+namespace {
+
+using detail::ElementWriter;
+
+constexpr std::int32_t kLoose = -1;
+
+// The box each particle belongs to, or kLoose.
+std::vector<std::int32_t> particleOwners(const phys::World& world) {
+  std::vector<std::int32_t> owner(world.particles().size(), kLoose);
+  const std::span<const phys::Box> boxes = world.boxes();
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    for (int j = 0; j < boxes[b].particleCount; ++j) owner[boxes[b].firstParticle + j] = static_cast<std::int32_t>(b);
+  }
+  return owner;
+}
+
+// One end of a link, as a <link> names it: a box, or a loose particle standing for itself.
+struct LinkEnd {
+  bool isBox = true;
+  std::uint32_t index = 0;  // BoxId or ParticleId
+};
+
+// A link's end is carried by one box's particles (World::anchor) or is one loose particle;
+// an embedding spread over several bodies has no name in a scene file.
+LinkEnd linkEnd(const phys::Embedding& e, const std::vector<std::int32_t>& owner) {
+  const std::int32_t first = owner[e.particle[0]];
+  for (int i = 1; i < e.count; ++i) {
+    if (owner[e.particle[i]] != first) {
+      throw std::invalid_argument(
+          "a link's end is carried by particles of different bodies; a <link> joins points "
+          "of boxes and loose particles");
+    }
+  }
+  if (first != kLoose) return {true, static_cast<std::uint32_t>(first)};
+  if (e.count != 1) {
+    throw std::invalid_argument(
+        "a link's end is carried by several loose particles; a <link> joins points of boxes "
+        "and loose particles");
+  }
+  return {false, e.particle[0]};
+}
+
+// Unique names for every box (the loader needs them to attach links) and for every loose
+// particle that has a name or that a stick or link refers to. Own names are kept in the order
+// the world made the bodies (the first of two equal names keeps it); the rest become "box N"
+// or "particle N" after their index, with a count appended should that be taken too.
+class BodyNames {
+ public:
+  BodyNames(const phys::World& world, const std::vector<std::int32_t>& owner, const std::vector<bool>& referenced)
+      : box_(world.boxes().size()), particle_(world.particles().size()) {
+    const std::span<const phys::Box> boxes = world.boxes();
+    for (std::size_t i = 0; i < particle_.size(); ++i) {
+      if (owner[i] == kLoose) {
+        keepOwn(particle_[i], world.particleName(static_cast<phys::ParticleId>(i)));
+      } else if (boxes[owner[i]].firstParticle == i) {
+        keepOwn(box_[owner[i]], boxes[owner[i]].name);
+      }
+    }
+    for (std::size_t b = 0; b < box_.size(); ++b) {
+      if (box_[b].empty()) box_[b] = generated("box " + std::to_string(b));
+    }
+    for (std::size_t i = 0; i < particle_.size(); ++i) {
+      if (owner[i] == kLoose && referenced[i] && particle_[i].empty()) {
+        particle_[i] = generated("particle " + std::to_string(i));
+      }
+    }
+  }
+
+  const std::string& box(std::uint32_t id) const { return box_[id]; }
+  const std::string& particle(std::uint32_t id) const { return particle_[id]; }
+  const std::string& end(const LinkEnd& e) const { return e.isBox ? box_[e.index] : particle_[e.index]; }
+
+ private:
+  void keepOwn(std::string& slot, const std::string& own) {
+    if (!own.empty() && taken_.insert(own).second) slot = own;
+  }
+  std::string generated(const std::string& base) {
+    std::string name = base;
+    for (int n = 2; !taken_.insert(name).second; ++n) name = base + " (" + std::to_string(n) + ")";
+    return name;
+  }
+
+  std::vector<std::string> box_;
+  std::vector<std::string> particle_;
+  std::set<std::string> taken_;
+};
+
+std::string worldElement(const phys::WorldSettings& w) {
+  return ElementWriter("world")
+      .vector("gravity", w.gravity)
+      .text("gravity-mode", phys::toString(w.gravityMode))
+      .vector("gravity-point", w.gravityPoint)
+      .number("gravity-strength", w.gravityStrength)
+      .number("damping", w.damping)
+      .number("bound", w.bound)
+      .empty();
+}
+
+std::string solverElement(const phys::SolverSettings& s) {
+  return ElementWriter("solver")
+      .text("method", phys::toString(s.method))
+      .integer("iterations", s.iterations)
+      .integer("substeps", s.substeps)
+      .number("dt", s.dt)
+      .number("epsilon", s.featureEpsilon)
+      .number("slop", s.contactSlop)
+      .number("body-damping", s.bodyDamping)
+      .number("restitution", s.restitution)
+      .number("compliance", s.compliance)
+      .empty();
+}
+
+std::string groundElement(const phys::WorldSettings& w) {
+  return ElementWriter("ground")
+      .number("height", w.groundHeight)
+      .vector("normal", w.groundNormal)
+      .number("static-friction", w.groundMaterial.staticFriction)
+      .number("dynamic-friction", w.groundMaterial.dynamicFriction)
+      .empty();
+}
+
+std::string cameraElement(const CameraStart& camera) {
+  // The loader refuses a camera looking at its own eye; better to say so now than on reload.
+  if (glm::length(camera.eye - camera.target) < 1e-6f) {
+    throw std::invalid_argument("the camera's eye and target coincide");
+  }
+  return ElementWriter("camera").vector("eye", camera.eye).vector("target", camera.target).empty();
+}
+
+std::string boxElement(const phys::World& world, phys::BoxId id, const std::string& name) {
+  const phys::Box& box = world.boxes()[id];
+  const detail::RigidState state = detail::rigidState(world, id);
+  ElementWriter e("box");
+  e.text("name", name)
+      .vector("pos", state.pose.center)
+      .vector("euler", detail::eulerFromOrientation(state.pose.orientation))
+      .vector("size", box.halfExtents * 2.0)
+      .number("mass", state.mass)
+      .text("model", phys::toString(box.model))
+      .number("static-friction", box.material.staticFriction)
+      .number("dynamic-friction", box.material.dynamicFriction);
+  if (!state.frozen) {
+    e.vector("velocity", state.velocity).vector("angular-velocity", glm::degrees(state.angularVelocity));
+  }
+  const phys::BoxDesc defaults;
+  if (box.collisionGroup != defaults.collisionGroup) e.integer("group", box.collisionGroup);
+  if (box.collisionMask != defaults.collisionMask) e.integer("mask", box.collisionMask);
+  return e.empty();
+}
+
+std::string particleElement(const phys::World& world, phys::ParticleId id, const std::string& name) {
+  ElementWriter e("particle");
+  if (!name.empty()) e.text("name", name);
+  e.vector("pos", world.particles().position[id]);
+  // Pinned, or frozen by the guard: either way it no longer moves, and a scene says so by pinned.
+  const double inverseMass = world.particles().inverseMass[id];
+  if (inverseMass == 0.0) {
+    e.text("pinned", "true");
+  } else {
+    e.vector("velocity", detail::loadVelocity(world, id)).number("mass", 1.0 / inverseMass);
+  }
+  return e.empty();
+}
+
+std::string stickElement(const phys::Stick& s, const BodyNames& names) {
+  ElementWriter e("stick");
+  e.text("a", names.particle(s.a)).text("b", names.particle(s.b));
+  if (!s.isRange()) {
+    e.number("length", s.minLength);
+  } else {
+    // Without min or max the loader makes a fixed stick, so a range open at both ends keeps its min.
+    const bool openAbove = s.maxLength == phys::kNoMaxLength;
+    if (s.minLength > 0.0 || openAbove) e.number("min", s.minLength);
+    if (!openAbove) e.number("max", s.maxLength);
+  }
+  if (s.compliance != 0.0) e.number("compliance", s.compliance);
+  return e.empty();
+}
+
+std::string linkElement(const phys::World& world, const phys::Link& link, const std::vector<std::int32_t>& owner,
+                        const BodyNames& names) {
+  const LinkEnd endA = linkEnd(link.a, owner), endB = linkEnd(link.b, owner);
+  // The loader refuses a link from a body to itself (a box is rigid: such a link does nothing).
+  if (endA.isBox == endB.isBox && endA.index == endB.index) {
+    throw std::invalid_argument("a link joins " + names.end(endA) + " to itself; a <link> joins two bodies");
+  }
+  ElementWriter e("link");
+  e.text("a", names.end(endA)).text("b", names.end(endB));
+  const phys::Vec3 a = world.position(link.a), b = world.position(link.b);
+  if (link.isPin()) {
+    // The two points of a pin have drifted apart by what the passes left; rejoin them halfway.
+    e.vector("point", (a + b) * 0.5);
+    return e.empty();
+  }
+  e.vector("a-point", a).vector("b-point", b);
+  const bool openAbove = link.maxLength == phys::kNoMaxLength;
+  if (link.minLength > 0.0 || openAbove) e.number("min", link.minLength);
+  if (!openAbove) e.number("max", link.maxLength);
+  return e.empty();
+}
+
+std::string header(const phys::World& world) {
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "<!-- Saved at t = %.6g s (step %ld): each box as the rigid body fitted to its particles. -->",
+                world.time(), world.stepCount());
+  return text;
+}
+
+}  // namespace
+
+SaveError::SaveError(std::filesystem::path file, const std::string& message)
+    : std::runtime_error(file.string() + ": " + message), file_(std::move(file)) {}
+
+std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
+  const phys::World& world = scene.world;
+  const phys::Particles& particles = world.particles();
+  if (particles.size() > detail::kMaxParticles) {
+    throw std::invalid_argument("the world has " + std::to_string(particles.size()) +
+                                " particles; a scene file loads at most " + std::to_string(detail::kMaxParticles));
+  }
+  const std::vector<std::int32_t> owner = particleOwners(world);
+
+  // Sticks inside one box are its bracing, which <box> rebuilds; the rest must join two loose
+  // particles, as <stick> does.
+  std::vector<bool> referenced(particles.size(), false);
+  for (const phys::Stick& s : world.sticks()) {
+    if (owner[s.a] != kLoose && owner[s.a] == owner[s.b]) continue;
+    if (owner[s.a] != kLoose || owner[s.b] != kLoose) {
+      auto describe = [&](phys::ParticleId id) {
+        const std::string which = "particle " + std::to_string(id);
+        if (owner[id] == kLoose) return which;
+        const std::string& box = world.boxes()[owner[id]].name;
+        return which + " (of box " + (box.empty() ? std::to_string(owner[id]) : "'" + box + "'") + ")";
+      };
+      throw std::invalid_argument("a stick joins " + describe(s.a) + " and " + describe(s.b) +
+                                  "; a <stick> joins two loose particles");
+    }
+    referenced[s.a] = referenced[s.b] = true;
+  }
+  for (const phys::Link& link : world.links()) {
+    for (const phys::Embedding* end : {&link.a, &link.b}) {
+      if (const LinkEnd e = linkEnd(*end, owner); !e.isBox) referenced[e.index] = true;
+    }
+  }
+  const BodyNames names(world, owner, referenced);
+
+  std::string out = header(world) + "\n";
+  out += ElementWriter("scene")
+             .text("name", scene.name.empty() ? "untitled" : scene.name)
+             .text("description", scene.description)
+             .open() +
+         "\n";
+  auto line = [&out](const std::string& element) { out.append("  ").append(element).append("\n"); };
+  line(worldElement(world.worldSettings()));
+  line(solverElement(world.solverSettings()));
+  if (world.worldSettings().ground) line(groundElement(world.worldSettings()));
+  line(cameraElement(camera));
+  // Bodies and sticks in the order the world made them, so that the reloaded world gives each
+  // the same index. The world keeps no such record across kinds, but the sticks show it: a box's
+  // bracing is added with the box, and a stick after both its particles.
+  std::size_t written = 0;  // particles whose body is written
+  auto writeBodiesBelow = [&](std::size_t end) {
+    while (written < end) {
+      const auto id = static_cast<phys::ParticleId>(written);
+      if (owner[id] == kLoose) {
+        line(particleElement(world, id, names.particle(id)));
+        ++written;
+      } else {
+        const phys::Box& box = world.boxes()[owner[id]];
+        line(boxElement(world, owner[id], names.box(owner[id])));
+        written = box.firstParticle + box.particleCount;
+      }
+    }
+  };
+  for (const phys::Stick& s : world.sticks()) {
+    writeBodiesBelow(std::max(s.a, s.b) + std::size_t{1});
+    if (owner[s.a] == kLoose) line(stickElement(s, names));
+  }
+  writeBodiesBelow(particles.size());
+  for (const phys::Link& link : world.links()) line(linkElement(world, link, owner, names));
+  for (const auto& [a, b] : world.ignoredCollisions()) {
+    line(ElementWriter("no-collision").text("a", names.box(a)).text("b", names.box(b)).empty());
+  }
+  out += "</scene>\n";
+  return out;
+}
+
+std::string writeSceneXml(const Scene& scene) {
+  return writeSceneXml(scene, scene.camera);
+}
+
+void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::filesystem::path& file) {
+  std::string xml;
+  try {
+    xml = writeSceneXml(scene, camera);
+  } catch (const std::invalid_argument& e) {
+    throw SaveError(file, std::string("cannot save this world as a scene: ") + e.what());
+  }
+  detail::replaceFileAtomically(file, xml);
+}
+
+void saveSceneFile(const Scene& scene, const std::filesystem::path& file) {
+  saveSceneFile(scene, scene.camera, file);
+}
+
+}  // namespace scenes

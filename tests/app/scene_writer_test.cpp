@@ -1,0 +1,443 @@
+// Saving scenes: a stepped world written as XML loads back into the same world (bodies, joints,
+// settings), Euler angles come back exactly, and files are replaced atomically or not at all.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "scenes/scene.h"
+#include "scenes/scene_writer.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using phys::Vec3;
+
+scenes::Scene reload(const scenes::Scene& scene) {
+  return scenes::loadSceneText(scenes::writeSceneXml(scene), "saved.xml");
+}
+
+scenes::Scene load(const std::string& body, const std::string& head = "") {
+  return scenes::loadSceneText("<scene name=\"t\">" + head + body + "</scene>", "test.xml");
+}
+
+// The angle of the rotation taking a to b, accurate for tiny angles too (acos of the dot
+// product would round anything below about 1e-8 rad to zero).
+double angleBetween(const phys::Quat& a, const phys::Quat& b) {
+  const phys::Quat d = glm::inverse(a) * b;
+  return 2.0 * std::atan2(glm::length(Vec3(d.x, d.y, d.z)), std::abs(d.w));
+}
+
+Vec3 centreVelocity(const phys::World& world, phys::BoxId id) {
+  const phys::Box& box = world.boxes()[id];
+  Vec3 sum(0.0);
+  for (int j = 0; j < box.particleCount; ++j) sum += world.velocity(box.firstParticle + j);
+  return sum / static_cast<double>(box.particleCount);
+}
+
+void expectSameSettings(const phys::World& a, const phys::World& b, const std::string& what) {
+  const phys::WorldSettings& w = a.worldSettings();
+  const phys::WorldSettings& v = b.worldSettings();
+  EXPECT_EQ(w.gravityMode, v.gravityMode) << what;
+  EXPECT_EQ(w.gravity, v.gravity) << what;
+  EXPECT_EQ(w.gravityPoint, v.gravityPoint) << what;
+  EXPECT_EQ(w.gravityStrength, v.gravityStrength) << what;
+  EXPECT_EQ(w.damping, v.damping) << what;
+  EXPECT_EQ(w.ground, v.ground) << what;
+  // Normalised again on load: a unit vector may come back an ulp off.
+  EXPECT_NEAR(glm::length(w.groundNormal - v.groundNormal), 0.0, 1e-15) << what;
+  EXPECT_EQ(w.groundHeight, v.groundHeight) << what;
+  EXPECT_EQ(w.groundMaterial.staticFriction, v.groundMaterial.staticFriction) << what;
+  EXPECT_EQ(w.groundMaterial.dynamicFriction, v.groundMaterial.dynamicFriction) << what;
+  EXPECT_EQ(w.bound, v.bound) << what;
+  const phys::SolverSettings& s = a.solverSettings();
+  const phys::SolverSettings& t = b.solverSettings();
+  EXPECT_EQ(s.method, t.method) << what;
+  EXPECT_EQ(s.dt, t.dt) << what;
+  EXPECT_EQ(s.substeps, t.substeps) << what;
+  EXPECT_EQ(s.iterations, t.iterations) << what;
+  EXPECT_EQ(s.featureEpsilon, t.featureEpsilon) << what;
+  EXPECT_EQ(s.contactSlop, t.contactSlop) << what;
+  EXPECT_EQ(s.bodyDamping, t.bodyDamping) << what;
+  EXPECT_EQ(s.restitution, t.restitution) << what;
+  EXPECT_EQ(s.compliance, t.compliance) << what;
+}
+
+void expectSameCounts(const phys::World& a, const phys::World& b, const std::string& what) {
+  EXPECT_EQ(a.boxes().size(), b.boxes().size()) << what;
+  EXPECT_EQ(a.particles().size(), b.particles().size()) << what;
+  EXPECT_EQ(a.sticks().size(), b.sticks().size()) << what;
+  EXPECT_EQ(a.links().size(), b.links().size()) << what;
+  EXPECT_EQ(a.ignoredCollisions(), b.ignoredCollisions()) << what;
+}
+
+TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
+  scenes::Scene original = scenes::loadSceneFile(DATA_DIR "/assets/scenes/ragdoll.xml");
+  for (int i = 0; i < 90; ++i) original.world.step();  // 1.5 s: landed and tumbling
+  scenes::Scene copy = reload(original);
+  const phys::World& a = original.world;
+  const phys::World& b = copy.world;
+
+  expectSameCounts(a, b, "ragdoll");
+  EXPECT_EQ(a.ignoredCollisions().size(), 9u);
+  expectSameSettings(a, b, "ragdoll");
+  EXPECT_EQ(copy.name, original.name);
+  EXPECT_EQ(copy.description, original.description);
+  for (phys::BoxId id = 0; id < a.boxes().size(); ++id) {
+    EXPECT_EQ(b.boxes()[id].name, a.boxes()[id].name);
+    const phys::BoxPose pa = a.boxPose(id), pb = b.boxPose(id);
+    EXPECT_LT(glm::length(pa.center - pb.center), 1e-3) << a.boxes()[id].name;
+    EXPECT_LT(angleBetween(pa.orientation, pb.orientation), 1e-3) << a.boxes()[id].name;
+    EXPECT_LT(glm::length(centreVelocity(a, id) - centreVelocity(b, id)), 1e-2) << a.boxes()[id].name;
+  }
+  // Spin too: each particle moves as it did, less what deformation the rigid fit drops.
+  for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
+    EXPECT_LT(glm::length(a.velocity(i) - b.velocity(i)), 1e-2) << "particle " << i;
+  }
+  for (std::size_t k = 0; k < a.links().size(); ++k) {
+    EXPECT_EQ(a.links()[k].minLength, b.links()[k].minLength);
+    EXPECT_EQ(a.links()[k].maxLength, b.links()[k].maxLength);
+    EXPECT_LT(glm::length(a.position(a.links()[k].a) - b.position(b.links()[k].a)), 1e-3) << "link " << k;
+    EXPECT_LT(glm::length(a.position(a.links()[k].b) - b.position(b.links()[k].b)), 1e-3) << "link " << k;
+  }
+
+  for (int i = 0; i < 30; ++i) {
+    original.world.step();
+    copy.world.step();
+  }
+  for (phys::BoxId id = 0; id < a.boxes().size(); ++id) {
+    EXPECT_LT(glm::length(a.boxPose(id).center - b.boxPose(id).center), 0.01) << a.boxes()[id].name;
+  }
+}
+
+TEST(SceneWriter, EveryProjectSceneRoundTrips) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(scenes::sceneDirectory(DATA_DIR))) {
+    if (entry.path().extension() != ".xml") continue;
+    ++count;
+    const std::string what = entry.path().filename().string();
+    scenes::Scene original = scenes::loadSceneFile(entry.path());
+    for (int i = 0; i < 60; ++i) original.world.step();
+    scenes::Scene copy = reload(original);  // throws, and fails the test, if the text does not load
+    expectSameCounts(original.world, copy.world, what);
+    expectSameSettings(original.world, copy.world, what);
+    EXPECT_EQ(copy.camera.eye, original.camera.eye) << what;
+    EXPECT_EQ(copy.camera.target, original.camera.target) << what;
+    for (phys::BoxId id = 0; id < original.world.boxes().size(); ++id) {
+      EXPECT_LT(glm::length(original.world.boxPose(id).center - copy.world.boxPose(id).center), 1e-3) << what;
+    }
+    for (std::size_t i = 0; i < original.world.particles().size(); ++i) {
+      if (original.world.particles().inverseMass[i] == 0.0) {
+        EXPECT_EQ(copy.world.particles().inverseMass[i], 0.0) << what << ": particle " << i << " stays pinned";
+      }
+    }
+  }
+  EXPECT_GE(count, 6);
+}
+
+TEST(SceneWriter, SpinningBoxKeepsItsParticlesMotion) {
+  // In free flight, with body damping removing its vibration, a spinning box is stretched only by
+  // what the passes leave (about 1e-4 m and 3e-4 m/s here), which the rigid fit drops; its
+  // particles otherwise come back where they were and moving as they were (up to 4 m/s here: a
+  // wrong spin would be off by metres per second).
+  for (const char* model : {"corners", "tetra"}) {
+    scenes::Scene original = load(std::string("<box pos=\"0 5 0\" size=\"1 0.5 2\" euler=\"10 20 30\" model=\"") +
+                                      model + "\" velocity=\"1 2 -3\" angular-velocity=\"100 -200 50\" mass=\"3\"/>",
+                                  "<solver body-damping=\"1\" substeps=\"2\"/>");
+    for (int i = 0; i < 30; ++i) original.world.step();
+    const scenes::Scene copy = reload(original);
+    const phys::World& a = original.world;
+    const phys::World& b = copy.world;
+    for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
+      EXPECT_LT(glm::length(a.particles().position[i] - b.particles().position[i]), 1e-3) << model << " " << i;
+      EXPECT_LT(glm::length(a.velocity(i) - b.velocity(i)), 2e-3) << model << " " << i;
+      EXPECT_NEAR(b.particles().inverseMass[i], a.particles().inverseMass[i], 1e-12) << model << " " << i;
+    }
+  }
+}
+
+TEST(SceneWriter, LooseParticlesKeepTheirVerletStateToRoundOff) {
+  // Point gravity, so the velocity written depends on where each particle is.
+  scenes::Scene original = load(
+      "<particle name=\"pivot\" pos=\"0 3 0\" pinned=\"true\"/>"
+      "<particle name=\"bob\" pos=\"1.3 3 0.2\" mass=\"0.7\" velocity=\"0.1 0 2\"/>"
+      "<particle pos=\"-2 1 0\"/><particle pos=\"-2 2 0\" mass=\"3\"/>"
+      "<stick a=\"pivot\" b=\"bob\" compliance=\"0.001\"/>",
+      "<world gravity-mode=\"point\" gravity-point=\"0 -10 0\"/><solver method=\"xpbd\" substeps=\"3\"/>");
+  for (int i = 0; i < 17; ++i) original.world.step();
+  const scenes::Scene copy = reload(original);
+  const phys::World& a = original.world;
+  const phys::World& b = copy.world;
+  expectSameCounts(a, b, "particles");
+  for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
+    EXPECT_EQ(a.particles().position[i], b.particles().position[i]) << i;
+    EXPECT_LT(glm::length(a.velocity(i) - b.velocity(i)), 1e-12) << i;
+    EXPECT_NEAR(a.particles().inverseMass[i], b.particles().inverseMass[i], 1e-15) << i;
+  }
+  EXPECT_EQ(b.sticks()[0].minLength, a.sticks()[0].minLength);
+  EXPECT_EQ(b.sticks()[0].compliance, 0.001);
+}
+
+TEST(SceneWriter, SticksRangesLinksAndCollisionGroupsRoundTrip) {
+  scenes::Scene original = load(
+      "<particle name=\"p\" pos=\"0 3 0\"/><particle name=\"q\" pos=\"1 3 0\"/><particle name=\"r\" pos=\"0 "
+      "4 0\"/>"
+      "<stick a=\"p\" b=\"q\" min=\"0.5\" max=\"2\"/><stick a=\"p\" b=\"r\" min=\"0.5\"/>"
+      "<stick a=\"q\" b=\"r\" max=\"3\"/><stick a=\"r\" b=\"q\" min=\"0\"/>"
+      "<box name=\"A\" pos=\"3 1 0\" model=\"tetra\" group=\"2\" mask=\"4294967293\"/>"
+      "<box name=\"B\" pos=\"3 2.5 0\" euler=\"10 20 30\"/>"
+      "<link a=\"A\" b=\"B\" point=\"3 1.75 0\"/>"
+      "<link a=\"A\" b=\"B\" a-point=\"3.5 1 0\" b-point=\"3.5 2.5 0\" min=\"0.2\" max=\"2\"/>"
+      "<link a=\"q\" b=\"B\" point=\"3 3 0\"/>"
+      "<no-collision a=\"B\" b=\"A\"/>",
+      "<ground/>");
+  for (int i = 0; i < 20; ++i) original.world.step();
+  const scenes::Scene copy = reload(original);
+  const phys::World& a = original.world;
+  const phys::World& b = copy.world;
+  expectSameCounts(a, b, "joints");
+  // Written in the order the world made them, every stick keeps its index. The boxes' bracing
+  // is rebuilt at the rigid pose, so its rest lengths come back to round-off only.
+  for (std::size_t k = 0; k < a.sticks().size(); ++k) {
+    EXPECT_EQ(a.sticks()[k].a, b.sticks()[k].a) << k;
+    EXPECT_EQ(a.sticks()[k].b, b.sticks()[k].b) << k;
+    EXPECT_NEAR(a.sticks()[k].minLength, b.sticks()[k].minLength, 1e-12) << k;
+    EXPECT_EQ(a.sticks()[k].maxLength == phys::kNoMaxLength, b.sticks()[k].maxLength == phys::kNoMaxLength) << k;
+    if (std::isfinite(a.sticks()[k].maxLength)) {
+      EXPECT_NEAR(a.sticks()[k].maxLength, b.sticks()[k].maxLength, 1e-12) << k;
+    }
+  }
+  for (std::size_t k = 0; k < 4; ++k) {  // the loose ones exactly
+    EXPECT_EQ(a.sticks()[k].minLength, b.sticks()[k].minLength) << k;
+    EXPECT_EQ(a.sticks()[k].maxLength, b.sticks()[k].maxLength) << k;
+  }
+  ASSERT_EQ(b.links().size(), 3u);
+  EXPECT_TRUE(b.links()[0].isPin());
+  EXPECT_EQ(b.links()[1].minLength, 0.2);
+  EXPECT_EQ(b.links()[1].maxLength, 2.0);
+  EXPECT_EQ(b.links()[2].a.count, 1);  // the particle is its own end
+  EXPECT_EQ(b.links()[2].a.particle[0], a.links()[2].a.particle[0]);
+  EXPECT_EQ(b.boxes()[0].collisionGroup, 2u);
+  EXPECT_EQ(b.boxes()[0].collisionMask, 0xfffffffdu);
+  EXPECT_EQ(b.boxes()[1].collisionGroup, 1u);
+  EXPECT_EQ(b.boxes()[0].model, phys::BoxModel::Tetra);
+}
+
+TEST(SceneWriter, EveryBoxGetsAUniqueName) {
+  scenes::Scene scene = load("<particle name=\"box 1\" pos=\"0 9 0\"/>");
+  phys::BoxDesc box;
+  box.center = Vec3(0.0, 1.0, 0.0);
+  scene.world.addBox(box);  // unnamed: becomes "box 0"
+  box.name = "twin";
+  scene.world.addBox(box);
+  scene.world.addBox(box);  // a second "twin": the first keeps the name
+  box.name = "";
+  scene.world.addBox(box);  // "box 3"
+  box.name = "box 0";
+  scene.world.addBox(box);  // takes "box 0" before the unnamed one is named, which then needs another
+  const scenes::Scene copy = reload(scene);
+  ASSERT_EQ(copy.world.boxes().size(), 5u);
+  EXPECT_EQ(copy.world.boxes()[1].name, "twin");
+  EXPECT_EQ(copy.world.boxes()[2].name, "box 2");
+  EXPECT_EQ(copy.world.boxes()[3].name, "box 3");
+  EXPECT_EQ(copy.world.boxes()[4].name, "box 0");
+  EXPECT_EQ(copy.world.boxes()[0].name, "box 0 (2)");
+  EXPECT_EQ(copy.world.particleName(0), "box 1");
+}
+
+TEST(SceneWriter, NamesWithMarkupAndLineBreaksComeBackUnchanged) {
+  scenes::Scene scene = load("");
+  scene.description = "a \"quoted\" <tag> & \t tab\nnew line";
+  phys::BoxDesc box;
+  box.name = "odd & <name> \"x\"\n'y'";
+  scene.world.addBox(box);
+  const scenes::Scene copy = reload(scene);
+  EXPECT_EQ(copy.description, scene.description);
+  EXPECT_EQ(copy.world.boxes()[0].name, box.name);
+}
+
+TEST(SceneWriter, CameraIsTheOneGivenAndReadsBackAsTheSameFloats) {
+  const scenes::Scene scene = load("", "<camera eye=\"1 2 3\" target=\"0 0 0\"/>");
+  const scenes::CameraStart user{glm::vec3(0.1f, -7.3f, 1e-7f), glm::vec3(1.0f / 3.0f, 2.0f, 1234.567f)};
+  const scenes::Scene copy = scenes::loadSceneText(scenes::writeSceneXml(scene, user), "saved.xml");
+  EXPECT_EQ(copy.camera.eye, user.eye);
+  EXPECT_EQ(copy.camera.target, user.target);
+  EXPECT_EQ(reload(scene).camera.eye, glm::vec3(1, 2, 3));  // without one, the scene's own
+}
+
+// The <box euler="..."> a world's box is written with.
+Vec3 writtenEuler(const scenes::Scene& scene) {
+  const std::string xml = scenes::writeSceneXml(scene);
+  std::smatch m;
+  const std::regex euler("euler=\"(\\S+) (\\S+) (\\S+)\"");
+  if (!std::regex_search(xml, m, euler)) return Vec3(NAN);
+  return Vec3(std::stod(m[1]), std::stod(m[2]), std::stod(m[3]));
+}
+
+TEST(SceneWriter, EulerAnglesReadBackAsTheSameOrientation) {
+  const scenes::Scene scene = load("<box pos=\"0 0 0\" euler=\"30 -50 170\"/>");
+  // In range (y within +-90, x and z within +-180) the angles are unique, so they come back.
+  const Vec3 euler = writtenEuler(scene);
+  EXPECT_NEAR(euler.x, 30.0, 1e-9);
+  EXPECT_NEAR(euler.y, -50.0, 1e-9);
+  EXPECT_NEAR(euler.z, 170.0, 1e-9);
+  EXPECT_LT(angleBetween(reload(scene).world.boxPose(0).orientation, scene.world.boxPose(0).orientation), 1e-9);
+
+  // Out of range and at or near gimbal lock the angles differ, but the orientation does not.
+  for (const char* angles : {"200 100 -300", "10 90 20", "-40 -90 70", "5 89.999999 -5", "0 0 180", "180 0 0",
+                             "-179.9 45 179.9", "123 -89.9999999 321"}) {
+    const scenes::Scene s = load(std::string("<box pos=\"1 2 3\" size=\"1 2 3\" euler=\"") + angles + "\"/>");
+    const Vec3 e = writtenEuler(s);
+    EXPECT_LE(std::abs(e.y), 90.0) << angles;
+    EXPECT_LE(std::abs(e.x), 180.0) << angles;
+    EXPECT_LE(std::abs(e.z), 180.0) << angles;
+    EXPECT_LT(angleBetween(reload(s).world.boxPose(0).orientation, s.world.boxPose(0).orientation), 1e-9) << angles;
+  }
+}
+
+TEST(SceneWriter, EulerAnglesTurnAboutWorldXThenYThenZ) {
+  // Local +y turned 90 degrees about x points along +z; then 90 about y takes +z to +x. Taken in
+  // the other order (y first) it would end along +z.
+  const scenes::Scene s = load("<box pos=\"0 0 0\" euler=\"90 90 0\"/>");
+  const Vec3 up = s.world.boxPose(0).orientation * Vec3(0.0, 1.0, 0.0);
+  EXPECT_LT(glm::length(up - Vec3(1.0, 0.0, 0.0)), 1e-12);
+  EXPECT_LT(glm::length(writtenEuler(s) - Vec3(90.0, 90.0, 0.0)), 1e-6);  // at gimbal lock: x + z kept
+}
+
+TEST(SceneWriter, UnrepresentableWorldIsRefusedByName) {
+  scenes::Scene scene = load("<particle name=\"p\" pos=\"0 3 0\"/><box pos=\"0 1 0\"/>");
+  scene.world.addStick(0, 1);  // from a loose particle to a box's corner: no element says that
+  EXPECT_THROW(scenes::writeSceneXml(scene), std::invalid_argument);
+}
+
+// A fresh folder under the system's temporary one, removed with everything in it, read-only
+// folders included.
+class TempFolder {
+ public:
+  TempFolder() {
+    static int count = 0;
+    path_ =
+        fs::temp_directory_path() / ("scene-writer-test-" + std::to_string(::getpid()) + "-" + std::to_string(count++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
+    // Each folder is opened up as it is reached, before the walk descends into it.
+    for (auto it = fs::recursive_directory_iterator(path_, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+      if (it->is_directory(ec)) fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ec);
+    }
+    fs::remove_all(path_, ec);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  const fs::path& path() const { return path_; }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path_)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string readFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void expectSaveError(const scenes::Scene& scene, const fs::path& file, const std::string& says) {
+  try {
+    scenes::saveSceneFile(scene, file);
+    ADD_FAILURE() << file << ": saved";
+  } catch (const scenes::SaveError& e) {
+    EXPECT_EQ(e.file(), file);
+    EXPECT_EQ(std::string(e.what()).rfind(file.string() + ": ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneWriter, SaveReplacesAFileWholeAndKeepsItsPermissions) {
+  const TempFolder folder;
+  const fs::path file = folder.path() / "saved.xml";
+  std::ofstream(file) << std::string(100000, 'x');  // longer than the scene: no tail may survive
+  fs::permissions(file, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/falling-box.xml");
+  for (int i = 0; i < 10; ++i) scene.world.step();
+  scenes::saveSceneFile(scene, file);
+  EXPECT_EQ(readFile(file), scenes::writeSceneXml(scene));
+  EXPECT_EQ(fs::status(file).permissions(), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"saved.xml"});  // no temporary file left
+  EXPECT_EQ(scenes::loadSceneFile(file).world.boxes().size(), scene.world.boxes().size());
+}
+
+TEST(SceneWriter, SaveThroughASymbolicLinkReplacesItsTarget) {
+  const TempFolder folder;
+  fs::create_directory(folder.path() / "real");
+  std::ofstream(folder.path() / "real" / "scene.xml") << "old";
+  fs::create_symlink("real/scene.xml", folder.path() / "link.xml");
+  const scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/pendulum.xml");
+  scenes::saveSceneFile(scene, folder.path() / "link.xml");
+  EXPECT_TRUE(fs::is_symlink(folder.path() / "link.xml"));
+  EXPECT_EQ(readFile(folder.path() / "real" / "scene.xml"), scenes::writeSceneXml(scene));
+  EXPECT_EQ(folder.entries(), (std::vector<std::string>{"link.xml", "real"}));
+}
+
+TEST(SceneWriter, SaveFailsWithTheFileNamedAndNothingLeftBehind) {
+  const TempFolder folder;
+  const scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/pendulum.xml");
+
+  expectSaveError(scene, folder.path() / "missing" / "scene.xml", "No such file or directory");
+  EXPECT_FALSE(fs::exists(folder.path() / "missing"));
+
+  std::ofstream(folder.path() / "plain") << "a file, not a folder";
+  expectSaveError(scene, folder.path() / "plain" / "scene.xml", "Not a directory");
+  EXPECT_EQ(readFile(folder.path() / "plain"), "a file, not a folder");
+
+  // The temporary file is made and written here; only the rename fails, and it is removed.
+  fs::create_directory(folder.path() / "taken.xml");
+  std::ofstream(folder.path() / "taken.xml" / "inside") << "kept";
+  expectSaveError(scene, folder.path() / "taken.xml", "cannot replace it");
+  EXPECT_EQ(readFile(folder.path() / "taken.xml" / "inside"), "kept");
+  EXPECT_EQ(folder.entries(), (std::vector<std::string>{"plain", "taken.xml"}));
+}
+
+TEST(SceneWriter, SaveIntoAReadOnlyFolderFails) {
+  const TempFolder folder;
+  const fs::path locked = folder.path() / "locked";
+  fs::create_directory(locked);
+  std::ofstream(locked / "scene.xml") << "old";
+  fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+  if (::access(locked.c_str(), W_OK) == 0) GTEST_SKIP() << "running as root: permissions are not enforced";
+  expectSaveError(scenes::loadSceneFile(DATA_DIR "/assets/scenes/pendulum.xml"), locked / "scene.xml",
+                  "Permission denied");
+  EXPECT_EQ(readFile(locked / "scene.xml"), "old");
+}
+
+TEST(SceneWriter, AWorldThatCannotBeSavedLeavesTheOldFile) {
+  const TempFolder folder;
+  const fs::path file = folder.path() / "scene.xml";
+  std::ofstream(file) << "old";
+  scenes::Scene scene = load("<particle name=\"p\" pos=\"0 3 0\"/><box pos=\"0 1 0\"/>");
+  scene.world.addStick(0, 1);
+  expectSaveError(scene, file, "cannot save this world");
+  EXPECT_EQ(readFile(file), "old");
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"scene.xml"});
+}
+
+}  // namespace
