@@ -3,6 +3,7 @@
 in vec3 vNormal;
 
 uniform vec3 uColor;
+uniform float uAlpha;  // 1 opaque; below 1 for the method overlay's translucent runs
 uniform vec3 uTowardsLight;
 uniform float uAmbient;
 uniform float uDiffuse;
@@ -12,5 +13,5 @@ out vec4 fragColor;
 void main() {
   vec3 n = normalize(vNormal);
   float light = uAmbient + uDiffuse * max(dot(n, uTowardsLight), 0.0);
-  fragColor = vec4(uColor * light, 1.0);
+  fragColor = vec4(uColor * light, uAlpha);
 }

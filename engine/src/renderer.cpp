@@ -52,6 +52,7 @@ void Renderer::beginFrame(const glm::ivec2& framebufferSize) {
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
   glDisable(GL_BLEND);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 
 void Renderer::drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, const glm::vec3& normal,
@@ -83,15 +84,33 @@ void Renderer::drawGround(const glm::mat4& viewProjection, const glm::vec3& eye,
 }
 
 void Renderer::drawMesh(const GpuMesh& mesh, const glm::mat4& viewProjection, const glm::mat4& model,
-                        const glm::vec3& albedo) {
+                        const glm::vec3& albedo, float alpha) {
+  const bool translucent = alpha < 1.0f;
+  if (translucent) {
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+  }
   meshProgram_.use();
   meshProgram_.set("uViewProjection", viewProjection);
   meshProgram_.set("uModel", model);
   meshProgram_.set("uColor", albedo);
+  meshProgram_.set("uAlpha", alpha);
   meshProgram_.set("uTowardsLight", style_.light.towardsLight);
   meshProgram_.set("uAmbient", style_.light.ambient);
   meshProgram_.set("uDiffuse", style_.light.diffuse);
   mesh.draw();
+  if (translucent) {
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+  }
+}
+
+void Renderer::setWireframe(bool on) {
+  glPolygonMode(GL_FRONT_AND_BACK, on ? GL_LINE : GL_FILL);
+  // Back faces would hide nothing in wireframe, and culling them loses half the edges.
+  if (on) glDisable(GL_CULL_FACE);
+  else glEnable(GL_CULL_FACE);
 }
 
 void Renderer::endFrame(const glm::mat4& viewProjection) { lines_.flush(viewProjection); }

@@ -44,8 +44,12 @@ class Renderer {
   /// The ground plane { x : normal . x = height } (normal of unit length), centred under the
   /// camera so it never ends. For the normal (0, 1, 0) the grid lines lie on whole x and z.
   void drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, const glm::vec3& normal, float height);
+  /// Draws a lit mesh. alpha < 1 blends it over what is drawn (without writing depth, so the
+  /// runs of the method overlay all show through each other).
   void drawMesh(const GpuMesh& mesh, const glm::mat4& viewProjection, const glm::mat4& model,
-                const glm::vec3& albedo);
+                const glm::vec3& albedo, float alpha = 1.0f);
+  /// Meshes drawn from now on show only their triangles' edges (the seed's wireframe mode).
+  void setWireframe(bool on);
   /// Lines collected this frame; drawn by endFrame().
   DebugLines& lines() { return lines_; }
   void endFrame(const glm::mat4& viewProjection);
