@@ -12,11 +12,18 @@ constexpr int kMaxFrames = 1000000;
 }  // namespace
 
 std::string usage() {
-  return "usage: sandbox [SCENE] [--screenshot FILE] [--frames N] [--data DIR]\n"
+  return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers]\n"
+         "               [--overlay SETTINGS...] [--pause-at N] [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
          "                     each frame advances the simulation by one step\n"
+         "  --draw MODE        filled, wireframe or constraints (default: the last one used)\n"
+         "  --markers          green boxes on vertices moved by box-box contacts (key C)\n"
+         "  --overlay S1 S2..  run the scene under 2 to 4 solver settings at once, each drawn\n"
+         "                     translucent in its own colour; each S is key=value,... with\n"
+         "                     <solver>'s names, e.g. --overlay iterations=3 substeps=8 method=xpbd\n"
+         "  --pause-at N       pause after step N (0 to 1000000)\n"
          "  --data DIR         folder holding shaders/ and assets/ (default: the source tree)\n"
          "  --help             show this text\n";
 }
@@ -51,6 +58,42 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
       o.frames = n;
       framesGiven = true;
+    } else if (a == "--draw") {
+      const std::string* v = value("filled, wireframe or constraints");
+      if (v == nullptr) return out;
+      o.draw = parseDrawMode(*v);
+      if (!o.draw) {
+        out.error = "--draw: '" + *v + "' must be filled, wireframe or constraints";
+        return out;
+      }
+    } else if (a == "--markers") {
+      o.markers = true;
+    } else if (a == "--overlay") {
+      // Every following argument that is not an option is one run's settings.
+      while (i + 1 < args.size() && !(args[i + 1].size() > 1 && args[i + 1][0] == '-' && args[i + 1][1] == '-')) {
+        const ParsedOverlaySpec parsed = parseOverlaySpec(args[++i]);
+        if (!parsed.error.empty()) {
+          out.error = "--overlay: " + parsed.error;
+          return out;
+        }
+        o.overlay.push_back(parsed.spec);
+      }
+      if (o.overlay.size() < static_cast<std::size_t>(kMinOverlayRuns) ||
+          o.overlay.size() > static_cast<std::size_t>(kMaxOverlayRuns)) {
+        out.error = "--overlay needs " + std::to_string(kMinOverlayRuns) + " to " + std::to_string(kMaxOverlayRuns) +
+                    " settings, got " + std::to_string(o.overlay.size());
+        return out;
+      }
+    } else if (a == "--pause-at") {
+      const std::string* v = value("a step number");
+      if (v == nullptr) return out;
+      long n = 0;
+      const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
+      if (ec != std::errc() || end != v->data() + v->size() || n < 0 || n > kMaxFrames) {
+        out.error = "--pause-at: '" + *v + "' is not a whole number from 0 to " + std::to_string(kMaxFrames);
+        return out;
+      }
+      o.pauseAt = n;
     } else if (a == "--data") {
       const std::string* v = value("a folder");
       if (v == nullptr) return out;

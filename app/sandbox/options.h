@@ -1,10 +1,14 @@
 #pragma once
 // The sandbox's command line:
-//   sandbox [SCENE] [--screenshot FILE] [--frames N] [--data DIR] [--help]
+//   sandbox [SCENE] [--screenshot FILE --frames N] [--draw filled|wireframe|constraints]
+//           [--markers] [--overlay SETTINGS...] [--pause-at N] [--data DIR] [--help]
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "draw_options.h"
+#include "overlay_spec.h"
 
 namespace sandbox {
 
@@ -13,6 +17,10 @@ struct Options {
   std::optional<std::filesystem::path> screenshot;  ///< render, write this PNG, exit
   int frames = 60;        ///< frames rendered before the screenshot; one physics step each
   std::filesystem::path dataDir;  ///< holds shaders/ and assets/; empty: the build's default
+  std::optional<DrawMode> draw;   ///< given: overrides the remembered draw mode
+  bool markers = false;           ///< the seed's collision-vertex markers from the start
+  std::vector<OverlaySpec> overlay;  ///< 2 to 4 runs of the method overlay, or none
+  std::optional<long> pauseAt;    ///< pause when the main run has taken this many steps
   bool help = false;
 };
 

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <iostream>
 
 #include <glad/gl.h>
@@ -11,12 +10,10 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 #include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
 
-#include "body_colors.h"
+#include "controls.h"
 #include "engine/error.h"
 #include "engine/image.h"
-#include "engine/physics_debug_draw.h"
 
 namespace sandbox {
 namespace {
@@ -26,154 +23,355 @@ using Clock = std::chrono::steady_clock;
 constexpr int kMaxStepsPerFrame = 8;   // beyond this the sim slows down instead of spiralling
 constexpr float kCameraSpeed = 4.0f;   // unit: m/s; Shift makes it 4 times faster
 constexpr float kLookDegreesPerPixel = 0.15f;
+constexpr float kSpawnDistance = 2.0f;  // unit: m; in front of the eye, at the crosshair
 
-// A missing or broken model must not stop the sandbox: fall back to a cube built in code.
-engine::MeshData loadBoxModel(const std::filesystem::path& file) {
-  try {
-    return engine::loadMeshData(file);
-  } catch (const engine::Error& e) {
-    std::cerr << "warning: " << e.what() << "; drawing boxes with the built-in cube\n";
-    return engine::unitCubeMesh();
-  }
+Sandbox* owner(GLFWwindow* w) { return static_cast<Sandbox*>(glfwGetWindowUserPointer(w)); }
+void keyCallback(GLFWwindow* w, int key, int, int action, int mods) { owner(w)->onKey(key, action, mods); }
+void mouseButtonCallback(GLFWwindow* w, int button, int action, int) { owner(w)->onMouseButton(button, action); }
+void focusCallback(GLFWwindow* w, int focused) { owner(w)->onFocus(focused == GLFW_TRUE); }
+
+engine::WindowDesc windowDesc(const Options& options, const UserSettings& user) {
+  engine::WindowDesc d;
+  d.width = user.windowWidth;
+  d.height = user.windowHeight;
+  d.visible = !options.screenshot;
+  d.vsync = true;
+  return d;
 }
 
-// Neighbouring boxes in one colour would merge into one block; each gets its own brightness,
-// from 85% to 115% by the golden ratio, so the hue (what the tests look for) stays the same.
-float boxShade(phys::BoxId id) {
-  const float spread = std::fmod(static_cast<float>(id) * 0.618034f, 1.0f);
-  return 0.85f + 0.3f * spread;
+UserSettings loadRemembered(bool interactive, const std::filesystem::path& file) {
+  if (!interactive || file.empty()) return {};
+  LoadedSettings loaded = loadUserSettings(file);
+  for (const std::string& w : loaded.warnings) std::cerr << "sandbox: warning: " << w << '\n';
+  return loaded.settings;
 }
 
-glm::mat4 boxModelMatrix(const phys::BoxPose& pose, const phys::Vec3& size) {
-  const glm::mat4 rotation = glm::mat4_cast(glm::quat(pose.orientation));
-  return glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(pose.center)) * rotation, glm::vec3(size));
+std::filesystem::path settingsPath(bool interactive) {
+  const std::filesystem::path dir = interactive ? configDirectory() : std::filesystem::path();
+  return dir.empty() ? dir : dir / "sandbox.ini";
 }
 
 }  // namespace
 
 Sandbox::Sandbox(const Options& options)
     : options_(options),
-      window_(engine::WindowDesc{1280, 720, "Jakobsen sandbox", true, !options.screenshot}) {
+      interactive_(!options.screenshot),
+      settingsFile_(settingsPath(interactive_)),
+      user_(loadRemembered(interactive_, settingsFile_)),
+      window_(windowDesc(options, user_)) {
   const std::filesystem::path data = dataDir(options_);
   renderer_ = std::make_unique<engine::Renderer>(data / "shaders");
-  boxMesh_ = std::make_unique<engine::GpuMesh>(loadBoxModel(data / "assets" / "models" / "box.obj"));
-  loadScene();
+  view_ = std::make_unique<SceneView>(*renderer_, data / "assets" / "models");
 
+  // The scene: the one named, else the last one used (if it still loads), else the default.
+  std::filesystem::path file = scenePath(options_);
+  if (options_.scene.empty() && !user_.lastScene.empty() && std::filesystem::exists(user_.lastScene)) {
+    file = user_.lastScene;
+  }
+  try {
+    session_ = std::make_unique<Session>(file, scenes::sceneDirectory(data));
+  } catch (const std::exception& e) {
+    if (file == scenePath(options_)) throw;
+    std::cerr << "sandbox: " << e.what() << "; opening the default scene instead\n";
+    session_ = std::make_unique<Session>(scenePath(options_), scenes::sceneDirectory(data));
+  }
+  camera_ = engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
+  applyRemembered(user_, options_, ui_);
+  if (!options_.overlay.empty()) {
+    const std::string error = session_->startOverlay(options_.overlay);
+    if (!error.empty()) throw std::invalid_argument("--overlay: " + error);
+  }
+
+  // Our callbacks first: ImGui's backend chains to the ones installed before it.
+  glfwSetWindowUserPointer(window_.handle(), this);
+  glfwSetKeyCallback(window_.handle(), keyCallback);
+  glfwSetMouseButtonCallback(window_.handle(), mouseButtonCallback);
+  glfwSetWindowFocusCallback(window_.handle(), focusCallback);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;  // layout is fixed until settings persistence lands
+  // Panel layout is remembered in interactive use only; screenshots always use the defaults.
+  imguiIni_ = settingsFile_.empty() ? std::string() : (settingsFile_.parent_path() / "imgui.ini").string();
+  ImGui::GetIO().IniFilename = imguiIni_.empty() ? nullptr : imguiIni_.c_str();
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_.handle(), true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 }
 
 Sandbox::~Sandbox() {
+  saveUserSettingsOnExit();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
 }
 
-void Sandbox::loadScene() {
-  // A scene that fails to load (at Reset, after the file was edited) leaves the current world
-  // as it was; at start-up there is none, so the error ends the program.
-  auto loaded = std::make_unique<scenes::Scene>(scenes::loadSceneFile(scenePath(options_)));
-  scene_ = std::move(loaded);
-  camera_ = engine::FirstPersonCamera::lookingAt(scene_->camera.eye, scene_->camera.target);
-  accumulator_ = 0.0;
+void Sandbox::saveUserSettingsOnExit() {
+  if (settingsFile_.empty()) return;
+  glfwGetWindowSize(window_.handle(), &user_.windowWidth, &user_.windowHeight);
+  remember(ui_, user_);
+  user_.lastScene = std::filesystem::absolute(session_->file()).string();
+  try {
+    saveUserSettings(user_, settingsFile_);
+  } catch (const std::exception& e) {
+    std::cerr << "sandbox: " << e.what() << '\n';
+  }
 }
 
-void Sandbox::stepOnceTimed() {
-  const auto start = Clock::now();
-  scene_->world.step();
-  panel_.stepMs += std::chrono::duration<float, std::milli>(Clock::now() - start).count();
+void Sandbox::onKey(int key, int action, int mods) {
+  if (action == GLFW_PRESS) {
+    input_.keyDown(key);
+    keyPresses_.emplace_back(key, mods);
+  } else if (action == GLFW_RELEASE) {
+    input_.keyUp(key);
+  }
+}
+
+void Sandbox::onMouseButton(int button, int action) {
+  if (action == GLFW_PRESS) input_.buttonDown(button);
+  else if (action == GLFW_RELEASE) input_.buttonUp(button);
+}
+
+void Sandbox::onFocus(bool focused) {
+  if (focused) return;
+  // The key-up events go to whichever window has focus now: forget every held key and button,
+  // so the camera cannot keep flying (the seed's stuck-key bug) nor a drag stay attached.
+  input_.focusLost();
+  looking_ = false;
+  session_->release();
+}
+
+void Sandbox::openScene(const std::filesystem::path& file) {
+  const std::string error = session_->open(file);
+  if (!error.empty()) {
+    errorText_ = error + "\n\nThe current world is kept.";
+    showError_ = true;
+    ui_.message = "could not open " + file.string();
+    return;
+  }
+  addRecentFile(user_, std::filesystem::absolute(file).string());
+  camera_ = engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
+  ui_.message = session_->status();
+  ui_.stepMs.clear();
+  ui_.maxError.clear();
+  ui_.rmsError.clear();
+}
+
+void Sandbox::perform(Action action) {
+  Session& s = *session_;
+  switch (action) {
+    case Action::Scene1: openScene(scenes::resolveScene("ragdoll", scenes::sceneDirectory(dataDir(options_)))); break;
+    case Action::Scene2: openScene(scenes::resolveScene("pyramid", scenes::sceneDirectory(dataDir(options_)))); break;
+    case Action::Scene3:
+      openScene(scenes::resolveScene("box-of-boxes", scenes::sceneDirectory(dataDir(options_))));
+      break;
+    case Action::ClearScene: s.clear(); ui_.message = s.status(); break;
+    case Action::CycleDrawMode: ui_.draw.mode = nextDrawMode(ui_.draw.mode); break;
+    case Action::ToggleMarkers: ui_.draw.markers = !ui_.draw.markers; break;
+    case Action::ToggleGravityMode: s.toggleGravityMode(); ui_.message = s.status(); break;
+    case Action::GravityUp: s.changeGravity(kGravityStep); ui_.message = s.status(); break;
+    case Action::GravityDown: s.changeGravity(-kGravityStep); ui_.message = s.status(); break;
+    case Action::DampingUp: s.changeDamping(kDampingStep); ui_.message = s.status(); break;
+    case Action::DampingDown: s.changeDamping(-kDampingStep); ui_.message = s.status(); break;
+    case Action::Pause: ui_.paused = !ui_.paused; break;
+    case Action::StepOnce: ui_.stepOnce = true; break;
+    case Action::Reload: openScene(s.file()); break;
+    case Action::SpawnBox:
+    case Action::SpawnRagdoll: {
+      const phys::Vec3 forward(camera_.forward());
+      const phys::Vec3 at = phys::Vec3(camera_.position) + forward * static_cast<double>(kSpawnDistance);
+      if (action == Action::SpawnBox) s.spawnBox(at, forward * kThrowSpeed);
+      else s.spawnRagdoll(at, forward * kThrowSpeed);
+      ui_.message = s.status();
+      break;
+    }
+    case Action::ToggleHelp: ui_.showHelp = !ui_.showHelp; break;
+  }
 }
 
 void Sandbox::advancePhysics(double frameSeconds) {
-  panel_.stepMs = 0.0f;
-  if (options_.screenshot) {  // deterministic: one step per frame, whatever the clock says
-    if (!panel_.paused) stepOnceTimed();
-    return;
+  const phys::World& world = session_->scene().world;
+  if (options_.pauseAt && world.stepCount() >= *options_.pauseAt && !ui_.paused) {
+    ui_.paused = true;
+    ui_.message = "paused at step " + std::to_string(world.stepCount()) + " (--pause-at)";
+    options_.pauseAt.reset();
   }
-  if (panel_.stepOnce) {
-    stepOnceTimed();
-    panel_.stepOnce = false;
+  auto timedStep = [&] { session_->step(); };
+  if (!interactive_) {  // deterministic: one step per frame, whatever the clock says
+    if (!ui_.paused) timedStep();
+  } else {
+    if (ui_.stepOnce) timedStep();
+    if (ui_.paused) {
+      accumulator_ = 0.0;
+    } else {
+      const double dt = world.solverSettings().dt;
+      accumulator_ += frameSeconds * ui_.timeScale;
+      int steps = 0;
+      while (accumulator_ >= dt && steps < kMaxStepsPerFrame) {
+        timedStep();
+        accumulator_ -= dt;
+        ++steps;
+      }
+      if (steps == kMaxStepsPerFrame) accumulator_ = 0.0;  // drop the backlog rather than spiral
+    }
   }
-  if (panel_.paused) {
-    accumulator_ = 0.0;
-    return;
-  }
-  const double dt = scene_->world.solverSettings().dt;
-  accumulator_ += frameSeconds;
-  int steps = 0;
-  while (accumulator_ >= dt && steps < kMaxStepsPerFrame) {
-    stepOnceTimed();
-    accumulator_ -= dt;
-    ++steps;
-  }
-  if (steps == kMaxStepsPerFrame) accumulator_ = 0.0;  // drop the backlog rather than spiral
+  ui_.stepOnce = false;
+  const phys::Metrics m = world.metrics();
+  ui_.stepMs.add(static_cast<float>(world.profile().total), frameSeconds);
+  ui_.maxError.add(static_cast<float>(m.maxConstraintError), frameSeconds);
+  ui_.rmsError.add(static_cast<float>(m.rmsConstraintError), frameSeconds);
+}
+
+std::pair<phys::Vec3, phys::Vec3> Sandbox::cursorRay() const {
+  double x = 0.0, y = 0.0;
+  glfwGetCursorPos(window_.handle(), &x, &y);
+  int w = 1, h = 1;
+  glfwGetWindowSize(window_.handle(), &w, &h);
+  const glm::vec4 viewport(0.0f, 0.0f, static_cast<float>(w), static_cast<float>(h));
+  const float aspect = static_cast<float>(w) / static_cast<float>(std::max(h, 1));
+  const glm::vec3 win(static_cast<float>(x), static_cast<float>(h) - static_cast<float>(y), 0.0f);
+  const glm::vec3 nearPoint = glm::unProject(win, camera_.view(), camera_.projection(aspect), viewport);
+  const glm::vec3 farPoint =
+      glm::unProject(glm::vec3(win.x, win.y, 1.0f), camera_.view(), camera_.projection(aspect), viewport);
+  return {phys::Vec3(camera_.position), glm::normalize(phys::Vec3(farPoint - nearPoint))};
 }
 
 void Sandbox::moveCamera(float frameSeconds) {
-  GLFWwindow* w = window_.handle();
   const ImGuiIO& io = ImGui::GetIO();
   double x = 0.0, y = 0.0;
-  glfwGetCursorPos(w, &x, &y);
-  const bool rightHeld = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-  if (rightHeld && (looking_ || !io.WantCaptureMouse)) {
-    if (looking_) {
-      camera_.turn(static_cast<float>(x - lastCursorX_) * kLookDegreesPerPixel,
-                   static_cast<float>(lastCursorY_ - y) * kLookDegreesPerPixel);
-    }
-    looking_ = true;
-  } else {
-    looking_ = false;
+  glfwGetCursorPos(window_.handle(), &x, &y);
+  // Look only while the right button is held, and only if the press began outside the panels,
+  // so ImGui stays usable with the mouse.
+  if (input_.buttonPressed(GLFW_MOUSE_BUTTON_RIGHT) && !io.WantCaptureMouse) looking_ = true;
+  if (!input_.buttonHeld(GLFW_MOUSE_BUTTON_RIGHT)) looking_ = false;
+  if (looking_) {
+    camera_.turn(static_cast<float>(x - lastCursorX_) * kLookDegreesPerPixel,
+                 static_cast<float>(lastCursorY_ - y) * kLookDegreesPerPixel);
   }
   lastCursorX_ = x;
   lastCursorY_ = y;
   if (io.WantCaptureKeyboard) return;
-  auto held = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
-  const float speed = kCameraSpeed * (held(GLFW_KEY_LEFT_SHIFT) > 0.0f ? 4.0f : 1.0f) * frameSeconds;
-  camera_.move((held(GLFW_KEY_D) - held(GLFW_KEY_A)) * speed, (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * speed,
-               (held(GLFW_KEY_W) - held(GLFW_KEY_S)) * speed);
+  auto held = [this](int key) { return input_.held(key) ? 1.0f : 0.0f; };
+  const bool fast = input_.held(GLFW_KEY_LEFT_SHIFT) || input_.held(GLFW_KEY_RIGHT_SHIFT);
+  const float step = kCameraSpeed * (fast ? 4.0f : 1.0f) * frameSeconds;
+  camera_.move((held(GLFW_KEY_D) - held(GLFW_KEY_A)) * step, (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * step,
+               (held(GLFW_KEY_W) - held(GLFW_KEY_S)) * step);
+}
+
+void Sandbox::updateDrag() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (input_.buttonPressed(GLFW_MOUSE_BUTTON_LEFT) && !io.WantCaptureMouse) {
+    const auto [origin, direction] = cursorRay();
+    if (session_->pick(origin, direction)) ui_.message = "dragging: release the left button to let go";
+  }
+  if (!input_.buttonHeld(GLFW_MOUSE_BUTTON_LEFT)) {
+    session_->release();
+    return;
+  }
+  if (session_->dragging()) {
+    const auto [origin, direction] = cursorRay();
+    session_->dragAlong(origin, direction);
+  }
+}
+
+void Sandbox::drawMenuBar() {
+  if (!ImGui::BeginMainMenuBar()) return;
+  const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(options_));
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) openDialog_.open(FileDialogMode::Open, sceneDir, "Open scene");
+    if (ImGui::MenuItem("Reload", "F5")) perform(Action::Reload);
+    if (ImGui::MenuItem("Save As...", "Ctrl+S")) {
+      saveDialog_.open(FileDialogMode::Save, session_->file().parent_path(), "Save world as scene");
+    }
+    if (ImGui::BeginMenu("Recent", !user_.recentFiles.empty())) {
+      const std::vector<std::string> recent = user_.recentFiles;  // openScene() reorders the list
+      for (const std::string& f : recent) {
+        if (ImGui::MenuItem(f.c_str())) openScene(f);
+      }
+      ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Project scenes")) {
+      for (const DirectoryEntry& e : listDirectory(sceneDir, ".xml")) {
+        if (!e.isFolder && ImGui::MenuItem(e.name.c_str())) openScene(sceneDir / e.name);
+      }
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit")) glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    ImGui::MenuItem("Simulation", nullptr, &ui_.showSimulation);
+    ImGui::MenuItem("World", nullptr, &ui_.showWorld);
+    ImGui::MenuItem("Draw", nullptr, &ui_.showDraw);
+    ImGui::MenuItem("Stats", nullptr, &ui_.showStats);
+    ImGui::MenuItem("Controls", "F1", &ui_.showHelp);
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+}
+
+void Sandbox::drawDialogs() {
+  if (const auto chosen = openDialog_.draw()) openScene(*chosen);
+  if (const auto chosen = saveDialog_.draw()) {
+    scenes::CameraStart camera;
+    camera.eye = camera_.position;
+    camera.target = camera_.position + camera_.forward();
+    const std::string error = session_->saveAs(*chosen, camera);
+    if (error.empty()) {
+      ui_.message = "saved " + chosen->string();
+      addRecentFile(user_, std::filesystem::absolute(*chosen).string());
+    } else {
+      errorText_ = error + "\n\nNothing was written over the file.";
+      showError_ = true;
+    }
+  }
+  if (showError_) {
+    ImGui::OpenPopup("Error");
+    showError_ = false;
+  }
+  ImGui::SetNextWindowSize(ImVec2(560.0f, 0.0f), ImGuiCond_Appearing);
+  if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::TextWrapped("%s", errorText_.c_str());
+    if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
 }
 
 void Sandbox::renderFrame() {
   const glm::ivec2 size = window_.framebufferSize();
-  if (size.x == 0 || size.y == 0) return;  // minimised
+  if (size.x == 0 || size.y == 0) return;  // minimised: nothing to draw into
   const glm::mat4 viewProjection =
       camera_.projection(static_cast<float>(size.x) / static_cast<float>(size.y)) * camera_.view();
-  const phys::World& world = scene_->world;
 
   renderer_->beginFrame(size);
-  const phys::WorldSettings& settings = world.worldSettings();
+  const phys::WorldSettings& settings = session_->scene().world.worldSettings();
   if (settings.ground) {
     renderer_->drawGround(viewProjection, camera_.position, glm::vec3(settings.groundNormal),
                           static_cast<float>(settings.groundHeight));
   }
-  const auto boxes = world.boxes();
-  std::vector<bool> inBox(world.particles().size(), false);
-  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
-    renderer_->drawMesh(*boxMesh_, viewProjection, boxModelMatrix(world.boxPose(id), boxes[id].halfExtents * 2.0),
-                        boxShade(id) * kBoxColor);
-    for (int k = 0; k < boxes[id].particleCount; ++k) inBox[boxes[id].firstParticle + k] = true;
+  if (session_->overlayActive()) {
+    for (const Run& run : session_->runs()) view_->draw(run.scene->world, viewProjection, ui_.draw, Tint{run.color});
+  } else {
+    view_->draw(session_->scene().world, viewProjection, ui_.draw);
   }
-  if (panel_.drawParticles) {
-    const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(kParticleDrawSize));
-    for (std::size_t i = 0; i < world.particles().size(); ++i) {
-      if (inBox[i]) continue;
-      const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(world.particles().position[i])) * scale;
-      renderer_->drawMesh(*boxMesh_, viewProjection, model, kParticleColor);
-    }
+  if (const auto line = session_->dragLine()) {
+    renderer_->lines().addLine(glm::vec3(line->first), glm::vec3(line->second), glm::vec3(1.0f, 1.0f, 0.3f));
+    renderer_->lines().addPoint(glm::vec3(line->second), 0.08f, glm::vec3(1.0f, 1.0f, 0.3f));
   }
-  engine::PhysicsDebugDraw debugDraw(renderer_->lines());
-  world.debugDraw(debugDraw, {panel_.drawSticks, false, panel_.drawContacts, panel_.drawContacts, panel_.drawBounds});
   glDisable(GL_DEPTH_TEST);  // debug lines show through bodies, as in the seed's constraint mode
   renderer_->endFrame(viewProjection);
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
-  drawPanel(*scene_, panel_);
+  drawMenuBar();
+  drawSimulationPanel(*session_, ui_);
+  drawWorldPanel(*session_, ui_);
+  drawDrawPanel(ui_);
+  drawStatsPanel(*session_, ui_);
+  drawLegend(*session_);
+  drawHelp(ui_);
+  drawDialogs();
+  drawStatusAndCrosshair(*session_, ui_);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
@@ -185,20 +383,32 @@ int Sandbox::run() {
     const auto now = Clock::now();
     const float frameSeconds = std::chrono::duration<float>(now - last).count();
     last = now;
-    panel_.frameMs = frameSeconds * 1000.0f;
+    ui_.frameMs = frameSeconds * 1000.0f;
 
-    if (panel_.resetRequested) {
-      panel_.resetRequested = false;
-      try {
-        loadScene();
-        panel_.loadError.clear();
-      } catch (const std::exception& e) {  // LoadError, or anything else: keep what we have
-        panel_.loadError = e.what();
-        std::cerr << "sandbox: " << e.what() << " (keeping the current world)\n";
+    // Keys act unless ImGui is taking typed text (a path in a dialog, an overlay setting).
+    const bool typing = ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantTextInput;
+    for (const auto& [key, mods] : keyPresses_) {
+      if (typing) continue;
+      if ((mods & GLFW_MOD_CONTROL) != 0 && key == GLFW_KEY_O) {
+        openDialog_.open(FileDialogMode::Open, scenes::sceneDirectory(dataDir(options_)), "Open scene");
+      } else if ((mods & GLFW_MOD_CONTROL) != 0 && key == GLFW_KEY_S) {
+        saveDialog_.open(FileDialogMode::Save, session_->file().parent_path(), "Save world as scene");
+      } else if (const auto action = actionForKey(key, mods)) {
+        perform(*action);
       }
     }
+    keyPresses_.clear();
+    if (ui_.reloadRequested) {
+      ui_.reloadRequested = false;
+      perform(Action::Reload);
+    }
+
+    if (interactive_) {
+      moveCamera(frameSeconds);
+      updateDrag();
+    }
     advancePhysics(frameSeconds);
-    if (!options_.screenshot) moveCamera(frameSeconds);
+    input_.endFrame();
     renderFrame();
 
     if (options_.screenshot && frame >= options_.frames) {

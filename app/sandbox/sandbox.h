@@ -1,22 +1,31 @@
 #pragma once
-// The sandbox program: a window, the scene's world stepped at a fixed rate, the renderer, the
-// ImGui panel and a first-person camera.
+// The sandbox program: a window, the session's scene stepped at a fixed rate, the renderer, the
+// ImGui panels and menus, a first-person camera, and picking. Commands go to the Session (the
+// command layer, session.h); this file wires keys, mouse and menus to it and draws.
+#include <filesystem>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "engine/camera.h"
-#include "engine/gpu_mesh.h"
 #include "engine/renderer.h"
 #include "engine/window.h"
+#include "controls.h"
+#include "file_dialog.h"
+#include "input.h"
 #include "options.h"
-#include "panel.h"
-#include "scenes/scene.h"
+#include "panels.h"
+#include "scene_view.h"
+#include "session.h"
+#include "user_settings.h"
 
 namespace sandbox {
 
 class Sandbox {
  public:
-  /// Opens the window and loads shaders, the box model and the scene; throws engine::Error or
-  /// std::invalid_argument with a message for the user.
+  /// Opens the window and loads shaders, models and the scene; throws engine::Error or
+  /// scenes::LoadError with a message for the user.
   explicit Sandbox(const Options& options);
   ~Sandbox();
   Sandbox(const Sandbox&) = delete;
@@ -26,21 +35,41 @@ class Sandbox {
   /// process exit code.
   int run();
 
+  // GLFW callbacks (static trampolines in sandbox.cpp forward here).
+  void onKey(int key, int action, int mods);
+  void onMouseButton(int button, int action);
+  void onFocus(bool focused);
+
  private:
-  void loadScene();
+  void saveUserSettingsOnExit();
+  void perform(Action action);
+  void openScene(const std::filesystem::path& file);
   void advancePhysics(double frameSeconds);
-  void stepOnceTimed();
   void moveCamera(float frameSeconds);
+  void updateDrag();
+  /// The ray under the cursor, from the camera: origin and unit direction.
+  std::pair<phys::Vec3, phys::Vec3> cursorRay() const;
   void renderFrame();
+  void drawMenuBar();
+  void drawDialogs();
 
   Options options_;
+  bool interactive_;  // false for --screenshot: nothing remembered, one step per frame
+  std::filesystem::path settingsFile_;
+  std::string imguiIni_;  // ImGui keeps a pointer to this
+  UserSettings user_;
   engine::Window window_;
   std::unique_ptr<engine::Renderer> renderer_;
-  std::unique_ptr<engine::GpuMesh> boxMesh_;
-  std::unique_ptr<scenes::Scene> scene_;
+  std::unique_ptr<SceneView> view_;
+  std::unique_ptr<Session> session_;
   engine::FirstPersonCamera camera_;
-  PanelState panel_;
-  double accumulator_ = 0.0;  // unit: s; real time not yet simulated
+  InputState input_;
+  std::vector<std::pair<int, int>> keyPresses_;  // (key, mods) since the last frame
+  UiState ui_;
+  FileDialog openDialog_, saveDialog_;
+  std::string errorText_;     // shown in a modal until dismissed
+  bool showError_ = false;
+  double accumulator_ = 0.0;  // unit: s; simulated time owed to the clock
   double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
   bool looking_ = false;
 };

@@ -43,3 +43,31 @@ TEST(Options, DataDirDefaultsToTheBuildsAndCanBeOverridden) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Options, DrawMarkersOverlayAndPauseAt) {
+  const auto p = sandbox::parseOptions({"pyramid", "--draw", "wireframe", "--markers", "--overlay", "iterations=3",
+                                        "substeps=8,iterations=1", "method=xpbd", "--pause-at", "40"});
+  ASSERT_EQ(p.error, "");
+  EXPECT_EQ(p.options.scene, "pyramid");
+  EXPECT_EQ(p.options.draw, sandbox::DrawMode::Wireframe);
+  EXPECT_TRUE(p.options.markers);
+  ASSERT_EQ(p.options.overlay.size(), 3u);
+  EXPECT_EQ(p.options.overlay[1].text, "substeps=8,iterations=1");
+  EXPECT_EQ(p.options.pauseAt, 40);
+}
+
+TEST(Options, BadDrawOverlayAndPauseAtSayWhat) {
+  EXPECT_EQ(sandbox::parseOptions({"--draw", "shaded"}).error,
+            "--draw: 'shaded' must be filled, wireframe or constraints");
+  EXPECT_EQ(sandbox::parseOptions({"--overlay", "iterations=3"}).error, "--overlay needs 2 to 4 settings, got 1");
+  EXPECT_EQ(sandbox::parseOptions({"--overlay", "a=1", "b=2", "c=3", "d=4", "e=5"}).error.substr(0, 19),
+            "--overlay: unknown ");
+  EXPECT_EQ(sandbox::parseOptions({"--overlay", "iterations=0", "iterations=2"}).error.substr(0, 25),
+            "--overlay: 'iterations=0'");
+  EXPECT_EQ(sandbox::parseOptions({"--pause-at", "-1"}).error,
+            "--pause-at: '-1' is not a whole number from 0 to 1000000");
+}
+
+}  // namespace

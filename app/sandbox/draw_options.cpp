@@ -1,0 +1,30 @@
+#include "draw_options.h"
+
+namespace sandbox {
+
+std::string_view toString(DrawMode mode) {
+  switch (mode) {
+    case DrawMode::Filled: return "filled";
+    case DrawMode::Wireframe: return "wireframe";
+    case DrawMode::Constraints: return "constraints";
+  }
+  return "filled";
+}
+
+std::optional<DrawMode> parseDrawMode(std::string_view name) {
+  for (DrawMode m : {DrawMode::Filled, DrawMode::Wireframe, DrawMode::Constraints}) {
+    if (toString(m) == name) return m;
+  }
+  return std::nullopt;
+}
+
+DrawMode nextDrawMode(DrawMode mode) {
+  switch (mode) {
+    case DrawMode::Filled: return DrawMode::Wireframe;
+    case DrawMode::Wireframe: return DrawMode::Constraints;
+    case DrawMode::Constraints: return DrawMode::Filled;
+  }
+  return DrawMode::Filled;
+}
+
+}  // namespace sandbox

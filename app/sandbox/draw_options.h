@@ -1,0 +1,28 @@
+#pragma once
+// What the view draws: the seed's three draw modes and the debug layers on top.
+#include <optional>
+#include <string_view>
+
+namespace sandbox {
+
+enum class DrawMode {
+  Filled,       ///< lit meshes
+  Wireframe,    ///< the meshes' edges
+  Constraints,  ///< sticks and joints only: sticks red, ranges orange, pins yellow
+};
+
+std::string_view toString(DrawMode mode);  ///< "filled", "wireframe", "constraints"
+std::optional<DrawMode> parseDrawMode(std::string_view name);
+/// The mode Tab goes to next.
+DrawMode nextDrawMode(DrawMode mode);
+
+struct DrawOptions {
+  DrawMode mode = DrawMode::Filled;
+  bool markers = false;    ///< green boxes on the vertices box-box contacts moved (the seed's C)
+  bool sticks = false;     ///< constraints drawn over the meshes in the other modes
+  bool contacts = false;   ///< contact points and normals
+  bool bounds = false;     ///< each box's axis-aligned bounds
+  bool particles = true;   ///< loose particles as small cubes
+};
+
+}  // namespace sandbox

@@ -1,0 +1,312 @@
+#include "panels.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+#include <glm/geometric.hpp>
+
+#include "controls.h"
+
+namespace sandbox {
+namespace {
+
+constexpr ImGuiCond kFirstUse = ImGuiCond_FirstUseEver;
+
+// Opens the panel's window at its first place; false when it is collapsed (call End either way).
+bool beginPanel(const char* title, bool* open, const PanelPlace& place) {
+  const float x = place.fromRight ? ImGui::GetIO().DisplaySize.x - place.pos.x : place.pos.x;
+  ImGui::SetNextWindowPos(ImVec2(x, place.pos.y), kFirstUse);
+  ImGui::SetNextWindowSize(ImVec2(place.size.x, place.size.y), kFirstUse);
+  ImGui::SetNextWindowBgAlpha(1.0f);  // opaque: the scene behind never hides the text
+  const bool visible = ImGui::Begin(title, open);
+  // Sliders take what the labels leave: the longest label is "compliance (m/N, xpbd)".
+  ImGui::PushItemWidth(-ImGui::GetFontSize() * 12.0f);
+  return visible;
+}
+
+void endPanel() {
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+// A double edited through a float slider: written back only when the slider moved, so an
+// untouched 9.81 never becomes 9.8100004 (the run would no longer match the lab's).
+bool sliderReal(const char* label, double& value, float min, float max, const char* format = "%.3f",
+                ImGuiSliderFlags flags = 0) {
+  float v = static_cast<float>(value);
+  if (!ImGui::SliderFloat(label, &v, min, max, format, flags)) return false;
+  value = std::clamp(static_cast<double>(v), static_cast<double>(min), static_cast<double>(max));
+  return true;
+}
+
+void overlaySection(Session& session, UiState& ui) {
+  if (session.overlayActive()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);  // started from the command line
+  if (!ImGui::CollapsingHeader("Method overlay")) return;
+  ImGui::TextWrapped("2 to 4 runs of this world from its state now, e.g. iterations=3 / substeps=8,iterations=1 / method=xpbd");
+  for (int i = 0; i < kMaxOverlayRuns; ++i) {
+    ImGui::PushID(i);
+    ImGui::ColorButton("##c", ImVec4(kRunColors[i].r, kRunColors[i].g, kRunColors[i].b, 1.0f), 0, ImVec2(14, 14));
+    ImGui::SameLine();
+    ImGui::InputText("##spec", ui.overlayText[i].data(), ui.overlayText[i].size());
+    ImGui::PopID();
+  }
+  if (ImGui::Button(session.overlayActive() ? "Restart overlay" : "Start overlay")) {
+    std::vector<OverlaySpec> specs;
+    std::string error;
+    for (const auto& text : ui.overlayText) {
+      if (text[0] == '\0') continue;
+      const ParsedOverlaySpec parsed = parseOverlaySpec(text.data());
+      if (!parsed.error.empty() && error.empty()) error = parsed.error;
+      specs.push_back(parsed.spec);
+    }
+    if (error.empty()) error = session.startOverlay(specs);
+    ui.message = error.empty() ? session.status() : "overlay: " + error;
+  }
+  if (session.overlayActive()) {
+    ImGui::SameLine();
+    if (ImGui::Button("Stop overlay")) session.stopOverlay();
+  }
+}
+
+}  // namespace
+
+void applyRemembered(const UserSettings& user, const Options& options, UiState& ui) {
+  ui.showSimulation = user.showSimulation;
+  ui.showWorld = user.showWorld;
+  ui.showDraw = user.showDraw;
+  ui.showStats = user.showStats;
+  ui.draw.mode = options.draw.value_or(parseDrawMode(user.drawMode).value_or(DrawMode::Filled));
+  ui.draw.markers = options.markers || user.markers;
+  const char* examples[kMaxOverlayRuns] = {"iterations=3", "substeps=8,iterations=1", "method=xpbd", ""};
+  for (std::size_t i = 0; i < static_cast<std::size_t>(kMaxOverlayRuns); ++i) {
+    const std::string text = i < options.overlay.size() ? options.overlay[i].text : examples[i];
+    ui.overlayText[i].fill('\0');
+    text.copy(ui.overlayText[i].data(), ui.overlayText[i].size() - 1);
+  }
+}
+
+void remember(const UiState& ui, UserSettings& user) {
+  user.showSimulation = ui.showSimulation;
+  user.showWorld = ui.showWorld;
+  user.showDraw = ui.showDraw;
+  user.showStats = ui.showStats;
+  user.drawMode = std::string(toString(ui.draw.mode));
+  user.markers = ui.draw.markers;
+}
+
+void drawSimulationPanel(Session& session, UiState& ui) {
+  if (!ui.showSimulation) return;
+  if (!beginPanel("Simulation", &ui.showSimulation, kSimulationPanel)) {
+    endPanel();
+    return;
+  }
+  const scenes::Scene& scene = session.scene();
+  phys::World& world = session.scene().world;
+  ImGui::TextWrapped("%s: %s", scene.name.c_str(), scene.description.c_str());
+  ImGui::Text("t = %.2f s, step %ld", world.time(), world.stepCount());
+  ImGui::Checkbox("Pause (Space)", &ui.paused);
+  ImGui::SameLine();
+  if (ImGui::Button("Step (N)")) ui.stepOnce = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset (F5)")) ui.reloadRequested = true;
+  ImGui::SliderFloat("time scale", &ui.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+
+  // The settings edited through a copy and handed back to the setter, which validates; the
+  // ranges below keep every value valid.
+  phys::SolverSettings s = world.solverSettings();
+  bool changed = false;
+  int method = static_cast<int>(s.method);
+  if (ImGui::Combo("method", &method, "gauss-seidel\0jacobi\0xpbd\0shake\0")) {
+    s.method = static_cast<phys::SolverMethod>(method);
+    changed = true;
+  }
+  double dtMs = s.dt * 1000.0;
+  if (sliderReal("dt (ms)", dtMs, 1.0f, 66.7f, "%.2f", ImGuiSliderFlags_Logarithmic)) {
+    s.dt = dtMs / 1000.0;
+    changed = true;
+  }
+  changed |= ImGui::SliderInt("substeps", &s.substeps, 1, 64);
+  changed |= ImGui::SliderInt("iterations", &s.iterations, 1, 64);
+  changed |= sliderReal("feature epsilon (m)", s.featureEpsilon, 0.0f, 0.1f, "%.4f");
+  changed |= sliderReal("restitution", s.restitution, 0.0f, 1.0f, "%.2f");
+  changed |= sliderReal("compliance (m/N, xpbd)", s.compliance, 0.0f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
+  changed |= sliderReal("body damping", s.bodyDamping, 0.0f, 1.0f, "%.2f");
+  if (changed) {
+    const std::string error = session.setSolverSettings(s);
+    ui.message = error.empty() ? "solver: " + describeSolver(s) + " (applied without restart)" : error;
+  }
+
+  // Friction lives in the materials; the panel's is the ground's, which every contact with the
+  // ground combines with the body's own (geometric mean).
+  phys::WorldSettings w = world.worldSettings();
+  double mu = w.groundMaterial.staticFriction;
+  if (sliderReal("ground friction", mu, 0.0f, 2.0f, "%.2f")) {
+    const double ratio = w.groundMaterial.staticFriction > 0.0
+                             ? w.groundMaterial.dynamicFriction / w.groundMaterial.staticFriction : 5.0 / 6.0;
+    w.groundMaterial.staticFriction = mu;
+    w.groundMaterial.dynamicFriction = mu * ratio;
+    session.setWorldSettings(w);
+  }
+  overlaySection(session, ui);
+  endPanel();
+}
+
+void drawWorldPanel(Session& session, UiState& ui) {
+  if (!ui.showWorld) return;
+  if (!beginPanel("World", &ui.showWorld, kWorldPanel)) {
+    endPanel();
+    return;
+  }
+  phys::WorldSettings w = session.scene().world.worldSettings();
+  int mode = static_cast<int>(w.gravityMode);
+  if (ImGui::Combo("gravity (G)", &mode, "uniform\0point\0")) {
+    if (mode != static_cast<int>(w.gravityMode)) session.toggleGravityMode();
+    w = session.scene().world.worldSettings();
+  }
+  bool changed = false;
+  if (w.gravityMode == phys::GravityMode::Uniform) {
+    double g = glm::length(w.gravity);
+    if (sliderReal("strength (m/s^2, Y/H)", g, 0.0f, 30.0f, "%.2f")) {
+      const double old = glm::length(w.gravity);
+      w.gravity = (old > 0.0 ? w.gravity / old : phys::Vec3(0, -1, 0)) * g;
+      changed = true;
+    }
+  } else {
+    changed |= sliderReal("strength (m/s^2, Y/H)", w.gravityStrength, 0.0f, 30.0f, "%.2f");
+    float p[3] = {static_cast<float>(w.gravityPoint.x), static_cast<float>(w.gravityPoint.y),
+                  static_cast<float>(w.gravityPoint.z)};
+    if (ImGui::DragFloat3("point (m)", p, 0.05f)) {
+      w.gravityPoint = phys::Vec3(p[0], p[1], p[2]);
+      changed = true;
+    }
+  }
+  changed |= sliderReal("damping (1/s, U/J)", w.damping, 0.0f, 5.0f, "%.2f");
+  if (changed) session.setWorldSettings(w);
+  ImGui::Text("ground: %s", w.ground ? "yes" : "none");
+  endPanel();
+}
+
+void drawDrawPanel(UiState& ui) {
+  if (!ui.showDraw) return;
+  if (!beginPanel("Draw", &ui.showDraw, kDrawPanel)) {
+    endPanel();
+    return;
+  }
+  int mode = static_cast<int>(ui.draw.mode);
+  ImGui::RadioButton("filled", &mode, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("wireframe", &mode, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("constraints (Tab)", &mode, 2);
+  ui.draw.mode = static_cast<DrawMode>(mode);
+  ImGui::Checkbox("markers (C)", &ui.draw.markers);
+  ImGui::SameLine();
+  ImGui::Checkbox("AABBs", &ui.draw.bounds);
+  ImGui::SameLine();
+  ImGui::Checkbox("contact normals", &ui.draw.contacts);
+  ImGui::Checkbox("particles", &ui.draw.particles);
+  ImGui::SameLine();
+  ImGui::Checkbox("sticks over meshes", &ui.draw.sticks);
+  endPanel();
+}
+
+void drawStatsPanel(const Session& session, UiState& ui) {
+  if (!ui.showStats) return;
+  if (!beginPanel("Stats", &ui.showStats, kStatsPanel)) {
+    endPanel();
+    return;
+  }
+  const phys::World& world = session.scene().world;
+  const phys::Profile& p = world.profile();
+  ImGui::Text("frame %.2f ms, last step %.3f ms", ui.frameMs, p.total);
+  ImGui::Text("integrate %.3f  constraints %.3f", p.integrate, p.constraints);
+  ImGui::Text("collide %.3f  contacts %.3f", p.collide, p.contacts);
+  ImGui::Text("friction %.3f  guard %.3f ms", p.friction, p.guard);
+  ImGui::Separator();
+  ImGui::Text("%zu particles, %zu sticks, %zu joints", world.particles().size(), world.sticks().size(),
+              world.links().size());
+  const phys::Metrics m = world.metrics();
+  ImGui::Text("%zu bodies, %d contacts, %zu broad-phase pairs", world.boxes().size(), m.contacts,
+              world.broadPhasePairs());
+  ImGui::Text("stick error max %.2e rms %.2e", m.maxConstraintError, m.rmsConstraintError);
+  ImGui::Text("joint gap %.2e m, penetration %.2e m", m.maxJointError, m.maxPenetration);
+  ImGui::Text("energy %.3f J (kinetic %.3f), max speed %.2f m/s", m.energy(), m.kineticEnergy, m.maxSpeed);
+  if (m.frozen > 0) {
+    const phys::FreezeReport& last = world.freezes().back();
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "frozen: %d particles; last %s: %s at %.2f s", m.frozen,
+                       last.name.c_str(), last.reason.c_str(), last.time);
+  } else {
+    ImGui::Text("frozen: none");
+  }
+  ImGui::Separator();
+  const ImVec2 plotSize(ImGui::GetContentRegionAvail().x, 56.0f);
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "step %.3f ms (max %.3f)", ui.stepMs.last(), ui.stepMs.max());
+  ImGui::PlotLines("##step", ui.stepMs.data(), ui.stepMs.size(), ui.stepMs.offset(), overlay, 0.0f,
+                   std::max(ui.stepMs.max() * 1.1f, 1e-3f), plotSize);
+  std::snprintf(overlay, sizeof overlay, "max stick error %.2e", ui.maxError.last());
+  ImGui::PlotLines("##maxerr", ui.maxError.data(), ui.maxError.size(), ui.maxError.offset(), overlay, 0.0f,
+                   std::max(ui.maxError.max() * 1.1f, 1e-6f), plotSize);
+  std::snprintf(overlay, sizeof overlay, "rms stick error %.2e", ui.rmsError.last());
+  ImGui::PlotLines("##rmserr", ui.rmsError.data(), ui.rmsError.size(), ui.rmsError.offset(), overlay, 0.0f,
+                   std::max(ui.rmsError.max() * 1.1f, 1e-6f), plotSize);
+  ImGui::TextDisabled("plots: the last 10 s of wall time");
+  endPanel();
+}
+
+void drawLegend(const Session& session) {
+  if (!session.overlayActive()) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  // Bottom centre, above the status line: the panels keep the top and the sides.
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y - 30.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("Overlay", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                                       ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+  for (const Run& run : session.runs()) {
+    const phys::SolverSettings& s = run.scene->world.solverSettings();
+    ImGui::ColorButton("##c", ImVec4(run.color.r, run.color.g, run.color.b, 1.0f), 0, ImVec2(14, 14));
+    ImGui::SameLine();
+    ImGui::Text("%-28s %-28s %.3f ms/step (median), error %.1e", run.label.c_str(), describeSolver(s).c_str(),
+                run.medianMs(),
+                run.scene->world.metrics().maxConstraintError);
+  }
+  ImGui::End();
+}
+
+void drawHelp(UiState& ui) {
+  if (!ui.showHelp) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.95f);
+  ImGui::Begin("Controls (F1)", &ui.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+    for (const Control& c : controls()) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(c.keys.data(), c.keys.data() + c.keys.size());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(c.action.data(), c.action.data() + c.action.size());
+    }
+    ImGui::EndTable();
+  }
+  ImGui::End();
+}
+
+void drawStatusAndCrosshair(const Session& session, const UiState& ui) {
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const ImVec2 c(display.x * 0.5f, display.y * 0.5f);
+  const ImU32 white = IM_COL32(255, 255, 255, 200);
+  draw->AddLine(ImVec2(c.x - 8, c.y), ImVec2(c.x + 8, c.y), white);
+  draw->AddLine(ImVec2(c.x, c.y - 8), ImVec2(c.x, c.y + 8), white);
+  const std::string& text = ui.message.empty() ? session.status() : ui.message;
+  char line[512];
+  std::snprintf(line, sizeof line, "%s%s   |   %s   |   F1: controls", ui.paused ? "PAUSED   |   " : "",
+                std::string(toString(ui.draw.mode)).c_str(), text.c_str());
+  const ImVec2 at(8.0f, display.y - ImGui::GetTextLineHeightWithSpacing() - 4.0f);
+  draw->AddRectFilled(ImVec2(0, at.y - 2), ImVec2(display.x, display.y), IM_COL32(20, 20, 24, 200));
+  draw->AddText(at, IM_COL32(235, 235, 235, 255), line);
+}
+
+}  // namespace sandbox

@@ -1,0 +1,114 @@
+#include "scene_view.h"
+
+#include <cmath>
+#include <iostream>
+
+#include <glad/gl.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "body_colors.h"
+#include "engine/error.h"
+#include "engine/physics_debug_draw.h"
+
+namespace sandbox {
+namespace {
+
+// A missing or broken model must not stop the sandbox: fall back to a cube built in code.
+std::unique_ptr<engine::GpuMesh> loadModel(const std::filesystem::path& file) {
+  try {
+    return std::make_unique<engine::GpuMesh>(engine::loadMeshData(file));
+  } catch (const engine::Error& e) {
+    std::cerr << "warning: " << e.what() << "; drawing with the built-in cube instead\n";
+    return std::make_unique<engine::GpuMesh>(engine::unitCubeMesh());
+  }
+}
+
+// Neighbouring boxes in one colour would merge into one block; each gets its own brightness,
+// from 85% to 115% by the golden ratio, so the hue (what the tests look for) stays the same.
+float boxShade(phys::BoxId id) {
+  const float spread = std::fmod(static_cast<float>(id) * 0.618034f, 1.0f);
+  return 0.85f + 0.3f * spread;
+}
+
+// The models are unit cubes about the origin: scaled by the box's size, turned and placed by
+// the pose fitted to its particles.
+glm::mat4 boxModelMatrix(const phys::BoxPose& pose, const phys::Vec3& size) {
+  const glm::mat4 rotation = glm::mat4_cast(glm::quat(pose.orientation));
+  return glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(pose.center)) * rotation, glm::vec3(size));
+}
+
+// In the method overlay every line of a run is drawn in the run's colour, so two runs' chains
+// or constraints can be told apart where they part ways.
+class TintedDraw : public phys::DebugDraw {
+ public:
+  TintedDraw(phys::DebugDraw& inner, const glm::vec3& tint) : inner_(inner), color_{tint.r, tint.g, tint.b} {}
+  void line(const phys::Vec3& a, const phys::Vec3& b, phys::Color) override { inner_.line(a, b, color_); }
+  void point(const phys::Vec3& p, phys::Real size, phys::Color) override { inner_.point(p, size, color_); }
+  void box(const phys::Vec3& c, const phys::Quat& q, const phys::Vec3& h, phys::Color) override {
+    inner_.box(c, q, h, color_);
+  }
+
+ private:
+  phys::DebugDraw& inner_;
+  phys::Color color_;
+};
+
+}  // namespace
+
+SceneView::SceneView(engine::Renderer& renderer, const std::filesystem::path& modelsDir)
+    : renderer_(renderer), boxMesh_(loadModel(modelsDir / "box.obj")), limbMesh_(loadModel(modelsDir / "limb.obj")) {}
+
+void SceneView::findJointedBoxes(const phys::World& world) {
+  const auto boxes = world.boxes();
+  bodyOf_.assign(world.particles().size(), -1);
+  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
+    std::fill_n(bodyOf_.begin() + boxes[id].firstParticle, boxes[id].particleCount, static_cast<std::int32_t>(id));
+  }
+  jointed_.assign(boxes.size(), 0);
+  for (const phys::Link& link : world.links()) {
+    for (const phys::Embedding* e : {&link.a, &link.b}) {
+      if (const std::int32_t body = bodyOf_[e->particle[0]]; body >= 0) jointed_[static_cast<std::size_t>(body)] = 1;
+    }
+  }
+}
+
+void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, const DrawOptions& options,
+                     const std::optional<Tint>& tint) {
+  findJointedBoxes(world);
+  const float alpha = tint ? tint->alpha : 1.0f;
+  if (options.mode != DrawMode::Constraints) {
+    renderer_.setWireframe(options.mode == DrawMode::Wireframe);
+    const auto boxes = world.boxes();
+    for (phys::BoxId id = 0; id < boxes.size(); ++id) {
+      const glm::vec3 color = tint ? tint->color : boxShade(id) * kBoxColor;
+      const engine::GpuMesh& mesh = jointed_[id] != 0 ? *limbMesh_ : *boxMesh_;
+      renderer_.drawMesh(mesh, viewProjection, boxModelMatrix(world.boxPose(id), boxes[id].halfExtents * 2.0), color,
+                         alpha);
+    }
+    if (options.particles) {
+      const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(kParticleDrawSize));
+      for (std::size_t i = 0; i < world.particles().size(); ++i) {
+        if (bodyOf_[i] >= 0) continue;
+        const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(world.particles().position[i])) * scale;
+        renderer_.drawMesh(*boxMesh_, viewProjection, model, tint ? tint->color : kParticleColor, alpha);
+      }
+    }
+    renderer_.setWireframe(false);
+  }
+  engine::PhysicsDebugDraw debugDraw(renderer_.lines());
+  phys::DebugDrawFlags flags;
+  flags.constraints = options.mode == DrawMode::Constraints || options.sticks;
+  flags.particles = false;  // the sticks show where the particles are; boxes on each would hide them
+  flags.contacts = options.contacts;
+  flags.movedVertices = options.markers;
+  flags.bounds = options.bounds;
+  if (tint) {
+    TintedDraw tinted(debugDraw, tint->color);
+    world.debugDraw(tinted, flags);
+  } else {
+    world.debugDraw(debugDraw, flags);
+  }
+}
+
+}  // namespace sandbox

@@ -1,0 +1,47 @@
+#pragma once
+// Draws a world with the renderer: boxes with the box model, ragdoll parts (boxes held by a
+// joint) with the limb model, loose particles as small cubes, and the debug layers the draw
+// options ask for. Meshes come from assets/models/ through assimp; a missing or broken file
+// falls back to a cube built in code, with a warning.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "draw_options.h"
+#include "engine/gpu_mesh.h"
+#include "engine/renderer.h"
+#include "physics/world.h"
+
+namespace sandbox {
+
+/// How one run is coloured: its own colours, or (in the method overlay) one translucent tint.
+struct Tint {
+  glm::vec3 color{1.0f};
+  float alpha = 0.45f;
+};
+
+class SceneView {
+ public:
+  /// Needs a current GL context.
+  SceneView(engine::Renderer& renderer, const std::filesystem::path& modelsDir);
+
+  /// Meshes of the world, then its debug lines (flushed by the renderer's endFrame()).
+  void draw(const phys::World& world, const glm::mat4& viewProjection, const DrawOptions& options,
+            const std::optional<Tint>& tint = std::nullopt);
+
+ private:
+  void findJointedBoxes(const phys::World& world);
+
+  engine::Renderer& renderer_;
+  std::unique_ptr<engine::GpuMesh> boxMesh_;
+  std::unique_ptr<engine::GpuMesh> limbMesh_;
+  // Per-frame scratch, kept to avoid allocating each frame.
+  std::vector<std::int32_t> bodyOf_;     // per particle: its box, or -1
+  std::vector<std::uint8_t> jointed_;    // per box: held by a joint
+};
+
+}  // namespace sandbox

@@ -1,0 +1,267 @@
+#include "session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "physics/ragdoll.h"
+#include "scenes/scene_writer.h"
+
+namespace sandbox {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A world with the same settings as `world` and nothing in it.
+phys::World emptyLike(const phys::World& world) { return phys::World(world.worldSettings(), world.solverSettings()); }
+
+// Where the embedded point sits in the box's frame (so the same point can be found on the same
+// box in another run, wherever that box is now).
+phys::Vec3 toLocal(const phys::World& w, phys::BoxId box, const phys::Vec3& p) {
+  const phys::BoxPose pose = w.boxPose(box);
+  return glm::inverse(pose.orientation) * (p - pose.center);
+}
+
+phys::Vec3 toWorld(const phys::World& w, phys::BoxId box, const phys::Vec3& local) {
+  const phys::BoxPose pose = w.boxPose(box);
+  return pose.center + pose.orientation * local;
+}
+
+// The point of the plane (p0, n) on the ray, or the ray's point at the plane's distance when
+// the ray runs along the plane.
+phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::Vec3& p0, const phys::Vec3& n) {
+  const double along = glm::dot(dir, n);
+  if (std::abs(along) < 1e-6) return origin + dir * glm::length(p0 - origin);
+  return origin + dir * (glm::dot(p0 - origin, n) / along);
+}
+
+}  // namespace
+
+double Run::medianMs() const {
+  const int n = std::min(timed, kTimedSteps);
+  if (n == 0) return 0.0;
+  std::array<double, kTimedSteps> sorted = recentMs;
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.begin() + n);
+  return sorted[static_cast<std::size_t>(n / 2)];
+}
+
+Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory)
+    : sceneDirectory_(sceneDirectory) {
+  replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file)), file);
+}
+
+void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file) {
+  runs_.clear();
+  drag_.reset();
+  Run run;
+  run.scene = std::move(scene);
+  run.color = kRunColors[0];
+  runs_.push_back(std::move(run));
+  file_ = file;
+  status_ = "opened " + file.filename().string();
+}
+
+std::string Session::open(const std::filesystem::path& file) {
+  try {
+    replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file)), file);
+    return {};
+  } catch (const std::exception& e) {  // LoadError, or anything else: keep what we have
+    status_ = std::string(e.what()) + " (the current world is kept)";
+    return e.what();
+  }
+}
+
+std::string Session::reload() { return open(file_); }
+
+std::string Session::openBuiltin(std::string_view name) { return open(scenes::resolveScene(name, sceneDirectory_)); }
+
+std::string Session::saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera) const {
+  try {
+    scenes::saveSceneFile(scene(), camera, file);
+    return {};
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+void Session::clear() {
+  drag_.reset();
+  for (Run& run : runs_) {
+    scenes::Scene& s = *run.scene;
+    s.world = emptyLike(s.world);
+    s.bodies.clear();
+  }
+  status_ = "cleared: no bodies; Reload (F5) brings the file's back";
+}
+
+std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
+  if (specs.size() < static_cast<std::size_t>(kMinOverlayRuns) || specs.size() > static_cast<std::size_t>(kMaxOverlayRuns)) {
+    return "the overlay needs " + std::to_string(kMinOverlayRuns) + " to " + std::to_string(kMaxOverlayRuns) +
+           " settings, got " + std::to_string(specs.size());
+  }
+  // Build every run before replacing any, so a refused setting changes nothing.
+  const scenes::Scene& base = scene();
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    Run run;
+    run.scene = std::make_unique<scenes::Scene>(base);
+    try {
+      run.scene->world.setSolverSettings(specs[i].applyTo(base.world.solverSettings()));
+    } catch (const std::invalid_argument& e) {
+      return "overlay run " + std::to_string(i + 1) + " '" + specs[i].text + "': " + e.what();
+    }
+    run.label = specs[i].text;
+    run.color = kRunColors[i];
+    runs.push_back(std::move(run));
+  }
+  runs_ = std::move(runs);
+  drag_.reset();
+  status_ = "overlay of " + std::to_string(runs_.size()) + " runs, each from the state the world was in";
+  return {};
+}
+
+void Session::stopOverlay() {
+  runs_.resize(1);
+  runs_.front().label.clear();
+  status_ = "overlay off";
+}
+
+void Session::step() {
+  for (Run& run : runs_) {
+    const auto start = Clock::now();
+    run.scene->world.step();
+    run.stepMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    run.recentMs[static_cast<std::size_t>(run.timed % Run::kTimedSteps)] = run.stepMs;
+    ++run.timed;
+  }
+}
+
+void Session::forEachWorld(const std::function<void(phys::World&)>& apply) {
+  for (Run& run : runs_) apply(run.scene->world);
+}
+
+void Session::setWorldSettings(const phys::WorldSettings& settings) {
+  forEachWorld([&](phys::World& w) { w.setWorldSettings(settings); });
+}
+
+std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
+  try {
+    scene().world.setSolverSettings(settings);
+    return {};
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+}
+
+void Session::toggleGravityMode() {
+  phys::WorldSettings s = scene().world.worldSettings();
+  const bool toPoint = s.gravityMode == phys::GravityMode::Uniform;
+  s.gravityMode = toPoint ? phys::GravityMode::Point : phys::GravityMode::Uniform;
+  // One strength for both modes, so G alone never makes gravity stronger or weaker.
+  if (toPoint) s.gravityStrength = glm::length(s.gravity);
+  else if (glm::length(s.gravity) > 0.0) s.gravity = glm::normalize(s.gravity) * s.gravityStrength;
+  setWorldSettings(s);
+  status_ = toPoint ? "gravity: towards the point" : "gravity: uniform";
+}
+
+void Session::changeGravity(double delta) {
+  phys::WorldSettings s = scene().world.worldSettings();
+  if (s.gravityMode == phys::GravityMode::Point) {
+    s.gravityStrength = std::max(0.0, s.gravityStrength + delta);
+  } else {
+    const double g = glm::length(s.gravity);
+    const phys::Vec3 down = g > 0.0 ? s.gravity / g : phys::Vec3(0.0, -1.0, 0.0);
+    s.gravity = down * std::max(0.0, g + delta);
+  }
+  setWorldSettings(s);
+  const double strength = s.gravityMode == phys::GravityMode::Point ? s.gravityStrength : glm::length(s.gravity);
+  status_ = "gravity " + std::to_string(strength).substr(0, 5) + " m/s^2";
+}
+
+void Session::changeDamping(double delta) {
+  phys::WorldSettings s = scene().world.worldSettings();
+  // Round to the step so that ten presses up and ten down come back to exactly where they began.
+  s.damping = std::max(0.0, std::round((s.damping + delta) * 1000.0) / 1000.0);
+  setWorldSettings(s);
+  status_ = "wind resistance " + std::to_string(s.damping).substr(0, 5) + " 1/s";
+}
+
+void Session::spawnBox(const phys::Vec3& at, const phys::Vec3& velocity) {
+  ++spawned_;
+  phys::BoxDesc d;
+  d.name = "thrown box " + std::to_string(spawned_);
+  d.center = at;
+  d.size = phys::Vec3(kSpawnBoxSize);
+  d.mass = kSpawnBoxMass;
+  d.velocity = velocity;
+  forEachWorld([&](phys::World& w) { w.addBox(d); });
+  status_ = "threw a box";
+}
+
+void Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity) {
+  ++spawned_;
+  phys::RagdollDesc d;
+  d.name = "thrown ragdoll " + std::to_string(spawned_);
+  // Face the way it is thrown, lying forward so that it flies head first: from standing
+  // (facing +z), turn to the throw's heading, then tip forward by 90 degrees.
+  const double heading = std::atan2(velocity.x, velocity.z);
+  d.orientation = glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
+  d.hips = at;
+  d.velocity = velocity;
+  forEachWorld([&](phys::World& w) { phys::addRagdoll(w, d); });
+  status_ = "threw a ragdoll";
+}
+
+bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
+  const phys::World& w = scene().world;
+  const std::optional<phys::RayHit> hit = w.raycast(origin, direction, 1000.0);
+  if (!hit) return false;
+  DragState d;
+  d.isBox = hit->box.has_value();
+  d.index = d.isBox ? *hit->box : *hit->particle;
+  if (d.isBox) d.local = toLocal(w, *hit->box, hit->point);
+  d.planePoint = hit->point;
+  d.planeNormal = -direction;
+  for (Run& run : runs_) {
+    phys::World& rw = run.scene->world;
+    phys::Drag drag;
+    if (d.isBox) {
+      const phys::Vec3 p = toWorld(rw, d.index, d.local);
+      drag.point = rw.anchor(d.index, p);
+      drag.target = p;
+    } else {
+      drag.point.particle[0] = d.index;
+      drag.point.weight[0] = 1.0;
+      drag.point.count = 1;
+      drag.target = rw.particles().position[d.index];
+    }
+    rw.setDrag(drag);
+  }
+  drag_ = d;
+  return true;
+}
+
+void Session::dragAlong(const phys::Vec3& origin, const phys::Vec3& direction) {
+  if (!drag_) return;
+  const phys::Vec3 target = onPlane(origin, direction, drag_->planePoint, drag_->planeNormal);
+  // Every run pulls its copy of the body towards the same point, so the runs stay comparable.
+  forEachWorld([&](phys::World& w) { w.setDragTarget(target); });
+}
+
+void Session::release() {
+  if (!drag_) return;
+  drag_.reset();
+  forEachWorld([](phys::World& w) { w.clearDrag(); });
+}
+
+std::optional<std::pair<phys::Vec3, phys::Vec3>> Session::dragLine() const {
+  const phys::World& w = scene().world;
+  if (!drag_ || !w.drag()) return std::nullopt;
+  return std::make_pair(w.position(w.drag()->point), w.drag()->target);
+}
+
+}  // namespace sandbox

@@ -1,0 +1,123 @@
+#pragma once
+// The sandbox's command layer: the scene (or, with the method overlay, the same scene under 2 to
+// 4 solver settings), and every command a key, a menu or a panel can give it. No graphics here,
+// so the tests drive it directly. A command that fails says why in its return value and leaves
+// the world as it was.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "overlay_spec.h"
+#include "scenes/scene.h"
+
+namespace sandbox {
+
+/// One simulation: the main scene is run 0; the overlay adds more.
+struct Run {
+  static constexpr int kTimedSteps = 61;  ///< steps the median step time is taken over (~1 s)
+
+  std::unique_ptr<scenes::Scene> scene;
+  std::string label;    ///< the overlay settings as given; empty for the main scene alone
+  glm::vec3 color{1.0f};
+  double stepMs = 0.0;  ///< unit: ms; wall time of the last step
+  std::array<double, kTimedSteps> recentMs{};  ///< the last steps' times, a ring
+  int timed = 0;        ///< steps timed so far
+
+  /// Median wall time of the last kTimedSteps steps (one step's time is too noisy to compare
+  /// runs by). unit: ms; 0 before the first step
+  double medianMs() const;
+};
+
+/// Each overlay run's colour, in order; the legend shows them.
+inline constexpr glm::vec3 kRunColors[kMaxOverlayRuns] = {
+    {0.95f, 0.55f, 0.15f}, {0.20f, 0.50f, 0.95f}, {0.25f, 0.80f, 0.30f}, {0.85f, 0.25f, 0.80f}};
+
+/// The spawned box of F: a 0.5 m cube of 10 kg thrown at kThrowSpeed.
+inline constexpr double kSpawnBoxSize = 0.5;   ///< unit: m
+inline constexpr double kSpawnBoxMass = 10.0;  ///< unit: kg
+inline constexpr double kThrowSpeed = 8.0;     ///< unit: m/s
+
+class Session {
+ public:
+  /// Loads the first scene; throws scenes::LoadError if it cannot (there is nothing to keep).
+  Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory);
+
+  // Files. Each returns "" on success, else the message to show; on failure nothing changes.
+  std::string open(const std::filesystem::path& file);
+  std::string reload();
+  /// Writes the main run's world and settings, with the camera where it is, atomically.
+  std::string saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera) const;
+  /// Opens assets/scenes/<name>.xml (the seed's keys 1, 2, 3).
+  std::string openBuiltin(std::string_view name);
+  /// Removes every body of every run, keeping the settings (the seed's key 0).
+  void clear();
+  const std::filesystem::path& file() const { return file_; }
+
+  scenes::Scene& scene() { return *runs_.front().scene; }
+  const scenes::Scene& scene() const { return *runs_.front().scene; }
+  std::span<const Run> runs() const { return runs_; }
+  bool overlayActive() const { return runs_.size() > 1; }
+
+  /// Runs the current world under each of 2 to 4 settings, each from the state it is in now:
+  /// run 0 becomes the first of them. Returns "" or why not (and changes nothing).
+  std::string startOverlay(std::span<const OverlaySpec> specs);
+  /// Keeps run 0 only.
+  void stopOverlay();
+
+  /// Steps every run once, timing each.
+  void step();
+
+  // The seed's world controls; they act on every run, so the overlay keeps comparing methods
+  // under the same forces.
+  void toggleGravityMode();
+  /// Strength of gravity (|g| in uniform mode, the pull in point mode) changed by delta, >= 0.
+  void changeGravity(double delta);
+  void changeDamping(double delta);
+  void setWorldSettings(const phys::WorldSettings& settings);
+  /// The main run's solver settings (the panel's sliders); "" or the validation message.
+  std::string setSolverSettings(const phys::SolverSettings& settings);
+
+  /// Throws a box or a ragdoll from `at` with velocity `velocity` into every run.
+  void spawnBox(const phys::Vec3& at, const phys::Vec3& velocity);
+  void spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity);
+
+  /// Left-drag picking: the body or particle hit by the ray gets a spring to the ray's point,
+  /// in every run at the same place on the same body. False when the ray hits nothing.
+  bool pick(const phys::Vec3& origin, const phys::Vec3& direction);
+  /// Moves the spring's far end: the point on the picked plane (through the hit point, facing
+  /// the view) under the ray.
+  void dragAlong(const phys::Vec3& origin, const phys::Vec3& direction);
+  void release();
+  bool dragging() const { return drag_.has_value(); }
+  /// Where the spring pulls from (the picked point now) and to, in the main run.
+  std::optional<std::pair<phys::Vec3, phys::Vec3>> dragLine() const;
+
+  /// What the last command did or why it failed, for the status line.
+  const std::string& status() const { return status_; }
+
+ private:
+  struct DragState {
+    bool isBox = false;
+    std::uint32_t index = 0;     // BoxId or ParticleId
+    phys::Vec3 local{0.0};       // the picked point in the box's frame
+    phys::Vec3 planePoint{0.0};  // the plane the target moves in
+    phys::Vec3 planeNormal{0.0};
+  };
+  void replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file);
+  void forEachWorld(const std::function<void(phys::World&)>& apply);
+
+  std::vector<Run> runs_;
+  std::filesystem::path file_;
+  std::filesystem::path sceneDirectory_;
+  std::optional<DragState> drag_;
+  std::string status_;
+  int spawned_ = 0;
+};
+
+}  // namespace sandbox

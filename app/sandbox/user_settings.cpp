@@ -1,0 +1,186 @@
+#include "user_settings.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+
+namespace sandbox {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kMinWindowSide = 100;
+constexpr int kMaxWindowSide = 16384;
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+bool parseWindowSide(std::string_view text, int& out) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || n < kMinWindowSide || n > kMaxWindowSide) {
+    return false;
+  }
+  out = n;
+  return true;
+}
+
+bool parseBool(std::string_view text, bool& out) {
+  if (text != "true" && text != "false") return false;
+  out = text == "true";
+  return true;
+}
+
+bool parseDrawMode(std::string_view text, std::string& out) {
+  if (text != "filled" && text != "wireframe" && text != "constraints") return false;
+  out = std::string(text);
+  return true;
+}
+
+// A value holding a line break would end its line early and corrupt the next one on reading.
+bool fitsOnOneLine(const std::string& value) { return value.find_first_of("\r\n") == std::string::npos; }
+
+// Everything that can go in the file, in the order it is written.
+std::string toText(const UserSettings& s) {
+  auto flag = [](bool b) { return b ? "true" : "false"; };
+  std::string out = "# jakobsen-sandbox settings, rewritten on exit\n";
+  out += "width = " + std::to_string(s.windowWidth) + "\n";
+  out += "height = " + std::to_string(s.windowHeight) + "\n";
+  out += std::string("showSimulation = ") + flag(s.showSimulation) + "\n";
+  out += std::string("showWorld = ") + flag(s.showWorld) + "\n";
+  out += std::string("showDraw = ") + flag(s.showDraw) + "\n";
+  out += std::string("showStats = ") + flag(s.showStats) + "\n";
+  if (fitsOnOneLine(s.lastScene)) out += "lastScene = " + s.lastScene + "\n";
+  out += "drawMode = " + s.drawMode + "\n";
+  out += std::string("markers = ") + flag(s.markers) + "\n";
+  for (const std::string& path : s.recentFiles) {
+    if (fitsOnOneLine(path)) out += "recent = " + path + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+fs::path configDirectory() {
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  if (xdg != nullptr && *xdg != '\0') return fs::path(xdg) / "jakobsen-sandbox";
+  const char* home = std::getenv("HOME");
+  if (home != nullptr && *home != '\0') return fs::path(home) / ".config" / "jakobsen-sandbox";
+  return {};
+}
+
+LoadedSettings loadUserSettings(const fs::path& file) {
+  LoadedSettings out;
+  UserSettings& s = out.settings;
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return out;  // first run: nothing saved yet
+  std::ifstream in(file);
+  if (!in || !fs::is_regular_file(file, ec)) {
+    out.warnings.push_back(file.string() + ": cannot read it; using the defaults");
+    return out;
+  }
+  std::string line;
+  for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+    const std::string where = file.string() + ":" + std::to_string(lineNo) + ": ";
+    const std::string_view text = trim(line);
+    if (text.empty() || text.front() == '#') continue;
+    const auto eq = text.find('=');
+    if (eq == std::string_view::npos) {
+      out.warnings.push_back(where + "expected 'key = value'");
+      continue;
+    }
+    const std::string key(trim(text.substr(0, eq)));
+    const std::string_view value = trim(text.substr(eq + 1));
+    bool ok = true;
+    const char* expected = "";
+    if (key == "width" || key == "height") {
+      ok = parseWindowSide(value, key == "width" ? s.windowWidth : s.windowHeight);
+      expected = "a whole number from 100 to 16384";
+    } else if (key == "showSimulation" || key == "showWorld" || key == "showDraw" || key == "showStats" ||
+               key == "markers") {
+      bool& target = key == "showSimulation" ? s.showSimulation
+                     : key == "showWorld"    ? s.showWorld
+                     : key == "showDraw"     ? s.showDraw
+                     : key == "showStats"    ? s.showStats
+                                             : s.markers;
+      ok = parseBool(value, target);
+      expected = "true or false";
+    } else if (key == "drawMode") {
+      ok = parseDrawMode(value, s.drawMode);
+      expected = "filled, wireframe or constraints";
+    } else if (key == "lastScene") {
+      s.lastScene = std::string(value);  // empty is valid: the default scene
+    } else if (key == "recent") {
+      // Written newest first; a hand-edited file may repeat a path or list too many.
+      if (value.empty()) {
+        ok = false;
+        expected = "a file path";
+      } else if (std::find(s.recentFiles.begin(), s.recentFiles.end(), value) == s.recentFiles.end() &&
+                 s.recentFiles.size() < static_cast<std::size_t>(kMaxRecentFiles)) {
+        s.recentFiles.emplace_back(value);
+      }
+    } else {
+      out.warnings.push_back(where + "unknown key '" + key + "'");
+      continue;
+    }
+    if (!ok) {
+      out.warnings.push_back(where + "bad value '" + std::string(value) + "' for '" + key + "' (expected " + expected +
+                             "); keeping the default");
+    }
+  }
+  return out;
+}
+
+void saveUserSettings(const UserSettings& settings, const fs::path& file) {
+  auto fail = [&](const std::string& reason) {
+    throw std::runtime_error("cannot save settings to " + file.string() + ": " + reason);
+  };
+  std::error_code ec;
+  const fs::path folder = file.parent_path();
+  if (!folder.empty()) {
+    fs::create_directories(folder, ec);
+    if (ec) fail("cannot create " + folder.string() + ": " + ec.message());
+  }
+  // Same folder as the target, so the rename stays on one file system and is atomic: a crash
+  // leaves either the old settings or the new ones, never half a file. The pid keeps two
+  // sandboxes exiting at once from writing into each other's temporary file.
+  const fs::path temp = fs::path(file).concat(".tmp-" + std::to_string(::getpid()));
+  auto failAndClean = [&](const std::string& reason) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    fail(reason);
+  };
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) failAndClean(std::string("cannot create ") + temp.string() + ": " + std::strerror(errno));
+    out << toText(settings);
+    out.flush();
+    if (!out) failAndClean("writing " + temp.string() + " failed");
+    out.close();
+    if (!out) failAndClean("closing " + temp.string() + " failed");
+  }
+  fs::rename(temp, file, ec);
+  if (ec) failAndClean(ec.message());
+}
+
+void addRecentFile(UserSettings& settings, const std::string& path) {
+  if (path.empty()) return;
+  auto& recent = settings.recentFiles;
+  recent.erase(std::remove(recent.begin(), recent.end(), path), recent.end());
+  recent.insert(recent.begin(), path);
+  if (recent.size() > static_cast<std::size_t>(kMaxRecentFiles)) recent.resize(kMaxRecentFiles);
+}
+
+}  // namespace sandbox

@@ -1,0 +1,254 @@
+// The sandbox's command layer (session.h), driven as the keys, menus and panels drive it, with
+// no window: loading and its failures, clear, the seed's world keys, spawning, picking and
+// dragging, the method overlay, and Save As.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "history.h"
+#include "panels.h"
+#include "session.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
+
+fs::path tempDir() {
+  const fs::path dir = fs::temp_directory_path() / ("session_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+sandbox::Session open(const char* name) { return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes); }
+
+TEST(Session, ABadSceneKeepsTheCurrentWorldAndSaysWhereTheErrorIs) {
+  sandbox::Session s = open("pyramid");
+  for (int i = 0; i < 10; ++i) s.step();
+  const std::uint64_t before = s.scene().world.stateHash();
+  const fs::path bad = tempDir() / "bad.xml";
+  std::ofstream(bad) << "<scene name=\"bad\">\n  <box pos=\"0 1 0\" mass=\"-2\"/>\n</scene>\n";
+  const std::string error = s.open(bad);
+  EXPECT_EQ(error, bad.string() + ":2: <box> attribute 'mass': must be > 0 (kg)");
+  EXPECT_EQ(s.scene().name, "pyramid");
+  EXPECT_EQ(s.scene().world.stateHash(), before);  // not even restarted
+  EXPECT_EQ(s.scene().world.stepCount(), 10);
+  EXPECT_EQ(s.file(), kScenes / "pyramid.xml");
+  EXPECT_NE(s.status().find("the current world is kept"), std::string::npos);
+  EXPECT_NE(s.open(tempDir() / "missing.xml"), "");
+  EXPECT_EQ(s.scene().name, "pyramid");
+}
+
+TEST(Session, ReloadRestartsFromTheFileAndBuiltinsOpenTheSeedsScenes) {
+  sandbox::Session s = open("ragdoll");
+  const std::uint64_t start = s.scene().world.stateHash();
+  for (int i = 0; i < 5; ++i) s.step();
+  ASSERT_NE(s.scene().world.stateHash(), start);
+  EXPECT_EQ(s.reload(), "");
+  EXPECT_EQ(s.scene().world.stateHash(), start);
+  EXPECT_EQ(s.openBuiltin("box-of-boxes"), "");
+  EXPECT_EQ(s.scene().world.boxes().size(), 27u);  // three 3x3 layers
+}
+
+TEST(Session, ClearRemovesEveryBodyAndKeepsTheSettings) {
+  sandbox::Session s = open("pyramid");
+  const phys::SolverSettings solver = s.scene().world.solverSettings();
+  s.clear();
+  EXPECT_EQ(s.scene().world.boxes().size(), 0u);
+  EXPECT_EQ(s.scene().world.particles().size(), 0u);
+  EXPECT_EQ(s.scene().world.solverSettings().iterations, solver.iterations);
+  s.step();  // an empty world steps
+  EXPECT_EQ(s.reload(), "");
+  EXPECT_GT(s.scene().world.boxes().size(), 0u);
+}
+
+TEST(Session, GravityKeysChangeStrengthAndModeAndKeepTheStrengthAcrossModes) {
+  sandbox::Session s = open("ragdoll");
+  s.changeGravity(1.0);
+  EXPECT_NEAR(glm::length(s.scene().world.worldSettings().gravity), 10.81, 1e-12);
+  EXPECT_NEAR(s.scene().world.worldSettings().gravity.y, -10.81, 1e-12);  // still down
+  s.toggleGravityMode();
+  EXPECT_EQ(s.scene().world.worldSettings().gravityMode, phys::GravityMode::Point);
+  EXPECT_NEAR(s.scene().world.worldSettings().gravityStrength, 10.81, 1e-12);
+  s.changeGravity(-20.0);  // never below zero
+  EXPECT_EQ(s.scene().world.worldSettings().gravityStrength, 0.0);
+  s.toggleGravityMode();
+  EXPECT_EQ(s.scene().world.worldSettings().gravityMode, phys::GravityMode::Uniform);
+}
+
+TEST(Session, DampingKeysStepByATenthAndComeBackExactly) {
+  sandbox::Session s = open("ragdoll");
+  const double start = s.scene().world.worldSettings().damping;
+  for (int i = 0; i < 10; ++i) s.changeDamping(0.1);
+  EXPECT_NEAR(s.scene().world.worldSettings().damping, start + 1.0, 1e-12);
+  for (int i = 0; i < 10; ++i) s.changeDamping(-0.1);
+  EXPECT_EQ(s.scene().world.worldSettings().damping, start);
+  for (int i = 0; i < 10; ++i) s.changeDamping(-0.1);
+  EXPECT_EQ(s.scene().world.worldSettings().damping, 0.0);
+}
+
+TEST(Session, ThrownBoxesAndRagdollsFlyAlongTheViewAndLand) {
+  sandbox::Session s = open("pyramid");
+  const std::size_t boxes = s.scene().world.boxes().size();
+  s.spawnBox(phys::Vec3(0, 3, 6), phys::Vec3(0, 0, -sandbox::kThrowSpeed));
+  s.spawnRagdoll(phys::Vec3(4, 3, 0), phys::Vec3(sandbox::kThrowSpeed, 0, 0));
+  ASSERT_EQ(s.scene().world.boxes().size(), boxes + 11);
+  s.step();
+  EXPECT_LT(s.scene().world.boxPose(static_cast<phys::BoxId>(boxes)).center.z, 6.0);   // flies towards -z
+  EXPECT_GT(s.scene().world.boxPose(static_cast<phys::BoxId>(boxes + 1)).center.x, 4.0);  // towards +x
+  for (int i = 0; i < 240; ++i) s.step();
+  const phys::Metrics m = s.scene().world.metrics();
+  EXPECT_EQ(m.frozen, 0);
+  EXPECT_LT(m.maxPenetration, 0.05);
+}
+
+TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
+  sandbox::Session s = open("falling-box");
+  for (int i = 0; i < 120; ++i) s.step();  // landed
+  const phys::World& w = s.scene().world;
+  const phys::Vec3 centre = w.boxPose(0).center;
+  EXPECT_FALSE(s.pick(phys::Vec3(0, 10, 0), phys::Vec3(0, 1, 0)));  // straight up: nothing
+  const phys::Vec3 eye = centre + phys::Vec3(0, 0, 5);
+  const phys::Vec3 view = glm::normalize(centre - eye);
+  const std::optional<phys::RayHit> hit = w.raycast(eye, view, 100.0);
+  ASSERT_TRUE(hit.has_value());
+  ASSERT_TRUE(s.pick(eye, view));
+  ASSERT_TRUE(s.dragging());
+  // Pull the cursor up 1 m: the ray through a point 1 m above the picked one.
+  s.dragAlong(eye, glm::normalize(centre + phys::Vec3(0, 1, 0) - eye));
+  for (int i = 0; i < 120; ++i) s.step();
+  EXPECT_GT(w.boxPose(0).center.y, centre.y + 0.15);  // lifted off the ground
+  const auto line = s.dragLine();
+  ASSERT_TRUE(line.has_value());
+  // An 8 kg box on the 2000 N/m spring hangs 4 cm below it, plus what is left of the swing.
+  EXPECT_LT(glm::length(line->first - line->second), 0.1);
+  // The target lies on the plane through the picked point facing the view, under the ray.
+  EXPECT_NEAR(glm::dot(line->second - hit->point, view), 0.0, 1e-9);
+  EXPECT_GT(line->second.y, hit->point.y + 0.5);
+  s.release();
+  EXPECT_FALSE(s.dragging());
+  EXPECT_FALSE(w.drag().has_value());
+}
+
+TEST(Session, TheOverlayRunsEachSettingFromTheSameStateAndRefusesBadCounts) {
+  sandbox::Session s = open("chain");
+  for (int i = 0; i < 10; ++i) s.step();
+  auto spec = [](const char* text) { return sandbox::parseOverlaySpec(text).spec; };
+  const std::vector<sandbox::OverlaySpec> one{spec("iterations=3")};
+  EXPECT_EQ(s.startOverlay(one), "the overlay needs 2 to 4 settings, got 1");
+  EXPECT_FALSE(s.overlayActive());
+  const std::vector<sandbox::OverlaySpec> three{spec("iterations=3"), spec("substeps=8,iterations=1"),
+                                                spec("method=xpbd")};
+  ASSERT_EQ(s.startOverlay(three), "");
+  ASSERT_EQ(s.runs().size(), 3u);
+  for (const sandbox::Run& run : s.runs()) EXPECT_EQ(run.scene->world.stepCount(), 10);
+  EXPECT_EQ(s.runs()[1].scene->world.solverSettings().substeps, 8);
+  EXPECT_EQ(s.runs()[2].scene->world.solverSettings().method, phys::SolverMethod::Xpbd);
+  EXPECT_EQ(s.runs()[0].label, "iterations=3");
+  for (int i = 0; i < 60; ++i) s.step();
+  // Same start, different methods: the chain's end parts ways.
+  const auto end = [&](int run) {
+    const phys::World& w = s.runs()[static_cast<std::size_t>(run)].scene->world;
+    return w.particles().position.back();
+  };
+  EXPECT_GT(glm::length(end(0) - end(1)), 1e-3);
+  for (const sandbox::Run& run : s.runs()) {
+    EXPECT_GT(run.stepMs, 0.0);
+    EXPECT_GT(run.medianMs(), 0.0);
+  }
+  s.stopOverlay();
+  EXPECT_EQ(s.runs().size(), 1u);
+}
+
+TEST(Session, SaveAsWritesAWorldThatOpensAgainAndABadPathKeepsEverything) {
+  sandbox::Session s = open("ragdoll");
+  for (int i = 0; i < 30; ++i) s.step();
+  const fs::path file = tempDir() / "saved.xml";
+  scenes::CameraStart camera;
+  camera.eye = {1, 2, 3};
+  ASSERT_EQ(s.saveAs(file, camera), "");
+  const phys::Vec3 torso = s.scene().world.boxPose(1).center;
+  ASSERT_EQ(s.open(file), "");
+  EXPECT_NEAR(glm::length(s.scene().world.boxPose(1).center - torso), 0.0, 1e-3);
+  EXPECT_EQ(s.scene().camera.eye, glm::vec3(1, 2, 3));
+  const std::string error = s.saveAs(tempDir() / "no such folder" / "x.xml", camera);
+  EXPECT_NE(error.find("no such folder"), std::string::npos) << error;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Run, StepTimeIsTheMedianOfTheLastSecondOfSteps) {
+  sandbox::Run run;
+  EXPECT_EQ(run.medianMs(), 0.0);
+  for (double ms : {5.0, 1.0, 3.0}) run.recentMs[static_cast<std::size_t>(run.timed++)] = ms;
+  EXPECT_EQ(run.medianMs(), 3.0);
+  // One slow step (a page fault, another process) does not move it.
+  for (int i = 0; i < sandbox::Run::kTimedSteps; ++i) {
+    run.recentMs[static_cast<std::size_t>(run.timed++ % sandbox::Run::kTimedSteps)] = i == 7 ? 50.0 : 0.2;
+  }
+  EXPECT_EQ(run.medianMs(), 0.2);
+}
+
+TEST(History, KeepsOneSampleASixtiethOfASecondForTenSeconds) {
+  sandbox::History h;
+  EXPECT_EQ(h.filled(), 0);
+  h.add(1.0f, 0.5);  // half a second of frames at this value
+  EXPECT_EQ(h.filled(), 30);
+  EXPECT_EQ(h.last(), 1.0f);
+  h.add(2.0f, 1.0 / 120.0);  // a fast frame: no sample yet
+  EXPECT_EQ(h.filled(), 30);
+  h.add(2.0f, 1.0 / 120.0);
+  EXPECT_EQ(h.filled(), 31);
+  EXPECT_EQ(h.last(), 2.0f);
+  EXPECT_EQ(h.max(), 2.0f);
+  h.add(3.0f, 60.0);  // a stall longer than the ring: it holds only that value
+  EXPECT_EQ(h.filled(), sandbox::History::kSamples);
+  EXPECT_EQ(h.max(), 3.0f);
+  // The oldest sample is where PlotLines starts.
+  EXPECT_GE(h.offset(), 0);
+  EXPECT_LT(h.offset(), h.size());
+}
+
+}  // namespace
+
+namespace {
+
+// What the sandbox remembers between runs goes into the panels, and back out.
+TEST(Remembered, PanelsAndDrawModeComeBackAndTheCommandLineWins) {
+  sandbox::UserSettings user;
+  user.showStats = false;
+  user.drawMode = "constraints";
+  user.markers = true;
+  sandbox::UiState ui;
+  sandbox::applyRemembered(user, sandbox::Options{}, ui);
+  EXPECT_FALSE(ui.showStats);
+  EXPECT_TRUE(ui.showSimulation);
+  EXPECT_EQ(ui.draw.mode, sandbox::DrawMode::Constraints);
+  EXPECT_TRUE(ui.draw.markers);
+  EXPECT_STREQ(ui.overlayText[0].data(), "iterations=3");  // an example to start from
+
+  const auto parsed = sandbox::parseOptions({"--draw", "wireframe", "--overlay", "method=xpbd", "iterations=9"});
+  ASSERT_EQ(parsed.error, "");
+  sandbox::applyRemembered(user, parsed.options, ui);
+  EXPECT_EQ(ui.draw.mode, sandbox::DrawMode::Wireframe);
+  EXPECT_STREQ(ui.overlayText[1].data(), "iterations=9");
+
+  ui.showWorld = false;
+  ui.draw.mode = sandbox::DrawMode::Filled;
+  sandbox::UserSettings next;
+  sandbox::remember(ui, next);
+  EXPECT_FALSE(next.showWorld);
+  EXPECT_FALSE(next.showStats);
+  EXPECT_EQ(next.drawMode, "filled");
+  EXPECT_TRUE(next.markers);
+}
+
+}  // namespace

@@ -1,0 +1,246 @@
+// The settings file: what survives a save and load, what a hand-edited bad line does, and where
+// the file lives.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "user_settings.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sandbox::UserSettings;
+
+// A fresh folder per test, removed afterwards.
+class UserSettingsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("sandbox-settings-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path file = dir_ / name;
+    std::ofstream(file) << text;
+    return file;
+  }
+
+  // Names of the files in dir_, to catch a temporary file left behind.
+  std::vector<std::string> filesIn(const fs::path& folder) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::recursive_directory_iterator(folder)) names.push_back(e.path().filename().string());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+bool containsAll(const std::string& text, std::initializer_list<const char*> parts) {
+  for (const char* p : parts) {
+    if (text.find(p) == std::string::npos) return false;
+  }
+  return true;
+}
+
+TEST_F(UserSettingsTest, EveryFieldSurvivesSaveAndLoad) {
+  UserSettings s;
+  s.windowWidth = 1600;
+  s.windowHeight = 900;
+  s.showSimulation = false;
+  s.showWorld = true;
+  s.showDraw = false;
+  s.showStats = false;
+  s.lastScene = "/home/someone/my scenes/chain = long.xml";  // a space and an '=' in the value
+  s.drawMode = "wireframe";
+  s.markers = true;
+  s.recentFiles = {"/a/one.xml", "/b/two.xml", "relative/three.xml"};
+  const fs::path file = dir_ / "nested" / "folder" / "settings.ini";  // the folders do not exist yet
+  sandbox::saveUserSettings(s, file);
+
+  const auto loaded = sandbox::loadUserSettings(file);
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
+  const UserSettings& r = loaded.settings;
+  EXPECT_EQ(r.windowWidth, 1600);
+  EXPECT_EQ(r.windowHeight, 900);
+  EXPECT_FALSE(r.showSimulation);
+  EXPECT_TRUE(r.showWorld);
+  EXPECT_FALSE(r.showDraw);
+  EXPECT_FALSE(r.showStats);
+  EXPECT_EQ(r.lastScene, s.lastScene);
+  EXPECT_EQ(r.drawMode, "wireframe");
+  EXPECT_TRUE(r.markers);
+  EXPECT_EQ(r.recentFiles, s.recentFiles);
+  EXPECT_EQ(filesIn(dir_ / "nested" / "folder"), std::vector<std::string>{"settings.ini"});
+}
+
+TEST_F(UserSettingsTest, SavingTwiceReplacesTheFile) {
+  const fs::path file = dir_ / "settings.ini";
+  UserSettings s;
+  s.recentFiles = {"/x.xml", "/y.xml"};
+  sandbox::saveUserSettings(s, file);
+  s.recentFiles = {"/z.xml"};
+  s.drawMode = "constraints";
+  sandbox::saveUserSettings(s, file);
+  const auto loaded = sandbox::loadUserSettings(file);
+  EXPECT_EQ(loaded.settings.recentFiles, std::vector<std::string>{"/z.xml"});
+  EXPECT_EQ(loaded.settings.drawMode, "constraints");
+}
+
+TEST_F(UserSettingsTest, BadLinesAreSkippedWithTheirLineAndKey) {
+  const fs::path file = write("settings.ini",
+                              "# a comment\n"
+                              "\n"
+                              "width = abc\n"              // line 3
+                              "height = 50\n"              // line 4: below 100
+                              "drawMode = sketchy\n"       // line 5
+                              "markers = yes\n"            // line 6
+                              "colour = blue\n"            // line 7: unknown
+                              "no equals sign here\n"      // line 8
+                              "  showStats = false  \r\n"  // good, with spaces and a CR
+                              "lastScene = /s/ragdoll.xml\n"
+                              "recent = /r/1.xml\n");
+  const auto loaded = sandbox::loadUserSettings(file);
+  const std::string name = file.string();
+  ASSERT_EQ(loaded.warnings.size(), 6u);
+  EXPECT_TRUE(containsAll(loaded.warnings[0], {":3:", "'width'", "'abc'"})) << loaded.warnings[0];
+  EXPECT_TRUE(containsAll(loaded.warnings[1], {":4:", "'height'", "'50'"})) << loaded.warnings[1];
+  EXPECT_TRUE(containsAll(loaded.warnings[2], {":5:", "'drawMode'", "'sketchy'"})) << loaded.warnings[2];
+  EXPECT_TRUE(containsAll(loaded.warnings[3], {":6:", "'markers'", "'yes'"})) << loaded.warnings[3];
+  EXPECT_EQ(loaded.warnings[4], name + ":7: unknown key 'colour'");
+  EXPECT_TRUE(containsAll(loaded.warnings[5], {":8:"})) << loaded.warnings[5];
+  for (const std::string& w : loaded.warnings) EXPECT_EQ(w.rfind(name + ":", 0), 0u) << w;
+
+  const UserSettings defaults;
+  const UserSettings& s = loaded.settings;
+  EXPECT_EQ(s.windowWidth, defaults.windowWidth);
+  EXPECT_EQ(s.windowHeight, defaults.windowHeight);
+  EXPECT_EQ(s.drawMode, defaults.drawMode);
+  EXPECT_EQ(s.markers, defaults.markers);
+  EXPECT_FALSE(s.showStats);
+  EXPECT_EQ(s.lastScene, "/s/ragdoll.xml");
+  EXPECT_EQ(s.recentFiles, std::vector<std::string>{"/r/1.xml"});
+}
+
+TEST_F(UserSettingsTest, WindowSizeLimitsAreInclusive) {
+  const auto loaded = sandbox::loadUserSettings(write("s.ini", "width = 100\nheight = 16384\n"));
+  EXPECT_TRUE(loaded.warnings.empty());
+  EXPECT_EQ(loaded.settings.windowWidth, 100);
+  EXPECT_EQ(loaded.settings.windowHeight, 16384);
+  EXPECT_EQ(sandbox::loadUserSettings(write("t.ini", "width = 16385\nheight = 12x\n")).warnings.size(), 2u);
+}
+
+TEST_F(UserSettingsTest, AMissingFileGivesTheDefaultsQuietly) {
+  const auto loaded = sandbox::loadUserSettings(dir_ / "never-written.ini");
+  EXPECT_TRUE(loaded.warnings.empty());
+  const UserSettings defaults;
+  EXPECT_EQ(loaded.settings.windowWidth, defaults.windowWidth);
+  EXPECT_EQ(loaded.settings.drawMode, defaults.drawMode);
+  EXPECT_TRUE(loaded.settings.recentFiles.empty());
+}
+
+TEST_F(UserSettingsTest, ALoadedRecentListIsDedupedAndCapped) {
+  std::string text = "recent = /dup.xml\nrecent = /dup.xml\n";
+  for (int i = 0; i < 20; ++i) text += "recent = /f" + std::to_string(i) + ".xml\n";
+  const auto loaded = sandbox::loadUserSettings(write("s.ini", text));
+  ASSERT_EQ(loaded.settings.recentFiles.size(), static_cast<std::size_t>(sandbox::kMaxRecentFiles));
+  EXPECT_EQ(loaded.settings.recentFiles[0], "/dup.xml");
+  EXPECT_EQ(loaded.settings.recentFiles[1], "/f0.xml");
+}
+
+TEST(UserSettingsRecent, AddPutsNewestFirstDedupesAndCaps) {
+  UserSettings s;
+  sandbox::addRecentFile(s, "/a.xml");
+  sandbox::addRecentFile(s, "/b.xml");
+  sandbox::addRecentFile(s, "/a.xml");
+  EXPECT_EQ(s.recentFiles, (std::vector<std::string>{"/a.xml", "/b.xml"}));
+  for (int i = 0; i < 20; ++i) sandbox::addRecentFile(s, "/f" + std::to_string(i) + ".xml");
+  ASSERT_EQ(s.recentFiles.size(), static_cast<std::size_t>(sandbox::kMaxRecentFiles));
+  EXPECT_EQ(s.recentFiles.front(), "/f19.xml");
+  EXPECT_EQ(s.recentFiles.back(), "/f" + std::to_string(20 - sandbox::kMaxRecentFiles) + ".xml");
+  sandbox::addRecentFile(s, "");  // nothing to remember
+  EXPECT_EQ(s.recentFiles.front(), "/f19.xml");
+}
+
+TEST_F(UserSettingsTest, SavingUnderARegularFileThrowsNamingTheFile) {
+  write("plain-file", "not a folder");
+  const fs::path file = dir_ / "plain-file" / "sub" / "settings.ini";
+  try {
+    sandbox::saveUserSettings(UserSettings{}, file);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot save settings to " + file.string() + ": "), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(filesIn(dir_), std::vector<std::string>{"plain-file"});
+}
+
+TEST_F(UserSettingsTest, AFailedRenameRemovesTheTemporaryFile) {
+  // The target is a folder with something in it, so writing the temporary file works and the
+  // rename over it fails.
+  const fs::path file = dir_ / "settings.ini";
+  fs::create_directories(file / "inside");
+  EXPECT_THROW(sandbox::saveUserSettings(UserSettings{}, file), std::runtime_error);
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"settings.ini"});
+}
+
+// Sets or unsets an environment variable for one scope.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value != nullptr) {
+      ::setenv(name, value, 1);
+    } else {
+      ::unsetenv(name);
+    }
+  }
+  ~ScopedEnv() {
+    if (old_) {
+      ::setenv(name_, old_->c_str(), 1);
+    } else {
+      ::unsetenv(name_);
+    }
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+TEST(UserSettingsConfigDirectory, XdgConfigHomeThenHomeThenNothing) {
+  {
+    ScopedEnv xdg("XDG_CONFIG_HOME", "/xdg/config");
+    ScopedEnv home("HOME", "/home/someone");
+    EXPECT_EQ(sandbox::configDirectory(), fs::path("/xdg/config/jakobsen-sandbox"));
+  }
+  {
+    ScopedEnv xdg("XDG_CONFIG_HOME", "");  // set but empty counts as unset
+    ScopedEnv home("HOME", "/home/someone");
+    EXPECT_EQ(sandbox::configDirectory(), fs::path("/home/someone/.config/jakobsen-sandbox"));
+  }
+  {
+    ScopedEnv xdg("XDG_CONFIG_HOME", nullptr);
+    ScopedEnv home("HOME", "/home/someone");
+    EXPECT_EQ(sandbox::configDirectory(), fs::path("/home/someone/.config/jakobsen-sandbox"));
+  }
+  {
+    ScopedEnv xdg("XDG_CONFIG_HOME", nullptr);
+    ScopedEnv home("HOME", nullptr);
+    EXPECT_EQ(sandbox::configDirectory(), fs::path());
+  }
+}
+
+}  // namespace

@@ -1,0 +1,134 @@
+// The sandbox's draw modes, markers, method overlay and --pause-at, seen in the pixels of the
+// real program's screenshots under Xvfb; and every project scene loading and rendering.
+#include <filesystem>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "body_colors.h"
+#include "sandbox_run.h"
+#include "scenes/scene.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using testing_gl::countPixels;
+using testing_gl::runSandbox;
+
+// The part of a 1280x720 screenshot between the side panels, above the status line.
+constexpr int kViewX = 390, kViewY = 30, kViewW = 500, kViewH = 640;
+
+bool red(int r, int g, int b) { return r > 180 && g < 60 && b < 60; }
+bool green(int r, int g, int b) { return g > 170 && r < 90 && b < 110; }
+
+scenes::Scene stepped(const std::string& name, int steps) {
+  scenes::Scene s = scenes::loadSceneFile(scenes::resolveScene(name, scenes::sceneDirectory(DATA_DIR)));
+  for (int i = 0; i < steps; ++i) s.world.step();
+  return s;
+}
+
+engine::FirstPersonCamera startCamera(const scenes::Scene& s) {
+  return engine::FirstPersonCamera::lookingAt(s.camera.eye, s.camera.target);
+}
+
+TEST(SandboxModes, EveryProjectSceneLoadsAndRenders) {
+  constexpr int kFrames = 3;
+  for (const auto& entry : fs::directory_iterator(scenes::sceneDirectory(DATA_DIR))) {
+    if (entry.path().extension() != ".xml") continue;
+    const std::string name = entry.path().stem().string();
+    SCOPED_TRACE(name);
+    const engine::Image image = runSandbox(name, "scene-" + name + ".png", kFrames);
+    ASSERT_EQ(image.width, 1280);
+    ASSERT_EQ(image.height, 720);
+    // Each body whose centre lands in the view between the panels is drawn there: in a box's
+    // colour or a particle's (one body may hide another, never the sky or the ground).
+    const scenes::Scene scene = stepped(name, kFrames);
+    const auto camera = startCamera(scene);
+    const phys::World& w = scene.world;
+    std::vector<glm::vec3> centres;
+    std::vector<bool> inBox(w.particles().size(), false);
+    for (phys::BoxId id = 0; id < w.boxes().size(); ++id) {
+      centres.emplace_back(w.boxPose(id).center);
+      for (int k = 0; k < w.boxes()[id].particleCount; ++k) inBox[w.boxes()[id].firstParticle + k] = true;
+    }
+    for (std::size_t i = 0; i < w.particles().size(); ++i) {
+      if (!inBox[i]) centres.push_back(glm::vec3(w.particles().position[i]) + glm::vec3(0, sandbox::kParticleDrawSize / 4, 0));
+    }
+    int visible = 0, drawn = 0;
+    for (const glm::vec3& c : centres) {
+      const glm::ivec2 px = testing_gl::toPixel(image, camera, c);
+      if (px.x < kViewX || px.x >= kViewX + kViewW || px.y < kViewY || px.y >= kViewY + kViewH) continue;
+      // The crosshair's two lines cross at the centre of the view.
+      if (std::abs(px.x - image.width / 2) < 10 && std::abs(px.y - image.height / 2) < 10) continue;
+      ++visible;
+      const glm::u8vec4 p = image.pixel(px.x, px.y);
+      drawn += sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b) ||
+               sandbox::looksLike(sandbox::kParticleColor, p.r, p.g, p.b);
+    }
+    EXPECT_GT(visible, 0);
+    EXPECT_EQ(drawn, visible);
+  }
+}
+
+TEST(SandboxModes, WireframeAndFilledDiffer) {
+  const engine::Image filled = runSandbox("ragdoll --draw filled", "mode-filled.png", 30);
+  const engine::Image wire = runSandbox("ragdoll --draw wireframe", "mode-wireframe.png", 30);
+  int differ = 0;
+  for (int y = kViewY; y < kViewY + kViewH; ++y) {
+    for (int x = kViewX; x < kViewX + kViewW; ++x) differ += filled.pixel(x, y) != wire.pixel(x, y) ? 1 : 0;
+  }
+  EXPECT_GT(differ, 300);
+}
+
+TEST(SandboxModes, ConstraintsModeDrawsTheSticksRed) {
+  const engine::Image constraints = runSandbox("ragdoll --draw constraints", "mode-constraints.png", 30);
+  const engine::Image filled = runSandbox("ragdoll --draw filled", "mode-filled.png", 30);
+  EXPECT_GT(countPixels(constraints, kViewX, kViewY, kViewW, kViewH, red), 100);
+  EXPECT_LT(countPixels(filled, kViewX, kViewY, kViewW, kViewH, red), 5);
+}
+
+TEST(SandboxModes, MarkersShowGreenBoxesWhereBoxesCollide) {
+  const engine::Image marked = runSandbox("box-of-boxes --markers", "markers-on.png", 20);
+  const engine::Image plain = runSandbox("box-of-boxes", "markers-off.png", 20);
+  EXPECT_GT(countPixels(marked, kViewX, kViewY, kViewW, kViewH, green), 50);
+  EXPECT_LT(countPixels(plain, kViewX, kViewY, kViewW, kViewH, green), 5);
+}
+
+TEST(SandboxModes, TheOverlayDrawsEveryRunInItsOwnColour) {
+  // Two time steps: after 40 frames one run's box has fallen 3 m, the other's 0.16 s worth.
+  constexpr int kFrames = 40;
+  const engine::Image image =
+      runSandbox("falling-box --overlay dt=0.0166666666666667 dt=0.004", "overlay.png", kFrames);
+  scenes::Scene slow = stepped("falling-box", 0);
+  slow.world.setSolverSettings([&] {
+    phys::SolverSettings s = slow.world.solverSettings();
+    s.dt = 0.004;
+    return s;
+  }());
+  for (int i = 0; i < kFrames; ++i) slow.world.step();
+  const scenes::Scene fast = stepped("falling-box", kFrames);
+  const auto camera = startCamera(fast);
+  const glm::ivec2 a = testing_gl::toPixel(image, camera, glm::vec3(fast.world.boxPose(0).center));
+  const glm::ivec2 b = testing_gl::toPixel(image, camera, glm::vec3(slow.world.boxPose(0).center));
+  ASSERT_GT(std::abs(a.y - b.y), 40) << "the two runs' boxes should be apart on screen";
+  // Run 0 is tinted orange (red over blue), run 1 blue (blue over red), both translucent.
+  auto tint = [&](glm::ivec2 at) { return int(image.pixel(at.x, at.y).r) - int(image.pixel(at.x, at.y).b); };
+  EXPECT_GT(tint(a), 40) << "run 0 at " << a.x << ", " << a.y;
+  EXPECT_LT(tint(b), -40) << "run 1 at " << b.x << ", " << b.y;
+}
+
+TEST(SandboxModes, PauseAtStopsTheWorldAtThatStep) {
+  const engine::Image image = runSandbox("falling-box --pause-at 10", "pause-at.png", 40);
+  const scenes::Scene at10 = stepped("falling-box", 10);
+  const scenes::Scene at40 = stepped("falling-box", 40);
+  const auto camera = startCamera(at10);
+  auto boxAt = [&](const scenes::Scene& s) {
+    const glm::ivec2 px = testing_gl::toPixel(image, camera, glm::vec3(s.world.boxPose(0).center));
+    const glm::u8vec4 p = image.pixel(px.x, px.y);
+    return sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b);
+  };
+  EXPECT_TRUE(boxAt(at10));
+  EXPECT_FALSE(boxAt(at40));
+}
+
+}  // namespace
