@@ -1,6 +1,7 @@
 #include "options.h"
 
 #include <charconv>
+#include <optional>
 
 #include "scenes/scene.h"
 
@@ -8,6 +9,14 @@ namespace sandbox {
 namespace {
 
 constexpr int kMaxFrames = 1000000;
+
+// A whole number from min to max written as nothing else, or nothing.
+std::optional<long> wholeNumber(const std::string& text, long min, long max) {
+  long n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || n < min || n > max) return std::nullopt;
+  return n;
+}
 
 }  // namespace
 
@@ -50,13 +59,12 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
     } else if (a == "--frames") {
       const std::string* v = value("a number of frames");
       if (v == nullptr) return out;
-      int n = 0;
-      const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
-      if (ec != std::errc() || end != v->data() + v->size() || n < 1 || n > kMaxFrames) {
+      const std::optional<long> n = wholeNumber(*v, 1, kMaxFrames);
+      if (!n) {
         out.error = "--frames: '" + *v + "' is not a whole number from 1 to " + std::to_string(kMaxFrames);
         return out;
       }
-      o.frames = n;
+      o.frames = static_cast<int>(*n);
       framesGiven = true;
     } else if (a == "--draw") {
       const std::string* v = value("filled, wireframe or constraints");
@@ -87,13 +95,11 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
     } else if (a == "--pause-at") {
       const std::string* v = value("a step number");
       if (v == nullptr) return out;
-      long n = 0;
-      const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), n);
-      if (ec != std::errc() || end != v->data() + v->size() || n < 0 || n > kMaxFrames) {
+      o.pauseAt = wholeNumber(*v, 0, kMaxFrames);
+      if (!o.pauseAt) {
         out.error = "--pause-at: '" + *v + "' is not a whole number from 0 to " + std::to_string(kMaxFrames);
         return out;
       }
-      o.pauseAt = n;
     } else if (a == "--data") {
       const std::string* v = value("a folder");
       if (v == nullptr) return out;
