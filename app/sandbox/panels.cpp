@@ -40,6 +40,8 @@ bool sliderReal(const char* label, double& value, float min, float max, const ch
   return true;
 }
 
+void settingsSection(Session& session, UiState& ui);
+
 void overlaySection(Session& session, UiState& ui) {
   if (session.overlayActive()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);  // started from the command line
   if (!ImGui::CollapsingHeader("Method overlay")) return;
@@ -101,6 +103,15 @@ void drawSimulationPanel(Session& session, UiState& ui) {
     endPanel();
     return;
   }
+  settingsSection(session, ui);
+  // Last: starting the overlay replaces the scene the section above drew from.
+  overlaySection(session, ui);
+  endPanel();
+}
+
+namespace {
+
+void settingsSection(Session& session, UiState& ui) {
   const scenes::Scene& scene = session.scene();
   phys::World& world = session.scene().world;
   ImGui::TextWrapped("%s: %s", scene.name.c_str(), scene.description.c_str());
@@ -146,11 +157,11 @@ void drawSimulationPanel(Session& session, UiState& ui) {
                              ? w.groundMaterial.dynamicFriction / w.groundMaterial.staticFriction : 5.0 / 6.0;
     w.groundMaterial.staticFriction = mu;
     w.groundMaterial.dynamicFriction = mu * ratio;
-    session.setWorldSettings(w);
+    ui.message = session.setWorldSettings(w);
   }
-  overlaySection(session, ui);
-  endPanel();
 }
+
+}  // namespace
 
 void drawWorldPanel(Session& session, UiState& ui) {
   if (!ui.showWorld) return;
@@ -176,13 +187,17 @@ void drawWorldPanel(Session& session, UiState& ui) {
     changed |= sliderReal("strength (m/s^2, Y/H)", w.gravityStrength, 0.0f, 30.0f, "%.2f");
     float p[3] = {static_cast<float>(w.gravityPoint.x), static_cast<float>(w.gravityPoint.y),
                   static_cast<float>(w.gravityPoint.z)};
-    if (ImGui::DragFloat3("point (m)", p, 0.05f)) {
+    // Typed values (Ctrl+click) can be anything; the world refuses a non-finite point.
+    if (ImGui::DragFloat3("point (m)", p, 0.05f, -1e4f, 1e4f, "%.2f", ImGuiSliderFlags_AlwaysClamp)) {
       w.gravityPoint = phys::Vec3(p[0], p[1], p[2]);
       changed = true;
     }
   }
   changed |= sliderReal("damping (1/s, U/J)", w.damping, 0.0f, 5.0f, "%.2f");
-  if (changed) session.setWorldSettings(w);
+  if (changed) {
+    const std::string error = session.setWorldSettings(w);
+    ui.message = error.empty() ? "world settings applied without restart" : error;
+  }
   ImGui::Text("ground: %s", w.ground ? "yes" : "none");
   endPanel();
 }
@@ -234,8 +249,8 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   ImGui::Text("energy %.3f J (kinetic %.3f), max speed %.2f m/s", m.energy(), m.kineticEnergy, m.maxSpeed);
   if (m.frozen > 0) {
     const phys::FreezeReport& last = world.freezes().back();
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "frozen: %d particles; last %s: %s at %.2f s", m.frozen,
-                       last.name.c_str(), last.reason.c_str(), last.time);
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "frozen: %zu bodies (%d particles); last %s: %s at %.2f s",
+                       world.freezes().size(), m.frozen, last.name.c_str(), last.reason.c_str(), last.time);
   } else {
     ImGui::Text("frozen: none");
   }
@@ -263,13 +278,16 @@ void drawLegend(const Session& session) {
   ImGui::SetNextWindowBgAlpha(0.85f);
   ImGui::Begin("Overlay", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
                                        ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+  int id = 0;
   for (const Run& run : session.runs()) {
     const phys::SolverSettings& s = run.scene->world.solverSettings();
+    ImGui::PushID(id++);
     ImGui::ColorButton("##c", ImVec4(run.color.r, run.color.g, run.color.b, 1.0f), 0, ImVec2(14, 14));
     ImGui::SameLine();
     ImGui::Text("%-28s %-28s %.3f ms/step (median), error %.1e", run.label.c_str(), describeSolver(s).c_str(),
                 run.medianMs(),
                 run.scene->world.metrics().maxConstraintError);
+    ImGui::PopID();
   }
   ImGui::End();
 }

@@ -1,5 +1,6 @@
 #include "sandbox.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -107,6 +108,9 @@ Sandbox::~Sandbox() {
 void Sandbox::saveUserSettingsOnExit() {
   if (settingsFile_.empty()) return;
   glfwGetWindowSize(window_.handle(), &user_.windowWidth, &user_.windowHeight);
+  // A window shrunk to nothing would be refused (with a warning) on the next start.
+  user_.windowWidth = std::clamp(user_.windowWidth, 640, 16384);
+  user_.windowHeight = std::clamp(user_.windowHeight, 360, 16384);
   remember(ui_, user_);
   user_.lastScene = std::filesystem::absolute(session_->file()).string();
   try {
@@ -187,33 +191,36 @@ void Sandbox::perform(Action action) {
   }
 }
 
+// --pause-at N: true (and paused) once the main run has taken N steps. Checked before every
+// step, so a frame that runs several steps cannot carry the world past N.
+bool Sandbox::pauseDue() {
+  const long steps = session_->scene().world.stepCount();
+  if (!options_.pauseAt || steps < *options_.pauseAt) return false;
+  ui_.paused = true;
+  ui_.message = "paused at step " + std::to_string(steps) + " (--pause-at)";
+  options_.pauseAt.reset();
+  return true;
+}
+
 void Sandbox::advancePhysics(double frameSeconds) {
   const phys::World& world = session_->scene().world;
-  if (options_.pauseAt && world.stepCount() >= *options_.pauseAt && !ui_.paused) {
-    ui_.paused = true;
-    ui_.message = "paused at step " + std::to_string(world.stepCount()) + " (--pause-at)";
-    options_.pauseAt.reset();
-  }
-  auto timedStep = [&] { session_->step(); };
   if (!interactive_) {  // deterministic: one step per frame, whatever the clock says
-    if (!ui_.paused) timedStep();
+    if (!ui_.paused && !pauseDue()) session_->step();
+  } else if (ui_.paused || pauseDue()) {
+    if (ui_.stepOnce) session_->step();
+    accumulator_ = 0.0;
   } else {
-    if (ui_.stepOnce) timedStep();
-    if (ui_.paused) {
-      accumulator_ = 0.0;
-    } else {
-      const double dt = world.solverSettings().dt;
-      accumulator_ += frameSeconds * ui_.timeScale;
-      int steps = 0;
-      while (accumulator_ >= dt && steps < kMaxStepsPerFrame) {
-        timedStep();
-        accumulator_ -= dt;
-        ++steps;
-      }
-      if (steps == kMaxStepsPerFrame) accumulator_ = 0.0;  // drop the backlog rather than spiral
+    const double dt = world.solverSettings().dt;
+    accumulator_ += frameSeconds * ui_.timeScale;
+    int steps = 0;
+    while (accumulator_ >= dt && steps < kMaxStepsPerFrame && !pauseDue()) {
+      session_->step();
+      accumulator_ -= dt;
+      ++steps;
     }
+    if (steps == kMaxStepsPerFrame) accumulator_ = 0.0;  // drop the backlog rather than spiral
   }
-  ui_.stepOnce = false;
+  ui_.stepOnce = false;  // a step asked for while running is one of the clock's anyway
   const phys::Metrics m = world.metrics();
   ui_.stepMs.add(static_cast<float>(world.profile().total), frameSeconds);
   ui_.maxError.add(static_cast<float>(m.maxConstraintError), frameSeconds);
@@ -258,6 +265,9 @@ void Sandbox::moveCamera(float frameSeconds) {
 
 void Sandbox::updateDrag() {
   const ImGuiIO& io = ImGui::GetIO();
+  int width = 0, height = 0;
+  glfwGetWindowSize(window_.handle(), &width, &height);
+  if (width <= 0 || height <= 0) return;  // minimised: no cursor ray to pick with
   if (input_.buttonPressed(GLFW_MOUSE_BUTTON_LEFT) && !io.WantCaptureMouse) {
     const auto [origin, direction] = cursorRay();
     if (session_->pick(origin, direction)) ui_.message = "dragging: release the left button to let go";
@@ -338,7 +348,6 @@ void Sandbox::drawDialogs() {
 
 void Sandbox::renderFrame() {
   const glm::ivec2 size = window_.framebufferSize();
-  if (size.x == 0 || size.y == 0) return;  // minimised: nothing to draw into
   const glm::mat4 viewProjection =
       camera_.projection(static_cast<float>(size.x) / static_cast<float>(size.y)) * camera_.view();
 
@@ -409,6 +418,13 @@ int Sandbox::run() {
     }
     advancePhysics(frameSeconds);
     input_.endFrame();
+    const glm::ivec2 size = window_.framebufferSize();
+    if (size.x == 0 || size.y == 0) {
+      // Minimised: nothing to draw, and vsync would not pace the loop, so wait for events (the
+      // simulation goes on, up to kMaxStepsPerFrame steps per wake-up).
+      glfwWaitEventsTimeout(0.05);
+      continue;
+    }
     renderFrame();
 
     if (options_.screenshot && frame >= options_.frames) {

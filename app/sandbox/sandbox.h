@@ -44,6 +44,7 @@ class Sandbox {
   void saveUserSettingsOnExit();
   void perform(Action action);
   void openScene(const std::filesystem::path& file);
+  bool pauseDue();
   void advancePhysics(double frameSeconds);
   void moveCamera(float frameSeconds);
   void updateDrag();

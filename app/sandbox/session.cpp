@@ -79,9 +79,11 @@ std::string Session::reload() { return open(file_); }
 
 std::string Session::openBuiltin(std::string_view name) { return open(scenes::resolveScene(name, sceneDirectory_)); }
 
-std::string Session::saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera) const {
+std::string Session::saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera) {
   try {
     scenes::saveSceneFile(scene(), camera, file);
+    file_ = file;
+    status_ = "saved " + file.filename().string();
     return {};
   } catch (const std::exception& e) {
     return e.what();
@@ -103,14 +105,15 @@ std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
     return "the overlay needs " + std::to_string(kMinOverlayRuns) + " to " + std::to_string(kMaxOverlayRuns) +
            " settings, got " + std::to_string(specs.size());
   }
+  const phys::SolverSettings base = overlayActive() ? beforeOverlay_ : scene().world.solverSettings();
+  release();  // a copied spring would have no one to let it go
   // Build every run before replacing any, so a refused setting changes nothing.
-  const scenes::Scene& base = scene();
   std::vector<Run> runs;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     Run run;
-    run.scene = std::make_unique<scenes::Scene>(base);
+    run.scene = std::make_unique<scenes::Scene>(scene());
     try {
-      run.scene->world.setSolverSettings(specs[i].applyTo(base.world.solverSettings()));
+      run.scene->world.setSolverSettings(specs[i].applyTo(base));
     } catch (const std::invalid_argument& e) {
       return "overlay run " + std::to_string(i + 1) + " '" + specs[i].text + "': " + e.what();
     }
@@ -118,25 +121,45 @@ std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
     run.color = kRunColors[i];
     runs.push_back(std::move(run));
   }
+  beforeOverlay_ = base;
   runs_ = std::move(runs);
-  drag_.reset();
   status_ = "overlay of " + std::to_string(runs_.size()) + " runs, each from the state the world was in";
   return {};
 }
 
 void Session::stopOverlay() {
+  if (!overlayActive()) return;
+  release();
   runs_.resize(1);
   runs_.front().label.clear();
-  status_ = "overlay off";
+  runs_.front().color = kRunColors[0];
+  scene().world.setSolverSettings(beforeOverlay_);  // valid: the main run had them
+  status_ = "overlay off; the solver settings are as before it";
 }
 
+namespace {
+
+void timedStep(Run& run) {
+  const auto start = Clock::now();
+  run.scene->world.step();
+  run.stepMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  run.recentMs[static_cast<std::size_t>(run.timed % Run::kTimedSteps)] = run.stepMs;
+  ++run.timed;
+}
+
+// A run far behind (dt a thousandth of the main run's) catches up over several frames rather
+// than stalling one.
+constexpr int kMaxCatchUpSteps = 1000;
+
+}  // namespace
+
 void Session::step() {
-  for (Run& run : runs_) {
-    const auto start = Clock::now();
-    run.scene->world.step();
-    run.stepMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    run.recentMs[static_cast<std::size_t>(run.timed % Run::kTimedSteps)] = run.stepMs;
-    ++run.timed;
+  timedStep(runs_.front());
+  const double now = runs_.front().scene->world.time();
+  for (std::size_t i = 1; i < runs_.size(); ++i) {
+    Run& run = runs_[i];
+    const double halfStep = 0.5 * run.scene->world.solverSettings().dt;
+    for (int n = 0; n < kMaxCatchUpSteps && run.scene->world.time() + halfStep <= now; ++n) timedStep(run);
   }
 }
 
@@ -144,8 +167,12 @@ void Session::forEachWorld(const std::function<void(phys::World&)>& apply) {
   for (Run& run : runs_) apply(run.scene->world);
 }
 
-void Session::setWorldSettings(const phys::WorldSettings& settings) {
+std::string Session::setWorldSettings(const phys::WorldSettings& settings) {
+  // Every run has the same world settings, so if the first takes them all do.
+  const std::string why = phys::validate(settings);
+  if (!why.empty()) return "world settings: " + why;
   forEachWorld([&](phys::World& w) { w.setWorldSettings(settings); });
+  return {};
 }
 
 std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
@@ -217,6 +244,7 @@ void Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity) {
 }
 
 bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
+  if (!phys::finite(origin) || !phys::finite(direction) || glm::length(direction) == 0.0) return false;
   const phys::World& w = scene().world;
   const std::optional<phys::RayHit> hit = w.raycast(origin, direction, 1000.0);
   if (!hit) return false;
@@ -248,6 +276,7 @@ bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
 void Session::dragAlong(const phys::Vec3& origin, const phys::Vec3& direction) {
   if (!drag_) return;
   const phys::Vec3 target = onPlane(origin, direction, drag_->planePoint, drag_->planeNormal);
+  if (!phys::finite(target)) return;  // a degenerate ray: keep the last target
   // Every run pulls its copy of the body towards the same point, so the runs stay comparable.
   forEachWorld([&](phys::World& w) { w.setDragTarget(target); });
 }

@@ -51,8 +51,9 @@ class Session {
   // Files. Each returns "" on success, else the message to show; on failure nothing changes.
   std::string open(const std::filesystem::path& file);
   std::string reload();
-  /// Writes the main run's world and settings, with the camera where it is, atomically.
-  std::string saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera) const;
+  /// Writes the main run's world and settings, with the camera where it is, atomically. The
+  /// saved file becomes the current one (what Reload reads), as in any editor's Save As.
+  std::string saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera);
   /// Opens assets/scenes/<name>.xml (the seed's keys 1, 2, 3).
   std::string openBuiltin(std::string_view name);
   /// Removes every body of every run, keeping the settings (the seed's key 0).
@@ -65,12 +66,15 @@ class Session {
   bool overlayActive() const { return runs_.size() > 1; }
 
   /// Runs the current world under each of 2 to 4 settings, each from the state it is in now:
-  /// run 0 becomes the first of them. Returns "" or why not (and changes nothing).
+  /// run 0 becomes the first of them. Each setting overrides the settings the main run had
+  /// before any overlay (so a restart does not stack them). Returns "" or why not (and changes
+  /// nothing). A drag in progress is let go.
   std::string startOverlay(std::span<const OverlaySpec> specs);
-  /// Keeps run 0 only.
+  /// Keeps run 0 only, with the solver settings it had before the overlay.
   void stopOverlay();
 
-  /// Steps every run once, timing each.
+  /// Steps the main run once, and every other run as many times as it takes to reach the main
+  /// run's simulated time (a run with half the dt takes two steps), timing each step.
   void step();
 
   // The seed's world controls; they act on every run, so the overlay keeps comparing methods
@@ -79,7 +83,8 @@ class Session {
   /// Strength of gravity (|g| in uniform mode, the pull in point mode) changed by delta, >= 0.
   void changeGravity(double delta);
   void changeDamping(double delta);
-  void setWorldSettings(const phys::WorldSettings& settings);
+  /// The world settings of every run; "" or the validation message (and nothing changes).
+  std::string setWorldSettings(const phys::WorldSettings& settings);
   /// The main run's solver settings (the panel's sliders); "" or the validation message.
   std::string setSolverSettings(const phys::SolverSettings& settings);
 
@@ -88,7 +93,8 @@ class Session {
   void spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity);
 
   /// Left-drag picking: the body or particle hit by the ray gets a spring to the ray's point,
-  /// in every run at the same place on the same body. False when the ray hits nothing.
+  /// in every run at the same place on the same body. False when the ray hits nothing or is
+  /// not a ray (a zero or non-finite direction, as a zero-sized window gives).
   bool pick(const phys::Vec3& origin, const phys::Vec3& direction);
   /// Moves the spring's far end: the point on the picked plane (through the hit point, facing
   /// the view) under the ray.
@@ -116,6 +122,7 @@ class Session {
   std::filesystem::path file_;
   std::filesystem::path sceneDirectory_;
   std::optional<DragState> drag_;
+  phys::SolverSettings beforeOverlay_;  // the main run's settings when the overlay started
   std::string status_;
   int spawned_ = 0;
 };

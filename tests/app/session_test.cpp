@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <unistd.h>
 
@@ -20,11 +21,21 @@ namespace fs = std::filesystem;
 
 const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
 
-fs::path tempDir() {
-  const fs::path dir = fs::temp_directory_path() / ("session_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+// A folder of the test's own, removed when the test ends.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() / ("session_test_" + std::to_string(::getpid()) + "_" + test->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
 
 sandbox::Session open(const char* name) { return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes); }
 
@@ -32,7 +43,8 @@ TEST(Session, ABadSceneKeepsTheCurrentWorldAndSaysWhereTheErrorIs) {
   sandbox::Session s = open("pyramid");
   for (int i = 0; i < 10; ++i) s.step();
   const std::uint64_t before = s.scene().world.stateHash();
-  const fs::path bad = tempDir() / "bad.xml";
+  const TempDir dir;
+  const fs::path bad = dir.path() / "bad.xml";
   std::ofstream(bad) << "<scene name=\"bad\">\n  <box pos=\"0 1 0\" mass=\"-2\"/>\n</scene>\n";
   const std::string error = s.open(bad);
   EXPECT_EQ(error, bad.string() + ":2: <box> attribute 'mass': must be > 0 (kg)");
@@ -41,7 +53,7 @@ TEST(Session, ABadSceneKeepsTheCurrentWorldAndSaysWhereTheErrorIs) {
   EXPECT_EQ(s.scene().world.stepCount(), 10);
   EXPECT_EQ(s.file(), kScenes / "pyramid.xml");
   EXPECT_NE(s.status().find("the current world is kept"), std::string::npos);
-  EXPECT_NE(s.open(tempDir() / "missing.xml"), "");
+  EXPECT_NE(s.open(dir.path() / "missing.xml"), "");
   EXPECT_EQ(s.scene().name, "pyramid");
 }
 
@@ -162,23 +174,80 @@ TEST(Session, TheOverlayRunsEachSettingFromTheSameStateAndRefusesBadCounts) {
     EXPECT_GT(run.stepMs, 0.0);
     EXPECT_GT(run.medianMs(), 0.0);
   }
+  // A restart applies each setting to the settings from before the overlay, not on top of
+  // run 0's: run 2 is xpbd with the scene's own iteration count, not run 0's 3.
+  const int sceneIterations = 1;  // chain.xml's
+  ASSERT_EQ(s.startOverlay(three), "");
+  EXPECT_EQ(s.runs()[2].scene->world.solverSettings().iterations, sceneIterations);
   s.stopOverlay();
   EXPECT_EQ(s.runs().size(), 1u);
+  EXPECT_EQ(s.scene().world.solverSettings().iterations, sceneIterations);
+  EXPECT_EQ(s.scene().world.solverSettings().substeps, 8);
+}
+
+TEST(Session, OverlayRunsWithAnotherDtKeepTheMainRunsClock) {
+  sandbox::Session s = open("falling-box");
+  auto spec = [](const char* text) { return sandbox::parseOverlaySpec(text).spec; };
+  const std::vector<sandbox::OverlaySpec> specs{spec("dt=0.02"), spec("dt=0.005"), spec("dt=0.03")};
+  ASSERT_EQ(s.startOverlay(specs), "");
+  for (int i = 0; i < 30; ++i) s.step();
+  const double now = s.runs()[0].scene->world.time();
+  EXPECT_NEAR(now, 0.6, 1e-9);
+  EXPECT_EQ(s.runs()[1].scene->world.stepCount(), 120);  // four steps for each of the main run's
+  for (const sandbox::Run& run : s.runs()) {
+    // Each within half its own step of the main run's time.
+    EXPECT_LE(std::abs(run.scene->world.time() - now), 0.5 * run.scene->world.solverSettings().dt + 1e-9);
+  }
+}
+
+TEST(Session, StartingTheOverlayLetsGoOfADrag) {
+  sandbox::Session s = open("falling-box");
+  const phys::Vec3 centre = s.scene().world.boxPose(0).center;
+  ASSERT_TRUE(s.pick(centre + phys::Vec3(0, 0, 5), phys::Vec3(0, 0, -1)));
+  const std::vector<sandbox::OverlaySpec> specs{sandbox::parseOverlaySpec("iterations=2").spec,
+                                                sandbox::parseOverlaySpec("iterations=4").spec};
+  ASSERT_EQ(s.startOverlay(specs), "");
+  EXPECT_FALSE(s.dragging());
+  for (const sandbox::Run& run : s.runs()) EXPECT_FALSE(run.scene->world.drag().has_value());
+  // And a ray that is no ray picks nothing rather than throwing.
+  EXPECT_FALSE(s.pick(centre, phys::Vec3(0.0)));
+  EXPECT_FALSE(s.pick(centre, phys::Vec3(std::nan(""), 0, 0)));
+}
+
+TEST(Session, BadWorldSettingsAreRefusedWithTheReason) {
+  sandbox::Session s = open("ragdoll");
+  phys::WorldSettings w = s.scene().world.worldSettings();
+  w.gravityPoint.x = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(s.setWorldSettings(w), "world settings: gravityPoint must be finite");
+  EXPECT_TRUE(phys::finite(s.scene().world.worldSettings().gravityPoint));
 }
 
 TEST(Session, SaveAsWritesAWorldThatOpensAgainAndABadPathKeepsEverything) {
+  const TempDir dir;
   sandbox::Session s = open("ragdoll");
   for (int i = 0; i < 30; ++i) s.step();
-  const fs::path file = tempDir() / "saved.xml";
+  const fs::path file = dir.path() / "saved.xml";
   scenes::CameraStart camera;
   camera.eye = {1, 2, 3};
   ASSERT_EQ(s.saveAs(file, camera), "");
+  EXPECT_EQ(s.file(), file);  // the saved file is the current one: Reload reads it
   const phys::Vec3 torso = s.scene().world.boxPose(1).center;
-  ASSERT_EQ(s.open(file), "");
+  ASSERT_EQ(s.reload(), "");
   EXPECT_NEAR(glm::length(s.scene().world.boxPose(1).center - torso), 0.0, 1e-3);
   EXPECT_EQ(s.scene().camera.eye, glm::vec3(1, 2, 3));
-  const std::string error = s.saveAs(tempDir() / "no such folder" / "x.xml", camera);
-  EXPECT_NE(error.find("no such folder"), std::string::npos) << error;
+
+  // A folder that does not exist: the message says why, nothing is written, the file stays.
+  const std::string error = s.saveAs(dir.path() / "no such folder" / "x.xml", camera);
+  EXPECT_NE(error.find("No such file or directory"), std::string::npos) << error;
+  EXPECT_EQ(s.file(), file);
+  // Over a file that cannot be replaced (a folder of that name): the old one is untouched.
+  fs::create_directories(dir.path() / "taken.xml" / "inside");
+  EXPECT_NE(s.saveAs(dir.path() / "taken.xml", camera), "");
+  EXPECT_TRUE(fs::is_directory(dir.path() / "taken.xml" / "inside"));
+  for (const auto& entry : fs::directory_iterator(dir.path())) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name == "saved.xml" || name == "taken.xml") << "left behind: " << name;
+  }
 }
 
 }  // namespace
