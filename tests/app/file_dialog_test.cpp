@@ -12,6 +12,7 @@
 #include <string>
 
 #include "file_dialog.h"
+#include "temp_folder.h"
 
 namespace {
 
@@ -29,19 +30,7 @@ std::vector<std::string> names(const std::vector<DirectoryEntry>& entries) {
   return out;
 }
 
-// A fresh folder per test, removed afterwards.
-class TempFolder {
- public:
-  TempFolder() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() / ("sandbox-dialog-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempFolder() { fs::remove_all(path); }
-  void touch(const std::string& name) const { std::ofstream(path / name) << "x"; }
-  fs::path path;
-};
+using testing_app::TempFolder;
 
 TEST(ListDirectory, ScenesFolderListsParentThenSortedXmlFiles) {
   std::string error = "stale";

@@ -14,6 +14,7 @@
 #include "history.h"
 #include "panels.h"
 #include "session.h"
+#include "temp_folder.h"
 
 namespace {
 
@@ -21,21 +22,7 @@ namespace fs = std::filesystem;
 
 const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
 
-// A folder of the test's own, removed when the test ends.
-class TempDir {
- public:
-  TempDir() {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("session_test_" + std::to_string(::getpid()) + "_" + test->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using TempDir = testing_app::TempFolder;
 
 sandbox::Session open(const char* name) { return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes); }
 
@@ -44,7 +31,7 @@ TEST(Session, ABadSceneKeepsTheCurrentWorldAndSaysWhereTheErrorIs) {
   for (int i = 0; i < 10; ++i) s.step();
   const std::uint64_t before = s.scene().world.stateHash();
   const TempDir dir;
-  const fs::path bad = dir.path() / "bad.xml";
+  const fs::path bad = dir.path / "bad.xml";
   std::ofstream(bad) << "<scene name=\"bad\">\n  <box pos=\"0 1 0\" mass=\"-2\"/>\n</scene>\n";
   const std::string error = s.open(bad);
   EXPECT_EQ(error, bad.string() + ":2: <box> attribute 'mass': must be > 0 (kg)");
@@ -53,7 +40,7 @@ TEST(Session, ABadSceneKeepsTheCurrentWorldAndSaysWhereTheErrorIs) {
   EXPECT_EQ(s.scene().world.stepCount(), 10);
   EXPECT_EQ(s.file(), kScenes / "pyramid.xml");
   EXPECT_NE(s.status().find("the current world is kept"), std::string::npos);
-  EXPECT_NE(s.open(dir.path() / "missing.xml"), "");
+  EXPECT_NE(s.open(dir.path / "missing.xml"), "");
   EXPECT_EQ(s.scene().name, "pyramid");
 }
 
@@ -226,7 +213,7 @@ TEST(Session, SaveAsWritesAWorldThatOpensAgainAndABadPathKeepsEverything) {
   const TempDir dir;
   sandbox::Session s = open("ragdoll");
   for (int i = 0; i < 30; ++i) s.step();
-  const fs::path file = dir.path() / "saved.xml";
+  const fs::path file = dir.path / "saved.xml";
   scenes::CameraStart camera;
   camera.eye = {1, 2, 3};
   ASSERT_EQ(s.saveAs(file, camera), "");
@@ -237,14 +224,14 @@ TEST(Session, SaveAsWritesAWorldThatOpensAgainAndABadPathKeepsEverything) {
   EXPECT_EQ(s.scene().camera.eye, glm::vec3(1, 2, 3));
 
   // A folder that does not exist: the message says why, nothing is written, the file stays.
-  const std::string error = s.saveAs(dir.path() / "no such folder" / "x.xml", camera);
+  const std::string error = s.saveAs(dir.path / "no such folder" / "x.xml", camera);
   EXPECT_NE(error.find("No such file or directory"), std::string::npos) << error;
   EXPECT_EQ(s.file(), file);
   // Over a file that cannot be replaced (a folder of that name): the old one is untouched.
-  fs::create_directories(dir.path() / "taken.xml" / "inside");
-  EXPECT_NE(s.saveAs(dir.path() / "taken.xml", camera), "");
-  EXPECT_TRUE(fs::is_directory(dir.path() / "taken.xml" / "inside"));
-  for (const auto& entry : fs::directory_iterator(dir.path())) {
+  fs::create_directories(dir.path / "taken.xml" / "inside");
+  EXPECT_NE(s.saveAs(dir.path / "taken.xml", camera), "");
+  EXPECT_TRUE(fs::is_directory(dir.path / "taken.xml" / "inside"));
+  for (const auto& entry : fs::directory_iterator(dir.path)) {
     const std::string name = entry.path().filename().string();
     EXPECT_TRUE(name == "saved.xml" || name == "taken.xml") << "left behind: " << name;
   }
