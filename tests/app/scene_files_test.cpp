@@ -222,3 +222,36 @@ TEST(ScenePaths, NamesResolveInTheSceneFolderAndPathsAsGiven) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SceneFiles, ExpectElementsAreKeptAsWrittenForTheLab) {
+  const scenes::Scene s = scenes::loadSceneText(
+      "<scene name=\"x\">\n"
+      "  <particle name=\"p\" pos=\"0 1 0\"/>\n"
+      "  <expect body=\"p\" at=\"1\" pos=\"0 -3.905 0\"/>\n"
+      "</scene>\n",
+      "x.xml");
+  ASSERT_EQ(s.expectations.size(), 1u);
+  EXPECT_EQ(s.expectations[0].line, 3);
+  ASSERT_NE(s.expectations[0].find("pos"), nullptr);
+  EXPECT_EQ(*s.expectations[0].find("pos"), "0 -3.905 0");
+  EXPECT_EQ(s.expectations[0].find("missing"), nullptr);
+}
+
+TEST(SceneFiles, LoadOptionsImposeTheBoxAndRagdollModels) {
+  const char* xml =
+      "<scene name=\"m\"><box pos=\"0 1 0\"/><stack pos=\"3 0 0\" count=\"2\"/>"
+      "<ragdoll pos=\"-3 1 0\"/></scene>";
+  const scenes::Scene asWritten = scenes::loadSceneText(xml, "m.xml");
+  EXPECT_EQ(asWritten.world.boxes()[0].model, phys::BoxModel::Corners);
+  EXPECT_EQ(asWritten.world.particles().size(), 3u * 8u + 80u);
+  scenes::LoadOptions lean;
+  lean.boxModel = phys::BoxModel::Tetra;
+  lean.ragdollModel = phys::RagdollModel::Lean;
+  const scenes::Scene imposed = scenes::loadSceneText(xml, "m.xml", lean);
+  for (const phys::Box& b : imposed.world.boxes()) EXPECT_EQ(b.model, phys::BoxModel::Tetra);
+  EXPECT_EQ(imposed.world.particles().size(), 3u * 4u + 40u);
+}
+
+}  // namespace

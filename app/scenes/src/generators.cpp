@@ -21,7 +21,7 @@ void addBox(ElementReader& e, BuildContext& ctx, phys::BoxDesc desc, const std::
 
 }  // namespace
 
-phys::BoxDesc readBoxCommon(ElementReader& e) {
+phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
   phys::BoxDesc d;
   if (auto size = e.vector("size", "m", true)) {
     if (size->x <= 0.0 || size->y <= 0.0 || size->z <= 0.0) e.fail("size", "sizes must be > 0 (m)");
@@ -38,6 +38,7 @@ phys::BoxDesc readBoxCommon(ElementReader& e) {
   }
   e.material(d.material);
   if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
+  if (options.boxModel) d.model = *options.boxModel;
   return d;
 }
 
@@ -46,7 +47,7 @@ void generateStack(ElementReader& e, BuildContext& ctx) {
   const std::string name = e.text("name").value_or("stack");
   const phys::Vec3 pos = e.requiredVector("pos", "m");
   const long count = e.requiredInteger("count", 1, kMaxStack);
-  phys::BoxDesc box = readBoxCommon(e);
+  phys::BoxDesc box = readBoxCommon(e, ctx.options);
   e.rejectUnknownAttributes();
   for (long i = 0; i < count; ++i) {
     box.center = pos + phys::Vec3(0.0, box.size.y * (static_cast<double>(i) + 0.5), 0.0);
@@ -63,7 +64,7 @@ void generatePyramid(ElementReader& e, BuildContext& ctx) {
   const long base = e.requiredInteger("base", 1, kMaxPyramidBase);
   const double taper = e.number("taper", "").value_or(1.0);
   if (taper <= 0.0 || taper > 1.0) e.fail("taper", "must be > 0 and at most 1");
-  phys::BoxDesc box = readBoxCommon(e);
+  phys::BoxDesc box = readBoxCommon(e, ctx.options);
   e.rejectUnknownAttributes();
   const phys::Vec3 baseSize = box.size;
   long index = 0;
@@ -90,7 +91,7 @@ void generateGrid(ElementReader& e, BuildContext& ctx) {
   if (static_cast<long>(count->x) * count->y * count->z > kMaxGridBoxes) {
     e.fail("count", "makes more than " + std::to_string(kMaxGridBoxes) + " boxes");
   }
-  phys::BoxDesc box = readBoxCommon(e);
+  phys::BoxDesc box = readBoxCommon(e, ctx.options);
   const phys::Vec3 spacing = e.vector("spacing", "m", true).value_or(box.size);
   if (spacing.x <= 0.0 || spacing.y <= 0.0 || spacing.z <= 0.0) e.fail("spacing", "must be > 0 (m)");
   e.rejectUnknownAttributes();
@@ -165,6 +166,7 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
   e.material(d.material);
   e.rejectUnknownAttributes();
+  if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;
   const phys::Ragdoll ragdoll = phys::addRagdoll(ctx.world, d);
   for (int i = 0; i < phys::kRagdollParts; ++i) {
     const phys::BoxId id = ragdoll.parts[static_cast<std::size_t>(i)];

@@ -14,6 +14,7 @@ namespace scenes::detail {
 struct BuildContext {
   phys::World& world;
   std::function<void(ElementReader&, const std::string& name, NamedBody::Kind, std::uint32_t index)> addName;
+  const LoadOptions& options;  ///< models imposed on the file
 };
 
 /// Limits on what one generator may make; a larger count is an error that says so.
@@ -24,8 +25,9 @@ inline constexpr long kMaxGridBoxes = 100000;
 inline constexpr long kMaxChainLinks = 100000;
 inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
 
-/// Reads the attributes every box-making element shares (size, mass, model, friction...).
-phys::BoxDesc readBoxCommon(ElementReader& e);
+/// Reads the attributes every box-making element shares (size, mass, model, friction...); a
+/// model imposed by the load options replaces the file's.
+phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options);
 
 void generateStack(ElementReader& e, BuildContext& ctx);
 void generatePyramid(ElementReader& e, BuildContext& ctx);

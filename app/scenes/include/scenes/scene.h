@@ -4,13 +4,16 @@
 // tests all load scenes through here, so a file means the same world everywhere.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "physics/ragdoll.h"
 #include "physics/world.h"
 
 namespace scenes {
@@ -29,6 +32,24 @@ struct NamedBody {
   std::uint32_t index = 0;  ///< phys::BoxId or phys::ParticleId
 };
 
+/// An <expect> element: something the lab checks of a run of this scene (an analytic answer, a
+/// pass criterion; docs/lab.md says which attributes mean what). The loader keeps the
+/// attributes as written, with the line, and the lab reads and checks them, so its errors can
+/// name the file, the line and the attribute like the loader's. The sandbox ignores them.
+struct Expectation {
+  int line = 0;  ///< 1-based, in the scene file
+  std::vector<std::pair<std::string, std::string>> attributes;  ///< in file order
+
+  /// The attribute's value as written, or nullptr.
+  const std::string* find(std::string_view name) const;
+};
+
+/// Choices a caller may impose on a file as it is loaded (the lab's --model sweeps them).
+struct LoadOptions {
+  std::optional<phys::BoxModel> boxModel;        ///< every box, stack, pyramid and grid box
+  std::optional<phys::RagdollModel> ragdollModel;  ///< every ragdoll
+};
+
 struct Scene {
   std::string name;
   std::string description;  ///< one line; may be empty
@@ -36,6 +57,7 @@ struct Scene {
   phys::World world;
   CameraStart camera;
   std::vector<NamedBody> bodies;  ///< every named body, in file order
+  std::vector<Expectation> expectations;  ///< the file's <expect> elements, in file order
 };
 
 /// A scene file that cannot be loaded. what() reads "file:line: <element> attribute 'a': why"
@@ -54,10 +76,10 @@ class LoadError : public std::runtime_error {
 };
 
 /// Loads a scene file; throws LoadError and builds nothing on any error.
-Scene loadSceneFile(const std::filesystem::path& file);
+Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options = {});
 /// Loads a scene from text (tests, and files already in memory); `displayName` stands for the
 /// file name in errors.
-Scene loadSceneText(std::string_view xml, const std::string& displayName);
+Scene loadSceneText(std::string_view xml, const std::string& displayName, const LoadOptions& options = {});
 
 /// The folder of the project's scenes: <data dir>/assets/scenes.
 std::filesystem::path sceneDirectory(const std::filesystem::path& dataDir);
