@@ -5,7 +5,7 @@ BUILD_DIR := build/$(PRESET)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SCREENSHOT ?= $(BUILD_DIR)/sandbox.png
 
-.PHONY: all deps configure build run test clean
+.PHONY: all deps configure build run test charts clean
 
 all: build
 
@@ -31,6 +31,11 @@ run: build
 
 test: build
 	ctest --preset $(PRESET)
+
+# Regenerates docs/results.md and its charts (docs/lab.md, "lab report"): sweeps of the seed's
+# scenes, the stability suite and the peers, measured on this machine in one run.
+charts: build
+	$(BUILD_DIR)/app/lab/lab report
 
 clean:
 	rm -rf build

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "commands.h"
 #include "report.h"
 #include "run.h"
 #include "scenes/scene.h"
@@ -18,11 +19,16 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "lab: " << parsed.error << "\n" << usage();
     return kExitUsage;
   }
-  if (parsed.command == Command::Help) {
-    out << usage();
-    return kExitOk;
+  switch (parsed.command) {
+    case Command::Help: out << usage(); return kExitOk;
+    case Command::Run: return runCommand(parsed.run, out, err);
+    case Command::Sweep: return sweepMain(parsed.rest, out, err);
+    case Command::Stability: return stabilityMain(parsed.rest, out, err);
+    case Command::Tune: return tuneMain(parsed.rest, out, err);
+    case Command::Compare: return compareMain(parsed.rest, out, err);
+    case Command::Report: return reportMain(parsed.rest, out, err);
   }
-  return runCommand(parsed.run, out, err);
+  return kExitUsage;
 }
 
 int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {

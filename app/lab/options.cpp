@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <string_view>
+#include <utility>
 
 namespace lab {
 namespace {
@@ -87,7 +89,12 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
 std::string usage() {
   return "usage: lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]\n"
          "                     [--json] [--dump FILE] [--data DIR]\n"
-         "       lab help\n"
+         "       lab sweep SCENE ... --out DIR     speed against accuracy over settings\n"
+         "       lab stability [--out DIR]         where each method fails\n"
+         "       lab tune SCENE --target M=V ...   the cheapest settings that meet targets\n"
+         "       lab compare SCENE                 our methods beside Bullet, ODE and MuJoCo\n"
+         "       lab report [--out DIR]            docs/results.md and its charts\n"
+         "       lab help                          (each command takes --help)\n"
          "  SCENE           a scene file, or a name in <data>/assets/scenes (NAME.xml)\n"
          "  --steps N       steps to run, 1 to 10000000 (default 600)\n"
          "  --dt S          seconds per step, 1e-06 to 1 (default: the scene's)\n"
@@ -102,19 +109,30 @@ std::string usage() {
 
 ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
   ParsedCommand out;
+  // The commands with options of their own parse them (and their --help) themselves.
+  static constexpr std::pair<std::string_view, Command> kOwnParsers[] = {
+      {"sweep", Command::Sweep}, {"stability", Command::Stability}, {"tune", Command::Tune},
+      {"compare", Command::Compare}, {"report", Command::Report}};
+  for (const auto& [name, command] : kOwnParsers) {
+    if (!args.empty() && args[0] == name) {
+      out.command = command;
+      out.rest.assign(args.begin() + 1, args.end());
+      return out;
+    }
+  }
   // Help wins wherever it is, so "lab run x --help" shows the usage instead of running.
   for (const std::string& a : args) {
     if (a == "--help" || a == "-h") return out;
   }
   if (args.empty()) {
-    out.error = "no command (run or help)";
+    out.error = "no command (run, sweep, stability, tune, compare, report or help)";
   } else if (args[0] == "help") {
     out.command = Command::Help;
   } else if (args[0] == "run") {
     out.command = Command::Run;
     out.error = parseRun(args, 1, out.run);
   } else {
-    out.error = "unknown command '" + args[0] + "' (run or help)";
+    out.error = "unknown command '" + args[0] + "' (run, sweep, stability, tune, compare, report or help)";
   }
   return out;
 }

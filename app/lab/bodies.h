@@ -1,0 +1,14 @@
+#pragma once
+// The bodies of a world as the lab compares them, ours and the peers' alike: every box by its
+// centre (World::boxes() order), then every loose particle, one that belongs to no box (id
+// order). A peer engine builds one rigid body for each, in the same order, so one list of
+// positions serves both.
+#include <vector>
+
+#include "physics/world.h"
+
+namespace lab {
+
+std::vector<phys::Vec3> bodyPositions(const phys::World& world);
+
+}  // namespace lab

@@ -1,0 +1,115 @@
+#include "charts.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace lab {
+namespace {
+
+// A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// A label inside a datablock is one double-quoted column: keep it free of quotes and breaks.
+std::string labelColumn(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) out += (c == '"' || c == '\n' || c == '\r') ? ' ' : c;
+  return out + "\"";
+}
+
+std::string exact(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+bool drawable(const Chart& chart, const ChartPoint& p) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+  return (!chart.logX || p.x > 0.0) && (!chart.logY || p.y > 0.0);
+}
+
+std::vector<ChartPoint> drawablePoints(const Chart& chart, const ChartSeries& s) {
+  std::vector<ChartPoint> out;
+  for (const ChartPoint& p : s.points) {
+    if (drawable(chart, p)) out.push_back(p);
+  }
+  return out;
+}
+
+// Point types that stay apart in print: filled circle, square, diamond, triangles, then open ones.
+constexpr int kPointTypes[] = {7, 5, 13, 9, 11, 6, 4, 12, 8, 10, 1, 2, 3};
+
+std::string seriesBlock(std::size_t index, const std::vector<ChartPoint>& points) {
+  std::string out = "$s" + std::to_string(index) + " << EOD\n";
+  for (const ChartPoint& p : points) out += exact(p.x) + " " + exact(p.y) + " " + labelColumn(p.label) + "\n";
+  return out + "EOD\n";
+}
+
+std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartPoint>>& kept) {
+  std::string plot;
+  std::size_t styled = 0;  // point styles go to the series drawn as points, in order
+  for (std::size_t i = 0; i < chart.series.size(); ++i) {
+    if (kept[i].empty()) continue;
+    const ChartSeries& s = chart.series[i];
+    const std::string block = "$s" + std::to_string(i);
+    std::string item = block + " using 1:2 ";
+    if (s.line) {
+      item += "with lines lw 2 lc 'black' title " + quoted(s.title);
+    } else {
+      const std::size_t k = styled++;
+      const int type = kPointTypes[k % (sizeof kPointTypes / sizeof kPointTypes[0])];
+      item += "with points pt " + std::to_string(type) + " ps 1.2 lc " + std::to_string(k + 1) + " title " + quoted(s.title);
+    }
+    plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
+    if (s.labels) {
+      plot += ", \\\n     " + block + " using 1:2:3 with labels left offset 0.7,0.6 font ',8' notitle";
+    }
+  }
+  if (chart.guide) {
+    plot += ", \\\n     " + exact(*chart.guide) + " with lines dt 2 lw 1.5 lc 'gray40' title " + quoted(chart.guideTitle);
+  }
+  return plot + "\n";
+}
+
+}  // namespace
+
+bool hasPoints(const Chart& chart) {
+  for (const ChartSeries& s : chart.series) {
+    if (!drawablePoints(chart, s).empty()) return true;
+  }
+  return false;
+}
+
+std::string gnuplotScript(const Chart& chart) {
+  std::vector<std::vector<ChartPoint>> kept;
+  for (const ChartSeries& s : chart.series) kept.push_back(drawablePoints(chart, s));
+
+  std::string out = "# " + chart.title + "\n# Run gnuplot on this file in its folder: it writes " + chart.output +
+                    ".png and " + chart.output + ".svg. The data is inline, below.\n";
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    if (!kept[i].empty()) out += seriesBlock(i, kept[i]);
+  }
+  // noenhanced: names like gauss-seidel or "3x1" are text, not markup (_ and ^ are literal).
+  out += "set termoption noenhanced\n";
+  out += "set title " + quoted(chart.title) + "\n";
+  out += "set xlabel " + quoted(chart.xLabel) + "\n";
+  out += "set ylabel " + quoted(chart.yLabel) + "\n";
+  if (chart.logX) out += "set logscale x\nset format x '%g'\n";
+  if (chart.logY) out += "set logscale y\nset format y '%.0e'\n";
+  out += "set grid xtics ytics mxtics mytics lc 'gray80'\n";
+  out += "set key outside right top box\n";
+  out += "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";
+  out += "set terminal pngcairo size 1000,640 font ',10' noenhanced\n";
+  out += "set output " + quoted(chart.output + ".png") + "\n";
+  out += plotCommand(chart, kept);
+  out += "set terminal svg size 1000,640 font ',10' noenhanced background 'white'\n";
+  out += "set output " + quoted(chart.output + ".svg") + "\n";
+  out += "replot\n";
+  out += "unset output\n";
+  return out;
+}
+
+}  // namespace lab

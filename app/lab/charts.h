@@ -1,0 +1,44 @@
+#pragma once
+// Scatter charts as gnuplot scripts (gnuplot.h runs them). A script carries its data inline
+// (gnuplot's datablocks), so the one file redraws the chart anywhere, and writes the chart
+// twice: a PNG to look at and an SVG to put in documents.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lab {
+
+struct ChartPoint {
+  double x = 0.0;
+  double y = 0.0;
+  std::string label;  ///< written beside the point when its series asks for labels
+};
+
+struct ChartSeries {
+  std::string title;               ///< the key's entry
+  std::vector<ChartPoint> points;  ///< finite, and > 0 on a log axis (others are left out)
+  bool line = false;               ///< join the points, in this order, by a line
+  bool labels = false;             ///< write each point's label beside it
+};
+
+struct Chart {
+  std::string title;
+  std::string xLabel;
+  std::string yLabel;
+  bool logX = false;
+  bool logY = false;
+  std::vector<ChartSeries> series;
+  /// A dashed horizontal line across the chart (a threshold), with its key entry.
+  std::optional<double> guide;
+  std::string guideTitle;
+  /// Output files, relative to the folder the script runs in: OUTPUT.png and OUTPUT.svg.
+  std::string output;
+};
+
+/// The gnuplot script drawing the chart. A series left with no points is not drawn.
+std::string gnuplotScript(const Chart& chart);
+
+/// Whether the chart has any point to draw (gnuplot fails on a chart without one).
+bool hasPoints(const Chart& chart);
+
+}  // namespace lab

@@ -1,0 +1,332 @@
+// lab compare SCENE: our four relaxation methods and the peer engines on one scene, in one
+// process, one after another, each stepped at the same dt for the same steps, timed step by
+// step, and measured against the same accuracy target at the same checkpoints (docs/lab.md,
+// "lab compare and the peers").
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "accuracy.h"
+#include "bodies.h"
+#include "commands.h"
+#include "lab.h"
+#include "options.h"
+#include "peer.h"
+#include "report.h"
+#include "run.h"
+#include "scenes/scene.h"
+
+namespace lab {
+namespace {
+
+struct CompareOptions {
+  std::string scene;
+  int steps = kDefaultSteps;
+  std::optional<double> dt;
+  std::filesystem::path dataDir;
+  bool json = false;
+  bool help = false;
+};
+
+std::string compareUsage() {
+  return "usage: lab compare SCENE [--steps N] [--dt S] [--json] [--data DIR]\n"
+         "  Runs SCENE with each of our four methods at its own iterations and substeps, then in\n"
+         "  each peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
+         "  step, accuracy error, ground penetration and what each peer could not express.\n"
+         "  --steps N   steps in every run, 1 to 10000000 (default 600; a scene's analytic\n"
+         "              checkpoints may ask for more)\n"
+         "  --dt S      seconds per step, 1e-06 to 1 (default: the scene's)\n"
+         "  --json      one JSON object per row, one per line, instead of the table\n"
+         "  --data DIR  folder holding assets/ (default: the source tree)\n";
+}
+
+// Whole numbers only, as `lab run` takes them: digits, no sign, no exponent.
+std::optional<long long> wholeNumber(const std::string& s) {
+  if (s.empty() || s.size() > 18 || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+  return std::stoll(s);
+}
+
+std::optional<double> realNumber(const std::string& s) {
+  if (s.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](std::string& v) -> std::string {
+      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return "compare: " + a + " needs a value";
+      v = args[++i];
+      return {};
+    };
+    std::string v;
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--json") {
+      o.json = true;
+    } else if (a == "--steps") {
+      if (std::string e = value(v); !e.empty()) return e;
+      const auto n = wholeNumber(v);
+      if (!n || *n < 1 || *n > kMaxSteps) return "compare: --steps '" + v + "': a whole number from 1 to " + std::to_string(kMaxSteps);
+      o.steps = static_cast<int>(*n);
+    } else if (a == "--dt") {
+      if (std::string e = value(v); !e.empty()) return e;
+      const auto d = realNumber(v);
+      if (!d || *d < phys::kMinDt || *d > phys::kMaxDt) return "compare: --dt '" + v + "': a number of seconds from 1e-06 to 1";
+      o.dt = *d;
+    } else if (a == "--data") {
+      if (std::string e = value(v); !e.empty()) return e;
+      o.dataDir = v;
+    } else if (a.starts_with("-")) {
+      return "compare: unknown option '" + a + "'";
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      return "compare takes one SCENE; got '" + o.scene + "' and '" + a + "'";
+    }
+  }
+  if (!o.help && o.scene.empty()) return "compare needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  return {};
+}
+
+// One row of the table.
+struct Row {
+  std::string engine;    // "ours", or a peer's name
+  std::string method;    // our method's name; empty for a peer
+  std::string settings;  // what ran, one line
+  bool ran = false;
+  double msPerStep = 0.0;
+  double error = std::numeric_limits<double>::quiet_NaN();       // over every checkpoint
+  double errorFirst = std::numeric_limits<double>::quiet_NaN();  // at the first alone
+  double penetration = std::numeric_limits<double>::quiet_NaN();
+  std::string notes;
+};
+
+// The deepest point below the ground, measured as it is for the peers (peer_scene.cpp): every
+// box corner and every loose particle, the ground only. (World::metrics() also counts box-box
+// overlap, which the peers do not report.)
+double groundPenetration(const phys::World& world) {
+  const phys::WorldSettings& ws = world.worldSettings();
+  if (!ws.ground) return 0.0;
+  double deepest = 0.0;
+  auto visit = [&](const phys::Vec3& p) {
+    const double depth = ws.groundHeight - glm::dot(ws.groundNormal, p);
+    deepest = std::isfinite(depth) ? std::max(deepest, depth) : std::numeric_limits<double>::infinity();
+  };
+  for (const phys::Embedding& corner : world.corners()) visit(world.position(corner));
+  std::vector<bool> inBox(world.particles().size(), false);
+  for (const phys::Box& box : world.boxes()) {
+    for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
+  }
+  for (std::size_t i = 0; i < inBox.size(); ++i) {
+    if (!inBox[i]) visit(world.particles().position[i]);
+  }
+  return deepest;
+}
+
+// The error at the first checkpoint alone: in a chaotic scene (a pile) later checkpoints
+// measure mostly which way things happened to fall, the first still how well each one steps.
+double firstError(const AccuracyTarget& target, const std::vector<std::vector<phys::Vec3>>& positions) {
+  if (target.expected.empty() || positions.empty()) return std::numeric_limits<double>::quiet_NaN();
+  AccuracyTarget first;
+  first.kind = target.kind;
+  first.checkpoints.push_back(target.checkpoints.front());
+  first.expected.push_back(target.expected.front());
+  return accuracyError(first, {positions.front()});
+}
+
+std::string ourSettings(const phys::SolverSettings& s) {
+  std::ostringstream o;
+  o << "Verlet, " << s.iterations << (s.iterations == 1 ? " iteration x " : " iterations x ") << s.substeps
+    << (s.substeps == 1 ? " substep" : " substeps");
+  if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
+  return o.str();
+}
+
+Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, std::optional<double> dt, int steps,
+            const AccuracyTarget& target) {
+  scenes::Scene scene = scenes::loadSceneFile(file);
+  RunOptions overrides;
+  overrides.method = method;
+  overrides.dt = dt;
+  applyOverrides(scene.world, overrides);
+
+  Row row;
+  row.engine = "ours";
+  row.method = std::string(phys::toString(method));
+  row.settings = ourSettings(scene.world.solverSettings());
+  std::vector<double> stepMs;
+  stepMs.reserve(static_cast<std::size_t>(steps));
+  std::vector<std::vector<phys::Vec3>> positions;
+  std::size_t next = 0;
+  for (int s = 1; s <= steps; ++s) {
+    const auto start = std::chrono::steady_clock::now();
+    scene.world.step();
+    const auto stop = std::chrono::steady_clock::now();
+    stepMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+    while (next < target.checkpoints.size() && target.checkpoints[next] == s) {
+      positions.push_back(bodyPositions(scene.world));
+      ++next;
+    }
+  }
+  row.ran = true;
+  row.msPerStep = median(std::move(stepMs));
+  row.error = accuracyError(target, positions);
+  row.errorFirst = firstError(target, positions);
+  row.penetration = groundPenetration(scene.world);
+  if (!scene.world.freezes().empty()) {
+    // As in the sweep (docs/lab.md, "Accuracy"): a frozen body's position says nothing of the
+    // solver, so the run has no error to report.
+    row.error = row.errorFirst = std::numeric_limits<double>::infinity();
+    row.notes = std::to_string(scene.world.freezes().size()) + " frozen by the guard";
+  }
+  return row;
+}
+
+std::string fixed(double v, const char* format) {
+  if (!std::isfinite(v)) return v > 0 ? "inf" : "n/a";
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+// Table cells may not hold a '|' or a line break.
+std::string cell(std::string text) {
+  std::replace(text.begin(), text.end(), '|', '/');
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest) {
+  out << "| engine | method | settings | ms/step (median) | vs our fastest | error, first checkpoint (m) | error, all (m) | ground penetration (m) | unsupported / notes |\n"
+      << "|---|---|---|---:|---:|---:|---:|---:|---|\n";
+  for (const Row& r : rows) {
+    out << "| " << r.engine << " | " << (r.method.empty() ? "" : r.method) << " | " << cell(r.settings) << " | ";
+    if (r.ran) {
+      // Below a nanometre a depth is round-off (ours rest at 1e-20 m or so), shown as 0.
+      const double depth = std::abs(r.penetration) < 1e-9 ? 0.0 : r.penetration;
+      out << fixed(r.msPerStep, "%.4g") << " | " << fixed(r.msPerStep / fastest, "%.3gx") << " | " << fixed(r.errorFirst, "%.3g")
+          << " | " << fixed(r.error, "%.3g")
+          << " | " << fixed(depth, "%.3g");
+    } else {
+      out << "not run | | | | ";
+    }
+    out << " | " << cell(r.notes) << " |\n";
+  }
+}
+
+void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, const std::string& scene, int steps,
+               double dt, const AccuracyTarget& target) {
+  for (const Row& r : rows) {
+    out << "{\"scene\":" << jsonString(scene) << ",\"engine\":" << jsonString(r.engine) << ",\"method\":" << jsonString(r.method)
+        << ",\"settings\":" << jsonString(r.settings) << ",\"steps\":" << steps << ",\"dt\":" << jsonNumber(dt)
+        << ",\"ran\":" << (r.ran ? "true" : "false") << ",\"ms_per_step\":" << jsonNumber(r.ran ? r.msPerStep : std::nan(""))
+        << ",\"ratio\":" << jsonNumber(r.ran ? r.msPerStep / fastest : std::nan("")) << ",\"accuracy\":" << jsonString(target.kind)
+        << ",\"error_first\":" << jsonNumber(r.errorFirst) << ",\"error\":" << jsonNumber(r.error) << ",\"max_penetration\":" << jsonNumber(r.penetration)
+        << ",\"notes\":" << jsonString(r.notes) << "}\n";
+  }
+}
+
+}  // namespace
+
+int compareMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  CompareOptions options;
+  if (const std::string e = parse(args, options); !e.empty()) {
+    err << "lab: " << e << "\n" << compareUsage();
+    return kExitUsage;
+  }
+  if (options.help) {
+    out << compareUsage();
+    return kExitOk;
+  }
+
+  RunOptions where;
+  where.dataDir = options.dataDir;
+  std::filesystem::path file = options.scene;
+  std::optional<scenes::Scene> scene;
+  AccuracyTarget target;
+  double dt = 0.0;
+  int steps = options.steps;
+  try {
+    file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(where)));
+    scene.emplace(scenes::loadSceneFile(file));
+    dt = options.dt.value_or(scene->world.solverSettings().dt);
+    target = accuracyTarget(*scene, {}, dt, steps);
+  } catch (const scenes::LoadError& e) {
+    err << e.what() << "\n";
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    err << "lab: compare: " << file.string() << ": " << e.what() << "\n";
+    return kExitFailure;
+  }
+  // An analytic target may check a time past the steps asked for; every run goes that far.
+  steps = stepsFor(target, steps);
+
+  std::vector<Row> rows;
+  try {
+    for (phys::SolverMethod method : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi, phys::SolverMethod::Xpbd,
+                                      phys::SolverMethod::Shake}) {
+      rows.push_back(runOurs(file, method, options.dt, steps, target));
+    }
+  } catch (const std::invalid_argument& e) {
+    err << "lab: compare: the overrides were refused: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  for (const std::string& engine : peerEngines()) {
+    // Each peer reads the scene as loaded, unstepped (the first load is kept for them).
+    const PeerResult p = runPeer(engine, *scene, dt, steps, target.checkpoints);
+    Row row;
+    row.engine = p.engine;
+    row.settings = p.settings;
+    row.ran = p.ran;
+    row.msPerStep = p.medianMsPerStep;
+    if (p.ran) {
+      row.error = accuracyError(target, p.positions);
+      row.errorFirst = firstError(target, p.positions);
+      row.penetration = p.maxPenetration;
+    }
+    row.notes = p.unsupported;
+    rows.push_back(row);
+  }
+
+  double fastest = std::numeric_limits<double>::infinity();
+  for (const Row& r : rows) {
+    if (r.engine == "ours" && r.msPerStep > 0.0) fastest = std::min(fastest, r.msPerStep);
+  }
+
+  if (options.json) {
+    printJson(out, rows, fastest, scene->name, steps, dt, target);
+    return kExitOk;
+  }
+  const phys::World& world = scene->world;
+  std::size_t loose = world.particles().size();
+  for (const phys::Box& b : world.boxes()) loose -= static_cast<std::size_t>(b.particleCount);
+  auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  out << "scene     " << scene->name << " (" << file.string() << "): " << count(world.boxes().size(), "box", "boxes") << ", "
+      << count(loose, "loose particle", "loose particles") << ", " << count(world.links().size(), "link", "links") << "\n";
+  out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
+      << " s) in each engine, one after another in this process; ms/step is the median of the steps timed one by one\n";
+  out << "accuracy  " << target.description << "; error = the largest distance (m) of a body from it\n";
+  if (peerEngines().empty()) out << "peers     none built in (LAB_PEERS off, or no Bullet, ODE or MuJoCo found at build time)\n";
+  out << "\n";
+  printTable(out, rows, fastest);
+  return kExitOk;
+}
+
+}  // namespace lab

@@ -1,0 +1,56 @@
+#include "gnuplot.h"
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include <sys/wait.h>
+
+namespace lab {
+
+std::filesystem::path findGnuplot() {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return {};
+  std::stringstream dirs(path);
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (dir.empty()) continue;
+    const std::filesystem::path candidate = std::filesystem::path(dir) / "gnuplot";
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
+  }
+  return {};
+}
+
+namespace {
+
+// Single quotes for the shell, with any quote inside closed, escaped and reopened.
+std::string shellQuoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder) {
+  const std::filesystem::path gnuplot = findGnuplot();
+  if (gnuplot.empty()) {
+    return "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the data and " + script.string() +
+           " are written, run gnuplot on it to draw the charts";
+  }
+  const std::string command = "cd " + shellQuoted(folder.string()) + " && " + shellQuoted(gnuplot.string()) + " " +
+                              shellQuoted(script.filename().string()) + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return "cannot start gnuplot";
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
+  const int status = pclose(pipe);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return {};
+  if (output.size() > 400) output = "..." + output.substr(output.size() - 400);
+  return "gnuplot failed on " + script.string() + " (status " + std::to_string(status) + "): " + output;
+}
+
+}  // namespace lab

@@ -1,0 +1,247 @@
+// ODE (Debian's libode-dev, double precision): a dWorld stepped by dWorldQuickStep, ODE's
+// iterative solver (projected Gauss-Seidel, 20 iterations, ERP 0.2 and CFM as the world comes).
+// The other stepper, dWorldStep, solves the whole system exactly and costs about the cube of
+// the constraint count: minutes a step for a pile of ragdolls, so it is not what anyone runs
+// there. Collision: a dHashSpace, dSpaceCollide each step and a contact joint per point dCollide
+// finds (up to 8 a pair), dropped after the step.
+//
+// Mapping: the ground is a dPlane; a box a dBox on a body with our mass and our particles'
+// inertia; a loose particle a dSphere of kParticleRadius (a geom without a body when pinned);
+// a pin a ball joint with each body's own anchor; a stick a double-ball joint (dJointCreateDBall,
+// ODE's fixed distance). A range stick or range link has no ODE joint; it becomes what ODE's
+// own contacts are, a one-sided contact joint along the line between its points, made each step
+// it is outside its range (frictionless, as deep as the range is exceeded). At the midpoint of
+// the two points its Jacobian is exactly the distance's, since both points lie on the line.
+// Friction: each contact gets the geometric mean of the two coefficients, as ours, with
+// dContactApprox1 (the friction limit scales with the normal force: Coulomb's law; ODE's plain
+// mode would cap the force at mu newtons). Restitution: dContactBounce with e, never below
+// kRestitutionMinSpeed, as ours. The world's damping: ODE scales velocities by (1 - s) each step,
+// so s = 1 - exp(-damping dt), linear and angular, with the speed threshold set to 0.
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdint>
+#include <stdexcept>
+
+#include <ode/ode.h>
+
+#include <glm/geometric.hpp>
+
+#include "peer_scene.h"
+#include "physics/settings.h"
+
+#ifndef LAB_ODE_VERSION
+#define LAB_ODE_VERSION ""
+#endif
+
+namespace lab::peers {
+namespace {
+
+// ODE prints its non-fatal messages (an LCP that did not converge, say) to stderr; the table
+// is the place for what went wrong, so they are counted instead.
+int g_odeMessages = 0;
+void countMessage(int, const char*, va_list) { ++g_odeMessages; }
+
+constexpr int kMaxContactsPerPair = 8;
+
+void* tag(int index) { return reinterpret_cast<void*>(static_cast<std::intptr_t>(index) + 1); }
+int untag(dGeomID g) { return static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(g))) - 1; }
+
+class OdeEngine : public Engine {
+ public:
+  OdeEngine(const Description& scene, double dt) : scene_(scene), dt_(dt) {
+    dInitODE2(0);
+    dSetMessageHandler(&countMessage);
+    messagesBefore_ = g_odeMessages;
+    world_ = dWorldCreate();
+    space_ = dHashSpaceCreate(nullptr);
+    contacts_ = dJointGroupCreate(0);
+    dWorldSetGravity(world_, scene.gravity.x, scene.gravity.y, scene.gravity.z);
+    settings = std::string("ODE ") + LAB_ODE_VERSION + " (" + (sizeof(dReal) == 8 ? "double" : "float") +
+               "): dWorldQuickStep, " + std::to_string(dWorldGetQuickStepNumIterations(world_)) + " iterations, ERP " +
+               fmt(static_cast<double>(dWorldGetERP(world_))) + ", CFM " + fmt(static_cast<double>(dWorldGetCFM(world_)));
+
+    if (scene.ground) {
+      const phys::Vec3 n = scene.groundNormal;
+      ground_ = dCreatePlane(space_, n.x, n.y, n.z, scene.groundHeight);
+      dGeomSetData(ground_, tag(-1));
+    }
+
+    const double damping = 1.0 - std::exp(-scene.damping * dt);
+    bodies_.assign(scene.bodies.size(), nullptr);
+    geoms_.assign(scene.bodies.size(), nullptr);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Body& b = scene.bodies[i];
+      dGeomID geom = b.shape == Body::Shape::Box
+                         ? dCreateBox(space_, 2.0 * b.halfExtents.x, 2.0 * b.halfExtents.y, 2.0 * b.halfExtents.z)
+                         : dCreateSphere(space_, b.radius);
+      dGeomSetData(geom, tag(static_cast<int>(i)));
+      const dQuaternion q = {b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z};
+      if (b.fixed) {
+        dGeomSetPosition(geom, b.centre.x, b.centre.y, b.centre.z);
+        dGeomSetQuaternion(geom, q);
+      } else {
+        dBodyID body = dBodyCreate(world_);
+        dMass mass;
+        dMassSetZero(&mass);
+        dMassSetParameters(&mass, b.mass, 0, 0, 0, b.inertia.x, b.inertia.y, b.inertia.z, 0, 0, 0);
+        dBodySetMass(body, &mass);
+        dBodySetPosition(body, b.centre.x, b.centre.y, b.centre.z);
+        dBodySetQuaternion(body, q);
+        dBodySetLinearVel(body, b.velocity.x, b.velocity.y, b.velocity.z);
+        dBodySetAngularVel(body, b.angularVelocity.x, b.angularVelocity.y, b.angularVelocity.z);
+        if (damping > 0.0) {
+          dBodySetDamping(body, damping, damping);
+          dBodySetLinearDampingThreshold(body, 0);
+          dBodySetAngularDampingThreshold(body, 0);
+        }
+        dGeomSetBody(geom, body);
+        bodies_[i] = body;
+      }
+      geoms_[i] = geom;
+    }
+
+    for (const Pin& p : scene.pins) {
+      // ODE wants a body first; a pin to a fixed sphere holds the other body to the world.
+      const bool swap = bodies_[static_cast<std::size_t>(p.a)] == nullptr;
+      const int a = swap ? p.b : p.a, b = swap ? p.a : p.b;
+      const phys::Vec3 wa = swap ? p.worldB : p.worldA;
+      dJointID j = dJointCreateBall(world_, nullptr);
+      dJointAttach(j, bodies_[static_cast<std::size_t>(a)], bodies_[static_cast<std::size_t>(b)]);
+      dJointSetBallAnchor(j, wa.x, wa.y, wa.z);
+      // A pin may start with its points apart: the second anchor on its own. ODE takes this
+      // one as it stores it, in the second body's frame (the world's when there is none).
+      const phys::Vec3 second = bodies_[static_cast<std::size_t>(b)] != nullptr ? (swap ? p.localA : p.localB) : (swap ? p.worldA : p.worldB);
+      dJointSetBallAnchor2(j, second.x, second.y, second.z);
+    }
+    for (const Distance& d : scene.distances) {
+      if (!d.rigid()) {
+        ranges_.push_back(&d);
+        continue;
+      }
+      const bool swap = bodies_[static_cast<std::size_t>(d.a)] == nullptr;
+      const int a = swap ? d.b : d.a, b = swap ? d.a : d.b;
+      const phys::Vec3 wa = swap ? d.worldB : d.worldA, wb = swap ? d.worldA : d.worldB;
+      dJointID j = dJointCreateDBall(world_, nullptr);
+      dJointAttach(j, bodies_[static_cast<std::size_t>(a)], bodies_[static_cast<std::size_t>(b)]);
+      dJointSetDBallAnchor1(j, wa.x, wa.y, wa.z);
+      dJointSetDBallAnchor2(j, wb.x, wb.y, wb.z);
+      dJointSetDBallDistance(j, d.min);
+    }
+  }
+
+  ~OdeEngine() override {
+    dJointGroupDestroy(contacts_);
+    dSpaceDestroy(space_);  // and its geoms
+    dWorldDestroy(world_);  // and its bodies and joints
+    dCloseODE();
+  }
+
+  void step() override {
+    dSpaceCollide(space_, this, &OdeEngine::nearCallback);
+    for (const Distance* d : ranges_) limit(*d);
+    dWorldQuickStep(world_, dt_);
+    dJointGroupEmpty(contacts_);
+  }
+
+  void finish() override {
+    if (g_odeMessages != messagesBefore_) {
+      notes.push_back("ODE printed " + std::to_string(g_odeMessages - messagesBefore_) + " solver messages");
+    }
+  }
+
+  phys::Vec3 position(int i) const override {
+    const dReal* p = dGeomGetPosition(geoms_[static_cast<std::size_t>(i)]);
+    return {p[0], p[1], p[2]};
+  }
+  phys::Quat orientation(int i) const override {
+    dQuaternion q;
+    dGeomGetQuaternion(geoms_[static_cast<std::size_t>(i)], q);
+    return {q[0], q[1], q[2], q[3]};
+  }
+
+ private:
+  static std::string fmt(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+  }
+
+  static void nearCallback(void* data, dGeomID g1, dGeomID g2) { static_cast<OdeEngine*>(data)->collide(g1, g2); }
+
+  void collide(dGeomID g1, dGeomID g2) {
+    const int a = untag(g1), b = untag(g2);
+    dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+    if (b1 == nullptr && b2 == nullptr) return;  // nothing that moves
+    const bool withGround = a < 0 || b < 0;
+    if (!withGround && !scene_.collides(a, b)) return;
+    const double mu1 = a < 0 ? scene_.groundFriction : scene_.bodies[static_cast<std::size_t>(a)].friction;
+    const double mu2 = b < 0 ? scene_.groundFriction : scene_.bodies[static_cast<std::size_t>(b)].friction;
+
+    dContact contact[kMaxContactsPerPair];
+    const int n = dCollide(g1, g2, kMaxContactsPerPair, &contact[0].geom, sizeof(dContact));
+    for (int k = 0; k < n; ++k) {
+      dContact& c = contact[k];
+      c.surface = dSurfaceParameters{};
+      c.surface.mode = dContactApprox1;
+      c.surface.mu = std::sqrt(mu1 * mu2);
+      if (scene_.restitution > 0.0) {
+        c.surface.mode |= dContactBounce;
+        c.surface.bounce = scene_.restitution;
+        c.surface.bounce_vel = phys::kRestitutionMinSpeed;
+      }
+      dJointID j = dJointCreateContact(world_, contacts_, &c);
+      dJointAttach(j, b1, b2);
+    }
+  }
+
+  phys::Vec3 worldPoint(int i, const phys::Vec3& local) const {
+    return toWorld(position(i), orientation(i), local);
+  }
+
+  // A range stick or link outside its range becomes a frictionless contact for this step.
+  void limit(const Distance& d) {
+    const phys::Vec3 pa = worldPoint(d.a, d.localA), pb = worldPoint(d.b, d.localB);
+    const phys::Vec3 between = pb - pa;
+    const double length = glm::length(between);
+    if (length >= d.min && length <= d.max) return;
+    const phys::Vec3 n = length > 1e-9 ? between / length : phys::Vec3(0.0, 1.0, 0.0);
+    const bool apart = length < d.min;  // too close: push b away from a
+    dContact c{};
+    c.surface.mode = 0;
+    c.surface.mu = 0;
+    const phys::Vec3 mid = 0.5 * (pa + pb);
+    c.geom.pos[0] = mid.x;
+    c.geom.pos[1] = mid.y;
+    c.geom.pos[2] = mid.z;
+    // A contact pushes its first body along its normal: b when pushing apart, a when pulling in.
+    c.geom.normal[0] = n.x;
+    c.geom.normal[1] = n.y;
+    c.geom.normal[2] = n.z;
+    c.geom.depth = apart ? d.min - length : length - d.max;
+    dJointID j = dJointCreateContact(world_, contacts_, &c);
+    dBodyID ba = bodies_[static_cast<std::size_t>(d.a)], bb = bodies_[static_cast<std::size_t>(d.b)];
+    if (apart) {
+      dJointAttach(j, bb, ba);
+    } else {
+      dJointAttach(j, ba, bb);
+    }
+  }
+
+  const Description& scene_;
+  dReal dt_;
+  dWorldID world_ = nullptr;
+  dSpaceID space_ = nullptr;
+  dJointGroupID contacts_ = nullptr;
+  dGeomID ground_ = nullptr;
+  std::vector<dBodyID> bodies_;  // description order; null for a fixed body
+  std::vector<dGeomID> geoms_;
+  std::vector<const Distance*> ranges_;
+  int messagesBefore_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> makeOde(const Description& scene, double dt) { return std::make_unique<OdeEngine>(scene, dt); }
+
+}  // namespace lab::peers

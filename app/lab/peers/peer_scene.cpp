@@ -1,0 +1,217 @@
+#include "peer_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include "physics/box.h"
+
+namespace lab::peers {
+namespace {
+
+using phys::Vec3;
+
+// The velocity a particle has now. World::velocity is the mean over the last substep, (x - x*) / h;
+// for a world not yet stepped x* was set so that Verlet's first step is exact under gravity,
+// x* = x - (v - g h / 2) h (docs/physics.md), so the velocity of the moment is that mean plus
+// g h / 2. The same correction turns a stepped world's mean into the end-of-substep velocity.
+Vec3 particleVelocity(const phys::World& world, phys::ParticleId id) {
+  const phys::SolverSettings& s = world.solverSettings();
+  const double h = s.dt / s.substeps;
+  return world.velocity(id) + world.gravityAt(world.particles().position[id]) * (0.5 * h);
+}
+
+Vec3 toLocal(const Body& body, const Vec3& p) { return glm::inverse(body.orientation) * (p - body.centre); }
+
+}  // namespace
+
+Vec3 toWorld(const Vec3& centre, const phys::Quat& orientation, const Vec3& p) { return centre + orientation * p; }
+
+bool Description::collides(int i, int j) const {
+  const Body& a = bodies[static_cast<std::size_t>(i)];
+  const Body& b = bodies[static_cast<std::size_t>(j)];
+  if (i == j || a.shape != Body::Shape::Box || b.shape != Body::Shape::Box) return false;
+  if ((a.group & b.mask) == 0 || (b.group & a.mask) == 0) return false;
+  return !std::binary_search(ignored.begin(), ignored.end(), std::pair<int, int>(std::min(i, j), std::max(i, j)));
+}
+
+int Description::boxCount() const {
+  return static_cast<int>(std::count_if(bodies.begin(), bodies.end(), [](const Body& b) { return b.shape == Body::Shape::Box; }));
+}
+
+Description describe(const scenes::Scene& scene) {
+  const phys::World& world = scene.world;
+  const phys::WorldSettings& ws = world.worldSettings();
+  const phys::SolverSettings& solver = world.solverSettings();
+  const phys::Particles& particles = world.particles();
+
+  Description d;
+  d.name = scene.name;
+  if (ws.gravityMode == phys::GravityMode::Point) {
+    d.refused = "point gravity (a pull towards a point)";
+  }
+  d.gravity = ws.gravity;
+  d.ground = ws.ground;
+  d.groundNormal = ws.groundNormal;
+  d.groundHeight = ws.groundHeight;
+  d.groundFriction = ws.groundMaterial.dynamicFriction;
+  d.damping = ws.damping;
+  d.restitution = solver.restitution;
+
+  // Which body each particle belongs to, in bodies.h order: boxes by id, then loose particles.
+  std::vector<int> owner(particles.size(), -1);
+  const auto boxes = world.boxes();
+  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
+    const phys::Box& box = boxes[id];
+    const phys::BoxPose pose = world.boxPose(id);
+    Body body;
+    body.shape = Body::Shape::Box;
+    body.name = box.name;
+    body.centre = pose.center;
+    body.orientation = pose.orientation;
+    body.halfExtents = box.halfExtents;
+    body.friction = box.material.dynamicFriction;
+    body.group = box.collisionGroup;
+    body.mask = box.collisionMask;
+    if (box.collisionGroup != 1u || box.collisionMask != 0xffffffffu) d.defaultFiltering = false;
+
+    // Mass, inertia and the rigid motion that best fits the particles' velocities: the mean
+    // velocity, and the spin omega = I^-1 L from their angular momentum about the centre.
+    Vec3 momentum(0.0);
+    glm::dmat3 inertiaWorld(0.0);
+    Vec3 angularMomentum(0.0);
+    for (int k = 0; k < box.particleCount; ++k) {
+      const phys::ParticleId p = box.firstParticle + static_cast<phys::ParticleId>(k);
+      owner[p] = static_cast<int>(id);
+      const double w = particles.inverseMass[p];
+      if (w == 0.0) {
+        body.fixed = true;
+        continue;
+      }
+      const double m = 1.0 / w;
+      body.mass += m;
+      const Vec3 r0 = phys::boxParticleLocal(box.model, box.halfExtents, k);
+      body.inertia += m * Vec3(r0.y * r0.y + r0.z * r0.z, r0.x * r0.x + r0.z * r0.z, r0.x * r0.x + r0.y * r0.y);
+      momentum += m * particleVelocity(world, p);
+    }
+    if (!body.fixed && body.mass > 0.0) {
+      body.velocity = momentum / body.mass;
+      for (int k = 0; k < box.particleCount; ++k) {
+        const phys::ParticleId p = box.firstParticle + static_cast<phys::ParticleId>(k);
+        const double m = 1.0 / particles.inverseMass[p];
+        const Vec3 r = particles.position[p] - body.centre;
+        angularMomentum += m * glm::cross(r, particleVelocity(world, p) - body.velocity);
+        inertiaWorld += m * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
+      }
+      if (std::abs(glm::determinant(inertiaWorld)) > 0.0) body.angularVelocity = glm::inverse(inertiaWorld) * angularMomentum;
+    }
+    if (body.fixed) body.mass = 0.0;
+    d.bodies.push_back(body);
+  }
+
+  // Loose particles keep the material of their ground contact point.
+  std::vector<const phys::GroundContact*> contactOf(particles.size(), nullptr);
+  for (const phys::GroundContact& c : world.groundContacts()) {
+    if (c.body < 0 && c.point.count == 1) contactOf[c.point.particle[0]] = &c;
+  }
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (owner[i] >= 0) continue;
+    const auto id = static_cast<phys::ParticleId>(i);
+    owner[i] = static_cast<int>(d.bodies.size());
+    Body body;
+    body.shape = Body::Shape::Sphere;
+    body.name = world.particleName(id);
+    body.centre = particles.position[i];
+    body.radius = kParticleRadius;
+    body.fixed = particles.inverseMass[i] == 0.0;
+    body.mass = body.fixed ? 0.0 : 1.0 / particles.inverseMass[i];
+    body.inertia = Vec3(0.4 * body.mass * kParticleRadius * kParticleRadius);
+    if (!body.fixed) body.velocity = particleVelocity(world, id);
+    body.friction = contactOf[i] != nullptr ? contactOf[i]->material.dynamicFriction : phys::Material{}.dynamicFriction;
+    d.bodies.push_back(body);
+  }
+
+  // The body an embedded point belongs to: all its particles are one body's (a box's anchor
+  // or a loose particle); -1 when they are not, which no scene file can make.
+  auto bodyOf = [&](const phys::Embedding& e) {
+    const int b = owner[e.particle[0]];
+    for (int k = 1; k < e.count; ++k) {
+      if (owner[e.particle[static_cast<std::size_t>(k)]] != b) return -1;
+    }
+    return b;
+  };
+
+  bool compliant = false;
+  for (const phys::Stick& s : world.sticks()) {
+    const int a = owner[s.a], b = owner[s.b];
+    if (a == b) continue;  // a box's own sticks: the rigid body is them
+    if (s.compliance > 0.0) compliant = true;
+    if (d.bodies[static_cast<std::size_t>(a)].fixed && d.bodies[static_cast<std::size_t>(b)].fixed) continue;
+    Distance dist;
+    dist.a = a;
+    dist.b = b;
+    dist.worldA = particles.position[s.a];
+    dist.worldB = particles.position[s.b];
+    dist.localA = toLocal(d.bodies[static_cast<std::size_t>(a)], dist.worldA);
+    dist.localB = toLocal(d.bodies[static_cast<std::size_t>(b)], dist.worldB);
+    dist.min = s.minLength;
+    dist.max = s.maxLength;
+    d.distances.push_back(dist);
+  }
+  if (compliant) d.notes.push_back("compliant sticks made rigid");
+  if (solver.method == phys::SolverMethod::Xpbd && solver.compliance > 0.0) {
+    d.notes.push_back("the global compliance not expressed (sticks rigid)");
+  }
+
+  int crossing = 0;
+  for (const phys::Link& link : world.links()) {
+    const int a = bodyOf(link.a), b = bodyOf(link.b);
+    if (a < 0 || b < 0) {
+      ++crossing;
+      continue;
+    }
+    if (a == b) continue;  // both ends in one rigid body: nothing to hold
+    if (d.bodies[static_cast<std::size_t>(a)].fixed && d.bodies[static_cast<std::size_t>(b)].fixed) continue;
+    const Vec3 pa = world.position(link.a), pb = world.position(link.b);
+    const Body& A = d.bodies[static_cast<std::size_t>(a)];
+    const Body& B = d.bodies[static_cast<std::size_t>(b)];
+    if (link.isPin()) {
+      d.pins.push_back(Pin{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb});
+    } else {
+      d.distances.push_back(Distance{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb, link.minLength, link.maxLength});
+    }
+  }
+  if (crossing > 0) d.notes.push_back(std::to_string(crossing) + " links with an end spread over two bodies left out");
+
+  for (const auto& [a, b] : world.ignoredCollisions()) d.ignored.emplace_back(static_cast<int>(a), static_cast<int>(b));
+  std::sort(d.ignored.begin(), d.ignored.end());
+  return d;
+}
+
+double groundPenetration(const Description& scene, const std::vector<phys::Vec3>& centres,
+                         const std::vector<phys::Quat>& orientations) {
+  if (!scene.ground) return 0.0;
+  double deepest = 0.0;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const Body& b = scene.bodies[i];
+    double lowest = std::numeric_limits<double>::infinity();
+    if (b.shape == Body::Shape::Sphere) {
+      lowest = glm::dot(scene.groundNormal, centres[i]) - b.radius;
+    } else {
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 corner = toWorld(centres[i], orientations[i], phys::boxCornerLocal(b.halfExtents, k));
+        lowest = std::min(lowest, glm::dot(scene.groundNormal, corner));
+      }
+    }
+    // A body that has gone off to infinity or NaN is as deep as it gets, not silently skipped.
+    if (!std::isfinite(lowest)) return std::numeric_limits<double>::infinity();
+    deepest = std::max(deepest, scene.groundHeight - lowest);
+  }
+  return deepest;
+}
+
+}  // namespace lab::peers

@@ -1,0 +1,133 @@
+#pragma once
+// The scene as a rigid-body engine sees it, read once from our loaded world so that the three
+// adapters build the same thing: one rigid body per body of bodies.h (a box for each box, a
+// small sphere for each loose particle), the ground, and the constraints between bodies. Each
+// adapter maps this description into its engine (bullet.cpp, ode.cpp, mujoco.cpp); what an
+// engine cannot express it says in words, which end up in `lab compare`'s table.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "physics/types.h"
+#include "scenes/scene.h"
+
+namespace lab::peers {
+
+/// Radius of the sphere that stands for a loose particle. Ours is a point, which no engine has;
+/// 5 cm is small beside our bodies and large enough for the engines' contact margins (Bullet
+/// keeps 4 cm around convex shapes). A particle resting on the ground rests this much higher.
+inline constexpr double kParticleRadius = 0.05;
+
+/// One rigid body, in bodies.h order.
+struct Body {
+  enum class Shape { Box, Sphere };
+  Shape shape = Shape::Box;
+  std::string name;             ///< for messages; may be empty
+  phys::Vec3 centre{0.0};       ///< unit: m
+  phys::Quat orientation{1.0, 0.0, 0.0, 0.0};
+  phys::Vec3 halfExtents{0.0};  ///< unit: m; a box's
+  double radius = 0.0;          ///< unit: m; a sphere's
+  bool fixed = false;           ///< a pinned particle (or a box holding one): never moves
+  double mass = 0.0;            ///< unit: kg; the sum of its particles'
+  /// Principal moments about the centre in the body frame, unit: kg m^2. A box gets its
+  /// particles' own (three times a solid box's for both models, docs/physics.md), so the same
+  /// push turns it the same in every engine; a sphere a solid sphere's.
+  phys::Vec3 inertia{0.0};
+  phys::Vec3 velocity{0.0};         ///< unit: m/s; of the centre
+  phys::Vec3 angularVelocity{0.0};  ///< unit: rad/s; world frame
+  double friction = 0.0;            ///< the material's dynamic coefficient
+  std::uint32_t group = 1;          ///< collision filtering, boxes only
+  std::uint32_t mask = 0xffffffffu;
+};
+
+/// A ball joint: a point of body a held on a point of body b (our pin link).
+struct Pin {
+  int a = 0, b = 0;
+  phys::Vec3 localA{0.0}, localB{0.0};  ///< unit: m; in each body's frame
+  phys::Vec3 worldA{0.0}, worldB{0.0};  ///< unit: m; where they are at the start
+};
+
+/// A distance between a point of body a and a point of body b kept within [min, max]: a stick
+/// (min = max), a range stick, or a range link (a ragdoll's joint stop).
+struct Distance {
+  int a = 0, b = 0;
+  phys::Vec3 localA{0.0}, localB{0.0};  ///< unit: m
+  phys::Vec3 worldA{0.0}, worldB{0.0};  ///< unit: m; at the start
+  double min = 0.0;                     ///< unit: m
+  double max = 0.0;                     ///< unit: m; may be infinite
+  bool rigid() const { return min == max; }
+};
+
+struct Description {
+  std::string name;
+  phys::Vec3 gravity{0.0, -9.81, 0.0};  ///< unit: m/s^2
+  bool ground = false;
+  phys::Vec3 groundNormal{0.0, 1.0, 0.0};
+  double groundHeight = 0.0;            ///< unit: m
+  double groundFriction = 0.0;          ///< dynamic coefficient
+  double damping = 0.0;                 ///< unit: 1/s; velocities decay as exp(-damping t)
+  double restitution = 0.0;
+  std::vector<Body> bodies;
+  std::vector<Pin> pins;
+  std::vector<Distance> distances;
+  /// Box pairs that never collide (World::ignoredCollisions), as (smaller, larger), sorted.
+  std::vector<std::pair<int, int>> ignored;
+  /// True when every box has group 1 and the full mask, so filtering is only `ignored`.
+  bool defaultFiltering = true;
+  /// What no engine here expresses, in words for the table; empty when everything is.
+  std::vector<std::string> notes;
+  /// Why the scene cannot be run by any engine at all (point gravity); empty when it can.
+  std::string refused;
+
+  /// Whether bodies i and j collide with each other: two boxes whose groups meet each other's
+  /// masks and that are not an ignored pair. Our loose particles collide with the ground alone,
+  /// so a sphere collides with no body.
+  bool collides(int i, int j) const;
+  int boxCount() const;
+};
+
+/// Reads the description from a loaded world (normally not yet stepped).
+Description describe(const scenes::Scene& scene);
+
+/// Depth of the deepest point of any body below the ground: a box's corners, a sphere's surface.
+/// 0 without a ground.
+double groundPenetration(const Description& scene, const std::vector<phys::Vec3>& centres,
+                         const std::vector<phys::Quat>& orientations);
+
+/// An engine built from a description, ready to step.
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  /// Advances by the dt it was built with.
+  virtual void step() = 0;
+  /// Where body i (description order) is now.
+  virtual phys::Vec3 position(int i) const = 0;
+  virtual phys::Quat orientation(int i) const = 0;
+  /// Called after each step, outside the timing, with the step's number (1-based).
+  virtual void afterStep(int /*step*/) {}
+  /// Called once after the last step, untimed: adds to `notes` what the run showed (an engine
+  /// that dropped contacts or reset itself).
+  virtual void finish() {}
+  /// What it could not express, in words (joined into PeerResult::unsupported); empty if all.
+  std::vector<std::string> notes;
+  /// The solver and its settings, one line for the table.
+  std::string settings;
+};
+
+// The adapters, each in its own file and built only when its library is found. They throw
+// std::runtime_error when the engine refuses the scene.
+std::unique_ptr<Engine> makeBullet(const Description& scene, double dt);
+std::unique_ptr<Engine> makeOde(const Description& scene, double dt);
+std::unique_ptr<Engine> makeMujoco(const Description& scene, double dt);
+
+/// The engine of that name built from the description, or nullptr when it is not built in
+/// (peers.cpp; the tests use it to look at orientations and joints, which PeerResult omits).
+std::unique_ptr<Engine> makeEngine(std::string_view name, const Description& scene, double dt);
+
+/// The local point p of a body at `centre` with `orientation`, in world coordinates.
+phys::Vec3 toWorld(const phys::Vec3& centre, const phys::Quat& orientation, const phys::Vec3& p);
+
+}  // namespace lab::peers

@@ -1,0 +1,136 @@
+// peerEngines() and runPeer(): the part of the peers that does not depend on any engine. It
+// reads the scene once (peer_scene.cpp), builds it in the engine asked for, and steps it
+// exactly as `lab compare` steps ours: one call per step, each timed alone.
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <stdexcept>
+
+#include "peer.h"
+#include "peer_scene.h"
+
+namespace lab {
+namespace {
+
+// The adapters built in, in the fixed order the tables use.
+struct Adapter {
+  const char* name;
+  std::unique_ptr<peers::Engine> (*make)(const peers::Description&, double);
+};
+constexpr Adapter kAdapters[] = {
+#ifdef LAB_PEER_BULLET
+    {"bullet", &peers::makeBullet},
+#endif
+#ifdef LAB_PEER_ODE
+    {"ode", &peers::makeOde},
+#endif
+#ifdef LAB_PEER_MUJOCO
+    {"mujoco", &peers::makeMujoco},
+#endif
+    {nullptr, nullptr},  // keeps the array non-empty when no adapter is built
+};
+
+double medianOf(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t mid = v.size() / 2;
+  return v.size() % 2 == 1 ? v[mid] : 0.5 * (v[mid - 1] + v[mid]);
+}
+
+std::string joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) {
+    if (p.empty()) continue;
+    if (!out.empty()) out += "; ";
+    out += p;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::unique_ptr<peers::Engine> peers::makeEngine(std::string_view name, const Description& scene, double dt) {
+  for (const Adapter& a : kAdapters) {
+    if (a.name != nullptr && name == a.name) return a.make(scene, dt);
+  }
+  return nullptr;
+}
+
+std::vector<std::string> peerEngines() {
+  std::vector<std::string> names;
+  for (const Adapter& a : kAdapters) {
+    if (a.name != nullptr) names.emplace_back(a.name);
+  }
+  return names;
+}
+
+PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double dt, int steps,
+                   const std::vector<int>& checkpoints) {
+  PeerResult result;
+  result.engine = std::string(engine);
+  const Adapter* adapter = nullptr;
+  for (const Adapter& a : kAdapters) {
+    if (a.name != nullptr && engine == a.name) adapter = &a;
+  }
+  if (adapter == nullptr) {
+    result.unsupported = "not built into this lab";
+    return result;
+  }
+
+  const peers::Description description = peers::describe(scene);
+  if (!description.refused.empty()) {
+    result.unsupported = description.refused + " not expressed: not run";
+    return result;
+  }
+
+  std::unique_ptr<peers::Engine> built;
+  try {
+    built = adapter->make(description, dt);
+  } catch (const std::exception& e) {
+    result.unsupported = joined({joined(description.notes), std::string(e.what()) + ": not run"});
+    return result;
+  }
+  result.settings = built->settings;
+
+  const int bodies = static_cast<int>(description.bodies.size());
+  auto positions = [&] {
+    std::vector<phys::Vec3> p(static_cast<std::size_t>(bodies));
+    for (int i = 0; i < bodies; ++i) p[static_cast<std::size_t>(i)] = built->position(i);
+    return p;
+  };
+
+  std::vector<double> stepMs;
+  stepMs.reserve(static_cast<std::size_t>(std::max(steps, 0)));
+  std::size_t next = 0;
+  try {
+    for (int s = 1; s <= steps; ++s) {
+      const auto start = std::chrono::steady_clock::now();
+      built->step();
+      const auto stop = std::chrono::steady_clock::now();
+      stepMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+      built->afterStep(s);
+      while (next < checkpoints.size() && checkpoints[next] == s) {
+        result.positions.push_back(positions());
+        ++next;
+      }
+    }
+  } catch (const std::exception& e) {
+    // An engine that gives up part way (MuJoCo's errors arrive as exceptions) has no run to
+    // compare; say so rather than report half of one.
+    result.unsupported = joined({joined(description.notes), joined(built->notes), std::string(e.what()) + ": run stopped"});
+    result.positions.clear();
+    return result;
+  }
+
+  built->finish();
+  std::vector<phys::Vec3> centres = positions();
+  std::vector<phys::Quat> orientations(static_cast<std::size_t>(bodies));
+  for (int i = 0; i < bodies; ++i) orientations[static_cast<std::size_t>(i)] = built->orientation(i);
+  result.maxPenetration = peers::groundPenetration(description, centres, orientations);
+  result.medianMsPerStep = medianOf(std::move(stepMs));
+  result.unsupported = joined({joined(description.notes), joined(built->notes)});
+  result.ran = true;
+  return result;
+}
+
+}  // namespace lab

@@ -1,0 +1,350 @@
+// lab report: runs the sweeps of the seed's scenes, the stability suite and the comparison with
+// the peers, each through its own command (so the report shows exactly what a user would get
+// from them), and writes docs/results.md around their files. The words about which method wins
+// where are computed from the figures, so regenerating the report cannot leave them stale.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include "commands.h"
+#include "lab.h"
+#include "options.h"
+#include "report.h"
+#include "sweep_core.h"
+
+namespace lab {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string reportUsage() {
+  return "usage: lab report [--out DIR] [--quick] [--data DIR]\n"
+         "  --out DIR   where results.md and its results/ folder go (default: <data>/docs)\n"
+         "  --quick     tiny sweeps and one stability scene: checks the pipeline, not the physics\n"
+         "  --data DIR  folder holding assets/ (default: the source tree)\n"
+         "  --help      show this text\n"
+         "Takes several minutes in full; `make charts` runs it.\n";
+}
+
+struct ReportOptions {
+  fs::path out;
+  fs::path data;
+  bool quick = false;
+};
+
+// ---- reading the CSVs the commands wrote -----------------------------------------------------
+
+// One CSV line split into fields, with RFC 4180 quotes (the sweep quotes fields with commas).
+std::vector<std::string> csvFields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+using CsvRow = std::map<std::string, std::string>;
+
+std::vector<CsvRow> readCsv(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<CsvRow> rows;
+  if (!std::getline(in, line)) return rows;
+  const std::vector<std::string> header = csvFields(line);
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = csvFields(line);
+    CsvRow row;
+    for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i) row[header[i]] = fields[i];
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+double number(const CsvRow& row, const std::string& column) {
+  const auto it = row.find(column);
+  if (it == row.end() || it->second.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (it->second == "inf") return std::numeric_limits<double>::infinity();
+  return std::strtod(it->second.c_str(), nullptr);
+}
+
+std::string text(const CsvRow& row, const std::string& column) {
+  const auto it = row.find(column);
+  return it == row.end() ? std::string() : it->second;
+}
+
+// "xpbd 2x4" or "bullet": how a row is named in the report's sentences.
+std::string settingName(const CsvRow& r) {
+  const std::string iterations = text(r, "iterations"), substeps = text(r, "substeps");
+  if (iterations.empty()) return text(r, "method");  // a peer engine
+  std::string name = text(r, "method") + " " + iterations + "x" + substeps;
+  if (!text(r, "model").empty()) name += " (model " + text(r, "model") + ")";
+  return name;
+}
+
+std::string millimetres(double metres) {
+  if (!std::isfinite(metres)) return "blew up";
+  return formatNumber(metres * 1000.0, 3) + " mm";
+}
+
+// ---- running the commands ---------------------------------------------------------------------
+
+struct CommandOutput {
+  int code = 0;
+  std::string out, err;
+};
+
+template <typename Main>
+CommandOutput runCommandMain(Main main, const std::vector<std::string>& args, std::ostream& progress) {
+  std::ostringstream out, err;
+  progress << "lab report: lab";
+  for (const std::string& a : args) progress << ' ' << a;
+  progress << std::endl;
+  CommandOutput r;
+  r.code = main(args, out, err);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+// ---- the sweeps -------------------------------------------------------------------------------
+
+struct SweepScene {
+  const char* name;
+  const char* why;  // one line for the report
+};
+
+// The seed's three scenes, the chain its mass ratio makes hard, and a scene with an exact answer.
+constexpr SweepScene kSweepScenes[] = {
+    {"ragdoll", "the seed's scene 1: one ragdoll dropped from 2 m (reference run; chaotic after it lands)"},
+    {"pyramid", "the seed's scene 2: a pyramid of boxes that vary in size (reference run)"},
+    {"box-of-boxes", "the seed's scene 3: three 3x3 layers of boxes (reference run)"},
+    {"chain", "a 20-link chain with a 100:1 end mass (reference run)"},
+    {"pendulum-exact", "a 2 m pendulum released at 90 degrees, against its exact motion (analytic)"},
+};
+
+std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& scene, const fs::path& dir) {
+  std::vector<std::string> args{scene, "--out", dir.string(), "--data", o.data.string()};
+  if (o.quick) {
+    for (const char* a : {"--method", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps", "1", "--repeat", "1",
+                          "--steps", "10"}) {
+      args.emplace_back(a);
+    }
+  } else {
+    for (const char* a : {"--method", "gauss-seidel,jacobi,xpbd,shake", "--iterations", "1,2,4,8", "--substeps",
+                          "1,2,4,8", "--repeat", "3"}) {
+      args.emplace_back(a);
+    }
+  }
+  return args;
+}
+
+// What the figures say about a sweep, in sentences: the front from cheap to accurate, and for
+// each method its cheapest setting that comes within reach of the most accurate run.
+std::string sweepWords(const std::vector<CsvRow>& rows) {
+  std::vector<const CsvRow*> front;
+  double best = std::numeric_limits<double>::infinity(), uncertainty = 0.0;
+  for (const CsvRow& r : rows) {
+    if (text(r, "pareto") == "1") front.push_back(&r);
+    best = std::min(best, number(r, "error"));
+    const double u = number(r, "ref_uncertainty");
+    if (std::isfinite(u)) uncertainty = std::max(uncertainty, u);
+  }
+  std::ostringstream md;
+  std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
+    return number(*a, "ms_per_sim_second") < number(*b, "ms_per_sim_second");
+  });
+  md << "Pareto front, cheapest first:";
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    md << (i == 0 ? " " : "; ") << settingName(*front[i]) << " ("
+       << formatNumber(number(*front[i], "ms_per_step"), 3) << " ms/step, " << millimetres(number(*front[i], "error"))
+       << ")";
+  }
+  md << ".\n\n";
+  // "Within reach": ten times the best error, or the reference's own uncertainty if larger
+  // (errors below it cannot be told apart), and never below 1 mm.
+  const double reach = std::max({10.0 * best, uncertainty, 1e-3});
+  md << "Cheapest setting of each method within " << millimetres(reach) << " of the target:\n\n";
+  md << "| method | setting | ms/step | error |\n|---|---|---|---|\n";
+  std::map<std::string, const CsvRow*> cheapest;
+  for (const CsvRow& r : rows) {
+    if (!(number(r, "error") <= reach)) continue;
+    const CsvRow*& c = cheapest[text(r, "method")];
+    if (c == nullptr || number(r, "ms_per_sim_second") < number(*c, "ms_per_sim_second")) c = &r;
+  }
+  std::vector<std::pair<double, const CsvRow*>> ordered;
+  for (const auto& [method, row] : cheapest) ordered.emplace_back(number(*row, "ms_per_sim_second"), row);
+  std::sort(ordered.begin(), ordered.end());
+  for (const auto& [cost, row] : ordered) {
+    md << "| " << text(*row, "method") << " | " << settingName(*row) << " | "
+       << formatNumber(number(*row, "ms_per_step"), 3) << " | " << millimetres(number(*row, "error")) << " |\n";
+  }
+  std::vector<std::string> never;
+  std::map<std::string, bool> seen;
+  for (const CsvRow& r : rows) seen[text(r, "method")] = true;
+  for (const auto& [method, unused] : seen) {
+    if (cheapest.count(method) == 0) never.push_back(method);
+  }
+  if (!never.empty()) {
+    md << "\nNever within reach at the settings swept:";
+    for (std::size_t i = 0; i < never.size(); ++i) md << (i == 0 ? " " : ", ") << never[i];
+    md << ".\n";
+  }
+  if (!ordered.empty()) {
+    md << "\n**Winner here: " << settingName(*ordered.front().second) << "**";
+    if (ordered.size() > 1) {
+      md << "; the next method's cheapest, " << settingName(*ordered[1].second) << ", costs "
+         << formatNumber(ordered[1].first / ordered.front().first, 2) << " times as much";
+    }
+    md << ".\n";
+  }
+  return md.str();
+}
+
+// ---- the report -------------------------------------------------------------------------------
+
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d", std::gmtime(&now));
+  return text;
+}
+
+std::string machine() {
+  std::ifstream cpu("/proc/cpuinfo");
+  std::string line, model;
+  int cores = 0;
+  while (std::getline(cpu, line)) {
+    if (line.rfind("model name", 0) == 0 && model.empty()) model = line.substr(line.find(':') + 2);
+    if (line.rfind("processor", 0) == 0) ++cores;
+  }
+  return (model.empty() ? std::string("unknown CPU") : model) + ", " + std::to_string(cores) + " cores";
+}
+
+std::string codeBlockOrText(const CommandOutput& r) {
+  if (r.code == 0) return r.out;
+  return "The command failed (exit " + std::to_string(r.code) + "):\n\n```\n" + r.err + "```\n";
+}
+
+int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
+  const fs::path results = o.out / "results";
+  std::ostringstream md;
+  md << "# Results\n\n"
+     << "Measured on " << today() << " on " << machine() << ", in one run of `"
+     << (o.quick ? "lab report --quick" : "make charts") << "` (`lab report`, docs/lab.md), so every figure below "
+     << "comes from the same machine, build and load. Regenerate with `make charts`. Times are medians of "
+     << "wall-clock steps; errors are in millimetres against each scene's analytic answers or its converged "
+     << "reference run (docs/lab.md, \"Accuracy\"). A peer's error also holds the difference between its "
+     << "contact model and ours, which no setting of either removes.\n\n";
+  if (o.quick) md << "**This is a --quick report: tiny sweeps that check the pipeline, not figures to quote.**\n\n";
+
+  md << "## Speed against accuracy\n\n"
+     << "Each chart plots error against cost for every method x iterations x substeps combination (and each "
+     << "peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats on both.\n\n";
+  bool failed = false;
+  for (const SweepScene& s : kSweepScenes) {
+    const fs::path dir = results / s.name;
+    const CommandOutput r = runCommandMain(sweepMain, sweepArgs(o, s.name, dir), err);
+    md << "### " << s.name << "\n\n" << s.why << ".\n\n";
+    if (r.code != 0) {
+      failed = true;
+      md << codeBlockOrText(r) << "\n";
+      continue;
+    }
+    md << "![error against cost, " << s.name << "](results/" << s.name << "/error-vs-cost.png)\n\n"
+       << sweepWords(readCsv(dir / "results.csv")) << "\nAll runs: [results.csv](results/" << s.name
+       << "/results.csv).\n\n";
+  }
+
+  md << "## Where methods fail\n\n";
+  std::vector<std::string> stabilityArgs{"--out", (results / "stability").string(), "--data", o.data.string()};
+  if (o.quick) {
+    for (const char* a : {"--scene", "face-face", "--methods", "gauss-seidel,xpbd", "--iterations", "1", "--substeps", "1"}) {
+      stabilityArgs.emplace_back(a);
+    }
+  }
+  const CommandOutput stability = runCommandMain(stabilityMain, stabilityArgs, err);
+  failed |= stability.code != 0;
+  md << "![pass or fail per scene and setting](results/stability/stability-pass.png)\n\n"
+     << "![error figure per scene and setting](results/stability/stability-error.png)\n\n"
+     << codeBlockOrText(stability) << "\n";
+
+  md << "## Beside Bullet, ODE and MuJoCo\n\n";
+  const char* compareScenes[] = {"pyramid", "ragdoll", "bullet-ragdolls"};
+  for (const char* scene : compareScenes) {
+    std::vector<std::string> args{scene, "--data", o.data.string()};
+    if (o.quick || std::string(scene) == "bullet-ragdolls") {
+      args.insert(args.end(), {"--steps", o.quick ? "5" : "120"});
+    }
+    const CommandOutput r = runCommandMain(compareMain, args, err);
+    failed |= r.code != 0;
+    md << "### " << scene << "\n\n" << codeBlockOrText(r) << "\n";
+    if (o.quick) break;
+  }
+
+  writeFileAtomically(o.out / "results.md", md.str());
+  out << "wrote " << (o.out / "results.md").string() << " and " << results.string() << "/\n";
+  return failed ? kExitFailure : kExitOk;
+}
+
+}  // namespace
+
+int reportMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  ReportOptions o;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
+    if (a == "--help" || a == "-h") {
+      out << reportUsage();
+      return kExitOk;
+    } else if (a == "--quick") {
+      o.quick = true;
+    } else if (a == "--out" || a == "--data") {
+      const std::string* v = value();
+      if (v == nullptr) {
+        err << "lab: " << a << " needs a folder\n" << reportUsage();
+        return kExitUsage;
+      }
+      (a == "--out" ? o.out : o.data) = *v;
+    } else {
+      err << "lab: report: unknown argument '" << a << "'\n" << reportUsage();
+      return kExitUsage;
+    }
+  }
+  RunOptions defaults;
+  defaults.dataDir = o.data;
+  o.data = dataDir(defaults);
+  if (o.out.empty()) o.out = o.data / "docs";
+  try {
+    fs::create_directories(o.out / "results");
+    return writeReport(o, out, err);
+  } catch (const std::exception& e) {
+    err << "lab: report: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+}  // namespace lab

@@ -1,0 +1,157 @@
+// lab stability: the suite of scenes where solvers are known to fail (assets/scenes/stability/),
+// each run under every setting asked for and in every peer engine, judged against the pass
+// criteria in its file (docs/lab.md, "lab stability").
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <ostream>
+
+#include <unistd.h>
+
+#include "commands.h"
+#include "gnuplot.h"
+#include "lab.h"
+#include "peer.h"
+#include "report.h"
+#include "stability_options.h"
+#include "stability_report.h"
+
+namespace lab {
+namespace {
+
+using stability::Setting;
+using stability::StabilityOptions;
+using stability::SuiteResult;
+using stability::SuiteScene;
+
+// A progress bar on stderr: redrawn in place on a terminal, and on anything else (a log, the
+// tests' string stream) one line per finished scene instead of a line of carriage returns.
+class Progress {
+ public:
+  Progress(std::ostream& err, std::size_t total)
+      : err_(err), total_(total), redraw_(&err == &std::cerr && ::isatty(STDERR_FILENO) == 1),
+        start_(std::chrono::steady_clock::now()) {}
+  /// `done` runs are finished and `what` runs next; `sceneDone`: the runs before were a scene's last.
+  void show(std::size_t done, const std::string& what, bool sceneDone) {
+    if (!redraw_ && !sceneDone) return;
+    constexpr std::size_t kWidth = 30;
+    const std::size_t filled = total_ == 0 ? kWidth : kWidth * done / total_;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::string line = "stability [" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] " +
+                       std::to_string(done) + "/" + std::to_string(total_) + " " +
+                       std::to_string(static_cast<long>(seconds)) + " s " + what;
+    if (!redraw_) {
+      err_ << line << "\n" << std::flush;
+      return;
+    }
+    line.resize(std::max<std::size_t>(line.size(), 100), ' ');  // wipes a longer previous line
+    err_ << "\r" << line << std::flush;
+  }
+  void finish() {
+    if (redraw_) err_ << "\n" << std::flush;
+  }
+
+ private:
+  std::ostream& err_;
+  std::size_t total_;
+  bool redraw_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+std::vector<Setting> settingsOf(const StabilityOptions& o) {
+  std::vector<Setting> out;
+  for (phys::SolverMethod m : o.methods) {
+    for (int it : o.iterations) {
+      for (int sub : o.substeps) out.push_back({m, it, sub});
+    }
+  }
+  return out;
+}
+
+SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& scenes, std::ostream& err) {
+  SuiteResult r;
+  r.scenes = scenes;
+  r.settings = settingsOf(o);
+  for (phys::SolverMethod m : o.methods) r.methods.emplace_back(phys::toString(m));
+  if (o.peers) r.peers = peerEngines();
+  r.peerNote = !o.peers ? "--no-peers" : "the lab was built without peer engines (LAB_PEERS)";
+  const auto start = std::chrono::steady_clock::now();
+  Progress progress(err, scenes.size() * (r.settings.size() + r.peers.size()));
+  std::size_t done = 0;
+  for (const SuiteScene& s : scenes) {
+    std::vector<stability::Outcome> row;
+    const bool first = done == 0;
+    for (const Setting& setting : r.settings) {
+      progress.show(done++, s.name + " " + stability::settingLabel(setting), row.empty() && !first);
+      row.push_back(stability::runSetting(s, setting));
+    }
+    for (const std::string& peer : r.peers) {
+      progress.show(done++, s.name + " " + peer, false);
+      row.push_back(stability::runPeerEngine(s, peer));
+    }
+    r.outcomes.push_back(std::move(row));
+  }
+  progress.show(done, "done", true);
+  progress.finish();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// The files of --out; the heat maps last, so a missing gnuplot leaves everything else written.
+int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir, std::ostream& err) {
+  try {
+    std::filesystem::create_directories(dir);
+    writeFileAtomically(dir / "stability.md", md);
+    writeFileAtomically(dir / "stability.csv", stability::csvReport(r));
+    writeFileAtomically(dir / "stability-pass.dat", stability::passMatrix(r));
+    writeFileAtomically(dir / "stability-error.dat", stability::errorMatrix(r));
+    writeFileAtomically(dir / "stability.gp", stability::gnuplotScript(r));
+  } catch (const std::exception& e) {
+    err << "lab: --out: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  const std::string problem = runGnuplot(dir / "stability.gp", dir);
+  if (!problem.empty()) {
+    err << "lab: stability: the heat maps were not drawn: " << problem << "\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  if (std::find_if(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; }) != args.end()) {
+    out << stability::usage();
+    return kExitOk;
+  }
+  StabilityOptions o;
+  if (const std::string error = stability::parseOptions(args, o); !error.empty()) {
+    err << "lab: " << error << "\n" << stability::usage();
+    return kExitUsage;
+  }
+  std::vector<SuiteScene> scenes;
+  try {
+    for (const std::filesystem::path& file : stability::sceneFiles(o)) scenes.push_back(stability::loadSuiteScene(file));
+  } catch (const scenes::LoadError& e) {
+    err << e.what() << "\n";  // "file:line: <expect> attribute 'x': why"
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    err << "lab: stability: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  SuiteResult result;
+  try {
+    result = runSuite(o, scenes, err);
+  } catch (const std::exception& e) {  // a file changed mid-run, or a setting the world refused
+    err << "\nlab: stability: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  const std::string md = stability::markdownReport(result);
+  out << md << std::flush;
+  return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
+}
+
+}  // namespace lab

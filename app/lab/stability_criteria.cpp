@@ -1,0 +1,311 @@
+#include "stability_criteria.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+namespace lab::stability {
+namespace {
+
+// A run longer than this is a typo in a window (10 h of simulated time), not a test.
+constexpr double kMaxWindowEnd = 36000.0;  // unit: s
+
+struct MetricInfo {
+  Metric metric;
+  const char* name;
+  const char* unit;
+};
+
+constexpr MetricInfo kMetrics[] = {
+    {Metric::Drift, "drift", "m"},           {Metric::Penetration, "penetration", "m"},
+    {Metric::StickError, "stick-error", ""}, {Metric::JointGap, "joint-gap", "m"},
+    {Metric::Speed, "speed", "m/s"},         {Metric::StaysBehind, "stays-behind", "m"},
+    {Metric::Flips, "flips", ""},
+};
+
+std::string metricList() {
+  std::string out;
+  for (const MetricInfo& m : kMetrics) out += (out.empty() ? "" : ", ") + std::string(m.name);
+  return out;
+}
+
+std::string formatNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::optional<double> parseNumber(std::string_view text) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+// Reads one <expect>'s attributes the way the scene loader reads an element's: every attribute
+// asked for is remembered, so anything left over is named as unknown with the known ones listed.
+class ExpectReader {
+ public:
+  ExpectReader(const scenes::Expectation& x, std::string file) : x_(x), file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& attribute, const std::string& message) const {
+    throw scenes::LoadError(file_, x_.line, attribute, "<expect> attribute '" + attribute + "': " + message);
+  }
+  const std::string* find(const std::string& name) {
+    asked_.push_back(name);
+    return x_.find(name);
+  }
+  const std::string& required(const std::string& name, const std::string& what) {
+    const std::string* v = find(name);
+    if (v == nullptr) fail(name, "is required (" + what + ")");
+    return *v;
+  }
+  double positive(const std::string& name, const std::string& unit) {
+    const std::string& raw = required(name, "a number > 0" + withUnit(unit));
+    const std::optional<double> v = parseNumber(raw);
+    if (!v || *v <= 0.0) fail(name, "'" + raw + "' must be a number > 0" + withUnit(unit));
+    return *v;
+  }
+  void rejectUnknown() const {
+    for (std::size_t i = 0; i < x_.attributes.size(); ++i) {
+      const std::string& name = x_.attributes[i].first;
+      for (std::size_t j = i + 1; j < x_.attributes.size(); ++j) {
+        if (x_.attributes[j].first == name) fail(name, "given twice");
+      }
+      if (std::find(asked_.begin(), asked_.end(), name) == asked_.end()) {
+        std::string known;
+        for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
+        fail(name, "unknown attribute for this metric (known: " + known + ")");
+      }
+    }
+  }
+  int line() const { return x_.line; }
+
+ private:
+  static std::string withUnit(const std::string& unit) { return unit.empty() ? "" : " (" + unit + ")"; }
+
+  const scenes::Expectation& x_;
+  std::string file_;
+  std::vector<std::string> asked_;
+};
+
+// over="T0 T1": the window in seconds, turned into whole steps of the scene's dt.
+void readWindow(ExpectReader& r, Criterion& c, double dt) {
+  const std::string& raw = r.required("over", "two times in s, \"from to\"");
+  std::istringstream in(raw);
+  std::string a, b, extra;
+  in >> a >> b >> extra;
+  const std::optional<double> from = parseNumber(a), to = parseNumber(b);
+  if (!from || !to || !extra.empty()) r.fail("over", "'" + raw + "' must be two numbers, \"from to\" (s)");
+  if (*from < 0.0 || *to <= *from || *to > kMaxWindowEnd) {
+    r.fail("over", "'" + raw + "' must have 0 <= from < to <= " + formatNumber(kMaxWindowEnd) + " (s)");
+  }
+  c.from = *from;
+  c.to = *to;
+  c.fromStep = static_cast<int>(std::lround(*from / dt));
+  c.toStep = static_cast<int>(std::lround(*to / dt));
+  if (c.toStep <= c.fromStep) {
+    r.fail("over", "'" + raw + "' is shorter than one step of the scene's dt " + formatNumber(dt) + " s");
+  }
+}
+
+const scenes::NamedBody& findBody(ExpectReader& r, const scenes::Scene& scene, const std::string& name) {
+  for (const scenes::NamedBody& b : scene.bodies) {
+    if (b.name == name) return b;
+  }
+  r.fail("body", "no body named '" + name + "' in the scene");
+}
+
+// A named body's index in bodyPositions() order: boxes first, then the loose particles by id.
+std::size_t positionIndex(const scenes::Scene& scene, const scenes::NamedBody& body) {
+  const phys::World& world = scene.world;
+  if (body.kind == scenes::NamedBody::Kind::Box) return body.index;
+  std::vector<bool> inBox(world.particles().size(), false);
+  for (const phys::Box& box : world.boxes()) {
+    for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
+  }
+  std::size_t index = world.boxes().size();
+  for (std::size_t i = 0; i < body.index; ++i) index += inBox[i] ? 0 : 1;
+  return index;
+}
+
+phys::Vec3 loadedPosition(const scenes::Scene& scene, const scenes::NamedBody& body) {
+  if (body.kind == scenes::NamedBody::Kind::Box) return scene.world.boxPose(body.index).center;
+  return scene.world.particles().position[body.index];
+}
+
+void readBodies(ExpectReader& r, const scenes::Scene& scene, Criterion& c, bool allowAll) {
+  c.body = r.required("body", allowAll ? "a body's name, or * for every body" : "a body's name");
+  if (allowAll && c.body == "*") {
+    const std::size_t count = scene.world.boxes().size() + [&] {
+      std::size_t loose = scene.world.particles().size();
+      for (const phys::Box& box : scene.world.boxes()) loose -= static_cast<std::size_t>(box.particleCount);
+      return loose;
+    }();
+    for (std::size_t i = 0; i < count; ++i) c.bodies.push_back(i);
+    return;
+  }
+  c.bodies.push_back(positionIndex(scene, findBody(r, scene, c.body)));
+}
+
+void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
+  readBodies(r, scene, c, false);
+  const std::string& axis = r.required("axis", "x, y or z");
+  if (axis != "x" && axis != "y" && axis != "z") r.fail("axis", "'" + axis + "' must be x, y or z");
+  c.axis = axis[0] - 'x';
+  const std::string* max = r.find("max");
+  const std::string* min = r.find("min");
+  if ((max == nullptr) == (min == nullptr)) r.fail(max ? "min" : "max", "give exactly one of max and min (m): the plane");
+  const std::string attribute = max ? "max" : "min";
+  const std::optional<double> plane = parseNumber(max ? *max : *min);
+  if (!plane) r.fail(attribute, "'" + (max ? *max : *min) + "' must be a finite number (m)");
+  c.limit = *plane;
+  c.atLeast = min != nullptr;
+  c.start = loadedPosition(scene, findBody(r, scene, c.body))[c.axis];
+  if (c.atLeast ? c.start <= c.limit : c.start >= c.limit) {
+    r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", already " +
+                          (c.atLeast ? "below" : "above") + " the plane " + formatNumber(c.limit));
+  }
+}
+
+void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
+  c.body = r.required("body", "a box's name");
+  const scenes::NamedBody& body = findBody(r, scene, c.body);
+  if (body.kind != scenes::NamedBody::Kind::Box) r.fail("body", "'" + c.body + "' is a particle; flips needs a box");
+  const phys::Vec3 h = scene.world.boxes()[body.index].halfExtents;
+  if (h.x == h.y || h.y == h.z || h.x == h.z) {
+    r.fail("body", "'" + c.body + "' needs three different side lengths to have a middle axis");
+  }
+  c.boxId = body.index;
+  c.bodies.push_back(body.index);
+  // A count at least min, at most max, or both: a dissipating solver flips too seldom (the body
+  // settles about its major axis) or, nutating off the separatrix, too often.
+  auto count = [&](const std::string& name) -> std::optional<int> {
+    const std::string* raw = r.find(name);
+    if (raw == nullptr) return std::nullopt;
+    int n = 0;
+    const auto [end, ec] = std::from_chars(raw->data(), raw->data() + raw->size(), n);
+    if (ec != std::errc() || end != raw->data() + raw->size() || n < 1) r.fail(name, "'" + *raw + "' must be a whole number >= 1");
+    return n;
+  };
+  const std::optional<int> min = count("min"), max = count("max");
+  if (!min && !max) r.fail("min", "is required, or max, or both (whole numbers of flips)");
+  if (min && max && *max < *min) r.fail("max", "must be >= min");
+  c.limit = min.value_or(0);
+  c.upper = max ? static_cast<double>(*max) : std::numeric_limits<double>::infinity();
+  c.atLeast = true;
+}
+
+Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, const std::string& file) {
+  ExpectReader r(x, file);
+  r.find("kind");
+  Criterion c;
+  c.line = x.line;
+  const std::string& metric = r.required("metric", metricList());
+  const auto info = std::find_if(std::begin(kMetrics), std::end(kMetrics), [&](const MetricInfo& m) { return metric == m.name; });
+  if (info == std::end(kMetrics)) r.fail("metric", "'" + metric + "' must be one of " + metricList());
+  c.metric = info->metric;
+  readWindow(r, c, scene.world.solverSettings().dt);
+  switch (c.metric) {
+    case Metric::Drift:
+      readBodies(r, scene, c, true);
+      c.limit = r.positive("max", info->unit);
+      break;
+    case Metric::StaysBehind: readStaysBehind(r, scene, c); break;
+    case Metric::Flips: readFlips(r, scene, c); break;
+    default: c.limit = r.positive("max", info->unit); break;
+  }
+  r.rejectUnknown();
+  return c;
+}
+
+}  // namespace
+
+std::string metricName(Metric metric) {
+  for (const MetricInfo& m : kMetrics) {
+    if (m.metric == metric) return m.name;
+  }
+  return "?";
+}
+
+std::string Criterion::unit() const {
+  for (const MetricInfo& m : kMetrics) {
+    if (m.metric == metric) return m.unit;
+  }
+  return "";
+}
+
+std::string Criterion::describe() const {
+  // Built by appending: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string here.
+  std::string out;
+  if (metric == Metric::StaysBehind) {
+    out.push_back(static_cast<char>('x' + axis));
+    out.append(" of ").append(body).append(atLeast ? " >= " : " <= ");
+  } else if (metric == Metric::Flips) {
+    out.append("flips of ").append(body);
+    if (limit == upper) out.append(" = ");
+    else if (std::isinf(upper)) out.append(" >= ");
+    else if (limit == 0.0) out.append(" <= ").append(formatNumber(upper));
+    else out.append(" from ").append(formatNumber(limit)).append(" to ").append(formatNumber(upper));
+    if (limit == upper || std::isinf(upper)) out.append(formatNumber(limit));
+    out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
+    return out;
+  } else {
+    out.append(metricName(metric));
+    if (body == "*") out.append(" of every body");
+    else if (!body.empty()) out.append(" of ").append(body);
+    out.append(" <= ");
+  }
+  out.append(formatNumber(limit));
+  if (!unit().empty()) out.append(" ").append(unit());
+  out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
+  return out;
+}
+
+std::vector<Criterion> parseCriteria(const scenes::Scene& scene) {
+  const std::string file = scene.file.empty() ? scene.name : scene.file.string();
+  std::vector<Criterion> out;
+  for (const scenes::Expectation& x : scene.expectations) {
+    const std::string* kind = x.find("kind");
+    if (kind == nullptr) {
+      throw scenes::LoadError(file, x.line, "kind", "<expect> attribute 'kind': is required (pass or position)");
+    }
+    if (*kind == "position") continue;  // an accuracy answer (accuracy.h), not ours
+    if (*kind != "pass") {
+      throw scenes::LoadError(file, x.line, "kind", "<expect> attribute 'kind': '" + *kind + "' must be pass or position");
+    }
+    out.push_back(parseOne(x, scene, file));
+  }
+  if (out.empty()) {
+    throw scenes::LoadError(file, 0, "", "no <expect kind=\"pass\"> criterion: not a stability scene");
+  }
+  return out;
+}
+
+int runSteps(const std::vector<Criterion>& criteria) {
+  int steps = 0;
+  for (const Criterion& c : criteria) steps = std::max(steps, c.toStep);
+  return steps;
+}
+
+double errorRatio(const Criterion& c, double value) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(value)) return inf;
+  switch (c.metric) {
+    case Metric::Flips: {
+      // The nearer bound's ratio, oriented so that > 1 is outside: min / value, value / max.
+      const double low = c.limit <= 0.0 ? 0.0 : (value > 0.0 ? c.limit / value : inf);
+      return std::max(low, value / c.upper);
+    }
+    case Metric::StaysBehind: return (value - c.start) / (c.limit - c.start);
+    default: return value / c.limit;
+  }
+}
+
+}  // namespace lab::stability

@@ -1,0 +1,232 @@
+#include "stability_judge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bodies.h"
+
+namespace lab::stability {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// A flip is counted when the middle axis points more than 60 degrees the other way from the
+// side it was last counted on: the hysteresis keeps a wobble about 90 degrees from counting
+// twice, and a real Dzhanibekov flip swings the axis all the way round.
+constexpr double kFlipThreshold = 0.5;
+
+bool inWindow(const Criterion& c, int step) { return step >= c.fromStep && step <= c.toStep; }
+
+bool needsMetrics(Metric m) {
+  return m == Metric::Penetration || m == Metric::StickError || m == Metric::JointGap || m == Metric::Speed;
+}
+
+double metricFigure(Metric m, const phys::Metrics& metrics) {
+  switch (m) {
+    case Metric::Penetration: return metrics.maxPenetration;
+    case Metric::StickError: return metrics.maxConstraintError;
+    case Metric::JointGap: return metrics.maxJointError;
+    default: return metrics.maxSpeed;
+  }
+}
+
+// The body-frame axis of the middle side length, which is also that of the middle moment of
+// inertia: a box's moment about x is m (hy^2 + hz^2) / 3, so the orders agree.
+phys::Vec3 middleAxis(const phys::Vec3& h) {
+  const int big = h.x >= h.y && h.x >= h.z ? 0 : (h.y >= h.z ? 1 : 2);
+  const int small = h.x <= h.y && h.x <= h.z ? 0 : (h.y <= h.z ? 1 : 2);
+  phys::Vec3 axis(0.0);
+  axis[3 - big - small] = 1.0;
+  return axis;
+}
+
+// Keeps the extreme of a stays-behind coordinate: the highest for a max plane, the lowest for min.
+void keepExtreme(const Criterion& c, double& value, double sample) {
+  if (std::isinf(value)) return;  // blown up already: stays so
+  if (!std::isfinite(sample)) value = kInf;
+  else if (std::isnan(value)) value = sample;
+  else value = c.atLeast ? std::min(value, sample) : std::max(value, sample);
+}
+
+double startValue(const Criterion& c) {
+  // NaN for stays-behind: the first sample sets it (min and max both take a number over NaN).
+  return c.metric == Metric::StaysBehind ? std::numeric_limits<double>::quiet_NaN() : 0.0;
+}
+
+Verdict verdictOf(const Criterion& c, double value) {
+  Verdict v;
+  v.value = value;
+  v.ratio = errorRatio(c, value);
+  v.passed = v.ratio <= 1.0;  // NaN and infinity fail
+  return v;
+}
+
+}  // namespace
+
+WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world) : criteria_(criteria) {
+  // bodies.h's order, kept as ids so a criterion reads only its own bodies, not all of them.
+  std::vector<bool> inBox(world.particles().size(), false);
+  for (phys::BoxId id = 0; id < world.boxes().size(); ++id) {
+    bodies_.push_back({true, id});
+    const phys::Box& box = world.boxes()[id];
+    for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
+  }
+  for (std::size_t i = 0; i < inBox.size(); ++i) {
+    if (!inBox[i]) bodies_.push_back({false, static_cast<std::uint32_t>(i)});
+  }
+  for (const Criterion& c : criteria_) states_.push_back({startValue(c), {}, phys::Vec3(0.0), 1});
+  observe(world, 0);
+}
+
+phys::Vec3 WorldJudge::position(const phys::World& world, std::size_t body) const {
+  const BodyRef& b = bodies_.at(body);
+  return b.box ? world.boxPose(b.id).center : world.particles().position[b.id];
+}
+
+void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& world, int step) const {
+  if (step == c.fromStep) {
+    s.reference.clear();
+    for (std::size_t b : c.bodies) s.reference.push_back(position(world, b));
+    return;
+  }
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
+    const double d = glm::length(position(world, c.bodies[i]) - s.reference[i]);
+    s.value = std::isfinite(d) ? std::max(s.value, d) : kInf;
+  }
+}
+
+void WorldJudge::sampleFlips(const Criterion& c, State& s, const phys::World& world, int step) const {
+  const auto id = static_cast<phys::BoxId>(c.boxId);
+  const phys::Vec3 axis = world.boxPose(id).orientation * middleAxis(world.boxes()[id].halfExtents);
+  if (step == c.fromStep) {
+    s.axisAtStart = axis;
+    s.sign = 1;
+    return;
+  }
+  const double along = glm::dot(axis, s.axisAtStart);
+  if (along * s.sign < -kFlipThreshold) {
+    s.sign = -s.sign;
+    s.value += 1.0;
+  }
+}
+
+void WorldJudge::observe(const phys::World& world, int step) {
+  bool haveMetrics = false;
+  phys::Metrics metrics;
+  for (std::size_t i = 0; i < criteria_.size(); ++i) {
+    const Criterion& c = criteria_[i];
+    if (!inWindow(c, step)) continue;
+    State& s = states_[i];
+    if (needsMetrics(c.metric)) {
+      if (!haveMetrics) metrics = world.metrics();  // once per step, for all that need it
+      haveMetrics = true;
+      const double f = metricFigure(c.metric, metrics);
+      s.value = std::isfinite(f) ? std::max(s.value, f) : kInf;
+    } else if (c.metric == Metric::Drift) {
+      sampleDrift(c, s, world, step);
+    } else if (c.metric == Metric::StaysBehind) {
+      keepExtreme(c, s.value, position(world, c.bodies.front())[c.axis]);
+    } else {
+      sampleFlips(c, s, world, step);
+    }
+  }
+}
+
+std::vector<Verdict> WorldJudge::verdicts(bool blewUp) const {
+  std::vector<Verdict> out;
+  for (std::size_t i = 0; i < criteria_.size(); ++i) out.push_back(verdictOf(criteria_[i], blewUp ? kInf : states_[i].value));
+  return out;
+}
+
+namespace {
+
+// Each particle's index in bodies.h order when it is a loose particle, else -1 (a box's).
+std::vector<std::int64_t> looseIndex(const phys::World& world) {
+  std::vector<std::int64_t> index(world.particles().size(), 0);
+  for (const phys::Box& box : world.boxes()) {
+    for (int k = 0; k < box.particleCount; ++k) index[box.firstParticle + static_cast<phys::ParticleId>(k)] = -1;
+  }
+  std::int64_t next = static_cast<std::int64_t>(world.boxes().size());
+  for (std::int64_t& i : index) i = i < 0 ? -1 : next++;
+  return index;
+}
+
+bool hasLooseSticks(const phys::World& world) {
+  const std::vector<std::int64_t> index = looseIndex(world);
+  return std::any_of(world.sticks().begin(), world.sticks().end(),
+                     [&](const phys::Stick& s) { return index[s.a] >= 0 && index[s.b] >= 0; });
+}
+
+// Stick error from positions: the sticks between two loose particles (a peer's rigid bodies
+// keep their own shape exactly, so a box's internal sticks have no error there).
+double looseStickError(const phys::World& world, const std::vector<phys::Vec3>& at) {
+  const std::vector<std::int64_t> index = looseIndex(world);
+  double worst = 0.0;
+  for (const phys::Stick& s : world.sticks()) {
+    if (index[s.a] < 0 || index[s.b] < 0) continue;
+    const double d = glm::length(at[static_cast<std::size_t>(index[s.b])] - at[static_cast<std::size_t>(index[s.a])]);
+    const double bound = d < s.minLength ? s.minLength : (d > s.maxLength ? s.maxLength : d);
+    if (bound > 0.0) worst = std::max(worst, std::abs(d - bound) / bound);
+  }
+  return worst;
+}
+
+// The largest of a figure's samples; infinity once one is not finite (the peer blew up).
+void keepLargest(double& value, double sample) {
+  value = std::isfinite(sample) && std::isfinite(value) ? std::max(value, sample) : kInf;
+}
+
+double judgeOne(const Criterion& c, const phys::World& world, double dt, const std::vector<std::vector<phys::Vec3>>& states) {
+  double value = startValue(c);
+  const std::vector<phys::Vec3>& first = states[static_cast<std::size_t>(c.fromStep)];
+  for (int k = c.fromStep; k <= c.toStep; ++k) {
+    const std::vector<phys::Vec3>& now = states[static_cast<std::size_t>(k)];
+    if (c.metric == Metric::Drift) {
+      for (std::size_t b : c.bodies) keepLargest(value, glm::length(now[b] - first[b]));
+    } else if (c.metric == Metric::StaysBehind) {
+      keepExtreme(c, value, now[c.bodies.front()][c.axis]);
+    } else if (c.metric == Metric::Speed && k > 0) {
+      const std::vector<phys::Vec3>& before = states[static_cast<std::size_t>(k - 1)];
+      for (std::size_t b = 0; b < now.size(); ++b) keepLargest(value, glm::length(now[b] - before[b]) / dt);
+    } else if (c.metric == Metric::StickError) {
+      keepLargest(value, looseStickError(world, now));
+    }
+  }
+  return value;
+}
+
+}  // namespace
+
+std::vector<Verdict> judgePositions(const std::vector<Criterion>& criteria, const phys::World& world, double dt,
+                                    const std::vector<std::vector<phys::Vec3>>& positions) {
+  // states[k]: the bodies after k steps, the loaded world's for k = 0.
+  std::vector<std::vector<phys::Vec3>> states;
+  states.push_back(bodyPositions(world));
+  states.insert(states.end(), positions.begin(), positions.end());
+  const std::size_t bodies = states.front().size();
+  const bool sameBodies = std::all_of(states.begin(), states.end(), [&](const auto& s) { return s.size() == bodies; });
+  std::vector<Verdict> out;
+  for (const Criterion& c : criteria) {
+    // What positions cannot answer; a box's own sticks, which a peer's rigid body keeps exactly,
+    // so its stick error would say nothing; and a peer that recorded too little.
+    std::string why;
+    if (c.metric == Metric::Penetration) why = "penetration: needs contact depths";
+    else if (c.metric == Metric::JointGap || c.metric == Metric::Flips) why = metricName(c.metric) + ": needs orientations";
+    else if (c.metric == Metric::StickError && !hasLooseSticks(world)) why = "stick-error: rigid bodies";
+    else if (!sameBodies || states.size() <= static_cast<std::size_t>(c.toStep)) {
+      why = metricName(c.metric) + ": the peer recorded " + std::to_string(states.size() - 1) + " of " +
+            std::to_string(c.toStep) + " steps, or not every body";
+    }
+    if (why.empty()) {
+      out.push_back(verdictOf(c, judgeOne(c, world, dt, states)));
+    } else {
+      Verdict v;
+      v.judged = false;
+      v.why = why;
+      out.push_back(v);
+    }
+  }
+  return out;
+}
+
+}  // namespace lab::stability

@@ -1,0 +1,154 @@
+#include "stability_options.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <optional>
+#include <stdexcept>
+
+#include "options.h"
+#include "scenes/scene.h"
+
+namespace lab::stability {
+namespace {
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    out.push_back(text.substr(start, comma - start));
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
+  }
+}
+
+// A list of whole numbers from 1 to high; the error, or "" when good.
+std::string parseCounts(const std::string& option, const std::string& text, int high, std::vector<int>& into) {
+  into.clear();
+  for (const std::string& item : splitList(text)) {
+    int n = 0;
+    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), n);
+    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || n < 1 || n > high) {
+      return option + ": '" + item + "' is not a whole number from 1 to " + std::to_string(high);
+    }
+    if (std::find(into.begin(), into.end(), n) == into.end()) into.push_back(n);
+  }
+  return {};
+}
+
+std::string parseMethods(const std::string& text, std::vector<phys::SolverMethod>& into) {
+  into.clear();
+  for (const std::string& item : splitList(text)) {
+    const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(item);
+    if (!m) return "--methods: unknown method '" + item + "' (gauss-seidel, jacobi, xpbd or shake)";
+    if (std::find(into.begin(), into.end(), *m) == into.end()) into.push_back(*m);
+  }
+  return {};
+}
+
+std::filesystem::path suiteDirectory(const StabilityOptions& o) {
+  RunOptions run;
+  run.dataDir = o.dataDir;
+  return scenes::sceneDirectory(dataDir(run)) / "stability";
+}
+
+}  // namespace
+
+std::string usage() {
+  return "usage: lab stability [--out DIR] [--methods LIST] [--iterations LIST] [--substeps LIST]\n"
+         "                     [--scene NAME...] [--no-peers] [--data DIR]\n"
+         "  Runs every scene of <data>/assets/scenes/stability under every method x iterations x\n"
+         "  substeps, and in each peer engine, and judges each run by the scene's <expect kind=\"pass\">.\n"
+         "  --out DIR         also write DIR/stability.md, .csv, .gp and the heat maps\n"
+         "                    stability-pass.png/.svg and stability-error.png/.svg (gnuplot)\n"
+         "  --methods LIST    comma-separated (default gauss-seidel,jacobi,xpbd,shake)\n"
+         "  --iterations LIST whole numbers 1 to 1000 (default 1,3,10)\n"
+         "  --substeps LIST   whole numbers 1 to 1000 (default 1,4,16)\n"
+         "  --scene NAME...   only these scenes: names in the suite's folder, or scene files\n"
+         "                    (repeatable; comma-separated lists too)\n"
+         "  --no-peers        skip the peer engines\n"
+         "  --data DIR        folder holding assets/ (default: the source tree)\n";
+}
+
+std::string parseOptions(const std::vector<std::string>& args, StabilityOptions& o) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    // A following "--word" is a forgotten value, as in `lab run`.
+    auto value = [&]() -> const std::string* {
+      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
+      return &args[++i];
+    };
+    std::string error;
+    if (a == "--out" || a == "--data" || a == "--methods" || a == "--iterations" || a == "--substeps") {
+      const std::string* v = value();
+      if (v == nullptr) return a + " needs a value";
+      if (a == "--out") o.out = *v;
+      else if (a == "--data") o.dataDir = *v;
+      else if (a == "--methods") error = parseMethods(*v, o.methods);
+      else if (a == "--iterations") error = parseCounts(a, *v, phys::kMaxIterations, o.iterations);
+      else error = parseCounts(a, *v, phys::kMaxSubsteps, o.substeps);
+    } else if (a == "--scene") {
+      // Every following word up to the next option is a name, so "--scene a b" works too.
+      const std::size_t before = o.scenes.size();
+      while (const std::string* v = value()) {
+        for (const std::string& name : splitList(*v)) {
+          if (name.empty()) return "--scene: an empty name in '" + *v + "'";
+          o.scenes.push_back(name);
+        }
+      }
+      if (o.scenes.size() == before) return "--scene needs a scene name";
+    } else if (a == "--no-peers") {
+      o.peers = false;
+    } else {
+      return a.starts_with("-") ? "unknown option '" + a + "'" : "unexpected argument '" + a + "' (scenes go after --scene)";
+    }
+    if (!error.empty()) return error;
+  }
+  return {};
+}
+
+bool naturalLess(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+      std::size_t ie = i, je = j;
+      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+      const std::string na = a.substr(i, ie - i), nb = b.substr(j, je - j);
+      if (na.size() != nb.size()) return na.size() < nb.size();
+      if (na != nb) return na < nb;
+      i = ie;
+      j = je;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+std::vector<std::filesystem::path> sceneFiles(const StabilityOptions& o) {
+  const std::filesystem::path folder = suiteDirectory(o);
+  std::vector<std::filesystem::path> files;
+  if (!o.scenes.empty()) {
+    for (const std::string& name : o.scenes) {
+      const std::filesystem::path file = scenes::resolveScene(name, folder);
+      if (!std::filesystem::is_regular_file(file)) {
+        throw std::runtime_error("--scene: no scene '" + name + "' (looked for " + file.string() + ")");
+      }
+      files.push_back(file);
+    }
+    return files;
+  }
+  if (!std::filesystem::is_directory(folder)) throw std::runtime_error("no stability suite at " + folder.string());
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    if (entry.is_regular_file() && entry.path().extension() == ".xml") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return naturalLess(a.stem().string(), b.stem().string()); });
+  if (files.empty()) throw std::runtime_error("no scene files in " + folder.string());
+  return files;
+}
+
+}  // namespace lab::stability

@@ -1,0 +1,40 @@
+#pragma once
+// The command line of `lab stability` (docs/lab.md, "lab stability"), and which scene files it
+// names. Parsing never touches the file system, so every bad argument is caught (exit 2)
+// before a scene is loaded.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "physics/settings.h"
+
+namespace lab::stability {
+
+/// What `lab stability` was asked to do.
+struct StabilityOptions {
+  std::filesystem::path out;  ///< empty: the report on stdout only
+  std::vector<phys::SolverMethod> methods{phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
+                                          phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
+  std::vector<int> iterations{1, 3, 10};
+  std::vector<int> substeps{1, 4, 16};
+  std::vector<std::string> scenes;  ///< as given to --scene; empty: the whole suite
+  bool peers = true;
+  std::filesystem::path dataDir;  ///< holds assets/; empty: the build's default
+};
+
+/// The usage text, for --help and after a command-line error.
+std::string usage();
+
+/// Parses the arguments after "stability" into `options`; returns the error, or "" when good.
+std::string parseOptions(const std::vector<std::string>& args, StabilityOptions& options);
+
+/// "stack-10" < "stack-20" < "stack-100": runs of digits compare as numbers, so the suite's
+/// files sort by size.
+bool naturalLess(const std::string& a, const std::string& b);
+
+/// The scene files to run: each --scene name (a file, or NAME.xml in the suite's folder
+/// <data>/assets/scenes/stability), else every .xml of that folder in natural order. Throws
+/// std::runtime_error naming what is missing.
+std::vector<std::filesystem::path> sceneFiles(const StabilityOptions& options);
+
+}  // namespace lab::stability

@@ -1,0 +1,300 @@
+#include "stability_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+namespace lab::stability {
+namespace {
+
+// Beyond a factor of 1000 either way the colour says nothing more: a clean pass, or a blow-up.
+constexpr double kLogClip = 3.0;
+
+std::string number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+
+std::string join(const std::vector<std::string>& parts, const std::string& separator) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : separator) + p;
+  return out;
+}
+
+template <typename T>
+std::string joinNumbers(const std::vector<T>& values) {
+  std::vector<std::string> parts;
+  for (T v : values) parts.push_back(number(static_cast<double>(v)));
+  return join(parts, ", ");
+}
+
+// The distinct values of one field of the settings, in first-seen order.
+template <typename F>
+std::vector<int> distinct(const std::vector<Setting>& settings, F field) {
+  std::vector<int> out;
+  for (const Setting& s : settings) {
+    if (std::find(out.begin(), out.end(), field(s)) == out.end()) out.push_back(field(s));
+  }
+  return out;
+}
+
+// Markdown table cells must not hold a bare '|'.
+std::string cell(std::string text) {
+  for (std::size_t i = text.find('|'); i != std::string::npos; i = text.find('|', i + 2)) text.replace(i, 1, "\\|");
+  return text;
+}
+
+std::string criteriaText(const SuiteScene& s) {
+  std::vector<std::string> parts;
+  for (const Criterion& c : s.criteria) parts.push_back(c.describe());
+  return join(parts, "; ");
+}
+
+double sceneSeconds(const std::vector<Outcome>& row) {
+  double ms = 0.0;
+  for (const Outcome& o : row) ms += o.wallMs;
+  return ms / 1000.0;
+}
+
+// A run's entry in a grid: the worst ratio, bold when the run failed.
+std::string gridEntry(const Outcome& o) {
+  if (!o.judged) return "n/a";
+  const std::string r = formatRatio(o.verdicts[o.worst].ratio);
+  return o.passed ? r : "**" + r + "**";
+}
+
+std::string peerEntry(const Outcome& o) {
+  if (!o.judged) return cell("n/a: " + o.note);
+  std::string entry = gridEntry(o);
+  std::vector<std::string> skipped;
+  for (const Verdict& v : o.verdicts) {
+    if (!v.judged) skipped.push_back(v.why);
+  }
+  if (!skipped.empty()) entry += " (n/a: " + join(skipped, "; ") + ")";
+  return cell(entry);
+}
+
+void summaryTable(std::ostringstream& md, const SuiteResult& r) {
+  md << "| scene | what must hold | run |";
+  for (const std::string& m : r.methods) md << " " << m << " |";
+  for (const std::string& p : r.peers) md << " " << p << " |";
+  md << " stepping |\n|---|---|---|";
+  for (std::size_t i = 0; i < r.methods.size() + r.peers.size(); ++i) md << "---|";
+  md << "---|\n";
+  for (std::size_t s = 0; s < r.scenes.size(); ++s) {
+    const SuiteScene& sc = r.scenes[s];
+    md << "| " << sc.name << " | " << cell(criteriaText(sc)) << " | " << number(sc.steps * sc.dt) << " s, "
+       << sc.steps << " steps |";
+    for (const std::string& m : r.methods) {
+      int passed = 0, runs = 0;
+      for (std::size_t k = 0; k < r.settings.size(); ++k) {
+        if (phys::toString(r.settings[k].method) != m) continue;
+        ++runs;
+        passed += r.outcomes[s][k].passed ? 1 : 0;
+      }
+      md << " " << passed << "/" << runs << " |";
+    }
+    for (std::size_t p = 0; p < r.peers.size(); ++p) {
+      const Outcome& o = r.outcomes[s][r.settings.size() + p];
+      md << " " << (!o.judged ? "n/a" : o.passed ? "pass" : "**fail**") << " |";
+    }
+    md << " " << number(sceneSeconds(r.outcomes[s])) << " s |\n";
+  }
+}
+
+void methodGrid(std::ostringstream& md, const SuiteResult& r, const std::string& method) {
+  std::vector<std::size_t> columns;
+  for (std::size_t k = 0; k < r.settings.size(); ++k) {
+    if (phys::toString(r.settings[k].method) == method) columns.push_back(k);
+  }
+  md << "\n### " << method << "\n\n| scene |";
+  for (std::size_t k : columns) md << " " << r.settings[k].iterations << "x" << r.settings[k].substeps << " |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < columns.size(); ++i) md << "---:|";
+  md << "\n";
+  for (std::size_t s = 0; s < r.scenes.size(); ++s) {
+    md << "| " << r.scenes[s].name << " |";
+    for (std::size_t k : columns) md << " " << gridEntry(r.outcomes[s][k]) << " |";
+    md << "\n";
+  }
+}
+
+void peerTable(std::ostringstream& md, const SuiteResult& r) {
+  md << "\n## Peers\n\n";
+  if (r.peers.empty()) {
+    md << "None: " << r.peerNote << ".\n";
+    return;
+  }
+  md << "Each engine with its default solver at the scene's dt, judged on what its bodies' positions can "
+        "answer (speed there is the bodies' centres').\n\n| scene |";
+  for (const std::string& p : r.peers) md << " " << p << " |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < r.peers.size(); ++i) md << "---|";
+  md << "\n";
+  for (std::size_t s = 0; s < r.scenes.size(); ++s) {
+    md << "| " << r.scenes[s].name << " |";
+    for (std::size_t p = 0; p < r.peers.size(); ++p) md << " " << peerEntry(r.outcomes[s][r.settings.size() + p]) << " |";
+    md << "\n";
+  }
+}
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Column labels for gnuplot's matrix header: one token each, no spaces.
+std::vector<std::string> columnLabels(const SuiteResult& r) {
+  std::vector<std::string> out;
+  for (const Setting& s : r.settings) {
+    out.push_back(std::string(phys::toString(s.method)) + ":" + std::to_string(s.iterations) + "x" + std::to_string(s.substeps));
+  }
+  for (const std::string& p : r.peers) out.push_back(p);
+  return out;
+}
+
+template <typename F>
+std::string matrix(const SuiteResult& r, F value) {
+  std::ostringstream m;
+  m << "scene";
+  for (const std::string& label : columnLabels(r)) m << " " << label;
+  m << "\n";
+  // gnuplot draws the first row at the bottom; the scenes are written last first so that the
+  // chart reads top-down in the report's order.
+  for (std::size_t s = r.scenes.size(); s-- > 0;) {
+    m << r.scenes[s].name;
+    for (const Outcome& o : r.outcomes[s]) m << " " << value(o);
+    m << "\n";
+  }
+  return m.str();
+}
+
+}  // namespace
+
+std::string formatRatio(double ratio) {
+  if (std::isnan(ratio)) return "n/a";
+  if (std::isinf(ratio)) return ratio > 0 ? "inf" : "-inf";
+  // Three digits, or as many more as keep a failing 1.0004 from reading as a passing "1".
+  char buffer[32];
+  for (int digits = 3; digits <= 9; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, ratio);
+    if ((std::strtod(buffer, nullptr) > 1.0) == (ratio > 1.0)) break;
+  }
+  return buffer;
+}
+
+std::string markdownReport(const SuiteResult& r) {
+  std::ostringstream md;
+  const std::size_t runs = r.scenes.size() * (r.settings.size() + r.peers.size());
+  md << "# Stability suite\n\n"
+     << r.scenes.size() << " scenes x " << r.settings.size() << " settings (methods " << join(r.methods, ", ")
+     << "; iterations " << joinNumbers(distinct(r.settings, [](const Setting& s) { return s.iterations; }))
+     << "; substeps " << joinNumbers(distinct(r.settings, [](const Setting& s) { return s.substeps; })) << ")"
+     << (r.peers.empty() ? "" : " and the peers " + join(r.peers, ", ")) << ": " << runs << " runs in "
+     << number(r.seconds) << " s.\n\n"
+     << "A run passes when every criterion of its scene holds over its window and the guard froze nothing. "
+        "The method columns count the settings that pass; `stepping` is the scene's wall time in "
+        "World::step over all its runs.\n\n";
+  summaryTable(md, r);
+  md << "\n## Per method\n\nColumns are iterations x substeps. Each entry is the worst criterion's value / "
+        "limit (for flips, min / value or value / max; for stays-behind, the share of the way to the plane): at most 1 "
+        "passes, **bold** fails, inf is a blow-up (the guard froze a body).\n";
+  for (const std::string& m : r.methods) methodGrid(md, r, m);
+  peerTable(md, r);
+  return md.str();
+}
+
+std::string csvReport(const SuiteResult& r) {
+  std::ostringstream csv;
+  csv << "scene,method,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n";
+  for (std::size_t s = 0; s < r.scenes.size(); ++s) {
+    const SuiteScene& sc = r.scenes[s];
+    for (std::size_t k = 0; k < r.outcomes[s].size(); ++k) {
+      const Outcome& o = r.outcomes[s][k];
+      const bool peer = k >= r.settings.size();
+      csv << csvField(sc.name) << ",";
+      if (peer) csv << csvField(r.peers[k - r.settings.size()]) << ",,,";
+      else csv << phys::toString(r.settings[k].method) << "," << r.settings[k].iterations << "," << r.settings[k].substeps << ",";
+      if (!o.judged) {
+        csv << "n/a,,,,," << number(o.msPerStep) << "," << csvField(o.note) << "\n";
+        continue;
+      }
+      const Criterion& c = sc.criteria[o.worst];
+      const Verdict& v = o.verdicts[o.worst];
+      // A flips criterion with only a max has min 0; its max is the limit then.
+      const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
+      csv << (o.passed ? 1 : 0) << "," << number(v.value) << "," << number(limit) << "," << number(v.ratio) << ","
+          << csvField(c.describe()) << "," << number(o.msPerStep) << "," << csvField(o.note) << "\n";
+    }
+  }
+  return csv.str();
+}
+
+std::string passMatrix(const SuiteResult& r) {
+  return matrix(r, [](const Outcome& o) { return !o.judged ? "0.5" : o.passed ? "1" : "0"; });
+}
+
+std::string errorMatrix(const SuiteResult& r) {
+  return matrix(r, [](const Outcome& o) {
+    if (!o.judged) return std::string("NaN");
+    const double ratio = o.verdicts[o.worst].ratio;
+    const double log = ratio > 0.0 ? std::log10(ratio) : -kLogClip;  // 0 (no drift at all) is a clean pass
+    return number(std::isnan(log) ? kLogClip : std::clamp(log, -kLogClip, kLogClip));
+  });
+}
+
+std::string gnuplotScript(const SuiteResult& r) {
+  const std::size_t columns = r.settings.size() + r.peers.size();
+  // 22 pixels a cell, square, with fixed margins in pixels for the labels, the title and the
+  // colour bar, so a run of two scenes reads as well as one of twenty-four.
+  constexpr std::size_t kCell = 22, kRight = 130, kTop = 50, kBottom = 150;
+  std::size_t longest = 0;  // the longest scene name sets the left margin (about 7 pixels a letter)
+  for (const SuiteScene& sc : r.scenes) longest = std::max(longest, sc.name.size());
+  const std::size_t kLeft = 40 + 7 * longest;
+  // At least wide enough for the titles; extra width is left blank on the right, so cells stay square.
+  const std::size_t plotRight = kLeft + kCell * columns;
+  const std::size_t width = std::max<std::size_t>(plotRight + kRight, 760), height = kTop + kBottom + kCell * r.scenes.size();
+  auto at = [](std::size_t pixels, std::size_t of) { return number(static_cast<double>(pixels) / static_cast<double>(of)); };
+  // A title as a label from the left edge: a centred title overflows a narrow chart.
+  const std::string titleY = at(height - 25, height);
+  std::ostringstream gp;
+  gp << "# Drawn by `lab stability --out DIR` (docs/lab.md); run `gnuplot stability.gp` in DIR to redraw.\n"
+     << "# Scenes on y, solver settings (method:iterations x substeps) then peers on x.\n"
+     << "unset key\nset xtics rotate by 90 right font ',8'\nset ytics font ',9'\nset tics scale 0\n"
+     << "set lmargin at screen " << at(kLeft, width) << "\nset rmargin at screen " << at(plotRight, width)
+     << "\nset bmargin at screen " << at(kBottom, height) << "\nset tmargin at screen " << at(height - kTop, height) << "\n"
+     // Cells not judged (NaN) are left undrawn: a grey ground behind the image shows them.
+     << "set object 1 rectangle from graph 0, graph 0 to graph 1, graph 1 behind fillcolor rgb '#bdbdbd' "
+        "fillstyle solid noborder\n";
+  // Lines between the methods' blocks of settings, and between the settings and the peers.
+  for (std::size_t k = 1; k < columns; ++k) {
+    const bool newBlock = k >= r.settings.size() ? k == r.settings.size() : r.settings[k].method != r.settings[k - 1].method;
+    const double x = static_cast<double>(k) - 0.5;  // between cell k - 1 and cell k
+    if (newBlock) gp << "set arrow from " << x << ", graph 0 to " << x << ", graph 1 nohead front lw 2 lc rgb 'black'\n";
+  }
+  gp << "do for [format in 'png svg'] {\n"
+     << "  if (format eq 'png') { if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " << width
+     << "," << height << " } else { set terminal png size " << width << "," << height << " } }\n"
+     << "  if (format eq 'svg') { set terminal svg size " << width << "," << height << " }\n"
+     << "  set output 'stability-pass.'.format\n"
+     << "  set label 1 'Stability: pass (green), fail (red), not judged (grey)' at screen 0.01, screen " << titleY << " left\n"
+     << "  set cbrange [0:1]\n  set palette defined (0 '#d73027', 0.5 '#bdbdbd', 1 '#1a9850')\n"
+     << "  set cbtics ('fail' 0, 'n/a' 0.5, 'pass' 1)\n  set palette maxcolors 3\n"
+     << "  plot 'stability-pass.dat' matrix rowheaders columnheaders with image\n"
+     << "  set output 'stability-error.'.format\n"
+     << "  set label 1 'Stability: log10(value / limit) of the worst criterion: > 0 fails, 3 is 1000 or a blow-up, grey n/a' at "
+        "screen 0.01, screen " << titleY << " left\n"
+     << "  set cbrange [" << -kLogClip << ":" << kLogClip << "]\n"
+     << "  set palette defined (-3 '#2166ac', -1 '#d1e5f0', 0 '#f7f7f7', 0.001 '#fddbc7', 1 '#ef8a62', 3 '#67001f')\n"
+     << "  set cbtics autofreq\n  set palette maxcolors 0\n"
+     << "  plot 'stability-error.dat' matrix rowheaders columnheaders with image\n"
+     << "  unset output\n}\n";
+  return gp.str();
+}
+
+}  // namespace lab::stability

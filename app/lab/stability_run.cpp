@@ -1,0 +1,104 @@
+#include "stability_run.h"
+
+#include <chrono>
+#include <sstream>
+
+#include "peer.h"
+#include "run.h"
+#include "scenes/scene.h"
+
+namespace lab::stability {
+namespace {
+
+// Fills judged, passed and worst from the verdicts.
+void summarize(Outcome& o) {
+  o.judged = false;
+  o.passed = true;
+  for (std::size_t i = 0; i < o.verdicts.size(); ++i) {
+    const Verdict& v = o.verdicts[i];
+    if (!v.judged) continue;
+    if (!o.judged || !(v.ratio <= o.verdicts[o.worst].ratio)) o.worst = i;
+    o.judged = true;
+    o.passed = o.passed && v.passed;
+  }
+  o.passed = o.passed && o.judged;
+}
+
+}  // namespace
+
+SuiteScene loadSuiteScene(const std::filesystem::path& file) {
+  const scenes::Scene scene = scenes::loadSceneFile(file);
+  SuiteScene s;
+  s.name = file.stem().string();
+  s.file = file;
+  s.description = scene.description;
+  s.criteria = parseCriteria(scene);
+  s.steps = runSteps(s.criteria);
+  s.dt = scene.world.solverSettings().dt;
+  s.boxes = scene.world.boxes().size();
+  return s;
+}
+
+std::string settingLabel(const Setting& setting) {
+  return std::string(phys::toString(setting.method)) + " " + std::to_string(setting.iterations) + "x" +
+         std::to_string(setting.substeps);
+}
+
+Outcome runSetting(const SuiteScene& s, const Setting& setting) {
+  scenes::Scene scene = scenes::loadSceneFile(s.file);
+  RunOptions overrides;
+  overrides.method = setting.method;
+  overrides.iterations = setting.iterations;
+  overrides.substeps = setting.substeps;
+  applyOverrides(scene.world, overrides);  // one call, as `lab run` does: the world judges the whole
+
+  phys::World& world = scene.world;
+  WorldJudge judge(s.criteria, world);
+  Outcome o;
+  std::chrono::steady_clock::duration stepping{};
+  int steps = 0;
+  // Only the steps are timed; the judge's figures (metrics, poses) would otherwise count too.
+  while (steps < s.steps && world.freezes().empty()) {
+    const auto start = std::chrono::steady_clock::now();
+    world.step();
+    stepping += std::chrono::steady_clock::now() - start;
+    judge.observe(world, ++steps);
+  }
+  const bool blewUp = !world.freezes().empty();
+  if (blewUp) {
+    const phys::FreezeReport& f = world.freezes().front();
+    std::ostringstream note;
+    note << "froze " << f.name << " at " << f.time << " s: " << f.reason;
+    o.note = note.str();
+  }
+  o.verdicts = judge.verdicts(blewUp);
+  o.wallMs = std::chrono::duration<double, std::milli>(stepping).count();
+  o.msPerStep = steps > 0 ? o.wallMs / steps : 0.0;
+  summarize(o);
+  return o;
+}
+
+Outcome runPeerEngine(const SuiteScene& s, const std::string& engine) {
+  const scenes::Scene scene = scenes::loadSceneFile(s.file);
+  std::vector<int> checkpoints;
+  for (int k = 1; k <= s.steps; ++k) checkpoints.push_back(k);
+  const PeerResult r = runPeer(engine, scene, s.dt, s.steps, checkpoints);
+  Outcome o;
+  o.note = r.unsupported;
+  o.msPerStep = r.medianMsPerStep;
+  o.wallMs = r.medianMsPerStep * s.steps;
+  if (!r.ran) {
+    if (o.note.empty()) o.note = "not run";
+    o.verdicts.assign(s.criteria.size(), Verdict{false, o.note, 0.0, 0.0, false});
+  } else {
+    o.verdicts = judgePositions(s.criteria, scene.world, s.dt, r.positions);
+  }
+  summarize(o);
+  if (!o.judged && r.ran) {
+    // Say why from the criteria themselves: "joint-gap needs orientations; ...".
+    for (const Verdict& v : o.verdicts) o.note += (o.note.empty() ? "" : "; ") + v.why;
+  }
+  return o;
+}
+
+}  // namespace lab::stability

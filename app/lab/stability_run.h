@@ -1,0 +1,57 @@
+#pragma once
+// One scene of the stability suite run under one solver setting, or in one peer engine, and
+// judged against the scene's criteria.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "physics/settings.h"
+#include "stability_criteria.h"
+#include "stability_judge.h"
+
+namespace lab::stability {
+
+/// The solver choices of one run; everything else is the scene's own (dt included).
+struct Setting {
+  phys::SolverMethod method = phys::SolverMethod::GaussSeidel;
+  int iterations = 3;
+  int substeps = 1;
+};
+
+/// A scene of the suite, loaded once to read its criteria; every run loads it afresh.
+struct SuiteScene {
+  std::string name;  ///< the file's stem ("stack-10")
+  std::filesystem::path file;
+  std::string description;  ///< the scene's own one line
+  std::vector<Criterion> criteria;
+  int steps = 0;    ///< runSteps(criteria)
+  double dt = 0.0;  ///< unit: s; the scene's
+  std::size_t boxes = 0;
+};
+
+/// Loads a scene file and parses its criteria; throws scenes::LoadError.
+SuiteScene loadSuiteScene(const std::filesystem::path& file);
+
+/// What one run (a scene under a setting, or in a peer) came to.
+struct Outcome {
+  std::vector<Verdict> verdicts;  ///< one per criterion
+  bool judged = false;  ///< at least one criterion could be judged
+  bool passed = false;  ///< every judged criterion passed
+  std::size_t worst = 0;  ///< the judged criterion with the largest ratio
+  double wallMs = 0.0;    ///< unit: ms; the stepping alone (World::step or the peer's)
+  double msPerStep = 0.0; ///< unit: ms
+  std::string note;       ///< the guard's first freeze, or what a peer could not do
+};
+
+/// Runs the scene under the setting for its steps; stops at the first freeze (a blow-up).
+/// Throws scenes::LoadError if the file changed under us, std::invalid_argument if the world
+/// refuses the setting.
+Outcome runSetting(const SuiteScene& scene, const Setting& setting);
+
+/// Runs the scene in a peer engine (peer.h) and judges what its positions can answer.
+Outcome runPeerEngine(const SuiteScene& scene, const std::string& engine);
+
+/// "gauss-seidel 3x4" (iterations x substeps).
+std::string settingLabel(const Setting& setting);
+
+}  // namespace lab::stability

@@ -1,0 +1,601 @@
+// lab sweep: every combination of the listed settings run on one scene, each timed and measured
+// against the scene's accuracy target (accuracy.h), written as a CSV and drawn as error against
+// cost with the Pareto front. docs/lab.md, "lab sweep", documents the options and the files.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <ostream>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "accuracy.h"
+#include "charts.h"
+#include "commands.h"
+#include "gnuplot.h"
+#include "lab.h"
+#include "options.h"
+#include "peer.h"
+#include "report.h"
+#include "sweep_core.h"
+
+namespace lab {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Errors below this are round-off: a Verlet projectile, exact in exact arithmetic, collects
+/// 1e-11 m over a thousand substeps. They are drawn and compared as this, so the front does not
+/// chase noise. unit: m
+constexpr double kErrorFloor = 1e-9;
+/// A sweep of more runs than this is surely a typo in a list.
+constexpr std::size_t kMaxCombinations = 10000;
+constexpr int kMaxRepeats = 1000;
+/// Sweeps of fewer runs finish before a progress bar would help.
+constexpr int kProgressMinRuns = 10;
+
+std::string sweepUsage() {
+  return "usage: lab sweep SCENE --out DIR [--method LIST] [--iterations LIST] [--substeps LIST]\n"
+         "                 [--dt LIST] [--model LIST] [--repeat R] [--steps N] [--no-peers] [--data DIR]\n"
+         "  LIST            comma-separated values; every combination is run (default: the scene's)\n"
+         "  --method        gauss-seidel, jacobi, xpbd, shake\n"
+         "  --iterations    relaxation passes per substep, 1 to 1000\n"
+         "  --substeps      integrations per step, 1 to 1000\n"
+         "  --dt            seconds per step, 1e-06 to 1\n"
+         "  --model         corners, tetra (boxes), seed, lean (ragdolls), imposed at load\n"
+         "  --repeat R      timed runs per combination, 1 to 1000 (default 3; the median counts)\n"
+         "  --steps N       steps at the scene's dt (default: 1 s of them); other dts run as long\n"
+         "  --no-peers      leave out the peer engines (Bullet, ODE, MuJoCo when built in)\n"
+         "  --data DIR      folder holding assets/ (default: the source tree)\n"
+         "  --out DIR       where results.csv, pareto.csv, sweep.gp and the chart go (required)\n";
+}
+
+struct SweepOptions {
+  std::string scene;
+  std::vector<phys::SolverMethod> methods;  // empty: the scene's own, and so on
+  std::vector<int> iterations;
+  std::vector<int> substeps;
+  std::vector<double> dts;
+  std::vector<std::string> models;
+  int repeats = 3;
+  std::optional<int> steps;
+  bool peers = true;
+  std::filesystem::path dataDir;
+  std::filesystem::path out;
+};
+
+// Appends v unless it is there already: a value listed twice is run once.
+template <typename T>
+void addOnce(std::vector<T>& list, const T& v) {
+  if (std::find(list.begin(), list.end(), v) == list.end()) list.push_back(v);
+}
+
+// One LIST option's items into `into`; returns the error, or "".
+std::string parseListOption(const std::string& option, const std::string& text, SweepOptions& o) {
+  const std::optional<std::vector<std::string>> items = splitList(text);
+  if (!items) return option + ": '" + text + "' is not a comma-separated list (an item is empty)";
+  for (const std::string& item : *items) {
+    const std::string bad = option + ": '" + item + "' ";
+    if (option == "--method") {
+      const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(item);
+      if (!m) return option + ": unknown method '" + item + "' (gauss-seidel, jacobi, xpbd or shake)";
+      addOnce(o.methods, *m);
+    } else if (option == "--iterations" || option == "--substeps") {
+      const int high = option == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
+      const std::optional<int> n = parseWholeNumber(item, 1, high);
+      if (!n) return bad + "is not a whole number from 1 to " + std::to_string(high);
+      addOnce(option == "--iterations" ? o.iterations : o.substeps, *n);
+    } else if (option == "--dt") {
+      const std::optional<double> dt = parseNumber(item);
+      if (!dt || !(*dt >= phys::kMinDt && *dt <= phys::kMaxDt)) return bad + "is not a number of seconds from 1e-06 to 1";
+      addOnce(o.dts, *dt);
+    } else {
+      addOnce(o.models, item);  // checked against the scene once it is loaded
+    }
+  }
+  return {};
+}
+
+std::string parseSweep(const std::vector<std::string>& args, SweepOptions& o) {
+  bool haveOut = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    // A following "--word" is a forgotten value, not a value.
+    auto value = [&]() -> const std::string* {
+      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
+      return &args[++i];
+    };
+    if (a == "--method" || a == "--iterations" || a == "--substeps" || a == "--dt" || a == "--model") {
+      const std::string* v = value();
+      if (v == nullptr) return a + " needs a comma-separated list";
+      if (std::string e = parseListOption(a, *v, o); !e.empty()) return e;
+    } else if (a == "--repeat" || a == "--steps") {
+      const std::string* v = value();
+      const int high = a == "--repeat" ? kMaxRepeats : kMaxSteps;
+      const std::optional<int> n = v == nullptr ? std::nullopt : parseWholeNumber(*v, 1, high);
+      if (!n) {
+        return v == nullptr ? a + " needs a whole number"
+                            : a + ": '" + *v + "' is not a whole number from 1 to " + std::to_string(high);
+      }
+      if (a == "--repeat") o.repeats = *n;
+      else o.steps = *n;
+    } else if (a == "--no-peers") {
+      o.peers = false;
+    } else if (a == "--data" || a == "--out") {
+      const std::string* v = value();
+      if (v == nullptr) return a + " needs a folder";
+      (a == "--data" ? o.dataDir : o.out) = *v;
+      haveOut = haveOut || a == "--out";
+    } else if (a.size() > 1 && a[0] == '-') {
+      return "unknown option '" + a + "'";
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      return "sweep takes one SCENE; got '" + o.scene + "' and '" + a + "'";
+    }
+  }
+  if (o.scene.empty()) return "sweep needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  if (!haveOut) return "sweep needs --out DIR (where the CSV and the chart go)";
+  return {};
+}
+
+// ---- the runs -------------------------------------------------------------------------------
+
+/// One row of results.csv: one of our settings, or one peer engine at one dt.
+struct Row {
+  std::string method;
+  std::string model;
+  std::optional<int> iterations;  // none for a peer
+  std::optional<int> substeps;
+  double dt = 0.0;
+  int steps = 0;
+  int repeats = 0;
+  double msPerStep = 0.0;
+  Figures figures;
+  bool peer = false;
+  double uncertainty = 0.0;
+  std::string note;
+  bool pareto = false;
+
+  double msPerSimSecond() const { return msPerStep / dt; }
+  bool blewUp() const { return figures.frozen > 0 || !std::isfinite(figures.error); }
+};
+
+/// "[#####     ] 12/40 runs" on stderr: redrawn in place on a terminal, one line per tenth
+/// otherwise (a log keeps every line, and \r would pile them up).
+class Progress {
+ public:
+  Progress(std::ostream& err, int total)
+      : err_(err), total_(total), terminal_(&err == &std::cerr && ::isatty(STDERR_FILENO) == 1) {}
+
+  void advance(int runs = 1) {
+    done_ += runs;
+    if (total_ < kProgressMinRuns) return;
+    const int tenth = done_ * 10 / total_;
+    if (terminal_) {
+      err_ << "\r" << bar() << std::flush;
+      if (done_ >= total_) err_ << "\n";
+    } else if (tenth > shownTenth_) {
+      shownTenth_ = tenth;
+      err_ << bar() << "\n";
+    }
+  }
+
+ private:
+  std::string bar() const {
+    const int filled = std::min(10, done_ * 10 / total_);
+    return "[" + std::string(static_cast<std::size_t>(filled), '#') + std::string(static_cast<std::size_t>(10 - filled), ' ') +
+           "] " + std::to_string(done_) + "/" + std::to_string(total_) + " runs";
+  }
+
+  std::ostream& err_;
+  int total_;
+  bool terminal_;
+  int done_ = 0;
+  int shownTenth_ = 0;
+};
+
+/// What the sweep covers, after the scene's own values filled the unset dimensions.
+struct Plan {
+  std::filesystem::path file;
+  std::string sceneName;
+  double sceneDt = 0.0;
+  double horizon = 0.0;  // unit: s of simulated time
+  std::vector<ModelChoice> models;
+  std::vector<Setting> settings;  // every combination, in run order
+  std::vector<double> dts;
+  int repeats = 3;
+  bool peers = true;
+
+  int stepsAt(double dt) const { return std::max(1, static_cast<int>(std::lround(horizon / dt))); }
+};
+
+// Builds the plan; returns a usage error (a --model that does not fit the scene), or "".
+std::string makePlan(const SweepOptions& o, const std::filesystem::path& file, Plan& plan) {
+  const scenes::Scene scene = scenes::loadSceneFile(file);
+  const phys::SolverSettings own = scene.world.solverSettings();
+  const SceneModels models = sceneModels(file);
+  plan.file = file;
+  plan.sceneName = scene.name;
+  plan.sceneDt = own.dt;
+  plan.horizon = (o.steps ? *o.steps : defaultSteps(own.dt)) * own.dt;
+  plan.repeats = o.repeats;
+  plan.peers = o.peers;
+  for (const std::string& name : o.models) {
+    std::string error;
+    const std::optional<ModelChoice> c = modelChoice(name, models, error);
+    if (!c) return "--model: " + error;
+    plan.models.push_back(*c);
+  }
+  if (plan.models.empty()) plan.models.push_back(models.asFile);
+  const std::vector<phys::SolverMethod> methods = o.methods.empty() ? std::vector{own.method} : o.methods;
+  const std::vector<int> iterations = o.iterations.empty() ? std::vector{own.iterations} : o.iterations;
+  const std::vector<int> substeps = o.substeps.empty() ? std::vector{own.substeps} : o.substeps;
+  plan.dts = o.dts.empty() ? std::vector{own.dt} : o.dts;
+  const std::size_t count = plan.models.size() * plan.dts.size() * methods.size() * iterations.size() * substeps.size();
+  if (count > kMaxCombinations) {
+    return std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) + " (shorten a list)";
+  }
+  for (const ModelChoice& model : plan.models) {
+    for (double dt : plan.dts) {
+      for (phys::SolverMethod method : methods) {
+        for (int it : iterations) {
+          for (int sub : substeps) plan.settings.push_back(Setting{model, method, it, sub, dt});
+        }
+      }
+    }
+  }
+  return {};
+}
+
+Row runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progress& progress) {
+  const bool fresh = !targets.has(s, plan.stepsAt(s.dt));
+  const AccuracyTarget& target = targets.get(plan.file, s, plan.stepsAt(s.dt));
+  if (fresh) progress.advance();
+  Row r;
+  r.method = std::string(phys::toString(s.method));
+  r.model = s.model.label;
+  r.iterations = s.iterations;
+  r.substeps = s.substeps;
+  r.dt = s.dt;
+  r.steps = stepsFor(target, plan.stepsAt(s.dt));
+  r.repeats = plan.repeats;
+  r.uncertainty = maxUncertainty(target);
+  r.figures = measureFigures(plan.file, s, r.steps, target);
+  progress.advance();
+  r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
+  progress.advance(plan.repeats);
+  if (r.figures.frozen > 0) r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) + " particles";
+  return r;
+}
+
+// The peers at one dt, on the scene as loaded with the first model, against that model's target.
+void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Row>& rows, std::vector<std::string>& notes,
+              Progress& progress) {
+  Setting first{plan.models.front(), phys::SolverMethod::GaussSeidel, 1, 1, dt};
+  const AccuracyTarget& target = targets.get(plan.file, first, plan.stepsAt(dt));
+  const int steps = stepsFor(target, plan.stepsAt(dt));
+  for (const std::string& engine : peerEngines()) {
+    const scenes::Scene scene = scenes::loadSceneFile(plan.file, first.model.options);
+    PeerResult p;
+    try {
+      p = runPeer(engine, scene, dt, steps, target.checkpoints);
+    } catch (const std::exception& e) {
+      // One engine failing should not cost the whole sweep its results.
+      p.ran = false;
+      p.unsupported = std::string("failed: ") + e.what();
+    }
+    progress.advance();
+    if (!p.ran) {
+      notes.push_back(engine + " not run: " + p.unsupported);
+      continue;
+    }
+    Row r;
+    r.peer = true;
+    r.method = p.engine;
+    r.model = first.model.label;
+    r.dt = dt;
+    r.steps = steps;
+    r.repeats = 1;
+    r.msPerStep = p.medianMsPerStep;
+    r.uncertainty = maxUncertainty(target);
+    r.figures.error = accuracyError(target, p.positions);
+    r.figures.maxPenetration = p.maxPenetration;
+    r.note = p.unsupported;
+    rows.push_back(r);
+  }
+}
+
+// ---- the front ------------------------------------------------------------------------------
+
+// The cost the chart and the front use: ms per step when every row has one dt, else wall ms
+// per simulated second, since a step of a larger dt does more.
+bool oneDt(const std::vector<Row>& rows) {
+  return std::all_of(rows.begin(), rows.end(), [&](const Row& r) { return r.dt == rows.front().dt; });
+}
+
+double cost(const Row& r, bool perStep) { return perStep ? r.msPerStep : r.msPerSimSecond(); }
+double shownError(const Row& r) { return std::max(r.figures.error, kErrorFloor); }
+
+// Marks the rows no other row beats on both cost and error (a blown-up run is never on it).
+void markPareto(std::vector<Row>& rows) {
+  const bool perStep = oneDt(rows);
+  for (Row& r : rows) {
+    if (r.blewUp()) continue;
+    r.pareto = std::none_of(rows.begin(), rows.end(), [&](const Row& q) {
+      if (q.blewUp()) return false;
+      const bool noWorse = cost(q, perStep) <= cost(r, perStep) && shownError(q) <= shownError(r);
+      const bool better = cost(q, perStep) < cost(r, perStep) || shownError(q) < shownError(r);
+      return noWorse && better;
+    });
+  }
+}
+
+std::vector<Row> frontByCost(const std::vector<Row>& rows) {
+  std::vector<Row> front;
+  for (const Row& r : rows) {
+    if (r.pareto) front.push_back(r);
+  }
+  const bool perStep = oneDt(rows);
+  std::stable_sort(front.begin(), front.end(), [&](const Row& a, const Row& b) { return cost(a, perStep) < cost(b, perStep); });
+  return front;
+}
+
+// ---- files ----------------------------------------------------------------------------------
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string csvNumber(double v) { return formatNumber(v, 10); }
+
+constexpr const char* kCsvHeader =
+    "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_uncertainty,"
+    "max_stick_error,max_joint_error,max_penetration,energy_drift,frozen,pareto,note\n";
+
+std::string csvRow(const std::string& scene, const Row& r) {
+  auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
+  auto ours = [&](double v) { return r.peer ? std::string() : csvNumber(v); };  // blank: no such figure for a peer
+  std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," + opt(r.iterations) + "," +
+                     opt(r.substeps) + "," + csvNumber(r.dt) + "," + std::to_string(r.steps) + "," +
+                     std::to_string(r.repeats) + "," + csvNumber(r.msPerStep) + "," + csvNumber(r.msPerSimSecond()) + "," +
+                     csvNumber(r.blewUp() ? kInf : r.figures.error) + "," + csvNumber(r.uncertainty) + "," +
+                     ours(r.figures.maxStickError) + "," + ours(r.figures.maxJointError) + "," +
+                     csvNumber(r.figures.maxPenetration) + "," + ours(r.figures.energyDrift) + "," +
+                     (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (r.pareto ? "1" : "0") + "," +
+                     csvField(r.note);
+  return line + "\n";
+}
+
+std::string csvText(const std::string& scene, const std::vector<Row>& rows) {
+  std::string text = kCsvHeader;
+  for (const Row& r : rows) text += csvRow(scene, r);
+  return text;
+}
+
+// "3x1": iterations x substeps; nothing for a peer, whose method column names it.
+std::string pointLabel(const Row& r) {
+  if (r.peer) return {};
+  return std::to_string(*r.iterations) + "x" + std::to_string(*r.substeps);
+}
+
+// "shake 1x8", or the peer's name.
+// "shake 1x8" (with its model and dt when the sweep has several), or the peer's name.
+std::string rowName(const Row& r, const Plan& plan) {
+  std::string name = r.peer ? r.method : r.method + " " + pointLabel(r);
+  if (plan.models.size() > 1 && !r.peer) name += " " + r.model;
+  return plan.dts.size() > 1 ? name + " dt " + formatNumber(r.dt, 4) : name;
+}
+
+// The simulated time the runs covered: the horizon, or later for an analytic answer after it.
+double simulatedSeconds(const std::vector<Row>& rows) {
+  double longest = 0.0;
+  for (const Row& r : rows) longest = std::max(longest, r.steps * r.dt);
+  return longest;
+}
+
+Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget) {
+  const bool perStep = oneDt(rows);
+  Chart c;
+  c.title = plan.sceneName + ": error against cost (" + formatNumber(simulatedSeconds(rows), 4) +
+            " s simulated; labels: iterations x substeps)";
+  c.xLabel = perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second";
+  c.yLabel = "error (m): largest distance from the " + firstTarget.kind + (firstTarget.kind == "analytic" ? " answer" : " run");
+  c.logX = true;
+  c.logY = true;
+  c.output = "error-vs-cost";
+  // One series per method or engine (and per model and dt when there are several).
+  const bool manyModels = plan.models.size() > 1;
+  const bool manyDts = plan.dts.size() > 1;
+  std::vector<std::string> order;
+  auto seriesName = [&](const Row& r) {
+    std::string name = r.peer ? r.method + " (peer)" : r.method;
+    if (manyModels && !r.peer) name += " " + r.model;
+    if (manyDts) name += " dt " + formatNumber(r.dt, 4);
+    return name;
+  };
+  for (const Row& r : rows) addOnce(order, seriesName(r));
+  // The front first, so the points are drawn over its line.
+  ChartSeries front;
+  front.title = "Pareto front";
+  front.line = true;
+  front.labels = true;
+  for (const Row& r : frontByCost(rows)) front.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
+  c.series.push_back(front);
+  for (const std::string& name : order) {
+    ChartSeries s;
+    s.title = name;
+    for (const Row& r : rows) {
+      if (seriesName(r) == name && !r.blewUp()) s.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
+    }
+    c.series.push_back(s);
+  }
+  const double u = maxUncertainty(firstTarget);
+  if (firstTarget.kind == "reference" && u > kErrorFloor) {
+    c.guide = u;
+    c.guideTitle = "reference's own uncertainty";
+  }
+  return c;
+}
+
+// ---- the report on stdout ---------------------------------------------------------------------
+
+std::string pad(std::string text, std::size_t width) {
+  if (text.size() < width) text.append(width - text.size(), ' ');
+  return text;
+}
+
+std::string padLeft(const std::string& text, std::size_t width) {
+  return text.size() < width ? std::string(width - text.size(), ' ') + text : text;
+}
+
+std::string tableLine(const Row& r) {
+  auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("-"); };
+  auto ours = [&](double v) { return r.peer ? std::string("-") : formatNumber(v, 3); };
+  return pad(r.method, 13) + " " + pad(r.model.empty() ? "-" : r.model, 12) + padLeft(opt(r.iterations), 5) + padLeft(opt(r.substeps), 5) + "  " +
+         pad(formatNumber(r.dt, 6), 10) + padLeft(std::to_string(r.steps), 6) + padLeft(formatNumber(r.msPerStep, 4), 10) + padLeft(formatNumber(r.blewUp() ? kInf : r.figures.error, 3), 11) +
+         padLeft(ours(r.figures.maxStickError), 10) + padLeft(formatNumber(r.figures.maxPenetration, 3), 10) +
+         padLeft(ours(r.figures.energyDrift), 10) + padLeft(r.peer ? "-" : std::to_string(r.figures.frozen), 7) +
+         (r.pareto ? "  *" : "") + "\n";
+}
+
+void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows, const std::vector<std::string>& accuracy,
+                 const std::vector<std::string>& notes) {
+  out << "sweep       " << plan.sceneName << " (" << plan.file.string() << ")\n";
+  out << "runs        " << plan.settings.size() << (plan.settings.size() == 1 ? " setting" : " settings") << " x "
+      << plan.repeats << " timed " << (plan.repeats == 1 ? "run" : "runs") << " and 1 measured, each "
+      << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
+  for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
+  for (const std::string& n : notes) out << "peers       " << n << "\n";
+  out << pad("method", 13) << " " << pad("model", 12) << padLeft("iter", 5) << padLeft("sub", 5) << "  " << pad("dt (s)", 10)
+      << padLeft("steps", 6) << padLeft("ms/step", 10) << padLeft("error (m)", 11) << padLeft("stick err", 10) << padLeft("penet (m)", 10)
+      << padLeft("drift (J)", 10) << padLeft("frozen", 7) << "\n";
+  for (const Row& r : rows) out << tableLine(r);
+}
+
+// ---- the command ----------------------------------------------------------------------------
+
+struct Written {
+  std::vector<std::string> files;
+  std::string chartProblem;  // "" when the chart was drawn
+  bool chartFailed = false;  // gnuplot was there and failed
+};
+
+Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
+                     const std::filesystem::path& dir) {
+  Written w;
+  std::filesystem::create_directories(dir);
+  writeFileAtomically(dir / "results.csv", csvText(plan.sceneName, rows));
+  writeFileAtomically(dir / "pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
+  const Chart chart = errorChart(plan, rows, firstTarget);
+  writeFileAtomically(dir / "sweep.gp", gnuplotScript(chart));
+  for (const char* f : {"results.csv", "pareto.csv", "sweep.gp"}) w.files.push_back((dir / f).string());
+  if (!hasPoints(chart)) {
+    w.chartProblem = "no run has a finite error, so there is no chart to draw";
+    return w;
+  }
+  // Without gnuplot, runGnuplot says so and how to draw the chart later: not a failure.
+  const bool haveGnuplot = !findGnuplot().empty();
+  w.chartProblem = runGnuplot(dir / "sweep.gp", dir);
+  w.chartFailed = haveGnuplot && !w.chartProblem.empty();
+  if (!w.chartFailed) {
+    w.files.push_back((dir / "error-vs-cost.png").string());
+    w.files.push_back((dir / "error-vs-cost.svg").string());
+  }
+  return w;
+}
+
+int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream& out, std::ostream& err) {
+  const int engines = plan.peers ? static_cast<int>(peerEngines().size()) : 0;
+  const int total = static_cast<int>(plan.settings.size()) * (plan.repeats + 1) +
+                    static_cast<int>(plan.models.size() * plan.dts.size()) + engines * static_cast<int>(plan.dts.size());
+  Progress progress(err, total);
+  TargetCache targets;
+  std::vector<Row> rows;
+  for (const Setting& s : plan.settings) rows.push_back(runSetting(plan, s, targets, progress));
+  std::vector<std::string> notes;
+  if (plan.peers) {
+    for (double dt : plan.dts) runPeers(plan, dt, targets, rows, notes, progress);
+  }
+  markPareto(rows);
+
+  // Each distinct target once, named by its model and dt when there are several.
+  std::vector<std::string> accuracy;
+  for (const ModelChoice& m : plan.models) {
+    for (double dt : plan.dts) {
+      const Setting key{m, phys::SolverMethod::GaussSeidel, 1, 1, dt};
+      std::string line = targets.get(plan.file, key, plan.stepsAt(dt)).description;
+      if (plan.models.size() > 1 || plan.dts.size() > 1) {
+        // Built piecewise: "(" + std::string trips GCC 12's false -Wrestrict (bug 105329).
+        std::string which(1, '(');
+        if (!m.label.empty()) which += m.label + ", ";
+        which += "dt " + formatNumber(dt) + ") ";
+        line = which + line;
+      }
+      accuracy.push_back(line);
+    }
+  }
+  const Setting firstKey{plan.models.front(), phys::SolverMethod::GaussSeidel, 1, 1, plan.dts.front()};
+  const AccuracyTarget& firstTarget = targets.get(plan.file, firstKey, plan.stepsAt(plan.dts.front()));
+
+  printReport(out, plan, rows, accuracy, notes);
+  const Written w = writeOutputs(plan, rows, firstTarget, outDir);
+  const auto front = frontByCost(rows);
+  out << "pareto      " << front.size() << (front.size() == 1 ? " setting" : " settings") << " (marked *):";
+  for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
+  out << "\n";
+  out << "wrote       ";
+  for (std::size_t i = 0; i < w.files.size(); ++i) out << (i == 0 ? "" : ", ") << w.files[i];
+  out << "\n";
+  if (!w.chartProblem.empty()) err << "lab: sweep: " << w.chartProblem << "\n";
+  return w.chartFailed ? kExitFailure : kExitOk;
+}
+
+}  // namespace
+
+int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  for (const std::string& a : args) {
+    if (a == "--help" || a == "-h") {
+      out << sweepUsage();
+      return kExitOk;
+    }
+  }
+  SweepOptions o;
+  if (const std::string e = parseSweep(args, o); !e.empty()) {
+    err << "lab: " << e << "\n" << sweepUsage();
+    return kExitUsage;
+  }
+  RunOptions where;
+  where.dataDir = o.dataDir;
+  std::filesystem::path file = o.scene;
+  try {
+    file = scenes::resolveScene(o.scene, scenes::sceneDirectory(dataDir(where)));
+    Plan plan;
+    if (const std::string e = makePlan(o, file, plan); !e.empty()) {
+      err << "lab: " << e << "\n" << sweepUsage();
+      return kExitUsage;
+    }
+    return runSweep(plan, o.out, out, err);
+  } catch (const scenes::LoadError& e) {
+    err << e.what() << "\n";  // "file:line: ...", as `lab run` prints it
+  } catch (const std::invalid_argument& e) {
+    err << "lab: sweep: the settings were refused: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    err << "lab: sweep: " << e.what() << "\n";
+  }
+  return kExitFailure;
+}
+
+}  // namespace lab

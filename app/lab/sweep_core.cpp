@@ -1,0 +1,252 @@
+#include "sweep_core.h"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "bodies.h"
+#include "run.h"
+
+namespace lab {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::size_t particlesWhenLoadedWith(const std::filesystem::path& file, const scenes::LoadOptions& options) {
+  return scenes::loadSceneFile(file, options).world.particles().size();
+}
+
+scenes::LoadOptions withBoxModel(phys::BoxModel m) {
+  scenes::LoadOptions o;
+  o.boxModel = m;
+  return o;
+}
+
+scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
+  scenes::LoadOptions o;
+  o.ragdollModel = m;
+  return o;
+}
+
+// The larger of a running maximum and a new figure; a figure that is not finite stays so.
+double worst(double sofar, double figure) { return std::isfinite(figure) ? std::max(sofar, figure) : kInf; }
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// 'text' in quotes. Appended piecewise: "'" + std::string(...) trips GCC 12's false -Wrestrict
+// warning (GCC bug 105329).
+std::string inQuotes(std::string_view text) {
+  std::string out(1, '\'');
+  out.append(text);
+  out.push_back('\'');
+  return out;
+}
+
+}  // namespace
+
+SceneModels sceneModels(const std::filesystem::path& file) {
+  const std::size_t asWritten = particlesWhenLoadedWith(file, {});
+  const std::size_t corners = particlesWhenLoadedWith(file, withBoxModel(phys::BoxModel::Corners));
+  const std::size_t tetra = particlesWhenLoadedWith(file, withBoxModel(phys::BoxModel::Tetra));
+  const std::size_t seed = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Seed));
+  const std::size_t lean = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Lean));
+
+  SceneModels m;
+  m.boxes = corners != tetra;
+  m.ragdolls = seed != lean;
+  // No boxes or ragdolls: there is no model to name (empty label).
+  if (!m.boxes && !m.ragdolls) return m;
+  // A model kind is uniform in the file when imposing one of its models changes nothing.
+  // The box option leaves ragdolls alone and the ragdoll option boxes, so each count
+  // compares one kind alone.
+  ModelChoice c;
+  std::vector<std::string> parts;
+  if (m.boxes) {
+    if (asWritten == corners) c.options.boxModel = phys::BoxModel::Corners;
+    else if (asWritten == tetra) c.options.boxModel = phys::BoxModel::Tetra;
+    if (c.options.boxModel) parts.emplace_back(phys::toString(*c.options.boxModel));
+  }
+  if (m.ragdolls) {
+    if (asWritten == seed) c.options.ragdollModel = phys::RagdollModel::Seed;
+    else if (asWritten == lean) c.options.ragdollModel = phys::RagdollModel::Lean;
+    if (c.options.ragdollModel) parts.emplace_back(phys::toString(*c.options.ragdollModel));
+  }
+  if (parts.size() != static_cast<std::size_t>(m.boxes) + static_cast<std::size_t>(m.ragdolls)) {
+    m.asFile = ModelChoice{"scene", {}};  // models mixed within a kind: keep the file's as they are
+    return m;
+  }
+  c.label = parts[0];
+  for (std::size_t i = 1; i < parts.size(); ++i) c.label += "+" + parts[i];
+  m.asFile = c;
+  return m;
+}
+
+std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error) {
+  if (const auto box = phys::parseBoxModel(name)) {
+    if (!models.boxes) {
+      error = inQuotes(name) + " is a box model and the scene has no boxes";
+      return std::nullopt;
+    }
+    return ModelChoice{std::string(name), withBoxModel(*box)};
+  }
+  if (const auto ragdoll = phys::parseRagdollModel(name)) {
+    if (!models.ragdolls) {
+      error = inQuotes(name) + " is a ragdoll model and the scene has no ragdolls";
+      return std::nullopt;
+    }
+    return ModelChoice{std::string(name), withRagdollModel(*ragdoll)};
+  }
+  error = "unknown model " + inQuotes(name) + " (corners, tetra, seed or lean)";
+  return std::nullopt;
+}
+
+std::vector<ModelChoice> allModelChoices(const SceneModels& models) {
+  std::vector<ModelChoice> boxes{ModelChoice{"", {}}};
+  if (models.boxes) {
+    boxes = {ModelChoice{"corners", withBoxModel(phys::BoxModel::Corners)},
+             ModelChoice{"tetra", withBoxModel(phys::BoxModel::Tetra)}};
+  }
+  if (!models.boxes && !models.ragdolls) return {models.asFile};
+  std::vector<ModelChoice> out;
+  for (const ModelChoice& b : boxes) {
+    if (!models.ragdolls) {
+      out.push_back(b);
+      continue;
+    }
+    for (const phys::RagdollModel r : {phys::RagdollModel::Seed, phys::RagdollModel::Lean}) {
+      ModelChoice c = b;
+      c.options.ragdollModel = r;
+      c.label = (b.label.empty() ? "" : b.label + "+") + std::string(phys::toString(r));
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+std::string Setting::describe() const {
+  return std::string(phys::toString(method)) + ", " + std::to_string(iterations) +
+         (iterations == 1 ? " iteration, " : " iterations, ") + std::to_string(substeps) +
+         (substeps == 1 ? " substep" : " substeps") + (model.label.empty() ? "" : ", model " + model.label);
+}
+
+scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& setting) {
+  scenes::Scene scene = scenes::loadSceneFile(file, setting.model.options);
+  phys::SolverSettings s = scene.world.solverSettings();
+  s.method = setting.method;
+  s.iterations = setting.iterations;
+  s.substeps = setting.substeps;
+  s.dt = setting.dt;
+  // All at once, so the world judges the combination; it keeps every particle's velocity.
+  scene.world.setSolverSettings(s);
+  return scene;
+}
+
+Figures measureFigures(const std::filesystem::path& file, const Setting& setting, int steps,
+                       const AccuracyTarget& target) {
+  scenes::Scene scene = loadSetting(file, setting);
+  phys::World& world = scene.world;
+  const double energyBefore = world.metrics().energy();
+  Figures f;
+  std::vector<std::vector<phys::Vec3>> positions;
+  std::size_t next = 0;  // the next checkpoint to record
+  double steppingMs = 0.0;
+  phys::Metrics m = world.metrics();
+  for (int i = 1; i <= steps; ++i) {
+    const Clock::time_point start = Clock::now();
+    world.step();
+    steppingMs += msSince(start);
+    m = world.metrics();
+    f.maxStickError = worst(f.maxStickError, m.maxConstraintError);
+    f.maxJointError = worst(f.maxJointError, m.maxJointError);
+    f.maxPenetration = worst(f.maxPenetration, m.maxPenetration);
+    if (next < target.checkpoints.size() && target.checkpoints[next] == i) {
+      positions.push_back(bodyPositions(world));
+      ++next;
+    }
+  }
+  f.energyDrift = m.energy() - energyBefore;
+  f.frozen = m.frozen;
+  f.error = f.frozen > 0 ? kInf : accuracyError(target, positions);
+  f.roughMsPerStep = steps > 0 ? steppingMs / steps : 0.0;
+  return f;
+}
+
+double timeSetting(const std::filesystem::path& file, const Setting& setting, int steps, int repeats) {
+  std::vector<double> msPerStep;
+  for (int r = 0; r < repeats; ++r) {
+    scenes::Scene scene = loadSetting(file, setting);  // each repeat from a fresh load
+    phys::World& world = scene.world;
+    const Clock::time_point start = Clock::now();
+    for (int i = 0; i < steps; ++i) world.step();
+    msPerStep.push_back(msSince(start) / steps);
+  }
+  return median(std::move(msPerStep));
+}
+
+namespace {
+
+std::string cacheKey(const Setting& setting, int steps) {
+  char dt[32];
+  std::snprintf(dt, sizeof dt, "%.17g", setting.dt);
+  return setting.model.label + "|" + dt + "|" + std::to_string(steps);
+}
+
+}  // namespace
+
+const AccuracyTarget& TargetCache::get(const std::filesystem::path& file, const Setting& setting, int steps) {
+  const std::string key = cacheKey(setting, steps);
+  auto it = targets_.find(key);
+  if (it == targets_.end()) {
+    const scenes::Scene scene = scenes::loadSceneFile(file, setting.model.options);
+    it = targets_.emplace(key, accuracyTarget(scene, setting.model.options, setting.dt, steps)).first;
+  }
+  return it->second;
+}
+
+bool TargetCache::has(const Setting& setting, int steps) const {
+  return targets_.count(cacheKey(setting, steps)) != 0;
+}
+
+int defaultSteps(double dt) { return std::max(1, static_cast<int>(std::lround(kDefaultHorizon / dt))); }
+
+std::optional<std::vector<std::string>> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item.empty()) return std::nullopt;
+    items.push_back(item);
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+std::optional<int> parseWholeNumber(const std::string& text, int low, int high) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || n < low || n > high) return std::nullopt;
+  return n;
+}
+
+std::optional<double> parseNumber(const std::string& text) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::string formatNumber(double value, int digits) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+}  // namespace lab

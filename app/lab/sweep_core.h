@@ -1,0 +1,118 @@
+#pragma once
+// What `lab sweep` and `lab tune` share: a point of the settings space (models, method,
+// passes, substeps, dt), the untimed pass that measures its figures, the timed runs that
+// measure its cost, which box and ragdoll models a scene can take, and the small parsers of
+// their command lines. docs/lab.md, "lab sweep" and "lab tune", describe the figures.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "accuracy.h"
+#include "physics/settings.h"
+#include "scenes/scene.h"
+
+namespace lab {
+
+/// Which bodies of a scene a --model value changes, imposed at load (scenes::LoadOptions).
+struct ModelChoice {
+  /// "corners", "tetra", "seed", "lean", "tetra+lean"; "scene" for the file's own mixed models;
+  /// empty for a scene with neither boxes nor ragdolls.
+  std::string label;
+  scenes::LoadOptions options;    ///< what is imposed; nothing for "scene"
+};
+
+/// The model kinds a scene has, found by loading it under each model and counting particles
+/// (a box's model changes its particle count, 8 or 4; a ragdoll's, 80 or 40).
+struct SceneModels {
+  bool boxes = false;     ///< box models (corners, tetra) change something
+  bool ragdolls = false;  ///< ragdoll models (seed, lean) change something
+  /// The file's own models, named when every box (ragdoll) has the same one: then imposing
+  /// it gives the same world, so "corners" stands for the file's corners boxes.
+  ModelChoice asFile;
+};
+
+/// Throws scenes::LoadError like the loader.
+SceneModels sceneModels(const std::filesystem::path& file);
+
+/// The model named by a --model value, or nullopt with `error` set: an unknown name, or one of
+/// a kind the scene does not have ("lean" for a scene without ragdolls).
+std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error);
+
+/// Every model choice that applies: the box models times the ragdoll models the scene has
+/// ("corners", "tetra+lean", ...), or just the file's own when it has neither kind.
+std::vector<ModelChoice> allModelChoices(const SceneModels& models);
+
+/// One point of the settings space.
+struct Setting {
+  ModelChoice model;
+  phys::SolverMethod method = phys::SolverMethod::GaussSeidel;
+  int iterations = 3;
+  int substeps = 1;
+  double dt = 1.0 / 60.0;  ///< unit: s
+
+  /// "xpbd, 2 iterations, 4 substeps, model tetra" (no model part when the label is empty)
+  std::string describe() const;
+};
+
+/// What one untimed pass over a setting measured. The max figures are over every step.
+struct Figures {
+  double error = 0.0;           ///< unit: m; accuracyError against the target; inf if it blew up
+  double maxStickError = 0.0;   ///< unitless; Metrics::maxConstraintError, max over the steps
+  double maxJointError = 0.0;   ///< unit: m; Metrics::maxJointError, max over the steps
+  double maxPenetration = 0.0;  ///< unit: m; Metrics::maxPenetration, max over the steps
+  double energyDrift = 0.0;     ///< unit: J; energy after the last step minus before the first
+  int frozen = 0;               ///< particles the guard froze by the end
+  /// unit: ms; this pass's own steps timed one by one and averaged: rough (one run, the
+  /// metrics read between the steps disturb the caches), for the tune's pruning only.
+  double roughMsPerStep = 0.0;
+};
+
+/// Loads the file with the setting's models and puts its solver settings in. Throws
+/// scenes::LoadError, or std::invalid_argument when the world refuses the settings.
+scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& setting);
+
+/// Runs the setting `steps` times (the target's checkpoints must be among them) with the
+/// world's metrics read after every step, and compares it with the target. A run in which the
+/// guard froze anything has error infinity: a frozen body's position says nothing.
+Figures measureFigures(const std::filesystem::path& file, const Setting& setting, int steps,
+                       const AccuracyTarget& target);
+
+/// Median over `repeats` fresh loads of the wall time of the bare stepping loop / steps.
+/// unit: ms
+double timeSetting(const std::filesystem::path& file, const Setting& setting, int steps, int repeats);
+
+/// Targets computed once per (model, dt, steps) and reused: a reference costs two fine runs.
+class TargetCache {
+ public:
+  /// The target for the setting's model and dt over `steps` steps.
+  const AccuracyTarget& get(const std::filesystem::path& file, const Setting& setting, int steps);
+  /// Whether get() would compute (for progress counts).
+  bool has(const Setting& setting, int steps) const;
+
+ private:
+  std::map<std::string, AccuracyTarget> targets_;
+};
+
+/// Default horizon of sweep and tune, unit: s of simulated time. Short, because a tumbling
+/// body's run and its reference part ways soon after the first hard contact (accuracy.cpp):
+/// the reference of the ragdoll scene is uncertain to 3 cm after 1 s, to 22 cm after 2 s.
+inline constexpr double kDefaultHorizon = 1.0;
+/// Steps covering the default horizon at dt.
+int defaultSteps(double dt);
+
+// ---- command-line pieces ----------------------------------------------------------------------
+
+/// "a,b,c" split at commas; nullopt when an item is empty ("a,,b", "", "a,").
+std::optional<std::vector<std::string>> splitList(const std::string& text);
+/// A whole number from low to high, nothing else (no sign, exponent or trailing text).
+std::optional<int> parseWholeNumber(const std::string& text, int low, int high);
+/// A finite number, nothing else.
+std::optional<double> parseNumber(const std::string& text);
+
+/// %g with `digits` significant digits; "inf" for infinity.
+std::string formatNumber(double value, int digits = 6);
+
+}  // namespace lab

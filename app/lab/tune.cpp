@@ -1,0 +1,429 @@
+// lab tune: the cheapest settings of a scene that meet every target asked for. It searches the
+// models the scene can take, the four methods, and substeps and iterations over a ladder of
+// counts, measuring figures untimed and timing only the settings that qualify. docs/lab.md,
+// "lab tune", documents the search and the output.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "accuracy.h"
+#include "commands.h"
+#include "lab.h"
+#include "options.h"
+#include "sweep_core.h"
+
+namespace lab {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// The counts searched for iterations and for substeps: roughly geometric, so a search over
+/// both stays short, and fine enough (steps of 1.33 to 1.5 above 2) that the winner is near the
+/// true cheapest.
+constexpr int kLadder[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
+constexpr int kLadderSize = static_cast<int>(sizeof kLadder / sizeof kLadder[0]);
+/// A substep count whose 1-iteration run already costs this much more than the cheapest
+/// qualifying setting so far ends the search of its method: more substeps only cost more. The
+/// margin absorbs the rough timings' noise (one run each).
+constexpr double kPruneFactor = 1.5;
+/// Qualifying settings within this factor of the cheapest (rough timing) are timed properly.
+constexpr double kFinalistFactor = 1.5;
+constexpr int kMaxRepeats = 1000;
+
+/// The seed's settings (docs/physics.md, "Defaults"): what tune compares its winner with.
+constexpr phys::SolverMethod kSeedMethod = phys::SolverMethod::GaussSeidel;
+constexpr int kSeedIterations = 3;
+constexpr int kSeedSubsteps = 1;
+
+std::string tuneUsage() {
+  return "usage: lab tune SCENE --target METRIC=VALUE [--target ...] [--steps N] [--repeat R] [--data DIR]\n"
+         "  METRIC=VALUE    an upper bound the setting must meet; METRIC is one of\n"
+         "                    error        m, largest distance from the accuracy target (analytic or reference)\n"
+         "                    stick-error  largest stick violation / rest length over the run (0.01 = 1%)\n"
+         "                    joint-error  m, largest joint gap over the run\n"
+         "                    penetration  m, deepest penetration over the run\n"
+         "                    drift        J, |energy after the last step - energy before the first|\n"
+         "  --steps N       steps at the scene's dt, 1 to 10000000 (default: 1 s of them)\n"
+         "  --repeat R      timed runs of each finalist, 1 to 1000 (default 3; the median counts)\n"
+         "  --data DIR      folder holding assets/ (default: the source tree)\n"
+         "Searched: the box and ragdoll models the scene has, the four methods, and substeps and\n"
+         "iterations over 1,2,3,4,6,8,12,16,24,32, at the scene's dt. A setting whose run froze\n"
+         "anything never qualifies.\n";
+}
+
+enum class Metric { Error, StickError, JointError, Penetration, Drift };
+
+struct MetricInfo {
+  Metric metric;
+  const char* name;
+  const char* unit;  // "" for a ratio
+};
+
+constexpr MetricInfo kMetrics[] = {
+    {Metric::Error, "error", " m"},         {Metric::StickError, "stick-error", ""},
+    {Metric::JointError, "joint-error", " m"}, {Metric::Penetration, "penetration", " m"},
+    {Metric::Drift, "drift", " J"},
+};
+
+const MetricInfo& info(Metric m) {
+  for (const MetricInfo& i : kMetrics) {
+    if (i.metric == m) return i;
+  }
+  return kMetrics[0];
+}
+
+double figure(const Figures& f, Metric m) {
+  switch (m) {
+    case Metric::Error: return f.error;
+    case Metric::StickError: return f.maxStickError;
+    case Metric::JointError: return f.maxJointError;
+    case Metric::Penetration: return f.maxPenetration;
+    case Metric::Drift: return std::abs(f.energyDrift);
+  }
+  return kInf;
+}
+
+struct Target {
+  Metric metric = Metric::Error;
+  double bound = 0.0;
+};
+
+struct TuneOptions {
+  std::string scene;
+  std::vector<Target> targets;
+  std::optional<int> steps;
+  int repeats = 3;
+  std::filesystem::path dataDir;
+};
+
+std::string parseTarget(const std::string& text, TuneOptions& o) {
+  const std::size_t eq = text.find('=');
+  const std::string name = text.substr(0, eq);
+  const MetricInfo* which = nullptr;
+  for (const MetricInfo& i : kMetrics) {
+    if (name == i.name) which = &i;
+  }
+  if (which == nullptr) {
+    return "--target: unknown metric '" + name + "' in '" + text + "' (error, stick-error, joint-error, penetration or drift)";
+  }
+  const std::optional<double> v = eq == std::string::npos ? std::nullopt : parseNumber(text.substr(eq + 1));
+  if (!v || *v <= 0.0) return "--target: '" + text + "' needs METRIC=VALUE with a finite VALUE > 0";
+  for (const Target& t : o.targets) {
+    if (t.metric == which->metric) return "--target: " + name + " is given twice";
+  }
+  o.targets.push_back({which->metric, *v});
+  return {};
+}
+
+std::string parseTune(const std::vector<std::string>& args, TuneOptions& o) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string* {
+      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
+      return &args[++i];
+    };
+    if (a == "--target") {
+      const std::string* v = value();
+      if (v == nullptr) return "--target needs METRIC=VALUE";
+      if (std::string e = parseTarget(*v, o); !e.empty()) return e;
+    } else if (a == "--steps" || a == "--repeat") {
+      const std::string* v = value();
+      const int high = a == "--steps" ? kMaxSteps : kMaxRepeats;
+      const std::optional<int> n = v == nullptr ? std::nullopt : parseWholeNumber(*v, 1, high);
+      if (!n) {
+        return v == nullptr ? a + " needs a whole number"
+                            : a + ": '" + *v + "' is not a whole number from 1 to " + std::to_string(high);
+      }
+      if (a == "--steps") o.steps = *n;
+      else o.repeats = *n;
+    } else if (a == "--data") {
+      const std::string* v = value();
+      if (v == nullptr) return "--data needs a folder";
+      o.dataDir = *v;
+    } else if (a.size() > 1 && a[0] == '-') {
+      return "unknown option '" + a + "'";
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      return "tune takes one SCENE; got '" + o.scene + "' and '" + a + "'";
+    }
+  }
+  if (o.scene.empty()) return "tune needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  if (o.targets.empty()) return "tune needs at least one --target METRIC=VALUE";
+  return {};
+}
+
+// ---- the search -------------------------------------------------------------------------------
+
+struct Candidate {
+  Setting setting;
+  Figures figures;
+  double msPerStep = kInf;  // the proper (median) timing; inf until timed
+};
+
+class Search {
+ public:
+  Search(std::filesystem::path file, int steps, std::vector<Target> targets)
+      : file_(std::move(file)), steps_(steps), targets_(std::move(targets)) {}
+
+  bool needsError() const {
+    return std::any_of(targets_.begin(), targets_.end(), [](const Target& t) { return t.metric == Metric::Error; });
+  }
+
+  /// The target of the setting's model: the accuracy target when error is asked for, else
+  /// none (a reference costs two fine runs, wasted when no error is asked for).
+  const AccuracyTarget& target(const Setting& s) {
+    static const AccuracyTarget kNone{};
+    return needsError() ? targets_cache_.get(file_, s, steps_) : kNone;
+  }
+
+  int stepsOf(const Setting& s) { return stepsFor(target(s), steps_); }
+
+  /// The setting's figures, measured once.
+  const Figures& evaluate(const Setting& s) {
+    const std::string key = s.describe();  // one dt per search
+    auto it = measured_.find(key);
+    if (it == measured_.end()) {
+      it = measured_.emplace(key, measureFigures(file_, s, stepsOf(s), target(s))).first;
+      noteClosest(s, it->second);
+    }
+    return it->second;
+  }
+
+  bool meets(const Figures& f) const {
+    if (f.frozen > 0) return false;
+    return std::all_of(targets_.begin(), targets_.end(), [&](const Target& t) { return figure(f, t.metric) <= t.bound; });
+  }
+
+  /// How far the figures are from meeting the targets: the largest figure / bound (<= 1 meets).
+  double excess(const Figures& f) const {
+    if (f.frozen > 0) return kInf;
+    double worst = 0.0;
+    for (const Target& t : targets_) worst = std::max(worst, figure(f, t.metric) / t.bound);
+    return std::isnan(worst) ? kInf : worst;
+  }
+
+  /// For each substep count, the fewest iterations that meet the targets (bisection over the
+  /// ladder, which assumes more passes never hurt), stopping once more substeps cannot pay.
+  void searchMethod(const ModelChoice& model, phys::SolverMethod method, double dt) {
+    int upper = kLadderSize - 1;  // the most iterations still worth trying, as a ladder index
+    for (int substeps : kLadder) {
+      const Setting one{model, method, 1, substeps, dt};
+      const Figures& f1 = evaluate(one);
+      if (meets(f1)) {
+        record(one, f1);
+        break;  // more substeps at 1 iteration, or more iterations, only cost more
+      }
+      if (f1.roughMsPerStep > kPruneFactor * cheapestRough_) break;
+      if (upper < 1) continue;  // only 1 iteration could still be cheaper; try more substeps
+      const Setting top{model, method, kLadder[upper], substeps, dt};
+      if (!meets(evaluate(top))) continue;
+      int lo = 0;  // fails
+      int hi = upper;  // meets
+      while (hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        const Setting s{model, method, kLadder[mid], substeps, dt};
+        (meets(evaluate(s)) ? hi : lo) = mid;
+      }
+      const Setting found{model, method, kLadder[hi], substeps, dt};
+      record(found, evaluate(found));
+      upper = hi - 1;  // with more substeps, as many passes would cost more than this
+    }
+  }
+
+  /// Times the qualifying settings near the cheapest properly; the winner is the fastest.
+  std::optional<Candidate> winner(int repeats) {
+    std::optional<Candidate> best;
+    for (Candidate& c : qualifying_) {
+      if (c.figures.roughMsPerStep > kFinalistFactor * cheapestRough_) continue;
+      c.msPerStep = timeSetting(file_, c.setting, stepsOf(c.setting), repeats);
+      if (!best || c.msPerStep < best->msPerStep) best = c;
+    }
+    return best;
+  }
+
+  /// A fixed setting, measured and timed (the seed's defaults, the scene's own).
+  Candidate measureAndTime(const Setting& s, int repeats) {
+    Candidate c{s, evaluate(s)};
+    if (meets(c.figures)) record(s, c.figures);
+    c.msPerStep = timeSetting(file_, s, stepsOf(s), repeats);
+    return c;
+  }
+
+  const std::optional<Candidate>& closest() const { return closest_; }
+  std::size_t evaluations() const { return measured_.size(); }
+  const std::vector<Target>& targets() const { return targets_; }
+
+ private:
+  void record(const Setting& s, const Figures& f) {
+    const bool known = std::any_of(qualifying_.begin(), qualifying_.end(),
+                                   [&](const Candidate& c) { return c.setting.describe() == s.describe(); });
+    if (!known) qualifying_.push_back(Candidate{s, f});
+    cheapestRough_ = std::min(cheapestRough_, f.roughMsPerStep);
+  }
+
+  void noteClosest(const Setting& s, const Figures& f) {
+    if (!closest_ || excess(f) < excess(closest_->figures)) closest_ = Candidate{s, f};
+  }
+
+  std::filesystem::path file_;
+  int steps_;
+  std::vector<Target> targets_;
+  TargetCache targets_cache_;
+  std::map<std::string, Figures> measured_;
+  std::vector<Candidate> qualifying_;
+  double cheapestRough_ = kInf;
+  std::optional<Candidate> closest_;
+};
+
+// ---- the report -------------------------------------------------------------------------------
+
+std::string figuresText(const Figures& f, bool withError) {
+  std::string s;
+  if (withError) s += "error " + formatNumber(f.error, 3) + " m, ";
+  s += "stick-error " + formatNumber(f.maxStickError, 3) + ", joint-error " + formatNumber(f.maxJointError, 3) +
+       " m, penetration " + formatNumber(f.maxPenetration, 3) + " m, drift " + formatNumber(std::abs(f.energyDrift), 3) +
+       " J, frozen " + std::to_string(f.frozen);
+  return s;
+}
+
+// "meets the targets", or which it misses and by how much.
+std::string verdict(const Search& search, const Figures& f) {
+  std::string misses;
+  if (f.frozen > 0) misses = "it froze " + std::to_string(f.frozen) + " particles";
+  for (const Target& t : search.targets()) {
+    const double v = figure(f, t.metric);
+    if (v <= t.bound) continue;
+    const MetricInfo& i = info(t.metric);
+    misses += (misses.empty() ? "" : ", ") + std::string(i.name) + " " + formatNumber(v, 3) + i.unit + " > " +
+              formatNumber(t.bound, 3) + i.unit;
+  }
+  return misses.empty() ? "meets the targets" : "misses: " + misses;
+}
+
+std::string targetsText(const std::vector<Target>& targets) {
+  std::string s;
+  for (const Target& t : targets) {
+    const MetricInfo& i = info(t.metric);
+    s += (s.empty() ? "" : ", ") + std::string(i.name) + " <= " + formatNumber(t.bound, 6) + i.unit;
+  }
+  return s;
+}
+
+void printCompared(std::ostream& out, const char* label, const Candidate& c, const Candidate* winner,
+                   const Search& search, bool withError) {
+  out << label << c.setting.describe() << ": " << formatNumber(c.msPerStep, 4) << " ms/step";
+  if (winner != nullptr && winner->msPerStep > 0.0) {
+    out << " (" << formatNumber(c.msPerStep / winner->msPerStep, 3) << "x the winner's)";
+  }
+  out << "\n            " << figuresText(c.figures, withError) << "; " << verdict(search, c.figures) << "\n";
+}
+
+// ---- the command --------------------------------------------------------------------------------
+
+int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostream& out, std::ostream& err) {
+  const scenes::Scene scene = scenes::loadSceneFile(file);
+  const phys::SolverSettings own = scene.world.solverSettings();
+  const SceneModels models = sceneModels(file);
+  const int steps = o.steps ? *o.steps : defaultSteps(own.dt);
+  Search search(file, steps, o.targets);
+
+  // The seed's defaults: its method and counts with its models (corners boxes, seed ragdolls).
+  ModelChoice seedModel = models.asFile;
+  std::string error;
+  if (models.boxes && models.ragdolls) {
+    seedModel = allModelChoices(models).front();  // corners+seed
+  } else if (models.boxes || models.ragdolls) {
+    seedModel = *modelChoice(models.boxes ? "corners" : "seed", models, error);
+  }
+  const Setting defaults{seedModel, kSeedMethod, kSeedIterations, kSeedSubsteps, own.dt};
+  const Setting sceneOwn{models.asFile, own.method, own.iterations, own.substeps, own.dt};
+
+  // An analytic answer later than the horizon lengthens every run to reach it.
+  out << "tune        " << scene.name << " (" << file.string() << "), " << search.stepsOf(sceneOwn)
+      << " steps at dt " << formatNumber(own.dt) << " s\n";
+  out << "targets     " << targetsText(o.targets) << "\n";
+  if (search.needsError()) out << "accuracy    " << search.target(sceneOwn).description << "\n";
+  out.flush();
+
+  // The scene's and the seed's settings first: when they qualify, they bound the search early.
+  const Candidate ownResult = search.measureAndTime(sceneOwn, o.repeats);
+  const Candidate seedResult = search.measureAndTime(defaults, o.repeats);
+  std::vector<ModelChoice> choices = allModelChoices(models);
+  std::vector<phys::SolverMethod> methods{own.method};
+  for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi, phys::SolverMethod::Xpbd,
+                               phys::SolverMethod::Shake}) {
+    if (m != own.method) methods.push_back(m);
+  }
+  for (const ModelChoice& model : choices) {
+    for (phys::SolverMethod method : methods) search.searchMethod(model, method, own.dt);
+  }
+  const std::optional<Candidate> win = search.winner(o.repeats);
+
+  std::string modelNames;
+  for (const ModelChoice& m : choices) modelNames += (modelNames.empty() ? "" : ", ") + m.label;
+  out << "searched    " << search.evaluations() << " settings: "
+      << (modelNames.empty() ? std::string() : "models " + modelNames + "; ")
+      << "4 methods; substeps and iterations from 1,2,3,4,6,8,12,16,24,32\n";
+  const bool withError = search.needsError();
+  if (withError && search.target(sceneOwn).kind == "reference") {
+    const double u = maxUncertainty(search.target(sceneOwn));
+    out << "note        the reference itself is uncertain to " << formatNumber(u, 2)
+        << " m here; error targets below that cannot be told apart\n";
+  }
+  if (!win) {
+    out << "winner      none: no setting meets the targets\n";
+    if (search.closest()) {
+      Candidate c = *search.closest();
+      c.msPerStep = timeSetting(file, c.setting, search.stepsOf(c.setting), o.repeats);
+      printCompared(out, "closest     ", c, nullptr, search, withError);
+    }
+    printCompared(out, "defaults    ", seedResult, nullptr, search, withError);
+    printCompared(out, "scene       ", ownResult, nullptr, search, withError);
+    err << "lab: tune: no setting meets the targets (the closest found is on stdout)\n";
+    return kExitFailure;
+  }
+  out << "winner      " << win->setting.describe() << ": " << formatNumber(win->msPerStep, 4) << " ms/step\n";
+  out << "            " << figuresText(win->figures, withError) << "\n";
+  printCompared(out, "defaults    ", seedResult, &*win, search, withError);
+  printCompared(out, "scene       ", ownResult, &*win, search, withError);
+  return kExitOk;
+}
+
+}  // namespace
+
+int tuneMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  for (const std::string& a : args) {
+    if (a == "--help" || a == "-h") {
+      out << tuneUsage();
+      return kExitOk;
+    }
+  }
+  TuneOptions o;
+  if (const std::string e = parseTune(args, o); !e.empty()) {
+    err << "lab: " << e << "\n" << tuneUsage();
+    return kExitUsage;
+  }
+  RunOptions where;
+  where.dataDir = o.dataDir;
+  try {
+    const std::filesystem::path file = scenes::resolveScene(o.scene, scenes::sceneDirectory(dataDir(where)));
+    return runTune(o, file, out, err);
+  } catch (const scenes::LoadError& e) {
+    err << e.what() << "\n";
+  } catch (const std::invalid_argument& e) {
+    err << "lab: tune: the settings were refused: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    err << "lab: tune: " << e.what() << "\n";
+  }
+  return kExitFailure;
+}
+
+}  // namespace lab

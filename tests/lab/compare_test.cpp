@@ -1,0 +1,420 @@
+// The peer engines (app/lab/peers/) and `lab compare` (app/lab/compare.cpp). Each physical
+// check runs in every engine built in, so a machine without Bullet, ODE or MuJoCo still runs
+// the rest; the lab built for CI has all three (scripts/install-deps).
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "commands.h"
+#include "gnuplot.h"
+#include "lab.h"
+#include "lab_test_util.h"
+#include "peer.h"
+#include "peers/peer_scene.h"
+#include "scenes/scene.h"
+
+namespace {
+
+using lab_testing::TempDir;
+
+constexpr double kDt = 1.0 / 60.0;
+constexpr int kTwoSeconds = 120;
+
+scenes::Scene load(const std::string& xml) { return scenes::loadSceneText(xml, "compare_test"); }
+
+// Three 1 m boxes of 1 kg on the ground: centres at 0.5, 1.5 and 2.5 m.
+const char* kStack =
+    "<scene name=\"stack3\">\n"
+    "  <ground friction=\"0.6\"/>\n"
+    "  <stack name=\"s\" pos=\"0 0 0\" count=\"3\" size=\"1\" mass=\"1\"/>\n"
+    "</scene>\n";
+
+// A flat box 0.8 x 0.4 x 0.6 m dropped from 2 m: it comes to rest with its centre at 0.2 m.
+const char* kFall =
+    "<scene name=\"fall\">\n"
+    "  <ground/>\n"
+    "  <box name=\"b\" pos=\"0.3 2 -0.2\" size=\"0.8 0.4 0.6\" mass=\"2\"/>\n"
+    "</scene>\n";
+
+// Five 0.2 m links hanging from a pinned particle at 3 m: the end hangs 1 m below it.
+const char* kChain =
+    "<scene name=\"chain\">\n"
+    "  <ground/>\n"
+    "  <chain name=\"c\" pos=\"0 3 0\" links=\"5\" length=\"0.2\" mass=\"1\"/>\n"
+    "</scene>\n";
+
+std::vector<std::string> engines() {
+  std::vector<std::string> e = lab::peerEngines();
+  if (e.empty()) std::cout << "[ note     ] no peer engines built in; the physical checks have nothing to run\n";
+  return e;
+}
+
+TEST(PeerEngines, ListedInTheFixedOrder) {
+  const std::vector<std::string> e = lab::peerEngines();
+  const std::vector<std::string> order = {"bullet", "ode", "mujoco"};
+  std::size_t at = 0;
+  for (const std::string& name : e) {
+    while (at < order.size() && order[at] != name) ++at;
+    ASSERT_LT(at, order.size()) << name << " is not one of bullet, ode, mujoco in that order";
+    ++at;
+  }
+}
+
+TEST(PeerEngines, AnUnknownEngineIsNotRun) {
+  const scenes::Scene scene = load(kFall);
+  const lab::PeerResult r = lab::runPeer("havok", scene, kDt, 10, {});
+  EXPECT_FALSE(r.ran);
+  EXPECT_EQ(r.engine, "havok");
+  EXPECT_NE(r.unsupported.find("not built"), std::string::npos) << r.unsupported;
+}
+
+TEST(PeerScene, ReadsMassInertiaVelocityAndOrder) {
+  const scenes::Scene scene = load(
+      "<scene name=\"d\">\n"
+      "  <ground friction=\"0.4\"/>\n"
+      "  <particle name=\"p\" pos=\"0 3 0\" velocity=\"1 0 0\" mass=\"0.5\"/>\n"
+      "  <particle name=\"q\" pos=\"0 4 0\" pinned=\"true\"/>\n"
+      "  <box name=\"b\" pos=\"1 2 3\" size=\"2 1 0.5\" mass=\"8\" velocity=\"0 1 2\" angular-velocity=\"0 90 0\"\n"
+      "       friction=\"0.9\"/>\n"
+      "  <box name=\"t\" pos=\"5 2 3\" size=\"1\" mass=\"4\" model=\"tetra\"/>\n"
+      "</scene>\n");
+  const lab::peers::Description d = lab::peers::describe(scene);
+  ASSERT_EQ(d.bodies.size(), 4u);  // boxes first, then loose particles in id order
+  const auto& box = d.bodies[0];
+  EXPECT_EQ(box.shape, lab::peers::Body::Shape::Box);
+  EXPECT_NEAR(box.mass, 8.0, 1e-12);
+  EXPECT_NEAR(box.halfExtents.x, 1.0, 1e-9);
+  EXPECT_NEAR(box.halfExtents.z, 0.25, 1e-9);
+  // The corners model's inertia: m (hy^2 + hz^2) about x, three times a solid box's.
+  EXPECT_NEAR(box.inertia.x, 8.0 * (0.25 + 0.0625), 1e-9);
+  EXPECT_NEAR(box.inertia.y, 8.0 * (1.0 + 0.0625), 1e-9);
+  EXPECT_NEAR(box.velocity.y, 1.0, 1e-9);
+  EXPECT_NEAR(box.velocity.z, 2.0, 1e-9);
+  EXPECT_NEAR(box.angularVelocity.y, std::numbers::pi / 2.0, 1e-9);
+  EXPECT_NEAR(box.friction, 0.9, 1e-12);
+  EXPECT_NEAR(d.bodies[1].mass, 4.0, 1e-12);  // the tetra box: four particles of 1 kg
+  EXPECT_NEAR(d.bodies[1].inertia.x, 4.0 * 0.5, 1e-9);
+  const auto& p = d.bodies[2];
+  EXPECT_EQ(p.shape, lab::peers::Body::Shape::Sphere);
+  EXPECT_NEAR(p.mass, 0.5, 1e-12);
+  EXPECT_NEAR(p.velocity.x, 1.0, 1e-9);
+  EXPECT_NEAR(p.velocity.y, 0.0, 1e-9);  // the Verlet start corrected back to the given velocity
+  EXPECT_TRUE(d.bodies[3].fixed);
+  EXPECT_NEAR(d.groundFriction, 0.4, 1e-12);
+  EXPECT_TRUE(d.refused.empty());
+}
+
+TEST(PeerStack, ThreeBoxesStandInEveryEngine) {
+  const scenes::Scene scene = load(kStack);
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, kTwoSeconds, {1, kTwoSeconds});
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    // Notes may say how the run went (Bullet's bodies fall asleep), never that part is missing.
+    EXPECT_EQ(r.unsupported.find("not"), std::string::npos) << r.unsupported;
+    ASSERT_EQ(r.positions.size(), 2u);
+    const phys::Vec3 top = r.positions[1][2];
+    EXPECT_LT(std::hypot(top.x, top.z), 0.05) << "top box drifted to " << top.x << ", " << top.z;
+    EXPECT_NEAR(top.y, 2.5, 0.05);
+    EXPECT_GT(r.medianMsPerStep, 0.0);
+    EXPECT_LT(r.maxPenetration, 0.05);
+  }
+}
+
+TEST(PeerFall, ABoxComesToRestAtItsHalfHeight) {
+  const scenes::Scene scene = load(kFall);
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, kTwoSeconds, {kTwoSeconds});
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    const phys::Vec3 c = r.positions.at(0).at(0);
+    EXPECT_NEAR(c.y, 0.2, 0.02);
+    // Straight down. Bullet's box-plane contact adds one point a step (its default collision
+    // configuration), so its flat landing pivots on the first corner and slides some 7 cm.
+    EXPECT_LT(std::hypot(c.x - 0.3, c.z + 0.2), 0.1);
+  }
+}
+
+TEST(PeerFall, FreeFallMatchesTheFormula) {
+  // Before it lands (0.5 s, 1.23 m of its 1.8 m), every engine's box is where g t^2 / 2 puts it.
+  const scenes::Scene scene = load(kFall);
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, 30, {30});
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    // Semi-implicit Euler (all three) falls g dt^2 / 2 per step further than the formula.
+    EXPECT_NEAR(r.positions.at(0).at(0).y, 2.0 - 0.5 * 9.81 * 0.25, 0.05);
+  }
+}
+
+TEST(PeerChain, APinnedChainHangsAtItsLength) {
+  const scenes::Scene scene = load(kChain);
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, kTwoSeconds, {kTwoSeconds});
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    const std::vector<phys::Vec3>& p = r.positions.at(0);
+    ASSERT_EQ(p.size(), 6u);
+    EXPECT_NEAR(p[0].y, 3.0, 1e-9);  // the pinned particle stays
+    EXPECT_NEAR(glm::length(p[5] - p[0]), 1.0, 0.05);
+    for (std::size_t k = 0; k + 1 < p.size(); ++k) EXPECT_NEAR(glm::length(p[k + 1] - p[k]), 0.2, 0.01) << "link " << k;
+  }
+}
+
+TEST(PeerRange, ARangeStickHoldsItsBounds) {
+  // Two particles under pinned ones: "over" starts 0.6 m above its anchor and falls on a
+  // stick that only pushes apart below 0.5 m; "under" starts 0.1 m below its anchor and
+  // falls on one that only pulls together beyond 1 m.
+  const scenes::Scene scene = load(
+      "<scene name=\"range\">\n"
+      "  <particle name=\"a\" pos=\"0 3 0\" pinned=\"true\"/>\n"
+      "  <particle name=\"over\" pos=\"0 3.6 0\"/>\n"
+      "  <stick a=\"a\" b=\"over\" min=\"0.5\"/>\n"
+      "  <particle name=\"b\" pos=\"2 3 0\" pinned=\"true\"/>\n"
+      "  <particle name=\"under\" pos=\"2 2.9 0\"/>\n"
+      "  <stick a=\"b\" b=\"under\" max=\"1\"/>\n"
+      "</scene>\n");
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, kTwoSeconds, {kTwoSeconds});
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    const std::vector<phys::Vec3>& p = r.positions.at(0);
+    EXPECT_NEAR(p[1].y - p[0].y, 0.5, 0.02);
+    EXPECT_NEAR(p[2].y - p[3].y, 1.0, 0.03);
+  }
+}
+
+TEST(PeerDamping, VelocityDecaysAsOurWindResistance) {
+  // No gravity, damping 1/s: a particle and a box launched at 10 m/s cover 10 (1 - 1/e) m in
+  // 1 s (ours exactly); each engine's damping is set to the same decay, up to its own stepping.
+  const scenes::Scene scene = load(
+      "<scene name=\"damp\">\n"
+      "  <world gravity=\"0 0 0\" damping=\"1\"/>\n"
+      "  <box pos=\"0 1 0\" size=\"0.5 0.3 0.2\" velocity=\"10 0 0\"/>\n"
+      "  <particle pos=\"0 3 0\" velocity=\"10 0 0\"/>\n"
+      "</scene>\n");
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, 60, {60});
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    for (const phys::Vec3& p : r.positions.at(0)) EXPECT_NEAR(p.x, 10.0 * (1.0 - std::exp(-1.0)), 0.2);
+  }
+}
+
+TEST(PeerRestitution, ABallBouncesWhereTheEngineCanSayIt) {
+  // Dropped 2 m onto the ground at restitution 0.5, a ball rises again to 0.25 x 2 = 0.5 m;
+  // MuJoCo has no restitution coefficient and says so.
+  const scenes::Scene scene = load(
+      "<scene name=\"bounce\">\n"
+      "  <solver restitution=\"0.5\"/>\n"
+      "  <ground/>\n"
+      "  <particle pos=\"0 2.05 0\"/>\n"
+      "</scene>\n");
+  std::vector<int> every(100);
+  for (int s = 0; s < 100; ++s) every[static_cast<std::size_t>(s)] = s + 1;
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, 100, every);
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    if (r.unsupported.find("restitution not expressed") != std::string::npos) continue;
+    // The first peak after the ball turns upwards, measured at its bottom.
+    std::size_t k = 1;
+    while (k < r.positions.size() && r.positions[k][0].y <= r.positions[k - 1][0].y) ++k;
+    while (k < r.positions.size() && r.positions[k][0].y > r.positions[k - 1][0].y) ++k;
+    ASSERT_LT(k, r.positions.size()) << "no bounce";
+    EXPECT_NEAR(r.positions[k - 1][0].y - lab::peers::kParticleRadius, 0.5, 0.1);
+  }
+}
+
+TEST(PeerRagdoll, PinsAndStopsHoldInEveryEngine) {
+  // One ragdoll dropped on its back from 1 m: its 18 pins (the hinges) and 18 stops (range
+  // links) go through ball joints and distance limits in each engine.
+  const scenes::Scene scene = load(
+      "<scene name=\"doll\">\n"
+      "  <ground/>\n"
+      "  <ragdoll name=\"r\" pos=\"0 1 0\" euler=\"80 0 0\"/>\n"
+      "</scene>\n");
+  const lab::peers::Description d = lab::peers::describe(scene);
+  ASSERT_EQ(d.pins.size(), 18u);
+  ASSERT_EQ(d.distances.size(), 18u);
+  ASSERT_EQ(d.ignored.size(), 9u);
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    auto built = lab::peers::makeEngine(engine, d, kDt);
+    ASSERT_NE(built, nullptr);
+    double worstGap = 0.0, worstStop = 0.0;
+    for (int s = 0; s < kTwoSeconds; ++s) {
+      built->step();
+      if (s < 60) continue;  // after the landing
+      auto point = [&](int body, const phys::Vec3& local) {
+        return lab::peers::toWorld(built->position(body), built->orientation(body), local);
+      };
+      for (const auto& p : d.pins) worstGap = std::max(worstGap, glm::length(point(p.a, p.localA) - point(p.b, p.localB)));
+      for (const auto& r : d.distances) {
+        const double length = glm::length(point(r.a, r.localA) - point(r.b, r.localB));
+        worstStop = std::max({worstStop, r.min - length, length - r.max});
+      }
+    }
+    built->finish();
+    EXPECT_TRUE(built->notes.empty()) << built->notes.front();
+    EXPECT_LT(worstGap, 0.02);
+    EXPECT_LT(worstStop, 0.02);
+    std::cout << "[ " << engine << " ] ragdoll at rest: pin gap up to " << worstGap << " m, stops exceeded by up to "
+              << worstStop << " m\n";
+  }
+}
+
+TEST(PeerUnsupported, PointGravityIsReportedInWords) {
+  const scenes::Scene scene = scenes::loadSceneFile(scenes::sceneDirectory(DATA_DIR) / "orbit.xml");
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, 10, {10});
+    EXPECT_FALSE(r.ran);
+    EXPECT_TRUE(r.positions.empty());
+    EXPECT_NE(r.unsupported.find("point gravity"), std::string::npos) << r.unsupported;
+  }
+}
+
+// `lab compare` in-process, on a scene file in a temporary folder.
+struct Output {
+  int code = -1;
+  std::string out, err;
+};
+Output compare(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  Output o;
+  o.code = lab::labMain(args, out, err);
+  o.out = out.str();
+  o.err = err.str();
+  return o;
+}
+
+// A box and a loose particle falling onto the ground: something for every column.
+const char* kSmall =
+    "<scene name=\"small\">\n"
+    "  <ground/>\n"
+    "  <box name=\"b\" pos=\"0 1.5 0\" size=\"0.5\" euler=\"10 20 30\"/>\n"
+    "  <particle name=\"p\" pos=\"1 1 0\"/>\n"
+    "</scene>\n";
+
+TEST(Compare, PrintsARowForEachOfOurMethodsAndEachPeer) {
+  TempDir dir;
+  const auto file = dir.write("small.xml", kSmall);
+  const Output o = compare({"compare", file.string(), "--steps", "60"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_TRUE(o.err.empty()) << o.err;
+  for (const char* method : {"gauss-seidel", "jacobi", "xpbd", "shake"}) {
+    EXPECT_NE(o.out.find(std::string("| ours | ") + method + " |"), std::string::npos) << method << "\n" << o.out;
+  }
+  for (const std::string& engine : lab::peerEngines()) {
+    EXPECT_NE(o.out.find("| " + engine + " |"), std::string::npos) << engine << "\n" << o.out;
+  }
+  EXPECT_NE(o.out.find("| engine | method | settings | ms/step (median) |"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("not run"), std::string::npos) << o.out;
+}
+
+TEST(Compare, JsonRowsHoldFiniteNumbers) {
+  TempDir dir;
+  const auto file = dir.write("small.xml", kSmall);
+  const Output o = compare({"compare", file.string(), "--steps", "60", "--json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  std::istringstream lines(o.out);
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(lines, line)) {
+    const auto j = lab_testing::parseFlatJson(line);
+    ASSERT_TRUE(j.has_value()) << line;
+    rows.push_back(lab_testing::text(*j, "engine") + "/" + lab_testing::text(*j, "method"));
+    EXPECT_EQ(j->values.at("ran"), "true") << line;
+    for (const char* key : {"ms_per_step", "ratio", "error_first", "error", "max_penetration", "dt"}) {
+      EXPECT_TRUE(std::isfinite(lab_testing::number(*j, key))) << key << " in " << line;
+    }
+    EXPECT_GT(lab_testing::number(*j, "ms_per_step"), 0.0) << line;
+    EXPECT_EQ(lab_testing::number(*j, "steps"), 60.0);
+  }
+  EXPECT_EQ(rows.size(), 4u + lab::peerEngines().size());
+  EXPECT_EQ(rows.at(0), "ours/gauss-seidel");
+  EXPECT_EQ(rows.at(3), "ours/shake");
+}
+
+TEST(Compare, APointGravitySceneSaysWhatThePeersCannotExpress) {
+  const Output o = compare({"compare", "orbit", "--steps", "30"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  for (const std::string& engine : lab::peerEngines()) {
+    const std::size_t row = o.out.find("| " + engine + " |");
+    ASSERT_NE(row, std::string::npos) << o.out;
+    const std::string text = o.out.substr(row, o.out.find('\n', row) - row);
+    EXPECT_NE(text.find("not run"), std::string::npos) << text;
+    EXPECT_NE(text.find("point gravity"), std::string::npos) << text;
+  }
+}
+
+TEST(Compare, BadArgumentsExitWithUsage) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"compare"}, {"compare", "a", "b"}, {"compare", "x", "--steps", "0"}, {"compare", "x", "--steps", "1e3"},
+           {"compare", "x", "--dt", "2"}, {"compare", "x", "--dt"}, {"compare", "x", "--frobnicate"}}) {
+    const Output o = compare(args);
+    EXPECT_EQ(o.code, lab::kExitUsage) << args.back();
+    EXPECT_NE(o.err.find("usage: lab compare"), std::string::npos) << o.err;
+  }
+  const Output help = compare({"compare", "--help"});
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.out.find("usage: lab compare"), std::string::npos);
+}
+
+TEST(Compare, AMissingSceneExitsOne) {
+  const Output o = compare({"compare", "/nonexistent/scene.xml"});
+  EXPECT_EQ(o.code, lab::kExitFailure);
+  EXPECT_NE(o.err.find("scene.xml"), std::string::npos) << o.err;
+}
+
+}  // namespace
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "commands.h"
+#include "gnuplot.h"
+
+namespace {
+
+// lab report --quick: every part runs through its own command and results.md holds each
+// part's section, its charts and the computed sentences.
+TEST(Report, QuickReportWritesEveryPart) {
+  const std::filesystem::path out =
+      std::filesystem::temp_directory_path() / ("lab-report-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(out);
+  std::ostringstream o, e;
+  ASSERT_EQ(lab::reportMain({"--quick", "--out", out.string(), "--data", DATA_DIR}, o, e), 0) << e.str();
+  std::ifstream in(out / "results.md");
+  std::stringstream md;
+  md << in.rdbuf();
+  for (const char* part : {"## Speed against accuracy", "### ragdoll", "### pendulum-exact", "Pareto front, cheapest first:",
+                           "**Winner here:", "## Where methods fail", "## Beside Bullet, ODE and MuJoCo"}) {
+    EXPECT_NE(md.str().find(part), std::string::npos) << part;
+  }
+  EXPECT_TRUE(std::filesystem::exists(out / "results" / "pyramid" / "results.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "results" / "stability" / "stability.csv"));
+  if (!lab::findGnuplot().empty()) {
+    EXPECT_TRUE(std::filesystem::exists(out / "results" / "chain" / "error-vs-cost.png"));
+  }
+  std::filesystem::remove_all(out);
+}
+
+TEST(Report, BadArgumentsExitWithUsage) {
+  std::ostringstream o, e;
+  EXPECT_EQ(lab::reportMain({"--frobnicate"}, o, e), 2);
+  EXPECT_NE(e.str().find("unknown argument '--frobnicate'"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,410 @@
+// lab sweep and the accuracy it measures (app/lab/sweep.cpp, accuracy.cpp), in-process through
+// sweepMain with string streams and a temporary --out folder. Runs are short (tens of steps, one
+// timed repeat) so each test takes well under a second in Release.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "accuracy.h"
+#include "commands.h"
+#include "gnuplot.h"
+#include "lab.h"
+#include "lab_test_util.h"
+#include "scenes/scene.h"
+
+namespace {
+
+using lab_testing::TempDir;
+
+struct Outcome {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+Outcome sweep(std::vector<std::string> args) {
+  args.insert(args.end(), {"--data", DATA_DIR});
+  std::ostringstream out;
+  std::ostringstream err;
+  Outcome o;
+  o.code = lab::sweepMain(args, out, err);
+  o.out = out.str();
+  o.err = err.str();
+  return o;
+}
+
+// RFC 4180 fields of one line (quotes may hold commas; doubled quotes are one).
+std::vector<std::string> csvFields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+/// A CSV file as rows of column name -> field.
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+};
+
+Csv readCsv(const std::filesystem::path& file) {
+  Csv csv;
+  std::istringstream lines(lab_testing::readFile(file));
+  std::string line;
+  if (!std::getline(lines, line)) return csv;
+  csv.header = csvFields(line);
+  while (std::getline(lines, line)) {
+    const std::vector<std::string> fields = csvFields(line);
+    EXPECT_EQ(fields.size(), csv.header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < fields.size() && i < csv.header.size(); ++i) row[csv.header[i]] = fields[i];
+    csv.rows.push_back(row);
+  }
+  return csv;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& column) {
+  const auto it = row.find(column);
+  if (it == row.end() || it->second.empty()) return std::nan("");
+  return std::strtod(it->second.c_str(), nullptr);
+}
+
+// The row of our method with these counts, or nullopt.
+std::optional<std::map<std::string, std::string>> findRow(const Csv& csv, const std::string& method, int iterations,
+                                                          int substeps) {
+  for (const auto& row : csv.rows) {
+    if (row.at("method") == method && row.at("iterations") == std::to_string(iterations) &&
+        row.at("substeps") == std::to_string(substeps)) {
+      return row;
+    }
+  }
+  return std::nullopt;
+}
+
+const char* const kHeader =
+    "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_uncertainty,"
+    "max_stick_error,max_joint_error,max_penetration,energy_drift,frozen,pareto,note";
+
+TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
+  TempDir dir;
+  const Outcome o = sweep({"falling-box", "--method", "gauss-seidel,xpbd", "--iterations", "2,4", "--steps", "30",
+                           "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const Csv csv = readCsv(dir.file("out/results.csv"));
+  std::string header;
+  for (const std::string& h : csv.header) header += (header.empty() ? "" : ",") + h;
+  EXPECT_EQ(header, kHeader);
+  ASSERT_EQ(csv.rows.size(), 4u);
+  for (const char* method : {"gauss-seidel", "xpbd"}) {
+    for (int iterations : {2, 4}) {
+      const auto row = findRow(csv, method, iterations, 1);  // the scene's own substeps
+      ASSERT_TRUE(row) << method << " " << iterations;
+      EXPECT_EQ(row->at("model"), "corners");  // the file's boxes, named
+      EXPECT_EQ(row->at("steps"), "30");
+      for (const char* column : {"dt", "ms_per_step", "ms_per_sim_second", "error", "ref_uncertainty", "max_stick_error",
+                                 "max_joint_error", "max_penetration", "energy_drift", "frozen"}) {
+        EXPECT_TRUE(std::isfinite(number(*row, column))) << method << " " << iterations << " " << column;
+      }
+      EXPECT_GT(number(*row, "ms_per_step"), 0.0);
+      EXPECT_EQ(row->at("frozen"), "0");
+    }
+  }
+  // The report names the target it measured against.
+  EXPECT_NE(o.out.find("reference: shake, 128 substeps x 4 iterations"), std::string::npos) << o.out;
+}
+
+TEST(Sweep, ProjectileIsExactToRoundOffAtAnySetting) {
+  // Verlet with the loader's start is exact for constant acceleration, and every method keeps a
+  // free box's centre, so coarse and fine settings alike land on the analytic positions.
+  TempDir dir;
+  const Outcome o = sweep({"projectile", "--method", "gauss-seidel,jacobi,shake", "--iterations", "1,4", "--substeps",
+                           "1,8", "--model", "corners,tetra", "--repeat", "1", "--no-peers", "--out",
+                           dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const Csv csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 24u);
+  for (const auto& row : csv.rows) {
+    EXPECT_LT(number(row, "error"), 1e-9) << row.at("method") << " " << row.at("model") << " " << row.at("iterations")
+                                          << "x" << row.at("substeps");
+    EXPECT_EQ(number(row, "ref_uncertainty"), 0.0);  // analytic
+  }
+  EXPECT_NE(o.out.find("analytic: 7 positions"), std::string::npos) << o.out;
+}
+
+TEST(Sweep, FineSettingsBeatCoarseOnScenesVerletDoesNotSolveExactly) {
+  TempDir dir;
+  // The pendulum against its elliptic-function motion: method and substeps both matter.
+  Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,16", "--repeat", "1",
+                     "--no-peers", "--out", dir.file("pendulum").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  Csv csv = readCsv(dir.file("pendulum/results.csv"));
+  const double coarse = number(*findRow(csv, "gauss-seidel", 1, 1), "error");
+  const double fine = number(*findRow(csv, "shake", 1, 16), "error");
+  EXPECT_GT(coarse, 0.1);  // Jakobsen's projection at 60 Hz has bled much of the swing
+  EXPECT_LT(fine, 1e-5);
+  EXPECT_LT(number(*findRow(csv, "gauss-seidel", 1, 16), "error"), coarse);
+  EXPECT_LT(fine, number(*findRow(csv, "shake", 1, 1), "error"));
+
+  // The circular orbit: Verlet's phase error falls with the square of the substep.
+  o = sweep({"circular-orbit", "--substeps", "1,16", "--repeat", "1", "--no-peers", "--out", dir.file("orbit").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  csv = readCsv(dir.file("orbit/results.csv"));
+  const double one = number(*findRow(csv, "gauss-seidel", 1, 1), "error");
+  const double sixteen = number(*findRow(csv, "gauss-seidel", 1, 16), "error");
+  EXPECT_GT(one, 1e-4);
+  EXPECT_LT(sixteen, one / 100.0);
+}
+
+TEST(Sweep, ParetoFrontHoldsTheUnbeatenRows) {
+  TempDir dir;
+  const Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,2,4", "--repeat", "1",
+                           "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const Csv csv = readCsv(dir.file("out/results.csv"));
+  const Csv front = readCsv(dir.file("out/pareto.csv"));
+  // Compared as the sweep compares them: errors below 1e-9 m are round-off, equal to 1e-9.
+  auto err = [](const std::map<std::string, std::string>& r) { return std::max(number(r, "error"), 1e-9); };
+  auto beats = [&](const std::map<std::string, std::string>& q, const std::map<std::string, std::string>& r) {
+    const double qc = number(q, "ms_per_step");
+    const double rc = number(r, "ms_per_step");
+    return qc <= rc && err(q) <= err(r) && (qc < rc || err(q) < err(r));
+  };
+  std::size_t marked = 0;
+  for (const auto& r : csv.rows) {
+    bool beaten = false;
+    for (const auto& q : csv.rows) beaten = beaten || beats(q, r);
+    EXPECT_EQ(r.at("pareto") == "1", !beaten) << r.at("method") << " " << r.at("substeps");
+    marked += r.at("pareto") == "1" ? 1 : 0;
+  }
+  ASSERT_EQ(front.rows.size(), marked);
+  ASSERT_GE(marked, 1u);
+  for (std::size_t i = 1; i < front.rows.size(); ++i) {
+    EXPECT_LE(number(front.rows[i - 1], "ms_per_step"), number(front.rows[i], "ms_per_step"));  // by cost
+  }
+}
+
+TEST(Sweep, ARunThatBlowsUpHasInfiniteErrorAndFrozenParticles) {
+  TempDir dir;
+  const std::filesystem::path scene = dir.write("escape.xml", lab_testing::escapingScene());
+  const Outcome o = sweep({scene.string(), "--steps", "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const Csv csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_EQ(csv.rows[0].at("error"), "inf");
+  EXPECT_GT(number(csv.rows[0], "frozen"), 0.0);
+  EXPECT_EQ(csv.rows[0].at("pareto"), "0");
+  EXPECT_NE(csv.rows[0].at("note").find("blew up"), std::string::npos);
+}
+
+TEST(Sweep, DrawsTheChartWhenGnuplotIsThere) {
+  if (lab::findGnuplot().empty()) GTEST_SKIP() << "gnuplot is not installed";
+  TempDir dir;
+  const Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--repeat", "1", "--no-peers", "--out",
+                           dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  for (const char* f : {"results.csv", "pareto.csv", "sweep.gp", "error-vs-cost.png", "error-vs-cost.svg"}) {
+    EXPECT_GT(std::filesystem::file_size(dir.file("out") / f), 0u) << f;
+  }
+  EXPECT_EQ(lab_testing::readFile(dir.file("out/error-vs-cost.png")).substr(1, 3), "PNG");
+  EXPECT_NE(lab_testing::readFile(dir.file("out/error-vs-cost.svg")).find("<svg"), std::string::npos);
+  EXPECT_EQ(o.err.find("gnuplot"), std::string::npos) << o.err;
+}
+
+// PATH set for the life of the object, then put back.
+class ScopedPath {
+ public:
+  explicit ScopedPath(const std::string& path) {
+    const char* old = std::getenv("PATH");
+    if (old != nullptr) old_ = old;
+    ::setenv("PATH", path.c_str(), 1);
+  }
+  ~ScopedPath() {
+    if (old_) ::setenv("PATH", old_->c_str(), 1);
+    else ::unsetenv("PATH");
+  }
+  ScopedPath(const ScopedPath&) = delete;
+  ScopedPath& operator=(const ScopedPath&) = delete;
+
+ private:
+  std::optional<std::string> old_;
+};
+
+TEST(Sweep, SaysSoAndStillWritesTheDataWithoutGnuplot) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("empty-bin"));
+  Outcome o;
+  {
+    const ScopedPath noGnuplot(dir.file("empty-bin").string());
+    o = sweep({"pendulum-exact", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  }
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("gnuplot is not installed"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("sweep.gp"), std::string::npos) << o.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/results.csv")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/sweep.gp")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/error-vs-cost.png")));
+}
+
+TEST(Sweep, UsageErrorsNameTheArgument) {
+  TempDir dir;
+  const std::string out = dir.file("out").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string named;  // what the message must mention
+  };
+  const std::vector<Case> cases = {
+      {{"pendulum"}, "--out"},
+      {{"--out", out}, "SCENE"},
+      {{"pendulum", "chain", "--out", out}, "chain"},
+      {{"pendulum", "--out", out, "--method", "gauss,shake"}, "'gauss'"},
+      {{"pendulum", "--out", out, "--iterations", "0"}, "--iterations: '0'"},
+      {{"pendulum", "--out", out, "--substeps", "1,,2"}, "--substeps"},
+      {{"pendulum", "--out", out, "--substeps", "2.5"}, "--substeps: '2.5'"},
+      {{"pendulum", "--out", out, "--dt", "2"}, "--dt: '2'"},
+      {{"pendulum", "--out", out, "--repeat", "0"}, "--repeat: '0'"},
+      {{"pendulum", "--out", out, "--steps", "1e3"}, "--steps: '1e3'"},
+      {{"pendulum", "--out", out, "--method"}, "--method needs"},
+      {{"pendulum", "--out", out, "--frobnicate"}, "'--frobnicate'"},
+      {{"pendulum", "--out", out, "--model", "corners"}, "--model: 'corners' is a box model"},
+      {{"falling-box", "--out", out, "--model", "lean"}, "--model: 'lean' is a ragdoll model"},
+      {{"falling-box", "--out", out, "--model", "cubes"}, "unknown model 'cubes'"},
+  };
+  for (const Case& c : cases) {
+    const Outcome o = sweep(c.args);
+    EXPECT_EQ(o.code, lab::kExitUsage) << c.named;
+    EXPECT_TRUE(o.err.starts_with("lab: ")) << o.err;
+    EXPECT_NE(o.err.find(c.named), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("usage: lab sweep"), std::string::npos) << o.err;
+    EXPECT_TRUE(o.out.empty()) << o.out;
+  }
+  const Outcome help = sweep({"--help"});
+  EXPECT_EQ(help.code, 0);
+  EXPECT_TRUE(help.out.starts_with("usage: lab sweep")) << help.out;
+  EXPECT_FALSE(std::filesystem::exists(out));  // nothing ran
+}
+
+TEST(Sweep, ShowsProgressOnePerTenthWhenStderrIsNotATerminal) {
+  TempDir dir;
+  const Outcome o = sweep({"pendulum-exact", "--substeps", "1,2,3,4,5", "--repeat", "1", "--no-peers", "--out",
+                           dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  // 5 settings x (1 timed + 1 measured) + 1 target = 11 runs: a line per tenth, the last full.
+  EXPECT_NE(o.err.find("[##########] 11/11 runs\n"), std::string::npos) << o.err;
+  EXPECT_EQ(o.err.find('\r'), std::string::npos);
+  std::size_t lines = 0;
+  for (char c : o.err) lines += c == '\n' ? 1 : 0;
+  EXPECT_LE(lines, 10u) << o.err;
+}
+
+// ---- accuracy ---------------------------------------------------------------------------------
+
+std::string sceneWithExpect(const std::string& expect) {
+  return "<scene name=\"e\">\n"
+         "  <world/>\n"
+         "  <particle name=\"p\" pos=\"0 5 0\" mass=\"1\"/>\n"
+         "  " + expect + "\n"
+         "</scene>\n";
+}
+
+TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
+  struct Case {
+    std::string expect;
+    std::string attribute;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {R"(<expect kind="position" body="q" at="1" pos="0 0 0"/>)", "body", "'q' names no box or loose particle"},
+      {R"(<expect kind="position" at="1" pos="0 0 0"/>)", "body", "is required"},
+      {R"(<expect kind="position" body="p" pos="0 0 0"/>)", "at", "is required"},
+      {R"(<expect kind="position" body="p" at="-1" pos="0 0 0"/>)", "at", "must be a finite number > 0"},
+      {R"(<expect kind="position" body="p" at="0.01" pos="0 0 0"/>)", "at", "not a whole number of steps"},
+      {R"(<expect kind="position" body="p" at="1" pos="0 0"/>)", "pos", "must be three finite numbers"},
+      {R"(<expect kind="position" body="p" at="1" pos="0 nan 0"/>)", "pos", "must be three finite numbers"},
+      {R"(<expect kind="position" body="p" at="1" pos="0 0 0" tolerance="1"/>)", "tolerance", "unknown attribute"},
+  };
+  for (const Case& c : cases) {
+    const scenes::Scene scene = scenes::loadSceneText(sceneWithExpect(c.expect), "e.xml");
+    try {
+      (void)lab::accuracyTarget(scene, {}, 1.0 / 60.0, 60);
+      ADD_FAILURE() << "no error for " << c.expect;
+    } catch (const scenes::LoadError& e) {
+      EXPECT_EQ(e.line(), 4) << e.what();
+      EXPECT_EQ(e.attribute(), c.attribute) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+      EXPECT_TRUE(std::string(e.what()).starts_with("e.xml:4: <expect")) << e.what();
+    }
+  }
+  // Other kinds belong to other commands and are left alone.
+  const scenes::Scene other = scenes::loadSceneText(sceneWithExpect(R"(<expect kind="pass" max-speed="1"/>)"), "e.xml");
+  EXPECT_EQ(lab::accuracyTarget(other, {}, 1.0 / 60.0, 8).kind, "reference");
+}
+
+TEST(Accuracy, SweepReportsABadExpectationLikeTheLoader) {
+  TempDir dir;
+  const std::filesystem::path scene = dir.write("bad.xml", sceneWithExpect(R"(<expect kind="position" body="p" at="1" pos="1 2"/>)"));
+  const Outcome o = sweep({scene.string(), "--out", dir.file("out").string()});
+  EXPECT_EQ(o.code, lab::kExitFailure);
+  EXPECT_NE(o.err.find(scene.string() + ":4: <expect kind=\"position\"> attribute 'pos'"), std::string::npos) << o.err;
+}
+
+TEST(Accuracy, AnalyticTargetHoldsTheGivenPositionsAtTheirSteps) {
+  const scenes::Scene scene = scenes::loadSceneText(
+      sceneWithExpect(R"(<expect kind="position" body="p" at="0.5" pos="1 2 3"/>)"), "e.xml");
+  const lab::AccuracyTarget t = lab::accuracyTarget(scene, {}, 0.01, 10);
+  EXPECT_EQ(t.kind, "analytic");
+  ASSERT_EQ(t.checkpoints, std::vector<int>{50});
+  EXPECT_EQ(lab::stepsFor(t, 10), 50);  // the run goes on to the answer's time
+  EXPECT_EQ(t.expected[0][0], phys::Vec3(1, 2, 3));
+  EXPECT_EQ(lab::accuracyError(t, {{phys::Vec3(1, 2, 3.5)}}), 0.5);
+  EXPECT_TRUE(std::isinf(lab::accuracyError(t, {{phys::Vec3(1, std::nan(""), 3)}})));
+  EXPECT_TRUE(std::isinf(lab::accuracyError(t, {{phys::Vec3(1, 2, 3), phys::Vec3(0.0)}})));  // body counts differ
+  EXPECT_TRUE(std::isinf(lab::accuracyError(t, {})));
+}
+
+TEST(Accuracy, ReferenceIsShakeUnlessTheSceneAsksForCompliance) {
+  const scenes::Scene rigid = scenes::loadSceneText(lab_testing::namedBodiesScene(), "n.xml");
+  phys::SolverSettings s = lab::referenceSettings(rigid.world, 0.02);
+  EXPECT_EQ(s.method, phys::SolverMethod::Shake);
+  EXPECT_EQ(s.substeps, lab::kReferenceSubsteps);
+  EXPECT_EQ(s.iterations, lab::kReferenceIterations);
+  EXPECT_EQ(s.dt, 0.02);
+  scenes::Scene soft = scenes::loadSceneText(lab_testing::namedBodiesScene(), "n.xml");
+  phys::SolverSettings withCompliance = soft.world.solverSettings();
+  withCompliance.compliance = 1e-4;
+  soft.world.setSolverSettings(withCompliance);
+  EXPECT_EQ(lab::referenceSettings(soft.world, 0.02).method, phys::SolverMethod::Xpbd);
+
+  // Four checkpoints spread over the run, the last step among them, and an error bar.
+  const lab::AccuracyTarget t = lab::accuracyTarget(rigid, {}, 1.0 / 60.0, 30);
+  EXPECT_EQ(t.kind, "reference");
+  EXPECT_EQ(t.checkpoints, (std::vector<int>{8, 15, 23, 30}));
+  ASSERT_EQ(t.uncertainty.size(), 4u);
+  for (double u : t.uncertainty) EXPECT_TRUE(std::isfinite(u));
+}
+
+}  // namespace
