@@ -1,7 +1,6 @@
 #include "accuracy.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -10,6 +9,7 @@
 #include <string_view>
 
 #include "bodies.h"
+#include "numbers.h"
 
 // What "converged" means here. A reference is our own physics run so finely that the settings
 // being judged cannot come near it: `shake`, 128 substeps of 4 passes, at the same dt (so a
@@ -68,20 +68,12 @@ const std::string& required(const scenes::Scene& scene, const scenes::Expectatio
   return *value;
 }
 
-// A whole token as one finite double: from_chars rejects "1.5m", "+1" and spaces.
-std::optional<double> parseFinite(std::string_view text) {
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
 std::optional<phys::Vec3> parseVector(const std::string& text) {
   std::istringstream words(text);
   std::vector<double> values;
   std::string word;
   while (words >> word) {
-    const std::optional<double> v = parseFinite(word);
+    const std::optional<double> v = parseNumber(word);
     if (!v) return std::nullopt;
     values.push_back(*v);
   }
@@ -130,7 +122,7 @@ PositionExpect readExpect(const scenes::Scene& scene, const scenes::Expectation&
   x.slot = *slot;
 
   const std::string& at = required(scene, e, "at");
-  const std::optional<double> t = parseFinite(at);
+  const std::optional<double> t = parseNumber(at);
   if (!t || *t <= 0.0) fail(scene, e, "at", "'" + at + "' must be a finite number > 0 (s)");
   // The run is compared at whole steps; an answer between two steps cannot be checked.
   const double steps = std::round(*t / dt);

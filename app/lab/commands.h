@@ -20,4 +20,18 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
 /// lab report [--out DIR]: regenerates docs/results.md and its charts
 int reportMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
+/// What a command did, its streams captured as text.
+struct CommandOutput {
+  int code = -1;    ///< exit code; -1 until it has run
+  std::string out;  ///< what it wrote to `out`
+  std::string err;  ///< what it wrote to `err`
+};
+
+/// The signature every command above (and labMain) has.
+using CommandMain = int (*)(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+/// Runs a command on args with string streams: how lab report quotes its commands' output, and
+/// how the tests see exactly what the program would print without starting it.
+CommandOutput runCaptured(CommandMain main, const std::vector<std::string>& args);
+
 }  // namespace lab

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "commands.h"
@@ -29,6 +30,16 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     case Command::Report: return reportMain(parsed.rest, out, err);
   }
   return kExitUsage;
+}
+
+CommandOutput runCaptured(CommandMain main, const std::vector<std::string>& args) {
+  std::ostringstream out;
+  std::ostringstream err;
+  CommandOutput r;
+  r.code = main(args, out, err);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
 }
 
 int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {

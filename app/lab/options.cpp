@@ -1,57 +1,27 @@
 #include "options.h"
 
-#include <charconv>
-#include <cmath>
+#include <algorithm>
 #include <string_view>
 #include <utility>
 
+#include "numbers.h"
+
 namespace lab {
 namespace {
-
-// Whole numbers only: from_chars rejects signs, spaces, exponents and trailing junk, which is
-// what makes "--steps 1e3" or "--steps 10x" an error instead of a silent 1 or 10.
-std::optional<int> parseInt(const std::string& text, int low, int high) {
-  int n = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
-  if (ec != std::errc() || end != text.data() + text.size() || n < low || n > high) return std::nullopt;
-  return n;
-}
-
-// from_chars reads "inf" and "nan" too; the range test (written so that NaN fails it) and
-// isfinite turn both away.
-std::optional<double> parseDt(const std::string& text) {
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) ||
-      !(v >= phys::kMinDt && v <= phys::kMaxDt)) {
-    return std::nullopt;
-  }
-  return v;
-}
 
 // Everything after "run". Returns the error, or "" when the options are good.
 std::string parseRun(const std::vector<std::string>& args, std::size_t first, RunOptions& o) {
   for (std::size_t i = first; i < args.size(); ++i) {
     const std::string& a = args[i];
-    // The value of option `a`, or nullptr when there is none. A following "--word" is taken
-    // as a forgotten value, not as a file called "--json".
-    auto value = [&]() -> const std::string* {
-      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
-      return &args[++i];
-    };
+    auto value = [&] { return optionValue(args, i); };
     auto missing = [&](const char* what) { return a + " needs " + what; };
-    auto wholeNumber = [&](const std::string& v, int high) {
-      return a + ": '" + v + "' is not a whole number from 1 to " + std::to_string(high);
-    };
     if (a == "--steps" || a == "--iterations" || a == "--substeps") {
-      const std::string* v = value();
-      if (v == nullptr) return missing("a whole number");
       const int high = a == "--steps" ? kMaxSteps : a == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
-      const std::optional<int> n = parseInt(*v, 1, high);
-      if (!n) return wholeNumber(*v, high);
-      if (a == "--steps") o.steps = *n;
-      else if (a == "--iterations") o.iterations = *n;
-      else o.substeps = *n;
+      int n = 0;
+      if (std::string e = parseCountOption(a, value(), high, n); !e.empty()) return e;
+      if (a == "--steps") o.steps = n;
+      else if (a == "--iterations") o.iterations = n;
+      else o.substeps = n;
     } else if (a == "--dt") {
       const std::string* v = value();
       if (v == nullptr) return missing("a time step in seconds");
@@ -72,15 +42,11 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
       const std::string* v = value();
       if (v == nullptr) return missing("a folder");
       o.dataDir = *v;
-    } else if (a.size() > 1 && a[0] == '-') {
-      return "unknown option '" + a + "'";
-    } else if (o.scene.empty()) {
-      o.scene = a;
-    } else {
-      return "run takes one SCENE; got '" + o.scene + "' and '" + a + "'";
+    } else if (std::string e = sceneArgument("run", a, o.scene); !e.empty()) {
+      return e;
     }
   }
-  if (o.scene.empty()) return "run needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  if (o.scene.empty()) return missingScene("run");
   return {};
 }
 
@@ -120,10 +86,7 @@ ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
       return out;
     }
   }
-  // Help wins wherever it is, so "lab run x --help" shows the usage instead of running.
-  for (const std::string& a : args) {
-    if (a == "--help" || a == "-h") return out;
-  }
+  if (asksForHelp(args)) return out;
   if (args.empty()) {
     out.error = "no command (run, sweep, stability, tune, compare, report or help)";
   } else if (args[0] == "help") {
@@ -139,6 +102,44 @@ ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
 
 std::filesystem::path dataDir(const RunOptions& options) {
   return options.dataDir.empty() ? std::filesystem::path(LAB_DATA_DIR) : options.dataDir;
+}
+
+bool asksForHelp(const std::vector<std::string>& args) {
+  return std::any_of(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; });
+}
+
+const std::string* optionValue(const std::vector<std::string>& args, std::size_t& i) {
+  if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
+  return &args[++i];
+}
+
+std::string notWholeNumber(const std::string& option, const std::string& text, int high) {
+  return option + ": '" + text + "' is not a whole number from 1 to " + std::to_string(high);
+}
+
+std::string parseCountOption(const std::string& option, const std::string* value, int high, int& into) {
+  if (value == nullptr) return option + " needs a whole number";
+  const std::optional<int> n = parseWholeNumber(*value, 1, high);
+  if (!n) return notWholeNumber(option, *value, high);
+  into = *n;
+  return {};
+}
+
+std::optional<double> parseDt(const std::string& text) {
+  const std::optional<double> v = parseNumber(text);
+  if (!v || !(*v >= phys::kMinDt && *v <= phys::kMaxDt)) return std::nullopt;
+  return v;
+}
+
+std::string sceneArgument(const std::string& command, const std::string& arg, std::string& scene) {
+  if (arg.size() > 1 && arg[0] == '-') return "unknown option '" + arg + "'";
+  if (!scene.empty()) return command + " takes one SCENE; got '" + scene + "' and '" + arg + "'";
+  scene = arg;
+  return {};
+}
+
+std::string missingScene(const std::string& command) {
+  return command + " needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
 }
 
 }  // namespace lab

@@ -53,4 +53,32 @@ std::string usage();
 /// The folder holding assets/: options.dataDir, or the source tree set at build time.
 std::filesystem::path dataDir(const RunOptions& options);
 
+// ---- pieces of the parsers: run's here, and sweep's, tune's and stability's (commands.h) -----
+// Shared so that every command reads a value, a count and a SCENE alike and words the same
+// mistake the same way.
+
+/// "--help" or "-h" anywhere: help wins wherever it is, so "lab run x --help" shows the usage
+/// instead of running.
+bool asksForHelp(const std::vector<std::string>& args);
+
+/// The value of the option at args[i], stepping i onto it; nullptr when there is none. A
+/// following "--word" is taken as a forgotten value, not as a file called "--json".
+const std::string* optionValue(const std::vector<std::string>& args, std::size_t& i);
+
+/// "OPTION: 'TEXT' is not a whole number from 1 to HIGH".
+std::string notWholeNumber(const std::string& option, const std::string& text, int high);
+
+/// A count option's value (--steps N, --repeat N) from 1 to high into `into`. Returns the
+/// error, "OPTION needs a whole number" when `value` is nullptr or notWholeNumber's, or "".
+std::string parseCountOption(const std::string& option, const std::string* value, int high, int& into);
+
+/// A time step from phys::kMinDt to phys::kMaxDt seconds, nothing else.
+std::optional<double> parseDt(const std::string& text);
+
+/// The one SCENE of `lab COMMAND SCENE [options]`: stores `arg` in `scene` and returns "", or
+/// returns the error (an unknown option, or a second SCENE).
+std::string sceneArgument(const std::string& command, const std::string& arg, std::string& scene);
+/// "COMMAND needs a SCENE (...)", for a command line without one.
+std::string missingScene(const std::string& command);
+
 }  // namespace lab

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "csv.h"
+
 namespace lab {
 namespace {
 
@@ -28,17 +30,6 @@ std::string phase(const char* name, double ms, double totalMs) {
   std::string s = std::string(name) + " " + num(ms, 4) + " ms";
   if (totalMs > 0.0) s += " (" + num(100.0 * ms / totalMs, 3) + "%)";
   return s;
-}
-
-// RFC 4180: a field with a comma, quote or line break is quoted, its quotes doubled.
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
 }
 
 // Summaries stay readable when the guard froze thousands of particles.

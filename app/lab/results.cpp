@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <limits>
@@ -13,6 +14,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "csv.h"
 #include "lab.h"
 #include "options.h"
 #include "report.h"
@@ -38,96 +40,50 @@ struct ReportOptions {
   bool quick = false;
 };
 
-// ---- reading the CSVs the commands wrote -----------------------------------------------------
-
-// One CSV line split into fields, with RFC 4180 quotes (the sweep quotes fields with commas).
-std::vector<std::string> csvFields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        fields.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        fields.back() += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
-
-using CsvRow = std::map<std::string, std::string>;
-
-std::vector<CsvRow> readCsv(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::vector<CsvRow> rows;
-  if (!std::getline(in, line)) return rows;
-  const std::vector<std::string> header = csvFields(line);
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    const std::vector<std::string> fields = csvFields(line);
-    CsvRow row;
-    for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i) row[header[i]] = fields[i];
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
-
-double number(const CsvRow& row, const std::string& column) {
-  const auto it = row.find(column);
-  if (it == row.end() || it->second.empty()) return std::numeric_limits<double>::quiet_NaN();
-  if (it->second == "inf") return std::numeric_limits<double>::infinity();
-  return std::strtod(it->second.c_str(), nullptr);
-}
-
-std::string text(const CsvRow& row, const std::string& column) {
-  const auto it = row.find(column);
-  return it == row.end() ? std::string() : it->second;
-}
-
 // "xpbd 2x4" or "bullet": how a row is named in the report's sentences.
 std::string settingName(const CsvRow& r) {
-  const std::string iterations = text(r, "iterations"), substeps = text(r, "substeps");
-  if (iterations.empty()) return text(r, "method");  // a peer engine
-  std::string name = text(r, "method") + " " + iterations + "x" + substeps;
-  if (!text(r, "model").empty()) name += " (model " + text(r, "model") + ")";
+  const std::string iterations = fieldText(r, "iterations"), substeps = fieldText(r, "substeps");
+  if (iterations.empty()) return fieldText(r, "method");  // a peer engine
+  std::string name = fieldText(r, "method") + " " + iterations + "x" + substeps;
+  if (!fieldText(r, "model").empty()) name += " (model " + fieldText(r, "model") + ")";
   return name;
 }
 
+// A length as people read it: millimetres up to a metre, metres beyond.
 std::string millimetres(double metres) {
   if (!std::isfinite(metres)) return "blew up";
+  if (metres >= 1.0) return formatNumber(metres, 3) + " m";
   return formatNumber(metres * 1000.0, 3) + " mm";
+}
+
+// Ratios to two decimals, so 1.04 does not read as "1 times".
+std::string ratio(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", value);
+  return text;
+}
+
+// The commands write reports that start at "#"; inside results.md they sit under a "##".
+std::string demoteHeadings(const std::string& markdown) {
+  std::istringstream in(markdown);
+  std::string line, out;
+  bool fenced = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("```", 0) == 0) fenced = !fenced;
+    if (!fenced && !line.empty() && line[0] == '#') line = "##" + line;
+    out += line + "\n";
+  }
+  return out;
 }
 
 // ---- running the commands ---------------------------------------------------------------------
 
-struct CommandOutput {
-  int code = 0;
-  std::string out, err;
-};
-
-template <typename Main>
-CommandOutput runCommandMain(Main main, const std::vector<std::string>& args, std::ostream& progress) {
-  std::ostringstream out, err;
+// Says which command runs (the full report takes minutes), then runs it captured.
+CommandOutput runCommandMain(CommandMain main, const std::vector<std::string>& args, std::ostream& progress) {
   progress << "lab report: lab";
   for (const std::string& a : args) progress << ' ' << a;
   progress << std::endl;
-  CommandOutput r;
-  r.code = main(args, out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
+  return runCaptured(main, args);
 }
 
 // ---- the sweeps -------------------------------------------------------------------------------
@@ -168,20 +124,20 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
   std::vector<const CsvRow*> front;
   double best = std::numeric_limits<double>::infinity(), uncertainty = 0.0;
   for (const CsvRow& r : rows) {
-    if (text(r, "pareto") == "1") front.push_back(&r);
-    best = std::min(best, number(r, "error"));
-    const double u = number(r, "ref_uncertainty");
+    if (fieldText(r, "pareto") == "1") front.push_back(&r);
+    best = std::min(best, fieldNumber(r, "error"));
+    const double u = fieldNumber(r, "ref_uncertainty");
     if (std::isfinite(u)) uncertainty = std::max(uncertainty, u);
   }
   std::ostringstream md;
   std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
-    return number(*a, "ms_per_sim_second") < number(*b, "ms_per_sim_second");
+    return fieldNumber(*a, "ms_per_sim_second") < fieldNumber(*b, "ms_per_sim_second");
   });
   md << "Pareto front, cheapest first:";
   for (std::size_t i = 0; i < front.size(); ++i) {
     md << (i == 0 ? " " : "; ") << settingName(*front[i]) << " ("
-       << formatNumber(number(*front[i], "ms_per_step"), 3) << " ms/step, " << millimetres(number(*front[i], "error"))
-       << ")";
+       << formatNumber(fieldNumber(*front[i], "ms_per_step"), 3) << " ms/step, "
+       << millimetres(fieldNumber(*front[i], "error")) << ")";
   }
   md << ".\n\n";
   // "Within reach": ten times the best error, or the reference's own uncertainty if larger
@@ -191,20 +147,21 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
   md << "| method | setting | ms/step | error |\n|---|---|---|---|\n";
   std::map<std::string, const CsvRow*> cheapest;
   for (const CsvRow& r : rows) {
-    if (!(number(r, "error") <= reach)) continue;
-    const CsvRow*& c = cheapest[text(r, "method")];
-    if (c == nullptr || number(r, "ms_per_sim_second") < number(*c, "ms_per_sim_second")) c = &r;
+    if (!(fieldNumber(r, "error") <= reach)) continue;
+    const CsvRow*& c = cheapest[fieldText(r, "method")];
+    if (c == nullptr || fieldNumber(r, "ms_per_sim_second") < fieldNumber(*c, "ms_per_sim_second")) c = &r;
   }
   std::vector<std::pair<double, const CsvRow*>> ordered;
-  for (const auto& [method, row] : cheapest) ordered.emplace_back(number(*row, "ms_per_sim_second"), row);
+  for (const auto& [method, row] : cheapest) ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
   std::sort(ordered.begin(), ordered.end());
   for (const auto& [cost, row] : ordered) {
-    md << "| " << text(*row, "method") << " | " << settingName(*row) << " | "
-       << formatNumber(number(*row, "ms_per_step"), 3) << " | " << millimetres(number(*row, "error")) << " |\n";
+    md << "| " << fieldText(*row, "method") << " | " << settingName(*row) << " | "
+       << formatNumber(fieldNumber(*row, "ms_per_step"), 3) << " | " << millimetres(fieldNumber(*row, "error"))
+       << " |\n";
   }
   std::vector<std::string> never;
   std::map<std::string, bool> seen;
-  for (const CsvRow& r : rows) seen[text(r, "method")] = true;
+  for (const CsvRow& r : rows) seen[fieldText(r, "method")] = true;
   for (const auto& [method, unused] : seen) {
     if (cheapest.count(method) == 0) never.push_back(method);
   }
@@ -217,7 +174,7 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
     md << "\n**Winner here: " << settingName(*ordered.front().second) << "**";
     if (ordered.size() > 1) {
       md << "; the next method's cheapest, " << settingName(*ordered[1].second) << ", costs "
-         << formatNumber(ordered[1].first / ordered.front().first, 2) << " times as much";
+         << ratio(ordered[1].first / ordered.front().first) << " times as much";
     }
     md << ".\n";
   }
@@ -245,7 +202,7 @@ std::string machine() {
 }
 
 std::string codeBlockOrText(const CommandOutput& r) {
-  if (r.code == 0) return r.out;
+  if (r.code == 0) return demoteHeadings(r.out);
   return "The command failed (exit " + std::to_string(r.code) + "):\n\n```\n" + r.err + "```\n";
 }
 
@@ -275,7 +232,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
       continue;
     }
     md << "![error against cost, " << s.name << "](results/" << s.name << "/error-vs-cost.png)\n\n"
-       << sweepWords(readCsv(dir / "results.csv")) << "\nAll runs: [results.csv](results/" << s.name
+       << sweepWords(readCsv(dir / "results.csv").rows) << "\nAll runs: [results.csv](results/" << s.name
        << "/results.csv).\n\n";
   }
 

@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "gnuplot.h"
 #include "lab.h"
+#include "options.h"
 #include "peer.h"
 #include "report.h"
 #include "stability_options.h"
@@ -123,7 +124,7 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
 }  // namespace
 
 int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (std::find_if(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; }) != args.end()) {
+  if (asksForHelp(args)) {
     out << stability::usage();
     return kExitOk;
   }

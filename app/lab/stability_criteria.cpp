@@ -1,11 +1,12 @@
 #include "stability_criteria.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <sstream>
+
+#include "numbers.h"
 
 namespace lab::stability {
 namespace {
@@ -38,14 +39,11 @@ std::string formatNumber(double value) {
   return out.str();
 }
 
-std::optional<double> parseNumber(std::string_view text) {
+// A criterion's number: as numbers.h reads it, except that the criteria have always taken a
+// leading '+' as well, and a scene file that writes one must keep loading.
+std::optional<double> parseSignedNumber(std::string_view text) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    return std::nullopt;
-  }
-  return value;
+  return lab::parseNumber(text);
 }
 
 // Reads one <expect>'s attributes the way the scene loader reads an element's: every attribute
@@ -68,7 +66,7 @@ class ExpectReader {
   }
   double positive(const std::string& name, const std::string& unit) {
     const std::string& raw = required(name, "a number > 0" + withUnit(unit));
-    const std::optional<double> v = parseNumber(raw);
+    const std::optional<double> v = parseSignedNumber(raw);
     if (!v || *v <= 0.0) fail(name, "'" + raw + "' must be a number > 0" + withUnit(unit));
     return *v;
   }
@@ -101,7 +99,7 @@ void readWindow(ExpectReader& r, Criterion& c, double dt) {
   std::istringstream in(raw);
   std::string a, b, extra;
   in >> a >> b >> extra;
-  const std::optional<double> from = parseNumber(a), to = parseNumber(b);
+  const std::optional<double> from = parseSignedNumber(a), to = parseSignedNumber(b);
   if (!from || !to || !extra.empty()) r.fail("over", "'" + raw + "' must be two numbers, \"from to\" (s)");
   if (*from < 0.0 || *to <= *from || *to > kMaxWindowEnd) {
     r.fail("over", "'" + raw + "' must have 0 <= from < to <= " + formatNumber(kMaxWindowEnd) + " (s)");
@@ -163,7 +161,7 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
   const std::string* min = r.find("min");
   if ((max == nullptr) == (min == nullptr)) r.fail(max ? "min" : "max", "give exactly one of max and min (m): the plane");
   const std::string attribute = max ? "max" : "min";
-  const std::optional<double> plane = parseNumber(max ? *max : *min);
+  const std::optional<double> plane = parseSignedNumber(max ? *max : *min);
   if (!plane) r.fail(attribute, "'" + (max ? *max : *min) + "' must be a finite number (m)");
   c.limit = *plane;
   c.atLeast = min != nullptr;
@@ -189,9 +187,8 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   auto count = [&](const std::string& name) -> std::optional<int> {
     const std::string* raw = r.find(name);
     if (raw == nullptr) return std::nullopt;
-    int n = 0;
-    const auto [end, ec] = std::from_chars(raw->data(), raw->data() + raw->size(), n);
-    if (ec != std::errc() || end != raw->data() + raw->size() || n < 1) r.fail(name, "'" + *raw + "' must be a whole number >= 1");
+    const std::optional<int> n = lab::parseWholeNumber(*raw, 1, std::numeric_limits<int>::max());
+    if (!n) r.fail(name, "'" + *raw + "' must be a whole number >= 1");
     return n;
   };
   const std::optional<int> min = count("min"), max = count("max");

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <optional>
 #include <stdexcept>
 
+#include "numbers.h"
 #include "options.h"
 #include "scenes/scene.h"
 
@@ -27,12 +27,9 @@ std::vector<std::string> splitList(const std::string& text) {
 std::string parseCounts(const std::string& option, const std::string& text, int high, std::vector<int>& into) {
   into.clear();
   for (const std::string& item : splitList(text)) {
-    int n = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), n);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || n < 1 || n > high) {
-      return option + ": '" + item + "' is not a whole number from 1 to " + std::to_string(high);
-    }
-    if (std::find(into.begin(), into.end(), n) == into.end()) into.push_back(n);
+    const std::optional<int> n = parseWholeNumber(item, 1, high);
+    if (!n) return notWholeNumber(option, item, high);
+    if (std::find(into.begin(), into.end(), *n) == into.end()) into.push_back(*n);
   }
   return {};
 }
@@ -74,11 +71,7 @@ std::string usage() {
 std::string parseOptions(const std::vector<std::string>& args, StabilityOptions& o) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    // A following "--word" is a forgotten value, as in `lab run`.
-    auto value = [&]() -> const std::string* {
-      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
-      return &args[++i];
-    };
+    auto value = [&] { return optionValue(args, i); };
     std::string error;
     if (a == "--out" || a == "--data" || a == "--methods" || a == "--iterations" || a == "--substeps") {
       const std::string* v = value();

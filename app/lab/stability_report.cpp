@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "csv.h"
+
 namespace lab::stability {
 namespace {
 
@@ -139,13 +141,6 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
     for (std::size_t p = 0; p < r.peers.size(); ++p) md << " " << peerEntry(r.outcomes[s][r.settings.size() + p]) << " |";
     md << "\n";
   }
-}
-
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 // Column labels for gnuplot's matrix header: one token each, no spaces.

@@ -19,8 +19,10 @@
 #include "accuracy.h"
 #include "charts.h"
 #include "commands.h"
+#include "csv.h"
 #include "gnuplot.h"
 #include "lab.h"
+#include "numbers.h"
 #include "options.h"
 #include "peer.h"
 #include "report.h"
@@ -81,7 +83,6 @@ std::string parseListOption(const std::string& option, const std::string& text, 
   const std::optional<std::vector<std::string>> items = splitList(text);
   if (!items) return option + ": '" + text + "' is not a comma-separated list (an item is empty)";
   for (const std::string& item : *items) {
-    const std::string bad = option + ": '" + item + "' ";
     if (option == "--method") {
       const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(item);
       if (!m) return option + ": unknown method '" + item + "' (gauss-seidel, jacobi, xpbd or shake)";
@@ -89,11 +90,11 @@ std::string parseListOption(const std::string& option, const std::string& text, 
     } else if (option == "--iterations" || option == "--substeps") {
       const int high = option == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
       const std::optional<int> n = parseWholeNumber(item, 1, high);
-      if (!n) return bad + "is not a whole number from 1 to " + std::to_string(high);
+      if (!n) return notWholeNumber(option, item, high);
       addOnce(option == "--iterations" ? o.iterations : o.substeps, *n);
     } else if (option == "--dt") {
-      const std::optional<double> dt = parseNumber(item);
-      if (!dt || !(*dt >= phys::kMinDt && *dt <= phys::kMaxDt)) return bad + "is not a number of seconds from 1e-06 to 1";
+      const std::optional<double> dt = parseDt(item);
+      if (!dt) return option + ": '" + item + "' is not a number of seconds from 1e-06 to 1";
       addOnce(o.dts, *dt);
     } else {
       addOnce(o.models, item);  // checked against the scene once it is loaded
@@ -106,25 +107,16 @@ std::string parseSweep(const std::vector<std::string>& args, SweepOptions& o) {
   bool haveOut = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    // A following "--word" is a forgotten value, not a value.
-    auto value = [&]() -> const std::string* {
-      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
-      return &args[++i];
-    };
+    auto value = [&] { return optionValue(args, i); };
     if (a == "--method" || a == "--iterations" || a == "--substeps" || a == "--dt" || a == "--model") {
       const std::string* v = value();
       if (v == nullptr) return a + " needs a comma-separated list";
       if (std::string e = parseListOption(a, *v, o); !e.empty()) return e;
     } else if (a == "--repeat" || a == "--steps") {
-      const std::string* v = value();
-      const int high = a == "--repeat" ? kMaxRepeats : kMaxSteps;
-      const std::optional<int> n = v == nullptr ? std::nullopt : parseWholeNumber(*v, 1, high);
-      if (!n) {
-        return v == nullptr ? a + " needs a whole number"
-                            : a + ": '" + *v + "' is not a whole number from 1 to " + std::to_string(high);
-      }
-      if (a == "--repeat") o.repeats = *n;
-      else o.steps = *n;
+      int n = 0;
+      if (std::string e = parseCountOption(a, value(), a == "--repeat" ? kMaxRepeats : kMaxSteps, n); !e.empty()) return e;
+      if (a == "--repeat") o.repeats = n;
+      else o.steps = n;
     } else if (a == "--no-peers") {
       o.peers = false;
     } else if (a == "--data" || a == "--out") {
@@ -132,15 +124,11 @@ std::string parseSweep(const std::vector<std::string>& args, SweepOptions& o) {
       if (v == nullptr) return a + " needs a folder";
       (a == "--data" ? o.dataDir : o.out) = *v;
       haveOut = haveOut || a == "--out";
-    } else if (a.size() > 1 && a[0] == '-') {
-      return "unknown option '" + a + "'";
-    } else if (o.scene.empty()) {
-      o.scene = a;
-    } else {
-      return "sweep takes one SCENE; got '" + o.scene + "' and '" + a + "'";
+    } else if (std::string e = sceneArgument("sweep", a, o.scene); !e.empty()) {
+      return e;
     }
   }
-  if (o.scene.empty()) return "sweep needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  if (o.scene.empty()) return missingScene("sweep");
   if (!haveOut) return "sweep needs --out DIR (where the CSV and the chart go)";
   return {};
 }
@@ -349,16 +337,6 @@ std::vector<Row> frontByCost(const std::vector<Row>& rows) {
 
 // ---- files ----------------------------------------------------------------------------------
 
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
 std::string csvNumber(double v) { return formatNumber(v, 10); }
 
 constexpr const char* kCsvHeader =
@@ -566,11 +544,9 @@ int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream
 }  // namespace
 
 int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  for (const std::string& a : args) {
-    if (a == "--help" || a == "-h") {
-      out << sweepUsage();
-      return kExitOk;
-    }
+  if (asksForHelp(args)) {
+    out << sweepUsage();
+    return kExitOk;
   }
   SweepOptions o;
   if (const std::string e = parseSweep(args, o); !e.empty()) {

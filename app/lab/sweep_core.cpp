@@ -1,7 +1,6 @@
 #include "sweep_core.h"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -226,20 +225,6 @@ std::optional<std::vector<std::string>> splitList(const std::string& text) {
     if (comma == std::string::npos) return items;
     start = comma + 1;
   }
-}
-
-std::optional<int> parseWholeNumber(const std::string& text, int low, int high) {
-  int n = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
-  if (ec != std::errc() || end != text.data() + text.size() || n < low || n > high) return std::nullopt;
-  return n;
-}
-
-std::optional<double> parseNumber(const std::string& text) {
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
 }
 
 std::string formatNumber(double value, int digits) {

@@ -107,10 +107,6 @@ int defaultSteps(double dt);
 
 /// "a,b,c" split at commas; nullopt when an item is empty ("a,,b", "", "a,").
 std::optional<std::vector<std::string>> splitList(const std::string& text);
-/// A whole number from low to high, nothing else (no sign, exponent or trailing text).
-std::optional<int> parseWholeNumber(const std::string& text, int low, int high);
-/// A finite number, nothing else.
-std::optional<double> parseNumber(const std::string& text);
 
 /// %g with `digits` significant digits; "inf" for infinity.
 std::string formatNumber(double value, int digits = 6);

@@ -17,6 +17,7 @@
 #include "accuracy.h"
 #include "commands.h"
 #include "lab.h"
+#include "numbers.h"
 #include "options.h"
 #include "sweep_core.h"
 
@@ -125,37 +126,25 @@ std::string parseTarget(const std::string& text, TuneOptions& o) {
 std::string parseTune(const std::vector<std::string>& args, TuneOptions& o) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string* {
-      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return nullptr;
-      return &args[++i];
-    };
+    auto value = [&] { return optionValue(args, i); };
     if (a == "--target") {
       const std::string* v = value();
       if (v == nullptr) return "--target needs METRIC=VALUE";
       if (std::string e = parseTarget(*v, o); !e.empty()) return e;
     } else if (a == "--steps" || a == "--repeat") {
-      const std::string* v = value();
-      const int high = a == "--steps" ? kMaxSteps : kMaxRepeats;
-      const std::optional<int> n = v == nullptr ? std::nullopt : parseWholeNumber(*v, 1, high);
-      if (!n) {
-        return v == nullptr ? a + " needs a whole number"
-                            : a + ": '" + *v + "' is not a whole number from 1 to " + std::to_string(high);
-      }
-      if (a == "--steps") o.steps = *n;
-      else o.repeats = *n;
+      int n = 0;
+      if (std::string e = parseCountOption(a, value(), a == "--steps" ? kMaxSteps : kMaxRepeats, n); !e.empty()) return e;
+      if (a == "--steps") o.steps = n;
+      else o.repeats = n;
     } else if (a == "--data") {
       const std::string* v = value();
       if (v == nullptr) return "--data needs a folder";
       o.dataDir = *v;
-    } else if (a.size() > 1 && a[0] == '-') {
-      return "unknown option '" + a + "'";
-    } else if (o.scene.empty()) {
-      o.scene = a;
-    } else {
-      return "tune takes one SCENE; got '" + o.scene + "' and '" + a + "'";
+    } else if (std::string e = sceneArgument("tune", a, o.scene); !e.empty()) {
+      return e;
     }
   }
-  if (o.scene.empty()) return "tune needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  if (o.scene.empty()) return missingScene("tune");
   if (o.targets.empty()) return "tune needs at least one --target METRIC=VALUE";
   return {};
 }
@@ -400,11 +389,9 @@ int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostrea
 }  // namespace
 
 int tuneMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  for (const std::string& a : args) {
-    if (a == "--help" || a == "-h") {
-      out << tuneUsage();
-      return kExitOk;
-    }
+  if (asksForHelp(args)) {
+    out << tuneUsage();
+    return kExitOk;
   }
   TuneOptions o;
   if (const std::string e = parseTune(args, o); !e.empty()) {

@@ -283,18 +283,8 @@ TEST(PeerUnsupported, PointGravityIsReportedInWords) {
 }
 
 // `lab compare` in-process, on a scene file in a temporary folder.
-struct Output {
-  int code = -1;
-  std::string out, err;
-};
-Output compare(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  Output o;
-  o.code = lab::labMain(args, out, err);
-  o.out = out.str();
-  o.err = err.str();
-  return o;
-}
+using Output = lab::CommandOutput;
+Output compare(const std::vector<std::string>& args) { return lab::runCaptured(lab::labMain, args); }
 
 // A box and a loose particle falling onto the ground: something for every column.
 const char* kSmall =
@@ -378,8 +368,6 @@ TEST(Compare, AMissingSceneExitsOne) {
 }  // namespace
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <unistd.h>
 
@@ -394,14 +382,12 @@ TEST(Report, QuickReportWritesEveryPart) {
   const std::filesystem::path out =
       std::filesystem::temp_directory_path() / ("lab-report-" + std::to_string(::getpid()));
   std::filesystem::remove_all(out);
-  std::ostringstream o, e;
-  ASSERT_EQ(lab::reportMain({"--quick", "--out", out.string(), "--data", DATA_DIR}, o, e), 0) << e.str();
-  std::ifstream in(out / "results.md");
-  std::stringstream md;
-  md << in.rdbuf();
+  const Output r = lab::runCaptured(lab::reportMain, {"--quick", "--out", out.string(), "--data", DATA_DIR});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string md = lab_testing::readFile(out / "results.md");
   for (const char* part : {"## Speed against accuracy", "### ragdoll", "### pendulum-exact", "Pareto front, cheapest first:",
                            "**Winner here:", "## Where methods fail", "## Beside Bullet, ODE and MuJoCo"}) {
-    EXPECT_NE(md.str().find(part), std::string::npos) << part;
+    EXPECT_NE(md.find(part), std::string::npos) << part;
   }
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "pyramid" / "results.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "stability" / "stability.csv"));
@@ -412,9 +398,9 @@ TEST(Report, QuickReportWritesEveryPart) {
 }
 
 TEST(Report, BadArgumentsExitWithUsage) {
-  std::ostringstream o, e;
-  EXPECT_EQ(lab::reportMain({"--frobnicate"}, o, e), 2);
-  EXPECT_NE(e.str().find("unknown argument '--frobnicate'"), std::string::npos);
+  const Output r = lab::runCaptured(lab::reportMain, {"--frobnicate"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown argument '--frobnicate'"), std::string::npos);
 }
 
 }  // namespace

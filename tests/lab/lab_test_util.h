@@ -1,7 +1,8 @@
 #pragma once
 // Helpers shared by the lab tests: the scene texts (in one place, so a change of the scene
-// format, docs/scene-format.md, is one edit), temporary files, running the real program, and
-// reading its one-line JSON back.
+// format, docs/scene-format.md, is one edit), temporary files, the check of a usage error,
+// running the real program, and reading its one-line JSON back. (Commands run in-process
+// through lab::runCaptured, and their CSVs are read with csv.h: what `lab report` itself uses.)
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,9 @@
 #include <unistd.h>
 
 #include <gtest/gtest.h>
+
+#include "commands.h"
+#include "lab.h"
 
 namespace lab_testing {
 
@@ -102,6 +106,16 @@ inline std::string readFile(const std::filesystem::path& file) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// A command-line mistake as every lab command reports it (commands.h): exit 2, an error line
+/// "lab: ..." that names the bad argument, the command's usage, and nothing on stdout.
+inline void expectUsageError(const lab::CommandOutput& o, const std::string& command, const std::string& named) {
+  EXPECT_EQ(o.code, lab::kExitUsage) << o.err;
+  EXPECT_TRUE(o.err.starts_with("lab: ")) << o.err;
+  EXPECT_NE(o.err.find(named), std::string::npos) << named << " in " << o.err;
+  EXPECT_NE(o.err.find("usage: lab " + command), std::string::npos) << o.err;
+  EXPECT_TRUE(o.out.empty()) << o.out;
 }
 
 /// What the real program did.

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,19 +37,9 @@ lab::stability::SuiteScene suiteScene(const std::string& name) {
 
 Setting setting(phys::SolverMethod method, int iterations, int substeps) { return {method, iterations, substeps}; }
 
-struct Output {
-  int code = -1;
-  std::string out, err;
-};
+using Output = lab::CommandOutput;
 
-Output stability(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  Output o;
-  o.code = lab::stabilityMain(args, out, err);
-  o.out = out.str();
-  o.err = err.str();
-  return o;
-}
+Output stability(const std::vector<std::string>& args) { return lab::runCaptured(lab::stabilityMain, args); }
 
 // A one-box scene with the given <expect> on line 5 (and a particle "p" for the errors that
 // need one).
@@ -349,12 +338,7 @@ TEST(StabilityCli, UsageErrorsExit2WithTheUsage) {
   };
   for (const auto& [args, message] : cases) {
     SCOPED_TRACE(message);
-    const Output o = stability(args);
-    EXPECT_EQ(o.code, lab::kExitUsage);
-    EXPECT_TRUE(o.err.starts_with("lab: ")) << o.err;
-    EXPECT_NE(o.err.find(message), std::string::npos) << o.err;
-    EXPECT_NE(o.err.find("usage: lab stability"), std::string::npos);
-    EXPECT_TRUE(o.out.empty());
+    lab_testing::expectUsageError(stability(args), "stability", message);
   }
 }
 
@@ -372,9 +356,9 @@ TEST(StabilityCli, AMissingOrBrokenSceneExits1) {
 
 TEST(StabilityCli, TheLabProgramRunsTheCommand) {
   // Through labMain, as `lab stability` is dispatched.
-  std::ostringstream out, err;
-  EXPECT_EQ(lab::labMain({"stability", "--help"}, out, err), lab::kExitOk);
-  EXPECT_TRUE(out.str().starts_with("usage: lab stability"));
+  const Output o = lab::runCaptured(lab::labMain, {"stability", "--help"});
+  EXPECT_EQ(o.code, lab::kExitOk);
+  EXPECT_TRUE(o.out.starts_with("usage: lab stability"));
 }
 
 }  // namespace

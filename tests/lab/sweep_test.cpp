@@ -4,9 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,6 +12,7 @@
 
 #include "accuracy.h"
 #include "commands.h"
+#include "csv.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "lab_test_util.h"
@@ -21,82 +20,26 @@
 
 namespace {
 
+using lab::CsvRow;
+using lab::CsvTable;
+using lab::fieldNumber;
+using Outcome = lab::CommandOutput;
 using lab_testing::TempDir;
-
-struct Outcome {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
 
 Outcome sweep(std::vector<std::string> args) {
   args.insert(args.end(), {"--data", DATA_DIR});
-  std::ostringstream out;
-  std::ostringstream err;
-  Outcome o;
-  o.code = lab::sweepMain(args, out, err);
-  o.out = out.str();
-  o.err = err.str();
-  return o;
+  return lab::runCaptured(lab::sweepMain, args);
 }
 
-// RFC 4180 fields of one line (quotes may hold commas; doubled quotes are one).
-std::vector<std::string> csvFields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        fields.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        fields.back() += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
-
-/// A CSV file as rows of column name -> field.
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-};
-
-Csv readCsv(const std::filesystem::path& file) {
-  Csv csv;
-  std::istringstream lines(lab_testing::readFile(file));
-  std::string line;
-  if (!std::getline(lines, line)) return csv;
-  csv.header = csvFields(line);
-  while (std::getline(lines, line)) {
-    const std::vector<std::string> fields = csvFields(line);
-    EXPECT_EQ(fields.size(), csv.header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < fields.size() && i < csv.header.size(); ++i) row[csv.header[i]] = fields[i];
-    csv.rows.push_back(row);
-  }
+// A CSV the sweep wrote, whose every row must have the header's columns.
+CsvTable readCsv(const std::filesystem::path& file) {
+  CsvTable csv = lab::readCsv(file);
+  EXPECT_EQ(csv.raggedRows, 0u) << file;
   return csv;
 }
 
-double number(const std::map<std::string, std::string>& row, const std::string& column) {
-  const auto it = row.find(column);
-  if (it == row.end() || it->second.empty()) return std::nan("");
-  return std::strtod(it->second.c_str(), nullptr);
-}
-
 // The row of our method with these counts, or nullopt.
-std::optional<std::map<std::string, std::string>> findRow(const Csv& csv, const std::string& method, int iterations,
-                                                          int substeps) {
+std::optional<CsvRow> findRow(const CsvTable& csv, const std::string& method, int iterations, int substeps) {
   for (const auto& row : csv.rows) {
     if (row.at("method") == method && row.at("iterations") == std::to_string(iterations) &&
         row.at("substeps") == std::to_string(substeps)) {
@@ -115,7 +58,7 @@ TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
   const Outcome o = sweep({"falling-box", "--method", "gauss-seidel,xpbd", "--iterations", "2,4", "--steps", "30",
                            "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
-  const Csv csv = readCsv(dir.file("out/results.csv"));
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
   std::string header;
   for (const std::string& h : csv.header) header += (header.empty() ? "" : ",") + h;
   EXPECT_EQ(header, kHeader);
@@ -128,9 +71,10 @@ TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
       EXPECT_EQ(row->at("steps"), "30");
       for (const char* column : {"dt", "ms_per_step", "ms_per_sim_second", "error", "ref_uncertainty", "max_stick_error",
                                  "max_joint_error", "max_penetration", "energy_drift", "frozen"}) {
-        EXPECT_TRUE(std::isfinite(number(*row, column))) << method << " " << iterations << " " << column;
+        EXPECT_TRUE(std::isfinite(fieldNumber(*row, column)))
+            << method << " " << iterations << " " << column;
       }
-      EXPECT_GT(number(*row, "ms_per_step"), 0.0);
+      EXPECT_GT(fieldNumber(*row, "ms_per_step"), 0.0);
       EXPECT_EQ(row->at("frozen"), "0");
     }
   }
@@ -146,12 +90,12 @@ TEST(Sweep, ProjectileIsExactToRoundOffAtAnySetting) {
                            "1,8", "--model", "corners,tetra", "--repeat", "1", "--no-peers", "--out",
                            dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
-  const Csv csv = readCsv(dir.file("out/results.csv"));
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
   ASSERT_EQ(csv.rows.size(), 24u);
   for (const auto& row : csv.rows) {
-    EXPECT_LT(number(row, "error"), 1e-9) << row.at("method") << " " << row.at("model") << " " << row.at("iterations")
-                                          << "x" << row.at("substeps");
-    EXPECT_EQ(number(row, "ref_uncertainty"), 0.0);  // analytic
+    EXPECT_LT(fieldNumber(row, "error"), 1e-9)
+        << row.at("method") << " " << row.at("model") << " " << row.at("iterations") << "x" << row.at("substeps");
+    EXPECT_EQ(fieldNumber(row, "ref_uncertainty"), 0.0);  // analytic
   }
   EXPECT_NE(o.out.find("analytic: 7 positions"), std::string::npos) << o.out;
 }
@@ -162,20 +106,20 @@ TEST(Sweep, FineSettingsBeatCoarseOnScenesVerletDoesNotSolveExactly) {
   Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,16", "--repeat", "1",
                      "--no-peers", "--out", dir.file("pendulum").string()});
   ASSERT_EQ(o.code, 0) << o.err;
-  Csv csv = readCsv(dir.file("pendulum/results.csv"));
-  const double coarse = number(*findRow(csv, "gauss-seidel", 1, 1), "error");
-  const double fine = number(*findRow(csv, "shake", 1, 16), "error");
+  CsvTable csv = readCsv(dir.file("pendulum/results.csv"));
+  const double coarse = fieldNumber(*findRow(csv, "gauss-seidel", 1, 1), "error");
+  const double fine = fieldNumber(*findRow(csv, "shake", 1, 16), "error");
   EXPECT_GT(coarse, 0.1);  // Jakobsen's projection at 60 Hz has bled much of the swing
   EXPECT_LT(fine, 1e-5);
-  EXPECT_LT(number(*findRow(csv, "gauss-seidel", 1, 16), "error"), coarse);
-  EXPECT_LT(fine, number(*findRow(csv, "shake", 1, 1), "error"));
+  EXPECT_LT(fieldNumber(*findRow(csv, "gauss-seidel", 1, 16), "error"), coarse);
+  EXPECT_LT(fine, fieldNumber(*findRow(csv, "shake", 1, 1), "error"));
 
   // The circular orbit: Verlet's phase error falls with the square of the substep.
   o = sweep({"circular-orbit", "--substeps", "1,16", "--repeat", "1", "--no-peers", "--out", dir.file("orbit").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   csv = readCsv(dir.file("orbit/results.csv"));
-  const double one = number(*findRow(csv, "gauss-seidel", 1, 1), "error");
-  const double sixteen = number(*findRow(csv, "gauss-seidel", 1, 16), "error");
+  const double one = fieldNumber(*findRow(csv, "gauss-seidel", 1, 1), "error");
+  const double sixteen = fieldNumber(*findRow(csv, "gauss-seidel", 1, 16), "error");
   EXPECT_GT(one, 1e-4);
   EXPECT_LT(sixteen, one / 100.0);
 }
@@ -185,13 +129,13 @@ TEST(Sweep, ParetoFrontHoldsTheUnbeatenRows) {
   const Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,2,4", "--repeat", "1",
                            "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
-  const Csv csv = readCsv(dir.file("out/results.csv"));
-  const Csv front = readCsv(dir.file("out/pareto.csv"));
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  const CsvTable front = readCsv(dir.file("out/pareto.csv"));
   // Compared as the sweep compares them: errors below 1e-9 m are round-off, equal to 1e-9.
-  auto err = [](const std::map<std::string, std::string>& r) { return std::max(number(r, "error"), 1e-9); };
-  auto beats = [&](const std::map<std::string, std::string>& q, const std::map<std::string, std::string>& r) {
-    const double qc = number(q, "ms_per_step");
-    const double rc = number(r, "ms_per_step");
+  auto err = [](const CsvRow& r) { return std::max(fieldNumber(r, "error"), 1e-9); };
+  auto beats = [&](const CsvRow& q, const CsvRow& r) {
+    const double qc = fieldNumber(q, "ms_per_step");
+    const double rc = fieldNumber(r, "ms_per_step");
     return qc <= rc && err(q) <= err(r) && (qc < rc || err(q) < err(r));
   };
   std::size_t marked = 0;
@@ -204,7 +148,7 @@ TEST(Sweep, ParetoFrontHoldsTheUnbeatenRows) {
   ASSERT_EQ(front.rows.size(), marked);
   ASSERT_GE(marked, 1u);
   for (std::size_t i = 1; i < front.rows.size(); ++i) {
-    EXPECT_LE(number(front.rows[i - 1], "ms_per_step"), number(front.rows[i], "ms_per_step"));  // by cost
+    EXPECT_LE(fieldNumber(front.rows[i - 1], "ms_per_step"), fieldNumber(front.rows[i], "ms_per_step"));  // by cost
   }
 }
 
@@ -213,10 +157,10 @@ TEST(Sweep, ARunThatBlowsUpHasInfiniteErrorAndFrozenParticles) {
   const std::filesystem::path scene = dir.write("escape.xml", lab_testing::escapingScene());
   const Outcome o = sweep({scene.string(), "--steps", "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
-  const Csv csv = readCsv(dir.file("out/results.csv"));
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
   ASSERT_EQ(csv.rows.size(), 1u);
   EXPECT_EQ(csv.rows[0].at("error"), "inf");
-  EXPECT_GT(number(csv.rows[0], "frozen"), 0.0);
+  EXPECT_GT(fieldNumber(csv.rows[0], "frozen"), 0.0);
   EXPECT_EQ(csv.rows[0].at("pareto"), "0");
   EXPECT_NE(csv.rows[0].at("note").find("blew up"), std::string::npos);
 }
@@ -295,12 +239,8 @@ TEST(Sweep, UsageErrorsNameTheArgument) {
       {{"falling-box", "--out", out, "--model", "cubes"}, "unknown model 'cubes'"},
   };
   for (const Case& c : cases) {
-    const Outcome o = sweep(c.args);
-    EXPECT_EQ(o.code, lab::kExitUsage) << c.named;
-    EXPECT_TRUE(o.err.starts_with("lab: ")) << o.err;
-    EXPECT_NE(o.err.find(c.named), std::string::npos) << o.err;
-    EXPECT_NE(o.err.find("usage: lab sweep"), std::string::npos) << o.err;
-    EXPECT_TRUE(o.out.empty()) << o.out;
+    SCOPED_TRACE(c.named);
+    lab_testing::expectUsageError(sweep(c.args), "sweep", c.named);
   }
   const Outcome help = sweep({"--help"});
   EXPECT_EQ(help.code, 0);

@@ -1,38 +1,25 @@
 // lab tune (app/lab/tune.cpp), in-process through tuneMain with string streams. The winner is
 // checked by running it again through lab sweep, which measures the same figures.
-#include <cmath>
-#include <cstdlib>
 #include <optional>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "commands.h"
+#include "csv.h"
 #include "lab.h"
 #include "lab_test_util.h"
 
 namespace {
 
+using Outcome = lab::CommandOutput;
 using lab_testing::TempDir;
-
-struct Outcome {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
 
 Outcome tune(std::vector<std::string> args) {
   args.insert(args.end(), {"--data", DATA_DIR});
-  std::ostringstream out;
-  std::ostringstream err;
-  Outcome o;
-  o.code = lab::tuneMain(args, out, err);
-  o.out = out.str();
-  o.err = err.str();
-  return o;
+  return lab::runCaptured(lab::tuneMain, args);
 }
 
 /// The winner's line: "winner      shake, 1 iteration, 2 substeps, model tetra: ...".
@@ -50,39 +37,16 @@ std::optional<Winner> winnerOf(const std::string& out) {
   return Winner{m[1], m[2], m[3], m[4]};
 }
 
-/// Runs the winner again through lab sweep and returns results.csv's row for it as
-/// column -> field.
-std::vector<std::pair<std::string, std::string>> rerun(const std::string& scene, const Winner& w, const std::string& steps,
-                                                       const TempDir& dir) {
+/// Runs the winner again through lab sweep and returns results.csv's row for it.
+lab::CsvRow rerun(const std::string& scene, const Winner& w, const std::string& steps, const TempDir& dir) {
   std::vector<std::string> args = {scene, "--method", w.method, "--iterations", w.iterations, "--substeps", w.substeps,
                                    "--steps", steps, "--repeat", "1", "--no-peers", "--out", dir.file("rerun").string(),
                                    "--data", DATA_DIR};
   if (!w.model.empty()) args.insert(args.end(), {"--model", w.model});
-  std::ostringstream out;
-  std::ostringstream err;
-  EXPECT_EQ(lab::sweepMain(args, out, err), 0) << err.str();
-  std::istringstream csv(lab_testing::readFile(dir.file("rerun/results.csv")));
-  std::string header;
-  std::string row;
-  std::getline(csv, header);
-  std::getline(csv, row);
-  std::vector<std::pair<std::string, std::string>> fields;
-  std::istringstream h(header);
-  std::istringstream r(row);
-  std::string name;
-  std::string value;
-  while (std::getline(h, name, ',')) {
-    std::getline(r, value, ',');
-    fields.emplace_back(name, value);
-  }
-  return fields;
-}
-
-double field(const std::vector<std::pair<std::string, std::string>>& row, const std::string& name) {
-  for (const auto& [k, v] : row) {
-    if (k == name) return std::strtod(v.c_str(), nullptr);
-  }
-  return std::nan("");
+  const Outcome o = lab::runCaptured(lab::sweepMain, args);
+  EXPECT_EQ(o.code, 0) << o.err;
+  const lab::CsvTable csv = lab::readCsv(dir.file("rerun/results.csv"));
+  return csv.rows.empty() ? lab::CsvRow() : csv.rows.front();
 }
 
 TEST(Tune, FindsAnAccurateSettingThatMeetsTheTargetOnARerun) {
@@ -94,7 +58,7 @@ TEST(Tune, FindsAnAccurateSettingThatMeetsTheTargetOnARerun) {
   // Jakobsen's projection is 0.5 m off at any count tune tries at 60 Hz; only shake gets there.
   EXPECT_EQ(w->method, "shake") << o.out;
   const auto row = rerun("pendulum-exact", *w, "120", dir);
-  EXPECT_LE(field(row, "error"), 1e-3);
+  EXPECT_LE(lab::fieldNumber(row, "error"), 1e-3);
   // The seed's defaults and the scene's own settings, with their costs against the winner's.
   EXPECT_NE(o.out.find("defaults    gauss-seidel, 3 iterations, 1 substep:"), std::string::npos) << o.out;
   EXPECT_NE(o.out.find("scene       gauss-seidel, 1 iteration, 1 substep:"), std::string::npos) << o.out;
@@ -112,9 +76,9 @@ TEST(Tune, SearchesBoxModelsForStickAndPenetrationTargets) {
   ASSERT_TRUE(w) << o.out;
   ASSERT_FALSE(w->model.empty()) << o.out;
   const auto row = rerun("falling-box", *w, "60", dir);
-  EXPECT_LE(field(row, "max_stick_error"), 0.01);
-  EXPECT_LE(field(row, "max_penetration"), 0.01);
-  EXPECT_EQ(field(row, "frozen"), 0.0);
+  EXPECT_LE(lab::fieldNumber(row, "max_stick_error"), 0.01);
+  EXPECT_LE(lab::fieldNumber(row, "max_penetration"), 0.01);
+  EXPECT_EQ(lab::fieldNumber(row, "frozen"), 0.0);
   // The seed's 3 x 1 leaves the landing box stretched by more than 1%.
   EXPECT_NE(o.out.find("defaults    gauss-seidel, 3 iterations, 1 substep, model corners"), std::string::npos) << o.out;
 }
@@ -147,11 +111,8 @@ TEST(Tune, UsageErrorsNameTheArgument) {
       {{"pendulum", "--target", "error=1", "--fast"}, "'--fast'"},
   };
   for (const Case& c : cases) {
-    const Outcome o = tune(c.args);
-    EXPECT_EQ(o.code, lab::kExitUsage) << c.named;
-    EXPECT_TRUE(o.err.starts_with("lab: ")) << o.err;
-    EXPECT_NE(o.err.find(c.named), std::string::npos) << o.err;
-    EXPECT_NE(o.err.find("usage: lab tune"), std::string::npos) << o.err;
+    SCOPED_TRACE(c.named);
+    lab_testing::expectUsageError(tune(c.args), "tune", c.named);
   }
   const Outcome help = tune({"--help"});
   EXPECT_EQ(help.code, 0);
