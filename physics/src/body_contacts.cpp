@@ -23,10 +23,12 @@ void movePair(std::vector<Vec3>& x, const Particles& p, const BodyContact& c, co
 }  // namespace
 
 void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real slop, std::span<Real> push,
-                       std::span<std::uint8_t> moved) {
+                       std::span<std::uint8_t> moved, std::span<const Real> allowance) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const BodyContact& c = contacts[k];
-    const Real gap = glm::dot(c.normal, embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA)) + slop;
+    const Real allowed = allowance.empty() ? 0.0 : allowance[k];  // overlap it may keep
+    const Vec3 apart = embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA);
+    const Real gap = glm::dot(c.normal, apart) + slop + allowed;
     push[k] = 0.0;
     if (gap >= 0.0) continue;
     const Real denominator = weightSum(p, c);

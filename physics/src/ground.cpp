@@ -8,14 +8,22 @@
 namespace phys::detail {
 
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
-                   std::span<Real> normalPush) {
+                   std::span<Real> normalPush, std::span<const Real> allowance) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Embedding& e = contacts[c].point;
-    const Real depth = height - glm::dot(n, embeddedPosition(p.position, e));
+    const Real allowed = allowance.empty() ? 0.0 : allowance[c];  // depth it may keep
+    const Real depth = height - glm::dot(n, embeddedPosition(p.position, e)) - allowed;
     normalPush[c] = 0.0;
     if (depth <= 0.0) continue;
     moveEmbedded(p.position, p.inverseMass, e, depth * n);
     normalPush[c] = depth;
+  }
+}
+
+void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
+                             Real height, std::span<Real> depth) {
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    depth[c] = height - glm::dot(n, embeddedPosition(p.previous, contacts[c].point));
   }
 }
 

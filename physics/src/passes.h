@@ -49,8 +49,22 @@ void relaxShake(Particles& p, std::span<const Stick> sticks);
 
 /// Projects every contact point below the ground plane n . x = height back onto it, writing the
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").
+/// `allowance`, if not empty, is per point the depth it may keep in this substep
+/// (toAllowance): the point is moved up to that depth, not onto the plane.
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
-                   std::span<Real> normalPush);
+                   std::span<Real> normalPush, std::span<const Real> allowance = {});
+/// Depth (m) of each contact point below the plane at x*, where the substep started; negative above.
+void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
+                             Real height, std::span<Real> depth);
+
+/// Depenetration limit (SolverSettings::maxDepenetrationSpeed): turns each contact's overlap at
+/// the start of the substep (ground depth, or box-box overlap beyond the slop, at x*) into the
+/// overlap it may keep at the end, max(0, overlap - step), step = the speed limit times h. A
+/// contact that started apart gets 0, so its approach is stopped in full; one that started deeper
+/// than step sheds `step` of it, and so parts at most at that speed.
+inline void toAllowance(std::span<Real> startOverlap, Real step) {
+  for (Real& v : startOverlap) v = v > step ? v - step : 0.0;
+}
 /// Cuts the tangential motion (x - x*) of each contact point the last ground pass pushed: stops
 /// it when it is within mu_s * push, else shortens it by mu_d * push, by moving the point's
 /// particles back along it; never reverses it. Run after each ground pass, so the sticks
@@ -61,8 +75,10 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
 /// Pushes each pair of contact points apart along its normal until n . (pB - pA) >= -slop, moving
 /// both bodies' particles by their embedding weights and inverse masses; writes the distance
 /// into push (0 when not pushed). `moved` marks the particles a correction touched.
+/// `allowance`, if not empty, is per contact the overlap beyond the slop it may keep in this
+/// substep (toAllowance).
 void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real slop, std::span<Real> push,
-                       std::span<std::uint8_t> moved);
+                       std::span<std::uint8_t> moved, std::span<const Real> allowance = {});
 /// Coulomb friction between the bodies of each contact the last pass pushed, as for the ground:
 /// the tangential part of the relative motion this substep is stopped within mu_s * push, else
 /// shortened by mu_d * push.

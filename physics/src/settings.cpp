@@ -56,6 +56,9 @@ std::string validate(const SolverSettings& s) {
   if (!(s.compliance >= 0.0 && s.compliance <= kMaxCompliance)) {
     why << "compliance must be from 0 to " << kMaxCompliance << " (m/N); ";
   }
+  if (!(s.maxDepenetrationSpeed > 0.0)) {
+    why << "maxDepenetrationSpeed must be > 0 (m/s; infinity for no limit); ";
+  }
   return joined(why);
 }
 

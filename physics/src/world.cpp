@@ -162,6 +162,7 @@ void World::addContactPoint(const Embedding& point, const Material& material, st
   touched_.push_back(0);
   groundHit_.push_back(0);
   groundApproach_.push_back(0.0);
+  groundAllowance_.push_back(0.0);
 }
 
 void World::addStick(ParticleId a, ParticleId b, Real compliance) {
@@ -290,6 +291,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   touched_.resize(contactsBefore);
   groundHit_.resize(contactsBefore);
   groundApproach_.resize(contactsBefore);
+  groundAllowance_.resize(contactsBefore);
 
   const std::span<const Pair> pairs = desc.model == BoxModel::Corners ? std::span<const Pair>(kCornerSticks)
                                                                        : std::span<const Pair>(kTetraSticks);
@@ -317,6 +319,9 @@ BoxId World::addBox(const BoxDesc& desc) {
   boxes_.push_back(box);
   frames_.emplace_back();
   rigid_.emplace_back();
+  partShift_.emplace_back(0.0);
+  partWeight_.push_back(0.0);
+  partGround_.push_back(0.0);
   sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
   return static_cast<BoxId>(boxIndex);
 }
@@ -341,9 +346,11 @@ void World::relax(Real h) {
     // friction bent (run once after all passes, friction would leave every resting box
     // sheared by the last correction).
     start = Clock::now();
-    detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_);
+    detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_,
+                              bodyAllowance_);
     if (ground) {
-      detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight, normalPush_);
+      detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight, normalPush_,
+                            groundAllowance_);
     }
     profile_.contacts += millisecondsSince(start);
     start = Clock::now();
@@ -405,6 +412,13 @@ void World::step() {
       findBoxPairs();
       buildBoxContacts();
     }
+    // Each contact's overlap at x*, where the substep starts: what the parting measures, and
+    // what the depenetration limit is reckoned from (buildBoxContacts fills the box-box ones).
+    if (world_.ground) {
+      detail::measureGroundStartDepth(particles_, contactPoints_, world_.groundNormal, world_.groundHeight,
+                                      groundAllowance_);
+    }
+    partWithoutVelocity();
     profile_.collide += millisecondsSince(start);
 
     // Restitution needs each contact's approach speed before the passes stop it.
@@ -418,6 +432,14 @@ void World::step() {
       }
     }
     profile_.contacts += millisecondsSince(start);
+
+    // How much of each contact's overlap may go in this substep: all of what this substep's
+    // motion brought, and of what was there at its start (x*), at most maxDepenetrationSpeed * h.
+    // Projected in full, an overlap d left at the start becomes a speed d / h: 9.6 m/s for 1 cm
+    // at 16 substeps.
+    const Real depenetration = solver_.maxDepenetrationSpeed * h;
+    detail::toAllowance(bodyAllowance_, depenetration);
+    if (world_.ground) detail::toAllowance(groundAllowance_, depenetration);
 
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     relax(h);

@@ -50,6 +50,9 @@ inline constexpr Real kMinDt = 1e-6;         ///< unit: s; below this h^2 and XP
 inline constexpr Real kMaxDt = 1.0;          ///< unit: s
 inline constexpr Real kMaxCompliance = 1e6;  ///< unit: m/N; softer than this is no constraint at all
 
+/// SolverSettings::maxDepenetrationSpeed's default.
+inline constexpr Real kDefaultMaxDepenetrationSpeed = 3.0;  ///< unit: m/s
+
 /// How the equations are stepped and relaxed.
 struct SolverSettings {
   SolverMethod method = SolverMethod::GaussSeidel;
@@ -57,7 +60,8 @@ struct SolverSettings {
   int substeps = 1;      ///< integrations per step, each of dt / substeps
   int iterations = 3;    ///< relaxation passes per substep (the seed's 3)
   /// Vertices within this distance of the deepest one count as one contact feature (the seed's
-  /// 0.01); used by box-box contact classification.
+  /// 0.01); used by box-box contact classification. Also the depth beyond which an overlap a
+  /// substep starts with (box-box or box-ground) is parted by moving boxes whole, without velocity.
   Real featureEpsilon = 0.01;  ///< unit: m
   /// Overlap two boxes may keep without being pushed apart. Without it, boxes touching side by
   /// side fight over a zero gap every substep and never come to rest.
@@ -78,6 +82,13 @@ struct SolverSettings {
   /// one knob that softens every stick of the world at once. Joints (links between bodies) are
   /// rigid projections in every method and are not softened.
   Real compliance = 0.0;  ///< unit: m/N, 0 to kMaxCompliance
+  /// Fastest a contact may push apart an overlap that was already there at the start of a
+  /// substep (boxes spawned into each other, or into the ground, or pushed there by a third
+  /// box): each substep removes at most this times h of it, the rest waits for later substeps.
+  /// Projected at once, an overlap d becomes a speed d / h, and the finer the substep the faster
+  /// boxes fly apart (PhysX's maxDepenetrationVelocity, Box2D's contact push speed). A contact
+  /// resolving only this substep's approach is always stopped in full. Infinity turns it off.
+  Real maxDepenetrationSpeed = kDefaultMaxDepenetrationSpeed;  ///< unit: m/s, > 0
 };
 
 /// Below this normal speed an impact does not bounce (SolverSettings::restitution).

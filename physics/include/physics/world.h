@@ -175,7 +175,7 @@ class World {
   void updateBoxFrames();
   void findBoxPairs();
   void buildBoxContacts();
-  void separateWithoutVelocity(BoxId a, BoxId b, std::span<const BodyContact> contacts);
+  void partWithoutVelocity();
   Embedding embedInBox(BoxId box, const Vec3& point) const;
   bool collides(BoxId a, BoxId b) const;
   void guard();
@@ -195,6 +195,7 @@ class World {
   std::vector<Real> normalPush_;  // per contact point: ground correction of the last pass (m)
   std::vector<std::uint8_t> groundHit_;  // per contact point: pushed in this substep (restitution)
   std::vector<Real> groundApproach_;     // per contact point: approach speed at the substep's start (m/s)
+  std::vector<Real> groundAllowance_;    // per contact point: depth at x*, then the depth it may keep (m)
 
   // Box-box collision, rebuilt every substep into storage that keeps its capacity.
   std::vector<Obb> frames_;                 // per box
@@ -209,7 +210,20 @@ class World {
   std::vector<Real> bodyPush_;              // per body contact: push of the last pass (m)
   std::vector<std::uint8_t> bodyTouched_;   // per body contact: pushed in this substep
   std::vector<Real> bodyApproach_;          // per body contact: approach speed at the substep's start (m/s)
+  std::vector<Real> bodyAllowance_;         // per body contact: overlap at x*, then what it may keep (m)
   std::vector<RigidState> rigid_;           // per box: restitution's rigid-body view
+  // Parting of deep overlaps without velocity (partWithoutVelocity).
+  struct PartPair {
+    BoxId a, b;
+    std::uint32_t firstContact, contactCount;  // its points in bodyContacts_
+    Vec3 normal;   // from a towards b
+    Real overlap;  // m, beyond the slop, at x*; negative when apart
+    Real need;     // m, the least n . (t_b - t_a) the parting must reach
+  };
+  std::vector<PartPair> partPairs_;         // per touching pair, rebuilt every substep
+  std::vector<Vec3> partShift_;             // per box: translation (m)
+  std::vector<Real> partWeight_;            // per box: inverse mass (1/kg), 0 if it cannot move
+  std::vector<Real> partGround_;            // per box: n_g . shift it needs (m)
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
   std::vector<std::uint8_t> touched_;  // per contact point: touched the ground in the last step
 
