@@ -39,6 +39,7 @@ phys::SolverSettings OverlaySpec::applyTo(phys::SolverSettings s) const {
   if (compliance) s.compliance = *compliance;
   if (epsilon) s.featureEpsilon = *epsilon;
   if (slop) s.contactSlop = *slop;
+  if (depenetrationSpeed) s.maxDepenetrationSpeed = *depenetrationSpeed;
   return s;
 }
 
@@ -87,9 +88,12 @@ ParsedOverlaySpec parseOverlaySpec(std::string_view text) {
       real(spec.epsilon);
     } else if (key == "slop") {
       real(spec.slop);
+    } else if (key == "depenetration-speed") {
+      real(spec.depenetrationSpeed);
     } else {
       out.error = "unknown key '" + key +
-                  "' (known: method, iterations, substeps, dt, body-damping, restitution, compliance, epsilon, slop)";
+                  "' (known: method, iterations, substeps, dt, body-damping, restitution, compliance, epsilon, slop, "
+                  "depenetration-speed)";
     }
     if (!out.error.empty()) return out;
   }

@@ -18,7 +18,7 @@ struct OverlaySpec {
   // Each override is applied only if given.
   std::optional<phys::SolverMethod> method;
   std::optional<int> iterations, substeps;
-  std::optional<double> dt, bodyDamping, restitution, compliance, epsilon, slop;
+  std::optional<double> dt, bodyDamping, restitution, compliance, epsilon, slop, depenetrationSpeed;
 
   /// The scene's settings with these overrides.
   phys::SolverSettings applyTo(phys::SolverSettings base) const;

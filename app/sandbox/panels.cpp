@@ -143,6 +143,7 @@ void settingsSection(Session& session, UiState& ui) {
   changed |= sliderReal("restitution", s.restitution, 0.0f, 1.0f, "%.2f");
   changed |= sliderReal("compliance (m/N, xpbd)", s.compliance, 0.0f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
   changed |= sliderReal("body damping", s.bodyDamping, 0.0f, 1.0f, "%.2f");
+  changed |= sliderReal("depenetration (m/s)", s.maxDepenetrationSpeed, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   if (changed) {
     const std::string error = session.setSolverSettings(s);
     ui.message = error.empty() ? "solver: " + describeSolver(s) + " (applied without restart)" : error;

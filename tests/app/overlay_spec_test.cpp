@@ -54,3 +54,13 @@ TEST(OverlaySpec, DescribesSettingsForTheLegend) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(OverlaySpec, DepenetrationSpeedIsAKeyToo) {
+  const auto parsed = sandbox::parseOverlaySpec("depenetration-speed=0.5");
+  ASSERT_EQ(parsed.error, "");
+  EXPECT_EQ(parsed.spec.applyTo({}).maxDepenetrationSpeed, 0.5);
+}
+
+}  // namespace

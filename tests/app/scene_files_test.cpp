@@ -255,3 +255,27 @@ TEST(SceneFiles, LoadOptionsImposeTheBoxAndRagdollModels) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SceneFiles, DepenetrationSpeedIsReadAndNoneTurnsTheLimitOff) {
+  const auto speed = [](const char* value) {
+    return scenes::loadSceneText(std::string("<scene name=\"d\"><solver depenetration-speed=\"") + value + "\"/></scene>",
+                                 "d.xml")
+        .world.solverSettings()
+        .maxDepenetrationSpeed;
+  };
+  EXPECT_EQ(speed("0.5"), 0.5);
+  EXPECT_TRUE(std::isinf(speed("none")));
+  EXPECT_EQ(scenes::loadSceneText("<scene name=\"d\"/>", "d.xml").world.solverSettings().maxDepenetrationSpeed,
+            phys::kDefaultMaxDepenetrationSpeed);
+  try {
+    speed("0");
+    ADD_FAILURE() << "0 m/s was accepted";
+  } catch (const scenes::LoadError& e) {
+    EXPECT_EQ(e.attribute(), "depenetration-speed");
+    EXPECT_NE(std::string(e.what()).find("must be a number > 0 (m/s) or none"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

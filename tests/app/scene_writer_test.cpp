@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <sstream>
 #include <vector>
@@ -70,6 +71,7 @@ void expectSameSettings(const phys::World& a, const phys::World& b, const std::s
   EXPECT_EQ(s.bodyDamping, t.bodyDamping) << what;
   EXPECT_EQ(s.restitution, t.restitution) << what;
   EXPECT_EQ(s.compliance, t.compliance) << what;
+  EXPECT_EQ(s.maxDepenetrationSpeed, t.maxDepenetrationSpeed) << what;
 }
 
 void expectSameCounts(const phys::World& a, const phys::World& b, const std::string& what) {
@@ -438,6 +440,21 @@ TEST(SceneWriter, AWorldThatCannotBeSavedLeavesTheOldFile) {
   expectSaveError(scene, file, "cannot save this world");
   EXPECT_EQ(readFile(file), "old");
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"scene.xml"});
+}
+
+}  // namespace
+
+namespace {
+
+TEST(SceneWriter, DepenetrationSpeedRoundTripsIncludingNoLimit) {
+  for (const double speed : {0.75, std::numeric_limits<double>::infinity()}) {
+    scenes::Scene scene = scenes::loadSceneText("<scene name=\"d\"><box pos=\"0 1 0\"/></scene>", "d.xml");
+    phys::SolverSettings s = scene.world.solverSettings();
+    s.maxDepenetrationSpeed = speed;
+    scene.world.setSolverSettings(s);
+    const scenes::Scene back = scenes::loadSceneText(scenes::writeSceneXml(scene), "back.xml");
+    EXPECT_EQ(back.world.solverSettings().maxDepenetrationSpeed, speed);
+  }
 }
 
 }  // namespace

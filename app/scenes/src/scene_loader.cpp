@@ -1,6 +1,7 @@
 // Scene files (docs/scene-format.md): strict XML read into a new world. Any error throws
 // LoadError naming file, line and attribute, and the half-built world is thrown away with it.
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <optional>
 #include <map>
@@ -87,6 +88,12 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
       e.fail("compliance", "must be from 0 to " + detail::formatNumber(phys::kMaxCompliance) + " (m/N)");
     }
     s.compliance = *compliance;
+  }
+  if (auto speed = e.text("depenetration-speed")) {
+    // "none" turns the limit off (infinity, which no number in a file can say).
+    const std::optional<double> value = *speed == "none" ? std::optional<double>(std::numeric_limits<double>::infinity()) : detail::parseReal(*speed);
+    if (!value || !(*value > 0.0)) e.fail("depenetration-speed", "'" + *speed + "' must be a number > 0 (m/s) or none");
+    s.maxDepenetrationSpeed = *value;
   }
   e.rejectUnknownAttributes();
 }

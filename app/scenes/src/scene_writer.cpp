@@ -5,6 +5,7 @@
 #include "scenes/scene_writer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <stdexcept>
@@ -119,7 +120,8 @@ std::string worldElement(const phys::WorldSettings& w) {
 }
 
 std::string solverElement(const phys::SolverSettings& s) {
-  return ElementWriter("solver")
+  ElementWriter solver("solver");
+  solver
       .text("method", phys::toString(s.method))
       .integer("iterations", s.iterations)
       .integer("substeps", s.substeps)
@@ -128,8 +130,10 @@ std::string solverElement(const phys::SolverSettings& s) {
       .number("slop", s.contactSlop)
       .number("body-damping", s.bodyDamping)
       .number("restitution", s.restitution)
-      .number("compliance", s.compliance)
-      .empty();
+      .number("compliance", s.compliance);
+  if (std::isfinite(s.maxDepenetrationSpeed)) solver.number("depenetration-speed", s.maxDepenetrationSpeed);
+  else solver.text("depenetration-speed", "none");
+  return solver.empty();
 }
 
 std::string groundElement(const phys::WorldSettings& w) {
