@@ -28,7 +28,7 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
     const BodyContact& c = contacts[k];
     const Real allowed = allowance.empty() ? 0.0 : allowance[k];  // overlap it may keep
     const Vec3 apart = embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA);
-    const Real gap = glm::dot(c.normal, apart) + slop + allowed;
+    const Real gap = glm::dot(c.normal, apart) - c.offset + slop + allowed;
     push[k] = 0.0;
     if (gap >= 0.0) continue;
     const Real denominator = weightSum(p, c);

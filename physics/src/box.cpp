@@ -6,6 +6,8 @@ namespace phys {
 
 std::string_view toString(BoxModel model) { return model == BoxModel::Tetra ? "tetra" : "corners"; }
 
+std::string_view toString(Shape shape) { return shape == Shape::Capsule ? "capsule" : "box"; }
+
 std::optional<BoxModel> parseBoxModel(std::string_view name) {
   if (name == "corners") return BoxModel::Corners;
   if (name == "tetra") return BoxModel::Tetra;

@@ -114,12 +114,52 @@ void World::findBoxPairs() {
   }
 }
 
-Embedding World::embedInBox(BoxId id, const Vec3& point) const {
+// Each pair's contact by its shapes, normal from a towards b; boxes keep at most 4 points.
+bool World::collidePair(BoxId a, BoxId b, BoxContact& contact) const {
+  const Real margin = solver_.featureEpsilon;
+  const bool capsuleA = boxes_[a].shape == Shape::Capsule, capsuleB = boxes_[b].shape == Shape::Capsule;
+  if (!capsuleA && !capsuleB) {
+    if (!collideBoxes(frames_[a], frames_[b], margin, contact)) return false;
+    reduceToFourPoints(contact);
+    return true;
+  }
+  if (capsuleA && capsuleB) return collideCapsules(capsuleInBox(frames_[a]), capsuleInBox(frames_[b]), margin, contact);
+  if (capsuleA) return collideCapsuleBox(capsuleInBox(frames_[a]), frames_[b], margin, contact);
+  if (!collideCapsuleBox(capsuleInBox(frames_[b]), frames_[a], margin, contact)) return false;
+  contact.sat.normal = -contact.sat.normal;  // it was from b towards a
+  for (int i = 0; i < contact.count; ++i) std::swap(contact.points[i].onA, contact.points[i].onB);
+  return true;
+}
+
+// A capsule's ground points: the lowest point of each end sphere, at the frame of this substep.
+void World::placeCapsuleGroundPoints() {
+  const Vec3 n = world_.groundNormal;
+  for (const CapsuleGroundPoint& g : capsuleGround_) {
+    const Box& box = boxes_[g.box];
+    const Obb& f = frames_[g.box];
+    const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();
+    GroundContact& contact = contactPoints_[g.contact];
+    Vec3 moved(0.0);
+    contact.point = embedInBox(g.box, lowest, &moved);
+    contact.lift = glm::dot(n, moved);
+  }
+}
+
+Embedding World::embedInBox(BoxId id, const Vec3& point, Vec3* moved) const {
   const Box& box = boxes_[id];
   const Obb& f = frames_[id];
   const Vec3 d = point - f.center;
   Vec3 u(glm::dot(d, f.axes[0]) / box.halfExtents.x, glm::dot(d, f.axes[1]) / box.halfExtents.y,
          glm::dot(d, f.axes[2]) / box.halfExtents.z);
+  // A tetra capsule's points lie on its round surface, inside its box: carried rigidly by its
+  // tetrahedron. A corners capsule's go onto the nearest face below, whose 4 particles then hold
+  // it up as they hold a box (through the inscribed tetrahedron, the other 4 hang on sticks: a
+  // capsule lying on the ground sagged 15 mm at 3 x 1). `moved` gets how far the embedding
+  // carries the point, as the box lies in its frame: from its rest shape, not its particles',
+  // since a correction reckoned from their sag would feed back into it.
+  if (moved != nullptr) *moved = Vec3(0.0);
+  if (box.shape == Shape::Capsule && box.model == BoxModel::Tetra) return detail::rigidEmbedding(box, u);
+  const Vec3 unclamped = u;
   u = glm::clamp(u, Vec3(-1.0), Vec3(1.0));
   Embedding e;
   e.count = 4;
@@ -139,6 +179,11 @@ Embedding World::embedInBox(BoxId id, const Vec3& point) const {
   }
   const int side = u[axis] >= 0.0 ? (1 << axis) : 0;
   const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+  if (moved != nullptr) {
+    Vec3 carried = u;
+    carried[axis] = u[axis] >= 0.0 ? 1.0 : -1.0;
+    for (int k = 0; k < 3; ++k) *moved += f.axes[k] * ((carried[k] - unclamped[k]) * box.halfExtents[k]);
+  }
   for (int j = 0; j < 4; ++j) {
     const bool plusU = (j & 1) != 0, plusV = (j & 2) != 0;
     const int corner = side | (plusU ? 1 << ua : 0) | (plusV ? 1 << va : 0);
@@ -154,23 +199,26 @@ void World::buildBoxContacts() {
   partPairs_.clear();
   BoxContact contact;
   for (const auto& [a, b] : pairs_) {
-    if (!collideBoxes(frames_[a], frames_[b], solver_.featureEpsilon, contact)) continue;
-    reduceToFourPoints(contact);
+    if (!collidePair(a, b, contact)) continue;
     const Material combined = combine(boxes_[a].material, boxes_[b].material);
     const std::size_t first = bodyContacts_.size();
     Real overlap = -std::numeric_limits<Real>::infinity();  // beyond the slop, at x*: the pair's start
     for (int i = 0; i < contact.count; ++i) {
       BodyContact c;
-      c.pointA = embedInBox(a, contact.points[i].onA);
-      c.pointB = embedInBox(b, contact.points[i].onB);
+      Vec3 movedA(0.0), movedB(0.0);
+      c.pointA = embedInBox(a, contact.points[i].onA, &movedA);
+      c.pointB = embedInBox(b, contact.points[i].onB, &movedB);
       c.normal = contact.sat.normal;
       c.combined = combined;
       c.boxA = static_cast<std::int32_t>(a);
       c.boxB = static_cast<std::int32_t>(b);
       c.kind = static_cast<std::uint8_t>(contact.kind);
+      if (boxes_[a].shape == Shape::Capsule || boxes_[b].shape == Shape::Capsule) {
+        c.offset = glm::dot(c.normal, movedB - movedA);  // a box's points are on its faces already
+      }
       bodyContacts_.push_back(c);
       const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles_.previous, c.pointB) -
-                                                   detail::embeddedPosition(particles_.previous, c.pointA));
+                                                   detail::embeddedPosition(particles_.previous, c.pointA)) - c.offset;
       bodyAllowance_.push_back(-(startGap + solver_.contactSlop));  // the start overlap, for now
       overlap = std::max(overlap, bodyAllowance_.back());
     }

@@ -12,7 +12,7 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Embedding& e = contacts[c].point;
     const Real allowed = allowance.empty() ? 0.0 : allowance[c];  // depth it may keep
-    const Real depth = height - glm::dot(n, embeddedPosition(p.position, e)) - allowed;
+    const Real depth = height + contacts[c].lift - glm::dot(n, embeddedPosition(p.position, e)) - allowed;
     normalPush[c] = 0.0;
     if (depth <= 0.0) continue;
     moveEmbedded(p.position, p.inverseMass, e, depth * n);
@@ -23,7 +23,7 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
 void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
                              Real height, std::span<Real> depth) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
-    depth[c] = height - glm::dot(n, embeddedPosition(p.previous, contacts[c].point));
+    depth[c] = height + contacts[c].lift - glm::dot(n, embeddedPosition(p.previous, contacts[c].point));
   }
 }
 

@@ -56,14 +56,14 @@ Metrics World::metrics() const {
   }
   if (world_.ground) {
     for (const GroundContact& c : contactPoints_) {
-      const Real depth = world_.groundHeight - glm::dot(world_.groundNormal, position(c.point));
+      const Real depth = world_.groundHeight + c.lift - glm::dot(world_.groundNormal, position(c.point));
       m.maxPenetration = maxOf(m.maxPenetration, depth);
     }
   }
   m.contacts = static_cast<int>(std::count(touched_.begin(), touched_.end(), std::uint8_t{1}));
   for (std::size_t k = 0; k < bodyContacts_.size(); ++k) {
     const BodyContact& c = bodyContacts_[k];
-    const Real gap = glm::dot(c.normal, position(c.pointB) - position(c.pointA));
+    const Real gap = glm::dot(c.normal, position(c.pointB) - position(c.pointA)) - c.offset;
     m.maxPenetration = maxOf(m.maxPenetration, -gap);
     if (bodyTouched_[k] != 0) ++m.contacts;
   }

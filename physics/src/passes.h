@@ -12,6 +12,11 @@
 
 namespace phys::detail {
 
+/// The point at u (in units of the half extents, in the body frame; inside the box or not) carried
+/// rigidly by the box: barycentric weights over its inscribed tetrahedron (its 4 particles, or
+/// corners 0, 3, 5, 6 of a corners box), exact for any point while the box keeps its shape.
+Embedding rigidEmbedding(const Box& box, const Vec3& u);
+
 /// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).
 void integrate(Particles& p, const WorldSettings& world, Real h);

@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "joint_builders.h"
+
 namespace phys {
 namespace {
 
@@ -61,14 +63,6 @@ constexpr HingeLayout kHinges[kRagdollHinges] = {
     {RagdollPart::Torso, RagdollPart::UpperLegRight, {-0.09, 0.88, 0.0}, 0.07, kDown, -110.0, 20.0, 0.10},
     {RagdollPart::UpperLegRight, RagdollPart::LowerLegRight, {-0.09, 0.44, 0.0}, 0.07, kDown, 0.0, 140.0, 0.10},
 };
-
-Vec3 rotateAboutX(const Vec3& v, Real angle) {
-  const Real c = std::cos(angle), s = std::sin(angle);
-  return {v.x, c * v.y - s * v.z, s * v.y + c * v.z};
-}
-
-// How far past a stop its limit link still catches the hinge (see addRagdoll).
-constexpr Real kStopReach = 60.0 * kDegree;
 
 void require(bool ok, const char* what) {
   if (!ok) throw std::invalid_argument(what);
@@ -128,25 +122,16 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
   for (int h = 0; h < kRagdollHinges; ++h) {
     const HingeLayout& layout = kHinges[h];
     const BoxId parent = ragdoll.part(layout.parent), child = ragdoll.part(layout.child);
-    // Two pins on the axis make the hinge.
-    for (const Real side : {-1.0, 1.0}) {
-      const Vec3 pin = place(layout.pivot + Vec3(side * layout.halfSpan, 0.0, 0.0));
-      world.addLink(world.anchor(parent, pin), world.anchor(child, pin));
-    }
-    // The limits: one one-sided range link at each stop. Q is fixed in the child at `radius`
-    // along the reference direction; P is fixed in the parent where Q would be had the hinge
-    // turned kStopReach past the stop. Seen from the pivot P and Q are |theta - phi| apart, so
-    // |P - Q| = 2 r sin(|theta - phi| / 2), which is r at the stop and less only within
-    // kStopReach beyond it: the link pushes P and Q apart to r there, turning the hinge back.
-    // Its push meets the arc of Q at kStopReach / 2 = 30 degrees, so most of it turns the
-    // hinge; a single link with both bounds would have to work near 180 degrees, where its
-    // push is almost all along the arm and a hard landing carries the hinge past it.
     const Real minAngle = layout.minDegrees * kDegree, maxAngle = layout.maxDegrees * kDegree;
-    const Vec3 inChild = place(layout.pivot + layout.reference * layout.radius);
-    for (const Real stop : {minAngle - kStopReach, maxAngle + kStopReach}) {
-      const Vec3 inParent = place(layout.pivot + rotateAboutX(layout.reference, stop) * layout.radius);
-      world.addLink(world.anchor(parent, inParent), world.anchor(child, inChild), layout.radius * desc.scale, kNoMaxLength);
-    }
+    detail::HingeSpec spec;
+    spec.pivot = layout.pivot;
+    spec.axis = Vec3(1.0, 0.0, 0.0);
+    spec.reference = layout.reference;
+    spec.minAngle = minAngle;
+    spec.maxAngle = maxAngle;
+    spec.halfSpan = layout.halfSpan;
+    spec.radius = layout.radius;
+    detail::addHinge(world, parent, child, spec, place, desc.scale);
     world.ignoreCollision(parent, child);
     ragdoll.hinges[h] = {layout.parent, layout.child, Vec3(1.0, 0.0, 0.0), layout.reference, minAngle, maxAngle};
   }

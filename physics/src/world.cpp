@@ -234,15 +234,7 @@ Embedding World::anchor(BoxId id, const Vec3& worldPoint) const {
   require(finite(worldPoint), "anchor: the point must be finite");
   const Box& box = boxes_[id];
   const BoxPose pose = boxPose(id);
-  const Vec3 u = (glm::inverse(pose.orientation) * (worldPoint - pose.center)) / box.halfExtents;
-  const std::array<Real, 4> w = tetraWeights(u);
-  Embedding e;
-  e.count = 4;
-  for (int j = 0; j < 4; ++j) {
-    e.particle[j] = box.firstParticle + static_cast<ParticleId>(box.model == BoxModel::Tetra ? j : kTetraCorner[j]);
-    e.weight[j] = w[j];
-  }
-  return e;
+  return detail::rigidEmbedding(box, (glm::inverse(pose.orientation) * (worldPoint - pose.center)) / box.halfExtents);
 }
 
 BoxId World::addBox(const BoxDesc& desc) {
@@ -254,11 +246,17 @@ BoxId World::addBox(const BoxDesc& desc) {
   const Real qLength = glm::length(desc.orientation);
   require(std::isfinite(qLength) && qLength > 0.0, "addBox: orientation must be a finite non-zero quaternion");
   require(validate(desc.material).empty(), "addBox: " + validate(desc.material));
+  if (desc.shape == Shape::Capsule) {
+    require(std::abs(desc.size.x - desc.size.z) <= 1e-9 * desc.size.x,
+            "addBox: a capsule's size.x and size.z are both its diameter and must be equal (m)");
+    require(desc.size.y >= desc.size.x, "addBox: a capsule's length size.y must be at least its diameter size.x (m)");
+  }
   const Quat q = desc.orientation / qLength;
 
   Box box;
   box.name = desc.name;
   box.model = desc.model;
+  box.shape = desc.shape;
   box.halfExtents = desc.size * 0.5;
   box.material = desc.material;
   box.particleCount = boxParticleCount(desc.model);
@@ -312,7 +310,19 @@ BoxId World::addBox(const BoxDesc& desc) {
       corner.count = 4;
     }
     corners_.push_back(corner);
-    addContactPoint(corner, desc.material, boxIndex);
+    if (desc.shape == Shape::Box) addContactPoint(corner, desc.material, boxIndex);
+  }
+  if (desc.shape == Shape::Capsule) {
+    // A capsule touches the ground with the lowest points of its two end spheres, which move
+    // over its surface as it turns: placeCapsuleGroundPoints() re-embeds them every substep.
+    const Real halfSegment = box.capsuleHalfSegment();
+    for (const Real end : {-1.0, 1.0}) {
+      const Vec3 core(0.0, end * halfSegment, 0.0);
+      const Vec3 lowest = core + glm::inverse(q) * (-world_.groundNormal) * box.capsuleRadius();
+      capsuleGround_.push_back({static_cast<std::uint32_t>(contactPoints_.size()), static_cast<BoxId>(boxIndex), end});
+      addContactPoint(detail::rigidEmbedding(box, lowest / box.halfExtents), desc.material, boxIndex);
+    }
+    ++capsules_;
   }
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
@@ -407,11 +417,12 @@ void World::step() {
     // Contacts are found once per substep, from the integrated positions, and then kept
     // satisfied through the iterations (Macklin et al. 2019 find them once per frame).
     start = Clock::now();
+    if (boxes_.size() >= 2 || capsules_ > 0) updateBoxFrames();
     if (boxes_.size() >= 2) {
-      updateBoxFrames();
       findBoxPairs();
       buildBoxContacts();
     }
+    if (world_.ground) placeCapsuleGroundPoints();
     // Each contact's overlap at x*, where the substep starts: what the parting measures, and
     // what the depenetration limit is reckoned from (buildBoxContacts fills the box-box ones).
     if (world_.ground) {

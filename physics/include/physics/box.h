@@ -1,5 +1,8 @@
 #pragma once
-// Rigid boxes made of particles, in two models a scene chooses per box.
+// Rigid bodies made of particles, in two models a scene chooses per body, and in two shapes: a
+// box, or the capsule inscribed in one. Either way the particles sit on the box (its corners, or
+// a tetrahedron of them), so everything the solver does with a body (poses, joints, friction,
+// restitution, picking) is the same for both shapes; only collision knows the difference.
 #include <array>
 #include <optional>
 #include <string>
@@ -23,6 +26,14 @@ enum class BoxModel {
 std::string_view toString(BoxModel model);  ///< "corners", "tetra"
 std::optional<BoxModel> parseBoxModel(std::string_view name);
 
+/// What collides: the box itself, or a capsule along the body's y axis inscribed in the box:
+/// radius size.x / 2 (size.z must equal size.x), whole length size.y from cap to cap (>= size.x).
+/// A capsule's mass sits on its box's particles, so it turns like that box (docs/physics.md,
+/// "Capsules"), and the peers are given the same moments of inertia.
+enum class Shape { Box, Capsule };
+
+std::string_view toString(Shape shape);  ///< "box", "capsule"
+
 /// What a box is when it is created.
 struct BoxDesc {
   std::string name;                  ///< for reports and dumps; may be empty
@@ -33,6 +44,7 @@ struct BoxDesc {
   Vec3 angularVelocity{0.0};         ///< unit: rad/s; world frame, at creation
   Real mass = 1.0;                   ///< unit: kg; spread evenly over the particles
   BoxModel model = BoxModel::Corners;
+  Shape shape = Shape::Box;
   Material material;
   /// Collision filtering: two boxes collide when each one's group has a bit in the other's mask.
   std::uint32_t collisionGroup = 1;
@@ -54,10 +66,17 @@ struct Box {
   ParticleId firstParticle = 0;
   int particleCount = 0;  ///< 8 (corners) or 4 (tetra)
   std::uint32_t firstCorner = 0;
-  Vec3 halfExtents{0.5};  ///< unit: m
+  Vec3 halfExtents{0.5};  ///< unit: m; of the box, or of the box a capsule is inscribed in
+  Shape shape = Shape::Box;
   Material material;
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
+
+  /// A capsule's radius (unit: m): halfExtents.x.
+  Real capsuleRadius() const { return halfExtents.x; }
+  /// Half the length of a capsule's core segment, which runs along the body's y axis between
+  /// its caps' centres (unit: m; 0 for a sphere).
+  Real capsuleHalfSegment() const { return halfExtents.y - halfExtents.x; }
 };
 
 /// A box seen as a rigid body, from its particles at one instant: the scratch of restitution's

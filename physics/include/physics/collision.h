@@ -82,4 +82,26 @@ bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& o
 /// jump from one substep to the next as the clipped polygon gains and loses corners.
 void reduceToFourPoints(BoxContact& contact);
 
+/// A capsule: the points within `radius` of the core segment p0-p1 (p0 == p1 makes a sphere).
+struct Capsule {
+  Vec3 p0{0.0};
+  Vec3 p1{0.0};
+  Real radius = 0.0;  ///< unit: m
+};
+
+/// The capsule inscribed in an oriented box (a body of Shape::Capsule): its core runs along the
+/// box's y axis, radius halfExtents.x, ending halfExtents.y - radius either side of the centre.
+Capsule capsuleInBox(const Obb& box);
+
+/// Contact of two capsules, normal from A towards B: one point where the cores' closest points
+/// are, or two (the ends of the stretch where they overlap lengthwise) when the cores lie side by
+/// side, so that a capsule lying on another does not rock about one point. Capsules less than
+/// `margin` apart count as touching (depth down to -margin). False when they are apart.
+bool collideCapsules(const Capsule& a, const Capsule& b, Real margin, BoxContact& out);
+
+/// Contact of a capsule (A) and a box (B), normal from A towards B: the core's point nearest the
+/// box, or two points (the core clipped to the face) when the core lies along a face of the box.
+/// A core that reaches inside the box is pushed out through the face it is least deep behind.
+bool collideCapsuleBox(const Capsule& a, const Obb& b, Real margin, BoxContact& out);
+
 }  // namespace phys

@@ -176,7 +176,9 @@ class World {
   void findBoxPairs();
   void buildBoxContacts();
   void partWithoutVelocity();
-  Embedding embedInBox(BoxId box, const Vec3& point) const;
+  void placeCapsuleGroundPoints();
+  bool collidePair(BoxId a, BoxId b, BoxContact& contact) const;
+  Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
   bool collides(BoxId a, BoxId b) const;
   void guard();
   void freeze(ParticleId bad, const std::string& reason);
@@ -190,6 +192,15 @@ class World {
   std::vector<Link> links_;
   std::vector<Box> boxes_;
   std::vector<Embedding> corners_;
+  // A capsule's two ground contact points (the lowest points of its end spheres), re-embedded
+  // every substep: which contact point, whose, and which end of the core (-1 or +1 along y).
+  struct CapsuleGroundPoint {
+    std::uint32_t contact;
+    BoxId box;
+    Real end;
+  };
+  std::vector<CapsuleGroundPoint> capsuleGround_;
+  std::size_t capsules_ = 0;  // bodies of Shape::Capsule
 
   std::vector<GroundContact> contactPoints_;  // loose particles and box corners
   std::vector<Real> normalPush_;  // per contact point: ground correction of the last pass (m)

@@ -1,0 +1,64 @@
+#include "joint_builders.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+namespace phys::detail {
+namespace {
+
+// How far past a stop its limit link still catches the hinge (see addHinge).
+constexpr Real kStopReach = std::numbers::pi / 3.0;
+// The largest angle a cone's twist link is asked to hold: a chord link works poorly near 180
+// degrees, where its push is almost all along the radius (see addHinge).
+constexpr Real kLargestHeldAngle = 150.0 * std::numbers::pi / 180.0;
+
+}  // namespace
+
+Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
+  const Real c = std::cos(angle), s = std::sin(angle);
+  return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));
+}
+
+void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place, Real scale) {
+  // Two pins on the axis make the hinge.
+  for (const Real side : {-1.0, 1.0}) {
+    const Vec3 pin = place(spec.pivot + spec.axis * (side * spec.halfSpan));
+    world.addLink(world.anchor(parent, pin), world.anchor(child, pin));
+  }
+  // The limits: one one-sided range link at each stop. Q is fixed in the child at `radius`
+  // along the reference direction; P is fixed in the parent where Q would be had the hinge
+  // turned kStopReach past the stop. Seen from the pivot P and Q are |theta - phi| apart, so
+  // |P - Q| = 2 r sin(|theta - phi| / 2), which is r at the stop and less only within
+  // kStopReach beyond it: the link pushes P and Q apart to r there, turning the hinge back.
+  // Its push meets the arc of Q at kStopReach / 2 = 30 degrees, so most of it turns the
+  // hinge; a single link with both bounds would have to work near 180 degrees, where its
+  // push is almost all along the arm and a hard landing carries the hinge past it.
+  const Vec3 inChild = place(spec.pivot + spec.reference * spec.radius);
+  for (const Real stop : {spec.minAngle - kStopReach, spec.maxAngle + kStopReach}) {
+    const Vec3 inParent = place(spec.pivot + rotateAbout(spec.reference, spec.axis, stop) * spec.radius);
+    world.addLink(world.anchor(parent, inParent), world.anchor(child, inChild), spec.radius * scale, kNoMaxLength);
+  }
+}
+
+void addCone(World& world, BoxId parent, BoxId child, const ConeSpec& spec, const PlaceFn& place, Real scale) {
+  const Vec3 pivot = place(spec.pivot);
+  world.addLink(world.anchor(parent, pivot), world.anchor(child, pivot));
+  // A point at `radius` along the limb's axis, fixed in both parts where it is laid out: after
+  // the child swings by s (about any line through the pivot) the two copies are 2 r sin(s / 2)
+  // apart, so bounding that chord bounds the swing in every direction at once, a round cone.
+  // The same chord for a point to the side bounds how far that point moved, which is the twist
+  // when the limb does not swing and at most swing + twist when it does: twist is held within
+  // the cone's own span, not apart from it (a pin there would make a hinge of the ball joint).
+  auto chordLink = [&](const Vec3& direction, Real angle) {
+    const Vec3 point = place(spec.pivot + direction * spec.radius);
+    const Real chord = 2.0 * spec.radius * scale * std::sin(std::min(angle, kLargestHeldAngle) / 2.0);
+    world.addLink(world.anchor(parent, point), world.anchor(child, point), 0.0, chord);
+  };
+  chordLink(spec.axis, spec.swing);
+  chordLink(spec.side, spec.swing + spec.twist);
+}
+
+}  // namespace phys::detail

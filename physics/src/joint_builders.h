@@ -1,0 +1,47 @@
+#pragma once
+// The joints ragdolls are made of, built from pins and range links (World::addLink). Both
+// ragdolls (ragdoll.cpp, capsule_ragdoll.cpp) describe their joints in a layout frame, a
+// standing body at scale 1; `place` maps a layout point into the world and `scale` multiplies
+// layout lengths, so a joint is built the same way whatever the ragdoll's pose and size.
+#include <functional>
+
+#include "physics/world.h"
+
+namespace phys::detail {
+
+using PlaceFn = std::function<Vec3(const Vec3&)>;
+
+/// A hinge in the layout frame: the child turns about `axis` (unit) through `pivot`, by an angle
+/// that is 0 as laid out and positive by the right-hand rule, between the two stops.
+struct HingeSpec {
+  Vec3 pivot{0.0};
+  Vec3 axis{1.0, 0.0, 0.0};
+  Vec3 reference{0.0, -1.0, 0.0};  ///< unit, normal to axis: where the limit links' points lie
+  Real minAngle = 0.0;             ///< unit: rad
+  Real maxAngle = 0.0;             ///< unit: rad
+  Real halfSpan = 0.07;            ///< unit: m; the two pins sit this far either side of the pivot
+  Real radius = 0.1;               ///< unit: m; of the limit links' points from the pivot
+};
+
+/// Two pins on the axis and a one-sided range link at each stop (the why is in the .cpp).
+void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place, Real scale);
+
+/// A cone in the layout frame: a ball joint at `pivot` whose child keeps its `axis` within
+/// `swing` of the parent's, and turns about it by at most about `twist` more.
+struct ConeSpec {
+  Vec3 pivot{0.0};
+  Vec3 axis{0.0, -1.0, 0.0};  ///< unit: the limb's direction as laid out
+  Vec3 side{0.0, 0.0, 1.0};   ///< unit, normal to axis: where the twist link's points lie
+  Real swing = 0.0;           ///< unit: rad; half-angle of the cone, in (0, pi)
+  Real twist = 0.0;           ///< unit: rad; >= 0
+  Real radius = 0.1;          ///< unit: m; of the limit links' points from the pivot
+};
+
+/// One pin at the pivot, one range link holding a point on the axis within the cone, one range
+/// link holding a point to the side within swing + twist (the why is in the .cpp).
+void addCone(World& world, BoxId parent, BoxId child, const ConeSpec& spec, const PlaceFn& place, Real scale);
+
+/// v turned by `angle` (rad) about the unit `axis`, by Rodrigues' formula.
+Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle);
+
+}  // namespace phys::detail
