@@ -52,6 +52,14 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
       }
+      if (box.shape == Shape::Capsule) {
+        // A capsule's own bounds: its core's ends, out by the radius on every axis.
+        const Vec3 centre = (lo + hi) * 0.5;
+        const Vec3 corner0 = position(corners_[box.firstCorner]), corner2 = position(corners_[box.firstCorner + 2]);
+        const Vec3 axis = glm::normalize(corner2 - corner0) * box.capsuleHalfSegment();
+        lo = glm::min(centre - axis, centre + axis) - Vec3(box.capsuleRadius());
+        hi = glm::max(centre - axis, centre + axis) + Vec3(box.capsuleRadius());
+      }
       draw.box((lo + hi) * 0.5, Quat(1.0, 0.0, 0.0, 0.0), (hi - lo) * 0.5, colors::kBounds);
     }
   }

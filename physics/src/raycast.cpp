@@ -46,6 +46,28 @@ std::optional<Real> raySphere(const Vec3& o, const Vec3& d, const Vec3& c, Real 
   return -b - std::sqrt(discriminant);
 }
 
+// Entry distance of the ray o + t d (d a unit vector, both in the capsule's frame) into the
+// capsule whose core runs along y from -halfSegment to +halfSegment: the nearest of its side (the
+// cylinder x^2 + z^2 = r^2 over the core's length) and its two end spheres. 0 when o is inside.
+std::optional<Real> rayCapsule(const Vec3& o, const Vec3& d, Real halfSegment, Real r) {
+  std::optional<Real> best;
+  auto keep = [&best](std::optional<Real> t) {
+    if (t && (!best || *t < *best)) best = t;
+  };
+  const Real a = d.x * d.x + d.z * d.z, b = o.x * d.x + o.z * d.z, c = o.x * o.x + o.z * o.z - r * r;
+  if (c <= 0.0 && std::abs(o.y) <= halfSegment) return 0.0;  // inside the side
+  if (a > 0.0 && c > 0.0) {
+    const Real discriminant = b * b - a * c;
+    if (discriminant >= 0.0) {
+      const Real t = (-b - std::sqrt(discriminant)) / a;
+      if (t >= 0.0 && std::abs(o.y + t * d.y) <= halfSegment) keep(t);
+    }
+  }
+  keep(raySphere(o, d, Vec3(0.0, -halfSegment, 0.0), r));
+  keep(raySphere(o, d, Vec3(0.0, halfSegment, 0.0), r));
+  return best;
+}
+
 }  // namespace
 
 // Every box and loose particle is tested in turn: a pick is one ray per click or mouse move, and
@@ -64,7 +86,11 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, 
   for (BoxId id = 0; id < boxes_.size(); ++id) {
     const BoxPose pose = boxPose(id);
     const Quat toBox = glm::conjugate(pose.orientation);
-    consider(rayBox(toBox * (origin - pose.center), toBox * d, boxes_[id].halfExtents), id, std::nullopt);
+    const Box& box = boxes_[id];
+    const Vec3 o = toBox * (origin - pose.center), local = toBox * d;
+    consider(box.shape == Shape::Capsule ? rayCapsule(o, local, box.capsuleHalfSegment(), box.capsuleRadius())
+                                         : rayBox(o, local, box.halfExtents),
+             id, std::nullopt);
   }
   for (ParticleId i = 0; i < particles_.size(); ++i) {
     if (particleBody_[i] >= 0) continue;  // a box's particle: the box is hit instead

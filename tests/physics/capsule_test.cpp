@@ -244,3 +244,40 @@ TEST(CapsuleDesc, RejectsUnequalDiametersAndShortLengths) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CapsuleRaycast, HitsTheRoundSurfaceNotTheBox) {
+  phys::WorldSettings ws;
+  ws.ground = false;
+  ws.gravity = Vec3(0.0);
+  phys::World world(ws);
+  phys::BoxDesc d = capsuleDesc(phys::BoxModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.2, 1.0);  // core from y 0.7 to 1.3
+  const phys::BoxId id = world.addBox(d);
+  // From the side at the core's middle: the side at x = -0.2.
+  auto hit = world.raycast(Vec3(-2.0, 1.0, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->box, id);
+  EXPECT_NEAR(hit->distance, 1.8, 1e-9);
+  // Down the axis: the tip of the top cap at y = 1.5.
+  hit = world.raycast(Vec3(0.0, 3.0, 0.0), Vec3(0.0, -2.0, 0.0), 10.0);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_NEAR(hit->distance, 1.5, 1e-9);
+  // Down through the cap 0.1 off the axis: the sphere's surface at 1.3 + sqrt(0.04 - 0.01).
+  hit = world.raycast(Vec3(0.1, 3.0, 0.0), Vec3(0.0, -1.0, 0.0), 10.0);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_NEAR(hit->distance, 3.0 - (1.3 + std::sqrt(0.03)), 1e-9);
+  // Down through its box's corner, 0.27 m off the axis: inside the box all the way, and past the
+  // capsule.
+  EXPECT_FALSE(world.raycast(Vec3(0.19, 3.0, 0.19), Vec3(0.0, -1.0, 0.0), 10.0).has_value());
+  phys::World boxWorld(ws);
+  d.shape = phys::Shape::Box;
+  boxWorld.addBox(d);
+  EXPECT_TRUE(boxWorld.raycast(Vec3(0.19, 3.0, 0.19), Vec3(0.0, -1.0, 0.0), 10.0).has_value());
+  // Starting inside: distance 0.
+  hit = world.raycast(Vec3(0.05, 1.4, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->distance, 0.0);
+}
+
+}  // namespace
