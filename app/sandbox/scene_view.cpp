@@ -1,5 +1,6 @@
 #include "scene_view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -31,11 +32,14 @@ float boxShade(phys::BoxId id) {
   return 0.85f + 0.3f * spread;
 }
 
-// The models are unit cubes about the origin: scaled by the box's size, turned and placed by
-// the pose fitted to its particles.
+// Turned and placed by the pose fitted to the body's particles.
+glm::mat4 poseMatrix(const phys::BoxPose& pose) {
+  return glm::translate(glm::mat4(1.0f), glm::vec3(pose.center)) * glm::mat4_cast(glm::quat(pose.orientation));
+}
+
+// The box models are unit cubes about the origin: scaled by the box's size, then posed.
 glm::mat4 boxModelMatrix(const phys::BoxPose& pose, const phys::Vec3& size) {
-  const glm::mat4 rotation = glm::mat4_cast(glm::quat(pose.orientation));
-  return glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(pose.center)) * rotation, glm::vec3(size));
+  return glm::scale(poseMatrix(pose), glm::vec3(size));
 }
 
 // In the method overlay every line of a run is drawn in the run's colour, so two runs' chains
@@ -78,13 +82,27 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
   findJointedBoxes(world);
   const float alpha = tint ? tint->alpha : 1.0f;
   if (options.mode != DrawMode::Constraints) {
-    renderer_.setWireframe(options.mode == DrawMode::Wireframe);
+    const bool wireframe = options.mode == DrawMode::Wireframe;
+    renderer_.setWireframe(wireframe);
+    // Edges of the fine capsule mesh would crowd into a solid patch on a ragdoll's limbs.
+    const auto capsuleDetail = wireframe ? engine::CapsuleMeshCache::kCoarse : engine::CapsuleMeshCache::kFine;
     const auto boxes = world.boxes();
     for (phys::BoxId id = 0; id < boxes.size(); ++id) {
+      const phys::Box& box = boxes[id];
       const glm::vec3 color = tint ? tint->color : boxShade(id) * kBoxColor;
-      const engine::GpuMesh& mesh = jointed_[id] != 0 ? *limbMesh_ : *boxMesh_;
-      renderer_.drawMesh(mesh, viewProjection, boxModelMatrix(world.boxPose(id), boxes[id].halfExtents * 2.0), color,
-                         alpha);
+      const phys::BoxPose pose = world.boxPose(id);
+      if (box.shape == phys::Shape::Capsule) {
+        // Built at its own size: scaling one capsule to another would squash its caps.
+        // Within what the cache takes, so that no size the physics allows can stop the drawing.
+        using Cache = engine::CapsuleMeshCache;
+        const float radius = std::clamp(static_cast<float>(box.capsuleRadius()), Cache::kResolution, Cache::kLargest);
+        const float halfSegment = std::clamp(static_cast<float>(box.capsuleHalfSegment()), 0.0f, Cache::kLargest);
+        const engine::GpuMesh& mesh = capsuleMeshes_.get(radius, halfSegment, capsuleDetail);
+        renderer_.drawMesh(mesh, viewProjection, poseMatrix(pose), color, alpha);
+      } else {
+        const engine::GpuMesh& mesh = jointed_[id] != 0 ? *limbMesh_ : *boxMesh_;
+        renderer_.drawMesh(mesh, viewProjection, boxModelMatrix(pose, box.halfExtents * 2.0), color, alpha);
+      }
     }
     if (options.particles) {
       const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(kParticleDrawSize));
@@ -96,6 +114,7 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     }
     renderer_.setWireframe(false);
   }
+  capsuleMeshes_.trim();
   engine::PhysicsDebugDraw debugDraw(renderer_.lines());
   phys::DebugDrawFlags flags;
   flags.constraints = options.mode == DrawMode::Constraints || options.sticks;

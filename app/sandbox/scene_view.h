@@ -1,7 +1,8 @@
 #pragma once
 // Draws a world with the renderer: boxes with the box model, ragdoll parts (boxes held by a
-// joint) with the limb model, loose particles as small cubes, and the debug layers the draw
-// options ask for. Meshes come from assets/models/ through assimp; a missing or broken file
+// joint) with the limb model, capsules (Shape::Capsule bodies, jointed or not) with a capsule
+// mesh built in code for their size, loose particles as small cubes, and the debug layers the
+// draw options ask for. Models come from assets/models/ through assimp; a missing or broken file
 // falls back to a cube built in code, with a warning.
 #include <filesystem>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "draw_options.h"
+#include "engine/capsule_mesh_cache.h"
 #include "engine/gpu_mesh.h"
 #include "engine/renderer.h"
 #include "physics/world.h"
@@ -33,12 +35,17 @@ class SceneView {
   void draw(const phys::World& world, const glm::mat4& viewProjection, const DrawOptions& options,
             const std::optional<Tint>& tint = std::nullopt);
 
+  /// The capsule meshes, one per size drawn lately (tests look at how many there are).
+  const engine::CapsuleMeshCache& capsuleMeshes() const { return capsuleMeshes_; }
+
  private:
   void findJointedBoxes(const phys::World& world);
 
   engine::Renderer& renderer_;
   std::unique_ptr<engine::GpuMesh> boxMesh_;
   std::unique_ptr<engine::GpuMesh> limbMesh_;
+  // Trimmed after each draw(): sizes no longer in any world drawn are freed beyond its capacity.
+  engine::CapsuleMeshCache capsuleMeshes_;
   // Per-frame scratch, kept to avoid allocating each frame.
   std::vector<std::int32_t> bodyOf_;     // per particle: its box, or -1
   std::vector<std::uint8_t> jointed_;    // per box: held by a joint

@@ -1,6 +1,14 @@
-// The project's box model loads through assimp as a closed unit cube with outward normals.
+// The project's box model loads through assimp as a closed unit cube with outward normals; the
+// capsule built in code lies on its surface, smooth, closed and facing out.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <utility>
+
+#include <glm/common.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -56,6 +64,96 @@ TEST(MeshData, BrokenFileIsAnErrorNotACrash) {
   std::ofstream(file) << "v 0 0 0\nf 1 2 3 4 5\nthis is not obj\n";
   EXPECT_THROW(engine::loadMeshData(file), engine::Error);
   std::filesystem::remove(file);
+}
+
+// The capsules the sandbox draws: long and thin, short and fat, a sphere, a ragdoll's limb.
+struct CapsuleCase {
+  float radius, halfSegment;
+  int segments, rings;
+};
+constexpr CapsuleCase kCapsules[] = {{0.3f, 0.7f, 24, 6}, {1.5f, 0.25f, 24, 6}, {0.5f, 0.0f, 24, 6},
+                                     {0.08f, 0.17f, 3, 1}, {0.25f, 0.0f, 5, 1}, {2.0f, 5.0f, 32, 8}};
+
+// The point of the core segment, (0, -h, 0) to (0, h, 0), nearest p.
+glm::vec3 nearestOnCore(const glm::vec3& p, float halfSegment) {
+  return {0.0f, std::clamp(p.y, -halfSegment, halfSegment), 0.0f};
+}
+
+TEST(CapsuleMesh, HasTheVertexAndTriangleCountsItSays) {
+  for (const CapsuleCase& c : kCapsules) {
+    SCOPED_TRACE(testing::Message() << "r " << c.radius << " h " << c.halfSegment << " " << c.segments << "x"
+                                    << c.rings);
+    const engine::MeshData m = engine::makeCapsuleMesh(c.radius, c.halfSegment, c.segments, c.rings);
+    const std::size_t quads = std::size_t(c.rings) * std::size_t(c.segments);
+    const bool sphere = c.halfSegment == 0.0f;
+    EXPECT_EQ(m.positions.size(), 2 + 2 * quads - (sphere ? std::size_t(c.segments) : 0));
+    EXPECT_EQ(m.normals.size(), m.positions.size());
+    const std::size_t triangles = 4 * quads - (sphere ? 2 * std::size_t(c.segments) : 0);
+    EXPECT_EQ(m.indices.size(), 3 * triangles);
+    for (std::uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
+  }
+  // The sizes the sandbox uses.
+  EXPECT_EQ(engine::makeCapsuleMesh(0.2f, 0.5f).positions.size(), 2u + 2u * 24u * 6u);
+}
+
+TEST(CapsuleMesh, EveryVertexLiesOnTheSurfaceWithAnOutwardUnitNormal) {
+  for (const CapsuleCase& c : kCapsules) {
+    SCOPED_TRACE(testing::Message() << "r " << c.radius << " h " << c.halfSegment);
+    const engine::MeshData m = engine::makeCapsuleMesh(c.radius, c.halfSegment, c.segments, c.rings);
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      const glm::vec3 p = m.positions[i], n = m.normals[i];
+      const glm::vec3 out = p - nearestOnCore(p, c.halfSegment);
+      ASSERT_NEAR(glm::length(out), c.radius, 1e-5f) << "vertex " << i;
+      ASSERT_NEAR(glm::length(n), 1.0f, 1e-5f) << "vertex " << i;
+      // Smooth: the normal is the surface's own, straight out from the core.
+      ASSERT_GT(glm::dot(n, out / c.radius), 1.0f - 1e-5f) << "vertex " << i;
+    }
+    EXPECT_NEAR(m.boundsMin.y, -(c.halfSegment + c.radius), 1e-5f);
+    EXPECT_NEAR(m.boundsMax.y, c.halfSegment + c.radius, 1e-5f);
+    EXPECT_LE(m.boundsMax.x, c.radius + 1e-5f);
+    EXPECT_GE(m.boundsMin.z, -c.radius - 1e-5f);
+  }
+}
+
+TEST(CapsuleMesh, IsClosedWithTrianglesFacingOut) {
+  for (const CapsuleCase& c : kCapsules) {
+    SCOPED_TRACE(testing::Message() << "r " << c.radius << " h " << c.halfSegment);
+    const engine::MeshData m = engine::makeCapsuleMesh(c.radius, c.halfSegment, c.segments, c.rings);
+    // Closed and consistently wound: each directed edge once, and its reverse once.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    for (std::size_t t = 0; t < m.indices.size(); t += 3) {
+      for (int k = 0; k < 3; ++k) ++edges[{m.indices[t + k], m.indices[t + (k + 1) % 3]}];
+    }
+    for (const auto& [edge, count] : edges) {
+      ASSERT_EQ(count, 1) << edge.first << "-" << edge.second;
+      ASSERT_EQ(edges.count({edge.second, edge.first}), 1u) << edge.first << "-" << edge.second;
+    }
+    // Counter-clockwise seen from outside: each face's normal agrees with its vertices' (back
+    // faces are culled), and the enclosed volume is positive, a little under the capsule's.
+    for (std::size_t t = 0; t < m.indices.size(); t += 3) {
+      const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                      d = m.positions[m.indices[t + 2]];
+      const glm::vec3 face = glm::normalize(glm::cross(b - a, d - a));
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_GT(glm::dot(face, m.normals[m.indices[t + k]]), 0.0f) << "triangle " << t / 3;
+      }
+    }
+    const float exact = glm::pi<float>() * c.radius * c.radius * (2.0f * c.halfSegment + 4.0f / 3.0f * c.radius);
+    EXPECT_LT(signedVolume(m), exact);
+    if (c.segments >= 24) {
+      EXPECT_GT(signedVolume(m), 0.95f * exact);
+    }
+  }
+}
+
+TEST(CapsuleMesh, RefusesSizesThatAreNoCapsule) {
+  EXPECT_THROW(engine::makeCapsuleMesh(0.0f, 1.0f), engine::Error);
+  EXPECT_THROW(engine::makeCapsuleMesh(-0.1f, 1.0f), engine::Error);
+  EXPECT_THROW(engine::makeCapsuleMesh(0.1f, -1.0f), engine::Error);
+  EXPECT_THROW(engine::makeCapsuleMesh(std::nanf(""), 1.0f), engine::Error);
+  EXPECT_THROW(engine::makeCapsuleMesh(0.1f, INFINITY), engine::Error);
+  EXPECT_THROW(engine::makeCapsuleMesh(0.1f, 1.0f, 2, 4), engine::Error);
+  EXPECT_THROW(engine::makeCapsuleMesh(0.1f, 1.0f, 8, 0), engine::Error);
 }
 
 }  // namespace

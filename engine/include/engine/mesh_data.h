@@ -25,4 +25,17 @@ MeshData loadMeshData(const std::filesystem::path& file);
 /// model file is missing or broken.
 MeshData unitCubeMesh();
 
+/// A capsule centred on the origin, built in code: the points within `radius` of the core
+/// segment from (0, -halfSegment, 0) to (0, halfSegment, 0) (the physics' capsules lie along
+/// their body's y axis). Two hemispherical caps of `rings` rows each, from the pole to the
+/// equator, and between them a cylinder, all `segments` columns around; smooth normals, one
+/// vertex at each pole, triangles counter-clockwise seen from outside. Every vertex lies on the
+/// surface, so the mesh is inscribed in the capsule, and it is closed. 2 + 2 * rings * segments
+/// vertices and 4 * rings * segments triangles; when halfSegment is 0 (a sphere: no cylinder,
+/// the caps share their equator) `segments` fewer vertices and 2 * segments fewer triangles.
+/// A capsule cannot be scaled from another without squashing its caps, so each size needs its
+/// own. Throws engine::Error unless radius > 0, halfSegment >= 0 (both finite), segments >= 3
+/// and rings >= 1.
+MeshData makeCapsuleMesh(float radius, float halfSegment, int segments = 24, int rings = 6);
+
 }  // namespace engine
