@@ -68,7 +68,7 @@ const BadScene kCases[] = {
      "from 0 to 1e+06"},
     {"link to an unknown box",
      "<scene name='s'>\n<box name='a' pos='0 0 0'/>\n<link a='a'\n b='zz' point='0 0 0'/>\n</scene>", 4, "b",
-     "'zz' is not the name of a box or particle defined above"},
+     "'zz' is not the name of a box, capsule or particle defined above"},
     {"link above its box",
      "<scene name='s'>\n<link a='a' b='b' point='0 0 0'/>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
      "</scene>",
@@ -105,7 +105,7 @@ const BadScene kCases[] = {
     {"no-collision with a particle",
      "<scene name='s'>\n<particle name='p' pos='0 0 0'/><box name='a' pos='0 0 0'/>\n"
      "<no-collision a='p' b='a'/>\n</scene>",
-     3, "a", "'p' is not the name of a box defined above"},
+     3, "a", "'p' is not the name of a box or capsule defined above"},
     {"collision group too large", "<scene name='s'>\n<box pos='0 0 0' group='4294967296'/>\n</scene>", 2, "group",
      "from 0 to 4294967295"},
 };

@@ -6,6 +6,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "euler_angles.h"
+#include "physics/capsule_ragdoll.h"
 #include "physics/ragdoll.h"
 
 namespace scenes::detail {
@@ -19,14 +20,8 @@ void addBox(ElementReader& e, BuildContext& ctx, phys::BoxDesc desc, const std::
   ctx.addName(e, name, NamedBody::Kind::Box, id);
 }
 
-}  // namespace
-
-phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
-  phys::BoxDesc d;
-  if (auto size = e.vector("size", "m", true)) {
-    if (size->x <= 0.0 || size->y <= 0.0 || size->z <= 0.0) e.fail("size", "sizes must be > 0 (m)");
-    d.size = *size;
-  }
+// What every rigid body element reads after its size: mass, model, friction, orientation.
+void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BoxDesc& d) {
   if (auto mass = e.number("mass", "kg")) {
     if (*mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
     d.mass = *mass;
@@ -39,6 +34,35 @@ phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
   e.material(d.material);
   if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
   if (options.boxModel) d.model = *options.boxModel;
+}
+
+}  // namespace
+
+phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
+  phys::BoxDesc d;
+  if (auto size = e.vector("size", "m", true)) {
+    if (size->x <= 0.0 || size->y <= 0.0 || size->z <= 0.0) e.fail("size", "sizes must be > 0 (m)");
+    d.size = *size;
+  }
+  readBodyCommon(e, options, d);
+  return d;
+}
+
+phys::BoxDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options) {
+  phys::BoxDesc d;
+  d.shape = phys::Shape::Capsule;
+  const double radius = e.requiredNumber("radius", "m");
+  if (radius <= 0.0) e.fail("radius", "'" + formatNumber(radius) + "' must be > 0 (m)");
+  const double length = e.requiredNumber("length", "m");
+  // The box it is inscribed in is 2 radius wide: the physics needs size.y >= size.x, computed
+  // here the same way, so a sphere (length exactly 2 radius) passes both checks.
+  const double diameter = 2.0 * radius;
+  if (!(length >= diameter)) {
+    e.fail("length", "'" + formatNumber(length) + "' must be at least twice the radius, " + formatNumber(diameter) +
+                         " (m): it is the whole length, cap to cap");
+  }
+  d.size = phys::Vec3(diameter, length, diameter);
+  readBodyCommon(e, options, d);
   return d;
 }
 
@@ -143,10 +167,17 @@ void generateChain(ElementReader& e, BuildContext& ctx) {
   }
 }
 
-// Ten boxes joined by hinges (physics/ragdoll.h); pos is where its hips are, and at euler 0 it
-// stands on its feet facing +z. Parts are named "<name>.head", "<name>.torso", ...
+// Ten boxes joined by hinges (physics/ragdoll.h), or with shape="capsule" eleven capsules joined
+// by hinges and cones (physics/capsule_ragdoll.h); pos is where its hips are, and at euler 0 it
+// stands on its feet facing +z. Parts are named "<name>.head", "<name>.torso" (or
+// "<name>.pelvis", "<name>.spine"), ...
 void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   phys::RagdollDesc d;
+  phys::Shape shape = phys::Shape::Box;
+  if (auto text = e.text("shape")) {
+    if (*text == phys::toString(phys::Shape::Capsule)) shape = phys::Shape::Capsule;
+    else if (*text != phys::toString(phys::Shape::Box)) e.fail("shape", "'" + *text + "' must be box or capsule");
+  }
   d.name = e.text("name").value_or("ragdoll");
   d.hips = e.requiredVector("pos", "m");
   if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
@@ -167,11 +198,11 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   e.material(d.material);
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;
-  const phys::Ragdoll ragdoll = phys::addRagdoll(ctx.world, d);
-  for (int i = 0; i < phys::kRagdollParts; ++i) {
-    const phys::BoxId id = ragdoll.parts[static_cast<std::size_t>(i)];
-    ctx.addName(e, ctx.world.boxes()[id].name, NamedBody::Kind::Box, id);
-  }
+  auto nameParts = [&](const auto& parts) {
+    for (const phys::BoxId id : parts) ctx.addName(e, ctx.world.boxes()[id].name, NamedBody::Kind::Box, id);
+  };
+  if (shape == phys::Shape::Capsule) nameParts(phys::addCapsuleRagdoll(ctx.world, d).parts);
+  else nameParts(phys::addRagdoll(ctx.world, d).parts);
 }
 
 }  // namespace scenes::detail

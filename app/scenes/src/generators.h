@@ -28,12 +28,18 @@ inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
 /// Reads the attributes every box-making element shares (size, mass, model, friction...); a
 /// model imposed by the load options replaces the file's.
 phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options);
+/// The same for a <capsule>: radius and length (both required: length is the whole length, cap
+/// to cap, at least twice the radius) in place of size, as a box of Shape::Capsule that the
+/// capsule is inscribed in: size (2 radius, length, 2 radius), along the body's y axis.
+phys::BoxDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options);
 
 void generateStack(ElementReader& e, BuildContext& ctx);
 void generatePyramid(ElementReader& e, BuildContext& ctx);
 void generateGrid(ElementReader& e, BuildContext& ctx);
 void generateChain(ElementReader& e, BuildContext& ctx);
-/// Not a generator in name, but it makes ten named boxes from one element.
+/// Not a generator in name, but it makes named bodies from one element: ten boxes
+/// (shape="box", physics/ragdoll.h) or eleven capsules (shape="capsule",
+/// physics/capsule_ragdoll.h).
 void generateRagdoll(ElementReader& e, BuildContext& ctx);
 
 }  // namespace scenes::detail

@@ -23,8 +23,8 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "stack", "pyramid", "grid",
-                                              "chain", "ragdoll", "link", "no-collision"};
+constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "capsule", "stack", "pyramid",
+                                              "grid", "chain", "ragdoll", "link", "no-collision"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -132,7 +132,8 @@ class Builder {
     const std::string_view kind = node.name();
     if (kind == "particle") particle(e);
     else if (kind == "stick") stick(e);
-    else if (kind == "box") box(e);
+    else if (kind == "box") rigidBody(e, phys::Shape::Box);
+    else if (kind == "capsule") rigidBody(e, phys::Shape::Capsule);
     else if (kind == "stack") detail::generateStack(e, ctx_);
     else if (kind == "pyramid") detail::generatePyramid(e, ctx_);
     else if (kind == "grid") detail::generateGrid(e, ctx_);
@@ -167,7 +168,7 @@ class Builder {
     const std::string name = e.requiredText(attribute);
     const auto it = byName_.find(name);
     if (it == byName_.end() || (!particlesToo && scene_.bodies[it->second].kind != NamedBody::Kind::Box)) {
-      const std::string kinds = particlesToo ? "box or particle" : "box";
+      const std::string kinds = particlesToo ? "box, capsule or particle" : "box or capsule";
       e.fail(attribute, "'" + name + "' is not the name of a " + kinds + " defined above");
     }
     return scene_.bodies[it->second];
@@ -220,9 +221,11 @@ class Builder {
     scene_.world.addStick(a, b, *value, compliance);
   }
 
-  void box(ElementReader& e) {
+  // A <box>, or a <capsule> (a box of Shape::Capsule: radius and length in place of size).
+  void rigidBody(ElementReader& e, phys::Shape shape) {
     const std::string name = e.text("name").value_or("");
-    phys::BoxDesc d = detail::readBoxCommon(e, ctx_.options);
+    phys::BoxDesc d = shape == phys::Shape::Capsule ? detail::readCapsuleCommon(e, ctx_.options)
+                                                    : detail::readBoxCommon(e, ctx_.options);
     d.center = e.requiredVector("pos", "m");
     d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
     d.angularVelocity = glm::radians(e.vector("angular-velocity", "degrees/s").value_or(phys::Vec3(0.0)));
@@ -363,8 +366,8 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
       }
       expectations.push_back(std::move(x));
     } else {
-      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, stack, pyramid, grid, "
-             "chain, ragdoll, link, no-collision, expect)");
+      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, capsule, stack, pyramid, "
+             "grid, chain, ragdoll, link, no-collision, expect)");
     }
   }
 

@@ -1,7 +1,7 @@
 // Saving a world as a scene file: settings, then every body in the order the world made them
 // (so a reload gives each particle, box and stick the same index, and the solver visits them
 // in the same order), then the sticks between loose particles, the links and the pairs kept
-// from colliding. Each box is saved as the rigid body fitted to its particles.
+// from colliding. Each box (or capsule) is saved as the rigid body fitted to its particles.
 #include "scenes/scene_writer.h"
 
 #include <algorithm>
@@ -153,15 +153,20 @@ std::string cameraElement(const CameraStart& camera) {
   return ElementWriter("camera").vector("eye", camera.eye).vector("target", camera.target).empty();
 }
 
+// A box as a <box>, or one of Shape::Capsule as a <capsule>: the radius and whole length of the
+// capsule inscribed in it, which the loader turns back into the same half extents exactly
+// (doubling and halving a double are exact).
 std::string boxElement(const phys::World& world, phys::BoxId id, const std::string& name) {
   const phys::Box& box = world.boxes()[id];
   const detail::RigidState state = detail::rigidState(world, id);
-  ElementWriter e("box");
+  const bool capsule = box.shape == phys::Shape::Capsule;
+  ElementWriter e(capsule ? "capsule" : "box");
   e.text("name", name)
       .vector("pos", state.pose.center)
-      .vector("euler", detail::eulerFromOrientation(state.pose.orientation))
-      .vector("size", box.halfExtents * 2.0)
-      .number("mass", state.mass)
+      .vector("euler", detail::eulerFromOrientation(state.pose.orientation));
+  if (capsule) e.number("radius", box.capsuleRadius()).number("length", box.halfExtents.y * 2.0);
+  else e.vector("size", box.halfExtents * 2.0);
+  e.number("mass", state.mass)
       .text("model", phys::toString(box.model))
       .number("static-friction", box.material.staticFriction)
       .number("dynamic-friction", box.material.dynamicFriction);

@@ -24,7 +24,8 @@ struct CameraStart {
   glm::vec3 target{0.0f, 1.0f, 0.0f};
 };
 
-/// A body a scene file gave a name (its own, or a generator's "stack[3]").
+/// A body a scene file gave a name (its own, or a generator's "stack[3]"). A capsule is a box
+/// of Shape::Capsule, so its kind is Box.
 struct NamedBody {
   enum class Kind { Box, Particle };
   std::string name;
@@ -46,8 +47,9 @@ struct Expectation {
 
 /// Choices a caller may impose on a file as it is loaded (the lab's --model sweeps them).
 struct LoadOptions {
-  std::optional<phys::BoxModel> boxModel;        ///< every box, stack, pyramid and grid box
-  std::optional<phys::RagdollModel> ragdollModel;  ///< every ragdoll
+  std::optional<phys::BoxModel> boxModel;        ///< every box, capsule, stack, pyramid and grid box
+                                                 ///< (not ragdoll parts: ragdollModel says theirs)
+  std::optional<phys::RagdollModel> ragdollModel;  ///< every ragdoll, of boxes or capsules
 };
 
 struct Scene {
