@@ -333,6 +333,8 @@ BoxId World::addBox(const BoxDesc& desc) {
   partWeight_.push_back(0.0);
   partGround_.push_back(0.0);
   sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
+  bounds_.emplace_back();
+  pairsStale_ = true;
   return static_cast<BoxId>(boxIndex);
 }
 
@@ -419,7 +421,7 @@ void World::step() {
     start = Clock::now();
     if (boxes_.size() >= 2 || capsules_ > 0) updateBoxFrames();
     if (boxes_.size() >= 2) {
-      findBoxPairs();
+      if (s == 0 || pairsStale_ || drag_) findBoxPairs();  // a drag can outrun the bounds
       buildBoxContacts();
     }
     if (world_.ground) placeCapsuleGroundPoints();

@@ -138,7 +138,8 @@ class World {
   std::span<const BodyContact> bodyContacts() const { return bodyContacts_; }
   /// Each box as an oriented box, fitted at the start of the last substep.
   std::span<const Obb> boxFrames() const { return frames_; }
-  /// Box pairs whose bounds overlapped in the last substep (the broad phase's output).
+  /// Box pairs whose bounds, grown by how far each can go in a step, overlapped at the start of
+  /// the last step (the broad phase's output, which every substep's narrow phase tests).
   std::size_t broadPhasePairs() const { return pairs_.size(); }
   const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
   /// Freezes so far, oldest first.
@@ -173,6 +174,7 @@ class World {
   void restitute(Real h);
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBoxFrames();
+  void chooseSweepAxis();
   void findBoxPairs();
   void buildBoxContacts();
   void partWithoutVelocity();
@@ -211,10 +213,17 @@ class World {
   // Box-box collision, rebuilt every substep into storage that keeps its capacity.
   std::vector<Obb> frames_;                 // per box
   struct Interval {
-    Real min, max;  // x extent of a box's bounds
+    Real min, max;  // extent of a box's bounds along the sweep axis
     BoxId box;
   };
   std::vector<Interval> sweep_;             // sweep-and-prune list, kept sorted between substeps
+  struct Bounds {
+    Vec3 lo, hi;
+  };
+  std::vector<Bounds> bounds_;              // per box: AABB grown by its reach over a step
+  bool pairsStale_ = true;                  // bodies or filters changed since pairs_ was found
+  int sweepAxis_ = 0;                       // the axis sweep_ is sorted along
+  bool sweepSorted_ = true;                 // false when the axis changed since the last sort
   std::vector<std::pair<BoxId, BoxId>> pairs_;
   std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
   std::vector<BodyContact> bodyContacts_;
