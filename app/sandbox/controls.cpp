@@ -24,6 +24,7 @@ constexpr Control kControls[] = {
     {"N", "one step (while paused)"},
     {"F", "throw a box from the crosshair along the view"},
     {"R", "throw a ragdoll from the crosshair along the view"},
+    {"T", "throw a capsule ragdoll (Bullet's layout) from the crosshair along the view"},
     {"F5", "reload the scene file"},
     {"Ctrl+O / Ctrl+S", "open a scene / save the world as a scene"},
     {"F1", "show or hide this table"},
@@ -52,6 +53,7 @@ std::optional<Action> actionForKey(int key, int mods) {
     case GLFW_KEY_F5: return Action::Reload;
     case GLFW_KEY_F: return Action::SpawnBox;
     case GLFW_KEY_R: return Action::SpawnRagdoll;
+    case GLFW_KEY_T: return Action::SpawnCapsuleRagdoll;
     case GLFW_KEY_F1: return Action::ToggleHelp;
     default: return std::nullopt;
   }

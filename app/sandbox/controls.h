@@ -25,6 +25,7 @@ enum class Action {
   Reload,
   SpawnBox,
   SpawnRagdoll,
+  SpawnCapsuleRagdoll,  ///< Bullet's layout (physics/capsule_ragdoll.h)
   ToggleHelp,
 };
 

@@ -179,11 +179,12 @@ void Sandbox::perform(Action action) {
     case Action::StepOnce: ui_.stepOnce = true; break;
     case Action::Reload: openScene(s.file()); break;
     case Action::SpawnBox:
-    case Action::SpawnRagdoll: {
+    case Action::SpawnRagdoll:
+    case Action::SpawnCapsuleRagdoll: {
       const phys::Vec3 forward(camera_.forward());
       const phys::Vec3 at = phys::Vec3(camera_.position) + forward * static_cast<double>(kSpawnDistance);
       if (action == Action::SpawnBox) s.spawnBox(at, forward * kThrowSpeed);
-      else s.spawnRagdoll(at, forward * kThrowSpeed);
+      else s.spawnRagdoll(at, forward * kThrowSpeed, action == Action::SpawnCapsuleRagdoll);
       ui_.message = s.status();
       break;
     }

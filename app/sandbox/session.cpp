@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "physics/capsule_ragdoll.h"
 #include "physics/ragdoll.h"
 #include "scenes/scene_writer.h"
 
@@ -229,16 +230,21 @@ void Session::spawnBox(const phys::Vec3& at, const phys::Vec3& velocity) {
   status_ = "threw a box";
 }
 
-void Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity) {
+void Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules) {
   ++spawned_;
   phys::RagdollDesc d;
-  d.name = "thrown ragdoll " + std::to_string(spawned_);
+  d.name = (capsules ? "thrown capsule ragdoll " : "thrown ragdoll ") + std::to_string(spawned_);
   // Face the way it is thrown, lying forward so that it flies head first: from standing
   // (facing +z), turn to the throw's heading, then tip forward by 90 degrees.
   const double heading = std::atan2(velocity.x, velocity.z);
   d.orientation = glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
   d.hips = at;
   d.velocity = velocity;
+  if (capsules) {
+    forEachWorld([&](phys::World& w) { phys::addCapsuleRagdoll(w, d); });
+    status_ = "threw a capsule ragdoll";
+    return;
+  }
   forEachWorld([&](phys::World& w) { phys::addRagdoll(w, d); });
   status_ = "threw a ragdoll";
 }

@@ -88,9 +88,10 @@ class Session {
   /// The main run's solver settings (the panel's sliders); "" or the validation message.
   std::string setSolverSettings(const phys::SolverSettings& settings);
 
-  /// Throws a box or a ragdoll from `at` with velocity `velocity` into every run.
+  /// Throws a box or a ragdoll (of boxes, or of capsules laid out like Bullet's) from `at` with
+  /// velocity `velocity` into every run.
   void spawnBox(const phys::Vec3& at, const phys::Vec3& velocity);
-  void spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity);
+  void spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules = false);
 
   /// Left-drag picking: the body or particle hit by the ray gets a spring to the ray's point,
   /// in every run at the same place on the same body. False when the ray hits nothing or is

@@ -107,6 +107,19 @@ TEST(Session, ThrownBoxesAndRagdollsFlyAlongTheViewAndLand) {
   EXPECT_LT(m.maxPenetration, 0.05);
 }
 
+TEST(Session, ThrownCapsuleRagdollHasBulletsElevenCapsules) {
+  sandbox::Session s = open("pyramid");
+  const std::size_t boxes = s.scene().world.boxes().size();
+  s.spawnRagdoll(phys::Vec3(-4, 3, 0), phys::Vec3(-sandbox::kThrowSpeed, 0, 0), true);
+  const phys::World& w = s.scene().world;
+  ASSERT_EQ(w.boxes().size(), boxes + 11);
+  for (std::size_t i = boxes; i < w.boxes().size(); ++i) EXPECT_EQ(w.boxes()[i].shape, phys::Shape::Capsule);
+  EXPECT_EQ(s.status(), "threw a capsule ragdoll");
+  for (int i = 0; i < 240; ++i) s.step();
+  EXPECT_EQ(w.metrics().frozen, 0);
+  EXPECT_LT(w.boxPose(static_cast<phys::BoxId>(boxes)).center.x, -4.0);  // flew towards -x
+}
+
 TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
   sandbox::Session s = open("falling-box");
   for (int i = 0; i < 120; ++i) s.step();  // landed
