@@ -119,23 +119,33 @@ struct Row {
 };
 
 // The deepest point below the ground, measured as it is for the peers (peer_scene.cpp): every
-// box corner and every loose particle, the ground only. (World::metrics() also counts box-box
-// overlap, which the peers do not report.)
+// box corner, every capsule's core ends less its radius (its box's corners are not on it) and
+// every loose particle, the ground only. (World::metrics() also counts box-box overlap.)
 double groundPenetration(const phys::World& world) {
   const phys::WorldSettings& ws = world.worldSettings();
   if (!ws.ground) return 0.0;
   double deepest = 0.0;
-  auto visit = [&](const phys::Vec3& p) {
-    const double depth = ws.groundHeight - glm::dot(ws.groundNormal, p);
+  auto visit = [&](const phys::Vec3& p, double radius) {
+    const double depth = ws.groundHeight - (glm::dot(ws.groundNormal, p) - radius);
     deepest = std::isfinite(depth) ? std::max(deepest, depth) : std::numeric_limits<double>::infinity();
   };
-  for (const phys::Embedding& corner : world.corners()) visit(world.position(corner));
+  const auto boxes = world.boxes();
+  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
+    const phys::Box& box = boxes[id];
+    if (box.shape == phys::Shape::Capsule) {
+      const phys::BoxPose pose = world.boxPose(id);
+      const double half = std::max(0.0, box.capsuleHalfSegment());
+      for (const double end : {-half, half}) visit(pose.center + pose.orientation * phys::Vec3(0.0, end, 0.0), box.capsuleRadius());
+    } else {
+      for (int k = 0; k < 8; ++k) visit(world.position(world.corners()[box.firstCorner + static_cast<std::uint32_t>(k)]), 0.0);
+    }
+  }
   std::vector<bool> inBox(world.particles().size(), false);
   for (const phys::Box& box : world.boxes()) {
     for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
   for (std::size_t i = 0; i < inBox.size(); ++i) {
-    if (!inBox[i]) visit(world.particles().position[i]);
+    if (!inBox[i]) visit(world.particles().position[i], 0.0);
   }
   return deepest;
 }
@@ -315,10 +325,14 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
     return kExitOk;
   }
   const phys::World& world = scene->world;
-  std::size_t loose = world.particles().size();
-  for (const phys::Box& b : world.boxes()) loose -= static_cast<std::size_t>(b.particleCount);
+  std::size_t loose = world.particles().size(), capsules = 0;
+  for (const phys::Box& b : world.boxes()) {
+    loose -= static_cast<std::size_t>(b.particleCount);
+    capsules += b.shape == phys::Shape::Capsule ? 1 : 0;
+  }
   auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
-  out << "scene     " << scene->name << " (" << file.string() << "): " << count(world.boxes().size(), "box", "boxes") << ", "
+  out << "scene     " << scene->name << " (" << file.string() << "): " << count(world.boxes().size() - capsules, "box", "boxes") << ", "
+      << (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string())
       << count(loose, "loose particle", "loose particles") << ", " << count(world.links().size(), "link", "links") << "\n";
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
       << " s) in each engine, one after another in this process; ms/step is the median of the steps timed one by one\n";

@@ -2,9 +2,9 @@
 // Peer engines, built into the lab when CMake finds them (option LAB_PEERS, on by default;
 // scripts/install-deps installs libbullet-dev, libode-dev and libmujoco-dev). Each adapter
 // builds the same scene from our loaded world: the ground, one rigid body per body of
-// bodies.h (a box for each box, a small sphere for each loose particle) with the same mass,
-// size, pose, velocity and friction, and joints for what joins them, then steps it with the
-// engine's default solver at our dt. docs/lab.md, "lab compare and the peers", lists what
+// bodies.h (a box for each box, a capsule for each capsule, a small sphere for each loose
+// particle) with the same mass, size, pose, velocity and friction, and joints for what joins
+// them, then steps it with the engine's default solver at our dt. docs/lab.md, "lab compare and the peers", lists what
 // each engine can and cannot express.
 #include <string>
 #include <string_view>
@@ -26,7 +26,14 @@ struct PeerResult {
   double medianMsPerStep = 0.0;  ///< unit: ms; median wall time of one step
   /// Per checkpoint asked for, bodyPositions() order: where the engine's bodies are.
   std::vector<std::vector<phys::Vec3>> positions;
+  /// The same bodies' orientations at the same checkpoints: with the positions, the poses that
+  /// the lab measures penetration, joint gaps and flips from (peers/pose_measures.h), the same
+  /// way for every engine.
+  std::vector<std::vector<phys::Quat>> orientations;
   double maxPenetration = 0.0;  ///< unit: m; deepest body below the ground at the end
+  /// True when the engine dropped contacts or constraints for want of the room it allocated up
+  /// front (peers::Engine::dropped): what it did is then not its solver's (`unsupported` says).
+  bool dropped = false;
 };
 
 /// The engines built in, in a fixed order; empty when the lab was built without peers.

@@ -5,6 +5,9 @@
 #include <limits>
 
 #include "bodies.h"
+#include "peers/peer_scene.h"
+#include "peers/pose_measures.h"
+#include "physics/box.h"
 
 namespace lab::stability {
 namespace {
@@ -30,16 +33,6 @@ double metricFigure(Metric m, const phys::Metrics& metrics) {
   }
 }
 
-// The body-frame axis of the middle side length, which is also that of the middle moment of
-// inertia: a box's moment about x is m (hy^2 + hz^2) / 3, so the orders agree.
-phys::Vec3 middleAxis(const phys::Vec3& h) {
-  const int big = h.x >= h.y && h.x >= h.z ? 0 : (h.y >= h.z ? 1 : 2);
-  const int small = h.x <= h.y && h.x <= h.z ? 0 : (h.y <= h.z ? 1 : 2);
-  phys::Vec3 axis(0.0);
-  axis[3 - big - small] = 1.0;
-  return axis;
-}
-
 // Keeps the extreme of a stays-behind coordinate: the highest for a max plane, the lowest for min.
 void keepExtreme(const Criterion& c, double& value, double sample) {
   if (std::isinf(value)) return;  // blown up already: stays so
@@ -63,6 +56,30 @@ Verdict verdictOf(const Criterion& c, double value) {
 
 }  // namespace
 
+// The body-frame axis of the middle side length, which is also that of the middle moment of
+// inertia: a box's moment about x is m (hy^2 + hz^2) / 3, so the orders agree.
+phys::Vec3 FlipCounter::middleAxis(const phys::Vec3& h) {
+  const int big = h.x >= h.y && h.x >= h.z ? 0 : (h.y >= h.z ? 1 : 2);
+  const int small = h.x <= h.y && h.x <= h.z ? 0 : (h.y <= h.z ? 1 : 2);
+  phys::Vec3 axis(0.0);
+  axis[3 - big - small] = 1.0;
+  return axis;
+}
+
+void FlipCounter::start(const phys::Vec3& axis) {
+  axisAtStart_ = axis;
+  sign_ = 1;
+  flips_ = 0.0;
+}
+
+void FlipCounter::sample(const phys::Vec3& axis) {
+  const double along = glm::dot(axis, axisAtStart_);
+  if (along * sign_ < -kFlipThreshold) {
+    sign_ = -sign_;
+    flips_ += 1.0;
+  }
+}
+
 WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world) : criteria_(criteria) {
   // bodies.h's order, kept as ids so a criterion reads only its own bodies, not all of them.
   std::vector<bool> inBox(world.particles().size(), false);
@@ -74,7 +91,7 @@ WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World
   for (std::size_t i = 0; i < inBox.size(); ++i) {
     if (!inBox[i]) bodies_.push_back({false, static_cast<std::uint32_t>(i)});
   }
-  for (const Criterion& c : criteria_) states_.push_back({startValue(c), {}, phys::Vec3(0.0), 1});
+  for (const Criterion& c : criteria_) states_.push_back({startValue(c), {}, {}});
   observe(world, 0);
 }
 
@@ -97,17 +114,10 @@ void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& wo
 
 void WorldJudge::sampleFlips(const Criterion& c, State& s, const phys::World& world, int step) const {
   const auto id = static_cast<phys::BoxId>(c.boxId);
-  const phys::Vec3 axis = world.boxPose(id).orientation * middleAxis(world.boxes()[id].halfExtents);
-  if (step == c.fromStep) {
-    s.axisAtStart = axis;
-    s.sign = 1;
-    return;
-  }
-  const double along = glm::dot(axis, s.axisAtStart);
-  if (along * s.sign < -kFlipThreshold) {
-    s.sign = -s.sign;
-    s.value += 1.0;
-  }
+  const phys::Vec3 axis = world.boxPose(id).orientation * FlipCounter::middleAxis(world.boxes()[id].halfExtents);
+  if (step == c.fromStep) s.flips.start(axis);
+  else s.flips.sample(axis);
+  s.value = s.flips.flips();
 }
 
 void WorldJudge::observe(const phys::World& world, int step) {
@@ -176,49 +186,106 @@ void keepLargest(double& value, double sample) {
   value = std::isfinite(sample) && std::isfinite(value) ? std::max(value, sample) : kInf;
 }
 
-double judgeOne(const Criterion& c, const phys::World& world, double dt, const std::vector<std::vector<phys::Vec3>>& states) {
+// A peer's run as the judge reads it: the bodies' poses after k steps, k = 0 the loaded scene.
+struct PeerStates {
+  const peers::Description& scene;
+  std::vector<std::vector<phys::Vec3>> positions;
+  std::vector<std::vector<phys::Quat>> orientations;  // empty when the peer gave none
+};
+
+// The fastest point of the bodies from step k - 1 to step k: each box's or capsule's particles
+// where ours has them (its corners, or the tetra model's four), carried by the body's poses, and
+// each loose particle, so a spinning body's corners count as our particles do (Metrics::maxSpeed).
+// Without orientations, the bodies' centres alone.
+double peerSpeed(const PeerStates& p, int k, double dt) {
+  const auto& now = p.positions[static_cast<std::size_t>(k)];
+  const auto& before = p.positions[static_cast<std::size_t>(k - 1)];
+  double worst = 0.0;
+  for (std::size_t b = 0; b < now.size(); ++b) {
+    const peers::Body& body = p.scene.bodies[b];
+    if (p.orientations.empty() || !body.solid()) {
+      keepLargest(worst, glm::length(now[b] - before[b]) / dt);
+      continue;
+    }
+    const phys::Quat& qNow = p.orientations[static_cast<std::size_t>(k)][b];
+    const phys::Quat& qBefore = p.orientations[static_cast<std::size_t>(k - 1)][b];
+    for (int j = 0; j < phys::boxParticleCount(body.model); ++j) {
+      const phys::Vec3 local = phys::boxParticleLocal(body.model, body.halfExtents, j);
+      keepLargest(worst, glm::length(peers::toWorld(now[b], qNow, local) - peers::toWorld(before[b], qBefore, local)) / dt);
+    }
+  }
+  return worst;
+}
+
+double judgeOne(const Criterion& c, const phys::World& world, double dt, const PeerStates& p) {
   double value = startValue(c);
-  const std::vector<phys::Vec3>& first = states[static_cast<std::size_t>(c.fromStep)];
+  FlipCounter flips;
+  const std::vector<phys::Vec3>& first = p.positions[static_cast<std::size_t>(c.fromStep)];
   for (int k = c.fromStep; k <= c.toStep; ++k) {
-    const std::vector<phys::Vec3>& now = states[static_cast<std::size_t>(k)];
+    const auto at = static_cast<std::size_t>(k);
+    const std::vector<phys::Vec3>& now = p.positions[at];
     if (c.metric == Metric::Drift) {
       for (std::size_t b : c.bodies) keepLargest(value, glm::length(now[b] - first[b]));
     } else if (c.metric == Metric::StaysBehind) {
       keepExtreme(c, value, now[c.bodies.front()][c.axis]);
     } else if (c.metric == Metric::Speed && k > 0) {
-      const std::vector<phys::Vec3>& before = states[static_cast<std::size_t>(k - 1)];
-      for (std::size_t b = 0; b < now.size(); ++b) keepLargest(value, glm::length(now[b] - before[b]) / dt);
+      keepLargest(value, peerSpeed(p, k, dt));
     } else if (c.metric == Metric::StickError) {
       keepLargest(value, looseStickError(world, now));
+    } else if (c.metric == Metric::Penetration) {
+      keepLargest(value, peers::posePenetration(p.scene, now, p.orientations[at]));
+    } else if (c.metric == Metric::JointGap) {
+      keepLargest(value, peers::jointGap(p.scene, now, p.orientations[at]));
+    } else if (c.metric == Metric::Flips) {
+      const auto box = static_cast<std::size_t>(c.boxId);  // boxes come first in bodies.h order
+      const phys::Vec3 axis = p.orientations[at][box] * FlipCounter::middleAxis(p.scene.bodies[box].halfExtents);
+      if (k == c.fromStep) flips.start(axis);
+      else flips.sample(axis);
+      if (!std::isfinite(axis.x + axis.y + axis.z)) value = kInf;  // blown up: stays so
+      else if (!std::isinf(value)) value = flips.flips();
     }
   }
   return value;
 }
 
+bool needsOrientations(Metric m) { return m == Metric::Penetration || m == Metric::JointGap || m == Metric::Flips; }
+
 }  // namespace
 
-std::vector<Verdict> judgePositions(const std::vector<Criterion>& criteria, const phys::World& world, double dt,
-                                    const std::vector<std::vector<phys::Vec3>>& positions) {
-  // states[k]: the bodies after k steps, the loaded world's for k = 0.
-  std::vector<std::vector<phys::Vec3>> states;
-  states.push_back(bodyPositions(world));
-  states.insert(states.end(), positions.begin(), positions.end());
-  const std::size_t bodies = states.front().size();
-  const bool sameBodies = std::all_of(states.begin(), states.end(), [&](const auto& s) { return s.size() == bodies; });
+std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const scenes::Scene& scene, double dt,
+                               const std::vector<std::vector<phys::Vec3>>& positions,
+                               const std::vector<std::vector<phys::Quat>>& orientations) {
+  const phys::World& world = scene.world;
+  const peers::Description description = peers::describe(scene);
+  // The states after k steps, the loaded scene's for k = 0 (its bodies as the peers were given them).
+  PeerStates p{description, {}, {}};
+  p.positions.push_back(bodyPositions(world));
+  p.positions.insert(p.positions.end(), positions.begin(), positions.end());
+  if (!orientations.empty()) {
+    std::vector<phys::Quat> loaded;
+    for (const peers::Body& b : description.bodies) loaded.push_back(b.orientation);
+    p.orientations.push_back(std::move(loaded));
+    p.orientations.insert(p.orientations.end(), orientations.begin(), orientations.end());
+  }
+  const std::size_t bodies = description.bodies.size();
+  auto complete = [&](const auto& states) {
+    return std::all_of(states.begin(), states.end(), [&](const auto& s) { return s.size() == bodies; });
+  };
+  const bool sameBodies = complete(p.positions) && complete(p.orientations) &&
+                          (p.orientations.empty() || p.orientations.size() == p.positions.size());
   std::vector<Verdict> out;
   for (const Criterion& c : criteria) {
-    // What positions cannot answer; a box's own sticks, which a peer's rigid body keeps exactly,
-    // so its stick error would say nothing; and a peer that recorded too little.
+    // A box's own sticks, which a peer's rigid body keeps exactly, so its stick error would say
+    // nothing; a peer that gave no orientations; and one that recorded too little.
     std::string why;
-    if (c.metric == Metric::Penetration) why = "penetration: needs contact depths";
-    else if (c.metric == Metric::JointGap || c.metric == Metric::Flips) why = metricName(c.metric) + ": needs orientations";
-    else if (c.metric == Metric::StickError && !hasLooseSticks(world)) why = "stick-error: rigid bodies";
-    else if (!sameBodies || states.size() <= static_cast<std::size_t>(c.toStep)) {
-      why = metricName(c.metric) + ": the peer recorded " + std::to_string(states.size() - 1) + " of " +
+    if (c.metric == Metric::StickError && !hasLooseSticks(world)) why = "stick-error: rigid bodies";
+    else if (needsOrientations(c.metric) && p.orientations.empty()) why = metricName(c.metric) + ": needs orientations";
+    else if (!sameBodies || p.positions.size() <= static_cast<std::size_t>(c.toStep)) {
+      why = metricName(c.metric) + ": the peer recorded " + std::to_string(p.positions.size() - 1) + " of " +
             std::to_string(c.toStep) + " steps, or not every body";
     }
     if (why.empty()) {
-      out.push_back(verdictOf(c, judgeOne(c, world, dt, states)));
+      out.push_back(verdictOf(c, judgeOne(c, world, dt, p)));
     } else {
       Verdict v;
       v.judged = false;

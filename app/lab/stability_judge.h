@@ -1,11 +1,13 @@
 #pragma once
 // Measuring a run against a scene's pass criteria (stability_criteria.h): our world step by
-// step, or a peer engine's run from the body positions it recorded (peer.h), which is all a
-// peer gives, so a peer is judged only on the criteria positions can answer.
+// step, or a peer engine's run from the body poses it recorded (peer.h). A peer has no
+// particles, sticks or contact report of ours, so its figures come from its poses, measured by
+// one geometry code for every engine (peers/pose_measures.h).
 #include <string>
 #include <vector>
 
 #include "physics/world.h"
+#include "scenes/scene.h"
 #include "stability_criteria.h"
 
 namespace lab::stability {
@@ -17,6 +19,26 @@ struct Verdict {
   double value = 0.0;  ///< the figure measured, in the criterion's unit
   double ratio = 0.0;  ///< errorRatio(): <= 1 passes; infinity when the run blew up
   bool passed = false;
+};
+
+/// Counts a box's flips (Metric::Flips) from its orientations: the turns over of its middle
+/// axis (that of its middle side, and of its middle moment of inertia) relative to where it
+/// pointed at the window's start. Ours and the peers' are counted by this one code.
+class FlipCounter {
+ public:
+  /// The box's middle axis in its own frame, from its half extents.
+  static phys::Vec3 middleAxis(const phys::Vec3& halfExtents);
+  /// The window's first sample: the middle axis, in the world, at its start.
+  void start(const phys::Vec3& axis);
+  /// Every later sample; counts a flip when the axis has swung more than 60 degrees past the
+  /// plane across its last side.
+  void sample(const phys::Vec3& axis);
+  double flips() const { return flips_; }
+
+ private:
+  phys::Vec3 axisAtStart_{0.0};
+  int sign_ = 1;  // which way the middle axis points now
+  double flips_ = 0.0;
 };
 
 /// Follows our world through a run: observe() after loading (step 0) and after every step.
@@ -37,8 +59,7 @@ class WorldJudge {
   struct State {
     double value = 0.0;
     std::vector<phys::Vec3> reference;  // drift: the bodies at the window's start
-    phys::Vec3 axisAtStart{0.0};        // flips: the middle axis at the window's start
-    int sign = 1;                       // flips: which way the middle axis points now
+    FlipCounter flips;
   };
   phys::Vec3 position(const phys::World& world, std::size_t body) const;
   void sampleDrift(const Criterion& c, State& s, const phys::World& world, int step) const;
@@ -49,12 +70,15 @@ class WorldJudge {
   std::vector<State> states_;
 };
 
-/// A peer's run judged: `positions[k]` are the bodies (bodies.h order) after step k + 1, for
-/// every step of the run; `world` is the scene as loaded (step 0, and the sticks' lengths).
-/// Drift, stays-behind, speed (of the bodies' centres) and stick-error (of sticks between loose
-/// particles, when the scene has any: a peer's rigid bodies have no error of their own) are
-/// judged; the rest are not, and say why.
-std::vector<Verdict> judgePositions(const std::vector<Criterion>& criteria, const phys::World& world, double dt,
-                                    const std::vector<std::vector<phys::Vec3>>& positions);
+/// A peer's run judged: `positions[k]` and `orientations[k]` are its bodies' poses (bodies.h
+/// order) after step k + 1, for every step of the run; `scene` is the scene as loaded (step 0,
+/// the sticks' lengths, and the peers' description of it). Drift, stays-behind, speed (of the
+/// bodies' centres), stick-error (of sticks between loose particles: a peer's rigid bodies have
+/// no error of their own), penetration and joint-gap (peers/pose_measures.h) and flips (the
+/// FlipCounter on its orientations) are judged. With no orientations (empty), those needing
+/// them are not judged and say why.
+std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const scenes::Scene& scene, double dt,
+                               const std::vector<std::vector<phys::Vec3>>& positions,
+                               const std::vector<std::vector<phys::Quat>>& orientations);
 
 }  // namespace lab::stability

@@ -130,8 +130,10 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
     md << "None: " << r.peerNote << ".\n";
     return;
   }
-  md << "Each engine with its default solver at the scene's dt, judged on what its bodies' positions can "
-        "answer (speed there is the bodies' centres').\n\n| scene |";
+  md << "Each engine with its default solver at the scene's dt, judged on its bodies' poses after every step, "
+        "measured alike for all: penetration and joint gaps by our geometry on those poses, speed at the bodies' "
+        "particles' places, flips from the orientations (docs/lab.md, \"Peers\"). A peer's rigid bodies have no "
+        "stick error of their own.\n\n| scene |";
   for (const std::string& p : r.peers) md << " " << p << " |";
   md << "\n|---|";
   for (std::size_t i = 0; i < r.peers.size(); ++i) md << "---|";

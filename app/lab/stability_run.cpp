@@ -87,15 +87,18 @@ Outcome runPeerEngine(const SuiteScene& s, const std::string& engine) {
   o.note = r.unsupported;
   o.msPerStep = r.medianMsPerStep;
   o.wallMs = r.medianMsPerStep * s.steps;
-  if (!r.ran) {
+  if (!r.ran || r.dropped) {
+    // A run whose engine dropped contacts for want of room (MuJoCo 2.2.2's fixed buffers) says
+    // nothing of its solver's stability: not judged, as a scene it cannot build.
     if (o.note.empty()) o.note = "not run";
+    if (r.dropped) o.note = "too large: " + o.note;
     o.verdicts.assign(s.criteria.size(), Verdict{false, o.note, 0.0, 0.0, false});
   } else {
-    o.verdicts = judgePositions(s.criteria, scene.world, s.dt, r.positions);
+    o.verdicts = judgePeer(s.criteria, scene, s.dt, r.positions, r.orientations);
   }
   summarize(o);
-  if (!o.judged && r.ran) {
-    // Say why from the criteria themselves: "joint-gap needs orientations; ...".
+  if (!o.judged && r.ran && !r.dropped) {
+    // Say why from the criteria themselves: "stick-error: rigid bodies; ...".
     for (const Verdict& v : o.verdicts) o.note += (o.note.empty() ? "" : "; ") + v.why;
   }
   return o;

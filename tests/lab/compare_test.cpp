@@ -154,6 +154,20 @@ TEST(PeerFall, FreeFallMatchesTheFormula) {
   }
 }
 
+TEST(PeerFall, EachEngineReportsThePoseAfterItsLastStep) {
+  // All three step semi-implicit Euler, so after n steps from rest a body has fallen exactly
+  // g dt^2 n (n + 1) / 2: 1.2736 m after 30 steps. A pose one step old (MuJoCo's xpos after
+  // mj_step, before the adapter brings it up to date) would read g dt^2 n = 8 cm less.
+  const scenes::Scene scene = load(kFall);
+  const double fallen = 9.81 * kDt * kDt * 30.0 * 31.0 / 2.0;
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const lab::PeerResult r = lab::runPeer(engine, scene, kDt, 30, {30});
+    ASSERT_TRUE(r.ran) << r.unsupported;
+    EXPECT_NEAR(r.positions.at(0).at(0).y, 2.0 - fallen, 1e-3);
+  }
+}
+
 TEST(PeerChain, APinnedChainHangsAtItsLength) {
   const scenes::Scene scene = load(kChain);
   for (const std::string& engine : engines()) {

@@ -1,17 +1,19 @@
 // lab stability in-process: every scene of the suite loads with its criteria; the criteria's
 // errors name the line and the attribute; a setting known to fail fails and one known to hold
-// passes (measured first: docs/lab.md, "lab stability"); peers are judged on positions alone;
+// passes (measured first: docs/lab.md, "lab stability"); peers are judged on their poses;
 // --out writes its files; usage errors exit 2. The runs are short scenes at cheap settings, so
 // the whole file takes a few seconds in Release.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "bodies.h"
 #include "commands.h"
 #include "gnuplot.h"
 #include "lab.h"
@@ -212,7 +214,7 @@ TEST(StabilityRun, DzhanibekovFlipsLikeARigidBodyWithShake) {
   EXPECT_GT(gs.verdicts[0].value, 3.0);
 }
 
-TEST(StabilityJudge, PeersAreJudgedOnPositionsAlone) {
+TEST(StabilityJudge, PeersAreJudgedOnTheirPoses) {
   TempDir dir;
   const std::filesystem::path file = dir.write(
       "peer.xml",
@@ -227,19 +229,58 @@ TEST(StabilityJudge, PeersAreJudgedOnPositionsAlone) {
   const scenes::Scene scene = scenes::loadSceneFile(file);
   const std::vector<Criterion> criteria = lab::stability::parseCriteria(scene);
   // Three steps (0.05 s at 1/60 s): the particle moves 0.2 m a step, the crate 0.5 m a step,
-  // reaching the plane x = 1 at the second step and passing it at the third.
+  // reaching the plane x = 1 at the second step and passing it at the third, where it also
+  // sinks 0.03 m into the ground (its unit cube's bottom at y = -0.03).
   std::vector<std::vector<phys::Vec3>> positions;
-  for (int k = 1; k <= 3; ++k) positions.push_back({phys::Vec3(0.5 * k, 0.5, 0.0), phys::Vec3(3.0 + 0.2 * k, 1.0, 0.0)});
-  const auto v = lab::stability::judgePositions(criteria, scene.world, scene.world.solverSettings().dt, positions);
+  std::vector<std::vector<phys::Quat>> orientations;
+  for (int k = 1; k <= 3; ++k) {
+    positions.push_back({phys::Vec3(0.5 * k, k == 3 ? 0.47 : 0.5, 0.0), phys::Vec3(3.0 + 0.2 * k, 1.0, 0.0)});
+    orientations.push_back({phys::Quat(1.0, 0.0, 0.0, 0.0), phys::Quat(1.0, 0.0, 0.0, 0.0)});
+  }
+  const double dt = scene.world.solverSettings().dt;
+  const auto v = lab::stability::judgePeer(criteria, scene, dt, positions, orientations);
   ASSERT_EQ(v.size(), 3u);
   EXPECT_TRUE(v[0].judged);
   EXPECT_NEAR(v[0].value, 0.6, 1e-12);
   EXPECT_FALSE(v[0].passed);
-  EXPECT_FALSE(v[1].judged);
-  EXPECT_NE(v[1].why.find("contact depths"), std::string::npos);
+  EXPECT_TRUE(v[1].judged) << v[1].why;
+  EXPECT_NEAR(v[1].value, 0.03, 1e-12);
+  EXPECT_FALSE(v[1].passed);
   EXPECT_NEAR(v[2].value, 1.5, 1e-12);
   EXPECT_NEAR(v[2].ratio, 1.5, 1e-12);
   EXPECT_FALSE(v[2].passed);
+  // Without orientations the penetration cannot be measured, and says so.
+  const auto positionsOnly = lab::stability::judgePeer(criteria, scene, dt, positions, {});
+  EXPECT_TRUE(positionsOnly[0].judged);
+  EXPECT_FALSE(positionsOnly[1].judged);
+  EXPECT_NE(positionsOnly[1].why.find("needs orientations"), std::string::npos) << positionsOnly[1].why;
+}
+
+// A peer's flips are counted from its orientations by the same counter as ours: the spinning box
+// of dzhanibekov.xml turned half a turn about x (its middle axis y reversing) three times over
+// its run, in small steps, counts 3; a wobble of the axis to 80 degrees and back counts none.
+TEST(StabilityJudge, APeersFlipsAreCountedFromItsOrientations) {
+  const lab::stability::SuiteScene s = suiteScene("dzhanibekov");
+  const scenes::Scene scene = scenes::loadSceneFile(s.file);
+  const std::size_t flips = 0;
+  ASSERT_EQ(s.criteria.at(flips).metric, lab::stability::Metric::Flips);
+  const phys::Vec3 centre = lab::bodyPositions(scene.world).at(0);
+  const phys::Quat start = scene.world.boxPose(0).orientation;
+  auto run = [&](auto angleAt) {
+    std::vector<std::vector<phys::Vec3>> positions;
+    std::vector<std::vector<phys::Quat>> orientations;
+    for (int k = 1; k <= s.steps; ++k) {
+      positions.push_back({centre});
+      orientations.push_back({glm::angleAxis(angleAt(static_cast<double>(k) / s.steps), phys::Vec3(1.0, 0.0, 0.0)) * start});
+    }
+    return lab::stability::judgePeer(s.criteria, scene, s.dt, positions, orientations).at(flips);
+  };
+  const double pi = std::numbers::pi;
+  const auto three = run([&](double t) { return 3.0 * pi * t; });
+  EXPECT_TRUE(three.judged) << three.why;
+  EXPECT_EQ(three.value, 3.0);
+  const auto wobble = run([&](double t) { return (80.0 / 180.0) * pi * std::sin(2.0 * pi * t); });
+  EXPECT_EQ(wobble.value, 0.0);
 }
 
 TEST(StabilityReport, RatiosNeverReadAsTheWrongSideOfOne) {

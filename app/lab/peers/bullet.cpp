@@ -5,7 +5,9 @@
 // exactly dt, no interpolation. Sleeping is left on, as Bullet ships it.
 //
 // Mapping: the ground is a btStaticPlaneShape; a box a btBoxShape with our mass and our
-// particles' inertia; a loose particle a btSphereShape of kParticleRadius (static when pinned);
+// particles' inertia; a capsule a btCapsuleShape, whose core is along its local y as ours (the
+// same mass and inertia as its box); a loose particle a btSphereShape of kParticleRadius
+// (static when pinned);
 // a pin a btPoint2PointConstraint; a stick, range stick or range link a DistanceLimit (below),
 // the one constraint Bullet lacks. Friction: Bullet multiplies two bodies' coefficients, so each
 // gets the square root of ours and the product is our geometric mean. Restitution likewise
@@ -142,6 +144,9 @@ class BulletEngine : public Engine {
       const Body& b = scene.bodies[i];
       if (b.shape == Body::Shape::Box) {
         shapes_.push_back(std::make_unique<btBoxShape>(bt(b.halfExtents)));
+      } else if (b.shape == Body::Shape::Capsule) {
+        // btCapsuleShape(radius, height) is Bullet's y-axis capsule; height is the core's length.
+        shapes_.push_back(std::make_unique<btCapsuleShape>(static_cast<btScalar>(b.radius), static_cast<btScalar>(2.0 * b.halfSegment)));
       } else {
         shapes_.push_back(std::make_unique<btSphereShape>(static_cast<btScalar>(b.radius)));
       }

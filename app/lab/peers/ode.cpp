@@ -6,7 +6,9 @@
 // finds (up to 8 a pair), dropped after the step.
 //
 // Mapping: the ground is a dPlane; a box a dBox on a body with our mass and our particles'
-// inertia; a loose particle a dSphere of kParticleRadius (a geom without a body when pinned);
+// inertia; a capsule a dCapsule (same mass and inertia), whose axis is the geom's local z, so it
+// is turned onto the body's y by a geom offset and the body keeps our frame; a loose particle a
+// dSphere of kParticleRadius (a geom without a body when pinned);
 // a pin a ball joint with each body's own anchor; a stick a double-ball joint (dJointCreateDBall,
 // ODE's fixed distance). A range stick or range link has no ODE joint; it becomes what ODE's
 // own contacts are, a one-sided contact joint along the line between its points, made each step
@@ -44,6 +46,10 @@ void countMessage(int, const char*, va_list) { ++g_odeMessages; }
 
 constexpr int kMaxContactsPerPair = 8;
 
+// ODE's capsule lies along its geom's z; ours along the body's y. A turn of -90 degrees about x
+// takes z to y: the geom's offset from its body, so the body's frame stays ours.
+const phys::Quat kCapsuleOffset(std::sqrt(0.5), -std::sqrt(0.5), 0.0, 0.0);
+
 void* tag(int index) { return reinterpret_cast<void*>(static_cast<std::intptr_t>(index) + 1); }
 int untag(dGeomID g) { return static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(g))) - 1; }
 
@@ -72,14 +78,23 @@ class OdeEngine : public Engine {
     geoms_.assign(scene.bodies.size(), nullptr);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
-      dGeomID geom = b.shape == Body::Shape::Box
-                         ? dCreateBox(space_, 2.0 * b.halfExtents.x, 2.0 * b.halfExtents.y, 2.0 * b.halfExtents.z)
-                         : dCreateSphere(space_, b.radius);
+      dGeomID geom = nullptr;
+      if (b.shape == Body::Shape::Box) {
+        geom = dCreateBox(space_, 2.0 * b.halfExtents.x, 2.0 * b.halfExtents.y, 2.0 * b.halfExtents.z);
+      } else if (b.shape == Body::Shape::Capsule) {
+        geom = dCreateCapsule(space_, b.radius, 2.0 * b.halfSegment);  // length: the core's
+      } else {
+        geom = dCreateSphere(space_, b.radius);
+      }
       dGeomSetData(geom, tag(static_cast<int>(i)));
       const dQuaternion q = {b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z};
       if (b.fixed) {
+        // A fixed body has no ODE body to carry an offset: the geom takes the turned pose itself,
+        // and position() and orientation() report the pose it was given.
+        const phys::Quat g = b.shape == Body::Shape::Capsule ? b.orientation * kCapsuleOffset : b.orientation;
+        const dQuaternion gq = {g.w, g.x, g.y, g.z};
         dGeomSetPosition(geom, b.centre.x, b.centre.y, b.centre.z);
-        dGeomSetQuaternion(geom, q);
+        dGeomSetQuaternion(geom, gq);
       } else {
         dBodyID body = dBodyCreate(world_);
         dMass mass;
@@ -96,6 +111,10 @@ class OdeEngine : public Engine {
           dBodySetAngularDampingThreshold(body, 0);
         }
         dGeomSetBody(geom, body);
+        if (b.shape == Body::Shape::Capsule) {
+          const dQuaternion offset = {kCapsuleOffset.w, kCapsuleOffset.x, kCapsuleOffset.y, kCapsuleOffset.z};
+          dGeomSetOffsetQuaternion(geom, offset);
+        }
         bodies_[i] = body;
       }
       geoms_[i] = geom;
@@ -150,13 +169,17 @@ class OdeEngine : public Engine {
     }
   }
 
+  // The body's pose, not the geom's: a capsule's geom is turned from its body by the offset.
   phys::Vec3 position(int i) const override {
-    const dReal* p = dGeomGetPosition(geoms_[static_cast<std::size_t>(i)]);
+    const dBodyID body = bodies_[static_cast<std::size_t>(i)];
+    if (body == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].centre;  // fixed: never moves
+    const dReal* p = dBodyGetPosition(body);
     return {p[0], p[1], p[2]};
   }
   phys::Quat orientation(int i) const override {
-    dQuaternion q;
-    dGeomGetQuaternion(geoms_[static_cast<std::size_t>(i)], q);
+    const dBodyID body = bodies_[static_cast<std::size_t>(i)];
+    if (body == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].orientation;
+    const dReal* q = dBodyGetQuaternion(body);
     return {q[0], q[1], q[2], q[3]};
   }
 

@@ -34,13 +34,13 @@ Vec3 toWorld(const Vec3& centre, const phys::Quat& orientation, const Vec3& p) {
 bool Description::collides(int i, int j) const {
   const Body& a = bodies[static_cast<std::size_t>(i)];
   const Body& b = bodies[static_cast<std::size_t>(j)];
-  if (i == j || a.shape != Body::Shape::Box || b.shape != Body::Shape::Box) return false;
+  if (i == j || !a.solid() || !b.solid()) return false;
   if ((a.group & b.mask) == 0 || (b.group & a.mask) == 0) return false;
   return !std::binary_search(ignored.begin(), ignored.end(), std::pair<int, int>(std::min(i, j), std::max(i, j)));
 }
 
-int Description::boxCount() const {
-  return static_cast<int>(std::count_if(bodies.begin(), bodies.end(), [](const Body& b) { return b.shape == Body::Shape::Box; }));
+int Description::solidCount() const {
+  return static_cast<int>(std::count_if(bodies.begin(), bodies.end(), [](const Body& b) { return b.solid(); }));
 }
 
 Description describe(const scenes::Scene& scene) {
@@ -69,18 +69,25 @@ Description describe(const scenes::Scene& scene) {
     const phys::Box& box = boxes[id];
     const phys::BoxPose pose = world.boxPose(id);
     Body body;
-    body.shape = Body::Shape::Box;
+    body.shape = box.shape == phys::Shape::Capsule ? Body::Shape::Capsule : Body::Shape::Box;
     body.name = box.name;
     body.centre = pose.center;
     body.orientation = pose.orientation;
     body.halfExtents = box.halfExtents;
+    body.model = box.model;
+    if (body.shape == Body::Shape::Capsule) {
+      body.radius = box.capsuleRadius();
+      body.halfSegment = std::max(0.0, box.capsuleHalfSegment());
+    }
     body.friction = box.material.dynamicFriction;
     body.group = box.collisionGroup;
     body.mask = box.collisionMask;
     if (box.collisionGroup != 1u || box.collisionMask != 0xffffffffu) d.defaultFiltering = false;
 
     // Mass, inertia and the rigid motion that best fits the particles' velocities: the mean
-    // velocity, and the spin omega = I^-1 L from their angular momentum about the centre.
+    // velocity, and the spin omega = I^-1 L from their angular momentum about the centre. A
+    // capsule's particles sit on its box as a box's do, so it gets its box's inertia: the
+    // engines turn it as ours turns.
     Vec3 momentum(0.0);
     glm::dmat3 inertiaWorld(0.0);
     Vec3 angularMomentum(0.0);
@@ -182,7 +189,7 @@ Description describe(const scenes::Scene& scene) {
     if (link.isPin()) {
       d.pins.push_back(Pin{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb});
     } else {
-      d.distances.push_back(Distance{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb, link.minLength, link.maxLength});
+      d.distances.push_back(Distance{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb, link.minLength, link.maxLength, true});
     }
   }
   if (crossing > 0) d.notes.push_back(std::to_string(crossing) + " links with an end spread over two bodies left out");
@@ -201,6 +208,12 @@ double groundPenetration(const Description& scene, const std::vector<phys::Vec3>
     double lowest = std::numeric_limits<double>::infinity();
     if (b.shape == Body::Shape::Sphere) {
       lowest = glm::dot(scene.groundNormal, centres[i]) - b.radius;
+    } else if (b.shape == Body::Shape::Capsule) {
+      // The lowest point of a capsule is below one of its core's ends (or both), by its radius.
+      for (const double end : {-b.halfSegment, b.halfSegment}) {
+        const Vec3 p = toWorld(centres[i], orientations[i], Vec3(0.0, end, 0.0));
+        lowest = std::min(lowest, glm::dot(scene.groundNormal, p) - b.radius);
+      }
     } else {
       for (int k = 0; k < 8; ++k) {
         const Vec3 corner = toWorld(centres[i], orientations[i], phys::boxCornerLocal(b.halfExtents, k));

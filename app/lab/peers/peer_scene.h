@@ -1,7 +1,8 @@
 #pragma once
 // The scene as a rigid-body engine sees it, read once from our loaded world so that the three
 // adapters build the same thing: one rigid body per body of bodies.h (a box for each box, a
-// small sphere for each loose particle), the ground, and the constraints between bodies. Each
+// capsule for each capsule, a small sphere for each loose particle), the ground, and the
+// constraints between bodies. Each
 // adapter maps this description into its engine (bullet.cpp, ode.cpp, mujoco.cpp); what an
 // engine cannot express it says in words, which end up in `lab compare`'s table.
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "physics/box.h"
 #include "physics/types.h"
 #include "scenes/scene.h"
 
@@ -23,24 +25,33 @@ inline constexpr double kParticleRadius = 0.05;
 
 /// One rigid body, in bodies.h order.
 struct Body {
-  enum class Shape { Box, Sphere };
+  /// A capsule is one of our boxes of phys::Shape::Capsule: the capsule inscribed in its box,
+  /// core along the body's local y axis. Its mass sits on the box's particles, so its inertia is
+  /// the box's particles' (below), not a solid capsule's, in every engine.
+  enum class Shape { Box, Sphere, Capsule };
   Shape shape = Shape::Box;
   std::string name;             ///< for messages; may be empty
   phys::Vec3 centre{0.0};       ///< unit: m
   phys::Quat orientation{1.0, 0.0, 0.0, 0.0};
-  phys::Vec3 halfExtents{0.0};  ///< unit: m; a box's
-  double radius = 0.0;          ///< unit: m; a sphere's
+  phys::Vec3 halfExtents{0.0};  ///< unit: m; a box's, or the box a capsule is inscribed in
+  double radius = 0.0;          ///< unit: m; a sphere's or a capsule's
+  double halfSegment = 0.0;     ///< unit: m; a capsule's core runs from -this to +this along local y
   bool fixed = false;           ///< a pinned particle (or a box holding one): never moves
   double mass = 0.0;            ///< unit: kg; the sum of its particles'
   /// Principal moments about the centre in the body frame, unit: kg m^2. A box gets its
   /// particles' own (three times a solid box's for both models, docs/physics.md), so the same
   /// push turns it the same in every engine; a sphere a solid sphere's.
   phys::Vec3 inertia{0.0};
+  phys::BoxModel model = phys::BoxModel::Corners;  ///< a box's or capsule's: where its particles are
   phys::Vec3 velocity{0.0};         ///< unit: m/s; of the centre
   phys::Vec3 angularVelocity{0.0};  ///< unit: rad/s; world frame
   double friction = 0.0;            ///< the material's dynamic coefficient
-  std::uint32_t group = 1;          ///< collision filtering, boxes only
+  std::uint32_t group = 1;          ///< collision filtering, boxes and capsules only
   std::uint32_t mask = 0xffffffffu;
+
+  /// A box or a capsule: one of our boxes, which collide with each other. A sphere (a loose
+  /// particle) collides with the ground alone.
+  bool solid() const { return shape != Shape::Sphere; }
 };
 
 /// A ball joint: a point of body a held on a point of body b (our pin link).
@@ -58,6 +69,9 @@ struct Distance {
   phys::Vec3 worldA{0.0}, worldB{0.0};  ///< unit: m; at the start
   double min = 0.0;                     ///< unit: m
   double max = 0.0;                     ///< unit: m; may be infinite
+  /// True for a range link (a joint stop), false for a stick: our joint gap counts links
+  /// (Metrics::maxJointError), our stick error sticks, and the peers' are measured alike.
+  bool link = false;
   bool rigid() const { return min == max; }
 };
 
@@ -82,18 +96,18 @@ struct Description {
   /// Why the scene cannot be run by any engine at all (point gravity); empty when it can.
   std::string refused;
 
-  /// Whether bodies i and j collide with each other: two boxes whose groups meet each other's
-  /// masks and that are not an ignored pair. Our loose particles collide with the ground alone,
-  /// so a sphere collides with no body.
+  /// Whether bodies i and j collide with each other: two solids (boxes or capsules) whose
+  /// groups meet each other's masks and that are not an ignored pair. Our loose particles
+  /// collide with the ground alone, so a sphere collides with no body.
   bool collides(int i, int j) const;
-  int boxCount() const;
+  int solidCount() const;  ///< boxes and capsules
 };
 
 /// Reads the description from a loaded world (normally not yet stepped).
 Description describe(const scenes::Scene& scene);
 
-/// Depth of the deepest point of any body below the ground: a box's corners, a sphere's surface.
-/// 0 without a ground.
+/// Depth of the deepest point of any body below the ground: a box's corners, a sphere's surface,
+/// a capsule's core ends less its radius (its box's corners are not on it). 0 without a ground.
 double groundPenetration(const Description& scene, const std::vector<phys::Vec3>& centres,
                          const std::vector<phys::Quat>& orientations);
 
@@ -113,6 +127,10 @@ class Engine {
   virtual void finish() {}
   /// What it could not express, in words (joined into PeerResult::unsupported); empty if all.
   std::vector<std::string> notes;
+  /// Set by finish() when the engine ran out of the room it allocates up front and dropped
+  /// contacts or constraints (MuJoCo 2.2.2's nconmax and njmax): the run is then not its
+  /// solver's, and the notes say what was dropped.
+  bool dropped = false;
   /// The solver and its settings, one line for the table.
   std::string settings;
 };
@@ -122,9 +140,13 @@ class Engine {
 std::unique_ptr<Engine> makeBullet(const Description& scene, double dt);
 std::unique_ptr<Engine> makeOde(const Description& scene, double dt);
 std::unique_ptr<Engine> makeMujoco(const Description& scene, double dt);
+/// MuJoCo with the scene's joints as a kinematic tree whatever its size: the form makeMujoco
+/// falls back to for scenes too large for free bodies (mujoco_model.h), for the tests.
+std::unique_ptr<Engine> makeMujocoTree(const Description& scene, double dt);
 
 /// The engine of that name built from the description, or nullptr when it is not built in
-/// (peers.cpp; the tests use it to look at orientations and joints, which PeerResult omits).
+/// (peers.cpp; the tests use it to step an engine themselves). "mujoco-tree" is MuJoCo forced
+/// into the kinematic-tree form (makeMujocoTree), which no table lists.
 std::unique_ptr<Engine> makeEngine(std::string_view name, const Description& scene, double dt);
 
 /// The local point p of a body at `centre` with `orientation`, in world coordinates.

@@ -50,6 +50,9 @@ std::string joined(const std::vector<std::string>& parts) {
 }  // namespace
 
 std::unique_ptr<peers::Engine> peers::makeEngine(std::string_view name, const Description& scene, double dt) {
+#ifdef LAB_PEER_MUJOCO
+  if (name == "mujoco-tree") return makeMujocoTree(scene, dt);  // the tests' way to the tree form
+#endif
   for (const Adapter& a : kAdapters) {
     if (a.name != nullptr && name == a.name) return a.make(scene, dt);
   }
@@ -99,6 +102,12 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
     return p;
   };
 
+  auto orientations = [&] {
+    std::vector<phys::Quat> q(static_cast<std::size_t>(bodies));
+    for (int i = 0; i < bodies; ++i) q[static_cast<std::size_t>(i)] = built->orientation(i);
+    return q;
+  };
+
   std::vector<double> stepMs;
   stepMs.reserve(static_cast<std::size_t>(std::max(steps, 0)));
   std::size_t next = 0;
@@ -111,6 +120,7 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
       built->afterStep(s);
       while (next < checkpoints.size() && checkpoints[next] == s) {
         result.positions.push_back(positions());
+        result.orientations.push_back(orientations());
         ++next;
       }
     }
@@ -119,14 +129,13 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
     // compare; say so rather than report half of one.
     result.unsupported = joined({joined(description.notes), joined(built->notes), std::string(e.what()) + ": run stopped"});
     result.positions.clear();
+    result.orientations.clear();
     return result;
   }
 
   built->finish();
-  std::vector<phys::Vec3> centres = positions();
-  std::vector<phys::Quat> orientations(static_cast<std::size_t>(bodies));
-  for (int i = 0; i < bodies; ++i) orientations[static_cast<std::size_t>(i)] = built->orientation(i);
-  result.maxPenetration = peers::groundPenetration(description, centres, orientations);
+  result.maxPenetration = peers::groundPenetration(description, positions(), orientations());
+  result.dropped = built->dropped;
   result.medianMsPerStep = medianOf(std::move(stepMs));
   result.unsupported = joined({joined(description.notes), joined(built->notes)});
   result.ran = true;
