@@ -184,6 +184,7 @@ void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength,
   require(std::isfinite(compliance) && compliance >= 0.0 && compliance <= kMaxCompliance,
           "stick: compliance must be from 0 to 1e6 (m/N)");
   sticks_.push_back({a, b, minLength, maxLength, compliance});
+  joinGroups(a, b);
   lambda_.push_back(0.0);
   degree_[a] += 1.0;
   degree_[b] += 1.0;
@@ -207,6 +208,7 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
   require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
   require(!std::isnan(maxLength) && maxLength >= minLength, "addLink: max length must be >= min length (m)");
   links_.push_back({a, b, minLength, maxLength});
+  joinGroups(a.particle[0], b.particle[0]);
 }
 
 void World::setDrag(const Drag& drag) {
@@ -334,6 +336,8 @@ BoxId World::addBox(const BoxDesc& desc) {
   partGround_.push_back(0.0);
   sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
   bounds_.emplace_back();
+  jointGroup_.push_back(static_cast<BoxId>(boxIndex));
+  partRoot_.push_back(static_cast<BoxId>(boxIndex));
   pairsStale_ = true;
   return static_cast<BoxId>(boxIndex);
 }

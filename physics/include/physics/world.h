@@ -178,6 +178,8 @@ class World {
   void findBoxPairs();
   void buildBoxContacts();
   void partWithoutVelocity();
+  BoxId jointGroup(BoxId id);
+  void joinGroups(ParticleId a, ParticleId b);
   void placeCapsuleGroundPoints();
   bool collidePair(BoxId a, BoxId b, BoxContact& contact) const;
   Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
@@ -241,6 +243,8 @@ class World {
     Real need;     // m, the least n . (t_b - t_a) the parting must reach
   };
   std::vector<PartPair> partPairs_;         // per touching pair, rebuilt every substep
+  std::vector<BoxId> jointGroup_;           // per box: union-find parent over links and sticks
+  std::vector<BoxId> partRoot_;             // per box: its group's root, this substep
   std::vector<Vec3> partShift_;             // per box: translation (m)
   std::vector<Real> partWeight_;            // per box: inverse mass (1/kg), 0 if it cannot move
   std::vector<Real> partGround_;            // per box: n_g . shift it needs (m)
