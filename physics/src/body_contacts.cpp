@@ -43,7 +43,15 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
 void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (push[k] <= 0.0) continue;
-    const BodyContact& c = contacts[k];
+    BodyContact atSurface;
+    const BodyContact* at = &contacts[k];
+    if (at->surfaceA.count > 0 || at->surfaceB.count > 0) {
+      atSurface = *at;
+      if (at->surfaceA.count > 0) atSurface.pointA = at->surfaceA;
+      if (at->surfaceB.count > 0) atSurface.pointB = at->surfaceB;
+      at = &atSurface;
+    }
+    const BodyContact& c = *at;
     const Vec3 motionA = embeddedPosition(p.position, c.pointA) - embeddedPosition(p.previous, c.pointA);
     const Vec3 motionB = embeddedPosition(p.position, c.pointB) - embeddedPosition(p.previous, c.pointB);
     Vec3 slide = motionB - motionA;

@@ -123,10 +123,12 @@ void World::chooseSweepAxis() {
 }
 
 // Once per step, for all its substeps: each box's bounds are its AABB grown by how far it can go
-// in the step (its fastest particle's speed times dt, and gravity's g dt^2, twice what free fall
-// adds), so a pair that can meet within the step is listed at its first substep; the narrow phase
-// still runs every substep. Found every substep, the pairs of Bullet's 136-ragdoll pile (each
-// ragdoll's bounds overlap ~200 others' along any one axis) cost a fifth of the step.
+// in the step at its speed of the first substep (its fastest particle's speed times dt, and
+// gravity's g dt^2, twice what free fall adds); the narrow phase still runs every substep on these
+// pairs. A box that goes further within the step (an impact, a joint, a drag gave it speed) makes
+// the next substep find them again (World::step, outgrewPairBounds). Found every substep, the
+// pairs of Bullet's 136-ragdoll pile (each ragdoll's bounds overlap ~200 others' along any one
+// axis) cost a fifth of the step.
 void World::findBoxPairs() {
   const Real margin = solver_.featureEpsilon;
   const Real dt = solver_.dt, h = substepDt();
@@ -145,6 +147,7 @@ void World::findBoxPairs() {
       for (int j = 0; j < 3; ++j) reach[k] += std::abs(f.axes[j][k]) * f.halfExtents[j];
     }
     bounds_[id] = {f.center - reach, f.center + reach};
+    travel_[id] = travel;
   }
   chooseSweepAxis();
   const int s = sweepAxis_;
@@ -154,7 +157,8 @@ void World::findBoxPairs() {
   }
   if (!sweepSorted_) {
     // A new axis: the order along it is unrelated to the old one's, too far for insertion sort.
-    std::stable_sort(sweep_.begin(), sweep_.end(), [](const Interval& a, const Interval& b) { return a.min < b.min; });
+    std::sort(sweep_.begin(), sweep_.end(),
+              [](const Interval& a, const Interval& b) { return a.min < b.min || (a.min == b.min && a.box < b.box); });
     sweepSorted_ = true;
   }
   for (std::size_t i = 1; i < sweep_.size(); ++i) {
@@ -177,7 +181,25 @@ void World::findBoxPairs() {
       if (!apart && collides(a, b)) pairs_.emplace_back(std::min(a, b), std::max(a, b));
     }
   }
+  // In body order, not sweep order: the contacts are solved in this order, which then depends on
+  // the state alone, not on the sweep axis the world's history chose (a saved and reloaded world
+  // steps as the original).
+  std::sort(pairs_.begin(), pairs_.end());
+  for (BoxId id = 0; id < boxes_.size(); ++id) pairFrames_[id] = frames_[id];
   pairsStale_ = false;
+}
+
+// Whether some box has gone further since the pairs were found than its bounds allowed (an impact
+// or a joint gave it speed within the step): its corners moved at most |dc| + sum_k |da_k| h_k.
+bool World::outgrewPairBounds() const {
+  for (BoxId id = 0; id < boxes_.size(); ++id) {
+    const Obb& now = frames_[id];
+    const Obb& then = pairFrames_[id];
+    Real moved = glm::length(now.center - then.center);
+    for (int k = 0; k < 3; ++k) moved += glm::length(now.axes[k] - then.axes[k]) * now.halfExtents[k];
+    if (moved > travel_[id]) return true;
+  }
+  return false;
 }
 
 // Each pair's contact by its shapes, normal from a towards b; boxes keep at most 4 points.
@@ -208,7 +230,16 @@ void World::placeCapsuleGroundPoints() {
     Vec3 moved(0.0);
     contact.point = embedInBox(g.box, lowest, &moved);
     contact.lift = glm::dot(n, moved);
+    if (box.model == BoxModel::Corners) contact.surface = rigidPoint(g.box, lowest);
   }
+}
+
+// A world point carried rigidly by the box as it lies in its frame (detail::rigidEmbedding).
+Embedding World::rigidPoint(BoxId id, const Vec3& point) const {
+  const Obb& f = frames_[id];
+  const Vec3 d = point - f.center;
+  const Vec3 u(glm::dot(d, f.axes[0]), glm::dot(d, f.axes[1]), glm::dot(d, f.axes[2]));
+  return detail::rigidEmbedding(boxes_[id], u / boxes_[id].halfExtents);
 }
 
 Embedding World::embedInBox(BoxId id, const Vec3& point, Vec3* moved) const {
@@ -240,8 +271,16 @@ Embedding World::embedInBox(BoxId id, const Vec3& point, Vec3* moved) const {
   // Corners model: contact points lie on the surface, so trilinear weights reduce to bilinear
   // ones on the face the point is nearest: put it on that face and weigh its 4 corners.
   int axis = 0;
-  for (int a = 1; a < 3; ++a) {
-    if (std::abs(u[a]) > std::abs(u[axis])) axis = a;
+  if (box.shape == Shape::Capsule) {
+    // The face nearest in metres: by |u| alone, a side point of a long capsule near its end went
+    // to the end face, 2.5 r along the capsule. (A box's points are on a face: either rule finds it.)
+    for (int a = 1; a < 3; ++a) {
+      if ((1.0 - std::abs(u[a])) * box.halfExtents[a] < (1.0 - std::abs(u[axis])) * box.halfExtents[axis]) axis = a;
+    }
+  } else {
+    for (int a = 1; a < 3; ++a) {
+      if (std::abs(u[a]) > std::abs(u[axis])) axis = a;
+    }
   }
   const int side = u[axis] >= 0.0 ? (1 << axis) : 0;
   const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
@@ -281,6 +320,8 @@ void World::buildBoxContacts() {
       c.kind = static_cast<std::uint8_t>(contact.kind);
       if (boxes_[a].shape == Shape::Capsule || boxes_[b].shape == Shape::Capsule) {
         c.offset = glm::dot(c.normal, movedB - movedA);  // a box's points are on its faces already
+        if (movedA != Vec3(0.0)) c.surfaceA = rigidPoint(a, contact.points[i].onA);
+        if (movedB != Vec3(0.0)) c.surfaceB = rigidPoint(b, contact.points[i].onB);
       }
       bodyContacts_.push_back(c);
       const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles_.previous, c.pointB) -

@@ -14,6 +14,8 @@ namespace {
 
 // Cores closer to parallel than this (the sine of about 3 degrees) count as side by side.
 constexpr Real kParallelSine = 0.05;
+// A core whose nearest points to a box are within 3 degrees of a face's normal lies over that face.
+constexpr Real kFaceCosine = 0.9986;
 // A normal for cores that meet exactly, where the nearest points give none.
 Vec3 anyNormalTo(const Vec3& direction) {
   const Vec3 other = std::abs(direction.x) < 0.9 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 1.0, 0.0);
@@ -103,7 +105,12 @@ bool collideCapsules(const Capsule& a, const Capsule& b, Real margin, BoxContact
   const Real reach = a.radius + b.radius;
   if (distance > reach + margin) return false;
   const Vec3 da = a.p1 - a.p0, db = b.p1 - b.p0;
-  const Vec3 n = distance > 1e-12 ? d / distance : anyNormalTo(glm::length(da) > 0.0 ? da : Vec3(0.0, 1.0, 0.0));
+  // Cores that meet exactly give no direction; across both cores is the one that parts them
+  // without sliding either along itself.
+  const Vec3 across = glm::cross(da, db);
+  const Vec3 n = distance > 1e-12                ? d / distance
+                 : glm::length(across) > 1e-12 ? across / glm::length(across)
+                                               : anyNormalTo(glm::length(da) > 0.0 ? da : Vec3(0.0, 1.0, 0.0));
   out.sat.overlap = true;
   out.sat.normal = n;
   out.kind = ContactKind::EdgeEdge;
@@ -149,11 +156,20 @@ bool collideCapsuleBox(const Capsule& a, const Obb& b, Real margin, BoxContact& 
   const Real distance = glm::length(s - q);
   if (distance > a.radius + margin) return false;
   out.sat.overlap = true;
-  if (distance > 1e-9 && clamped == 1) {
-    // Over a face: the core clipped to it, one or two points (a capsule lying on the face).
-    const Real sign = glm::dot(s - b.center, b.axes[lastAxis]) >= 0.0 ? 1.0 : -1.0;
-    faceContact(a, b, lastAxis, sign, margin, out);
-    if (out.count > 0) return true;
+  if (distance > 1e-9) {
+    // Over a face: the core clipped to it, one or two points (a capsule lying on the face). The
+    // search ends anywhere along a level core's flat stretch of distance, at its end just past
+    // the face's edge as likely as inside: the face is the one the nearest points' direction is
+    // within 3 degrees of, not only the one the point lies beyond alone.
+    int faceAxis = clamped == 1 ? lastAxis : -1;
+    for (int k = 0; k < 3 && faceAxis < 0; ++k) {
+      if (std::abs(glm::dot(s - q, b.axes[k])) >= kFaceCosine * distance) faceAxis = k;
+    }
+    if (faceAxis >= 0) {
+      const Real sign = glm::dot(s - b.center, b.axes[faceAxis]) >= 0.0 ? 1.0 : -1.0;
+      faceContact(a, b, faceAxis, sign, margin, out);
+      if (out.count > 0) return true;
+    }
   }
   if (distance > 1e-9) {
     // Beside an edge or a corner of the box: one point.

@@ -34,7 +34,7 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Real push = normalPush[c];
     if (push <= 0.0) continue;
-    const Embedding& e = contacts[c].point;
+    const Embedding& e = contacts[c].surface.count > 0 ? contacts[c].surface : contacts[c].point;
     Vec3 slide = embeddedPosition(p.position, e) - embeddedPosition(p.previous, e);
     slide -= glm::dot(slide, n) * n;
     const Real slideLength = glm::length(slide);

@@ -336,6 +336,8 @@ BoxId World::addBox(const BoxDesc& desc) {
   partGround_.push_back(0.0);
   sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
   bounds_.emplace_back();
+  travel_.push_back(0.0);
+  pairFrames_.emplace_back();
   jointGroup_.push_back(static_cast<BoxId>(boxIndex));
   partRoot_.push_back(static_cast<BoxId>(boxIndex));
   pairsStale_ = true;
@@ -425,7 +427,8 @@ void World::step() {
     start = Clock::now();
     if (boxes_.size() >= 2 || capsules_ > 0) updateBoxFrames();
     if (boxes_.size() >= 2) {
-      if (s == 0 || pairsStale_ || drag_) findBoxPairs();  // a drag can outrun the bounds
+      // Once per step; again when a drag, an impact or a joint took a box past its bounds.
+      if (s == 0 || pairsStale_ || drag_ || outgrewPairBounds()) findBoxPairs();
       buildBoxContacts();
     }
     if (world_.ground) placeCapsuleGroundPoints();

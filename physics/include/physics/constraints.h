@@ -72,6 +72,10 @@ struct BodyContact {
   /// of a corners-model capsule is carried by the box face nearest it (its own 4 particles,
   /// which hold it as they hold a box's contact), off the round surface: this is by how much.
   Real offset = 0.0;
+  /// Where friction acts on a corners capsule (count 0 for any other body): its true surface
+  /// point, carried rigidly, as GroundContact::surface.
+  Embedding surfaceA;
+  Embedding surfaceB;
 };
 
 /// A point that collides with the ground: a loose particle or a box corner.
@@ -84,6 +88,10 @@ struct GroundContact {
   /// corners-model capsule, whose point is carried by a face of its box, the height of that face
   /// point over the capsule's lowest point (see BodyContact::offset).
   Real lift = 0.0;
+  /// Where friction acts when it is not `point` (count 0 otherwise): a corners capsule's true
+  /// surface point, carried rigidly. Held at the face point, up to 0.29 r off the surface, friction
+  /// stopped it slipping there, and the capsule rolled as on a larger radius, 11% fast.
+  Embedding surface;
 };
 
 }  // namespace phys

@@ -176,6 +176,7 @@ class World {
   void updateBoxFrames();
   void chooseSweepAxis();
   void findBoxPairs();
+  bool outgrewPairBounds() const;
   void buildBoxContacts();
   void partWithoutVelocity();
   BoxId jointGroup(BoxId id);
@@ -183,6 +184,7 @@ class World {
   void placeCapsuleGroundPoints();
   bool collidePair(BoxId a, BoxId b, BoxContact& contact) const;
   Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
+  Embedding rigidPoint(BoxId box, const Vec3& point) const;
   bool collides(BoxId a, BoxId b) const;
   void guard();
   void freeze(ParticleId bad, const std::string& reason);
@@ -223,6 +225,8 @@ class World {
     Vec3 lo, hi;
   };
   std::vector<Bounds> bounds_;              // per box: AABB grown by its reach over a step
+  std::vector<Real> travel_;                // per box: that reach (m)
+  std::vector<Obb> pairFrames_;             // per box: its frame when pairs_ was found
   bool pairsStale_ = true;                  // bodies or filters changed since pairs_ was found
   int sweepAxis_ = 0;                       // the axis sweep_ is sorted along
   bool sweepSorted_ = true;                 // false when the axis changed since the last sort
