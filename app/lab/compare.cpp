@@ -169,6 +169,17 @@ std::string ourSettings(const phys::SolverSettings& s) {
   return o.str();
 }
 
+// `file` relative to `data` when it lies inside it, else as given.
+std::filesystem::path shownPath(const std::filesystem::path& file, const std::filesystem::path& data) {
+  std::error_code ec;
+  const std::filesystem::path canonicalFile = std::filesystem::weakly_canonical(file, ec);
+  const std::filesystem::path canonicalData = std::filesystem::weakly_canonical(data, ec);
+  if (ec) return file;
+  const std::filesystem::path relative = canonicalFile.lexically_relative(canonicalData);
+  if (relative.empty() || *relative.begin() == "..") return file;
+  return relative;
+}
+
 Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, std::optional<double> dt, int steps,
             const AccuracyTarget& target) {
   scenes::Scene scene = scenes::loadSceneFile(file);
@@ -331,7 +342,10 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
     capsules += b.shape == phys::Shape::Capsule ? 1 : 0;
   }
   auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
-  out << "scene     " << scene->name << " (" << file.string() << "): " << count(world.boxes().size() - capsules, "box", "boxes") << ", "
+  // A project scene is named from the data folder (assets/scenes/x.xml), so the table that
+  // docs/results.md quotes says the same on every machine.
+  const std::filesystem::path shown = shownPath(file, dataDir(where));
+  out << "scene     " << scene->name << " (" << shown.string() << "): " << count(world.boxes().size() - capsules, "box", "boxes") << ", "
       << (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string())
       << count(loose, "loose particle", "loose particles") << ", " << count(world.links().size(), "link", "links") << "\n";
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt

@@ -324,6 +324,19 @@ TEST(Compare, PrintsARowForEachOfOurMethodsAndEachPeer) {
   EXPECT_EQ(o.out.find("not run"), std::string::npos) << o.out;
 }
 
+TEST(Compare, NamesAProjectSceneFromTheDataFolderAndAnyOtherAsGiven) {
+  const Output project = compare({"compare", "falling-box", "--steps", "5", "--data", DATA_DIR});
+  ASSERT_EQ(project.code, 0) << project.err;
+  EXPECT_NE(project.out.find("(assets/scenes/falling-box.xml)"), std::string::npos) << project.out;
+  TempDir dir;
+  const auto file = dir.write("small.xml", kSmall);
+  const Output other = compare({"compare", file.string(), "--steps", "5"});
+  ASSERT_EQ(other.code, 0) << other.err;
+  std::string shown("(");  // built by append: "(" + path trips GCC 12's -Wrestrict (bug 105329)
+  shown.append(file.string()).append(")");
+  EXPECT_NE(other.out.find(shown), std::string::npos) << other.out;
+}
+
 TEST(Compare, JsonRowsHoldFiniteNumbers) {
   TempDir dir;
   const auto file = dir.write("small.xml", kSmall);
