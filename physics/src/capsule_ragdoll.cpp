@@ -96,17 +96,9 @@ std::string_view toString(CapsulePart part) {
 }
 
 CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
-  require(finite(desc.hips) && finite(desc.velocity), "addCapsuleRagdoll: hips and velocity must be finite");
-  require(std::isfinite(desc.scale) && desc.scale > 0.0 && desc.scale < 1e6,
-          "addCapsuleRagdoll: scale must be > 0 and < 1e6");
-  require(std::isfinite(desc.mass) && desc.mass > 0.0, "addCapsuleRagdoll: mass must be finite and > 0 (kg)");
-  const Real qLength = glm::length(desc.orientation);
-  require(std::isfinite(qLength) && qLength > 0.0, "addCapsuleRagdoll: orientation must be a finite non-zero quaternion");
-  require(validate(desc.material).empty(), "addCapsuleRagdoll: friction coefficients must be finite and >= 0");
-  const Quat q = desc.orientation / qLength;
-  const detail::PlaceFn place = [&](const Vec3& layout) {
-    return desc.hips + q * ((layout - Vec3(0.0, kHipHeight, 0.0)) * desc.scale);
-  };
+  const detail::RagdollFrame frame = detail::ragdollFrame(desc, kHipHeight, "addCapsuleRagdoll");
+  const detail::PlaceFn& place = frame.place;
+  const Quat q = frame.orientation;
   for (const PartLayout& p : kParts) {
     const Vec3 reach(p.coreLength + 2.0 * p.radius);
     require(finite(place(p.center + reach)) && finite(place(p.center - reach)),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -16,6 +17,22 @@ constexpr Real kStopReach = std::numbers::pi / 3.0;
 constexpr Real kLargestHeldAngle = 150.0 * std::numbers::pi / 180.0;
 
 }  // namespace
+
+RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::string& who) {
+  auto require = [&who](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(who + ": " + what);
+  };
+  require(finite(desc.hips) && finite(desc.velocity), "hips and velocity must be finite");
+  require(std::isfinite(desc.scale) && desc.scale > 0.0 && desc.scale < 1e6, "scale must be > 0 and < 1e6");
+  require(std::isfinite(desc.mass) && desc.mass > 0.0, "mass must be finite and > 0 (kg)");
+  const Real qLength = glm::length(desc.orientation);
+  require(std::isfinite(qLength) && qLength > 0.0, "orientation must be a finite non-zero quaternion");
+  require(validate(desc.material).empty(), "friction coefficients must be finite and >= 0");
+  const Quat q = desc.orientation / qLength;
+  const Vec3 hips = desc.hips, fromHips(0.0, hipHeight, 0.0);
+  const Real scale = desc.scale;
+  return {q, [hips, q, fromHips, scale](const Vec3& layout) { return hips + q * ((layout - fromHips) * scale); }};
+}
 
 Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
   const Real c = std::cos(angle), s = std::sin(angle);

@@ -5,11 +5,24 @@
 // layout lengths, so a joint is built the same way whatever the ragdoll's pose and size.
 #include <functional>
 
+#include <string>
+
+#include "physics/ragdoll.h"
 #include "physics/world.h"
 
 namespace phys::detail {
 
 using PlaceFn = std::function<Vec3(const Vec3&)>;
+
+/// Checks what both ragdoll builders take from a RagdollDesc (finite hips and velocity, a scale
+/// in (0, 1e6), a positive mass, a finite non-zero orientation, valid friction), throwing
+/// std::invalid_argument with `who` ("addRagdoll") in the message, and returns the orientation made
+/// unit and the function that places a layout point: the layout's (0, hipHeight, 0) goes to desc.hips.
+struct RagdollFrame {
+  Quat orientation;
+  PlaceFn place;
+};
+RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::string& who);
 
 /// A hinge in the layout frame: the child turns about `axis` (unit) through `pivot`, by an angle
 /// that is 0 as laid out and positive by the right-hand rule, between the two stops.

@@ -86,15 +86,10 @@ std::string_view toString(RagdollPart part) {
 }
 
 Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
-  require(finite(desc.hips) && finite(desc.velocity), "addRagdoll: hips and velocity must be finite");
-  require(std::isfinite(desc.scale) && desc.scale > 0.0 && desc.scale < 1e6, "addRagdoll: scale must be > 0 and < 1e6");
-  require(std::isfinite(desc.mass) && desc.mass > 0.0, "addRagdoll: mass must be finite and > 0 (kg)");
-  const Real qLength = glm::length(desc.orientation);
-  require(std::isfinite(qLength) && qLength > 0.0, "addRagdoll: orientation must be a finite non-zero quaternion");
-  require(validate(desc.material).empty(), "addRagdoll: friction coefficients must be finite and >= 0");
-  const Quat q = desc.orientation / qLength;
   // Where a point of the standing layout goes in the world.
-  auto place = [&](const Vec3& layout) { return desc.hips + q * ((layout - Vec3(0.0, kHipHeight, 0.0)) * desc.scale); };
+  const detail::RagdollFrame frame = detail::ragdollFrame(desc, kHipHeight, "addRagdoll");
+  const detail::PlaceFn& place = frame.place;
+  const Quat q = frame.orientation;
   for (const PartLayout& p : kParts) {
     require(finite(place(p.center + p.size)) && finite(place(p.center - p.size)),
             "addRagdoll: position or scale too large to represent");

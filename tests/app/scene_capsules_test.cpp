@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "physics/capsule_ragdoll.h"
+#include "bad_scene.h"
 #include "scenes/scene.h"
 #include "scenes/scene_writer.h"
 
@@ -137,15 +138,7 @@ TEST(SceneCapsules, LoadOptionsImposeTheBoxModelOnCapsules) {
   EXPECT_EQ(imposed.world.particles().size(), 4u);
 }
 
-struct BadCapsule {
-  const char* what;
-  const char* xml;  // line 1 is <scene ...>
-  int line;
-  const char* attribute;
-  const char* says;
-};
-
-const BadCapsule kBadCapsules[] = {
+const testing_scenes::BadScene kBadCapsules[] = {
     {"no radius", "<scene name='s'>\n<capsule pos='0 1 0' length='1'/>\n</scene>", 2, "radius",
      "is required (m)"},
     {"no length", "<scene name='s'>\n<capsule pos='0 1 0'\n radius='0.1'/>\n</scene>", 2, "length",
@@ -190,23 +183,7 @@ const BadCapsule kBadCapsules[] = {
 };
 
 TEST(SceneCapsules, BadCapsulesNameFileLineAndAttribute) {
-  for (const BadCapsule& c : kBadCapsules) {
-    try {
-      scenes::loadSceneText(c.xml, "bad.xml");
-      ADD_FAILURE() << c.what << ": loaded";
-    } catch (const scenes::LoadError& e) {
-      const std::string message = e.what();
-      EXPECT_EQ(e.file(), "bad.xml") << c.what;
-      EXPECT_EQ(e.line(), c.line) << c.what << ": " << message;
-      EXPECT_EQ(e.attribute(), c.attribute) << c.what << ": " << message;
-      EXPECT_EQ(message.rfind("bad.xml:" + std::to_string(c.line) + ": ", 0), 0u)
-          << c.what << ": " << message;
-      EXPECT_NE(message.find(std::string("attribute '") + c.attribute + "'"), std::string::npos) << message;
-      EXPECT_NE(message.find(c.says), std::string::npos) << c.what << ": " << message;
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << c.what << ": wrong exception: " << e.what();
-    }
-  }
+  for (const testing_scenes::BadScene& c : kBadCapsules) testing_scenes::expectRefused(c);
   // The edge the check draws: a sphere (length exactly twice the radius) loads.
   EXPECT_NO_THROW(scenes::loadSceneText(
       "<scene name='s'><capsule pos='0 1 0' radius='0.3' length='0.6'/></scene>", "ok.xml"));
