@@ -108,20 +108,13 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
   CapsuleRagdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
-  const std::string prefix = desc.name.empty() ? std::string("ragdoll") : desc.name;
   for (const PartLayout& p : kParts) {
-    BoxDesc box;
-    box.name = prefix + "." + std::string(toString(p.part));
+    BoxDesc box = detail::ragdollPart(desc, toString(p.part));
     box.shape = Shape::Capsule;
     box.center = place(p.center);
     box.size = Vec3(2.0 * p.radius, p.coreLength + 2.0 * p.radius, 2.0 * p.radius) * desc.scale;
     box.orientation = q * lieOrientation(p.lie);
-    box.velocity = desc.velocity;
     box.mass = desc.mass / kCapsuleParts;
-    box.model = desc.model == RagdollModel::Lean ? BoxModel::Tetra : BoxModel::Corners;
-    box.material = desc.material;
-    box.collisionGroup = desc.collisionGroup;
-    box.collisionMask = desc.collisionMask;
     ragdoll.parts[static_cast<int>(p.part)] = world.addBox(box);
   }
 

@@ -34,6 +34,17 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   return {q, [hips, q, fromHips, scale](const Vec3& layout) { return hips + q * ((layout - fromHips) * scale); }};
 }
 
+BoxDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
+  BoxDesc box;
+  box.name = (desc.name.empty() ? std::string("ragdoll") : desc.name) + "." + std::string(part);
+  box.velocity = desc.velocity;
+  box.model = desc.model == RagdollModel::Lean ? BoxModel::Tetra : BoxModel::Corners;
+  box.material = desc.material;
+  box.collisionGroup = desc.collisionGroup;
+  box.collisionMask = desc.collisionMask;
+  return box;
+}
+
 Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
   const Real c = std::cos(angle), s = std::sin(angle);
   return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include <string>
+#include <string_view>
 
 #include "physics/ragdoll.h"
 #include "physics/world.h"
@@ -23,6 +24,11 @@ struct RagdollFrame {
   PlaceFn place;
 };
 RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::string& who);
+
+/// What every part of a ragdoll takes from it: the name "<ragdoll or 'ragdoll'>.<part>", the
+/// velocity, the box model (seed: corners, lean: tetra), the material and the collision filter.
+/// The caller sets the shape, place, size, orientation and mass.
+BoxDesc ragdollPart(const RagdollDesc& desc, std::string_view part);
 
 /// A hinge in the layout frame: the child turns about `axis` (unit) through `pivot`, by an angle
 /// that is 0 as laid out and positive by the right-hand rule, between the two stops.

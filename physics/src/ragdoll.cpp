@@ -98,19 +98,12 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
   Ragdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
-  const std::string prefix = desc.name.empty() ? std::string("ragdoll") : desc.name;
   for (const PartLayout& p : kParts) {
-    BoxDesc box;
-    box.name = prefix + "." + std::string(toString(p.part));
+    BoxDesc box = detail::ragdollPart(desc, toString(p.part));
     box.center = place(p.center);
     box.size = p.size * desc.scale;
     box.orientation = q;
-    box.velocity = desc.velocity;
     box.mass = desc.mass * p.massFraction;
-    box.model = desc.model == RagdollModel::Lean ? BoxModel::Tetra : BoxModel::Corners;
-    box.material = desc.material;
-    box.collisionGroup = desc.collisionGroup;
-    box.collisionMask = desc.collisionMask;
     ragdoll.parts[static_cast<int>(p.part)] = world.addBox(box);
   }
 
