@@ -9,15 +9,15 @@
 namespace phys::detail {
 namespace {
 
-Real weightSum(const Particles& p, const BodyContact& c) {
-  return embeddedWeight(p.inverseMass, c.pointA) + embeddedWeight(p.inverseMass, c.pointB);
+Real weightSum(const Particles& p, const Embedding& a, const Embedding& b) {
+  return embeddedWeight(p.inverseMass, a) + embeddedWeight(p.inverseMass, b);
 }
 
-// Moves the two points of a contact in opposite directions: A by -lambda, B by +lambda (a vector
-// in position units per unit of weight), through their particles in `x`.
-void movePair(std::vector<Vec3>& x, const Particles& p, const BodyContact& c, const Vec3& lambda) {
-  shiftEmbedded(x, p.inverseMass, c.pointA, -lambda);
-  shiftEmbedded(x, p.inverseMass, c.pointB, lambda);
+// Moves two points in opposite directions: a by -lambda, b by +lambda (a vector in position
+// units per unit of weight), through their particles in `x`.
+void movePair(std::vector<Vec3>& x, const Particles& p, const Embedding& a, const Embedding& b, const Vec3& lambda) {
+  shiftEmbedded(x, p.inverseMass, a, -lambda);
+  shiftEmbedded(x, p.inverseMass, b, lambda);
 }
 
 }  // namespace
@@ -31,9 +31,9 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
     const Real gap = glm::dot(c.normal, apart) - c.offset + slop + allowed;
     push[k] = 0.0;
     if (gap >= 0.0) continue;
-    const Real denominator = weightSum(p, c);
+    const Real denominator = weightSum(p, c.pointA, c.pointB);
     if (denominator == 0.0) continue;  // both sides pinned or frozen
-    movePair(p.position, p, c, (-gap / denominator) * c.normal);
+    movePair(p.position, p, c.pointA, c.pointB, (-gap / denominator) * c.normal);
     push[k] = -gap;
     for (int i = 0; i < c.pointA.count; ++i) moved[c.pointA.particle[i]] = 1;
     for (int j = 0; j < c.pointB.count; ++j) moved[c.pointB.particle[j]] = 1;
@@ -43,29 +43,24 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
 void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (push[k] <= 0.0) continue;
-    BodyContact atSurface;
-    const BodyContact* at = &contacts[k];
-    if (at->surfaceA.count > 0 || at->surfaceB.count > 0) {
-      atSurface = *at;
-      if (at->surfaceA.count > 0) atSurface.pointA = at->surfaceA;
-      if (at->surfaceB.count > 0) atSurface.pointB = at->surfaceB;
-      at = &atSurface;
-    }
-    const BodyContact& c = *at;
-    const Vec3 motionA = embeddedPosition(p.position, c.pointA) - embeddedPosition(p.previous, c.pointA);
-    const Vec3 motionB = embeddedPosition(p.position, c.pointB) - embeddedPosition(p.previous, c.pointB);
+    const BodyContact& c = contacts[k];
+    // Friction acts where the surfaces touch (BodyContact::surfaceA, surfaceB).
+    const Embedding& a = c.surfaceA.count > 0 ? c.surfaceA : c.pointA;
+    const Embedding& b = c.surfaceB.count > 0 ? c.surfaceB : c.pointB;
+    const Vec3 motionA = embeddedPosition(p.position, a) - embeddedPosition(p.previous, a);
+    const Vec3 motionB = embeddedPosition(p.position, b) - embeddedPosition(p.previous, b);
     Vec3 slide = motionB - motionA;
     slide -= glm::dot(slide, c.normal) * c.normal;
     const Real slideLength = glm::length(slide);
     if (slideLength == 0.0) continue;
-    const Real denominator = weightSum(p, c);
+    const Real denominator = weightSum(p, a, b);
     if (denominator == 0.0) continue;
     Real cut = 1.0;
     if (slideLength > c.combined.staticFriction * push[k]) {
       cut = std::min(1.0, c.combined.dynamicFriction * push[k] / slideLength);
     }
     // Shrink the relative slide by cut: B moves back, A moves along, by their weights.
-    movePair(p.position, p, c, (cut / denominator) * slide * -1.0);
+    movePair(p.position, p, a, b, (cut / denominator) * slide * -1.0);
   }
 }
 

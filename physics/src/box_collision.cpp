@@ -98,14 +98,14 @@ void World::updateBoxFrames() {
   }
 }
 
-// Sweep and prune along one axis: the list stays sorted from one substep to the next, so
+// Sweep and prune along one axis: the list stays sorted from one step to the next, so
 // insertion sort costs about one pass while boxes move little. A uniform grid would need a cell
 // size, and boxes in one scene differ in size by orders of magnitude; sorting needs none. The
 // axis is the one the boxes' centres spread most along (Ericson, "Real-Time Collision Detection",
 // 7.5.2): along x, a stack or Bullet's pile of ragdolls (rows 7 m apart in y, each ragdoll 6 m
 // wide) overlaps everywhere and the sweep tests nearly every pair. It changes only when another
-// axis spreads 1.5 times as much, so it does not flip back and forth.
-void World::chooseSweepAxis() {
+// axis spreads 1.5 times as much, so it does not flip back and forth. True when it changed.
+bool World::chooseSweepAxis() {
   Vec3 sum(0.0), sumSquares(0.0);
   for (const Obb& f : frames_) {
     sum += f.center;
@@ -117,9 +117,9 @@ void World::chooseSweepAxis() {
   for (int k = 1; k < 3; ++k) {
     if (variance[k] > variance[widest]) widest = k;
   }
-  if (!(variance[widest] > 1.5 * variance[sweepAxis_])) return;
+  if (!(variance[widest] > 1.5 * variance[sweepAxis_])) return false;
   sweepAxis_ = widest;
-  sweepSorted_ = false;
+  return true;
 }
 
 // Once per step, for all its substeps: each box's bounds are its AABB grown by how far it can go
@@ -149,17 +149,15 @@ void World::findBoxPairs() {
     bounds_[id] = {f.center - reach, f.center + reach};
     travel_[id] = travel;
   }
-  chooseSweepAxis();
+  const bool newAxis = chooseSweepAxis();
   const int s = sweepAxis_;
   for (Interval& it : sweep_) {
     it.min = bounds_[it.box].lo[s];
     it.max = bounds_[it.box].hi[s];
   }
-  if (!sweepSorted_) {
-    // A new axis: the order along it is unrelated to the old one's, too far for insertion sort.
-    std::sort(sweep_.begin(), sweep_.end(),
-              [](const Interval& a, const Interval& b) { return a.min < b.min || (a.min == b.min && a.box < b.box); });
-    sweepSorted_ = true;
+  if (newAxis) {
+    // The order along a new axis is unrelated to the old one's, too far for insertion sort.
+    std::sort(sweep_.begin(), sweep_.end(), [](const Interval& a, const Interval& b) { return a.min < b.min; });
   }
   for (std::size_t i = 1; i < sweep_.size(); ++i) {
     const Interval moving = sweep_[i];
@@ -223,31 +221,35 @@ bool World::collidePair(BoxId a, BoxId b, BoxContact& contact) const {
 void World::placeCapsuleGroundPoints() {
   const Vec3 n = world_.groundNormal;
   for (const CapsuleGroundPoint& g : capsuleGround_) {
-    const Box& box = boxes_[g.box];
-    const Obb& f = frames_[g.box];
-    const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();
     GroundContact& contact = contactPoints_[g.contact];
+    const auto id = static_cast<BoxId>(contact.body);
+    const Box& box = boxes_[id];
+    const Obb& f = frames_[id];
+    const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();
     Vec3 moved(0.0);
-    contact.point = embedInBox(g.box, lowest, &moved);
+    contact.point = embedInBox(id, lowest, &moved);
     contact.lift = glm::dot(n, moved);
-    if (box.model == BoxModel::Corners) contact.surface = rigidPoint(g.box, lowest);
+    if (box.model == BoxModel::Corners) contact.surface = rigidPoint(id, lowest);
   }
+}
+
+// A world point in the box's frame of this substep, in units of its half extents.
+Vec3 World::frameCoordinates(BoxId id, const Vec3& point) const {
+  const Obb& f = frames_[id];
+  const Vec3 d = point - f.center;
+  const Vec3& h = boxes_[id].halfExtents;
+  return {glm::dot(d, f.axes[0]) / h.x, glm::dot(d, f.axes[1]) / h.y, glm::dot(d, f.axes[2]) / h.z};
 }
 
 // A world point carried rigidly by the box as it lies in its frame (detail::rigidEmbedding).
 Embedding World::rigidPoint(BoxId id, const Vec3& point) const {
-  const Obb& f = frames_[id];
-  const Vec3 d = point - f.center;
-  const Vec3 u(glm::dot(d, f.axes[0]), glm::dot(d, f.axes[1]), glm::dot(d, f.axes[2]));
-  return detail::rigidEmbedding(boxes_[id], u / boxes_[id].halfExtents);
+  return detail::rigidEmbedding(boxes_[id], frameCoordinates(id, point));
 }
 
 Embedding World::embedInBox(BoxId id, const Vec3& point, Vec3* moved) const {
   const Box& box = boxes_[id];
   const Obb& f = frames_[id];
-  const Vec3 d = point - f.center;
-  Vec3 u(glm::dot(d, f.axes[0]) / box.halfExtents.x, glm::dot(d, f.axes[1]) / box.halfExtents.y,
-         glm::dot(d, f.axes[2]) / box.halfExtents.z);
+  Vec3 u = frameCoordinates(id, point);
   // A tetra capsule's points lie on its round surface, inside its box: carried rigidly by its
   // tetrahedron. A corners capsule's go onto the nearest face below, whose 4 particles then hold
   // it up as they hold a box (through the inscribed tetrahedron, the other 4 hang on sticks: a

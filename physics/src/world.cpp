@@ -321,10 +321,9 @@ BoxId World::addBox(const BoxDesc& desc) {
     for (const Real end : {-1.0, 1.0}) {
       const Vec3 core(0.0, end * halfSegment, 0.0);
       const Vec3 lowest = core + glm::inverse(q) * (-world_.groundNormal) * box.capsuleRadius();
-      capsuleGround_.push_back({static_cast<std::uint32_t>(contactPoints_.size()), static_cast<BoxId>(boxIndex), end});
+      capsuleGround_.push_back({static_cast<std::uint32_t>(contactPoints_.size()), end});
       addContactPoint(detail::rigidEmbedding(box, lowest / box.halfExtents), desc.material, boxIndex);
     }
-    ++capsules_;
   }
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
@@ -425,7 +424,7 @@ void World::step() {
     // Contacts are found once per substep, from the integrated positions, and then kept
     // satisfied through the iterations (Macklin et al. 2019 find them once per frame).
     start = Clock::now();
-    if (boxes_.size() >= 2 || capsules_ > 0) updateBoxFrames();
+    if (boxes_.size() >= 2 || !capsuleGround_.empty()) updateBoxFrames();
     if (boxes_.size() >= 2) {
       // Once per step; again when a drag, an impact or a joint took a box past its bounds.
       if (s == 0 || pairsStale_ || drag_ || outgrewPairBounds()) findBoxPairs();

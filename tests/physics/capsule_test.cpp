@@ -1,6 +1,7 @@
 // Capsules: the narrow phase against hand-worked geometry, then bodies in a world against
 // analytic answers (rest heights, and a capsule rolling down a slope at g sin(theta) / 3).
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -183,6 +184,8 @@ TEST_P(CapsuleModels, LyingCapsuleSagsNoMoreThanABoxOfItsModel) {
     return world.boxPose(id).center.y;
   };
   const double box = restHeight(phys::Shape::Box), capsule = restHeight(phys::Shape::Capsule);
+  std::printf("%s: sag of a lying capsule %.2f mm, of a box of its size %.2f mm\n", phys::toString(GetParam()).data(),
+              (0.1 - capsule) * 1e3, (0.1 - box) * 1e3);
   EXPECT_GT(capsule, box - 5e-4);
   EXPECT_NEAR(box, 0.1, 5e-3);
 }
@@ -213,6 +216,8 @@ TEST_P(CapsuleModels, CapsuleRollsDownASlopeAtAThirdOfGSinTheta) {
   // Measured: tetra 0.9% short, corners 2.0% long (its contact is carried by its box's face,
   // its friction by the surface point; docs/physics.md, "Capsules").
   const double tolerance = 0.03;
+  std::printf("%s: rolled %.4f m in %.0f s, analytic %.4f m (%+.1f%%)\n", phys::toString(GetParam()).data(), travelled,
+              seconds, expected, 100.0 * (travelled / expected - 1.0));
   EXPECT_NEAR(travelled, expected, tolerance * expected);
 }
 

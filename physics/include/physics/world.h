@@ -174,7 +174,7 @@ class World {
   void restitute(Real h);
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBoxFrames();
-  void chooseSweepAxis();
+  bool chooseSweepAxis();
   void findBoxPairs();
   bool outgrewPairBounds() const;
   void buildBoxContacts();
@@ -183,6 +183,7 @@ class World {
   void joinGroups(ParticleId a, ParticleId b);
   void placeCapsuleGroundPoints();
   bool collidePair(BoxId a, BoxId b, BoxContact& contact) const;
+  Vec3 frameCoordinates(BoxId box, const Vec3& point) const;
   Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
   Embedding rigidPoint(BoxId box, const Vec3& point) const;
   bool collides(BoxId a, BoxId b) const;
@@ -199,14 +200,13 @@ class World {
   std::vector<Box> boxes_;
   std::vector<Embedding> corners_;
   // A capsule's two ground contact points (the lowest points of its end spheres), re-embedded
-  // every substep: which contact point, whose, and which end of the core (-1 or +1 along y).
+  // every substep: which contact point (its body is the capsule) and which end of the core
+  // (-1 or +1 along y).
   struct CapsuleGroundPoint {
     std::uint32_t contact;
-    BoxId box;
     Real end;
   };
   std::vector<CapsuleGroundPoint> capsuleGround_;
-  std::size_t capsules_ = 0;  // bodies of Shape::Capsule
 
   std::vector<GroundContact> contactPoints_;  // loose particles and box corners
   std::vector<Real> normalPush_;  // per contact point: ground correction of the last pass (m)
@@ -220,7 +220,7 @@ class World {
     Real min, max;  // extent of a box's bounds along the sweep axis
     BoxId box;
   };
-  std::vector<Interval> sweep_;             // sweep-and-prune list, kept sorted between substeps
+  std::vector<Interval> sweep_;             // sweep-and-prune list, kept sorted between steps
   struct Bounds {
     Vec3 lo, hi;
   };
@@ -229,7 +229,6 @@ class World {
   std::vector<Obb> pairFrames_;             // per box: its frame when pairs_ was found
   bool pairsStale_ = true;                  // bodies or filters changed since pairs_ was found
   int sweepAxis_ = 0;                       // the axis sweep_ is sorted along
-  bool sweepSorted_ = true;                 // false when the axis changed since the last sort
   std::vector<std::pair<BoxId, BoxId>> pairs_;
   std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
   std::vector<BodyContact> bodyContacts_;
