@@ -48,7 +48,9 @@ double distance(const phys::Vec3& a, const phys::Vec3& b) {
   return std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
 }
 
-bool finite(const phys::Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const phys::Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // ---- <expect kind="position"> ----------------------------------------------------------------
 
@@ -89,7 +91,8 @@ std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::strin
     if (b.kind == scenes::NamedBody::Kind::Box) return b.index;
     std::vector<bool> inBox(scene.world.particles().size(), false);
     for (const phys::Box& box : boxes) {
-      for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
+      for (int k = 0; k < box.particleCount; ++k)
+        inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
     }
     if (inBox[b.index]) return std::nullopt;
     std::size_t slot = boxes.size();
@@ -138,7 +141,8 @@ PositionExpect readExpect(const scenes::Scene& scene, const scenes::Expectation&
   return x;
 }
 
-AccuracyTarget analyticTarget(const scenes::Scene& scene, const std::vector<PositionExpect>& expects, double dt) {
+AccuracyTarget analyticTarget(const scenes::Scene& scene, const std::vector<PositionExpect>& expects,
+                              double dt) {
   AccuracyTarget t;
   t.kind = "analytic";
   for (const PositionExpect& x : expects) t.checkpoints.push_back(x.step);
@@ -148,11 +152,13 @@ AccuracyTarget analyticTarget(const scenes::Scene& scene, const std::vector<Posi
   t.expected.assign(t.checkpoints.size(), std::vector<phys::Vec3>(bodies, phys::Vec3(kNaN)));
   t.uncertainty.assign(t.checkpoints.size(), 0.0);
   for (const PositionExpect& x : expects) {
-    const auto k = std::lower_bound(t.checkpoints.begin(), t.checkpoints.end(), x.step) - t.checkpoints.begin();
+    const auto k =
+        std::lower_bound(t.checkpoints.begin(), t.checkpoints.end(), x.step) - t.checkpoints.begin();
     t.expected[static_cast<std::size_t>(k)][x.slot] = x.pos;
   }
-  t.description = "analytic: " + std::to_string(expects.size()) + " positions given by the scene, at t = " +
-                  num(t.checkpoints.front() * dt) + " to " + num(t.checkpoints.back() * dt) + " s";
+  t.description = "analytic: " + std::to_string(expects.size()) +
+                  " positions given by the scene, at t = " + num(t.checkpoints.front() * dt) + " to " +
+                  num(t.checkpoints.back() * dt) + " s";
   return t;
 }
 
@@ -160,13 +166,15 @@ AccuracyTarget analyticTarget(const scenes::Scene& scene, const std::vector<Posi
 
 bool hasCompliance(const phys::World& world) {
   if (world.solverSettings().compliance > 0.0) return true;
-  return std::any_of(world.sticks().begin(), world.sticks().end(), [](const phys::Stick& s) { return s.compliance > 0.0; });
+  return std::any_of(world.sticks().begin(), world.sticks().end(),
+                     [](const phys::Stick& s) { return s.compliance > 0.0; });
 }
 
 std::vector<int> quarterCheckpoints(int steps) {
   std::vector<int> out;
   for (int k = 1; k <= kReferenceCheckpoints; ++k) {
-    const int step = std::max(1, static_cast<int>(std::lround(static_cast<double>(steps) * k / kReferenceCheckpoints)));
+    const int step =
+        std::max(1, static_cast<int>(std::lround(static_cast<double>(steps) * k / kReferenceCheckpoints)));
     if (out.empty() || step > out.back()) out.push_back(step);
   }
   return out;
@@ -174,7 +182,8 @@ std::vector<int> quarterCheckpoints(int steps) {
 
 // A copy of the loaded world (a scene loaded from text has no file to load again), stepped
 // with `settings`, recorded after each checkpoint step.
-std::vector<std::vector<phys::Vec3>> recordRun(const phys::World& loaded, const phys::SolverSettings& settings,
+std::vector<std::vector<phys::Vec3>> recordRun(const phys::World& loaded,
+                                               const phys::SolverSettings& settings,
                                                const std::vector<int>& checkpoints) {
   phys::World world = loaded;
   world.setSolverSettings(settings);
@@ -210,12 +219,13 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
     }
     t.uncertainty.push_back(worst);
   }
-  t.description = "reference: " + std::string(phys::toString(fine.method)) + ", " + std::to_string(fine.substeps) +
-                  " substeps x " + std::to_string(fine.iterations) + " iterations at dt " + num(dt) +
-                  " s; checkpoints at steps " + stepList(t.checkpoints) + " (t = " + num(t.checkpoints.front() * dt) +
-                  " to " + num(t.checkpoints.back() * dt) + " s); its uncertainty (change from " +
-                  std::to_string(half.substeps) + " substeps): " + num(t.uncertainty.front(), 2) +
-                  " m at the first checkpoint, " + num(maxUncertainty(t), 2) + " m at most";
+  t.description = "reference: " + std::string(phys::toString(fine.method)) + ", " +
+                  std::to_string(fine.substeps) + " substeps x " + std::to_string(fine.iterations) +
+                  " iterations at dt " + num(dt) + " s; checkpoints at steps " + stepList(t.checkpoints) +
+                  " (t = " + num(t.checkpoints.front() * dt) + " to " + num(t.checkpoints.back() * dt) +
+                  " s); its uncertainty (change from " + std::to_string(half.substeps) +
+                  " substeps): " + num(t.uncertainty.front(), 2) + " m at the first checkpoint, " +
+                  num(maxUncertainty(t), 2) + " m at most";
   return t;
 }
 

@@ -15,9 +15,9 @@ namespace lab {
 
 /// What a run is compared with.
 struct AccuracyTarget {
-  std::string kind;               ///< "analytic" or "reference"
-  std::string description;        ///< one line: what is compared, for reports
-  std::vector<int> checkpoints;   ///< steps (1-based counts of World::step calls), ascending
+  std::string kind;              ///< "analytic" or "reference"
+  std::string description;       ///< one line: what is compared, for reports
+  std::vector<int> checkpoints;  ///< steps (1-based counts of World::step calls), ascending
   /// Per checkpoint, per body (bodies.h order): where it should be; NaN where nothing is said.
   std::vector<std::vector<phys::Vec3>> expected;
   /// Per checkpoint, unit m: how far the target itself may be off. 0 for analytic answers;
@@ -50,7 +50,8 @@ double maxUncertainty(const AccuracyTarget& target);
 /// analytic answers if it has any (then the checkpoints are their times, and `steps` is only a
 /// minimum), else a reference run. Throws scenes::LoadError naming file, line and attribute for
 /// a malformed <expect kind="position">.
-AccuracyTarget accuracyTarget(const scenes::Scene& scene, const scenes::LoadOptions& options, double dt, int steps);
+AccuracyTarget accuracyTarget(const scenes::Scene& scene, const scenes::LoadOptions& options, double dt,
+                              int steps);
 
 /// The run's error: the largest distance (m) between a body's position at a checkpoint and the
 /// target's, over every body and checkpoint the target says something of. `positions` holds,

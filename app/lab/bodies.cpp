@@ -8,7 +8,8 @@ std::vector<phys::Vec3> bodyPositions(const phys::World& world) {
   std::vector<bool> inBox(world.particles().size(), false);
   for (phys::BoxId id = 0; id < boxes.size(); ++id) {
     out.push_back(world.boxPose(id).center);
-    for (int k = 0; k < boxes[id].particleCount; ++k) inBox[boxes[id].firstParticle + static_cast<phys::ParticleId>(k)] = true;
+    for (int k = 0; k < boxes[id].particleCount; ++k)
+      inBox[boxes[id].firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
   for (std::size_t i = 0; i < world.particles().size(); ++i) {
     if (!inBox[i]) out.push_back(world.particles().position[i]);

@@ -61,7 +61,8 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
     } else {
       const std::size_t k = styled++;
       const int type = kPointTypes[k % (sizeof kPointTypes / sizeof kPointTypes[0])];
-      item += "with points pt " + std::to_string(type) + " ps 1.2 lc " + std::to_string(k + 1) + " title " + quoted(s.title);
+      item += "with points pt " + std::to_string(type) + " ps 1.2 lc " + std::to_string(k + 1) + " title " +
+              quoted(s.title);
     }
     plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
     if (s.labels) {
@@ -69,7 +70,8 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
     }
   }
   if (chart.guide) {
-    plot += ", \\\n     " + exact(*chart.guide) + " with lines dt 2 lw 1.5 lc 'gray40' title " + quoted(chart.guideTitle);
+    plot += ", \\\n     " + exact(*chart.guide) + " with lines dt 2 lw 1.5 lc 'gray40' title " +
+            quoted(chart.guideTitle);
   }
   return plot + "\n";
 }
@@ -87,8 +89,8 @@ std::string gnuplotScript(const Chart& chart) {
   std::vector<std::vector<ChartPoint>> kept;
   for (const ChartSeries& s : chart.series) kept.push_back(drawablePoints(chart, s));
 
-  std::string out = "# " + chart.title + "\n# Run gnuplot on this file in its folder: it writes " + chart.output +
-                    ".png and " + chart.output + ".svg. The data is inline, below.\n";
+  std::string out = "# " + chart.title + "\n# Run gnuplot on this file in its folder: it writes " +
+                    chart.output + ".png and " + chart.output + ".svg. The data is inline, below.\n";
   for (std::size_t i = 0; i < kept.size(); ++i) {
     if (!kept[i].empty()) out += seriesBlock(i, kept[i]);
   }

@@ -55,7 +55,9 @@ std::string compareUsage() {
 
 // Whole numbers only, as `lab run` takes them: digits, no sign, no exponent.
 std::optional<long long> wholeNumber(const std::string& s) {
-  if (s.empty() || s.size() > 18 || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+  if (s.empty() || s.size() > 18 ||
+      !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
   return std::stoll(s);
 }
 
@@ -83,12 +85,14 @@ std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
     } else if (a == "--steps") {
       if (std::string e = value(v); !e.empty()) return e;
       const auto n = wholeNumber(v);
-      if (!n || *n < 1 || *n > kMaxSteps) return "compare: --steps '" + v + "': a whole number from 1 to " + std::to_string(kMaxSteps);
+      if (!n || *n < 1 || *n > kMaxSteps)
+        return "compare: --steps '" + v + "': a whole number from 1 to " + std::to_string(kMaxSteps);
       o.steps = static_cast<int>(*n);
     } else if (a == "--dt") {
       if (std::string e = value(v); !e.empty()) return e;
       const auto d = realNumber(v);
-      if (!d || *d < phys::kMinDt || *d > phys::kMaxDt) return "compare: --dt '" + v + "': a number of seconds from 1e-06 to 1";
+      if (!d || *d < phys::kMinDt || *d > phys::kMaxDt)
+        return "compare: --dt '" + v + "': a number of seconds from 1e-06 to 1";
       o.dt = *d;
     } else if (a == "--data") {
       if (std::string e = value(v); !e.empty()) return e;
@@ -101,7 +105,8 @@ std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
       return "compare takes one SCENE; got '" + o.scene + "' and '" + a + "'";
     }
   }
-  if (!o.help && o.scene.empty()) return "compare needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
+  if (!o.help && o.scene.empty())
+    return "compare needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
   return {};
 }
 
@@ -135,14 +140,17 @@ double groundPenetration(const phys::World& world) {
     if (box.shape == phys::Shape::Capsule) {
       const phys::BoxPose pose = world.boxPose(id);
       const double half = std::max(0.0, box.capsuleHalfSegment());
-      for (const double end : {-half, half}) visit(pose.center + pose.orientation * phys::Vec3(0.0, end, 0.0), box.capsuleRadius());
+      for (const double end : {-half, half})
+        visit(pose.center + pose.orientation * phys::Vec3(0.0, end, 0.0), box.capsuleRadius());
     } else {
-      for (int k = 0; k < 8; ++k) visit(world.position(world.corners()[box.firstCorner + static_cast<std::uint32_t>(k)]), 0.0);
+      for (int k = 0; k < 8; ++k)
+        visit(world.position(world.corners()[box.firstCorner + static_cast<std::uint32_t>(k)]), 0.0);
     }
   }
   std::vector<bool> inBox(world.particles().size(), false);
   for (const phys::Box& box : world.boxes()) {
-    for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
+    for (int k = 0; k < box.particleCount; ++k)
+      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
   for (std::size_t i = 0; i < inBox.size(); ++i) {
     if (!inBox[i]) visit(world.particles().position[i], 0.0);
@@ -235,16 +243,17 @@ std::string cell(std::string text) {
 }
 
 void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest) {
-  out << "| engine | method | settings | ms/step (median) | vs our fastest | error, first checkpoint (m) | error, all (m) | ground penetration (m) | unsupported / notes |\n"
+  out << "| engine | method | settings | ms/step (median) | vs our fastest | error, first checkpoint (m) | "
+         "error, all (m) | ground penetration (m) | unsupported / notes |\n"
       << "|---|---|---|---:|---:|---:|---:|---:|---|\n";
   for (const Row& r : rows) {
-    out << "| " << r.engine << " | " << (r.method.empty() ? "" : r.method) << " | " << cell(r.settings) << " | ";
+    out << "| " << r.engine << " | " << (r.method.empty() ? "" : r.method) << " | " << cell(r.settings)
+        << " | ";
     if (r.ran) {
       // Below a nanometre a depth is round-off (ours rest at 1e-20 m or so), shown as 0.
       const double depth = std::abs(r.penetration) < 1e-9 ? 0.0 : r.penetration;
-      out << fixed(r.msPerStep, "%.4g") << " | " << fixed(r.msPerStep / fastest, "%.3gx") << " | " << fixed(r.errorFirst, "%.3g")
-          << " | " << fixed(r.error, "%.3g")
-          << " | " << fixed(depth, "%.3g");
+      out << fixed(r.msPerStep, "%.4g") << " | " << fixed(r.msPerStep / fastest, "%.3gx") << " | "
+          << fixed(r.errorFirst, "%.3g") << " | " << fixed(r.error, "%.3g") << " | " << fixed(depth, "%.3g");
     } else {
       out << "not run | | | | ";
     }
@@ -252,14 +261,16 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
   }
 }
 
-void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, const std::string& scene, int steps,
-               double dt, const AccuracyTarget& target) {
+void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, const std::string& scene,
+               int steps, double dt, const AccuracyTarget& target) {
   for (const Row& r : rows) {
-    out << "{\"scene\":" << jsonString(scene) << ",\"engine\":" << jsonString(r.engine) << ",\"method\":" << jsonString(r.method)
-        << ",\"settings\":" << jsonString(r.settings) << ",\"steps\":" << steps << ",\"dt\":" << jsonNumber(dt)
-        << ",\"ran\":" << (r.ran ? "true" : "false") << ",\"ms_per_step\":" << jsonNumber(r.ran ? r.msPerStep : std::nan(""))
-        << ",\"ratio\":" << jsonNumber(r.ran ? r.msPerStep / fastest : std::nan("")) << ",\"accuracy\":" << jsonString(target.kind)
-        << ",\"error_first\":" << jsonNumber(r.errorFirst) << ",\"error\":" << jsonNumber(r.error) << ",\"max_penetration\":" << jsonNumber(r.penetration)
+    out << "{\"scene\":" << jsonString(scene) << ",\"engine\":" << jsonString(r.engine)
+        << ",\"method\":" << jsonString(r.method) << ",\"settings\":" << jsonString(r.settings)
+        << ",\"steps\":" << steps << ",\"dt\":" << jsonNumber(dt) << ",\"ran\":" << (r.ran ? "true" : "false")
+        << ",\"ms_per_step\":" << jsonNumber(r.ran ? r.msPerStep : std::nan(""))
+        << ",\"ratio\":" << jsonNumber(r.ran ? r.msPerStep / fastest : std::nan(""))
+        << ",\"accuracy\":" << jsonString(target.kind) << ",\"error_first\":" << jsonNumber(r.errorFirst)
+        << ",\"error\":" << jsonNumber(r.error) << ",\"max_penetration\":" << jsonNumber(r.penetration)
         << ",\"notes\":" << jsonString(r.notes) << "}\n";
   }
 }
@@ -301,8 +312,8 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
 
   std::vector<Row> rows;
   try {
-    for (phys::SolverMethod method : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi, phys::SolverMethod::Xpbd,
-                                      phys::SolverMethod::Shake}) {
+    for (phys::SolverMethod method : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
+                                      phys::SolverMethod::Xpbd, phys::SolverMethod::Shake}) {
       rows.push_back(runOurs(file, method, options.dt, steps, target));
     }
   } catch (const std::invalid_argument& e) {
@@ -341,17 +352,23 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
     loose -= static_cast<std::size_t>(b.particleCount);
     capsules += b.shape == phys::Shape::Capsule ? 1 : 0;
   }
-  auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  auto count = [](std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
   // A project scene is named from the data folder (assets/scenes/x.xml), so the table that
   // docs/results.md quotes says the same on every machine.
   const std::filesystem::path shown = shownPath(file, dataDir(where));
-  out << "scene     " << scene->name << " (" << shown.string() << "): " << count(world.boxes().size() - capsules, "box", "boxes") << ", "
+  out << "scene     " << scene->name << " (" << shown.string()
+      << "): " << count(world.boxes().size() - capsules, "box", "boxes") << ", "
       << (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string())
-      << count(loose, "loose particle", "loose particles") << ", " << count(world.links().size(), "link", "links") << "\n";
+      << count(loose, "loose particle", "loose particles") << ", "
+      << count(world.links().size(), "link", "links") << "\n";
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
-      << " s) in each engine, one after another in this process; ms/step is the median of the steps timed one by one\n";
+      << " s) in each engine, one after another in this process; ms/step is the median of the steps timed "
+         "one by one\n";
   out << "accuracy  " << target.description << "; error = the largest distance (m) of a body from it\n";
-  if (peerEngines().empty()) out << "peers     none built in (LAB_PEERS off, or no Bullet, ODE or MuJoCo found at build time)\n";
+  if (peerEngines().empty())
+    out << "peers     none built in (LAB_PEERS off, or no Bullet, ODE or MuJoCo found at build time)\n";
   out << "\n";
   printTable(out, rows, fastest);
   return kExitOk;

@@ -40,8 +40,8 @@ std::string runGnuplot(const std::filesystem::path& script, const std::filesyste
     return "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the data and " + script.string() +
            " are written, run gnuplot on it to draw the charts";
   }
-  const std::string command = "cd " + shellQuoted(folder.string()) + " && " + shellQuoted(gnuplot.string()) + " " +
-                              shellQuoted(script.filename().string()) + " 2>&1";
+  const std::string command = "cd " + shellQuoted(folder.string()) + " && " + shellQuoted(gnuplot.string()) +
+                              " " + shellQuoted(script.filename().string()) + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return "cannot start gnuplot";
   std::string output;

@@ -21,13 +21,21 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return kExitUsage;
   }
   switch (parsed.command) {
-    case Command::Help: out << usage(); return kExitOk;
-    case Command::Run: return runCommand(parsed.run, out, err);
-    case Command::Sweep: return sweepMain(parsed.rest, out, err);
-    case Command::Stability: return stabilityMain(parsed.rest, out, err);
-    case Command::Tune: return tuneMain(parsed.rest, out, err);
-    case Command::Compare: return compareMain(parsed.rest, out, err);
-    case Command::Report: return reportMain(parsed.rest, out, err);
+    case Command::Help:
+      out << usage();
+      return kExitOk;
+    case Command::Run:
+      return runCommand(parsed.run, out, err);
+    case Command::Sweep:
+      return sweepMain(parsed.rest, out, err);
+    case Command::Stability:
+      return stabilityMain(parsed.rest, out, err);
+    case Command::Tune:
+      return tuneMain(parsed.rest, out, err);
+    case Command::Compare:
+      return compareMain(parsed.rest, out, err);
+    case Command::Report:
+      return reportMain(parsed.rest, out, err);
   }
   return kExitUsage;
 }

@@ -16,12 +16,17 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
     auto value = [&] { return optionValue(args, i); };
     auto missing = [&](const char* what) { return a + " needs " + what; };
     if (a == "--steps" || a == "--iterations" || a == "--substeps") {
-      const int high = a == "--steps" ? kMaxSteps : a == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
+      const int high = a == "--steps"        ? kMaxSteps
+                       : a == "--iterations" ? phys::kMaxIterations
+                                             : phys::kMaxSubsteps;
       int n = 0;
       if (std::string e = parseCountOption(a, value(), high, n); !e.empty()) return e;
-      if (a == "--steps") o.steps = n;
-      else if (a == "--iterations") o.iterations = n;
-      else o.substeps = n;
+      if (a == "--steps")
+        o.steps = n;
+      else if (a == "--iterations")
+        o.iterations = n;
+      else
+        o.substeps = n;
     } else if (a == "--dt") {
       const std::string* v = value();
       if (v == nullptr) return missing("a time step in seconds");
@@ -76,9 +81,11 @@ std::string usage() {
 ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
   ParsedCommand out;
   // The commands with options of their own parse them (and their --help) themselves.
-  static constexpr std::pair<std::string_view, Command> kOwnParsers[] = {
-      {"sweep", Command::Sweep}, {"stability", Command::Stability}, {"tune", Command::Tune},
-      {"compare", Command::Compare}, {"report", Command::Report}};
+  static constexpr std::pair<std::string_view, Command> kOwnParsers[] = {{"sweep", Command::Sweep},
+                                                                         {"stability", Command::Stability},
+                                                                         {"tune", Command::Tune},
+                                                                         {"compare", Command::Compare},
+                                                                         {"report", Command::Report}};
   for (const auto& [name, command] : kOwnParsers) {
     if (!args.empty() && args[0] == name) {
       out.command = command;
@@ -105,7 +112,8 @@ std::filesystem::path dataDir(const RunOptions& options) {
 }
 
 bool asksForHelp(const std::vector<std::string>& args) {
-  return std::any_of(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; });
+  return std::any_of(args.begin(), args.end(),
+                     [](const std::string& a) { return a == "--help" || a == "-h"; });
 }
 
 const std::string* optionValue(const std::vector<std::string>& args, std::size_t& i) {

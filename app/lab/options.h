@@ -18,7 +18,7 @@ namespace lab {
 inline constexpr int kMaxSteps = 10000000;
 // --iterations, --substeps and --dt take the physics' own ranges (phys::kMaxIterations,
 // phys::kMaxSubsteps, phys::kMinDt, phys::kMaxDt in physics/settings.h).
-inline constexpr int kDefaultSteps = 600;     ///< 10 s at the default dt of 1/60 s
+inline constexpr int kDefaultSteps = 600;  ///< 10 s at the default dt of 1/60 s
 
 /// What `lab run` was asked to do. Unset overrides keep the scene's own solver settings.
 struct RunOptions {

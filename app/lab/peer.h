@@ -4,8 +4,8 @@
 // builds the same scene from our loaded world: the ground, one rigid body per body of
 // bodies.h (a box for each box, a capsule for each capsule, a small sphere for each loose
 // particle) with the same mass, size, pose, velocity and friction, and joints for what joins
-// them, then steps it with the engine's default solver at our dt. docs/lab.md, "lab compare and the peers", lists what
-// each engine can and cannot express.
+// them, then steps it with the engine's default solver at our dt. docs/lab.md, "lab compare and the peers",
+// lists what each engine can and cannot express.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,11 +16,11 @@
 namespace lab {
 
 struct PeerResult {
-  std::string engine;       ///< "bullet", "ode" or "mujoco"
+  std::string engine;  ///< "bullet", "ode" or "mujoco"
   /// Empty when the engine expressed the whole scene; else what it could not (the run is then
   /// not made, or made without it, as the text says).
   std::string unsupported;
-  bool ran = false;         ///< false when the scene could not be expressed at all
+  bool ran = false;  ///< false when the scene could not be expressed at all
   /// The engine's version, solver and settings as run, one line for tables.
   std::string settings;
   double medianMsPerStep = 0.0;  ///< unit: ms; median wall time of one step

@@ -2,8 +2,8 @@
 
 #include <cinttypes>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
@@ -37,7 +37,9 @@ constexpr std::size_t kMaxFreezesListed = 10;
 
 }  // namespace
 
-std::string jsonNumber(double value) { return std::isfinite(value) ? num(value, 17) : "null"; }
+std::string jsonNumber(double value) {
+  return std::isfinite(value) ? num(value, 17) : "null";
+}
 
 std::string jsonString(std::string_view text) {
   std::string out = "\"";
@@ -102,26 +104,30 @@ std::string summaryText(const RunResult& r) {
   s += "scene        " + r.scene + (r.file.empty() ? "" : " (" + r.file.string() + ")") + "\n";
   s += "solver       " + std::string(phys::toString(r.solver.method)) + ", " +
        count(static_cast<std::size_t>(r.solver.iterations), "iteration", "iterations") + ", " +
-       count(static_cast<std::size_t>(r.solver.substeps), "substep", "substeps") + ", dt " + num(r.solver.dt) +
-       " s\n";
+       count(static_cast<std::size_t>(r.solver.substeps), "substep", "substeps") + ", dt " +
+       num(r.solver.dt) + " s\n";
   s += "world        " + count(r.particles, "particle", "particles") + ", " +
        count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
-  s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " + num(r.simulatedTime) +
-       " s simulated, in " + num(r.wallMs, 4) + " ms wall: " + num(r.msPerStep, 4) + " ms/step\n";
+  s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " +
+       num(r.simulatedTime) + " s simulated, in " + num(r.wallMs, 4) + " ms wall: " + num(r.msPerStep, 4) +
+       " ms/step\n";
   // Profile::total is the physics' own clock per step; the wall time above also holds the
   // loop around it. The median shrugs off the odd step the scheduler interrupted.
   s += "step time    median " + num(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";
-  s += "phases       summed over the run: " +
-       phase("integrate", p.integrate, p.total) + ", " + phase("collide", p.collide, p.total) + ", " +
-       phase("constraints", p.constraints, p.total) + ", " + phase("contacts", p.contacts, p.total) + ", " + phase("friction", p.friction, p.total) + ", " +
+  s += "phases       summed over the run: " + phase("integrate", p.integrate, p.total) + ", " +
+       phase("collide", p.collide, p.total) + ", " + phase("constraints", p.constraints, p.total) + ", " +
+       phase("contacts", p.contacts, p.total) + ", " + phase("friction", p.friction, p.total) + ", " +
        phase("guard", p.guard, p.total) + ", " +
        // What the phases leave of the total: the step's own bookkeeping and clock reads.
-       phase("other", p.total - (p.integrate + p.collide + p.constraints + p.contacts + p.friction + p.guard), p.total) + "\n";
+       phase("other", p.total - (p.integrate + p.collide + p.constraints + p.contacts + p.friction + p.guard),
+             p.total) +
+       "\n";
   s += "contacts     " + std::to_string(m.contacts) + " in the last step, max penetration " +
        num(m.maxPenetration) + " m\n";
   s += "constraints  error max " + num(m.maxConstraintError) + ", rms " + num(m.rmsConstraintError) +
        " (of rest length)\n";
-  if (r.joints > 0) s += "joints       " + count(r.joints, "link", "links") + ", max error " + num(m.maxJointError) + " m\n";
+  if (r.joints > 0)
+    s += "joints       " + count(r.joints, "link", "links") + ", max error " + num(m.maxJointError) + " m\n";
   s += "speed        max " + num(m.maxSpeed) + " m/s\n";
   s += "energy       initial " + num(r.energyInitial) + " J, final " + num(m.energy()) + " J (change " +
        num(m.energy() - r.energyInitial) + " J)\n";

@@ -105,13 +105,13 @@ constexpr SweepScene kSweepScenes[] = {
 std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& scene, const fs::path& dir) {
   std::vector<std::string> args{scene, "--out", dir.string(), "--data", o.data.string()};
   if (o.quick) {
-    for (const char* a : {"--method", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps", "1", "--repeat", "1",
-                          "--steps", "10"}) {
+    for (const char* a : {"--method", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps", "1",
+                          "--repeat", "1", "--steps", "10"}) {
       args.emplace_back(a);
     }
   } else {
-    for (const char* a : {"--method", "gauss-seidel,jacobi,xpbd,shake", "--iterations", "1,2,4,8", "--substeps",
-                          "1,2,4,8", "--repeat", "3"}) {
+    for (const char* a : {"--method", "gauss-seidel,jacobi,xpbd,shake", "--iterations", "1,2,4,8",
+                          "--substeps", "1,2,4,8", "--repeat", "3"}) {
       args.emplace_back(a);
     }
   }
@@ -152,12 +152,13 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
     if (c == nullptr || fieldNumber(r, "ms_per_sim_second") < fieldNumber(*c, "ms_per_sim_second")) c = &r;
   }
   std::vector<std::pair<double, const CsvRow*>> ordered;
-  for (const auto& [method, row] : cheapest) ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
+  for (const auto& [method, row] : cheapest)
+    ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
   std::sort(ordered.begin(), ordered.end());
   for (const auto& [cost, row] : ordered) {
     md << "| " << fieldText(*row, "method") << " | " << settingName(*row) << " | "
-       << formatNumber(fieldNumber(*row, "ms_per_step"), 3) << " | " << millimetres(fieldNumber(*row, "error"))
-       << " |\n";
+       << formatNumber(fieldNumber(*row, "ms_per_step"), 3) << " | "
+       << millimetres(fieldNumber(*row, "error")) << " |\n";
   }
   std::vector<std::string> never;
   std::map<std::string, bool> seen;
@@ -211,16 +212,19 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   std::ostringstream md;
   md << "# Results\n\n"
      << "Measured on " << today() << " on " << machine() << ", in one run of `"
-     << (o.quick ? "lab report --quick" : "make charts") << "` (`lab report`, docs/lab.md), so every figure below "
+     << (o.quick ? "lab report --quick" : "make charts")
+     << "` (`lab report`, docs/lab.md), so every figure below "
      << "comes from the same machine, build and load. Regenerate with `make charts`. Times are medians of "
      << "wall-clock steps; errors are in millimetres against each scene's analytic answers or its converged "
      << "reference run (docs/lab.md, \"Accuracy\"). A peer's error also holds the difference between its "
      << "contact model and ours, which no setting of either removes.\n\n";
-  if (o.quick) md << "**This is a --quick report: tiny sweeps that check the pipeline, not figures to quote.**\n\n";
+  if (o.quick)
+    md << "**This is a --quick report: tiny sweeps that check the pipeline, not figures to quote.**\n\n";
 
   md << "## Speed against accuracy\n\n"
      << "Each chart plots error against cost for every method x iterations x substeps combination (and each "
-     << "peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats on both.\n\n";
+     << "peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats on "
+        "both.\n\n";
   bool failed = false;
   for (const SweepScene& s : kSweepScenes) {
     const fs::path dir = results / s.name;
@@ -237,9 +241,11 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   }
 
   md << "## Where methods fail\n\n";
-  std::vector<std::string> stabilityArgs{"--out", (results / "stability").string(), "--data", o.data.string()};
+  std::vector<std::string> stabilityArgs{"--out", (results / "stability").string(), "--data",
+                                         o.data.string()};
   if (o.quick) {
-    for (const char* a : {"--scene", "face-face", "--methods", "gauss-seidel,xpbd", "--iterations", "1", "--substeps", "1"}) {
+    for (const char* a :
+         {"--scene", "face-face", "--methods", "gauss-seidel,xpbd", "--iterations", "1", "--substeps", "1"}) {
       stabilityArgs.emplace_back(a);
     }
   }

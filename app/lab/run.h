@@ -13,23 +13,23 @@ namespace lab {
 
 /// Everything `lab run` reports, gathered once so the summary, the JSON and the tests agree.
 struct RunResult {
-  std::string scene;                 ///< the scene's name
-  std::filesystem::path file;        ///< where it was loaded from
-  phys::SolverSettings solver;       ///< after the overrides
-  int steps = 0;                     ///< World::step() calls made
-  double simulatedTime = 0.0;        ///< unit: s; World::time() at the end
-  std::size_t particles = 0;         ///< world.particles().size()
-  std::size_t constraints = 0;       ///< sticks and links: world.sticks().size() + world.links().size()
-  std::size_t joints = 0;            ///< links (joints) alone
-  std::size_t bodies = 0;            ///< world.boxes().size()
-  double energyInitial = 0.0;        ///< unit: J; before the first step
-  phys::Metrics final;               ///< after the last step
-  double wallMs = 0.0;               ///< unit: ms; the whole stepping loop, steady_clock
-  double msPerStep = 0.0;            ///< unit: ms; wallMs / steps
-  double medianStepMs = 0.0;         ///< unit: ms; median of the steps' Profile::total
-  phys::Profile phaseSums;           ///< unit: ms; each phase summed over the run
+  std::string scene;            ///< the scene's name
+  std::filesystem::path file;   ///< where it was loaded from
+  phys::SolverSettings solver;  ///< after the overrides
+  int steps = 0;                ///< World::step() calls made
+  double simulatedTime = 0.0;   ///< unit: s; World::time() at the end
+  std::size_t particles = 0;    ///< world.particles().size()
+  std::size_t constraints = 0;  ///< sticks and links: world.sticks().size() + world.links().size()
+  std::size_t joints = 0;       ///< links (joints) alone
+  std::size_t bodies = 0;       ///< world.boxes().size()
+  double energyInitial = 0.0;   ///< unit: J; before the first step
+  phys::Metrics final;          ///< after the last step
+  double wallMs = 0.0;          ///< unit: ms; the whole stepping loop, steady_clock
+  double msPerStep = 0.0;       ///< unit: ms; wallMs / steps
+  double medianStepMs = 0.0;    ///< unit: ms; median of the steps' Profile::total
+  phys::Profile phaseSums;      ///< unit: ms; each phase summed over the run
   std::vector<phys::FreezeReport> freezes;  ///< the guard's reports, oldest first
-  std::uint64_t hash = 0;            ///< World::stateHash() at the end
+  std::uint64_t hash = 0;                   ///< World::stateHash() at the end
 };
 
 /// Puts the options' overrides into the world's solver settings; rethrows the

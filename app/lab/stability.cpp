@@ -32,7 +32,9 @@ using stability::SuiteScene;
 class Progress {
  public:
   Progress(std::ostream& err, std::size_t total)
-      : err_(err), total_(total), redraw_(&err == &std::cerr && ::isatty(STDERR_FILENO) == 1),
+      : err_(err),
+        total_(total),
+        redraw_(&err == &std::cerr && ::isatty(STDERR_FILENO) == 1),
         start_(std::chrono::steady_clock::now()) {}
   /// `done` runs are finished and `what` runs next; `sceneDone`: the runs before were a scene's last.
   void show(std::size_t done, const std::string& what, bool sceneDone) {
@@ -101,7 +103,8 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
 }
 
 // The files of --out; the heat maps last, so a missing gnuplot leaves everything else written.
-int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir, std::ostream& err) {
+int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir,
+                 std::ostream& err) {
   try {
     std::filesystem::create_directories(dir);
     writeFileAtomically(dir / "stability.md", md);
@@ -135,7 +138,8 @@ int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::
   }
   std::vector<SuiteScene> scenes;
   try {
-    for (const std::filesystem::path& file : stability::sceneFiles(o)) scenes.push_back(stability::loadSuiteScene(file));
+    for (const std::filesystem::path& file : stability::sceneFiles(o))
+      scenes.push_back(stability::loadSuiteScene(file));
   } catch (const scenes::LoadError& e) {
     err << e.what() << "\n";  // "file:line: <expect> attribute 'x': why"
     return kExitFailure;

@@ -21,9 +21,12 @@ struct MetricInfo {
 };
 
 constexpr MetricInfo kMetrics[] = {
-    {Metric::Drift, "drift", "m"},           {Metric::Penetration, "penetration", "m"},
-    {Metric::StickError, "stick-error", ""}, {Metric::JointGap, "joint-gap", "m"},
-    {Metric::Speed, "speed", "m/s"},         {Metric::StaysBehind, "stays-behind", "m"},
+    {Metric::Drift, "drift", "m"},
+    {Metric::Penetration, "penetration", "m"},
+    {Metric::StickError, "stick-error", ""},
+    {Metric::JointGap, "joint-gap", "m"},
+    {Metric::Speed, "speed", "m/s"},
+    {Metric::StaysBehind, "stays-behind", "m"},
     {Metric::Flips, "flips", ""},
 };
 
@@ -126,7 +129,8 @@ std::size_t positionIndex(const scenes::Scene& scene, const scenes::NamedBody& b
   if (body.kind == scenes::NamedBody::Kind::Box) return body.index;
   std::vector<bool> inBox(world.particles().size(), false);
   for (const phys::Box& box : world.boxes()) {
-    for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
+    for (int k = 0; k < box.particleCount; ++k)
+      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
   std::size_t index = world.boxes().size();
   for (std::size_t i = 0; i < body.index; ++i) index += inBox[i] ? 0 : 1;
@@ -159,7 +163,8 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
   c.axis = axis[0] - 'x';
   const std::string* max = r.find("max");
   const std::string* min = r.find("min");
-  if ((max == nullptr) == (min == nullptr)) r.fail(max ? "min" : "max", "give exactly one of max and min (m): the plane");
+  if ((max == nullptr) == (min == nullptr))
+    r.fail(max ? "min" : "max", "give exactly one of max and min (m): the plane");
   const std::string attribute = max ? "max" : "min";
   const std::optional<double> plane = parseSignedNumber(max ? *max : *min);
   if (!plane) r.fail(attribute, "'" + (max ? *max : *min) + "' must be a finite number (m)");
@@ -175,7 +180,8 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
 void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   c.body = r.required("body", "a box's name");
   const scenes::NamedBody& body = findBody(r, scene, c.body);
-  if (body.kind != scenes::NamedBody::Kind::Box) r.fail("body", "'" + c.body + "' is a particle; flips needs a box");
+  if (body.kind != scenes::NamedBody::Kind::Box)
+    r.fail("body", "'" + c.body + "' is a particle; flips needs a box");
   const phys::Vec3 h = scene.world.boxes()[body.index].halfExtents;
   if (h.x == h.y || h.y == h.z || h.x == h.z) {
     r.fail("body", "'" + c.body + "' needs three different side lengths to have a middle axis");
@@ -205,7 +211,8 @@ Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, con
   Criterion c;
   c.line = x.line;
   const std::string& metric = r.required("metric", metricList());
-  const auto info = std::find_if(std::begin(kMetrics), std::end(kMetrics), [&](const MetricInfo& m) { return metric == m.name; });
+  const auto info = std::find_if(std::begin(kMetrics), std::end(kMetrics),
+                                 [&](const MetricInfo& m) { return metric == m.name; });
   if (info == std::end(kMetrics)) r.fail("metric", "'" + metric + "' must be one of " + metricList());
   c.metric = info->metric;
   readWindow(r, c, scene.world.solverSettings().dt);
@@ -214,9 +221,15 @@ Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, con
       readBodies(r, scene, c, true);
       c.limit = r.positive("max", info->unit);
       break;
-    case Metric::StaysBehind: readStaysBehind(r, scene, c); break;
-    case Metric::Flips: readFlips(r, scene, c); break;
-    default: c.limit = r.positive("max", info->unit); break;
+    case Metric::StaysBehind:
+      readStaysBehind(r, scene, c);
+      break;
+    case Metric::Flips:
+      readFlips(r, scene, c);
+      break;
+    default:
+      c.limit = r.positive("max", info->unit);
+      break;
   }
   r.rejectUnknown();
   return c;
@@ -246,17 +259,23 @@ std::string Criterion::describe() const {
     out.append(" of ").append(body).append(atLeast ? " >= " : " <= ");
   } else if (metric == Metric::Flips) {
     out.append("flips of ").append(body);
-    if (limit == upper) out.append(" = ");
-    else if (std::isinf(upper)) out.append(" >= ");
-    else if (limit == 0.0) out.append(" <= ").append(formatNumber(upper));
-    else out.append(" from ").append(formatNumber(limit)).append(" to ").append(formatNumber(upper));
+    if (limit == upper)
+      out.append(" = ");
+    else if (std::isinf(upper))
+      out.append(" >= ");
+    else if (limit == 0.0)
+      out.append(" <= ").append(formatNumber(upper));
+    else
+      out.append(" from ").append(formatNumber(limit)).append(" to ").append(formatNumber(upper));
     if (limit == upper || std::isinf(upper)) out.append(formatNumber(limit));
     out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
     return out;
   } else {
     out.append(metricName(metric));
-    if (body == "*") out.append(" of every body");
-    else if (!body.empty()) out.append(" of ").append(body);
+    if (body == "*")
+      out.append(" of every body");
+    else if (!body.empty())
+      out.append(" of ").append(body);
     out.append(" <= ");
   }
   out.append(formatNumber(limit));
@@ -271,11 +290,13 @@ std::vector<Criterion> parseCriteria(const scenes::Scene& scene) {
   for (const scenes::Expectation& x : scene.expectations) {
     const std::string* kind = x.find("kind");
     if (kind == nullptr) {
-      throw scenes::LoadError(file, x.line, "kind", "<expect> attribute 'kind': is required (pass or position)");
+      throw scenes::LoadError(file, x.line, "kind",
+                              "<expect> attribute 'kind': is required (pass or position)");
     }
     if (*kind == "position") continue;  // an accuracy answer (accuracy.h), not ours
     if (*kind != "pass") {
-      throw scenes::LoadError(file, x.line, "kind", "<expect> attribute 'kind': '" + *kind + "' must be pass or position");
+      throw scenes::LoadError(file, x.line, "kind",
+                              "<expect> attribute 'kind': '" + *kind + "' must be pass or position");
     }
     out.push_back(parseOne(x, scene, file));
   }
@@ -300,8 +321,10 @@ double errorRatio(const Criterion& c, double value) {
       const double low = c.limit <= 0.0 ? 0.0 : (value > 0.0 ? c.limit / value : inf);
       return std::max(low, value / c.upper);
     }
-    case Metric::StaysBehind: return (value - c.start) / (c.limit - c.start);
-    default: return value / c.limit;
+    case Metric::StaysBehind:
+      return (value - c.start) / (c.limit - c.start);
+    default:
+      return value / c.limit;
   }
 }
 

@@ -32,18 +32,18 @@ std::string metricName(Metric metric);
 /// One parsed <expect kind="pass">.
 struct Criterion {
   Metric metric = Metric::Drift;
-  int line = 0;                   ///< of the <expect> in the scene file
-  std::string body;               ///< as written: a body's name, "*" (drift), or "" (none taken)
+  int line = 0;                     ///< of the <expect> in the scene file
+  std::string body;                 ///< as written: a body's name, "*" (drift), or "" (none taken)
   std::vector<std::size_t> bodies;  ///< the body's index in bodyPositions() order (all for "*")
-  std::int64_t boxId = -1;        ///< flips: the box (World::boxes() index)
-  int fromStep = 0;               ///< the window, in World::step() counts: from this state...
-  int toStep = 0;                 ///< ...to this one, both included (0 is the loaded state)
-  double from = 0.0, to = 0.0;    ///< unit: s; the window as written
-  double limit = 0.0;             ///< max; flips: min (0 if none); stays-behind: the plane
-  double upper = 0.0;             ///< flips: max (infinity if none)
-  bool atLeast = false;           ///< true: the figure must be >= limit (flips, stays-behind min)
-  int axis = 0;                   ///< stays-behind: 0, 1, 2 for x, y, z
-  double start = 0.0;             ///< stays-behind: the body's coordinate when loaded (m)
+  std::int64_t boxId = -1;          ///< flips: the box (World::boxes() index)
+  int fromStep = 0;                 ///< the window, in World::step() counts: from this state...
+  int toStep = 0;                   ///< ...to this one, both included (0 is the loaded state)
+  double from = 0.0, to = 0.0;      ///< unit: s; the window as written
+  double limit = 0.0;               ///< max; flips: min (0 if none); stays-behind: the plane
+  double upper = 0.0;               ///< flips: max (infinity if none)
+  bool atLeast = false;             ///< true: the figure must be >= limit (flips, stays-behind min)
+  int axis = 0;                     ///< stays-behind: 0, 1, 2 for x, y, z
+  double start = 0.0;               ///< stays-behind: the body's coordinate when loaded (m)
 
   /// One line for reports: "drift of stack[9] <= 0.05 m over 2-10 s".
   std::string describe() const;
@@ -61,7 +61,8 @@ int runSteps(const std::vector<Criterion>& criteria);
 
 /// How far a measured figure is from its limit, as one number where <= 1 passes and > 1 fails
 /// (infinity when the run blew up): value / max for the "at most" metrics, the larger of
-/// min / value and value / max for flips, and for stays-behind the share of the way from the body's start to the plane.
+/// min / value and value / max for flips, and for stays-behind the share of the way from the body's start to
+/// the plane.
 double errorRatio(const Criterion& criterion, double value);
 
 }  // namespace lab::stability

@@ -18,7 +18,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // twice, and a real Dzhanibekov flip swings the axis all the way round.
 constexpr double kFlipThreshold = 0.5;
 
-bool inWindow(const Criterion& c, int step) { return step >= c.fromStep && step <= c.toStep; }
+bool inWindow(const Criterion& c, int step) {
+  return step >= c.fromStep && step <= c.toStep;
+}
 
 bool needsMetrics(Metric m) {
   return m == Metric::Penetration || m == Metric::StickError || m == Metric::JointGap || m == Metric::Speed;
@@ -26,19 +28,26 @@ bool needsMetrics(Metric m) {
 
 double metricFigure(Metric m, const phys::Metrics& metrics) {
   switch (m) {
-    case Metric::Penetration: return metrics.maxPenetration;
-    case Metric::StickError: return metrics.maxConstraintError;
-    case Metric::JointGap: return metrics.maxJointError;
-    default: return metrics.maxSpeed;
+    case Metric::Penetration:
+      return metrics.maxPenetration;
+    case Metric::StickError:
+      return metrics.maxConstraintError;
+    case Metric::JointGap:
+      return metrics.maxJointError;
+    default:
+      return metrics.maxSpeed;
   }
 }
 
 // Keeps the extreme of a stays-behind coordinate: the highest for a max plane, the lowest for min.
 void keepExtreme(const Criterion& c, double& value, double sample) {
   if (std::isinf(value)) return;  // blown up already: stays so
-  if (!std::isfinite(sample)) value = kInf;
-  else if (std::isnan(value)) value = sample;
-  else value = c.atLeast ? std::min(value, sample) : std::max(value, sample);
+  if (!std::isfinite(sample))
+    value = kInf;
+  else if (std::isnan(value))
+    value = sample;
+  else
+    value = c.atLeast ? std::min(value, sample) : std::max(value, sample);
 }
 
 double startValue(const Criterion& c) {
@@ -80,13 +89,15 @@ void FlipCounter::sample(const phys::Vec3& axis) {
   }
 }
 
-WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world) : criteria_(criteria) {
+WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world)
+    : criteria_(criteria) {
   // bodies.h's order, kept as ids so a criterion reads only its own bodies, not all of them.
   std::vector<bool> inBox(world.particles().size(), false);
   for (phys::BoxId id = 0; id < world.boxes().size(); ++id) {
     bodies_.push_back({true, id});
     const phys::Box& box = world.boxes()[id];
-    for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
+    for (int k = 0; k < box.particleCount; ++k)
+      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
   for (std::size_t i = 0; i < inBox.size(); ++i) {
     if (!inBox[i]) bodies_.push_back({false, static_cast<std::uint32_t>(i)});
@@ -114,9 +125,12 @@ void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& wo
 
 void WorldJudge::sampleFlips(const Criterion& c, State& s, const phys::World& world, int step) const {
   const auto id = static_cast<phys::BoxId>(c.boxId);
-  const phys::Vec3 axis = world.boxPose(id).orientation * FlipCounter::middleAxis(world.boxes()[id].halfExtents);
-  if (step == c.fromStep) s.flips.start(axis);
-  else s.flips.sample(axis);
+  const phys::Vec3 axis =
+      world.boxPose(id).orientation * FlipCounter::middleAxis(world.boxes()[id].halfExtents);
+  if (step == c.fromStep)
+    s.flips.start(axis);
+  else
+    s.flips.sample(axis);
   s.value = s.flips.flips();
 }
 
@@ -144,7 +158,8 @@ void WorldJudge::observe(const phys::World& world, int step) {
 
 std::vector<Verdict> WorldJudge::verdicts(bool blewUp) const {
   std::vector<Verdict> out;
-  for (std::size_t i = 0; i < criteria_.size(); ++i) out.push_back(verdictOf(criteria_[i], blewUp ? kInf : states_[i].value));
+  for (std::size_t i = 0; i < criteria_.size(); ++i)
+    out.push_back(verdictOf(criteria_[i], blewUp ? kInf : states_[i].value));
   return out;
 }
 
@@ -154,7 +169,8 @@ namespace {
 std::vector<std::int64_t> looseIndex(const phys::World& world) {
   std::vector<std::int64_t> index(world.particles().size(), 0);
   for (const phys::Box& box : world.boxes()) {
-    for (int k = 0; k < box.particleCount; ++k) index[box.firstParticle + static_cast<phys::ParticleId>(k)] = -1;
+    for (int k = 0; k < box.particleCount; ++k)
+      index[box.firstParticle + static_cast<phys::ParticleId>(k)] = -1;
   }
   std::int64_t next = static_cast<std::int64_t>(world.boxes().size());
   for (std::int64_t& i : index) i = i < 0 ? -1 : next++;
@@ -174,7 +190,8 @@ double looseStickError(const phys::World& world, const std::vector<phys::Vec3>& 
   double worst = 0.0;
   for (const phys::Stick& s : world.sticks()) {
     if (index[s.a] < 0 || index[s.b] < 0) continue;
-    const double d = glm::length(at[static_cast<std::size_t>(index[s.b])] - at[static_cast<std::size_t>(index[s.a])]);
+    const double d =
+        glm::length(at[static_cast<std::size_t>(index[s.b])] - at[static_cast<std::size_t>(index[s.a])]);
     const double bound = d < s.minLength ? s.minLength : (d > s.maxLength ? s.maxLength : d);
     if (bound > 0.0) worst = std::max(worst, std::abs(d - bound) / bound);
   }
@@ -211,7 +228,9 @@ double peerSpeed(const PeerStates& p, int k, double dt) {
     const phys::Quat& qBefore = p.orientations[static_cast<std::size_t>(k - 1)][b];
     for (int j = 0; j < phys::boxParticleCount(body.model); ++j) {
       const phys::Vec3 local = phys::boxParticleLocal(body.model, body.halfExtents, j);
-      keepLargest(worst, glm::length(peers::toWorld(now[b], qNow, local) - peers::toWorld(before[b], qBefore, local)) / dt);
+      keepLargest(
+          worst,
+          glm::length(peers::toWorld(now[b], qNow, local) - peers::toWorld(before[b], qBefore, local)) / dt);
     }
   }
   return worst;
@@ -238,17 +257,24 @@ double judgeOne(const Criterion& c, const phys::World& world, double dt, const P
       keepLargest(value, peers::jointGap(p.scene, now, p.orientations[at]));
     } else if (c.metric == Metric::Flips) {
       const auto box = static_cast<std::size_t>(c.boxId);  // boxes come first in bodies.h order
-      const phys::Vec3 axis = p.orientations[at][box] * FlipCounter::middleAxis(p.scene.bodies[box].halfExtents);
-      if (k == c.fromStep) flips.start(axis);
-      else flips.sample(axis);
-      if (!std::isfinite(axis.x + axis.y + axis.z)) value = kInf;  // blown up: stays so
-      else if (!std::isinf(value)) value = flips.flips();
+      const phys::Vec3 axis =
+          p.orientations[at][box] * FlipCounter::middleAxis(p.scene.bodies[box].halfExtents);
+      if (k == c.fromStep)
+        flips.start(axis);
+      else
+        flips.sample(axis);
+      if (!std::isfinite(axis.x + axis.y + axis.z))
+        value = kInf;  // blown up: stays so
+      else if (!std::isinf(value))
+        value = flips.flips();
     }
   }
   return value;
 }
 
-bool needsOrientations(Metric m) { return m == Metric::Penetration || m == Metric::JointGap || m == Metric::Flips; }
+bool needsOrientations(Metric m) {
+  return m == Metric::Penetration || m == Metric::JointGap || m == Metric::Flips;
+}
 
 }  // namespace
 
@@ -278,8 +304,10 @@ std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const sce
     // A box's own sticks, which a peer's rigid body keeps exactly, so its stick error would say
     // nothing; a peer that gave no orientations; and one that recorded too little.
     std::string why;
-    if (c.metric == Metric::StickError && !hasLooseSticks(world)) why = "stick-error: rigid bodies";
-    else if (needsOrientations(c.metric) && p.orientations.empty()) why = metricName(c.metric) + ": needs orientations";
+    if (c.metric == Metric::StickError && !hasLooseSticks(world))
+      why = "stick-error: rigid bodies";
+    else if (needsOrientations(c.metric) && p.orientations.empty())
+      why = metricName(c.metric) + ": needs orientations";
     else if (!sameBodies || p.positions.size() <= static_cast<std::size_t>(c.toStep)) {
       why = metricName(c.metric) + ": the peer recorded " + std::to_string(p.positions.size() - 1) + " of " +
             std::to_string(c.toStep) + " steps, or not every body";

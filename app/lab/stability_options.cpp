@@ -24,7 +24,8 @@ std::vector<std::string> splitList(const std::string& text) {
 }
 
 // A list of whole numbers from 1 to high; the error, or "" when good.
-std::string parseCounts(const std::string& option, const std::string& text, int high, std::vector<int>& into) {
+std::string parseCounts(const std::string& option, const std::string& text, int high,
+                        std::vector<int>& into) {
   into.clear();
   for (const std::string& item : splitList(text)) {
     const std::optional<int> n = parseWholeNumber(item, 1, high);
@@ -76,11 +77,16 @@ std::string parseOptions(const std::vector<std::string>& args, StabilityOptions&
     if (a == "--out" || a == "--data" || a == "--methods" || a == "--iterations" || a == "--substeps") {
       const std::string* v = value();
       if (v == nullptr) return a + " needs a value";
-      if (a == "--out") o.out = *v;
-      else if (a == "--data") o.dataDir = *v;
-      else if (a == "--methods") error = parseMethods(*v, o.methods);
-      else if (a == "--iterations") error = parseCounts(a, *v, phys::kMaxIterations, o.iterations);
-      else error = parseCounts(a, *v, phys::kMaxSubsteps, o.substeps);
+      if (a == "--out")
+        o.out = *v;
+      else if (a == "--data")
+        o.dataDir = *v;
+      else if (a == "--methods")
+        error = parseMethods(*v, o.methods);
+      else if (a == "--iterations")
+        error = parseCounts(a, *v, phys::kMaxIterations, o.iterations);
+      else
+        error = parseCounts(a, *v, phys::kMaxSubsteps, o.substeps);
     } else if (a == "--scene") {
       // Every following word up to the next option is a name, so "--scene a b" works too.
       const std::size_t before = o.scenes.size();
@@ -94,7 +100,8 @@ std::string parseOptions(const std::vector<std::string>& args, StabilityOptions&
     } else if (a == "--no-peers") {
       o.peers = false;
     } else {
-      return a.starts_with("-") ? "unknown option '" + a + "'" : "unexpected argument '" + a + "' (scenes go after --scene)";
+      return a.starts_with("-") ? "unknown option '" + a + "'"
+                                : "unexpected argument '" + a + "' (scenes go after --scene)";
     }
     if (!error.empty()) return error;
   }
@@ -135,11 +142,13 @@ std::vector<std::filesystem::path> sceneFiles(const StabilityOptions& o) {
     }
     return files;
   }
-  if (!std::filesystem::is_directory(folder)) throw std::runtime_error("no stability suite at " + folder.string());
+  if (!std::filesystem::is_directory(folder))
+    throw std::runtime_error("no stability suite at " + folder.string());
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     if (entry.is_regular_file() && entry.path().extension() == ".xml") files.push_back(entry.path());
   }
-  std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return naturalLess(a.stem().string(), b.stem().string()); });
+  std::sort(files.begin(), files.end(),
+            [](const auto& a, const auto& b) { return naturalLess(a.stem().string(), b.stem().string()); });
   if (files.empty()) throw std::runtime_error("no scene files in " + folder.string());
   return files;
 }

@@ -45,7 +45,8 @@ std::vector<int> distinct(const std::vector<Setting>& settings, F field) {
 
 // Markdown table cells must not hold a bare '|'.
 std::string cell(std::string text) {
-  for (std::size_t i = text.find('|'); i != std::string::npos; i = text.find('|', i + 2)) text.replace(i, 1, "\\|");
+  for (std::size_t i = text.find('|'); i != std::string::npos; i = text.find('|', i + 2))
+    text.replace(i, 1, "\\|");
   return text;
 }
 
@@ -113,7 +114,8 @@ void methodGrid(std::ostringstream& md, const SuiteResult& r, const std::string&
     if (phys::toString(r.settings[k].method) == method) columns.push_back(k);
   }
   md << "\n### " << method << "\n\n| scene |";
-  for (std::size_t k : columns) md << " " << r.settings[k].iterations << "x" << r.settings[k].substeps << " |";
+  for (std::size_t k : columns)
+    md << " " << r.settings[k].iterations << "x" << r.settings[k].substeps << " |";
   md << "\n|---|";
   for (std::size_t i = 0; i < columns.size(); ++i) md << "---:|";
   md << "\n";
@@ -130,9 +132,12 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
     md << "None: " << r.peerNote << ".\n";
     return;
   }
-  md << "Each engine with its default solver at the scene's dt, judged on its bodies' poses after every step, "
-        "measured alike for all: penetration and joint gaps by our geometry on those poses, speed at the bodies' "
-        "particles' places, flips from the orientations (docs/lab.md, \"Peers\"). A peer's rigid bodies have no "
+  md << "Each engine with its default solver at the scene's dt, judged on its bodies' poses after every "
+        "step, "
+        "measured alike for all: penetration and joint gaps by our geometry on those poses, speed at the "
+        "bodies' "
+        "particles' places, flips from the orientations (docs/lab.md, \"Peers\"). A peer's rigid bodies have "
+        "no "
         "stick error of their own.\n\n| scene |";
   for (const std::string& p : r.peers) md << " " << p << " |";
   md << "\n|---|";
@@ -140,7 +145,8 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
   md << "\n";
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     md << "| " << r.scenes[s].name << " |";
-    for (std::size_t p = 0; p < r.peers.size(); ++p) md << " " << peerEntry(r.outcomes[s][r.settings.size() + p]) << " |";
+    for (std::size_t p = 0; p < r.peers.size(); ++p)
+      md << " " << peerEntry(r.outcomes[s][r.settings.size() + p]) << " |";
     md << "\n";
   }
 }
@@ -149,7 +155,8 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
 std::vector<std::string> columnLabels(const SuiteResult& r) {
   std::vector<std::string> out;
   for (const Setting& s : r.settings) {
-    out.push_back(std::string(phys::toString(s.method)) + ":" + std::to_string(s.iterations) + "x" + std::to_string(s.substeps));
+    out.push_back(std::string(phys::toString(s.method)) + ":" + std::to_string(s.iterations) + "x" +
+                  std::to_string(s.substeps));
   }
   for (const std::string& p : r.peers) out.push_back(p);
   return out;
@@ -199,7 +206,8 @@ std::string markdownReport(const SuiteResult& r) {
         "World::step over all its runs.\n\n";
   summaryTable(md, r);
   md << "\n## Per method\n\nColumns are iterations x substeps. Each entry is the worst criterion's value / "
-        "limit (for flips, min / value or value / max; for stays-behind, the share of the way to the plane): at most 1 "
+        "limit (for flips, min / value or value / max; for stays-behind, the share of the way to the plane): "
+        "at most 1 "
         "passes, **bold** fails, inf is a blow-up (the guard froze a body).\n";
   for (const std::string& m : r.methods) methodGrid(md, r, m);
   peerTable(md, r);
@@ -215,8 +223,11 @@ std::string csvReport(const SuiteResult& r) {
       const Outcome& o = r.outcomes[s][k];
       const bool peer = k >= r.settings.size();
       csv << csvField(sc.name) << ",";
-      if (peer) csv << csvField(r.peers[k - r.settings.size()]) << ",,,";
-      else csv << phys::toString(r.settings[k].method) << "," << r.settings[k].iterations << "," << r.settings[k].substeps << ",";
+      if (peer)
+        csv << csvField(r.peers[k - r.settings.size()]) << ",,,";
+      else
+        csv << phys::toString(r.settings[k].method) << "," << r.settings[k].iterations << ","
+            << r.settings[k].substeps << ",";
       if (!o.judged) {
         csv << "n/a,,,,," << number(o.msPerStep) << "," << csvField(o.note) << "\n";
         continue;
@@ -225,8 +236,8 @@ std::string csvReport(const SuiteResult& r) {
       const Verdict& v = o.verdicts[o.worst];
       // A flips criterion with only a max has min 0; its max is the limit then.
       const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
-      csv << (o.passed ? 1 : 0) << "," << number(v.value) << "," << number(limit) << "," << number(v.ratio) << ","
-          << csvField(c.describe()) << "," << number(o.msPerStep) << "," << csvField(o.note) << "\n";
+      csv << (o.passed ? 1 : 0) << "," << number(v.value) << "," << number(limit) << "," << number(v.ratio)
+          << "," << csvField(c.describe()) << "," << number(o.msPerStep) << "," << csvField(o.note) << "\n";
     }
   }
   return csv.str();
@@ -255,8 +266,11 @@ std::string gnuplotScript(const SuiteResult& r) {
   const std::size_t kLeft = 40 + 7 * longest;
   // At least wide enough for the titles; extra width is left blank on the right, so cells stay square.
   const std::size_t plotRight = kLeft + kCell * columns;
-  const std::size_t width = std::max<std::size_t>(plotRight + kRight, 760), height = kTop + kBottom + kCell * r.scenes.size();
-  auto at = [](std::size_t pixels, std::size_t of) { return number(static_cast<double>(pixels) / static_cast<double>(of)); };
+  const std::size_t width = std::max<std::size_t>(plotRight + kRight, 760),
+                    height = kTop + kBottom + kCell * r.scenes.size();
+  auto at = [](std::size_t pixels, std::size_t of) {
+    return number(static_cast<double>(pixels) / static_cast<double>(of));
+  };
   // A title as a label from the left edge: a centred title overflows a narrow chart.
   const std::string titleY = at(height - 25, height);
   std::ostringstream gp;
@@ -264,30 +278,38 @@ std::string gnuplotScript(const SuiteResult& r) {
      << "# Scenes on y, solver settings (method:iterations x substeps) then peers on x.\n"
      << "unset key\nset xtics rotate by 90 right font ',8'\nset ytics font ',9'\nset tics scale 0\n"
      << "set lmargin at screen " << at(kLeft, width) << "\nset rmargin at screen " << at(plotRight, width)
-     << "\nset bmargin at screen " << at(kBottom, height) << "\nset tmargin at screen " << at(height - kTop, height) << "\n"
+     << "\nset bmargin at screen " << at(kBottom, height) << "\nset tmargin at screen "
+     << at(height - kTop, height)
+     << "\n"
      // Cells not judged (NaN) are left undrawn: a grey ground behind the image shows them.
      << "set object 1 rectangle from graph 0, graph 0 to graph 1, graph 1 behind fillcolor rgb '#bdbdbd' "
         "fillstyle solid noborder\n";
   // Lines between the methods' blocks of settings, and between the settings and the peers.
   for (std::size_t k = 1; k < columns; ++k) {
-    const bool newBlock = k >= r.settings.size() ? k == r.settings.size() : r.settings[k].method != r.settings[k - 1].method;
+    const bool newBlock =
+        k >= r.settings.size() ? k == r.settings.size() : r.settings[k].method != r.settings[k - 1].method;
     const double x = static_cast<double>(k) - 0.5;  // between cell k - 1 and cell k
-    if (newBlock) gp << "set arrow from " << x << ", graph 0 to " << x << ", graph 1 nohead front lw 2 lc rgb 'black'\n";
+    if (newBlock)
+      gp << "set arrow from " << x << ", graph 0 to " << x << ", graph 1 nohead front lw 2 lc rgb 'black'\n";
   }
   gp << "do for [format in 'png svg'] {\n"
-     << "  if (format eq 'png') { if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " << width
-     << "," << height << " } else { set terminal png size " << width << "," << height << " } }\n"
+     << "  if (format eq 'png') { if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size "
+     << width << "," << height << " } else { set terminal png size " << width << "," << height << " } }\n"
      << "  if (format eq 'svg') { set terminal svg size " << width << "," << height << " }\n"
      << "  set output 'stability-pass.'.format\n"
-     << "  set label 1 'Stability: pass (green), fail (red), not judged (grey)' at screen 0.01, screen " << titleY << " left\n"
+     << "  set label 1 'Stability: pass (green), fail (red), not judged (grey)' at screen 0.01, screen "
+     << titleY << " left\n"
      << "  set cbrange [0:1]\n  set palette defined (0 '#d73027', 0.5 '#bdbdbd', 1 '#1a9850')\n"
      << "  set cbtics ('fail' 0, 'n/a' 0.5, 'pass' 1)\n  set palette maxcolors 3\n"
      << "  plot 'stability-pass.dat' matrix rowheaders columnheaders with image\n"
      << "  set output 'stability-error.'.format\n"
-     << "  set label 1 'Stability: log10(value / limit) of the worst criterion: > 0 fails, 3 is 1000 or a blow-up, grey n/a' at "
-        "screen 0.01, screen " << titleY << " left\n"
+     << "  set label 1 'Stability: log10(value / limit) of the worst criterion: > 0 fails, 3 is 1000 or a "
+        "blow-up, grey n/a' at "
+        "screen 0.01, screen "
+     << titleY << " left\n"
      << "  set cbrange [" << -kLogClip << ":" << kLogClip << "]\n"
-     << "  set palette defined (-3 '#2166ac', -1 '#d1e5f0', 0 '#f7f7f7', 0.001 '#fddbc7', 1 '#ef8a62', 3 '#67001f')\n"
+     << "  set palette defined (-3 '#2166ac', -1 '#d1e5f0', 0 '#f7f7f7', 0.001 '#fddbc7', 1 '#ef8a62', 3 "
+        "'#67001f')\n"
      << "  set cbtics autofreq\n  set palette maxcolors 0\n"
      << "  plot 'stability-error.dat' matrix rowheaders columnheaders with image\n"
      << "  unset output\n}\n";

@@ -35,12 +35,12 @@ SuiteScene loadSuiteScene(const std::filesystem::path& file);
 /// What one run (a scene under a setting, or in a peer) came to.
 struct Outcome {
   std::vector<Verdict> verdicts;  ///< one per criterion
-  bool judged = false;  ///< at least one criterion could be judged
-  bool passed = false;  ///< every judged criterion passed
-  std::size_t worst = 0;  ///< the judged criterion with the largest ratio
-  double wallMs = 0.0;    ///< unit: ms; the stepping alone (World::step or the peer's)
-  double msPerStep = 0.0; ///< unit: ms
-  std::string note;       ///< the guard's first freeze, or what a peer could not do
+  bool judged = false;            ///< at least one criterion could be judged
+  bool passed = false;            ///< every judged criterion passed
+  std::size_t worst = 0;          ///< the judged criterion with the largest ratio
+  double wallMs = 0.0;            ///< unit: ms; the stepping alone (World::step or the peer's)
+  double msPerStep = 0.0;         ///< unit: ms
+  std::string note;               ///< the guard's first freeze, or what a peer could not do
 };
 
 /// Runs the scene under the setting for its steps; stops at the first freeze (a blow-up).

@@ -114,9 +114,13 @@ std::string parseSweep(const std::vector<std::string>& args, SweepOptions& o) {
       if (std::string e = parseListOption(a, *v, o); !e.empty()) return e;
     } else if (a == "--repeat" || a == "--steps") {
       int n = 0;
-      if (std::string e = parseCountOption(a, value(), a == "--repeat" ? kMaxRepeats : kMaxSteps, n); !e.empty()) return e;
-      if (a == "--repeat") o.repeats = n;
-      else o.steps = n;
+      if (std::string e = parseCountOption(a, value(), a == "--repeat" ? kMaxRepeats : kMaxSteps, n);
+          !e.empty())
+        return e;
+      if (a == "--repeat")
+        o.repeats = n;
+      else
+        o.steps = n;
     } else if (a == "--no-peers") {
       o.peers = false;
     } else if (a == "--data" || a == "--out") {
@@ -178,8 +182,9 @@ class Progress {
  private:
   std::string bar() const {
     const int filled = std::min(10, done_ * 10 / total_);
-    return "[" + std::string(static_cast<std::size_t>(filled), '#') + std::string(static_cast<std::size_t>(10 - filled), ' ') +
-           "] " + std::to_string(done_) + "/" + std::to_string(total_) + " runs";
+    return "[" + std::string(static_cast<std::size_t>(filled), '#') +
+           std::string(static_cast<std::size_t>(10 - filled), ' ') + "] " + std::to_string(done_) + "/" +
+           std::to_string(total_) + " runs";
   }
 
   std::ostream& err_;
@@ -226,9 +231,11 @@ std::string makePlan(const SweepOptions& o, const std::filesystem::path& file, P
   const std::vector<int> iterations = o.iterations.empty() ? std::vector{own.iterations} : o.iterations;
   const std::vector<int> substeps = o.substeps.empty() ? std::vector{own.substeps} : o.substeps;
   plan.dts = o.dts.empty() ? std::vector{own.dt} : o.dts;
-  const std::size_t count = plan.models.size() * plan.dts.size() * methods.size() * iterations.size() * substeps.size();
+  const std::size_t count =
+      plan.models.size() * plan.dts.size() * methods.size() * iterations.size() * substeps.size();
   if (count > kMaxCombinations) {
-    return std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) + " (shorten a list)";
+    return std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) +
+           " (shorten a list)";
   }
   for (const ModelChoice& model : plan.models) {
     for (double dt : plan.dts) {
@@ -259,13 +266,14 @@ Row runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progres
   progress.advance();
   r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
   progress.advance(plan.repeats);
-  if (r.figures.frozen > 0) r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) + " particles";
+  if (r.figures.frozen > 0)
+    r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) + " particles";
   return r;
 }
 
 // The peers at one dt, on the scene as loaded with the first model, against that model's target.
-void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Row>& rows, std::vector<std::string>& notes,
-              Progress& progress) {
+void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Row>& rows,
+              std::vector<std::string>& notes, Progress& progress) {
   Setting first{plan.models.front(), phys::SolverMethod::GaussSeidel, 1, 1, dt};
   const AccuracyTarget& target = targets.get(plan.file, first, plan.stepsAt(dt));
   const int steps = stepsFor(target, plan.stepsAt(dt));
@@ -308,8 +316,12 @@ bool oneDt(const std::vector<Row>& rows) {
   return std::all_of(rows.begin(), rows.end(), [&](const Row& r) { return r.dt == rows.front().dt; });
 }
 
-double cost(const Row& r, bool perStep) { return perStep ? r.msPerStep : r.msPerSimSecond(); }
-double shownError(const Row& r) { return std::max(r.figures.error, kErrorFloor); }
+double cost(const Row& r, bool perStep) {
+  return perStep ? r.msPerStep : r.msPerSimSecond();
+}
+double shownError(const Row& r) {
+  return std::max(r.figures.error, kErrorFloor);
+}
 
 // Marks the rows no other row beats on both cost and error (a blown-up run is never on it).
 void markPareto(std::vector<Row>& rows) {
@@ -331,29 +343,36 @@ std::vector<Row> frontByCost(const std::vector<Row>& rows) {
     if (r.pareto) front.push_back(r);
   }
   const bool perStep = oneDt(rows);
-  std::stable_sort(front.begin(), front.end(), [&](const Row& a, const Row& b) { return cost(a, perStep) < cost(b, perStep); });
+  std::stable_sort(front.begin(), front.end(),
+                   [&](const Row& a, const Row& b) { return cost(a, perStep) < cost(b, perStep); });
   return front;
 }
 
 // ---- files ----------------------------------------------------------------------------------
 
-std::string csvNumber(double v) { return formatNumber(v, 10); }
+std::string csvNumber(double v) {
+  return formatNumber(v, 10);
+}
 
 constexpr const char* kCsvHeader =
-    "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_uncertainty,"
+    "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
+    "uncertainty,"
     "max_stick_error,max_joint_error,max_penetration,energy_drift,frozen,pareto,note\n";
 
 std::string csvRow(const std::string& scene, const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
-  auto ours = [&](double v) { return r.peer ? std::string() : csvNumber(v); };  // blank: no such figure for a peer
-  std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," + opt(r.iterations) + "," +
-                     opt(r.substeps) + "," + csvNumber(r.dt) + "," + std::to_string(r.steps) + "," +
-                     std::to_string(r.repeats) + "," + csvNumber(r.msPerStep) + "," + csvNumber(r.msPerSimSecond()) + "," +
+  auto ours = [&](double v) {
+    return r.peer ? std::string() : csvNumber(v);
+  };  // blank: no such figure for a peer
+  std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
+                     opt(r.iterations) + "," + opt(r.substeps) + "," + csvNumber(r.dt) + "," +
+                     std::to_string(r.steps) + "," + std::to_string(r.repeats) + "," +
+                     csvNumber(r.msPerStep) + "," + csvNumber(r.msPerSimSecond()) + "," +
                      csvNumber(r.blewUp() ? kInf : r.figures.error) + "," + csvNumber(r.uncertainty) + "," +
                      ours(r.figures.maxStickError) + "," + ours(r.figures.maxJointError) + "," +
                      csvNumber(r.figures.maxPenetration) + "," + ours(r.figures.energyDrift) + "," +
-                     (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (r.pareto ? "1" : "0") + "," +
-                     csvField(r.note);
+                     (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," +
+                     (r.pareto ? "1" : "0") + "," + csvField(r.note);
   return line + "\n";
 }
 
@@ -390,7 +409,8 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
   c.title = plan.sceneName + ": error against cost (" + formatNumber(simulatedSeconds(rows), 4) +
             " s simulated; labels: iterations x substeps)";
   c.xLabel = perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second";
-  c.yLabel = "error (m): largest distance from the " + firstTarget.kind + (firstTarget.kind == "analytic" ? " answer" : " run");
+  c.yLabel = "error (m): largest distance from the " + firstTarget.kind +
+             (firstTarget.kind == "analytic" ? " answer" : " run");
   c.logX = true;
   c.logY = true;
   c.output = "error-vs-cost";
@@ -410,13 +430,15 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
   front.title = "Pareto front";
   front.line = true;
   front.labels = true;
-  for (const Row& r : frontByCost(rows)) front.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
+  for (const Row& r : frontByCost(rows))
+    front.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
   c.series.push_back(front);
   for (const std::string& name : order) {
     ChartSeries s;
     s.title = name;
     for (const Row& r : rows) {
-      if (seriesName(r) == name && !r.blewUp()) s.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
+      if (seriesName(r) == name && !r.blewUp())
+        s.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
     }
     c.series.push_back(s);
   }
@@ -442,24 +464,27 @@ std::string padLeft(const std::string& text, std::size_t width) {
 std::string tableLine(const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("-"); };
   auto ours = [&](double v) { return r.peer ? std::string("-") : formatNumber(v, 3); };
-  return pad(r.method, 13) + " " + pad(r.model.empty() ? "-" : r.model, 12) + padLeft(opt(r.iterations), 5) + padLeft(opt(r.substeps), 5) + "  " +
-         pad(formatNumber(r.dt, 6), 10) + padLeft(std::to_string(r.steps), 6) + padLeft(formatNumber(r.msPerStep, 4), 10) + padLeft(formatNumber(r.blewUp() ? kInf : r.figures.error, 3), 11) +
+  return pad(r.method, 13) + " " + pad(r.model.empty() ? "-" : r.model, 12) + padLeft(opt(r.iterations), 5) +
+         padLeft(opt(r.substeps), 5) + "  " + pad(formatNumber(r.dt, 6), 10) +
+         padLeft(std::to_string(r.steps), 6) + padLeft(formatNumber(r.msPerStep, 4), 10) +
+         padLeft(formatNumber(r.blewUp() ? kInf : r.figures.error, 3), 11) +
          padLeft(ours(r.figures.maxStickError), 10) + padLeft(formatNumber(r.figures.maxPenetration, 3), 10) +
-         padLeft(ours(r.figures.energyDrift), 10) + padLeft(r.peer ? "-" : std::to_string(r.figures.frozen), 7) +
-         (r.pareto ? "  *" : "") + "\n";
+         padLeft(ours(r.figures.energyDrift), 10) +
+         padLeft(r.peer ? "-" : std::to_string(r.figures.frozen), 7) + (r.pareto ? "  *" : "") + "\n";
 }
 
-void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows, const std::vector<std::string>& accuracy,
-                 const std::vector<std::string>& notes) {
+void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows,
+                 const std::vector<std::string>& accuracy, const std::vector<std::string>& notes) {
   out << "sweep       " << plan.sceneName << " (" << plan.file.string() << ")\n";
-  out << "runs        " << plan.settings.size() << (plan.settings.size() == 1 ? " setting" : " settings") << " x "
-      << plan.repeats << " timed " << (plan.repeats == 1 ? "run" : "runs") << " and 1 measured, each "
-      << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
+  out << "runs        " << plan.settings.size() << (plan.settings.size() == 1 ? " setting" : " settings")
+      << " x " << plan.repeats << " timed " << (plan.repeats == 1 ? "run" : "runs")
+      << " and 1 measured, each " << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
-  out << pad("method", 13) << " " << pad("model", 12) << padLeft("iter", 5) << padLeft("sub", 5) << "  " << pad("dt (s)", 10)
-      << padLeft("steps", 6) << padLeft("ms/step", 10) << padLeft("error (m)", 11) << padLeft("stick err", 10) << padLeft("penet (m)", 10)
-      << padLeft("drift (J)", 10) << padLeft("frozen", 7) << "\n";
+  out << pad("method", 13) << " " << pad("model", 12) << padLeft("iter", 5) << padLeft("sub", 5) << "  "
+      << pad("dt (s)", 10) << padLeft("steps", 6) << padLeft("ms/step", 10) << padLeft("error (m)", 11)
+      << padLeft("stick err", 10) << padLeft("penet (m)", 10) << padLeft("drift (J)", 10)
+      << padLeft("frozen", 7) << "\n";
   for (const Row& r : rows) out << tableLine(r);
 }
 
@@ -498,7 +523,8 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
 int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream& out, std::ostream& err) {
   const int engines = plan.peers ? static_cast<int>(peerEngines().size()) : 0;
   const int total = static_cast<int>(plan.settings.size()) * (plan.repeats + 1) +
-                    static_cast<int>(plan.models.size() * plan.dts.size()) + engines * static_cast<int>(plan.dts.size());
+                    static_cast<int>(plan.models.size() * plan.dts.size()) +
+                    engines * static_cast<int>(plan.dts.size());
   Progress progress(err, total);
   TargetCache targets;
   std::vector<Row> rows;

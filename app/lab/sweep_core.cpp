@@ -31,7 +31,9 @@ scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
 }
 
 // The larger of a running maximum and a new figure; a figure that is not finite stays so.
-double worst(double sofar, double figure) { return std::isfinite(figure) ? std::max(sofar, figure) : kInf; }
+double worst(double sofar, double figure) {
+  return std::isfinite(figure) ? std::max(sofar, figure) : kInf;
+}
 
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point start) {
@@ -67,13 +69,17 @@ SceneModels sceneModels(const std::filesystem::path& file) {
   ModelChoice c;
   std::vector<std::string> parts;
   if (m.boxes) {
-    if (asWritten == corners) c.options.boxModel = phys::BoxModel::Corners;
-    else if (asWritten == tetra) c.options.boxModel = phys::BoxModel::Tetra;
+    if (asWritten == corners)
+      c.options.boxModel = phys::BoxModel::Corners;
+    else if (asWritten == tetra)
+      c.options.boxModel = phys::BoxModel::Tetra;
     if (c.options.boxModel) parts.emplace_back(phys::toString(*c.options.boxModel));
   }
   if (m.ragdolls) {
-    if (asWritten == seed) c.options.ragdollModel = phys::RagdollModel::Seed;
-    else if (asWritten == lean) c.options.ragdollModel = phys::RagdollModel::Lean;
+    if (asWritten == seed)
+      c.options.ragdollModel = phys::RagdollModel::Seed;
+    else if (asWritten == lean)
+      c.options.ragdollModel = phys::RagdollModel::Lean;
     if (c.options.ragdollModel) parts.emplace_back(phys::toString(*c.options.ragdollModel));
   }
   if (parts.size() != static_cast<std::size_t>(m.boxes) + static_cast<std::size_t>(m.ragdolls)) {
@@ -212,14 +218,17 @@ bool TargetCache::has(const Setting& setting, int steps) const {
   return targets_.count(cacheKey(setting, steps)) != 0;
 }
 
-int defaultSteps(double dt) { return std::max(1, static_cast<int>(std::lround(kDefaultHorizon / dt))); }
+int defaultSteps(double dt) {
+  return std::max(1, static_cast<int>(std::lround(kDefaultHorizon / dt)));
+}
 
 std::optional<std::vector<std::string>> splitList(const std::string& text) {
   std::vector<std::string> items;
   std::size_t start = 0;
   for (;;) {
     const std::size_t comma = text.find(',', start);
-    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::string item =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     if (item.empty()) return std::nullopt;
     items.push_back(item);
     if (comma == std::string::npos) return items;

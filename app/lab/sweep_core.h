@@ -21,7 +21,7 @@ struct ModelChoice {
   /// "corners", "tetra", "seed", "lean", "tetra+lean"; "scene" for the file's own mixed models;
   /// empty for a scene with neither boxes nor ragdolls.
   std::string label;
-  scenes::LoadOptions options;    ///< what is imposed; nothing for "scene"
+  scenes::LoadOptions options;  ///< what is imposed; nothing for "scene"
 };
 
 /// The model kinds a scene has, found by loading it under each model and counting particles

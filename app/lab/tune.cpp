@@ -46,7 +46,8 @@ constexpr int kSeedSubsteps = 1;
 std::string tuneUsage() {
   return "usage: lab tune SCENE --target METRIC=VALUE [--target ...] [--steps N] [--repeat R] [--data DIR]\n"
          "  METRIC=VALUE    an upper bound the setting must meet; METRIC is one of\n"
-         "                    error        m, largest distance from the accuracy target (analytic or reference)\n"
+         "                    error        m, largest distance from the accuracy target (analytic or "
+         "reference)\n"
          "                    stick-error  largest stick violation / rest length over the run (0.01 = 1%)\n"
          "                    joint-error  m, largest joint gap over the run\n"
          "                    penetration  m, deepest penetration over the run\n"
@@ -68,8 +69,10 @@ struct MetricInfo {
 };
 
 constexpr MetricInfo kMetrics[] = {
-    {Metric::Error, "error", " m"},         {Metric::StickError, "stick-error", ""},
-    {Metric::JointError, "joint-error", " m"}, {Metric::Penetration, "penetration", " m"},
+    {Metric::Error, "error", " m"},
+    {Metric::StickError, "stick-error", ""},
+    {Metric::JointError, "joint-error", " m"},
+    {Metric::Penetration, "penetration", " m"},
     {Metric::Drift, "drift", " J"},
 };
 
@@ -82,11 +85,16 @@ const MetricInfo& info(Metric m) {
 
 double figure(const Figures& f, Metric m) {
   switch (m) {
-    case Metric::Error: return f.error;
-    case Metric::StickError: return f.maxStickError;
-    case Metric::JointError: return f.maxJointError;
-    case Metric::Penetration: return f.maxPenetration;
-    case Metric::Drift: return std::abs(f.energyDrift);
+    case Metric::Error:
+      return f.error;
+    case Metric::StickError:
+      return f.maxStickError;
+    case Metric::JointError:
+      return f.maxJointError;
+    case Metric::Penetration:
+      return f.maxPenetration;
+    case Metric::Drift:
+      return std::abs(f.energyDrift);
   }
   return kInf;
 }
@@ -112,7 +120,8 @@ std::string parseTarget(const std::string& text, TuneOptions& o) {
     if (name == i.name) which = &i;
   }
   if (which == nullptr) {
-    return "--target: unknown metric '" + name + "' in '" + text + "' (error, stick-error, joint-error, penetration or drift)";
+    return "--target: unknown metric '" + name + "' in '" + text +
+           "' (error, stick-error, joint-error, penetration or drift)";
   }
   const std::optional<double> v = eq == std::string::npos ? std::nullopt : parseNumber(text.substr(eq + 1));
   if (!v || *v <= 0.0) return "--target: '" + text + "' needs METRIC=VALUE with a finite VALUE > 0";
@@ -133,9 +142,13 @@ std::string parseTune(const std::vector<std::string>& args, TuneOptions& o) {
       if (std::string e = parseTarget(*v, o); !e.empty()) return e;
     } else if (a == "--steps" || a == "--repeat") {
       int n = 0;
-      if (std::string e = parseCountOption(a, value(), a == "--steps" ? kMaxSteps : kMaxRepeats, n); !e.empty()) return e;
-      if (a == "--steps") o.steps = n;
-      else o.repeats = n;
+      if (std::string e = parseCountOption(a, value(), a == "--steps" ? kMaxSteps : kMaxRepeats, n);
+          !e.empty())
+        return e;
+      if (a == "--steps")
+        o.steps = n;
+      else
+        o.repeats = n;
     } else if (a == "--data") {
       const std::string* v = value();
       if (v == nullptr) return "--data needs a folder";
@@ -163,7 +176,8 @@ class Search {
       : file_(std::move(file)), steps_(steps), targets_(std::move(targets)) {}
 
   bool needsError() const {
-    return std::any_of(targets_.begin(), targets_.end(), [](const Target& t) { return t.metric == Metric::Error; });
+    return std::any_of(targets_.begin(), targets_.end(),
+                       [](const Target& t) { return t.metric == Metric::Error; });
   }
 
   /// The target of the setting's model: the accuracy target when error is asked for, else
@@ -188,7 +202,8 @@ class Search {
 
   bool meets(const Figures& f) const {
     if (f.frozen > 0) return false;
-    return std::all_of(targets_.begin(), targets_.end(), [&](const Target& t) { return figure(f, t.metric) <= t.bound; });
+    return std::all_of(targets_.begin(), targets_.end(),
+                       [&](const Target& t) { return figure(f, t.metric) <= t.bound; });
   }
 
   /// How far the figures are from meeting the targets: the largest figure / bound (<= 1 meets).
@@ -214,7 +229,7 @@ class Search {
       if (upper < 1) continue;  // only 1 iteration could still be cheaper; try more substeps
       const Setting top{model, method, kLadder[upper], substeps, dt};
       if (!meets(evaluate(top))) continue;
-      int lo = 0;  // fails
+      int lo = 0;      // fails
       int hi = upper;  // meets
       while (hi - lo > 1) {
         const int mid = (lo + hi) / 2;
@@ -277,9 +292,9 @@ class Search {
 std::string figuresText(const Figures& f, bool withError) {
   std::string s;
   if (withError) s += "error " + formatNumber(f.error, 3) + " m, ";
-  s += "stick-error " + formatNumber(f.maxStickError, 3) + ", joint-error " + formatNumber(f.maxJointError, 3) +
-       " m, penetration " + formatNumber(f.maxPenetration, 3) + " m, drift " + formatNumber(std::abs(f.energyDrift), 3) +
-       " J, frozen " + std::to_string(f.frozen);
+  s += "stick-error " + formatNumber(f.maxStickError, 3) + ", joint-error " +
+       formatNumber(f.maxJointError, 3) + " m, penetration " + formatNumber(f.maxPenetration, 3) +
+       " m, drift " + formatNumber(std::abs(f.energyDrift), 3) + " J, frozen " + std::to_string(f.frozen);
   return s;
 }
 
@@ -347,8 +362,8 @@ int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostrea
   const Candidate seedResult = search.measureAndTime(defaults, o.repeats);
   std::vector<ModelChoice> choices = allModelChoices(models);
   std::vector<phys::SolverMethod> methods{own.method};
-  for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi, phys::SolverMethod::Xpbd,
-                               phys::SolverMethod::Shake}) {
+  for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
+                               phys::SolverMethod::Xpbd, phys::SolverMethod::Shake}) {
     if (m != own.method) methods.push_back(m);
   }
   for (const ModelChoice& model : choices) {
@@ -358,8 +373,8 @@ int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostrea
 
   std::string modelNames;
   for (const ModelChoice& m : choices) modelNames += (modelNames.empty() ? "" : ", ") + m.label;
-  out << "searched    " << search.evaluations() << " settings: "
-      << (modelNames.empty() ? std::string() : "models " + modelNames + "; ")
+  out << "searched    " << search.evaluations()
+      << " settings: " << (modelNames.empty() ? std::string() : "models " + modelNames + "; ")
       << "4 methods; substeps and iterations from 1,2,3,4,6,8,12,16,24,32\n";
   const bool withError = search.needsError();
   if (withError && search.target(sceneOwn).kind == "reference") {

@@ -32,30 +32,51 @@ constexpr Control kControls[] = {
 
 }  // namespace
 
-std::span<const Control> controls() { return kControls; }
+std::span<const Control> controls() {
+  return kControls;
+}
 
 std::optional<Action> actionForKey(int key, int mods) {
   if ((mods & (GLFW_MOD_CONTROL | GLFW_MOD_ALT | GLFW_MOD_SUPER)) != 0) return std::nullopt;
   switch (key) {
-    case GLFW_KEY_1: return Action::Scene1;
-    case GLFW_KEY_2: return Action::Scene2;
-    case GLFW_KEY_3: return Action::Scene3;
-    case GLFW_KEY_0: return Action::ClearScene;
-    case GLFW_KEY_TAB: return Action::CycleDrawMode;
-    case GLFW_KEY_C: return Action::ToggleMarkers;
-    case GLFW_KEY_G: return Action::ToggleGravityMode;
-    case GLFW_KEY_Y: return Action::GravityUp;
-    case GLFW_KEY_H: return Action::GravityDown;
-    case GLFW_KEY_U: return Action::DampingUp;
-    case GLFW_KEY_J: return Action::DampingDown;
-    case GLFW_KEY_SPACE: return Action::Pause;
-    case GLFW_KEY_N: return Action::StepOnce;
-    case GLFW_KEY_F5: return Action::Reload;
-    case GLFW_KEY_F: return Action::SpawnBox;
-    case GLFW_KEY_R: return Action::SpawnRagdoll;
-    case GLFW_KEY_T: return Action::SpawnCapsuleRagdoll;
-    case GLFW_KEY_F1: return Action::ToggleHelp;
-    default: return std::nullopt;
+    case GLFW_KEY_1:
+      return Action::Scene1;
+    case GLFW_KEY_2:
+      return Action::Scene2;
+    case GLFW_KEY_3:
+      return Action::Scene3;
+    case GLFW_KEY_0:
+      return Action::ClearScene;
+    case GLFW_KEY_TAB:
+      return Action::CycleDrawMode;
+    case GLFW_KEY_C:
+      return Action::ToggleMarkers;
+    case GLFW_KEY_G:
+      return Action::ToggleGravityMode;
+    case GLFW_KEY_Y:
+      return Action::GravityUp;
+    case GLFW_KEY_H:
+      return Action::GravityDown;
+    case GLFW_KEY_U:
+      return Action::DampingUp;
+    case GLFW_KEY_J:
+      return Action::DampingDown;
+    case GLFW_KEY_SPACE:
+      return Action::Pause;
+    case GLFW_KEY_N:
+      return Action::StepOnce;
+    case GLFW_KEY_F5:
+      return Action::Reload;
+    case GLFW_KEY_F:
+      return Action::SpawnBox;
+    case GLFW_KEY_R:
+      return Action::SpawnRagdoll;
+    case GLFW_KEY_T:
+      return Action::SpawnCapsuleRagdoll;
+    case GLFW_KEY_F1:
+      return Action::ToggleHelp;
+    default:
+      return std::nullopt;
   }
 }
 

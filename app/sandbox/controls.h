@@ -9,16 +9,16 @@
 namespace sandbox {
 
 enum class Action {
-  Scene1,            ///< the seed's scene 1: one ragdoll
-  Scene2,            ///< the seed's scene 2: a pyramid of boxes of varying size
-  Scene3,            ///< the seed's scene 3: three 3x3 layers of boxes
-  ClearScene,        ///< remove every body, keep the settings
-  CycleDrawMode,     ///< filled, wireframe, constraints
-  ToggleMarkers,     ///< green boxes on vertices moved by box-box collisions
-  ToggleGravityMode, ///< uniform or towards a point
+  Scene1,             ///< the seed's scene 1: one ragdoll
+  Scene2,             ///< the seed's scene 2: a pyramid of boxes of varying size
+  Scene3,             ///< the seed's scene 3: three 3x3 layers of boxes
+  ClearScene,         ///< remove every body, keep the settings
+  CycleDrawMode,      ///< filled, wireframe, constraints
+  ToggleMarkers,      ///< green boxes on vertices moved by box-box collisions
+  ToggleGravityMode,  ///< uniform or towards a point
   GravityUp,
   GravityDown,
-  DampingUp,         ///< the seed's wind resistance
+  DampingUp,  ///< the seed's wind resistance
   DampingDown,
   Pause,
   StepOnce,

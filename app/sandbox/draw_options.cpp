@@ -4,9 +4,12 @@ namespace sandbox {
 
 std::string_view toString(DrawMode mode) {
   switch (mode) {
-    case DrawMode::Filled: return "filled";
-    case DrawMode::Wireframe: return "wireframe";
-    case DrawMode::Constraints: return "constraints";
+    case DrawMode::Filled:
+      return "filled";
+    case DrawMode::Wireframe:
+      return "wireframe";
+    case DrawMode::Constraints:
+      return "constraints";
   }
   return "filled";
 }
@@ -20,9 +23,12 @@ std::optional<DrawMode> parseDrawMode(std::string_view name) {
 
 DrawMode nextDrawMode(DrawMode mode) {
   switch (mode) {
-    case DrawMode::Filled: return DrawMode::Wireframe;
-    case DrawMode::Wireframe: return DrawMode::Constraints;
-    case DrawMode::Constraints: return DrawMode::Filled;
+    case DrawMode::Filled:
+      return DrawMode::Wireframe;
+    case DrawMode::Wireframe:
+      return DrawMode::Constraints;
+    case DrawMode::Constraints:
+      return DrawMode::Filled;
   }
   return DrawMode::Filled;
 }

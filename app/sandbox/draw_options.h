@@ -18,11 +18,11 @@ DrawMode nextDrawMode(DrawMode mode);
 
 struct DrawOptions {
   DrawMode mode = DrawMode::Filled;
-  bool markers = false;    ///< green boxes on the vertices box-box contacts moved (the seed's C)
-  bool sticks = false;     ///< constraints drawn over the meshes in the other modes
-  bool contacts = false;   ///< contact points and normals
-  bool bounds = false;     ///< each box's axis-aligned bounds
-  bool particles = true;   ///< loose particles as small cubes
+  bool markers = false;   ///< green boxes on the vertices box-box contacts moved (the seed's C)
+  bool sticks = false;    ///< constraints drawn over the meshes in the other modes
+  bool contacts = false;  ///< contact points and normals
+  bool bounds = false;    ///< each box's axis-aligned bounds
+  bool particles = true;  ///< loose particles as small cubes
 };
 
 }  // namespace sandbox

@@ -15,7 +15,9 @@ namespace fs = std::filesystem;
 constexpr std::string_view kExtension = ".xml";  // scenes are the only files the sandbox opens or saves
 const ImVec4 kErrorColor(1.0f, 0.4f, 0.4f, 1.0f);
 
-char lower(char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); }
+char lower(char c) {
+  return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+}
 
 // Case-insensitive, so "Scene.XML" written by another tool still shows up.
 bool endsWith(std::string_view name, std::string_view suffix) {
@@ -48,7 +50,8 @@ fs::path cleanFolder(const fs::path& folder) {
 
 }  // namespace
 
-std::vector<DirectoryEntry> listDirectory(const fs::path& folder, std::string_view extension, std::string* error) {
+std::vector<DirectoryEntry> listDirectory(const fs::path& folder, std::string_view extension,
+                                          std::string* error) {
   if (error != nullptr) error->clear();
   std::vector<DirectoryEntry> folders;
   std::vector<DirectoryEntry> files;
@@ -93,7 +96,8 @@ TypedPath resolveTypedPath(FileDialogMode mode, const fs::path& folder, std::str
   if (mode == FileDialogMode::Save && path.has_filename() && !path.has_extension()) path += kExtension;
   const fs::path parent = path.parent_path();
   if (mode == FileDialogMode::Open && !fs::is_regular_file(path, ec)) {
-    out.message = fs::exists(path, ec) ? path.string() + " is not a regular file" : "no such file: " + path.string();
+    out.message =
+        fs::exists(path, ec) ? path.string() + " is not a regular file" : "no such file: " + path.string();
   } else if (mode == FileDialogMode::Save && !fs::is_directory(parent, ec)) {
     out.message = "no such folder: " + parent.string();
   } else if (mode == FileDialogMode::Save && fs::exists(path, ec) && !fs::is_regular_file(path, ec)) {
@@ -121,7 +125,8 @@ void FileDialog::enterFolder(const fs::path& folder) {
   message_.clear();
   // A name typed for saving should follow the user into the new folder; a file picked for
   // opening belonged to the old one.
-  const std::string name = mode_ == FileDialogMode::Save ? fs::path(typed_).filename().string() : std::string();
+  const std::string name =
+      mode_ == FileDialogMode::Save ? fs::path(typed_).filename().string() : std::string();
   std::snprintf(typed_, sizeof typed_, "%s", name.c_str());
 }
 
@@ -168,7 +173,8 @@ std::optional<fs::path> FileDialog::draw() {
   const float footer = ImGui::GetFrameHeightWithSpacing() * 2.0f + ImGui::GetTextLineHeightWithSpacing();
   ImGui::BeginChild("entries", ImVec2(0.0f, -footer), true);
   std::optional<fs::path> folderToEnter;  // entered after the loop, which walks entries_
-  const ImGuiSelectableFlags flags = ImGuiSelectableFlags_AllowDoubleClick | ImGuiSelectableFlags_DontClosePopups;
+  const ImGuiSelectableFlags flags =
+      ImGuiSelectableFlags_AllowDoubleClick | ImGuiSelectableFlags_DontClosePopups;
   for (std::size_t i = 0; i < entries_.size(); ++i) {
     const DirectoryEntry& entry = entries_[i];
     const fs::path full = folder_ / entry.name;
@@ -194,12 +200,14 @@ std::optional<fs::path> FileDialog::draw() {
   if (focusPath_) ImGui::SetKeyboardFocusHere();
   // Enter leaves the field; when the dialog stays open (a folder entered, a path refused) the
   // field takes the keyboard back so the user can keep typing.
-  const bool enterPressed = ImGui::InputText("##path", typed_, sizeof typed_, ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool enterPressed =
+      ImGui::InputText("##path", typed_, sizeof typed_, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::TextColored(kErrorColor, "%s", message_.c_str());  // an empty line keeps the layout still
   if (ImGui::Button(mode_ == FileDialogMode::Open ? "Open" : "Save") || enterPressed) chosen = accept();
   focusPath_ = enterPressed && !chosen;
   ImGui::SameLine();
-  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) cancelled = true;
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    cancelled = true;
 
   if (chosen || cancelled) {
     open_ = false;

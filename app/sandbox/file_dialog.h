@@ -12,7 +12,7 @@ namespace sandbox {
 enum class FileDialogMode { Open, Save };
 
 struct DirectoryEntry {
-  std::string name;   ///< file or folder name, no path
+  std::string name;  ///< file or folder name, no path
   bool isFolder = false;
 };
 
@@ -56,7 +56,7 @@ class FileDialog {
   std::string listError_;
   char typed_[1024] = {};
   bool focusPath_ = false;  ///< give the path field the keyboard on the next frame
-  std::string message_;  ///< why the typed path was refused, shown under the field
+  std::string message_;     ///< why the typed path was refused, shown under the field
 };
 
 }  // namespace sandbox

@@ -23,7 +23,9 @@ void History::clear() {
   owed_ = 0.0;
 }
 
-float History::max() const { return filled_ == 0 ? 0.0f : *std::max_element(values_.begin(), values_.end()); }
+float History::max() const {
+  return filled_ == 0 ? 0.0f : *std::max_element(values_.begin(), values_.end());
+}
 
 float History::last() const {
   return filled_ == 0 ? 0.0f : values_[static_cast<std::size_t>((next_ + kSamples - 1) % kSamples)];

@@ -25,7 +25,9 @@ class InputState {
   bool held(int key) const { return valid(key) && held_[static_cast<std::size_t>(key)]; }
   /// Went down since the last endFrame() (a key repeat does not count).
   bool pressed(int key) const { return valid(key) && pressed_[static_cast<std::size_t>(key)]; }
-  bool buttonHeld(int button) const { return validButton(button) && buttons_[static_cast<std::size_t>(button)]; }
+  bool buttonHeld(int button) const {
+    return validButton(button) && buttons_[static_cast<std::size_t>(button)];
+  }
   bool buttonPressed(int button) const {
     return validButton(button) && buttonPressed_[static_cast<std::size_t>(button)];
   }

@@ -1,3 +1,5 @@
 #include "sandbox.h"
 
-int main(int argc, char** argv) { return sandbox::runSandbox(argc, argv); }
+int main(int argc, char** argv) {
+  return sandbox::runSandbox(argc, argv);
+}

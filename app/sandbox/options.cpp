@@ -78,7 +78,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       o.markers = true;
     } else if (a == "--overlay") {
       // Every following argument that is not an option is one run's settings.
-      while (i + 1 < args.size() && !(args[i + 1].size() > 1 && args[i + 1][0] == '-' && args[i + 1][1] == '-')) {
+      while (i + 1 < args.size() &&
+             !(args[i + 1].size() > 1 && args[i + 1][0] == '-' && args[i + 1][1] == '-')) {
         const ParsedOverlaySpec parsed = parseOverlaySpec(args[++i]);
         if (!parsed.error.empty()) {
           out.error = "--overlay: " + parsed.error;
@@ -88,8 +89,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
       if (o.overlay.size() < static_cast<std::size_t>(kMinOverlayRuns) ||
           o.overlay.size() > static_cast<std::size_t>(kMaxOverlayRuns)) {
-        out.error = "--overlay needs " + std::to_string(kMinOverlayRuns) + " to " + std::to_string(kMaxOverlayRuns) +
-                    " settings, got " + std::to_string(o.overlay.size());
+        out.error = "--overlay needs " + std::to_string(kMinOverlayRuns) + " to " +
+                    std::to_string(kMaxOverlayRuns) + " settings, got " + std::to_string(o.overlay.size());
         return out;
       }
     } else if (a == "--pause-at") {
@@ -123,7 +124,8 @@ std::filesystem::path dataDir(const Options& options) {
 }
 
 std::filesystem::path scenePath(const Options& options) {
-  const std::string_view name = options.scene.empty() ? scenes::kDefaultScene : std::string_view(options.scene);
+  const std::string_view name =
+      options.scene.empty() ? scenes::kDefaultScene : std::string_view(options.scene);
   return scenes::resolveScene(name, scenes::sceneDirectory(dataDir(options)));
 }
 

@@ -91,9 +91,10 @@ ParsedOverlaySpec parseOverlaySpec(std::string_view text) {
     } else if (key == "depenetration-speed") {
       real(spec.depenetrationSpeed);
     } else {
-      out.error = "unknown key '" + key +
-                  "' (known: method, iterations, substeps, dt, body-damping, restitution, compliance, epsilon, slop, "
-                  "depenetration-speed)";
+      out.error =
+          "unknown key '" + key +
+          "' (known: method, iterations, substeps, dt, body-damping, restitution, compliance, epsilon, slop, "
+          "depenetration-speed)";
     }
     if (!out.error.empty()) return out;
   }

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include <imgui.h>
 #include <glm/geometric.hpp>
+#include <imgui.h>
 
 #include "controls.h"
 
@@ -45,10 +45,13 @@ void settingsSection(Session& session, UiState& ui);
 void overlaySection(Session& session, UiState& ui) {
   if (session.overlayActive()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);  // started from the command line
   if (!ImGui::CollapsingHeader("Method overlay")) return;
-  ImGui::TextWrapped("2 to 4 runs of this world from its state now, e.g. iterations=3 / substeps=8,iterations=1 / method=xpbd");
+  ImGui::TextWrapped(
+      "2 to 4 runs of this world from its state now, e.g. iterations=3 / substeps=8,iterations=1 / "
+      "method=xpbd");
   for (int i = 0; i < kMaxOverlayRuns; ++i) {
     ImGui::PushID(i);
-    ImGui::ColorButton("##c", ImVec4(kRunColors[i].r, kRunColors[i].g, kRunColors[i].b, 1.0f), 0, ImVec2(14, 14));
+    ImGui::ColorButton("##c", ImVec4(kRunColors[i].r, kRunColors[i].g, kRunColors[i].b, 1.0f), 0,
+                       ImVec2(14, 14));
     ImGui::SameLine();
     ImGui::InputText("##spec", ui.overlayText[i].data(), ui.overlayText[i].size());
     ImGui::PopID();
@@ -141,9 +144,11 @@ void settingsSection(Session& session, UiState& ui) {
   changed |= ImGui::SliderInt("iterations", &s.iterations, 1, 64);
   changed |= sliderReal("feature epsilon (m)", s.featureEpsilon, 0.0f, 0.1f, "%.4f");
   changed |= sliderReal("restitution", s.restitution, 0.0f, 1.0f, "%.2f");
-  changed |= sliderReal("compliance (m/N, xpbd)", s.compliance, 0.0f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
+  changed |=
+      sliderReal("compliance (m/N, xpbd)", s.compliance, 0.0f, 1e-2f, "%.1e", ImGuiSliderFlags_Logarithmic);
   changed |= sliderReal("body damping", s.bodyDamping, 0.0f, 1.0f, "%.2f");
-  changed |= sliderReal("depenetration (m/s)", s.maxDepenetrationSpeed, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  changed |= sliderReal("depenetration (m/s)", s.maxDepenetrationSpeed, 0.1f, 100.0f, "%.2f",
+                        ImGuiSliderFlags_Logarithmic);
   if (changed) {
     const std::string error = session.setSolverSettings(s);
     ui.message = error.empty() ? "solver: " + describeSolver(s) + " (applied without restart)" : error;
@@ -155,7 +160,8 @@ void settingsSection(Session& session, UiState& ui) {
   double mu = w.groundMaterial.staticFriction;
   if (sliderReal("ground friction", mu, 0.0f, 2.0f, "%.2f")) {
     const double ratio = w.groundMaterial.staticFriction > 0.0
-                             ? w.groundMaterial.dynamicFriction / w.groundMaterial.staticFriction : 5.0 / 6.0;
+                             ? w.groundMaterial.dynamicFriction / w.groundMaterial.staticFriction
+                             : 5.0 / 6.0;
     w.groundMaterial.staticFriction = mu;
     w.groundMaterial.dynamicFriction = mu * ratio;
     ui.message = session.setWorldSettings(w);
@@ -250,8 +256,9 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   ImGui::Text("energy %.3f J (kinetic %.3f), max speed %.2f m/s", m.energy(), m.kineticEnergy, m.maxSpeed);
   if (m.frozen > 0) {
     const phys::FreezeReport& last = world.freezes().back();
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "frozen: %zu bodies (%d particles); last %s: %s at %.2f s",
-                       world.freezes().size(), m.frozen, last.name.c_str(), last.reason.c_str(), last.time);
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f),
+                       "frozen: %zu bodies (%d particles); last %s: %s at %.2f s", world.freezes().size(),
+                       m.frozen, last.name.c_str(), last.reason.c_str(), last.time);
   } else {
     ImGui::Text("frozen: none");
   }
@@ -277,8 +284,9 @@ void drawLegend(const Session& session) {
   // Bottom centre, above the status line: the panels keep the top and the sides.
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y - 30.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.85f);
-  ImGui::Begin("Overlay", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
-                                       ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+  ImGui::Begin("Overlay", nullptr,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
   int id = 0;
   for (const Run& run : session.runs()) {
     const phys::SolverSettings& s = run.scene->world.solverSettings();
@@ -286,8 +294,7 @@ void drawLegend(const Session& session) {
     ImGui::ColorButton("##c", ImVec4(run.color.r, run.color.g, run.color.b, 1.0f), 0, ImVec2(14, 14));
     ImGui::SameLine();
     ImGui::Text("%-28s %-28s %.3f ms/step (median), error %.1e", run.label.c_str(), describeSolver(s).c_str(),
-                run.medianMs(),
-                run.scene->world.metrics().maxConstraintError);
+                run.medianMs(), run.scene->world.metrics().maxConstraintError);
     ImGui::PopID();
   }
   ImGui::End();
@@ -298,7 +305,8 @@ void drawHelp(UiState& ui) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::SetNextWindowBgAlpha(0.95f);
-  ImGui::Begin("Controls (F1)", &ui.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  ImGui::Begin("Controls (F1)", &ui.showHelp,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
   if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
     for (const Control& c : controls()) {
       ImGui::TableNextRow();

@@ -18,7 +18,7 @@ namespace sandbox {
 /// Where a panel first opens, in window pixels below the menu bar; the user may move it, and
 /// imgui.ini remembers where. Screenshots always use these, so tests know where to look.
 struct PanelPlace {
-  glm::vec2 pos;            ///< top-left corner; x from the right edge when fromRight
+  glm::vec2 pos;  ///< top-left corner; x from the right edge when fromRight
   glm::vec2 size;
   bool fromRight = false;
 };
@@ -32,15 +32,15 @@ struct UiState {
   bool showSimulation = true, showWorld = true, showDraw = true, showStats = true;
   bool showHelp = false;
   bool paused = false;
-  bool stepOnce = false;     ///< set by Step or N; cleared when done
+  bool stepOnce = false;         ///< set by Step or N; cleared when done
   bool reloadRequested = false;  ///< set by Reset; the sandbox reloads (and shows any error)
-  float timeScale = 1.0f;    ///< simulated seconds per real second
+  float timeScale = 1.0f;        ///< simulated seconds per real second
   DrawOptions draw;
   std::array<char, 128> overlayText[kMaxOverlayRuns] = {};  ///< the overlay panel's settings
   // For the Stats panel.
-  float frameMs = 0.0f;      ///< unit: ms; the last frame
+  float frameMs = 0.0f;  ///< unit: ms; the last frame
   History stepMs, maxError, rmsError;
-  std::string message;       ///< the status line: what the last command did
+  std::string message;  ///< the status line: what the last command did
 };
 
 /// The panels as the last run left them, with the command line's --draw, --markers and

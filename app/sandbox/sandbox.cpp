@@ -7,10 +7,10 @@
 
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "controls.h"
 #include "engine/error.h"
@@ -21,15 +21,23 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr int kMaxStepsPerFrame = 8;   // beyond this the sim slows down instead of spiralling
-constexpr float kCameraSpeed = 4.0f;   // unit: m/s; Shift makes it 4 times faster
+constexpr int kMaxStepsPerFrame = 8;  // beyond this the sim slows down instead of spiralling
+constexpr float kCameraSpeed = 4.0f;  // unit: m/s; Shift makes it 4 times faster
 constexpr float kLookDegreesPerPixel = 0.15f;
 constexpr float kSpawnDistance = 2.0f;  // unit: m; in front of the eye, at the crosshair
 
-Sandbox* owner(GLFWwindow* w) { return static_cast<Sandbox*>(glfwGetWindowUserPointer(w)); }
-void keyCallback(GLFWwindow* w, int key, int, int action, int mods) { owner(w)->onKey(key, action, mods); }
-void mouseButtonCallback(GLFWwindow* w, int button, int action, int) { owner(w)->onMouseButton(button, action); }
-void focusCallback(GLFWwindow* w, int focused) { owner(w)->onFocus(focused == GLFW_TRUE); }
+Sandbox* owner(GLFWwindow* w) {
+  return static_cast<Sandbox*>(glfwGetWindowUserPointer(w));
+}
+void keyCallback(GLFWwindow* w, int key, int, int action, int mods) {
+  owner(w)->onKey(key, action, mods);
+}
+void mouseButtonCallback(GLFWwindow* w, int button, int action, int) {
+  owner(w)->onMouseButton(button, action);
+}
+void focusCallback(GLFWwindow* w, int focused) {
+  owner(w)->onFocus(focused == GLFW_TRUE);
+}
 
 engine::WindowDesc windowDesc(const Options& options, const UserSettings& user) {
   engine::WindowDesc d;
@@ -76,7 +84,8 @@ Sandbox::Sandbox(const Options& options)
     std::cerr << "sandbox: " << e.what() << "; opening the default scene instead\n";
     session_ = std::make_unique<Session>(scenePath(options_), scenes::sceneDirectory(data));
   }
-  camera_ = engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
+  camera_ =
+      engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   applyRemembered(user_, options_, ui_);
   if (!options_.overlay.empty()) {
     const std::string error = session_->startOverlay(options_.overlay);
@@ -130,8 +139,10 @@ void Sandbox::onKey(int key, int action, int mods) {
 }
 
 void Sandbox::onMouseButton(int button, int action) {
-  if (action == GLFW_PRESS) input_.buttonDown(button);
-  else if (action == GLFW_RELEASE) input_.buttonUp(button);
+  if (action == GLFW_PRESS)
+    input_.buttonDown(button);
+  else if (action == GLFW_RELEASE)
+    input_.buttonUp(button);
 }
 
 void Sandbox::onFocus(bool focused) {
@@ -152,7 +163,8 @@ void Sandbox::openScene(const std::filesystem::path& file) {
     return;
   }
   addRecentFile(user_, std::filesystem::absolute(file).string());
-  camera_ = engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
+  camera_ =
+      engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   ui_.message = session_->status();
   ui_.stepMs.clear();
   ui_.maxError.clear();
@@ -162,33 +174,69 @@ void Sandbox::openScene(const std::filesystem::path& file) {
 void Sandbox::perform(Action action) {
   Session& s = *session_;
   switch (action) {
-    case Action::Scene1: openScene(scenes::resolveScene("ragdoll", scenes::sceneDirectory(dataDir(options_)))); break;
-    case Action::Scene2: openScene(scenes::resolveScene("pyramid", scenes::sceneDirectory(dataDir(options_)))); break;
+    case Action::Scene1:
+      openScene(scenes::resolveScene("ragdoll", scenes::sceneDirectory(dataDir(options_))));
+      break;
+    case Action::Scene2:
+      openScene(scenes::resolveScene("pyramid", scenes::sceneDirectory(dataDir(options_))));
+      break;
     case Action::Scene3:
       openScene(scenes::resolveScene("box-of-boxes", scenes::sceneDirectory(dataDir(options_))));
       break;
-    case Action::ClearScene: s.clear(); ui_.message = s.status(); break;
-    case Action::CycleDrawMode: ui_.draw.mode = nextDrawMode(ui_.draw.mode); break;
-    case Action::ToggleMarkers: ui_.draw.markers = !ui_.draw.markers; break;
-    case Action::ToggleGravityMode: s.toggleGravityMode(); ui_.message = s.status(); break;
-    case Action::GravityUp: s.changeGravity(kGravityStep); ui_.message = s.status(); break;
-    case Action::GravityDown: s.changeGravity(-kGravityStep); ui_.message = s.status(); break;
-    case Action::DampingUp: s.changeDamping(kDampingStep); ui_.message = s.status(); break;
-    case Action::DampingDown: s.changeDamping(-kDampingStep); ui_.message = s.status(); break;
-    case Action::Pause: ui_.paused = !ui_.paused; break;
-    case Action::StepOnce: ui_.stepOnce = true; break;
-    case Action::Reload: openScene(s.file()); break;
+    case Action::ClearScene:
+      s.clear();
+      ui_.message = s.status();
+      break;
+    case Action::CycleDrawMode:
+      ui_.draw.mode = nextDrawMode(ui_.draw.mode);
+      break;
+    case Action::ToggleMarkers:
+      ui_.draw.markers = !ui_.draw.markers;
+      break;
+    case Action::ToggleGravityMode:
+      s.toggleGravityMode();
+      ui_.message = s.status();
+      break;
+    case Action::GravityUp:
+      s.changeGravity(kGravityStep);
+      ui_.message = s.status();
+      break;
+    case Action::GravityDown:
+      s.changeGravity(-kGravityStep);
+      ui_.message = s.status();
+      break;
+    case Action::DampingUp:
+      s.changeDamping(kDampingStep);
+      ui_.message = s.status();
+      break;
+    case Action::DampingDown:
+      s.changeDamping(-kDampingStep);
+      ui_.message = s.status();
+      break;
+    case Action::Pause:
+      ui_.paused = !ui_.paused;
+      break;
+    case Action::StepOnce:
+      ui_.stepOnce = true;
+      break;
+    case Action::Reload:
+      openScene(s.file());
+      break;
     case Action::SpawnBox:
     case Action::SpawnRagdoll:
     case Action::SpawnCapsuleRagdoll: {
       const phys::Vec3 forward(camera_.forward());
       const phys::Vec3 at = phys::Vec3(camera_.position) + forward * static_cast<double>(kSpawnDistance);
-      if (action == Action::SpawnBox) s.spawnBox(at, forward * kThrowSpeed);
-      else s.spawnRagdoll(at, forward * kThrowSpeed, action == Action::SpawnCapsuleRagdoll);
+      if (action == Action::SpawnBox)
+        s.spawnBox(at, forward * kThrowSpeed);
+      else
+        s.spawnRagdoll(at, forward * kThrowSpeed, action == Action::SpawnCapsuleRagdoll);
       ui_.message = s.status();
       break;
     }
-    case Action::ToggleHelp: ui_.showHelp = !ui_.showHelp; break;
+    case Action::ToggleHelp:
+      ui_.showHelp = !ui_.showHelp;
+      break;
   }
 }
 
@@ -342,7 +390,8 @@ void Sandbox::drawDialogs() {
   ImGui::SetNextWindowSize(ImVec2(560.0f, 0.0f), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::TextWrapped("%s", errorText_.c_str());
-    if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ImGui::CloseCurrentPopup();
+    if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+      ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
 }
@@ -359,7 +408,8 @@ void Sandbox::renderFrame() {
                           static_cast<float>(settings.groundHeight));
   }
   if (session_->overlayActive()) {
-    for (const Run& run : session_->runs()) view_->draw(run.scene->world, viewProjection, ui_.draw, Tint{run.color});
+    for (const Run& run : session_->runs())
+      view_->draw(run.scene->world, viewProjection, ui_.draw, Tint{run.color});
   } else {
     view_->draw(session_->scene().world, viewProjection, ui_.draw);
   }

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "controls.h"
 #include "engine/camera.h"
 #include "engine/renderer.h"
 #include "engine/window.h"
-#include "controls.h"
 #include "file_dialog.h"
 #include "input.h"
 #include "options.h"
@@ -68,7 +68,7 @@ class Sandbox {
   std::vector<std::pair<int, int>> keyPresses_;  // (key, mods) since the last frame
   UiState ui_;
   FileDialog openDialog_, saveDialog_;
-  std::string errorText_;     // shown in a modal until dismissed
+  std::string errorText_;  // shown in a modal until dismissed
   bool showError_ = false;
   double accumulator_ = 0.0;  // unit: s; simulated time owed to the clock
   double lastCursorX_ = 0.0, lastCursorY_ = 0.0;

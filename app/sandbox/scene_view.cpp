@@ -34,7 +34,8 @@ float boxShade(phys::BoxId id) {
 
 // Turned and placed by the pose fitted to the body's particles.
 glm::mat4 poseMatrix(const phys::BoxPose& pose) {
-  return glm::translate(glm::mat4(1.0f), glm::vec3(pose.center)) * glm::mat4_cast(glm::quat(pose.orientation));
+  return glm::translate(glm::mat4(1.0f), glm::vec3(pose.center)) *
+         glm::mat4_cast(glm::quat(pose.orientation));
 }
 
 // The box models are unit cubes about the origin: scaled by the box's size, then posed.
@@ -61,18 +62,22 @@ class TintedDraw : public phys::DebugDraw {
 }  // namespace
 
 SceneView::SceneView(engine::Renderer& renderer, const std::filesystem::path& modelsDir)
-    : renderer_(renderer), boxMesh_(loadModel(modelsDir / "box.obj")), limbMesh_(loadModel(modelsDir / "limb.obj")) {}
+    : renderer_(renderer),
+      boxMesh_(loadModel(modelsDir / "box.obj")),
+      limbMesh_(loadModel(modelsDir / "limb.obj")) {}
 
 void SceneView::findJointedBoxes(const phys::World& world) {
   const auto boxes = world.boxes();
   bodyOf_.assign(world.particles().size(), -1);
   for (phys::BoxId id = 0; id < boxes.size(); ++id) {
-    std::fill_n(bodyOf_.begin() + boxes[id].firstParticle, boxes[id].particleCount, static_cast<std::int32_t>(id));
+    std::fill_n(bodyOf_.begin() + boxes[id].firstParticle, boxes[id].particleCount,
+                static_cast<std::int32_t>(id));
   }
   jointed_.assign(boxes.size(), 0);
   for (const phys::Link& link : world.links()) {
     for (const phys::Embedding* e : {&link.a, &link.b}) {
-      if (const std::int32_t body = bodyOf_[e->particle[0]]; body >= 0) jointed_[static_cast<std::size_t>(body)] = 1;
+      if (const std::int32_t body = bodyOf_[e->particle[0]]; body >= 0)
+        jointed_[static_cast<std::size_t>(body)] = 1;
     }
   }
 }
@@ -85,7 +90,8 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     const bool wireframe = options.mode == DrawMode::Wireframe;
     renderer_.setWireframe(wireframe);
     // Edges of the fine capsule mesh would crowd into a solid patch on a ragdoll's limbs.
-    const auto capsuleDetail = wireframe ? engine::CapsuleMeshCache::kCoarse : engine::CapsuleMeshCache::kFine;
+    const auto capsuleDetail =
+        wireframe ? engine::CapsuleMeshCache::kCoarse : engine::CapsuleMeshCache::kFine;
     const auto boxes = world.boxes();
     for (phys::BoxId id = 0; id < boxes.size(); ++id) {
       const phys::Box& box = boxes[id];
@@ -95,8 +101,10 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
         // Built at its own size: scaling one capsule to another would squash its caps.
         // Within what the cache takes, so that no size the physics allows can stop the drawing.
         using Cache = engine::CapsuleMeshCache;
-        const float radius = std::clamp(static_cast<float>(box.capsuleRadius()), Cache::kResolution, Cache::kLargest);
-        const float halfSegment = std::clamp(static_cast<float>(box.capsuleHalfSegment()), 0.0f, Cache::kLargest);
+        const float radius =
+            std::clamp(static_cast<float>(box.capsuleRadius()), Cache::kResolution, Cache::kLargest);
+        const float halfSegment =
+            std::clamp(static_cast<float>(box.capsuleHalfSegment()), 0.0f, Cache::kLargest);
         const engine::GpuMesh& mesh = capsuleMeshes_.get(radius, halfSegment, capsuleDetail);
         renderer_.drawMesh(mesh, viewProjection, poseMatrix(pose), color, alpha);
       } else {
@@ -108,7 +116,8 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
       const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(kParticleDrawSize));
       for (std::size_t i = 0; i < world.particles().size(); ++i) {
         if (bodyOf_[i] >= 0) continue;
-        const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(world.particles().position[i])) * scale;
+        const glm::mat4 model =
+            glm::translate(glm::mat4(1.0f), glm::vec3(world.particles().position[i])) * scale;
         renderer_.drawMesh(*boxMesh_, viewProjection, model, tint ? tint->color : kParticleColor, alpha);
       }
     }

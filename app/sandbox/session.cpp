@@ -18,7 +18,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // A world with the same settings as `world` and nothing in it.
-phys::World emptyLike(const phys::World& world) { return phys::World(world.worldSettings(), world.solverSettings()); }
+phys::World emptyLike(const phys::World& world) {
+  return phys::World(world.worldSettings(), world.solverSettings());
+}
 
 // Where the embedded point sits in the box's frame (so the same point can be found on the same
 // box in another run, wherever that box is now).
@@ -34,7 +36,8 @@ phys::Vec3 toWorld(const phys::World& w, phys::BoxId box, const phys::Vec3& loca
 
 // The point of the plane (p0, n) on the ray, or the ray's point at the plane's distance when
 // the ray runs along the plane.
-phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::Vec3& p0, const phys::Vec3& n) {
+phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::Vec3& p0,
+                   const phys::Vec3& n) {
   const double along = glm::dot(dir, n);
   if (std::abs(along) < 1e-6) return origin + dir * glm::length(p0 - origin);
   return origin + dir * (glm::dot(p0 - origin, n) / along);
@@ -76,9 +79,13 @@ std::string Session::open(const std::filesystem::path& file) {
   }
 }
 
-std::string Session::reload() { return open(file_); }
+std::string Session::reload() {
+  return open(file_);
+}
 
-std::string Session::openBuiltin(std::string_view name) { return open(scenes::resolveScene(name, sceneDirectory_)); }
+std::string Session::openBuiltin(std::string_view name) {
+  return open(scenes::resolveScene(name, sceneDirectory_));
+}
 
 std::string Session::saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera) {
   try {
@@ -102,7 +109,8 @@ void Session::clear() {
 }
 
 std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
-  if (specs.size() < static_cast<std::size_t>(kMinOverlayRuns) || specs.size() > static_cast<std::size_t>(kMaxOverlayRuns)) {
+  if (specs.size() < static_cast<std::size_t>(kMinOverlayRuns) ||
+      specs.size() > static_cast<std::size_t>(kMaxOverlayRuns)) {
     return "the overlay needs " + std::to_string(kMinOverlayRuns) + " to " + std::to_string(kMaxOverlayRuns) +
            " settings, got " + std::to_string(specs.size());
   }
@@ -190,8 +198,10 @@ void Session::toggleGravityMode() {
   const bool toPoint = s.gravityMode == phys::GravityMode::Uniform;
   s.gravityMode = toPoint ? phys::GravityMode::Point : phys::GravityMode::Uniform;
   // One strength for both modes, so G alone never makes gravity stronger or weaker.
-  if (toPoint) s.gravityStrength = glm::length(s.gravity);
-  else if (glm::length(s.gravity) > 0.0) s.gravity = glm::normalize(s.gravity) * s.gravityStrength;
+  if (toPoint)
+    s.gravityStrength = glm::length(s.gravity);
+  else if (glm::length(s.gravity) > 0.0)
+    s.gravity = glm::normalize(s.gravity) * s.gravityStrength;
   setWorldSettings(s);
   status_ = toPoint ? "gravity: towards the point" : "gravity: uniform";
 }
@@ -206,7 +216,8 @@ void Session::changeGravity(double delta) {
     s.gravity = down * std::max(0.0, g + delta);
   }
   setWorldSettings(s);
-  const double strength = s.gravityMode == phys::GravityMode::Point ? s.gravityStrength : glm::length(s.gravity);
+  const double strength =
+      s.gravityMode == phys::GravityMode::Point ? s.gravityStrength : glm::length(s.gravity);
   status_ = "gravity " + std::to_string(strength).substr(0, 5) + " m/s^2";
 }
 
@@ -237,7 +248,8 @@ void Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, boo
   // Face the way it is thrown, lying forward so that it flies head first: from standing
   // (facing +z), turn to the throw's heading, then tip forward by 90 degrees.
   const double heading = std::atan2(velocity.x, velocity.z);
-  d.orientation = glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
+  d.orientation =
+      glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
   d.hips = at;
   d.velocity = velocity;
   if (capsules) {

@@ -23,11 +23,11 @@ struct Run {
   static constexpr int kTimedSteps = 61;  ///< steps the median step time is taken over (~1 s)
 
   std::unique_ptr<scenes::Scene> scene;
-  std::string label;    ///< the overlay settings as given; empty for the main scene alone
+  std::string label;  ///< the overlay settings as given; empty for the main scene alone
   glm::vec3 color{1.0f};
-  double stepMs = 0.0;  ///< unit: ms; wall time of the last step
+  double stepMs = 0.0;                         ///< unit: ms; wall time of the last step
   std::array<double, kTimedSteps> recentMs{};  ///< the last steps' times, a ring
-  int timed = 0;        ///< steps timed so far
+  int timed = 0;                               ///< steps timed so far
 
   /// Median wall time of the last kTimedSteps steps (one step's time is too noisy to compare
   /// runs by). unit: ms; 0 before the first step

@@ -50,7 +50,9 @@ bool parseDrawMode(std::string_view text, std::string& out) {
 }
 
 // A value holding a line break would end its line early and corrupt the next one on reading.
-bool fitsOnOneLine(const std::string& value) { return value.find_first_of("\r\n") == std::string::npos; }
+bool fitsOnOneLine(const std::string& value) {
+  return value.find_first_of("\r\n") == std::string::npos;
+}
 
 // Everything that can go in the file, in the order it is written.
 std::string toText(const UserSettings& s) {
@@ -136,8 +138,8 @@ LoadedSettings loadUserSettings(const fs::path& file) {
       continue;
     }
     if (!ok) {
-      out.warnings.push_back(where + "bad value '" + std::string(value) + "' for '" + key + "' (expected " + expected +
-                             "); keeping the default");
+      out.warnings.push_back(where + "bad value '" + std::string(value) + "' for '" + key + "' (expected " +
+                             expected + "); keeping the default");
     }
   }
   return out;

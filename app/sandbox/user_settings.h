@@ -13,15 +13,15 @@ namespace sandbox {
 inline constexpr int kMaxRecentFiles = 8;
 
 struct UserSettings {
-  int windowWidth = 1280;   ///< unit: screen pixels
-  int windowHeight = 720;   ///< unit: screen pixels
+  int windowWidth = 1280;  ///< unit: screen pixels
+  int windowHeight = 720;  ///< unit: screen pixels
   bool showSimulation = true;
   bool showWorld = true;
   bool showDraw = true;
   bool showStats = true;
-  std::string lastScene;    ///< a path; empty: the default scene
-  std::string drawMode = "filled";  ///< filled, wireframe or constraints
-  bool markers = false;     ///< the seed's green collision-vertex markers
+  std::string lastScene;                 ///< a path; empty: the default scene
+  std::string drawMode = "filled";       ///< filled, wireframe or constraints
+  bool markers = false;                  ///< the seed's green collision-vertex markers
   std::vector<std::string> recentFiles;  ///< newest first, at most kMaxRecentFiles
 };
 

@@ -23,19 +23,19 @@ GpuMesh::GpuMesh(const MeshData& data) : indexCount_(static_cast<int>(data.indic
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)),
                interleaved.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(data.indices.size() * sizeof(std::uint32_t)),
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.indices.size() * sizeof(std::uint32_t)),
                data.indices.data(), GL_STATIC_DRAW);
   constexpr GLsizei stride = 6 * sizeof(float);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
   glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<const void*>(3 * sizeof(float)));
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(3 * sizeof(float)));
   glBindVertexArray(0);
 }
 
-GpuMesh::~GpuMesh() { release(); }
+GpuMesh::~GpuMesh() {
+  release();
+}
 
 GpuMesh::GpuMesh(GpuMesh&& other) noexcept
     : vao_(std::exchange(other.vao_, 0)),

@@ -14,8 +14,8 @@ namespace engine {
 
 MeshData loadMeshData(const std::filesystem::path& file) {
   Assimp::Importer importer;
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                         aiProcess_GenNormals | aiProcess_ValidateDataStructure;
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenNormals |
+                         aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(file.string(), flags);
   if (scene == nullptr) throw Error(file.string() + ": cannot load mesh: " + importer.GetErrorString());
   if (scene->mNumMeshes == 0) throw Error(file.string() + ": the file holds no mesh");

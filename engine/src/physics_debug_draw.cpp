@@ -6,7 +6,9 @@
 namespace engine {
 namespace {
 
-glm::vec3 rgb(phys::Color c) { return {c.r, c.g, c.b}; }
+glm::vec3 rgb(phys::Color c) {
+  return {c.r, c.g, c.b};
+}
 
 }  // namespace
 
@@ -19,9 +21,10 @@ void PhysicsDebugDraw::point(const phys::Vec3& p, phys::Real size, phys::Color c
   lines_.addBox(glm::vec3(p), glm::mat3(1.0f), glm::vec3(static_cast<float>(size) * 0.5f), rgb(color));
 }
 
-void PhysicsDebugDraw::box(const phys::Vec3& center, const phys::Quat& orientation, const phys::Vec3& halfExtents,
-                           phys::Color color) {
-  lines_.addBox(glm::vec3(center), glm::mat3_cast(glm::quat(orientation)), glm::vec3(halfExtents), rgb(color));
+void PhysicsDebugDraw::box(const phys::Vec3& center, const phys::Quat& orientation,
+                           const phys::Vec3& halfExtents, phys::Color color) {
+  lines_.addBox(glm::vec3(center), glm::mat3_cast(glm::quat(orientation)), glm::vec3(halfExtents),
+                rgb(color));
 }
 
 }  // namespace engine

@@ -5,8 +5,8 @@
 
 #include <glad/gl.h>
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 namespace engine {
@@ -109,10 +109,14 @@ void Renderer::drawMesh(const GpuMesh& mesh, const glm::mat4& viewProjection, co
 void Renderer::setWireframe(bool on) {
   glPolygonMode(GL_FRONT_AND_BACK, on ? GL_LINE : GL_FILL);
   // Back faces would hide nothing in wireframe, and culling them loses half the edges.
-  if (on) glDisable(GL_CULL_FACE);
-  else glEnable(GL_CULL_FACE);
+  if (on)
+    glDisable(GL_CULL_FACE);
+  else
+    glEnable(GL_CULL_FACE);
 }
 
-void Renderer::endFrame(const glm::mat4& viewProjection) { lines_.flush(viewProjection); }
+void Renderer::endFrame(const glm::mat4& viewProjection) {
+  lines_.flush(viewProjection);
+}
 
 }  // namespace engine

@@ -23,12 +23,16 @@ std::string readText(const std::filesystem::path& file) {
 
 std::string infoLog(GLuint object, bool isProgram) {
   GLint length = 0;
-  if (isProgram) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
-  else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+  if (isProgram)
+    glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
+  else
+    glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
   std::string log(static_cast<std::size_t>(length > 0 ? length : 0), '\0');
   if (length > 0) {
-    if (isProgram) glGetProgramInfoLog(object, length, nullptr, log.data());
-    else glGetShaderInfoLog(object, length, nullptr, log.data());
+    if (isProgram)
+      glGetProgramInfoLog(object, length, nullptr, log.data());
+    else
+      glGetShaderInfoLog(object, length, nullptr, log.data());
   }
   return log;
 }
@@ -94,7 +98,9 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
   return *this;
 }
 
-void ShaderProgram::use() const { glUseProgram(id_); }
+void ShaderProgram::use() const {
+  glUseProgram(id_);
+}
 
 void ShaderProgram::set(const char* name, const glm::mat4& value) const {
   glUniformMatrix4fv(glGetUniformLocation(id_, name), 1, GL_FALSE, glm::value_ptr(value));

@@ -14,8 +14,8 @@ struct LogForm {
 
 const LogForm* logForms() {
   static const LogForm forms[] = {
-      {std::regex(R"(^\s*\d+:(\d+)\(\d+\):\s*(.*)$)"), 1, 2},           // Mesa
-      {std::regex(R"(^\s*\d+\((\d+)\)\s*:\s*(.*)$)"), 1, 2},            // NVIDIA
+      {std::regex(R"(^\s*\d+:(\d+)\(\d+\):\s*(.*)$)"), 1, 2},                  // Mesa
+      {std::regex(R"(^\s*\d+\((\d+)\)\s*:\s*(.*)$)"), 1, 2},                   // NVIDIA
       {std::regex(R"(^\s*((?:ERROR|WARNING):)\s*\d+:(\d+):\s*(.*)$)"), 2, 3},  // AMD, Intel
   };
   return forms;

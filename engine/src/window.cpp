@@ -57,9 +57,13 @@ Window::~Window() {
   glfwTerminate();
 }
 
-bool Window::shouldClose() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
+bool Window::shouldClose() const {
+  return glfwWindowShouldClose(window_) == GLFW_TRUE;
+}
 
-void Window::swapBuffers() { glfwSwapBuffers(window_); }
+void Window::swapBuffers() {
+  glfwSwapBuffers(window_);
+}
 
 glm::ivec2 Window::framebufferSize() const {
   glm::ivec2 size{0};
@@ -67,6 +71,8 @@ glm::ivec2 Window::framebufferSize() const {
   return size;
 }
 
-void Window::pollEvents() { glfwPollEvents(); }
+void Window::pollEvents() {
+  glfwPollEvents();
+}
 
 }  // namespace engine

@@ -15,7 +15,8 @@ Real weightSum(const Particles& p, const Embedding& a, const Embedding& b) {
 
 // Moves two points in opposite directions: a by -lambda, b by +lambda (a vector in position
 // units per unit of weight), through their particles in `x`.
-void movePair(std::vector<Vec3>& x, const Particles& p, const Embedding& a, const Embedding& b, const Vec3& lambda) {
+void movePair(std::vector<Vec3>& x, const Particles& p, const Embedding& a, const Embedding& b,
+              const Vec3& lambda) {
   shiftEmbedded(x, p.inverseMass, a, -lambda);
   shiftEmbedded(x, p.inverseMass, b, lambda);
 }

@@ -48,7 +48,8 @@ void dampBodyMotion(Particles& p, std::span<const Box> boxes, Real fraction) {
     if (!massProperties(p, box, m)) continue;  // pinned, frozen or crushed flat: left alone
     // Motions are per substep (x - x*), so no h is needed: velocity times h throughout.
     const RigidMotion rigid = rigidMotion(p, box, m);
-    for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount); ++i) {
+    for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount);
+         ++i) {
       const Vec3 target = rigid.linear + glm::cross(rigid.angular, p.position[i] - m.centre);
       const Vec3 motion = p.position[i] - p.previous[i];
       p.previous[i] = p.position[i] - (motion + fraction * (target - motion));

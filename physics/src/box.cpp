@@ -4,9 +4,13 @@
 
 namespace phys {
 
-std::string_view toString(BoxModel model) { return model == BoxModel::Tetra ? "tetra" : "corners"; }
+std::string_view toString(BoxModel model) {
+  return model == BoxModel::Tetra ? "tetra" : "corners";
+}
 
-std::string_view toString(Shape shape) { return shape == Shape::Capsule ? "capsule" : "box"; }
+std::string_view toString(Shape shape) {
+  return shape == Shape::Capsule ? "capsule" : "box";
+}
 
 std::optional<BoxModel> parseBoxModel(std::string_view name) {
   if (name == "corners") return BoxModel::Corners;
@@ -24,7 +28,9 @@ Vec3 boxParticleLocal(BoxModel model, const Vec3& halfExtents, int j) {
   return boxCornerLocal(halfExtents, kTetraCorner[j]);
 }
 
-int boxParticleCount(BoxModel model) { return model == BoxModel::Corners ? 8 : 4; }
+int boxParticleCount(BoxModel model) {
+  return model == BoxModel::Corners ? 8 : 4;
+}
 
 std::array<Real, 4> tetraWeights(const Vec3& u) {
   std::array<Real, 4> w{};

@@ -62,7 +62,8 @@ void World::joinGroups(ParticleId a, ParticleId b) {
 bool World::collides(BoxId a, BoxId b) const {
   const Box& ba = boxes_[a];
   const Box& bb = boxes_[b];
-  if ((ba.collisionGroup & bb.collisionMask) == 0 || (bb.collisionGroup & ba.collisionMask) == 0) return false;
+  if ((ba.collisionGroup & bb.collisionMask) == 0 || (bb.collisionGroup & ba.collisionMask) == 0)
+    return false;
   if (ignoredPairs_.empty()) return true;
   return !std::binary_search(ignoredPairs_.begin(), ignoredPairs_.end(), pairKey(a, b));
 }
@@ -92,7 +93,8 @@ void World::updateBoxFrames() {
     ex = lx > 0.0 ? ex / lx : Vec3(1.0, 0.0, 0.0);
     ey -= glm::dot(ey, ex) * ex;
     const Real ly = glm::length(ey);
-    ey = ly > 0.0 ? ey / ly : glm::normalize(glm::cross(ex, std::abs(ex.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
+    ey = ly > 0.0 ? ey / ly
+                  : glm::normalize(glm::cross(ex, std::abs(ex.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
     f.axes = glm::dmat3(ex, ey, glm::cross(ex, ey));
     f.halfExtents = box.halfExtents;
   }
@@ -132,7 +134,8 @@ bool World::chooseSweepAxis() {
 void World::findBoxPairs() {
   const Real margin = solver_.featureEpsilon;
   const Real dt = solver_.dt, h = substepDt();
-  const Real g = world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
+  const Real g =
+      world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
   for (BoxId id = 0; id < boxes_.size(); ++id) {
     const Box& box = boxes_[id];
     Real fastest = 0.0;  // squared displacement over the last substep
@@ -157,7 +160,8 @@ void World::findBoxPairs() {
   }
   if (newAxis) {
     // The order along a new axis is unrelated to the old one's, too far for insertion sort.
-    std::sort(sweep_.begin(), sweep_.end(), [](const Interval& a, const Interval& b) { return a.min < b.min; });
+    std::sort(sweep_.begin(), sweep_.end(),
+              [](const Interval& a, const Interval& b) { return a.min < b.min; });
   }
   for (std::size_t i = 1; i < sweep_.size(); ++i) {
     const Interval moving = sweep_[i];
@@ -175,7 +179,8 @@ void World::findBoxPairs() {
     for (std::size_t j = i + 1; j < sweep_.size() && sweep_[j].min <= sweep_[i].max; ++j) {
       const BoxId a = sweep_[i].box, b = sweep_[j].box;
       const Bounds& bj = bounds_[b];
-      const bool apart = bi.lo[t] > bj.hi[t] || bj.lo[t] > bi.hi[t] || bi.lo[u] > bj.hi[u] || bj.lo[u] > bi.hi[u];
+      const bool apart =
+          bi.lo[t] > bj.hi[t] || bj.lo[t] > bi.hi[t] || bi.lo[u] > bj.hi[u] || bj.lo[u] > bi.hi[u];
       if (!apart && collides(a, b)) pairs_.emplace_back(std::min(a, b), std::max(a, b));
     }
   }
@@ -209,7 +214,8 @@ bool World::collidePair(BoxId a, BoxId b, BoxContact& contact) const {
     reduceToFourPoints(contact);
     return true;
   }
-  if (capsuleA && capsuleB) return collideCapsules(capsuleInBox(frames_[a]), capsuleInBox(frames_[b]), margin, contact);
+  if (capsuleA && capsuleB)
+    return collideCapsules(capsuleInBox(frames_[a]), capsuleInBox(frames_[b]), margin, contact);
   if (capsuleA) return collideCapsuleBox(capsuleInBox(frames_[a]), frames_[b], margin, contact);
   if (!collideCapsuleBox(capsuleInBox(frames_[b]), frames_[a], margin, contact)) return false;
   contact.sat.normal = -contact.sat.normal;  // it was from b towards a
@@ -277,7 +283,8 @@ Embedding World::embedInBox(BoxId id, const Vec3& point, Vec3* moved) const {
     // The face nearest in metres: by |u| alone, a side point of a long capsule near its end went
     // to the end face, 2.5 r along the capsule. (A box's points are on a face: either rule finds it.)
     for (int a = 1; a < 3; ++a) {
-      if ((1.0 - std::abs(u[a])) * box.halfExtents[a] < (1.0 - std::abs(u[axis])) * box.halfExtents[axis]) axis = a;
+      if ((1.0 - std::abs(u[a])) * box.halfExtents[a] < (1.0 - std::abs(u[axis])) * box.halfExtents[axis])
+        axis = a;
     }
   } else {
     for (int a = 1; a < 3; ++a) {
@@ -327,7 +334,8 @@ void World::buildBoxContacts() {
       }
       bodyContacts_.push_back(c);
       const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles_.previous, c.pointB) -
-                                                   detail::embeddedPosition(particles_.previous, c.pointA)) - c.offset;
+                                                   detail::embeddedPosition(particles_.previous, c.pointA)) -
+                            c.offset;
       bodyAllowance_.push_back(-(startGap + solver_.contactSlop));  // the start overlap, for now
       overlap = std::max(overlap, bodyAllowance_.back());
     }

@@ -39,8 +39,8 @@ std::array<int, 4> faceCorners(int axis, Real sign) {
 
 // Face cases: clip the incident feature against the reference face's four side planes; each
 // point below the reference plane is a contact, with its partner on that plane.
-void faceContact(const Obb& reference, const Vec3& referenceNormal, const Polygon& incident, bool referenceIsA,
-                 Real margin, BoxContact& out) {
+void faceContact(const Obb& reference, const Vec3& referenceNormal, const Polygon& incident,
+                 bool referenceIsA, Real margin, BoxContact& out) {
   Real sign = 1.0;
   const int axis = faceAxis(reference, referenceNormal, sign);
   const Vec3 n = reference.axes[axis] * sign;  // outward normal of the reference face
@@ -98,12 +98,18 @@ void closestFeatureContact(const Obb& a, const SupportFeature& fa, const Obb& b,
 
 const char* toString(ContactKind kind) {
   switch (kind) {
-    case ContactKind::FaceFace: return "face-face";
-    case ContactKind::FaceEdge: return "face-edge";
-    case ContactKind::FaceVertex: return "face-vertex";
-    case ContactKind::EdgeEdge: return "edge-edge";
-    case ContactKind::EdgeVertex: return "edge-vertex";
-    case ContactKind::VertexVertex: return "vertex-vertex";
+    case ContactKind::FaceFace:
+      return "face-face";
+    case ContactKind::FaceEdge:
+      return "face-edge";
+    case ContactKind::FaceVertex:
+      return "face-vertex";
+    case ContactKind::EdgeEdge:
+      return "edge-edge";
+    case ContactKind::EdgeVertex:
+      return "edge-vertex";
+    case ContactKind::VertexVertex:
+      return "vertex-vertex";
   }
   return "?";
 }
@@ -134,8 +140,10 @@ SupportFeature supportFeature(const Obb& box, const Vec3& direction, Real epsilo
 
 ContactKind classify(Feature a, Feature b) {
   const Feature hi = std::max(a, b), lo = std::min(a, b);
-  if (hi == Feature::Face) return lo == Feature::Face ? ContactKind::FaceFace
-                                  : lo == Feature::Edge ? ContactKind::FaceEdge : ContactKind::FaceVertex;
+  if (hi == Feature::Face)
+    return lo == Feature::Face   ? ContactKind::FaceFace
+           : lo == Feature::Edge ? ContactKind::FaceEdge
+                                 : ContactKind::FaceVertex;
   if (hi == Feature::Edge) return lo == Feature::Edge ? ContactKind::EdgeEdge : ContactKind::EdgeVertex;
   return ContactKind::VertexVertex;
 }
@@ -153,10 +161,13 @@ bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& o
     Real signA = 1.0, signB = 1.0;
     const Real alignA = std::abs(glm::dot(a.axes[faceAxis(a, n, signA)], n));
     const Real alignB = std::abs(glm::dot(b.axes[faceAxis(b, -n, signB)], n));
-    const bool referenceIsA = fa.feature == Feature::Face &&
-                              (fb.feature != Feature::Face || (out.sat.axis < 3) || (out.sat.axis >= 6 && alignA >= alignB));
-    if (referenceIsA) faceContact(a, n, featurePolygon(b, fb), true, featureEpsilon, out);
-    else faceContact(b, -n, featurePolygon(a, fa), false, featureEpsilon, out);
+    const bool referenceIsA =
+        fa.feature == Feature::Face &&
+        (fb.feature != Feature::Face || (out.sat.axis < 3) || (out.sat.axis >= 6 && alignA >= alignB));
+    if (referenceIsA)
+      faceContact(a, n, featurePolygon(b, fb), true, featureEpsilon, out);
+    else
+      faceContact(b, -n, featurePolygon(a, fa), false, featureEpsilon, out);
   } else {
     closestFeatureContact(a, fa, b, fb, out);
   }
@@ -196,7 +207,8 @@ void reduceToFourPoints(BoxContact& c) {
   std::array<ContactPoint, 4> kept;
   int count = 0;
   for (int k = 0; k < 4; ++k) {
-    if (std::find(keep.begin(), keep.begin() + k, keep[k]) == keep.begin() + k) kept[count++] = c.points[keep[k]];
+    if (std::find(keep.begin(), keep.begin() + k, keep[k]) == keep.begin() + k)
+      kept[count++] = c.points[keep[k]];
   }
   for (int k = 0; k < count; ++k) c.points[k] = kept[k];
   c.count = count;

@@ -108,9 +108,10 @@ bool collideCapsules(const Capsule& a, const Capsule& b, Real margin, BoxContact
   // Cores that meet exactly give no direction; across both cores is the one that parts them
   // without sliding either along itself.
   const Vec3 across = glm::cross(da, db);
-  const Vec3 n = distance > 1e-12                ? d / distance
-                 : glm::length(across) > 1e-12 ? across / glm::length(across)
-                                               : anyNormalTo(glm::length(da) > 0.0 ? da : Vec3(0.0, 1.0, 0.0));
+  const Vec3 n = distance > 1e-12 ? d / distance
+                 : glm::length(across) > 1e-12
+                     ? across / glm::length(across)
+                     : anyNormalTo(glm::length(da) > 0.0 ? da : Vec3(0.0, 1.0, 0.0));
   out.sat.overlap = true;
   out.sat.normal = n;
   out.kind = ContactKind::EdgeEdge;
@@ -119,7 +120,8 @@ bool collideCapsules(const Capsule& a, const Capsule& b, Real margin, BoxContact
     // Side by side: the two ends of the stretch of A that B lies along, each with its nearest
     // point of B, so a capsule lying on another rests on two points and does not rock.
     const Vec3 ua = da / la;
-    Real t0 = std::clamp(glm::dot(b.p0 - a.p0, ua), 0.0, la), t1 = std::clamp(glm::dot(b.p1 - a.p0, ua), 0.0, la);
+    Real t0 = std::clamp(glm::dot(b.p0 - a.p0, ua), 0.0, la),
+         t1 = std::clamp(glm::dot(b.p1 - a.p0, ua), 0.0, la);
     if (t0 > t1) std::swap(t0, t1);
     if (t1 - t0 > 1e-6 * la) {
       for (const Real t : {t0, t1}) {
@@ -147,8 +149,10 @@ bool collideCapsuleBox(const Capsule& a, const Obb& b, Real margin, BoxContact& 
   Real lo = 0.0, hi = 1.0;
   for (int round = 0; round < 48; ++round) {
     const Real m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
-    if (distanceAt(m1) <= distanceAt(m2)) hi = m2;
-    else lo = m1;
+    if (distanceAt(m1) <= distanceAt(m2))
+      hi = m2;
+    else
+      lo = m1;
   }
   const Vec3 s = a.p0 + (a.p1 - a.p0) * ((lo + hi) / 2.0);
   int clamped = 0, lastAxis = 0;

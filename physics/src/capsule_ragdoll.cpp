@@ -55,11 +55,51 @@ struct HingeLayout {
 // Positive angles by the right-hand rule: the spine bends forwards, the knees backwards, and the
 // elbows forwards (their axis is vertical: Bullet's arms stand out in a T).
 constexpr HingeLayout kHinges[] = {
-    {CapsulePart::Pelvis, CapsulePart::Spine, {0.0, 1.10 + kRaise, 0.0}, kAcross, kUp, -45.0, 90.0, 0.08, 0.10},
-    {CapsulePart::UpperLegLeft, CapsulePart::LowerLegLeft, {0.18, 0.405 + kRaise, 0.0}, kAcross, kDown, 0.0, 90.0, 0.05, 0.10},
-    {CapsulePart::UpperLegRight, CapsulePart::LowerLegRight, {-0.18, 0.405 + kRaise, 0.0}, kAcross, kDown, 0.0, 90.0, 0.05, 0.10},
-    {CapsulePart::UpperArmLeft, CapsulePart::LowerArmLeft, {0.545, 1.45 + kRaise, 0.0}, kUp, kLeft, -90.0, 0.0, 0.04, 0.08},
-    {CapsulePart::UpperArmRight, CapsulePart::LowerArmRight, {-0.545, 1.45 + kRaise, 0.0}, kUp, kRight, 0.0, 90.0, 0.04, 0.08},
+    {CapsulePart::Pelvis,
+     CapsulePart::Spine,
+     {0.0, 1.10 + kRaise, 0.0},
+     kAcross,
+     kUp,
+     -45.0,
+     90.0,
+     0.08,
+     0.10},
+    {CapsulePart::UpperLegLeft,
+     CapsulePart::LowerLegLeft,
+     {0.18, 0.405 + kRaise, 0.0},
+     kAcross,
+     kDown,
+     0.0,
+     90.0,
+     0.05,
+     0.10},
+    {CapsulePart::UpperLegRight,
+     CapsulePart::LowerLegRight,
+     {-0.18, 0.405 + kRaise, 0.0},
+     kAcross,
+     kDown,
+     0.0,
+     90.0,
+     0.05,
+     0.10},
+    {CapsulePart::UpperArmLeft,
+     CapsulePart::LowerArmLeft,
+     {0.545, 1.45 + kRaise, 0.0},
+     kUp,
+     kLeft,
+     -90.0,
+     0.0,
+     0.04,
+     0.08},
+    {CapsulePart::UpperArmRight,
+     CapsulePart::LowerArmRight,
+     {-0.545, 1.45 + kRaise, 0.0},
+     kUp,
+     kRight,
+     0.0,
+     90.0,
+     0.04,
+     0.08},
 };
 
 struct ConeLayout {
@@ -89,9 +129,10 @@ void require(bool ok, const char* what) {
 }  // namespace
 
 std::string_view toString(CapsulePart part) {
-  constexpr std::string_view kNames[kCapsuleParts] = {
-      "pelvis",         "spine",          "head",           "upper-leg-left",  "lower-leg-left", "upper-leg-right",
-      "lower-leg-right", "upper-arm-left", "lower-arm-left", "upper-arm-right", "lower-arm-right"};
+  constexpr std::string_view kNames[kCapsuleParts] = {"pelvis",          "spine",          "head",
+                                                      "upper-leg-left",  "lower-leg-left", "upper-leg-right",
+                                                      "lower-leg-right", "upper-arm-left", "lower-arm-left",
+                                                      "upper-arm-right", "lower-arm-right"};
   return kNames[static_cast<int>(part)];
 }
 

@@ -55,7 +55,8 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
       if (box.shape == Shape::Capsule) {
         // A capsule's own bounds: its core's ends, out by the radius on every axis.
         const Vec3 centre = (lo + hi) * 0.5;
-        const Vec3 corner0 = position(corners_[box.firstCorner]), corner2 = position(corners_[box.firstCorner + 2]);
+        const Vec3 corner0 = position(corners_[box.firstCorner]),
+                   corner2 = position(corners_[box.firstCorner + 2]);
         const Vec3 axis = glm::normalize(corner2 - corner0) * box.capsuleHalfSegment();
         lo = glm::min(centre - axis, centre + axis) - Vec3(box.capsuleRadius());
         hi = glm::max(centre - axis, centre + axis) + Vec3(box.capsuleRadius());

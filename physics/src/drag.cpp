@@ -22,7 +22,8 @@ glm::dmat3 crossMatrix(const Vec3& r) {
 }
 
 // The point moved alone, through its carrier particles: K = sum c_i^2 w_i (REFERENCES.md).
-void dragCarriers(Particles& p, const Embedding& point, const Vec3& force, Real stiffness, Real damping, Real h) {
+void dragCarriers(Particles& p, const Embedding& point, const Vec3& force, Real stiffness, Real damping,
+                  Real h) {
   const Real K = embeddedWeight(p.inverseMass, point);
   const Vec3 impulse = h * force / (1.0 + (h * h * stiffness + h * damping) * K);
   // The impulse moves the point by h K J; shiftEmbedded moves particle i by c_i w_i times the
@@ -32,8 +33,8 @@ void dragCarriers(Particles& p, const Embedding& point, const Vec3& force, Real 
 
 }  // namespace
 
-void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3& target, Real stiffness, Real damping,
-               Real h) {
+void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3& target, Real stiffness,
+               Real damping, Real h) {
   const Vec3 x = embeddedPosition(p.position, point);
   const Vec3 force = stiffness * (target - x) - damping * (x - embeddedPosition(p.previous, point)) / h;
   MassProperties m;
@@ -53,7 +54,8 @@ void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3&
   // Every particle's velocity changes by dv + dw x r_i; moving x by that times h, with x* kept,
   // makes it part of the Verlet velocity.
   const Vec3 dv = impulse / m.mass, dw = inverseInertia * glm::cross(x - m.centre, impulse);
-  for (ParticleId i = box->firstParticle; i < box->firstParticle + static_cast<ParticleId>(box->particleCount); ++i) {
+  for (ParticleId i = box->firstParticle;
+       i < box->firstParticle + static_cast<ParticleId>(box->particleCount); ++i) {
     p.position[i] += (dv + glm::cross(dw, p.position[i] - m.centre)) * h;
   }
 }

@@ -14,7 +14,8 @@ Real embeddedWeight(const std::vector<Real>& inverseMass, const Embedding& e) {
   return sum;
 }
 
-void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& step) {
+void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e,
+                   const Vec3& step) {
   for (int i = 0; i < e.count; ++i) {
     const Real w = inverseMass[e.particle[i]];
     if (w != 0.0) x[e.particle[i]] += (e.weight[i] * w) * step;  // a pinned one never moves
@@ -22,7 +23,8 @@ void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, c
 }
 
 // REFERENCES.md (Jakobsen, "a point embedded in a stick", generalised): xi += ci wi D / sum cj^2 wj.
-void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& D) {
+void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e,
+                  const Vec3& D) {
   const Real denominator = embeddedWeight(inverseMass, e);
   if (denominator == 0.0) return;  // every carrier pinned
   shiftEmbedded(x, inverseMass, e, D / denominator);
@@ -33,7 +35,8 @@ Embedding rigidEmbedding(const Box& box, const Vec3& u) {
   Embedding e;
   e.count = 4;
   for (int j = 0; j < 4; ++j) {
-    e.particle[j] = box.firstParticle + static_cast<ParticleId>(box.model == BoxModel::Tetra ? j : kTetraCorner[j]);
+    e.particle[j] =
+        box.firstParticle + static_cast<ParticleId>(box.model == BoxModel::Tetra ? j : kTetraCorner[j]);
     e.weight[j] = w[j];
   }
   return e;

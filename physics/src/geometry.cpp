@@ -21,14 +21,16 @@ Polygon clip(const Polygon& in, const Vec3& plane, Real offset) {
     const Real dp = glm::dot(plane, p) - offset, dq = glm::dot(plane, q) - offset;
     if (dp <= 0.0 && out.n < 8) out.v[out.n++] = p;
     // A crossing strictly inside the edge only: an end on the plane is kept as itself.
-    if (((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) && out.n < 8) out.v[out.n++] = p + (q - p) * (dp / (dp - dq));
+    if (((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) && out.n < 8)
+      out.v[out.n++] = p + (q - p) * (dp / (dp - dq));
     if (in.n == 2 && dq <= 0.0 && out.n < 8) out.v[out.n++] = q;
   }
   return out;
 }
 
 // Closest points of segments p1-q1 and p2-q2 (Ericson, "Real-Time Collision Detection" 5.1.9).
-void closestPointsOfSegments(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, Vec3& c1, Vec3& c2) {
+void closestPointsOfSegments(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, Vec3& c1,
+                             Vec3& c2) {
   const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const Real a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
   Real s = 0.0, t = 0.0;

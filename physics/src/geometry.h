@@ -16,6 +16,7 @@ struct Polygon {
 Polygon clip(const Polygon& in, const Vec3& plane, Real offset);
 
 /// Closest points c1 of segment p1-q1 and c2 of segment p2-q2.
-void closestPointsOfSegments(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, Vec3& c1, Vec3& c2);
+void closestPointsOfSegments(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, Vec3& c1,
+                             Vec3& c2);
 
 }  // namespace phys::detail

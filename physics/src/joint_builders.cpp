@@ -31,7 +31,8 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   const Quat q = desc.orientation / qLength;
   const Vec3 hips = desc.hips, fromHips(0.0, hipHeight, 0.0);
   const Real scale = desc.scale;
-  return {q, [hips, q, fromHips, scale](const Vec3& layout) { return hips + q * ((layout - fromHips) * scale); }};
+  return {
+      q, [hips, q, fromHips, scale](const Vec3& layout) { return hips + q * ((layout - fromHips) * scale); }};
 }
 
 BoxDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
@@ -50,7 +51,8 @@ Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
   return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));
 }
 
-void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place, Real scale) {
+void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place,
+              Real scale) {
   // Two pins on the axis make the hinge.
   for (const Real side : {-1.0, 1.0}) {
     const Vec3 pin = place(spec.pivot + spec.axis * (side * spec.halfSpan));
@@ -67,11 +69,13 @@ void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, co
   const Vec3 inChild = place(spec.pivot + spec.reference * spec.radius);
   for (const Real stop : {spec.minAngle - kStopReach, spec.maxAngle + kStopReach}) {
     const Vec3 inParent = place(spec.pivot + rotateAbout(spec.reference, spec.axis, stop) * spec.radius);
-    world.addLink(world.anchor(parent, inParent), world.anchor(child, inChild), spec.radius * scale, kNoMaxLength);
+    world.addLink(world.anchor(parent, inParent), world.anchor(child, inChild), spec.radius * scale,
+                  kNoMaxLength);
   }
 }
 
-void addCone(World& world, BoxId parent, BoxId child, const ConeSpec& spec, const PlaceFn& place, Real scale) {
+void addCone(World& world, BoxId parent, BoxId child, const ConeSpec& spec, const PlaceFn& place,
+             Real scale) {
   const Vec3 pivot = place(spec.pivot);
   world.addLink(world.anchor(parent, pivot), world.anchor(child, pivot));
   // A point at `radius` along the limb's axis, fixed in both parts where it is laid out: after

@@ -43,7 +43,8 @@ struct HingeSpec {
 };
 
 /// Two pins on the axis and a one-sided range link at each stop (the why is in the .cpp).
-void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place, Real scale);
+void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place,
+              Real scale);
 
 /// A cone in the layout frame: a ball joint at `pivot` whose child keeps its `axis` within
 /// `swing` of the parent's, and turns about it by at most about `twist` more.

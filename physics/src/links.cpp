@@ -15,7 +15,8 @@ void solveLinks(Particles& p, std::span<const Link> links) {
     Vec3 correction = gap;  // a pin closes the whole gap
     if (!link.isPin()) {
       const Real length = glm::length(gap);
-      const Real target = length < link.minLength ? link.minLength : (length > link.maxLength ? link.maxLength : -1.0);
+      const Real target =
+          length < link.minLength ? link.minLength : (length > link.maxLength ? link.maxLength : -1.0);
       if (target < 0.0 || length == 0.0) continue;  // within its bounds, or no direction to push along
       correction = gap * ((length - target) / length);
     }

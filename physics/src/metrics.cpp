@@ -13,7 +13,9 @@ namespace {
 
 // The larger of the two, and NaN if either is: std::max(a, NaN) returns a, which would report a
 // world gone to NaN as calm.
-Real maxOf(Real a, Real b) { return (a >= b || std::isnan(a)) ? a : b; }
+Real maxOf(Real a, Real b) {
+  return (a >= b || std::isnan(a)) ? a : b;
+}
 
 }  // namespace
 
@@ -43,15 +45,18 @@ Metrics World::metrics() const {
   for (const Stick& s : sticks_) {
     const Real length = glm::length(particles_.position[s.b] - particles_.position[s.a]);
     Real violation = 0.0;
-    if (length < s.minLength) violation = (s.minLength - length) / s.minLength;
-    else if (length > s.maxLength) violation = (length - s.maxLength) / s.maxLength;
+    if (length < s.minLength)
+      violation = (s.minLength - length) / s.minLength;
+    else if (length > s.maxLength)
+      violation = (length - s.maxLength) / s.maxLength;
     m.maxConstraintError = maxOf(m.maxConstraintError, violation);
     sumSquares += violation * violation;
   }
   if (!sticks_.empty()) m.rmsConstraintError = std::sqrt(sumSquares / static_cast<Real>(sticks_.size()));
   for (const Link& link : links_) {
     const Real length = glm::length(position(link.b) - position(link.a));
-    const Real violation = length < link.minLength ? link.minLength - length : std::max(0.0, length - link.maxLength);
+    const Real violation =
+        length < link.minLength ? link.minLength - length : std::max(0.0, length - link.maxLength);
     m.maxJointError = maxOf(m.maxJointError, violation);
   }
   if (world_.ground) {

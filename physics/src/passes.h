@@ -26,8 +26,8 @@ void integrate(Particles& p, const WorldSettings& world, Real h);
 /// the point at most reaches the target. `box` is the box that carries the point, which then
 /// answers as a rigid body, or null (a loose particle): the point's carriers answer alone.
 /// Pinned and frozen particles do not move.
-void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3& target, Real stiffness, Real damping,
-               Real h);
+void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3& target, Real stiffness,
+               Real damping, Real h);
 
 /// The length a stick or range stick must be moved to, or a negative number when the current
 /// length is within its bounds (nothing to do).
@@ -42,7 +42,8 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks);
 /// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
 /// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
 /// particle.
-void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Real> degree, std::span<Vec3> delta);
+void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Real> degree,
+                 std::span<Vec3> delta);
 /// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
 /// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
 /// zeroed at the start of each substep.
@@ -110,7 +111,8 @@ inline Real restitutionChange(Real separation, Real approach, const Restitution&
 void measureGroundApproach(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real h,
                            std::span<Real> approach);
 /// Normal speed (m/s) at which the two points of each box-box contact approach each other.
-void measureBodyApproach(const Particles& p, std::span<const BodyContact> contacts, Real h, std::span<Real> approach);
+void measureBodyApproach(const Particles& p, std::span<const BodyContact> contacts, Real h,
+                         std::span<Real> approach);
 /// Fills each box's rigid state (RigidState) from its particles, with no changes yet.
 void measureRigidStates(const Particles& p, std::span<const Box> boxes, Real h, std::span<RigidState> rigid);
 /// One Gauss-Seidel pass of restitution over the ground contact points `pushed` in this substep:
@@ -120,8 +122,9 @@ void restituteGround(Particles& p, std::span<RigidState> rigid, std::span<const 
                      const Vec3& n, std::span<const Real> approach, std::span<const std::uint8_t> pushed,
                      const Restitution& r);
 /// restituteGround for box-box contacts: equal and opposite impulses on the two boxes.
-void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid, std::span<const BodyContact> contacts,
-                           std::span<const Real> approach, std::span<const std::uint8_t> pushed, const Restitution& r);
+void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid,
+                           std::span<const BodyContact> contacts, std::span<const Real> approach,
+                           std::span<const std::uint8_t> pushed, const Restitution& r);
 /// Writes each box's velocity and spin changes into its particles' x*: x*_i -= (dv + dw x r_i) h.
 void applyRigidChanges(Particles& p, std::span<const Box> boxes, std::span<const RigidState> rigid, Real h);
 
@@ -157,9 +160,11 @@ Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);
 Real embeddedWeight(const std::vector<Real>& inverseMass, const Embedding& e);
 /// Moves each particle of the point by c_i w_i step (a pinned one not at all): the weighted
 /// projection's update, without its division.
-void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& step);
+void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e,
+                   const Vec3& step);
 /// Moves an embedded point by D through its particles in `x` (positions or previous
 /// positions), each in proportion to weight * inverse mass (REFERENCES.md).
-void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e, const Vec3& D);
+void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e,
+                  const Vec3& D);
 
 }  // namespace phys::detail

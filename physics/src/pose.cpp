@@ -14,7 +14,8 @@ glm::dmat3 gramSchmidt(const glm::dmat3& A) {
   x = lx > 0.0 ? x / lx : Vec3(1, 0, 0);
   y -= glm::dot(y, x) * x;
   const Real ly = glm::length(y);
-  y = ly > 1e-12 ? y / ly : glm::normalize(glm::cross(x, std::abs(x.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
+  y = ly > 1e-12 ? y / ly
+                 : glm::normalize(glm::cross(x, std::abs(x.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
   return glm::dmat3(x, y, glm::cross(x, y));
 }
 

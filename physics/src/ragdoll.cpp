@@ -57,11 +57,25 @@ constexpr HingeLayout kHinges[kRagdollHinges] = {
     {RagdollPart::Torso, RagdollPart::UpperArmLeft, {0.20, 1.40, 0.0}, 0.08, kDown, -120.0, 40.0, 0.10},
     {RagdollPart::UpperArmLeft, RagdollPart::LowerArmLeft, {0.23, 1.14, 0.0}, 0.07, kDown, -140.0, 0.0, 0.08},
     {RagdollPart::Torso, RagdollPart::UpperArmRight, {-0.20, 1.40, 0.0}, 0.08, kDown, -120.0, 40.0, 0.10},
-    {RagdollPart::UpperArmRight, RagdollPart::LowerArmRight, {-0.23, 1.14, 0.0}, 0.07, kDown, -140.0, 0.0, 0.08},
+    {RagdollPart::UpperArmRight,
+     RagdollPart::LowerArmRight,
+     {-0.23, 1.14, 0.0},
+     0.07,
+     kDown,
+     -140.0,
+     0.0,
+     0.08},
     {RagdollPart::Torso, RagdollPart::UpperLegLeft, {0.09, 0.88, 0.0}, 0.07, kDown, -110.0, 20.0, 0.10},
     {RagdollPart::UpperLegLeft, RagdollPart::LowerLegLeft, {0.09, 0.44, 0.0}, 0.07, kDown, 0.0, 140.0, 0.10},
     {RagdollPart::Torso, RagdollPart::UpperLegRight, {-0.09, 0.88, 0.0}, 0.07, kDown, -110.0, 20.0, 0.10},
-    {RagdollPart::UpperLegRight, RagdollPart::LowerLegRight, {-0.09, 0.44, 0.0}, 0.07, kDown, 0.0, 140.0, 0.10},
+    {RagdollPart::UpperLegRight,
+     RagdollPart::LowerLegRight,
+     {-0.09, 0.44, 0.0},
+     0.07,
+     kDown,
+     0.0,
+     140.0,
+     0.10},
 };
 
 void require(bool ok, const char* what) {
@@ -70,7 +84,9 @@ void require(bool ok, const char* what) {
 
 }  // namespace
 
-std::string_view toString(RagdollModel model) { return model == RagdollModel::Lean ? "lean" : "seed"; }
+std::string_view toString(RagdollModel model) {
+  return model == RagdollModel::Lean ? "lean" : "seed";
+}
 
 std::optional<RagdollModel> parseRagdollModel(std::string_view name) {
   if (name == "seed") return RagdollModel::Seed;
@@ -79,9 +95,10 @@ std::optional<RagdollModel> parseRagdollModel(std::string_view name) {
 }
 
 std::string_view toString(RagdollPart part) {
-  constexpr std::string_view kNames[kRagdollParts] = {
-      "head", "torso", "upper-arm-left", "lower-arm-left", "upper-arm-right", "lower-arm-right",
-      "upper-leg-left", "lower-leg-left", "upper-leg-right", "lower-leg-right"};
+  constexpr std::string_view kNames[kRagdollParts] = {"head",           "torso",           "upper-arm-left",
+                                                      "lower-arm-left", "upper-arm-right", "lower-arm-right",
+                                                      "upper-leg-left", "lower-leg-left",  "upper-leg-right",
+                                                      "lower-leg-right"};
   return kNames[static_cast<int>(part)];
 }
 
@@ -121,7 +138,8 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
     spec.radius = layout.radius;
     detail::addHinge(world, parent, child, spec, place, desc.scale);
     world.ignoreCollision(parent, child);
-    ragdoll.hinges[h] = {layout.parent, layout.child, Vec3(1.0, 0.0, 0.0), layout.reference, minAngle, maxAngle};
+    ragdoll.hinges[h] = {layout.parent,    layout.child, Vec3(1.0, 0.0, 0.0),
+                         layout.reference, minAngle,     maxAngle};
   }
   return ragdoll;
 }

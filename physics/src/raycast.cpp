@@ -74,8 +74,10 @@ std::optional<Real> rayCapsule(const Vec3& o, const Vec3& d, Real halfSegment, R
 // a scene has hundreds of bodies at most, so no acceleration structure is worth keeping.
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, Real maxDistance) const {
   const Real length = glm::length(direction);
-  if (!finite(origin) || !std::isfinite(length) || length == 0.0 || std::isnan(maxDistance) || maxDistance < 0.0) {
-    throw std::invalid_argument("raycast: origin must be finite, direction finite and non-zero, maxDistance >= 0 (m)");
+  if (!finite(origin) || !std::isfinite(length) || length == 0.0 || std::isnan(maxDistance) ||
+      maxDistance < 0.0) {
+    throw std::invalid_argument(
+        "raycast: origin must be finite, direction finite and non-zero, maxDistance >= 0 (m)");
   }
   const Vec3 d = direction / length;
   std::optional<RayHit> best;

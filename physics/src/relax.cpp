@@ -11,10 +11,10 @@ namespace {
 
 // What every method needs to know of one stick before it corrects it.
 struct StickState {
-  Real w1, w2;   // inverse masses
-  Vec3 d;        // x2 - x1
-  Real length;   // |d|
-  Real target;   // the length to move to
+  Real w1, w2;  // inverse masses
+  Vec3 d;       // x2 - x1
+  Real length;  // |d|
+  Real target;  // the length to move to
 };
 
 // Jakobsen's projection of one measured stick. A pinned end (w = 0) is never written: 0 times
@@ -53,7 +53,8 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks) {
 // so the two stay equal and opposite in momentum (averaging each particle by its own count
 // would not, and a free body would drift); the factor keeps a particle pulled by many sticks
 // from overshooting (Müller et al. 2007 discuss both orders).
-void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Real> degree, std::span<Vec3> delta) {
+void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Real> degree,
+                 std::span<Vec3> delta) {
   std::fill(delta.begin(), delta.end(), Vec3(0.0));
   StickState m;
   for (const Stick& s : sticks) {
@@ -77,7 +78,8 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lamb
   for (std::size_t c = 0; c < sticks.size(); ++c) {
     const Stick& s = sticks[c];
     if (!measure(p, s, m) || m.length == 0.0) continue;
-    const Real alpha = (s.compliance + compliance) * inverseH2;  // finite: both and h are bounded (settings.h)
+    const Real alpha =
+        (s.compliance + compliance) * inverseH2;  // finite: both and h are bounded (settings.h)
     const Real dLambda = (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
     lambda[c] += dLambda;
     const Vec3 n = m.d / m.length;

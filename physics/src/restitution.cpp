@@ -63,7 +63,8 @@ void measureGroundApproach(const Particles& p, std::span<const GroundContact> co
   }
 }
 
-void measureBodyApproach(const Particles& p, std::span<const BodyContact> contacts, Real h, std::span<Real> approach) {
+void measureBodyApproach(const Particles& p, std::span<const BodyContact> contacts, Real h,
+                         std::span<Real> approach) {
   for (std::size_t k = 0; k < contacts.size(); ++k) approach[k] = -relativeNormalMotion(p, contacts[k]) / h;
 }
 
@@ -100,15 +101,17 @@ void restituteGround(Particles& p, std::span<RigidState> rigid, std::span<const 
   }
 }
 
-void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid, std::span<const BodyContact> contacts,
-                           std::span<const Real> approach, std::span<const std::uint8_t> pushed, const Restitution& r) {
+void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid,
+                           std::span<const BodyContact> contacts, std::span<const Real> approach,
+                           std::span<const std::uint8_t> pushed, const Restitution& r) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (pushed[k] == 0) continue;
     const BodyContact& c = contacts[k];
     RigidState& a = rigid[static_cast<std::size_t>(c.boxA)];
     RigidState& b = rigid[static_cast<std::size_t>(c.boxB)];
     const Vec3 xa = embeddedPosition(p.position, c.pointA), xb = embeddedPosition(p.position, c.pointB);
-    const Real change = restitutionChange(glm::dot(c.normal, velocityAt(b, xb) - velocityAt(a, xa)), approach[k], r);
+    const Real change =
+        restitutionChange(glm::dot(c.normal, velocityAt(b, xb) - velocityAt(a, xa)), approach[k], r);
     const Real w = inverseMassAt(a, xa, c.normal) + inverseMassAt(b, xb, c.normal);
     if (change == 0.0 || w == 0.0) continue;
     const Vec3 impulse = (change / w) * c.normal;  // on B; A takes the opposite
@@ -122,7 +125,8 @@ void applyRigidChanges(Particles& p, std::span<const Box> boxes, std::span<const
     const RigidState& s = rigid[k];
     if (s.velocityChange == Vec3(0.0) && s.spinChange == Vec3(0.0)) continue;
     const Box& box = boxes[k];
-    for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount); ++i) {
+    for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount);
+         ++i) {
       p.previous[i] -= (s.velocityChange + glm::cross(s.spinChange, p.position[i] - s.centre)) * h;
     }
   }

@@ -30,7 +30,8 @@ struct Best {
 };
 
 // A face axis: keep the shallowest.
-bool testFace(const Obb& a, const Obb& b, const Vec3& axis, int index, const Vec3& t, Real margin, Best& best) {
+bool testFace(const Obb& a, const Obb& b, const Vec3& axis, int index, const Vec3& t, Real margin,
+              Best& best) {
   const Real depth = penetration(a, b, axis, t);
   if (depth < -margin) return false;
   if (depth < best.depth) best = {depth, index, axis};
@@ -57,7 +58,8 @@ bool testEdge(const Obb& a, const Obb& b, const Vec3& edgeA, const Vec3& edgeB, 
 
 Vec3 Obb::corner(int k) const {
   return center + axes[0] * ((k & 1) ? halfExtents.x : -halfExtents.x) +
-         axes[1] * ((k & 2) ? halfExtents.y : -halfExtents.y) + axes[2] * ((k & 4) ? halfExtents.z : -halfExtents.z);
+         axes[1] * ((k & 2) ? halfExtents.y : -halfExtents.y) +
+         axes[2] * ((k & 4) ? halfExtents.z : -halfExtents.z);
 }
 
 SatResult satTest(const Obb& a, const Obb& b, Real margin) {
@@ -74,7 +76,8 @@ SatResult satTest(const Obb& a, const Obb& b, Real margin) {
       if (!testEdge(a, b, a.axes[i], b.axes[j], 6 + 3 * i + j, t, margin, edge)) return {};
     }
   }
-  const Best& best = edge.axis >= 0 && edge.depth < kFaceBiasRelative * face.depth - kFaceBiasAbsolute ? edge : face;
+  const Best& best =
+      edge.axis >= 0 && edge.depth < kFaceBiasRelative * face.depth - kFaceBiasAbsolute ? edge : face;
   SatResult r;
   r.overlap = true;
   r.axis = best.axis;

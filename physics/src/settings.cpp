@@ -18,7 +18,9 @@ std::string joined(const std::ostringstream& why) {
   return out;
 }
 
-bool finiteNonNegative(Real v) { return std::isfinite(v) && v >= 0.0; }
+bool finiteNonNegative(Real v) {
+  return std::isfinite(v) && v >= 0.0;
+}
 
 }  // namespace
 
@@ -35,7 +37,8 @@ std::string validate(const WorldSettings& s) {
   if (!finite(s.gravityPoint)) why << "gravityPoint must be finite; ";
   if (!finiteNonNegative(s.gravityStrength)) why << "gravityStrength must be finite and >= 0 (m/s^2); ";
   if (!finiteNonNegative(s.damping)) why << "damping must be finite and >= 0 (1/s); ";
-  if (!finite(s.groundNormal) || glm::length(s.groundNormal) < 1e-9) why << "groundNormal must be finite and non-zero; ";
+  if (!finite(s.groundNormal) || glm::length(s.groundNormal) < 1e-9)
+    why << "groundNormal must be finite and non-zero; ";
   if (!std::isfinite(s.groundHeight)) why << "groundHeight must be finite; ";
   if (const std::string m = validate(s.groundMaterial); !m.empty()) why << "groundMaterial: " << m << "; ";
   if (!(s.bound > 0.0)) why << "bound must be > 0 (m); ";
@@ -47,8 +50,10 @@ std::string validate(const SolverSettings& s) {
   if (!std::isfinite(s.dt) || s.dt < kMinDt || s.dt > kMaxDt) {
     why << "dt must be from " << kMinDt << " to " << kMaxDt << " (s); ";
   }
-  if (s.substeps < 1 || s.substeps > kMaxSubsteps) why << "substeps must be from 1 to " << kMaxSubsteps << "; ";
-  if (s.iterations < 1 || s.iterations > kMaxIterations) why << "iterations must be from 1 to " << kMaxIterations << "; ";
+  if (s.substeps < 1 || s.substeps > kMaxSubsteps)
+    why << "substeps must be from 1 to " << kMaxSubsteps << "; ";
+  if (s.iterations < 1 || s.iterations > kMaxIterations)
+    why << "iterations must be from 1 to " << kMaxIterations << "; ";
   if (!finiteNonNegative(s.featureEpsilon)) why << "featureEpsilon must be finite and >= 0 (m); ";
   if (!finiteNonNegative(s.contactSlop)) why << "contactSlop must be finite and >= 0 (m); ";
   if (!(s.bodyDamping >= 0.0 && s.bodyDamping <= 1.0)) why << "bodyDamping must be from 0 to 1; ";
@@ -64,22 +69,29 @@ std::string validate(const SolverSettings& s) {
 
 std::string_view toString(SolverMethod method) {
   switch (method) {
-    case SolverMethod::GaussSeidel: return "gauss-seidel";
-    case SolverMethod::Jacobi: return "jacobi";
-    case SolverMethod::Xpbd: return "xpbd";
-    case SolverMethod::Shake: return "shake";
+    case SolverMethod::GaussSeidel:
+      return "gauss-seidel";
+    case SolverMethod::Jacobi:
+      return "jacobi";
+    case SolverMethod::Xpbd:
+      return "xpbd";
+    case SolverMethod::Shake:
+      return "shake";
   }
   return "?";
 }
 
 std::optional<SolverMethod> parseSolverMethod(std::string_view name) {
-  for (SolverMethod m : {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Xpbd, SolverMethod::Shake}) {
+  for (SolverMethod m :
+       {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Xpbd, SolverMethod::Shake}) {
     if (name == toString(m)) return m;
   }
   return std::nullopt;
 }
 
-std::string_view toString(GravityMode mode) { return mode == GravityMode::Point ? "point" : "uniform"; }
+std::string_view toString(GravityMode mode) {
+  return mode == GravityMode::Point ? "point" : "uniform";
+}
 
 std::optional<GravityMode> parseGravityMode(std::string_view name) {
   if (name == "uniform") return GravityMode::Uniform;

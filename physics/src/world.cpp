@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -33,11 +33,30 @@ struct Pair {
 // per relaxation pass to be corrected, with them through one.
 constexpr Pair kCornerSticks[22] = {
     // edges along x, y and z (corner bits: 1 = x, 2 = y, 4 = z)
-    {0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7},
+    {0, 1},
+    {2, 3},
+    {4, 5},
+    {6, 7},
+    {0, 2},
+    {1, 3},
+    {4, 6},
+    {5, 7},
+    {0, 4},
+    {1, 5},
+    {2, 6},
+    {3, 7},
     // one diagonal per face: -x, +x, -y, +y, -z, +z
-    {0, 6}, {1, 7}, {0, 5}, {2, 7}, {0, 3}, {4, 7},
+    {0, 6},
+    {1, 7},
+    {0, 5},
+    {2, 7},
+    {0, 3},
+    {4, 7},
     // body diagonals
-    {0, 7}, {1, 6}, {2, 5}, {3, 4}};
+    {0, 7},
+    {1, 6},
+    {2, 5},
+    {3, 4}};
 // The tetra model: all 6 edges of the tetrahedron, rigid with 4 particles (3 * 4 - 6 = 6).
 constexpr Pair kTetraSticks[6] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
@@ -85,10 +104,13 @@ void World::settleWithoutVelocity() {
     detail::relaxGaussSeidel(particles_, sticks_);
     detail::solveLinks(particles_, links_);
     detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_);
-    if (world_.ground) detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight, normalPush_);
+    if (world_.ground)
+      detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight,
+                            normalPush_);
   }
   std::fill(bodyPush_.begin(), bodyPush_.end(), 0.0);
-  for (std::size_t i = 0; i < particles_.size(); ++i) particles_.previous[i] += particles_.position[i] - before[i];
+  for (std::size_t i = 0; i < particles_.size(); ++i)
+    particles_.previous[i] += particles_.position[i] - before[i];
   std::fill(normalPush_.begin(), normalPush_.end(), 0.0);
 }
 
@@ -125,7 +147,9 @@ void World::keepVelocities(Real hOld, Real hNew) {
   }
 }
 
-void World::setFreezeCallback(std::function<void(const FreezeReport&)> callback) { onFreeze_ = std::move(callback); }
+void World::setFreezeCallback(std::function<void(const FreezeReport&)> callback) {
+  onFreeze_ = std::move(callback);
+}
 
 void World::combineMaterials() {
   for (GroundContact& c : contactPoints_) {
@@ -157,7 +181,8 @@ ParticleId World::addParticle(const ParticleDesc& desc) {
 }
 
 void World::addContactPoint(const Embedding& point, const Material& material, std::int32_t body) {
-  contactPoints_.push_back({point, material, body >= 0 ? combine(material, world_.groundMaterial) : world_.groundMaterial, body});
+  contactPoints_.push_back(
+      {point, material, body >= 0 ? combine(material, world_.groundMaterial) : world_.groundMaterial, body});
   normalPush_.push_back(0.0);
   touched_.push_back(0);
   groundHit_.push_back(0);
@@ -177,7 +202,8 @@ void World::addStick(ParticleId a, ParticleId b, Real length, Real compliance) {
 }
 
 void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength, Real compliance) {
-  require(a < particles_.size() && b < particles_.size() && a != b, "stick: particle ids must exist and differ");
+  require(a < particles_.size() && b < particles_.size() && a != b,
+          "stick: particle ids must exist and differ");
   require(std::isfinite(minLength) && minLength >= 0.0, "stick: min length must be finite and >= 0 (m)");
   require(!std::isnan(maxLength) && maxLength > 0.0 && maxLength >= minLength,
           "stick: max length must be > 0 (m) and >= min length");
@@ -214,8 +240,10 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
 void World::setDrag(const Drag& drag) {
   checkEmbedding(drag.point, "setDrag");
   require(finite(drag.target), "setDrag: target must be finite");
-  require(std::isfinite(drag.stiffness) && drag.stiffness >= 0.0, "setDrag: stiffness must be finite and >= 0 (N/m)");
-  require(std::isfinite(drag.damping) && drag.damping >= 0.0, "setDrag: damping must be finite and >= 0 (N s/m)");
+  require(std::isfinite(drag.stiffness) && drag.stiffness >= 0.0,
+          "setDrag: stiffness must be finite and >= 0 (N/m)");
+  require(std::isfinite(drag.damping) && drag.damping >= 0.0,
+          "setDrag: damping must be finite and >= 0 (N s/m)");
   drag_ = drag;
   // The box that carries the point answers the pull as a rigid body; a point carried by anything
   // else (a loose particle, particles of several bodies) is moved through its carriers alone.
@@ -236,7 +264,8 @@ Embedding World::anchor(BoxId id, const Vec3& worldPoint) const {
   require(finite(worldPoint), "anchor: the point must be finite");
   const Box& box = boxes_[id];
   const BoxPose pose = boxPose(id);
-  return detail::rigidEmbedding(box, (glm::inverse(pose.orientation) * (worldPoint - pose.center)) / box.halfExtents);
+  return detail::rigidEmbedding(
+      box, (glm::inverse(pose.orientation) * (worldPoint - pose.center)) / box.halfExtents);
 }
 
 BoxId World::addBox(const BoxDesc& desc) {
@@ -246,12 +275,14 @@ BoxId World::addBox(const BoxDesc& desc) {
           "addBox: size must be finite and > 0 (m)");
   require(std::isfinite(desc.mass) && desc.mass > 0.0, "addBox: mass must be finite and > 0 (kg)");
   const Real qLength = glm::length(desc.orientation);
-  require(std::isfinite(qLength) && qLength > 0.0, "addBox: orientation must be a finite non-zero quaternion");
+  require(std::isfinite(qLength) && qLength > 0.0,
+          "addBox: orientation must be a finite non-zero quaternion");
   require(validate(desc.material).empty(), "addBox: " + validate(desc.material));
   if (desc.shape == Shape::Capsule) {
     require(std::abs(desc.size.x - desc.size.z) <= 1e-9 * desc.size.x,
             "addBox: a capsule's size.x and size.z are both its diameter and must be equal (m)");
-    require(desc.size.y >= desc.size.x, "addBox: a capsule's length size.y must be at least its diameter size.x (m)");
+    require(desc.size.y >= desc.size.x,
+            "addBox: a capsule's length size.y must be at least its diameter size.x (m)");
   }
   const Quat q = desc.orientation / qLength;
 
@@ -272,8 +303,11 @@ BoxId World::addBox(const BoxDesc& desc) {
   std::array<ParticleDesc, 8> parts;
   for (int j = 0; j < box.particleCount; ++j) {
     const Vec3 offset = q * boxParticleLocal(desc.model, box.halfExtents, j);
-    parts[j] = {desc.center + offset, desc.velocity + glm::cross(desc.angularVelocity, offset),
-                desc.mass / box.particleCount, false, {}};
+    parts[j] = {desc.center + offset,
+                desc.velocity + glm::cross(desc.angularVelocity, offset),
+                desc.mass / box.particleCount,
+                false,
+                {}};
     require(finite(parts[j].position) && finite(parts[j].velocity) && std::isfinite(1.0 / parts[j].mass),
             "addBox: centre, size, velocity or mass too large to represent");
     for (int i = 0; i < j; ++i) {
@@ -294,7 +328,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   groundAllowance_.resize(contactsBefore);
 
   const std::span<const Pair> pairs = desc.model == BoxModel::Corners ? std::span<const Pair>(kCornerSticks)
-                                                                       : std::span<const Pair>(kTetraSticks);
+                                                                      : std::span<const Pair>(kTetraSticks);
   for (const Pair& p : pairs) addStick(box.firstParticle + p.a, box.firstParticle + p.b);
 
   for (int k = 0; k < 8; ++k) {
@@ -348,10 +382,18 @@ void World::relax(Real h) {
   for (int it = 0; it < solver_.iterations; ++it) {
     auto start = Clock::now();
     switch (solver_.method) {
-      case SolverMethod::GaussSeidel: detail::relaxGaussSeidel(particles_, sticks_); break;
-      case SolverMethod::Jacobi: detail::relaxJacobi(particles_, sticks_, degree_, jacobiDelta_); break;
-      case SolverMethod::Xpbd: detail::relaxXpbd(particles_, sticks_, lambda_, h, solver_.compliance); break;
-      case SolverMethod::Shake: detail::relaxShake(particles_, sticks_); break;
+      case SolverMethod::GaussSeidel:
+        detail::relaxGaussSeidel(particles_, sticks_);
+        break;
+      case SolverMethod::Jacobi:
+        detail::relaxJacobi(particles_, sticks_, degree_, jacobiDelta_);
+        break;
+      case SolverMethod::Xpbd:
+        detail::relaxXpbd(particles_, sticks_, lambda_, h, solver_.compliance);
+        break;
+      case SolverMethod::Shake:
+        detail::relaxShake(particles_, sticks_);
+        break;
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links
     // between bodies, then the contacts. Links are rigid projections in every method, so the
@@ -393,13 +435,15 @@ void World::relax(Real h) {
 // Impacts under 2 |g| h are the speed a resting contact gains in one substep, and never bounce
 // (Müller et al. 2020's threshold), so coarse steps and strong gravity do not make boxes hop.
 void World::restitute(Real h) {
-  const Real g = world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
+  const Real g =
+      world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
   const detail::Restitution r{solver_.restitution, std::max(kRestitutionMinSpeed, 2.0 * g * h), h};
   detail::measureRigidStates(particles_, boxes_, h, rigid_);
   for (int it = 0; it < solver_.iterations; ++it) {
     detail::restituteBodyContacts(particles_, rigid_, bodyContacts_, bodyApproach_, bodyTouched_, r);
     if (world_.ground) {
-      detail::restituteGround(particles_, rigid_, contactPoints_, world_.groundNormal, groundApproach_, groundHit_, r);
+      detail::restituteGround(particles_, rigid_, contactPoints_, world_.groundNormal, groundApproach_,
+                              groundHit_, r);
     }
   }
   detail::applyRigidChanges(particles_, boxes_, rigid_, h);
@@ -511,7 +555,8 @@ void World::freeze(ParticleId bad, const std::string& reason) {
   }
   for (ParticleId i = first; i < first + count; ++i) {
     // x* was checked at the end of the previous substep, so it is a good place to stop.
-    if (!finite(particles_.position[i])) particles_.position[i] = finite(particles_.previous[i]) ? particles_.previous[i] : Vec3(0.0);
+    if (!finite(particles_.position[i]))
+      particles_.position[i] = finite(particles_.previous[i]) ? particles_.previous[i] : Vec3(0.0);
     particles_.previous[i] = particles_.position[i];
     particles_.inverseMass[i] = 0.0;
   }
@@ -523,7 +568,9 @@ Vec3 World::velocity(ParticleId id) const {
   return (particles_.position.at(id) - particles_.previous.at(id)) / substepDt();
 }
 
-Vec3 World::position(const Embedding& point) const { return detail::embeddedPosition(particles_.position, point); }
+Vec3 World::position(const Embedding& point) const {
+  return detail::embeddedPosition(particles_.position, point);
+}
 
 Vec3 World::gravityAt(const Vec3& x) const {
   if (world_.gravityMode == GravityMode::Uniform) return world_.gravity;

@@ -12,7 +12,7 @@ namespace testing_scenes {
 
 struct BadScene {
   const char* what;
-  const char* xml;        // line 1 is <scene ...>, so the culprit's line is easy to count
+  const char* xml;  // line 1 is <scene ...>, so the culprit's line is easy to count
   int line;
   const char* attribute;  // "" when the element as a whole is wrong
   const char* says;       // a piece of the message

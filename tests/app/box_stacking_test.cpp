@@ -45,7 +45,8 @@ TEST(BoxContact, AlignedFaceToFaceGainsNoEnergyAndRests) {
     EXPECT_LE(most, e0 + slopEnergy) << toString(model);
     EXPECT_NEAR(world.boxPose(1).center.y, 1.5, 0.01) << toString(model);
     std::printf("aligned face to face, %s: upper box off centre by %.4f m, max speed %.4f m/s after 5 s\n",
-                std::string(toString(model)).c_str(), std::abs(world.boxPose(1).center.x), world.metrics().maxSpeed);
+                std::string(toString(model)).c_str(), std::abs(world.boxPose(1).center.x),
+                world.metrics().maxSpeed);
     if (model == phys::BoxModel::Corners) {
       EXPECT_NEAR(world.boxPose(1).center.x, 0.0, 1e-4);
       EXPECT_LT(world.metrics().maxSpeed, 1e-3);
@@ -74,8 +75,10 @@ TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
     phys::BoxDesc a, b;
     a.size = {size(random), size(random), size(random)};
     b.size = {size(random), size(random), size(random)};
-    a.orientation = glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
-    b.orientation = glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+    a.orientation =
+        glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+    b.orientation =
+        glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
     a.model = trial % 2 == 0 ? phys::BoxModel::Corners : phys::BoxModel::Tetra;
     b.model = trial % 3 == 0 ? phys::BoxModel::Corners : phys::BoxModel::Tetra;
     const Vec3 direction = glm::normalize(Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
@@ -87,8 +90,10 @@ TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
       const double mid = 0.5 * (lo + hi);
       b.center = direction * mid;
       const phys::SatResult r = phys::satTest(obbOf(a), obbOf(b));
-      if (r.overlap && r.depth > target) lo = mid;
-      else hi = mid;
+      if (r.overlap && r.depth > target)
+        lo = mid;
+      else
+        hi = mid;
     }
     b.center = direction * hi;
 
@@ -113,16 +118,17 @@ TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
     separated += apart ? 1 : 0;
     for (const Vec3& p : world.particles().position) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
   }
-  std::printf("1000 random overlaps: %d separated within 60 steps, worst overlap left %.4f m, fastest %.4f m/s\n",
-              separated, worstOverlap, fastest);
+  std::printf(
+      "1000 random overlaps: %d separated within 60 steps, worst overlap left %.4f m, fastest %.4f m/s\n",
+      separated, worstOverlap, fastest);
   EXPECT_EQ(separated, 1000);
   EXPECT_LT(fastest, 5.0);
 }
 
 // The largest distance any box moved between two moments, in units of its own size.
 struct Standing {
-  double topDrift;      // m, the last box of the scene, from 2 s to 10 s
-  double worstDrift;    // the largest drift of any box over its smallest edge
+  double topDrift;    // m, the last box of the scene, from 2 s to 10 s
+  double worstDrift;  // the largest drift of any box over its smallest edge
   double maxPenetration;
 };
 
@@ -148,24 +154,28 @@ Standing standFor10Seconds(scenes::Scene scene) {
 
 TEST(Stacking, TenBoxStackStandsFor10Seconds) {
   const Standing s = standFor10Seconds(projectScene("stack"));
-  std::printf("stack of 10 (8 substeps x 1 iteration): top drift %.5f m from 2 s to 10 s, max overlap %.4f m\n",
-              s.topDrift, s.maxPenetration);
+  std::printf(
+      "stack of 10 (8 substeps x 1 iteration): top drift %.5f m from 2 s to 10 s, max overlap %.4f m\n",
+      s.topDrift, s.maxPenetration);
   EXPECT_LT(s.topDrift, 0.05 * 1.0);  // 5% of the 1 m box
   EXPECT_LT(s.maxPenetration, 0.01);
 }
 
 TEST(Stacking, SeedsBoxOfBoxesStandsFor10Seconds) {
   const Standing s = standFor10Seconds(projectScene("box-of-boxes"));
-  std::printf("box of boxes (3 iterations, 1 substep): worst drift %.4f of a box's size, max overlap %.4f m\n",
-              s.worstDrift, s.maxPenetration);
+  std::printf(
+      "box of boxes (3 iterations, 1 substep): worst drift %.4f of a box's size, max overlap %.4f m\n",
+      s.worstDrift, s.maxPenetration);
   EXPECT_LT(s.worstDrift, 0.05);
   EXPECT_LT(s.maxPenetration, 0.01);
 }
 
 TEST(Stacking, SeedsPyramidStandsFor10Seconds) {
   const Standing s = standFor10Seconds(projectScene("pyramid"));
-  std::printf("pyramid of 15 boxes that vary in size (10 iterations, 1 substep): worst drift %.4f of a box's size, "
-              "max overlap %.4f m\n", s.worstDrift, s.maxPenetration);
+  std::printf(
+      "pyramid of 15 boxes that vary in size (10 iterations, 1 substep): worst drift %.4f of a box's size, "
+      "max overlap %.4f m\n",
+      s.worstDrift, s.maxPenetration);
   EXPECT_LT(s.worstDrift, 0.05);
   EXPECT_LT(s.maxPenetration, 0.01);
 }
@@ -186,8 +196,10 @@ TEST(RagdollPile, SixteenRagdollsSettleWithoutDeepOverlap) {
     lastSpeed = w.metrics().maxSpeed;
   }
   const phys::Metrics m = w.metrics();
-  std::printf("pile of 16 ragdolls: worst part-part overlap %.4f m from 5 s to 10 s; at 10 s fastest particle %.3f "
-              "m/s, stick error %.4f, joint gap %.4f m\n", worstOverlap, lastSpeed, m.maxConstraintError, m.maxJointError);
+  std::printf(
+      "pile of 16 ragdolls: worst part-part overlap %.4f m from 5 s to 10 s; at 10 s fastest particle %.3f "
+      "m/s, stick error %.4f, joint gap %.4f m\n",
+      worstOverlap, lastSpeed, m.maxConstraintError, m.maxJointError);
   EXPECT_LT(worstOverlap, 0.02);
   EXPECT_EQ(m.frozen, 0);
   EXPECT_TRUE(std::isfinite(m.energy()));

@@ -57,8 +57,9 @@ TEST(ListDirectory, FoldersFirstThenMatchingFilesEachSortedIgnoringCase) {
   EXPECT_EQ(names(sandbox::listDirectory(dir.path, ".xml")),
             (std::vector<std::string>{"../", "Alpha/", "beta/", "a.xml", "Y.XML", "z.xml"}));
   // No extension wanted: every file.
-  EXPECT_EQ(names(sandbox::listDirectory(dir.path, "")),
-            (std::vector<std::string>{"../", "Alpha/", "beta/", "a.xml", "notes.txt", "xml", "Y.XML", "z.xml"}));
+  EXPECT_EQ(
+      names(sandbox::listDirectory(dir.path, "")),
+      (std::vector<std::string>{"../", "Alpha/", "beta/", "a.xml", "notes.txt", "xml", "Y.XML", "z.xml"}));
 }
 
 TEST(ListDirectory, AMissingFolderGivesNothingAndSaysWhy) {
@@ -90,7 +91,8 @@ TEST(FileDialogTypedPath, OpenWantsAnExistingFile) {
   EXPECT_EQ(folder.action, TypedPath::Action::EnterFolder);
   EXPECT_EQ(folder.path, fs::absolute(fs::path(DATA_DIR) / "assets").lexically_normal());
 
-  const TypedPath absolute = sandbox::resolveTypedPath(FileDialogMode::Open, "/", (kScenes / "chain.xml").string());
+  const TypedPath absolute =
+      sandbox::resolveTypedPath(FileDialogMode::Open, "/", (kScenes / "chain.xml").string());
   EXPECT_EQ(absolute.action, TypedPath::Action::Choose);
   EXPECT_EQ(absolute.path, kScenes / "chain.xml");
 
@@ -255,7 +257,8 @@ TEST_F(FileDialogUi, ClickingParentThenDoubleClickingAFileOpensIt) {
   settle();
   // The row of chain.xml in the listing, whatever other scenes the folder holds.
   const auto entries = sandbox::listDirectory(kScenes, ".xml");
-  const auto chain = std::find_if(entries.begin(), entries.end(), [](const DirectoryEntry& e) { return e.name == "chain.xml"; });
+  const auto chain = std::find_if(entries.begin(), entries.end(),
+                                  [](const DirectoryEntry& e) { return e.name == "chain.xml"; });
   ASSERT_NE(chain, entries.end());
   const auto chosen = click(static_cast<int>(chain - entries.begin()), 2);
   ASSERT_TRUE(chosen.has_value());

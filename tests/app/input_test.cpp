@@ -6,7 +6,7 @@
 
 namespace {
 
-constexpr int kW = 87;  // GLFW_KEY_W
+constexpr int kW = 87;     // GLFW_KEY_W
 constexpr int kRight = 1;  // GLFW_MOUSE_BUTTON_RIGHT
 
 TEST(InputState, AKeyIsHeldFromDownToUp) {

@@ -47,8 +47,9 @@ TEST(Options, DataDirDefaultsToTheBuildsAndCanBeOverridden) {
 namespace {
 
 TEST(Options, DrawMarkersOverlayAndPauseAt) {
-  const auto p = sandbox::parseOptions({"pyramid", "--draw", "wireframe", "--markers", "--overlay", "iterations=3",
-                                        "substeps=8,iterations=1", "method=xpbd", "--pause-at", "40"});
+  const auto p =
+      sandbox::parseOptions({"pyramid", "--draw", "wireframe", "--markers", "--overlay", "iterations=3",
+                             "substeps=8,iterations=1", "method=xpbd", "--pause-at", "40"});
   ASSERT_EQ(p.error, "");
   EXPECT_EQ(p.options.scene, "pyramid");
   EXPECT_EQ(p.options.draw, sandbox::DrawMode::Wireframe);
@@ -61,7 +62,8 @@ TEST(Options, DrawMarkersOverlayAndPauseAt) {
 TEST(Options, BadDrawOverlayAndPauseAtSayWhat) {
   EXPECT_EQ(sandbox::parseOptions({"--draw", "shaded"}).error,
             "--draw: 'shaded' must be filled, wireframe or constraints");
-  EXPECT_EQ(sandbox::parseOptions({"--overlay", "iterations=3"}).error, "--overlay needs 2 to 4 settings, got 1");
+  EXPECT_EQ(sandbox::parseOptions({"--overlay", "iterations=3"}).error,
+            "--overlay needs 2 to 4 settings, got 1");
   EXPECT_EQ(sandbox::parseOptions({"--overlay", "a=1", "b=2", "c=3", "d=4", "e=5"}).error.substr(0, 19),
             "--overlay: unknown ");
   EXPECT_EQ(sandbox::parseOptions({"--overlay", "iterations=0", "iterations=2"}).error.substr(0, 25),

@@ -39,11 +39,13 @@ TEST(OverlaySpec, ErrorsSayWhichKeyAndValue) {
   EXPECT_EQ(parseOverlaySpec("").error, "empty overlay settings; give key=value pairs such as iterations=8");
   EXPECT_EQ(parseOverlaySpec("iterations").error, "'iterations' is not key=value");
   EXPECT_EQ(parseOverlaySpec("iterations=lots").error, "iterations: 'lots' is not a whole number");
-  EXPECT_EQ(parseOverlaySpec("method=magic").error, "method: 'magic' must be gauss-seidel, jacobi, xpbd or shake");
+  EXPECT_EQ(parseOverlaySpec("method=magic").error,
+            "method: 'magic' must be gauss-seidel, jacobi, xpbd or shake");
   EXPECT_NE(parseOverlaySpec("colour=red").error.find("unknown key 'colour'"), std::string::npos);
   // Out of range: the physics' own validation names the field.
   EXPECT_NE(parseOverlaySpec("substeps=0").error.find("substeps must be from 1"), std::string::npos);
-  EXPECT_NE(parseOverlaySpec("restitution=2").error.find("restitution must be from 0 to 1"), std::string::npos);
+  EXPECT_NE(parseOverlaySpec("restitution=2").error.find("restitution must be from 0 to 1"),
+            std::string::npos);
 }
 
 TEST(OverlaySpec, DescribesSettingsForTheLegend) {

@@ -30,8 +30,9 @@ const std::string kSandbox = std::string("'") + SANDBOX_EXE + "'";
 TEST(SandboxCli, WithoutADisplaySaysSoInOneLineAndFails) {
   const ProcessResult r = runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + kSandbox);
   EXPECT_NE(r.exitCode, 0);
-  EXPECT_EQ(r.output, "sandbox: no DISPLAY; use --screenshot under xvfb-run "
-                      "(e.g. xvfb-run -a sandbox --screenshot out.png)\n");
+  EXPECT_EQ(r.output,
+            "sandbox: no DISPLAY; use --screenshot under xvfb-run "
+            "(e.g. xvfb-run -a sandbox --screenshot out.png)\n");
 }
 
 TEST(SandboxCli, UsageErrorsExitTwoAndShowUsage) {

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "physics/capsule_ragdoll.h"
 #include "bad_scene.h"
+#include "physics/capsule_ragdoll.h"
 #include "scenes/scene.h"
 #include "scenes/scene_writer.h"
 

@@ -40,12 +40,14 @@ TEST(SceneFiles, DefaultsComeFromThePhysicsSettings) {
 }
 
 TEST(SceneFiles, WorldSolverGroundAndCamera) {
-  const scenes::Scene s = load("",
-                               "<world gravity=\"0 -3 0\" gravity-mode=\"point\" gravity-point=\"1 2 3\" "
-                               "gravity-strength=\"4\" damping=\"0.5\" bound=\"500\"/>"
-                               "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\" slop=\"0.002\" body-damping=\"0.25\"/>"
-                               "<ground height=\"-1\" normal=\"0 2 0\" static-friction=\"0.9\" dynamic-friction=\"0.3\"/>"
-                               "<camera eye=\"1 2 3\" target=\"0 0 0\"/>");
+  const scenes::Scene s =
+      load("",
+           "<world gravity=\"0 -3 0\" gravity-mode=\"point\" gravity-point=\"1 2 3\" "
+           "gravity-strength=\"4\" damping=\"0.5\" bound=\"500\"/>"
+           "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\" "
+           "slop=\"0.002\" body-damping=\"0.25\"/>"
+           "<ground height=\"-1\" normal=\"0 2 0\" static-friction=\"0.9\" dynamic-friction=\"0.3\"/>"
+           "<camera eye=\"1 2 3\" target=\"0 0 0\"/>");
   const phys::WorldSettings& w = s.world.worldSettings();
   EXPECT_EQ(w.gravity, Vec3(0, -3, 0));
   EXPECT_EQ(w.gravityMode, phys::GravityMode::Point);
@@ -133,8 +135,8 @@ TEST(SceneFiles, LinksAndPairsThatDoNotCollide) {
   EXPECT_TRUE(links[0].isPin());
   EXPECT_LT(glm::length(s.world.position(links[0].a) - Vec3(0.5, 1.6, 0)), 1e-12);
   EXPECT_LT(glm::length(s.world.position(links[0].b) - Vec3(0.5, 1.6, 0)), 1e-12);
-  EXPECT_EQ(links[0].a.particle[0], 0u);   // box a's corner 0
-  EXPECT_EQ(links[0].b.particle[0], 8u);   // box b's first particle
+  EXPECT_EQ(links[0].a.particle[0], 0u);  // box a's corner 0
+  EXPECT_EQ(links[0].b.particle[0], 8u);  // box b's first particle
   // Ranges: each end at its own point; one bound alone leaves the other open.
   EXPECT_LT(glm::length(s.world.position(links[1].b) - Vec3(-0.5, 2.2, 0.5)), 1e-12);
   EXPECT_EQ(links[1].minLength, 0.1);
@@ -190,7 +192,8 @@ TEST(SceneFiles, GeneratorsNameTheirMembersAndPlaceThemOnTheFloor) {
 TEST(SceneFiles, RagdollsAndTaperedPyramids) {
   const scenes::Scene s = load(
       "<ragdoll name=\"r\" pos=\"0 2 0\" model=\"seed\"/>"
-      "<ragdoll name=\"l\" pos=\"3 2 0\" euler=\"90 0 0\" scale=\"0.5\" mass=\"35\" model=\"lean\" friction=\"0.9\"/>"
+      "<ragdoll name=\"l\" pos=\"3 2 0\" euler=\"90 0 0\" scale=\"0.5\" mass=\"35\" model=\"lean\" "
+      "friction=\"0.9\"/>"
       "<pyramid name=\"p\" pos=\"-5 0 0\" base=\"2\" size=\"1\" taper=\"0.5\"/>");
   EXPECT_EQ(s.world.boxes().size(), 10u + 10u + 3u);
   EXPECT_EQ(s.world.particles().size(), 80u + 40u + 24u);
@@ -260,21 +263,24 @@ namespace {
 
 TEST(SceneFiles, DepenetrationSpeedIsReadAndNoneTurnsTheLimitOff) {
   const auto speed = [](const char* value) {
-    return scenes::loadSceneText(std::string("<scene name=\"d\"><solver depenetration-speed=\"") + value + "\"/></scene>",
-                                 "d.xml")
+    return scenes::loadSceneText(
+               std::string("<scene name=\"d\"><solver depenetration-speed=\"") + value + "\"/></scene>",
+               "d.xml")
         .world.solverSettings()
         .maxDepenetrationSpeed;
   };
   EXPECT_EQ(speed("0.5"), 0.5);
   EXPECT_TRUE(std::isinf(speed("none")));
-  EXPECT_EQ(scenes::loadSceneText("<scene name=\"d\"/>", "d.xml").world.solverSettings().maxDepenetrationSpeed,
-            phys::kDefaultMaxDepenetrationSpeed);
+  EXPECT_EQ(
+      scenes::loadSceneText("<scene name=\"d\"/>", "d.xml").world.solverSettings().maxDepenetrationSpeed,
+      phys::kDefaultMaxDepenetrationSpeed);
   try {
     speed("0");
     ADD_FAILURE() << "0 m/s was accepted";
   } catch (const scenes::LoadError& e) {
     EXPECT_EQ(e.attribute(), "depenetration-speed");
-    EXPECT_NE(std::string(e.what()).find("must be a number > 0 (m/s) or none"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("must be a number > 0 (m/s) or none"), std::string::npos)
+        << e.what();
   }
 }
 

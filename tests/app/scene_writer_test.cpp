@@ -139,7 +139,8 @@ TEST(SceneWriter, EveryProjectSceneRoundTrips) {
     }
     for (std::size_t i = 0; i < original.world.particles().size(); ++i) {
       if (original.world.particles().inverseMass[i] == 0.0) {
-        EXPECT_EQ(copy.world.particles().inverseMass[i], 0.0) << what << ": particle " << i << " stays pinned";
+        EXPECT_EQ(copy.world.particles().inverseMass[i], 0.0)
+            << what << ": particle " << i << " stays pinned";
       }
     }
   }
@@ -152,15 +153,17 @@ TEST(SceneWriter, SpinningBoxKeepsItsParticlesMotion) {
   // particles otherwise come back where they were and moving as they were (up to 4 m/s here: a
   // wrong spin would be off by metres per second).
   for (const char* model : {"corners", "tetra"}) {
-    scenes::Scene original = load(std::string("<box pos=\"0 5 0\" size=\"1 0.5 2\" euler=\"10 20 30\" model=\"") +
-                                      model + "\" velocity=\"1 2 -3\" angular-velocity=\"100 -200 50\" mass=\"3\"/>",
-                                  "<solver body-damping=\"1\" substeps=\"2\"/>");
+    scenes::Scene original =
+        load(std::string("<box pos=\"0 5 0\" size=\"1 0.5 2\" euler=\"10 20 30\" model=\"") + model +
+                 "\" velocity=\"1 2 -3\" angular-velocity=\"100 -200 50\" mass=\"3\"/>",
+             "<solver body-damping=\"1\" substeps=\"2\"/>");
     for (int i = 0; i < 30; ++i) original.world.step();
     const scenes::Scene copy = reload(original);
     const phys::World& a = original.world;
     const phys::World& b = copy.world;
     for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
-      EXPECT_LT(glm::length(a.particles().position[i] - b.particles().position[i]), 1e-3) << model << " " << i;
+      EXPECT_LT(glm::length(a.particles().position[i] - b.particles().position[i]), 1e-3)
+          << model << " " << i;
       EXPECT_LT(glm::length(a.velocity(i) - b.velocity(i)), 2e-3) << model << " " << i;
       EXPECT_NEAR(b.particles().inverseMass[i], a.particles().inverseMass[i], 1e-12) << model << " " << i;
     }
@@ -213,7 +216,8 @@ TEST(SceneWriter, SticksRangesLinksAndCollisionGroupsRoundTrip) {
     EXPECT_EQ(a.sticks()[k].a, b.sticks()[k].a) << k;
     EXPECT_EQ(a.sticks()[k].b, b.sticks()[k].b) << k;
     EXPECT_NEAR(a.sticks()[k].minLength, b.sticks()[k].minLength, 1e-12) << k;
-    EXPECT_EQ(a.sticks()[k].maxLength == phys::kNoMaxLength, b.sticks()[k].maxLength == phys::kNoMaxLength) << k;
+    EXPECT_EQ(a.sticks()[k].maxLength == phys::kNoMaxLength, b.sticks()[k].maxLength == phys::kNoMaxLength)
+        << k;
     if (std::isfinite(a.sticks()[k].maxLength)) {
       EXPECT_NEAR(a.sticks()[k].maxLength, b.sticks()[k].maxLength, 1e-12) << k;
     }
@@ -292,7 +296,8 @@ TEST(SceneWriter, EulerAnglesReadBackAsTheSameOrientation) {
   EXPECT_NEAR(euler.x, 30.0, 1e-9);
   EXPECT_NEAR(euler.y, -50.0, 1e-9);
   EXPECT_NEAR(euler.z, 170.0, 1e-9);
-  EXPECT_LT(angleBetween(reload(scene).world.boxPose(0).orientation, scene.world.boxPose(0).orientation), 1e-9);
+  EXPECT_LT(angleBetween(reload(scene).world.boxPose(0).orientation, scene.world.boxPose(0).orientation),
+            1e-9);
 
   // Out of range and at or near gimbal lock the angles differ, but the orientation does not.
   for (const char* angles : {"200 100 -300", "10 90 20", "-40 -90 70", "5 89.999999 -5", "0 0 180", "180 0 0",
@@ -302,7 +307,8 @@ TEST(SceneWriter, EulerAnglesReadBackAsTheSameOrientation) {
     EXPECT_LE(std::abs(e.y), 90.0) << angles;
     EXPECT_LE(std::abs(e.x), 180.0) << angles;
     EXPECT_LE(std::abs(e.z), 180.0) << angles;
-    EXPECT_LT(angleBetween(reload(s).world.boxPose(0).orientation, s.world.boxPose(0).orientation), 1e-9) << angles;
+    EXPECT_LT(angleBetween(reload(s).world.boxPose(0).orientation, s.world.boxPose(0).orientation), 1e-9)
+        << angles;
   }
 }
 
@@ -327,8 +333,8 @@ class TempFolder {
  public:
   TempFolder() {
     static int count = 0;
-    path_ =
-        fs::temp_directory_path() / ("scene-writer-test-" + std::to_string(::getpid()) + "-" + std::to_string(count++));
+    path_ = fs::temp_directory_path() /
+            ("scene-writer-test-" + std::to_string(::getpid()) + "-" + std::to_string(count++));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
@@ -336,8 +342,8 @@ class TempFolder {
     std::error_code ec;
     fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
     // Each folder is opened up as it is reached, before the walk descends into it.
-    for (auto it = fs::recursive_directory_iterator(path_, ec); !ec && it != fs::recursive_directory_iterator();
-         it.increment(ec)) {
+    for (auto it = fs::recursive_directory_iterator(path_, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
       if (it->is_directory(ec)) fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ec);
     }
     fs::remove_all(path_, ec);
@@ -383,7 +389,8 @@ TEST(SceneWriter, SaveReplacesAFileWholeAndKeepsItsPermissions) {
   for (int i = 0; i < 10; ++i) scene.world.step();
   scenes::saveSceneFile(scene, file);
   EXPECT_EQ(readFile(file), scenes::writeSceneXml(scene));
-  EXPECT_EQ(fs::status(file).permissions(), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_EQ(fs::status(file).permissions(),
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"saved.xml"});  // no temporary file left
   EXPECT_EQ(scenes::loadSceneFile(file).world.boxes().size(), scene.world.boxes().size());
 }

@@ -24,7 +24,9 @@ const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
 
 using TempDir = testing_app::TempFolder;
 
-sandbox::Session open(const char* name) { return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes); }
+sandbox::Session open(const char* name) {
+  return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes);
+}
 
 TEST(Session, ABadSceneKeepsTheCurrentWorldAndSaysWhereTheErrorIs) {
   sandbox::Session s = open("pyramid");
@@ -99,7 +101,7 @@ TEST(Session, ThrownBoxesAndRagdollsFlyAlongTheViewAndLand) {
   s.spawnRagdoll(phys::Vec3(4, 3, 0), phys::Vec3(sandbox::kThrowSpeed, 0, 0));
   ASSERT_EQ(s.scene().world.boxes().size(), boxes + 11);
   s.step();
-  EXPECT_LT(s.scene().world.boxPose(static_cast<phys::BoxId>(boxes)).center.z, 6.0);   // flies towards -z
+  EXPECT_LT(s.scene().world.boxPose(static_cast<phys::BoxId>(boxes)).center.z, 6.0);      // flies towards -z
   EXPECT_GT(s.scene().world.boxPose(static_cast<phys::BoxId>(boxes + 1)).center.x, 4.0);  // towards +x
   for (int i = 0; i < 240; ++i) s.step();
   const phys::Metrics m = s.scene().world.metrics();
@@ -304,7 +306,8 @@ TEST(Remembered, PanelsAndDrawModeComeBackAndTheCommandLineWins) {
   EXPECT_TRUE(ui.draw.markers);
   EXPECT_STREQ(ui.overlayText[0].data(), "iterations=3");  // an example to start from
 
-  const auto parsed = sandbox::parseOptions({"--draw", "wireframe", "--overlay", "method=xpbd", "iterations=9"});
+  const auto parsed =
+      sandbox::parseOptions({"--draw", "wireframe", "--overlay", "method=xpbd", "iterations=9"});
   ASSERT_EQ(parsed.error, "");
   sandbox::applyRemembered(user, parsed.options, ui);
   EXPECT_EQ(ui.draw.mode, sandbox::DrawMode::Wireframe);

@@ -15,8 +15,8 @@ class TempFolder {
  public:
   TempFolder() {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = std::filesystem::temp_directory_path() /
-           ("sandbox-test-" + std::to_string(::getpid()) + "-" + test->test_suite_name() + "-" + test->name());
+    path = std::filesystem::temp_directory_path() / ("sandbox-test-" + std::to_string(::getpid()) + "-" +
+                                                     test->test_suite_name() + "-" + test->name());
     std::filesystem::remove_all(path);
     std::filesystem::create_directories(path);
   }

@@ -22,7 +22,8 @@ class UserSettingsTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("sandbox-settings-" + std::to_string(::getpid()) + "-" + info->name());
+    dir_ =
+        fs::temp_directory_path() / ("sandbox-settings-" + std::to_string(::getpid()) + "-" + info->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -37,7 +38,8 @@ class UserSettingsTest : public ::testing::Test {
   // Names of the files in dir_, to catch a temporary file left behind.
   std::vector<std::string> filesIn(const fs::path& folder) {
     std::vector<std::string> names;
-    for (const auto& e : fs::recursive_directory_iterator(folder)) names.push_back(e.path().filename().string());
+    for (const auto& e : fs::recursive_directory_iterator(folder))
+      names.push_back(e.path().filename().string());
     return names;
   }
 
@@ -177,7 +179,8 @@ TEST_F(UserSettingsTest, SavingUnderARegularFileThrowsNamingTheFile) {
     sandbox::saveUserSettings(UserSettings{}, file);
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot save settings to " + file.string() + ": "), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("cannot save settings to " + file.string() + ": "),
+              std::string::npos)
         << e.what();
   }
   EXPECT_EQ(filesIn(dir_), std::vector<std::string>{"plain-file"});

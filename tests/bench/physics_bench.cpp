@@ -34,9 +34,7 @@ void BM_RestingBoxes(benchmark::State& state) {
   state.counters["particles"] = static_cast<double>(world.particles().size());
   state.SetLabel(std::string(toString(method)) + "/" + std::string(toString(model)));
 }
-BENCHMARK(BM_RestingBoxes)
-    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RestingBoxes)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 // A long chain: sticks only, the relaxation loop alone.
 void BM_Chain(benchmark::State& state) {

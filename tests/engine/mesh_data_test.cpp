@@ -46,9 +46,13 @@ void expectUnitCube(const engine::MeshData& m) {
   }
 }
 
-TEST(MeshData, ProjectBoxModelIsAUnitCube) { expectUnitCube(engine::loadMeshData(kBoxModel)); }
+TEST(MeshData, ProjectBoxModelIsAUnitCube) {
+  expectUnitCube(engine::loadMeshData(kBoxModel));
+}
 
-TEST(MeshData, BuiltInFallbackCubeIsAUnitCube) { expectUnitCube(engine::unitCubeMesh()); }
+TEST(MeshData, BuiltInFallbackCubeIsAUnitCube) {
+  expectUnitCube(engine::unitCubeMesh());
+}
 
 TEST(MeshData, MissingFileNamesThePath) {
   try {
@@ -71,8 +75,8 @@ struct CapsuleCase {
   float radius, halfSegment;
   int segments, rings;
 };
-constexpr CapsuleCase kCapsules[] = {{0.3f, 0.7f, 24, 6}, {1.5f, 0.25f, 24, 6}, {0.5f, 0.0f, 24, 6},
-                                     {0.08f, 0.17f, 3, 1}, {0.25f, 0.0f, 5, 1}, {2.0f, 5.0f, 32, 8}};
+constexpr CapsuleCase kCapsules[] = {{0.3f, 0.7f, 24, 6},  {1.5f, 0.25f, 24, 6}, {0.5f, 0.0f, 24, 6},
+                                     {0.08f, 0.17f, 3, 1}, {0.25f, 0.0f, 5, 1},  {2.0f, 5.0f, 32, 8}};
 
 // The point of the core segment, (0, -h, 0) to (0, h, 0), nearest p.
 glm::vec3 nearestOnCore(const glm::vec3& p, float halfSegment) {
@@ -138,7 +142,8 @@ TEST(CapsuleMesh, IsClosedWithTrianglesFacingOut) {
         ASSERT_GT(glm::dot(face, m.normals[m.indices[t + k]]), 0.0f) << "triangle " << t / 3;
       }
     }
-    const float exact = glm::pi<float>() * c.radius * c.radius * (2.0f * c.halfSegment + 4.0f / 3.0f * c.radius);
+    const float exact =
+        glm::pi<float>() * c.radius * c.radius * (2.0f * c.halfSegment + 4.0f / 3.0f * c.radius);
     EXPECT_LT(signedVolume(m), exact);
     if (c.segments >= 24) {
       EXPECT_GT(signedVolume(m), 0.95f * exact);

@@ -16,8 +16,9 @@ TEST(ShaderLog, NvidiaForm) {
 }
 
 TEST(ShaderLog, AmdIntelForm) {
-  EXPECT_EQ(engine::formatShaderLog("a.vert", "ERROR: 0:3: 'foo' : undeclared identifier\n"
-                                               "WARNING: 0:9: 'x' : unused\n"),
+  EXPECT_EQ(engine::formatShaderLog("a.vert",
+                                    "ERROR: 0:3: 'foo' : undeclared identifier\n"
+                                    "WARNING: 0:9: 'x' : unused\n"),
             "a.vert:3: error: 'foo' : undeclared identifier\na.vert:9: warning: 'x' : unused\n");
 }
 

@@ -25,7 +25,7 @@ constexpr int kFrames = 90;  // 1.5 s: the bodies have landed and are tumbling
 
 struct Rendered {
   engine::Image image;
-  scenes::Scene scene;             // stepped as far as the sandbox stepped it
+  scenes::Scene scene;  // stepped as far as the sandbox stepped it
   engine::FirstPersonCamera camera;
 };
 
@@ -33,8 +33,9 @@ struct Rendered {
 Rendered render(const std::string& sceneName) {
   const std::string png = (sceneName.empty() ? std::string("default-scene") : sceneName) + ".png";
   engine::Image image = testing_gl::runSandbox(sceneName, png, kFrames);
-  scenes::Scene scene = scenes::loadSceneFile(scenes::resolveScene(
-      sceneName.empty() ? scenes::kDefaultScene : std::string_view(sceneName), scenes::sceneDirectory(DATA_DIR)));
+  scenes::Scene scene = scenes::loadSceneFile(
+      scenes::resolveScene(sceneName.empty() ? scenes::kDefaultScene : std::string_view(sceneName),
+                           scenes::sceneDirectory(DATA_DIR)));
   for (int i = 0; i < kFrames; ++i) scene.world.step();  // one step per screenshot frame
   const auto camera = engine::FirstPersonCamera::lookingAt(scene.camera.eye, scene.camera.target);
   return Rendered{std::move(image), std::move(scene), camera};
@@ -60,9 +61,13 @@ phys::BoxId largestBox(const phys::World& w) {
   return best;
 }
 
-glm::ivec2 toPixel(const Rendered& r, const glm::vec3& world) { return testing_gl::toPixel(r.image, r.camera, world); }
+glm::ivec2 toPixel(const Rendered& r, const glm::vec3& world) {
+  return testing_gl::toPixel(r.image, r.camera, world);
+}
 
-glm::ivec3 to8bit(const glm::vec3& c) { return glm::ivec3(glm::round(c * 255.0f)); }
+glm::ivec3 to8bit(const glm::vec3& c) {
+  return glm::ivec3(glm::round(c * 255.0f));
+}
 
 void expectColor(const glm::u8vec4& got, const glm::ivec3& want, int tolerance, const char* what) {
   EXPECT_NEAR(got.r, want.r, tolerance) << what;
@@ -148,7 +153,8 @@ TEST(RenderScene, SimulationPanelFillsItsRectangle) {
     for (int y = y0; y < y0 + h; ++y) {
       for (int x = x0; x < x0 + w; ++x) {
         const glm::u8vec4 p = r.image.pixel(x, y);
-        if (std::abs(p.r - want.r) <= 2 && std::abs(p.g - want.g) <= 2 && std::abs(p.b - want.b) <= 2) ++background;
+        if (std::abs(p.r - want.r) <= 2 && std::abs(p.g - want.g) <= 2 && std::abs(p.b - want.b) <= 2)
+          ++background;
         if (p.r > 200 && p.g > 200 && p.b > 200) ++bright;
       }
     }

@@ -18,8 +18,12 @@ using testing_gl::runSandbox;
 // The part of a 1280x720 screenshot between the side panels, above the status line.
 constexpr int kViewX = 390, kViewY = 30, kViewW = 500, kViewH = 640;
 
-bool red(int r, int g, int b) { return r > 180 && g < 60 && b < 60; }
-bool green(int r, int g, int b) { return g > 170 && r < 90 && b < 110; }
+bool red(int r, int g, int b) {
+  return r > 180 && g < 60 && b < 60;
+}
+bool green(int r, int g, int b) {
+  return g > 170 && r < 90 && b < 110;
+}
 
 scenes::Scene stepped(const std::string& name, int steps) {
   scenes::Scene s = scenes::loadSceneFile(scenes::resolveScene(name, scenes::sceneDirectory(DATA_DIR)));
@@ -52,7 +56,9 @@ TEST(SandboxModes, EveryProjectSceneLoadsAndRenders) {
       for (int k = 0; k < w.boxes()[id].particleCount; ++k) inBox[w.boxes()[id].firstParticle + k] = true;
     }
     for (std::size_t i = 0; i < w.particles().size(); ++i) {
-      if (!inBox[i]) centres.push_back(glm::vec3(w.particles().position[i]) + glm::vec3(0, sandbox::kParticleDrawSize / 4, 0));
+      if (!inBox[i])
+        centres.push_back(glm::vec3(w.particles().position[i]) +
+                          glm::vec3(0, sandbox::kParticleDrawSize / 4, 0));
     }
     int visible = 0, drawn = 0;
     for (const glm::vec3& c : centres) {
@@ -98,7 +104,8 @@ TEST(SandboxModes, TheOverlayDrawsEveryRunInItsOwnColour) {
   // The falling box lands at about frame 40; with restitution 0.8 it bounces back up, without
   // it stays down: after 62 frames the two runs' boxes are far apart.
   constexpr int kFrames = 62;
-  const engine::Image image = runSandbox("falling-box --overlay restitution=0 restitution=0.8", "overlay.png", kFrames);
+  const engine::Image image =
+      runSandbox("falling-box --overlay restitution=0 restitution=0.8", "overlay.png", kFrames);
   auto run = [&](double restitution) {
     scenes::Scene s = stepped("falling-box", 0);
     phys::SolverSettings settings = s.world.solverSettings();

@@ -15,7 +15,8 @@ namespace testing_gl {
 engine::Image runSandbox(const std::string& args, const std::string& png, int frames);
 
 /// Pixel (column, row from the top) where a world point lands in `image` seen by `camera`.
-glm::ivec2 toPixel(const engine::Image& image, const engine::FirstPersonCamera& camera, const glm::vec3& world);
+glm::ivec2 toPixel(const engine::Image& image, const engine::FirstPersonCamera& camera,
+                   const glm::vec3& world);
 
 /// Pixels in the rectangle for which `test(r, g, b)` holds.
 template <typename Test>

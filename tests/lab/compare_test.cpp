@@ -27,7 +27,9 @@ using lab_testing::TempDir;
 constexpr double kDt = 1.0 / 60.0;
 constexpr int kTwoSeconds = 120;
 
-scenes::Scene load(const std::string& xml) { return scenes::loadSceneText(xml, "compare_test"); }
+scenes::Scene load(const std::string& xml) {
+  return scenes::loadSceneText(xml, "compare_test");
+}
 
 // Three 1 m boxes of 1 kg on the ground: centres at 0.5, 1.5 and 2.5 m.
 const char* kStack =
@@ -52,7 +54,8 @@ const char* kChain =
 
 std::vector<std::string> engines() {
   std::vector<std::string> e = lab::peerEngines();
-  if (e.empty()) std::cout << "[ note     ] no peer engines built in; the physical checks have nothing to run\n";
+  if (e.empty())
+    std::cout << "[ note     ] no peer engines built in; the physical checks have nothing to run\n";
   return e;
 }
 
@@ -81,7 +84,8 @@ TEST(PeerScene, ReadsMassInertiaVelocityAndOrder) {
       "  <ground friction=\"0.4\"/>\n"
       "  <particle name=\"p\" pos=\"0 3 0\" velocity=\"1 0 0\" mass=\"0.5\"/>\n"
       "  <particle name=\"q\" pos=\"0 4 0\" pinned=\"true\"/>\n"
-      "  <box name=\"b\" pos=\"1 2 3\" size=\"2 1 0.5\" mass=\"8\" velocity=\"0 1 2\" angular-velocity=\"0 90 0\"\n"
+      "  <box name=\"b\" pos=\"1 2 3\" size=\"2 1 0.5\" mass=\"8\" velocity=\"0 1 2\" angular-velocity=\"0 "
+      "90 0\"\n"
       "       friction=\"0.9\"/>\n"
       "  <box name=\"t\" pos=\"5 2 3\" size=\"1\" mass=\"4\" model=\"tetra\"/>\n"
       "</scene>\n");
@@ -178,7 +182,8 @@ TEST(PeerChain, APinnedChainHangsAtItsLength) {
     ASSERT_EQ(p.size(), 6u);
     EXPECT_NEAR(p[0].y, 3.0, 1e-9);  // the pinned particle stays
     EXPECT_NEAR(glm::length(p[5] - p[0]), 1.0, 0.05);
-    for (std::size_t k = 0; k + 1 < p.size(); ++k) EXPECT_NEAR(glm::length(p[k + 1] - p[k]), 0.2, 0.01) << "link " << k;
+    for (std::size_t k = 0; k + 1 < p.size(); ++k)
+      EXPECT_NEAR(glm::length(p[k + 1] - p[k]), 0.2, 0.01) << "link " << k;
   }
 }
 
@@ -270,7 +275,8 @@ TEST(PeerRagdoll, PinsAndStopsHoldInEveryEngine) {
       auto point = [&](int body, const phys::Vec3& local) {
         return lab::peers::toWorld(built->position(body), built->orientation(body), local);
       };
-      for (const auto& p : d.pins) worstGap = std::max(worstGap, glm::length(point(p.a, p.localA) - point(p.b, p.localB)));
+      for (const auto& p : d.pins)
+        worstGap = std::max(worstGap, glm::length(point(p.a, p.localA) - point(p.b, p.localB)));
       for (const auto& r : d.distances) {
         const double length = glm::length(point(r.a, r.localA) - point(r.b, r.localB));
         worstStop = std::max({worstStop, r.min - length, length - r.max});
@@ -280,8 +286,8 @@ TEST(PeerRagdoll, PinsAndStopsHoldInEveryEngine) {
     EXPECT_TRUE(built->notes.empty()) << built->notes.front();
     EXPECT_LT(worstGap, 0.02);
     EXPECT_LT(worstStop, 0.02);
-    std::cout << "[ " << engine << " ] ragdoll at rest: pin gap up to " << worstGap << " m, stops exceeded by up to "
-              << worstStop << " m\n";
+    std::cout << "[ " << engine << " ] ragdoll at rest: pin gap up to " << worstGap
+              << " m, stops exceeded by up to " << worstStop << " m\n";
   }
 }
 
@@ -298,7 +304,9 @@ TEST(PeerUnsupported, PointGravityIsReportedInWords) {
 
 // `lab compare` in-process, on a scene file in a temporary folder.
 using Output = lab::CommandOutput;
-Output compare(const std::vector<std::string>& args) { return lab::runCaptured(lab::labMain, args); }
+Output compare(const std::vector<std::string>& args) {
+  return lab::runCaptured(lab::labMain, args);
+}
 
 // A box and a loose particle falling onto the ground: something for every column.
 const char* kSmall =
@@ -315,7 +323,8 @@ TEST(Compare, PrintsARowForEachOfOurMethodsAndEachPeer) {
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_TRUE(o.err.empty()) << o.err;
   for (const char* method : {"gauss-seidel", "jacobi", "xpbd", "shake"}) {
-    EXPECT_NE(o.out.find(std::string("| ours | ") + method + " |"), std::string::npos) << method << "\n" << o.out;
+    EXPECT_NE(o.out.find(std::string("| ours | ") + method + " |"), std::string::npos) << method << "\n"
+                                                                                       << o.out;
   }
   for (const std::string& engine : lab::peerEngines()) {
     EXPECT_NE(o.out.find("| " + engine + " |"), std::string::npos) << engine << "\n" << o.out;
@@ -374,9 +383,14 @@ TEST(Compare, APointGravitySceneSaysWhatThePeersCannotExpress) {
 }
 
 TEST(Compare, BadArgumentsExitWithUsage) {
-  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
-           {"compare"}, {"compare", "a", "b"}, {"compare", "x", "--steps", "0"}, {"compare", "x", "--steps", "1e3"},
-           {"compare", "x", "--dt", "2"}, {"compare", "x", "--dt"}, {"compare", "x", "--frobnicate"}}) {
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{"compare"},
+                                             {"compare", "a", "b"},
+                                             {"compare", "x", "--steps", "0"},
+                                             {"compare", "x", "--steps", "1e3"},
+                                             {"compare", "x", "--dt", "2"},
+                                             {"compare", "x", "--dt"},
+                                             {"compare", "x", "--frobnicate"}}) {
     const Output o = compare(args);
     EXPECT_EQ(o.code, lab::kExitUsage) << args.back();
     EXPECT_NE(o.err.find("usage: lab compare"), std::string::npos) << o.err;
@@ -412,8 +426,9 @@ TEST(Report, QuickReportWritesEveryPart) {
   const Output r = lab::runCaptured(lab::reportMain, {"--quick", "--out", out.string(), "--data", DATA_DIR});
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string md = lab_testing::readFile(out / "results.md");
-  for (const char* part : {"## Speed against accuracy", "### ragdoll", "### pendulum-exact", "Pareto front, cheapest first:",
-                           "**Winner here:", "## Where methods fail", "## Beside Bullet, ODE and MuJoCo"}) {
+  for (const char* part : {"## Speed against accuracy", "### ragdoll", "### pendulum-exact",
+                           "Pareto front, cheapest first:", "**Winner here:", "## Where methods fail",
+                           "## Beside Bullet, ODE and MuJoCo"}) {
     EXPECT_NE(md.find(part), std::string::npos) << part;
   }
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "pyramid" / "results.csv"));

@@ -13,12 +13,26 @@ namespace {
 
 using namespace lab_testing;
 
-const std::vector<std::string> kJsonKeys = {
-    "scene",          "method",          "iterations",          "substeps",     "dt",
-    "steps",          "particles",       "constraints",         "bodies",       "contacts",
-    "ms_per_step",    "max_constraint_error", "rms_constraint_error", "max_joint_error", "max_penetration",
-    "max_speed",
-    "energy_initial", "energy_final",    "frozen",              "hash"};
+const std::vector<std::string> kJsonKeys = {"scene",
+                                            "method",
+                                            "iterations",
+                                            "substeps",
+                                            "dt",
+                                            "steps",
+                                            "particles",
+                                            "constraints",
+                                            "bodies",
+                                            "contacts",
+                                            "ms_per_step",
+                                            "max_constraint_error",
+                                            "rms_constraint_error",
+                                            "max_joint_error",
+                                            "max_penetration",
+                                            "max_speed",
+                                            "energy_initial",
+                                            "energy_final",
+                                            "frozen",
+                                            "hash"};
 
 // Runs lab with --json and parses its stdout, failing the test when it is not one object.
 FlatJson runJson(const std::string& args, const TempDir& dir) {
@@ -77,7 +91,8 @@ double droppedHeight(const std::string& args, const TempDir& dir, double* dt) {
   EXPECT_EQ(rows[1][0], "p");
   EXPECT_EQ(std::strtod(rows[1][1].c_str(), nullptr), 0.0);
   EXPECT_EQ(std::strtod(rows[1][3].c_str(), nullptr), 0.0);
-  EXPECT_EQ(rows[1][4] + rows[1][5] + rows[1][6] + rows[1][7], "1000") << "a particle's orientation is 1,0,0,0";
+  EXPECT_EQ(rows[1][4] + rows[1][5] + rows[1][6] + rows[1][7], "1000")
+      << "a particle's orientation is 1,0,0,0";
   return std::strtod(rows[1][2].c_str(), nullptr);
 }
 
@@ -122,8 +137,8 @@ TEST(LabRun, SameRunTwiceSameHash) {
 TEST(LabRun, OverridesShowInTheJson) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());
-  const FlatJson j =
-      runJson("run " + quoted(scene) + " --steps 7 --method shake --iterations 9 --substeps 4 --dt 0.004", dir);
+  const FlatJson j = runJson(
+      "run " + quoted(scene) + " --steps 7 --method shake --iterations 9 --substeps 4 --dt 0.004", dir);
   EXPECT_EQ(text(j, "method"), "shake");
   EXPECT_EQ(number(j, "iterations"), 9);
   EXPECT_EQ(number(j, "substeps"), 4);
@@ -209,7 +224,8 @@ TEST(LabExit, MissingSceneExitsOne) {
 TEST(LabExit, UnwritableDumpExitsOne) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());
-  const ProcessResult r = runLab("run " + quoted(scene) + " --steps 1 --dump " + quoted(dir.file("no/dir/x.csv")), dir);
+  const ProcessResult r =
+      runLab("run " + quoted(scene) + " --steps 1 --dump " + quoted(dir.file("no/dir/x.csv")), dir);
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("--dump"), std::string::npos) << r.err;
 }

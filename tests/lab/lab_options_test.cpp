@@ -33,9 +33,9 @@ TEST(LabOptions, RunWithDefaults) {
 }
 
 TEST(LabOptions, EveryOptionAnyOrder) {
-  const lab::ParsedCommand p =
-      parseCommandLine({"run", "--steps", "10000000", "--dt", "0.005", "--method", "xpbd", "--iterations", "1000",
-                        "scene.xml", "--substeps", "1", "--json", "--dump", "out.csv", "--data", "/d"});
+  const lab::ParsedCommand p = parseCommandLine({"run", "--steps", "10000000", "--dt", "0.005", "--method",
+                                                 "xpbd", "--iterations", "1000", "scene.xml", "--substeps",
+                                                 "1", "--json", "--dump", "out.csv", "--data", "/d"});
   ASSERT_EQ(p.error, "");
   EXPECT_EQ(p.run.scene, "scene.xml");
   EXPECT_EQ(p.run.steps, 10000000);
@@ -95,23 +95,14 @@ TEST_P(LabOptionsBad, OneLineNamingTheArgument) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, LabOptionsBad,
     ::testing::Values(
-        BadCase{{}, "command"},
-        BadCase{{"frobnicate"}, "'frobnicate'"},
-        BadCase{{"--json"}, "'--json'"},
-        BadCase{{"run"}, "SCENE"},
-        BadCase{{"run", "--json"}, "SCENE"},
-        BadCase{{"run", "a", "b"}, "'b'"},
-        BadCase{{"run", "s", "--bogus"}, "'--bogus'"},
-        BadCase{{"run", "s", "-x"}, "'-x'"},
+        BadCase{{}, "command"}, BadCase{{"frobnicate"}, "'frobnicate'"}, BadCase{{"--json"}, "'--json'"},
+        BadCase{{"run"}, "SCENE"}, BadCase{{"run", "--json"}, "SCENE"}, BadCase{{"run", "a", "b"}, "'b'"},
+        BadCase{{"run", "s", "--bogus"}, "'--bogus'"}, BadCase{{"run", "s", "-x"}, "'-x'"},
         // missing values, at the end or followed by another option
-        BadCase{{"run", "s", "--steps"}, "--steps"},
-        BadCase{{"run", "s", "--dt"}, "--dt"},
-        BadCase{{"run", "s", "--method"}, "--method"},
-        BadCase{{"run", "s", "--iterations"}, "--iterations"},
-        BadCase{{"run", "s", "--substeps"}, "--substeps"},
-        BadCase{{"run", "s", "--dump"}, "--dump"},
-        BadCase{{"run", "s", "--data"}, "--data"},
-        BadCase{{"run", "s", "--dump", "--json"}, "--dump"},
+        BadCase{{"run", "s", "--steps"}, "--steps"}, BadCase{{"run", "s", "--dt"}, "--dt"},
+        BadCase{{"run", "s", "--method"}, "--method"}, BadCase{{"run", "s", "--iterations"}, "--iterations"},
+        BadCase{{"run", "s", "--substeps"}, "--substeps"}, BadCase{{"run", "s", "--dump"}, "--dump"},
+        BadCase{{"run", "s", "--data"}, "--data"}, BadCase{{"run", "s", "--dump", "--json"}, "--dump"},
         // malformed numbers
         BadCase{{"run", "s", "--steps", "ten"}, "--steps: 'ten'"},
         BadCase{{"run", "s", "--steps", "10x"}, "--steps: '10x'"},
@@ -142,8 +133,8 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(LabOptions, UsageListsEveryOption) {
   const std::string u = lab::usage();
-  for (const char* option : {"run SCENE", "--steps N", "--dt S", "--method M", "--iterations K", "--substeps S",
-                             "--json", "--dump FILE", "--data DIR", "--help", "lab help"}) {
+  for (const char* option : {"run SCENE", "--steps N", "--dt S", "--method M", "--iterations K",
+                             "--substeps S", "--json", "--dump FILE", "--data DIR", "--help", "lab help"}) {
     EXPECT_NE(u.find(option), std::string::npos) << option;
   }
 }

@@ -16,12 +16,26 @@ namespace {
 using lab_testing::parseFlatJson;
 
 // The keys the issue fixes, in the order the lab writes them.
-const std::vector<std::string> kJsonKeys = {
-    "scene",          "method",          "iterations",          "substeps",     "dt",
-    "steps",          "particles",       "constraints",         "bodies",       "contacts",
-    "ms_per_step",    "max_constraint_error", "rms_constraint_error", "max_joint_error", "max_penetration",
-    "max_speed",
-    "energy_initial", "energy_final",    "frozen",              "hash"};
+const std::vector<std::string> kJsonKeys = {"scene",
+                                            "method",
+                                            "iterations",
+                                            "substeps",
+                                            "dt",
+                                            "steps",
+                                            "particles",
+                                            "constraints",
+                                            "bodies",
+                                            "contacts",
+                                            "ms_per_step",
+                                            "max_constraint_error",
+                                            "rms_constraint_error",
+                                            "max_joint_error",
+                                            "max_penetration",
+                                            "max_speed",
+                                            "energy_initial",
+                                            "energy_final",
+                                            "frozen",
+                                            "hash"};
 
 TEST(LabReport, JsonNumbersRoundTripAndNonFiniteIsNull) {
   EXPECT_EQ(lab::jsonNumber(0.1), "0.10000000000000001");
@@ -78,14 +92,20 @@ TEST(LabReport, SummaryNamesPhasesFreezesAndHash) {
   r.scene = "s";
   r.steps = 2;
   r.hash = 0xabc;
-  r.phaseSums = {.integrate = 1.0, .constraints = 2.0, .collide = 6.0, .contacts = 3.0, .friction = 4.0,
-                 .guard = 5.0, .total = 22.0};
+  r.phaseSums = {.integrate = 1.0,
+                 .constraints = 2.0,
+                 .collide = 6.0,
+                 .contacts = 3.0,
+                 .friction = 4.0,
+                 .guard = 5.0,
+                 .total = 22.0};
   r.medianStepMs = 8.0;
   r.final.frozen = 1;
   r.freezes.push_back({"runaway", "left the world bound of 10 m", 0, 0.25});
   const std::string s = lab::summaryText(r);
-  for (const char* part : {"median 8 ms", "integrate 1 ms", "constraints 2 ms", "contacts 3 ms", "friction 4 ms",
-                           "collide 6 ms", "guard 5 ms", "runaway: left the world bound of 10 m", "t=0.25 s", "0000000000000abc"}) {
+  for (const char* part :
+       {"median 8 ms", "integrate 1 ms", "constraints 2 ms", "contacts 3 ms", "friction 4 ms", "collide 6 ms",
+        "guard 5 ms", "runaway: left the world bound of 10 m", "t=0.25 s", "0000000000000abc"}) {
     EXPECT_NE(s.find(part), std::string::npos) << part << "\n" << s;
   }
 }
@@ -102,9 +122,10 @@ TEST(LabReport, DumpHasHeaderAndOneRowPerNamedBody) {
   const std::vector<scenes::NamedBody> bodies = {{"crate", scenes::NamedBody::Kind::Box, b},
                                                  {"p,\"q\"", scenes::NamedBody::Kind::Particle, p}};
   const std::string csv = lab::dumpCsv(world, bodies);
-  EXPECT_EQ(csv, "name,x,y,z,qw,qx,qy,qz\n"
-                 "crate,1,2,3,1,0,0,0\n"
-                 "\"p,\"\"q\"\"\",4,5,6,1,0,0,0\n")
+  EXPECT_EQ(csv,
+            "name,x,y,z,qw,qx,qy,qz\n"
+            "crate,1,2,3,1,0,0,0\n"
+            "\"p,\"\"q\"\"\",4,5,6,1,0,0,0\n")
       << csv;
 }
 

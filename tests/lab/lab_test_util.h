@@ -110,7 +110,8 @@ inline std::string readFile(const std::filesystem::path& file) {
 
 /// A command-line mistake as every lab command reports it (commands.h): exit 2, an error line
 /// "lab: ..." that names the bad argument, the command's usage, and nothing on stdout.
-inline void expectUsageError(const lab::CommandOutput& o, const std::string& command, const std::string& named) {
+inline void expectUsageError(const lab::CommandOutput& o, const std::string& command,
+                             const std::string& named) {
   EXPECT_EQ(o.code, lab::kExitUsage) << o.err;
   EXPECT_TRUE(o.err.starts_with("lab: ")) << o.err;
   EXPECT_NE(o.err.find(named), std::string::npos) << named << " in " << o.err;
@@ -198,7 +199,8 @@ inline std::optional<FlatJson> parseFlatJson(const std::string& text) {
       if (value != "null" && value != "true" && value != "false") {
         char* end = nullptr;
         std::strtod(value.c_str(), &end);
-        if (value.empty() || end != value.c_str() + value.size() || value.find_first_of("in") != std::string::npos) {
+        if (value.empty() || end != value.c_str() + value.size() ||
+            value.find_first_of("in") != std::string::npos) {
           return std::nullopt;
         }
       }

@@ -21,7 +21,8 @@ namespace {
 using lab::peers::TreeJoint;
 
 lab::peers::Description describe(const std::string& body) {
-  return lab::peers::describe(scenes::loadSceneText("<scene name=\"f\">\n  <ground/>\n" + body + "</scene>\n", "mujoco_form_test"));
+  return lab::peers::describe(
+      scenes::loadSceneText("<scene name=\"f\">\n  <ground/>\n" + body + "</scene>\n", "mujoco_form_test"));
 }
 
 int count(const lab::peers::JointForest& f, TreeJoint joint) {
@@ -87,7 +88,9 @@ TEST(JointForest, APinThatStartsApartOrClosesALoopStaysAConstraint) {
   // The text holds a <connect> for each pin left out of the tree, and no more.
   const auto model = lab::peers::mjcf::writeModel(d, 1.0 / 60.0, true);
   std::size_t connects = 0;
-  for (std::size_t at = model.xml.find("<connect"); at != std::string::npos; at = model.xml.find("<connect", at + 1)) ++connects;
+  for (std::size_t at = model.xml.find("<connect"); at != std::string::npos;
+       at = model.xml.find("<connect", at + 1))
+    ++connects;
   EXPECT_EQ(connects, 2u);
   EXPECT_EQ(model.equalityRows, 6);
 }
@@ -136,8 +139,10 @@ TEST(MujocoTree, APairThrownApartKeepsEachBodysOwnSpin) {
   // a's spin, as a tree child with no joint velocity would, it would rise).
   const auto d = describe(
       "  <world gravity=\"0 0 0\"/>\n"
-      "  <box name=\"a\" pos=\"-0.5 2 0\" size=\"1 0.1 0.1\" euler=\"30 0 0\" velocity=\"0 -1 0\" angular-velocity=\"0 0 114.59155902616465\"/>\n"
-      "  <box name=\"b\" pos=\"0.5 2 0\" size=\"1 0.1 0.1\" euler=\"30 0 0\" velocity=\"0 -1 0\" angular-velocity=\"0 0 -114.59155902616465\"/>\n"
+      "  <box name=\"a\" pos=\"-0.5 2 0\" size=\"1 0.1 0.1\" euler=\"30 0 0\" velocity=\"0 -1 0\" "
+      "angular-velocity=\"0 0 114.59155902616465\"/>\n"
+      "  <box name=\"b\" pos=\"0.5 2 0\" size=\"1 0.1 0.1\" euler=\"30 0 0\" velocity=\"0 -1 0\" "
+      "angular-velocity=\"0 0 -114.59155902616465\"/>\n"
       "  <link a=\"a\" b=\"b\" point=\"0 2 0\"/>\n"
       "  <no-collision a=\"a\" b=\"b\"/>\n");
   auto e = mujocoTree(d);
@@ -171,7 +176,8 @@ TEST(MujocoTree, ARagdollLandsWithItsJointsHeldExactly) {
     }
     for (const auto& p : d.pins) {
       const auto ia = static_cast<std::size_t>(p.a), ib = static_cast<std::size_t>(p.b);
-      pinGap = std::max(pinGap, glm::length(lab::peers::toWorld(c[ia], q[ia], p.localA) - lab::peers::toWorld(c[ib], q[ib], p.localB)));
+      pinGap = std::max(pinGap, glm::length(lab::peers::toWorld(c[ia], q[ia], p.localA) -
+                                            lab::peers::toWorld(c[ib], q[ib], p.localB)));
     }
     gap = std::max(gap, lab::peers::jointGap(d, c, q));
     depth = std::max(depth, lab::peers::posePenetration(d, c, q));

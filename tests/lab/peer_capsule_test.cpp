@@ -25,22 +25,26 @@ constexpr int kTwoSeconds = 120;
 constexpr double kRestTolerance = 0.005;
 
 scenes::Scene load(const std::string& body) {
-  return scenes::loadSceneText("<scene name=\"capsule\">\n  <ground friction=\"0.6\"/>\n" + body + "</scene>\n", "peer_capsule_test");
+  return scenes::loadSceneText(
+      "<scene name=\"capsule\">\n  <ground friction=\"0.6\"/>\n" + body + "</scene>\n", "peer_capsule_test");
 }
 
 std::vector<std::string> engines() {
   std::vector<std::string> e = lab::peerEngines();
-  if (e.empty()) std::cout << "[ note     ] no peer engines built in; the physical checks have nothing to run\n";
+  if (e.empty())
+    std::cout << "[ note     ] no peer engines built in; the physical checks have nothing to run\n";
   return e;
 }
 
 // The capsule's core direction in the world: the body's y axis.
-phys::Vec3 coreAxis(const phys::Quat& q) { return q * phys::Vec3(0.0, 1.0, 0.0); }
+phys::Vec3 coreAxis(const phys::Quat& q) {
+  return q * phys::Vec3(0.0, 1.0, 0.0);
+}
 
 TEST(PeerCapsule, DescribedWithItsRadiusCoreAndItsBoxsInertia) {
-  const lab::peers::Description d = lab::peers::describe(
-      load("  <capsule name=\"c\" pos=\"0 1 0\" radius=\"0.2\" length=\"1\" mass=\"8\"/>\n"
-           "  <capsule name=\"t\" pos=\"3 1 0\" radius=\"0.1\" length=\"0.6\" mass=\"4\" model=\"tetra\"/>\n"));
+  const lab::peers::Description d = lab::peers::describe(load(
+      "  <capsule name=\"c\" pos=\"0 1 0\" radius=\"0.2\" length=\"1\" mass=\"8\"/>\n"
+      "  <capsule name=\"t\" pos=\"3 1 0\" radius=\"0.1\" length=\"0.6\" mass=\"4\" model=\"tetra\"/>\n"));
   ASSERT_EQ(d.bodies.size(), 2u);
   const auto& c = d.bodies[0];
   EXPECT_EQ(c.shape, lab::peers::Body::Shape::Capsule);
@@ -60,7 +64,9 @@ TEST(PeerCapsule, DescribedWithItsRadiusCoreAndItsBoxsInertia) {
 TEST(PeerCapsule, ALyingCapsuleRestsAtItsRadius) {
   // Radius 0.2 m, 1 m long, lying along x and just touching the ground: after 2 s it is still
   // there, its centre at the radius, its core still along x.
-  const scenes::Scene scene = load("  <capsule name=\"c\" pos=\"0.3 0.2 -0.1\" radius=\"0.2\" length=\"1\" euler=\"0 0 90\" mass=\"2\"/>\n");
+  const scenes::Scene scene = load(
+      "  <capsule name=\"c\" pos=\"0.3 0.2 -0.1\" radius=\"0.2\" length=\"1\" euler=\"0 0 90\" "
+      "mass=\"2\"/>\n");
   for (const std::string& engine : engines()) {
     SCOPED_TRACE(engine);
     const lab::PeerResult r = lab::runPeer(engine, scene, kDt, kTwoSeconds, {kTwoSeconds});
@@ -95,7 +101,8 @@ TEST(PeerCapsule, ACapsuleLyingOnABoxStaysOnIt) {
   // step, its default) before it falls asleep, so 5 cm is allowed sideways.
   const scenes::Scene scene = load(
       "  <box name=\"b\" pos=\"0 0.2 0\" size=\"1 0.4 1\" mass=\"5\"/>\n"
-      "  <capsule name=\"c\" pos=\"0 0.5 0.1\" radius=\"0.1\" length=\"0.8\" euler=\"0 0 90\" mass=\"1\"/>\n");
+      "  <capsule name=\"c\" pos=\"0 0.5 0.1\" radius=\"0.1\" length=\"0.8\" euler=\"0 0 90\" "
+      "mass=\"1\"/>\n");
   const lab::peers::Description d = lab::peers::describe(scene);
   for (const std::string& engine : engines()) {
     SCOPED_TRACE(engine);
@@ -108,14 +115,16 @@ TEST(PeerCapsule, ACapsuleLyingOnABoxStaysOnIt) {
     // Measured on its poses, the capsule sinks into the box by no more than the engine's slop.
     const double overlap = lab::peers::bodyOverlap(d, r.positions.at(0), r.orientations.at(0));
     EXPECT_LT(overlap, kRestTolerance);
-    std::cout << "[ " << engine << " ] capsule on a box rests at " << c.y << " m (0.5), overlap " << overlap << " m\n";
+    std::cout << "[ " << engine << " ] capsule on a box rests at " << c.y << " m (0.5), overlap " << overlap
+              << " m\n";
   }
 }
 
 TEST(PeerCapsule, ACapsuleRagdollsJointsHoldInEveryEngine) {
   // One capsule ragdoll (physics/capsule_ragdoll.h) dropped on its back from 1 m: its pins and
   // range links go through each engine's ball joints and distance limits, as a box ragdoll's do.
-  const scenes::Scene scene = load("  <ragdoll name=\"r\" pos=\"0 1 0\" euler=\"80 0 0\" shape=\"capsule\"/>\n");
+  const scenes::Scene scene =
+      load("  <ragdoll name=\"r\" pos=\"0 1 0\" euler=\"80 0 0\" shape=\"capsule\"/>\n");
   const lab::peers::Description d = lab::peers::describe(scene);
   ASSERT_EQ(d.bodies.size(), 11u);
   for (const auto& b : d.bodies) EXPECT_EQ(b.shape, lab::peers::Body::Shape::Capsule) << b.name;
@@ -134,7 +143,8 @@ TEST(PeerCapsule, ACapsuleRagdollsJointsHoldInEveryEngine) {
     }
     EXPECT_LT(gap, 0.02);
     EXPECT_LT(depth, 0.02);
-    std::cout << "[ " << engine << " ] capsule ragdoll at rest: joint gap up to " << gap << " m, penetration up to " << depth << " m\n";
+    std::cout << "[ " << engine << " ] capsule ragdoll at rest: joint gap up to " << gap
+              << " m, penetration up to " << depth << " m\n";
   }
 }
 

@@ -37,11 +37,15 @@ lab::stability::SuiteScene suiteScene(const std::string& name) {
   return lab::stability::loadSuiteScene(kSuite / (name + ".xml"));
 }
 
-Setting setting(phys::SolverMethod method, int iterations, int substeps) { return {method, iterations, substeps}; }
+Setting setting(phys::SolverMethod method, int iterations, int substeps) {
+  return {method, iterations, substeps};
+}
 
 using Output = lab::CommandOutput;
 
-Output stability(const std::vector<std::string>& args) { return lab::runCaptured(lab::stabilityMain, args); }
+Output stability(const std::vector<std::string>& args) {
+  return lab::runCaptured(lab::stabilityMain, args);
+}
 
 // A one-box scene with the given <expect> on line 5 (and a particle "p" for the errors that
 // need one).
@@ -50,7 +54,9 @@ std::string sceneWithExpect(const std::string& expect) {
          "  <ground/>\n"
          "  <box name=\"crate\" pos=\"0 0.5 0\" size=\"1 2 3\"/>\n"
          "  <particle name=\"p\" pos=\"3 1 0\"/>\n"
-         "  " + expect + "\n"
+         "  " +
+         expect +
+         "\n"
          "</scene>\n";
 }
 
@@ -68,11 +74,31 @@ TEST(StabilitySuite, EverySceneLoadsAndItsCriteriaParse) {
     names.push_back(s.name);
   }
   // The scenes the issue asks for, one file each.
-  for (const char* expected : {"stack-10", "stack-20", "stack-40", "pyramid-10", "pyramid-20", "pyramid-40",
-                               "heavy-on-light-100", "heavy-on-light-1000", "chain-100", "chain-1000", "chain-10000",
-                               "overlap", "bullet-50", "bullet-100", "bullet-200", "large-dt-stack-30",
-                               "large-dt-stack-15", "large-dt-ragdoll-30", "large-dt-ragdoll-15", "far-0", "far-1e3",
-                               "far-1e4", "far-1e5", "dzhanibekov", "face-face"}) {
+  for (const char* expected : {"stack-10",
+                               "stack-20",
+                               "stack-40",
+                               "pyramid-10",
+                               "pyramid-20",
+                               "pyramid-40",
+                               "heavy-on-light-100",
+                               "heavy-on-light-1000",
+                               "chain-100",
+                               "chain-1000",
+                               "chain-10000",
+                               "overlap",
+                               "bullet-50",
+                               "bullet-100",
+                               "bullet-200",
+                               "large-dt-stack-30",
+                               "large-dt-stack-15",
+                               "large-dt-ragdoll-30",
+                               "large-dt-ragdoll-15",
+                               "far-0",
+                               "far-1e3",
+                               "far-1e4",
+                               "far-1e5",
+                               "dzhanibekov",
+                               "face-face"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
   }
 }
@@ -98,24 +124,34 @@ struct BadExpect {
 TEST(StabilityCriteria, MalformedExpectNamesTheLineAndTheAttribute) {
   const std::vector<BadExpect> cases = {
       {R"(<expect metric="drift" body="crate" max="1" over="0 1"/>)", "kind", "is required"},
-      {R"(<expect kind="fail" metric="drift" body="crate" max="1" over="0 1"/>)", "kind", "must be pass or position"},
+      {R"(<expect kind="fail" metric="drift" body="crate" max="1" over="0 1"/>)", "kind",
+       "must be pass or position"},
       {R"(<expect kind="pass" body="crate" max="1" over="0 1"/>)", "metric", "is required"},
-      {R"(<expect kind="pass" metric="wobble" over="0 1" max="1"/>)", "metric", "'wobble' must be one of drift"},
+      {R"(<expect kind="pass" metric="wobble" over="0 1" max="1"/>)", "metric",
+       "'wobble' must be one of drift"},
       {R"(<expect kind="pass" metric="drift" body="crate" max="1"/>)", "over", "is required"},
       {R"(<expect kind="pass" metric="drift" body="crate" max="1" over="2 1"/>)", "over", "0 <= from < to"},
       {R"(<expect kind="pass" metric="drift" body="crate" max="1" over="0 1 2"/>)", "over", "two numbers"},
-      {R"(<expect kind="pass" metric="drift" body="crate" max="1" over="0 0.001"/>)", "over", "shorter than one step"},
-      {R"(<expect kind="pass" metric="drift" body="ghost" max="1" over="0 1"/>)", "body", "no body named 'ghost'"},
+      {R"(<expect kind="pass" metric="drift" body="crate" max="1" over="0 0.001"/>)", "over",
+       "shorter than one step"},
+      {R"(<expect kind="pass" metric="drift" body="ghost" max="1" over="0 1"/>)", "body",
+       "no body named 'ghost'"},
       {R"(<expect kind="pass" metric="drift" max="1" over="0 1"/>)", "body", "is required"},
-      {R"(<expect kind="pass" metric="drift" body="crate" max="-1" over="0 1"/>)", "max", "must be a number > 0 (m)"},
-      {R"(<expect kind="pass" metric="speed" max="fast" over="0 1"/>)", "max", "'fast' must be a number > 0 (m/s)"},
-      {R"(<expect kind="pass" metric="speed" max="1" over="0 1" body="crate"/>)", "body", "unknown attribute"},
+      {R"(<expect kind="pass" metric="drift" body="crate" max="-1" over="0 1"/>)", "max",
+       "must be a number > 0 (m)"},
+      {R"(<expect kind="pass" metric="speed" max="fast" over="0 1"/>)", "max",
+       "'fast' must be a number > 0 (m/s)"},
+      {R"(<expect kind="pass" metric="speed" max="1" over="0 1" body="crate"/>)", "body",
+       "unknown attribute"},
       {R"(<expect kind="pass" metric="flips" body="p" min="1" over="0 1"/>)", "body", "is a particle"},
-      {R"(<expect kind="pass" metric="flips" body="crate" min="3" max="2" over="0 1"/>)", "max", "must be >= min"},
+      {R"(<expect kind="pass" metric="flips" body="crate" min="3" max="2" over="0 1"/>)", "max",
+       "must be >= min"},
       {R"(<expect kind="pass" metric="flips" body="crate" over="0 1"/>)", "min", "is required, or max"},
       {R"(<expect kind="pass" metric="flips" body="crate" min="1.5" over="0 1"/>)", "min", "whole number"},
-      {R"(<expect kind="pass" metric="stays-behind" body="p" axis="w" max="1" over="0 1"/>)", "axis", "x, y or z"},
-      {R"(<expect kind="pass" metric="stays-behind" body="p" axis="x" over="0 1"/>)", "max", "exactly one of max and min"},
+      {R"(<expect kind="pass" metric="stays-behind" body="p" axis="w" max="1" over="0 1"/>)", "axis",
+       "x, y or z"},
+      {R"(<expect kind="pass" metric="stays-behind" body="p" axis="x" over="0 1"/>)", "max",
+       "exactly one of max and min"},
       {R"(<expect kind="pass" metric="stays-behind" body="p" axis="x" max="1" over="0 1"/>)", "max",
        "starts at x = 3, already above the plane 1"},
   };
@@ -130,7 +166,8 @@ TEST(StabilityCriteria, MalformedExpectNamesTheLineAndTheAttribute) {
       EXPECT_EQ(e.line(), 5);
       EXPECT_EQ(e.attribute(), c.attribute);
       const std::string message = e.what();
-      EXPECT_TRUE(message.starts_with(file.string() + ":5: <expect> attribute '" + c.attribute + "': ")) << message;
+      EXPECT_TRUE(message.starts_with(file.string() + ":5: <expect> attribute '" + c.attribute + "': "))
+          << message;
       EXPECT_NE(message.find(c.why), std::string::npos) << message;
     }
   }
@@ -138,7 +175,8 @@ TEST(StabilityCriteria, MalformedExpectNamesTheLineAndTheAttribute) {
 
 TEST(StabilityCriteria, AStabilitySceneNeedsAPassCriterion) {
   TempDir dir;
-  const std::filesystem::path file = dir.write("none.xml", sceneWithExpect(R"(<expect kind="position" body="crate" at="1" pos="0 0.5 0"/>)"));
+  const std::filesystem::path file = dir.write(
+      "none.xml", sceneWithExpect(R"(<expect kind="position" body="crate" at="1" pos="0 0.5 0"/>)"));
   try {
     lab::stability::loadSuiteScene(file);
     ADD_FAILURE() << "no error";
@@ -158,8 +196,8 @@ TEST(StabilityCriteria, RatiosAreAtMostOneWhenPassing) {
   flips.limit = 3;
   flips.upper = 3;
   EXPECT_DOUBLE_EQ(lab::stability::errorRatio(flips, 3), 1.0);
-  EXPECT_DOUBLE_EQ(lab::stability::errorRatio(flips, 6), 2.0);   // too many
-  EXPECT_DOUBLE_EQ(lab::stability::errorRatio(flips, 1), 3.0);   // too few
+  EXPECT_DOUBLE_EQ(lab::stability::errorRatio(flips, 6), 2.0);  // too many
+  EXPECT_DOUBLE_EQ(lab::stability::errorRatio(flips, 1), 3.0);  // too few
   Criterion plane;
   plane.metric = Metric::StaysBehind;
   plane.start = -2.0;
@@ -183,7 +221,8 @@ TEST(StabilityRun, TheHeaviestChainFailsAtOneSubstepAndHoldsAt64) {
 }
 
 TEST(StabilityRun, FaceToFaceStaysStackedAtAGoodSetting) {
-  const auto o = lab::stability::runSetting(suiteScene("face-face"), setting(phys::SolverMethod::GaussSeidel, 3, 4));
+  const auto o =
+      lab::stability::runSetting(suiteScene("face-face"), setting(phys::SolverMethod::GaussSeidel, 3, 4));
   EXPECT_TRUE(o.passed);
   ASSERT_EQ(o.verdicts.size(), 2u);
   EXPECT_LT(o.verdicts[0].value, 0.002);  // drift of the top box, m
@@ -216,16 +255,17 @@ TEST(StabilityRun, DzhanibekovFlipsLikeARigidBodyWithShake) {
 
 TEST(StabilityJudge, PeersAreJudgedOnTheirPoses) {
   TempDir dir;
-  const std::filesystem::path file = dir.write(
-      "peer.xml",
-      "<scene name=\"peer\">\n"
-      "  <ground/>\n"
-      "  <box name=\"crate\" pos=\"0 0.5 0\"/>\n"
-      "  <particle name=\"p\" pos=\"3 1 0\"/>\n"
-      "  <expect kind=\"pass\" metric=\"drift\" body=\"p\" max=\"0.5\" over=\"0 0.05\"/>\n"
-      "  <expect kind=\"pass\" metric=\"penetration\" max=\"0.01\" over=\"0 0.05\"/>\n"
-      "  <expect kind=\"pass\" metric=\"stays-behind\" body=\"crate\" axis=\"x\" max=\"1\" over=\"0 0.05\"/>\n"
-      "</scene>\n");
+  const std::filesystem::path file =
+      dir.write("peer.xml",
+                "<scene name=\"peer\">\n"
+                "  <ground/>\n"
+                "  <box name=\"crate\" pos=\"0 0.5 0\"/>\n"
+                "  <particle name=\"p\" pos=\"3 1 0\"/>\n"
+                "  <expect kind=\"pass\" metric=\"drift\" body=\"p\" max=\"0.5\" over=\"0 0.05\"/>\n"
+                "  <expect kind=\"pass\" metric=\"penetration\" max=\"0.01\" over=\"0 0.05\"/>\n"
+                "  <expect kind=\"pass\" metric=\"stays-behind\" body=\"crate\" axis=\"x\" max=\"1\" "
+                "over=\"0 0.05\"/>\n"
+                "</scene>\n");
   const scenes::Scene scene = scenes::loadSceneFile(file);
   const std::vector<Criterion> criteria = lab::stability::parseCriteria(scene);
   // Three steps (0.05 s at 1/60 s): the particle moves 0.2 m a step, the crate 0.5 m a step,
@@ -271,7 +311,8 @@ TEST(StabilityJudge, APeersFlipsAreCountedFromItsOrientations) {
     std::vector<std::vector<phys::Quat>> orientations;
     for (int k = 1; k <= s.steps; ++k) {
       positions.push_back({centre});
-      orientations.push_back({glm::angleAxis(angleAt(static_cast<double>(k) / s.steps), phys::Vec3(1.0, 0.0, 0.0)) * start});
+      orientations.push_back(
+          {glm::angleAxis(angleAt(static_cast<double>(k) / s.steps), phys::Vec3(1.0, 0.0, 0.0)) * start});
     }
     return lab::stability::judgePeer(s.criteria, scene, s.dt, positions, orientations).at(flips);
   };
@@ -318,8 +359,9 @@ TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
 TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
   TempDir dir;
   const std::filesystem::path out = dir.file("out");
-  const Output o = stability({"--scene", "face-face", "bullet-50", "--methods", "gauss-seidel,shake", "--iterations",
-                              "1", "--substeps", "1,16", "--no-peers", "--out", out.string()});
+  const Output o =
+      stability({"--scene", "face-face", "bullet-50", "--methods", "gauss-seidel,shake", "--iterations", "1",
+                 "--substeps", "1,16", "--no-peers", "--out", out.string()});
   ASSERT_EQ(o.code, lab::kExitOk) << o.err;
   // The report on stdout and in the folder, with a grid per method.
   EXPECT_NE(o.out.find("| face-face |"), std::string::npos);
@@ -329,15 +371,17 @@ TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
   // The progress bar ends with the count of runs.
   EXPECT_NE(o.err.find("8/8"), std::string::npos);
   const std::string csv = lab_testing::readFile(out / "stability.csv");
-  EXPECT_TRUE(csv.starts_with("scene,method,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n"));
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 4);  // header, 2 scenes x 4 settings
-  EXPECT_NE(csv.find("bullet-50,gauss-seidel,1,1,0,"), std::string::npos);  // tunnels
+  EXPECT_TRUE(csv.starts_with(
+      "scene,method,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n"));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 4);            // header, 2 scenes x 4 settings
+  EXPECT_NE(csv.find("bullet-50,gauss-seidel,1,1,0,"), std::string::npos);   // tunnels
   EXPECT_NE(csv.find("bullet-50,gauss-seidel,1,16,1,"), std::string::npos);  // stopped
   EXPECT_TRUE(std::filesystem::exists(out / "stability.gp"));
   EXPECT_TRUE(std::filesystem::exists(out / "stability-pass.dat"));
   EXPECT_TRUE(std::filesystem::exists(out / "stability-error.dat"));
   if (lab::findGnuplot().empty()) GTEST_SKIP() << "gnuplot is not installed: no PNG or SVG to check";
-  for (const char* chart : {"stability-pass.png", "stability-pass.svg", "stability-error.png", "stability-error.svg"}) {
+  for (const char* chart :
+       {"stability-pass.png", "stability-pass.svg", "stability-error.png", "stability-error.svg"}) {
     EXPECT_GT(std::filesystem::file_size(out / chart), 1000u) << chart;
   }
 }
@@ -389,7 +433,8 @@ TEST(StabilityCli, AMissingOrBrokenSceneExits1) {
   EXPECT_NE(missing.err.find("no scene 'no-such-scene'"), std::string::npos) << missing.err;
 
   TempDir dir;
-  const std::filesystem::path file = dir.write("bad.xml", sceneWithExpect(R"(<expect kind="pass" metric="speed" max="0" over="0 1"/>)"));
+  const std::filesystem::path file =
+      dir.write("bad.xml", sceneWithExpect(R"(<expect kind="pass" metric="speed" max="0" over="0 1"/>)"));
   const Output broken = stability({"--scene", file.string(), "--no-peers"});
   EXPECT_EQ(broken.code, lab::kExitFailure);
   EXPECT_EQ(broken.err, file.string() + ":5: <expect> attribute 'max': '0' must be a number > 0 (m/s)\n");

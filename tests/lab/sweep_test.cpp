@@ -50,13 +50,14 @@ std::optional<CsvRow> findRow(const CsvTable& csv, const std::string& method, in
 }
 
 const char* const kHeader =
-    "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_uncertainty,"
+    "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
+    "uncertainty,"
     "max_stick_error,max_joint_error,max_penetration,energy_drift,frozen,pareto,note";
 
 TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
   TempDir dir;
-  const Outcome o = sweep({"falling-box", "--method", "gauss-seidel,xpbd", "--iterations", "2,4", "--steps", "30",
-                           "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  const Outcome o = sweep({"falling-box", "--method", "gauss-seidel,xpbd", "--iterations", "2,4", "--steps",
+                           "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   const CsvTable csv = readCsv(dir.file("out/results.csv"));
   std::string header;
@@ -69,10 +70,10 @@ TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
       ASSERT_TRUE(row) << method << " " << iterations;
       EXPECT_EQ(row->at("model"), "corners");  // the file's boxes, named
       EXPECT_EQ(row->at("steps"), "30");
-      for (const char* column : {"dt", "ms_per_step", "ms_per_sim_second", "error", "ref_uncertainty", "max_stick_error",
-                                 "max_joint_error", "max_penetration", "energy_drift", "frozen"}) {
-        EXPECT_TRUE(std::isfinite(fieldNumber(*row, column)))
-            << method << " " << iterations << " " << column;
+      for (const char* column :
+           {"dt", "ms_per_step", "ms_per_sim_second", "error", "ref_uncertainty", "max_stick_error",
+            "max_joint_error", "max_penetration", "energy_drift", "frozen"}) {
+        EXPECT_TRUE(std::isfinite(fieldNumber(*row, column))) << method << " " << iterations << " " << column;
       }
       EXPECT_GT(fieldNumber(*row, "ms_per_step"), 0.0);
       EXPECT_EQ(row->at("frozen"), "0");
@@ -86,15 +87,15 @@ TEST(Sweep, ProjectileIsExactToRoundOffAtAnySetting) {
   // Verlet with the loader's start is exact for constant acceleration, and every method keeps a
   // free box's centre, so coarse and fine settings alike land on the analytic positions.
   TempDir dir;
-  const Outcome o = sweep({"projectile", "--method", "gauss-seidel,jacobi,shake", "--iterations", "1,4", "--substeps",
-                           "1,8", "--model", "corners,tetra", "--repeat", "1", "--no-peers", "--out",
-                           dir.file("out").string()});
+  const Outcome o = sweep({"projectile", "--method", "gauss-seidel,jacobi,shake", "--iterations", "1,4",
+                           "--substeps", "1,8", "--model", "corners,tetra", "--repeat", "1", "--no-peers",
+                           "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   const CsvTable csv = readCsv(dir.file("out/results.csv"));
   ASSERT_EQ(csv.rows.size(), 24u);
   for (const auto& row : csv.rows) {
-    EXPECT_LT(fieldNumber(row, "error"), 1e-9)
-        << row.at("method") << " " << row.at("model") << " " << row.at("iterations") << "x" << row.at("substeps");
+    EXPECT_LT(fieldNumber(row, "error"), 1e-9) << row.at("method") << " " << row.at("model") << " "
+                                               << row.at("iterations") << "x" << row.at("substeps");
     EXPECT_EQ(fieldNumber(row, "ref_uncertainty"), 0.0);  // analytic
   }
   EXPECT_NE(o.out.find("analytic: 7 positions"), std::string::npos) << o.out;
@@ -103,8 +104,8 @@ TEST(Sweep, ProjectileIsExactToRoundOffAtAnySetting) {
 TEST(Sweep, FineSettingsBeatCoarseOnScenesVerletDoesNotSolveExactly) {
   TempDir dir;
   // The pendulum against its elliptic-function motion: method and substeps both matter.
-  Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,16", "--repeat", "1",
-                     "--no-peers", "--out", dir.file("pendulum").string()});
+  Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,16", "--repeat",
+                     "1", "--no-peers", "--out", dir.file("pendulum").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   CsvTable csv = readCsv(dir.file("pendulum/results.csv"));
   const double coarse = fieldNumber(*findRow(csv, "gauss-seidel", 1, 1), "error");
@@ -115,7 +116,8 @@ TEST(Sweep, FineSettingsBeatCoarseOnScenesVerletDoesNotSolveExactly) {
   EXPECT_LT(fine, fieldNumber(*findRow(csv, "shake", 1, 1), "error"));
 
   // The circular orbit: Verlet's phase error falls with the square of the substep.
-  o = sweep({"circular-orbit", "--substeps", "1,16", "--repeat", "1", "--no-peers", "--out", dir.file("orbit").string()});
+  o = sweep({"circular-orbit", "--substeps", "1,16", "--repeat", "1", "--no-peers", "--out",
+             dir.file("orbit").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   csv = readCsv(dir.file("orbit/results.csv"));
   const double one = fieldNumber(*findRow(csv, "gauss-seidel", 1, 1), "error");
@@ -126,8 +128,8 @@ TEST(Sweep, FineSettingsBeatCoarseOnScenesVerletDoesNotSolveExactly) {
 
 TEST(Sweep, ParetoFrontHoldsTheUnbeatenRows) {
   TempDir dir;
-  const Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,2,4", "--repeat", "1",
-                           "--no-peers", "--out", dir.file("out").string()});
+  const Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--substeps", "1,2,4",
+                           "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   const CsvTable csv = readCsv(dir.file("out/results.csv"));
   const CsvTable front = readCsv(dir.file("out/pareto.csv"));
@@ -148,14 +150,16 @@ TEST(Sweep, ParetoFrontHoldsTheUnbeatenRows) {
   ASSERT_EQ(front.rows.size(), marked);
   ASSERT_GE(marked, 1u);
   for (std::size_t i = 1; i < front.rows.size(); ++i) {
-    EXPECT_LE(fieldNumber(front.rows[i - 1], "ms_per_step"), fieldNumber(front.rows[i], "ms_per_step"));  // by cost
+    EXPECT_LE(fieldNumber(front.rows[i - 1], "ms_per_step"),
+              fieldNumber(front.rows[i], "ms_per_step"));  // by cost
   }
 }
 
 TEST(Sweep, ARunThatBlowsUpHasInfiniteErrorAndFrozenParticles) {
   TempDir dir;
   const std::filesystem::path scene = dir.write("escape.xml", lab_testing::escapingScene());
-  const Outcome o = sweep({scene.string(), "--steps", "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  const Outcome o = sweep(
+      {scene.string(), "--steps", "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   const CsvTable csv = readCsv(dir.file("out/results.csv"));
   ASSERT_EQ(csv.rows.size(), 1u);
@@ -168,8 +172,8 @@ TEST(Sweep, ARunThatBlowsUpHasInfiniteErrorAndFrozenParticles) {
 TEST(Sweep, DrawsTheChartWhenGnuplotIsThere) {
   if (lab::findGnuplot().empty()) GTEST_SKIP() << "gnuplot is not installed";
   TempDir dir;
-  const Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--repeat", "1", "--no-peers", "--out",
-                           dir.file("out").string()});
+  const Outcome o = sweep({"pendulum-exact", "--method", "gauss-seidel,shake", "--repeat", "1", "--no-peers",
+                           "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   for (const char* f : {"results.csv", "pareto.csv", "sweep.gp", "error-vs-cost.png", "error-vs-cost.svg"}) {
     EXPECT_GT(std::filesystem::file_size(dir.file("out") / f), 0u) << f;
@@ -188,8 +192,10 @@ class ScopedPath {
     ::setenv("PATH", path.c_str(), 1);
   }
   ~ScopedPath() {
-    if (old_) ::setenv("PATH", old_->c_str(), 1);
-    else ::unsetenv("PATH");
+    if (old_)
+      ::setenv("PATH", old_->c_str(), 1);
+    else
+      ::unsetenv("PATH");
   }
   ScopedPath(const ScopedPath&) = delete;
   ScopedPath& operator=(const ScopedPath&) = delete;
@@ -250,8 +256,8 @@ TEST(Sweep, UsageErrorsNameTheArgument) {
 
 TEST(Sweep, ShowsProgressOnePerTenthWhenStderrIsNotATerminal) {
   TempDir dir;
-  const Outcome o = sweep({"pendulum-exact", "--substeps", "1,2,3,4,5", "--repeat", "1", "--no-peers", "--out",
-                           dir.file("out").string()});
+  const Outcome o = sweep({"pendulum-exact", "--substeps", "1,2,3,4,5", "--repeat", "1", "--no-peers",
+                           "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   // 5 settings x (1 timed + 1 measured) + 1 target = 11 runs: a line per tenth, the last full.
   EXPECT_NE(o.err.find("[##########] 11/11 runs\n"), std::string::npos) << o.err;
@@ -267,7 +273,9 @@ std::string sceneWithExpect(const std::string& expect) {
   return "<scene name=\"e\">\n"
          "  <world/>\n"
          "  <particle name=\"p\" pos=\"0 5 0\" mass=\"1\"/>\n"
-         "  " + expect + "\n"
+         "  " +
+         expect +
+         "\n"
          "</scene>\n";
 }
 
@@ -278,14 +286,16 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
     std::string message;
   };
   const std::vector<Case> cases = {
-      {R"(<expect kind="position" body="q" at="1" pos="0 0 0"/>)", "body", "'q' names no box or loose particle"},
+      {R"(<expect kind="position" body="q" at="1" pos="0 0 0"/>)", "body",
+       "'q' names no box or loose particle"},
       {R"(<expect kind="position" at="1" pos="0 0 0"/>)", "body", "is required"},
       {R"(<expect kind="position" body="p" pos="0 0 0"/>)", "at", "is required"},
       {R"(<expect kind="position" body="p" at="-1" pos="0 0 0"/>)", "at", "must be a finite number > 0"},
       {R"(<expect kind="position" body="p" at="0.01" pos="0 0 0"/>)", "at", "not a whole number of steps"},
       {R"(<expect kind="position" body="p" at="1" pos="0 0"/>)", "pos", "must be three finite numbers"},
       {R"(<expect kind="position" body="p" at="1" pos="0 nan 0"/>)", "pos", "must be three finite numbers"},
-      {R"(<expect kind="position" body="p" at="1" pos="0 0 0" tolerance="1"/>)", "tolerance", "unknown attribute"},
+      {R"(<expect kind="position" body="p" at="1" pos="0 0 0" tolerance="1"/>)", "tolerance",
+       "unknown attribute"},
   };
   for (const Case& c : cases) {
     const scenes::Scene scene = scenes::loadSceneText(sceneWithExpect(c.expect), "e.xml");
@@ -300,16 +310,19 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
     }
   }
   // Other kinds belong to other commands and are left alone.
-  const scenes::Scene other = scenes::loadSceneText(sceneWithExpect(R"(<expect kind="pass" max-speed="1"/>)"), "e.xml");
+  const scenes::Scene other =
+      scenes::loadSceneText(sceneWithExpect(R"(<expect kind="pass" max-speed="1"/>)"), "e.xml");
   EXPECT_EQ(lab::accuracyTarget(other, {}, 1.0 / 60.0, 8).kind, "reference");
 }
 
 TEST(Accuracy, SweepReportsABadExpectationLikeTheLoader) {
   TempDir dir;
-  const std::filesystem::path scene = dir.write("bad.xml", sceneWithExpect(R"(<expect kind="position" body="p" at="1" pos="1 2"/>)"));
+  const std::filesystem::path scene =
+      dir.write("bad.xml", sceneWithExpect(R"(<expect kind="position" body="p" at="1" pos="1 2"/>)"));
   const Outcome o = sweep({scene.string(), "--out", dir.file("out").string()});
   EXPECT_EQ(o.code, lab::kExitFailure);
-  EXPECT_NE(o.err.find(scene.string() + ":4: <expect kind=\"position\"> attribute 'pos'"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find(scene.string() + ":4: <expect kind=\"position\"> attribute 'pos'"), std::string::npos)
+      << o.err;
 }
 
 TEST(Accuracy, AnalyticTargetHoldsTheGivenPositionsAtTheirSteps) {
@@ -322,7 +335,8 @@ TEST(Accuracy, AnalyticTargetHoldsTheGivenPositionsAtTheirSteps) {
   EXPECT_EQ(t.expected[0][0], phys::Vec3(1, 2, 3));
   EXPECT_EQ(lab::accuracyError(t, {{phys::Vec3(1, 2, 3.5)}}), 0.5);
   EXPECT_TRUE(std::isinf(lab::accuracyError(t, {{phys::Vec3(1, std::nan(""), 3)}})));
-  EXPECT_TRUE(std::isinf(lab::accuracyError(t, {{phys::Vec3(1, 2, 3), phys::Vec3(0.0)}})));  // body counts differ
+  EXPECT_TRUE(
+      std::isinf(lab::accuracyError(t, {{phys::Vec3(1, 2, 3), phys::Vec3(0.0)}})));  // body counts differ
   EXPECT_TRUE(std::isinf(lab::accuracyError(t, {})));
 }
 

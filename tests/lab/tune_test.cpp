@@ -31,7 +31,8 @@ struct Winner {
 };
 
 std::optional<Winner> winnerOf(const std::string& out) {
-  static const std::regex line(R"(winner +([a-z-]+), (\d+) iterations?, (\d+) substeps?(?:, model ([a-z+]+))?:)");
+  static const std::regex line(
+      R"(winner +([a-z-]+), (\d+) iterations?, (\d+) substeps?(?:, model ([a-z+]+))?:)");
   std::smatch m;
   if (!std::regex_search(out, m, line)) return std::nullopt;
   return Winner{m[1], m[2], m[3], m[4]};
@@ -39,9 +40,14 @@ std::optional<Winner> winnerOf(const std::string& out) {
 
 /// Runs the winner again through lab sweep and returns results.csv's row for it.
 lab::CsvRow rerun(const std::string& scene, const Winner& w, const std::string& steps, const TempDir& dir) {
-  std::vector<std::string> args = {scene, "--method", w.method, "--iterations", w.iterations, "--substeps", w.substeps,
-                                   "--steps", steps, "--repeat", "1", "--no-peers", "--out", dir.file("rerun").string(),
-                                   "--data", DATA_DIR};
+  std::vector<std::string> args = {scene,        "--method",
+                                   w.method,     "--iterations",
+                                   w.iterations, "--substeps",
+                                   w.substeps,   "--steps",
+                                   steps,        "--repeat",
+                                   "1",          "--no-peers",
+                                   "--out",      dir.file("rerun").string(),
+                                   "--data",     DATA_DIR};
   if (!w.model.empty()) args.insert(args.end(), {"--model", w.model});
   const Outcome o = lab::runCaptured(lab::sweepMain, args);
   EXPECT_EQ(o.code, 0) << o.err;
@@ -68,8 +74,8 @@ TEST(Tune, FindsAnAccurateSettingThatMeetsTheTargetOnARerun) {
 
 TEST(Tune, SearchesBoxModelsForStickAndPenetrationTargets) {
   TempDir dir;
-  const Outcome o = tune({"falling-box", "--target", "stick-error=0.01", "--target", "penetration=0.01", "--steps", "60",
-                          "--repeat", "1"});
+  const Outcome o = tune({"falling-box", "--target", "stick-error=0.01", "--target", "penetration=0.01",
+                          "--steps", "60", "--repeat", "1"});
   ASSERT_EQ(o.code, 0) << o.err << o.out;
   EXPECT_NE(o.out.find("models corners, tetra"), std::string::npos) << o.out;
   const std::optional<Winner> w = winnerOf(o.out);
@@ -80,7 +86,8 @@ TEST(Tune, SearchesBoxModelsForStickAndPenetrationTargets) {
   EXPECT_LE(lab::fieldNumber(row, "max_penetration"), 0.01);
   EXPECT_EQ(lab::fieldNumber(row, "frozen"), 0.0);
   // The seed's 3 x 1 leaves the landing box stretched by more than 1%.
-  EXPECT_NE(o.out.find("defaults    gauss-seidel, 3 iterations, 1 substep, model corners"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("defaults    gauss-seidel, 3 iterations, 1 substep, model corners"), std::string::npos)
+      << o.out;
 }
 
 TEST(Tune, SaysNoSettingMeetsAnImpossibleTarget) {

@@ -15,7 +15,8 @@ using testing_phys::angleBetween;
 
 double maxSpeed(const phys::World& world) {
   double v = 0.0;
-  for (phys::ParticleId i = 0; i < world.particles().size(); ++i) v = std::max(v, glm::length(world.velocity(i)));
+  for (phys::ParticleId i = 0; i < world.particles().size(); ++i)
+    v = std::max(v, glm::length(world.velocity(i)));
   return v;
 }
 
@@ -96,9 +97,10 @@ TEST_P(BoxModels, InclineHoldsWithFriction05AndSlidesAtCoulombRateWith02) {
   const Incline held = onIncline(GetParam(), 0.5);
   const Incline slid = onIncline(GetParam(), 0.2);
   const double expected = 9.81 * (std::sin(glm::radians(20.0)) - 0.2 * std::cos(glm::radians(20.0)));
-  std::printf("%s box on a 20 degree incline: mu 0.5 slips %.2g m in the first second, then %.2g m in 9 s; "
-              "mu 0.2 accelerates at %.4f m/s^2 (Coulomb: %.4f)\n",
-              std::string(toString(GetParam())).c_str(), held.startSlip, held.drift, slid.acceleration, expected);
+  std::printf(
+      "%s box on a 20 degree incline: mu 0.5 slips %.2g m in the first second, then %.2g m in 9 s; "
+      "mu 0.2 accelerates at %.4f m/s^2 (Coulomb: %.4f)\n",
+      std::string(toString(GetParam())).c_str(), held.startSlip, held.drift, slid.acceleration, expected);
   // In the first steps only the bottom corners' own weight presses on the ground, so static
   // friction is short of what it will be; the box slips a few millimetres and then holds. The
   // tetra model's corners are carried by weights of both signs, and friction's corrections

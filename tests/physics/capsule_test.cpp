@@ -184,8 +184,8 @@ TEST_P(CapsuleModels, LyingCapsuleSagsNoMoreThanABoxOfItsModel) {
     return world.boxPose(id).center.y;
   };
   const double box = restHeight(phys::Shape::Box), capsule = restHeight(phys::Shape::Capsule);
-  std::printf("%s: sag of a lying capsule %.2f mm, of a box of its size %.2f mm\n", phys::toString(GetParam()).data(),
-              (0.1 - capsule) * 1e3, (0.1 - box) * 1e3);
+  std::printf("%s: sag of a lying capsule %.2f mm, of a box of its size %.2f mm\n",
+              phys::toString(GetParam()).data(), (0.1 - capsule) * 1e3, (0.1 - box) * 1e3);
   EXPECT_GT(capsule, box - 5e-4);
   EXPECT_NEAR(box, 0.1, 5e-3);
 }
@@ -204,7 +204,8 @@ TEST_P(CapsuleModels, CapsuleRollsDownASlopeAtAThirdOfGSinTheta) {
   ss.substeps = 4;
   phys::World world(ws, ss);
   phys::BoxDesc d = capsuleDesc(GetParam(), ws.groundNormal * (radius + 1e-4), radius, 0.8);
-  d.orientation = glm::angleAxis(std::numbers::pi / 2.0, Vec3(1.0, 0.0, 0.0));  // core along z, across the slope
+  d.orientation =
+      glm::angleAxis(std::numbers::pi / 2.0, Vec3(1.0, 0.0, 0.0));  // core along z, across the slope
   d.material = {1.0, 1.0};
   const phys::BoxId id = world.addBox(d);
   const Vec3 start = world.boxPose(id).center;
@@ -216,8 +217,8 @@ TEST_P(CapsuleModels, CapsuleRollsDownASlopeAtAThirdOfGSinTheta) {
   // Measured: tetra 0.9% short, corners 2.0% long (its contact is carried by its box's face,
   // its friction by the surface point; docs/physics.md, "Capsules").
   const double tolerance = 0.03;
-  std::printf("%s: rolled %.4f m in %.0f s, analytic %.4f m (%+.1f%%)\n", phys::toString(GetParam()).data(), travelled,
-              seconds, expected, 100.0 * (travelled / expected - 1.0));
+  std::printf("%s: rolled %.4f m in %.0f s, analytic %.4f m (%+.1f%%)\n", phys::toString(GetParam()).data(),
+              travelled, seconds, expected, 100.0 * (travelled / expected - 1.0));
   EXPECT_NEAR(travelled, expected, tolerance * expected);
 }
 
@@ -256,7 +257,8 @@ TEST_P(CapsuleModels, CapsuleLyingOnABoxRestsAtItsRadiusAboveTheFace) {
   EXPECT_NEAR(world.boxPose(id).center.x, 0.1, 2e-3);  // two points: it does not rock or roll off
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, CapsuleModels, ::testing::Values(phys::BoxModel::Corners, phys::BoxModel::Tetra),
+INSTANTIATE_TEST_SUITE_P(Models, CapsuleModels,
+                         ::testing::Values(phys::BoxModel::Corners, phys::BoxModel::Tetra),
                          [](const auto& model) { return std::string(phys::toString(model.param)); });
 
 TEST(CapsuleDesc, RejectsUnequalDiametersAndShortLengths) {
@@ -280,7 +282,8 @@ TEST(CapsuleRaycast, HitsTheRoundSurfaceNotTheBox) {
   ws.ground = false;
   ws.gravity = Vec3(0.0);
   phys::World world(ws);
-  phys::BoxDesc d = capsuleDesc(phys::BoxModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.2, 1.0);  // core from y 0.7 to 1.3
+  phys::BoxDesc d =
+      capsuleDesc(phys::BoxModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.2, 1.0);  // core from y 0.7 to 1.3
   const phys::BoxId id = world.addBox(d);
   // From the side at the core's middle: the side at x = -0.2.
   auto hit = world.raycast(Vec3(-2.0, 1.0, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);

@@ -24,7 +24,8 @@ Chain hangingChain(const phys::SolverSettings& solver, int links, double linkLen
   Chain c{testing_phys::openSpace(solver), 0, links * linkLength};
   phys::ParticleId previous = c.world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
   for (int i = 1; i <= links; ++i) {
-    const auto p = c.world.addParticle({Vec3(0.0, -linkLength * i, 0.0), Vec3(0.0), i == links ? endMass : 1.0});
+    const auto p =
+        c.world.addParticle({Vec3(0.0, -linkLength * i, 0.0), Vec3(0.0), i == links ? endMass : 1.0});
     c.world.addStick(previous, p);
     previous = p;
   }
@@ -48,7 +49,8 @@ double maxStretch(Chain& c, int steps) {
 TEST(Chain, StickErrorFallsAsIterationsRise) {
   double previous = 1e9;
   for (int iterations : {1, 2, 4, 8, 16, 32, 64}) {
-    phys::World world = testing_phys::openSpace(testing_phys::solver(SolverMethod::GaussSeidel, 1, iterations));
+    phys::World world =
+        testing_phys::openSpace(testing_phys::solver(SolverMethod::GaussSeidel, 1, iterations));
     phys::ParticleId last = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
     for (int i = 1; i <= 20; ++i) {
       const auto p = world.addParticle({Vec3(0.1 * i, 0.0, 0.0)});
@@ -77,9 +79,10 @@ TEST(Chain, MassRatio100SubstepsBeatIterations) {
   const double byIterations = maxStretch(iterations, 600);
   Chain shortLinks = hangingChain(testing_phys::solver(SolverMethod::GaussSeidel, 8, 1), 20, 0.1, 100.0);
   const double shortLinksStretch = maxStretch(shortLinks, 600);
-  std::printf("20-link chain, end mass 100:1, max stretch over 10 s: 8 substeps x 1 iteration %.2f%%, "
-              "1 substep x 8 iterations %.2f%%; with 0.1 m links, 8 x 1: %.2f%%\n",
-              100.0 * bySubsteps, 100.0 * byIterations, 100.0 * shortLinksStretch);
+  std::printf(
+      "20-link chain, end mass 100:1, max stretch over 10 s: 8 substeps x 1 iteration %.2f%%, "
+      "1 substep x 8 iterations %.2f%%; with 0.1 m links, 8 x 1: %.2f%%\n",
+      100.0 * bySubsteps, 100.0 * byIterations, 100.0 * shortLinksStretch);
   RecordProperty("stretch_8_substeps_percent", std::to_string(100.0 * bySubsteps));
   RecordProperty("stretch_8_iterations_percent", std::to_string(100.0 * byIterations));
   EXPECT_LT(bySubsteps, 0.01);

@@ -36,7 +36,8 @@ Vec3 axisOf(const Obb& a, const Obb& b, int index) {
 }
 
 Real projectedRadius(const Obb& o, const Vec3& axis) {
-  return o.halfExtents.x * std::abs(glm::dot(o.axes[0], axis)) + o.halfExtents.y * std::abs(glm::dot(o.axes[1], axis)) +
+  return o.halfExtents.x * std::abs(glm::dot(o.axes[0], axis)) +
+         o.halfExtents.y * std::abs(glm::dot(o.axes[1], axis)) +
          o.halfExtents.z * std::abs(glm::dot(o.axes[2], axis));
 }
 
@@ -55,7 +56,8 @@ std::pair<Obb, Obb> caseFor(int index) {
     Obb a = box(Vec3(0.0), Vec3(0.5)), b = box(Vec3(0.0), Vec3(0.4, 0.45, 0.35), turn);
     return {a, b};
   }
-  if (index < 6) return {box(Vec3(0.0), Vec3(0.5, 0.6, 0.7), {5, 10, 15}), box(Vec3(0.0), Vec3(0.5), {20, 30, 40})};
+  if (index < 6)
+    return {box(Vec3(0.0), Vec3(0.5, 0.6, 0.7), {5, 10, 15}), box(Vec3(0.0), Vec3(0.5), {20, 30, 40})};
   const int i = (index - 6) / 3, j = (index - 6) % 3;
   Vec3 ha(0.1), hb(0.1);
   ha[i] = 2.0;
@@ -119,7 +121,8 @@ TEST(Features, SupportFeatureIsFaceEdgeOrVertexWithinEpsilon) {
 TEST(Features, EachOfTheSixCasesIsClassified) {
   const Obb cube = box(Vec3(0.0), Vec3(0.5));
   const Obb turned = box(Vec3(0.0), Vec3(0.5), {30, 40, 25});  // generic: a vertex along any n
-  const Vec3 up(0, 1, 0), diagonal = glm::normalize(Vec3(1, 1, 0)), generic = glm::normalize(Vec3(0.3, 1.0, 0.2));
+  const Vec3 up(0, 1, 0), diagonal = glm::normalize(Vec3(1, 1, 0)),
+                          generic = glm::normalize(Vec3(0.3, 1.0, 0.2));
   struct Case {
     Obb a;
     Obb b;
@@ -199,9 +202,11 @@ TEST(Contacts, ReductionKeepsFourPointsSpanningTheOctagon) {
     EXPECT_TRUE(found);
   }
   auto area = [&](int i, int j, int k) {
-    return 0.5 * glm::length(glm::cross(c.points[j].onB - c.points[i].onB, c.points[k].onB - c.points[i].onB));
+    return 0.5 *
+           glm::length(glm::cross(c.points[j].onB - c.points[i].onB, c.points[k].onB - c.points[i].onB));
   };
-  const double quad = std::max(area(0, 1, 2) + area(0, 1, 3), std::max(area(0, 2, 1) + area(0, 2, 3), area(0, 3, 1) + area(0, 3, 2)));
+  const double quad = std::max(area(0, 1, 2) + area(0, 1, 3),
+                               std::max(area(0, 2, 1) + area(0, 2, 3), area(0, 3, 1) + area(0, 3, 2)));
   EXPECT_GT(quad, 0.4);
 }
 
@@ -211,7 +216,8 @@ TEST(Contacts, FaceFaceOffsetClipsToTheOverlap) {
   ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, c));
   ASSERT_EQ(c.count, 4);
   std::vector<std::pair<Real, Real>> got;
-  for (int i = 0; i < 4; ++i) got.emplace_back(std::round(c.points[i].onB.x * 1e9) / 1e9, std::round(c.points[i].onB.z * 1e9) / 1e9);
+  for (int i = 0; i < 4; ++i)
+    got.emplace_back(std::round(c.points[i].onB.x * 1e9) / 1e9, std::round(c.points[i].onB.z * 1e9) / 1e9);
   std::sort(got.begin(), got.end());
   const std::vector<std::pair<Real, Real>> expected{{0.1, -0.2}, {0.1, 0.5}, {0.5, -0.2}, {0.5, 0.5}};
   EXPECT_EQ(got, expected);

@@ -66,7 +66,8 @@ TEST(Momentum, EveryMethodKeepsTheMomentumOfAFreeNetwork) {
     const double masses[] = {1.0, 3.0, 0.5, 2.0, 7.0};
     const Vec3 velocities[] = {{-3, 20, 1}, {0, 0, 0}, {5, 0, -2}, {0, -4, 0}, {1, 1, 1}};
     for (int i = 0; i < 5; ++i) world.addParticle({positions[i], velocities[i], masses[i]});
-    const int pairs[][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 4}, {2, 4}, {3, 4}};  // particle 4 has 3 sticks, 0 has 3, 2 has 3
+    const int pairs[][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2},
+                            {1, 4}, {2, 4}, {3, 4}};  // particle 4 has 3 sticks, 0 has 3, 2 has 3
     for (const auto& pair : pairs) world.addStick(pair[0], pair[1]);
     auto momentum = [&] {
       Vec3 sum(0.0);

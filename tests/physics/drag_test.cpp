@@ -112,9 +112,11 @@ TEST_P(DragBoxes, BoxHeldByACornerHangsBelowTheTarget) {
     for (const Vec3& x : world.particles().position) finite = finite && phys::finite(x);
   }
   const Vec3 centre = world.boxPose(id).center;
-  const double drop = corner.y - centre.y, side = glm::length(Vec3(centre.x - corner.x, 0.0, centre.z - corner.z));
+  const double drop = corner.y - centre.y,
+               side = glm::length(Vec3(centre.x - corner.x, 0.0, centre.z - corner.z));
   std::printf("%s box: centre %.6f m below the target (%.6f expected), %.2g m to the side\n",
-              std::string(toString(GetParam())).c_str(), drop, std::sqrt(3.0) / 2 + kG / phys::kDragStiffness, side);
+              std::string(toString(GetParam())).c_str(), drop, std::sqrt(3.0) / 2 + kG / phys::kDragStiffness,
+              side);
   EXPECT_TRUE(finite);
   EXPECT_TRUE(world.freezes().empty());
   EXPECT_NEAR(drop, std::sqrt(3.0) / 2 + kG / phys::kDragStiffness, 1e-4);

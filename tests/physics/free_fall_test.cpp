@@ -47,10 +47,10 @@ TEST_P(FreeFall, MatchesClosedFormAfter600Steps) {
 
 INSTANTIATE_TEST_SUITE_P(
     FreeFallAndProjectiles, FreeFall,
-    ::testing::Values(FlightCase{{0, 10, 0}, {0, 0, 0}, {0, -9.81, 0}, 1},      // dropped
-                      FlightCase{{1, 10, -2}, {3, 5, 1}, {0, -9.81, 0}, 1},    // projectile
-                      FlightCase{{0, 100, 0}, {20, 20, 0}, {0, -9.81, 0}, 4},  // projectile, substeps
-                      FlightCase{{-3, 0, 4}, {0, 0, 0}, {2, -20, 1}, 8},       // slanted gravity
+    ::testing::Values(FlightCase{{0, 10, 0}, {0, 0, 0}, {0, -9.81, 0}, 1},         // dropped
+                      FlightCase{{1, 10, -2}, {3, 5, 1}, {0, -9.81, 0}, 1},        // projectile
+                      FlightCase{{0, 100, 0}, {20, 20, 0}, {0, -9.81, 0}, 4},      // projectile, substeps
+                      FlightCase{{-3, 0, 4}, {0, 0, 0}, {2, -20, 1}, 8},           // slanted gravity
                       FlightCase{{1e3, 1e3, 1e3}, {1, 2, 3}, {0, -9.81, 0}, 1}));  // far out
 
 TEST(Damping, VelocityDecaysExponentiallyWhateverTheSubsteps) {
@@ -126,10 +126,12 @@ StepChangeRun restingBoxThenChange(phys::SolverSettings (*change)(phys::SolverSe
 // A box resting on the ground does not hop when the step grows; it only sags a little deeper,
 // as a longer step lets gravity push further between relaxations, and rests again.
 TEST(StepChange, RestingBoxDoesNotHopWhenTheStepGrows) {
-  const StepChangeRun r = restingBoxThenChange([](phys::SolverSettings s) {
-    s.dt = 1.0 / 30.0;
-    return s;
-  }, 30);
+  const StepChangeRun r = restingBoxThenChange(
+      [](phys::SolverSettings s) {
+        s.dt = 1.0 / 30.0;
+        return s;
+      },
+      30);
   EXPECT_LE(r.highest, r.before + 1e-6);
   EXPECT_NEAR(r.after, r.before, 3e-3);
   EXPECT_LT(r.speed, 1e-3);
@@ -139,12 +141,14 @@ TEST(StepChange, RestingBoxDoesNotHopWhenTheStepGrows) {
 // ground holds would drive it into the ground, and the sag the coarser step left, relaxed in
 // one go by the finer one, would throw it up by 5 mm. It settles to its full height instead.
 TEST(StepChange, RestingBoxDoesNotHopWhenTheStepShrinks) {
-  const StepChangeRun r = restingBoxThenChange([](phys::SolverSettings s) {
-    s.substeps = 16;
-    return s;
-  }, 60);
-  EXPECT_GE(r.before, 0.499);          // it had sagged
-  EXPECT_LE(r.highest, 0.5 + 1e-5);    // and now rests at its full height, no higher
+  const StepChangeRun r = restingBoxThenChange(
+      [](phys::SolverSettings s) {
+        s.substeps = 16;
+        return s;
+      },
+      60);
+  EXPECT_GE(r.before, 0.499);        // it had sagged
+  EXPECT_LE(r.highest, 0.5 + 1e-5);  // and now rests at its full height, no higher
   EXPECT_LT(r.speed, 1e-3);
 }
 

@@ -46,7 +46,7 @@ TEST(PointGravity, ModeSwitchesAtRunTime) {
   EXPECT_EQ(world.gravityAt(Vec3(3.0, 0.0, 0.0)), Vec3(-ws.gravityStrength, 0.0, 0.0));
   const double vx = world.velocity(id).x;
   world.step();
-  EXPECT_LT(world.velocity(id).x, vx);  // now pulled towards the origin along -x
+  EXPECT_LT(world.velocity(id).x, vx);                     // now pulled towards the origin along -x
   EXPECT_EQ(world.gravityAt(ws.gravityPoint), Vec3(0.0));  // no pull at the point itself
 }
 

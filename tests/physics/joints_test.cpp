@@ -49,7 +49,8 @@ TEST(Anchors, FollowTheirBoxWhereverThePointIs) {
     for (int i = 0; i < 60; ++i) w.step();
     const phys::BoxPose after = w.boxPose(box);
     for (int k = 0; k < 3; ++k) {
-      EXPECT_NEAR(glm::length(w.position(anchors[k]) - (after.center + after.orientation * local[k])), 0.0, 1e-6)
+      EXPECT_NEAR(glm::length(w.position(anchors[k]) - (after.center + after.orientation * local[k])), 0.0,
+                  1e-6)
           << phys::toString(model) << " point " << k;
     }
   }
@@ -58,7 +59,8 @@ TEST(Anchors, FollowTheirBoxWhereverThePointIs) {
 // A pin is a linear constraint: one projection brings its two points together exactly, moving
 // each body in inverse proportion to its mass, whatever direction the gap has (even none).
 TEST(Links, APinClosesItsGapInOnePassByInverseMass) {
-  phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 1), Vec3(0.0));
+  phys::World w =
+      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 1), Vec3(0.0));
   const phys::BoxId a = addCube(w, Vec3(0.0), phys::BoxModel::Tetra, 1.0);
   const phys::BoxId b = addCube(w, Vec3(1.2, 0.0, 0.0), phys::BoxModel::Tetra, 3.0);
   // The right face centre of a, the left face centre of b: 0.2 m apart along x.
@@ -75,7 +77,8 @@ TEST(Links, APinClosesItsGapInOnePassByInverseMass) {
 }
 
 TEST(Links, ARangeLinkActsOnlyOutsideItsBounds) {
-  phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 1), Vec3(0.0));
+  phys::World w =
+      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 1), Vec3(0.0));
   const phys::ParticleId p = w.addParticle({Vec3(0.0), Vec3(0.0), 1.0});
   const phys::ParticleId q = w.addParticle({Vec3(1.0, 0.0, 0.0), Vec3(0.0), 1.0});
   auto at = [](phys::ParticleId id) {
@@ -88,7 +91,7 @@ TEST(Links, ARangeLinkActsOnlyOutsideItsBounds) {
   w.addLink(at(p), at(q), 0.5, phys::kNoMaxLength);  // a one-sided stop: no closer than 0.5 m
   w.step();
   EXPECT_NEAR(w.particles().position[q].x, 1.0, 1e-12);  // 1 m apart: untouched
-  w.addLink(at(p), at(q), 0.0, 0.8);                      // and now no farther than 0.8 m
+  w.addLink(at(p), at(q), 0.0, 0.8);                     // and now no farther than 0.8 m
   w.step();
   EXPECT_NEAR(w.particles().position[q].x - w.particles().position[p].x, 0.8, 1e-12);
 }

@@ -81,9 +81,10 @@ TEST(Overlap, ThreeBoxesSpawned25PercentIntoEachOtherPartCalmly) {
       const phys::BoxId right = addBox(w, {0.375, 0.5, 0.0}, model);
       const phys::BoxId top = addBox(w, {0.0, 1.25, 0.0}, model);
       const Outcome r = run(w, 3.0, 2.0);
-      std::printf("three boxes 25%% into each other, %s, %d x %d: fastest %.3f m/s, deepest overlap from 2 s "
-                  "%.4f m\n",
-                  name(model), s.iterations, s.substeps, r.fastest, r.deepest);
+      std::printf(
+          "three boxes 25%% into each other, %s, %d x %d: fastest %.3f m/s, deepest overlap from 2 s "
+          "%.4f m\n",
+          name(model), s.iterations, s.substeps, r.fastest, r.deepest);
       const std::string what =
           std::string(name(model)) + " " + std::to_string(s.iterations) + " x " + std::to_string(s.substeps);
       EXPECT_LT(r.fastest, 5.0) << what;
@@ -115,9 +116,10 @@ TEST(Overlap, ABoxSpawnedIntoARestingBoxDoesNotDriveItIntoTheGround) {
     phys::World spawned = pair(1.25), placed = pair(1.5);
     const Outcome r = run(spawned, 2.0, 1.0);
     run(placed, 2.0, 1.0);
-    std::printf("a box 25%% into a resting box, %d x %d: fastest %.3f m/s, upper box at %.4f m (placed "
-                "touching: %.4f m)\n",
-                s.iterations, s.substeps, r.fastest, spawned.boxPose(1).center.y, placed.boxPose(1).center.y);
+    std::printf(
+        "a box 25%% into a resting box, %d x %d: fastest %.3f m/s, upper box at %.4f m (placed "
+        "touching: %.4f m)\n",
+        s.iterations, s.substeps, r.fastest, spawned.boxPose(1).center.y, placed.boxPose(1).center.y);
     EXPECT_LT(r.fastest, 1.0) << s.iterations << " x " << s.substeps;
     EXPECT_LT(r.deepest, 0.005) << s.iterations << " x " << s.substeps;
     EXPECT_NEAR(spawned.boxPose(1).center.y, placed.boxPose(1).center.y, 0.002)
@@ -176,8 +178,8 @@ TEST(Overlap, LandingsAndRestingBoxesAreUntouchedByTheLimit) {
   for (Setting s : {Setting{1, 1}, Setting{3, 1}, Setting{1, 16}, Setting{10, 1}}) {
     auto landings = [&](double limit) {
       phys::World w = world(s, limit);
-      addBox(w, {-3.0, 1.5, 0.0});                   // dropped 1 m onto the ground
-      addBox(w, {0.0, 0.5, 0.0});                    // resting, and landed on
+      addBox(w, {-3.0, 1.5, 0.0});                  // dropped 1 m onto the ground
+      addBox(w, {0.0, 0.5, 0.0});                   // resting, and landed on
       addBox(w, {0.0, 2.5, 0.0}, BoxModel::Tetra);  // dropped 1 m onto it
       for (int i = 0; i < 120; ++i) w.step();
       return w.stateHash();
@@ -214,8 +216,8 @@ TEST(Overlap, DepenetrationSpeedMustBePositive) {
 // threw the hands at 110 m/s. Jointed parts are parted as one body: whole ragdolls move apart.
 TEST(Overlap, JointedBodiesArePartedWholeSoTheirJointsDoNotFightIt) {
   for (const int substeps : {4, 128}) {
-    phys::World world = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, substeps, 4),
-                                                phys::Vec3(0.0));
+    phys::World world = testing_phys::openSpace(
+        testing_phys::solver(phys::SolverMethod::GaussSeidel, substeps, 4), phys::Vec3(0.0));
     phys::RagdollDesc d;
     d.model = phys::RagdollModel::Lean;
     d.hips = phys::Vec3(-0.85, 0.0, 0.0);  // arms span 1.73 m: the hands overlap 3 cm
@@ -226,7 +228,8 @@ TEST(Overlap, JointedBodiesArePartedWholeSoTheirJointsDoNotFightIt) {
     ASSERT_GT(world.bodyContacts().size(), 0u) << "the hands touch";
     for (int i = 0; i < 2; ++i) world.step();
     double fastest = 0.0;
-    for (phys::ParticleId p = 0; p < world.particles().size(); ++p) fastest = std::max(fastest, glm::length(world.velocity(p)));
+    for (phys::ParticleId p = 0; p < world.particles().size(); ++p)
+      fastest = std::max(fastest, glm::length(world.velocity(p)));
     EXPECT_LT(fastest, 0.1) << substeps << " substeps";
     EXPECT_LT(world.metrics().maxPenetration, 2e-3) << substeps << " substeps";
     EXPECT_LT(world.metrics().maxJointError, 1e-3) << substeps << " substeps";

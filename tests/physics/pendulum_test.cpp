@@ -39,7 +39,8 @@ Swing swing(SolverMethod method, int substeps, double seconds) {
     }
     previousX = x;
     previousT = t;
-    s.maxEnergyError = std::max(s.maxEnergyError, std::abs(world.metrics().energy() - e0) / (kMass * kG * kLength));
+    s.maxEnergyError =
+        std::max(s.maxEnergyError, std::abs(world.metrics().energy() - e0) / (kMass * kG * kLength));
   }
   return s;
 }
@@ -50,7 +51,8 @@ TEST(Pendulum, LargeAmplitudePeriodWithin2PercentAt60HzAnd8Substeps) {
   const Swing s = swing(SolverMethod::GaussSeidel, 8, 2.5 * period);
   ASSERT_GE(s.downwardCrossings.size(), 2u);
   const double measured = s.downwardCrossings[1] - s.downwardCrossings[0];
-  std::printf("pendulum period: analytic %.4f s, measured %.4f s (gauss-seidel, 8 substeps)\n", period, measured);
+  std::printf("pendulum period: analytic %.4f s, measured %.4f s (gauss-seidel, 8 substeps)\n", period,
+              measured);
   EXPECT_NEAR(measured, period, 0.02 * period);
 }
 
@@ -69,9 +71,11 @@ TEST(Pendulum, ShakeKeepsEnergyWithin1PercentOver10sWithOneSubstep) {
 // Every method converges on a swinging chain of five given enough passes (a single pendulum
 // would not tell: every method solves one stick exactly in one pass).
 TEST(Pendulum, EveryMethodConvergesOnAChain) {
-  for (SolverMethod m : {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Xpbd, SolverMethod::Shake}) {
+  for (SolverMethod m :
+       {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Xpbd, SolverMethod::Shake}) {
     // Jacobi's scaled corrections converge more slowly per pass than the others'.
-    phys::World world = testing_phys::openSpace(testing_phys::solver(m, 1, m == SolverMethod::Jacobi ? 1000 : 200));
+    phys::World world =
+        testing_phys::openSpace(testing_phys::solver(m, 1, m == SolverMethod::Jacobi ? 1000 : 200));
     phys::ParticleId previous = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
     for (int i = 1; i <= 5; ++i) {
       const auto p = world.addParticle({Vec3(0.4 * i, 0.0, 0.0), Vec3(0.0), kMass});

@@ -89,7 +89,8 @@ Drop drop(phys::RagdollModel model, const Vec3& eulerDegrees) {
     if (step == 300) out.speedAt5s = m.maxSpeed;
     if (step > 300) out.laterSpeed = std::max(out.laterSpeed, m.maxSpeed);
     if (step == steps) out.speedAt10s = m.maxSpeed;
-    for (const phys::RagdollHinge& h : r.hinges) out.transientLimit = std::max(out.transientLimit, pastLimit(w, r, h));
+    for (const phys::RagdollHinge& h : r.hinges)
+      out.transientLimit = std::max(out.transientLimit, pastLimit(w, r, h));
   }
   EXPECT_TRUE(down);
   const Vec3 travel = centreOf(w, r) - whereDown;
@@ -108,10 +109,12 @@ TEST_P(RagdollDrop, LandsAndRestsWithoutSlidingOrBreakingItsJoints) {
   const Vec3 orientations[] = {{70.0, 20.0, 10.0}, {90.0, 0.0, 5.0}, {0.0, 30.0, 8.0}, {-95.0, 60.0, 0.0}};
   for (const Vec3& euler : orientations) {
     const Drop d = drop(GetParam(), euler);
-    std::printf("%s ragdoll, euler (%g %g %g): speed at 5 s %.4f m/s, at 10 s %.4f, most between %.4f, slide %.4f m, stick error %.4f, joint gap "
-                "%.4f m, past a limit at rest %.2f deg, at worst %.1f deg\n",
-                std::string(phys::toString(GetParam())).c_str(), euler.x, euler.y, euler.z, d.speedAt5s, d.speedAt10s, d.laterSpeed, d.slide,
-                d.stickError, d.jointError, d.restLimit / kDegree, d.transientLimit / kDegree);
+    std::printf(
+        "%s ragdoll, euler (%g %g %g): speed at 5 s %.4f m/s, at 10 s %.4f, most between %.4f, slide %.4f m, "
+        "stick error %.4f, joint gap "
+        "%.4f m, past a limit at rest %.2f deg, at worst %.1f deg\n",
+        std::string(phys::toString(GetParam())).c_str(), euler.x, euler.y, euler.z, d.speedAt5s, d.speedAt10s,
+        d.laterSpeed, d.slide, d.stickError, d.jointError, d.restLimit / kDegree, d.transientLimit / kDegree);
     EXPECT_TRUE(d.finite);
     EXPECT_EQ(d.frozen, 0);
     // At rest within 5 s: every particle under 1 cm/s, and so again at 10 s. Not asserted in
@@ -128,7 +131,10 @@ TEST_P(RagdollDrop, LandsAndRestsWithoutSlidingOrBreakingItsJoints) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, RagdollDrop, testing::Values(phys::RagdollModel::Seed, phys::RagdollModel::Lean),
-                         [](const testing::TestParamInfo<phys::RagdollModel>& model) { return std::string(phys::toString(model.param)); });
+INSTANTIATE_TEST_SUITE_P(Models, RagdollDrop,
+                         testing::Values(phys::RagdollModel::Seed, phys::RagdollModel::Lean),
+                         [](const testing::TestParamInfo<phys::RagdollModel>& model) {
+                           return std::string(phys::toString(model.param));
+                         });
 
 }  // namespace

@@ -80,11 +80,12 @@ TEST(Raycast, MissReturnsNothing) {
   phys::World world = testing_phys::openSpace();
   addBox(world, {3.0, 0.0, 0.0}, Vec3(1.0));
   world.addParticle({Vec3(0.0, 3.0, 0.0)});
-  EXPECT_FALSE(world.raycast(Vec3(0.0), Vec3(-1.0, 0.0, 0.0), 100.0).has_value());       // pointing away
+  EXPECT_FALSE(world.raycast(Vec3(0.0), Vec3(-1.0, 0.0, 0.0), 100.0).has_value());           // pointing away
   EXPECT_FALSE(world.raycast(Vec3(0.0, 0.6, 0.0), Vec3(1.0, 0.0, 0.0), 100.0).has_value());  // passes above
-  EXPECT_FALSE(world.raycast(Vec3(0.0), Vec3(1.0, 0.0, 0.0), 2.4).has_value());           // too short
-  EXPECT_TRUE(world.raycast(Vec3(0.0), Vec3(1.0, 0.0, 0.0), 2.5).has_value());            // just long enough
-  EXPECT_FALSE(world.raycast(Vec3(0.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0), 2.85).has_value()); // short of the particle
+  EXPECT_FALSE(world.raycast(Vec3(0.0), Vec3(1.0, 0.0, 0.0), 2.4).has_value());              // too short
+  EXPECT_TRUE(world.raycast(Vec3(0.0), Vec3(1.0, 0.0, 0.0), 2.5).has_value());  // just long enough
+  EXPECT_FALSE(
+      world.raycast(Vec3(0.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0), 2.85).has_value());  // short of the particle
   EXPECT_FALSE(phys::World().raycast(Vec3(0.0), Vec3(1.0, 0.0, 0.0), 100.0).has_value());  // empty world
 }
 
@@ -140,9 +141,9 @@ TEST(Raycast, BadInputThrows) {
 }
 
 // A box and a ragdoll added to a world that has stepped 100 times with three crates (1 m, 200 kg)
-// resting on the ground: the new box falls exactly as in free flight until it lands, then rests on the old box
-// it was dropped on; the ragdoll lands on another old box and touches it; the old boxes stay put,
-// nothing freezes, and a ray from above picks the new box.
+// resting on the ground: the new box falls exactly as in free flight until it lands, then rests on the old
+// box it was dropped on; the ragdoll lands on another old box and touches it; the old boxes stay put, nothing
+// freezes, and a ray from above picks the new box.
 TEST(LateBodies, BoxAndRagdollAddedAfterSteppingCollideWithTheOldOnes) {
   phys::SolverSettings s;
   s.substeps = 4;
@@ -150,7 +151,8 @@ TEST(LateBodies, BoxAndRagdollAddedAfterSteppingCollideWithTheOldOnes) {
   s.bodyDamping = 1.0;  // as the ragdoll scenes
   phys::World world({}, s);
   std::vector<phys::BoxId> old;
-  for (int i = 0; i < 3; ++i) old.push_back(addBox(world, {3.0 * i, 0.5, 0.0}, Vec3(1.0), {1.0, 0.0, 0.0, 0.0}, 200.0));
+  for (int i = 0; i < 3; ++i)
+    old.push_back(addBox(world, {3.0 * i, 0.5, 0.0}, Vec3(1.0), {1.0, 0.0, 0.0, 0.0}, 200.0));
   for (int i = 0; i < 100; ++i) world.step();
   std::vector<Vec3> oldCentres;
   for (phys::BoxId id : old) oldCentres.push_back(world.boxPose(id).center);
@@ -175,7 +177,8 @@ TEST(LateBodies, BoxAndRagdollAddedAfterSteppingCollideWithTheOldOnes) {
   while (world.time() < start + 4.0) {
     world.step();
     for (const phys::BodyContact& c : world.bodyContacts()) {
-      if ((c.boxA == crate && isPart(c.boxB)) || (c.boxB == crate && isPart(c.boxA))) ragdollTouchedTheCrate = true;
+      if ((c.boxA == crate && isPart(c.boxB)) || (c.boxB == crate && isPart(c.boxA)))
+        ragdollTouchedTheCrate = true;
     }
   }
   EXPECT_TRUE(ragdollTouchedTheCrate);

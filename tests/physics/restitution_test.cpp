@@ -43,7 +43,8 @@ double reboundHeight(phys::World& world, Height height, double rest, double cont
 
 double maxSpeed(const phys::World& world) {
   double v = 0.0;
-  for (phys::ParticleId i = 0; i < world.particles().size(); ++i) v = std::max(v, glm::length(world.velocity(i)));
+  for (phys::ParticleId i = 0; i < world.particles().size(); ++i)
+    v = std::max(v, glm::length(world.velocity(i)));
   return v;
 }
 
@@ -55,8 +56,8 @@ TEST(Restitution, DroppedParticleReboundsToESquaredTimesTheHeight) {
   for (double e : {0.3, 0.5, 0.8, 1.0}) {
     phys::World world({}, bouncy(e, 8));
     const auto id = world.addParticle({Vec3(0.0, kHeight, 0.0)});
-    const double rebound = reboundHeight(world, [id](const phys::World& w) { return w.particles().position[id].y; },
-                                         0.0, 1e-6, 2.0);
+    const double rebound = reboundHeight(
+        world, [id](const phys::World& w) { return w.particles().position[id].y; }, 0.0, 1e-6, 2.0);
     std::printf("e %.1f: rebound %.4f m, e^2 H %.4f m\n", e, rebound, e * e * kHeight);
     EXPECT_NEAR(rebound, e * e * kHeight, 0.02 * e * e * kHeight) << "e " << e;
   }
@@ -68,8 +69,8 @@ TEST(Restitution, ZeroOrASlowImpactDoesNotBounce) {
   for (const auto& [e, height] : {std::pair{0.0, 2.0}, std::pair{0.8, 0.01}}) {
     phys::World world({}, bouncy(e, 8));
     const auto id = world.addParticle({Vec3(0.0, height, 0.0)});
-    const double rebound = reboundHeight(world, [id](const phys::World& w) { return w.particles().position[id].y; },
-                                         0.0, 1e-6, 2.0);
+    const double rebound = reboundHeight(
+        world, [id](const phys::World& w) { return w.particles().position[id].y; }, 0.0, 1e-6, 2.0);
     EXPECT_LE(rebound, 1e-9) << "e " << e << ", dropped from " << height << " m";
     EXPECT_LT(maxSpeed(world), 1e-9);
   }
@@ -128,10 +129,10 @@ TEST_P(RestitutionBoxes, BoxDroppedFlatReboundsToAboutESquaredTimesTheHeight) {
     desc.model = GetParam();
     desc.center = {0.0, 0.5 + kHeight, 0.0};
     const phys::BoxId id = world.addBox(desc);
-    const double rebound = reboundHeight(world, [id](const phys::World& w) { return w.boxPose(id).center.y; }, 0.5,
-                                         1e-3, 2.0);
-    std::printf("%s box, e %.1f: rebound %.4f m, e^2 H %.4f m\n", std::string(toString(GetParam())).c_str(), e,
-                rebound, e * e * kHeight);
+    const double rebound = reboundHeight(
+        world, [id](const phys::World& w) { return w.boxPose(id).center.y; }, 0.5, 1e-3, 2.0);
+    std::printf("%s box, e %.1f: rebound %.4f m, e^2 H %.4f m\n", std::string(toString(GetParam())).c_str(),
+                e, rebound, e * e * kHeight);
     EXPECT_NEAR(rebound, e * e * kHeight, 0.02 * kHeight) << "e " << e;
   }
 }
@@ -149,7 +150,8 @@ TEST_P(RestitutionBoxes, BoxDroppedOnABoxBounces) {
     world.addBox(desc);
     desc.center = {0.1, 2.5, 0.05};
     const phys::BoxId top = world.addBox(desc);
-    return reboundHeight(world, [top](const phys::World& w) { return w.boxPose(top).center.y; }, 1.5, 2e-3, 3.0);
+    return reboundHeight(
+        world, [top](const phys::World& w) { return w.boxPose(top).center.y; }, 1.5, 2e-3, 3.0);
   };
   const double still = rebound(GetParam(), 0.0), bouncing = rebound(GetParam(), 0.8);
   std::printf("%s box on a box: rebound e 0 %.4f m, e 0.8 %.4f m (e^2 H 0.64 m)\n",
@@ -181,7 +183,8 @@ TEST(Restitution, FullRestitutionOnAPileStaysFinite) {
   phys::addRagdoll(world, ragdoll);
   while (world.time() < 5.0) world.step();
   for (phys::ParticleId i = 0; i < world.particles().size(); ++i) {
-    EXPECT_TRUE(phys::finite(world.particles().position[i]) && phys::finite(world.particles().previous[i])) << i;
+    EXPECT_TRUE(phys::finite(world.particles().position[i]) && phys::finite(world.particles().previous[i]))
+        << i;
   }
   EXPECT_TRUE(world.freezes().empty());
   EXPECT_TRUE(std::isfinite(world.metrics().energy()));

@@ -17,7 +17,8 @@ inline double angleBetween(const phys::Quat& a, const phys::Quat& b) {
 }
 
 /// A world with no ground and the given gravity and solver.
-inline phys::World openSpace(const phys::SolverSettings& solver = {}, phys::Vec3 gravity = {0.0, -9.81, 0.0}) {
+inline phys::World openSpace(const phys::SolverSettings& solver = {},
+                             phys::Vec3 gravity = {0.0, -9.81, 0.0}) {
   phys::WorldSettings ws;
   ws.ground = false;
   ws.gravity = gravity;

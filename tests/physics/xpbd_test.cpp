@@ -38,9 +38,9 @@ double restingStretch(int iterations, int substeps) {
 TEST(Xpbd, CompliantStickStiffnessIsTheSameFor4And40IterationsAndAnyStep) {
   const double mass = 2.0, compliance = 1e-3;  // kg, m/N: 19.6 mm
   const double analytic = compliance * mass * 9.81;
-  for (const auto& [iterations, dt, substeps] : {std::tuple{4, 1.0 / 60, 1}, std::tuple{40, 1.0 / 60, 1},
-                                                   std::tuple{4, 1.0 / 30, 1}, std::tuple{4, 1.0 / 240, 1},
-                                                   std::tuple{40, 1.0 / 60, 8}}) {
+  for (const auto& [iterations, dt, substeps] :
+       {std::tuple{4, 1.0 / 60, 1}, std::tuple{40, 1.0 / 60, 1}, std::tuple{4, 1.0 / 30, 1},
+        std::tuple{4, 1.0 / 240, 1}, std::tuple{40, 1.0 / 60, 8}}) {
     phys::WorldSettings ws;
     ws.ground = false;
     ws.damping = 2.0;  // 1/s: let the bounce die so the static stretch is what remains
@@ -52,8 +52,8 @@ TEST(Xpbd, CompliantStickStiffnessIsTheSameFor4And40IterationsAndAnyStep) {
     world.addStick(top, bob, 1.0, compliance);
     while (world.time() < 15.0) world.step();
     const double stretch = -world.particles().position[bob].y - 1.0;
-    EXPECT_NEAR(stretch, analytic, 0.02 * analytic) << iterations << " iterations, dt " << dt << ", " << substeps
-                                                    << " substeps";
+    EXPECT_NEAR(stretch, analytic, 0.02 * analytic)
+        << iterations << " iterations, dt " << dt << ", " << substeps << " substeps";
   }
 }
 
@@ -77,8 +77,8 @@ TEST(Xpbd, GlobalComplianceAddsToEveryStick) {
     return -world.particles().position[bob].y - 1.0;
   };
   const double rigid = stretch(SolverMethod::Xpbd, 0.0), soft = stretch(SolverMethod::Xpbd, own);
-  std::printf("global compliance: stretch %.9f m (m g c %.9f m), with the stick's own %.9f m (%.9f m)\n", rigid,
-              mass * 9.81 * global, soft, mass * 9.81 * (global + own));
+  std::printf("global compliance: stretch %.9f m (m g c %.9f m), with the stick's own %.9f m (%.9f m)\n",
+              rigid, mass * 9.81 * global, soft, mass * 9.81 * (global + own));
   EXPECT_NEAR(rigid, mass * 9.81 * global, 1e-6);
   EXPECT_NEAR(soft, mass * 9.81 * (global + own), 1e-6);
   EXPECT_LT(std::abs(stretch(SolverMethod::GaussSeidel, 0.0)), 1e-9);
@@ -92,8 +92,10 @@ TEST(Xpbd, CompliantChainReachesTheAnalyticStretch) {
   const double few = restingStretch(4, 1);
   const double many = restingStretch(40, 1);
   const double substepped = restingStretch(4, 4);
-  std::printf("compliant chain stretch: analytic %.5f m, 4 iterations %.5f m, 40 iterations %.5f m, "
-              "4 substeps x 4 iterations %.5f m\n", analytic, few, many, substepped);
+  std::printf(
+      "compliant chain stretch: analytic %.5f m, 4 iterations %.5f m, 40 iterations %.5f m, "
+      "4 substeps x 4 iterations %.5f m\n",
+      analytic, few, many, substepped);
   EXPECT_NEAR(many, analytic, 0.02 * analytic);
   EXPECT_NEAR(substepped, analytic, 0.02 * analytic);
   EXPECT_GT(few, many);  // unconverged multipliers only ever make it softer
@@ -123,7 +125,8 @@ TEST(Xpbd, ZeroComplianceIsGaussSeidel) {
 // Only XPBD reads compliance: the same soft chain hangs stretched under XPBD and at the rigid
 // length under the other methods (given passes enough to converge).
 TEST(Xpbd, OtherMethodsTreatCompliantSticksAsRigid) {
-  for (SolverMethod m : {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Shake, SolverMethod::Xpbd}) {
+  for (SolverMethod m :
+       {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Shake, SolverMethod::Xpbd}) {
     phys::WorldSettings ws;
     ws.ground = false;
     ws.damping = 2.0;
@@ -136,8 +139,10 @@ TEST(Xpbd, OtherMethodsTreatCompliantSticksAsRigid) {
     }
     for (int i = 0; i < 300; ++i) world.step();
     const double stretch = -world.particles().position[previous].y - 2.5;
-    if (m == SolverMethod::Xpbd) EXPECT_GT(stretch, 0.1) << "compliance 1e-3 m/N under 5..1 kg";
-    else EXPECT_LT(std::abs(stretch), 1e-6) << toString(m);
+    if (m == SolverMethod::Xpbd)
+      EXPECT_GT(stretch, 0.1) << "compliance 1e-3 m/N under 5..1 kg";
+    else
+      EXPECT_LT(std::abs(stretch), 1e-6) << toString(m);
   }
 }
 

@@ -26,9 +26,12 @@
 namespace lab::peers {
 namespace {
 
-btVector3 bt(const phys::Vec3& v) { return {static_cast<btScalar>(v.x), static_cast<btScalar>(v.y), static_cast<btScalar>(v.z)}; }
+btVector3 bt(const phys::Vec3& v) {
+  return {static_cast<btScalar>(v.x), static_cast<btScalar>(v.y), static_cast<btScalar>(v.z)};
+}
 btQuaternion bt(const phys::Quat& q) {
-  return {static_cast<btScalar>(q.x), static_cast<btScalar>(q.y), static_cast<btScalar>(q.z), static_cast<btScalar>(q.w)};
+  return {static_cast<btScalar>(q.x), static_cast<btScalar>(q.y), static_cast<btScalar>(q.z),
+          static_cast<btScalar>(q.w)};
 }
 
 // A distance between a point of body A and a point of body B kept within [min, max]: one
@@ -39,10 +42,15 @@ btQuaternion bt(const phys::Quat& q) {
 // ragdoll's joint stops turn the parts as ours do.
 class DistanceLimit : public btTypedConstraint {
  public:
-  DistanceLimit(btRigidBody& a, btRigidBody& b, const btVector3& localA, const btVector3& localB, double min, double max)
+  DistanceLimit(btRigidBody& a, btRigidBody& b, const btVector3& localA, const btVector3& localB, double min,
+                double max)
       // The type only matters to Bullet's serializer and debug drawer, which are not used;
       // MAX_CONSTRAINT_TYPE matches none of Bullet's own classes, so nothing casts it to one.
-      : btTypedConstraint(MAX_CONSTRAINT_TYPE, a, b), localA_(localA), localB_(localB), min_(min), max_(max) {}
+      : btTypedConstraint(MAX_CONSTRAINT_TYPE, a, b),
+        localA_(localA),
+        localB_(localB),
+        min_(min),
+        max_(max) {}
 
   void getInfo1(btConstraintInfo1* info) override {
     measure();
@@ -127,13 +135,14 @@ class BulletEngine : public Engine {
         world_(&dispatcher_, &broadphase_, &solver_, &config_),
         dt_(static_cast<btScalar>(dt)) {
     settings = "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) +
-               (sizeof(btScalar) == 8 ? " (double)" : " (float)") + ": sequential impulse, " + std::to_string(world_.getSolverInfo().m_numIterations) +
-               " iterations, one step of dt";
+               (sizeof(btScalar) == 8 ? " (double)" : " (float)") + ": sequential impulse, " +
+               std::to_string(world_.getSolverInfo().m_numIterations) + " iterations, one step of dt";
     world_.getPairCache()->setOverlapFilterCallback(&filter_);
     world_.setGravity(bt(scene.gravity));
 
     if (scene.ground) {
-      shapes_.push_back(std::make_unique<btStaticPlaneShape>(bt(scene.groundNormal), static_cast<btScalar>(scene.groundHeight)));
+      shapes_.push_back(std::make_unique<btStaticPlaneShape>(bt(scene.groundNormal),
+                                                             static_cast<btScalar>(scene.groundHeight)));
       ground_ = addBody(*shapes_.back(), 0.0, btVector3(0, 0, 0), btTransform::getIdentity(), -1);
       ground_->setFriction(static_cast<btScalar>(std::sqrt(scene.groundFriction)));
       ground_->setRestitution(static_cast<btScalar>(std::sqrt(scene.restitution)));
@@ -146,12 +155,14 @@ class BulletEngine : public Engine {
         shapes_.push_back(std::make_unique<btBoxShape>(bt(b.halfExtents)));
       } else if (b.shape == Body::Shape::Capsule) {
         // btCapsuleShape(radius, height) is Bullet's y-axis capsule; height is the core's length.
-        shapes_.push_back(std::make_unique<btCapsuleShape>(static_cast<btScalar>(b.radius), static_cast<btScalar>(2.0 * b.halfSegment)));
+        shapes_.push_back(std::make_unique<btCapsuleShape>(static_cast<btScalar>(b.radius),
+                                                           static_cast<btScalar>(2.0 * b.halfSegment)));
       } else {
         shapes_.push_back(std::make_unique<btSphereShape>(static_cast<btScalar>(b.radius)));
       }
-      btRigidBody* body = addBody(*shapes_.back(), b.fixed ? 0.0 : b.mass, b.fixed ? btVector3(0, 0, 0) : bt(b.inertia),
-                                  btTransform(bt(b.orientation), bt(b.centre)), static_cast<int>(i));
+      btRigidBody* body =
+          addBody(*shapes_.back(), b.fixed ? 0.0 : b.mass, b.fixed ? btVector3(0, 0, 0) : bt(b.inertia),
+                  btTransform(bt(b.orientation), bt(b.centre)), static_cast<int>(i));
       body->setFriction(static_cast<btScalar>(std::sqrt(b.friction)));
       body->setRestitution(static_cast<btScalar>(std::sqrt(scene.restitution)));
       if (!b.fixed) {
@@ -163,11 +174,13 @@ class BulletEngine : public Engine {
     }
 
     for (const Pin& p : scene.pins) {
-      constraints_.push_back(std::make_unique<btPoint2PointConstraint>(*bodies_[static_cast<std::size_t>(p.a)], *bodies_[static_cast<std::size_t>(p.b)],
-                                                                       bt(p.localA), bt(p.localB)));
+      constraints_.push_back(std::make_unique<btPoint2PointConstraint>(
+          *bodies_[static_cast<std::size_t>(p.a)], *bodies_[static_cast<std::size_t>(p.b)], bt(p.localA),
+          bt(p.localB)));
     }
     for (const Distance& d : scene.distances) {
-      constraints_.push_back(std::make_unique<DistanceLimit>(*bodies_[static_cast<std::size_t>(d.a)], *bodies_[static_cast<std::size_t>(d.b)],
+      constraints_.push_back(std::make_unique<DistanceLimit>(*bodies_[static_cast<std::size_t>(d.a)],
+                                                             *bodies_[static_cast<std::size_t>(d.b)],
                                                              bt(d.localA), bt(d.localB), d.min, d.max));
     }
     // Joined bodies still collide unless the scene says not (as ours do): the filter decides.
@@ -191,10 +204,11 @@ class BulletEngine : public Engine {
   void finish() override {
     const int n = asleep();
     if (allAsleepFrom_ > 0) {
-      notes.push_back("all bodies asleep from step " + std::to_string(allAsleepFrom_) + " (Bullet's default deactivation)" +
-                      (n < moving() ? ", some woken since" : ""));
+      notes.push_back("all bodies asleep from step " + std::to_string(allAsleepFrom_) +
+                      " (Bullet's default deactivation)" + (n < moving() ? ", some woken since" : ""));
     } else if (n > 0) {
-      notes.push_back(std::to_string(n) + " of " + std::to_string(moving()) + " bodies asleep at the end (Bullet's default deactivation)");
+      notes.push_back(std::to_string(n) + " of " + std::to_string(moving()) +
+                      " bodies asleep at the end (Bullet's default deactivation)");
     }
   }
 
@@ -215,11 +229,13 @@ class BulletEngine : public Engine {
   }
   int asleep() const {
     int n = 0;
-    for (const btRigidBody* b : bodies_) n += !b->isStaticObject() && b->getActivationState() == ISLAND_SLEEPING ? 1 : 0;
+    for (const btRigidBody* b : bodies_)
+      n += !b->isStaticObject() && b->getActivationState() == ISLAND_SLEEPING ? 1 : 0;
     return n;
   }
 
-  btRigidBody* addBody(btCollisionShape& shape, double mass, const btVector3& inertia, const btTransform& pose, int index) {
+  btRigidBody* addBody(btCollisionShape& shape, double mass, const btVector3& inertia,
+                       const btTransform& pose, int index) {
     btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, &shape, inertia);
     info.m_startWorldTransform = pose;
     owned_.push_back(std::make_unique<btRigidBody>(info));
@@ -247,6 +263,8 @@ class BulletEngine : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> makeBullet(const Description& scene, double dt) { return std::make_unique<BulletEngine>(scene, dt); }
+std::unique_ptr<Engine> makeBullet(const Description& scene, double dt) {
+  return std::make_unique<BulletEngine>(scene, dt);
+}
 
 }  // namespace lab::peers

@@ -18,7 +18,8 @@ constexpr double kSamePoint = 1e-6;  // unit: m
 TreeNode jointOf(const std::vector<phys::Vec3>& points) {
   std::vector<phys::Vec3> distinct;
   for (const phys::Vec3& p : points) {
-    if (std::none_of(distinct.begin(), distinct.end(), [&](const phys::Vec3& q) { return glm::length(p - q) <= kSamePoint; })) {
+    if (std::none_of(distinct.begin(), distinct.end(),
+                     [&](const phys::Vec3& q) { return glm::length(p - q) <= kSamePoint; })) {
       distinct.push_back(p);
     }
   }
@@ -50,10 +51,14 @@ TreeNode jointOf(const std::vector<phys::Vec3>& points) {
 
 int dofsOf(TreeJoint joint) {
   switch (joint) {
-    case TreeJoint::Free: return 6;
-    case TreeJoint::Ball: return 3;
-    case TreeJoint::Hinge: return 1;
-    default: return 0;
+    case TreeJoint::Free:
+      return 6;
+    case TreeJoint::Ball:
+      return 3;
+    case TreeJoint::Hinge:
+      return 1;
+    default:
+      return 0;
   }
 }
 

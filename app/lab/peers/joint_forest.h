@@ -31,11 +31,11 @@ struct TreeNode {
 };
 
 struct JointForest {
-  std::vector<TreeNode> nodes;              ///< one per body, description order
-  std::vector<std::vector<int>> children;   ///< per body, in description order
-  std::vector<int> roots;                   ///< bodies with no parent, in description order
-  std::vector<bool> pinInTree;              ///< per Description::pins: held by a joint of the tree
-  int dofs = 0;                             ///< the coordinates of motion (MuJoCo's nv)
+  std::vector<TreeNode> nodes;             ///< one per body, description order
+  std::vector<std::vector<int>> children;  ///< per body, in description order
+  std::vector<int> roots;                  ///< bodies with no parent, in description order
+  std::vector<bool> pinInTree;             ///< per Description::pins: held by a joint of the tree
+  int dofs = 0;                            ///< the coordinates of motion (MuJoCo's nv)
 };
 
 /// The free-body form (tree false: every movable body a Free root, every pin a constraint), or

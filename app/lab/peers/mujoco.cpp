@@ -38,8 +38,12 @@ namespace {
 // otherwise); throwing is what MuJoCo's own compiler does from it. Warnings would go to
 // stdout and a MUJOCO_LOG.TXT in the current folder; they are kept for the table instead.
 std::string g_lastWarning;
-void throwError(const char* message) { throw std::runtime_error(std::string("MuJoCo error: ") + message); }
-void keepWarning(const char* message) { g_lastWarning = message; }
+void throwError(const char* message) {
+  throw std::runtime_error(std::string("MuJoCo error: ") + message);
+}
+void keepWarning(const char* message) {
+  g_lastWarning = message;
+}
 
 class Hooks {
  public:
@@ -59,15 +63,20 @@ class Hooks {
   void (*warning_)(const char*);
 };
 
-const char* solverName(int s) { return s == mjSOL_PGS ? "PGS" : s == mjSOL_CG ? "CG" : "Newton"; }
-const char* integratorName(int i) { return i == mjINT_EULER ? "Euler" : i == mjINT_RK4 ? "RK4" : "implicit"; }
+const char* solverName(int s) {
+  return s == mjSOL_PGS ? "PGS" : s == mjSOL_CG ? "CG" : "Newton";
+}
+const char* integratorName(int i) {
+  return i == mjINT_EULER ? "Euler" : i == mjINT_RK4 ? "RK4" : "implicit";
+}
 
 // Compiles MJCF text; throws with MuJoCo's message when it refuses.
 mjModel* compile(const std::string& xml) {
   auto vfs = std::make_unique<mjVFS>();  // about 2 MB: not for the stack
   mj_defaultVFS(vfs.get());
   const char* file = "peer.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), file, static_cast<int>(xml.size())) != 0) throw std::runtime_error("MuJoCo: no room in its VFS");
+  if (mj_makeEmptyFileVFS(vfs.get(), file, static_cast<int>(xml.size())) != 0)
+    throw std::runtime_error("MuJoCo: no room in its VFS");
   std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file)], xml.data(), xml.size());
   char error[1000] = "";
   mjModel* model = mj_loadXML(file, vfs.get(), error, sizeof error);
@@ -83,12 +92,14 @@ class MujocoEngine : public Engine {
     data_ = mj_makeData(model_);
     if (data_ == nullptr) {
       mj_deleteModel(model_);
-      throw std::runtime_error("too large for MuJoCo " + std::string(mj_versionString()) + ": no memory for mjData");
+      throw std::runtime_error("too large for MuJoCo " + std::string(mj_versionString()) +
+                               ": no memory for mjData");
     }
     const mjOption& o = model_->opt;
     settings = "MuJoCo " + std::string(mj_versionString()) + ": " + solverName(o.solver) + ", " +
-               (o.cone == mjCONE_PYRAMIDAL ? "pyramidal" : "elliptic") + " cones, " + integratorName(o.integrator) + ", up to " +
-               std::to_string(o.iterations) + " iterations" + (tree_ ? ", joints as a kinematic tree" : "");
+               (o.cone == mjCONE_PYRAMIDAL ? "pyramidal" : "elliptic") + " cones, " +
+               integratorName(o.integrator) + ", up to " + std::to_string(o.iterations) + " iterations" +
+               (tree_ ? ", joints as a kinematic tree" : "");
     ids_.resize(scene.bodies.size());
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about "b" + std::string.
@@ -117,8 +128,9 @@ class MujocoEngine : public Engine {
       notes.push_back("contacts beyond nconmax " + std::to_string(model_->nconmax) + " dropped");
     }
     if (data_->warning[mjWARN_CNSTRFULL].number > 0) {
-      notes.push_back("constraints beyond njmax " + std::to_string(model_->njmax) + " dropped (" + std::to_string(wanted_) +
-                      " wanted; MuJoCo 2.2.2's 2 GiB mjData holds no more at nv " + std::to_string(model_->nv) + ")");
+      notes.push_back("constraints beyond njmax " + std::to_string(model_->njmax) + " dropped (" +
+                      std::to_string(wanted_) + " wanted; MuJoCo 2.2.2's 2 GiB mjData holds no more at nv " +
+                      std::to_string(model_->nv) + ")");
     }
     if (data_->warning[mjWARN_BADQACC].number > 0 || data_->warning[mjWARN_BADQPOS].number > 0 ||
         data_->warning[mjWARN_BADQVEL].number > 0) {
@@ -155,19 +167,22 @@ class MujocoEngine : public Engine {
       model_ = compile(tree.xml);
       rows = ms::largestRows(*model_, tree.contacts, tree.rowsWanted());
       if (rows < tree.rowsNeeded()) {
-        const std::string why = "too large for MuJoCo " + std::string(mj_versionString()) + ", whose mjData buffer (an int of bytes: 2 GiB) grows as " +
-                                "12 njmax^2 + 24 njmax nv: with free bodies it needs " + std::to_string(free.rowsNeeded()) +
-                                " constraint rows and holds " + std::to_string(freeRows) + " at nv " + std::to_string(freeDofs) +
-                                ", as a kinematic tree " + std::to_string(tree.rowsNeeded()) + " and " + std::to_string(rows) + " at nv " +
-                                std::to_string(model_->nv);
+        const std::string why = "too large for MuJoCo " + std::string(mj_versionString()) +
+                                ", whose mjData buffer (an int of bytes: 2 GiB) grows as " +
+                                "12 njmax^2 + 24 njmax nv: with free bodies it needs " +
+                                std::to_string(free.rowsNeeded()) + " constraint rows and holds " +
+                                std::to_string(freeRows) + " at nv " + std::to_string(freeDofs) +
+                                ", as a kinematic tree " + std::to_string(tree.rowsNeeded()) + " and " +
+                                std::to_string(rows) + " at nv " + std::to_string(model_->nv);
         mj_deleteModel(model_);
         throw std::runtime_error(why);
       }
       chosen = &tree;
       tree_ = true;
       if (!forceTree || freeRows < free.rowsNeeded()) {
-        tree.notes.push_back("joints as a kinematic tree: with free bodies the pins need " + std::to_string(free.equalityRows) +
-                             " rows, and MuJoCo 2.2.2's mjData holds " + std::to_string(freeRows) + " at nv " + std::to_string(freeDofs));
+        tree.notes.push_back("joints as a kinematic tree: with free bodies the pins need " +
+                             std::to_string(free.equalityRows) + " rows, and MuJoCo 2.2.2's mjData holds " +
+                             std::to_string(freeRows) + " at nv " + std::to_string(freeDofs));
       }
     }
     notes = chosen->notes;
@@ -208,7 +223,8 @@ class MujocoEngine : public Engine {
           data_->qvel[dof] = spin.x * axis[0] + spin.y * axis[1] + spin.z * axis[2];
           break;
         }
-        default: break;
+        default:
+          break;
       }
     }
   }
@@ -251,14 +267,18 @@ class MujocoEngine : public Engine {
   mutable bool stale_ = false;  // xpos and xquat lag qpos by the last step
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
-  bool tree_ = false;       // written as a kinematic tree
-  int wanted_ = 0;          // the constraint rows the scene wants; njmax is fewer when capped
-  std::vector<int> ids_;    // MuJoCo body id of each description body
+  bool tree_ = false;     // written as a kinematic tree
+  int wanted_ = 0;        // the constraint rows the scene wants; njmax is fewer when capped
+  std::vector<int> ids_;  // MuJoCo body id of each description body
 };
 
 }  // namespace
 
-std::unique_ptr<Engine> makeMujoco(const Description& scene, double dt) { return std::make_unique<MujocoEngine>(scene, dt, false); }
-std::unique_ptr<Engine> makeMujocoTree(const Description& scene, double dt) { return std::make_unique<MujocoEngine>(scene, dt, true); }
+std::unique_ptr<Engine> makeMujoco(const Description& scene, double dt) {
+  return std::make_unique<MujocoEngine>(scene, dt, false);
+}
+std::unique_ptr<Engine> makeMujocoTree(const Description& scene, double dt) {
+  return std::make_unique<MujocoEngine>(scene, dt, true);
+}
 
 }  // namespace lab::peers

@@ -7,7 +7,9 @@
 namespace lab::peers::mujoco_size {
 namespace {
 
-double roundUp8(double bytes) { return 8.0 * static_cast<double>(static_cast<std::int64_t>((bytes + 7.0) / 8.0)); }
+double roundUp8(double bytes) {
+  return 8.0 * static_cast<double>(static_cast<std::int64_t>((bytes + 7.0) / 8.0));
+}
 
 }  // namespace
 
@@ -20,12 +22,13 @@ double bufferBytes(const mjModel& model, int njmaxRows, int nconmaxContacts) {
   const mjModel* m = &header;
   MJDATA_POINTERS_PREAMBLE(m)
   double bytes = 0.0;
-#define X(type, name, nr, nc) bytes += roundUp8(static_cast<double>(sizeof(type)) * static_cast<double>(m->nr) * static_cast<double>(nc));
+#define X(type, name, nr, nc) \
+  bytes += roundUp8(static_cast<double>(sizeof(type)) * static_cast<double>(m->nr) * static_cast<double>(nc));
   MJDATA_POINTERS
 #undef X
-  // The preamble's sizes are used by the macro's column counts; this keeps the compiler quiet
-  // should a MuJoCo version use neither.
-  (void)nv;
+      // The preamble's sizes are used by the macro's column counts; this keeps the compiler quiet
+      // should a MuJoCo version use neither.
+      (void) nv;
   (void)njmax;
   return bytes;
 }

@@ -21,8 +21,8 @@
 // so s = 1 - exp(-damping dt), linear and angular, with the speed threshold set to 0.
 #include <cmath>
 #include <cstdarg>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 
 #include <ode/ode.h>
@@ -42,7 +42,9 @@ namespace {
 // ODE prints its non-fatal messages (an LCP that did not converge, say) to stderr; the table
 // is the place for what went wrong, so they are counted instead.
 int g_odeMessages = 0;
-void countMessage(int, const char*, va_list) { ++g_odeMessages; }
+void countMessage(int, const char*, va_list) {
+  ++g_odeMessages;
+}
 
 constexpr int kMaxContactsPerPair = 8;
 
@@ -50,8 +52,12 @@ constexpr int kMaxContactsPerPair = 8;
 // takes z to y: the geom's offset from its body, so the body's frame stays ours.
 const phys::Quat kCapsuleOffset(std::sqrt(0.5), -std::sqrt(0.5), 0.0, 0.0);
 
-void* tag(int index) { return reinterpret_cast<void*>(static_cast<std::intptr_t>(index) + 1); }
-int untag(dGeomID g) { return static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(g))) - 1; }
+void* tag(int index) {
+  return reinterpret_cast<void*>(static_cast<std::intptr_t>(index) + 1);
+}
+int untag(dGeomID g) {
+  return static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(g))) - 1;
+}
 
 class OdeEngine : public Engine {
  public:
@@ -64,8 +70,9 @@ class OdeEngine : public Engine {
     contacts_ = dJointGroupCreate(0);
     dWorldSetGravity(world_, scene.gravity.x, scene.gravity.y, scene.gravity.z);
     settings = std::string("ODE ") + LAB_ODE_VERSION + " (" + (sizeof(dReal) == 8 ? "double" : "float") +
-               "): dWorldQuickStep, " + std::to_string(dWorldGetQuickStepNumIterations(world_)) + " iterations, ERP " +
-               fmt(static_cast<double>(dWorldGetERP(world_))) + ", CFM " + fmt(static_cast<double>(dWorldGetCFM(world_)));
+               "): dWorldQuickStep, " + std::to_string(dWorldGetQuickStepNumIterations(world_)) +
+               " iterations, ERP " + fmt(static_cast<double>(dWorldGetERP(world_))) + ", CFM " +
+               fmt(static_cast<double>(dWorldGetCFM(world_)));
 
     if (scene.ground) {
       const phys::Vec3 n = scene.groundNormal;
@@ -130,7 +137,9 @@ class OdeEngine : public Engine {
       dJointSetBallAnchor(j, wa.x, wa.y, wa.z);
       // A pin may start with its points apart: the second anchor on its own. ODE takes this
       // one as it stores it, in the second body's frame (the world's when there is none).
-      const phys::Vec3 second = bodies_[static_cast<std::size_t>(b)] != nullptr ? (swap ? p.localA : p.localB) : (swap ? p.worldA : p.worldB);
+      const phys::Vec3 second = bodies_[static_cast<std::size_t>(b)] != nullptr
+                                    ? (swap ? p.localA : p.localB)
+                                    : (swap ? p.worldA : p.worldB);
       dJointSetBallAnchor2(j, second.x, second.y, second.z);
     }
     for (const Distance& d : scene.distances) {
@@ -190,7 +199,9 @@ class OdeEngine : public Engine {
     return buffer;
   }
 
-  static void nearCallback(void* data, dGeomID g1, dGeomID g2) { static_cast<OdeEngine*>(data)->collide(g1, g2); }
+  static void nearCallback(void* data, dGeomID g1, dGeomID g2) {
+    static_cast<OdeEngine*>(data)->collide(g1, g2);
+  }
 
   void collide(dGeomID g1, dGeomID g2) {
     const int a = untag(g1), b = untag(g2);
@@ -265,6 +276,8 @@ class OdeEngine : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> makeOde(const Description& scene, double dt) { return std::make_unique<OdeEngine>(scene, dt); }
+std::unique_ptr<Engine> makeOde(const Description& scene, double dt) {
+  return std::make_unique<OdeEngine>(scene, dt);
+}
 
 }  // namespace lab::peers

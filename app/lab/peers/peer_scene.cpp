@@ -25,22 +25,28 @@ Vec3 particleVelocity(const phys::World& world, phys::ParticleId id) {
   return world.velocity(id) + world.gravityAt(world.particles().position[id]) * (0.5 * h);
 }
 
-Vec3 toLocal(const Body& body, const Vec3& p) { return glm::inverse(body.orientation) * (p - body.centre); }
+Vec3 toLocal(const Body& body, const Vec3& p) {
+  return glm::inverse(body.orientation) * (p - body.centre);
+}
 
 }  // namespace
 
-Vec3 toWorld(const Vec3& centre, const phys::Quat& orientation, const Vec3& p) { return centre + orientation * p; }
+Vec3 toWorld(const Vec3& centre, const phys::Quat& orientation, const Vec3& p) {
+  return centre + orientation * p;
+}
 
 bool Description::collides(int i, int j) const {
   const Body& a = bodies[static_cast<std::size_t>(i)];
   const Body& b = bodies[static_cast<std::size_t>(j)];
   if (i == j || !a.solid() || !b.solid()) return false;
   if ((a.group & b.mask) == 0 || (b.group & a.mask) == 0) return false;
-  return !std::binary_search(ignored.begin(), ignored.end(), std::pair<int, int>(std::min(i, j), std::max(i, j)));
+  return !std::binary_search(ignored.begin(), ignored.end(),
+                             std::pair<int, int>(std::min(i, j), std::max(i, j)));
 }
 
 int Description::solidCount() const {
-  return static_cast<int>(std::count_if(bodies.begin(), bodies.end(), [](const Body& b) { return b.solid(); }));
+  return static_cast<int>(
+      std::count_if(bodies.begin(), bodies.end(), [](const Body& b) { return b.solid(); }));
 }
 
 Description describe(const scenes::Scene& scene) {
@@ -102,7 +108,8 @@ Description describe(const scenes::Scene& scene) {
       const double m = 1.0 / w;
       body.mass += m;
       const Vec3 r0 = phys::boxParticleLocal(box.model, box.halfExtents, k);
-      body.inertia += m * Vec3(r0.y * r0.y + r0.z * r0.z, r0.x * r0.x + r0.z * r0.z, r0.x * r0.x + r0.y * r0.y);
+      body.inertia +=
+          m * Vec3(r0.y * r0.y + r0.z * r0.z, r0.x * r0.x + r0.z * r0.z, r0.x * r0.x + r0.y * r0.y);
       momentum += m * particleVelocity(world, p);
     }
     if (!body.fixed && body.mass > 0.0) {
@@ -114,7 +121,8 @@ Description describe(const scenes::Scene& scene) {
         angularMomentum += m * glm::cross(r, particleVelocity(world, p) - body.velocity);
         inertiaWorld += m * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
       }
-      if (std::abs(glm::determinant(inertiaWorld)) > 0.0) body.angularVelocity = glm::inverse(inertiaWorld) * angularMomentum;
+      if (std::abs(glm::determinant(inertiaWorld)) > 0.0)
+        body.angularVelocity = glm::inverse(inertiaWorld) * angularMomentum;
     }
     if (body.fixed) body.mass = 0.0;
     d.bodies.push_back(body);
@@ -138,7 +146,8 @@ Description describe(const scenes::Scene& scene) {
     body.mass = body.fixed ? 0.0 : 1.0 / particles.inverseMass[i];
     body.inertia = Vec3(0.4 * body.mass * kParticleRadius * kParticleRadius);
     if (!body.fixed) body.velocity = particleVelocity(world, id);
-    body.friction = contactOf[i] != nullptr ? contactOf[i]->material.dynamicFriction : phys::Material{}.dynamicFriction;
+    body.friction =
+        contactOf[i] != nullptr ? contactOf[i]->material.dynamicFriction : phys::Material{}.dynamicFriction;
     d.bodies.push_back(body);
   }
 
@@ -189,12 +198,15 @@ Description describe(const scenes::Scene& scene) {
     if (link.isPin()) {
       d.pins.push_back(Pin{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb});
     } else {
-      d.distances.push_back(Distance{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb, link.minLength, link.maxLength, true});
+      d.distances.push_back(
+          Distance{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb, link.minLength, link.maxLength, true});
     }
   }
-  if (crossing > 0) d.notes.push_back(std::to_string(crossing) + " links with an end spread over two bodies left out");
+  if (crossing > 0)
+    d.notes.push_back(std::to_string(crossing) + " links with an end spread over two bodies left out");
 
-  for (const auto& [a, b] : world.ignoredCollisions()) d.ignored.emplace_back(static_cast<int>(a), static_cast<int>(b));
+  for (const auto& [a, b] : world.ignoredCollisions())
+    d.ignored.emplace_back(static_cast<int>(a), static_cast<int>(b));
   std::sort(d.ignored.begin(), d.ignored.end());
   return d;
 }

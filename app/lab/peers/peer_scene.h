@@ -30,8 +30,8 @@ struct Body {
   /// the box's particles' (below), not a solid capsule's, in every engine.
   enum class Shape { Box, Sphere, Capsule };
   Shape shape = Shape::Box;
-  std::string name;             ///< for messages; may be empty
-  phys::Vec3 centre{0.0};       ///< unit: m
+  std::string name;        ///< for messages; may be empty
+  phys::Vec3 centre{0.0};  ///< unit: m
   phys::Quat orientation{1.0, 0.0, 0.0, 0.0};
   phys::Vec3 halfExtents{0.0};  ///< unit: m; a box's, or the box a capsule is inscribed in
   double radius = 0.0;          ///< unit: m; a sphere's or a capsule's
@@ -43,10 +43,10 @@ struct Body {
   /// push turns it the same in every engine; a sphere a solid sphere's.
   phys::Vec3 inertia{0.0};
   phys::BoxModel model = phys::BoxModel::Corners;  ///< a box's or capsule's: where its particles are
-  phys::Vec3 velocity{0.0};         ///< unit: m/s; of the centre
-  phys::Vec3 angularVelocity{0.0};  ///< unit: rad/s; world frame
-  double friction = 0.0;            ///< the material's dynamic coefficient
-  std::uint32_t group = 1;          ///< collision filtering, boxes and capsules only
+  phys::Vec3 velocity{0.0};                        ///< unit: m/s; of the centre
+  phys::Vec3 angularVelocity{0.0};                 ///< unit: rad/s; world frame
+  double friction = 0.0;                           ///< the material's dynamic coefficient
+  std::uint32_t group = 1;                         ///< collision filtering, boxes and capsules only
   std::uint32_t mask = 0xffffffffu;
 
   /// A box or a capsule: one of our boxes, which collide with each other. A sphere (a loose
@@ -80,9 +80,9 @@ struct Description {
   phys::Vec3 gravity{0.0, -9.81, 0.0};  ///< unit: m/s^2
   bool ground = false;
   phys::Vec3 groundNormal{0.0, 1.0, 0.0};
-  double groundHeight = 0.0;            ///< unit: m
-  double groundFriction = 0.0;          ///< dynamic coefficient
-  double damping = 0.0;                 ///< unit: 1/s; velocities decay as exp(-damping t)
+  double groundHeight = 0.0;    ///< unit: m
+  double groundFriction = 0.0;  ///< dynamic coefficient
+  double damping = 0.0;         ///< unit: 1/s; velocities decay as exp(-damping t)
   double restitution = 0.0;
   std::vector<Body> bodies;
   std::vector<Pin> pins;

@@ -127,7 +127,8 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   } catch (const std::exception& e) {
     // An engine that gives up part way (MuJoCo's errors arrive as exceptions) has no run to
     // compare; say so rather than report half of one.
-    result.unsupported = joined({joined(description.notes), joined(built->notes), std::string(e.what()) + ": run stopped"});
+    result.unsupported =
+        joined({joined(description.notes), joined(built->notes), std::string(e.what()) + ": run stopped"});
     result.positions.clear();
     result.orientations.clear();
     return result;

@@ -28,10 +28,14 @@ double pairDepth(const Body& a, const phys::Obb& oa, const Body& b, const phys::
   phys::BoxContact c;
   const bool capA = a.shape == Body::Shape::Capsule, capB = b.shape == Body::Shape::Capsule;
   bool touching = false;
-  if (capA && capB) touching = phys::collideCapsules(phys::capsuleInBox(oa), phys::capsuleInBox(ob), 0.0, c);
-  else if (capA) touching = phys::collideCapsuleBox(phys::capsuleInBox(oa), ob, 0.0, c);
-  else if (capB) touching = phys::collideCapsuleBox(phys::capsuleInBox(ob), oa, 0.0, c);
-  else touching = phys::collideBoxes(oa, ob, 0.0, c);
+  if (capA && capB)
+    touching = phys::collideCapsules(phys::capsuleInBox(oa), phys::capsuleInBox(ob), 0.0, c);
+  else if (capA)
+    touching = phys::collideCapsuleBox(phys::capsuleInBox(oa), ob, 0.0, c);
+  else if (capB)
+    touching = phys::collideCapsuleBox(phys::capsuleInBox(ob), oa, 0.0, c);
+  else
+    touching = phys::collideBoxes(oa, ob, 0.0, c);
   return touching ? deepest(c) : 0.0;
 }
 
@@ -48,7 +52,8 @@ Bounds boundsOf(int i, const phys::Obb& o) {
 }
 
 bool finitePose(const Vec3& c, const phys::Quat& q) {
-  return phys::finite(c) && std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+  return phys::finite(c) && std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) &&
+         std::isfinite(q.z);
 }
 
 }  // namespace
@@ -63,7 +68,8 @@ phys::Obb obbOf(const Body& body, const Vec3& centre, const phys::Quat& orientat
   return o;
 }
 
-double bodyOverlap(const Description& scene, const std::vector<Vec3>& centres, const std::vector<phys::Quat>& orientations) {
+double bodyOverlap(const Description& scene, const std::vector<Vec3>& centres,
+                   const std::vector<phys::Quat>& orientations) {
   const int n = static_cast<int>(scene.bodies.size());
   std::vector<phys::Obb> obbs(scene.bodies.size());
   std::vector<Bounds> bounds;
@@ -91,17 +97,21 @@ double bodyOverlap(const Description& scene, const std::vector<Vec3>& centres, c
   return worst;
 }
 
-double posePenetration(const Description& scene, const std::vector<Vec3>& centres, const std::vector<phys::Quat>& orientations) {
+double posePenetration(const Description& scene, const std::vector<Vec3>& centres,
+                       const std::vector<phys::Quat>& orientations) {
   return std::max(groundPenetration(scene, centres, orientations), bodyOverlap(scene, centres, orientations));
 }
 
-double jointGap(const Description& scene, const std::vector<Vec3>& centres, const std::vector<phys::Quat>& orientations) {
+double jointGap(const Description& scene, const std::vector<Vec3>& centres,
+                const std::vector<phys::Quat>& orientations) {
   auto point = [&](int body, const Vec3& local) {
     const auto k = static_cast<std::size_t>(body);
     return toWorld(centres[k], orientations[k], local);
   };
   double worst = 0.0;
-  auto keep = [&](double gap) { worst = std::isfinite(gap) && std::isfinite(worst) ? std::max(worst, gap) : kInf; };
+  auto keep = [&](double gap) {
+    worst = std::isfinite(gap) && std::isfinite(worst) ? std::max(worst, gap) : kInf;
+  };
   for (const Pin& p : scene.pins) keep(glm::length(point(p.b, p.localB) - point(p.a, p.localA)));
   for (const Distance& d : scene.distances) {
     if (!d.link) continue;

@@ -41,7 +41,8 @@ class TemporaryFile {
       error = errno;
       if (error != EEXIST) break;
     }
-    throw SaveError(reported_, "cannot create a temporary file in '" + folder.string() + "': " + reason(error));
+    throw SaveError(reported_,
+                    "cannot create a temporary file in '" + folder.string() + "': " + reason(error));
   }
   TemporaryFile(const TemporaryFile&) = delete;
   TemporaryFile& operator=(const TemporaryFile&) = delete;

@@ -20,7 +20,9 @@ std::vector<std::string_view> splitWhitespace(std::string_view text) {
   return parts;
 }
 
-std::string withUnit(std::string_view unit) { return unit.empty() ? "" : " (" + std::string(unit) + ")"; }
+std::string withUnit(std::string_view unit) {
+  return unit.empty() ? "" : " (" + std::string(unit) + ")";
+}
 
 }  // namespace
 
@@ -33,7 +35,8 @@ LineIndex::LineIndex(const char* begin, std::size_t size) : begin_(begin) {
 int LineIndex::lineOf(const char* p) const {
   if (p == nullptr || p < begin_) return 0;
   const auto offset = static_cast<std::size_t>(p - begin_);
-  return static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin()) + 1;
+  return static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin()) +
+         1;
 }
 
 std::string formatNumber(phys::Real value) {
@@ -81,7 +84,8 @@ void ElementReader::fail(std::string_view attribute, const std::string& message)
   for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
     if (attribute == a.name()) at = lines_.lineOf(a.name());
   }
-  throw LoadError(file_, at, std::string(attribute), what() + " attribute '" + std::string(attribute) + "': " + message);
+  throw LoadError(file_, at, std::string(attribute),
+                  what() + " attribute '" + std::string(attribute) + "': " + message);
 }
 
 pugi::xml_attribute ElementReader::find(std::string_view name) {
@@ -132,18 +136,22 @@ std::optional<long> ElementReader::integer(std::string_view name, long min, long
   long value = 0;
   const auto [end, ec] = std::from_chars(raw->data(), raw->data() + raw->size(), value);
   if (ec != std::errc() || end != raw->data() + raw->size() || value < min || value > max) {
-    fail(name, "'" + *raw + "' must be a whole number from " + std::to_string(min) + " to " + std::to_string(max));
+    fail(name,
+         "'" + *raw + "' must be a whole number from " + std::to_string(min) + " to " + std::to_string(max));
   }
   return value;
 }
 
 long ElementReader::requiredInteger(std::string_view name, long min, long max) {
   const std::optional<long> value = integer(name, min, max);
-  if (!value) fail(name, "is required (a whole number from " + std::to_string(min) + " to " + std::to_string(max) + ")");
+  if (!value)
+    fail(name,
+         "is required (a whole number from " + std::to_string(min) + " to " + std::to_string(max) + ")");
   return *value;
 }
 
-std::optional<phys::Vec3> ElementReader::vector(std::string_view name, std::string_view unit, bool allowScalar) {
+std::optional<phys::Vec3> ElementReader::vector(std::string_view name, std::string_view unit,
+                                                bool allowScalar) {
   const std::optional<std::string> raw = text(name);
   if (!raw) return std::nullopt;
   const std::vector<std::string_view> parts = splitWhitespace(*raw);
@@ -171,7 +179,8 @@ std::optional<glm::ivec3> ElementReader::integers3(std::string_view name, int mi
   const std::optional<std::string> raw = text(name);
   if (!raw) return std::nullopt;
   const std::vector<std::string_view> parts = splitWhitespace(*raw);
-  const std::string expected = "three whole numbers from " + std::to_string(min) + " to " + std::to_string(max);
+  const std::string expected =
+      "three whole numbers from " + std::to_string(min) + " to " + std::to_string(max);
   if (parts.size() != 3) fail(name, "'" + *raw + "' must be " + expected);
   glm::ivec3 v(0);
   for (int i = 0; i < 3; ++i) {
@@ -208,14 +217,15 @@ void ElementReader::rejectUnknownAttributes() const {
     // XML forbids an attribute twice, but pugixml keeps both and find() would read the first.
     for (pugi::xml_attribute b = a.next_attribute(); b; b = b.next_attribute()) {
       if (std::string_view(a.name()) == b.name()) {
-        throw LoadError(file_, lines_.lineOf(b.name()), a.name(), what() + " attribute '" + a.name() + "': given twice");
+        throw LoadError(file_, lines_.lineOf(b.name()), a.name(),
+                        what() + " attribute '" + a.name() + "': given twice");
       }
     }
     if (std::find(asked_.begin(), asked_.end(), a.name()) == asked_.end()) {
       std::string known;
       for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
       fail(a.name(), "unknown attribute" + (known.empty() ? std::string(" (the element takes none)")
-                                                                  : " (known: " + known + ")"));
+                                                          : " (known: " + known + ")"));
     }
   }
 }

@@ -12,7 +12,9 @@
 namespace scenes::detail {
 namespace {
 
-std::string member(const std::string& name, long i) { return name + "[" + std::to_string(i) + "]"; }
+std::string member(const std::string& name, long i) {
+  return name + "[" + std::to_string(i) + "]";
+}
 
 void addBox(ElementReader& e, BuildContext& ctx, phys::BoxDesc desc, const std::string& name) {
   desc.name = name;
@@ -58,8 +60,8 @@ phys::BoxDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options) {
   // here the same way, so a sphere (length exactly 2 radius) passes both checks.
   const double diameter = 2.0 * radius;
   if (!(length >= diameter)) {
-    e.fail("length", "'" + formatNumber(length) + "' must be at least twice the radius, " + formatNumber(diameter) +
-                         " (m): it is the whole length, cap to cap");
+    e.fail("length", "'" + formatNumber(length) + "' must be at least twice the radius, " +
+                         formatNumber(diameter) + " (m): it is the whole length, cap to cap");
   }
   d.size = phys::Vec3(diameter, length, diameter);
   readBodyCommon(e, options, d);
@@ -123,8 +125,9 @@ void generateGrid(ElementReader& e, BuildContext& ctx) {
   for (int j = 0; j < count->y; ++j) {
     for (int k = 0; k < count->z; ++k) {
       for (int i = 0; i < count->x; ++i) {
-        box.center = pos + phys::Vec3((i - 0.5 * (count->x - 1)) * spacing.x, 0.5 * box.size.y + j * spacing.y,
-                                      (k - 0.5 * (count->z - 1)) * spacing.z);
+        box.center =
+            pos + phys::Vec3((i - 0.5 * (count->x - 1)) * spacing.x, 0.5 * box.size.y + j * spacing.y,
+                             (k - 0.5 * (count->z - 1)) * spacing.z);
         addBox(e, ctx, box, member(name, index++));
       }
     }
@@ -175,8 +178,10 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   phys::RagdollDesc d;
   phys::Shape shape = phys::Shape::Box;
   if (auto text = e.text("shape")) {
-    if (*text == phys::toString(phys::Shape::Capsule)) shape = phys::Shape::Capsule;
-    else if (*text != phys::toString(phys::Shape::Box)) e.fail("shape", "'" + *text + "' must be box or capsule");
+    if (*text == phys::toString(phys::Shape::Capsule))
+      shape = phys::Shape::Capsule;
+    else if (*text != phys::toString(phys::Shape::Box))
+      e.fail("shape", "'" + *text + "' must be box or capsule");
   }
   d.name = e.text("name").value_or("ragdoll");
   d.hips = e.requiredVector("pos", "m");
@@ -201,8 +206,10 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   auto nameParts = [&](const auto& parts) {
     for (const phys::BoxId id : parts) ctx.addName(e, ctx.world.boxes()[id].name, NamedBody::Kind::Box, id);
   };
-  if (shape == phys::Shape::Capsule) nameParts(phys::addCapsuleRagdoll(ctx.world, d).parts);
-  else nameParts(phys::addRagdoll(ctx.world, d).parts);
+  if (shape == phys::Shape::Capsule)
+    nameParts(phys::addCapsuleRagdoll(ctx.world, d).parts);
+  else
+    nameParts(phys::addRagdoll(ctx.world, d).parts);
 }
 
 }  // namespace scenes::detail

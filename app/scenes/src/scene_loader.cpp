@@ -1,10 +1,10 @@
 // Scene files (docs/scene-format.md): strict XML read into a new world. Any error throws
 // LoadError naming file, line and attribute, and the half-built world is thrown away with it.
 #include <cmath>
-#include <limits>
 #include <fstream>
-#include <optional>
+#include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -23,8 +23,9 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {"particle", "stick", "box", "capsule", "stack", "pyramid",
-                                              "grid", "chain", "ragdoll", "link", "no-collision"};
+constexpr std::string_view kBodyElements[] = {"particle", "stick",   "box",         "capsule",
+                                              "stack",    "pyramid", "grid",        "chain",
+                                              "ragdoll",  "link",    "no-collision"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -63,7 +64,8 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
   if (auto n = e.integer("substeps", 1, phys::kMaxSubsteps)) s.substeps = static_cast<int>(*n);
   if (auto dt = e.number("dt", "s")) {
     if (*dt < phys::kMinDt || *dt > phys::kMaxDt) {
-      e.fail("dt", "must be from " + detail::formatNumber(phys::kMinDt) + " to " + detail::formatNumber(phys::kMaxDt) + " (s)");
+      e.fail("dt", "must be from " + detail::formatNumber(phys::kMinDt) + " to " +
+                       detail::formatNumber(phys::kMaxDt) + " (s)");
     }
     s.dt = *dt;
   }
@@ -91,8 +93,11 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
   }
   if (auto speed = e.text("depenetration-speed")) {
     // "none" turns the limit off (infinity, which no number in a file can say).
-    const std::optional<double> value = *speed == "none" ? std::optional<double>(std::numeric_limits<double>::infinity()) : detail::parseReal(*speed);
-    if (!value || !(*value > 0.0)) e.fail("depenetration-speed", "'" + *speed + "' must be a number > 0 (m/s) or none");
+    const std::optional<double> value = *speed == "none"
+                                            ? std::optional<double>(std::numeric_limits<double>::infinity())
+                                            : detail::parseReal(*speed);
+    if (!value || !(*value > 0.0))
+      e.fail("depenetration-speed", "'" + *speed + "' must be a number > 0 (m/s) or none");
     s.maxDepenetrationSpeed = *value;
   }
   e.rejectUnknownAttributes();
@@ -120,7 +125,9 @@ void readCamera(ElementReader& e, CameraStart& c) {
 class Builder {
  public:
   Builder(Scene& scene, const LineIndex& lines, const std::string& file, const LoadOptions& options)
-      : scene_(scene), lines_(lines), file_(file),
+      : scene_(scene),
+        lines_(lines),
+        file_(file),
         ctx_{scene.world,
              [this](ElementReader& e, const std::string& name, NamedBody::Kind kind, std::uint32_t index) {
                addName(e, name, kind, index);
@@ -130,17 +137,28 @@ class Builder {
   void body(const pugi::xml_node& node) {
     ElementReader e(node, lines_, file_);
     const std::string_view kind = node.name();
-    if (kind == "particle") particle(e);
-    else if (kind == "stick") stick(e);
-    else if (kind == "box") rigidBody(e, phys::Shape::Box);
-    else if (kind == "capsule") rigidBody(e, phys::Shape::Capsule);
-    else if (kind == "stack") detail::generateStack(e, ctx_);
-    else if (kind == "pyramid") detail::generatePyramid(e, ctx_);
-    else if (kind == "grid") detail::generateGrid(e, ctx_);
-    else if (kind == "chain") detail::generateChain(e, ctx_);
-    else if (kind == "ragdoll") detail::generateRagdoll(e, ctx_);
-    else if (kind == "link") link(e);
-    else if (kind == "no-collision") noCollision(e);
+    if (kind == "particle")
+      particle(e);
+    else if (kind == "stick")
+      stick(e);
+    else if (kind == "box")
+      rigidBody(e, phys::Shape::Box);
+    else if (kind == "capsule")
+      rigidBody(e, phys::Shape::Capsule);
+    else if (kind == "stack")
+      detail::generateStack(e, ctx_);
+    else if (kind == "pyramid")
+      detail::generatePyramid(e, ctx_);
+    else if (kind == "grid")
+      detail::generateGrid(e, ctx_);
+    else if (kind == "chain")
+      detail::generateChain(e, ctx_);
+    else if (kind == "ragdoll")
+      detail::generateRagdoll(e, ctx_);
+    else if (kind == "link")
+      link(e);
+    else if (kind == "no-collision")
+      noCollision(e);
     if (scene_.world.particles().size() > detail::kMaxParticles) {
       e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
     }
@@ -262,8 +280,10 @@ class Builder {
     if (min && max && *min > *max) e.fail("max", "must be >= min");
     const phys::Embedding ea = embed(a, point ? *point : *aPoint);
     const phys::Embedding eb = embed(b, point ? *point : *bPoint);
-    if (min || max) scene_.world.addLink(ea, eb, min.value_or(0.0), max.value_or(phys::kNoMaxLength));
-    else scene_.world.addLink(ea, eb, 0.0, 0.0);
+    if (min || max)
+      scene_.world.addLink(ea, eb, min.value_or(0.0), max.value_or(phys::kNoMaxLength));
+    else
+      scene_.world.addLink(ea, eb, 0.0, 0.0);
   }
 
   phys::Embedding embed(const NamedBody& body, const phys::Vec3& point) const {
@@ -310,7 +330,8 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
       trailingLine = lines.lineOf(buffer.data() + first);
     }
   }
-  const pugi::xml_parse_result parsed = doc.load_buffer_inplace(buffer.data(), size, pugi::parse_default, pugi::encoding_utf8);
+  const pugi::xml_parse_result parsed =
+      doc.load_buffer_inplace(buffer.data(), size, pugi::parse_default, pugi::encoding_utf8);
   if (!parsed) {
     throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
                     std::string("not well-formed XML: ") + parsed.description());
@@ -328,7 +349,8 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
     stray.fail("nothing may follow or precede <scene> but comments");
   }
   if (std::string_view(root.name()) != "scene") {
-    throw LoadError(file, lines.lineOf(root.name()), "", "the root element must be <scene>, not <" + std::string(root.name()) + ">");
+    throw LoadError(file, lines.lineOf(root.name()), "",
+                    "the root element must be <scene>, not <" + std::string(root.name()) + ">");
   }
   ElementReader sceneReader(root, lines, file);
   const std::string name = sceneReader.requiredText("name");
@@ -351,10 +373,14 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
     if (child.first_child()) e.fail("takes no child elements or text");
     if (isOneOf(kind, kSettingsElements)) {
       if (seen[std::string(kind)]++ > 0) e.fail("appears more than once");
-      if (kind == "world") readWorld(e, worldSettings);
-      else if (kind == "solver") readSolver(e, solverSettings);
-      else if (kind == "ground") readGround(e, worldSettings);
-      else readCamera(e, camera);
+      if (kind == "world")
+        readWorld(e, worldSettings);
+      else if (kind == "solver")
+        readSolver(e, solverSettings);
+      else if (kind == "ground")
+        readGround(e, worldSettings);
+      else
+        readCamera(e, camera);
     } else if (isOneOf(kind, kBodyElements)) {
       bodies.push_back(child);
     } else if (kind == "expect") {
@@ -366,8 +392,10 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
       }
       expectations.push_back(std::move(x));
     } else {
-      e.fail("unknown element (known: world, solver, ground, camera, particle, stick, box, capsule, stack, pyramid, "
-             "grid, chain, ragdoll, link, no-collision, expect)");
+      e.fail(
+          "unknown element (known: world, solver, ground, camera, particle, stick, box, capsule, stack, "
+          "pyramid, "
+          "grid, chain, ragdoll, link, no-collision, expect)");
     }
   }
 

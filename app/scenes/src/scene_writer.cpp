@@ -32,7 +32,8 @@ std::vector<std::int32_t> particleOwners(const phys::World& world) {
   std::vector<std::int32_t> owner(world.particles().size(), kLoose);
   const std::span<const phys::Box> boxes = world.boxes();
   for (std::size_t b = 0; b < boxes.size(); ++b) {
-    for (int j = 0; j < boxes[b].particleCount; ++j) owner[boxes[b].firstParticle + j] = static_cast<std::int32_t>(b);
+    for (int j = 0; j < boxes[b].particleCount; ++j)
+      owner[boxes[b].firstParticle + j] = static_cast<std::int32_t>(b);
   }
   return owner;
 }
@@ -69,7 +70,8 @@ LinkEnd linkEnd(const phys::Embedding& e, const std::vector<std::int32_t>& owner
 // or "particle N" after their index, with a count appended should that be taken too.
 class BodyNames {
  public:
-  BodyNames(const phys::World& world, const std::vector<std::int32_t>& owner, const std::vector<bool>& referenced)
+  BodyNames(const phys::World& world, const std::vector<std::int32_t>& owner,
+            const std::vector<bool>& referenced)
       : box_(world.boxes().size()), particle_(world.particles().size()) {
     const std::span<const phys::Box> boxes = world.boxes();
     for (std::size_t i = 0; i < particle_.size(); ++i) {
@@ -121,8 +123,7 @@ std::string worldElement(const phys::WorldSettings& w) {
 
 std::string solverElement(const phys::SolverSettings& s) {
   ElementWriter solver("solver");
-  solver
-      .text("method", phys::toString(s.method))
+  solver.text("method", phys::toString(s.method))
       .integer("iterations", s.iterations)
       .integer("substeps", s.substeps)
       .number("dt", s.dt)
@@ -131,8 +132,10 @@ std::string solverElement(const phys::SolverSettings& s) {
       .number("body-damping", s.bodyDamping)
       .number("restitution", s.restitution)
       .number("compliance", s.compliance);
-  if (std::isfinite(s.maxDepenetrationSpeed)) solver.number("depenetration-speed", s.maxDepenetrationSpeed);
-  else solver.text("depenetration-speed", "none");
+  if (std::isfinite(s.maxDepenetrationSpeed))
+    solver.number("depenetration-speed", s.maxDepenetrationSpeed);
+  else
+    solver.text("depenetration-speed", "none");
   return solver.empty();
 }
 
@@ -164,8 +167,10 @@ std::string boxElement(const phys::World& world, phys::BoxId id, const std::stri
   e.text("name", name)
       .vector("pos", state.pose.center)
       .vector("euler", detail::eulerFromOrientation(state.pose.orientation));
-  if (capsule) e.number("radius", box.capsuleRadius()).number("length", box.halfExtents.y * 2.0);
-  else e.vector("size", box.halfExtents * 2.0);
+  if (capsule)
+    e.number("radius", box.capsuleRadius()).number("length", box.halfExtents.y * 2.0);
+  else
+    e.vector("size", box.halfExtents * 2.0);
   e.number("mass", state.mass)
       .text("model", phys::toString(box.model))
       .number("static-friction", box.material.staticFriction)
@@ -208,8 +213,8 @@ std::string stickElement(const phys::Stick& s, const BodyNames& names) {
   return e.empty();
 }
 
-std::string linkElement(const phys::World& world, const phys::Link& link, const std::vector<std::int32_t>& owner,
-                        const BodyNames& names) {
+std::string linkElement(const phys::World& world, const phys::Link& link,
+                        const std::vector<std::int32_t>& owner, const BodyNames& names) {
   const LinkEnd endA = linkEnd(link.a, owner), endB = linkEnd(link.b, owner);
   // The loader refuses a link from a body to itself (a box is rigid: such a link does nothing).
   if (endA.isBox == endB.isBox && endA.index == endB.index) {
@@ -232,9 +237,10 @@ std::string linkElement(const phys::World& world, const phys::Link& link, const 
 
 std::string header(const phys::World& world) {
   char text[160];
-  std::snprintf(text, sizeof text,
-                "<!-- Saved at t = %.6g s (step %ld): each box as the rigid body fitted to its particles. -->",
-                world.time(), world.stepCount());
+  std::snprintf(
+      text, sizeof text,
+      "<!-- Saved at t = %.6g s (step %ld): each box as the rigid body fitted to its particles. -->",
+      world.time(), world.stepCount());
   return text;
 }
 
@@ -248,7 +254,8 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   const phys::Particles& particles = world.particles();
   if (particles.size() > detail::kMaxParticles) {
     throw std::invalid_argument("the world has " + std::to_string(particles.size()) +
-                                " particles; a scene file loads at most " + std::to_string(detail::kMaxParticles));
+                                " particles; a scene file loads at most " +
+                                std::to_string(detail::kMaxParticles));
   }
   const std::vector<std::int32_t> owner = particleOwners(world);
 

@@ -7,11 +7,11 @@ namespace engine {
 
 struct FirstPersonCamera {
   glm::vec3 position{0.0f, 2.0f, 8.0f};  ///< unit: m
-  float yaw = 0.0f;     ///< unit: degrees; 0 looks along -z, positive turns towards +x
-  float pitch = 0.0f;   ///< unit: degrees; positive looks up; kept within +-kMaxPitch
-  float fovY = 60.0f;   ///< unit: degrees; vertical field of view
-  float nearPlane = 0.05f;  ///< unit: m
-  float farPlane = 500.0f;  ///< unit: m
+  float yaw = 0.0f;                      ///< unit: degrees; 0 looks along -z, positive turns towards +x
+  float pitch = 0.0f;                    ///< unit: degrees; positive looks up; kept within +-kMaxPitch
+  float fovY = 60.0f;                    ///< unit: degrees; vertical field of view
+  float nearPlane = 0.05f;               ///< unit: m
+  float farPlane = 500.0f;               ///< unit: m
 
   static constexpr float kMaxPitch = 89.0f;  ///< short of 90 so the view never flips
 

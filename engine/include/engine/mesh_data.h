@@ -10,8 +10,8 @@
 namespace engine {
 
 struct MeshData {
-  std::vector<glm::vec3> positions;  ///< unit: model units (ours: m)
-  std::vector<glm::vec3> normals;    ///< one per position, unit length
+  std::vector<glm::vec3> positions;    ///< unit: model units (ours: m)
+  std::vector<glm::vec3> normals;      ///< one per position, unit length
   std::vector<std::uint32_t> indices;  ///< three per triangle
   glm::vec3 boundsMin{0.0f};
   glm::vec3 boundsMax{0.0f};

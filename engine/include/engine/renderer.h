@@ -26,8 +26,8 @@ struct RenderStyle {
   glm::vec3 clearColor{0.62f, 0.74f, 0.86f};  ///< the sky, linear RGB in [0, 1]
   glm::vec3 groundColor{0.44f, 0.47f, 0.42f};
   glm::vec3 gridColor{0.30f, 0.32f, 0.29f};
-  float gridSpacing = 1.0f;    ///< unit: m; lines at every multiple
-  float groundExtent = 250.0f; ///< unit: m; half the side of the ground quad
+  float gridSpacing = 1.0f;     ///< unit: m; lines at every multiple
+  float groundExtent = 250.0f;  ///< unit: m; half the side of the ground quad
   Light light;
 };
 
@@ -43,7 +43,8 @@ class Renderer {
   void beginFrame(const glm::ivec2& framebufferSize);
   /// The ground plane { x : normal . x = height } (normal of unit length), centred under the
   /// camera so it never ends. For the normal (0, 1, 0) the grid lines lie on whole x and z.
-  void drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, const glm::vec3& normal, float height);
+  void drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, const glm::vec3& normal,
+                  float height);
   /// Draws a lit mesh. alpha < 1 blends it over what is drawn (without writing depth, so the
   /// runs of the method overlay all show through each other).
   void drawMesh(const GpuMesh& mesh, const glm::mat4& viewProjection, const glm::mat4& model,

@@ -9,8 +9,8 @@ struct GLFWwindow;
 namespace engine {
 
 struct WindowDesc {
-  int width = 1280;   ///< unit: screen pixels
-  int height = 720;   ///< unit: screen pixels
+  int width = 1280;  ///< unit: screen pixels
+  int height = 720;  ///< unit: screen pixels
   std::string title = "Jakobsen sandbox";
   bool visible = true;  ///< false for tests and screenshots that need no window on screen
   bool vsync = true;

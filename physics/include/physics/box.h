@@ -36,13 +36,13 @@ std::string_view toString(Shape shape);  ///< "box", "capsule"
 
 /// What a box is when it is created.
 struct BoxDesc {
-  std::string name;                  ///< for reports and dumps; may be empty
-  Vec3 center{0.0};                  ///< unit: m
-  Vec3 size{1.0};                    ///< unit: m; full edge lengths, each > 0
+  std::string name;  ///< for reports and dumps; may be empty
+  Vec3 center{0.0};  ///< unit: m
+  Vec3 size{1.0};    ///< unit: m; full edge lengths, each > 0
   Quat orientation{1.0, 0.0, 0.0, 0.0};
-  Vec3 velocity{0.0};                ///< unit: m/s; of the centre at creation
-  Vec3 angularVelocity{0.0};         ///< unit: rad/s; world frame, at creation
-  Real mass = 1.0;                   ///< unit: kg; spread evenly over the particles
+  Vec3 velocity{0.0};         ///< unit: m/s; of the centre at creation
+  Vec3 angularVelocity{0.0};  ///< unit: rad/s; world frame, at creation
+  Real mass = 1.0;            ///< unit: kg; spread evenly over the particles
   BoxModel model = BoxModel::Corners;
   Shape shape = Shape::Box;
   Material material;

@@ -3,8 +3,8 @@
 // its benchmark piles 136 of): eleven capsules of Bullet's radii and lengths at Bullet's places,
 // joined by ten joints: five hinges (spine, knees, elbows: two pins on the axis and a one-sided
 // link at each stop, as in ragdoll.h) and five cones (neck, hips, shoulders: one pin, a link that
-// keeps the limb's axis within the cone, and a link that bounds its twist). docs/physics.md, "Capsule ragdolls", lists
-// the layout and where it differs from Bullet's.
+// keeps the limb's axis within the cone, and a link that bounds its twist). docs/physics.md, "Capsule
+// ragdolls", lists the layout and where it differs from Bullet's.
 #include <array>
 #include <string>
 #include <string_view>
@@ -17,8 +17,17 @@ namespace phys {
 /// The eleven parts, in the order CapsuleRagdoll::parts holds them (Bullet's order). Left is the
 /// ragdoll's own left (+x when it stands facing +z), as in ragdoll.h.
 enum class CapsulePart {
-  Pelvis, Spine, Head, UpperLegLeft, LowerLegLeft, UpperLegRight, LowerLegRight,
-  UpperArmLeft, LowerArmLeft, UpperArmRight, LowerArmRight,
+  Pelvis,
+  Spine,
+  Head,
+  UpperLegLeft,
+  LowerLegLeft,
+  UpperLegRight,
+  LowerLegRight,
+  UpperArmLeft,
+  LowerArmLeft,
+  UpperArmRight,
+  LowerArmRight,
 };
 inline constexpr int kCapsuleParts = 11;
 inline constexpr int kCapsuleJoints = 10;

@@ -24,8 +24,8 @@ struct Obb {
 struct SatResult {
   bool overlap = false;  ///< true also when apart by less than the margin (depth < 0)
   int axis = -1;
-  Real depth = 0.0;      ///< unit: m; penetration along the axis when overlapping
-  Vec3 normal{0.0};      ///< unit vector from A towards B
+  Real depth = 0.0;  ///< unit: m; penetration along the axis when overlapping
+  Vec3 normal{0.0};  ///< unit vector from A towards B
 };
 
 /// Tolerances that bias the choice towards face axes, so the contact normal does not flip

@@ -67,7 +67,7 @@ struct BodyContact {
   Material combined;       ///< geometric mean of the two boxes' materials
   std::int32_t boxA = -1;  ///< for debug drawing and reports
   std::int32_t boxB = -1;
-  std::uint8_t kind = 0;   ///< ContactKind, for debug drawing
+  std::uint8_t kind = 0;  ///< ContactKind, for debug drawing
   /// The least n . (pointB - pointA) (unit: m): 0 when both points are on the surfaces. A point
   /// of a corners-model capsule is carried by the box face nearest it (its own 4 particles,
   /// which hold it as they hold a box's contact), off the round surface: this is by how much.
@@ -81,8 +81,8 @@ struct BodyContact {
 /// A point that collides with the ground: a loose particle or a box corner.
 struct GroundContact {
   Embedding point;
-  Material material;   ///< the body's own
-  Material combined;   ///< geometric mean with the ground's, kept current by the world
+  Material material;       ///< the body's own
+  Material combined;       ///< geometric mean with the ground's, kept current by the world
   std::int32_t body = -1;  ///< box index, or -1 for a loose particle
   /// How far above the plane the point is held (unit: m): 0 for a point on the surface; for a
   /// corners-model capsule, whose point is carried by a face of its box, the height of that face

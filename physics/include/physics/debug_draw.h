@@ -38,8 +38,9 @@ struct DebugDrawFlags {
   bool constraints = true;  ///< sticks red, range sticks and joint limits orange, joint pins yellow
   bool particles = false;   ///< every particle; frozen ones magenta
   bool contacts = true;     ///< ground contact points that were pushed, box-box contact points and normals
-  bool movedVertices = false;  ///< particles a box-box contact moved in the last step (the seed's green markers)
-  bool bounds = false;      ///< each box's axis-aligned bounding box
+  bool movedVertices =
+      false;            ///< particles a box-box contact moved in the last step (the seed's green markers)
+  bool bounds = false;  ///< each box's axis-aligned bounding box
 };
 
 }  // namespace phys

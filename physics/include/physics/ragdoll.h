@@ -24,8 +24,16 @@ std::optional<RagdollModel> parseRagdollModel(std::string_view name);
 /// The ten parts, in the order Ragdoll::parts holds them. Left is the ragdoll's own left (+x
 /// when it stands facing +z).
 enum class RagdollPart {
-  Head, Torso, UpperArmLeft, LowerArmLeft, UpperArmRight, LowerArmRight,
-  UpperLegLeft, LowerLegLeft, UpperLegRight, LowerLegRight,
+  Head,
+  Torso,
+  UpperArmLeft,
+  LowerArmLeft,
+  UpperArmRight,
+  LowerArmRight,
+  UpperLegLeft,
+  LowerLegLeft,
+  UpperLegRight,
+  LowerLegRight,
 };
 inline constexpr int kRagdollParts = 10;
 inline constexpr int kRagdollHinges = 9;
@@ -34,13 +42,13 @@ std::string_view toString(RagdollPart part);  ///< "head", "upper-arm-left", ...
 /// A ragdoll when it is created. At the identity orientation it stands upright on its feet,
 /// facing +z, 1.72 m tall at scale 1.
 struct RagdollDesc {
-  std::string name;           ///< its parts are named "<name>.head", "<name>.torso", ...
-  Vec3 hips{0.0};             ///< unit: m; where the bottom of the torso is (the hinge line of the hips)
+  std::string name;  ///< its parts are named "<name>.head", "<name>.torso", ...
+  Vec3 hips{0.0};    ///< unit: m; where the bottom of the torso is (the hinge line of the hips)
   Quat orientation{1.0, 0.0, 0.0, 0.0};
-  Real scale = 1.0;           ///< unitless; multiplies every length
-  Real mass = 70.0;           ///< unit: kg; the whole body's, split over the parts as in a person
+  Real scale = 1.0;  ///< unitless; multiplies every length
+  Real mass = 70.0;  ///< unit: kg; the whole body's, split over the parts as in a person
   RagdollModel model = RagdollModel::Seed;
-  Vec3 velocity{0.0};         ///< unit: m/s; of every part at creation
+  Vec3 velocity{0.0};  ///< unit: m/s; of every part at creation
   Material material;
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
@@ -52,10 +60,10 @@ struct RagdollDesc {
 struct RagdollHinge {
   RagdollPart parent = RagdollPart::Torso;
   RagdollPart child = RagdollPart::Head;
-  Vec3 axis{1.0, 0.0, 0.0};       ///< unit vector in the parent's frame (the same in the child's at rest)
+  Vec3 axis{1.0, 0.0, 0.0};        ///< unit vector in the parent's frame (the same in the child's at rest)
   Vec3 reference{0.0, -1.0, 0.0};  ///< unit vector normal to axis, in both frames at rest
-  Real minAngle = 0.0;            ///< unit: rad
-  Real maxAngle = 0.0;            ///< unit: rad
+  Real minAngle = 0.0;             ///< unit: rad
+  Real maxAngle = 0.0;             ///< unit: rad
 };
 
 /// What addRagdoll built.

@@ -40,7 +40,7 @@ struct WorldSettings {
   Real groundHeight = 0.0;           ///< unit: m
   Material groundMaterial;
   /// A particle farther than this from the origin along any axis is frozen and reported.
-  Real bound = 1.0e6;                ///< unit: m
+  Real bound = 1.0e6;  ///< unit: m
 };
 
 /// Ranges validate() enforces, shared by the scene loader, the lab and the sandbox's sliders.

@@ -18,7 +18,9 @@ using Vec3 = glm::dvec3;
 using Quat = glm::dquat;
 
 /// True when every component is finite.
-inline bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+inline bool finite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 /// Index of a particle in the world's particle arrays.
 using ParticleId = std::uint32_t;

@@ -21,11 +21,11 @@ namespace phys {
 
 /// A particle when it is created.
 struct ParticleDesc {
-  Vec3 position{0.0};  ///< unit: m
-  Vec3 velocity{0.0};  ///< unit: m/s, at the time of creation
-  Real mass = 1.0;     ///< unit: kg; > 0 unless pinned
-  bool pinned = false; ///< a pinned particle never moves (inverse mass 0)
-  std::string name;    ///< for reports and dumps; may be empty
+  Vec3 position{0.0};   ///< unit: m
+  Vec3 velocity{0.0};   ///< unit: m/s, at the time of creation
+  Real mass = 1.0;      ///< unit: kg; > 0 unless pinned
+  bool pinned = false;  ///< a pinned particle never moves (inverse mass 0)
+  std::string name;     ///< for reports and dumps; may be empty
 };
 
 /// What the guard did to a particle that went bad.
@@ -209,55 +209,55 @@ class World {
   std::vector<CapsuleGroundPoint> capsuleGround_;
 
   std::vector<GroundContact> contactPoints_;  // loose particles and box corners
-  std::vector<Real> normalPush_;  // per contact point: ground correction of the last pass (m)
-  std::vector<std::uint8_t> groundHit_;  // per contact point: pushed in this substep (restitution)
-  std::vector<Real> groundApproach_;     // per contact point: approach speed at the substep's start (m/s)
-  std::vector<Real> groundAllowance_;    // per contact point: depth at x*, then the depth it may keep (m)
+  std::vector<Real> normalPush_;              // per contact point: ground correction of the last pass (m)
+  std::vector<std::uint8_t> groundHit_;       // per contact point: pushed in this substep (restitution)
+  std::vector<Real> groundApproach_;   // per contact point: approach speed at the substep's start (m/s)
+  std::vector<Real> groundAllowance_;  // per contact point: depth at x*, then the depth it may keep (m)
 
   // Box-box collision, rebuilt every substep into storage that keeps its capacity.
-  std::vector<Obb> frames_;                 // per box
+  std::vector<Obb> frames_;  // per box
   struct Interval {
     Real min, max;  // extent of a box's bounds along the sweep axis
     BoxId box;
   };
-  std::vector<Interval> sweep_;             // sweep-and-prune list, kept sorted between steps
+  std::vector<Interval> sweep_;  // sweep-and-prune list, kept sorted between steps
   struct Bounds {
     Vec3 lo, hi;
   };
-  std::vector<Bounds> bounds_;              // per box: AABB grown by its reach over a step
-  std::vector<Real> travel_;                // per box: that reach (m)
-  std::vector<Obb> pairFrames_;             // per box: its frame when pairs_ was found
-  bool pairsStale_ = true;                  // bodies or filters changed since pairs_ was found
-  int sweepAxis_ = 0;                       // the axis sweep_ is sorted along
+  std::vector<Bounds> bounds_;   // per box: AABB grown by its reach over a step
+  std::vector<Real> travel_;     // per box: that reach (m)
+  std::vector<Obb> pairFrames_;  // per box: its frame when pairs_ was found
+  bool pairsStale_ = true;       // bodies or filters changed since pairs_ was found
+  int sweepAxis_ = 0;            // the axis sweep_ is sorted along
   std::vector<std::pair<BoxId, BoxId>> pairs_;
   std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
   std::vector<BodyContact> bodyContacts_;
-  std::vector<Real> bodyPush_;              // per body contact: push of the last pass (m)
-  std::vector<std::uint8_t> bodyTouched_;   // per body contact: pushed in this substep
-  std::vector<Real> bodyApproach_;          // per body contact: approach speed at the substep's start (m/s)
-  std::vector<Real> bodyAllowance_;         // per body contact: overlap at x*, then what it may keep (m)
-  std::vector<RigidState> rigid_;           // per box: restitution's rigid-body view
+  std::vector<Real> bodyPush_;             // per body contact: push of the last pass (m)
+  std::vector<std::uint8_t> bodyTouched_;  // per body contact: pushed in this substep
+  std::vector<Real> bodyApproach_;         // per body contact: approach speed at the substep's start (m/s)
+  std::vector<Real> bodyAllowance_;        // per body contact: overlap at x*, then what it may keep (m)
+  std::vector<RigidState> rigid_;          // per box: restitution's rigid-body view
   // Parting of deep overlaps without velocity (partWithoutVelocity).
   struct PartPair {
     BoxId a, b;
     std::uint32_t firstContact, contactCount;  // its points in bodyContacts_
-    Vec3 normal;   // from a towards b
-    Real overlap;  // m, beyond the slop, at x*; negative when apart
-    Real need;     // m, the least n . (t_b - t_a) the parting must reach
+    Vec3 normal;                               // from a towards b
+    Real overlap;                              // m, beyond the slop, at x*; negative when apart
+    Real need;                                 // m, the least n . (t_b - t_a) the parting must reach
   };
-  std::vector<PartPair> partPairs_;         // per touching pair, rebuilt every substep
-  std::vector<BoxId> jointGroup_;           // per box: union-find parent over links and sticks
-  std::vector<BoxId> partRoot_;             // per box: its group's root, this substep
-  std::vector<Vec3> partShift_;             // per box: translation (m)
-  std::vector<Real> partWeight_;            // per box: inverse mass (1/kg), 0 if it cannot move
-  std::vector<Real> partGround_;            // per box: n_g . shift it needs (m)
+  std::vector<PartPair> partPairs_;              // per touching pair, rebuilt every substep
+  std::vector<BoxId> jointGroup_;                // per box: union-find parent over links and sticks
+  std::vector<BoxId> partRoot_;                  // per box: its group's root, this substep
+  std::vector<Vec3> partShift_;                  // per box: translation (m)
+  std::vector<Real> partWeight_;                 // per box: inverse mass (1/kg), 0 if it cannot move
+  std::vector<Real> partGround_;                 // per box: n_g . shift it needs (m)
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
-  std::vector<std::uint8_t> touched_;  // per contact point: touched the ground in the last step
+  std::vector<std::uint8_t> touched_;            // per contact point: touched the ground in the last step
 
   // Solver scratch, sized when things are added so the step never allocates.
-  std::vector<Real> lambda_;          // per stick: XPBD multiplier
-  std::vector<Vec3> jacobiDelta_;     // per particle
-  std::vector<Real> degree_;          // per particle: sticks attached (Jacobi's scaling)
+  std::vector<Real> lambda_;       // per stick: XPBD multiplier
+  std::vector<Vec3> jacobiDelta_;  // per particle
+  std::vector<Real> degree_;       // per particle: sticks attached (Jacobi's scaling)
 
   std::optional<Drag> drag_;
   std::int32_t dragBox_ = -1;  // the box carrying the drag's point, or -1

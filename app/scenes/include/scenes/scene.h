@@ -38,7 +38,7 @@ struct NamedBody {
 /// attributes as written, with the line, and the lab reads and checks them, so its errors can
 /// name the file, the line and the attribute like the loader's. The sandbox ignores them.
 struct Expectation {
-  int line = 0;  ///< 1-based, in the scene file
+  int line = 0;                                                 ///< 1-based, in the scene file
   std::vector<std::pair<std::string, std::string>> attributes;  ///< in file order
 
   /// The attribute's value as written, or nullptr.
@@ -47,18 +47,18 @@ struct Expectation {
 
 /// Choices a caller may impose on a file as it is loaded (the lab's --model sweeps them).
 struct LoadOptions {
-  std::optional<phys::BoxModel> boxModel;        ///< every box, capsule, stack, pyramid and grid box
-                                                 ///< (not ragdoll parts: ragdollModel says theirs)
+  std::optional<phys::BoxModel> boxModel;          ///< every box, capsule, stack, pyramid and grid box
+                                                   ///< (not ragdoll parts: ragdollModel says theirs)
   std::optional<phys::RagdollModel> ragdollModel;  ///< every ragdoll, of boxes or capsules
 };
 
 struct Scene {
   std::string name;
-  std::string description;  ///< one line; may be empty
+  std::string description;     ///< one line; may be empty
   std::filesystem::path file;  ///< where it was loaded from; empty for a string
   phys::World world;
   CameraStart camera;
-  std::vector<NamedBody> bodies;  ///< every named body, in file order
+  std::vector<NamedBody> bodies;          ///< every named body, in file order
   std::vector<Expectation> expectations;  ///< the file's <expect> elements, in file order
 };
 
