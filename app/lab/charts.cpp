@@ -1,5 +1,7 @@
 #include "charts.h"
 
+#include "gnuplot.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -104,11 +106,12 @@ std::string gnuplotScript(const Chart& chart) {
   out += "set grid xtics ytics mxtics mytics lc 'gray80'\n";
   out += "set key outside right top box\n";
   out += "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";
+  out += std::string(kOutdirDefault);
   out += "set terminal pngcairo size 1000,640 font ',10' noenhanced\n";
-  out += "set output " + quoted(chart.output + ".png") + "\n";
+  out += "set output outdir.'/'." + quoted(chart.output + ".png") + "\n";
   out += plotCommand(chart, kept);
   out += "set terminal svg size 1000,640 font ',10' noenhanced background 'white'\n";
-  out += "set output " + quoted(chart.output + ".svg") + "\n";
+  out += "set output outdir.'/'." + quoted(chart.output + ".svg") + "\n";
   out += "replot\n";
   out += "unset output\n";
   return out;

@@ -1,6 +1,7 @@
 #include "csv.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
@@ -14,6 +15,14 @@ std::string csvField(std::string_view text) {
     out += c;
   }
   return out + "\"";
+}
+
+std::string csvNumber(double value, int digits) {
+  if (std::isnan(value)) return {};
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
 }
 
 std::vector<std::string> csvFields(std::string_view line) {

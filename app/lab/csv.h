@@ -14,6 +14,11 @@ namespace lab {
 /// or a line break.
 std::string csvField(std::string_view text);
 
+/// A number as the lab's CSV files write it: %.{digits}g; "inf" or "-inf" for a figure that
+/// blew up (fieldNumber reads it back as such); and, for NaN, an empty field, CSV's missing
+/// value, never "nan".
+std::string csvNumber(double value, int digits);
+
 /// One CSV line split into fields, undoing csvField's quoting (a quoted field may hold commas;
 /// a doubled quote inside it is one quote). Always at least one field.
 std::vector<std::string> csvFields(std::string_view line);

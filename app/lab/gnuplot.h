@@ -10,9 +10,15 @@ namespace lab {
 /// The gnuplot program found on PATH, or empty when there is none.
 std::filesystem::path findGnuplot();
 
-/// Runs `gnuplot SCRIPT` in `folder` (so the script names its data and output files relative
-/// to it). Returns "" on success, else one line saying why: gnuplot missing (with the package
-/// to install), or its exit status and the end of what it printed.
+/// The lab's scripts write their charts into the folder `outdir` names: runGnuplot sets it to a
+/// private folder, and a person running `gnuplot SCRIPT` by hand gets the script's own folder.
+inline constexpr const char* kOutdirDefault = "if (!exists('outdir')) outdir = '.'\n";
+
+/// Runs `gnuplot SCRIPT` in `folder` (so the script names its data files relative to it), with
+/// its charts drawn into a new hidden folder there and then each renamed into `folder`, so a
+/// chart is replaced whole or not at all and a failed run leaves the old charts. Returns "" on
+/// success, else one line saying why: gnuplot missing (with the package to install), its exit
+/// status and the end of what it printed, or which chart could not be moved into place.
 std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder);
 
 }  // namespace lab

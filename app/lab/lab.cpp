@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "commands.h"
+#include "fileio/files.h"
 #include "report.h"
 #include "run.h"
 #include "scenes/scene.h"
@@ -69,7 +70,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
 
   RunResult result;
   try {
-    result = runScene(*scene, options);
+    result = runScene(*scene, options, &err);
   } catch (const std::invalid_argument& e) {
     // A combination the world refuses (options.cpp already checked each value's range).
     err << "lab: the overrides were refused: " << e.what() << "\n";
@@ -81,7 +82,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   // The report goes out first, so a long run's figures survive a dump that cannot be written.
   if (options.dump) {
     try {
-      writeFileAtomically(*options.dump, dumpCsv(scene->world, scene->bodies));
+      fileio::writeAtomically(*options.dump, dumpCsv(scene->world, scene->bodies));
     } catch (const std::exception& e) {
       err << "lab: --dump: " << e.what() << "\n";
       return kExitFailure;

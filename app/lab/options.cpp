@@ -42,6 +42,7 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
     } else if (a == "--dump") {
       const std::string* v = value();
       if (v == nullptr) return missing("a file name");
+      if (v->empty()) return a + ": the file name is empty";
       o.dump = *v;
     } else if (a == "--data") {
       const std::string* v = value();

@@ -13,8 +13,11 @@
 namespace lab {
 namespace {
 
-// printf-style %.{digits}g, for the summary's rounded figures and the exact ones of JSON/CSV.
+// printf-style %.{digits}g, for the summary's rounded figures and the exact ones of JSON. A
+// figure that overflowed (the guard froze the world under a gravity of 1e308, say) reads n/a,
+// never inf or nan.
 std::string num(double value, int digits = 6) {
+  if (!std::isfinite(value)) return "n/a";
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
@@ -163,33 +166,11 @@ std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody>
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about "," + std::string here.
     for (double v : {c.x, c.y, c.z, q.w, q.x, q.y, q.z}) {
       s += ',';
-      s += num(v, 17);
+      s += csvNumber(v, 17);
     }
     s += "\n";
   }
   return s;
-}
-
-void writeFileAtomically(const std::filesystem::path& file, std::string_view text) {
-  std::filesystem::path tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      throw std::runtime_error("cannot write " + tmp.string());
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename " + tmp.string() + " to " + file.string() + ": " + ec.message());
-  }
 }
 
 }  // namespace lab

@@ -28,8 +28,4 @@ std::string hexHash(std::uint64_t hash);
 /// The CSV text of a dump: header name,x,y,z,qw,qx,qy,qz and one row per named body.
 std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody> bodies);
 
-/// Writes text to file atomically: FILE.tmp first, then a rename over FILE, so a reader never
-/// sees half a file. Throws std::runtime_error naming the file when it cannot.
-void writeFileAtomically(const std::filesystem::path& file, std::string_view text);
-
 }  // namespace lab

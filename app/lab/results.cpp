@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "csv.h"
+#include "fileio/files.h"
 #include "lab.h"
 #include "options.h"
 #include "report.h"
@@ -268,7 +269,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     if (o.quick) break;
   }
 
-  writeFileAtomically(o.out / "results.md", md.str());
+  fileio::writeAtomically(o.out / "results.md", md.str());
   out << "wrote " << (o.out / "results.md").string() << " and " << results.string() << "/\n";
   return failed ? kExitFailure : kExitOk;
 }
@@ -302,7 +303,7 @@ int reportMain(const std::vector<std::string>& args, std::ostream& out, std::ost
   o.data = dataDir(defaults);
   if (o.out.empty()) o.out = o.data / "docs";
   try {
-    fs::create_directories(o.out / "results");
+    fileio::prepareFolder(o.out / "results");  // before the runs, which take minutes
     return writeReport(o, out, err);
   } catch (const std::exception& e) {
     err << "lab: report: " << e.what() << "\n";

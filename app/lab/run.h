@@ -2,6 +2,7 @@
 // Stepping a loaded scene under the lab's overrides, and what the run measured.
 #include <cstdint>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -36,9 +37,15 @@ struct RunResult {
 /// std::invalid_argument of World::setSolverSettings when the world refuses them.
 void applyOverrides(phys::World& world, const RunOptions& options);
 
+/// A run longer than this says how far it has got, on the progress stream, every so often.
+inline constexpr double kProgressAfterSeconds = 2.0;
+inline constexpr double kProgressEverySeconds = 5.0;
+
 /// Applies the overrides, then steps the scene's world options.steps times and measures it.
 /// Throws std::invalid_argument (from applyOverrides) before any step when they are refused.
-RunResult runScene(scenes::Scene& scene, const RunOptions& options);
+/// With a progress stream, a run that takes longer than kProgressAfterSeconds prints a line
+/// there every kProgressEverySeconds: the step it is at, seconds a step, and the time left.
+RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress = nullptr);
 
 /// Median of the values (the mean of the middle two for an even count); 0 when empty.
 double median(std::vector<double> values);

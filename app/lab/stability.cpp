@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "fileio/files.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "options.h"
@@ -106,12 +107,12 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
 int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir,
                  std::ostream& err) {
   try {
-    std::filesystem::create_directories(dir);
-    writeFileAtomically(dir / "stability.md", md);
-    writeFileAtomically(dir / "stability.csv", stability::csvReport(r));
-    writeFileAtomically(dir / "stability-pass.dat", stability::passMatrix(r));
-    writeFileAtomically(dir / "stability-error.dat", stability::errorMatrix(r));
-    writeFileAtomically(dir / "stability.gp", stability::gnuplotScript(r));
+    fileio::prepareFolder(dir);  // again: it may have gone while the suite ran
+    fileio::writeAtomically(dir / "stability.md", md);
+    fileio::writeAtomically(dir / "stability.csv", stability::csvReport(r));
+    fileio::writeAtomically(dir / "stability-pass.dat", stability::passMatrix(r));
+    fileio::writeAtomically(dir / "stability-error.dat", stability::errorMatrix(r));
+    fileio::writeAtomically(dir / "stability.gp", stability::gnuplotScript(r));
   } catch (const std::exception& e) {
     err << "lab: --out: " << e.what() << "\n";
     return kExitFailure;
@@ -135,6 +136,15 @@ int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::
   if (const std::string error = stability::parseOptions(args, o); !error.empty()) {
     err << "lab: " << error << "\n" << stability::usage();
     return kExitUsage;
+  }
+  // The suite takes minutes: a folder it cannot write to is better said now than after it.
+  if (!o.out.empty()) {
+    try {
+      fileio::prepareFolder(o.out);
+    } catch (const fileio::FileError& e) {
+      err << "lab: --out: " << e.what() << "\n";
+      return kExitFailure;
+    }
   }
   std::vector<SuiteScene> scenes;
   try {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "csv.h"
+#include "gnuplot.h"
 
 namespace lab::stability {
 namespace {
@@ -229,15 +230,16 @@ std::string csvReport(const SuiteResult& r) {
         csv << phys::toString(r.settings[k].method) << "," << r.settings[k].iterations << ","
             << r.settings[k].substeps << ",";
       if (!o.judged) {
-        csv << "n/a,,,,," << number(o.msPerStep) << "," << csvField(o.note) << "\n";
+        csv << "n/a,,,,," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
         continue;
       }
       const Criterion& c = sc.criteria[o.worst];
       const Verdict& v = o.verdicts[o.worst];
       // A flips criterion with only a max has min 0; its max is the limit then.
       const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
-      csv << (o.passed ? 1 : 0) << "," << number(v.value) << "," << number(limit) << "," << number(v.ratio)
-          << "," << csvField(c.describe()) << "," << number(o.msPerStep) << "," << csvField(o.note) << "\n";
+      csv << (o.passed ? 1 : 0) << "," << csvNumber(v.value, 6) << "," << csvNumber(limit, 6) << ","
+          << csvNumber(v.ratio, 6) << "," << csvField(c.describe()) << "," << csvNumber(o.msPerStep, 6) << ","
+          << csvField(o.note) << "\n";
     }
   }
   return csv.str();
@@ -292,17 +294,17 @@ std::string gnuplotScript(const SuiteResult& r) {
     if (newBlock)
       gp << "set arrow from " << x << ", graph 0 to " << x << ", graph 1 nohead front lw 2 lc rgb 'black'\n";
   }
-  gp << "do for [format in 'png svg'] {\n"
+  gp << kOutdirDefault << "do for [format in 'png svg'] {\n"
      << "  if (format eq 'png') { if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size "
      << width << "," << height << " } else { set terminal png size " << width << "," << height << " } }\n"
      << "  if (format eq 'svg') { set terminal svg size " << width << "," << height << " }\n"
-     << "  set output 'stability-pass.'.format\n"
+     << "  set output outdir.'/stability-pass.'.format\n"
      << "  set label 1 'Stability: pass (green), fail (red), not judged (grey)' at screen 0.01, screen "
      << titleY << " left\n"
      << "  set cbrange [0:1]\n  set palette defined (0 '#d73027', 0.5 '#bdbdbd', 1 '#1a9850')\n"
      << "  set cbtics ('fail' 0, 'n/a' 0.5, 'pass' 1)\n  set palette maxcolors 3\n"
      << "  plot 'stability-pass.dat' matrix rowheaders columnheaders with image\n"
-     << "  set output 'stability-error.'.format\n"
+     << "  set output outdir.'/stability-error.'.format\n"
      << "  set label 1 'Stability: log10(value / limit) of the worst criterion: > 0 fails, 3 is 1000 or a "
         "blow-up, grey n/a' at "
         "screen 0.01, screen "

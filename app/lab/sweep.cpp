@@ -20,6 +20,7 @@
 #include "charts.h"
 #include "commands.h"
 #include "csv.h"
+#include "fileio/files.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "numbers.h"
@@ -351,7 +352,7 @@ std::vector<Row> frontByCost(const std::vector<Row>& rows) {
 // ---- files ----------------------------------------------------------------------------------
 
 std::string csvNumber(double v) {
-  return formatNumber(v, 10);
+  return lab::csvNumber(v, 10);
 }
 
 constexpr const char* kCsvHeader =
@@ -499,11 +500,11 @@ struct Written {
 Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
                      const std::filesystem::path& dir) {
   Written w;
-  std::filesystem::create_directories(dir);
-  writeFileAtomically(dir / "results.csv", csvText(plan.sceneName, rows));
-  writeFileAtomically(dir / "pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
+  fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
+  fileio::writeAtomically(dir / "results.csv", csvText(plan.sceneName, rows));
+  fileio::writeAtomically(dir / "pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget);
-  writeFileAtomically(dir / "sweep.gp", gnuplotScript(chart));
+  fileio::writeAtomically(dir / "sweep.gp", gnuplotScript(chart));
   for (const char* f : {"results.csv", "pareto.csv", "sweep.gp"}) w.files.push_back((dir / f).string());
   if (!hasPoints(chart)) {
     w.chartProblem = "no run has a finite error, so there is no chart to draw";
@@ -588,6 +589,13 @@ int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostr
     if (const std::string e = makePlan(o, file, plan); !e.empty()) {
       err << "lab: " << e << "\n" << sweepUsage();
       return kExitUsage;
+    }
+    // A sweep takes minutes: a folder it cannot write to is better said now than after it.
+    try {
+      fileio::prepareFolder(o.out);
+    } catch (const fileio::FileError& e) {
+      err << "lab: --out: " << e.what() << "\n";
+      return kExitFailure;
     }
     return runSweep(plan, o.out, out, err);
   } catch (const scenes::LoadError& e) {

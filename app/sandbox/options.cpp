@@ -55,6 +55,10 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
     } else if (a == "--screenshot") {
       const std::string* v = value("a file name");
       if (v == nullptr) return out;
+      if (v->empty()) {
+        out.error = "--screenshot: the file name is empty";
+        return out;
+      }
       o.screenshot = *v;
     } else if (a == "--frames") {
       const std::string* v = value("a number of frames");

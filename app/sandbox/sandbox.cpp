@@ -15,6 +15,7 @@
 #include "controls.h"
 #include "engine/error.h"
 #include "engine/image.h"
+#include "fileio/files.h"
 
 namespace sandbox {
 namespace {
@@ -22,7 +23,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxStepsPerFrame = 8;  // beyond this the sim slows down instead of spiralling
-constexpr float kCameraSpeed = 4.0f;  // unit: m/s; Shift makes it 4 times faster
+constexpr std::size_t kMaxLayoutBytes = std::size_t{1} << 20;  // imgui.ini is a few KiB
+constexpr float kCameraSpeed = 4.0f;                           // unit: m/s; Shift makes it 4 times faster
 constexpr float kLookDegreesPerPixel = 0.15f;
 constexpr float kSpawnDistance = 2.0f;  // unit: m; in front of the eye, at the crosshair
 
@@ -100,8 +102,11 @@ Sandbox::Sandbox(const Options& options)
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   // Panel layout is remembered in interactive use only; screenshots always use the defaults.
-  imguiIni_ = settingsFile_.empty() ? std::string() : (settingsFile_.parent_path() / "imgui.ini").string();
-  ImGui::GetIO().IniFilename = imguiIni_.empty() ? nullptr : imguiIni_.c_str();
+  // ImGui would write imgui.ini itself, in place; the sandbox reads and writes it instead, so
+  // it goes through the one atomic writer like every other file.
+  ImGui::GetIO().IniFilename = nullptr;
+  layoutFile_ = settingsFile_.empty() ? std::filesystem::path() : settingsFile_.parent_path() / "imgui.ini";
+  loadPanelLayout();
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_.handle(), true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
@@ -109,9 +114,34 @@ Sandbox::Sandbox(const Options& options)
 
 Sandbox::~Sandbox() {
   saveUserSettingsOnExit();
+  savePanelLayout();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+}
+
+void Sandbox::loadPanelLayout() {
+  std::error_code ec;
+  if (layoutFile_.empty() || !std::filesystem::exists(layoutFile_, ec)) return;
+  try {
+    const std::string ini = fileio::readWhole(layoutFile_, kMaxLayoutBytes);
+    ImGui::LoadIniSettingsFromMemory(ini.data(), ini.size());
+  } catch (const fileio::FileError& e) {
+    std::cerr << "sandbox: warning: the panel layout was not read: " << e.what() << '\n';
+  }
+}
+
+void Sandbox::savePanelLayout() {
+  ImGuiIO& io = ImGui::GetIO();
+  io.WantSaveIniSettings = false;
+  if (layoutFile_.empty()) return;
+  std::size_t size = 0;
+  const char* ini = ImGui::SaveIniSettingsToMemory(&size);
+  try {
+    fileio::writeAtomically(layoutFile_, std::string_view(ini, size));
+  } catch (const fileio::FileError& e) {
+    std::cerr << "sandbox: " << e.what() << '\n';
+  }
 }
 
 void Sandbox::saveUserSettingsOnExit() {
@@ -477,10 +507,13 @@ int Sandbox::run() {
       continue;
     }
     renderFrame();
+    // ImGui asks every few seconds after a panel moved (io.IniSavingRate).
+    if (ImGui::GetIO().WantSaveIniSettings) savePanelLayout();
 
     if (options_.screenshot && frame >= options_.frames) {
       glReadBuffer(GL_BACK);
-      engine::writePng(*options_.screenshot, engine::readFramebuffer(window_.framebufferSize()));
+      fileio::writeAtomically(*options_.screenshot,
+                              engine::encodePng(engine::readFramebuffer(window_.framebufferSize())));
       std::cout << "wrote " << options_.screenshot->string() << " after " << frame << " frames\n";
       return 0;
     }

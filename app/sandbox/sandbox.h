@@ -53,11 +53,13 @@ class Sandbox {
   void renderFrame();
   void drawMenuBar();
   void drawDialogs();
+  void loadPanelLayout();
+  void savePanelLayout();
 
   Options options_;
   bool interactive_;  // false for --screenshot: nothing remembered, one step per frame
   std::filesystem::path settingsFile_;
-  std::string imguiIni_;  // ImGui keeps a pointer to this
+  std::filesystem::path layoutFile_;  // ImGui's panel layout; empty when not remembered
   UserSettings user_;
   engine::Window window_;
   std::unique_ptr<engine::Renderer> renderer_;

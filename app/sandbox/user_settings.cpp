@@ -8,9 +8,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <system_error>
+
+#include "fileio/files.h"
 
 namespace sandbox {
 namespace {
@@ -18,6 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kMinWindowSide = 100;
+constexpr std::size_t kMaxSettingsBytes = std::size_t{1} << 20;  // a few hundred bytes in use
 constexpr int kMaxWindowSide = 16384;
 
 std::string_view trim(std::string_view s) {
@@ -88,11 +92,14 @@ LoadedSettings loadUserSettings(const fs::path& file) {
   UserSettings& s = out.settings;
   std::error_code ec;
   if (!fs::exists(file, ec)) return out;  // first run: nothing saved yet
-  std::ifstream in(file);
-  if (!in || !fs::is_regular_file(file, ec)) {
-    out.warnings.push_back(file.string() + ": cannot read it; using the defaults");
+  std::string content;
+  try {
+    content = fileio::readWhole(file, kMaxSettingsBytes);
+  } catch (const fileio::FileError& e) {
+    out.warnings.push_back(std::string(e.what()) + "; using the defaults");
     return out;
   }
+  std::istringstream in(content);
   std::string line;
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {
     const std::string where = file.string() + ":" + std::to_string(lineNo) + ": ";
@@ -146,35 +153,14 @@ LoadedSettings loadUserSettings(const fs::path& file) {
 }
 
 void saveUserSettings(const UserSettings& settings, const fs::path& file) {
-  auto fail = [&](const std::string& reason) {
-    throw std::runtime_error("cannot save settings to " + file.string() + ": " + reason);
-  };
-  std::error_code ec;
   const fs::path folder = file.parent_path();
   if (!folder.empty()) {
+    std::error_code ec;
     fs::create_directories(folder, ec);
-    if (ec) fail("cannot create " + folder.string() + ": " + ec.message());
+    if (ec)
+      throw fileio::FileError(file, "cannot create the folder " + folder.string() + ": " + ec.message());
   }
-  // Same folder as the target, so the rename stays on one file system and is atomic: a crash
-  // leaves either the old settings or the new ones, never half a file. The pid keeps two
-  // sandboxes exiting at once from writing into each other's temporary file.
-  const fs::path temp = fs::path(file).concat(".tmp-" + std::to_string(::getpid()));
-  auto failAndClean = [&](const std::string& reason) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    fail(reason);
-  };
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) failAndClean(std::string("cannot create ") + temp.string() + ": " + std::strerror(errno));
-    out << toText(settings);
-    out.flush();
-    if (!out) failAndClean("writing " + temp.string() + " failed");
-    out.close();
-    if (!out) failAndClean("closing " + temp.string() + " failed");
-  }
-  fs::rename(temp, file, ec);
-  if (ec) failAndClean(ec.message());
+  fileio::writeAtomically(file, toText(settings));
 }
 
 void addRecentFile(UserSettings& settings, const std::string& path) {

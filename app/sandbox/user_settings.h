@@ -36,8 +36,8 @@ struct LoadedSettings {
 /// Reads the file; a missing file gives the defaults and no warning. A bad line is skipped with
 /// a warning and the rest is kept.
 LoadedSettings loadUserSettings(const std::filesystem::path& file);
-/// Writes atomically (temporary file, then rename), creating the folder; throws
-/// std::runtime_error naming the file when it cannot.
+/// Writes through fileio::writeAtomically, creating the folder first; throws fileio::FileError
+/// (a std::runtime_error) naming the file and the reason when it cannot.
 void saveUserSettings(const UserSettings& settings, const std::filesystem::path& file);
 /// Puts `path` first in the recent list, removing an older copy and keeping at most kMaxRecentFiles.
 void addRecentFile(UserSettings& settings, const std::string& path);

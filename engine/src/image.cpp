@@ -33,17 +33,21 @@ Image readFramebuffer(const glm::ivec2& size) {
   return image;
 }
 
-void writePng(const std::filesystem::path& file, const Image& image) {
-  const std::filesystem::path temp = file.string() + ".tmp";
-  if (stbi_write_png(temp.string().c_str(), image.width, image.height, 4, image.rgba.data(),
-                     image.width * 4) == 0) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    throw Error(file.string() + ": cannot write PNG (is the folder there and writable?)");
+std::string encodePng(const Image& image) {
+  // stb's file writer ignores fwrite's and fclose's errors (a full disk gave a truncated PNG
+  // and success); encoded into memory, the bytes are whole and the caller's writer checks.
+  std::string png;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                               static_cast<std::size_t>(size));
+  };
+  if (image.width <= 0 || image.height <= 0 ||
+      stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(),
+                             image.width * 4) == 0) {
+    throw Error("cannot encode a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                " image as PNG");
   }
-  std::error_code ec;
-  std::filesystem::rename(temp, file, ec);
-  if (ec) throw Error(file.string() + ": cannot move the written PNG into place: " + ec.message());
+  return png;
 }
 
 Image readPng(const std::filesystem::path& file) {

@@ -145,9 +145,9 @@ const testing_scenes::BadScene kBadCapsules[] = {
      "is required (m)"},
     {"no pos", "<scene name='s'>\n<capsule radius='0.1' length='1'/>\n</scene>", 2, "pos", "is required"},
     {"zero radius", "<scene name='s'>\n<capsule pos='0 1 0'\n radius='0' length='1'/>\n</scene>", 3, "radius",
-     "'0' must be > 0 (m)"},
+     "'0' must be at least 0.0005 (m)"},
     {"negative radius", "<scene name='s'>\n<capsule pos='0 1 0' radius='-0.1' length='1'/>\n</scene>", 2,
-     "radius", "must be > 0 (m)"},
+     "radius", "'-0.1' must be at least 0.0005 (m)"},
     {"radius with a unit", "<scene name='s'>\n<capsule pos='0 1 0' radius='0.1m' length='1'/>\n</scene>", 2,
      "radius", "not a finite number (m)"},
     {"length under twice the radius",
@@ -163,7 +163,7 @@ const testing_scenes::BadScene kBadCapsules[] = {
     {"bad model", "<scene name='s'>\n<capsule pos='0 1 0' radius='0.1' length='1' model='sphere'/>\n</scene>",
      2, "model", "corners or tetra"},
     {"negative mass", "<scene name='s'>\n<capsule pos='0 1 0' radius='0.1' length='1' mass='-1'/>\n</scene>",
-     2, "mass", "> 0 (kg)"},
+     2, "mass", "'-1' must be from 1e-06 to 1e+09 (kg)"},
     {"duplicate name",
      "<scene name='s'>\n<box name='a' pos='0 0 0'/>\n<capsule name='a' pos='0 2 0' radius='0.1' "
      "length='1'/>\n</scene>",
@@ -179,7 +179,8 @@ const testing_scenes::BadScene kBadCapsules[] = {
      "<ragdoll name='r' pos='0 1 0' shape='capsule'/>\n</scene>",
      3, "name", "already the name"},
     {"capsule ragdoll zero mass",
-     "<scene name='s'>\n<ragdoll pos='0 1 0' shape='capsule' mass='0'/>\n</scene>", 2, "mass", "> 0 (kg)"},
+     "<scene name='s'>\n<ragdoll pos='0 1 0' shape='capsule' mass='0'/>\n</scene>", 2, "mass",
+     "'0' must be from 1e-06 to 1e+09 (kg)"},
 };
 
 TEST(SceneCapsules, BadCapsulesNameFileLineAndAttribute) {

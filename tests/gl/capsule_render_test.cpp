@@ -22,6 +22,7 @@
 #include "engine/error.h"
 #include "engine/image.h"
 #include "engine/renderer.h"
+#include "fileio/files.h"
 #include "gl_context.h"
 #include "sandbox_run.h"
 #include "scene_view.h"
@@ -102,7 +103,7 @@ class CapsuleRender : public testing::Test {
     engine::Image image = engine::readFramebuffer({kWidth, kHeight});
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
     fs::create_directories(OUTPUT_DIR);
-    engine::writePng(fs::path(OUTPUT_DIR) / png, image);
+    fileio::writeAtomically(fs::path(OUTPUT_DIR) / png, engine::encodePng(image));
     return image;
   }
 

@@ -24,10 +24,7 @@ void addBox(ElementReader& e, BuildContext& ctx, phys::BoxDesc desc, const std::
 
 // What every rigid body element reads after its size: mass, model, friction, orientation.
 void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BoxDesc& d) {
-  if (auto mass = e.number("mass", "kg")) {
-    if (*mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
-    d.mass = *mass;
-  }
+  if (auto mass = readMass(e, "mass")) d.mass = *mass;
   if (auto model = e.text("model")) {
     const auto parsed = phys::parseBoxModel(*model);
     if (!parsed) e.fail("model", "'" + *model + "' must be corners or tetra");
@@ -40,10 +37,30 @@ void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BoxDesc&
 
 }  // namespace
 
+std::optional<double> readMass(ElementReader& e, std::string_view attribute) {
+  const std::optional<double> mass = e.number(attribute, "kg");
+  if (mass && !(*mass >= kMinMass && *mass <= kMaxMass)) {
+    e.fail(attribute, "'" + formatNumber(*mass) + "' must be from " + formatNumber(kMinMass) + " to " +
+                          formatNumber(kMaxMass) + " (kg)");
+  }
+  return mass;
+}
+
+void checkInsideBound(ElementReader& e, const phys::World& world, std::string_view attribute,
+                      const phys::Vec3& point) {
+  const double bound = world.worldSettings().bound;
+  if (std::abs(point.x) <= bound && std::abs(point.y) <= bound && std::abs(point.z) <= bound) return;
+  e.fail(attribute, "puts a body at (" + formatNumber(point.x) + ", " + formatNumber(point.y) + ", " +
+                        formatNumber(point.z) + "), beyond the world's bound of " + formatNumber(bound) +
+                        " m along an axis (<world bound>)");
+}
+
 phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
   phys::BoxDesc d;
   if (auto size = e.vector("size", "m", true)) {
-    if (size->x <= 0.0 || size->y <= 0.0 || size->z <= 0.0) e.fail("size", "sizes must be > 0 (m)");
+    if (!(size->x >= kMinBodySize && size->y >= kMinBodySize && size->z >= kMinBodySize)) {
+      e.fail("size", "sizes must be at least " + formatNumber(kMinBodySize) + " (m)");
+    }
     d.size = *size;
   }
   readBodyCommon(e, options, d);
@@ -54,7 +71,10 @@ phys::BoxDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options) {
   phys::BoxDesc d;
   d.shape = phys::Shape::Capsule;
   const double radius = e.requiredNumber("radius", "m");
-  if (radius <= 0.0) e.fail("radius", "'" + formatNumber(radius) + "' must be > 0 (m)");
+  if (!(2.0 * radius >= kMinBodySize)) {
+    e.fail("radius",
+           "'" + formatNumber(radius) + "' must be at least " + formatNumber(kMinBodySize / 2) + " (m)");
+  }
   const double length = e.requiredNumber("length", "m");
   // The box it is inscribed in is 2 radius wide: the physics needs size.y >= size.x, computed
   // here the same way, so a sphere (length exactly 2 radius) passes both checks.
@@ -72,6 +92,7 @@ phys::BoxDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options) {
 void generateStack(ElementReader& e, BuildContext& ctx) {
   const std::string name = e.text("name").value_or("stack");
   const phys::Vec3 pos = e.requiredVector("pos", "m");
+  checkInsideBound(e, ctx.world, "pos", pos);
   const long count = e.requiredInteger("count", 1, kMaxStack);
   phys::BoxDesc box = readBoxCommon(e, ctx.options);
   e.rejectUnknownAttributes();
@@ -87,6 +108,7 @@ void generateStack(ElementReader& e, BuildContext& ctx) {
 void generatePyramid(ElementReader& e, BuildContext& ctx) {
   const std::string name = e.text("name").value_or("pyramid");
   const phys::Vec3 pos = e.requiredVector("pos", "m");
+  checkInsideBound(e, ctx.world, "pos", pos);
   const long base = e.requiredInteger("base", 1, kMaxPyramidBase);
   const double taper = e.number("taper", "").value_or(1.0);
   if (taper <= 0.0 || taper > 1.0) e.fail("taper", "must be > 0 and at most 1");
@@ -112,6 +134,7 @@ void generatePyramid(ElementReader& e, BuildContext& ctx) {
 void generateGrid(ElementReader& e, BuildContext& ctx) {
   const std::string name = e.text("name").value_or("grid");
   const phys::Vec3 pos = e.requiredVector("pos", "m");
+  checkInsideBound(e, ctx.world, "pos", pos);
   const std::optional<glm::ivec3> count = e.integers3("count", 1, kMaxGridSide);
   if (!count) e.fail("count", "is required (three whole numbers)");
   if (static_cast<long>(count->x) * count->y * count->z > kMaxGridBoxes) {
@@ -139,13 +162,12 @@ void generateGrid(ElementReader& e, BuildContext& ctx) {
 void generateChain(ElementReader& e, BuildContext& ctx) {
   const std::string name = e.text("name").value_or("chain");
   const phys::Vec3 pos = e.requiredVector("pos", "m");
+  checkInsideBound(e, ctx.world, "pos", pos);
   const long links = e.requiredInteger("links", 1, kMaxChainLinks);
   const double length = e.requiredNumber("length", "m");
   if (length <= 0.0) e.fail("length", "must be > 0 (m)");
-  const double mass = e.number("mass", "kg").value_or(phys::ParticleDesc{}.mass);
-  if (mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
-  const double endMass = e.number("end-mass", "kg").value_or(mass);
-  if (endMass <= 0.0) e.fail("end-mass", "must be > 0 (kg)");
+  const double mass = readMass(e, "mass").value_or(phys::ParticleDesc{}.mass);
+  const double endMass = readMass(e, "end-mass").value_or(mass);
   const bool pinned = e.boolean("pinned").value_or(true);
   const double compliance = e.number("compliance", "m/N").value_or(0.0);
   if (compliance < 0.0 || compliance > phys::kMaxCompliance) {
@@ -185,15 +207,16 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   }
   d.name = e.text("name").value_or("ragdoll");
   d.hips = e.requiredVector("pos", "m");
+  checkInsideBound(e, ctx.world, "pos", d.hips);
   if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
   if (auto scale = e.number("scale", "")) {
-    if (*scale <= 0.0 || *scale > 1000.0) e.fail("scale", "must be > 0 and at most 1000");
+    if (!(*scale >= kMinRagdollScale && *scale <= kMaxRagdollScale)) {
+      e.fail("scale", "'" + formatNumber(*scale) + "' must be from " + formatNumber(kMinRagdollScale) +
+                          " to " + formatNumber(kMaxRagdollScale));
+    }
     d.scale = *scale;
   }
-  if (auto mass = e.number("mass", "kg")) {
-    if (*mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
-    d.mass = *mass;
-  }
+  if (auto mass = readMass(e, "mass")) d.mass = *mass;
   if (auto model = e.text("model")) {
     const auto parsed = phys::parseRagdollModel(*model);
     if (!parsed) e.fail("model", "'" + *model + "' must be seed or lean");

@@ -2,6 +2,7 @@
 // The scene file's generators: many bodies from one element. Each reads its own attributes
 // and adds to the world under construction; members are named "<name>[i]".
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "element_reader.h"
@@ -24,6 +25,28 @@ inline constexpr int kMaxGridSide = 100;      // per axis
 inline constexpr long kMaxGridBoxes = 100000;
 inline constexpr long kMaxChainLinks = 100000;
 inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
+
+/// What a file may say of one body, so that every body it makes is one the physics can
+/// represent and every file the writer saves loads back (docs/scene-format.md, "Limits"). At
+/// the largest bound a coordinate is good to 1.2e-7 m, far below the smallest size, so a box's
+/// corners stay distinct and its sticks keep their lengths to 1e-4 of the smallest box.
+inline constexpr double kMaxBound = 1e9;      ///< unit: m; <world bound> at most
+inline constexpr double kMinBodySize = 1e-3;  ///< unit: m; a box's side, a capsule's diameter
+inline constexpr double kMinMass = 1e-6;      ///< unit: kg; a body's or a particle's
+inline constexpr double kMaxMass = 1e9;       ///< unit: kg
+/// A ragdoll's scale: its thinnest part (0.08 m across at scale 1) is then still kMinBodySize.
+inline constexpr double kMinRagdollScale = 0.0125;
+inline constexpr double kMaxRagdollScale = 1000.0;
+/// Largest scene file read (a saved world of kMaxParticles loose particles fits), so that a
+/// device such as /dev/zero is refused instead of read until memory runs out.
+inline constexpr std::size_t kMaxSceneBytes = std::size_t{512} << 20;
+
+/// Reads a mass in [kMinMass, kMaxMass] (kg), if given.
+std::optional<double> readMass(ElementReader& e, std::string_view attribute);
+/// Fails on `attribute` unless every coordinate of `point` is within the world's bound, the
+/// guard's test: a body placed beyond it would be frozen on the first step.
+void checkInsideBound(ElementReader& e, const phys::World& world, std::string_view attribute,
+                      const phys::Vec3& point);
 
 /// Reads the attributes every box-making element shares (size, mass, model, friction...); a
 /// model imposed by the load options replaces the file's.

@@ -1,7 +1,8 @@
 // Scene files (docs/scene-format.md): strict XML read into a new world. Any error throws
 // LoadError naming file, line and attribute, and the half-built world is thrown away with it.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
@@ -12,6 +13,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "element_reader.h"
+#include "fileio/files.h"
 #include "generators.h"
 #include "scenes/scene.h"
 
@@ -48,7 +50,10 @@ void readWorld(ElementReader& e, phys::WorldSettings& w) {
     w.damping = *d;
   }
   if (auto b = e.number("bound", "m")) {
-    if (*b <= 0.0) e.fail("bound", "must be > 0 (m)");
+    if (!(*b > 0.0 && *b <= detail::kMaxBound)) {
+      e.fail("bound", "'" + detail::formatNumber(*b) + "' must be > 0 and at most " +
+                          detail::formatNumber(detail::kMaxBound) + " (m)");
+    }
     w.bound = *b;
   }
   e.rejectUnknownAttributes();
@@ -115,9 +120,20 @@ void readGround(ElementReader& e, phys::WorldSettings& w) {
   e.rejectUnknownAttributes();
 }
 
-void readCamera(ElementReader& e, CameraStart& c) {
-  if (auto eye = e.vector("eye", "m")) c.eye = glm::vec3(*eye);
-  if (auto target = e.vector("target", "m")) c.target = glm::vec3(*target);
+// The camera is read after the world, so that it can be held to the world's bound: a camera
+// beyond it sees nothing of the world (and past 3.4e38 m it is not even a float).
+void readCamera(ElementReader& e, const phys::WorldSettings& w, CameraStart& c) {
+  auto point = [&](std::string_view attribute) -> std::optional<glm::vec3> {
+    const std::optional<phys::Vec3> p = e.vector(attribute, "m");
+    if (!p) return std::nullopt;
+    if (std::abs(p->x) > w.bound || std::abs(p->y) > w.bound || std::abs(p->z) > w.bound) {
+      e.fail(attribute, "must be within the world's bound of " + detail::formatNumber(w.bound) +
+                            " m along each axis (<world bound>)");
+    }
+    return glm::vec3(*p);
+  };
+  if (auto eye = point("eye")) c.eye = *eye;
+  if (auto target = point("target")) c.target = *target;
   if (glm::length(c.eye - c.target) < 1e-6f) e.fail("target", "must differ from eye");
   e.rejectUnknownAttributes();
 }
@@ -164,6 +180,23 @@ class Builder {
     }
   }
 
+  /// Every particle from `first` on must be inside the world's bound, as the guard tests it: an
+  /// element's pos was checked before it was built, this catches what reaches beyond it from
+  /// there (a box's corners, a stack's top, a chain's end).
+  void checkParticlesInsideBound(const pugi::xml_node& node, std::size_t first) {
+    const phys::Particles& particles = scene_.world.particles();
+    for (std::size_t i = first; i < particles.size(); ++i) {
+      const phys::Vec3& x = particles.position[i];
+      const double bound = scene_.world.worldSettings().bound;
+      if (std::abs(x.x) > bound || std::abs(x.y) > bound || std::abs(x.z) > bound) {
+        ElementReader e(node, lines_, file_);
+        e.fail("makes a body that reaches (" + detail::formatNumber(x.x) + ", " + detail::formatNumber(x.y) +
+               ", " + detail::formatNumber(x.z) + "), beyond the world's bound of " +
+               detail::formatNumber(bound) + " m along an axis (<world bound>)");
+      }
+    }
+  }
+
  private:
   void addName(ElementReader& e, const std::string& name, NamedBody::Kind kind, std::uint32_t index) {
     if (name.empty()) return;
@@ -196,12 +229,10 @@ class Builder {
     phys::ParticleDesc p;
     p.name = e.text("name").value_or("");
     p.position = e.requiredVector("pos", "m");
+    detail::checkInsideBound(e, scene_.world, "pos", p.position);
     p.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
     p.pinned = e.boolean("pinned").value_or(false);
-    if (auto mass = e.number("mass", "kg")) {
-      if (*mass <= 0.0) e.fail("mass", "must be > 0 (kg)");
-      p.mass = *mass;
-    }
+    if (auto mass = detail::readMass(e, "mass")) p.mass = *mass;
     e.rejectUnknownAttributes();
     const phys::ParticleId id = scene_.world.addParticle(p);
     addName(e, p.name, NamedBody::Kind::Particle, id);
@@ -245,6 +276,7 @@ class Builder {
     phys::BoxDesc d = shape == phys::Shape::Capsule ? detail::readCapsuleCommon(e, ctx_.options)
                                                     : detail::readBoxCommon(e, ctx_.options);
     d.center = e.requiredVector("pos", "m");
+    detail::checkInsideBound(e, scene_.world, "pos", d.center);
     d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
     d.angularVelocity = glm::radians(e.vector("angular-velocity", "degrees/s").value_or(phys::Vec3(0.0)));
     constexpr long kAllBits = 0xffffffffL;  // collision groups and masks are 32-bit sets
@@ -266,6 +298,9 @@ class Builder {
     const std::optional<phys::Vec3> point = e.vector("point", "m");
     const std::optional<phys::Vec3> aPoint = e.vector("a-point", "m");
     const std::optional<phys::Vec3> bPoint = e.vector("b-point", "m");
+    if (point) detail::checkInsideBound(e, scene_.world, "point", *point);
+    if (aPoint) detail::checkInsideBound(e, scene_.world, "a-point", *aPoint);
+    if (bPoint) detail::checkInsideBound(e, scene_.world, "b-point", *bPoint);
     const std::optional<double> min = e.number("min", "m");
     const std::optional<double> max = e.number("max", "m");
     e.rejectUnknownAttributes();
@@ -310,10 +345,42 @@ class Builder {
   std::map<std::string, std::size_t, std::less<>> byName_;
 };
 
+// Scene files are UTF-8 (ASCII is UTF-8). pugixml, told so, would read UTF-16 or UTF-32 as
+// garbage and report a puzzling syntax error; say what the file is instead. Those encodings
+// show as a byte order mark or, without one, as zero bytes beside the first '<'.
+std::string_view otherEncoding(std::string_view bytes) {
+  auto startsWith = [&](std::string_view prefix) { return bytes.substr(0, prefix.size()) == prefix; };
+  using namespace std::string_view_literals;
+  if (startsWith("\x00\x00\xFE\xFF"sv) || startsWith("\x00\x00\x00<"sv)) return "UTF-32 (big-endian)";
+  if (startsWith("\xFF\xFE\x00\x00"sv) || startsWith("<\x00\x00\x00"sv)) return "UTF-32 (little-endian)";
+  if (startsWith("\xFE\xFF"sv) || startsWith("\x00<"sv)) return "UTF-16 (big-endian)";
+  if (startsWith("\xFF\xFE"sv) || startsWith("<\x00"sv)) return "UTF-16 (little-endian)";
+  return {};
+}
+
+// The encoding an XML declaration names, if there is one and it is not UTF-8 or ASCII.
+std::optional<std::string> declaredOtherEncoding(const pugi::xml_node& declaration) {
+  const std::string encoding = declaration.attribute("encoding").value();
+  std::string lower;
+  for (char c : encoding) lower.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+  if (lower.empty() || lower == "utf-8" || lower == "utf8" || lower == "us-ascii" || lower == "ascii") {
+    return std::nullopt;
+  }
+  return encoding;
+}
+
 Scene build(std::vector<char>& buffer, const std::string& file, const LoadOptions& options) {
   pugi::xml_document doc;
   const std::size_t size = buffer.size();
   const LineIndex lines(buffer.data(), size);
+  if (const std::string_view encoding = otherEncoding(std::string_view(buffer.data(), size));
+      !encoding.empty()) {
+    throw LoadError(file, 1, "",
+                    "the file is " + std::string(encoding) + "; scene files are UTF-8 (save it as UTF-8)");
+  }
+  if (const auto nul = std::find(buffer.begin(), buffer.end(), '\0'); nul != buffer.end()) {
+    throw LoadError(file, lines.lineOf(&*nul), "", "a zero byte: this is not a text file");
+  }
   // What follows the last '>' (before in-place parsing rewrites the buffer): only white space
   // may.
   std::string trailing;
@@ -330,8 +397,8 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
       trailingLine = lines.lineOf(buffer.data() + first);
     }
   }
-  const pugi::xml_parse_result parsed =
-      doc.load_buffer_inplace(buffer.data(), size, pugi::parse_default, pugi::encoding_utf8);
+  const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
+      buffer.data(), size, pugi::parse_default | pugi::parse_declaration, pugi::encoding_utf8);
   if (!parsed) {
     throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
                     std::string("not well-formed XML: ") + parsed.description());
@@ -344,6 +411,14 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
   const pugi::xml_node root = doc.document_element();
   for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
     if (top == root) continue;
+    if (top.type() == pugi::node_declaration && top == doc.first_child()) {
+      if (const auto encoding = declaredOtherEncoding(top)) {
+        throw LoadError(file, lines.lineOf(top.name()), "encoding",
+                        "<?xml?> attribute 'encoding': '" + *encoding +
+                            "' is not supported; scene files are UTF-8 (save it as UTF-8)");
+      }
+      continue;
+    }
     // Anything beside the root (a second element, stray text) would otherwise vanish unread.
     ElementReader stray(top, lines, file);
     stray.fail("nothing may follow or precede <scene> but comments");
@@ -363,6 +438,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
   worldSettings.ground = false;  // a scene has a ground only if it says so
   phys::SolverSettings solverSettings;
   CameraStart camera;
+  pugi::xml_node cameraNode;
   std::vector<pugi::xml_node> bodies;
   std::vector<Expectation> expectations;
   std::map<std::string, int, std::less<>> seen;
@@ -380,7 +456,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
       else if (kind == "ground")
         readGround(e, worldSettings);
       else
-        readCamera(e, camera);
+        cameraNode = child;
     } else if (isOneOf(kind, kBodyElements)) {
       bodies.push_back(child);
     } else if (kind == "expect") {
@@ -399,6 +475,11 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
     }
   }
 
+  if (cameraNode) {
+    ElementReader e(cameraNode, lines, file);
+    readCamera(e, worldSettings, camera);
+  }
+
   std::optional<Scene> built;
   try {
     built.emplace(Scene{name, description, file, phys::World(worldSettings, solverSettings), camera, {}});
@@ -410,7 +491,9 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
   Builder builder(scene, lines, file, options);
   for (const pugi::xml_node& node : bodies) {
     try {
+      const std::size_t first = scene.world.particles().size();
       builder.body(node);
+      builder.checkParticlesInsideBound(node, first);
     } catch (const std::invalid_argument& e) {  // the physics refused a value we did not check
       throw LoadError(file, lines.lineOf(node.name()), "", "<" + std::string(node.name()) + ">: " + e.what());
     }
@@ -420,8 +503,20 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
 
 }  // namespace
 
+namespace {
+
+// "file:line: message", or "file: message" for line 0 (the file as a whole). Appended piece by
+// piece: "a" + std::string trips GCC 12's -Wrestrict false positive (GCC bug 105329).
+std::string located(const std::string& file, int line, const std::string& message) {
+  std::string out = file;
+  if (line > 0) out.append(":").append(std::to_string(line));
+  return out.append(": ").append(message);
+}
+
+}  // namespace
+
 LoadError::LoadError(std::string file, int line, std::string attribute, const std::string& message)
-    : std::runtime_error(file + ":" + std::to_string(line) + ": " + message),
+    : std::runtime_error(located(file, line, message)),
       file_(std::move(file)),
       line_(line),
       attribute_(std::move(attribute)) {}
@@ -439,10 +534,14 @@ Scene loadSceneText(std::string_view xml, const std::string& displayName, const 
 }
 
 Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw LoadError(file.string(), 0, "", "cannot open the scene file");
-  std::vector<char> buffer((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw LoadError(file.string(), 0, "", "cannot read the scene file");
+  std::string text;
+  try {
+    text = fileio::readWhole(file, detail::kMaxSceneBytes);
+  } catch (const fileio::FileError& e) {
+    throw LoadError(file.string(), 0, "", e.message());
+  }
+  std::vector<char> buffer(text.begin(), text.end());
+  text = {};
   Scene scene = build(buffer, file.string(), options);
   scene.file = file;
   return scene;

@@ -14,10 +14,10 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "atomic_file.h"
 #include "body_state.h"
 #include "element_writer.h"
 #include "euler_angles.h"
+#include "fileio/files.h"
 #include "generators.h"
 
 namespace scenes {
@@ -223,12 +223,14 @@ std::string linkElement(const phys::World& world, const phys::Link& link,
   ElementWriter e("link");
   e.text("a", names.end(endA)).text("b", names.end(endB));
   const phys::Vec3 a = world.position(link.a), b = world.position(link.b);
-  if (link.isPin()) {
-    // The two points of a pin have drifted apart by what the passes left; rejoin them halfway.
-    e.vector("point", (a + b) * 0.5);
-    return e.empty();
-  }
-  e.vector("a-point", a).vector("b-point", b);
+  // Each end where it is now, so the reloaded world is this one: a pin whose ends are apart
+  // (by what the passes left, or because it was made so) pulls them together in the next step
+  // there as it would here. An end that is a loose particle is that particle, wherever written.
+  if (a == b)
+    e.vector("point", a);
+  else
+    e.vector("a-point", a).vector("b-point", b);
+  if (link.isPin()) return e.empty();
   const bool openAbove = link.maxLength == phys::kNoMaxLength;
   if (link.minLength > 0.0 || openAbove) e.number("min", link.minLength);
   if (!openAbove) e.number("max", link.maxLength);
@@ -321,6 +323,11 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     line(ElementWriter("no-collision").text("a", names.box(a)).text("b", names.box(b)).empty());
   }
   out += "</scene>\n";
+  if (out.size() > detail::kMaxSceneBytes) {
+    throw std::invalid_argument("the file would be " + std::to_string(out.size() >> 20) +
+                                " MiB; a scene file loads at most " +
+                                std::to_string(detail::kMaxSceneBytes >> 20) + " MiB");
+  }
   return out;
 }
 
@@ -335,7 +342,11 @@ void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::fil
   } catch (const std::invalid_argument& e) {
     throw SaveError(file, std::string("cannot save this world as a scene: ") + e.what());
   }
-  detail::replaceFileAtomically(file, xml);
+  try {
+    fileio::writeAtomically(file, xml);
+  } catch (const fileio::FileError& e) {
+    throw SaveError(file, e.message());
+  }
 }
 
 void saveSceneFile(const Scene& scene, const std::filesystem::path& file) {

@@ -1,7 +1,10 @@
 #pragma once
-// RGBA8 images: read back from the framebuffer, written to and read from PNG files.
+// RGBA8 images: read back from the framebuffer, encoded as PNG, and read from PNG files.
+// Writing files is not the engine's job: the programs write the encoded bytes through their
+// one atomic writer (app/fileio).
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -20,8 +23,8 @@ struct Image {
 
 /// Reads the bound read framebuffer's colour (GL_BACK of the default one unless changed).
 Image readFramebuffer(const glm::ivec2& size);
-/// Writes a PNG atomically (a temporary file renamed over the target); throws engine::Error.
-void writePng(const std::filesystem::path& file, const Image& image);
+/// The image as a PNG file's bytes; throws engine::Error if it cannot be encoded.
+std::string encodePng(const Image& image);
 /// Reads a PNG as RGBA8; throws engine::Error naming the file.
 Image readPng(const std::filesystem::path& file);
 

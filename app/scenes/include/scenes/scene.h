@@ -63,7 +63,8 @@ struct Scene {
 };
 
 /// A scene file that cannot be loaded. what() reads "file:line: <element> attribute 'a': why"
-/// (the attribute part only when one attribute is to blame).
+/// (the attribute part only when one attribute is to blame), or "file: why" when the file could
+/// not be read at all (why then ends with the OS's reason).
 class LoadError : public std::runtime_error {
  public:
   LoadError(std::string file, int line, std::string attribute, const std::string& message);
