@@ -35,14 +35,14 @@ namespace {
 class ProgressLine {
  public:
   using Clock = std::chrono::steady_clock;
-  ProgressLine(std::ostream* out, int steps, Clock::time_point start)
-      : out_(out), steps_(steps), start_(start), next_(start + seconds(kProgressAfterSeconds)) {}
+  ProgressLine(std::ostream* out, int steps, Clock::time_point start, const ProgressTiming& timing)
+      : out_(out), steps_(steps), every_(timing.every), start_(start), next_(start + seconds(timing.after)) {}
 
   void after(int done) {
     if (out_ == nullptr) return;
     const Clock::time_point now = Clock::now();
     if (now < next_) return;
-    next_ = now + seconds(kProgressEverySeconds);
+    next_ = now + seconds(every_);
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double perStep = elapsed / done;
     char line[160];
@@ -57,12 +57,14 @@ class ProgressLine {
   }
   std::ostream* out_;
   int steps_;
+  double every_;
   Clock::time_point start_, next_;
 };
 
 }  // namespace
 
-RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress) {
+RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress,
+                   const ProgressTiming& timing) {
   phys::World& world = scene.world;
   applyOverrides(world, options);
 
@@ -83,7 +85,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   std::vector<double> stepTotals;
   stepTotals.reserve(static_cast<std::size_t>(options.steps));
   const auto start = std::chrono::steady_clock::now();
-  ProgressLine line(progress, options.steps, start);
+  ProgressLine line(progress, options.steps, start, timing);
   for (int i = 0; i < options.steps; ++i) {
     world.step();
     line.after(i + 1);

@@ -37,15 +37,19 @@ struct RunResult {
 /// std::invalid_argument of World::setSolverSettings when the world refuses them.
 void applyOverrides(phys::World& world, const RunOptions& options);
 
-/// A run longer than this says how far it has got, on the progress stream, every so often.
-inline constexpr double kProgressAfterSeconds = 2.0;
-inline constexpr double kProgressEverySeconds = 5.0;
+/// When a run says how far it has got, on the progress stream: after `after` seconds, then every
+/// `every` seconds. unit: s
+struct ProgressTiming {
+  double after = 2.0;
+  double every = 5.0;
+};
 
 /// Applies the overrides, then steps the scene's world options.steps times and measures it.
 /// Throws std::invalid_argument (from applyOverrides) before any step when they are refused.
-/// With a progress stream, a run that takes longer than kProgressAfterSeconds prints a line
-/// there every kProgressEverySeconds: the step it is at, seconds a step, and the time left.
-RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress = nullptr);
+/// With a progress stream, a run that takes longer than timing.after prints a line there every
+/// timing.every: the step it is at, seconds a step, and the time left.
+RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress = nullptr,
+                   const ProgressTiming& timing = {});
 
 /// Median of the values (the mean of the middle two for an even count); 0 when empty.
 double median(std::vector<double> values);

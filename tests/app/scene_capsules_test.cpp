@@ -180,7 +180,7 @@ const testing_scenes::BadScene kBadCapsules[] = {
      3, "name", "already the name"},
     {"capsule ragdoll zero mass",
      "<scene name='s'>\n<ragdoll pos='0 1 0' shape='capsule' mass='0'/>\n</scene>", 2, "mass",
-     "'0' must be from 1e-06 to 1e+09 (kg)"},
+     "'0' must be from 2e-05 to 1e+09 (kg)"},
 };
 
 TEST(SceneCapsules, BadCapsulesNameFileLineAndAttribute) {

@@ -33,29 +33,34 @@ const BadScene kCases[] = {
      "from 1e-06 to 1e+09 (kg)"},
     // Tiny or huge values the physics cannot represent are refused by attribute, not by a
     // message from deep in the physics that names none.
-    {"tiny size", "<scene name='s'>\n<box pos='0 0 0' size='1e-300'/>\n</scene>", 2, "size", "at least 0.001"},
+    {"tiny size", "<scene name='s'>\n<box pos='0 0 0' size='1e-300'/>\n</scene>", 2, "size",
+     "at least 0.001"},
     {"tiny mass", "<scene name='s'>\n<box pos='0 0 0' mass='1e-300'/>\n</scene>", 2, "mass", "from 1e-06"},
     {"huge mass", "<scene name='s'>\n<particle pos='0 0 0' mass='1e300'/>\n</scene>", 2, "mass",
      "to 1e+09 (kg)"},
     {"tiny capsule", "<scene name='s'>\n<capsule pos='0 0 0' radius='1e-300' length='1'/>\n</scene>", 2,
      "radius", "at least 0.0005"},
     {"tiny ragdoll", "<scene name='s'>\n<ragdoll pos='0 1 0' scale='1e-300'/>\n</scene>", 2, "scale",
-     "from 0.0125 to 1000"},
+     "from 0.02 to 1000"},
     {"light ragdoll", "<scene name='s'>\n<ragdoll pos='0 1 0' mass='1e-300'/>\n</scene>", 2, "mass",
+     "from 2e-05"},
+    {"light chain end",
+     "<scene name='s'>\n<chain pos='0 1 0' links='2' length='1' end-mass='1e-300'/>\n</scene>", 2, "end-mass",
      "from 1e-06"},
-    {"light chain end", "<scene name='s'>\n<chain pos='0 1 0' links='2' length='1' end-mass='1e-300'/>\n</scene>",
-     2, "end-mass", "from 1e-06"},
     // Positions are held to the world's bound, the guard's test, whatever the orientation: a box
     // at 7.8e16 m turned by 5 degrees loaded (its corners were apart in x) but its saved file did
     // not (unturned, its corners rounded onto each other).
-    {"turned box beyond the bound", "<scene name='e'>\n<box pos='1 8 77777777777777705' euler='0 5 0'/>\n</scene>",
-     2, "pos", "beyond the world's bound of 1e+06 m"},
+    {"turned box beyond the bound",
+     "<scene name='e'>\n<box pos='1 8 77777777777777705' euler='0 5 0'/>\n</scene>", 2, "pos",
+     "beyond the world's bound of 1e+06 m"},
     {"box beyond the bound", "<scene name='e'>\n<box pos='0 0 1e17'/>\n</scene>", 2, "pos",
      "beyond the world's bound"},
-    {"particle beyond a small bound", "<scene name='e'>\n<world bound='10'/>\n<particle pos='0 11 0'/>\n</scene>",
-     3, "pos", "beyond the world's bound of 10 m"},
-    {"stack that grows beyond the bound", "<scene name='e'>\n<world bound='10'/>\n<stack pos='0 0 0' count='20'/>\n</scene>",
-     3, "", "reaches (-0.5, 11, -0.5), beyond the world's bound of 10 m"},
+    {"particle beyond a small bound",
+     "<scene name='e'>\n<world bound='10'/>\n<particle pos='0 11 0'/>\n</scene>", 3, "pos",
+     "beyond the world's bound of 10 m"},
+    {"stack that grows beyond the bound",
+     "<scene name='e'>\n<world bound='10'/>\n<stack pos='0 0 0' count='20'/>\n</scene>", 3, "",
+     "reaches (-0.5, 11, -0.5), beyond the world's bound of 10 m"},
     {"link point beyond the bound",
      "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
      "<link a='a' b='b' point='1 0 1e12'/>\n</scene>",
@@ -100,7 +105,7 @@ const BadScene kCases[] = {
     {"bad ragdoll model", "<scene name='s'>\n<ragdoll pos='0 1 0'\n model='puppet'/>\n</scene>", 3, "model",
      "seed or lean"},
     {"zero ragdoll scale", "<scene name='s'>\n<ragdoll pos='0 1 0' scale='0'/>\n</scene>", 2, "scale",
-     "'0' must be from 0.0125 to 1000"},
+     "'0' must be from 0.02 to 1000"},
     {"ragdoll part name clash",
      "<scene name='s'>\n<box name='r.head' pos='5 0 0'/>\n<ragdoll name='r' pos='0 1 0'/>\n</scene>", 3,
      "name", "already"},
@@ -191,7 +196,8 @@ std::string fileError(const std::filesystem::path& file) {
 }
 
 TEST(SceneErrors, MissingFileIsNamedWithTheOsReason) {
-  EXPECT_EQ(fileError("/nonexistent/scene.xml"), "/nonexistent/scene.xml: cannot open: No such file or directory");
+  EXPECT_EQ(fileError("/nonexistent/scene.xml"),
+            "/nonexistent/scene.xml: cannot open: No such file or directory");
 }
 
 // A folder gave libstdc++'s "basic_filebuf::underflow" with no path, from an exception that was
@@ -206,7 +212,8 @@ TEST(SceneErrors, AnUnreadableFileGivesTheOsReason) {
   const std::filesystem::path file = folder.path / "secret.xml";
   std::ofstream(file) << "<scene name='s'/>";
   std::filesystem::permissions(file, std::filesystem::perms::owner_read);
-  std::filesystem::permissions(folder.path, std::filesystem::perms::owner_all | std::filesystem::perms::others_read |
+  std::filesystem::permissions(folder.path, std::filesystem::perms::owner_all |
+                                                std::filesystem::perms::others_read |
                                                 std::filesystem::perms::others_exec);
   EXPECT_EQ(testing_app::runAsNobody([&] { return fileError(file); }),
             file.string() + ": cannot open: Permission denied");
@@ -237,15 +244,15 @@ TEST(SceneErrors, OtherEncodingsAreNamed) {
     int width;
     bool big, mark;
     const char* says;
-  } cases[] = {{2, false, true, "UTF-16 (little-endian)"}, {2, true, true, "UTF-16 (big-endian)"},
+  } cases[] = {{2, false, true, "UTF-16 (little-endian)"},  {2, true, true, "UTF-16 (big-endian)"},
                {2, false, false, "UTF-16 (little-endian)"}, {2, true, false, "UTF-16 (big-endian)"},
-               {4, false, true, "UTF-32 (little-endian)"}, {4, true, true, "UTF-32 (big-endian)"},
+               {4, false, true, "UTF-32 (little-endian)"},  {4, true, true, "UTF-32 (big-endian)"},
                {4, false, false, "UTF-32 (little-endian)"}, {4, true, false, "UTF-32 (big-endian)"}};
   for (const auto& c : cases) {
     const std::filesystem::path file = folder.path / "wide.xml";
     std::ofstream(file, std::ios::binary) << widen(c.width, c.big, c.mark);
-    EXPECT_EQ(fileError(file), file.string() + ":1: the file is " + c.says +
-                                   "; scene files are UTF-8 (save it as UTF-8)");
+    EXPECT_EQ(fileError(file),
+              file.string() + ":1: the file is " + c.says + "; scene files are UTF-8 (save it as UTF-8)");
   }
   // A UTF-8 byte order mark is fine.
   std::ofstream(folder.path / "bom.xml", std::ios::binary) << "\xEF\xBB\xBF" << ascii;

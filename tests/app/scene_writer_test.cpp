@@ -362,6 +362,33 @@ TEST(SceneWriter, UnrepresentableWorldIsRefusedByName) {
   EXPECT_THROW(scenes::writeSceneXml(scene), std::invalid_argument);
 }
 
+// What saves must load: the loader holds positions and the camera to the world's bound, so the
+// writer refuses, with a message, a world whose bound was lowered under a body at run time, or
+// a camera flown beyond it, instead of writing a file that would not reload.
+TEST(SceneWriter, WhatTheLoaderWouldRefuseIsNotWritten) {
+  auto refusal = [](const scenes::Scene& scene, const scenes::CameraStart& camera) {
+    try {
+      scenes::writeSceneXml(scene, camera);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  scenes::Scene scene = load("<box name=\"far\" pos=\"0 1 50\"/>");
+  EXPECT_EQ(refusal(scene, scene.camera), "");
+  phys::WorldSettings smaller = scene.world.worldSettings();
+  smaller.bound = 20.0;
+  scene.world.setWorldSettings(smaller);
+  EXPECT_NE(refusal(scene, scene.camera).find("box 0 'far' is beyond the world's bound of 20 m"),
+            std::string::npos);
+  scenes::Scene near = load("<box name=\"near\" pos=\"0 1 0\"/>", "<world bound=\"20\"/>");
+  scenes::CameraStart flown = near.camera;
+  flown.eye.z = 30.0f;
+  EXPECT_NE(refusal(near, flown).find("the camera is beyond the world's bound of 20 m"), std::string::npos);
+  flown.eye.z = 19.0f;
+  EXPECT_NO_THROW(scenes::loadSceneText(scenes::writeSceneXml(near, flown), "near.xml"));
+}
+
 // A fresh folder under the system's temporary one, removed with everything in it, read-only
 // folders included.
 class TempFolder {

@@ -177,6 +177,39 @@ TEST(LabRun, DumpHasHeaderAndOneRowPerNamedBody) {
   EXPECT_NE(r.out.find("3 named bodies"), std::string::npos) << r.out;
 }
 
+// Under a gravity of 1e308 the guard freezes every part on the first step; the dump wrote -nan
+// quaternions and the summary "error max inf" and "energy initial -nan". A frozen body keeps its
+// last good pose, and a figure that overflowed reads n/a (summary), null (JSON) or nothing (CSV).
+TEST(LabRun, AWorldThatOverflowsPrintsNoNonFiniteNumber) {
+  const TempDir dir;
+  const auto scene = dir.write("g.xml",
+                               "<scene name=\"g\"><world gravity=\"1e308 1e308 -1e308\"/><ground/>"
+                               "<ragdoll name=\"r\" shape=\"capsule\" pos=\"0 1 0\"/></scene>");
+  const auto csv = dir.file("g.csv");
+  const ProcessResult r = runLab("run " + quoted(scene) + " --steps 5 --dump " + quoted(csv), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("frozen       88 particles"), std::string::npos) << r.out;
+  for (const char* bad : {"nan", "inf"}) {
+    EXPECT_EQ(r.out.find(bad), std::string::npos) << bad << "\n" << r.out;
+    EXPECT_EQ(readFile(csv).find(bad), std::string::npos) << bad << "\n" << readFile(csv);
+  }
+  const auto rows = csvRows(readFile(csv));
+  ASSERT_EQ(rows.size(), 12u);  // the header and the 11 capsules
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 8u);
+    for (std::size_t k = 1; k < 8; ++k) {
+      char* end = nullptr;
+      const double v = std::strtod(rows[i][k].c_str(), &end);
+      EXPECT_TRUE(!rows[i][k].empty() && *end == '\0' && std::isfinite(v)) << rows[i][0] << " " << k;
+    }
+  }
+  const ProcessResult json = runLab("run " + quoted(scene) + " --steps 5 --json", dir);
+  ASSERT_EQ(json.exitCode, 0) << json.err;
+  EXPECT_TRUE(parseFlatJson(json.out).has_value()) << json.out;
+  EXPECT_EQ(json.out.find("nan"), std::string::npos) << json.out;
+  EXPECT_EQ(json.out.find("inf"), std::string::npos) << json.out;
+}
+
 TEST(LabRun, SummaryReportsTimingPhasesFreezesAndHash) {
   const TempDir dir;
   const auto scene = dir.write("e.xml", escapingScene());

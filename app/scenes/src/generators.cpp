@@ -37,10 +37,10 @@ void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BoxDesc&
 
 }  // namespace
 
-std::optional<double> readMass(ElementReader& e, std::string_view attribute) {
+std::optional<double> readMass(ElementReader& e, std::string_view attribute, double least) {
   const std::optional<double> mass = e.number(attribute, "kg");
-  if (mass && !(*mass >= kMinMass && *mass <= kMaxMass)) {
-    e.fail(attribute, "'" + formatNumber(*mass) + "' must be from " + formatNumber(kMinMass) + " to " +
+  if (mass && !(*mass >= least && *mass <= kMaxMass)) {
+    e.fail(attribute, "'" + formatNumber(*mass) + "' must be from " + formatNumber(least) + " to " +
                           formatNumber(kMaxMass) + " (kg)");
   }
   return mass;
@@ -216,7 +216,7 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
     }
     d.scale = *scale;
   }
-  if (auto mass = readMass(e, "mass")) d.mass = *mass;
+  if (auto mass = readMass(e, "mass", kMinRagdollMass)) d.mass = *mass;
   if (auto model = e.text("model")) {
     const auto parsed = phys::parseRagdollModel(*model);
     if (!parsed) e.fail("model", "'" + *model + "' must be seed or lean");

@@ -34,15 +34,19 @@ inline constexpr double kMaxBound = 1e9;      ///< unit: m; <world bound> at mos
 inline constexpr double kMinBodySize = 1e-3;  ///< unit: m; a box's side, a capsule's diameter
 inline constexpr double kMinMass = 1e-6;      ///< unit: kg; a body's or a particle's
 inline constexpr double kMaxMass = 1e9;       ///< unit: kg
-/// A ragdoll's scale: its thinnest part (0.08 m across at scale 1) is then still kMinBodySize.
-inline constexpr double kMinRagdollScale = 0.0125;
+/// A ragdoll's scale: its thinnest part (0.08 m across at scale 1) is then 1.6 mm, above
+/// kMinBodySize with room for the round-off of a saved and reloaded part.
+inline constexpr double kMinRagdollScale = 0.02;
 inline constexpr double kMaxRagdollScale = 1000.0;
+/// A ragdoll's whole mass: its lightest part (a box ragdoll's forearm is 5% of it) is then still
+/// kMinMass, so that the part saves as a box the loader takes.
+inline constexpr double kMinRagdollMass = kMinMass / 0.05;
 /// Largest scene file read (a saved world of kMaxParticles loose particles fits), so that a
 /// device such as /dev/zero is refused instead of read until memory runs out.
 inline constexpr std::size_t kMaxSceneBytes = std::size_t{512} << 20;
 
-/// Reads a mass in [kMinMass, kMaxMass] (kg), if given.
-std::optional<double> readMass(ElementReader& e, std::string_view attribute);
+/// Reads a mass in [least, kMaxMass] (kg), if given.
+std::optional<double> readMass(ElementReader& e, std::string_view attribute, double least = kMinMass);
 /// Fails on `attribute` unless every coordinate of `point` is within the world's bound, the
 /// guard's test: a body placed beyond it would be frozen on the first step.
 void checkInsideBound(ElementReader& e, const phys::World& world, std::string_view attribute,

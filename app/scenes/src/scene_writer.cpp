@@ -148,10 +148,19 @@ std::string groundElement(const phys::WorldSettings& w) {
       .empty();
 }
 
-std::string cameraElement(const CameraStart& camera) {
-  // The loader refuses a camera looking at its own eye; better to say so now than on reload.
+bool insideBound(const phys::Vec3& p, double bound) {
+  return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;
+}
+
+std::string cameraElement(const CameraStart& camera, double bound) {
+  // The loader refuses a camera looking at its own eye, or beyond the world's bound; better to
+  // say so now than on reload.
   if (glm::length(camera.eye - camera.target) < 1e-6f) {
     throw std::invalid_argument("the camera's eye and target coincide");
+  }
+  if (!insideBound(phys::Vec3(camera.eye), bound) || !insideBound(phys::Vec3(camera.target), bound)) {
+    throw std::invalid_argument("the camera is beyond the world's bound of " + detail::formatNumber(bound) +
+                                " m; bring it back first");
   }
   return ElementWriter("camera").vector("eye", camera.eye).vector("target", camera.target).empty();
 }
@@ -260,6 +269,16 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
                                 std::to_string(detail::kMaxParticles));
   }
   const std::vector<std::int32_t> owner = particleOwners(world);
+  // The loader refuses a body beyond the bound (the bound was lowered under it at run time).
+  const double bound = world.worldSettings().bound;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (insideBound(particles.position[i], bound)) continue;
+    const std::string body =
+        owner[i] == kLoose ? "particle " + std::to_string(i)
+                           : "box " + std::to_string(owner[i]) + " '" + world.boxes()[owner[i]].name + "'";
+    throw std::invalid_argument(body + " is beyond the world's bound of " + detail::formatNumber(bound) +
+                                " m, where a scene file places nothing");
+  }
 
   // Sticks inside one box are its bracing, which <box> rebuilds; the rest must join two loose
   // particles, as <stick> does.
@@ -295,7 +314,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   line(worldElement(world.worldSettings()));
   line(solverElement(world.solverSettings()));
   if (world.worldSettings().ground) line(groundElement(world.worldSettings()));
-  line(cameraElement(camera));
+  line(cameraElement(camera, world.worldSettings().bound));
   // Bodies and sticks in the order the world made them, so that the reloaded world gives each
   // the same index. The world keeps no such record across kinds, but the sticks show it: a box's
   // bracing is added with the box, and a stick after both its particles.
