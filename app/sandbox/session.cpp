@@ -29,6 +29,26 @@ phys::Vec3 toLocal(const phys::World& w, phys::BoxId box, const phys::Vec3& p) {
   return glm::inverse(pose.orientation) * (p - pose.center);
 }
 
+// The largest component's size: scaling by it first keeps glm::length, which squares the
+// components, from overflowing when gravity is set near the largest double.
+double largestOf(const phys::Vec3& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// |v| without overflow; infinity only when the length itself is beyond a double.
+double lengthOf(const phys::Vec3& v) {
+  const double largest = largestOf(v);
+  if (largest == 0.0 || !std::isfinite(largest)) return largest;
+  return largest * glm::length(v / largest);
+}
+
+// Where gravity points, or straight down (the default gravity's way) when it has no strength.
+phys::Vec3 directionOf(const phys::Vec3& gravity) {
+  const double largest = largestOf(gravity);
+  if (largest > 0.0 && std::isfinite(largest)) return glm::normalize(gravity / largest);
+  return glm::normalize(phys::WorldSettings{}.gravity);
+}
+
 phys::Vec3 toWorld(const phys::World& w, phys::BoxId box, const phys::Vec3& local) {
   const phys::BoxPose pose = w.boxPose(box);
   return pose.center + pose.orientation * local;
@@ -115,17 +135,19 @@ std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
            " settings, got " + std::to_string(specs.size());
   }
   const phys::SolverSettings base = overlayActive() ? beforeOverlay_ : scene().world.solverSettings();
+  // Every setting is judged before anything changes, the drag included: a refused overlay
+  // leaves the session as it was.
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    if (const std::string why = phys::validate(specs[i].applyTo(base)); !why.empty()) {
+      return "overlay run " + std::to_string(i + 1) + " '" + specs[i].text + "': SolverSettings: " + why;
+    }
+  }
   release();  // a copied spring would have no one to let it go
-  // Build every run before replacing any, so a refused setting changes nothing.
   std::vector<Run> runs;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     Run run;
     run.scene = std::make_unique<scenes::Scene>(scene());
-    try {
-      run.scene->world.setSolverSettings(specs[i].applyTo(base));
-    } catch (const std::invalid_argument& e) {
-      return "overlay run " + std::to_string(i + 1) + " '" + specs[i].text + "': " + e.what();
-    }
+    run.scene->world.setSolverSettings(specs[i].applyTo(base));  // valid: checked above
     run.label = specs[i].text;
     run.color = kRunColors[i];
     runs.push_back(std::move(run));
@@ -193,58 +215,80 @@ std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
   }
 }
 
-void Session::toggleGravityMode() {
+std::string Session::applyWorldSettings(const phys::WorldSettings& settings, const std::string& done) {
+  const std::string why = setWorldSettings(settings);
+  status_ = why.empty() ? done : why;
+  return why;
+}
+
+std::string Session::toggleGravityMode() {
   phys::WorldSettings s = scene().world.worldSettings();
   const bool toPoint = s.gravityMode == phys::GravityMode::Uniform;
   s.gravityMode = toPoint ? phys::GravityMode::Point : phys::GravityMode::Uniform;
-  // One strength for both modes, so G alone never makes gravity stronger or weaker.
+  // One strength for both modes, so G alone never makes gravity stronger or weaker; uniform
+  // gravity of strength 0 keeps pointing down, so that strength given in point mode comes back.
   if (toPoint)
-    s.gravityStrength = glm::length(s.gravity);
-  else if (glm::length(s.gravity) > 0.0)
-    s.gravity = glm::normalize(s.gravity) * s.gravityStrength;
-  setWorldSettings(s);
-  status_ = toPoint ? "gravity: towards the point" : "gravity: uniform";
+    s.gravityStrength = lengthOf(s.gravity);
+  else
+    s.gravity = directionOf(s.gravity) * s.gravityStrength;
+  return applyWorldSettings(s, toPoint ? "gravity: towards the point" : "gravity: uniform");
 }
 
-void Session::changeGravity(double delta) {
+std::string Session::changeGravity(double delta) {
   phys::WorldSettings s = scene().world.worldSettings();
+  double strength = 0.0;
   if (s.gravityMode == phys::GravityMode::Point) {
-    s.gravityStrength = std::max(0.0, s.gravityStrength + delta);
+    strength = s.gravityStrength = std::max(0.0, s.gravityStrength + delta);
   } else {
-    const double g = glm::length(s.gravity);
-    const phys::Vec3 down = g > 0.0 ? s.gravity / g : phys::Vec3(0.0, -1.0, 0.0);
-    s.gravity = down * std::max(0.0, g + delta);
+    strength = std::max(0.0, lengthOf(s.gravity) + delta);
+    s.gravity = directionOf(s.gravity) * strength;
   }
-  setWorldSettings(s);
-  const double strength =
-      s.gravityMode == phys::GravityMode::Point ? s.gravityStrength : glm::length(s.gravity);
-  status_ = "gravity " + std::to_string(strength).substr(0, 5) + " m/s^2";
+  return applyWorldSettings(s, "gravity " + std::to_string(strength).substr(0, 5) + " m/s^2");
 }
 
-void Session::changeDamping(double delta) {
+std::string Session::changeDamping(double delta) {
   phys::WorldSettings s = scene().world.worldSettings();
   // Round to the step so that ten presses up and ten down come back to exactly where they began.
   s.damping = std::max(0.0, std::round((s.damping + delta) * 1000.0) / 1000.0);
-  setWorldSettings(s);
-  status_ = "wind resistance " + std::to_string(s.damping).substr(0, 5) + " 1/s";
+  return applyWorldSettings(s, "wind resistance " + std::to_string(s.damping).substr(0, 5) + " 1/s");
 }
 
-void Session::spawnBox(const phys::Vec3& at, const phys::Vec3& velocity) {
-  ++spawned_;
+std::string Session::spawnBox(const phys::Vec3& at, const phys::Vec3& velocity) {
   phys::BoxDesc d;
-  d.name = "thrown box " + std::to_string(spawned_);
+  d.name = "thrown box " + std::to_string(spawned_ + 1);
   d.center = at;
   d.size = phys::Vec3(kSpawnBoxSize);
   d.mass = kSpawnBoxMass;
   d.velocity = velocity;
-  forEachWorld([&](phys::World& w) { w.addBox(d); });
-  status_ = "threw a box";
+  return spawn(at, "threw a box", [&](phys::World& w) { w.addBox(d); });
 }
 
-void Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules) {
+std::string Session::spawn(const phys::Vec3& at, const std::string& done,
+                           const std::function<void(phys::World&)>& add) {
+  // What the loader would refuse to load, a throw refuses to make: beyond the bound the guard
+  // would freeze it at once, and Save As could not write it.
+  const double bound = scene().world.worldSettings().bound;
+  if (!(std::abs(at.x) <= bound && std::abs(at.y) <= bound && std::abs(at.z) <= bound)) {
+    status_ = "nothing thrown: the camera is beyond the world's bound of " + std::to_string(bound) + " m";
+    return status_;
+  }
+  try {
+    // Each run's world is the main one's under other solver settings, so what the first takes
+    // the others take.
+    add(scene().world);
+    for (std::size_t i = 1; i < runs_.size(); ++i) add(runs_[i].scene->world);
+  } catch (const std::invalid_argument& e) {
+    status_ = std::string("nothing thrown: ") + e.what();
+    return status_;
+  }
   ++spawned_;
+  status_ = done;
+  return {};
+}
+
+std::string Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules) {
   phys::RagdollDesc d;
-  d.name = (capsules ? "thrown capsule ragdoll " : "thrown ragdoll ") + std::to_string(spawned_);
+  d.name = (capsules ? "thrown capsule ragdoll " : "thrown ragdoll ") + std::to_string(spawned_ + 1);
   // Face the way it is thrown, lying forward so that it flies head first: from standing
   // (facing +z), turn to the throw's heading, then tip forward by 90 degrees.
   const double heading = std::atan2(velocity.x, velocity.z);
@@ -252,13 +296,9 @@ void Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, boo
       glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
   d.hips = at;
   d.velocity = velocity;
-  if (capsules) {
-    forEachWorld([&](phys::World& w) { phys::addCapsuleRagdoll(w, d); });
-    status_ = "threw a capsule ragdoll";
-    return;
-  }
-  forEachWorld([&](phys::World& w) { phys::addRagdoll(w, d); });
-  status_ = "threw a ragdoll";
+  if (capsules)
+    return spawn(at, "threw a capsule ragdoll", [&](phys::World& w) { phys::addCapsuleRagdoll(w, d); });
+  return spawn(at, "threw a ragdoll", [&](phys::World& w) { phys::addRagdoll(w, d); });
 }
 
 bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {

@@ -5,6 +5,7 @@
 // the world as it was.
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -78,20 +79,23 @@ class Session {
   void step();
 
   // The seed's world controls; they act on every run, so the overlay keeps comparing methods
-  // under the same forces.
-  void toggleGravityMode();
+  // under the same forces. Each returns "" or why the world refused (then nothing changes), and
+  // leaves either in status().
+  /// Uniform gravity becomes a pull of the same strength towards the point, and back.
+  std::string toggleGravityMode();
   /// Strength of gravity (|g| in uniform mode, the pull in point mode) changed by delta, >= 0.
-  void changeGravity(double delta);
-  void changeDamping(double delta);
+  std::string changeGravity(double delta);
+  std::string changeDamping(double delta);
   /// The world settings of every run; "" or the validation message (and nothing changes).
   std::string setWorldSettings(const phys::WorldSettings& settings);
   /// The main run's solver settings (the panel's sliders); "" or the validation message.
   std::string setSolverSettings(const phys::SolverSettings& settings);
 
   /// Throws a box or a ragdoll (of boxes, or of capsules laid out like Bullet's) from `at` with
-  /// velocity `velocity` into every run.
-  void spawnBox(const phys::Vec3& at, const phys::Vec3& velocity);
-  void spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules = false);
+  /// velocity `velocity` into every run. Returns "" or why nothing was thrown: `at` beyond the
+  /// world's bound, or a body the world refuses.
+  std::string spawnBox(const phys::Vec3& at, const phys::Vec3& velocity);
+  std::string spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules = false);
 
   /// Left-drag picking: the body or particle hit by the ray gets a spring to the ray's point,
   /// in every run at the same place on the same body. False when the ray hits nothing or is
@@ -118,6 +122,9 @@ class Session {
   };
   void replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file);
   void forEachWorld(const std::function<void(phys::World&)>& apply);
+  std::string applyWorldSettings(const phys::WorldSettings& settings, const std::string& done);
+  std::string spawn(const phys::Vec3& at, const std::string& done,
+                    const std::function<void(phys::World&)>& add);
 
   std::vector<Run> runs_;
   std::filesystem::path file_;

@@ -83,6 +83,31 @@ TEST(Session, GravityKeysChangeStrengthAndModeAndKeepTheStrengthAcrossModes) {
   EXPECT_EQ(s.scene().world.worldSettings().gravityMode, phys::GravityMode::Uniform);
 }
 
+// Found by the soak test: uniform gravity brought to 0 lost the strength later given in point
+// mode (it came back as 0 0 0), and a gravity over 1.3e154 overflowed glm::length, so G said
+// "towards the point" and changed nothing, or set gravity to 0.
+TEST(Session, GravityKeepsItsStrengthThroughZeroAndHugeValues) {
+  sandbox::Session s = open("falling-box");
+  for (int i = 0; i < 10; ++i) s.changeGravity(-1.0);
+  EXPECT_EQ(glm::length(s.scene().world.worldSettings().gravity), 0.0);
+  EXPECT_EQ(s.toggleGravityMode(), "");
+  for (int i = 0; i < 5; ++i) s.changeGravity(1.0);
+  EXPECT_EQ(s.toggleGravityMode(), "");
+  EXPECT_EQ(s.scene().world.worldSettings().gravity, phys::Vec3(0.0, -5.0, 0.0));  // down, as by default
+
+  phys::WorldSettings w = s.scene().world.worldSettings();
+  w.gravity = phys::Vec3(0.0, -1e200, 0.0);
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  EXPECT_EQ(s.toggleGravityMode(), "");
+  EXPECT_EQ(s.status(), "gravity: towards the point");
+  EXPECT_EQ(s.scene().world.worldSettings().gravityMode, phys::GravityMode::Point);
+  EXPECT_EQ(s.scene().world.worldSettings().gravityStrength, 1e200);
+  EXPECT_EQ(s.toggleGravityMode(), "");
+  EXPECT_EQ(s.scene().world.worldSettings().gravity, phys::Vec3(0.0, -1e200, 0.0));
+  EXPECT_EQ(s.changeGravity(-1e200), "");
+  EXPECT_EQ(s.scene().world.worldSettings().gravity, phys::Vec3(0.0, 0.0, 0.0));
+}
+
 TEST(Session, DampingKeysStepByATenthAndComeBackExactly) {
   sandbox::Session s = open("ragdoll");
   const double start = s.scene().world.worldSettings().damping;
@@ -214,6 +239,40 @@ TEST(Session, StartingTheOverlayLetsGoOfADrag) {
   // And a ray that is no ray picks nothing rather than throwing.
   EXPECT_FALSE(s.pick(centre, phys::Vec3(0.0)));
   EXPECT_FALSE(s.pick(centre, phys::Vec3(std::nan(""), 0, 0)));
+}
+
+// Found by the soak test: a refused overlay let go of the drag before it refused.
+TEST(Session, ARefusedOverlayChangesNothingNotEvenTheDrag) {
+  sandbox::Session s = open("falling-box");
+  for (int i = 0; i < 60; ++i) s.step();
+  const phys::Vec3 centre = s.scene().world.boxPose(0).center;
+  ASSERT_TRUE(s.pick(centre + phys::Vec3(0, 0, 5), phys::Vec3(0, 0, -1)));
+  std::vector<sandbox::OverlaySpec> specs{sandbox::parseOverlaySpec("iterations=2").spec,
+                                          sandbox::parseOverlaySpec("iterations=4").spec};
+  specs[1].iterations = 0;  // the panel's parser would refuse it; the API must too
+  EXPECT_NE(s.startOverlay(specs).find("overlay run 2 'iterations=4': SolverSettings: "), std::string::npos);
+  EXPECT_FALSE(s.overlayActive());
+  EXPECT_TRUE(s.dragging());
+  EXPECT_TRUE(s.scene().world.drag().has_value());
+}
+
+// Found by the soak test: a throw from beyond about 1e15 m let addBox's exception out. Beyond the
+// world's bound nothing is thrown, and whatever the world refuses is a message.
+TEST(Session, AThrowFromBeyondTheWorldIsRefusedWithAMessage) {
+  sandbox::Session s = open("falling-box");
+  const std::size_t boxes = s.scene().world.boxes().size();
+  const std::uint64_t before = s.scene().world.stateHash();
+  EXPECT_NE(s.spawnBox(phys::Vec3(1e17, 1, 0), phys::Vec3(0, 0, -8)).find("beyond the world's bound"),
+            std::string::npos);
+  EXPECT_NE(
+      s.spawnRagdoll(phys::Vec3(0, 2e6, 0), phys::Vec3(0, 0, -8), true).find("beyond the world's bound"),
+      std::string::npos);
+  EXPECT_EQ(s.status().rfind("nothing thrown: ", 0), 0u) << s.status();
+  EXPECT_EQ(s.scene().world.boxes().size(), boxes);
+  EXPECT_EQ(s.scene().world.stateHash(), before);
+  EXPECT_EQ(s.spawnBox(phys::Vec3(0, 3, 0), phys::Vec3(0, 0, -8)), "");
+  EXPECT_EQ(s.scene().world.boxes().size(), boxes + 1);
+  EXPECT_EQ(s.scene().world.boxes().back().name, "thrown box 1");
 }
 
 TEST(Session, BadWorldSettingsAreRefusedWithTheReason) {
