@@ -6,7 +6,7 @@
 
 namespace phys::detail {
 
-void integrate(Particles& p, const WorldSettings& world, Real h) {
+void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked) {
   const Real keep = std::exp(-world.damping * h);  // 1 - d
   const std::size_t n = p.size();
   if (world.gravityMode == GravityMode::Uniform) {
@@ -15,7 +15,7 @@ void integrate(Particles& p, const WorldSettings& world, Real h) {
       if (p.inverseMass[i] == 0.0) continue;  // pinned
       const Vec3 x = p.position[i];
       p.position[i] = x + keep * (x - p.previous[i]) + gravityStep;
-      p.previous[i] = x;
+      p.previous[i] = checked[i] = x;
     }
     return;
   }
@@ -28,7 +28,7 @@ void integrate(Particles& p, const WorldSettings& world, Real h) {
     const Real distance = glm::length(towards);
     const Vec3 gravityStep = distance > 0.0 ? towards * (pull / distance) : Vec3(0.0);
     p.position[i] = x + keep * (x - p.previous[i]) + gravityStep;
-    p.previous[i] = x;
+    p.previous[i] = checked[i] = x;
   }
 }
 

@@ -19,7 +19,9 @@ Embedding rigidEmbedding(const Box& box, const Vec3& u);
 
 /// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).
-void integrate(Particles& p, const WorldSettings& world, Real h);
+/// `checked` (per particle) is given x too: what the guard found good at the end of the last
+/// substep, and puts back if it freezes the body in this one (later phases edit x*).
+void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked);
 
 /// Pulls an embedded point towards `target` by a spring of the given stiffness (N/m) and
 /// damping (N s/m), stepped implicitly over the substep h, so it is stable at any stiffness:
@@ -145,10 +147,20 @@ struct RigidMotion {
 };
 RigidMotion rigidMotion(const Particles& p, const Box& box, const MassProperties& m);
 
+/// How far the link is outside its bounds with the particles at x (positions or previous
+/// positions): > 0 beyond max (a pin's whole gap), < 0 short of min, 0 within. unit: m
+Real linkViolation(const std::vector<Vec3>& x, const Link& link);
+/// The depenetration limit for links created outside their bounds (World::addLink): `slack` is
+/// per link the violation it may keep, signed as linkViolation's, 0 for a link that has been
+/// within its bounds. Each substep it becomes the violation at x* (where the substep starts),
+/// if smaller, less `step` (maxDepenetrationSpeed times h), and never changes sign. Returns how
+/// many links still have slack.
+int shrinkLinkSlack(const Particles& p, std::span<const Link> links, Real step, std::span<Real> slack);
 /// One pass over the joints, Gauss-Seidel in every method: each link's two points moved apart
 /// or together along their separation by the weighted projection of REFERENCES.md, a pin's all
-/// the way onto each other.
-void solveLinks(Particles& p, std::span<const Link> links);
+/// the way onto each other. `slack`, if not empty, is per link what shrinkLinkSlack allows it
+/// to keep: its bounds are widened by that much on the side it is outside.
+void solveLinks(Particles& p, std::span<const Link> links, std::span<const Real> slack = {});
 
 /// Pulls each box's particle velocities (x - x*) towards the box's rigid motion by `fraction`
 /// (0 nothing, 1 all the way), keeping its linear and angular momentum; edits x* only.

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -64,6 +65,10 @@ Material combine(const Material& a, const Material& b) {
   return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
 }
 
+// How often the guard looks at the bodies' shapes (World::guardShapes): often enough to time
+// kCrushedTime to a twentieth.
+constexpr Real kShapeCheckInterval = 0.1;  // s
+
 using Clock = std::chrono::steady_clock;
 double millisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -100,9 +105,12 @@ void World::setSolverSettings(const SolverSettings& settings) {
 // velocity changes. Runs only when the settings change, never in the step.
 void World::settleWithoutVelocity() {
   std::vector<Vec3> before = particles_.position;
+  // Links created apart keep their gaps: they close at their own pace (World::step).
+  const std::span<const Real> slack =
+      linksApart_ > 0 ? std::span<const Real>(linkSlack_) : std::span<const Real>();
   for (int pass = 0; pass < 4 * solver_.iterations * solver_.substeps && pass < 200; ++pass) {
     detail::relaxGaussSeidel(particles_, sticks_);
-    detail::solveLinks(particles_, links_);
+    detail::solveLinks(particles_, links_, slack);
     detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_);
     if (world_.ground)
       detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight,
@@ -171,6 +179,7 @@ ParticleId World::addParticle(const ParticleDesc& desc) {
   particles_.position.push_back(desc.position);
   particles_.previous.push_back(desc.position - halfStepVelocity * h);
   particles_.inverseMass.push_back(desc.pinned ? 0.0 : 1.0 / desc.mass);
+  checked_.push_back(desc.position);
   particleName_.push_back(desc.name);
   particleBody_.push_back(-1);
   movedByBoxContact_.push_back(0);
@@ -234,6 +243,10 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
   require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
   require(!std::isnan(maxLength) && maxLength >= minLength, "addLink: max length must be >= min length (m)");
   links_.push_back({a, b, minLength, maxLength});
+  // Created outside its bounds (a pin whose points were placed apart), it is brought within them
+  // at most at maxDepenetrationSpeed, from the next step on (World::step).
+  linkSlack_.push_back(detail::linkViolation(particles_.position, links_.back()));
+  if (linkSlack_.back() != 0.0) ++linksApart_;
   joinGroups(a.particle[0], b.particle[0]);
 }
 
@@ -329,6 +342,8 @@ BoxId World::addBox(const BoxDesc& desc) {
 
   const std::span<const Pair> pairs = desc.model == BoxModel::Corners ? std::span<const Pair>(kCornerSticks)
                                                                       : std::span<const Pair>(kTetraSticks);
+  box.firstStick = static_cast<std::uint32_t>(sticks_.size());
+  box.stickCount = static_cast<int>(pairs.size());
   for (const Pair& p : pairs) addStick(box.firstParticle + p.a, box.firstParticle + p.b);
 
   for (int k = 0; k < 8; ++k) {
@@ -367,6 +382,8 @@ BoxId World::addBox(const BoxDesc& desc) {
   partShift_.emplace_back(0.0);
   partWeight_.push_back(0.0);
   partGround_.push_back(0.0);
+  partGroundPush_.push_back(0.0);
+  crushedSince_.push_back(std::numeric_limits<Real>::infinity());
   sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
   bounds_.emplace_back();
   travel_.push_back(0.0);
@@ -377,7 +394,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   return static_cast<BoxId>(boxIndex);
 }
 
-void World::relax(Real h) {
+void World::relax(Real h, std::span<const Real> linkSlack) {
   const bool ground = world_.ground;
   for (int it = 0; it < solver_.iterations; ++it) {
     auto start = Clock::now();
@@ -398,7 +415,7 @@ void World::relax(Real h) {
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links
     // between bodies, then the contacts. Links are rigid projections in every method, so the
     // world's compliance, which XPBD adds to the sticks, does not soften them.
-    detail::solveLinks(particles_, links_);
+    detail::solveLinks(particles_, links_, linkSlack);
     profile_.constraints += millisecondsSince(start);
 
     // Contacts, each pass followed by its friction, so the next pass's sticks relax what
@@ -457,7 +474,7 @@ void World::step() {
   const Real h = substepDt();
   for (int s = 0; s < solver_.substeps; ++s) {
     auto start = Clock::now();
-    detail::integrate(particles_, world_, h);
+    detail::integrate(particles_, world_, h, checked_);
     // The mouse spring is a force: applied with gravity, before the passes share it out.
     if (drag_) {
       const Box* box = dragBox_ >= 0 ? &boxes_[static_cast<std::size_t>(dragBox_)] : nullptr;
@@ -504,8 +521,18 @@ void World::step() {
     detail::toAllowance(bodyAllowance_, depenetration);
     if (world_.ground) detail::toAllowance(groundAllowance_, depenetration);
 
+    // The same for links created outside their bounds: such a link, a pin whose points were placed
+    // 1.5 m apart say, closes at most that fast, or its gap g would become a speed g / h. Links the
+    // motion has opened are closed in full, as the projection does.
+    const bool apart = linksApart_ > 0;
+    if (apart) {
+      start = Clock::now();
+      linksApart_ = detail::shrinkLinkSlack(particles_, links_, depenetration, linkSlack_);
+      profile_.constraints += millisecondsSince(start);
+    }
+
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
-    relax(h);
+    relax(h, apart ? std::span<const Real>(linkSlack_) : std::span<const Real>());
     if (bounce) {
       start = Clock::now();
       restitute(h);
@@ -518,30 +545,79 @@ void World::step() {
 
     time_ += h;
     start = Clock::now();
-    guard();
+    const bool shapes = s + 1 == solver_.substeps && time_ >= nextShapeCheck_;
+    if (shapes) nextShapeCheck_ = time_ + kShapeCheckInterval;
+    guard(shapes);
     profile_.guard += millisecondsSince(start);
   }
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
 }
 
-void World::guard() {
+// A body is frozen whole, put back as it was at the end of the last substep (integrate() kept
+// that in checked_), so all of it from one instant, whichever particle went bad.
+void World::guard(bool shapes) {
   const Real bound = world_.bound;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const Vec3& x = particles_.position[i];
+    const auto id = static_cast<ParticleId>(i);
     if (particles_.inverseMass[i] == 0.0) {
       // Pinned and frozen particles are never written, so this only catches a bug; say so.
-      if (!finite(x)) freeze(static_cast<ParticleId>(i), "non-finite position of a pinned particle");
+      if (!finite(x)) freeze(id, "non-finite position of a pinned particle");
       continue;
     }
     if (!finite(x)) {
-      freeze(static_cast<ParticleId>(i), "non-finite position");
+      freeze(id, "non-finite position");
+    } else if (!finite(particles_.previous[i])) {
+      freeze(id, "non-finite velocity");  // x - x*, and so the metrics, must stay finite too
     } else if (std::abs(x.x) > bound || std::abs(x.y) > bound || std::abs(x.z) > bound) {
       char reason[64];
       std::snprintf(reason, sizeof reason, "left the world bound of %g m", bound);
-      freeze(static_cast<ParticleId>(i), reason);
+      freeze(id, reason);
     }
   }
+  if (shapes) guardShapes();
+}
+
+// Past the limit for a moment is an impact; past it for kCrushedTime, a body that will not come
+// back. Looked at every kShapeCheckInterval, not every substep: a crush is a matter of seconds,
+// and the sticks' lengths cost a pass over them.
+void World::guardShapes() {
+  for (std::size_t b = 0; b < boxes_.size(); ++b) {
+    const Box& box = boxes_[b];
+    if (particles_.inverseMass[box.firstParticle] == 0.0) continue;  // frozen
+    Real& since = crushedSince_[b];
+    const Real error = worstStickError(box);
+    if (!(error > kCrushedStickError)) {
+      since = std::numeric_limits<Real>::infinity();
+      continue;
+    }
+    since = std::min(since, time_);
+    if (time_ - since < kCrushedTime) continue;
+    char reason[96];
+    std::snprintf(reason, sizeof reason, "crushed: a stick %.0f%% off its length, past %.0f%% for %g s",
+                  100.0 * error, 100.0 * kCrushedStickError, kCrushedTime);
+    freeze(box.firstParticle, reason);
+  }
+}
+
+// The largest |length - rest| / rest (the violated bound, for a range) of the box's own sticks
+// that are off by more than kCrushedStickError, or 0 if none is: compared squared, so no square
+// root is taken while the box is sound.
+Real World::worstStickError(const Box& box) const {
+  Real worst = 0.0;
+  const auto begin = sticks_.begin() + box.firstStick;
+  for (auto s = begin; s != begin + box.stickCount; ++s) {
+    const Vec3 d = particles_.position[s->b] - particles_.position[s->a];
+    const Real squared = glm::dot(d, d);
+    const Real shortest = s->minLength * (1.0 - kCrushedStickError);
+    const Real longest = s->maxLength * (1.0 + kCrushedStickError);
+    if (squared >= shortest * shortest && squared <= longest * longest) continue;
+    const Real length = std::sqrt(squared);
+    worst = std::max(worst, length < s->minLength ? (s->minLength - length) / s->minLength
+                                                  : (length - s->maxLength) / s->maxLength);
+  }
+  return worst;
 }
 
 void World::freeze(ParticleId bad, const std::string& reason) {
@@ -554,10 +630,9 @@ void World::freeze(ParticleId bad, const std::string& reason) {
     name = box.name.empty() ? "box " + std::to_string(body) : box.name;
   }
   for (ParticleId i = first; i < first + count; ++i) {
-    // x* was checked at the end of the previous substep, so it is a good place to stop.
-    if (!finite(particles_.position[i]))
-      particles_.position[i] = finite(particles_.previous[i]) ? particles_.previous[i] : Vec3(0.0);
-    particles_.previous[i] = particles_.position[i];
+    // Where the guard last found the whole body good (or where it was created): finite, and in
+    // the bound unless it was created outside it. A frozen particle is never written again.
+    particles_.position[i] = particles_.previous[i] = checked_[i];
     particles_.inverseMass[i] = 0.0;
   }
   freezes_.push_back({name, reason, bad, time_});

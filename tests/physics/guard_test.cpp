@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "passes.h"
+#include "physics/capsule_ragdoll.h"
 #include "test_util.h"
 
 namespace {
@@ -93,6 +94,133 @@ TEST(Guard, PinnedEndOfANaNStickIsNeverWritten) {
   both.count = 2;
   phys::detail::moveEmbedded(p.position, p.inverseMass, both, Vec3(nan));
   EXPECT_EQ(p.position[0], Vec3(0.0)) << "embedded point";
+}
+
+// Under 10,000 m/s^2 a corners box on the ground is pressed flat within a step, 73% off in its
+// worst stick, and stays flat: its sticks then lie in the ground's plane and cannot lift it. A
+// tetra box stands 10,000 but not 1e6 m/s^2: it is torn (83%) and thrown 61 m up in a second.
+// Each is frozen kCrushedTime later where the guard last checked it, the substep before, and
+// reported as crushed.
+TEST(Guard, ABoxCrushedByHugeGravityIsFrozenAndReported) {
+  for (const phys::BoxModel model : {phys::BoxModel::Corners, phys::BoxModel::Tetra}) {
+    phys::WorldSettings ws;
+    ws.gravity = Vec3(0.0, model == phys::BoxModel::Corners ? -1.0e4 : -1.0e6, 0.0);
+    phys::World world(ws);
+    phys::BoxDesc d;
+    d.name = "crate";
+    d.center = Vec3(0.0, 0.5, 0.0);
+    d.model = model;
+    world.addBox(d);
+    std::vector<Vec3> last;
+    for (int i = 0; i < 180 && world.freezes().empty(); ++i) {
+      last = world.particles().position;
+      world.step();
+    }
+    ASSERT_EQ(world.freezes().size(), 1u) << phys::toString(model);
+    EXPECT_EQ(world.freezes()[0].name, "crate");
+    EXPECT_EQ(world.freezes()[0].reason.rfind("crushed", 0), 0u) << world.freezes()[0].reason;
+    // It went past the limit in the first step, at 1/60 s, and is caught kCrushedTime after that,
+    // when the guard next looks at shapes (every 0.1 s), to a step of round-off in the clock.
+    EXPECT_GE(world.freezes()[0].time, phys::kCrushedTime + 1.0 / 60.0 - 1e-9);
+    EXPECT_LE(world.freezes()[0].time, phys::kCrushedTime + 1.0 / 60.0 + 0.1 + 1.0 / 60.0 + 1e-9);
+    for (std::size_t j = 0; j < last.size(); ++j) {
+      EXPECT_EQ(world.particles().position[j], last[j]) << phys::toString(model) << " particle " << j;
+      EXPECT_EQ(world.particles().previous[j], last[j]);  // at rest
+    }
+    const phys::BoxPose pose = world.boxPose(0);
+    EXPECT_TRUE(phys::finite(pose.center) && std::isfinite(glm::length(pose.orientation)));
+  }
+}
+
+// The limit is not reached by a world that merely strains a body: at 2,500 m/s^2 a box rests
+// squashed by 20% (three passes cannot undo more of a step of that gravity). And a body past it
+// for a moment is not frozen: a box dropped at 80 m/s with one pass a step is squashed 85% as it
+// lands, for 0.1 s, and comes back whole.
+TEST(Guard, ABoxSquashedOrSquashedForAMomentIsNotFrozen) {
+  {
+    phys::WorldSettings ws;
+    ws.gravity = Vec3(0.0, -2500.0, 0.0);
+    phys::World world(ws);
+    phys::BoxDesc d;
+    d.center = Vec3(0.0, 0.5, 0.0);
+    world.addBox(d);
+    for (int i = 0; i < 180; ++i) world.step();
+    EXPECT_TRUE(world.freezes().empty()) << world.freezes()[0].reason;
+    EXPECT_GT(world.metrics().maxConstraintError, 0.15);
+  }
+  phys::SolverSettings one;
+  one.iterations = 1;
+  phys::World world(phys::WorldSettings{}, one);
+  phys::BoxDesc d;
+  d.center = Vec3(0.0, 1.0, 0.0);
+  d.velocity = Vec3(0.0, -80.0, 0.0);
+  d.orientation = glm::angleAxis(0.5, glm::normalize(Vec3(1.0, 0.2, 0.4)));  // lands on a corner
+  world.addBox(d);
+  double worst = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    world.step();
+    worst = std::max(worst, world.metrics().maxConstraintError);
+  }
+  EXPECT_GT(worst, phys::kCrushedStickError);  // the limit was passed
+  EXPECT_TRUE(world.freezes().empty()) << world.freezes()[0].reason;
+  EXPECT_LT(world.metrics().maxConstraintError, 0.05);  // and the box is whole again
+}
+
+// A box that leaves the bound stops where it last was inside it, at the end of the substep before,
+// not out where it was caught.
+TEST(Guard, ABoxLeavingTheBoundIsFrozenAtItsLastPlaceInside) {
+  phys::WorldSettings ws;
+  ws.ground = false;
+  ws.gravity = Vec3(0.0);
+  ws.bound = 100.0;
+  phys::World world(ws);
+  phys::BoxDesc d;
+  d.center = Vec3(85.0, 0.0, 0.0);
+  d.velocity = Vec3(600.0, 0.0, 0.0);  // 10 m a step: at 95 after one, its far face at 95.5
+  world.addBox(d);
+  for (int i = 0; i < 5; ++i) world.step();
+  ASSERT_EQ(world.freezes().size(), 1u);
+  EXPECT_NEAR(world.freezes()[0].time, 2.0 / 60.0, 1e-12);  // caught at 105, in the second step
+  EXPECT_NEAR(world.boxPose(0).center.x, 95.0, 1e-9);
+  for (int j = 0; j < 8; ++j) {
+    EXPECT_LE(world.particles().position[j].x, 100.0);
+    EXPECT_EQ(world.particles().position[j], world.particles().previous[j]);  // at rest
+  }
+}
+
+// Gravity of 1e308 m/s^2 on a capsule ragdoll: every part leaves the bound (or overflows) in the
+// first substep. Each is frozen where it was created, so every pose is finite and where it was,
+// and so is every figure metrics() gives of the world after a step.
+TEST(Guard, UnderGravityOf1e308EveryFrozenPoseAndEveryMetricIsFinite) {
+  for (const phys::RagdollModel model : {phys::RagdollModel::Seed, phys::RagdollModel::Lean}) {
+    phys::WorldSettings ws;
+    ws.ground = false;
+    ws.gravity = Vec3(1e308, 1e308, -1e308);
+    phys::World world(ws);
+    phys::RagdollDesc d;
+    d.hips = Vec3(0.0, 1.0, 0.0);
+    d.model = model;
+    const phys::CapsuleRagdoll r = phys::addCapsuleRagdoll(world, d);
+    std::vector<phys::BoxPose> placed;
+    for (const phys::BoxId part : r.parts) placed.push_back(world.boxPose(part));
+    for (int i = 0; i < 3; ++i) world.step();
+    EXPECT_EQ(world.freezes().size(), static_cast<std::size_t>(phys::kCapsuleParts));
+    for (int k = 0; k < phys::kCapsuleParts; ++k) {
+      const phys::BoxPose pose = world.boxPose(r.parts[k]);
+      ASSERT_TRUE(phys::finite(pose.center) && std::isfinite(pose.orientation.w) &&
+                  std::isfinite(pose.orientation.x) && std::isfinite(pose.orientation.y) &&
+                  std::isfinite(pose.orientation.z))
+          << "part " << k;
+      EXPECT_NEAR(glm::length(pose.center - placed[k].center), 0.0, 1e-12) << "part " << k;
+      EXPECT_NEAR(testing_phys::angleBetween(pose.orientation, placed[k].orientation), 0.0, 1e-6);
+    }
+    const phys::Metrics m = world.metrics();
+    for (const double figure : {m.kineticEnergy, m.potentialEnergy, m.maxConstraintError,
+                                m.rmsConstraintError, m.maxJointError, m.maxPenetration, m.maxSpeed}) {
+      EXPECT_TRUE(std::isfinite(figure)) << phys::toString(model);
+    }
+    EXPECT_EQ(m.frozen, static_cast<int>(world.particles().size()));
+  }
 }
 
 }  // namespace

@@ -64,7 +64,9 @@ struct Box {
   std::string name;
   BoxModel model = BoxModel::Corners;
   ParticleId firstParticle = 0;
-  int particleCount = 0;  ///< 8 (corners) or 4 (tetra)
+  int particleCount = 0;         ///< 8 (corners) or 4 (tetra)
+  std::uint32_t firstStick = 0;  ///< its own sticks are consecutive in World::sticks() from here
+  int stickCount = 0;            ///< 22 (corners) or 6 (tetra)
   std::uint32_t firstCorner = 0;
   Vec3 halfExtents{0.5};  ///< unit: m; of the box, or of the box a capsule is inscribed in
   Shape shape = Shape::Box;

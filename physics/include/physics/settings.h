@@ -43,6 +43,15 @@ struct WorldSettings {
   Real bound = 1.0e6;  ///< unit: m
 };
 
+/// A box (or capsule) whose worst stick has been more than kCrushedStickError of its rest length
+/// off it for kCrushedTime running is crushed: no longer the body it was, and stuck so (a box
+/// pressed flat onto the ground cannot be lifted by sticks that lie in the ground's plane), and
+/// the guard freezes it. Hard impacts at coarse settings squeeze bodies past the limit for up
+/// to about a second, and they recover (docs/physics.md, "Where energy could come from
+/// nowhere"), hence the time.
+inline constexpr Real kCrushedStickError = 0.5;  ///< unitless: a share of the rest length
+inline constexpr Real kCrushedTime = 2.0;        ///< unit: s
+
 /// Ranges validate() enforces, shared by the scene loader, the lab and the sandbox's sliders.
 inline constexpr int kMaxIterations = 1000;  ///< per substep
 inline constexpr int kMaxSubsteps = 1000;    ///< per step
@@ -87,7 +96,9 @@ struct SolverSettings {
   /// box): each substep removes at most this times h of it, the rest waits for later substeps.
   /// Projected at once, an overlap d becomes a speed d / h, and the finer the substep the faster
   /// boxes fly apart (PhysX's maxDepenetrationVelocity, Box2D's contact push speed). A contact
-  /// resolving only this substep's approach is always stopped in full. Infinity turns it off.
+  /// resolving only this substep's approach is always stopped in full. A link (joint) created
+  /// outside its bounds, a pin whose points were placed apart, is brought within them at most
+  /// this fast too; a link the motion opens is closed in full. Infinity turns it off.
   Real maxDepenetrationSpeed = kDefaultMaxDepenetrationSpeed;  ///< unit: m/s, > 0
 };
 

@@ -31,7 +31,7 @@ struct ParticleDesc {
 /// What the guard did to a particle that went bad.
 struct FreezeReport {
   std::string name;     ///< the box's name, else the particle's, else "particle N"
-  std::string reason;   ///< "non-finite position" or "left the world bound of B m"
+  std::string reason;   ///< "non-finite position", "left the world bound of B m", "crushed: ...", ...
   ParticleId particle;  ///< the first bad particle
   Real time;            ///< unit: s; simulated time of the substep that caught it
 };
@@ -170,7 +170,7 @@ class World {
   void combineMaterials();
   void keepVelocities(Real hOld, Real hNew);
   void settleWithoutVelocity();
-  void relax(Real h);
+  void relax(Real h, std::span<const Real> linkSlack);
   void restitute(Real h);
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBoxFrames();
@@ -187,12 +187,17 @@ class World {
   Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
   Embedding rigidPoint(BoxId box, const Vec3& point) const;
   bool collides(BoxId a, BoxId b) const;
-  void guard();
+  void guard(bool shapes);
+  void guardShapes();
+  Real worstStickError(const Box& box) const;  // beyond kCrushedStickError, else 0
   void freeze(ParticleId bad, const std::string& reason);
 
   WorldSettings world_;
   SolverSettings solver_;
   Particles particles_;
+  std::vector<Vec3> checked_;       // per particle: its position when the guard last found it good
+  std::vector<Real> crushedSince_;  // per box: time it went past kCrushedStickError, infinity if not
+  Real nextShapeCheck_ = 0.0;       // s: when the guard next looks at the shapes
   std::vector<std::string> particleName_;
   std::vector<std::int32_t> particleBody_;  // box index, or -1 for a loose particle
   std::vector<Stick> sticks_;
@@ -244,6 +249,7 @@ class World {
     Vec3 normal;                               // from a towards b
     Real overlap;                              // m, beyond the slop, at x*; negative when apart
     Real need;                                 // m, the least n . (t_b - t_a) the parting must reach
+    Real push;                                 // kg m, accumulated by the sweeps (shift x mass), >= 0
   };
   std::vector<PartPair> partPairs_;              // per touching pair, rebuilt every substep
   std::vector<BoxId> jointGroup_;                // per box: union-find parent over links and sticks
@@ -251,11 +257,14 @@ class World {
   std::vector<Vec3> partShift_;                  // per box: translation (m)
   std::vector<Real> partWeight_;                 // per box: inverse mass (1/kg), 0 if it cannot move
   std::vector<Real> partGround_;                 // per box: n_g . shift it needs (m)
+  std::vector<Real> partGroundPush_;             // per box: the ground's push, accumulated (m)
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
   std::vector<std::uint8_t> touched_;            // per contact point: touched the ground in the last step
 
   // Solver scratch, sized when things are added so the step never allocates.
   std::vector<Real> lambda_;       // per stick: XPBD multiplier
+  std::vector<Real> linkSlack_;    // per link: violation it may keep this substep (m; shrinkLinkSlack)
+  int linksApart_ = 0;             // links whose slack is not yet 0
   std::vector<Vec3> jacobiDelta_;  // per particle
   std::vector<Real> degree_;       // per particle: sticks attached (Jacobi's scaling)
 
