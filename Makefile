@@ -5,7 +5,7 @@ BUILD_DIR := build/$(PRESET)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SCREENSHOT ?= $(BUILD_DIR)/sandbox.png
 
-.PHONY: all deps configure build run test charts clean
+.PHONY: all deps configure build run test charts clean fuzz asan-fast soak format-check tidy
 
 all: build
 
@@ -36,6 +36,36 @@ test: build
 # scenes, the stability suite and the peers, measured on this machine in one run.
 charts: build
 	$(BUILD_DIR)/app/lab/lab report
+
+# The reliability checks CI runs besides `make test PRESET=ci` (docs/architecture.md, "CI").
+# make fuzz SECONDS=N: the scene fuzzer (fuzz preset, clang) for N seconds on the corpus in
+# build/fuzz/corpus, seeded from assets/scenes; FUZZ_FLAGS adds libFuzzer options
+# (FUZZ_FLAGS=-fork=2 runs two at once). Findings go to build/fuzz/artifacts/.
+fuzz: SECONDS ?= 60
+fuzz: deps
+	cmake --preset fuzz
+	cmake --build --preset fuzz -j $(JOBS)
+	scripts/run-fuzzer $(SECONDS) $(FUZZ_FLAGS)
+
+# The fast physics and scene tests under AddressSanitizer and UndefinedBehaviorSanitizer (the
+# asan preset, building physics_tests, app_tests and testsupport_tests only;
+# scripts/ctest-asan-fast says which run). The whole suite is make test PRESET=asan.
+asan-fast: deps
+	cmake --preset asan
+	cmake --build --preset asan-fast -j $(JOBS)
+	scripts/ctest-asan-fast
+
+# make soak SECONDS=N: the soak test (tests/soak/) for N seconds.
+soak: SECONDS ?= 300
+soak: configure
+	cmake --build --preset $(PRESET) -j $(JOBS) --target soak
+	$(BUILD_DIR)/tests/soak/soak --seconds $(SECONDS)
+
+format-check:
+	scripts/check-format
+
+tidy: deps
+	scripts/run-tidy
 
 clean:
 	rm -rf build

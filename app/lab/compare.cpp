@@ -183,7 +183,7 @@ std::filesystem::path shownPath(const std::filesystem::path& file, const std::fi
   const std::filesystem::path canonicalFile = std::filesystem::weakly_canonical(file, ec);
   const std::filesystem::path canonicalData = std::filesystem::weakly_canonical(data, ec);
   if (ec) return file;
-  const std::filesystem::path relative = canonicalFile.lexically_relative(canonicalData);
+  std::filesystem::path relative = canonicalFile.lexically_relative(canonicalData);  // not const: moved out
   if (relative.empty() || *relative.begin() == "..") return file;
   return relative;
 }

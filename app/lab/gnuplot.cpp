@@ -21,7 +21,7 @@ std::filesystem::path findGnuplot() {
   std::string dir;
   while (std::getline(dirs, dir, ':')) {
     if (dir.empty()) continue;
-    const std::filesystem::path candidate = std::filesystem::path(dir) / "gnuplot";
+    std::filesystem::path candidate = std::filesystem::path(dir) / "gnuplot";  // not const: moved out
     std::error_code ec;
     if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
   }
@@ -61,7 +61,7 @@ class PrivateFolder {
 std::string moveIntoPlace(const std::filesystem::path& from, const std::filesystem::path& folder) {
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(from, ec)) {
-    const std::filesystem::path chart = entry.path();
+    const std::filesystem::path& chart = entry.path();
     const int fd = ::open(chart.c_str(), O_RDONLY | O_CLOEXEC);
     const bool flushed = fd >= 0 && ::fsync(fd) == 0;
     const int error = errno;

@@ -153,6 +153,7 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
     if (c == nullptr || fieldNumber(r, "ms_per_sim_second") < fieldNumber(*c, "ms_per_sim_second")) c = &r;
   }
   std::vector<std::pair<double, const CsvRow*>> ordered;
+  ordered.reserve(cheapest.size());
   for (const auto& [method, row] : cheapest)
     ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
   std::sort(ordered.begin(), ordered.end());

@@ -30,6 +30,7 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
 template <typename T>
 std::string joinNumbers(const std::vector<T>& values) {
   std::vector<std::string> parts;
+  parts.reserve(values.size());
   for (T v : values) parts.push_back(number(static_cast<double>(v)));
   return join(parts, ", ");
 }

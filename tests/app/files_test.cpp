@@ -100,8 +100,8 @@ TEST(AtomicWrite, NeverTouchesAnotherFileOrLinkBesideTheTarget) {
   EXPECT_EQ(readFile(victim), "precious");
   EXPECT_TRUE(fs::is_symlink(folder.path / "out.csv.tmp"));
   EXPECT_EQ(readFile(folder.path / "out.png.tmp"), "the user's own");
-  EXPECT_EQ(entries(folder.path), (std::vector<std::string>{".out.csv.tmp", "out.csv", "out.csv.tmp", "out.png",
-                                                            "out.png.tmp", "victim.txt"}));
+  EXPECT_EQ(entries(folder.path), (std::vector<std::string>{".out.csv.tmp", "out.csv", "out.csv.tmp",
+                                                            "out.png", "out.png.tmp", "victim.txt"}));
 }
 
 TEST(AtomicWrite, AFolderAsTheTargetIsRefusedAndNothingIsLeftBehind) {
@@ -215,8 +215,9 @@ TEST(ReadWhole, ReadsAFileWhole) {
 
 TEST(ReadWhole, SaysWhyItCannotRead) {
   const TempFolder folder;
-  EXPECT_NE(readError(folder.path / "missing.xml").find("missing.xml: cannot open: No such file or directory"),
-            std::string::npos);
+  EXPECT_NE(
+      readError(folder.path / "missing.xml").find("missing.xml: cannot open: No such file or directory"),
+      std::string::npos);
   EXPECT_NE(readError(folder.path).find("is a folder, not a file"), std::string::npos);
   writeFile(folder.path / "big.txt", std::string(2000, 'b'));
   EXPECT_NE(readError(folder.path / "big.txt", 1999).find("is larger than 1999 bytes"), std::string::npos);

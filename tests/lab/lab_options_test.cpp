@@ -156,7 +156,8 @@ TEST(LabMain, MissingSceneFileExitsOneWithTheOsReason) {
   std::ostringstream out, err;
   EXPECT_EQ(lab::labMain({"run", "/no/such/dir/scene.xml"}, out, err), lab::kExitFailure);
   EXPECT_EQ(out.str(), "");
-  EXPECT_EQ(err.str().rfind("/no/such/dir/scene.xml: cannot open: No such file or directory", 0), 0u) << err.str();
+  EXPECT_EQ(err.str().rfind("/no/such/dir/scene.xml: cannot open: No such file or directory", 0), 0u)
+      << err.str();
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 // allocated are dropped by MuJoCo with a warning, and the table says that too.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -140,12 +141,12 @@ class MujocoEngine : public Engine {
 
   phys::Vec3 position(int i) const override {
     sync();
-    const mjtNum* p = data_->xpos + 3 * ids_[static_cast<std::size_t>(i)];
+    const mjtNum* p = data_->xpos + 3 * static_cast<std::ptrdiff_t>(ids_[static_cast<std::size_t>(i)]);
     return {p[0], p[1], p[2]};
   }
   phys::Quat orientation(int i) const override {
     sync();
-    const mjtNum* q = data_->xquat + 4 * ids_[static_cast<std::size_t>(i)];
+    const mjtNum* q = data_->xquat + 4 * static_cast<std::ptrdiff_t>(ids_[static_cast<std::size_t>(i)]);
     return {q[0], q[1], q[2], q[3]};
   }
 
@@ -219,7 +220,8 @@ class MujocoEngine : public Engine {
           for (int k = 0; k < 3; ++k) data_->qvel[dof + k] = spin[k];
           break;
         case mjJNT_HINGE: {
-          const mjtNum* axis = model_->jnt_axis + 3 * joint;  // in the body's frame
+          const mjtNum* axis =
+              model_->jnt_axis + 3 * static_cast<std::ptrdiff_t>(joint);  // in the body's frame
           data_->qvel[dof] = spin.x * axis[0] + spin.y * axis[1] + spin.z * axis[2];
           break;
         }
@@ -240,12 +242,12 @@ class MujocoEngine : public Engine {
       const int id = ids_[i];
       mjtNum v[6];
       mj_objectVelocity(model_, data_, mjOBJ_BODY, id, v, 0);
-      const mjtNum* q = data_->xquat + 4 * id;
+      const mjtNum* q = data_->xquat + 4 * static_cast<std::ptrdiff_t>(id);
       const phys::Quat r(q[0], q[1], q[2], q[3]);
       const phys::Vec3 spin = glm::inverse(r) * phys::Vec3(v[0], v[1], v[2]);
       const phys::Vec3 force = -c * b.mass * phys::Vec3(v[3], v[4], v[5]);
       const phys::Vec3 torque = r * (-c * b.inertia * spin);
-      mjtNum* f = data_->xfrc_applied + 6 * id;
+      mjtNum* f = data_->xfrc_applied + 6 * static_cast<std::ptrdiff_t>(id);
       for (int k = 0; k < 3; ++k) {
         f[k] = force[k];
         f[3 + k] = torque[k];
