@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "controls.h"
+#include "stats_text.h"
 
 namespace sandbox {
 namespace {
@@ -246,21 +247,11 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   ImGui::Text("collide %.3f  contacts %.3f", p.collide, p.contacts);
   ImGui::Text("friction %.3f  guard %.3f ms", p.friction, p.guard);
   ImGui::Separator();
-  ImGui::Text("%zu particles, %zu sticks, %zu joints", world.particles().size(), world.sticks().size(),
-              world.links().size());
-  const phys::Metrics m = world.metrics();
-  ImGui::Text("%zu bodies, %d contacts, %zu broad-phase pairs", world.boxes().size(), m.contacts,
-              world.broadPhasePairs());
-  ImGui::Text("stick error max %.2e rms %.2e", m.maxConstraintError, m.rmsConstraintError);
-  ImGui::Text("joint gap %.2e m, penetration %.2e m", m.maxJointError, m.maxPenetration);
-  ImGui::Text("energy %.3f J (kinetic %.3f), max speed %.2f m/s", m.energy(), m.kineticEnergy, m.maxSpeed);
-  if (m.frozen > 0) {
-    const phys::FreezeReport& last = world.freezes().back();
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f),
-                       "frozen: %zu bodies (%d particles); last %s: %s at %.2f s", world.freezes().size(),
-                       m.frozen, last.name.c_str(), last.reason.c_str(), last.time);
-  } else {
-    ImGui::Text("frozen: none");
+  for (const StatsLine& line : statsLines(world)) {
+    if (line.warning)
+      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "%s", line.text.c_str());
+    else
+      ImGui::TextUnformatted(line.text.c_str());
   }
   ImGui::Separator();
   const ImVec2 plotSize(ImGui::GetContentRegionAvail().x, 56.0f);
@@ -268,10 +259,10 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   std::snprintf(overlay, sizeof overlay, "step %.3f ms (max %.3f)", ui.stepMs.last(), ui.stepMs.max());
   ImGui::PlotLines("##step", ui.stepMs.data(), ui.stepMs.size(), ui.stepMs.offset(), overlay, 0.0f,
                    std::max(ui.stepMs.max() * 1.1f, 1e-3f), plotSize);
-  std::snprintf(overlay, sizeof overlay, "max stick error %.2e", ui.maxError.last());
+  std::snprintf(overlay, sizeof overlay, "max stick error %s", figure("%.2e", ui.maxError.last()).c_str());
   ImGui::PlotLines("##maxerr", ui.maxError.data(), ui.maxError.size(), ui.maxError.offset(), overlay, 0.0f,
                    std::max(ui.maxError.max() * 1.1f, 1e-6f), plotSize);
-  std::snprintf(overlay, sizeof overlay, "rms stick error %.2e", ui.rmsError.last());
+  std::snprintf(overlay, sizeof overlay, "rms stick error %s", figure("%.2e", ui.rmsError.last()).c_str());
   ImGui::PlotLines("##rmserr", ui.rmsError.data(), ui.rmsError.size(), ui.rmsError.offset(), overlay, 0.0f,
                    std::max(ui.rmsError.max() * 1.1f, 1e-6f), plotSize);
   ImGui::TextDisabled("plots: the last 10 s of wall time");
@@ -293,8 +284,8 @@ void drawLegend(const Session& session) {
     ImGui::PushID(id++);
     ImGui::ColorButton("##c", ImVec4(run.color.r, run.color.g, run.color.b, 1.0f), 0, ImVec2(14, 14));
     ImGui::SameLine();
-    ImGui::Text("%-28s %-28s %.3f ms/step (median), error %.1e", run.label.c_str(), describeSolver(s).c_str(),
-                run.medianMs(), run.scene->world.metrics().maxConstraintError);
+    ImGui::Text("%-28s %-28s %.3f ms/step (median), error %s", run.label.c_str(), describeSolver(s).c_str(),
+                run.medianMs(), figure("%.1e", run.scene->world.metrics().maxConstraintError).c_str());
     ImGui::PopID();
   }
   ImGui::End();

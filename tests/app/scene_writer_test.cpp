@@ -387,6 +387,16 @@ TEST(SceneWriter, WhatTheLoaderWouldRefuseIsNotWritten) {
   EXPECT_NE(refusal(near, flown).find("the camera is beyond the world's bound of 20 m"), std::string::npos);
   flown.eye.z = 19.0f;
   EXPECT_NO_THROW(scenes::loadSceneText(scenes::writeSceneXml(near, flown), "near.xml"));
+  // The physics takes any bound; a file holds at most 1e9 m (found by the soak test).
+  phys::WorldSettings wider = near.world.worldSettings();
+  wider.bound = 4.5e229;
+  near.world.setWorldSettings(wider);
+  EXPECT_NE(refusal(near, near.camera).find("bound of 4.5e+229 m is larger than a scene file holds"),
+            std::string::npos)
+      << refusal(near, near.camera);
+  wider.bound = 1e9;
+  near.world.setWorldSettings(wider);
+  EXPECT_NO_THROW(scenes::loadSceneText(scenes::writeSceneXml(near, near.camera), "near.xml"));
 }
 
 // A fresh folder under the system's temporary one, removed with everything in it, read-only

@@ -14,6 +14,7 @@
 #include "history.h"
 #include "panels.h"
 #include "session.h"
+#include "stats_text.h"
 #include "temp_folder.h"
 
 namespace {
@@ -380,6 +381,39 @@ TEST(Remembered, PanelsAndDrawModeComeBackAndTheCommandLineWins) {
   EXPECT_FALSE(next.showStats);
   EXPECT_EQ(next.drawMode, "filled");
   EXPECT_TRUE(next.markers);
+}
+
+}  // namespace
+
+namespace {
+
+// Under a gravity of -1.8e308 m/s^2 the energies overflow before the first step (m g . x over
+// bodies above and below the origin is inf - inf): the Stats panel said "energy nan J". Found
+// by the soak test.
+TEST(StatsText, AFigureThatOverflowsReadsOverflow) {
+  EXPECT_EQ(sandbox::figure("%.3f", 1.5), "1.500");
+  EXPECT_EQ(sandbox::figure("%.3f", std::numeric_limits<double>::quiet_NaN()), "overflow");
+  EXPECT_EQ(sandbox::figure("%.2e", -std::numeric_limits<double>::infinity()), "overflow");
+
+  sandbox::Session s = open("ragdoll");
+  phys::WorldSettings w = s.scene().world.worldSettings();
+  w.gravityMode = phys::GravityMode::Uniform;
+  w.gravity = phys::Vec3(0.0, -std::numeric_limits<double>::max(), 0.0);
+  w.ground = false;
+  phys::World& world = s.scene().world;
+  world.setWorldSettings(w);
+  world.addParticle({.position = phys::Vec3(0.0, -1.0, 0.0), .name = "below"});
+  ASSERT_TRUE(std::isnan(world.metrics().energy()));  // what the panel must not print
+  bool sawEnergy = false;
+  for (const sandbox::StatsLine& line : sandbox::statsLines(world)) {
+    EXPECT_EQ(line.text.find("nan"), std::string::npos) << line.text;
+    EXPECT_EQ(line.text.find("inf"), std::string::npos) << line.text;
+    if (line.text.rfind("energy ", 0) == 0) {
+      sawEnergy = true;
+      EXPECT_NE(line.text.find("energy overflow J"), std::string::npos) << line.text;
+    }
+  }
+  EXPECT_TRUE(sawEnergy);
 }
 
 }  // namespace

@@ -269,8 +269,14 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
                                 std::to_string(detail::kMaxParticles));
   }
   const std::vector<std::int32_t> owner = particleOwners(world);
-  // The loader refuses a body beyond the bound (the bound was lowered under it at run time).
+  // The physics takes any bound > 0; a file holds at most kMaxBound (the loader's limit).
   const double bound = world.worldSettings().bound;
+  if (!(bound <= detail::kMaxBound)) {
+    throw std::invalid_argument("the world's bound of " + detail::formatNumber(bound) +
+                                " m is larger than a scene file holds (at most " +
+                                detail::formatNumber(detail::kMaxBound) + " m)");
+  }
+  // The loader refuses a body beyond the bound (the bound was lowered under it at run time).
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (insideBound(particles.position[i], bound)) continue;
     const std::string body =
