@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <span>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -78,17 +79,6 @@ std::string within(const What& what, const Value& saved, const Value& reloaded, 
 template <typename Who>
 auto field(const Who& who, const char* name) {
   return [&who, name] { return who() + ": " + name; };
-}
-
-// The box each particle belongs to, or kLoose.
-std::vector<std::int32_t> owners(const phys::World& world) {
-  std::vector<std::int32_t> owner(world.particles().size(), kLoose);
-  const std::span<const phys::Box> boxes = world.boxes();
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
-    for (int j = 0; j < boxes[b].particleCount; ++j)
-      owner[boxes[b].firstParticle + j] = static_cast<std::int32_t>(b);
-  }
-  return owner;
 }
 
 std::string boxLabel(const phys::World& world, std::size_t id) {
@@ -277,8 +267,9 @@ class Comparison {
     if (!(d = count("boxes", s_.boxes().size(), r_.boxes().size())).empty()) return d;
     if (!(d = count("sticks", s_.sticks().size(), r_.sticks().size())).empty()) return d;
     if (!(d = count("links", s_.links().size(), r_.links().size())).empty()) return d;
-    owner_ = owners(s_);
-    if (owner_ != owners(r_)) return "the particles belong to different boxes after the reload";
+    owner_ = s_.particleBodies();
+    if (!std::ranges::equal(owner_, r_.particleBodies()))
+      return "the particles belong to different boxes after the reload";
     // Each saved box fitted once: sticks and links refer to their boxes' fits again and again.
     savedRigid_.reserve(s_.boxes().size());
     for (std::size_t b = 0; b < s_.boxes().size(); ++b) savedRigid_.push_back(rigid(s_, b));
@@ -478,9 +469,9 @@ class Comparison {
   const phys::World& s_;
   const phys::World& r_;
   const Tolerance& tol_;
-  const Real h_;  // the substep (s), the same in both once the settings agree
-  std::vector<std::int32_t> owner_;
-  std::vector<Rigid> savedRigid_;  // per box of the saved world
+  const Real h_;                         // the substep (s), the same in both once the settings agree
+  std::span<const std::int32_t> owner_;  // the saved world's World::particleBodies()
+  std::vector<Rigid> savedRigid_;        // per box of the saved world
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -25,18 +26,7 @@ namespace {
 
 using detail::ElementWriter;
 
-constexpr std::int32_t kLoose = -1;
-
-// The box each particle belongs to, or kLoose.
-std::vector<std::int32_t> particleOwners(const phys::World& world) {
-  std::vector<std::int32_t> owner(world.particles().size(), kLoose);
-  const std::span<const phys::Box> boxes = world.boxes();
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
-    for (int j = 0; j < boxes[b].particleCount; ++j)
-      owner[boxes[b].firstParticle + j] = static_cast<std::int32_t>(b);
-  }
-  return owner;
-}
+constexpr std::int32_t kLoose = -1;  // World::particleBodies() of a loose particle
 
 // One end of a link, as a <link> names it: a box, or a loose particle standing for itself.
 struct LinkEnd {
@@ -46,7 +36,7 @@ struct LinkEnd {
 
 // A link's end is carried by one box's particles (World::anchor) or is one loose particle;
 // an embedding spread over several bodies has no name in a scene file.
-LinkEnd linkEnd(const phys::Embedding& e, const std::vector<std::int32_t>& owner) {
+LinkEnd linkEnd(const phys::Embedding& e, std::span<const std::int32_t> owner) {
   const std::int32_t first = owner[e.particle[0]];
   for (int i = 1; i < e.count; ++i) {
     if (owner[e.particle[i]] != first) {
@@ -70,7 +60,7 @@ LinkEnd linkEnd(const phys::Embedding& e, const std::vector<std::int32_t>& owner
 // or "particle N" after their index, with a count appended should that be taken too.
 class BodyNames {
  public:
-  BodyNames(const phys::World& world, const std::vector<std::int32_t>& owner,
+  BodyNames(const phys::World& world, std::span<const std::int32_t> owner,
             const std::vector<bool>& referenced)
       : box_(world.boxes().size()), particle_(world.particles().size()) {
     const std::span<const phys::Box> boxes = world.boxes();
@@ -222,8 +212,8 @@ std::string stickElement(const phys::Stick& s, const BodyNames& names) {
   return e.empty();
 }
 
-std::string linkElement(const phys::World& world, const phys::Link& link,
-                        const std::vector<std::int32_t>& owner, const BodyNames& names) {
+std::string linkElement(const phys::World& world, const phys::Link& link, std::span<const std::int32_t> owner,
+                        const BodyNames& names) {
   const LinkEnd endA = linkEnd(link.a, owner), endB = linkEnd(link.b, owner);
   // The loader refuses a link from a body to itself (a box is rigid: such a link does nothing).
   if (endA.isBox == endB.isBox && endA.index == endB.index) {
@@ -268,7 +258,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
                                 " particles; a scene file loads at most " +
                                 std::to_string(detail::kMaxParticles));
   }
-  const std::vector<std::int32_t> owner = particleOwners(world);
+  const std::span<const std::int32_t> owner = world.particleBodies();
   // The physics takes any bound > 0; a file holds at most kMaxBound (the loader's limit).
   const double bound = world.worldSettings().bound;
   if (!(bound <= detail::kMaxBound)) {

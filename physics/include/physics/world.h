@@ -142,6 +142,8 @@ class World {
   /// the last step (the broad phase's output, which every substep's narrow phase tests).
   std::size_t broadPhasePairs() const { return pairs_.size(); }
   const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
+  /// Per particle: the index of the box (or capsule) it belongs to, or -1 for a loose particle.
+  std::span<const std::int32_t> particleBodies() const { return particleBody_; }
   /// Freezes so far, oldest first.
   std::span<const FreezeReport> freezes() const { return freezes_; }
   Real time() const { return time_; }  ///< unit: s; simulated time since creation
