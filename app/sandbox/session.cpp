@@ -216,7 +216,7 @@ std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
 }
 
 std::string Session::applyWorldSettings(const phys::WorldSettings& settings, const std::string& done) {
-  const std::string why = setWorldSettings(settings);
+  std::string why = setWorldSettings(settings);  // not const: returned by move
   status_ = why.empty() ? done : why;
   return why;
 }

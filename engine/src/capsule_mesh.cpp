@@ -1,6 +1,7 @@
 // The capsule built in code (mesh_data.h): rows of vertices from the top pole to the bottom one,
 // each row a ring of `segments` vertices around the y axis.
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -57,7 +58,7 @@ MeshData makeCapsuleMesh(float radius, float halfSegment, int segments, int ring
   add(glm::vec3(0.0f, -1.0f, 0.0f), -halfSegment);
 
   auto at = [&](std::uint32_t row, std::uint32_t column) { return 1u + row * columns + column % columns; };
-  mesh.indices.reserve(3u * 2u * columns * rows);
+  mesh.indices.reserve(std::size_t{6} * columns * rows);
   for (std::uint32_t c = 0; c < columns; ++c) {
     mesh.indices.insert(mesh.indices.end(), {at(0, c), at(0, c + 1), 0u});
   }

@@ -9,7 +9,7 @@ std::filesystem::path sceneDirectory(const std::filesystem::path& dataDir) {
 }
 
 std::filesystem::path resolveScene(std::string_view nameOrPath, const std::filesystem::path& sceneDir) {
-  const std::filesystem::path given(nameOrPath);
+  std::filesystem::path given(nameOrPath);  // not const: returned by move
   std::error_code ec;
   if (std::filesystem::is_regular_file(given, ec)) return given;
   if (given.has_extension() || given.has_parent_path())

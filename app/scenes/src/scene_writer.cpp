@@ -283,7 +283,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     if (owner[s.a] != kLoose && owner[s.a] == owner[s.b]) continue;
     if (owner[s.a] != kLoose || owner[s.b] != kLoose) {
       auto describe = [&](phys::ParticleId id) {
-        const std::string which = "particle " + std::to_string(id);
+        std::string which = "particle " + std::to_string(id);
         if (owner[id] == kLoose) return which;
         const std::string& box = world.boxes()[owner[id]].name;
         return which + " (of box " + (box.empty() ? std::to_string(owner[id]) : "'" + box + "'") + ")";
