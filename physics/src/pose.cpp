@@ -24,14 +24,26 @@ glm::dmat3 gramSchmidt(const glm::dmat3& A) {
 glm::dmat3 nearestRotation(const glm::dmat3& A) {
   const Real det = glm::determinant(A);
   if (!(det > 0.0)) return gramSchmidt(A);
-  // Scale to unit determinant first: the iteration then converges in a handful of steps.
+  // Newton's iteration takes a singular value s to (s + 1/s) / 2, so unscaled it needs about
+  // log2(s) steps before it converges: 20 were not enough for a 0.001 x 10 x 0.001 m box, whose
+  // A has singular values 1e8 apart, and each save and reload of it turned it by 1.5e-5 rad.
+  // Scaled by Higham's gamma = sqrt(|X^-1| / |X|) (Frobenius norms), which brings the largest
+  // and smallest singular values together, it converges in under ten steps at any aspect ratio;
+  // near convergence gamma is 1 to round-off and the last steps are plain Newton, quadratic.
   glm::dmat3 X = A / std::cbrt(det);
-  for (int i = 0; i < 20; ++i) {
-    const glm::dmat3 next = 0.5 * (X + glm::transpose(glm::inverse(X)));
-    Real change = 0.0;
+  auto frobenius = [](const glm::dmat3& M) {
+    return std::sqrt(glm::dot(M[0], M[0]) + glm::dot(M[1], M[1]) + glm::dot(M[2], M[2]));
+  };
+  constexpr int kMaxIterations = 40;
+  constexpr Real kScaleUntil = 1e-2;  // change per step below which gamma is left at 1
+  Real change = 1.0;
+  for (int i = 0; i < kMaxIterations && change >= 1e-14; ++i) {
+    const glm::dmat3 inverseT = glm::transpose(glm::inverse(X));
+    const Real gamma = change > kScaleUntil ? std::sqrt(frobenius(inverseT) / frobenius(X)) : 1.0;
+    const glm::dmat3 next = 0.5 * (gamma * X + inverseT / gamma);
+    change = 0.0;
     for (int c = 0; c < 3; ++c) change += glm::length(next[c] - X[c]);
     X = next;
-    if (change < 1e-14) break;
   }
   return X;
 }

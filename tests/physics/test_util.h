@@ -12,8 +12,10 @@ namespace testing_phys {
 
 /// Angle between two orientations, in radians.
 inline double angleBetween(const phys::Quat& a, const phys::Quat& b) {
-  const double d = std::min(1.0, std::abs(glm::dot(glm::normalize(a), glm::normalize(b))));
-  return 2.0 * std::acos(d);
+  // From the turn between them, by atan2 of its sine and cosine halves: 2 acos(|a . b|) cannot
+  // tell anything under 3e-8 rad from 0 (acos near 1).
+  const phys::Quat turn = glm::inverse(glm::normalize(a)) * glm::normalize(b);
+  return 2.0 * std::atan2(glm::length(glm::dvec3(turn.x, turn.y, turn.z)), std::abs(turn.w));
 }
 
 /// A world with no ground and the given gravity and solver.
