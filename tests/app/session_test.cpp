@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <string>
 
 #include <unistd.h>
 
@@ -107,6 +108,36 @@ TEST(Session, GravityKeepsItsStrengthThroughZeroAndHugeValues) {
   EXPECT_EQ(s.scene().world.worldSettings().gravity, phys::Vec3(0.0, -1e200, 0.0));
   EXPECT_EQ(s.changeGravity(-1e200), "");
   EXPECT_EQ(s.scene().world.worldSettings().gravity, phys::Vec3(0.0, 0.0, 0.0));
+}
+
+// Found by the soak test (seed 11): a gravity whose length is one ulp under the largest double.
+// Each press of H rounded it a little longer, until its length and then a component overflowed and
+// the key was refused ("gravity must be finite"). The keys now keep it finite and its direction.
+TEST(Session, GravityKeysWorkAtTheLargestStrengthADoubleHolds) {
+  sandbox::Session s = open("falling-box");
+  phys::WorldSettings w = s.scene().world.worldSettings();
+  w.gravity = phys::Vec3(-9.14659982763921e+307, 6.108253608622828e+307, 1.4219669832977364e+308);
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  const phys::Vec3 direction = w.gravity / w.gravity.z;
+  auto expectSameWay = [&](const std::string& when) {
+    const phys::Vec3 g = s.scene().world.worldSettings().gravity;
+    ASSERT_TRUE(std::isfinite(g.x) && std::isfinite(g.y) && std::isfinite(g.z)) << when;
+    EXPECT_NEAR(g.z / w.gravity.z, 1.0, 1e-6) << when;  // as strong as a double allows
+    EXPECT_NEAR(g.x / g.z, direction.x, 1e-12) << when;
+    EXPECT_NEAR(g.y / g.z, direction.y, 1e-12) << when;
+  };
+  for (int i = 0; i < 100; ++i) {
+    ASSERT_EQ(s.changeGravity(-1.0), "") << "H, press " << i + 1;
+    expectSameWay("H, press " + std::to_string(i + 1));
+  }
+  for (int i = 0; i < 100; ++i) {
+    ASSERT_EQ(s.changeGravity(1.0), "") << "Y, press " << i + 1;
+    expectSameWay("Y, press " + std::to_string(i + 1));
+  }
+  EXPECT_EQ(s.toggleGravityMode(), "");
+  EXPECT_NEAR(s.scene().world.worldSettings().gravityStrength / 1.7976931348623157e308, 1.0, 1e-15);
+  EXPECT_EQ(s.toggleGravityMode(), "");
+  expectSameWay("G twice");
 }
 
 TEST(Session, DampingKeysStepByATenthAndComeBackExactly) {
