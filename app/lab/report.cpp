@@ -1,11 +1,13 @@
 #include "report.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 
 #include "csv.h"
@@ -28,11 +30,13 @@ std::string count(std::size_t n, const char* singular, const char* plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
 
-// A phase's summed time and its share of the summed step totals.
-std::string phase(const char* name, double ms, double totalMs) {
-  std::string s = std::string(name) + " " + num(ms, 4) + " ms";
+// A stage's summed time and its share of the summed step totals, in aligned columns.
+std::string stageLine(std::string_view name, double ms, double totalMs) {
+  std::string s(name);
+  s.resize(std::max<std::size_t>(s.size(), 14), ' ');
+  s += num(ms, 4) + " ms";
   if (totalMs > 0.0) s += " (" + num(100.0 * ms / totalMs, 3) + "%)";
-  return s;
+  return s + "\n";
 }
 
 // Summaries stay readable when the guard froze thousands of particles.
@@ -102,7 +106,7 @@ std::string jsonText(const RunResult& r) {
 
 std::string summaryText(const RunResult& r) {
   const phys::Metrics& m = r.final;
-  const phys::Profile& p = r.phaseSums;
+  const phys::Profile& p = r.stageSums;
   std::string s;
   s += "scene        " + r.scene + (r.file.empty() ? "" : " (" + r.file.string() + ")") + "\n";
   s += "solver       " + std::string(phys::toString(r.solver.method)) + ", " +
@@ -117,14 +121,14 @@ std::string summaryText(const RunResult& r) {
   // Profile::total is the physics' own clock per step; the wall time above also holds the
   // loop around it. The median shrugs off the odd step the scheduler interrupted.
   s += "step time    median " + num(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";
-  s += "phases       summed over the run: " + phase("integrate", p.integrate, p.total) + ", " +
-       phase("collide", p.collide, p.total) + ", " + phase("constraints", p.constraints, p.total) + ", " +
-       phase("contacts", p.contacts, p.total) + ", " + phase("friction", p.friction, p.total) + ", " +
-       phase("guard", p.guard, p.total) + ", " +
-       // What the phases leave of the total: the step's own bookkeeping and clock reads.
-       phase("other", p.total - (p.integrate + p.collide + p.constraints + p.contacts + p.friction + p.guard),
-             p.total) +
-       "\n";
+  // One line per stage, in the step's order, then what the stages leave of the total: the
+  // step's own bookkeeping and clock reads.
+  s += "stages       summed over the run, and their share of the steps' total:\n";
+  for (std::size_t i = 0; i < phys::kStageCount; ++i) {
+    const auto stage = static_cast<phys::Stage>(i);
+    s += "             " + stageLine(phys::toString(stage), p[stage], p.total);
+  }
+  s += "             " + stageLine("other", p.total - p.staged(), p.total);
   s += "contacts     " + std::to_string(m.contacts) + " in the last step, max penetration " +
        num(m.maxPenetration) + " m\n";
   s += "constraints  error max " + num(m.maxConstraintError) + ", rms " + num(m.rmsConstraintError) +

@@ -91,13 +91,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
     line.after(i + 1);
     const phys::Profile& p = world.profile();
     stepTotals.push_back(p.total);
-    r.phaseSums.integrate += p.integrate;
-    r.phaseSums.constraints += p.constraints;
-    r.phaseSums.collide += p.collide;
-    r.phaseSums.contacts += p.contacts;
-    r.phaseSums.friction += p.friction;
-    r.phaseSums.guard += p.guard;
-    r.phaseSums.total += p.total;
+    r.stageSums += p;
   }
   const auto stop = std::chrono::steady_clock::now();
 

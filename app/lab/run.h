@@ -28,7 +28,7 @@ struct RunResult {
   double wallMs = 0.0;          ///< unit: ms; the whole stepping loop, steady_clock
   double msPerStep = 0.0;       ///< unit: ms; wallMs / steps
   double medianStepMs = 0.0;    ///< unit: ms; median of the steps' Profile::total
-  phys::Profile phaseSums;      ///< unit: ms; each phase summed over the run
+  phys::Profile stageSums;      ///< unit: ms; each stage summed over the run
   std::vector<phys::FreezeReport> freezes;  ///< the guard's reports, oldest first
   std::uint64_t hash = 0;                   ///< World::stateHash() at the end
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string_view>
 
 #include <glm/geometric.hpp>
 #include <imgui.h>
@@ -243,9 +244,14 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   const phys::World& world = session.scene().world;
   const phys::Profile& p = world.profile();
   ImGui::Text("frame %.2f ms, last step %.3f ms", ui.frameMs, p.total);
-  ImGui::Text("integrate %.3f  constraints %.3f", p.integrate, p.constraints);
-  ImGui::Text("collide %.3f  contacts %.3f", p.collide, p.contacts);
-  ImGui::Text("friction %.3f  guard %.3f ms", p.friction, p.guard);
+  // The step's stages two to a line, in the step's order (ms, summed over the substeps).
+  static_assert(phys::kStageCount % 2 == 0, "the stages fill their lines");
+  for (std::size_t i = 0; i < phys::kStageCount; i += 2) {
+    const auto a = static_cast<phys::Stage>(i), b = static_cast<phys::Stage>(i + 1);
+    const std::string_view na = phys::toString(a), nb = phys::toString(b);
+    ImGui::Text("%-12.*s %7.3f  %-12.*s %7.3f", static_cast<int>(na.size()), na.data(), p[a],
+                static_cast<int>(nb.size()), nb.data(), p[b]);
+  }
   ImGui::Separator();
   for (const StatsLine& line : statsLines(world)) {
     if (line.warning)
@@ -254,7 +260,7 @@ void drawStatsPanel(const Session& session, UiState& ui) {
       ImGui::TextUnformatted(line.text.c_str());
   }
   ImGui::Separator();
-  const ImVec2 plotSize(ImGui::GetContentRegionAvail().x, 56.0f);
+  const ImVec2 plotSize(ImGui::GetContentRegionAvail().x, 40.0f);  // three fit under the stages
   char overlay[64];
   std::snprintf(overlay, sizeof overlay, "step %.3f ms (max %.3f)", ui.stepMs.last(), ui.stepMs.max());
   ImGui::PlotLines("##step", ui.stepMs.data(), ui.stepMs.size(), ui.stepMs.offset(), overlay, 0.0f,

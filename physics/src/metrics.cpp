@@ -19,6 +19,25 @@ Real maxOf(Real a, Real b) {
 
 }  // namespace
 
+std::string_view toString(Stage stage) {
+  static constexpr std::array<std::string_view, kStageCount> kNames = {
+      "integrate", "frames",   "broad-phase", "narrow-phase", "parting",      "sticks",
+      "links",     "contacts", "friction",    "restitution",  "body-damping", "guard"};
+  return kNames[static_cast<std::size_t>(stage)];
+}
+
+double Profile::staged() const {
+  double sum = 0.0;
+  for (const double ms : stage) sum += ms;
+  return sum;
+}
+
+Profile& Profile::operator+=(const Profile& other) {
+  for (std::size_t i = 0; i < kStageCount; ++i) stage[i] += other.stage[i];
+  total += other.total;
+  return *this;
+}
+
 Metrics World::metrics() const {
   Metrics m;
   const Real h = substepDt();

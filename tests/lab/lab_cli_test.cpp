@@ -215,8 +215,8 @@ TEST(LabRun, SummaryReportsTimingPhasesFreezesAndHash) {
   const auto scene = dir.write("e.xml", escapingScene());
   const ProcessResult r = runLab("run " + quoted(scene) + " --steps 60", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  for (const char* part : {"scene        escape", "ms/step", "median", "integrate", "constraints", "contacts",
-                           "friction", "guard", "energy", "runaway", "hash"}) {
+  for (const char* part : {"scene        escape", "ms/step", "median", "integrate", "narrow-phase", "sticks",
+                           "contacts", "friction", "guard", "other", "energy", "runaway", "hash"}) {
     EXPECT_NE(r.out.find(part), std::string::npos) << part << "\n" << r.out;
   }
   EXPECT_NE(r.out.find("frozen       1 particle"), std::string::npos) << r.out;

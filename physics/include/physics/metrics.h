@@ -1,6 +1,9 @@
 #pragma once
 // What the world can tell about itself: accuracy figures, and where the step's time went.
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 #include "physics/types.h"
 
@@ -21,15 +24,39 @@ struct Metrics {
   Real energy() const { return kineticEnergy + potentialEnergy; }
 };
 
-/// Wall-clock time of each phase of the last World::step(), summed over its substeps.
+/// The stages of a substep, in the order World::step runs them (docs/physics.md, "One step").
+/// Each stage's time goes to Profile under its own name and nowhere else.
+enum class Stage : std::uint8_t {
+  Integrate,    ///< Verlet with gravity and damping; the mouse drag's spring
+  Frames,       ///< each body's frame fitted to its particles
+  BroadPhase,   ///< the pairs of bodies whose bounds may meet within the step
+  NarrowPhase,  ///< the contacts of those pairs; capsules' ground points; each contact's depth at x*
+  Parting,      ///< deep overlaps parted without velocity
+  Sticks,       ///< the bodies' own sticks and the loose ones, by the chosen method
+  Links,        ///< the joints, including how far a link created apart may stay open
+  Contacts,     ///< contact projection, box-box and ground
+  Friction,     ///< friction of the contacts just projected
+  Restitution,  ///< approach speeds before the passes, bounces after them
+  BodyDamping,  ///< each body's inner motion pulled towards its rigid motion
+  Guard,        ///< non-finite, out-of-bound and crushed bodies frozen
+};
+inline constexpr std::size_t kStageCount = 12;
+static_assert(static_cast<std::size_t>(Stage::Guard) + 1 == kStageCount, "Guard is the last stage");
+
+/// The stage's name in outputs: "integrate", "broad-phase", ...
+std::string_view toString(Stage stage);
+
+/// Wall-clock time of each stage of the last World::step(), summed over its substeps.
 struct Profile {
-  double integrate = 0.0;    ///< unit: ms
-  double constraints = 0.0;  ///< unit: ms; relaxation of the sticks
-  double collide = 0.0;      ///< unit: ms; box frames, broad phase and narrow phase
-  double contacts = 0.0;     ///< unit: ms; contact projection (ground and box-box), all iterations
-  double friction = 0.0;     ///< unit: ms; friction, and body damping (SolverSettings::bodyDamping)
-  double guard = 0.0;        ///< unit: ms; NaN and bound checks
-  double total = 0.0;        ///< unit: ms; the whole step
+  std::array<double, kStageCount> stage{};  ///< unit: ms; indexed by Stage
+  double total = 0.0;                       ///< unit: ms; the whole step
+
+  double& operator[](Stage s) { return stage[static_cast<std::size_t>(s)]; }
+  double operator[](Stage s) const { return stage[static_cast<std::size_t>(s)]; }
+  /// The stages' sum; total less this is the step's own bookkeeping and clock reads. unit: ms
+  double staged() const;
+  /// Adds another profile stage by stage (a run's sums).
+  Profile& operator+=(const Profile& other);
 };
 
 }  // namespace phys

@@ -172,8 +172,18 @@ class World {
   void combineMaterials();
   void keepVelocities(Real hOld, Real hNew);
   void settleWithoutVelocity();
+  // The stages of a substep, in step()'s order (step.cpp); each times itself into profile_.
+  void integrateParticles(Real h);
+  void fitBodyFrames();
+  void findPairs(bool firstSubstep);
+  void findContacts();
+  void partOverlaps();
+  void measureApproaches(Real h);
+  std::span<const Real> limitCorrections(Real h);
   void relax(Real h, std::span<const Real> linkSlack);
   void restitute(Real h);
+  void dampBodies();
+  void guard(bool shapes);
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBoxFrames();
   bool chooseSweepAxis();
@@ -189,7 +199,6 @@ class World {
   Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
   Embedding rigidPoint(BoxId box, const Vec3& point) const;
   bool collides(BoxId a, BoxId b) const;
-  void guard(bool shapes);
   void guardShapes();
   Real worstStickError(const Box& box) const;  // beyond kCrushedStickError, else 0
   void freeze(ParticleId bad, const std::string& reason);
