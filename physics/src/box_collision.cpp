@@ -23,6 +23,16 @@ Material combine(const Material& a, const Material& b) {
   return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
 }
 
+// Makes room in v for `room` elements (what the bodies are given), and for twice what was used
+// last once that passes two thirds of the room there is, so that a step allocates only when the
+// world gathers half as many pairs or contact points again as it ever had (docs/performance.md,
+// "No allocation in the step").
+template <typename T>
+void keepRoom(std::vector<T>& v, std::size_t used, std::size_t room) {
+  if (3 * used > 2 * v.capacity()) room = std::max(room, 2 * used);
+  if (v.capacity() < room) v.reserve(room);
+}
+
 }  // namespace
 
 void World::ignoreCollision(BoxId a, BoxId b) {
@@ -190,6 +200,21 @@ void World::findBoxPairs() {
   std::sort(pairs_.begin(), pairs_.end());
   for (BoxId id = 0; id < boxes_.size(); ++id) pairFrames_[id] = frames_[id];
   pairsStale_ = false;
+  // Contact points are made in every substep: their room is checked here, in each step's first
+  // substep, from the last substep's count, before any is made.
+  reserveContacts();
+}
+
+void World::reserveContacts() {
+  const std::size_t room = kRoomPerBody * boxes_.size();
+  const std::size_t pairs = pairs_.size(), points = bodyContacts_.size();
+  keepRoom(pairs_, pairs, room);
+  keepRoom(partPairs_, pairs, room);
+  keepRoom(bodyContacts_, points, room);
+  keepRoom(bodyAllowance_, points, room);
+  keepRoom(bodyPush_, points, room);
+  keepRoom(bodyTouched_, points, room);
+  keepRoom(bodyApproach_, points, room);
 }
 
 // Whether some box has gone further since the pairs were found than its bounds allowed (an impact

@@ -189,6 +189,7 @@ class World {
   bool chooseSweepAxis();
   void findBoxPairs();
   bool outgrewPairBounds() const;
+  void reserveContacts();
   void buildBoxContacts();
   void partWithoutVelocity();
   BoxId jointGroup(BoxId id);
@@ -246,6 +247,11 @@ class World {
   bool pairsStale_ = true;       // bodies or filters changed since pairs_ was found
   int sweepAxis_ = 0;            // the axis sweep_ is sorted along
   std::vector<std::pair<BoxId, BoxId>> pairs_;
+  // Room for pairs and for box-box contact points, per body, made when the pairs are found
+  // (reserveContacts), so that a world whose bodies each touch a few others does not allocate in
+  // the step. Measured at most: 2.2 pairs and 0.4 points a body in Bullet's pile, 4 and 1.7 in
+  // the 16 ragdolls; a pyramid's 5.2 pairs grow the room in its first second.
+  static constexpr std::size_t kRoomPerBody = 3;
   std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
   std::vector<BodyContact> bodyContacts_;
   std::vector<Real> bodyPush_;             // per body contact: push of the last pass (m)
