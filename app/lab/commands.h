@@ -17,6 +17,8 @@ int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::
 int tuneMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 /// lab compare SCENE
 int compareMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+/// lab scale [KIND] [--sizes LIST] [--steps N] [--json] [--out DIR]: cost against size
+int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 /// lab report [--out DIR]: regenerates docs/results.md and its charts
 int reportMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 

@@ -35,6 +35,8 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return tuneMain(parsed.rest, out, err);
     case Command::Compare:
       return compareMain(parsed.rest, out, err);
+    case Command::Scale:
+      return scaleMain(parsed.rest, out, err);
     case Command::Report:
       return reportMain(parsed.rest, out, err);
   }

@@ -270,6 +270,21 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     if (o.quick) break;
   }
 
+  md << "## Cost against size\n\n"
+     << "Capsule ragdolls on a grid, 2 m apart, tipped to fall onto each other, at each size for 1 s at "
+        "Bullet's pile's settings (`lab scale`, docs/lab.md): a step whose cost is linear in the number of "
+        "bodies draws a flat line.\n\n";
+  std::vector<std::string> scaleArgs{"--out", (results / "scale").string()};
+  if (o.quick) scaleArgs.insert(scaleArgs.end(), {"--sizes", "1,2", "--steps", "5"});
+  const CommandOutput scaled = runCommandMain(scaleMain, scaleArgs, err);
+  failed |= scaled.code != 0;
+  if (scaled.code == 0) {
+    md << "![microseconds per body-step against bodies](results/scale/scale.png)\n\n```\n"
+       << scaled.out << "```\n\n";
+  } else {
+    md << codeBlockOrText(scaled) << "\n";
+  }
+
   fileio::writeAtomically(o.out / "results.md", md.str());
   out << "wrote " << (o.out / "results.md").string() << " and " << results.string() << "/\n";
   return failed ? kExitFailure : kExitOk;

@@ -64,7 +64,7 @@ class ProgressLine {
 }  // namespace
 
 RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress,
-                   const ProgressTiming& timing) {
+                   const ProgressTiming& timing, const std::function<void(const phys::World&)>& afterStep) {
   phys::World& world = scene.world;
   applyOverrides(world, options);
 
@@ -92,6 +92,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
     const phys::Profile& p = world.profile();
     stepTotals.push_back(p.total);
     r.stageSums += p;
+    if (afterStep) afterStep(world);
   }
   const auto stop = std::chrono::steady_clock::now();
 

@@ -2,6 +2,7 @@
 // Stepping a loaded scene under the lab's overrides, and what the run measured.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -48,8 +49,11 @@ struct ProgressTiming {
 /// Throws std::invalid_argument (from applyOverrides) before any step when they are refused.
 /// With a progress stream, a run that takes longer than timing.after prints a line there every
 /// timing.every: the step it is at, seconds a step, and the time left.
+/// afterStep, when given, sees the world after every step, outside the step's own clock
+/// (Profile::total, whose median the result reports) but within the wall time of the loop.
 RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress = nullptr,
-                   const ProgressTiming& timing = {});
+                   const ProgressTiming& timing = {},
+                   const std::function<void(const phys::World&)>& afterStep = {});
 
 /// Median of the values (the mean of the middle two for an even count); 0 when empty.
 double median(std::vector<double> values);

@@ -428,13 +428,15 @@ TEST(Report, QuickReportWritesEveryPart) {
   const std::string md = lab_testing::readFile(out / "results.md");
   for (const char* part : {"## Speed against accuracy", "### ragdoll", "### pendulum-exact",
                            "Pareto front, cheapest first:", "**Winner here:", "## Where methods fail",
-                           "## Beside Bullet, ODE and MuJoCo"}) {
+                           "## Beside Bullet, ODE and MuJoCo", "## Cost against size", "us/body-step"}) {
     EXPECT_NE(md.find(part), std::string::npos) << part;
   }
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "pyramid" / "results.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "stability" / "stability.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "results" / "scale" / "scale.csv"));
   if (!lab::findGnuplot().empty()) {
     EXPECT_TRUE(std::filesystem::exists(out / "results" / "chain" / "error-vs-cost.png"));
+    EXPECT_TRUE(std::filesystem::exists(out / "results" / "scale" / "scale.png"));
   }
   std::filesystem::remove_all(out);
 }

@@ -1,0 +1,316 @@
+// lab scale: the cost of a step against the size of the scene (docs/lab.md, "lab scale"). A scene
+// generator makes the same scene at each size, at the same density, so that a step whose cost is
+// linear in the number of bodies shows as a flat line of microseconds per body-step.
+#include "scale.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <stdexcept>
+
+#include "charts.h"
+#include "commands.h"
+#include "csv.h"
+#include "fileio/files.h"
+#include "gnuplot.h"
+#include "lab.h"
+#include "numbers.h"
+#include "options.h"
+#include "report.h"
+#include "run.h"
+#include "sweep_core.h"
+
+namespace lab {
+namespace {
+
+constexpr int kMaxSize = 4096;  // ragdolls, or a pyramid's base: 8.4 million boxes is beyond any run
+constexpr int kDefaultScaleSteps = 60;
+
+std::string usageText() {
+  return "usage: lab scale [KIND] [--sizes LIST] [--steps N] [--method M] [--iterations K]\n"
+         "                 [--substeps S] [--json] [--out DIR]\n"
+         "  KIND            capsule-ragdolls (default), box-ragdolls or pyramid\n"
+         "  --sizes LIST    sizes, comma-separated, 1 to 4096: ragdolls, or a pyramid's base row\n"
+         "                  (default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)\n"
+         "  --steps N       steps at each size, 1 to 10000000 (default 60: 1 s)\n"
+         "  --method M      gauss-seidel, jacobi, xpbd or shake (default: the generated scene's)\n"
+         "  --iterations K  relaxation passes per substep, 1 to 1000 (default: the scene's)\n"
+         "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"
+         "  --json          a JSON array, one object per size, instead of the table\n"
+         "  --out DIR       also write DIR/scale.csv, DIR/scale.gp and the chart scale.png, .svg\n"
+         "  --help          show this text\n";
+}
+
+struct ScaleOptions {
+  ScaleKind kind = ScaleKind::CapsuleRagdolls;
+  std::vector<int> sizes;  // empty: the kind's defaults
+  RunOptions run;          // steps and solver overrides
+  bool json = false;
+  std::optional<std::filesystem::path> out;
+};
+
+std::string parse(const std::vector<std::string>& args, ScaleOptions& o) {
+  o.run.steps = kDefaultScaleSteps;
+  bool kindGiven = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&] { return optionValue(args, i); };
+    if (a == "--sizes") {
+      const std::string* v = value();
+      if (v == nullptr) return "--sizes needs a list of sizes";
+      const std::optional<std::vector<std::string>> items = splitList(*v);
+      if (!items) return "--sizes: '" + *v + "' is not a comma-separated list";
+      o.sizes.clear();
+      for (const std::string& item : *items) {
+        const std::optional<int> n = parseWholeNumber(item, 1, kMaxSize);
+        if (!n) return notWholeNumber("--sizes", item, kMaxSize);
+        o.sizes.push_back(*n);
+      }
+    } else if (a == "--steps" || a == "--iterations" || a == "--substeps") {
+      const int high = a == "--steps"        ? kMaxSteps
+                       : a == "--iterations" ? phys::kMaxIterations
+                                             : phys::kMaxSubsteps;
+      int n = 0;
+      if (std::string e = parseCountOption(a, value(), high, n); !e.empty()) return e;
+      if (a == "--steps")
+        o.run.steps = n;
+      else if (a == "--iterations")
+        o.run.iterations = n;
+      else
+        o.run.substeps = n;
+    } else if (a == "--method") {
+      const std::string* v = value();
+      if (v == nullptr) return "--method needs a method (gauss-seidel, jacobi, xpbd or shake)";
+      o.run.method = phys::parseSolverMethod(*v);
+      if (!o.run.method) return "--method: unknown method '" + *v + "' (gauss-seidel, jacobi, xpbd or shake)";
+    } else if (a == "--json") {
+      o.json = true;
+    } else if (a == "--out") {
+      const std::string* v = value();
+      if (v == nullptr) return "--out needs a folder";
+      if (v->empty()) return "--out: the folder name is empty";
+      o.out = *v;
+    } else if (a.starts_with("-")) {
+      return "unknown option '" + a + "'";
+    } else if (kindGiven) {
+      return "one KIND only: '" + a + "' after '" + std::string(toString(o.kind)) + "'";
+    } else {
+      const std::optional<ScaleKind> kind = parseScaleKind(a);
+      if (!kind) return "unknown KIND '" + a + "' (capsule-ragdolls, box-ragdolls or pyramid)";
+      o.kind = *kind;
+      kindGiven = true;
+    }
+  }
+  if (o.sizes.empty()) {
+    o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
+                                           : std::vector<int>{1, 4, 16, 64, 256, 1024};
+  }
+  return {};
+}
+
+// Ragdolls stand on a square grid, 2 m apart (a ragdoll is 1.7 m tall at scale 1), each tipped
+// 20 degrees one way or another so that they fall onto their neighbours: the same pile of
+// touching ragdolls per square metre at every size.
+std::string ragdollGrid(int n, const char* attributes) {
+  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  std::string xml;
+  char line[256];
+  for (int i = 0; i < n; ++i) {
+    const int row = i / side, column = i % side;
+    const double x = 2.0 * (column - (side - 1) / 2.0), z = 2.0 * (row - (side - 1) / 2.0);
+    const double tipX = (i % 2 == 0 ? 20.0 : -20.0), tipZ = ((i / 2) % 2 == 0 ? 20.0 : -20.0);
+    std::snprintf(line, sizeof line, "  <ragdoll name=\"r%d\" %s pos=\"%g 1.2 %g\" euler=\"%g 0 %g\"/>\n", i,
+                  attributes, x, z, tipX, tipZ);
+    xml += line;
+  }
+  return xml;
+}
+
+}  // namespace
+
+std::string_view toString(ScaleKind kind) {
+  switch (kind) {
+    case ScaleKind::CapsuleRagdolls:
+      return "capsule-ragdolls";
+    case ScaleKind::BoxRagdolls:
+      return "box-ragdolls";
+    case ScaleKind::Pyramid:
+      return "pyramid";
+  }
+  return "?";
+}
+
+std::optional<ScaleKind> parseScaleKind(std::string_view name) {
+  for (const ScaleKind k : {ScaleKind::CapsuleRagdolls, ScaleKind::BoxRagdolls, ScaleKind::Pyramid}) {
+    if (toString(k) == name) return k;
+  }
+  return std::nullopt;
+}
+
+std::string scaleSceneXml(ScaleKind kind, int n) {
+  const std::string name = std::string(toString(kind)) + "-" + std::to_string(n);
+  std::string xml = "<scene name=\"" + name + "\">\n";
+  switch (kind) {
+    case ScaleKind::CapsuleRagdolls:
+      // Bullet's pile's settings (bullet-ragdolls.xml) at scale 1.
+      xml +=
+          "  <world gravity=\"0 -10 0\" damping=\"0.05\"/>\n"
+          "  <solver method=\"gauss-seidel\" iterations=\"2\" substeps=\"4\" body-damping=\"1\"/>\n"
+          "  <ground friction=\"0.25\"/>\n";
+      xml += ragdollGrid(n, "shape=\"capsule\" model=\"lean\" mass=\"11\" friction=\"0.25\"");
+      break;
+    case ScaleKind::BoxRagdolls:
+      // The 16 ragdolls' settings (ragdolls.xml).
+      xml +=
+          "  <world gravity=\"0 -9.81 0\" damping=\"0.2\"/>\n"
+          "  <solver method=\"gauss-seidel\" iterations=\"2\" substeps=\"4\" body-damping=\"1\"/>\n"
+          "  <ground friction=\"0.6\"/>\n";
+      xml += ragdollGrid(n, "shape=\"box\"");
+      break;
+    case ScaleKind::Pyramid:
+      // 10 passes x 4 substeps: where the stability suite's pyramids stand.
+      xml +=
+          "  <world gravity=\"0 -9.81 0\"/>\n"
+          "  <solver method=\"gauss-seidel\" iterations=\"10\" substeps=\"4\"/>\n"
+          "  <ground friction=\"0.6\"/>\n"
+          "  <pyramid name=\"pyramid\" pos=\"0 0 0\" base=\"" +
+          std::to_string(n) + "\" size=\"1\" mass=\"1\"/>\n";
+      break;
+  }
+  return xml + "</scene>\n";
+}
+
+std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, const RunOptions& options,
+                               std::ostream* progress) {
+  std::vector<ScaleRow> rows;
+  for (const int n : sizes) {
+    scenes::Scene scene = scenes::loadSceneText(scaleSceneXml(kind, n), std::string(toString(kind)) + ".xml");
+    double worstGap = 0.0;
+    const RunResult r = runScene(scene, options, progress, ProgressTiming{}, [&](const phys::World& w) {
+      worstGap = std::max(worstGap, w.metrics().maxJointError);
+    });
+    ScaleRow row;
+    row.scene = std::string(toString(kind));
+    row.n = n;
+    row.bodies = r.bodies;
+    row.solver = r.solver;
+    row.msPerStep = r.medianStepMs;
+    row.usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0;
+    row.maxJointGap = worstGap;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string scaleJson(const std::vector<ScaleRow>& rows) {
+  std::string s = "[\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ScaleRow& r = rows[i];
+    s += "{\"scene\":" + jsonString(r.scene) + ",\"n\":" + std::to_string(r.n) +
+         ",\"bodies\":" + std::to_string(r.bodies) + ",\"ms_per_step\":" + jsonNumber(r.msPerStep) +
+         ",\"us_per_body_step\":" + jsonNumber(r.usPerBodyStep) +
+         ",\"max_joint_gap\":" + jsonNumber(r.maxJointGap) + "}" + (i + 1 < rows.size() ? "," : "") + "\n";
+  }
+  return s + "]\n";
+}
+
+std::string scaleCsv(const std::vector<ScaleRow>& rows) {
+  std::string s = "scene,n,bodies,ms_per_step,us_per_body_step,max_joint_gap\n";
+  for (const ScaleRow& r : rows) {
+    s += csvField(r.scene) + "," + std::to_string(r.n) + "," + std::to_string(r.bodies) + "," +
+         csvNumber(r.msPerStep, 6) + "," + csvNumber(r.usPerBodyStep, 6) + "," + csvNumber(r.maxJointGap, 6) +
+         "\n";
+  }
+  return s;
+}
+
+std::string scaleTable(const std::vector<ScaleRow>& rows) {
+  std::string s;
+  if (!rows.empty()) {
+    const phys::SolverSettings& solver = rows.front().solver;
+    s += "scale       " + rows.front().scene + ", " + std::string(phys::toString(solver.method)) + " " +
+         std::to_string(solver.iterations) + "x" + std::to_string(solver.substeps) +
+         " (iterations x substeps), median of the steps' own time\n";
+  }
+  char line[160];
+  std::snprintf(line, sizeof line, "%8s %8s %12s %16s %20s\n", "n", "bodies", "ms/step", "us/body-step",
+                "max joint gap (m)");
+  s += line;
+  for (const ScaleRow& r : rows) {
+    std::snprintf(line, sizeof line, "%8d %8zu %12s %16s %20s\n", r.n, r.bodies,
+                  formatNumber(r.msPerStep, 4).c_str(), formatNumber(r.usPerBodyStep, 4).c_str(),
+                  formatNumber(r.maxJointGap, 3).c_str());
+    s += line;
+  }
+  return s;
+}
+
+namespace {
+
+Chart scaleChart(const std::vector<ScaleRow>& rows) {
+  Chart chart;
+  const std::string& scene = rows.empty() ? std::string() : rows.front().scene;
+  chart.title = "Cost per body against size: " + scene;
+  chart.xLabel = "bodies";
+  chart.yLabel = "microseconds per body-step";
+  chart.logX = true;
+  chart.output = "scale";
+  ChartSeries series;
+  series.title = scene;
+  series.line = true;
+  series.labels = true;
+  for (const ScaleRow& r : rows) {
+    series.points.push_back({static_cast<double>(r.bodies), r.usPerBodyStep, "n=" + std::to_string(r.n)});
+  }
+  chart.series.push_back(series);
+  return chart;
+}
+
+}  // namespace
+
+int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  if (asksForHelp(args)) {
+    out << usageText();
+    return kExitOk;
+  }
+  ScaleOptions o;
+  if (std::string e = parse(args, o); !e.empty()) {
+    err << "lab: " << e << "\n" << usageText();
+    return kExitUsage;
+  }
+  try {
+    if (o.out) fileio::prepareFolder(*o.out);  // before the runs, which can take minutes
+    const std::vector<ScaleRow> rows = runScale(o.kind, o.sizes, o.run, &err);
+    out << (o.json ? scaleJson(rows) : scaleTable(rows));
+    if (!o.out) return kExitOk;
+    const std::filesystem::path dir = *o.out;
+    fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
+    fileio::writeAtomically(dir / "scale.csv", scaleCsv(rows));
+    const Chart chart = scaleChart(rows);
+    fileio::writeAtomically(dir / "scale.gp", gnuplotScript(chart));
+    const bool haveGnuplot = !findGnuplot().empty();
+    const std::string problem =
+        hasPoints(chart) ? runGnuplot(dir / "scale.gp", dir) : "no size has a finite cost";
+    if (!o.json) {
+      out << "wrote       " << (dir / "scale.csv").string() << ", " << (dir / "scale.gp").string();
+      if (problem.empty())
+        out << ", " << (dir / "scale.png").string() << ", " << (dir / "scale.svg").string();
+      out << "\n";
+    }
+    if (!problem.empty()) {
+      err << "lab: scale: the chart: " << problem << "\n";
+      if (haveGnuplot) return kExitFailure;
+    }
+    return kExitOk;
+  } catch (const fileio::FileError& e) {
+    err << "lab: --out: " << e.what() << "\n";
+  } catch (const std::invalid_argument& e) {
+    err << "lab: scale: the settings were refused: " << e.what() << "\n";
+  } catch (const scenes::LoadError& e) {
+    err << "lab: scale: the generated scene: " << e.what() << "\n";  // a bug in the generator
+  }
+  return kExitFailure;
+}
+
+}  // namespace lab
