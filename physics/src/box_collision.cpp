@@ -1,6 +1,6 @@
-// World's box-box collision, run once per substep after integration: fit each box's frame,
-// find overlapping bounds by sweep and prune, then turn each overlap's contact points into
-// BodyContacts whose points are embedded in the two boxes' particles.
+// World's box-box collision, run once per substep after integration: fit each box's frame, then
+// turn the contact points of each pair the broad phase found (broad_phase.cpp) into BodyContacts
+// whose points are embedded in the two boxes' particles.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,16 +21,6 @@ std::uint64_t pairKey(BoxId a, BoxId b) {
 
 Material combine(const Material& a, const Material& b) {
   return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
-}
-
-// Makes room in v for `room` elements (what the bodies are given), and for twice what was used
-// last once that passes two thirds of the room there is, so that a step allocates only when the
-// world gathers half as many pairs or contact points again as it ever had (docs/performance.md,
-// "No allocation in the step").
-template <typename T>
-void keepRoom(std::vector<T>& v, std::size_t used, std::size_t room) {
-  if (3 * used > 2 * v.capacity()) room = std::max(room, 2 * used);
-  if (v.capacity() < room) v.reserve(room);
 }
 
 }  // namespace
@@ -108,126 +98,6 @@ void World::updateBoxFrames() {
     f.axes = glm::dmat3(ex, ey, glm::cross(ex, ey));
     f.halfExtents = box.halfExtents;
   }
-}
-
-// Sweep and prune along one axis: the list stays sorted from one step to the next, so
-// insertion sort costs about one pass while boxes move little. A uniform grid would need a cell
-// size, and boxes in one scene differ in size by orders of magnitude; sorting needs none. The
-// axis is the one the boxes' centres spread most along (Ericson, "Real-Time Collision Detection",
-// 7.5.2): along x, a stack or Bullet's pile of ragdolls (rows 7 m apart in y, each ragdoll 6 m
-// wide) overlaps everywhere and the sweep tests nearly every pair. It changes only when another
-// axis spreads 1.5 times as much, so it does not flip back and forth. True when it changed.
-bool World::chooseSweepAxis() {
-  Vec3 sum(0.0), sumSquares(0.0);
-  for (const Obb& f : frames_) {
-    sum += f.center;
-    sumSquares += f.center * f.center;
-  }
-  const Real n = static_cast<Real>(frames_.size());
-  const Vec3 variance = sumSquares / n - (sum / n) * (sum / n);
-  int widest = 0;
-  for (int k = 1; k < 3; ++k) {
-    if (variance[k] > variance[widest]) widest = k;
-  }
-  if (!(variance[widest] > 1.5 * variance[sweepAxis_])) return false;
-  sweepAxis_ = widest;
-  return true;
-}
-
-// Once per step, for all its substeps: each box's bounds are its AABB grown by how far it can go
-// in the step at its speed of the first substep (its fastest particle's speed times dt, and
-// gravity's g dt^2, twice what free fall adds); the narrow phase still runs every substep on these
-// pairs. A box that goes further within the step (an impact, a joint, a drag gave it speed) makes
-// the next substep find them again (World::step, outgrewPairBounds). Found every substep, the
-// pairs of Bullet's 136-ragdoll pile (each ragdoll's bounds overlap ~200 others' along any one
-// axis) cost a fifth of the step.
-void World::findBoxPairs() {
-  const Real margin = solver_.featureEpsilon;
-  const Real dt = solver_.dt, h = substepDt();
-  const Real g =
-      world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
-  for (BoxId id = 0; id < boxes_.size(); ++id) {
-    const Box& box = boxes_[id];
-    Real fastest = 0.0;  // squared displacement over the last substep
-    for (int j = 0; j < box.particleCount; ++j) {
-      const Vec3 d = particles_.position[box.firstParticle + j] - particles_.previous[box.firstParticle + j];
-      fastest = std::max(fastest, glm::dot(d, d));
-    }
-    const Real travel = std::sqrt(fastest) / h * dt + g * dt * dt;
-    const Obb& f = frames_[id];
-    Vec3 reach(margin + travel);
-    for (int k = 0; k < 3; ++k) {
-      for (int j = 0; j < 3; ++j) reach[k] += std::abs(f.axes[j][k]) * f.halfExtents[j];
-    }
-    bounds_[id] = {f.center - reach, f.center + reach};
-    travel_[id] = travel;
-  }
-  const bool newAxis = chooseSweepAxis();
-  const int s = sweepAxis_;
-  for (Interval& it : sweep_) {
-    it.min = bounds_[it.box].lo[s];
-    it.max = bounds_[it.box].hi[s];
-  }
-  if (newAxis) {
-    // The order along a new axis is unrelated to the old one's, too far for insertion sort.
-    std::sort(sweep_.begin(), sweep_.end(),
-              [](const Interval& a, const Interval& b) { return a.min < b.min; });
-  }
-  for (std::size_t i = 1; i < sweep_.size(); ++i) {
-    const Interval moving = sweep_[i];
-    std::size_t j = i;
-    while (j > 0 && sweep_[j - 1].min > moving.min) {
-      sweep_[j] = sweep_[j - 1];
-      --j;
-    }
-    sweep_[j] = moving;
-  }
-  pairs_.clear();
-  const int t = (s + 1) % 3, u = (s + 2) % 3;  // the other two axes
-  for (std::size_t i = 0; i < sweep_.size(); ++i) {
-    const Bounds& bi = bounds_[sweep_[i].box];
-    for (std::size_t j = i + 1; j < sweep_.size() && sweep_[j].min <= sweep_[i].max; ++j) {
-      const BoxId a = sweep_[i].box, b = sweep_[j].box;
-      const Bounds& bj = bounds_[b];
-      const bool apart =
-          bi.lo[t] > bj.hi[t] || bj.lo[t] > bi.hi[t] || bi.lo[u] > bj.hi[u] || bj.lo[u] > bi.hi[u];
-      if (!apart && collides(a, b)) pairs_.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  }
-  // In body order, not sweep order: the contacts are solved in this order, which then depends on
-  // the state alone, not on the sweep axis the world's history chose (a saved and reloaded world
-  // steps as the original).
-  std::sort(pairs_.begin(), pairs_.end());
-  for (BoxId id = 0; id < boxes_.size(); ++id) pairFrames_[id] = frames_[id];
-  pairsStale_ = false;
-  // Contact points are made in every substep: their room is checked here, in each step's first
-  // substep, from the last substep's count, before any is made.
-  reserveContacts();
-}
-
-void World::reserveContacts() {
-  const std::size_t room = kRoomPerBody * boxes_.size();
-  const std::size_t pairs = pairs_.size(), points = bodyContacts_.size();
-  keepRoom(pairs_, pairs, room);
-  keepRoom(partPairs_, pairs, room);
-  keepRoom(bodyContacts_, points, room);
-  keepRoom(bodyAllowance_, points, room);
-  keepRoom(bodyPush_, points, room);
-  keepRoom(bodyTouched_, points, room);
-  keepRoom(bodyApproach_, points, room);
-}
-
-// Whether some box has gone further since the pairs were found than its bounds allowed (an impact
-// or a joint gave it speed within the step): its corners moved at most |dc| + sum_k |da_k| h_k.
-bool World::outgrewPairBounds() const {
-  for (BoxId id = 0; id < boxes_.size(); ++id) {
-    const Obb& now = frames_[id];
-    const Obb& then = pairFrames_[id];
-    Real moved = glm::length(now.center - then.center);
-    for (int k = 0; k < 3; ++k) moved += glm::length(now.axes[k] - then.axes[k]) * now.halfExtents[k];
-    if (moved > travel_[id]) return true;
-  }
-  return false;
 }
 
 // Each pair's contact by its shapes, normal from a towards b; boxes keep at most 4 points.

@@ -188,6 +188,7 @@ class World {
   void updateBoxFrames();
   bool chooseSweepAxis();
   void findBoxPairs();
+  void findPairsInStrips();
   bool outgrewPairBounds() const;
   void reserveContacts();
   void buildBoxContacts();
@@ -237,7 +238,10 @@ class World {
     Real min, max;  // extent of a box's bounds along the sweep axis
     BoxId box;
   };
-  std::vector<Interval> sweep_;  // sweep-and-prune list, kept sorted between steps
+  std::vector<Interval> sweep_;          // sweep-and-prune list, kept sorted between steps
+  std::vector<std::size_t> stripStart_;  // per strip and one more: where its boxes start in stripBoxes_
+  std::vector<BoxId> stripBoxes_;        // the boxes of each strip, in sweep order (findPairsInStrips)
+  std::vector<BoxId> wideBoxes_;         // boxes across too many strips, tested against all
   struct Bounds {
     Vec3 lo, hi;
   };

@@ -1,0 +1,63 @@
+// The broad phase: boxes spread over two axes are swept within strips (broad_phase.cpp), and
+// every pair whose bounds overlap is found exactly once, wherever the strips' edges fall.
+#include <gtest/gtest.h>
+
+#include "test_util.h"
+
+namespace {
+
+using phys::Vec3;
+
+// A k x k grid of 1 m boxes at rest in empty space, `spacing` apart along x and z, and, if asked,
+// one wide flat box under all of them (wider than any strip: it is tested against every box).
+// Bounds are the boxes' own grown by the feature epsilon (0.01 m) and nothing else at rest in
+// zero gravity.
+std::size_t pairsOfGrid(int k, double spacing, bool floor) {
+  phys::World world = testing_phys::openSpace({}, Vec3(0.0));
+  phys::BoxDesc box;
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j < k; ++j) {
+      box.center = {spacing * i, 0.5, spacing * j};
+      world.addBox(box);
+    }
+  }
+  if (floor) {
+    box.center = {spacing * (k - 1) / 2.0, -0.25, spacing * (k - 1) / 2.0};
+    box.size = {spacing * k + 2.0, 0.5, spacing * k + 2.0};
+    world.addBox(box);
+  }
+  world.step();
+  return world.broadPhasePairs();
+}
+
+// Touching within twice the epsilon, a box's bounds meet its 8 neighbours' (the diagonal ones by
+// their corners): k (k - 1) pairs along x, as many along z, 2 (k - 1)^2 diagonal. 20 x 20 boxes
+// spread over 20 m in x and z make about ten strips, so many pairs straddle an edge.
+TEST(BroadPhase, AGridOfBoxesFindsEachNeighbourPairOnce) {
+  const int k = 20;
+  const std::size_t neighbours = 2 * k * (k - 1) + 2 * (k - 1) * (k - 1);
+  EXPECT_EQ(pairsOfGrid(k, 1.015, false), neighbours);
+  EXPECT_EQ(pairsOfGrid(k, 1.03, false), 0u);  // 3 cm apart: the bounds do not meet
+}
+
+TEST(BroadPhase, AWideBoxMeetsEveryBoxOnIt) {
+  const int k = 20;
+  const std::size_t neighbours = 2 * k * (k - 1) + 2 * (k - 1) * (k - 1);
+  EXPECT_EQ(pairsOfGrid(k, 1.015, true), neighbours + k * k);
+  EXPECT_EQ(pairsOfGrid(k, 1.03, true), static_cast<std::size_t>(k * k));
+}
+
+// Along one line the boxes fill one strip across it, which is the plain sweep.
+TEST(BroadPhase, ARowOfBoxesIsOneSweep) {
+  EXPECT_EQ(pairsOfGrid(1, 1.015, false), 0u);
+  phys::World world = testing_phys::openSpace({}, Vec3(0.0));
+  phys::BoxDesc box;
+  for (int i = 0; i < 50; ++i) {
+    box.center = {1.015 * i, 0.5, 0.0};
+    world.addBox(box);
+  }
+  world.step();
+  EXPECT_EQ(world.broadPhasePairs(), 49u);
+}
+
+}  // namespace
