@@ -17,4 +17,11 @@ std::vector<phys::Vec3> bodyPositions(const phys::World& world) {
   return out;
 }
 
+std::vector<phys::Quat> bodyOrientations(const phys::World& world) {
+  std::vector<phys::Quat> out;
+  for (phys::BoxId id = 0; id < world.boxes().size(); ++id) out.push_back(world.boxPose(id).orientation);
+  out.resize(bodyPositions(world).size(), phys::Quat(1.0, 0.0, 0.0, 0.0));
+  return out;
+}
+
 }  // namespace lab

@@ -10,5 +10,7 @@
 namespace lab {
 
 std::vector<phys::Vec3> bodyPositions(const phys::World& world);
+/// The same bodies' orientations: a box's fitted pose (World::boxPose), identity for a particle.
+std::vector<phys::Quat> bodyOrientations(const phys::World& world);
 
 }  // namespace lab

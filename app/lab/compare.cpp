@@ -25,6 +25,8 @@
 #include "lab.h"
 #include "options.h"
 #include "peer.h"
+#include "peers/peer_scene.h"
+#include "peers/pose_measures.h"
 #include "report.h"
 #include "run.h"
 #include "scenes/scene.h"
@@ -45,7 +47,8 @@ std::string compareUsage() {
   return "usage: lab compare SCENE [--steps N] [--dt S] [--json] [--data DIR]\n"
          "  Runs SCENE with each of our four methods at its own iterations and substeps, then in\n"
          "  each peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
-         "  step, accuracy error, ground penetration and what each peer could not express.\n"
+         "  step, accuracy error, penetration and joint gap (by our code on every engine's poses)\n"
+         "  and what each peer could not express.\n"
          "  --steps N   steps in every run, 1 to 10000000 (default 600; a scene's analytic\n"
          "              checkpoints may ask for more)\n"
          "  --dt S      seconds per step, 1e-06 to 1 (default: the scene's)\n"
@@ -119,43 +122,21 @@ struct Row {
   double msPerStep = 0.0;
   double error = std::numeric_limits<double>::quiet_NaN();       // over every checkpoint
   double errorFirst = std::numeric_limits<double>::quiet_NaN();  // at the first alone
-  double penetration = std::numeric_limits<double>::quiet_NaN();
+  // Measured the same way for every engine, by our code on its bodies' poses at each checkpoint
+  // (peers/pose_measures.h), the largest: so speed is compared at equal joint error.
+  double penetration = std::numeric_limits<double>::quiet_NaN();  // below the ground or into a body
+  double jointGap = std::numeric_limits<double>::quiet_NaN();     // the widest joint
   std::string notes;
 };
 
-// The deepest point below the ground, measured as it is for the peers (peer_scene.cpp): every
-// box corner, every capsule's core ends less its radius (its box's corners are not on it) and
-// every loose particle, the ground only. (World::metrics() also counts box-box overlap.)
-double groundPenetration(const phys::World& world) {
-  const phys::WorldSettings& ws = world.worldSettings();
-  if (!ws.ground) return 0.0;
-  double deepest = 0.0;
-  auto visit = [&](const phys::Vec3& p, double radius) {
-    const double depth = ws.groundHeight - (glm::dot(ws.groundNormal, p) - radius);
-    deepest = std::isfinite(depth) ? std::max(deepest, depth) : std::numeric_limits<double>::infinity();
-  };
-  const auto boxes = world.boxes();
-  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
-    const phys::Box& box = boxes[id];
-    if (box.shape == phys::Shape::Capsule) {
-      const phys::BoxPose pose = world.boxPose(id);
-      const double half = std::max(0.0, box.capsuleHalfSegment());
-      for (const double end : {-half, half})
-        visit(pose.center + pose.orientation * phys::Vec3(0.0, end, 0.0), box.capsuleRadius());
-    } else {
-      for (int k = 0; k < 8; ++k)
-        visit(world.position(world.corners()[box.firstCorner + static_cast<std::uint32_t>(k)]), 0.0);
-    }
+// The largest penetration and joint gap over the checkpoints' poses, into the row.
+void measurePoses(const peers::Description& scene, const std::vector<std::vector<phys::Vec3>>& positions,
+                  const std::vector<std::vector<phys::Quat>>& orientations, Row& row) {
+  row.penetration = row.jointGap = 0.0;
+  for (std::size_t k = 0; k < positions.size() && k < orientations.size(); ++k) {
+    row.penetration = std::max(row.penetration, peers::posePenetration(scene, positions[k], orientations[k]));
+    row.jointGap = std::max(row.jointGap, peers::jointGap(scene, positions[k], orientations[k]));
   }
-  std::vector<bool> inBox(world.particles().size(), false);
-  for (const phys::Box& box : world.boxes()) {
-    for (int k = 0; k < box.particleCount; ++k)
-      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
-  }
-  for (std::size_t i = 0; i < inBox.size(); ++i) {
-    if (!inBox[i]) visit(world.particles().position[i], 0.0);
-  }
-  return deepest;
 }
 
 // The error at the first checkpoint alone: in a chaotic scene (a pile) later checkpoints
@@ -203,6 +184,7 @@ Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, std::o
   std::vector<double> stepMs;
   stepMs.reserve(static_cast<std::size_t>(steps));
   std::vector<std::vector<phys::Vec3>> positions;
+  std::vector<std::vector<phys::Quat>> orientations;
   std::size_t next = 0;
   for (int s = 1; s <= steps; ++s) {
     const auto start = std::chrono::steady_clock::now();
@@ -211,6 +193,7 @@ Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, std::o
     stepMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
     while (next < target.checkpoints.size() && target.checkpoints[next] == s) {
       positions.push_back(bodyPositions(scene.world));
+      orientations.push_back(bodyOrientations(scene.world));
       ++next;
     }
   }
@@ -218,7 +201,7 @@ Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, std::o
   row.msPerStep = median(std::move(stepMs));
   row.error = accuracyError(target, positions);
   row.errorFirst = firstError(target, positions);
-  row.penetration = groundPenetration(scene.world);
+  measurePoses(peers::describe(scene), positions, orientations, row);
   if (!scene.world.freezes().empty()) {
     // As in the sweep (docs/lab.md, "Accuracy"): a frozen body's position says nothing of the
     // solver, so the run has no error to report.
@@ -244,8 +227,8 @@ std::string cell(std::string text) {
 
 void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest) {
   out << "| engine | method | settings | ms/step (median) | vs our fastest | error, first checkpoint (m) | "
-         "error, all (m) | ground penetration (m) | unsupported / notes |\n"
-      << "|---|---|---|---:|---:|---:|---:|---:|---|\n";
+         "error, all (m) | penetration (m) | joint gap (m) | unsupported / notes |\n"
+      << "|---|---|---|---:|---:|---:|---:|---:|---:|---|\n";
   for (const Row& r : rows) {
     out << "| " << r.engine << " | " << (r.method.empty() ? "" : r.method) << " | " << cell(r.settings)
         << " | ";
@@ -253,9 +236,10 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
       // Below a nanometre a depth is round-off (ours rest at 1e-20 m or so), shown as 0.
       const double depth = std::abs(r.penetration) < 1e-9 ? 0.0 : r.penetration;
       out << fixed(r.msPerStep, "%.4g") << " | " << fixed(r.msPerStep / fastest, "%.3gx") << " | "
-          << fixed(r.errorFirst, "%.3g") << " | " << fixed(r.error, "%.3g") << " | " << fixed(depth, "%.3g");
+          << fixed(r.errorFirst, "%.3g") << " | " << fixed(r.error, "%.3g") << " | " << fixed(depth, "%.3g")
+          << " | " << fixed(r.jointGap, "%.3g");
     } else {
-      out << "not run | | | | ";
+      out << "not run | | | | | ";
     }
     out << " | " << cell(r.notes) << " |\n";
   }
@@ -271,7 +255,7 @@ void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, 
         << ",\"ratio\":" << jsonNumber(r.ran ? r.msPerStep / fastest : std::nan(""))
         << ",\"accuracy\":" << jsonString(target.kind) << ",\"error_first\":" << jsonNumber(r.errorFirst)
         << ",\"error\":" << jsonNumber(r.error) << ",\"max_penetration\":" << jsonNumber(r.penetration)
-        << ",\"notes\":" << jsonString(r.notes) << "}\n";
+        << ",\"max_joint_gap\":" << jsonNumber(r.jointGap) << ",\"notes\":" << jsonString(r.notes) << "}\n";
   }
 }
 
@@ -320,6 +304,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
     err << "lab: compare: the overrides were refused: " << e.what() << "\n";
     return kExitFailure;
   }
+  const peers::Description description = peers::describe(*scene);
   for (const std::string& engine : peerEngines()) {
     // Each peer reads the scene as loaded, unstepped (the first load is kept for them).
     const PeerResult p = runPeer(engine, *scene, dt, steps, target.checkpoints);
@@ -331,7 +316,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
     if (p.ran) {
       row.error = accuracyError(target, p.positions);
       row.errorFirst = firstError(target, p.positions);
-      row.penetration = p.maxPenetration;
+      measurePoses(description, p.positions, p.orientations, row);
     }
     row.notes = p.unsupported;
     rows.push_back(row);

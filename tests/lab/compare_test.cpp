@@ -359,7 +359,8 @@ TEST(Compare, JsonRowsHoldFiniteNumbers) {
     ASSERT_TRUE(j.has_value()) << line;
     rows.push_back(lab_testing::text(*j, "engine") + "/" + lab_testing::text(*j, "method"));
     EXPECT_EQ(j->values.at("ran"), "true") << line;
-    for (const char* key : {"ms_per_step", "ratio", "error_first", "error", "max_penetration", "dt"}) {
+    for (const char* key :
+         {"ms_per_step", "ratio", "error_first", "error", "max_penetration", "max_joint_gap", "dt"}) {
       EXPECT_TRUE(std::isfinite(lab_testing::number(*j, key))) << key << " in " << line;
     }
     EXPECT_GT(lab_testing::number(*j, "ms_per_step"), 0.0) << line;
@@ -368,6 +369,29 @@ TEST(Compare, JsonRowsHoldFiniteNumbers) {
   EXPECT_EQ(rows.size(), 4u + lab::peerEngines().size());
   EXPECT_EQ(rows.at(0), "ours/gauss-seidel");
   EXPECT_EQ(rows.at(3), "ours/shake");
+}
+
+// Every engine's penetration and joint gap come from its bodies' poses, by our code: a falling
+// ragdoll's joints hold within centimetres in every engine, and never exactly; no engine lets a
+// body sink or overlap by 10 cm.
+TEST(Compare, EveryEngineHasAJointGapAndPenetrationFromItsPoses) {
+  const Output o = compare({"compare", "ragdoll", "--steps", "60", "--json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  std::istringstream lines(o.out);
+  std::string line;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    const auto j = lab_testing::parseFlatJson(line);
+    ASSERT_TRUE(j.has_value()) << line;
+    ++rows;
+    const double gap = lab_testing::number(*j, "max_joint_gap");
+    EXPECT_GT(gap, 0.0) << line;
+    EXPECT_LT(gap, 0.1) << line;
+    const double depth = lab_testing::number(*j, "max_penetration");
+    EXPECT_GE(depth, 0.0) << line;
+    EXPECT_LT(depth, 0.1) << line;
+  }
+  EXPECT_EQ(rows, 4 + static_cast<int>(lab::peerEngines().size()));
 }
 
 TEST(Compare, APointGravitySceneSaysWhatThePeersCannotExpress) {
