@@ -279,8 +279,11 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   const CommandOutput scaled = runCommandMain(scaleMain, scaleArgs, err);
   failed |= scaled.code != 0;
   if (scaled.code == 0) {
+    // The table without its last line, which names the files by their paths on this machine.
+    std::string table = scaled.out;
+    if (const std::size_t wrote = table.rfind("wrote "); wrote != std::string::npos) table.erase(wrote);
     md << "![microseconds per body-step against bodies](results/scale/scale.png)\n\n```\n"
-       << scaled.out << "```\n\n";
+       << table << "```\n\n";
   } else {
     md << codeBlockOrText(scaled) << "\n";
   }

@@ -13,17 +13,18 @@ set arrow from 8.5, graph 0 to 8.5, graph 1 nohead front lw 2 lc rgb 'black'
 set arrow from 17.5, graph 0 to 17.5, graph 1 nohead front lw 2 lc rgb 'black'
 set arrow from 26.5, graph 0 to 26.5, graph 1 nohead front lw 2 lc rgb 'black'
 set arrow from 35.5, graph 0 to 35.5, graph 1 nohead front lw 2 lc rgb 'black'
+if (!exists('outdir')) outdir = '.'
 do for [format in 'png svg'] {
   if (format eq 'png') { if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1161,750 } else { set terminal png size 1161,750 } }
   if (format eq 'svg') { set terminal svg size 1161,750 }
-  set output 'stability-pass.'.format
+  set output outdir.'/stability-pass.'.format
   set label 1 'Stability: pass (green), fail (red), not judged (grey)' at screen 0.01, screen 0.966667 left
   set cbrange [0:1]
   set palette defined (0 '#d73027', 0.5 '#bdbdbd', 1 '#1a9850')
   set cbtics ('fail' 0, 'n/a' 0.5, 'pass' 1)
   set palette maxcolors 3
   plot 'stability-pass.dat' matrix rowheaders columnheaders with image
-  set output 'stability-error.'.format
+  set output outdir.'/stability-error.'.format
   set label 1 'Stability: log10(value / limit) of the worst criterion: > 0 fails, 3 is 1000 or a blow-up, grey n/a' at screen 0.01, screen 0.966667 left
   set cbrange [-3:3]
   set palette defined (-3 '#2166ac', -1 '#d1e5f0', 0 '#f7f7f7', 0.001 '#fddbc7', 1 '#ef8a62', 3 '#67001f')

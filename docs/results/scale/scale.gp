@@ -1,0 +1,28 @@
+# Cost per body against size: capsule-ragdolls
+# Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
+$s0 << EOD
+11 2.4058636363636365 "n=1"
+44 2.3263068181818181 "n=4"
+176 2.2807642045454548 "n=16"
+704 2.4076633522727273 "n=64"
+2816 2.5031528764204549 "n=256"
+11264 2.9242450284090911 "n=1024"
+EOD
+set termoption noenhanced
+set title 'Cost per body against size: capsule-ragdolls'
+set xlabel 'bodies'
+set ylabel 'microseconds per body-step'
+set logscale x
+set format x '%g'
+set grid xtics ytics mxtics mytics lc 'gray80'
+set key outside right top box
+set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05
+if (!exists('outdir')) outdir = '.'
+set terminal pngcairo size 1000,640 font ',10' noenhanced
+set output outdir.'/'.'scale.png'
+plot $s0 using 1:2 with lines lw 2 lc 'black' title 'capsule-ragdolls', \
+     $s0 using 1:2:3 with labels left offset 0.7,0.6 font ',8' notitle
+set terminal svg size 1000,640 font ',10' noenhanced background 'white'
+set output outdir.'/'.'scale.svg'
+replot
+unset output
