@@ -19,8 +19,13 @@ std::vector<phys::Vec3> bodyPositions(const phys::World& world) {
 
 std::vector<phys::Quat> bodyOrientations(const phys::World& world) {
   std::vector<phys::Quat> out;
-  for (phys::BoxId id = 0; id < world.boxes().size(); ++id) out.push_back(world.boxPose(id).orientation);
-  out.resize(bodyPositions(world).size(), phys::Quat(1.0, 0.0, 0.0, 0.0));
+  std::size_t inBoxes = 0;
+  for (phys::BoxId id = 0; id < world.boxes().size(); ++id) {
+    out.push_back(world.boxPose(id).orientation);
+    inBoxes += static_cast<std::size_t>(world.boxes()[id].particleCount);
+  }
+  // Then the loose particles, as bodyPositions lists them: boxes share no particle.
+  out.resize(out.size() + world.particles().size() - inBoxes, phys::Quat(1.0, 0.0, 0.0, 0.0));
   return out;
 }
 
