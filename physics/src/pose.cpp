@@ -1,5 +1,6 @@
 #include "pose.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -21,7 +22,18 @@ glm::dmat3 gramSchmidt(const glm::dmat3& A) {
 
 }  // namespace
 
-glm::dmat3 nearestRotation(const glm::dmat3& A) {
+glm::dmat3 nearestRotation(const glm::dmat3& unscaled) {
+  // Scaled by a power of two near its largest entry (exact, so the result moves by round-off at
+  // most): a box
+  // flung 1e110 m apart has entries near 1e220, whose determinant overflows. No finite entry, or
+  // none but zeros: there is no shape to read a rotation from.
+  Real largest = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) largest = std::max(largest, std::abs(unscaled[c][r]));
+  }
+  if (!(largest > 0.0) || !std::isfinite(largest)) return glm::dmat3(1.0);
+  const Real toUnit = std::ldexp(1.0, -std::ilogb(largest));
+  const glm::dmat3 A = unscaled * toUnit;
   const Real det = glm::determinant(A);
   if (!(det > 0.0)) return gramSchmidt(A);
   // Newton's iteration takes a singular value s to (s + 1/s) / 2, so unscaled it needs about
@@ -44,6 +56,11 @@ glm::dmat3 nearestRotation(const glm::dmat3& A) {
     change = 0.0;
     for (int c = 0; c < 3; ++c) change += glm::length(next[c] - X[c]);
     X = next;
+  }
+  // Two corners that have met leave A all but singular, and its inverse can overflow on the way:
+  // the frame of its two longest edges is then as good an answer as there is.
+  for (int c = 0; c < 3; ++c) {
+    if (!std::isfinite(X[c].x + X[c].y + X[c].z)) return gramSchmidt(A);
   }
   return X;
 }

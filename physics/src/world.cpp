@@ -402,8 +402,10 @@ BoxPose World::boxPose(BoxId id) const {
   const Box& box = boxes_.at(id);
   BoxPose pose;
   const Vec3* x = &particles_.position[box.firstParticle];
-  for (int j = 0; j < box.particleCount; ++j) pose.center += x[j];
-  pose.center /= static_cast<Real>(box.particleCount);
+  // Each particle's share summed, not the sum divided: the same digits for 4 or 8 particles (a
+  // power of two), and no overflow for a body near the largest double (a bound of infinity).
+  const Real share = 1.0 / static_cast<Real>(box.particleCount);
+  for (int j = 0; j < box.particleCount; ++j) pose.center += x[j] * share;
   // Shape matching (Müller et al. 2005): A = sum (x_j - c) r_j^T is R S for a rigid motion.
   glm::dmat3 A(0.0);
   for (int j = 0; j < box.particleCount; ++j) {
