@@ -86,6 +86,7 @@ void World::setSolverSettings(const SolverSettings& settings) {
   const bool stiffer = settings.iterations * settings.substeps > solver_.iterations * solver_.substeps;
   solver_ = settings;
   if (stiffer) settleWithoutVelocity();
+  guardParticles();  // both can overflow under absurd gravity or speeds
 }
 
 // More passes per step relax what fewer left: a resting box's sag, a chain's stretch. Projected

@@ -60,6 +60,32 @@ TEST(Guard, NonFinitePositionIsFrozenAtItsLastGoodPlace) {
   EXPECT_EQ(m.frozen, 1);
 }
 
+// Found by the soak test (seed 21): more passes relax a world at once, outside the step
+// (setSolverSettings' settling), and a stick 2e308 m long made its particles NaN there, with no
+// guard after it; the next step copied the NaN as their last good place and froze them at it.
+// Now the settings change ends with the guard's look at every particle.
+TEST(Guard, ASettingsChangeThatOverflowsFreezesAtTheLastGoodPlace) {
+  phys::WorldSettings ws;
+  ws.ground = false;
+  ws.gravity = Vec3(0.0);
+  ws.bound = std::numeric_limits<double>::infinity();
+  phys::World world(ws);
+  const auto a = world.addParticle({Vec3(1e308, 0.0, 0.0), Vec3(0.0), 1.0, false, "a"});
+  const auto b = world.addParticle({Vec3(-1e308, 0.0, 0.0), Vec3(0.0), 1.0, false, "b"});
+  world.addStick(a, b, 1.0, 0.0);  // its length overflows: every correction is NaN
+  phys::SolverSettings more = world.solverSettings();
+  more.iterations *= 4;  // stiffer: settles at once
+  world.setSolverSettings(more);
+  for (const auto id : {a, b}) {
+    EXPECT_EQ(world.particles().position[id].x, id == a ? 1e308 : -1e308) << id;  // where it was made
+    EXPECT_EQ(world.particles().inverseMass[id], 0.0) << id;
+  }
+  ASSERT_EQ(world.freezes().size(), 2u);
+  EXPECT_EQ(world.freezes()[0].reason, "non-finite position");
+  world.step();
+  for (const auto id : {a, b}) EXPECT_TRUE(phys::finite(world.particles().position[id])) << id;
+}
+
 // A pinned particle tied to one gone NaN: every method's correction is NaN, but a pinned end is
 // never written (0 times NaN would still be NaN), so it stays exactly put for the guard to see
 // the real culprit. Tested on the passes themselves, since a NaN cannot be made through the API.

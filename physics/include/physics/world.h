@@ -184,6 +184,7 @@ class World {
   void restitute(Real h);
   void dampBodies();
   void guard(bool shapes);
+  void guardParticles();
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBoxFrames();
   bool chooseSweepAxis();
