@@ -23,17 +23,18 @@ glm::dmat3 gramSchmidt(const glm::dmat3& A) {
 }  // namespace
 
 glm::dmat3 nearestRotation(const glm::dmat3& unscaled) {
-  // Scaled by a power of two near its largest entry (exact, so the result moves by round-off at
-  // most): a box
-  // flung 1e110 m apart has entries near 1e220, whose determinant overflows. No finite entry, or
-  // none but zeros: there is no shape to read a rotation from.
+  // A box flung 1e110 m apart has entries near 1e220, whose determinant overflows: far from 1,
+  // the matrix is first scaled by a power of two near its largest entry. Not otherwise, since
+  // cbrt then rounds differently and a ragdoll built from these poses would move by round-off.
+  // No finite entry, or none but zeros: there is no shape to read a rotation from.
   Real largest = 0.0;
   for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 3; ++r) largest = std::max(largest, std::abs(unscaled[c][r]));
   }
   if (!(largest > 0.0) || !std::isfinite(largest)) return glm::dmat3(1.0);
-  const Real toUnit = std::ldexp(1.0, -std::ilogb(largest));
-  const glm::dmat3 A = unscaled * toUnit;
+  constexpr Real kFar = 1e100;
+  const bool far = largest > kFar || largest < 1.0 / kFar;
+  const glm::dmat3 A = far ? unscaled * std::ldexp(1.0, -std::ilogb(largest)) : unscaled;
   const Real det = glm::determinant(A);
   if (!(det > 0.0)) return gramSchmidt(A);
   // Newton's iteration takes a singular value s to (s + 1/s) / 2, so unscaled it needs about
