@@ -15,28 +15,13 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
     const std::string& a = args[i];
     auto value = [&] { return optionValue(args, i); };
     auto missing = [&](const char* what) { return a + " needs " + what; };
-    if (a == "--steps" || a == "--iterations" || a == "--substeps") {
-      const int high = a == "--steps"        ? kMaxSteps
-                       : a == "--iterations" ? phys::kMaxIterations
-                                             : phys::kMaxSubsteps;
-      int n = 0;
-      if (std::string e = parseCountOption(a, value(), high, n); !e.empty()) return e;
-      if (a == "--steps")
-        o.steps = n;
-      else if (a == "--iterations")
-        o.iterations = n;
-      else
-        o.substeps = n;
+    if (std::optional<std::string> solverError = parseSolverOption(args, i, o)) {
+      if (!solverError->empty()) return *solverError;
     } else if (a == "--dt") {
       const std::string* v = value();
       if (v == nullptr) return missing("a time step in seconds");
       o.dt = parseDt(*v);
       if (!o.dt) return a + ": '" + *v + "' is not a number of seconds from 1e-06 to 1";
-    } else if (a == "--method") {
-      const std::string* v = value();
-      if (v == nullptr) return missing("a method (gauss-seidel, jacobi, xpbd or shake)");
-      o.method = phys::parseSolverMethod(*v);
-      if (!o.method) return a + ": unknown method '" + *v + "' (gauss-seidel, jacobi, xpbd or shake)";
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "--dump") {
@@ -57,6 +42,33 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
 }
 
 }  // namespace
+
+std::optional<std::string> parseSolverOption(const std::vector<std::string>& args, std::size_t& i,
+                                             RunOptions& o) {
+  const std::string& a = args[i];
+  if (a == "--steps" || a == "--iterations" || a == "--substeps") {
+    const int high = a == "--steps"        ? kMaxSteps
+                     : a == "--iterations" ? phys::kMaxIterations
+                                           : phys::kMaxSubsteps;
+    int n = 0;
+    if (std::string e = parseCountOption(a, optionValue(args, i), high, n); !e.empty()) return e;
+    if (a == "--steps")
+      o.steps = n;
+    else if (a == "--iterations")
+      o.iterations = n;
+    else
+      o.substeps = n;
+    return std::string();
+  }
+  if (a == "--method") {
+    const std::string* v = optionValue(args, i);
+    if (v == nullptr) return a + " needs a method (gauss-seidel, jacobi, xpbd or shake)";
+    o.method = phys::parseSolverMethod(*v);
+    if (!o.method) return a + ": unknown method '" + *v + "' (gauss-seidel, jacobi, xpbd or shake)";
+    return std::string();
+  }
+  return std::nullopt;
+}
 
 std::string usage() {
   return "usage: lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]\n"

@@ -72,6 +72,11 @@ std::string notWholeNumber(const std::string& option, const std::string& text, i
 /// error, "OPTION needs a whole number" when `value` is nullptr or notWholeNumber's, or "".
 std::string parseCountOption(const std::string& option, const std::string* value, int high, int& into);
 
+/// The options every command that steps a scene shares: --steps, --iterations, --substeps and
+/// --method at args[i], into `o` (stepping i onto the value). nullopt when args[i] is none of
+/// them; else the error, or "" when the value was good.
+std::optional<std::string> parseSolverOption(const std::vector<std::string>& args, std::size_t& i,
+                                             RunOptions& o);
 /// A time step from phys::kMinDt to phys::kMaxDt seconds, nothing else.
 std::optional<double> parseDt(const std::string& text);
 

@@ -67,23 +67,8 @@ std::string parse(const std::vector<std::string>& args, ScaleOptions& o) {
         if (!n) return notWholeNumber("--sizes", item, kMaxSize);
         o.sizes.push_back(*n);
       }
-    } else if (a == "--steps" || a == "--iterations" || a == "--substeps") {
-      const int high = a == "--steps"        ? kMaxSteps
-                       : a == "--iterations" ? phys::kMaxIterations
-                                             : phys::kMaxSubsteps;
-      int n = 0;
-      if (std::string e = parseCountOption(a, value(), high, n); !e.empty()) return e;
-      if (a == "--steps")
-        o.run.steps = n;
-      else if (a == "--iterations")
-        o.run.iterations = n;
-      else
-        o.run.substeps = n;
-    } else if (a == "--method") {
-      const std::string* v = value();
-      if (v == nullptr) return "--method needs a method (gauss-seidel, jacobi, xpbd or shake)";
-      o.run.method = phys::parseSolverMethod(*v);
-      if (!o.run.method) return "--method: unknown method '" + *v + "' (gauss-seidel, jacobi, xpbd or shake)";
+    } else if (std::optional<std::string> solverError = parseSolverOption(args, i, o.run)) {
+      if (!solverError->empty()) return *solverError;
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "--out") {
@@ -250,7 +235,7 @@ namespace {
 
 Chart scaleChart(const std::vector<ScaleRow>& rows) {
   Chart chart;
-  const std::string& scene = rows.empty() ? std::string() : rows.front().scene;
+  const std::string scene = rows.empty() ? std::string() : rows.front().scene;
   chart.title = "Cost per body against size: " + scene;
   chart.xLabel = "bodies";
   chart.yLabel = "microseconds per body-step";

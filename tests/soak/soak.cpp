@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -298,6 +299,8 @@ class Soak {
   void solverSettings();
   void gravityKeys();
   void dampingKeys();
+  void pressKeys(Kind kind, const char* up, const char* down, double step, const std::string& setting,
+                 const std::function<std::string(double)>& press);
   void gravityMode();
   void overlayStart();
   void overlayStop();
@@ -904,35 +907,36 @@ void Soak::solverSettings() {
   checkWorlds();
 }
 
-void Soak::gravityKeys() {
-  const double delta = random_.chance(0.5) ? 1.0 : -1.0;
+// One of a pair of keys, up or down by `step`, pressed 1 to 25 times: each press accepted, and
+// what it changes (`setting`) changed in every run.
+void Soak::pressKeys(Kind kind, const char* up, const char* down, double step, const std::string& setting,
+                     const std::function<std::string(double)>& press) {
+  const double delta = random_.chance(0.5) ? step : -step;
   const int presses = random_.integer(1, 25);
-  begin(Kind::GravityKeys,
-        std::string(delta > 0 ? "Y" : "H") + " pressed " + std::to_string(presses) + " times");
+  begin(kind, std::string(delta > 0 ? up : down) + " pressed " + std::to_string(presses) + " times");
   for (int i = 0; i < presses; ++i) {
-    const std::string error = session().changeGravity(delta);
-    expect(error.empty(), "a gravity key was refused: " + error);
+    const std::string error = press(delta);
+    expect(error.empty(), "a " + setting + " key was refused: " + error);
   }
   const phys::WorldSettings& w = session().scene().world.worldSettings();
-  expect(w.gravityStrength >= 0.0 && phys::finite(w.gravity), "gravity is " + describe(w));
   for (const sandbox::Run& run : session().runs())
-    expect(sameWorld(run.scene->world.worldSettings(), w), "the gravity keys did not act on every run");
+    expect(sameWorld(run.scene->world.worldSettings(), w),
+           "the " + setting + " keys did not act on every run");
+}
+
+void Soak::gravityKeys() {
+  pressKeys(Kind::GravityKeys, "Y", "H", 1.0, "gravity",
+            [&](double d) { return session().changeGravity(d); });
+  const phys::WorldSettings& w = session().scene().world.worldSettings();
+  expect(w.gravityStrength >= 0.0 && phys::finite(w.gravity), "gravity is " + describe(w));
   checkWorlds();
 }
 
 void Soak::dampingKeys() {
-  const double delta = random_.chance(0.5) ? 0.1 : -0.1;
-  const int presses = random_.integer(1, 25);
-  begin(Kind::DampingKeys,
-        std::string(delta > 0 ? "U" : "J") + " pressed " + std::to_string(presses) + " times");
-  for (int i = 0; i < presses; ++i) {
-    const std::string error = session().changeDamping(delta);
-    expect(error.empty(), "a damping key was refused: " + error);
-  }
+  pressKeys(Kind::DampingKeys, "U", "J", 0.1, "damping",
+            [&](double d) { return session().changeDamping(d); });
   const phys::WorldSettings& w = session().scene().world.worldSettings();
   expect(w.damping >= 0.0, "damping is " + num(w.damping));
-  for (const sandbox::Run& run : session().runs())
-    expect(sameWorld(run.scene->world.worldSettings(), w), "the damping keys did not act on every run");
   checkWorlds();
 }
 
