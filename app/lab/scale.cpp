@@ -39,6 +39,7 @@ std::string usageText() {
          "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"
          "  --json          a JSON array, one object per size, instead of the table\n"
          "  --out DIR       also write DIR/scale.csv, DIR/scale.gp and the chart scale.png, .svg\n"
+         "  --save-scenes DIR  also write each size's scene as DIR/KIND-N.xml, for lab run\n"
          "  --help          show this text\n";
 }
 
@@ -48,6 +49,7 @@ struct ScaleOptions {
   RunOptions run;          // steps and solver overrides
   bool json = false;
   std::optional<std::filesystem::path> out;
+  std::optional<std::filesystem::path> scenes;  // --save-scenes
 };
 
 std::string parse(const std::vector<std::string>& args, ScaleOptions& o) {
@@ -71,6 +73,11 @@ std::string parse(const std::vector<std::string>& args, ScaleOptions& o) {
       if (!solverError->empty()) return *solverError;
     } else if (a == "--json") {
       o.json = true;
+    } else if (a == "--save-scenes") {
+      const std::string* v = value();
+      if (v == nullptr) return "--save-scenes needs a folder";
+      if (v->empty()) return "--save-scenes: the folder name is empty";
+      o.scenes = *v;
     } else if (a == "--out") {
       const std::string* v = value();
       if (v == nullptr) return "--out needs a folder";
@@ -266,6 +273,15 @@ int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostr
   }
   try {
     if (o.out) fileio::prepareFolder(*o.out);  // before the runs, which can take minutes
+    if (o.scenes) {
+      // The generated scenes as files, so that `lab run` can show one size's stages.
+      fileio::prepareFolder(*o.scenes);
+      for (const int n : o.sizes) {
+        fileio::writeAtomically(
+            *o.scenes / (std::string(toString(o.kind)) + "-" + std::to_string(n) + ".xml"),
+            scaleSceneXml(o.kind, n));
+      }
+    }
     const std::vector<ScaleRow> rows = runScale(o.kind, o.sizes, o.run, &err);
     out << (o.json ? scaleJson(rows) : scaleTable(rows));
     if (!o.out) return kExitOk;

@@ -124,6 +124,19 @@ TEST(Scale, WritesTheDataAndTheChartWhenGnuplotIsThere) {
   EXPECT_EQ(lab_testing::readFile(dir.file("out/scale.png")).substr(1, 3), "PNG");
 }
 
+// --save-scenes writes the very scenes it runs, for `lab run` to show one size's stages.
+TEST(Scale, SavesTheScenesItRuns) {
+  const TempDir dir;
+  const lab::CommandOutput o =
+      scale({"box-ragdolls", "--sizes", "1,4", "--steps", "1", "--save-scenes", dir.file("scenes").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  for (const int n : {1, 4}) {
+    const std::filesystem::path file = dir.file("scenes") / ("box-ragdolls-" + std::to_string(n) + ".xml");
+    EXPECT_EQ(lab_testing::readFile(file), lab::scaleSceneXml(ScaleKind::BoxRagdolls, n));
+    EXPECT_EQ(scenes::loadSceneFile(file).world.boxes().size(), static_cast<std::size_t>(10 * n));
+  }
+}
+
 TEST(Scale, BadArgumentsNameTheArgument) {
   lab_testing::expectUsageError(scale({"--sizes", "0"}), "scale", "--sizes: '0'");
   lab_testing::expectUsageError(scale({"--sizes", "1,,2"}), "scale", "--sizes");
@@ -132,6 +145,7 @@ TEST(Scale, BadArgumentsNameTheArgument) {
   lab_testing::expectUsageError(scale({"--steps"}), "scale", "--steps");
   lab_testing::expectUsageError(scale({"--method", "euler"}), "scale", "unknown method 'euler'");
   lab_testing::expectUsageError(scale({"--out", ""}), "scale", "--out");
+  lab_testing::expectUsageError(scale({"--save-scenes"}), "scale", "--save-scenes needs a folder");
   lab_testing::expectUsageError(scale({"--frobnicate"}), "scale", "unknown option '--frobnicate'");
 }
 
