@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "passes.h"
+#include "relax_lanes.h"
 
 namespace phys::detail {
 namespace {
@@ -61,10 +62,12 @@ int shrinkLinkSlack(const Particles& p, std::span<const Link> links, Real step, 
   return left;
 }
 
-void solveLinks(Particles& p, std::span<const Link> links, std::span<const Real> slack) {
-  // Two loops, so that the usual one, with no link created apart, is the projection alone.
+void solveLinks(Particles& p, std::span<const Link> links, const LinkLayout& layout,
+                std::span<const Real> slack) {
+  // The usual pass, with no link created apart, is the projection alone, most of it in lanes.
   if (slack.empty()) {
-    for (const Link& link : links) solveLink(p, link, 0.0);
+    solveLinkLanes(linkLaneArguments(p, layout));
+    for (const std::uint32_t k : layout.others()) solveLink(p, links[k], 0.0);
     return;
   }
   for (std::size_t k = 0; k < links.size(); ++k) solveLink(p, links[k], slack[k]);

@@ -7,8 +7,10 @@
 
 #include "physics/box.h"
 #include "physics/constraints.h"
+#include "physics/link_layout.h"
 #include "physics/particles.h"
 #include "physics/settings.h"
+#include "physics/stick_layout.h"
 
 namespace phys::detail {
 
@@ -39,21 +41,24 @@ inline Real stickTarget(const Stick& s, Real length) {
   return -1.0;
 }
 
+// Each pass runs over `layout` (StickLayout): the same result as one loop over `sticks` in
+// creation order, faster.
 /// Jakobsen: each stick in turn, along its current direction, in proportion to inverse mass.
-void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks);
+void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout);
 /// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
 /// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
 /// particle.
-void relaxJacobi(Particles& p, std::span<const Stick> sticks, std::span<const Real> degree,
-                 std::span<Vec3> delta);
+void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
+                 std::span<const Real> degree, std::span<Vec3> delta);
 /// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
 /// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
 /// zeroed at the start of each substep.
 /// `compliance` (m/N, SolverSettings::compliance) is added to every stick's own.
-void relaxXpbd(Particles& p, std::span<const Stick> sticks, std::span<Real> lambda, Real h, Real compliance);
+void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
+               Real h, Real compliance);
 /// SHAKE (Ryckaert, Ciccotti, Berendsen 1977): each stick moved along its direction at the
 /// start of the substep (x* after integration), by the root of a scalar quadratic.
-void relaxShake(Particles& p, std::span<const Stick> sticks);
+void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout);
 
 /// Projects every contact point below the ground plane n . x = height back onto it, writing the
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").
@@ -159,8 +164,10 @@ int shrinkLinkSlack(const Particles& p, std::span<const Link> links, Real step, 
 /// One pass over the joints, Gauss-Seidel in every method: each link's two points moved apart
 /// or together along their separation by the weighted projection of REFERENCES.md, a pin's all
 /// the way onto each other. `slack`, if not empty, is per link what shrinkLinkSlack allows it
-/// to keep: its bounds are widened by that much on the side it is outside.
-void solveLinks(Particles& p, std::span<const Link> links, std::span<const Real> slack = {});
+/// to keep: its bounds are widened by that much on the side it is outside. With no slack the pass
+/// runs over `layout` (LinkLayout), in lanes, to the same result.
+void solveLinks(Particles& p, std::span<const Link> links, const LinkLayout& layout,
+                std::span<const Real> slack = {});
 
 /// Pulls each box's particle velocities (x - x*) towards the box's rigid motion by `fraction`
 /// (0 nothing, 1 all the way), keeping its linear and angular momentum; edits x* only.

@@ -46,6 +46,7 @@ class StageTimer {
 void World::step() {
   const auto stepStart = Clock::now();
   profile_ = {};
+  updateLayouts();
   std::fill(touched_.begin(), touched_.end(), std::uint8_t{0});
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
   const Real h = substepDt();
@@ -67,6 +68,14 @@ void World::step() {
   }
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
+}
+
+// Rebuilt only after sticks, bodies or links were added: the first step of a new scene pays for it.
+void World::updateLayouts() {
+  if (!layoutsStale_) return;
+  stickLayout_.build(sticks_, boxes_, particles_.size());
+  linkLayout_.build(links_, particles_.size());
+  layoutsStale_ = false;
 }
 
 void World::integrateParticles(Real h) {
@@ -150,18 +159,18 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       const StageTimer timer(profile_, Stage::Sticks);
       switch (solver_.method) {
         case SolverMethod::GaussSeidel:
-          detail::relaxGaussSeidel(particles_, sticks_);
+          detail::relaxGaussSeidel(particles_, sticks_, stickLayout_);
           break;
         case SolverMethod::Jacobi:
-          detail::relaxJacobi(particles_, sticks_, degree_, jacobiDelta_);
+          detail::relaxJacobi(particles_, sticks_, stickLayout_, degree_, jacobiDelta_);
           break;
         case SolverMethod::Xpbd:
           // The multipliers accumulate over the substep's passes (Macklin et al. 2016).
           if (it == 0) std::fill(lambda_.begin(), lambda_.end(), 0.0);
-          detail::relaxXpbd(particles_, sticks_, lambda_, h, solver_.compliance);
+          detail::relaxXpbd(particles_, sticks_, stickLayout_, lambda_, h, solver_.compliance);
           break;
         case SolverMethod::Shake:
-          detail::relaxShake(particles_, sticks_);
+          detail::relaxShake(particles_, sticks_, stickLayout_);
           break;
       }
     }
@@ -170,7 +179,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     // world's compliance, which XPBD adds to the sticks, does not soften them.
     if (!links_.empty()) {
       const StageTimer timer(profile_, Stage::Links);
-      detail::solveLinks(particles_, links_, linkSlack);
+      detail::solveLinks(particles_, links_, linkLayout_, linkSlack);
     }
 
     // Contacts, each pass followed by its friction, so the next pass's sticks relax what

@@ -95,12 +95,13 @@ void World::setSolverSettings(const SolverSettings& settings) {
 // velocity changes. Runs only when the settings change, never in the step.
 void World::settleWithoutVelocity() {
   std::vector<Vec3> before = particles_.position;
+  updateLayouts();
   // Links created apart keep their gaps: they close at their own pace (World::step).
   const std::span<const Real> slack =
       linksApart_ > 0 ? std::span<const Real>(linkSlack_) : std::span<const Real>();
   for (int pass = 0; pass < 4 * solver_.iterations * solver_.substeps && pass < 200; ++pass) {
-    detail::relaxGaussSeidel(particles_, sticks_);
-    detail::solveLinks(particles_, links_, slack);
+    detail::relaxGaussSeidel(particles_, sticks_, stickLayout_);
+    detail::solveLinks(particles_, links_, linkLayout_, slack);
     detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_);
     if (world_.ground)
       detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight,
@@ -209,6 +210,7 @@ void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength,
   require(std::isfinite(compliance) && compliance >= 0.0 && compliance <= kMaxCompliance,
           "stick: compliance must be from 0 to 1e6 (m/N)");
   sticks_.push_back({a, b, minLength, maxLength, compliance});
+  layoutsStale_ = true;
   joinGroups(a, b);
   lambda_.push_back(0.0);
   degree_[a] += 1.0;
@@ -233,6 +235,7 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
   require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
   require(!std::isnan(maxLength) && maxLength >= minLength, "addLink: max length must be >= min length (m)");
   links_.push_back({a, b, minLength, maxLength});
+  layoutsStale_ = true;
   // Created outside its bounds (a pin whose points were placed apart), it is brought within them
   // at most at maxDepenetrationSpeed, from the next step on (World::step).
   linkSlack_.push_back(detail::linkViolation(particles_.position, links_.back()));

@@ -13,9 +13,11 @@
 #include "physics/collision.h"
 #include "physics/constraints.h"
 #include "physics/debug_draw.h"
+#include "physics/link_layout.h"
 #include "physics/metrics.h"
 #include "physics/particles.h"
 #include "physics/settings.h"
+#include "physics/stick_layout.h"
 
 namespace phys {
 
@@ -181,6 +183,7 @@ class World {
   void measureApproaches(Real h);
   std::span<const Real> limitCorrections(Real h);
   void relax(Real h, std::span<const Real> linkSlack);
+  void updateLayouts();
   void restitute(Real h);
   void dampBodies();
   void guard(bool shapes);
@@ -215,6 +218,9 @@ class World {
   std::vector<std::string> particleName_;
   std::vector<std::int32_t> particleBody_;  // box index, or -1 for a loose particle
   std::vector<Stick> sticks_;
+  StickLayout stickLayout_;    // the sticks by body, for the passes (updateLayouts)
+  LinkLayout linkLayout_;      // the links by ragdoll, for the passes (updateLayouts)
+  bool layoutsStale_ = false;  // sticks, bodies or links added since they were built
   std::vector<Link> links_;
   std::vector<Box> boxes_;
   std::vector<Embedding> corners_;

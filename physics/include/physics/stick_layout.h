@@ -1,0 +1,89 @@
+#pragma once
+// The sticks laid out by body for the relaxation passes (docs/performance.md, "Sticks by body").
+// A body's particles are consecutive and its own sticks are consecutive, and no two bodies share
+// a particle, so a pass can copy a body's few particles into locals, relax its sticks there in
+// their usual order and write them back: no index reaches into the world's arrays and the
+// compiler keeps the body in the first level of cache. Gauss-Seidel's result depends only on the
+// order of sticks that share a particle, which this keeps, so the result is bit for bit the one of
+// the plain loop over World::sticks() in creation order.
+//
+// Within a body the sticks depend on each other one after the other (each reads what the last
+// wrote), so one body at a time is bound by the latency of a square root and a division per
+// stick. Bodies of the same shape (the same particles and sticks, as every box of one model) are
+// therefore also grouped kStickLanes at a time into lanes, relaxed together with SIMD, one body
+// per lane: the same operations in the same order per body, so again the same result.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/box.h"
+#include "physics/constraints.h"
+
+namespace phys {
+
+/// A body whose particles only its own sticks touch: relaxed in locals.
+struct StickBlock {
+  ParticleId firstParticle = 0;
+  std::uint32_t firstStick = 0;
+  std::uint16_t particleCount = 0;
+  std::uint16_t stickCount = 0;
+};
+
+/// Consecutive sticks, in creation order, relaxed straight in the world's arrays.
+struct StickRun {
+  std::uint32_t begin = 0, end = 0;
+};
+
+/// The most particles a block copies into locals: a corners box's 8.
+inline constexpr int kMaxBlockParticles = 8;
+
+/// Bodies relaxed together, one per SIMD lane.
+inline constexpr int kStickLanes = 8;
+
+/// A stick of a block, by the positions of its particles in the block.
+struct LocalStick {
+  std::uint8_t a = 0, b = 0;
+};
+
+/// kStickLanes blocks of one shape, relaxed together.
+struct StickLanes {
+  std::array<ParticleId, kStickLanes> firstParticle{};
+  std::array<std::uint32_t, kStickLanes> firstStick{};
+  std::uint16_t particleCount = 0;
+  std::uint16_t stickCount = 0;
+  std::uint32_t firstLocal = 0;  ///< the shape's sticks in StickLayout::localSticks()
+  /// Each stick's bounds and compliance in StickLayout::laneValues(), stick by stick, one value
+  /// per lane: so the lanes load them as vectors.
+  std::uint32_t firstValue = 0;
+};
+
+class StickLayout {
+ public:
+  /// Every stick relaxed in the world's arrays, in creation order (no blocks).
+  static StickLayout inOrder(std::size_t stickCount);
+  /// The bodies whose particles no other stick touches become blocks; every other stick (loose
+  /// particles' sticks, sticks a scene added between a body's particles and others) goes into
+  /// runs, in creation order. Allocates: called when sticks or bodies are added, not in the step.
+  void build(std::span<const Stick> sticks, std::span<const Box> boxes, std::size_t particleCount);
+
+  /// Bodies relaxed one at a time: those of a shape with fewer than kStickLanes bodies left over.
+  std::span<const StickBlock> blocks() const { return blocks_; }
+  std::span<const StickLanes> lanes() const { return lanes_; }
+  std::span<const StickRun> runs() const { return runs_; }
+  std::span<const LocalStick> localSticks() const { return localSticks_; }
+  /// Per lane group and stick: kStickLanes min lengths, then max lengths, then compliances.
+  std::span<const Real> laneValues() const { return laneValues_; }
+
+ private:
+  void addToRuns(std::uint32_t stick);
+  void groupIntoLanes(std::span<const Stick> sticks);
+
+  std::vector<StickBlock> blocks_;
+  std::vector<StickLanes> lanes_;
+  std::vector<StickRun> runs_;
+  std::vector<LocalStick> localSticks_;
+  std::vector<Real> laneValues_;
+};
+
+}  // namespace phys

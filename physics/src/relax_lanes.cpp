@@ -1,0 +1,71 @@
+#include "relax_lanes.h"
+
+namespace phys::detail {
+namespace {
+
+LaneIsa detect() {
+#if defined(PHYS_AVX2_LANES)
+  __builtin_cpu_init();  // needed when this runs before the library's constructors
+  if (__builtin_cpu_supports("avx2")) return LaneIsa::Avx2;
+#endif
+  return LaneIsa::Baseline;
+}
+
+const LaneIsa kBest = detect();
+
+}  // namespace
+
+LaneIsa laneIsa() {
+  return kBest;
+}
+
+// The kernels read the positions as one array of doubles, x, y, z after one another.
+static_assert(sizeof(Vec3) == 3 * sizeof(Real) && alignof(Vec3) == alignof(Real));
+
+LaneArguments laneArguments(Particles& p, const StickLayout& layout) {
+  LaneArguments a;
+  a.position = &p.position.data()->x;
+  a.inverseMass = p.inverseMass.data();
+  a.groups = layout.lanes().data();
+  a.groupCount = layout.lanes().size();
+  a.localSticks = layout.localSticks().data();
+  a.laneValues = layout.laneValues().data();
+  return a;
+}
+
+LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout) {
+  LinkLaneArguments a;
+  a.position = &p.position.data()->x;
+  a.inverseMass = p.inverseMass.data();
+  a.groups = layout.lanes().data();
+  a.groupCount = layout.lanes().size();
+  a.localLinks = layout.localLinks().data();
+  a.laneValues = layout.laneValues().data();
+  return a;
+}
+
+void solveLinkLanes(const LinkLaneArguments& a, LaneIsa isa) {
+  if (a.groupCount == 0) return;
+#if defined(PHYS_AVX2_LANES)
+  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::solveLinkLanes(a);
+#endif
+  baseline::solveLinkLanes(a);
+}
+
+void relaxGaussSeidelLanes(const LaneArguments& a, LaneIsa isa) {
+  if (a.groupCount == 0) return;
+#if defined(PHYS_AVX2_LANES)
+  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxGaussSeidelLanes(a);
+#endif
+  baseline::relaxGaussSeidelLanes(a);
+}
+
+void relaxXpbdLanes(const LaneArguments& a, LaneIsa isa) {
+  if (a.groupCount == 0) return;
+#if defined(PHYS_AVX2_LANES)
+  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxXpbdLanes(a);
+#endif
+  baseline::relaxXpbdLanes(a);
+}
+
+}  // namespace phys::detail

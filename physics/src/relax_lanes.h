@@ -1,0 +1,67 @@
+#pragma once
+// Gauss-Seidel and XPBD over the lane groups of a StickLayout: kStickLanes bodies of one shape at
+// a time, one per SIMD lane (physics/stick_layout.h says why). The kernels are compiled twice,
+// for the x86-64 baseline and for AVX2 (relax_lanes_kernels.inc), and these functions pick the
+// one the CPU can run, once. Both do per lane exactly what the scalar pass does per body.
+#include <cstddef>
+
+#include "physics/link_layout.h"
+#include "physics/particles.h"
+#include "physics/stick_layout.h"
+
+namespace phys::detail {
+
+/// What the lane kernels read and write: raw arrays, so that the AVX2 copy shares no inline
+/// function with the rest of the library (one compiled for AVX2 could be picked for both).
+struct LaneArguments {
+  Real* position = nullptr;  ///< x, y, z of each particle, one after the other
+  const Real* inverseMass = nullptr;
+  const StickLanes* groups = nullptr;
+  std::size_t groupCount = 0;
+  const LocalStick* localSticks = nullptr;
+  const Real* laneValues = nullptr;  ///< StickLayout::laneValues()
+  Real* lambda = nullptr;            ///< XPBD: per stick, in World::sticks() order
+  Real inverseH2 = 0.0;              ///< XPBD: 1 / h^2 (1/s^2)
+  Real compliance = 0.0;             ///< XPBD: the world's, added to each stick's (m/N)
+};
+
+/// The arguments for the world's particles and a layout (lambda and XPBD's numbers not set).
+LaneArguments laneArguments(Particles& p, const StickLayout& layout);
+
+/// What the link kernel reads and writes, raw as LaneArguments.
+struct LinkLaneArguments {
+  Real* position = nullptr;
+  const Real* inverseMass = nullptr;
+  const LinkLanes* groups = nullptr;
+  std::size_t groupCount = 0;
+  const LocalLink* localLinks = nullptr;
+  const Real* laneValues = nullptr;  ///< LinkLayout::laneValues()
+};
+
+/// The link arguments for the world's particles and a layout.
+LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout);
+
+/// Which compiled copy of the kernels runs.
+enum class LaneIsa { Baseline, Avx2 };
+/// The best the CPU can run: Avx2 where it has AVX2 and the build has that copy.
+LaneIsa laneIsa();
+
+/// The kernels of laneIsa(), or of the given copy (which must be laneIsa() or Baseline).
+void relaxGaussSeidelLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
+void relaxXpbdLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
+/// solveLinks() with no slack over the link lane groups.
+void solveLinkLanes(const LinkLaneArguments& a, LaneIsa isa = laneIsa());
+
+namespace baseline {
+void relaxGaussSeidelLanes(const LaneArguments& a);
+void relaxXpbdLanes(const LaneArguments& a);
+void solveLinkLanes(const LinkLaneArguments& a);
+}  // namespace baseline
+
+namespace avx2 {
+void relaxGaussSeidelLanes(const LaneArguments& a);
+void relaxXpbdLanes(const LaneArguments& a);
+void solveLinkLanes(const LinkLaneArguments& a);
+}  // namespace avx2
+
+}  // namespace phys::detail

@@ -1,0 +1,111 @@
+#include "physics/stick_layout.h"
+
+#include <map>
+
+namespace phys {
+
+StickLayout StickLayout::inOrder(std::size_t stickCount) {
+  StickLayout layout;
+  if (stickCount > 0) layout.runs_.push_back({0, static_cast<std::uint32_t>(stickCount)});
+  return layout;
+}
+
+void StickLayout::addToRuns(std::uint32_t stick) {
+  if (!runs_.empty() && runs_.back().end == stick) {
+    ++runs_.back().end;
+  } else {
+    runs_.push_back({stick, stick + 1});
+  }
+}
+
+void StickLayout::build(std::span<const Stick> sticks, std::span<const Box> boxes,
+                        std::size_t particleCount) {
+  constexpr std::int32_t kNone = -1;
+  std::vector<std::int32_t> particleOwner(particleCount, kNone), stickOwner(sticks.size(), kNone);
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    const Box& box = boxes[b];
+    for (int i = 0; i < box.particleCount; ++i)
+      particleOwner[box.firstParticle + i] = static_cast<std::int32_t>(b);
+    for (int k = 0; k < box.stickCount; ++k) stickOwner[box.firstStick + k] = static_cast<std::int32_t>(b);
+  }
+  // A body stays a block when every stick at its particles is its own, and its own join only its
+  // particles (true of every body addBox makes; checked, so that the layout never relies on it).
+  std::vector<std::uint8_t> isolated(boxes.size(), 1);
+  for (std::size_t k = 0; k < sticks.size(); ++k) {
+    const std::int32_t owner = stickOwner[k];
+    for (const ParticleId end : {sticks[k].a, sticks[k].b}) {
+      const std::int32_t body = particleOwner[end];
+      if (owner != body) {
+        if (body != kNone) isolated[static_cast<std::size_t>(body)] = 0;
+        if (owner != kNone) isolated[static_cast<std::size_t>(owner)] = 0;
+      }
+    }
+  }
+  blocks_.clear();
+  runs_.clear();
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    const Box& box = boxes[b];
+    if (isolated[b] && box.particleCount <= kMaxBlockParticles) {
+      blocks_.push_back({box.firstParticle, box.firstStick, static_cast<std::uint16_t>(box.particleCount),
+                         static_cast<std::uint16_t>(box.stickCount)});
+    } else {
+      for (int k = 0; k < box.stickCount; ++k) stickOwner[box.firstStick + k] = kNone;
+    }
+  }
+  for (std::size_t k = 0; k < sticks.size(); ++k) {
+    if (stickOwner[k] == kNone) addToRuns(static_cast<std::uint32_t>(k));
+  }
+  groupIntoLanes(sticks);
+}
+
+// Blocks of one shape (particle count and local sticks), kStickLanes at a time, in body order;
+// what is left of each shape stays a block.
+void StickLayout::groupIntoLanes(std::span<const Stick> sticks) {
+  lanes_.clear();
+  localSticks_.clear();
+  laneValues_.clear();
+  // Keyed by the shape: particle count, then each stick's two local particles. 16-bit elements,
+  // not bytes: GCC 12 warns wrongly about the memcmp that byte vectors compare with.
+  using ShapeKey = std::vector<std::uint16_t>;
+  std::map<ShapeKey, std::vector<StickBlock>> waiting;
+  std::map<ShapeKey, std::uint32_t> shapeStart;  // the shape's first LocalStick
+  ShapeKey shape;
+  for (const StickBlock& block : blocks_) {
+    shape.assign(1, block.particleCount);
+    for (std::uint32_t k = block.firstStick; k < block.firstStick + block.stickCount; ++k) {
+      shape.push_back(static_cast<std::uint16_t>(sticks[k].a - block.firstParticle));
+      shape.push_back(static_cast<std::uint16_t>(sticks[k].b - block.firstParticle));
+    }
+    std::vector<StickBlock>& group = waiting[shape];
+    group.push_back(block);
+    if (group.size() < kStickLanes) continue;
+
+    auto [start, isNew] = shapeStart.try_emplace(shape, static_cast<std::uint32_t>(localSticks_.size()));
+    if (isNew) {
+      for (std::size_t j = 1; j < shape.size(); j += 2) {
+        localSticks_.push_back(
+            {static_cast<std::uint8_t>(shape[j]), static_cast<std::uint8_t>(shape[j + 1])});
+      }
+    }
+    StickLanes lanes;
+    lanes.particleCount = block.particleCount;
+    lanes.stickCount = block.stickCount;
+    lanes.firstLocal = start->second;
+    lanes.firstValue = static_cast<std::uint32_t>(laneValues_.size());
+    for (int l = 0; l < kStickLanes; ++l) {
+      lanes.firstParticle[l] = group[l].firstParticle;
+      lanes.firstStick[l] = group[l].firstStick;
+    }
+    for (std::uint32_t k = 0; k < block.stickCount; ++k) {
+      for (int l = 0; l < kStickLanes; ++l) laneValues_.push_back(sticks[group[l].firstStick + k].minLength);
+      for (int l = 0; l < kStickLanes; ++l) laneValues_.push_back(sticks[group[l].firstStick + k].maxLength);
+      for (int l = 0; l < kStickLanes; ++l) laneValues_.push_back(sticks[group[l].firstStick + k].compliance);
+    }
+    lanes_.push_back(lanes);
+    group.clear();
+  }
+  blocks_.clear();
+  for (const auto& [key, group] : waiting) blocks_.insert(blocks_.end(), group.begin(), group.end());
+}
+
+}  // namespace phys
