@@ -5,6 +5,7 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "physics/body_layout.h"
 #include "physics/box.h"
 #include "physics/constraints.h"
 #include "physics/link_layout.h"
@@ -171,7 +172,8 @@ void solveLinks(Particles& p, std::span<const Link> links, const LinkLayout& lay
 
 /// Pulls each box's particle velocities (x - x*) towards the box's rigid motion by `fraction`
 /// (0 nothing, 1 all the way), keeping its linear and angular momentum; edits x* only.
-void dampBodyMotion(Particles& p, std::span<const Box> boxes, Real fraction);
+/// `layout` (BodyLayout) groups the bodies; every body of `boxes` is in it once.
+void dampBodyMotion(Particles& p, std::span<const Box> boxes, const BodyLayout& layout, Real fraction);
 
 /// Current position of an embedded point.
 Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);

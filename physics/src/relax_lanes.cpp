@@ -44,6 +44,25 @@ LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout) {
   return a;
 }
 
+DampLaneArguments dampLaneArguments(Particles& p, const BodyLayout& layout, Real fraction) {
+  DampLaneArguments a;
+  a.position = &p.position.data()->x;
+  a.previous = &p.previous.data()->x;
+  a.inverseMass = p.inverseMass.data();
+  a.groups = layout.lanes().data();
+  a.groupCount = layout.lanes().size();
+  a.fraction = fraction;
+  return a;
+}
+
+void dampBodyLanes(const DampLaneArguments& a, LaneIsa isa) {
+  if (a.groupCount == 0) return;
+#if defined(PHYS_AVX2_LANES)
+  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::dampBodyLanes(a);
+#endif
+  baseline::dampBodyLanes(a);
+}
+
 void solveLinkLanes(const LinkLaneArguments& a, LaneIsa isa) {
   if (a.groupCount == 0) return;
 #if defined(PHYS_AVX2_LANES)

@@ -5,6 +5,7 @@
 // one the CPU can run, once. Both do per lane exactly what the scalar pass does per body.
 #include <cstddef>
 
+#include "physics/body_layout.h"
 #include "physics/link_layout.h"
 #include "physics/particles.h"
 #include "physics/stick_layout.h"
@@ -38,6 +39,19 @@ struct LinkLaneArguments {
   const Real* laneValues = nullptr;  ///< LinkLayout::laneValues()
 };
 
+/// What the body damping kernel reads and writes.
+struct DampLaneArguments {
+  const Real* position = nullptr;
+  Real* previous = nullptr;  ///< x* of each particle, x, y, z one after the other
+  const Real* inverseMass = nullptr;
+  const BodyLanes* groups = nullptr;
+  std::size_t groupCount = 0;
+  Real fraction = 0.0;  ///< SolverSettings::bodyDamping
+};
+
+/// The damping arguments for the world's particles and a layout.
+DampLaneArguments dampLaneArguments(Particles& p, const BodyLayout& layout, Real fraction);
+
 /// The link arguments for the world's particles and a layout.
 LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout);
 
@@ -51,17 +65,21 @@ void relaxGaussSeidelLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
 void relaxXpbdLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
 /// solveLinks() with no slack over the link lane groups.
 void solveLinkLanes(const LinkLaneArguments& a, LaneIsa isa = laneIsa());
+/// dampBodyMotion() over the body lane groups.
+void dampBodyLanes(const DampLaneArguments& a, LaneIsa isa = laneIsa());
 
 namespace baseline {
 void relaxGaussSeidelLanes(const LaneArguments& a);
 void relaxXpbdLanes(const LaneArguments& a);
 void solveLinkLanes(const LinkLaneArguments& a);
+void dampBodyLanes(const DampLaneArguments& a);
 }  // namespace baseline
 
 namespace avx2 {
 void relaxGaussSeidelLanes(const LaneArguments& a);
 void relaxXpbdLanes(const LaneArguments& a);
 void solveLinkLanes(const LinkLaneArguments& a);
+void dampBodyLanes(const DampLaneArguments& a);
 }  // namespace avx2
 
 }  // namespace phys::detail

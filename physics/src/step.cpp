@@ -75,6 +75,7 @@ void World::updateLayouts() {
   if (!layoutsStale_) return;
   stickLayout_.build(sticks_, boxes_, particles_.size());
   linkLayout_.build(links_, particles_.size());
+  bodyLayout_.build(boxes_);
   layoutsStale_ = false;
 }
 
@@ -236,7 +237,7 @@ void World::restitute(Real h) {
 void World::dampBodies() {
   if (solver_.bodyDamping <= 0.0 || boxes_.empty()) return;
   const StageTimer timer(profile_, Stage::BodyDamping);
-  detail::dampBodyMotion(particles_, boxes_, solver_.bodyDamping);
+  detail::dampBodyMotion(particles_, boxes_, bodyLayout_, solver_.bodyDamping);
 }
 
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() kept

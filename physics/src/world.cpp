@@ -370,6 +370,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
   boxes_.push_back(box);
+  layoutsStale_ = true;
   frames_.emplace_back();
   rigid_.emplace_back();
   partShift_.emplace_back(0.0);

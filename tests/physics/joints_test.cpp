@@ -156,7 +156,9 @@ TEST(BodyDamping, LeavesTheRigidMotionWithTheSameMomenta) {
     momenta(linear0, angular0);
     const double before = internal();
     const phys::Box boxes[] = {box};
-    phys::detail::dampBodyMotion(p, boxes, fraction);
+    phys::BodyLayout layout;
+    layout.build(boxes);
+    phys::detail::dampBodyMotion(p, boxes, layout, fraction);
     momenta(linear1, angular1);
     EXPECT_NEAR(glm::length(linear1 - linear0), 0.0, 1e-12);
     EXPECT_NEAR(glm::length(angular1 - angular0), 0.0, 1e-12);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/body_layout.h"
 #include "physics/box.h"
 #include "physics/collision.h"
 #include "physics/constraints.h"
@@ -220,6 +221,7 @@ class World {
   std::vector<Stick> sticks_;
   StickLayout stickLayout_;    // the sticks by body, for the passes (updateLayouts)
   LinkLayout linkLayout_;      // the links by ragdoll, for the passes (updateLayouts)
+  BodyLayout bodyLayout_;      // the bodies in lanes, for body damping (updateLayouts)
   bool layoutsStale_ = false;  // sticks, bodies or links added since they were built
   std::vector<Link> links_;
   std::vector<Box> boxes_;

@@ -1,0 +1,35 @@
+#pragma once
+// Bodies grouped for the passes that work body by body (body damping): bodies of one particle
+// count, kBodyLanes at a time, one per SIMD lane; the rest one by one. Bodies share no particle,
+// so the order they are visited in changes nothing.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/box.h"
+
+namespace phys {
+
+inline constexpr int kBodyLanes = 8;
+
+/// kBodyLanes bodies of particleCount particles each.
+struct BodyLanes {
+  std::array<ParticleId, kBodyLanes> firstParticle{};
+  std::uint16_t particleCount = 0;
+};
+
+class BodyLayout {
+ public:
+  /// Allocates: called when bodies are added.
+  void build(std::span<const Box> boxes);
+  std::span<const BodyLanes> lanes() const { return lanes_; }
+  /// The bodies in no lane group, by index in World::boxes(), in order.
+  std::span<const BoxId> others() const { return others_; }
+
+ private:
+  std::vector<BodyLanes> lanes_;
+  std::vector<BoxId> others_;
+};
+
+}  // namespace phys

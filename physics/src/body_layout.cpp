@@ -1,0 +1,33 @@
+#include "physics/body_layout.h"
+
+#include <algorithm>
+#include <map>
+
+#include "physics/stick_layout.h"
+
+namespace phys {
+
+void BodyLayout::build(std::span<const Box> boxes) {
+  lanes_.clear();
+  others_.clear();
+  std::map<int, std::vector<BoxId>> waiting;  // by particle count
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    const Box& box = boxes[b];
+    std::vector<BoxId>& alike = waiting[box.particleCount];
+    if (box.particleCount > kMaxBlockParticles) {
+      others_.push_back(static_cast<BoxId>(b));
+      continue;
+    }
+    alike.push_back(static_cast<BoxId>(b));
+    if (alike.size() < kBodyLanes) continue;
+    BodyLanes lanes;
+    lanes.particleCount = static_cast<std::uint16_t>(box.particleCount);
+    for (int l = 0; l < kBodyLanes; ++l) lanes.firstParticle[l] = boxes[alike[l]].firstParticle;
+    lanes_.push_back(lanes);
+    alike.clear();
+  }
+  for (const auto& [count, alike] : waiting) others_.insert(others_.end(), alike.begin(), alike.end());
+  std::sort(others_.begin(), others_.end());
+}
+
+}  // namespace phys
