@@ -33,6 +33,7 @@ void World::ignoreCollision(BoxId a, BoxId b) {
   const auto at = std::lower_bound(ignoredPairs_.begin(), ignoredPairs_.end(), key);
   if (at == ignoredPairs_.end() || *at != key) ignoredPairs_.insert(at, key);
   pairsStale_ = true;
+  layoutsStale_ = true;  // ignoredStart_
 }
 
 std::vector<std::pair<BoxId, BoxId>> World::ignoredCollisions() const {
@@ -64,8 +65,13 @@ bool World::collides(BoxId a, BoxId b) const {
   const Box& bb = boxes_[b];
   if ((ba.collisionGroup & bb.collisionMask) == 0 || (bb.collisionGroup & ba.collisionMask) == 0)
     return false;
-  if (ignoredPairs_.empty()) return true;
-  return !std::binary_search(ignoredPairs_.begin(), ignoredPairs_.end(), pairKey(a, b));
+  // The keys whose smaller id is `lo` are consecutive (sorted by it): a ragdoll part's few joints,
+  // where a search of the whole world's list missed the cache at every step.
+  const BoxId lo = std::min(a, b), hi = std::max(a, b);
+  for (std::uint32_t k = ignoredStart_[lo]; k < ignoredStart_[lo + 1]; ++k) {
+    if (static_cast<BoxId>(ignoredPairs_[k]) == hi) return false;
+  }
+  return true;
 }
 
 // Centre: the mean of the corners. Axes: the mean edge along each, made orthonormal. Cheaper

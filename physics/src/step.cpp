@@ -70,12 +70,16 @@ void World::step() {
   profile_.total = millisecondsSince(stepStart);
 }
 
-// Rebuilt only after sticks, bodies or links were added: the first step of a new scene pays for it.
+// Rebuilt only after sticks, bodies, links or collision filters were added: the first step of a new scene
+// pays for it.
 void World::updateLayouts() {
   if (!layoutsStale_) return;
   stickLayout_.build(sticks_, boxes_, particles_.size());
   linkLayout_.build(links_, particles_.size());
   bodyLayout_.build(boxes_);
+  ignoredStart_.assign(boxes_.size() + 1, 0);
+  for (const std::uint64_t key : ignoredPairs_) ++ignoredStart_[(key >> 32) + 1];
+  for (std::size_t b = 0; b < boxes_.size(); ++b) ignoredStart_[b + 1] += ignoredStart_[b];
   layoutsStale_ = false;
 }
 

@@ -61,3 +61,27 @@ TEST(BroadPhase, ARowOfBoxesIsOneSweep) {
 }
 
 }  // namespace
+
+namespace {
+
+// Filtered pairs are dropped whenever the filter is set: before the first step, or between two
+// steps (the per-box index of ignored pairs is rebuilt), and only the pairs named.
+TEST(BroadPhase, IgnoredPairsAreDroppedWhenSetAndOnlyThose) {
+  phys::World world = testing_phys::openSpace({}, Vec3(0.0));
+  phys::BoxDesc box;
+  for (int i = 0; i < 4; ++i) {
+    box.center = {0.99 * i, 0.5, 0.0};  // a row of touching boxes: pairs 0-1, 1-2, 2-3
+    world.addBox(box);
+  }
+  world.ignoreCollision(1, 0);
+  world.step();
+  EXPECT_EQ(world.broadPhasePairs(), 2u);
+  world.ignoreCollision(2, 3);
+  world.step();
+  EXPECT_EQ(world.broadPhasePairs(), 1u);
+  world.ignoreCollision(0, 3);  // apart: nothing more to drop
+  world.step();
+  EXPECT_EQ(world.broadPhasePairs(), 1u);
+}
+
+}  // namespace

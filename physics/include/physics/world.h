@@ -266,6 +266,7 @@ class World {
   // the 16 ragdolls; a pyramid's 5.2 pairs grow the room in its first second.
   static constexpr std::size_t kRoomPerBody = 3;
   std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
+  std::vector<std::uint32_t> ignoredStart_;  // per box and one more: its keys as min (updateLayouts)
   std::vector<BodyContact> bodyContacts_;
   std::vector<Real> bodyPush_;             // per body contact: push of the last pass (m)
   std::vector<std::uint8_t> bodyTouched_;  // per body contact: pushed in this substep
