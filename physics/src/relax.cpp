@@ -1,6 +1,8 @@
 // The four ways to relax sticks. Each is one pass over all sticks; the caller repeats it. A pass
-// runs over the StickLayout: each block (a body) in locals, then the runs in the world's arrays.
-// The same projection code serves both, so the arithmetic, and the result, is the same.
+// runs over the StickLayout: its lane groups eight bodies at a time (relax_lanes.h; Gauss-Seidel
+// and XPBD), each block (a body) in locals, then the runs in the world's arrays. The same
+// projection code serves blocks and runs, and the lanes repeat its operations, so the result is
+// the same.
 #include <algorithm>
 #include <cmath>
 

@@ -1,6 +1,7 @@
 #pragma once
-// Gauss-Seidel and XPBD over the lane groups of a StickLayout: kStickLanes bodies of one shape at
-// a time, one per SIMD lane (physics/stick_layout.h says why). The kernels are compiled twice,
+// The passes that run eight bodies (or ragdolls) at a time, one per SIMD lane: Gauss-Seidel and
+// XPBD over a StickLayout's lane groups, the links over a LinkLayout's, body damping over a
+// BodyLayout's (the layouts' headers say why the order allows it). The kernels are compiled twice,
 // for the x86-64 baseline and for AVX2 (relax_lanes_kernels.inc), and these functions pick the
 // one the CPU can run, once. Both do per lane exactly what the scalar pass does per body.
 #include <cstddef>

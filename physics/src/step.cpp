@@ -70,8 +70,8 @@ void World::step() {
   profile_.total = millisecondsSince(stepStart);
 }
 
-// Rebuilt only after sticks, bodies, links or collision filters were added: the first step of a new scene
-// pays for it.
+// Rebuilt only after sticks, bodies, links or collision filters were added: the first step of a
+// new scene pays for it, and no other step allocates for it.
 void World::updateLayouts() {
   if (!layoutsStale_) return;
   stickLayout_.build(sticks_, boxes_, particles_.size());
