@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 2.4058636363636365 "n=1"
-44 2.3263068181818181 "n=4"
-176 2.2807642045454548 "n=16"
-704 2.4076633522727273 "n=64"
-2816 2.5031528764204549 "n=256"
-11264 2.9242450284090911 "n=1024"
+11 2.6309090909090909 "n=1"
+44 2.2832045454545455 "n=4"
+176 1.8871732954545453 "n=16"
+704 1.8299431818181817 "n=64"
+2816 1.8710498934659088 "n=256"
+11264 2.1992720170454545 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
