@@ -1,6 +1,7 @@
 #include "physics/link_layout.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <numeric>
 
@@ -63,7 +64,7 @@ void LinkLayout::build(std::span<const Link> links, std::size_t particleCount) {
   std::map<ShapeKey, std::uint32_t> shapeStart;  // the shape's first LocalLink
   ShapeKey shape;
   for (const Group& group : groups) {
-    bool own = group.hi - group.lo < kMaxLinkGroupParticles;
+    bool own = group.hi - group.lo < kMaxLinkGroupParticles && group.links.size() <= UINT16_MAX;
     for (ParticleId i = group.lo; own && i <= group.hi; ++i) {
       // A particle of another group inside the range: a store of the range would overwrite it.
       own = !inLink[i] || findRoot(parent, i) == findRoot(parent, group.lo);
