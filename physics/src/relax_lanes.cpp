@@ -1,5 +1,7 @@
 #include "relax_lanes.h"
 
+#include <vector>
+
 namespace phys::detail {
 namespace {
 
@@ -13,18 +15,22 @@ LaneIsa detect() {
 
 const LaneIsa kBest = detect();
 
+// The kernels read the positions as one array of doubles, x, y, z after one another. Cast, not
+// &v.data()->x: an empty world's array has no first element to take a member of.
+static_assert(sizeof(Vec3) == 3 * sizeof(Real) && alignof(Vec3) == alignof(Real));
+Real* coordinates(std::vector<Vec3>& v) {
+  return reinterpret_cast<Real*>(v.data());
+}
+
 }  // namespace
 
 LaneIsa laneIsa() {
   return kBest;
 }
 
-// The kernels read the positions as one array of doubles, x, y, z after one another.
-static_assert(sizeof(Vec3) == 3 * sizeof(Real) && alignof(Vec3) == alignof(Real));
-
 LaneArguments laneArguments(Particles& p, const StickLayout& layout) {
   LaneArguments a;
-  a.position = &p.position.data()->x;
+  a.position = coordinates(p.position);
   a.inverseMass = p.inverseMass.data();
   a.groups = layout.lanes().data();
   a.groupCount = layout.lanes().size();
@@ -35,7 +41,7 @@ LaneArguments laneArguments(Particles& p, const StickLayout& layout) {
 
 LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout) {
   LinkLaneArguments a;
-  a.position = &p.position.data()->x;
+  a.position = coordinates(p.position);
   a.inverseMass = p.inverseMass.data();
   a.groups = layout.lanes().data();
   a.groupCount = layout.lanes().size();
@@ -46,8 +52,8 @@ LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout) {
 
 DampLaneArguments dampLaneArguments(Particles& p, const BodyLayout& layout, Real fraction) {
   DampLaneArguments a;
-  a.position = &p.position.data()->x;
-  a.previous = &p.previous.data()->x;
+  a.position = coordinates(p.position);
+  a.previous = coordinates(p.previous);
   a.inverseMass = p.inverseMass.data();
   a.groups = layout.lanes().data();
   a.groupCount = layout.lanes().size();

@@ -2,7 +2,6 @@
 // Bodies grouped for the passes that work body by body (body damping): bodies of one particle
 // count, kBodyLanes at a time, one per SIMD lane; the rest one by one. Bodies share no particle,
 // so the order they are visited in changes nothing.
-#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -15,7 +14,7 @@ inline constexpr int kBodyLanes = 8;
 
 /// kBodyLanes bodies of particleCount particles each.
 struct BodyLanes {
-  std::array<ParticleId, kBodyLanes> firstParticle{};
+  ParticleId firstParticle[kBodyLanes]{};
   std::uint16_t particleCount = 0;
 };
 

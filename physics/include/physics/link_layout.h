@@ -5,7 +5,6 @@
 // ragdoll of one model) are relaxed kLinkLanes at a time, one per SIMD lane, each lane doing its
 // ragdoll's links in creation order: the same result, bit for bit, as the plain loop over
 // World::links(). The same holds for any group of links whose particles no other link touches.
-#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -21,16 +20,16 @@ inline constexpr int kMaxLinkGroupParticles = 96;
 
 /// A link of a group, by the positions of its particles in the group's range.
 struct LocalLink {
-  std::array<std::uint8_t, 4> a{}, b{};
+  std::uint8_t a[4]{}, b[4]{};
   std::uint8_t countA = 0, countB = 0;
   bool pin = false;
 };
 
 /// kLinkLanes groups of one shape: their particles are the ranges from firstParticle.
 struct LinkLanes {
-  std::array<ParticleId, kLinkLanes> firstParticle{};
-  std::array<std::uint32_t, kLinkLanes>
-      links{};  ///< each lane's links in World::links(): from LinkLayout::laneLinks()[links[l]]
+  ParticleId firstParticle[kLinkLanes]{};
+  /// Where each lane's link indices (into World::links()) start in LinkLayout::laneLinks().
+  std::uint32_t links[kLinkLanes]{};
   std::uint16_t particleCount = 0;
   std::uint16_t linkCount = 0;
   std::uint32_t firstLocal = 0;  ///< the shape's links in LinkLayout::localLinks()

@@ -12,7 +12,6 @@
 // stick. Bodies of the same shape (the same particles and sticks, as every box of one model) are
 // therefore also grouped kStickLanes at a time into lanes, relaxed together with SIMD, one body
 // per lane: the same operations in the same order per body, so again the same result.
-#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -48,8 +47,8 @@ struct LocalStick {
 
 /// kStickLanes blocks of one shape, relaxed together.
 struct StickLanes {
-  std::array<ParticleId, kStickLanes> firstParticle{};
-  std::array<std::uint32_t, kStickLanes> firstStick{};
+  ParticleId firstParticle[kStickLanes]{};
+  std::uint32_t firstStick[kStickLanes]{};
   std::uint16_t particleCount = 0;
   std::uint16_t stickCount = 0;
   std::uint32_t firstLocal = 0;  ///< the shape's sticks in StickLayout::localSticks()
