@@ -71,11 +71,20 @@ void World::findBoxPairs() {
   for (BoxId id = 0; id < boxes_.size(); ++id) {
     const Box& box = boxes_[id];
     Real fastest = 0.0;  // squared displacement over the last substep
+    Vec3 mean(0.0);
     for (int j = 0; j < box.particleCount; ++j) {
       const Vec3 d = particles_.position[box.firstParticle + j] - particles_.previous[box.firstParticle + j];
       fastest = std::max(fastest, glm::dot(d, d));
+      mean += d;
+    }
+    mean /= static_cast<Real>(box.particleCount);
+    Real turning = 0.0;  // squared, the most a particle's displacement differs from the mean
+    for (int j = 0; j < box.particleCount; ++j) {
+      const Vec3 d = particles_.position[box.firstParticle + j] - particles_.previous[box.firstParticle + j] - mean;
+      turning = std::max(turning, glm::dot(d, d));
     }
     const Real travel = std::sqrt(fastest) / h * dt + g * dt * dt;
+    motion_[id] = {mean / h * dt, std::sqrt(turning) / h * dt};
     const Obb& f = frames_[id];
     Vec3 reach(margin + travel);
     for (int k = 0; k < 3; ++k) {
@@ -122,7 +131,9 @@ void World::reserveContacts() {
   const std::size_t pairs = pairs_.size(), points = bodyContacts_.size();
   keepRoom(pairs_, pairs, room);
   keepRoom(partPairs_, pairs, room);
+  keepRoom(spareParts_, pairs, room);
   keepRoom(bodyContacts_, points, room);
+  keepRoom(spareContacts_, points, room);
   keepRoom(bodyAllowance_, points, room);
   keepRoom(bodyPush_, points, room);
   keepRoom(bodyTouched_, points, room);

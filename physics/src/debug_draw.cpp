@@ -32,7 +32,9 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     for (std::size_t c = 0; c < contactPoints_.size(); ++c) {
       if (touched_[c] != 0) draw.point(position(contactPoints_[c].point), 0.08, colors::kContact);
     }
-    for (const BodyContact& c : bodyContacts_) {
+    for (std::size_t k = 0; k < bodyContacts_.size(); ++k) {
+      if (bodyTouched_[k] == 0) continue;  // speculative: not touching in the last substep
+      const BodyContact& c = bodyContacts_[k];
       const Vec3 p = position(c.pointA);
       const Color color = colors::kFeature[c.kind % 6];
       draw.point(p, 0.05, color);

@@ -52,11 +52,13 @@ void World::step() {
   const Real h = substepDt();
   for (int s = 0; s < solver_.substeps; ++s) {
     integrateParticles(h);
-    // Contacts are found once per substep, from the integrated positions, and then kept
-    // satisfied through the iterations (Macklin et al. 2019 find them once per frame).
+    // Contacts between bodies are found once per step, after the first substep's integration,
+    // with a speculative margin of how far the two bodies can go in the step, and kept through the
+    // substeps: each substep measures them again from their points embedded in the two bodies
+    // (Macklin et al. 2019). Found again only when the broad phase runs again.
     fitBodyFrames();
-    findPairs(s == 0);
-    findContacts();
+    const bool newPairs = findPairs(s == 0);
+    findContacts(newPairs);
     partOverlaps();
     measureApproaches(h);
     const std::span<const Real> linkSlack = limitCorrections(h);
@@ -99,17 +101,26 @@ void World::fitBodyFrames() {
   updateBoxFrames();
 }
 
-// Once per step; again when a drag, an impact or a joint took a box past its bounds.
-void World::findPairs(bool firstSubstep) {
-  if (boxes_.size() < 2) return;
+// Once per step; again when a drag, an impact or a joint took a box past its bounds. True when it
+// found the pairs.
+bool World::findPairs(bool firstSubstep) {
+  if (boxes_.size() < 2) return false;
   const StageTimer timer(profile_, Stage::BroadPhase);
-  if (firstSubstep || pairsStale_ || drag_ || outgrewPairBounds()) findBoxPairs();
+  if (!(firstSubstep || pairsStale_ || drag_ || outgrewPairBounds())) return false;
+  findBoxPairs();
+  return true;
 }
 
-void World::findContacts() {
+void World::findContacts(bool newPairs) {
   if (boxes_.size() < 2 && !world_.ground) return;
   const StageTimer timer(profile_, Stage::NarrowPhase);
-  if (boxes_.size() >= 2) buildBoxContacts();
+  if (boxes_.size() >= 2) {
+    if (newPairs)
+      buildBoxContacts();
+    else
+      refreshBoxContacts();
+    measureBoxContactStarts();
+  }
   if (!world_.ground) return;
   placeCapsuleGroundPoints();
   // Each contact's overlap at x*, where the substep starts: what the parting measures, and

@@ -381,6 +381,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
   bounds_.emplace_back();
   travel_.push_back(0.0);
+  motion_.push_back({});
   pairFrames_.emplace_back();
   jointGroup_.push_back(static_cast<BoxId>(boxIndex));
   partRoot_.push_back(static_cast<BoxId>(boxIndex));

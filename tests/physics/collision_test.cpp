@@ -267,4 +267,58 @@ TEST(Contacts, EdgeEdgeGivesTheClosestPointsOfTheEdges) {
   expectSeparatesAlongNormal(c);
 }
 
+// Contacts are found once per step (World::step), so two boxes 3 cm apart that close within the
+// step need their points now: kept within the margin, and not at all beyond it.
+TEST(Contacts, PointsWithinTheMarginAreKeptAsSpeculative) {
+  const Obb a = box(Vec3(0.0), Vec3(0.5)), b = box(Vec3(0.0, 1.03, 0.0), Vec3(0.5));
+  phys::BoxContact c;
+  EXPECT_FALSE(phys::collideBoxes(a, b, 0.01, c)) << "3 cm apart: beyond the feature epsilon";
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, 0.05, c));
+  EXPECT_EQ(c.kind, phys::ContactKind::FaceFace);
+  ASSERT_EQ(c.count, 4);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(c.points[i].depth, -0.03, 1e-9) << i;
+  expectSeparatesAlongNormal(c);
+  EXPECT_FALSE(phys::collideBoxes(a, b, 0.01, 0.02, c)) << "3 cm apart: beyond a 2 cm margin";
+}
+
+// The margin does not tell the features apart: a cube tilted so its far edge is 2 cm higher than
+// its near one still rests on an edge, whatever the margin (a margin that made it a face made a
+// lean ragdoll jitter at rest), and the far corners come in only as points within the margin.
+TEST(Contacts, TheMarginKeepsTheFeaturesOfTheEpsilon) {
+  const Real tilt = std::asin(0.02);  // rad: the far edge 2 cm up over the 1 m face
+  const Obb a = box(Vec3(0.0), Vec3(2.0, 0.5, 2.0));
+  Obb b = box(Vec3(0.0), Vec3(0.5), {0.0, 0.0, glm::degrees(tilt)});
+  const Real lowest = 0.5 * std::cos(tilt) + 0.5 * std::sin(tilt);  // the centre's height over the lowest edge
+  b.center = Vec3(0.0, 0.5 + lowest - 0.005, 0.0);                  // that edge 5 mm in
+  phys::BoxContact c;
+  ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, 0.1, c));
+  EXPECT_EQ(c.kind, phys::ContactKind::FaceEdge);
+  EXPECT_EQ(c.count, 2);
+}
+
+// Speculative points never displace touching ones: with four touching, the reduction keeps only
+// them; with fewer, all of them and then the nearest speculative ones.
+TEST(Contacts, ReductionKeepsTouchingPointsBeforeSpeculativeOnes) {
+  phys::BoxContact c;
+  c.sat.normal = Vec3(0.0, 1.0, 0.0);
+  const Real depths[] = {-0.05, 0.002, -0.03, 0.001, -0.04, 0.0, -0.02};
+  c.count = 7;
+  for (int i = 0; i < c.count; ++i) {
+    c.points[i].depth = depths[i];
+    c.points[i].onA = c.points[i].onB = Vec3(std::cos(i), 0.0, std::sin(i));
+  }
+  phys::BoxContact fewer = c;
+  phys::reduceToFourPoints(fewer, 0.01);
+  ASSERT_EQ(fewer.count, 4);
+  std::vector<Real> kept;
+  for (int i = 0; i < 4; ++i) kept.push_back(fewer.points[i].depth);
+  EXPECT_EQ(kept, (std::vector<Real>{0.002, 0.001, 0.0, -0.02})) << "three touching, then the nearest";
+
+  c.points[0].depth = 0.003;  // now four touching
+  phys::BoxContact four = c;
+  phys::reduceToFourPoints(four, 0.01);
+  ASSERT_EQ(four.count, 4);
+  for (int i = 0; i < 4; ++i) EXPECT_GE(four.points[i].depth, 0.0) << i;
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 // contact feature on each side, and the contact points. Pure geometry on oriented boxes, so it
 // is tested on its own; World turns the points into constraints on particles.
 #include <array>
+#include <limits>
 
 #include <glm/mat3x3.hpp>
 
@@ -75,12 +76,17 @@ struct BoxContact {
 /// vertex-vertex by the closest point to the vertex. Boxes within featureEpsilon count as
 /// touching (see satTest). False when the boxes are apart.
 bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& out);
+/// The same, keeping boxes and points up to `margin` apart (>= featureEpsilon: a speculative
+/// margin), while the features are still told apart by featureEpsilon.
+bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out);
 
 /// Keeps at most 4 of a contact's points: the deepest, the farthest from it, and the two that
 /// span the largest area with them. The solver uses this, so a face contact has 4 points
 /// whether the faces meet square (4 clipped) or turned (up to 8), and its stiffness does not
-/// jump from one substep to the next as the clipped polygon gains and loses corners.
-void reduceToFourPoints(BoxContact& contact);
+/// jump from one substep to the next as the clipped polygon gains and loses corners. Points more
+/// than `touching` apart (speculative ones, depth < -touching) never displace a touching one:
+/// with 4 or more touching points they are dropped, with fewer the nearest fill the 4.
+void reduceToFourPoints(BoxContact& contact, Real touching = std::numeric_limits<Real>::infinity());
 
 /// A capsule: the points within `radius` of the core segment p0-p1 (p0 == p1 makes a sphere).
 struct Capsule {

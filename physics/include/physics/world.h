@@ -178,8 +178,8 @@ class World {
   // The stages of a substep, in step()'s order (step.cpp); each times itself into profile_.
   void integrateParticles(Real h);
   void fitBodyFrames();
-  void findPairs(bool firstSubstep);
-  void findContacts();
+  bool findPairs(bool firstSubstep);
+  void findContacts(bool newPairs);
   void partOverlaps();
   void measureApproaches(Real h);
   std::span<const Real> limitCorrections(Real h);
@@ -197,11 +197,16 @@ class World {
   bool outgrewPairBounds() const;
   void reserveContacts();
   void buildBoxContacts();
+  void refreshBoxContacts();
+  void resizeBoxContactArrays();
+  void addPairContact(BoxId a, BoxId b, const BoxContact& contact);
+  void measureBoxContactStarts();
   void partWithoutVelocity();
   BoxId jointGroup(BoxId id);
   void joinGroups(ParticleId a, ParticleId b);
   void placeCapsuleGroundPoints();
-  bool collidePair(BoxId a, BoxId b, BoxContact& contact) const;
+  bool collidePair(BoxId a, BoxId b, Real margin, BoxContact& contact) const;
+  Real speculativeMargin(BoxId a, BoxId b) const;
   Vec3 frameCoordinates(BoxId box, const Vec3& point) const;
   Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
   Embedding rigidPoint(BoxId box, const Vec3& point) const;
@@ -256,6 +261,13 @@ class World {
   };
   std::vector<Bounds> bounds_;   // per box: AABB grown by its reach over a step
   std::vector<Real> travel_;     // per box: that reach (m)
+  // Per box, how it moves over a step at the speeds of the broad phase's substep: its particles'
+  // mean displacement, and the most one's differs from that (turning and bending), both in m.
+  struct Motion {
+    Vec3 shift{0.0};
+    Real turn = 0.0;
+  };
+  std::vector<Motion> motion_;
   std::vector<Obb> pairFrames_;  // per box: its frame when pairs_ was found
   bool pairsStale_ = true;       // bodies or filters changed since pairs_ was found
   int sweepAxis_ = 0;            // the axis sweep_ is sorted along
@@ -281,8 +293,11 @@ class World {
     Real overlap;                              // m, beyond the slop, at x*; negative when apart
     Real need;                                 // m, the least n . (t_b - t_a) the parting must reach
     Real push;                                 // kg m, accumulated by the sweeps (shift x mass), >= 0
+    bool kept;                                 // its contact holds for the step (face on face)
   };
-  std::vector<PartPair> partPairs_;              // per touching pair, rebuilt every substep
+  std::vector<PartPair> partPairs_;              // per touching pair, found once per step
+  std::vector<PartPair> spareParts_;             // and its room for refreshBoxContacts
+  std::vector<BodyContact> spareContacts_;       // bodyContacts_'s room for refreshBoxContacts
   std::vector<BoxId> jointGroup_;                // per box: union-find parent over links and sticks
   std::vector<BoxId> partRoot_;                  // per box: its group's root, this substep
   std::vector<Vec3> partShift_;                  // per box: translation (m)
