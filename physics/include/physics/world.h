@@ -194,6 +194,7 @@ class World {
   bool chooseSweepAxis();
   void findBoxPairs();
   void findPairsInStrips();
+  void sortPairsByBody();
   bool outgrewPairBounds() const;
   void reserveContacts();
   void buildBoxContacts();
@@ -272,6 +273,8 @@ class World {
   bool pairsStale_ = true;       // bodies or filters changed since pairs_ was found
   int sweepAxis_ = 0;            // the axis sweep_ is sorted along
   std::vector<std::pair<BoxId, BoxId>> pairs_;
+  std::vector<std::pair<BoxId, BoxId>> unsortedPairs_;  // as the strips find them (findBoxPairs)
+  std::vector<std::uint32_t> pairStart_;                // per box and one more: its pairs as the lower id
   // Room for pairs and for box-box contact points, per body, made when the pairs are found
   // (reserveContacts), so that a world whose bodies each touch a few others does not allocate in
   // the step. Measured at most: 2.2 pairs and 0.4 points a body in Bullet's pile, 4 and 1.7 in
