@@ -246,7 +246,10 @@ void World::buildBoxContacts() {
 void World::refreshBoxContacts() {
   const bool allKept =
       std::all_of(partPairs_.begin(), partPairs_.end(), [](const PartPair& pair) { return pair.kept; });
-  if (allKept) return;
+  if (allKept) {
+    for (PartPair& pair : partPairs_) turnNormal(pair, bodyContacts_.data() + pair.firstContact);
+    return;
+  }
   std::swap(bodyContacts_, spareContacts_);
   std::swap(partPairs_, spareParts_);
   bodyContacts_.clear();
@@ -261,9 +264,18 @@ void World::refreshBoxContacts() {
     moved.firstContact = static_cast<std::uint32_t>(bodyContacts_.size());
     bodyContacts_.insert(bodyContacts_.end(), spareContacts_.begin() + pair.firstContact,
                          spareContacts_.begin() + pair.firstContact + pair.contactCount);
+    turnNormal(moved, bodyContacts_.data() + moved.firstContact);
     partPairs_.push_back(moved);
   }
   resizeBoxContactArrays();
+}
+
+// A kept contact's normal turns with the face it is the normal of: held fixed in the world while
+// a resting box rocked by a hair, it pushed a little sideways, and a stack of ten at rest still
+// moved at 1.4 mm/s after 20 s (0.1 mm/s with its contacts found every substep).
+void World::turnNormal(PartPair& pair, BodyContact* contacts) const {
+  pair.normal = frames_[pair.reference].axes * pair.localNormal;
+  for (std::uint32_t k = 0; k < pair.contactCount; ++k) contacts[k].normal = pair.normal;
 }
 
 void World::addPairContact(BoxId a, BoxId b, const BoxContact& contact) {
@@ -288,8 +300,15 @@ void World::addPairContact(BoxId a, BoxId b, const BoxContact& contact) {
   }
   const bool kept = contact.kind == ContactKind::FaceFace && boxes_[a].shape == Shape::Box &&
                     boxes_[b].shape == Shape::Box;
-  partPairs_.push_back({a, b, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count),
-                        contact.sat.normal, 0.0, 0.0, 0.0, kept});
+  // The reference face: the box one of whose axes the normal lies along (the better aligned).
+  const Vec3 n = contact.sat.normal;
+  auto alignment = [&n](const Obb& f) {
+    return std::max({std::abs(glm::dot(f.axes[0], n)), std::abs(glm::dot(f.axes[1], n)), std::abs(glm::dot(f.axes[2], n))});
+  };
+  const BoxId reference = alignment(frames_[a]) >= alignment(frames_[b]) ? a : b;
+  const Vec3 localNormal = glm::transpose(frames_[reference].axes) * n;
+  partPairs_.push_back({a, b, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n, 0.0,
+                        0.0, 0.0, kept, reference, localNormal});
 }
 
 void World::resizeBoxContactArrays() {

@@ -200,6 +200,8 @@ class World {
   void buildBoxContacts();
   void refreshBoxContacts();
   void resizeBoxContactArrays();
+  struct PartPair;
+  void turnNormal(PartPair& pair, BodyContact* contacts) const;
   void addPairContact(BoxId a, BoxId b, const BoxContact& contact);
   void measureBoxContactStarts();
   void partWithoutVelocity();
@@ -297,6 +299,8 @@ class World {
     Real need;                                 // m, the least n . (t_b - t_a) the parting must reach
     Real push;                                 // kg m, accumulated by the sweeps (shift x mass), >= 0
     bool kept;                                 // its contact holds for the step (face on face)
+    BoxId reference;                           // kept: the box whose face the normal is
+    Vec3 localNormal;                          // kept: the normal in that box's frame
   };
   std::vector<PartPair> partPairs_;              // per touching pair, found once per step
   std::vector<PartPair> spareParts_;             // and its room for refreshBoxContacts
