@@ -257,7 +257,8 @@ void World::refreshBoxContacts() {
   BoxContact contact;
   for (const PartPair& pair : spareParts_) {
     if (!pair.kept) {
-      if (collidePair(pair.a, pair.b, speculativeMargin(pair.a, pair.b), contact)) addPairContact(pair.a, pair.b, contact);
+      if (collidePair(pair.a, pair.b, speculativeMargin(pair.a, pair.b), contact))
+        addPairContact(pair.a, pair.b, contact);
       continue;
     }
     PartPair moved = pair;
@@ -298,17 +299,18 @@ void World::addPairContact(BoxId a, BoxId b, const BoxContact& contact) {
     }
     bodyContacts_.push_back(c);
   }
-  const bool kept = contact.kind == ContactKind::FaceFace && boxes_[a].shape == Shape::Box &&
-                    boxes_[b].shape == Shape::Box;
+  const bool kept =
+      contact.kind == ContactKind::FaceFace && boxes_[a].shape == Shape::Box && boxes_[b].shape == Shape::Box;
   // The reference face: the box one of whose axes the normal lies along (the better aligned).
   const Vec3 n = contact.sat.normal;
   auto alignment = [&n](const Obb& f) {
-    return std::max({std::abs(glm::dot(f.axes[0], n)), std::abs(glm::dot(f.axes[1], n)), std::abs(glm::dot(f.axes[2], n))});
+    return std::max({std::abs(glm::dot(f.axes[0], n)), std::abs(glm::dot(f.axes[1], n)),
+                     std::abs(glm::dot(f.axes[2], n))});
   };
   const BoxId reference = alignment(frames_[a]) >= alignment(frames_[b]) ? a : b;
   const Vec3 localNormal = glm::transpose(frames_[reference].axes) * n;
-  partPairs_.push_back({a, b, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n, 0.0,
-                        0.0, 0.0, kept, reference, localNormal});
+  partPairs_.push_back({a, b, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n,
+                        0.0, 0.0, 0.0, kept, reference, localNormal});
 }
 
 void World::resizeBoxContactArrays() {

@@ -80,7 +80,8 @@ void World::findBoxPairs() {
     mean /= static_cast<Real>(box.particleCount);
     Real turning = 0.0;  // squared, the most a particle's displacement differs from the mean
     for (int j = 0; j < box.particleCount; ++j) {
-      const Vec3 d = particles_.position[box.firstParticle + j] - particles_.previous[box.firstParticle + j] - mean;
+      const Vec3 d =
+          particles_.position[box.firstParticle + j] - particles_.previous[box.firstParticle + j] - mean;
       turning = std::max(turning, glm::dot(d, d));
     }
     const Real travel = std::sqrt(fastest) / h * dt + g * dt * dt;

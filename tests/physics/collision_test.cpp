@@ -288,8 +288,9 @@ TEST(Contacts, TheMarginKeepsTheFeaturesOfTheEpsilon) {
   const Real tilt = std::asin(0.02);  // rad: the far edge 2 cm up over the 1 m face
   const Obb a = box(Vec3(0.0), Vec3(2.0, 0.5, 2.0));
   Obb b = box(Vec3(0.0), Vec3(0.5), {0.0, 0.0, glm::degrees(tilt)});
-  const Real lowest = 0.5 * std::cos(tilt) + 0.5 * std::sin(tilt);  // the centre's height over the lowest edge
-  b.center = Vec3(0.0, 0.5 + lowest - 0.005, 0.0);                  // that edge 5 mm in
+  const Real lowest =
+      0.5 * std::cos(tilt) + 0.5 * std::sin(tilt);  // the centre's height over the lowest edge
+  b.center = Vec3(0.0, 0.5 + lowest - 0.005, 0.0);  // that edge 5 mm in
   phys::BoxContact c;
   ASSERT_TRUE(phys::collideBoxes(a, b, 0.01, 0.1, c));
   EXPECT_EQ(c.kind, phys::ContactKind::FaceEdge);

@@ -262,8 +262,8 @@ class World {
   struct Bounds {
     Vec3 lo, hi;
   };
-  std::vector<Bounds> bounds_;   // per box: AABB grown by its reach over a step
-  std::vector<Real> travel_;     // per box: that reach (m)
+  std::vector<Bounds> bounds_;  // per box: AABB grown by its reach over a step
+  std::vector<Real> travel_;    // per box: that reach (m)
   // Per box, how it moves over a step at the speeds of the broad phase's substep: its particles'
   // mean displacement, and the most one's differs from that (turning and bending), both in m.
   struct Motion {
