@@ -218,8 +218,7 @@ Embedding World::embedInBox(BoxId id, const Vec3& point, Vec3* moved) const {
 // which the passes then held as if the planes were there.
 Real World::speculativeMargin(BoxId a, BoxId b) const {
   const Real dt = solver_.dt;
-  const Real g =
-      world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
+  const Real g = gravityMagnitude();
   const Motion &ma = motion_[a], &mb = motion_[b];
   return solver_.featureEpsilon + glm::length(ma.shift - mb.shift) + ma.turn + mb.turn + g * dt * dt;
 }
@@ -299,18 +298,21 @@ void World::addPairContact(BoxId a, BoxId b, const BoxContact& contact) {
     }
     bodyContacts_.push_back(c);
   }
-  const bool kept =
-      contact.kind == ContactKind::FaceFace && boxes_[a].shape == Shape::Box && boxes_[b].shape == Shape::Box;
-  // The reference face: the box one of whose axes the normal lies along (the better aligned).
   const Vec3 n = contact.sat.normal;
-  auto alignment = [&n](const Obb& f) {
-    return std::max({std::abs(glm::dot(f.axes[0], n)), std::abs(glm::dot(f.axes[1], n)),
-                     std::abs(glm::dot(f.axes[2], n))});
-  };
-  const BoxId reference = alignment(frames_[a]) >= alignment(frames_[b]) ? a : b;
-  const Vec3 localNormal = glm::transpose(frames_[reference].axes) * n;
-  partPairs_.push_back({a, b, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n,
-                        0.0, 0.0, 0.0, kept, reference, localNormal});
+  partPairs_.push_back(
+      {a, b, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n, 0.0, 0.0, 0.0});
+  PartPair& pair = partPairs_.back();
+  pair.kept =
+      contact.kind == ContactKind::FaceFace && boxes_[a].shape == Shape::Box && boxes_[b].shape == Shape::Box;
+  if (pair.kept) {
+    // The reference face: the box one of whose axes the normal lies along (the better aligned).
+    auto alignment = [&n](const Obb& f) {
+      return std::max({std::abs(glm::dot(f.axes[0], n)), std::abs(glm::dot(f.axes[1], n)),
+                       std::abs(glm::dot(f.axes[2], n))});
+    };
+    pair.reference = alignment(frames_[a]) >= alignment(frames_[b]) ? a : b;
+    pair.localNormal = glm::transpose(frames_[pair.reference].axes) * n;
+  }
 }
 
 void World::resizeBoxContactArrays() {

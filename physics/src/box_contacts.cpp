@@ -187,11 +187,11 @@ void reduceToFourPoints(BoxContact& c, Real touching) {
   if (c.count <= 4) return;
   // The touching points first, in their order (std::stable_partition would allocate).
   std::array<ContactPoint, 8> sorted;
-  int touchingCount = 0, next = 0;
+  int next = 0;
   for (int i = 0; i < c.count; ++i) {
     if (c.points[i].depth >= -touching) sorted[next++] = c.points[i];
   }
-  touchingCount = next;
+  const int touchingCount = next;
   for (int i = 0; i < c.count; ++i) {
     if (c.points[i].depth < -touching) sorted[next++] = c.points[i];
   }

@@ -66,8 +66,7 @@ bool World::chooseSweepAxis() {
 void World::findBoxPairs() {
   const Real margin = solver_.featureEpsilon;
   const Real dt = solver_.dt, h = substepDt();
-  const Real g =
-      world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
+  const Real g = gravityMagnitude();
   for (BoxId id = 0; id < boxes_.size(); ++id) {
     const Box& box = boxes_[id];
     Real fastest = 0.0;  // squared displacement over the last substep

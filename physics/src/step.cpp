@@ -235,8 +235,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
 void World::restitute(Real h) {
   if (solver_.restitution <= 0.0) return;
   const StageTimer timer(profile_, Stage::Restitution);
-  const Real g =
-      world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
+  const Real g = gravityMagnitude();
   const detail::Restitution r{solver_.restitution, std::max(kRestitutionMinSpeed, 2.0 * g * h), h};
   detail::measureRigidStates(particles_, boxes_, h, rigid_);
   for (int it = 0; it < solver_.iterations; ++it) {

@@ -404,6 +404,11 @@ Vec3 World::gravityAt(const Vec3& x) const {
   return distance > 0.0 ? towards * (world_.gravityStrength / distance) : Vec3(0.0);
 }
 
+// |g| in the current mode (m/s^2): in point mode, its strength wherever a body is.
+Real World::gravityMagnitude() const {
+  return world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
+}
+
 BoxPose World::boxPose(BoxId id) const {
   const Box& box = boxes_.at(id);
   BoxPose pose;

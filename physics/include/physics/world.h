@@ -210,6 +210,7 @@ class World {
   void placeCapsuleGroundPoints();
   bool collidePair(BoxId a, BoxId b, Real margin, BoxContact& contact) const;
   Real speculativeMargin(BoxId a, BoxId b) const;
+  Real gravityMagnitude() const;
   Vec3 frameCoordinates(BoxId box, const Vec3& point) const;
   Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
   Embedding rigidPoint(BoxId box, const Vec3& point) const;
@@ -298,9 +299,9 @@ class World {
     Real overlap;                              // m, beyond the slop, at x*; negative when apart
     Real need;                                 // m, the least n . (t_b - t_a) the parting must reach
     Real push;                                 // kg m, accumulated by the sweeps (shift x mass), >= 0
-    bool kept;                                 // its contact holds for the step (face on face)
-    BoxId reference;                           // kept: the box whose face the normal is
-    Vec3 localNormal;                          // kept: the normal in that box's frame
+    bool kept = false;                         // its contact holds for the step (face on face)
+    BoxId reference = 0;                       // kept: the box whose face the normal is
+    Vec3 localNormal{0.0};                     // kept: the normal in that box's frame
   };
   std::vector<PartPair> partPairs_;              // per touching pair, found once per step
   std::vector<PartPair> spareParts_;             // and its room for refreshBoxContacts
