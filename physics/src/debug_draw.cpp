@@ -8,8 +8,9 @@ namespace phys {
 void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
   const auto& x = particles_.position;
   if (flags.constraints) {
-    for (const Stick& s : sticks_) draw.line(x[s.a], x[s.b], s.isRange() ? colors::kRange : colors::kStick);
-    for (const Link& link : links_) {
+    for (const Stick& s : constraints_.sticks())
+      draw.line(x[s.a], x[s.b], s.isRange() ? colors::kRange : colors::kStick);
+    for (const Link& link : constraints_.links()) {
       const Vec3 a = position(link.a), b = position(link.b);
       if (link.isPin()) {
         draw.point(a, 0.03, colors::kPin);
@@ -21,7 +22,7 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
   if (flags.particles) {
     for (std::size_t i = 0; i < particles_.size(); ++i) {
       const bool frozen = particles_.inverseMass[i] == 0.0 &&
-                          std::any_of(freezes_.begin(), freezes_.end(), [&](const FreezeReport& f) {
+                          std::any_of(freezes().begin(), freezes().end(), [&](const FreezeReport& f) {
                             const std::int32_t body = particleBody_[f.particle];
                             return f.particle == i || (body >= 0 && body == particleBody_[i]);
                           });
@@ -29,12 +30,14 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     }
   }
   if (flags.contacts) {
-    for (std::size_t c = 0; c < contactPoints_.size(); ++c) {
-      if (touched_[c] != 0) draw.point(position(contactPoints_[c].point), 0.08, colors::kContact);
+    const std::span<const GroundContact> groundPoints = ground_.points();
+    for (std::size_t c = 0; c < groundPoints.size(); ++c) {
+      if (ground_.state().touched[c] != 0)
+        draw.point(position(groundPoints[c].point), 0.08, colors::kContact);
     }
-    for (std::size_t k = 0; k < bodyContacts_.size(); ++k) {
-      if (bodyTouched_[k] == 0) continue;  // speculative: not touching in the last substep
-      const BodyContact& c = bodyContacts_[k];
+    for (std::size_t k = 0; k < narrowPhase_.contacts().size(); ++k) {
+      if (narrowPhase_.state().touched[k] == 0) continue;  // speculative: not touching in the last substep
+      const BodyContact& c = narrowPhase_.contacts()[k];
       const Vec3 p = position(c.pointA);
       const Color color = colors::kFeature[c.kind % 6];
       draw.point(p, 0.05, color);

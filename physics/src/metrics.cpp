@@ -61,7 +61,7 @@ Metrics World::metrics() const {
                              : mass * world_.gravityStrength * glm::length(xHalf - world_.gravityPoint);
   }
   Real sumSquares = 0.0;
-  for (const Stick& s : sticks_) {
+  for (const Stick& s : constraints_.sticks()) {
     const Real length = glm::length(particles_.position[s.b] - particles_.position[s.a]);
     Real violation = 0.0;
     if (length < s.minLength)
@@ -71,28 +71,30 @@ Metrics World::metrics() const {
     m.maxConstraintError = maxOf(m.maxConstraintError, violation);
     sumSquares += violation * violation;
   }
-  if (!sticks_.empty()) m.rmsConstraintError = std::sqrt(sumSquares / static_cast<Real>(sticks_.size()));
-  for (const Link& link : links_) {
+  if (!constraints_.sticks().empty())
+    m.rmsConstraintError = std::sqrt(sumSquares / static_cast<Real>(constraints_.sticks().size()));
+  for (const Link& link : constraints_.links()) {
     const Real length = glm::length(position(link.b) - position(link.a));
     const Real violation =
         length < link.minLength ? link.minLength - length : std::max(0.0, length - link.maxLength);
     m.maxJointError = maxOf(m.maxJointError, violation);
   }
   if (world_.ground) {
-    for (const GroundContact& c : contactPoints_) {
+    for (const GroundContact& c : ground_.points()) {
       const Real depth = world_.groundHeight + c.lift - glm::dot(world_.groundNormal, position(c.point));
       m.maxPenetration = maxOf(m.maxPenetration, depth);
     }
   }
-  m.contacts = static_cast<int>(std::count(touched_.begin(), touched_.end(), std::uint8_t{1}));
-  for (std::size_t k = 0; k < bodyContacts_.size(); ++k) {
-    const BodyContact& c = bodyContacts_[k];
+  m.contacts = static_cast<int>(
+      std::count(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{1}));
+  for (std::size_t k = 0; k < narrowPhase_.contacts().size(); ++k) {
+    const BodyContact& c = narrowPhase_.contacts()[k];
     const Real gap = glm::dot(c.normal, position(c.pointB) - position(c.pointA)) - c.offset;
     m.maxPenetration = maxOf(m.maxPenetration, -gap);
-    if (bodyTouched_[k] != 0) ++m.contacts;
+    if (narrowPhase_.state().touched[k] != 0) ++m.contacts;
   }
   m.frozen = 0;
-  for (const FreezeReport& f : freezes_) {
+  for (const FreezeReport& f : freezes()) {
     const std::int32_t body = particleBody_[f.particle];
     m.frozen += body >= 0 ? boxes_[static_cast<std::size_t>(body)].particleCount : 1;
   }

@@ -7,6 +7,7 @@
 
 #include "physics/body_layout.h"
 #include "physics/box.h"
+#include "physics/collision.h"
 #include "physics/constraints.h"
 #include "physics/link_layout.h"
 #include "physics/particles.h"
@@ -19,6 +20,16 @@ namespace phys::detail {
 /// rigidly by the box: barycentric weights over its inscribed tetrahedron (its 4 particles, or
 /// corners 0, 3, 5, 6 of a corners box), exact for any point while the box keeps its shape.
 Embedding rigidEmbedding(const Box& box, const Vec3& u);
+
+/// A world point in the body's frame `frame` (of this substep), in units of its half extents.
+Vec3 frameCoordinates(const Box& body, const Obb& frame, const Vec3& point);
+/// A world point carried rigidly by the body as it lies in its frame (rigidEmbedding).
+Embedding rigidPoint(const Box& body, const Obb& frame, const Vec3& point);
+/// A point of the body's surface (a contact's), embedded where the body's particles hold it: a
+/// box's on the face it lies on, by that face's 4 corners (corners model) or the tetrahedron; a
+/// tetra capsule's rigidly; a corners capsule's on the nearest face of its box. `moved`, if not
+/// null, gets how far the embedding carries the point off where it was (a capsule's: its face).
+Embedding surfacePoint(const Box& body, const Obb& frame, const Vec3& point, Vec3* moved = nullptr);
 
 /// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).

@@ -42,6 +42,8 @@ std::string validate(const WorldSettings& s) {
   if (!std::isfinite(s.groundHeight)) why << "groundHeight must be finite; ";
   if (const std::string m = validate(s.groundMaterial); !m.empty()) why << "groundMaterial: " << m << "; ";
   if (!(s.bound > 0.0)) why << "bound must be > 0 (m); ";
+  if (!(s.shapeCheckInterval > 0.0 && std::isfinite(s.shapeCheckInterval)))
+    why << "shapeCheckInterval must be finite and > 0 (s); ";
   return joined(why);
 }
 
@@ -64,6 +66,24 @@ std::string validate(const SolverSettings& s) {
   if (!(s.maxDepenetrationSpeed > 0.0)) {
     why << "maxDepenetrationSpeed must be > 0 (m/s; infinity for no limit); ";
   }
+  const BroadPhaseSettings& b = s.broadPhase;
+  if (b.maxStrips < 1 || b.maxStrips > kMaxStrips)
+    why << "broadPhase.maxStrips must be from 1 to " << kMaxStrips << "; ";
+  if (b.stripsPerBody < 1 || b.stripsPerBody > kMaxStrips)
+    why << "broadPhase.stripsPerBody must be from 1 to " << kMaxStrips << "; ";
+  if (b.maxStripsPerBody < 1 || b.maxStripsPerBody > kMaxStrips)
+    why << "broadPhase.maxStripsPerBody must be from 1 to " << kMaxStrips << "; ";
+  const PartingSettings& p = s.parting;
+  if (p.plainSweeps < 0 || p.plainSweeps > kMaxPartingSweeps)
+    why << "parting.plainSweeps must be from 0 to " << kMaxPartingSweeps << "; ";
+  if (p.overRelaxedSweeps < 0 || p.overRelaxedSweeps > kMaxPartingSweeps)
+    why << "parting.overRelaxedSweeps must be from 0 to " << kMaxPartingSweeps << "; ";
+  if (!(p.overRelaxation >= 1.0 && p.overRelaxation < 2.0))
+    why << "parting.overRelaxation must be from 1 to below 2; ";
+  if (!(p.tolerance > 0.0 && std::isfinite(p.tolerance)))
+    why << "parting.tolerance must be finite and > 0 (m); ";
+  if (p.progressSweeps < 1 || p.progressSweeps > kMaxPartingSweeps)
+    why << "parting.progressSweeps must be from 1 to " << kMaxPartingSweeps << "; ";
   return joined(why);
 }
 

@@ -16,10 +16,6 @@
 namespace phys {
 namespace {
 
-// How often the guard looks at the bodies' shapes (World::guardShapes): often enough to time
-// kCrushedTime to a twentieth.
-constexpr Real kShapeCheckInterval = 0.1;  // s
-
 using Clock = std::chrono::steady_clock;
 
 double millisecondsSince(Clock::time_point start) {
@@ -47,7 +43,7 @@ void World::step() {
   const auto stepStart = Clock::now();
   profile_ = {};
   updateLayouts();
-  std::fill(touched_.begin(), touched_.end(), std::uint8_t{0});
+  std::fill(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{0});
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
   const Real h = substepDt();
   for (int s = 0; s < solver_.substeps; ++s) {
@@ -66,7 +62,7 @@ void World::step() {
     restitute(h);
     dampBodies();
     time_ += h;
-    guard(s + 1 == solver_.substeps && time_ >= nextShapeCheck_);
+    guard(s + 1 == solver_.substeps && guard_.shapesDue(time_));
   }
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
@@ -75,19 +71,16 @@ void World::step() {
 // Rebuilt only after sticks, bodies, links or collision filters were added: the first step of a
 // new scene pays for it, and no other step allocates for it.
 void World::updateLayouts() {
-  if (!layoutsStale_) return;
-  stickLayout_.build(sticks_, boxes_, particles_.size());
-  linkLayout_.build(links_, particles_.size());
+  if (!layoutsStale_ && !constraints_.stale()) return;
+  constraints_.layOut(boxes_, particles_.size());
   bodyLayout_.build(boxes_);
-  ignoredStart_.assign(boxes_.size() + 1, 0);
-  for (const std::uint64_t key : ignoredPairs_) ++ignoredStart_[(key >> 32) + 1];
-  for (std::size_t b = 0; b < boxes_.size(); ++b) ignoredStart_[b + 1] += ignoredStart_[b];
+  broadPhase_.indexFilters();
   layoutsStale_ = false;
 }
 
 void World::integrateParticles(Real h) {
   const StageTimer timer(profile_, Stage::Integrate);
-  detail::integrate(particles_, world_, h, checked_);
+  detail::integrate(particles_, world_, h, guard_.checked());
   // The mouse spring is a force: applied with gravity, before the passes share it out.
   if (drag_) {
     const Box* box = dragBox_ >= 0 ? &boxes_[static_cast<std::size_t>(dragBox_)] : nullptr;
@@ -96,7 +89,7 @@ void World::integrateParticles(Real h) {
 }
 
 void World::fitBodyFrames() {
-  if (boxes_.size() < 2 && capsuleGround_.empty()) return;
+  if (boxes_.size() < 2 && !ground_.hasCapsules()) return;
   const StageTimer timer(profile_, Stage::Frames);
   updateBoxFrames();
 }
@@ -106,8 +99,13 @@ void World::fitBodyFrames() {
 bool World::findPairs(bool firstSubstep) {
   if (boxes_.size() < 2) return false;
   const StageTimer timer(profile_, Stage::BroadPhase);
-  if (!(firstSubstep || pairsStale_ || drag_ || outgrewPairBounds())) return false;
-  findBoxPairs();
+  if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_))) return false;
+  const BroadPhaseStep step{solver_.dt, substepDt(), solver_.featureEpsilon, gravityMagnitude(),
+                            solver_.broadPhase};
+  broadPhase_.update(particles_, boxes_, frames_, step);
+  const std::size_t pairs = broadPhase_.pairs().size();
+  narrowPhase_.reserve(pairs, boxes_.size());
+  parting_.reserve(pairs, boxes_.size());
   return true;
 }
 
@@ -115,35 +113,44 @@ void World::findContacts(bool newPairs) {
   if (boxes_.size() < 2 && !world_.ground) return;
   const StageTimer timer(profile_, Stage::NarrowPhase);
   if (boxes_.size() >= 2) {
+    const NarrowPhaseInput in = narrowPhaseInput();
     if (newPairs)
-      buildBoxContacts();
+      narrowPhase_.build(in);
     else
-      refreshBoxContacts();
-    measureBoxContactStarts();
+      narrowPhase_.refresh(in);
+    narrowPhase_.measureStarts(particles_, solver_.contactSlop);
   }
   if (!world_.ground) return;
-  placeCapsuleGroundPoints();
+  ground_.placeCapsulePoints(boxes_, frames_, world_.groundNormal);
   // Each contact's overlap at x*, where the substep starts: what the parting measures, and
-  // what the depenetration limit is reckoned from (buildBoxContacts fills the box-box ones).
-  detail::measureGroundStartDepth(particles_, contactPoints_, world_.groundNormal, world_.groundHeight,
-                                  groundAllowance_);
+  // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
+  detail::measureGroundStartDepth(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
+                                  ground_.state().allowance);
+}
+
+NarrowPhaseInput World::narrowPhaseInput() const {
+  return {particles_,          boxes_,     frames_,           broadPhase_, solver_.featureEpsilon,
+          solver_.contactSlop, solver_.dt, gravityMagnitude()};
 }
 
 void World::partOverlaps() {
   if (boxes_.empty()) return;
   const StageTimer timer(profile_, Stage::Parting);
-  partWithoutVelocity();
+  const PartingGround ground{world_.ground, world_.groundNormal, ground_.points(), ground_.state().allowance};
+  parting_.part(particles_, boxes_, narrowPhase_.manifolds(), narrowPhase_.state().allowance, ground,
+                solver_.featureEpsilon, solver_.parting);
 }
 
 // Restitution needs each contact's approach speed before the passes stop it, and which ground
-// contacts the passes push (groundHit_, set by the friction pass, read by restitute() alone).
+// contacts the passes push (GroundContactState::hit, set by the friction pass, read by restitute() alone).
 void World::measureApproaches(Real h) {
   if (solver_.restitution <= 0.0) return;
   const StageTimer timer(profile_, Stage::Restitution);
-  std::fill(groundHit_.begin(), groundHit_.end(), std::uint8_t{0});
-  detail::measureBodyApproach(particles_, bodyContacts_, h, bodyApproach_);
+  std::fill(ground_.state().hit.begin(), ground_.state().hit.end(), std::uint8_t{0});
+  detail::measureBodyApproach(particles_, narrowPhase_.contacts(), h, narrowPhase_.state().approach);
   if (world_.ground) {
-    detail::measureGroundApproach(particles_, contactPoints_, world_.groundNormal, h, groundApproach_);
+    detail::measureGroundApproach(particles_, ground_.points(), world_.groundNormal, h,
+                                  ground_.state().approach);
   }
 }
 
@@ -156,46 +163,34 @@ void World::measureApproaches(Real h) {
 // when every link is within its bounds.
 std::span<const Real> World::limitCorrections(Real h) {
   const Real depenetration = solver_.maxDepenetrationSpeed * h;
-  if (!bodyAllowance_.empty() || world_.ground) {
+  std::vector<Real>& bodyAllowance = narrowPhase_.state().allowance;
+  if (!bodyAllowance.empty() || world_.ground) {
     const StageTimer timer(profile_, Stage::Contacts);
-    detail::toAllowance(bodyAllowance_, depenetration);
-    if (world_.ground) detail::toAllowance(groundAllowance_, depenetration);
+    detail::toAllowance(bodyAllowance, depenetration);
+    if (world_.ground) detail::toAllowance(ground_.state().allowance, depenetration);
   }
-  if (linksApart_ == 0) return {};
+  if (!constraints_.linksApart()) return {};
   const StageTimer timer(profile_, Stage::Links);
-  linksApart_ = detail::shrinkLinkSlack(particles_, links_, depenetration, linkSlack_);
-  return linkSlack_;
+  return constraints_.shrinkLinkSlack(particles_, depenetration);
 }
 
 void World::relax(Real h, std::span<const Real> linkSlack) {
   const bool ground = world_.ground;
-  const bool contacts = ground || !bodyContacts_.empty();
+  const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
+  BodyContactState& bodyState = narrowPhase_.state();
+  GroundContactState& groundState = ground_.state();
+  const bool contacts = ground || !bodyContacts.empty();
   for (int it = 0; it < solver_.iterations; ++it) {
-    if (!sticks_.empty()) {
+    if (!constraints_.sticks().empty()) {
       const StageTimer timer(profile_, Stage::Sticks);
-      switch (solver_.method) {
-        case SolverMethod::GaussSeidel:
-          detail::relaxGaussSeidel(particles_, sticks_, stickLayout_);
-          break;
-        case SolverMethod::Jacobi:
-          detail::relaxJacobi(particles_, sticks_, stickLayout_, degree_, jacobiDelta_);
-          break;
-        case SolverMethod::Xpbd:
-          // The multipliers accumulate over the substep's passes (Macklin et al. 2016).
-          if (it == 0) std::fill(lambda_.begin(), lambda_.end(), 0.0);
-          detail::relaxXpbd(particles_, sticks_, stickLayout_, lambda_, h, solver_.compliance);
-          break;
-        case SolverMethod::Shake:
-          detail::relaxShake(particles_, sticks_, stickLayout_);
-          break;
-      }
+      constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance);
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links
     // between bodies, then the contacts. Links are rigid projections in every method, so the
     // world's compliance, which XPBD adds to the sticks, does not soften them.
-    if (!links_.empty()) {
+    if (!constraints_.links().empty()) {
       const StageTimer timer(profile_, Stage::Links);
-      detail::solveLinks(particles_, links_, linkLayout_, linkSlack);
+      constraints_.solveLinks(particles_, linkSlack);
     }
 
     // Contacts, each pass followed by its friction, so the next pass's sticks relax what
@@ -204,22 +199,22 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     if (!contacts) continue;
     {
       const StageTimer timer(profile_, Stage::Contacts);
-      detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_,
-                                bodyAllowance_);
+      detail::solveBodyContacts(particles_, bodyContacts, solver_.contactSlop, bodyState.push,
+                                movedByBoxContact_, bodyState.allowance);
       if (ground) {
-        detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight,
-                              normalPush_, groundAllowance_);
+        detail::collideGround(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
+                              groundState.push, groundState.allowance);
       }
     }
     const StageTimer timer(profile_, Stage::Friction);
-    detail::applyBodyFriction(particles_, bodyContacts_, bodyPush_);
-    for (std::size_t k = 0; k < bodyPush_.size(); ++k) {
-      if (bodyPush_[k] > 0.0) bodyTouched_[k] = 1;
+    detail::applyBodyFriction(particles_, bodyContacts, bodyState.push);
+    for (std::size_t k = 0; k < bodyState.push.size(); ++k) {
+      if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
     }
     if (ground) {
-      detail::applyGroundFriction(particles_, contactPoints_, world_.groundNormal, normalPush_);
-      for (std::size_t c = 0; c < touched_.size(); ++c) {
-        if (normalPush_[c] > 0.0) touched_[c] = groundHit_[c] = 1;
+      detail::applyGroundFriction(particles_, ground_.points(), world_.groundNormal, groundState.push);
+      for (std::size_t c = 0; c < groundState.touched.size(); ++c) {
+        if (groundState.push[c] > 0.0) groundState.touched[c] = groundState.hit[c] = 1;
       }
     }
   }
@@ -239,10 +234,11 @@ void World::restitute(Real h) {
   const detail::Restitution r{solver_.restitution, std::max(kRestitutionMinSpeed, 2.0 * g * h), h};
   detail::measureRigidStates(particles_, boxes_, h, rigid_);
   for (int it = 0; it < solver_.iterations; ++it) {
-    detail::restituteBodyContacts(particles_, rigid_, bodyContacts_, bodyApproach_, bodyTouched_, r);
+    detail::restituteBodyContacts(particles_, rigid_, narrowPhase_.contacts(), narrowPhase_.state().approach,
+                                  narrowPhase_.state().touched, r);
     if (world_.ground) {
-      detail::restituteGround(particles_, rigid_, contactPoints_, world_.groundNormal, groundApproach_,
-                              groundHit_, r);
+      detail::restituteGround(particles_, rigid_, ground_.points(), world_.groundNormal,
+                              ground_.state().approach, ground_.state().hit, r);
     }
   }
   detail::applyRigidChanges(particles_, boxes_, rigid_, h);
@@ -254,101 +250,24 @@ void World::dampBodies() {
   detail::dampBodyMotion(particles_, boxes_, bodyLayout_, solver_.bodyDamping);
 }
 
-// A body is frozen whole, put back as it was at the end of the last substep (integrate() kept
-// that in checked_), so all of it from one instant, whichever particle went bad.
+// A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the
+// guard that), so all of it from one instant, whichever particle went bad.
 void World::guard(bool shapes) {
   const StageTimer timer(profile_, Stage::Guard);
   guardParticles();
-  if (shapes) {
-    nextShapeCheck_ = time_ + kShapeCheckInterval;
-    guardShapes();
-  }
+  if (shapes) guard_.checkShapes(guardInput(), world_.shapeCheckInterval);
 }
 
 // Also run after a change of settings has moved particles outside the step (setSolverSettings):
-// a particle left non-finite there would otherwise be copied into checked_ by the next
-// integration and frozen at NaN (found by the soak test, seed 21: a chain under gravity of 1e244
-// m/s^2 given 1000 iterations).
+// a particle left non-finite there would otherwise be copied into the guard's good positions by the
+// next integration and frozen at NaN (found by the soak test, seed 21: a chain under gravity of
+// 1e244 m/s^2 given 1000 iterations).
 void World::guardParticles() {
-  const Real bound = world_.bound;
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const Vec3& x = particles_.position[i];
-    const auto id = static_cast<ParticleId>(i);
-    if (particles_.inverseMass[i] == 0.0) {
-      // Pinned and frozen particles are never written, so this only catches a bug; say so.
-      if (!finite(x)) freeze(id, "non-finite position of a pinned particle");
-      continue;
-    }
-    if (!finite(x)) {
-      freeze(id, "non-finite position");
-    } else if (!finite(particles_.previous[i])) {
-      freeze(id, "non-finite velocity");  // x - x*, and so the metrics, must stay finite too
-    } else if (std::abs(x.x) > bound || std::abs(x.y) > bound || std::abs(x.z) > bound) {
-      char reason[64];
-      std::snprintf(reason, sizeof reason, "left the world bound of %g m", bound);
-      freeze(id, reason);
-    }
-  }
+  guard_.checkParticles(guardInput(), world_.bound);
 }
 
-// Past the limit for a moment is an impact; past it for kCrushedTime, a body that will not come
-// back. Looked at every kShapeCheckInterval, not every substep: a crush is a matter of seconds,
-// and the sticks' lengths cost a pass over them.
-void World::guardShapes() {
-  for (std::size_t b = 0; b < boxes_.size(); ++b) {
-    const Box& box = boxes_[b];
-    if (particles_.inverseMass[box.firstParticle] == 0.0) continue;  // frozen
-    Real& since = crushedSince_[b];
-    const Real error = worstStickError(box);
-    if (!(error > kCrushedStickError)) {
-      since = std::numeric_limits<Real>::infinity();
-      continue;
-    }
-    since = std::min(since, time_);
-    if (time_ - since < kCrushedTime) continue;
-    char reason[96];
-    std::snprintf(reason, sizeof reason, "crushed: a stick %.0f%% off its length, past %.0f%% for %g s",
-                  100.0 * error, 100.0 * kCrushedStickError, kCrushedTime);
-    freeze(box.firstParticle, reason);
-  }
-}
-
-// The largest |length - rest| / rest (the violated bound, for a range) of the box's own sticks
-// that are off by more than kCrushedStickError, or 0 if none is: compared squared, so no square
-// root is taken while the box is sound.
-Real World::worstStickError(const Box& box) const {
-  Real worst = 0.0;
-  const auto begin = sticks_.begin() + box.firstStick;
-  for (auto s = begin; s != begin + box.stickCount; ++s) {
-    const Vec3 d = particles_.position[s->b] - particles_.position[s->a];
-    const Real squared = glm::dot(d, d);
-    const Real shortest = s->minLength * (1.0 - kCrushedStickError);
-    const Real longest = s->maxLength * (1.0 + kCrushedStickError);
-    if (squared >= shortest * shortest && squared <= longest * longest) continue;
-    const Real length = std::sqrt(squared);
-    worst = std::max(worst, length < s->minLength ? (s->minLength - length) / s->minLength
-                                                  : (length - s->maxLength) / s->maxLength);
-  }
-  return worst;
-}
-
-void World::freeze(ParticleId bad, const std::string& reason) {
-  ParticleId first = bad, count = 1;
-  std::string name = particleName_[bad].empty() ? "particle " + std::to_string(bad) : particleName_[bad];
-  if (const std::int32_t body = particleBody_[bad]; body >= 0) {
-    const Box& box = boxes_[static_cast<std::size_t>(body)];
-    first = box.firstParticle;
-    count = static_cast<ParticleId>(box.particleCount);
-    name = box.name.empty() ? "box " + std::to_string(body) : box.name;
-  }
-  for (ParticleId i = first; i < first + count; ++i) {
-    // Where the guard last found the whole body good (or where it was created): finite, and in
-    // the bound unless it was created outside it. A frozen particle is never written again.
-    particles_.position[i] = particles_.previous[i] = checked_[i];
-    particles_.inverseMass[i] = 0.0;
-  }
-  freezes_.push_back({name, reason, bad, time_});
-  if (onFreeze_) onFreeze_(freezes_.back());
+GuardInput World::guardInput() {
+  return {particles_, boxes_, constraints_.sticks(), particleName_, particleBody_, time_};
 }
 
 }  // namespace phys

@@ -59,10 +59,6 @@ constexpr Pair kCornerSticks[22] = {
 // The tetra model: all 6 edges of the tetrahedron, rigid with 4 particles (3 * 4 - 6 = 6).
 constexpr Pair kTetraSticks[6] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
-Material combine(const Material& a, const Material& b) {
-  return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
-}
-
 }  // namespace
 
 World::World(const WorldSettings& world, const SolverSettings& solver) {
@@ -75,7 +71,7 @@ void World::setWorldSettings(const WorldSettings& settings) {
   require(why.empty(), "WorldSettings: " + why);
   world_ = settings;
   world_.groundNormal = glm::normalize(settings.groundNormal);
-  combineMaterials();
+  ground_.combineMaterials(world_.groundMaterial);
 }
 
 void World::setSolverSettings(const SolverSettings& settings) {
@@ -97,20 +93,20 @@ void World::settleWithoutVelocity() {
   std::vector<Vec3> before = particles_.position;
   updateLayouts();
   // Links created apart keep their gaps: they close at their own pace (World::step).
-  const std::span<const Real> slack =
-      linksApart_ > 0 ? std::span<const Real>(linkSlack_) : std::span<const Real>();
+  const std::span<const Real> slack = constraints_.linkSlack();
   for (int pass = 0; pass < 4 * solver_.iterations * solver_.substeps && pass < 200; ++pass) {
-    detail::relaxGaussSeidel(particles_, sticks_, stickLayout_);
-    detail::solveLinks(particles_, links_, linkLayout_, slack);
-    detail::solveBodyContacts(particles_, bodyContacts_, solver_.contactSlop, bodyPush_, movedByBoxContact_);
+    constraints_.relaxSticks(particles_, SolverMethod::GaussSeidel, pass == 0, substepDt(), 0.0);
+    constraints_.solveLinks(particles_, slack);
+    detail::solveBodyContacts(particles_, narrowPhase_.contacts(), solver_.contactSlop,
+                              narrowPhase_.state().push, movedByBoxContact_);
     if (world_.ground)
-      detail::collideGround(particles_, contactPoints_, world_.groundNormal, world_.groundHeight,
-                            normalPush_);
+      detail::collideGround(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
+                            ground_.state().push);
   }
-  std::fill(bodyPush_.begin(), bodyPush_.end(), 0.0);
+  std::fill(narrowPhase_.state().push.begin(), narrowPhase_.state().push.end(), 0.0);
   for (std::size_t i = 0; i < particles_.size(); ++i)
     particles_.previous[i] += particles_.position[i] - before[i];
-  std::fill(normalPush_.begin(), normalPush_.end(), 0.0);
+  std::fill(ground_.state().push.begin(), ground_.state().push.end(), 0.0);
 }
 
 // x - x* is the velocity half a substep back, times the substep: (x - x*) = v(t - h/2) h. A new
@@ -129,13 +125,15 @@ void World::keepVelocities(Real hOld, Real hNew) {
       supported[point.particle[0]] = 1;
     }
   };
-  for (std::size_t c = 0; c < contactPoints_.size(); ++c) {
-    if (touched_[c] != 0) support(contactPoints_[c].body, contactPoints_[c].point);
+  const std::span<const GroundContact> groundPoints = ground_.points();
+  for (std::size_t c = 0; c < groundPoints.size(); ++c) {
+    if (ground_.state().touched[c] != 0) support(groundPoints[c].body, groundPoints[c].point);
   }
-  for (std::size_t k = 0; k < bodyContacts_.size(); ++k) {
-    if (bodyTouched_[k] == 0) continue;
-    support(bodyContacts_[k].boxA, bodyContacts_[k].pointA);
-    support(bodyContacts_[k].boxB, bodyContacts_[k].pointB);
+  const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
+  for (std::size_t k = 0; k < bodyContacts.size(); ++k) {
+    if (narrowPhase_.state().touched[k] == 0) continue;
+    support(bodyContacts[k].boxA, bodyContacts[k].pointA);
+    support(bodyContacts[k].boxB, bodyContacts[k].pointB);
   }
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     Vec3 halfStepVelocity = (particles_.position[i] - particles_.previous[i]) / hOld;
@@ -147,14 +145,7 @@ void World::keepVelocities(Real hOld, Real hNew) {
 }
 
 void World::setFreezeCallback(std::function<void(const FreezeReport&)> callback) {
-  onFreeze_ = std::move(callback);
-}
-
-void World::combineMaterials() {
-  for (GroundContact& c : contactPoints_) {
-    // A loose particle has no material of its own: it slides as the ground says.
-    c.combined = c.body >= 0 ? combine(c.material, world_.groundMaterial) : world_.groundMaterial;
-  }
+  guard_.setCallback(std::move(callback));
 }
 
 ParticleId World::addParticle(const ParticleDesc& desc) {
@@ -170,24 +161,13 @@ ParticleId World::addParticle(const ParticleDesc& desc) {
   particles_.position.push_back(desc.position);
   particles_.previous.push_back(desc.position - halfStepVelocity * h);
   particles_.inverseMass.push_back(desc.pinned ? 0.0 : 1.0 / desc.mass);
-  checked_.push_back(desc.position);
+  guard_.addParticle(desc.position);
   particleName_.push_back(desc.name);
   particleBody_.push_back(-1);
   movedByBoxContact_.push_back(0);
-  jacobiDelta_.emplace_back(0.0);
-  degree_.push_back(0.0);
-  addContactPoint(embedParticle(id), world_.groundMaterial, -1);
+  constraints_.addParticle();
+  ground_.add(embedParticle(id), world_.groundMaterial, -1, world_.groundMaterial);
   return id;
-}
-
-void World::addContactPoint(const Embedding& point, const Material& material, std::int32_t body) {
-  contactPoints_.push_back(
-      {point, material, body >= 0 ? combine(material, world_.groundMaterial) : world_.groundMaterial, body});
-  normalPush_.push_back(0.0);
-  touched_.push_back(0);
-  groundHit_.push_back(0);
-  groundApproach_.push_back(0.0);
-  groundAllowance_.push_back(0.0);
 }
 
 void World::addStick(ParticleId a, ParticleId b, Real compliance) {
@@ -209,12 +189,8 @@ void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength,
           "stick: max length must be > 0 (m) and >= min length");
   require(std::isfinite(compliance) && compliance >= 0.0 && compliance <= kMaxCompliance,
           "stick: compliance must be from 0 to 1e6 (m/N)");
-  sticks_.push_back({a, b, minLength, maxLength, compliance});
-  layoutsStale_ = true;
-  joinGroups(a, b);
-  lambda_.push_back(0.0);
-  degree_[a] += 1.0;
-  degree_[b] += 1.0;
+  constraints_.addStick({a, b, minLength, maxLength, compliance});
+  joinBodies(a, b);
 }
 
 // An embedding must be an affine combination of existing particles; `who` prefixes the message.
@@ -234,13 +210,11 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
   checkEmbedding(b, "addLink");
   require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
   require(!std::isnan(maxLength) && maxLength >= minLength, "addLink: max length must be >= min length (m)");
-  links_.push_back({a, b, minLength, maxLength});
-  layoutsStale_ = true;
   // Created outside its bounds (a pin whose points were placed apart), it is brought within them
   // at most at maxDepenetrationSpeed, from the next step on (World::step).
-  linkSlack_.push_back(detail::linkViolation(particles_.position, links_.back()));
-  if (linkSlack_.back() != 0.0) ++linksApart_;
-  joinGroups(a.particle[0], b.particle[0]);
+  const Link link{a, b, minLength, maxLength};
+  constraints_.addLink(link, detail::linkViolation(particles_.position, link));
+  joinBodies(a.particle[0], b.particle[0]);
 }
 
 void World::setDrag(const Drag& drag) {
@@ -302,7 +276,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   box.firstParticle = static_cast<ParticleId>(particles_.size());
   box.firstCorner = static_cast<std::uint32_t>(corners_.size());
   const auto boxIndex = static_cast<std::int32_t>(boxes_.size());
-  const std::size_t contactsBefore = contactPoints_.size();
+  const std::size_t contactsBefore = ground_.size();
 
   // Everything that can fail is checked before anything is added: a centre or size near the
   // largest double can overflow a corner to infinity.
@@ -326,16 +300,11 @@ BoxId World::addBox(const BoxDesc& desc) {
     particleBody_.back() = boxIndex;
   }
   // The particles' own contact points go: the box touches the ground with its corners.
-  contactPoints_.resize(contactsBefore);
-  normalPush_.resize(contactsBefore);
-  touched_.resize(contactsBefore);
-  groundHit_.resize(contactsBefore);
-  groundApproach_.resize(contactsBefore);
-  groundAllowance_.resize(contactsBefore);
+  ground_.truncate(contactsBefore);
 
   const std::span<const Pair> pairs = desc.model == BoxModel::Corners ? std::span<const Pair>(kCornerSticks)
                                                                       : std::span<const Pair>(kTetraSticks);
-  box.firstStick = static_cast<std::uint32_t>(sticks_.size());
+  box.firstStick = static_cast<std::uint32_t>(constraints_.sticks().size());
   box.stickCount = static_cast<int>(pairs.size());
   for (const Pair& p : pairs) addStick(box.firstParticle + p.a, box.firstParticle + p.b);
 
@@ -354,17 +323,18 @@ BoxId World::addBox(const BoxDesc& desc) {
       corner.count = 4;
     }
     corners_.push_back(corner);
-    if (desc.shape == Shape::Box) addContactPoint(corner, desc.material, boxIndex);
+    if (desc.shape == Shape::Box) ground_.add(corner, desc.material, boxIndex, world_.groundMaterial);
   }
   if (desc.shape == Shape::Capsule) {
     // A capsule touches the ground with the lowest points of its two end spheres, which move
-    // over its surface as it turns: placeCapsuleGroundPoints() re-embeds them every substep.
+    // over its surface as it turns: GroundContacts::placeCapsulePoints re-embeds them every substep.
     const Real halfSegment = box.capsuleHalfSegment();
     for (const Real end : {-1.0, 1.0}) {
       const Vec3 core(0.0, end * halfSegment, 0.0);
       const Vec3 lowest = core + glm::inverse(q) * (-world_.groundNormal) * box.capsuleRadius();
-      capsuleGround_.push_back({static_cast<std::uint32_t>(contactPoints_.size()), end});
-      addContactPoint(detail::rigidEmbedding(box, lowest / box.halfExtents), desc.material, boxIndex);
+      ground_.add(detail::rigidEmbedding(box, lowest / box.halfExtents), desc.material, boxIndex,
+                  world_.groundMaterial);
+      ground_.followCapsuleEnd(end);
     }
   }
   box.collisionGroup = desc.collisionGroup;
@@ -373,19 +343,9 @@ BoxId World::addBox(const BoxDesc& desc) {
   layoutsStale_ = true;
   frames_.emplace_back();
   rigid_.emplace_back();
-  partShift_.emplace_back(0.0);
-  partWeight_.push_back(0.0);
-  partGround_.push_back(0.0);
-  partGroundPush_.push_back(0.0);
-  crushedSince_.push_back(std::numeric_limits<Real>::infinity());
-  sweep_.push_back({0.0, 0.0, static_cast<BoxId>(boxIndex)});
-  bounds_.emplace_back();
-  travel_.push_back(0.0);
-  motion_.push_back({});
-  pairFrames_.emplace_back();
-  jointGroup_.push_back(static_cast<BoxId>(boxIndex));
-  partRoot_.push_back(static_cast<BoxId>(boxIndex));
-  pairsStale_ = true;
+  guard_.addBody();
+  broadPhase_.addBody();
+  parting_.addBody();
   return static_cast<BoxId>(boxIndex);
 }
 

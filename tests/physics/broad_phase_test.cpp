@@ -12,8 +12,8 @@ using phys::Vec3;
 // one wide flat box under all of them (wider than any strip: it is tested against every box).
 // Bounds are the boxes' own grown by the feature epsilon (0.01 m) and nothing else at rest in
 // zero gravity.
-std::size_t pairsOfGrid(int k, double spacing, bool floor) {
-  phys::World world = testing_phys::openSpace({}, Vec3(0.0));
+std::size_t pairsOfGrid(int k, double spacing, bool floor, const phys::SolverSettings& solver = {}) {
+  phys::World world = testing_phys::openSpace(solver, Vec3(0.0));
   phys::BoxDesc box;
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) {
@@ -107,6 +107,72 @@ TEST(BroadPhase, IgnoredPairsAreDroppedWhenSetAndOnlyThose) {
   world.ignoreCollision(0, 3);  // apart: nothing more to drop
   world.step();
   EXPECT_EQ(world.broadPhasePairs(), 1u);
+}
+
+}  // namespace
+
+namespace {
+
+// The strips are a way to find the pairs, not a part of the answer: one strip (every box swept
+// against every box along the axis), one strip a box, or every box "wide" (tested against all)
+// find the same pairs, and a tumbling pile steps to the same state.
+TEST(BroadPhase, TheStripSettingsChangeNoPair) {
+  phys::SolverSettings oneStrip, narrow, allWide;
+  oneStrip.broadPhase.maxStrips = 1;
+  narrow.broadPhase.stripsPerBody = 1;
+  allWide.broadPhase.maxStripsPerBody = 1;
+  const std::size_t k = 12, neighbours = 2 * k * (k - 1) + 2 * (k - 1) * (k - 1);
+  ASSERT_EQ(pairsOfGrid(k, 1.015, false), neighbours);
+  EXPECT_EQ(pairsOfGrid(k, 1.015, false, oneStrip), neighbours);
+  EXPECT_EQ(pairsOfGrid(k, 1.015, false, narrow), neighbours);
+  EXPECT_EQ(pairsOfGrid(k, 1.015, false, allWide), neighbours);
+  EXPECT_EQ(pairsOfGrid(k, 1.015, true, allWide), pairsOfGrid(k, 1.015, true));
+
+  auto pile = [](const phys::SolverSettings& solver) {
+    phys::World world({}, solver);
+    phys::BoxDesc box;
+    for (int i = 0; i < 40; ++i) {
+      box.center = {0.3 * (i % 7), 0.6 + 1.1 * (i / 7), 0.25 * (i % 5)};
+      box.orientation = glm::angleAxis(0.3 * i, glm::normalize(Vec3(1.0, 2.0, 0.5)));
+      world.addBox(box);
+    }
+    for (int n = 0; n < 60; ++n) world.step();
+    return world.stateHash();
+  };
+  const std::uint64_t reference = pile({});
+  EXPECT_EQ(pile(oneStrip), reference);
+  EXPECT_EQ(pile(narrow), reference);
+  EXPECT_EQ(pile(allWide), reference);
+}
+
+// The class alone, as World drives it: pairs only after an update, found again only when asked.
+TEST(BroadPhase, FindsPairsOnlyWhenUpdatedAndSaysWhenItMust) {
+  phys::World world = testing_phys::openSpace({}, Vec3(0.0));
+  phys::BoxDesc box;
+  for (int i = 0; i < 3; ++i) {
+    box.center = {0.99 * i, 0.5, 0.0};
+    world.addBox(box);
+  }
+  world.step();  // fits the frames
+  phys::BroadPhase broad;
+  for (int i = 0; i < 3; ++i) broad.addBody();
+  broad.indexFilters();
+  EXPECT_TRUE(broad.pairs().empty());
+  EXPECT_TRUE(broad.needsUpdate(world.boxFrames()));
+  broad.update(world.particles(), world.boxes(), world.boxFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
+  ASSERT_EQ(broad.pairs().size(), 2u);
+  EXPECT_EQ(broad.pairs()[0], std::make_pair(phys::BoxId{0}, phys::BoxId{1}));
+  EXPECT_EQ(broad.pairs()[1], std::make_pair(phys::BoxId{1}, phys::BoxId{2}));
+  EXPECT_FALSE(broad.needsUpdate(world.boxFrames()));
+  broad.ignore(2, 1);
+  EXPECT_TRUE(broad.needsUpdate(world.boxFrames()));  // stale: the filter changed
+  broad.indexFilters();
+  broad.update(world.particles(), world.boxes(), world.boxFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
+  EXPECT_EQ(broad.pairs().size(), 1u);
+  // A frame moved further than its bounds allowed (at rest: the epsilon alone).
+  std::vector<phys::Obb> moved(world.boxFrames().begin(), world.boxFrames().end());
+  moved[1].center.x += 0.05;
+  EXPECT_TRUE(broad.needsUpdate(moved));
 }
 
 }  // namespace

@@ -98,6 +98,21 @@ TEST(Validation, SolverSettingsNameTheBadField) {
   s = {};
   s.substeps = -1;
   EXPECT_NE(phys::validate(s).find("substeps"), std::string::npos);
+  s = {};
+  s.broadPhase.maxStrips = 0;
+  EXPECT_NE(phys::validate(s).find("broadPhase.maxStrips"), std::string::npos);
+  s = {};
+  s.broadPhase.maxStripsPerBody = 0;
+  EXPECT_NE(phys::validate(s).find("broadPhase.maxStripsPerBody"), std::string::npos);
+  s = {};
+  s.parting.overRelaxation = 2.0;  // does not converge
+  EXPECT_NE(phys::validate(s).find("parting.overRelaxation"), std::string::npos);
+  s = {};
+  s.parting.progressSweeps = 0;  // a division by it
+  EXPECT_NE(phys::validate(s).find("parting.progressSweeps"), std::string::npos);
+  s = {};
+  s.parting.tolerance = std::nan("");
+  EXPECT_NE(phys::validate(s).find("parting.tolerance"), std::string::npos);
 }
 
 TEST(Validation, WorldSettingsNameTheBadField) {
@@ -114,6 +129,9 @@ TEST(Validation, WorldSettingsNameTheBadField) {
   w = {};
   w.groundMaterial.staticFriction = -0.1;
   EXPECT_NE(phys::validate(w).find("static friction"), std::string::npos);
+  w = {};
+  w.shapeCheckInterval = 0.0;
+  EXPECT_NE(phys::validate(w).find("shapeCheckInterval"), std::string::npos);
 }
 
 TEST(Validation, RejectedInputChangesNothing) {

@@ -32,7 +32,7 @@ struct Bounds {
 
 }  // namespace
 
-// The world's broad phase (World::findBoxPairs) grows each box's bounds by how far it can go in
+// The world's broad phase (BroadPhase::update) grows each box's bounds by how far it can go in
 // a step: its fastest particle's speed times dt, plus g dt^2, plus the feature epsilon. The
 // pairs it found last step say nothing of the next one after dt, gravity or epsilon grew (a
 // pyramid of 820 boxes goes from 2,300 pairs to 340,000 at dt = 1 s), so count them here the

@@ -1,6 +1,7 @@
 #pragma once
 // Every tunable of the world and the solver, with its default and unit. The sandbox's panels,
 // the scene loader, the lab and the tests read the defaults from here and nowhere else.
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -41,6 +42,9 @@ struct WorldSettings {
   Material groundMaterial;
   /// A particle farther than this from the origin along any axis is frozen and reported.
   Real bound = 1.0e6;  ///< unit: m
+  /// How often the guard looks for crushed bodies (kCrushedStickError, kCrushedTime): often enough
+  /// to time kCrushedTime to a twentieth.
+  Real shapeCheckInterval = 0.1;  ///< unit: s
 };
 
 /// A box (or capsule) whose worst stick has been more than kCrushedStickError of its rest length
@@ -58,9 +62,31 @@ inline constexpr int kMaxSubsteps = 1000;    ///< per step
 inline constexpr Real kMinDt = 1e-6;         ///< unit: s; below this h^2 and XPBD's alpha lose meaning
 inline constexpr Real kMaxDt = 1.0;          ///< unit: s
 inline constexpr Real kMaxCompliance = 1e6;  ///< unit: m/N; softer than this is no constraint at all
+inline constexpr std::size_t kMaxStrips = std::size_t{1} << 24;  ///< BroadPhaseSettings' counts
+inline constexpr int kMaxPartingSweeps = 100000;                 ///< PartingSettings' sweep counts
 
 /// SolverSettings::maxDepenetrationSpeed's default.
 inline constexpr Real kDefaultMaxDepenetrationSpeed = 3.0;  ///< unit: m/s
+
+/// Tunables of the strips (docs/performance.md, "Broad phase"). Bodies are dealt into strips
+/// across a second axis, each twice the bodies' mean extent wide.
+struct BroadPhaseSettings {
+  std::size_t maxStrips = std::size_t{1} << 16;  ///< strips in all, at most
+  std::size_t stripsPerBody = 4;                 ///< strips per body, at most: fixes their room
+  /// A body whose bounds cross more strips than this (a floor, or bounds grown by a huge speed) is
+  /// tested against every body instead.
+  std::size_t maxStripsPerBody = 8;
+};
+
+/// Tunables of the parting of deep overlaps (Parting; docs/physics.md, "Where energy could come
+/// from nowhere"): Gauss-Seidel sweeps, plain, then over-relaxed while they make progress.
+struct PartingSettings {
+  int plainSweeps = 64;        ///< pushing only; enough for the spawned scenes of the suite
+  int overRelaxedSweeps = 64;  ///< then accumulated pushes, over-relaxed: a row of Bullet's pile
+  Real overRelaxation = 1.7;   ///< unitless, 1 to 2; near the best for a chain of 16 bodies
+  Real tolerance = 1e-6;       ///< unit: m; the sweeps stop when no correction is larger
+  int progressSweeps = 16;     ///< over-relaxed sweeps between checks that the worst halved
+};
 
 /// How the equations are stepped and relaxed.
 struct SolverSettings {
@@ -100,6 +126,8 @@ struct SolverSettings {
   /// outside its bounds, a pin whose points were placed apart, is brought within them at most
   /// this fast too; a link the motion opens is closed in full. Infinity turns it off.
   Real maxDepenetrationSpeed = kDefaultMaxDepenetrationSpeed;  ///< unit: m/s, > 0
+  BroadPhaseSettings broadPhase;
+  PartingSettings parting;
 };
 
 /// Below this normal speed an impact does not bounce (SolverSettings::restitution).

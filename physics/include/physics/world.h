@@ -11,14 +11,18 @@
 
 #include "physics/body_layout.h"
 #include "physics/box.h"
+#include "physics/broad_phase.h"
 #include "physics/collision.h"
+#include "physics/constraint_graph.h"
 #include "physics/constraints.h"
 #include "physics/debug_draw.h"
-#include "physics/link_layout.h"
+#include "physics/ground_contacts.h"
+#include "physics/guard.h"
 #include "physics/metrics.h"
+#include "physics/narrow_phase.h"
 #include "physics/particles.h"
+#include "physics/parting.h"
 #include "physics/settings.h"
-#include "physics/stick_layout.h"
 
 namespace phys {
 
@@ -29,14 +33,6 @@ struct ParticleDesc {
   Real mass = 1.0;      ///< unit: kg; > 0 unless pinned
   bool pinned = false;  ///< a pinned particle never moves (inverse mass 0)
   std::string name;     ///< for reports and dumps; may be empty
-};
-
-/// What the guard did to a particle that went bad.
-struct FreezeReport {
-  std::string name;     ///< the box's name, else the particle's, else "particle N"
-  std::string reason;   ///< "non-finite position", "left the world bound of B m", "crushed: ...", ...
-  ParticleId particle;  ///< the first bad particle
-  Real time;            ///< unit: s; simulated time of the substep that caught it
 };
 
 /// Defaults of the mouse spring (Drag): a 1 kg body follows about critically damped (1.1 times),
@@ -130,25 +126,25 @@ class World {
   const WorldSettings& worldSettings() const { return world_; }
   const SolverSettings& solverSettings() const { return solver_; }
   const Particles& particles() const { return particles_; }
-  std::span<const Stick> sticks() const { return sticks_; }
+  std::span<const Stick> sticks() const { return constraints_.sticks(); }
   std::span<const Box> boxes() const { return boxes_; }
-  std::span<const Link> links() const { return links_; }
+  std::span<const Link> links() const { return constraints_.links(); }
   /// Every box's corners, 8 per box from Box::firstCorner.
   std::span<const Embedding> corners() const { return corners_; }
   /// Every point that collides with the ground.
-  std::span<const GroundContact> groundContacts() const { return contactPoints_; }
+  std::span<const GroundContact> groundContacts() const { return ground_.points(); }
   /// Box-box contacts of the last substep.
-  std::span<const BodyContact> bodyContacts() const { return bodyContacts_; }
+  std::span<const BodyContact> bodyContacts() const { return narrowPhase_.contacts(); }
   /// Each box as an oriented box, fitted at the start of the last substep.
   std::span<const Obb> boxFrames() const { return frames_; }
   /// Box pairs whose bounds, grown by how far each can go in a step, overlapped at the start of
   /// the last step (the broad phase's output, which every substep's narrow phase tests).
-  std::size_t broadPhasePairs() const { return pairs_.size(); }
+  std::size_t broadPhasePairs() const { return broadPhase_.pairs().size(); }
   const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
   /// Per particle: the index of the box (or capsule) it belongs to, or -1 for a loose particle.
   std::span<const std::int32_t> particleBodies() const { return particleBody_; }
   /// Freezes so far, oldest first.
-  std::span<const FreezeReport> freezes() const { return freezes_; }
+  std::span<const FreezeReport> freezes() const { return guard_.freezes(); }
   Real time() const { return time_; }  ///< unit: s; simulated time since creation
   long stepCount() const { return steps_; }
 
@@ -171,8 +167,6 @@ class World {
 
  private:
   Real substepDt() const { return solver_.dt / solver_.substeps; }
-  void addContactPoint(const Embedding& point, const Material& material, std::int32_t body);
-  void combineMaterials();
   void keepVelocities(Real hOld, Real hNew);
   void settleWithoutVelocity();
   // The stages of a substep, in step()'s order (step.cpp); each times itself into profile_.
@@ -189,143 +183,35 @@ class World {
   void dampBodies();
   void guard(bool shapes);
   void guardParticles();
+  GuardInput guardInput();
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBoxFrames();
-  bool chooseSweepAxis();
-  void findBoxPairs();
-  void findPairsInStrips();
-  void sortPairsByBody();
-  bool outgrewPairBounds() const;
-  void reserveContacts();
-  void buildBoxContacts();
-  void refreshBoxContacts();
-  void resizeBoxContactArrays();
-  struct PartPair;
-  void turnNormal(PartPair& pair, BodyContact* contacts) const;
-  void addPairContact(BoxId a, BoxId b, const BoxContact& contact);
-  void measureBoxContactStarts();
-  void partWithoutVelocity();
-  BoxId jointGroup(BoxId id);
-  void joinGroups(ParticleId a, ParticleId b);
-  void placeCapsuleGroundPoints();
-  bool collidePair(BoxId a, BoxId b, Real margin, BoxContact& contact) const;
-  Real speculativeMargin(BoxId a, BoxId b) const;
+  void joinBodies(ParticleId a, ParticleId b);
+  NarrowPhaseInput narrowPhaseInput() const;
   Real gravityMagnitude() const;
-  Vec3 frameCoordinates(BoxId box, const Vec3& point) const;
-  Embedding embedInBox(BoxId box, const Vec3& point, Vec3* moved = nullptr) const;
-  Embedding rigidPoint(BoxId box, const Vec3& point) const;
-  bool collides(BoxId a, BoxId b) const;
-  void guardShapes();
-  Real worstStickError(const Box& box) const;  // beyond kCrushedStickError, else 0
-  void freeze(ParticleId bad, const std::string& reason);
 
   WorldSettings world_;
   SolverSettings solver_;
   Particles particles_;
-  std::vector<Vec3> checked_;       // per particle: its position when the guard last found it good
-  std::vector<Real> crushedSince_;  // per box: time it went past kCrushedStickError, infinity if not
-  Real nextShapeCheck_ = 0.0;       // s: when the guard next looks at the shapes
   std::vector<std::string> particleName_;
   std::vector<std::int32_t> particleBody_;  // box index, or -1 for a loose particle
-  std::vector<Stick> sticks_;
-  StickLayout stickLayout_;    // the sticks by body, for the passes (updateLayouts)
-  LinkLayout linkLayout_;      // the links by ragdoll, for the passes (updateLayouts)
+  ConstraintGraph constraints_;
   BodyLayout bodyLayout_;      // the bodies in lanes, for body damping (updateLayouts)
-  bool layoutsStale_ = false;  // sticks, bodies or links added since they were built
-  std::vector<Link> links_;
+  bool layoutsStale_ = false;  // bodies or collision filters added since they were laid out
   std::vector<Box> boxes_;
   std::vector<Embedding> corners_;
-  // A capsule's two ground contact points (the lowest points of its end spheres), re-embedded
-  // every substep: which contact point (its body is the capsule) and which end of the core
-  // (-1 or +1 along y).
-  struct CapsuleGroundPoint {
-    std::uint32_t contact;
-    Real end;
-  };
-  std::vector<CapsuleGroundPoint> capsuleGround_;
+  GroundContacts ground_;
 
-  std::vector<GroundContact> contactPoints_;  // loose particles and box corners
-  std::vector<Real> normalPush_;              // per contact point: ground correction of the last pass (m)
-  std::vector<std::uint8_t> groundHit_;       // per contact point: pushed in this substep (restitution)
-  std::vector<Real> groundApproach_;   // per contact point: approach speed at the substep's start (m/s)
-  std::vector<Real> groundAllowance_;  // per contact point: depth at x*, then the depth it may keep (m)
-
-  // Box-box collision, rebuilt every substep into storage that keeps its capacity.
-  std::vector<Obb> frames_;  // per box
-  struct Interval {
-    Real min, max;  // extent of a box's bounds along the sweep axis
-    BoxId box;
-  };
-  std::vector<Interval> sweep_;          // sweep-and-prune list, kept sorted between steps
-  std::vector<std::size_t> stripStart_;  // per strip and one more: where its boxes start in stripBoxes_
-  std::vector<BoxId> stripBoxes_;        // the boxes of each strip, in sweep order (findPairsInStrips)
-  std::vector<BoxId> wideBoxes_;         // boxes across too many strips, tested against all
-  struct Bounds {
-    Vec3 lo, hi;
-  };
-  std::vector<Bounds> bounds_;  // per box: AABB grown by its reach over a step
-  std::vector<Real> travel_;    // per box: that reach (m)
-  // Per box, how it moves over a step at the speeds of the broad phase's substep: its particles'
-  // mean displacement, and the most one's differs from that (turning and bending), both in m.
-  struct Motion {
-    Vec3 shift{0.0};
-    Real turn = 0.0;
-  };
-  std::vector<Motion> motion_;
-  std::vector<Obb> pairFrames_;  // per box: its frame when pairs_ was found
-  bool pairsStale_ = true;       // bodies or filters changed since pairs_ was found
-  int sweepAxis_ = 0;            // the axis sweep_ is sorted along
-  std::vector<std::pair<BoxId, BoxId>> pairs_;
-  std::vector<std::pair<BoxId, BoxId>> unsortedPairs_;  // as the strips find them (findBoxPairs)
-  std::vector<std::uint32_t> pairStart_;                // per box and one more: its pairs as the lower id
-  // Room for pairs and for box-box contact points, per body, made when the pairs are found
-  // (reserveContacts), so that a world whose bodies each touch a few others does not allocate in
-  // the step. Measured at most: 2.2 pairs and 0.4 points a body in Bullet's pile, 4 and 1.7 in
-  // the 16 ragdolls; a pyramid's 5.2 pairs grow the room in its first second.
-  static constexpr std::size_t kRoomPerBody = 3;
-  std::vector<std::uint64_t> ignoredPairs_;  // sorted keys (min << 32 | max)
-  std::vector<std::uint32_t> ignoredStart_;  // per box and one more: its keys as min (updateLayouts)
-  std::vector<BodyContact> bodyContacts_;
-  std::vector<Real> bodyPush_;             // per body contact: push of the last pass (m)
-  std::vector<std::uint8_t> bodyTouched_;  // per body contact: pushed in this substep
-  std::vector<Real> bodyApproach_;         // per body contact: approach speed at the substep's start (m/s)
-  std::vector<Real> bodyAllowance_;        // per body contact: overlap at x*, then what it may keep (m)
-  std::vector<RigidState> rigid_;          // per box: restitution's rigid-body view
-  // Parting of deep overlaps without velocity (partWithoutVelocity).
-  struct PartPair {
-    BoxId a, b;
-    std::uint32_t firstContact, contactCount;  // its points in bodyContacts_
-    Vec3 normal;                               // from a towards b
-    Real overlap;                              // m, beyond the slop, at x*; negative when apart
-    Real need;                                 // m, the least n . (t_b - t_a) the parting must reach
-    Real push;                                 // kg m, accumulated by the sweeps (shift x mass), >= 0
-    bool kept = false;                         // its contact holds for the step (face on face)
-    BoxId reference = 0;                       // kept: the box whose face the normal is
-    Vec3 localNormal{0.0};                     // kept: the normal in that box's frame
-  };
-  std::vector<PartPair> partPairs_;              // per touching pair, found once per step
-  std::vector<PartPair> spareParts_;             // and its room for refreshBoxContacts
-  std::vector<BodyContact> spareContacts_;       // bodyContacts_'s room for refreshBoxContacts
-  std::vector<BoxId> jointGroup_;                // per box: union-find parent over links and sticks
-  std::vector<BoxId> partRoot_;                  // per box: its group's root, this substep
-  std::vector<Vec3> partShift_;                  // per box: translation (m)
-  std::vector<Real> partWeight_;                 // per box: inverse mass (1/kg), 0 if it cannot move
-  std::vector<Real> partGround_;                 // per box: n_g . shift it needs (m)
-  std::vector<Real> partGroundPush_;             // per box: the ground's push, accumulated (m)
+  std::vector<Obb> frames_;  // per box, fitted in every substep
+  BroadPhase broadPhase_;
+  NarrowPhase narrowPhase_;
+  Parting parting_;
+  std::vector<RigidState> rigid_;                // per box: restitution's rigid-body view
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
-  std::vector<std::uint8_t> touched_;            // per contact point: touched the ground in the last step
-
-  // Solver scratch, sized when things are added so the step never allocates.
-  std::vector<Real> lambda_;       // per stick: XPBD multiplier
-  std::vector<Real> linkSlack_;    // per link: violation it may keep this substep (m; shrinkLinkSlack)
-  int linksApart_ = 0;             // links whose slack is not yet 0
-  std::vector<Vec3> jacobiDelta_;  // per particle
-  std::vector<Real> degree_;       // per particle: sticks attached (Jacobi's scaling)
 
   std::optional<Drag> drag_;
   std::int32_t dragBox_ = -1;  // the box carrying the drag's point, or -1
-  std::function<void(const FreezeReport&)> onFreeze_;
-  std::vector<FreezeReport> freezes_;
+  Guard guard_;
   Profile profile_;
   Real time_ = 0.0;
   long steps_ = 0;

@@ -1,0 +1,61 @@
+#pragma once
+// The constraints between particles (sticks) and between bodies (links, the joints), and their
+// layouts for the passes: the sticks by body (StickLayout) and the links by ragdoll (LinkLayout),
+// in SIMD lanes. It owns the solver's scratch for them: XPBD's multipliers, Jacobi's per-particle
+// sums, and the slack of links created outside their bounds.
+#include <span>
+#include <vector>
+
+#include "physics/box.h"
+#include "physics/constraints.h"
+#include "physics/link_layout.h"
+#include "physics/particles.h"
+#include "physics/settings.h"
+#include "physics/stick_layout.h"
+
+namespace phys {
+
+class ConstraintGraph {
+ public:
+  /// Makes room for one more particle's scratch.
+  void addParticle();
+  /// Adds a stick between existing particles; the layouts are stale until layOut().
+  void addStick(const Stick& stick);
+  /// Adds a link whose points are at `violation` (m, signed as detail::linkViolation) outside its
+  /// bounds now: it closes that at most at maxDepenetrationSpeed (shrinkLinkSlack).
+  void addLink(const Link& link, Real violation);
+  /// True when sticks or links were added since the last layOut().
+  bool stale() const { return stale_; }
+  /// Lays the sticks out by body and the links by ragdoll. Allocates: after things were added.
+  void layOut(std::span<const Box> bodies, std::size_t particleCount);
+
+  std::span<const Stick> sticks() const { return sticks_; }
+  std::span<const Link> links() const { return links_; }
+
+  /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
+  /// multipliers). `h` (s) and `compliance` (m/N) are XPBD's.
+  void relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h, Real compliance);
+  /// Each link's slack: the violation at x* it may keep this substep, less `step` (m). Returns the
+  /// slack, empty when every link is within its bounds.
+  std::span<const Real> shrinkLinkSlack(const Particles& particles, Real step);
+  /// True while some link created outside its bounds has not yet been brought within them.
+  bool linksApart() const { return linksApart_ > 0; }
+  /// The slack as it is (empty when no link has any), without shrinking it.
+  std::span<const Real> linkSlack() const;
+  /// One pass over the links, each widened by its slack (may be empty).
+  void solveLinks(Particles& particles, std::span<const Real> slack) const;
+
+ private:
+  std::vector<Stick> sticks_;
+  std::vector<Link> links_;
+  StickLayout stickLayout_;
+  LinkLayout linkLayout_;
+  bool stale_ = false;
+  std::vector<Real> lambda_;       // per stick: XPBD multiplier
+  std::vector<Real> linkSlack_;    // per link: violation it may keep this substep (m)
+  int linksApart_ = 0;             // links whose slack is not yet 0
+  std::vector<Vec3> jacobiDelta_;  // per particle
+  std::vector<Real> degree_;       // per particle: sticks attached (Jacobi's scaling)
+};
+
+}  // namespace phys

@@ -1,0 +1,56 @@
+#pragma once
+// The points that collide with the ground (loose particles, box corners, capsules' lowest points)
+// and what the passes keep for each. World owns one; the passes (ground.cpp) read and write its
+// arrays.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/box.h"
+#include "physics/collision.h"
+#include "physics/constraints.h"
+
+namespace phys {
+
+/// Per ground contact point, index for index with GroundContacts::points().
+struct GroundContactState {
+  std::vector<Real> push;             ///< unit: m; the ground's correction in the last pass
+  std::vector<std::uint8_t> hit;      ///< pushed in this substep (restitution reads it)
+  std::vector<std::uint8_t> touched;  ///< pushed in the last step
+  std::vector<Real> approach;         ///< unit: m/s; approach speed at the substep's start
+  std::vector<Real> allowance;        ///< unit: m; depth at x*, then the depth it may keep
+};
+
+class GroundContacts {
+ public:
+  /// Adds a point of `body` (-1 for a loose particle), whose friction is the geometric mean of
+  /// its material and the ground's (the ground's alone for a loose particle).
+  void add(const Embedding& point, const Material& material, std::int32_t body, const Material& ground);
+  /// A capsule's point that follows the lowest point of one end sphere (end -1 or +1 along the
+  /// body's y axis): the point added last.
+  void followCapsuleEnd(Real end);
+  /// Drops the points from `count` on (a box's particles' own points, replaced by its corners).
+  void truncate(std::size_t count);
+  /// The ground's material changed: every point's friction again.
+  void combineMaterials(const Material& ground);
+  /// Re-embeds each capsule's points at the lowest points of its end spheres, at its frame of this
+  /// substep (they move over its surface as it turns).
+  void placeCapsulePoints(std::span<const Box> bodies, std::span<const Obb> frames, const Vec3& groundNormal);
+  bool hasCapsules() const { return !capsuleEnds_.empty(); }
+
+  std::span<const GroundContact> points() const { return points_; }
+  std::size_t size() const { return points_.size(); }
+  GroundContactState& state() { return state_; }
+  const GroundContactState& state() const { return state_; }
+
+ private:
+  struct CapsuleEnd {
+    std::uint32_t point;  // which point; its body is the capsule
+    Real end;             // -1 or +1 along the body's y axis
+  };
+  std::vector<GroundContact> points_;
+  GroundContactState state_;
+  std::vector<CapsuleEnd> capsuleEnds_;
+};
+
+}  // namespace phys

@@ -1,0 +1,66 @@
+#pragma once
+// The guard (Stage::Guard): after every substep, a particle gone non-finite or out of the world's
+// bound, and every few substeps a body crushed past recovery, is frozen, put back whole where the
+// guard last found it good, and reported. Nothing non-finite leaves the step.
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "physics/box.h"
+#include "physics/constraints.h"
+#include "physics/particles.h"
+
+namespace phys {
+
+/// What the guard did to a particle that went bad.
+struct FreezeReport {
+  std::string name;     ///< the box's name, else the particle's, else "particle N"
+  std::string reason;   ///< "non-finite position", "left the world bound of B m", "crushed: ...", ...
+  ParticleId particle;  ///< the first bad particle
+  Real time;            ///< unit: s; simulated time of the substep that caught it
+};
+
+/// What the guard reads of the world; it writes only the particles of what it freezes.
+struct GuardInput {
+  Particles& particles;
+  std::span<const Box> bodies;
+  std::span<const Stick> sticks;
+  std::span<const std::string> particleNames;
+  std::span<const std::int32_t> particleBodies;  ///< per particle: its body, or -1
+  Real time = 0.0;                               ///< unit: s; of the substep
+};
+
+class Guard {
+ public:
+  /// A new particle, good where it was created.
+  void addParticle(const Vec3& position) { checked_.push_back(position); }
+  /// A new body, not crushed.
+  void addBody();
+  /// Per particle, where the guard last found it good: the integration writes x there before it
+  /// moves a particle, so a body frozen in a substep goes back to where that substep started.
+  std::span<Vec3> checked() { return checked_; }
+  void setCallback(std::function<void(const FreezeReport&)> callback) { onFreeze_ = std::move(callback); }
+  std::span<const FreezeReport> freezes() const { return freezes_; }
+
+  /// Freezes every particle (and its whole body) that is non-finite or beyond `bound` (m) on an
+  /// axis.
+  void checkParticles(const GuardInput& in, Real bound);
+  /// True when the shapes are due a look (every `interval` s of simulated time).
+  bool shapesDue(Real time) const { return time >= nextShapeCheck_; }
+  /// Freezes each body whose worst stick has been more than kCrushedStickError off its length for
+  /// kCrushedTime running; the next look is `interval` (s) from now.
+  void checkShapes(const GuardInput& in, Real interval);
+
+ private:
+  void freeze(const GuardInput& in, ParticleId bad, const std::string& reason);
+  static Real worstStickError(const GuardInput& in, const Box& box);
+
+  std::vector<Vec3> checked_;       // per particle
+  std::vector<Real> crushedSince_;  // per body: time it went past kCrushedStickError, infinity if not
+  Real nextShapeCheck_ = 0.0;       // s
+  std::function<void(const FreezeReport&)> onFreeze_;
+  std::vector<FreezeReport> freezes_;
+};
+
+}  // namespace phys

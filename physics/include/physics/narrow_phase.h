@@ -1,0 +1,88 @@
+#pragma once
+// The narrow phase (Stage::NarrowPhase): turns the broad phase's pairs into manifolds, each a
+// pair's contact points embedded in its two bodies' particles, once per step with a speculative
+// margin, and measures them again from those points in every substep (docs/physics.md, "Contacts
+// once per step"). It owns the points, the manifolds and the per-point state the passes keep.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/box.h"
+#include "physics/broad_phase.h"
+#include "physics/collision.h"
+#include "physics/constraints.h"
+#include "physics/particles.h"
+
+namespace phys {
+
+/// The contact of one pair of bodies: its points are contacts() [firstContact, firstContact +
+/// contactCount), all with the pair's normal.
+struct Manifold {
+  BoxId a = 0, b = 0;
+  std::uint32_t firstContact = 0, contactCount = 0;
+  Vec3 normal{0.0};    ///< from a towards b
+  Real overlap = 0.0;  ///< unit: m; the deepest point's overlap beyond the slop at x*; < 0 when apart
+  /// Its points hold for the whole step (face on face); every other manifold is collided again in
+  /// every substep.
+  bool kept = false;
+  BoxId reference = 0;    ///< kept: the body whose face the normal is
+  Vec3 localNormal{0.0};  ///< kept: the normal in that body's frame
+};
+
+/// What the passes keep per contact point, index for index with NarrowPhase::contacts().
+struct BodyContactState {
+  std::vector<Real> push;             ///< unit: m; the push of the last pass
+  std::vector<std::uint8_t> touched;  ///< pushed in this substep
+  std::vector<Real> approach;         ///< unit: m/s; approach speed at the substep's start
+  std::vector<Real> allowance;        ///< unit: m; overlap at x*, then what the point may keep
+};
+
+/// What the narrow phase reads of the world in a substep.
+struct NarrowPhaseInput {
+  const Particles& particles;
+  std::span<const Box> bodies;
+  std::span<const Obb> frames;  ///< each body's frame in this substep
+  const BroadPhase& broadPhase;
+  Real featureEpsilon = 0.0;  ///< unit: m (SolverSettings::featureEpsilon)
+  Real contactSlop = 0.0;     ///< unit: m (SolverSettings::contactSlop)
+  Real dt = 0.0;              ///< unit: s; the step
+  Real gravity = 0.0;         ///< unit: m/s^2; |g|
+};
+
+class NarrowPhase {
+ public:
+  /// Makes room for the manifolds and points of `pairs` pairs among `bodies` bodies (room.h), from
+  /// the last substep's count, before any is made, so that the step does not allocate.
+  void reserve(std::size_t pairs, std::size_t bodies);
+  /// After the broad phase found its pairs: every pair's manifold, its points kept when they are
+  /// nearer than the pair can close in the step (speculativeMargin).
+  void build(const NarrowPhaseInput& in);
+  /// In the step's other substeps: kept manifolds follow their reference face; the others are
+  /// collided again.
+  void refresh(const NarrowPhaseInput& in);
+  /// Each point's overlap beyond the slop at x*, where the substep starts, each manifold's
+  /// deepest, and no point touched yet.
+  void measureStarts(const Particles& particles, Real contactSlop);
+
+  /// How far apart two bodies' points can be and still close within the step. unit: m
+  static Real speculativeMargin(const NarrowPhaseInput& in, BoxId a, BoxId b);
+
+  std::span<const BodyContact> contacts() const { return contacts_; }
+  std::span<const Manifold> manifolds() const { return manifolds_; }
+  BodyContactState& state() { return state_; }
+  const BodyContactState& state() const { return state_; }
+
+ private:
+  bool collidePair(const NarrowPhaseInput& in, BoxId a, BoxId b, BoxContact& contact) const;
+  void addManifold(const NarrowPhaseInput& in, BoxId a, BoxId b, const BoxContact& contact);
+  void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts) const;
+  void sizeState();
+
+  std::vector<BodyContact> contacts_;
+  std::vector<Manifold> manifolds_;
+  BodyContactState state_;
+  std::vector<Manifold> spareManifolds_;    // manifolds_'s room for refresh
+  std::vector<BodyContact> spareContacts_;  // contacts_'s room for refresh
+};
+
+}  // namespace phys

@@ -1,0 +1,53 @@
+#pragma once
+// Parting without velocity (Stage::Parting): overlaps deeper than the feature epsilon that a
+// substep starts with are removed by moving bodies whole, x and x* alike, solved together for all
+// pairs and the ground (docs/physics.md, "Where energy could come from nowhere"). Bodies joined by
+// sticks or links move as one group; the groups are a union-find over the bodies it owns.
+#include <span>
+#include <vector>
+
+#include "physics/box.h"
+#include "physics/constraints.h"
+#include "physics/narrow_phase.h"
+#include "physics/particles.h"
+#include "physics/settings.h"
+
+namespace phys {
+
+/// The ground as the parting sees it: its contact points and their start depths.
+struct PartingGround {
+  bool enabled = false;
+  Vec3 normal{0.0, 1.0, 0.0};
+  std::span<const GroundContact> contacts;
+  std::span<Real> allowance;  ///< unit: m; per contact, its depth at x*: moves with the bodies
+};
+
+class Parting {
+ public:
+  /// Makes room for one more body, a group of its own, whose id is the number of bodies before it.
+  void addBody();
+  /// The two bodies move as one from now on (a stick or a link joins them).
+  void join(BoxId a, BoxId b);
+  /// Makes room for the pairs' scratch (room.h), so that the step does not allocate.
+  void reserve(std::size_t pairs, std::size_t bodies);
+  /// Parts the overlaps deeper than `featureEpsilon` (m) that the manifolds and the ground start
+  /// the substep with; the contacts' start overlaps (`contactAllowance`, the ground's) move with
+  /// the bodies.
+  void part(Particles& particles, std::span<const Box> bodies, std::span<const Manifold> manifolds,
+            std::span<Real> contactAllowance, const PartingGround& ground, Real featureEpsilon,
+            const PartingSettings& settings);
+
+ private:
+  BoxId group(BoxId id);
+
+  std::vector<BoxId> parent_;     // per body: union-find parent over links and sticks
+  std::vector<BoxId> root_;       // per body: its group's root, this substep
+  std::vector<Vec3> shift_;       // per body: translation (m)
+  std::vector<Real> weight_;      // per body: inverse mass (1/kg), 0 if it cannot move
+  std::vector<Real> groundNeed_;  // per body: n_g . shift it needs (m)
+  std::vector<Real> groundPush_;  // per body: the ground's push, accumulated (m)
+  std::vector<Real> need_;        // per manifold: the least n . (t_b - t_a) the parting must reach (m)
+  std::vector<Real> push_;        // per manifold: accumulated by the sweeps (shift x mass, kg m), >= 0
+};
+
+}  // namespace phys
