@@ -85,12 +85,12 @@ std::optional<phys::Vec3> parseVector(const std::string& text) {
 
 // The body's place in bodyPositions(): boxes by id, then loose particles by id.
 std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name) {
-  const auto boxes = scene.world.boxes();
+  const auto boxes = scene.world.bodies();
   for (const scenes::NamedBody& b : scene.bodies) {
     if (b.name != name) continue;
-    if (b.kind == scenes::NamedBody::Kind::Box) return b.index;
+    if (b.kind == scenes::NamedBody::Kind::Body) return b.index;
     std::vector<bool> inBox(scene.world.particles().size(), false);
-    for (const phys::Box& box : boxes) {
+    for (const phys::Body& box : boxes) {
       for (int k = 0; k < box.particleCount; ++k)
         inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
     }

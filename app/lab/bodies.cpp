@@ -3,11 +3,11 @@
 namespace lab {
 
 std::vector<phys::Vec3> bodyPositions(const phys::World& world) {
-  const auto boxes = world.boxes();
+  const auto boxes = world.bodies();
   std::vector<phys::Vec3> out;
   std::vector<bool> inBox(world.particles().size(), false);
-  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
-    out.push_back(world.boxPose(id).center);
+  for (phys::BodyId id = 0; id < boxes.size(); ++id) {
+    out.push_back(world.bodyPose(id).center);
     for (int k = 0; k < boxes[id].particleCount; ++k)
       inBox[boxes[id].firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
@@ -20,9 +20,9 @@ std::vector<phys::Vec3> bodyPositions(const phys::World& world) {
 std::vector<phys::Quat> bodyOrientations(const phys::World& world) {
   std::vector<phys::Quat> out;
   std::size_t inBoxes = 0;
-  for (phys::BoxId id = 0; id < world.boxes().size(); ++id) {
-    out.push_back(world.boxPose(id).orientation);
-    inBoxes += static_cast<std::size_t>(world.boxes()[id].particleCount);
+  for (phys::BodyId id = 0; id < world.bodies().size(); ++id) {
+    out.push_back(world.bodyPose(id).orientation);
+    inBoxes += static_cast<std::size_t>(world.bodies()[id].particleCount);
   }
   // Then the loose particles, as bodyPositions lists them: boxes share no particle.
   out.resize(out.size() + world.particles().size() - inBoxes, phys::Quat(1.0, 0.0, 0.0, 0.0));

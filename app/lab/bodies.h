@@ -1,6 +1,6 @@
 #pragma once
 // The bodies of a world as the lab compares them, ours and the peers' alike: every box by its
-// centre (World::boxes() order), then every loose particle, one that belongs to no box (id
+// centre (World::bodies() order), then every loose particle, one that belongs to no box (id
 // order). A peer engine builds one rigid body for each, in the same order, so one list of
 // positions serves both.
 #include <vector>
@@ -10,7 +10,7 @@
 namespace lab {
 
 std::vector<phys::Vec3> bodyPositions(const phys::World& world);
-/// The same bodies' orientations: a box's fitted pose (World::boxPose), identity for a particle.
+/// The same bodies' orientations: a box's fitted pose (World::bodyPose), identity for a particle.
 std::vector<phys::Quat> bodyOrientations(const phys::World& world);
 
 }  // namespace lab

@@ -333,7 +333,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   }
   const phys::World& world = scene->world;
   std::size_t loose = world.particles().size(), capsules = 0;
-  for (const phys::Box& b : world.boxes()) {
+  for (const phys::Body& b : world.bodies()) {
     loose -= static_cast<std::size_t>(b.particleCount);
     capsules += b.shape == phys::Shape::Capsule ? 1 : 0;
   }
@@ -344,7 +344,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   // docs/results.md quotes says the same on every machine.
   const std::filesystem::path shown = shownPath(file, dataDir(where));
   out << "scene     " << scene->name << " (" << shown.string()
-      << "): " << count(world.boxes().size() - capsules, "box", "boxes") << ", "
+      << "): " << count(world.bodies().size() - capsules, "box", "boxes") << ", "
       << (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string())
       << count(loose, "loose particle", "loose particles") << ", "
       << count(world.links().size(), "link", "links") << "\n";

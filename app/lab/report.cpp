@@ -158,9 +158,9 @@ std::string summaryText(const RunResult& r) {
 std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody> bodies) {
   std::string s = "name,x,y,z,qw,qx,qy,qz\n";
   for (const scenes::NamedBody& b : bodies) {
-    phys::BoxPose pose;  // a particle keeps the identity orientation
-    if (b.kind == scenes::NamedBody::Kind::Box) {
-      pose = world.boxPose(b.index);
+    phys::BodyPose pose;  // a particle keeps the identity orientation
+    if (b.kind == scenes::NamedBody::Kind::Body) {
+      pose = world.bodyPose(b.index);
     } else {
       pose.center = world.particles().position.at(b.index);
     }

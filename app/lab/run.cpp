@@ -76,7 +76,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   r.particles = world.particles().size();
   r.constraints = world.sticks().size() + world.links().size();
   r.joints = world.links().size();
-  r.bodies = world.boxes().size();
+  r.bodies = world.bodies().size();
   r.energyInitial = world.metrics().energy();
 
   // Every step's total is kept for the median (up to 80 MB at the 10^7 step limit); reserving

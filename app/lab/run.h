@@ -23,7 +23,7 @@ struct RunResult {
   std::size_t particles = 0;    ///< world.particles().size()
   std::size_t constraints = 0;  ///< sticks and links: world.sticks().size() + world.links().size()
   std::size_t joints = 0;       ///< links (joints) alone
-  std::size_t bodies = 0;       ///< world.boxes().size()
+  std::size_t bodies = 0;       ///< world.bodies().size()
   double energyInitial = 0.0;   ///< unit: J; before the first step
   phys::Metrics final;          ///< after the last step
   double wallMs = 0.0;          ///< unit: ms; the whole stepping loop, steady_clock

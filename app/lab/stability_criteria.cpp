@@ -126,28 +126,28 @@ const scenes::NamedBody& findBody(ExpectReader& r, const scenes::Scene& scene, c
 // A named body's index in bodyPositions() order: boxes first, then the loose particles by id.
 std::size_t positionIndex(const scenes::Scene& scene, const scenes::NamedBody& body) {
   const phys::World& world = scene.world;
-  if (body.kind == scenes::NamedBody::Kind::Box) return body.index;
+  if (body.kind == scenes::NamedBody::Kind::Body) return body.index;
   std::vector<bool> inBox(world.particles().size(), false);
-  for (const phys::Box& box : world.boxes()) {
+  for (const phys::Body& box : world.bodies()) {
     for (int k = 0; k < box.particleCount; ++k)
       inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
-  std::size_t index = world.boxes().size();
+  std::size_t index = world.bodies().size();
   for (std::size_t i = 0; i < body.index; ++i) index += inBox[i] ? 0 : 1;
   return index;
 }
 
 phys::Vec3 loadedPosition(const scenes::Scene& scene, const scenes::NamedBody& body) {
-  if (body.kind == scenes::NamedBody::Kind::Box) return scene.world.boxPose(body.index).center;
+  if (body.kind == scenes::NamedBody::Kind::Body) return scene.world.bodyPose(body.index).center;
   return scene.world.particles().position[body.index];
 }
 
 void readBodies(ExpectReader& r, const scenes::Scene& scene, Criterion& c, bool allowAll) {
   c.body = r.required("body", allowAll ? "a body's name, or * for every body" : "a body's name");
   if (allowAll && c.body == "*") {
-    const std::size_t count = scene.world.boxes().size() + [&] {
+    const std::size_t count = scene.world.bodies().size() + [&] {
       std::size_t loose = scene.world.particles().size();
-      for (const phys::Box& box : scene.world.boxes()) loose -= static_cast<std::size_t>(box.particleCount);
+      for (const phys::Body& box : scene.world.bodies()) loose -= static_cast<std::size_t>(box.particleCount);
       return loose;
     }();
     for (std::size_t i = 0; i < count; ++i) c.bodies.push_back(i);
@@ -180,9 +180,9 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
 void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   c.body = r.required("body", "a box's name");
   const scenes::NamedBody& body = findBody(r, scene, c.body);
-  if (body.kind != scenes::NamedBody::Kind::Box)
+  if (body.kind != scenes::NamedBody::Kind::Body)
     r.fail("body", "'" + c.body + "' is a particle; flips needs a box");
-  const phys::Vec3 h = scene.world.boxes()[body.index].halfExtents;
+  const phys::Vec3 h = scene.world.bodies()[body.index].halfExtents;
   if (h.x == h.y || h.y == h.z || h.x == h.z) {
     r.fail("body", "'" + c.body + "' needs three different side lengths to have a middle axis");
   }

@@ -35,7 +35,7 @@ struct Criterion {
   int line = 0;                     ///< of the <expect> in the scene file
   std::string body;                 ///< as written: a body's name, "*" (drift), or "" (none taken)
   std::vector<std::size_t> bodies;  ///< the body's index in bodyPositions() order (all for "*")
-  std::int64_t boxId = -1;          ///< flips: the box (World::boxes() index)
+  std::int64_t boxId = -1;          ///< flips: the box (World::bodies() index)
   int fromStep = 0;                 ///< the window, in World::step() counts: from this state...
   int toStep = 0;                   ///< ...to this one, both included (0 is the loaded state)
   double from = 0.0, to = 0.0;      ///< unit: s; the window as written

@@ -7,7 +7,7 @@
 #include "bodies.h"
 #include "peers/peer_scene.h"
 #include "peers/pose_measures.h"
-#include "physics/box.h"
+#include "physics/body.h"
 
 namespace lab::stability {
 namespace {
@@ -93,9 +93,9 @@ WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World
     : criteria_(criteria) {
   // bodies.h's order, kept as ids so a criterion reads only its own bodies, not all of them.
   std::vector<bool> inBox(world.particles().size(), false);
-  for (phys::BoxId id = 0; id < world.boxes().size(); ++id) {
+  for (phys::BodyId id = 0; id < world.bodies().size(); ++id) {
     bodies_.push_back({true, id});
-    const phys::Box& box = world.boxes()[id];
+    const phys::Body& box = world.bodies()[id];
     for (int k = 0; k < box.particleCount; ++k)
       inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
   }
@@ -108,7 +108,7 @@ WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World
 
 phys::Vec3 WorldJudge::position(const phys::World& world, std::size_t body) const {
   const BodyRef& b = bodies_.at(body);
-  return b.box ? world.boxPose(b.id).center : world.particles().position[b.id];
+  return b.box ? world.bodyPose(b.id).center : world.particles().position[b.id];
 }
 
 void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& world, int step) const {
@@ -124,9 +124,9 @@ void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& wo
 }
 
 void WorldJudge::sampleFlips(const Criterion& c, State& s, const phys::World& world, int step) const {
-  const auto id = static_cast<phys::BoxId>(c.boxId);
+  const auto id = static_cast<phys::BodyId>(c.boxId);
   const phys::Vec3 axis =
-      world.boxPose(id).orientation * FlipCounter::middleAxis(world.boxes()[id].halfExtents);
+      world.bodyPose(id).orientation * FlipCounter::middleAxis(world.bodies()[id].halfExtents);
   if (step == c.fromStep)
     s.flips.start(axis);
   else
@@ -168,11 +168,11 @@ namespace {
 // Each particle's index in bodies.h order when it is a loose particle, else -1 (a box's).
 std::vector<std::int64_t> looseIndex(const phys::World& world) {
   std::vector<std::int64_t> index(world.particles().size(), 0);
-  for (const phys::Box& box : world.boxes()) {
+  for (const phys::Body& box : world.bodies()) {
     for (int k = 0; k < box.particleCount; ++k)
       index[box.firstParticle + static_cast<phys::ParticleId>(k)] = -1;
   }
-  std::int64_t next = static_cast<std::int64_t>(world.boxes().size());
+  std::int64_t next = static_cast<std::int64_t>(world.bodies().size());
   for (std::int64_t& i : index) i = i < 0 ? -1 : next++;
   return index;
 }

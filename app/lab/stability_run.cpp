@@ -35,7 +35,7 @@ SuiteScene loadSuiteScene(const std::filesystem::path& file) {
   s.criteria = parseCriteria(scene);
   s.steps = runSteps(s.criteria);
   s.dt = scene.world.solverSettings().dt;
-  s.boxes = scene.world.boxes().size();
+  s.boxes = scene.world.bodies().size();
   return s;
 }
 

@@ -18,7 +18,7 @@ std::size_t particlesWhenLoadedWith(const std::filesystem::path& file, const sce
   return scenes::loadSceneFile(file, options).world.particles().size();
 }
 
-scenes::LoadOptions withBoxModel(phys::BoxModel m) {
+scenes::LoadOptions withBoxModel(phys::BodyModel m) {
   scenes::LoadOptions o;
   o.boxModel = m;
   return o;
@@ -53,8 +53,8 @@ std::string inQuotes(std::string_view text) {
 
 SceneModels sceneModels(const std::filesystem::path& file) {
   const std::size_t asWritten = particlesWhenLoadedWith(file, {});
-  const std::size_t corners = particlesWhenLoadedWith(file, withBoxModel(phys::BoxModel::Corners));
-  const std::size_t tetra = particlesWhenLoadedWith(file, withBoxModel(phys::BoxModel::Tetra));
+  const std::size_t corners = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Corners));
+  const std::size_t tetra = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Tetra));
   const std::size_t seed = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Seed));
   const std::size_t lean = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Lean));
 
@@ -70,9 +70,9 @@ SceneModels sceneModels(const std::filesystem::path& file) {
   std::vector<std::string> parts;
   if (m.boxes) {
     if (asWritten == corners)
-      c.options.boxModel = phys::BoxModel::Corners;
+      c.options.boxModel = phys::BodyModel::Corners;
     else if (asWritten == tetra)
-      c.options.boxModel = phys::BoxModel::Tetra;
+      c.options.boxModel = phys::BodyModel::Tetra;
     if (c.options.boxModel) parts.emplace_back(phys::toString(*c.options.boxModel));
   }
   if (m.ragdolls) {
@@ -93,7 +93,7 @@ SceneModels sceneModels(const std::filesystem::path& file) {
 }
 
 std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error) {
-  if (const auto box = phys::parseBoxModel(name)) {
+  if (const auto box = phys::parseBodyModel(name)) {
     if (!models.boxes) {
       error = inQuotes(name) + " is a box model and the scene has no boxes";
       return std::nullopt;
@@ -114,8 +114,8 @@ std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels&
 std::vector<ModelChoice> allModelChoices(const SceneModels& models) {
   std::vector<ModelChoice> boxes{ModelChoice{"", {}}};
   if (models.boxes) {
-    boxes = {ModelChoice{"corners", withBoxModel(phys::BoxModel::Corners)},
-             ModelChoice{"tetra", withBoxModel(phys::BoxModel::Tetra)}};
+    boxes = {ModelChoice{"corners", withBoxModel(phys::BodyModel::Corners)},
+             ModelChoice{"tetra", withBoxModel(phys::BodyModel::Tetra)}};
   }
   if (!models.boxes && !models.ragdolls) return {models.asFile};
   std::vector<ModelChoice> out;

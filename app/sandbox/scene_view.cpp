@@ -27,19 +27,19 @@ std::unique_ptr<engine::GpuMesh> loadModel(const std::filesystem::path& file) {
 
 // Neighbouring boxes in one colour would merge into one block; each gets its own brightness,
 // from 85% to 115% by the golden ratio, so the hue (what the tests look for) stays the same.
-float boxShade(phys::BoxId id) {
+float boxShade(phys::BodyId id) {
   const float spread = std::fmod(static_cast<float>(id) * 0.618034f, 1.0f);
   return 0.85f + 0.3f * spread;
 }
 
 // Turned and placed by the pose fitted to the body's particles.
-glm::mat4 poseMatrix(const phys::BoxPose& pose) {
+glm::mat4 poseMatrix(const phys::BodyPose& pose) {
   return glm::translate(glm::mat4(1.0f), glm::vec3(pose.center)) *
          glm::mat4_cast(glm::quat(pose.orientation));
 }
 
 // The box models are unit cubes about the origin: scaled by the box's size, then posed.
-glm::mat4 boxModelMatrix(const phys::BoxPose& pose, const phys::Vec3& size) {
+glm::mat4 boxModelMatrix(const phys::BodyPose& pose, const phys::Vec3& size) {
   return glm::scale(poseMatrix(pose), glm::vec3(size));
 }
 
@@ -67,9 +67,9 @@ SceneView::SceneView(engine::Renderer& renderer, const std::filesystem::path& mo
       limbMesh_(loadModel(modelsDir / "limb.obj")) {}
 
 void SceneView::findJointedBoxes(const phys::World& world) {
-  const auto boxes = world.boxes();
+  const auto boxes = world.bodies();
   bodyOf_.assign(world.particles().size(), -1);
-  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
+  for (phys::BodyId id = 0; id < boxes.size(); ++id) {
     std::fill_n(bodyOf_.begin() + boxes[id].firstParticle, boxes[id].particleCount,
                 static_cast<std::int32_t>(id));
   }
@@ -92,11 +92,11 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     // Edges of the fine capsule mesh would crowd into a solid patch on a ragdoll's limbs.
     const auto capsuleDetail =
         wireframe ? engine::CapsuleMeshCache::kCoarse : engine::CapsuleMeshCache::kFine;
-    const auto boxes = world.boxes();
-    for (phys::BoxId id = 0; id < boxes.size(); ++id) {
-      const phys::Box& box = boxes[id];
+    const auto boxes = world.bodies();
+    for (phys::BodyId id = 0; id < boxes.size(); ++id) {
+      const phys::Body& box = boxes[id];
       const glm::vec3 color = tint ? tint->color : boxShade(id) * kBoxColor;
-      const phys::BoxPose pose = world.boxPose(id);
+      const phys::BodyPose pose = world.bodyPose(id);
       if (box.shape == phys::Shape::Capsule) {
         // Built at its own size: scaling one capsule to another would squash its caps.
         // Within what the cache takes, so that no size the physics allows can stop the drawing.

@@ -25,8 +25,8 @@ phys::World emptyLike(const phys::World& world) {
 
 // Where the embedded point sits in the box's frame (so the same point can be found on the same
 // box in another run, wherever that box is now).
-phys::Vec3 toLocal(const phys::World& w, phys::BoxId box, const phys::Vec3& p) {
-  const phys::BoxPose pose = w.boxPose(box);
+phys::Vec3 toLocal(const phys::World& w, phys::BodyId box, const phys::Vec3& p) {
+  const phys::BodyPose pose = w.bodyPose(box);
   return glm::inverse(pose.orientation) * (p - pose.center);
 }
 
@@ -70,8 +70,8 @@ phys::Vec3 gravityAlong(const phys::Vec3& direction, double strength) {
   return g;
 }
 
-phys::Vec3 toWorld(const phys::World& w, phys::BoxId box, const phys::Vec3& local) {
-  const phys::BoxPose pose = w.boxPose(box);
+phys::Vec3 toWorld(const phys::World& w, phys::BodyId box, const phys::Vec3& local) {
+  const phys::BodyPose pose = w.bodyPose(box);
   return pose.center + pose.orientation * local;
 }
 
@@ -276,13 +276,13 @@ std::string Session::changeDamping(double delta) {
 }
 
 std::string Session::spawnBox(const phys::Vec3& at, const phys::Vec3& velocity) {
-  phys::BoxDesc d;
+  phys::BodyDesc d;
   d.name = "thrown box " + std::to_string(spawned_ + 1);
   d.center = at;
   d.size = phys::Vec3(kSpawnBoxSize);
   d.mass = kSpawnBoxMass;
   d.velocity = velocity;
-  return spawn(at, "threw a box", [&](phys::World& w) { w.addBox(d); });
+  return spawn(at, "threw a box", [&](phys::World& w) { w.addBody(d); });
 }
 
 std::string Session::spawn(const phys::Vec3& at, const std::string& done,

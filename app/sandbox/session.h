@@ -115,7 +115,7 @@ class Session {
  private:
   struct DragState {
     bool isBox = false;
-    std::uint32_t index = 0;     // BoxId or ParticleId
+    std::uint32_t index = 0;     // BodyId or ParticleId
     phys::Vec3 local{0.0};       // the picked point in the box's frame
     phys::Vec3 planePoint{0.0};  // the plane the target moves in
     phys::Vec3 planeNormal{0.0};

@@ -18,7 +18,7 @@ std::vector<StatsLine> statsLines(const phys::World& world) {
   lines.push_back({std::to_string(world.particles().size()) + " particles, " +
                    std::to_string(world.sticks().size()) + " sticks, " +
                    std::to_string(world.links().size()) + " joints"});
-  lines.push_back({std::to_string(world.boxes().size()) + " bodies, " + std::to_string(m.contacts) +
+  lines.push_back({std::to_string(world.bodies().size()) + " bodies, " + std::to_string(m.contacts) +
                    " contacts, " + std::to_string(world.broadPhasePairs()) + " broad-phase pairs"});
   lines.push_back({"stick error max " + figure("%.2e", m.maxConstraintError) + " rms " +
                    figure("%.2e", m.rmsConstraintError)});

@@ -28,8 +28,8 @@ void DebugLines::addLine(const glm::vec3& a, const glm::vec3& b, const glm::vec3
   vertices_.push_back({b, color});
 }
 
-void DebugLines::addBox(const glm::vec3& center, const glm::mat3& rotation, const glm::vec3& halfExtents,
-                        const glm::vec3& color) {
+void DebugLines::addBody(const glm::vec3& center, const glm::mat3& rotation, const glm::vec3& halfExtents,
+                         const glm::vec3& color) {
   glm::vec3 corner[8];
   for (int k = 0; k < 8; ++k) {
     const glm::vec3 local{(k & 1) ? halfExtents.x : -halfExtents.x, (k & 2) ? halfExtents.y : -halfExtents.y,

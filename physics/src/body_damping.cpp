@@ -14,7 +14,7 @@
 
 namespace phys::detail {
 
-bool massProperties(const Particles& p, const Box& box, MassProperties& out) {
+bool massProperties(const Particles& p, const Body& box, MassProperties& out) {
   const ParticleId first = box.firstParticle, end = first + static_cast<ParticleId>(box.particleCount);
   out = {};
   for (ParticleId i = first; i < end; ++i) {
@@ -31,7 +31,7 @@ bool massProperties(const Particles& p, const Box& box, MassProperties& out) {
   return std::abs(glm::determinant(out.inertia)) > 0.0;
 }
 
-RigidMotion rigidMotion(const Particles& p, const Box& box, const MassProperties& m) {
+RigidMotion rigidMotion(const Particles& p, const Body& box, const MassProperties& m) {
   const ParticleId first = box.firstParticle, end = first + static_cast<ParticleId>(box.particleCount);
   Vec3 momentum(0.0), angularMomentum(0.0);
   for (ParticleId i = first; i < end; ++i) {
@@ -42,12 +42,12 @@ RigidMotion rigidMotion(const Particles& p, const Box& box, const MassProperties
   return {momentum / m.mass, glm::inverse(m.inertia) * angularMomentum};
 }
 
-void dampBodyMotion(Particles& p, std::span<const Box> boxes, const BodyLayout& layout, Real fraction) {
+void dampBodyMotion(Particles& p, std::span<const Body> boxes, const BodyLayout& layout, Real fraction) {
   if (fraction <= 0.0) return;
   dampBodyLanes(dampLaneArguments(p, layout, fraction));  // the same, eight bodies at a time
   MassProperties m;
-  for (const BoxId b : layout.others()) {
-    const Box& box = boxes[b];
+  for (const BodyId b : layout.others()) {
+    const Body& box = boxes[b];
     if (!massProperties(p, box, m)) continue;  // pinned, frozen or crushed flat: left alone
     // Motions are per substep (x - x*), so no h is needed: velocity times h throughout.
     const RigidMotion rigid = rigidMotion(p, box, m);

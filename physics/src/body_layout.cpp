@@ -7,18 +7,18 @@
 
 namespace phys {
 
-void BodyLayout::build(std::span<const Box> boxes) {
+void BodyLayout::build(std::span<const Body> boxes) {
   lanes_.clear();
   others_.clear();
-  std::map<int, std::vector<BoxId>> waiting;  // by particle count
+  std::map<int, std::vector<BodyId>> waiting;  // by particle count
   for (std::size_t b = 0; b < boxes.size(); ++b) {
-    const Box& box = boxes[b];
-    std::vector<BoxId>& alike = waiting[box.particleCount];
+    const Body& box = boxes[b];
+    std::vector<BodyId>& alike = waiting[box.particleCount];
     if (box.particleCount > kMaxBlockParticles) {
-      others_.push_back(static_cast<BoxId>(b));
+      others_.push_back(static_cast<BodyId>(b));
       continue;
     }
-    alike.push_back(static_cast<BoxId>(b));
+    alike.push_back(static_cast<BodyId>(b));
     if (alike.size() < kBodyLanes) continue;
     BodyLanes lanes;
     lanes.particleCount = static_cast<std::uint16_t>(box.particleCount);

@@ -12,15 +12,15 @@
 
 namespace phys {
 
-void World::ignoreCollision(BoxId a, BoxId b) {
-  if (a >= boxes_.size() || b >= boxes_.size() || a == b) {
+void World::ignoreCollision(BodyId a, BodyId b) {
+  if (a >= bodies_.size() || b >= bodies_.size() || a == b) {
     throw std::invalid_argument("ignoreCollision: box ids must exist and differ");
   }
   broadPhase_.ignore(a, b);
   layoutsStale_ = true;  // the filters' index
 }
 
-std::vector<std::pair<BoxId, BoxId>> World::ignoredCollisions() const {
+std::vector<std::pair<BodyId, BodyId>> World::ignoredCollisions() const {
   return broadPhase_.ignoredPairs();
 }
 
@@ -28,17 +28,17 @@ std::vector<std::pair<BoxId, BoxId>> World::ignoredCollisions() const {
 void World::joinBodies(ParticleId a, ParticleId b) {
   const std::int32_t ba = particleBody_[a], bb = particleBody_[b];
   if (ba < 0 || bb < 0 || ba == bb) return;
-  parting_.join(static_cast<BoxId>(ba), static_cast<BoxId>(bb));
+  parting_.join(static_cast<BodyId>(ba), static_cast<BodyId>(bb));
 }
 
 // Centre: the mean of the corners. Axes: the mean edge along each, made orthonormal. Cheaper
-// than the polar decomposition boxPose uses, and as good for a box that keeps its shape.
+// than the polar decomposition bodyPose uses, and as good for a box that keeps its shape.
 void World::updateBoxFrames() {
-  for (BoxId id = 0; id < boxes_.size(); ++id) {
-    const Box& box = boxes_[id];
+  for (BodyId id = 0; id < bodies_.size(); ++id) {
+    const Body& box = bodies_[id];
     Obb& f = frames_[id];
     Vec3 ex, ey;
-    if (box.model == BoxModel::Tetra) {
+    if (box.model == BodyModel::Tetra) {
       // The same sums from the 4 particles (at corners 0, 3, 5, 6): corner k is sum_j (1 + s_j .
       // s_k) / 4 p_j, so the mean corner is the mean particle and the x edges sum to
       // 2 sum_j s_jx p_j. A third of the work of embedding 8 corners.

@@ -18,15 +18,15 @@ using detail::kRoomPerBody;
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
-std::uint64_t pairKey(BoxId a, BoxId b) {
-  const BoxId lo = std::min(a, b), hi = std::max(a, b);
+std::uint64_t pairKey(BodyId a, BodyId b) {
+  const BodyId lo = std::min(a, b), hi = std::max(a, b);
   return (static_cast<std::uint64_t>(lo) << 32) | hi;
 }
 
 }  // namespace
 
 void BroadPhase::addBody() {
-  const auto id = static_cast<BoxId>(sweep_.size());
+  const auto id = static_cast<BodyId>(sweep_.size());
   sweep_.push_back({0.0, 0.0, id});
   bounds_.emplace_back();
   travel_.push_back(0.0);
@@ -35,7 +35,7 @@ void BroadPhase::addBody() {
   stale_ = true;
 }
 
-void BroadPhase::ignore(BoxId a, BoxId b) {
+void BroadPhase::ignore(BodyId a, BodyId b) {
   const std::uint64_t key = pairKey(a, b);
   const auto at = std::lower_bound(ignored_.begin(), ignored_.end(), key);
   if (at == ignored_.end() || *at != key) ignored_.insert(at, key);
@@ -46,7 +46,7 @@ std::vector<BroadPhase::Pair> BroadPhase::ignoredPairs() const {
   std::vector<Pair> out;
   out.reserve(ignored_.size());
   for (const std::uint64_t key : ignored_) {
-    out.emplace_back(static_cast<BoxId>(key >> 32), static_cast<BoxId>(key & 0xffffffffu));
+    out.emplace_back(static_cast<BodyId>(key >> 32), static_cast<BodyId>(key & 0xffffffffu));
   }
   return out;
 }
@@ -58,16 +58,16 @@ void BroadPhase::indexFilters() {
   for (std::size_t b = 0; b < n; ++b) ignoredStart_[b + 1] += ignoredStart_[b];
 }
 
-bool BroadPhase::collides(std::span<const Box> bodies, BoxId a, BoxId b) const {
-  const Box& ba = bodies[a];
-  const Box& bb = bodies[b];
+bool BroadPhase::collides(std::span<const Body> bodies, BodyId a, BodyId b) const {
+  const Body& ba = bodies[a];
+  const Body& bb = bodies[b];
   if ((ba.collisionGroup & bb.collisionMask) == 0 || (bb.collisionGroup & ba.collisionMask) == 0)
     return false;
   // The keys whose smaller id is `lo` are consecutive (sorted by it): a ragdoll part's few joints,
   // where a search of the whole world's list missed the cache at every step.
-  const BoxId lo = std::min(a, b), hi = std::max(a, b);
+  const BodyId lo = std::min(a, b), hi = std::max(a, b);
   for (std::uint32_t k = ignoredStart_[lo]; k < ignoredStart_[lo + 1]; ++k) {
-    if (static_cast<BoxId>(ignored_[k]) == hi) return false;
+    if (static_cast<BodyId>(ignored_[k]) == hi) return false;
   }
   return true;
 }
@@ -102,13 +102,13 @@ bool BroadPhase::chooseSweepAxis(std::span<const Obb> frames) {
 // impact, a joint, a drag gave it speed) makes the next substep find them again (needsUpdate). Found every
 // substep, the pairs of Bullet's 136-ragdoll pile (each ragdoll's bounds overlap ~200 others' along any one
 // axis) cost a fifth of the step.
-void BroadPhase::update(const Particles& particles, std::span<const Box> bodies, std::span<const Obb> frames,
+void BroadPhase::update(const Particles& particles, std::span<const Body> bodies, std::span<const Obb> frames,
                         const BroadPhaseStep& step) {
   const Real margin = step.featureEpsilon;
   const Real dt = step.dt, h = step.h;
   const Real g = step.gravity;
-  for (BoxId id = 0; id < bodies.size(); ++id) {
-    const Box& box = bodies[id];
+  for (BodyId id = 0; id < bodies.size(); ++id) {
+    const Body& box = bodies[id];
     Real fastest = 0.0;  // squared displacement over the last substep
     Vec3 mean(0.0);
     for (int j = 0; j < box.particleCount; ++j) {
@@ -156,7 +156,7 @@ void BroadPhase::update(const Particles& particles, std::span<const Box> bodies,
   unsortedPairs_.clear();
   findPairsInStrips(bodies, step.strips);
   sortPairsByBody();
-  for (BoxId id = 0; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
+  for (BodyId id = 0; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
   stale_ = false;
   const std::size_t room = kRoomPerBody * bodies.size();
   keepRoom(pairs_, pairs_.size(), room);
@@ -166,7 +166,7 @@ void BroadPhase::update(const Particles& particles, std::span<const Box> bodies,
 // A body's corners moved at most |dc| + sum_k |da_k| h_k since the pairs were found.
 bool BroadPhase::needsUpdate(std::span<const Obb> frames) const {
   if (stale_) return true;
-  for (BoxId id = 0; id < frames.size(); ++id) {
+  for (BodyId id = 0; id < frames.size(); ++id) {
     const Obb& now = frames[id];
     const Obb& then = pairFrames_[id];
     Real moved = glm::length(now.center - then.center);
@@ -187,7 +187,7 @@ bool BroadPhase::needsUpdate(std::span<const Obb> frames) const {
 // cross more than settings.maxStripsPerBody strips (a floor, or bounds grown by a huge speed) is left out of
 // the strips and tested against every box. The pairs found are the same set, in the same sorted
 // order, as one sweep finds: the state after a step does not depend on the strips.
-void BroadPhase::findPairsInStrips(std::span<const Box> bodies, const BroadPhaseSettings& settings) {
+void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings) {
   const std::size_t n = bodies.size();
   const int s = sweepAxis_;
   const int other1 = (s + 1) % 3, other2 = (s + 2) % 3;
@@ -220,7 +220,7 @@ void BroadPhase::findPairsInStrips(std::span<const Box> bodies, const BroadPhase
     if (!(k > 0.0)) return 0;  // also NaN
     return k >= static_cast<Real>(strips - 1) ? strips - 1 : static_cast<std::size_t>(k);
   };
-  auto wide = [&](BoxId id) {
+  auto wide = [&](BodyId id) {
     return stripOf(bounds_[id].hi[t]) - stripOf(bounds_[id].lo[t]) >= settings.maxStripsPerBody;
   };
   auto overlap = [&](const Bounds& a, const Bounds& b, int axis) {
@@ -258,10 +258,10 @@ void BroadPhase::findPairsInStrips(std::span<const Box> bodies, const BroadPhase
   for (std::size_t k = 0; k < strips; ++k) {
     const std::size_t end = stripStart_[k + 1];
     for (std::size_t i = stripStart_[k]; i < end; ++i) {
-      const BoxId a = stripBodies_[i];
+      const BodyId a = stripBodies_[i];
       const Bounds& ba = bounds_[a];
       for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= ba.hi[s]; ++j) {
-        const BoxId b = stripBodies_[j];
+        const BodyId b = stripBodies_[j];
         const Bounds& bb = bounds_[b];
         if (!overlap(ba, bb, t) || !overlap(ba, bb, u)) continue;
         if (stripOf(std::max(ba.lo[t], bb.lo[t])) != k) continue;  // kept in another strip
@@ -269,8 +269,8 @@ void BroadPhase::findPairsInStrips(std::span<const Box> bodies, const BroadPhase
       }
     }
   }
-  for (const BoxId w : wideBodies_) {
-    for (BoxId b = 0; b < n; ++b) {
+  for (const BodyId w : wideBodies_) {
+    for (BodyId b = 0; b < n; ++b) {
       if (b == w || (b < w && wide(b))) continue;  // two wide boxes: once, from the lower id
       const Bounds &bw = bounds_[w], &bb = bounds_[b];
       if (overlap(bw, bb, s) && overlap(bw, bb, t) && overlap(bw, bb, u) && collides(bodies, w, b)) {

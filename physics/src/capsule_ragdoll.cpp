@@ -150,13 +150,13 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
   for (const PartLayout& p : kParts) {
-    BoxDesc box = detail::ragdollPart(desc, toString(p.part));
+    BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.shape = Shape::Capsule;
     box.center = place(p.center);
     box.size = Vec3(2.0 * p.radius, p.coreLength + 2.0 * p.radius, 2.0 * p.radius) * desc.scale;
     box.orientation = q * lieOrientation(p.lie);
     box.mass = desc.mass / kCapsuleParts;
-    ragdoll.parts[static_cast<int>(p.part)] = world.addBox(box);
+    ragdoll.parts[static_cast<int>(p.part)] = world.addBody(box);
   }
 
   for (const HingeLayout& h : kHinges) {

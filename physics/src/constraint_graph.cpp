@@ -27,7 +27,7 @@ void ConstraintGraph::addLink(const Link& link, Real violation) {
   if (violation != 0.0) ++linksApart_;
 }
 
-void ConstraintGraph::layOut(std::span<const Box> bodies, std::size_t particleCount) {
+void ConstraintGraph::layOut(std::span<const Body> bodies, std::size_t particleCount) {
   stickLayout_.build(sticks_, bodies, particleCount);
   linkLayout_.build(links_, particleCount);
   stale_ = false;

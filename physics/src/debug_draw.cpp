@@ -50,7 +50,7 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     }
   }
   if (flags.bounds) {
-    for (const Box& box : boxes_) {
+    for (const Body& box : bodies_) {
       Vec3 lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
       for (int k = 0; k < 8; ++k) {
         const Vec3 p = position(corners_[box.firstCorner + k]);

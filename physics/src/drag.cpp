@@ -33,7 +33,7 @@ void dragCarriers(Particles& p, const Embedding& point, const Vec3& force, Real 
 
 }  // namespace
 
-void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3& target, Real stiffness,
+void applyDrag(Particles& p, const Body* box, const Embedding& point, const Vec3& target, Real stiffness,
                Real damping, Real h) {
   const Vec3 x = embeddedPosition(p.position, point);
   const Vec3 force = stiffness * (target - x) - damping * (x - embeddedPosition(p.previous, point)) / h;

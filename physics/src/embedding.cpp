@@ -30,13 +30,13 @@ void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, co
   shiftEmbedded(x, inverseMass, e, D / denominator);
 }
 
-Embedding rigidEmbedding(const Box& box, const Vec3& u) {
+Embedding rigidEmbedding(const Body& box, const Vec3& u) {
   const std::array<Real, 4> w = tetraWeights(u);
   Embedding e;
   e.count = 4;
   for (int j = 0; j < 4; ++j) {
     e.particle[j] =
-        box.firstParticle + static_cast<ParticleId>(box.model == BoxModel::Tetra ? j : kTetraCorner[j]);
+        box.firstParticle + static_cast<ParticleId>(box.model == BodyModel::Tetra ? j : kTetraCorner[j]);
     e.weight[j] = w[j];
   }
   return e;

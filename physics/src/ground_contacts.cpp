@@ -50,19 +50,19 @@ void GroundContacts::combineMaterials(const Material& ground) {
   for (GroundContact& c : points_) c.combined = combined(c, ground);
 }
 
-void GroundContacts::placeCapsulePoints(std::span<const Box> bodies, std::span<const Obb> frames,
+void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
                                         const Vec3& groundNormal) {
   const Vec3 n = groundNormal;
   for (const CapsuleEnd& g : capsuleEnds_) {
     GroundContact& contact = points_[g.point];
-    const auto id = static_cast<BoxId>(contact.body);
-    const Box& box = bodies[id];
+    const auto id = static_cast<BodyId>(contact.body);
+    const Body& box = bodies[id];
     const Obb& f = frames[id];
     const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();
     Vec3 moved(0.0);
     contact.point = detail::surfacePoint(box, f, lowest, &moved);
     contact.lift = glm::dot(n, moved);
-    if (box.model == BoxModel::Corners) contact.surface = detail::rigidPoint(box, f, lowest);
+    if (box.model == BodyModel::Corners) contact.surface = detail::rigidPoint(box, f, lowest);
   }
 }
 

@@ -49,7 +49,7 @@ void Guard::checkShapes(const GuardInput& in, Real interval) {
   nextShapeCheck_ = in.time + interval;
   const Real time = in.time;
   for (std::size_t b = 0; b < in.bodies.size(); ++b) {
-    const Box& box = in.bodies[b];
+    const Body& box = in.bodies[b];
     if (in.particles.inverseMass[box.firstParticle] == 0.0) continue;  // frozen
     Real& since = crushedSince_[b];
     const Real error = worstStickError(in, box);
@@ -69,7 +69,7 @@ void Guard::checkShapes(const GuardInput& in, Real interval) {
 // The largest |length - rest| / rest (the violated bound, for a range) of the box's own sticks
 // that are off by more than kCrushedStickError, or 0 if none is: compared squared, so no square
 // root is taken while the box is sound.
-Real Guard::worstStickError(const GuardInput& in, const Box& box) {
+Real Guard::worstStickError(const GuardInput& in, const Body& box) {
   Real worst = 0.0;
   const auto begin = in.sticks.begin() + box.firstStick;
   for (auto s = begin; s != begin + box.stickCount; ++s) {
@@ -90,7 +90,7 @@ void Guard::freeze(const GuardInput& in, ParticleId bad, const std::string& reas
   std::string name =
       in.particleNames[bad].empty() ? "particle " + std::to_string(bad) : in.particleNames[bad];
   if (const std::int32_t body = in.particleBodies[bad]; body >= 0) {
-    const Box& box = in.bodies[static_cast<std::size_t>(body)];
+    const Body& box = in.bodies[static_cast<std::size_t>(body)];
     first = box.firstParticle;
     count = static_cast<ParticleId>(box.particleCount);
     name = box.name.empty() ? "box " + std::to_string(body) : box.name;

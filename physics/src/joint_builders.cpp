@@ -35,11 +35,11 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
       q, [hips, q, fromHips, scale](const Vec3& layout) { return hips + q * ((layout - fromHips) * scale); }};
 }
 
-BoxDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
-  BoxDesc box;
+BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
+  BodyDesc box;
   box.name = (desc.name.empty() ? std::string("ragdoll") : desc.name) + "." + std::string(part);
   box.velocity = desc.velocity;
-  box.model = desc.model == RagdollModel::Lean ? BoxModel::Tetra : BoxModel::Corners;
+  box.model = desc.model == RagdollModel::Lean ? BodyModel::Tetra : BodyModel::Corners;
   box.material = desc.material;
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
@@ -51,7 +51,7 @@ Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
   return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));
 }
 
-void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place,
+void addHinge(World& world, BodyId parent, BodyId child, const HingeSpec& spec, const PlaceFn& place,
               Real scale) {
   // Two pins on the axis make the hinge.
   for (const Real side : {-1.0, 1.0}) {
@@ -74,7 +74,7 @@ void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, co
   }
 }
 
-void addCone(World& world, BoxId parent, BoxId child, const ConeSpec& spec, const PlaceFn& place,
+void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, const PlaceFn& place,
              Real scale) {
   const Vec3 pivot = place(spec.pivot);
   world.addLink(world.anchor(parent, pivot), world.anchor(child, pivot));

@@ -28,7 +28,7 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
 /// What every part of a ragdoll takes from it: the name "<ragdoll or 'ragdoll'>.<part>", the
 /// velocity, the box model (seed: corners, lean: tetra), the material and the collision filter.
 /// The caller sets the shape, place, size, orientation and mass.
-BoxDesc ragdollPart(const RagdollDesc& desc, std::string_view part);
+BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part);
 
 /// A hinge in the layout frame: the child turns about `axis` (unit) through `pivot`, by an angle
 /// that is 0 as laid out and positive by the right-hand rule, between the two stops.
@@ -43,7 +43,7 @@ struct HingeSpec {
 };
 
 /// Two pins on the axis and a one-sided range link at each stop (the why is in the .cpp).
-void addHinge(World& world, BoxId parent, BoxId child, const HingeSpec& spec, const PlaceFn& place,
+void addHinge(World& world, BodyId parent, BodyId child, const HingeSpec& spec, const PlaceFn& place,
               Real scale);
 
 /// A cone in the layout frame: a ball joint at `pivot` whose child keeps its `axis` within
@@ -59,7 +59,8 @@ struct ConeSpec {
 
 /// One pin at the pivot, one range link holding a point on the axis within the cone, one range
 /// link holding a point to the side within swing + twist (the why is in the .cpp).
-void addCone(World& world, BoxId parent, BoxId child, const ConeSpec& spec, const PlaceFn& place, Real scale);
+void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, const PlaceFn& place,
+             Real scale);
 
 /// v turned by `angle` (rad) about the unit `axis`, by Rodrigues' formula.
 Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle);

@@ -96,7 +96,7 @@ Metrics World::metrics() const {
   m.frozen = 0;
   for (const FreezeReport& f : freezes()) {
     const std::int32_t body = particleBody_[f.particle];
-    m.frozen += body >= 0 ? boxes_[static_cast<std::size_t>(body)].particleCount : 1;
+    m.frozen += body >= 0 ? bodies_[static_cast<std::size_t>(body)].particleCount : 1;
   }
   return m;
 }

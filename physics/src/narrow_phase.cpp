@@ -38,7 +38,7 @@ void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies) {
 
 // Each pair's contact by its shapes, normal from a towards b; boxes keep at most 4 points. Points
 // up to the pair's speculative margin apart are kept, which the passes leave alone until they close.
-bool NarrowPhase::collidePair(const NarrowPhaseInput& in, BoxId a, BoxId b, BoxContact& contact) const {
+bool NarrowPhase::collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, BoxContact& contact) const {
   const Real margin = speculativeMargin(in, a, b);
   const std::span<const Obb> frames = in.frames;
   const bool capsuleA = in.bodies[a].shape == Shape::Capsule, capsuleB = in.bodies[b].shape == Shape::Capsule;
@@ -63,7 +63,7 @@ bool NarrowPhase::collidePair(const NarrowPhaseInput& in, BoxId a, BoxId b, BoxC
 // side at 7 m/s keep the epsilon, where their travel would have made a margin of 25 cm, and with
 // it contacts on features that never meet in the step (a face of a limb the other only passes),
 // which the passes then held as if the planes were there.
-Real NarrowPhase::speculativeMargin(const NarrowPhaseInput& in, BoxId a, BoxId b) {
+Real NarrowPhase::speculativeMargin(const NarrowPhaseInput& in, BodyId a, BodyId b) {
   const Real dt = in.dt;
   const Real g = in.gravity;
   const BodyMotion &ma = in.broadPhase.motion(a), &mb = in.broadPhase.motion(b);
@@ -124,8 +124,8 @@ void NarrowPhase::turnNormal(const NarrowPhaseInput& in, Manifold& m, BodyContac
   for (std::uint32_t k = 0; k < m.contactCount; ++k) contacts[k].normal = m.normal;
 }
 
-void NarrowPhase::addManifold(const NarrowPhaseInput& in, BoxId a, BoxId b, const BoxContact& contact) {
-  const Box &bodyA = in.bodies[a], &bodyB = in.bodies[b];
+void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact) {
+  const Body &bodyA = in.bodies[a], &bodyB = in.bodies[b];
   const Material combined = combine(bodyA.material, bodyB.material);
   const std::size_t first = contacts_.size();
   for (int i = 0; i < contact.count; ++i) {
@@ -135,8 +135,8 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BoxId a, BoxId b, cons
     c.pointB = detail::surfacePoint(bodyB, in.frames[b], contact.points[i].onB, &movedB);
     c.normal = contact.sat.normal;
     c.combined = combined;
-    c.boxA = static_cast<std::int32_t>(a);
-    c.boxB = static_cast<std::int32_t>(b);
+    c.bodyA = static_cast<std::int32_t>(a);
+    c.bodyB = static_cast<std::int32_t>(b);
     c.kind = static_cast<std::uint8_t>(contact.kind);
     if (bodyA.shape == Shape::Capsule || bodyB.shape == Shape::Capsule) {
       c.offset = glm::dot(c.normal, movedB - movedA);  // a box's points are on its faces already

@@ -12,7 +12,7 @@
 namespace phys {
 
 void Parting::addBody() {
-  const auto id = static_cast<BoxId>(parent_.size());
+  const auto id = static_cast<BodyId>(parent_.size());
   parent_.push_back(id);
   root_.push_back(id);
   shift_.emplace_back(0.0);
@@ -21,7 +21,7 @@ void Parting::addBody() {
   groundPush_.push_back(0.0);
 }
 
-BoxId Parting::group(BoxId id) {
+BodyId Parting::group(BodyId id) {
   while (parent_[id] != id) {
     parent_[id] = parent_[parent_[id]];  // path halving
     id = parent_[id];
@@ -29,8 +29,8 @@ BoxId Parting::group(BoxId id) {
   return id;
 }
 
-void Parting::join(BoxId a, BoxId b) {
-  const BoxId ra = group(a), rb = group(b);
+void Parting::join(BodyId a, BodyId b) {
+  const BodyId ra = group(a), rb = group(b);
   if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
 }
 
@@ -63,11 +63,11 @@ void Parting::reserve(std::size_t pairs, std::size_t bodies) {
 // its joints, whose projections pulled it back into the overlap, and the fight became speed:
 // Bullet's pile, whose neighbours' hands start 5.5 cm into each other, threw them at 120 m/s at
 // 128 substeps. Overlaps within one such group are left to the projections.
-void Parting::part(Particles& particles, std::span<const Box> bodies, std::span<const Manifold> manifolds,
+void Parting::part(Particles& particles, std::span<const Body> bodies, std::span<const Manifold> manifolds,
                    std::span<Real> contactAllowance, const PartingGround& ground, Real featureEpsilon,
                    const PartingSettings& settings) {
   const Real epsilon = featureEpsilon;
-  for (BoxId id = 0; id < bodies.size(); ++id) root_[id] = group(id);
+  for (BodyId id = 0; id < bodies.size(); ++id) root_[id] = group(id);
   bool deep = false;
   need_.resize(manifolds.size());
   push_.resize(manifolds.size());
@@ -98,8 +98,8 @@ void Parting::part(Particles& particles, std::span<const Box> bodies, std::span<
 
   // A group's weight is 1 / its mass, kept at its root (a box id), as are its shift and depth.
   std::fill(weight_.begin(), weight_.end(), 0.0);  // its mass, for now
-  for (BoxId id = 0; id < bodies.size(); ++id) {
-    const Box& box = bodies[id];
+  for (BodyId id = 0; id < bodies.size(); ++id) {
+    const Body& box = bodies[id];
     Real& mass = weight_[root_[id]];
     for (int j = 0; j < box.particleCount; ++j) {
       const Real w = particles.inverseMass[box.firstParticle + j];
@@ -107,7 +107,7 @@ void Parting::part(Particles& particles, std::span<const Box> bodies, std::span<
     }
     shift_[id] = Vec3(0.0);
   }
-  for (BoxId id = 0; id < bodies.size(); ++id) {
+  for (BodyId id = 0; id < bodies.size(); ++id) {
     if (root_[id] == id) weight_[id] = 1.0 / weight_[id];
   }
   // Gauss-Seidel, pushing only, as long as that converges: the spawned scenes of the tests and the
@@ -129,7 +129,7 @@ void Parting::part(Particles& particles, std::span<const Box> bodies, std::span<
     Real worst = 0.0;
     for (std::size_t k = 0; k < manifolds.size(); ++k) {
       const Manifold& m = manifolds[k];
-      const BoxId ga = root_[m.a], gb = root_[m.b];
+      const BodyId ga = root_[m.a], gb = root_[m.b];
       const Real wa = weight_[ga], wb = weight_[gb];
       if (ga == gb || wa + wb == 0.0) continue;
       const Real missing = need_[k] - glm::dot(m.normal, shift_[gb] - shift_[ga]);
@@ -148,7 +148,7 @@ void Parting::part(Particles& particles, std::span<const Box> bodies, std::span<
       worst = std::max(worst, std::abs(change) * (wa + wb));
     }
     if (ground.enabled) {
-      for (BoxId id = 0; id < bodies.size(); ++id) {
+      for (BodyId id = 0; id < bodies.size(); ++id) {
         if (root_[id] != id || weight_[id] == 0.0) continue;
         // The ground does not move, so the group takes the whole correction.
         const Real missing = groundNeed_[id] - glm::dot(up, shift_[id]);
@@ -174,10 +174,10 @@ void Parting::part(Particles& particles, std::span<const Box> bodies, std::span<
       lastCheck = worst;
     }
   }
-  for (BoxId id = 0; id < bodies.size(); ++id) {
+  for (BodyId id = 0; id < bodies.size(); ++id) {
     const Vec3 t = shift_[root_[id]];
     if (t == Vec3(0.0)) continue;
-    const Box& box = bodies[id];
+    const Body& box = bodies[id];
     for (int j = 0; j < box.particleCount; ++j) {
       particles.position[box.firstParticle + j] += t;
       particles.previous[box.firstParticle + j] += t;

@@ -5,8 +5,8 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "physics/body.h"
 #include "physics/body_layout.h"
-#include "physics/box.h"
 #include "physics/collision.h"
 #include "physics/constraints.h"
 #include "physics/link_layout.h"
@@ -19,17 +19,17 @@ namespace phys::detail {
 /// The point at u (in units of the half extents, in the body frame; inside the box or not) carried
 /// rigidly by the box: barycentric weights over its inscribed tetrahedron (its 4 particles, or
 /// corners 0, 3, 5, 6 of a corners box), exact for any point while the box keeps its shape.
-Embedding rigidEmbedding(const Box& box, const Vec3& u);
+Embedding rigidEmbedding(const Body& box, const Vec3& u);
 
 /// A world point in the body's frame `frame` (of this substep), in units of its half extents.
-Vec3 frameCoordinates(const Box& body, const Obb& frame, const Vec3& point);
+Vec3 frameCoordinates(const Body& body, const Obb& frame, const Vec3& point);
 /// A world point carried rigidly by the body as it lies in its frame (rigidEmbedding).
-Embedding rigidPoint(const Box& body, const Obb& frame, const Vec3& point);
+Embedding rigidPoint(const Body& body, const Obb& frame, const Vec3& point);
 /// A point of the body's surface (a contact's), embedded where the body's particles hold it: a
 /// box's on the face it lies on, by that face's 4 corners (corners model) or the tetrahedron; a
 /// tetra capsule's rigidly; a corners capsule's on the nearest face of its box. `moved`, if not
 /// null, gets how far the embedding carries the point off where it was (a capsule's: its face).
-Embedding surfacePoint(const Box& body, const Obb& frame, const Vec3& point, Vec3* moved = nullptr);
+Embedding surfacePoint(const Body& body, const Obb& frame, const Vec3& point, Vec3* moved = nullptr);
 
 /// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).
@@ -42,7 +42,7 @@ void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3>
 /// the point at most reaches the target. `box` is the box that carries the point, which then
 /// answers as a rigid body, or null (a loose particle): the point's carriers answer alone.
 /// Pinned and frozen particles do not move.
-void applyDrag(Particles& p, const Box* box, const Embedding& point, const Vec3& target, Real stiffness,
+void applyDrag(Particles& p, const Body* box, const Embedding& point, const Vec3& target, Real stiffness,
                Real damping, Real h);
 
 /// The length a stick or range stick must be moved to, or a negative number when the current
@@ -133,7 +133,7 @@ void measureGroundApproach(const Particles& p, std::span<const GroundContact> co
 void measureBodyApproach(const Particles& p, std::span<const BodyContact> contacts, Real h,
                          std::span<Real> approach);
 /// Fills each box's rigid state (RigidState) from its particles, with no changes yet.
-void measureRigidStates(const Particles& p, std::span<const Box> boxes, Real h, std::span<RigidState> rigid);
+void measureRigidStates(const Particles& p, std::span<const Body> boxes, Real h, std::span<RigidState> rigid);
 /// One Gauss-Seidel pass of restitution over the ground contact points `pushed` in this substep:
 /// an impulse along n on each point's body gives the point the separation speed
 /// restitutionChange asks for. A box takes it in its rigid state, a loose particle in its x*.
@@ -145,7 +145,7 @@ void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid,
                            std::span<const BodyContact> contacts, std::span<const Real> approach,
                            std::span<const std::uint8_t> pushed, const Restitution& r);
 /// Writes each box's velocity and spin changes into its particles' x*: x*_i -= (dv + dw x r_i) h.
-void applyRigidChanges(Particles& p, std::span<const Box> boxes, std::span<const RigidState> rigid, Real h);
+void applyRigidChanges(Particles& p, std::span<const Body> boxes, std::span<const RigidState> rigid, Real h);
 
 /// A box's mass (kg), centre of mass (m) and inertia tensor about it (kg m^2), from its particles now.
 struct MassProperties {
@@ -155,14 +155,14 @@ struct MassProperties {
 };
 /// False when the box cannot move as a rigid body: a particle pinned or frozen, or the box crushed
 /// flat (four or more particles not in one plane make the inertia positive definite).
-bool massProperties(const Particles& p, const Box& box, MassProperties& out);
+bool massProperties(const Particles& p, const Body& box, MassProperties& out);
 /// A box's rigid motion over the substep, from its particles' x - x*: the centre's (m), and the
 /// rotation (rad, about the centre) that keeps the particles' angular momentum. Velocities times h.
 struct RigidMotion {
   Vec3 linear{0.0};
   Vec3 angular{0.0};
 };
-RigidMotion rigidMotion(const Particles& p, const Box& box, const MassProperties& m);
+RigidMotion rigidMotion(const Particles& p, const Body& box, const MassProperties& m);
 
 /// How far the link is outside its bounds with the particles at x (positions or previous
 /// positions): > 0 beyond max (a pin's whole gap), < 0 short of min, 0 within. unit: m
@@ -184,7 +184,7 @@ void solveLinks(Particles& p, std::span<const Link> links, const LinkLayout& lay
 /// Pulls each box's particle velocities (x - x*) towards the box's rigid motion by `fraction`
 /// (0 nothing, 1 all the way), keeping its linear and angular momentum; edits x* only.
 /// `layout` (BodyLayout) groups the bodies; every body of `boxes` is in it once.
-void dampBodyMotion(Particles& p, std::span<const Box> boxes, const BodyLayout& layout, Real fraction);
+void dampBodyMotion(Particles& p, std::span<const Body> boxes, const BodyLayout& layout, Real fraction);
 
 /// Current position of an embedded point.
 Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);

@@ -116,17 +116,17 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
   for (const PartLayout& p : kParts) {
-    BoxDesc box = detail::ragdollPart(desc, toString(p.part));
+    BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.center = place(p.center);
     box.size = p.size * desc.scale;
     box.orientation = q;
     box.mass = desc.mass * p.massFraction;
-    ragdoll.parts[static_cast<int>(p.part)] = world.addBox(box);
+    ragdoll.parts[static_cast<int>(p.part)] = world.addBody(box);
   }
 
   for (int h = 0; h < kRagdollHinges; ++h) {
     const HingeLayout& layout = kHinges[h];
-    const BoxId parent = ragdoll.part(layout.parent), child = ragdoll.part(layout.child);
+    const BodyId parent = ragdoll.part(layout.parent), child = ragdoll.part(layout.child);
     const Real minAngle = layout.minDegrees * kDegree, maxAngle = layout.maxDegrees * kDegree;
     detail::HingeSpec spec;
     spec.pivot = layout.pivot;
@@ -145,8 +145,8 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
 }
 
 Real hingeAngle(const World& world, const Ragdoll& ragdoll, const RagdollHinge& hinge) {
-  const Quat parent = world.boxPose(ragdoll.part(hinge.parent)).orientation;
-  const Quat child = world.boxPose(ragdoll.part(hinge.child)).orientation;
+  const Quat parent = world.bodyPose(ragdoll.part(hinge.parent)).orientation;
+  const Quat child = world.bodyPose(ragdoll.part(hinge.child)).orientation;
   const Vec3 axis = parent * hinge.axis;
   const Vec3 from = parent * hinge.reference;
   Vec3 to = child * hinge.reference;

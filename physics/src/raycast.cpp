@@ -81,14 +81,14 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, 
   }
   const Vec3 d = direction / length;
   std::optional<RayHit> best;
-  auto consider = [&](std::optional<Real> t, std::optional<BoxId> box, std::optional<ParticleId> particle) {
+  auto consider = [&](std::optional<Real> t, std::optional<BodyId> box, std::optional<ParticleId> particle) {
     if (!t || !std::isfinite(*t) || *t > maxDistance || (best && *t >= best->distance)) return;
     best = RayHit{box, particle, *t, origin + *t * d};
   };
-  for (BoxId id = 0; id < boxes_.size(); ++id) {
-    const BoxPose pose = boxPose(id);
+  for (BodyId id = 0; id < bodies_.size(); ++id) {
+    const BodyPose pose = bodyPose(id);
     const Quat toBox = glm::conjugate(pose.orientation);
-    const Box& box = boxes_[id];
+    const Body& box = bodies_[id];
     const Vec3 o = toBox * (origin - pose.center), local = toBox * d;
     consider(box.shape == Shape::Capsule ? rayCapsule(o, local, box.capsuleHalfSegment(), box.capsuleRadius())
                                          : rayBox(o, local, box.halfExtents),

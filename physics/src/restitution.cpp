@@ -68,7 +68,8 @@ void measureBodyApproach(const Particles& p, std::span<const BodyContact> contac
   for (std::size_t k = 0; k < contacts.size(); ++k) approach[k] = -relativeNormalMotion(p, contacts[k]) / h;
 }
 
-void measureRigidStates(const Particles& p, std::span<const Box> boxes, Real h, std::span<RigidState> rigid) {
+void measureRigidStates(const Particles& p, std::span<const Body> boxes, Real h,
+                        std::span<RigidState> rigid) {
   MassProperties m;
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     RigidState& s = rigid[k];
@@ -107,8 +108,8 @@ void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid,
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (pushed[k] == 0) continue;
     const BodyContact& c = contacts[k];
-    RigidState& a = rigid[static_cast<std::size_t>(c.boxA)];
-    RigidState& b = rigid[static_cast<std::size_t>(c.boxB)];
+    RigidState& a = rigid[static_cast<std::size_t>(c.bodyA)];
+    RigidState& b = rigid[static_cast<std::size_t>(c.bodyB)];
     const Vec3 xa = embeddedPosition(p.position, c.pointA), xb = embeddedPosition(p.position, c.pointB);
     const Real change =
         restitutionChange(glm::dot(c.normal, velocityAt(b, xb) - velocityAt(a, xa)), approach[k], r);
@@ -120,11 +121,11 @@ void restituteBodyContacts(const Particles& p, std::span<RigidState> rigid,
   }
 }
 
-void applyRigidChanges(Particles& p, std::span<const Box> boxes, std::span<const RigidState> rigid, Real h) {
+void applyRigidChanges(Particles& p, std::span<const Body> boxes, std::span<const RigidState> rigid, Real h) {
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     const RigidState& s = rigid[k];
     if (s.velocityChange == Vec3(0.0) && s.spinChange == Vec3(0.0)) continue;
-    const Box& box = boxes[k];
+    const Body& box = boxes[k];
     for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount);
          ++i) {
       p.previous[i] -= (s.velocityChange + glm::cross(s.spinChange, p.position[i] - s.centre)) * h;

@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/types.h"
 
 namespace phys {

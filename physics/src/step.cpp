@@ -72,8 +72,8 @@ void World::step() {
 // new scene pays for it, and no other step allocates for it.
 void World::updateLayouts() {
   if (!layoutsStale_ && !constraints_.stale()) return;
-  constraints_.layOut(boxes_, particles_.size());
-  bodyLayout_.build(boxes_);
+  constraints_.layOut(bodies_, particles_.size());
+  bodyLayout_.build(bodies_);
   broadPhase_.indexFilters();
   layoutsStale_ = false;
 }
@@ -83,13 +83,13 @@ void World::integrateParticles(Real h) {
   detail::integrate(particles_, world_, h, guard_.checked());
   // The mouse spring is a force: applied with gravity, before the passes share it out.
   if (drag_) {
-    const Box* box = dragBox_ >= 0 ? &boxes_[static_cast<std::size_t>(dragBox_)] : nullptr;
+    const Body* box = dragBox_ >= 0 ? &bodies_[static_cast<std::size_t>(dragBox_)] : nullptr;
     detail::applyDrag(particles_, box, drag_->point, drag_->target, drag_->stiffness, drag_->damping, h);
   }
 }
 
 void World::fitBodyFrames() {
-  if (boxes_.size() < 2 && !ground_.hasCapsules()) return;
+  if (bodies_.size() < 2 && !ground_.hasCapsules()) return;
   const StageTimer timer(profile_, Stage::Frames);
   updateBoxFrames();
 }
@@ -97,22 +97,22 @@ void World::fitBodyFrames() {
 // Once per step; again when a drag, an impact or a joint took a box past its bounds. True when it
 // found the pairs.
 bool World::findPairs(bool firstSubstep) {
-  if (boxes_.size() < 2) return false;
+  if (bodies_.size() < 2) return false;
   const StageTimer timer(profile_, Stage::BroadPhase);
   if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_))) return false;
   const BroadPhaseStep step{solver_.dt, substepDt(), solver_.featureEpsilon, gravityMagnitude(),
                             solver_.broadPhase};
-  broadPhase_.update(particles_, boxes_, frames_, step);
+  broadPhase_.update(particles_, bodies_, frames_, step);
   const std::size_t pairs = broadPhase_.pairs().size();
-  narrowPhase_.reserve(pairs, boxes_.size());
-  parting_.reserve(pairs, boxes_.size());
+  narrowPhase_.reserve(pairs, bodies_.size());
+  parting_.reserve(pairs, bodies_.size());
   return true;
 }
 
 void World::findContacts(bool newPairs) {
-  if (boxes_.size() < 2 && !world_.ground) return;
+  if (bodies_.size() < 2 && !world_.ground) return;
   const StageTimer timer(profile_, Stage::NarrowPhase);
-  if (boxes_.size() >= 2) {
+  if (bodies_.size() >= 2) {
     const NarrowPhaseInput in = narrowPhaseInput();
     if (newPairs)
       narrowPhase_.build(in);
@@ -121,7 +121,7 @@ void World::findContacts(bool newPairs) {
     narrowPhase_.measureStarts(particles_, solver_.contactSlop);
   }
   if (!world_.ground) return;
-  ground_.placeCapsulePoints(boxes_, frames_, world_.groundNormal);
+  ground_.placeCapsulePoints(bodies_, frames_, world_.groundNormal);
   // Each contact's overlap at x*, where the substep starts: what the parting measures, and
   // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
   detail::measureGroundStartDepth(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
@@ -129,15 +129,15 @@ void World::findContacts(bool newPairs) {
 }
 
 NarrowPhaseInput World::narrowPhaseInput() const {
-  return {particles_,          boxes_,     frames_,           broadPhase_, solver_.featureEpsilon,
+  return {particles_,          bodies_,    frames_,           broadPhase_, solver_.featureEpsilon,
           solver_.contactSlop, solver_.dt, gravityMagnitude()};
 }
 
 void World::partOverlaps() {
-  if (boxes_.empty()) return;
+  if (bodies_.empty()) return;
   const StageTimer timer(profile_, Stage::Parting);
   const PartingGround ground{world_.ground, world_.groundNormal, ground_.points(), ground_.state().allowance};
-  parting_.part(particles_, boxes_, narrowPhase_.manifolds(), narrowPhase_.state().allowance, ground,
+  parting_.part(particles_, bodies_, narrowPhase_.manifolds(), narrowPhase_.state().allowance, ground,
                 solver_.featureEpsilon, solver_.parting);
 }
 
@@ -232,7 +232,7 @@ void World::restitute(Real h) {
   const StageTimer timer(profile_, Stage::Restitution);
   const Real g = gravityMagnitude();
   const detail::Restitution r{solver_.restitution, std::max(kRestitutionMinSpeed, 2.0 * g * h), h};
-  detail::measureRigidStates(particles_, boxes_, h, rigid_);
+  detail::measureRigidStates(particles_, bodies_, h, rigid_);
   for (int it = 0; it < solver_.iterations; ++it) {
     detail::restituteBodyContacts(particles_, rigid_, narrowPhase_.contacts(), narrowPhase_.state().approach,
                                   narrowPhase_.state().touched, r);
@@ -241,13 +241,13 @@ void World::restitute(Real h) {
                               ground_.state().approach, ground_.state().hit, r);
     }
   }
-  detail::applyRigidChanges(particles_, boxes_, rigid_, h);
+  detail::applyRigidChanges(particles_, bodies_, rigid_, h);
 }
 
 void World::dampBodies() {
-  if (solver_.bodyDamping <= 0.0 || boxes_.empty()) return;
+  if (solver_.bodyDamping <= 0.0 || bodies_.empty()) return;
   const StageTimer timer(profile_, Stage::BodyDamping);
-  detail::dampBodyMotion(particles_, boxes_, bodyLayout_, solver_.bodyDamping);
+  detail::dampBodyMotion(particles_, bodies_, bodyLayout_, solver_.bodyDamping);
 }
 
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the
@@ -267,7 +267,7 @@ void World::guardParticles() {
 }
 
 GuardInput World::guardInput() {
-  return {particles_, boxes_, constraints_.sticks(), particleName_, particleBody_, time_};
+  return {particles_, bodies_, constraints_.sticks(), particleName_, particleBody_, time_};
 }
 
 }  // namespace phys

@@ -18,18 +18,18 @@ void StickLayout::addToRuns(std::uint32_t stick) {
   }
 }
 
-void StickLayout::build(std::span<const Stick> sticks, std::span<const Box> boxes,
+void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> boxes,
                         std::size_t particleCount) {
   constexpr std::int32_t kNone = -1;
   std::vector<std::int32_t> particleOwner(particleCount, kNone), stickOwner(sticks.size(), kNone);
   for (std::size_t b = 0; b < boxes.size(); ++b) {
-    const Box& box = boxes[b];
+    const Body& box = boxes[b];
     for (int i = 0; i < box.particleCount; ++i)
       particleOwner[box.firstParticle + i] = static_cast<std::int32_t>(b);
     for (int k = 0; k < box.stickCount; ++k) stickOwner[box.firstStick + k] = static_cast<std::int32_t>(b);
   }
   // A body stays a block when every stick at its particles is its own, and its own join only its
-  // particles (true of every body addBox makes; checked, so that the layout never relies on it).
+  // particles (true of every body addBody makes; checked, so that the layout never relies on it).
   std::vector<std::uint8_t> isolated(boxes.size(), 1);
   for (std::size_t k = 0; k < sticks.size(); ++k) {
     const std::int32_t owner = stickOwner[k];
@@ -44,7 +44,7 @@ void StickLayout::build(std::span<const Stick> sticks, std::span<const Box> boxe
   blocks_.clear();
   runs_.clear();
   for (std::size_t b = 0; b < boxes.size(); ++b) {
-    const Box& box = boxes[b];
+    const Body& box = boxes[b];
     if (isolated[b] && box.particleCount <= kMaxBlockParticles) {
       blocks_.push_back({box.firstParticle, box.firstStick, static_cast<std::uint16_t>(box.particleCount),
                          static_cast<std::uint16_t>(box.stickCount)});

@@ -6,17 +6,17 @@
 
 namespace phys::detail {
 
-Vec3 frameCoordinates(const Box& body, const Obb& f, const Vec3& point) {
+Vec3 frameCoordinates(const Body& body, const Obb& f, const Vec3& point) {
   const Vec3 d = point - f.center;
   const Vec3& h = body.halfExtents;
   return {glm::dot(d, f.axes[0]) / h.x, glm::dot(d, f.axes[1]) / h.y, glm::dot(d, f.axes[2]) / h.z};
 }
 
-Embedding rigidPoint(const Box& body, const Obb& frame, const Vec3& point) {
+Embedding rigidPoint(const Body& body, const Obb& frame, const Vec3& point) {
   return rigidEmbedding(body, frameCoordinates(body, frame, point));
 }
 
-Embedding surfacePoint(const Box& box, const Obb& f, const Vec3& point, Vec3* moved) {
+Embedding surfacePoint(const Body& box, const Obb& f, const Vec3& point, Vec3* moved) {
   Vec3 u = frameCoordinates(box, f, point);
   // A tetra capsule's points lie on its round surface, inside its box: carried rigidly by its
   // tetrahedron. A corners capsule's go onto the nearest face below, whose 4 particles then hold
@@ -25,12 +25,12 @@ Embedding surfacePoint(const Box& box, const Obb& f, const Vec3& point, Vec3* mo
   // carries the point, as the box lies in its frame: from its rest shape, not its particles',
   // since a correction reckoned from their sag would feed back into it.
   if (moved != nullptr) *moved = Vec3(0.0);
-  if (box.shape == Shape::Capsule && box.model == BoxModel::Tetra) return rigidEmbedding(box, u);
+  if (box.shape == Shape::Capsule && box.model == BodyModel::Tetra) return rigidEmbedding(box, u);
   const Vec3 unclamped = u;
   u = glm::clamp(u, Vec3(-1.0), Vec3(1.0));
   Embedding e;
   e.count = 4;
-  if (box.model == BoxModel::Tetra) {
+  if (box.model == BodyModel::Tetra) {
     const std::array<Real, 4> w = tetraWeights(u);
     for (int j = 0; j < 4; ++j) {
       e.particle[j] = box.firstParticle + j;

@@ -119,7 +119,7 @@ void World::keepVelocities(Real hOld, Real hNew) {
   std::vector<std::uint8_t> supported(particles_.size(), 0);
   auto support = [&](std::int32_t body, const Embedding& point) {
     if (body >= 0) {
-      const Box& box = boxes_[static_cast<std::size_t>(body)];
+      const Body& box = bodies_[static_cast<std::size_t>(body)];
       std::fill_n(supported.begin() + box.firstParticle, box.particleCount, std::uint8_t{1});
     } else {
       supported[point.particle[0]] = 1;
@@ -132,8 +132,8 @@ void World::keepVelocities(Real hOld, Real hNew) {
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
   for (std::size_t k = 0; k < bodyContacts.size(); ++k) {
     if (narrowPhase_.state().touched[k] == 0) continue;
-    support(bodyContacts[k].boxA, bodyContacts[k].pointA);
-    support(bodyContacts[k].boxB, bodyContacts[k].pointB);
+    support(bodyContacts[k].bodyA, bodyContacts[k].pointA);
+    support(bodyContacts[k].bodyB, bodyContacts[k].pointB);
   }
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     Vec3 halfStepVelocity = (particles_.position[i] - particles_.previous[i]) / hOld;
@@ -239,34 +239,34 @@ void World::setDragTarget(const Vec3& target) {
   drag_->target = target;
 }
 
-Embedding World::anchor(BoxId id, const Vec3& worldPoint) const {
-  require(id < boxes_.size(), "anchor: box id must exist");
+Embedding World::anchor(BodyId id, const Vec3& worldPoint) const {
+  require(id < bodies_.size(), "anchor: box id must exist");
   require(finite(worldPoint), "anchor: the point must be finite");
-  const Box& box = boxes_[id];
-  const BoxPose pose = boxPose(id);
+  const Body& box = bodies_[id];
+  const BodyPose pose = bodyPose(id);
   return detail::rigidEmbedding(
       box, (glm::inverse(pose.orientation) * (worldPoint - pose.center)) / box.halfExtents);
 }
 
-BoxId World::addBox(const BoxDesc& desc) {
+BodyId World::addBody(const BodyDesc& desc) {
   require(finite(desc.center) && finite(desc.velocity) && finite(desc.angularVelocity),
-          "addBox: center, velocity and angular velocity must be finite");
+          "addBody: center, velocity and angular velocity must be finite");
   require(finite(desc.size) && desc.size.x > 0.0 && desc.size.y > 0.0 && desc.size.z > 0.0,
-          "addBox: size must be finite and > 0 (m)");
-  require(std::isfinite(desc.mass) && desc.mass > 0.0, "addBox: mass must be finite and > 0 (kg)");
+          "addBody: size must be finite and > 0 (m)");
+  require(std::isfinite(desc.mass) && desc.mass > 0.0, "addBody: mass must be finite and > 0 (kg)");
   const Real qLength = glm::length(desc.orientation);
   require(std::isfinite(qLength) && qLength > 0.0,
-          "addBox: orientation must be a finite non-zero quaternion");
-  require(validate(desc.material).empty(), "addBox: " + validate(desc.material));
+          "addBody: orientation must be a finite non-zero quaternion");
+  require(validate(desc.material).empty(), "addBody: " + validate(desc.material));
   if (desc.shape == Shape::Capsule) {
     require(std::abs(desc.size.x - desc.size.z) <= 1e-9 * desc.size.x,
-            "addBox: a capsule's size.x and size.z are both its diameter and must be equal (m)");
+            "addBody: a capsule's size.x and size.z are both its diameter and must be equal (m)");
     require(desc.size.y >= desc.size.x,
-            "addBox: a capsule's length size.y must be at least its diameter size.x (m)");
+            "addBody: a capsule's length size.y must be at least its diameter size.x (m)");
   }
   const Quat q = desc.orientation / qLength;
 
-  Box box;
+  Body box;
   box.name = desc.name;
   box.model = desc.model;
   box.shape = desc.shape;
@@ -275,7 +275,7 @@ BoxId World::addBox(const BoxDesc& desc) {
   box.particleCount = boxParticleCount(desc.model);
   box.firstParticle = static_cast<ParticleId>(particles_.size());
   box.firstCorner = static_cast<std::uint32_t>(corners_.size());
-  const auto boxIndex = static_cast<std::int32_t>(boxes_.size());
+  const auto boxIndex = static_cast<std::int32_t>(bodies_.size());
   const std::size_t contactsBefore = ground_.size();
 
   // Everything that can fail is checked before anything is added: a centre or size near the
@@ -289,10 +289,10 @@ BoxId World::addBox(const BoxDesc& desc) {
                 false,
                 {}};
     require(finite(parts[j].position) && finite(parts[j].velocity) && std::isfinite(1.0 / parts[j].mass),
-            "addBox: centre, size, velocity or mass too large to represent");
+            "addBody: centre, size, velocity or mass too large to represent");
     for (int i = 0; i < j; ++i) {
       const Real length = glm::length(parts[j].position - parts[i].position);
-      require(std::isfinite(length) && length > 0.0, "addBox: centre or size too large to represent");
+      require(std::isfinite(length) && length > 0.0, "addBody: centre or size too large to represent");
     }
   }
   for (int j = 0; j < box.particleCount; ++j) {
@@ -302,15 +302,15 @@ BoxId World::addBox(const BoxDesc& desc) {
   // The particles' own contact points go: the box touches the ground with its corners.
   ground_.truncate(contactsBefore);
 
-  const std::span<const Pair> pairs = desc.model == BoxModel::Corners ? std::span<const Pair>(kCornerSticks)
-                                                                      : std::span<const Pair>(kTetraSticks);
+  const std::span<const Pair> pairs = desc.model == BodyModel::Corners ? std::span<const Pair>(kCornerSticks)
+                                                                       : std::span<const Pair>(kTetraSticks);
   box.firstStick = static_cast<std::uint32_t>(constraints_.sticks().size());
   box.stickCount = static_cast<int>(pairs.size());
   for (const Pair& p : pairs) addStick(box.firstParticle + p.a, box.firstParticle + p.b);
 
   for (int k = 0; k < 8; ++k) {
     Embedding corner;
-    if (desc.model == BoxModel::Corners) {
+    if (desc.model == BodyModel::Corners) {
       corner.particle[0] = box.firstParticle + k;
       corner.weight[0] = 1.0;
       corner.count = 1;
@@ -339,14 +339,14 @@ BoxId World::addBox(const BoxDesc& desc) {
   }
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
-  boxes_.push_back(box);
+  bodies_.push_back(box);
   layoutsStale_ = true;
   frames_.emplace_back();
   rigid_.emplace_back();
   guard_.addBody();
   broadPhase_.addBody();
   parting_.addBody();
-  return static_cast<BoxId>(boxIndex);
+  return static_cast<BodyId>(boxIndex);
 }
 
 Vec3 World::velocity(ParticleId id) const {
@@ -369,9 +369,9 @@ Real World::gravityMagnitude() const {
   return world_.gravityMode == GravityMode::Uniform ? glm::length(world_.gravity) : world_.gravityStrength;
 }
 
-BoxPose World::boxPose(BoxId id) const {
-  const Box& box = boxes_.at(id);
-  BoxPose pose;
+BodyPose World::bodyPose(BodyId id) const {
+  const Body& box = bodies_.at(id);
+  BodyPose pose;
   const Vec3* x = &particles_.position[box.firstParticle];
   // Each particle's share summed, not the sum divided: the same digits for 4 or 8 particles (a
   // power of two), and no overflow for a body near the largest double (a bound of infinity).

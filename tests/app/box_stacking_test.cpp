@@ -27,14 +27,14 @@ scenes::Scene projectScene(const char* name) {
 // keeps a small wobble (its contact points are carried by weights of both signs, up to 1.5, and
 // a few passes do not settle them), bounded here and recorded in docs/physics.md.
 TEST(BoxContact, AlignedFaceToFaceGainsNoEnergyAndRests) {
-  for (auto model : {phys::BoxModel::Corners, phys::BoxModel::Tetra}) {
+  for (auto model : {phys::BodyModel::Corners, phys::BodyModel::Tetra}) {
     phys::World world;
-    phys::BoxDesc lower, upper;
+    phys::BodyDesc lower, upper;
     lower.model = upper.model = model;
     lower.center = {0.0, 0.5, 0.0};
     upper.center = {0.0, 1.5, 0.0};  // exactly on top: faces coincide
-    world.addBox(lower);
-    world.addBox(upper);
+    world.addBody(lower);
+    world.addBody(upper);
     const double e0 = world.metrics().energy();
     double most = e0;
     for (int i = 0; i < 300; ++i) {
@@ -43,15 +43,15 @@ TEST(BoxContact, AlignedFaceToFaceGainsNoEnergyAndRests) {
     }
     const double slopEnergy = 2.0 * 9.81 * world.solverSettings().contactSlop;
     EXPECT_LE(most, e0 + slopEnergy) << toString(model);
-    EXPECT_NEAR(world.boxPose(1).center.y, 1.5, 0.01) << toString(model);
+    EXPECT_NEAR(world.bodyPose(1).center.y, 1.5, 0.01) << toString(model);
     std::printf("aligned face to face, %s: upper box off centre by %.4f m, max speed %.4f m/s after 5 s\n",
-                std::string(toString(model)).c_str(), std::abs(world.boxPose(1).center.x),
+                std::string(toString(model)).c_str(), std::abs(world.bodyPose(1).center.x),
                 world.metrics().maxSpeed);
-    if (model == phys::BoxModel::Corners) {
-      EXPECT_NEAR(world.boxPose(1).center.x, 0.0, 1e-4);
+    if (model == phys::BodyModel::Corners) {
+      EXPECT_NEAR(world.bodyPose(1).center.x, 0.0, 1e-4);
       EXPECT_LT(world.metrics().maxSpeed, 1e-3);
     } else {
-      EXPECT_NEAR(world.boxPose(1).center.x, 0.0, 0.05);
+      EXPECT_NEAR(world.bodyPose(1).center.x, 0.0, 0.05);
       EXPECT_LT(world.metrics().maxSpeed, 0.2);
     }
   }
@@ -68,7 +68,7 @@ TEST(BoxContact, TheStackOfTenStaysAtRest) {
 }
 
 // Overlap of two oriented boxes along the SAT's axis, for a box moved along a direction.
-phys::Obb obbOf(const phys::BoxDesc& d) {
+phys::Obb obbOf(const phys::BodyDesc& d) {
   phys::Obb o;
   o.center = d.center;
   o.axes = glm::mat3_cast(d.orientation);
@@ -82,15 +82,15 @@ TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
   int separated = 0;
   double fastest = 0.0, worstOverlap = 0.0;
   for (int trial = 0; trial < 1000; ++trial) {
-    phys::BoxDesc a, b;
+    phys::BodyDesc a, b;
     a.size = {size(random), size(random), size(random)};
     b.size = {size(random), size(random), size(random)};
     a.orientation =
         glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
     b.orientation =
         glm::normalize(glm::dquat(unit(random), unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
-    a.model = trial % 2 == 0 ? phys::BoxModel::Corners : phys::BoxModel::Tetra;
-    b.model = trial % 3 == 0 ? phys::BoxModel::Corners : phys::BoxModel::Tetra;
+    a.model = trial % 2 == 0 ? phys::BodyModel::Corners : phys::BodyModel::Tetra;
+    b.model = trial % 3 == 0 ? phys::BodyModel::Corners : phys::BodyModel::Tetra;
     const Vec3 direction = glm::normalize(Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
     const double smallest = std::min({a.size.x, a.size.y, a.size.z, b.size.x, b.size.y, b.size.z});
     const double target = unit(random) * 0.25 * smallest;  // up to 25% of the smaller box
@@ -111,8 +111,8 @@ TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
     ws.ground = false;
     ws.gravity = Vec3(0.0);
     phys::World world(ws);
-    world.addBox(a);
-    world.addBox(b);
+    world.addBody(a);
+    world.addBody(b);
     for (int i = 0; i < 60; ++i) {
       world.step();
       fastest = std::max(fastest, world.metrics().maxSpeed);
@@ -120,7 +120,7 @@ TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
     // Separated: the contact points are apart to within the slop, and the boxes fitted to the
     // particles overlap by less than the feature epsilon (a box bent by its sticks' residual
     // error differs from its fitted frame by millimetres).
-    const phys::SatResult after = phys::satTest(world.boxFrames()[0], world.boxFrames()[1]);
+    const phys::SatResult after = phys::satTest(world.bodyFrames()[0], world.bodyFrames()[1]);
     const double overlap = after.overlap ? after.depth : 0.0;
     worstOverlap = std::max(worstOverlap, overlap);
     const bool apart = world.metrics().maxPenetration <= world.solverSettings().contactSlop + 1e-4 &&
@@ -146,18 +146,19 @@ Standing standFor10Seconds(scenes::Scene scene) {
   phys::World& w = scene.world;
   while (w.time() < 2.0) w.step();
   std::vector<Vec3> settled;
-  for (phys::BoxId b = 0; b < w.boxes().size(); ++b) settled.push_back(w.boxPose(b).center);
+  for (phys::BodyId b = 0; b < w.bodies().size(); ++b) settled.push_back(w.bodyPose(b).center);
   Standing s{0.0, 0.0, 0.0};
   while (w.time() < 10.0) {
     w.step();
     s.maxPenetration = std::max(s.maxPenetration, w.metrics().maxPenetration);
   }
-  for (phys::BoxId b = 0; b < w.boxes().size(); ++b) {
-    const Vec3 half = w.boxes()[b].halfExtents;
-    const double drift = glm::length(w.boxPose(b).center - settled[b]);
+  for (phys::BodyId b = 0; b < w.bodies().size(); ++b) {
+    const Vec3 half = w.bodies()[b].halfExtents;
+    const double drift = glm::length(w.bodyPose(b).center - settled[b]);
     s.worstDrift = std::max(s.worstDrift, drift / (2.0 * std::min({half.x, half.y, half.z})));
   }
-  s.topDrift = glm::length(w.boxPose(static_cast<phys::BoxId>(w.boxes().size() - 1)).center - settled.back());
+  s.topDrift =
+      glm::length(w.bodyPose(static_cast<phys::BodyId>(w.bodies().size() - 1)).center - settled.back());
   EXPECT_EQ(w.metrics().frozen, 0);
   return s;
 }
@@ -195,7 +196,7 @@ TEST(Stacking, SeedsPyramidStandsFor10Seconds) {
 TEST(RagdollPile, SixteenRagdollsSettleWithoutDeepOverlap) {
   scenes::Scene scene = projectScene("ragdolls");
   phys::World& w = scene.world;
-  ASSERT_EQ(w.boxes().size(), 160u);
+  ASSERT_EQ(w.bodies().size(), 160u);
   double worstOverlap = 0.0, lastSpeed = 0.0;
   for (int step = 1; step <= 600; ++step) {
     w.step();

@@ -33,17 +33,17 @@ const scenes::NamedBody* findBody(const scenes::Scene& s, const std::string& nam
   return nullptr;
 }
 
-phys::BoxId boxNamed(const scenes::Scene& s, const std::string& name) {
+phys::BodyId boxNamed(const scenes::Scene& s, const std::string& name) {
   const scenes::NamedBody* b = findBody(s, name);
-  if (b == nullptr || b->kind != scenes::NamedBody::Kind::Box) {
+  if (b == nullptr || b->kind != scenes::NamedBody::Kind::Body) {
     ADD_FAILURE() << "no box or capsule named " << name;
     return 0;
   }
   return b->index;
 }
 
-double bodyMass(const phys::World& world, phys::BoxId id) {
-  const phys::Box& box = world.boxes()[id];
+double bodyMass(const phys::World& world, phys::BodyId id) {
+  const phys::Body& box = world.bodies()[id];
   double mass = 0.0;
   for (int j = 0; j < box.particleCount; ++j)
     mass += 1.0 / world.particles().inverseMass[box.firstParticle + j];
@@ -51,14 +51,14 @@ double bodyMass(const phys::World& world, phys::BoxId id) {
 }
 
 // The world direction of a body's y axis: a capsule's core.
-Vec3 coreAxis(const phys::World& world, phys::BoxId id) {
-  return world.boxPose(id).orientation * Vec3(0.0, 1.0, 0.0);
+Vec3 coreAxis(const phys::World& world, phys::BodyId id) {
+  return world.bodyPose(id).orientation * Vec3(0.0, 1.0, 0.0);
 }
 
 // The lowest point of a capsule, whatever its orientation.
-double capsuleBottom(const phys::World& world, phys::BoxId id) {
-  const phys::Box& box = world.boxes()[id];
-  return world.boxPose(id).center.y - box.capsuleHalfSegment() * std::abs(coreAxis(world, id).y) -
+double capsuleBottom(const phys::World& world, phys::BodyId id) {
+  const phys::Body& box = world.bodies()[id];
+  return world.bodyPose(id).center.y - box.capsuleHalfSegment() * std::abs(coreAxis(world, id).y) -
          box.capsuleRadius();
 }
 
@@ -81,21 +81,21 @@ TEST(SceneCapsules, CapsuleElementHasTheRadiusLengthPoseAndEveryBoxAttribute) {
       "mask=\"5\"/>"
       "<capsule pos=\"0 5 0\" radius=\"0.25\" length=\"0.5\"/>"
       "<box name=\"b\" pos=\"4 1 0\"/>");
-  ASSERT_EQ(s.world.boxes().size(), 3u);
-  const phys::Box& c = s.world.boxes()[0];
+  ASSERT_EQ(s.world.bodies().size(), 3u);
+  const phys::Body& c = s.world.bodies()[0];
   EXPECT_EQ(c.name, "c");
   EXPECT_EQ(c.shape, phys::Shape::Capsule);
   EXPECT_EQ(c.capsuleRadius(), 0.2);
   EXPECT_DOUBLE_EQ(c.capsuleHalfSegment(), 0.75 - 0.2);
   EXPECT_EQ(c.halfExtents, Vec3(0.2, 0.75, 0.2));  // the box it is inscribed in
-  EXPECT_EQ(c.model, phys::BoxModel::Tetra);
+  EXPECT_EQ(c.model, phys::BodyModel::Tetra);
   EXPECT_EQ(c.particleCount, 4);
   EXPECT_EQ(c.material.staticFriction, 0.3);
   EXPECT_EQ(c.material.dynamicFriction, 0.1);
   EXPECT_EQ(c.collisionGroup, 6u);
   EXPECT_EQ(c.collisionMask, 5u);
   EXPECT_NEAR(bodyMass(s.world, 0), 3.0, 1e-12);
-  const phys::BoxPose pose = s.world.boxPose(0);
+  const phys::BodyPose pose = s.world.bodyPose(0);
   EXPECT_LT(glm::length(pose.center - Vec3(1, 2, 3)), 1e-12);
   // 90 degrees about z turns the core (the body's y axis) to -x: the capsule lies along x.
   EXPECT_LT(glm::length(coreAxis(s.world, 0) - Vec3(-1, 0, 0)), 1e-12);
@@ -104,21 +104,21 @@ TEST(SceneCapsules, CapsuleElementHasTheRadiusLengthPoseAndEveryBoxAttribute) {
   for (int j = 0; j < c.particleCount; ++j) velocity += s.world.velocity(c.firstParticle + j);
   EXPECT_NEAR(velocity.x / c.particleCount, 1.0, 1e-9);
 
-  // Without the optional attributes: the defaults of BoxDesc, and a sphere when length is twice
+  // Without the optional attributes: the defaults of BodyDesc, and a sphere when length is twice
   // the radius.
-  const phys::Box& sphere = s.world.boxes()[1];
+  const phys::Body& sphere = s.world.bodies()[1];
   EXPECT_EQ(sphere.shape, phys::Shape::Capsule);
   EXPECT_EQ(sphere.capsuleHalfSegment(), 0.0);
-  EXPECT_EQ(sphere.model, phys::BoxDesc{}.model);
-  EXPECT_EQ(sphere.material.staticFriction, phys::BoxDesc{}.material.staticFriction);
-  EXPECT_NEAR(bodyMass(s.world, 1), phys::BoxDesc{}.mass, 1e-12);
-  EXPECT_LT(angleBetween(s.world.boxPose(1).orientation, phys::Quat(1, 0, 0, 0)), 1e-12);
-  EXPECT_EQ(s.world.boxes()[2].shape, phys::Shape::Box);  // a <box> stays a box
+  EXPECT_EQ(sphere.model, phys::BodyDesc{}.model);
+  EXPECT_EQ(sphere.material.staticFriction, phys::BodyDesc{}.material.staticFriction);
+  EXPECT_NEAR(bodyMass(s.world, 1), phys::BodyDesc{}.mass, 1e-12);
+  EXPECT_LT(angleBetween(s.world.bodyPose(1).orientation, phys::Quat(1, 0, 0, 0)), 1e-12);
+  EXPECT_EQ(s.world.bodies()[2].shape, phys::Shape::Box);  // a <box> stays a box
 
   // Named like boxes, so links and no-collision pairs can name it.
   ASSERT_EQ(s.bodies.size(), 2u);
   EXPECT_EQ(s.bodies[0].name, "c");
-  EXPECT_EQ(s.bodies[0].kind, scenes::NamedBody::Kind::Box);
+  EXPECT_EQ(s.bodies[0].kind, scenes::NamedBody::Kind::Body);
   const scenes::Scene joined = load(
       "<capsule name=\"arm\" pos=\"0 1.5 0\" radius=\"0.05\" length=\"0.6\"/>"
       "<capsule name=\"hand\" pos=\"0 1.05 0\" radius=\"0.05\" length=\"0.3\"/>"
@@ -129,12 +129,12 @@ TEST(SceneCapsules, CapsuleElementHasTheRadiusLengthPoseAndEveryBoxAttribute) {
 
 TEST(SceneCapsules, LoadOptionsImposeTheBoxModelOnCapsules) {
   const char* body = "<capsule pos=\"0 1 0\" radius=\"0.1\" length=\"1\" model=\"corners\"/>";
-  EXPECT_EQ(load(body).world.boxes()[0].model, phys::BoxModel::Corners);
+  EXPECT_EQ(load(body).world.bodies()[0].model, phys::BodyModel::Corners);
   scenes::LoadOptions tetra;
-  tetra.boxModel = phys::BoxModel::Tetra;
+  tetra.boxModel = phys::BodyModel::Tetra;
   const scenes::Scene imposed = load(body, "", tetra);
-  EXPECT_EQ(imposed.world.boxes()[0].model, phys::BoxModel::Tetra);
-  EXPECT_EQ(imposed.world.boxes()[0].shape, phys::Shape::Capsule);
+  EXPECT_EQ(imposed.world.bodies()[0].model, phys::BodyModel::Tetra);
+  EXPECT_EQ(imposed.world.bodies()[0].shape, phys::Shape::Capsule);
   EXPECT_EQ(imposed.world.particles().size(), 4u);
 }
 
@@ -196,48 +196,49 @@ TEST(SceneCapsules, CapsuleRagdollHasElevenNamedCapsulePartsStandingOnItsFeet) {
       "<ragdoll name=\"big\" pos=\"10 0 0\" shape=\"capsule\" scale=\"3.5\" model=\"lean\"/>"
       "<ragdoll name=\"b\" pos=\"-5 2 0\" shape=\"box\"/>"
       "<ragdoll name=\"d\" pos=\"-10 2 0\"/>");
-  ASSERT_EQ(s.world.boxes().size(), 11u + 11u + 10u + 10u);
+  ASSERT_EQ(s.world.bodies().size(), 11u + 11u + 10u + 10u);
   EXPECT_EQ(s.bodies.size(), 11u + 11u + 10u + 10u);
   EXPECT_EQ(s.world.particles().size(), 11u * 8u + 11u * 4u + 80u + 80u);
   for (int i = 0; i < phys::kCapsuleParts; ++i) {
     const std::string part(phys::toString(static_cast<phys::CapsulePart>(i)));
     for (const std::string ragdoll : {"c", "big"}) {
-      const phys::BoxId id = boxNamed(s, ragdoll + "." + part);
-      EXPECT_EQ(s.world.boxes()[id].name, ragdoll + "." + part);
-      EXPECT_EQ(s.world.boxes()[id].shape, phys::Shape::Capsule) << ragdoll << "." << part;
+      const phys::BodyId id = boxNamed(s, ragdoll + "." + part);
+      EXPECT_EQ(s.world.bodies()[id].name, ragdoll + "." + part);
+      EXPECT_EQ(s.world.bodies()[id].shape, phys::Shape::Capsule) << ragdoll << "." << part;
     }
-    const phys::BoxId id = boxNamed(s, "c." + part);
+    const phys::BodyId id = boxNamed(s, "c." + part);
     EXPECT_NEAR(bodyMass(s.world, id), 1.0, 1e-12) << part;  // 11 kg split evenly
-    EXPECT_EQ(s.world.boxes()[id].material.staticFriction, 0.25) << part;
-    EXPECT_EQ(s.world.boxes()[id].model, phys::BoxModel::Corners) << part;
-    EXPECT_EQ(s.world.boxes()[boxNamed(s, "big." + part)].model, phys::BoxModel::Tetra) << part;
+    EXPECT_EQ(s.world.bodies()[id].material.staticFriction, 0.25) << part;
+    EXPECT_EQ(s.world.bodies()[id].model, phys::BodyModel::Corners) << part;
+    EXPECT_EQ(s.world.bodies()[boxNamed(s, "big." + part)].model, phys::BodyModel::Tetra) << part;
   }
   EXPECT_NE(findBody(s, "c.pelvis"), nullptr);
   EXPECT_NE(findBody(s, "c.lower-arm-right"), nullptr);
   EXPECT_EQ(findBody(s, "c.torso"), nullptr);  // the box ragdoll's part names are not the capsule ragdoll's
   // The box ragdolls, with or without shape="box", are the ten boxes they were.
   for (const char* name : {"b.torso", "d.torso", "b.lower-leg-left", "d.head"}) {
-    EXPECT_EQ(s.world.boxes()[boxNamed(s, name)].shape, phys::Shape::Box) << name;
+    EXPECT_EQ(s.world.bodies()[boxNamed(s, name)].shape, phys::Shape::Box) << name;
   }
 
   // pos is the middle of the hip joints, 0.9225 m (times the scale) above the soles.
   double soles = 1e9, top = -1e9;
   for (int i = 0; i < phys::kCapsuleParts; ++i) {
-    const phys::BoxId id = boxNamed(s, "c." + std::string(phys::toString(static_cast<phys::CapsulePart>(i))));
+    const phys::BodyId id =
+        boxNamed(s, "c." + std::string(phys::toString(static_cast<phys::CapsulePart>(i))));
     soles = std::min(soles, capsuleBottom(s.world, id));
-    const phys::Box& box = s.world.boxes()[id];
+    const phys::Body& box = s.world.bodies()[id];
     top =
-        std::max(top, s.world.boxPose(id).center.y +
+        std::max(top, s.world.bodyPose(id).center.y +
                           box.capsuleHalfSegment() * std::abs(coreAxis(s.world, id).y) + box.capsuleRadius());
   }
   EXPECT_NEAR(soles, 2.0 - 0.9225, 1e-9);
   EXPECT_NEAR(top - soles, 1.76, 1e-9);  // Bullet's ragdoll is 1.76 m tall
   EXPECT_NEAR(capsuleBottom(s.world, boxNamed(s, "big.lower-leg-left")), 0.0 - 3.5 * 0.9225, 1e-9);
   // Standing facing +z: left is +x, the pelvis right above pos.
-  EXPECT_GT(s.world.boxPose(boxNamed(s, "c.upper-arm-left")).center.x, 1.0);
-  EXPECT_LT(s.world.boxPose(boxNamed(s, "c.upper-arm-right")).center.x, 1.0);
-  EXPECT_NEAR(s.world.boxPose(boxNamed(s, "c.pelvis")).center.x, 1.0, 1e-12);
-  EXPECT_NEAR(s.world.boxPose(boxNamed(s, "c.pelvis")).center.z, 3.0, 1e-12);
+  EXPECT_GT(s.world.bodyPose(boxNamed(s, "c.upper-arm-left")).center.x, 1.0);
+  EXPECT_LT(s.world.bodyPose(boxNamed(s, "c.upper-arm-right")).center.x, 1.0);
+  EXPECT_NEAR(s.world.bodyPose(boxNamed(s, "c.pelvis")).center.x, 1.0, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(boxNamed(s, "c.pelvis")).center.z, 3.0, 1e-12);
 }
 
 TEST(SceneCapsules, CapsuleRagdollTakesEulerVelocityAndTheImposedRagdollModel) {
@@ -247,11 +248,11 @@ TEST(SceneCapsules, CapsuleRagdollTakesEulerVelocityAndTheImposedRagdollModel) {
       "</scene>";
   const scenes::Scene s = scenes::loadSceneText(xml, "r.xml");
   // Turned 90 degrees about x it lies on its back, head towards +z, its spine's core along +z.
-  const phys::BoxId head = boxNamed(s, "r.head");
-  EXPECT_GT(s.world.boxPose(head).center.z, 0.5);
-  EXPECT_NEAR(s.world.boxPose(head).center.y, 1.0, 1e-9);
+  const phys::BodyId head = boxNamed(s, "r.head");
+  EXPECT_GT(s.world.bodyPose(head).center.z, 0.5);
+  EXPECT_NEAR(s.world.bodyPose(head).center.y, 1.0, 1e-9);
   EXPECT_NEAR(std::abs(coreAxis(s.world, boxNamed(s, "r.spine")).z), 1.0, 1e-12);
-  const phys::Box& pelvis = s.world.boxes()[boxNamed(s, "r.pelvis")];
+  const phys::Body& pelvis = s.world.bodies()[boxNamed(s, "r.pelvis")];
   Vec3 velocity(0.0);
   for (int j = 0; j < pelvis.particleCount; ++j) velocity += s.world.velocity(pelvis.firstParticle + j);
   EXPECT_NEAR(velocity.z / pelvis.particleCount, -2.0, 1e-9);
@@ -259,9 +260,9 @@ TEST(SceneCapsules, CapsuleRagdollTakesEulerVelocityAndTheImposedRagdollModel) {
   scenes::LoadOptions lean;
   lean.ragdollModel = phys::RagdollModel::Lean;
   const scenes::Scene imposed = scenes::loadSceneText(xml, "r.xml", lean);
-  ASSERT_EQ(imposed.world.boxes().size(), 11u);
-  for (const phys::Box& b : imposed.world.boxes()) {
-    EXPECT_EQ(b.model, phys::BoxModel::Tetra) << b.name;
+  ASSERT_EQ(imposed.world.bodies().size(), 11u);
+  for (const phys::Body& b : imposed.world.bodies()) {
+    EXPECT_EQ(b.model, phys::BodyModel::Tetra) << b.name;
     EXPECT_EQ(b.shape, phys::Shape::Capsule) << b.name;
   }
   EXPECT_EQ(imposed.world.particles().size(), 11u * 4u);
@@ -292,26 +293,26 @@ TEST(SceneCapsules, SavedWorldWithCapsulesReloadsAsTheSameCapsules) {
   const scenes::Scene copy = scenes::loadSceneText(xml, "saved.xml");
   const phys::World& a = original.world;
   const phys::World& b = copy.world;
-  ASSERT_EQ(a.boxes().size(), b.boxes().size());
+  ASSERT_EQ(a.bodies().size(), b.bodies().size());
   EXPECT_EQ(a.particles().size(), b.particles().size());
   EXPECT_EQ(a.links().size(), b.links().size());
   EXPECT_EQ(a.ignoredCollisions(), b.ignoredCollisions());
-  for (phys::BoxId id = 0; id < a.boxes().size(); ++id) {
-    const phys::Box& x = a.boxes()[id];
-    const phys::Box& y = b.boxes()[id];
+  for (phys::BodyId id = 0; id < a.bodies().size(); ++id) {
+    const phys::Body& x = a.bodies()[id];
+    const phys::Body& y = b.bodies()[id];
     EXPECT_EQ(y.name, x.name);
     EXPECT_EQ(y.shape, x.shape) << x.name;
     EXPECT_EQ(y.halfExtents, x.halfExtents) << x.name;  // exactly: radius and length are doubled and halved
     EXPECT_EQ(y.model, x.model) << x.name;
     EXPECT_EQ(y.collisionGroup, x.collisionGroup) << x.name;
     EXPECT_NEAR(bodyMass(b, id), bodyMass(a, id), 1e-12) << x.name;
-    const phys::BoxPose pa = a.boxPose(id), pb = b.boxPose(id);
+    const phys::BodyPose pa = a.bodyPose(id), pb = b.bodyPose(id);
     EXPECT_LT(glm::length(pa.center - pb.center), 1e-3) << x.name;
     EXPECT_LT(angleBetween(pa.orientation, pb.orientation), 1e-3) << x.name;
   }
-  EXPECT_EQ(b.boxes()[boxNamed(copy, "log")].shape, phys::Shape::Capsule);
-  EXPECT_EQ(b.boxes()[boxNamed(copy, "crate")].shape, phys::Shape::Box);
-  EXPECT_EQ(b.boxes()[boxNamed(copy, "r.head")].shape, phys::Shape::Capsule);
+  EXPECT_EQ(b.bodies()[boxNamed(copy, "log")].shape, phys::Shape::Capsule);
+  EXPECT_EQ(b.bodies()[boxNamed(copy, "crate")].shape, phys::Shape::Box);
+  EXPECT_EQ(b.bodies()[boxNamed(copy, "r.head")].shape, phys::Shape::Capsule);
   for (std::size_t k = 0; k < a.links().size(); ++k) {
     EXPECT_EQ(a.links()[k].minLength, b.links()[k].minLength) << "link " << k;
     EXPECT_EQ(a.links()[k].maxLength, b.links()[k].maxLength) << "link " << k;
@@ -333,30 +334,30 @@ TEST(SceneCapsules, SavedRollingCapsuleRollsOnAsItDid) {
       "velocity=\"0 0 3\" angular-velocity=\"859.4366926962348 0 0\"/>",  // 15 rad/s: 3 m/s rolling
       "<solver substeps=\"4\" body-damping=\"1\"/><ground friction=\"0.6\"/>");
   for (int i = 0; i < 20; ++i) original.world.step();
-  const double rolled = original.world.boxPose(0).center.z;
+  const double rolled = original.world.bodyPose(0).center.z;
   EXPECT_GT(rolled, 0.6);  // it is rolling: 20 steps at 3 m/s
   scenes::Scene copy = scenes::loadSceneText(scenes::writeSceneXml(original), "saved.xml");
-  ASSERT_EQ(copy.world.boxes()[0].shape, phys::Shape::Capsule);
+  ASSERT_EQ(copy.world.bodies()[0].shape, phys::Shape::Capsule);
   for (int i = 0; i < 30; ++i) {
     original.world.step();
     copy.world.step();
   }
-  const Vec3 a = original.world.boxPose(0).center, b = copy.world.boxPose(0).center;
+  const Vec3 a = original.world.bodyPose(0).center, b = copy.world.bodyPose(0).center;
   EXPECT_GT(b.z - rolled, 1.0) << "rolled on";  // 30 steps at 3 m/s is 1.5 m
   EXPECT_LT(glm::length(a - b), 1e-2);
-  EXPECT_LT(angleBetween(original.world.boxPose(0).orientation, copy.world.boxPose(0).orientation), 1e-2);
+  EXPECT_LT(angleBetween(original.world.bodyPose(0).orientation, copy.world.bodyPose(0).orientation), 1e-2);
 }
 
 // Bullet's BenchmarkDemo test 3, rebuilt from capsule ragdolls: 136 of them, rows of 16 down
 // to 1, the bottom row's soles where Bullet's lowest capsules end (0.8775 m).
 TEST(SceneCapsules, BulletPileIsBulletsLayoutOfCapsuleRagdolls) {
   const scenes::Scene s = scenes::loadSceneFile(scenes::sceneDirectory(DATA_DIR) / "bullet-ragdolls.xml");
-  ASSERT_EQ(s.world.boxes().size(), 136u * 11u);
+  ASSERT_EQ(s.world.bodies().size(), 136u * 11u);
   EXPECT_EQ(s.world.worldSettings().gravity, Vec3(0, -10, 0));
   double lowest = 1e9;
-  for (phys::BoxId id = 0; id < s.world.boxes().size(); ++id) {
-    ASSERT_EQ(s.world.boxes()[id].shape, phys::Shape::Capsule) << s.world.boxes()[id].name;
-    EXPECT_NEAR(bodyMass(s.world, id), 1.0, 1e-12) << s.world.boxes()[id].name;  // Bullet's 1 kg parts
+  for (phys::BodyId id = 0; id < s.world.bodies().size(); ++id) {
+    ASSERT_EQ(s.world.bodies()[id].shape, phys::Shape::Capsule) << s.world.bodies()[id].name;
+    EXPECT_NEAR(bodyMass(s.world, id), 1.0, 1e-12) << s.world.bodies()[id].name;  // Bullet's 1 kg parts
     lowest = std::min(lowest, capsuleBottom(s.world, id));
   }
   EXPECT_NEAR(lowest, 1.0 - 3.5 * 0.035, 1e-9);
@@ -369,9 +370,9 @@ TEST(SceneCapsules, BulletPileIsBulletsLayoutOfCapsuleRagdolls) {
       // positive (GCC bug 105329).
       std::string name("r");
       name.append(std::to_string(row)).append("-").append(std::to_string(i));
-      const phys::BoxId left = boxNamed(s, name + ".upper-leg-left");
-      const phys::BoxId right = boxNamed(s, name + ".upper-leg-right");
-      const Vec3 hips = (s.world.boxPose(left).center + s.world.boxPose(right).center) * 0.5;
+      const phys::BodyId left = boxNamed(s, name + ".upper-leg-left");
+      const phys::BodyId right = boxNamed(s, name + ".upper-leg-right");
+      const Vec3 hips = (s.world.bodyPose(left).center + s.world.bodyPose(right).center) * 0.5;
       EXPECT_NEAR(hips.x, -3.0 * size + 6.0 * i, 1e-9) << name;
       EXPECT_NEAR(hips.z, -2.0 * row, 1e-9) << name;
       EXPECT_NEAR(capsuleBottom(s.world, boxNamed(s, name + ".lower-leg-left")), 0.8775 + 7.0 * row, 1e-9)
@@ -384,7 +385,7 @@ TEST(SceneCapsules, BulletPileIsBulletsLayoutOfCapsuleRagdolls) {
 TEST(SceneCapsules, CapsulesDemoHasCapsuleRagdollsAboveAPileOfCapsulesAndBoxes) {
   scenes::Scene s = scenes::loadSceneFile(scenes::sceneDirectory(DATA_DIR) / "capsules.xml");
   int capsules = 0, boxes = 0, ragdollParts = 0;
-  for (const phys::Box& b : s.world.boxes()) {
+  for (const phys::Body& b : s.world.bodies()) {
     (b.shape == phys::Shape::Capsule ? capsules : boxes) += 1;
     if (b.name.find(".pelvis") != std::string::npos) ragdollParts += phys::kCapsuleParts;
   }
@@ -397,10 +398,10 @@ TEST(SceneCapsules, CapsulesDemoHasCapsuleRagdollsAboveAPileOfCapsulesAndBoxes) 
   const phys::Metrics m = s.world.metrics();
   EXPECT_EQ(m.frozen, 0);
   EXPECT_LT(m.maxJointError, 0.05);
-  for (phys::BoxId id = 0; id < s.world.boxes().size(); ++id) {
-    const phys::BoxPose pose = s.world.boxPose(id);
-    EXPECT_GT(pose.center.y, 0.0) << s.world.boxes()[id].name;
-    EXPECT_LT(glm::length(Vec3(pose.center.x, 0.0, pose.center.z)), 6.0) << s.world.boxes()[id].name;
+  for (phys::BodyId id = 0; id < s.world.bodies().size(); ++id) {
+    const phys::BodyPose pose = s.world.bodyPose(id);
+    EXPECT_GT(pose.center.y, 0.0) << s.world.bodies()[id].name;
+    EXPECT_LT(glm::length(Vec3(pose.center.x, 0.0, pose.center.z)), 6.0) << s.world.bodies()[id].name;
   }
 }
 

@@ -104,18 +104,18 @@ TEST(SceneFiles, BoxWithEveryAttribute) {
       "<box name=\"b\" pos=\"1 2 3\" size=\"0.5 1 2\" euler=\"0 90 0\" mass=\"4\" model=\"tetra\" "
       "friction=\"0.3\" velocity=\"1 0 0\" angular-velocity=\"0 0 0\"/>"
       "<box pos=\"0 5 0\" size=\"2\" static-friction=\"0.7\"/>");
-  ASSERT_EQ(s.world.boxes().size(), 2u);
-  const phys::Box& b = s.world.boxes()[0];
+  ASSERT_EQ(s.world.bodies().size(), 2u);
+  const phys::Body& b = s.world.bodies()[0];
   EXPECT_EQ(b.name, "b");
-  EXPECT_EQ(b.model, phys::BoxModel::Tetra);
+  EXPECT_EQ(b.model, phys::BodyModel::Tetra);
   EXPECT_EQ(b.halfExtents, Vec3(0.25, 0.5, 1.0));
   EXPECT_EQ(b.material.staticFriction, 0.3);
-  const phys::BoxPose pose = s.world.boxPose(0);
+  const phys::BodyPose pose = s.world.bodyPose(0);
   EXPECT_LT(glm::length(pose.center - Vec3(1, 2, 3)), 1e-12);
   EXPECT_NEAR(std::abs(pose.orientation.y), std::sin(M_PI / 4), 1e-9);  // 90 degrees about y
-  EXPECT_EQ(s.world.boxes()[1].halfExtents, Vec3(1.0));                 // one number, a cube
-  EXPECT_EQ(s.world.boxes()[1].material.staticFriction, 0.7);
-  EXPECT_EQ(s.world.boxes()[1].model, phys::BoxModel::Corners);
+  EXPECT_EQ(s.world.bodies()[1].halfExtents, Vec3(1.0));                // one number, a cube
+  EXPECT_EQ(s.world.bodies()[1].material.staticFriction, 0.7);
+  EXPECT_EQ(s.world.bodies()[1].model, phys::BodyModel::Corners);
   ASSERT_EQ(s.bodies.size(), 1u);  // the unnamed box has no entry
 }
 
@@ -148,7 +148,7 @@ TEST(SceneFiles, LinksAndPairsThatDoNotCollide) {
   // A loose particle is its own end.
   EXPECT_EQ(links[4].a.count, 1);
   EXPECT_EQ(links[4].a.particle[0], 12u);
-  EXPECT_EQ(s.world.ignoredCollisions(), (std::vector<std::pair<phys::BoxId, phys::BoxId>>{{0u, 1u}}));
+  EXPECT_EQ(s.world.ignoredCollisions(), (std::vector<std::pair<phys::BodyId, phys::BodyId>>{{0u, 1u}}));
 }
 
 TEST(SceneFiles, RestitutionComplianceAndCollisionGroups) {
@@ -156,10 +156,10 @@ TEST(SceneFiles, RestitutionComplianceAndCollisionGroups) {
                                "<solver restitution=\"0.4\" compliance=\"1e-5\"/>");
   EXPECT_EQ(s.world.solverSettings().restitution, 0.4);
   EXPECT_EQ(s.world.solverSettings().compliance, 1e-5);
-  EXPECT_EQ(s.world.boxes()[0].collisionGroup, 6u);
-  EXPECT_EQ(s.world.boxes()[0].collisionMask, 0u);
-  EXPECT_EQ(s.world.boxes()[1].collisionGroup, phys::BoxDesc{}.collisionGroup);
-  EXPECT_EQ(s.world.boxes()[1].collisionMask, phys::BoxDesc{}.collisionMask);
+  EXPECT_EQ(s.world.bodies()[0].collisionGroup, 6u);
+  EXPECT_EQ(s.world.bodies()[0].collisionMask, 0u);
+  EXPECT_EQ(s.world.bodies()[1].collisionGroup, phys::BodyDesc{}.collisionGroup);
+  EXPECT_EQ(s.world.bodies()[1].collisionMask, phys::BodyDesc{}.collisionMask);
   EXPECT_EQ(load("").world.solverSettings().restitution, phys::SolverSettings{}.restitution);
 }
 
@@ -169,7 +169,7 @@ TEST(SceneFiles, GeneratorsNameTheirMembersAndPlaceThemOnTheFloor) {
       "<pyramid name=\"p\" pos=\"5 0 0\" base=\"4\" size=\"1\" model=\"tetra\"/>"
       "<grid pos=\"-5 0 0\" count=\"3 3 3\" size=\"1\" spacing=\"1.1\"/>"
       "<chain pos=\"0 10 0\" links=\"5\" length=\"0.5\" mass=\"1\" end-mass=\"100\"/>");
-  EXPECT_EQ(s.world.boxes().size(), 10u + 10u + 27u);
+  EXPECT_EQ(s.world.bodies().size(), 10u + 10u + 27u);
   auto find = [&](const std::string& name) {
     for (const auto& b : s.bodies) {
       if (b.name == name) return b;
@@ -177,11 +177,11 @@ TEST(SceneFiles, GeneratorsNameTheirMembersAndPlaceThemOnTheFloor) {
     ADD_FAILURE() << "no body named " << name;
     return scenes::NamedBody{};
   };
-  EXPECT_NEAR(s.world.boxPose(find("stack[9]").index).center.y, 0.25 + 9 * 0.5, 1e-12);
-  EXPECT_NEAR(s.world.boxPose(find("stack[0]").index).center.y, 0.25, 1e-12);
-  EXPECT_NEAR(s.world.boxPose(find("p[9]").index).center.y, 3.5, 1e-12);  // the top of the pyramid
-  EXPECT_NEAR(s.world.boxPose(find("p[9]").index).center.x, 5.0, 1e-12);
-  EXPECT_NEAR(s.world.boxPose(find("grid[26]").index).center.y, 0.5 + 2 * 1.1, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("stack[9]").index).center.y, 0.25 + 9 * 0.5, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("stack[0]").index).center.y, 0.25, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("p[9]").index).center.y, 3.5, 1e-12);  // the top of the pyramid
+  EXPECT_NEAR(s.world.bodyPose(find("p[9]").index).center.x, 5.0, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("grid[26]").index).center.y, 0.5 + 2 * 1.1, 1e-12);
   const scenes::NamedBody end = find("chain[5]");
   EXPECT_EQ(end.kind, scenes::NamedBody::Kind::Particle);
   EXPECT_NEAR(s.world.particles().position[end.index].y, 10.0 - 2.5, 1e-12);
@@ -195,7 +195,7 @@ TEST(SceneFiles, RagdollsAndTaperedPyramids) {
       "<ragdoll name=\"l\" pos=\"3 2 0\" euler=\"90 0 0\" scale=\"0.5\" mass=\"35\" model=\"lean\" "
       "friction=\"0.9\"/>"
       "<pyramid name=\"p\" pos=\"-5 0 0\" base=\"2\" size=\"1\" taper=\"0.5\"/>");
-  EXPECT_EQ(s.world.boxes().size(), 10u + 10u + 3u);
+  EXPECT_EQ(s.world.bodies().size(), 10u + 10u + 3u);
   EXPECT_EQ(s.world.particles().size(), 80u + 40u + 24u);
   EXPECT_EQ(s.world.links().size(), 2u * 9u * 4u);  // per hinge: two pins and two stops
   auto find = [&](const std::string& name) {
@@ -206,15 +206,15 @@ TEST(SceneFiles, RagdollsAndTaperedPyramids) {
     return 0u;
   };
   // Standing, the torso's bottom face is at pos: its centre 0.29 m (half its height) above.
-  EXPECT_NEAR(s.world.boxPose(find("r.torso")).center.y, 2.0 + 0.29, 1e-9);
-  EXPECT_NEAR(s.world.boxPose(find("r.head")).center.y, 2.0 + 0.71, 1e-9);
+  EXPECT_NEAR(s.world.bodyPose(find("r.torso")).center.y, 2.0 + 0.29, 1e-9);
+  EXPECT_NEAR(s.world.bodyPose(find("r.head")).center.y, 2.0 + 0.71, 1e-9);
   // Lying on its back at half scale: the head is 0.355 m along +z from the hips.
-  EXPECT_NEAR(s.world.boxPose(find("l.head")).center.z, 0.355, 1e-9);
-  EXPECT_EQ(s.world.boxes()[find("l.torso")].model, phys::BoxModel::Tetra);
-  EXPECT_EQ(s.world.boxes()[find("l.torso")].material.staticFriction, 0.9);
+  EXPECT_NEAR(s.world.bodyPose(find("l.head")).center.z, 0.355, 1e-9);
+  EXPECT_EQ(s.world.bodies()[find("l.torso")].model, phys::BodyModel::Tetra);
+  EXPECT_EQ(s.world.bodies()[find("l.torso")].material.staticFriction, 0.9);
   // The tapered pyramid: the top box half the size, resting on the row below.
-  EXPECT_NEAR(s.world.boxes()[find("p[2]")].halfExtents.x, 0.25, 1e-12);
-  EXPECT_NEAR(s.world.boxPose(find("p[2]")).center.y, 1.0 + 0.25, 1e-12);
+  EXPECT_NEAR(s.world.bodies()[find("p[2]")].halfExtents.x, 0.25, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("p[2]")).center.y, 1.0 + 0.25, 1e-12);
 }
 
 TEST(ScenePaths, NamesResolveInTheSceneFolderAndPathsAsGiven) {
@@ -247,13 +247,13 @@ TEST(SceneFiles, LoadOptionsImposeTheBoxAndRagdollModels) {
       "<scene name=\"m\"><box pos=\"0 1 0\"/><stack pos=\"3 0 0\" count=\"2\"/>"
       "<ragdoll pos=\"-3 1 0\"/></scene>";
   const scenes::Scene asWritten = scenes::loadSceneText(xml, "m.xml");
-  EXPECT_EQ(asWritten.world.boxes()[0].model, phys::BoxModel::Corners);
+  EXPECT_EQ(asWritten.world.bodies()[0].model, phys::BodyModel::Corners);
   EXPECT_EQ(asWritten.world.particles().size(), 3u * 8u + 80u);
   scenes::LoadOptions lean;
-  lean.boxModel = phys::BoxModel::Tetra;
+  lean.boxModel = phys::BodyModel::Tetra;
   lean.ragdollModel = phys::RagdollModel::Lean;
   const scenes::Scene imposed = scenes::loadSceneText(xml, "m.xml", lean);
-  for (const phys::Box& b : imposed.world.boxes()) EXPECT_EQ(b.model, phys::BoxModel::Tetra);
+  for (const phys::Body& b : imposed.world.bodies()) EXPECT_EQ(b.model, phys::BodyModel::Tetra);
   EXPECT_EQ(imposed.world.particles().size(), 3u * 4u + 40u);
 }
 

@@ -160,7 +160,7 @@ class SceneGenerator {
       case 2: {
         const bool capsule = chance(0.4);
         const std::string n = name(capsule ? "c" : "b");
-        boxes_.push_back(n);
+        bodies_.push_back(n);
         std::string e = std::string(capsule ? "  <capsule" : "  <box") + attr("name", n) +
                         attr("pos", vec(place())) + bodyCommon(capsule);
         if (chance(0.5)) e += attr("velocity", vec(vector(-5.0, 5.0)));
@@ -197,7 +197,7 @@ class SceneGenerator {
         static const char* kBoxParts[] = {"head", "torso", "upper-arm-left", "lower-arm-right",
                                           "upper-leg-left"};
         static const char* kCapsuleParts[] = {"head", "pelvis", "spine", "upper-arm-left", "lower-leg-right"};
-        for (const char* part : capsules ? kCapsuleParts : kBoxParts) boxes_.push_back(n + "." + part);
+        for (const char* part : capsules ? kCapsuleParts : kBoxParts) bodies_.push_back(n + "." + part);
         std::string e = "  <ragdoll" + attr("name", n) + attr("pos", vec(place())) +
                         attr("shape", capsules ? "capsule" : "box");
         if (chance(0.5)) e += attr("euler", vec(vector(-180.0, 180.0)));
@@ -212,14 +212,14 @@ class SceneGenerator {
 
   std::string generator(const char* kind, const std::string& own) {
     const std::string n = name(kind);
-    boxes_.push_back(n + "[0]");  // every generator makes at least one box
+    bodies_.push_back(n + "[0]");  // every generator makes at least one box
     return "  <" + std::string(kind) + attr("name", n) + attr("pos", vec(place(4.0))) + own +
            bodyCommon(false) + "/>\n";
   }
 
   // A link between two named bodies, a pin or a range, with one point or one for each end.
   std::string link() {
-    std::vector<std::string> ends = boxes_;
+    std::vector<std::string> ends = bodies_;
     ends.insert(ends.end(), particles_.begin(), particles_.end());
     if (ends.size() < 2) return {};
     const std::string a = ends[static_cast<std::size_t>(integer(0, static_cast<int>(ends.size()) - 1))];
@@ -239,9 +239,9 @@ class SceneGenerator {
   }
 
   std::string noCollision() {
-    if (boxes_.size() < 2) return {};
-    const std::string a = boxes_[static_cast<std::size_t>(integer(0, static_cast<int>(boxes_.size()) - 1))];
-    const std::string b = boxes_[static_cast<std::size_t>(integer(0, static_cast<int>(boxes_.size()) - 1))];
+    if (bodies_.size() < 2) return {};
+    const std::string a = bodies_[static_cast<std::size_t>(integer(0, static_cast<int>(bodies_.size()) - 1))];
+    const std::string b = bodies_[static_cast<std::size_t>(integer(0, static_cast<int>(bodies_.size()) - 1))];
     if (a == b) return {};
     return "  <no-collision" + attr("a", a) + attr("b", b) + "/>\n";
   }
@@ -274,7 +274,7 @@ class SceneGenerator {
   bool far_ = false;
   Vec origin_{0.0, 0.0, 0.0};
   int count_ = 0;
-  std::vector<std::string> boxes_, particles_;
+  std::vector<std::string> bodies_, particles_;
 };
 
 // Generated scenes: how many loaded (some draws are refused, e.g. bodies generated overlapping a

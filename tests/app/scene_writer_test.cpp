@@ -39,8 +39,8 @@ double angleBetween(const phys::Quat& a, const phys::Quat& b) {
   return 2.0 * std::atan2(glm::length(Vec3(d.x, d.y, d.z)), std::abs(d.w));
 }
 
-Vec3 centreVelocity(const phys::World& world, phys::BoxId id) {
-  const phys::Box& box = world.boxes()[id];
+Vec3 centreVelocity(const phys::World& world, phys::BodyId id) {
+  const phys::Body& box = world.bodies()[id];
   Vec3 sum(0.0);
   for (int j = 0; j < box.particleCount; ++j) sum += world.velocity(box.firstParticle + j);
   return sum / static_cast<double>(box.particleCount);
@@ -76,7 +76,7 @@ void expectSameSettings(const phys::World& a, const phys::World& b, const std::s
 }
 
 void expectSameCounts(const phys::World& a, const phys::World& b, const std::string& what) {
-  EXPECT_EQ(a.boxes().size(), b.boxes().size()) << what;
+  EXPECT_EQ(a.bodies().size(), b.bodies().size()) << what;
   EXPECT_EQ(a.particles().size(), b.particles().size()) << what;
   EXPECT_EQ(a.sticks().size(), b.sticks().size()) << what;
   EXPECT_EQ(a.links().size(), b.links().size()) << what;
@@ -95,12 +95,12 @@ TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
   expectSameSettings(a, b, "ragdoll");
   EXPECT_EQ(copy.name, original.name);
   EXPECT_EQ(copy.description, original.description);
-  for (phys::BoxId id = 0; id < a.boxes().size(); ++id) {
-    EXPECT_EQ(b.boxes()[id].name, a.boxes()[id].name);
-    const phys::BoxPose pa = a.boxPose(id), pb = b.boxPose(id);
-    EXPECT_LT(glm::length(pa.center - pb.center), 1e-3) << a.boxes()[id].name;
-    EXPECT_LT(angleBetween(pa.orientation, pb.orientation), 1e-3) << a.boxes()[id].name;
-    EXPECT_LT(glm::length(centreVelocity(a, id) - centreVelocity(b, id)), 1e-2) << a.boxes()[id].name;
+  for (phys::BodyId id = 0; id < a.bodies().size(); ++id) {
+    EXPECT_EQ(b.bodies()[id].name, a.bodies()[id].name);
+    const phys::BodyPose pa = a.bodyPose(id), pb = b.bodyPose(id);
+    EXPECT_LT(glm::length(pa.center - pb.center), 1e-3) << a.bodies()[id].name;
+    EXPECT_LT(angleBetween(pa.orientation, pb.orientation), 1e-3) << a.bodies()[id].name;
+    EXPECT_LT(glm::length(centreVelocity(a, id) - centreVelocity(b, id)), 1e-2) << a.bodies()[id].name;
   }
   // Spin too: each particle moves as it did, less what deformation the rigid fit drops.
   for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
@@ -117,8 +117,8 @@ TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
     original.world.step();
     copy.world.step();
   }
-  for (phys::BoxId id = 0; id < a.boxes().size(); ++id) {
-    EXPECT_LT(glm::length(a.boxPose(id).center - b.boxPose(id).center), 0.01) << a.boxes()[id].name;
+  for (phys::BodyId id = 0; id < a.bodies().size(); ++id) {
+    EXPECT_LT(glm::length(a.bodyPose(id).center - b.bodyPose(id).center), 0.01) << a.bodies()[id].name;
   }
 }
 
@@ -135,8 +135,9 @@ TEST(SceneWriter, EveryProjectSceneRoundTrips) {
     expectSameSettings(original.world, copy.world, what);
     EXPECT_EQ(copy.camera.eye, original.camera.eye) << what;
     EXPECT_EQ(copy.camera.target, original.camera.target) << what;
-    for (phys::BoxId id = 0; id < original.world.boxes().size(); ++id) {
-      EXPECT_LT(glm::length(original.world.boxPose(id).center - copy.world.boxPose(id).center), 1e-3) << what;
+    for (phys::BodyId id = 0; id < original.world.bodies().size(); ++id) {
+      EXPECT_LT(glm::length(original.world.bodyPose(id).center - copy.world.bodyPose(id).center), 1e-3)
+          << what;
     }
     for (std::size_t i = 0; i < original.world.particles().size(); ++i) {
       if (original.world.particles().inverseMass[i] == 0.0) {
@@ -233,10 +234,10 @@ TEST(SceneWriter, SticksRangesLinksAndCollisionGroupsRoundTrip) {
   EXPECT_EQ(b.links()[1].maxLength, 2.0);
   EXPECT_EQ(b.links()[2].a.count, 1);  // the particle is its own end
   EXPECT_EQ(b.links()[2].a.particle[0], a.links()[2].a.particle[0]);
-  EXPECT_EQ(b.boxes()[0].collisionGroup, 2u);
-  EXPECT_EQ(b.boxes()[0].collisionMask, 0xfffffffdu);
-  EXPECT_EQ(b.boxes()[1].collisionGroup, 1u);
-  EXPECT_EQ(b.boxes()[0].model, phys::BoxModel::Tetra);
+  EXPECT_EQ(b.bodies()[0].collisionGroup, 2u);
+  EXPECT_EQ(b.bodies()[0].collisionMask, 0xfffffffdu);
+  EXPECT_EQ(b.bodies()[1].collisionGroup, 1u);
+  EXPECT_EQ(b.bodies()[0].model, phys::BodyModel::Tetra);
 }
 
 // A pin whose two ends are apart was saved as one midpoint: two boxes pinned 2 m apart were
@@ -275,35 +276,35 @@ TEST(SceneWriter, APinWhoseEndsAreApartStepsTheSameAfterReload) {
 
 TEST(SceneWriter, EveryBoxGetsAUniqueName) {
   scenes::Scene scene = load("<particle name=\"box 1\" pos=\"0 9 0\"/>");
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.center = Vec3(0.0, 1.0, 0.0);
-  scene.world.addBox(box);  // unnamed: becomes "box 0"
+  scene.world.addBody(box);  // unnamed: becomes "box 0"
   box.name = "twin";
-  scene.world.addBox(box);
-  scene.world.addBox(box);  // a second "twin": the first keeps the name
+  scene.world.addBody(box);
+  scene.world.addBody(box);  // a second "twin": the first keeps the name
   box.name = "";
-  scene.world.addBox(box);  // "box 3"
+  scene.world.addBody(box);  // "box 3"
   box.name = "box 0";
-  scene.world.addBox(box);  // takes "box 0" before the unnamed one is named, which then needs another
+  scene.world.addBody(box);  // takes "box 0" before the unnamed one is named, which then needs another
   const scenes::Scene copy = reload(scene);
-  ASSERT_EQ(copy.world.boxes().size(), 5u);
-  EXPECT_EQ(copy.world.boxes()[1].name, "twin");
-  EXPECT_EQ(copy.world.boxes()[2].name, "box 2");
-  EXPECT_EQ(copy.world.boxes()[3].name, "box 3");
-  EXPECT_EQ(copy.world.boxes()[4].name, "box 0");
-  EXPECT_EQ(copy.world.boxes()[0].name, "box 0 (2)");
+  ASSERT_EQ(copy.world.bodies().size(), 5u);
+  EXPECT_EQ(copy.world.bodies()[1].name, "twin");
+  EXPECT_EQ(copy.world.bodies()[2].name, "box 2");
+  EXPECT_EQ(copy.world.bodies()[3].name, "box 3");
+  EXPECT_EQ(copy.world.bodies()[4].name, "box 0");
+  EXPECT_EQ(copy.world.bodies()[0].name, "box 0 (2)");
   EXPECT_EQ(copy.world.particleName(0), "box 1");
 }
 
 TEST(SceneWriter, NamesWithMarkupAndLineBreaksComeBackUnchanged) {
   scenes::Scene scene = load("");
   scene.description = "a \"quoted\" <tag> & \t tab\nnew line";
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.name = "odd & <name> \"x\"\n'y'";
-  scene.world.addBox(box);
+  scene.world.addBody(box);
   const scenes::Scene copy = reload(scene);
   EXPECT_EQ(copy.description, scene.description);
-  EXPECT_EQ(copy.world.boxes()[0].name, box.name);
+  EXPECT_EQ(copy.world.bodies()[0].name, box.name);
 }
 
 TEST(SceneWriter, CameraIsTheOneGivenAndReadsBackAsTheSameFloats) {
@@ -331,7 +332,7 @@ TEST(SceneWriter, EulerAnglesReadBackAsTheSameOrientation) {
   EXPECT_NEAR(euler.x, 30.0, 1e-9);
   EXPECT_NEAR(euler.y, -50.0, 1e-9);
   EXPECT_NEAR(euler.z, 170.0, 1e-9);
-  EXPECT_LT(angleBetween(reload(scene).world.boxPose(0).orientation, scene.world.boxPose(0).orientation),
+  EXPECT_LT(angleBetween(reload(scene).world.bodyPose(0).orientation, scene.world.bodyPose(0).orientation),
             1e-9);
 
   // Out of range and at or near gimbal lock the angles differ, but the orientation does not.
@@ -342,7 +343,7 @@ TEST(SceneWriter, EulerAnglesReadBackAsTheSameOrientation) {
     EXPECT_LE(std::abs(e.y), 90.0) << angles;
     EXPECT_LE(std::abs(e.x), 180.0) << angles;
     EXPECT_LE(std::abs(e.z), 180.0) << angles;
-    EXPECT_LT(angleBetween(reload(s).world.boxPose(0).orientation, s.world.boxPose(0).orientation), 1e-9)
+    EXPECT_LT(angleBetween(reload(s).world.bodyPose(0).orientation, s.world.bodyPose(0).orientation), 1e-9)
         << angles;
   }
 }
@@ -351,7 +352,7 @@ TEST(SceneWriter, EulerAnglesTurnAboutWorldXThenYThenZ) {
   // Local +y turned 90 degrees about x points along +z; then 90 about y takes +z to +x. Taken in
   // the other order (y first) it would end along +z.
   const scenes::Scene s = load("<box pos=\"0 0 0\" euler=\"90 90 0\"/>");
-  const Vec3 up = s.world.boxPose(0).orientation * Vec3(0.0, 1.0, 0.0);
+  const Vec3 up = s.world.bodyPose(0).orientation * Vec3(0.0, 1.0, 0.0);
   EXPECT_LT(glm::length(up - Vec3(1.0, 0.0, 0.0)), 1e-12);
   EXPECT_LT(glm::length(writtenEuler(s) - Vec3(90.0, 90.0, 0.0)), 1e-6);  // at gimbal lock: x + z kept
 }
@@ -464,7 +465,7 @@ TEST(SceneWriter, SaveReplacesAFileWholeAndKeepsItsPermissions) {
   EXPECT_EQ(fs::status(file).permissions(),
             fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"saved.xml"});  // no temporary file left
-  EXPECT_EQ(scenes::loadSceneFile(file).world.boxes().size(), scene.world.boxes().size());
+  EXPECT_EQ(scenes::loadSceneFile(file).world.bodies().size(), scene.world.bodies().size());
 }
 
 TEST(SceneWriter, SaveThroughASymbolicLinkReplacesItsTarget) {

@@ -56,19 +56,19 @@ TEST(Session, ReloadRestartsFromTheFileAndBuiltinsOpenTheSeedsScenes) {
   EXPECT_EQ(s.reload(), "");
   EXPECT_EQ(s.scene().world.stateHash(), start);
   EXPECT_EQ(s.openBuiltin("box-of-boxes"), "");
-  EXPECT_EQ(s.scene().world.boxes().size(), 27u);  // three 3x3 layers
+  EXPECT_EQ(s.scene().world.bodies().size(), 27u);  // three 3x3 layers
 }
 
 TEST(Session, ClearRemovesEveryBodyAndKeepsTheSettings) {
   sandbox::Session s = open("pyramid");
   const phys::SolverSettings solver = s.scene().world.solverSettings();
   s.clear();
-  EXPECT_EQ(s.scene().world.boxes().size(), 0u);
+  EXPECT_EQ(s.scene().world.bodies().size(), 0u);
   EXPECT_EQ(s.scene().world.particles().size(), 0u);
   EXPECT_EQ(s.scene().world.solverSettings().iterations, solver.iterations);
   s.step();  // an empty world steps
   EXPECT_EQ(s.reload(), "");
-  EXPECT_GT(s.scene().world.boxes().size(), 0u);
+  EXPECT_GT(s.scene().world.bodies().size(), 0u);
 }
 
 TEST(Session, GravityKeysChangeStrengthAndModeAndKeepTheStrengthAcrossModes) {
@@ -153,13 +153,13 @@ TEST(Session, DampingKeysStepByATenthAndComeBackExactly) {
 
 TEST(Session, ThrownBoxesAndRagdollsFlyAlongTheViewAndLand) {
   sandbox::Session s = open("pyramid");
-  const std::size_t boxes = s.scene().world.boxes().size();
+  const std::size_t boxes = s.scene().world.bodies().size();
   s.spawnBox(phys::Vec3(0, 3, 6), phys::Vec3(0, 0, -sandbox::kThrowSpeed));
   s.spawnRagdoll(phys::Vec3(4, 3, 0), phys::Vec3(sandbox::kThrowSpeed, 0, 0));
-  ASSERT_EQ(s.scene().world.boxes().size(), boxes + 11);
+  ASSERT_EQ(s.scene().world.bodies().size(), boxes + 11);
   s.step();
-  EXPECT_LT(s.scene().world.boxPose(static_cast<phys::BoxId>(boxes)).center.z, 6.0);      // flies towards -z
-  EXPECT_GT(s.scene().world.boxPose(static_cast<phys::BoxId>(boxes + 1)).center.x, 4.0);  // towards +x
+  EXPECT_LT(s.scene().world.bodyPose(static_cast<phys::BodyId>(boxes)).center.z, 6.0);  // flies towards -z
+  EXPECT_GT(s.scene().world.bodyPose(static_cast<phys::BodyId>(boxes + 1)).center.x, 4.0);  // towards +x
   for (int i = 0; i < 240; ++i) s.step();
   const phys::Metrics m = s.scene().world.metrics();
   EXPECT_EQ(m.frozen, 0);
@@ -168,22 +168,23 @@ TEST(Session, ThrownBoxesAndRagdollsFlyAlongTheViewAndLand) {
 
 TEST(Session, ThrownCapsuleRagdollHasBulletsElevenCapsules) {
   sandbox::Session s = open("pyramid");
-  const std::size_t boxes = s.scene().world.boxes().size();
+  const std::size_t boxes = s.scene().world.bodies().size();
   s.spawnRagdoll(phys::Vec3(-4, 3, 0), phys::Vec3(-sandbox::kThrowSpeed, 0, 0), true);
   const phys::World& w = s.scene().world;
-  ASSERT_EQ(w.boxes().size(), boxes + 11);
-  for (std::size_t i = boxes; i < w.boxes().size(); ++i) EXPECT_EQ(w.boxes()[i].shape, phys::Shape::Capsule);
+  ASSERT_EQ(w.bodies().size(), boxes + 11);
+  for (std::size_t i = boxes; i < w.bodies().size(); ++i)
+    EXPECT_EQ(w.bodies()[i].shape, phys::Shape::Capsule);
   EXPECT_EQ(s.status(), "threw a capsule ragdoll");
   for (int i = 0; i < 240; ++i) s.step();
   EXPECT_EQ(w.metrics().frozen, 0);
-  EXPECT_LT(w.boxPose(static_cast<phys::BoxId>(boxes)).center.x, -4.0);  // flew towards -x
+  EXPECT_LT(w.bodyPose(static_cast<phys::BodyId>(boxes)).center.x, -4.0);  // flew towards -x
 }
 
 TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
   sandbox::Session s = open("falling-box");
   for (int i = 0; i < 120; ++i) s.step();  // landed
   const phys::World& w = s.scene().world;
-  const phys::Vec3 centre = w.boxPose(0).center;
+  const phys::Vec3 centre = w.bodyPose(0).center;
   EXPECT_FALSE(s.pick(phys::Vec3(0, 10, 0), phys::Vec3(0, 1, 0)));  // straight up: nothing
   const phys::Vec3 eye = centre + phys::Vec3(0, 0, 5);
   const phys::Vec3 view = glm::normalize(centre - eye);
@@ -194,7 +195,7 @@ TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
   // Pull the cursor up 1 m: the ray through a point 1 m above the picked one.
   s.dragAlong(eye, glm::normalize(centre + phys::Vec3(0, 1, 0) - eye));
   for (int i = 0; i < 120; ++i) s.step();
-  EXPECT_GT(w.boxPose(0).center.y, centre.y + 0.15);  // lifted off the ground
+  EXPECT_GT(w.bodyPose(0).center.y, centre.y + 0.15);  // lifted off the ground
   const auto line = s.dragLine();
   ASSERT_TRUE(line.has_value());
   // An 8 kg box on the 2000 N/m spring hangs 4 cm below it, plus what is left of the swing.
@@ -261,7 +262,7 @@ TEST(Session, OverlayRunsWithAnotherDtKeepTheMainRunsClock) {
 
 TEST(Session, StartingTheOverlayLetsGoOfADrag) {
   sandbox::Session s = open("falling-box");
-  const phys::Vec3 centre = s.scene().world.boxPose(0).center;
+  const phys::Vec3 centre = s.scene().world.bodyPose(0).center;
   ASSERT_TRUE(s.pick(centre + phys::Vec3(0, 0, 5), phys::Vec3(0, 0, -1)));
   const std::vector<sandbox::OverlaySpec> specs{sandbox::parseOverlaySpec("iterations=2").spec,
                                                 sandbox::parseOverlaySpec("iterations=4").spec};
@@ -277,7 +278,7 @@ TEST(Session, StartingTheOverlayLetsGoOfADrag) {
 TEST(Session, ARefusedOverlayChangesNothingNotEvenTheDrag) {
   sandbox::Session s = open("falling-box");
   for (int i = 0; i < 60; ++i) s.step();
-  const phys::Vec3 centre = s.scene().world.boxPose(0).center;
+  const phys::Vec3 centre = s.scene().world.bodyPose(0).center;
   ASSERT_TRUE(s.pick(centre + phys::Vec3(0, 0, 5), phys::Vec3(0, 0, -1)));
   std::vector<sandbox::OverlaySpec> specs{sandbox::parseOverlaySpec("iterations=2").spec,
                                           sandbox::parseOverlaySpec("iterations=4").spec};
@@ -288,11 +289,11 @@ TEST(Session, ARefusedOverlayChangesNothingNotEvenTheDrag) {
   EXPECT_TRUE(s.scene().world.drag().has_value());
 }
 
-// Found by the soak test: a throw from beyond about 1e15 m let addBox's exception out. Beyond the
+// Found by the soak test: a throw from beyond about 1e15 m let addBody's exception out. Beyond the
 // world's bound nothing is thrown, and whatever the world refuses is a message.
 TEST(Session, AThrowFromBeyondTheWorldIsRefusedWithAMessage) {
   sandbox::Session s = open("falling-box");
-  const std::size_t boxes = s.scene().world.boxes().size();
+  const std::size_t boxes = s.scene().world.bodies().size();
   const std::uint64_t before = s.scene().world.stateHash();
   EXPECT_NE(s.spawnBox(phys::Vec3(1e17, 1, 0), phys::Vec3(0, 0, -8)).find("beyond the world's bound"),
             std::string::npos);
@@ -300,11 +301,11 @@ TEST(Session, AThrowFromBeyondTheWorldIsRefusedWithAMessage) {
       s.spawnRagdoll(phys::Vec3(0, 2e6, 0), phys::Vec3(0, 0, -8), true).find("beyond the world's bound"),
       std::string::npos);
   EXPECT_EQ(s.status().rfind("nothing thrown: ", 0), 0u) << s.status();
-  EXPECT_EQ(s.scene().world.boxes().size(), boxes);
+  EXPECT_EQ(s.scene().world.bodies().size(), boxes);
   EXPECT_EQ(s.scene().world.stateHash(), before);
   EXPECT_EQ(s.spawnBox(phys::Vec3(0, 3, 0), phys::Vec3(0, 0, -8)), "");
-  EXPECT_EQ(s.scene().world.boxes().size(), boxes + 1);
-  EXPECT_EQ(s.scene().world.boxes().back().name, "thrown box 1");
+  EXPECT_EQ(s.scene().world.bodies().size(), boxes + 1);
+  EXPECT_EQ(s.scene().world.bodies().back().name, "thrown box 1");
 }
 
 TEST(Session, BadWorldSettingsAreRefusedWithTheReason) {
@@ -324,9 +325,9 @@ TEST(Session, SaveAsWritesAWorldThatOpensAgainAndABadPathKeepsEverything) {
   camera.eye = {1, 2, 3};
   ASSERT_EQ(s.saveAs(file, camera), "");
   EXPECT_EQ(s.file(), file);  // the saved file is the current one: Reload reads it
-  const phys::Vec3 torso = s.scene().world.boxPose(1).center;
+  const phys::Vec3 torso = s.scene().world.bodyPose(1).center;
   ASSERT_EQ(s.reload(), "");
-  EXPECT_NEAR(glm::length(s.scene().world.boxPose(1).center - torso), 0.0, 1e-3);
+  EXPECT_NEAR(glm::length(s.scene().world.bodyPose(1).center - torso), 0.0, 1e-3);
   EXPECT_EQ(s.scene().camera.eye, glm::vec3(1, 2, 3));
 
   // A folder that does not exist: the message says why, nothing is written, the file stays.

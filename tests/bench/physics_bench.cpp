@@ -14,16 +14,16 @@ namespace {
 
 // side x side boxes resting on the ground in one layer, 0.5 m apart, so each has ground
 // contacts and none touches another (box-box contact has its own benchmark).
-phys::World restingBoxes(phys::SolverMethod method, phys::BoxModel model, int side) {
+phys::World restingBoxes(phys::SolverMethod method, phys::BodyModel model, int side) {
   phys::SolverSettings s;
   s.method = method;
   phys::World world({}, s);
   for (int i = 0; i < side; ++i) {
     for (int k = 0; k < side; ++k) {
-      phys::BoxDesc box;
+      phys::BodyDesc box;
       box.model = model;
       box.center = {1.5 * i, 0.5, 1.5 * k};
-      world.addBox(box);
+      world.addBody(box);
     }
   }
   for (int i = 0; i < 30; ++i) world.step();  // settle into contact
@@ -32,10 +32,10 @@ phys::World restingBoxes(phys::SolverMethod method, phys::BoxModel model, int si
 
 void BM_RestingBoxes(benchmark::State& state) {
   const auto method = static_cast<phys::SolverMethod>(state.range(0));
-  const auto model = static_cast<phys::BoxModel>(state.range(1));
+  const auto model = static_cast<phys::BodyModel>(state.range(1));
   phys::World world = restingBoxes(method, model, 32);  // 1024 boxes
   for (auto _ : state) world.step();
-  state.counters["boxes"] = static_cast<double>(world.boxes().size());
+  state.counters["boxes"] = static_cast<double>(world.bodies().size());
   state.counters["particles"] = static_cast<double>(world.particles().size());
   state.SetLabel(std::string(toString(method)) + "/" + std::string(toString(model)));
 }
@@ -67,9 +67,9 @@ void BM_BoxBlock(benchmark::State& state) {
   for (int y = 0; y < 10; ++y) {
     for (int z = 0; z < 10; ++z) {
       for (int x = 0; x < 10; ++x) {
-        phys::BoxDesc box;
+        phys::BodyDesc box;
         box.center = {x - 4.5, 0.5 + y, z - 4.5};
-        world.addBox(box);
+        world.addBody(box);
       }
     }
   }
@@ -110,7 +110,7 @@ void BM_RagdollPile(benchmark::State& state) {
   state.counters["sticks_per_s"] = sticks / (stickMs * 1e-3);
   state.counters["links_per_s"] = links / (linkMs * 1e-3);
   state.counters["projections_per_s"] = (sticks + links) / ((stickMs + linkMs) * 1e-3);
-  state.counters["bodies"] = static_cast<double>(world.boxes().size());
+  state.counters["bodies"] = static_cast<double>(world.bodies().size());
 }
 BENCHMARK(BM_RagdollPile)->Arg(64)->Arg(512)->Unit(benchmark::kMillisecond);
 

@@ -55,7 +55,7 @@ double stepCost(const phys::World& world) {
   const auto particles = static_cast<double>(world.particles().size());
   const auto sticks = static_cast<double>(world.sticks().size());
   const auto links = static_cast<double>(world.links().size());
-  const auto boxes = static_cast<double>(world.boxes().size());
+  const auto boxes = static_cast<double>(world.bodies().size());
   const double pass = kVisitCost * (sticks + kLinkVisits * links) + kBoxPassCost * boxes;
   const double substep =
       kSubstepCost + kVisitCost * particles + kBoxSubstepCost * boxes + s.iterations * pass;
@@ -227,7 +227,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  "%8.2f ms (%4.2f of the estimate); load %7.2f ms; write, reload, compare %.2f %.2f %.2f + "
                  "%.2f %.2f %.2f ms\n",
                  scene->name.c_str(), w.particles().size(), w.sticks().size(), w.links().size(),
-                 w.boxes().size(), w.solverSettings().substeps, w.solverSettings().iterations, stepCost(w),
+                 w.bodies().size(), w.solverSettings().substeps, w.solverSettings().iterations, stepCost(w),
                  steps, stepMs, steps > 0 ? stepMs * 1e3 / (steps * stepCost(w)) : 0.0, loadMs, first.write,
                  first.reload, first.compare, second.write, second.reload, second.compare);
   }

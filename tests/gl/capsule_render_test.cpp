@@ -64,8 +64,8 @@ class Target {
 };
 
 // The body lies along x, resting on the ground at the origin: its core from (-h, r, 0) to (h, r, 0).
-phys::BoxDesc lyingBody(phys::Shape shape) {
-  phys::BoxDesc d;
+phys::BodyDesc lyingBody(phys::Shape shape) {
+  phys::BodyDesc d;
   d.shape = shape;
   d.size = phys::Vec3(2.0 * kRadius, 2.0 * (kHalfSegment + kRadius), 2.0 * kRadius);
   d.center = phys::Vec3(0.0, kRadius, 0.0);
@@ -147,9 +147,9 @@ std::vector<glm::vec3> capsulePoints() {
 
 TEST_F(CapsuleRender, ACapsuleIsRoundWhereItsBoxHasCorners) {
   phys::World capsuleWorld, boxWorld;
-  capsuleWorld.addBox(lyingBody(phys::Shape::Capsule));
-  boxWorld.addBox(lyingBody(phys::Shape::Box));
-  ASSERT_EQ(capsuleWorld.boxes()[0].shape, phys::Shape::Capsule);
+  capsuleWorld.addBody(lyingBody(phys::Shape::Capsule));
+  boxWorld.addBody(lyingBody(phys::Shape::Box));
+  ASSERT_EQ(capsuleWorld.bodies()[0].shape, phys::Shape::Capsule);
   const engine::Image capsule = render(capsuleWorld, "capsule-lying.png");
   const engine::Image box = render(boxWorld, "capsule-as-box.png");
 
@@ -182,10 +182,10 @@ TEST_F(CapsuleRender, ACapsuleIsRoundWhereItsBoxHasCorners) {
 TEST_F(CapsuleRender, AJointedCapsuleIsStillACapsule) {
   // Ragdoll parts (bodies held by a joint) are drawn with the limb model, unless they are capsules.
   phys::World world;
-  const phys::BoxId capsule = world.addBox(lyingBody(phys::Shape::Capsule));
-  phys::BoxDesc other = lyingBody(phys::Shape::Capsule);
+  const phys::BodyId capsule = world.addBody(lyingBody(phys::Shape::Capsule));
+  phys::BodyDesc other = lyingBody(phys::Shape::Capsule);
   other.center = phys::Vec3(0.0, kRadius, -3.0);
-  const phys::BoxId far = world.addBox(other);
+  const phys::BodyId far = world.addBody(other);
   world.addLink(world.anchor(capsule, phys::Vec3(0.0, kRadius, -1.5)),
                 world.anchor(far, phys::Vec3(0.0, kRadius, -1.5)));
   const engine::Image image = render(world, "capsule-jointed.png");
@@ -196,7 +196,7 @@ TEST_F(CapsuleRender, AJointedCapsuleIsStillACapsule) {
 
 TEST_F(CapsuleRender, TheOverlayTintsCapsulesAndWireframeDrawsTheirEdges) {
   phys::World world;
-  world.addBox(lyingBody(phys::Shape::Capsule));
+  world.addBody(lyingBody(phys::Shape::Capsule));
   const glm::vec3 centre(0.0f, float(kRadius), 0.0f);
   // The overlay's run colours, translucent over the ground: orange shows red over blue, blue the
   // other way round, and the ground beside the capsule stays ground.
@@ -231,14 +231,14 @@ TEST_F(CapsuleRender, OneMeshPerSizeAndTheCacheStaysBounded) {
   // Two sizes among three capsules: two meshes.
   {
     phys::World world;
-    world.addBox(lyingBody(phys::Shape::Capsule));
-    phys::BoxDesc d = lyingBody(phys::Shape::Capsule);
+    world.addBody(lyingBody(phys::Shape::Capsule));
+    phys::BodyDesc d = lyingBody(phys::Shape::Capsule);
     d.center.z = -2.0;
-    world.addBox(d);
+    world.addBody(d);
     d.size = phys::Vec3(0.3, 1.0, 0.3);
     d.center.z = 2.0;
-    world.addBox(d);
-    world.addBox(lyingBody(phys::Shape::Box));
+    world.addBody(d);
+    world.addBody(lyingBody(phys::Shape::Box));
     render(world, "capsule-cache.png");
     EXPECT_EQ(view_.capsuleMeshes().size(), 2u);
   }
@@ -247,9 +247,9 @@ TEST_F(CapsuleRender, OneMeshPerSizeAndTheCacheStaysBounded) {
   const glm::mat4 viewProjection = kCamera.projection(float(kWidth) / float(kHeight)) * kCamera.view();
   for (int scene = 0; scene < 3 * int(capacity); ++scene) {
     phys::World world;
-    phys::BoxDesc d = lyingBody(phys::Shape::Capsule);
+    phys::BodyDesc d = lyingBody(phys::Shape::Capsule);
     d.size = phys::Vec3(0.2, 0.5 + 0.01 * scene, 0.2);
-    world.addBox(d);
+    world.addBody(d);
     view_.draw(world, viewProjection, {});
     ASSERT_LE(view_.capsuleMeshes().size(), capacity) << "scene " << scene;
   }
@@ -257,17 +257,17 @@ TEST_F(CapsuleRender, OneMeshPerSizeAndTheCacheStaysBounded) {
   phys::World many;
   const int sizes = int(capacity) + 16;
   for (int i = 0; i < sizes; ++i) {
-    phys::BoxDesc d = lyingBody(phys::Shape::Capsule);
+    phys::BodyDesc d = lyingBody(phys::Shape::Capsule);
     d.size = phys::Vec3(0.1 + 0.001 * i, 0.6, 0.1 + 0.001 * i);
     d.center = phys::Vec3(0.0, 0.1, -2.0 * i);
-    many.addBox(d);
+    many.addBody(d);
   }
   view_.draw(many, viewProjection, {});
   view_.draw(many, viewProjection, {});
   EXPECT_EQ(view_.capsuleMeshes().size(), std::size_t(sizes));
   // And when it is gone, the next scene's drawing frees them down to the capacity.
   phys::World one;
-  one.addBox(lyingBody(phys::Shape::Capsule));
+  one.addBody(lyingBody(phys::Shape::Capsule));
   view_.draw(one, viewProjection, {});
   EXPECT_EQ(view_.capsuleMeshes().size(), capacity);
   renderer_.lines().flush(viewProjection);

@@ -52,10 +52,10 @@ const Rendered& renderedFallingBox() {
 }
 
 // The box with the largest volume: the one most surely visible.
-phys::BoxId largestBox(const phys::World& w) {
-  phys::BoxId best = 0;
-  for (phys::BoxId i = 1; i < w.boxes().size(); ++i) {
-    const phys::Vec3 a = w.boxes()[i].halfExtents, b = w.boxes()[best].halfExtents;
+phys::BodyId largestBox(const phys::World& w) {
+  phys::BodyId best = 0;
+  for (phys::BodyId i = 1; i < w.bodies().size(); ++i) {
+    const phys::Vec3 a = w.bodies()[i].halfExtents, b = w.bodies()[best].halfExtents;
     if (a.x * a.y * a.z > b.x * b.y * b.z) best = i;
   }
   return best;
@@ -102,13 +102,13 @@ TEST(RenderScene, GroundIsLitFromAbove) {
 
 TEST(RenderScene, DefaultSceneIsTheSeedsRagdoll) {
   EXPECT_EQ(scenes::kDefaultScene, "ragdoll");
-  EXPECT_EQ(rendered().scene.world.boxes().size(), 10u);
+  EXPECT_EQ(rendered().scene.world.bodies().size(), 10u);
 }
 
 TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
   const Rendered& r = rendered();
-  const phys::BoxId box = largestBox(r.scene.world);
-  const phys::BoxPose pose = r.scene.world.boxPose(box);
+  const phys::BodyId box = largestBox(r.scene.world);
+  const phys::BodyPose pose = r.scene.world.bodyPose(box);
   const glm::ivec2 centre = toPixel(r, glm::vec3(pose.center));
   int boxLike = 0;
   for (int dy = -4; dy <= 4; ++dy) {
@@ -120,7 +120,7 @@ TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
   EXPECT_EQ(boxLike, 81) << "box centre projects to " << centre.x << ", " << centre.y;
   // And not where it started: the screenshot shows the simulated state, not the initial one.
   const scenes::Scene initial = scenes::loadSceneFile(r.scene.file);
-  const glm::ivec2 start = toPixel(r, glm::vec3(initial.world.boxPose(box).center));
+  const glm::ivec2 start = toPixel(r, glm::vec3(initial.world.bodyPose(box).center));
   const glm::u8vec4 p = r.image.pixel(start.x, start.y);
   EXPECT_FALSE(sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b));
 }
@@ -128,7 +128,8 @@ TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
 TEST(RenderScene, LooseParticlesAreDrawn) {
   const Rendered& r = renderedFallingBox();
   const auto& world = r.scene.world;
-  const phys::ParticleId firstLoose = world.boxes().back().firstParticle + world.boxes().back().particleCount;
+  const phys::ParticleId firstLoose =
+      world.bodies().back().firstParticle + world.bodies().back().particleCount;
   ASSERT_LT(firstLoose, world.particles().size());
   for (phys::ParticleId i = firstLoose; i < world.particles().size(); ++i) {
     const glm::ivec2 px = toPixel(r, glm::vec3(world.particles().position[i]) +

@@ -134,12 +134,12 @@ TEST(LabReport, DumpHasHeaderAndOneRowPerNamedBody) {
   phys::WorldSettings ws;
   ws.ground = false;
   phys::World world(ws);
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.center = {1.0, 2.0, 3.0};
-  const phys::BoxId b = world.addBox(box);
+  const phys::BodyId b = world.addBody(box);
   world.addParticle({{0.0, 0.0, 0.0}, phys::Vec3(0.0), 1.0});  // unnamed: not dumped
   const phys::ParticleId p = world.addParticle({{4.0, 5.0, 6.0}, phys::Vec3(0.0), 1.0});
-  const std::vector<scenes::NamedBody> bodies = {{"crate", scenes::NamedBody::Kind::Box, b},
+  const std::vector<scenes::NamedBody> bodies = {{"crate", scenes::NamedBody::Kind::Body, b},
                                                  {"p,\"q\"", scenes::NamedBody::Kind::Particle, p}};
   const std::string csv = lab::dumpCsv(world, bodies);
   EXPECT_EQ(csv,

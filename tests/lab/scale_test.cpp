@@ -46,7 +46,7 @@ TEST(Scale, EachKindGeneratesItsBodiesAtEverySize) {
   for (const Case& c : {Case{ScaleKind::CapsuleRagdolls, 1, 11}, Case{ScaleKind::CapsuleRagdolls, 7, 77},
                         Case{ScaleKind::BoxRagdolls, 5, 50}, Case{ScaleKind::Pyramid, 6, 21}}) {
     const scenes::Scene s = scenes::loadSceneText(lab::scaleSceneXml(c.kind, c.n), "generated.xml");
-    EXPECT_EQ(s.world.boxes().size(), c.bodies) << lab::toString(c.kind) << " " << c.n;
+    EXPECT_EQ(s.world.bodies().size(), c.bodies) << lab::toString(c.kind) << " " << c.n;
     EXPECT_TRUE(s.world.worldSettings().ground);
   }
 }
@@ -133,7 +133,7 @@ TEST(Scale, SavesTheScenesItRuns) {
   for (const int n : {1, 4}) {
     const std::filesystem::path file = dir.file("scenes") / ("box-ragdolls-" + std::to_string(n) + ".xml");
     EXPECT_EQ(lab_testing::readFile(file), lab::scaleSceneXml(ScaleKind::BoxRagdolls, n));
-    EXPECT_EQ(scenes::loadSceneFile(file).world.boxes().size(), static_cast<std::size_t>(10 * n));
+    EXPECT_EQ(scenes::loadSceneFile(file).world.bodies().size(), static_cast<std::size_t>(10 * n));
   }
 }
 

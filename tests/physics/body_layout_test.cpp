@@ -17,11 +17,11 @@ using phys::Vec3;
 phys::World scene() {
   phys::World world;
   for (int i = 0; i < 26; ++i) {
-    phys::BoxDesc box;
-    box.model = i < 17 ? phys::BoxModel::Tetra : phys::BoxModel::Corners;
+    phys::BodyDesc box;
+    box.model = i < 17 ? phys::BodyModel::Tetra : phys::BodyModel::Corners;
     box.center = {2.0 * i, 1.0, 0.0};
     box.size = {0.5 + 0.05 * i, 1.0, 0.7};
-    world.addBox(box);
+    world.addBody(box);
   }
   return world;
 }
@@ -29,7 +29,7 @@ phys::World scene() {
 TEST(BodyLayout, BodiesOfOneParticleCountGoIntoLanes) {
   const phys::World world = scene();
   phys::BodyLayout layout;
-  layout.build(world.boxes());
+  layout.build(world.bodies());
   ASSERT_EQ(layout.lanes().size(), 3u);  // 16 of the 17 tetra boxes, 8 of the 9 corners boxes
   EXPECT_EQ(layout.others().size(), 2u);
   EXPECT_EQ(layout.lanes()[0].particleCount, 4);
@@ -46,8 +46,8 @@ phys::Particles moving(const phys::World& world) {
     p.previous[i] += Vec3(jitter(random), jitter(random), jitter(random));
     p.inverseMass[i] = inverseMass(random);
   }
-  p.inverseMass[world.boxes()[2].firstParticle + 1] = 0.0;
-  const phys::Box& frozen = world.boxes()[20];
+  p.inverseMass[world.bodies()[2].firstParticle + 1] = 0.0;
+  const phys::Body& frozen = world.bodies()[20];
   for (int i = 0; i < frozen.particleCount; ++i) p.inverseMass[frozen.firstParticle + i] = 0.0;
   return p;
 }
@@ -55,11 +55,11 @@ phys::Particles moving(const phys::World& world) {
 TEST(BodyLayout, LanesDampToTheBitsOfOneBodyAtATime) {
   const phys::World world = scene();
   phys::BodyLayout layout;
-  layout.build(world.boxes());
+  layout.build(world.bodies());
   const double fraction = 0.3;
   phys::Particles oneByOne = moving(world);
-  for (std::size_t b = 0; b < world.boxes().size(); ++b) {
-    const std::span<const phys::Box> one = world.boxes().subspan(b, 1);
+  for (std::size_t b = 0; b < world.bodies().size(); ++b) {
+    const std::span<const phys::Body> one = world.bodies().subspan(b, 1);
     phys::BodyLayout single;
     single.build(one);
     ASSERT_TRUE(single.lanes().empty());
@@ -70,10 +70,10 @@ TEST(BodyLayout, LanesDampToTheBitsOfOneBodyAtATime) {
   for (const phys::detail::LaneIsa isa : {phys::detail::LaneIsa::Baseline, phys::detail::laneIsa()}) {
     phys::Particles lanes = moving(world);
     phys::detail::dampBodyLanes(phys::detail::dampLaneArguments(lanes, layout, fraction), isa);
-    for (const phys::BoxId b : layout.others()) {
+    for (const phys::BodyId b : layout.others()) {
       phys::BodyLayout single;
-      single.build(world.boxes().subspan(b, 1));
-      phys::detail::dampBodyMotion(lanes, world.boxes().subspan(b, 1), single, fraction);
+      single.build(world.bodies().subspan(b, 1));
+      phys::detail::dampBodyMotion(lanes, world.bodies().subspan(b, 1), single, fraction);
     }
     EXPECT_EQ(std::memcmp(lanes.previous.data(), oneByOne.previous.data(), start.size() * sizeof(Vec3)), 0)
         << (isa == phys::detail::LaneIsa::Avx2 ? "avx2" : "baseline");
@@ -82,7 +82,7 @@ TEST(BodyLayout, LanesDampToTheBitsOfOneBodyAtATime) {
   }
   // The pinned body and the frozen one kept their x*.
   for (const int b : {2, 20}) {
-    const phys::Box& box = world.boxes()[b];
+    const phys::Body& box = world.bodies()[b];
     EXPECT_EQ(std::memcmp(&oneByOne.previous[box.firstParticle], &start.previous[box.firstParticle],
                           box.particleCount * sizeof(Vec3)),
               0)

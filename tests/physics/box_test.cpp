@@ -9,7 +9,7 @@
 
 namespace {
 
-using phys::BoxModel;
+using phys::BodyModel;
 using phys::Vec3;
 using testing_phys::angleBetween;
 
@@ -20,20 +20,20 @@ double maxSpeed(const phys::World& world) {
   return v;
 }
 
-class BoxModels : public ::testing::TestWithParam<BoxModel> {};
+class BoxModels : public ::testing::TestWithParam<BodyModel> {};
 
 TEST_P(BoxModels, PoseAndCornersReadBackWhatWasCreated) {
   phys::World world;
-  phys::BoxDesc desc;
+  phys::BodyDesc desc;
   desc.model = GetParam();
   desc.center = {1.0, 2.0, -3.0};
   desc.size = {0.5, 1.0, 2.0};
   desc.orientation = glm::dquat(glm::radians(glm::dvec3(30.0, -50.0, 75.0)));
-  const phys::BoxId id = world.addBox(desc);
-  const phys::BoxPose pose = world.boxPose(id);
+  const phys::BodyId id = world.addBody(desc);
+  const phys::BodyPose pose = world.bodyPose(id);
   EXPECT_LE(glm::length(pose.center - desc.center), 1e-12);
   EXPECT_LE(angleBetween(pose.orientation, desc.orientation), 1e-7);
-  const phys::Box& box = world.boxes()[id];
+  const phys::Body& box = world.bodies()[id];
   for (int k = 0; k < 8; ++k) {
     const Vec3 expected = desc.center + desc.orientation * phys::boxCornerLocal(box.halfExtents, k);
     EXPECT_LE(glm::length(world.position(world.corners()[box.firstCorner + k]) - expected), 1e-12) << k;
@@ -50,11 +50,11 @@ TEST_P(BoxModels, PoseReadsBackAtAnyAspectRatio) {
   for (const Vec3& size : sizes) {
     for (const Vec3& euler : {Vec3(0.0, 0.0, 30.0), Vec3(30.0, -50.0, 75.0), Vec3(0.0, 179.0, 0.0)}) {
       phys::World world;
-      phys::BoxDesc desc;
+      phys::BodyDesc desc;
       desc.model = GetParam();
       desc.size = size;
       desc.orientation = glm::dquat(glm::radians(euler));
-      const phys::BoxPose pose = world.boxPose(world.addBox(desc));
+      const phys::BodyPose pose = world.bodyPose(world.addBody(desc));
       // Round-off of the corners, 1e-16 of the longest side, seen over the shortest: 1e-10 rad.
       EXPECT_LE(angleBetween(pose.orientation, desc.orientation), 1e-10)
           << size.x << " x " << size.y << " x " << size.z << " turned " << euler.x << " " << euler.y << " "
@@ -67,16 +67,16 @@ TEST_P(BoxModels, PoseReadsBackAtAnyAspectRatio) {
 // speed < 1 mm/s.
 TEST_P(BoxModels, AtRestOnTheGroundFor10Seconds) {
   phys::World world;
-  phys::BoxDesc desc;
+  phys::BodyDesc desc;
   desc.model = GetParam();
   desc.center = {0.0, 0.5, 0.0};
-  const phys::BoxId id = world.addBox(desc);
+  const phys::BodyId id = world.addBody(desc);
   double deepest = 0.0;
   for (int i = 0; i < 600; ++i) {
     world.step();
     deepest = std::max(deepest, world.metrics().maxPenetration);
   }
-  const phys::BoxPose pose = world.boxPose(id);
+  const phys::BodyPose pose = world.bodyPose(id);
   EXPECT_LT(glm::length(pose.center - desc.center), 1e-3);
   EXPECT_LT(deepest, 0.01 * desc.size.y);
   EXPECT_LT(maxSpeed(world), 1e-3);
@@ -93,20 +93,20 @@ struct Incline {
   double drift;         // m moved from 1 s to 10 s
 };
 
-Incline onIncline(BoxModel model, double mu) {
+Incline onIncline(BodyModel model, double mu) {
   const double angle = glm::radians(20.0);
   phys::WorldSettings ws;
   ws.groundNormal = {-std::sin(angle), std::cos(angle), 0.0};
   ws.groundMaterial = {mu, mu};
   phys::World world(ws);
-  phys::BoxDesc desc;
+  phys::BodyDesc desc;
   desc.model = model;
   desc.material = {mu, mu};
   desc.orientation = glm::angleAxis(angle, Vec3(0.0, 0.0, 1.0));
   desc.center = ws.groundNormal * 0.5;
-  world.addBox(desc);
+  world.addBody(desc);
   const Vec3 downhill = -Vec3(std::cos(angle), std::sin(angle), 0.0);
-  auto along = [&] { return glm::dot(world.boxPose(0).center - desc.center, downhill); };
+  auto along = [&] { return glm::dot(world.bodyPose(0).center - desc.center, downhill); };
   std::vector<double> s;  // position along the slope at t = 1, 1.5, 2 s
   for (int i = 1; i <= 600; ++i) {
     world.step();
@@ -129,7 +129,7 @@ TEST_P(BoxModels, InclineHoldsWithFriction05AndSlidesAtCoulombRateWith02) {
   // tetra model's corners are carried by weights of both signs, and friction's corrections
   // through them leave a slow creep (under a millimetre a second; docs/physics.md).
   EXPECT_LT(std::abs(held.startSlip), 5e-3);
-  EXPECT_LT(std::abs(held.drift), GetParam() == BoxModel::Corners ? 1e-4 : 1e-2);
+  EXPECT_LT(std::abs(held.drift), GetParam() == BodyModel::Corners ? 1e-4 : 1e-2);
   EXPECT_NEAR(slid.acceleration, expected, 0.1 * expected);
 }
 
@@ -137,11 +137,11 @@ TEST_P(BoxModels, InclineHoldsWithFriction05AndSlidesAtCoulombRateWith02) {
 // 0.6), but it never gains energy, comes to rest on a face, and then stays put.
 TEST_P(BoxModels, DroppedTiltedTumblesAndSettlesOnAFace) {
   phys::World world;
-  phys::BoxDesc desc;
+  phys::BodyDesc desc;
   desc.model = GetParam();
   desc.center = {0.0, 3.0, 0.0};
   desc.orientation = glm::dquat(glm::radians(glm::dvec3(20.0, 35.0, 10.0)));
-  const phys::BoxId id = world.addBox(desc);
+  const phys::BodyId id = world.addBody(desc);
   const double e0 = world.metrics().energy();
   double maxEnergy = e0;
   for (int i = 0; i < 240; ++i) {  // 4 s
@@ -150,10 +150,10 @@ TEST_P(BoxModels, DroppedTiltedTumblesAndSettlesOnAFace) {
   }
   EXPECT_LE(maxEnergy, e0 + 1e-6 * std::abs(e0) + 1e-9);
   EXPECT_LT(maxSpeed(world), 0.01) << "still moving after 4 s";
-  const phys::BoxPose settled = world.boxPose(id);
+  const phys::BodyPose settled = world.bodyPose(id);
   EXPECT_NEAR(settled.center.y, 0.5, 0.01) << "not lying on a face";
   for (int i = 0; i < 60; ++i) world.step();
-  EXPECT_LT(glm::length(world.boxPose(id).center - settled.center), 1e-4) << "slides after settling";
+  EXPECT_LT(glm::length(world.bodyPose(id).center - settled.center), 1e-4) << "slides after settling";
   // Friction runs after each pass, so the next pass relaxes what it bends: a resting box keeps
   // little shear (it was 0.47% with friction once after all passes).
   EXPECT_LT(world.metrics().maxConstraintError, 2e-3);
@@ -162,17 +162,17 @@ TEST_P(BoxModels, DroppedTiltedTumblesAndSettlesOnAFace) {
 
 TEST_P(BoxModels, SpinningFreeBoxKeepsItsShape) {
   phys::World world = testing_phys::openSpace({}, Vec3(0.0));
-  phys::BoxDesc desc;
+  phys::BodyDesc desc;
   desc.model = GetParam();
   desc.size = {0.4, 1.0, 2.0};
   desc.angularVelocity = {0.1, 5.0, 0.1};
-  world.addBox(desc);
+  world.addBody(desc);
   for (int i = 0; i < 600; ++i) world.step();
   EXPECT_LT(world.metrics().maxConstraintError, 1e-3);
-  EXPECT_LT(glm::length(world.boxPose(0).center), 1e-9);  // the centre of mass stays put
+  EXPECT_LT(glm::length(world.bodyPose(0).center), 1e-9);  // the centre of mass stays put
 }
 
-INSTANTIATE_TEST_SUITE_P(BothModels, BoxModels, ::testing::Values(BoxModel::Corners, BoxModel::Tetra),
+INSTANTIATE_TEST_SUITE_P(BothModels, BoxModels, ::testing::Values(BodyModel::Corners, BodyModel::Tetra),
                          [](const auto& param) { return std::string(toString(param.param)); });
 
 }  // namespace

@@ -14,17 +14,17 @@ using phys::Vec3;
 // zero gravity.
 std::size_t pairsOfGrid(int k, double spacing, bool floor, const phys::SolverSettings& solver = {}) {
   phys::World world = testing_phys::openSpace(solver, Vec3(0.0));
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) {
       box.center = {spacing * i, 0.5, spacing * j};
-      world.addBox(box);
+      world.addBody(box);
     }
   }
   if (floor) {
     box.center = {spacing * (k - 1) / 2.0, -0.25, spacing * (k - 1) / 2.0};
     box.size = {spacing * k + 2.0, 0.5, spacing * k + 2.0};
-    world.addBox(box);
+    world.addBody(box);
   }
   world.step();
   return world.broadPhasePairs();
@@ -51,10 +51,10 @@ TEST(BroadPhase, AWideBoxMeetsEveryBoxOnIt) {
 TEST(BroadPhase, ARowOfBoxesIsOneSweep) {
   EXPECT_EQ(pairsOfGrid(1, 1.015, false), 0u);
   phys::World world = testing_phys::openSpace({}, Vec3(0.0));
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   for (int i = 0; i < 50; ++i) {
     box.center = {1.015 * i, 0.5, 0.0};
-    world.addBox(box);
+    world.addBody(box);
   }
   world.step();
   EXPECT_EQ(world.broadPhasePairs(), 49u);
@@ -65,22 +65,22 @@ TEST(BroadPhase, ARowOfBoxesIsOneSweep) {
 // (within the feature epsilon, so every side neighbour has a contact) spread over several strips.
 TEST(BroadPhase, ContactsComeInBodyOrder) {
   phys::World world = testing_phys::openSpace({}, Vec3(0.0));
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   const int k = 12;
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) {
       box.center = {1.005 * i, 0.5, 1.005 * j};
-      world.addBox(box);
+      world.addBody(box);
     }
   }
   world.step();
   const auto contacts = world.bodyContacts();
   ASSERT_GE(contacts.size(), static_cast<std::size_t>(2 * k * (k - 1)));
   for (std::size_t c = 0; c < contacts.size(); ++c) {
-    ASSERT_LT(contacts[c].boxA, contacts[c].boxB) << c;
+    ASSERT_LT(contacts[c].bodyA, contacts[c].bodyB) << c;
     if (c == 0) continue;
-    const auto before = std::make_pair(contacts[c - 1].boxA, contacts[c - 1].boxB);
-    const auto now = std::make_pair(contacts[c].boxA, contacts[c].boxB);
+    const auto before = std::make_pair(contacts[c - 1].bodyA, contacts[c - 1].bodyB);
+    const auto now = std::make_pair(contacts[c].bodyA, contacts[c].bodyB);
     EXPECT_LE(before, now) << "contact " << c;
   }
 }
@@ -93,10 +93,10 @@ namespace {
 // steps (the per-box index of ignored pairs is rebuilt), and only the pairs named.
 TEST(BroadPhase, IgnoredPairsAreDroppedWhenSetAndOnlyThose) {
   phys::World world = testing_phys::openSpace({}, Vec3(0.0));
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   for (int i = 0; i < 4; ++i) {
     box.center = {0.99 * i, 0.5, 0.0};  // a row of touching boxes: pairs 0-1, 1-2, 2-3
-    world.addBox(box);
+    world.addBody(box);
   }
   world.ignoreCollision(1, 0);
   world.step();
@@ -130,11 +130,11 @@ TEST(BroadPhase, TheStripSettingsChangeNoPair) {
 
   auto pile = [](const phys::SolverSettings& solver) {
     phys::World world({}, solver);
-    phys::BoxDesc box;
+    phys::BodyDesc box;
     for (int i = 0; i < 40; ++i) {
       box.center = {0.3 * (i % 7), 0.6 + 1.1 * (i / 7), 0.25 * (i % 5)};
       box.orientation = glm::angleAxis(0.3 * i, glm::normalize(Vec3(1.0, 2.0, 0.5)));
-      world.addBox(box);
+      world.addBody(box);
     }
     for (int n = 0; n < 60; ++n) world.step();
     return world.stateHash();
@@ -148,29 +148,29 @@ TEST(BroadPhase, TheStripSettingsChangeNoPair) {
 // The class alone, as World drives it: pairs only after an update, found again only when asked.
 TEST(BroadPhase, FindsPairsOnlyWhenUpdatedAndSaysWhenItMust) {
   phys::World world = testing_phys::openSpace({}, Vec3(0.0));
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   for (int i = 0; i < 3; ++i) {
     box.center = {0.99 * i, 0.5, 0.0};
-    world.addBox(box);
+    world.addBody(box);
   }
   world.step();  // fits the frames
   phys::BroadPhase broad;
   for (int i = 0; i < 3; ++i) broad.addBody();
   broad.indexFilters();
   EXPECT_TRUE(broad.pairs().empty());
-  EXPECT_TRUE(broad.needsUpdate(world.boxFrames()));
-  broad.update(world.particles(), world.boxes(), world.boxFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
+  EXPECT_TRUE(broad.needsUpdate(world.bodyFrames()));
+  broad.update(world.particles(), world.bodies(), world.bodyFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
   ASSERT_EQ(broad.pairs().size(), 2u);
-  EXPECT_EQ(broad.pairs()[0], std::make_pair(phys::BoxId{0}, phys::BoxId{1}));
-  EXPECT_EQ(broad.pairs()[1], std::make_pair(phys::BoxId{1}, phys::BoxId{2}));
-  EXPECT_FALSE(broad.needsUpdate(world.boxFrames()));
+  EXPECT_EQ(broad.pairs()[0], std::make_pair(phys::BodyId{0}, phys::BodyId{1}));
+  EXPECT_EQ(broad.pairs()[1], std::make_pair(phys::BodyId{1}, phys::BodyId{2}));
+  EXPECT_FALSE(broad.needsUpdate(world.bodyFrames()));
   broad.ignore(2, 1);
-  EXPECT_TRUE(broad.needsUpdate(world.boxFrames()));  // stale: the filter changed
+  EXPECT_TRUE(broad.needsUpdate(world.bodyFrames()));  // stale: the filter changed
   broad.indexFilters();
-  broad.update(world.particles(), world.boxes(), world.boxFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
+  broad.update(world.particles(), world.bodies(), world.bodyFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
   EXPECT_EQ(broad.pairs().size(), 1u);
   // A frame moved further than its bounds allowed (at rest: the epsilon alone).
-  std::vector<phys::Obb> moved(world.boxFrames().begin(), world.boxFrames().end());
+  std::vector<phys::Obb> moved(world.bodyFrames().begin(), world.bodyFrames().end());
   moved[1].center.x += 0.05;
   EXPECT_TRUE(broad.needsUpdate(moved));
 }

@@ -44,23 +44,23 @@ TEST(CapsuleRagdoll, IsBuiltAsBulletLaysItOut) {
   d.name = "bob";
   d.hips = Vec3(1.0, 0.9225, -2.0);
   const phys::CapsuleRagdoll r = phys::addCapsuleRagdoll(world, d);
-  ASSERT_EQ(world.boxes().size(), 11u);
+  ASSERT_EQ(world.bodies().size(), 11u);
   for (int i = 0; i < phys::kCapsuleParts; ++i) {
-    const phys::Box& b = world.boxes()[r.parts[i]];
+    const phys::Body& b = world.bodies()[r.parts[i]];
     EXPECT_EQ(b.shape, phys::Shape::Capsule);
     EXPECT_EQ(b.name, "bob." + std::string(phys::toString(static_cast<phys::CapsulePart>(i))));
   }
   // Bullet's sizes: the pelvis has radius 0.15 and a core of 0.20, a lower arm 0.04 and 0.25.
-  const phys::Box& pelvis = world.boxes()[r.part(phys::CapsulePart::Pelvis)];
+  const phys::Body& pelvis = world.bodies()[r.part(phys::CapsulePart::Pelvis)];
   EXPECT_NEAR(pelvis.capsuleRadius(), 0.15, 1e-12);
   EXPECT_NEAR(2.0 * pelvis.capsuleHalfSegment(), 0.20, 1e-12);
-  const phys::Box& forearm = world.boxes()[r.part(phys::CapsulePart::LowerArmLeft)];
+  const phys::Body& forearm = world.bodies()[r.part(phys::CapsulePart::LowerArmLeft)];
   EXPECT_NEAR(forearm.capsuleRadius(), 0.04, 1e-12);
   EXPECT_NEAR(2.0 * forearm.capsuleHalfSegment(), 0.25, 1e-12);
   // Standing on its feet at y = 0, 1.76 m tall, the left arm out along +x, every joint closed.
   EXPECT_NEAR(lowestSurface(world), 0.0, 1e-9);
-  EXPECT_NEAR(world.boxPose(r.part(phys::CapsulePart::Head)).center.y, 1.635, 1e-9);
-  EXPECT_GT(world.boxPose(r.part(phys::CapsulePart::LowerArmLeft)).center.x, 1.6);
+  EXPECT_NEAR(world.bodyPose(r.part(phys::CapsulePart::Head)).center.y, 1.635, 1e-9);
+  EXPECT_GT(world.bodyPose(r.part(phys::CapsulePart::LowerArmLeft)).center.x, 1.6);
   EXPECT_LT(worstLinkGap(world), 1e-12);
   // Ten joints: 5 hinges of 4 links, 5 cones of 3; jointed parts do not collide.
   EXPECT_EQ(world.links().size(), 35u);
@@ -90,10 +90,10 @@ TEST(CapsuleRagdoll, FallsTumblesAndSettlesWithoutSliding) {
     for (int i = 1; i <= steps; ++i) {
       world.step();
       worstGap = std::max(worstGap, worstLinkGap(world));
-      if (i == 60 * 6) pelvisAt6s = world.boxPose(r.part(phys::CapsulePart::Pelvis)).center;
+      if (i == 60 * 6) pelvisAt6s = world.bodyPose(r.part(phys::CapsulePart::Pelvis)).center;
     }
     ASSERT_TRUE(world.freezes().empty()) << world.freezes()[0].name;
-    const Vec3 pelvis = world.boxPose(r.part(phys::CapsulePart::Pelvis)).center;
+    const Vec3 pelvis = world.bodyPose(r.part(phys::CapsulePart::Pelvis)).center;
     EXPECT_LT(pelvis.y, 0.5) << "it lies on the ground";
     // Settled: no part moves faster than 2 cm/s, and the pelvis crept less than 5 mm in 2 s.
     double fastest = 0.0;

@@ -125,8 +125,8 @@ TEST(CapsuleCollision, CapsuleInABoxFrameRunsAlongItsYAxis) {
   EXPECT_NEAR(std::abs(c.p1.x - c.p0.x), 0.6, 1e-12);  // y turned onto x
 }
 
-phys::BoxDesc capsuleDesc(phys::BoxModel model, const Vec3& centre, double radius, double length) {
-  phys::BoxDesc d;
+phys::BodyDesc capsuleDesc(phys::BodyModel model, const Vec3& centre, double radius, double length) {
+  phys::BodyDesc d;
   d.shape = phys::Shape::Capsule;
   d.model = model;
   d.center = centre;
@@ -136,7 +136,7 @@ phys::BoxDesc capsuleDesc(phys::BoxModel model, const Vec3& centre, double radiu
 
 const phys::Quat kLying = glm::angleAxis(std::numbers::pi / 2.0, Vec3(0.0, 0.0, 1.0));
 
-class CapsuleModels : public ::testing::TestWithParam<phys::BoxModel> {};
+class CapsuleModels : public ::testing::TestWithParam<phys::BodyModel> {};
 
 // The settings of our ragdoll scenes, which capsule ragdolls use: 2 iterations x 4 substeps.
 phys::SolverSettings ragdollSettings() {
@@ -146,8 +146,8 @@ phys::SolverSettings ragdollSettings() {
   return s;
 }
 
-Vec3 centreVelocity(const phys::World& w, phys::BoxId id) {
-  const phys::Box& b = w.boxes()[id];
+Vec3 centreVelocity(const phys::World& w, phys::BodyId id) {
+  const phys::Body& b = w.bodies()[id];
   Vec3 v(0.0);
   for (int j = 0; j < b.particleCount; ++j) v += w.velocity(b.firstParticle + j);
   return v / static_cast<double>(b.particleCount);
@@ -155,15 +155,15 @@ Vec3 centreVelocity(const phys::World& w, phys::BoxId id) {
 
 TEST_P(CapsuleModels, LyingCapsuleRestsOnItsSideAtItsRadius) {
   phys::World world({}, ragdollSettings());
-  phys::BoxDesc d = capsuleDesc(GetParam(), Vec3(0.3, 0.12, -0.2), 0.1, 0.8);
+  phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.3, 0.12, -0.2), 0.1, 0.8);
   d.orientation = kLying;
-  const phys::BoxId id = world.addBox(d);
+  const phys::BodyId id = world.addBody(d);
   for (int i = 0; i < 180; ++i) world.step();
-  const phys::BoxPose pose = world.boxPose(id);
+  const phys::BodyPose pose = world.bodyPose(id);
   // It fell 2 cm and rests with its core within 1.5 mm of the radius above the ground. Nothing
   // resists rolling, and a tetra capsule's tetrahedron sags unevenly across its core as it lands,
   // which starts it rolling at about 1 mm/s (docs/physics.md, "Capsules"); a corners one stays.
-  const bool tetra = GetParam() == phys::BoxModel::Tetra;
+  const bool tetra = GetParam() == phys::BodyModel::Tetra;
   EXPECT_NEAR(pose.center.y, 0.1, 1.5e-3);
   EXPECT_NEAR(pose.center.x, 0.3, 1e-3);
   EXPECT_NEAR(pose.center.z, -0.2, tetra ? 5e-3 : 1e-3);
@@ -176,12 +176,12 @@ TEST_P(CapsuleModels, LyingCapsuleSagsNoMoreThanABoxOfItsModel) {
   // points are carried so that it sags as a box of its model and size does, no more.
   auto restHeight = [](phys::Shape shape) {
     phys::World world;
-    phys::BoxDesc d = capsuleDesc(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 0.8);
+    phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 0.8);
     d.shape = shape;
     d.orientation = kLying;
-    const phys::BoxId id = world.addBox(d);
+    const phys::BodyId id = world.addBody(d);
     for (int i = 0; i < 120; ++i) world.step();
-    return world.boxPose(id).center.y;
+    return world.bodyPose(id).center.y;
   };
   const double box = restHeight(phys::Shape::Box), capsule = restHeight(phys::Shape::Capsule);
   std::printf("%s: sag of a lying capsule %.2f mm, of a box of its size %.2f mm\n",
@@ -203,16 +203,16 @@ TEST_P(CapsuleModels, CapsuleRollsDownASlopeAtAThirdOfGSinTheta) {
   phys::SolverSettings ss;
   ss.substeps = 4;
   phys::World world(ws, ss);
-  phys::BoxDesc d = capsuleDesc(GetParam(), ws.groundNormal * (radius + 1e-4), radius, 0.8);
+  phys::BodyDesc d = capsuleDesc(GetParam(), ws.groundNormal * (radius + 1e-4), radius, 0.8);
   d.orientation =
       glm::angleAxis(std::numbers::pi / 2.0, Vec3(1.0, 0.0, 0.0));  // core along z, across the slope
   d.material = {1.0, 1.0};
-  const phys::BoxId id = world.addBox(d);
-  const Vec3 start = world.boxPose(id).center;
+  const phys::BodyId id = world.addBody(d);
+  const Vec3 start = world.bodyPose(id).center;
   const double seconds = 1.0;
   for (int i = 0; i < static_cast<int>(seconds * 60.0); ++i) world.step();
   const Vec3 downhill(std::cos(theta), -std::sin(theta), 0.0);
-  const double travelled = glm::dot(world.boxPose(id).center - start, downhill);
+  const double travelled = glm::dot(world.bodyPose(id).center - start, downhill);
   const double expected = 0.5 * g * std::sin(theta) / 3.0 * seconds * seconds;
   // Measured: tetra 0.9% short, corners 2.0% long (its contact is carried by its box's face,
   // its friction by the surface point; docs/physics.md, "Capsules").
@@ -224,18 +224,18 @@ TEST_P(CapsuleModels, CapsuleRollsDownASlopeAtAThirdOfGSinTheta) {
 
 TEST_P(CapsuleModels, CapsuleDroppedAcrossAnotherComesToRestOnTop) {
   phys::World world({}, ragdollSettings());
-  phys::BoxDesc below = capsuleDesc(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 1.0);
+  phys::BodyDesc below = capsuleDesc(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 1.0);
   below.orientation = kLying;  // along x
-  phys::BoxDesc above = capsuleDesc(GetParam(), Vec3(0.0, 0.5, 0.0), 0.1, 0.6);
+  phys::BodyDesc above = capsuleDesc(GetParam(), Vec3(0.0, 0.5, 0.0), 0.1, 0.6);
   above.orientation = glm::angleAxis(std::numbers::pi / 2.0, Vec3(1.0, 0.0, 0.0));  // along z
-  world.addBox(below);
-  const phys::BoxId top = world.addBox(above);
+  world.addBody(below);
+  const phys::BodyId top = world.addBody(above);
   for (int i = 0; i < 240; ++i) world.step();
   // Crossed capsules touch at one point, so the top one balances there, or tips off, and then
   // rolls on along the ground (nothing resists rolling); whichever, never inside anything: its
   // core at least its radius above the ground, no overlap past 2 mm, and no faster than the
   // height it lost allows, sqrt(2 g drop): no energy made by the contacts.
-  const Vec3 c = world.boxPose(top).center;
+  const Vec3 c = world.bodyPose(top).center;
   EXPECT_GT(c.y, 0.1 - 2e-3);
   EXPECT_LT(glm::length(centreVelocity(world, top)), std::sqrt(2.0 * 9.81 * (0.5 - c.y)));
   EXPECT_LT(world.metrics().maxPenetration, 2e-3);
@@ -244,33 +244,33 @@ TEST_P(CapsuleModels, CapsuleDroppedAcrossAnotherComesToRestOnTop) {
 
 TEST_P(CapsuleModels, CapsuleLyingOnABoxRestsAtItsRadiusAboveTheFace) {
   phys::World world({}, ragdollSettings());
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.model = GetParam();
   box.center = Vec3(0.0, 0.25, 0.0);
   box.size = Vec3(1.0, 0.5, 1.0);
-  world.addBox(box);
-  phys::BoxDesc d = capsuleDesc(GetParam(), Vec3(0.1, 0.62, 0.0), 0.1, 0.6);
+  world.addBody(box);
+  phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.1, 0.62, 0.0), 0.1, 0.6);
   d.orientation = kLying;
-  const phys::BoxId id = world.addBox(d);
+  const phys::BodyId id = world.addBody(d);
   for (int i = 0; i < 180; ++i) world.step();
-  EXPECT_NEAR(world.boxPose(id).center.y, 0.6, 3e-3);
-  EXPECT_NEAR(world.boxPose(id).center.x, 0.1, 2e-3);  // two points: it does not rock or roll off
+  EXPECT_NEAR(world.bodyPose(id).center.y, 0.6, 3e-3);
+  EXPECT_NEAR(world.bodyPose(id).center.x, 0.1, 2e-3);  // two points: it does not rock or roll off
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, CapsuleModels,
-                         ::testing::Values(phys::BoxModel::Corners, phys::BoxModel::Tetra),
+                         ::testing::Values(phys::BodyModel::Corners, phys::BodyModel::Tetra),
                          [](const auto& model) { return std::string(phys::toString(model.param)); });
 
 TEST(CapsuleDesc, RejectsUnequalDiametersAndShortLengths) {
   phys::World world;
-  phys::BoxDesc d = capsuleDesc(phys::BoxModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.1, 0.8);
+  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.1, 0.8);
   d.size.z = 0.3;
-  EXPECT_THROW(world.addBox(d), std::invalid_argument);
-  d = capsuleDesc(phys::BoxModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.5, 0.8);  // length < diameter
-  EXPECT_THROW(world.addBox(d), std::invalid_argument);
-  EXPECT_TRUE(world.boxes().empty());
-  d = capsuleDesc(phys::BoxModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.4, 0.8);  // a sphere
-  EXPECT_NO_THROW(world.addBox(d));
+  EXPECT_THROW(world.addBody(d), std::invalid_argument);
+  d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.5, 0.8);  // length < diameter
+  EXPECT_THROW(world.addBody(d), std::invalid_argument);
+  EXPECT_TRUE(world.bodies().empty());
+  d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.4, 0.8);  // a sphere
+  EXPECT_NO_THROW(world.addBody(d));
 }
 
 }  // namespace
@@ -282,9 +282,9 @@ TEST(CapsuleRaycast, HitsTheRoundSurfaceNotTheBox) {
   ws.ground = false;
   ws.gravity = Vec3(0.0);
   phys::World world(ws);
-  phys::BoxDesc d =
-      capsuleDesc(phys::BoxModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.2, 1.0);  // core from y 0.7 to 1.3
-  const phys::BoxId id = world.addBox(d);
+  phys::BodyDesc d =
+      capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.2, 1.0);  // core from y 0.7 to 1.3
+  const phys::BodyId id = world.addBody(d);
   // From the side at the core's middle: the side at x = -0.2.
   auto hit = world.raycast(Vec3(-2.0, 1.0, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);
   ASSERT_TRUE(hit.has_value());
@@ -303,7 +303,7 @@ TEST(CapsuleRaycast, HitsTheRoundSurfaceNotTheBox) {
   EXPECT_FALSE(world.raycast(Vec3(0.19, 3.0, 0.19), Vec3(0.0, -1.0, 0.0), 10.0).has_value());
   phys::World boxWorld(ws);
   d.shape = phys::Shape::Box;
-  boxWorld.addBox(d);
+  boxWorld.addBody(d);
   EXPECT_TRUE(boxWorld.raycast(Vec3(0.19, 3.0, 0.19), Vec3(0.0, -1.0, 0.0), 10.0).has_value());
   // Starting inside: distance 0.
   hit = world.raycast(Vec3(0.05, 1.4, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);

@@ -143,17 +143,17 @@ TEST(Validation, RejectedInputChangesNothing) {
   EXPECT_THROW(phys::World(phys::WorldSettings{}, bad), std::invalid_argument);
   EXPECT_THROW(world.addParticle({Vec3(std::nan(""), 0, 0)}), std::invalid_argument);
   EXPECT_THROW(world.addParticle({Vec3(0.0), Vec3(0.0), -1.0}), std::invalid_argument);
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.size = {1.0, 0.0, 1.0};
-  EXPECT_THROW(world.addBox(box), std::invalid_argument);
+  EXPECT_THROW(world.addBody(box), std::invalid_argument);
   box = {};
   box.mass = 0.0;
-  EXPECT_THROW(world.addBox(box), std::invalid_argument);
+  EXPECT_THROW(world.addBody(box), std::invalid_argument);
   box = {};
   box.orientation = phys::Quat(0.0, 0.0, 0.0, 0.0);
-  EXPECT_THROW(world.addBox(box), std::invalid_argument);
+  EXPECT_THROW(world.addBody(box), std::invalid_argument);
   EXPECT_EQ(world.particles().size(), 0u);  // nothing half-added
-  EXPECT_TRUE(world.boxes().empty());
+  EXPECT_TRUE(world.bodies().empty());
   EXPECT_THROW(world.addStick(0, 1), std::invalid_argument);
   const auto a = world.addParticle({Vec3(0.0)});
   const auto b = world.addParticle({Vec3(1.0)});
@@ -161,11 +161,11 @@ TEST(Validation, RejectedInputChangesNothing) {
   EXPECT_THROW(world.addStick(a, b, 1.0, -1.0), std::invalid_argument);
   EXPECT_THROW(world.addStick(a, b, 1.0, 1e300), std::invalid_argument);  // compliance beyond kMaxCompliance
   EXPECT_THROW(world.addParticle({Vec3(0.0), Vec3(0.0), 1e-320}), std::invalid_argument);  // 1/m overflows
-  phys::BoxDesc huge;
+  phys::BodyDesc huge;
   huge.center = Vec3(1e308);
   huge.size = Vec3(1e308);
   const std::size_t particlesBefore = world.particles().size();
-  EXPECT_THROW(world.addBox(huge), std::invalid_argument);
+  EXPECT_THROW(world.addBody(huge), std::invalid_argument);
   EXPECT_EQ(world.particles().size(), particlesBefore);  // nothing half-added
   EXPECT_THROW(world.addRange(a, b, 2.0, 1.0), std::invalid_argument);
   EXPECT_THROW(world.addStick(a, a), std::invalid_argument);
@@ -191,9 +191,9 @@ TEST(Metrics, EnergyAndErrorsOfAKnownState) {
 
 TEST(Metrics, ContactsAndPenetrationOnTheGround) {
   phys::World world;
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.center = {0.0, 0.5, 0.0};
-  world.addBox(box);
+  world.addBody(box);
   world.addParticle({Vec3(3.0, 0.0, 0.0)});
   world.step();
   const phys::Metrics m = world.metrics();
@@ -223,12 +223,12 @@ class RecordingDraw : public phys::DebugDraw {
 
 TEST(DebugDraw, DrawsWhatTheFlagsAskFor) {
   phys::World world;
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.center = {0.0, 0.5, 0.0};
-  world.addBox(box);
+  world.addBody(box);
   box.center = {3.0, 0.5, 0.0};
-  box.model = phys::BoxModel::Tetra;
-  world.addBox(box);
+  box.model = phys::BodyModel::Tetra;
+  world.addBody(box);
   world.step();
   RecordingDraw all;
   world.debugDraw(all, {true, true, true, false, true});

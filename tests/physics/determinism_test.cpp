@@ -13,11 +13,11 @@ phys::World mixedScene(phys::SolverMethod method) {
   s.substeps = 2;
   phys::World world({}, s);
   for (int i = 0; i < 3; ++i) {
-    phys::BoxDesc box;
+    phys::BodyDesc box;
     box.center = {i * 1.5, 1.0 + i, 0.0};
     box.orientation = glm::dquat(glm::dvec3(0.3 * i, 0.2, 0.1));
-    box.model = i % 2 == 0 ? phys::BoxModel::Corners : phys::BoxModel::Tetra;
-    world.addBox(box);
+    box.model = i % 2 == 0 ? phys::BodyModel::Corners : phys::BodyModel::Tetra;
+    world.addBody(box);
   }
   phys::ParticleId previous = world.addParticle({Vec3(0.0, 4.0, 2.0), Vec3(0.0), 0.0, true});
   for (int i = 1; i <= 5; ++i) {

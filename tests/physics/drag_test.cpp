@@ -14,7 +14,7 @@
 
 namespace {
 
-using phys::BoxModel;
+using phys::BodyModel;
 using phys::Vec3;
 
 constexpr double kG = 9.81;  // m/s^2
@@ -89,7 +89,7 @@ TEST(Drag, ParticleHangsMgOverKBelowTheTarget) {
   EXPECT_LT(glm::length(world.particles().position[id] - expected), 1e-9);
 }
 
-class DragBoxes : public ::testing::TestWithParam<BoxModel> {};
+class DragBoxes : public ::testing::TestWithParam<BodyModel> {};
 
 // A 1 kg box held by its corner hangs with the diagonal through that corner vertical, its centre
 // half a diagonal (0.866 m) plus M g / k (4.9 mm) below the target: asserted within 0.1 mm after
@@ -100,10 +100,10 @@ TEST_P(DragBoxes, BoxHeldByACornerHangsBelowTheTarget) {
   ws.ground = false;
   ws.damping = 2.0;  // 1/s
   phys::World world(ws);
-  phys::BoxDesc desc;
+  phys::BodyDesc desc;
   desc.model = GetParam();
   desc.center = {0.0, 2.0, 0.0};
-  const phys::BoxId id = world.addBox(desc);
+  const phys::BodyId id = world.addBody(desc);
   const Vec3 corner = desc.center + Vec3(0.5);
   world.setDrag(dragOf(world.anchor(id, corner), corner));
   bool finite = true;
@@ -111,7 +111,7 @@ TEST_P(DragBoxes, BoxHeldByACornerHangsBelowTheTarget) {
     world.step();
     for (const Vec3& x : world.particles().position) finite = finite && phys::finite(x);
   }
-  const Vec3 centre = world.boxPose(id).center;
+  const Vec3 centre = world.bodyPose(id).center;
   const double drop = corner.y - centre.y,
                side = glm::length(Vec3(centre.x - corner.x, 0.0, centre.z - corner.z));
   std::printf("%s box: centre %.6f m below the target (%.6f expected), %.2g m to the side\n",
@@ -128,9 +128,9 @@ TEST_P(DragBoxes, BoxHeldByACornerHangsBelowTheTarget) {
 // corner, held within 2 cm of the target (measured 8 mm, and shrinking as the spin slows).
 TEST_P(DragBoxes, StiffestSpringYanksABoxWithoutBreakingIt) {
   phys::World world = testing_phys::openSpace({}, Vec3(0.0));
-  phys::BoxDesc desc;
+  phys::BodyDesc desc;
   desc.model = GetParam();
-  const phys::BoxId id = world.addBox(desc);
+  const phys::BodyId id = world.addBody(desc);
   phys::Drag drag = dragOf(world.anchor(id, Vec3(0.5)), Vec3(3.5, 0.5, 0.5));
   drag.stiffness = 1e15;
   world.setDrag(drag);
@@ -140,7 +140,7 @@ TEST_P(DragBoxes, StiffestSpringYanksABoxWithoutBreakingIt) {
   EXPECT_LT(glm::length(world.position(drag.point) - drag.target), 0.02);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, DragBoxes, ::testing::Values(BoxModel::Corners, BoxModel::Tetra),
+INSTANTIATE_TEST_SUITE_P(Models, DragBoxes, ::testing::Values(BodyModel::Corners, BodyModel::Tetra),
                          [](const auto& param) { return std::string(toString(param.param)); });
 
 // After clearDrag the particle flies on at the velocity it had: no force is left.

@@ -23,12 +23,12 @@ using phys::Vec3;
 TEST(EnergyFromNowhere, APinCreatedApartClosesWithoutAKick) {
   phys::World world;  // the defaults: the ground at y = 0, 3 iterations x 1 substep at 60 Hz
   const phys::ParticleId p = world.addParticle({Vec3(2.0, 3.0, 0.0), Vec3(0.0), 1.0, false, "p"});
-  phys::BoxDesc capsule;
+  phys::BodyDesc capsule;
   capsule.shape = phys::Shape::Capsule;
   capsule.size = Vec3(0.4, 1.0, 0.4);
   capsule.center = Vec3(2.0, 1.0, 0.0);
   capsule.mass = 1.0;
-  const phys::BoxId c = world.addBox(capsule);
+  const phys::BodyId c = world.addBody(capsule);
   world.addLink(world.anchor(c, Vec3(2.0, 1.5, 0.0)), phys::embedParticle(p));
 
   const double g = 9.81, vMax = world.solverSettings().maxDepenetrationSpeed;
@@ -60,7 +60,7 @@ TEST(EnergyFromNowhere, APinCreatedApartClosesWithoutAKick) {
   // (0.4 J), the particle's sag on the light corners that carry it. (Before: -0.25 J, the tangled
   // capsule sunk below its radius.)
   EXPECT_NEAR(world.metrics().energy(), 2.0 * 1.0 * g * 0.2, 2.0 * 1.0 * g * 0.02);
-  EXPECT_NEAR(world.boxPose(c).center.y, 0.2, 0.02);
+  EXPECT_NEAR(world.bodyPose(c).center.y, 0.2, 0.02);
   EXPECT_NEAR(world.particles().position[p].y, 0.2, 0.02);
   EXPECT_LT(world.metrics().maxJointError, 0.01);  // and the pin holds
   EXPECT_TRUE(world.freezes().empty());

@@ -21,11 +21,11 @@ TEST(Guard, BoxLeavingTheBoundIsFrozenAndReportedByName) {
   phys::World world(ws);
   std::vector<phys::FreezeReport> reported;
   world.setFreezeCallback([&](const phys::FreezeReport& r) { reported.push_back(r); });
-  phys::BoxDesc runaway;
+  phys::BodyDesc runaway;
   runaway.name = "runaway";
   runaway.center = {90.0, 0.0, 0.0};
   runaway.velocity = {600.0, 0.0, 0.0};  // 10 m per step: out within two steps
-  world.addBox(runaway);
+  world.addBody(runaway);
   const auto bystander = world.addParticle({Vec3(0.0), Vec3(0.0), 1.0, false, "bystander"});
 
   for (int i = 0; i < 60; ++i) world.step();
@@ -35,7 +35,7 @@ TEST(Guard, BoxLeavingTheBoundIsFrozenAndReportedByName) {
   EXPECT_NE(reported[0].reason.find("bound"), std::string::npos) << reported[0].reason;
   EXPECT_EQ(world.freezes().size(), 1u);
   EXPECT_EQ(world.metrics().frozen, 8);  // the whole box, not just the first corner
-  const phys::BoxPose pose = world.boxPose(0);
+  const phys::BodyPose pose = world.bodyPose(0);
   EXPECT_LE(pose.center.x, 110.0);  // stopped where it was caught, not flying on
   // The bystander fell freely all along: 1 s of free fall.
   EXPECT_NEAR(world.particles().position[bystander].y, -0.5 * 9.81, 1e-9);
@@ -129,15 +129,15 @@ TEST(Guard, PinnedEndOfANaNStickIsNeverWritten) {
 // Each is frozen kCrushedTime later where the guard last checked it, the substep before, and
 // reported as crushed.
 TEST(Guard, ABoxCrushedByHugeGravityIsFrozenAndReported) {
-  for (const phys::BoxModel model : {phys::BoxModel::Corners, phys::BoxModel::Tetra}) {
+  for (const phys::BodyModel model : {phys::BodyModel::Corners, phys::BodyModel::Tetra}) {
     phys::WorldSettings ws;
-    ws.gravity = Vec3(0.0, model == phys::BoxModel::Corners ? -1.0e4 : -1.0e6, 0.0);
+    ws.gravity = Vec3(0.0, model == phys::BodyModel::Corners ? -1.0e4 : -1.0e6, 0.0);
     phys::World world(ws);
-    phys::BoxDesc d;
+    phys::BodyDesc d;
     d.name = "crate";
     d.center = Vec3(0.0, 0.5, 0.0);
     d.model = model;
-    world.addBox(d);
+    world.addBody(d);
     std::vector<Vec3> last;
     for (int i = 0; i < 180 && world.freezes().empty(); ++i) {
       last = world.particles().position;
@@ -154,7 +154,7 @@ TEST(Guard, ABoxCrushedByHugeGravityIsFrozenAndReported) {
       EXPECT_EQ(world.particles().position[j], last[j]) << phys::toString(model) << " particle " << j;
       EXPECT_EQ(world.particles().previous[j], last[j]);  // at rest
     }
-    const phys::BoxPose pose = world.boxPose(0);
+    const phys::BodyPose pose = world.bodyPose(0);
     EXPECT_TRUE(phys::finite(pose.center) && std::isfinite(glm::length(pose.orientation)));
   }
 }
@@ -168,9 +168,9 @@ TEST(Guard, ABoxSquashedOrSquashedForAMomentIsNotFrozen) {
     phys::WorldSettings ws;
     ws.gravity = Vec3(0.0, -2500.0, 0.0);
     phys::World world(ws);
-    phys::BoxDesc d;
+    phys::BodyDesc d;
     d.center = Vec3(0.0, 0.5, 0.0);
-    world.addBox(d);
+    world.addBody(d);
     for (int i = 0; i < 180; ++i) world.step();
     EXPECT_TRUE(world.freezes().empty()) << world.freezes()[0].reason;
     EXPECT_GT(world.metrics().maxConstraintError, 0.15);
@@ -178,11 +178,11 @@ TEST(Guard, ABoxSquashedOrSquashedForAMomentIsNotFrozen) {
   phys::SolverSettings one;
   one.iterations = 1;
   phys::World world(phys::WorldSettings{}, one);
-  phys::BoxDesc d;
+  phys::BodyDesc d;
   d.center = Vec3(0.0, 1.0, 0.0);
   d.velocity = Vec3(0.0, -80.0, 0.0);
   d.orientation = glm::angleAxis(0.5, glm::normalize(Vec3(1.0, 0.2, 0.4)));  // lands on a corner
-  world.addBox(d);
+  world.addBody(d);
   double worst = 0.0;
   for (int i = 0; i < 300; ++i) {
     world.step();
@@ -201,14 +201,14 @@ TEST(Guard, ABoxLeavingTheBoundIsFrozenAtItsLastPlaceInside) {
   ws.gravity = Vec3(0.0);
   ws.bound = 100.0;
   phys::World world(ws);
-  phys::BoxDesc d;
+  phys::BodyDesc d;
   d.center = Vec3(85.0, 0.0, 0.0);
   d.velocity = Vec3(600.0, 0.0, 0.0);  // 10 m a step: at 95 after one, its far face at 95.5
-  world.addBox(d);
+  world.addBody(d);
   for (int i = 0; i < 5; ++i) world.step();
   ASSERT_EQ(world.freezes().size(), 1u);
   EXPECT_NEAR(world.freezes()[0].time, 2.0 / 60.0, 1e-12);  // caught at 105, in the second step
-  EXPECT_NEAR(world.boxPose(0).center.x, 95.0, 1e-9);
+  EXPECT_NEAR(world.bodyPose(0).center.x, 95.0, 1e-9);
   for (int j = 0; j < 8; ++j) {
     EXPECT_LE(world.particles().position[j].x, 100.0);
     EXPECT_EQ(world.particles().position[j], world.particles().previous[j]);  // at rest
@@ -228,12 +228,12 @@ TEST(Guard, UnderGravityOf1e308EveryFrozenPoseAndEveryMetricIsFinite) {
     d.hips = Vec3(0.0, 1.0, 0.0);
     d.model = model;
     const phys::CapsuleRagdoll r = phys::addCapsuleRagdoll(world, d);
-    std::vector<phys::BoxPose> placed;
-    for (const phys::BoxId part : r.parts) placed.push_back(world.boxPose(part));
+    std::vector<phys::BodyPose> placed;
+    for (const phys::BodyId part : r.parts) placed.push_back(world.bodyPose(part));
     for (int i = 0; i < 3; ++i) world.step();
     EXPECT_EQ(world.freezes().size(), static_cast<std::size_t>(phys::kCapsuleParts));
     for (int k = 0; k < phys::kCapsuleParts; ++k) {
-      const phys::BoxPose pose = world.boxPose(r.parts[k]);
+      const phys::BodyPose pose = world.bodyPose(r.parts[k]);
       ASSERT_TRUE(phys::finite(pose.center) && std::isfinite(pose.orientation.w) &&
                   std::isfinite(pose.orientation.x) && std::isfinite(pose.orientation.y) &&
                   std::isfinite(pose.orientation.z))

@@ -16,29 +16,29 @@ namespace {
 
 using phys::Vec3;
 
-phys::BoxId addCube(phys::World& w, const Vec3& centre, phys::BoxModel model, double mass = 1.0) {
-  phys::BoxDesc d;
+phys::BodyId addCube(phys::World& w, const Vec3& centre, phys::BodyModel model, double mass = 1.0) {
+  phys::BodyDesc d;
   d.center = centre;
   d.size = Vec3(1.0);
   d.model = model;
   d.mass = mass;
-  return w.addBox(d);
+  return w.addBody(d);
 }
 
 // An anchor is an affine combination of the box's particles: it follows the box exactly, inside
 // the box or outside it, and its weights sum to 1 with nothing inverted.
 TEST(Anchors, FollowTheirBoxWhereverThePointIs) {
-  for (auto model : {phys::BoxModel::Corners, phys::BoxModel::Tetra}) {
+  for (auto model : {phys::BodyModel::Corners, phys::BodyModel::Tetra}) {
     phys::World w = testing_phys::openSpace();
-    phys::BoxDesc d;
+    phys::BodyDesc d;
     d.center = Vec3(1.0, 2.0, 3.0);
     d.size = Vec3(0.4, 1.0, 2.0);
     d.orientation = glm::dquat(glm::radians(Vec3(20.0, 40.0, -10.0)));
     d.velocity = Vec3(1.0, 4.0, -2.0);
     d.model = model;
-    const phys::BoxId box = w.addBox(d);
+    const phys::BodyId box = w.addBody(d);
     const Vec3 points[] = {Vec3(1.0, 2.0, 3.0), Vec3(1.1, 2.3, 3.9), Vec3(3.0, -1.0, 0.0)};
-    const phys::BoxPose before = w.boxPose(box);
+    const phys::BodyPose before = w.bodyPose(box);
     phys::Embedding anchors[3];
     Vec3 local[3];
     for (int k = 0; k < 3; ++k) {
@@ -48,7 +48,7 @@ TEST(Anchors, FollowTheirBoxWhereverThePointIs) {
     }
     // Carried along: the same body-frame points after the box has flown for a second.
     for (int i = 0; i < 60; ++i) w.step();
-    const phys::BoxPose after = w.boxPose(box);
+    const phys::BodyPose after = w.bodyPose(box);
     for (int k = 0; k < 3; ++k) {
       EXPECT_NEAR(glm::length(w.position(anchors[k]) - (after.center + after.orientation * local[k])), 0.0,
                   1e-6)
@@ -65,8 +65,8 @@ TEST(Links, APinClosesItsGapInOnePassByInverseMass) {
   phys::SolverSettings s = testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 1);
   s.maxDepenetrationSpeed = std::numeric_limits<double>::infinity();
   phys::World w = testing_phys::openSpace(s, Vec3(0.0));
-  const phys::BoxId a = addCube(w, Vec3(0.0), phys::BoxModel::Tetra, 1.0);
-  const phys::BoxId b = addCube(w, Vec3(1.2, 0.0, 0.0), phys::BoxModel::Tetra, 3.0);
+  const phys::BodyId a = addCube(w, Vec3(0.0), phys::BodyModel::Tetra, 1.0);
+  const phys::BodyId b = addCube(w, Vec3(1.2, 0.0, 0.0), phys::BodyModel::Tetra, 3.0);
   // The right face centre of a, the left face centre of b: 0.2 m apart along x.
   w.addLink(w.anchor(a, Vec3(0.5, 0.0, 0.0)), w.anchor(b, Vec3(0.7, 0.0, 0.0)));
   EXPECT_NEAR(w.metrics().maxJointError, 0.2, 1e-12);
@@ -75,7 +75,7 @@ TEST(Links, APinClosesItsGapInOnePassByInverseMass) {
   EXPECT_NEAR(glm::length(w.position(pin.b) - w.position(pin.a)), 0.0, 1e-12);
   EXPECT_NEAR(w.metrics().maxJointError, 0.0, 1e-12);
   // Momentum: the light box moved three times as far as the heavy one.
-  const double movedA = w.boxPose(a).center.x - 0.0, movedB = 1.2 - w.boxPose(b).center.x;
+  const double movedA = w.bodyPose(a).center.x - 0.0, movedB = 1.2 - w.bodyPose(b).center.x;
   EXPECT_GT(movedA, 0.0);
   EXPECT_NEAR(movedA * 1.0 - movedB * 3.0, 0.0, 1e-9);
 }
@@ -104,7 +104,7 @@ TEST(Links, ARangeLinkActsOnlyOutsideItsBounds) {
 
 TEST(Links, BadInputIsRefusedAndNothingIsAdded) {
   phys::World w = testing_phys::openSpace();
-  const phys::BoxId a = addCube(w, Vec3(0.0), phys::BoxModel::Corners);
+  const phys::BodyId a = addCube(w, Vec3(0.0), phys::BodyModel::Corners);
   const phys::Embedding good = w.anchor(a, Vec3(0.5, 0.0, 0.0));
   phys::Embedding badWeights = good;
   badWeights.weight[0] += 0.1;  // no longer sums to 1
@@ -123,7 +123,7 @@ TEST(Links, BadInputIsRefusedAndNothingIsAdded) {
 TEST(BodyDamping, LeavesTheRigidMotionWithTheSameMomenta) {
   for (double fraction : {1.0, 0.5}) {
     phys::Particles p;
-    phys::Box box;
+    phys::Body box;
     box.particleCount = 8;
     for (int k = 0; k < 8; ++k) {
       const Vec3 x = phys::boxCornerLocal(Vec3(0.5, 0.25, 1.0), k) + Vec3(3.0, 1.0, -2.0);
@@ -155,7 +155,7 @@ TEST(BodyDamping, LeavesTheRigidMotionWithTheSameMomenta) {
     Vec3 linear0, angular0, linear1, angular1;
     momenta(linear0, angular0);
     const double before = internal();
-    const phys::Box boxes[] = {box};
+    const phys::Body boxes[] = {box};
     phys::BodyLayout layout;
     layout.build(boxes);
     phys::detail::dampBodyMotion(p, boxes, layout, fraction);
@@ -175,10 +175,10 @@ TEST(BodyDamping, AKnockedBoxDoesNotRing) {
     phys::SolverSettings s = testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3);
     s.bodyDamping = damping;
     phys::World w = testing_phys::openSpace(s, Vec3(0.0));
-    phys::BoxDesc d;
+    phys::BodyDesc d;
     d.velocity = Vec3(1.0, 0.0, 0.0);
     d.angularVelocity = Vec3(0.0, 2.0, 0.0);
-    w.addBox(d);
+    w.addBody(d);
     w.step();
     phys::Particles& p = const_cast<phys::Particles&>(w.particles());
     p.position[0] += Vec3(0.0, 0.01, 0.0);

@@ -76,7 +76,7 @@ phys::Particles disturbed(const phys::World& world) {
     p.inverseMass[i] = inverseMass(random);
   }
   for (const std::size_t pinned : {3u, 50u, 97u}) p.inverseMass[pinned] = 0.0;
-  const phys::Box& frozen = world.boxes()[30];
+  const phys::Body& frozen = world.bodies()[30];
   for (int i = 0; i < frozen.particleCount; ++i) p.inverseMass[frozen.firstParticle + i] = 0.0;
   return p;
 }
@@ -123,7 +123,7 @@ TEST(LinkLayout, ALinkAddedLaterRebuildsTheLayout) {
   }
   const phys::ParticleId hook = world.addParticle({Vec3(0.0, 3.0, 0.0), Vec3(0.0), 0.0, true});
   world.step();
-  const phys::BoxId pelvis = 0;
+  const phys::BodyId pelvis = 0;
   world.addLink(phys::embedParticle(hook), world.anchor(pelvis, world.particles().position[hook]), 0.0, 0.0);
   for (int i = 0; i < 30; ++i) world.step();
   // Hung from the hook by a pin, the first ragdoll stays there, the pin stretched by about 1 cm

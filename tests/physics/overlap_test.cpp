@@ -14,7 +14,7 @@
 
 namespace {
 
-using phys::BoxModel;
+using phys::BodyModel;
 using phys::Vec3;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -37,11 +37,11 @@ phys::World world(const Setting& s, double maxDepenetrationSpeed = phys::kDefaul
   return phys::World(ws, ss);
 }
 
-phys::BoxId addBox(phys::World& w, Vec3 centre, BoxModel model = BoxModel::Corners) {
-  phys::BoxDesc d;
+phys::BodyId addBody(phys::World& w, Vec3 centre, BodyModel model = BodyModel::Corners) {
+  phys::BodyDesc d;
   d.center = centre;
   d.model = model;
-  return w.addBox(d);
+  return w.addBody(d);
 }
 
 // The fastest particle seen after any step (what the lab's stability criteria sample), and the
@@ -62,8 +62,8 @@ Outcome run(phys::World& w, double seconds, double settleTime) {
   return r;
 }
 
-const char* name(BoxModel model) {
-  return model == BoxModel::Corners ? "corners" : "tetra";
+const char* name(BodyModel model) {
+  return model == BodyModel::Corners ? "corners" : "tetra";
 }
 
 // The stability suite's overlap case in three boxes: two 1 m boxes side by side 25% into each
@@ -74,12 +74,12 @@ const char* name(BoxModel model) {
 // Tetra boxes at 1 iteration keep about 5 to 6 mm of overlap even when placed touching (their
 // contact weights of both signs, docs/physics.md), so for them 1 x 1 is held to 1 cm.
 TEST(Overlap, ThreeBoxesSpawned25PercentIntoEachOtherPartCalmly) {
-  for (BoxModel model : {BoxModel::Corners, BoxModel::Tetra}) {
+  for (BodyModel model : {BodyModel::Corners, BodyModel::Tetra}) {
     for (Setting s : {Setting{1, 1}, Setting{3, 1}, Setting{1, 16}}) {
       phys::World w = world(s);
-      const phys::BoxId left = addBox(w, {-0.375, 0.5, 0.0}, model);
-      const phys::BoxId right = addBox(w, {0.375, 0.5, 0.0}, model);
-      const phys::BoxId top = addBox(w, {0.0, 1.25, 0.0}, model);
+      const phys::BodyId left = addBody(w, {-0.375, 0.5, 0.0}, model);
+      const phys::BodyId right = addBody(w, {0.375, 0.5, 0.0}, model);
+      const phys::BodyId top = addBody(w, {0.0, 1.25, 0.0}, model);
       const Outcome r = run(w, 3.0, 2.0);
       std::printf(
           "three boxes 25%% into each other, %s, %d x %d: fastest %.3f m/s, deepest overlap from 2 s "
@@ -88,15 +88,15 @@ TEST(Overlap, ThreeBoxesSpawned25PercentIntoEachOtherPartCalmly) {
       const std::string what =
           std::string(name(model)) + " " + std::to_string(s.iterations) + " x " + std::to_string(s.substeps);
       EXPECT_LT(r.fastest, 5.0) << what;
-      EXPECT_LT(r.deepest, model == BoxModel::Tetra && s.iterations == 1 && s.substeps == 1 ? 0.01 : 0.005)
+      EXPECT_LT(r.deepest, model == BodyModel::Tetra && s.iterations == 1 && s.substeps == 1 ? 0.01 : 0.005)
           << what;
       EXPECT_EQ(w.metrics().frozen, 0) << what;
       // Parted, not scattered: the lower two on the ground side by side, the third on them.
-      EXPECT_NEAR(w.boxPose(left).center.y, 0.5, 0.01) << what;
-      EXPECT_NEAR(w.boxPose(right).center.y, 0.5, 0.01) << what;
-      EXPECT_NEAR(w.boxPose(top).center.y, 1.5, 0.02) << what;
-      EXPECT_GT(w.boxPose(right).center.x - w.boxPose(left).center.x, 0.99) << what;
-      EXPECT_LT(w.boxPose(right).center.x - w.boxPose(left).center.x, 1.2) << what;
+      EXPECT_NEAR(w.bodyPose(left).center.y, 0.5, 0.01) << what;
+      EXPECT_NEAR(w.bodyPose(right).center.y, 0.5, 0.01) << what;
+      EXPECT_NEAR(w.bodyPose(top).center.y, 1.5, 0.02) << what;
+      EXPECT_GT(w.bodyPose(right).center.x - w.bodyPose(left).center.x, 0.99) << what;
+      EXPECT_LT(w.bodyPose(right).center.x - w.bodyPose(left).center.x, 1.2) << what;
     }
   }
 }
@@ -109,8 +109,8 @@ TEST(Overlap, ABoxSpawnedIntoARestingBoxDoesNotDriveItIntoTheGround) {
   for (Setting s : {Setting{1, 1}, Setting{3, 1}, Setting{1, 16}}) {
     auto pair = [&](double upperHeight) {
       phys::World w = world(s);
-      addBox(w, {0.0, 0.5, 0.0});
-      addBox(w, {0.0, upperHeight, 0.0});
+      addBody(w, {0.0, 0.5, 0.0});
+      addBody(w, {0.0, upperHeight, 0.0});
       return w;
     };
     phys::World spawned = pair(1.25), placed = pair(1.5);
@@ -119,12 +119,12 @@ TEST(Overlap, ABoxSpawnedIntoARestingBoxDoesNotDriveItIntoTheGround) {
     std::printf(
         "a box 25%% into a resting box, %d x %d: fastest %.3f m/s, upper box at %.4f m (placed "
         "touching: %.4f m)\n",
-        s.iterations, s.substeps, r.fastest, spawned.boxPose(1).center.y, placed.boxPose(1).center.y);
+        s.iterations, s.substeps, r.fastest, spawned.bodyPose(1).center.y, placed.bodyPose(1).center.y);
     EXPECT_LT(r.fastest, 1.0) << s.iterations << " x " << s.substeps;
     EXPECT_LT(r.deepest, 0.005) << s.iterations << " x " << s.substeps;
-    EXPECT_NEAR(spawned.boxPose(1).center.y, placed.boxPose(1).center.y, 0.002)
+    EXPECT_NEAR(spawned.bodyPose(1).center.y, placed.bodyPose(1).center.y, 0.002)
         << s.iterations << " x " << s.substeps;
-    EXPECT_NEAR(spawned.boxPose(0).center.y, placed.boxPose(0).center.y, 0.002)
+    EXPECT_NEAR(spawned.bodyPose(0).center.y, placed.bodyPose(0).center.y, 0.002)
         << s.iterations << " x " << s.substeps;
   }
 }
@@ -139,15 +139,15 @@ TEST(Overlap, ShallowOverlapLeavesNoFasterThanTheDepenetrationSpeed) {
   for (double limit : {1.0, 0.25, kInfinity}) {
     // Into the ground.
     phys::World ground = world(fine, limit, Vec3(0.0));
-    addBox(ground, {0.0, 0.5 - 0.008, 0.0});
+    addBody(ground, {0.0, 0.5 - 0.008, 0.0});
     const Outcome g = run(ground, 0.5, 0.25);
     // Into another box, no ground.
     phys::World pair = world(fine, limit, Vec3(0.0));
     phys::WorldSettings open = pair.worldSettings();
     open.ground = false;
     pair.setWorldSettings(open);
-    addBox(pair, {0.0, 0.0, 0.0});
-    addBox(pair, {1.0 - 0.008 - pair.solverSettings().contactSlop, 0.0, 0.0});
+    addBody(pair, {0.0, 0.0, 0.0});
+    addBody(pair, {1.0 - 0.008 - pair.solverSettings().contactSlop, 0.0, 0.0});
     const Outcome b = run(pair, 0.5, 0.25);
     std::printf("8 mm of overlap, limit %g m/s: into the ground leaves at %.3f m/s, two boxes at %.3f m/s\n",
                 limit, g.fastest, b.fastest);
@@ -178,15 +178,15 @@ TEST(Overlap, LandingsAndRestingBoxesAreUntouchedByTheLimit) {
   for (Setting s : {Setting{1, 1}, Setting{3, 1}, Setting{1, 16}, Setting{10, 1}}) {
     auto landings = [&](double limit) {
       phys::World w = world(s, limit);
-      addBox(w, {-3.0, 1.5, 0.0});                  // dropped 1 m onto the ground
-      addBox(w, {0.0, 0.5, 0.0});                   // resting, and landed on
-      addBox(w, {0.0, 2.5, 0.0}, BoxModel::Tetra);  // dropped 1 m onto it
+      addBody(w, {-3.0, 1.5, 0.0});                   // dropped 1 m onto the ground
+      addBody(w, {0.0, 0.5, 0.0});                    // resting, and landed on
+      addBody(w, {0.0, 2.5, 0.0}, BodyModel::Tetra);  // dropped 1 m onto it
       for (int i = 0; i < 120; ++i) w.step();
       return w.stateHash();
     };
     auto column = [&](double limit) {
       phys::World w = world(s, limit);
-      for (int i = 0; i < 4; ++i) addBox(w, {0.0, 0.5 + 1.2 * i, 0.0});  // 0.2 m apart
+      for (int i = 0; i < 4; ++i) addBody(w, {0.0, 0.5 + 1.2 * i, 0.0});  // 0.2 m apart
       for (int i = 0; i < 120; ++i) w.step();
       return w.stateHash();
     };
@@ -216,11 +216,11 @@ TEST(Overlap, DepenetrationSpeedMustBePositive) {
 TEST(Overlap, AContactThatClosesWithinTheStepIsThereWhenItDoes) {
   for (const int substeps : {4, 16}) {
     phys::World w = world({1, substeps}, kInfinity, Vec3(0.0));
-    addBox(w, {0.0, 5.0, 0.0});  // clear of the ground
-    phys::BoxDesc d;
+    addBody(w, {0.0, 5.0, 0.0});  // clear of the ground
+    phys::BodyDesc d;
     d.center = {0.0, 6.03, 0.0};
     d.velocity = {0.0, -3.0, 0.0};
-    w.addBox(d);
+    w.addBody(d);
     w.step();
     // Face to face, from the corners (particles 0-7 and 8-15; bit 1 of a corner's index is +y):
     // the box is squashed by the landing, so its centre says less.
@@ -270,10 +270,10 @@ TEST(Overlap, ThePartingSweepsAreTheSettingsOnes) {
     phys::SolverSettings solver;
     solver.parting = parting;
     phys::World w = testing_phys::openSpace(solver, Vec3(0.0));
-    addBox(w, {0.0, 0.0, 0.0});
-    addBox(w, {0.75, 0.0, 0.0});
+    addBody(w, {0.0, 0.0, 0.0});
+    addBody(w, {0.75, 0.0, 0.0});
     w.step();
-    const double gap = w.boxPose(1).center.x - w.boxPose(0).center.x - 1.0;
+    const double gap = w.bodyPose(1).center.x - w.bodyPose(0).center.x - 1.0;
     double fastest = 0.0;
     for (phys::ParticleId p = 0; p < w.particles().size(); ++p)
       fastest = std::max(fastest, glm::length(w.velocity(p)));

@@ -1,4 +1,4 @@
-// The rotation read back from a body's particles (detail::nearestRotation, World::boxPose) is a
+// The rotation read back from a body's particles (detail::nearestRotation, World::bodyPose) is a
 // rotation, finite, for any matrix a world can hand it: a box crushed flat, two of its corners met,
 // one flung near the largest double (found by the soak test: a NaN orientation for all three).
 #include <cmath>

@@ -79,11 +79,11 @@ TEST(Profile, AStackTimesItsCollisionStages) {
   solver.restitution = 0.5;
   solver.bodyDamping = 0.1;
   phys::World world(phys::WorldSettings{}, solver);
-  phys::BoxDesc box;
+  phys::BodyDesc box;
   box.center = {0.0, 0.5, 0.0};
-  world.addBox(box);
+  world.addBody(box);
   box.center = {0.0, 1.5, 0.0};
-  world.addBox(box);
+  world.addBody(box);
   const phys::Profile p = profileOf(world, 10);
   for (const Stage s : allStages()) {
     if (s == Stage::Links) {

@@ -30,7 +30,7 @@ phys::SolverSettings ragdollSettings() {
 
 Vec3 centreOf(const phys::World& w, const phys::Ragdoll& r) {
   Vec3 sum(0.0);
-  for (phys::BoxId id : r.parts) sum += w.boxPose(id).center;
+  for (phys::BodyId id : r.parts) sum += w.bodyPose(id).center;
   return sum / static_cast<double>(r.parts.size());
 }
 

@@ -19,22 +19,22 @@ using phys::Vec3;
 
 constexpr double kExact = 1e-9;  // m
 
-phys::BoxId addBox(phys::World& world, const Vec3& centre, const Vec3& size,
-                   const phys::Quat& orientation = {1.0, 0.0, 0.0, 0.0}, double mass = 1.0) {
-  phys::BoxDesc desc;
+phys::BodyId addBody(phys::World& world, const Vec3& centre, const Vec3& size,
+                     const phys::Quat& orientation = {1.0, 0.0, 0.0, 0.0}, double mass = 1.0) {
+  phys::BodyDesc desc;
   desc.center = centre;
   desc.size = size;
   desc.orientation = orientation;
   desc.mass = mass;
-  return world.addBox(desc);
+  return world.addBody(desc);
 }
 
 // The far box is added first, so the nearer one wins on distance, not order. The direction need
 // not be a unit vector: distances are in metres along the ray.
 TEST(Raycast, HitsTheNearerOfTwoBoxesAtTheAnalyticDistance) {
   phys::World world = testing_phys::openSpace();
-  const phys::BoxId far = addBox(world, {6.0, 0.0, 0.0}, Vec3(2.0));
-  const phys::BoxId near = addBox(world, {3.0, 0.0, 0.0}, Vec3(1.0));
+  const phys::BodyId far = addBody(world, {6.0, 0.0, 0.0}, Vec3(2.0));
+  const phys::BodyId near = addBody(world, {3.0, 0.0, 0.0}, Vec3(1.0));
   const Vec3 origin(0.0, 0.1, 0.2);
   const auto hit = world.raycast(origin, Vec3(2.0, 0.0, 0.0), 100.0);
   ASSERT_TRUE(hit.has_value());
@@ -58,7 +58,7 @@ TEST(Raycast, RotatedBox) {
   phys::World world = testing_phys::openSpace();
   const phys::Quat q = glm::angleAxis(0.7, glm::normalize(Vec3(1.0, 2.0, -0.5)));
   const Vec3 centre(1.0, 2.0, -3.0), size(1.0, 0.6, 0.8);
-  const phys::BoxId turned = addBox(world, centre, size, q);
+  const phys::BodyId turned = addBody(world, centre, size, q);
   const auto hit = world.raycast(centre + q * Vec3(-3.0, 0.1, 0.2), q * Vec3(1.0, 0.0, 0.0), 10.0);
   ASSERT_TRUE(hit.has_value() && hit->box.has_value());
   EXPECT_EQ(*hit->box, turned);
@@ -66,7 +66,7 @@ TEST(Raycast, RotatedBox) {
   EXPECT_LT(glm::length(hit->point - (centre + q * Vec3(-0.5, 0.1, 0.2))), kExact);
 
   phys::World diamond = testing_phys::openSpace();
-  addBox(diamond, Vec3(0.0), Vec3(1.0), glm::angleAxis(glm::radians(45.0), Vec3(0.0, 1.0, 0.0)));
+  addBody(diamond, Vec3(0.0), Vec3(1.0), glm::angleAxis(glm::radians(45.0), Vec3(0.0, 1.0, 0.0)));
   const auto edge = diamond.raycast(Vec3(-5.0, 0.2, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);
   ASSERT_TRUE(edge.has_value());
   EXPECT_NEAR(edge->distance, 5.0 - std::sqrt(0.5), kExact);
@@ -78,7 +78,7 @@ TEST(Raycast, RotatedBox) {
 
 TEST(Raycast, MissReturnsNothing) {
   phys::World world = testing_phys::openSpace();
-  addBox(world, {3.0, 0.0, 0.0}, Vec3(1.0));
+  addBody(world, {3.0, 0.0, 0.0}, Vec3(1.0));
   world.addParticle({Vec3(0.0, 3.0, 0.0)});
   EXPECT_FALSE(world.raycast(Vec3(0.0), Vec3(-1.0, 0.0, 0.0), 100.0).has_value());           // pointing away
   EXPECT_FALSE(world.raycast(Vec3(0.0, 0.6, 0.0), Vec3(1.0, 0.0, 0.0), 100.0).has_value());  // passes above
@@ -95,7 +95,7 @@ TEST(Raycast, MissReturnsNothing) {
 TEST(Raycast, ParticleHit) {
   phys::World world = testing_phys::openSpace();
   const auto loose = world.addParticle({Vec3(0.0, 1.0, 0.0)});
-  const phys::BoxId box = addBox(world, {0.0, 1.0, 3.0}, Vec3(1.0));
+  const phys::BodyId box = addBody(world, {0.0, 1.0, 3.0}, Vec3(1.0));
   const auto hit = world.raycast(Vec3(-2.0, 1.05, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);
   ASSERT_TRUE(hit.has_value() && hit->particle.has_value());
   EXPECT_FALSE(hit->box.has_value());
@@ -114,8 +114,8 @@ TEST(Raycast, ParticleHit) {
 // A ray that starts inside a box (or a particle's sphere) hits it where it starts.
 TEST(Raycast, StartingInsideABoxHitsItAtDistanceZero) {
   phys::World world = testing_phys::openSpace();
-  const phys::BoxId big = addBox(world, Vec3(0.0), Vec3(4.0));
-  addBox(world, {1.0, 0.0, 0.0}, Vec3(0.5));  // inside the big one, ahead of the origin
+  const phys::BodyId big = addBody(world, Vec3(0.0), Vec3(4.0));
+  addBody(world, {1.0, 0.0, 0.0}, Vec3(0.5));  // inside the big one, ahead of the origin
   const Vec3 origin(-1.0, 0.3, 0.2);
   const auto hit = world.raycast(origin, Vec3(1.0, 0.0, 0.0), 10.0);
   ASSERT_TRUE(hit.has_value() && hit->box.has_value());
@@ -150,15 +150,15 @@ TEST(LateBodies, BoxAndRagdollAddedAfterSteppingCollideWithTheOldOnes) {
   s.iterations = 2;
   s.bodyDamping = 1.0;  // as the ragdoll scenes
   phys::World world({}, s);
-  std::vector<phys::BoxId> old;
+  std::vector<phys::BodyId> old;
   for (int i = 0; i < 3; ++i)
-    old.push_back(addBox(world, {3.0 * i, 0.5, 0.0}, Vec3(1.0), {1.0, 0.0, 0.0, 0.0}, 200.0));
+    old.push_back(addBody(world, {3.0 * i, 0.5, 0.0}, Vec3(1.0), {1.0, 0.0, 0.0, 0.0}, 200.0));
   for (int i = 0; i < 100; ++i) world.step();
   std::vector<Vec3> oldCentres;
-  for (phys::BoxId id : old) oldCentres.push_back(world.boxPose(id).center);
+  for (phys::BodyId id : old) oldCentres.push_back(world.bodyPose(id).center);
 
   const Vec3 dropAt(0.0, 4.0, 0.0);
-  const phys::BoxId added = addBox(world, dropAt, Vec3(1.0));
+  const phys::BodyId added = addBody(world, dropAt, Vec3(1.0));
   phys::RagdollDesc ragdoll;
   ragdoll.hips = {3.0, 2.5, 0.0};
   ragdoll.model = phys::RagdollModel::Lean;
@@ -167,29 +167,30 @@ TEST(LateBodies, BoxAndRagdollAddedAfterSteppingCollideWithTheOldOnes) {
   const double start = world.time();
   for (int i = 0; i < 30; ++i) world.step();  // 0.5 s: still 1.3 m above the old box
   const double t = world.time() - start;
-  EXPECT_NEAR(world.boxPose(added).center.y, dropAt.y - 0.5 * 9.81 * t * t, kExact);
+  EXPECT_NEAR(world.bodyPose(added).center.y, dropAt.y - 0.5 * 9.81 * t * t, kExact);
 
   auto isPart = [&doll](std::int32_t box) {
-    return std::find(doll.parts.begin(), doll.parts.end(), static_cast<phys::BoxId>(box)) != doll.parts.end();
+    return std::find(doll.parts.begin(), doll.parts.end(), static_cast<phys::BodyId>(box)) !=
+           doll.parts.end();
   };
   const auto crate = static_cast<std::int32_t>(old[1]);
   bool ragdollTouchedTheCrate = false;
   while (world.time() < start + 4.0) {
     world.step();
     for (const phys::BodyContact& c : world.bodyContacts()) {
-      if ((c.boxA == crate && isPart(c.boxB)) || (c.boxB == crate && isPart(c.boxA)))
+      if ((c.bodyA == crate && isPart(c.bodyB)) || (c.bodyB == crate && isPart(c.bodyA)))
         ragdollTouchedTheCrate = true;
     }
   }
   EXPECT_TRUE(ragdollTouchedTheCrate);
-  std::printf("new box at rest %.4f m up (1.5 on the crate); crates moved", world.boxPose(added).center.y);
+  std::printf("new box at rest %.4f m up (1.5 on the crate); crates moved", world.bodyPose(added).center.y);
   for (std::size_t i = 0; i < old.size(); ++i) {
-    const double moved = glm::length(world.boxPose(old[i]).center - oldCentres[i]);
+    const double moved = glm::length(world.bodyPose(old[i]).center - oldCentres[i]);
     std::printf(" %.4f", moved);
     EXPECT_LT(moved, 0.01) << "crate " << i;
   }
   std::printf(" m\n");
-  EXPECT_NEAR(world.boxPose(added).center.y, 1.5, 5e-3);
+  EXPECT_NEAR(world.bodyPose(added).center.y, 1.5, 5e-3);
   EXPECT_TRUE(world.freezes().empty());
   EXPECT_LT(world.metrics().maxPenetration, 0.01);
 

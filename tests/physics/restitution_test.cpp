@@ -14,7 +14,7 @@
 
 namespace {
 
-using phys::BoxModel;
+using phys::BodyModel;
 using phys::Vec3;
 
 phys::SolverSettings bouncy(double restitution, int substeps) {
@@ -76,20 +76,20 @@ TEST(Restitution, ZeroOrASlowImpactDoesNotBounce) {
   }
 }
 
-class RestitutionBoxes : public ::testing::TestWithParam<BoxModel> {};
+class RestitutionBoxes : public ::testing::TestWithParam<BodyModel> {};
 
 // A resting box approaches the ground by g h per substep (0.16 m/s at 60 Hz), under the
 // threshold, so restitution leaves it alone: no jitter.
 TEST_P(RestitutionBoxes, BoxAtRestStaysAtRest) {
   for (double e : {0.8, 1.0}) {
     phys::World world({}, bouncy(e, 1));
-    phys::BoxDesc desc;
+    phys::BodyDesc desc;
     desc.model = GetParam();
     desc.center = {0.0, 0.5, 0.0};
-    const phys::BoxId id = world.addBox(desc);
+    const phys::BodyId id = world.addBody(desc);
     while (world.time() < 2.0) world.step();
     EXPECT_LT(maxSpeed(world), 1e-3) << "e " << e;
-    EXPECT_LT(glm::length(world.boxPose(id).center - desc.center), 1e-3) << "e " << e;
+    EXPECT_LT(glm::length(world.bodyPose(id).center - desc.center), 1e-3) << "e " << e;
   }
 }
 
@@ -98,17 +98,17 @@ TEST_P(RestitutionBoxes, BoxAtRestStaysAtRest) {
 // it the box hops at 1.1 m/s). It rests where it rests without restitution (a 1.4 cm sag, from
 // 3 passes at this step).
 TEST_P(RestitutionBoxes, BoxAtRestStaysAtRestAtACoarseStep) {
-  auto rest = [](BoxModel model, double e, double& speed) {
+  auto rest = [](BodyModel model, double e, double& speed) {
     phys::SolverSettings s = bouncy(e, 1);
     s.dt = 0.1;
     phys::World world({}, s);
-    phys::BoxDesc desc;
+    phys::BodyDesc desc;
     desc.model = model;
     desc.center = {0.0, 0.5, 0.0};
-    const phys::BoxId id = world.addBox(desc);
+    const phys::BodyId id = world.addBody(desc);
     while (world.time() < 2.0) world.step();
     speed = maxSpeed(world);
-    return world.boxPose(id).center;
+    return world.bodyPose(id).center;
   };
   double speed = 0.0, plainSpeed = 0.0;
   const Vec3 withBounce = rest(GetParam(), 1.0, speed), plain = rest(GetParam(), 0.0, plainSpeed);
@@ -125,12 +125,12 @@ TEST_P(RestitutionBoxes, BoxDroppedFlatReboundsToAboutESquaredTimesTheHeight) {
   constexpr double kHeight = 1.0;  // m of fall
   for (double e : {0.0, 0.5, 0.8}) {
     phys::World world({}, bouncy(e, 8));
-    phys::BoxDesc desc;
+    phys::BodyDesc desc;
     desc.model = GetParam();
     desc.center = {0.0, 0.5 + kHeight, 0.0};
-    const phys::BoxId id = world.addBox(desc);
+    const phys::BodyId id = world.addBody(desc);
     const double rebound = reboundHeight(
-        world, [id](const phys::World& w) { return w.boxPose(id).center.y; }, 0.5, 1e-3, 2.0);
+        world, [id](const phys::World& w) { return w.bodyPose(id).center.y; }, 0.5, 1e-3, 2.0);
     std::printf("%s box, e %.1f: rebound %.4f m, e^2 H %.4f m\n", std::string(toString(GetParam())).c_str(),
                 e, rebound, e * e * kHeight);
     EXPECT_NEAR(rebound, e * e * kHeight, 0.02 * kHeight) << "e " << e;
@@ -142,16 +142,16 @@ TEST_P(RestitutionBoxes, BoxDroppedFlatReboundsToAboutESquaredTimesTheHeight) {
 // Gauss-Seidel, and a slow contact only stops closing). At e = 0 it pops up 7 cm, as it does
 // without restitution; at 0.8 it rises 0.67 m (e^2 H is 0.64 m).
 TEST_P(RestitutionBoxes, BoxDroppedOnABoxBounces) {
-  auto rebound = [](BoxModel model, double e) {
+  auto rebound = [](BodyModel model, double e) {
     phys::World world({}, bouncy(e, 8));
-    phys::BoxDesc desc;
+    phys::BodyDesc desc;
     desc.model = model;
     desc.center = {0.0, 0.5, 0.0};
-    world.addBox(desc);
+    world.addBody(desc);
     desc.center = {0.1, 2.5, 0.05};
-    const phys::BoxId top = world.addBox(desc);
+    const phys::BodyId top = world.addBody(desc);
     return reboundHeight(
-        world, [top](const phys::World& w) { return w.boxPose(top).center.y; }, 1.5, 2e-3, 3.0);
+        world, [top](const phys::World& w) { return w.bodyPose(top).center.y; }, 1.5, 2e-3, 3.0);
   };
   const double still = rebound(GetParam(), 0.0), bouncing = rebound(GetParam(), 0.8);
   std::printf("%s box on a box: rebound e 0 %.4f m, e 0.8 %.4f m (e^2 H 0.64 m)\n",
@@ -161,7 +161,7 @@ TEST_P(RestitutionBoxes, BoxDroppedOnABoxBounces) {
   EXPECT_GT(bouncing, still + 0.4);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, RestitutionBoxes, ::testing::Values(BoxModel::Corners, BoxModel::Tetra),
+INSTANTIATE_TEST_SUITE_P(Models, RestitutionBoxes, ::testing::Values(BodyModel::Corners, BodyModel::Tetra),
                          [](const auto& param) { return std::string(toString(param.param)); });
 
 // Full restitution on a tumbling pile of both box models and a ragdoll: nothing goes non-finite
@@ -171,12 +171,12 @@ TEST(Restitution, FullRestitutionOnAPileStaysFinite) {
   s.iterations = 2;
   phys::World world({}, s);
   for (int i = 0; i < 8; ++i) {
-    phys::BoxDesc desc;
+    phys::BodyDesc desc;
     desc.center = {0.3 * (i % 3), 0.6 + 1.1 * i, 0.2 * (i % 2)};
     desc.orientation = glm::dquat(glm::dvec3(0.4 * i, 0.3, 0.2 * i));
-    desc.model = i % 2 == 0 ? BoxModel::Corners : BoxModel::Tetra;
+    desc.model = i % 2 == 0 ? BodyModel::Corners : BodyModel::Tetra;
     desc.velocity = {0.0, -3.0, 0.0};
-    world.addBox(desc);
+    world.addBody(desc);
   }
   phys::RagdollDesc ragdoll;
   ragdoll.hips = {0.0, 11.0, 0.0};

@@ -24,14 +24,14 @@ struct Scene {
 
   Scene() : world(phys::WorldSettings{}, phys::SolverSettings{}) {
     for (int i = 0; i < 32; ++i) {
-      phys::BoxDesc box;
-      box.model = i < 21 ? phys::BoxModel::Tetra : phys::BoxModel::Corners;
+      phys::BodyDesc box;
+      box.model = i < 21 ? phys::BodyModel::Tetra : phys::BodyModel::Corners;
       box.center = {2.0 * i, 1.0, 0.0};
       box.size = {0.5 + 0.05 * i, 1.0, 0.7};
-      world.addBox(box);
+      world.addBody(box);
     }
     phys::ParticleId previous = world.addParticle({Vec3(0.0, 5.0, 0.0)});
-    world.addStick(world.boxes()[0].firstParticle, previous);
+    world.addStick(world.bodies()[0].firstParticle, previous);
     for (int i = 1; i < 10; ++i) {
       const phys::ParticleId next = world.addParticle({Vec3(0.3 * i, 5.0, 0.0)});
       world.addRange(previous, next, 0.2, 0.25);
@@ -43,7 +43,7 @@ struct Scene {
 TEST(StickLayout, BodiesOfOneShapeGoIntoLanesTheRestIntoBlocksAndRuns) {
   Scene scene;
   phys::StickLayout layout;
-  layout.build(scene.world.sticks(), scene.world.boxes(), scene.world.particles().size());
+  layout.build(scene.world.sticks(), scene.world.bodies(), scene.world.particles().size());
   // Box 0 has an outside stick: 20 tetra bodies left, 2 groups of 8 and 4 blocks; 11 corners
   // bodies, 1 group and 3 blocks.
   ASSERT_EQ(layout.lanes().size(), 3u);
@@ -78,11 +78,11 @@ phys::Particles disturbed(const phys::World& world) {
     p.position[i] += Vec3(jitter(random), jitter(random), jitter(random));
     p.previous[i] += Vec3(jitter(random), jitter(random), jitter(random));
   }
-  const phys::Box& pinned = world.boxes()[3];
+  const phys::Body& pinned = world.bodies()[3];
   p.inverseMass[pinned.firstParticle] = p.inverseMass[pinned.firstParticle + 1] = 0.0;
-  const phys::Box& frozen = world.boxes()[5];
+  const phys::Body& frozen = world.bodies()[5];
   for (int i = 0; i < frozen.particleCount; ++i) p.inverseMass[frozen.firstParticle + i] = 0.0;
-  const phys::Box& collapsed = world.boxes()[9];
+  const phys::Body& collapsed = world.bodies()[9];
   p.position[collapsed.firstParticle + 1] = p.position[collapsed.firstParticle];
   return p;
 }
@@ -95,7 +95,7 @@ TEST(StickLayout, EveryMethodGivesTheBitsOfThePlainLoopInCreationOrder) {
   Scene scene;
   const phys::World& world = scene.world;
   phys::StickLayout layout, inOrder = phys::StickLayout::inOrder(world.sticks().size());
-  layout.build(world.sticks(), world.boxes(), world.particles().size());
+  layout.build(world.sticks(), world.bodies(), world.particles().size());
   std::vector<double> degree(world.particles().size(), 0.0);
   for (const phys::Stick& s : world.sticks()) degree[s.a] += 1.0, degree[s.b] += 1.0;
   std::vector<Vec3> delta(world.particles().size());
@@ -139,7 +139,7 @@ TEST(StickLayout, BothCopiesOfTheLaneKernelsGiveTheSameBits) {
   Scene scene;
   const phys::World& world = scene.world;
   phys::StickLayout layout;
-  layout.build(world.sticks(), world.boxes(), world.particles().size());
+  layout.build(world.sticks(), world.bodies(), world.particles().size());
   const phys::StickLayout inOrder = phys::StickLayout::inOrder(world.sticks().size());
   for (const phys::detail::LaneIsa isa : {phys::detail::LaneIsa::Baseline, phys::detail::laneIsa()}) {
     phys::Particles lanes = disturbed(world), plain = lanes;
@@ -189,14 +189,14 @@ TEST(StickLayout, AddingAStickLaterRebuildsTheLayout) {
   ws.ground = false;
   phys::World world(ws);
   for (int i = 0; i < 9; ++i) {
-    phys::BoxDesc box;
-    box.model = phys::BoxModel::Tetra;
+    phys::BodyDesc box;
+    box.model = phys::BodyModel::Tetra;
     box.center = {1.5 * i, 2.0, 0.0};
-    world.addBox(box);
+    world.addBody(box);
   }
   const phys::ParticleId loose = world.addParticle({Vec3(6.0, 4.0, 0.0), Vec3(0.0), 0.0, true});
   world.step();
-  const phys::ParticleId held = world.boxes()[4].firstParticle;
+  const phys::ParticleId held = world.bodies()[4].firstParticle;
   world.addStick(held, loose);
   const double rest = world.sticks().back().minLength;
   for (int i = 0; i < 30; ++i) world.step();

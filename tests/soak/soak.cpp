@@ -206,7 +206,7 @@ SessionState snapshot(const sandbox::Session& session) {
     r.hash = w.stateHash();
     r.world = w.worldSettings();
     r.solver = w.solverSettings();
-    r.boxes = w.boxes().size();
+    r.boxes = w.bodies().size();
     r.particles = w.particles().size();
     r.sticks = w.sticks().size();
     r.links = w.links().size();
@@ -441,13 +441,13 @@ void Soak::checkWorlds(bool poses) {
     for (std::size_t f = freezesSeen_[r]; f < freezes.size(); ++f) tally(freezeReasons_, freezes[f].reason);
     freezesSeen_[r] = freezes.size();
     if (!poses) continue;
-    for (std::size_t b = 0; b < w.boxes().size(); ++b) {
-      const phys::BoxPose pose = w.boxPose(static_cast<phys::BoxId>(b));
+    for (std::size_t b = 0; b < w.bodies().size(); ++b) {
+      const phys::BodyPose pose = w.bodyPose(static_cast<phys::BodyId>(b));
       const bool finite = phys::finite(pose.center) && std::isfinite(pose.orientation.w) &&
                           std::isfinite(pose.orientation.x) && std::isfinite(pose.orientation.y) &&
                           std::isfinite(pose.orientation.z);
       if (!finite) {
-        const phys::Box& box = w.boxes()[b];
+        const phys::Body& box = w.bodies()[b];
         // How far apart its particles are tells a box flung out of range from one crushed flat.
         double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
         for (int i = 0; i < box.particleCount; ++i) {
@@ -520,8 +520,8 @@ Vec3 Soak::someBodyPoint() {
   const phys::World& w = session().scene().world;
   const Vec3 jitterDirection = random_.unitVector();
   const Vec3 jitter = jitterDirection * random_.uniform(0, 0.3);
-  if (!w.boxes().empty() && random_.chance(0.8)) {
-    const phys::BoxPose pose = w.boxPose(static_cast<phys::BoxId>(random_.index(w.boxes().size())));
+  if (!w.bodies().empty() && random_.chance(0.8)) {
+    const phys::BodyPose pose = w.bodyPose(static_cast<phys::BodyId>(random_.index(w.bodies().size())));
     if (phys::finite(pose.center)) return pose.center + jitter;
   }
   if (w.particles().size() > 0) return w.particles().position[random_.index(w.particles().size())] + jitter;
@@ -690,13 +690,13 @@ void Soak::saveAndOpen() {
   const SessionState before = snapshot(session());
   const phys::WorldSettings world = w.worldSettings();
   const phys::SolverSettings solver = w.solverSettings();
-  const std::size_t boxes = w.boxes().size(), particles = w.particles().size(), sticks = w.sticks().size(),
+  const std::size_t boxes = w.bodies().size(), particles = w.particles().size(), sticks = w.sticks().size(),
                     links = w.links().size(), ignored = w.ignoredCollisions().size();
-  std::vector<phys::BoxPose> poses;
-  for (std::size_t b = 0; b < boxes; ++b) poses.push_back(w.boxPose(static_cast<phys::BoxId>(b)));
+  std::vector<phys::BodyPose> poses;
+  for (std::size_t b = 0; b < boxes; ++b) poses.push_back(w.bodyPose(static_cast<phys::BodyId>(b)));
   std::vector<Vec3> loose;  // particles of no box: their positions reload exactly
   std::vector<bool> inBox(particles, false);
-  for (const phys::Box& box : w.boxes())
+  for (const phys::Body& box : w.bodies())
     std::fill_n(inBox.begin() + box.firstParticle, box.particleCount, true);
   for (std::size_t i = 0; i < particles; ++i)
     loose.push_back(inBox[i] ? Vec3(0.0) : w.particles().position[i]);
@@ -731,7 +731,7 @@ void Soak::saveAndOpen() {
     expect(was == is, "the reloaded world has " + std::to_string(is) + " " + what + ", the saved one " +
                           std::to_string(was));
   };
-  count("boxes", boxes, back.boxes().size());
+  count("boxes", boxes, back.bodies().size());
   count("particles", particles, back.particles().size());
   count("sticks", sticks, back.sticks().size());
   count("links", links, back.links().size());
@@ -745,12 +745,12 @@ void Soak::saveAndOpen() {
   // docs/scene-format.md: a box is saved as the pose fitted to its particles, a loose particle
   // where it is. Allow rounding: 1e-9 of the distance from the origin (at least 1 nm), 1e-6 rad.
   for (std::size_t b = 0; b < boxes; ++b) {
-    const phys::BoxPose now = back.boxPose(static_cast<phys::BoxId>(b));
+    const phys::BodyPose now = back.bodyPose(static_cast<phys::BodyId>(b));
     const double tolerance = 1e-9 * std::max(1.0, magnitude(poses[b].center));
     const double turn =
         2.0 * std::acos(std::min(1.0, std::abs(glm::dot(now.orientation, poses[b].orientation))));
     expect(sameVec(now.center, poses[b].center, tolerance) && turn <= 1e-6,
-           "box " + std::to_string(b) + " ('" + back.boxes()[b].name + "') was saved at " +
+           "box " + std::to_string(b) + " ('" + back.bodies()[b].name + "') was saved at " +
                vec(poses[b].center) + " and reloads at " + vec(now.center) + ", turned by " + num(turn) +
                " rad");
   }
@@ -797,7 +797,7 @@ void Soak::throwBody(Kind kind) {
   begin(kind, std::string("throw a ") + what + " from " + vec(at) + " at " + vec(velocity) + " m/s");
   ++throwsThisEpisode_;
   std::vector<std::size_t> boxesBefore;
-  for (const sandbox::Run& run : session().runs()) boxesBefore.push_back(run.scene->world.boxes().size());
+  for (const sandbox::Run& run : session().runs()) boxesBefore.push_back(run.scene->world.bodies().size());
   const SessionState before = snapshot(session());
   const std::string refused = kind == Kind::ThrowBox
                                   ? session().spawnBox(at, velocity)
@@ -814,7 +814,7 @@ void Soak::throwBody(Kind kind) {
   }
   const std::size_t added = kind == Kind::ThrowBox ? 1 : kind == Kind::ThrowRagdoll ? 10 : 11;
   for (std::size_t i = 0; i < boxesBefore.size(); ++i) {
-    const std::size_t now = session().runs()[i].scene->world.boxes().size();
+    const std::size_t now = session().runs()[i].scene->world.bodies().size();
     expect(now == boxesBefore[i] + added, "run " + std::to_string(i) + " got " +
                                               std::to_string(now - boxesBefore[i]) + " bodies instead of " +
                                               std::to_string(added));
@@ -976,7 +976,7 @@ void Soak::overlayStart() {
     specs.push_back(parsed.spec);
   }
   const phys::SolverSettings base = overlayBase_.value_or(session().scene().world.solverSettings());
-  const std::size_t boxes = session().scene().world.boxes().size();
+  const std::size_t boxes = session().scene().world.bodies().size();
   const std::string error = session().startOverlay(specs);
   expect(error.empty(), "valid overlay settings were refused: " + error);
   overlayBase_ = base;
@@ -989,7 +989,7 @@ void Soak::overlayStart() {
     expect(sameSolver(w.solverSettings(), specs[i].applyTo(base)),
            "overlay run " + std::to_string(i) + " has " + describe(w.solverSettings()) + ", not '" +
                texts[i] + "' on top of " + describe(base));
-    expect(w.boxes().size() == boxes,
+    expect(w.bodies().size() == boxes,
            "overlay run " + std::to_string(i) + " does not start from the world as it was");
   }
   freezesSeen_.assign(specs.size(), freezesSeen_.empty() ? 0 : freezesSeen_.front());
@@ -1137,7 +1137,7 @@ void Soak::step() {
   if (options_.verbose) {  // how well the budget's estimate foretold the time
     const phys::World& w = session().scene().world;
     std::printf("    estimated %.3g visits, took %.3f s of CPU; %zu boxes, %zu broad-phase pairs\n", estimate,
-                cpuSeconds() - start, w.boxes().size(), w.broadPhasePairs());
+                cpuSeconds() - start, w.bodies().size(), w.broadPhasePairs());
   }
 }
 
@@ -1275,7 +1275,7 @@ int Soak::run() {
       std::printf(
           "    RSS peak now %.1f MiB (%s, %zu runs, %zu boxes, %zu broad-phase pairs, %zu contacts)\n",
           static_cast<double>(memory_.peakRss()) / kMiB, shortName(session().file()).c_str(),
-          session().runs().size(), session().scene().world.boxes().size(),
+          session().runs().size(), session().scene().world.bodies().size(),
           session().scene().world.broadPhasePairs(), session().scene().world.bodyContacts().size());
     }
     ++command_;

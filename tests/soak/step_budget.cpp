@@ -38,7 +38,7 @@ struct Bounds {
 // pyramid of 820 boxes goes from 2,300 pairs to 340,000 at dt = 1 s), so count them here the
 // same way, from the corners of each box, by sweep and prune along x.
 double estimatedPairs(const phys::World& world) {
-  const std::span<const phys::Box> boxes = world.boxes();
+  const std::span<const phys::Body> boxes = world.bodies();
   if (boxes.size() < 2) return 0.0;
   const phys::SolverSettings& s = world.solverSettings();
   const phys::WorldSettings& ws = world.worldSettings();
@@ -47,7 +47,7 @@ double estimatedPairs(const phys::World& world) {
   const phys::Particles& p = world.particles();
   std::vector<Bounds> bounds;
   bounds.reserve(boxes.size());
-  for (const phys::Box& box : boxes) {
+  for (const phys::Body& box : boxes) {
     double fastest = 0.0;
     for (int j = 0; j < box.particleCount; ++j) {
       const std::size_t i = box.firstParticle + static_cast<std::size_t>(j);
@@ -87,7 +87,7 @@ double stepVisits(const phys::World& world) {
                           kContactsPerNewPair * newPairs;
   const double relaxed = constraints + kVisitsPerContact * contacts;
   const double perSubstep = settings.iterations * (relaxed + kVisitsPerIteration) + kVisitsPerSubstep +
-                            kVisitsPerBoxFrame * static_cast<double>(world.boxes().size()) +
+                            kVisitsPerBoxFrame * static_cast<double>(world.bodies().size()) +
                             kVisitsPerPair * pairs;
   return settings.substeps * perSubstep;
 }

@@ -82,7 +82,7 @@ auto field(const Who& who, const char* name) {
 }
 
 std::string boxLabel(const phys::World& world, std::size_t id) {
-  const std::string& name = world.boxes()[id].name;
+  const std::string& name = world.bodies()[id].name;
   return "box #" + std::to_string(id) + (name.empty() ? "" : " '" + name + "'");
 }
 
@@ -100,12 +100,12 @@ Vec3 loadVelocity(const phys::World& world, std::size_t id) {
   return world.velocity(p) + world.gravityAt(world.particles().position[p]) * (h / 2);
 }
 
-// A box as one rigid body: the pose World::boxPose fits, the velocity and spin that best match
+// A box as one rigid body: the pose World::bodyPose fits, the velocity and spin that best match
 // its particles' (least squares over equal masses: the mean velocity, and the spin that keeps
 // the angular momentum about the centre), the mass its particles hold. Written here rather than
 // taken from the writer, so the writer is checked against an independent reading of the world.
 struct Rigid {
-  phys::BoxPose pose;
+  phys::BodyPose pose;
   Vec3 velocity{0.0};
   Vec3 spin{0.0};
   Real mass = 0.0;
@@ -116,10 +116,10 @@ struct Rigid {
 };
 
 Rigid rigid(const phys::World& world, std::size_t id) {
-  const phys::Box& box = world.boxes()[id];
+  const phys::Body& box = world.bodies()[id];
   const phys::Particles& particles = world.particles();
   Rigid r;
-  r.pose = world.boxPose(static_cast<phys::BoxId>(id));
+  r.pose = world.bodyPose(static_cast<phys::BodyId>(id));
   r.scale = glm::length(r.pose.center) + glm::length(box.halfExtents);
   Real sorted[3] = {box.halfExtents.x, box.halfExtents.y, box.halfExtents.z};
   std::sort(sorted, sorted + 3);
@@ -171,7 +171,7 @@ class Comparison {
     if (!(d = solverSettings()).empty()) return d;
     if (!(d = counts()).empty()) return d;
     if (!(d = names()).empty()) return d;
-    for (std::size_t b = 0; b < s_.boxes().size(); ++b) {
+    for (std::size_t b = 0; b < s_.bodies().size(); ++b) {
       if (!(d = box(b)).empty()) return d;
     }
     for (std::size_t p = 0; p < s_.particles().size(); ++p) {
@@ -264,15 +264,15 @@ class Comparison {
     };
     std::string d;
     if (!(d = count("particles", s_.particles().size(), r_.particles().size())).empty()) return d;
-    if (!(d = count("boxes", s_.boxes().size(), r_.boxes().size())).empty()) return d;
+    if (!(d = count("boxes", s_.bodies().size(), r_.bodies().size())).empty()) return d;
     if (!(d = count("sticks", s_.sticks().size(), r_.sticks().size())).empty()) return d;
     if (!(d = count("links", s_.links().size(), r_.links().size())).empty()) return d;
     owner_ = s_.particleBodies();
     if (!std::ranges::equal(owner_, r_.particleBodies()))
       return "the particles belong to different boxes after the reload";
     // Each saved box fitted once: sticks and links refer to their boxes' fits again and again.
-    savedRigid_.reserve(s_.boxes().size());
-    for (std::size_t b = 0; b < s_.boxes().size(); ++b) savedRigid_.push_back(rigid(s_, b));
+    savedRigid_.reserve(s_.bodies().size());
+    for (std::size_t b = 0; b < s_.bodies().size(); ++b) savedRigid_.push_back(rigid(s_, b));
     return {};
   }
 
@@ -283,12 +283,12 @@ class Comparison {
     for (const scenes::NamedBody& b : reloaded_.bodies) reloaded[b.name] = &b;
     for (const scenes::NamedBody& b : saved_.bodies) {
       const auto it = reloaded.find(b.name);
-      const char* kind = b.kind == scenes::NamedBody::Kind::Box ? "box" : "particle";
+      const char* kind = b.kind == scenes::NamedBody::Kind::Body ? "box" : "particle";
       if (it == reloaded.end())
         return "the name '" + b.name + "' (" + kind + " #" + std::to_string(b.index) + ") is lost";
       if (it->second->kind != b.kind || it->second->index != b.index) {
         return "the name '" + b.name + "' names " + kind + " #" + std::to_string(b.index) + " when saved, " +
-               (it->second->kind == scenes::NamedBody::Kind::Box ? "box" : "particle") + " #" +
+               (it->second->kind == scenes::NamedBody::Kind::Body ? "box" : "particle") + " #" +
                std::to_string(it->second->index) + " when reloaded";
       }
     }
@@ -296,7 +296,7 @@ class Comparison {
   }
 
   std::string box(std::size_t id) const {
-    const phys::Box &a = s_.boxes()[id], &b = r_.boxes()[id];
+    const phys::Body &a = s_.bodies()[id], &b = r_.bodies()[id];
     auto who = [&] { return boxLabel(s_, id); };
     if (!a.name.empty() && a.name != b.name) return unequalText(who() + ": name", a.name, b.name);
     if (a.model != b.model) {
@@ -334,8 +334,8 @@ class Comparison {
       return unequal(who() + ": orientation", was.pose.orientation, now.pose.orientation) + ", turned by " +
              text(turn) + " rad > tolerance " + text(angleTolerance);
     }
-    // A frozen box is saved at rest with BoxDesc's mass: the guard took its own.
-    const Real mass = was.frozen ? phys::BoxDesc{}.mass : was.mass;
+    // A frozen box is saved at rest with BodyDesc's mass: the guard took its own.
+    const Real mass = was.frozen ? phys::BodyDesc{}.mass : was.mass;
     const Vec3 velocity = was.frozen ? Vec3(0.0) : was.velocity;
     const Vec3 spin = was.frozen ? Vec3(0.0) : was.spin;
     if (!(d = within(field(who, "mass"), mass, now.mass, tol_.relative * mass)).empty()) return d;
@@ -456,7 +456,7 @@ class Comparison {
   std::string noCollision() const {
     const auto a = s_.ignoredCollisions(), b = r_.ignoredCollisions();
     if (a == b) return {};
-    auto list = [](const std::vector<std::pair<phys::BoxId, phys::BoxId>>& pairs) {
+    auto list = [](const std::vector<std::pair<phys::BodyId, phys::BodyId>>& pairs) {
       std::string out;
       for (const auto& [x, y] : pairs) out += " (" + std::to_string(x) + " " + std::to_string(y) + ")";
       return out.empty() ? std::string(" none") : out;

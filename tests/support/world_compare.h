@@ -34,7 +34,7 @@ struct Tolerance {
 
 /// Empty when `reloaded` is `saved` as writeSceneXml wrote it, within `tolerance`; otherwise
 /// the first difference found, naming the body or setting, both values and the tolerance.
-/// Boxes are compared as rigid bodies (World::boxPose, the rigid velocity and spin fitted to
+/// Boxes are compared as rigid bodies (World::bodyPose, the rigid velocity and spin fitted to
 /// their particles, mass), since a saved box loses the deformation its particles had; frozen
 /// boxes as saved at rest with 1 kg; loose particles one by one; links by the world positions
 /// of their two points. The reloaded world's clock, drag, freezes and <expect> elements are

@@ -8,7 +8,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
-#include "physics/box.h"
+#include "physics/body.h"
 
 namespace lab::peers {
 namespace {
@@ -70,10 +70,10 @@ Description describe(const scenes::Scene& scene) {
 
   // Which body each particle belongs to, in bodies.h order: boxes by id, then loose particles.
   std::vector<int> owner(particles.size(), -1);
-  const auto boxes = world.boxes();
-  for (phys::BoxId id = 0; id < boxes.size(); ++id) {
-    const phys::Box& box = boxes[id];
-    const phys::BoxPose pose = world.boxPose(id);
+  const auto boxes = world.bodies();
+  for (phys::BodyId id = 0; id < boxes.size(); ++id) {
+    const phys::Body& box = boxes[id];
+    const phys::BodyPose pose = world.bodyPose(id);
     Body body;
     body.shape = box.shape == phys::Shape::Capsule ? Body::Shape::Capsule : Body::Shape::Box;
     body.name = box.name;

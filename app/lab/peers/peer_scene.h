@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/types.h"
 #include "scenes/scene.h"
 
@@ -42,11 +42,11 @@ struct Body {
   /// particles' own (three times a solid box's for both models, docs/physics.md), so the same
   /// push turns it the same in every engine; a sphere a solid sphere's.
   phys::Vec3 inertia{0.0};
-  phys::BoxModel model = phys::BoxModel::Corners;  ///< a box's or capsule's: where its particles are
-  phys::Vec3 velocity{0.0};                        ///< unit: m/s; of the centre
-  phys::Vec3 angularVelocity{0.0};                 ///< unit: rad/s; world frame
-  double friction = 0.0;                           ///< the material's dynamic coefficient
-  std::uint32_t group = 1;                         ///< collision filtering, boxes and capsules only
+  phys::BodyModel model = phys::BodyModel::Corners;  ///< a box's or capsule's: where its particles are
+  phys::Vec3 velocity{0.0};                          ///< unit: m/s; of the centre
+  phys::Vec3 angularVelocity{0.0};                   ///< unit: rad/s; world frame
+  double friction = 0.0;                             ///< the material's dynamic coefficient
+  std::uint32_t group = 1;                           ///< collision filtering, boxes and capsules only
   std::uint32_t mask = 0xffffffffu;
 
   /// A box or a capsule: one of our boxes, which collide with each other. A sphere (a loose

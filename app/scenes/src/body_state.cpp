@@ -11,11 +11,11 @@ phys::Vec3 loadVelocity(const phys::World& world, phys::ParticleId id) {
   return world.velocity(id) + world.gravityAt(world.particles().position[id]) * (h / 2);
 }
 
-RigidState rigidState(const phys::World& world, phys::BoxId id) {
-  const phys::Box& box = world.boxes()[id];
+RigidState rigidState(const phys::World& world, phys::BodyId id) {
+  const phys::Body& box = world.bodies()[id];
   const phys::Particles& particles = world.particles();
   RigidState state;
-  state.pose = world.boxPose(id);
+  state.pose = world.bodyPose(id);
   state.mass = 0.0;
   for (int j = 0; j < box.particleCount; ++j) {
     const double inverseMass = particles.inverseMass[box.firstParticle + j];
@@ -27,11 +27,11 @@ RigidState rigidState(const phys::World& world, phys::BoxId id) {
     }
   }
   if (state.frozen) {
-    state.mass = phys::BoxDesc{}.mass;
+    state.mass = phys::BodyDesc{}.mass;
     return state;
   }
 
-  // addBox gives particle j the velocity v + w x r_j, with r_j its offset at the pose. The
+  // addBody gives particle j the velocity v + w x r_j, with r_j its offset at the pose. The
   // offsets sum to zero for both models, so the least-squares v is the mean velocity, and w
   // solves I w = sum r_j x (v_j - v) with I = sum (|r_j|^2 1 - r_j r_j^T) (equal masses): the
   // fit keeps the box's momentum and angular momentum.

@@ -11,16 +11,16 @@ phys::Vec3 loadVelocity(const phys::World& world, phys::ParticleId id);
 
 /// A box as a <box> element holds it.
 struct RigidState {
-  phys::BoxPose pose;               ///< World::boxPose: the rigid fit of the particles' positions
+  phys::BodyPose pose;              ///< World::bodyPose: the rigid fit of the particles' positions
   phys::Vec3 velocity{0.0};         ///< unit: m/s; of the centre, at load time
   phys::Vec3 angularVelocity{0.0};  ///< unit: rad/s; world frame
   phys::Real mass = 1.0;            ///< unit: kg; the sum of the particles' masses
   bool frozen = false;              ///< the guard froze it: no mass left, saved at rest
 };
 
-/// Fits one rigid motion to the box's particles: the velocity and spin that addBox, at the
+/// Fits one rigid motion to the box's particles: the velocity and spin that addBody, at the
 /// fitted pose, turns into particle velocities nearest (least squares) to loadVelocity's. For
 /// a box that keeps its shape this is exact; what deformation there is, is dropped.
-RigidState rigidState(const phys::World& world, phys::BoxId id);
+RigidState rigidState(const phys::World& world, phys::BodyId id);
 
 }  // namespace scenes::detail

@@ -16,17 +16,17 @@ std::string member(const std::string& name, long i) {
   return name + "[" + std::to_string(i) + "]";
 }
 
-void addBox(ElementReader& e, BuildContext& ctx, phys::BoxDesc desc, const std::string& name) {
+void addBody(ElementReader& e, BuildContext& ctx, phys::BodyDesc desc, const std::string& name) {
   desc.name = name;
-  const phys::BoxId id = ctx.world.addBox(desc);
-  ctx.addName(e, name, NamedBody::Kind::Box, id);
+  const phys::BodyId id = ctx.world.addBody(desc);
+  ctx.addName(e, name, NamedBody::Kind::Body, id);
 }
 
 // What every rigid body element reads after its size: mass, model, friction, orientation.
-void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BoxDesc& d) {
+void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BodyDesc& d) {
   if (auto mass = readMass(e, "mass")) d.mass = *mass;
   if (auto model = e.text("model")) {
-    const auto parsed = phys::parseBoxModel(*model);
+    const auto parsed = phys::parseBodyModel(*model);
     if (!parsed) e.fail("model", "'" + *model + "' must be corners or tetra");
     d.model = *parsed;
   }
@@ -55,8 +55,8 @@ void checkInsideBound(ElementReader& e, const phys::World& world, std::string_vi
                         " m along an axis (<world bound>)");
 }
 
-phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
-  phys::BoxDesc d;
+phys::BodyDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
+  phys::BodyDesc d;
   if (auto size = e.vector("size", "m", true)) {
     if (!(size->x >= kMinBodySize && size->y >= kMinBodySize && size->z >= kMinBodySize)) {
       e.fail("size", "sizes must be at least " + formatNumber(kMinBodySize) + " (m)");
@@ -67,8 +67,8 @@ phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
   return d;
 }
 
-phys::BoxDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options) {
-  phys::BoxDesc d;
+phys::BodyDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options) {
+  phys::BodyDesc d;
   d.shape = phys::Shape::Capsule;
   const double radius = e.requiredNumber("radius", "m");
   if (!(2.0 * radius >= kMinBodySize)) {
@@ -94,11 +94,11 @@ void generateStack(ElementReader& e, BuildContext& ctx) {
   const phys::Vec3 pos = e.requiredVector("pos", "m");
   checkInsideBound(e, ctx.world, "pos", pos);
   const long count = e.requiredInteger("count", 1, kMaxStack);
-  phys::BoxDesc box = readBoxCommon(e, ctx.options);
+  phys::BodyDesc box = readBoxCommon(e, ctx.options);
   e.rejectUnknownAttributes();
   for (long i = 0; i < count; ++i) {
     box.center = pos + phys::Vec3(0.0, box.size.y * (static_cast<double>(i) + 0.5), 0.0);
-    addBox(e, ctx, box, member(name, i));
+    addBody(e, ctx, box, member(name, i));
   }
 }
 
@@ -112,7 +112,7 @@ void generatePyramid(ElementReader& e, BuildContext& ctx) {
   const long base = e.requiredInteger("base", 1, kMaxPyramidBase);
   const double taper = e.number("taper", "").value_or(1.0);
   if (taper <= 0.0 || taper > 1.0) e.fail("taper", "must be > 0 and at most 1");
-  phys::BoxDesc box = readBoxCommon(e, ctx.options);
+  phys::BodyDesc box = readBoxCommon(e, ctx.options);
   e.rejectUnknownAttributes();
   const phys::Vec3 baseSize = box.size;
   long index = 0;
@@ -123,7 +123,7 @@ void generatePyramid(ElementReader& e, BuildContext& ctx) {
     for (long i = 0; i < inRow; ++i) {
       const double x = (static_cast<double>(i) - 0.5 * static_cast<double>(inRow - 1)) * box.size.x;
       box.center = phys::Vec3(pos.x + x, bottom + 0.5 * box.size.y, pos.z);
-      addBox(e, ctx, box, member(name, index++));
+      addBody(e, ctx, box, member(name, index++));
     }
     bottom += box.size.y;
   }
@@ -140,7 +140,7 @@ void generateGrid(ElementReader& e, BuildContext& ctx) {
   if (static_cast<long>(count->x) * count->y * count->z > kMaxGridBoxes) {
     e.fail("count", "makes more than " + std::to_string(kMaxGridBoxes) + " boxes");
   }
-  phys::BoxDesc box = readBoxCommon(e, ctx.options);
+  phys::BodyDesc box = readBoxCommon(e, ctx.options);
   const phys::Vec3 spacing = e.vector("spacing", "m", true).value_or(box.size);
   if (spacing.x <= 0.0 || spacing.y <= 0.0 || spacing.z <= 0.0) e.fail("spacing", "must be > 0 (m)");
   e.rejectUnknownAttributes();
@@ -151,7 +151,7 @@ void generateGrid(ElementReader& e, BuildContext& ctx) {
         box.center =
             pos + phys::Vec3((i - 0.5 * (count->x - 1)) * spacing.x, 0.5 * box.size.y + j * spacing.y,
                              (k - 0.5 * (count->z - 1)) * spacing.z);
-        addBox(e, ctx, box, member(name, index++));
+        addBody(e, ctx, box, member(name, index++));
       }
     }
   }
@@ -227,7 +227,8 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;
   auto nameParts = [&](const auto& parts) {
-    for (const phys::BoxId id : parts) ctx.addName(e, ctx.world.boxes()[id].name, NamedBody::Kind::Box, id);
+    for (const phys::BodyId id : parts)
+      ctx.addName(e, ctx.world.bodies()[id].name, NamedBody::Kind::Body, id);
   };
   if (shape == phys::Shape::Capsule)
     nameParts(phys::addCapsuleRagdoll(ctx.world, d).parts);

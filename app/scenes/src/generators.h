@@ -54,11 +54,11 @@ void checkInsideBound(ElementReader& e, const phys::World& world, std::string_vi
 
 /// Reads the attributes every box-making element shares (size, mass, model, friction...); a
 /// model imposed by the load options replaces the file's.
-phys::BoxDesc readBoxCommon(ElementReader& e, const LoadOptions& options);
+phys::BodyDesc readBoxCommon(ElementReader& e, const LoadOptions& options);
 /// The same for a <capsule>: radius and length (both required: length is the whole length, cap
 /// to cap, at least twice the radius) in place of size, as a box of Shape::Capsule that the
 /// capsule is inscribed in: size (2 radius, length, 2 radius), along the body's y axis.
-phys::BoxDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options);
+phys::BodyDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options);
 
 void generateStack(ElementReader& e, BuildContext& ctx);
 void generatePyramid(ElementReader& e, BuildContext& ctx);

@@ -218,7 +218,7 @@ class Builder {
   const NamedBody& bodyNamed(ElementReader& e, std::string_view attribute, bool particlesToo) {
     const std::string name = e.requiredText(attribute);
     const auto it = byName_.find(name);
-    if (it == byName_.end() || (!particlesToo && scene_.bodies[it->second].kind != NamedBody::Kind::Box)) {
+    if (it == byName_.end() || (!particlesToo && scene_.bodies[it->second].kind != NamedBody::Kind::Body)) {
       const std::string kinds = particlesToo ? "box, capsule or particle" : "box or capsule";
       e.fail(attribute, "'" + name + "' is not the name of a " + kinds + " defined above");
     }
@@ -273,8 +273,8 @@ class Builder {
   // A <box>, or a <capsule> (a box of Shape::Capsule: radius and length in place of size).
   void rigidBody(ElementReader& e, phys::Shape shape) {
     const std::string name = e.text("name").value_or("");
-    phys::BoxDesc d = shape == phys::Shape::Capsule ? detail::readCapsuleCommon(e, ctx_.options)
-                                                    : detail::readBoxCommon(e, ctx_.options);
+    phys::BodyDesc d = shape == phys::Shape::Capsule ? detail::readCapsuleCommon(e, ctx_.options)
+                                                     : detail::readBoxCommon(e, ctx_.options);
     d.center = e.requiredVector("pos", "m");
     detail::checkInsideBound(e, scene_.world, "pos", d.center);
     d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
@@ -284,8 +284,8 @@ class Builder {
     if (auto mask = e.integer("mask", 0, kAllBits)) d.collisionMask = static_cast<std::uint32_t>(*mask);
     e.rejectUnknownAttributes();
     d.name = name;
-    const phys::BoxId id = scene_.world.addBox(d);
-    addName(e, name, NamedBody::Kind::Box, id);
+    const phys::BodyId id = scene_.world.addBody(d);
+    addName(e, name, NamedBody::Kind::Body, id);
   }
 
   // A joint between two bodies at world points: a pin (both points held together) unless min
@@ -322,7 +322,7 @@ class Builder {
   }
 
   phys::Embedding embed(const NamedBody& body, const phys::Vec3& point) const {
-    if (body.kind == NamedBody::Kind::Box) return scene_.world.anchor(body.index, point);
+    if (body.kind == NamedBody::Kind::Body) return scene_.world.anchor(body.index, point);
     phys::Embedding self;
     self.particle[0] = body.index;
     self.weight[0] = 1.0;

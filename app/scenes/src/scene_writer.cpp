@@ -31,7 +31,7 @@ constexpr std::int32_t kLoose = -1;  // World::particleBodies() of a loose parti
 // One end of a link, as a <link> names it: a box, or a loose particle standing for itself.
 struct LinkEnd {
   bool isBox = true;
-  std::uint32_t index = 0;  // BoxId or ParticleId
+  std::uint32_t index = 0;  // BodyId or ParticleId
 };
 
 // A link's end is carried by one box's particles (World::anchor) or is one loose particle;
@@ -62,8 +62,8 @@ class BodyNames {
  public:
   BodyNames(const phys::World& world, std::span<const std::int32_t> owner,
             const std::vector<bool>& referenced)
-      : box_(world.boxes().size()), particle_(world.particles().size()) {
-    const std::span<const phys::Box> boxes = world.boxes();
+      : box_(world.bodies().size()), particle_(world.particles().size()) {
+    const std::span<const phys::Body> boxes = world.bodies();
     for (std::size_t i = 0; i < particle_.size(); ++i) {
       if (owner[i] == kLoose) {
         keepOwn(particle_[i], world.particleName(static_cast<phys::ParticleId>(i)));
@@ -158,8 +158,8 @@ std::string cameraElement(const CameraStart& camera, double bound) {
 // A box as a <box>, or one of Shape::Capsule as a <capsule>: the radius and whole length of the
 // capsule inscribed in it, which the loader turns back into the same half extents exactly
 // (doubling and halving a double are exact).
-std::string boxElement(const phys::World& world, phys::BoxId id, const std::string& name) {
-  const phys::Box& box = world.boxes()[id];
+std::string boxElement(const phys::World& world, phys::BodyId id, const std::string& name) {
+  const phys::Body& box = world.bodies()[id];
   const detail::RigidState state = detail::rigidState(world, id);
   const bool capsule = box.shape == phys::Shape::Capsule;
   ElementWriter e(capsule ? "capsule" : "box");
@@ -177,7 +177,7 @@ std::string boxElement(const phys::World& world, phys::BoxId id, const std::stri
   if (!state.frozen) {
     e.vector("velocity", state.velocity).vector("angular-velocity", glm::degrees(state.angularVelocity));
   }
-  const phys::BoxDesc defaults;
+  const phys::BodyDesc defaults;
   if (box.collisionGroup != defaults.collisionGroup) e.integer("group", box.collisionGroup);
   if (box.collisionMask != defaults.collisionMask) e.integer("mask", box.collisionMask);
   return e.empty();
@@ -271,7 +271,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     if (insideBound(particles.position[i], bound)) continue;
     const std::string body =
         owner[i] == kLoose ? "particle " + std::to_string(i)
-                           : "box " + std::to_string(owner[i]) + " '" + world.boxes()[owner[i]].name + "'";
+                           : "box " + std::to_string(owner[i]) + " '" + world.bodies()[owner[i]].name + "'";
     throw std::invalid_argument(body + " is beyond the world's bound of " + detail::formatNumber(bound) +
                                 " m, where a scene file places nothing");
   }
@@ -285,7 +285,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
       auto describe = [&](phys::ParticleId id) {
         std::string which = "particle " + std::to_string(id);
         if (owner[id] == kLoose) return which;
-        const std::string& box = world.boxes()[owner[id]].name;
+        const std::string& box = world.bodies()[owner[id]].name;
         return which + " (of box " + (box.empty() ? std::to_string(owner[id]) : "'" + box + "'") + ")";
       };
       throw std::invalid_argument("a stick joins " + describe(s.a) + " and " + describe(s.b) +
@@ -322,7 +322,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
         line(particleElement(world, id, names.particle(id)));
         ++written;
       } else {
-        const phys::Box& box = world.boxes()[owner[id]];
+        const phys::Body& box = world.bodies()[owner[id]];
         line(boxElement(world, owner[id], names.box(owner[id])));
         written = box.firstParticle + box.particleCount;
       }

@@ -21,8 +21,8 @@ class DebugLines {
 
   void addLine(const glm::vec3& a, const glm::vec3& b, const glm::vec3& color);
   /// The 12 edges of a box with the given centre, rotation (columns = body axes) and half size.
-  void addBox(const glm::vec3& center, const glm::mat3& rotation, const glm::vec3& halfExtents,
-              const glm::vec3& color);
+  void addBody(const glm::vec3& center, const glm::mat3& rotation, const glm::vec3& halfExtents,
+               const glm::vec3& color);
   /// Three short crossing segments around p.
   void addPoint(const glm::vec3& p, float size, const glm::vec3& color);
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 
 namespace phys {
 
@@ -21,14 +21,14 @@ struct BodyLanes {
 class BodyLayout {
  public:
   /// Allocates: called when bodies are added.
-  void build(std::span<const Box> boxes);
+  void build(std::span<const Body> boxes);
   std::span<const BodyLanes> lanes() const { return lanes_; }
-  /// The bodies in no lane group, by index in World::boxes(), in order.
-  std::span<const BoxId> others() const { return others_; }
+  /// The bodies in no lane group, by index in World::bodies(), in order.
+  std::span<const BodyId> others() const { return others_; }
 
  private:
   std::vector<BodyLanes> lanes_;
-  std::vector<BoxId> others_;
+  std::vector<BodyId> others_;
 };
 
 }  // namespace phys

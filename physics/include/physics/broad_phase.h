@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/collision.h"
 #include "physics/particles.h"
 #include "physics/settings.h"
@@ -33,19 +33,19 @@ struct BodyMotion {
 
 class BroadPhase {
  public:
-  using Pair = std::pair<BoxId, BoxId>;
+  using Pair = std::pair<BodyId, BodyId>;
 
   /// Makes room for one more body, whose id is the number of bodies before it.
   void addBody();
   /// Keeps the two bodies from colliding; ids must exist and differ (World checks them).
-  void ignore(BoxId a, BoxId b);
+  void ignore(BodyId a, BodyId b);
   /// Every pair ignore() was given, as (smaller id, larger id), sorted.
   std::vector<Pair> ignoredPairs() const;
   /// Indexes the ignored pairs by body; after ignore(), before collides(). Allocates.
   void indexFilters();
   /// Whether the filters let the two bodies collide: each one's group has a bit in the other's
   /// mask, and they were not told to ignore each other.
-  bool collides(std::span<const Box> bodies, BoxId a, BoxId b) const;
+  bool collides(std::span<const Body> bodies, BodyId a, BodyId b) const;
 
   /// The pairs must be found again at the next update (bodies or filters changed).
   void markStale() { stale_ = true; }
@@ -54,31 +54,31 @@ class BroadPhase {
   bool needsUpdate(std::span<const Obb> frames) const;
   /// Finds the pairs from the bodies' frames now and their particles' motion over the last
   /// substep; allocates only when the world has gathered many more pairs than it ever had.
-  void update(const Particles& particles, std::span<const Box> bodies, std::span<const Obb> frames,
+  void update(const Particles& particles, std::span<const Body> bodies, std::span<const Obb> frames,
               const BroadPhaseStep& step);
 
   /// The pairs whose grown bounds overlapped at the last update, (lower id, higher id), in body
   /// order: by lower id, then higher.
   std::span<const Pair> pairs() const { return pairs_; }
   /// A body's motion over a step, measured at the last update.
-  const BodyMotion& motion(BoxId id) const { return motion_[id]; }
+  const BodyMotion& motion(BodyId id) const { return motion_[id]; }
 
  private:
   struct Interval {
     Real min, max;  // extent of a body's bounds along the sweep axis
-    BoxId body;
+    BodyId body;
   };
   struct Bounds {
     Vec3 lo, hi;
   };
   bool chooseSweepAxis(std::span<const Obb> frames);
-  void findPairsInStrips(std::span<const Box> bodies, const BroadPhaseSettings& settings);
+  void findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings);
   void sortPairsByBody();
 
   std::vector<Interval> sweep_;          // sweep-and-prune list, kept sorted between steps
   std::vector<std::size_t> stripStart_;  // per strip and one more: where its bodies start in stripBodies_
-  std::vector<BoxId> stripBodies_;       // the bodies of each strip, in sweep order
-  std::vector<BoxId> wideBodies_;        // bodies across too many strips, tested against all
+  std::vector<BodyId> stripBodies_;      // the bodies of each strip, in sweep order
+  std::vector<BodyId> wideBodies_;       // bodies across too many strips, tested against all
   std::vector<Bounds> bounds_;           // per body: AABB grown by its reach over a step
   std::vector<Real> travel_;             // per body: that reach (m)
   std::vector<BodyMotion> motion_;       // per body

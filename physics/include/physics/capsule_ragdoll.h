@@ -37,8 +37,8 @@ std::string_view toString(CapsulePart part);  ///< "pelvis", "spine", "head", "u
 struct CapsuleRagdoll {
   std::string name;
   RagdollModel model = RagdollModel::Seed;
-  std::array<BoxId, kCapsuleParts> parts{};
-  BoxId part(CapsulePart p) const { return parts[static_cast<int>(p)]; }
+  std::array<BodyId, kCapsuleParts> parts{};
+  BodyId part(CapsulePart p) const { return parts[static_cast<int>(p)]; }
 };
 
 /// Adds a capsule ragdoll: its parts are capsules (Shape::Capsule) of the desc's model (seed:

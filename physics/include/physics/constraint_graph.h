@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/constraints.h"
 #include "physics/link_layout.h"
 #include "physics/particles.h"
@@ -27,7 +27,7 @@ class ConstraintGraph {
   /// True when sticks or links were added since the last layOut().
   bool stale() const { return stale_; }
   /// Lays the sticks out by body and the links by ragdoll. Allocates: after things were added.
-  void layOut(std::span<const Box> bodies, std::size_t particleCount);
+  void layOut(std::span<const Body> bodies, std::size_t particleCount);
 
   std::span<const Stick> sticks() const { return sticks_; }
   std::span<const Link> links() const { return links_; }

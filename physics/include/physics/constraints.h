@@ -64,9 +64,9 @@ struct BodyContact {
   Embedding pointA;
   Embedding pointB;
   Vec3 normal{0.0};
-  Material combined;       ///< geometric mean of the two boxes' materials
-  std::int32_t boxA = -1;  ///< for debug drawing and reports
-  std::int32_t boxB = -1;
+  Material combined;        ///< geometric mean of the two boxes' materials
+  std::int32_t bodyA = -1;  ///< for debug drawing and reports
+  std::int32_t bodyB = -1;
   std::uint8_t kind = 0;  ///< ContactKind, for debug drawing
   /// The least n . (pointB - pointA) (unit: m): 0 when both points are on the surfaces. A point
   /// of a corners-model capsule is carried by the box face nearest it (its own 4 particles,

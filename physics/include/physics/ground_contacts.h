@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/collision.h"
 #include "physics/constraints.h"
 
@@ -35,7 +35,8 @@ class GroundContacts {
   void combineMaterials(const Material& ground);
   /// Re-embeds each capsule's points at the lowest points of its end spheres, at its frame of this
   /// substep (they move over its surface as it turns).
-  void placeCapsulePoints(std::span<const Box> bodies, std::span<const Obb> frames, const Vec3& groundNormal);
+  void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
+                          const Vec3& groundNormal);
   bool hasCapsules() const { return !capsuleEnds_.empty(); }
 
   std::span<const GroundContact> points() const { return points_; }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/constraints.h"
 #include "physics/particles.h"
 
@@ -24,7 +24,7 @@ struct FreezeReport {
 /// What the guard reads of the world; it writes only the particles of what it freezes.
 struct GuardInput {
   Particles& particles;
-  std::span<const Box> bodies;
+  std::span<const Body> bodies;
   std::span<const Stick> sticks;
   std::span<const std::string> particleNames;
   std::span<const std::int32_t> particleBodies;  ///< per particle: its body, or -1
@@ -54,7 +54,7 @@ class Guard {
 
  private:
   void freeze(const GuardInput& in, ParticleId bad, const std::string& reason);
-  static Real worstStickError(const GuardInput& in, const Box& box);
+  static Real worstStickError(const GuardInput& in, const Body& box);
 
   std::vector<Vec3> checked_;       // per particle
   std::vector<Real> crushedSince_;  // per body: time it went past kCrushedStickError, infinity if not

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/broad_phase.h"
 #include "physics/collision.h"
 #include "physics/constraints.h"
@@ -18,14 +18,14 @@ namespace phys {
 /// The contact of one pair of bodies: its points are contacts() [firstContact, firstContact +
 /// contactCount), all with the pair's normal.
 struct Manifold {
-  BoxId a = 0, b = 0;
+  BodyId a = 0, b = 0;
   std::uint32_t firstContact = 0, contactCount = 0;
   Vec3 normal{0.0};    ///< from a towards b
   Real overlap = 0.0;  ///< unit: m; the deepest point's overlap beyond the slop at x*; < 0 when apart
   /// Its points hold for the whole step (face on face); every other manifold is collided again in
   /// every substep.
   bool kept = false;
-  BoxId reference = 0;    ///< kept: the body whose face the normal is
+  BodyId reference = 0;   ///< kept: the body whose face the normal is
   Vec3 localNormal{0.0};  ///< kept: the normal in that body's frame
 };
 
@@ -40,7 +40,7 @@ struct BodyContactState {
 /// What the narrow phase reads of the world in a substep.
 struct NarrowPhaseInput {
   const Particles& particles;
-  std::span<const Box> bodies;
+  std::span<const Body> bodies;
   std::span<const Obb> frames;  ///< each body's frame in this substep
   const BroadPhase& broadPhase;
   Real featureEpsilon = 0.0;  ///< unit: m (SolverSettings::featureEpsilon)
@@ -65,7 +65,7 @@ class NarrowPhase {
   void measureStarts(const Particles& particles, Real contactSlop);
 
   /// How far apart two bodies' points can be and still close within the step. unit: m
-  static Real speculativeMargin(const NarrowPhaseInput& in, BoxId a, BoxId b);
+  static Real speculativeMargin(const NarrowPhaseInput& in, BodyId a, BodyId b);
 
   std::span<const BodyContact> contacts() const { return contacts_; }
   std::span<const Manifold> manifolds() const { return manifolds_; }
@@ -73,8 +73,8 @@ class NarrowPhase {
   const BodyContactState& state() const { return state_; }
 
  private:
-  bool collidePair(const NarrowPhaseInput& in, BoxId a, BoxId b, BoxContact& contact) const;
-  void addManifold(const NarrowPhaseInput& in, BoxId a, BoxId b, const BoxContact& contact);
+  bool collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, BoxContact& contact) const;
+  void addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact);
   void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts) const;
   void sizeState();
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/constraints.h"
 #include "physics/narrow_phase.h"
 #include "physics/particles.h"
@@ -27,21 +27,21 @@ class Parting {
   /// Makes room for one more body, a group of its own, whose id is the number of bodies before it.
   void addBody();
   /// The two bodies move as one from now on (a stick or a link joins them).
-  void join(BoxId a, BoxId b);
+  void join(BodyId a, BodyId b);
   /// Makes room for the pairs' scratch (room.h), so that the step does not allocate.
   void reserve(std::size_t pairs, std::size_t bodies);
   /// Parts the overlaps deeper than `featureEpsilon` (m) that the manifolds and the ground start
   /// the substep with; the contacts' start overlaps (`contactAllowance`, the ground's) move with
   /// the bodies.
-  void part(Particles& particles, std::span<const Box> bodies, std::span<const Manifold> manifolds,
+  void part(Particles& particles, std::span<const Body> bodies, std::span<const Manifold> manifolds,
             std::span<Real> contactAllowance, const PartingGround& ground, Real featureEpsilon,
             const PartingSettings& settings);
 
  private:
-  BoxId group(BoxId id);
+  BodyId group(BodyId id);
 
-  std::vector<BoxId> parent_;     // per body: union-find parent over links and sticks
-  std::vector<BoxId> root_;       // per body: its group's root, this substep
+  std::vector<BodyId> parent_;    // per body: union-find parent over links and sticks
+  std::vector<BodyId> root_;      // per body: its group's root, this substep
   std::vector<Vec3> shift_;       // per body: translation (m)
   std::vector<Real> weight_;      // per body: inverse mass (1/kg), 0 if it cannot move
   std::vector<Real> groundNeed_;  // per body: n_g . shift it needs (m)

@@ -70,9 +70,9 @@ struct RagdollHinge {
 struct Ragdoll {
   std::string name;
   RagdollModel model = RagdollModel::Seed;
-  std::array<BoxId, kRagdollParts> parts{};
+  std::array<BodyId, kRagdollParts> parts{};
   std::array<RagdollHinge, kRagdollHinges> hinges{};
-  BoxId part(RagdollPart p) const { return parts[static_cast<int>(p)]; }
+  BodyId part(RagdollPart p) const { return parts[static_cast<int>(p)]; }
 };
 
 /// Adds a ragdoll's boxes, pins and limits to the world, and keeps the parts that share a

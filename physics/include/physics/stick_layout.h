@@ -16,7 +16,7 @@
 #include <span>
 #include <vector>
 
-#include "physics/box.h"
+#include "physics/body.h"
 #include "physics/constraints.h"
 
 namespace phys {
@@ -64,7 +64,7 @@ class StickLayout {
   /// The bodies whose particles no other stick touches become blocks; every other stick (loose
   /// particles' sticks, sticks a scene added between a body's particles and others) goes into
   /// runs, in creation order. Allocates: called when sticks or bodies are added, not in the step.
-  void build(std::span<const Stick> sticks, std::span<const Box> boxes, std::size_t particleCount);
+  void build(std::span<const Stick> sticks, std::span<const Body> boxes, std::size_t particleCount);
 
   /// Bodies relaxed one at a time: those of a shape with fewer than kStickLanes bodies left over.
   std::span<const StickBlock> blocks() const { return blocks_; }

@@ -25,6 +25,6 @@ inline bool finite(const Vec3& v) {
 /// Index of a particle in the world's particle arrays.
 using ParticleId = std::uint32_t;
 /// Index of a box in the world's box list.
-using BoxId = std::uint32_t;
+using BodyId = std::uint32_t;
 
 }  // namespace phys

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "physics/body.h"
 #include "physics/body_layout.h"
-#include "physics/box.h"
 #include "physics/broad_phase.h"
 #include "physics/collision.h"
 #include "physics/constraint_graph.h"
@@ -57,7 +57,7 @@ inline constexpr Real kPickRadius = 0.1;  ///< unit: m
 
 /// What World::raycast hit: a box or a loose particle (exactly one of the two is set).
 struct RayHit {
-  std::optional<BoxId> box;
+  std::optional<BodyId> box;
   std::optional<ParticleId> particle;  ///< a particle that belongs to no box
   Real distance = 0.0;                 ///< unit: m; along the ray from its origin, 0 if it starts inside
   Vec3 point{0.0};                     ///< unit: m; where the ray enters (the origin if it starts inside)
@@ -78,7 +78,7 @@ class World {
   /// maxLength kNoMaxLength makes it one-sided. Needs 0 <= minLength <= maxLength, maxLength > 0.
   void addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength, Real compliance = 0.0);
   /// Adds a box of the chosen model; throws std::invalid_argument on bad input and adds nothing.
-  BoxId addBox(const BoxDesc& desc);
+  BodyId addBody(const BodyDesc& desc);
 
   /// Adds a joint between two embedded points (World::anchor gives them): a pin when maxLength
   /// is 0, else a range. Needs 0 <= minLength <= maxLength; throws std::invalid_argument on bad
@@ -87,7 +87,7 @@ class World {
   /// The point at `worldPoint` (unit: m) carried by the box from now on: barycentric weights over
   /// the box's inscribed tetrahedron (its 4 particles, or corners 0, 3, 5, 6 of a corners box),
   /// which exist for any point, inside the box or not, with no matrix to invert.
-  Embedding anchor(BoxId box, const Vec3& worldPoint) const;
+  Embedding anchor(BodyId box, const Vec3& worldPoint) const;
 
   /// Starts pulling a point with a spring, replacing any drag set before. Throws
   /// std::invalid_argument (and keeps the old drag) on a bad embedding, a non-finite target or a
@@ -101,15 +101,15 @@ class World {
 
   /// The nearest box or loose particle along the ray from `origin` in `direction` (any length;
   /// distances are measured in metres along it) within maxDistance: boxes as their oriented box
-  /// (boxPose and half extents), loose particles as spheres of kPickRadius. A ray that starts
+  /// (bodyPose and half extents), loose particles as spheres of kPickRadius. A ray that starts
   /// inside a box or sphere hits it at distance 0. Throws std::invalid_argument on a non-finite
   /// origin, a zero or non-finite direction, or a negative or NaN maxDistance (infinity is fine).
   std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, Real maxDistance) const;
 
   /// Keeps two boxes from colliding with each other (the parts of a ragdoll joined by a joint).
-  void ignoreCollision(BoxId a, BoxId b);
+  void ignoreCollision(BodyId a, BodyId b);
   /// Every pair ignoreCollision() was given, as (smaller id, larger id), sorted.
-  std::vector<std::pair<BoxId, BoxId>> ignoredCollisions() const;
+  std::vector<std::pair<BodyId, BodyId>> ignoredCollisions() const;
 
   /// Advances the world by solverSettings().dt.
   void step();
@@ -127,16 +127,16 @@ class World {
   const SolverSettings& solverSettings() const { return solver_; }
   const Particles& particles() const { return particles_; }
   std::span<const Stick> sticks() const { return constraints_.sticks(); }
-  std::span<const Box> boxes() const { return boxes_; }
+  std::span<const Body> bodies() const { return bodies_; }
   std::span<const Link> links() const { return constraints_.links(); }
-  /// Every box's corners, 8 per box from Box::firstCorner.
+  /// Every box's corners, 8 per box from Body::firstCorner.
   std::span<const Embedding> corners() const { return corners_; }
   /// Every point that collides with the ground.
   std::span<const GroundContact> groundContacts() const { return ground_.points(); }
   /// Box-box contacts of the last substep.
   std::span<const BodyContact> bodyContacts() const { return narrowPhase_.contacts(); }
   /// Each box as an oriented box, fitted at the start of the last substep.
-  std::span<const Obb> boxFrames() const { return frames_; }
+  std::span<const Obb> bodyFrames() const { return frames_; }
   /// Box pairs whose bounds, grown by how far each can go in a step, overlapped at the start of
   /// the last step (the broad phase's output, which every substep's narrow phase tests).
   std::size_t broadPhasePairs() const { return broadPhase_.pairs().size(); }
@@ -153,7 +153,7 @@ class World {
   /// Current position of an embedded point (a box corner, say). unit: m
   Vec3 position(const Embedding& point) const;
   /// Centre and orientation of a box, fitted to its particles (polar decomposition).
-  BoxPose boxPose(BoxId id) const;
+  BodyPose bodyPose(BodyId id) const;
   /// Acceleration of gravity at a point, in the current mode. unit: m/s^2
   Vec3 gravityAt(const Vec3& x) const;
 
@@ -198,7 +198,7 @@ class World {
   ConstraintGraph constraints_;
   BodyLayout bodyLayout_;      // the bodies in lanes, for body damping (updateLayouts)
   bool layoutsStale_ = false;  // bodies or collision filters added since they were laid out
-  std::vector<Box> boxes_;
+  std::vector<Body> bodies_;
   std::vector<Embedding> corners_;
   GroundContacts ground_;
 

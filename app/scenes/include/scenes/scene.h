@@ -25,12 +25,12 @@ struct CameraStart {
 };
 
 /// A body a scene file gave a name (its own, or a generator's "stack[3]"). A capsule is a box
-/// of Shape::Capsule, so its kind is Box.
+/// of Shape::Capsule, so its kind is Body.
 struct NamedBody {
-  enum class Kind { Box, Particle };
+  enum class Kind { Body, Particle };
   std::string name;
-  Kind kind = Kind::Box;
-  std::uint32_t index = 0;  ///< phys::BoxId or phys::ParticleId
+  Kind kind = Kind::Body;
+  std::uint32_t index = 0;  ///< phys::BodyId or phys::ParticleId
 };
 
 /// An <expect> element: something the lab checks of a run of this scene (an analytic answer, a
@@ -47,7 +47,7 @@ struct Expectation {
 
 /// Choices a caller may impose on a file as it is loaded (the lab's --model sweeps them).
 struct LoadOptions {
-  std::optional<phys::BoxModel> boxModel;          ///< every box, capsule, stack, pyramid and grid box
+  std::optional<phys::BodyModel> boxModel;         ///< every box, capsule, stack, pyramid and grid box
                                                    ///< (not ragdoll parts: ragdollModel says theirs)
   std::optional<phys::RagdollModel> ragdollModel;  ///< every ragdoll, of boxes or capsules
 };

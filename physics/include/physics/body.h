@@ -15,7 +15,7 @@
 
 namespace phys {
 
-enum class BoxModel {
+enum class BodyModel {
   /// The seed's: 8 corner particles braced by 22 sticks (docs/physics.md says which and why).
   Corners,
   /// Jakobsen's: 4 particles and 6 sticks forming a tetrahedron; the 8 corners are embedded by
@@ -23,8 +23,8 @@ enum class BoxModel {
   Tetra,
 };
 
-std::string_view toString(BoxModel model);  ///< "corners", "tetra"
-std::optional<BoxModel> parseBoxModel(std::string_view name);
+std::string_view toString(BodyModel model);  ///< "corners", "tetra"
+std::optional<BodyModel> parseBodyModel(std::string_view name);
 
 /// What collides: the box itself, or a capsule along the body's y axis inscribed in the box:
 /// radius size.x / 2 (size.z must equal size.x), whole length size.y from cap to cap (>= size.x).
@@ -34,8 +34,8 @@ enum class Shape { Box, Capsule };
 
 std::string_view toString(Shape shape);  ///< "box", "capsule"
 
-/// What a box is when it is created.
-struct BoxDesc {
+/// What a body (a box, or the capsule inscribed in one) is when it is created.
+struct BodyDesc {
   std::string name;  ///< for reports and dumps; may be empty
   Vec3 center{0.0};  ///< unit: m
   Vec3 size{1.0};    ///< unit: m; full edge lengths, each > 0
@@ -43,26 +43,27 @@ struct BoxDesc {
   Vec3 velocity{0.0};         ///< unit: m/s; of the centre at creation
   Vec3 angularVelocity{0.0};  ///< unit: rad/s; world frame, at creation
   Real mass = 1.0;            ///< unit: kg; spread evenly over the particles
-  BoxModel model = BoxModel::Corners;
+  BodyModel model = BodyModel::Corners;
   Shape shape = Shape::Box;
   Material material;
-  /// Collision filtering: two boxes collide when each one's group has a bit in the other's mask.
+  /// Collision filtering: two bodies collide when each one's group has a bit in the other's mask.
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
 };
 
-/// Where a box is: read back from its particles.
-struct BoxPose {
+/// Where a body is: read back from its particles.
+struct BodyPose {
   Vec3 center{0.0};  ///< unit: m
   Quat orientation{1.0, 0.0, 0.0, 0.0};
 };
 
-/// A box in the world. Its particles are consecutive from firstParticle; its 8 corners are
-/// embeddings from firstCorner in World::corners(). Corner k sits at (+-hx, +-hy, +-hz) in the
-/// body frame, bit 0 of k choosing the sign of x, bit 1 of y and bit 2 of z (set = positive).
-struct Box {
+/// A body in the world: a box, or a capsule inscribed in its box. Its particles are consecutive from
+/// firstParticle; its 8 corners are embeddings from firstCorner in World::corners(). Corner k sits at (+-hx,
+/// +-hy, +-hz) in the body frame, bit 0 of k choosing the sign of x, bit 1 of y and bit 2 of z (set =
+/// positive).
+struct Body {
   std::string name;
-  BoxModel model = BoxModel::Corners;
+  BodyModel model = BodyModel::Corners;
   ParticleId firstParticle = 0;
   int particleCount = 0;         ///< 8 (corners) or 4 (tetra)
   std::uint32_t firstStick = 0;  ///< its own sticks are consecutive in World::sticks() from here
@@ -104,9 +105,9 @@ inline constexpr int kTetraCorner[4] = {0, 3, 5, 6};
 /// Body-frame position of corner k of a box with the given half extents.
 Vec3 boxCornerLocal(const Vec3& halfExtents, int k);
 /// Body-frame rest position of particle j of a box of the given model.
-Vec3 boxParticleLocal(BoxModel model, const Vec3& halfExtents, int j);
+Vec3 boxParticleLocal(BodyModel model, const Vec3& halfExtents, int j);
 /// Particles per box of the given model.
-int boxParticleCount(BoxModel model);
+int boxParticleCount(BodyModel model);
 /// Barycentric weights, over a tetra box's 4 particles, of the point at u in the box's frame
 /// (u in units of the half extents: the corners are at +-1). Closed form (1 + s_j . u) / 4 with
 /// s_j the particles' corner signs: those four sign vectors sum to zero and sum s_j s_j^T = 4 I.

@@ -1,20 +1,20 @@
-#include "physics/box.h"
+#include "physics/body.h"
 
 #include <cmath>
 
 namespace phys {
 
-std::string_view toString(BoxModel model) {
-  return model == BoxModel::Tetra ? "tetra" : "corners";
+std::string_view toString(BodyModel model) {
+  return model == BodyModel::Tetra ? "tetra" : "corners";
 }
 
 std::string_view toString(Shape shape) {
   return shape == Shape::Capsule ? "capsule" : "box";
 }
 
-std::optional<BoxModel> parseBoxModel(std::string_view name) {
-  if (name == "corners") return BoxModel::Corners;
-  if (name == "tetra") return BoxModel::Tetra;
+std::optional<BodyModel> parseBodyModel(std::string_view name) {
+  if (name == "corners") return BodyModel::Corners;
+  if (name == "tetra") return BodyModel::Tetra;
   return std::nullopt;
 }
 
@@ -23,13 +23,13 @@ Vec3 boxCornerLocal(const Vec3& halfExtents, int k) {
           (k & 4) ? halfExtents.z : -halfExtents.z};
 }
 
-Vec3 boxParticleLocal(BoxModel model, const Vec3& halfExtents, int j) {
-  if (model == BoxModel::Corners) return boxCornerLocal(halfExtents, j);
+Vec3 boxParticleLocal(BodyModel model, const Vec3& halfExtents, int j) {
+  if (model == BodyModel::Corners) return boxCornerLocal(halfExtents, j);
   return boxCornerLocal(halfExtents, kTetraCorner[j]);
 }
 
-int boxParticleCount(BoxModel model) {
-  return model == BoxModel::Corners ? 8 : 4;
+int boxParticleCount(BodyModel model) {
+  return model == BodyModel::Corners ? 8 : 4;
 }
 
 std::array<Real, 4> tetraWeights(const Vec3& u) {
