@@ -6,7 +6,7 @@ std::vector<phys::Vec3> bodyPositions(const phys::World& world) {
   const auto boxes = world.bodies();
   std::vector<phys::Vec3> out;
   std::vector<bool> inBox(world.particles().size(), false);
-  for (phys::BodyId id = 0; id < boxes.size(); ++id) {
+  for (phys::BodyId id{}; id < boxes.size(); ++id) {
     out.push_back(world.bodyPose(id).center);
     for (int k = 0; k < boxes[id].particleCount; ++k)
       inBox[boxes[id].firstParticle + static_cast<phys::ParticleId>(k)] = true;
@@ -20,7 +20,7 @@ std::vector<phys::Vec3> bodyPositions(const phys::World& world) {
 std::vector<phys::Quat> bodyOrientations(const phys::World& world) {
   std::vector<phys::Quat> out;
   std::size_t inBoxes = 0;
-  for (phys::BodyId id = 0; id < world.bodies().size(); ++id) {
+  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
     out.push_back(world.bodyPose(id).orientation);
     inBoxes += static_cast<std::size_t>(world.bodies()[id].particleCount);
   }

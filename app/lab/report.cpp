@@ -160,7 +160,7 @@ std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody>
   for (const scenes::NamedBody& b : bodies) {
     phys::BodyPose pose;  // a particle keeps the identity orientation
     if (b.kind == scenes::NamedBody::Kind::Body) {
-      pose = world.bodyPose(b.index);
+      pose = world.bodyPose(b.body());
     } else {
       pose.center = world.particles().position.at(b.index);
     }

@@ -138,7 +138,7 @@ std::size_t positionIndex(const scenes::Scene& scene, const scenes::NamedBody& b
 }
 
 phys::Vec3 loadedPosition(const scenes::Scene& scene, const scenes::NamedBody& body) {
-  if (body.kind == scenes::NamedBody::Kind::Body) return scene.world.bodyPose(body.index).center;
+  if (body.kind == scenes::NamedBody::Kind::Body) return scene.world.bodyPose(body.body()).center;
   return scene.world.particles().position[body.index];
 }
 

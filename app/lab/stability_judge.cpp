@@ -93,7 +93,7 @@ WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World
     : criteria_(criteria) {
   // bodies.h's order, kept as ids so a criterion reads only its own bodies, not all of them.
   std::vector<bool> inBox(world.particles().size(), false);
-  for (phys::BodyId id = 0; id < world.bodies().size(); ++id) {
+  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
     bodies_.push_back({true, id});
     const phys::Body& box = world.bodies()[id];
     for (int k = 0; k < box.particleCount; ++k)
@@ -108,7 +108,7 @@ WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World
 
 phys::Vec3 WorldJudge::position(const phys::World& world, std::size_t body) const {
   const BodyRef& b = bodies_.at(body);
-  return b.box ? world.bodyPose(b.id).center : world.particles().position[b.id];
+  return b.box ? world.bodyPose(phys::BodyId(b.id)).center : world.particles().position[b.id];
 }
 
 void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& world, int step) const {

@@ -69,7 +69,7 @@ SceneView::SceneView(engine::Renderer& renderer, const std::filesystem::path& mo
 void SceneView::findJointedBoxes(const phys::World& world) {
   const auto boxes = world.bodies();
   bodyOf_.assign(world.particles().size(), -1);
-  for (phys::BodyId id = 0; id < boxes.size(); ++id) {
+  for (phys::BodyId id{}; id < boxes.size(); ++id) {
     std::fill_n(bodyOf_.begin() + boxes[id].firstParticle, boxes[id].particleCount,
                 static_cast<std::int32_t>(id));
   }
@@ -93,7 +93,7 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     const auto capsuleDetail =
         wireframe ? engine::CapsuleMeshCache::kCoarse : engine::CapsuleMeshCache::kFine;
     const auto boxes = world.bodies();
-    for (phys::BodyId id = 0; id < boxes.size(); ++id) {
+    for (phys::BodyId id{}; id < boxes.size(); ++id) {
       const phys::Body& box = boxes[id];
       const glm::vec3 color = tint ? tint->color : boxShade(id) * kBoxColor;
       const phys::BodyPose pose = world.bodyPose(id);

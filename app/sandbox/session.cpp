@@ -338,11 +338,11 @@ bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
     phys::World& rw = run.scene->world;
     phys::Drag drag;
     if (d.isBox) {
-      const phys::Vec3 p = toWorld(rw, d.index, d.local);
-      drag.point = rw.anchor(d.index, p);
+      const phys::Vec3 p = toWorld(rw, phys::BodyId(d.index), d.local);
+      drag.point = rw.anchor(phys::BodyId(d.index), p);
       drag.target = p;
     } else {
-      drag.point.particle[0] = d.index;
+      drag.point.particle[0] = phys::ParticleId(d.index);
       drag.point.weight[0] = 1.0;
       drag.point.count = 1;
       drag.target = rw.particles().position[d.index];

@@ -15,7 +15,7 @@
 namespace phys::detail {
 
 bool massProperties(const Particles& p, const Body& box, MassProperties& out) {
-  const ParticleId first = box.firstParticle, end = first + static_cast<ParticleId>(box.particleCount);
+  const ParticleId first = box.firstParticle, end = first + box.particleCount;
   out = {};
   for (ParticleId i = first; i < end; ++i) {
     if (p.inverseMass[i] == 0.0) return false;  // pinned or frozen
@@ -32,7 +32,7 @@ bool massProperties(const Particles& p, const Body& box, MassProperties& out) {
 }
 
 RigidMotion rigidMotion(const Particles& p, const Body& box, const MassProperties& m) {
-  const ParticleId first = box.firstParticle, end = first + static_cast<ParticleId>(box.particleCount);
+  const ParticleId first = box.firstParticle, end = first + box.particleCount;
   Vec3 momentum(0.0), angularMomentum(0.0);
   for (ParticleId i = first; i < end; ++i) {
     const Real mass = 1.0 / p.inverseMass[i];
@@ -51,8 +51,7 @@ void dampBodyMotion(Particles& p, std::span<const Body> boxes, const BodyLayout&
     if (!massProperties(p, box, m)) continue;  // pinned, frozen or crushed flat: left alone
     // Motions are per substep (x - x*), so no h is needed: velocity times h throughout.
     const RigidMotion rigid = rigidMotion(p, box, m);
-    for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount);
-         ++i) {
+    for (ParticleId i = box.firstParticle; i < box.firstParticle + box.particleCount; ++i) {
       const Vec3 target = rigid.linear + glm::cross(rigid.angular, p.position[i] - m.centre);
       const Vec3 motion = p.position[i] - p.previous[i];
       p.previous[i] = p.position[i] - (motion + fraction * (target - motion));

@@ -26,15 +26,15 @@ std::vector<std::pair<BodyId, BodyId>> World::ignoredCollisions() const {
 
 // A stick or a link between two bodies' particles: the parting moves the two as one.
 void World::joinBodies(ParticleId a, ParticleId b) {
-  const std::int32_t ba = particleBody_[a], bb = particleBody_[b];
-  if (ba < 0 || bb < 0 || ba == bb) return;
-  parting_.join(static_cast<BodyId>(ba), static_cast<BodyId>(bb));
+  const BodyId ba = particleBody_[a], bb = particleBody_[b];
+  if (ba == kNoBody || bb == kNoBody || ba == bb) return;
+  parting_.join(ba, bb);
 }
 
 // Centre: the mean of the corners. Axes: the mean edge along each, made orthonormal. Cheaper
 // than the polar decomposition bodyPose uses, and as good for a box that keeps its shape.
 void World::updateBoxFrames() {
-  for (BodyId id = 0; id < bodies_.size(); ++id) {
+  for (BodyId id{}; id < bodies_.size(); ++id) {
     const Body& box = bodies_[id];
     Obb& f = frames_[id];
     Vec3 ex, ey;

@@ -107,7 +107,7 @@ void BroadPhase::update(const Particles& particles, std::span<const Body> bodies
   const Real margin = step.featureEpsilon;
   const Real dt = step.dt, h = step.h;
   const Real g = step.gravity;
-  for (BodyId id = 0; id < bodies.size(); ++id) {
+  for (BodyId id{}; id < bodies.size(); ++id) {
     const Body& box = bodies[id];
     Real fastest = 0.0;  // squared displacement over the last substep
     Vec3 mean(0.0);
@@ -156,7 +156,7 @@ void BroadPhase::update(const Particles& particles, std::span<const Body> bodies
   unsortedPairs_.clear();
   findPairsInStrips(bodies, step.strips);
   sortPairsByBody();
-  for (BodyId id = 0; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
+  for (BodyId id{}; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
   stale_ = false;
   const std::size_t room = kRoomPerBody * bodies.size();
   keepRoom(pairs_, pairs_.size(), room);
@@ -166,7 +166,7 @@ void BroadPhase::update(const Particles& particles, std::span<const Body> bodies
 // A body's corners moved at most |dc| + sum_k |da_k| h_k since the pairs were found.
 bool BroadPhase::needsUpdate(std::span<const Obb> frames) const {
   if (stale_) return true;
-  for (BodyId id = 0; id < frames.size(); ++id) {
+  for (BodyId id{}; id < frames.size(); ++id) {
     const Obb& now = frames[id];
     const Obb& then = pairFrames_[id];
     Real moved = glm::length(now.center - then.center);
@@ -270,7 +270,7 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
     }
   }
   for (const BodyId w : wideBodies_) {
-    for (BodyId b = 0; b < n; ++b) {
+    for (BodyId b{}; b < n; ++b) {
       if (b == w || (b < w && wide(b))) continue;  // two wide boxes: once, from the lower id
       const Bounds &bw = bounds_[w], &bb = bounds_[b];
       if (overlap(bw, bb, s) && overlap(bw, bb, t) && overlap(bw, bb, u) && collides(bodies, w, b)) {

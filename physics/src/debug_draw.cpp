@@ -23,8 +23,8 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     for (std::size_t i = 0; i < particles_.size(); ++i) {
       const bool frozen = particles_.inverseMass[i] == 0.0 &&
                           std::any_of(freezes().begin(), freezes().end(), [&](const FreezeReport& f) {
-                            const std::int32_t body = particleBody_[f.particle];
-                            return f.particle == i || (body >= 0 && body == particleBody_[i]);
+                            const BodyId body = particleBody_[f.particle];
+                            return f.particle == i || (body != kNoBody && body == particleBody_[i]);
                           });
       draw.point(x[i], 0.05, frozen ? colors::kFrozen : colors::kParticle);
     }

@@ -35,8 +35,7 @@ Embedding rigidEmbedding(const Body& box, const Vec3& u) {
   Embedding e;
   e.count = 4;
   for (int j = 0; j < 4; ++j) {
-    e.particle[j] =
-        box.firstParticle + static_cast<ParticleId>(box.model == BodyModel::Tetra ? j : kTetraCorner[j]);
+    e.particle[j] = box.firstParticle + (box.model == BodyModel::Tetra ? j : kTetraCorner[j]);
     e.weight[j] = w[j];
   }
   return e;

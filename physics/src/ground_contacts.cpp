@@ -16,12 +16,12 @@ Material combine(const Material& a, const Material& b) {
 
 // A loose particle has no material of its own: it slides as the ground says.
 Material combined(const GroundContact& c, const Material& ground) {
-  return c.body >= 0 ? combine(c.material, ground) : ground;
+  return c.body != kNoBody ? combine(c.material, ground) : ground;
 }
 
 }  // namespace
 
-void GroundContacts::add(const Embedding& point, const Material& material, std::int32_t body,
+void GroundContacts::add(const Embedding& point, const Material& material, BodyId body,
                          const Material& ground) {
   GroundContact c{point, material, ground, body};
   c.combined = combined(c, ground);
@@ -55,7 +55,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
   const Vec3 n = groundNormal;
   for (const CapsuleEnd& g : capsuleEnds_) {
     GroundContact& contact = points_[g.point];
-    const auto id = static_cast<BodyId>(contact.body);
+    const BodyId id = contact.body;
     const Body& box = bodies[id];
     const Obb& f = frames[id];
     const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();

@@ -86,13 +86,14 @@ Real Guard::worstStickError(const GuardInput& in, const Body& box) {
 }
 
 void Guard::freeze(const GuardInput& in, ParticleId bad, const std::string& reason) {
-  ParticleId first = bad, count = 1;
+  ParticleId first = bad;
+  std::uint32_t count = 1;
   std::string name =
       in.particleNames[bad].empty() ? "particle " + std::to_string(bad) : in.particleNames[bad];
-  if (const std::int32_t body = in.particleBodies[bad]; body >= 0) {
+  if (const BodyId body = in.particleBodies[bad]; body != kNoBody) {
     const Body& box = in.bodies[static_cast<std::size_t>(body)];
     first = box.firstParticle;
-    count = static_cast<ParticleId>(box.particleCount);
+    count = static_cast<std::uint32_t>(box.particleCount);
     name = box.name.empty() ? "box " + std::to_string(body) : box.name;
   }
   for (ParticleId i = first; i < first + count; ++i) {

@@ -15,7 +15,7 @@ ParticleId findRoot(std::vector<ParticleId>& parent, ParticleId i) {
 
 // A group of links joined through their particles.
 struct Group {
-  ParticleId lo = 0, hi = 0;         // the range its particles span
+  ParticleId lo{}, hi{};             // the range its particles span
   std::vector<std::uint32_t> links;  // in creation order
 };
 

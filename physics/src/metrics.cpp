@@ -95,8 +95,8 @@ Metrics World::metrics() const {
   }
   m.frozen = 0;
   for (const FreezeReport& f : freezes()) {
-    const std::int32_t body = particleBody_[f.particle];
-    m.frozen += body >= 0 ? bodies_[static_cast<std::size_t>(body)].particleCount : 1;
+    const BodyId body = particleBody_[f.particle];
+    m.frozen += body != kNoBody ? bodies_[body].particleCount : 1;
   }
   return m;
 }

@@ -135,8 +135,8 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
     c.pointB = detail::surfacePoint(bodyB, in.frames[b], contact.points[i].onB, &movedB);
     c.normal = contact.sat.normal;
     c.combined = combined;
-    c.bodyA = static_cast<std::int32_t>(a);
-    c.bodyB = static_cast<std::int32_t>(b);
+    c.bodyA = a;
+    c.bodyB = b;
     c.kind = static_cast<std::uint8_t>(contact.kind);
     if (bodyA.shape == Shape::Capsule || bodyB.shape == Shape::Capsule) {
       c.offset = glm::dot(c.normal, movedB - movedA);  // a box's points are on its faces already

@@ -67,7 +67,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
                    std::span<Real> contactAllowance, const PartingGround& ground, Real featureEpsilon,
                    const PartingSettings& settings) {
   const Real epsilon = featureEpsilon;
-  for (BodyId id = 0; id < bodies.size(); ++id) root_[id] = group(id);
+  for (BodyId id{}; id < bodies.size(); ++id) root_[id] = group(id);
   bool deep = false;
   need_.resize(manifolds.size());
   push_.resize(manifolds.size());
@@ -85,8 +85,8 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
     // A box's depth is its deepest corner's, from the start depths step() measured.
     std::fill(groundNeed_.begin(), groundNeed_.end(), -std::numeric_limits<Real>::infinity());
     for (std::size_t c = 0; c < ground.contacts.size(); ++c) {
-      if (ground.contacts[c].body < 0) continue;  // a loose particle: boxes do not push it
-      Real& depth = groundNeed_[root_[static_cast<std::size_t>(ground.contacts[c].body)]];
+      if (ground.contacts[c].body == kNoBody) continue;  // a loose particle: boxes do not push it
+      Real& depth = groundNeed_[root_[ground.contacts[c].body]];
       depth = std::max(depth, ground.allowance[c]);  // a group's depth is its deepest box's
     }
     for (Real& depth : groundNeed_) {
@@ -98,7 +98,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
 
   // A group's weight is 1 / its mass, kept at its root (a box id), as are its shift and depth.
   std::fill(weight_.begin(), weight_.end(), 0.0);  // its mass, for now
-  for (BodyId id = 0; id < bodies.size(); ++id) {
+  for (BodyId id{}; id < bodies.size(); ++id) {
     const Body& box = bodies[id];
     Real& mass = weight_[root_[id]];
     for (int j = 0; j < box.particleCount; ++j) {
@@ -107,7 +107,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
     }
     shift_[id] = Vec3(0.0);
   }
-  for (BodyId id = 0; id < bodies.size(); ++id) {
+  for (BodyId id{}; id < bodies.size(); ++id) {
     if (root_[id] == id) weight_[id] = 1.0 / weight_[id];
   }
   // Gauss-Seidel, pushing only, as long as that converges: the spawned scenes of the tests and the
@@ -148,7 +148,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
       worst = std::max(worst, std::abs(change) * (wa + wb));
     }
     if (ground.enabled) {
-      for (BodyId id = 0; id < bodies.size(); ++id) {
+      for (BodyId id{}; id < bodies.size(); ++id) {
         if (root_[id] != id || weight_[id] == 0.0) continue;
         // The ground does not move, so the group takes the whole correction.
         const Real missing = groundNeed_[id] - glm::dot(up, shift_[id]);
@@ -174,7 +174,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
       lastCheck = worst;
     }
   }
-  for (BodyId id = 0; id < bodies.size(); ++id) {
+  for (BodyId id{}; id < bodies.size(); ++id) {
     const Vec3 t = shift_[root_[id]];
     if (t == Vec3(0.0)) continue;
     const Body& box = bodies[id];
@@ -189,8 +189,8 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
     for (std::uint32_t k = 0; k < m.contactCount; ++k) contactAllowance[m.firstContact + k] -= parted;
   }
   for (std::size_t c = 0; c < ground.contacts.size() && ground.enabled; ++c) {
-    const std::int32_t body = ground.contacts[c].body;
-    if (body >= 0) ground.allowance[c] -= glm::dot(up, shift_[root_[static_cast<std::size_t>(body)]]);
+    const BodyId body = ground.contacts[c].body;
+    if (body != kNoBody) ground.allowance[c] -= glm::dot(up, shift_[root_[body]]);
   }
 }
 

@@ -85,7 +85,7 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, 
     if (!t || !std::isfinite(*t) || *t > maxDistance || (best && *t >= best->distance)) return;
     best = RayHit{box, particle, *t, origin + *t * d};
   };
-  for (BodyId id = 0; id < bodies_.size(); ++id) {
+  for (BodyId id{}; id < bodies_.size(); ++id) {
     const BodyPose pose = bodyPose(id);
     const Quat toBox = glm::conjugate(pose.orientation);
     const Body& box = bodies_[id];
@@ -94,8 +94,8 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, 
                                          : rayBox(o, local, box.halfExtents),
              id, std::nullopt);
   }
-  for (ParticleId i = 0; i < particles_.size(); ++i) {
-    if (particleBody_[i] >= 0) continue;  // a box's particle: the box is hit instead
+  for (ParticleId i{}; i < particles_.size(); ++i) {
+    if (particleBody_[i] != kNoBody) continue;  // a box's particle: the box is hit instead
     consider(raySphere(origin, d, particles_.position[i], kPickRadius), std::nullopt, i);
   }
   return best;

@@ -30,7 +30,7 @@ struct StickState {
 };
 
 // False when the stick needs no correction: both ends pinned, or within its bounds.
-inline bool measure(const View& v, ParticleId a, ParticleId b, const Stick& s, StickState& out) {
+inline bool measure(const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, StickState& out) {
   out.w1 = v.w[a];
   out.w2 = v.w[b];
   if (out.w1 + out.w2 == 0.0) return false;
@@ -42,7 +42,7 @@ inline bool measure(const View& v, ParticleId a, ParticleId b, const Stick& s, S
 
 // Jakobsen's projection of one measured stick. A pinned end (w = 0) is never written: 0 times
 // a non-finite correction would still be NaN, and a pinned particle must not move.
-inline void project(const View& v, ParticleId a, ParticleId b, const StickState& m) {
+inline void project(const View& v, std::uint32_t a, std::uint32_t b, const StickState& m) {
   const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2));
   if (m.w1 != 0.0) v.x[a] += (m.w1 * k) * m.d;
   if (m.w2 != 0.0) v.x[b] -= (m.w2 * k) * m.d;
@@ -71,7 +71,7 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
   Real w[kMaxBlockParticles];
   const View local{x, kPrevious ? previous : nullptr, w};
   forEachBlock<kLaneBodies>(layout, [&](const StickBlock& block) {
-    const ParticleId first = block.firstParticle;
+    const std::uint32_t first = block.firstParticle;
     for (int i = 0; i < block.particleCount; ++i) {
       x[i] = p.position[first + i];
       if constexpr (kPrevious) previous[i] = p.previous[first + i];
@@ -96,12 +96,12 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
 // listing corrected (REFERENCES.md): s = (|d| - r) / (|d| (w1 + w2)); x1 += w1 s d; x2 -= w2 s d.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout) {
   relaxGaussSeidelLanes(laneArguments(p, layout));
-  forEachStick<false, false>(p, sticks, layout,
-                             [](const View& v, ParticleId a, ParticleId b, const Stick& s, std::uint32_t) {
-                               StickState m;
-                               if (!measure(v, a, b, s, m) || m.length == 0.0) return;  // no direction at 0
-                               project(v, a, b, m);
-                             });
+  forEachStick<false, false>(
+      p, sticks, layout, [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
+        StickState m;
+        if (!measure(v, a, b, s, m) || m.length == 0.0) return;  // no direction at 0
+        project(v, a, b, m);
+      });
 }
 
 // Jacobi: every stick's correction from the same positions, summed per particle. Each stick's
@@ -112,7 +112,8 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLa
 // any other stick, so it can sum and apply its own corrections before the next block reads.
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                  std::span<const Real> degree, std::span<Vec3> delta) {
-  auto correction = [&](const View& v, ParticleId a, ParticleId b, const Stick& s, Real scale, Vec3* sum) {
+  auto correction = [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, Real scale,
+                        Vec3* sum) {
     StickState m;
     if (!measure(v, a, b, s, m) || m.length == 0.0) return;
     const Real k = (m.length - m.target) / (m.length * (m.w1 + m.w2) * scale);
@@ -120,7 +121,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
     sum[b] -= (m.w2 * k) * m.d;
   };
   forEachBlock<true>(layout, [&](const StickBlock& block) {
-    const ParticleId first = block.firstParticle;
+    const std::uint32_t first = block.firstParticle;
     Vec3 x[kMaxBlockParticles], sum[kMaxBlockParticles];
     Real w[kMaxBlockParticles];
     for (int i = 0; i < block.particleCount; ++i) {
@@ -164,7 +165,8 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
   lanes.compliance = compliance;
   relaxXpbdLanes(lanes);
   forEachStick<false, false>(
-      p, sticks, layout, [&](const View& v, ParticleId a, ParticleId b, const Stick& s, std::uint32_t c) {
+      p, sticks, layout,
+      [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t c) {
         StickState m;
         if (!measure(v, a, b, s, m) || m.length == 0.0) return;
         // finite: both compliances and h are bounded (settings.h)
@@ -182,7 +184,7 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
 // exists (the stick turned too far within one substep), fall back to Jakobsen's projection.
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout) {
   forEachStick<true, true>(
-      p, sticks, layout, [](const View& v, ParticleId a, ParticleId b, const Stick& s, std::uint32_t) {
+      p, sticks, layout, [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
         StickState m;
         if (!measure(v, a, b, s, m)) return;
         const Real w1 = m.w1, w2 = m.w2, w = w1 + w2, length = m.length, target = m.target;

@@ -90,7 +90,7 @@ void restituteGround(Particles& p, std::span<RigidState> rigid, std::span<const 
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (pushed[c] == 0) continue;
     const GroundContact& contact = contacts[c];
-    if (contact.body < 0) {
+    if (contact.body == kNoBody) {
       restituteParticle(p, contact.point.particle[0], n, approach[c], r);
       continue;
     }

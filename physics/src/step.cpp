@@ -83,8 +83,8 @@ void World::integrateParticles(Real h) {
   detail::integrate(particles_, world_, h, guard_.checked());
   // The mouse spring is a force: applied with gravity, before the passes share it out.
   if (drag_) {
-    const Body* box = dragBox_ >= 0 ? &bodies_[static_cast<std::size_t>(dragBox_)] : nullptr;
-    detail::applyDrag(particles_, box, drag_->point, drag_->target, drag_->stiffness, drag_->damping, h);
+    const Body* body = dragBody_ != kNoBody ? &bodies_[dragBody_] : nullptr;
+    detail::applyDrag(particles_, body, drag_->point, drag_->target, drag_->stiffness, drag_->damping, h);
   }
 }
 

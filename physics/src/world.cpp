@@ -117,9 +117,9 @@ void World::settleWithoutVelocity() {
 // box going from 1 to 16 substeps).
 void World::keepVelocities(Real hOld, Real hNew) {
   std::vector<std::uint8_t> supported(particles_.size(), 0);
-  auto support = [&](std::int32_t body, const Embedding& point) {
-    if (body >= 0) {
-      const Body& box = bodies_[static_cast<std::size_t>(body)];
+  auto support = [&](BodyId body, const Embedding& point) {
+    if (body != kNoBody) {
+      const Body& box = bodies_[body];
       std::fill_n(supported.begin() + box.firstParticle, box.particleCount, std::uint8_t{1});
     } else {
       supported[point.particle[0]] = 1;
@@ -163,10 +163,10 @@ ParticleId World::addParticle(const ParticleDesc& desc) {
   particles_.inverseMass.push_back(desc.pinned ? 0.0 : 1.0 / desc.mass);
   guard_.addParticle(desc.position);
   particleName_.push_back(desc.name);
-  particleBody_.push_back(-1);
+  particleBody_.push_back(kNoBody);
   movedByBoxContact_.push_back(0);
   constraints_.addParticle();
-  ground_.add(embedParticle(id), world_.groundMaterial, -1, world_.groundMaterial);
+  ground_.add(embedParticle(id), world_.groundMaterial, kNoBody, world_.groundMaterial);
   return id;
 }
 
@@ -227,9 +227,9 @@ void World::setDrag(const Drag& drag) {
   drag_ = drag;
   // The box that carries the point answers the pull as a rigid body; a point carried by anything
   // else (a loose particle, particles of several bodies) is moved through its carriers alone.
-  dragBox_ = particleBody_[drag.point.particle[0]];
+  dragBody_ = particleBody_[drag.point.particle[0]];
   for (int i = 1; i < drag.point.count; ++i) {
-    if (particleBody_[drag.point.particle[i]] != dragBox_) dragBox_ = -1;
+    if (particleBody_[drag.point.particle[i]] != dragBody_) dragBody_ = kNoBody;
   }
 }
 
@@ -275,7 +275,7 @@ BodyId World::addBody(const BodyDesc& desc) {
   box.particleCount = boxParticleCount(desc.model);
   box.firstParticle = static_cast<ParticleId>(particles_.size());
   box.firstCorner = static_cast<std::uint32_t>(corners_.size());
-  const auto boxIndex = static_cast<std::int32_t>(bodies_.size());
+  const BodyId id(bodies_.size());
   const std::size_t contactsBefore = ground_.size();
 
   // Everything that can fail is checked before anything is added: a centre or size near the
@@ -297,7 +297,7 @@ BodyId World::addBody(const BodyDesc& desc) {
   }
   for (int j = 0; j < box.particleCount; ++j) {
     addParticle(parts[j]);
-    particleBody_.back() = boxIndex;
+    particleBody_.back() = id;
   }
   // The particles' own contact points go: the box touches the ground with its corners.
   ground_.truncate(contactsBefore);
@@ -323,7 +323,7 @@ BodyId World::addBody(const BodyDesc& desc) {
       corner.count = 4;
     }
     corners_.push_back(corner);
-    if (desc.shape == Shape::Box) ground_.add(corner, desc.material, boxIndex, world_.groundMaterial);
+    if (desc.shape == Shape::Box) ground_.add(corner, desc.material, id, world_.groundMaterial);
   }
   if (desc.shape == Shape::Capsule) {
     // A capsule touches the ground with the lowest points of its two end spheres, which move
@@ -332,7 +332,7 @@ BodyId World::addBody(const BodyDesc& desc) {
     for (const Real end : {-1.0, 1.0}) {
       const Vec3 core(0.0, end * halfSegment, 0.0);
       const Vec3 lowest = core + glm::inverse(q) * (-world_.groundNormal) * box.capsuleRadius();
-      ground_.add(detail::rigidEmbedding(box, lowest / box.halfExtents), desc.material, boxIndex,
+      ground_.add(detail::rigidEmbedding(box, lowest / box.halfExtents), desc.material, id,
                   world_.groundMaterial);
       ground_.followCapsuleEnd(end);
     }
@@ -346,7 +346,7 @@ BodyId World::addBody(const BodyDesc& desc) {
   guard_.addBody();
   broadPhase_.addBody();
   parting_.addBody();
-  return static_cast<BodyId>(boxIndex);
+  return id;
 }
 
 Vec3 World::velocity(ParticleId id) const {

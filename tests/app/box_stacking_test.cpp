@@ -43,15 +43,15 @@ TEST(BoxContact, AlignedFaceToFaceGainsNoEnergyAndRests) {
     }
     const double slopEnergy = 2.0 * 9.81 * world.solverSettings().contactSlop;
     EXPECT_LE(most, e0 + slopEnergy) << toString(model);
-    EXPECT_NEAR(world.bodyPose(1).center.y, 1.5, 0.01) << toString(model);
+    EXPECT_NEAR(world.bodyPose(phys::BodyId{1}).center.y, 1.5, 0.01) << toString(model);
     std::printf("aligned face to face, %s: upper box off centre by %.4f m, max speed %.4f m/s after 5 s\n",
-                std::string(toString(model)).c_str(), std::abs(world.bodyPose(1).center.x),
+                std::string(toString(model)).c_str(), std::abs(world.bodyPose(phys::BodyId{1}).center.x),
                 world.metrics().maxSpeed);
     if (model == phys::BodyModel::Corners) {
-      EXPECT_NEAR(world.bodyPose(1).center.x, 0.0, 1e-4);
+      EXPECT_NEAR(world.bodyPose(phys::BodyId{1}).center.x, 0.0, 1e-4);
       EXPECT_LT(world.metrics().maxSpeed, 1e-3);
     } else {
-      EXPECT_NEAR(world.bodyPose(1).center.x, 0.0, 0.05);
+      EXPECT_NEAR(world.bodyPose(phys::BodyId{1}).center.x, 0.0, 0.05);
       EXPECT_LT(world.metrics().maxSpeed, 0.2);
     }
   }
@@ -146,13 +146,13 @@ Standing standFor10Seconds(scenes::Scene scene) {
   phys::World& w = scene.world;
   while (w.time() < 2.0) w.step();
   std::vector<Vec3> settled;
-  for (phys::BodyId b = 0; b < w.bodies().size(); ++b) settled.push_back(w.bodyPose(b).center);
+  for (phys::BodyId b{}; b < w.bodies().size(); ++b) settled.push_back(w.bodyPose(b).center);
   Standing s{0.0, 0.0, 0.0};
   while (w.time() < 10.0) {
     w.step();
     s.maxPenetration = std::max(s.maxPenetration, w.metrics().maxPenetration);
   }
-  for (phys::BodyId b = 0; b < w.bodies().size(); ++b) {
+  for (phys::BodyId b{}; b < w.bodies().size(); ++b) {
     const Vec3 half = w.bodies()[b].halfExtents;
     const double drift = glm::length(w.bodyPose(b).center - settled[b]);
     s.worstDrift = std::max(s.worstDrift, drift / (2.0 * std::min({half.x, half.y, half.z})));

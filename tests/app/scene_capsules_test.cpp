@@ -37,9 +37,9 @@ phys::BodyId boxNamed(const scenes::Scene& s, const std::string& name) {
   const scenes::NamedBody* b = findBody(s, name);
   if (b == nullptr || b->kind != scenes::NamedBody::Kind::Body) {
     ADD_FAILURE() << "no box or capsule named " << name;
-    return 0;
+    return phys::BodyId{};
   }
-  return b->index;
+  return b->body();
 }
 
 double bodyMass(const phys::World& world, phys::BodyId id) {
@@ -94,12 +94,12 @@ TEST(SceneCapsules, CapsuleElementHasTheRadiusLengthPoseAndEveryBoxAttribute) {
   EXPECT_EQ(c.material.dynamicFriction, 0.1);
   EXPECT_EQ(c.collisionGroup, 6u);
   EXPECT_EQ(c.collisionMask, 5u);
-  EXPECT_NEAR(bodyMass(s.world, 0), 3.0, 1e-12);
-  const phys::BodyPose pose = s.world.bodyPose(0);
+  EXPECT_NEAR(bodyMass(s.world, phys::BodyId{0}), 3.0, 1e-12);
+  const phys::BodyPose pose = s.world.bodyPose(phys::BodyId{0});
   EXPECT_LT(glm::length(pose.center - Vec3(1, 2, 3)), 1e-12);
   // 90 degrees about z turns the core (the body's y axis) to -x: the capsule lies along x.
-  EXPECT_LT(glm::length(coreAxis(s.world, 0) - Vec3(-1, 0, 0)), 1e-12);
-  EXPECT_NEAR(capsuleBottom(s.world, 0), 2.0 - 0.2, 1e-12);
+  EXPECT_LT(glm::length(coreAxis(s.world, phys::BodyId{0}) - Vec3(-1, 0, 0)), 1e-12);
+  EXPECT_NEAR(capsuleBottom(s.world, phys::BodyId{0}), 2.0 - 0.2, 1e-12);
   Vec3 velocity(0.0);
   for (int j = 0; j < c.particleCount; ++j) velocity += s.world.velocity(c.firstParticle + j);
   EXPECT_NEAR(velocity.x / c.particleCount, 1.0, 1e-9);
@@ -111,8 +111,8 @@ TEST(SceneCapsules, CapsuleElementHasTheRadiusLengthPoseAndEveryBoxAttribute) {
   EXPECT_EQ(sphere.capsuleHalfSegment(), 0.0);
   EXPECT_EQ(sphere.model, phys::BodyDesc{}.model);
   EXPECT_EQ(sphere.material.staticFriction, phys::BodyDesc{}.material.staticFriction);
-  EXPECT_NEAR(bodyMass(s.world, 1), phys::BodyDesc{}.mass, 1e-12);
-  EXPECT_LT(angleBetween(s.world.bodyPose(1).orientation, phys::Quat(1, 0, 0, 0)), 1e-12);
+  EXPECT_NEAR(bodyMass(s.world, phys::BodyId{1}), phys::BodyDesc{}.mass, 1e-12);
+  EXPECT_LT(angleBetween(s.world.bodyPose(phys::BodyId{1}).orientation, phys::Quat(1, 0, 0, 0)), 1e-12);
   EXPECT_EQ(s.world.bodies()[2].shape, phys::Shape::Box);  // a <box> stays a box
 
   // Named like boxes, so links and no-collision pairs can name it.
@@ -297,7 +297,7 @@ TEST(SceneCapsules, SavedWorldWithCapsulesReloadsAsTheSameCapsules) {
   EXPECT_EQ(a.particles().size(), b.particles().size());
   EXPECT_EQ(a.links().size(), b.links().size());
   EXPECT_EQ(a.ignoredCollisions(), b.ignoredCollisions());
-  for (phys::BodyId id = 0; id < a.bodies().size(); ++id) {
+  for (phys::BodyId id{}; id < a.bodies().size(); ++id) {
     const phys::Body& x = a.bodies()[id];
     const phys::Body& y = b.bodies()[id];
     EXPECT_EQ(y.name, x.name);
@@ -334,7 +334,7 @@ TEST(SceneCapsules, SavedRollingCapsuleRollsOnAsItDid) {
       "velocity=\"0 0 3\" angular-velocity=\"859.4366926962348 0 0\"/>",  // 15 rad/s: 3 m/s rolling
       "<solver substeps=\"4\" body-damping=\"1\"/><ground friction=\"0.6\"/>");
   for (int i = 0; i < 20; ++i) original.world.step();
-  const double rolled = original.world.bodyPose(0).center.z;
+  const double rolled = original.world.bodyPose(phys::BodyId{0}).center.z;
   EXPECT_GT(rolled, 0.6);  // it is rolling: 20 steps at 3 m/s
   scenes::Scene copy = scenes::loadSceneText(scenes::writeSceneXml(original), "saved.xml");
   ASSERT_EQ(copy.world.bodies()[0].shape, phys::Shape::Capsule);
@@ -342,10 +342,13 @@ TEST(SceneCapsules, SavedRollingCapsuleRollsOnAsItDid) {
     original.world.step();
     copy.world.step();
   }
-  const Vec3 a = original.world.bodyPose(0).center, b = copy.world.bodyPose(0).center;
+  const Vec3 a = original.world.bodyPose(phys::BodyId{0}).center,
+             b = copy.world.bodyPose(phys::BodyId{0}).center;
   EXPECT_GT(b.z - rolled, 1.0) << "rolled on";  // 30 steps at 3 m/s is 1.5 m
   EXPECT_LT(glm::length(a - b), 1e-2);
-  EXPECT_LT(angleBetween(original.world.bodyPose(0).orientation, copy.world.bodyPose(0).orientation), 1e-2);
+  EXPECT_LT(angleBetween(original.world.bodyPose(phys::BodyId{0}).orientation,
+                         copy.world.bodyPose(phys::BodyId{0}).orientation),
+            1e-2);
 }
 
 // Bullet's BenchmarkDemo test 3, rebuilt from capsule ragdolls: 136 of them, rows of 16 down
@@ -355,7 +358,7 @@ TEST(SceneCapsules, BulletPileIsBulletsLayoutOfCapsuleRagdolls) {
   ASSERT_EQ(s.world.bodies().size(), 136u * 11u);
   EXPECT_EQ(s.world.worldSettings().gravity, Vec3(0, -10, 0));
   double lowest = 1e9;
-  for (phys::BodyId id = 0; id < s.world.bodies().size(); ++id) {
+  for (phys::BodyId id{}; id < s.world.bodies().size(); ++id) {
     ASSERT_EQ(s.world.bodies()[id].shape, phys::Shape::Capsule) << s.world.bodies()[id].name;
     EXPECT_NEAR(bodyMass(s.world, id), 1.0, 1e-12) << s.world.bodies()[id].name;  // Bullet's 1 kg parts
     lowest = std::min(lowest, capsuleBottom(s.world, id));
@@ -398,7 +401,7 @@ TEST(SceneCapsules, CapsulesDemoHasCapsuleRagdollsAboveAPileOfCapsulesAndBoxes) 
   const phys::Metrics m = s.world.metrics();
   EXPECT_EQ(m.frozen, 0);
   EXPECT_LT(m.maxJointError, 0.05);
-  for (phys::BodyId id = 0; id < s.world.bodies().size(); ++id) {
+  for (phys::BodyId id{}; id < s.world.bodies().size(); ++id) {
     const phys::BodyPose pose = s.world.bodyPose(id);
     EXPECT_GT(pose.center.y, 0.0) << s.world.bodies()[id].name;
     EXPECT_LT(glm::length(Vec3(pose.center.x, 0.0, pose.center.z)), 6.0) << s.world.bodies()[id].name;

@@ -110,7 +110,7 @@ TEST(SceneFiles, BoxWithEveryAttribute) {
   EXPECT_EQ(b.model, phys::BodyModel::Tetra);
   EXPECT_EQ(b.halfExtents, Vec3(0.25, 0.5, 1.0));
   EXPECT_EQ(b.material.staticFriction, 0.3);
-  const phys::BodyPose pose = s.world.bodyPose(0);
+  const phys::BodyPose pose = s.world.bodyPose(phys::BodyId{0});
   EXPECT_LT(glm::length(pose.center - Vec3(1, 2, 3)), 1e-12);
   EXPECT_NEAR(std::abs(pose.orientation.y), std::sin(M_PI / 4), 1e-9);  // 90 degrees about y
   EXPECT_EQ(s.world.bodies()[1].halfExtents, Vec3(1.0));                // one number, a cube
@@ -148,7 +148,8 @@ TEST(SceneFiles, LinksAndPairsThatDoNotCollide) {
   // A loose particle is its own end.
   EXPECT_EQ(links[4].a.count, 1);
   EXPECT_EQ(links[4].a.particle[0], 12u);
-  EXPECT_EQ(s.world.ignoredCollisions(), (std::vector<std::pair<phys::BodyId, phys::BodyId>>{{0u, 1u}}));
+  EXPECT_EQ(s.world.ignoredCollisions(),
+            (std::vector<std::pair<phys::BodyId, phys::BodyId>>{{phys::BodyId{0}, phys::BodyId{1}}}));
 }
 
 TEST(SceneFiles, RestitutionComplianceAndCollisionGroups) {
@@ -177,11 +178,11 @@ TEST(SceneFiles, GeneratorsNameTheirMembersAndPlaceThemOnTheFloor) {
     ADD_FAILURE() << "no body named " << name;
     return scenes::NamedBody{};
   };
-  EXPECT_NEAR(s.world.bodyPose(find("stack[9]").index).center.y, 0.25 + 9 * 0.5, 1e-12);
-  EXPECT_NEAR(s.world.bodyPose(find("stack[0]").index).center.y, 0.25, 1e-12);
-  EXPECT_NEAR(s.world.bodyPose(find("p[9]").index).center.y, 3.5, 1e-12);  // the top of the pyramid
-  EXPECT_NEAR(s.world.bodyPose(find("p[9]").index).center.x, 5.0, 1e-12);
-  EXPECT_NEAR(s.world.bodyPose(find("grid[26]").index).center.y, 0.5 + 2 * 1.1, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("stack[9]").body()).center.y, 0.25 + 9 * 0.5, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("stack[0]").body()).center.y, 0.25, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("p[9]").body()).center.y, 3.5, 1e-12);  // the top of the pyramid
+  EXPECT_NEAR(s.world.bodyPose(find("p[9]").body()).center.x, 5.0, 1e-12);
+  EXPECT_NEAR(s.world.bodyPose(find("grid[26]").body()).center.y, 0.5 + 2 * 1.1, 1e-12);
   const scenes::NamedBody end = find("chain[5]");
   EXPECT_EQ(end.kind, scenes::NamedBody::Kind::Particle);
   EXPECT_NEAR(s.world.particles().position[end.index].y, 10.0 - 2.5, 1e-12);
@@ -200,10 +201,10 @@ TEST(SceneFiles, RagdollsAndTaperedPyramids) {
   EXPECT_EQ(s.world.links().size(), 2u * 9u * 4u);  // per hinge: two pins and two stops
   auto find = [&](const std::string& name) {
     for (const auto& b : s.bodies) {
-      if (b.name == name) return b.index;
+      if (b.name == name) return b.body();
     }
     ADD_FAILURE() << "no body named " << name;
-    return 0u;
+    return phys::BodyId{};
   };
   // Standing, the torso's bottom face is at pos: its centre 0.29 m (half its height) above.
   EXPECT_NEAR(s.world.bodyPose(find("r.torso")).center.y, 2.0 + 0.29, 1e-9);

@@ -95,7 +95,7 @@ TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
   expectSameSettings(a, b, "ragdoll");
   EXPECT_EQ(copy.name, original.name);
   EXPECT_EQ(copy.description, original.description);
-  for (phys::BodyId id = 0; id < a.bodies().size(); ++id) {
+  for (phys::BodyId id{}; id < a.bodies().size(); ++id) {
     EXPECT_EQ(b.bodies()[id].name, a.bodies()[id].name);
     const phys::BodyPose pa = a.bodyPose(id), pb = b.bodyPose(id);
     EXPECT_LT(glm::length(pa.center - pb.center), 1e-3) << a.bodies()[id].name;
@@ -103,7 +103,7 @@ TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
     EXPECT_LT(glm::length(centreVelocity(a, id) - centreVelocity(b, id)), 1e-2) << a.bodies()[id].name;
   }
   // Spin too: each particle moves as it did, less what deformation the rigid fit drops.
-  for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
+  for (phys::ParticleId i{}; i < a.particles().size(); ++i) {
     EXPECT_LT(glm::length(a.velocity(i) - b.velocity(i)), 1e-2) << "particle " << i;
   }
   for (std::size_t k = 0; k < a.links().size(); ++k) {
@@ -117,7 +117,7 @@ TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
     original.world.step();
     copy.world.step();
   }
-  for (phys::BodyId id = 0; id < a.bodies().size(); ++id) {
+  for (phys::BodyId id{}; id < a.bodies().size(); ++id) {
     EXPECT_LT(glm::length(a.bodyPose(id).center - b.bodyPose(id).center), 0.01) << a.bodies()[id].name;
   }
 }
@@ -135,7 +135,7 @@ TEST(SceneWriter, EveryProjectSceneRoundTrips) {
     expectSameSettings(original.world, copy.world, what);
     EXPECT_EQ(copy.camera.eye, original.camera.eye) << what;
     EXPECT_EQ(copy.camera.target, original.camera.target) << what;
-    for (phys::BodyId id = 0; id < original.world.bodies().size(); ++id) {
+    for (phys::BodyId id{}; id < original.world.bodies().size(); ++id) {
       EXPECT_LT(glm::length(original.world.bodyPose(id).center - copy.world.bodyPose(id).center), 1e-3)
           << what;
     }
@@ -163,7 +163,7 @@ TEST(SceneWriter, SpinningBoxKeepsItsParticlesMotion) {
     const scenes::Scene copy = reload(original);
     const phys::World& a = original.world;
     const phys::World& b = copy.world;
-    for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
+    for (phys::ParticleId i{}; i < a.particles().size(); ++i) {
       EXPECT_LT(glm::length(a.particles().position[i] - b.particles().position[i]), 1e-3)
           << model << " " << i;
       EXPECT_LT(glm::length(a.velocity(i) - b.velocity(i)), 2e-3) << model << " " << i;
@@ -185,7 +185,7 @@ TEST(SceneWriter, LooseParticlesKeepTheirVerletStateToRoundOff) {
   const phys::World& a = original.world;
   const phys::World& b = copy.world;
   expectSameCounts(a, b, "particles");
-  for (phys::ParticleId i = 0; i < a.particles().size(); ++i) {
+  for (phys::ParticleId i{}; i < a.particles().size(); ++i) {
     EXPECT_EQ(a.particles().position[i], b.particles().position[i]) << i;
     EXPECT_LT(glm::length(a.velocity(i) - b.velocity(i)), 1e-12) << i;
     EXPECT_NEAR(a.particles().inverseMass[i], b.particles().inverseMass[i], 1e-15) << i;
@@ -293,7 +293,7 @@ TEST(SceneWriter, EveryBoxGetsAUniqueName) {
   EXPECT_EQ(copy.world.bodies()[3].name, "box 3");
   EXPECT_EQ(copy.world.bodies()[4].name, "box 0");
   EXPECT_EQ(copy.world.bodies()[0].name, "box 0 (2)");
-  EXPECT_EQ(copy.world.particleName(0), "box 1");
+  EXPECT_EQ(copy.world.particleName(phys::ParticleId{0}), "box 1");
 }
 
 TEST(SceneWriter, NamesWithMarkupAndLineBreaksComeBackUnchanged) {
@@ -332,7 +332,8 @@ TEST(SceneWriter, EulerAnglesReadBackAsTheSameOrientation) {
   EXPECT_NEAR(euler.x, 30.0, 1e-9);
   EXPECT_NEAR(euler.y, -50.0, 1e-9);
   EXPECT_NEAR(euler.z, 170.0, 1e-9);
-  EXPECT_LT(angleBetween(reload(scene).world.bodyPose(0).orientation, scene.world.bodyPose(0).orientation),
+  EXPECT_LT(angleBetween(reload(scene).world.bodyPose(phys::BodyId{0}).orientation,
+                         scene.world.bodyPose(phys::BodyId{0}).orientation),
             1e-9);
 
   // Out of range and at or near gimbal lock the angles differ, but the orientation does not.
@@ -343,7 +344,9 @@ TEST(SceneWriter, EulerAnglesReadBackAsTheSameOrientation) {
     EXPECT_LE(std::abs(e.y), 90.0) << angles;
     EXPECT_LE(std::abs(e.x), 180.0) << angles;
     EXPECT_LE(std::abs(e.z), 180.0) << angles;
-    EXPECT_LT(angleBetween(reload(s).world.bodyPose(0).orientation, s.world.bodyPose(0).orientation), 1e-9)
+    EXPECT_LT(angleBetween(reload(s).world.bodyPose(phys::BodyId{0}).orientation,
+                           s.world.bodyPose(phys::BodyId{0}).orientation),
+              1e-9)
         << angles;
   }
 }
@@ -352,14 +355,15 @@ TEST(SceneWriter, EulerAnglesTurnAboutWorldXThenYThenZ) {
   // Local +y turned 90 degrees about x points along +z; then 90 about y takes +z to +x. Taken in
   // the other order (y first) it would end along +z.
   const scenes::Scene s = load("<box pos=\"0 0 0\" euler=\"90 90 0\"/>");
-  const Vec3 up = s.world.bodyPose(0).orientation * Vec3(0.0, 1.0, 0.0);
+  const Vec3 up = s.world.bodyPose(phys::BodyId{0}).orientation * Vec3(0.0, 1.0, 0.0);
   EXPECT_LT(glm::length(up - Vec3(1.0, 0.0, 0.0)), 1e-12);
   EXPECT_LT(glm::length(writtenEuler(s) - Vec3(90.0, 90.0, 0.0)), 1e-6);  // at gimbal lock: x + z kept
 }
 
 TEST(SceneWriter, UnrepresentableWorldIsRefusedByName) {
   scenes::Scene scene = load("<particle name=\"p\" pos=\"0 3 0\"/><box pos=\"0 1 0\"/>");
-  scene.world.addStick(0, 1);  // from a loose particle to a box's corner: no element says that
+  scene.world.addStick(phys::ParticleId{0},
+                       phys::ParticleId{1});  // from a loose particle to a box's corner: no element says that
   EXPECT_THROW(scenes::writeSceneXml(scene), std::invalid_argument);
 }
 
@@ -543,7 +547,7 @@ TEST(SceneWriter, AWorldThatCannotBeSavedLeavesTheOldFile) {
   const fs::path file = folder.path() / "scene.xml";
   std::ofstream(file) << "old";
   scenes::Scene scene = load("<particle name=\"p\" pos=\"0 3 0\"/><box pos=\"0 1 0\"/>");
-  scene.world.addStick(0, 1);
+  scene.world.addStick(phys::ParticleId{0}, phys::ParticleId{1});
   expectSaveError(scene, file, "cannot save this world");
   EXPECT_EQ(readFile(file), "old");
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"scene.xml"});

@@ -184,7 +184,7 @@ TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
   sandbox::Session s = open("falling-box");
   for (int i = 0; i < 120; ++i) s.step();  // landed
   const phys::World& w = s.scene().world;
-  const phys::Vec3 centre = w.bodyPose(0).center;
+  const phys::Vec3 centre = w.bodyPose(phys::BodyId{0}).center;
   EXPECT_FALSE(s.pick(phys::Vec3(0, 10, 0), phys::Vec3(0, 1, 0)));  // straight up: nothing
   const phys::Vec3 eye = centre + phys::Vec3(0, 0, 5);
   const phys::Vec3 view = glm::normalize(centre - eye);
@@ -195,7 +195,7 @@ TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
   // Pull the cursor up 1 m: the ray through a point 1 m above the picked one.
   s.dragAlong(eye, glm::normalize(centre + phys::Vec3(0, 1, 0) - eye));
   for (int i = 0; i < 120; ++i) s.step();
-  EXPECT_GT(w.bodyPose(0).center.y, centre.y + 0.15);  // lifted off the ground
+  EXPECT_GT(w.bodyPose(phys::BodyId{0}).center.y, centre.y + 0.15);  // lifted off the ground
   const auto line = s.dragLine();
   ASSERT_TRUE(line.has_value());
   // An 8 kg box on the 2000 N/m spring hangs 4 cm below it, plus what is left of the swing.
@@ -262,7 +262,7 @@ TEST(Session, OverlayRunsWithAnotherDtKeepTheMainRunsClock) {
 
 TEST(Session, StartingTheOverlayLetsGoOfADrag) {
   sandbox::Session s = open("falling-box");
-  const phys::Vec3 centre = s.scene().world.bodyPose(0).center;
+  const phys::Vec3 centre = s.scene().world.bodyPose(phys::BodyId{0}).center;
   ASSERT_TRUE(s.pick(centre + phys::Vec3(0, 0, 5), phys::Vec3(0, 0, -1)));
   const std::vector<sandbox::OverlaySpec> specs{sandbox::parseOverlaySpec("iterations=2").spec,
                                                 sandbox::parseOverlaySpec("iterations=4").spec};
@@ -278,7 +278,7 @@ TEST(Session, StartingTheOverlayLetsGoOfADrag) {
 TEST(Session, ARefusedOverlayChangesNothingNotEvenTheDrag) {
   sandbox::Session s = open("falling-box");
   for (int i = 0; i < 60; ++i) s.step();
-  const phys::Vec3 centre = s.scene().world.bodyPose(0).center;
+  const phys::Vec3 centre = s.scene().world.bodyPose(phys::BodyId{0}).center;
   ASSERT_TRUE(s.pick(centre + phys::Vec3(0, 0, 5), phys::Vec3(0, 0, -1)));
   std::vector<sandbox::OverlaySpec> specs{sandbox::parseOverlaySpec("iterations=2").spec,
                                           sandbox::parseOverlaySpec("iterations=4").spec};
@@ -325,9 +325,9 @@ TEST(Session, SaveAsWritesAWorldThatOpensAgainAndABadPathKeepsEverything) {
   camera.eye = {1, 2, 3};
   ASSERT_EQ(s.saveAs(file, camera), "");
   EXPECT_EQ(s.file(), file);  // the saved file is the current one: Reload reads it
-  const phys::Vec3 torso = s.scene().world.bodyPose(1).center;
+  const phys::Vec3 torso = s.scene().world.bodyPose(phys::BodyId{1}).center;
   ASSERT_EQ(s.reload(), "");
-  EXPECT_NEAR(glm::length(s.scene().world.bodyPose(1).center - torso), 0.0, 1e-3);
+  EXPECT_NEAR(glm::length(s.scene().world.bodyPose(phys::BodyId{1}).center - torso), 0.0, 1e-3);
   EXPECT_EQ(s.scene().camera.eye, glm::vec3(1, 2, 3));
 
   // A folder that does not exist: the message says why, nothing is written, the file stays.

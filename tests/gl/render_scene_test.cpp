@@ -53,8 +53,8 @@ const Rendered& renderedFallingBox() {
 
 // The box with the largest volume: the one most surely visible.
 phys::BodyId largestBox(const phys::World& w) {
-  phys::BodyId best = 0;
-  for (phys::BodyId i = 1; i < w.bodies().size(); ++i) {
+  phys::BodyId best{};
+  for (phys::BodyId i{1}; i < w.bodies().size(); ++i) {
     const phys::Vec3 a = w.bodies()[i].halfExtents, b = w.bodies()[best].halfExtents;
     if (a.x * a.y * a.z > b.x * b.y * b.z) best = i;
   }

@@ -51,7 +51,7 @@ TEST(SandboxModes, EveryProjectSceneLoadsAndRenders) {
     const phys::World& w = scene.world;
     std::vector<glm::vec3> centres;
     std::vector<bool> inBox(w.particles().size(), false);
-    for (phys::BodyId id = 0; id < w.bodies().size(); ++id) {
+    for (phys::BodyId id{}; id < w.bodies().size(); ++id) {
       centres.emplace_back(w.bodyPose(id).center);
       for (int k = 0; k < w.bodies()[id].particleCount; ++k) inBox[w.bodies()[id].firstParticle + k] = true;
     }
@@ -117,8 +117,10 @@ TEST(SandboxModes, TheOverlayDrawsEveryRunInItsOwnColour) {
   const scenes::Scene resting = run(0.0);
   const scenes::Scene bouncing = run(0.8);
   const auto camera = startCamera(resting);
-  const glm::ivec2 a = testing_gl::toPixel(image, camera, glm::vec3(resting.world.bodyPose(0).center));
-  const glm::ivec2 b = testing_gl::toPixel(image, camera, glm::vec3(bouncing.world.bodyPose(0).center));
+  const glm::ivec2 a =
+      testing_gl::toPixel(image, camera, glm::vec3(resting.world.bodyPose(phys::BodyId{0}).center));
+  const glm::ivec2 b =
+      testing_gl::toPixel(image, camera, glm::vec3(bouncing.world.bodyPose(phys::BodyId{0}).center));
   ASSERT_GT(std::abs(a.y - b.y), 40) << "the two runs' boxes should be apart on screen";
   // Run 0 is tinted orange (red over blue), run 1 blue (blue over red), both translucent.
   auto tint = [&](glm::ivec2 at) { return int(image.pixel(at.x, at.y).r) - int(image.pixel(at.x, at.y).b); };
@@ -132,7 +134,8 @@ TEST(SandboxModes, PauseAtStopsTheWorldAtThatStep) {
   const scenes::Scene at40 = stepped("falling-box", 40);
   const auto camera = startCamera(at10);
   auto boxAt = [&](const scenes::Scene& s) {
-    const glm::ivec2 px = testing_gl::toPixel(image, camera, glm::vec3(s.world.bodyPose(0).center));
+    const glm::ivec2 px =
+        testing_gl::toPixel(image, camera, glm::vec3(s.world.bodyPose(phys::BodyId{0}).center));
     const glm::u8vec4 p = image.pixel(px.x, px.y);
     return sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b);
   };

@@ -118,7 +118,7 @@ TEST(LabReport, SummaryNamesStagesFreezesAndHash) {
   r.stageSums.total = 100.0;  // 78 in the stages, 22 left over
   r.medianStepMs = 8.0;
   r.final.frozen = 1;
-  r.freezes.push_back({"runaway", "left the world bound of 10 m", 0, 0.25});
+  r.freezes.push_back({"runaway", "left the world bound of 10 m", phys::ParticleId{0}, 0.25});
   const std::string s = lab::summaryText(r);
   for (const char* part :
        {"median 8 ms", "integrate     1 ms (1%)", "frames        2 ms", "broad-phase   3 ms",

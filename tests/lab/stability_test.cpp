@@ -305,7 +305,7 @@ TEST(StabilityJudge, APeersFlipsAreCountedFromItsOrientations) {
   const std::size_t flips = 0;
   ASSERT_EQ(s.criteria.at(flips).metric, lab::stability::Metric::Flips);
   const phys::Vec3 centre = lab::bodyPositions(scene.world).at(0);
-  const phys::Quat start = scene.world.bodyPose(0).orientation;
+  const phys::Quat start = scene.world.bodyPose(phys::BodyId{0}).orientation;
   auto run = [&](auto angleAt) {
     std::vector<std::vector<phys::Vec3>> positions;
     std::vector<std::vector<phys::Quat>> orientations;

@@ -15,7 +15,7 @@ using testing_phys::angleBetween;
 
 double maxSpeed(const phys::World& world) {
   double v = 0.0;
-  for (phys::ParticleId i = 0; i < world.particles().size(); ++i)
+  for (phys::ParticleId i{}; i < world.particles().size(); ++i)
     v = std::max(v, glm::length(world.velocity(i)));
   return v;
 }
@@ -106,7 +106,7 @@ Incline onIncline(BodyModel model, double mu) {
   desc.center = ws.groundNormal * 0.5;
   world.addBody(desc);
   const Vec3 downhill = -Vec3(std::cos(angle), std::sin(angle), 0.0);
-  auto along = [&] { return glm::dot(world.bodyPose(0).center - desc.center, downhill); };
+  auto along = [&] { return glm::dot(world.bodyPose(phys::BodyId{0}).center - desc.center, downhill); };
   std::vector<double> s;  // position along the slope at t = 1, 1.5, 2 s
   for (int i = 1; i <= 600; ++i) {
     world.step();
@@ -169,7 +169,7 @@ TEST_P(BoxModels, SpinningFreeBoxKeepsItsShape) {
   world.addBody(desc);
   for (int i = 0; i < 600; ++i) world.step();
   EXPECT_LT(world.metrics().maxConstraintError, 1e-3);
-  EXPECT_LT(glm::length(world.bodyPose(0).center), 1e-9);  // the centre of mass stays put
+  EXPECT_LT(glm::length(world.bodyPose(phys::BodyId{0}).center), 1e-9);  // the centre of mass stays put
 }
 
 INSTANTIATE_TEST_SUITE_P(BothModels, BoxModels, ::testing::Values(BodyModel::Corners, BodyModel::Tetra),

@@ -98,13 +98,13 @@ TEST(BroadPhase, IgnoredPairsAreDroppedWhenSetAndOnlyThose) {
     box.center = {0.99 * i, 0.5, 0.0};  // a row of touching boxes: pairs 0-1, 1-2, 2-3
     world.addBody(box);
   }
-  world.ignoreCollision(1, 0);
+  world.ignoreCollision(phys::BodyId{1}, phys::BodyId{0});
   world.step();
   EXPECT_EQ(world.broadPhasePairs(), 2u);
-  world.ignoreCollision(2, 3);
+  world.ignoreCollision(phys::BodyId{2}, phys::BodyId{3});
   world.step();
   EXPECT_EQ(world.broadPhasePairs(), 1u);
-  world.ignoreCollision(0, 3);  // apart: nothing more to drop
+  world.ignoreCollision(phys::BodyId{0}, phys::BodyId{3});  // apart: nothing more to drop
   world.step();
   EXPECT_EQ(world.broadPhasePairs(), 1u);
 }
@@ -164,7 +164,7 @@ TEST(BroadPhase, FindsPairsOnlyWhenUpdatedAndSaysWhenItMust) {
   EXPECT_EQ(broad.pairs()[0], std::make_pair(phys::BodyId{0}, phys::BodyId{1}));
   EXPECT_EQ(broad.pairs()[1], std::make_pair(phys::BodyId{1}, phys::BodyId{2}));
   EXPECT_FALSE(broad.needsUpdate(world.bodyFrames()));
-  broad.ignore(2, 1);
+  broad.ignore(phys::BodyId{2}, phys::BodyId{1});
   EXPECT_TRUE(broad.needsUpdate(world.bodyFrames()));  // stale: the filter changed
   broad.indexFilters();
   broad.update(world.particles(), world.bodies(), world.bodyFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});

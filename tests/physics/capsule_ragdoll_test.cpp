@@ -67,7 +67,7 @@ TEST(CapsuleRagdoll, IsBuiltAsBulletLaysItOut) {
   EXPECT_EQ(world.ignoredCollisions().size(), 10u);
   // The mass split evenly, as Bullet gives every part the same.
   double total = 0.0, pelvisMass = 0.0;
-  for (phys::ParticleId i = 0; i < world.particles().size(); ++i)
+  for (phys::ParticleId i{}; i < world.particles().size(); ++i)
     total += 1.0 / world.particles().inverseMass[i];
   for (int j = 0; j < pelvis.particleCount; ++j)
     pelvisMass += 1.0 / world.particles().inverseMass[pelvis.firstParticle + j];
@@ -97,7 +97,7 @@ TEST(CapsuleRagdoll, FallsTumblesAndSettlesWithoutSliding) {
     EXPECT_LT(pelvis.y, 0.5) << "it lies on the ground";
     // Settled: no part moves faster than 2 cm/s, and the pelvis crept less than 5 mm in 2 s.
     double fastest = 0.0;
-    for (phys::ParticleId i = 0; i < world.particles().size(); ++i)
+    for (phys::ParticleId i{}; i < world.particles().size(); ++i)
       fastest = std::max(fastest, glm::length(world.velocity(i)));
     EXPECT_LT(fastest, 0.02) << phys::toString(model);
     const Vec3 creep = pelvis - pelvisAt6s;

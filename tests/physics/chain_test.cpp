@@ -21,7 +21,7 @@ struct Chain {
 };
 
 Chain hangingChain(const phys::SolverSettings& solver, int links, double linkLength, double endMass) {
-  Chain c{testing_phys::openSpace(solver), 0, links * linkLength};
+  Chain c{testing_phys::openSpace(solver), phys::ParticleId{}, links * linkLength};
   phys::ParticleId previous = c.world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
   for (int i = 1; i <= links; ++i) {
     const auto p =

@@ -68,10 +68,10 @@ TEST(Momentum, EveryMethodKeepsTheMomentumOfAFreeNetwork) {
     for (int i = 0; i < 5; ++i) world.addParticle({positions[i], velocities[i], masses[i]});
     const int pairs[][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2},
                             {1, 4}, {2, 4}, {3, 4}};  // particle 4 has 3 sticks, 0 has 3, 2 has 3
-    for (const auto& pair : pairs) world.addStick(pair[0], pair[1]);
+    for (const auto& pair : pairs) world.addStick(phys::ParticleId(pair[0]), phys::ParticleId(pair[1]));
     auto momentum = [&] {
       Vec3 sum(0.0);
-      for (phys::ParticleId i = 0; i < 5; ++i) sum += world.velocity(i) / world.particles().inverseMass[i];
+      for (phys::ParticleId i{}; i < 5; ++i) sum += world.velocity(i) / world.particles().inverseMass[i];
       return sum;
     };
     const Vec3 before = momentum();
@@ -154,7 +154,7 @@ TEST(Validation, RejectedInputChangesNothing) {
   EXPECT_THROW(world.addBody(box), std::invalid_argument);
   EXPECT_EQ(world.particles().size(), 0u);  // nothing half-added
   EXPECT_TRUE(world.bodies().empty());
-  EXPECT_THROW(world.addStick(0, 1), std::invalid_argument);
+  EXPECT_THROW(world.addStick(phys::ParticleId{0}, phys::ParticleId{1}), std::invalid_argument);
   const auto a = world.addParticle({Vec3(0.0)});
   const auto b = world.addParticle({Vec3(1.0)});
   EXPECT_THROW(world.addStick(a, b, -1.0, 0.0), std::invalid_argument);

@@ -169,7 +169,7 @@ TEST(Drag, PinnedParticlesDoNotMove) {
   for (int i = 0; i < 30; ++i) world.step();
   EXPECT_EQ(world.particles().position[pinned], Vec3(0.0));
   phys::Embedding both;
-  both.particle = {pinned, loose, 0, 0};
+  both.particle = {pinned, loose, phys::ParticleId{}, phys::ParticleId{}};
   both.weight = {0.5, 0.5, 0.0, 0.0};
   both.count = 2;
   world.setDrag(dragOf(both, Vec3(0.5, 0.0, 0.0)));
@@ -198,7 +198,7 @@ TEST(Drag, BadInputThrowsAndKeepsTheOldDrag) {
   bad.point.count = 5;
   EXPECT_THROW(world.setDrag(bad), std::invalid_argument);
   bad = good;
-  bad.point.particle[0] = 7;  // no such particle
+  bad.point.particle[0] = phys::ParticleId{7};  // no such particle
   EXPECT_THROW(world.setDrag(bad), std::invalid_argument);
   bad = good;
   bad.point.weight[0] = 0.5;  // weights must sum to 1

@@ -112,13 +112,13 @@ StepChangeRun restingBoxThenChange(phys::SolverSettings (*change)(phys::SolverSe
   box.center = {0.0, 0.5, 0.0};
   world.addBody(box);
   for (int i = 0; i < 60; ++i) world.step();
-  StepChangeRun r{world.bodyPose(0).center.y, 0.0, 0.0, 0.0};
+  StepChangeRun r{world.bodyPose(phys::BodyId{0}).center.y, 0.0, 0.0, 0.0};
   world.setSolverSettings(change(world.solverSettings()));
   for (int i = 0; i < steps; ++i) {
     world.step();
-    r.highest = std::max(r.highest, world.bodyPose(0).center.y);
+    r.highest = std::max(r.highest, world.bodyPose(phys::BodyId{0}).center.y);
   }
-  r.after = world.bodyPose(0).center.y;
+  r.after = world.bodyPose(phys::BodyId{0}).center.y;
   r.speed = world.metrics().maxSpeed;
   return r;
 }

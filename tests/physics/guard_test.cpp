@@ -35,7 +35,7 @@ TEST(Guard, BoxLeavingTheBoundIsFrozenAndReportedByName) {
   EXPECT_NE(reported[0].reason.find("bound"), std::string::npos) << reported[0].reason;
   EXPECT_EQ(world.freezes().size(), 1u);
   EXPECT_EQ(world.metrics().frozen, 8);  // the whole box, not just the first corner
-  const phys::BodyPose pose = world.bodyPose(0);
+  const phys::BodyPose pose = world.bodyPose(phys::BodyId{0});
   EXPECT_LE(pose.center.x, 110.0);  // stopped where it was caught, not flying on
   // The bystander fell freely all along: 1 s of free fall.
   EXPECT_NEAR(world.particles().position[bystander].y, -0.5 * 9.81, 1e-9);
@@ -98,7 +98,7 @@ TEST(Guard, PinnedEndOfANaNStickIsNeverWritten) {
     p.inverseMass = {0.0, 1.0};
     return p;
   };
-  const std::vector<phys::Stick> sticks{{0, 1, 1.0, 1.0, 0.0}};
+  const std::vector<phys::Stick> sticks{{phys::ParticleId{0}, phys::ParticleId{1}, 1.0, 1.0, 0.0}};
   std::vector<double> lambda(1, 0.0), degree{1.0, 1.0};
   std::vector<Vec3> delta(2, Vec3(0.0));
   const phys::StickLayout layout = phys::StickLayout::inOrder(sticks.size());
@@ -116,7 +116,7 @@ TEST(Guard, PinnedEndOfANaNStickIsNeverWritten) {
   EXPECT_EQ(p.position[0], Vec3(0.0)) << "shake";
   p = fresh();
   phys::Embedding both;
-  both.particle = {0, 1, 0, 0};
+  both.particle = {phys::ParticleId{0}, phys::ParticleId{1}, phys::ParticleId{}, phys::ParticleId{}};
   both.weight = {0.5, 0.5, 0.0, 0.0};
   both.count = 2;
   phys::detail::moveEmbedded(p.position, p.inverseMass, both, Vec3(nan));
@@ -154,7 +154,7 @@ TEST(Guard, ABoxCrushedByHugeGravityIsFrozenAndReported) {
       EXPECT_EQ(world.particles().position[j], last[j]) << phys::toString(model) << " particle " << j;
       EXPECT_EQ(world.particles().previous[j], last[j]);  // at rest
     }
-    const phys::BodyPose pose = world.bodyPose(0);
+    const phys::BodyPose pose = world.bodyPose(phys::BodyId{0});
     EXPECT_TRUE(phys::finite(pose.center) && std::isfinite(glm::length(pose.orientation)));
   }
 }
@@ -208,7 +208,7 @@ TEST(Guard, ABoxLeavingTheBoundIsFrozenAtItsLastPlaceInside) {
   for (int i = 0; i < 5; ++i) world.step();
   ASSERT_EQ(world.freezes().size(), 1u);
   EXPECT_NEAR(world.freezes()[0].time, 2.0 / 60.0, 1e-12);  // caught at 105, in the second step
-  EXPECT_NEAR(world.bodyPose(0).center.x, 95.0, 1e-9);
+  EXPECT_NEAR(world.bodyPose(phys::BodyId{0}).center.x, 95.0, 1e-9);
   for (int j = 0; j < 8; ++j) {
     EXPECT_LE(world.particles().position[j].x, 100.0);
     EXPECT_EQ(world.particles().position[j], world.particles().previous[j]);  // at rest

@@ -109,12 +109,12 @@ TEST(Links, BadInputIsRefusedAndNothingIsAdded) {
   phys::Embedding badWeights = good;
   badWeights.weight[0] += 0.1;  // no longer sums to 1
   phys::Embedding badId = good;
-  badId.particle[1] = 9999;
+  badId.particle[1] = phys::ParticleId{9999};
   EXPECT_THROW(w.addLink(good, badWeights), std::invalid_argument);
   EXPECT_THROW(w.addLink(good, badId), std::invalid_argument);
   EXPECT_THROW(w.addLink(good, good, 0.5, 0.2), std::invalid_argument);
   EXPECT_THROW(w.addLink(good, good, -1.0, 1.0), std::invalid_argument);
-  EXPECT_THROW((void)w.anchor(7, Vec3(0.0)), std::invalid_argument);
+  EXPECT_THROW((void)w.anchor(phys::BodyId{7}, Vec3(0.0)), std::invalid_argument);
   EXPECT_TRUE(w.links().empty());
 }
 
@@ -186,7 +186,7 @@ TEST(BodyDamping, AKnockedBoxDoesNotRing) {
     w.step();
     w.step();
     double internal = 0.0;
-    for (phys::ParticleId i = 0; i < 8; ++i) {
+    for (phys::ParticleId i{}; i < 8; ++i) {
       for (phys::ParticleId j = i + 1; j < 8; ++j) {
         const Vec3 r = w.particles().position[j] - w.particles().position[i];
         internal = std::max(internal, std::abs(glm::dot(r, w.velocity(j) - w.velocity(i))) / glm::length(r));

@@ -123,7 +123,7 @@ TEST(LinkLayout, ALinkAddedLaterRebuildsTheLayout) {
   }
   const phys::ParticleId hook = world.addParticle({Vec3(0.0, 3.0, 0.0), Vec3(0.0), 0.0, true});
   world.step();
-  const phys::BodyId pelvis = 0;
+  const phys::BodyId pelvis{};
   world.addLink(phys::embedParticle(hook), world.anchor(pelvis, world.particles().position[hook]), 0.0, 0.0);
   for (int i = 0; i < 30; ++i) world.step();
   // Hung from the hook by a pin, the first ragdoll stays there, the pin stretched by about 1 cm

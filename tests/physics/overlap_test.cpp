@@ -119,12 +119,13 @@ TEST(Overlap, ABoxSpawnedIntoARestingBoxDoesNotDriveItIntoTheGround) {
     std::printf(
         "a box 25%% into a resting box, %d x %d: fastest %.3f m/s, upper box at %.4f m (placed "
         "touching: %.4f m)\n",
-        s.iterations, s.substeps, r.fastest, spawned.bodyPose(1).center.y, placed.bodyPose(1).center.y);
+        s.iterations, s.substeps, r.fastest, spawned.bodyPose(phys::BodyId{1}).center.y,
+        placed.bodyPose(phys::BodyId{1}).center.y);
     EXPECT_LT(r.fastest, 1.0) << s.iterations << " x " << s.substeps;
     EXPECT_LT(r.deepest, 0.005) << s.iterations << " x " << s.substeps;
-    EXPECT_NEAR(spawned.bodyPose(1).center.y, placed.bodyPose(1).center.y, 0.002)
+    EXPECT_NEAR(spawned.bodyPose(phys::BodyId{1}).center.y, placed.bodyPose(phys::BodyId{1}).center.y, 0.002)
         << s.iterations << " x " << s.substeps;
-    EXPECT_NEAR(spawned.bodyPose(0).center.y, placed.bodyPose(0).center.y, 0.002)
+    EXPECT_NEAR(spawned.bodyPose(phys::BodyId{0}).center.y, placed.bodyPose(phys::BodyId{0}).center.y, 0.002)
         << s.iterations << " x " << s.substeps;
   }
 }
@@ -225,7 +226,7 @@ TEST(Overlap, AContactThatClosesWithinTheStepIsThereWhenItDoes) {
     // Face to face, from the corners (particles 0-7 and 8-15; bit 1 of a corner's index is +y):
     // the box is squashed by the landing, so its centre says less.
     double top = -kInfinity, bottom = kInfinity;
-    for (phys::ParticleId k = 0; k < 8; ++k) {
+    for (phys::ParticleId k{}; k < 8; ++k) {
       if ((k & 2) != 0) top = std::max(top, w.particles().position[k].y);
       if ((k & 2) == 0) bottom = std::min(bottom, w.particles().position[8 + k].y);
     }
@@ -252,7 +253,7 @@ TEST(Overlap, JointedBodiesArePartedWholeSoTheirJointsDoNotFightIt) {
     ASSERT_GT(world.bodyContacts().size(), 0u) << "the hands touch";
     for (int i = 0; i < 2; ++i) world.step();
     double fastest = 0.0;
-    for (phys::ParticleId p = 0; p < world.particles().size(); ++p)
+    for (phys::ParticleId p{}; p < world.particles().size(); ++p)
       fastest = std::max(fastest, glm::length(world.velocity(p)));
     EXPECT_LT(fastest, 0.1) << substeps << " substeps";
     EXPECT_LT(world.metrics().maxPenetration, 2e-3) << substeps << " substeps";
@@ -273,9 +274,9 @@ TEST(Overlap, ThePartingSweepsAreTheSettingsOnes) {
     addBody(w, {0.0, 0.0, 0.0});
     addBody(w, {0.75, 0.0, 0.0});
     w.step();
-    const double gap = w.bodyPose(1).center.x - w.bodyPose(0).center.x - 1.0;
+    const double gap = w.bodyPose(phys::BodyId{1}).center.x - w.bodyPose(phys::BodyId{0}).center.x - 1.0;
     double fastest = 0.0;
-    for (phys::ParticleId p = 0; p < w.particles().size(); ++p)
+    for (phys::ParticleId p{}; p < w.particles().size(); ++p)
       fastest = std::max(fastest, glm::length(w.velocity(p)));
     EXPECT_LT(fastest, 3.0 + 1e-9);
     return -gap;

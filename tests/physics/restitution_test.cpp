@@ -43,7 +43,7 @@ double reboundHeight(phys::World& world, Height height, double rest, double cont
 
 double maxSpeed(const phys::World& world) {
   double v = 0.0;
-  for (phys::ParticleId i = 0; i < world.particles().size(); ++i)
+  for (phys::ParticleId i{}; i < world.particles().size(); ++i)
     v = std::max(v, glm::length(world.velocity(i)));
   return v;
 }
@@ -182,7 +182,7 @@ TEST(Restitution, FullRestitutionOnAPileStaysFinite) {
   ragdoll.hips = {0.0, 11.0, 0.0};
   phys::addRagdoll(world, ragdoll);
   while (world.time() < 5.0) world.step();
-  for (phys::ParticleId i = 0; i < world.particles().size(); ++i) {
+  for (phys::ParticleId i{}; i < world.particles().size(); ++i) {
     EXPECT_TRUE(phys::finite(world.particles().position[i]) && phys::finite(world.particles().previous[i]))
         << i;
   }

@@ -116,7 +116,7 @@ TEST(Xpbd, ZeroComplianceIsGaussSeidel) {
     return world;
   };
   const phys::World xpbd = chain(SolverMethod::Xpbd), jakobsen = chain(SolverMethod::GaussSeidel);
-  for (phys::ParticleId i = 0; i < xpbd.particles().size(); ++i) {
+  for (phys::ParticleId i{}; i < xpbd.particles().size(); ++i) {
     EXPECT_LT(glm::length(xpbd.particles().position[i] - jakobsen.particles().position[i]), 1e-9) << i;
   }
   EXPECT_GT(xpbd.metrics().maxConstraintError, 0.0);  // not trivially exact: 3 passes on 8 links

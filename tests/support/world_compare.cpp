@@ -25,7 +25,6 @@ constexpr Real kEpsilon = std::numeric_limits<Real>::epsilon();
 // Keeps a tolerance of a body at the origin with a tiny size above zero, so a difference that
 // is round-off in the last subnormal bit is not reported.
 constexpr Real kFloor = std::numeric_limits<Real>::denorm_min();
-constexpr std::int32_t kLoose = -1;
 
 // Numbers as the scene files print them (shortest text that reads back as the same double), so
 // a message can be pasted into a file.
@@ -175,7 +174,7 @@ class Comparison {
       if (!(d = box(b)).empty()) return d;
     }
     for (std::size_t p = 0; p < s_.particles().size(); ++p) {
-      if (owner_[p] == kLoose && !(d = particle(p)).empty()) return d;
+      if (owner_[p] == phys::kNoBody && !(d = particle(p)).empty()) return d;
     }
     for (std::size_t k = 0; k < s_.sticks().size(); ++k) {
       if (!(d = stick(k)).empty()) return d;
@@ -397,7 +396,7 @@ class Comparison {
              " when reloaded";
     }
     if (a.compliance != b.compliance) return unequal(who() + ": compliance", a.compliance, b.compliance);
-    if (owner_[a.a] == kLoose) {
+    if (owner_[a.a] == phys::kNoBody) {
       // A <stick> holds its length, min and max as written: exact (kNoMaxLength is infinity).
       if (a.minLength != b.minLength) return unequal(who() + ": min length", a.minLength, b.minLength);
       if (a.maxLength != b.maxLength) return unequal(who() + ": max length", a.maxLength, b.maxLength);
@@ -432,8 +431,8 @@ class Comparison {
   template <typename What>
   std::string point(const What& what, const phys::Embedding& saved, const phys::Embedding& reloaded) const {
     const Vec3 p = s_.position(saved), q = r_.position(reloaded);
-    const std::int32_t body = owner_[saved.particle[0]];
-    if (body == kLoose) return p == q ? std::string() : unequal(what(), p, q);
+    const phys::BodyId body = owner_[saved.particle[0]];
+    if (body == phys::kNoBody) return p == q ? std::string() : unequal(what(), p, q);
     const Rigid& was = savedRigid_[static_cast<std::size_t>(body)];
     const Real lever = glm::length(p - was.pose.center);
     const Real tolerance = tol_.relative * (was.scale + glm::length(p)) *
@@ -444,13 +443,14 @@ class Comparison {
 
   // The body an end is carried by: a box (>= 0) or a loose particle (-2 - its id).
   std::int64_t endBody(const phys::Embedding& e) const {
-    const std::int32_t body = owner_[e.particle[0]];
-    return body == kLoose ? -2 - static_cast<std::int64_t>(e.particle[0]) : body;
+    const phys::BodyId body = owner_[e.particle[0]];
+    return body == phys::kNoBody ? -2 - static_cast<std::int64_t>(e.particle[0]) : std::int64_t{body};
   }
 
   std::string endLabel(const phys::Embedding& e) const {
-    const std::int32_t body = owner_[e.particle[0]];
-    return body == kLoose ? particleLabel(s_, e.particle[0]) : boxLabel(s_, static_cast<std::size_t>(body));
+    const phys::BodyId body = owner_[e.particle[0]];
+    return body == phys::kNoBody ? particleLabel(s_, e.particle[0])
+                                 : boxLabel(s_, static_cast<std::size_t>(body));
   }
 
   std::string noCollision() const {
@@ -470,7 +470,7 @@ class Comparison {
   const phys::World& r_;
   const Tolerance& tol_;
   const Real h_;                         // the substep (s), the same in both once the settings agree
-  std::span<const std::int32_t> owner_;  // the saved world's World::particleBodies()
+  std::span<const phys::BodyId> owner_;  // the saved world's World::particleBodies()
   std::vector<Rigid> savedRigid_;        // per box of the saved world
 };
 

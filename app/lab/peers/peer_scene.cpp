@@ -71,7 +71,7 @@ Description describe(const scenes::Scene& scene) {
   // Which body each particle belongs to, in bodies.h order: boxes by id, then loose particles.
   std::vector<int> owner(particles.size(), -1);
   const auto boxes = world.bodies();
-  for (phys::BodyId id = 0; id < boxes.size(); ++id) {
+  for (phys::BodyId id{}; id < boxes.size(); ++id) {
     const phys::Body& box = boxes[id];
     const phys::BodyPose pose = world.bodyPose(id);
     Body body;
@@ -98,7 +98,7 @@ Description describe(const scenes::Scene& scene) {
     glm::dmat3 inertiaWorld(0.0);
     Vec3 angularMomentum(0.0);
     for (int k = 0; k < box.particleCount; ++k) {
-      const phys::ParticleId p = box.firstParticle + static_cast<phys::ParticleId>(k);
+      const phys::ParticleId p = box.firstParticle + k;
       owner[p] = static_cast<int>(id);
       const double w = particles.inverseMass[p];
       if (w == 0.0) {
@@ -115,7 +115,7 @@ Description describe(const scenes::Scene& scene) {
     if (!body.fixed && body.mass > 0.0) {
       body.velocity = momentum / body.mass;
       for (int k = 0; k < box.particleCount; ++k) {
-        const phys::ParticleId p = box.firstParticle + static_cast<phys::ParticleId>(k);
+        const phys::ParticleId p = box.firstParticle + k;
         const double m = 1.0 / particles.inverseMass[p];
         const Vec3 r = particles.position[p] - body.centre;
         angularMomentum += m * glm::cross(r, particleVelocity(world, p) - body.velocity);

@@ -178,7 +178,7 @@ void generateChain(ElementReader& e, BuildContext& ctx) {
   if (directionLength < 1e-9) e.fail("direction", "must not be zero");
   direction /= directionLength;
   e.rejectUnknownAttributes();
-  phys::ParticleId previous = 0;
+  phys::ParticleId previous{};
   for (long i = 0; i <= links; ++i) {
     phys::ParticleDesc p;
     p.position = pos + direction * (length * static_cast<double>(i));

@@ -211,7 +211,7 @@ class Builder {
     if (it == byName_.end() || scene_.bodies[it->second].kind != NamedBody::Kind::Particle) {
       e.fail(attribute, "'" + name + "' is not the name of a particle defined above");
     }
-    return scene_.bodies[it->second].index;
+    return scene_.bodies[it->second].particle();
   }
 
   // A body that a <link> or <no-collision> names: defined above it, and of an allowed kind.
@@ -322,9 +322,9 @@ class Builder {
   }
 
   phys::Embedding embed(const NamedBody& body, const phys::Vec3& point) const {
-    if (body.kind == NamedBody::Kind::Body) return scene_.world.anchor(body.index, point);
+    if (body.kind == NamedBody::Kind::Body) return scene_.world.anchor(body.body(), point);
     phys::Embedding self;
-    self.particle[0] = body.index;
+    self.particle[0] = body.particle();
     self.weight[0] = 1.0;
     self.count = 1;
     return self;
@@ -335,7 +335,7 @@ class Builder {
     const NamedBody& b = bodyNamed(e, "b", false);
     if (a.index == b.index) e.fail("b", "must name a different box from a");
     e.rejectUnknownAttributes();
-    scene_.world.ignoreCollision(a.index, b.index);
+    scene_.world.ignoreCollision(a.body(), b.body());
   }
 
   Scene& scene_;

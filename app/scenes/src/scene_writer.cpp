@@ -26,8 +26,6 @@ namespace {
 
 using detail::ElementWriter;
 
-constexpr std::int32_t kLoose = -1;  // World::particleBodies() of a loose particle
-
 // One end of a link, as a <link> names it: a box, or a loose particle standing for itself.
 struct LinkEnd {
   bool isBox = true;
@@ -36,8 +34,8 @@ struct LinkEnd {
 
 // A link's end is carried by one box's particles (World::anchor) or is one loose particle;
 // an embedding spread over several bodies has no name in a scene file.
-LinkEnd linkEnd(const phys::Embedding& e, std::span<const std::int32_t> owner) {
-  const std::int32_t first = owner[e.particle[0]];
+LinkEnd linkEnd(const phys::Embedding& e, std::span<const phys::BodyId> owner) {
+  const phys::BodyId first = owner[e.particle[0]];
   for (int i = 1; i < e.count; ++i) {
     if (owner[e.particle[i]] != first) {
       throw std::invalid_argument(
@@ -45,7 +43,7 @@ LinkEnd linkEnd(const phys::Embedding& e, std::span<const std::int32_t> owner) {
           "of boxes and loose particles");
     }
   }
-  if (first != kLoose) return {true, static_cast<std::uint32_t>(first)};
+  if (first != phys::kNoBody) return {true, first};
   if (e.count != 1) {
     throw std::invalid_argument(
         "a link's end is carried by several loose particles; a <link> joins points of boxes "
@@ -60,12 +58,12 @@ LinkEnd linkEnd(const phys::Embedding& e, std::span<const std::int32_t> owner) {
 // or "particle N" after their index, with a count appended should that be taken too.
 class BodyNames {
  public:
-  BodyNames(const phys::World& world, std::span<const std::int32_t> owner,
+  BodyNames(const phys::World& world, std::span<const phys::BodyId> owner,
             const std::vector<bool>& referenced)
       : box_(world.bodies().size()), particle_(world.particles().size()) {
     const std::span<const phys::Body> boxes = world.bodies();
     for (std::size_t i = 0; i < particle_.size(); ++i) {
-      if (owner[i] == kLoose) {
+      if (owner[i] == phys::kNoBody) {
         keepOwn(particle_[i], world.particleName(static_cast<phys::ParticleId>(i)));
       } else if (boxes[owner[i]].firstParticle == i) {
         keepOwn(box_[owner[i]], boxes[owner[i]].name);
@@ -75,7 +73,7 @@ class BodyNames {
       if (box_[b].empty()) box_[b] = generated("box " + std::to_string(b));
     }
     for (std::size_t i = 0; i < particle_.size(); ++i) {
-      if (owner[i] == kLoose && referenced[i] && particle_[i].empty()) {
+      if (owner[i] == phys::kNoBody && referenced[i] && particle_[i].empty()) {
         particle_[i] = generated("particle " + std::to_string(i));
       }
     }
@@ -212,7 +210,7 @@ std::string stickElement(const phys::Stick& s, const BodyNames& names) {
   return e.empty();
 }
 
-std::string linkElement(const phys::World& world, const phys::Link& link, std::span<const std::int32_t> owner,
+std::string linkElement(const phys::World& world, const phys::Link& link, std::span<const phys::BodyId> owner,
                         const BodyNames& names) {
   const LinkEnd endA = linkEnd(link.a, owner), endB = linkEnd(link.b, owner);
   // The loader refuses a link from a body to itself (a box is rigid: such a link does nothing).
@@ -258,7 +256,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
                                 " particles; a scene file loads at most " +
                                 std::to_string(detail::kMaxParticles));
   }
-  const std::span<const std::int32_t> owner = world.particleBodies();
+  const std::span<const phys::BodyId> owner = world.particleBodies();
   // The physics takes any bound > 0; a file holds at most kMaxBound (the loader's limit).
   const double bound = world.worldSettings().bound;
   if (!(bound <= detail::kMaxBound)) {
@@ -269,9 +267,9 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   // The loader refuses a body beyond the bound (the bound was lowered under it at run time).
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (insideBound(particles.position[i], bound)) continue;
-    const std::string body =
-        owner[i] == kLoose ? "particle " + std::to_string(i)
-                           : "box " + std::to_string(owner[i]) + " '" + world.bodies()[owner[i]].name + "'";
+    const std::string body = owner[i] == phys::kNoBody ? "particle " + std::to_string(i)
+                                                       : "box " + std::to_string(owner[i]) + " '" +
+                                                             world.bodies()[owner[i]].name + "'";
     throw std::invalid_argument(body + " is beyond the world's bound of " + detail::formatNumber(bound) +
                                 " m, where a scene file places nothing");
   }
@@ -280,11 +278,11 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   // particles, as <stick> does.
   std::vector<bool> referenced(particles.size(), false);
   for (const phys::Stick& s : world.sticks()) {
-    if (owner[s.a] != kLoose && owner[s.a] == owner[s.b]) continue;
-    if (owner[s.a] != kLoose || owner[s.b] != kLoose) {
+    if (owner[s.a] != phys::kNoBody && owner[s.a] == owner[s.b]) continue;
+    if (owner[s.a] != phys::kNoBody || owner[s.b] != phys::kNoBody) {
       auto describe = [&](phys::ParticleId id) {
         std::string which = "particle " + std::to_string(id);
-        if (owner[id] == kLoose) return which;
+        if (owner[id] == phys::kNoBody) return which;
         const std::string& box = world.bodies()[owner[id]].name;
         return which + " (of box " + (box.empty() ? std::to_string(owner[id]) : "'" + box + "'") + ")";
       };
@@ -318,7 +316,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   auto writeBodiesBelow = [&](std::size_t end) {
     while (written < end) {
       const auto id = static_cast<phys::ParticleId>(written);
-      if (owner[id] == kLoose) {
+      if (owner[id] == phys::kNoBody) {
         line(particleElement(world, id, names.particle(id)));
         ++written;
       } else {
@@ -330,7 +328,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   };
   for (const phys::Stick& s : world.sticks()) {
     writeBodiesBelow(std::max(s.a, s.b) + std::size_t{1});
-    if (owner[s.a] == kLoose) line(stickElement(s, names));
+    if (owner[s.a] == phys::kNoBody) line(stickElement(s, names));
   }
   writeBodiesBelow(particles.size());
   for (const phys::Link& link : world.links()) line(linkElement(world, link, owner, names));

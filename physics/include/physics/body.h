@@ -64,7 +64,7 @@ struct BodyPose {
 struct Body {
   std::string name;
   BodyModel model = BodyModel::Corners;
-  ParticleId firstParticle = 0;
+  ParticleId firstParticle{};
   int particleCount = 0;         ///< 8 (corners) or 4 (tetra)
   std::uint32_t firstStick = 0;  ///< its own sticks are consecutive in World::sticks() from here
   int stickCount = 0;            ///< 22 (corners) or 6 (tetra)

@@ -12,8 +12,8 @@ namespace phys {
 /// (Jakobsen's) has minLength == maxLength; a range stick (the softer joint the seed wished
 /// for) has minLength < maxLength, and is one-sided when minLength is 0 or maxLength infinite.
 struct Stick {
-  ParticleId a = 0;
-  ParticleId b = 0;
+  ParticleId a{};
+  ParticleId b{};
   Real minLength = 0.0;  ///< unit: m
   Real maxLength = 0.0;  ///< unit: m; may be infinite
   /// Inverse stiffness (XPBD's alpha), honoured by SolverMethod::Xpbd; 0 is rigid.
@@ -64,9 +64,9 @@ struct BodyContact {
   Embedding pointA;
   Embedding pointB;
   Vec3 normal{0.0};
-  Material combined;        ///< geometric mean of the two boxes' materials
-  std::int32_t bodyA = -1;  ///< for debug drawing and reports
-  std::int32_t bodyB = -1;
+  Material combined;       ///< geometric mean of the two boxes' materials
+  BodyId bodyA = kNoBody;  ///< for debug drawing and reports
+  BodyId bodyB = kNoBody;
   std::uint8_t kind = 0;  ///< ContactKind, for debug drawing
   /// The least n . (pointB - pointA) (unit: m): 0 when both points are on the surfaces. A point
   /// of a corners-model capsule is carried by the box face nearest it (its own 4 particles,
@@ -81,9 +81,9 @@ struct BodyContact {
 /// A point that collides with the ground: a loose particle or a box corner.
 struct GroundContact {
   Embedding point;
-  Material material;       ///< the body's own
-  Material combined;       ///< geometric mean with the ground's, kept current by the world
-  std::int32_t body = -1;  ///< box index, or -1 for a loose particle
+  Material material;      ///< the body's own
+  Material combined;      ///< geometric mean with the ground's, kept current by the world
+  BodyId body = kNoBody;  ///< kNoBody for a loose particle
   /// How far above the plane the point is held (unit: m): 0 for a point on the surface; for a
   /// corners-model capsule, whose point is carried by a face of its box, the height of that face
   /// point over the capsule's lowest point (see BodyContact::offset).

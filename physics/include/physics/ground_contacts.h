@@ -23,9 +23,9 @@ struct GroundContactState {
 
 class GroundContacts {
  public:
-  /// Adds a point of `body` (-1 for a loose particle), whose friction is the geometric mean of
+  /// Adds a point of `body` (kNoBody for a loose particle), whose friction is the geometric mean of
   /// its material and the ground's (the ground's alone for a loose particle).
-  void add(const Embedding& point, const Material& material, std::int32_t body, const Material& ground);
+  void add(const Embedding& point, const Material& material, BodyId body, const Material& ground);
   /// A capsule's point that follows the lowest point of one end sphere (end -1 or +1 along the
   /// body's y axis): the point added last.
   void followCapsuleEnd(Real end);

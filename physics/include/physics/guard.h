@@ -27,8 +27,8 @@ struct GuardInput {
   std::span<const Body> bodies;
   std::span<const Stick> sticks;
   std::span<const std::string> particleNames;
-  std::span<const std::int32_t> particleBodies;  ///< per particle: its body, or -1
-  Real time = 0.0;                               ///< unit: s; of the substep
+  std::span<const BodyId> particleBodies;  ///< per particle: its body, or kNoBody
+  Real time = 0.0;                         ///< unit: s; of the substep
 };
 
 class Guard {

@@ -18,14 +18,14 @@ namespace phys {
 /// The contact of one pair of bodies: its points are contacts() [firstContact, firstContact +
 /// contactCount), all with the pair's normal.
 struct Manifold {
-  BodyId a = 0, b = 0;
+  BodyId a{}, b{};
   std::uint32_t firstContact = 0, contactCount = 0;
   Vec3 normal{0.0};    ///< from a towards b
   Real overlap = 0.0;  ///< unit: m; the deepest point's overlap beyond the slop at x*; < 0 when apart
   /// Its points hold for the whole step (face on face); every other manifold is collided again in
   /// every substep.
   bool kept = false;
-  BodyId reference = 0;   ///< kept: the body whose face the normal is
+  BodyId reference{};     ///< kept: the body whose face the normal is
   Vec3 localNormal{0.0};  ///< kept: the normal in that body's frame
 };
 

@@ -23,7 +23,7 @@ namespace phys {
 
 /// A body whose particles only its own sticks touch: relaxed in locals.
 struct StickBlock {
-  ParticleId firstParticle = 0;
+  ParticleId firstParticle{};
   std::uint32_t firstStick = 0;
   std::uint16_t particleCount = 0;
   std::uint16_t stickCount = 0;

@@ -141,8 +141,8 @@ class World {
   /// the last step (the broad phase's output, which every substep's narrow phase tests).
   std::size_t broadPhasePairs() const { return broadPhase_.pairs().size(); }
   const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
-  /// Per particle: the index of the box (or capsule) it belongs to, or -1 for a loose particle.
-  std::span<const std::int32_t> particleBodies() const { return particleBody_; }
+  /// Per particle: the body it belongs to, or kNoBody for a loose particle.
+  std::span<const BodyId> particleBodies() const { return particleBody_; }
   /// Freezes so far, oldest first.
   std::span<const FreezeReport> freezes() const { return guard_.freezes(); }
   Real time() const { return time_; }  ///< unit: s; simulated time since creation
@@ -194,7 +194,7 @@ class World {
   SolverSettings solver_;
   Particles particles_;
   std::vector<std::string> particleName_;
-  std::vector<std::int32_t> particleBody_;  // box index, or -1 for a loose particle
+  std::vector<BodyId> particleBody_;  // kNoBody for a loose particle
   ConstraintGraph constraints_;
   BodyLayout bodyLayout_;      // the bodies in lanes, for body damping (updateLayouts)
   bool layoutsStale_ = false;  // bodies or collision filters added since they were laid out
@@ -210,7 +210,7 @@ class World {
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
 
   std::optional<Drag> drag_;
-  std::int32_t dragBox_ = -1;  // the box carrying the drag's point, or -1
+  BodyId dragBody_ = kNoBody;  // the body carrying the drag's point, if one body does
   Guard guard_;
   Profile profile_;
   Real time_ = 0.0;

@@ -30,7 +30,10 @@ struct NamedBody {
   enum class Kind { Body, Particle };
   std::string name;
   Kind kind = Kind::Body;
-  std::uint32_t index = 0;  ///< phys::BodyId or phys::ParticleId
+  std::uint32_t index = 0;  ///< phys::BodyId or phys::ParticleId, as kind says
+
+  phys::BodyId body() const { return phys::BodyId(index); }
+  phys::ParticleId particle() const { return phys::ParticleId(index); }
 };
 
 /// An <expect> element: something the lab checks of a run of this scene (an analytic answer, a
