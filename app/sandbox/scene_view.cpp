@@ -67,17 +67,12 @@ SceneView::SceneView(engine::Renderer& renderer, const std::filesystem::path& mo
       limbMesh_(loadModel(modelsDir / "limb.obj")) {}
 
 void SceneView::findJointedBoxes(const phys::World& world) {
-  const auto boxes = world.bodies();
-  bodyOf_.assign(world.particles().size(), -1);
-  for (phys::BodyId id{}; id < boxes.size(); ++id) {
-    std::fill_n(bodyOf_.begin() + boxes[id].firstParticle, boxes[id].particleCount,
-                static_cast<std::int32_t>(id));
-  }
-  jointed_.assign(boxes.size(), 0);
+  const auto owner = world.particleBodies();
+  bodyOf_.assign(owner.begin(), owner.end());
+  jointed_.assign(world.bodies().size(), 0);
   for (const phys::Link& link : world.links()) {
     for (const phys::Embedding* e : {&link.a, &link.b}) {
-      if (const std::int32_t body = bodyOf_[e->particle[0]]; body >= 0)
-        jointed_[static_cast<std::size_t>(body)] = 1;
+      if (const phys::BodyId body = bodyOf_[e->particle[0]]; body != phys::kNoBody) jointed_[body] = 1;
     }
   }
 }
@@ -115,7 +110,7 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     if (options.particles) {
       const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(kParticleDrawSize));
       for (std::size_t i = 0; i < world.particles().size(); ++i) {
-        if (bodyOf_[i] >= 0) continue;
+        if (bodyOf_[i] != phys::kNoBody) continue;
         const glm::mat4 model =
             glm::translate(glm::mat4(1.0f), glm::vec3(world.particles().position[i])) * scale;
         renderer_.drawMesh(*boxMesh_, viewProjection, model, tint ? tint->color : kParticleColor, alpha);

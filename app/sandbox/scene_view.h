@@ -47,7 +47,7 @@ class SceneView {
   // Trimmed after each draw(): sizes no longer in any world drawn are freed beyond its capacity.
   engine::CapsuleMeshCache capsuleMeshes_;
   // Per-frame scratch, kept to avoid allocating each frame.
-  std::vector<std::int32_t> bodyOf_;   // per particle: its box, or -1
+  std::vector<phys::BodyId> bodyOf_;   // per particle: its body, or kNoBody
   std::vector<std::uint8_t> jointed_;  // per box: held by a joint
 };
 

@@ -110,6 +110,10 @@ TEST(PeerScene, ReadsMassInertiaVelocityAndOrder) {
   EXPECT_NEAR(p.mass, 0.5, 1e-12);
   EXPECT_NEAR(p.velocity.x, 1.0, 1e-9);
   EXPECT_NEAR(p.velocity.y, 0.0, 1e-9);  // the Verlet start corrected back to the given velocity
+  // A loose particle slides as its ground contact says: the ground's material, not the default.
+  const double groundDynamic = scene.world.worldSettings().groundMaterial.dynamicFriction;
+  ASSERT_NE(groundDynamic, phys::Material{}.dynamicFriction);
+  EXPECT_NEAR(p.friction, groundDynamic, 1e-12);
   EXPECT_TRUE(d.bodies[3].fixed);
   EXPECT_NEAR(d.groundFriction, 0.4, 1e-12);
   EXPECT_TRUE(d.refused.empty());

@@ -169,11 +169,10 @@ TEST(LateBodies, BoxAndRagdollAddedAfterSteppingCollideWithTheOldOnes) {
   const double t = world.time() - start;
   EXPECT_NEAR(world.bodyPose(added).center.y, dropAt.y - 0.5 * 9.81 * t * t, kExact);
 
-  auto isPart = [&doll](std::int32_t box) {
-    return std::find(doll.parts.begin(), doll.parts.end(), static_cast<phys::BodyId>(box)) !=
-           doll.parts.end();
+  auto isPart = [&doll](phys::BodyId body) {
+    return std::find(doll.parts.begin(), doll.parts.end(), body) != doll.parts.end();
   };
-  const auto crate = static_cast<std::int32_t>(old[1]);
+  const phys::BodyId crate = old[1];
   bool ragdollTouchedTheCrate = false;
   while (world.time() < start + 4.0) {
     world.step();

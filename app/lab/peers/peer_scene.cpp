@@ -131,7 +131,7 @@ Description describe(const scenes::Scene& scene) {
   // Loose particles keep the material of their ground contact point.
   std::vector<const phys::GroundContact*> contactOf(particles.size(), nullptr);
   for (const phys::GroundContact& c : world.groundContacts()) {
-    if (c.body < 0 && c.point.count == 1) contactOf[c.point.particle[0]] = &c;
+    if (c.body == phys::kNoBody && c.point.count == 1) contactOf[c.point.particle[0]] = &c;
   }
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (owner[i] >= 0) continue;
