@@ -33,7 +33,7 @@ void World::joinBodies(ParticleId a, ParticleId b) {
 
 // Centre: the mean of the corners. Axes: the mean edge along each, made orthonormal. Cheaper
 // than the polar decomposition bodyPose uses, and as good for a box that keeps its shape.
-void World::updateBoxFrames() {
+void World::updateBodyFrames() {
   for (BodyId id{}; id < bodies_.size(); ++id) {
     const Body& box = bodies_[id];
     Obb& f = frames_[id];

@@ -10,10 +10,6 @@
 namespace phys {
 namespace {
 
-Material combine(const Material& a, const Material& b) {
-  return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
-}
-
 // A loose particle has no material of its own: it slides as the ground says.
 Material combined(const GroundContact& c, const Material& ground) {
   return c.body != kNoBody ? combine(c.material, ground) : ground;

@@ -13,13 +13,6 @@
 #include "room.h"
 
 namespace phys {
-namespace {
-
-Material combine(const Material& a, const Material& b) {
-  return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
-}
-
-}  // namespace
 
 // Contact points are made in every substep: their room is made in each step's first substep, from
 // the last substep's count, before any is made.

@@ -31,6 +31,10 @@ std::string validate(const Material& m) {
   return joined(why);
 }
 
+Material combine(const Material& a, const Material& b) {
+  return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
+}
+
 std::string validate(const WorldSettings& s) {
   std::ostringstream why;
   if (!finite(s.gravity)) why << "gravity must be finite; ";

@@ -91,7 +91,7 @@ void World::integrateParticles(Real h) {
 void World::fitBodyFrames() {
   if (bodies_.size() < 2 && !ground_.hasCapsules()) return;
   const StageTimer timer(profile_, Stage::Frames);
-  updateBoxFrames();
+  updateBodyFrames();
 }
 
 // Once per step; again when a drag, an impact or a joint took a box past its bounds. True when it

@@ -139,6 +139,8 @@ std::string validate(const WorldSettings& settings);
 std::string validate(const SolverSettings& settings);
 /// Empty when the coefficients are finite and >= 0.
 std::string validate(const Material& material);
+/// What a contact between the two materials uses: each coefficient the geometric mean of theirs.
+Material combine(const Material& a, const Material& b);
 
 /// "gauss-seidel", "jacobi", "xpbd", "shake": the names scene files and the lab use.
 std::string_view toString(SolverMethod method);

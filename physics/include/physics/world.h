@@ -185,7 +185,7 @@ class World {
   void guardParticles();
   GuardInput guardInput();
   void checkEmbedding(const Embedding& e, const std::string& who) const;
-  void updateBoxFrames();
+  void updateBodyFrames();
   void joinBodies(ParticleId a, ParticleId b);
   NarrowPhaseInput narrowPhaseInput() const;
   Real gravityMagnitude() const;
