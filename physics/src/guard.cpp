@@ -16,10 +16,8 @@ void Guard::addBody() {
   crushedSince_.push_back(std::numeric_limits<Real>::infinity());
 }
 
-// Also run after a change of settings has moved particles outside the step (setSolverSettings):
-// a particle left non-finite there would otherwise be copied into checked_ by the next
-// integration and frozen at NaN (found by the soak test, seed 21: a chain under gravity of 1e244
-// m/s^2 given 1000 iterations).
+// Every particle, pinned or not: World runs it after each substep and after a change of settings
+// (World::guardParticles says why).
 void Guard::checkParticles(const GuardInput& in, Real bound) {
   const Particles& particles = in.particles;
   for (std::size_t i = 0; i < particles.size(); ++i) {
