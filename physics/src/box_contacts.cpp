@@ -183,7 +183,9 @@ bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, 
 
 // The deepest, the one farthest from it, then the two that span the largest area with those
 // (the choice Bullet makes).
-void reduceToFourPoints(BoxContact& c, Real touching) {
+namespace {
+
+void reduce(BoxContact& c, Real touching) {
   if (c.count <= 4) return;
   // The touching points first, in their order (std::stable_partition would allocate).
   std::array<ContactPoint, 8> sorted;
@@ -239,6 +241,14 @@ void reduceToFourPoints(BoxContact& c, Real touching) {
   }
   for (int k = 0; k < count; ++k) c.points[k] = kept[k];
   c.count = count;
+}
+
+}  // namespace
+
+void reduceToFourPoints(BoxContact& c, Real touching) {
+  const int before = c.count;
+  reduce(c, touching);
+  c.dropped = before - c.count;
 }
 
 }  // namespace phys

@@ -67,13 +67,51 @@ Real NarrowPhase::speculativeMargin(const NarrowPhaseInput& in, BodyId a, BodyId
 // nearer than the pair can close in the step (speculativeMargin), so that a contact that closes
 // within the step is there when it does; the passes push a point only once it touches.
 void NarrowPhase::build(const NarrowPhaseInput& in) {
+  // The last substep's manifolds are in the pairs' order, (a, b) ascending, as the new pairs are:
+  // one walk finds each pair's old manifold.
+  std::swap(contacts_, spareContacts_);
+  std::swap(manifolds_, spareManifolds_);
   contacts_.clear();
   manifolds_.clear();
+  std::size_t old = 0;
   BoxContact contact;
   for (const auto& [a, b] : in.broadPhase.pairs()) {
+    while (old < spareManifolds_.size() &&
+           (spareManifolds_[old].a < a || (spareManifolds_[old].a == a && spareManifolds_[old].b < b)))
+      ++old;
+    if (old < spareManifolds_.size() && spareManifolds_[old].a == a && spareManifolds_[old].b == b &&
+        canCarry(in, spareManifolds_[old])) {
+      carry(in, spareManifolds_[old]);
+      continue;
+    }
     if (collidePair(in, a, b, contact)) addManifold(in, a, b, contact);
   }
   sizeState();
+}
+
+// Whether a kept manifold still holds: b has moved in a's frame by no more than the settings since
+// it was made. Measured against when it was made, not the last step, so that a slow creep
+// cannot carry it anywhere.
+bool NarrowPhase::canCarry(const NarrowPhaseInput& in, const Manifold& m) const {
+  if (!m.kept || !m.whole) return false;
+  const Obb &fa = in.frames[m.a], &fb = in.frames[m.b];
+  const glm::dmat3 toA = glm::transpose(fa.axes);
+  if (glm::length(toA * (fb.center - fa.center) - m.madeAtCenter) > in.reuse.maxShift) return false;
+  const glm::dmat3 axes = toA * fb.axes;
+  for (int k = 0; k < 3; ++k) {
+    if (glm::length(axes[k] - m.madeAtAxes[k]) > in.reuse.maxTurn) return false;
+  }
+  return true;
+}
+
+// A kept manifold into contacts_ and manifolds_ as it is, its normal turned with its face.
+void NarrowPhase::carry(const NarrowPhaseInput& in, const Manifold& m) {
+  Manifold moved = m;
+  moved.firstContact = static_cast<std::uint32_t>(contacts_.size());
+  contacts_.insert(contacts_.end(), spareContacts_.begin() + m.firstContact,
+                   spareContacts_.begin() + m.firstContact + m.contactCount);
+  turnNormal(in, moved, contacts_.data() + moved.firstContact);
+  manifolds_.push_back(moved);
 }
 
 // In the step's later substeps: the contacts that cannot be kept through the step are found again.
@@ -99,12 +137,7 @@ void NarrowPhase::refresh(const NarrowPhaseInput& in) {
       if (collidePair(in, m.a, m.b, contact)) addManifold(in, m.a, m.b, contact);
       continue;
     }
-    Manifold moved = m;
-    moved.firstContact = static_cast<std::uint32_t>(contacts_.size());
-    contacts_.insert(contacts_.end(), spareContacts_.begin() + m.firstContact,
-                     spareContacts_.begin() + m.firstContact + m.contactCount);
-    turnNormal(in, moved, contacts_.data() + moved.firstContact);
-    manifolds_.push_back(moved);
+    carry(in, m);
   }
   sizeState();
 }
@@ -151,6 +184,10 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
     };
     m.reference = alignment(in.frames[a]) >= alignment(in.frames[b]) ? a : b;
     m.localNormal = glm::transpose(in.frames[m.reference].axes) * n;
+    const glm::dmat3 toA = glm::transpose(in.frames[a].axes);
+    m.madeAtCenter = toA * (in.frames[b].center - in.frames[a].center);
+    m.madeAtAxes = toA * in.frames[b].axes;
+    m.whole = contact.dropped == 0;
   }
 }
 

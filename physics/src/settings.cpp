@@ -88,6 +88,10 @@ std::string validate(const SolverSettings& s) {
     why << "parting.tolerance must be finite and > 0 (m); ";
   if (p.progressSweeps < 1 || p.progressSweeps > kMaxPartingSweeps)
     why << "parting.progressSweeps must be from 1 to " << kMaxPartingSweeps << "; ";
+  if (!finiteNonNegative(s.manifoldReuse.maxShift))
+    why << "manifoldReuse.maxShift must be finite and >= 0 (m); ";
+  if (!finiteNonNegative(s.manifoldReuse.maxTurn))
+    why << "manifoldReuse.maxTurn must be finite and >= 0 (rad); ";
   return joined(why);
 }
 

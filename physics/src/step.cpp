@@ -129,8 +129,15 @@ void World::findContacts(bool newPairs) {
 }
 
 NarrowPhaseInput World::narrowPhaseInput() const {
-  return {particles_,          bodies_,    frames_,           broadPhase_, solver_.featureEpsilon,
-          solver_.contactSlop, solver_.dt, gravityMagnitude()};
+  return {particles_,
+          bodies_,
+          frames_,
+          broadPhase_,
+          solver_.featureEpsilon,
+          solver_.contactSlop,
+          solver_.dt,
+          gravityMagnitude(),
+          solver_.manifoldReuse};
 }
 
 void World::partOverlaps() {

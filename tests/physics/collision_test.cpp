@@ -194,6 +194,7 @@ TEST(Contacts, ReductionKeepsFourPointsSpanningTheOctagon) {
   const phys::BoxContact all = c;
   phys::reduceToFourPoints(c);
   ASSERT_EQ(c.count, 4);
+  EXPECT_EQ(c.dropped, all.count - 4);  // the narrow phase never carries such a manifold whole
   // Each kept point is one of the octagon's, and the four span a quadrilateral of at least
   // 0.4 m^2 of the octagon's 0.83 (two opposite corners of it would give only a sliver).
   for (int i = 0; i < 4; ++i) {
@@ -319,6 +320,8 @@ TEST(Contacts, ReductionKeepsTouchingPointsBeforeSpeculativeOnes) {
   phys::BoxContact four = c;
   phys::reduceToFourPoints(four, 0.01);
   ASSERT_EQ(four.count, 4);
+  phys::reduceToFourPoints(four, 0.01);
+  EXPECT_EQ(four.dropped, 0) << "four points: nothing to drop, and the count of the last call is gone";
   for (int i = 0; i < 4; ++i) EXPECT_GE(four.points[i].depth, 0.0) << i;
 }
 

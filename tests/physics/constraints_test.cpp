@@ -1,5 +1,6 @@
 // Sticks and range sticks in each method, metrics of a known state, and debug drawing.
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -113,6 +114,12 @@ TEST(Validation, SolverSettingsNameTheBadField) {
   s = {};
   s.parting.tolerance = std::nan("");
   EXPECT_NE(phys::validate(s).find("parting.tolerance"), std::string::npos);
+  s = {};
+  s.manifoldReuse.maxShift = -0.001;
+  EXPECT_NE(phys::validate(s).find("manifoldReuse.maxShift"), std::string::npos);
+  s = {};
+  s.manifoldReuse.maxTurn = std::numeric_limits<phys::Real>::infinity();
+  EXPECT_NE(phys::validate(s).find("manifoldReuse.maxTurn"), std::string::npos);
 }
 
 TEST(Validation, WorldSettingsNameTheBadField) {

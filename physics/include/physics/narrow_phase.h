@@ -27,6 +27,13 @@ struct Manifold {
   bool kept = false;
   BodyId reference{};     ///< kept: the body whose face the normal is
   Vec3 localNormal{0.0};  ///< kept: the normal in that body's frame
+  /// kept: where b was in a's frame when the manifold was made (its centre, unit m, and its axes),
+  /// against which NarrowPhase::build decides whether to carry it into the next step.
+  Vec3 madeAtCenter{0.0};
+  glm::dmat3 madeAtAxes{1.0};
+  /// kept: the clipping dropped no point, so every corner of the faces' overlap is here; only
+  /// such a manifold is carried into the next step.
+  bool whole = false;
 };
 
 /// What the passes keep per contact point, index for index with NarrowPhase::contacts().
@@ -47,6 +54,7 @@ struct NarrowPhaseInput {
   Real contactSlop = 0.0;     ///< unit: m (SolverSettings::contactSlop)
   Real dt = 0.0;              ///< unit: s; the step
   Real gravity = 0.0;         ///< unit: m/s^2; |g|
+  ManifoldReuseSettings reuse;
 };
 
 class NarrowPhase {
@@ -55,7 +63,9 @@ class NarrowPhase {
   /// the last substep's count, before any is made, so that the step does not allocate.
   void reserve(std::size_t pairs, std::size_t bodies);
   /// After the broad phase found its pairs: every pair's manifold, its points kept when they are
-  /// nearer than the pair can close in the step (speculativeMargin).
+  /// nearer than the pair can close in the step (speculativeMargin). A face-on-face manifold of
+  /// the last step whose bodies have stayed within ManifoldReuseSettings of where they were to each
+  /// other when it was made is carried over, points, reference face and all.
   void build(const NarrowPhaseInput& in);
   /// In the step's other substeps: kept manifolds follow their reference face; the others are
   /// collided again.
@@ -76,6 +86,8 @@ class NarrowPhase {
   bool collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, BoxContact& contact) const;
   void addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact);
   void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts) const;
+  bool canCarry(const NarrowPhaseInput& in, const Manifold& m) const;
+  void carry(const NarrowPhaseInput& in, const Manifold& m);
   void sizeState();
 
   std::vector<BodyContact> contacts_;

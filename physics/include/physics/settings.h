@@ -88,6 +88,17 @@ struct PartingSettings {
   int progressSweeps = 16;     ///< over-relaxed sweeps between checks that the worst halved
 };
 
+/// When a pair's face-on-face manifold is carried into the next step instead of being collided
+/// again (NarrowPhase::build): while the two bodies have moved relative to each other by no more
+/// than these since it was made, and if it holds every corner of the faces' overlap. Its points are
+/// embedded in the bodies, so they stay where they were on each face; beyond these, they are
+/// clipped again (looser bounds measured worse: docs/performance.md, "Manifolds carried from step
+/// to step"). 0 and 0 collide every pair every step.
+struct ManifoldReuseSettings {
+  Real maxShift = 0.0001;  ///< unit: m; of B's centre, in A's frame
+  Real maxTurn = 0.0002;   ///< unit: rad; of each of B's axes, in A's frame
+};
+
 /// How the equations are stepped and relaxed.
 struct SolverSettings {
   SolverMethod method = SolverMethod::GaussSeidel;
@@ -128,6 +139,7 @@ struct SolverSettings {
   Real maxDepenetrationSpeed = kDefaultMaxDepenetrationSpeed;  ///< unit: m/s, > 0
   BroadPhaseSettings broadPhase;
   PartingSettings parting;
+  ManifoldReuseSettings manifoldReuse;
 };
 
 /// Below this normal speed an impact does not bounce (SolverSettings::restitution).
