@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 2.1564090909090905 "n=1"
-44 1.7968181818181816 "n=4"
-176 1.3668607954545455 "n=16"
-704 1.4761463068181817 "n=64"
-2816 2.484870028409091 "n=256"
-11264 2.7847370383522727 "n=1024"
+11 2.2333181818181815 "n=1"
+44 1.6592727272727272 "n=4"
+176 1.3196136363636364 "n=16"
+704 1.2929701704545453 "n=64"
+2816 1.3435179332386364 "n=256"
+11264 1.6456031161221594 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
