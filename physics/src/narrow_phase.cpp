@@ -13,6 +13,15 @@
 #include "room.h"
 
 namespace phys {
+namespace {
+
+// Where frame b is as seen from frame a: its centre and axes in a's axes, about a's centre.
+Obb poseInFrameOf(const Obb& a, const Obb& b) {
+  const glm::dmat3 toA = glm::transpose(a.axes);
+  return {toA * (b.center - a.center), toA * b.axes, b.halfExtents};
+}
+
+}  // namespace
 
 // Contact points are made in every substep: their room is made in each step's first substep, from
 // the last substep's count, before any is made.
@@ -73,17 +82,17 @@ void NarrowPhase::build(const NarrowPhaseInput& in) {
   std::swap(manifolds_, spareManifolds_);
   contacts_.clear();
   manifolds_.clear();
+  auto pairOf = [](const Manifold& m) { return BroadPhase::Pair(m.a, m.b); };
   std::size_t old = 0;
   BoxContact contact;
-  for (const auto& [a, b] : in.broadPhase.pairs()) {
-    while (old < spareManifolds_.size() &&
-           (spareManifolds_[old].a < a || (spareManifolds_[old].a == a && spareManifolds_[old].b < b)))
-      ++old;
-    if (old < spareManifolds_.size() && spareManifolds_[old].a == a && spareManifolds_[old].b == b &&
+  for (const BroadPhase::Pair& pair : in.broadPhase.pairs()) {
+    while (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) < pair) ++old;
+    if (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair &&
         canCarry(in, spareManifolds_[old])) {
       carry(in, spareManifolds_[old]);
       continue;
     }
+    const auto [a, b] = pair;
     if (collidePair(in, a, b, contact)) addManifold(in, a, b, contact);
   }
   sizeState();
@@ -94,12 +103,10 @@ void NarrowPhase::build(const NarrowPhaseInput& in) {
 // cannot carry it anywhere.
 bool NarrowPhase::canCarry(const NarrowPhaseInput& in, const Manifold& m) const {
   if (!m.kept || !m.whole) return false;
-  const Obb &fa = in.frames[m.a], &fb = in.frames[m.b];
-  const glm::dmat3 toA = glm::transpose(fa.axes);
-  if (glm::length(toA * (fb.center - fa.center) - m.madeAtCenter) > in.reuse.maxShift) return false;
-  const glm::dmat3 axes = toA * fb.axes;
+  const Obb now = poseInFrameOf(in.frames[m.a], in.frames[m.b]);
+  if (glm::length(now.center - m.madeAt.center) > in.reuse.maxShift) return false;
   for (int k = 0; k < 3; ++k) {
-    if (glm::length(axes[k] - m.madeAtAxes[k]) > in.reuse.maxTurn) return false;
+    if (glm::length(now.axes[k] - m.madeAt.axes[k]) > in.reuse.maxTurn) return false;
   }
   return true;
 }
@@ -184,9 +191,7 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
     };
     m.reference = alignment(in.frames[a]) >= alignment(in.frames[b]) ? a : b;
     m.localNormal = glm::transpose(in.frames[m.reference].axes) * n;
-    const glm::dmat3 toA = glm::transpose(in.frames[a].axes);
-    m.madeAtCenter = toA * (in.frames[b].center - in.frames[a].center);
-    m.madeAtAxes = toA * in.frames[b].axes;
+    m.madeAt = poseInFrameOf(in.frames[a], in.frames[b]);
     m.whole = contact.dropped == 0;
   }
 }

@@ -67,8 +67,8 @@ struct BoxContact {
   ContactKind kind = ContactKind::FaceFace;
   SatResult sat;
   int count = 0;
-  /// Points reduceToFourPoints dropped (0 before it runs): a manifold that dropped none holds
-  /// every corner of the faces' overlap.
+  /// Points the last reduceToFourPoints on it dropped (set by it alone): a manifold that dropped
+  /// none holds every corner of the faces' overlap.
   int dropped = 0;
   std::array<ContactPoint, 8> points;
 };

@@ -29,8 +29,7 @@ struct Manifold {
   Vec3 localNormal{0.0};  ///< kept: the normal in that body's frame
   /// kept: where b was in a's frame when the manifold was made (its centre, unit m, and its axes),
   /// against which NarrowPhase::build decides whether to carry it into the next step.
-  Vec3 madeAtCenter{0.0};
-  glm::dmat3 madeAtAxes{1.0};
+  Obb madeAt;
   /// kept: the clipping dropped no point, so every corner of the faces' overlap is here; only
   /// such a manifold is carried into the next step.
   bool whole = false;
