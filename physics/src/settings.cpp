@@ -70,7 +70,13 @@ std::string validate(const SolverSettings& s) {
   if (!(s.maxDepenetrationSpeed > 0.0)) {
     why << "maxDepenetrationSpeed must be > 0 (m/s; infinity for no limit); ";
   }
-  if (!finiteNonNegative(s.broadPhase.margin)) why << "broadPhase.margin must be finite and >= 0 (m); ";
+  const BroadPhaseSettings& b = s.broadPhase;
+  if (b.maxStrips < 1 || b.maxStrips > kMaxStrips)
+    why << "broadPhase.maxStrips must be from 1 to " << kMaxStrips << "; ";
+  if (b.stripsPerBody < 1 || b.stripsPerBody > kMaxStrips)
+    why << "broadPhase.stripsPerBody must be from 1 to " << kMaxStrips << "; ";
+  if (b.maxStripsPerBody < 1 || b.maxStripsPerBody > kMaxStrips)
+    why << "broadPhase.maxStripsPerBody must be from 1 to " << kMaxStrips << "; ";
   const PartingSettings& p = s.parting;
   if (p.plainSweeps < 0 || p.plainSweeps > kMaxPartingSweeps)
     why << "parting.plainSweeps must be from 0 to " << kMaxPartingSweeps << "; ";

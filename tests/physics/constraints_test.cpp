@@ -100,11 +100,11 @@ TEST(Validation, SolverSettingsNameTheBadField) {
   s.substeps = -1;
   EXPECT_NE(phys::validate(s).find("substeps"), std::string::npos);
   s = {};
-  s.broadPhase.margin = -0.01;
-  EXPECT_NE(phys::validate(s).find("broadPhase.margin"), std::string::npos);
+  s.broadPhase.maxStrips = 0;
+  EXPECT_NE(phys::validate(s).find("broadPhase.maxStrips"), std::string::npos);
   s = {};
-  s.broadPhase.margin = std::numeric_limits<double>::infinity();
-  EXPECT_NE(phys::validate(s).find("broadPhase.margin"), std::string::npos);
+  s.broadPhase.maxStripsPerBody = 0;
+  EXPECT_NE(phys::validate(s).find("broadPhase.maxStripsPerBody"), std::string::npos);
   s = {};
   s.parting.overRelaxation = 2.0;  // does not converge
   EXPECT_NE(phys::validate(s).find("parting.overRelaxation"), std::string::npos);

@@ -1,16 +1,13 @@
 #pragma once
-// The broad phase (Stage::BroadPhase): which pairs of bodies may touch within a step, from each
-// body's bounds grown by how far it can go in the step, and the collision filters that keep pairs
-// out (groups and masks, and the pairs told to ignore each other). The bodies' bounds, enlarged
-// further by a margin, sit in a dynamic tree with the pairs they overlap in; a step moves only
-// the bodies that left their enlarged bounds. It owns its arrays; World hands it the bodies,
-// their frames and their particles.
+// The broad phase (Stage::BroadPhase): which pairs of bodies may touch within a step, found by
+// sweep and prune within strips from each body's bounds grown by how far it can go in the step,
+// and the collision filters that keep pairs out (groups and masks, and the pairs told to ignore
+// each other). It owns its arrays; World hands it the bodies, their frames and their particles.
 #include <cstdint>
 #include <span>
 #include <utility>
 #include <vector>
 
-#include "physics/aabb_tree.h"
 #include "physics/body.h"
 #include "physics/collision.h"
 #include "physics/particles.h"
@@ -24,7 +21,7 @@ struct BroadPhaseStep {
   Real h = 0.0;               ///< unit: s; the substep whose particle motion gives the speeds
   Real featureEpsilon = 0.0;  ///< unit: m; added to every body's bounds
   Real gravity = 0.0;         ///< unit: m/s^2; |g|, whose g dt^2 a body held still can still travel
-  BroadPhaseSettings settings;
+  BroadPhaseSettings strips;
 };
 
 /// How a body moves over a step at the speeds of the broad phase's substep: its particles' mean
@@ -65,32 +62,31 @@ class BroadPhase {
   std::span<const Pair> pairs() const { return pairs_; }
   /// A body's motion over a step, measured at the last update.
   const BodyMotion& motion(BodyId id) const { return motion_[id]; }
-  /// How many bodies the last update moved in the tree (left their enlarged bounds, or all of
-  /// them when the pairs were stale).
-  std::size_t movedBodies() const { return moved_.size(); }
-  /// The pairs whose enlarged bounds overlap, which pairs() is taken from.
-  std::size_t candidatePairs() const { return candidates_.size(); }
-  const AabbTree& tree() const { return tree_; }
 
  private:
-  void measureBounds(const Particles& particles, std::span<const Body> bodies, std::span<const Obb> frames,
-                     const BroadPhaseStep& step);
-  void moveEscapedBodies(Real margin);
-  void updateCandidates(std::span<const Body> bodies);
-  void sortByBody(std::vector<Pair>& from, std::vector<Pair>& to);
+  struct Interval {
+    Real min, max;  // extent of a body's bounds along the sweep axis
+    BodyId body;
+  };
+  struct Bounds {
+    Vec3 lo, hi;
+  };
+  bool chooseSweepAxis(std::span<const Obb> frames);
+  void findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings);
+  void sortPairsByBody();
 
-  AabbTree tree_;
-  std::vector<AabbTree::NodeId> leaf_;  // per body: its leaf in tree_
-  std::vector<Aabb> bounds_;            // per body: AABB grown by its reach over a step
-  std::vector<Real> travel_;            // per body: that reach (m)
-  std::vector<BodyMotion> motion_;      // per body
-  std::vector<Obb> pairFrames_;         // per body: its frame when pairs_ was found
-  std::vector<BodyId> moved_;           // the bodies the last update moved in the tree
-  std::vector<std::uint8_t> isMoved_;   // per body: in moved_
+  std::vector<Interval> sweep_;          // sweep-and-prune list, kept sorted between steps
+  std::vector<std::size_t> stripStart_;  // per strip and one more: where its bodies start in stripBodies_
+  std::vector<BodyId> stripBodies_;      // the bodies of each strip, in sweep order
+  std::vector<BodyId> wideBodies_;       // bodies across too many strips, tested against all
+  std::vector<Bounds> bounds_;           // per body: AABB grown by its reach over a step
+  std::vector<Real> travel_;             // per body: that reach (m)
+  std::vector<BodyMotion> motion_;       // per body
+  std::vector<Obb> pairFrames_;          // per body: its frame when pairs_ was found
   bool stale_ = true;
-  std::vector<Pair> candidates_;             // pairs whose enlarged bounds overlap, in body order
-  std::vector<Pair> unsortedPairs_;          // the candidates kept and found, before sortByBody
-  std::vector<Pair> pairs_;                  // candidates whose bounds overlap
+  int sweepAxis_ = 0;  // the axis sweep_ is sorted along
+  std::vector<Pair> pairs_;
+  std::vector<Pair> unsortedPairs_;          // as the strips find them
   std::vector<std::uint32_t> pairStart_;     // per body and one more: its pairs as the lower id
   std::vector<std::uint64_t> ignored_;       // sorted keys (min << 32 | max)
   std::vector<std::uint32_t> ignoredStart_;  // per body and one more: its keys as min (indexFilters)

@@ -62,16 +62,20 @@ inline constexpr int kMaxSubsteps = 1000;    ///< per step
 inline constexpr Real kMinDt = 1e-6;         ///< unit: s; below this h^2 and XPBD's alpha lose meaning
 inline constexpr Real kMaxDt = 1.0;          ///< unit: s
 inline constexpr Real kMaxCompliance = 1e6;  ///< unit: m/N; softer than this is no constraint at all
+inline constexpr std::size_t kMaxStrips = std::size_t{1} << 24;  ///< BroadPhaseSettings' counts
 inline constexpr int kMaxPartingSweeps = 100000;                 ///< PartingSettings' sweep counts
 
 /// SolverSettings::maxDepenetrationSpeed's default.
 inline constexpr Real kDefaultMaxDepenetrationSpeed = 3.0;  ///< unit: m/s
 
-/// Tunables of the broad phase (docs/performance.md, "A dynamic tree of enlarged bounds").
+/// Tunables of the strips (docs/performance.md, "Broad phase"). Bodies are dealt into strips
+/// across a second axis, each twice the bodies' mean extent wide.
 struct BroadPhaseSettings {
-  /// unit: m; how much further than its bounds of the step a body's bounds in the tree reach, so
-  /// that a body that moves less than this stays where it is in the tree, and its pairs with it.
-  Real margin = 0.1;
+  std::size_t maxStrips = std::size_t{1} << 16;  ///< strips in all, at most
+  std::size_t stripsPerBody = 4;                 ///< strips per body, at most: fixes their room
+  /// A body whose bounds cross more strips than this (a floor, or bounds grown by a huge speed) is
+  /// tested against every body instead.
+  std::size_t maxStripsPerBody = 8;
 };
 
 /// Tunables of the parting of deep overlaps (Parting; docs/physics.md, "Where energy could come
