@@ -5,7 +5,15 @@
 namespace phys {
 
 std::string_view toString(BodyModel model) {
-  return model == BodyModel::Tetra ? "tetra" : "corners";
+  switch (model) {
+    case BodyModel::Tetra:
+      return "tetra";
+    case BodyModel::Rigid:
+      return "rigid";
+    case BodyModel::Corners:
+      break;
+  }
+  return "corners";
 }
 
 std::string_view toString(Shape shape) {
@@ -15,6 +23,7 @@ std::string_view toString(Shape shape) {
 std::optional<BodyModel> parseBodyModel(std::string_view name) {
   if (name == "corners") return BodyModel::Corners;
   if (name == "tetra") return BodyModel::Tetra;
+  if (name == "rigid") return BodyModel::Rigid;
   return std::nullopt;
 }
 
@@ -29,7 +38,27 @@ Vec3 boxParticleLocal(BodyModel model, const Vec3& halfExtents, int j) {
 }
 
 int boxParticleCount(BodyModel model) {
+  if (model == BodyModel::Rigid) return 0;
   return model == BodyModel::Corners ? 8 : 4;
+}
+
+Vec3 solidBoxInertia(const Vec3& halfExtents, Real mass) {
+  const Vec3 s = halfExtents * halfExtents;
+  return Vec3(s.y + s.z, s.x + s.z, s.x + s.y) * (mass / 3.0);
+}
+
+// A cylinder of height H = 2 halfSegment and two hemispheres, sharing the mass by volume. About the
+// axis: m_c r^2 / 2 + m_s 2 r^2 / 5. Across it: the cylinder's m_c (H^2 / 12 + r^2 / 4), and the
+// hemispheres' m_s (2 r^2 / 5 + H^2 / 4 + 3 H r / 8) (each hemisphere's centre of mass sits 3r/8
+// from its flat face, which is H / 2 from the centre).
+Vec3 solidCapsuleInertia(Real radius, Real halfSegment, Real mass) {
+  const Real r = radius, H = 2.0 * halfSegment;
+  const Real cylinder = r * r * H, spheres = 4.0 / 3.0 * r * r * r;  // volumes over pi
+  const Real mc = mass * cylinder / (cylinder + spheres), ms = mass - mc;
+  const Real axial = mc * r * r / 2.0 + ms * 2.0 * r * r / 5.0;
+  const Real across =
+      mc * (H * H / 12.0 + r * r / 4.0) + ms * (2.0 * r * r / 5.0 + H * H / 4.0 + 3.0 * H * r / 8.0);
+  return Vec3(across, axial, across);
 }
 
 std::array<Real, 4> tetraWeights(const Vec3& u) {

@@ -17,6 +17,7 @@ namespace phys::detail {
 bool massProperties(const Particles& p, const Body& box, MassProperties& out) {
   const ParticleId first = box.firstParticle, end = first + box.particleCount;
   out = {};
+  if (box.particleCount == 0) return false;  // a rigid body: its own model has its mass
   for (ParticleId i = first; i < end; ++i) {
     if (p.inverseMass[i] == 0.0) return false;  // pinned or frozen
     const Real m = 1.0 / p.inverseMass[i];

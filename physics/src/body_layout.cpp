@@ -13,6 +13,7 @@ void BodyLayout::build(std::span<const Body> boxes) {
   std::map<int, std::vector<BodyId>> waiting;  // by particle count
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     const Body& box = boxes[b];
+    if (box.model == BodyModel::Rigid) continue;  // no particles to damp
     std::vector<BodyId>& alike = waiting[box.particleCount];
     if (box.particleCount > kMaxBlockParticles) {
       others_.push_back(static_cast<BodyId>(b));

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "passes.h"
 #include "physics/world.h"
@@ -37,6 +38,12 @@ void World::updateBodyFrames() {
   for (BodyId id{}; id < bodies_.size(); ++id) {
     const Body& box = bodies_[id];
     Obb& f = frames_[id];
+    if (box.model == BodyModel::Rigid) {  // its frame is its pose
+      f.center = rigidBodies_.position[box.rigid];
+      f.axes = glm::mat3_cast(rigidBodies_.orientation[box.rigid]);
+      f.halfExtents = box.halfExtents;
+      continue;
+    }
     Vec3 ex, ey;
     if (box.model == BodyModel::Tetra) {
       // The same sums from the 4 particles (at corners 0, 3, 5, 6): corner k is sum_j (1 + s_j .

@@ -102,8 +102,8 @@ bool BroadPhase::chooseSweepAxis(std::span<const Obb> frames) {
 // impact, a joint, a drag gave it speed) makes the next substep find them again (needsUpdate). Found every
 // substep, the pairs of Bullet's 136-ragdoll pile (each ragdoll's bounds overlap ~200 others' along any one
 // axis) cost a fifth of the step.
-void BroadPhase::update(const Particles& particles, std::span<const Body> bodies, std::span<const Obb> frames,
-                        const BroadPhaseStep& step) {
+void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, std::span<const Body> bodies,
+                        std::span<const Obb> frames, const BroadPhaseStep& step) {
   const Real margin = step.featureEpsilon;
   const Real dt = step.dt, h = step.h;
   const Real g = step.gravity;
@@ -111,13 +111,21 @@ void BroadPhase::update(const Particles& particles, std::span<const Body> bodies
     const Body& box = bodies[id];
     Real fastest = 0.0;  // squared displacement over the last substep
     Vec3 mean(0.0);
+    Real turning = 0.0;  // squared, the most a particle's displacement differs from the mean
+    if (box.model == BodyModel::Rigid) {
+      // A rigid body's centre moves v h, and no point of it turns further than |w| h times the
+      // half diagonal.
+      mean = rigid.velocity[box.rigid] * h;
+      const Real turn = glm::length(rigid.angularVelocity[box.rigid]) * h * glm::length(box.halfExtents);
+      turning = turn * turn;
+      fastest = (glm::length(mean) + turn) * (glm::length(mean) + turn);
+    }
     for (int j = 0; j < box.particleCount; ++j) {
       const Vec3 d = particles.position[box.firstParticle + j] - particles.previous[box.firstParticle + j];
       fastest = std::max(fastest, glm::dot(d, d));
       mean += d;
     }
-    mean /= static_cast<Real>(box.particleCount);
-    Real turning = 0.0;  // squared, the most a particle's displacement differs from the mean
+    if (box.particleCount > 0) mean /= static_cast<Real>(box.particleCount);
     for (int j = 0; j < box.particleCount; ++j) {
       const Vec3 d =
           particles.position[box.firstParticle + j] - particles.previous[box.firstParticle + j] - mean;

@@ -23,8 +23,8 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     for (std::size_t i = 0; i < particles_.size(); ++i) {
       const bool frozen = particles_.inverseMass[i] == 0.0 &&
                           std::any_of(freezes().begin(), freezes().end(), [&](const FreezeReport& f) {
-                            const BodyId body = particleBody_[f.particle];
-                            return f.particle == i || (body != kNoBody && body == particleBody_[i]);
+                            if (f.body != kNoBody) return f.body == particleBody_[i];
+                            return f.particle == i;
                           });
       draw.point(x[i], 0.05, frozen ? colors::kFrozen : colors::kParticle);
     }
@@ -43,6 +43,27 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
       draw.point(p, 0.05, color);
       draw.line(p, p + 0.25 * c.normal, color);
     }
+    // Contacts with a rigid body, where the rigid body's point is (B's on the ground).
+    auto drawRigid = [&](std::span<const RigidContact> list, const RigidContactState& state) {
+      for (std::size_t k = 0; k < list.size() && k < state.touched.size(); ++k) {
+        if (state.touched[k] == 0) continue;
+        const RigidContact& c = list[k];
+        const bool onA = c.sideA != ContactSide::Ground;
+        const Vec3 p =
+            onA ? detail::sidePosition(particles_, rigidBodies_, c.sideA, c.rigidA, c.localA, c.pointA, false)
+                : detail::sidePosition(particles_, rigidBodies_, c.sideB, c.rigidB, c.localB, c.pointB,
+                                       false);
+        if (!onA) {
+          draw.point(p, 0.08, colors::kContact);
+          continue;
+        }
+        const Color color = colors::kFeature[c.kind % 6];
+        draw.point(p, 0.05, color);
+        draw.line(p, p + 0.25 * c.normal, color);
+      }
+    };
+    drawRigid(narrowPhase_.rigidContacts(), narrowPhase_.rigidState());
+    drawRigid(rigidGround_, rigidGroundState_);
   }
   if (flags.movedVertices) {
     for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -50,18 +71,18 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     }
   }
   if (flags.bounds) {
-    for (const Body& box : bodies_) {
+    for (BodyId id{}; id < bodies_.size(); ++id) {
+      const Body& box = bodies_[id];
       Vec3 lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
       for (int k = 0; k < 8; ++k) {
-        const Vec3 p = position(corners_[box.firstCorner + k]);
+        const Vec3 p = cornerPosition(id, k);
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
       }
       if (box.shape == Shape::Capsule) {
         // A capsule's own bounds: its core's ends, out by the radius on every axis.
         const Vec3 centre = (lo + hi) * 0.5;
-        const Vec3 corner0 = position(corners_[box.firstCorner]),
-                   corner2 = position(corners_[box.firstCorner + 2]);
+        const Vec3 corner0 = cornerPosition(id, 0), corner2 = cornerPosition(id, 2);
         const Vec3 axis = glm::normalize(corner2 - corner0) * box.capsuleHalfSegment();
         lo = glm::min(centre - axis, centre + axis) - Vec3(box.capsuleRadius());
         hi = glm::max(centre - axis, centre + axis) + Vec3(box.capsuleRadius());

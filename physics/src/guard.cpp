@@ -48,6 +48,7 @@ void Guard::checkShapes(const GuardInput& in, Real interval) {
   const Real time = in.time;
   for (std::size_t b = 0; b < in.bodies.size(); ++b) {
     const Body& box = in.bodies[b];
+    if (box.model == BodyModel::Rigid) continue;                       // no sticks to crush
     if (in.particles.inverseMass[box.firstParticle] == 0.0) continue;  // frozen
     Real& since = crushedSince_[b];
     const Real error = worstStickError(in, box);
@@ -100,8 +101,38 @@ void Guard::freeze(const GuardInput& in, ParticleId bad, const std::string& reas
     in.particles.position[i] = in.particles.previous[i] = checked_[i];
     in.particles.inverseMass[i] = 0.0;
   }
-  freezes_.push_back({name, reason, bad, in.time});
+  freezes_.push_back({name, reason, bad, in.time, in.particleBodies[bad]});
   if (onFreeze_) onFreeze_(freezes_.back());
+}
+
+void Guard::checkRigidBodies(RigidBodies& rigid, std::span<const Body> bodies, Real bound, Real time) {
+  for (RigidId i{}; i < rigid.size(); ++i) {
+    if (rigid.inverseMass[i] == 0.0) continue;
+    const Vec3& x = rigid.position[i];
+    const Quat& q = rigid.orientation[i];
+    std::string reason;
+    if (!finite(x) || !std::isfinite(q.w) || !finite(Vec3(q.x, q.y, q.z))) {
+      reason = "non-finite pose";
+    } else if (!finite(rigid.velocity[i]) || !finite(rigid.angularVelocity[i])) {
+      reason = "non-finite velocity";
+    } else if (std::abs(x.x) > bound || std::abs(x.y) > bound || std::abs(x.z) > bound) {
+      char text[64];
+      std::snprintf(text, sizeof text, "left the world bound of %g m", bound);
+      reason = text;
+    } else {
+      continue;
+    }
+    rigid.position[i] = rigid.previousPosition[i];
+    rigid.orientation[i] = rigid.previousOrientation[i];
+    rigid.velocity[i] = rigid.angularVelocity[i] = Vec3(0.0);
+    rigid.inverseMass[i] = 0.0;
+    rigid.inverseInertia[i] = Vec3(0.0);
+    const BodyId body = rigid.body[i];
+    const Body& b = bodies[body];
+    freezes_.push_back(
+        {b.name.empty() ? "box " + std::to_string(body) : b.name, reason, ParticleId{}, time, body});
+    if (onFreeze_) onFreeze_(freezes_.back());
+  }
 }
 
 }  // namespace phys

@@ -21,8 +21,8 @@ Real maxOf(Real a, Real b) {
 
 std::string_view toString(Stage stage) {
   static constexpr std::array<std::string_view, kStageCount> kNames = {
-      "integrate", "frames",   "broad-phase", "narrow-phase", "parting",      "sticks",
-      "links",     "contacts", "friction",    "restitution",  "body-damping", "guard"};
+      "integrate", "frames",   "broad-phase", "narrow-phase", "parting",      "sticks", "links",
+      "contacts",  "friction", "velocities",  "restitution",  "body-damping", "guard"};
   return kNames[static_cast<std::size_t>(stage)];
 }
 
@@ -60,6 +60,25 @@ Metrics World::metrics() const {
                              ? -mass * glm::dot(world_.gravity, xHalf)
                              : mass * world_.gravityStrength * glm::length(xHalf - world_.gravityPoint);
   }
+  // Rigid bodies: as for particles, the velocity is the last substep's middle's, and the potential
+  // is taken there too, between the pose before the substep and now.
+  const RigidBodies& r = rigidBodies_;
+  for (RigidId i{}; i < r.size(); ++i) {
+    if (r.inverseMass[i] == 0.0) continue;
+    const Real mass = 1.0 / r.inverseMass[i];
+    const Vec3 spin = glm::conjugate(r.orientation[i]) * r.angularVelocity[i];  // body frame
+    m.kineticEnergy += 0.5 * mass * glm::dot(r.velocity[i], r.velocity[i]) +
+                       0.5 * glm::dot(spin, spin / r.inverseInertia[i]);
+    m.potentialEnergy +=
+        world_.gravityMode == GravityMode::Uniform
+            ? -mass * glm::dot(world_.gravity, 0.5 * (r.position[i] + r.previousPosition[i]))
+            : mass * world_.gravityStrength *
+                  glm::length(0.5 * (r.position[i] + r.previousPosition[i]) - world_.gravityPoint);
+    // The fastest point: the centre's speed and the turning of the farthest corner.
+    const Body& body = bodies_[r.body[i]];
+    m.maxSpeed = maxOf(m.maxSpeed, glm::length(r.velocity[i]) +
+                                       glm::length(r.angularVelocity[i]) * glm::length(body.halfExtents));
+  }
   Real sumSquares = 0.0;
   for (const Stick& s : constraints_.sticks()) {
     const Real length = glm::length(particles_.position[s.b] - particles_.position[s.a]);
@@ -93,10 +112,29 @@ Metrics World::metrics() const {
     m.maxPenetration = maxOf(m.maxPenetration, -gap);
     if (narrowPhase_.state().touched[k] != 0) ++m.contacts;
   }
+  if (world_.ground) {
+    for (RigidId i{}; i < r.size(); ++i) {
+      const Body& body = bodies_[r.body[i]];
+      m.maxPenetration = maxOf(m.maxPenetration, world_.groundHeight - lowestHeight(r.body[i], body));
+    }
+  }
+  for (std::span<const RigidContact> list :
+       {narrowPhase_.rigidContacts(), std::span<const RigidContact>(rigidGround_)}) {
+    for (const RigidContact& c : list) {
+      if (c.sideA == ContactSide::Ground) continue;  // measured above, from every body's lowest point
+      const Vec3 a =
+          detail::sidePosition(particles_, rigidBodies_, c.sideA, c.rigidA, c.localA, c.pointA, false);
+      const Vec3 b =
+          detail::sidePosition(particles_, rigidBodies_, c.sideB, c.rigidB, c.localB, c.pointB, false);
+      m.maxPenetration = maxOf(m.maxPenetration, -glm::dot(c.normal, b - a));
+    }
+  }
+  for (const std::uint8_t touched : narrowPhase_.rigidState().touched) m.contacts += touched;
+  for (const std::uint8_t touched : rigidGroundState_.touched) m.contacts += touched;
   m.frozen = 0;
   for (const FreezeReport& f : freezes()) {
-    const BodyId body = particleBody_[f.particle];
-    m.frozen += body != kNoBody ? bodies_[body].particleCount : 1;
+    // A rigid body counts as one.
+    m.frozen += f.body != kNoBody ? std::max(1, bodies_[f.body].particleCount) : 1;
   }
   return m;
 }
@@ -113,6 +151,15 @@ std::uint64_t World::stateHash() const {
   };
   mix(particles_.position);
   mix(particles_.previous);
+  mix(rigidBodies_.position);
+  mix(rigidBodies_.velocity);
+  mix(rigidBodies_.angularVelocity);
+  std::vector<Vec3> rotations;  // a quaternion's four numbers, as the bytes of vectors
+  for (const Quat& q : rigidBodies_.orientation) {
+    rotations.emplace_back(q.w, q.x, q.y);
+    rotations.emplace_back(q.z, 0.0, 0.0);
+  }
+  mix(rotations);
   return hash;
 }
 

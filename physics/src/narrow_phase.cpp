@@ -32,6 +32,12 @@ void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies) {
   detail::keepRoom(spareManifolds_, pairs, room);
   detail::keepRoom(contacts_, points, room);
   detail::keepRoom(spareContacts_, points, room);
+  detail::keepRoom(rigidContacts_, rigidContacts_.size(), room);
+  detail::keepRoom(spareRigidContacts_, rigidContacts_.size(), room);
+  for (std::vector<Real>* v : {&rigidState_.lambdaNormal, &rigidState_.lambdaTangent, &rigidState_.twist,
+                               &rigidState_.approach, &rigidState_.allowance})
+    detail::keepRoom(*v, rigidContacts_.size(), room);
+  detail::keepRoom(rigidState_.touched, rigidContacts_.size(), room);
   detail::keepRoom(state_.allowance, points, room);
   detail::keepRoom(state_.push, points, room);
   detail::keepRoom(state_.touched, points, room);
@@ -79,8 +85,10 @@ void NarrowPhase::build(const NarrowPhaseInput& in) {
   // The last substep's manifolds are in the pairs' order, (a, b) ascending, as the new pairs are:
   // one walk finds each pair's old manifold.
   std::swap(contacts_, spareContacts_);
+  std::swap(rigidContacts_, spareRigidContacts_);
   std::swap(manifolds_, spareManifolds_);
   contacts_.clear();
+  rigidContacts_.clear();
   manifolds_.clear();
   auto pairOf = [](const Manifold& m) { return BroadPhase::Pair(m.a, m.b); };
   std::size_t old = 0;
@@ -114,6 +122,14 @@ bool NarrowPhase::canCarry(const NarrowPhaseInput& in, const Manifold& m) const 
 // A kept manifold into contacts_ and manifolds_ as it is, its normal turned with its face.
 void NarrowPhase::carry(const NarrowPhaseInput& in, const Manifold& m) {
   Manifold moved = m;
+  if (m.rigid) {
+    moved.firstContact = static_cast<std::uint32_t>(rigidContacts_.size());
+    rigidContacts_.insert(rigidContacts_.end(), spareRigidContacts_.begin() + m.firstContact,
+                          spareRigidContacts_.begin() + m.firstContact + m.contactCount);
+    manifolds_.push_back(moved);
+    turnRigidNormal(in, manifolds_.back());
+    return;
+  }
   moved.firstContact = static_cast<std::uint32_t>(contacts_.size());
   contacts_.insert(contacts_.end(), spareContacts_.begin() + m.firstContact,
                    spareContacts_.begin() + m.firstContact + m.contactCount);
@@ -131,12 +147,19 @@ void NarrowPhase::refresh(const NarrowPhaseInput& in) {
   const bool allKept =
       std::all_of(manifolds_.begin(), manifolds_.end(), [](const Manifold& m) { return m.kept; });
   if (allKept) {
-    for (Manifold& m : manifolds_) turnNormal(in, m, contacts_.data() + m.firstContact);
+    for (Manifold& m : manifolds_) {
+      if (m.rigid)
+        turnRigidNormal(in, m);
+      else
+        turnNormal(in, m, contacts_.data() + m.firstContact);
+    }
     return;
   }
   std::swap(contacts_, spareContacts_);
+  std::swap(rigidContacts_, spareRigidContacts_);
   std::swap(manifolds_, spareManifolds_);
   contacts_.clear();
+  rigidContacts_.clear();
   manifolds_.clear();
   BoxContact contact;
   for (const Manifold& m : spareManifolds_) {
@@ -157,8 +180,17 @@ void NarrowPhase::turnNormal(const NarrowPhaseInput& in, Manifold& m, BodyContac
   for (std::uint32_t k = 0; k < m.contactCount; ++k) contacts[k].normal = m.normal;
 }
 
+void NarrowPhase::turnRigidNormal(const NarrowPhaseInput& in, Manifold& m) {
+  m.normal = in.frames[m.reference].axes * m.localNormal;
+  for (std::uint32_t k = 0; k < m.contactCount; ++k) rigidContacts_[m.firstContact + k].normal = m.normal;
+}
+
 void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact) {
   const Body &bodyA = in.bodies[a], &bodyB = in.bodies[b];
+  if (bodyA.model == BodyModel::Rigid || bodyB.model == BodyModel::Rigid) {
+    addRigidManifold(in, a, b, contact);
+    return;
+  }
   const Material combined = combine(bodyA.material, bodyB.material);
   const std::size_t first = contacts_.size();
   for (int i = 0; i < contact.count; ++i) {
@@ -180,20 +212,73 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
   }
   const Vec3 n = contact.sat.normal;
   manifolds_.push_back(
-      {a, b, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n});
+      {a, b, false, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n});
   Manifold& m = manifolds_.back();
   m.kept = contact.kind == ContactKind::FaceFace && bodyA.shape == Shape::Box && bodyB.shape == Shape::Box;
-  if (m.kept) {
-    // The reference face: the box one of whose axes the normal lies along (the better aligned).
-    auto alignment = [&n](const Obb& f) {
-      return std::max({std::abs(glm::dot(f.axes[0], n)), std::abs(glm::dot(f.axes[1], n)),
-                       std::abs(glm::dot(f.axes[2], n))});
-    };
-    m.reference = alignment(in.frames[a]) >= alignment(in.frames[b]) ? a : b;
-    m.localNormal = glm::transpose(in.frames[m.reference].axes) * n;
-    m.madeAt = poseInFrameOf(in.frames[a], in.frames[b]);
-    m.whole = contact.dropped == 0;
+  if (m.kept) keepThroughStep(in, m, contact);
+}
+
+// A face-on-face manifold, kept through the step: its reference face, and where b was in a's frame.
+void NarrowPhase::keepThroughStep(const NarrowPhaseInput& in, Manifold& m, const BoxContact& contact) {
+  const Vec3 n = m.normal;
+  // The reference face: the box one of whose axes the normal lies along (the better aligned).
+  auto alignment = [&n](const Obb& f) {
+    return std::max({std::abs(glm::dot(f.axes[0], n)), std::abs(glm::dot(f.axes[1], n)),
+                     std::abs(glm::dot(f.axes[2], n))});
+  };
+  m.reference = alignment(in.frames[m.a]) >= alignment(in.frames[m.b]) ? m.a : m.b;
+  m.localNormal = glm::transpose(in.frames[m.reference].axes) * n;
+  m.madeAt = poseInFrameOf(in.frames[m.a], in.frames[m.b]);
+  m.whole = contact.dropped == 0;
+}
+
+namespace {
+
+// One side of a rigid pair's point: a rigid body's point in its frame (its frame is its pose), or a
+// particle body's point carried rigidly by its particles.
+void setSide(const Body& body, const Obb& frame, const Vec3& point, ContactSide& side, RigidId& rigid,
+             Vec3& local, Embedding& embedded) {
+  if (body.model == BodyModel::Rigid) {
+    side = ContactSide::Rigid;
+    rigid = body.rigid;
+    local = glm::transpose(frame.axes) * (point - frame.center);
+  } else {
+    // A box's point on the face it lies on, carried by that face's corners as between particle
+    // bodies: carried by the tetrahedron, whose weights reach -1/2 at a corner, the pushes sheared
+    // the box and a corners box on a rigid one walked 2 cm in 5 s. A capsule's point rigidly (a
+    // face point would sit off its round surface).
+    side = ContactSide::Particles;
+    embedded = body.shape == Shape::Box ? detail::surfacePoint(body, frame, point)
+                                        : detail::rigidPoint(body, frame, point);
   }
+}
+
+}  // namespace
+
+// A pair with a rigid body: its points into rigidContacts_, where the rigid passes solve them. Face
+// on face between two boxes is kept through the step as for particle bodies.
+void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId b,
+                                   const BoxContact& contact) {
+  const Body &bodyA = in.bodies[a], &bodyB = in.bodies[b];
+  const Material combined = combine(bodyA.material, bodyB.material);
+  const std::size_t first = rigidContacts_.size();
+  for (int i = 0; i < contact.count; ++i) {
+    RigidContact c;
+    c.bodyA = a;
+    c.bodyB = b;
+    setSide(bodyA, in.frames[a], contact.points[i].onA, c.sideA, c.rigidA, c.localA, c.pointA);
+    setSide(bodyB, in.frames[b], contact.points[i].onB, c.sideB, c.rigidB, c.localB, c.pointB);
+    c.normal = contact.sat.normal;
+    c.combined = combined;
+    c.kind = static_cast<std::uint8_t>(contact.kind);
+    rigidContacts_.push_back(c);
+  }
+  const Vec3 n = contact.sat.normal;
+  manifolds_.push_back(
+      {a, b, true, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n});
+  Manifold& m = manifolds_.back();
+  m.kept = contact.kind == ContactKind::FaceFace && bodyA.shape == Shape::Box && bodyB.shape == Shape::Box;
+  if (m.kept) keepThroughStep(in, m, contact);
 }
 
 void NarrowPhase::sizeState() {
@@ -209,6 +294,10 @@ void NarrowPhase::sizeState() {
 void NarrowPhase::measureStarts(const Particles& particles, Real contactSlop) {
   for (Manifold& m : manifolds_) {
     Real overlap = -std::numeric_limits<Real>::infinity();
+    if (m.rigid) {  // the rigid passes measure their own; the parting leaves rigid bodies alone
+      m.overlap = overlap;
+      continue;
+    }
     for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
       const BodyContact& c = contacts_[k];
       const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles.previous, c.pointB) -

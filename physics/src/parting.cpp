@@ -73,7 +73,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
   push_.resize(manifolds.size());
   for (std::size_t k = 0; k < manifolds.size(); ++k) {
     const Manifold& m = manifolds[k];
-    if (root_[m.a] == root_[m.b]) {
+    if (m.rigid || root_[m.a] == root_[m.b]) {  // a rigid body's overlaps are its own passes' to part
       need_[k] = -std::numeric_limits<Real>::infinity();  // nothing to part: one group
       continue;
     }
@@ -101,6 +101,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
   for (BodyId id{}; id < bodies.size(); ++id) {
     const Body& box = bodies[id];
     Real& mass = weight_[root_[id]];
+    if (box.model == BodyModel::Rigid) mass = std::numeric_limits<Real>::infinity();  // it stays
     for (int j = 0; j < box.particleCount; ++j) {
       const Real w = particles.inverseMass[box.firstParticle + j];
       mass = w == 0.0 ? std::numeric_limits<Real>::infinity() : mass + 1.0 / w;  // pinned or frozen: it stays
@@ -185,6 +186,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
   }
   // The start overlaps the depenetration limit is reckoned from move with the boxes.
   for (const Manifold& m : manifolds) {
+    if (m.rigid) continue;
     const Real parted = glm::dot(m.normal, shift_[root_[m.b]] - shift_[root_[m.a]]);
     for (std::uint32_t k = 0; k < m.contactCount; ++k) contactAllowance[m.firstContact + k] -= parted;
   }

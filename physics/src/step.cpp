@@ -12,6 +12,7 @@
 
 #include "passes.h"
 #include "physics/world.h"
+#include "rigid_motion.h"
 
 namespace phys {
 namespace {
@@ -55,10 +56,13 @@ void World::step() {
     fitBodyFrames();
     const bool newPairs = findPairs(s == 0);
     findContacts(newPairs);
+    if (s == 0 || newPairs) collectRigidGround();
     partOverlaps();
     measureApproaches(h);
+    startRigidContacts(h);
     const std::span<const Real> linkSlack = limitCorrections(h);
     relax(h, linkSlack);
+    rigidVelocities(h);
     restitute(h);
     dampBodies();
     time_ += h;
@@ -81,6 +85,7 @@ void World::updateLayouts() {
 void World::integrateParticles(Real h) {
   const StageTimer timer(profile_, Stage::Integrate);
   detail::integrate(particles_, world_, h, guard_.checked());
+  detail::integrateRigid(rigidBodies_, world_, h);
   // The mouse spring is a force: applied with gravity, before the passes share it out.
   if (drag_) {
     const Body* body = dragBody_ != kNoBody ? &bodies_[dragBody_] : nullptr;
@@ -102,7 +107,7 @@ bool World::findPairs(bool firstSubstep) {
   if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_))) return false;
   const BroadPhaseStep step{solver_.dt, substepDt(), solver_.featureEpsilon, gravityMagnitude(),
                             solver_.broadPhase};
-  broadPhase_.update(particles_, bodies_, frames_, step);
+  broadPhase_.update(particles_, rigidBodies_, bodies_, frames_, step);
   const std::size_t pairs = broadPhase_.pairs().size();
   narrowPhase_.reserve(pairs, bodies_.size());
   parting_.reserve(pairs, bodies_.size());
@@ -138,6 +143,43 @@ NarrowPhaseInput World::narrowPhaseInput() const {
           solver_.dt,
           gravityMagnitude(),
           solver_.manifoldReuse};
+}
+
+// Each contact with a rigid body: its overlap at the substep's start, of which the substep may remove
+// maxDepenetrationSpeed h, its approach speed before the passes, and no impulse yet.
+void World::startRigidContacts(Real h) {
+  if (rigidBodies_.size() == 0) return;
+  const StageTimer timer(profile_, Stage::Contacts);
+  placeRigidCapsulePoints();
+  const RigidPassInput in = rigidPassInput(h);
+  const Real depenetration = solver_.maxDepenetrationSpeed * h;
+  detail::startRigidContacts(in, narrowPhase_.rigidContacts(), narrowPhase_.rigidState(), depenetration);
+  detail::startRigidContacts(in, rigidGround_, rigidGroundState_, depenetration);
+  detail::findPatches(in, narrowPhase_.rigidContacts(), rigidPatches_);
+  detail::findPatches(in, rigidGround_, rigidGroundPatches_);
+}
+
+RigidPassInput World::rigidPassInput(Real h) {
+  return {particles_,
+          rigidBodies_,
+          world_.groundNormal,
+          world_.groundHeight,
+          0.0,
+          h,
+          std::max(kRestitutionMinSpeed, 2.0 * gravityMagnitude() * h)};
+}
+
+// The velocities from the change of pose, then dynamic friction and restitution (Müller et al.
+// 2020, 3.6). Restitution uses the particle models' threshold: impacts under 2 |g| h are what a
+// resting contact gains in a substep, and never bounce.
+void World::rigidVelocities(Real h) {
+  if (rigidBodies_.size() == 0) return;
+  const StageTimer timer(profile_, Stage::Velocities);
+  detail::deriveRigidVelocities(rigidBodies_, h);
+  const RigidPassInput in = rigidPassInput(h);
+  detail::rigidVelocityPass(in, rigidGround_, rigidGroundPatches_, rigidGroundState_, solver_.restitution);
+  detail::rigidVelocityPass(in, narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState(),
+                            solver_.restitution);
 }
 
 void World::partOverlaps() {
@@ -200,6 +242,13 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       constraints_.solveLinks(particles_, linkSlack);
     }
 
+    // Rigid bodies' contacts, each patch with its static friction (rigid_contacts.cpp).
+    if (!rigidPatches_.empty() || !rigidGroundPatches_.empty()) {
+      const StageTimer timer(profile_, Stage::Contacts);
+      const RigidPassInput in = rigidPassInput(h);
+      detail::solveRigidContacts(in, rigidGround_, rigidGroundPatches_, rigidGroundState_);
+      detail::solveRigidContacts(in, narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState());
+    }
     // Contacts, each pass followed by its friction, so the next pass's sticks relax what
     // friction bent (run once after all passes, friction would leave every resting box
     // sheared by the last correction).
@@ -262,6 +311,7 @@ void World::dampBodies() {
 void World::guard(bool shapes) {
   const StageTimer timer(profile_, Stage::Guard);
   guardParticles();
+  guard_.checkRigidBodies(rigidBodies_, bodies_, world_.bound, time_);
   if (shapes) guard_.checkShapes(guardInput(), world_.shapeCheckInterval);
 }
 

@@ -45,6 +45,7 @@ void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> box
   runs_.clear();
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     const Body& box = boxes[b];
+    if (box.model == BodyModel::Rigid) continue;  // no particles, no sticks
     if (isolated[b] && box.particleCount <= kMaxBlockParticles) {
       blocks_.push_back({box.firstParticle, box.firstStick, static_cast<std::uint16_t>(box.particleCount),
                          static_cast<std::uint16_t>(box.stickCount)});

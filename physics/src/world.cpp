@@ -13,6 +13,7 @@
 
 #include "passes.h"
 #include "pose.h"
+#include "rigid_motion.h"
 
 namespace phys {
 namespace {
@@ -142,6 +143,22 @@ void World::keepVelocities(Real hOld, Real hNew) {
     }
     particles_.previous[i] = particles_.position[i] - halfStepVelocity * hNew;
   }
+  // A rigid body keeps its velocity of the substep's middle too: the same shift, unless a contact
+  // held it in the last substep.
+  std::vector<std::uint8_t> held(rigidBodies_.size(), 0);
+  auto hold = [&](std::span<const RigidContact> contacts, const RigidContactState& state) {
+    for (std::size_t k = 0; k < contacts.size() && k < state.lambdaNormal.size(); ++k) {
+      if (state.lambdaNormal[k] <= 0.0) continue;
+      if (contacts[k].sideA == ContactSide::Rigid) held[contacts[k].rigidA] = 1;
+      if (contacts[k].sideB == ContactSide::Rigid) held[contacts[k].rigidB] = 1;
+    }
+  };
+  hold(narrowPhase_.rigidContacts(), narrowPhase_.rigidState());
+  hold(rigidGround_, rigidGroundState_);
+  for (RigidId i{}; i < rigidBodies_.size(); ++i) {
+    if (held[i] == 0 && rigidBodies_.inverseMass[i] != 0.0)
+      rigidBodies_.velocity[i] += gravityAt(rigidBodies_.position[i]) * ((hOld - hNew) / 2);
+  }
 }
 
 void World::setFreezeCallback(std::function<void(const FreezeReport&)> callback) {
@@ -241,6 +258,8 @@ void World::setDragTarget(const Vec3& target) {
 
 Embedding World::anchor(BodyId id, const Vec3& worldPoint) const {
   require(id < bodies_.size(), "anchor: box id must exist");
+  require(bodies_[id].model != BodyModel::Rigid,
+          "anchor: a rigid body carries no embedded point (joints on rigid bodies are not built yet)");
   require(finite(worldPoint), "anchor: the point must be finite");
   const Body& box = bodies_[id];
   const BodyPose pose = bodyPose(id);
@@ -265,6 +284,7 @@ BodyId World::addBody(const BodyDesc& desc) {
             "addBody: a capsule's length size.y must be at least its diameter size.x (m)");
   }
   const Quat q = desc.orientation / qLength;
+  if (desc.model == BodyModel::Rigid) return addRigidBody(desc, q);
 
   Body box;
   box.name = desc.name;
@@ -349,6 +369,74 @@ BodyId World::addBody(const BodyDesc& desc) {
   return id;
 }
 
+// A rigid body: one pose, its velocities, and a solid shape's mass properties. Refused, with
+// nothing added, when its inertia cannot be represented (a mass or size near the ends of a double).
+BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
+  Body body;
+  body.name = desc.name;
+  body.model = BodyModel::Rigid;
+  body.shape = desc.shape;
+  body.halfExtents = desc.size * 0.5;
+  body.material = desc.material;
+  body.firstParticle = static_cast<ParticleId>(particles_.size());
+  body.firstStick = static_cast<std::uint32_t>(constraints_.sticks().size());
+  body.firstCorner = static_cast<std::uint32_t>(corners_.size());
+  body.rigid = static_cast<RigidId>(rigidBodies_.size());
+  body.collisionGroup = desc.collisionGroup;
+  body.collisionMask = desc.collisionMask;
+  const Vec3 inertia = desc.shape == Shape::Capsule
+                           ? solidCapsuleInertia(body.capsuleRadius(), body.capsuleHalfSegment(), desc.mass)
+                           : solidBoxInertia(body.halfExtents, desc.mass);
+  const Vec3 inverseInertia = 1.0 / inertia;
+  require(
+      finite(inertia) && finite(inverseInertia) && inertia.x > 0.0 && inertia.y > 0.0 && inertia.z > 0.0,
+      "addBody: a rigid body's inertia must be finite and > 0 (its mass or size is too small or too large)");
+  require(std::isfinite(1.0 / desc.mass), "addBody: mass too small to represent (kg)");
+  for (int k = 0; k < 8; ++k) {
+    require(finite(desc.center + q * boxCornerLocal(body.halfExtents, k)),
+            "addBody: centre or size too large to represent");
+  }
+  const BodyId id(bodies_.size());
+  // As for particles, the velocity kept is that of the last substep's middle, v(t - h/2): with
+  // v(0) given, v(-h/2) = v - g h / 2, and free fall is then exact to round-off.
+  const Real h = substepDt();
+  const Vec3 velocity = desc.velocity - gravityAt(desc.center) * (h / 2);
+  rigidBodies_.position.push_back(desc.center);
+  rigidBodies_.orientation.push_back(q);
+  rigidBodies_.previousPosition.push_back(desc.center - velocity * h);
+  rigidBodies_.previousOrientation.push_back(detail::turned(q, -desc.angularVelocity * h));
+  rigidBodies_.velocity.push_back(velocity);
+  rigidBodies_.angularVelocity.push_back(desc.angularVelocity);
+  rigidBodies_.inverseMass.push_back(1.0 / desc.mass);
+  rigidBodies_.inverseInertia.push_back(inverseInertia);
+  rigidBodies_.body.push_back(id);
+  bodies_.push_back(body);
+  layoutsStale_ = true;
+  frames_.emplace_back();
+  rigid_.emplace_back();
+  guard_.addBody();
+  broadPhase_.addBody();
+  parting_.addBody();
+  return id;
+}
+
+Vec3 World::cornerPosition(BodyId id, int k) const {
+  const Body& body = bodies_.at(id);
+  if (body.model != BodyModel::Rigid) return position(corners_[body.firstCorner + k]);
+  return rigidBodies_.position[body.rigid] +
+         rigidBodies_.orientation[body.rigid] * boxCornerLocal(body.halfExtents, k);
+}
+
+std::pair<Vec3, Vec3> World::bodyVelocity(BodyId id) const {
+  const Body& body = bodies_.at(id);
+  if (body.model == BodyModel::Rigid)
+    return {rigidBodies_.velocity[body.rigid], rigidBodies_.angularVelocity[body.rigid]};
+  detail::MassProperties m;
+  if (!detail::massProperties(particles_, body, m)) return {Vec3(0.0), Vec3(0.0)};
+  const detail::RigidMotion motion = detail::rigidMotion(particles_, body, m);
+  return {motion.linear / substepDt(), motion.angular / substepDt()};
+}
+
 Vec3 World::velocity(ParticleId id) const {
   return (particles_.position.at(id) - particles_.previous.at(id)) / substepDt();
 }
@@ -371,6 +459,8 @@ Real World::gravityMagnitude() const {
 
 BodyPose World::bodyPose(BodyId id) const {
   const Body& box = bodies_.at(id);
+  if (box.model == BodyModel::Rigid)
+    return {rigidBodies_.position[box.rigid], rigidBodies_.orientation[box.rigid]};
   BodyPose pose;
   const Vec3* x = &particles_.position[box.firstParticle];
   // Each particle's share summed, not the sum divided: the same digits for 4 or 8 particles (a

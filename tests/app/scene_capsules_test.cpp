@@ -161,7 +161,7 @@ const testing_scenes::BadScene kBadCapsules[] = {
      "<scene name='s'>\n<capsule pos='0 1 0' radius='0.1' length='1'\n size='0.2 1 0.2'/>\n</scene>", 3,
      "size", "unknown attribute (known: name, radius, length"},
     {"bad model", "<scene name='s'>\n<capsule pos='0 1 0' radius='0.1' length='1' model='sphere'/>\n</scene>",
-     2, "model", "corners or tetra"},
+     2, "model", "corners, tetra or rigid"},
     {"negative mass", "<scene name='s'>\n<capsule pos='0 1 0' radius='0.1' length='1' mass='-1'/>\n</scene>",
      2, "mass", "'-1' must be from 1e-06 to 1e+09 (kg)"},
     {"duplicate name",

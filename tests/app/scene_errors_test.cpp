@@ -75,7 +75,7 @@ const BadScene kCases[] = {
     {"grid too large", "<scene name='s'>\n<grid pos='0 0 0' count='100 100 100'/>\n</scene>", 2, "count",
      "more than 100000"},
     {"bad model", "<scene name='s'>\n<box pos='0 0 0' model='sphere'/>\n</scene>", 2, "model",
-     "corners or tetra"},
+     "corners, tetra or rigid"},
     {"bad method", "<scene name='s'>\n<solver method='magic'/>\n</scene>", 2, "method", "gauss-seidel"},
     {"zero iterations", "<scene name='s'>\n<solver iterations='0'/>\n</scene>", 2, "iterations",
      "from 1 to 1000"},

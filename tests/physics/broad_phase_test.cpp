@@ -159,7 +159,8 @@ TEST(BroadPhase, FindsPairsOnlyWhenUpdatedAndSaysWhenItMust) {
   broad.indexFilters();
   EXPECT_TRUE(broad.pairs().empty());
   EXPECT_TRUE(broad.needsUpdate(world.bodyFrames()));
-  broad.update(world.particles(), world.bodies(), world.bodyFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
+  broad.update(world.particles(), world.rigidBodies(), world.bodies(), world.bodyFrames(),
+               {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
   ASSERT_EQ(broad.pairs().size(), 2u);
   EXPECT_EQ(broad.pairs()[0], std::make_pair(phys::BodyId{0}, phys::BodyId{1}));
   EXPECT_EQ(broad.pairs()[1], std::make_pair(phys::BodyId{1}, phys::BodyId{2}));
@@ -167,7 +168,8 @@ TEST(BroadPhase, FindsPairsOnlyWhenUpdatedAndSaysWhenItMust) {
   broad.ignore(phys::BodyId{2}, phys::BodyId{1});
   EXPECT_TRUE(broad.needsUpdate(world.bodyFrames()));  // stale: the filter changed
   broad.indexFilters();
-  broad.update(world.particles(), world.bodies(), world.bodyFrames(), {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
+  broad.update(world.particles(), world.rigidBodies(), world.bodies(), world.bodyFrames(),
+               {1.0 / 60.0, 1.0 / 60.0, 0.01, 0.0});
   EXPECT_EQ(broad.pairs().size(), 1u);
   // A frame moved further than its bounds allowed (at rest: the epsilon alone).
   std::vector<phys::Obb> moved(world.bodyFrames().begin(), world.bodyFrames().end());

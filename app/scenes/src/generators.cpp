@@ -27,7 +27,7 @@ void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BodyDesc
   if (auto mass = readMass(e, "mass")) d.mass = *mass;
   if (auto model = e.text("model")) {
     const auto parsed = phys::parseBodyModel(*model);
-    if (!parsed) e.fail("model", "'" + *model + "' must be corners or tetra");
+    if (!parsed) e.fail("model", "'" + *model + "' must be corners, tetra or rigid");
     d.model = *parsed;
   }
   e.material(d.material);

@@ -10,6 +10,7 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "physics/rigid_bodies.h"
 #include "physics/settings.h"
 #include "physics/types.h"
 
@@ -21,9 +22,12 @@ enum class BodyModel {
   /// Jakobsen's: 4 particles and 6 sticks forming a tetrahedron; the 8 corners are embedded by
   /// fixed barycentric weights.
   Tetra,
+  /// One pose and its velocities, solved by XPBD (Müller et al. 2020): no particles, no sticks;
+  /// mass and inertia are a solid box's or capsule's (docs/physics.md, "Rigid bodies").
+  Rigid,
 };
 
-std::string_view toString(BodyModel model);  ///< "corners", "tetra"
+std::string_view toString(BodyModel model);  ///< "corners", "tetra", "rigid"
 std::optional<BodyModel> parseBodyModel(std::string_view name);
 
 /// What collides: the box itself, or a capsule along the body's y axis inscribed in the box:
@@ -51,7 +55,7 @@ struct BodyDesc {
   std::uint32_t collisionMask = 0xffffffffu;
 };
 
-/// Where a body is: read back from its particles.
+/// Where a body is: its pose (rigid), or read back from its particles.
 struct BodyPose {
   Vec3 center{0.0};  ///< unit: m
   Quat orientation{1.0, 0.0, 0.0, 0.0};
@@ -65,11 +69,12 @@ struct Body {
   std::string name;
   BodyModel model = BodyModel::Corners;
   ParticleId firstParticle{};
-  int particleCount = 0;         ///< 8 (corners) or 4 (tetra)
-  std::uint32_t firstStick = 0;  ///< its own sticks are consecutive in World::sticks() from here
-  int stickCount = 0;            ///< 22 (corners) or 6 (tetra)
-  std::uint32_t firstCorner = 0;
-  Vec3 halfExtents{0.5};  ///< unit: m; of the box, or of the box a capsule is inscribed in
+  int particleCount = 0;          ///< 8 (corners), 4 (tetra) or 0 (rigid)
+  std::uint32_t firstStick = 0;   ///< its own sticks are consecutive in World::sticks() from here
+  int stickCount = 0;             ///< 22 (corners) or 6 (tetra)
+  std::uint32_t firstCorner = 0;  ///< particle models only: a rigid body has no embedded corners
+  RigidId rigid{};                ///< rigid model only: its pose and velocities in World::rigidBodies()
+  Vec3 halfExtents{0.5};          ///< unit: m; of the box, or of the box a capsule is inscribed in
   Shape shape = Shape::Box;
   Material material;
   std::uint32_t collisionGroup = 1;

@@ -11,6 +11,7 @@
 #include "physics/body.h"
 #include "physics/collision.h"
 #include "physics/particles.h"
+#include "physics/rigid_bodies.h"
 #include "physics/settings.h"
 
 namespace phys {
@@ -52,10 +53,11 @@ class BroadPhase {
   /// True when the pairs are stale, or some body has gone further since they were found than its
   /// bounds allowed (an impact or a joint gave it speed within the step).
   bool needsUpdate(std::span<const Obb> frames) const;
-  /// Finds the pairs from the bodies' frames now and their particles' motion over the last
-  /// substep; allocates only when the world has gathered many more pairs than it ever had.
-  void update(const Particles& particles, std::span<const Body> bodies, std::span<const Obb> frames,
-              const BroadPhaseStep& step);
+  /// Finds the pairs from the bodies' frames now and their motion over the last substep (their
+  /// particles', or a rigid body's velocities); allocates only when the world has gathered many
+  /// more pairs than it ever had.
+  void update(const Particles& particles, const RigidBodies& rigid, std::span<const Body> bodies,
+              std::span<const Obb> frames, const BroadPhaseStep& step);
 
   /// The pairs whose grown bounds overlapped at the last update, (lower id, higher id), in body
   /// order: by lower id, then higher.

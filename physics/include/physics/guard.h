@@ -10,15 +10,17 @@
 #include "physics/body.h"
 #include "physics/constraints.h"
 #include "physics/particles.h"
+#include "physics/rigid_bodies.h"
 
 namespace phys {
 
 /// What the guard did to a particle that went bad.
 struct FreezeReport {
-  std::string name;     ///< the box's name, else the particle's, else "particle N"
-  std::string reason;   ///< "non-finite position", "left the world bound of B m", "crushed: ...", ...
-  ParticleId particle;  ///< the first bad particle
-  Real time;            ///< unit: s; simulated time of the substep that caught it
+  std::string name;       ///< the box's name, else the particle's, else "particle N"
+  std::string reason;     ///< "non-finite position", "left the world bound of B m", "crushed: ...", ...
+  ParticleId particle;    ///< the first bad particle (0 for a rigid body, which has none)
+  Real time;              ///< unit: s; simulated time of the substep that caught it
+  BodyId body = kNoBody;  ///< the body frozen whole, or kNoBody for a loose particle
 };
 
 /// What the guard reads of the world; it writes only the particles of what it freezes.
@@ -46,6 +48,10 @@ class Guard {
   /// Freezes every particle (and its whole body) that is non-finite or beyond `bound` (m) on an
   /// axis.
   void checkParticles(const GuardInput& in, Real bound);
+  /// Freezes each rigid body whose pose or velocities are non-finite or whose centre is beyond
+  /// `bound` (m) on an axis: put back at the pose its substep started from (finite, as the last
+  /// check found it), at rest, with no inverse mass or inertia, so nothing moves it again.
+  void checkRigidBodies(RigidBodies& rigid, std::span<const Body> bodies, Real bound, Real time);
   /// True when the shapes are due a look (every `interval` s of simulated time).
   bool shapesDue(Real time) const { return time >= nextShapeCheck_; }
   /// Freezes each body whose worst stick has been more than kCrushedStickError off its length for

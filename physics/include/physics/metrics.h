@@ -36,11 +36,12 @@ enum class Stage : std::uint8_t {
   Links,        ///< the joints, including how far a link created apart may stay open
   Contacts,     ///< contact projection, box-box and ground
   Friction,     ///< friction of the contacts just projected
+  Velocities,   ///< rigid bodies' velocities from their change of pose; their dynamic friction and bounce
   Restitution,  ///< approach speeds before the passes, bounces after them
   BodyDamping,  ///< each body's inner motion pulled towards its rigid motion
   Guard,        ///< non-finite, out-of-bound and crushed bodies frozen
 };
-inline constexpr std::size_t kStageCount = 12;
+inline constexpr std::size_t kStageCount = 13;
 static_assert(static_cast<std::size_t>(Stage::Guard) + 1 == kStageCount, "Guard is the last stage");
 
 /// The stage's name in outputs: "integrate", "broad-phase", ...

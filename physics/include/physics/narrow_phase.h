@@ -12,13 +12,15 @@
 #include "physics/collision.h"
 #include "physics/constraints.h"
 #include "physics/particles.h"
+#include "physics/rigid_contacts.h"
 
 namespace phys {
 
 /// The contact of one pair of bodies: its points are contacts() [firstContact, firstContact +
-/// contactCount), all with the pair's normal.
+/// contactCount), or rigidContacts() when either body is rigid, all with the pair's normal.
 struct Manifold {
   BodyId a{}, b{};
+  bool rigid = false;  ///< either body is rigid: its points are in rigidContacts()
   std::uint32_t firstContact = 0, contactCount = 0;
   Vec3 normal{0.0};    ///< from a towards b
   Real overlap = 0.0;  ///< unit: m; the deepest point's overlap beyond the slop at x*; < 0 when apart
@@ -76,7 +78,13 @@ class NarrowPhase {
   /// How far apart two bodies' points can be and still close within the step. unit: m
   static Real speculativeMargin(const NarrowPhaseInput& in, BodyId a, BodyId b);
 
+  /// Points of pairs of particle bodies.
   std::span<const BodyContact> contacts() const { return contacts_; }
+  /// Points of pairs with a rigid body.
+  std::span<const RigidContact> rigidContacts() const { return rigidContacts_; }
+  std::span<RigidContact> rigidContacts() { return rigidContacts_; }
+  RigidContactState& rigidState() { return rigidState_; }
+  const RigidContactState& rigidState() const { return rigidState_; }
   std::span<const Manifold> manifolds() const { return manifolds_; }
   BodyContactState& state() { return state_; }
   const BodyContactState& state() const { return state_; }
@@ -89,7 +97,14 @@ class NarrowPhase {
   void carry(const NarrowPhaseInput& in, const Manifold& m);
   void sizeState();
 
+  void keepThroughStep(const NarrowPhaseInput& in, Manifold& m, const BoxContact& contact);
+  void addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact);
+  void turnRigidNormal(const NarrowPhaseInput& in, Manifold& m);
+
   std::vector<BodyContact> contacts_;
+  std::vector<RigidContact> rigidContacts_;
+  std::vector<RigidContact> spareRigidContacts_;
+  RigidContactState rigidState_;
   std::vector<Manifold> manifolds_;
   BodyContactState state_;
   std::vector<Manifold> spareManifolds_;    // manifolds_'s room for refresh

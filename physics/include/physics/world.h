@@ -22,6 +22,8 @@
 #include "physics/narrow_phase.h"
 #include "physics/particles.h"
 #include "physics/parting.h"
+#include "physics/rigid_bodies.h"
+#include "physics/rigid_contacts.h"
 #include "physics/settings.h"
 
 namespace phys {
@@ -129,8 +131,15 @@ class World {
   std::span<const Stick> sticks() const { return constraints_.sticks(); }
   std::span<const Body> bodies() const { return bodies_; }
   std::span<const Link> links() const { return constraints_.links(); }
-  /// Every box's corners, 8 per box from Body::firstCorner.
+  /// Every particle body's corners, 8 per body from Body::firstCorner (a rigid body has none).
   std::span<const Embedding> corners() const { return corners_; }
+  /// Corner k of any body now (bits as in Body), unit: m.
+  Vec3 cornerPosition(BodyId id, int k) const;
+  /// The rigid bodies' poses and velocities, indexed by Body::rigid.
+  const RigidBodies& rigidBodies() const { return rigidBodies_; }
+  /// Contacts with a rigid body on either side in the last substep: between bodies, then on the ground.
+  std::span<const RigidContact> rigidBodyContacts() const { return narrowPhase_.rigidContacts(); }
+  std::span<const RigidContact> rigidGroundContacts() const { return rigidGround_; }
   /// Every point that collides with the ground.
   std::span<const GroundContact> groundContacts() const { return ground_.points(); }
   /// Box-box contacts of the last substep.
@@ -152,8 +161,14 @@ class World {
   Vec3 velocity(ParticleId id) const;
   /// Current position of an embedded point (a box corner, say). unit: m
   Vec3 position(const Embedding& point) const;
-  /// Centre and orientation of a box, fitted to its particles (polar decomposition).
+  /// Centre and orientation of a body: a rigid body's own, a particle body's fitted to its
+  /// particles (polar decomposition).
   BodyPose bodyPose(BodyId id) const;
+  /// Velocity of a body's centre (m/s) and its angular velocity (rad/s, world frame) over the last
+  /// substep, as velocity() is a particle's (half a substep back): a rigid body's own; a particle
+  /// body's the least-squares rigid motion of its particles, which keeps their momentum and
+  /// angular momentum.
+  std::pair<Vec3, Vec3> bodyVelocity(BodyId id) const;
   /// Acceleration of gravity at a point, in the current mode. unit: m/s^2
   Vec3 gravityAt(const Vec3& x) const;
 
@@ -171,6 +186,14 @@ class World {
   void settleWithoutVelocity();
   // The stages of a substep, in step()'s order (step.cpp); each times itself into profile_.
   void integrateParticles(Real h);
+  void collectRigidGround();
+  void placeRigidCapsulePoints();
+  void startRigidContacts(Real h);
+  void solveRigidContacts(Real h);
+  void rigidVelocities(Real h);
+  void guardRigidBodies();
+  RigidPassInput rigidPassInput(Real h);
+  Real lowestHeight(BodyId id, const Body& body) const;
   void fitBodyFrames();
   bool findPairs(bool firstSubstep);
   void findContacts(bool newPairs);
@@ -187,6 +210,7 @@ class World {
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBodyFrames();
   void joinBodies(ParticleId a, ParticleId b);
+  BodyId addRigidBody(const BodyDesc& desc, const Quat& orientation);
   NarrowPhaseInput narrowPhaseInput() const;
   Real gravityMagnitude() const;
 
@@ -208,6 +232,12 @@ class World {
   Parting parting_;
   std::vector<RigidState> rigid_;                // per box: restitution's rigid-body view
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
+
+  RigidBodies rigidBodies_;
+  std::vector<RigidContact> rigidGround_;  // per step: rigid bodies' points that may reach the ground
+  RigidContactState rigidGroundState_;
+  std::vector<ContactPatch> rigidPatches_;        // of narrowPhase_.rigidContacts(), in the passes' order
+  std::vector<ContactPatch> rigidGroundPatches_;  // of rigidGround_
 
   std::optional<Drag> drag_;
   BodyId dragBody_ = kNoBody;  // the body carrying the drag's point, if one body does

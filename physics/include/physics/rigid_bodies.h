@@ -1,0 +1,39 @@
+#pragma once
+// The rigid body model's store: one pose and one pair of velocities per body, where the particle
+// models carry 4 or 8 particles. Solved by XPBD with substeps (Müller, Macklin, Chentanez, Jeschke,
+// Kim 2020; docs/physics.md, "Rigid bodies"): integrate, correct poses by positional impulses, take
+// the velocities from the change of pose, then a velocity pass for friction and restitution.
+#include <cstddef>
+#include <vector>
+
+#include "physics/types.h"
+
+namespace phys {
+
+/// Index of a rigid body in the world's RigidBodies.
+using RigidId = Id<struct RigidTag>;
+
+/// Every rigid body's state as a structure of arrays, in RigidId order.
+struct RigidBodies {
+  std::vector<Vec3> position;             ///< unit: m; centre of mass now
+  std::vector<Quat> orientation;          ///< unit quaternion, body to world, now
+  std::vector<Vec3> previousPosition;     ///< unit: m; at the start of the substep
+  std::vector<Quat> previousOrientation;  ///< at the start of the substep
+  std::vector<Vec3> velocity;             ///< unit: m/s; of the centre, at the end of the last substep
+  std::vector<Vec3> angularVelocity;      ///< unit: rad/s; world frame, at the end of the last substep
+  std::vector<Real> inverseMass;          ///< unit: 1/kg; 0 when frozen by the guard
+  /// unit: 1/(kg m^2); the principal moments' inverses, body frame (a box's and a capsule's axes
+  /// are principal); 0 when frozen.
+  std::vector<Vec3> inverseInertia;
+  std::vector<BodyId> body;  ///< the Body it is
+
+  std::size_t size() const { return position.size(); }
+};
+
+/// Principal moments of inertia (kg m^2) of a solid box of the given half extents and mass.
+Vec3 solidBoxInertia(const Vec3& halfExtents, Real mass);
+/// Principal moments of inertia (kg m^2) of a solid capsule along y, of radius r and core half
+/// length `halfSegment` (cylinder plus two hemispheres of uniform density), of the given mass.
+Vec3 solidCapsuleInertia(Real radius, Real halfSegment, Real mass);
+
+}  // namespace phys

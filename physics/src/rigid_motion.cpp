@@ -1,0 +1,110 @@
+// The rigid body model's integration and pose corrections (Müller et al. 2020; docs/physics.md,
+// "Rigid bodies"). Rotations are applied by the exact exponential, and angular velocities read back
+// by its exact inverse, where the paper adds h/2 [w, 0] q and normalises: that shortens every turn
+// by a factor 1 / sqrt(1 + (h |w| / 2)^2), and read back through the same linearisation a body
+// spinning at 1 turn/s lost 0.03% of its energy per substep.
+#include "rigid_motion.h"
+
+#include <cmath>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/matrix.hpp>
+
+namespace phys::detail {
+namespace {
+
+// [v]x, the matrix of the cross product: [v]x a = v x a.
+glm::dmat3 crossMatrix(const Vec3& v) {
+  return glm::dmat3(Vec3(0.0, v.z, -v.y), Vec3(-v.z, 0.0, v.x), Vec3(v.y, -v.x, 0.0));  // columns
+}
+
+// Euler's equations for a free body, I dw/dt = -w x I w in the body frame, over h by the implicit
+// midpoint rule: w' = w - h I^-1 (m x I m) with m = (w + w') / 2, solved by Newton's method. The
+// rule keeps every quadratic invariant, so the kinetic energy w^T I w / 2 and |I w| come out as they
+// went in, to the solve's round-off, at any h; explicit Euler gains energy at every substep.
+Vec3 freeRotation(const Vec3& w, const Vec3& inertia, Real h) {
+  const glm::dmat3 I(Vec3(inertia.x, 0.0, 0.0), Vec3(0.0, inertia.y, 0.0), Vec3(0.0, 0.0, inertia.z));
+  Vec3 next = w;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 m = 0.5 * (w + next);
+    const Vec3 residual = inertia * (next - w) + h * glm::cross(m, inertia * m);
+    const glm::dmat3 jacobian = I + (0.5 * h) * (crossMatrix(m) * I - crossMatrix(inertia * m));
+    const Vec3 step = glm::inverse(jacobian) * residual;
+    next -= step;
+    if (!(glm::length(step) > 1e-15 * glm::length(next))) break;
+  }
+  return next;
+}
+
+Vec3 gravityAt(const WorldSettings& world, const Vec3& x) {
+  if (world.gravityMode == GravityMode::Uniform) return world.gravity;
+  const Vec3 towards = world.gravityPoint - x;
+  const Real distance = glm::length(towards);
+  return distance > 0.0 ? towards * (world.gravityStrength / distance) : Vec3(0.0);
+}
+
+}  // namespace
+
+Quat turned(const Quat& q, const Vec3& angle) {
+  const Real theta = glm::length(angle);
+  if (!(theta > 0.0)) return q;
+  const Vec3 axis = angle * (std::sin(0.5 * theta) / theta);
+  return glm::normalize(Quat(std::cos(0.5 * theta), axis.x, axis.y, axis.z) * q);
+}
+
+Vec3 turnBetween(const Quat& from, const Quat& to) {
+  Quat d = to * glm::conjugate(from);
+  if (d.w < 0.0) d = -d;
+  const Vec3 v(d.x, d.y, d.z);
+  const Real s = glm::length(v);
+  if (!(s > 0.0)) return Vec3(0.0);
+  return v * (2.0 * std::atan2(s, d.w) / s);
+}
+
+void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h) {
+  const Real keep = std::exp(-world.damping * h);
+  for (RigidId i{}; i < r.size(); ++i) {
+    r.previousPosition[i] = r.position[i];
+    r.previousOrientation[i] = r.orientation[i];
+    if (r.inverseMass[i] == 0.0) continue;
+    r.velocity[i] = (r.velocity[i] + gravityAt(world, r.position[i]) * h) * keep;
+    const Quat& q = r.orientation[i];
+    const Vec3 inertia = 1.0 / r.inverseInertia[i];
+    const Vec3 spin = freeRotation(glm::conjugate(q) * r.angularVelocity[i], inertia, h);
+    r.angularVelocity[i] = (q * spin) * keep;
+    r.position[i] += r.velocity[i] * h;
+    r.orientation[i] = turned(q, r.angularVelocity[i] * h);
+  }
+}
+
+void deriveRigidVelocities(RigidBodies& r, Real h) {
+  for (RigidId i{}; i < r.size(); ++i) {
+    if (r.inverseMass[i] == 0.0) continue;
+    r.velocity[i] = (r.position[i] - r.previousPosition[i]) / h;
+    r.angularVelocity[i] = turnBetween(r.previousOrientation[i], r.orientation[i]) / h;
+  }
+}
+
+Vec3 inverseInertiaTimes(const RigidBodies& r, RigidId i, const Vec3& v) {
+  const Quat& q = r.orientation[i];
+  return q * (r.inverseInertia[i] * (glm::conjugate(q) * v));
+}
+
+Real pointInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec3& n) {
+  const Vec3 c = glm::cross(at, n);
+  return r.inverseMass[i] + glm::dot(c, inverseInertiaTimes(r, i, c));
+}
+
+void applyPositionalImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p) {
+  if (r.inverseMass[i] == 0.0) return;
+  r.position[i] += p * r.inverseMass[i];
+  r.orientation[i] = turned(r.orientation[i], inverseInertiaTimes(r, i, glm::cross(at, p)));
+}
+
+void applyVelocityImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p) {
+  if (r.inverseMass[i] == 0.0) return;
+  r.velocity[i] += p * r.inverseMass[i];
+  r.angularVelocity[i] += inverseInertiaTimes(r, i, glm::cross(at, p));
+}
+
+}  // namespace phys::detail

@@ -1,0 +1,42 @@
+#pragma once
+// The rigid body model's motion (rigid_motion.cpp): integration of a substep, the velocities
+// derived from the change of pose, and the pose corrections every rigid constraint applies.
+#include <glm/geometric.hpp>
+
+#include "physics/rigid_bodies.h"
+#include "physics/settings.h"
+
+namespace phys::detail {
+
+/// q turned by the rotation vector `angle` (rad, world frame): exp(angle / 2) q, exactly, so a
+/// turn of any size keeps q a unit quaternion.
+Quat turned(const Quat& q, const Vec3& angle);
+/// The rotation vector (rad, world frame) that turns `from` into `to` the short way: the exact
+/// inverse of turned(), so a body's angular velocity comes back from its change of pose unchanged.
+Vec3 turnBetween(const Quat& from, const Quat& to);
+
+/// The start of a substep (the 2020 paper's integration): the pose is kept as the previous one,
+/// gravity and the world's damping act on the velocities, the angular velocity follows Euler's
+/// equations for a free body (implicit midpoint rule, which keeps both the kinetic energy and the
+/// angular momentum's length: docs/physics.md, "Rigid bodies"), and the pose moves on by them.
+/// Frozen bodies (inverse mass 0) do not move.
+void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h);
+/// After the position passes: v = (x - x*) / h, w = turnBetween(q*, q) / h.
+void deriveRigidVelocities(RigidBodies& r, Real h);
+
+/// World-frame I^-1 v of body i (1/(kg m^2) times v).
+Vec3 inverseInertiaTimes(const RigidBodies& r, RigidId i, const Vec3& v);
+/// How far body i's point at r (m, from its centre, world axes) moves along the unit direction n
+/// per unit of impulse along n: 1/m + (r x n)^T I^-1 (r x n) (unit: 1/kg).
+Real pointInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec3& n);
+/// Applies the positional impulse p (kg m) at r (m, from the centre, world axes) to body i's pose:
+/// x += p / m, q turned by I^-1 (r x p).
+void applyPositionalImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p);
+/// Applies the impulse p (N s) at r to body i's velocities: v += p / m, w += I^-1 (r x p).
+void applyVelocityImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p);
+/// Velocity (m/s) of body i's point at r (from the centre, world axes): v + w x r.
+inline Vec3 pointVelocity(const RigidBodies& r, RigidId i, const Vec3& at) {
+  return r.velocity[i] + glm::cross(r.angularVelocity[i], at);
+}
+
+}  // namespace phys::detail
