@@ -338,9 +338,7 @@ bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
     phys::World& rw = run.scene->world;
     phys::Drag drag;
     if (d.isBox) {
-      const phys::Vec3 p = toWorld(rw, phys::BodyId(d.index), d.local);
-      drag.point = rw.anchor(phys::BodyId(d.index), p);
-      drag.target = p;
+      drag = rw.dragAt(phys::BodyId(d.index), toWorld(rw, phys::BodyId(d.index), d.local));
     } else {
       drag.point.particle[0] = phys::ParticleId(d.index);
       drag.point.weight[0] = 1.0;
@@ -370,7 +368,7 @@ void Session::release() {
 std::optional<std::pair<phys::Vec3, phys::Vec3>> Session::dragLine() const {
   const phys::World& w = scene().world;
   if (!drag_ || !w.drag()) return std::nullopt;
-  return std::make_pair(w.position(w.drag()->point), w.drag()->target);
+  return std::make_pair(w.dragPoint(), w.drag()->target);
 }
 
 }  // namespace sandbox

@@ -361,10 +361,11 @@ void findPatches(const RigidPassInput& in, std::span<const RigidContact> contact
     out.push_back({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(end - k), lower});
     k = end;
   }
-  // Stable, so that equal heights keep the narrow phase's order (pairs by body id) and the order
-  // does not depend on the sort's implementation.
-  std::stable_sort(out.begin(), out.end(),
-                   [](const ContactPatch& x, const ContactPatch& y) { return x.height < y.height; });
+  // Equal heights in the narrow phase's order (pairs by body id), so that the order does not depend
+  // on the sort's implementation; std::sort, as std::stable_sort allocates.
+  std::sort(out.begin(), out.end(), [](const ContactPatch& x, const ContactPatch& y) {
+    return x.height < y.height || (x.height == y.height && x.first < y.first);
+  });
 }
 
 void solveRigidContacts(const RigidPassInput& input, std::span<const RigidContact> contacts,

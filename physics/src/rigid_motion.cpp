@@ -107,4 +107,24 @@ void applyVelocityImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3&
   r.angularVelocity[i] += inverseInertiaTimes(r, i, glm::cross(at, p));
 }
 
+void applyRigidDrag(RigidBodies& r, RigidId i, const Vec3& local, const Vec3& target, Real stiffness,
+                    Real damping, Real h) {
+  if (r.inverseMass[i] == 0.0) return;  // frozen
+  const Vec3 at = r.orientation[i] * local;
+  const Vec3 x = r.position[i] + at;
+  const Vec3 force = stiffness * (target - x) - damping * pointVelocity(r, i, at);
+  const glm::dmat3 R = glm::mat3_cast(r.orientation[i]);
+  const Vec3& d = r.inverseInertia[i];
+  const glm::dmat3 inverseInertia =
+      R * glm::dmat3(Vec3(d.x, 0.0, 0.0), Vec3(0.0, d.y, 0.0), Vec3(0.0, 0.0, d.z)) * glm::transpose(R);
+  const glm::dmat3 rx = crossMatrix(at);
+  const glm::dmat3 K = glm::dmat3(r.inverseMass[i]) + glm::transpose(rx) * inverseInertia * rx;
+  const Vec3 impulse = glm::inverse(glm::dmat3(1.0) + (h * h * stiffness + h * damping) * K) * (h * force);
+  const Vec3 dv = impulse * r.inverseMass[i], dw = inverseInertia * glm::cross(at, impulse);
+  r.velocity[i] += dv;
+  r.angularVelocity[i] += dw;
+  r.position[i] += dv * h;
+  r.orientation[i] = turned(r.orientation[i], dw * h);
+}
+
 }  // namespace phys::detail

@@ -34,6 +34,11 @@ Real pointInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec
 void applyPositionalImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p);
 /// Applies the impulse p (N s) at r to body i's velocities: v += p / m, w += I^-1 (r x p).
 void applyVelocityImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p);
+/// The mouse spring on a rigid body's point `local` (its frame, m): as applyDrag (drag.cpp), an
+/// implicit impulse over the substep with the point's inverse mass matrix 1/m + [r]x^T I^-1 [r]x,
+/// applied to the velocities and to the pose the substep's integration has just moved.
+void applyRigidDrag(RigidBodies& r, RigidId i, const Vec3& local, const Vec3& target, Real stiffness,
+                    Real damping, Real h);
 /// Velocity (m/s) of body i's point at r (from the centre, world axes): v + w x r.
 inline Vec3 pointVelocity(const RigidBodies& r, RigidId i, const Vec3& at) {
   return r.velocity[i] + glm::cross(r.angularVelocity[i], at);

@@ -26,6 +26,17 @@ Vec3 capsuleLowestLocal(const Body& body, const Quat& q, const Vec3& groundNorma
 void World::collectRigidGround() {
   rigidGround_.clear();
   if (!world_.ground || rigidBodies_.size() == 0) return;
+  // Room for every corner of every rigid body, once, so that no step allocates for it.
+  const std::size_t most = 8 * rigidBodies_.size();
+  if (rigidGround_.capacity() < most) {
+    rigidGround_.reserve(most);
+    for (std::vector<Real>* v :
+         {&rigidGroundState_.lambdaNormal, &rigidGroundState_.lambdaTangent, &rigidGroundState_.twist,
+          &rigidGroundState_.approach, &rigidGroundState_.allowance})
+      v->reserve(most);
+    rigidGroundState_.touched.reserve(most);
+    rigidGroundPatches_.reserve(rigidBodies_.size());
+  }
   const Vec3 n = world_.groundNormal;
   const Real dt = solver_.dt, g = gravityMagnitude();
   for (RigidId i{}; i < rigidBodies_.size(); ++i) {

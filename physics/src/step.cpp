@@ -13,6 +13,7 @@
 #include "passes.h"
 #include "physics/world.h"
 #include "rigid_motion.h"
+#include "room.h"
 
 namespace phys {
 namespace {
@@ -87,7 +88,10 @@ void World::integrateParticles(Real h) {
   detail::integrate(particles_, world_, h, guard_.checked());
   detail::integrateRigid(rigidBodies_, world_, h);
   // The mouse spring is a force: applied with gravity, before the passes share it out.
-  if (drag_) {
+  if (drag_ && drag_->body != kNoBody) {
+    detail::applyRigidDrag(rigidBodies_, bodies_[drag_->body].rigid, drag_->local, drag_->target,
+                           drag_->stiffness, drag_->damping, h);
+  } else if (drag_) {
     const Body* body = dragBody_ != kNoBody ? &bodies_[dragBody_] : nullptr;
     detail::applyDrag(particles_, body, drag_->point, drag_->target, drag_->stiffness, drag_->damping, h);
   }
@@ -153,6 +157,10 @@ void World::startRigidContacts(Real h) {
   placeRigidCapsulePoints();
   const RigidPassInput in = rigidPassInput(h);
   const Real depenetration = solver_.maxDepenetrationSpeed * h;
+  // Room for the patches, as for the contacts (room.h): a patch has at least one point.
+  const std::size_t room = detail::kRoomPerBody * bodies_.size();
+  detail::keepRoom(rigidPatches_, narrowPhase_.rigidContacts().size(), room);
+  detail::keepRoom(rigidGroundPatches_, rigidGround_.size(), room);
   detail::startRigidContacts(in, narrowPhase_.rigidContacts(), narrowPhase_.rigidState(), depenetration);
   detail::startRigidContacts(in, rigidGround_, rigidGroundState_, depenetration);
   detail::findPatches(in, narrowPhase_.rigidContacts(), rigidPatches_);

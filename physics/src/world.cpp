@@ -235,19 +235,49 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
 }
 
 void World::setDrag(const Drag& drag) {
-  checkEmbedding(drag.point, "setDrag");
+  if (drag.body != kNoBody) {
+    require(drag.body < bodies_.size() && bodies_[drag.body].model == BodyModel::Rigid,
+            "setDrag: body must be a rigid body (a particle body's point is an embedding)");
+    require(finite(drag.local), "setDrag: the point must be finite");
+  } else {
+    checkEmbedding(drag.point, "setDrag");
+  }
   require(finite(drag.target), "setDrag: target must be finite");
   require(std::isfinite(drag.stiffness) && drag.stiffness >= 0.0,
           "setDrag: stiffness must be finite and >= 0 (N/m)");
   require(std::isfinite(drag.damping) && drag.damping >= 0.0,
           "setDrag: damping must be finite and >= 0 (N s/m)");
   drag_ = drag;
+  dragBody_ = kNoBody;
+  if (drag.body != kNoBody) return;
   // The box that carries the point answers the pull as a rigid body; a point carried by anything
   // else (a loose particle, particles of several bodies) is moved through its carriers alone.
   dragBody_ = particleBody_[drag.point.particle[0]];
   for (int i = 1; i < drag.point.count; ++i) {
     if (particleBody_[drag.point.particle[i]] != dragBody_) dragBody_ = kNoBody;
   }
+}
+
+Drag World::dragAt(BodyId body, const Vec3& worldPoint) const {
+  require(body < bodies_.size(), "dragAt: body id must exist");
+  require(finite(worldPoint), "dragAt: the point must be finite");
+  Drag drag;
+  drag.target = worldPoint;
+  if (bodies_[body].model != BodyModel::Rigid) {
+    drag.point = anchor(body, worldPoint);
+    return drag;
+  }
+  const RigidId i = bodies_[body].rigid;
+  drag.body = body;
+  drag.local = glm::conjugate(rigidBodies_.orientation[i]) * (worldPoint - rigidBodies_.position[i]);
+  return drag;
+}
+
+Vec3 World::dragPoint() const {
+  require(drag_.has_value(), "dragPoint: no drag is set");
+  if (drag_->body == kNoBody) return position(drag_->point);
+  const RigidId i = bodies_[drag_->body].rigid;
+  return rigidBodies_.position[i] + rigidBodies_.orientation[i] * drag_->local;
 }
 
 void World::setDragTarget(const Vec3& target) {

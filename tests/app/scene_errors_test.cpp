@@ -76,6 +76,12 @@ const BadScene kCases[] = {
      "more than 100000"},
     {"bad model", "<scene name='s'>\n<box pos='0 0 0' model='sphere'/>\n</scene>", 2, "model",
      "corners, tetra or rigid"},
+    {"model on a particle", "<scene name='s'>\n<particle pos='0 1 0' model='rigid'/>\n</scene>", 2, "model",
+     "a loose particle has no model"},
+    {"joint on a rigid body",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0'/>\n"
+     "<link a='a' b='b' point='0 1.5 0'/>\n</scene>",
+     4, "a", "names a rigid body"},
     {"bad method", "<scene name='s'>\n<solver method='magic'/>\n</scene>", 2, "method", "gauss-seidel"},
     {"zero iterations", "<scene name='s'>\n<solver iterations='0'/>\n</scene>", 2, "iterations",
      "from 1 to 1000"},

@@ -214,6 +214,32 @@ TEST(RigidBody, RestsOnParticleBodiesAndCarriesThem) {
   }
 }
 
+// The mouse spring holds a 1 kg rigid box by its centre at m g / k below the target (4.9 mm at the
+// default 2000 N/m), as it holds a particle box (drag_test.cpp).
+TEST(RigidBody, TheDragHoldsItsWeightAtMgOverK) {
+  phys::WorldSettings w;
+  w.ground = false;
+  {
+    phys::World world(w, xpbd(4));
+    const BodyId id = world.addBody(rigidBox(Vec3(0.0)));
+    world.setDrag(world.dragAt(id, Vec3(0.0)));
+    EXPECT_EQ(world.drag()->body, id);
+    for (int i = 0; i < 300; ++i) world.step();
+    EXPECT_NEAR(world.dragPoint().y, -9.81 / phys::kDragStiffness, 1e-6);
+    EXPECT_NEAR(world.dragPoint().x, 0.0, 1e-9);
+    world.setDragTarget({1.0, 0.0, 0.0});  // and follows the target
+    for (int i = 0; i < 300; ++i) world.step();
+    EXPECT_NEAR(world.bodyPose(id).center.x, 1.0, 1e-6);
+  }
+  phys::World world;
+  world.addParticle({Vec3(0.0, 5.0, 0.0)});
+  const BodyId box = world.addBody(BodyDesc{});  // a particle body: its drag is an embedding
+  EXPECT_EQ(world.dragAt(box, Vec3(0.0)).body, phys::kNoBody);
+  phys::Drag bad;
+  bad.body = box;
+  EXPECT_THROW(world.setDrag(bad), std::invalid_argument);
+}
+
 TEST(RigidBody, TheGuardFreezesABodyThatLeavesTheBound) {
   phys::WorldSettings w = noGravity();
   w.bound = 10.0;

@@ -16,6 +16,22 @@ RigidState rigidState(const phys::World& world, phys::BodyId id) {
   const phys::Particles& particles = world.particles();
   RigidState state;
   state.pose = world.bodyPose(id);
+  if (box.model == phys::BodyModel::Rigid) {
+    // Its own velocities, of the last substep's middle, as addBody reads them back: v + g h / 2.
+    const phys::RigidBodies& rigid = world.rigidBodies();
+    const phys::SolverSettings& solver = world.solverSettings();
+    const double h = solver.dt / solver.substeps;
+    if (rigid.inverseMass[box.rigid] == 0.0) {  // frozen by the guard
+      state.frozen = true;
+      state.mass = phys::BodyDesc{}.mass;
+      return state;
+    }
+    const auto [velocity, spin] = world.bodyVelocity(id);
+    state.velocity = velocity + world.gravityAt(state.pose.center) * (h / 2);
+    state.angularVelocity = spin;
+    state.mass = 1.0 / rigid.inverseMass[box.rigid];
+    return state;
+  }
   state.mass = 0.0;
   for (int j = 0; j < box.particleCount; ++j) {
     const double inverseMass = particles.inverseMass[box.firstParticle + j];

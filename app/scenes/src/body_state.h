@@ -18,9 +18,10 @@ struct RigidState {
   bool frozen = false;              ///< the guard froze it: no mass left, saved at rest
 };
 
-/// Fits one rigid motion to the box's particles: the velocity and spin that addBody, at the
-/// fitted pose, turns into particle velocities nearest (least squares) to loadVelocity's. For
-/// a box that keeps its shape this is exact; what deformation there is, is dropped.
+/// A rigid body's own pose and velocities. A particle body: fits one rigid motion to its
+/// particles, the velocity and spin that addBody, at the fitted pose, turns into particle
+/// velocities nearest (least squares) to loadVelocity's. For a box that keeps its shape this is
+/// exact; what deformation there is, is dropped.
 RigidState rigidState(const phys::World& world, phys::BodyId id);
 
 }  // namespace scenes::detail

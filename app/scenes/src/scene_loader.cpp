@@ -233,6 +233,7 @@ class Builder {
     p.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
     p.pinned = e.boolean("pinned").value_or(false);
     if (auto mass = detail::readMass(e, "mass")) p.mass = *mass;
+    if (e.text("model")) e.fail("model", "a loose particle has no model (model is for boxes and capsules)");
     e.rejectUnknownAttributes();
     const phys::ParticleId id = scene_.world.addParticle(p);
     addName(e, p.name, NamedBody::Kind::Particle, id);
@@ -295,6 +296,12 @@ class Builder {
     const NamedBody& a = bodyNamed(e, "a", true);
     const NamedBody& b = bodyNamed(e, "b", true);
     if (a.kind == b.kind && a.index == b.index) e.fail("b", "must name a different body from a");
+    for (const auto& [attribute, body] : {std::pair{"a", &a}, std::pair{"b", &b}}) {
+      if (body->kind == NamedBody::Kind::Body &&
+          scene_.world.bodies()[body->body()].model == phys::BodyModel::Rigid)
+        e.fail(attribute,
+               "names a rigid body; joints on rigid bodies are not built yet (model corners or tetra)");
+    }
     const std::optional<phys::Vec3> point = e.vector("point", "m");
     const std::optional<phys::Vec3> aPoint = e.vector("a-point", "m");
     const std::optional<phys::Vec3> bPoint = e.vector("b-point", "m");

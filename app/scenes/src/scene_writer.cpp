@@ -52,6 +52,27 @@ LinkEnd linkEnd(const phys::Embedding& e, std::span<const phys::BodyId> owner) {
   return {false, e.particle[0]};
 }
 
+// The rigid bodies, which have no particles, in the order the world made them among the others:
+// a rigid body made when the world had p particles comes before particle p (Body::firstParticle).
+class RigidInOrder {
+ public:
+  explicit RigidInOrder(const phys::World& world) : bodies_(world.bodies()) {}
+  /// Calls f for each rigid body not yet visited that was made before particle `particle`.
+  template <typename F>
+  void before(std::size_t particle, F f) {
+    for (; next_ < bodies_.size(); ++next_) {
+      const phys::Body& b = bodies_[next_];
+      if (b.model != phys::BodyModel::Rigid) continue;
+      if (b.firstParticle > particle) break;
+      f(next_);
+    }
+  }
+
+ private:
+  std::span<const phys::Body> bodies_;
+  phys::BodyId next_{};
+};
+
 // Unique names for every box (the loader needs them to attach links) and for every loose
 // particle that has a name or that a stick or link refers to. Own names are kept in the order
 // the world made the bodies (the first of two equal names keeps it); the rest become "box N"
@@ -62,13 +83,16 @@ class BodyNames {
             const std::vector<bool>& referenced)
       : box_(world.bodies().size()), particle_(world.particles().size()) {
     const std::span<const phys::Body> boxes = world.bodies();
+    RigidInOrder rigid(world);
     for (std::size_t i = 0; i < particle_.size(); ++i) {
+      rigid.before(i, [&](phys::BodyId b) { keepOwn(box_[b], boxes[b].name); });
       if (owner[i] == phys::kNoBody) {
         keepOwn(particle_[i], world.particleName(static_cast<phys::ParticleId>(i)));
       } else if (boxes[owner[i]].firstParticle == i) {
         keepOwn(box_[owner[i]], boxes[owner[i]].name);
       }
     }
+    rigid.before(particle_.size(), [&](phys::BodyId b) { keepOwn(box_[b], boxes[b].name); });
     for (std::size_t b = 0; b < box_.size(); ++b) {
       if (box_[b].empty()) box_[b] = generated("box " + std::to_string(b));
     }
@@ -313,8 +337,11 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   // the same index. The world keeps no such record across kinds, but the sticks show it: a box's
   // bracing is added with the box, and a stick after both its particles.
   std::size_t written = 0;  // particles whose body is written
+  RigidInOrder rigid(world);
+  auto writeRigid = [&](phys::BodyId b) { line(boxElement(world, b, names.box(b))); };
   auto writeBodiesBelow = [&](std::size_t end) {
     while (written < end) {
+      rigid.before(written, writeRigid);
       const auto id = static_cast<phys::ParticleId>(written);
       if (owner[id] == phys::kNoBody) {
         line(particleElement(world, id, names.particle(id)));
@@ -331,6 +358,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     if (owner[s.a] == phys::kNoBody) line(stickElement(s, names));
   }
   writeBodiesBelow(particles.size());
+  rigid.before(particles.size(), writeRigid);
   for (const phys::Link& link : world.links()) line(linkElement(world, link, owner, names));
   for (const auto& [a, b] : world.ignoredCollisions()) {
     line(ElementWriter("no-collision").text("a", names.box(a)).text("b", names.box(b)).empty());

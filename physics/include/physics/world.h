@@ -47,7 +47,10 @@ inline constexpr Real kDragDamping = 100.0;     ///< unit: N s/m
 /// once per substep (docs/physics.md, "Drag"), so it is stable at any stiffness: an infinite
 /// one would put the point on the target every substep. Pinned particles never move.
 struct Drag {
-  Embedding point;                  ///< weights summing to 1 over existing particles
+  Embedding point;  ///< weights summing to 1 over existing particles (not for a rigid body)
+  /// A rigid body's point instead: the body, and the point in its frame from its centre (unit: m).
+  BodyId body = kNoBody;
+  Vec3 local{0.0};
   Vec3 target{0.0};                 ///< unit: m
   Real stiffness = kDragStiffness;  ///< k, unit: N/m; finite, >= 0
   Real damping = kDragDamping;      ///< b, unit: N s/m (force per velocity); finite, >= 0
@@ -95,6 +98,11 @@ class World {
   /// std::invalid_argument (and keeps the old drag) on a bad embedding, a non-finite target or a
   /// negative or non-finite stiffness or damping.
   void setDrag(const Drag& drag);
+  /// A drag of the point at `worldPoint` (unit: m) carried by the body from now on, whatever its
+  /// model (anchor() for a particle body, its frame for a rigid one), with its target there.
+  Drag dragAt(BodyId body, const Vec3& worldPoint) const;
+  /// Where the drag's point is now (unit: m); throws std::invalid_argument if no drag is set.
+  Vec3 dragPoint() const;
   /// Moves the target of the drag; throws std::invalid_argument if it is not finite or no drag is set.
   void setDragTarget(const Vec3& target);
   /// Stops the pull; does nothing if there is none.
