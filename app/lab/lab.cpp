@@ -59,7 +59,9 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   std::filesystem::path file = options.scene;
   try {
     file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(options)));
-    scene.emplace(scenes::loadSceneFile(file));
+    scenes::LoadOptions load;
+    load.boxModel = options.model;
+    scene.emplace(scenes::loadSceneFile(file, load));
   } catch (const scenes::LoadError& e) {
     err << e.what() << "\n";  // already "file:line: ...", the form editors jump to
     return kExitFailure;

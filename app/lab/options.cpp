@@ -22,6 +22,11 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
       if (v == nullptr) return missing("a time step in seconds");
       o.dt = parseDt(*v);
       if (!o.dt) return a + ": '" + *v + "' is not a number of seconds from 1e-06 to 1";
+    } else if (a == "--model") {
+      const std::string* v = value();
+      if (v == nullptr) return missing("a body model (corners, tetra or rigid)");
+      o.model = phys::parseBodyModel(*v);
+      if (!o.model) return a + ": unknown model '" + *v + "' (corners, tetra or rigid)";
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "--dump") {
@@ -72,7 +77,7 @@ std::optional<std::string> parseSolverOption(const std::vector<std::string>& arg
 
 std::string usage() {
   return "usage: lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]\n"
-         "                     [--json] [--dump FILE] [--data DIR]\n"
+         "                     [--model M] [--json] [--dump FILE] [--data DIR]\n"
          "       lab sweep SCENE ... --out DIR     speed against accuracy over settings\n"
          "       lab stability [--out DIR]         where each method fails\n"
          "       lab tune SCENE --target M=V ...   the cheapest settings that meet targets\n"
@@ -86,6 +91,8 @@ std::string usage() {
          "  --method M      gauss-seidel, jacobi, xpbd or shake (default: the scene's)\n"
          "  --iterations K  relaxation passes per substep, 1 to 1000 (default: the scene's)\n"
          "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"
+         "  --model M       corners, tetra or rigid: imposed on every box and capsule of the scene\n"
+         "                  (ragdolls keep theirs; a rigid body is solved by XPBD whatever --method)\n"
          "  --json          print one JSON object instead of the summary\n"
          "  --dump FILE     write each named body's final pose to FILE as CSV\n"
          "  --data DIR      folder holding assets/ (default: the source tree)\n"

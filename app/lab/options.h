@@ -1,7 +1,7 @@
 #pragma once
 // The lab's command line (docs/lab.md):
 //   lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]
-//                 [--json] [--dump FILE] [--data DIR]
+//                 [--model M] [--json] [--dump FILE] [--data DIR]
 //   lab help | lab --help
 // Parsing never touches the file system, so every bad argument is caught (exit 2) before a
 // scene is loaded or a step is run.
@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/body.h"
 #include "physics/settings.h"
 
 namespace lab {
@@ -22,12 +23,14 @@ inline constexpr int kDefaultSteps = 600;  ///< 10 s at the default dt of 1/60 s
 
 /// What `lab run` was asked to do. Unset overrides keep the scene's own solver settings.
 struct RunOptions {
-  std::string scene;                          ///< a file, or a name in <data>/assets/scenes
-  int steps = kDefaultSteps;                  ///< World::step() calls
-  std::optional<double> dt;                   ///< unit: s
-  std::optional<phys::SolverMethod> method;   ///< relaxation method
-  std::optional<int> iterations;              ///< relaxation passes per substep
-  std::optional<int> substeps;                ///< integrations per step
+  std::string scene;                         ///< a file, or a name in <data>/assets/scenes
+  int steps = kDefaultSteps;                 ///< World::step() calls
+  std::optional<double> dt;                  ///< unit: s
+  std::optional<phys::SolverMethod> method;  ///< relaxation method
+  std::optional<int> iterations;             ///< relaxation passes per substep
+  std::optional<int> substeps;               ///< integrations per step
+  /// Imposed on every box, capsule, stack, pyramid and grid box of the scene (not on ragdolls).
+  std::optional<phys::BodyModel> model;
   bool json = false;                          ///< one JSON object instead of the summary
   std::optional<std::filesystem::path> dump;  ///< CSV of the named bodies' final poses
   std::filesystem::path dataDir;              ///< holds assets/; empty: the build's default

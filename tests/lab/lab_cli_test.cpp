@@ -57,6 +57,25 @@ std::vector<std::vector<std::string>> csvRows(const std::string& csv) {
   return rows;
 }
 
+// --model imposes a body model on every box: the same stack as rigid bodies has no particles, and
+// the state differs from the file's corners boxes.
+TEST(LabRun, ModelIsImposedOnEveryBox) {
+  const TempDir dir;
+  const auto scene = dir.write("s.xml",
+                               "<scene name='s'>\n<stack name='st' pos='0 0 0' count='3' size='1'/>\n"
+                               "<box name='b' pos='3 0.5 0'/>\n</scene>\n");
+  const FlatJson asFile = runJson("run " + quoted(scene) + " --steps 30", dir);
+  const FlatJson rigid = runJson("run " + quoted(scene) + " --steps 30 --model rigid", dir);
+  EXPECT_EQ(number(asFile, "particles"), 32);
+  EXPECT_EQ(number(rigid, "particles"), 0);
+  EXPECT_EQ(number(rigid, "bodies"), 4);
+  EXPECT_NE(text(asFile, "hash"), text(rigid, "hash"));
+  const ProcessResult bad = runLab("run " + quoted(scene) + " --model blob", dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--model: unknown model 'blob' (corners, tetra or rigid)"), std::string::npos)
+      << bad.err;
+}
+
 TEST(LabRun, JsonHasEveryKeyWithFiniteNumbers) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());

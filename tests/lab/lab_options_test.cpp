@@ -133,8 +133,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(LabOptions, UsageListsEveryOption) {
   const std::string u = lab::usage();
-  for (const char* option : {"run SCENE", "--steps N", "--dt S", "--method M", "--iterations K",
-                             "--substeps S", "--json", "--dump FILE", "--data DIR", "--help", "lab help"}) {
+  for (const char* option :
+       {"run SCENE", "--steps N", "--dt S", "--method M", "--iterations K", "--substeps S", "--model M",
+        "--json", "--dump FILE", "--data DIR", "--help", "lab help"}) {
     EXPECT_NE(u.find(option), std::string::npos) << option;
   }
 }

@@ -124,6 +124,16 @@ Rigid rigid(const phys::World& world, std::size_t id) {
   std::sort(sorted, sorted + 3);
   r.smallestHalfExtent = sorted[0];
   r.middleHalfExtent = sorted[1];
+  if (box.model == phys::BodyModel::Rigid) {
+    // Its own state: the velocity at load time is the substep's middle's plus g h / 2.
+    const phys::RigidBodies& bodies = world.rigidBodies();
+    const Real h = world.solverSettings().dt / world.solverSettings().substeps;
+    r.frozen = bodies.inverseMass[box.rigid] == 0.0;
+    r.mass = r.frozen ? 0.0 : 1.0 / bodies.inverseMass[box.rigid];
+    r.velocity = bodies.velocity[box.rigid] + world.gravityAt(r.pose.center) * (h / 2);
+    r.spin = bodies.angularVelocity[box.rigid];
+    return r;
+  }
   std::array<Vec3, 8> velocities{};
   for (int j = 0; j < box.particleCount; ++j) {
     const std::size_t p = box.firstParticle + j;
