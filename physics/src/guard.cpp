@@ -127,6 +127,7 @@ void Guard::checkRigidBodies(RigidBodies& rigid, std::span<const Body> bodies, R
     rigid.velocity[i] = rigid.angularVelocity[i] = Vec3(0.0);
     rigid.inverseMass[i] = 0.0;
     rigid.inverseInertia[i] = Vec3(0.0);
+    rigid.inverseInertiaWorld[i] = glm::dmat3(0.0);
     const BodyId body = rigid.body[i];
     const Body& b = bodies[body];
     freezes_.push_back(

@@ -182,29 +182,48 @@ struct PatchCentre {
   Real radius = 0.0;  // unit: m
 };
 
+// A rigid side's centre is its pose applied to the mean of its points in its frame (the map is
+// affine), and a turn keeps lengths, so the radius needs no pose at all: one rotation per side.
 PatchCentre centreOf(const RigidPassInput& in, std::span<const RigidContact> contacts,
-                     const RigidContactState& state, std::size_t lo, std::size_t hi) {
+                     const RigidContactState& state, std::size_t lo, std::size_t hi, bool start) {
   PatchCentre p;
+  Vec3 sumA(0.0), sumB(0.0), startSumA(0.0), startSumB(0.0);  // local points (rigid) or positions
+  const RigidContact& first = contacts[lo];
   for (std::size_t k = lo; k < hi; ++k) {
     if (state.lambdaNormal[k] <= 0.0) continue;
     const RigidContact& c = contacts[k];
-    p.nowA += sidePosition(in.particles, in.rigid, c.sideA, c.rigidA, c.localA, c.pointA, false);
-    p.nowB += sidePosition(in.particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, false);
-    p.startA += sidePosition(in.particles, in.rigid, c.sideA, c.rigidA, c.localA, c.pointA, true);
-    p.startB += sidePosition(in.particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, true);
+    if (c.sideA == ContactSide::Rigid) sumA += c.localA;
+    if (c.sideA == ContactSide::Particles) {
+      sumA += embeddedPosition(in.particles.position, c.pointA);
+      if (start) startSumA += embeddedPosition(in.particles.previous, c.pointA);
+    }
+    if (c.sideB == ContactSide::Rigid) sumB += c.localB;
+    if (c.sideB == ContactSide::Particles) {
+      sumB += embeddedPosition(in.particles.position, c.pointB);
+      if (start) startSumB += embeddedPosition(in.particles.previous, c.pointB);
+    }
     ++p.count;
   }
   if (p.count == 0) return p;
   const Real share = 1.0 / p.count;
-  p.nowA *= share;
-  p.nowB *= share;
-  p.startA *= share;
-  p.startB *= share;
+  auto place = [&](ContactSide side, RigidId rigid, const Vec3& sum, const Vec3& startSum, Vec3& now, Vec3& then) {
+    if (side == ContactSide::Rigid) {
+      const Vec3 local = sum * share;
+      now = in.rigid.position[rigid] + in.rigid.orientation[rigid] * local;
+      if (start) then = in.rigid.previousPosition[rigid] + in.rigid.previousOrientation[rigid] * local;
+    } else if (side == ContactSide::Particles) {
+      now = sum * share;
+      then = startSum * share;
+    }
+  };
+  place(first.sideA, first.rigidA, sumA, startSumA, p.nowA, p.startA);
+  place(first.sideB, first.rigidB, sumB, startSumB, p.nowB, p.startB);
+  const Vec3 meanB = sumB * share;
   for (std::size_t k = lo; k < hi; ++k) {
     if (state.lambdaNormal[k] <= 0.0) continue;
     const RigidContact& c = contacts[k];
-    p.radius += glm::length(
-        sidePosition(in.particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, false) - p.nowB);
+    p.radius += c.sideB == ContactSide::Rigid ? glm::length(c.localB - meanB)
+                                              : glm::length(embeddedPosition(in.particles.position, c.pointB) - p.nowB);
   }
   p.radius *= share;
   return p;
@@ -310,7 +329,7 @@ void applyTwist(RigidPassInput& in, const RigidContact& c, Real L, bool velocity
     if (velocity)
       in.rigid.angularVelocity[i] += angle;
     else
-      in.rigid.orientation[i] = turned(in.rigid.orientation[i], angle);
+      in.rigid.orientation[i] = nudged(in.rigid.orientation[i], angle);
   };
   if (c.sideB == ContactSide::Rigid && !hold.b && in.rigid.inverseMass[c.rigidB] != 0.0) turn(c.rigidB, L);
   if (c.sideA == ContactSide::Rigid && !hold.a && in.rigid.inverseMass[c.rigidA] != 0.0) turn(c.rigidA, -L);
@@ -381,7 +400,7 @@ void solveRigidContacts(const RigidPassInput& input, std::span<const RigidContac
     // times its normal impulse. Both are kept, summed over the passes, on the patch's first point.
     const RigidContact& c = contacts[lo];
     const Real limit = c.combined.staticFriction * normal;
-    const PatchCentre centre = centreOf(in, contacts, state, lo, hi);
+    const PatchCentre centre = centreOf(in, contacts, state, lo, hi, true);
     Vec3 slide = (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
     if (c.sideA == ContactSide::Ground) slide = centre.nowB - centre.startB;
     slide -= glm::dot(slide, c.normal) * c.normal;
@@ -433,10 +452,11 @@ void rigidVelocityPass(const RigidPassInput& input, std::span<const RigidContact
     if (touching == 0) continue;
     approach /= touching;
     const RigidContact& c = contacts[lo];
+    // Velocity impulses leave the poses, and so the centre and its sides, as they are.
+    const PatchCentre centre = centreOf(in, contacts, state, lo, hi, false);
+    const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
+    const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
     {
-      const PatchCentre centre = centreOf(in, contacts, state, lo, hi);
-      const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
-      const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
       const Real speed =
           glm::dot(c.normal, patchVelocity(in, contacts, state, lo, hi, true, b, centre.count) -
                                  patchVelocity(in, contacts, state, lo, hi, false, a, centre.count));
@@ -449,20 +469,17 @@ void rigidVelocityPass(const RigidPassInput& input, std::span<const RigidContact
     }
     for (std::size_t k = lo; k < hi; ++k) {
       if (state.lambdaNormal[k] <= 0.0) continue;
-      const SideView a = viewA(in, contacts[k], hold.a), b = viewB(in, contacts[k], hold.b);
-      const Real speed = glm::dot(c.normal, velocityOf(in, b) - velocityOf(in, a));
-      const Real w = inverseMassAlong(in, a, c.normal) + inverseMassAlong(in, b, c.normal);
+      const SideView pa = viewA(in, contacts[k], hold.a), pb = viewB(in, contacts[k], hold.b);
+      const Real speed = glm::dot(c.normal, velocityOf(in, pb) - velocityOf(in, pa));
+      const Real w = inverseMassAlong(in, pa, c.normal) + inverseMassAlong(in, pb, c.normal);
       if (speed >= 0.0 || w == 0.0) continue;
       const Vec3 p = (-speed / w) * c.normal;
-      kick(in, a, -p);
-      kick(in, b, p);
+      kick(in, pa, -p);
+      kick(in, pb, p);
     }
     // Dynamic friction at the patch's centre: an impulse against the sliding of at most mu_d times
     // the patch's normal impulse (lambda_n / h), and never more than stops it; the same for the twist.
     const Real limit = c.combined.dynamicFriction * normal / in.h;
-    const PatchCentre centre = centreOf(in, contacts, state, lo, hi);
-    const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
-    const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
     Vec3 slide = patchVelocity(in, contacts, state, lo, hi, true, b, centre.count) -
                  patchVelocity(in, contacts, state, lo, hi, false, a, centre.count);
     slide -= glm::dot(slide, c.normal) * c.normal;

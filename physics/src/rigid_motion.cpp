@@ -74,6 +74,10 @@ void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h) {
     r.angularVelocity[i] = (q * spin) * keep;
     r.position[i] += r.velocity[i] * h;
     r.orientation[i] = turned(q, r.angularVelocity[i] * h);
+    const glm::dmat3 R = glm::mat3_cast(r.orientation[i]);
+    const Vec3& d = r.inverseInertia[i];
+    r.inverseInertiaWorld[i] =
+        R * glm::dmat3(Vec3(d.x, 0.0, 0.0), Vec3(0.0, d.y, 0.0), Vec3(0.0, 0.0, d.z)) * glm::transpose(R);
   }
 }
 
@@ -86,8 +90,15 @@ void deriveRigidVelocities(RigidBodies& r, Real h) {
 }
 
 Vec3 inverseInertiaTimes(const RigidBodies& r, RigidId i, const Vec3& v) {
-  const Quat& q = r.orientation[i];
-  return q * (r.inverseInertia[i] * (glm::conjugate(q) * v));
+  return r.inverseInertiaWorld[i] * v;
+}
+
+// A correction's small turn: q + [angle / 2, 0] q, normalised (the paper's update). Exact to
+// second order in the angle, which is a correction's (micro-radians at rest); the integration's
+// turns of up to a radian use turned().
+Quat nudged(const Quat& q, const Vec3& angle) {
+  const Quat dq = Quat(0.0, angle.x, angle.y, angle.z) * q;
+  return glm::normalize(Quat(q.w + 0.5 * dq.w, q.x + 0.5 * dq.x, q.y + 0.5 * dq.y, q.z + 0.5 * dq.z));
 }
 
 Real pointInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec3& n) {
@@ -98,7 +109,7 @@ Real pointInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec
 void applyPositionalImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p) {
   if (r.inverseMass[i] == 0.0) return;
   r.position[i] += p * r.inverseMass[i];
-  r.orientation[i] = turned(r.orientation[i], inverseInertiaTimes(r, i, glm::cross(at, p)));
+  r.orientation[i] = nudged(r.orientation[i], inverseInertiaTimes(r, i, glm::cross(at, p)));
 }
 
 void applyVelocityImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p) {

@@ -15,6 +15,8 @@ Quat turned(const Quat& q, const Vec3& angle);
 /// inverse of turned(), so a body's angular velocity comes back from its change of pose unchanged.
 Vec3 turnBetween(const Quat& from, const Quat& to);
 
+/// q turned by a correction's small angle (rad, world frame): q + [angle / 2, 0] q, normalised.
+Quat nudged(const Quat& q, const Vec3& angle);
 /// The start of a substep (the 2020 paper's integration): the pose is kept as the previous one,
 /// gravity and the world's damping act on the velocities, the angular velocity follows Euler's
 /// equations for a free body (implicit midpoint rule, which keeps both the kinetic energy and the
@@ -24,7 +26,7 @@ void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h);
 /// After the position passes: v = (x - x*) / h, w = turnBetween(q*, q) / h.
 void deriveRigidVelocities(RigidBodies& r, Real h);
 
-/// World-frame I^-1 v of body i (1/(kg m^2) times v).
+/// World-frame I^-1 v of body i (1/(kg m^2) times v), with I^-1 as the substep started.
 Vec3 inverseInertiaTimes(const RigidBodies& r, RigidId i, const Vec3& v);
 /// How far body i's point at r (m, from its centre, world axes) moves along the unit direction n
 /// per unit of impulse along n: 1/m + (r x n)^T I^-1 (r x n) (unit: 1/kg).

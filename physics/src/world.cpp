@@ -439,6 +439,10 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   rigidBodies_.angularVelocity.push_back(desc.angularVelocity);
   rigidBodies_.inverseMass.push_back(1.0 / desc.mass);
   rigidBodies_.inverseInertia.push_back(inverseInertia);
+  const glm::dmat3 R = glm::mat3_cast(q);
+  rigidBodies_.inverseInertiaWorld.push_back(
+      R * glm::dmat3(Vec3(inverseInertia.x, 0.0, 0.0), Vec3(0.0, inverseInertia.y, 0.0), Vec3(0.0, 0.0, inverseInertia.z)) *
+      glm::transpose(R));
   rigidBodies_.body.push_back(id);
   bodies_.push_back(body);
   layoutsStale_ = true;

@@ -94,6 +94,21 @@ Description describe(const scenes::Scene& scene) {
     // velocity, and the spin omega = I^-1 L from their angular momentum about the centre. A
     // capsule's particles sit on its box as a box's do, so it gets its box's inertia: the
     // engines turn it as ours turns.
+    if (box.model == phys::BodyModel::Rigid) {
+      // A rigid body's own mass properties (a solid shape's) and velocities, the centre's as it
+      // would be loaded (the substep's middle's plus g h / 2).
+      const phys::RigidBodies& rigid = world.rigidBodies();
+      body.fixed = rigid.inverseMass[box.rigid] == 0.0;
+      if (!body.fixed) {
+        const double h = solver.dt / solver.substeps;
+        body.mass = 1.0 / rigid.inverseMass[box.rigid];
+        body.inertia = 1.0 / rigid.inverseInertia[box.rigid];
+        body.velocity = rigid.velocity[box.rigid] + world.gravityAt(pose.center) * (h / 2);
+        body.angularVelocity = rigid.angularVelocity[box.rigid];
+      }
+      d.bodies.push_back(body);
+      continue;
+    }
     Vec3 momentum(0.0);
     glm::dmat3 inertiaWorld(0.0);
     Vec3 angularMomentum(0.0);

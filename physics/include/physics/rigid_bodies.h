@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
+
 #include "physics/types.h"
 
 namespace phys {
@@ -25,6 +27,9 @@ struct RigidBodies {
   /// unit: 1/(kg m^2); the principal moments' inverses, body frame (a box's and a capsule's axes
   /// are principal); 0 when frozen.
   std::vector<Vec3> inverseInertia;
+  /// unit: 1/(kg m^2); I^-1 in world axes at the substep's start (integration sets it): what the
+  /// contacts' corrections use, the body's turn within a substep being a small fraction of a radian.
+  std::vector<glm::dmat3> inverseInertiaWorld;
   std::vector<BodyId> body;  ///< the Body it is
 
   std::size_t size() const { return position.size(); }
