@@ -208,6 +208,29 @@ TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
   EXPECT_FALSE(w.drag().has_value());
 }
 
+// A rigid body is picked and pulled the same way (World::dragAt holds its point in its frame).
+TEST(Session, PickingARigidBodyPullsItToo) {
+  sandbox::Session s = open("rigid");
+  const phys::World& w = s.scene().world;
+  const phys::BodyId top{9};  // the stack's top box
+  ASSERT_EQ(w.bodies()[top].name, "stack[9]");
+  ASSERT_EQ(w.bodies()[top].model, phys::BodyModel::Rigid);
+  for (int i = 0; i < 30; ++i) s.step();
+  const phys::Vec3 centre = w.bodyPose(top).center;
+  const phys::Vec3 eye = centre + phys::Vec3(0, 0, 5);
+  ASSERT_TRUE(s.pick(eye, phys::Vec3(0, 0, -1)));
+  ASSERT_TRUE(w.drag().has_value());
+  EXPECT_EQ(w.drag()->body, top);
+  s.dragAlong(eye, glm::normalize(centre + phys::Vec3(0, 1, 0) - eye));
+  for (int i = 0; i < 120; ++i) s.step();
+  EXPECT_GT(w.bodyPose(top).center.y, centre.y + 0.5);  // lifted off the stack
+  const auto line = s.dragLine();
+  ASSERT_TRUE(line.has_value());
+  EXPECT_LT(glm::length(line->first - line->second), 0.1);  // 1 kg on 2000 N/m: 5 mm, and the swing
+  s.release();
+  EXPECT_FALSE(w.drag().has_value());
+}
+
 TEST(Session, TheOverlayRunsEachSettingFromTheSameStateAndRefusesBadCounts) {
   sandbox::Session s = open("chain");
   for (int i = 0; i < 10; ++i) s.step();

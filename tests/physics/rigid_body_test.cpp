@@ -177,6 +177,22 @@ TEST(RigidBody, FrictionHoldsBelowTheFrictionAngleAndSlidesAtTheDynamicRateAbove
   }
 }
 
+// A solid ball (a capsule with no core) thrown sliding along the ground: friction turns slipping
+// into rolling, and momentum about the contact point is kept, so it rolls on at 5/7 of the speed
+// it was thrown at, with w r = v (Coulomb's and Euler's answer for a sphere).
+TEST(RigidBody, ASlidingBallRollsOnAtFiveSeventhsOfItsSpeed) {
+  phys::World world({}, xpbd(8));
+  BodyDesc d = rigidBox({0.0, 0.25, 0.0}, Vec3(0.5));
+  d.shape = phys::Shape::Capsule;
+  d.velocity = {2.0, 0.0, 0.0};
+  const BodyId ball = world.addBody(d);
+  for (int i = 0; i < 120; ++i) world.step();
+  const auto [v, w] = world.bodyVelocity(ball);
+  EXPECT_NEAR(v.x, 2.0 * 5.0 / 7.0, 0.02);
+  EXPECT_NEAR(-w.z * 0.25, v.x, 0.01);  // rolling: the contact point at rest
+  EXPECT_NEAR(world.bodyPose(ball).center.y, 0.25, 1e-3);
+}
+
 // A box dropped flat from 1 m with e = 0.5 rises to e^2 = 25 cm; the bounce is the velocity pass's
 // (restitution of each point, Müller et al. 2020), and a flat landing stays flat.
 TEST(RigidBody, RestitutionGivesBackTheSquareOfItsCoefficientInHeight) {
