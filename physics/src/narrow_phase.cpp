@@ -210,16 +210,19 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
     }
     contacts_.push_back(c);
   }
-  const Vec3 n = contact.sat.normal;
-  manifolds_.push_back(
-      {a, b, false, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n});
-  Manifold& m = manifolds_.back();
-  m.kept = contact.kind == ContactKind::FaceFace && bodyA.shape == Shape::Box && bodyB.shape == Shape::Box;
-  if (m.kept) keepThroughStep(in, m, contact);
+  pushManifold(in, a, b, contact, false, first);
 }
 
-// A face-on-face manifold, kept through the step: its reference face, and where b was in a's frame.
-void NarrowPhase::keepThroughStep(const NarrowPhaseInput& in, Manifold& m, const BoxContact& contact) {
+// The pair's manifold over its points from `first`, kept through the step when it is face on face
+// between two boxes: its reference face, and where b was in a's frame.
+void NarrowPhase::pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
+                               bool rigid, std::size_t first) {
+  manifolds_.push_back({a, b, rigid, static_cast<std::uint32_t>(first),
+                        static_cast<std::uint32_t>(contact.count), contact.sat.normal});
+  Manifold& m = manifolds_.back();
+  m.kept = contact.kind == ContactKind::FaceFace && in.bodies[a].shape == Shape::Box &&
+           in.bodies[b].shape == Shape::Box;
+  if (!m.kept) return;
   const Vec3 n = m.normal;
   // The reference face: the box one of whose axes the normal lies along (the better aligned).
   auto alignment = [&n](const Obb& f) {
@@ -273,12 +276,7 @@ void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId 
     c.kind = static_cast<std::uint8_t>(contact.kind);
     rigidContacts_.push_back(c);
   }
-  const Vec3 n = contact.sat.normal;
-  manifolds_.push_back(
-      {a, b, true, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(contact.count), n});
-  Manifold& m = manifolds_.back();
-  m.kept = contact.kind == ContactKind::FaceFace && bodyA.shape == Shape::Box && bodyB.shape == Shape::Box;
-  if (m.kept) keepThroughStep(in, m, contact);
+  pushManifold(in, a, b, contact, true, first);
 }
 
 void NarrowPhase::sizeState() {

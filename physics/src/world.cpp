@@ -389,7 +389,13 @@ BodyId World::addBody(const BodyDesc& desc) {
   }
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
-  bodies_.push_back(box);
+  return registerBody(box);
+}
+
+// The body into the list, and a place for it in every part that keeps something per body.
+BodyId World::registerBody(const Body& body) {
+  const BodyId id(bodies_.size());
+  bodies_.push_back(body);
   layoutsStale_ = true;
   frames_.emplace_back();
   rigid_.emplace_back();
@@ -440,18 +446,13 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   rigidBodies_.inverseMass.push_back(1.0 / desc.mass);
   rigidBodies_.inverseInertia.push_back(inverseInertia);
   const glm::dmat3 R = glm::mat3_cast(q);
-  rigidBodies_.inverseInertiaWorld.push_back(
-      R * glm::dmat3(Vec3(inverseInertia.x, 0.0, 0.0), Vec3(0.0, inverseInertia.y, 0.0), Vec3(0.0, 0.0, inverseInertia.z)) *
-      glm::transpose(R));
+  rigidBodies_.inverseInertiaWorld.push_back(R *
+                                             glm::dmat3(Vec3(inverseInertia.x, 0.0, 0.0),
+                                                        Vec3(0.0, inverseInertia.y, 0.0),
+                                                        Vec3(0.0, 0.0, inverseInertia.z)) *
+                                             glm::transpose(R));
   rigidBodies_.body.push_back(id);
-  bodies_.push_back(body);
-  layoutsStale_ = true;
-  frames_.emplace_back();
-  rigid_.emplace_back();
-  guard_.addBody();
-  broadPhase_.addBody();
-  parting_.addBody();
-  return id;
+  return registerBody(body);
 }
 
 Vec3 World::cornerPosition(BodyId id, int k) const {

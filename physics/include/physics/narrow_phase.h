@@ -97,7 +97,8 @@ class NarrowPhase {
   void carry(const NarrowPhaseInput& in, const Manifold& m);
   void sizeState();
 
-  void keepThroughStep(const NarrowPhaseInput& in, Manifold& m, const BoxContact& contact);
+  void pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact, bool rigid,
+                    std::size_t first);
   void addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact);
   void turnRigidNormal(const NarrowPhaseInput& in, Manifold& m);
 

@@ -219,6 +219,7 @@ class World {
   void updateBodyFrames();
   void joinBodies(ParticleId a, ParticleId b);
   BodyId addRigidBody(const BodyDesc& desc, const Quat& orientation);
+  BodyId registerBody(const Body& body);
   NarrowPhaseInput narrowPhaseInput() const;
   Real gravityMagnitude() const;
 
