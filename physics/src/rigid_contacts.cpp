@@ -135,7 +135,7 @@ void kick(RigidPassInput& in, const SideView& s, const Vec3& p) {
 // n . (pB - pA): the ground is the plane n . x = height under B.
 Real separation(const RigidPassInput& in, const RigidContact& c, const Vec3& pA, const Vec3& pB) {
   if (c.sideA == ContactSide::Ground) return glm::dot(c.normal, pB) - in.groundHeight;
-  return glm::dot(c.normal, pB - pA) + in.slop;
+  return glm::dot(c.normal, pB - pA);
 }
 
 }  // namespace
@@ -154,8 +154,8 @@ Vec3 sidePosition(const Particles& particles, const RigidBodies& r, ContactSide 
   return Vec3(0.0);
 }
 
-void startRigidContacts(const RigidPassInput& in, std::span<RigidContact> contacts, RigidContactState& state,
-                        Real depenetration) {
+void startRigidContacts(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                        RigidContactState& state, Real depenetration) {
   state.resize(contacts.size());
   std::fill(state.lambdaNormal.begin(), state.lambdaNormal.end(), 0.0);
   std::fill(state.lambdaTangent.begin(), state.lambdaTangent.end(), 0.0);
@@ -206,7 +206,8 @@ PatchCentre centreOf(const RigidPassInput& in, std::span<const RigidContact> con
   }
   if (p.count == 0) return p;
   const Real share = 1.0 / p.count;
-  auto place = [&](ContactSide side, RigidId rigid, const Vec3& sum, const Vec3& startSum, Vec3& now, Vec3& then) {
+  auto place = [&](ContactSide side, RigidId rigid, const Vec3& sum, const Vec3& startSum, Vec3& now,
+                   Vec3& then) {
     if (side == ContactSide::Rigid) {
       const Vec3 local = sum * share;
       now = in.rigid.position[rigid] + in.rigid.orientation[rigid] * local;
@@ -222,8 +223,9 @@ PatchCentre centreOf(const RigidPassInput& in, std::span<const RigidContact> con
   for (std::size_t k = lo; k < hi; ++k) {
     if (state.lambdaNormal[k] <= 0.0) continue;
     const RigidContact& c = contacts[k];
-    p.radius += c.sideB == ContactSide::Rigid ? glm::length(c.localB - meanB)
-                                              : glm::length(embeddedPosition(in.particles.position, c.pointB) - p.nowB);
+    p.radius += c.sideB == ContactSide::Rigid
+                    ? glm::length(c.localB - meanB)
+                    : glm::length(embeddedPosition(in.particles.position, c.pointB) - p.nowB);
   }
   p.radius *= share;
   return p;

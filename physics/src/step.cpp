@@ -172,7 +172,6 @@ RigidPassInput World::rigidPassInput(Real h) {
           rigidBodies_,
           world_.groundNormal,
           world_.groundHeight,
-          0.0,
           h,
           std::max(kRestitutionMinSpeed, 2.0 * gravityMagnitude() * h)};
 }
