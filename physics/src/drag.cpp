@@ -12,14 +12,10 @@
 #include <glm/matrix.hpp>
 
 #include "passes.h"
+#include "rigid_motion.h"
 
 namespace phys::detail {
 namespace {
-
-// [r]x, the matrix of the cross product: [r]x a = r x a.
-glm::dmat3 crossMatrix(const Vec3& r) {
-  return glm::dmat3(Vec3(0.0, r.z, -r.y), Vec3(-r.z, 0.0, r.x), Vec3(r.y, -r.x, 0.0));  // columns
-}
 
 // The point moved alone, through its carrier particles: K = sum c_i^2 w_i (REFERENCES.md).
 void dragCarriers(Particles& p, const Embedding& point, const Vec3& force, Real stiffness, Real damping,

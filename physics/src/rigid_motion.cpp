@@ -13,11 +13,6 @@
 namespace phys::detail {
 namespace {
 
-// [v]x, the matrix of the cross product: [v]x a = v x a.
-glm::dmat3 crossMatrix(const Vec3& v) {
-  return glm::dmat3(Vec3(0.0, v.z, -v.y), Vec3(-v.z, 0.0, v.x), Vec3(v.y, -v.x, 0.0));  // columns
-}
-
 // Euler's equations for a free body, I dw/dt = -w x I w in the body frame, over h by the implicit
 // midpoint rule: w' = w - h I^-1 (m x I m) with m = (w + w') / 2, solved by Newton's method. The
 // rule keeps every quadratic invariant, so the kinetic energy w^T I w / 2 and |I w| come out as they
@@ -36,6 +31,12 @@ Vec3 freeRotation(const Vec3& w, const Vec3& inertia, Real h) {
   return next;
 }
 
+}  // namespace
+
+glm::dmat3 crossMatrix(const Vec3& v) {
+  return glm::dmat3(Vec3(0.0, v.z, -v.y), Vec3(-v.z, 0.0, v.x), Vec3(v.y, -v.x, 0.0));  // columns
+}
+
 Vec3 gravityAt(const WorldSettings& world, const Vec3& x) {
   if (world.gravityMode == GravityMode::Uniform) return world.gravity;
   const Vec3 towards = world.gravityPoint - x;
@@ -43,7 +44,10 @@ Vec3 gravityAt(const WorldSettings& world, const Vec3& x) {
   return distance > 0.0 ? towards * (world.gravityStrength / distance) : Vec3(0.0);
 }
 
-}  // namespace
+glm::dmat3 worldInverseInertia(const Quat& q, const Vec3& d) {
+  const glm::dmat3 R = glm::mat3_cast(q);
+  return R * glm::dmat3(Vec3(d.x, 0.0, 0.0), Vec3(0.0, d.y, 0.0), Vec3(0.0, 0.0, d.z)) * glm::transpose(R);
+}
 
 Quat turned(const Quat& q, const Vec3& angle) {
   const Real theta = glm::length(angle);
@@ -74,10 +78,7 @@ void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h) {
     r.angularVelocity[i] = (q * spin) * keep;
     r.position[i] += r.velocity[i] * h;
     r.orientation[i] = turned(q, r.angularVelocity[i] * h);
-    const glm::dmat3 R = glm::mat3_cast(r.orientation[i]);
-    const Vec3& d = r.inverseInertia[i];
-    r.inverseInertiaWorld[i] =
-        R * glm::dmat3(Vec3(d.x, 0.0, 0.0), Vec3(0.0, d.y, 0.0), Vec3(0.0, 0.0, d.z)) * glm::transpose(R);
+    r.inverseInertiaWorld[i] = worldInverseInertia(r.orientation[i], r.inverseInertia[i]);
   }
 }
 
@@ -124,10 +125,7 @@ void applyRigidDrag(RigidBodies& r, RigidId i, const Vec3& local, const Vec3& ta
   const Vec3 at = r.orientation[i] * local;
   const Vec3 x = r.position[i] + at;
   const Vec3 force = stiffness * (target - x) - damping * pointVelocity(r, i, at);
-  const glm::dmat3 R = glm::mat3_cast(r.orientation[i]);
-  const Vec3& d = r.inverseInertia[i];
-  const glm::dmat3 inverseInertia =
-      R * glm::dmat3(Vec3(d.x, 0.0, 0.0), Vec3(0.0, d.y, 0.0), Vec3(0.0, 0.0, d.z)) * glm::transpose(R);
+  const glm::dmat3& inverseInertia = r.inverseInertiaWorld[i];  // the integration has just set it
   const glm::dmat3 rx = crossMatrix(at);
   const glm::dmat3 K = glm::dmat3(r.inverseMass[i]) + glm::transpose(rx) * inverseInertia * rx;
   const Vec3 impulse = glm::inverse(glm::dmat3(1.0) + (h * h * stiffness + h * damping) * K) * (h * force);

@@ -2,12 +2,20 @@
 // The rigid body model's motion (rigid_motion.cpp): integration of a substep, the velocities
 // derived from the change of pose, and the pose corrections every rigid constraint applies.
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 #include "physics/rigid_bodies.h"
 #include "physics/settings.h"
 
 namespace phys::detail {
 
+/// [v]x, the matrix of the cross product: [v]x a = v x a.
+glm::dmat3 crossMatrix(const Vec3& v);
+/// Acceleration of gravity at x (m/s^2) in the world's mode: the vector, or the fixed-strength
+/// pull towards gravityPoint (none at the point itself).
+Vec3 gravityAt(const WorldSettings& world, const Vec3& x);
+/// R diag(d) R^T: principal inverse moments d (body frame) in world axes for orientation q.
+glm::dmat3 worldInverseInertia(const Quat& q, const Vec3& principalInverse);
 /// q turned by the rotation vector `angle` (rad, world frame): exp(angle / 2) q, exactly, so a
 /// turn of any size keeps q a unit quaternion.
 Quat turned(const Quat& q, const Vec3& angle);

@@ -445,12 +445,7 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   rigidBodies_.angularVelocity.push_back(desc.angularVelocity);
   rigidBodies_.inverseMass.push_back(1.0 / desc.mass);
   rigidBodies_.inverseInertia.push_back(inverseInertia);
-  const glm::dmat3 R = glm::mat3_cast(q);
-  rigidBodies_.inverseInertiaWorld.push_back(R *
-                                             glm::dmat3(Vec3(inverseInertia.x, 0.0, 0.0),
-                                                        Vec3(0.0, inverseInertia.y, 0.0),
-                                                        Vec3(0.0, 0.0, inverseInertia.z)) *
-                                             glm::transpose(R));
+  rigidBodies_.inverseInertiaWorld.push_back(detail::worldInverseInertia(q, inverseInertia));
   rigidBodies_.body.push_back(id);
   return registerBody(body);
 }
@@ -481,10 +476,7 @@ Vec3 World::position(const Embedding& point) const {
 }
 
 Vec3 World::gravityAt(const Vec3& x) const {
-  if (world_.gravityMode == GravityMode::Uniform) return world_.gravity;
-  const Vec3 towards = world_.gravityPoint - x;
-  const Real distance = glm::length(towards);
-  return distance > 0.0 ? towards * (world_.gravityStrength / distance) : Vec3(0.0);
+  return detail::gravityAt(world_, x);
 }
 
 // |g| in the current mode (m/s^2): in point mode, its strength wherever a body is.
