@@ -75,6 +75,13 @@ void SceneView::findJointedBoxes(const phys::World& world) {
       if (const phys::BodyId body = bodyOf_[e->particle[0]]; body != phys::kNoBody) jointed_[body] = 1;
     }
   }
+  for (const phys::RigidJoint& j : world.rigidJoints())
+    jointed_[world.rigidBodies().body[j.a]] = jointed_[world.rigidBodies().body[j.b]] = 1;
+  for (const phys::RigidLink& link : world.rigidLinks()) {
+    for (const phys::BodyPoint* end : {&link.a, &link.b}) {
+      if (const phys::BodyId body = world.carrier(*end); body != phys::kNoBody) jointed_[body] = 1;
+    }
+  }
 }
 
 void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, const DrawOptions& options,

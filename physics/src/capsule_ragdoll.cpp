@@ -8,8 +8,12 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "joint_builders.h"
+#include "require.h"
 
 namespace phys {
+
+using detail::require;
+
 namespace {
 
 constexpr Real kDegree = std::numbers::pi / 180.0;
@@ -122,10 +126,6 @@ Quat lieOrientation(Lie lie) {
   return glm::angleAxis((lie == Lie::Left ? -0.5 : 0.5) * std::numbers::pi, Vec3(0.0, 0.0, 1.0));
 }
 
-void require(bool ok, const char* what) {
-  if (!ok) throw std::invalid_argument(what);
-}
-
 }  // namespace
 
 std::string_view toString(CapsulePart part) {
@@ -168,6 +168,7 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
     spec.maxAngle = h.maxDegrees * kDegree;
     spec.halfSpan = h.halfSpan;
     spec.radius = h.radius;
+    spec.damping = detail::jointDamping(desc);
     detail::addHinge(world, ragdoll.part(h.parent), ragdoll.part(h.child), spec, place, desc.scale);
     world.ignoreCollision(ragdoll.part(h.parent), ragdoll.part(h.child));
   }
@@ -178,6 +179,7 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
     spec.side = kForward;
     spec.swing = c.swingDegrees * kDegree;
     spec.twist = c.twistDegrees * kDegree;
+    spec.damping = detail::jointDamping(desc);
     detail::addCone(world, ragdoll.part(c.parent), ragdoll.part(c.child), spec, place, desc.scale);
     world.ignoreCollision(ragdoll.part(c.parent), ragdoll.part(c.child));
   }

@@ -10,14 +10,17 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
   if (flags.constraints) {
     for (const Stick& s : constraints_.sticks())
       draw.line(x[s.a], x[s.b], s.isRange() ? colors::kRange : colors::kStick);
-    for (const Link& link : constraints_.links()) {
-      const Vec3 a = position(link.a), b = position(link.b);
-      if (link.isPin()) {
+    auto drawLink = [&](const Vec3& a, const Vec3& b, bool pin) {
+      if (pin)
         draw.point(a, 0.03, colors::kPin);
-      } else {
+      else
         draw.line(a, b, colors::kRange);
-      }
-    }
+    };
+    for (const Link& link : constraints_.links()) drawLink(position(link.a), position(link.b), link.isPin());
+    for (const RigidLink& link : constraints_.rigidLinks())
+      drawLink(position(link.a), position(link.b), link.isPin());
+    for (const RigidJoint& j : constraints_.rigidJoints())
+      drawLink(rigidBodies_.position[j.a] + rigidBodies_.orientation[j.a] * j.pivotA, Vec3(0.0), true);
   }
   if (flags.particles) {
     for (std::size_t i = 0; i < particles_.size(); ++i) {

@@ -28,6 +28,8 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   const Real qLength = glm::length(desc.orientation);
   require(std::isfinite(qLength) && qLength > 0.0, "orientation must be a finite non-zero quaternion");
   require(validate(desc.material).empty(), "friction coefficients must be finite and >= 0");
+  require(std::isfinite(desc.jointDamping) && desc.jointDamping >= 0.0,
+          "joint damping must be finite and >= 0 (1/s)");
   const Quat q = desc.orientation / qLength;
   const Vec3 hips = desc.hips, fromHips(0.0, hipHeight, 0.0);
   const Real scale = desc.scale;
@@ -39,11 +41,25 @@ BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
   BodyDesc box;
   box.name = (desc.name.empty() ? std::string("ragdoll") : desc.name) + "." + std::string(part);
   box.velocity = desc.velocity;
-  box.model = desc.model == RagdollModel::Lean ? BodyModel::Tetra : BodyModel::Corners;
+  switch (desc.model) {
+    case RagdollModel::Seed:
+      box.model = BodyModel::Corners;
+      break;
+    case RagdollModel::Lean:
+      box.model = BodyModel::Tetra;
+      break;
+    case RagdollModel::Rigid:
+      box.model = BodyModel::Rigid;
+      break;
+  }
   box.material = desc.material;
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
   return box;
+}
+
+Real jointDamping(const RagdollDesc& desc) {
+  return desc.model == RagdollModel::Rigid ? desc.jointDamping : 0.0;
 }
 
 Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
@@ -51,8 +67,43 @@ Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
   return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0 - c));
 }
 
+namespace {
+
+bool bothRigid(const World& world, BodyId a, BodyId b) {
+  return world.bodies()[a].model == BodyModel::Rigid && world.bodies()[b].model == BodyModel::Rigid;
+}
+
+// A layout direction as it lies in the world: place() is a turn, a scale and a shift.
+Vec3 directionOf(const PlaceFn& place, const Vec3& direction) {
+  return glm::normalize(place(direction) - place(Vec3(0.0)));
+}
+
+// A rigid joint's pivot, axis and reference in the world; the caller adds its limits.
+JointDesc rigidJoint(JointKind kind, BodyId parent, BodyId child, const Vec3& pivot, const Vec3& axis,
+                     const Vec3& reference, Real damping, const PlaceFn& place) {
+  JointDesc d;
+  d.kind = kind;
+  d.a = parent;
+  d.b = child;
+  d.pivot = place(pivot);
+  d.axis = directionOf(place, axis);
+  d.reference = directionOf(place, reference);
+  d.damping = damping;
+  return d;
+}
+
+}  // namespace
+
 void addHinge(World& world, BodyId parent, BodyId child, const HingeSpec& spec, const PlaceFn& place,
               Real scale) {
+  if (bothRigid(world, parent, child)) {
+    JointDesc d = rigidJoint(JointKind::Hinge, parent, child, spec.pivot, spec.axis, spec.reference,
+                             spec.damping, place);
+    d.minAngle = spec.minAngle;
+    d.maxAngle = spec.maxAngle;
+    world.addJoint(d);
+    return;
+  }
   // Two pins on the axis make the hinge.
   for (const Real side : {-1.0, 1.0}) {
     const Vec3 pin = place(spec.pivot + spec.axis * (side * spec.halfSpan));
@@ -76,6 +127,14 @@ void addHinge(World& world, BodyId parent, BodyId child, const HingeSpec& spec, 
 
 void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, const PlaceFn& place,
              Real scale) {
+  if (bothRigid(world, parent, child)) {
+    JointDesc d =
+        rigidJoint(JointKind::Cone, parent, child, spec.pivot, spec.axis, spec.side, spec.damping, place);
+    d.swing = spec.swing;
+    d.twist = spec.twist;
+    world.addJoint(d);
+    return;
+  }
   const Vec3 pivot = place(spec.pivot);
   world.addLink(world.anchor(parent, pivot), world.anchor(child, pivot));
   // A point at `radius` along the limb's axis, fixed in both parts where it is laid out: after

@@ -26,8 +26,8 @@ struct RagdollFrame {
 RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::string& who);
 
 /// What every part of a ragdoll takes from it: the name "<ragdoll or 'ragdoll'>.<part>", the
-/// velocity, the box model (seed: corners, lean: tetra), the material and the collision filter.
-/// The caller sets the shape, place, size, orientation and mass.
+/// velocity, the body model (seed: corners, lean: tetra, rigid: rigid), the material and the collision
+/// filter. The caller sets the shape, place, size, orientation and mass.
 BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part);
 
 /// A hinge in the layout frame: the child turns about `axis` (unit) through `pivot`, by an angle
@@ -40,9 +40,11 @@ struct HingeSpec {
   Real maxAngle = 0.0;             ///< unit: rad
   Real halfSpan = 0.07;            ///< unit: m; the two pins sit this far either side of the pivot
   Real radius = 0.1;               ///< unit: m; of the limit links' points from the pivot
+  Real damping = 0.0;              ///< unit: 1/s; RigidLink::damping, on the first pin (rigid parts)
 };
 
-/// Two pins on the axis and a one-sided range link at each stop (the why is in the .cpp).
+/// Two pins on the axis and a one-sided range link at each stop (the why is in the .cpp); between
+/// two rigid parts, a hinge joint (World::addJoint).
 void addHinge(World& world, BodyId parent, BodyId child, const HingeSpec& spec, const PlaceFn& place,
               Real scale);
 
@@ -55,12 +57,18 @@ struct ConeSpec {
   Real swing = 0.0;           ///< unit: rad; half-angle of the cone, in (0, pi)
   Real twist = 0.0;           ///< unit: rad; >= 0
   Real radius = 0.1;          ///< unit: m; of the limit links' points from the pivot
+  Real damping = 0.0;         ///< unit: 1/s; RigidLink::damping, on the pin (rigid parts)
 };
 
 /// One pin at the pivot, one range link holding a point on the axis within the cone, one range
-/// link holding a point to the side within swing + twist (the why is in the .cpp).
+/// link holding a point to the side within swing + twist (the why is in the .cpp); between two
+/// rigid parts, a cone joint (World::addJoint), whose twist is bounded apart from its swing.
 void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, const PlaceFn& place,
              Real scale);
+
+/// The joints' damping a ragdoll's parts take: desc.jointDamping for rigid parts, 0 for particle
+/// ones (whose passes take their joints' relative motion away themselves).
+Real jointDamping(const RagdollDesc& desc);
 
 /// v turned by `angle` (rad) about the unit `axis`, by Rodrigues' formula.
 Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle);

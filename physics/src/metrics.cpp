@@ -92,11 +92,18 @@ Metrics World::metrics() const {
   }
   if (!constraints_.sticks().empty())
     m.rmsConstraintError = std::sqrt(sumSquares / static_cast<Real>(constraints_.sticks().size()));
-  for (const Link& link : constraints_.links()) {
-    const Real length = glm::length(position(link.b) - position(link.a));
-    const Real violation =
-        length < link.minLength ? link.minLength - length : std::max(0.0, length - link.maxLength);
+  auto jointError = [&m](const Vec3& a, const Vec3& b, Real minLength, Real maxLength) {
+    const Real length = glm::length(b - a);
+    const Real violation = length < minLength ? minLength - length : std::max(0.0, length - maxLength);
     m.maxJointError = maxOf(m.maxJointError, violation);
+  };
+  for (const Link& link : constraints_.links())
+    jointError(position(link.a), position(link.b), link.minLength, link.maxLength);
+  for (const RigidLink& link : constraints_.rigidLinks())
+    jointError(position(link.a), position(link.b), link.minLength, link.maxLength);
+  for (const RigidJoint& j : constraints_.rigidJoints()) {
+    jointError(r.position[j.a] + r.orientation[j.a] * j.pivotA,
+               r.position[j.b] + r.orientation[j.b] * j.pivotB, 0.0, 0.0);
   }
   if (world_.ground) {
     for (const GroundContact& c : ground_.points()) {

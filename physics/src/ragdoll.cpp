@@ -8,8 +8,12 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "joint_builders.h"
+#include "require.h"
 
 namespace phys {
+
+using detail::require;
+
 namespace {
 
 constexpr Real kDegree = std::numbers::pi / 180.0;
@@ -78,19 +82,24 @@ constexpr HingeLayout kHinges[kRagdollHinges] = {
      0.10},
 };
 
-void require(bool ok, const char* what) {
-  if (!ok) throw std::invalid_argument(what);
-}
-
 }  // namespace
 
 std::string_view toString(RagdollModel model) {
-  return model == RagdollModel::Lean ? "lean" : "seed";
+  switch (model) {
+    case RagdollModel::Seed:
+      return "seed";
+    case RagdollModel::Lean:
+      return "lean";
+    case RagdollModel::Rigid:
+      break;
+  }
+  return "rigid";
 }
 
 std::optional<RagdollModel> parseRagdollModel(std::string_view name) {
   if (name == "seed") return RagdollModel::Seed;
   if (name == "lean") return RagdollModel::Lean;
+  if (name == "rigid") return RagdollModel::Rigid;
   return std::nullopt;
 }
 
@@ -136,6 +145,7 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
     spec.maxAngle = maxAngle;
     spec.halfSpan = layout.halfSpan;
     spec.radius = layout.radius;
+    spec.damping = detail::jointDamping(desc);
     detail::addHinge(world, parent, child, spec, place, desc.scale);
     world.ignoreCollision(parent, child);
     ragdoll.hinges[h] = {layout.parent,    layout.child, Vec3(1.0, 0.0, 0.0),

@@ -1,7 +1,5 @@
-// The passes of contacts with a rigid body on at least one side (physics/rigid_contacts.h).
-// Both sides answer an impulse along a direction d with their point's inverse mass along it: a
-// rigid body's 1/m + (r x d)^T I^-1 (r x d), a particle body's embedded point sum c_i^2 w_i
-// (REFERENCES.md), the ground's 0.
+// The passes of contacts with a rigid body on at least one side (physics/rigid_contacts.h); each
+// side answers an impulse as rigid_sides.h says.
 #include "physics/rigid_contacts.h"
 
 #include <algorithm>
@@ -12,6 +10,7 @@
 
 #include "passes.h"
 #include "rigid_motion.h"
+#include "rigid_sides.h"
 
 namespace phys {
 
@@ -27,25 +26,12 @@ void RigidContactState::resize(std::size_t n) {
 namespace detail {
 namespace {
 
-// One side of a contact as the passes see it for one correction: its point now and its lever arm.
-struct SideView {
-  ContactSide side;
-  RigidId rigid;
-  const Embedding* point;
-  Vec3 at{0.0};        // Rigid: the point from the body's centre, world axes
-  bool fixed = false;  // held still in this pass (shock propagation): takes no correction
-};
-
 SideView viewA(const RigidPassInput& in, const RigidContact& c, bool fixed = false) {
-  SideView v{c.sideA, c.rigidA, &c.pointA, Vec3(0.0), fixed};
-  if (c.sideA == ContactSide::Rigid) v.at = in.rigid.orientation[c.rigidA] * c.localA;
-  return v;
+  return viewOf(in, c.sideA, c.rigidA, c.localA, c.pointA, fixed);
 }
 
 SideView viewB(const RigidPassInput& in, const RigidContact& c, bool fixed = false) {
-  SideView v{c.sideB, c.rigidB, &c.pointB, Vec3(0.0), fixed};
-  if (c.sideB == ContactSide::Rigid) v.at = in.rigid.orientation[c.rigidB] * c.localB;
-  return v;
+  return viewOf(in, c.sideB, c.rigidB, c.localB, c.pointB, fixed);
 }
 
 // Which sides of a patch a shock-propagation pass holds still: the lower of two bodies (along the
@@ -64,6 +50,9 @@ Hold holdFor(const RigidPassInput& in, std::span<const RigidContact> contacts, c
              std::size_t lo, std::size_t hi) {
   const RigidContact& c = contacts[lo];
   if (c.sideA == ContactSide::Ground) return {};
+  if ((c.sideA == ContactSide::Rigid && in.rigid.jointed[c.rigidA] != 0) ||
+      (c.sideB == ContactSide::Rigid && in.rigid.jointed[c.rigidB] != 0))
+    return {};
   // Only a resting contact, one body on top of the other: an impact (a bullet into a wall, a box
   // dropped on a box) keeps both bodies' masses, or the lower would stop the upper dead.
   if (std::abs(glm::dot(c.normal, in.groundNormal)) < kShockMinUpright) return {};
@@ -73,63 +62,6 @@ Hold holdFor(const RigidPassInput& in, std::span<const RigidContact> contacts, c
   const bool aLower = glm::dot(in.groundNormal, sideCentre(in, c.sideA, c.rigidA, c.pointA)) <=
                       glm::dot(in.groundNormal, sideCentre(in, c.sideB, c.rigidB, c.pointB));
   return {aLower, !aLower};
-}
-
-Vec3 positionOf(const RigidPassInput& in, const SideView& s) {
-  switch (s.side) {
-    case ContactSide::Rigid:
-      return in.rigid.position[s.rigid] + s.at;
-    case ContactSide::Particles:
-      return embeddedPosition(in.particles.position, *s.point);
-    case ContactSide::Ground:
-      break;
-  }
-  return Vec3(0.0);
-}
-
-// The side's inverse mass along the unit direction d (1/kg).
-Real inverseMassAlong(const RigidPassInput& in, const SideView& s, const Vec3& d) {
-  if (s.fixed) return 0.0;
-  switch (s.side) {
-    case ContactSide::Rigid:
-      return pointInverseMass(in.rigid, s.rigid, s.at, d);
-    case ContactSide::Particles:
-      return embeddedWeight(in.particles.inverseMass, *s.point);
-    case ContactSide::Ground:
-      break;
-  }
-  return 0.0;
-}
-
-// Moves the side's point by its inverse mass times the positional impulse p (kg m).
-void push(RigidPassInput& in, const SideView& s, const Vec3& p) {
-  if (s.fixed) return;
-  if (s.side == ContactSide::Rigid) applyPositionalImpulse(in.rigid, s.rigid, s.at, p);
-  if (s.side == ContactSide::Particles)
-    shiftEmbedded(in.particles.position, in.particles.inverseMass, *s.point, p);
-}
-
-Vec3 velocityOf(const RigidPassInput& in, const SideView& s) {
-  switch (s.side) {
-    case ContactSide::Rigid:
-      return pointVelocity(in.rigid, s.rigid, s.at);
-    case ContactSide::Particles:
-      return (embeddedPosition(in.particles.position, *s.point) -
-              embeddedPosition(in.particles.previous, *s.point)) /
-             in.h;
-    case ContactSide::Ground:
-      break;
-  }
-  return Vec3(0.0);
-}
-
-// Changes the side's velocity by its inverse mass times the impulse p (N s); a particle body's
-// through its particles' x*, which is where Verlet keeps velocity.
-void kick(RigidPassInput& in, const SideView& s, const Vec3& p) {
-  if (s.fixed) return;
-  if (s.side == ContactSide::Rigid) applyVelocityImpulse(in.rigid, s.rigid, s.at, p);
-  if (s.side == ContactSide::Particles)
-    shiftEmbedded(in.particles.previous, in.particles.inverseMass, *s.point, -p * in.h);
 }
 
 // n . (pB - pA): the ground is the plane n . x = height under B.

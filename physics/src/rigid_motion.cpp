@@ -113,6 +113,23 @@ void applyPositionalImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec
   r.orientation[i] = nudged(r.orientation[i], inverseInertiaTimes(r, i, glm::cross(at, p)));
 }
 
+void applyAngularImpulse(RigidBodies& r, RigidId i, const Vec3& L) {
+  if (r.inverseMass[i] == 0.0) return;
+  r.orientation[i] = nudged(r.orientation[i], inverseInertiaTimes(r, i, L));
+}
+
+void dampRelativeSpin(RigidBodies& r, RigidId a, RigidId b, Real share) {
+  const Vec3 relative = r.angularVelocity[b] - r.angularVelocity[a];
+  const Real speed = glm::length(relative);
+  if (speed == 0.0) return;
+  const Vec3 d = relative / speed;
+  const Real w = glm::dot(d, inverseInertiaTimes(r, a, d)) + glm::dot(d, inverseInertiaTimes(r, b, d));
+  if (w <= 0.0) return;
+  const Vec3 L = (share * speed / w) * d;  // kg m^2 / s
+  r.angularVelocity[a] += inverseInertiaTimes(r, a, L);
+  r.angularVelocity[b] -= inverseInertiaTimes(r, b, L);
+}
+
 void applyVelocityImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p) {
   if (r.inverseMass[i] == 0.0) return;
   r.velocity[i] += p * r.inverseMass[i];

@@ -42,6 +42,11 @@ Real pointInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec
 /// Applies the positional impulse p (kg m) at r (m, from the centre, world axes) to body i's pose:
 /// x += p / m, q turned by I^-1 (r x p).
 void applyPositionalImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p);
+/// Turns body i by the angular positional impulse L (kg m^2): q turned by I^-1 L.
+void applyAngularImpulse(RigidBodies& r, RigidId i, const Vec3& L);
+/// Takes the share `share` (0 to 1) of bodies a and b's relative spin away by an angular impulse
+/// between them, which keeps their angular momentum: the joints' damping.
+void dampRelativeSpin(RigidBodies& r, RigidId a, RigidId b, Real share);
 /// Applies the impulse p (N s) at r to body i's velocities: v += p / m, w += I^-1 (r x p).
 void applyVelocityImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p);
 /// The mouse spring on a rigid body's point `local` (its frame, m): as applyDrag (drag.cpp), an

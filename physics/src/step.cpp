@@ -184,6 +184,7 @@ void World::rigidVelocities(Real h) {
   const StageTimer timer(profile_, Stage::Velocities);
   detail::deriveRigidVelocities(rigidBodies_, h);
   const RigidPassInput in = rigidPassInput(h);
+  detail::dampRigidJoints(in, constraints_.rigidJoints());
   detail::rigidVelocityPass(in, rigidGround_, rigidGroundPatches_, rigidGroundState_, solver_.restitution);
   detail::rigidVelocityPass(in, narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState(),
                             solver_.restitution);
@@ -247,6 +248,12 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     if (!constraints_.links().empty()) {
       const StageTimer timer(profile_, Stage::Links);
       constraints_.solveLinks(particles_, linkSlack);
+    }
+    if (!constraints_.rigidLinks().empty() || !constraints_.rigidJoints().empty()) {
+      const StageTimer timer(profile_, Stage::Links);
+      const RigidPassInput in = rigidPassInput(h);
+      detail::solveRigidLinks(in, constraints_.rigidLinks());
+      detail::solveRigidJoints(in, constraints_.rigidJoints());
     }
 
     // Rigid bodies' contacts, each patch with its static friction (rigid_contacts.cpp).

@@ -13,14 +13,14 @@
 
 #include "passes.h"
 #include "pose.h"
+#include "require.h"
 #include "rigid_motion.h"
 
 namespace phys {
-namespace {
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(what);
-}
+using detail::require;
+
+namespace {
 
 struct Pair {
   int a, b;
@@ -289,7 +289,7 @@ void World::setDragTarget(const Vec3& target) {
 Embedding World::anchor(BodyId id, const Vec3& worldPoint) const {
   require(id < bodies_.size(), "anchor: box id must exist");
   require(bodies_[id].model != BodyModel::Rigid,
-          "anchor: a rigid body carries no embedded point (joints on rigid bodies are not built yet)");
+          "anchor: a rigid body carries no embedded point (pointOn gives its point for a joint)");
   require(finite(worldPoint), "anchor: the point must be finite");
   const Body& box = bodies_[id];
   const BodyPose pose = bodyPose(id);
@@ -447,6 +447,7 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   rigidBodies_.inverseInertia.push_back(inverseInertia);
   rigidBodies_.inverseInertiaWorld.push_back(detail::worldInverseInertia(q, inverseInertia));
   rigidBodies_.body.push_back(id);
+  rigidBodies_.jointed.push_back(0);
   return registerBody(body);
 }
 

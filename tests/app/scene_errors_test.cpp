@@ -78,10 +78,26 @@ const BadScene kCases[] = {
      "corners, tetra or rigid"},
     {"model on a particle", "<scene name='s'>\n<particle pos='0 1 0' model='rigid'/>\n</scene>", 2, "model",
      "a loose particle has no model"},
-    {"joint on a rigid body",
+    {"joint of a rigid body to itself",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<link a='a' b='a' point='0 1.5 "
+     "0'/>\n</scene>",
+     3, "b", "must name a different body from a"},
+    {"joint on a particle body",
      "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0'/>\n"
-     "<link a='a' b='b' point='0 1.5 0'/>\n</scene>",
-     4, "a", "names a rigid body"},
+     "<joint type='hinge' a='a' b='b' pivot='0 1.5 0' axis='1 0 0' reference='0 -1 0' min='-10' "
+     "max='10'/>\n</scene>",
+     4, "b", "a <joint> joins rigid bodies"},
+    {"joint reference along its axis",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
+     "model='rigid'/>\n"
+     "<joint type='cone' a='a' b='b' pivot='0 1.5 0' axis='0 1 0' reference='0 2 0' swing='30'/>\n</scene>",
+     4, "", "the reference must not lie along the axis"},
+    {"hinge stops crossed",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
+     "model='rigid'/>\n"
+     "<joint type='hinge' a='a' b='b' pivot='0 1.5 0' axis='1 0 0' reference='0 -1 0' min='20' "
+     "max='10'/>\n</scene>",
+     4, "max", "must be >= min"},
     {"bad method", "<scene name='s'>\n<solver method='magic'/>\n</scene>", 2, "method", "gauss-seidel"},
     {"zero iterations", "<scene name='s'>\n<solver iterations='0'/>\n</scene>", 2, "iterations",
      "from 1 to 1000"},
@@ -109,7 +125,7 @@ const BadScene kCases[] = {
      "min='2' max='1'/>\n</scene>",
      3, "max", ">= min"},
     {"bad ragdoll model", "<scene name='s'>\n<ragdoll pos='0 1 0'\n model='puppet'/>\n</scene>", 3, "model",
-     "seed or lean"},
+     "seed, lean or rigid"},
     {"zero ragdoll scale", "<scene name='s'>\n<ragdoll pos='0 1 0' scale='0'/>\n</scene>", 2, "scale",
      "'0' must be from 0.02 to 1000"},
     {"ragdoll part name clash",

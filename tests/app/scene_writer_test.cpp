@@ -80,6 +80,8 @@ void expectSameCounts(const phys::World& a, const phys::World& b, const std::str
   EXPECT_EQ(a.particles().size(), b.particles().size()) << what;
   EXPECT_EQ(a.sticks().size(), b.sticks().size()) << what;
   EXPECT_EQ(a.links().size(), b.links().size()) << what;
+  EXPECT_EQ(a.rigidLinks().size(), b.rigidLinks().size()) << what;
+  EXPECT_EQ(a.rigidJoints().size(), b.rigidJoints().size()) << what;
   EXPECT_EQ(a.ignoredCollisions(), b.ignoredCollisions()) << what;
 }
 
@@ -113,6 +115,45 @@ TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
     EXPECT_LT(glm::length(a.position(a.links()[k].b) - b.position(b.links()[k].b)), 1e-3) << "link " << k;
   }
 
+  for (int i = 0; i < 30; ++i) {
+    original.world.step();
+    copy.world.step();
+  }
+  for (phys::BodyId id{}; id < a.bodies().size(); ++id) {
+    EXPECT_LT(glm::length(a.bodyPose(id).center - b.bodyPose(id).center), 0.01) << a.bodies()[id].name;
+  }
+}
+
+// A ragdoll of rigid parts is saved as rigid boxes, <joint>s and <no-collision>s; each joint with
+// both parts' frames as they are, so that a hinge saved at an angle reloads at that angle (with
+// the parent's frame alone, the child's angle would become the new zero and the stops would move).
+TEST(SceneWriter, RigidRagdollReloadsWithItsJointsAsTheyAre) {
+  scenes::Scene original = load(
+      "<ragdoll name=\"r\" pos=\"0 2.5 0\" euler=\"70 20 10\" model=\"rigid\" "
+      "joint-damping=\"3\"/><box name=\"hung\" pos=\"3 1 0\" model=\"rigid\"/>"
+      "<particle name=\"nail\" pos=\"3 1.5 0\" pinned=\"true\"/>"
+      "<link a=\"nail\" b=\"hung\" point=\"3 1.5 0\"/>",
+      "<solver substeps=\"16\" iterations=\"2\"/>");
+  for (int i = 0; i < 90; ++i) original.world.step();  // landed, hinges turned
+  scenes::Scene copy = reload(original);
+  const phys::World& a = original.world;
+  const phys::World& b = copy.world;
+  expectSameCounts(a, b, "rigid ragdoll");
+  ASSERT_EQ(b.rigidJoints().size(), 9u);
+  ASSERT_EQ(b.rigidLinks().size(), 1u);
+  EXPECT_EQ(b.particles().size(), 1u);
+  for (std::size_t k = 0; k < a.rigidJoints().size(); ++k) {
+    const phys::JointDesc x = a.jointDesc(k), y = b.jointDesc(k);
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.a, y.a);
+    EXPECT_EQ(x.b, y.b);
+    EXPECT_NEAR(a.jointAngle(k), b.jointAngle(k), 1e-9) << "joint " << k;
+    EXPECT_LT(glm::length(x.pivotB - y.pivotB), 1e-9) << "joint " << k;
+    EXPECT_NEAR(x.minAngle, y.minAngle, 1e-12);
+    EXPECT_NEAR(x.maxAngle, y.maxAngle, 1e-12);
+    EXPECT_EQ(y.damping, 3.0);
+  }
+  EXPECT_LT(glm::length(a.position(a.rigidLinks()[0].b) - b.position(b.rigidLinks()[0].b)), 1e-9);
   for (int i = 0; i < 30; ++i) {
     original.world.step();
     copy.world.step();

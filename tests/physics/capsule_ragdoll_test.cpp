@@ -13,12 +13,15 @@ namespace {
 
 using phys::Vec3;
 
-phys::World ragdollWorld() {
+// 2 iterations x 4 substeps, as the box ragdoll's scene; 8 substeps for rigid parts, which at 4 keep
+// creeping (docs/physics.md, "Rigid bodies": without the particle models' loss in the passes, a
+// propped limb rests only once the joints and contacts agree within the substep).
+phys::World ragdollWorld(phys::RagdollModel model = phys::RagdollModel::Seed) {
   phys::WorldSettings ws;
   ws.damping = 0.2;
   phys::SolverSettings s;
   s.iterations = 2;
-  s.substeps = 4;
+  s.substeps = model == phys::RagdollModel::Rigid ? 16 : 4;
   s.bodyDamping = 1.0;
   return phys::World(ws, s);
 }
@@ -26,6 +29,10 @@ phys::World ragdollWorld() {
 double worstLinkGap(const phys::World& w) {
   double worst = 0.0;
   for (const phys::Link& l : w.links()) {
+    const double d = glm::length(w.position(l.b) - w.position(l.a));
+    worst = std::max({worst, l.minLength - d, d - l.maxLength});
+  }
+  for (const phys::RigidLink& l : w.rigidLinks()) {
     const double d = glm::length(w.position(l.b) - w.position(l.a));
     worst = std::max({worst, l.minLength - d, d - l.maxLength});
   }
@@ -76,8 +83,9 @@ TEST(CapsuleRagdoll, IsBuiltAsBulletLaysItOut) {
 }
 
 TEST(CapsuleRagdoll, FallsTumblesAndSettlesWithoutSliding) {
-  for (const phys::RagdollModel model : {phys::RagdollModel::Seed, phys::RagdollModel::Lean}) {
-    phys::World world = ragdollWorld();
+  for (const phys::RagdollModel model :
+       {phys::RagdollModel::Seed, phys::RagdollModel::Lean, phys::RagdollModel::Rigid}) {
+    phys::World world = ragdollWorld(model);
     phys::RagdollDesc d;
     d.hips = Vec3(0.0, 2.0, 0.0);
     d.model = model;
@@ -99,7 +107,11 @@ TEST(CapsuleRagdoll, FallsTumblesAndSettlesWithoutSliding) {
     double fastest = 0.0;
     for (phys::ParticleId i{}; i < world.particles().size(); ++i)
       fastest = std::max(fastest, glm::length(world.velocity(i)));
-    EXPECT_LT(fastest, 0.02) << phys::toString(model);
+    if (model == phys::RagdollModel::Rigid) fastest = world.metrics().maxSpeed;  // its farthest corner's
+    // Rigid capsule forearms keep rocking on their round sides at 1 to 4 cm/s at the corner of
+    // their box (jointed, a capsule has no rolling resistance to end it; docs/physics.md, "Rigid
+    // bodies"); the pelvis below must still not creep.
+    EXPECT_LT(fastest, model == phys::RagdollModel::Rigid ? 0.05 : 0.02) << phys::toString(model);
     const Vec3 creep = pelvis - pelvisAt6s;
     EXPECT_LT(std::hypot(creep.x, creep.z), 0.005) << phys::toString(model);
     // Joints held through the landing (2 cm at worst) and at rest within 5 mm, as the box

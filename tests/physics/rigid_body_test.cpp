@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "physics/world.h"
+#include "test_util.h"
 
 namespace {
 
@@ -28,14 +29,7 @@ phys::SolverSettings xpbd(int substeps, int iterations = 1) {
   return s;
 }
 
-BodyDesc rigidBox(const Vec3& centre, const Vec3& size = Vec3(1.0), Real mass = 1.0) {
-  BodyDesc d;
-  d.center = centre;
-  d.size = size;
-  d.mass = mass;
-  d.model = BodyModel::Rigid;
-  return d;
-}
+using testing_phys::rigidBox;
 
 phys::WorldSettings noGravity() {
   phys::WorldSettings w;

@@ -35,4 +35,15 @@ inline phys::SolverSettings solver(phys::SolverMethod method, int substeps, int 
   return s;
 }
 
+/// A box of the rigid model.
+inline phys::BodyDesc rigidBox(const phys::Vec3& centre, const phys::Vec3& size = phys::Vec3(1.0),
+                               phys::Real mass = 1.0) {
+  phys::BodyDesc d;
+  d.center = centre;
+  d.size = size;
+  d.mass = mass;
+  d.model = phys::BodyModel::Rigid;
+  return d;
+}
+
 }  // namespace testing_phys

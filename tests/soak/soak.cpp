@@ -209,7 +209,7 @@ SessionState snapshot(const sandbox::Session& session) {
     r.boxes = w.bodies().size();
     r.particles = w.particles().size();
     r.sticks = w.sticks().size();
-    r.links = w.links().size();
+    r.links = w.links().size() + w.rigidLinks().size() + w.rigidJoints().size();
     r.drag = w.drag().has_value();
     if (r.drag) r.dragTarget = w.drag()->target;
     s.runs.push_back(r);
@@ -691,7 +691,8 @@ void Soak::saveAndOpen() {
   const phys::WorldSettings world = w.worldSettings();
   const phys::SolverSettings solver = w.solverSettings();
   const std::size_t boxes = w.bodies().size(), particles = w.particles().size(), sticks = w.sticks().size(),
-                    links = w.links().size(), ignored = w.ignoredCollisions().size();
+                    links = w.links().size(), rigidLinks = w.rigidLinks().size(),
+                    joints = w.rigidJoints().size(), ignored = w.ignoredCollisions().size();
   std::vector<phys::BodyPose> poses;
   for (std::size_t b = 0; b < boxes; ++b) poses.push_back(w.bodyPose(static_cast<phys::BodyId>(b)));
   std::vector<Vec3> loose;  // particles of no box: their positions reload exactly
@@ -735,6 +736,8 @@ void Soak::saveAndOpen() {
   count("particles", particles, back.particles().size());
   count("sticks", sticks, back.sticks().size());
   count("links", links, back.links().size());
+  count("links with a rigid end", rigidLinks, back.rigidLinks().size());
+  count("joints", joints, back.rigidJoints().size());
   count("pairs kept from colliding", ignored, back.ignoredCollisions().size());
   expect(sameWorld(world, back.worldSettings()), "the world settings did not survive the file: saved " +
                                                      describe(world) + ", reloaded " +

@@ -219,10 +219,14 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   if (auto mass = readMass(e, "mass", kMinRagdollMass)) d.mass = *mass;
   if (auto model = e.text("model")) {
     const auto parsed = phys::parseRagdollModel(*model);
-    if (!parsed) e.fail("model", "'" + *model + "' must be seed or lean");
+    if (!parsed) e.fail("model", "'" + *model + "' must be seed, lean or rigid");
     d.model = *parsed;
   }
   d.velocity = e.vector("velocity", "m/s").value_or(phys::Vec3(0.0));
+  if (auto damping = e.number("joint-damping", "1/s")) {
+    if (*damping < 0.0) e.fail("joint-damping", "must be >= 0 (1/s)");
+    d.jointDamping = *damping;
+  }
   e.material(d.material);
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;

@@ -25,9 +25,9 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {"particle", "stick",   "box",         "capsule",
-                                              "stack",    "pyramid", "grid",        "chain",
-                                              "ragdoll",  "link",    "no-collision"};
+constexpr std::string_view kBodyElements[] = {"particle", "stick",   "box",   "capsule",
+                                              "stack",    "pyramid", "grid",  "chain",
+                                              "ragdoll",  "link",    "joint", "no-collision"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -173,6 +173,8 @@ class Builder {
       detail::generateRagdoll(e, ctx_);
     else if (kind == "link")
       link(e);
+    else if (kind == "joint")
+      joint(e);
     else if (kind == "no-collision")
       noCollision(e);
     if (scene_.world.particles().size() > detail::kMaxParticles) {
@@ -290,18 +292,12 @@ class Builder {
   }
 
   // A joint between two bodies at world points: a pin (both points held together) unless min
-  // or max makes it a range. Boxes carry their point from now on (World::anchor); a loose
+  // or max makes it a range. Bodies carry their point from now on (World::pointOn); a loose
   // particle is its own point.
   void link(ElementReader& e) {
     const NamedBody& a = bodyNamed(e, "a", true);
     const NamedBody& b = bodyNamed(e, "b", true);
     if (a.kind == b.kind && a.index == b.index) e.fail("b", "must name a different body from a");
-    for (const auto& [attribute, body] : {std::pair{"a", &a}, std::pair{"b", &b}}) {
-      if (body->kind == NamedBody::Kind::Body &&
-          scene_.world.bodies()[body->body()].model == phys::BodyModel::Rigid)
-        e.fail(attribute,
-               "names a rigid body; joints on rigid bodies are not built yet (model corners or tetra)");
-    }
     const std::optional<phys::Vec3> point = e.vector("point", "m");
     const std::optional<phys::Vec3> aPoint = e.vector("a-point", "m");
     const std::optional<phys::Vec3> bPoint = e.vector("b-point", "m");
@@ -320,21 +316,84 @@ class Builder {
     if (min && *min < 0.0) e.fail("min", "must be >= 0 (m)");
     if (max && *max <= 0.0) e.fail("max", "must be > 0 (m); a pin has neither min nor max");
     if (min && max && *min > *max) e.fail("max", "must be >= min");
-    const phys::Embedding ea = embed(a, point ? *point : *aPoint);
-    const phys::Embedding eb = embed(b, point ? *point : *bPoint);
+    const phys::BodyPoint ea = embed(a, point ? *point : *aPoint);
+    const phys::BodyPoint eb = embed(b, point ? *point : *bPoint);
     if (min || max)
       scene_.world.addLink(ea, eb, min.value_or(0.0), max.value_or(phys::kNoMaxLength));
     else
       scene_.world.addLink(ea, eb, 0.0, 0.0);
   }
 
-  phys::Embedding embed(const NamedBody& body, const phys::Vec3& point) const {
-    if (body.kind == NamedBody::Kind::Body) return scene_.world.anchor(body.body(), point);
-    phys::Embedding self;
-    self.particle[0] = body.particle();
-    self.weight[0] = 1.0;
-    self.count = 1;
-    return self;
+  phys::BodyPoint embed(const NamedBody& body, const phys::Vec3& point) const {
+    if (body.kind == NamedBody::Kind::Body) return scene_.world.pointOn(body.body(), point);
+    return phys::BodyPoint::embedded(phys::embedParticle(body.particle()));
+  }
+
+  // A hinge or a cone between two rigid bodies (World::addJoint). Angles in degrees; the b-
+  // attributes give the child's own frame where it is not the parent's (a joint saved away from rest).
+  void joint(ElementReader& e) {
+    phys::JointDesc d;
+    const std::string type = e.requiredText("type");
+    if (type == "hinge")
+      d.kind = phys::JointKind::Hinge;
+    else if (type == "cone")
+      d.kind = phys::JointKind::Cone;
+    else
+      e.fail("type", "'" + type + "' must be hinge or cone");
+    for (const char* attribute : {"a", "b"}) {
+      const NamedBody& body = bodyNamed(e, attribute, false);
+      const phys::Body& part = scene_.world.bodies()[body.body()];
+      if (part.model != phys::BodyModel::Rigid) {
+        e.fail(attribute, "names a body of model " + std::string(phys::toString(part.model)) +
+                              "; a <joint> joins rigid bodies (a <link> joins any)");
+      }
+      (attribute[0] == 'a' ? d.a : d.b) = body.body();
+    }
+    if (d.a == d.b) e.fail("b", "must name a different body from a");
+    d.pivot = e.requiredVector("pivot", "m");
+    detail::checkInsideBound(e, scene_.world, "pivot", d.pivot);
+    if (auto pivotB = e.vector("b-pivot", "m")) {
+      detail::checkInsideBound(e, scene_.world, "b-pivot", *pivotB);
+      d.pivotB = *pivotB;
+      d.pivotBSet = true;
+    }
+    d.axis = e.requiredVector("axis", "");
+    d.reference = e.requiredVector("reference", "");
+    const std::optional<phys::Vec3> axisB = e.vector("b-axis", ""), referenceB = e.vector("b-reference", "");
+    if (axisB.has_value() != referenceB.has_value())
+      e.fail(axisB ? "b-reference" : "b-axis",
+             "is required with " + std::string(axisB ? "b-axis" : "b-reference"));
+    if (axisB) {
+      d.axisB = *axisB;
+      d.referenceB = *referenceB;
+    }
+    auto angle = [&e](const char* attribute, double lo, double hi, bool loOpen) {
+      const double degrees = e.requiredNumber(attribute, "degrees");
+      if (degrees > hi || degrees < lo || (loOpen && degrees == lo)) {
+        e.fail(attribute, "'" + detail::formatNumber(degrees) + "' must be " + (loOpen ? "above " : "from ") +
+                              detail::formatNumber(lo) + (loOpen ? " and up to " : " to ") +
+                              detail::formatNumber(hi) + " (degrees)");
+      }
+      return glm::radians(degrees);
+    };
+    if (d.kind == phys::JointKind::Hinge) {
+      d.minAngle = angle("min", -180.0, 180.0, false);
+      d.maxAngle = angle("max", -180.0, 180.0, false);
+      if (d.minAngle > d.maxAngle) e.fail("max", "must be >= min");
+    } else {
+      d.swing = angle("swing", 0.0, 179.0, true);
+      d.twist = e.has("twist") ? angle("twist", 0.0, 180.0, false) : 0.0;
+    }
+    if (auto damping = e.number("damping", "1/s")) {
+      if (*damping < 0.0) e.fail("damping", "must be >= 0 (1/s)");
+      d.damping = *damping;
+    }
+    e.rejectUnknownAttributes();
+    try {
+      scene_.world.addJoint(d);
+    } catch (const std::invalid_argument& error) {
+      e.fail(error.what());  // a zero axis, a reference along it
+    }
   }
 
   void noCollision(ElementReader& e) {

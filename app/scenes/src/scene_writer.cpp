@@ -52,6 +52,12 @@ LinkEnd linkEnd(const phys::Embedding& e, std::span<const phys::BodyId> owner) {
   return {false, e.particle[0]};
 }
 
+// A rigid body's point is that body's.
+LinkEnd linkEnd(const phys::World& world, const phys::BodyPoint& p, std::span<const phys::BodyId> owner) {
+  if (p.side == phys::ContactSide::Rigid) return {true, world.rigidBodies().body[p.rigid]};
+  return linkEnd(p.point, owner);
+}
+
 // The rigid bodies, which have no particles, in the order the world made them among the others:
 // a rigid body made when the world had p particles comes before particle p (Body::firstParticle).
 class RigidInOrder {
@@ -234,9 +240,9 @@ std::string stickElement(const phys::Stick& s, const BodyNames& names) {
   return e.empty();
 }
 
-std::string linkElement(const phys::World& world, const phys::Link& link, std::span<const phys::BodyId> owner,
-                        const BodyNames& names) {
-  const LinkEnd endA = linkEnd(link.a, owner), endB = linkEnd(link.b, owner);
+std::string linkElement(const phys::World& world, const phys::RigidLink& link,
+                        std::span<const phys::BodyId> owner, const BodyNames& names) {
+  const LinkEnd endA = linkEnd(world, link.a, owner), endB = linkEnd(world, link.b, owner);
   // The loader refuses a link from a body to itself (a box is rigid: such a link does nothing).
   if (endA.isBox == endB.isBox && endA.index == endB.index) {
     throw std::invalid_argument("a link joins " + names.end(endA) + " to itself; a <link> joins two bodies");
@@ -255,6 +261,26 @@ std::string linkElement(const phys::World& world, const phys::Link& link, std::s
   const bool openAbove = link.maxLength == phys::kNoMaxLength;
   if (link.minLength > 0.0 || openAbove) e.number("min", link.minLength);
   if (!openAbove) e.number("max", link.maxLength);
+  return e.empty();
+}
+
+// Both bodies' frames as they are now, so that a joint saved away from its rest (at a stop, or
+// pulled a little apart) reloads as it is, not with its child's angle taken as the new zero.
+std::string jointElement(const phys::JointDesc& d, const BodyNames& names) {
+  ElementWriter e("joint");
+  e.text("type", d.kind == phys::JointKind::Hinge ? "hinge" : "cone");
+  e.text("a", names.box(d.a)).text("b", names.box(d.b));
+  e.vector("pivot", d.pivot);
+  if (d.pivotB != d.pivot) e.vector("b-pivot", d.pivotB);
+  e.vector("axis", d.axis).vector("reference", d.reference);
+  if (d.axisB != d.axis || d.referenceB != d.reference)
+    e.vector("b-axis", d.axisB).vector("b-reference", d.referenceB);
+  if (d.kind == phys::JointKind::Hinge) {
+    e.number("min", glm::degrees(d.minAngle)).number("max", glm::degrees(d.maxAngle));
+  } else {
+    e.number("swing", glm::degrees(d.swing)).number("twist", glm::degrees(d.twist));
+  }
+  if (d.damping != 0.0) e.number("damping", d.damping);
   return e.empty();
 }
 
@@ -320,6 +346,11 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
       if (const LinkEnd e = linkEnd(*end, owner); !e.isBox) referenced[e.index] = true;
     }
   }
+  for (const phys::RigidLink& link : world.rigidLinks()) {
+    for (const phys::BodyPoint* end : {&link.a, &link.b}) {
+      if (const LinkEnd e = linkEnd(world, *end, owner); !e.isBox) referenced[e.index] = true;
+    }
+  }
   const BodyNames names(world, owner, referenced);
 
   std::string out = header(world) + "\n";
@@ -359,7 +390,13 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   }
   writeBodiesBelow(particles.size());
   rigid.before(particles.size(), writeRigid);
-  for (const phys::Link& link : world.links()) line(linkElement(world, link, owner, names));
+  for (const phys::Link& link : world.links()) {
+    const phys::RigidLink general{phys::BodyPoint::embedded(link.a), phys::BodyPoint::embedded(link.b),
+                                  link.minLength, link.maxLength};
+    line(linkElement(world, general, owner, names));
+  }
+  for (const phys::RigidLink& link : world.rigidLinks()) line(linkElement(world, link, owner, names));
+  for (std::size_t k = 0; k < world.rigidJoints().size(); ++k) line(jointElement(world.jointDesc(k), names));
   for (const auto& [a, b] : world.ignoredCollisions()) {
     line(ElementWriter("no-collision").text("a", names.box(a)).text("b", names.box(b)).empty());
   }

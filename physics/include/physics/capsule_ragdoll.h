@@ -42,8 +42,8 @@ struct CapsuleRagdoll {
 };
 
 /// Adds a capsule ragdoll: its parts are capsules (Shape::Capsule) of the desc's model (seed:
-/// corners boxes, lean: tetra boxes), named "<name>.pelvis", ...; desc.hips is the middle of the
-/// hip joints, and at the identity orientation it stands in a T pose on its feet, facing +z,
+/// corners boxes, lean: tetra boxes, rigid: rigid bodies), named "<name>.pelvis", ...; desc.hips is the
+/// middle of the hip joints, and at the identity orientation it stands in a T pose on its feet, facing +z,
 /// 1.76 m tall at scale 1 (arms out sideways, as Bullet builds it). The mass is split evenly over
 /// the parts, as Bullet gives each part the same mass. Parts that share a joint do not collide.
 /// Throws std::invalid_argument on bad input and adds nothing.

@@ -1,5 +1,6 @@
 #pragma once
-// The constraints between particles (sticks) and between bodies (links, the joints), and their
+// The constraints between particles (sticks) and between bodies (links, the joints: between particle
+// bodies, and with a rigid body at one end or both), and their
 // layouts for the passes: the sticks by body (StickLayout) and the links by ragdoll (LinkLayout),
 // in SIMD lanes. It owns the solver's scratch for them: XPBD's multipliers, Jacobi's per-particle
 // sums, and the slack of links created outside their bounds.
@@ -10,6 +11,8 @@
 #include "physics/constraints.h"
 #include "physics/link_layout.h"
 #include "physics/particles.h"
+#include "physics/rigid_joints.h"
+#include "physics/rigid_links.h"
 #include "physics/settings.h"
 #include "physics/stick_layout.h"
 
@@ -24,6 +27,10 @@ class ConstraintGraph {
   /// Adds a link whose points are at `violation` (m, signed as detail::linkViolation) outside its
   /// bounds now: it closes that at most at maxDepenetrationSpeed (shrinkLinkSlack).
   void addLink(const Link& link, Real violation);
+  /// Adds a link with a rigid end; it is solved as it stands (rigid links need no layout).
+  void addRigidLink(const RigidLink& link) { rigidLinks_.push_back(link); }
+  /// Adds a joint between two rigid bodies, solved as it stands too.
+  void addRigidJoint(const RigidJoint& joint) { rigidJoints_.push_back(joint); }
   /// True when sticks or links were added since the last layOut().
   bool stale() const { return stale_; }
   /// Lays the sticks out by body and the links by ragdoll. Allocates: after things were added.
@@ -31,6 +38,8 @@ class ConstraintGraph {
 
   std::span<const Stick> sticks() const { return sticks_; }
   std::span<const Link> links() const { return links_; }
+  std::span<const RigidLink> rigidLinks() const { return rigidLinks_; }
+  std::span<const RigidJoint> rigidJoints() const { return rigidJoints_; }
 
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
   /// multipliers). `h` (s) and `compliance` (m/N) are XPBD's.
@@ -48,6 +57,8 @@ class ConstraintGraph {
  private:
   std::vector<Stick> sticks_;
   std::vector<Link> links_;
+  std::vector<RigidLink> rigidLinks_;
+  std::vector<RigidJoint> rigidJoints_;
   StickLayout stickLayout_;
   LinkLayout linkLayout_;
   bool stale_ = false;

@@ -1,8 +1,9 @@
 #pragma once
 // Ragdolls: ten boxes joined by nine hinges, each hinge two pins on its axis (World::addLink)
-// and two one-sided range links, one at each stop of its angle. Two models a scene chooses:
+// and two one-sided range links, one at each stop of its angle. Three models a scene chooses:
 // `seed` builds the parts as corners boxes (80 particles, the seed's), `lean` as tetra boxes
-// (40 particles: the fewest of our box models that carry the same joints and limits).
+// (40 particles: the fewest of our box models that carry the same joints and limits), `rigid` as
+// rigid bodies (ten poses; the same links, their ends fixed in the parts' frames).
 // docs/physics.md, "Joints and ragdolls", draws the layout and lists the limits.
 #include <array>
 #include <optional>
@@ -14,11 +15,12 @@
 namespace phys {
 
 enum class RagdollModel {
-  Seed,  ///< corners boxes: 8 particles and 22 sticks a part
-  Lean,  ///< tetra boxes: 4 particles and 6 sticks a part
+  Seed,   ///< corners boxes: 8 particles and 22 sticks a part
+  Lean,   ///< tetra boxes: 4 particles and 6 sticks a part
+  Rigid,  ///< rigid bodies: one pose a part, the joints' ends fixed in their frames
 };
 
-std::string_view toString(RagdollModel model);  ///< "seed", "lean"
+std::string_view toString(RagdollModel model);  ///< "seed", "lean", "rigid"
 std::optional<RagdollModel> parseRagdollModel(std::string_view name);
 
 /// The ten parts, in the order Ragdoll::parts holds them. Left is the ragdoll's own left (+x
@@ -39,6 +41,11 @@ inline constexpr int kRagdollParts = 10;
 inline constexpr int kRagdollHinges = 9;
 std::string_view toString(RagdollPart part);  ///< "head", "upper-arm-left", ...
 
+/// Default friction of a rigid ragdoll's joints (RagdollDesc::jointDamping). Without it a limb of
+/// rigid parts swings on its joint as a pendulum, slowed only by the air (docs/physics.md, "Rigid
+/// bodies"), where the particle models' limbs come to rest within a few seconds.
+inline constexpr Real kRagdollJointDamping = 2.0;  ///< unit: 1/s
+
 /// A ragdoll when it is created. At the identity orientation it stands upright on its feet,
 /// facing +z, 1.72 m tall at scale 1.
 struct RagdollDesc {
@@ -48,6 +55,9 @@ struct RagdollDesc {
   Real scale = 1.0;  ///< unitless; multiplies every length
   Real mass = 70.0;  ///< unit: kg; the whole body's, split over the parts as in a person
   RagdollModel model = RagdollModel::Seed;
+  /// unit: 1/s; friction in the joints of rigid parts (RigidLink::damping): their relative spin
+  /// decays as exp(-jointDamping t). Particle parts ignore it: their passes take that motion away.
+  Real jointDamping = kRagdollJointDamping;
   Vec3 velocity{0.0};  ///< unit: m/s; of every part at creation
   Material material;
   std::uint32_t collisionGroup = 1;

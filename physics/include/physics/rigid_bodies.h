@@ -4,6 +4,7 @@
 // Kim 2020; docs/physics.md, "Rigid bodies"): integrate, correct poses by positional impulses, take
 // the velocities from the change of pose, then a velocity pass for friction and restitution.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -31,6 +32,9 @@ struct RigidBodies {
   /// contacts' corrections use, the body's turn within a substep being a small fraction of a radian.
   std::vector<glm::dmat3> inverseInertiaWorld;
   std::vector<BodyId> body;  ///< the Body it is
+  /// 1 when a joint or a link holds it: its contacts are never solved by shock propagation, whose
+  /// holding one body still fights the joint (a ragdoll's forearm under its torso shook at 0.3 m/s).
+  std::vector<std::uint8_t> jointed;
 
   std::size_t size() const { return position.size(); }
 };

@@ -24,6 +24,8 @@
 #include "physics/parting.h"
 #include "physics/rigid_bodies.h"
 #include "physics/rigid_contacts.h"
+#include "physics/rigid_joints.h"
+#include "physics/rigid_links.h"
 #include "physics/settings.h"
 
 namespace phys {
@@ -89,10 +91,22 @@ class World {
   /// is 0, else a range. Needs 0 <= minLength <= maxLength; throws std::invalid_argument on bad
   /// input and adds nothing.
   void addLink(const Embedding& a, const Embedding& b, Real minLength = 0.0, Real maxLength = 0.0);
+  /// The same for points of any bodies (pointOn gives them): between two particle bodies' embedded
+  /// points it is the link above; with a rigid end it is a RigidLink (rigidLinks()), which a rigid
+  /// body's frame carries. Throws std::invalid_argument on bad input and adds nothing.
+  void addLink(const BodyPoint& a, const BodyPoint& b, Real minLength = 0.0, Real maxLength = 0.0);
   /// The point at `worldPoint` (unit: m) carried by the box from now on: barycentric weights over
   /// the box's inscribed tetrahedron (its 4 particles, or corners 0, 3, 5, 6 of a corners box),
   /// which exist for any point, inside the box or not, with no matrix to invert.
   Embedding anchor(BodyId box, const Vec3& worldPoint) const;
+  /// Adds a hinge or a cone between two rigid bodies (rigid_joints.h). Throws
+  /// std::invalid_argument on bad input (bodies not rigid or the same, non-finite or zero vectors,
+  /// a reference along the axis, stops outside [-pi, pi] or crossed, a swing outside (0, pi), a
+  /// twist outside [0, pi], negative damping) and adds nothing.
+  void addJoint(const JointDesc& joint);
+  /// The point at `worldPoint` (unit: m) carried by the body from now on, whatever its model:
+  /// anchor() for a particle body, fixed in its frame for a rigid one.
+  BodyPoint pointOn(BodyId body, const Vec3& worldPoint) const;
 
   /// Starts pulling a point with a spring, replacing any drag set before. Throws
   /// std::invalid_argument (and keeps the old drag) on a bad embedding, a non-finite target or a
@@ -139,6 +153,14 @@ class World {
   std::span<const Stick> sticks() const { return constraints_.sticks(); }
   std::span<const Body> bodies() const { return bodies_; }
   std::span<const Link> links() const { return constraints_.links(); }
+  /// The links with a rigid end, in the order they were added (after or among links()).
+  std::span<const RigidLink> rigidLinks() const { return constraints_.rigidLinks(); }
+  /// The joints between rigid bodies, in the order they were added.
+  std::span<const RigidJoint> rigidJoints() const { return constraints_.rigidJoints(); }
+  /// Joint k as addJoint would take it to make it again as it is now: both bodies' pivots and frames.
+  JointDesc jointDesc(std::size_t k) const;
+  /// Joint k's angle now (rad): a hinge's about its axis, a cone's twist.
+  Real jointAngle(std::size_t k) const;
   /// Every particle body's corners, 8 per body from Body::firstCorner (a rigid body has none).
   std::span<const Embedding> corners() const { return corners_; }
   /// Corner k of any body now (bits as in Body), unit: m.
@@ -169,6 +191,11 @@ class World {
   Vec3 velocity(ParticleId id) const;
   /// Current position of an embedded point (a box corner, say). unit: m
   Vec3 position(const Embedding& point) const;
+  /// Where a body point is now (unit: m).
+  Vec3 position(const BodyPoint& point) const;
+  /// The body that carries a point: a rigid body, or the body of its first particle (kNoBody for a
+  /// loose particle).
+  BodyId carrier(const BodyPoint& point) const;
   /// Centre and orientation of a body: a rigid body's own, a particle body's fitted to its
   /// particles (polar decomposition).
   BodyPose bodyPose(BodyId id) const;

@@ -1,0 +1,130 @@
+// The world's joints with a rigid body at one end or both: links between body points and the
+// hinges and cones of rigid ragdolls (physics/rigid_links.h, physics/rigid_joints.h).
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "physics/world.h"
+#include "require.h"
+
+namespace phys {
+
+using detail::require;
+void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real maxLength) {
+  if (a.side == ContactSide::Particles && b.side == ContactSide::Particles) {
+    addLink(a.point, b.point, minLength, maxLength);
+    return;
+  }
+  for (const BodyPoint* end : {&a, &b}) {
+    if (end->side == ContactSide::Particles) {
+      checkEmbedding(end->point, "addLink");
+      continue;
+    }
+    require(end->side == ContactSide::Rigid, "addLink: an end is on a body or on particles, not the ground");
+    require(end->rigid < rigidBodies_.size(), "addLink: rigid body ids must exist");
+    require(finite(end->local), "addLink: a rigid body's point must be finite");
+  }
+  require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
+  require(!std::isnan(maxLength) && maxLength >= minLength, "addLink: max length must be >= min length (m)");
+  constraints_.addRigidLink({a, b, minLength, maxLength});
+  for (const BodyPoint* end : {&a, &b}) {
+    if (end->side == ContactSide::Rigid) rigidBodies_.jointed[end->rigid] = 1;
+  }
+}
+
+void World::addJoint(const JointDesc& d) {
+  auto rigid = [this](BodyId id) { return id < bodies_.size() && bodies_[id].model == BodyModel::Rigid; };
+  require(rigid(d.a) && rigid(d.b) && d.a != d.b, "addJoint: a and b must be two different rigid bodies");
+  require(finite(d.pivot) && finite(d.pivotB) && finite(d.axis) && finite(d.reference) && finite(d.axisB) &&
+              finite(d.referenceB),
+          "addJoint: the pivot, axes and references must be finite");
+  // Each body's axis made unit and its reference made normal to it, in the body's own frame.
+  auto frame = [this](BodyId id, Vec3 axis, Vec3 reference, Vec3& axisOut, Vec3& referenceOut) {
+    require(glm::length(axis) > 0.0, "addJoint: the axis must not be zero");
+    axis = glm::normalize(axis);
+    reference -= glm::dot(reference, axis) * axis;
+    require(glm::length(reference) > 1e-9, "addJoint: the reference must not lie along the axis");
+    const Quat toBody = glm::conjugate(rigidBodies_.orientation[bodies_[id].rigid]);
+    axisOut = toBody * axis;
+    referenceOut = toBody * glm::normalize(reference);
+  };
+  const Real pi = std::numbers::pi;
+  if (d.kind == JointKind::Hinge) {
+    require(d.minAngle >= -pi && d.minAngle <= d.maxAngle && d.maxAngle <= pi,
+            "addJoint: a hinge's stops must be within [-pi, pi] and min <= max (rad)");
+  } else {
+    require(d.swing > 0.0 && d.swing < pi, "addJoint: a cone's swing must be in (0, pi) (rad)");
+    require(d.twist >= 0.0 && d.twist <= pi, "addJoint: a cone's twist must be in [0, pi] (rad)");
+  }
+  require(std::isfinite(d.damping) && d.damping >= 0.0, "addJoint: damping must be finite and >= 0 (1/s)");
+  RigidJoint j;
+  j.kind = d.kind;
+  j.a = bodies_[d.a].rigid;
+  j.b = bodies_[d.b].rigid;
+  frame(d.a, d.axis, d.reference, j.axisA, j.referenceA);
+  const bool ownB = glm::length(d.axisB) > 0.0 || glm::length(d.referenceB) > 0.0;
+  frame(d.b, ownB ? d.axisB : d.axis, ownB ? d.referenceB : d.reference, j.axisB, j.referenceB);
+  const RigidBodies& r = rigidBodies_;
+  j.pivotA = glm::conjugate(r.orientation[j.a]) * (d.pivot - r.position[j.a]);
+  j.pivotB = glm::conjugate(r.orientation[j.b]) * ((d.pivotBSet ? d.pivotB : d.pivot) - r.position[j.b]);
+  j.minAngle = d.minAngle;
+  j.maxAngle = d.maxAngle;
+  j.swing = d.swing;
+  j.twist = d.twist;
+  j.damping = d.damping;
+  constraints_.addRigidJoint(j);
+  rigidBodies_.jointed[j.a] = rigidBodies_.jointed[j.b] = 1;
+}
+
+JointDesc World::jointDesc(std::size_t k) const {
+  require(k < constraints_.rigidJoints().size(), "jointDesc: joint index must exist");
+  const RigidJoint& j = constraints_.rigidJoints()[k];
+  const RigidBodies& r = rigidBodies_;
+  JointDesc d;
+  d.kind = j.kind;
+  d.a = r.body[j.a];
+  d.b = r.body[j.b];
+  d.pivot = r.position[j.a] + r.orientation[j.a] * j.pivotA;
+  d.pivotB = r.position[j.b] + r.orientation[j.b] * j.pivotB;
+  d.pivotBSet = true;
+  d.axis = r.orientation[j.a] * j.axisA;
+  d.reference = r.orientation[j.a] * j.referenceA;
+  d.axisB = r.orientation[j.b] * j.axisB;
+  d.referenceB = r.orientation[j.b] * j.referenceB;
+  d.minAngle = j.minAngle;
+  d.maxAngle = j.maxAngle;
+  d.swing = j.swing;
+  d.twist = j.twist;
+  d.damping = j.damping;
+  return d;
+}
+
+Real World::jointAngle(std::size_t k) const {
+  require(k < constraints_.rigidJoints().size(), "jointAngle: joint index must exist");
+  return detail::jointAngle(rigidBodies_, constraints_.rigidJoints()[k]);
+}
+
+BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {
+  require(id < bodies_.size(), "pointOn: body id must exist");
+  if (bodies_[id].model != BodyModel::Rigid) return BodyPoint::embedded(anchor(id, worldPoint));
+  require(finite(worldPoint), "pointOn: the point must be finite");
+  const RigidId i = bodies_[id].rigid;
+  return BodyPoint::onRigid(
+      i, glm::conjugate(rigidBodies_.orientation[i]) * (worldPoint - rigidBodies_.position[i]));
+}
+
+Vec3 World::position(const BodyPoint& point) const {
+  if (point.side != ContactSide::Rigid) return position(point.point);
+  return rigidBodies_.position[point.rigid] + rigidBodies_.orientation[point.rigid] * point.local;
+}
+
+BodyId World::carrier(const BodyPoint& point) const {
+  return point.side == ContactSide::Rigid ? rigidBodies_.body[point.rigid]
+                                          : particleBody_[point.point.particle[0]];
+}
+
+}  // namespace phys
