@@ -347,7 +347,8 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
       << "): " << count(world.bodies().size() - capsules, "box", "boxes") << ", "
       << (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string())
       << count(loose, "loose particle", "loose particles") << ", "
-      << count(world.links().size(), "link", "links") << "\n";
+      << count(world.links().size() + world.rigidLinks().size(), "link", "links") << ", "
+      << count(world.rigidJoints().size(), "joint", "joints") << "\n";
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
       << " s) in each engine, one after another in this process; ms/step is the median of the steps timed "
          "one by one\n";

@@ -92,7 +92,7 @@ std::string usage() {
          "  --iterations K  relaxation passes per substep, 1 to 1000 (default: the scene's)\n"
          "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"
          "  --model M       corners, tetra or rigid: imposed on every box and capsule of the scene\n"
-         "                  (ragdolls keep theirs; a rigid body is solved by XPBD whatever --method)\n"
+         "                  (rigid on ragdolls too; a rigid body is solved by XPBD whatever --method)\n"
          "  --json          print one JSON object instead of the summary\n"
          "  --dump FILE     write each named body's final pose to FILE as CSV\n"
          "  --data DIR      folder holding assets/ (default: the source tree)\n"

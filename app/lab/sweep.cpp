@@ -51,7 +51,7 @@ std::string sweepUsage() {
          "  --iterations    relaxation passes per substep, 1 to 1000\n"
          "  --substeps      integrations per step, 1 to 1000\n"
          "  --dt            seconds per step, 1e-06 to 1\n"
-         "  --model         corners, tetra (boxes), seed, lean (ragdolls), imposed at load\n"
+         "  --model         corners, tetra (boxes), seed, lean (ragdolls), rigid (both), imposed at load\n"
          "  --repeat R      timed runs per combination, 1 to 1000 (default 3; the median counts)\n"
          "  --steps N       steps at the scene's dt (default: 1 s of them); other dts run as long\n"
          "  --no-peers      leave out the peer engines (Bullet, ODE, MuJoCo when built in)\n"

@@ -57,6 +57,10 @@ SceneModels sceneModels(const std::filesystem::path& file) {
   const std::size_t tetra = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Tetra));
   const std::size_t seed = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Seed));
   const std::size_t lean = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Lean));
+  // Rigid bodies have no particles: all of a kind is rigid when making it rigid changes no count.
+  const std::size_t rigidBoxes = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Rigid));
+  const std::size_t rigidRagdolls =
+      particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Rigid));
 
   SceneModels m;
   m.boxes = corners != tetra;
@@ -73,6 +77,8 @@ SceneModels sceneModels(const std::filesystem::path& file) {
       c.options.boxModel = phys::BodyModel::Corners;
     else if (asWritten == tetra)
       c.options.boxModel = phys::BodyModel::Tetra;
+    else if (asWritten == rigidBoxes)
+      c.options.boxModel = phys::BodyModel::Rigid;
     if (c.options.boxModel) parts.emplace_back(phys::toString(*c.options.boxModel));
   }
   if (m.ragdolls) {
@@ -80,6 +86,8 @@ SceneModels sceneModels(const std::filesystem::path& file) {
       c.options.ragdollModel = phys::RagdollModel::Seed;
     else if (asWritten == lean)
       c.options.ragdollModel = phys::RagdollModel::Lean;
+    else if (asWritten == rigidRagdolls)
+      c.options.ragdollModel = phys::RagdollModel::Rigid;
     if (c.options.ragdollModel) parts.emplace_back(phys::toString(*c.options.ragdollModel));
   }
   if (parts.size() != static_cast<std::size_t>(m.boxes) + static_cast<std::size_t>(m.ragdolls)) {
@@ -93,6 +101,17 @@ SceneModels sceneModels(const std::filesystem::path& file) {
 }
 
 std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error) {
+  // Rigid is a model of both kinds: imposed on the boxes and the ragdolls the scene has.
+  if (name == phys::toString(phys::BodyModel::Rigid)) {
+    if (!models.boxes && !models.ragdolls) {
+      error = inQuotes(name) + " is a box and ragdoll model and the scene has neither";
+      return std::nullopt;
+    }
+    ModelChoice c{std::string(name), {}};
+    if (models.boxes) c.options.boxModel = phys::BodyModel::Rigid;
+    if (models.ragdolls) c.options.ragdollModel = phys::RagdollModel::Rigid;
+    return c;
+  }
   if (const auto box = phys::parseBodyModel(name)) {
     if (!models.boxes) {
       error = inQuotes(name) + " is a box model and the scene has no boxes";
@@ -107,7 +126,7 @@ std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels&
     }
     return ModelChoice{std::string(name), withRagdollModel(*ragdoll)};
   }
-  error = "unknown model " + inQuotes(name) + " (corners, tetra, seed or lean)";
+  error = "unknown model " + inQuotes(name) + " (corners, tetra, seed, lean or rigid)";
   return std::nullopt;
 }
 

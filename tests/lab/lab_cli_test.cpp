@@ -63,12 +63,13 @@ TEST(LabRun, ModelIsImposedOnEveryBox) {
   const TempDir dir;
   const auto scene = dir.write("s.xml",
                                "<scene name='s'>\n<stack name='st' pos='0 0 0' count='3' size='1'/>\n"
-                               "<box name='b' pos='3 0.5 0'/>\n</scene>\n");
+                               "<box name='b' pos='3 0.5 0'/>\n"
+                               "<ragdoll name='r' pos='-3 1 0' model='lean'/>\n</scene>\n");
   const FlatJson asFile = runJson("run " + quoted(scene) + " --steps 30", dir);
   const FlatJson rigid = runJson("run " + quoted(scene) + " --steps 30 --model rigid", dir);
-  EXPECT_EQ(number(asFile, "particles"), 32);
-  EXPECT_EQ(number(rigid, "particles"), 0);
-  EXPECT_EQ(number(rigid, "bodies"), 4);
+  EXPECT_EQ(number(asFile, "particles"), 32 + 40);  // corners boxes, a lean ragdoll
+  EXPECT_EQ(number(rigid, "particles"), 0);         // the ragdoll is rigid too
+  EXPECT_EQ(number(rigid, "bodies"), 4 + 10);
   EXPECT_NE(text(asFile, "hash"), text(rigid, "hash"));
   const ProcessResult bad = runLab("run " + quoted(scene) + " --model blob", dir);
   EXPECT_EQ(bad.exitCode, 2);

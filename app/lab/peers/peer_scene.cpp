@@ -198,9 +198,20 @@ Description describe(const scenes::Scene& scene) {
     d.notes.push_back("the global compliance not expressed (sticks rigid)");
   }
 
-  int crossing = 0;
+  // The body a link's end belongs to: a rigid body, or as bodyOf.
+  auto endOf = [&](const phys::BodyPoint& p) {
+    return p.side == phys::ContactSide::Rigid ? static_cast<int>(world.rigidBodies().body[p.rigid])
+                                              : bodyOf(p.point);
+  };
+  std::vector<phys::RigidLink> links;
   for (const phys::Link& link : world.links()) {
-    const int a = bodyOf(link.a), b = bodyOf(link.b);
+    links.push_back({phys::BodyPoint::embedded(link.a), phys::BodyPoint::embedded(link.b), link.minLength,
+                     link.maxLength});
+  }
+  links.insert(links.end(), world.rigidLinks().begin(), world.rigidLinks().end());
+  int crossing = 0;
+  for (const phys::RigidLink& link : links) {
+    const int a = endOf(link.a), b = endOf(link.b);
     if (a < 0 || b < 0) {
       ++crossing;
       continue;
@@ -219,6 +230,21 @@ Description describe(const scenes::Scene& scene) {
   }
   if (crossing > 0)
     d.notes.push_back(std::to_string(crossing) + " links with an end spread over two bodies left out");
+  // A rigid joint as pins: one at the pivot, and a hinge's second on its axis; its stops and a
+  // cone's limits have no pin or distance to be.
+  for (std::size_t k = 0; k < world.rigidJoints().size(); ++k) {
+    const phys::JointDesc j = world.jointDesc(k);
+    const int a = static_cast<int>(j.a), b = static_cast<int>(j.b);
+    const Body& A = d.bodies[static_cast<std::size_t>(a)];
+    const Body& B = d.bodies[static_cast<std::size_t>(b)];
+    std::vector<std::pair<Vec3, Vec3>> points{{j.pivot, j.pivotB}};
+    if (j.kind == phys::JointKind::Hinge)
+      points.emplace_back(j.pivot + 0.1 * j.axis, j.pivotB + 0.1 * j.axisB);
+    for (const auto& [pa, pb] : points) d.pins.push_back(Pin{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb});
+  }
+  if (!world.rigidJoints().empty())
+    d.notes.push_back(std::to_string(world.rigidJoints().size()) +
+                      " rigid joints as pins, their limits left out");
 
   for (const auto& [a, b] : world.ignoredCollisions())
     d.ignored.emplace_back(static_cast<int>(a), static_cast<int>(b));
