@@ -208,6 +208,10 @@ void drawWorldPanel(Session& session, UiState& ui) {
     ui.message = error.empty() ? "world settings applied without restart" : error;
   }
   ImGui::Text("ground: %s", w.ground ? "yes" : "none");
+  // What F, R and T throw: boxes of this model, ragdolls of its kind.
+  int thrown = static_cast<int>(session.throwModel());
+  if (ImGui::Combo("thrown bodies", &thrown, "corners\0tetra\0rigid\0"))
+    session.setThrowModel(static_cast<phys::BodyModel>(thrown));
   endPanel();
 }
 

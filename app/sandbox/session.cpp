@@ -281,6 +281,7 @@ std::string Session::spawnBox(const phys::Vec3& at, const phys::Vec3& velocity) 
   d.center = at;
   d.size = phys::Vec3(kSpawnBoxSize);
   d.mass = kSpawnBoxMass;
+  d.model = throwModel_;
   d.velocity = velocity;
   return spawn(at, "threw a box", [&](phys::World& w) { w.addBody(d); });
 }
@@ -318,6 +319,17 @@ std::string Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& veloci
       glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
   d.hips = at;
   d.velocity = velocity;
+  switch (throwModel_) {
+    case phys::BodyModel::Corners:
+      d.model = phys::RagdollModel::Seed;
+      break;
+    case phys::BodyModel::Tetra:
+      d.model = phys::RagdollModel::Lean;
+      break;
+    case phys::BodyModel::Rigid:
+      d.model = phys::RagdollModel::Rigid;
+      break;
+  }
   if (capsules)
     return spawn(at, "threw a capsule ragdoll", [&](phys::World& w) { phys::addCapsuleRagdoll(w, d); });
   return spawn(at, "threw a ragdoll", [&](phys::World& w) { phys::addRagdoll(w, d); });

@@ -96,6 +96,10 @@ class Session {
   /// world's bound, or a body the world refuses.
   std::string spawnBox(const phys::Vec3& at, const phys::Vec3& velocity);
   std::string spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules = false);
+  /// The model of what is thrown from now on: a box of it, a ragdoll of its kind (corners: seed,
+  /// tetra: lean, rigid: rigid parts and joints).
+  void setThrowModel(phys::BodyModel model) { throwModel_ = model; }
+  phys::BodyModel throwModel() const { return throwModel_; }
 
   /// Left-drag picking: the body or particle hit by the ray gets a spring to the ray's point,
   /// in every run at the same place on the same body. False when the ray hits nothing or is
@@ -133,6 +137,7 @@ class Session {
   phys::SolverSettings beforeOverlay_;  // the main run's settings when the overlay started
   std::string status_;
   int spawned_ = 0;
+  phys::BodyModel throwModel_ = phys::BodyModel::Corners;
 };
 
 }  // namespace sandbox

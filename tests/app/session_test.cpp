@@ -180,6 +180,26 @@ TEST(Session, ThrownCapsuleRagdollHasBulletsElevenCapsules) {
   EXPECT_LT(w.bodyPose(static_cast<phys::BodyId>(boxes)).center.x, -4.0);  // flew towards -x
 }
 
+TEST(Session, ThrownBodiesTakeTheChosenModel) {
+  sandbox::Session s = open("pyramid");
+  const phys::World& w = s.scene().world;
+  const std::size_t boxes = w.bodies().size(), particles = w.particles().size();
+  s.setThrowModel(phys::BodyModel::Rigid);
+  s.spawnBox(phys::Vec3(0, 3, 6), phys::Vec3(0, 0, -sandbox::kThrowSpeed));
+  s.spawnRagdoll(phys::Vec3(4, 3, 0), phys::Vec3(sandbox::kThrowSpeed, 0, 0));
+  s.spawnRagdoll(phys::Vec3(-4, 3, 0), phys::Vec3(-sandbox::kThrowSpeed, 0, 0), true);
+  ASSERT_EQ(w.bodies().size(), boxes + 1 + 10 + 11);
+  for (std::size_t i = boxes; i < w.bodies().size(); ++i)
+    EXPECT_EQ(w.bodies()[i].model, phys::BodyModel::Rigid);
+  EXPECT_EQ(w.particles().size(), particles);
+  EXPECT_EQ(w.rigidJoints().size(), 9u + 10u);
+  s.setThrowModel(phys::BodyModel::Tetra);
+  s.spawnRagdoll(phys::Vec3(0, 3, -4), phys::Vec3(0, 0, sandbox::kThrowSpeed));
+  EXPECT_EQ(w.particles().size(), particles + 40);  // a lean ragdoll
+  for (int i = 0; i < 120; ++i) s.step();
+  EXPECT_EQ(w.metrics().frozen, 0);
+}
+
 TEST(Session, PickingHitsTheBodyUnderTheRayAndTheSpringPullsIt) {
   sandbox::Session s = open("falling-box");
   for (int i = 0; i < 120; ++i) s.step();  // landed
