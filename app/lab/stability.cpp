@@ -66,9 +66,12 @@ class Progress {
 
 std::vector<Setting> settingsOf(const StabilityOptions& o) {
   std::vector<Setting> out;
+  const std::vector<std::string> models = o.models.empty() ? std::vector<std::string>{""} : o.models;
   for (phys::SolverMethod m : o.methods) {
-    for (int it : o.iterations) {
-      for (int sub : o.substeps) out.push_back({m, it, sub});
+    for (const std::string& model : models) {
+      for (int it : o.iterations) {
+        for (int sub : o.substeps) out.push_back({m, it, sub, model});
+      }
     }
   }
   return out;
@@ -78,7 +81,10 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   SuiteResult r;
   r.scenes = scenes;
   r.settings = settingsOf(o);
-  for (phys::SolverMethod m : o.methods) r.methods.emplace_back(phys::toString(m));
+  for (const Setting& s : r.settings) {
+    if (r.methods.empty() || r.methods.back() != stability::settingGroup(s))
+      r.methods.push_back(stability::settingGroup(s));
+  }
   if (o.peers) r.peers = peerEngines();
   r.peerNote = !o.peers ? "--no-peers" : "the lab was built without peer engines (LAB_PEERS)";
   const auto start = std::chrono::steady_clock::now();

@@ -45,6 +45,16 @@ std::string parseMethods(const std::string& text, std::vector<phys::SolverMethod
   return {};
 }
 
+std::string parseModels(const std::string& text, std::vector<std::string>& into) {
+  into.clear();
+  for (const std::string& item : splitList(text)) {
+    if (!phys::parseBodyModel(item))
+      return "--models: unknown model '" + item + "' (corners, tetra or rigid)";
+    if (std::find(into.begin(), into.end(), item) == into.end()) into.push_back(item);
+  }
+  return {};
+}
+
 std::filesystem::path suiteDirectory(const StabilityOptions& o) {
   RunOptions run;
   run.dataDir = o.dataDir;
@@ -55,14 +65,16 @@ std::filesystem::path suiteDirectory(const StabilityOptions& o) {
 
 std::string usage() {
   return "usage: lab stability [--out DIR] [--methods LIST] [--iterations LIST] [--substeps LIST]\n"
-         "                     [--scene NAME...] [--no-peers] [--data DIR]\n"
-         "  Runs every scene of <data>/assets/scenes/stability under every method x iterations x\n"
-         "  substeps, and in each peer engine, and judges each run by the scene's <expect kind=\"pass\">.\n"
+         "                     [--models LIST] [--scene NAME...] [--no-peers] [--data DIR]\n"
+         "  Runs every scene of <data>/assets/scenes/stability under every method x model x iterations\n"
+         "  x substeps, and in each peer engine, and judges each run by the scene's <expect kind=\"pass\">.\n"
          "  --out DIR         also write DIR/stability.md, .csv, .gp and the heat maps\n"
          "                    stability-pass.png/.svg and stability-error.png/.svg (gnuplot)\n"
          "  --methods LIST    comma-separated (default gauss-seidel,jacobi,xpbd,shake)\n"
          "  --iterations LIST whole numbers 1 to 1000 (default 1,3,10)\n"
          "  --substeps LIST   whole numbers 1 to 1000 (default 1,4,16)\n"
+         "  --models LIST     corners, tetra or rigid, imposed on every box and ragdoll (ragdolls:\n"
+         "                    seed, lean, rigid); default: each file's own\n"
          "  --scene NAME...   only these scenes: names in the suite's folder, or scene files\n"
          "                    (repeatable; comma-separated lists too)\n"
          "  --no-peers        skip the peer engines\n"
@@ -74,7 +86,8 @@ std::string parseOptions(const std::vector<std::string>& args, StabilityOptions&
     const std::string& a = args[i];
     auto value = [&] { return optionValue(args, i); };
     std::string error;
-    if (a == "--out" || a == "--data" || a == "--methods" || a == "--iterations" || a == "--substeps") {
+    if (a == "--out" || a == "--data" || a == "--methods" || a == "--iterations" || a == "--substeps" ||
+        a == "--models") {
       const std::string* v = value();
       if (v == nullptr) return a + " needs a value";
       if (a == "--out")
@@ -83,6 +96,8 @@ std::string parseOptions(const std::vector<std::string>& args, StabilityOptions&
         o.dataDir = *v;
       else if (a == "--methods")
         error = parseMethods(*v, o.methods);
+      else if (a == "--models")
+        error = parseModels(*v, o.models);
       else if (a == "--iterations")
         error = parseCounts(a, *v, phys::kMaxIterations, o.iterations);
       else

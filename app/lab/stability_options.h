@@ -17,6 +17,8 @@ struct StabilityOptions {
                                           phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
   std::vector<int> iterations{1, 3, 10};
   std::vector<int> substeps{1, 4, 16};
+  /// corners, tetra or rigid imposed on every box and ragdoll (Setting::model); empty: the files'
+  std::vector<std::string> models;
   std::vector<std::string> scenes;  ///< as given to --scene; empty: the whole suite
   bool peers = true;
   std::filesystem::path dataDir;  ///< holds assets/; empty: the build's default

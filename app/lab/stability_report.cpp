@@ -96,7 +96,7 @@ void summaryTable(std::ostringstream& md, const SuiteResult& r) {
     for (const std::string& m : r.methods) {
       int passed = 0, runs = 0;
       for (std::size_t k = 0; k < r.settings.size(); ++k) {
-        if (phys::toString(r.settings[k].method) != m) continue;
+        if (settingGroup(r.settings[k]) != m) continue;
         ++runs;
         passed += r.outcomes[s][k].passed ? 1 : 0;
       }
@@ -113,7 +113,7 @@ void summaryTable(std::ostringstream& md, const SuiteResult& r) {
 void methodGrid(std::ostringstream& md, const SuiteResult& r, const std::string& method) {
   std::vector<std::size_t> columns;
   for (std::size_t k = 0; k < r.settings.size(); ++k) {
-    if (phys::toString(r.settings[k].method) == method) columns.push_back(k);
+    if (settingGroup(r.settings[k]) == method) columns.push_back(k);
   }
   md << "\n### " << method << "\n\n| scene |";
   for (std::size_t k : columns)
@@ -157,8 +157,9 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
 std::vector<std::string> columnLabels(const SuiteResult& r) {
   std::vector<std::string> out;
   for (const Setting& s : r.settings) {
-    out.push_back(std::string(phys::toString(s.method)) + ":" + std::to_string(s.iterations) + "x" +
-                  std::to_string(s.substeps));
+    std::string group = settingGroup(s);
+    std::replace(group.begin(), group.end(), ' ', '-');  // one token: "xpbd-rigid"
+    out.push_back(group + ":" + std::to_string(s.iterations) + "x" + std::to_string(s.substeps));
   }
   for (const std::string& p : r.peers) out.push_back(p);
   return out;
@@ -218,7 +219,7 @@ std::string markdownReport(const SuiteResult& r) {
 
 std::string csvReport(const SuiteResult& r) {
   std::ostringstream csv;
-  csv << "scene,method,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n";
+  csv << "scene,method,model,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n";
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     const SuiteScene& sc = r.scenes[s];
     for (std::size_t k = 0; k < r.outcomes[s].size(); ++k) {
@@ -226,10 +227,10 @@ std::string csvReport(const SuiteResult& r) {
       const bool peer = k >= r.settings.size();
       csv << csvField(sc.name) << ",";
       if (peer)
-        csv << csvField(r.peers[k - r.settings.size()]) << ",,,";
+        csv << csvField(r.peers[k - r.settings.size()]) << ",,,,";
       else
-        csv << phys::toString(r.settings[k].method) << "," << r.settings[k].iterations << ","
-            << r.settings[k].substeps << ",";
+        csv << phys::toString(r.settings[k].method) << "," << csvField(r.settings[k].model) << ","
+            << r.settings[k].iterations << "," << r.settings[k].substeps << ",";
       if (!o.judged) {
         csv << "n/a,,,,," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
         continue;
@@ -289,8 +290,9 @@ std::string gnuplotScript(const SuiteResult& r) {
         "fillstyle solid noborder\n";
   // Lines between the methods' blocks of settings, and between the settings and the peers.
   for (std::size_t k = 1; k < columns; ++k) {
-    const bool newBlock =
-        k >= r.settings.size() ? k == r.settings.size() : r.settings[k].method != r.settings[k - 1].method;
+    const bool newBlock = k >= r.settings.size()
+                              ? k == r.settings.size()
+                              : settingGroup(r.settings[k]) != settingGroup(r.settings[k - 1]);
     const double x = static_cast<double>(k) - 0.5;  // between cell k - 1 and cell k
     if (newBlock)
       gp << "set arrow from " << x << ", graph 0 to " << x << ", graph 1 nohead front lw 2 lc rgb 'black'\n";

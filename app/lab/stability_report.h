@@ -13,7 +13,8 @@ namespace lab::stability {
 struct SuiteResult {
   std::vector<SuiteScene> scenes;
   std::vector<Setting> settings;
-  std::vector<std::string> methods;  ///< the methods of `settings`, in order, once each
+  /// the blocks of `settings` (settingGroup: a method, and a model when --models gave one), in order
+  std::vector<std::string> methods;
   std::vector<std::string> peers;
   std::string peerNote;  ///< why there are no peer columns ("--no-peers", none built), or ""
   std::vector<std::vector<Outcome>> outcomes;
@@ -24,7 +25,7 @@ struct SuiteResult {
 /// of value / limit per setting, then the peers' figures and notes.
 std::string markdownReport(const SuiteResult& result);
 
-/// scene,method,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note: one row
+/// scene,method,model,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note: one row
 /// per run (a peer's row has its engine as the method and no iterations or substeps).
 std::string csvReport(const SuiteResult& result);
 

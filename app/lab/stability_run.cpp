@@ -1,9 +1,11 @@
 #include "stability_run.h"
 
 #include <chrono>
+#include <optional>
 #include <sstream>
 
 #include "peer.h"
+#include "physics/ragdoll.h"
 #include "run.h"
 #include "scenes/scene.h"
 
@@ -41,11 +43,23 @@ SuiteScene loadSuiteScene(const std::filesystem::path& file) {
 
 std::string settingLabel(const Setting& setting) {
   return std::string(phys::toString(setting.method)) + " " + std::to_string(setting.iterations) + "x" +
-         std::to_string(setting.substeps);
+         std::to_string(setting.substeps) + (setting.model.empty() ? "" : " " + setting.model);
+}
+
+std::string settingGroup(const Setting& setting) {
+  return std::string(phys::toString(setting.method)) + (setting.model.empty() ? "" : " " + setting.model);
 }
 
 Outcome runSetting(const SuiteScene& s, const Setting& setting) {
-  scenes::Scene scene = scenes::loadSceneFile(s.file);
+  // A box model and the ragdolls' of the same kind: corners and seed, tetra and lean, rigid.
+  scenes::LoadOptions load;
+  if (const std::optional<phys::BodyModel> model = phys::parseBodyModel(setting.model)) {
+    load.boxModel = *model;
+    load.ragdollModel = *model == phys::BodyModel::Corners ? phys::RagdollModel::Seed
+                        : *model == phys::BodyModel::Tetra ? phys::RagdollModel::Lean
+                                                           : phys::RagdollModel::Rigid;
+  }
+  scenes::Scene scene = scenes::loadSceneFile(s.file, load);
   RunOptions overrides;
   overrides.method = setting.method;
   overrides.iterations = setting.iterations;

@@ -16,6 +16,8 @@ struct Setting {
   phys::SolverMethod method = phys::SolverMethod::GaussSeidel;
   int iterations = 3;
   int substeps = 1;
+  /// corners, tetra or rigid imposed on the scene's boxes and ragdolls (seed, lean, rigid); "": its own
+  std::string model;
 };
 
 /// A scene of the suite, loaded once to read its criteria; every run loads it afresh.
@@ -51,7 +53,9 @@ Outcome runSetting(const SuiteScene& scene, const Setting& setting);
 /// Runs the scene in a peer engine (peer.h) and judges what its positions can answer.
 Outcome runPeerEngine(const SuiteScene& scene, const std::string& engine);
 
-/// "gauss-seidel 3x4" (iterations x substeps).
+/// "gauss-seidel 3x4" (iterations x substeps), "xpbd 1x4 rigid" with a model.
 std::string settingLabel(const Setting& setting);
+/// The block of settings a setting belongs to in the reports: its method, and its model if any.
+std::string settingGroup(const Setting& setting);
 
 }  // namespace lab::stability

@@ -349,8 +349,8 @@ TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
   EXPECT_NE(md.find("| face-face | n/a: not built |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 1/1 | n/a |"), std::string::npos) << md;  // the summary: our pass, the peer's n/a
   const std::string csv = lab::stability::csvReport(r);
-  EXPECT_NE(csv.find("\nface-face,gauss-seidel,3,4,1,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\nface-face,fake,,,n/a,,,,,0,not built\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nface-face,gauss-seidel,,3,4,1,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nface-face,fake,,,,n/a,,,,,0,not built\n"), std::string::npos) << csv;
   // The heat maps' matrices: the scene's row, our pass and the peer's grey.
   EXPECT_EQ(lab::stability::passMatrix(r), "scene gauss-seidel:3x4 fake\nface-face 1 0.5\n");
   EXPECT_NE(lab::stability::errorMatrix(r).find(" NaN\n"), std::string::npos);
@@ -372,10 +372,10 @@ TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
   EXPECT_NE(o.err.find("8/8"), std::string::npos);
   const std::string csv = lab_testing::readFile(out / "stability.csv");
   EXPECT_TRUE(csv.starts_with(
-      "scene,method,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n"));
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 4);            // header, 2 scenes x 4 settings
-  EXPECT_NE(csv.find("bullet-50,gauss-seidel,1,1,0,"), std::string::npos);   // tunnels
-  EXPECT_NE(csv.find("bullet-50,gauss-seidel,1,16,1,"), std::string::npos);  // stopped
+      "scene,method,model,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n"));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 4);             // header, 2 scenes x 4 settings
+  EXPECT_NE(csv.find("bullet-50,gauss-seidel,,1,1,0,"), std::string::npos);   // tunnels
+  EXPECT_NE(csv.find("bullet-50,gauss-seidel,,1,16,1,"), std::string::npos);  // stopped
   EXPECT_TRUE(std::filesystem::exists(out / "stability.gp"));
   EXPECT_TRUE(std::filesystem::exists(out / "stability-pass.dat"));
   EXPECT_TRUE(std::filesystem::exists(out / "stability-error.dat"));
@@ -384,6 +384,28 @@ TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
        {"stability-pass.png", "stability-pass.svg", "stability-error.png", "stability-error.svg"}) {
     EXPECT_GT(std::filesystem::file_size(out / chart), 1000u) << chart;
   }
+}
+
+// The model as an axis: each model a block of settings of its own, with its own column, grid and
+// CSV rows; issue 14 keeps this exact run valid.
+TEST(StabilityCli, ModelsAreAnAxisOfTheMap) {
+  TempDir dir;
+  const std::filesystem::path out = dir.file("out");
+  const Output o = stability({"--scene", "stack-10", "--models", "rigid", "--methods", "xpbd", "--iterations",
+                              "1", "--substeps", "4,16", "--no-peers", "--out", out.string()});
+  ASSERT_EQ(o.code, lab::kExitOk) << o.err;
+  EXPECT_NE(o.out.find("### xpbd rigid"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("| 2/2 |"), std::string::npos) << o.out;  // a rigid stack of 10 stands at both
+  const std::string csv = lab_testing::readFile(out / "stability.csv");
+  EXPECT_NE(csv.find("\nstack-10,xpbd,rigid,1,4,1,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nstack-10,xpbd,rigid,1,16,1,"), std::string::npos) << csv;
+  EXPECT_NE(lab_testing::readFile(out / "stability-pass.dat").find("xpbd-rigid:1x4"), std::string::npos);
+  // Two models: two blocks, each counted on its own.
+  const Output both = stability({"--scene", "stack-10", "--models", "corners,rigid", "--methods", "xpbd",
+                                 "--iterations", "1", "--substeps", "1", "--no-peers"});
+  ASSERT_EQ(both.code, lab::kExitOk) << both.err;
+  EXPECT_NE(both.out.find("### xpbd corners"), std::string::npos);
+  EXPECT_NE(both.out.find("### xpbd rigid"), std::string::npos);
 }
 
 TEST(StabilityOptions, TheSuiteRunsInNaturalOrder) {
@@ -420,6 +442,7 @@ TEST(StabilityCli, UsageErrorsExit2WithTheUsage) {
       {{"--out", "--no-peers"}, "--out needs a value"},
       {{"--scene"}, "--scene needs a scene name"},
       {{"--scene", "a,,b"}, "an empty name"},
+      {{"--models", "rigid,jelly"}, "--models: unknown model 'jelly' (corners, tetra or rigid)"},
   };
   for (const auto& [args, message] : cases) {
     SCOPED_TRACE(message);
