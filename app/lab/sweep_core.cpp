@@ -150,6 +150,10 @@ std::vector<ModelChoice> allModelChoices(const SceneModels& models) {
       out.push_back(c);
     }
   }
+  // Last, the rigid model of both kinds at once: the particle models' combinations first keep
+  // their order (and the first, corners+seed, the seed's own).
+  std::string unused;
+  out.push_back(*modelChoice(phys::toString(phys::BodyModel::Rigid), models, unused));
   return out;
 }
 

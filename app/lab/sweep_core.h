@@ -42,7 +42,8 @@ SceneModels sceneModels(const std::filesystem::path& file);
 std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error);
 
 /// Every model choice that applies: the box models times the ragdoll models the scene has
-/// ("corners", "tetra+lean", ...), or just the file's own when it has neither kind.
+/// ("corners", "tetra+lean", ...), then "rigid" (both kinds rigid); just the file's own when it has
+/// neither kind.
 std::vector<ModelChoice> allModelChoices(const SceneModels& models);
 
 /// One point of the settings space.

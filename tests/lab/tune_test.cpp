@@ -77,7 +77,7 @@ TEST(Tune, SearchesBoxModelsForStickAndPenetrationTargets) {
   const Outcome o = tune({"falling-box", "--target", "stick-error=0.01", "--target", "penetration=0.01",
                           "--steps", "60", "--repeat", "1"});
   ASSERT_EQ(o.code, 0) << o.err << o.out;
-  EXPECT_NE(o.out.find("models corners, tetra"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("models corners, tetra, rigid"), std::string::npos) << o.out;
   const std::optional<Winner> w = winnerOf(o.out);
   ASSERT_TRUE(w) << o.out;
   ASSERT_FALSE(w->model.empty()) << o.out;
