@@ -47,18 +47,23 @@ double estimatedPairs(const phys::World& world) {
   const phys::Particles& p = world.particles();
   std::vector<Bounds> bounds;
   bounds.reserve(boxes.size());
-  for (const phys::Body& box : boxes) {
+  for (phys::BodyId id{}; id < boxes.size(); ++id) {
+    const phys::Body& box = boxes[id];
     double fastest = 0.0;
     for (int j = 0; j < box.particleCount; ++j) {
       const std::size_t i = box.firstParticle + static_cast<std::size_t>(j);
-      fastest = std::max(fastest, magnitude(p.position[i] - p.previous[i]));
+      fastest = std::max(fastest, magnitude(p.position[i] - p.previous[i]) / h);
     }
-    const double reach = fastest / h * s.dt + g * s.dt * s.dt + s.featureEpsilon;
+    // A rigid body has no particles: its centre's speed and its corners' turning.
+    if (box.model == phys::BodyModel::Rigid) {
+      const auto [v, w] = world.bodyVelocity(id);
+      fastest = magnitude(v) + magnitude(w) * magnitude(box.halfExtents);
+    }
+    const double reach = fastest * s.dt + g * s.dt * s.dt + s.featureEpsilon;
     Bounds b{phys::Vec3(std::numeric_limits<double>::infinity()),
              phys::Vec3(-std::numeric_limits<double>::infinity())};
     for (int k = 0; k < 8; ++k) {
-      const phys::Vec3 corner =
-          world.position(world.corners()[box.firstCorner + static_cast<std::size_t>(k)]);
+      const phys::Vec3 corner = world.cornerPosition(id, k);
       b.lo = glm::min(b.lo, corner);
       b.hi = glm::max(b.hi, corner);
     }
