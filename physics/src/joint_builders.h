@@ -40,7 +40,7 @@ struct HingeSpec {
   Real maxAngle = 0.0;             ///< unit: rad
   Real halfSpan = 0.07;            ///< unit: m; the two pins sit this far either side of the pivot
   Real radius = 0.1;               ///< unit: m; of the limit links' points from the pivot
-  Real damping = 0.0;              ///< unit: 1/s; RigidLink::damping, on the first pin (rigid parts)
+  Real damping = 0.0;              ///< unit: 1/s; JointDesc::damping (rigid parts only)
 };
 
 /// Two pins on the axis and a one-sided range link at each stop (the why is in the .cpp); between
@@ -57,7 +57,7 @@ struct ConeSpec {
   Real swing = 0.0;           ///< unit: rad; half-angle of the cone, in (0, pi)
   Real twist = 0.0;           ///< unit: rad; >= 0
   Real radius = 0.1;          ///< unit: m; of the limit links' points from the pivot
-  Real damping = 0.0;         ///< unit: 1/s; RigidLink::damping, on the pin (rigid parts)
+  Real damping = 0.0;         ///< unit: 1/s; JointDesc::damping (rigid parts only)
 };
 
 /// One pin at the pivot, one range link holding a point on the axis within the cone, one range

@@ -55,7 +55,7 @@ struct RagdollDesc {
   Real scale = 1.0;  ///< unitless; multiplies every length
   Real mass = 70.0;  ///< unit: kg; the whole body's, split over the parts as in a person
   RagdollModel model = RagdollModel::Seed;
-  /// unit: 1/s; friction in the joints of rigid parts (RigidLink::damping): their relative spin
+  /// unit: 1/s; friction in the joints of rigid parts (JointDesc::damping): their relative spin
   /// decays as exp(-jointDamping t). Particle parts ignore it: their passes take that motion away.
   Real jointDamping = kRagdollJointDamping;
   Vec3 velocity{0.0};  ///< unit: m/s; of every part at creation

@@ -36,7 +36,7 @@ struct JointDesc {
   Real maxAngle = 0.0;  ///< unit: rad; hinge: upper stop
   Real swing = 0.0;     ///< unit: rad; cone: half-angle, in (0, pi)
   Real twist = 0.0;     ///< unit: rad; cone: |twist about the limb| at most this, >= 0
-  Real damping = 0.0;   ///< unit: 1/s; RigidLink::damping
+  Real damping = 0.0;   ///< unit: 1/s; joint friction: the relative spin decays as exp(-damping t)
 };
 
 /// A joint as the solver holds it: everything in the two bodies' frames.
@@ -58,7 +58,8 @@ Real jointAngle(const RigidBodies& r, const RigidJoint& j);
 /// One pass over the joints: for each, the angular constraints (alignment and limits) by angular
 /// impulses, then the pin by a positional one.
 void solveRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints);
-/// After the velocities are derived: each joint's damping, as dampRigidLinks.
+/// After the velocities are derived: each joint with damping mu takes the share min(mu h, 1) of its
+/// bodies' relative spin away, by an angular impulse that keeps their angular momentum.
 void dampRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints);
 }  // namespace detail
 
