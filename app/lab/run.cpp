@@ -74,9 +74,8 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   r.solver = world.solverSettings();
   r.steps = options.steps;
   r.particles = world.particles().size();
-  r.constraints =
-      world.sticks().size() + world.links().size() + world.rigidLinks().size() + world.rigidJoints().size();
-  r.joints = world.links().size() + world.rigidLinks().size() + world.rigidJoints().size();
+  r.constraints = world.sticks().size() + world.jointCount();
+  r.joints = world.jointCount();
   r.bodies = world.bodies().size();
   r.energyInitial = world.metrics().energy();
 

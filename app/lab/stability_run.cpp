@@ -55,9 +55,7 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   scenes::LoadOptions load;
   if (const std::optional<phys::BodyModel> model = phys::parseBodyModel(setting.model)) {
     load.boxModel = *model;
-    load.ragdollModel = *model == phys::BodyModel::Corners ? phys::RagdollModel::Seed
-                        : *model == phys::BodyModel::Tetra ? phys::RagdollModel::Lean
-                                                           : phys::RagdollModel::Rigid;
+    load.ragdollModel = phys::ragdollModelOf(*model);
   }
   scenes::Scene scene = scenes::loadSceneFile(s.file, load);
   RunOptions overrides;

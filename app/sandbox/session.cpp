@@ -319,17 +319,7 @@ std::string Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& veloci
       glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
   d.hips = at;
   d.velocity = velocity;
-  switch (throwModel_) {
-    case phys::BodyModel::Corners:
-      d.model = phys::RagdollModel::Seed;
-      break;
-    case phys::BodyModel::Tetra:
-      d.model = phys::RagdollModel::Lean;
-      break;
-    case phys::BodyModel::Rigid:
-      d.model = phys::RagdollModel::Rigid;
-      break;
-  }
+  d.model = phys::ragdollModelOf(throwModel_);
   if (capsules)
     return spawn(at, "threw a capsule ragdoll", [&](phys::World& w) { phys::addCapsuleRagdoll(w, d); });
   return spawn(at, "threw a ragdoll", [&](phys::World& w) { phys::addRagdoll(w, d); });

@@ -15,11 +15,9 @@ std::string figure(const char* format, double value) {
 std::vector<StatsLine> statsLines(const phys::World& world) {
   const phys::Metrics m = world.metrics();
   std::vector<StatsLine> lines;
-  lines.push_back(
-      {std::to_string(world.particles().size()) + " particles, " + std::to_string(world.sticks().size()) +
-       " sticks, " +
-       std::to_string(world.links().size() + world.rigidLinks().size() + world.rigidJoints().size()) +
-       " joints"});
+  lines.push_back({std::to_string(world.particles().size()) + " particles, " +
+                   std::to_string(world.sticks().size()) + " sticks, " + std::to_string(world.jointCount()) +
+                   " joints"});
   lines.push_back({std::to_string(world.bodies().size()) + " bodies, " + std::to_string(m.contacts) +
                    " contacts, " + std::to_string(world.broadPhasePairs()) + " broad-phase pairs"});
   lines.push_back({"stick error max " + figure("%.2e", m.maxConstraintError) + " rms " +

@@ -103,6 +103,18 @@ std::optional<RagdollModel> parseRagdollModel(std::string_view name) {
   return std::nullopt;
 }
 
+RagdollModel ragdollModelOf(BodyModel model) {
+  switch (model) {
+    case BodyModel::Corners:
+      return RagdollModel::Seed;
+    case BodyModel::Tetra:
+      return RagdollModel::Lean;
+    case BodyModel::Rigid:
+      break;
+  }
+  return RagdollModel::Rigid;
+}
+
 std::string_view toString(RagdollPart part) {
   constexpr std::string_view kNames[kRagdollParts] = {"head",           "torso",           "upper-arm-left",
                                                       "lower-arm-left", "upper-arm-right", "lower-arm-right",

@@ -3,6 +3,7 @@
 // under hard spinning, the joints' damping against its exponential rate, and bad input.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -90,6 +91,11 @@ TEST(RigidJoint, ABarOnAPinnedParticleSwingsAtThePhysicalPendulumsPeriod) {
   const Real expected = 2.0 * kPi * std::sqrt(ip / (g * d)) * (1.0 + theta0 * theta0 / 16.0);
   const Real swingEnergy = g * d * (1.0 - std::cos(theta0));  // J, of the 1 kg bar
   const Swing coarse = swingBar(16, theta0), fine = swingBar(64, theta0);
+  std::printf(
+      "pendulum on a pin: period %.5f s and %.5f s against %.5f; energy lost in 10 s: %.2f%% of the "
+      "swing's at 16 substeps, %.2f%% at 64\n",
+      coarse.period, fine.period, expected, 100.0 * coarse.energyLoss / swingEnergy,
+      100.0 * fine.energyLoss / swingEnergy);
   EXPECT_NEAR(coarse.period / expected, 1.0, 0.005) << coarse.period << " s against " << expected;
   EXPECT_NEAR(fine.period / expected, 1.0, 0.005) << fine.period << " s against " << expected;
   // The pin is a projection along the bar's current direction, which takes energy in proportion to h

@@ -209,7 +209,7 @@ SessionState snapshot(const sandbox::Session& session) {
     r.boxes = w.bodies().size();
     r.particles = w.particles().size();
     r.sticks = w.sticks().size();
-    r.links = w.links().size() + w.rigidLinks().size() + w.rigidJoints().size();
+    r.links = w.jointCount();
     r.drag = w.drag().has_value();
     if (r.drag) r.dragTarget = w.drag()->target;
     s.runs.push_back(r);

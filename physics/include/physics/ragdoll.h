@@ -22,6 +22,8 @@ enum class RagdollModel {
 
 std::string_view toString(RagdollModel model);  ///< "seed", "lean", "rigid"
 std::optional<RagdollModel> parseRagdollModel(std::string_view name);
+/// The ragdoll model whose parts are boxes of `model`: corners -> seed, tetra -> lean, rigid -> rigid.
+RagdollModel ragdollModelOf(BodyModel model);
 
 /// The ten parts, in the order Ragdoll::parts holds them. Left is the ragdoll's own left (+x
 /// when it stands facing +z).

@@ -33,7 +33,7 @@ struct RigidBodies {
   std::vector<glm::dmat3> inverseInertiaWorld;
   std::vector<BodyId> body;  ///< the Body it is
   /// 1 when a joint or a link holds it: its contacts are never solved by shock propagation, whose
-  /// holding one body still fights the joint (a ragdoll's forearm under its torso shook at 0.3 m/s).
+  /// holding one body still fights the joint (docs/physics.md, "Rigid bodies").
   std::vector<std::uint8_t> jointed;
 
   std::size_t size() const { return position.size(); }

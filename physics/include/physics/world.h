@@ -157,6 +157,8 @@ class World {
   std::span<const RigidLink> rigidLinks() const { return constraints_.rigidLinks(); }
   /// The joints between rigid bodies, in the order they were added.
   std::span<const RigidJoint> rigidJoints() const { return constraints_.rigidJoints(); }
+  /// Every joint of every kind: links(), rigidLinks() and rigidJoints().
+  std::size_t jointCount() const { return links().size() + rigidLinks().size() + rigidJoints().size(); }
   /// Joint k as addJoint would take it to make it again as it is now: both bodies' pivots and frames.
   JointDesc jointDesc(std::size_t k) const;
   /// Joint k's angle now (rad): a hinge's about its axis, a cone's twist.
