@@ -56,6 +56,23 @@ Quat turned(const Quat& q, const Vec3& angle) {
   return glm::normalize(Quat(std::cos(0.5 * theta), axis.x, axis.y, axis.z) * q);
 }
 
+Vec3 freeSpinRate(const Quat& q, const Vec3& d, const Vec3& w) {
+  const Vec3 body = glm::conjugate(q) * w;
+  return q * (d * glm::cross(body / d, body));  // d * (I w x w), I = 1 / d componentwise
+}
+
+Vec3 shiftedSpin(const Quat& q, const Vec3& d, const Vec3& kept, Real hOld, Real hNew) {
+  // w' is quadratic in w, so each pass shrinks the residual by about hOld |w'| / |w|: a few passes
+  // reach round-off at any spin a substep resolves.
+  Vec3 start = kept;
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 next = kept + freeSpinRate(q, d, start) * (hOld / 2);
+    if (next == start) break;
+    start = next;
+  }
+  return start - freeSpinRate(q, d, start) * (hNew / 2);
+}
+
 Vec3 turnBetween(const Quat& from, const Quat& to) {
   Quat d = to * glm::conjugate(from);
   if (d.w < 0.0) d = -d;

@@ -23,6 +23,17 @@ Quat turned(const Quat& q, const Vec3& angle);
 /// inverse of turned(), so a body's angular velocity comes back from its change of pose unchanged.
 Vec3 turnBetween(const Quat& from, const Quat& to);
 
+/// dw/dt of a free body (rad/s^2, world frame) spinning at w (world frame) with orientation q and
+/// principal inverse moments d: Euler's equations, I w' = (I w) x w in the body frame. What shifts
+/// a given spin to the substep's middle, as gravity shifts a velocity.
+Vec3 freeSpinRate(const Quat& q, const Vec3& principalInverse, const Vec3& w);
+
+/// A kept spin w(-hOld/2) moved to w(-hNew/2) for a new substep: w(0) recovered as the root of
+/// w(0) = kept + w'(w(0)) hOld / 2, then shifted back by w'(w(0)) hNew / 2. Both shifts read w' at
+/// the same w(0), so changing the substep and changing it back returns the spin it had; reading w'
+/// at the kept spin instead would move the body's start by O(hOld^2), which no later h removes.
+Vec3 shiftedSpin(const Quat& q, const Vec3& principalInverse, const Vec3& kept, Real hOld, Real hNew);
+
 /// q turned by a correction's small angle (rad, world frame): q + [angle / 2, 0] q, normalised.
 Quat nudged(const Quat& q, const Vec3& angle);
 /// The start of a substep (the 2020 paper's integration): the pose is kept as the previous one,
