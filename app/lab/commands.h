@@ -19,6 +19,9 @@ int tuneMain(const std::vector<std::string>& args, std::ostream& out, std::ostre
 int compareMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 /// lab scale [KIND] [--sizes LIST] [--steps N] [--json] [--out DIR]: cost against size
 int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+/// lab converge [SCENE...] [--methods LIST] [--models LIST] [--substeps LIST] [--out DIR]: error
+/// against the substep size on scenes with exact answers
+int convergeMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 /// lab report [--out DIR]: regenerates docs/results.md and its charts
 int reportMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 

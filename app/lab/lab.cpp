@@ -37,6 +37,8 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return compareMain(parsed.rest, out, err);
     case Command::Scale:
       return scaleMain(parsed.rest, out, err);
+    case Command::Converge:
+      return convergeMain(parsed.rest, out, err);
     case Command::Report:
       return reportMain(parsed.rest, out, err);
   }

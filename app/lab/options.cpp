@@ -83,6 +83,7 @@ std::string usage() {
          "       lab tune SCENE --target M=V ...   the cheapest settings that meet targets\n"
          "       lab compare SCENE                 our methods beside Bullet, ODE and MuJoCo\n"
          "       lab scale [KIND] ...              cost per body against the scene's size\n"
+         "       lab converge [SCENE...]           error against substep size: each method's order\n"
          "       lab report [--out DIR]            docs/results.md and its charts\n"
          "       lab help                          (each command takes --help)\n"
          "  SCENE           a scene file, or a name in <data>/assets/scenes (NAME.xml)\n"
@@ -104,7 +105,8 @@ ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
   // The commands with options of their own parse them (and their --help) themselves.
   static constexpr std::pair<std::string_view, Command> kOwnParsers[] = {
       {"sweep", Command::Sweep},     {"stability", Command::Stability}, {"tune", Command::Tune},
-      {"compare", Command::Compare}, {"scale", Command::Scale},         {"report", Command::Report}};
+      {"compare", Command::Compare}, {"scale", Command::Scale},         {"converge", Command::Converge},
+      {"report", Command::Report}};
   for (const auto& [name, command] : kOwnParsers) {
     if (!args.empty() && args[0] == name) {
       out.command = command;
@@ -114,7 +116,7 @@ ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
   }
   if (asksForHelp(args)) return out;
   if (args.empty()) {
-    out.error = "no command (run, sweep, stability, tune, compare, scale, report or help)";
+    out.error = "no command (run, sweep, stability, tune, compare, scale, converge, report or help)";
   } else if (args[0] == "help") {
     out.command = Command::Help;
   } else if (args[0] == "run") {
@@ -122,7 +124,7 @@ ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
     out.error = parseRun(args, 1, out.run);
   } else {
     out.error =
-        "unknown command '" + args[0] + "' (run, sweep, stability, tune, compare, scale, report or help)";
+        "unknown command '" + args[0] + "' (run, sweep, stability, tune, compare, scale, converge, report or help)";
   }
   return out;
 }

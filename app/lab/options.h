@@ -37,14 +37,14 @@ struct RunOptions {
 };
 
 /// The command the arguments name.
-enum class Command { Help, Run, Sweep, Stability, Tune, Compare, Scale, Report };
+enum class Command { Help, Run, Sweep, Stability, Tune, Compare, Scale, Converge, Report };
 
 /// The parser's answer: a command and its options, or an error.
 struct ParsedCommand {
   Command command = Command::Help;  ///< meaningless when error is set
   RunOptions run;                   ///< filled for Command::Run
   /// The arguments after the command's name, for the commands that parse their own
-  /// (commands.h): sweep, stability, tune, compare, scale, report.
+  /// (commands.h): sweep, stability, tune, compare, scale, converge, report.
   std::vector<std::string> rest;
   std::string error;  ///< empty on success; otherwise one line naming the bad argument
 };

@@ -1,0 +1,468 @@
+// lab converge: error against the substep size, for every method and model, on scenes with an
+// exact answer (docs/lab.md, "lab converge"). A method of order p has an error that falls as h^p
+// once h is small, a straight line of slope p on a log-log chart; the fitted slope is the
+// measured order.
+#include "converge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <ostream>
+#include <stdexcept>
+
+#include "accuracy.h"
+#include "bodies.h"
+#include "commands.h"
+#include "fileio/files.h"
+#include "free_body.h"
+#include "gnuplot.h"
+#include "lab.h"
+#include "numbers.h"
+#include "options.h"
+#include "csv.h"
+#include "sweep_core.h"
+
+namespace lab {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMaxTime = 3600.0;  // s: --time; an hour of a free body is already a long run
+constexpr const char* kParticleModel = "particle";
+
+std::string usageText() {
+  return "usage: lab converge [SCENE...] [--methods LIST] [--models LIST] [--substeps LIST]\n"
+         "                    [--iterations K] [--time S] [--out DIR] [--data DIR]\n"
+         "  SCENE           scenes with an exact answer: analytic positions (<expect kind=\"position\">)\n"
+         "                  or free bodies in zero gravity, checked against Euler's equations\n"
+         "                  (default: projectile, pendulum-exact, circular-orbit, tumbling-box)\n"
+         "  --methods LIST  of gauss-seidel, jacobi, xpbd, shake (default: all four; --method too);\n"
+         "                  rigid bodies are solved by XPBD whatever the method, so they run once\n"
+         "  --models LIST   of corners, tetra, rigid (default: every model a scene's boxes take;\n"
+         "                  a scene of particles alone has none and runs as 'particle')\n"
+         "  --substeps LIST substep counts, 1 to 1000 (default 1,2,4,8,16,32,64): h = dt / each\n"
+         "  --iterations K  relaxation passes per substep, 1 to 1000 (default 4)\n"
+         "  --time S        horizon of a free-body scene, s (default 4); analytic scenes use their\n"
+         "                  answers' times\n"
+         "  --out DIR       also write DIR/converge.csv and, per scene, converge-SCENE.gp, .png, .svg\n"
+         "  --data DIR      folder holding assets/ (default: the source tree)\n"
+         "  --help          show this text\n";
+}
+
+std::string parseList(const std::string& option, const std::string* v, std::vector<std::string>& into) {
+  if (v == nullptr) return option + " needs a comma-separated list";
+  const std::optional<std::vector<std::string>> items = splitList(*v);
+  if (!items) return option + ": '" + *v + "' is not a comma-separated list";
+  into = *items;
+  return {};
+}
+
+std::string parse(const std::vector<std::string>& args, ConvergeOptions& o) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&] { return optionValue(args, i); };
+    std::vector<std::string> items;
+    if (a == "--methods" || a == "--method") {
+      if (std::string e = parseList(a, value(), items); !e.empty()) return e;
+      o.methods.clear();
+      for (const std::string& item : items) {
+        const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(item);
+        if (!m) return a + ": unknown method '" + item + "' (gauss-seidel, jacobi, xpbd or shake)";
+        o.methods.push_back(*m);
+      }
+    } else if (a == "--models" || a == "--model") {
+      if (std::string e = parseList(a, value(), items); !e.empty()) return e;
+      for (const std::string& item : items) {
+        const std::optional<phys::BodyModel> m = phys::parseBodyModel(item);
+        if (!m) return a + ": unknown model '" + item + "' (corners, tetra or rigid)";
+      }
+      o.models = items;
+    } else if (a == "--substeps") {
+      if (std::string e = parseList(a, value(), items); !e.empty()) return e;
+      o.substeps.clear();
+      for (const std::string& item : items) {
+        const std::optional<int> n = parseWholeNumber(item, 1, phys::kMaxSubsteps);
+        if (!n) return notWholeNumber(a, item, phys::kMaxSubsteps);
+        o.substeps.push_back(*n);
+      }
+    } else if (a == "--iterations") {
+      if (std::string e = parseCountOption(a, value(), phys::kMaxIterations, o.iterations); !e.empty()) return e;
+    } else if (a == "--time") {
+      const std::string* v = value();
+      if (v == nullptr) return "--time needs a number of seconds";
+      const std::optional<double> t = parseNumber(*v);
+      if (!t || !(*t > 0.0 && *t <= kMaxTime)) {
+        return "--time: '" + *v + "' is not a number of seconds above 0 and at most 3600";
+      }
+      o.time = *t;
+    } else if (a == "--out" || a == "--data") {
+      const std::string* v = value();
+      if (v == nullptr) return a + " needs a folder";
+      if (v->empty()) return a + ": the folder name is empty";
+      if (a == "--out") {
+        o.out = *v;
+      } else {
+        o.dataDir = *v;
+      }
+    } else if (a.size() > 1 && a[0] == '-') {
+      return "unknown option '" + a + "'";
+    } else {
+      o.scenes.push_back(a);
+    }
+  }
+  if (o.scenes.empty()) o.scenes = kConvergeScenes;
+  return {};
+}
+
+// ---- what a scene is compared with ------------------------------------------------------------
+
+bool hasAnalyticAnswers(const scenes::Scene& scene) {
+  return std::any_of(scene.expectations.begin(), scene.expectations.end(), [](const scenes::Expectation& e) {
+    const std::string* kind = e.find("kind");
+    return kind != nullptr && *kind == "position";
+  });
+}
+
+// Why the world is not free bodies that Euler's equations answer for, or "" when it is.
+std::string notFreeBodies(const phys::World& world) {
+  const phys::WorldSettings& w = world.worldSettings();
+  if (world.bodies().empty()) return "it has no boxes or capsules";
+  if (w.gravityMode != phys::GravityMode::Uniform || w.gravity != phys::Vec3(0.0)) return "it has gravity";
+  if (w.damping != 0.0 || world.solverSettings().bodyDamping != 0.0) return "it has damping";
+  if (world.jointCount() > 0) return "it has joints";
+  for (const phys::BodyId b : world.particleBodies()) {
+    if (b == phys::kNoBody) return "it has particles that belong to no body";
+  }
+  std::size_t ownSticks = 0;
+  for (const phys::Body& b : world.bodies()) ownSticks += static_cast<std::size_t>(b.stickCount);
+  if (world.sticks().size() != ownSticks) return "it has sticks between bodies";
+  return {};
+}
+
+// The free bodies' exact poses at the checkpoints, from the file loaded with every body rigid
+// (whose pose, velocities and principal moments are the file's, exactly as given).
+struct FreeBodies {
+  std::vector<std::vector<FreeBodyPose>> poses;  // per body, per checkpoint
+  std::vector<phys::Vec3> halfExtents;           // per body
+  double uncertainty = 0.0;
+};
+
+FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vector<double>& times) {
+  scenes::LoadOptions rigid;
+  rigid.boxModel = phys::BodyModel::Rigid;
+  const scenes::Scene scene = scenes::loadSceneFile(file, rigid);
+  const phys::World& world = scene.world;
+  FreeBodies out;
+  for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+    const phys::BodyId id(static_cast<std::uint32_t>(i));
+    const phys::Body& body = world.bodies()[i];
+    FreeBodyStart start;
+    const phys::BodyPose pose = world.bodyPose(id);
+    start.centre = pose.center;
+    start.orientation = pose.orientation;
+    const auto [velocity, kept] = world.bodyVelocity(id);
+    start.velocity = velocity;  // zero gravity: the same at every time
+    start.inertia = phys::Vec3(1.0) / world.rigidBodies().inverseInertia.at(body.rigid);
+    start.angularVelocity = spinAtStart(kept, pose.orientation, start.inertia, world.solverSettings().dt /
+                                                                                   world.solverSettings().substeps);
+    out.poses.push_back(freeBodyPoses(start, times, kFreeBodyStep));
+    out.halfExtents.push_back(body.halfExtents);
+    out.uncertainty = std::max(out.uncertainty, freeBodyUncertainty(start, times, body.halfExtents));
+  }
+  return out;
+}
+
+// Steps numbered from 1 at the times `time` k / 4, k = 1..4.
+std::vector<int> freeBodyCheckpoints(double time, double dt) {
+  std::vector<int> out;
+  for (int k = 1; k <= 4; ++k) {
+    const int step = std::max(1, static_cast<int>(std::lround(time * k / 4.0 / dt)));
+    if (out.empty() || step > out.back()) out.push_back(step);
+  }
+  return out;
+}
+
+std::string num(double value, int digits) {
+  return formatNumber(value, digits);
+}
+
+// The model choices of the file that the options ask for; "particle" for a scene without boxes.
+std::vector<ModelChoice> chosenModels(const std::filesystem::path& file, const ConvergeOptions& o) {
+  const SceneModels models = sceneModels(file);
+  if (!models.boxes && !models.ragdolls) return {ModelChoice{kParticleModel, {}}};
+  if (o.models.empty()) return allModelChoices(models);
+  std::vector<ModelChoice> out;
+  for (const std::string& name : o.models) {
+    std::string error;
+    const std::optional<ModelChoice> c = modelChoice(name, models, error);
+    if (!c) throw std::invalid_argument("--models: " + error);
+    out.push_back(*c);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const ConvergeOptions& o,
+                                     ConvergeTarget& target, std::ostream* progress) {
+  const scenes::Scene own = scenes::loadSceneFile(file);
+  const double dt = own.world.solverSettings().dt;
+  const bool analytic = hasAnalyticAnswers(own);
+  std::vector<int> checkpoints;
+  FreeBodies free;
+  if (analytic) {
+    const AccuracyTarget t = accuracyTarget(own, {}, dt, 1);
+    checkpoints = t.checkpoints;
+    target.kind = "analytic";
+    target.description = t.description;
+    target.uncertainty = 0.0;
+  } else {
+    if (const std::string why = notFreeBodies(own.world); !why.empty()) {
+      throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " + why +
+                                  " (a free-body reference needs boxes alone in zero gravity)");
+    }
+    checkpoints = freeBodyCheckpoints(o.time, dt);
+    std::vector<double> times;
+    for (const int step : checkpoints) times.push_back(step * dt);
+    free = freeBodyReference(file, times);
+    target.kind = "free body";
+    target.description = "free body: Euler's equations by RK4 at " + num(kFreeBodyStep, 3) +
+                         " s, every corner, at t = " + num(times.front(), 4) + " to " + num(times.back(), 4) +
+                         " s; the reference's own uncertainty " + num(free.uncertainty, 2) + " m";
+    target.uncertainty = free.uncertainty;
+  }
+
+  std::vector<ConvergeRow> rows;
+  for (const ModelChoice& model : chosenModels(file, o)) {
+    const bool rigid = model.options.boxModel == phys::BodyModel::Rigid;
+    for (const phys::SolverMethod method : o.methods) {
+      // A rigid body is solved by XPBD whatever the method: one line, named for what it is.
+      if (rigid && method != o.methods.front()) continue;
+      const phys::SolverMethod used = rigid ? phys::SolverMethod::Xpbd : method;
+      for (const int substeps : o.substeps) {
+        Setting setting;
+        setting.model = model;
+        setting.method = used;
+        setting.iterations = o.iterations;
+        setting.substeps = substeps;
+        setting.dt = dt;
+        scenes::Scene scene = loadSetting(file, setting);
+        phys::World& world = scene.world;
+        double error = 0.0;
+        std::vector<std::vector<phys::Vec3>> positions;
+        for (int step = 1, next = 0; next < static_cast<int>(checkpoints.size()); ++step) {
+          world.step();
+          if (!analytic && world.metrics().contacts > 0) {
+            throw std::invalid_argument(own.name + ": a body touched something at t = " + num(world.time(), 4) +
+                                        " s under " + setting.describe() +
+                                        "; the free-body reference is of bodies that touch nothing");
+          }
+          if (step != checkpoints[static_cast<std::size_t>(next)]) continue;
+          if (analytic) {
+            positions.push_back(bodyPositions(world));
+          } else {
+            for (std::size_t b = 0; b < free.poses.size(); ++b) {
+              const phys::BodyPose pose = world.bodyPose(phys::BodyId(static_cast<std::uint32_t>(b)));
+              const double d = cornerDistance({pose.center, pose.orientation},
+                                              free.poses[b][static_cast<std::size_t>(next)], free.halfExtents[b]);
+              error = std::isfinite(d) ? std::max(error, d) : kInf;
+            }
+          }
+          ++next;
+        }
+        if (analytic) error = accuracyError(accuracyTarget(scene, {}, dt, 1), positions);
+        if (world.metrics().frozen > 0) error = kInf;  // a frozen body's position says nothing
+        ConvergeRow row;
+        row.scene = own.name;
+        row.method = std::string(phys::toString(used));
+        row.model = model.label.empty() ? kParticleModel : model.label;
+        row.substeps = substeps;
+        row.h = dt / substeps;
+        row.error = error;
+        rows.push_back(row);
+      }
+    }
+  }
+  if (progress != nullptr) *progress << "converge    " << own.name << ": " << rows.size() << " runs\n";
+  return rows;
+}
+
+std::optional<double> fittedOrder(const std::vector<ConvergeRow>& line) {
+  std::vector<const ConvergeRow*> usable;
+  for (const ConvergeRow& r : line) {
+    if (std::isfinite(r.error) && r.error > kConvergeFloor && r.h > 0.0) usable.push_back(&r);
+  }
+  std::sort(usable.begin(), usable.end(), [](const ConvergeRow* a, const ConvergeRow* b) { return a->h < b->h; });
+  if (usable.size() > static_cast<std::size_t>(kOrderPoints)) usable.resize(kOrderPoints);
+  if (usable.size() < 2) return std::nullopt;
+  double mx = 0.0, my = 0.0;
+  for (const ConvergeRow* r : usable) {
+    mx += std::log(r->h);
+    my += std::log(r->error);
+  }
+  mx /= static_cast<double>(usable.size());
+  my /= static_cast<double>(usable.size());
+  double sxy = 0.0, sxx = 0.0;
+  for (const ConvergeRow* r : usable) {
+    sxy += (std::log(r->h) - mx) * (std::log(r->error) - my);
+    sxx += (std::log(r->h) - mx) * (std::log(r->h) - mx);
+  }
+  if (!(sxx > 0.0)) return std::nullopt;  // every usable point at the same h
+  return sxy / sxx;
+}
+
+std::vector<std::vector<ConvergeRow>> convergeLines(const std::vector<ConvergeRow>& rows) {
+  std::vector<std::vector<ConvergeRow>> lines;
+  for (const ConvergeRow& r : rows) {
+    auto same = [&](const std::vector<ConvergeRow>& l) {
+      return l.front().scene == r.scene && l.front().method == r.method && l.front().model == r.model;
+    };
+    auto it = std::find_if(lines.begin(), lines.end(), same);
+    if (it == lines.end()) {
+      lines.push_back({r});
+    } else {
+      it->push_back(r);
+    }
+  }
+  return lines;
+}
+
+std::string convergeCsv(const std::vector<ConvergeRow>& rows) {
+  std::string s = "scene,method,model,substeps,h,error\n";
+  for (const ConvergeRow& r : rows) {
+    s += csvField(r.scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
+         std::to_string(r.substeps) + "," + csvNumber(r.h, 10) + "," + csvNumber(r.error, 6) + "\n";
+  }
+  return s;
+}
+
+namespace {
+
+std::string orderText(const std::vector<ConvergeRow>& line) {
+  const std::optional<double> order = fittedOrder(line);
+  // An error that grows as h shrinks is round-off or a method that does not converge, not an order.
+  if (order) return *order < 0.0 ? "grows" : num(*order, 3);
+  const bool allSmall = std::all_of(line.begin(), line.end(), [](const ConvergeRow& r) {
+    return std::isfinite(r.error) && r.error <= kConvergeFloor;
+  });
+  return allSmall ? "exact" : "-";
+}
+
+}  // namespace
+
+std::string convergeTable(const std::vector<ConvergeRow>& rows, const ConvergeTarget& target) {
+  if (rows.empty()) return {};
+  std::string s = "converge    " + rows.front().scene + ", against its " + target.description + "\n";
+  s += "            error (m): the largest distance from the exact answer; order: the slope of log error\n";
+  s += "            against log h over the finest " + std::to_string(kOrderPoints) + " points above " +
+       num(kConvergeFloor, 2) + " m (exact: every error below it)\n";
+  const std::vector<std::vector<ConvergeRow>> lines = convergeLines(rows);
+  char cell[64];
+  std::string header;
+  std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", "method", "model", "order");
+  header += cell;
+  for (const ConvergeRow& r : lines.front()) {
+    std::snprintf(cell, sizeof cell, " %9s", ("S=" + std::to_string(r.substeps)).c_str());
+    header += cell;
+  }
+  s += header + "\n";
+  for (const std::vector<ConvergeRow>& line : lines) {
+    std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", line.front().method.c_str(), line.front().model.c_str(),
+                  orderText(line).c_str());
+    s += cell;
+    for (const ConvergeRow& r : line) {
+      if (std::isfinite(r.error)) {
+        std::snprintf(cell, sizeof cell, " %9.2e", r.error);
+      } else {
+        std::snprintf(cell, sizeof cell, " %9s", "blew up");
+      }
+      s += cell;
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+Chart convergeChart(const std::vector<ConvergeRow>& rows) {
+  Chart chart;
+  const std::string scene = rows.empty() ? std::string() : rows.front().scene;
+  chart.title = "Error against substep size: " + scene;
+  chart.xLabel = "substep h (s)";
+  chart.yLabel = "error (m)";
+  chart.logX = true;
+  chart.logY = true;
+  chart.output = "converge-" + scene;
+  chart.guide = kConvergeFloor;
+  chart.guideTitle = "floor: left out of the fit";
+  for (const std::vector<ConvergeRow>& line : convergeLines(rows)) {
+    ChartSeries series;
+    series.title = line.front().method + " " + line.front().model + ": order " + orderText(line);
+    series.line = true;
+    for (const ConvergeRow& r : line) series.points.push_back({r.h, r.error, ""});
+    chart.series.push_back(series);
+  }
+  return chart;
+}
+
+int convergeMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  if (asksForHelp(args)) {
+    out << usageText();
+    return kExitOk;
+  }
+  ConvergeOptions o;
+  if (std::string e = parse(args, o); !e.empty()) {
+    err << "lab: " << e << "\n" << usageText();
+    return kExitUsage;
+  }
+  RunOptions where;
+  where.dataDir = o.dataDir;
+  const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(where));
+  std::string current;
+  try {
+    if (o.out) fileio::prepareFolder(*o.out);  // before the runs
+    std::vector<ConvergeRow> all;
+    std::vector<Chart> charts;
+    for (const std::string& name : o.scenes) {
+      current = name;
+      ConvergeTarget target;
+      const std::vector<ConvergeRow> rows = runConverge(scenes::resolveScene(name, sceneDir), o, target, &err);
+      out << convergeTable(rows, target) << "\n";
+      out.flush();
+      all.insert(all.end(), rows.begin(), rows.end());
+      charts.push_back(convergeChart(rows));
+    }
+    current.clear();
+    if (!o.out) return kExitOk;
+    const std::filesystem::path dir = *o.out;
+    fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
+    fileio::writeAtomically(dir / "converge.csv", convergeCsv(all));
+    const bool haveGnuplot = !findGnuplot().empty();
+    std::string problems;
+    out << "wrote       " << (dir / "converge.csv").string();
+    for (const Chart& chart : charts) {
+      const std::filesystem::path script = dir / (chart.output + ".gp");
+      fileio::writeAtomically(script, gnuplotScript(chart));
+      const std::string problem = hasPoints(chart) ? runGnuplot(script, dir) : "no run has a finite error";
+      out << ", " << script.string();
+      if (problem.empty()) {
+        out << ", " << (dir / (chart.output + ".png")).string();
+      } else {
+        problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
+      }
+    }
+    out << "\n";
+    err << problems;
+    return problems.empty() || !haveGnuplot ? kExitOk : kExitFailure;
+  } catch (const fileio::FileError& e) {
+    err << "lab: --out: " << e.what() << "\n";
+  } catch (const scenes::LoadError& e) {
+    err << e.what() << "\n";  // "file:line: ..."
+  } catch (const std::invalid_argument& e) {
+    err << "lab: converge: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    err << "lab: converge: " << current << ": " << e.what() << "\n";
+  }
+  return kExitFailure;
+}
+
+}  // namespace lab
