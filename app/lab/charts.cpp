@@ -58,13 +58,13 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
     const ChartSeries& s = chart.series[i];
     const std::string block = "$s" + std::to_string(i);
     std::string item = block + " using 1:2 ";
-    if (s.line) {
+    if (s.line && !s.markers) {
       item += "with lines lw 2 lc 'black' title " + quoted(s.title);
     } else {
       const std::size_t k = styled++;
       const int type = kPointTypes[k % (sizeof kPointTypes / sizeof kPointTypes[0])];
-      item += "with points pt " + std::to_string(type) + " ps 1.2 lc " + std::to_string(k + 1) + " title " +
-              quoted(s.title);
+      item += std::string(s.line ? "with linespoints lw 1.5" : "with points") + " pt " + std::to_string(type) +
+              " ps 1.2 lc " + std::to_string(k + 1) + " title " + quoted(s.title);
     }
     plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
     if (s.labels) {

@@ -18,6 +18,9 @@ struct ChartSeries {
   std::string title;               ///< the key's entry
   std::vector<ChartPoint> points;  ///< finite, and > 0 on a log axis (others are left out)
   bool line = false;               ///< join the points, in this order, by a line
+  /// With line: one of several lines, in its own colour with its points marked (styled like the
+  /// point series); without, a single black line (a front).
+  bool markers = false;
   bool labels = false;             ///< write each point's label beside it
 };
 

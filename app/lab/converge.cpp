@@ -398,6 +398,7 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
     ChartSeries series;
     series.title = line.front().method + " " + line.front().model + ": order " + orderText(line);
     series.line = true;
+    series.markers = true;
     for (const ConvergeRow& r : line) series.points.push_back({r.h, r.error, ""});
     chart.series.push_back(series);
   }

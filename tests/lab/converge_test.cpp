@@ -167,6 +167,26 @@ TEST(Converge, WritesItsCsvAndOneChartPerScene) {
   }
 }
 
+// Several lines on one chart are told apart: each in its own colour and point type, not the single
+// black line of a front.
+TEST(Converge, TheChartDrawsEachLineInItsOwnStyle) {
+  std::vector<ConvergeRow> rows = line({0.1, 0.05}, 1.0, 1.0);
+  for (ConvergeRow& r : rows) r.scene = "s", r.method = "gauss-seidel", r.model = "corners";
+  std::vector<ConvergeRow> second = line({0.1, 0.05}, 1.0, 2.0);
+  for (ConvergeRow& r : second) r.scene = "s", r.method = "shake", r.model = "corners";
+  rows.insert(rows.end(), second.begin(), second.end());
+  const std::string script = lab::gnuplotScript(lab::convergeChart(rows));
+  EXPECT_NE(script.find("with linespoints lw 1.5 pt 7 ps 1.2 lc 1 title 'gauss-seidel corners: order 1'"),
+            std::string::npos)
+      << script;
+  EXPECT_NE(script.find("with linespoints lw 1.5 pt 5 ps 1.2 lc 2 title 'shake corners: order 2'"),
+            std::string::npos)
+      << script;
+  EXPECT_EQ(script.find("lc 'black'"), std::string::npos) << script;
+  EXPECT_NE(script.find("set logscale x"), std::string::npos);
+  EXPECT_NE(script.find("set logscale y"), std::string::npos);
+}
+
 TEST(Converge, ASceneWithoutAnExactAnswerIsAClearError) {
   const auto o = converge({"pyramid"});
   EXPECT_EQ(o.code, lab::kExitFailure);
