@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "converge.h"
 #include "csv.h"
 #include "fileio/files.h"
 #include "lab.h"
@@ -286,6 +287,28 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
        << table << "```\n\n";
   } else {
     md << codeBlockOrText(scaled) << "\n";
+  }
+
+  md << "## Error against substep size\n\n"
+     << "Each method and model on the scenes with exact answers, at the scene's dt of 1/60 s and 4 iterations, "
+        "the substep h halving from dt to dt / 64 (`lab converge`, docs/lab.md): a method of order p draws a "
+        "line of slope p. docs/physics.md, \"Order of accuracy\", says why projection along the stick's "
+        "current direction is first order and SHAKE second.\n\n";
+  std::vector<std::string> convergeArgs{"--out", (results / "converge").string(), "--data", o.data.string()};
+  if (o.quick) convergeArgs.insert(convergeArgs.end(), {"circular-orbit", "--substeps", "1,2"});
+  const CommandOutput converged = runCommandMain(convergeMain, convergeArgs, err);
+  failed |= converged.code != 0;
+  if (converged.code == 0) {
+    std::string tables = converged.out;
+    if (const std::size_t wrote = tables.rfind("wrote "); wrote != std::string::npos) tables.erase(wrote);
+    const std::vector<std::string> shown =
+        o.quick ? std::vector<std::string>{"circular-orbit"} : kConvergeScenes;
+    for (const std::string& scene : shown) {
+      md << "![error against h, " << scene << "](results/converge/converge-" << scene << ".png)\n\n";
+    }
+    md << "```\n" << tables << "```\n\nAll runs: [converge.csv](results/converge/converge.csv).\n\n";
+  } else {
+    md << codeBlockOrText(converged) << "\n";
   }
 
   fileio::writeAtomically(o.out / "results.md", md.str());

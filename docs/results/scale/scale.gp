@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 2.2333181818181815 "n=1"
-44 1.6592727272727272 "n=4"
-176 1.3196136363636364 "n=16"
-704 1.2929701704545453 "n=64"
-2816 1.3435179332386364 "n=256"
-11264 1.6456031161221594 "n=1024"
+11 2.0488636363636363 "n=1"
+44 1.6879772727272728 "n=4"
+176 1.3388835227272728 "n=16"
+704 1.2542457386363637 "n=64"
+2816 1.3608499644886363 "n=256"
+11264 1.6507682883522727 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
