@@ -63,8 +63,8 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
     } else {
       const std::size_t k = styled++;
       const int type = kPointTypes[k % (sizeof kPointTypes / sizeof kPointTypes[0])];
-      item += std::string(s.line ? "with linespoints lw 1.5" : "with points") + " pt " + std::to_string(type) +
-              " ps 1.2 lc " + std::to_string(k + 1) + " title " + quoted(s.title);
+      item += std::string(s.line ? "with linespoints lw 1.5" : "with points") + " pt " +
+              std::to_string(type) + " ps 1.2 lc " + std::to_string(k + 1) + " title " + quoted(s.title);
     }
     plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
     if (s.labels) {

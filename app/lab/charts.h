@@ -21,7 +21,7 @@ struct ChartSeries {
   /// With line: one of several lines, in its own colour with its points marked (styled like the
   /// point series); without, a single black line (a front).
   bool markers = false;
-  bool labels = false;             ///< write each point's label beside it
+  bool labels = false;  ///< write each point's label beside it
 };
 
 struct Chart {

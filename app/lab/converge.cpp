@@ -14,13 +14,13 @@
 #include "accuracy.h"
 #include "bodies.h"
 #include "commands.h"
+#include "csv.h"
 #include "fileio/files.h"
 #include "free_body.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
-#include "csv.h"
 #include "sweep_core.h"
 
 namespace lab {
@@ -86,7 +86,8 @@ std::string parse(const std::vector<std::string>& args, ConvergeOptions& o) {
         o.substeps.push_back(*n);
       }
     } else if (a == "--iterations") {
-      if (std::string e = parseCountOption(a, value(), phys::kMaxIterations, o.iterations); !e.empty()) return e;
+      if (std::string e = parseCountOption(a, value(), phys::kMaxIterations, o.iterations); !e.empty())
+        return e;
     } else if (a == "--time") {
       const std::string* v = value();
       if (v == nullptr) return "--time needs a number of seconds";
@@ -163,8 +164,8 @@ FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vecto
     const auto [velocity, kept] = world.bodyVelocity(id);
     start.velocity = velocity;  // zero gravity: the same at every time
     start.inertia = phys::Vec3(1.0) / world.rigidBodies().inverseInertia.at(body.rigid);
-    start.angularVelocity = spinAtStart(kept, pose.orientation, start.inertia, world.solverSettings().dt /
-                                                                                   world.solverSettings().substeps);
+    start.angularVelocity = spinAtStart(kept, pose.orientation, start.inertia,
+                                        world.solverSettings().dt / world.solverSettings().substeps);
     out.poses.push_back(freeBodyPoses(start, times, kFreeBodyStep));
     out.halfExtents.push_back(body.halfExtents);
     out.uncertainty = std::max(out.uncertainty, freeBodyUncertainty(start, times, body.halfExtents));
@@ -218,11 +219,12 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
     target.uncertainty = 0.0;
   } else {
     if (const std::string why = notFreeBodies(own.world); !why.empty()) {
-      throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " + why +
-                                  " (a free-body reference needs boxes alone in zero gravity)");
+      throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " +
+                                  why + " (a free-body reference needs boxes alone in zero gravity)");
     }
     checkpoints = freeBodyCheckpoints(o.time, dt);
     std::vector<double> times;
+    times.reserve(checkpoints.size());
     for (const int step : checkpoints) times.push_back(step * dt);
     free = freeBodyReference(file, times);
     target.kind = "free body";
@@ -253,9 +255,9 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
         for (int step = 1, next = 0; next < static_cast<int>(checkpoints.size()); ++step) {
           world.step();
           if (!analytic && world.metrics().contacts > 0) {
-            throw std::invalid_argument(own.name + ": a body touched something at t = " + num(world.time(), 4) +
-                                        " s under " + setting.describe() +
-                                        "; the free-body reference is of bodies that touch nothing");
+            throw std::invalid_argument(
+                own.name + ": a body touched something at t = " + num(world.time(), 4) + " s under " +
+                setting.describe() + "; the free-body reference is of bodies that touch nothing");
           }
           if (step != checkpoints[static_cast<std::size_t>(next)]) continue;
           if (analytic) {
@@ -263,8 +265,9 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
           } else {
             for (std::size_t b = 0; b < free.poses.size(); ++b) {
               const phys::BodyPose pose = world.bodyPose(phys::BodyId(static_cast<std::uint32_t>(b)));
-              const double d = cornerDistance({pose.center, pose.orientation},
-                                              free.poses[b][static_cast<std::size_t>(next)], free.halfExtents[b]);
+              const double d =
+                  cornerDistance({pose.center, pose.orientation},
+                                 free.poses[b][static_cast<std::size_t>(next)], free.halfExtents[b]);
               error = std::isfinite(d) ? std::max(error, d) : kInf;
             }
           }
@@ -292,7 +295,8 @@ std::optional<double> fittedOrder(const std::vector<ConvergeRow>& line) {
   for (const ConvergeRow& r : line) {
     if (std::isfinite(r.error) && r.error > kConvergeFloor && r.h > 0.0) usable.push_back(&r);
   }
-  std::sort(usable.begin(), usable.end(), [](const ConvergeRow* a, const ConvergeRow* b) { return a->h < b->h; });
+  std::sort(usable.begin(), usable.end(),
+            [](const ConvergeRow* a, const ConvergeRow* b) { return a->h < b->h; });
   if (usable.size() > static_cast<std::size_t>(kOrderPoints)) usable.resize(kOrderPoints);
   if (usable.size() < 2) return std::nullopt;
   double mx = 0.0, my = 0.0;
@@ -367,8 +371,8 @@ std::string convergeTable(const std::vector<ConvergeRow>& rows, const ConvergeTa
   }
   s += header + "\n";
   for (const std::vector<ConvergeRow>& line : lines) {
-    std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", line.front().method.c_str(), line.front().model.c_str(),
-                  orderText(line).c_str());
+    std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", line.front().method.c_str(),
+                  line.front().model.c_str(), orderText(line).c_str());
     s += cell;
     for (const ConvergeRow& r : line) {
       if (std::isfinite(r.error)) {
@@ -426,7 +430,8 @@ int convergeMain(const std::vector<std::string>& args, std::ostream& out, std::o
     for (const std::string& name : o.scenes) {
       current = name;
       ConvergeTarget target;
-      const std::vector<ConvergeRow> rows = runConverge(scenes::resolveScene(name, sceneDir), o, target, &err);
+      const std::vector<ConvergeRow> rows =
+          runConverge(scenes::resolveScene(name, sceneDir), o, target, &err);
       out << convergeTable(rows, target) << "\n";
       out.flush();
       all.insert(all.end(), rows.begin(), rows.end());

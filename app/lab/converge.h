@@ -40,16 +40,17 @@ struct ConvergeRow {
   std::string method;  ///< gauss-seidel, jacobi, xpbd, shake
   std::string model;   ///< corners, tetra, rigid; "particle" for a scene of particles alone
   int substeps = 1;
-  double h = 0.0;      ///< unit: s; dt / substeps
-  double error = 0.0;  ///< unit: m; largest distance from the exact answer over the checkpoints; inf if it blew up
+  double h = 0.0;  ///< unit: s; dt / substeps
+  double error =
+      0.0;  ///< unit: m; largest distance from the exact answer over the checkpoints; inf if it blew up
 };
 
 /// What `lab converge` does.
 struct ConvergeOptions {
-  std::vector<std::string> scenes;               ///< names or files; empty: kConvergeScenes
+  std::vector<std::string> scenes;  ///< names or files; empty: kConvergeScenes
   std::vector<phys::SolverMethod> methods{phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
                                           phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
-  std::vector<std::string> models;               ///< model labels; empty: every one a scene takes
+  std::vector<std::string> models;                ///< model labels; empty: every one a scene takes
   std::vector<int> substeps = kConvergeSubsteps;  ///< ascending or not; h = dt / each
   int iterations = kConvergeIterations;
   double time = kConvergeTime;  ///< unit: s; free-body scenes only
@@ -59,8 +60,8 @@ struct ConvergeOptions {
 
 /// What one scene is measured against, in one line for the table's heading.
 struct ConvergeTarget {
-  std::string kind;         ///< "analytic" or "free body"
-  std::string description;  ///< what and when
+  std::string kind;          ///< "analytic" or "free body"
+  std::string description;   ///< what and when
   double uncertainty = 0.0;  ///< unit: m; how far the answer itself may be off
 };
 

@@ -123,8 +123,8 @@ ParsedCommand parseCommandLine(const std::vector<std::string>& args) {
     out.command = Command::Run;
     out.error = parseRun(args, 1, out.run);
   } else {
-    out.error =
-        "unknown command '" + args[0] + "' (run, sweep, stability, tune, compare, scale, converge, report or help)";
+    out.error = "unknown command '" + args[0] +
+                "' (run, sweep, stability, tune, compare, scale, converge, report or help)";
   }
   return out;
 }

@@ -290,7 +290,8 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   }
 
   md << "## Error against substep size\n\n"
-     << "Each method and model on the scenes with exact answers, at the scene's dt of 1/60 s and 4 iterations, "
+     << "Each method and model on the scenes with exact answers, at the scene's dt of 1/60 s and 4 "
+        "iterations, "
         "the substep h halving from dt to dt / 64 (`lab converge`, docs/lab.md): a method of order p draws a "
         "line of slope p. docs/physics.md, \"Order of accuracy\", says why projection along the stick's "
         "current direction is first order and SHAKE second.\n\n";

@@ -158,8 +158,9 @@ void World::keepVelocities(Real hOld, Real hNew) {
   for (RigidId i{}; i < rigidBodies_.size(); ++i) {
     if (held[i] != 0 || rigidBodies_.inverseMass[i] == 0.0) continue;
     rigidBodies_.velocity[i] += gravityAt(rigidBodies_.position[i]) * ((hOld - hNew) / 2);
-    rigidBodies_.angularVelocity[i] = detail::shiftedSpin(
-        rigidBodies_.orientation[i], rigidBodies_.inverseInertia[i], rigidBodies_.angularVelocity[i], hOld, hNew);
+    rigidBodies_.angularVelocity[i] =
+        detail::shiftedSpin(rigidBodies_.orientation[i], rigidBodies_.inverseInertia[i],
+                            rigidBodies_.angularVelocity[i], hOld, hNew);
   }
 }
 
@@ -442,7 +443,8 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   // measured the tumbling box's error halving with h, and falling as h^2 with the shift).
   const Real h = substepDt();
   const Vec3 velocity = desc.velocity - gravityAt(desc.center) * (h / 2);
-  const Vec3 spin = desc.angularVelocity - detail::freeSpinRate(q, inverseInertia, desc.angularVelocity) * (h / 2);
+  const Vec3 spin =
+      desc.angularVelocity - detail::freeSpinRate(q, inverseInertia, desc.angularVelocity) * (h / 2);
   rigidBodies_.position.push_back(desc.center);
   rigidBodies_.orientation.push_back(q);
   rigidBodies_.previousPosition.push_back(desc.center - velocity * h);

@@ -76,7 +76,8 @@ TEST(FreeBody, TheSpinAtTheStartIsTheScenesAngularVelocity) {
   const double h = s.world.solverSettings().dt / s.world.solverSettings().substeps;
   const Vec3 declared = Vec3(30.0, 45.0, 360.0) * (std::numbers::pi / 180.0);  // tumbling-box.xml
   EXPECT_GT(glm::length(kept - declared), 1e-3);
-  EXPECT_LT(glm::length(lab::spinAtStart(kept, s.world.bodyPose(id).orientation, inertia, h) - declared), 1e-12);
+  EXPECT_LT(glm::length(lab::spinAtStart(kept, s.world.bodyPose(id).orientation, inertia, h) - declared),
+            1e-12);
 }
 
 std::vector<ConvergeRow> line(const std::vector<double>& hs, double c, double p) {
