@@ -14,6 +14,7 @@
 #include "physics/world.h"
 #include "rigid_motion.h"
 #include "room.h"
+#include "stage_timer.h"
 
 namespace phys {
 namespace {
@@ -24,26 +25,12 @@ double millisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Adds the time from its construction to its destruction to one stage of a profile. A clock read
-// costs about 20 ns, a tenth of a microsecond per timer: a stage with nothing to do returns before
-// it starts one, so a world of two particles does not pay for the stages of a pile.
-class StageTimer {
- public:
-  StageTimer(Profile& profile, Stage stage) : slot_(profile[stage]), start_(Clock::now()) {}
-  StageTimer(const StageTimer&) = delete;
-  StageTimer& operator=(const StageTimer&) = delete;
-  ~StageTimer() { slot_ += millisecondsSince(start_); }
-
- private:
-  double& slot_;
-  Clock::time_point start_;
-};
-
 }  // namespace
 
 void World::step() {
   const auto stepStart = Clock::now();
   profile_ = {};
+  swept_ = 0;
   updateLayouts();
   std::fill(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{0});
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
@@ -56,6 +43,7 @@ void World::step() {
     // (Macklin et al. 2019). Found again only when the broad phase runs again.
     fitBodyFrames();
     const bool newPairs = findPairs(s == 0);
+    stopFastBodies();
     findContacts(newPairs);
     if (s == 0 || newPairs) collectRigidGround();
     partOverlaps();
@@ -84,7 +72,7 @@ void World::updateLayouts() {
 }
 
 void World::integrateParticles(Real h) {
-  const StageTimer timer(profile_, Stage::Integrate);
+  const detail::StageTimer timer(profile_, Stage::Integrate);
   detail::integrate(particles_, world_, h, guard_.checked());
   detail::integrateRigid(rigidBodies_, world_, h);
   // The mouse spring is a force: applied with gravity, before the passes share it out.
@@ -99,7 +87,7 @@ void World::integrateParticles(Real h) {
 
 void World::fitBodyFrames() {
   if (bodies_.size() < 2 && !ground_.hasCapsules()) return;
-  const StageTimer timer(profile_, Stage::Frames);
+  const detail::StageTimer timer(profile_, Stage::Frames);
   updateBodyFrames();
 }
 
@@ -107,7 +95,7 @@ void World::fitBodyFrames() {
 // found the pairs.
 bool World::findPairs(bool firstSubstep) {
   if (bodies_.size() < 2) return false;
-  const StageTimer timer(profile_, Stage::BroadPhase);
+  const detail::StageTimer timer(profile_, Stage::BroadPhase);
   if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_))) return false;
   const BroadPhaseStep step{solver_.dt, substepDt(), solver_.featureEpsilon, gravityMagnitude(),
                             solver_.broadPhase};
@@ -120,7 +108,7 @@ bool World::findPairs(bool firstSubstep) {
 
 void World::findContacts(bool newPairs) {
   if (bodies_.size() < 2 && !world_.ground) return;
-  const StageTimer timer(profile_, Stage::NarrowPhase);
+  const detail::StageTimer timer(profile_, Stage::NarrowPhase);
   if (bodies_.size() >= 2) {
     const NarrowPhaseInput in = narrowPhaseInput();
     if (newPairs)
@@ -153,7 +141,7 @@ NarrowPhaseInput World::narrowPhaseInput() const {
 // maxDepenetrationSpeed h, its approach speed before the passes, and no impulse yet.
 void World::startRigidContacts(Real h) {
   if (rigidBodies_.size() == 0) return;
-  const StageTimer timer(profile_, Stage::Contacts);
+  const detail::StageTimer timer(profile_, Stage::Contacts);
   placeRigidCapsulePoints();
   const RigidPassInput in = rigidPassInput(h);
   const Real depenetration = solver_.maxDepenetrationSpeed * h;
@@ -181,7 +169,7 @@ RigidPassInput World::rigidPassInput(Real h) {
 // resting contact gains in a substep, and never bounce.
 void World::rigidVelocities(Real h) {
   if (rigidBodies_.size() == 0) return;
-  const StageTimer timer(profile_, Stage::Velocities);
+  const detail::StageTimer timer(profile_, Stage::Velocities);
   detail::deriveRigidVelocities(rigidBodies_, h);
   const RigidPassInput in = rigidPassInput(h);
   detail::dampRigidJoints(in, constraints_.rigidJoints());
@@ -192,7 +180,7 @@ void World::rigidVelocities(Real h) {
 
 void World::partOverlaps() {
   if (bodies_.empty()) return;
-  const StageTimer timer(profile_, Stage::Parting);
+  const detail::StageTimer timer(profile_, Stage::Parting);
   const PartingGround ground{world_.ground, world_.groundNormal, ground_.points(), ground_.state().allowance};
   parting_.part(particles_, bodies_, narrowPhase_.manifolds(), narrowPhase_.state().allowance, ground,
                 solver_.featureEpsilon, solver_.parting);
@@ -202,7 +190,7 @@ void World::partOverlaps() {
 // contacts the passes push (GroundContactState::hit, set by the friction pass, read by restitute() alone).
 void World::measureApproaches(Real h) {
   if (solver_.restitution <= 0.0) return;
-  const StageTimer timer(profile_, Stage::Restitution);
+  const detail::StageTimer timer(profile_, Stage::Restitution);
   std::fill(ground_.state().hit.begin(), ground_.state().hit.end(), std::uint8_t{0});
   detail::measureBodyApproach(particles_, narrowPhase_.contacts(), h, narrowPhase_.state().approach);
   if (world_.ground) {
@@ -222,12 +210,12 @@ std::span<const Real> World::limitCorrections(Real h) {
   const Real depenetration = solver_.maxDepenetrationSpeed * h;
   std::vector<Real>& bodyAllowance = narrowPhase_.state().allowance;
   if (!bodyAllowance.empty() || world_.ground) {
-    const StageTimer timer(profile_, Stage::Contacts);
+    const detail::StageTimer timer(profile_, Stage::Contacts);
     detail::toAllowance(bodyAllowance, depenetration);
     if (world_.ground) detail::toAllowance(ground_.state().allowance, depenetration);
   }
   if (!constraints_.linksApart()) return {};
-  const StageTimer timer(profile_, Stage::Links);
+  const detail::StageTimer timer(profile_, Stage::Links);
   return constraints_.shrinkLinkSlack(particles_, depenetration);
 }
 
@@ -239,18 +227,18 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   const bool contacts = ground || !bodyContacts.empty();
   for (int it = 0; it < solver_.iterations; ++it) {
     if (!constraints_.sticks().empty()) {
-      const StageTimer timer(profile_, Stage::Sticks);
+      const detail::StageTimer timer(profile_, Stage::Sticks);
       constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance);
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links
     // between bodies, then the contacts. Links are rigid projections in every method, so the
     // world's compliance, which XPBD adds to the sticks, does not soften them.
     if (!constraints_.links().empty()) {
-      const StageTimer timer(profile_, Stage::Links);
+      const detail::StageTimer timer(profile_, Stage::Links);
       constraints_.solveLinks(particles_, linkSlack);
     }
     if (!constraints_.rigidLinks().empty() || !constraints_.rigidJoints().empty()) {
-      const StageTimer timer(profile_, Stage::Links);
+      const detail::StageTimer timer(profile_, Stage::Links);
       const RigidPassInput in = rigidPassInput(h);
       detail::solveRigidLinks(in, constraints_.rigidLinks());
       detail::solveRigidJoints(in, constraints_.rigidJoints());
@@ -258,7 +246,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
 
     // Rigid bodies' contacts, each patch with its static friction (rigid_contacts.cpp).
     if (!rigidPatches_.empty() || !rigidGroundPatches_.empty()) {
-      const StageTimer timer(profile_, Stage::Contacts);
+      const detail::StageTimer timer(profile_, Stage::Contacts);
       const RigidPassInput in = rigidPassInput(h);
       detail::solveRigidContacts(in, rigidGround_, rigidGroundPatches_, rigidGroundState_);
       detail::solveRigidContacts(in, narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState());
@@ -268,7 +256,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     // sheared by the last correction).
     if (!contacts) continue;
     {
-      const StageTimer timer(profile_, Stage::Contacts);
+      const detail::StageTimer timer(profile_, Stage::Contacts);
       detail::solveBodyContacts(particles_, bodyContacts, solver_.contactSlop, bodyState.push,
                                 movedByBoxContact_, bodyState.allowance);
       if (ground) {
@@ -276,7 +264,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
                               groundState.push, groundState.allowance);
       }
     }
-    const StageTimer timer(profile_, Stage::Friction);
+    const detail::StageTimer timer(profile_, Stage::Friction);
     detail::applyBodyFriction(particles_, bodyContacts, bodyState.push);
     for (std::size_t k = 0; k < bodyState.push.size(); ++k) {
       if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
@@ -299,7 +287,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
 // (Müller et al. 2020's threshold), so coarse steps and strong gravity do not make boxes hop.
 void World::restitute(Real h) {
   if (solver_.restitution <= 0.0) return;
-  const StageTimer timer(profile_, Stage::Restitution);
+  const detail::StageTimer timer(profile_, Stage::Restitution);
   const Real g = gravityMagnitude();
   const detail::Restitution r{solver_.restitution, std::max(kRestitutionMinSpeed, 2.0 * g * h), h};
   detail::measureRigidStates(particles_, bodies_, h, rigid_);
@@ -316,14 +304,14 @@ void World::restitute(Real h) {
 
 void World::dampBodies() {
   if (solver_.bodyDamping <= 0.0 || bodies_.empty()) return;
-  const StageTimer timer(profile_, Stage::BodyDamping);
+  const detail::StageTimer timer(profile_, Stage::BodyDamping);
   detail::dampBodyMotion(particles_, bodies_, bodyLayout_, solver_.bodyDamping);
 }
 
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the
 // guard that), so all of it from one instant, whichever particle went bad.
 void World::guard(bool shapes) {
-  const StageTimer timer(profile_, Stage::Guard);
+  const detail::StageTimer timer(profile_, Stage::Guard);
   guardParticles();
   guard_.checkRigidBodies(rigidBodies_, bodies_, world_.bound, time_);
   if (shapes) guard_.checkShapes(guardInput(), world_.shapeCheckInterval);

@@ -51,9 +51,9 @@ TEST(Profile, SumsAddStageByStage) {
   a.total = 1.0;
   b.total = 2.0;
   a += b;
-  EXPECT_EQ(a[Stage::Links], 606.0);
+  EXPECT_EQ(a[Stage::Links], 707.0);
   EXPECT_EQ(a.total, 3.0);
-  EXPECT_EQ(a.staged(), 101.0 * 78.0);  // 0 + 1 + ... + 12 = 78
+  EXPECT_EQ(a.staged(), 101.0 * 91.0);  // 0 + 1 + ... + 13 = 91
 }
 
 // A pendulum, two particles and a stick in empty space: no bodies, contacts, restitution or body
@@ -65,8 +65,8 @@ TEST(Profile, AWorldOfParticlesTimesOnlyItsStages) {
   world.addStick(pin, bob);
   const phys::Profile p = profileOf(world, 10);
   for (const Stage s :
-       {Stage::Frames, Stage::BroadPhase, Stage::NarrowPhase, Stage::Parting, Stage::Links, Stage::Contacts,
-        Stage::Friction, Stage::Velocities, Stage::Restitution, Stage::BodyDamping}) {
+       {Stage::Frames, Stage::BroadPhase, Stage::Sweep, Stage::NarrowPhase, Stage::Parting, Stage::Links,
+        Stage::Contacts, Stage::Friction, Stage::Velocities, Stage::Restitution, Stage::BodyDamping}) {
     EXPECT_EQ(p[s], 0.0) << phys::toString(s);
   }
   EXPECT_GT(p[Stage::Sticks], 0.0);

@@ -30,6 +30,7 @@ enum class Stage : std::uint8_t {
   Integrate,    ///< Verlet with gravity and damping; the mouse drag's spring
   Frames,       ///< each body's frame fitted to its particles
   BroadPhase,   ///< the pairs of bodies whose bounds may meet within the step
+  Sweep,        ///< bodies that would pass through another in the substep stopped at its surface
   NarrowPhase,  ///< the contacts of those pairs; capsules' ground points; each contact's depth at x*
   Parting,      ///< deep overlaps parted without velocity
   Sticks,       ///< the bodies' own sticks and the loose ones, by the chosen method
@@ -41,7 +42,7 @@ enum class Stage : std::uint8_t {
   BodyDamping,  ///< each body's inner motion pulled towards its rigid motion
   Guard,        ///< non-finite, out-of-bound and crushed bodies frozen
 };
-inline constexpr std::size_t kStageCount = 13;
+inline constexpr std::size_t kStageCount = 14;
 static_assert(static_cast<std::size_t>(Stage::Guard) + 1 == kStageCount, "Guard is the last stage");
 
 /// The stage's name in outputs: "integrate", "broad-phase", ...

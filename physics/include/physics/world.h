@@ -188,6 +188,9 @@ class World {
   std::span<const FreezeReport> freezes() const { return guard_.freezes(); }
   Real time() const { return time_; }  ///< unit: s; simulated time since creation
   long stepCount() const { return steps_; }
+  /// Pairs the sweep (Stage::Sweep) stopped in the last step: bodies that would have passed
+  /// through another within a substep.
+  int sweptPairs() const { return swept_; }
 
   /// Velocity of a particle over its last substep. unit: m/s
   Vec3 velocity(ParticleId id) const;
@@ -233,6 +236,7 @@ class World {
   Real lowestHeight(BodyId id, const Body& body) const;
   void fitBodyFrames();
   bool findPairs(bool firstSubstep);
+  void stopFastBodies();
   void findContacts(bool newPairs);
   void partOverlaps();
   void measureApproaches(Real h);
@@ -265,6 +269,7 @@ class World {
   GroundContacts ground_;
 
   std::vector<Obb> frames_;  // per box, fitted in every substep
+  int swept_ = 0;            // pairs stopFastBodies stopped in this step
   BroadPhase broadPhase_;
   NarrowPhase narrowPhase_;
   Parting parting_;
