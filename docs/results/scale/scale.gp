@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 2.0488636363636363 "n=1"
-44 1.6879772727272728 "n=4"
-176 1.3388835227272728 "n=16"
-704 1.2542457386363637 "n=64"
-2816 1.3608499644886363 "n=256"
-11264 1.6507682883522727 "n=1024"
+11 2.0748636363636361 "n=1"
+44 1.7618636363636364 "n=4"
+176 1.3048124999999999 "n=16"
+704 1.3096498579545455 "n=64"
+2816 1.2900976562499997 "n=256"
+11264 1.5298702947443181 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
