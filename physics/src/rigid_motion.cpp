@@ -64,13 +64,17 @@ Vec3 freeSpinRate(const Quat& q, const Vec3& d, const Vec3& w) {
 Vec3 shiftedSpin(const Quat& q, const Vec3& d, const Vec3& kept, Real hOld, Real hNew) {
   // w' is quadratic in w, so each pass shrinks the residual by about hOld |w'| / |w|: a few passes
   // reach round-off at any spin a substep resolves.
+  // Beyond about h |w| = 2 the iteration diverges; then the one-step shift, from the kept spin.
   Vec3 start = kept;
-  for (int k = 0; k < 50; ++k) {
+  bool converged = false;
+  for (int k = 0; k < 50 && !converged; ++k) {
     const Vec3 next = kept + freeSpinRate(q, d, start) * (hOld / 2);
-    if (next == start) break;
+    converged = glm::length(next - start) <= 1e-14 * glm::length(next);
     start = next;
   }
-  return start - freeSpinRate(q, d, start) * (hNew / 2);
+  const Vec3 shifted = start - freeSpinRate(q, d, start) * (hNew / 2);
+  if (converged && std::isfinite(shifted.x + shifted.y + shifted.z)) return shifted;
+  return kept + freeSpinRate(q, d, kept) * ((hOld - hNew) / 2);
 }
 
 Vec3 turnBetween(const Quat& from, const Quat& to) {

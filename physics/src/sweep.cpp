@@ -75,11 +75,11 @@ void World::stopFastBodies() {
     const Real thinnest = std::min({ha.x, ha.y, ha.z, hb.x, hb.y, hb.z});
     const Real estimate =
         2.0 * glm::length(broadPhase_.motion(a).shift - broadPhase_.motion(b).shift) * perSubstep;
-    if (estimate + gravityMove <= thinnest) continue;
+    if (!(estimate + gravityMove > thinnest)) continue;  // written so that NaN skips too
     const Vec3 shiftA = shiftOf(a), shiftB = shiftOf(b);
     const Vec3 moved = shiftB - shiftA;  // b's move as a sees it
     const Real distance = glm::length(moved);
-    if (distance <= thinnest) continue;
+    if (!(distance > thinnest)) continue;
     Obb startA = frames_[a], startB = frames_[b];
     startA.center -= shiftA;
     startB.center -= shiftB;
@@ -88,9 +88,9 @@ void World::stopFastBodies() {
     const Vec3& n = sat.normal;
     const Real gap = std::max(-sat.depth, 0.0);  // apart along n at the start (0 if touching or in)
     const Real thin = std::min(halfWidth(startA, n), halfWidth(startB, n));
-    if (sat.depth > thin) continue;  // already that deep at the start: the contacts see its side
+    if (!(sat.depth <= thin)) continue;  // already that deep at the start: the contacts see its side
     const Real overlap = -glm::dot(moved, n) - gap;  // how far into a b ends along n
-    if (overlap <= thin) continue;
+    if (!(overlap > thin)) continue;
     const Real wa = inverseMass(a), wb = inverseMass(b);
     if (wa + wb <= 0.0) continue;
     move(a, n * (-overlap * wa / (wa + wb)));
