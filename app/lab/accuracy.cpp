@@ -170,7 +170,9 @@ bool hasCompliance(const phys::World& world) {
                      [](const phys::Stick& s) { return s.compliance > 0.0; });
 }
 
-std::vector<int> quarterCheckpoints(int steps) {
+}  // namespace
+
+std::vector<int> spreadCheckpoints(int steps) {
   std::vector<int> out;
   for (int k = 1; k <= kReferenceCheckpoints; ++k) {
     const int step =
@@ -179,6 +181,8 @@ std::vector<int> quarterCheckpoints(int steps) {
   }
   return out;
 }
+
+namespace {
 
 // A copy of the loaded world (a scene loaded from text has no file to load again), stepped
 // with `settings`, recorded after each checkpoint step.
@@ -205,7 +209,7 @@ std::string stepList(const std::vector<int>& steps) {
 AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps) {
   AccuracyTarget t;
   t.kind = "reference";
-  t.checkpoints = quarterCheckpoints(steps);
+  t.checkpoints = spreadCheckpoints(steps);
   phys::SolverSettings fine = referenceSettings(scene.world, dt);
   t.expected = recordRun(scene.world, fine, t.checkpoints);
   phys::SolverSettings half = fine;

@@ -38,6 +38,9 @@ phys::SolverSettings referenceSettings(const phys::World& world, double dt);
 /// A reference is compared at this many checkpoints, evenly spread over the run, the last step
 /// among them.
 inline constexpr int kReferenceCheckpoints = 4;
+/// kReferenceCheckpoints steps spread evenly over 1..steps, the last among them, ascending and
+/// distinct (fewer when steps is smaller).
+std::vector<int> spreadCheckpoints(int steps);
 
 /// Steps a run needs to reach every checkpoint of the target: `steps`, or more for an analytic
 /// answer later than that.

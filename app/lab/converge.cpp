@@ -173,20 +173,6 @@ FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vecto
   return out;
 }
 
-// Steps numbered from 1 at the times `time` k / 4, k = 1..4.
-std::vector<int> freeBodyCheckpoints(double time, double dt) {
-  std::vector<int> out;
-  for (int k = 1; k <= 4; ++k) {
-    const int step = std::max(1, static_cast<int>(std::lround(time * k / 4.0 / dt)));
-    if (out.empty() || step > out.back()) out.push_back(step);
-  }
-  return out;
-}
-
-std::string num(double value, int digits) {
-  return formatNumber(value, digits);
-}
-
 // The model choices of the file that the options ask for; "particle" for a scene without boxes.
 std::vector<ModelChoice> chosenModels(const std::filesystem::path& file, const ConvergeOptions& o) {
   const SceneModels models = sceneModels(file);
@@ -211,8 +197,9 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   const bool analytic = hasAnalyticAnswers(own);
   std::vector<int> checkpoints;
   FreeBodies free;
+  AccuracyTarget t;  // analytic: the answers, the same whatever the model (bodies.h's order)
   if (analytic) {
-    const AccuracyTarget t = accuracyTarget(own, {}, dt, 1);
+    t = accuracyTarget(own, {}, dt, 1);
     checkpoints = t.checkpoints;
     target.kind = "analytic";
     target.description = t.description;
@@ -222,15 +209,16 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
       throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " +
                                   why + " (a free-body reference needs boxes alone in zero gravity)");
     }
-    checkpoints = freeBodyCheckpoints(o.time, dt);
+    checkpoints = spreadCheckpoints(std::max(1, static_cast<int>(std::lround(o.time / dt))));
     std::vector<double> times;
     times.reserve(checkpoints.size());
     for (const int step : checkpoints) times.push_back(step * dt);
     free = freeBodyReference(file, times);
     target.kind = "free body";
-    target.description = "free body: Euler's equations by RK4 at " + num(kFreeBodyStep, 3) +
-                         " s, every corner, at t = " + num(times.front(), 4) + " to " + num(times.back(), 4) +
-                         " s; the reference's own uncertainty " + num(free.uncertainty, 2) + " m";
+    target.description = "free body: Euler's equations by RK4 at " + formatNumber(kFreeBodyStep, 3) +
+                         " s, every corner, at t = " + formatNumber(times.front(), 4) + " to " +
+                         formatNumber(times.back(), 4) + " s; the reference's own uncertainty " +
+                         formatNumber(free.uncertainty, 2) + " m";
     target.uncertainty = free.uncertainty;
   }
 
@@ -255,9 +243,9 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
         for (int step = 1, next = 0; next < static_cast<int>(checkpoints.size()); ++step) {
           world.step();
           if (!analytic && world.metrics().contacts > 0) {
-            throw std::invalid_argument(
-                own.name + ": a body touched something at t = " + num(world.time(), 4) + " s under " +
-                setting.describe() + "; the free-body reference is of bodies that touch nothing");
+            throw std::invalid_argument(own.name + ": a body touched something at t = " +
+                                        formatNumber(world.time(), 4) + " s under " + setting.describe() +
+                                        "; the free-body reference is of bodies that touch nothing");
           }
           if (step != checkpoints[static_cast<std::size_t>(next)]) continue;
           if (analytic) {
@@ -273,7 +261,7 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
           }
           ++next;
         }
-        if (analytic) error = accuracyError(accuracyTarget(scene, {}, dt, 1), positions);
+        if (analytic) error = accuracyError(t, positions);
         if (world.metrics().frozen > 0) error = kInf;  // a frozen body's position says nothing
         ConvergeRow row;
         row.scene = own.name;
@@ -345,7 +333,7 @@ namespace {
 std::string orderText(const std::vector<ConvergeRow>& line) {
   const std::optional<double> order = fittedOrder(line);
   // An error that grows as h shrinks is round-off or a method that does not converge, not an order.
-  if (order) return *order < 0.0 ? "grows" : num(*order, 3);
+  if (order) return *order < 0.0 ? "grows" : formatNumber(*order, 3);
   const bool allSmall = std::all_of(line.begin(), line.end(), [](const ConvergeRow& r) {
     return std::isfinite(r.error) && r.error <= kConvergeFloor;
   });
@@ -359,7 +347,7 @@ std::string convergeTable(const std::vector<ConvergeRow>& rows, const ConvergeTa
   std::string s = "converge    " + rows.front().scene + ", against its " + target.description + "\n";
   s += "            error (m): the largest distance from the exact answer; order: the slope of log error\n";
   s += "            against log h over the finest " + std::to_string(kOrderPoints) + " points above " +
-       num(kConvergeFloor, 2) + " m (exact: every error below it)\n";
+       formatNumber(kConvergeFloor, 2) + " m (exact: every error below it)\n";
   const std::vector<std::vector<ConvergeRow>> lines = convergeLines(rows);
   char cell[64];
   std::string header;

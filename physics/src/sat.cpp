@@ -7,18 +7,18 @@
 #include "physics/collision.h"
 
 namespace phys {
-namespace {
 
-// Projected radius of a box on a unit axis.
-Real radius(const Obb& box, const Vec3& axis) {
+Real projectedRadius(const Obb& box, const Vec3& axis) {
   return box.halfExtents.x * std::abs(glm::dot(box.axes[0], axis)) +
          box.halfExtents.y * std::abs(glm::dot(box.axes[1], axis)) +
          box.halfExtents.z * std::abs(glm::dot(box.axes[2], axis));
 }
 
+namespace {
+
 // Penetration along a unit axis (negative: separated along it).
 Real penetration(const Obb& a, const Obb& b, const Vec3& axis, const Vec3& t) {
-  return radius(a, axis) + radius(b, axis) - std::abs(glm::dot(t, axis));
+  return projectedRadius(a, axis) + projectedRadius(b, axis) - std::abs(glm::dot(t, axis));
 }
 
 constexpr Real kParallelEdges = 1e-3;  // sin of the angle: 0.06 degrees

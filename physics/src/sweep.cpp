@@ -19,16 +19,6 @@
 #include "stage_timer.h"
 
 namespace phys {
-namespace {
-
-// Half the body's thickness along the unit axis n: its frame's projection.
-Real halfWidth(const Obb& f, const Vec3& n) {
-  Real r = 0.0;
-  for (int k = 0; k < 3; ++k) r += std::abs(glm::dot(f.axes[k], n)) * f.halfExtents[k];
-  return r;
-}
-
-}  // namespace
 
 void World::stopFastBodies() {
   if (bodies_.size() < 2 || broadPhase_.pairs().empty()) return;
@@ -87,7 +77,7 @@ void World::stopFastBodies() {
     if (!sat.overlap) continue;  // farther apart than the move: they cannot meet in this substep
     const Vec3& n = sat.normal;
     const Real gap = std::max(-sat.depth, 0.0);  // apart along n at the start (0 if touching or in)
-    const Real thin = std::min(halfWidth(startA, n), halfWidth(startB, n));
+    const Real thin = std::min(projectedRadius(startA, n), projectedRadius(startB, n));
     if (!(sat.depth <= thin)) continue;  // already that deep at the start: the contacts see its side
     const Real overlap = -glm::dot(moved, n) - gap;  // how far into a b ends along n
     if (!(overlap > thin)) continue;

@@ -2,6 +2,8 @@
 // method's measured order on the scenes with exact answers, the command's outputs and its errors.
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>

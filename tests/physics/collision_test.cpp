@@ -35,15 +35,9 @@ Vec3 axisOf(const Obb& a, const Obb& b, int index) {
   return glm::normalize(glm::cross(a.axes[i], b.axes[j]));
 }
 
-Real projectedRadius(const Obb& o, const Vec3& axis) {
-  return o.halfExtents.x * std::abs(glm::dot(o.axes[0], axis)) +
-         o.halfExtents.y * std::abs(glm::dot(o.axes[1], axis)) +
-         o.halfExtents.z * std::abs(glm::dot(o.axes[2], axis));
-}
-
 // Places b along `axis` from a so that they overlap by exactly `depth` along it.
 void placeAlong(const Obb& a, Obb& b, const Vec3& axis, Real depth) {
-  b.center = a.center + axis * (projectedRadius(a, axis) + projectedRadius(b, axis) - depth);
+  b.center = a.center + axis * (phys::projectedRadius(a, axis) + phys::projectedRadius(b, axis) - depth);
 }
 
 // Each of the 15 axes made the axis of least overlap: face axes with boxes pushed together

@@ -40,6 +40,9 @@ inline constexpr Real kFaceBiasAbsolute = 0.01;  ///< unit: m
 /// left a hair open is still found in the next substep.
 SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0);
 
+/// Half the box's thickness along the unit axis: its projected radius. unit: m
+Real projectedRadius(const Obb& box, const Vec3& axis);
+
 /// The feature each box meets the other with, seen along the contact normal.
 enum class Feature { Vertex = 1, Edge = 2, Face = 4 };
 enum class ContactKind { FaceFace, FaceEdge, FaceVertex, EdgeEdge, EdgeVertex, VertexVertex };
