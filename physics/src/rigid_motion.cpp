@@ -6,6 +6,7 @@
 #include "rigid_motion.h"
 
 #include <cmath>
+#include <optional>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
@@ -61,20 +62,32 @@ Vec3 freeSpinRate(const Quat& q, const Vec3& d, const Vec3& w) {
   return q * (d * glm::cross(body / d, body));  // d * (I w x w), I = 1 / d componentwise
 }
 
-Vec3 shiftedSpin(const Quat& q, const Vec3& d, const Vec3& kept, Real hOld, Real hNew) {
-  // w' is quadratic in w, so each pass shrinks the residual by about hOld |w'| / |w|: a few passes
+Vec3 spinShiftedBack(const Quat& q, const Vec3& d, const Vec3& w, Real h) {
+  if (!(h * glm::length(w) <= kMostShiftedTurn)) return w;
+  return w - freeSpinRate(q, d, w) * (h / 2);
+}
+
+std::optional<Vec3> spinBeforeShift(const Quat& q, const Vec3& d, const Vec3& kept, Real h) {
+  if (!(h * glm::length(kept) <= kMostShiftedTurn)) return kept;  // too fast: never shifted
+  // w' is quadratic in w, so each pass shrinks the residual by about h |w'| / |w|: a few passes
   // reach round-off at any spin a substep resolves.
-  // Beyond about h |w| = 2 the iteration diverges; then the one-step shift, from the kept spin.
   Vec3 start = kept;
-  bool converged = false;
-  for (int k = 0; k < 50 && !converged; ++k) {
-    const Vec3 next = kept + freeSpinRate(q, d, start) * (hOld / 2);
-    converged = glm::length(next - start) <= 1e-14 * glm::length(next);
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 next = kept + freeSpinRate(q, d, start) * (h / 2);
+    const Real size = glm::length(next);
+    if (!(h * size <= kMostShiftedTurn)) return std::nullopt;  // diverging, or past what is shifted
+    const bool converged = glm::length(next - start) <= 1e-14 * size;
     start = next;
+    if (converged) return start;
   }
-  const Vec3 shifted = start - freeSpinRate(q, d, start) * (hNew / 2);
-  if (converged && std::isfinite(shifted.x + shifted.y + shifted.z)) return shifted;
-  return kept + freeSpinRate(q, d, kept) * ((hOld - hNew) / 2);
+  return std::nullopt;
+}
+
+Vec3 shiftedSpin(const Quat& q, const Vec3& d, const Vec3& kept, Real hOld, Real hNew) {
+  // Where w(0) cannot be had, the one-step shift from the kept spin.
+  const std::optional<Vec3> start = spinBeforeShift(q, d, kept, hOld);
+  if (!start) return kept + freeSpinRate(q, d, kept) * ((hOld - hNew) / 2);
+  return spinShiftedBack(q, d, *start, hNew);
 }
 
 Vec3 turnBetween(const Quat& from, const Quat& to) {

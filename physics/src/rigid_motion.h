@@ -1,6 +1,8 @@
 #pragma once
 // The rigid body model's motion (rigid_motion.cpp): integration of a substep, the velocities
 // derived from the change of pose, and the pose corrections every rigid constraint applies.
+#include <optional>
+
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
@@ -27,6 +29,18 @@ Vec3 turnBetween(const Quat& from, const Quat& to);
 /// principal inverse moments d: Euler's equations, I w' = (I w) x w in the body frame. What shifts
 /// a given spin to the substep's middle, as gravity shifts a velocity.
 Vec3 freeSpinRate(const Quat& q, const Vec3& principalInverse, const Vec3& w);
+
+/// The fastest turn per substep (rad) whose spin is kept half a substep back. Beyond it a substep
+/// does not resolve the spin, the shift's w' h / 2 is no small correction, and the shift's inverse
+/// (spinBeforeShift) has no root near the spin to converge to: the spin is kept as it is.
+inline constexpr Real kMostShiftedTurn = 1.0;
+/// The spin w(0) kept half a substep back: w(0) - w'(w(0)) h / 2, or w(0) itself beyond
+/// kMostShiftedTurn (what addBody keeps).
+Vec3 spinShiftedBack(const Quat& q, const Vec3& principalInverse, const Vec3& w, Real h);
+/// Its inverse: the spin w(0) that spinShiftedBack turns into `kept`, the root of
+/// w(0) = kept + w'(w(0)) h / 2 by fixed-point iteration (or `kept` itself beyond
+/// kMostShiftedTurn); none where the iteration does not reach a root within kMostShiftedTurn.
+std::optional<Vec3> spinBeforeShift(const Quat& q, const Vec3& principalInverse, const Vec3& kept, Real h);
 
 /// A kept spin w(-hOld/2) moved to w(-hNew/2) for a new substep: w(0) recovered as the root of
 /// w(0) = kept + w'(w(0)) hOld / 2, then shifted back by w'(w(0)) hNew / 2. Both shifts read w' at

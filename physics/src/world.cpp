@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -443,8 +444,7 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   // measured the tumbling box's error halving with h, and falling as h^2 with the shift).
   const Real h = substepDt();
   const Vec3 velocity = desc.velocity - gravityAt(desc.center) * (h / 2);
-  const Vec3 spin =
-      desc.angularVelocity - detail::freeSpinRate(q, inverseInertia, desc.angularVelocity) * (h / 2);
+  const Vec3 spin = detail::spinShiftedBack(q, inverseInertia, desc.angularVelocity, h);
   rigidBodies_.position.push_back(desc.center);
   rigidBodies_.orientation.push_back(q);
   rigidBodies_.previousPosition.push_back(desc.center - velocity * h);
@@ -474,6 +474,19 @@ std::pair<Vec3, Vec3> World::bodyVelocity(BodyId id) const {
   if (!detail::massProperties(particles_, body, m)) return {Vec3(0.0), Vec3(0.0)};
   const detail::RigidMotion motion = detail::rigidMotion(particles_, body, m);
   return {motion.linear / substepDt(), motion.angular / substepDt()};
+}
+
+std::pair<Vec3, Vec3> World::rigidDescVelocity(BodyId id) const {
+  const Body& body = bodies_.at(id);
+  require(body.model == BodyModel::Rigid, "rigidDescVelocity: the body is not of the rigid model");
+  const RigidId i = body.rigid;
+  const Real h = substepDt();
+  const Quat& q = rigidBodies_.orientation[i];
+  const Vec3& d = rigidBodies_.inverseInertia[i];
+  const Vec3& kept = rigidBodies_.angularVelocity[i];
+  const Vec3 velocity = rigidBodies_.velocity[i] + gravityAt(rigidBodies_.position[i]) * (h / 2);
+  const std::optional<Vec3> spin = detail::spinBeforeShift(q, d, kept, h);
+  return {velocity, spin ? *spin : kept + detail::freeSpinRate(q, d, kept) * (h / 2)};
 }
 
 Vec3 World::velocity(ParticleId id) const {

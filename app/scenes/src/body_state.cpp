@@ -1,5 +1,7 @@
 #include "body_state.h"
 
+#include <tuple>
+
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -17,18 +19,15 @@ RigidState rigidState(const phys::World& world, phys::BodyId id) {
   RigidState state;
   state.pose = world.bodyPose(id);
   if (box.model == phys::BodyModel::Rigid) {
-    // Its own velocities, of the last substep's middle, as addBody reads them back: v + g h / 2.
+    // Its own velocities, of the last substep's middle, moved to the pose's time as addBody reads
+    // them back.
     const phys::RigidBodies& rigid = world.rigidBodies();
-    const phys::SolverSettings& solver = world.solverSettings();
-    const double h = solver.dt / solver.substeps;
     if (rigid.inverseMass[box.rigid] == 0.0) {  // frozen by the guard
       state.frozen = true;
       state.mass = phys::BodyDesc{}.mass;
       return state;
     }
-    const auto [velocity, spin] = world.bodyVelocity(id);
-    state.velocity = velocity + world.gravityAt(state.pose.center) * (h / 2);
-    state.angularVelocity = spin;
+    std::tie(state.velocity, state.angularVelocity) = world.rigidDescVelocity(id);
     state.mass = 1.0 / rigid.inverseMass[box.rigid];
     return state;
   }

@@ -209,6 +209,12 @@ class World {
   /// body's the least-squares rigid motion of its particles, which keeps their momentum and
   /// angular momentum.
   std::pair<Vec3, Vec3> bodyVelocity(BodyId id) const;
+  /// A rigid body's velocity and spin as a BodyDesc gives them, at the pose's time: bodyVelocity's
+  /// moved on half a substep (v + g h / 2, and the spin by Euler's equations, the exact inverse of
+  /// addBody's shift up to a radian a substep; a faster spin is not shifted), so that a body saved
+  /// and reloaded goes on as it would have. Throws
+  /// std::invalid_argument for a body of a particle model (their velocities are their particles').
+  std::pair<Vec3, Vec3> rigidDescVelocity(BodyId id) const;
   /// Acceleration of gravity at a point, in the current mode. unit: m/s^2
   Vec3 gravityAt(const Vec3& x) const;
 
