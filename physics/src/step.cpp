@@ -115,7 +115,7 @@ void World::findContacts(bool newPairs) {
       narrowPhase_.build(in);
     else
       narrowPhase_.refresh(in);
-    narrowPhase_.measureStarts(particles_, solver_.contactSlop);
+    narrowPhase_.measureStarts(in);
   }
   if (!world_.ground) return;
   ground_.placeCapsulePoints(bodies_, frames_, world_.groundNormal);

@@ -3,12 +3,13 @@
 // moved farther in that substep than the thinner body's half thickness can already be past the
 // other's middle, and the contact found there pushes it out on the far side (or, past the other
 // entirely, finds nothing). So before the narrow phase, every pair whose bodies moved that much
-// relative to each other is looked at where the substep started: the separating axis of the two
-// frames there, and how far the move carried one into the other along it. A pair that would end
-// more than that half thickness in is put back to touching along the axis, the correction shared
-// by inverse mass like a contact's, each body moved whole (its particles or its pose, not its x*),
-// so its velocity along the axis is lost as in an inelastic impact and its sliding kept. Pairs
-// that moved less are left exactly as they were: the stage changes no ordinary scene.
+// relative to each other is swept from where the substep started (sweptSat: the separating axes
+// over the move, the frames not turning): where the two first touch and along which axis. A pair
+// that would end more than that half thickness in along it is put back to touching, the
+// correction shared by inverse mass like a contact's, each body moved whole (its particles or its
+// pose, not its x*), so its velocity along the axis is lost as in an inelastic impact and its
+// sliding kept. Pairs that moved less, or pass each other, are left exactly as they were: the
+// stage changes no ordinary scene.
 #include <algorithm>
 #include <cmath>
 
@@ -73,13 +74,12 @@ void World::stopFastBodies() {
     Obb startA = frames_[a], startB = frames_[b];
     startA.center -= shiftA;
     startB.center -= shiftB;
-    const SatResult sat = satTest(startA, startB, distance);
-    if (!sat.overlap) continue;  // farther apart than the move: they cannot meet in this substep
-    const Vec3& n = sat.normal;
-    const Real gap = std::max(-sat.depth, 0.0);  // apart along n at the start (0 if touching or in)
+    const SweptSat touch = sweptSat(startA, startB, moved);
+    if (!touch.hit) continue;  // they do not meet in this substep (apart, or a near miss)
+    const Vec3& n = touch.normal;
     const Real thin = std::min(projectedRadius(startA, n), projectedRadius(startB, n));
-    if (!(sat.depth <= thin)) continue;  // already that deep at the start: the contacts see its side
-    const Real overlap = -glm::dot(moved, n) - gap;  // how far into a b ends along n
+    if (!(-touch.gap <= thin)) continue;  // already that deep at the start: the contacts see its side
+    const Real overlap = -glm::dot(moved, n) - std::max(touch.gap, 0.0);  // how far into a b ends along n
     if (!(overlap > thin)) continue;
     const Real wa = inverseMass(a), wb = inverseMass(b);
     if (wa + wb <= 0.0) continue;

@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "physics/collision.h"
 #include "physics/world.h"
 #include "test_util.h"
 
@@ -52,23 +53,88 @@ TEST(Sweep, ABulletStopsAtAThinWallForEveryModelAtOneSubstep) {
   }
 }
 
-// Two equal boxes shot at each other at 150 m/s each (5 m a step, more than their 4 m gap) meet
-// in the middle: the correction is shared by inverse mass, so momentum (zero) is kept.
+// Two boxes of 1 and 3 kg shot at each other at 150 m/s each (5 m a step, more than their 4 m gap)
+// meet where their masses say: the correction is shared by inverse mass, so the centre of mass
+// goes on as before (from 1 * -2.5 + 3 * 2.5 = 5 kg m, moved by the momentum -300 kg m/s for a
+// step, to 0); an equal share would leave it at 2.5 kg m.
 TEST(Sweep, TwoFastBodiesMeetWhereTheirMassesSay) {
   for (const BodyModel model : kModels) {
     phys::World world =
         testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
-    BodyDesc left = box({-2.5, 0.0, 0.0}, Vec3(1.0), 2.0, model),
-             right = box({2.5, 0.0, 0.0}, Vec3(1.0), 2.0, model);
+    BodyDesc left = box({-2.5, 0.0, 0.0}, Vec3(1.0), 1.0, model),
+             right = box({2.5, 0.0, 0.0}, Vec3(1.0), 3.0, model);
     left.velocity = {150.0, 0.0, 0.0};
     right.velocity = {-150.0, 0.0, 0.0};
     const BodyId a = world.addBody(left), b = world.addBody(right);
     world.step();
+    EXPECT_EQ(world.sweptPairs(), 1) << phys::toString(model);
     EXPECT_LT(world.bodyPose(a).center.x, world.bodyPose(b).center.x) << phys::toString(model);
-    EXPECT_NEAR(world.bodyPose(a).center.x + world.bodyPose(b).center.x, 0.0, 1e-9) << phys::toString(model);
+    EXPECT_NEAR(world.bodyPose(a).center.x + 3.0 * world.bodyPose(b).center.x, 0.0, 1e-9)
+        << phys::toString(model);
   }
 }
 
+// A near miss is not a hit: a box at 120 m/s passing 5 cm above a wall's top edge (2 m a step,
+// through the wall's span) keeps its speed. The sweep once looked along one axis only, the
+// start's widest gap (here across the wall), found the move overlapping there and stopped it.
+TEST(Sweep, ANearMissKeepsItsSpeed) {
+  for (const BodyModel model : kModels) {
+    phys::World world =
+        testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+    world.addBody(box(Vec3(0.0), {0.1, 1.0, 3.0}, 1e5, model));
+    BodyDesc fast = box({-1.0, 0.65, 0.0}, Vec3(0.2), 1.0, model);
+    fast.velocity = {120.0, 0.0, 0.0};
+    const BodyId id = world.addBody(fast);
+    world.step();
+    EXPECT_EQ(world.sweptPairs(), 0) << phys::toString(model);
+    EXPECT_NEAR(world.bodyPose(id).center.x, 1.0, 1e-9) << phys::toString(model);
+    EXPECT_NEAR(world.bodyVelocity(id).first.x, 120.0, 1e-6) << phys::toString(model);
+  }
+}
+
+// A box coming in fast and low over a slab's edge (240 m/s along, 45 m/s down) is past the slab's
+// side plane at 8% of the step and reaches its top at 27%: it lands on the top face, not the side.
+// Taking the start's widest gap as the axis (the side) once put it back beside the slab, below
+// the top, and it fell past.
+TEST(Sweep, ADiagonalShotLandsOnTheFaceItReachesLast) {
+  for (const BodyModel model : kModels) {
+    phys::World world =
+        testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+    world.addBody(box(Vec3(0.0), {4.0, 0.1, 3.0}, 1e5, model));
+    BodyDesc fast = box({-2.4, 0.35, 0.0}, Vec3(0.2), 1.0, model);
+    fast.velocity = {240.0, -45.0, 0.0};
+    const BodyId id = world.addBody(fast);
+    world.step();
+    EXPECT_EQ(world.sweptPairs(), 1) << phys::toString(model);
+    const phys::BodyPose pose = world.bodyPose(id);
+    EXPECT_NEAR(pose.center.y, 0.15, 2e-3) << phys::toString(model);  // resting on the top face
+    EXPECT_NEAR(pose.center.x, -2.4 + 4.0, 0.05) << phys::toString(model);
+  }
+}
+
+// sweptSat on its own: the time and axis of the first touch, a graze, a miss past an edge.
+TEST(Sweep, SweptSatFindsTheFirstTouch) {
+  phys::Obb wall;
+  wall.halfExtents = {0.05, 0.5, 1.5};
+  phys::Obb shot;
+  shot.halfExtents = Vec3(0.1);
+  shot.center = {-1.0, 0.0, 0.0};
+  const phys::SweptSat head = phys::sweptSat(wall, shot, {2.0, 0.0, 0.0});
+  ASSERT_TRUE(head.hit);
+  EXPECT_NEAR(head.time, 0.85 / 2.0, 1e-12);  // 0.85 m apart, 2 m moved
+  EXPECT_NEAR(head.gap, 0.85, 1e-12);
+  EXPECT_NEAR(glm::dot(head.normal, Vec3(-1.0, 0.0, 0.0)), 1.0, 1e-12);  // from the wall to the shot
+  shot.center.y = 0.65;                                                  // 5 cm over the top: a miss
+  EXPECT_FALSE(phys::sweptSat(wall, shot, {2.0, 0.0, 0.0}).hit);
+  EXPECT_FALSE(phys::sweptSat(wall, shot, {0.5, 0.0, 0.0}).hit);  // short of it too
+  shot.center = {-1.0, 0.0, 0.0};
+  EXPECT_FALSE(phys::sweptSat(wall, shot, {0.5, 0.0, 0.0}).hit);   // stops short
+  EXPECT_FALSE(phys::sweptSat(wall, shot, {-2.0, 0.0, 0.0}).hit);  // moves away
+  shot.center = {0.1, 0.0, 0.0};                                   // overlapping at the start: hit, time < 0
+  const phys::SweptSat inside = phys::sweptSat(wall, shot, {2.0, 0.0, 0.0});
+  EXPECT_TRUE(inside.hit);
+  EXPECT_LT(inside.time, 0.0);
+}
 // The sweep takes the approach, not the slide: a box skimming a slab's face at 100 m/s and closing
 // on it at 20 m/s keeps its 100 m/s along the face.
 TEST(Sweep, SlidingAlongASurfaceIsKept) {

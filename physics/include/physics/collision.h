@@ -40,6 +40,18 @@ inline constexpr Real kFaceBiasAbsolute = 0.01;  ///< unit: m
 /// left a hair open is still found in the next substep.
 SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0);
 
+/// The first touch of two oriented boxes as B moves by `moved` relative to A, neither turning: the
+/// separating-axis test swept over the move. On each of the 15 axes the projections overlap over
+/// one stretch of the move; the boxes meet where all the stretches do, first at the latest entry,
+/// along that entry's axis (a near miss past an edge overlaps on some axes but never on all).
+struct SweptSat {
+  bool hit = false;  ///< they meet within the move, or overlap at its start
+  Real time = 0.0;   ///< fraction of the move at the first touch (< 0: they overlapped before it)
+  Vec3 normal{0.0};  ///< unit axis of the first touch, from A towards B
+  Real gap = 0.0;    ///< unit: m; apart along the normal at the start (< 0: overlapping so far)
+};
+SweptSat sweptSat(const Obb& a, const Obb& b, const Vec3& moved);
+
 /// Half the box's thickness along the unit axis: its projected radius. unit: m
 Real projectedRadius(const Obb& box, const Vec3& axis);
 

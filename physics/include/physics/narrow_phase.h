@@ -72,8 +72,10 @@ class NarrowPhase {
   /// collided again.
   void refresh(const NarrowPhaseInput& in);
   /// Each point's overlap beyond the slop at x*, where the substep starts, each manifold's
-  /// deepest, and no point touched yet.
-  void measureStarts(const Particles& particles, Real contactSlop);
+  /// deepest, and no point touched yet. An overlap deeper than the feature epsilon of a pair that
+  /// moved past each other's half thickness is checked against the two bodies' frames at x*: if
+  /// those were apart, it was no overlap (see the .cpp).
+  void measureStarts(const NarrowPhaseInput& in);
 
   /// How far apart two bodies' points can be and still close within the step. unit: m
   static Real speculativeMargin(const NarrowPhaseInput& in, BodyId a, BodyId b);
