@@ -8,8 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
+
+#include <glm/geometric.hpp>
 
 #include "accuracy.h"
 #include "bodies.h"
@@ -21,6 +24,7 @@
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
+#include "physics/rigid_bodies.h"
 #include "sweep_core.h"
 
 namespace lab {
@@ -141,18 +145,23 @@ std::string notFreeBodies(const phys::World& world) {
 }
 
 // The free bodies' exact poses at the checkpoints, from the file loaded with every body rigid
-// (whose pose, velocities and principal moments are the file's, exactly as given).
+// (whose pose, velocities and principal moments are the file's, exactly as given). A body of a
+// particle model turns as its particles' point masses make it: for both models (8 corners, or 4
+// alternate ones, of equal mass) the moments are proportional to a solid box's, so with
+// `boxInertia` a capsule is given its box's moments, not the solid capsule's of the rigid model.
 struct FreeBodies {
   std::vector<std::vector<FreeBodyPose>> poses;  // per body, per checkpoint
   std::vector<phys::Vec3> halfExtents;           // per body
   double uncertainty = 0.0;
 };
 
-FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vector<double>& times) {
+FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vector<double>& times,
+                             bool boxInertia) {
   scenes::LoadOptions rigid;
   rigid.boxModel = phys::BodyModel::Rigid;
   const scenes::Scene scene = scenes::loadSceneFile(file, rigid);
   const phys::World& world = scene.world;
+  const double h = world.solverSettings().dt / world.solverSettings().substeps;
   FreeBodies out;
   for (std::size_t i = 0; i < world.bodies().size(); ++i) {
     const phys::BodyId id(static_cast<std::uint32_t>(i));
@@ -163,12 +172,29 @@ FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vecto
     start.orientation = pose.orientation;
     const auto [velocity, kept] = world.bodyVelocity(id);
     start.velocity = velocity;  // zero gravity: the same at every time
-    start.inertia = phys::Vec3(1.0) / world.rigidBodies().inverseInertia.at(body.rigid);
-    start.angularVelocity = spinAtStart(kept, pose.orientation, start.inertia,
-                                        world.solverSettings().dt / world.solverSettings().substeps);
+    // The kept spin was shifted with the rigid body's own moments: undone with the same.
+    const phys::Vec3 ownInertia = phys::Vec3(1.0) / world.rigidBodies().inverseInertia.at(body.rigid);
+    const std::optional<phys::Vec3> spin = spinAtStart(kept, pose.orientation, ownInertia, h);
+    // Beyond a radian a substep the physics keeps a spin unshifted, and the shift has no inverse.
+    if (!spin || !(h * glm::length(*spin) <= 1.0)) {
+      throw std::invalid_argument(
+          scene.name + ": body '" + body.name +
+          "' spins too fast for its substep (h |w| = " + formatNumber(h * glm::length(kept), 3) +
+          " rad; the free-body reference needs at most 1 rad a substep at the scene's " + formatNumber(h, 4) +
+          " s)");
+    }
+    start.angularVelocity = *spin;
+    const phys::Real inverseMass = world.rigidBodies().inverseMass.at(body.rigid);
+    start.inertia = boxInertia ? phys::solidBoxInertia(body.halfExtents, 1.0 / inverseMass) : ownInertia;
+    const double uncertainty = freeBodyUncertainty(start, times, body.halfExtents);
+    if (!std::isfinite(uncertainty)) {
+      throw std::invalid_argument(scene.name + ": body '" + body.name +
+                                  "': the free-body reference is not finite (its own uncertainty is " +
+                                  formatNumber(uncertainty, 3) + " m)");
+    }
     out.poses.push_back(freeBodyPoses(start, times, kFreeBodyStep));
     out.halfExtents.push_back(body.halfExtents);
-    out.uncertainty = std::max(out.uncertainty, freeBodyUncertainty(start, times, body.halfExtents));
+    out.uncertainty = std::max(out.uncertainty, uncertainty);
   }
   return out;
 }
@@ -196,7 +222,7 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   const double dt = own.world.solverSettings().dt;
   const bool analytic = hasAnalyticAnswers(own);
   std::vector<int> checkpoints;
-  FreeBodies free;
+  FreeBodies freeRigid, freeParticle;  // the references for the rigid model and the particle ones
   AccuracyTarget t;  // analytic: the answers, the same whatever the model (bodies.h's order)
   if (analytic) {
     t = accuracyTarget(own, {}, dt, 1);
@@ -213,18 +239,21 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
     std::vector<double> times;
     times.reserve(checkpoints.size());
     for (const int step : checkpoints) times.push_back(step * dt);
-    free = freeBodyReference(file, times);
+    freeRigid = freeBodyReference(file, times, false);
+    freeParticle = freeBodyReference(file, times, true);
+    const double uncertainty = std::max(freeRigid.uncertainty, freeParticle.uncertainty);
     target.kind = "free body";
     target.description = "free body: Euler's equations by RK4 at " + formatNumber(kFreeBodyStep, 3) +
                          " s, every corner, at t = " + formatNumber(times.front(), 4) + " to " +
                          formatNumber(times.back(), 4) + " s; the reference's own uncertainty " +
-                         formatNumber(free.uncertainty, 2) + " m";
-    target.uncertainty = free.uncertainty;
+                         formatNumber(uncertainty, 2) + " m";
+    target.uncertainty = uncertainty;
   }
 
   std::vector<ConvergeRow> rows;
   for (const ModelChoice& model : chosenModels(file, o)) {
     const bool rigid = model.options.boxModel == phys::BodyModel::Rigid;
+    const FreeBodies& free = rigid ? freeRigid : freeParticle;
     for (const phys::SolverMethod method : o.methods) {
       // A rigid body is solved by XPBD whatever the method: one line, named for what it is.
       if (rigid && method != o.methods.front()) continue;

@@ -50,17 +50,20 @@ Spin rk4(const Spin& s, const Vec3& inertia, double h) {
 
 }  // namespace
 
-phys::Vec3 spinAtStart(const Vec3& kept, const Quat& orientation, const Vec3& inertia, double h) {
+std::optional<phys::Vec3> spinAtStart(const Vec3& kept, const Quat& orientation, const Vec3& inertia,
+                                      double h) {
   const Vec3 body = glm::conjugate(orientation) * kept;
   Vec3 w = body;
   // w' is quadratic in w, so each pass shrinks the residual by about h |w'| / |w|: a few passes
   // reach round-off at any spin a substep can resolve; 50 is far beyond need and costs nothing.
   for (int k = 0; k < 50; ++k) {
     const Vec3 next = body + glm::cross(inertia * w, w) / inertia * (h / 2);
-    if (next == w) break;
+    const double size = glm::length(next);
+    if (!std::isfinite(size)) return std::nullopt;  // diverged
+    if (glm::length(next - w) <= 1e-14 * size) return orientation * next;
     w = next;
   }
-  return orientation * w;
+  return std::nullopt;
 }
 
 std::vector<FreeBodyPose> freeBodyPoses(const FreeBodyStart& start, const std::vector<double>& times,

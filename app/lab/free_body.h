@@ -6,6 +6,7 @@
 // about 1e-12 m over seconds (FreeBodyReference::uncertainty measures it). This is the lab's own
 // code, apart from the physics it measures, so that a rigid or particle box is checked against
 // something that shares none of its integrator.
+#include <optional>
 #include <vector>
 
 #include "physics/types.h"
@@ -25,9 +26,10 @@ struct FreeBodyStart {
 /// The spin w(0) of a body whose World keeps w(-h/2), its spin half a substep h back (the physics
 /// keeps velocities of the substep's middle, docs/physics.md, "Rigid bodies"): the root of
 /// w = kept + w'(w) h / 2 under Euler's equations, by fixed-point iteration to round-off.
-/// `orientation` and `inertia` as in FreeBodyStart; kept in world frame. unit: rad/s
-phys::Vec3 spinAtStart(const phys::Vec3& kept, const phys::Quat& orientation, const phys::Vec3& inertia,
-                       double h);
+/// `orientation` and `inertia` as in FreeBodyStart; kept in world frame. unit: rad/s. None where
+/// the iteration does not converge: beyond about h |w| = 2, where a substep cannot resolve the spin.
+std::optional<phys::Vec3> spinAtStart(const phys::Vec3& kept, const phys::Quat& orientation,
+                                      const phys::Vec3& inertia, double h);
 
 /// A body's pose at some time.
 struct FreeBodyPose {
