@@ -200,9 +200,17 @@ FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vecto
 }
 
 // The model choices of the file that the options ask for; "particle" for a scene without boxes.
-std::vector<ModelChoice> chosenModels(const std::filesystem::path& file, const ConvergeOptions& o) {
+// A scene of particles alone has no model to choose: a --models list is then said to be left aside,
+// not dropped in silence.
+std::vector<ModelChoice> chosenModels(const std::filesystem::path& file, const std::string& sceneName,
+                                      const ConvergeOptions& o, std::ostream* progress) {
   const SceneModels models = sceneModels(file);
-  if (!models.boxes && !models.ragdolls) return {ModelChoice{kParticleModel, {}}};
+  if (!models.boxes && !models.ragdolls) {
+    if (!o.models.empty() && progress != nullptr)
+      *progress << "converge    " << sceneName
+                << " has no boxes or ragdolls: --models does not apply to it\n";
+    return {ModelChoice{kParticleModel, {}}};
+  }
   if (o.models.empty()) return allModelChoices(models);
   std::vector<ModelChoice> out;
   for (const std::string& name : o.models) {
@@ -251,7 +259,7 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   }
 
   std::vector<ConvergeRow> rows;
-  for (const ModelChoice& model : chosenModels(file, o)) {
+  for (const ModelChoice& model : chosenModels(file, own.name, o, progress)) {
     const bool rigid = model.options.boxModel == phys::BodyModel::Rigid;
     const FreeBodies& free = rigid ? freeRigid : freeParticle;
     for (const phys::SolverMethod method : o.methods) {

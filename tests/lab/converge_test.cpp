@@ -163,6 +163,8 @@ TEST(Converge, WritesItsCsvAndOneChartPerScene) {
   const lab::CsvTable csv = lab::readCsv(dir.file("out") / "converge.csv");
   EXPECT_EQ(csv.header, (std::vector<std::string>{"scene", "method", "model", "substeps", "h", "error"}));
   ASSERT_EQ(csv.rows.size(), 4u);  // the orbit's particle at 2 and 4, the rigid box at 2 and 4
+  EXPECT_NE(o.err.find("circular-orbit has no boxes or ragdolls: --models does not apply"), std::string::npos)
+      << o.err;
   EXPECT_EQ(lab::fieldText(csv.rows[0], "model"), "particle");
   EXPECT_EQ(lab::fieldText(csv.rows[2], "method"), "xpbd");  // rigid bodies are XPBD's
   EXPECT_EQ(lab::fieldText(csv.rows[2], "model"), "rigid");
