@@ -40,11 +40,12 @@ struct CompareOptions {
   std::optional<double> dt;
   std::filesystem::path dataDir;
   bool json = false;
+  bool peerSleep = true;  ///< --peer-sleep: whether Bullet may put resting bodies to sleep
   bool help = false;
 };
 
 std::string compareUsage() {
-  return "usage: lab compare SCENE [--steps N] [--dt S] [--json] [--data DIR]\n"
+  return "usage: lab compare SCENE [--steps N] [--dt S] [--peer-sleep on|off] [--json] [--data DIR]\n"
          "  Runs SCENE with each of our four methods at its own iterations and substeps, then in\n"
          "  each peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
          "  step, accuracy error, penetration and joint gap (by our code on every engine's poses)\n"
@@ -52,6 +53,8 @@ std::string compareUsage() {
          "  --steps N   steps in every run, 1 to 10000000 (default 600; a scene's analytic\n"
          "              checkpoints may ask for more)\n"
          "  --dt S      seconds per step, 1e-06 to 1 (default: the scene's)\n"
+         "  --peer-sleep on|off  whether Bullet may put resting bodies to sleep (default on, as\n"
+         "              it ships; ours never sleep, so off compares awake with awake)\n"
          "  --json      one JSON object per row, one per line, instead of the table\n"
          "  --data DIR  folder holding assets/ (default: the source tree)\n";
 }
@@ -97,6 +100,10 @@ std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
       if (!d || *d < phys::kMinDt || *d > phys::kMaxDt)
         return "compare: --dt '" + v + "': a number of seconds from 1e-06 to 1";
       o.dt = *d;
+    } else if (a == "--peer-sleep") {
+      if (std::string e = value(v); !e.empty()) return e;
+      if (v != "on" && v != "off") return "compare: --peer-sleep '" + v + "': on or off";
+      o.peerSleep = v == "on";
     } else if (a == "--data") {
       if (std::string e = value(v); !e.empty()) return e;
       o.dataDir = v;
@@ -307,7 +314,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   const peers::Description description = peers::describe(*scene);
   for (const std::string& engine : peerEngines()) {
     // Each peer reads the scene as loaded, unstepped (the first load is kept for them).
-    const PeerResult p = runPeer(engine, *scene, dt, steps, target.checkpoints);
+    const PeerResult p = runPeer(engine, *scene, dt, steps, target.checkpoints, options.peerSleep);
     Row row;
     row.engine = p.engine;
     row.settings = p.settings;

@@ -41,7 +41,8 @@ std::vector<std::string> peerEngines();
 
 /// Builds `scene` (as loaded, not yet stepped) in the engine and steps it `steps` times at
 /// `dt`, recording the bodies' positions after each checkpoint step (ascending, <= steps).
+/// `sleep`: whether an engine that can put resting bodies to sleep may (peers::Description::sleep).
 PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double dt, int steps,
-                   const std::vector<int>& checkpoints);
+                   const std::vector<int>& checkpoints, bool sleep = true);
 
 }  // namespace lab

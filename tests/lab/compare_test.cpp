@@ -136,6 +136,21 @@ TEST(PeerStack, ThreeBoxesStandInEveryEngine) {
   }
 }
 
+// Bullet puts the resting stack to sleep within four seconds, as it ships; asked not to, it keeps
+// every body awake, so its time is that of a world that steps everything, as ours does.
+TEST(PeerStack, BulletSleepsOnlyWhenAllowed) {
+  const std::vector<std::string> built = engines();
+  if (std::find(built.begin(), built.end(), "bullet") == built.end()) GTEST_SKIP() << "no Bullet in this lab";
+  const scenes::Scene scene = load(kStack);
+  const lab::PeerResult asleep = lab::runPeer("bullet", scene, kDt, 2 * kTwoSeconds, {2 * kTwoSeconds});
+  EXPECT_NE(asleep.unsupported.find("asleep"), std::string::npos) << asleep.unsupported;
+  const lab::PeerResult awake = lab::runPeer("bullet", scene, kDt, 2 * kTwoSeconds, {2 * kTwoSeconds}, false);
+  ASSERT_TRUE(awake.ran) << awake.unsupported;
+  EXPECT_EQ(awake.unsupported.find("asleep"), std::string::npos) << awake.unsupported;
+  EXPECT_NE(awake.settings.find("no sleeping"), std::string::npos) << awake.settings;
+  EXPECT_NEAR(awake.positions[0][2].y, 2.5, 0.05);  // and the stack stands
+}
+
 TEST(PeerFall, ABoxComesToRestAtItsHalfHeight) {
   const scenes::Scene scene = load(kFall);
   for (const std::string& engine : engines()) {
@@ -418,6 +433,7 @@ TEST(Compare, BadArgumentsExitWithUsage) {
                                              {"compare", "x", "--steps", "1e3"},
                                              {"compare", "x", "--dt", "2"},
                                              {"compare", "x", "--dt"},
+                                             {"compare", "x", "--peer-sleep", "maybe"},
                                              {"compare", "x", "--frobnicate"}}) {
     const Output o = compare(args);
     EXPECT_EQ(o.code, lab::kExitUsage) << args.back();

@@ -2,7 +2,8 @@
 // parts (btDefaultCollisionConfiguration, btCollisionDispatcher, btDbvtBroadphase,
 // btSequentialImpulseConstraintSolver) and the default btContactSolverInfo (10 iterations,
 // ERP 0.2, split impulse for penetration), stepped by stepSimulation(dt, 0): one substep of
-// exactly dt, no interpolation. Sleeping is left on, as Bullet ships it.
+// exactly dt, no interpolation. Sleeping is left on, as Bullet ships it, unless the description
+// asks for none (every body DISABLE_DEACTIVATION).
 //
 // Mapping: the ground is a btStaticPlaneShape; a box a btBoxShape with our mass and our
 // particles' inertia; a capsule a btCapsuleShape, whose core is along its local y as ours (the
@@ -136,7 +137,8 @@ class BulletEngine : public Engine {
         dt_(static_cast<btScalar>(dt)) {
     settings = "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) +
                (sizeof(btScalar) == 8 ? " (double)" : " (float)") + ": sequential impulse, " +
-               std::to_string(world_.getSolverInfo().m_numIterations) + " iterations, one step of dt";
+               std::to_string(world_.getSolverInfo().m_numIterations) + " iterations, one step of dt" +
+               (scene.sleep ? "" : ", no sleeping");
     world_.getPairCache()->setOverlapFilterCallback(&filter_);
     world_.setGravity(bt(scene.gravity));
 
@@ -165,6 +167,7 @@ class BulletEngine : public Engine {
                   btTransform(bt(b.orientation), bt(b.centre)), static_cast<int>(i));
       body->setFriction(static_cast<btScalar>(std::sqrt(b.friction)));
       body->setRestitution(static_cast<btScalar>(std::sqrt(scene.restitution)));
+      if (!scene.sleep) body->setActivationState(DISABLE_DEACTIVATION);
       if (!b.fixed) {
         body->setLinearVelocity(bt(b.velocity));
         body->setAngularVelocity(bt(b.angularVelocity));

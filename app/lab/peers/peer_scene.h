@@ -84,6 +84,10 @@ struct Description {
   double groundFriction = 0.0;  ///< dynamic coefficient
   double damping = 0.0;         ///< unit: 1/s; velocities decay as exp(-damping t)
   double restitution = 0.0;
+  /// Whether an engine with sleeping (Bullet's deactivation; ODE's auto-disable is off by default,
+  /// MuJoCo 2.2 has none) may put resting bodies to sleep. Not read from the scene: the lab's
+  /// choice (`lab compare --peer-sleep`).
+  bool sleep = true;
   std::vector<Body> bodies;
   std::vector<Pin> pins;
   std::vector<Distance> distances;

@@ -68,7 +68,7 @@ std::vector<std::string> peerEngines() {
 }
 
 PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double dt, int steps,
-                   const std::vector<int>& checkpoints) {
+                   const std::vector<int>& checkpoints, bool sleep) {
   PeerResult result;
   result.engine = std::string(engine);
   const Adapter* adapter = nullptr;
@@ -80,7 +80,8 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
     return result;
   }
 
-  const peers::Description description = peers::describe(scene);
+  peers::Description description = peers::describe(scene);
+  description.sleep = sleep;
   if (!description.refused.empty()) {
     result.unsupported = description.refused + " not expressed: not run";
     return result;
