@@ -306,19 +306,11 @@ void NarrowPhase::sizeState() {
 // should make of that is its own question.
 void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
   const Particles& particles = in.particles;
-  auto meanMove = [&](BodyId id) {  // in this substep, from x* to x
-    const Body& b = in.bodies[id];
-    Vec3 shift(0.0);
-    for (int j = 0; j < b.particleCount; ++j) {
-      const ParticleId p = b.firstParticle + j;
-      shift += particles.position[p] - particles.previous[p];
-    }
-    return shift / static_cast<Real>(std::max(1, b.particleCount));
-  };
   // Whether bodies a and b, which read as deep in at x*, were apart there having passed each other.
   auto passed = [&](BodyId a, BodyId b) {
     Obb startA = in.frames[a], startB = in.frames[b];
-    const Vec3 moveA = meanMove(a), moveB = meanMove(b);
+    const Vec3 moveA = detail::meanParticleMove(particles, in.bodies[a]);
+    const Vec3 moveB = detail::meanParticleMove(particles, in.bodies[b]);
     const Vec3 &ha = startA.halfExtents, &hb = startB.halfExtents;
     if (!(glm::length(moveB - moveA) > std::min({ha.x, ha.y, ha.z, hb.x, hb.y, hb.z}))) return false;
     startA.center -= moveA;

@@ -31,6 +31,17 @@ Embedding rigidPoint(const Body& body, const Obb& frame, const Vec3& point);
 /// null, gets how far the embedding carries the point off where it was (a capsule's: its face).
 Embedding surfacePoint(const Body& body, const Obb& frame, const Vec3& point, Vec3* moved = nullptr);
 
+/// A particle body's mean move in this substep, from x* to x (unit: m): what the sweep and the
+/// start overlaps take for the body's move when they put its frame back where the substep began.
+inline Vec3 meanParticleMove(const Particles& p, const Body& body) {
+  Vec3 sum(0.0);
+  for (int j = 0; j < body.particleCount; ++j) {
+    const ParticleId i = body.firstParticle + j;
+    sum += p.position[i] - p.previous[i];
+  }
+  return sum / static_cast<Real>(body.particleCount > 0 ? body.particleCount : 1);
+}
+
 /// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).
 /// `checked` (per particle) is given x too: what the guard found good at the end of the last

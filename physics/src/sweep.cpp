@@ -15,6 +15,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "passes.h"
 #include "physics/collision.h"
 #include "physics/world.h"
 #include "stage_timer.h"
@@ -29,12 +30,7 @@ void World::stopFastBodies() {
     const Body& b = bodies_[id];
     if (b.model == BodyModel::Rigid)
       return rigidBodies_.position[b.rigid] - rigidBodies_.previousPosition[b.rigid];
-    Vec3 sum(0.0);
-    for (int j = 0; j < b.particleCount; ++j) {
-      const ParticleId p = b.firstParticle + j;
-      sum += particles_.position[p] - particles_.previous[p];
-    }
-    return sum / static_cast<Real>(std::max(1, b.particleCount));
+    return detail::meanParticleMove(particles_, b);
   };
   // The broad phase's motions are over the step at the speeds it measured; what a substep can add
   // to them within the step (an impact, a joint) is bounded by the factor 2, and gravity's g dt h.
