@@ -311,8 +311,7 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
     Obb startA = in.frames[a], startB = in.frames[b];
     const Vec3 moveA = detail::meanParticleMove(particles, in.bodies[a]);
     const Vec3 moveB = detail::meanParticleMove(particles, in.bodies[b]);
-    const Vec3 &ha = startA.halfExtents, &hb = startB.halfExtents;
-    if (!(glm::length(moveB - moveA) > std::min({ha.x, ha.y, ha.z, hb.x, hb.y, hb.z}))) return false;
+    if (!(glm::length(moveB - moveA) > detail::thinnestHalfExtent(startA, startB))) return false;
     startA.center -= moveA;
     startB.center -= moveB;
     return !satTest(startA, startB).overlap;

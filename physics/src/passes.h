@@ -1,6 +1,7 @@
 #pragma once
 // The phases of one substep, each a free function over the world's arrays, so World::step
 // reads like the algorithm and each phase can be timed and tested alone. None allocates.
+#include <algorithm>
 #include <span>
 
 #include <glm/mat3x3.hpp>
@@ -40,6 +41,13 @@ inline Vec3 meanParticleMove(const Particles& p, const Body& body) {
     sum += p.position[i] - p.previous[i];
   }
   return sum / static_cast<Real>(body.particleCount > 0 ? body.particleCount : 1);
+}
+
+/// The thinnest half extent of two bodies' frames (unit: m): neither can be past the other's middle
+/// without moving at least this far, so a pair that moved less in a substep cannot have crossed.
+inline Real thinnestHalfExtent(const Obb& a, const Obb& b) {
+  const Vec3 &ha = a.halfExtents, &hb = b.halfExtents;
+  return std::min({ha.x, ha.y, ha.z, hb.x, hb.y, hb.z});
 }
 
 /// Verlet with velocity-only damping: x' = x + (1 - d)(x - x*) + a(x) h^2, x* = x, with

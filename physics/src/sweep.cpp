@@ -57,9 +57,7 @@ void World::stopFastBodies() {
     frames_[id].center += by;
   };
   for (const auto& [a, b] : broadPhase_.pairs()) {
-    const Vec3 &ha = frames_[a].halfExtents, &hb = frames_[b].halfExtents;
-    // Neither can be past the other's middle without moving at least the thinnest half extent.
-    const Real thinnest = std::min({ha.x, ha.y, ha.z, hb.x, hb.y, hb.z});
+    const Real thinnest = detail::thinnestHalfExtent(frames_[a], frames_[b]);
     const Real estimate =
         2.0 * glm::length(broadPhase_.motion(a).shift - broadPhase_.motion(b).shift) * perSubstep;
     if (!(estimate + gravityMove > thinnest)) continue;  // written so that NaN skips too

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -481,12 +480,10 @@ std::pair<Vec3, Vec3> World::rigidDescVelocity(BodyId id) const {
   require(body.model == BodyModel::Rigid, "rigidDescVelocity: the body is not of the rigid model");
   const RigidId i = body.rigid;
   const Real h = substepDt();
-  const Quat& q = rigidBodies_.orientation[i];
-  const Vec3& d = rigidBodies_.inverseInertia[i];
-  const Vec3& kept = rigidBodies_.angularVelocity[i];
-  const Vec3 velocity = rigidBodies_.velocity[i] + gravityAt(rigidBodies_.position[i]) * (h / 2);
-  const std::optional<Vec3> spin = detail::spinBeforeShift(q, d, kept, h);
-  return {velocity, spin ? *spin : kept + detail::freeSpinRate(q, d, kept) * (h / 2)};
+  // The spin of a substep of length 0 is w(0) itself: the same shift a change of substep makes.
+  return {rigidBodies_.velocity[i] + gravityAt(rigidBodies_.position[i]) * (h / 2),
+          detail::shiftedSpin(rigidBodies_.orientation[i], rigidBodies_.inverseInertia[i],
+                              rigidBodies_.angularVelocity[i], h, 0.0)};
 }
 
 Vec3 World::velocity(ParticleId id) const {

@@ -231,7 +231,7 @@ TEST(Converge, AParticleCapsuleIsMeasuredAgainstItsOwnInertia) {
   for (const auto& l : lab::convergeLines(lab::runConverge(file, o, target))) {
     const std::optional<double> p = lab::fittedOrder(l);
     ASSERT_TRUE(p.has_value()) << l.front().model;
-    EXPECT_NEAR(*p, 2.0, 0.15) << l.front().model;
+    EXPECT_NEAR(*p, 2.0, 0.1) << l.front().model;  // measured 2.00 for both at 8, 16, 32
   }
 }
 

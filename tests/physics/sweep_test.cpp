@@ -25,6 +25,12 @@ BodyDesc box(const Vec3& centre, const Vec3& size, double mass, BodyModel model)
   return d;
 }
 
+// Open space without gravity at one substep of 3 Gauss-Seidel passes: a fast body's whole move in
+// one substep, and nothing but the sweep and the contacts acting on it.
+phys::World weightless() {
+  return testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+}
+
 // bullet-200's shot in open space: a 0.2 m box of 1 kg at 200 m/s (3.33 m a step at 1 substep) at
 // a 0.1 m slab of 100 t, 2 m away. Without the sweep every model went through (the contact, found
 // after the first substep's move, had the bullet on the far side); with it the bullet stops at the
@@ -32,8 +38,7 @@ BodyDesc box(const Vec3& centre, const Vec3& size, double mass, BodyModel model)
 // allow, and the two move on together with the bullet's momentum: 200 / 100001 m/s.
 TEST(Sweep, ABulletStopsAtAThinWallForEveryModelAtOneSubstep) {
   for (const BodyModel model : kModels) {
-    phys::World world =
-        testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+    phys::World world = weightless();
     const BodyId wall = world.addBody(box(Vec3(0.0), {0.1, 3.0, 3.0}, 1e5, model));
     BodyDesc bullet = box({-2.0, 0.0, 0.0}, Vec3(0.2), 1.0, model);
     bullet.velocity = {200.0, 0.0, 0.0};
@@ -59,8 +64,7 @@ TEST(Sweep, ABulletStopsAtAThinWallForEveryModelAtOneSubstep) {
 // step, to 0); an equal share would leave it at 2.5 kg m.
 TEST(Sweep, TwoFastBodiesMeetWhereTheirMassesSay) {
   for (const BodyModel model : kModels) {
-    phys::World world =
-        testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+    phys::World world = weightless();
     BodyDesc left = box({-2.5, 0.0, 0.0}, Vec3(1.0), 1.0, model),
              right = box({2.5, 0.0, 0.0}, Vec3(1.0), 3.0, model);
     left.velocity = {150.0, 0.0, 0.0};
@@ -79,8 +83,7 @@ TEST(Sweep, TwoFastBodiesMeetWhereTheirMassesSay) {
 // start's widest gap (here across the wall), found the move overlapping there and stopped it.
 TEST(Sweep, ANearMissKeepsItsSpeed) {
   for (const BodyModel model : kModels) {
-    phys::World world =
-        testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+    phys::World world = weightless();
     world.addBody(box(Vec3(0.0), {0.1, 1.0, 3.0}, 1e5, model));
     BodyDesc fast = box({-1.0, 0.65, 0.0}, Vec3(0.2), 1.0, model);
     fast.velocity = {120.0, 0.0, 0.0};
@@ -98,8 +101,7 @@ TEST(Sweep, ANearMissKeepsItsSpeed) {
 // the top, and it fell past.
 TEST(Sweep, ADiagonalShotLandsOnTheFaceItReachesLast) {
   for (const BodyModel model : kModels) {
-    phys::World world =
-        testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+    phys::World world = weightless();
     world.addBody(box(Vec3(0.0), {4.0, 0.1, 3.0}, 1e5, model));
     BodyDesc fast = box({-2.4, 0.35, 0.0}, Vec3(0.2), 1.0, model);
     fast.velocity = {240.0, -45.0, 0.0};
@@ -139,8 +141,7 @@ TEST(Sweep, SweptSatFindsTheFirstTouch) {
 // on it at 20 m/s keeps its 100 m/s along the face.
 TEST(Sweep, SlidingAlongASurfaceIsKept) {
   for (const BodyModel model : kModels) {
-    phys::World world =
-        testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+    phys::World world = weightless();
     world.addBody(box(Vec3(0.0), {40.0, 0.1, 40.0}, 1e5, model));
     BodyDesc fast = box({-10.0, 0.2, 0.0}, Vec3(0.2), 1.0, model);
     fast.velocity = {100.0, -20.0, 0.0};  // 0.33 m down a step: more than the slab's 0.05 half
