@@ -3,12 +3,14 @@
 #include "physics/rigid_contacts.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include <glm/geometric.hpp>
 
 #include "passes.h"
+#include "rigid_block.h"
 #include "rigid_motion.h"
 #include "rigid_sides.h"
 
@@ -295,6 +297,220 @@ Real pushPatch(RigidPassInput& in, std::span<const RigidContact> contacts, Rigid
   return normal;
 }
 
+// A point of a rigid side (or of the ground, in the world) in its frame at the substep's start.
+Vec3 heldAtStart(const RigidPassInput& in, ContactSide side, RigidId rigid, const Vec3& world) {
+  if (side != ContactSide::Rigid) return world;
+  return glm::conjugate(in.rigid.previousOrientation[rigid]) * (world - in.rigid.previousPosition[rigid]);
+}
+
+// Where an anchor's point of a rigid side (or of the ground) is now.
+Vec3 heldNow(const RigidPassInput& in, ContactSide side, RigidId rigid, const Vec3& held) {
+  if (side != ContactSide::Rigid) return held;
+  return in.rigid.position[rigid] + in.rigid.orientation[rigid] * held;
+}
+
+// A patch of three to eight points whose sides are rigid bodies or the ground (a face on a face or
+// on the ground) is solved as one block (rigid_block.h): its points, its friction and its twist
+// together; and a body resting on several held bodies (a box across two boxes of a pyramid) takes
+// all of those patches in one block, so that each patch's push does not tip it on the others.
+// Other patches are solved point by point: one or two points (a capsule's ends, an edge) tip
+// nothing that a face could hold, and as blocks they made the rigid ragdolls' step 0.49 to 0.81 ms.
+bool solvesAsBlock(const RigidContact& first, std::size_t count) {
+  return count >= 3 && count <= kMostBlockPoints && first.sideA != ContactSide::Particles &&
+         first.sideB != ContactSide::Particles;
+}
+
+BlockBody blockBody(const RigidPassInput& in, ContactSide side, RigidId rigid, bool held) {
+  if (side != ContactSide::Rigid || held || in.rigid.inverseMass[rigid] == 0.0) return {};
+  return {true, rigid, in.rigid.inverseMass[rigid]};
+}
+
+// Two unit directions across the unit normal n, so that the friction rows see any slip.
+void across(const Vec3& n, Vec3& t1, Vec3& t2) {
+  t1 = glm::normalize(std::abs(n.x) < 0.6 ? glm::cross(n, Vec3(1.0, 0.0, 0.0))
+                                          : glm::cross(n, Vec3(0.0, 1.0, 0.0)));
+  t2 = glm::cross(n, t1);
+}
+
+constexpr std::size_t kNoRow = kMostBlockRows;
+
+// How a patch's rows enter a block. On its own, its A is the block's A and its B the block's B.
+// In a body's block only the body moves: it is the block's B, and when it is the patch's A its rows
+// are turned round (it moves along -n).
+struct PatchInBlock {
+  const ContactPatch* patch = nullptr;
+  Hold hold;
+  bool alone = true;
+  Real sign = 1.0;  // +1: the block's B is the patch's B; -1: the block's B is the patch's A
+  std::size_t points = 0, friction = 0, twist = kNoRow;  // its rows
+  Real radius = 0.0;                                     // unit: m; the twist's lever
+  bool rows = false;                                     // it presses, and has its friction rows
+  bool slides = false, turns = false;
+};
+
+// A row of the patch: what side A and side B of the patch do, put into the block.
+std::size_t addPatchRow(ConstraintBlock& block, const PatchInBlock& p, const Vec3& linear, const Vec3& armA,
+                        const Vec3& armB, Real error, Real lower = -ConstraintBlock::kFree,
+                        Real upper = ConstraintBlock::kFree) {
+  if (p.alone) return block.addRow(linear, armA, armB, error, lower, upper);
+  return p.sign > 0.0 ? block.addRow(linear, Vec3(0.0), armB, error, lower, upper)
+                      : block.addRow(-linear, Vec3(0.0), -armA, error, lower, upper);
+}
+
+// The lever arm of a side's point for the block: from its body's centre when it moves in the block.
+Vec3 leverFor(const RigidPassInput& in, ContactSide side, RigidId rigid, bool held, const Vec3& point) {
+  if (side != ContactSide::Rigid || held) return Vec3(0.0);
+  return point - in.rigid.position[rigid];
+}
+
+// The patch's position rows: its points along n, and, once it presses, its anchor's slip along two
+// directions and its twist.
+void addPositionRows(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                     RigidContactState& state, ConstraintBlock& block, PatchInBlock& p) {
+  const std::size_t lo = p.patch->first, hi = lo + p.patch->count;
+  const RigidContact& c = contacts[lo];
+  const Vec3 n = c.normal;
+  Vec3 centre(0.0);  // of the pressing points on B, in B's frame
+  int pressing = 0;
+  std::array<bool, kMostBlockPoints> presses{};
+  p.points = block.rows();
+  for (std::size_t k = lo; k < hi; ++k) {
+    const RigidContact& q = contacts[k];
+    const SideView va = viewA(in, q, p.hold.a), vb = viewB(in, q, p.hold.b);
+    const Real gap = separation(in, q, positionOf(in, va), positionOf(in, vb)) + state.allowance[k];
+    addPatchRow(block, p, n, glm::cross(va.at, n), glm::cross(vb.at, n), gap, -state.lambdaNormal[k]);
+    if (gap < 0.0) state.touched[k] = 1;
+    if (gap < 0.0 || state.lambdaNormal[k] > 0.0) {
+      presses[k - lo] = true;
+      centre += q.localB;
+      ++pressing;
+    }
+  }
+  p.rows = pressing > 0;
+  if (!p.rows) return;
+  centre /= static_cast<Real>(pressing);
+  p.radius = 0.0;
+  for (std::size_t k = lo; k < hi; ++k) {
+    if (presses[k - lo]) p.radius += glm::length(contacts[k].localB - centre);
+  }
+  p.radius /= static_cast<Real>(pressing);
+  PatchAnchor& anchor = state.anchors[p.patch->anchor];
+  // Held where it stuck while the same points press; a patch whose points move over B (a ball or a
+  // capsule rolling, its point on the ground placed anew each substep) holds only against the
+  // substep's own motion, as the 2020 paper has it: held at the old point, a rolling ball was braked.
+  if (!anchor.held || anchor.onB != centre) {
+    const Vec3 start = in.rigid.previousPosition[c.rigidB] + in.rigid.previousOrientation[c.rigidB] * centre;
+    anchor.onA = heldAtStart(in, c.sideA, c.rigidA, start);
+    anchor.onB = centre;
+    anchor.held = true;
+  }
+  const Vec3 onA = heldNow(in, c.sideA, c.rigidA, anchor.onA),
+             onB = heldNow(in, c.sideB, c.rigidB, anchor.onB);
+  const Vec3 slip = onB - onA;
+  const Vec3 leverA = leverFor(in, c.sideA, c.rigidA, p.hold.a, onA);
+  const Vec3 leverB = leverFor(in, c.sideB, c.rigidB, p.hold.b, onB);
+  Vec3 t1, t2;
+  across(n, t1, t2);
+  p.friction = block.rows();
+  for (const Vec3& t : {t1, t2})
+    addPatchRow(block, p, t, glm::cross(leverA, t), glm::cross(leverB, t), glm::dot(slip, t));
+  // One pressing point has no lever against a twist: the row would only ever be dropped.
+  if (p.radius > 0.0) p.twist = addPatchRow(block, p, Vec3(0.0), n, n, twistOf(in, c));
+}
+
+// The patch's normal impulse in the substep with the solve's added (kg m).
+Real normalWith(const RigidContactState& state, const PatchInBlock& p, std::span<const Real> delta) {
+  Real normal = 0.0;
+  for (std::uint32_t k = 0; k < p.patch->count; ++k)
+    normal += state.lambdaNormal[p.patch->first + k] + delta[p.points + k];
+  return normal;
+}
+
+// One position pass over a block of patches (rigid_block.h): points pushed apart, each anchor's
+// slip and each twist undone, all in one solve. A patch's friction rows are left out again (and its
+// anchor let go) when their impulse would pass mu_s times its normal impulse, as the 2020 paper's
+// static friction, and its twist's when that would pass mu_s times it times the patch's radius.
+void solvePositionBlock(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
+                        std::span<PatchInBlock> run, const BlockBody& a, const BlockBody& b) {
+  ConstraintBlock block(in.rigid, a, b);
+  if (!block.moves()) return;
+  bool presses = false;  // else every point is apart and stays so: no impulse to find
+  for (PatchInBlock& p : run) {
+    addPositionRows(in, contacts, state, block, p);
+    presses = presses || p.rows;
+  }
+  if (!presses) return;
+  block.build();
+  std::array<Real, kMostBlockRows> delta{};
+  block.solve(delta);
+  bool dropped = false;
+  for (PatchInBlock& p : run) {
+    if (!p.rows) continue;
+    const std::uint32_t lo = p.patch->first;
+    const Real limit = contacts[lo].combined.staticFriction * normalWith(state, p, delta);
+    p.slides = state.lambdaTangent[lo] + std::hypot(delta[p.friction], delta[p.friction + 1]) > limit;
+    p.turns = p.twist != kNoRow && state.twist[lo] + std::abs(delta[p.twist]) > limit * p.radius;
+    if (p.slides) {
+      block.drop(p.friction);
+      block.drop(p.friction + 1);
+      state.anchors[p.patch->anchor].held = false;
+    }
+    if (p.turns) block.drop(p.twist);
+    dropped = dropped || p.slides || p.turns;
+  }
+  if (dropped) block.solve(delta);
+  block.apply(in.rigid, delta);
+  for (const PatchInBlock& p : run) {
+    const std::uint32_t lo = p.patch->first;
+    for (std::uint32_t k = 0; k < p.patch->count; ++k) state.lambdaNormal[lo + k] += delta[p.points + k];
+    if (!p.rows) continue;
+    if (!p.slides) state.lambdaTangent[lo] += std::hypot(delta[p.friction], delta[p.friction + 1]);
+    if (p.twist != kNoRow && !p.turns) state.twist[lo] += std::abs(delta[p.twist]);
+  }
+}
+
+// The patches from `i` on that one block takes: the patch alone, or, when the first rests on a
+// held body, every following patch of the same body on a held body, as many as the block holds
+// (each with up to kMostPatchRows rows). Returns how many, and sets the block's two sides.
+std::size_t gatherRun(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                      const RigidContactState& state, std::span<const ContactPatch> patches, std::size_t i,
+                      std::array<PatchInBlock, kMostBlockRows / kMostPatchRows + 1>& run, BlockBody& a,
+                      BlockBody& b) {
+  auto resting = [&](const ContactPatch& patch, PatchInBlock& p) {
+    const RigidContact& c = contacts[patch.first];
+    p = {&patch, holdFor(in, contacts, state, patch.first, patch.first + patch.count)};
+    if (!solvesAsBlock(c, patch.count)) return BodyId{kNoBody};
+    if (c.sideA == ContactSide::Ground || p.hold.a) return c.bodyB;
+    return p.hold.b ? c.bodyA : kNoBody;
+  };
+  const BodyId body = resting(patches[i], run[0]);
+  const RigidContact& first = contacts[patches[i].first];
+  std::size_t count = 1;
+  if (body != kNoBody) {
+    std::size_t rows = patches[i].count + 3;
+    while (i + count < patches.size() && count < run.size()) {
+      const ContactPatch& next = patches[i + count];
+      if (resting(next, run[count]) != body || rows + next.count + 3 > kMostBlockRows) break;
+      rows += next.count + 3;
+      ++count;
+    }
+  }
+  if (count == 1) {
+    run[0].alone = true;
+    a = blockBody(in, first.sideA, first.rigidA, run[0].hold.a);
+    b = blockBody(in, first.sideB, first.rigidB, run[0].hold.b);
+    return 1;
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    run[k].alone = false;
+    run[k].sign = contacts[run[k].patch->first].bodyB == body ? 1.0 : -1.0;
+  }
+  const RigidContact& c = contacts[patches[i].first];
+  a = {};
+  b = c.bodyB == body ? blockBody(in, c.sideB, c.rigidB, false) : blockBody(in, c.sideA, c.rigidA, false);
+  return count;
+}
+
 }  // namespace
 
 void findPatches(const RigidPassInput& in, std::span<const RigidContact> contacts,
@@ -306,135 +522,202 @@ void findPatches(const RigidPassInput& in, std::span<const RigidContact> contact
            contacts[end].bodyB == contacts[k].bodyB)
       ++end;
     const RigidContact& c = contacts[k];
-    Real lower = -std::numeric_limits<Real>::infinity();  // the ground's patches first
+    Real upper = -std::numeric_limits<Real>::infinity();  // the ground's patches first
+    BodyId body = c.bodyB;
     if (c.sideA != ContactSide::Ground) {
-      lower = std::min(glm::dot(in.groundNormal, sideCentre(in, c.sideA, c.rigidA, c.pointA)),
-                       glm::dot(in.groundNormal, sideCentre(in, c.sideB, c.rigidB, c.pointB)));
+      const Real heightA = glm::dot(in.groundNormal, sideCentre(in, c.sideA, c.rigidA, c.pointA));
+      const Real heightB = glm::dot(in.groundNormal, sideCentre(in, c.sideB, c.rigidB, c.pointB));
+      upper = std::max(heightA, heightB);
+      if (heightA > heightB) body = c.bodyA;
     }
-    out.push_back({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(end - k), lower});
+    out.push_back({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(end - k), upper,
+                   static_cast<std::uint32_t>(out.size()), body});
     k = end;
   }
-  // Equal heights in the narrow phase's order (pairs by body id), so that the order does not depend
-  // on the sort's implementation; std::sort, as std::stable_sort allocates.
+  // Equal heights by the upper body, then in the narrow phase's order (pairs by body id), so that
+  // the order does not depend on the sort's implementation; std::sort, as std::stable_sort allocates.
   std::sort(out.begin(), out.end(), [](const ContactPatch& x, const ContactPatch& y) {
-    return x.height < y.height || (x.height == y.height && x.first < y.first);
+    if (x.height != y.height) return x.height < y.height;
+    if (x.upper != y.upper) return x.upper < y.upper;
+    return x.first < y.first;
   });
 }
+
+void carryAnchors(std::span<const RigidContact> contacts, std::span<const ContactPatch> patches,
+                  RigidContactState& state) {
+  std::swap(state.anchors, state.spareAnchors);
+  state.anchors.resize(patches.size());
+  const std::span<const PatchAnchor> before = state.spareAnchors;
+  auto key = [](const PatchAnchor& a) { return std::pair(a.bodyA, a.bodyB); };
+  for (const ContactPatch& patch : patches) {
+    const RigidContact& c = contacts[patch.first];
+    const std::pair pair(c.bodyA, c.bodyB);
+    PatchAnchor& anchor = state.anchors[patch.anchor];
+    // Most substeps keep the same patches in the same places; else the pairs are in ascending
+    // order, as the narrow phase finds them (and the ground's by body).
+    const PatchAnchor* found = nullptr;
+    if (patch.anchor < before.size() && key(before[patch.anchor]) == pair) {
+      found = &before[patch.anchor];
+    } else {
+      const auto it = std::lower_bound(before.begin(), before.end(), pair,
+                                       [&](const PatchAnchor& a, const auto& p) { return key(a) < p; });
+      if (it != before.end() && key(*it) == pair) found = &*it;
+    }
+    anchor = found ? *found : PatchAnchor{c.bodyA, c.bodyB};
+  }
+}
+
+namespace {
+
+// A patch with a particle body on a side, point after point: each pushed along n, then the patch's
+// static friction and twist at its centre.
+void solvePatchByPoints(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
+                        const ContactPatch& patch, Hold hold) {
+  const std::size_t lo = patch.first, hi = patch.first + patch.count;
+  const Real normal = pushPatch(in, contacts, state, lo, hi, hold);
+  if (normal <= 0.0) return;
+  // Static friction: the patch centre's tangential motion over the substep undone, and its twist,
+  // while the patch's tangential impulse, and its twist's over its radius, stay within mu_s
+  // times its normal impulse. Both are kept, summed over the passes, on the patch's first point.
+  const RigidContact& c = contacts[lo];
+  const Real limit = c.combined.staticFriction * normal;
+  const PatchCentre centre = centreOf(in, contacts, state, lo, hi, true);
+  Vec3 slide = (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
+  if (c.sideA == ContactSide::Ground) slide = centre.nowB - centre.startB;
+  slide -= glm::dot(slide, c.normal) * c.normal;
+  const Real length = glm::length(slide);
+  if (length > 0.0) {
+    const Vec3 t = slide / length;
+    const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
+    const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
+    const Real w = patchInverseMass(in, a, t) + patchInverseMass(in, b, t);
+    const Real dLambda = w > 0.0 ? length / w : 0.0;
+    if (dLambda > 0.0 && state.lambdaTangent[lo] + dLambda <= limit) {
+      applyAtCentre(in, contacts, state, lo, hi, false, a, dLambda * t, centre.count, false);
+      applyAtCentre(in, contacts, state, lo, hi, true, b, -dLambda * t, centre.count, false);
+      state.lambdaTangent[lo] += dLambda;
+    }
+  }
+  const Real twist = twistOf(in, c);
+  const Real w = twistInverseMass(in, c, hold);
+  if (twist != 0.0 && w > 0.0 && centre.radius > 0.0) {
+    const Real dL = -twist / w;  // angular impulse, kg m^2 (rad)
+    if (state.twist[lo] + std::abs(dL) <= limit * centre.radius) {
+      applyTwist(in, c, dL, false, hold);
+      state.twist[lo] += std::abs(dL);
+    }
+  }
+}
+
+// Restitution of the patch at its centre: a patch that approached faster than the resting speed
+// leaves at e times its mean approach, any other stops there. Point by point, a box landing flat
+// took the bounce on its first corner and turned, and rose to 22 cm of the 25 that e = 0.5 gives
+// from 1 m. False, and its anchor let go, when none of its points pressed in the substep.
+bool restitutePatch(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
+                    const ContactPatch& patch, Hold hold, Real restitution) {
+  const std::size_t lo = patch.first, hi = patch.first + patch.count;
+  Real approach = 0.0;
+  int touching = 0;
+  for (std::size_t k = lo; k < hi; ++k) {
+    if (state.lambdaNormal[k] <= 0.0) continue;
+    approach -= state.approach[k];
+    ++touching;
+  }
+  if (touching == 0) {
+    state.anchors[patch.anchor].held = false;
+    return false;
+  }
+  approach /= touching;
+  const RigidContact& c = contacts[lo];
+  // Velocity impulses leave the poses, and so the centre and its sides, as they are.
+  const PatchCentre centre = centreOf(in, contacts, state, lo, hi, false);
+  const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
+  const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
+  const Real speed =
+      glm::dot(c.normal, patchVelocity(in, contacts, state, lo, hi, true, b, centre.count) -
+                             patchVelocity(in, contacts, state, lo, hi, false, a, centre.count));
+  const Real change = (approach > in.restingSpeed ? restitution * approach : 0.0) - speed;
+  const Real w = patchInverseMass(in, a, c.normal) + patchInverseMass(in, b, c.normal);
+  if (change != 0.0 && w > 0.0) {
+    applyAtCentre(in, contacts, state, lo, hi, false, a, -(change / w) * c.normal, centre.count, true);
+    applyAtCentre(in, contacts, state, lo, hi, true, b, (change / w) * c.normal, centre.count, true);
+  }
+  return true;
+}
+
+// After its restitution, a patch with a particle body on a side: each point that still closes
+// stopped, then dynamic friction at the patch's centre, an impulse against the sliding of at most
+// mu_d times the patch's normal impulse (lambda_n / h) and never more than stops it; the same for
+// the twist.
+void stopPatchByPoints(RigidPassInput& in, std::span<const RigidContact> contacts,
+                       const RigidContactState& state, const ContactPatch& patch, Hold hold) {
+  const std::size_t lo = patch.first, hi = patch.first + patch.count;
+  const RigidContact& c = contacts[lo];
+  Real normal = 0.0;
+  for (std::size_t k = lo; k < hi; ++k) normal += std::max(state.lambdaNormal[k], 0.0);
+  const PatchCentre centre = centreOf(in, contacts, state, lo, hi, false);
+  const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
+  const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
+  for (std::size_t k = lo; k < hi; ++k) {
+    if (state.lambdaNormal[k] <= 0.0) continue;
+    const SideView pa = viewA(in, contacts[k], hold.a), pb = viewB(in, contacts[k], hold.b);
+    const Real speed = glm::dot(c.normal, velocityOf(in, pb) - velocityOf(in, pa));
+    const Real w = inverseMassAlong(in, pa, c.normal) + inverseMassAlong(in, pb, c.normal);
+    if (speed >= 0.0 || w == 0.0) continue;
+    const Vec3 p = (-speed / w) * c.normal;
+    kick(in, pa, -p);
+    kick(in, pb, p);
+  }
+  const Real limit = c.combined.dynamicFriction * normal / in.h;
+  Vec3 slide = patchVelocity(in, contacts, state, lo, hi, true, b, centre.count) -
+               patchVelocity(in, contacts, state, lo, hi, false, a, centre.count);
+  slide -= glm::dot(slide, c.normal) * c.normal;
+  const Real speed = glm::length(slide);
+  if (speed > 0.0) {
+    const Vec3 t = slide / speed;
+    const Real w = patchInverseMass(in, a, t) + patchInverseMass(in, b, t);
+    if (w > 0.0) {
+      const Real impulse = std::min(speed / w, limit);
+      applyAtCentre(in, contacts, state, lo, hi, false, a, impulse * t, centre.count, true);
+      applyAtCentre(in, contacts, state, lo, hi, true, b, -impulse * t, centre.count, true);
+    }
+  }
+  Real spin = 0.0;  // B's about the normal less A's (rad/s)
+  if (c.sideB == ContactSide::Rigid) spin += glm::dot(c.normal, in.rigid.angularVelocity[c.rigidB]);
+  if (c.sideA == ContactSide::Rigid) spin -= glm::dot(c.normal, in.rigid.angularVelocity[c.rigidA]);
+  const Real w = twistInverseMass(in, c, hold);
+  if (spin != 0.0 && w > 0.0 && centre.radius > 0.0) {
+    const Real L = std::min(std::abs(spin) / w, limit * centre.radius);
+    applyTwist(in, c, spin > 0.0 ? -L : L, true, hold);
+  }
+}
+
+using Run = std::array<PatchInBlock, kMostBlockRows / kMostPatchRows + 1>;
+
+}  // namespace
 
 void solveRigidContacts(const RigidPassInput& input, std::span<const RigidContact> contacts,
                         std::span<const ContactPatch> patches, RigidContactState& state) {
   RigidPassInput in = input;
-  for (const ContactPatch& patch : patches) {
-    const std::size_t lo = patch.first, hi = patch.first + patch.count;
-    const Hold hold = holdFor(in, contacts, state, lo, hi);
-    const Real normal = pushPatch(in, contacts, state, lo, hi, hold);
-    if (normal <= 0.0) continue;
-    // Static friction: the patch centre's tangential motion over the substep undone, and its twist,
-    // while the patch's tangential impulse, and its twist's over its radius, stay within mu_s
-    // times its normal impulse. Both are kept, summed over the passes, on the patch's first point.
-    const RigidContact& c = contacts[lo];
-    const Real limit = c.combined.staticFriction * normal;
-    const PatchCentre centre = centreOf(in, contacts, state, lo, hi, true);
-    Vec3 slide = (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
-    if (c.sideA == ContactSide::Ground) slide = centre.nowB - centre.startB;
-    slide -= glm::dot(slide, c.normal) * c.normal;
-    const Real length = glm::length(slide);
-    if (length > 0.0) {
-      const Vec3 t = slide / length;
-      const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
-      const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
-      const Real w = patchInverseMass(in, a, t) + patchInverseMass(in, b, t);
-      const Real dLambda = w > 0.0 ? length / w : 0.0;
-      if (dLambda > 0.0 && state.lambdaTangent[lo] + dLambda <= limit) {
-        applyAtCentre(in, contacts, state, lo, hi, false, a, dLambda * t, centre.count, false);
-        applyAtCentre(in, contacts, state, lo, hi, true, b, -dLambda * t, centre.count, false);
-        state.lambdaTangent[lo] += dLambda;
-      }
-    }
-    const Real twist = twistOf(in, c);
-    const Real w = twistInverseMass(in, c, hold);
-    if (twist != 0.0 && w > 0.0 && centre.radius > 0.0) {
-      const Real dL = -twist / w;  // angular impulse, kg m^2 (rad)
-      if (state.twist[lo] + std::abs(dL) <= limit * centre.radius) {
-        applyTwist(in, c, dL, false, hold);
-        state.twist[lo] += std::abs(dL);
-      }
-    }
+  Run run;
+  for (std::size_t i = 0; i < patches.size();) {
+    BlockBody a, b;
+    const std::size_t count = gatherRun(in, contacts, state, patches, i, run, a, b);
+    if (solvesAsBlock(contacts[patches[i].first], patches[i].count))
+      solvePositionBlock(in, contacts, state, std::span(run.data(), count), a, b);
+    else
+      solvePatchByPoints(in, contacts, state, patches[i], run[0].hold);
+    i += count;
   }
 }
 
 void rigidVelocityPass(const RigidPassInput& input, std::span<const RigidContact> contacts,
-                       std::span<const ContactPatch> patches, const RigidContactState& state,
-                       Real restitution) {
+                       std::span<const ContactPatch> patches, RigidContactState& state, Real restitution) {
   RigidPassInput in = input;
-  const Real minSpeed = in.restingSpeed;
   for (const ContactPatch& patch : patches) {
-    const std::size_t lo = patch.first, hi = patch.first + patch.count;
-    const Hold hold = holdFor(in, contacts, state, lo, hi);
-    // Restitution of the patch at its centre: a patch that approached faster than the resting speed
-    // leaves at e times its mean approach, any other stops there. Point by point, a box landing flat
-    // took the bounce on its first corner and turned, and rose to 22 cm of the 25 that e = 0.5 gives
-    // from 1 m. Then each point that still closes is stopped.
-    Real normal = 0.0, approach = 0.0;
-    int touching = 0;
-    for (std::size_t k = lo; k < hi; ++k) {
-      if (state.lambdaNormal[k] <= 0.0) continue;
-      normal += state.lambdaNormal[k];
-      approach -= state.approach[k];
-      ++touching;
-    }
-    if (touching == 0) continue;
-    approach /= touching;
-    const RigidContact& c = contacts[lo];
-    // Velocity impulses leave the poses, and so the centre and its sides, as they are.
-    const PatchCentre centre = centreOf(in, contacts, state, lo, hi, false);
-    const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
-    const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
-    {
-      const Real speed =
-          glm::dot(c.normal, patchVelocity(in, contacts, state, lo, hi, true, b, centre.count) -
-                                 patchVelocity(in, contacts, state, lo, hi, false, a, centre.count));
-      const Real change = (approach > minSpeed ? restitution * approach : 0.0) - speed;
-      const Real w = patchInverseMass(in, a, c.normal) + patchInverseMass(in, b, c.normal);
-      if (change != 0.0 && w > 0.0) {
-        applyAtCentre(in, contacts, state, lo, hi, false, a, -(change / w) * c.normal, centre.count, true);
-        applyAtCentre(in, contacts, state, lo, hi, true, b, (change / w) * c.normal, centre.count, true);
-      }
-    }
-    for (std::size_t k = lo; k < hi; ++k) {
-      if (state.lambdaNormal[k] <= 0.0) continue;
-      const SideView pa = viewA(in, contacts[k], hold.a), pb = viewB(in, contacts[k], hold.b);
-      const Real speed = glm::dot(c.normal, velocityOf(in, pb) - velocityOf(in, pa));
-      const Real w = inverseMassAlong(in, pa, c.normal) + inverseMassAlong(in, pb, c.normal);
-      if (speed >= 0.0 || w == 0.0) continue;
-      const Vec3 p = (-speed / w) * c.normal;
-      kick(in, pa, -p);
-      kick(in, pb, p);
-    }
-    // Dynamic friction at the patch's centre: an impulse against the sliding of at most mu_d times
-    // the patch's normal impulse (lambda_n / h), and never more than stops it; the same for the twist.
-    const Real limit = c.combined.dynamicFriction * normal / in.h;
-    Vec3 slide = patchVelocity(in, contacts, state, lo, hi, true, b, centre.count) -
-                 patchVelocity(in, contacts, state, lo, hi, false, a, centre.count);
-    slide -= glm::dot(slide, c.normal) * c.normal;
-    const Real speed = glm::length(slide);
-    if (speed > 0.0) {
-      const Vec3 t = slide / speed;
-      const Real w = patchInverseMass(in, a, t) + patchInverseMass(in, b, t);
-      if (w > 0.0) {
-        const Real impulse = std::min(speed / w, limit);
-        applyAtCentre(in, contacts, state, lo, hi, false, a, impulse * t, centre.count, true);
-        applyAtCentre(in, contacts, state, lo, hi, true, b, -impulse * t, centre.count, true);
-      }
-    }
-    Real spin = 0.0;  // B's about the normal less A's (rad/s)
-    if (c.sideB == ContactSide::Rigid) spin += glm::dot(c.normal, in.rigid.angularVelocity[c.rigidB]);
-    if (c.sideA == ContactSide::Rigid) spin -= glm::dot(c.normal, in.rigid.angularVelocity[c.rigidA]);
-    const Real w = twistInverseMass(in, c, hold);
-    if (spin != 0.0 && w > 0.0 && centre.radius > 0.0) {
-      const Real L = std::min(std::abs(spin) / w, limit * centre.radius);
-      applyTwist(in, c, spin > 0.0 ? -L : L, true, hold);
-    }
+    const Hold hold = holdFor(in, contacts, state, patch.first, patch.first + patch.count);
+    if (restitutePatch(in, contacts, state, patch, hold, restitution))
+      stopPatchByPoints(in, contacts, state, patch, hold);
   }
 }
 

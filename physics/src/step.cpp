@@ -153,6 +153,12 @@ void World::startRigidContacts(Real h) {
   detail::startRigidContacts(in, rigidGround_, rigidGroundState_, depenetration);
   detail::findPatches(in, narrowPhase_.rigidContacts(), rigidPatches_);
   detail::findPatches(in, rigidGround_, rigidGroundPatches_);
+  for (RigidContactState* state : {&narrowPhase_.rigidState(), &rigidGroundState_}) {
+    detail::keepRoom(state->anchors, narrowPhase_.rigidContacts().size() + rigidGround_.size(), room);
+    detail::keepRoom(state->spareAnchors, narrowPhase_.rigidContacts().size() + rigidGround_.size(), room);
+  }
+  detail::carryAnchors(narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState());
+  detail::carryAnchors(rigidGround_, rigidGroundPatches_, rigidGroundState_);
 }
 
 RigidPassInput World::rigidPassInput(Real h) {

@@ -1,12 +1,15 @@
 // The rigid body model (docs/physics.md, "Rigid bodies"): free motion against the exact answers
 // (free fall, Euler's equations), resting and stacking, friction and restitution against their
 // analytic answers, contacts with particle bodies, the guard, and bad input.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -217,6 +220,42 @@ TEST(RigidBody, StackOfTenStands) {
   const Vec3 start = world.bodyPose(top).center;
   for (int i = 0; i < 600; ++i) world.step();
   EXPECT_LT(glm::length(world.bodyPose(top).center - start), 0.02);
+  EXPECT_EQ(world.metrics().frozen, 0);
+}
+
+// The stability suite's stack of 40 stands a minute at one substep of one iteration, as the issue
+// asks (each patch one block, held at its anchor: docs/physics.md, "Standing for a minute").
+// Measured: the top box moves 1.1 cm, almost all of it in the first step; before the blocks and
+// anchors it needed 2 x 12 to stand 4 s.
+TEST(RigidBody, StackOfFortyStandsAMinuteAtOneSubstep) {
+  phys::World world({}, xpbd(1));
+  std::vector<BodyId> boxes;
+  for (int k = 0; k < 40; ++k)
+    boxes.push_back(world.addBody(rigidBox({k % 2 == 1 ? 0.01 : 0.0, 0.5 + k, 0.0})));
+  const Vec3 start = world.bodyPose(boxes.back()).center;
+  for (int i = 0; i < 3600; ++i) world.step();
+  EXPECT_LT(glm::length(world.bodyPose(boxes.back()).center - start), 0.03);
+  EXPECT_EQ(world.metrics().frozen, 0);
+}
+
+// A pyramid of 10 rows, each box across the seam of two below, stands 20 s at one substep: a box's
+// two patches are one block, so pushing on one does not tip it on the other. Measured: no box moves
+// more than 0.1 mm; pushed patch by patch (and held only against each substep's slip) the top of
+// the pyramid of 20 crept 0.57 m in a minute even at 8 substeps.
+TEST(RigidBody, PyramidStandsAtOneSubstep) {
+  phys::World world({}, xpbd(1));
+  std::vector<std::pair<BodyId, Vec3>> boxes;
+  const int rows = 10;
+  for (int row = 0; row < rows; ++row) {
+    for (int i = 0; i < rows - row; ++i) {
+      const Vec3 at(-0.5 * (rows - row - 1) + i, 0.5 + row, 0.0);
+      boxes.emplace_back(world.addBody(rigidBox(at)), at);
+    }
+  }
+  for (int i = 0; i < 1200; ++i) world.step();
+  Real worst = 0.0;
+  for (const auto& [box, at] : boxes) worst = std::max(worst, glm::length(world.bodyPose(box).center - at));
+  EXPECT_LT(worst, 1e-3);
   EXPECT_EQ(world.metrics().frozen, 0);
 }
 

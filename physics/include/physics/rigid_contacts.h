@@ -43,17 +43,36 @@ struct RigidContact {
 /// tangential motion and its twist about the normal, against mu times the patch's normal impulse).
 struct ContactPatch {
   std::uint32_t first = 0, count = 0;
-  Real height = 0.0;  ///< unit: m; of the lower body along the ground's normal: the passes' order
+  /// unit: m; of the upper body along the ground's normal (-infinity on the ground): the passes'
+  /// order, so that a body's patches with the bodies under it come one after another
+  Real height = 0.0;
+  std::uint32_t anchor = 0;  ///< its PatchAnchor: the patch's place in the contacts' order
+  BodyId upper = kNoBody;    ///< the upper body (B on the ground)
+};
+
+/// Where static friction holds a patch, kept from substep to substep and from step to step while it
+/// holds and the same points press: one point, where the patch's centre on B was when it stuck,
+/// fixed in each body (in the world for the ground). Static friction pulls the two back together,
+/// so a slip left over in one substep is undone in the next instead of adding up: held only against
+/// each substep's own motion, as the 2020 paper has it, the top of a rigid pyramid of 20 rows went
+/// 0.57 m in 60 s, and 0.29 m with anchors alone (docs/physics.md, "Standing for a minute"). A
+/// patch with a particle body on a side keeps no anchor.
+struct PatchAnchor {
+  BodyId bodyA = kNoBody, bodyB = kNoBody;  ///< the patch's pair, to find it again
+  Vec3 onA{0.0}, onB{0.0};                  ///< unit: m; in A's frame (the world's for the ground), in B's
+  bool held = false;
 };
 
 /// What the passes keep per contact for one substep, index for index with the contacts.
 struct RigidContactState {
-  std::vector<Real> lambdaNormal;     ///< unit: kg m; the substep's normal positional impulse so far
-  std::vector<Real> lambdaTangent;    ///< unit: kg m; static friction's, per patch (on its first point)
-  std::vector<Real> twist;            ///< unit: kg m^2; static friction's against twisting, per patch
-  std::vector<Real> approach;         ///< unit: m/s; separation speed before the passes (< 0 closing)
-  std::vector<Real> allowance;        ///< unit: m; the overlap the point may keep in this substep
-  std::vector<std::uint8_t> touched;  ///< pushed in the last substep
+  std::vector<Real> lambdaNormal;         ///< unit: kg m; the substep's normal positional impulse so far
+  std::vector<Real> lambdaTangent;        ///< unit: kg m; static friction's, per patch (on its first point)
+  std::vector<Real> twist;                ///< unit: kg m^2; static friction's against twisting, per patch
+  std::vector<Real> approach;             ///< unit: m/s; separation speed before the passes (< 0 closing)
+  std::vector<Real> allowance;            ///< unit: m; the overlap the point may keep in this substep
+  std::vector<std::uint8_t> touched;      ///< pushed in the last substep
+  std::vector<PatchAnchor> anchors;       ///< per patch, in the contacts' order (ContactPatch::anchor)
+  std::vector<PatchAnchor> spareAnchors;  ///< the last substep's, while they are carried over
 
   void resize(std::size_t n);
 };
@@ -85,19 +104,24 @@ void startRigidContacts(const RigidPassInput& in, std::span<const RigidContact> 
 /// body up, so that each body is set on what is below it after that has been set.
 void findPatches(const RigidPassInput& in, std::span<const RigidContact> contacts,
                  std::vector<ContactPatch>& out);
+/// Each patch's anchor from the last substep's, found by its pair; a new patch's is not held yet.
+void carryAnchors(std::span<const RigidContact> contacts, std::span<const ContactPatch> patches,
+                  RigidContactState& state);
 /// One position pass over the patches: each point pushed apart along its normal by positional
-/// impulses, then the patch held by static friction while its tangential impulse stays within mu_s
-/// times its normal one. A resting patch between two bodies one above the other is solved by shock
-/// propagation: the lower body is held still (Guendelman, Bridson, Fedkiw 2003).
+/// impulses, and the patch held at its anchor by static friction while its tangential impulse stays
+/// within mu_s times its normal one. A resting patch between two bodies one above the other is
+/// solved by shock propagation: the lower body is held still (Guendelman, Bridson, Fedkiw 2003).
+/// A patch between rigid bodies or on the ground is one block, points and friction together, and
+/// a body resting on several held bodies takes all of those patches in one block (rigid_block.h).
 void solveRigidContacts(const RigidPassInput& in, std::span<const RigidContact> contacts,
                         std::span<const ContactPatch> patches, RigidContactState& state);
 /// After the velocities are derived: restitution (a point that approached faster than
 /// `in.restingSpeed` leaves at e times that speed; any other stops closing), then dynamic friction
 /// at each patch's centre (an impulse against the sliding of at most mu_d times the patch's normal
-/// impulse), with the same shock propagation.
+/// impulse), with the same shock propagation. A patch that pressed in none of the substep's passes
+/// lets go of its anchor.
 void rigidVelocityPass(const RigidPassInput& in, std::span<const RigidContact> contacts,
-                       std::span<const ContactPatch> patches, const RigidContactState& state,
-                       Real restitution);
+                       std::span<const ContactPatch> patches, RigidContactState& state, Real restitution);
 }  // namespace detail
 
 }  // namespace phys

@@ -1,0 +1,76 @@
+#pragma once
+// A few constraint rows between two rigid bodies solved together (docs/physics.md, "A patch as one
+// block"): a contact patch's points along its normal, its two friction directions and its twist.
+// Each row is a Jacobian: B moves along `linear` and turns about `armB`; A the other way. The
+// block's K_rs = sum over the moving sides of (1/m) linear_r . linear_s + arm_r . I^-1 arm_s, and
+// projected Gauss-Seidel over numbers alone finds the impulses; each body then takes them as one
+// push and one turn. Solved one row after another on the bodies, each row turned a box before the
+// next was read, and a patch's friction, applied at its face, tipped a box that its points then
+// had to right: a rigid stack of 40 swayed by millimetres and its top boxes hopped.
+#include <array>
+#include <cstddef>
+#include <limits>
+#include <span>
+
+#include <glm/mat3x3.hpp>
+
+#include "physics/rigid_bodies.h"
+
+namespace phys::detail {
+
+/// The most points a patch solved as a block holds: a box's corners near the ground.
+inline constexpr std::size_t kMostBlockPoints = 8;
+/// A patch's rows: its points, two friction directions and its twist.
+inline constexpr std::size_t kMostPatchRows = kMostBlockPoints + 3;
+/// A block's rows: a body on two held boxes (two patches of 4 points) with room to spare.
+inline constexpr std::size_t kMostBlockRows = 16;
+/// Projected Gauss-Seidel sweeps over a block's numbers: at most this many, and no more once a
+/// sweep changes no impulse by more than kBlockTolerance of the largest.
+inline constexpr int kBlockSweeps = 8;
+inline constexpr Real kBlockTolerance = 1e-3;
+
+/// One side of a block: a rigid body that moves, or one that answers nothing (the ground, a
+/// frozen body, or one held still by shock propagation).
+struct BlockBody {
+  bool moves = false;
+  RigidId rigid{};
+  Real inverseMass = 0.0;  ///< unit: 1/kg
+};
+
+/// The rows, their bounds and K. Bounds are on the impulse this solve adds (delta), so a caller
+/// that keeps a row's impulse over several passes gives its lower bound as minus what it has.
+class ConstraintBlock {
+ public:
+  static constexpr Real kFree = std::numeric_limits<Real>::infinity();
+
+  ConstraintBlock(const RigidBodies& bodies, BlockBody a, BlockBody b) : bodies_(bodies), a_(a), b_(b) {}
+
+  bool moves() const { return a_.moves || b_.moves; }
+  std::size_t rows() const { return rows_; }
+  bool full(std::size_t more) const { return rows_ + more > kMostBlockRows; }
+  /// A row: its Jacobian, its error (m or rad), and its impulse's bounds.
+  std::size_t addRow(const Vec3& linear, const Vec3& armA, const Vec3& armB, Real error, Real lower = -kFree,
+                     Real upper = kFree);
+  /// A row left out of the next solve (its impulse 0), as static friction is when it cannot hold.
+  void drop(std::size_t row) { dropped_[row] = true; }
+  /// Each row's I^-1 arm and K_rr; once, before the solves.
+  void build();
+  /// The positional impulses (kg m, or kg m^2 for a turn), one per row.
+  void solve(std::span<Real> delta) const;
+  /// Each moving body given the positional impulses: one push and one turn.
+  void apply(RigidBodies& bodies, std::span<const Real> delta) const;
+
+ private:
+  template <bool kTurnA>
+  void sweep(std::span<Real> delta) const;
+
+  const RigidBodies& bodies_;
+  BlockBody a_, b_;
+  std::size_t rows_ = 0;
+  std::array<Vec3, kMostBlockRows> linear_, armA_, armB_, turnA_, turnB_;
+  std::array<Real, kMostBlockRows> error_{}, lower_{}, upper_{};
+  std::array<bool, kMostBlockRows> dropped_{};
+  std::array<Real, kMostBlockRows> inverseDiagonal_{};  // 1 / K_rr, or 0 for a row nothing answers
+};
+
+}  // namespace phys::detail
