@@ -1,18 +1,17 @@
 #pragma once
-// A few constraint rows between two rigid bodies solved together (docs/physics.md, "A patch as one
-// block"): a contact patch's points along its normal, its two friction directions and its twist.
-// Each row is a Jacobian: B moves along `linear` and turns about `armB`; A the other way. The
-// block's K_rs = sum over the moving sides of (1/m) linear_r . linear_s + arm_r . I^-1 arm_s, and
-// projected Gauss-Seidel over numbers alone finds the impulses; each body then takes them as one
-// push and one turn. Solved one row after another on the bodies, each row turned a box before the
-// next was read, and a patch's friction, applied at its face, tipped a box that its points then
-// had to right: a rigid stack of 40 swayed by millimetres and its top boxes hopped.
+// A few constraint rows between two rigid bodies solved together (docs/physics.md, "Standing for a
+// minute"): a contact patch's points along its normal, its two friction directions and its twist,
+// or those of a body's patches on the bodies under it. Each row is a Jacobian: B moves along
+// `linear` and turns about `armB`; A the other way. Projected Gauss-Seidel over numbers alone finds
+// the impulses, each row's residual read from the push and turn the impulses so far give the two
+// bodies; each body then takes them as one push and one turn. Solved one row after another on the
+// bodies, each row turned a box before the next was read, and a patch's friction, applied at its
+// face, tipped a box that its points then had to right: a rigid stack of 40 swayed by millimetres
+// and its top boxes hopped.
 #include <array>
 #include <cstddef>
 #include <limits>
 #include <span>
-
-#include <glm/mat3x3.hpp>
 
 #include "physics/rigid_bodies.h"
 
@@ -37,7 +36,7 @@ struct BlockBody {
   Real inverseMass = 0.0;  ///< unit: 1/kg
 };
 
-/// The rows, their bounds and K. Bounds are on the impulse this solve adds (delta), so a caller
+/// The rows and their bounds. Bounds are on the impulse this solve adds (delta), so a caller
 /// that keeps a row's impulse over several passes gives its lower bound as minus what it has.
 class ConstraintBlock {
  public:
@@ -47,8 +46,8 @@ class ConstraintBlock {
 
   bool moves() const { return a_.moves || b_.moves; }
   std::size_t rows() const { return rows_; }
-  bool full(std::size_t more) const { return rows_ + more > kMostBlockRows; }
-  /// A row: its Jacobian, its error (m or rad), and its impulse's bounds.
+  /// A row: its Jacobian, its error (m or rad), and its impulse's bounds; at most kMostBlockRows
+  /// (gatherRun in rigid_contacts.cpp keeps a block within them).
   std::size_t addRow(const Vec3& linear, const Vec3& armA, const Vec3& armB, Real error, Real lower = -kFree,
                      Real upper = kFree);
   /// A row left out of the next solve (its impulse 0), as static friction is when it cannot hold.
