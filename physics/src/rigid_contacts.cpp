@@ -469,13 +469,15 @@ void solvePositionBlock(RigidPassInput& in, std::span<const RigidContact> contac
   }
 }
 
+// The patches one block takes: as many as fit kMostBlockRows, each with up to kMostPatchRows rows.
+using Run = std::array<PatchInBlock, kMostBlockRows / kMostPatchRows + 1>;
+
 // The patches from `i` on that one block takes: the patch alone, or, when the first rests on a
 // held body, every following patch of the same body on a held body, as many as the block holds
 // (each with up to kMostPatchRows rows). Returns how many, and sets the block's two sides.
 std::size_t gatherRun(const RigidPassInput& in, std::span<const RigidContact> contacts,
                       const RigidContactState& state, std::span<const ContactPatch> patches, std::size_t i,
-                      std::array<PatchInBlock, kMostBlockRows / kMostPatchRows + 1>& run, BlockBody& a,
-                      BlockBody& b) {
+                      Run& run, BlockBody& a, BlockBody& b) {
   auto resting = [&](const ContactPatch& patch, PatchInBlock& p) {
     const RigidContact& c = contacts[patch.first];
     p = {&patch, holdFor(in, contacts, state, patch.first, patch.first + patch.count)};
@@ -691,8 +693,6 @@ void stopPatchByPoints(RigidPassInput& in, std::span<const RigidContact> contact
     applyTwist(in, c, spin > 0.0 ? -L : L, true, hold);
   }
 }
-
-using Run = std::array<PatchInBlock, kMostBlockRows / kMostPatchRows + 1>;
 
 }  // namespace
 
