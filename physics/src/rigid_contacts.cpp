@@ -344,7 +344,7 @@ struct PatchInBlock {
   Real sign = 1.0;  // +1: the block's B is the patch's B; -1: the block's B is the patch's A
   std::size_t points = 0, friction = 0, twist = kNoRow;  // its rows
   Real radius = 0.0;                                     // unit: m; the twist's lever
-  bool rows = false;                                     // it presses, and has its friction rows
+  bool presses = false;                                  // a point presses, so it has its friction rows
   bool slides = false, turns = false;
 };
 
@@ -372,7 +372,7 @@ void addPositionRows(const RigidPassInput& in, std::span<const RigidContact> con
   const Vec3 n = c.normal;
   Vec3 centre(0.0);  // of the pressing points on B, in B's frame
   int pressing = 0;
-  std::array<bool, kMostBlockPoints> presses{};
+  std::array<bool, kMostBlockPoints> pressed{};
   p.points = block.rows();
   for (std::size_t k = lo; k < hi; ++k) {
     const RigidContact& q = contacts[k];
@@ -381,17 +381,17 @@ void addPositionRows(const RigidPassInput& in, std::span<const RigidContact> con
     addPatchRow(block, p, n, glm::cross(va.at, n), glm::cross(vb.at, n), gap, -state.lambdaNormal[k]);
     if (gap < 0.0) state.touched[k] = 1;
     if (gap < 0.0 || state.lambdaNormal[k] > 0.0) {
-      presses[k - lo] = true;
+      pressed[k - lo] = true;
       centre += q.localB;
       ++pressing;
     }
   }
-  p.rows = pressing > 0;
-  if (!p.rows) return;
+  p.presses = pressing > 0;
+  if (!p.presses) return;
   centre /= static_cast<Real>(pressing);
   p.radius = 0.0;
   for (std::size_t k = lo; k < hi; ++k) {
-    if (presses[k - lo]) p.radius += glm::length(contacts[k].localB - centre);
+    if (pressed[k - lo]) p.radius += glm::length(contacts[k].localB - centre);
   }
   p.radius /= static_cast<Real>(pressing);
   PatchAnchor& anchor = state.anchors[p.patch->anchor];
@@ -434,18 +434,18 @@ void solvePositionBlock(RigidPassInput& in, std::span<const RigidContact> contac
                         std::span<PatchInBlock> run, const BlockBody& a, const BlockBody& b) {
   ConstraintBlock block(in.rigid, a, b);
   if (!block.moves()) return;
-  bool presses = false;  // else every point is apart and stays so: no impulse to find
+  bool anyPresses = false;  // else every point is apart and stays so: no impulse to find
   for (PatchInBlock& p : run) {
     addPositionRows(in, contacts, state, block, p);
-    presses = presses || p.rows;
+    anyPresses = anyPresses || p.presses;
   }
-  if (!presses) return;
+  if (!anyPresses) return;
   block.build();
   std::array<Real, kMostBlockRows> delta{};
   block.solve(delta);
   bool dropped = false;
   for (PatchInBlock& p : run) {
-    if (!p.rows) continue;
+    if (!p.presses) continue;
     const std::uint32_t lo = p.patch->first;
     const Real limit = contacts[lo].combined.staticFriction * normalWith(state, p, delta);
     p.slides = state.lambdaTangent[lo] + std::hypot(delta[p.friction], delta[p.friction + 1]) > limit;
@@ -463,7 +463,7 @@ void solvePositionBlock(RigidPassInput& in, std::span<const RigidContact> contac
   for (const PatchInBlock& p : run) {
     const std::uint32_t lo = p.patch->first;
     for (std::uint32_t k = 0; k < p.patch->count; ++k) state.lambdaNormal[lo + k] += delta[p.points + k];
-    if (!p.rows) continue;
+    if (!p.presses) continue;
     if (!p.slides) state.lambdaTangent[lo] += std::hypot(delta[p.friction], delta[p.friction + 1]);
     if (p.twist != kNoRow && !p.turns) state.twist[lo] += std::abs(delta[p.twist]);
   }
@@ -486,7 +486,7 @@ std::size_t gatherRun(const RigidPassInput& in, std::span<const RigidContact> co
     return p.hold.b ? c.bodyA : kNoBody;
   };
   const BodyId body = resting(patches[i], run[0]);
-  const RigidContact& first = contacts[patches[i].first];
+  const RigidContact& c = contacts[patches[i].first];
   std::size_t count = 1;
   if (body != kNoBody) {
     std::size_t rows = patches[i].count + 3;
@@ -499,15 +499,14 @@ std::size_t gatherRun(const RigidPassInput& in, std::span<const RigidContact> co
   }
   if (count == 1) {
     run[0].alone = true;
-    a = blockBody(in, first.sideA, first.rigidA, run[0].hold.a);
-    b = blockBody(in, first.sideB, first.rigidB, run[0].hold.b);
+    a = blockBody(in, c.sideA, c.rigidA, run[0].hold.a);
+    b = blockBody(in, c.sideB, c.rigidB, run[0].hold.b);
     return 1;
   }
   for (std::size_t k = 0; k < count; ++k) {
     run[k].alone = false;
     run[k].sign = contacts[run[k].patch->first].bodyB == body ? 1.0 : -1.0;
   }
-  const RigidContact& c = contacts[patches[i].first];
   a = {};
   b = c.bodyB == body ? blockBody(in, c.sideB, c.rigidB, false) : blockBody(in, c.sideA, c.rigidA, false);
   return count;

@@ -153,9 +153,11 @@ void World::startRigidContacts(Real h) {
   detail::startRigidContacts(in, rigidGround_, rigidGroundState_, depenetration);
   detail::findPatches(in, narrowPhase_.rigidContacts(), rigidPatches_);
   detail::findPatches(in, rigidGround_, rigidGroundPatches_);
-  for (RigidContactState* state : {&narrowPhase_.rigidState(), &rigidGroundState_}) {
-    detail::keepRoom(state->anchors, narrowPhase_.rigidContacts().size() + rigidGround_.size(), room);
-    detail::keepRoom(state->spareAnchors, narrowPhase_.rigidContacts().size() + rigidGround_.size(), room);
+  // An anchor per patch, in two lists that trade places each substep (carryAnchors).
+  for (auto [state, patches] : {std::pair{&narrowPhase_.rigidState(), rigidPatches_.size()},
+                                std::pair{&rigidGroundState_, rigidGroundPatches_.size()}}) {
+    detail::keepRoom(state->anchors, patches, room);
+    detail::keepRoom(state->spareAnchors, patches, room);
   }
   detail::carryAnchors(narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState());
   detail::carryAnchors(rigidGround_, rigidGroundPatches_, rigidGroundState_);

@@ -63,7 +63,8 @@ struct PatchAnchor {
   bool held = false;
 };
 
-/// What the passes keep per contact for one substep, index for index with the contacts.
+/// What the passes keep per contact for one substep, index for index with the contacts, and each
+/// patch's anchor, which outlives the substep.
 struct RigidContactState {
   std::vector<Real> lambdaNormal;         ///< unit: kg m; the substep's normal positional impulse so far
   std::vector<Real> lambdaTangent;        ///< unit: kg m; static friction's, per patch (on its first point)
@@ -111,8 +112,9 @@ void carryAnchors(std::span<const RigidContact> contacts, std::span<const Contac
 /// impulses, and the patch held at its anchor by static friction while its tangential impulse stays
 /// within mu_s times its normal one. A resting patch between two bodies one above the other is
 /// solved by shock propagation: the lower body is held still (Guendelman, Bridson, Fedkiw 2003).
-/// A patch between rigid bodies or on the ground is one block, points and friction together, and
-/// a body resting on several held bodies takes all of those patches in one block (rigid_block.h).
+/// A patch of 3 to 8 points between rigid bodies or on the ground is one block, points and friction
+/// together, and a body resting on several held bodies takes all of those patches in one block
+/// (rigid_block.h).
 void solveRigidContacts(const RigidPassInput& in, std::span<const RigidContact> contacts,
                         std::span<const ContactPatch> patches, RigidContactState& state);
 /// After the velocities are derived: restitution (a point that approached faster than
