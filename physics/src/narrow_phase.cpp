@@ -309,30 +309,40 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
   // Whether bodies a and b, which read as deep in at x*, were apart there having passed each other.
   auto passed = [&](BodyId a, BodyId b) {
     Obb startA = in.frames[a], startB = in.frames[b];
-    const Vec3 moveA = detail::meanParticleMove(particles, in.bodies[a]);
-    const Vec3 moveB = detail::meanParticleMove(particles, in.bodies[b]);
+    const Vec3 moveA = detail::bodyMove(particles, in.rigid, in.bodies[a]);
+    const Vec3 moveB = detail::bodyMove(particles, in.rigid, in.bodies[b]);
     if (!(glm::length(moveB - moveA) > detail::thinnestHalfExtent(startA, startB))) return false;
     startA.center -= moveA;
     startB.center -= moveB;
     return !satTest(startA, startB).overlap;
   };
+  rigidState_.resize(rigidContacts_.size());
   for (Manifold& m : manifolds_) {
     Real overlap = -std::numeric_limits<Real>::infinity();
-    if (m.rigid) {  // the rigid passes measure their own; the parting leaves rigid bodies alone
-      m.overlap = overlap;
-      continue;
-    }
+    // The start overlaps, "for now": the parting moves them with the bodies, then the depenetration
+    // limit makes them what each point may keep.
+    std::span<Real> start =
+        m.rigid ? std::span<Real>(rigidState_.allowance) : std::span<Real>(state_.allowance);
     for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
-      const BodyContact& c = contacts_[k];
-      const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles.previous, c.pointB) -
-                                                   detail::embeddedPosition(particles.previous, c.pointA)) -
-                            c.offset;
-      state_.allowance[k] = -(startGap + in.contactSlop);  // the start overlap, for now
-      overlap = std::max(overlap, state_.allowance[k]);
+      if (m.rigid) {
+        const RigidContact& c = rigidContacts_[k];
+        const Vec3 pA =
+            detail::sidePosition(particles, in.rigid, c.sideA, c.rigidA, c.localA, c.pointA, true);
+        const Vec3 pB =
+            detail::sidePosition(particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, true);
+        start[k] = -glm::dot(c.normal, pB - pA);
+      } else {
+        const BodyContact& c = contacts_[k];
+        const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles.previous, c.pointB) -
+                                                     detail::embeddedPosition(particles.previous, c.pointA)) -
+                              c.offset;
+        start[k] = -(startGap + in.contactSlop);
+      }
+      overlap = std::max(overlap, start[k]);
     }
     if (overlap > in.featureEpsilon && passed(m.a, m.b)) {
       for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
-        state_.allowance[k] = std::min(state_.allowance[k], 0.0);
+        start[k] = std::min(start[k], 0.0);
       }
       overlap = std::min(overlap, 0.0);
     }

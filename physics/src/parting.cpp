@@ -64,8 +64,8 @@ void Parting::reserve(std::size_t pairs, std::size_t bodies) {
 // Bullet's pile, whose neighbours' hands start 5.5 cm into each other, threw them at 120 m/s at
 // 128 substeps. Overlaps within one such group are left to the projections.
 void Parting::part(Particles& particles, std::span<const Body> bodies, std::span<const Manifold> manifolds,
-                   std::span<Real> contactAllowance, const PartingGround& ground, Real featureEpsilon,
-                   const PartingSettings& settings) {
+                   std::span<Real> contactAllowance, const PartingGround& ground, const PartingRigid& rigid,
+                   Real featureEpsilon, const PartingSettings& settings) {
   const Real epsilon = featureEpsilon;
   for (BodyId id{}; id < bodies.size(); ++id) root_[id] = group(id);
   bool deep = false;
@@ -73,7 +73,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
   push_.resize(manifolds.size());
   for (std::size_t k = 0; k < manifolds.size(); ++k) {
     const Manifold& m = manifolds[k];
-    if (m.rigid || root_[m.a] == root_[m.b]) {  // a rigid body's overlaps are its own passes' to part
+    if (root_[m.a] == root_[m.b]) {
       need_[k] = -std::numeric_limits<Real>::infinity();  // nothing to part: one group
       continue;
     }
@@ -89,6 +89,10 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
       Real& depth = groundNeed_[root_[ground.contacts[c].body]];
       depth = std::max(depth, ground.allowance[c]);  // a group's depth is its deepest box's
     }
+    for (std::size_t c = 0; c < rigid.ground.size(); ++c) {
+      Real& depth = groundNeed_[root_[rigid.bodies.body[rigid.ground[c].rigidB]]];
+      depth = std::max(depth, rigid.groundOverlap[c]);
+    }
     for (Real& depth : groundNeed_) {
       deep = deep || depth > epsilon;
       depth = depth > epsilon ? depth : std::min(depth, 0.0);
@@ -101,7 +105,10 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
   for (BodyId id{}; id < bodies.size(); ++id) {
     const Body& box = bodies[id];
     Real& mass = weight_[root_[id]];
-    if (box.model == BodyModel::Rigid) mass = std::numeric_limits<Real>::infinity();  // it stays
+    if (box.model == BodyModel::Rigid) {
+      const Real w = rigid.bodies.inverseMass[box.rigid];
+      mass = w == 0.0 ? std::numeric_limits<Real>::infinity() : mass + 1.0 / w;  // frozen: it stays
+    }
     for (int j = 0; j < box.particleCount; ++j) {
       const Real w = particles.inverseMass[box.firstParticle + j];
       mass = w == 0.0 ? std::numeric_limits<Real>::infinity() : mass + 1.0 / w;  // pinned or frozen: it stays
@@ -179,6 +186,10 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
     const Vec3 t = shift_[root_[id]];
     if (t == Vec3(0.0)) continue;
     const Body& box = bodies[id];
+    if (box.model == BodyModel::Rigid) {
+      rigid.bodies.position[box.rigid] += t;
+      rigid.bodies.previousPosition[box.rigid] += t;
+    }
     for (int j = 0; j < box.particleCount; ++j) {
       particles.position[box.firstParticle + j] += t;
       particles.previous[box.firstParticle + j] += t;
@@ -186,13 +197,16 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
   }
   // The start overlaps the depenetration limit is reckoned from move with the boxes.
   for (const Manifold& m : manifolds) {
-    if (m.rigid) continue;
     const Real parted = glm::dot(m.normal, shift_[root_[m.b]] - shift_[root_[m.a]]);
-    for (std::uint32_t k = 0; k < m.contactCount; ++k) contactAllowance[m.firstContact + k] -= parted;
+    const std::span<Real> overlap = m.rigid ? rigid.contactOverlap : contactAllowance;
+    for (std::uint32_t k = 0; k < m.contactCount; ++k) overlap[m.firstContact + k] -= parted;
   }
   for (std::size_t c = 0; c < ground.contacts.size() && ground.enabled; ++c) {
     const BodyId body = ground.contacts[c].body;
     if (body != kNoBody) ground.allowance[c] -= glm::dot(up, shift_[root_[body]]);
+  }
+  for (std::size_t c = 0; c < rigid.ground.size(); ++c) {
+    rigid.groundOverlap[c] -= glm::dot(up, shift_[root_[rigid.bodies.body[rigid.ground[c].rigidB]]]);
   }
 }
 

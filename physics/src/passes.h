@@ -12,6 +12,7 @@
 #include "physics/constraints.h"
 #include "physics/link_layout.h"
 #include "physics/particles.h"
+#include "physics/rigid_bodies.h"
 #include "physics/settings.h"
 #include "physics/stick_layout.h"
 
@@ -41,6 +42,13 @@ inline Vec3 meanParticleMove(const Particles& p, const Body& body) {
     sum += p.position[i] - p.previous[i];
   }
   return sum / static_cast<Real>(body.particleCount > 0 ? body.particleCount : 1);
+}
+
+/// Any body's move in this substep (unit: m): a rigid body's centre's, from its previous pose to
+/// now; a particle body's mean particle move.
+inline Vec3 bodyMove(const Particles& p, const RigidBodies& rigid, const Body& body) {
+  if (body.model == BodyModel::Rigid) return rigid.position[body.rigid] - rigid.previousPosition[body.rigid];
+  return meanParticleMove(p, body);
 }
 
 /// The thinnest half extent of two bodies' frames (unit: m): neither can be past the other's middle

@@ -88,18 +88,25 @@ Vec3 sidePosition(const Particles& particles, const RigidBodies& r, ContactSide 
   return Vec3(0.0);
 }
 
+void measureRigidGroundStarts(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                              RigidContactState& state) {
+  state.resize(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const RigidContact& c = contacts[k];
+    const Vec3 startB = sidePosition(in.particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, true);
+    state.allowance[k] = -separation(in, c, Vec3(0.0), startB);
+  }
+}
+
 void startRigidContacts(const RigidPassInput& in, std::span<const RigidContact> contacts,
                         RigidContactState& state, Real depenetration) {
-  state.resize(contacts.size());
   std::fill(state.lambdaNormal.begin(), state.lambdaNormal.end(), 0.0);
   std::fill(state.lambdaTangent.begin(), state.lambdaTangent.end(), 0.0);
   std::fill(state.twist.begin(), state.twist.end(), 0.0);
   std::fill(state.touched.begin(), state.touched.end(), std::uint8_t{0});
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const RigidContact& c = contacts[k];
-    const Vec3 startA = sidePosition(in.particles, in.rigid, c.sideA, c.rigidA, c.localA, c.pointA, true);
-    const Vec3 startB = sidePosition(in.particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, true);
-    const Real startOverlap = -separation(in, c, startA, startB);
+    const Real startOverlap = state.allowance[k];
     state.allowance[k] = startOverlap > depenetration ? startOverlap - depenetration : 0.0;
     const SideView a = viewA(in, c), b = viewB(in, c);
     state.approach[k] = glm::dot(c.normal, velocityOf(in, b) - velocityOf(in, a));

@@ -34,6 +34,13 @@ void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real
   for (const BodyPoint* end : {&a, &b}) {
     if (end->side == ContactSide::Rigid) rigidBodies_.jointed[end->rigid] = 1;
   }
+  // The parting moves the two bodies as one, as it does those of a link between particles.
+  auto bodyOf = [this](const BodyPoint& end) {
+    return end.side == ContactSide::Rigid ? rigidBodies_.body[end.rigid]
+                                          : particleBody_[end.point.particle[0]];
+  };
+  const BodyId bodyA = bodyOf(a), bodyB = bodyOf(b);
+  if (bodyA != kNoBody && bodyB != kNoBody && bodyA != bodyB) parting_.join(bodyA, bodyB);
 }
 
 void World::addJoint(const JointDesc& d) {
@@ -78,6 +85,7 @@ void World::addJoint(const JointDesc& d) {
   j.damping = d.damping;
   constraints_.addRigidJoint(j);
   rigidBodies_.jointed[j.a] = rigidBodies_.jointed[j.b] = 1;
+  parting_.join(d.a, d.b);  // moved as one by the parting, as a ragdoll's particle parts are
 }
 
 JointDesc World::jointDesc(std::size_t k) const {

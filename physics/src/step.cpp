@@ -44,8 +44,7 @@ void World::step() {
     fitBodyFrames();
     const bool newPairs = findPairs(s == 0);
     stopFastBodies();
-    findContacts(newPairs);
-    if (s == 0 || newPairs) collectRigidGround();
+    findContacts(newPairs, s == 0, h);
     partOverlaps();
     measureApproaches(h);
     startRigidContacts(h);
@@ -106,8 +105,11 @@ bool World::findPairs(bool firstSubstep) {
   return true;
 }
 
-void World::findContacts(bool newPairs) {
-  if (bodies_.size() < 2 && !world_.ground) return;
+// The contacts between bodies are found when the broad phase found its pairs (`newPairs`), and
+// measured again in the step's other substeps; the rigid bodies' ground contacts, in the first
+// substep and with new pairs.
+void World::findContacts(bool newPairs, bool firstSubstep, Real h) {
+  if (bodies_.size() < 2 && !world_.ground && rigidGround_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::NarrowPhase);
   if (bodies_.size() >= 2) {
     const NarrowPhaseInput in = narrowPhaseInput();
@@ -117,16 +119,22 @@ void World::findContacts(bool newPairs) {
       narrowPhase_.refresh(in);
     narrowPhase_.measureStarts(in);
   }
-  if (!world_.ground) return;
-  ground_.placeCapsulePoints(bodies_, frames_, world_.groundNormal);
-  // Each contact's overlap at x*, where the substep starts: what the parting measures, and
-  // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
-  detail::measureGroundStartDepth(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
-                                  ground_.state().allowance);
+  if (world_.ground) {
+    ground_.placeCapsulePoints(bodies_, frames_, world_.groundNormal);
+    // Each contact's overlap at x*, where the substep starts: what the parting measures, and
+    // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
+    detail::measureGroundStartDepth(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
+                                    ground_.state().allowance);
+  }
+  if (firstSubstep || newPairs) collectRigidGround();
+  if (rigidGround_.empty()) return;
+  placeRigidCapsulePoints();
+  detail::measureRigidGroundStarts(rigidPassInput(h), rigidGround_, rigidGroundState_);
 }
 
 NarrowPhaseInput World::narrowPhaseInput() const {
   return {particles_,
+          rigidBodies_,
           bodies_,
           frames_,
           broadPhase_,
@@ -142,7 +150,6 @@ NarrowPhaseInput World::narrowPhaseInput() const {
 void World::startRigidContacts(Real h) {
   if (rigidBodies_.size() == 0) return;
   const detail::StageTimer timer(profile_, Stage::Contacts);
-  placeRigidCapsulePoints();
   const RigidPassInput in = rigidPassInput(h);
   const Real depenetration = solver_.maxDepenetrationSpeed * h;
   // Room for the patches, as for the contacts (room.h): a patch has at least one point.
@@ -190,7 +197,9 @@ void World::partOverlaps() {
   if (bodies_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::Parting);
   const PartingGround ground{world_.ground, world_.groundNormal, ground_.points(), ground_.state().allowance};
-  parting_.part(particles_, bodies_, narrowPhase_.manifolds(), narrowPhase_.state().allowance, ground,
+  const PartingRigid rigid{rigidBodies_, narrowPhase_.rigidState().allowance, rigidGround_,
+                           rigidGroundState_.allowance};
+  parting_.part(particles_, bodies_, narrowPhase_.manifolds(), narrowPhase_.state().allowance, ground, rigid,
                 solver_.featureEpsilon, solver_.parting);
 }
 

@@ -26,12 +26,7 @@ void World::stopFastBodies() {
   if (bodies_.size() < 2 || broadPhase_.pairs().empty()) return;
   const detail::StageTimer timer(profile_, Stage::Sweep);
   // The body's mean move in this substep, from its start (x* or the previous pose) to now.
-  auto shiftOf = [&](BodyId id) -> Vec3 {
-    const Body& b = bodies_[id];
-    if (b.model == BodyModel::Rigid)
-      return rigidBodies_.position[b.rigid] - rigidBodies_.previousPosition[b.rigid];
-    return detail::meanParticleMove(particles_, b);
-  };
+  auto shiftOf = [&](BodyId id) { return detail::bodyMove(particles_, rigidBodies_, bodies_[id]); };
   // The broad phase's motions are over the step at the speeds it measured; what a substep can add
   // to them within the step (an impact, a joint) is bounded by the factor 2, and gravity's g dt h.
   const Real h = substepDt(), perSubstep = h / solver_.dt, gravityMove = gravityMagnitude() * solver_.dt * h;

@@ -48,6 +48,7 @@ struct BodyContactState {
 /// What the narrow phase reads of the world in a substep.
 struct NarrowPhaseInput {
   const Particles& particles;
+  const RigidBodies& rigid;
   std::span<const Body> bodies;
   std::span<const Obb> frames;  ///< each body's frame in this substep
   const BroadPhase& broadPhase;
@@ -71,10 +72,10 @@ class NarrowPhase {
   /// In the step's other substeps: kept manifolds follow their reference face; the others are
   /// collided again.
   void refresh(const NarrowPhaseInput& in);
-  /// Each point's overlap beyond the slop at x*, where the substep starts, each manifold's
-  /// deepest, and no point touched yet. An overlap deeper than the feature epsilon of a pair that
-  /// moved past each other's half thickness is checked against the two bodies' frames at x*: if
-  /// those were apart, it was no overlap (see the .cpp).
+  /// Each point's overlap at x*, where the substep starts (a particle pair's beyond the slop; a
+  /// rigid pair's at the bodies' previous poses), each manifold's deepest, and no point touched yet. An
+  /// overlap deeper than the feature epsilon of a pair that moved past each other's half thickness is checked
+  /// against the two bodies' frames at x*: if those were apart, it was no overlap (see the .cpp).
   void measureStarts(const NarrowPhaseInput& in);
 
   /// How far apart two bodies' points can be and still close within the step. unit: m

@@ -1,8 +1,9 @@
 #pragma once
 // Parting without velocity (Stage::Parting): overlaps deeper than the feature epsilon that a
-// substep starts with are removed by moving bodies whole, x and x* alike, solved together for all
-// pairs and the ground (docs/physics.md, "Where energy could come from nowhere"). Bodies joined by
-// sticks or links move as one group; the groups are a union-find over the bodies it owns.
+// substep starts with are removed by moving bodies whole, x and x* alike (a rigid body's position
+// and previous position), solved together for all pairs and the ground (docs/physics.md, "Where
+// energy could come from nowhere"). Bodies joined by sticks, links or joints move as one group; the
+// groups are a union-find over the bodies it owns.
 #include <span>
 #include <vector>
 
@@ -10,6 +11,8 @@
 #include "physics/constraints.h"
 #include "physics/narrow_phase.h"
 #include "physics/particles.h"
+#include "physics/rigid_bodies.h"
+#include "physics/rigid_contacts.h"
 #include "physics/settings.h"
 
 namespace phys {
@@ -22,6 +25,16 @@ struct PartingGround {
   std::span<Real> allowance;  ///< unit: m; per contact, its depth at x*: moves with the bodies
 };
 
+/// The rigid bodies as the parting sees them: their poses, which it moves, and the start overlaps of
+/// their contacts, which move with them.
+struct PartingRigid {
+  RigidBodies& bodies;
+  std::span<Real>
+      contactOverlap;  ///< unit: m; per NarrowPhase::rigidContacts() point, its overlap at the start
+  std::span<const RigidContact> ground;
+  std::span<Real> groundOverlap;  ///< unit: m; per rigid ground contact, its depth at the start
+};
+
 class Parting {
  public:
   /// Makes room for one more body, a group of its own, whose id is the number of bodies before it.
@@ -31,11 +44,12 @@ class Parting {
   /// Makes room for the pairs' scratch (room.h), so that the step does not allocate.
   void reserve(std::size_t pairs, std::size_t bodies);
   /// Parts the overlaps deeper than `featureEpsilon` (m) that the manifolds and the ground start
-  /// the substep with; the contacts' start overlaps (`contactAllowance`, the ground's) move with
-  /// the bodies.
+  /// the substep with, moving particle bodies' x and x* and rigid bodies' position and previous
+  /// position alike; the contacts' start overlaps (`contactAllowance`, the ground's, the rigid
+  /// ones) move with the bodies.
   void part(Particles& particles, std::span<const Body> bodies, std::span<const Manifold> manifolds,
-            std::span<Real> contactAllowance, const PartingGround& ground, Real featureEpsilon,
-            const PartingSettings& settings);
+            std::span<Real> contactAllowance, const PartingGround& ground, const PartingRigid& rigid,
+            Real featureEpsilon, const PartingSettings& settings);
 
  private:
   BodyId group(BodyId id);

@@ -97,8 +97,14 @@ namespace detail {
 /// A contact side's point now, and where the same point was at the start of the substep.
 Vec3 sidePosition(const Particles& particles, const RigidBodies& rigidBodies, ContactSide side, RigidId rigid,
                   const Vec3& local, const Embedding& point, bool previous);
-/// The overlap at the substep's start, the approach speeds, and no impulse yet; `depenetration`
-/// (m) is how much of a start overlap the substep may remove (SolverSettings::maxDepenetrationSpeed h).
+/// Each ground contact's overlap at the substep's start (the body's previous pose) into
+/// state.allowance, where the parting moves it with the body (NarrowPhase::measureStarts does the
+/// same for the contacts between bodies).
+void measureRigidGroundStarts(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                              RigidContactState& state);
+/// From the start overlaps in state.allowance, what each point may keep: all but
+/// `depenetration` (m, SolverSettings::maxDepenetrationSpeed h) of it; the approach speeds, and no
+/// impulse yet.
 void startRigidContacts(const RigidPassInput& in, std::span<const RigidContact> contacts,
                         RigidContactState& state, Real depenetration);
 /// The contacts' patches in the order the passes take them: the ground's first, then from the lowest

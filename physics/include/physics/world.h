@@ -243,7 +243,7 @@ class World {
   void fitBodyFrames();
   bool findPairs(bool firstSubstep);
   void stopFastBodies();
-  void findContacts(bool newPairs);
+  void findContacts(bool newPairs, bool firstSubstep, Real h);
   void partOverlaps();
   void measureApproaches(Real h);
   std::span<const Real> limitCorrections(Real h);
