@@ -37,6 +37,13 @@ std::array<int, 4> faceCorners(int axis, Real sign) {
   return {base, base | u, base | u | v, base | v};
 }
 
+Polygon featurePolygon(const Obb& box, const SupportFeature& f) {
+  Polygon p;
+  p.n = static_cast<int>(f.feature);
+  for (int i = 0; i < p.n; ++i) p.v[i] = box.corner(f.corners[i]);
+  return p;
+}
+
 // Face cases: clip the incident feature against the reference face's four side planes; each
 // point below the reference plane is a contact, with its partner on that plane.
 void faceContact(const Obb& reference, const Vec3& referenceNormal, const Polygon& incident,
@@ -63,24 +70,27 @@ void faceContact(const Obb& reference, const Vec3& referenceNormal, const Polygo
     c.onA = referenceIsA ? onReference : point;
     c.onB = referenceIsA ? point : onReference;
   };
-  for (int i = 0; i < p.n; ++i) add(p.v[i]);
-  if (out.count == 0) {
-    // The incident feature overlaps the reference box beside the reference face (a corner
-    // poking in near its edge): clipping leaves nothing, so keep its deepest vertex.
+  // Clipping may leave nothing: the incident feature lies beside the reference face (a corner
+  // poking in near its edge). Its deepest corner is kept if it is within the margin of the face's
+  // sides. Farther out it is below the face's plane only where the plane extends past the face,
+  // and a point there would push where the boxes do not touch; the caller then looks at the edges
+  // (collideBoxes).
+  if (p.n == 0) {
     int deepest = 0;
     for (int i = 1; i < incident.n; ++i) {
       if (glm::dot(n, incident.v[i]) < glm::dot(n, incident.v[deepest])) deepest = i;
     }
-    add(incident.v[deepest]);
+    const Vec3 offset = incident.v[deepest] - reference.center;
+    bool nearFace = true;
+    for (int k = 1; k <= 2; ++k) {
+      const int side = (axis + k) % 3;
+      nearFace = nearFace &&
+                 std::abs(glm::dot(reference.axes[side], offset)) <= reference.halfExtents[side] + margin;
+    }
+    if (nearFace) p.v[p.n++] = incident.v[deepest];
   }
+  for (int i = 0; i < p.n; ++i) add(p.v[i]);
   out.sat.normal = referenceIsA ? n : -n;  // keep "from A towards B"
-}
-
-Polygon featurePolygon(const Obb& box, const SupportFeature& f) {
-  Polygon p;
-  p.n = static_cast<int>(f.feature);
-  for (int i = 0; i < p.n; ++i) p.v[i] = box.corner(f.corners[i]);
-  return p;
 }
 
 // Edge and vertex cases: one point, the closest points of the two features.
@@ -152,10 +162,10 @@ bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& o
   return collideBoxes(a, b, featureEpsilon, featureEpsilon, out);
 }
 
-bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out) {
-  out.sat = satTest(a, b, margin);
-  out.count = 0;
-  if (!out.sat.overlap) return false;
+namespace {
+
+// The contact points along the normal out.sat holds (from A towards B).
+void contactAlong(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out) {
   const Vec3 n = out.sat.normal;
   // The features are told apart by the feature epsilon, not the margin: a feature that took in
   // every corner within a speculative margin made a resting part of a ragdoll tilted a centimetre
@@ -177,6 +187,34 @@ bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, 
       faceContact(b, -n, featurePolygon(a, fa), false, margin, out);
   } else {
     closestFeatureContact(a, fa, b, fb, out);
+  }
+}
+
+}  // namespace
+
+bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out) {
+  out.sat = satTest(a, b, margin);
+  out.count = 0;
+  if (!out.sat.overlap) return false;
+  contactAlong(a, b, featureEpsilon, margin, out);
+  if (out.count == 0 && out.sat.edgeAxis >= 0 && out.sat.axis != out.sat.edgeAxis) {
+    // The face the SAT chose has nothing of the other box over it, nor near it (limbs crossed at
+    // their edges, the other box's corner far beside the face): the contact is where the edges of
+    // the edge-edge axis meet, measured along the face's normal still, so that the normal does not
+    // turn from step to step with the choice (docs/physics.md, "Box-box contact").
+    const SatResult face = out.sat;
+    out.sat.axis = face.edgeAxis;
+    out.sat.depth = face.edgeDepth;
+    out.sat.normal = face.edgeNormal;
+    contactAlong(a, b, featureEpsilon, margin, out);
+    out.sat = face;
+    int kept = 0;
+    for (int i = 0; i < out.count; ++i) {
+      ContactPoint c = out.points[i];
+      c.depth = -glm::dot(face.normal, c.onB - c.onA);
+      if (c.depth >= -margin) out.points[kept++] = c;
+    }
+    out.count = kept;
   }
   return out.count > 0;
 }

@@ -85,6 +85,9 @@ SatResult satTest(const Obb& a, const Obb& b, Real margin) {
   r.axis = best.axis;
   r.depth = best.depth;
   r.normal = glm::dot(best.normal, t) < 0.0 ? -best.normal : best.normal;  // from A towards B
+  r.edgeAxis = edge.axis;
+  r.edgeDepth = edge.depth;
+  r.edgeNormal = glm::dot(edge.normal, t) < 0.0 ? -edge.normal : edge.normal;
   return r;
 }
 

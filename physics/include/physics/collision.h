@@ -27,6 +27,11 @@ struct SatResult {
   int axis = -1;
   Real depth = 0.0;  ///< unit: m; penetration along the axis when overlapping
   Vec3 normal{0.0};  ///< unit vector from A towards B
+  /// The shallowest edge-edge axis, which the face bias may have passed over (-1: none, every pair
+  /// of edges near parallel), with its penetration (m) and its unit normal from A towards B.
+  int edgeAxis = -1;
+  Real edgeDepth = 0.0;
+  Vec3 edgeNormal{0.0};
 };
 
 /// Tolerances that bias the choice towards face axes, so the contact normal does not flip
