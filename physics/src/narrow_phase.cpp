@@ -325,12 +325,7 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
         m.rigid ? std::span<Real>(rigidState_.allowance) : std::span<Real>(state_.allowance);
     for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
       if (m.rigid) {
-        const RigidContact& c = rigidContacts_[k];
-        const Vec3 pA =
-            detail::sidePosition(particles, in.rigid, c.sideA, c.rigidA, c.localA, c.pointA, true);
-        const Vec3 pB =
-            detail::sidePosition(particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, true);
-        start[k] = -glm::dot(c.normal, pB - pA);
+        start[k] = detail::startOverlap(particles, in.rigid, rigidContacts_[k], 0.0);  // never the ground
       } else {
         const BodyContact& c = contacts_[k];
         const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles.previous, c.pointB) -

@@ -90,7 +90,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
       depth = std::max(depth, ground.allowance[c]);  // a group's depth is its deepest box's
     }
     for (std::size_t c = 0; c < rigid.ground.size(); ++c) {
-      Real& depth = groundNeed_[root_[rigid.bodies.body[rigid.ground[c].rigidB]]];
+      Real& depth = groundNeed_[root_[rigid.ground[c].bodyB]];
       depth = std::max(depth, rigid.groundOverlap[c]);
     }
     for (Real& depth : groundNeed_) {
@@ -206,7 +206,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
     if (body != kNoBody) ground.allowance[c] -= glm::dot(up, shift_[root_[body]]);
   }
   for (std::size_t c = 0; c < rigid.ground.size(); ++c) {
-    rigid.groundOverlap[c] -= glm::dot(up, shift_[root_[rigid.bodies.body[rigid.ground[c].rigidB]]]);
+    rigid.groundOverlap[c] -= glm::dot(up, shift_[root_[rigid.ground[c].bodyB]]);
   }
 }
 

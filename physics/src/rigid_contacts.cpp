@@ -88,14 +88,19 @@ Vec3 sidePosition(const Particles& particles, const RigidBodies& r, ContactSide 
   return Vec3(0.0);
 }
 
+Real startOverlap(const Particles& particles, const RigidBodies& r, const RigidContact& c,
+                  Real groundHeight) {
+  const Vec3 b = sidePosition(particles, r, c.sideB, c.rigidB, c.localB, c.pointB, true);
+  if (c.sideA == ContactSide::Ground) return groundHeight - glm::dot(c.normal, b);
+  const Vec3 a = sidePosition(particles, r, c.sideA, c.rigidA, c.localA, c.pointA, true);
+  return -glm::dot(c.normal, b - a);
+}
+
 void measureRigidGroundStarts(const RigidPassInput& in, std::span<const RigidContact> contacts,
                               RigidContactState& state) {
   state.resize(contacts.size());
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const RigidContact& c = contacts[k];
-    const Vec3 startB = sidePosition(in.particles, in.rigid, c.sideB, c.rigidB, c.localB, c.pointB, true);
-    state.allowance[k] = -separation(in, c, Vec3(0.0), startB);
-  }
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    state.allowance[k] = startOverlap(in.particles, in.rigid, contacts[k], in.groundHeight);
 }
 
 void startRigidContacts(const RigidPassInput& in, std::span<const RigidContact> contacts,

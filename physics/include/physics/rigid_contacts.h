@@ -97,6 +97,10 @@ namespace detail {
 /// A contact side's point now, and where the same point was at the start of the substep.
 Vec3 sidePosition(const Particles& particles, const RigidBodies& rigidBodies, ContactSide side, RigidId rigid,
                   const Vec3& local, const Embedding& point, bool previous);
+/// A contact's overlap at the substep's start (m; < 0 apart): along its normal between its sides at
+/// their previous poses, or below the ground plane n . x = groundHeight.
+Real startOverlap(const Particles& particles, const RigidBodies& rigidBodies, const RigidContact& c,
+                  Real groundHeight);
 /// Each ground contact's overlap at the substep's start (the body's previous pose) into
 /// state.allowance, where the parting moves it with the body (NarrowPhase::measureStarts does the
 /// same for the contacts between bodies).
