@@ -1,5 +1,6 @@
 #include "physics/body.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace phys {
@@ -59,6 +60,11 @@ Vec3 solidCapsuleInertia(Real radius, Real halfSegment, Real mass) {
   const Real across =
       mc * (H * H / 12.0 + r * r / 4.0) + ms * (2.0 * r * r / 5.0 + H * H / 4.0 + 3.0 * H * r / 8.0);
   return Vec3(across, axial, across);
+}
+
+Vec3 flooredInertia(const Vec3& inertia, Real floor) {
+  const Real largest = std::max({inertia.x, inertia.y, inertia.z});
+  return glm::max(inertia, Vec3(floor * largest));
 }
 
 std::array<Real, 4> tetraWeights(const Vec3& u) {

@@ -30,6 +30,7 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   require(validate(desc.material).empty(), "friction coefficients must be finite and >= 0");
   require(std::isfinite(desc.jointDamping) && desc.jointDamping >= 0.0,
           "joint damping must be finite and >= 0 (1/s)");
+  require(desc.inertiaFloor >= 0.0 && desc.inertiaFloor <= 1.0, "inertia floor must be from 0 to 1");
   const Quat q = desc.orientation / qLength;
   const Vec3 hips = desc.hips, fromHips(0.0, hipHeight, 0.0);
   const Real scale = desc.scale;
@@ -50,6 +51,7 @@ BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
       break;
     case RagdollModel::Rigid:
       box.model = BodyModel::Rigid;
+      box.inertiaFloor = desc.inertiaFloor;
       break;
   }
   box.material = desc.material;

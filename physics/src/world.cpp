@@ -310,6 +310,7 @@ BodyId World::addBody(const BodyDesc& desc) {
   require(std::isfinite(qLength) && qLength > 0.0,
           "addBody: orientation must be a finite non-zero quaternion");
   require(validate(desc.material).empty(), "addBody: " + validate(desc.material));
+  require(desc.inertiaFloor >= 0.0 && desc.inertiaFloor <= 1.0, "addBody: inertia floor must be from 0 to 1");
   if (desc.shape == Shape::Capsule) {
     require(std::abs(desc.size.x - desc.size.z) <= 1e-9 * desc.size.x,
             "addBody: a capsule's size.x and size.z are both its diameter and must be equal (m)");
@@ -417,15 +418,17 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   body.shape = desc.shape;
   body.halfExtents = desc.size * 0.5;
   body.material = desc.material;
+  body.inertiaFloor = desc.inertiaFloor;
   body.firstParticle = static_cast<ParticleId>(particles_.size());
   body.firstStick = static_cast<std::uint32_t>(constraints_.sticks().size());
   body.firstCorner = static_cast<std::uint32_t>(corners_.size());
   body.rigid = static_cast<RigidId>(rigidBodies_.size());
   body.collisionGroup = desc.collisionGroup;
   body.collisionMask = desc.collisionMask;
-  const Vec3 inertia = desc.shape == Shape::Capsule
-                           ? solidCapsuleInertia(body.capsuleRadius(), body.capsuleHalfSegment(), desc.mass)
-                           : solidBoxInertia(body.halfExtents, desc.mass);
+  const Vec3 solid = desc.shape == Shape::Capsule
+                         ? solidCapsuleInertia(body.capsuleRadius(), body.capsuleHalfSegment(), desc.mass)
+                         : solidBoxInertia(body.halfExtents, desc.mass);
+  const Vec3 inertia = flooredInertia(solid, desc.inertiaFloor);
   const Vec3 inverseInertia = 1.0 / inertia;
   require(
       finite(inertia) && finite(inverseInertia) && inertia.x > 0.0 && inertia.y > 0.0 && inertia.z > 0.0,

@@ -130,7 +130,8 @@ TEST(SceneWriter, SteppedRagdollReloadsAsTheSameWorld) {
 TEST(SceneWriter, RigidRagdollReloadsWithItsJointsAsTheyAre) {
   scenes::Scene original = load(
       "<ragdoll name=\"r\" pos=\"0 2.5 0\" euler=\"70 20 10\" model=\"rigid\" "
-      "joint-damping=\"3\"/><box name=\"hung\" pos=\"3 1 0\" model=\"rigid\"/>"
+      "joint-damping=\"3\" inertia-floor=\"0.4\"/><box name=\"hung\" pos=\"3 1 0\" model=\"rigid\" "
+      "size=\"0.2 1 0.2\" inertia-floor=\"0.3\"/>"
       "<particle name=\"nail\" pos=\"3 1.5 0\" pinned=\"true\"/>"
       "<link a=\"nail\" b=\"hung\" point=\"3 1.5 0\"/>",
       "<solver substeps=\"16\" iterations=\"2\"/>");
@@ -154,6 +155,13 @@ TEST(SceneWriter, RigidRagdollReloadsWithItsJointsAsTheyAre) {
     EXPECT_EQ(y.damping, 3.0);
   }
   EXPECT_LT(glm::length(a.position(a.rigidLinks()[0].b) - b.position(b.rigidLinks()[0].b)), 1e-9);
+  // Each part's inertia floor comes back (the ragdoll's 0.4, the box's own 0.3), and with it the
+  // same inertia.
+  for (phys::BodyId id{}; id < a.bodies().size(); ++id) {
+    const phys::Body &x = a.bodies()[id], &y = b.bodies()[id];
+    EXPECT_EQ(y.inertiaFloor, x.name == "hung" ? 0.3 : 0.4) << x.name;
+    EXPECT_EQ(a.rigidBodies().inverseInertia[x.rigid], b.rigidBodies().inverseInertia[y.rigid]) << x.name;
+  }
   for (int i = 0; i < 30; ++i) {
     original.world.step();
     copy.world.step();

@@ -1,6 +1,6 @@
 // Ragdolls dropped onto flat ground: they must land, tumble and come to rest without NaN,
 // without sliding, with their boxes rigid and their hinges within their limits. Run at the
-// settings of assets/scenes/ragdoll.xml (rigid parts at 8 substeps): 2 iterations x 4 substeps (at the seed's
+// settings of assets/scenes/ragdoll.xml, for every model: 2 iterations x 4 substeps (at the seed's
 // 3 x 1 a light part under the torso is crushed), and the seed's wind resistance at 0.2 1/s (with none, a
 // forearm hanging off a propped-up body swings as a frictionless pendulum for tens of
 // seconds). docs/physics.md, "Ragdolls".
@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
 
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
@@ -20,12 +21,14 @@ using phys::Vec3;
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-// Rigid parts at 8 substeps: at 4 a propped limb creeps at a few cm/s and topples seconds later
-// (docs/physics.md, "Rigid bodies", ragdolls).
-phys::SolverSettings ragdollSettings(phys::RagdollModel model) {
+// Rigid parts too at 4 substeps: with each part's true inertia a forearm at its elbow's stop turned
+// about its long axis and back, and two of the four landings were still moving at 2 to 3 cm/s at
+// 10 s; the ragdoll's inertia floor (RagdollDesc::inertiaFloor) brings them under 3 mm/s
+// (docs/physics.md, "Inertia floor").
+phys::SolverSettings ragdollSettings() {
   phys::SolverSettings s;
   s.iterations = 2;
-  s.substeps = model == phys::RagdollModel::Rigid ? 16 : 4;
+  s.substeps = 4;
   s.bodyDamping = 1.0;
   return s;
 }
@@ -68,7 +71,7 @@ struct Drop {
 Drop drop(phys::RagdollModel model, const Vec3& eulerDegrees) {
   phys::WorldSettings air;
   air.damping = 0.2;
-  phys::World w(air, ragdollSettings(model));
+  phys::World w(air, ragdollSettings());
   phys::RagdollDesc d;
   d.model = model;
   d.hips = Vec3(0.0, 2.9, 0.0);  // the lowest part starts about 2 m up whatever the orientation
@@ -131,6 +134,32 @@ TEST_P(RagdollDrop, LandsAndRestsWithoutSlidingOrBreakingItsJoints) {
     // link turns it back; bounded so a broken limit (a hinge swinging through) fails.
     EXPECT_LT(d.transientLimit, 45.0 * kDegree);
   }
+}
+
+// A ragdoll's rigid parts take its inertia floor (kRagdollInertiaFloor unless given); particle parts
+// have no inertia of their own to floor, and record none. A floor outside 0 to 1 is refused.
+TEST(Ragdoll, RigidPartsTakeTheInertiaFloor) {
+  phys::World w;
+  phys::RagdollDesc d;
+  d.model = phys::RagdollModel::Rigid;
+  const phys::Ragdoll rigid = phys::addRagdoll(w, d);
+  for (const phys::BodyId id : rigid.parts) {
+    const phys::Body& part = w.bodies()[id];
+    EXPECT_EQ(part.inertiaFloor, phys::kRagdollInertiaFloor) << part.name;
+    const Vec3 inertia = 1.0 / w.rigidBodies().inverseInertia[part.rigid];
+    const double largest = std::max({inertia.x, inertia.y, inertia.z});
+    EXPECT_GE(std::min({inertia.x, inertia.y, inertia.z}),
+              phys::kRagdollInertiaFloor * largest * (1.0 - 1e-12))
+        << part.name;
+  }
+  d.model = phys::RagdollModel::Seed;
+  d.hips = Vec3(3.0, 1.0, 0.0);
+  for (const phys::BodyId id : phys::addRagdoll(w, d).parts) EXPECT_EQ(w.bodies()[id].inertiaFloor, 0.0);
+  const std::size_t bodies = w.bodies().size();
+  d.model = phys::RagdollModel::Rigid;
+  d.inertiaFloor = 1.01;
+  EXPECT_THROW(phys::addRagdoll(w, d), std::invalid_argument);
+  EXPECT_EQ(w.bodies().size(), bodies);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, RagdollDrop,

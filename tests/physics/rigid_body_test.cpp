@@ -71,6 +71,32 @@ TEST(RigidBody, CapsuleInertiaMatchesItsLimits) {
   EXPECT_NEAR(rod.y, 0.5 * r * r, 1e-3 * rod.y);
 }
 
+// The inertia floor raises each principal moment to at least its fraction of the largest and leaves
+// the others as they are; 0 (every body's default) keeps the solid shape's, and values outside 0 to
+// 1 are refused with nothing added.
+TEST(RigidBody, InertiaFloorRaisesOnlyTheSmallMoments) {
+  phys::World world;
+  BodyDesc thin = rigidBox({0.0, 3.0, 0.0}, {0.1, 1.0, 0.1}, 2.0);  // a limb: small about its length
+  const Vec3 solid = phys::solidBoxInertia(thin.size * 0.5, thin.mass);
+  thin.inertiaFloor = 0.5;
+  const BodyId id = world.addBody(thin);
+  const phys::Body& body = world.bodies()[id];
+  EXPECT_EQ(body.inertiaFloor, 0.5);
+  const Vec3 floored = 1.0 / world.rigidBodies().inverseInertia[body.rigid];
+  EXPECT_NEAR(floored.x, solid.x, 1e-15);
+  EXPECT_NEAR(floored.z, solid.z, 1e-15);
+  EXPECT_LT(solid.y, 0.02 * solid.x);
+  EXPECT_NEAR(floored.y, 0.5 * solid.x, 1e-15);
+  EXPECT_EQ(phys::flooredInertia(solid, 0.0), solid);
+  EXPECT_EQ(phys::flooredInertia(solid, 1.0), Vec3(solid.x));
+  for (const Real bad : {-0.1, 1.5, std::numeric_limits<Real>::quiet_NaN()}) {
+    thin.inertiaFloor = bad;
+    EXPECT_THROW(world.addBody(thin), std::invalid_argument) << bad;
+  }
+  EXPECT_EQ(world.bodies().size(), 1u);
+  EXPECT_EQ(world.rigidBodies().size(), 1u);
+}
+
 // Free fall with a throw: the velocity kept is the substep's middle's, so the trajectory is exact to
 // round-off at any substep, as for particles.
 TEST(RigidBody, FreeFallIsExact) {

@@ -22,6 +22,15 @@ void addBody(ElementReader& e, BuildContext& ctx, phys::BodyDesc desc, const std
   ctx.addName(e, name, NamedBody::Kind::Body, id);
 }
 
+// inertia-floor, from 0 to 1 (BodyDesc::inertiaFloor, RagdollDesc::inertiaFloor).
+std::optional<double> readInertiaFloor(ElementReader& e) {
+  const std::optional<double> floor = e.number("inertia-floor", "");
+  if (floor && !(*floor >= 0.0 && *floor <= 1.0)) {
+    e.fail("inertia-floor", "'" + formatNumber(*floor) + "' must be from 0 to 1");
+  }
+  return floor;
+}
+
 // What every rigid body element reads after its size: mass, model, friction, orientation.
 void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BodyDesc& d) {
   if (auto mass = readMass(e, "mass")) d.mass = *mass;
@@ -30,6 +39,7 @@ void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BodyDesc
     if (!parsed) e.fail("model", "'" + *model + "' must be corners, tetra or rigid");
     d.model = *parsed;
   }
+  if (auto floor = readInertiaFloor(e)) d.inertiaFloor = *floor;
   e.material(d.material);
   if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
   if (options.boxModel) d.model = *options.boxModel;
@@ -227,6 +237,7 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
     if (*damping < 0.0) e.fail("joint-damping", "must be >= 0 (1/s)");
     d.jointDamping = *damping;
   }
+  if (auto floor = readInertiaFloor(e)) d.inertiaFloor = *floor;
   e.material(d.material);
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;

@@ -206,6 +206,7 @@ std::string boxElement(const phys::World& world, phys::BodyId id, const std::str
     e.vector("velocity", state.velocity).vector("angular-velocity", glm::degrees(state.angularVelocity));
   }
   const phys::BodyDesc defaults;
+  if (box.inertiaFloor != defaults.inertiaFloor) e.number("inertia-floor", box.inertiaFloor);
   if (box.collisionGroup != defaults.collisionGroup) e.integer("group", box.collisionGroup);
   if (box.collisionMask != defaults.collisionMask) e.integer("mask", box.collisionMask);
   return e.empty();

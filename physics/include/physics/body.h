@@ -50,6 +50,12 @@ struct BodyDesc {
   BodyModel model = BodyModel::Corners;
   Shape shape = Shape::Box;
   Material material;
+  /// Rigid model only; unitless, from 0 to 1: each principal moment of inertia is raised to at least
+  /// this fraction of the largest, and 0 keeps the solid shape's. A joint's angular correction turns
+  /// a thin limb mostly about its long axis, which moves the joint's axis again; a rounder inertia
+  /// lets jointed limbs come to rest at a few substeps (docs/physics.md, "Inertia floor"). It changes
+  /// how a free body tumbles, so bodies default to 0 and only ragdolls raise it.
+  Real inertiaFloor = 0.0;
   /// Collision filtering: two bodies collide when each one's group has a bit in the other's mask.
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
@@ -77,6 +83,7 @@ struct Body {
   Vec3 halfExtents{0.5};          ///< unit: m; of the box, or of the box a capsule is inscribed in
   Shape shape = Shape::Box;
   Material material;
+  Real inertiaFloor = 0.0;  ///< unitless; BodyDesc::inertiaFloor, as the body was made with it
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
 

@@ -48,6 +48,11 @@ std::string_view toString(RagdollPart part);  ///< "head", "upper-arm-left", ...
 /// bodies"), where the particle models' limbs come to rest within a few seconds.
 inline constexpr Real kRagdollJointDamping = 2.0;  ///< unit: 1/s
 
+/// Default inertia floor of a rigid ragdoll's parts (RagdollDesc::inertiaFloor, BodyDesc::inertiaFloor).
+/// With each part's true inertia a rigid pile at 4 substeps never rests: the forearms, at their
+/// elbows' stops, turn about their long axes and back every substep (docs/physics.md, "Inertia floor").
+inline constexpr Real kRagdollInertiaFloor = 2.0 / 3.0;  ///< unitless
+
 /// A ragdoll when it is created. At the identity orientation it stands upright on its feet,
 /// facing +z, 1.72 m tall at scale 1.
 struct RagdollDesc {
@@ -60,6 +65,9 @@ struct RagdollDesc {
   /// unit: 1/s; friction in the joints of rigid parts (JointDesc::damping): their relative spin
   /// decays as exp(-jointDamping t). Particle parts ignore it: their passes take that motion away.
   Real jointDamping = kRagdollJointDamping;
+  /// unitless, 0 to 1; rigid parts' BodyDesc::inertiaFloor (0: each part's solid inertia). Particle
+  /// parts ignore it: their inertia is their particles'.
+  Real inertiaFloor = kRagdollInertiaFloor;
   Vec3 velocity{0.0};  ///< unit: m/s; of every part at creation
   Material material;
   std::uint32_t collisionGroup = 1;

@@ -44,5 +44,7 @@ Vec3 solidBoxInertia(const Vec3& halfExtents, Real mass);
 /// Principal moments of inertia (kg m^2) of a solid capsule along y, of radius r and core half
 /// length `halfSegment` (cylinder plus two hemispheres of uniform density), of the given mass.
 Vec3 solidCapsuleInertia(Real radius, Real halfSegment, Real mass);
+/// The principal moments raised to at least `floor` (0 to 1) times the largest (BodyDesc::inertiaFloor).
+Vec3 flooredInertia(const Vec3& inertia, Real floor);
 
 }  // namespace phys
