@@ -29,6 +29,7 @@ void ConstraintBlock::build() {
     turnB_[r] = b_.moves ? bodies_.inverseInertiaWorld[b_.rigid] * armB_[r] : Vec3(0.0);
     const Real k = linear * glm::dot(linear_[r], linear_[r]) + glm::dot(armA_[r], turnA_[r]) +
                    glm::dot(armB_[r], turnB_[r]);
+    diagonal_[r] = k;
     inverseDiagonal_[r] = k > 0.0 ? 1.0 / k : 0.0;
   }
 }
@@ -40,8 +41,13 @@ template <bool kTurnA>
 void ConstraintBlock::sweep(std::span<Real> delta) const {
   const Real linear = a_.inverseMass + b_.inverseMass;
   Vec3 push(0.0), turnA(0.0), turnB(0.0);
+  for (std::size_t r = 0; r < rows_; ++r) {
+    push += (delta[r] * linear) * linear_[r];
+    turnB += delta[r] * turnB_[r];
+    if constexpr (kTurnA) turnA -= delta[r] * turnA_[r];
+  }
   for (int sweep = 0; sweep < kBlockSweeps; ++sweep) {
-    Real largest = 0.0, largestChange = 0.0;
+    Real largestMove = 0.0;
     for (std::size_t r = 0; r < rows_; ++r) {
       if (dropped_[r] || inverseDiagonal_[r] == 0.0) continue;
       Real residual = error_[r] + glm::dot(linear_[r], push) + glm::dot(armB_[r], turnB);
@@ -49,18 +55,19 @@ void ConstraintBlock::sweep(std::span<Real> delta) const {
       const Real next = std::clamp(delta[r] - residual * inverseDiagonal_[r], lower_[r], upper_[r]);
       const Real change = next - delta[r];
       delta[r] = next;
-      largest = std::max(largest, std::abs(next));
-      largestChange = std::max(largestChange, std::abs(change));
+      largestMove = std::max(largestMove, std::abs(change) * diagonal_[r]);
       push += (change * linear) * linear_[r];
       turnB += change * turnB_[r];
       if constexpr (kTurnA) turnA -= change * turnA_[r];
     }
-    if (largestChange <= kBlockTolerance * largest) break;
+    if (largestMove <= kBlockTolerance) break;
   }
 }
 
 void ConstraintBlock::solve(std::span<Real> delta) const {
-  std::fill(delta.begin(), delta.begin() + rows_, 0.0);
+  for (std::size_t r = 0; r < rows_; ++r) {
+    delta[r] = dropped_[r] || inverseDiagonal_[r] == 0.0 ? 0.0 : std::clamp(delta[r], lower_[r], upper_[r]);
+  }
   if (a_.moves)
     sweep<true>(delta);
   else

@@ -237,9 +237,9 @@ TEST(RagdollPile, SixteenRagdollsComeNearlyToRest) {
 }
 
 // The same pile with rigid parts, at the scene's 2 iterations x 4 substeps: the median of its fastest
-// point from 10 s to 30 s is under 0.4 m/s (measured 0.15). With each part's solid inertia
+// point from 10 s to 30 s is under 0.4 m/s (measured 0.22). With each part's solid inertia
 // (inertia floor 0) forearms at their elbows' stops turned about their long axes and back every
-// substep, and the median was 1.1 m/s (docs/physics.md, "Inertia floor"). The pile still settles
+// substep, and the median was 0.71 m/s (docs/physics.md, "Inertia floor"). The pile still settles
 // more slowly than the particle one: whole parts creep and slip at a few cm/s.
 TEST(RagdollPile, SixteenRigidRagdollsSettleAtFourSubsteps) {
   scenes::LoadOptions rigid;

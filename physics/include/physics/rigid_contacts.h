@@ -4,6 +4,8 @@
 // point fixed in a rigid body's frame, or a point embedded in a particle body; the passes correct
 // both sides by XPBD's positional impulses (Müller et al. 2020), with static friction as a
 // positional constraint, and a velocity pass after the substep for dynamic friction and restitution.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -58,9 +60,19 @@ struct ContactPatch {
 /// 0.57 m in 60 s, and 0.29 m with anchors alone (docs/physics.md, "Standing for a minute"). A
 /// patch with a particle body on a side keeps no anchor.
 struct PatchAnchor {
+  /// The most points whose impulses a patch keeps for the next substep (a block's most points).
+  static constexpr std::size_t kKeptPoints = 8;
+
   BodyId bodyA = kNoBody, bodyB = kNoBody;  ///< the patch's pair, to find it again
   Vec3 onA{0.0}, onB{0.0};                  ///< unit: m; in A's frame (the world's for the ground), in B's
   bool held = false;
+  /// unit: kg m; each point's normal impulse over the patch's last substep, where its block's solve
+  /// starts the next substep (a warm start). A resting patch needs the same impulses substep after
+  /// substep, so started there its block converges in a sweep or two instead of running out of
+  /// sweeps. Kept only for a patch solved as a block; used while it has as many points.
+  std::array<Real, kKeptPoints> normal{};
+  std::uint8_t points = 0;  ///< how many of `normal` hold a point's impulse; 0: none kept
+  bool fresh = false;       ///< not yet solved in this substep: its impulses are the last substep's
 };
 
 /// What the passes keep per contact for one substep, index for index with the contacts, and each
