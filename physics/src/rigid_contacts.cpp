@@ -438,10 +438,6 @@ Real normalWith(const RigidContactState& state, const PatchInBlock& p, std::span
   return normal;
 }
 
-// One position pass over a block of patches (rigid_block.h): points pushed apart, each anchor's
-// slip and each twist undone, all in one solve. A patch's friction rows are left out again (and its
-// anchor let go) when their impulse would pass mu_s times its normal impulse, as the 2020 paper's
-// static friction, and its twist's when that would pass mu_s times it times the patch's radius.
 // A patch's first solve in a substep starts its points from the normal impulses its last substep
 // ended with (PatchAnchor::normal), while it has as many points. A point's impulse means the same
 // whichever body is the block's B (addPatchRow turns the row with the sides). Friction and twist
@@ -463,6 +459,10 @@ void keepForTheNextSubstep(RigidContactState& state, const PatchInBlock& p) {
     anchor.normal[k] = state.lambdaNormal[p.patch->first + k];
 }
 
+// One position pass over a block of patches (rigid_block.h): points pushed apart, each anchor's
+// slip and each twist undone, all in one solve. A patch's friction rows are left out again (and its
+// anchor let go) when their impulse would pass mu_s times its normal impulse, as the 2020 paper's
+// static friction, and its twist's when that would pass mu_s times it times the patch's radius.
 void solvePositionBlock(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
                         std::span<PatchInBlock> run, const BlockBody& a, const BlockBody& b) {
   ConstraintBlock block(in.rigid, a, b);
