@@ -83,7 +83,7 @@ struct Body {
   Vec3 halfExtents{0.5};          ///< unit: m; of the box, or of the box a capsule is inscribed in
   Shape shape = Shape::Box;
   Material material;
-  Real inertiaFloor = 0.0;  ///< unitless; BodyDesc::inertiaFloor, as the body was made with it
+  Real inertiaFloor = 0.0;  ///< unitless; a rigid body's BodyDesc::inertiaFloor (0 for particle models)
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
 
