@@ -465,14 +465,19 @@ void keepForTheNextSubstep(RigidContactState& state, const PatchInBlock& p) {
 // static friction, and its twist's when that would pass mu_s times it times the patch's radius.
 void solvePositionBlock(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
                         std::span<PatchInBlock> run, const BlockBody& a, const BlockBody& b) {
+  // A block with nothing to solve still keeps its impulses so far (none, in its first pass of a
+  // substep), so that the next substep does not start from those of one before.
+  auto keepAll = [&state, &run] {
+    for (const PatchInBlock& p : run) keepForTheNextSubstep(state, p);
+  };
   ConstraintBlock block(in.rigid, a, b);
-  if (!block.moves()) return;
+  if (!block.moves()) return keepAll();
   bool anyPresses = false;  // else every point is apart and stays so: no impulse to find
   for (PatchInBlock& p : run) {
     addPositionRows(in, contacts, state, block, p);
     anyPresses = anyPresses || p.presses;
   }
-  if (!anyPresses) return;
+  if (!anyPresses) return keepAll();
   block.build();
   std::array<Real, kMostBlockRows> delta{};
   for (const PatchInBlock& p : run) startWhereTheLastSubstepEnded(state, p, delta);
