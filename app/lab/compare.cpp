@@ -46,8 +46,9 @@ struct CompareOptions {
 
 std::string compareUsage() {
   return "usage: lab compare SCENE [--steps N] [--dt S] [--peer-sleep on|off] [--json] [--data DIR]\n"
-         "  Runs SCENE with each of our four methods at its own iterations and substeps, then in\n"
-         "  each peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
+         "  Runs SCENE with each of our four methods at its own iterations and substeps (xpbd\n"
+         "  alone for rigid bodies with no stick, which every method steps alike), then in each\n"
+         "  peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
          "  step, accuracy error, penetration and joint gap (by our code on every engine's poses)\n"
          "  and what each peer could not express.\n"
          "  --steps N   steps in every run, 1 to 10000000 (default 600; a scene's analytic\n"
@@ -157,9 +158,15 @@ double firstError(const AccuracyTarget& target, const std::vector<std::vector<ph
   return accuracyError(first, {positions.front()});
 }
 
-std::string ourSettings(const phys::SolverSettings& s) {
+// How our world steps: Verlet for its particles, XPBD's poses for its rigid bodies, or both.
+std::string ourSettings(const phys::World& world) {
+  const phys::SolverSettings& s = world.solverSettings();
+  const bool particles = world.particles().size() > 0, rigid = world.rigidBodies().size() > 0;
   std::ostringstream o;
-  o << "Verlet, " << s.iterations << (s.iterations == 1 ? " iteration x " : " iterations x ") << s.substeps
+  o << (particles && rigid ? "Verlet and rigid bodies, "
+        : rigid            ? "rigid bodies, "
+                           : "Verlet, ")
+    << s.iterations << (s.iterations == 1 ? " iteration x " : " iterations x ") << s.substeps
     << (s.substeps == 1 ? " substep" : " substeps");
   if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
   return o.str();
@@ -187,7 +194,7 @@ Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, std::o
   Row row;
   row.engine = "ours";
   row.method = std::string(phys::toString(method));
-  row.settings = ourSettings(scene.world.solverSettings());
+  row.settings = ourSettings(scene.world);
   std::vector<double> stepMs;
   stepMs.reserve(static_cast<std::size_t>(steps));
   std::vector<std::vector<phys::Vec3>> positions;
@@ -303,10 +310,13 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
 
   std::vector<Row> rows;
   try {
-    for (phys::SolverMethod method : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
-                                      phys::SolverMethod::Xpbd, phys::SolverMethod::Shake}) {
+    // Rigid bodies and no stick step alike under the four methods (xpbdWhateverTheMethod): one
+    // row, under the method that names how they are solved.
+    std::vector<phys::SolverMethod> methods{phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
+                                            phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
+    if (xpbdWhateverTheMethod(scene->world)) methods = {phys::SolverMethod::Xpbd};
+    for (phys::SolverMethod method : methods)
       rows.push_back(runOurs(file, method, options.dt, steps, target));
-    }
   } catch (const std::invalid_argument& e) {
     err << "lab: compare: the overrides were refused: " << e.what() << "\n";
     return kExitFailure;

@@ -109,10 +109,12 @@ std::string summaryText(const RunResult& r) {
   const phys::Profile& p = r.stageSums;
   std::string s;
   s += "scene        " + r.scene + (r.file.empty() ? "" : " (" + r.file.string() + ")") + "\n";
-  s += "solver       " + std::string(phys::toString(r.solver.method)) + ", " +
-       count(static_cast<std::size_t>(r.solver.iterations), "iteration", "iterations") + ", " +
-       count(static_cast<std::size_t>(r.solver.substeps), "substep", "substeps") + ", dt " +
-       num(r.solver.dt) + " s\n";
+  s +=
+      "solver       " + std::string(phys::toString(r.solver.method)) +
+      (r.xpbdAlone ? " (no stick to relax: every method steps this world alike, rigid bodies by XPBD)" : "") +
+      ", " + count(static_cast<std::size_t>(r.solver.iterations), "iteration", "iterations") + ", " +
+      count(static_cast<std::size_t>(r.solver.substeps), "substep", "substeps") + ", dt " + num(r.solver.dt) +
+      " s\n";
   s += "world        " + count(r.particles, "particle", "particles") + ", " +
        count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
   s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " +

@@ -6,6 +6,10 @@
 
 namespace lab {
 
+bool xpbdWhateverTheMethod(const phys::World& world) {
+  return world.rigidBodies().size() > 0 && world.sticks().empty();
+}
+
 void applyOverrides(phys::World& world, const RunOptions& options) {
   phys::SolverSettings s = world.solverSettings();
   if (options.dt) s.dt = *options.dt;
@@ -77,6 +81,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   r.constraints = world.sticks().size() + world.jointCount();
   r.joints = world.jointCount();
   r.bodies = world.bodies().size();
+  r.xpbdAlone = xpbdWhateverTheMethod(world);
   r.energyInitial = world.metrics().energy();
 
   // Every step's total is kept for the median (up to 80 MB at the 10^7 step limit); reserving

@@ -24,6 +24,7 @@ struct RunResult {
   std::size_t constraints = 0;  ///< sticks and links: world.sticks().size() + world.links().size()
   std::size_t joints = 0;       ///< links (joints) alone
   std::size_t bodies = 0;       ///< world.bodies().size()
+  bool xpbdAlone = false;       ///< xpbdWhateverTheMethod(world): the method changes nothing
   double energyInitial = 0.0;   ///< unit: J; before the first step
   phys::Metrics final;          ///< after the last step
   double wallMs = 0.0;          ///< unit: ms; the whole stepping loop, steady_clock
@@ -33,6 +34,11 @@ struct RunResult {
   std::vector<phys::FreezeReport> freezes;  ///< the guard's reports, oldest first
   std::uint64_t hash = 0;                   ///< World::stateHash() at the end
 };
+
+/// Whether `world` is stepped by XPBD whatever the method: it has rigid bodies and no stick. The
+/// four methods are ways of relaxing sticks; links, contacts and rigid bodies are solved the same
+/// way under each (rigid bodies by XPBD's corrections), so such a world steps alike under all four.
+bool xpbdWhateverTheMethod(const phys::World& world);
 
 /// Puts the options' overrides into the world's solver settings; rethrows the
 /// std::invalid_argument of World::setSolverSettings when the world refuses them.

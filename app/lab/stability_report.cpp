@@ -229,7 +229,9 @@ std::string csvReport(const SuiteResult& r) {
       if (peer)
         csv << csvField(r.peers[k - r.settings.size()]) << ",,,,";
       else
-        csv << phys::toString(r.settings[k].method) << "," << csvField(r.settings[k].model) << ","
+        // A model imposed on a scene with no body changed nothing: not named as if it ran.
+        csv << phys::toString(r.settings[k].method) << ","
+            << csvField(sc.boxes == 0 ? std::string() : r.settings[k].model) << ","
             << r.settings[k].iterations << "," << r.settings[k].substeps << ",";
       if (!o.judged) {
         csv << "n/a,,,,," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";

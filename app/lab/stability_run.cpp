@@ -82,6 +82,8 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
     std::ostringstream note;
     note << "froze " << f.name << " at " << f.time << " s: " << f.reason;
     o.note = note.str();
+  } else if (!setting.model.empty() && s.boxes == 0) {
+    o.note = "no body for the model: the scene's own run";
   }
   o.verdicts = judge.verdicts(blewUp);
   o.wallMs = std::chrono::duration<double, std::milli>(stepping).count();

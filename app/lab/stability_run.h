@@ -26,9 +26,9 @@ struct SuiteScene {
   std::filesystem::path file;
   std::string description;  ///< the scene's own one line
   std::vector<Criterion> criteria;
-  int steps = 0;    ///< runSteps(criteria)
-  double dt = 0.0;  ///< unit: s; the scene's
-  std::size_t boxes = 0;
+  int steps = 0;          ///< runSteps(criteria)
+  double dt = 0.0;        ///< unit: s; the scene's
+  std::size_t boxes = 0;  ///< bodies (boxes, capsules, ragdoll parts): none, and a model imposes nothing
 };
 
 /// Loads a scene file and parses its criteria; throws scenes::LoadError.
@@ -42,7 +42,9 @@ struct Outcome {
   std::size_t worst = 0;          ///< the judged criterion with the largest ratio
   double wallMs = 0.0;            ///< unit: ms; the stepping alone (World::step or the peer's)
   double msPerStep = 0.0;         ///< unit: ms
-  std::string note;               ///< the guard's first freeze, or what a peer could not do
+  /// the guard's first freeze, what a peer could not do, or that the setting's model found nothing
+  /// to apply to
+  std::string note;
 };
 
 /// Runs the scene under the setting for its steps; stops at the first freeze (a blow-up).

@@ -27,6 +27,7 @@
 #include "options.h"
 #include "peer.h"
 #include "report.h"
+#include "run.h"
 #include "sweep_core.h"
 
 namespace lab {
@@ -232,15 +233,24 @@ std::string makePlan(const SweepOptions& o, const std::filesystem::path& file, P
   const std::vector<int> iterations = o.iterations.empty() ? std::vector{own.iterations} : o.iterations;
   const std::vector<int> substeps = o.substeps.empty() ? std::vector{own.substeps} : o.substeps;
   plan.dts = o.dts.empty() ? std::vector{own.dt} : o.dts;
-  const std::size_t count =
-      plan.models.size() * plan.dts.size() * methods.size() * iterations.size() * substeps.size();
+  // A model that leaves the scene rigid bodies and no stick steps alike under every method
+  // (xpbdWhateverTheMethod): it runs once, as xpbd, which is how its rigid bodies are solved,
+  // instead of as equal rows under names that did nothing.
+  std::vector<std::vector<phys::SolverMethod>> methodsOf;
+  std::size_t count = 0;
+  for (const ModelChoice& model : plan.models) {
+    const bool xpbdAlone = xpbdWhateverTheMethod(scenes::loadSceneFile(file, model.options).world);
+    methodsOf.push_back(xpbdAlone ? std::vector{phys::SolverMethod::Xpbd} : methods);
+    count += plan.dts.size() * methodsOf.back().size() * iterations.size() * substeps.size();
+  }
   if (count > kMaxCombinations) {
     return std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) +
            " (shorten a list)";
   }
-  for (const ModelChoice& model : plan.models) {
+  for (std::size_t m = 0; m < plan.models.size(); ++m) {
+    const ModelChoice& model = plan.models[m];
     for (double dt : plan.dts) {
-      for (phys::SolverMethod method : methods) {
+      for (phys::SolverMethod method : methodsOf[m]) {
         for (int it : iterations) {
           for (int sub : substeps) plan.settings.push_back(Setting{model, method, it, sub, dt});
         }

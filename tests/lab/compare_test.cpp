@@ -352,6 +352,21 @@ TEST(Compare, PrintsARowForEachOfOurMethodsAndEachPeer) {
   EXPECT_EQ(o.out.find("not run"), std::string::npos) << o.out;
 }
 
+// Rigid bodies and no stick step alike under the four methods (lab::xpbdWhateverTheMethod): one row of ours,
+// xpbd, for how its rigid bodies are solved, and its settings say so.
+TEST(Compare, AWorldWithNoStickIsOneRowOfOurs) {
+  TempDir dir;
+  const auto file = dir.write("rigid.xml",
+                              "<scene name=\"r\"><box name=\"a\" pos=\"0 0.5 0\" model=\"rigid\"/>"
+                              "<box name=\"b\" pos=\"0.1 1.5 0\" model=\"rigid\"/></scene>");
+  const Output o = compare({"compare", file.string(), "--steps", "20"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("| ours | xpbd | rigid bodies, "), std::string::npos) << o.out;
+  for (const char* method : {"gauss-seidel", "jacobi", "shake"})
+    EXPECT_EQ(o.out.find(std::string("| ours | ") + method + " |"), std::string::npos) << method << "\n"
+                                                                                       << o.out;
+}
+
 TEST(Compare, NamesAProjectSceneFromTheDataFolderAndAnyOtherAsGiven) {
   const Output project = compare({"compare", "falling-box", "--steps", "5", "--data", DATA_DIR});
   ASSERT_EQ(project.code, 0) << project.err;

@@ -77,6 +77,19 @@ TEST(LabRun, ModelIsImposedOnEveryBox) {
       << bad.err;
 }
 
+// The summary does not let a method's name pass for what solved a world it changes nothing in.
+TEST(LabRun, SaysWhenTheMethodChangesNothing) {
+  const TempDir dir;
+  const auto scene = dir.write("s.xml", "<scene name='s'>\n<box name='b' pos='0 0.5 0'/>\n</scene>\n");
+  const ProcessResult asFile = runLab("run " + quoted(scene) + " --steps 5", dir);
+  const ProcessResult rigid = runLab("run " + quoted(scene) + " --steps 5 --model rigid", dir);
+  ASSERT_EQ(asFile.exitCode, 0) << asFile.err;
+  ASSERT_EQ(rigid.exitCode, 0) << rigid.err;
+  const std::string note = "(no stick to relax: every method steps this world alike, rigid bodies by XPBD)";
+  EXPECT_EQ(asFile.out.find(note), std::string::npos) << asFile.out;  // a corners box has sticks
+  EXPECT_NE(rigid.out.find("solver       gauss-seidel " + note), std::string::npos) << rigid.out;
+}
+
 TEST(LabRun, JsonHasEveryKeyWithFiniteNumbers) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());

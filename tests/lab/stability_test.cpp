@@ -411,6 +411,19 @@ TEST(StabilityCli, ModelsAreAnAxisOfTheMap) {
   EXPECT_NE(both.out.find("### xpbd rigid"), std::string::npos);
 }
 
+// A scene with no body (a chain of particles) has nothing a model applies to: its row does not
+// name the model as if it had run under it, and says why.
+TEST(StabilityCli, AModelOnASceneWithNoBodyIsNotNamed) {
+  TempDir dir;
+  const std::filesystem::path out = dir.file("out");
+  const Output o = stability({"--scene", "chain-100", "--models", "rigid", "--methods", "xpbd",
+                              "--iterations", "1", "--substeps", "1", "--no-peers", "--out", out.string()});
+  ASSERT_EQ(o.code, lab::kExitOk) << o.err;
+  const std::string csv = lab_testing::readFile(out / "stability.csv");
+  EXPECT_NE(csv.find("\nchain-100,xpbd,,1,1,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("no body for the model: the scene's own run"), std::string::npos) << csv;
+}
+
 TEST(StabilityOptions, TheSuiteRunsInNaturalOrder) {
   EXPECT_TRUE(lab::stability::naturalLess("bullet-50", "bullet-100"));
   EXPECT_TRUE(lab::stability::naturalLess("stack-20", "stack-100"));

@@ -83,6 +83,22 @@ TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
   EXPECT_NE(o.out.find("reference: shake, 128 substeps x 4 iterations"), std::string::npos) << o.out;
 }
 
+// The four methods are ways of relaxing sticks: a model that leaves the scene none steps alike
+// under each, so it runs once, as xpbd (how rigid bodies are solved), not as equal rows under
+// names that did nothing; a model that keeps sticks runs under each method asked.
+TEST(Sweep, AModelWithNoStickRunsOnceAsXpbd) {
+  TempDir dir;
+  const Outcome o = sweep({"falling-box", "--model", "corners,rigid", "--method", "gauss-seidel,shake",
+                           "--iterations", "1", "--substeps", "2", "--steps", "10", "--repeat", "1",
+                           "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 3u);
+  std::vector<std::string> seen;
+  for (const CsvRow& row : csv.rows) seen.push_back(row.at("model") + " " + row.at("method"));
+  EXPECT_EQ(seen, (std::vector<std::string>{"corners gauss-seidel", "corners shake", "rigid xpbd"}));
+}
+
 TEST(Sweep, ProjectileIsExactToRoundOffAtAnySetting) {
   // Verlet with the loader's start is exact for constant acceleration, and every method keeps a
   // free box's centre, so coarse and fine settings alike land on the analytic positions.
