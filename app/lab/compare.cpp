@@ -38,6 +38,8 @@ struct CompareOptions {
   std::string scene;
   int steps = kDefaultSteps;
   std::optional<double> dt;
+  std::optional<phys::BodyModel> model;     ///< imposed at load on ours and on what the peers are given
+  std::optional<int> iterations, substeps;  ///< ours; the scene's own when unset
   std::filesystem::path dataDir;
   bool json = false;
   bool peerSleep = true;  ///< --peer-sleep: whether Bullet may put resting bodies to sleep
@@ -45,7 +47,8 @@ struct CompareOptions {
 };
 
 std::string compareUsage() {
-  return "usage: lab compare SCENE [--steps N] [--dt S] [--peer-sleep on|off] [--json] [--data DIR]\n"
+  return "usage: lab compare SCENE [--steps N] [--dt S] [--model M] [--iterations K] [--substeps S]\n"
+         "                   [--peer-sleep on|off] [--json] [--data DIR]\n"
          "  Runs SCENE with each of our four methods at its own iterations and substeps (xpbd\n"
          "  alone for rigid bodies with no stick, which every method steps alike), then in each\n"
          "  peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
@@ -54,6 +57,9 @@ std::string compareUsage() {
          "  --steps N   steps in every run, 1 to 10000000 (default 600; a scene's analytic\n"
          "              checkpoints may ask for more)\n"
          "  --dt S      seconds per step, 1e-06 to 1 (default: the scene's)\n"
+         "  --model M   corners, tetra or rigid, imposed at load on every box (rigid: ragdolls\n"
+         "              too), for ours and for the scene the peers are given\n"
+         "  --iterations K, --substeps S  ours, 1 to 1000 (default: the scene's)\n"
          "  --peer-sleep on|off  whether Bullet may put resting bodies to sleep (default on, as\n"
          "              it ships; ours never sleep, so off compares awake with awake)\n"
          "  --json      one JSON object per row, one per line, instead of the table\n"
@@ -101,6 +107,17 @@ std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
       if (!d || *d < phys::kMinDt || *d > phys::kMaxDt)
         return "compare: --dt '" + v + "': a number of seconds from 1e-06 to 1";
       o.dt = *d;
+    } else if (a == "--model") {
+      if (std::string e = value(v); !e.empty()) return e;
+      o.model = phys::parseBodyModel(v);
+      if (!o.model) return "compare: --model '" + v + "': corners, tetra or rigid";
+    } else if (a == "--iterations" || a == "--substeps") {
+      if (std::string e = value(v); !e.empty()) return e;
+      const auto n = wholeNumber(v);
+      const int most = a == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
+      if (!n || *n < 1 || *n > most)
+        return "compare: " + a + " '" + v + "': a whole number from 1 to " + std::to_string(most);
+      (a == "--iterations" ? o.iterations : o.substeps) = static_cast<int>(*n);
     } else if (a == "--peer-sleep") {
       if (std::string e = value(v); !e.empty()) return e;
       if (v != "on" && v != "off") return "compare: --peer-sleep '" + v + "': on or off";
@@ -183,12 +200,14 @@ std::filesystem::path shownPath(const std::filesystem::path& file, const std::fi
   return relative;
 }
 
-Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, std::optional<double> dt, int steps,
-            const AccuracyTarget& target) {
-  scenes::Scene scene = scenes::loadSceneFile(file);
+Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, const CompareOptions& options,
+            int steps, const AccuracyTarget& target) {
+  scenes::Scene scene = scenes::loadSceneFile(file, imposedModel(options.model));
   RunOptions overrides;
   overrides.method = method;
-  overrides.dt = dt;
+  overrides.dt = options.dt;
+  overrides.iterations = options.iterations;
+  overrides.substeps = options.substeps;
   applyOverrides(scene.world, overrides);
 
   Row row;
@@ -295,7 +314,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   int steps = options.steps;
   try {
     file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(where)));
-    scene.emplace(scenes::loadSceneFile(file));
+    scene.emplace(scenes::loadSceneFile(file, imposedModel(options.model)));
     dt = options.dt.value_or(scene->world.solverSettings().dt);
     target = accuracyTarget(*scene, {}, dt, steps);
   } catch (const scenes::LoadError& e) {
@@ -315,8 +334,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
     std::vector<phys::SolverMethod> methods{phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
                                             phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
     if (xpbdWhateverTheMethod(scene->world)) methods = {phys::SolverMethod::Xpbd};
-    for (phys::SolverMethod method : methods)
-      rows.push_back(runOurs(file, method, options.dt, steps, target));
+    for (phys::SolverMethod method : methods) rows.push_back(runOurs(file, method, options, steps, target));
   } catch (const std::invalid_argument& e) {
     err << "lab: compare: the overrides were refused: " << e.what() << "\n";
     return kExitFailure;

@@ -61,11 +61,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   std::filesystem::path file = options.scene;
   try {
     file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(options)));
-    scenes::LoadOptions load;
-    load.boxModel = options.model;
-    // Ragdolls have their own models (seed, lean) of the box ones; rigid is both.
-    if (options.model == phys::BodyModel::Rigid) load.ragdollModel = phys::RagdollModel::Rigid;
-    scene.emplace(scenes::loadSceneFile(file, load));
+    scene.emplace(scenes::loadSceneFile(file, imposedModel(options.model)));
   } catch (const scenes::LoadError& e) {
     err << e.what() << "\n";  // already "file:line: ...", the form editors jump to
     return kExitFailure;

@@ -10,6 +10,13 @@ bool xpbdWhateverTheMethod(const phys::World& world) {
   return world.rigidBodies().size() > 0 && world.sticks().empty();
 }
 
+scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model) {
+  scenes::LoadOptions load;
+  load.boxModel = model;
+  if (model == phys::BodyModel::Rigid) load.ragdollModel = phys::RagdollModel::Rigid;
+  return load;
+}
+
 void applyOverrides(phys::World& world, const RunOptions& options) {
   phys::SolverSettings s = world.solverSettings();
   if (options.dt) s.dt = *options.dt;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -39,6 +40,11 @@ struct RunResult {
 /// four methods are ways of relaxing sticks; links, contacts and rigid bodies are solved the same
 /// way under each (rigid bodies by XPBD's corrections), so such a world steps alike under all four.
 bool xpbdWhateverTheMethod(const phys::World& world);
+
+/// What `--model M` of `lab run` and `lab compare` imposes at load: M on every box, capsule, stack,
+/// pyramid and grid box; ragdolls keep their own models (seed, lean), except that rigid makes
+/// their parts rigid too. Nothing for no model.
+scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model);
 
 /// Puts the options' overrides into the world's solver settings; rethrows the
 /// std::invalid_argument of World::setSolverSettings when the world refuses them.

@@ -367,6 +367,22 @@ TEST(Compare, AWorldWithNoStickIsOneRowOfOurs) {
                                                                                        << o.out;
 }
 
+// --model, --iterations and --substeps reach our runs: the corners box made rigid leaves no
+// stick, so ours is one xpbd row, at the iterations and substeps asked.
+TEST(Compare, ModelIterationsAndSubstepsAreImposed) {
+  TempDir dir;
+  const auto file = dir.write("small.xml", kSmall);
+  const Output o = compare({"compare", file.string(), "--steps", "20", "--model", "rigid", "--iterations",
+                            "1", "--substeps", "3"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("| ours | xpbd | Verlet and rigid bodies, 1 iteration x 3 substeps |"),
+            std::string::npos)
+      << o.out;
+  const Output json = compare({"compare", file.string(), "--steps", "20", "--json", "--model", "rigid"});
+  ASSERT_EQ(json.code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"settings\":\"Verlet and rigid bodies, "), std::string::npos) << json.out;
+}
+
 TEST(Compare, NamesAProjectSceneFromTheDataFolderAndAnyOtherAsGiven) {
   const Output project = compare({"compare", "falling-box", "--steps", "5", "--data", DATA_DIR});
   ASSERT_EQ(project.code, 0) << project.err;
@@ -449,6 +465,9 @@ TEST(Compare, BadArgumentsExitWithUsage) {
                                              {"compare", "x", "--dt", "2"},
                                              {"compare", "x", "--dt"},
                                              {"compare", "x", "--peer-sleep", "maybe"},
+                                             {"compare", "x", "--model", "lean"},
+                                             {"compare", "x", "--iterations", "0"},
+                                             {"compare", "x", "--substeps", "1001"},
                                              {"compare", "x", "--frobnicate"}}) {
     const Output o = compare(args);
     EXPECT_EQ(o.code, lab::kExitUsage) << args.back();
