@@ -506,12 +506,14 @@ TEST(Report, QuickReportWritesEveryPart) {
   const std::string md = lab_testing::readFile(out / "results.md");
   for (const char* part : {"## Speed against accuracy", "### ragdoll", "### pendulum-exact",
                            "Pareto front, cheapest first:", "**Winner here:", "## Where methods fail",
+                           "### The rigid model on the same suite", "| face-face |", "xpbd rigid",
                            "## Beside Bullet, ODE and MuJoCo", "## Cost against size", "us/body-step",
                            "## Error against substep size", "converge    circular-orbit"}) {
     EXPECT_NE(md.find(part), std::string::npos) << part;
   }
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "pyramid" / "results.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "stability" / "stability.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "results" / "stability-rigid" / "stability.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "scale" / "scale.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "converge" / "converge.csv"));
   if (!lab::findGnuplot().empty()) {
