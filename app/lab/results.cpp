@@ -273,8 +273,8 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   failed |= rigid.code != 0;
   md << "### The rigid model on the same suite\n\n"
      << "Every box and ragdoll of each scene made rigid (`lab stability --models rigid --methods xpbd "
-        "--no-peers`): the chains have no body and run as they are. Beside the table above, it says which "
-        "model meets each scene's target at the lowest cost.\n\n"
+        "--no-peers`): the chains have no body and run as they are. Set beside the table above, it shows "
+        "which model holds each scene at the fewest passes.\n\n"
      << "![pass or fail per scene and setting, rigid](results/stability-rigid/stability-pass.png)\n\n"
      << codeBlockOrText(rigid) << "\n";
 

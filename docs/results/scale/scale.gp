@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 3.1009090909090911 "n=1"
-44 2.5072386363636365 "n=4"
-176 2.0357755681818186 "n=16"
-704 2.0182286931818183 "n=64"
-2816 1.788390802556818 "n=256"
-11264 1.8469199218749999 "n=1024"
+11 2.2792727272727271 "n=1"
+44 1.9189772727272727 "n=4"
+176 1.5303693181818183 "n=16"
+704 1.4937151988636364 "n=64"
+2816 1.5281713423295451 "n=256"
+11264 1.8578878728693182 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
