@@ -1,7 +1,7 @@
 // The sandbox program renders the default scene (the seed's ragdoll) to a PNG under Xvfb, and the
 // pixels are where the scene, the camera and the style say they should be: sky in the corner,
 // lit ground, the largest box where the physics puts it, and the ImGui panel in its rectangle;
-// and loose particles, in the falling-box scene, which has some.
+// loose particles, in the falling-box scene, which has some; and a rigid box, in rigid.xml.
 #include <filesystem>
 #include <string>
 
@@ -105,9 +105,9 @@ TEST(RenderScene, DefaultSceneIsTheSeedsRagdoll) {
   EXPECT_EQ(rendered().scene.world.bodies().size(), 10u);
 }
 
-TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
-  const Rendered& r = rendered();
-  const phys::BodyId box = largestBox(r.scene.world);
+// The 9 x 9 pixels about where the physics puts `box` are all box-coloured, and the pixel where it
+// started is not: the screenshot shows the simulated state, not the initial one.
+void expectDrawnWhereThePhysicsPutsIt(const Rendered& r, phys::BodyId box) {
   const phys::BodyPose pose = r.scene.world.bodyPose(box);
   const glm::ivec2 centre = toPixel(r, glm::vec3(pose.center));
   int boxLike = 0;
@@ -118,11 +118,29 @@ TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
     }
   }
   EXPECT_EQ(boxLike, 81) << "box centre projects to " << centre.x << ", " << centre.y;
-  // And not where it started: the screenshot shows the simulated state, not the initial one.
   const scenes::Scene initial = scenes::loadSceneFile(r.scene.file);
   const glm::ivec2 start = toPixel(r, glm::vec3(initial.world.bodyPose(box).center));
   const glm::u8vec4 p = r.image.pixel(start.x, start.y);
   EXPECT_FALSE(sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b));
+}
+
+TEST(RenderScene, BoxIsDrawnWhereThePhysicsPutsIt) {
+  const Rendered& r = rendered();
+  expectDrawnWhereThePhysicsPutsIt(r, largestBox(r.scene.world));
+}
+
+// A rigid body is drawn from its own pose, not from particles: `rigid.xml`'s crate, dropped onto
+// two rigid logs, where the physics has it after 1.5 s.
+TEST(RenderScene, ARigidBoxIsDrawnWhereThePhysicsPutsIt) {
+  const Rendered r = render("rigid");
+  const phys::World& w = r.scene.world;
+  phys::BodyId crate = phys::kNoBody;
+  for (phys::BodyId i{}; i < w.bodies().size(); ++i) {
+    if (w.bodies()[i].name == "crate") crate = i;
+  }
+  ASSERT_NE(crate, phys::kNoBody);
+  ASSERT_EQ(w.bodies()[crate].model, phys::BodyModel::Rigid);
+  expectDrawnWhereThePhysicsPutsIt(r, crate);
 }
 
 TEST(RenderScene, LooseParticlesAreDrawn) {
