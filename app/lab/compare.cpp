@@ -108,16 +108,13 @@ std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
         return "compare: --dt '" + v + "': a number of seconds from 1e-06 to 1";
       o.dt = *d;
     } else if (a == "--model") {
-      if (std::string e = value(v); !e.empty()) return e;
-      o.model = phys::parseBodyModel(v);
-      if (!o.model) return "compare: --model '" + v + "': corners, tetra or rigid";
+      if (std::string e = parseModelOption(args, i, o.model); !e.empty()) return "compare: " + e;
     } else if (a == "--iterations" || a == "--substeps") {
-      if (std::string e = value(v); !e.empty()) return e;
-      const auto n = wholeNumber(v);
       const int most = a == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
-      if (!n || *n < 1 || *n > most)
-        return "compare: " + a + " '" + v + "': a whole number from 1 to " + std::to_string(most);
-      (a == "--iterations" ? o.iterations : o.substeps) = static_cast<int>(*n);
+      int n = 0;
+      if (std::string e = parseCountOption(a, optionValue(args, i), most, n); !e.empty())
+        return "compare: " + e;
+      (a == "--iterations" ? o.iterations : o.substeps) = n;
     } else if (a == "--peer-sleep") {
       if (std::string e = value(v); !e.empty()) return e;
       if (v != "on" && v != "off") return "compare: --peer-sleep '" + v + "': on or off";

@@ -23,10 +23,7 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
       o.dt = parseDt(*v);
       if (!o.dt) return a + ": '" + *v + "' is not a number of seconds from 1e-06 to 1";
     } else if (a == "--model") {
-      const std::string* v = value();
-      if (v == nullptr) return missing("a body model (corners, tetra or rigid)");
-      o.model = phys::parseBodyModel(*v);
-      if (!o.model) return a + ": unknown model '" + *v + "' (corners, tetra or rigid)";
+      if (std::string e = parseModelOption(args, i, o.model); !e.empty()) return e;
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "--dump") {
@@ -152,6 +149,16 @@ std::string parseCountOption(const std::string& option, const std::string* value
   const std::optional<int> n = parseWholeNumber(*value, 1, high);
   if (!n) return notWholeNumber(option, *value, high);
   into = *n;
+  return {};
+}
+
+std::string parseModelOption(const std::vector<std::string>& args, std::size_t& i,
+                             std::optional<phys::BodyModel>& model) {
+  const std::string& option = args[i];
+  const std::string* v = optionValue(args, i);
+  if (v == nullptr) return option + " needs a body model (corners, tetra or rigid)";
+  model = phys::parseBodyModel(*v);
+  if (!model) return option + ": unknown model '" + *v + "' (corners, tetra or rigid)";
   return {};
 }
 

@@ -80,6 +80,10 @@ std::string parseCountOption(const std::string& option, const std::string* value
 /// them; else the error, or "" when the value was good.
 std::optional<std::string> parseSolverOption(const std::vector<std::string>& args, std::size_t& i,
                                              RunOptions& o);
+/// --model M at args[i] (stepping i onto the value): corners, tetra or rigid into `model`.
+/// Returns the error, or "".
+std::string parseModelOption(const std::vector<std::string>& args, std::size_t& i,
+                             std::optional<phys::BodyModel>& model);
 /// A time step from phys::kMinDt to phys::kMaxDt seconds, nothing else.
 std::optional<double> parseDt(const std::string& text);
 

@@ -279,10 +279,6 @@ TEST(Stacking, TenBoxStackAtTheSeedsSettingsDoesNotStand) {
   EXPECT_GT(s.topDrift, 0.05);
 }
 
-}  // namespace
-
-namespace {
-
 // Issue 14's targets for the rigid model, on the stability suite's own files with every box made
 // rigid (scenes::LoadOptions, as `lab stability --models rigid`) at the cheapest setting, one
 // substep of one iteration: the pyramid of 20 rows (210 boxes) and the stack of 40 stand a minute,
