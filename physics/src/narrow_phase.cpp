@@ -95,6 +95,8 @@ void NarrowPhase::build(const NarrowPhaseInput& in) {
   std::size_t old = 0;
   BoxContact contact;
   for (const BroadPhase::Pair& pair : in.broadPhase.pairs()) {
+    // Two sleeping bodies: their island keeps them as they fell asleep (Islands).
+    if (!in.asleep.empty() && in.asleep[pair.first] != 0 && in.asleep[pair.second] != 0) continue;
     while (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) < pair) ++old;
     if (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair &&
         canCarry(in, spareManifolds_[old])) {

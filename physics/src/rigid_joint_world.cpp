@@ -41,6 +41,11 @@ void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real
   };
   const BodyId bodyA = bodyOf(a), bodyB = bodyOf(b);
   if (bodyA != kNoBody && bodyB != kNoBody && bodyA != bodyB) parting_.join(bodyA, bodyB);
+  auto nodeOf = [this](const BodyPoint& end) {
+    return end.side == ContactSide::Rigid ? islands_.bodyNode(rigidBodies_.body[end.rigid])
+                                          : islands_.particleNode(end.point.particle[0]);
+  };
+  islands_.join(nodeOf(a), nodeOf(b));
 }
 
 void World::addJoint(const JointDesc& d) {
@@ -86,6 +91,7 @@ void World::addJoint(const JointDesc& d) {
   constraints_.addRigidJoint(j);
   rigidBodies_.jointed[j.a] = rigidBodies_.jointed[j.b] = 1;
   parting_.join(d.a, d.b);  // moved as one by the parting, as a ragdoll's particle parts are
+  islands_.join(islands_.bodyNode(d.a), islands_.bodyNode(d.b));
 }
 
 JointDesc World::jointDesc(std::size_t k) const {

@@ -77,6 +77,8 @@ std::string validate(const SolverSettings& s) {
     why << "broadPhase.stripsPerBody must be from 1 to " << kMaxStrips << "; ";
   if (b.maxStripsPerBody < 1 || b.maxStripsPerBody > kMaxStrips)
     why << "broadPhase.maxStripsPerBody must be from 1 to " << kMaxStrips << "; ";
+  if (!finiteNonNegative(s.sleep.speed)) why << "sleep.speed must be finite and >= 0 (m/s); ";
+  if (!finiteNonNegative(s.sleep.time)) why << "sleep.time must be finite and >= 0 (s); ";
   const PartingSettings& p = s.parting;
   if (p.plainSweeps < 0 || p.plainSweeps > kMaxPartingSweeps)
     why << "parting.plainSweeps must be from 0 to " << kMaxPartingSweeps << "; ";

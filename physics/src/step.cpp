@@ -9,6 +9,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 #include "passes.h"
 #include "physics/world.h"
@@ -31,6 +32,15 @@ void World::step() {
   const auto stepStart = Clock::now();
   profile_ = {};
   swept_ = 0;
+  if (restWhileAsleep()) {
+    profile_.total = millisecondsSince(stepStart);
+    return;
+  }
+  const std::size_t freezesBefore = guard_.freezes().size();
+  if (islands_.anyAsleep()) {
+    const detail::StageTimer timer(profile_, Stage::Islands);
+    islands_.mask(particles_, rigidBodies_, bodies_);
+  }
   updateLayouts();
   std::fill(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{0});
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
@@ -56,8 +66,59 @@ void World::step() {
     time_ += h;
     guard(s + 1 == solver_.substeps && guard_.shapesDue(time_));
   }
+  updateIslands(freezesBefore);
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
+}
+
+// When every island sleeps, a step only passes the time (as the substeps would add it up).
+bool World::restWhileAsleep() {
+  if (!islands_.allAsleep() || drag_) return false;
+  for (int s = 0; s < solver_.substeps; ++s) time_ += substepDt();
+  ++steps_;
+  return true;
+}
+
+// The sleeping islands get their masses back, then the islands are found again from this step's
+// manifolds, and some wake or fall asleep.
+void World::updateIslands(std::size_t freezesBefore) {
+  const detail::StageTimer timer(profile_, Stage::Islands);
+  if (islands_.anyAsleep()) {
+    islands_.unmask(particles_, rigidBodies_, bodies_);
+    // A sleeping body the guard froze in this step (crushed too long) stays frozen: unmask gave
+    // back the masses the freeze had taken.
+    const std::span<const FreezeReport> freezes = guard_.freezes();
+    for (std::size_t k = freezesBefore; k < freezes.size(); ++k) refreeze(freezes[k]);
+  }
+  const HeldNodes held = heldNodes();
+  islands_.update({particles_, rigidBodies_, bodies_, narrowPhase_.manifolds(), substepDt(), solver_.dt,
+                   solver_.sleep, std::span<const NodeId>(held.nodes.data(), held.count)});
+}
+
+void World::refreeze(const FreezeReport& freeze) {
+  if (freeze.body == kNoBody) {
+    particles_.inverseMass[freeze.particle] = 0.0;
+    return;
+  }
+  const Body& body = bodies_[freeze.body];
+  for (int j = 0; j < body.particleCount; ++j) particles_.inverseMass[body.firstParticle + j] = 0.0;
+  if (body.model != BodyModel::Rigid) return;
+  rigidBodies_.inverseMass[body.rigid] = 0.0;
+  rigidBodies_.inverseInertia[body.rigid] = Vec3(0.0);
+  rigidBodies_.inverseInertiaWorld[body.rigid] = glm::dmat3(0.0);
+}
+
+// The nodes a drag holds awake: its rigid body's, or its point's particles'.
+World::HeldNodes World::heldNodes() const {
+  HeldNodes held;
+  if (!drag_) return held;
+  if (drag_->body != kNoBody) {
+    held.nodes[held.count++] = islands_.bodyNode(drag_->body);
+    return held;
+  }
+  for (int i = 0; i < drag_->point.count; ++i)
+    held.nodes[held.count++] = islands_.particleNode(drag_->point.particle[i]);
+  return held;
 }
 
 // Rebuilt only after sticks, bodies, links or collision filters were added: the first step of a
@@ -142,7 +203,8 @@ NarrowPhaseInput World::narrowPhaseInput() const {
           solver_.contactSlop,
           solver_.dt,
           gravityMagnitude(),
-          solver_.manifoldReuse};
+          solver_.manifoldReuse,
+          islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>()};
 }
 
 // Each contact with a rigid body: its overlap at the substep's start, of which the substep may remove

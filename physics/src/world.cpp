@@ -70,6 +70,7 @@ World::World(const WorldSettings& world, const SolverSettings& solver) {
 void World::setWorldSettings(const WorldSettings& settings) {
   const std::string why = validate(settings);
   require(why.empty(), "WorldSettings: " + why);
+  if (!(settings == world_)) islands_.wakeAll();  // new gravity, ground or bounds: all must answer
   world_ = settings;
   world_.groundNormal = glm::normalize(settings.groundNormal);
   ground_.combineMaterials(world_.groundMaterial);
@@ -81,6 +82,7 @@ void World::setSolverSettings(const SolverSettings& settings) {
   const Real hOld = substepDt(), hNew = settings.dt / settings.substeps;
   if (hNew != hOld) keepVelocities(hOld, hNew);
   const bool stiffer = settings.iterations * settings.substeps > solver_.iterations * solver_.substeps;
+  if (!(settings == solver_)) islands_.wakeAll();  // what rested under the old settings may not
   solver_ = settings;
   if (stiffer) settleWithoutVelocity();
   guardParticles();  // both can overflow under absurd gravity or speeds
@@ -169,6 +171,13 @@ void World::setFreezeCallback(std::function<void(const FreezeReport&)> callback)
 }
 
 ParticleId World::addParticle(const ParticleDesc& desc) {
+  const ParticleId id = pushParticle(desc);
+  islands_.addParticle(desc.pinned);
+  return id;
+}
+
+// A particle of its own or of a body (addBody gives the body's to Islands with the body).
+ParticleId World::pushParticle(const ParticleDesc& desc) {
   require(finite(desc.position), "addParticle: position must be finite");
   require(finite(desc.velocity), "addParticle: velocity must be finite");
   require(desc.pinned || (std::isfinite(desc.mass) && desc.mass > 0.0 && std::isfinite(1.0 / desc.mass)),
@@ -211,6 +220,7 @@ void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength,
           "stick: compliance must be from 0 to 1e6 (m/N)");
   constraints_.addStick({a, b, minLength, maxLength, compliance});
   joinBodies(a, b);
+  islands_.joinParticles(a, b);
 }
 
 // An embedding must be an affine combination of existing particles; `who` prefixes the message.
@@ -235,6 +245,9 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
   const Link link{a, b, minLength, maxLength};
   constraints_.addLink(link, detail::linkViolation(particles_.position, link));
   joinBodies(a.particle[0], b.particle[0]);
+  for (const Embedding* end : {&a, &b}) {
+    for (int i = 0; i < end->count; ++i) islands_.joinParticles(a.particle[0], end->particle[i]);
+  }
 }
 
 void World::setDrag(const Drag& drag) {
@@ -252,6 +265,8 @@ void World::setDrag(const Drag& drag) {
           "setDrag: damping must be finite and >= 0 (N s/m)");
   drag_ = drag;
   dragBody_ = kNoBody;
+  const HeldNodes held = heldNodes();
+  for (int i = 0; i < held.count; ++i) islands_.wake(held.nodes[i]);
   if (drag.body != kNoBody) return;
   // The box that carries the point answers the pull as a rigid body; a point carried by anything
   // else (a loose particle, particles of several bodies) is moved through its carriers alone.
@@ -350,7 +365,7 @@ BodyId World::addBody(const BodyDesc& desc) {
     }
   }
   for (int j = 0; j < box.particleCount; ++j) {
-    addParticle(parts[j]);
+    pushParticle(parts[j]);
     particleBody_.back() = id;
   }
   // The particles' own contact points go: the box touches the ground with its corners.
@@ -406,6 +421,7 @@ BodyId World::registerBody(const Body& body) {
   guard_.addBody();
   broadPhase_.addBody();
   parting_.addBody();
+  islands_.addBody(body.particleCount);  // its particles were added just before
   return id;
 }
 

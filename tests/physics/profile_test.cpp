@@ -40,6 +40,7 @@ TEST(Profile, EveryStageHasItsOwnName) {
   EXPECT_EQ(phys::toString(Stage::Integrate), "integrate");
   EXPECT_EQ(phys::toString(Stage::BroadPhase), "broad-phase");
   EXPECT_EQ(phys::toString(Stage::Guard), "guard");
+  EXPECT_EQ(phys::toString(Stage::Islands), "islands");
 }
 
 TEST(Profile, SumsAddStageByStage) {
@@ -53,7 +54,7 @@ TEST(Profile, SumsAddStageByStage) {
   a += b;
   EXPECT_EQ(a[Stage::Links], 707.0);
   EXPECT_EQ(a.total, 3.0);
-  EXPECT_EQ(a.staged(), 101.0 * 91.0);  // 0 + 1 + ... + 13 = 91
+  EXPECT_EQ(a.staged(), 101.0 * 105.0);  // 0 + 1 + ... + 14 = 105
 }
 
 // A pendulum, two particles and a stick in empty space: no bodies, contacts, restitution or body

@@ -41,9 +41,10 @@ enum class Stage : std::uint8_t {
   Restitution,  ///< approach speeds before the passes, bounces after them
   BodyDamping,  ///< each body's inner motion pulled towards its rigid motion
   Guard,        ///< non-finite, out-of-bound and crushed bodies frozen
+  Islands,      ///< once a step: the islands, which sleep and which wake (Islands)
 };
-inline constexpr std::size_t kStageCount = 14;
-static_assert(static_cast<std::size_t>(Stage::Guard) + 1 == kStageCount, "Guard is the last stage");
+inline constexpr std::size_t kStageCount = 15;
+static_assert(static_cast<std::size_t>(Stage::Islands) + 1 == kStageCount, "Islands is the last stage");
 
 /// The stage's name in outputs: "integrate", "broad-phase", ...
 std::string_view toString(Stage stage);

@@ -57,6 +57,7 @@ struct NarrowPhaseInput {
   Real dt = 0.0;              ///< unit: s; the step
   Real gravity = 0.0;         ///< unit: m/s^2; |g|
   ManifoldReuseSettings reuse;
+  std::span<const std::uint8_t> asleep;  ///< per body, 1 when asleep (Islands); empty when none is
 };
 
 class NarrowPhase {

@@ -25,6 +25,7 @@ enum class SolverMethod {
 struct Material {
   Real staticFriction = 0.6;   ///< unitless; tangential motion below mu_s * normal push stops
   Real dynamicFriction = 0.5;  ///< unitless; above it, the motion is cut by mu_d * normal push
+  bool operator==(const Material&) const = default;
 };
 
 /// Forces, the ground and the world's extent.
@@ -45,6 +46,7 @@ struct WorldSettings {
   /// How often the guard looks for crushed bodies (kCrushedStickError, kCrushedTime): often enough
   /// to time kCrushedTime to a twentieth.
   Real shapeCheckInterval = 0.1;  ///< unit: s
+  bool operator==(const WorldSettings&) const = default;
 };
 
 /// A box (or capsule) whose worst stick has been more than kCrushedStickError of its rest length
@@ -76,6 +78,7 @@ struct BroadPhaseSettings {
   /// A body whose bounds cross more strips than this (a floor, or bounds grown by a huge speed) is
   /// tested against every body instead.
   std::size_t maxStripsPerBody = 8;
+  bool operator==(const BroadPhaseSettings&) const = default;
 };
 
 /// Tunables of the parting of deep overlaps (Parting; docs/physics.md, "Where energy could come
@@ -86,6 +89,7 @@ struct PartingSettings {
   Real overRelaxation = 1.7;   ///< unitless, 1 to 2; near the best for a chain of 16 bodies
   Real tolerance = 1e-6;       ///< unit: m; the sweeps stop when no correction is larger
   int progressSweeps = 16;     ///< over-relaxed sweeps between checks that the worst halved
+  bool operator==(const PartingSettings&) const = default;
 };
 
 /// When a pair's face-on-face manifold is carried into the next step instead of being collided
@@ -97,6 +101,19 @@ struct PartingSettings {
 struct ManifoldReuseSettings {
   Real maxShift = 0.0001;  ///< unit: m; of B's centre, in A's frame
   Real maxTurn = 0.0002;   ///< unit: rad; of each of B's axes, in A's frame
+  bool operator==(const ManifoldReuseSettings&) const = default;
+};
+
+/// Sleeping (Islands): an island whose every body has moved slower than `speed` at every point for
+/// `time` goes to sleep: it is not stepped until something wakes it, and its state is kept exactly.
+/// The figures are Box2D's and Jolt's order (0.05 m/s and 0.03 m/s; half a second in both).
+/// Off unless asked: a World steps every body it is given. The sandbox asks for every scene that
+/// does not say `<solver sleep="off">`; the lab only under `--sleep on` (docs/physics.md).
+struct SleepSettings {
+  bool enabled = false;
+  Real speed = 0.05;  ///< unit: m/s; of a body's fastest point, at the end of a step
+  Real time = 0.5;    ///< unit: s; every body of the island below `speed` this long
+  bool operator==(const SleepSettings&) const = default;
 };
 
 /// How the equations are stepped and relaxed.
@@ -140,6 +157,8 @@ struct SolverSettings {
   BroadPhaseSettings broadPhase;
   PartingSettings parting;
   ManifoldReuseSettings manifoldReuse;
+  SleepSettings sleep;
+  bool operator==(const SolverSettings&) const = default;
 };
 
 /// Below this normal speed an impact does not bounce (SolverSettings::restitution).

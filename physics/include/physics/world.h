@@ -3,6 +3,7 @@
 // that moves them. One step is Jakobsen's loop run `substeps` times: integrate (with the drag
 // spring), relax the sticks and the contacts `iterations` times with friction after each pass,
 // restitution, body damping, guard. Also the picking the sandbox needs: raycast and the drag.
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
@@ -18,6 +19,7 @@
 #include "physics/debug_draw.h"
 #include "physics/ground_contacts.h"
 #include "physics/guard.h"
+#include "physics/islands.h"
 #include "physics/metrics.h"
 #include "physics/narrow_phase.h"
 #include "physics/particles.h"
@@ -223,12 +225,15 @@ class World {
   const Profile& profile() const { return profile_; }
   /// FNV-1a hash of every position and previous position: equal hashes, equal states.
   std::uint64_t stateHash() const;
+  /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
+  const Islands& islands() const { return islands_; }
   /// Draws what the flags ask for through the given interface.
   void debugDraw(DebugDraw& draw, const DebugDrawFlags& flags = {}) const;
 
  private:
   Real substepDt() const { return solver_.dt / solver_.substeps; }
   void keepVelocities(Real hOld, Real hNew);
+  ParticleId pushParticle(const ParticleDesc& desc);
   void settleWithoutVelocity();
   // The stages of a substep, in step()'s order (step.cpp); each times itself into profile_.
   void integrateParticles(Real h);
@@ -252,6 +257,14 @@ class World {
   void restitute(Real h);
   void dampBodies();
   void guard(bool shapes);
+  bool restWhileAsleep();
+  void updateIslands(std::size_t freezesBefore);
+  void refreeze(const FreezeReport& freeze);
+  struct HeldNodes {
+    std::array<NodeId, 4> nodes{};
+    int count = 0;
+  };
+  HeldNodes heldNodes() const;
   void guardParticles();
   GuardInput guardInput();
   void checkEmbedding(const Embedding& e, const std::string& who) const;
@@ -291,6 +304,7 @@ class World {
   std::optional<Drag> drag_;
   BodyId dragBody_ = kNoBody;  // the body carrying the drag's point, if one body does
   Guard guard_;
+  Islands islands_;
   Profile profile_;
   Real time_ = 0.0;
   long steps_ = 0;

@@ -1,0 +1,128 @@
+#pragma once
+// Islands and sleeping (Stage::Islands; docs/physics.md, "Islands and sleeping"). A node is a body
+// or a loose particle. Sticks, links and joints join nodes for good; a step's contacts join them for
+// that step; the ground and pinned particles join nothing, as in Box2D and Jolt. The islands are a
+// union-find rebuilt once a step from the lasting joins and the step's manifolds: a step's contacts
+// come and go, and rebuilding them all costs a pass over the nodes and the manifolds
+// (docs/performance.md, "Islands").
+//
+// An island whose every node has been slower than SleepSettings::speed for SleepSettings::time
+// goes to sleep. The world then steps none of it (World::step: its particles and rigid bodies look
+// pinned to the passes, and pairs of two sleeping bodies are not collided), so its state is kept
+// to the bit. It wakes whole when an awake node joins it by a contact, a stick, a link or a joint,
+// when one of its nodes is dragged, and when the settings change.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+
+#include "physics/body.h"
+#include "physics/narrow_phase.h"
+#include "physics/particles.h"
+#include "physics/rigid_bodies.h"
+#include "physics/settings.h"
+
+namespace phys {
+
+/// Index of a node: a body or a loose particle, in the order they were added.
+using NodeId = Id<struct NodeTag>;
+
+/// What Islands::update reads of the world once a step.
+struct IslandInput {
+  const Particles& particles;  ///< with their own inverse masses (none masked)
+  const RigidBodies& rigid;
+  std::span<const Body> bodies;
+  std::span<const Manifold> manifolds;  ///< the step's, particle and rigid pairs alike
+  Real h = 0.0;                         ///< unit: s; the last substep, over which x - x* was made
+  Real dt = 0.0;                        ///< unit: s; the step
+  SleepSettings sleep;
+  /// Nodes kept awake this step (a drag's), or none.
+  std::span<const NodeId> held;
+};
+
+class Islands {
+ public:
+  /// A loose particle's node; a pinned one (`fixed`) joins nothing and is never in an island.
+  NodeId addParticle(bool fixed);
+  /// A body's node; its `particleCount` particles, added just before, are its own.
+  NodeId addBody(int particleCount);
+  /// The two nodes are one island from now on (a stick, a link or a joint). Wakes both.
+  void join(NodeId a, NodeId b);
+  /// The nodes of particles a and b, unless either is fixed.
+  void joinParticles(ParticleId a, ParticleId b);
+
+  /// Once a step, after its last substep: the islands of the lasting joins and the step's
+  /// manifolds; wakes every sleeping island an awake node touched; times each node's rest; puts
+  /// islands to sleep.
+  void update(const IslandInput& in);
+  /// Wakes every node (settings changed, or sleeping turned off).
+  void wakeAll();
+  /// Wakes the island of the node.
+  void wake(NodeId node);
+
+  /// Makes every sleeping node look pinned to the passes (inverse masses and inertias 0), keeping
+  /// its own, which unmask() gives back: between the two, a step moves nothing of a sleeping
+  /// island, through the same paths that leave a pinned particle or a frozen body alone.
+  void mask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
+  void unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
+
+  NodeId particleNode(ParticleId id) const { return particleNode_[id]; }
+  NodeId bodyNode(BodyId id) const { return bodyNode_[id]; }
+  bool asleep(NodeId node) const { return asleep_[node] != 0; }
+  bool bodyAsleep(BodyId id) const { return asleep_[bodyNode_[id]] != 0; }
+  /// Per body: 1 when asleep (what the narrow phase skips pairs by).
+  std::span<const std::uint8_t> bodiesAsleep() const { return bodyAsleep_; }
+  /// True when some node sleeps: the step masks their masses.
+  bool anyAsleep() const { return sleepingNodes_ > 0; }
+  /// True when every node that can move sleeps: the step has nothing to do.
+  bool allAsleep() const { return sleepingNodes_ > 0 && sleepingNodes_ == movableNodes_; }
+  /// The island of each body at the last update, numbered from 0 in order of first body (for
+  /// drawing); a body that joins nothing is an island of its own.
+  std::span<const std::uint32_t> bodyIsland() const { return bodyIsland_; }
+  /// At the last update: islands with at least one node that can move, awake and asleep.
+  std::size_t islandCount() const { return islandCount_; }
+  std::size_t sleepingIslands() const { return sleepingIslands_; }
+  /// Bodies awake and asleep now.
+  std::size_t sleepingBodies() const;
+  std::size_t awakeBodies() const { return bodyNode_.size() - sleepingBodies(); }
+
+ private:
+  NodeId addNode(bool fixed);
+  NodeId root(NodeId node);
+  void unite(NodeId a, NodeId b);
+  void setAsleep(NodeId node, bool asleep);
+  Real nodeSpeed(const IslandInput& in, NodeId node) const;
+
+  std::vector<NodeId> particleNode_;        // per particle
+  std::vector<NodeId> bodyNode_;            // per body
+  std::vector<BodyId> nodeBody_;            // per node: its body, or kNoBody for a loose particle
+  std::vector<ParticleId> nodeParticle_;    // per node: a loose particle's id
+  std::vector<std::uint8_t> fixed_;         // per node: a pinned loose particle
+  std::vector<NodeId> lasting_;             // per node: union-find parent over sticks, links, joints
+  std::vector<NodeId> parent_;              // per node: this step's union-find parent
+  std::vector<NodeId> sleepGroup_;          // per node: the island it fell asleep in (a node of it)
+  std::vector<std::uint8_t> asleep_;        // per node
+  std::vector<std::uint8_t> bodyAsleep_;    // per body
+  std::vector<Real> rest_;                  // per node: unit: s; how long it has been slow
+  std::vector<std::uint8_t> islandAwake_;   // per root: scratch
+  std::vector<std::uint8_t> islandAsleep_;  // per root: scratch
+  std::vector<Real> islandRest_;            // per root: scratch, the least rest of its nodes
+  std::vector<std::uint32_t> bodyIsland_;
+  std::vector<std::uint32_t> islandNumber_;  // per root: scratch
+  // What mask() took, in node order; room for every particle and body, made as they are added.
+  struct RigidMass {
+    Real inverseMass = 0.0;
+    Vec3 inverseInertia{0.0};
+    glm::dmat3 inverseInertiaWorld{0.0};
+  };
+  std::vector<Real> maskedParticles_;
+  std::vector<RigidMass> maskedRigid_;
+  std::size_t sleepingNodes_ = 0;
+  std::size_t movableNodes_ = 0;
+  std::size_t islandCount_ = 0;
+  std::size_t sleepingIslands_ = 0;
+};
+
+}  // namespace phys

@@ -1,0 +1,230 @@
+#include "physics/islands.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+namespace phys {
+
+NodeId Islands::addNode(bool fixed) {
+  const NodeId id(asleep_.size());
+  nodeBody_.push_back(kNoBody);
+  nodeParticle_.push_back(ParticleId{});
+  fixed_.push_back(fixed ? 1 : 0);
+  lasting_.push_back(id);
+  parent_.push_back(id);
+  sleepGroup_.push_back(id);
+  asleep_.push_back(0);
+  rest_.push_back(0.0);
+  islandAwake_.push_back(0);
+  islandAsleep_.push_back(0);
+  islandRest_.push_back(0.0);
+  islandNumber_.push_back(0);
+  if (!fixed) ++movableNodes_;
+  return id;
+}
+
+NodeId Islands::addParticle(bool fixed) {
+  const NodeId id = addNode(fixed);
+  nodeParticle_[id] = ParticleId(particleNode_.size());
+  particleNode_.push_back(id);
+  maskedParticles_.reserve(particleNode_.size());
+  return id;
+}
+
+NodeId Islands::addBody(int particleCount) {
+  const NodeId id = addNode(false);
+  nodeBody_[id] = BodyId(bodyNode_.size());
+  bodyNode_.push_back(id);
+  bodyAsleep_.push_back(0);
+  bodyIsland_.push_back(0);
+  particleNode_.insert(particleNode_.end(), static_cast<std::size_t>(particleCount), id);
+  maskedParticles_.reserve(particleNode_.size());
+  maskedRigid_.reserve(bodyNode_.size());
+  return id;
+}
+
+void Islands::mask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
+  maskedParticles_.clear();
+  maskedRigid_.clear();
+  for (NodeId n{}; n < asleep_.size(); ++n) {
+    if (asleep_[n] == 0) continue;
+    const BodyId id = nodeBody_[n];
+    if (id == kNoBody) {
+      maskedParticles_.push_back(std::exchange(p.inverseMass[nodeParticle_[n]], 0.0));
+      continue;
+    }
+    const Body& body = bodies[id];
+    for (int j = 0; j < body.particleCount; ++j)
+      maskedParticles_.push_back(std::exchange(p.inverseMass[body.firstParticle + j], 0.0));
+    if (body.model != BodyModel::Rigid) continue;
+    const RigidId i = body.rigid;
+    maskedRigid_.push_back({std::exchange(r.inverseMass[i], 0.0),
+                            std::exchange(r.inverseInertia[i], Vec3(0.0)),
+                            std::exchange(r.inverseInertiaWorld[i], glm::dmat3(0.0))});
+  }
+}
+
+void Islands::unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
+  std::size_t particle = 0, rigid = 0;
+  for (NodeId n{}; n < asleep_.size(); ++n) {
+    if (asleep_[n] == 0) continue;
+    const BodyId id = nodeBody_[n];
+    if (id == kNoBody) {
+      p.inverseMass[nodeParticle_[n]] = maskedParticles_[particle++];
+      continue;
+    }
+    const Body& body = bodies[id];
+    for (int j = 0; j < body.particleCount; ++j)
+      p.inverseMass[body.firstParticle + j] = maskedParticles_[particle++];
+    if (body.model != BodyModel::Rigid) continue;
+    const RigidMass& m = maskedRigid_[rigid++];
+    r.inverseMass[body.rigid] = m.inverseMass;
+    r.inverseInertia[body.rigid] = m.inverseInertia;
+    r.inverseInertiaWorld[body.rigid] = m.inverseInertiaWorld;
+  }
+}
+
+void Islands::join(NodeId a, NodeId b) {
+  if (fixed_[a] != 0 || fixed_[b] != 0 || a == b) return;
+  wake(a);
+  wake(b);
+  auto lastingRoot = [this](NodeId n) {
+    while (lasting_[n] != n) {
+      lasting_[n] = lasting_[lasting_[n]];
+      n = lasting_[n];
+    }
+    return n;
+  };
+  const NodeId ra = lastingRoot(a), rb = lastingRoot(b);
+  if (ra != rb) lasting_[std::max(ra, rb)] = std::min(ra, rb);
+}
+
+void Islands::joinParticles(ParticleId a, ParticleId b) {
+  // A body's own sticks are added before the body's node (World::addBody): nothing to join.
+  if (a >= particleNode_.size() || b >= particleNode_.size()) return;
+  join(particleNode_[a], particleNode_[b]);
+}
+
+NodeId Islands::root(NodeId node) {
+  while (parent_[node] != node) {
+    parent_[node] = parent_[parent_[node]];  // path halving
+    node = parent_[node];
+  }
+  return node;
+}
+
+void Islands::unite(NodeId a, NodeId b) {
+  const NodeId ra = root(a), rb = root(b);
+  if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+}
+
+void Islands::setAsleep(NodeId node, bool asleep) {
+  if ((asleep_[node] != 0) == asleep) return;
+  asleep_[node] = asleep ? 1 : 0;
+  if (asleep) {
+    ++sleepingNodes_;
+  } else {
+    --sleepingNodes_;
+    rest_[node] = 0.0;  // woken: it must rest its whole time again before it sleeps
+  }
+  if (nodeBody_[node] != kNoBody) bodyAsleep_[nodeBody_[node]] = asleep_[node];
+}
+
+void Islands::wakeAll() {
+  for (NodeId n{}; n < asleep_.size(); ++n) setAsleep(n, false);
+}
+
+void Islands::wake(NodeId node) {
+  if (asleep_[node] == 0) return;
+  const NodeId group = sleepGroup_[node];
+  for (NodeId n{}; n < asleep_.size(); ++n) {
+    if (asleep_[n] != 0 && sleepGroup_[n] == group) setAsleep(n, false);
+  }
+}
+
+std::size_t Islands::sleepingBodies() const {
+  return static_cast<std::size_t>(std::count(bodyAsleep_.begin(), bodyAsleep_.end(), std::uint8_t{1}));
+}
+
+// The speed of the node's fastest point over the last substep: a particle body's fastest particle;
+// a rigid body's centre plus its spin times its half diagonal (a bound on any point's).
+Real Islands::nodeSpeed(const IslandInput& in, NodeId node) const {
+  const Particles& p = in.particles;
+  auto particleSpeed = [&](ParticleId i) { return glm::length(p.position[i] - p.previous[i]) / in.h; };
+  const BodyId id = nodeBody_[node];
+  if (id == kNoBody) return particleSpeed(nodeParticle_[node]);
+  const Body& body = in.bodies[id];
+  if (body.model == BodyModel::Rigid) {
+    const RigidId r = body.rigid;
+    return glm::length(in.rigid.velocity[r]) +
+           glm::length(in.rigid.angularVelocity[r]) * glm::length(body.halfExtents);
+  }
+  Real fastest = 0.0;
+  for (int j = 0; j < body.particleCount; ++j)
+    fastest = std::max(fastest, particleSpeed(body.firstParticle + j));
+  return fastest;
+}
+
+void Islands::update(const IslandInput& in) {
+  const std::size_t n = asleep_.size();
+  // This step's islands: the lasting joins, the sleeping islands as they fell asleep (their pairs
+  // were not collided), and the step's manifolds.
+  for (NodeId i{}; i < n; ++i) {
+    NodeId r = i;
+    while (lasting_[r] != r) r = lasting_[r];
+    parent_[i] = r;
+  }
+  for (NodeId i{}; i < n; ++i) {
+    if (asleep_[i] != 0) unite(i, sleepGroup_[i]);
+  }
+  for (const Manifold& m : in.manifolds) {
+    if (m.contactCount > 0) unite(bodyNode_[m.a], bodyNode_[m.b]);
+  }
+
+  for (NodeId i{}; i < n; ++i) {
+    islandAwake_[i] = islandAsleep_[i] = 0;
+    islandRest_[i] = std::numeric_limits<Real>::infinity();
+  }
+  for (NodeId i{}; i < n; ++i) {
+    if (fixed_[i] != 0) continue;
+    if (asleep_[i] == 0) rest_[i] = nodeSpeed(in, i) < in.sleep.speed ? rest_[i] + in.dt : 0.0;
+  }
+  for (const NodeId held : in.held) rest_[held] = 0.0;
+  for (NodeId i{}; i < n; ++i) {
+    if (fixed_[i] != 0) continue;
+    const NodeId r = root(i);
+    (asleep_[i] != 0 ? islandAsleep_[r] : islandAwake_[r]) = 1;
+    islandRest_[r] = std::min(islandRest_[r], rest_[i]);
+  }
+  for (NodeId i{}; i < n; ++i) {
+    if (fixed_[i] != 0) continue;
+    const NodeId r = root(i);
+    if (islandAwake_[r] == 0) continue;  // asleep whole: stays so
+    if (islandAsleep_[r] != 0) {
+      setAsleep(i, false);  // an awake node touched it
+    } else if (in.sleep.enabled && islandRest_[r] >= in.sleep.time) {
+      setAsleep(i, true);
+      sleepGroup_[i] = r;
+    }
+  }
+
+  // Counts and each body's island number, for the sandbox and the lab.
+  islandCount_ = sleepingIslands_ = 0;
+  constexpr std::uint32_t kUnnumbered = std::numeric_limits<std::uint32_t>::max();
+  std::fill(islandNumber_.begin(), islandNumber_.end(), kUnnumbered);
+  for (NodeId i{}; i < n; ++i) {
+    if (fixed_[i] != 0) continue;
+    const NodeId r = root(i);
+    if (islandNumber_[r] == kUnnumbered) {
+      islandNumber_[r] = static_cast<std::uint32_t>(islandCount_++);
+      if (asleep_[i] != 0) ++sleepingIslands_;
+    }
+    if (nodeBody_[i] != kNoBody) bodyIsland_[nodeBody_[i]] = islandNumber_[r];
+  }
+}
+
+}  // namespace phys

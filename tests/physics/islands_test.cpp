@@ -1,0 +1,240 @@
+// Islands and sleeping (physics/include/physics/islands.h): which bodies make an island, when an
+// island sleeps, that a sleeping island keeps its state to the bit and costs no step, and what
+// wakes it.
+#include <gtest/gtest.h>
+
+#include "physics/ragdoll.h"
+#include "physics/world.h"
+#include "test_util.h"
+
+namespace {
+
+using phys::BodyId;
+using phys::Vec3;
+
+phys::SolverSettings sleeping(phys::BodyModel model = phys::BodyModel::Corners) {
+  phys::SolverSettings s;
+  s.sleep.enabled = true;
+  if (model == phys::BodyModel::Corners) {
+    s.iterations = 10;  // a corners box at rest stops within a second at these settings
+    s.substeps = 4;
+  }
+  return s;
+}
+
+phys::BodyDesc box(const Vec3& centre, phys::BodyModel model = phys::BodyModel::Corners) {
+  phys::BodyDesc d;
+  d.center = centre;
+  d.model = model;
+  return d;
+}
+
+// Steps until the body sleeps or `seconds` pass; returns the time it fell asleep, or -1.
+double stepUntilAsleep(phys::World& world, BodyId id, double seconds) {
+  while (world.time() < seconds) {
+    world.step();
+    if (world.islands().bodyAsleep(id)) return world.time();
+  }
+  return -1.0;
+}
+
+TEST(Islands, BodiesApartAreIslandsOfTheirOwnAndAStackIsOne) {
+  phys::World world({}, sleeping());
+  world.addBody(box(Vec3(-5.0, 0.5, 0.0)));
+  world.addBody(box(Vec3(5.0, 0.5, 0.0)));
+  world.addBody(box(Vec3(0.0, 0.5, 0.0)));
+  world.addBody(box(Vec3(0.0, 1.5, 0.0)));
+  world.addBody(box(Vec3(0.0, 2.5, 0.0)));
+  for (int i = 0; i < 10; ++i) world.step();
+  EXPECT_EQ(world.islands().islandCount(), 3u);  // the ground joins nothing
+  const auto island = world.islands().bodyIsland();
+  EXPECT_NE(island[0], island[1]);
+  EXPECT_EQ(island[2], island[3]);
+  EXPECT_EQ(island[3], island[4]);
+  EXPECT_NE(island[0], island[2]);
+}
+
+TEST(Islands, JointsAndSticksJoinForGoodAndAPinnedParticleJoinsNothing) {
+  phys::World world = testing_phys::openSpace(sleeping());
+  phys::RagdollDesc r;
+  r.hips = Vec3(0.0, 10.0, 0.0);
+  phys::addRagdoll(world, r);  // ten boxes, apart in the air: one island by its joints
+  // Two chains hung from one pinned particle: two islands, not one through the pin.
+  const phys::ParticleId pin = world.addParticle({Vec3(20.0, 10.0, 0.0), Vec3(0.0), 1.0, true, "pin"});
+  for (const double side : {-1.0, 1.0}) {
+    phys::ParticleId last = pin;
+    for (int k = 1; k <= 3; ++k) {
+      const phys::ParticleId p =
+          world.addParticle({Vec3(20.0 + side * k, 10.0, 0.0), Vec3(0.0), 1.0, false, ""});
+      world.addStick(last, p);
+      last = p;
+    }
+  }
+  world.step();
+  EXPECT_EQ(world.islands().islandCount(), 3u);
+  const phys::NodeId left = world.islands().particleNode(pin + 1),
+                     right = world.islands().particleNode(pin + 4);
+  EXPECT_NE(left, right);
+}
+
+TEST(Islands, SleepingIsOffUnlessAsked) {
+  phys::World world;
+  const BodyId id = world.addBody(box(Vec3(0.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  for (int i = 0; i < 300; ++i) world.step();
+  EXPECT_FALSE(world.islands().bodyAsleep(id));
+  EXPECT_EQ(world.islands().sleepingBodies(), 0u);
+}
+
+// A box dropped on the ground sleeps once it has rested SleepSettings::time, and from then on a
+// step changes nothing: the same hash, step after step, and no stage timed.
+TEST(Islands, ARestingBoxSleepsAndKeepsItsStateToTheBit) {
+  for (const phys::BodyModel model :
+       {phys::BodyModel::Corners, phys::BodyModel::Tetra, phys::BodyModel::Rigid}) {
+    phys::World world({}, sleeping(model));
+    const BodyId id = world.addBody(box(Vec3(0.0, 1.0, 0.0), model));
+    const double asleep = stepUntilAsleep(world, id, 5.0);
+    ASSERT_GT(asleep, 0.0) << phys::toString(model);
+    // It falls for about 0.3 s and must rest 0.5 s after that.
+    EXPECT_GT(asleep, 0.5) << phys::toString(model);
+    EXPECT_EQ(world.islands().sleepingIslands(), 1u);
+    const std::uint64_t hash = world.stateHash();
+    const phys::BodyPose pose = world.bodyPose(id);
+    for (int i = 0; i < 120; ++i) {
+      world.step();
+      EXPECT_EQ(world.profile().staged(), 0.0);
+    }
+    EXPECT_EQ(world.stateHash(), hash) << phys::toString(model);
+    EXPECT_EQ(world.bodyPose(id).center, pose.center);
+    EXPECT_NEAR(world.time(), asleep + 2.0, 1e-9);  // the clock still runs
+  }
+}
+
+// Waking gives back the state it slept in: the woken world steps exactly as one that never slept
+// would from the same state (here: one whose sleeping is off from the moment the first fell asleep).
+TEST(Islands, WakingGivesBackTheStateItSleptIn) {
+  phys::World world({}, sleeping());
+  const BodyId id = world.addBody(box(Vec3(0.0, 1.0, 0.0)));
+  ASSERT_GT(stepUntilAsleep(world, id, 5.0), 0.0);
+  const std::vector<Vec3> x = world.particles().position, previous = world.particles().previous;
+  for (int i = 0; i < 60; ++i) world.step();
+  phys::SolverSettings off = world.solverSettings();
+  off.sleep.enabled = false;
+  world.setSolverSettings(off);  // a changed setting wakes every island
+  EXPECT_FALSE(world.islands().bodyAsleep(id));
+  EXPECT_EQ(world.particles().position, x);
+  EXPECT_EQ(world.particles().previous, previous);
+}
+
+// A sleeping island is not stepped while another island moves: a stack of three asleep keeps its
+// particles to the bit while a box falls beside it (stepped, the stack's boxes would be pressed
+// into each other by gravity and pushed back, a few ulps off each substep).
+TEST(Islands, ASleepingIslandIsNotSteppedWhileAnotherMoves) {
+  for (const phys::BodyModel model : {phys::BodyModel::Corners, phys::BodyModel::Rigid}) {
+    phys::World world({}, sleeping(model));
+    for (int k = 0; k < 3; ++k) world.addBody(box(Vec3(0.0, 0.5 + k, 0.0), model));
+    ASSERT_GT(stepUntilAsleep(world, BodyId(2), 10.0), 0.0) << phys::toString(model);
+    const std::vector<Vec3> x = world.particles().position, previous = world.particles().previous;
+    const phys::RigidBodies rigid = world.rigidBodies();
+    const BodyId falling = world.addBody(box(Vec3(5.0, 3.0, 0.0), model));
+    for (int i = 0; i < 120; ++i) {
+      world.step();
+      ASSERT_TRUE(world.islands().bodyAsleep(BodyId(0)));
+      const auto& p = world.particles();
+      ASSERT_EQ(std::vector<Vec3>(p.position.begin(), p.position.begin() + x.size()), x)
+          << "t = " << world.time();
+      ASSERT_EQ(std::vector<Vec3>(p.previous.begin(), p.previous.begin() + x.size()), previous);
+      for (phys::RigidId r{}; r < rigid.size(); ++r) {
+        ASSERT_EQ(world.rigidBodies().position[r], rigid.position[r]) << "t = " << world.time();
+        ASSERT_EQ(world.rigidBodies().orientation[r], rigid.orientation[r]);
+        ASSERT_EQ(world.rigidBodies().velocity[r], rigid.velocity[r]);
+        ASSERT_EQ(world.rigidBodies().angularVelocity[r], rigid.angularVelocity[r]);
+      }
+    }
+    EXPECT_LT(world.bodyPose(falling).center.y, 0.51) << phys::toString(model);  // it fell and landed
+    EXPECT_EQ(world.islands().islandCount(), 2u);
+  }
+}
+
+// A box dropped on a sleeping one wakes it through their contact; neither falls through, and the
+// two sleep again once they rest together.
+TEST(Islands, ABodyThatLandsOnASleepingOneWakesIt) {
+  phys::World world({}, sleeping());
+  const BodyId below = world.addBody(box(Vec3(0.0, 0.5, 0.0)));
+  ASSERT_GT(stepUntilAsleep(world, below, 5.0), 0.0);
+  const Vec3 rested = world.bodyPose(below).center;
+  const BodyId above = world.addBody(box(Vec3(0.0, 3.0, 0.0)));
+  EXPECT_EQ(world.islands().sleepingBodies(), 1u);
+  // While the other falls, the sleeping box's particles do not move by a bit: the step sees them
+  // as pinned.
+  const phys::Body& b = world.bodies()[below];
+  const auto particlesOfBelow = [&] {
+    const auto& x = world.particles().position;
+    return std::vector<Vec3>(x.begin() + b.firstParticle, x.begin() + b.firstParticle + b.particleCount);
+  };
+  const std::vector<Vec3> slept = particlesOfBelow();
+  bool woke = false;
+  for (int i = 0; i < 120 && !woke; ++i) {
+    world.step();
+    woke = !world.islands().bodyAsleep(below);
+    if (!woke) ASSERT_EQ(particlesOfBelow(), slept) << "t = " << world.time();
+  }
+  EXPECT_TRUE(woke);
+  ASSERT_GT(stepUntilAsleep(world, above, world.time() + 5.0), 0.0);
+  EXPECT_TRUE(world.islands().bodyAsleep(below));
+  EXPECT_EQ(world.islands().islandCount(), 1u);
+  EXPECT_NEAR(world.bodyPose(above).center.y, 1.5, 0.01);
+  EXPECT_NEAR(world.bodyPose(below).center.y, rested.y, 0.01);
+}
+
+TEST(Islands, ADragWakesTheBodyAndHoldsItAwake) {
+  phys::World world({}, sleeping(phys::BodyModel::Rigid));
+  const BodyId id = world.addBody(box(Vec3(0.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  ASSERT_GT(stepUntilAsleep(world, id, 5.0), 0.0);
+  const Vec3 start = world.bodyPose(id).center;
+  world.setDrag(world.dragAt(id, start));  // a drag whose target is where the point is: no pull
+  EXPECT_FALSE(world.islands().bodyAsleep(id));
+  for (int i = 0; i < 120; ++i) world.step();
+  EXPECT_FALSE(world.islands().bodyAsleep(id));  // held awake while dragged, though it does not move
+  world.clearDrag();
+  EXPECT_GT(stepUntilAsleep(world, id, world.time() + 5.0), 0.0);
+}
+
+TEST(Islands, AMovingBodyNeverSleeps) {
+  phys::World world = testing_phys::openSpace(sleeping());
+  const phys::ParticleId pin = world.addParticle({Vec3(0.0, 5.0, 0.0), Vec3(0.0), 1.0, true, "pin"});
+  const phys::ParticleId bob = world.addParticle({Vec3(1.0, 5.0, 0.0), Vec3(0.0), 1.0, false, "bob"});
+  world.addStick(pin, bob);
+  for (int i = 0; i < 600; ++i) {
+    world.step();
+    ASSERT_FALSE(world.islands().asleep(world.islands().particleNode(bob))) << "t = " << world.time();
+  }
+}
+
+// A setting that changes wakes every island; one set again unchanged does not.
+TEST(Islands, ChangedSettingsWakeEverything) {
+  phys::World world({}, sleeping(phys::BodyModel::Rigid));
+  const BodyId id = world.addBody(box(Vec3(0.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  ASSERT_GT(stepUntilAsleep(world, id, 5.0), 0.0);
+  world.setSolverSettings(world.solverSettings());
+  world.setWorldSettings(world.worldSettings());
+  EXPECT_TRUE(world.islands().bodyAsleep(id));
+  phys::WorldSettings stronger = world.worldSettings();
+  stronger.gravity *= 2.0;
+  world.setWorldSettings(stronger);
+  EXPECT_FALSE(world.islands().bodyAsleep(id));
+}
+
+// The same input gives the same states with sleeping on, run after run.
+TEST(Islands, SleepingIsDeterministic) {
+  auto run = [] {
+    phys::World world({}, sleeping());
+    for (int k = 0; k < 4; ++k) world.addBody(box(Vec3(0.3 * k, 0.5 + 1.2 * k, 0.0)));
+    for (int i = 0; i < 400; ++i) world.step();
+    return std::pair(world.stateHash(), world.islands().sleepingBodies());
+  };
+  const auto first = run();
+  EXPECT_EQ(run(), first);
+  EXPECT_GT(first.second, 0u);
+}
+
+}  // namespace
