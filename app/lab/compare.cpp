@@ -42,13 +42,14 @@ struct CompareOptions {
   std::optional<int> iterations, substeps;  ///< ours; the scene's own when unset
   std::filesystem::path dataDir;
   bool json = false;
-  bool peerSleep = true;  ///< --peer-sleep: whether Bullet may put resting bodies to sleep
+  bool sleep = false;             ///< --sleep: whether ours put islands at rest to sleep, and the peers too
+  std::optional<bool> peerSleep;  ///< --peer-sleep: the peers' alone, when it differs from --sleep
   bool help = false;
 };
 
 std::string compareUsage() {
   return "usage: lab compare SCENE [--steps N] [--dt S] [--model M] [--iterations K] [--substeps S]\n"
-         "                   [--peer-sleep on|off] [--json] [--data DIR]\n"
+         "                   [--sleep on|off] [--peer-sleep on|off] [--json] [--data DIR]\n"
          "  Runs SCENE with each of our four methods at its own iterations and substeps (xpbd\n"
          "  alone for rigid bodies with no stick, which every method steps alike), then in each\n"
          "  peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
@@ -60,8 +61,9 @@ std::string compareUsage() {
          "  --model M   corners, tetra or rigid, imposed at load on every box (rigid: ragdolls\n"
          "              too), for ours and for the scene the peers are given\n"
          "  --iterations K, --substeps S  ours, 1 to 1000 (default: the scene's)\n"
-         "  --peer-sleep on|off  whether Bullet may put resting bodies to sleep (default on, as\n"
-         "              it ships; ours never sleep, so off compares awake with awake)\n"
+         "  --sleep on|off  whether resting bodies sleep, ours and the peers' (default off: every\n"
+         "              engine steps every body, so costs compare awake with awake)\n"
+         "  --peer-sleep on|off  the peers' alone (default: as --sleep); Bullet's deactivation\n"
          "  --json      one JSON object per row, one per line, instead of the table\n"
          "  --data DIR  folder holding assets/ (default: the source tree)\n";
 }
@@ -115,10 +117,10 @@ std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
       if (std::string e = parseCountOption(a, optionValue(args, i), most, n); !e.empty())
         return "compare: " + e;
       (a == "--iterations" ? o.iterations : o.substeps) = n;
-    } else if (a == "--peer-sleep") {
+    } else if (a == "--sleep" || a == "--peer-sleep") {
       if (std::string e = value(v); !e.empty()) return e;
-      if (v != "on" && v != "off") return "compare: --peer-sleep '" + v + "': on or off";
-      o.peerSleep = v == "on";
+      if (v != "on" && v != "off") return "compare: " + a + " '" + v + "': on or off";
+      (a == "--sleep" ? o.sleep : o.peerSleep.emplace()) = v == "on";
     } else if (a == "--data") {
       if (std::string e = value(v); !e.empty()) return e;
       o.dataDir = v;
@@ -183,6 +185,7 @@ std::string ourSettings(const phys::World& world) {
     << s.iterations << (s.iterations == 1 ? " iteration x " : " iterations x ") << s.substeps
     << (s.substeps == 1 ? " substep" : " substeps");
   if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
+  if (s.sleep.enabled) o << ", sleeping";
   return o.str();
 }
 
@@ -199,7 +202,7 @@ std::filesystem::path shownPath(const std::filesystem::path& file, const std::fi
 
 Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, const CompareOptions& options,
             int steps, const AccuracyTarget& target) {
-  scenes::Scene scene = scenes::loadSceneFile(file, imposedModel(options.model));
+  scenes::Scene scene = scenes::loadSceneFile(file, imposedModel(options.model, options.sleep));
   RunOptions overrides;
   overrides.method = method;
   overrides.dt = options.dt;
@@ -311,7 +314,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   int steps = options.steps;
   try {
     file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(where)));
-    scene.emplace(scenes::loadSceneFile(file, imposedModel(options.model)));
+    scene.emplace(scenes::loadSceneFile(file, imposedModel(options.model, options.sleep)));
     dt = options.dt.value_or(scene->world.solverSettings().dt);
     target = accuracyTarget(*scene, {}, dt, steps);
   } catch (const scenes::LoadError& e) {
@@ -339,7 +342,8 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   const peers::Description description = peers::describe(*scene);
   for (const std::string& engine : peerEngines()) {
     // Each peer reads the scene as loaded, unstepped (the first load is kept for them).
-    const PeerResult p = runPeer(engine, *scene, dt, steps, target.checkpoints, options.peerSleep);
+    const PeerResult p =
+        runPeer(engine, *scene, dt, steps, target.checkpoints, options.peerSleep.value_or(options.sleep));
     Row row;
     row.engine = p.engine;
     row.settings = p.settings;

@@ -24,6 +24,11 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
       if (!o.dt) return a + ": '" + *v + "' is not a number of seconds from 1e-06 to 1";
     } else if (a == "--model") {
       if (std::string e = parseModelOption(args, i, o.model); !e.empty()) return e;
+    } else if (a == "--sleep") {
+      const std::string* v = value();
+      if (v == nullptr) return missing("on or off");
+      if (*v != "on" && *v != "off") return a + ": '" + *v + "' is not on or off";
+      o.sleep = *v == "on";
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "--dump") {
@@ -74,7 +79,7 @@ std::optional<std::string> parseSolverOption(const std::vector<std::string>& arg
 
 std::string usage() {
   return "usage: lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]\n"
-         "                     [--model M] [--json] [--dump FILE] [--data DIR]\n"
+         "                     [--model M] [--sleep on|off] [--json] [--dump FILE] [--data DIR]\n"
          "       lab sweep SCENE ... --out DIR     speed against accuracy over settings\n"
          "       lab stability [--out DIR]         where each method fails\n"
          "       lab tune SCENE --target M=V ...   the cheapest settings that meet targets\n"
@@ -91,6 +96,7 @@ std::string usage() {
          "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"
          "  --model M       corners, tetra or rigid: imposed on every box and capsule of the scene\n"
          "                  (rigid on ragdolls too; a rigid body is solved by XPBD whatever --method)\n"
+         "  --sleep on|off  whether islands at rest sleep (default off, whatever the scene says)\n"
          "  --json          print one JSON object instead of the summary\n"
          "  --dump FILE     write each named body's final pose to FILE as CSV\n"
          "  --data DIR      folder holding assets/ (default: the source tree)\n"

@@ -100,6 +100,9 @@ std::string jsonText(const RunResult& r) {
   field("energy_initial", jsonNumber(r.energyInitial));
   field("energy_final", jsonNumber(m.energy()));
   field("frozen", std::to_string(m.frozen));
+  field("islands", std::to_string(r.islands));
+  field("awake_bodies", std::to_string(r.awakeBodies));
+  field("sleeping_bodies", std::to_string(r.sleepingBodies));
   field("hash", jsonString(hexHash(r.hash)));
   return s + "}\n";
 }
@@ -117,6 +120,9 @@ std::string summaryText(const RunResult& r) {
       " s\n";
   s += "world        " + count(r.particles, "particle", "particles") + ", " +
        count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
+  s += "islands      " + std::to_string(r.islands) + " at the end, " + std::to_string(r.awakeBodies) +
+       " bodies awake, " + std::to_string(r.sleepingBodies) + " asleep" +
+       (r.solver.sleep.enabled ? "" : " (sleep off)") + "\n";
   s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " +
        num(r.simulatedTime) + " s simulated, in " + num(r.wallMs, 4) + " ms wall: " + num(r.msPerStep, 4) +
        " ms/step\n";

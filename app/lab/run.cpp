@@ -10,9 +10,10 @@ bool xpbdWhateverTheMethod(const phys::World& world) {
   return world.rigidBodies().size() > 0 && world.sticks().empty();
 }
 
-scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model) {
+scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model, bool sleep) {
   scenes::LoadOptions load;
   load.boxModel = model;
+  load.sleep = sleep;
   if (model == phys::BodyModel::Rigid) load.ragdollModel = phys::RagdollModel::Rigid;
   return load;
 }
@@ -115,6 +116,9 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   r.final = world.metrics();
   r.freezes.assign(world.freezes().begin(), world.freezes().end());
   r.hash = world.stateHash();
+  r.islands = world.islands().islandCount();
+  r.awakeBodies = world.islands().awakeBodies();
+  r.sleepingBodies = world.islands().sleepingBodies();
   return r;
 }
 

@@ -34,6 +34,9 @@ struct RunResult {
   phys::Profile stageSums;      ///< unit: ms; each stage summed over the run
   std::vector<phys::FreezeReport> freezes;  ///< the guard's reports, oldest first
   std::uint64_t hash = 0;                   ///< World::stateHash() at the end
+  std::size_t islands = 0;                  ///< Islands::islandCount() at the end
+  std::size_t awakeBodies = 0;              ///< at the end
+  std::size_t sleepingBodies = 0;           ///< at the end
 };
 
 /// Whether `world` is stepped by XPBD whatever the method: it has rigid bodies and no stick. The
@@ -44,7 +47,8 @@ bool xpbdWhateverTheMethod(const phys::World& world);
 /// What `--model M` of `lab run` and `lab compare` imposes at load: M on every box, capsule, stack,
 /// pyramid and grid box; ragdolls keep their own models (seed, lean), except that rigid makes
 /// their parts rigid too. Nothing for no model.
-scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model);
+/// Sleeping is imposed too: off unless `sleep` (RunOptions::sleep).
+scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model, bool sleep = false);
 
 /// Puts the options' overrides into the world's solver settings; rethrows the
 /// std::invalid_argument of World::setSolverSettings when the world refuses them.

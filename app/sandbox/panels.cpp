@@ -151,6 +151,9 @@ void settingsSection(Session& session, UiState& ui) {
   changed |= sliderReal("body damping", s.bodyDamping, 0.0f, 1.0f, "%.2f");
   changed |= sliderReal("depenetration (m/s)", s.maxDepenetrationSpeed, 0.1f, 100.0f, "%.2f",
                         ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::Checkbox("sleep", &s.sleep.enabled);
+  ImGui::SameLine();
+  ImGui::TextDisabled("islands at rest %.1f s under %.2f m/s", s.sleep.time, s.sleep.speed);
   if (changed) {
     const std::string error = session.setSolverSettings(s);
     ui.message = error.empty() ? "solver: " + describeSolver(s) + " (applied without restart)" : error;

@@ -84,6 +84,14 @@ phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::
   return origin + dir * (glm::dot(p0 - origin, n) / along);
 }
 
+// The sandbox sleeps unless the scene says `<solver sleep="off">`: a resting pile should cost
+// nothing while the user looks at it (docs/sandbox.md).
+scenes::LoadOptions sandboxLoad() {
+  scenes::LoadOptions options;
+  options.sleepUnlessSaid = true;
+  return options;
+}
+
 }  // namespace
 
 double Run::medianMs() const {
@@ -96,7 +104,7 @@ double Run::medianMs() const {
 
 Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory)
     : sceneDirectory_(sceneDirectory) {
-  replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file)), file);
+  replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, sandboxLoad())), file);
 }
 
 void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file) {
@@ -112,7 +120,7 @@ void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::files
 
 std::string Session::open(const std::filesystem::path& file) {
   try {
-    replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file)), file);
+    replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, sandboxLoad())), file);
     return {};
   } catch (const std::exception& e) {  // LoadError, or anything else: keep what we have
     status_ = std::string(e.what()) + " (the current world is kept)";

@@ -20,6 +20,11 @@ std::vector<StatsLine> statsLines(const phys::World& world) {
                    " joints"});
   lines.push_back({std::to_string(world.bodies().size()) + " bodies, " + std::to_string(m.contacts) +
                    " contacts, " + std::to_string(world.broadPhasePairs()) + " broad-phase pairs"});
+  const phys::Islands& islands = world.islands();
+  lines.push_back({std::to_string(islands.islandCount()) + " islands (" +
+                   std::to_string(islands.sleepingIslands()) + " asleep), bodies " +
+                   std::to_string(islands.awakeBodies()) + " awake, " +
+                   std::to_string(islands.sleepingBodies()) + " asleep"});
   lines.push_back({"stick error max " + figure("%.2e", m.maxConstraintError) + " rms " +
                    figure("%.2e", m.rmsConstraintError)});
   lines.push_back({"joint gap " + figure("%.2e", m.maxJointError) + " m, penetration " +

@@ -285,4 +285,37 @@ TEST(SceneFiles, DepenetrationSpeedIsReadAndNoneTurnsTheLimitOff) {
   }
 }
 
+// <solver sleep>: on or off as the file says; without it, what the loader is told (the sandbox on,
+// everyone else off); the lab's --sleep imposed over the file's word.
+TEST(SceneFiles, SleepIsTheFilesWordElseTheProgramsDefault) {
+  const auto sleeps = [](const std::string& solver, const scenes::LoadOptions& options = {}) {
+    return scenes::loadSceneText("<scene name=\"s\">" + solver + "</scene>", "s.xml", options)
+        .world.solverSettings()
+        .sleep;
+  };
+  scenes::LoadOptions sandbox;
+  sandbox.sleepUnlessSaid = true;
+  scenes::LoadOptions lab;
+  lab.sleep = false;
+  EXPECT_FALSE(sleeps("").enabled);
+  EXPECT_TRUE(sleeps("", sandbox).enabled);
+  EXPECT_FALSE(sleeps("<solver sleep=\"off\"/>", sandbox).enabled);
+  EXPECT_TRUE(sleeps("<solver sleep=\"on\"/>").enabled);
+  EXPECT_FALSE(sleeps("<solver sleep=\"on\"/>", lab).enabled);
+  const phys::SleepSettings s = sleeps("<solver sleep=\"on\" sleep-speed=\"0.02\" sleep-time=\"2\"/>");
+  EXPECT_EQ(s.speed, 0.02);
+  EXPECT_EQ(s.time, 2.0);
+  for (const auto& [xml, attribute] : {std::pair{"<solver sleep=\"yes\"/>", "sleep"},
+                                       std::pair{"<solver sleep-speed=\"-1\"/>", "sleep-speed"},
+                                       std::pair{"<solver sleep-time=\"-0.5\"/>", "sleep-time"}}) {
+    try {
+      sleeps(xml);
+      ADD_FAILURE() << xml << " was accepted";
+    } catch (const scenes::LoadError& e) {
+      EXPECT_EQ(e.attribute(), attribute) << e.what();
+      EXPECT_EQ(e.line(), 1) << e.what();
+    }
+  }
+}
+
 }  // namespace

@@ -492,3 +492,27 @@ TEST(StatsText, AFigureThatOverflowsReadsOverflow) {
 }
 
 }  // namespace
+
+namespace {
+
+// The sandbox sleeps unless the scene says otherwise (the lab does not: LabRun.SleepsOnlyWhenAsked):
+// the stack comes to rest, falls asleep and says so in Stats; the checkbox turned off wakes it.
+TEST(SessionSleep, TheStackFallsAsleepAndStatsSaysSo) {
+  sandbox::Session s = open("stack");
+  const phys::World& world = s.scene().world;
+  ASSERT_TRUE(world.solverSettings().sleep.enabled);
+  for (int i = 0; i < 600 && world.islands().awakeBodies() > 0; ++i) s.step();
+  ASSERT_EQ(world.islands().sleepingBodies(), world.bodies().size()) << "t = " << world.time();
+  bool said = false;
+  for (const sandbox::StatsLine& line : sandbox::statsLines(world)) {
+    said = said || line.text == "1 islands (1 asleep), bodies 0 awake, " +
+                                    std::to_string(world.bodies().size()) + " asleep";
+  }
+  EXPECT_TRUE(said);
+  phys::SolverSettings off = world.solverSettings();
+  off.sleep.enabled = false;
+  EXPECT_EQ(s.setSolverSettings(off), "");
+  EXPECT_EQ(world.islands().sleepingBodies(), 0u);
+}
+
+}  // namespace

@@ -32,6 +32,9 @@ const std::vector<std::string> kJsonKeys = {"scene",
                                             "energy_initial",
                                             "energy_final",
                                             "frozen",
+                                            "islands",
+                                            "awake_bodies",
+                                            "sleeping_bodies",
                                             "hash"};
 
 // Runs lab with --json and parses its stdout, failing the test when it is not one object.
@@ -111,6 +114,30 @@ TEST(LabRun, JsonHasEveryKeyWithFiniteNumbers) {
   const std::string hash = text(j, "hash");
   EXPECT_EQ(hash.size(), 16u);
   EXPECT_EQ(hash.find_first_not_of("0123456789abcdef"), std::string::npos) << hash;
+}
+
+// The lab steps every body unless asked: a scene that says sleep="on" is stepped awake, and
+// `--sleep on` lets the resting stack sleep, the JSON counting its bodies asleep.
+TEST(LabRun, SleepsOnlyWhenAsked) {
+  const TempDir dir;
+  const auto scene = dir.write("s.xml",
+                               "<scene name=\"s\">\n"
+                               "  <solver sleep=\"on\" iterations=\"10\" substeps=\"4\"/>\n"
+                               "  <ground/>\n"
+                               "  <stack name=\"stack\" pos=\"0 0 0\" count=\"3\" size=\"1\" mass=\"1\"/>\n"
+                               "</scene>\n");
+  const FlatJson awake = runJson("run " + quoted(scene) + " --steps 180", dir);
+  EXPECT_EQ(number(awake, "islands"), 1);
+  EXPECT_EQ(number(awake, "awake_bodies"), 3);
+  EXPECT_EQ(number(awake, "sleeping_bodies"), 0);
+  const FlatJson asleep = runJson("run " + quoted(scene) + " --steps 180 --sleep on", dir);
+  EXPECT_EQ(number(asleep, "islands"), 1);
+  EXPECT_EQ(number(asleep, "awake_bodies"), 0);
+  EXPECT_EQ(number(asleep, "sleeping_bodies"), 3);
+  EXPECT_NE(text(awake, "hash"), text(asleep, "hash"));
+  const ProcessResult bad = runLab("run " + quoted(scene) + " --sleep maybe", dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--sleep: 'maybe' is not on or off"), std::string::npos) << bad.err;
 }
 
 // Where the dropped particle "p" of freeFallScene() is in the dump of a run with these args.

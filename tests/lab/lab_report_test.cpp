@@ -37,6 +37,9 @@ const std::vector<std::string> kJsonKeys = {"scene",
                                             "energy_initial",
                                             "energy_final",
                                             "frozen",
+                                            "islands",
+                                            "awake_bodies",
+                                            "sleeping_bodies",
                                             "hash"};
 
 TEST(LabReport, JsonNumbersRoundTripAndNonFiniteIsNull) {

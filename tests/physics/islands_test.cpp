@@ -176,7 +176,9 @@ TEST(Islands, ABodyThatLandsOnASleepingOneWakesIt) {
   for (int i = 0; i < 120 && !woke; ++i) {
     world.step();
     woke = !world.islands().bodyAsleep(below);
-    if (!woke) ASSERT_EQ(particlesOfBelow(), slept) << "t = " << world.time();
+    if (!woke) {
+      ASSERT_EQ(particlesOfBelow(), slept) << "t = " << world.time();
+    }
   }
   EXPECT_TRUE(woke);
   ASSERT_GT(stepUntilAsleep(world, above, world.time() + 5.0), 0.0);

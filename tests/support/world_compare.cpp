@@ -263,6 +263,11 @@ class Comparison {
     if (a.maxDepenetrationSpeed != b.maxDepenetrationSpeed) {
       return unequal("<solver> depenetration-speed", a.maxDepenetrationSpeed, b.maxDepenetrationSpeed);
     }
+    if (a.sleep.enabled != b.sleep.enabled) {
+      return unequalText("<solver> sleep", a.sleep.enabled ? "on" : "off", b.sleep.enabled ? "on" : "off");
+    }
+    if (a.sleep.speed != b.sleep.speed) return unequal("<solver> sleep-speed", a.sleep.speed, b.sleep.speed);
+    if (a.sleep.time != b.sleep.time) return unequal("<solver> sleep-time", a.sleep.time, b.sleep.time);
     return {};
   }
 

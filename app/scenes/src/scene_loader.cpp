@@ -105,6 +105,18 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
       e.fail("depenetration-speed", "'" + *speed + "' must be a number > 0 (m/s) or none");
     s.maxDepenetrationSpeed = *value;
   }
+  if (auto sleep = e.text("sleep")) {
+    if (*sleep != "on" && *sleep != "off") e.fail("sleep", "'" + *sleep + "' must be on or off");
+    s.sleep.enabled = *sleep == "on";
+  }
+  if (auto speed = e.number("sleep-speed", "m/s")) {
+    if (*speed < 0.0) e.fail("sleep-speed", "must be >= 0 (m/s)");
+    s.sleep.speed = *speed;
+  }
+  if (auto time = e.number("sleep-time", "s")) {
+    if (*time < 0.0) e.fail("sleep-time", "must be >= 0 (s)");
+    s.sleep.time = *time;
+  }
   e.rejectUnknownAttributes();
 }
 
@@ -503,6 +515,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
   phys::WorldSettings worldSettings;
   worldSettings.ground = false;  // a scene has a ground only if it says so
   phys::SolverSettings solverSettings;
+  solverSettings.sleep.enabled = options.sleepUnlessSaid;
   CameraStart camera;
   pugi::xml_node cameraNode;
   std::vector<pugi::xml_node> bodies;
@@ -545,6 +558,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
     ElementReader e(cameraNode, lines, file);
     readCamera(e, worldSettings, camera);
   }
+  if (options.sleep) solverSettings.sleep.enabled = *options.sleep;
 
   std::optional<Scene> built;
   try {

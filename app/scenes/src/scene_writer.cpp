@@ -154,6 +154,9 @@ std::string solverElement(const phys::SolverSettings& s) {
     solver.number("depenetration-speed", s.maxDepenetrationSpeed);
   else
     solver.text("depenetration-speed", "none");
+  solver.text("sleep", s.sleep.enabled ? "on" : "off")
+      .number("sleep-speed", s.sleep.speed)
+      .number("sleep-time", s.sleep.time);
   return solver.empty();
 }
 

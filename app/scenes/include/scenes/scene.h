@@ -53,6 +53,11 @@ struct LoadOptions {
   std::optional<phys::BodyModel> boxModel;         ///< every box, capsule, stack, pyramid and grid box
                                                    ///< (not ragdoll parts: ragdollModel says theirs)
   std::optional<phys::RagdollModel> ragdollModel;  ///< every ragdoll, of boxes or capsules
+  /// Sleeping (SolverSettings::sleep) for a scene whose <solver> does not say: the sandbox's is on,
+  /// everyone else's the physics' own default, off.
+  bool sleepUnlessSaid = false;
+  /// Sleeping imposed whatever the file says: the lab's --sleep.
+  std::optional<bool> sleep;
 };
 
 struct Scene {
