@@ -2,11 +2,18 @@
 // What colour each kind of body is drawn in; the rendering tests look for these.
 #include <glm/vec3.hpp>
 
+#include "draw_options.h"
+#include "physics/world.h"
+
 namespace sandbox {
 
 inline constexpr glm::vec3 kBoxColor{0.90f, 0.50f, 0.15f};       ///< orange
 inline constexpr glm::vec3 kParticleColor{0.20f, 0.35f, 0.85f};  ///< blue
 inline constexpr float kParticleDrawSize = 0.08f;                ///< unit: m; edge of a particle's cube
+inline constexpr glm::vec3 kSleepingColor{0.45f, 0.50f, 0.60f};  ///< grey-blue: an island asleep
+
+/// Body `id`'s colour as `coloring` asks, before its brightness (SceneView shades each body).
+glm::vec3 bodyColor(const phys::World& world, phys::BodyId id, BodyColoring coloring);
 
 /// True when an 8-bit pixel has the hue of `color` under some light level: the lighting
 /// scales all channels alike, so the ratios between channels survive it.

@@ -21,6 +21,13 @@ std::optional<DrawMode> parseDrawMode(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<BodyColoring> parseBodyColoring(std::string_view name) {
+  if (name == "kind") return BodyColoring::Kind;
+  if (name == "island") return BodyColoring::Island;
+  if (name == "sleep") return BodyColoring::Sleep;
+  return std::nullopt;
+}
+
 DrawMode nextDrawMode(DrawMode mode) {
   switch (mode) {
     case DrawMode::Filled:

@@ -11,8 +11,16 @@ enum class DrawMode {
   Constraints,  ///< sticks and joints only: sticks red, ranges orange, pins yellow
 };
 
+/// What a body's colour says (Box2D's and Jolt's samples colour by island and by sleep alike).
+enum class BodyColoring {
+  Kind,    ///< boxes orange, particles blue, each body its own brightness
+  Island,  ///< each island a hue of its own
+  Sleep,   ///< awake orange, asleep grey-blue
+};
+
 std::string_view toString(DrawMode mode);  ///< "filled", "wireframe", "constraints"
 std::optional<DrawMode> parseDrawMode(std::string_view name);
+std::optional<BodyColoring> parseBodyColoring(std::string_view name);  ///< "kind", "island", "sleep"
 /// The mode Tab goes to next.
 DrawMode nextDrawMode(DrawMode mode);
 
@@ -23,6 +31,7 @@ struct DrawOptions {
   bool contacts = false;  ///< contact points and normals
   bool bounds = false;    ///< each box's axis-aligned bounds
   bool particles = true;  ///< loose particles as small cubes
+  BodyColoring coloring = BodyColoring::Kind;
 };
 
 }  // namespace sandbox

@@ -22,13 +22,14 @@ std::optional<long> wholeNumber(const std::string& text, long min, long max) {
 
 std::string usage() {
   return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers]\n"
-         "               [--overlay SETTINGS...] [--pause-at N] [--data DIR]\n"
+         "               [--color-by WHAT] [--overlay SETTINGS...] [--pause-at N] [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
          "                     each frame advances the simulation by one step\n"
          "  --draw MODE        filled, wireframe or constraints (default: the last one used)\n"
          "  --markers          green boxes on vertices moved by box-box contacts (key C)\n"
+         "  --color-by WHAT    kind, island or sleep: what bodies' colours say (default kind)\n"
          "  --overlay S1 S2..  run the scene under 2 to 4 solver settings at once, each drawn\n"
          "                     translucent in its own colour; each S is key=value,... with\n"
          "                     <solver>'s names, e.g. --overlay iterations=3 substeps=8 method=xpbd\n"
@@ -80,6 +81,14 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
     } else if (a == "--markers") {
       o.markers = true;
+    } else if (a == "--color-by") {
+      const std::string* v = value("kind, island or sleep");
+      if (v == nullptr) return out;
+      o.coloring = parseBodyColoring(*v);
+      if (!o.coloring) {
+        out.error = "--color-by: '" + *v + "' must be kind, island or sleep";
+        return out;
+      }
     } else if (a == "--overlay") {
       // Every following argument that is not an option is one run's settings.
       while (i + 1 < args.size() &&

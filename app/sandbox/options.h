@@ -15,12 +15,13 @@ namespace sandbox {
 struct Options {
   std::string scene;  ///< a scene file, or a name in assets/scenes/; empty: the default scene
   std::optional<std::filesystem::path> screenshot;  ///< render, write this PNG, exit
-  int frames = 60;                   ///< frames rendered before the screenshot; one physics step each
-  std::filesystem::path dataDir;     ///< holds shaders/ and assets/; empty: the build's default
-  std::optional<DrawMode> draw;      ///< given: overrides the remembered draw mode
-  bool markers = false;              ///< the seed's collision-vertex markers from the start
-  std::vector<OverlaySpec> overlay;  ///< 2 to 4 runs of the method overlay, or none
-  std::optional<long> pauseAt;       ///< pause when the main run has taken this many steps
+  int frames = 60;                       ///< frames rendered before the screenshot; one physics step each
+  std::filesystem::path dataDir;         ///< holds shaders/ and assets/; empty: the build's default
+  std::optional<DrawMode> draw;          ///< given: overrides the remembered draw mode
+  bool markers = false;                  ///< the seed's collision-vertex markers from the start
+  std::optional<BodyColoring> coloring;  ///< given: what bodies' colours say from the start
+  std::vector<OverlaySpec> overlay;      ///< 2 to 4 runs of the method overlay, or none
+  std::optional<long> pauseAt;           ///< pause when the main run has taken this many steps
   bool help = false;
 };
 

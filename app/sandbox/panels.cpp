@@ -85,6 +85,7 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   ui.showStats = user.showStats;
   ui.draw.mode = options.draw.value_or(parseDrawMode(user.drawMode).value_or(DrawMode::Filled));
   ui.draw.markers = options.markers || user.markers;
+  if (options.coloring) ui.draw.coloring = *options.coloring;
   const char* examples[kMaxOverlayRuns] = {"iterations=3", "substeps=8,iterations=1", "method=xpbd", ""};
   for (std::size_t i = 0; i < static_cast<std::size_t>(kMaxOverlayRuns); ++i) {
     const std::string text = i < options.overlay.size() ? options.overlay[i].text : examples[i];
@@ -239,6 +240,15 @@ void drawDrawPanel(UiState& ui) {
   ImGui::Checkbox("particles", &ui.draw.particles);
   ImGui::SameLine();
   ImGui::Checkbox("sticks over meshes", &ui.draw.sticks);
+  int coloring = static_cast<int>(ui.draw.coloring);
+  ImGui::Text("colour by");
+  ImGui::SameLine();
+  ImGui::RadioButton("kind", &coloring, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("island", &coloring, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("sleep", &coloring, 2);
+  ui.draw.coloring = static_cast<BodyColoring>(coloring);
   endPanel();
 }
 

@@ -97,7 +97,7 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     const auto boxes = world.bodies();
     for (phys::BodyId id{}; id < boxes.size(); ++id) {
       const phys::Body& box = boxes[id];
-      const glm::vec3 color = tint ? tint->color : boxShade(id) * kBoxColor;
+      const glm::vec3 color = tint ? tint->color : boxShade(id) * bodyColor(world, id, options.coloring);
       const phys::BodyPose pose = world.bodyPose(id);
       if (box.shape == phys::Shape::Capsule) {
         // Built at its own size: scaling one capsule to another would squash its caps.

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "body_colors.h"
 #include "history.h"
 #include "panels.h"
 #include "session.h"
@@ -509,10 +510,37 @@ TEST(SessionSleep, TheStackFallsAsleepAndStatsSaysSo) {
                                     std::to_string(world.bodies().size()) + " asleep";
   }
   EXPECT_TRUE(said);
+  EXPECT_EQ(sandbox::bodyColor(world, phys::BodyId(0), sandbox::BodyColoring::Sleep),
+            sandbox::kSleepingColor);
+  EXPECT_EQ(sandbox::bodyColor(world, phys::BodyId(0), sandbox::BodyColoring::Kind), sandbox::kBoxColor);
   phys::SolverSettings off = world.solverSettings();
   off.sleep.enabled = false;
   EXPECT_EQ(s.setSolverSettings(off), "");
   EXPECT_EQ(world.islands().sleepingBodies(), 0u);
+  EXPECT_EQ(sandbox::bodyColor(world, phys::BodyId(0), sandbox::BodyColoring::Sleep), sandbox::kBoxColor);
+}
+
+// Colour by island: the bodies of one island share a colour, and islands' colours differ and
+// differ from the sleeping colour, so that neither reading is ambiguous.
+TEST(SessionSleep, EachIslandHasAColourOfItsOwn) {
+  sandbox::Session s = open("box-models");
+  phys::World& world = s.scene().world;
+  for (int i = 0; i < 30; ++i) s.step();
+  const auto island = world.islands().bodyIsland();
+  ASSERT_GE(world.islands().islandCount(), 2u);
+  for (phys::BodyId a{}; a < world.bodies().size(); ++a) {
+    for (phys::BodyId b{}; b < world.bodies().size(); ++b) {
+      const glm::vec3 ca = sandbox::bodyColor(world, a, sandbox::BodyColoring::Island);
+      const glm::vec3 cb = sandbox::bodyColor(world, b, sandbox::BodyColoring::Island);
+      if (island[a] == island[b])
+        EXPECT_EQ(ca, cb);
+      else
+        EXPECT_GT(glm::length(ca - cb), 0.1f) << "islands " << island[a] << " and " << island[b];
+    }
+    EXPECT_GT(
+        glm::length(sandbox::bodyColor(world, a, sandbox::BodyColoring::Island) - sandbox::kSleepingColor),
+        0.1f);
+  }
 }
 
 }  // namespace

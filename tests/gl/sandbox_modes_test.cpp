@@ -100,6 +100,35 @@ TEST(SandboxModes, MarkersShowGreenBoxesWhereBoxesCollide) {
   EXPECT_LT(countPixels(plain, kViewX, kViewY, kViewW, kViewH, green), 5);
 }
 
+// The stack settles in about a second and sleeps half a second later: coloured by sleep, its boxes are
+// grey-blue where they are orange by kind.
+TEST(SandboxModes, ColourBySleepShowsTheSleepingStack) {
+  constexpr int kFrames = 150;
+  const engine::Image bySleep = runSandbox("stack --color-by sleep", "color-sleep.png", kFrames);
+  const engine::Image byKind = runSandbox("stack", "color-kind.png", kFrames);
+  scenes::LoadOptions sandbox;
+  sandbox.sleepUnlessSaid = true;
+  scenes::Scene s =
+      scenes::loadSceneFile(scenes::resolveScene("stack", scenes::sceneDirectory(DATA_DIR)), sandbox);
+  for (int i = 0; i < kFrames; ++i) s.world.step();
+  ASSERT_EQ(s.world.islands().sleepingBodies(), s.world.bodies().size());
+  const auto camera = startCamera(s);
+  int sleeping = 0, orange = 0, checked = 0;
+  for (phys::BodyId id{}; id < s.world.bodies().size(); ++id) {
+    const glm::ivec2 p = testing_gl::toPixel(bySleep, camera, glm::vec3(s.world.bodyPose(id).center));
+    if (p.x < kViewX || p.x >= kViewX + kViewW || p.y < kViewY || p.y >= kViewY + kViewH) continue;
+    ++checked;
+    // A centre under the crosshair is neither: only those drawn orange by kind are compared.
+    const glm::u8vec4 a = bySleep.pixel(p.x, p.y), b = byKind.pixel(p.x, p.y);
+    if (!sandbox::looksLike(sandbox::kBoxColor, b.r, b.g, b.b)) continue;
+    ++orange;
+    sleeping += sandbox::looksLike(sandbox::kSleepingColor, a.r, a.g, a.b) ? 1 : 0;
+  }
+  ASSERT_GT(checked, 3);
+  EXPECT_GE(orange, checked - 1);
+  EXPECT_EQ(sleeping, orange);
+}
+
 TEST(SandboxModes, TheOverlayDrawsEveryRunInItsOwnColour) {
   // The falling box lands at about frame 40; with restitution 0.8 it bounces back up, without
   // it stays down: after 62 frames the two runs' boxes are far apart.
