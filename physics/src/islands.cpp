@@ -189,9 +189,11 @@ void Islands::update(const IslandInput& in) {
     islandAwake_[i] = islandAsleep_[i] = 0;
     islandRest_[i] = std::numeric_limits<Real>::infinity();
   }
+  // Rest is timed only while sleeping is on: with it off the islands are counted, for the
+  // sandbox and the lab, and nothing else is needed (and turning it on starts every clock at 0).
   for (NodeId i{}; i < n; ++i) {
-    if (fixed_[i] != 0) continue;
-    if (asleep_[i] == 0) rest_[i] = nodeSpeed(in, i) < in.sleep.speed ? rest_[i] + in.dt : 0.0;
+    if (fixed_[i] != 0 || asleep_[i] != 0) continue;
+    rest_[i] = in.sleep.enabled && nodeSpeed(in, i) < in.sleep.speed ? rest_[i] + in.dt : 0.0;
   }
   for (const NodeId held : in.held) rest_[held] = 0.0;
   for (NodeId i{}; i < n; ++i) {
