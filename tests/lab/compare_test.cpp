@@ -136,15 +136,16 @@ TEST(PeerStack, ThreeBoxesStandInEveryEngine) {
   }
 }
 
-// Bullet puts the resting stack to sleep within four seconds, as it ships; asked not to, it keeps
-// every body awake, so its time is that of a world that steps everything, as ours does.
+// Allowed to, Bullet puts the resting stack to sleep within four seconds, as it ships; by default
+// (as ours, unless asked) it keeps every body awake, so its time is that of a world that steps
+// everything.
 TEST(PeerStack, BulletSleepsOnlyWhenAllowed) {
   const std::vector<std::string> built = engines();
   if (std::find(built.begin(), built.end(), "bullet") == built.end()) GTEST_SKIP() << "no Bullet in this lab";
   const scenes::Scene scene = load(kStack);
-  const lab::PeerResult asleep = lab::runPeer("bullet", scene, kDt, 2 * kTwoSeconds, {2 * kTwoSeconds});
+  const lab::PeerResult asleep = lab::runPeer("bullet", scene, kDt, 2 * kTwoSeconds, {2 * kTwoSeconds}, true);
   EXPECT_NE(asleep.unsupported.find("asleep"), std::string::npos) << asleep.unsupported;
-  const lab::PeerResult awake = lab::runPeer("bullet", scene, kDt, 2 * kTwoSeconds, {2 * kTwoSeconds}, false);
+  const lab::PeerResult awake = lab::runPeer("bullet", scene, kDt, 2 * kTwoSeconds, {2 * kTwoSeconds});
   ASSERT_TRUE(awake.ran) << awake.unsupported;
   EXPECT_EQ(awake.unsupported.find("asleep"), std::string::npos) << awake.unsupported;
   EXPECT_NE(awake.settings.find("no sleeping"), std::string::npos) << awake.settings;

@@ -97,8 +97,9 @@ TEST(PeerCapsule, AStandingCapsuleStandsOnItsCap) {
 TEST(PeerCapsule, ACapsuleLyingOnABoxStaysOnIt) {
   // A 1 x 0.4 x 1 m box on the ground and a capsule of radius 0.1 lying across its top face
   // (y = 0.4): after 2 s the capsule's centre is still 0.5 m up and near where it was put. A
-  // capsule on a face may roll, which costs nothing: Bullet's rolls 2.2 cm (one contact point a
-  // step, its default) before it falls asleep, so 5 cm is allowed sideways.
+  // capsule on a face may roll, which costs nothing: Bullet's rolled 2.2 cm (one contact point a
+  // step, its default) before it fell asleep when the lab let it sleep, so 5 cm is allowed
+  // sideways; awake (the lab's default since) it stays within that too.
   const scenes::Scene scene = load(
       "  <box name=\"b\" pos=\"0 0.2 0\" size=\"1 0.4 1\" mass=\"5\"/>\n"
       "  <capsule name=\"c\" pos=\"0 0.5 0.1\" radius=\"0.1\" length=\"0.8\" euler=\"0 0 90\" "

@@ -86,8 +86,8 @@ struct Description {
   double restitution = 0.0;
   /// Whether an engine with sleeping (Bullet's deactivation; ODE's auto-disable is off by default,
   /// MuJoCo 2.2 has none) may put resting bodies to sleep. Not read from the scene: the lab's
-  /// choice (`lab compare --peer-sleep`).
-  bool sleep = true;
+  /// choice (`lab compare --sleep`, `--peer-sleep`), off unless asked, as ours.
+  bool sleep = false;
   std::vector<Body> bodies;
   std::vector<Pin> pins;
   std::vector<Distance> distances;
