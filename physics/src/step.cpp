@@ -82,6 +82,9 @@ bool World::restWhileAsleep() {
 // The sleeping islands get their masses back, then the islands are found again from this step's
 // manifolds, and some wake or fall asleep.
 void World::updateIslands(std::size_t freezesBefore) {
+  // With sleeping off nothing of the step depends on the islands: islands() counts them if asked.
+  islandsCounted_ = solver_.sleep.enabled || islands_.anyAsleep();
+  if (!islandsCounted_) return;
   const detail::StageTimer timer(profile_, Stage::Islands);
   if (islands_.anyAsleep()) {
     islands_.unmask(particles_, rigidBodies_, bodies_);
@@ -93,6 +96,15 @@ void World::updateIslands(std::size_t freezesBefore) {
   const HeldNodes held = heldNodes();
   islands_.update({particles_, rigidBodies_, bodies_, narrowPhase_.manifolds(), substepDt(), solver_.dt,
                    solver_.sleep, std::span<const NodeId>(held.nodes.data(), held.count)});
+}
+
+const Islands& World::islands() const {
+  if (!islandsCounted_) {
+    islands_.update({particles_, rigidBodies_, bodies_, narrowPhase_.manifolds(), substepDt(), solver_.dt,
+                     solver_.sleep, {}});
+    islandsCounted_ = true;
+  }
+  return islands_;
 }
 
 void World::refreeze(const FreezeReport& freeze) {

@@ -83,6 +83,12 @@ TEST(Islands, SleepingIsOffUnlessAsked) {
   for (int i = 0; i < 300; ++i) world.step();
   EXPECT_FALSE(world.islands().bodyAsleep(id));
   EXPECT_EQ(world.islands().sleepingBodies(), 0u);
+  // Not counted by the step with sleeping off, the islands are counted when asked.
+  world.addBody(box(Vec3(5.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  world.step();
+  EXPECT_EQ(world.profile()[phys::Stage::Islands], 0.0);
+  EXPECT_EQ(world.islands().islandCount(), 2u);
+  EXPECT_EQ(world.islands().awakeBodies(), 2u);
 }
 
 // A box dropped on the ground sleeps once it has rested SleepSettings::time, and from then on a

@@ -226,7 +226,8 @@ class World {
   /// FNV-1a hash of every position and previous position: equal hashes, equal states.
   std::uint64_t stateHash() const;
   /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
-  const Islands& islands() const { return islands_; }
+  /// With sleeping off the step does not count them: they are counted here, when asked.
+  const Islands& islands() const;
   /// Draws what the flags ask for through the given interface.
   void debugDraw(DebugDraw& draw, const DebugDrawFlags& flags = {}) const;
 
@@ -304,7 +305,9 @@ class World {
   std::optional<Drag> drag_;
   BodyId dragBody_ = kNoBody;  // the body carrying the drag's point, if one body does
   Guard guard_;
-  Islands islands_;
+  // Mutable for islands(), which counts them when the step did not (sleeping off): a cache.
+  mutable Islands islands_;
+  mutable bool islandsCounted_ = true;
   Profile profile_;
   Real time_ = 0.0;
   long steps_ = 0;
