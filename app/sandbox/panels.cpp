@@ -261,6 +261,16 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   const phys::World& world = session.scene().world;
   const phys::Profile& p = world.profile();
   ImGui::Text("frame %.2f ms, last step %.3f ms", ui.frameMs, p.total);
+  // Simulated seconds per wall second: red when the physics cannot keep up with the time scale.
+  if (const std::optional<double> factor = ui.realTime.factor()) {
+    if (ui.realTime.fallingBehind(ui.timeScale))
+      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "real time x%.2f: the physics cannot keep up",
+                         *factor);
+    else
+      ImGui::Text("real time x%.2f", *factor);
+  } else {
+    ImGui::TextDisabled("real time: not running (paused, or one step a frame for a screenshot)");
+  }
   // The step's stages two to a line, in the step's order (ms, summed over the substeps).
   for (std::size_t i = 0; i < phys::kStageCount; i += 2) {
     const auto a = static_cast<phys::Stage>(i);

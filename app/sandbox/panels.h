@@ -10,6 +10,7 @@
 #include "draw_options.h"
 #include "history.h"
 #include "options.h"
+#include "real_time.h"
 #include "session.h"
 #include "user_settings.h"
 
@@ -40,6 +41,7 @@ struct UiState {
   // For the Stats panel.
   float frameMs = 0.0f;  ///< unit: ms; the last frame
   History stepMs, maxError, rmsError;
+  RealTimeMeter realTime;
   std::string message;  ///< the status line: what the last command did
 };
 

@@ -283,6 +283,7 @@ bool Sandbox::pauseDue() {
 
 void Sandbox::advancePhysics(double frameSeconds) {
   const phys::World& world = session_->scene().world;
+  const double before = world.time();
   if (!interactive_) {  // deterministic: one step per frame, whatever the clock says
     if (!ui_.paused && !pauseDue()) session_->step();
   } else if (ui_.paused || pauseDue()) {
@@ -300,6 +301,7 @@ void Sandbox::advancePhysics(double frameSeconds) {
     if (steps == kMaxStepsPerFrame) accumulator_ = 0.0;  // drop the backlog rather than spiral
   }
   ui_.stepOnce = false;  // a step asked for while running is one of the clock's anyway
+  ui_.realTime.add(world.time() - before, frameSeconds, interactive_ && !ui_.paused);
   const phys::Metrics m = world.metrics();
   ui_.stepMs.add(static_cast<float>(world.profile().total), frameSeconds);
   ui_.maxError.add(static_cast<float>(m.maxConstraintError), frameSeconds);

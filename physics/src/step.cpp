@@ -100,8 +100,14 @@ void World::updateIslands(std::size_t freezesBefore) {
 
 const Islands& World::islands() const {
   if (!islandsCounted_) {
-    islands_.update({particles_, rigidBodies_, bodies_, narrowPhase_.manifolds(), substepDt(), solver_.dt,
-                     solver_.sleep, {}});
+    islands_.update({particles_,
+                     rigidBodies_,
+                     bodies_,
+                     narrowPhase_.manifolds(),
+                     substepDt(),
+                     solver_.dt,
+                     solver_.sleep,
+                     {}});
     islandsCounted_ = true;
   }
   return islands_;

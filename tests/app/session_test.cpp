@@ -15,6 +15,7 @@
 #include "body_colors.h"
 #include "history.h"
 #include "panels.h"
+#include "real_time.h"
 #include "session.h"
 #include "stats_text.h"
 #include "temp_folder.h"
@@ -541,6 +542,29 @@ TEST(SessionSleep, EachIslandHasAColourOfItsOwn) {
         glm::length(sandbox::bodyColor(world, a, sandbox::BodyColoring::Island) - sandbox::kSleepingColor),
         0.1f);
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The real-time factor over the last second of frames: 1 when each frame steps its own time, a
+// quarter when the steps of a frame take four frames' time, and nothing while paused.
+TEST(RealTimeMeter, SimulatedSecondsPerWallSecondOverTheLastSecond) {
+  sandbox::RealTimeMeter meter;
+  EXPECT_FALSE(meter.factor());
+  for (int i = 0; i < 120; ++i) meter.add(1.0 / 60.0, 1.0 / 60.0, true);
+  ASSERT_TRUE(meter.factor());
+  EXPECT_NEAR(*meter.factor(), 1.0, 1e-12);
+  EXPECT_FALSE(meter.fallingBehind(1.0));
+  // Slow frames: 8 steps of 1/60 s each frame, each frame a whole second of wall time.
+  meter.add(8.0 / 60.0, 1.0, true);
+  EXPECT_NEAR(*meter.factor(), 8.0 / 60.0, 1e-12);  // the last second is that one frame
+  EXPECT_TRUE(meter.fallingBehind(1.0));
+  EXPECT_TRUE(meter.fallingBehind(0.5));
+  EXPECT_FALSE(meter.fallingBehind(0.1));  // slower than real time by choice: not behind
+  meter.add(0.0, 1.0 / 60.0, false);
+  EXPECT_FALSE(meter.factor());
 }
 
 }  // namespace
