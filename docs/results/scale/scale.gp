@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 2.2792727272727271 "n=1"
-44 1.9189772727272727 "n=4"
-176 1.5303693181818183 "n=16"
-704 1.4937151988636364 "n=64"
-2816 1.5281713423295451 "n=256"
-11264 1.8578878728693182 "n=1024"
+11 2.2665000000000002 "n=1"
+44 2.079340909090909 "n=4"
+176 1.5551193181818179 "n=16"
+704 1.5299197443181818 "n=64"
+2816 1.7107917258522727 "n=256"
+11264 1.8275361328124999 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
