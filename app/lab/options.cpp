@@ -29,6 +29,10 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
       if (v == nullptr) return missing("on or off");
       if (*v != "on" && *v != "off") return a + ": '" + *v + "' is not on or off";
       o.sleep = *v == "on";
+    } else if (a == "--threads") {
+      int n = 0;
+      if (std::string e = parseCountOption(a, value(), phys::kMaxThreads, n); !e.empty()) return e;
+      o.threads = n;
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "--dump") {
@@ -79,7 +83,8 @@ std::optional<std::string> parseSolverOption(const std::vector<std::string>& arg
 
 std::string usage() {
   return "usage: lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]\n"
-         "                     [--model M] [--sleep on|off] [--json] [--dump FILE] [--data DIR]\n"
+         "                     [--model M] [--sleep on|off] [--threads N] [--json] [--dump FILE]\n"
+         "                     [--data DIR]\n"
          "       lab sweep SCENE ... --out DIR     speed against accuracy over settings\n"
          "       lab stability [--out DIR]         where each method fails\n"
          "       lab tune SCENE --target M=V ...   the cheapest settings that meet targets\n"
@@ -97,6 +102,7 @@ std::string usage() {
          "  --model M       corners, tetra or rigid: imposed on every box and capsule of the scene\n"
          "                  (rigid on ragdolls too; a rigid body is solved by XPBD whatever --method)\n"
          "  --sleep on|off  whether islands at rest sleep (default off, whatever the scene says)\n"
+         "  --threads N     threads the step may use, 1 to 64 (default: the scene's, else 1)\n"
          "  --json          print one JSON object instead of the summary\n"
          "  --dump FILE     write each named body's final pose to FILE as CSV\n"
          "  --data DIR      folder holding assets/ (default: the source tree)\n"

@@ -1,7 +1,7 @@
 #pragma once
 // The lab's command line (docs/lab.md):
 //   lab run SCENE [--steps N] [--dt S] [--method M] [--iterations K] [--substeps S]
-//                 [--model M] [--sleep on|off] [--json] [--dump FILE] [--data DIR]
+//                 [--model M] [--sleep on|off] [--threads N] [--json] [--dump FILE] [--data DIR]
 //   lab help | lab --help
 // Parsing never touches the file system, so every bad argument is caught (exit 2) before a
 // scene is loaded or a step is run.
@@ -34,6 +34,7 @@ struct RunOptions {
   /// --sleep on: islands at rest sleep (SolverSettings::sleep). Off, the lab's default, steps every
   /// body whatever the scene says, so that costs and errors compare like with like.
   bool sleep = false;
+  std::optional<int> threads;                 ///< --threads N: SolverSettings::threads (default: the scene's)
   bool json = false;                          ///< one JSON object instead of the summary
   std::optional<std::filesystem::path> dump;  ///< CSV of the named bodies' final poses
   std::filesystem::path dataDir;              ///< holds assets/; empty: the build's default

@@ -24,6 +24,7 @@ void applyOverrides(phys::World& world, const RunOptions& options) {
   if (options.method) s.method = *options.method;
   if (options.iterations) s.iterations = *options.iterations;
   if (options.substeps) s.substeps = *options.substeps;
+  if (options.threads) s.threads = *options.threads;
   // One call with everything, so the world judges the combination and not each field alone;
   // it keeps every particle's velocity across a new dt or substep count.
   world.setSolverSettings(s);

@@ -22,7 +22,8 @@ std::optional<long> wholeNumber(const std::string& text, long min, long max) {
 
 std::string usage() {
   return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers]\n"
-         "               [--color-by WHAT] [--overlay SETTINGS...] [--pause-at N] [--data DIR]\n"
+         "               [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]\n"
+         "               [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
@@ -30,6 +31,8 @@ std::string usage() {
          "  --draw MODE        filled, wireframe or constraints (default: the last one used)\n"
          "  --markers          green boxes on vertices moved by box-box contacts (key C)\n"
          "  --color-by WHAT    kind, island or sleep: what bodies' colours say (default kind)\n"
+         "  --threads N        threads the step may use, 1 to 64, in every scene opened\n"
+         "                     (default: each scene's own, else 1)\n"
          "  --overlay S1 S2..  run the scene under 2 to 4 solver settings at once, each drawn\n"
          "                     translucent in its own colour; each S is key=value,... with\n"
          "                     <solver>'s names, e.g. --overlay iterations=3 substeps=8 method=xpbd\n"
@@ -81,6 +84,16 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
     } else if (a == "--markers") {
       o.markers = true;
+    } else if (a == "--threads") {
+      const std::string* v = value("a whole number from 1 to 64");
+      if (v == nullptr) return out;
+      const std::optional<long> n = wholeNumber(*v, 1, phys::kMaxThreads);
+      if (!n) {
+        out.error =
+            "--threads: '" + *v + "' is not a whole number from 1 to " + std::to_string(phys::kMaxThreads);
+        return out;
+      }
+      o.threads = static_cast<int>(*n);
     } else if (a == "--color-by") {
       const std::string* v = value("kind, island or sleep");
       if (v == nullptr) return out;

@@ -20,6 +20,7 @@ struct Options {
   std::optional<DrawMode> draw;          ///< given: overrides the remembered draw mode
   bool markers = false;                  ///< the seed's collision-vertex markers from the start
   std::optional<BodyColoring> coloring;  ///< given: what bodies' colours say from the start
+  std::optional<int> threads;            ///< given: the threads every scene opened steps with
   std::vector<OverlaySpec> overlay;      ///< 2 to 4 runs of the method overlay, or none
   std::optional<long> pauseAt;           ///< pause when the main run has taken this many steps
   bool help = false;

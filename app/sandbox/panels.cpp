@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <string_view>
+#include <thread>
 
 #include <glm/geometric.hpp>
 #include <imgui.h>
@@ -152,6 +153,10 @@ void settingsSection(Session& session, UiState& ui) {
   changed |= sliderReal("body damping", s.bodyDamping, 0.0f, 1.0f, "%.2f");
   changed |= sliderReal("depenetration (m/s)", s.maxDepenetrationSpeed, 0.1f, 100.0f, "%.2f",
                         ImGuiSliderFlags_Logarithmic);
+  // Up to the machine's threads (or the scene's number, if larger); the result is the same for any.
+  const int mostThreads =
+      std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, phys::kMaxThreads);
+  changed |= ImGui::SliderInt("threads", &s.threads, 1, std::max(mostThreads, s.threads));
   changed |= ImGui::Checkbox("sleep", &s.sleep.enabled);
   ImGui::SameLine();
   ImGui::TextDisabled("islands at rest %.1f s under %.2f m/s", s.sleep.time, s.sleep.speed);

@@ -80,11 +80,11 @@ Sandbox::Sandbox(const Options& options)
     file = user_.lastScene;
   }
   try {
-    session_ = std::make_unique<Session>(file, scenes::sceneDirectory(data));
+    session_ = std::make_unique<Session>(file, scenes::sceneDirectory(data), options_.threads);
   } catch (const std::exception& e) {
     if (file == scenePath(options_)) throw;
     std::cerr << "sandbox: " << e.what() << "; opening the default scene instead\n";
-    session_ = std::make_unique<Session>(scenePath(options_), scenes::sceneDirectory(data));
+    session_ = std::make_unique<Session>(scenePath(options_), scenes::sceneDirectory(data), options_.threads);
   }
   camera_ =
       engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);

@@ -84,14 +84,6 @@ phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::
   return origin + dir * (glm::dot(p0 - origin, n) / along);
 }
 
-// The sandbox sleeps unless the scene says `<solver sleep="off">`: a resting pile should cost
-// nothing while the user looks at it (docs/sandbox.md).
-scenes::LoadOptions sandboxLoad() {
-  scenes::LoadOptions options;
-  options.sleepUnlessSaid = true;
-  return options;
-}
-
 }  // namespace
 
 double Run::medianMs() const {
@@ -102,9 +94,14 @@ double Run::medianMs() const {
   return sorted[static_cast<std::size_t>(n / 2)];
 }
 
-Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory)
+Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory,
+                 std::optional<int> threads)
     : sceneDirectory_(sceneDirectory) {
-  replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, sandboxLoad())), file);
+  // The sandbox sleeps unless the scene says `<solver sleep="off">`: a resting pile should cost
+  // nothing while the user looks at it (docs/sandbox.md).
+  load_.sleepUnlessSaid = true;
+  load_.threads = threads;
+  replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, load_)), file);
 }
 
 void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file) {
@@ -120,7 +117,7 @@ void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::files
 
 std::string Session::open(const std::filesystem::path& file) {
   try {
-    replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, sandboxLoad())), file);
+    replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, load_)), file);
     return {};
   } catch (const std::exception& e) {  // LoadError, or anything else: keep what we have
     status_ = std::string(e.what()) + " (the current world is kept)";

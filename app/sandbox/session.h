@@ -47,7 +47,9 @@ inline constexpr double kThrowSpeed = 8.0;     ///< unit: m/s
 class Session {
  public:
   /// Loads the first scene; throws scenes::LoadError if it cannot (there is nothing to keep).
-  Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory);
+  /// `threads`, if given, is imposed on every scene opened (the command line's --threads).
+  Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory,
+          std::optional<int> threads = std::nullopt);
 
   // Files. Each returns "" on success, else the message to show; on failure nothing changes.
   std::string open(const std::filesystem::path& file);
@@ -133,6 +135,7 @@ class Session {
   std::vector<Run> runs_;
   std::filesystem::path file_;
   std::filesystem::path sceneDirectory_;
+  scenes::LoadOptions load_;  // how every scene is opened: sleeping unless it says, --threads
   std::optional<DragState> drag_;
   phys::SolverSettings beforeOverlay_;  // the main run's settings when the overlay started
   std::string status_;

@@ -43,9 +43,12 @@ RigidMotion rigidMotion(const Particles& p, const Body& box, const MassPropertie
   return {momentum / m.mass, glm::inverse(m.inertia) * angularMomentum};
 }
 
-void dampBodyMotion(Particles& p, std::span<const Body> boxes, const BodyLayout& layout, Real fraction) {
+void dampBodyMotion(Particles& p, std::span<const Body> boxes, const BodyLayout& layout, Real fraction,
+                    const Workers* workers) {
   if (fraction <= 0.0) return;
-  dampBodyLanes(dampLaneArguments(p, layout, fraction));  // the same, eight bodies at a time
+  // The same, eight bodies at a time.
+  inLanePieces(dampLaneArguments(p, layout, fraction), workers,
+               [](const DampLaneArguments& a) { dampBodyLanes(a); });
   MassProperties m;
   for (const BodyId b : layout.others()) {
     const Body& box = boxes[b];

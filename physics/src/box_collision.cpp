@@ -32,42 +32,54 @@ void World::joinBodies(ParticleId a, ParticleId b) {
   parting_.join(ba, bb);
 }
 
+// Bodies whose frames one thread fits at a time: a few microseconds of work.
+constexpr std::size_t kBodiesPerPiece = 256;
+
+void World::updateBodyFrames() {
+  // Each body's frame is its own: ranges of bodies at once on the step's threads.
+  auto range = [this](std::size_t begin, std::size_t end) {
+    for (BodyId id(begin); id < end; ++id) fitFrame(id);
+  };
+  if (workers() == nullptr)
+    range(0, bodies_.size());
+  else
+    workers_.forEach(bodies_.size(), kBodiesPerPiece, range);
+}
+
 // Centre: the mean of the corners. Axes: the mean edge along each, made orthonormal. Cheaper
 // than the polar decomposition bodyPose uses, and as good for a box that keeps its shape.
-void World::updateBodyFrames() {
-  for (BodyId id{}; id < bodies_.size(); ++id) {
-    const Body& box = bodies_[id];
-    Obb& f = frames_[id];
-    if (box.model == BodyModel::Rigid) {  // its frame is its pose
-      f.center = rigidBodies_.position[box.rigid];
-      f.axes = glm::mat3_cast(rigidBodies_.orientation[box.rigid]);
-      f.halfExtents = box.halfExtents;
-      continue;
-    }
-    Vec3 ex, ey;
-    if (box.model == BodyModel::Tetra) {
-      // The same sums from the 4 particles (at corners 0, 3, 5, 6): corner k is sum_j (1 + s_j .
-      // s_k) / 4 p_j, so the mean corner is the mean particle and the x edges sum to
-      // 2 sum_j s_jx p_j. A third of the work of embedding 8 corners.
-      const Vec3* p = &particles_.position[box.firstParticle];
-      f.center = (p[0] + p[1] + p[2] + p[3]) * 0.25;
-      ex = (p[1] + p[2] - p[0] - p[3]) * 2.0;
-      ey = (p[1] + p[3] - p[0] - p[2]) * 2.0;
-    } else {
-      const Vec3* c = &particles_.position[box.firstParticle];  // the corners are the particles
-      f.center = (c[0] + c[1] + c[2] + c[3] + c[4] + c[5] + c[6] + c[7]) * 0.125;
-      ex = (c[1] - c[0]) + (c[3] - c[2]) + (c[5] - c[4]) + (c[7] - c[6]);
-      ey = (c[2] - c[0]) + (c[3] - c[1]) + (c[6] - c[4]) + (c[7] - c[5]);
-    }
-    const Real lx = glm::length(ex);
-    ex = lx > 0.0 ? ex / lx : Vec3(1.0, 0.0, 0.0);
-    ey -= glm::dot(ey, ex) * ex;
-    const Real ly = glm::length(ey);
-    ey = ly > 0.0 ? ey / ly
-                  : glm::normalize(glm::cross(ex, std::abs(ex.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
-    f.axes = glm::dmat3(ex, ey, glm::cross(ex, ey));
+void World::fitFrame(BodyId id) {
+  const Body& box = bodies_[id];
+  Obb& f = frames_[id];
+  if (box.model == BodyModel::Rigid) {  // its frame is its pose
+    f.center = rigidBodies_.position[box.rigid];
+    f.axes = glm::mat3_cast(rigidBodies_.orientation[box.rigid]);
     f.halfExtents = box.halfExtents;
+    return;
   }
+  Vec3 ex, ey;
+  if (box.model == BodyModel::Tetra) {
+    // The same sums from the 4 particles (at corners 0, 3, 5, 6): corner k is sum_j (1 + s_j .
+    // s_k) / 4 p_j, so the mean corner is the mean particle and the x edges sum to
+    // 2 sum_j s_jx p_j. A third of the work of embedding 8 corners.
+    const Vec3* p = &particles_.position[box.firstParticle];
+    f.center = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+    ex = (p[1] + p[2] - p[0] - p[3]) * 2.0;
+    ey = (p[1] + p[3] - p[0] - p[2]) * 2.0;
+  } else {
+    const Vec3* c = &particles_.position[box.firstParticle];  // the corners are the particles
+    f.center = (c[0] + c[1] + c[2] + c[3] + c[4] + c[5] + c[6] + c[7]) * 0.125;
+    ex = (c[1] - c[0]) + (c[3] - c[2]) + (c[5] - c[4]) + (c[7] - c[6]);
+    ey = (c[2] - c[0]) + (c[3] - c[1]) + (c[6] - c[4]) + (c[7] - c[5]);
+  }
+  const Real lx = glm::length(ex);
+  ex = lx > 0.0 ? ex / lx : Vec3(1.0, 0.0, 0.0);
+  ey -= glm::dot(ey, ex) * ex;
+  const Real ly = glm::length(ey);
+  ey = ly > 0.0 ? ey / ly
+                : glm::normalize(glm::cross(ex, std::abs(ex.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
+  f.axes = glm::dmat3(ex, ey, glm::cross(ex, ey));
+  f.halfExtents = box.halfExtents;
 }
 
 }  // namespace phys

@@ -34,10 +34,10 @@ void ConstraintGraph::layOut(std::span<const Body> bodies, std::size_t particleC
 }
 
 void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h,
-                                  Real compliance) {
+                                  Real compliance, const Workers* workers) {
   switch (method) {
     case SolverMethod::GaussSeidel:
-      detail::relaxGaussSeidel(particles, sticks_, stickLayout_);
+      detail::relaxGaussSeidel(particles, sticks_, stickLayout_, workers);
       break;
     case SolverMethod::Jacobi:
       detail::relaxJacobi(particles, sticks_, stickLayout_, degree_, jacobiDelta_);
@@ -45,7 +45,7 @@ void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, boo
     case SolverMethod::Xpbd:
       // The multipliers accumulate over the substep's passes (Macklin et al. 2016).
       if (firstPass) std::fill(lambda_.begin(), lambda_.end(), 0.0);
-      detail::relaxXpbd(particles, sticks_, stickLayout_, lambda_, h, compliance);
+      detail::relaxXpbd(particles, sticks_, stickLayout_, lambda_, h, compliance, workers);
       break;
     case SolverMethod::Shake:
       detail::relaxShake(particles, sticks_, stickLayout_);
@@ -63,8 +63,9 @@ std::span<const Real> ConstraintGraph::linkSlack() const {
   return linksApart_ > 0 ? std::span<const Real>(linkSlack_) : std::span<const Real>();
 }
 
-void ConstraintGraph::solveLinks(Particles& particles, std::span<const Real> slack) const {
-  detail::solveLinks(particles, links_, linkLayout_, slack);
+void ConstraintGraph::solveLinks(Particles& particles, std::span<const Real> slack,
+                                 const Workers* workers) const {
+  detail::solveLinks(particles, links_, linkLayout_, slack, workers);
 }
 
 }  // namespace phys

@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "union_find.h"
+
 namespace phys {
 
 NodeId Islands::addNode(bool fixed) {
@@ -92,15 +94,7 @@ void Islands::join(NodeId a, NodeId b) {
   if (fixed_[a] != 0 || fixed_[b] != 0 || a == b) return;
   wake(a);
   wake(b);
-  auto lastingRoot = [this](NodeId n) {
-    while (lasting_[n] != n) {
-      lasting_[n] = lasting_[lasting_[n]];
-      n = lasting_[n];
-    }
-    return n;
-  };
-  const NodeId ra = lastingRoot(a), rb = lastingRoot(b);
-  if (ra != rb) lasting_[std::max(ra, rb)] = std::min(ra, rb);
+  detail::unite(lasting_, a, b);
 }
 
 void Islands::joinParticles(ParticleId a, ParticleId b) {
@@ -110,16 +104,11 @@ void Islands::joinParticles(ParticleId a, ParticleId b) {
 }
 
 NodeId Islands::root(NodeId node) {
-  while (parent_[node] != node) {
-    parent_[node] = parent_[parent_[node]];  // path halving
-    node = parent_[node];
-  }
-  return node;
+  return detail::findRoot(parent_, node);
 }
 
 void Islands::unite(NodeId a, NodeId b) {
-  const NodeId ra = root(a), rb = root(b);
-  if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+  detail::unite(parent_, a, b);
 }
 
 void Islands::setAsleep(NodeId node, bool asleep) {
@@ -173,11 +162,7 @@ void Islands::update(const IslandInput& in) {
   const std::size_t n = asleep_.size();
   // This step's islands: the lasting joins, the sleeping islands as they fell asleep (their pairs
   // were not collided), and the step's manifolds.
-  for (NodeId i{}; i < n; ++i) {
-    NodeId r = i;
-    while (lasting_[r] != r) r = lasting_[r];
-    parent_[i] = r;
-  }
+  for (NodeId i{}; i < n; ++i) parent_[i] = detail::findRoot(lasting_, i);
   for (NodeId i{}; i < n; ++i) {
     if (asleep_[i] != 0) unite(i, sleepGroup_[i]);
   }

@@ -63,10 +63,11 @@ int shrinkLinkSlack(const Particles& p, std::span<const Link> links, Real step, 
 }
 
 void solveLinks(Particles& p, std::span<const Link> links, const LinkLayout& layout,
-                std::span<const Real> slack) {
+                std::span<const Real> slack, const Workers* workers) {
   // The usual pass, with no link created apart, is the projection alone, most of it in lanes.
   if (slack.empty()) {
-    solveLinkLanes(linkLaneArguments(p, layout));
+    inLanePieces(linkLaneArguments(p, layout), workers,
+                 [](const LinkLaneArguments& a) { solveLinkLanes(a); });
     for (const std::uint32_t k : layout.others()) solveLink(p, links[k], 0.0);
     return;
   }

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "room.h"
+#include "union_find.h"
 
 namespace phys {
 
@@ -22,16 +23,11 @@ void Parting::addBody() {
 }
 
 BodyId Parting::group(BodyId id) {
-  while (parent_[id] != id) {
-    parent_[id] = parent_[parent_[id]];  // path halving
-    id = parent_[id];
-  }
-  return id;
+  return detail::findRoot(parent_, id);
 }
 
 void Parting::join(BodyId a, BodyId b) {
-  const BodyId ra = group(a), rb = group(b);
-  if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+  detail::unite(parent_, a, b);
 }
 
 void Parting::reserve(std::size_t pairs, std::size_t bodies) {

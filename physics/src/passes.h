@@ -15,6 +15,7 @@
 #include "physics/rigid_bodies.h"
 #include "physics/settings.h"
 #include "physics/stick_layout.h"
+#include "physics/workers.h"
 
 namespace phys::detail {
 
@@ -62,7 +63,9 @@ inline Real thinnestHalfExtent(const Obb& a, const Obb& b) {
 /// d = 1 - exp(-damping h) so the decay per second does not depend on h (REFERENCES.md).
 /// `checked` (per particle) is given x too: what the guard found good at the end of the last
 /// substep, and puts back if it freezes the body in this one (later phases edit x*).
-void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked);
+/// `workers`, if given, integrate ranges of particles at once (SolverSettings::threads).
+void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked,
+               const Workers* workers = nullptr);
 
 /// Pulls an embedded point towards `target` by a spring of the given stiffness (N/m) and
 /// damping (N s/m), stepped implicitly over the substep h, so it is stable at any stiffness:
@@ -83,7 +86,10 @@ inline Real stickTarget(const Stick& s, Real length) {
 // Each pass runs over `layout` (StickLayout): the same result as one loop over `sticks` in
 // creation order, faster.
 /// Jakobsen: each stick in turn, along its current direction, in proportion to inverse mass.
-void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout);
+/// `workers`, if given, relax the lane groups in pieces at once (they share no particle); the blocks
+/// and runs follow on the calling thread, as they would in one loop.
+void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
+                      const Workers* workers = nullptr);
 /// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
 /// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
 /// particle.
@@ -94,7 +100,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
 /// zeroed at the start of each substep.
 /// `compliance` (m/N, SolverSettings::compliance) is added to every stick's own.
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
-               Real h, Real compliance);
+               Real h, Real compliance, const Workers* workers = nullptr);
 /// SHAKE (Ryckaert, Ciccotti, Berendsen 1977): each stick moved along its direction at the
 /// start of the substep (x* after integration), by the root of a scalar quadratic.
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout);
@@ -206,12 +212,13 @@ int shrinkLinkSlack(const Particles& p, std::span<const Link> links, Real step, 
 /// to keep: its bounds are widened by that much on the side it is outside. With no slack the pass
 /// runs over `layout` (LinkLayout), in lanes, to the same result.
 void solveLinks(Particles& p, std::span<const Link> links, const LinkLayout& layout,
-                std::span<const Real> slack = {});
+                std::span<const Real> slack = {}, const Workers* workers = nullptr);
 
 /// Pulls each box's particle velocities (x - x*) towards the box's rigid motion by `fraction`
 /// (0 nothing, 1 all the way), keeping its linear and angular momentum; edits x* only.
 /// `layout` (BodyLayout) groups the bodies; every body of `boxes` is in it once.
-void dampBodyMotion(Particles& p, std::span<const Body> boxes, const BodyLayout& layout, Real fraction);
+void dampBodyMotion(Particles& p, std::span<const Body> boxes, const BodyLayout& layout, Real fraction,
+                    const Workers* workers = nullptr);
 
 /// Current position of an embedded point.
 Vec3 embeddedPosition(const std::vector<Vec3>& x, const Embedding& e);

@@ -94,8 +94,9 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
 
 // Jakobsen 2001, "Advanced Character Physics", stick constraint, with the sign of the printed
 // listing corrected (REFERENCES.md): s = (|d| - r) / (|d| (w1 + w2)); x1 += w1 s d; x2 -= w2 s d.
-void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout) {
-  relaxGaussSeidelLanes(laneArguments(p, layout));
+void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
+                      const Workers* workers) {
+  inLanePieces(laneArguments(p, layout), workers, [](const LaneArguments& a) { relaxGaussSeidelLanes(a); });
   forEachStick<false, false>(
       p, sticks, layout, [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
         StickState m;
@@ -157,13 +158,13 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
 // a~ = compliance / h^2; gradient of C = |x2 - x1| - r is -n for x1 and +n for x2. The world's
 // compliance adds to each stick's: compliances in series add, as springs' inverse stiffnesses do.
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
-               Real h, Real compliance) {
+               Real h, Real compliance, const Workers* workers) {
   const Real inverseH2 = 1.0 / (h * h);
   LaneArguments lanes = laneArguments(p, layout);
   lanes.lambda = lambda.data();
   lanes.inverseH2 = inverseH2;
   lanes.compliance = compliance;
-  relaxXpbdLanes(lanes);
+  inLanePieces(lanes, workers, [](const LaneArguments& a) { relaxXpbdLanes(a); });
   forEachStick<false, false>(
       p, sticks, layout,
       [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t c) {

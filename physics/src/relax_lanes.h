@@ -10,6 +10,7 @@
 #include "physics/link_layout.h"
 #include "physics/particles.h"
 #include "physics/stick_layout.h"
+#include "physics/workers.h"
 
 namespace phys::detail {
 
@@ -55,6 +56,28 @@ DampLaneArguments dampLaneArguments(Particles& p, const BodyLayout& layout, Real
 
 /// The link arguments for the world's particles and a layout.
 LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout);
+
+/// Lane groups a piece of a threaded pass takes: a few microseconds of work, against the few the
+/// threads take to pick a piece up.
+inline constexpr std::size_t kLaneGroupsPerPiece = 16;
+
+/// kernel(args) over all of args' lane groups: at once, on the calling thread without workers; in
+/// pieces of kLaneGroupsPerPiece groups on the workers with them. The groups share no particle
+/// (the layouts' headers), so the pieces may run in any order and the result is the same.
+template <class Arguments, class Kernel>
+void inLanePieces(const Arguments& args, const Workers* workers, Kernel kernel) {
+  if (workers == nullptr) {
+    kernel(args);
+    return;
+  }
+  auto piece = [&](std::size_t begin, std::size_t end) {
+    Arguments part = args;
+    part.groups += begin;
+    part.groupCount = end - begin;
+    kernel(part);
+  };
+  workers->forEach(args.groupCount, kLaneGroupsPerPiece, piece);
+}
 
 /// Which compiled copy of the kernels runs.
 enum class LaneIsa { Baseline, Avx2 };

@@ -77,6 +77,7 @@ std::string validate(const SolverSettings& s) {
     why << "broadPhase.stripsPerBody must be from 1 to " << kMaxStrips << "; ";
   if (b.maxStripsPerBody < 1 || b.maxStripsPerBody > kMaxStrips)
     why << "broadPhase.maxStripsPerBody must be from 1 to " << kMaxStrips << "; ";
+  if (s.threads < 1 || s.threads > kMaxThreads) why << "threads must be from 1 to " << kMaxThreads << "; ";
   if (!finiteNonNegative(s.sleep.speed)) why << "sleep.speed must be finite and >= 0 (m/s); ";
   if (!finiteNonNegative(s.sleep.time)) why << "sleep.time must be finite and >= 0 (s); ";
   const PartingSettings& p = s.parting;

@@ -36,12 +36,12 @@ void World::step() {
     profile_.total = millisecondsSince(stepStart);
     return;
   }
+  updateLayouts();
   const std::size_t freezesBefore = guard_.freezes().size();
   if (islands_.anyAsleep()) {
     const detail::StageTimer timer(profile_, Stage::Islands);
     islands_.mask(particles_, rigidBodies_, bodies_);
   }
-  updateLayouts();
   std::fill(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{0});
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
   const Real h = substepDt();
@@ -151,7 +151,7 @@ void World::updateLayouts() {
 
 void World::integrateParticles(Real h) {
   const detail::StageTimer timer(profile_, Stage::Integrate);
-  detail::integrate(particles_, world_, h, guard_.checked());
+  detail::integrate(particles_, world_, h, guard_.checked(), workers());
   detail::integrateRigid(rigidBodies_, world_, h);
   // The mouse spring is a force: applied with gravity, before the passes share it out.
   if (drag_ && drag_->body != kNoBody) {
@@ -325,14 +325,14 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   for (int it = 0; it < solver_.iterations; ++it) {
     if (!constraints_.sticks().empty()) {
       const detail::StageTimer timer(profile_, Stage::Sticks);
-      constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance);
+      constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers());
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links
     // between bodies, then the contacts. Links are rigid projections in every method, so the
     // world's compliance, which XPBD adds to the sticks, does not soften them.
     if (!constraints_.links().empty()) {
       const detail::StageTimer timer(profile_, Stage::Links);
-      constraints_.solveLinks(particles_, linkSlack);
+      constraints_.solveLinks(particles_, linkSlack, workers());
     }
     if (!constraints_.rigidLinks().empty() || !constraints_.rigidJoints().empty()) {
       const detail::StageTimer timer(profile_, Stage::Links);
@@ -402,7 +402,7 @@ void World::restitute(Real h) {
 void World::dampBodies() {
   if (solver_.bodyDamping <= 0.0 || bodies_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::BodyDamping);
-  detail::dampBodyMotion(particles_, bodies_, bodyLayout_, solver_.bodyDamping);
+  detail::dampBodyMotion(particles_, bodies_, bodyLayout_, solver_.bodyDamping, workers());
 }
 
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the

@@ -84,6 +84,7 @@ void World::setSolverSettings(const SolverSettings& settings) {
   const bool stiffer = settings.iterations * settings.substeps > solver_.iterations * solver_.substeps;
   if (!(settings == solver_)) islands_.wakeAll();  // what rested under the old settings may not
   solver_ = settings;
+  workers_.setThreads(settings.threads);
   if (stiffer) settleWithoutVelocity();
   guardParticles();  // both can overflow under absurd gravity or speeds
 }

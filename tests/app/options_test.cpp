@@ -72,4 +72,18 @@ TEST(Options, BadDrawOverlayAndPauseAtSayWhat) {
             "--pause-at: '-1' is not a whole number from 0 to 1000000");
 }
 
+TEST(Options, ThreadsAndColourBy) {
+  const sandbox::ParsedOptions p = sandbox::parseOptions({"stack", "--threads", "2", "--color-by", "island"});
+  ASSERT_EQ(p.error, "");
+  EXPECT_EQ(p.options.threads, 2);
+  EXPECT_EQ(p.options.coloring, sandbox::BodyColoring::Island);
+  EXPECT_FALSE(sandbox::parseOptions({}).options.threads);
+  EXPECT_EQ(sandbox::parseOptions({"--threads", "0"}).error,
+            "--threads: '0' is not a whole number from 1 to 64");
+  EXPECT_EQ(sandbox::parseOptions({"--threads", "65"}).error,
+            "--threads: '65' is not a whole number from 1 to 64");
+  EXPECT_EQ(sandbox::parseOptions({"--color-by", "mass"}).error,
+            "--color-by: 'mass' must be kind, island or sleep");
+}
+
 }  // namespace

@@ -107,6 +107,7 @@ class SceneGenerator {
     if (chance(0.3)) e += attr("compliance", num(real(0.0, 1e-3)));
     if (chance(0.3)) e += attr("depenetration-speed", chance(0.5) ? "none" : num(real(0.1, 10.0)));
     if (chance(0.3)) e += attr("sleep", chance(0.5) ? "on" : "off");
+    if (chance(0.2)) e += attr("threads", std::to_string(integer(1, 4)));
     if (chance(0.2)) e += attr("sleep-speed", num(real(0.0, 0.2)));
     if (chance(0.2)) e += attr("sleep-time", num(real(0.0, 2.0)));
     return e + "/>\n";

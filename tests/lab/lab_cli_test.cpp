@@ -194,6 +194,17 @@ TEST(LabRun, SameRunTwiceSameHash) {
   EXPECT_NE(text(runJson("run " + quoted(scene) + " --steps 31", dir), "hash"), text(a, "hash"));
 }
 
+// The step on two threads gives the state it gives on one (docs/physics.md, "Threads").
+TEST(LabRun, ThreadsChangeNothingButTheTime) {
+  const TempDir dir;
+  const std::string args = "run bullet-ragdolls --steps 20";
+  EXPECT_EQ(text(runJson(args + " --threads 2", dir), "hash"),
+            text(runJson(args + " --threads 1", dir), "hash"));
+  const ProcessResult bad = runLab(args + " --threads 0", dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--threads: '0' is not a whole number from 1 to 64"), std::string::npos) << bad.err;
+}
+
 TEST(LabRun, OverridesShowInTheJson) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());

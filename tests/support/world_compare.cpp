@@ -263,6 +263,7 @@ class Comparison {
     if (a.maxDepenetrationSpeed != b.maxDepenetrationSpeed) {
       return unequal("<solver> depenetration-speed", a.maxDepenetrationSpeed, b.maxDepenetrationSpeed);
     }
+    if (a.threads != b.threads) return unequal<Real>("<solver> threads", a.threads, b.threads);
     if (a.sleep.enabled != b.sleep.enabled) {
       return unequalText("<solver> sleep", a.sleep.enabled ? "on" : "off", b.sleep.enabled ? "on" : "off");
     }

@@ -105,6 +105,7 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
       e.fail("depenetration-speed", "'" + *speed + "' must be a number > 0 (m/s) or none");
     s.maxDepenetrationSpeed = *value;
   }
+  if (auto n = e.integer("threads", 1, phys::kMaxThreads)) s.threads = static_cast<int>(*n);
   if (auto sleep = e.text("sleep")) {
     if (*sleep != "on" && *sleep != "off") e.fail("sleep", "'" + *sleep + "' must be on or off");
     s.sleep.enabled = *sleep == "on";
@@ -559,6 +560,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
     readCamera(e, worldSettings, camera);
   }
   if (options.sleep) solverSettings.sleep.enabled = *options.sleep;
+  if (options.threads) solverSettings.threads = *options.threads;
 
   std::optional<Scene> built;
   try {

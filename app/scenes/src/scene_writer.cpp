@@ -154,6 +154,7 @@ std::string solverElement(const phys::SolverSettings& s) {
     solver.number("depenetration-speed", s.maxDepenetrationSpeed);
   else
     solver.text("depenetration-speed", "none");
+  solver.integer("threads", s.threads);
   solver.text("sleep", s.sleep.enabled ? "on" : "off")
       .number("sleep-speed", s.sleep.speed)
       .number("sleep-time", s.sleep.time);

@@ -15,6 +15,7 @@
 #include "physics/rigid_links.h"
 #include "physics/settings.h"
 #include "physics/stick_layout.h"
+#include "physics/workers.h"
 
 namespace phys {
 
@@ -43,7 +44,9 @@ class ConstraintGraph {
 
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
   /// multipliers). `h` (s) and `compliance` (m/N) are XPBD's.
-  void relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h, Real compliance);
+  /// `workers`, if given, run the lane groups of Gauss-Seidel and XPBD in pieces at once.
+  void relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h, Real compliance,
+                   const Workers* workers = nullptr);
   /// Each link's slack: the violation at x* it may keep this substep, less `step` (m). Returns the
   /// slack, empty when every link is within its bounds.
   std::span<const Real> shrinkLinkSlack(const Particles& particles, Real step);
@@ -52,7 +55,7 @@ class ConstraintGraph {
   /// The slack as it is (empty when no link has any), without shrinking it.
   std::span<const Real> linkSlack() const;
   /// One pass over the links, each widened by its slack (may be empty).
-  void solveLinks(Particles& particles, std::span<const Real> slack) const;
+  void solveLinks(Particles& particles, std::span<const Real> slack, const Workers* workers = nullptr) const;
 
  private:
   std::vector<Stick> sticks_;

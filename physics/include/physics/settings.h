@@ -66,6 +66,7 @@ inline constexpr Real kMaxDt = 1.0;          ///< unit: s
 inline constexpr Real kMaxCompliance = 1e6;  ///< unit: m/N; softer than this is no constraint at all
 inline constexpr std::size_t kMaxStrips = std::size_t{1} << 24;  ///< BroadPhaseSettings' counts
 inline constexpr int kMaxPartingSweeps = 100000;                 ///< PartingSettings' sweep counts
+inline constexpr int kMaxThreads = 64;                           ///< SolverSettings::threads
 
 /// SolverSettings::maxDepenetrationSpeed's default.
 inline constexpr Real kDefaultMaxDepenetrationSpeed = 3.0;  ///< unit: m/s
@@ -158,6 +159,10 @@ struct SolverSettings {
   PartingSettings parting;
   ManifoldReuseSettings manifoldReuse;
   SleepSettings sleep;
+  /// Threads the step may use, the caller's included: the stages whose pieces share nothing
+  /// (integration, frames, the stick, link and body-damping lanes) run them at once. The result is
+  /// the same bit for bit for any number (docs/physics.md, "Threads").
+  int threads = 1;  ///< 1 to kMaxThreads
   bool operator==(const SolverSettings&) const = default;
 };
 

@@ -29,6 +29,7 @@
 #include "physics/rigid_joints.h"
 #include "physics/rigid_links.h"
 #include "physics/settings.h"
+#include "physics/workers.h"
 
 namespace phys {
 
@@ -270,6 +271,7 @@ class World {
   GuardInput guardInput();
   void checkEmbedding(const Embedding& e, const std::string& who) const;
   void updateBodyFrames();
+  void fitFrame(BodyId id);
   void joinBodies(ParticleId a, ParticleId b);
   BodyId addRigidBody(const BodyDesc& desc, const Quat& orientation);
   BodyId registerBody(const Body& body);
@@ -307,6 +309,8 @@ class World {
   Guard guard_;
   // Mutable for islands(), which counts them when the step did not (sleeping off): a cache.
   mutable Islands islands_;
+  Workers workers_;  // SolverSettings::threads
+  const Workers* workers() const { return workers_.threads() > 1 ? &workers_ : nullptr; }
   mutable bool islandsCounted_ = true;
   Profile profile_;
   Real time_ = 0.0;

@@ -58,6 +58,8 @@ struct LoadOptions {
   bool sleepUnlessSaid = false;
   /// Sleeping imposed whatever the file says: the lab's --sleep.
   std::optional<bool> sleep;
+  /// SolverSettings::threads imposed whatever the file says: the sandbox's --threads.
+  std::optional<int> threads;
 };
 
 struct Scene {

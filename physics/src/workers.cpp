@@ -1,0 +1,52 @@
+#include "physics/workers.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+namespace phys {
+
+struct Workers::Arena {
+  explicit Arena(int threads) : arena(threads) {}
+  tbb::task_arena arena;
+};
+
+Workers::Workers() = default;
+Workers::~Workers() = default;
+Workers::Workers(Workers&& other) noexcept = default;
+Workers& Workers::operator=(Workers&& other) noexcept = default;
+
+Workers::Workers(const Workers& other) {
+  setThreads(other.threads_);
+}
+
+Workers& Workers::operator=(const Workers& other) {
+  if (this != &other) setThreads(other.threads_);
+  return *this;
+}
+
+void Workers::setThreads(int threads) {
+  if (threads == threads_ && (threads <= 1 || arena_)) return;
+  threads_ = threads;
+  arena_.reset();
+  if (threads > 1) arena_ = std::make_unique<Arena>(threads);
+}
+
+void Workers::forEach(std::size_t count, std::size_t grain, RangeFunction f) const {
+  if (count == 0) return;
+  if (!arena_ || count <= grain) {
+    f(0, count);
+    return;
+  }
+  // The simple partitioner halves the range until each piece is at most `grain`: where it cuts
+  // depends on count and grain alone, and each piece's work is its own, so the result does not
+  // depend on which thread runs what.
+  arena_->arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, count, grain),
+        [&](const tbb::blocked_range<std::size_t>& r) { f(r.begin(), r.end()); }, tbb::simple_partitioner());
+  });
+}
+
+}  // namespace phys
