@@ -274,7 +274,7 @@ void drawStatsPanel(const Session& session, UiState& ui) {
     else
       ImGui::Text("real time x%.2f", *factor);
   } else {
-    ImGui::TextDisabled("real time: not running (paused, or one step a frame for a screenshot)");
+    ImGui::TextDisabled("real time: not timed (paused or screenshot)");
   }
   // The step's stages two to a line, in the step's order (ms, summed over the substeps).
   for (std::size_t i = 0; i < phys::kStageCount; i += 2) {

@@ -26,7 +26,7 @@ struct PanelPlace {
 inline constexpr PanelPlace kSimulationPanel{{10.0f, 30.0f}, {370.0f, 425.0f}};
 inline constexpr PanelPlace kWorldPanel{{10.0f, 465.0f}, {370.0f, 150.0f}};
 inline constexpr PanelPlace kStatsPanel{{380.0f, 30.0f}, {370.0f, 440.0f}, true};
-inline constexpr PanelPlace kDrawPanel{{380.0f, 480.0f}, {370.0f, 110.0f}, true};
+inline constexpr PanelPlace kDrawPanel{{380.0f, 480.0f}, {370.0f, 135.0f}, true};
 
 /// Everything the panels show or change besides the session.
 struct UiState {

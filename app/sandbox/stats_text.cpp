@@ -21,7 +21,8 @@ std::vector<StatsLine> statsLines(const phys::World& world) {
   lines.push_back({std::to_string(world.bodies().size()) + " bodies, " + std::to_string(m.contacts) +
                    " contacts, " + std::to_string(world.broadPhasePairs()) + " broad-phase pairs"});
   const phys::Islands& islands = world.islands();
-  lines.push_back({std::to_string(islands.islandCount()) + " islands (" +
+  const std::size_t count = islands.islandCount();
+  lines.push_back({std::to_string(count) + (count == 1 ? " island (" : " islands (") +
                    std::to_string(islands.sleepingIslands()) + " asleep), bodies " +
                    std::to_string(islands.awakeBodies()) + " awake, " +
                    std::to_string(islands.sleepingBodies()) + " asleep"});

@@ -507,7 +507,7 @@ TEST(SessionSleep, TheStackFallsAsleepAndStatsSaysSo) {
   ASSERT_EQ(world.islands().sleepingBodies(), world.bodies().size()) << "t = " << world.time();
   bool said = false;
   for (const sandbox::StatsLine& line : sandbox::statsLines(world)) {
-    said = said || line.text == "1 islands (1 asleep), bodies 0 awake, " +
+    said = said || line.text == "1 island (1 asleep), bodies 0 awake, " +
                                     std::to_string(world.bodies().size()) + " asleep";
   }
   EXPECT_TRUE(said);
