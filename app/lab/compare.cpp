@@ -202,7 +202,7 @@ std::filesystem::path shownPath(const std::filesystem::path& file, const std::fi
 
 Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, const CompareOptions& options,
             int steps, const AccuracyTarget& target) {
-  scenes::Scene scene = scenes::loadSceneFile(file, imposedModel(options.model, options.sleep));
+  scenes::Scene scene = scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep));
   RunOptions overrides;
   overrides.method = method;
   overrides.dt = options.dt;
@@ -314,7 +314,7 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   int steps = options.steps;
   try {
     file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(where)));
-    scene.emplace(scenes::loadSceneFile(file, imposedModel(options.model, options.sleep)));
+    scene.emplace(scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep)));
     dt = options.dt.value_or(scene->world.solverSettings().dt);
     target = accuracyTarget(*scene, {}, dt, steps);
   } catch (const scenes::LoadError& e) {

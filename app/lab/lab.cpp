@@ -61,7 +61,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   std::filesystem::path file = options.scene;
   try {
     file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(options)));
-    scene.emplace(scenes::loadSceneFile(file, imposedModel(options.model, options.sleep)));
+    scene.emplace(scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep)));
   } catch (const scenes::LoadError& e) {
     err << e.what() << "\n";  // already "file:line: ...", the form editors jump to
     return kExitFailure;

@@ -10,7 +10,7 @@ bool xpbdWhateverTheMethod(const phys::World& world) {
   return world.rigidBodies().size() > 0 && world.sticks().empty();
 }
 
-scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model, bool sleep) {
+scenes::LoadOptions imposedAtLoad(std::optional<phys::BodyModel> model, bool sleep) {
   scenes::LoadOptions load;
   load.boxModel = model;
   load.sleep = sleep;

@@ -44,11 +44,11 @@ struct RunResult {
 /// way under each (rigid bodies by XPBD's corrections), so such a world steps alike under all four.
 bool xpbdWhateverTheMethod(const phys::World& world);
 
-/// What `--model M` of `lab run` and `lab compare` imposes at load: M on every box, capsule, stack,
+/// What `lab run` and `lab compare` impose at load. `--model M`: M on every box, capsule, stack,
 /// pyramid and grid box; ragdolls keep their own models (seed, lean), except that rigid makes
-/// their parts rigid too. Nothing for no model.
-/// Sleeping is imposed too: off unless `sleep` (RunOptions::sleep).
-scenes::LoadOptions imposedModel(std::optional<phys::BodyModel> model, bool sleep = false);
+/// their parts rigid too; nothing for no model. `--sleep`: sleeping off unless `sleep`, whatever
+/// the file says.
+scenes::LoadOptions imposedAtLoad(std::optional<phys::BodyModel> model, bool sleep = false);
 
 /// Puts the options' overrides into the world's solver settings; rethrows the
 /// std::invalid_argument of World::setSolverSettings when the world refuses them.

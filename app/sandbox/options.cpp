@@ -54,6 +54,17 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
       return &args[++i];
     };
+    // The option's value as a whole number from min to max, or nullopt with the error set.
+    auto number = [&](const char* what, long min, long max) -> std::optional<long> {
+      const std::string* v = value(what);
+      if (v == nullptr) return std::nullopt;
+      const std::optional<long> n = wholeNumber(*v, min, max);
+      if (!n) {
+        out.error = a + ": '" + *v + "' is not a whole number from " + std::to_string(min) + " to " +
+                    std::to_string(max);
+      }
+      return n;
+    };
     if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--screenshot") {
@@ -65,13 +76,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
       o.screenshot = *v;
     } else if (a == "--frames") {
-      const std::string* v = value("a number of frames");
-      if (v == nullptr) return out;
-      const std::optional<long> n = wholeNumber(*v, 1, kMaxFrames);
-      if (!n) {
-        out.error = "--frames: '" + *v + "' is not a whole number from 1 to " + std::to_string(kMaxFrames);
-        return out;
-      }
+      const std::optional<long> n = number("a number of frames", 1, kMaxFrames);
+      if (!n) return out;
       o.frames = static_cast<int>(*n);
       framesGiven = true;
     } else if (a == "--draw") {
@@ -85,14 +91,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
     } else if (a == "--markers") {
       o.markers = true;
     } else if (a == "--threads") {
-      const std::string* v = value("a whole number from 1 to 64");
-      if (v == nullptr) return out;
-      const std::optional<long> n = wholeNumber(*v, 1, phys::kMaxThreads);
-      if (!n) {
-        out.error =
-            "--threads: '" + *v + "' is not a whole number from 1 to " + std::to_string(phys::kMaxThreads);
-        return out;
-      }
+      const std::optional<long> n = number("a whole number from 1 to 64", 1, phys::kMaxThreads);
+      if (!n) return out;
       o.threads = static_cast<int>(*n);
     } else if (a == "--color-by") {
       const std::string* v = value("kind, island or sleep");
@@ -120,13 +120,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
         return out;
       }
     } else if (a == "--pause-at") {
-      const std::string* v = value("a step number");
-      if (v == nullptr) return out;
-      o.pauseAt = wholeNumber(*v, 0, kMaxFrames);
-      if (!o.pauseAt) {
-        out.error = "--pause-at: '" + *v + "' is not a whole number from 0 to " + std::to_string(kMaxFrames);
-        return out;
-      }
+      o.pauseAt = number("a step number", 0, kMaxFrames);
+      if (!o.pauseAt) return out;
     } else if (a == "--data") {
       const std::string* v = value("a folder");
       if (v == nullptr) return out;

@@ -33,7 +33,7 @@ NodeId Islands::addParticle(bool fixed) {
   const NodeId id = addNode(fixed);
   nodeParticle_[id] = ParticleId(particleNode_.size());
   particleNode_.push_back(id);
-  maskedParticles_.reserve(particleNode_.size());
+  keepMaskRoom();
   return id;
 }
 
@@ -44,9 +44,15 @@ NodeId Islands::addBody(int particleCount) {
   bodyAsleep_.push_back(0);
   bodyIsland_.push_back(0);
   particleNode_.insert(particleNode_.end(), static_cast<std::size_t>(particleCount), id);
-  maskedParticles_.reserve(particleNode_.size());
-  maskedRigid_.reserve(bodyNode_.size());
+  keepMaskRoom();
   return id;
+}
+
+// Room for mask() to take every particle's and body's masses, made as they are added (doubling,
+// so that adding a particle does not allocate each time) and never in the step.
+void Islands::keepMaskRoom() {
+  if (maskedParticles_.capacity() < particleNode_.size()) maskedParticles_.reserve(2 * particleNode_.size());
+  if (maskedRigid_.capacity() < bodyNode_.size()) maskedRigid_.reserve(2 * bodyNode_.size());
 }
 
 void Islands::mask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {

@@ -4,7 +4,7 @@
 // that step; the ground and pinned particles join nothing, as in Box2D and Jolt. The islands are a
 // union-find rebuilt once a step from the lasting joins and the step's manifolds: a step's contacts
 // come and go, and rebuilding them all costs a pass over the nodes and the manifolds
-// (docs/performance.md, "Islands").
+// (docs/performance.md, "Islands and sleeping").
 //
 // An island whose every node has been slower than SleepSettings::speed for SleepSettings::time
 // goes to sleep. The world then steps none of it (World::step: its particles and rigid bodies look
@@ -90,6 +90,7 @@ class Islands {
 
  private:
   NodeId addNode(bool fixed);
+  void keepMaskRoom();
   NodeId root(NodeId node);
   void unite(NodeId a, NodeId b);
   void setAsleep(NodeId node, bool asleep);
