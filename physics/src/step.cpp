@@ -100,13 +100,16 @@ void World::updateIslands(std::size_t freezesBefore) {
 
 const Islands& World::islands() const {
   if (!islandsCounted_) {
+    // Counted only: a read must not time anyone's rest or put anything to sleep.
+    SleepSettings countOnly = solver_.sleep;
+    countOnly.enabled = false;
     islands_.update({particles_,
                      rigidBodies_,
                      bodies_,
                      narrowPhase_.manifolds(),
                      substepDt(),
                      solver_.dt,
-                     solver_.sleep,
+                     countOnly,
                      {}});
     islandsCounted_ = true;
   }
