@@ -28,7 +28,7 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   const Real qLength = glm::length(desc.orientation);
   require(std::isfinite(qLength) && qLength > 0.0, "orientation must be a finite non-zero quaternion");
   require(validate(desc.material).empty(), "friction coefficients must be finite and >= 0");
-  require(std::isfinite(desc.jointDamping) && desc.jointDamping >= 0.0,
+  require(!desc.jointDamping || (std::isfinite(*desc.jointDamping) && *desc.jointDamping >= 0.0),
           "joint damping must be finite and >= 0 (1/s)");
   require(desc.inertiaFloor >= 0.0 && desc.inertiaFloor <= 1.0, "inertia floor must be from 0 to 1");
   const Quat q = desc.orientation / qLength;
@@ -61,7 +61,7 @@ BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
 }
 
 Real jointDamping(const RagdollDesc& desc) {
-  return desc.model == RagdollModel::Rigid ? desc.jointDamping : 0.0;
+  return desc.jointDamping.value_or(desc.model == RagdollModel::Rigid ? kRagdollJointDamping : 0.0);
 }
 
 Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle) {
@@ -106,6 +106,7 @@ void addHinge(World& world, BodyId parent, BodyId child, const HingeSpec& spec, 
     world.addJoint(d);
     return;
   }
+  if (spec.damping > 0.0) world.addJointFriction(parent, child, spec.damping);
   // Two pins on the axis make the hinge.
   for (const Real side : {-1.0, 1.0}) {
     const Vec3 pin = place(spec.pivot + spec.axis * (side * spec.halfSpan));
@@ -137,6 +138,7 @@ void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, co
     world.addJoint(d);
     return;
   }
+  if (spec.damping > 0.0) world.addJointFriction(parent, child, spec.damping);
   const Vec3 pivot = place(spec.pivot);
   world.addLink(world.anchor(parent, pivot), world.anchor(child, pivot));
   // A point at `radius` along the limb's axis, fixed in both parts where it is laid out: after

@@ -40,7 +40,7 @@ struct HingeSpec {
   Real maxAngle = 0.0;             ///< unit: rad
   Real halfSpan = 0.07;            ///< unit: m; the two pins sit this far either side of the pivot
   Real radius = 0.1;               ///< unit: m; of the limit links' points from the pivot
-  Real damping = 0.0;              ///< unit: 1/s; JointDesc::damping (rigid parts only)
+  Real damping = 0.0;              ///< unit: 1/s; JointDesc::damping, or World::addJointFriction
 };
 
 /// Two pins on the axis and a one-sided range link at each stop (the why is in the .cpp); between
@@ -57,7 +57,7 @@ struct ConeSpec {
   Real swing = 0.0;           ///< unit: rad; half-angle of the cone, in (0, pi)
   Real twist = 0.0;           ///< unit: rad; >= 0
   Real radius = 0.1;          ///< unit: m; of the limit links' points from the pivot
-  Real damping = 0.0;         ///< unit: 1/s; JointDesc::damping (rigid parts only)
+  Real damping = 0.0;         ///< unit: 1/s; JointDesc::damping, or World::addJointFriction
 };
 
 /// One pin at the pivot, one range link holding a point on the axis within the cone, one range
@@ -66,8 +66,8 @@ struct ConeSpec {
 void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, const PlaceFn& place,
              Real scale);
 
-/// The joints' damping a ragdoll's parts take: desc.jointDamping for rigid parts, 0 for particle
-/// ones (whose passes take their joints' relative motion away themselves).
+/// The joints' damping a ragdoll's parts take: desc.jointDamping if set, else kRagdollJointDamping
+/// for rigid parts and 0 for particle ones (RagdollDesc::jointDamping).
 Real jointDamping(const RagdollDesc& desc);
 
 /// v turned by `angle` (rad) about the unit `axis`, by Rodrigues' formula.

@@ -196,6 +196,10 @@ struct RigidMotion {
   Vec3 angular{0.0};
 };
 RigidMotion rigidMotion(const Particles& p, const Body& box, const MassProperties& m);
+/// Each friction takes the share min(rate dt, 1) of its two bodies' relative spin over the last
+/// substep away (JointFriction), by turning each body's particles' motion about its centre.
+void dampJointFriction(Particles& p, std::span<const Body> bodies, std::span<const JointFriction> frictions,
+                       Real dt);
 
 /// How far the link is outside its bounds with the particles at x (positions or previous
 /// positions): > 0 beyond max (a pin's whole gap), < 0 short of min, 0 within. unit: m

@@ -66,6 +66,7 @@ void World::step() {
     time_ += h;
     guard(s + 1 == solver_.substeps && guard_.shapesDue(time_));
   }
+  dampJoints();
   updateIslands(freezesBefore);
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
@@ -406,6 +407,14 @@ void World::dampBodies() {
   if (solver_.bodyDamping <= 0.0 || bodies_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::BodyDamping);
   detail::dampBodyMotion(particles_, bodies_, bodyLayout_, solver_.bodyDamping, workers());
+}
+
+// Once a step, after the last substep: the friction of particle bodies' joints, from the motion
+// over the last substep (x - x*), which the next step's Verlet carries on.
+void World::dampJoints() {
+  if (constraints_.jointFrictions().empty()) return;
+  const detail::StageTimer timer(profile_, Stage::Links);
+  detail::dampJointFriction(particles_, bodies_, constraints_.jointFrictions(), solver_.dt);
 }
 
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the

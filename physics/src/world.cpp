@@ -251,6 +251,18 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
   }
 }
 
+void World::addJointFriction(BodyId a, BodyId b, Real rate) {
+  const auto isParticleBody = [&](BodyId id) {
+    return id < bodies_.size() && bodies_[id].model != BodyModel::Rigid;
+  };
+  require(isParticleBody(a) && isParticleBody(b) && a != b,
+          "addJointFriction: bodies must exist, differ and be particle bodies (a rigid joint has "
+          "JointDesc::damping)");
+  require(std::isfinite(rate) && rate >= 0.0, "addJointFriction: rate must be finite and >= 0 (1/s)");
+  constraints_.addJointFriction({a, b, rate});
+  islands_.join(islands_.bodyNode(a), islands_.bodyNode(b));
+}
+
 void World::setDrag(const Drag& drag) {
   if (drag.body != kNoBody) {
     require(drag.body < bodies_.size() && bodies_[drag.body].model == BodyModel::Rigid,

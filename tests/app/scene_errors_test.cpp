@@ -104,6 +104,21 @@ const BadScene kCases[] = {
      "<joint type='hinge' a='a' b='b' pivot='0 1.5 0' axis='1 0 0' reference='0 -1 0' min='20' "
      "max='10'/>\n</scene>",
      4, "max", "must be >= min"},
+    {"joint friction on a rigid body",
+     "<scene name='s'>\n<box name='a' pos='0 1 0'/>\n<box name='b' pos='0 2 0' model='rigid'/>\n"
+     "<joint-friction a='a' b='b' damping='2'/>\n</scene>",
+     4, "b", "a <joint-friction> joins particle bodies"},
+    {"joint friction of a body with itself",
+     "<scene name='s'>\n<box name='a' pos='0 1 0'/>\n<joint-friction a='a' b='a' damping='2'/>\n</scene>", 3,
+     "b", "must name a different body from a"},
+    {"negative joint friction",
+     "<scene name='s'>\n<box name='a' pos='0 1 0'/>\n<box name='b' pos='0 2 0'/>\n"
+     "<joint-friction a='a' b='b' damping='-1'/>\n</scene>",
+     4, "damping", "must be >= 0 (1/s)"},
+    {"joint friction without its rate",
+     "<scene name='s'>\n<box name='a' pos='0 1 0'/>\n<box name='b' pos='0 2 0'/>\n"
+     "<joint-friction a='a' b='b'/>\n</scene>",
+     4, "damping", "is required"},
     {"bad method", "<scene name='s'>\n<solver method='magic'/>\n</scene>", 2, "method", "gauss-seidel"},
     {"zero iterations", "<scene name='s'>\n<solver iterations='0'/>\n</scene>", 2, "iterations",
      "from 1 to 1000"},

@@ -209,6 +209,7 @@ class SceneGenerator {
         if (chance(0.4)) e += attr("mass", num(real(5.0, 120.0)));
         if (chance(0.5)) e += attr("model", pick({"seed", "lean"}));
         if (chance(0.4)) e += attr("velocity", vec(vector(-4.0, 4.0)));
+        if (chance(0.3)) e += attr("joint-damping", num(real(0.0, 5.0)));
         return e + "/>\n";
       }
     }

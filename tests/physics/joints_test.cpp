@@ -1,5 +1,6 @@
-// Joints between bodies (World::addLink on points from World::anchor), and the damping of a
-// box's internal motion (SolverSettings::bodyDamping).
+// Joints between bodies (World::addLink on points from World::anchor), the damping of a box's
+// internal motion (SolverSettings::bodyDamping) and the friction of particle bodies' joints
+// (World::addJointFriction).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "passes.h"
+#include "physics/capsule_ragdoll.h"
+#include "physics/ragdoll.h"
 #include "test_util.h"
 
 namespace {
@@ -197,6 +200,118 @@ TEST(BodyDamping, AKnockedBoxDoesNotRing) {
       EXPECT_LT(internal, 1e-9);
     } else {
       EXPECT_GT(internal, 0.01);  // still ringing at 10 cm/s
+    }
+  }
+}
+
+// Two spinning tetra boxes in free space with friction between them, stepped once with the rate
+// `rate` (0: the reference). Returns their rigid motions over the last substep and the momenta
+// of all the particles, linear and angular about the origin (per substep: times h).
+struct FrictionRun {
+  phys::detail::RigidMotion a, b;
+  Vec3 linear{0.0}, angular{0.0};
+};
+FrictionRun spinPairOnce(double rate, bool pinA = false) {
+  phys::World w =
+      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 2, 3), Vec3(0.0));
+  phys::BodyDesc d;
+  d.model = phys::BodyModel::Tetra;
+  d.size = Vec3(0.4, 1.2, 0.6);
+  d.mass = 3.0;
+  d.velocity = Vec3(0.5, 0.0, 0.0);
+  d.angularVelocity = Vec3(0.3, 2.0, 0.0);
+  const phys::BodyId a = w.addBody(d);
+  d.center = Vec3(1.5, 0.2, 0.0);
+  d.orientation = glm::dquat(glm::radians(Vec3(10.0, 30.0, 50.0)));
+  d.mass = 1.0;
+  d.velocity = Vec3(0.0, -1.0, 0.0);
+  d.angularVelocity = Vec3(-1.0, 0.0, 0.5);
+  const phys::BodyId b = w.addBody(d);
+  // As the guard freezes a particle: inverse mass 0.
+  if (pinA) const_cast<phys::Particles&>(w.particles()).inverseMass[w.bodies()[a].firstParticle] = 0.0;
+  w.addJointFriction(a, b, rate);
+  w.step();
+  FrictionRun run;
+  const phys::Particles& p = w.particles();
+  phys::detail::MassProperties m;
+  EXPECT_EQ(phys::detail::massProperties(p, w.bodies()[b], m), true);
+  run.b = phys::detail::rigidMotion(p, w.bodies()[b], m);
+  if (phys::detail::massProperties(p, w.bodies()[a], m))
+    run.a = phys::detail::rigidMotion(p, w.bodies()[a], m);
+  for (phys::ParticleId i{}; i < p.size(); ++i) {
+    if (p.inverseMass[i] == 0.0) continue;
+    const double mass = 1.0 / p.inverseMass[i];
+    run.linear += mass * (p.position[i] - p.previous[i]);
+    run.angular += mass * glm::cross(p.position[i], p.position[i] - p.previous[i]);
+  }
+  return run;
+}
+
+// Once a step the relative spin's component along itself loses the share rate dt (an angular
+// impulse along it, as a rigid joint's damping: Mueller et al. 2020, section 3.6), and the bodies'
+// momentum and angular momentum nothing: the same step without friction is the reference.
+TEST(JointFriction, TakesItsShareOfTheRelativeSpinAndKeepsTheMomenta) {
+  const FrictionRun free = spinPairOnce(0.0), damped = spinPairOnce(6.0);  // 6/s x 1/60 s: a tenth
+  const Vec3 relativeFree = free.b.angular - free.a.angular;
+  const Vec3 d = glm::normalize(relativeFree);
+  const double along = glm::length(relativeFree);
+  EXPECT_NEAR(glm::dot(damped.b.angular - damped.a.angular, d), 0.9 * along, 1e-9 * along);
+  EXPECT_NEAR(glm::length(damped.linear - free.linear), 0.0, 1e-14);
+  EXPECT_NEAR(glm::length(damped.angular - free.angular), 0.0, 1e-14);
+  // The share is at most all of it.
+  const FrictionRun stuck = spinPairOnce(1e9);
+  EXPECT_NEAR(glm::dot(stuck.b.angular - stuck.a.angular, d), 0.0, 1e-9 * along);
+}
+
+// A part with a pinned or frozen particle has no rigid motion to turn: the pair is left as it would be
+// without friction.
+TEST(JointFriction, LeavesAPinnedPartAlone) {
+  const FrictionRun free = spinPairOnce(0.0, true), damped = spinPairOnce(6.0, true);
+  EXPECT_EQ(damped.b.angular, free.b.angular);
+  EXPECT_EQ(damped.linear, free.linear);
+}
+
+TEST(JointFriction, RefusesBadInputAndAddsNothing) {
+  phys::World w = testing_phys::openSpace();
+  const phys::BodyId a = addCube(w, Vec3(0.0), phys::BodyModel::Tetra);
+  const phys::BodyId b = addCube(w, Vec3(2.0, 0.0, 0.0), phys::BodyModel::Corners);
+  const phys::BodyId rigid = addCube(w, Vec3(4.0, 0.0, 0.0), phys::BodyModel::Rigid);
+  EXPECT_THROW(w.addJointFriction(a, a, 1.0), std::invalid_argument);
+  EXPECT_THROW(w.addJointFriction(a, rigid, 1.0), std::invalid_argument);
+  EXPECT_THROW(w.addJointFriction(a, phys::BodyId(7), 1.0), std::invalid_argument);
+  EXPECT_THROW(w.addJointFriction(a, b, -1.0), std::invalid_argument);
+  EXPECT_THROW(w.addJointFriction(a, b, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(w.addJointFriction(a, b, std::numeric_limits<double>::infinity()), std::invalid_argument);
+  EXPECT_TRUE(w.jointFrictions().empty());
+  w.addJointFriction(a, b, 2.0);
+  ASSERT_EQ(w.jointFrictions().size(), 1u);
+  EXPECT_EQ(w.jointFrictions()[0].rate, 2.0);
+}
+
+// A ragdoll's joint-damping is friction in every joint, whatever its model; unset, only the
+// rigid model's joints have it (kRagdollJointDamping).
+TEST(JointFriction, ARagdollsJointDampingIsFrictionInEveryJoint) {
+  for (const phys::RagdollModel model :
+       {phys::RagdollModel::Seed, phys::RagdollModel::Lean, phys::RagdollModel::Rigid}) {
+    for (const bool capsules : {false, true}) {
+      for (const std::optional<double> damping : {std::optional<double>(), std::optional<double>(3.0)}) {
+        phys::World w = testing_phys::openSpace();
+        phys::RagdollDesc d;
+        d.model = model;
+        d.jointDamping = damping;
+        const int joints = capsules ? static_cast<int>(phys::addCapsuleRagdoll(w, d).parts.size()) - 1
+                                    : (phys::addRagdoll(w, d), phys::kRagdollHinges);
+        const double expected =
+            damping.value_or(model == phys::RagdollModel::Rigid ? phys::kRagdollJointDamping : 0.0);
+        if (model == phys::RagdollModel::Rigid) {
+          ASSERT_EQ(w.rigidJoints().size(), static_cast<std::size_t>(joints));
+          for (const phys::RigidJoint& j : w.rigidJoints()) EXPECT_EQ(j.damping, expected);
+          EXPECT_TRUE(w.jointFrictions().empty());
+          continue;
+        }
+        ASSERT_EQ(w.jointFrictions().size(), damping ? static_cast<std::size_t>(joints) : 0u);
+        for (const phys::JointFriction& f : w.jointFrictions()) EXPECT_EQ(f.rate, expected);
+      }
     }
   }
 }

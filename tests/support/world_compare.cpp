@@ -192,6 +192,7 @@ class Comparison {
     for (std::size_t k = 0; k < s_.links().size(); ++k) {
       if (!(d = link(k)).empty()) return d;
     }
+    if (!(d = jointFrictions()).empty()) return d;
     return noCollision();
   }
 
@@ -282,6 +283,8 @@ class Comparison {
     if (!(d = count("boxes", s_.bodies().size(), r_.bodies().size())).empty()) return d;
     if (!(d = count("sticks", s_.sticks().size(), r_.sticks().size())).empty()) return d;
     if (!(d = count("links", s_.links().size(), r_.links().size())).empty()) return d;
+    if (!(d = count("joint frictions", s_.jointFrictions().size(), r_.jointFrictions().size())).empty())
+      return d;
     owner_ = s_.particleBodies();
     if (!std::ranges::equal(owner_, r_.particleBodies()))
       return "the particles belong to different boxes after the reload";
@@ -472,6 +475,20 @@ class Comparison {
     const phys::BodyId body = owner_[e.particle[0]];
     return body == phys::kNoBody ? particleLabel(s_, e.particle[0])
                                  : boxLabel(s_, static_cast<std::size_t>(body));
+  }
+
+  // Joint friction is exact: two body ids and a rate the writer prints to the bit.
+  std::string jointFrictions() const {
+    const auto a = s_.jointFrictions(), b = r_.jointFrictions();
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      const std::string who = "joint friction " + std::to_string(k);
+      if (a[k].a != b[k].a || a[k].b != b[k].b) {
+        return who + ": joins " + boxLabel(s_, a[k].a) + " and " + boxLabel(s_, a[k].b) + " when saved, " +
+               boxLabel(r_, b[k].a) + " and " + boxLabel(r_, b[k].b) + " when reloaded";
+      }
+      if (a[k].rate != b[k].rate) return unequal(who + ": rate", a[k].rate, b[k].rate);
+    }
+    return {};
   }
 
   std::string noCollision() const {

@@ -25,9 +25,9 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {"particle", "stick",   "box",   "capsule",
-                                              "stack",    "pyramid", "grid",  "chain",
-                                              "ragdoll",  "link",    "joint", "no-collision"};
+constexpr std::string_view kBodyElements[] = {"particle", "stick",          "box",         "capsule", "stack",
+                                              "pyramid",  "grid",           "chain",       "ragdoll", "link",
+                                              "joint",    "joint-friction", "no-collision"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -188,6 +188,8 @@ class Builder {
       link(e);
     else if (kind == "joint")
       joint(e);
+    else if (kind == "joint-friction")
+      jointFriction(e);
     else if (kind == "no-collision")
       noCollision(e);
     if (scene_.world.particles().size() > detail::kMaxParticles) {
@@ -407,6 +409,27 @@ class Builder {
     } catch (const std::invalid_argument& error) {
       e.fail(error.what());  // a zero axis, a reference along it
     }
+  }
+
+  // Friction in the joint between two particle bodies (World::addJointFriction); a <ragdoll>'s
+  // joint-damping makes one for each of its joints.
+  void jointFriction(ElementReader& e) {
+    phys::BodyId ends[2];
+    for (const char* attribute : {"a", "b"}) {
+      const NamedBody& body = bodyNamed(e, attribute, false);
+      const phys::Body& part = scene_.world.bodies()[body.body()];
+      if (part.model == phys::BodyModel::Rigid) {
+        e.fail(attribute,
+               "names a rigid body; a <joint-friction> joins particle bodies (a rigid <joint> has "
+               "its own damping)");
+      }
+      ends[attribute[0] == 'a' ? 0 : 1] = body.body();
+    }
+    if (ends[0] == ends[1]) e.fail("b", "must name a different body from a");
+    const double damping = e.requiredNumber("damping", "1/s");
+    if (damping < 0.0) e.fail("damping", "must be >= 0 (1/s)");
+    e.rejectUnknownAttributes();
+    scene_.world.addJointFriction(ends[0], ends[1], damping);
   }
 
   void noCollision(ElementReader& e) {

@@ -1,7 +1,8 @@
 // Saving a world as a scene file: settings, then every body in the order the world made them
 // (so a reload gives each particle, box and stick the same index, and the solver visits them
-// in the same order), then the sticks between loose particles, the links and the pairs kept
-// from colliding. Each box (or capsule) is saved as the rigid body fitted to its particles.
+// in the same order), then the sticks between loose particles, the links, the joints, the joints' friction
+// and the pairs kept from colliding. Each box (or capsule) is saved as the rigid body fitted to its
+// particles.
 #include "scenes/scene_writer.h"
 
 #include <algorithm>
@@ -402,6 +403,13 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   }
   for (const phys::RigidLink& link : world.rigidLinks()) line(linkElement(world, link, owner, names));
   for (std::size_t k = 0; k < world.rigidJoints().size(); ++k) line(jointElement(world.jointDesc(k), names));
+  for (const phys::JointFriction& f : world.jointFrictions()) {
+    line(ElementWriter("joint-friction")
+             .text("a", names.box(f.a))
+             .text("b", names.box(f.b))
+             .number("damping", f.rate)
+             .empty());
+  }
   for (const auto& [a, b] : world.ignoredCollisions()) {
     line(ElementWriter("no-collision").text("a", names.box(a)).text("b", names.box(b)).empty());
   }

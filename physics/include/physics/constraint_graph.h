@@ -32,6 +32,8 @@ class ConstraintGraph {
   void addRigidLink(const RigidLink& link) { rigidLinks_.push_back(link); }
   /// Adds a joint between two rigid bodies, solved as it stands too.
   void addRigidJoint(const RigidJoint& joint) { rigidJoints_.push_back(joint); }
+  /// Adds friction between two jointed particle bodies (applied once a step, dampJoints()).
+  void addJointFriction(const JointFriction& friction) { jointFrictions_.push_back(friction); }
   /// True when sticks or links were added since the last layOut().
   bool stale() const { return stale_; }
   /// Lays the sticks out by body and the links by ragdoll. Allocates: after things were added.
@@ -41,6 +43,7 @@ class ConstraintGraph {
   std::span<const Link> links() const { return links_; }
   std::span<const RigidLink> rigidLinks() const { return rigidLinks_; }
   std::span<const RigidJoint> rigidJoints() const { return rigidJoints_; }
+  std::span<const JointFriction> jointFrictions() const { return jointFrictions_; }
 
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
   /// multipliers). `h` (s) and `compliance` (m/N) are XPBD's.
@@ -62,6 +65,7 @@ class ConstraintGraph {
   std::vector<Link> links_;
   std::vector<RigidLink> rigidLinks_;
   std::vector<RigidJoint> rigidJoints_;
+  std::vector<JointFriction> jointFrictions_;
   StickLayout stickLayout_;
   LinkLayout linkLayout_;
   bool stale_ = false;

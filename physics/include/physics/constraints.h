@@ -58,6 +58,16 @@ struct Link {
   bool isPin() const { return maxLength == 0.0; }
 };
 
+/// Friction in the joint between two particle bodies (a ragdoll's jointed parts): once a step the
+/// share min(rate dt, 1) of their relative spin is taken away by an angular impulse between them,
+/// which keeps their momentum and angular momentum. The rigid joints' JointDesc::damping does the
+/// same for rigid parts.
+struct JointFriction {
+  BodyId a{};
+  BodyId b{};
+  Real rate = 0.0;  ///< unit: 1/s; the relative spin decays as exp(-rate t)
+};
+
 /// A contact between two boxes for one substep: a point embedded in each, kept apart along the
 /// normal (from A towards B): n . (pointB - pointA) >= 0.
 struct BodyContact {

@@ -62,9 +62,12 @@ struct RagdollDesc {
   Real scale = 1.0;  ///< unitless; multiplies every length
   Real mass = 70.0;  ///< unit: kg; the whole body's, split over the parts as in a person
   RagdollModel model = RagdollModel::Seed;
-  /// unit: 1/s; friction in the joints of rigid parts (JointDesc::damping): their relative spin
-  /// decays as exp(-jointDamping t). Particle parts ignore it: their passes take that motion away.
-  Real jointDamping = kRagdollJointDamping;
+  /// unit: 1/s; friction in the joints: the parts' relative spin decays as exp(-jointDamping t)
+  /// (JointDesc::damping between rigid parts, World::addJointFriction between particle parts).
+  /// Unset: kRagdollJointDamping for rigid parts, none for particle parts, whose passes take most
+  /// of that motion away (a pile's loosely held heads keep turning: docs/physics.md, "Islands and
+  /// sleeping").
+  std::optional<Real> jointDamping;
   /// unitless, 0 to 1; rigid parts' BodyDesc::inertiaFloor (0: each part's solid inertia). Particle
   /// parts ignore it: their inertia is their particles'.
   Real inertiaFloor = kRagdollInertiaFloor;

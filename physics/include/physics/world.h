@@ -107,6 +107,10 @@ class World {
   /// a reference along the axis, stops outside [-pi, pi] or crossed, a swing outside (0, pi), a
   /// twist outside [0, pi], negative damping) and adds nothing.
   void addJoint(const JointDesc& joint);
+  /// Adds friction in the joint between two particle bodies (JointFriction): once a step their
+  /// relative spin decays by the share min(rate dt, 1). Throws std::invalid_argument on bad input
+  /// (bodies not particle bodies or the same, a negative or non-finite rate) and adds nothing.
+  void addJointFriction(BodyId a, BodyId b, Real rate);
   /// The point at `worldPoint` (unit: m) carried by the body from now on, whatever its model:
   /// anchor() for a particle body, fixed in its frame for a rigid one.
   BodyPoint pointOn(BodyId body, const Vec3& worldPoint) const;
@@ -160,6 +164,8 @@ class World {
   std::span<const RigidLink> rigidLinks() const { return constraints_.rigidLinks(); }
   /// The joints between rigid bodies, in the order they were added.
   std::span<const RigidJoint> rigidJoints() const { return constraints_.rigidJoints(); }
+  /// The friction of particle bodies' joints, in the order it was added.
+  std::span<const JointFriction> jointFrictions() const { return constraints_.jointFrictions(); }
   /// Every joint of every kind: links(), rigidLinks() and rigidJoints().
   std::size_t jointCount() const { return links().size() + rigidLinks().size() + rigidJoints().size(); }
   /// Joint k as addJoint would take it to make it again as it is now: both bodies' pivots and frames.
@@ -258,6 +264,7 @@ class World {
   void updateLayouts();
   void restitute(Real h);
   void dampBodies();
+  void dampJoints();
   void guard(bool shapes);
   bool restWhileAsleep();
   void updateIslands(std::size_t freezesBefore);
