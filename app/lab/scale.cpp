@@ -150,7 +150,8 @@ std::string scaleSceneXml(ScaleKind kind, int n) {
           "  <world gravity=\"0 -10 0\" damping=\"0.05\"/>\n"
           "  <solver method=\"gauss-seidel\" iterations=\"2\" substeps=\"4\" body-damping=\"1\"/>\n"
           "  <ground friction=\"0.25\"/>\n";
-      xml += ragdollGrid(n, "shape=\"capsule\" model=\"lean\" mass=\"11\" friction=\"0.25\"");
+      xml += ragdollGrid(
+          n, "shape=\"capsule\" model=\"lean\" mass=\"11\" friction=\"0.25\" joint-damping=\"2\"");
       break;
     case ScaleKind::BoxRagdolls:
       // The 16 ragdolls' settings (ragdolls.xml).

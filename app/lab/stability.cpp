@@ -70,7 +70,7 @@ std::vector<Setting> settingsOf(const StabilityOptions& o) {
   for (phys::SolverMethod m : o.methods) {
     for (const std::string& model : models) {
       for (int it : o.iterations) {
-        for (int sub : o.substeps) out.push_back({m, it, sub, model});
+        for (int sub : o.substeps) out.push_back({m, it, sub, model, o.sleep});
       }
     }
   }
@@ -99,7 +99,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
     }
     for (const std::string& peer : r.peers) {
       progress.show(done++, s.name + " " + peer, false);
-      row.push_back(stability::runPeerEngine(s, peer));
+      row.push_back(stability::runPeerEngine(s, peer, o.sleep));
     }
     r.outcomes.push_back(std::move(row));
   }

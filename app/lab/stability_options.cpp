@@ -65,7 +65,7 @@ std::filesystem::path suiteDirectory(const StabilityOptions& o) {
 
 std::string usage() {
   return "usage: lab stability [--out DIR] [--methods LIST] [--iterations LIST] [--substeps LIST]\n"
-         "                     [--models LIST] [--scene NAME...] [--no-peers] [--data DIR]\n"
+         "                     [--models LIST] [--scene NAME...] [--sleep on|off] [--no-peers] [--data DIR]\n"
          "  Runs every scene of <data>/assets/scenes/stability under every method x model x iterations\n"
          "  x substeps, and in each peer engine, and judges each run by the scene's <expect kind=\"pass\">.\n"
          "  --out DIR         also write DIR/stability.md, .csv, .gp and the heat maps\n"
@@ -77,6 +77,8 @@ std::string usage() {
          "                    seed, lean, rigid); default: each file's own\n"
          "  --scene NAME...   only these scenes: names in the suite's folder, or scene files\n"
          "                    (repeatable; comma-separated lists too)\n"
+         "  --sleep on|off    whether islands at rest sleep, ours and the peers' (default off, whatever\n"
+         "                    the scene says)\n"
          "  --no-peers        skip the peer engines\n"
          "  --data DIR        folder holding assets/ (default: the source tree)\n";
 }
@@ -112,6 +114,11 @@ std::string parseOptions(const std::vector<std::string>& args, StabilityOptions&
         }
       }
       if (o.scenes.size() == before) return "--scene needs a scene name";
+    } else if (a == "--sleep") {
+      const std::string* v = value();
+      if (v == nullptr) return a + " needs a value (on or off)";
+      if (*v != "on" && *v != "off") return a + ": '" + *v + "' is not on or off";
+      o.sleep = *v == "on";
     } else if (a == "--no-peers") {
       o.peers = false;
     } else {

@@ -204,6 +204,9 @@ std::string markdownReport(const SuiteResult& r) {
      << "; substeps " << joinNumbers(distinct(r.settings, [](const Setting& s) { return s.substeps; })) << ")"
      << (r.peers.empty() ? "" : " and the peers " + join(r.peers, ", ")) << ": " << runs << " runs in "
      << number(r.seconds) << " s.\n\n"
+     << (!r.settings.empty() && r.settings.front().sleep
+             ? "Sleeping on (--sleep on): islands at rest sleep, ours and Bullet's.\n\n"
+             : "")
      << "A run passes when every criterion of its scene holds over its window and the guard froze nothing. "
         "The method columns count the settings that pass; `stepping` is the scene's wall time in "
         "World::step over all its runs.\n\n";

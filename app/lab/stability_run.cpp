@@ -53,6 +53,7 @@ std::string settingGroup(const Setting& setting) {
 Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   // A box model and the ragdolls' of the same kind: corners and seed, tetra and lean, rigid.
   scenes::LoadOptions load;
+  load.sleep = setting.sleep;
   if (const std::optional<phys::BodyModel> model = phys::parseBodyModel(setting.model)) {
     load.boxModel = *model;
     load.ragdollModel = phys::ragdollModelOf(*model);
@@ -84,6 +85,10 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
     o.note = note.str();
   } else if (!setting.model.empty() && s.boxes == 0) {
     o.note = "no body for the model: the scene's own run";
+  } else if (setting.sleep) {
+    const phys::Islands& islands = world.islands();
+    o.note = "asleep at the end: " + std::to_string(islands.sleepingBodies()) + " of " +
+             std::to_string(world.bodies().size()) + " bodies";
   }
   o.verdicts = judge.verdicts(blewUp);
   o.wallMs = std::chrono::duration<double, std::milli>(stepping).count();
@@ -92,11 +97,11 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   return o;
 }
 
-Outcome runPeerEngine(const SuiteScene& s, const std::string& engine) {
+Outcome runPeerEngine(const SuiteScene& s, const std::string& engine, bool sleep) {
   const scenes::Scene scene = scenes::loadSceneFile(s.file);
   std::vector<int> checkpoints;
   for (int k = 1; k <= s.steps; ++k) checkpoints.push_back(k);
-  const PeerResult r = runPeer(engine, scene, s.dt, s.steps, checkpoints);
+  const PeerResult r = runPeer(engine, scene, s.dt, s.steps, checkpoints, sleep);
   Outcome o;
   o.note = r.unsupported;
   o.msPerStep = r.medianMsPerStep;

@@ -18,6 +18,7 @@ struct Setting {
   int substeps = 1;
   /// corners, tetra or rigid imposed on the scene's boxes and ragdolls (seed, lean, rigid); "": its own
   std::string model;
+  bool sleep = false;  ///< islands at rest sleep (--sleep on), whatever the file says
 };
 
 /// A scene of the suite, loaded once to read its criteria; every run loads it afresh.
@@ -53,7 +54,7 @@ struct Outcome {
 Outcome runSetting(const SuiteScene& scene, const Setting& setting);
 
 /// Runs the scene in a peer engine (peer.h) and judges what its positions can answer.
-Outcome runPeerEngine(const SuiteScene& scene, const std::string& engine);
+Outcome runPeerEngine(const SuiteScene& scene, const std::string& engine, bool sleep = false);
 
 /// "gauss-seidel 3x4" (iterations x substeps), "xpbd 1x4 rigid" with a model.
 std::string settingLabel(const Setting& setting);

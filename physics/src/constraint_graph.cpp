@@ -27,6 +27,11 @@ void ConstraintGraph::addLink(const Link& link, Real violation) {
   if (violation != 0.0) ++linksApart_;
 }
 
+void ConstraintGraph::dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt) {
+  if (spins_.size() < bodies.size()) spins_.resize(bodies.size());
+  detail::dampJointFriction(particles, bodies, jointFrictions_, dt, spins_);
+}
+
 void ConstraintGraph::layOut(std::span<const Body> bodies, std::size_t particleCount) {
   stickLayout_.build(sticks_, bodies, particleCount);
   linkLayout_.build(links_, particleCount);

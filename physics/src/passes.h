@@ -198,8 +198,9 @@ struct RigidMotion {
 RigidMotion rigidMotion(const Particles& p, const Body& box, const MassProperties& m);
 /// Each friction takes the share min(rate dt, 1) of its two bodies' relative spin over the last
 /// substep away (JointFriction), by turning each body's particles' motion about its centre.
+/// `spins` holds one per body, any state on entry.
 void dampJointFriction(Particles& p, std::span<const Body> bodies, std::span<const JointFriction> frictions,
-                       Real dt);
+                       Real dt, std::span<BodySpin> spins);
 
 /// How far the link is outside its bounds with the particles at x (positions or previous
 /// positions): > 0 beyond max (a pin's whole gap), < 0 short of min, 0 within. unit: m

@@ -414,7 +414,7 @@ void World::dampBodies() {
 void World::dampJoints() {
   if (constraints_.jointFrictions().empty()) return;
   const detail::StageTimer timer(profile_, Stage::Links);
-  detail::dampJointFriction(particles_, bodies_, constraints_.jointFrictions(), solver_.dt);
+  constraints_.dampJointFriction(particles_, bodies_, solver_.dt);
 }
 
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the

@@ -364,6 +364,9 @@ TEST(SceneCapsules, BulletPileIsBulletsLayoutOfCapsuleRagdolls) {
     lowest = std::min(lowest, capsuleBottom(s.world, id));
   }
   EXPECT_NEAR(lowest, 1.0 - 3.5 * 0.035, 1e-9);
+  // Friction of 2/s in each of a ragdoll's ten joints (docs/physics.md, "Islands and sleeping").
+  ASSERT_EQ(s.world.jointFrictions().size(), 136u * 10u);
+  for (const phys::JointFriction& f : s.world.jointFrictions()) EXPECT_EQ(f.rate, 2.0);
   int row = 0;
   for (int size = 16; size > 0; --size, ++row) {
     for (int i = 0; i < size; ++i) {

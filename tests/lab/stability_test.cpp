@@ -229,6 +229,19 @@ TEST(StabilityRun, FaceToFaceStaysStackedAtAGoodSetting) {
   EXPECT_TRUE(o.note.empty());
 }
 
+// Sleeping must not put a stack to sleep half-supported: face-face passes as it does awake, and
+// its two boxes are asleep by the end (the run says so in its note).
+TEST(StabilityRun, FaceToFaceSleepsAndStaysStacked) {
+  Setting asleep = setting(phys::SolverMethod::GaussSeidel, 3, 4);
+  asleep.sleep = true;
+  const lab::stability::SuiteScene s = suiteScene("face-face");
+  const auto o = lab::stability::runSetting(s, asleep);
+  EXPECT_TRUE(o.passed);
+  EXPECT_LT(o.verdicts[0].value, 0.002);
+  EXPECT_EQ(o.note,
+            "asleep at the end: " + std::to_string(s.boxes) + " of " + std::to_string(s.boxes) + " bodies");
+}
+
 // Tunnelling: at 50 m/s the bullet moves 0.83 m a step, past the 0.1 m wall at one substep;
 // at 16 substeps (0.05 m each) it is stopped.
 // At one substep the bullet covers 0.83 m a substep, past the wall before its contact is found:
@@ -472,11 +485,23 @@ TEST(StabilityCli, UsageErrorsExit2WithTheUsage) {
       {{"--scene"}, "--scene needs a scene name"},
       {{"--scene", "a,,b"}, "an empty name"},
       {{"--models", "rigid,jelly"}, "--models: unknown model 'jelly' (corners, tetra or rigid)"},
+      {{"--sleep", "maybe"}, "--sleep: 'maybe' is not on or off"},
+      {{"--sleep"}, "--sleep needs a value (on or off)"},
   };
   for (const auto& [args, message] : cases) {
     SCOPED_TRACE(message);
     lab_testing::expectUsageError(stability(args), "stability", message);
   }
+}
+
+TEST(StabilityCli, SleepOnIsSaidInTheReport) {
+  const Output o = stability({"--scene", "stack-10", "--methods", "gauss-seidel", "--iterations", "3",
+                              "--substeps", "4", "--sleep", "on", "--no-peers"});
+  ASSERT_EQ(o.code, lab::kExitOk) << o.err;
+  EXPECT_NE(o.out.find("Sleeping on (--sleep on)"), std::string::npos) << o.out;
+  const Output awake = stability({"--scene", "stack-10", "--methods", "gauss-seidel", "--iterations", "3",
+                                  "--substeps", "4", "--no-peers"});
+  EXPECT_EQ(awake.out.find("Sleeping on"), std::string::npos);
 }
 
 TEST(StabilityCli, AMissingOrBrokenSceneExits1) {

@@ -263,6 +263,53 @@ TEST(JointFriction, TakesItsShareOfTheRelativeSpinAndKeepsTheMomenta) {
   EXPECT_NEAR(glm::dot(stuck.b.angular - stuck.a.angular, d), 0.0, 1e-9 * along);
 }
 
+// A body in several joints has its spin found once and kept up to date as each joint turns it: the
+// same as finding it again from its particles for every joint (massProperties, rigidMotion).
+TEST(JointFriction, ABodyInSeveralJointsIsTurnedByEachInTurn) {
+  phys::World w =
+      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+  for (int k = 0; k < 3; ++k) {
+    phys::BodyDesc d;
+    d.model = phys::BodyModel::Tetra;
+    d.center = Vec3(1.2 * k, 0.1 * k, 0.0);
+    d.size = Vec3(0.3 + 0.2 * k, 1.0, 0.5);
+    d.orientation = glm::dquat(glm::radians(Vec3(15.0 * k, 10.0, 5.0 * k)));
+    d.angularVelocity = Vec3(std::sin(k + 1.0), 2.0 * std::cos(k * 2.0), 0.5 * k - 1.0);
+    w.addBody(d);
+  }
+  w.step();
+  const std::vector<phys::JointFriction> frictions = {{phys::BodyId(0), phys::BodyId(1), 9.0},
+                                                      {phys::BodyId(1), phys::BodyId(2), 30.0},
+                                                      {phys::BodyId(2), phys::BodyId(0), 12.0}};
+  const double dt = 1.0 / 60.0;
+  phys::Particles cached = w.particles(), reference = w.particles();
+  std::vector<phys::BodySpin> spins(3);
+  phys::detail::dampJointFriction(cached, w.bodies(), frictions, dt, spins);
+  for (const phys::JointFriction& f : frictions) {
+    phys::detail::MassProperties ma, mb;
+    const phys::Body &a = w.bodies()[f.a], &b = w.bodies()[f.b];
+    ASSERT_TRUE(phys::detail::massProperties(reference, a, ma) &&
+                phys::detail::massProperties(reference, b, mb));
+    const Vec3 relative = phys::detail::rigidMotion(reference, b, mb).angular -
+                          phys::detail::rigidMotion(reference, a, ma).angular;
+    const Vec3 d = glm::normalize(relative);
+    const glm::dmat3 ia = glm::inverse(ma.inertia), ib = glm::inverse(mb.inertia);
+    const Vec3 impulse =
+        (std::min(f.rate * dt, 1.0) * glm::length(relative) / (glm::dot(d, ia * d) + glm::dot(d, ib * d))) *
+        d;
+    for (int k = 0; k < 4; ++k) {
+      reference.previous[a.firstParticle + k] -=
+          glm::cross(ia * impulse, reference.position[a.firstParticle + k] - ma.centre);
+      reference.previous[b.firstParticle + k] +=
+          glm::cross(ib * impulse, reference.position[b.firstParticle + k] - mb.centre);
+    }
+  }
+  for (phys::ParticleId i{}; i < cached.size(); ++i) {
+    EXPECT_NEAR(glm::length(cached.previous[i] - reference.previous[i]), 0.0, 1e-14) << i;
+    EXPECT_NE(cached.previous[i], w.particles().previous[i]) << i;  // every body was turned
+  }
+}
+
 // A part with a pinned or frozen particle has no rigid motion to turn: the pair is left as it would be
 // without friction.
 TEST(JointFriction, LeavesAPinnedPartAlone) {

@@ -34,6 +34,9 @@ class ConstraintGraph {
   void addRigidJoint(const RigidJoint& joint) { rigidJoints_.push_back(joint); }
   /// Adds friction between two jointed particle bodies (applied once a step, dampJoints()).
   void addJointFriction(const JointFriction& friction) { jointFrictions_.push_back(friction); }
+  /// Once a step: each joint friction takes its share of its bodies' relative spin (JointFriction).
+  /// Allocates only when bodies were added since the last call.
+  void dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt);
   /// True when sticks or links were added since the last layOut().
   bool stale() const { return stale_; }
   /// Lays the sticks out by body and the links by ragdoll. Allocates: after things were added.
@@ -66,6 +69,7 @@ class ConstraintGraph {
   std::vector<RigidLink> rigidLinks_;
   std::vector<RigidJoint> rigidJoints_;
   std::vector<JointFriction> jointFrictions_;
+  std::vector<BodySpin> spins_;  // per body: the joint friction's scratch
   StickLayout stickLayout_;
   LinkLayout linkLayout_;
   bool stale_ = false;

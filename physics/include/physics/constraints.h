@@ -1,7 +1,10 @@
 #pragma once
 // Constraint definitions, kept apart from particle state.
 #include <array>
+#include <cstdint>
 #include <limits>
+
+#include <glm/mat3x3.hpp>
 
 #include "physics/settings.h"
 #include "physics/types.h"
@@ -66,6 +69,16 @@ struct JointFriction {
   BodyId a{};
   BodyId b{};
   Real rate = 0.0;  ///< unit: 1/s; the relative spin decays as exp(-rate t)
+};
+
+/// Scratch of the joint friction's pass: a body's rigid motion over the last substep, found once a
+/// step and kept up to date as its joints turn it.
+struct BodySpin {
+  enum class State : std::uint8_t { Unknown, Known, Immovable };
+  State state = State::Unknown;
+  Vec3 centre{0.0};                ///< unit: m
+  glm::dmat3 inverseInertia{0.0};  ///< unit: 1/(kg m^2)
+  Vec3 angular{0.0};               ///< unit: rad over the substep
 };
 
 /// A contact between two boxes for one substep: a point embedded in each, kept apart along the
