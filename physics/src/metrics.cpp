@@ -41,11 +41,20 @@ Profile& Profile::operator+=(const Profile& other) {
 Metrics World::metrics() const {
   Metrics m;
   const Real h = substepDt();
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
+  // A sleeping body is at rest: no speed and no kinetic energy, though its x and x* keep the
+  // motion it fell asleep with, to go on with when it wakes (Islands).
+  const bool anyAsleep = islands_.anyAsleep();
+  for (ParticleId i{}; i < particles_.size(); ++i) {
     const Real w = particles_.inverseMass[i];
     if (w == 0.0) continue;
     const Real mass = 1.0 / w;
     const Vec3& x = particles_.position[i];
+    if (anyAsleep && islands_.asleep(islands_.particleNode(i))) {
+      m.potentialEnergy += world_.gravityMode == GravityMode::Uniform
+                               ? -mass * glm::dot(world_.gravity, x)
+                               : mass * world_.gravityStrength * glm::length(x - world_.gravityPoint);
+      continue;
+    }
     const Vec3& xPrevious = particles_.previous[i];
     const Vec3 v = (x - xPrevious) / h;
     const Real speed = glm::length(v);
@@ -66,6 +75,13 @@ Metrics World::metrics() const {
   for (RigidId i{}; i < r.size(); ++i) {
     if (r.inverseMass[i] == 0.0) continue;
     const Real mass = 1.0 / r.inverseMass[i];
+    if (anyAsleep && islands_.bodyAsleep(r.body[i])) {
+      m.potentialEnergy +=
+          world_.gravityMode == GravityMode::Uniform
+              ? -mass * glm::dot(world_.gravity, r.position[i])
+              : mass * world_.gravityStrength * glm::length(r.position[i] - world_.gravityPoint);
+      continue;
+    }
     const Vec3 spin = glm::conjugate(r.orientation[i]) * r.angularVelocity[i];  // body frame
     m.kineticEnergy += 0.5 * mass * glm::dot(r.velocity[i], r.velocity[i]) +
                        0.5 * glm::dot(spin, spin / r.inverseInertia[i]);

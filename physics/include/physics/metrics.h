@@ -11,13 +11,14 @@ namespace phys {
 
 /// Figures of the current state (World::metrics()).
 struct Metrics {
-  Real kineticEnergy = 0.0;       ///< unit: J; from Verlet velocities, pinned particles excluded
+  /// unit: J; from Verlet velocities, pinned particles excluded; a sleeping body is at rest
+  Real kineticEnergy = 0.0;
   Real potentialEnergy = 0.0;     ///< unit: J; m g h (uniform) or m s |x - p| (point gravity)
   Real maxConstraintError = 0.0;  ///< unitless; max over sticks of |violation| / rest length
   Real rmsConstraintError = 0.0;  ///< unitless; root mean square of the same
   Real maxJointError = 0.0;   ///< unit: m; max over links of the distance outside [min, max] (a pin's gap)
   Real maxPenetration = 0.0;  ///< unit: m; deepest point below the ground or inside another box now
-  Real maxSpeed = 0.0;        ///< unit: m/s
+  Real maxSpeed = 0.0;        ///< unit: m/s; the fastest point; a sleeping body's is 0
   int contacts = 0;           ///< ground contact points pushed, and box-box contact points, in the last step
   int frozen = 0;             ///< particles frozen by the guard so far
 
