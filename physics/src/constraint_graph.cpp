@@ -27,8 +27,14 @@ void ConstraintGraph::addLink(const Link& link, Real violation) {
   if (violation != 0.0) ++linksApart_;
 }
 
+void ConstraintGraph::addJointFriction(const JointFriction& friction) {
+  jointFrictions_.push_back(friction);
+  // The pass reads and writes the spins of the bodies it joins alone.
+  const std::size_t room = std::size_t{std::max(friction.a, friction.b)} + 1;
+  if (spins_.size() < room) spins_.resize(room);
+}
+
 void ConstraintGraph::dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt) {
-  if (spins_.size() < bodies.size()) spins_.resize(bodies.size());
   detail::dampJointFriction(particles, bodies, jointFrictions_, dt, spins_);
 }
 

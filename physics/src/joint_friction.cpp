@@ -52,7 +52,7 @@ BodySpin spinOf(const Particles& p, const Body& body) {
   return out;
 }
 
-// Turns the body's particles' motion by `turn` about its centre, and its spin with them.
+// Turns the body's particles' motion by `by` about its centre, and its spin with them.
 void turn(Particles& p, const Body& body, BodySpin& spin, const Vec3& by) {
   for (ParticleId i = body.firstParticle; i < body.firstParticle + body.particleCount; ++i)
     p.previous[i] -= glm::cross(by, p.position[i] - spin.centre);

@@ -198,7 +198,7 @@ struct RigidMotion {
 RigidMotion rigidMotion(const Particles& p, const Body& box, const MassProperties& m);
 /// Each friction takes the share min(rate dt, 1) of its two bodies' relative spin over the last
 /// substep away (JointFriction), by turning each body's particles' motion about its centre.
-/// `spins` holds one per body, any state on entry.
+/// `spins` holds one per body a friction joins (indexed by body id), any state on entry.
 void dampJointFriction(Particles& p, std::span<const Body> bodies, std::span<const JointFriction> frictions,
                        Real dt, std::span<BodySpin> spins);
 

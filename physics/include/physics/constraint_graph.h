@@ -32,10 +32,9 @@ class ConstraintGraph {
   void addRigidLink(const RigidLink& link) { rigidLinks_.push_back(link); }
   /// Adds a joint between two rigid bodies, solved as it stands too.
   void addRigidJoint(const RigidJoint& joint) { rigidJoints_.push_back(joint); }
-  /// Adds friction between two jointed particle bodies (applied once a step, dampJoints()).
-  void addJointFriction(const JointFriction& friction) { jointFrictions_.push_back(friction); }
+  /// Adds friction between two jointed particle bodies, with room for their spins.
+  void addJointFriction(const JointFriction& friction);
   /// Once a step: each joint friction takes its share of its bodies' relative spin (JointFriction).
-  /// Allocates only when bodies were added since the last call.
   void dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt);
   /// True when sticks or links were added since the last layOut().
   bool stale() const { return stale_; }
