@@ -25,10 +25,7 @@ std::string parseRun(const std::vector<std::string>& args, std::size_t first, Ru
     } else if (a == "--model") {
       if (std::string e = parseModelOption(args, i, o.model); !e.empty()) return e;
     } else if (a == "--sleep") {
-      const std::string* v = value();
-      if (v == nullptr) return missing("on or off");
-      if (*v != "on" && *v != "off") return a + ": '" + *v + "' is not on or off";
-      o.sleep = *v == "on";
+      if (std::string e = parseOnOffOption(a, value(), o.sleep); !e.empty()) return e;
     } else if (a == "--threads") {
       int n = 0;
       if (std::string e = parseCountOption(a, value(), phys::kMaxThreads, n); !e.empty()) return e;
@@ -161,6 +158,13 @@ std::string parseCountOption(const std::string& option, const std::string* value
   const std::optional<int> n = parseWholeNumber(*value, 1, high);
   if (!n) return notWholeNumber(option, *value, high);
   into = *n;
+  return {};
+}
+
+std::string parseOnOffOption(const std::string& option, const std::string* value, bool& into) {
+  if (value == nullptr) return option + " needs a value (on or off)";
+  if (*value != "on" && *value != "off") return option + ": '" + *value + "' is not on or off";
+  into = *value == "on";
   return {};
 }
 

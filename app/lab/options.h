@@ -79,6 +79,10 @@ std::string notWholeNumber(const std::string& option, const std::string& text, i
 /// error, "OPTION needs a whole number" when `value` is nullptr or notWholeNumber's, or "".
 std::string parseCountOption(const std::string& option, const std::string* value, int high, int& into);
 
+/// An on/off option's value (--sleep on|off) into `into`. Returns the error, "OPTION needs a value
+/// (on or off)" when `value` is nullptr or "OPTION: 'TEXT' is not on or off", or "".
+std::string parseOnOffOption(const std::string& option, const std::string* value, bool& into);
+
 /// The options every command that steps a scene shares: --steps, --iterations, --substeps and
 /// --method at args[i], into `o` (stepping i onto the value). nullopt when args[i] is none of
 /// them; else the error, or "" when the value was good.

@@ -115,10 +115,7 @@ std::string parseOptions(const std::vector<std::string>& args, StabilityOptions&
       }
       if (o.scenes.size() == before) return "--scene needs a scene name";
     } else if (a == "--sleep") {
-      const std::string* v = value();
-      if (v == nullptr) return a + " needs a value (on or off)";
-      if (*v != "on" && *v != "off") return a + ": '" + *v + "' is not on or off";
-      o.sleep = *v == "on";
+      if (std::string e = parseOnOffOption(a, value(), o.sleep); !e.empty()) return e;
     } else if (a == "--no-peers") {
       o.peers = false;
     } else {

@@ -44,15 +44,19 @@ Metrics World::metrics() const {
   // A sleeping body is at rest: no speed and no kinetic energy, though its x and x* keep the
   // motion it fell asleep with, to go on with when it wakes (Islands).
   const bool anyAsleep = islands_.anyAsleep();
+  // Uniform gravity has potential -m g . x; the fixed-strength pull, m s |x - p|.
+  auto potential = [this](Real mass, const Vec3& x) {
+    return world_.gravityMode == GravityMode::Uniform
+               ? -mass * glm::dot(world_.gravity, x)
+               : mass * world_.gravityStrength * glm::length(x - world_.gravityPoint);
+  };
   for (ParticleId i{}; i < particles_.size(); ++i) {
     const Real w = particles_.inverseMass[i];
     if (w == 0.0) continue;
     const Real mass = 1.0 / w;
     const Vec3& x = particles_.position[i];
     if (anyAsleep && islands_.asleep(islands_.particleNode(i))) {
-      m.potentialEnergy += world_.gravityMode == GravityMode::Uniform
-                               ? -mass * glm::dot(world_.gravity, x)
-                               : mass * world_.gravityStrength * glm::length(x - world_.gravityPoint);
+      m.potentialEnergy += potential(mass, x);
       continue;
     }
     const Vec3& xPrevious = particles_.previous[i];
@@ -63,11 +67,7 @@ Metrics World::metrics() const {
     // at the midpoint of x* and x. Pairing both at the same instant makes the energy of an
     // exact trajectory exact to O(h^2); pairing v(t - h/2) with x(t) would be off by O(h).
     m.kineticEnergy += 0.5 * mass * speed * speed;
-    const Vec3 xHalf = 0.5 * (x + xPrevious);
-    // Uniform gravity has potential -m g . x; the fixed-strength pull, m s |x - p|.
-    m.potentialEnergy += world_.gravityMode == GravityMode::Uniform
-                             ? -mass * glm::dot(world_.gravity, xHalf)
-                             : mass * world_.gravityStrength * glm::length(xHalf - world_.gravityPoint);
+    m.potentialEnergy += potential(mass, 0.5 * (x + xPrevious));
   }
   // Rigid bodies: as for particles, the velocity is the last substep's middle's, and the potential
   // is taken there too, between the pose before the substep and now.
@@ -76,20 +76,13 @@ Metrics World::metrics() const {
     if (r.inverseMass[i] == 0.0) continue;
     const Real mass = 1.0 / r.inverseMass[i];
     if (anyAsleep && islands_.bodyAsleep(r.body[i])) {
-      m.potentialEnergy +=
-          world_.gravityMode == GravityMode::Uniform
-              ? -mass * glm::dot(world_.gravity, r.position[i])
-              : mass * world_.gravityStrength * glm::length(r.position[i] - world_.gravityPoint);
+      m.potentialEnergy += potential(mass, r.position[i]);
       continue;
     }
     const Vec3 spin = glm::conjugate(r.orientation[i]) * r.angularVelocity[i];  // body frame
     m.kineticEnergy += 0.5 * mass * glm::dot(r.velocity[i], r.velocity[i]) +
                        0.5 * glm::dot(spin, spin / r.inverseInertia[i]);
-    m.potentialEnergy +=
-        world_.gravityMode == GravityMode::Uniform
-            ? -mass * glm::dot(world_.gravity, 0.5 * (r.position[i] + r.previousPosition[i]))
-            : mass * world_.gravityStrength *
-                  glm::length(0.5 * (r.position[i] + r.previousPosition[i]) - world_.gravityPoint);
+    m.potentialEnergy += potential(mass, 0.5 * (r.position[i] + r.previousPosition[i]));
     // The fastest point: the centre's speed and the turning of the farthest corner.
     const Body& body = bodies_[r.body[i]];
     m.maxSpeed = maxOf(m.maxSpeed, glm::length(r.velocity[i]) +
