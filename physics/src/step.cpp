@@ -29,12 +29,20 @@ double millisecondsSince(Clock::time_point start) {
 }  // namespace
 
 void World::step() {
+  stepUnless(nullptr);
+}
+
+bool World::step(const std::atomic<bool>& stop) {
+  return stepUnless(&stop);
+}
+
+bool World::stepUnless(const std::atomic<bool>* stop) {
   const auto stepStart = Clock::now();
   profile_ = {};
   swept_ = 0;
   if (restWhileAsleep()) {
     profile_.total = millisecondsSince(stepStart);
-    return;
+    return true;
   }
   updateLayouts();
   const std::size_t freezesBefore = guard_.freezes().size();
@@ -46,6 +54,7 @@ void World::step() {
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
   const Real h = substepDt();
   for (int s = 0; s < solver_.substeps; ++s) {
+    if (stop != nullptr && stop->load(std::memory_order_relaxed)) return false;
     integrateParticles(h);
     // Contacts between bodies are found once per step, after the first substep's integration,
     // with a speculative margin of how far the two bodies can go in the step, and kept through the
@@ -70,6 +79,7 @@ void World::step() {
   updateIslands(freezesBefore);
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
+  return true;
 }
 
 // When every island sleeps, a step only passes the time (as the substeps would add it up).

@@ -1,4 +1,7 @@
-// The same scene stepped twice gives the same state, bit for bit; any change shows in the hash.
+// The same scene stepped twice gives the same state, bit for bit; any change shows in the hash. A
+// copy steps as the original does, and a step that may be stopped is the same step.
+#include <atomic>
+
 #include <gtest/gtest.h>
 
 #include "test_util.h"
@@ -51,6 +54,31 @@ TEST(Determinism, HashSeesEveryChange) {
     c.step();
   }
   EXPECT_NE(b.stateHash(), c.stateHash());
+}
+
+// The sandbox steps copies on another thread (its time budget) and keeps them in place of the
+// world: a copy must go on exactly as the original would have, contacts and islands included.
+TEST(Determinism, ACopyStepsAsTheOriginalDoes) {
+  phys::World a = mixedScene(phys::SolverMethod::GaussSeidel);
+  for (int i = 0; i < 90; ++i) a.step();  // boxes in contact with the ground and each other
+  phys::World b = a;
+  const std::atomic<bool> go{false};
+  for (int i = 0; i < 90; ++i) {
+    a.step();
+    EXPECT_TRUE(b.step(go));
+  }
+  EXPECT_EQ(a.stateHash(), b.stateHash());
+  EXPECT_EQ(a.stepCount(), b.stepCount());
+}
+
+TEST(Determinism, AStopBeforeTheFirstSubstepStepsNothing) {
+  phys::World a = mixedScene(phys::SolverMethod::Xpbd);
+  a.step();
+  const std::uint64_t before = a.stateHash();
+  const std::atomic<bool> stop{true};
+  EXPECT_FALSE(a.step(stop));
+  EXPECT_EQ(a.stateHash(), before);
+  EXPECT_EQ(a.stepCount(), 1);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // spring), relax the sticks and the contacts `iterations` times with friction after each pass,
 // restitution, body damping, guard. Also the picking the sandbox needs: raycast and the drag.
 #include <array>
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <span>
@@ -144,6 +145,11 @@ class World {
 
   /// Advances the world by solverSettings().dt.
   void step();
+  /// The same, unless `stop` is true before a substep: then it returns false at once, leaving the
+  /// world part of the way through the step, fit only to be thrown away (the sandbox steps copies
+  /// on another thread and drops them when a command comes; docs/sandbox.md, "Time budget").
+  /// True when the step finished.
+  bool step(const std::atomic<bool>& stop);
 
   /// Replaces the world settings; throws std::invalid_argument (and keeps the old ones) if bad.
   void setWorldSettings(const WorldSettings& settings);
@@ -240,6 +246,7 @@ class World {
 
  private:
   Real substepDt() const { return solver_.dt / solver_.substeps; }
+  bool stepUnless(const std::atomic<bool>* stop);
   void keepVelocities(Real hOld, Real hNew);
   ParticleId pushParticle(const ParticleDesc& desc);
   void settleWithoutVelocity();
