@@ -28,6 +28,8 @@ constexpr Control kControls[] = {
     {"F5", "reload the scene file"},
     {"Ctrl+O / Ctrl+S", "open a scene / save the world as a scene"},
     {"F1", "show or hide this table"},
+    {"F2", "hide or show the panels (the scene fills the window)"},
+    {"F12", "screenshot: a PNG of the window next to the scene file"},
 };
 
 }  // namespace
@@ -75,6 +77,10 @@ std::optional<Action> actionForKey(int key, int mods) {
       return Action::SpawnCapsuleRagdoll;
     case GLFW_KEY_F1:
       return Action::ToggleHelp;
+    case GLFW_KEY_F2:
+      return Action::TogglePanels;
+    case GLFW_KEY_F12:
+      return Action::Screenshot;
     default:
       return std::nullopt;
   }

@@ -27,6 +27,8 @@ enum class Action {
   SpawnRagdoll,
   SpawnCapsuleRagdoll,  ///< Bullet's layout (physics/capsule_ragdoll.h)
   ToggleHelp,
+  TogglePanels,  ///< hide or show the side column (the scene fills the window)
+  Screenshot,    ///< a PNG of the window next to the scene file
 };
 
 struct Control {

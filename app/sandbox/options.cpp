@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <optional>
 
@@ -18,12 +19,29 @@ std::optional<long> wholeNumber(const std::string& text, long min, long max) {
   return n;
 }
 
+// "all", or names of kSectionNames separated by commas, each once at most.
+std::optional<std::array<bool, 4>> parseSections(const std::string& text) {
+  std::array<bool, 4> open{};
+  if (text == "all") return std::array<bool, 4>{true, true, true, true};
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string name = text.substr(start, comma - start);
+    const auto* found =
+        std::find_if(kSectionNames.begin(), kSectionNames.end(), [&](const char* n) { return name == n; });
+    if (found == kSectionNames.end()) return std::nullopt;
+    open[static_cast<std::size_t>(found - kSectionNames.begin())] = true;
+    start = comma + 1;
+  }
+  return open;
+}
+
 }  // namespace
 
 std::string usage() {
   return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers]\n"
          "               [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]\n"
-         "               [--data DIR]\n"
+         "               [--hide-panels] [--unfold SECTIONS] [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
@@ -37,6 +55,9 @@ std::string usage() {
          "                     translucent in its own colour; each S is key=value,... with\n"
          "                     <solver>'s names, e.g. --overlay iterations=3 substeps=8 method=xpbd\n"
          "  --pause-at N       pause after step N (0 to 1000000)\n"
+         "  --hide-panels      start with the panels hidden: the scene fills the window (key F2)\n"
+         "  --unfold SECTIONS  the panels' sections open at the start, comma-separated, of\n"
+         "                     simulation, world, draw, stats, or all (default simulation,stats)\n"
          "  --data DIR         folder holding shaders/ and assets/ (default: the source tree)\n"
          "  --help             show this text\n";
 }
@@ -90,6 +111,16 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
     } else if (a == "--markers") {
       o.markers = true;
+    } else if (a == "--hide-panels") {
+      o.hidePanels = true;
+    } else if (a == "--unfold") {
+      const std::string* v = value("sections");
+      if (v == nullptr) return out;
+      o.unfold = parseSections(*v);
+      if (!o.unfold) {
+        out.error = "--unfold: '" + *v + "' must be all, or sections among simulation, world, draw, stats";
+        return out;
+      }
     } else if (a == "--threads") {
       const std::optional<long> n = number("a whole number from 1 to 64", 1, phys::kMaxThreads);
       if (!n) return out;

@@ -1,7 +1,9 @@
 #pragma once
 // The sandbox's command line:
 //   sandbox [SCENE] [--screenshot FILE --frames N] [--draw filled|wireframe|constraints]
-//           [--markers] [--overlay SETTINGS...] [--pause-at N] [--data DIR] [--help]
+//           [--markers] [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]
+//           [--hide-panels] [--unfold SECTIONS] [--data DIR] [--help]
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,16 +17,23 @@ namespace sandbox {
 struct Options {
   std::string scene;  ///< a scene file, or a name in assets/scenes/; empty: the default scene
   std::optional<std::filesystem::path> screenshot;  ///< render, write this PNG, exit
-  int frames = 60;                       ///< frames rendered before the screenshot; one physics step each
-  std::filesystem::path dataDir;         ///< holds shaders/ and assets/; empty: the build's default
-  std::optional<DrawMode> draw;          ///< given: overrides the remembered draw mode
-  bool markers = false;                  ///< the seed's collision-vertex markers from the start
+  int frames = 60;                ///< frames rendered before the screenshot; one physics step each
+  std::filesystem::path dataDir;  ///< holds shaders/ and assets/; empty: the build's default
+  std::optional<DrawMode> draw;   ///< given: overrides the remembered draw mode
+  bool markers = false;           ///< the seed's collision-vertex markers from the start
+  bool hidePanels = false;        ///< the side column hidden from the start (F2 shows it)
+  /// Which of the column's sections (kSectionNames' order) start unfolded; none given: Simulation
+  /// and Stats.
+  std::optional<std::array<bool, 4>> unfold;
   std::optional<BodyColoring> coloring;  ///< given: what bodies' colours say from the start
   std::optional<int> threads;            ///< given: the threads every scene opened steps with
   std::vector<OverlaySpec> overlay;      ///< 2 to 4 runs of the method overlay, or none
   std::optional<long> pauseAt;           ///< pause when the main run has taken this many steps
   bool help = false;
 };
+
+/// The panels' column's sections, in its order (--unfold names them so).
+inline constexpr std::array<const char*, 4> kSectionNames = {"simulation", "world", "draw", "stats"};
 
 struct ParsedOptions {
   Options options;

@@ -14,23 +14,15 @@
 namespace sandbox {
 namespace {
 
-constexpr ImGuiCond kFirstUse = ImGuiCond_FirstUseEver;
+constexpr float kColumnShare = 0.27f;                      // of the window's width: 345 pixels of 1280
+constexpr float kColumnMin = 300.0f, kColumnMax = 440.0f;  // unit: pixels
 
-// Opens the panel's window at its first place; false when it is collapsed (call End either way).
-bool beginPanel(const char* title, bool* open, const PanelPlace& place) {
-  const float x = place.fromRight ? ImGui::GetIO().DisplaySize.x - place.pos.x : place.pos.x;
-  ImGui::SetNextWindowPos(ImVec2(x, place.pos.y), kFirstUse);
-  ImGui::SetNextWindowSize(ImVec2(place.size.x, place.size.y), kFirstUse);
-  ImGui::SetNextWindowBgAlpha(1.0f);  // opaque: the scene behind never hides the text
-  const bool visible = ImGui::Begin(title, open);
-  // Sliders take what the labels leave: the longest label is "compliance (m/N, xpbd)".
-  ImGui::PushItemWidth(-ImGui::GetFontSize() * 12.0f);
-  return visible;
-}
-
-void endPanel() {
-  ImGui::PopItemWidth();
-  ImGui::End();
+// A section of the column: a header that folds, with a close button that hides it (the View menu
+// shows it again). Reset layout opens it as it first was.
+bool beginSection(const char* title, bool* shown, bool openAtFirst, bool reset) {
+  if (!*shown) return false;
+  ImGui::SetNextItemOpen(openAtFirst, reset ? ImGuiCond_Always : ImGuiCond_Once);
+  return ImGui::CollapsingHeader(title, shown);
 }
 
 // A double edited through a float slider: written back only when the slider moved, so an
@@ -43,7 +35,37 @@ bool sliderReal(const char* label, double& value, float min, float max, const ch
   return true;
 }
 
+// A whole-number setting's slider: applied as it is dragged, but a typed number (Ctrl+click) only
+// once the typing ends, so typing 100000 does not apply 1, 10, 100 and 1000 on the way. Typed
+// values are clamped to the slider's range.
+bool settingSlider(const char* label, int& value, int min, int max, UiState& ui) {
+  const bool mine = ui.typing && ui.typing->first == label;
+  int v = mine ? ui.typing->second : value;
+  const bool moved = ImGui::SliderInt(label, &v, min, max, "%d", ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemActive() && ImGui::GetIO().WantTextInput) {
+    ui.typing = std::make_pair(std::string(label), v);
+    return false;
+  }
+  if (mine && ImGui::IsItemDeactivated()) {
+    const bool edited = ImGui::IsItemDeactivatedAfterEdit();
+    ui.typing.reset();
+    if (!edited) return false;
+    value = std::clamp(v, min, max);
+    return true;
+  }
+  if (!moved) return false;
+  value = v;
+  return true;
+}
+
 void settingsSection(Session& session, UiState& ui);
+
+// TextDisabled's grey, wrapped at the column's edge.
+void greyWrapped(const std::string& text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s", text.c_str());
+  ImGui::PopStyleColor();
+}
 
 void overlaySection(Session& session, UiState& ui) {
   if (session.overlayActive()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);  // started from the command line
@@ -86,6 +108,8 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   ui.showStats = user.showStats;
   ui.draw.mode = options.draw.value_or(parseDrawMode(user.drawMode).value_or(DrawMode::Filled));
   ui.draw.markers = options.markers || user.markers;
+  ui.panelsHidden = options.hidePanels;
+  if (options.unfold) ui.unfolded = *options.unfold;
   if (options.coloring) ui.draw.coloring = *options.coloring;
   const char* examples[kMaxOverlayRuns] = {"iterations=3", "substeps=8,iterations=1", "method=xpbd", ""};
   for (std::size_t i = 0; i < static_cast<std::size_t>(kMaxOverlayRuns); ++i) {
@@ -104,23 +128,11 @@ void remember(const UiState& ui, UserSettings& user) {
   user.markers = ui.draw.markers;
 }
 
-void drawSimulationPanel(Session& session, UiState& ui) {
-  if (!ui.showSimulation) return;
-  if (!beginPanel("Simulation", &ui.showSimulation, kSimulationPanel)) {
-    endPanel();
-    return;
-  }
-  settingsSection(session, ui);
-  // Last: starting the overlay replaces the scene the section above drew from.
-  overlaySection(session, ui);
-  endPanel();
-}
-
 namespace {
 
 void settingsSection(Session& session, UiState& ui) {
   const scenes::Scene& scene = session.scene();
-  phys::World& world = session.scene().world;
+  const phys::World& world = session.scene().world;
   ImGui::TextWrapped("%s: %s", scene.name.c_str(), scene.description.c_str());
   ImGui::Text("t = %.2f s, step %ld", world.time(), world.stepCount());
   ImGui::Checkbox("Pause (Space)", &ui.paused);
@@ -144,8 +156,8 @@ void settingsSection(Session& session, UiState& ui) {
     s.dt = dtMs / 1000.0;
     changed = true;
   }
-  changed |= ImGui::SliderInt("substeps", &s.substeps, 1, 64);
-  changed |= ImGui::SliderInt("iterations", &s.iterations, 1, 64);
+  changed |= settingSlider("substeps", s.substeps, 1, 64, ui);
+  changed |= settingSlider("iterations", s.iterations, 1, 64, ui);
   changed |= sliderReal("feature epsilon (m)", s.featureEpsilon, 0.0f, 0.1f, "%.4f");
   changed |= sliderReal("restitution", s.restitution, 0.0f, 1.0f, "%.2f");
   changed |=
@@ -156,10 +168,11 @@ void settingsSection(Session& session, UiState& ui) {
   // Up to the machine's threads (or the scene's number, if larger); the result is the same for any.
   const int mostThreads =
       std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, phys::kMaxThreads);
-  changed |= ImGui::SliderInt("threads", &s.threads, 1, std::max(mostThreads, s.threads));
+  changed |= settingSlider("threads", s.threads, 1, std::max(mostThreads, s.threads), ui);
   changed |= ImGui::Checkbox("sleep", &s.sleep.enabled);
   ImGui::SameLine();
-  ImGui::TextDisabled("islands at rest %.1f s under %.2f m/s", s.sleep.time, s.sleep.speed);
+  greyWrapped("islands at rest " + figure("%.1f", s.sleep.time) + " s under " +
+              figure("%.2f", s.sleep.speed) + " m/s");
   if (changed) {
     const std::string error = session.setSolverSettings(s);
     ui.message = error.empty() ? "solver: " + describeSolver(s) + " (applied without restart)" : error;
@@ -179,14 +192,7 @@ void settingsSection(Session& session, UiState& ui) {
   }
 }
 
-}  // namespace
-
-void drawWorldPanel(Session& session, UiState& ui) {
-  if (!ui.showWorld) return;
-  if (!beginPanel("World", &ui.showWorld, kWorldPanel)) {
-    endPanel();
-    return;
-  }
+void worldSection(Session& session, UiState& ui) {
   phys::WorldSettings w = session.scene().world.worldSettings();
   int mode = static_cast<int>(w.gravityMode);
   if (ImGui::Combo("gravity (G)", &mode, "uniform\0point\0")) {
@@ -196,13 +202,14 @@ void drawWorldPanel(Session& session, UiState& ui) {
   bool changed = false;
   if (w.gravityMode == phys::GravityMode::Uniform) {
     double g = glm::length(w.gravity);
-    if (sliderReal("strength (m/s^2, Y/H)", g, 0.0f, 30.0f, "%.2f")) {
+    if (sliderReal("strength (m/s^2, Y/H)", g, 0.0f, static_cast<float>(kMaxRaisedGravity), "%.2f")) {
       const double old = glm::length(w.gravity);
       w.gravity = (old > 0.0 ? w.gravity / old : phys::Vec3(0, -1, 0)) * g;
       changed = true;
     }
   } else {
-    changed |= sliderReal("strength (m/s^2, Y/H)", w.gravityStrength, 0.0f, 30.0f, "%.2f");
+    changed |= sliderReal("strength (m/s^2, Y/H)", w.gravityStrength, 0.0f,
+                          static_cast<float>(kMaxRaisedGravity), "%.2f");
     float p[3] = {static_cast<float>(w.gravityPoint.x), static_cast<float>(w.gravityPoint.y),
                   static_cast<float>(w.gravityPoint.z)};
     // Typed values (Ctrl+click) can be anything; the world refuses a non-finite point.
@@ -221,15 +228,9 @@ void drawWorldPanel(Session& session, UiState& ui) {
   int thrown = static_cast<int>(session.throwModel());
   if (ImGui::Combo("thrown bodies", &thrown, "corners\0tetra\0rigid\0"))
     session.setThrowModel(static_cast<phys::BodyModel>(thrown));
-  endPanel();
 }
 
-void drawDrawPanel(UiState& ui) {
-  if (!ui.showDraw) return;
-  if (!beginPanel("Draw", &ui.showDraw, kDrawPanel)) {
-    endPanel();
-    return;
-  }
+void drawSection(UiState& ui) {
   int mode = static_cast<int>(ui.draw.mode);
   ImGui::RadioButton("filled", &mode, 0);
   ImGui::SameLine();
@@ -254,15 +255,9 @@ void drawDrawPanel(UiState& ui) {
   ImGui::SameLine();
   ImGui::RadioButton("sleep", &coloring, 2);
   ui.draw.coloring = static_cast<BodyColoring>(coloring);
-  endPanel();
 }
 
-void drawStatsPanel(const Session& session, UiState& ui) {
-  if (!ui.showStats) return;
-  if (!beginPanel("Stats", &ui.showStats, kStatsPanel)) {
-    endPanel();
-    return;
-  }
+void statsSection(const Session& session, UiState& ui) {
   const phys::World& world = session.scene().world;
   const phys::Profile& p = world.profile();
   ImGui::Text("frame %.2f ms, last step %.3f ms", ui.frameMs, p.total);
@@ -274,7 +269,7 @@ void drawStatsPanel(const Session& session, UiState& ui) {
     else
       ImGui::Text("real time x%.2f", *factor);
   } else {
-    ImGui::TextDisabled("real time: not timed (paused or screenshot)");
+    greyWrapped("real time: not timed (paused or screenshot)");
   }
   // The step's stages two to a line, in the step's order (ms, summed over the substeps).
   for (std::size_t i = 0; i < phys::kStageCount; i += 2) {
@@ -291,10 +286,10 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   }
   ImGui::Separator();
   for (const StatsLine& line : statsLines(world)) {
-    if (line.warning)
-      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "%s", line.text.c_str());
-    else
-      ImGui::TextUnformatted(line.text.c_str());
+    // Wrapped: a narrow column must not cut a line off.
+    if (line.warning) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.45f, 1.0f));
+    ImGui::TextWrapped("%s", line.text.c_str());
+    if (line.warning) ImGui::PopStyleColor();
   }
   ImGui::Separator();
   const ImVec2 plotSize(ImGui::GetContentRegionAvail().x, 40.0f);  // three fit under the stages
@@ -309,14 +304,55 @@ void drawStatsPanel(const Session& session, UiState& ui) {
   ImGui::PlotLines("##rmserr", ui.rmsError.data(), ui.rmsError.size(), ui.rmsError.offset(), overlay, 0.0f,
                    std::max(ui.rmsError.max() * 1.1f, 1e-6f), plotSize);
   ImGui::TextDisabled("plots: the last 10 s of wall time");
-  endPanel();
 }
 
-void drawLegend(const Session& session) {
+}  // namespace
+
+ScreenRect panelColumn(float windowWidth, float windowHeight, float top, float bottom) {
+  const float width =
+      std::min(std::clamp(windowWidth * kColumnShare, kColumnMin, kColumnMax), windowWidth * 0.5f);
+  return {windowWidth - width, top, width, std::max(windowHeight - top - bottom, 0.0f)};
+}
+
+ScreenRect sceneView(float windowWidth, float windowHeight, bool panelsShown) {
+  if (!panelsShown) return {0.0f, 0.0f, windowWidth, windowHeight};
+  return {0.0f, 0.0f, panelColumn(windowWidth, windowHeight, 0.0f, 0.0f).x, windowHeight};
+}
+
+void drawPanels(Session& session, UiState& ui) {
+  const bool reset = ui.resetLayout;
+  ui.resetLayout = false;
+  if (ui.panelsHidden) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const ScreenRect c = panelColumn(display.x, display.y, ImGui::GetFrameHeight(), statusLineHeight());
+  ImGui::SetNextWindowPos(ImVec2(c.x, c.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(c.width, c.height), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.94f);
+  ImGui::Begin("Panels", nullptr,
+               ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+  // Sliders take what the labels leave: the longest label is "compliance (m/N, xpbd)".
+  ImGui::PushItemWidth(-ImGui::GetFontSize() * 12.5f);  // 162 pixels for the labels
+  if (beginSection("Simulation", &ui.showSimulation, ui.unfolded[0], reset)) {
+    settingsSection(session, ui);
+    // Last: starting the overlay replaces the scene the section above drew from.
+    overlaySection(session, ui);
+  }
+  if (beginSection("World", &ui.showWorld, ui.unfolded[1], reset)) worldSection(session, ui);
+  if (beginSection("Draw", &ui.showDraw, ui.unfolded[2], reset)) drawSection(ui);
+  if (beginSection("Stats", &ui.showStats, ui.unfolded[3], reset)) statsSection(session, ui);
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void drawLegend(const Session& session, const UiState& ui) {
   if (!session.overlayActive()) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  // Bottom centre, above the status line: the panels keep the top and the sides.
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y - 30.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+  const ScreenRect view = sceneView(display.x, display.y, !ui.panelsHidden);
+  // At the foot of the scene, above the status line.
+  ImGui::SetNextWindowPos(ImVec2(view.x + view.width * 0.5f, display.y - statusLineHeight() - 4.0f),
+                          ImGuiCond_Always, ImVec2(0.5f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.85f);
   ImGui::Begin("Overlay", nullptr,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
@@ -354,19 +390,25 @@ void drawHelp(UiState& ui) {
   ImGui::End();
 }
 
+float statusLineHeight() {
+  return ImGui::GetTextLineHeightWithSpacing() + 6.0f;
+}
+
 void drawStatusAndCrosshair(const Session& session, const UiState& ui) {
-  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  // Under every window, so that dialogs and panels cover them.
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  const ImVec2 c(display.x * 0.5f, display.y * 0.5f);
+  const ScreenRect view = sceneView(display.x, display.y, !ui.panelsHidden);
+  const ImVec2 c(view.x + view.width * 0.5f, view.y + view.height * 0.5f);
   const ImU32 white = IM_COL32(255, 255, 255, 200);
   draw->AddLine(ImVec2(c.x - 8, c.y), ImVec2(c.x + 8, c.y), white);
   draw->AddLine(ImVec2(c.x, c.y - 8), ImVec2(c.x, c.y + 8), white);
   const std::string& text = ui.message.empty() ? session.status() : ui.message;
   char line[512];
-  std::snprintf(line, sizeof line, "%s%s   |   %s   |   F1: controls", ui.paused ? "PAUSED   |   " : "",
-                std::string(toString(ui.draw.mode)).c_str(), text.c_str());
-  const ImVec2 at(8.0f, display.y - ImGui::GetTextLineHeightWithSpacing() - 4.0f);
-  draw->AddRectFilled(ImVec2(0, at.y - 2), ImVec2(display.x, display.y), IM_COL32(20, 20, 24, 200));
+  std::snprintf(line, sizeof line, "%s%s   |   %s   |   F1: controls, F2: panels",
+                ui.paused ? "PAUSED   |   " : "", std::string(toString(ui.draw.mode)).c_str(), text.c_str());
+  const ImVec2 at(8.0f, display.y - statusLineHeight() + 2.0f);
+  draw->AddRectFilled(ImVec2(0, at.y - 2), ImVec2(display.x, display.y), IM_COL32(20, 20, 24, 230));
   draw->AddText(at, IM_COL32(235, 235, 235, 255), line);
 }
 

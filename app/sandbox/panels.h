@@ -1,9 +1,12 @@
 #pragma once
-// The sandbox's ImGui panels: Simulation, World, Draw and Stats, the overlay's legend, the F1
-// table of controls and the status line. Each slider writes the setting the scene file and the
-// lab use (phys::SolverSettings, phys::WorldSettings) straight into the world: nothing restarts.
+// The sandbox's ImGui panels: Simulation, World, Draw and Stats in a column at the right of the
+// scene, the overlay's legend, the F1 table of controls and the status line. Each slider writes the setting
+// the scene file and the lab use (phys::SolverSettings, phys::WorldSettings) straight into the world: nothing
+// restarts.
 #include <array>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include <glm/vec2.hpp>
 
@@ -16,21 +19,31 @@
 
 namespace sandbox {
 
-/// Where a panel first opens, in window pixels below the menu bar; the user may move it, and
-/// imgui.ini remembers where. Screenshots always use these, so tests know where to look.
-struct PanelPlace {
-  glm::vec2 pos;  ///< top-left corner; x from the right edge when fromRight
-  glm::vec2 size;
-  bool fromRight = false;
+/// A rectangle in window pixels, from the window's top-left corner.
+struct ScreenRect {
+  float x = 0.0f, y = 0.0f, width = 0.0f, height = 0.0f;
 };
-inline constexpr PanelPlace kSimulationPanel{{10.0f, 30.0f}, {370.0f, 425.0f}};
-inline constexpr PanelPlace kWorldPanel{{10.0f, 465.0f}, {370.0f, 150.0f}};
-inline constexpr PanelPlace kStatsPanel{{380.0f, 30.0f}, {370.0f, 440.0f}, true};
-inline constexpr PanelPlace kDrawPanel{{380.0f, 480.0f}, {370.0f, 135.0f}, true};
+
+/// The side column the panels share, at the right edge from `top` (below the menu bar) down to
+/// `bottom` pixels above the window's foot (the status line): 27% of the window's width
+/// within 300 to 440 pixels, never more than half the window, so it stays inside at any size.
+ScreenRect panelColumn(float windowWidth, float windowHeight, float top, float bottom);
+/// Where the scene is drawn: the window left of the column, or all of it when the panels are
+/// hidden. Nothing of the scene is ever under a panel.
+ScreenRect sceneView(float windowWidth, float windowHeight, bool panelsShown);
+
+/// The sections open at the start (kSectionNames' order): the settings and what they cost.
+inline constexpr std::array<bool, 4> kDefaultUnfolded = {true, false, false, true};
 
 /// Everything the panels show or change besides the session.
 struct UiState {
   bool showSimulation = true, showWorld = true, showDraw = true, showStats = true;
+  bool panelsHidden = false;  ///< F2 or --hide-panels: the scene fills the window
+  bool resetLayout = false;   ///< View > Reset layout: every section shown, in its first state
+  std::array<bool, 4> unfolded = kDefaultUnfolded;  ///< per kSectionNames: open at the start
+  /// A number being typed into a solver slider (Ctrl+click), applied when the typing ends: the
+  /// slider's label and the value so far.
+  std::optional<std::pair<std::string, int>> typing;
   bool showHelp = false;
   bool paused = false;
   bool stepOnce = false;         ///< set by Step or N; cleared when done
@@ -51,15 +64,16 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
 /// What of the panels the next run starts with.
 void remember(const UiState& ui, UserSettings& user);
 
-void drawSimulationPanel(Session& session, UiState& ui);
-void drawWorldPanel(Session& session, UiState& ui);
-void drawDrawPanel(UiState& ui);
-void drawStatsPanel(const Session& session, UiState& ui);
-/// One line per overlay run: its colour, its settings, its step time.
-void drawLegend(const Session& session);
+/// The side column: Simulation (with the method overlay), World, Draw and Stats, each a section
+/// that folds, and that the View menu or its close button hides.
+void drawPanels(Session& session, UiState& ui);
+/// One line per overlay run (its colour, its settings, its step time), at the foot of the scene.
+void drawLegend(const Session& session, const UiState& ui);
 /// The table of controls (F1).
 void drawHelp(UiState& ui);
-/// The status line at the bottom and a crosshair at the centre of the view.
+/// The status line at the bottom and a crosshair at the centre of the scene, under every window.
 void drawStatusAndCrosshair(const Session& session, const UiState& ui);
+/// Height of the status line (pixels), which the column stops above.
+float statusLineHeight();
 
 }  // namespace sandbox

@@ -16,6 +16,7 @@
 #include "engine/error.h"
 #include "engine/image.h"
 #include "fileio/files.h"
+#include "screenshot.h"
 
 namespace sandbox {
 namespace {
@@ -23,8 +24,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxStepsPerFrame = 8;  // beyond this the sim slows down instead of spiralling
-constexpr std::size_t kMaxLayoutBytes = std::size_t{1} << 20;  // imgui.ini is a few KiB
-constexpr float kCameraSpeed = 4.0f;                           // unit: m/s; Shift makes it 4 times faster
+// Wall time the background steps may take before the window shows their world: a step begun is
+// finished, so a frame shows the world at least this often unless a single step takes longer.
+constexpr std::chrono::milliseconds kStepBudget{30};
+constexpr float kCameraSpeed = 4.0f;  // unit: m/s; Shift makes it 4 times faster
 constexpr float kLookDegreesPerPixel = 0.15f;
 constexpr float kSpawnDistance = 2.0f;  // unit: m; in front of the eye, at the crosshair
 
@@ -101,12 +104,9 @@ Sandbox::Sandbox(const Options& options)
   glfwSetWindowFocusCallback(window_.handle(), focusCallback);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
-  // Panel layout is remembered in interactive use only; screenshots always use the defaults.
-  // ImGui would write imgui.ini itself, in place; the sandbox reads and writes it instead, so
-  // it goes through the one atomic writer like every other file.
+  // The panels sit in a column the sandbox places every frame, so there is no window layout to
+  // remember (what is shown is in sandbox.ini): ImGui writes no imgui.ini.
   ImGui::GetIO().IniFilename = nullptr;
-  layoutFile_ = settingsFile_.empty() ? std::filesystem::path() : settingsFile_.parent_path() / "imgui.ini";
-  loadPanelLayout();
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_.handle(), true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
@@ -114,34 +114,9 @@ Sandbox::Sandbox(const Options& options)
 
 Sandbox::~Sandbox() {
   saveUserSettingsOnExit();
-  savePanelLayout();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
-}
-
-void Sandbox::loadPanelLayout() {
-  std::error_code ec;
-  if (layoutFile_.empty() || !std::filesystem::exists(layoutFile_, ec)) return;
-  try {
-    const std::string ini = fileio::readWhole(layoutFile_, kMaxLayoutBytes);
-    ImGui::LoadIniSettingsFromMemory(ini.data(), ini.size());
-  } catch (const fileio::FileError& e) {
-    std::cerr << "sandbox: warning: the panel layout was not read: " << e.what() << '\n';
-  }
-}
-
-void Sandbox::savePanelLayout() {
-  ImGuiIO& io = ImGui::GetIO();
-  io.WantSaveIniSettings = false;
-  if (layoutFile_.empty()) return;
-  std::size_t size = 0;
-  const char* ini = ImGui::SaveIniSettingsToMemory(&size);
-  try {
-    fileio::writeAtomically(layoutFile_, std::string_view(ini, size));
-  } catch (const fileio::FileError& e) {
-    std::cerr << "sandbox: " << e.what() << '\n';
-  }
 }
 
 void Sandbox::saveUserSettingsOnExit() {
@@ -267,6 +242,12 @@ void Sandbox::perform(Action action) {
     case Action::ToggleHelp:
       ui_.showHelp = !ui_.showHelp;
       break;
+    case Action::TogglePanels:
+      ui_.panelsHidden = !ui_.panelsHidden;
+      break;
+    case Action::Screenshot:
+      screenshotDue_ = true;  // taken once the frame is drawn
+      break;
   }
 }
 
@@ -282,25 +263,14 @@ bool Sandbox::pauseDue() {
 }
 
 void Sandbox::advancePhysics(double frameSeconds) {
-  const phys::World& world = session_->scene().world;
-  const double before = world.time();
+  const double before = session_->scene().world.time();
   if (!interactive_) {  // deterministic: one step per frame, whatever the clock says
     if (!ui_.paused && !pauseDue()) session_->step();
-  } else if (ui_.paused || pauseDue()) {
-    if (ui_.stepOnce) session_->step();
-    accumulator_ = 0.0;
   } else {
-    const double dt = world.solverSettings().dt;
-    accumulator_ += frameSeconds * ui_.timeScale;
-    int steps = 0;
-    while (accumulator_ >= dt && steps < kMaxStepsPerFrame && !pauseDue()) {
-      session_->step();
-      accumulator_ -= dt;
-      ++steps;
-    }
-    if (steps == kMaxStepsPerFrame) accumulator_ = 0.0;  // drop the backlog rather than spiral
+    stepInBackground(frameSeconds);
   }
   ui_.stepOnce = false;  // a step asked for while running is one of the clock's anyway
+  const phys::World& world = session_->scene().world;
   ui_.realTime.add(world.time() - before, frameSeconds, interactive_ && !ui_.paused);
   const phys::Metrics m = world.metrics();
   ui_.stepMs.add(static_cast<float>(world.profile().total), frameSeconds);
@@ -308,13 +278,63 @@ void Sandbox::advancePhysics(double frameSeconds) {
   ui_.rmsError.add(static_cast<float>(m.rmsConstraintError), frameSeconds);
 }
 
+// The time budget: the steps a frame owes run on another thread, at most kStepBudget of them
+// at a time, while this one draws and reads input; the world shown is the last one they finished.
+// So no setting can hold a frame: a step of 1.6 s makes the world slower than real time (the
+// Stats panel says so), not the window. A command cancels the steps in flight (Session).
+void Sandbox::stepInBackground(double frameSeconds) {
+  const double dt = session_->scene().world.solverSettings().dt;
+  if (const std::optional<StepsTaken> taken = session_->finishSteps()) {
+    accumulator_ -= taken->steps * dt;
+    if (taken->cut) accumulator_ = 0.0;  // drop the backlog rather than spiral
+  }
+  if (ui_.paused || pauseDue()) {
+    // A step asked for with N finishes; steps the clock owed stop where they are.
+    if (session_->stepping() && !stepWhilePaused_) session_->cancelSteps();
+    if (ui_.stepOnce && !session_->stepping()) {
+      session_->startSteps(1, kStepBudget);
+      stepWhilePaused_ = true;
+    }
+    accumulator_ = 0.0;
+    return;
+  }
+  stepWhilePaused_ = false;
+  accumulator_ = std::min(accumulator_ + frameSeconds * ui_.timeScale, kMaxStepsPerFrame * dt);
+  if (session_->stepping()) return;
+  int owed = static_cast<int>(std::floor(accumulator_ / dt));
+  // --pause-at N: the steps in flight never carry the world past N.
+  if (options_.pauseAt)
+    owed = static_cast<int>(std::min<long>(owed, *options_.pauseAt - session_->scene().world.stepCount()));
+  session_->startSteps(owed, kStepBudget);
+}
+
+ScreenRect Sandbox::sceneRect() const {
+  int w = 1, h = 1;
+  glfwGetWindowSize(window_.handle(), &w, &h);
+  return sceneView(static_cast<float>(w), static_cast<float>(h), !ui_.panelsHidden);
+}
+
+void Sandbox::takeScreenshot() {
+  screenshotDue_ = false;
+  const std::filesystem::path file = screenshotPath(session_->file(), session_->scene().world.stepCount());
+  try {
+    glReadBuffer(GL_BACK);
+    fileio::writeAtomically(file, engine::encodePng(engine::readFramebuffer(window_.framebufferSize())));
+    ui_.message = "screenshot: wrote " + file.string();
+  } catch (const std::exception& e) {
+    ui_.message = std::string("screenshot not written: ") + e.what();
+  }
+}
+
 std::pair<phys::Vec3, phys::Vec3> Sandbox::cursorRay() const {
   double x = 0.0, y = 0.0;
   glfwGetCursorPos(window_.handle(), &x, &y);
   int w = 1, h = 1;
   glfwGetWindowSize(window_.handle(), &w, &h);
-  const glm::vec4 viewport(0.0f, 0.0f, static_cast<float>(w), static_cast<float>(h));
-  const float aspect = static_cast<float>(w) / static_cast<float>(std::max(h, 1));
+  const ScreenRect view = sceneRect();
+  // The scene's viewport in window pixels, from the bottom-left as unProject counts them.
+  const glm::vec4 viewport(view.x, static_cast<float>(h) - view.y - view.height, view.width, view.height);
+  const float aspect = view.width / std::max(view.height, 1.0f);
   const glm::vec3 win(static_cast<float>(x), static_cast<float>(h) - static_cast<float>(y), 0.0f);
   const glm::vec3 nearPoint = glm::unProject(win, camera_.view(), camera_.projection(aspect), viewport);
   const glm::vec3 farPoint =
@@ -354,6 +374,7 @@ void Sandbox::updateDrag() {
     if (session_->pick(origin, direction)) ui_.message = "dragging: release the left button to let go";
   }
   if (!input_.buttonHeld(GLFW_MOUSE_BUTTON_LEFT)) {
+    if (session_->dragging()) ui_.message = "let go";
     session_->release();
     return;
   }
@@ -390,11 +411,21 @@ void Sandbox::drawMenuBar() {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
+    bool panelsShown = !ui_.panelsHidden;
+    if (ImGui::MenuItem("Panels", "F2", &panelsShown)) ui_.panelsHidden = !panelsShown;
     ImGui::MenuItem("Simulation", nullptr, &ui_.showSimulation);
     ImGui::MenuItem("World", nullptr, &ui_.showWorld);
     ImGui::MenuItem("Draw", nullptr, &ui_.showDraw);
     ImGui::MenuItem("Stats", nullptr, &ui_.showStats);
     ImGui::MenuItem("Controls", "F1", &ui_.showHelp);
+    ImGui::Separator();
+    if (ImGui::MenuItem("Reset layout")) {
+      ui_.showSimulation = ui_.showWorld = ui_.showDraw = ui_.showStats = true;
+      ui_.panelsHidden = false;
+      ui_.unfolded = kDefaultUnfolded;
+      ui_.resetLayout = true;
+    }
+    if (ImGui::MenuItem("Screenshot", "F12")) screenshotDue_ = true;
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
@@ -429,11 +460,18 @@ void Sandbox::drawDialogs() {
 }
 
 void Sandbox::renderFrame() {
+  // The scene is drawn left of the panels' column, never under it (sceneView).
   const glm::ivec2 size = window_.framebufferSize();
+  int windowWidth = 1, windowHeight = 1;
+  glfwGetWindowSize(window_.handle(), &windowWidth, &windowHeight);
+  const ScreenRect view = sceneRect();
+  const float toPixels = static_cast<float>(size.x) / static_cast<float>(std::max(windowWidth, 1));
+  const glm::ivec4 viewport(static_cast<int>(view.x * toPixels), 0,
+                            std::max(static_cast<int>(view.width * toPixels), 1), size.y);
   const glm::mat4 viewProjection =
-      camera_.projection(static_cast<float>(size.x) / static_cast<float>(size.y)) * camera_.view();
+      camera_.projection(static_cast<float>(viewport.z) / static_cast<float>(viewport.w)) * camera_.view();
 
-  renderer_->beginFrame(size);
+  renderer_->beginFrame(size, viewport);
   const phys::WorldSettings& settings = session_->scene().world.worldSettings();
   if (settings.ground) {
     renderer_->drawGround(viewProjection, camera_.position, glm::vec3(settings.groundNormal),
@@ -456,11 +494,8 @@ void Sandbox::renderFrame() {
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
   drawMenuBar();
-  drawSimulationPanel(*session_, ui_);
-  drawWorldPanel(*session_, ui_);
-  drawDrawPanel(ui_);
-  drawStatsPanel(*session_, ui_);
-  drawLegend(*session_);
+  drawPanels(*session_, ui_);
+  drawLegend(*session_, ui_);
   drawHelp(ui_);
   drawDialogs();
   drawStatusAndCrosshair(*session_, ui_);
@@ -504,13 +539,12 @@ int Sandbox::run() {
     const glm::ivec2 size = window_.framebufferSize();
     if (size.x == 0 || size.y == 0) {
       // Minimised: nothing to draw, and vsync would not pace the loop, so wait for events (the
-      // simulation goes on, up to kMaxStepsPerFrame steps per wake-up).
+      // simulation goes on in the background, up to kMaxStepsPerFrame steps per wake-up).
       glfwWaitEventsTimeout(0.05);
       continue;
     }
     renderFrame();
-    // ImGui asks every few seconds after a panel moved (io.IniSavingRate).
-    if (ImGui::GetIO().WantSaveIniSettings) savePanelLayout();
+    if (screenshotDue_) takeScreenshot();
 
     if (options_.screenshot && frame >= options_.frames) {
       glReadBuffer(GL_BACK);

@@ -46,6 +46,7 @@ class Sandbox {
   void openScene(const std::filesystem::path& file);
   bool pauseDue();
   void advancePhysics(double frameSeconds);
+  void stepInBackground(double frameSeconds);
   void moveCamera(float frameSeconds);
   void updateDrag();
   /// The ray under the cursor, from the camera: origin and unit direction.
@@ -53,13 +54,14 @@ class Sandbox {
   void renderFrame();
   void drawMenuBar();
   void drawDialogs();
-  void loadPanelLayout();
-  void savePanelLayout();
+  /// Where the scene is drawn in the window (left of the panels, or all of it).
+  ScreenRect sceneRect() const;
+  /// F12: the frame just drawn as a PNG next to the scene file, and a status line saying where.
+  void takeScreenshot();
 
   Options options_;
   bool interactive_;  // false for --screenshot: nothing remembered, one step per frame
   std::filesystem::path settingsFile_;
-  std::filesystem::path layoutFile_;  // ImGui's panel layout; empty when not remembered
   UserSettings user_;
   engine::Window window_;
   std::unique_ptr<engine::Renderer> renderer_;
@@ -72,9 +74,11 @@ class Sandbox {
   FileDialog openDialog_, saveDialog_;
   std::string errorText_;  // shown in a modal until dismissed
   bool showError_ = false;
-  double accumulator_ = 0.0;  // unit: s; simulated time owed to the clock
+  double accumulator_ = 0.0;      // unit: s; simulated time owed to the clock
+  bool stepWhilePaused_ = false;  // the background step is N's, which pausing does not cancel
   double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
   bool looking_ = false;
+  bool screenshotDue_ = false;  // F12: taken after the next frame is drawn
 };
 
 /// Whole program: parses arguments, runs, reports errors. Returns the exit code.

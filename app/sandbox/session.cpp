@@ -86,14 +86,6 @@ phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::
 
 }  // namespace
 
-double Run::medianMs() const {
-  const int n = std::min(timed, kTimedSteps);
-  if (n == 0) return 0.0;
-  std::array<double, kTimedSteps> sorted = recentMs;
-  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.begin() + n);
-  return sorted[static_cast<std::size_t>(n / 2)];
-}
-
 Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory,
                  std::optional<int> threads)
     : sceneDirectory_(sceneDirectory) {
@@ -105,8 +97,10 @@ Session::Session(const std::filesystem::path& file, const std::filesystem::path&
 }
 
 void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file) {
+  cancelSteps();
   runs_.clear();
   drag_.reset();
+  dragTarget_.reset();
   Run run;
   run.scene = std::move(scene);
   run.color = kRunColors[0];
@@ -145,7 +139,9 @@ std::string Session::saveAs(const std::filesystem::path& file, const scenes::Cam
 }
 
 void Session::clear() {
+  cancelSteps();
   drag_.reset();
+  dragTarget_.reset();
   for (Run& run : runs_) {
     scenes::Scene& s = *run.scene;
     s.world = emptyLike(s.world);
@@ -168,6 +164,7 @@ std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
       return "overlay run " + std::to_string(i + 1) + " '" + specs[i].text + "': SolverSettings: " + why;
     }
   }
+  cancelSteps();
   release();  // a copied spring would have no one to let it go
   std::vector<Run> runs;
   for (std::size_t i = 0; i < specs.size(); ++i) {
@@ -186,6 +183,7 @@ std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
 
 void Session::stopOverlay() {
   if (!overlayActive()) return;
+  cancelSteps();
   release();
   runs_.resize(1);
   runs_.front().label.clear();
@@ -194,30 +192,37 @@ void Session::stopOverlay() {
   status_ = "overlay off; the solver settings are as before it";
 }
 
-namespace {
-
-void timedStep(Run& run) {
-  const auto start = Clock::now();
-  run.scene->world.step();
-  run.stepMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-  run.recentMs[static_cast<std::size_t>(run.timed % Run::kTimedSteps)] = run.stepMs;
-  ++run.timed;
+void Session::step() {
+  cancelSteps();
+  stepRuns(runs_);
 }
 
-// A run far behind (dt a thousandth of the main run's) catches up over several frames rather
-// than stalling one.
-constexpr int kMaxCatchUpSteps = 1000;
+void Session::startSteps(int steps, std::chrono::duration<double> budget) {
+  if (steps < 1 || background_.running()) return;
+  std::vector<Run> copies;
+  copies.reserve(runs_.size());
+  for (const Run& run : runs_) copies.push_back(run.copy());
+  background_.start(std::move(copies), steps, budget);
+}
 
-}  // namespace
-
-void Session::step() {
-  timedStep(runs_.front());
-  const double now = runs_.front().scene->world.time();
-  for (std::size_t i = 1; i < runs_.size(); ++i) {
-    Run& run = runs_[i];
-    const double halfStep = 0.5 * run.scene->world.solverSettings().dt;
-    for (int n = 0; n < kMaxCatchUpSteps && run.scene->world.time() + halfStep <= now; ++n) timedStep(run);
+std::optional<StepsTaken> Session::finishSteps() {
+  auto done = background_.collect();
+  if (!done) return std::nullopt;
+  runs_ = std::move(done->first);
+  // The drag as the user left it while the copies stepped: released, or pulling somewhere new.
+  // (A new pick cancels the steps, so a drag the copies lack is never to be added.)
+  if (!drag_) {
+    forEachWorld([](phys::World& w) { w.clearDrag(); });
+  } else if (dragTarget_) {
+    forEachWorld([&](phys::World& w) {
+      if (w.drag()) w.setDragTarget(*dragTarget_);
+    });
   }
+  return done->second;
+}
+
+void Session::cancelSteps() {
+  background_.cancel();
 }
 
 void Session::forEachWorld(const std::function<void(phys::World&)>& apply) {
@@ -228,12 +233,14 @@ std::string Session::setWorldSettings(const phys::WorldSettings& settings) {
   // Every run has the same world settings, so if the first takes them all do.
   const std::string why = phys::validate(settings);
   if (!why.empty()) return "world settings: " + why;
+  cancelSteps();
   forEachWorld([&](phys::World& w) { w.setWorldSettings(settings); });
   return {};
 }
 
 std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
   try {
+    cancelSteps();
     scene().world.setSolverSettings(settings);
     return {};
   } catch (const std::invalid_argument& e) {
@@ -262,15 +269,17 @@ std::string Session::toggleGravityMode() {
 
 std::string Session::changeGravity(double delta) {
   phys::WorldSettings s = scene().world.worldSettings();
-  double strength = 0.0;
-  if (s.gravityMode == phys::GravityMode::Point) {
-    strength = s.gravityStrength =
-        std::clamp(s.gravityStrength + delta, 0.0, std::numeric_limits<double>::max());
-  } else {
-    strength = std::clamp(strengthOf(s.gravity) + delta, 0.0, std::numeric_limits<double>::max());
+  const bool point = s.gravityMode == phys::GravityMode::Point;
+  const double now = point ? s.gravityStrength : strengthOf(s.gravity);
+  const double most = std::max(kMaxRaisedGravity, now);
+  const double strength = std::clamp(now + delta, 0.0, most);
+  if (point)
+    s.gravityStrength = strength;
+  else
     s.gravity = gravityAlong(directionOf(s.gravity), strength);
-  }
-  return applyWorldSettings(s, "gravity " + std::to_string(strength).substr(0, 5) + " m/s^2");
+  const std::string done = "gravity " + std::to_string(strength).substr(0, 5) + " m/s^2";
+  return applyWorldSettings(
+      s, delta > 0.0 && strength == most && strength == now ? done + " (the most Y gives)" : done);
 }
 
 std::string Session::changeDamping(double delta) {
@@ -301,6 +310,7 @@ std::string Session::spawn(const phys::Vec3& at, const std::string& done,
     return status_;
   }
   try {
+    cancelSteps();
     // Each run's world is the main one's under other solver settings, so what the first takes
     // the others take.
     add(scene().world);
@@ -341,6 +351,7 @@ bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
   if (d.isBox) d.local = toLocal(w, *hit->box, hit->point);
   d.planePoint = hit->point;
   d.planeNormal = -direction;
+  cancelSteps();
   for (Run& run : runs_) {
     phys::World& rw = run.scene->world;
     phys::Drag drag;
@@ -355,6 +366,7 @@ bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
     rw.setDrag(drag);
   }
   drag_ = d;
+  dragTarget_.reset();
   return true;
 }
 
@@ -362,6 +374,7 @@ void Session::dragAlong(const phys::Vec3& origin, const phys::Vec3& direction) {
   if (!drag_) return;
   const phys::Vec3 target = onPlane(origin, direction, drag_->planePoint, drag_->planeNormal);
   if (!phys::finite(target)) return;  // a degenerate ray: keep the last target
+  dragTarget_ = target;
   // Every run pulls its copy of the body towards the same point, so the runs stay comparable.
   forEachWorld([&](phys::World& w) { w.setDragTarget(target); });
 }
@@ -369,6 +382,7 @@ void Session::dragAlong(const phys::Vec3& origin, const phys::Vec3& direction) {
 void Session::release() {
   if (!drag_) return;
   drag_.reset();
+  dragTarget_.reset();
   forEachWorld([](phys::World& w) { w.clearDrag(); });
 }
 

@@ -4,6 +4,7 @@
 // so the tests drive it directly. A command that fails says why in its return value and leaves
 // the world as it was.
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -14,26 +15,12 @@
 
 #include <glm/vec3.hpp>
 
+#include "background_steps.h"
 #include "overlay_spec.h"
+#include "run.h"
 #include "scenes/scene.h"
 
 namespace sandbox {
-
-/// One simulation: the main scene is run 0; the overlay adds more.
-struct Run {
-  static constexpr int kTimedSteps = 61;  ///< steps the median step time is taken over (~1 s)
-
-  std::unique_ptr<scenes::Scene> scene;
-  std::string label;  ///< the overlay settings as given; empty for the main scene alone
-  glm::vec3 color{1.0f};
-  double stepMs = 0.0;                         ///< unit: ms; wall time of the last step
-  std::array<double, kTimedSteps> recentMs{};  ///< the last steps' times, a ring
-  int timed = 0;                               ///< steps timed so far
-
-  /// Median wall time of the last kTimedSteps steps (one step's time is too noisy to compare
-  /// runs by). unit: ms; 0 before the first step
-  double medianMs() const;
-};
 
 /// Each overlay run's colour, in order; the legend shows them.
 inline constexpr glm::vec3 kRunColors[kMaxOverlayRuns] = {
@@ -43,6 +30,10 @@ inline constexpr glm::vec3 kRunColors[kMaxOverlayRuns] = {
 inline constexpr double kSpawnBoxSize = 0.5;   ///< unit: m
 inline constexpr double kSpawnBoxMass = 10.0;  ///< unit: kg
 inline constexpr double kThrowSpeed = 8.0;     ///< unit: m/s
+
+/// The strongest gravity changeGravity raises to, and the World panel's slider reaches: three
+/// times the Earth's (m/s^2). A scene may set more; raising then leaves it as it is.
+inline constexpr double kMaxRaisedGravity = 30.0;
 
 class Session {
  public:
@@ -80,12 +71,26 @@ class Session {
   /// run's simulated time (a run with half the dt takes two steps), timing each step.
   void step();
 
+  // The time budget (docs/sandbox.md): steps on another thread while the window draws the runs
+  // as they are. Every command that changes a world cancels them first and acts on what is shown;
+  // moving and letting go of the drag do not, and are applied to the stepped runs instead.
+  /// Up to `steps` steps of copies of the runs on another thread, no more once `budget` of wall
+  /// time has gone by. Nothing when steps < 1 or steps are already running.
+  void startSteps(int steps, std::chrono::duration<double> budget);
+  bool stepping() const { return background_.running(); }
+  /// When the background steps are done: their runs become these and it says what they took;
+  /// nothing while they run or when none were started.
+  std::optional<StepsTaken> finishSteps();
+  /// Drops the background steps; the runs stay as they are.
+  void cancelSteps();
+
   // The seed's world controls; they act on every run, so the overlay keeps comparing methods
   // under the same forces. Each returns "" or why the world refused (then nothing changes), and
   // leaves either in status().
   /// Uniform gravity becomes a pull of the same strength towards the point, and back.
   std::string toggleGravityMode();
-  /// Strength of gravity (|g| in uniform mode, the pull in point mode) changed by delta, >= 0.
+  /// Strength of gravity (|g| in uniform mode, the pull in point mode) changed by delta, kept
+  /// from 0 to kMaxRaisedGravity (a stronger one, from the scene, is only lowered).
   std::string changeGravity(double delta);
   std::string changeDamping(double delta);
   /// The world settings of every run; "" or the validation message (and nothing changes).
@@ -141,6 +146,8 @@ class Session {
   std::string status_;
   int spawned_ = 0;
   phys::BodyModel throwModel_ = phys::BodyModel::Corners;
+  std::optional<phys::Vec3> dragTarget_;  // the drag's last target, for runs stepped meanwhile
+  BackgroundSteps background_;            // last: its thread stops before the rest goes
 };
 
 }  // namespace sandbox

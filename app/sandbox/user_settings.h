@@ -1,7 +1,7 @@
 #pragma once
-// What the sandbox remembers between runs: window size, which panels are open, the last scene,
-// the draw mode and the recent files. Stored as "key = value" lines in the user's config folder
-// (ImGui keeps its window layout in imgui.ini beside it). Keys: width, height, showSimulation,
+// What the sandbox remembers between runs: window size, which sections of the panels' column are
+// shown, the last scene, the draw mode and the recent files. Stored as "key = value" lines in the
+// user's config folder. Keys: width, height, showSimulation,
 // showWorld, showDraw, showStats, lastScene, drawMode, markers, and one `recent = PATH` line per
 // recent file, newest first; '#' starts a comment line.
 #include <filesystem>

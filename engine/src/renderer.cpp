@@ -45,10 +45,15 @@ Renderer::Renderer(const std::filesystem::path& shaderDir, const RenderStyle& st
       lines_(shaderDir) {}
 
 void Renderer::beginFrame(const glm::ivec2& framebufferSize) {
+  beginFrame(framebufferSize, glm::ivec4(0, 0, framebufferSize.x, framebufferSize.y));
+}
+
+void Renderer::beginFrame(const glm::ivec2& framebufferSize, const glm::ivec4& viewport) {
   glViewport(0, 0, framebufferSize.x, framebufferSize.y);
   const glm::vec3& c = style_.clearColor;
   glClearColor(c.r, c.g, c.b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
   glDisable(GL_BLEND);

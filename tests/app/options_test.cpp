@@ -1,4 +1,6 @@
 // The sandbox's command line: what it accepts and what it says about what it does not.
+#include <array>
+
 #include <gtest/gtest.h>
 
 #include "options.h"
@@ -84,6 +86,28 @@ TEST(Options, ThreadsAndColourBy) {
             "--threads: '65' is not a whole number from 1 to 64");
   EXPECT_EQ(sandbox::parseOptions({"--color-by", "mass"}).error,
             "--color-by: 'mass' must be kind, island or sleep");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Options, HidePanelsAndUnfold) {
+  const auto p = sandbox::parseOptions({"chain", "--hide-panels", "--unfold", "world,stats"});
+  ASSERT_EQ(p.error, "");
+  EXPECT_TRUE(p.options.hidePanels);
+  EXPECT_EQ(p.options.unfold, (std::array<bool, 4>{false, true, false, true}));
+  EXPECT_EQ(sandbox::parseOptions({"--unfold", "all"}).options.unfold,
+            (std::array<bool, 4>{true, true, true, true}));
+  EXPECT_FALSE(sandbox::parseOptions({}).options.unfold.has_value());
+  EXPECT_FALSE(sandbox::parseOptions({}).options.hidePanels);
+  for (const char* bad : {"", "stat", "world,", "world,,draw", "All"}) {
+    const auto b = sandbox::parseOptions({"--unfold", bad});
+    EXPECT_EQ(b.error, std::string("--unfold: '") + bad +
+                           "' must be all, or sections among simulation, world, draw, stats")
+        << bad;
+  }
+  EXPECT_NE(sandbox::parseOptions({"--unfold"}).error.find("--unfold needs"), std::string::npos);
 }
 
 }  // namespace

@@ -112,6 +112,22 @@ TEST(Session, GravityKeepsItsStrengthThroughZeroAndHugeValues) {
   EXPECT_EQ(s.scene().world.worldSettings().gravity, phys::Vec3(0.0, 0.0, 0.0));
 }
 
+// Y used to raise gravity without bound (1009 m/s^2 after a held key, where the slider ends at 30):
+// it stops at the slider's top, and a scene's stronger gravity is only ever lowered by the keys.
+TEST(Session, GravityKeyStopsAtTheSlidersTop) {
+  sandbox::Session s = open("ragdoll");
+  for (int i = 0; i < 100; ++i) ASSERT_EQ(s.changeGravity(1.0), "");
+  EXPECT_EQ(glm::length(s.scene().world.worldSettings().gravity), sandbox::kMaxRaisedGravity);
+  EXPECT_NE(s.status().find("the most Y gives"), std::string::npos) << s.status();
+  phys::WorldSettings w = s.scene().world.worldSettings();
+  w.gravity = phys::Vec3(0.0, -50.0, 0.0);
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  ASSERT_EQ(s.changeGravity(1.0), "");
+  EXPECT_EQ(s.scene().world.worldSettings().gravity.y, -50.0);
+  ASSERT_EQ(s.changeGravity(-1.0), "");
+  EXPECT_EQ(s.scene().world.worldSettings().gravity.y, -49.0);
+}
+
 // Found by the soak test (seed 11): a gravity whose length is one ulp under the largest double.
 // Each press of H rounded it a little longer, until its length and then a component overflowed and
 // the key was refused ("gravity must be finite"). The keys now keep it finite and its direction.

@@ -1,6 +1,6 @@
 // The sandbox program renders the default scene (the seed's ragdoll) to a PNG under Xvfb, and the
 // pixels are where the scene, the camera and the style say they should be: sky in the corner,
-// lit ground, the largest box where the physics puts it, and the ImGui panel in its rectangle;
+// lit ground, the largest box where the physics puts it, and the ImGui panels in their column;
 // loose particles, in the falling-box scene, which has some; and a rigid box, in rigid.xml.
 #include <filesystem>
 #include <string>
@@ -62,7 +62,7 @@ phys::BodyId largestBox(const phys::World& w) {
 }
 
 glm::ivec2 toPixel(const Rendered& r, const glm::vec3& world) {
-  return testing_gl::toPixel(r.image, r.camera, world);
+  return testing_gl::toSandboxPixel(r.image, r.camera, world);
 }
 
 glm::ivec3 to8bit(const glm::vec3& c) {
@@ -80,12 +80,11 @@ TEST(RenderScene, WritesAWindowSizedPng) {
   EXPECT_EQ(rendered().image.height, 720);
 }
 
-TEST(RenderScene, SkyRightOfThePanelsIsTheClearColour) {
+TEST(RenderScene, SkyAboveTheSceneIsTheClearColour) {
   const Rendered& r = rendered();
-  // Below the menu bar, just right of the Simulation panel: the camera looks down at the
-  // ragdoll, so the horizon is well below this.
-  const int x = static_cast<int>(sandbox::kSimulationPanel.pos.x + sandbox::kSimulationPanel.size.x) + 20;
-  expectColor(r.image.pixel(x, 40), to8bit(engine::RenderStyle{}.clearColor), 1, "sky");
+  // Below the menu bar at the left: the camera looks down at the ragdoll, so the horizon is well
+  // below this.
+  expectColor(r.image.pixel(20, 40), to8bit(engine::RenderStyle{}.clearColor), 1, "sky");
 }
 
 TEST(RenderScene, GroundIsLitFromAbove) {
@@ -159,13 +158,15 @@ TEST(RenderScene, LooseParticlesAreDrawn) {
   }
 }
 
-TEST(RenderScene, SimulationPanelFillsItsRectangle) {
+TEST(RenderScene, ThePanelsFillTheirColumnAndTheSceneIsBesideIt) {
   const Rendered& r = rendered();
   ImGui::CreateContext();
   ImGui::StyleColorsDark();
   const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
   ImGui::DestroyContext();
-  const glm::ivec3 want = to8bit({bg.x, bg.y, bg.z});  // drawn opaque: SetNextWindowBgAlpha(1)
+  // The column is drawn at alpha 0.94 over the clear colour: the scene is never drawn under it.
+  const glm::vec3 clear = engine::RenderStyle{}.clearColor;
+  const glm::ivec3 want = to8bit(glm::vec3(bg.x, bg.y, bg.z) * 0.94f + clear * 0.06f);
 
   auto countIn = [&](int x0, int y0, int w, int h, int& background, int& bright) {
     background = bright = 0;
@@ -178,16 +179,21 @@ TEST(RenderScene, SimulationPanelFillsItsRectangle) {
       }
     }
   };
-  const glm::ivec2 corner(sandbox::kSimulationPanel.pos), size(sandbox::kSimulationPanel.size);
-  const int x0 = corner.x, y0 = corner.y, w = size.x, h = size.y;
+  // Inside the column, clear of the menu bar above and the status line below.
+  const sandbox::ScreenRect column = sandbox::panelColumn(1280.0f, 720.0f, 30.0f, 30.0f);
+  EXPECT_NEAR(column.width, 345.6f, 1e-3f);  // 27% of the width
+  const int x0 = static_cast<int>(column.x), y0 = static_cast<int>(column.y);
+  const int w = static_cast<int>(column.width), h = static_cast<int>(column.height);
   int background = 0, bright = 0;
   countIn(x0, y0, w, h, background, bright);
   // Sliders and buttons take their share; the window's own background is still the most of it.
-  EXPECT_GT(background, w * h / 3) << "the panel's background should fill its rectangle";
-  EXPECT_GT(bright, 200) << "the panel should show text";
-  // Just right of the panel the scene shows, not the panel.
-  countIn(x0 + w + 5, y0, 50, h, background, bright);
+  EXPECT_GT(background, w * h / 3) << "the column's background should fill it";
+  EXPECT_GT(bright, 200) << "the column should show text";
+  // Just left of the column the scene shows, not the panels.
+  countIn(x0 - 55, y0, 50, h, background, bright);
   EXPECT_LT(background, 50);
+  EXPECT_EQ(sandbox::sceneView(1280.0f, 720.0f, true).width, column.x);
+  EXPECT_EQ(sandbox::sceneView(1280.0f, 720.0f, false).width, 1280.0f);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "body_colors.h"
+#include "panels.h"
 #include "sandbox_run.h"
 #include "scenes/scene.h"
 
@@ -15,8 +16,10 @@ namespace fs = std::filesystem;
 using testing_gl::countPixels;
 using testing_gl::runSandbox;
 
-// The part of a 1280x720 screenshot between the side panels, above the status line.
-constexpr int kViewX = 390, kViewY = 30, kViewW = 500, kViewH = 640;
+// The part of a 1280x720 screenshot left of the panels' column, between the menu bar and the
+// status line.
+const sandbox::ScreenRect kScene = sandbox::sceneView(1280.0f, 720.0f, true);
+const int kViewX = 0, kViewY = 30, kViewW = static_cast<int>(kScene.width), kViewH = 660;
 
 bool red(int r, int g, int b) {
   return r > 180 && g < 60 && b < 60;
@@ -62,10 +65,10 @@ TEST(SandboxModes, EveryProjectSceneLoadsAndRenders) {
     }
     int visible = 0, drawn = 0;
     for (const glm::vec3& c : centres) {
-      const glm::ivec2 px = testing_gl::toPixel(image, camera, c);
+      const glm::ivec2 px = testing_gl::toSandboxPixel(image, camera, c);
       if (px.x < kViewX || px.x >= kViewX + kViewW || px.y < kViewY || px.y >= kViewY + kViewH) continue;
-      // The crosshair's two lines cross at the centre of the view.
-      if (std::abs(px.x - image.width / 2) < 10 && std::abs(px.y - image.height / 2) < 10) continue;
+      // The crosshair's two lines cross at the centre of the scene.
+      if (std::abs(px.x - kViewW / 2) < 10 && std::abs(px.y - image.height / 2) < 10) continue;
       ++visible;
       const glm::u8vec4 p = image.pixel(px.x, px.y);
       drawn += sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b) ||
@@ -115,7 +118,7 @@ TEST(SandboxModes, ColourBySleepShowsTheSleepingStack) {
   const auto camera = startCamera(s);
   int sleeping = 0, orange = 0, checked = 0;
   for (phys::BodyId id{}; id < s.world.bodies().size(); ++id) {
-    const glm::ivec2 p = testing_gl::toPixel(bySleep, camera, glm::vec3(s.world.bodyPose(id).center));
+    const glm::ivec2 p = testing_gl::toSandboxPixel(bySleep, camera, glm::vec3(s.world.bodyPose(id).center));
     if (p.x < kViewX || p.x >= kViewX + kViewW || p.y < kViewY || p.y >= kViewY + kViewH) continue;
     ++checked;
     // A centre under the crosshair is neither: only those drawn orange by kind are compared.
@@ -147,9 +150,9 @@ TEST(SandboxModes, TheOverlayDrawsEveryRunInItsOwnColour) {
   const scenes::Scene bouncing = run(0.8);
   const auto camera = startCamera(resting);
   const glm::ivec2 a =
-      testing_gl::toPixel(image, camera, glm::vec3(resting.world.bodyPose(phys::BodyId{0}).center));
+      testing_gl::toSandboxPixel(image, camera, glm::vec3(resting.world.bodyPose(phys::BodyId{0}).center));
   const glm::ivec2 b =
-      testing_gl::toPixel(image, camera, glm::vec3(bouncing.world.bodyPose(phys::BodyId{0}).center));
+      testing_gl::toSandboxPixel(image, camera, glm::vec3(bouncing.world.bodyPose(phys::BodyId{0}).center));
   ASSERT_GT(std::abs(a.y - b.y), 40) << "the two runs' boxes should be apart on screen";
   // Run 0 is tinted orange (red over blue), run 1 blue (blue over red), both translucent.
   auto tint = [&](glm::ivec2 at) { return int(image.pixel(at.x, at.y).r) - int(image.pixel(at.x, at.y).b); };
@@ -164,7 +167,7 @@ TEST(SandboxModes, PauseAtStopsTheWorldAtThatStep) {
   const auto camera = startCamera(at10);
   auto boxAt = [&](const scenes::Scene& s) {
     const glm::ivec2 px =
-        testing_gl::toPixel(image, camera, glm::vec3(s.world.bodyPose(phys::BodyId{0}).center));
+        testing_gl::toSandboxPixel(image, camera, glm::vec3(s.world.bodyPose(phys::BodyId{0}).center));
     const glm::u8vec4 p = image.pixel(px.x, px.y);
     return sandbox::looksLike(sandbox::kBoxColor, p.r, p.g, p.b);
   };

@@ -6,6 +6,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "panels.h"
+
 namespace testing_gl {
 
 engine::Image runSandbox(const std::string& args, const std::string& png, int frames) {
@@ -20,11 +22,32 @@ engine::Image runSandbox(const std::string& args, const std::string& png, int fr
   return engine::readPng(file);
 }
 
+namespace {
+
+// `view` in pixels from the top-left corner, as sandbox::ScreenRect counts them.
+glm::ivec2 project(const engine::Image& image, const engine::FirstPersonCamera& camera,
+                   const glm::vec3& world, const sandbox::ScreenRect& view) {
+  const float h = static_cast<float>(image.height);
+  const glm::vec4 viewport(view.x, h - view.y - view.height, view.width, view.height);
+  const glm::vec3 p =
+      glm::project(world, camera.view(), camera.projection(view.width / view.height), viewport);
+  return {static_cast<int>(p.x), static_cast<int>(h - p.y)};
+}
+
+}  // namespace
+
 glm::ivec2 toPixel(const engine::Image& image, const engine::FirstPersonCamera& camera,
                    const glm::vec3& world) {
-  const float w = static_cast<float>(image.width), h = static_cast<float>(image.height);
-  const glm::vec3 p = glm::project(world, camera.view(), camera.projection(w / h), glm::vec4(0, 0, w, h));
-  return {static_cast<int>(p.x), static_cast<int>(h - p.y)};
+  const sandbox::ScreenRect all{0.0f, 0.0f, static_cast<float>(image.width),
+                                static_cast<float>(image.height)};
+  return project(image, camera, world, all);
+}
+
+glm::ivec2 toSandboxPixel(const engine::Image& image, const engine::FirstPersonCamera& camera,
+                          const glm::vec3& world, bool panelsShown) {
+  return project(
+      image, camera, world,
+      sandbox::sceneView(static_cast<float>(image.width), static_cast<float>(image.height), panelsShown));
 }
 
 }  // namespace testing_gl

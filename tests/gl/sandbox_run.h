@@ -17,6 +17,10 @@ engine::Image runSandbox(const std::string& args, const std::string& png, int fr
 /// Pixel (column, row from the top) where a world point lands in `image` seen by `camera`.
 glm::ivec2 toPixel(const engine::Image& image, const engine::FirstPersonCamera& camera,
                    const glm::vec3& world);
+/// The same in a sandbox screenshot, whose scene is drawn left of the panels' column unless they
+/// are hidden (sandbox::sceneView).
+glm::ivec2 toSandboxPixel(const engine::Image& image, const engine::FirstPersonCamera& camera,
+                          const glm::vec3& world, bool panelsShown = true);
 
 /// Pixels in the rectangle for which `test(r, g, b)` holds.
 template <typename Test>

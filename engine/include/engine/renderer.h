@@ -8,6 +8,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "engine/debug_lines.h"
 #include "engine/gpu_mesh.h"
@@ -41,6 +42,9 @@ class Renderer {
 
   /// Sets the viewport, clears colour and depth, enables depth testing.
   void beginFrame(const glm::ivec2& framebufferSize);
+  /// The same, drawing into part of the framebuffer only: x, y (from the bottom-left corner),
+  /// width and height in framebuffer pixels. The whole framebuffer is cleared.
+  void beginFrame(const glm::ivec2& framebufferSize, const glm::ivec4& viewport);
   /// The ground plane { x : normal . x = height } (normal of unit length), centred under the
   /// camera so it never ends. For the normal (0, 1, 0) the grid lines lie on whole x and z.
   void drawGround(const glm::mat4& viewProjection, const glm::vec3& eye, const glm::vec3& normal,
