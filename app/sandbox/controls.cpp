@@ -16,6 +16,12 @@ constexpr Control kControls[] = {
     {"Q / E", "move down / up"},
     {"Shift", "move 4 times faster"},
     {"right mouse + move", "look around"},
+    {"mouse wheel", "zoom: move towards or away from the point under the cursor (or the followed body)"},
+    {"middle mouse + move, or Alt + right mouse + move",
+     "orbit around the point at the crosshair (or the followed body)"},
+    {"double-click",
+     "follow the body under the cursor (the camera moves with it); on nothing, stop following"},
+    {"Z", "frame the scene: move along the view until every body is in it"},
     {"left mouse drag", "pick the body or particle under the cursor and pull it with a spring"},
     {"G", "gravity: uniform (down) or towards a point above the ground"},
     {"Y / H", "gravity stronger / weaker by 1 m/s^2"},
@@ -79,6 +85,8 @@ std::optional<Action> actionForKey(int key, int mods) {
       return Action::ToggleHelp;
     case GLFW_KEY_F2:
       return Action::TogglePanels;
+    case GLFW_KEY_Z:
+      return Action::FrameScene;
     case GLFW_KEY_F12:
       return Action::Screenshot;
     default:

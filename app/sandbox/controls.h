@@ -28,6 +28,7 @@ enum class Action {
   SpawnCapsuleRagdoll,  ///< Bullet's layout (physics/capsule_ragdoll.h)
   ToggleHelp,
   TogglePanels,  ///< hide or show the side column (the scene fills the window)
+  FrameScene,    ///< move the camera along its view until every body is in it
   Screenshot,    ///< a PNG of the window next to the scene file
 };
 

@@ -16,6 +16,7 @@
 #include "engine/error.h"
 #include "engine/image.h"
 #include "fileio/files.h"
+#include "scene_bounds.h"
 #include "screenshot.h"
 
 namespace sandbox {
@@ -30,6 +31,8 @@ constexpr std::chrono::milliseconds kStepBudget{30};
 constexpr float kCameraSpeed = 4.0f;  // unit: m/s; Shift makes it 4 times faster
 constexpr float kLookDegreesPerPixel = 0.15f;
 constexpr float kSpawnDistance = 2.0f;  // unit: m; in front of the eye, at the crosshair
+constexpr float kZoomPerNotch = 0.85f;  // of the distance to the focus, per wheel notch in
+constexpr float kOrbitDegreesPerPixel = 0.3f;
 
 Sandbox* owner(GLFWwindow* w) {
   return static_cast<Sandbox*>(glfwGetWindowUserPointer(w));
@@ -42,6 +45,9 @@ void mouseButtonCallback(GLFWwindow* w, int button, int action, int) {
 }
 void focusCallback(GLFWwindow* w, int focused) {
   owner(w)->onFocus(focused == GLFW_TRUE);
+}
+void scrollCallback(GLFWwindow* w, double, double y) {
+  owner(w)->onScroll(y);
 }
 
 engine::WindowDesc windowDesc(const Options& options, const UserSettings& user) {
@@ -102,6 +108,7 @@ Sandbox::Sandbox(const Options& options)
   glfwSetKeyCallback(window_.handle(), keyCallback);
   glfwSetMouseButtonCallback(window_.handle(), mouseButtonCallback);
   glfwSetWindowFocusCallback(window_.handle(), focusCallback);
+  glfwSetScrollCallback(window_.handle(), scrollCallback);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   // The panels sit in a column the sandbox places every frame, so there is no window layout to
@@ -150,8 +157,13 @@ void Sandbox::onMouseButton(int button, int action) {
     input_.buttonUp(button);
 }
 
+void Sandbox::onScroll(double amount) {
+  scroll_ += amount;
+}
+
 void Sandbox::onFocus(bool focused) {
   if (focused) return;
+  orbiting_ = false;
   // The key-up events go to whichever window has focus now: forget every held key and button,
   // so the camera cannot keep flying (the seed's stuck-key bug) nor a drag stay attached.
   input_.focusLost();
@@ -168,6 +180,7 @@ void Sandbox::openScene(const std::filesystem::path& file) {
     return;
   }
   addRecentFile(user_, std::filesystem::absolute(file).string());
+  stopFollowing();
   camera_ =
       engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   ui_.message = session_->status();
@@ -190,6 +203,7 @@ void Sandbox::perform(Action action) {
       break;
     case Action::ClearScene:
       s.clear();
+      stopFollowing();
       ui_.message = s.status();
       break;
     case Action::CycleDrawMode:
@@ -244,6 +258,9 @@ void Sandbox::perform(Action action) {
       break;
     case Action::TogglePanels:
       ui_.panelsHidden = !ui_.panelsHidden;
+      break;
+    case Action::FrameScene:
+      frameScene();
       break;
     case Action::Screenshot:
       screenshotDue_ = true;  // taken once the frame is drawn
@@ -348,7 +365,8 @@ void Sandbox::moveCamera(float frameSeconds) {
   glfwGetCursorPos(window_.handle(), &x, &y);
   // Look only while the right button is held, and only if the press began outside the panels,
   // so ImGui stays usable with the mouse.
-  if (input_.buttonPressed(GLFW_MOUSE_BUTTON_RIGHT) && !io.WantCaptureMouse) looking_ = true;
+  const bool alt = input_.held(GLFW_KEY_LEFT_ALT) || input_.held(GLFW_KEY_RIGHT_ALT);  // Alt orbits
+  if (input_.buttonPressed(GLFW_MOUSE_BUTTON_RIGHT) && !io.WantCaptureMouse && !alt) looking_ = true;
   if (!input_.buttonHeld(GLFW_MOUSE_BUTTON_RIGHT)) looking_ = false;
   if (looking_) {
     camera_.turn(static_cast<float>(x - lastCursorX_) * kLookDegreesPerPixel,
@@ -362,6 +380,86 @@ void Sandbox::moveCamera(float frameSeconds) {
   const float step = kCameraSpeed * (fast ? 4.0f : 1.0f) * frameSeconds;
   camera_.move((held(GLFW_KEY_D) - held(GLFW_KEY_A)) * step, (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * step,
                (held(GLFW_KEY_W) - held(GLFW_KEY_S)) * step);
+}
+
+glm::vec3 Sandbox::focusPoint(const glm::vec3& origin, const glm::vec3& direction) const {
+  const phys::World& world = session_->scene().world;
+  if (followed_) return glm::vec3(world.bodyPose(*followed_).center);
+  if (const auto hit = world.raycast(phys::Vec3(origin), phys::Vec3(direction), 1000.0))
+    return glm::vec3(hit->point);
+  if (const auto bounds = sceneBounds(world)) {
+    const glm::vec3 middle = 0.5f * (bounds->first + bounds->second);
+    return origin + direction * std::max(glm::dot(middle - origin, direction), 1.0f);
+  }
+  return origin + direction * 5.0f;
+}
+
+void Sandbox::frameScene() {
+  const auto bounds = sceneBounds(session_->scene().world);
+  if (!bounds) {
+    ui_.message = "nothing to frame: the scene is empty";
+    return;
+  }
+  const ScreenRect view = sceneRect();
+  camera_.frame(bounds->first, bounds->second, view.width / std::max(view.height, 1.0f));
+  if (followed_) followedAt_ = glm::vec3(session_->scene().world.bodyPose(*followed_).center);
+  ui_.message = "framed the scene";
+}
+
+void Sandbox::stopFollowing() {
+  followed_.reset();
+}
+
+void Sandbox::zoomOrbitFollow() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const phys::World& world = session_->scene().world;
+  if (followed_ && *followed_ >= world.bodies().size()) followed_.reset();  // the world changed under it
+  if (followed_) {
+    const glm::vec3 at(world.bodyPose(*followed_).center);
+    camera_.position += at - followedAt_;
+    followedAt_ = at;
+  }
+  if (scroll_ != 0.0 && !io.WantCaptureMouse) {
+    const auto [origin, direction] = cursorRay();
+    camera_.dolly(focusPoint(glm::vec3(origin), glm::vec3(direction)),
+                  std::pow(kZoomPerNotch, static_cast<float>(scroll_)));
+  }
+  scroll_ = 0.0;
+
+  double x = 0.0, y = 0.0;
+  glfwGetCursorPos(window_.handle(), &x, &y);
+  const bool alt = input_.held(GLFW_KEY_LEFT_ALT) || input_.held(GLFW_KEY_RIGHT_ALT);
+  const bool orbitPressed = input_.buttonPressed(GLFW_MOUSE_BUTTON_MIDDLE) ||
+                            (alt && input_.buttonPressed(GLFW_MOUSE_BUTTON_RIGHT));
+  if (orbitPressed && !io.WantCaptureMouse) {
+    orbiting_ = true;
+    orbitPivot_ = focusPoint(camera_.position, camera_.forward());
+  }
+  if (!input_.buttonHeld(GLFW_MOUSE_BUTTON_MIDDLE) && !input_.buttonHeld(GLFW_MOUSE_BUTTON_RIGHT))
+    orbiting_ = false;
+  if (orbiting_) {
+    if (followed_) orbitPivot_ = followedAt_;
+    camera_.orbit(orbitPivot_, static_cast<float>(x - orbitCursorX_) * kOrbitDegreesPerPixel,
+                  static_cast<float>(orbitCursorY_ - y) * kOrbitDegreesPerPixel);
+  }
+  orbitCursorX_ = x;
+  orbitCursorY_ = y;
+
+  // Double-click: follow the body under the cursor, or stop on nothing.
+  if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && !io.WantCaptureMouse) {
+    const auto [origin, direction] = cursorRay();
+    const auto hit = world.raycast(origin, direction, 1000.0);
+    if (hit && hit->box) {
+      followed_ = *hit->box;
+      followedAt_ = glm::vec3(world.bodyPose(*followed_).center);
+      const std::string& name = world.bodies()[*followed_].name;
+      ui_.message = "following " + (name.empty() ? "body " + std::to_string(*followed_) : name) +
+                    "; double-click on nothing to stop";
+    } else if (followed_) {
+      followed_.reset();
+      ui_.message = "stopped following";
+    }
+  }
 }
 
 void Sandbox::updateDrag() {
@@ -535,6 +633,7 @@ int Sandbox::run() {
       updateDrag();
     }
     advancePhysics(frameSeconds);
+    if (interactive_) zoomOrbitFollow();
     input_.endFrame();
     const glm::ivec2 size = window_.framebufferSize();
     if (size.x == 0 || size.y == 0) {

@@ -39,6 +39,7 @@ class Sandbox {
   void onKey(int key, int action, int mods);
   void onMouseButton(int button, int action);
   void onFocus(bool focused);
+  void onScroll(double amount);
 
  private:
   void saveUserSettingsOnExit();
@@ -48,6 +49,14 @@ class Sandbox {
   void advancePhysics(double frameSeconds);
   void stepInBackground(double frameSeconds);
   void moveCamera(float frameSeconds);
+  /// The wheel's zoom, the orbit and following a body (moveCamera does the first-person moves).
+  void zoomOrbitFollow();
+  /// What the wheel zooms to (along the ray under the cursor) and the orbit turns about (along
+  /// the view): the followed body's centre, else the first body along the ray, else the ray's
+  /// point nearest the middle of the scene.
+  glm::vec3 focusPoint(const glm::vec3& origin, const glm::vec3& direction) const;
+  void frameScene();
+  void stopFollowing();
   void updateDrag();
   /// The ray under the cursor, from the camera: origin and unit direction.
   std::pair<phys::Vec3, phys::Vec3> cursorRay() const;
@@ -77,8 +86,14 @@ class Sandbox {
   double accumulator_ = 0.0;      // unit: s; simulated time owed to the clock
   bool stepWhilePaused_ = false;  // the background step is N's, which pausing does not cancel
   double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
+  double orbitCursorX_ = 0.0, orbitCursorY_ = 0.0;
   bool looking_ = false;
   bool screenshotDue_ = false;  // F12: taken after the next frame is drawn
+  double scroll_ = 0.0;         // wheel notches since the last frame, towards the scene positive
+  bool orbiting_ = false;
+  glm::vec3 orbitPivot_{0.0f};
+  std::optional<phys::BodyId> followed_;  // the body the camera moves with
+  glm::vec3 followedAt_{0.0f};            // its centre when the camera last moved with it
 };
 
 /// Whole program: parses arguments, runs, reports errors. Returns the exit code.

@@ -45,4 +45,44 @@ void FirstPersonCamera::turn(float yawDegrees, float pitchDegrees) {
   pitch = std::clamp(pitch + pitchDegrees, -kMaxPitch, kMaxPitch);
 }
 
+void FirstPersonCamera::orbit(const glm::vec3& pivot, float yawDegrees, float pitchDegrees) {
+  const float distance = glm::length(position - pivot);
+  *this = lookingAt(position, pivot);
+  turn(yawDegrees, pitchDegrees);
+  position = pivot - forward() * distance;
+}
+
+void FirstPersonCamera::dolly(const glm::vec3& pivot, float factor) {
+  const glm::vec3 away = position - pivot;
+  const float distance = glm::length(away);
+  if (!(distance > 0.0f) || !(factor > 0.0f)) return;
+  position = pivot + away * (std::max(distance * factor, 2.0f * nearPlane) / distance);
+}
+
+void FirstPersonCamera::frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float fill) {
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const glm::vec3 f = forward();
+  const glm::mat4 proj = projection(aspect);
+  // The corners' places in the view shrink towards the middle as the camera backs away: the
+  // nearest distance at which all of them are within `fill`, by bisection.
+  auto fits = [&](float distance) {
+    const glm::mat4 v = glm::lookAt(centre - f * distance, centre, glm::vec3(0.0f, 1.0f, 0.0f));
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+      const glm::vec4 eye = v * glm::vec4(corner, 1.0f);
+      if (eye.z > -nearPlane) return false;
+      const glm::vec4 clip = proj * eye;
+      if (std::abs(clip.x / clip.w) > fill || std::abs(clip.y / clip.w) > fill) return false;
+    }
+    return true;
+  };
+  float nearer = nearPlane, farther = std::max(farPlane * 0.5f, 1.0f);
+  if (fits(nearer)) farther = nearer;
+  for (int i = 0; i < 60 && farther - nearer > 1e-4f * farther; ++i) {
+    const float middle = 0.5f * (nearer + farther);
+    (fits(middle) ? farther : nearer) = middle;
+  }
+  position = centre - f * farther;
+}
+
 }  // namespace engine

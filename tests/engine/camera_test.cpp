@@ -1,4 +1,6 @@
 // The first-person camera's angles, directions and matrices agree with each other.
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -49,6 +51,48 @@ TEST(Camera, MoveFollowsTheViewButUpIsWorldUp) {
   expectNear(c.position, {1, 2, 0}, 1e-6f);
   c.move(0.0f, 0.0f, 1.0f);
   expectNear(c.position, glm::vec3(1, 2, 0) + c.forward(), 1e-6f);
+}
+
+// The sandbox's orbit (middle drag), wheel zoom and framing key.
+TEST(Camera, OrbitKeepsTheDistanceAndEndsLookingAtThePivot) {
+  auto c = engine::FirstPersonCamera::lookingAt({0.0f, 2.0f, 8.0f}, {0.0f, 1.0f, 0.0f});
+  const glm::vec3 pivot{1.0f, 1.0f, -1.0f};
+  const float distance = glm::length(c.position - pivot);
+  c.orbit(pivot, 40.0f, -15.0f);
+  EXPECT_NEAR(glm::length(c.position - pivot), distance, 1e-4f);
+  expectNear(c.forward(), glm::normalize(pivot - c.position), 1e-5f);
+  const auto looking = engine::FirstPersonCamera::lookingAt(c.position, pivot);
+  EXPECT_NEAR(c.yaw, looking.yaw, 1e-3f);
+}
+
+TEST(Camera, DollyMovesAlongTheLineToThePivotAndStopsShortOfIt) {
+  engine::FirstPersonCamera c;
+  const glm::vec3 pivot{3.0f, 0.0f, -4.0f}, from = c.position;
+  c.dolly(pivot, 0.5f);
+  expectNear(c.position, pivot + (from - pivot) * 0.5f, 1e-5f);
+  const float yaw = c.yaw;
+  for (int i = 0; i < 200; ++i) c.dolly(pivot, 0.5f);
+  EXPECT_NEAR(glm::length(c.position - pivot), 2.0f * c.nearPlane, 1e-5f);
+  EXPECT_EQ(c.yaw, yaw);  // the view's direction is the camera's own
+}
+
+TEST(Camera, FrameFitsTheBoxTightlyInTheMiddleOfTheView) {
+  auto c = engine::FirstPersonCamera::lookingAt({5.0f, 6.0f, 9.0f}, {0.0f, 0.0f, 0.0f});
+  const float yaw = c.yaw, pitch = c.pitch, aspect = 934.0f / 720.0f;
+  const glm::vec3 lo{-1.0f, 0.0f, -0.5f}, hi{2.0f, 6.0f, 0.5f};
+  c.frame(lo, hi, aspect, 0.8f);
+  EXPECT_EQ(c.yaw, yaw);
+  EXPECT_EQ(c.pitch, pitch);
+  float most = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+    const glm::vec4 clip = c.projection(aspect) * c.view() * glm::vec4(corner, 1.0f);
+    most = std::max({most, std::abs(clip.x / clip.w), std::abs(clip.y / clip.w)});
+  }
+  EXPECT_LE(most, 0.8f);
+  EXPECT_GE(most, 0.799f);  // no farther than it needs to be
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  expectNear(glm::normalize(centre - c.position), c.forward(), 1e-5f);
 }
 
 }  // namespace

@@ -27,6 +27,15 @@ struct FirstPersonCamera {
   void move(float rightward, float upward, float forwardward);
   /// Turns by the given degrees; pitch is clamped.
   void turn(float yawDegrees, float pitchDegrees);
+  /// Turns by the given degrees about `pivot`, staying as far from it and ending up looking at it
+  /// (the orbit of MuJoCo's and Jolt's viewers).
+  void orbit(const glm::vec3& pivot, float yawDegrees, float pitchDegrees);
+  /// Moves along the line to `pivot`, to `factor` times the distance from it (< 1 nearer), so the
+  /// pivot stays where it is on the screen; never nearer than twice the near plane.
+  void dolly(const glm::vec3& pivot, float factor);
+  /// Turned as it is, moved along its view so that the box [lo, hi] is in the middle of the view
+  /// and fills `fill` of its half-width or half-height, whichever is reached first.
+  void frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float fill = 0.85f);
 };
 
 }  // namespace engine
