@@ -9,8 +9,11 @@ namespace sandbox {
 
 inline constexpr glm::vec3 kBoxColor{0.90f, 0.50f, 0.15f};       ///< orange
 inline constexpr glm::vec3 kParticleColor{0.20f, 0.35f, 0.85f};  ///< blue
-inline constexpr float kParticleDrawSize = 0.08f;                ///< unit: m; edge of a particle's cube
-inline constexpr glm::vec3 kSleepingColor{0.45f, 0.50f, 0.60f};  ///< grey-blue: an island asleep
+inline constexpr float kParticleDrawSize = 0.08f;  ///< unit: m; least diameter of a particle's sphere
+inline constexpr glm::vec3 kLooseStickColor{0.80f, 0.82f, 0.88f};  ///< light grey: a stick no mesh covers
+inline constexpr glm::vec3 kTrailColor{0.85f, 0.25f, 0.55f};       ///< magenta: Draw > trails
+inline constexpr glm::vec3 kExactColor{0.10f, 0.75f, 0.30f};       ///< green: the scene's exact answers
+inline constexpr glm::vec3 kSleepingColor{0.45f, 0.50f, 0.60f};    ///< grey-blue: an island asleep
 
 /// Body `id`'s colour as `coloring` asks, before its brightness (SceneView shades each body).
 glm::vec3 bodyColor(const phys::World& world, phys::BodyId id, BodyColoring coloring);

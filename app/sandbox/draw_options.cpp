@@ -1,5 +1,9 @@
 #include "draw_options.h"
 
+#include <algorithm>
+
+#include "body_colors.h"
+
 namespace sandbox {
 
 std::string_view toString(DrawMode mode) {
@@ -38,6 +42,12 @@ DrawMode nextDrawMode(DrawMode mode) {
       return DrawMode::Filled;
   }
   return DrawMode::Filled;
+}
+
+float particleRadiusFor(float cameraDistance) {
+  // 0.008 of the distance: with a 60 degree field of view, 720 pixels span 1.15 times the
+  // distance, so the sphere is about 10 pixels across there.
+  return std::max(0.008f * cameraDistance, kParticleDrawSize * 0.5f);
 }
 
 }  // namespace sandbox

@@ -30,8 +30,16 @@ struct DrawOptions {
   bool sticks = false;    ///< constraints drawn over the meshes in the other modes
   bool contacts = false;  ///< contact points and normals
   bool bounds = false;    ///< each box's axis-aligned bounds
-  bool particles = true;  ///< loose particles as small cubes
+  bool particles = true;  ///< loose particles as lit spheres
+  bool trails = false;    ///< the paths of loose particles and of the followed body (trails.h)
+  bool exact = true;      ///< the scene's exact answers (<expect kind="position">) as green crosses
   BodyColoring coloring = BodyColoring::Kind;
+  /// Radius of a loose particle's sphere (unit: m), sized to the scene by particleRadiusFor.
+  float particleRadius = 0.04f;
 };
+
+/// A loose particle's radius for a scene seen from `eye` looking at `target`: about 10 pixels
+/// across at that distance in a 720-pixel-high window, never under half kParticleDrawSize.
+float particleRadiusFor(float cameraDistance);
 
 }  // namespace sandbox

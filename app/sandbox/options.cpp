@@ -39,7 +39,7 @@ std::optional<std::array<bool, 4>> parseSections(const std::string& text) {
 }  // namespace
 
 std::string usage() {
-  return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers]\n"
+  return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers] [--trails]\n"
          "               [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]\n"
          "               [--hide-panels] [--unfold SECTIONS] [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
@@ -48,6 +48,7 @@ std::string usage() {
          "                     each frame advances the simulation by one step\n"
          "  --draw MODE        filled, wireframe or constraints (default: the last one used)\n"
          "  --markers          green boxes on vertices moved by box-box contacts (key C)\n"
+         "  --trails           the paths of loose particles and of the followed body\n"
          "  --color-by WHAT    kind, island or sleep: what bodies' colours say (default kind)\n"
          "  --threads N        threads the step may use, 1 to 64, in every scene opened\n"
          "                     (default: each scene's own, else 1)\n"
@@ -111,6 +112,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
     } else if (a == "--markers") {
       o.markers = true;
+    } else if (a == "--trails") {
+      o.trails = true;
     } else if (a == "--hide-panels") {
       o.hidePanels = true;
     } else if (a == "--unfold") {

@@ -1,7 +1,7 @@
 #pragma once
 // The sandbox's command line:
 //   sandbox [SCENE] [--screenshot FILE --frames N] [--draw filled|wireframe|constraints]
-//           [--markers] [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]
+//           [--markers] [--trails] [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]
 //           [--hide-panels] [--unfold SECTIONS] [--data DIR] [--help]
 #include <array>
 #include <filesystem>
@@ -21,6 +21,7 @@ struct Options {
   std::filesystem::path dataDir;  ///< holds shaders/ and assets/; empty: the build's default
   std::optional<DrawMode> draw;   ///< given: overrides the remembered draw mode
   bool markers = false;           ///< the seed's collision-vertex markers from the start
+  bool trails = false;            ///< Draw > trails from the start
   bool hidePanels = false;        ///< the side column hidden from the start (F2 shows it)
   /// Which of the column's sections (kSectionNames' order) start unfolded; none given: Simulation
   /// and Stats.

@@ -108,6 +108,7 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   ui.showStats = user.showStats;
   ui.draw.mode = options.draw.value_or(parseDrawMode(user.drawMode).value_or(DrawMode::Filled));
   ui.draw.markers = options.markers || user.markers;
+  ui.draw.trails = options.trails;
   ui.panelsHidden = options.hidePanels;
   if (options.unfold) ui.unfolded = *options.unfold;
   if (options.coloring) ui.draw.coloring = *options.coloring;
@@ -246,6 +247,10 @@ void drawSection(UiState& ui) {
   ImGui::Checkbox("particles", &ui.draw.particles);
   ImGui::SameLine();
   ImGui::Checkbox("sticks over meshes", &ui.draw.sticks);
+  ImGui::SameLine();
+  ImGui::Checkbox("trails", &ui.draw.trails);
+  ImGui::SameLine();
+  ImGui::Checkbox("exact answers", &ui.draw.exact);
   int coloring = static_cast<int>(ui.draw.coloring);
   ImGui::Text("colour by");
   ImGui::SameLine();

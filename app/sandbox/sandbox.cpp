@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <limits>
 
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
@@ -12,6 +15,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include "body_colors.h"
 #include "controls.h"
 #include "engine/error.h"
 #include "engine/image.h"
@@ -98,6 +102,7 @@ Sandbox::Sandbox(const Options& options)
   camera_ =
       engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   applyRemembered(user_, options_, ui_);
+  fitToScene();
   if (!options_.overlay.empty()) {
     const std::string error = session_->startOverlay(options_.overlay);
     if (!error.empty()) throw std::invalid_argument("--overlay: " + error);
@@ -181,6 +186,8 @@ void Sandbox::openScene(const std::filesystem::path& file) {
   }
   addRecentFile(user_, std::filesystem::absolute(file).string());
   stopFollowing();
+  trails_.clear();
+  fitToScene();
   camera_ =
       engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   ui_.message = session_->status();
@@ -406,6 +413,35 @@ void Sandbox::frameScene() {
   ui_.message = "framed the scene";
 }
 
+void Sandbox::fitToScene() {
+  const scenes::CameraStart& c = session_->scene().camera;
+  ui_.draw.particleRadius = particleRadiusFor(glm::length(c.eye - c.target));
+}
+
+// An analytic scene's <expect kind="position" pos="x y z" at="t"> give where a body must be at
+// time t: each is a green cross, so the simulated body is seen passing by (or missing) it. The
+// one whose time is nearest the world's is drawn larger.
+void Sandbox::drawExactAnswers() {
+  const scenes::Scene& scene = session_->scene();
+  const double now = scene.world.time();
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const scenes::Expectation& e : scene.expectations) {
+    const std::string* at = e.find("at");
+    if (at != nullptr && e.find("pos") != nullptr)
+      nearest = std::min(nearest, std::abs(std::atof(at->c_str()) - now));
+  }
+  for (const scenes::Expectation& e : scene.expectations) {
+    const std::string* kind = e.find("kind");
+    const std::string* pos = e.find("pos");
+    const std::string* at = e.find("at");
+    if (kind == nullptr || *kind != "position" || pos == nullptr || at == nullptr) continue;
+    glm::vec3 p(0.0f);
+    if (std::sscanf(pos->c_str(), "%f %f %f", &p.x, &p.y, &p.z) != 3) continue;  // the loader checked it
+    const bool current = std::abs(std::atof(at->c_str()) - now) == nearest;
+    renderer_->lines().addPoint(p, ui_.draw.particleRadius * (current ? 5.0f : 3.0f), kExactColor);
+  }
+}
+
 void Sandbox::stopFollowing() {
   followed_.reset();
 }
@@ -580,6 +616,13 @@ void Sandbox::renderFrame() {
       view_->draw(run.scene->world, viewProjection, ui_.draw, Tint{run.color});
   } else {
     view_->draw(session_->scene().world, viewProjection, ui_.draw);
+  }
+  if (ui_.draw.exact) drawExactAnswers();
+  if (ui_.draw.trails) {
+    trails_.record(session_->scene().world, followed_);
+    trails_.draw(renderer_->lines(), kTrailColor);
+  } else {
+    trails_.clear();
   }
   if (const auto line = session_->dragLine()) {
     renderer_->lines().addLine(glm::vec3(line->first), glm::vec3(line->second), glm::vec3(1.0f, 1.0f, 0.3f));

@@ -18,6 +18,7 @@
 #include "panels.h"
 #include "scene_view.h"
 #include "session.h"
+#include "trails.h"
 #include "user_settings.h"
 
 namespace sandbox {
@@ -57,6 +58,9 @@ class Sandbox {
   glm::vec3 focusPoint(const glm::vec3& origin, const glm::vec3& direction) const;
   void frameScene();
   void stopFollowing();
+  /// What is sized to the scene opened: loose particles, by its camera's distance.
+  void fitToScene();
+  void drawExactAnswers();
   void updateDrag();
   /// The ray under the cursor, from the camera: origin and unit direction.
   std::pair<phys::Vec3, phys::Vec3> cursorRay() const;
@@ -94,6 +98,7 @@ class Sandbox {
   glm::vec3 orbitPivot_{0.0f};
   std::optional<phys::BodyId> followed_;  // the body the camera moves with
   glm::vec3 followedAt_{0.0f};            // its centre when the camera last moved with it
+  Trails trails_;
 };
 
 /// Whole program: parses arguments, runs, reports errors. Returns the exit code.

@@ -115,15 +115,35 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
       }
     }
     if (options.particles) {
-      const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(kParticleDrawSize));
+      // A sphere: a capsule with no core.
+      using Cache = engine::CapsuleMeshCache;
+      const float radius = std::clamp(options.particleRadius, Cache::kResolution, Cache::kLargest);
+      const engine::GpuMesh* sphere = nullptr;  // made only for a world with loose particles
       for (std::size_t i = 0; i < world.particles().size(); ++i) {
         if (bodyOf_[i] != phys::kNoBody) continue;
-        const glm::mat4 model =
-            glm::translate(glm::mat4(1.0f), glm::vec3(world.particles().position[i])) * scale;
-        renderer_.drawMesh(*boxMesh_, viewProjection, model, tint ? tint->color : kParticleColor, alpha);
+        if (sphere == nullptr) sphere = &capsuleMeshes_.get(radius, 0.0f, capsuleDetail);
+        const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(world.particles().position[i]));
+        renderer_.drawMesh(*sphere, viewProjection, model, tint ? tint->color : kParticleColor, alpha);
       }
     }
     renderer_.setWireframe(false);
+    // Sticks between loose particles (a chain, a pendulum) have no mesh: lines show them.
+    if (!options.sticks) {
+      const glm::vec3 color = tint ? tint->color : kLooseStickColor;
+      for (const phys::Stick& stick : world.sticks()) {
+        if (bodyOf_[stick.a] != phys::kNoBody || bodyOf_[stick.b] != phys::kNoBody) continue;
+        renderer_.lines().addLine(glm::vec3(world.particles().position[stick.a]),
+                                  glm::vec3(world.particles().position[stick.b]), color);
+      }
+    }
+  } else if (options.particles) {
+    // Constraints mode draws lines only: a loose particle is a point, or a particle with no
+    // stick (an orbit's body, a projectile) would not be drawn at all.
+    for (std::size_t i = 0; i < world.particles().size(); ++i) {
+      if (bodyOf_[i] != phys::kNoBody) continue;
+      renderer_.lines().addPoint(glm::vec3(world.particles().position[i]), 2.0f * options.particleRadius,
+                                 tint ? tint->color : kParticleColor);
+    }
   }
   capsuleMeshes_.trim();
   engine::PhysicsDebugDraw debugDraw(renderer_.lines());

@@ -1,9 +1,9 @@
 #pragma once
 // Draws a world with the renderer: boxes with the box model, ragdoll parts (boxes held by a
 // joint) with the limb model, capsules (Shape::Capsule bodies, jointed or not) with a capsule
-// mesh built in code for their size, loose particles as small cubes, and the debug layers the
-// draw options ask for. Models come from assets/models/ through assimp; a missing or broken file
-// falls back to a cube built in code, with a warning.
+// mesh built in code for their size, loose particles as lit spheres (sticks between them as
+// lines), and the debug layers the draw options ask for. Models come from assets/models/ through assimp; a
+// missing or broken file falls back to a cube built in code, with a warning.
 #include <filesystem>
 #include <memory>
 #include <optional>
