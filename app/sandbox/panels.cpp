@@ -226,6 +226,7 @@ void worldSection(Session& session, UiState& ui) {
   }
   ImGui::Text("ground: %s", w.ground ? "yes" : "none");
   // What F, R and T throw: boxes of this model, ragdolls of its kind.
+  ImGui::SliderFloat("throw speed (m/s)", &ui.throwSpeed, 0.0f, 40.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
   int thrown = static_cast<int>(session.throwModel());
   if (ImGui::Combo("thrown bodies", &thrown, "corners\0tetra\0rigid\0"))
     session.setThrowModel(static_cast<phys::BodyModel>(thrown));

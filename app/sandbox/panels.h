@@ -49,6 +49,7 @@ struct UiState {
   bool stepOnce = false;         ///< set by Step or N; cleared when done
   bool reloadRequested = false;  ///< set by Reset; the sandbox reloads (and shows any error)
   float timeScale = 1.0f;        ///< simulated seconds per real second
+  float throwSpeed = static_cast<float>(kThrowSpeed);  ///< unit: m/s; F, R and T throw at it
   DrawOptions draw;
   std::array<char, 128> overlayText[kMaxOverlayRuns] = {};  ///< the overlay panel's settings
   // For the Stats panel.

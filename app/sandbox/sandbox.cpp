@@ -254,9 +254,10 @@ void Sandbox::perform(Action action) {
       const phys::Vec3 forward(camera_.forward());
       const phys::Vec3 at = phys::Vec3(camera_.position) + forward * static_cast<double>(kSpawnDistance);
       if (action == Action::SpawnBox)
-        s.spawnBox(at, forward * kThrowSpeed);
+        s.spawnBox(at, forward * static_cast<double>(ui_.throwSpeed));
       else
-        s.spawnRagdoll(at, forward * kThrowSpeed, action == Action::SpawnCapsuleRagdoll);
+        s.spawnRagdoll(at, forward * static_cast<double>(ui_.throwSpeed),
+                       action == Action::SpawnCapsuleRagdoll);
       ui_.message = s.status();
       break;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 
@@ -289,15 +290,47 @@ std::string Session::changeDamping(double delta) {
   return applyWorldSettings(s, "wind resistance " + std::to_string(s.damping).substr(0, 5) + " 1/s");
 }
 
+std::optional<phys::Vec3> Session::clearSpot(const phys::Vec3& at, double room) const {
+  const phys::World& w = scene().world;
+  auto clear = [&](const phys::Vec3& p) {
+    for (phys::BodyId id{}; id < w.bodies().size(); ++id) {
+      const double reach = glm::length(w.bodies()[id].halfExtents);  // the body's bounding sphere
+      if (glm::length(w.bodyPose(id).center - p) < room + reach) return false;
+    }
+    const auto owners = w.particleBodies();
+    for (std::size_t i = 0; i < owners.size(); ++i) {
+      if (owners[i] == phys::kNoBody && glm::length(w.particles().position[i] - p) < room) return false;
+    }
+    return true;
+  };
+  for (int k = 0; k < kThrowTries; ++k) {
+    const phys::Vec3 p = at + phys::Vec3(0.0, 2.0 * room * k, 0.0);
+    if (clear(p)) return p;
+  }
+  return std::nullopt;
+}
+
+std::string Session::placed(const std::string& done, const phys::Vec3& asked, const phys::Vec3& spot) {
+  if (spot == asked) return done;
+  char higher[32];
+  std::snprintf(higher, sizeof higher, "%.1f", spot.y - asked.y);
+  return done + ", " + higher + " m higher: a body was in the way";
+}
+
 std::string Session::spawnBox(const phys::Vec3& at, const phys::Vec3& velocity) {
+  const std::optional<phys::Vec3> spot = clearSpot(at, kBoxThrowRoom);
+  if (!spot) {
+    status_ = "nothing thrown: bodies in the way at the crosshair and above it";
+    return status_;
+  }
   phys::BodyDesc d;
   d.name = "thrown box " + std::to_string(spawned_ + 1);
-  d.center = at;
+  d.center = *spot;
   d.size = phys::Vec3(kSpawnBoxSize);
   d.mass = kSpawnBoxMass;
   d.model = throwModel_;
   d.velocity = velocity;
-  return spawn(at, "threw a box", [&](phys::World& w) { w.addBody(d); });
+  return spawn(*spot, placed("threw a box", at, *spot), [&](phys::World& w) { w.addBody(d); });
 }
 
 std::string Session::spawn(const phys::Vec3& at, const std::string& done,
@@ -325,6 +358,11 @@ std::string Session::spawn(const phys::Vec3& at, const std::string& done,
 }
 
 std::string Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules) {
+  const std::optional<phys::Vec3> spot = clearSpot(at, kRagdollThrowRoom);
+  if (!spot) {
+    status_ = "nothing thrown: bodies in the way at the crosshair and above it";
+    return status_;
+  }
   phys::RagdollDesc d;
   d.name = (capsules ? "thrown capsule ragdoll " : "thrown ragdoll ") + std::to_string(spawned_ + 1);
   // Face the way it is thrown, lying forward so that it flies head first: from standing
@@ -332,12 +370,14 @@ std::string Session::spawnRagdoll(const phys::Vec3& at, const phys::Vec3& veloci
   const double heading = std::atan2(velocity.x, velocity.z);
   d.orientation =
       glm::angleAxis(heading, phys::Vec3(0, 1, 0)) * glm::angleAxis(glm::radians(90.0), phys::Vec3(1, 0, 0));
-  d.hips = at;
+  d.hips = *spot;
   d.velocity = velocity;
   d.model = phys::ragdollModelOf(throwModel_);
-  if (capsules)
-    return spawn(at, "threw a capsule ragdoll", [&](phys::World& w) { phys::addCapsuleRagdoll(w, d); });
-  return spawn(at, "threw a ragdoll", [&](phys::World& w) { phys::addRagdoll(w, d); });
+  if (capsules) {
+    return spawn(*spot, placed("threw a capsule ragdoll", at, *spot),
+                 [&](phys::World& w) { phys::addCapsuleRagdoll(w, d); });
+  }
+  return spawn(*spot, placed("threw a ragdoll", at, *spot), [&](phys::World& w) { phys::addRagdoll(w, d); });
 }
 
 bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {

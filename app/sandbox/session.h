@@ -29,7 +29,12 @@ inline constexpr glm::vec3 kRunColors[kMaxOverlayRuns] = {
 /// The spawned box of F: a 0.5 m cube of 10 kg thrown at kThrowSpeed.
 inline constexpr double kSpawnBoxSize = 0.5;   ///< unit: m
 inline constexpr double kSpawnBoxMass = 10.0;  ///< unit: kg
-inline constexpr double kThrowSpeed = 8.0;     ///< unit: m/s
+inline constexpr double kThrowSpeed = 8.0;     ///< unit: m/s; the World panel's throw speed at first
+/// How much room a throw needs: a sphere around its centre that no body may reach into (unit: m).
+inline constexpr double kBoxThrowRoom = 0.45;      ///< the 0.5 m cube's half diagonal, and a little
+inline constexpr double kRagdollThrowRoom = 0.95;  ///< half a ragdoll's height, and a little
+/// Places a throw tries, each its own room higher than the last, before it gives up.
+inline constexpr int kThrowTries = 5;
 
 /// The strongest gravity changeGravity raises to, and the World panel's slider reaches: three
 /// times the Earth's (m/s^2). A scene may set more; raising then leaves it as it is.
@@ -99,8 +104,10 @@ class Session {
   std::string setSolverSettings(const phys::SolverSettings& settings);
 
   /// Throws a box or a ragdoll (of boxes, or of capsules laid out like Bullet's) from `at` with
-  /// velocity `velocity` into every run. Returns "" or why nothing was thrown: `at` beyond the
-  /// world's bound, or a body the world refuses.
+  /// velocity `velocity` into every run, never into a body: where a body reaches into the throw's
+  /// room (kBoxThrowRoom, kRagdollThrowRoom), it goes from higher up, and the status says how much.
+  /// Returns "" or why nothing was thrown: bodies in the way of every try, `at` beyond the world's
+  /// bound, or a body the world refuses.
   std::string spawnBox(const phys::Vec3& at, const phys::Vec3& velocity);
   std::string spawnRagdoll(const phys::Vec3& at, const phys::Vec3& velocity, bool capsules = false);
   /// The model of what is thrown from now on: a box of it, a ragdoll of its kind (corners: seed,
@@ -136,6 +143,11 @@ class Session {
   std::string applyWorldSettings(const phys::WorldSettings& settings, const std::string& done);
   std::string spawn(const phys::Vec3& at, const std::string& done,
                     const std::function<void(phys::World&)>& add);
+  /// The first of `at` and the kThrowTries - 1 places above it (each `room` apart) that no body or
+  /// loose particle of the main run reaches into; none when all are taken.
+  std::optional<phys::Vec3> clearSpot(const phys::Vec3& at, double room) const;
+  /// "done", or "done, h m higher: a body was in the way".
+  static std::string placed(const std::string& done, const phys::Vec3& asked, const phys::Vec3& spot);
 
   std::vector<Run> runs_;
   std::filesystem::path file_;

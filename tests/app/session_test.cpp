@@ -184,6 +184,32 @@ TEST(Session, ThrownBoxesAndRagdollsFlyAlongTheViewAndLand) {
   EXPECT_LT(m.maxPenetration, 0.05);
 }
 
+// 100 presses of R used to stack ragdolls inside each other at the crosshair. A throw goes from
+// higher up when a body is in the way, says so, and gives up once every try is taken.
+TEST(Session, AThrowNeverGoesIntoABody) {
+  sandbox::Session s = open("ragdoll");
+  s.clear();
+  const phys::Vec3 at(0.0, 3.0, 0.0), still(0.0);
+  std::vector<phys::Vec3> thrown;
+  for (int i = 0; i < sandbox::kThrowTries; ++i) {
+    ASSERT_EQ(s.spawnBox(at, still), "") << "throw " << i + 1;
+    thrown.push_back(s.scene().world.bodyPose(phys::BodyId(i)).center);
+    EXPECT_NEAR(thrown.back().y, at.y + 2.0 * sandbox::kBoxThrowRoom * i, 1e-9);
+    if (i > 0) {
+      EXPECT_NE(s.status().find("m higher: a body was in the way"), std::string::npos) << s.status();
+    }
+  }
+  EXPECT_EQ(s.status(), "threw a box, 3.6 m higher: a body was in the way");
+  EXPECT_EQ(s.spawnBox(at, still), "nothing thrown: bodies in the way at the crosshair and above it");
+  EXPECT_EQ(s.scene().world.bodies().size(), static_cast<std::size_t>(sandbox::kThrowTries));
+  // A ragdoll needs more room: beside the boxes' column it goes where nothing reaches.
+  ASSERT_EQ(s.spawnRagdoll(at + phys::Vec3(3.0, 0.0, 0.0), still), "");
+  EXPECT_EQ(s.status(), "threw a ragdoll");
+  // 1 m from both: it goes above them.
+  ASSERT_EQ(s.spawnRagdoll(at + phys::Vec3(1.0, 0.0, 0.0), still), "");
+  EXPECT_NE(s.status().find("m higher: a body was in the way"), std::string::npos) << s.status();
+}
+
 TEST(Session, ThrownCapsuleRagdollHasBulletsElevenCapsules) {
   sandbox::Session s = open("pyramid");
   const std::size_t boxes = s.scene().world.bodies().size();
