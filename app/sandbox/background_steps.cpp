@@ -20,6 +20,7 @@ void BackgroundSteps::start(std::vector<Run> runs, int steps, std::chrono::durat
       }
       if (!stepRuns(runs_, &stop_)) break;  // cancelled: the copies are dropped
       ++taken_.steps;
+      taken_.records.push_back(recordOf(runs_.front().scene->world));
     }
     done_.store(true, std::memory_order_release);
   });

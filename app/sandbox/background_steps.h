@@ -9,14 +9,16 @@
 #include <thread>
 #include <vector>
 
+#include "recording.h"
 #include "run.h"
 
 namespace sandbox {
 
 /// What the background steps did.
 struct StepsTaken {
-  int steps = 0;     ///< steps of the main run
-  bool cut = false;  ///< the wall-time budget ended them before all the steps asked for
+  int steps = 0;                    ///< steps of the main run
+  bool cut = false;                 ///< the wall-time budget ended them before all the steps asked for
+  std::vector<StepRecord> records;  ///< the main run's steps, for the recording (recording.h)
 };
 
 class BackgroundSteps {

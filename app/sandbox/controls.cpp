@@ -27,7 +27,8 @@ constexpr Control kControls[] = {
     {"Y / H", "gravity stronger / weaker by 1 m/s^2"},
     {"U / J", "wind resistance (damping) up / down by 0.1 1/s"},
     {"Space", "pause / run"},
-    {"N", "one step (while paused)"},
+    {"N", "one step (while paused); after B or the timeline, the recording's next step"},
+    {"B", "one step back: the recording's step before the one shown (pauses; Rewind panel)"},
     {"F", "throw a box from the crosshair along the view"},
     {"R", "throw a ragdoll from the crosshair along the view"},
     {"T", "throw a capsule ragdoll (Bullet's layout) from the crosshair along the view"},
@@ -73,6 +74,8 @@ std::optional<Action> actionForKey(int key, int mods) {
       return Action::Pause;
     case GLFW_KEY_N:
       return Action::StepOnce;
+    case GLFW_KEY_B:
+      return Action::StepBack;
     case GLFW_KEY_F5:
       return Action::Reload;
     case GLFW_KEY_F:

@@ -29,6 +29,7 @@ enum class Action {
   ToggleHelp,
   TogglePanels,  ///< hide or show the side column (the scene fills the window)
   FrameScene,    ///< move the camera along its view until every body is in it
+  StepBack,      ///< the recording's step before the one shown (pauses)
   Screenshot,    ///< a PNG of the window next to the scene file
 };
 

@@ -20,9 +20,12 @@ std::optional<long> wholeNumber(const std::string& text, long min, long max) {
 }
 
 // "all", or names of kSectionNames separated by commas, each once at most.
-std::optional<std::array<bool, 4>> parseSections(const std::string& text) {
-  std::array<bool, 4> open{};
-  if (text == "all") return std::array<bool, 4>{true, true, true, true};
+std::optional<SectionFlags> parseSections(const std::string& text) {
+  SectionFlags open{};
+  if (text == "all") {
+    open.fill(true);
+    return open;
+  }
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = std::min(text.find(',', start), text.size());
@@ -58,7 +61,8 @@ std::string usage() {
          "  --pause-at N       pause after step N (0 to 1000000)\n"
          "  --hide-panels      start with the panels hidden: the scene fills the window (key F2)\n"
          "  --unfold SECTIONS  the panels' sections open at the start, comma-separated, of\n"
-         "                     simulation, world, draw, stats, or all (default simulation,stats)\n"
+         "                     simulation, rewind, world, draw, stats, or all (default\n"
+         "                     simulation,rewind,stats)\n"
          "  --data DIR         folder holding shaders/ and assets/ (default: the source tree)\n"
          "  --help             show this text\n";
 }
@@ -121,7 +125,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       if (v == nullptr) return out;
       o.unfold = parseSections(*v);
       if (!o.unfold) {
-        out.error = "--unfold: '" + *v + "' must be all, or sections among simulation, world, draw, stats";
+        out.error =
+            "--unfold: '" + *v + "' must be all, or sections among simulation, rewind, world, draw, stats";
         return out;
       }
     } else if (a == "--threads") {

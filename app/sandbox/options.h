@@ -14,6 +14,11 @@
 
 namespace sandbox {
 
+/// The panels' column's sections, in its order (--unfold names them so).
+inline constexpr std::array<const char*, 5> kSectionNames = {"simulation", "rewind", "world", "draw",
+                                                             "stats"};
+using SectionFlags = std::array<bool, kSectionNames.size()>;
+
 struct Options {
   std::string scene;  ///< a scene file, or a name in assets/scenes/; empty: the default scene
   std::optional<std::filesystem::path> screenshot;  ///< render, write this PNG, exit
@@ -23,18 +28,15 @@ struct Options {
   bool markers = false;           ///< the seed's collision-vertex markers from the start
   bool trails = false;            ///< Draw > trails from the start
   bool hidePanels = false;        ///< the side column hidden from the start (F2 shows it)
-  /// Which of the column's sections (kSectionNames' order) start unfolded; none given: Simulation
-  /// and Stats.
-  std::optional<std::array<bool, 4>> unfold;
+  /// Which of the column's sections (kSectionNames' order) start unfolded; none given: Simulation,
+  /// Rewind and Stats.
+  std::optional<SectionFlags> unfold;
   std::optional<BodyColoring> coloring;  ///< given: what bodies' colours say from the start
   std::optional<int> threads;            ///< given: the threads every scene opened steps with
   std::vector<OverlaySpec> overlay;      ///< 2 to 4 runs of the method overlay, or none
   std::optional<long> pauseAt;           ///< pause when the main run has taken this many steps
   bool help = false;
 };
-
-/// The panels' column's sections, in its order (--unfold names them so).
-inline constexpr std::array<const char*, 4> kSectionNames = {"simulation", "world", "draw", "stats"};
 
 struct ParsedOptions {
   Options options;

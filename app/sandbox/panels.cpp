@@ -193,6 +193,48 @@ void settingsSection(Session& session, UiState& ui) {
   }
 }
 
+// The recording's timeline: drag it to show any recorded step (the world pauses there); stepping
+// or any command from a step shown resumes the run from it, and the recording forks.
+void rewindSection(Session& session, UiState& ui) {
+  const Recording& r = session.recording();
+  if (!r.on() || r.empty()) {
+    greyWrapped(r.on() ? "nothing recorded yet"
+                       : "off while the method overlay runs: its runs are not recorded");
+    return;
+  }
+  const long now = session.scene().world.stepCount();
+  auto go = [&](long step) {
+    ui.paused = true;
+    const std::string error = session.rewindTo(step);
+    ui.message = error.empty() ? session.status() : error;
+  };
+  int step = static_cast<int>(now);
+  if (ImGui::SliderInt("step", &step, static_cast<int>(r.first()), static_cast<int>(r.last()), "%d",
+                       ImGuiSliderFlags_AlwaysClamp) &&
+      step != now) {
+    go(step);
+  }
+  if (ImGui::Button("|<")) go(r.first());
+  ImGui::SameLine();
+  if (ImGui::Button("< (B)") && now > r.first()) go(now - 1);
+  ImGui::SameLine();
+  if (ImGui::Button("> (N)")) {
+    if (now < r.last())
+      go(now + 1);  // along the recording: the same step, shown without forking it
+    else
+      ui.stepOnce = true;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button(">|") && now != r.last()) go(r.last());
+  greyWrapped(figure("%.1f", r.seconds()) + " s recorded (steps " + std::to_string(r.first()) + " to " +
+              std::to_string(r.last()) + "), " + figure("%.1f", static_cast<double>(r.bytes()) / (1 << 20)) +
+              " MB of keyframes");
+  if (ImGui::SliderInt("budget (MB)", &ui.recordingBudgetMb, 16, 8192, "%d",
+                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+    session.setRecordingBudget(static_cast<std::size_t>(ui.recordingBudgetMb) << 20);
+  }
+}
+
 void worldSection(Session& session, UiState& ui) {
   phys::WorldSettings w = session.scene().world.worldSettings();
   int mode = static_cast<int>(w.gravityMode);
@@ -345,9 +387,10 @@ void drawPanels(Session& session, UiState& ui) {
     // Last: starting the overlay replaces the scene the section above drew from.
     overlaySection(session, ui);
   }
-  if (beginSection("World", &ui.showWorld, ui.unfolded[1], reset)) worldSection(session, ui);
-  if (beginSection("Draw", &ui.showDraw, ui.unfolded[2], reset)) drawSection(ui);
-  if (beginSection("Stats", &ui.showStats, ui.unfolded[3], reset)) statsSection(session, ui);
+  if (beginSection("Rewind", &ui.showRewind, ui.unfolded[1], reset)) rewindSection(session, ui);
+  if (beginSection("World", &ui.showWorld, ui.unfolded[2], reset)) worldSection(session, ui);
+  if (beginSection("Draw", &ui.showDraw, ui.unfolded[3], reset)) drawSection(ui);
+  if (beginSection("Stats", &ui.showStats, ui.unfolded[4], reset)) statsSection(session, ui);
   ImGui::PopItemWidth();
   ImGui::End();
 }

@@ -33,14 +33,16 @@ ScreenRect panelColumn(float windowWidth, float windowHeight, float top, float b
 ScreenRect sceneView(float windowWidth, float windowHeight, bool panelsShown);
 
 /// The sections open at the start (kSectionNames' order): the settings and what they cost.
-inline constexpr std::array<bool, 4> kDefaultUnfolded = {true, false, false, true};
+inline constexpr SectionFlags kDefaultUnfolded = {true, true, false, false, true};
 
 /// Everything the panels show or change besides the session.
 struct UiState {
   bool showSimulation = true, showWorld = true, showDraw = true, showStats = true;
-  bool panelsHidden = false;  ///< F2 or --hide-panels: the scene fills the window
-  bool resetLayout = false;   ///< View > Reset layout: every section shown, in its first state
-  std::array<bool, 4> unfolded = kDefaultUnfolded;  ///< per kSectionNames: open at the start
+  bool panelsHidden = false;                 ///< F2 or --hide-panels: the scene fills the window
+  bool resetLayout = false;                  ///< View > Reset layout: every section shown, in its first state
+  SectionFlags unfolded = kDefaultUnfolded;  ///< per kSectionNames: open at the start
+  bool showRewind = true;
+  int recordingBudgetMb = static_cast<int>(kDefaultRecordingBudget >> 20);  ///< Rewind's memory slider
   /// A number being typed into a solver slider (Ctrl+click), applied when the typing ends: the
   /// slider's label and the value so far.
   std::optional<std::pair<std::string, int>> typing;

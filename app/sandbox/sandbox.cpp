@@ -242,9 +242,17 @@ void Sandbox::perform(Action action) {
     case Action::Pause:
       ui_.paused = !ui_.paused;
       break;
-    case Action::StepOnce:
-      ui_.stepOnce = true;
+    case Action::StepOnce: {
+      // Along the recording while there is more of it (after B or the timeline), else a new step.
+      const long now = s.scene().world.stepCount();
+      if (ui_.paused && now < s.recording().last() && s.recording().covers(now)) {
+        const std::string error = s.rewindTo(now + 1);
+        ui_.message = error.empty() ? s.status() : error;
+      } else {
+        ui_.stepOnce = true;
+      }
       break;
+    }
     case Action::Reload:
       openScene(s.file());
       break;
@@ -270,6 +278,14 @@ void Sandbox::perform(Action action) {
     case Action::FrameScene:
       frameScene();
       break;
+    case Action::StepBack: {
+      ui_.paused = true;
+      const long now = s.scene().world.stepCount();
+      const std::string error =
+          now > s.recording().first() ? s.rewindTo(now - 1) : "nothing recorded before this step";
+      ui_.message = error.empty() ? s.status() : error;
+      break;
+    }
     case Action::Screenshot:
       screenshotDue_ = true;  // taken once the frame is drawn
       break;
@@ -549,13 +565,14 @@ void Sandbox::drawMenuBar() {
     bool panelsShown = !ui_.panelsHidden;
     if (ImGui::MenuItem("Panels", "F2", &panelsShown)) ui_.panelsHidden = !panelsShown;
     ImGui::MenuItem("Simulation", nullptr, &ui_.showSimulation);
+    ImGui::MenuItem("Rewind", nullptr, &ui_.showRewind);
     ImGui::MenuItem("World", nullptr, &ui_.showWorld);
     ImGui::MenuItem("Draw", nullptr, &ui_.showDraw);
     ImGui::MenuItem("Stats", nullptr, &ui_.showStats);
     ImGui::MenuItem("Controls", "F1", &ui_.showHelp);
     ImGui::Separator();
     if (ImGui::MenuItem("Reset layout")) {
-      ui_.showSimulation = ui_.showWorld = ui_.showDraw = ui_.showStats = true;
+      ui_.showSimulation = ui_.showRewind = ui_.showWorld = ui_.showDraw = ui_.showStats = true;
       ui_.panelsHidden = false;
       ui_.unfolded = kDefaultUnfolded;
       ui_.resetLayout = true;

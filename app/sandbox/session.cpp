@@ -108,6 +108,9 @@ void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::files
   runs_.push_back(std::move(run));
   file_ = file;
   status_ = "opened " + file.filename().string();
+  rewound_ = false;
+  recording_.setOn(true);
+  recording_.restart(runs_.front().scene->world);
 }
 
 std::string Session::open(const std::filesystem::path& file) {
@@ -148,6 +151,8 @@ void Session::clear() {
     s.world = emptyLike(s.world);
     s.bodies.clear();
   }
+  rewound_ = false;
+  recording_.restart(scene().world);  // a new world, from step 0
   status_ = "cleared: no bodies; Reload (F5) brings the file's back";
 }
 
@@ -178,6 +183,8 @@ std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
   }
   beforeOverlay_ = base;
   runs_ = std::move(runs);
+  recording_.setOn(false);  // the runs compare settings from here: nothing to rewind to
+  rewound_ = false;
   status_ = "overlay of " + std::to_string(runs_.size()) + " runs, each from the state the world was in";
   return {};
 }
@@ -190,16 +197,60 @@ void Session::stopOverlay() {
   runs_.front().label.clear();
   runs_.front().color = kRunColors[0];
   scene().world.setSolverSettings(beforeOverlay_);  // valid: the main run had them
+  recording_.setOn(true);
+  recording_.restart(scene().world);
   status_ = "overlay off; the solver settings are as before it";
 }
 
 void Session::step() {
   cancelSteps();
+  beforeStepping();
   stepRuns(runs_);
+  const StepRecord record = recordOf(scene().world);
+  recordSteps(std::span<const StepRecord>(&record, 1));
+}
+
+void Session::beforeStepping() {
+  if (!rewound_) return;
+  rewound_ = false;
+  recording_.keyframe(scene().world);
+}
+
+void Session::recordSteps(std::span<const StepRecord> records) {
+  for (const StepRecord& r : records) recording_.stepped(r);
+  recording_.setStepCost(runs_.front().medianMs());
+  recording_.keyframeIfDue(scene().world);
+}
+
+void Session::worldChanged() {
+  rewound_ = false;
+  recording_.keyframe(scene().world);
+}
+
+std::string Session::rewindTo(long step) {
+  if (overlayActive()) return "nothing to rewind: the method overlay's runs are not recorded";
+  if (!recording_.covers(step)) {
+    return "step " + std::to_string(step) + " is not recorded (the recording holds steps " +
+           std::to_string(recording_.first()) + " to " + std::to_string(recording_.last()) + ")";
+  }
+  cancelSteps();
+  drag_.reset();
+  dragTarget_.reset();
+  std::string divergence;
+  std::unique_ptr<phys::World> world = recording_.worldAt(step, divergence);
+  world->clearDrag();  // the hand that held it is not recorded
+  scene().world = std::move(*world);
+  rewound_ = true;
+  status_ = divergence.empty()
+                ? "at step " + std::to_string(step) + " of the recording's " +
+                      std::to_string(recording_.first()) + " to " + std::to_string(recording_.last())
+                : "the replay differs from the recording: " + divergence;
+  return divergence;
 }
 
 void Session::startSteps(int steps, std::chrono::duration<double> budget) {
   if (steps < 1 || background_.running()) return;
+  beforeStepping();
   std::vector<Run> copies;
   copies.reserve(runs_.size());
   for (const Run& run : runs_) copies.push_back(run.copy());
@@ -210,11 +261,13 @@ std::optional<StepsTaken> Session::finishSteps() {
   auto done = background_.collect();
   if (!done) return std::nullopt;
   runs_ = std::move(done->first);
+  recordSteps(done->second.records);
   // The drag as the user left it while the copies stepped: released, or pulling somewhere new.
   // (A new pick cancels the steps, so a drag the copies lack is never to be added.)
-  if (!drag_) {
+  if (!drag_ && scene().world.drag()) {
     forEachWorld([](phys::World& w) { w.clearDrag(); });
-  } else if (dragTarget_) {
+    worldChanged();
+  } else if (drag_ && dragTarget_) {
     forEachWorld([&](phys::World& w) {
       if (w.drag()) w.setDragTarget(*dragTarget_);
     });
@@ -236,6 +289,7 @@ std::string Session::setWorldSettings(const phys::WorldSettings& settings) {
   if (!why.empty()) return "world settings: " + why;
   cancelSteps();
   forEachWorld([&](phys::World& w) { w.setWorldSettings(settings); });
+  worldChanged();
   return {};
 }
 
@@ -243,6 +297,7 @@ std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
   try {
     cancelSteps();
     scene().world.setSolverSettings(settings);
+    worldChanged();
     return {};
   } catch (const std::invalid_argument& e) {
     return e.what();
@@ -353,6 +408,7 @@ std::string Session::spawn(const phys::Vec3& at, const std::string& done,
     return status_;
   }
   ++spawned_;
+  worldChanged();
   status_ = done;
   return {};
 }
@@ -407,6 +463,7 @@ bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
   }
   drag_ = d;
   dragTarget_.reset();
+  worldChanged();
   return true;
 }
 
@@ -424,6 +481,8 @@ void Session::release() {
   drag_.reset();
   dragTarget_.reset();
   forEachWorld([](phys::World& w) { w.clearDrag(); });
+  // With steps in flight the copies still hold the drag: finishSteps lets go of it there.
+  if (!stepping()) worldChanged();
 }
 
 std::optional<std::pair<phys::Vec3, phys::Vec3>> Session::dragLine() const {

@@ -89,6 +89,15 @@ class Session {
   /// Drops the background steps; the runs stay as they are.
   void cancelSteps();
 
+  // Rewind and replay (recording.h): the main run's steps are recorded (not the overlay's).
+  const Recording& recording() const { return recording_; }
+  /// Shows the main run as it was at `step`, rebuilt from the recording; the next step or
+  /// command resumes from there and the recording forks (what came after is dropped). A drag
+  /// the recording had is let go. Returns "" or why not (not recorded, the overlay on, or the
+  /// rebuilt step not matching the recorded one, which would be a bug).
+  std::string rewindTo(long step);
+  void setRecordingBudget(std::size_t bytes) { recording_.setBudget(bytes); }
+
   // The seed's world controls; they act on every run, so the overlay keeps comparing methods
   // under the same forces. Each returns "" or why the world refused (then nothing changes), and
   // leaves either in status().
@@ -141,6 +150,13 @@ class Session {
   void replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file);
   void forEachWorld(const std::function<void(phys::World&)>& apply);
   std::string applyWorldSettings(const phys::WorldSettings& settings, const std::string& done);
+  /// A command changed the main run's world: the recording keeps it as it is now (and forks
+  /// there if it was rewound).
+  void worldChanged();
+  /// Before the main run steps: a rewound world forks the recording at its step.
+  void beforeStepping();
+  /// After it stepped, synchronously or in the background.
+  void recordSteps(std::span<const StepRecord> records);
   std::string spawn(const phys::Vec3& at, const std::string& done,
                     const std::function<void(phys::World&)>& add);
   /// The first of `at` and the kThrowTries - 1 places above it (each `room` apart) that no body or
@@ -159,7 +175,9 @@ class Session {
   int spawned_ = 0;
   phys::BodyModel throwModel_ = phys::BodyModel::Corners;
   std::optional<phys::Vec3> dragTarget_;  // the drag's last target, for runs stepped meanwhile
-  BackgroundSteps background_;            // last: its thread stops before the rest goes
+  Recording recording_;
+  bool rewound_ = false;        // the main run was rewound and has not stepped since
+  BackgroundSteps background_;  // last: its thread stops before the rest goes
 };
 
 }  // namespace sandbox

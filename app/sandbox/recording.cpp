@@ -1,0 +1,147 @@
+#include "recording.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <malloc.h>
+
+namespace sandbox {
+namespace {
+
+// A copy of the world and the heap it took (glibc's count of bytes in use, before and after:
+// the copy's arrays, whatever their capacity). Made on the window's thread while no steps run
+// beside it (Session cancels or collects them first), so nothing else allocates meanwhile.
+std::pair<std::shared_ptr<const phys::World>, std::size_t> copyOf(const phys::World& world) {
+  const std::size_t before = mallinfo2().uordblks;
+  auto copy = std::make_shared<const phys::World>(world);
+  const std::size_t after = mallinfo2().uordblks;
+  return {std::move(copy), std::max(after > before ? after - before : 0, sizeof(phys::World))};
+}
+
+}  // namespace
+
+StepRecord recordOf(const phys::World& world) {
+  StepRecord r;
+  r.step = world.stepCount();
+  r.hash = world.stateHash();
+  if (world.drag()) r.dragTarget = world.drag()->target;
+  return r;
+}
+
+void Recording::clear() {
+  keyframes_.clear();
+  steps_.clear();
+  bytes_ = 0;
+}
+
+void Recording::restart(const phys::World& world) {
+  clear();
+  if (on_) keyframe(world);
+}
+
+void Recording::setOn(bool on) {
+  on_ = on;
+  if (!on) clear();
+}
+
+long Recording::first() const {
+  return keyframes_.empty() ? 0 : keyframes_.front().step;
+}
+
+long Recording::last() const {
+  if (keyframes_.empty()) return 0;
+  return std::max(keyframes_.back().step, steps_.empty() ? 0 : steps_.back().step);
+}
+
+double Recording::seconds() const {
+  return static_cast<double>(last() - first()) * dt_;
+}
+
+void Recording::setStepCost(double milliseconds) {
+  const double steps = milliseconds > 0.0 ? 50.0 / milliseconds : 120.0;
+  interval_ = std::clamp(std::lround(steps), 10L, 120L);
+}
+
+void Recording::setBudget(std::size_t bytes) {
+  budget_ = bytes;
+  keepWithinBudget();
+}
+
+void Recording::dropAfter(long step) {
+  while (!steps_.empty() && steps_.back().step > step) steps_.pop_back();
+  while (keyframes_.size() > 1 && keyframes_.back().step > step) {
+    bytes_ -= keyframes_.back().bytes;
+    keyframes_.pop_back();
+  }
+}
+
+void Recording::stepped(const StepRecord& record) {
+  if (keyframes_.empty()) return;
+  if (record.step - 1 < last()) dropAfter(record.step - 1);  // resumed from an earlier step: a fork
+  if (record.step - 1 != last() || record.step <= first()) {
+    // Not the next step of anything kept (a world replaced without a keyframe): there is nothing
+    // to rebuild it from, so the recording starts again at the next keyframeIfDue.
+    clear();
+    return;
+  }
+  steps_.push_back(record);
+}
+
+void Recording::keyframe(const phys::World& world) {
+  if (!on_) return;
+  const long step = world.stepCount();
+  if (!keyframes_.empty() && step < last()) dropAfter(step);  // a command on a rewound world: a fork
+  auto [copy, bytes] = copyOf(world);
+  if (!keyframes_.empty() && keyframes_.back().step == step) {  // a second command in one step
+    bytes_ -= keyframes_.back().bytes;
+    keyframes_.back() = {step, std::move(copy), bytes};
+  } else {
+    keyframes_.push_back({step, std::move(copy), bytes});
+  }
+  bytes_ += bytes;
+  // The state this step is shown as is the one after the command.
+  if (!steps_.empty() && steps_.back().step == step) steps_.back() = recordOf(world);
+  dt_ = world.solverSettings().dt;
+  keepWithinBudget();
+}
+
+void Recording::keyframeIfDue(const phys::World& world) {
+  if (!on_) return;
+  if (keyframes_.empty() || world.stepCount() - keyframes_.back().step >= interval_) keyframe(world);
+}
+
+void Recording::keepWithinBudget() {
+  while (bytes_ > budget_ && keyframes_.size() > 1) {
+    bytes_ -= keyframes_.front().bytes;
+    keyframes_.pop_front();
+    const long start = keyframes_.front().step;
+    while (!steps_.empty() && steps_.front().step <= start) steps_.pop_front();
+  }
+}
+
+std::unique_ptr<phys::World> Recording::worldAt(long step, std::string& divergence) const {
+  divergence.clear();
+  // The last keyframe at or before the step.
+  auto k = std::upper_bound(keyframes_.begin(), keyframes_.end(), step,
+                            [](long s, const Keyframe& f) { return s < f.step; });
+  --k;
+  auto world = std::make_unique<phys::World>(*k->world);
+  const long from = k->step;
+  auto record = std::lower_bound(steps_.begin(), steps_.end(), from + 1,
+                                 [](const StepRecord& r, long s) { return r.step < s; });
+  for (long s = from + 1; s <= step; ++s, ++record) {
+    if (record == steps_.end() || record->step != s) {
+      divergence = "no record of step " + std::to_string(s);
+      break;
+    }
+    if (record->dragTarget && world->drag()) world->setDragTarget(*record->dragTarget);
+    world->step();
+    if (world->stateHash() != record->hash && divergence.empty()) {
+      divergence = "step " + std::to_string(s) + " rebuilt from the keyframe at step " +
+                   std::to_string(from) + " differs from the recorded one";
+    }
+  }
+  return world;
+}
+
+}  // namespace sandbox

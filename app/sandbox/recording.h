@@ -1,0 +1,91 @@
+#pragma once
+// Rewind and replay (docs/sandbox.md, "Rewind"): the main run's history, kept so that any recorded
+// step can be shown again exactly and the run resumed from it. A full copy of the world (a
+// keyframe) every few steps and after every command that changed it, and for each step its state
+// hash and the drag's target. A step between keyframes is rebuilt from the keyframe before it,
+// stepped again with the same drag targets: the step is deterministic, so the rebuilt world is
+// the recorded one bit for bit, which the hashes check step by step. Keyframes are what costs
+// memory; the oldest go first when the recording is over its budget.
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "physics/world.h"
+
+namespace sandbox {
+
+/// One step of the main run as the recording keeps it.
+struct StepRecord {
+  long step = 0;                         ///< World::stepCount() after it
+  std::uint64_t hash = 0;                ///< World::stateHash() after it
+  std::optional<phys::Vec3> dragTarget;  ///< the drag's target it was taken with, if any
+};
+
+/// The record of a step just taken by `world`.
+StepRecord recordOf(const phys::World& world);
+
+/// Default memory budget of a recording (unit: bytes): 10 s of Bullet's 136-ragdoll pile fit.
+inline constexpr std::size_t kDefaultRecordingBudget = std::size_t{512} << 20;
+
+class Recording {
+ public:
+  /// Forgets everything and starts from `world` as it is now (if on).
+  void restart(const phys::World& world);
+  void clear();
+  /// Off, nothing is kept (the method overlay's runs are not recorded); on again, it starts at the
+  /// next keyframeIfDue.
+  void setOn(bool on);
+  bool on() const { return on_; }
+  bool empty() const { return keyframes_.empty(); }
+
+  /// Appends a step of the main run. A step that does not follow the last one recorded (a
+  /// run resumed from an earlier step) first drops everything after its predecessor: the run
+  /// forks there.
+  void stepped(const StepRecord& record);
+  /// Keeps a copy of `world` as it is now, after a command changed it (its step's record is
+  /// then this state's); keyframeIfDue, when the last keyframe is the interval's steps back, or
+  /// none is kept.
+  void keyframe(const phys::World& world);
+  void keyframeIfDue(const phys::World& world);
+  /// Steps between keyframes, from how long a step takes: rebuilding a step costs at most this
+  /// many steps, about 50 ms of them, within 10 to 120.
+  void setStepCost(double milliseconds);
+
+  long first() const;  ///< the earliest step that can be shown
+  long last() const;   ///< the latest
+  bool covers(long step) const { return !empty() && step >= first() && step <= last(); }
+
+  /// The world as it was at `step` (covers(step) must hold), rebuilt from the keyframe before
+  /// it. `divergence` gets "" or which step's hash did not match (which would be a bug: the
+  /// step is deterministic).
+  std::unique_ptr<phys::World> worldAt(long step, std::string& divergence) const;
+
+  /// Memory the keyframes hold (unit: bytes: the heap each copy took) and the budget.
+  std::size_t bytes() const { return bytes_; }
+  std::size_t budget() const { return budget_; }
+  void setBudget(std::size_t bytes);
+  /// Simulated seconds recorded.
+  double seconds() const;
+
+ private:
+  struct Keyframe {
+    long step = 0;
+    std::shared_ptr<const phys::World> world;
+    std::size_t bytes = 0;
+  };
+  void dropAfter(long step);
+  void keepWithinBudget();
+
+  std::deque<Keyframe> keyframes_;
+  std::deque<StepRecord> steps_;  // from the first keyframe's step + 1 to last()
+  std::size_t bytes_ = 0;
+  std::size_t budget_ = kDefaultRecordingBudget;
+  long interval_ = 60;
+  double dt_ = 0.0;  // of the latest keyframe, for seconds()
+  bool on_ = true;
+};
+
+}  // namespace sandbox

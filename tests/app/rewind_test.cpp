@@ -1,0 +1,147 @@
+// Rewind and replay (recording.h, Session::rewindTo): every recorded step is shown again with its
+// recorded state hash, replaying from a rewound step gives the recording again step by step, a
+// command on a rewound world forks it, the drag is replayed, steps taken in the background are
+// recorded alike, and the memory budget drops the oldest keyframes.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "session.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
+
+sandbox::Session open(const char* name) {
+  return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes);
+}
+
+std::uint64_t hashOf(const sandbox::Session& s) {
+  return s.scene().world.stateHash();
+}
+
+// The 16-ragdoll pile for 10 s (600 steps at 1/60 s): its fall, its landing and its settling.
+TEST(Rewind, TenSecondsOfThePileReplayWithTheSameHashAtEveryStep) {
+  sandbox::Session s = open("ragdolls");
+  std::vector<std::uint64_t> recorded{hashOf(s)};
+  for (int i = 1; i <= 600; ++i) {
+    s.step();
+    recorded.push_back(hashOf(s));
+  }
+  ASSERT_EQ(s.recording().first(), 0);
+  ASSERT_EQ(s.recording().last(), 600);
+  std::printf("10 s of ragdolls recorded in %.1f MB\n", static_cast<double>(s.recording().bytes()) / 1e6);
+  // Shown again: every step of the first keyframe intervals (up to 120 steps apart here), then
+  // every 13th, which lands anywhere between keyframes.
+  for (long n = 0; n <= 600; n += n < 130 ? 1 : 13) {
+    ASSERT_EQ(s.rewindTo(n), "") << "step " << n;
+    ASSERT_EQ(s.scene().world.stepCount(), n);
+    ASSERT_EQ(hashOf(s), recorded[static_cast<std::size_t>(n)]) << "shown at step " << n;
+  }
+  // Replayed from the start with the same settings: the recording again, step by step.
+  ASSERT_EQ(s.rewindTo(0), "");
+  for (int i = 1; i <= 600; ++i) {
+    s.step();
+    ASSERT_EQ(hashOf(s), recorded[static_cast<std::size_t>(i)]) << "replayed step " << i;
+  }
+  EXPECT_EQ(s.recording().last(), 600);
+}
+
+TEST(Rewind, StepsTakenInTheBackgroundAreRecordedAlike) {
+  sandbox::Session a = open("ragdolls"), b = open("ragdolls");
+  std::vector<std::uint64_t> recorded{hashOf(a)};
+  for (int i = 1; i <= 120; ++i) {
+    a.step();
+    recorded.push_back(hashOf(a));
+  }
+  while (b.scene().world.stepCount() < 120) {
+    b.startSteps(static_cast<int>(std::min<long>(7, 120 - b.scene().world.stepCount())), 600s);
+    while (!b.finishSteps()) std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_EQ(b.recording().last(), 120);
+  for (long n : {0L, 1L, 7L, 59L, 60L, 61L, 119L, 120L}) {
+    ASSERT_EQ(b.rewindTo(n), "");
+    EXPECT_EQ(hashOf(b), recorded[static_cast<std::size_t>(n)]) << "step " << n;
+  }
+}
+
+TEST(Rewind, ACommandOnARewoundWorldForksTheRecording) {
+  sandbox::Session s = open("ragdolls");
+  for (int i = 0; i < 100; ++i) s.step();
+  ASSERT_EQ(s.rewindTo(50), "");
+  EXPECT_EQ(s.recording().last(), 100);  // looking back drops nothing
+  ASSERT_EQ(s.spawnBox(phys::Vec3(0.0, 8.0, 0.0), phys::Vec3(0.0)), "");
+  EXPECT_EQ(s.recording().last(), 50);  // the run forks at 50, the box in it
+  const std::uint64_t withBox = hashOf(s);
+  s.step();
+  EXPECT_EQ(s.recording().last(), 51);
+  ASSERT_EQ(s.rewindTo(50), "");
+  EXPECT_EQ(hashOf(s), withBox);
+  // Stepping from a rewound world forks it too, with nothing changed.
+  for (int i = 0; i < 10; ++i) s.step();
+  ASSERT_EQ(s.rewindTo(55), "");
+  s.step();
+  EXPECT_EQ(s.recording().last(), 56);
+}
+
+TEST(Rewind, TheDragIsReplayed) {
+  sandbox::Session s = open("ragdoll");
+  const phys::Vec3 centre = s.scene().world.bodyPose(phys::BodyId(0)).center;
+  const phys::Vec3 eye = centre + phys::Vec3(0.0, 0.0, 5.0);
+  for (int i = 0; i < 10; ++i) s.step();
+  ASSERT_TRUE(s.pick(eye, centre - eye));
+  std::vector<std::uint64_t> recorded;
+  for (int i = 0; i < 60; ++i) {
+    s.dragAlong(eye, centre + phys::Vec3(0.02 * i, 1.0, 0.0) - eye);  // a moving hand
+    s.step();
+    recorded.push_back(hashOf(s));
+  }
+  s.release();
+  for (int i = 0; i < 30; ++i) {
+    s.step();
+    recorded.push_back(hashOf(s));
+  }
+  for (long n = 11; n <= 100; ++n) {
+    ASSERT_EQ(s.rewindTo(n), "");
+    ASSERT_EQ(hashOf(s), recorded[static_cast<std::size_t>(n - 11)]) << "step " << n;
+  }
+  EXPECT_FALSE(s.scene().world.drag().has_value());  // a rewound world holds no drag
+  EXPECT_FALSE(s.dragging());
+}
+
+TEST(Rewind, TheBudgetDropsTheOldestKeyframes) {
+  sandbox::Session s = open("ragdolls");
+  s.setRecordingBudget(3u << 20);  // about two keyframes of this pile
+  for (int i = 0; i < 600; ++i) s.step();
+  EXPECT_GT(s.recording().first(), 0);
+  EXPECT_EQ(s.recording().last(), 600);
+  EXPECT_LE(s.recording().bytes(), s.recording().budget());
+  EXPECT_NE(s.rewindTo(0), "");
+  EXPECT_EQ(s.rewindTo(s.recording().first()), "");
+}
+
+TEST(Rewind, WhatCannotBeShownSaysWhy) {
+  sandbox::Session s = open("falling-box");
+  for (int i = 0; i < 10; ++i) s.step();
+  EXPECT_EQ(s.rewindTo(11), "step 11 is not recorded (the recording holds steps 0 to 10)");
+  EXPECT_EQ(s.scene().world.stepCount(), 10);
+  std::vector<sandbox::OverlaySpec> specs(2);
+  specs[0] = sandbox::parseOverlaySpec("iterations=2").spec;
+  specs[1] = sandbox::parseOverlaySpec("iterations=4").spec;
+  ASSERT_EQ(s.startOverlay(specs), "");
+  EXPECT_EQ(s.rewindTo(5), "nothing to rewind: the method overlay's runs are not recorded");
+  s.stopOverlay();
+  s.step();
+  EXPECT_EQ(s.recording().first(), 10);  // recorded again from where the overlay stopped
+  EXPECT_EQ(s.rewindTo(10), "");
+}
+
+}  // namespace
