@@ -27,6 +27,7 @@ std::optional<DrawMode> parseDrawMode(std::string_view name) {
 
 std::optional<BodyColoring> parseBodyColoring(std::string_view name) {
   if (name == "kind") return BodyColoring::Kind;
+  if (name == "body") return BodyColoring::Body;
   if (name == "island") return BodyColoring::Island;
   if (name == "sleep") return BodyColoring::Sleep;
   return std::nullopt;

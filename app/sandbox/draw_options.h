@@ -14,13 +14,14 @@ enum class DrawMode {
 /// What a body's colour says (Box2D's and Jolt's samples colour by island and by sleep alike).
 enum class BodyColoring {
   Kind,    ///< boxes orange, particles blue, each body its own brightness
+  Body,    ///< each body, or each set of bodies held by joints (a ragdoll), a colour of its own
   Island,  ///< each island a hue of its own
   Sleep,   ///< awake orange, asleep grey-blue
 };
 
 std::string_view toString(DrawMode mode);  ///< "filled", "wireframe", "constraints"
 std::optional<DrawMode> parseDrawMode(std::string_view name);
-std::optional<BodyColoring> parseBodyColoring(std::string_view name);  ///< "kind", "island", "sleep"
+std::optional<BodyColoring> parseBodyColoring(std::string_view name);  ///< "kind", "body", "island", "sleep"
 /// The mode Tab goes to next.
 DrawMode nextDrawMode(DrawMode mode);
 
@@ -33,7 +34,8 @@ struct DrawOptions {
   bool particles = true;  ///< loose particles as lit spheres
   bool trails = false;    ///< the paths of loose particles and of the followed body (trails.h)
   bool exact = true;      ///< the scene's exact answers (<expect kind="position">) as green crosses
-  BodyColoring coloring = BodyColoring::Kind;
+  bool shadows = false;   ///< a soft shadow of each body on the ground (the sandbox starts with them)
+  BodyColoring coloring = BodyColoring::Kind;  ///< the sandbox starts with Body (panels.h)
   /// Radius of a loose particle's sphere (unit: m), sized to the scene by particleRadiusFor.
   float particleRadius = 0.04f;
 };

@@ -44,7 +44,7 @@ std::optional<SectionFlags> parseSections(const std::string& text) {
 std::string usage() {
   return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers] [--trails]\n"
          "               [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]\n"
-         "               [--hide-panels] [--unfold SECTIONS] [--data DIR]\n"
+         "               [--hide-panels] [--unfold SECTIONS] [--no-shadows] [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
@@ -52,7 +52,8 @@ std::string usage() {
          "  --draw MODE        filled, wireframe or constraints (default: the last one used)\n"
          "  --markers          green boxes on vertices moved by box-box contacts (key C)\n"
          "  --trails           the paths of loose particles and of the followed body\n"
-         "  --color-by WHAT    kind, island or sleep: what bodies' colours say (default kind)\n"
+         "  --no-shadows       no shadows of the bodies on the ground (Draw > shadows)\n"
+         "  --color-by WHAT    kind, body, island or sleep: what bodies' colours say (default body)\n"
          "  --threads N        threads the step may use, 1 to 64, in every scene opened\n"
          "                     (default: each scene's own, else 1)\n"
          "  --overlay S1 S2..  run the scene under 2 to 4 solver settings at once, each drawn\n"
@@ -118,6 +119,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       o.markers = true;
     } else if (a == "--trails") {
       o.trails = true;
+    } else if (a == "--no-shadows") {
+      o.noShadows = true;
     } else if (a == "--hide-panels") {
       o.hidePanels = true;
     } else if (a == "--unfold") {
@@ -134,11 +137,11 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       if (!n) return out;
       o.threads = static_cast<int>(*n);
     } else if (a == "--color-by") {
-      const std::string* v = value("kind, island or sleep");
+      const std::string* v = value("kind, body, island or sleep");
       if (v == nullptr) return out;
       o.coloring = parseBodyColoring(*v);
       if (!o.coloring) {
-        out.error = "--color-by: '" + *v + "' must be kind, island or sleep";
+        out.error = "--color-by: '" + *v + "' must be kind, body, island or sleep";
         return out;
       }
     } else if (a == "--overlay") {

@@ -27,6 +27,7 @@ struct Options {
   std::optional<DrawMode> draw;   ///< given: overrides the remembered draw mode
   bool markers = false;           ///< the seed's collision-vertex markers from the start
   bool trails = false;            ///< Draw > trails from the start
+  bool noShadows = false;         ///< no shadows on the ground (the rendering tests read ground pixels)
   bool hidePanels = false;        ///< the side column hidden from the start (F2 shows it)
   /// Which of the column's sections (kSectionNames' order) start unfolded; none given: Simulation,
   /// Rewind and Stats.

@@ -111,7 +111,8 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   ui.draw.trails = options.trails;
   ui.panelsHidden = options.hidePanels;
   if (options.unfold) ui.unfolded = *options.unfold;
-  if (options.coloring) ui.draw.coloring = *options.coloring;
+  ui.draw.coloring = options.coloring.value_or(BodyColoring::Body);
+  ui.draw.shadows = !options.noShadows;
   const char* examples[kMaxOverlayRuns] = {"iterations=3", "substeps=8,iterations=1", "method=xpbd", ""};
   for (std::size_t i = 0; i < static_cast<std::size_t>(kMaxOverlayRuns); ++i) {
     const std::string text = i < options.overlay.size() ? options.overlay[i].text : examples[i];
@@ -294,14 +295,17 @@ void drawSection(UiState& ui) {
   ImGui::Checkbox("trails", &ui.draw.trails);
   ImGui::SameLine();
   ImGui::Checkbox("exact answers", &ui.draw.exact);
+  ImGui::Checkbox("shadows", &ui.draw.shadows);
   int coloring = static_cast<int>(ui.draw.coloring);
   ImGui::Text("colour by");
   ImGui::SameLine();
   ImGui::RadioButton("kind", &coloring, 0);
   ImGui::SameLine();
-  ImGui::RadioButton("island", &coloring, 1);
+  ImGui::RadioButton("body", &coloring, 1);
   ImGui::SameLine();
-  ImGui::RadioButton("sleep", &coloring, 2);
+  ImGui::RadioButton("island", &coloring, 2);
+  ImGui::SameLine();
+  ImGui::RadioButton("sleep", &coloring, 3);
   ui.draw.coloring = static_cast<BodyColoring>(coloring);
 }
 

@@ -66,6 +66,30 @@ SceneView::SceneView(engine::Renderer& renderer, const std::filesystem::path& mo
       boxMesh_(loadModel(modelsDir / "box.obj")),
       limbMesh_(loadModel(modelsDir / "limb.obj")) {}
 
+// A soft dark disc on the ground where the key light throws each body's shadow, fainter the higher
+// the body: what makes contact with the ground read in a picture. A flattened sphere, blended
+// over the ground and hidden by the bodies in front of it.
+void SceneView::drawShadows(const phys::World& world, const glm::mat4& viewProjection) {
+  const phys::WorldSettings& w = world.worldSettings();
+  const glm::vec3 n = glm::normalize(glm::vec3(w.groundNormal));
+  const glm::vec3 towardsLight = renderer_.style().light.towardsLight;
+  const float facing = glm::dot(n, towardsLight);
+  if (facing < 0.1f) return;  // the light grazes the ground or is under it
+  const engine::GpuMesh& disc = capsuleMeshes_.get(1.0f, 0.0f, engine::CapsuleMeshCache::kCoarse);
+  const glm::mat4 turn = glm::mat4_cast(glm::quat(glm::vec3(0.0f, 1.0f, 0.0f), n));
+  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
+    const glm::vec3 centre(world.bodyPose(id).center);
+    const float height = glm::dot(n, centre) - static_cast<float>(w.groundHeight);
+    if (height < 0.0f) continue;
+    const float radius = 0.75f * static_cast<float>(glm::length(world.bodies()[id].halfExtents));
+    const float fade = std::clamp(1.0f - height / (4.0f * radius + 2.0f), 0.15f, 1.0f);
+    const glm::vec3 at = centre - towardsLight * (height / facing) + n * 0.003f;  // above the ground
+    const glm::mat4 model = glm::translate(glm::mat4(1.0f), at) * turn *
+                            glm::scale(glm::mat4(1.0f), glm::vec3(radius, 0.002f, radius));
+    renderer_.drawMesh(disc, viewProjection, model, glm::vec3(0.0f), 0.4f * fade);
+  }
+}
+
 void SceneView::findJointedBoxes(const phys::World& world) {
   const auto owner = world.particleBodies();
   bodyOf_.assign(owner.begin(), owner.end());
@@ -87,6 +111,7 @@ void SceneView::findJointedBoxes(const phys::World& world) {
 void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, const DrawOptions& options,
                      const std::optional<Tint>& tint) {
   findJointedBoxes(world);
+  if (options.coloring == BodyColoring::Body) groups_ = jointGroups(world);
   const float alpha = tint ? tint->alpha : 1.0f;
   if (options.mode != DrawMode::Constraints) {
     const bool wireframe = options.mode == DrawMode::Wireframe;
@@ -97,7 +122,8 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     const auto boxes = world.bodies();
     for (phys::BodyId id{}; id < boxes.size(); ++id) {
       const phys::Body& box = boxes[id];
-      const glm::vec3 color = tint ? tint->color : boxShade(id) * bodyColor(world, id, options.coloring);
+      const glm::vec3 color =
+          tint ? tint->color : boxShade(id) * bodyColor(world, id, options.coloring, groups_);
       const phys::BodyPose pose = world.bodyPose(id);
       if (box.shape == phys::Shape::Capsule) {
         // Built at its own size: scaling one capsule to another would squash its caps.
@@ -114,6 +140,8 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
         renderer_.drawMesh(mesh, viewProjection, boxModelMatrix(pose, box.halfExtents * 2.0), color, alpha);
       }
     }
+    if (options.shadows && !wireframe && !tint && world.worldSettings().ground)
+      drawShadows(world, viewProjection);
     if (options.particles) {
       // A sphere: a capsule with no core.
       using Cache = engine::CapsuleMeshCache;

@@ -40,6 +40,7 @@ class SceneView {
 
  private:
   void findJointedBoxes(const phys::World& world);
+  void drawShadows(const phys::World& world, const glm::mat4& viewProjection);
 
   engine::Renderer& renderer_;
   std::unique_ptr<engine::GpuMesh> boxMesh_;
@@ -49,6 +50,7 @@ class SceneView {
   // Per-frame scratch, kept to avoid allocating each frame.
   std::vector<phys::BodyId> bodyOf_;   // per particle: its body, or kNoBody
   std::vector<std::uint8_t> jointed_;  // per box: held by a joint
+  std::vector<std::uint32_t> groups_;  // per body, with BodyColoring::Body: jointGroups()
 };
 
 }  // namespace sandbox

@@ -23,6 +23,10 @@ Image readFramebuffer(const glm::ivec2& size) {
   image.rgba.resize(static_cast<std::size_t>(size.x) * size.y * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+  // The window shows every pixel opaque, whatever alpha blending left in the framebuffer (the
+  // overlay's translucent runs, the shadows): so does the picture, or a viewer would show the
+  // page through those pixels.
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
   // GL's row 0 is the bottom one; images put it on top.
   const std::size_t rowBytes = static_cast<std::size_t>(size.x) * 4;
   for (int y = 0; y < size.y / 2; ++y) {

@@ -85,7 +85,7 @@ TEST(Options, ThreadsAndColourBy) {
   EXPECT_EQ(sandbox::parseOptions({"--threads", "65"}).error,
             "--threads: '65' is not a whole number from 1 to 64");
   EXPECT_EQ(sandbox::parseOptions({"--color-by", "mass"}).error,
-            "--color-by: 'mass' must be kind, island or sleep");
+            "--color-by: 'mass' must be kind, body, island or sleep");
 }
 
 }  // namespace

@@ -565,6 +565,28 @@ TEST(SessionSleep, TheStackFallsAsleepAndStatsSaysSo) {
 
 // Colour by island: the bodies of one island share a colour, and islands' colours differ and
 // differ from the sleeping colour, so that neither reading is ambiguous.
+// "Every body is the same orange": by body, each ragdoll is one colour (its parts share a joint
+// group) and ragdolls next to each other differ; loose boxes each have their own.
+TEST(BodyColours, EachRagdollAndEachBoxHasAColourOfItsOwn) {
+  sandbox::Session s = open("ragdolls");
+  const phys::World& world = s.scene().world;
+  const std::vector<std::uint32_t> groups = sandbox::jointGroups(world);
+  ASSERT_EQ(groups.size(), 160u);
+  for (std::size_t i = 0; i < groups.size(); ++i)
+    EXPECT_EQ(groups[i], i / 10) << "body " << i;  // 16 ragdolls
+  for (phys::BodyId id{}; id + 10 < world.bodies().size(); ++id) {
+    EXPECT_NE(sandbox::bodyColor(world, id, sandbox::BodyColoring::Body),
+              sandbox::bodyColor(world, phys::BodyId(id + 10), sandbox::BodyColoring::Body));
+  }
+  EXPECT_EQ(sandbox::bodyColor(world, phys::BodyId(0), sandbox::BodyColoring::Body, groups),
+            sandbox::kBoxColor);
+  sandbox::Session p = open("pyramid");
+  const std::vector<std::uint32_t> boxes = sandbox::jointGroups(p.scene().world);
+  for (std::size_t i = 0; i < boxes.size(); ++i) EXPECT_EQ(boxes[i], i);
+  EXPECT_NE(sandbox::paletteColor(0), sandbox::paletteColor(1));
+  EXPECT_EQ(sandbox::paletteColor(10), sandbox::paletteColor(0));
+}
+
 TEST(SessionSleep, EachIslandHasAColourOfItsOwn) {
   sandbox::Session s = open("box-models");
   phys::World& world = s.scene().world;

@@ -32,7 +32,7 @@ struct Rendered {
 // Runs the real program on a scene ("" for the default) and steps the same scene as far.
 Rendered render(const std::string& sceneName) {
   const std::string png = (sceneName.empty() ? std::string("default-scene") : sceneName) + ".png";
-  engine::Image image = testing_gl::runSandbox(sceneName, png, kFrames);
+  engine::Image image = testing_gl::runSandbox(sceneName + " --color-by kind", png, kFrames);
   scenes::Scene scene = scenes::loadSceneFile(
       scenes::resolveScene(sceneName.empty() ? scenes::kDefaultScene : std::string_view(sceneName),
                            scenes::sceneDirectory(DATA_DIR)));

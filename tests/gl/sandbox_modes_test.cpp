@@ -44,7 +44,7 @@ TEST(SandboxModes, EveryProjectSceneLoadsAndRenders) {
     if (entry.path().extension() != ".xml") continue;
     const std::string name = entry.path().stem().string();
     SCOPED_TRACE(name);
-    const engine::Image image = runSandbox(name, "scene-" + name + ".png", kFrames);
+    const engine::Image image = runSandbox(name + " --color-by kind", "scene-" + name + ".png", kFrames);
     ASSERT_EQ(image.width, 1280);
     ASSERT_EQ(image.height, 720);
     // Each body whose centre lands in the view between the panels is drawn there: in a box's
@@ -97,8 +97,8 @@ TEST(SandboxModes, ConstraintsModeDrawsTheSticksRed) {
 }
 
 TEST(SandboxModes, MarkersShowGreenBoxesWhereBoxesCollide) {
-  const engine::Image marked = runSandbox("box-of-boxes --markers", "markers-on.png", 20);
-  const engine::Image plain = runSandbox("box-of-boxes", "markers-off.png", 20);
+  const engine::Image marked = runSandbox("box-of-boxes --markers --color-by kind", "markers-on.png", 20);
+  const engine::Image plain = runSandbox("box-of-boxes --color-by kind", "markers-off.png", 20);
   EXPECT_GT(countPixels(marked, kViewX, kViewY, kViewW, kViewH, green), 50);
   EXPECT_LT(countPixels(plain, kViewX, kViewY, kViewW, kViewH, green), 5);
 }
@@ -108,7 +108,7 @@ TEST(SandboxModes, MarkersShowGreenBoxesWhereBoxesCollide) {
 TEST(SandboxModes, ColourBySleepShowsTheSleepingStack) {
   constexpr int kFrames = 150;
   const engine::Image bySleep = runSandbox("stack --color-by sleep", "color-sleep.png", kFrames);
-  const engine::Image byKind = runSandbox("stack", "color-kind.png", kFrames);
+  const engine::Image byKind = runSandbox("stack --color-by kind", "color-kind.png", kFrames);
   scenes::LoadOptions sandbox;
   sandbox.sleepUnlessSaid = true;
   scenes::Scene s =
@@ -161,7 +161,7 @@ TEST(SandboxModes, TheOverlayDrawsEveryRunInItsOwnColour) {
 }
 
 TEST(SandboxModes, PauseAtStopsTheWorldAtThatStep) {
-  const engine::Image image = runSandbox("falling-box --pause-at 10", "pause-at.png", 40);
+  const engine::Image image = runSandbox("falling-box --pause-at 10 --color-by kind", "pause-at.png", 40);
   const scenes::Scene at10 = stepped("falling-box", 10);
   const scenes::Scene at40 = stepped("falling-box", 40);
   const auto camera = startCamera(at10);
@@ -173,6 +173,23 @@ TEST(SandboxModes, PauseAtStopsTheWorldAtThatStep) {
   };
   EXPECT_TRUE(boxAt(at10));
   EXPECT_FALSE(boxAt(at40));
+}
+
+// Each body throws a soft shadow on the ground from the key light (Draw > shadows): the ground
+// around the resting ragdoll is darker with them than with --no-shadows, and nothing else is.
+TEST(SandboxModes, BodiesThrowShadowsOnTheGround) {
+  const engine::Image shadows = runSandbox("ragdoll --hide-panels", "shadows-on.png", 120);
+  const engine::Image plain = runSandbox("ragdoll --hide-panels --no-shadows", "shadows-off.png", 120);
+  int darker = 0, lighter = 0;
+  for (int y = 30; y < 690; ++y) {
+    for (int x = 0; x < 1280; ++x) {
+      const glm::u8vec4 a = shadows.pixel(x, y), b = plain.pixel(x, y);
+      if (a.r + 10 < b.r && a.g + 10 < b.g && a.b + 10 < b.b) ++darker;
+      if (a.r > b.r + 10 || a.g > b.g + 10 || a.b > b.b + 10) ++lighter;
+    }
+  }
+  EXPECT_GT(darker, 500);
+  EXPECT_EQ(lighter, 0);
 }
 
 }  // namespace
