@@ -44,7 +44,7 @@ std::optional<SectionFlags> parseSections(const std::string& text) {
 std::string usage() {
   return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers] [--trails]\n"
          "               [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]\n"
-         "               [--hide-panels] [--unfold SECTIONS] [--no-shadows] [--data DIR]\n"
+         "               [--hide-panels] [--unfold SECTIONS] [--no-shadows] [--sweep] [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
          "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
@@ -53,6 +53,7 @@ std::string usage() {
          "  --markers          green boxes on vertices moved by box-box contacts (key C)\n"
          "  --trails           the paths of loose particles and of the followed body\n"
          "  --no-shadows       no shadows of the bodies on the ground (Draw > shadows)\n"
+         "  --sweep            start the Lab section's sweep of the scene at once, and unfold it\n"
          "  --color-by WHAT    kind, body, island or sleep: what bodies' colours say (default body)\n"
          "  --threads N        threads the step may use, 1 to 64, in every scene opened\n"
          "                     (default: each scene's own, else 1)\n"
@@ -62,7 +63,7 @@ std::string usage() {
          "  --pause-at N       pause after step N (0 to 1000000)\n"
          "  --hide-panels      start with the panels hidden: the scene fills the window (key F2)\n"
          "  --unfold SECTIONS  the panels' sections open at the start, comma-separated, of\n"
-         "                     simulation, rewind, world, draw, stats, or all (default\n"
+         "                     simulation, rewind, world, draw, stats, lab, or all (default\n"
          "                     simulation,rewind,stats)\n"
          "  --data DIR         folder holding shaders/ and assets/ (default: the source tree)\n"
          "  --help             show this text\n";
@@ -121,6 +122,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       o.trails = true;
     } else if (a == "--no-shadows") {
       o.noShadows = true;
+    } else if (a == "--sweep") {
+      o.sweep = true;
     } else if (a == "--hide-panels") {
       o.hidePanels = true;
     } else if (a == "--unfold") {
@@ -128,8 +131,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       if (v == nullptr) return out;
       o.unfold = parseSections(*v);
       if (!o.unfold) {
-        out.error =
-            "--unfold: '" + *v + "' must be all, or sections among simulation, rewind, world, draw, stats";
+        out.error = "--unfold: '" + *v +
+                    "' must be all, or sections among simulation, rewind, world, draw, stats, lab";
         return out;
       }
     } else if (a == "--threads") {

@@ -1,8 +1,9 @@
 #pragma once
 // The sandbox's command line:
 //   sandbox [SCENE] [--screenshot FILE --frames N] [--draw filled|wireframe|constraints]
-//           [--markers] [--trails] [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]
-//           [--hide-panels] [--unfold SECTIONS] [--data DIR] [--help]
+//           [--markers] [--trails] [--color-by WHAT] [--threads N] [--overlay SETTINGS...]
+//           [--pause-at N] [--hide-panels] [--unfold SECTIONS] [--no-shadows] [--sweep]
+//           [--data DIR] [--help]
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -15,8 +16,8 @@
 namespace sandbox {
 
 /// The panels' column's sections, in its order (--unfold names them so).
-inline constexpr std::array<const char*, 5> kSectionNames = {"simulation", "rewind", "world", "draw",
-                                                             "stats"};
+inline constexpr std::array<const char*, 6> kSectionNames = {"simulation", "rewind", "world",
+                                                             "draw",       "stats",  "lab"};
 using SectionFlags = std::array<bool, kSectionNames.size()>;
 
 struct Options {
@@ -28,6 +29,7 @@ struct Options {
   bool markers = false;           ///< the seed's collision-vertex markers from the start
   bool trails = false;            ///< Draw > trails from the start
   bool noShadows = false;         ///< no shadows on the ground (the rendering tests read ground pixels)
+  bool sweep = false;             ///< start the Lab section's sweep of the scene at once, and unfold it
   bool hidePanels = false;        ///< the side column hidden from the start (F2 shows it)
   /// Which of the column's sections (kSectionNames' order) start unfolded; none given: Simulation,
   /// Rewind and Stats.

@@ -1,6 +1,7 @@
 #include "panels.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string_view>
 #include <thread>
@@ -236,6 +237,128 @@ void rewindSection(Session& session, UiState& ui) {
   }
 }
 
+// Each method's colour on the Lab chart.
+ImU32 methodColor(phys::SolverMethod m) {
+  switch (m) {
+    case phys::SolverMethod::GaussSeidel:
+      return IM_COL32(230, 130, 40, 255);
+    case phys::SolverMethod::Jacobi:
+      return IM_COL32(80, 140, 230, 255);
+    case phys::SolverMethod::Xpbd:
+      return IM_COL32(90, 190, 90, 255);
+    case phys::SolverMethod::Shake:
+      return IM_COL32(210, 90, 200, 255);
+  }
+  return IM_COL32_WHITE;
+}
+
+// Error against cost on log axes, as docs/results.md's charts: each setting a dot in its method's
+// colour (a cross at the top when it blew up), the Pareto front as a line, the world's own setting
+// ringed. Hovering names a point; clicking it applies its method, iterations and substeps.
+void labChart(Session& session, UiState& ui, const std::vector<LabPoint>& points) {
+  const float width = ImGui::GetContentRegionAvail().x, height = 200.0f;
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("##chart", ImVec2(width, height));
+  const bool clicked = ImGui::IsItemClicked(ImGuiMouseButton_Left);
+  const bool hovered = ImGui::IsItemHovered();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 lo(at.x + 34.0f, at.y + 4.0f), hi(at.x + width - 4.0f, at.y + height - 16.0f);
+  draw->AddRectFilled(lo, hi, IM_COL32(25, 27, 32, 255));
+  double msLo = 1e300, msHi = 0.0, errLo = 1e300, errHi = 0.0;
+  for (const LabPoint& p : points) {
+    msLo = std::min(msLo, p.msPerStep);
+    msHi = std::max(msHi, p.msPerStep);
+    if (p.blewUp) continue;
+    errLo = std::min(errLo, std::max(p.error, 1e-9));
+    errHi = std::max(errHi, std::max(p.error, 1e-9));
+  }
+  if (points.empty() || !(msHi > 0.0)) return;
+  if (errHi < errLo) errLo = errHi = 1.0;
+  const double lx0 = std::log10(std::max(msLo, 1e-6)) - 0.1, lx1 = std::log10(std::max(msHi, 1e-6)) + 0.1;
+  const double ly0 = std::log10(errLo) - 0.2, ly1 = std::log10(errHi) + 0.2;
+  auto place = [&](double ms, double err) {
+    const double fx = (std::log10(std::max(ms, 1e-6)) - lx0) / (lx1 - lx0);
+    const double fy = (std::log10(std::max(err, 1e-9)) - ly0) / (ly1 - ly0);
+    return ImVec2(lo.x + static_cast<float>(fx) * (hi.x - lo.x),
+                  hi.y - static_cast<float>(fy) * (hi.y - lo.y));
+  };
+  const ImU32 label = IM_COL32(170, 170, 170, 255);
+  draw->AddText(ImVec2(at.x, lo.y), label, figure("%.0e", std::pow(10.0, ly1)).c_str());
+  draw->AddText(ImVec2(at.x, hi.y - 12.0f), label, figure("%.0e", std::pow(10.0, ly0)).c_str());
+  draw->AddText(ImVec2(lo.x, hi.y + 2.0f), label, (figure("%.2g", std::pow(10.0, lx0)) + " ms").c_str());
+  const std::string right = figure("%.2g", std::pow(10.0, lx1)) + " ms/step";
+  draw->AddText(ImVec2(hi.x - ImGui::CalcTextSize(right.c_str()).x, hi.y + 2.0f), label, right.c_str());
+  const std::vector<LabPoint> front = paretoFront(points);
+  for (std::size_t k = 1; k < front.size(); ++k) {
+    draw->AddLine(place(front[k - 1].msPerStep, front[k - 1].error),
+                  place(front[k].msPerStep, front[k].error), IM_COL32(235, 235, 235, 200), 1.5f);
+  }
+  const phys::SolverSettings& now = session.scene().world.solverSettings();
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const LabPoint* nearest = nullptr;
+  float nearestDistance = 8.0f;
+  for (const LabPoint& p : points) {
+    ImVec2 c = place(p.msPerStep, p.blewUp ? std::pow(10.0, ly1) : p.error);
+    if (p.blewUp) {
+      c.y = lo.y + 4.0f;
+      draw->AddLine(ImVec2(c.x - 3, c.y - 3), ImVec2(c.x + 3, c.y + 3), methodColor(p.method));
+      draw->AddLine(ImVec2(c.x - 3, c.y + 3), ImVec2(c.x + 3, c.y - 3), methodColor(p.method));
+    } else {
+      draw->AddCircleFilled(c, 3.0f, methodColor(p.method));
+    }
+    if (p.method == now.method && p.iterations == now.iterations && p.substeps == now.substeps)
+      draw->AddCircle(c, 7.0f, IM_COL32_WHITE, 0, 2.0f);
+    const float d = std::hypot(c.x - mouse.x, c.y - mouse.y);
+    if (hovered && d < nearestDistance) {
+      nearest = &p;
+      nearestDistance = d;
+    }
+  }
+  if (nearest == nullptr) return;
+  const std::string name = std::string(phys::toString(nearest->method)) + " " +
+                           std::to_string(nearest->iterations) + "x" + std::to_string(nearest->substeps);
+  const std::string error =
+      nearest->blewUp ? "none (it blew up)" : figure("%.3g", nearest->error * 1000.0) + " mm";
+  ImGui::SetTooltip("%s: %s ms a step, error %s\nclick to use it", name.c_str(),
+                    figure("%.3g", nearest->msPerStep).c_str(), error.c_str());
+  if (clicked) {
+    phys::SolverSettings s = now;
+    s.method = nearest->method;
+    s.iterations = nearest->iterations;
+    s.substeps = nearest->substeps;
+    const std::string refused = session.setSolverSettings(s);
+    ui.message = refused.empty() ? "solver: " + describeSolver(s) + " (from the Lab chart)" : refused;
+  }
+}
+
+void labSection(Session& session, UiState& ui) {
+  greyWrapped(
+      "The scene's file under 4 methods x 1, 2, 4 iterations x 1, 2, 4, 8 substeps, each run 1 s "
+      "against the scene's exact answers or a converged reference, as `lab sweep` measures it.");
+  if (ui.lab.running()) {
+    if (ImGui::Button("Cancel")) ui.lab.cancel();
+    ImGui::SameLine();
+    const int total = std::max(ui.lab.total(), 1);
+    ImGui::ProgressBar(static_cast<float>(ui.lab.done()) / static_cast<float>(total), ImVec2(-1.0f, 0.0f),
+                       (std::to_string(ui.lab.done()) + " of " + std::to_string(ui.lab.total())).c_str());
+  } else if (ImGui::Button(ui.lab.points().empty() ? "Sweep this scene" : "Sweep again")) {
+    ui.lab.start(session.file());
+  }
+  if (const std::string error = ui.lab.error(); !error.empty()) greyWrapped("stopped: " + error);
+  const std::vector<LabPoint> points = ui.lab.points();
+  if (points.empty()) return;
+  if (ui.lab.file() != session.file())
+    greyWrapped("of " + ui.lab.file().filename().string() + ", not this scene");
+  labChart(session, ui, points);
+  for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
+                               phys::SolverMethod::Xpbd, phys::SolverMethod::Shake}) {
+    const ImU32 c = methodColor(m);
+    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(c), "%s", std::string(phys::toString(m)).c_str());
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+}
+
 void worldSection(Session& session, UiState& ui) {
   phys::WorldSettings w = session.scene().world.worldSettings();
   int mode = static_cast<int>(w.gravityMode);
@@ -395,6 +518,7 @@ void drawPanels(Session& session, UiState& ui) {
   if (beginSection("World", &ui.showWorld, ui.unfolded[2], reset)) worldSection(session, ui);
   if (beginSection("Draw", &ui.showDraw, ui.unfolded[3], reset)) drawSection(ui);
   if (beginSection("Stats", &ui.showStats, ui.unfolded[4], reset)) statsSection(session, ui);
+  if (beginSection("Lab", &ui.showLab, ui.unfolded[5], reset)) labSection(session, ui);
   ImGui::PopItemWidth();
   ImGui::End();
 }

@@ -12,6 +12,7 @@
 
 #include "draw_options.h"
 #include "history.h"
+#include "lab_sweep.h"
 #include "options.h"
 #include "real_time.h"
 #include "session.h"
@@ -33,7 +34,7 @@ ScreenRect panelColumn(float windowWidth, float windowHeight, float top, float b
 ScreenRect sceneView(float windowWidth, float windowHeight, bool panelsShown);
 
 /// The sections open at the start (kSectionNames' order): the settings and what they cost.
-inline constexpr SectionFlags kDefaultUnfolded = {true, true, false, false, true};
+inline constexpr SectionFlags kDefaultUnfolded = {true, true, false, false, true, false};
 
 /// Everything the panels show or change besides the session.
 struct UiState {
@@ -41,7 +42,8 @@ struct UiState {
   bool panelsHidden = false;                 ///< F2 or --hide-panels: the scene fills the window
   bool resetLayout = false;                  ///< View > Reset layout: every section shown, in its first state
   SectionFlags unfolded = kDefaultUnfolded;  ///< per kSectionNames: open at the start
-  bool showRewind = true;
+  bool showRewind = true, showLab = true;
+  LabSweep lab;                                                             ///< the Lab section's sweep
   int recordingBudgetMb = static_cast<int>(kDefaultRecordingBudget >> 20);  ///< Rewind's memory slider
   /// A number being typed into a solver slider (Ctrl+click), applied when the typing ends: the
   /// slider's label and the value so far.

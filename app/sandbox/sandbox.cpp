@@ -103,6 +103,10 @@ Sandbox::Sandbox(const Options& options)
       engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   applyRemembered(user_, options_, ui_);
   fitToScene();
+  if (options_.sweep) {
+    ui_.unfolded[5] = true;
+    ui_.lab.start(session_->file());
+  }
   if (!options_.overlay.empty()) {
     const std::string error = session_->startOverlay(options_.overlay);
     if (!error.empty()) throw std::invalid_argument("--overlay: " + error);

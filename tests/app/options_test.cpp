@@ -96,15 +96,15 @@ TEST(Options, HidePanelsAndUnfold) {
   const auto p = sandbox::parseOptions({"chain", "--hide-panels", "--unfold", "world,stats"});
   ASSERT_EQ(p.error, "");
   EXPECT_TRUE(p.options.hidePanels);
-  EXPECT_EQ(p.options.unfold, (sandbox::SectionFlags{false, false, true, false, true}));
+  EXPECT_EQ(p.options.unfold, (sandbox::SectionFlags{false, false, true, false, true, false}));
   EXPECT_EQ(sandbox::parseOptions({"--unfold", "all"}).options.unfold,
-            (sandbox::SectionFlags{true, true, true, true, true}));
+            (sandbox::SectionFlags{true, true, true, true, true, true}));
   EXPECT_FALSE(sandbox::parseOptions({}).options.unfold.has_value());
   EXPECT_FALSE(sandbox::parseOptions({}).options.hidePanels);
   for (const char* bad : {"", "stat", "world,", "world,,draw", "All"}) {
     const auto b = sandbox::parseOptions({"--unfold", bad});
     EXPECT_EQ(b.error, std::string("--unfold: '") + bad +
-                           "' must be all, or sections among simulation, rewind, world, draw, stats")
+                           "' must be all, or sections among simulation, rewind, world, draw, stats, lab")
         << bad;
   }
   EXPECT_NE(sandbox::parseOptions({"--unfold"}).error.find("--unfold needs"), std::string::npos);

@@ -1,0 +1,73 @@
+// The Lab panel's sweep (lab_sweep.h): every setting of the grid measured by the lab's functions
+// on a thread of its own, the Pareto front, and a cancel that stops it between settings.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "lab_sweep.h"
+#include "scenes/scene.h"
+
+namespace {
+
+using namespace std::chrono_literals;
+
+std::filesystem::path scene(const char* name) {
+  return scenes::resolveScene(name, scenes::sceneDirectory(DATA_DIR));
+}
+
+TEST(LabSweep, MeasuresEverySettingOfTheGrid) {
+  sandbox::LabSweep lab;
+  lab.start(scene("pendulum-exact"));
+  for (int i = 0; i < 120000 && lab.running(); ++i) std::this_thread::sleep_for(1ms);
+  ASSERT_FALSE(lab.running());
+  EXPECT_EQ(lab.error(), "");
+  const std::vector<sandbox::LabPoint> points = lab.points();
+  ASSERT_EQ(points.size(), 48u);  // 4 methods x 3 iterations x 4 substeps
+  EXPECT_EQ(lab.done(), 48);
+  for (const sandbox::LabPoint& p : points) {
+    EXPECT_FALSE(p.blewUp);
+    EXPECT_TRUE(std::isfinite(p.error) && p.error >= 0.0);
+    EXPECT_GT(p.msPerStep, 0.0);
+  }
+  // Against the exact answer, more substeps are more accurate for a pendulum (first order).
+  auto find = [&](phys::SolverMethod m, int it, int sub) {
+    for (const sandbox::LabPoint& p : points) {
+      if (p.method == m && p.iterations == it && p.substeps == sub) return p;
+    }
+    return sandbox::LabPoint{};
+  };
+  EXPECT_LT(find(phys::SolverMethod::GaussSeidel, 1, 8).error,
+            find(phys::SolverMethod::GaussSeidel, 1, 1).error);
+}
+
+TEST(LabSweep, TheFrontIsWhatNothingBeatsInBoth) {
+  using P = sandbox::LabPoint;
+  const std::vector<P> points{{phys::SolverMethod::Jacobi, 1, 1, 1.0, 0.5, false},
+                              {phys::SolverMethod::Xpbd, 1, 2, 2.0, 0.1, false},
+                              {phys::SolverMethod::Shake, 1, 4, 3.0, 0.2, false},  // beaten by the one above
+                              {phys::SolverMethod::GaussSeidel, 1, 8, 4.0, 0.01, false},
+                              {phys::SolverMethod::Jacobi, 4, 8, 0.5, 0.0, true}};  // blew up: not on it
+  const std::vector<P> front = sandbox::paretoFront(points);
+  ASSERT_EQ(front.size(), 3u);
+  EXPECT_EQ(front[0].msPerStep, 1.0);
+  EXPECT_EQ(front[1].msPerStep, 2.0);
+  EXPECT_EQ(front[2].msPerStep, 4.0);
+}
+
+TEST(LabSweep, CancelStopsItAndABadFileSaysWhy) {
+  sandbox::LabSweep lab;
+  lab.start(scene("bullet-ragdolls"));
+  std::this_thread::sleep_for(20ms);
+  lab.cancel();
+  EXPECT_FALSE(lab.running());
+  EXPECT_LT(lab.done(), 48);
+  lab.start("/nonexistent/scene.xml");
+  for (int i = 0; i < 10000 && lab.running(); ++i) std::this_thread::sleep_for(1ms);
+  EXPECT_NE(lab.error().find("/nonexistent/scene.xml"), std::string::npos) << lab.error();
+  EXPECT_TRUE(lab.points().empty());
+}
+
+}  // namespace
