@@ -192,8 +192,11 @@ void Sandbox::openScene(const std::filesystem::path& file) {
   stopFollowing();
   trails_.clear();
   fitToScene();
-  camera_ =
-      engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
+  // A scene that sets its camera gets it; one that does not keeps the view the user had.
+  if (session_->scene().camera.given) {
+    camera_ =
+        engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
+  }
   ui_.message = session_->status();
   ui_.stepMs.clear();
   ui_.maxError.clear();

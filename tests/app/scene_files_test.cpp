@@ -69,6 +69,9 @@ TEST(SceneFiles, WorldSolverGroundAndCamera) {
   EXPECT_EQ(v.contactSlop, 0.002);
   EXPECT_EQ(v.bodyDamping, 0.25);
   EXPECT_EQ(s.camera.eye, glm::vec3(1, 2, 3));
+  EXPECT_TRUE(s.camera.given);
+  // Without <camera> the sandbox keeps its own view when the scene opens.
+  EXPECT_FALSE(load("<particle pos=\"0 1 0\"/>").camera.given);
 }
 
 TEST(SceneFiles, ParticlesSticksAndRanges) {

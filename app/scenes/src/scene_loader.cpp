@@ -149,6 +149,7 @@ void readCamera(ElementReader& e, const phys::WorldSettings& w, CameraStart& c) 
   if (auto target = point("target")) c.target = *target;
   if (glm::length(c.eye - c.target) < 1e-6f) e.fail("target", "must differ from eye");
   e.rejectUnknownAttributes();
+  c.given = true;
 }
 
 class Builder {

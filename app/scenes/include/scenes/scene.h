@@ -22,6 +22,7 @@ namespace scenes {
 struct CameraStart {
   glm::vec3 eye{0.0f, 2.5f, 7.0f};
   glm::vec3 target{0.0f, 1.0f, 0.0f};
+  bool given = false;  ///< the file has a <camera>; without one, the sandbox keeps its camera where it is
 };
 
 /// A body a scene file gave a name (its own, or a generator's "stack[3]"). A capsule is a box
