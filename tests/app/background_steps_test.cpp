@@ -3,23 +3,20 @@
 // acts on the world shown, the budget ends them after a whole step, and the drag the user moves
 // or lets go meanwhile reaches the stepped world.
 #include <chrono>
-#include <filesystem>
 #include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
 
+#include "project_session.h"
 #include "session.h"
 
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
-
 sandbox::Session open(const char* name) {
-  return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes);
+  return testing_app::openSession(name);
 }
 
 sandbox::StepsTaken waitForSteps(sandbox::Session& s) {

@@ -4,24 +4,21 @@
 // recorded alike, and the memory budget drops the oldest keyframes.
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "project_session.h"
 #include "session.h"
 
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
-
 sandbox::Session open(const char* name) {
-  return sandbox::Session(kScenes / (std::string(name) + ".xml"), kScenes);
+  return testing_app::openSession(name);
 }
 
 std::uint64_t hashOf(const sandbox::Session& s) {
