@@ -17,7 +17,7 @@ constexpr int kRepeats = 3;
 }  // namespace
 
 void LabSweep::start(const std::filesystem::path& file) {
-  cancel();
+  stop();
   file_ = file;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -32,6 +32,10 @@ void LabSweep::start(const std::filesystem::path& file) {
 }
 
 void LabSweep::cancel() {
+  stop_.store(true);  // it stops after the setting it is on; running() says when
+}
+
+void LabSweep::stop() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
   running_.store(false);

@@ -31,14 +31,17 @@ inline constexpr int kLabSubsteps[] = {1, 2, 4, 8};
 class LabSweep {
  public:
   LabSweep() = default;
-  ~LabSweep() { cancel(); }
+  ~LabSweep() { stop(); }
   LabSweep(const LabSweep&) = delete;
   LabSweep& operator=(const LabSweep&) = delete;
 
   /// Starts sweeping `file` (at its own dt, over lab sweep's default horizon); drops what an
   /// earlier sweep found.
   void start(const std::filesystem::path& file);
+  /// Asks it to stop after the setting it is measuring (which can take a while on a big scene);
+  /// returns at once, so the window goes on.
   void cancel();
+  bool cancelling() const { return stop_.load() && running(); }
   bool running() const { return running_.load(); }
   /// Settings done and in all.
   int done() const { return done_.load(); }
@@ -50,6 +53,8 @@ class LabSweep {
 
  private:
   void run();
+  /// Cancels and waits for the thread.
+  void stop();
 
   std::filesystem::path file_;
   std::thread thread_;

@@ -336,7 +336,10 @@ void labSection(Session& session, UiState& ui) {
       "The scene's file under 4 methods x 1, 2, 4 iterations x 1, 2, 4, 8 substeps, each run 1 s "
       "against the scene's exact answers or a converged reference, as `lab sweep` measures it.");
   if (ui.lab.running()) {
-    if (ImGui::Button("Cancel")) ui.lab.cancel();
+    if (ui.lab.cancelling())
+      ImGui::TextDisabled("cancelling...");
+    else if (ImGui::Button("Cancel"))
+      ui.lab.cancel();
     ImGui::SameLine();
     const int total = std::max(ui.lab.total(), 1);
     ImGui::ProgressBar(static_cast<float>(ui.lab.done()) / static_cast<float>(total), ImVec2(-1.0f, 0.0f),

@@ -8,13 +8,20 @@
 namespace sandbox {
 namespace {
 
-// A copy of the world and the heap it took (glibc's count of bytes in use, before and after:
-// the copy's arrays, whatever their capacity). Made on the window's thread while no steps run
-// beside it (Session cancels or collects them first), so nothing else allocates meanwhile.
+// Bytes the heap has handed out: glibc's blocks in use in its arenas, and the big ones it maps
+// on their own (128 KiB and up at first: a big world's arrays).
+std::size_t heapInUse() {
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+}
+
+// A copy of the world and the heap it took: the copy's arrays, whatever their capacity. Made on
+// the window's thread while no steps run beside it (Session cancels or collects them first); the
+// Lab section's sweep may allocate meanwhile, which makes the figure a little off, never unsafe.
 std::pair<std::shared_ptr<const phys::World>, std::size_t> copyOf(const phys::World& world) {
-  const std::size_t before = mallinfo2().uordblks;
+  const std::size_t before = heapInUse();
   auto copy = std::make_shared<const phys::World>(world);
-  const std::size_t after = mallinfo2().uordblks;
+  const std::size_t after = heapInUse();
   return {std::move(copy), std::max(after > before ? after - before : 0, sizeof(phys::World))};
 }
 
@@ -59,7 +66,7 @@ double Recording::seconds() const {
 
 void Recording::setStepCost(double milliseconds) {
   const double steps = milliseconds > 0.0 ? 50.0 / milliseconds : 120.0;
-  interval_ = std::clamp(std::lround(steps), 10L, 120L);
+  interval_ = std::clamp(std::lround(steps), 1L, 120L);
 }
 
 void Recording::setBudget(std::size_t bytes) {
@@ -90,6 +97,9 @@ void Recording::stepped(const StepRecord& record) {
 void Recording::keyframe(const phys::World& world) {
   if (!on_) return;
   const long step = world.stepCount();
+  // Before everything kept (the budget dropped the keyframes up to a world rewound earlier):
+  // nothing kept follows from it.
+  if (!keyframes_.empty() && step < first()) clear();
   if (!keyframes_.empty() && step < last()) dropAfter(step);  // a command on a rewound world: a fork
   auto [copy, bytes] = copyOf(world);
   if (!keyframes_.empty() && keyframes_.back().step == step) {  // a second command in one step

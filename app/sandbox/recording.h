@@ -51,7 +51,7 @@ class Recording {
   void keyframe(const phys::World& world);
   void keyframeIfDue(const phys::World& world);
   /// Steps between keyframes, from how long a step takes: rebuilding a step costs at most this
-  /// many steps, about 50 ms of them, within 10 to 120.
+  /// many steps, about 50 ms of them, within 1 to 120 (a step slower than 50 ms is kept whole).
   void setStepCost(double milliseconds);
 
   long first() const;  ///< the earliest step that can be shown

@@ -317,7 +317,7 @@ void Sandbox::advancePhysics(double frameSeconds) {
   } else {
     stepInBackground(frameSeconds);
   }
-  ui_.stepOnce = false;  // a step asked for while running is one of the clock's anyway
+  if (!ui_.paused) ui_.stepOnce = false;  // a step asked for while running is one of the clock's anyway
   const phys::World& world = session_->scene().world;
   ui_.realTime.add(world.time() - before, frameSeconds, interactive_ && !ui_.paused);
   const phys::Metrics m = world.metrics();
@@ -339,9 +339,11 @@ void Sandbox::stepInBackground(double frameSeconds) {
   if (ui_.paused || pauseDue()) {
     // A step asked for with N finishes; steps the clock owed stop where they are.
     if (session_->stepping() && !stepWhilePaused_) session_->cancelSteps();
+    // N's step: now, or once the one in flight is done (the press is kept till then).
     if (ui_.stepOnce && !session_->stepping()) {
       session_->startSteps(1, kStepBudget);
       stepWhilePaused_ = true;
+      ui_.stepOnce = false;
     }
     accumulator_ = 0.0;
     return;

@@ -262,12 +262,9 @@ std::optional<StepsTaken> Session::finishSteps() {
   if (!done) return std::nullopt;
   runs_ = std::move(done->first);
   recordSteps(done->second.records);
-  // The drag as the user left it while the copies stepped: released, or pulling somewhere new.
-  // (A new pick cancels the steps, so a drag the copies lack is never to be added.)
-  if (!drag_ && scene().world.drag()) {
-    forEachWorld([](phys::World& w) { w.clearDrag(); });
-    worldChanged();
-  } else if (drag_ && dragTarget_) {
+  // The drag's target as the user moved it while the copies stepped (a pick or a release cancels
+  // the steps, so the copies hold the drag the user holds).
+  if (drag_ && dragTarget_) {
     forEachWorld([&](phys::World& w) {
       if (w.drag()) w.setDragTarget(*dragTarget_);
     });
@@ -478,11 +475,13 @@ void Session::dragAlong(const phys::Vec3& origin, const phys::Vec3& direction) {
 
 void Session::release() {
   if (!drag_) return;
+  // The copies in flight hold the drag: they are dropped, so the recording's keyframe after the
+  // release is the state every later step starts from.
+  cancelSteps();
   drag_.reset();
   dragTarget_.reset();
   forEachWorld([](phys::World& w) { w.clearDrag(); });
-  // With steps in flight the copies still hold the drag: finishSteps lets go of it there.
-  if (!stepping()) worldChanged();
+  worldChanged();
 }
 
 std::optional<std::pair<phys::Vec3, phys::Vec3>> Session::dragLine() const {

@@ -78,7 +78,7 @@ class Session {
 
   // The time budget (docs/sandbox.md): steps on another thread while the window draws the runs
   // as they are. Every command that changes a world cancels them first and acts on what is shown;
-  // moving and letting go of the drag do not, and are applied to the stepped runs instead.
+  // moving the drag does not, and its target is applied to the stepped runs instead.
   /// Up to `steps` steps of copies of the runs on another thread, no more once `budget` of wall
   /// time has gone by. Nothing when steps < 1 or steps are already running.
   void startSteps(int steps, std::chrono::duration<double> budget);

@@ -435,6 +435,11 @@ TEST(SceneWriter, WhatTheLoaderWouldRefuseIsNotWritten) {
   scene.world.setWorldSettings(smaller);
   EXPECT_NE(refusal(scene, scene.camera).find("box 0 'far' is beyond the world's bound of 20 m"),
             std::string::npos);
+  // A rigid body too: it has no particles, its centre is what the file places.
+  scenes::Scene rigid = load("<box name=\"crate\" pos=\"0 1 50\" model=\"rigid\"/>");
+  rigid.world.setWorldSettings(smaller);
+  EXPECT_NE(refusal(rigid, rigid.camera).find("box 0 'crate' is beyond the world's bound of 20 m"),
+            std::string::npos);
   scenes::Scene near = load("<box name=\"near\" pos=\"0 1 0\"/>", "<world bound=\"20\"/>");
   scenes::CameraStart flown = near.camera;
   flown.eye.z = 30.0f;

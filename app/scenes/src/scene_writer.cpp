@@ -329,6 +329,16 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     throw std::invalid_argument(body + " is beyond the world's bound of " + detail::formatNumber(bound) +
                                 " m, where a scene file places nothing");
   }
+  // A rigid body has no particles: its centre is where the file puts it. (Found by the soak: a
+  // rigid box flung to 3e261 m under a huge gravity, then the bound lowered, saved a file the
+  // loader refused.)
+  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
+    if (world.bodies()[id].model != phys::BodyModel::Rigid || insideBound(world.bodyPose(id).center, bound))
+      continue;
+    throw std::invalid_argument("box " + std::to_string(id) + " '" + world.bodies()[id].name +
+                                "' is beyond the world's bound of " + detail::formatNumber(bound) +
+                                " m, where a scene file places nothing");
+  }
 
   // Sticks inside one box are its bracing, which <box> rebuilds; the rest must join two loose
   // particles, as <stick> does.
