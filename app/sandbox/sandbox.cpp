@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <limits>
 
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
@@ -449,13 +448,7 @@ void Sandbox::fitToScene() {
 // one whose time is nearest the world's is drawn larger.
 void Sandbox::drawExactAnswers() {
   const scenes::Scene& scene = session_->scene();
-  const double now = scene.world.time();
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const scenes::Expectation& e : scene.expectations) {
-    const std::string* at = e.find("at");
-    if (at != nullptr && e.find("pos") != nullptr)
-      nearest = std::min(nearest, std::abs(std::atof(at->c_str()) - now));
-  }
+  std::vector<std::pair<double, glm::vec3>> answers;  // time, place
   for (const scenes::Expectation& e : scene.expectations) {
     const std::string* kind = e.find("kind");
     const std::string* pos = e.find("pos");
@@ -463,8 +456,15 @@ void Sandbox::drawExactAnswers() {
     if (kind == nullptr || *kind != "position" || pos == nullptr || at == nullptr) continue;
     glm::vec3 p(0.0f);
     if (std::sscanf(pos->c_str(), "%f %f %f", &p.x, &p.y, &p.z) != 3) continue;  // the loader checked it
-    const bool current = std::abs(std::atof(at->c_str()) - now) == nearest;
-    renderer_->lines().addPoint(p, ui_.draw.particleRadius * (current ? 5.0f : 3.0f), kExactColor);
+    answers.emplace_back(std::atof(at->c_str()), p);
+  }
+  const double now = scene.world.time();
+  const auto nearest = std::min_element(answers.begin(), answers.end(), [&](const auto& a, const auto& b) {
+    return std::abs(a.first - now) < std::abs(b.first - now);
+  });
+  for (auto it = answers.begin(); it != answers.end(); ++it) {
+    renderer_->lines().addPoint(it->second, ui_.draw.particleRadius * (it == nearest ? 5.0f : 3.0f),
+                                kExactColor);
   }
 }
 

@@ -78,7 +78,7 @@ void SceneView::drawShadows(const phys::World& world, const glm::mat4& viewProje
   const engine::GpuMesh& disc = capsuleMeshes_.get(1.0f, 0.0f, engine::CapsuleMeshCache::kCoarse);
   const glm::mat4 turn = glm::mat4_cast(glm::quat(glm::vec3(0.0f, 1.0f, 0.0f), n));
   for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
-    const glm::vec3 centre(world.bodyPose(id).center);
+    const glm::vec3 centre(poses_[id].center);  // fitted by draw() for the body's mesh
     const float height = glm::dot(n, centre) - static_cast<float>(w.groundHeight);
     if (height < 0.0f) continue;
     const float radius = 0.75f * static_cast<float>(glm::length(world.bodies()[id].halfExtents));
@@ -120,11 +120,12 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
     const auto capsuleDetail =
         wireframe ? engine::CapsuleMeshCache::kCoarse : engine::CapsuleMeshCache::kFine;
     const auto boxes = world.bodies();
+    poses_.resize(boxes.size());
     for (phys::BodyId id{}; id < boxes.size(); ++id) {
       const phys::Body& box = boxes[id];
       const glm::vec3 color =
           tint ? tint->color : boxShade(id) * bodyColor(world, id, options.coloring, groups_);
-      const phys::BodyPose pose = world.bodyPose(id);
+      const phys::BodyPose& pose = poses_[id] = world.bodyPose(id);
       if (box.shape == phys::Shape::Capsule) {
         // Built at its own size: scaling one capsule to another would squash its caps.
         // Within what the cache takes, so that no size the physics allows can stop the drawing.

@@ -40,6 +40,7 @@ class SceneView {
 
  private:
   void findJointedBoxes(const phys::World& world);
+  /// After the bodies are drawn: their poses are in poses_.
   void drawShadows(const phys::World& world, const glm::mat4& viewProjection);
 
   engine::Renderer& renderer_;
@@ -51,6 +52,7 @@ class SceneView {
   std::vector<phys::BodyId> bodyOf_;   // per particle: its body, or kNoBody
   std::vector<std::uint8_t> jointed_;  // per box: held by a joint
   std::vector<std::uint32_t> groups_;  // per body, with BodyColoring::Body: jointGroups()
+  std::vector<phys::BodyPose> poses_;  // per body, this frame's (a particle body's is a fit)
 };
 
 }  // namespace sandbox

@@ -1,0 +1,56 @@
+// How long a command waits for the sandbox's steps in flight (docs/sandbox.md, "Time budget"):
+// a scene at 64 x 64 (a step of 0.1 to 0.5 s), 8 steps started on copies in the background, and a
+// command given 0 to 100 ms later (a fixed pseudo-random sequence); the command's wall time is
+// what a key press waits before it acts. Reported: the median and the largest, in ms.
+//   build/release/tests/sandbox_bench [--benchmark_filter=ragdolls|bullet]
+#include <algorithm>
+#include <chrono>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "session.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void commandDuringSteps(benchmark::State& state, const char* scene) {
+  const std::filesystem::path dir = std::filesystem::path(DATA_DIR) / "assets" / "scenes";
+  sandbox::Session s(dir / (std::string(scene) + ".xml"), dir);
+  phys::SolverSettings slow = s.scene().world.solverSettings();
+  slow.iterations = slow.substeps = 64;
+  s.setSolverSettings(slow);
+  std::mt19937 random(1);
+  std::vector<double> waits;
+  double sign = 1.0;
+  for (auto _ : state) {
+    s.startSteps(8, std::chrono::seconds(600));
+    std::this_thread::sleep_for(
+        std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 100)(random)));
+    const auto start = Clock::now();
+    s.changeDamping(sign * 0.01);  // cancels the steps, then acts
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    state.SetIterationTime(seconds);
+    waits.push_back(seconds * 1000.0);
+    sign = -sign;
+  }
+  std::sort(waits.begin(), waits.end());
+  state.counters["median_ms"] = waits[waits.size() / 2];
+  state.counters["max_ms"] = waits.back();
+}
+
+void BM_CommandDuringSteps_ragdolls(benchmark::State& state) {
+  commandDuringSteps(state, "ragdolls");
+}
+void BM_CommandDuringSteps_bullet(benchmark::State& state) {
+  commandDuringSteps(state, "bullet-ragdolls");
+}
+BENCHMARK(BM_CommandDuringSteps_ragdolls)->Iterations(20)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CommandDuringSteps_bullet)->Iterations(20)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
