@@ -7,6 +7,7 @@
 
 #include "passes.h"
 #include "physics/world.h"
+#include "state_hash.h"
 
 namespace phys {
 namespace {
@@ -155,28 +156,9 @@ Metrics World::metrics() const {
   return m;
 }
 
-// FNV-1a, 64 bit, over the bytes of every position and previous position.
 std::uint64_t World::stateHash() const {
-  std::uint64_t hash = 14695981039346656037ull;
-  auto mix = [&hash](const std::vector<Vec3>& values) {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
-    for (std::size_t i = 0; i < values.size() * sizeof(Vec3); ++i) {
-      hash ^= bytes[i];
-      hash *= 1099511628211ull;
-    }
-  };
-  mix(particles_.position);
-  mix(particles_.previous);
-  mix(rigidBodies_.position);
-  mix(rigidBodies_.velocity);
-  mix(rigidBodies_.angularVelocity);
-  std::vector<Vec3> rotations;  // a quaternion's four numbers, as the bytes of vectors
-  for (const Quat& q : rigidBodies_.orientation) {
-    rotations.emplace_back(q.w, q.x, q.y);
-    rotations.emplace_back(q.z, 0.0, 0.0);
-  }
-  mix(rotations);
-  return hash;
+  return detail::stateHash(particles_.position, particles_.previous, rigidBodies_.position,
+                           rigidBodies_.velocity, rigidBodies_.angularVelocity, rigidBodies_.orientation);
 }
 
 }  // namespace phys

@@ -22,6 +22,7 @@
 #include "physics/guard.h"
 #include "physics/islands.h"
 #include "physics/metrics.h"
+#include "physics/motion.h"
 #include "physics/narrow_phase.h"
 #include "physics/particles.h"
 #include "physics/parting.h"
@@ -238,6 +239,14 @@ class World {
   const Profile& profile() const { return profile_; }
   /// FNV-1a hash of every position and previous position: equal hashes, equal states.
   std::uint64_t stateHash() const;
+  /// The world's motion now (motion.h): what stateHash covers, and the clock.
+  Motion motion() const;
+  /// Puts the world in `motion`, taken from a world of the same structure (the same bodies,
+  /// particles and rigid bodies, in the same order). Only for a world that has not stepped: it
+  /// then holds no contacts, warm starts or rest timers of its own, and goes on from the motion as
+  /// a world built there would. Throws std::invalid_argument (and changes nothing) for a world
+  /// that has stepped, arrays of other sizes, a non-finite number or a quaternion not of unit length.
+  void setMotion(const Motion& motion);
   /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
   /// With sleeping off the step does not count them: they are counted here, when asked.
   const Islands& islands() const;
