@@ -12,7 +12,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::string_view kExtension = ".xml";  // scenes are the only files the sandbox opens or saves
 const ImVec4 kErrorColor(1.0f, 0.4f, 0.4f, 1.0f);
 
 char lower(char c) {
@@ -78,7 +77,8 @@ std::vector<DirectoryEntry> listDirectory(const fs::path& folder, std::string_vi
   return out;
 }
 
-TypedPath resolveTypedPath(FileDialogMode mode, const fs::path& folder, std::string_view typed) {
+TypedPath resolveTypedPath(FileDialogMode mode, const fs::path& folder, std::string_view typed,
+                           std::string_view extension) {
   TypedPath out;
   if (typed.empty()) {
     out.message = mode == FileDialogMode::Open ? "pick a file or type its path" : "type a file name";
@@ -93,7 +93,7 @@ TypedPath resolveTypedPath(FileDialogMode mode, const fs::path& folder, std::str
     out.path = cleanFolder(path);
     return out;
   }
-  if (mode == FileDialogMode::Save && path.has_filename() && !path.has_extension()) path += kExtension;
+  if (mode == FileDialogMode::Save && path.has_filename() && !path.has_extension()) path += extension;
   const fs::path parent = path.parent_path();
   if (mode == FileDialogMode::Open && !fs::is_regular_file(path, ec)) {
     out.message =
@@ -109,8 +109,10 @@ TypedPath resolveTypedPath(FileDialogMode mode, const fs::path& folder, std::str
   return out;
 }
 
-void FileDialog::open(FileDialogMode mode, const fs::path& folder, const std::string& title) {
+void FileDialog::open(FileDialogMode mode, const fs::path& folder, const std::string& title,
+                      std::string_view extension) {
   open_ = true;
+  extension_ = extension;
   justOpened_ = true;  // OpenPopup must run inside the ImGui frame, so draw() does it
   mode_ = mode;
   title_ = title;
@@ -121,7 +123,7 @@ void FileDialog::open(FileDialogMode mode, const fs::path& folder, const std::st
 
 void FileDialog::enterFolder(const fs::path& folder) {
   folder_ = cleanFolder(folder);
-  entries_ = listDirectory(folder_, kExtension, &listError_);
+  entries_ = listDirectory(folder_, extension_, &listError_);
   message_.clear();
   // A name typed for saving should follow the user into the new folder; a file picked for
   // opening belonged to the old one.
@@ -131,7 +133,7 @@ void FileDialog::enterFolder(const fs::path& folder) {
 }
 
 std::optional<fs::path> FileDialog::accept() {
-  const TypedPath result = resolveTypedPath(mode_, folder_, typed_);
+  const TypedPath result = resolveTypedPath(mode_, folder_, typed_, extension_);
   switch (result.action) {
     case TypedPath::Action::Choose:
       return result.path;

@@ -1,6 +1,6 @@
 #pragma once
-// An ImGui file browser for File > Open and File > Save As: a folder listing (folders first,
-// then the files with the wanted extension), a typed path, and OK / Cancel.
+// An ImGui file browser for File > Open, Save As and the recordings: a folder listing (folders
+// first, then the files with the wanted extension), a typed path, and OK / Cancel.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -24,19 +24,22 @@ std::vector<DirectoryEntry> listDirectory(const std::filesystem::path& folder, s
 
 /// What OK does with the typed text: enter a folder, choose a file, or refuse with a message.
 /// Relative text is taken from `folder`. Open wants an existing regular file; Save wants a name in
-/// an existing folder and adds ".xml" when the name has no extension.
+/// an existing folder and adds `extension` (a scene's ".xml", a recording's) when it has none.
 struct TypedPath {
   enum class Action { EnterFolder, Choose, Refuse };
   Action action = Action::Refuse;
   std::filesystem::path path;  ///< the folder to enter or the file chosen
   std::string message;         ///< why it was refused
 };
-TypedPath resolveTypedPath(FileDialogMode mode, const std::filesystem::path& folder, std::string_view typed);
+TypedPath resolveTypedPath(FileDialogMode mode, const std::filesystem::path& folder, std::string_view typed,
+                           std::string_view extension = ".xml");
 
 class FileDialog {
  public:
-  /// Starts showing the dialog in `folder`; `title` is its window title.
-  void open(FileDialogMode mode, const std::filesystem::path& folder, const std::string& title);
+  /// Starts showing the dialog in `folder`, listing the files ending in `extension`; `title` is
+  /// its window title.
+  void open(FileDialogMode mode, const std::filesystem::path& folder, const std::string& title,
+            std::string_view extension = ".xml");
   bool isOpen() const { return open_; }
   /// Draws the dialog if it is open (inside an ImGui frame). Returns the chosen path once, on the
   /// frame the user confirms; the dialog then closes.
@@ -51,6 +54,7 @@ class FileDialog {
   bool justOpened_ = false;
   FileDialogMode mode_ = FileDialogMode::Open;
   std::string title_;
+  std::string extension_ = ".xml";
   std::filesystem::path folder_;
   std::vector<DirectoryEntry> entries_;
   std::string listError_;

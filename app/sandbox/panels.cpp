@@ -202,11 +202,13 @@ void rewindSection(Session& session, UiState& ui) {
   if (!r.on() || r.empty()) {
     greyWrapped(r.on() ? "nothing recorded yet"
                        : "off while the method overlay runs: its runs are not recorded");
+    if (r.on() && ImGui::Button("Open...")) ui.openRecordingRequested = true;
     return;
   }
   const long now = session.scene().world.stepCount();
   auto go = [&](long step) {
     ui.paused = true;
+    ui.replaying = false;
     const std::string error = session.rewindTo(step);
     ui.message = error.empty() ? session.status() : error;
   };
@@ -228,6 +230,14 @@ void rewindSection(Session& session, UiState& ui) {
   }
   ImGui::SameLine();
   if (ImGui::Button(">|") && now != r.last()) go(r.last());
+  ImGui::SameLine();
+  // Play shows the recording as it was, at the clock's pace, without forking it; it stops at
+  // the end, or when Space or a command resumes the run.
+  if (ImGui::Button(ui.replaying ? "Stop" : "Play")) {
+    if (!ui.replaying && now >= r.last()) go(r.first());
+    ui.replaying = !ui.replaying;
+    ui.paused = true;
+  }
   greyWrapped(figure("%.1f", r.seconds()) + " s recorded (steps " + std::to_string(r.first()) + " to " +
               std::to_string(r.last()) + "), " + figure("%.1f", static_cast<double>(r.bytes()) / (1 << 20)) +
               " MB of keyframes");
@@ -235,6 +245,9 @@ void rewindSection(Session& session, UiState& ui) {
                        ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
     session.setRecordingBudget(static_cast<std::size_t>(ui.recordingBudgetMb) << 20);
   }
+  if (ImGui::Button("Save...")) ui.saveRecordingRequested = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Open...")) ui.openRecordingRequested = true;
 }
 
 // Each method's colour on the Lab chart.

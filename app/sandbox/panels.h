@@ -50,9 +50,12 @@ struct UiState {
   std::optional<std::pair<std::string, int>> typing;
   bool showHelp = false;
   bool paused = false;
+  bool replaying = false;        ///< Rewind's Play: the recording shown step by step at the clock's pace
   bool stepOnce = false;         ///< set by Step or N; cleared when done
   bool reloadRequested = false;  ///< set by Reset; the sandbox reloads (and shows any error)
-  float timeScale = 1.0f;        ///< simulated seconds per real second
+  /// Set by the Rewind section's Save and Open: the sandbox shows the file dialog.
+  bool saveRecordingRequested = false, openRecordingRequested = false;
+  float timeScale = 1.0f;                              ///< simulated seconds per real second
   float throwSpeed = static_cast<float>(kThrowSpeed);  ///< unit: m/s; F, R and T throw at it
   DrawOptions draw;
   std::array<char, 128> overlayText[kMaxOverlayRuns] = {};  ///< the overlay panel's settings

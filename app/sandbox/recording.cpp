@@ -15,17 +15,16 @@ std::size_t heapInUse() {
   return m.uordblks + m.hblkhd;
 }
 
-// A copy of the world and the heap it took: the copy's arrays, whatever their capacity. Made on
-// the window's thread while no steps run beside it (Session cancels or collects them first); the
+}  // namespace
+
+// Made on the window's thread while no steps run beside it (Session cancels or collects them first); the
 // Lab section's sweep may allocate meanwhile, which makes the figure a little off, never unsafe.
-std::pair<std::shared_ptr<const phys::World>, std::size_t> copyOf(const phys::World& world) {
+std::pair<std::shared_ptr<const phys::World>, std::size_t> keptCopy(const phys::World& world) {
   const std::size_t before = heapInUse();
   auto copy = std::make_shared<const phys::World>(world);
   const std::size_t after = heapInUse();
   return {std::move(copy), std::max(after > before ? after - before : 0, sizeof(phys::World))};
 }
-
-}  // namespace
 
 StepRecord recordOf(const phys::World& world) {
   StepRecord r;
@@ -101,17 +100,35 @@ void Recording::keyframe(const phys::World& world) {
   // nothing kept follows from it.
   if (!keyframes_.empty() && step < first()) clear();
   if (!keyframes_.empty() && step < last()) dropAfter(step);  // a command on a rewound world: a fork
-  auto [copy, bytes] = copyOf(world);
+  auto [copy, bytes] = keptCopy(world);
   if (!keyframes_.empty() && keyframes_.back().step == step) {  // a second command in one step
     bytes_ -= keyframes_.back().bytes;
-    keyframes_.back() = {step, std::move(copy), bytes};
+    keyframes_.back() = {step, std::move(copy), nullptr, bytes};
   } else {
-    keyframes_.push_back({step, std::move(copy), bytes});
+    keyframes_.push_back({step, std::move(copy), nullptr, bytes});
   }
   bytes_ += bytes;
   // The state this step is shown as is the one after the command.
   if (!steps_.empty() && steps_.back().step == step) steps_.back() = recordOf(world);
   dt_ = world.solverSettings().dt;
+  keepWithinBudget();
+}
+
+void Recording::appendMotion(std::shared_ptr<const phys::World> base, std::size_t baseBytes,
+                             phys::Motion motion, const StepRecord& record) {
+  if (!on_) return;
+  if (!keyframes_.empty() && record.step != last() + 1) clear();  // not the next step: start again
+  std::size_t bytes = baseBytes + sizeof(phys::Motion);
+  for (const auto* v : {&motion.position, &motion.previous, &motion.rigidPosition, &motion.rigidVelocity,
+                        &motion.rigidAngularVelocity}) {
+    bytes += v->capacity() * sizeof(phys::Vec3);
+  }
+  bytes += motion.rigidOrientation.capacity() * sizeof(phys::Quat);
+  if (!keyframes_.empty()) steps_.push_back(record);
+  dt_ = base->solverSettings().dt;
+  keyframes_.push_back(
+      {record.step, std::move(base), std::make_shared<const phys::Motion>(std::move(motion)), bytes});
+  bytes_ += bytes;
   keepWithinBudget();
 }
 
@@ -129,16 +146,36 @@ void Recording::keepWithinBudget() {
   }
 }
 
-std::unique_ptr<phys::World> Recording::worldAt(long step, std::string& divergence) const {
+std::unique_ptr<phys::World> Recording::build(const Keyframe& k) {
+  auto world = std::make_unique<phys::World>(*k.world);
+  if (k.motion) world->setMotion(*k.motion);
+  return world;
+}
+
+std::unique_ptr<phys::World> Recording::worldAt(long step, std::string& divergence,
+                                                const phys::World* shown) const {
   divergence.clear();
   // The last keyframe at or before the step.
   auto k = std::upper_bound(keyframes_.begin(), keyframes_.end(), step,
                             [](long s, const Keyframe& f) { return s < f.step; });
   --k;
-  auto world = std::make_unique<phys::World>(*k->world);
-  const long from = k->step;
-  auto record = std::lower_bound(steps_.begin(), steps_.end(), from + 1,
-                                 [](const StepRecord& r, long s) { return r.step < s; });
+  auto recordOfStep = [this](long s) {
+    return std::lower_bound(steps_.begin(), steps_.end(), s,
+                            [](const StepRecord& r, long n) { return r.step < n; });
+  };
+  // A world shown as recorded has no drag (Session lets it go), so it steps as recorded only
+  // where no drag was; and it must be the recorded state (its hash), or it is not used.
+  bool fromShown = shown != nullptr && shown->stepCount() >= k->step && shown->stepCount() < step;
+  if (fromShown) {
+    const auto own = recordOfStep(shown->stepCount());
+    fromShown = own != steps_.end() && own->step == shown->stepCount() && own->hash == shown->stateHash();
+  }
+  for (auto r = recordOfStep(shown != nullptr ? shown->stepCount() + 1 : 0);
+       fromShown && r != steps_.end() && r->step <= step; ++r)
+    fromShown = !r->dragTarget;
+  std::unique_ptr<phys::World> world = fromShown ? std::make_unique<phys::World>(*shown) : build(*k);
+  const long from = world->stepCount();
+  auto record = recordOfStep(from + 1);
   for (long s = from + 1; s <= step; ++s, ++record) {
     if (record == steps_.end() || record->step != s) {
       divergence = "no record of step " + std::to_string(s);
@@ -147,11 +184,42 @@ std::unique_ptr<phys::World> Recording::worldAt(long step, std::string& divergen
     if (record->dragTarget && world->drag()) world->setDragTarget(*record->dragTarget);
     world->step();
     if (world->stateHash() != record->hash && divergence.empty()) {
-      divergence = "step " + std::to_string(s) + " rebuilt from the keyframe at step " +
-                   std::to_string(from) + " differs from the recorded one";
+      divergence = "step " + std::to_string(s) + " rebuilt from step " + std::to_string(from) +
+                   " differs from the recorded one";
     }
   }
+  if (fromShown && !divergence.empty()) return worldAt(step, divergence);  // the keyframe, then
   return world;
+}
+
+bool Recording::replay(const std::function<void(const phys::World&, const StepRecord&)>& visit,
+                       std::string& divergence) const {
+  divergence.clear();
+  auto record = steps_.begin();
+  for (std::size_t k = 0; k < keyframes_.size(); ++k) {
+    const long from = keyframes_[k].step;
+    const long to =
+        k + 1 < keyframes_.size() ? keyframes_[k + 1].step : last() + 1;  // the next keyframe's is its own
+    std::unique_ptr<phys::World> world = build(keyframes_[k]);
+    while (record != steps_.end() && record->step < from) ++record;
+    visit(*world, record != steps_.end() && record->step == from ? *record : recordOf(*world));
+    for (long s = from + 1; s < to; ++s) {
+      while (record != steps_.end() && record->step < s) ++record;
+      if (record == steps_.end() || record->step != s) {
+        divergence = "no record of step " + std::to_string(s);
+        return false;
+      }
+      if (record->dragTarget && world->drag()) world->setDragTarget(*record->dragTarget);
+      world->step();
+      if (world->stateHash() != record->hash) {
+        divergence = "step " + std::to_string(s) + " rebuilt from the keyframe at step " +
+                     std::to_string(from) + " differs from the recorded one";
+        return false;
+      }
+      visit(*world, *record);
+    }
+  }
+  return true;
 }
 
 }  // namespace sandbox

@@ -5,13 +5,16 @@
 // hash and the drag's target. A step between keyframes is rebuilt from the keyframe before it,
 // stepped again with the same drag targets: the step is deterministic, so the rebuilt world is
 // the recorded one bit for bit, which the hashes check step by step. Keyframes are what costs
-// memory; the oldest go first when the recording is over its budget.
+// memory; the oldest go first when the recording is over its budget. A recording opened from a
+// file (recording_file.h) keeps every step as a motion instead, put back in a world built for it.
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "physics/world.h"
 
@@ -26,6 +29,10 @@ struct StepRecord {
 
 /// The record of a step just taken by `world`.
 StepRecord recordOf(const phys::World& world);
+
+/// A copy of `world` to keep, and the heap it took (unit: bytes): its arrays, whatever their
+/// capacity, measured by glibc's count of the heap in use.
+std::pair<std::shared_ptr<const phys::World>, std::size_t> keptCopy(const phys::World& world);
 
 /// Default memory budget of a recording (unit: bytes): 10 s of Bullet's 136-ragdoll pile fit.
 inline constexpr std::size_t kDefaultRecordingBudget = std::size_t{512} << 20;
@@ -50,6 +57,13 @@ class Recording {
   /// none is kept.
   void keyframe(const phys::World& world);
   void keyframeIfDue(const phys::World& world);
+  /// Appends a step kept as its motion (a recording file's): shown as `base` put in it
+  /// (World::setMotion), `base` being a world that has not stepped, of the structure and settings
+  /// the motion was recorded with, shared by the steps of a file's part; `baseBytes` is its memory
+  /// when this step is the first to hold it, else 0. The step must follow the last one kept, or
+  /// the recording be empty.
+  void appendMotion(std::shared_ptr<const phys::World> base, std::size_t baseBytes, phys::Motion motion,
+                    const StepRecord& record);
   /// Steps between keyframes, from how long a step takes: rebuilding a step costs at most this
   /// many steps, about 50 ms of them, within 1 to 120 (a step slower than 50 ms is kept whole).
   void setStepCost(double milliseconds);
@@ -59,9 +73,16 @@ class Recording {
   bool covers(long step) const { return !empty() && step >= first() && step <= last(); }
 
   /// The world as it was at `step` (covers(step) must hold), rebuilt from the keyframe before
-  /// it. `divergence` gets "" or which step's hash did not match (which would be a bug: the
-  /// step is deterministic).
-  std::unique_ptr<phys::World> worldAt(long step, std::string& divergence) const;
+  /// it, or from `shown` when that is a recorded step between the keyframe and `step` with no
+  /// drag on the way (playing the recording forward then costs a step a step). `divergence` gets
+  /// "" or which step's hash did not match (which would be a bug: the step is deterministic).
+  std::unique_ptr<phys::World> worldAt(long step, std::string& divergence,
+                                       const phys::World* shown = nullptr) const;
+  /// Visits the world at every step kept, first() to last(), with its record, rebuilding each
+  /// once (a recording file is written from these). Stops at a step whose rebuilt hash does not
+  /// match the recorded one and returns false with `divergence` saying which.
+  bool replay(const std::function<void(const phys::World&, const StepRecord&)>& visit,
+              std::string& divergence) const;
 
   /// Memory the keyframes hold (unit: bytes: the heap each copy took) and the budget.
   std::size_t bytes() const { return bytes_; }
@@ -73,9 +94,11 @@ class Recording {
  private:
   struct Keyframe {
     long step = 0;
-    std::shared_ptr<const phys::World> world;
+    std::shared_ptr<const phys::World> world;  // the world then, or with `motion` the base it is put in
+    std::shared_ptr<const phys::Motion> motion;
     std::size_t bytes = 0;
   };
+  static std::unique_ptr<phys::World> build(const Keyframe& k);
   void dropAfter(long step);
   void keepWithinBudget();
 

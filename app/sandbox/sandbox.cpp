@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <utility>
 
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
@@ -19,6 +20,7 @@
 #include "engine/error.h"
 #include "engine/image.h"
 #include "fileio/files.h"
+#include "recording_file.h"
 #include "scene_bounds.h"
 #include "screenshot.h"
 
@@ -246,9 +248,11 @@ void Sandbox::perform(Action action) {
       ui_.message = s.status();
       break;
     case Action::Pause:
+      if (std::exchange(ui_.replaying, false)) break;  // Space stops Play, paused where it was
       ui_.paused = !ui_.paused;
       break;
     case Action::StepOnce: {
+      ui_.replaying = false;
       // Along the recording while there is more of it (after B or the timeline), else a new step.
       const long now = s.scene().world.stepCount();
       if (ui_.paused && now < s.recording().last() && s.recording().covers(now)) {
@@ -286,6 +290,7 @@ void Sandbox::perform(Action action) {
       break;
     case Action::StepBack: {
       ui_.paused = true;
+      ui_.replaying = false;
       const long now = s.scene().world.stepCount();
       const std::string error =
           now > s.recording().first() ? s.rewindTo(now - 1) : "nothing recorded before this step";
@@ -311,7 +316,9 @@ bool Sandbox::pauseDue() {
 
 void Sandbox::advancePhysics(double frameSeconds) {
   const double before = session_->scene().world.time();
-  if (!interactive_) {  // deterministic: one step per frame, whatever the clock says
+  if (ui_.replaying) {
+    playRecording(frameSeconds);
+  } else if (!interactive_) {  // deterministic: one step per frame, whatever the clock says
     if (!ui_.paused && !pauseDue()) session_->step();
   } else {
     stepInBackground(frameSeconds);
@@ -323,6 +330,27 @@ void Sandbox::advancePhysics(double frameSeconds) {
   ui_.stepMs.add(static_cast<float>(world.profile().total), frameSeconds);
   ui_.maxError.add(static_cast<float>(m.maxConstraintError), frameSeconds);
   ui_.rmsError.add(static_cast<float>(m.rmsConstraintError), frameSeconds);
+}
+
+void Sandbox::playRecording(double frameSeconds) {
+  const Recording& r = session_->recording();
+  const phys::World& world = session_->scene().world;
+  const long now = world.stepCount();
+  if (!r.covers(now) || now >= r.last()) {
+    ui_.replaying = false;
+    accumulator_ = 0.0;
+    return;
+  }
+  const double dt = world.solverSettings().dt;
+  accumulator_ =
+      std::min(accumulator_ + (interactive_ ? frameSeconds * ui_.timeScale : dt), kMaxStepsPerFrame * dt);
+  const long steps = static_cast<long>(std::floor(accumulator_ / dt));
+  if (steps < 1) return;
+  accumulator_ -= static_cast<double>(steps) * dt;
+  if (const std::string error = session_->rewindTo(std::min(now + steps, r.last())); !error.empty()) {
+    ui_.message = error;
+    ui_.replaying = false;
+  }
 }
 
 // The time budget: the steps a frame owes run on another thread, at most kStepBudget of them
@@ -553,6 +581,8 @@ void Sandbox::drawMenuBar() {
     if (ImGui::MenuItem("Save As...", "Ctrl+S")) {
       saveDialog_.open(FileDialogMode::Save, session_->file().parent_path(), "Save world as scene");
     }
+    if (ImGui::MenuItem("Open recording...")) showRecordingDialog(FileDialogMode::Open);
+    if (ImGui::MenuItem("Save recording...")) showRecordingDialog(FileDialogMode::Save);
     if (ImGui::BeginMenu("Recent", !user_.recentFiles.empty())) {
       const std::vector<std::string> recent = user_.recentFiles;  // openScene() reorders the list
       for (const std::string& f : recent) {
@@ -592,7 +622,29 @@ void Sandbox::drawMenuBar() {
   ImGui::EndMainMenuBar();
 }
 
+void Sandbox::showRecordingDialog(FileDialogMode mode) {
+  const std::filesystem::path folder = session_->file().parent_path();
+  if (mode == FileDialogMode::Open)
+    openRecordingDialog_.open(mode, folder, "Open recording", kRecordingExtension);
+  else
+    saveRecordingDialog_.open(mode, folder, "Save recording", kRecordingExtension);
+}
+
+void Sandbox::recordingChosen(FileDialogMode mode, const std::filesystem::path& file) {
+  const std::string error =
+      mode == FileDialogMode::Open ? session_->openRecording(file) : session_->saveRecording(file);
+  if (error.empty()) {
+    if (mode == FileDialogMode::Open) ui_.paused = true;  // at its first step, to be scrubbed or played
+    ui_.message = session_->status();
+  } else {
+    errorText_ = error;
+    showError_ = true;
+  }
+}
+
 void Sandbox::drawDialogs() {
+  if (const auto chosen = openRecordingDialog_.draw()) recordingChosen(FileDialogMode::Open, *chosen);
+  if (const auto chosen = saveRecordingDialog_.draw()) recordingChosen(FileDialogMode::Save, *chosen);
   if (const auto chosen = openDialog_.draw()) openScene(*chosen);
   if (const auto chosen = saveDialog_.draw()) {
     scenes::CameraStart camera;
@@ -697,6 +749,8 @@ int Sandbox::run() {
       ui_.reloadRequested = false;
       perform(Action::Reload);
     }
+    if (std::exchange(ui_.openRecordingRequested, false)) showRecordingDialog(FileDialogMode::Open);
+    if (std::exchange(ui_.saveRecordingRequested, false)) showRecordingDialog(FileDialogMode::Save);
 
     if (interactive_) {
       moveCamera(frameSeconds);

@@ -64,9 +64,14 @@ class Sandbox {
   void updateDrag();
   /// The ray under the cursor, from the camera: origin and unit direction.
   std::pair<phys::Vec3, phys::Vec3> cursorRay() const;
+  /// Rewind's Play: the recording's next steps, as many as the clock owes, shown as recorded.
+  void playRecording(double frameSeconds);
   void renderFrame();
   void drawMenuBar();
   void drawDialogs();
+  /// File > Open recording / Save recording, and the Rewind section's buttons.
+  void showRecordingDialog(FileDialogMode mode);
+  void recordingChosen(FileDialogMode mode, const std::filesystem::path& file);
   /// Where the scene is drawn in the window (left of the panels, or all of it).
   ScreenRect sceneRect() const;
   /// F12: the frame just drawn as a PNG next to the scene file, and a status line saying where.
@@ -85,6 +90,7 @@ class Sandbox {
   std::vector<std::pair<int, int>> keyPresses_;  // (key, mods) since the last frame
   UiState ui_;
   FileDialog openDialog_, saveDialog_;
+  FileDialog openRecordingDialog_, saveRecordingDialog_;
   std::string errorText_;  // shown in a modal until dismissed
   bool showError_ = false;
   double accumulator_ = 0.0;      // unit: s; simulated time owed to the clock

@@ -97,6 +97,15 @@ class Session {
   /// rebuilt step not matching the recorded one, which would be a bug).
   std::string rewindTo(long step);
   void setRecordingBudget(std::size_t bytes) { recording_.setBudget(bytes); }
+  /// Writes the recording to `file` atomically (recording_file.h; docs/sandbox.md, "Recording
+  /// files"). Returns "" or why not (nothing recorded, the overlay on, a step that cannot be
+  /// rebuilt or written, a file error); the old file is then as it was.
+  std::string saveRecording(const std::filesystem::path& file);
+  /// Opens a recording saved from this scene in place of the one kept, and shows its first step
+  /// (as rewindTo does: stepping or a command resumes from the step shown). Returns "" or why not
+  /// (a file error, not a recording, another format version, truncated or damaged, recorded in
+  /// another scene, the overlay on); the current world and recording are then kept.
+  std::string openRecording(const std::filesystem::path& file);
 
   // The seed's world controls; they act on every run, so the overlay keeps comparing methods
   // under the same forces. Each returns "" or why the world refused (then nothing changes), and

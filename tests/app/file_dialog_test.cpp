@@ -108,6 +108,10 @@ TEST(FileDialogTypedPath, SaveWantsAnExistingFolderAndAddsXml) {
   const TypedPath other = sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "my.scene");
   EXPECT_EQ(other.path, dir.path / "my.scene");  // an extension given is kept
 
+  // A recording's dialog adds its own.
+  EXPECT_EQ(sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "run", ".jrec").path,
+            dir.path / "run.jrec");
+
   dir.touch("old.xml");
   EXPECT_EQ(sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "old.xml").action,
             TypedPath::Action::Choose);  // replacing is the caller's question

@@ -1,0 +1,328 @@
+#include "recording_file.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <type_traits>
+
+namespace sandbox {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "recording files are little-endian, as this machine");
+
+constexpr std::string_view kMagic = "JKRECORD";
+
+// FNV-1a, 64 bit: the file's checksum and the structure key.
+class Fnv {
+ public:
+  void bytes(const void* data, std::size_t size) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+      hash_ ^= b[i];
+      hash_ *= 1099511628211ull;
+    }
+  }
+  template <typename T>
+  void value(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes(&v, sizeof(v));
+  }
+  std::uint64_t hash() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+class Writer {
+ public:
+  template <typename T>
+  void value(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&v), sizeof(v));
+  }
+  void text(std::string_view s) {
+    value(static_cast<std::uint64_t>(s.size()));
+    out_.append(s);
+  }
+  void vec(const phys::Vec3& v) {
+    value(v.x);
+    value(v.y);
+    value(v.z);
+  }
+  std::string& out() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+// Reads the file from the front; every failure names where it happened.
+class Reader {
+ public:
+  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
+
+  template <typename T>
+  T value() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  std::string text(const char* what) {
+    const auto size = value<std::uint64_t>();
+    if (size > bytes_.size() - at_) {
+      fail(std::string(what) + " of " + std::to_string(size) +
+           " bytes runs past the end of the file: it is truncated");
+    }
+    std::string s(bytes_.substr(at_, size));
+    at_ += size;
+    return s;
+  }
+  phys::Vec3 vec() {
+    const double x = value<double>(), y = value<double>(), z = value<double>();
+    return {x, y, z};
+  }
+  std::size_t offset() const { return at_; }
+  std::size_t left() const { return bytes_.size() - at_; }
+  /// Where the reader is, for messages: "part 2, step 140".
+  void setPlace(std::string place) { place_ = std::move(place); }
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw RecordingFormatError("byte " + std::to_string(at_) + (place_.empty() ? "" : " (" + place_ + ")") +
+                               ": " + why);
+  }
+
+ private:
+  void need(std::size_t n) const {
+    if (n > bytes_.size() - at_) {
+      fail("the file ends after " + std::to_string(bytes_.size()) + " bytes: it is truncated");
+    }
+  }
+  std::string_view bytes_;
+  std::size_t at_ = 0;
+  std::string place_;
+};
+
+// Bytes one step takes in a part of `particles` particles and `rigid` rigid bodies.
+std::size_t stepBytes(std::size_t particles, std::size_t rigid) {
+  return 8 + 8 + 8 + 1 + 3 * 8 + particles * 6 * 8 + rigid * 13 * 8;
+}
+
+void writeStep(Writer& w, const SavedStep& s) {
+  w.value(static_cast<std::int64_t>(s.record.step));
+  w.value(s.motion.time);
+  w.value(s.record.hash);
+  w.value(static_cast<std::uint8_t>(s.record.dragTarget ? 1 : 0));
+  w.vec(s.record.dragTarget.value_or(phys::Vec3(0.0)));
+  for (const phys::Vec3& p : s.motion.position) w.vec(p);
+  for (const phys::Vec3& p : s.motion.previous) w.vec(p);
+  for (std::size_t r = 0; r < s.motion.rigidPosition.size(); ++r) {
+    const phys::Quat& q = s.motion.rigidOrientation[r];
+    w.vec(s.motion.rigidPosition[r]);
+    w.value(q.w);
+    w.value(q.x);
+    w.value(q.y);
+    w.value(q.z);
+    w.vec(s.motion.rigidVelocity[r]);
+    w.vec(s.motion.rigidAngularVelocity[r]);
+  }
+}
+
+bool finite(const phys::Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+SavedStep readStep(Reader& r, std::size_t particles, std::size_t rigid) {
+  SavedStep s;
+  s.record.step = static_cast<long>(r.value<std::int64_t>());
+  s.motion.steps = s.record.step;
+  s.motion.time = r.value<double>();
+  s.record.hash = r.value<std::uint64_t>();
+  const auto hasDrag = r.value<std::uint8_t>();
+  const phys::Vec3 drag = r.vec();
+  if (hasDrag > 1)
+    r.fail("the drag flag is " + std::to_string(hasDrag) + ", not 0 or 1: the file is damaged");
+  if (hasDrag == 1) s.record.dragTarget = drag;
+  s.motion.position.resize(particles);
+  s.motion.previous.resize(particles);
+  for (phys::Vec3& p : s.motion.position) p = r.vec();
+  for (phys::Vec3& p : s.motion.previous) p = r.vec();
+  s.motion.rigidPosition.resize(rigid);
+  s.motion.rigidOrientation.resize(rigid);
+  s.motion.rigidVelocity.resize(rigid);
+  s.motion.rigidAngularVelocity.resize(rigid);
+  for (std::size_t k = 0; k < rigid; ++k) {
+    s.motion.rigidPosition[k] = r.vec();
+    phys::Quat& q = s.motion.rigidOrientation[k];
+    q.w = r.value<double>();
+    q.x = r.value<double>();
+    q.y = r.value<double>();
+    q.z = r.value<double>();
+    s.motion.rigidVelocity[k] = r.vec();
+    s.motion.rigidAngularVelocity[k] = r.vec();
+  }
+  return s;
+}
+
+// The checks the checksum cannot make: the steps follow each other, every number is finite, and
+// each motion is the state its step recorded.
+void checkStep(const Reader& r, const SavedStep& s, long expected) {
+  if (expected >= 0 && s.record.step != expected) {
+    r.fail("step " + std::to_string(s.record.step) + " where step " + std::to_string(expected) +
+           " should follow: the file is damaged");
+  }
+  bool ok = std::isfinite(s.motion.time) && s.motion.time >= 0.0 && s.record.step >= 0 &&
+            (!s.record.dragTarget || finite(*s.record.dragTarget));
+  for (const auto* values : {&s.motion.position, &s.motion.previous, &s.motion.rigidPosition,
+                             &s.motion.rigidVelocity, &s.motion.rigidAngularVelocity}) {
+    for (const phys::Vec3& v : *values) ok = ok && finite(v);
+  }
+  for (const phys::Quat& q : s.motion.rigidOrientation) {
+    ok = ok && std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+  }
+  if (!ok) r.fail("a non-finite or negative number: the file is damaged");
+  if (s.motion.hash() != s.record.hash) {
+    r.fail("the state does not match the step's hash: the file is damaged");
+  }
+}
+
+}  // namespace
+
+long SavedRecording::firstStep() const {
+  return parts.empty() || parts.front().steps.empty() ? 0 : parts.front().steps.front().record.step;
+}
+
+long SavedRecording::lastStep() const {
+  return parts.empty() || parts.back().steps.empty() ? 0 : parts.back().steps.back().record.step;
+}
+
+std::size_t SavedRecording::stepCount() const {
+  std::size_t n = 0;
+  for (const SavedPart& p : parts) n += p.steps.size();
+  return n;
+}
+
+std::uint64_t structureKey(const phys::World& world) {
+  Fnv f;
+  f.value(static_cast<std::uint64_t>(world.particles().size()));
+  for (const phys::BodyId b : world.particleBodies()) f.value(static_cast<std::uint32_t>(b));
+  f.value(static_cast<std::uint64_t>(world.bodies().size()));
+  for (const phys::Body& b : world.bodies()) {
+    f.value(b.model);
+    f.value(b.shape);
+    f.value(static_cast<std::uint32_t>(b.firstParticle));
+    f.value(b.particleCount);
+    f.value(b.stickCount);
+    f.value(static_cast<std::uint32_t>(b.rigid));
+  }
+  f.value(static_cast<std::uint64_t>(world.rigidBodies().size()));
+  f.value(static_cast<std::uint64_t>(world.sticks().size()));
+  for (const phys::Stick& s : world.sticks()) {
+    f.value(static_cast<std::uint32_t>(s.a));
+    f.value(static_cast<std::uint32_t>(s.b));
+  }
+  f.value(static_cast<std::uint64_t>(world.links().size()));
+  f.value(static_cast<std::uint64_t>(world.rigidLinks().size()));
+  f.value(static_cast<std::uint64_t>(world.rigidJoints().size()));
+  for (const phys::RigidJoint& j : world.rigidJoints()) {
+    f.value(j.kind);
+    f.value(static_cast<std::uint32_t>(j.a));
+    f.value(static_cast<std::uint32_t>(j.b));
+  }
+  f.value(static_cast<std::uint64_t>(world.jointFrictions().size()));
+  return f.hash();
+}
+
+// Layout (docs/sandbox.md, "Recording files"): the magic, the format, the scene's name, the parts
+// (each: its scene text, structure key, counts, then its steps), and the checksum of all before it.
+std::string encodeRecording(const SavedRecording& recording) {
+  Writer w;
+  w.out().append(kMagic);
+  w.value(kRecordingFormat);
+  w.text(recording.sceneName);
+  w.value(static_cast<std::uint32_t>(recording.parts.size()));
+  for (const SavedPart& part : recording.parts) {
+    const phys::Motion* first = part.steps.empty() ? nullptr : &part.steps.front().motion;
+    w.text(part.sceneXml);
+    w.value(part.structure);
+    w.value(static_cast<std::uint64_t>(first != nullptr ? first->position.size() : 0));
+    w.value(static_cast<std::uint64_t>(first != nullptr ? first->rigidPosition.size() : 0));
+    w.value(static_cast<std::uint64_t>(part.steps.size()));
+    for (const SavedStep& s : part.steps) writeStep(w, s);
+  }
+  Fnv checksum;
+  checksum.bytes(w.out().data(), w.out().size());
+  w.value(checksum.hash());
+  return std::move(w.out());
+}
+
+SavedRecording decodeRecording(std::string_view bytes) {
+  Reader r(bytes);
+  if (bytes.size() < kMagic.size() || bytes.substr(0, kMagic.size()) != kMagic) {
+    r.fail("not a recording: it does not start with \"" + std::string(kMagic) + "\"");
+  }
+  r.value<std::array<char, kMagic.size()>>();
+  const auto format = r.value<std::uint32_t>();
+  if (format != kRecordingFormat) {
+    r.fail("a recording of format " + std::to_string(format) +
+           ", from another version of the sandbox; this one reads format " +
+           std::to_string(kRecordingFormat));
+  }
+  // The checksum first, so that damage anywhere is called damage, not whatever it looks like.
+  if (bytes.size() < kMagic.size() + 4 + 8)
+    r.fail("the file ends after " + std::to_string(bytes.size()) + " bytes: it is truncated");
+  Fnv checksum;
+  checksum.bytes(bytes.data(), bytes.size() - 8);
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
+  const bool checksumOk = checksum.hash() == stored;
+
+  SavedRecording out;
+  out.sceneName = r.text("the scene's name");
+  const auto parts = r.value<std::uint32_t>();
+  long expected = -1;
+  for (std::uint32_t p = 0; p < parts; ++p) {
+    r.setPlace("part " + std::to_string(p + 1) + " of " + std::to_string(parts));
+    SavedPart part;
+    part.sceneXml = r.text("the part's scene");
+    part.structure = r.value<std::uint64_t>();
+    const auto particles = r.value<std::uint64_t>();
+    const auto rigid = r.value<std::uint64_t>();
+    const auto steps = r.value<std::uint64_t>();
+    // Sizes from a damaged file must not allocate what the file cannot hold.
+    const std::size_t each = stepBytes(std::min<std::uint64_t>(particles, bytes.size()),
+                                       std::min<std::uint64_t>(rigid, bytes.size()));
+    const std::size_t room = r.left() - std::min<std::size_t>(r.left(), 8);  // before the checksum
+    if (particles > bytes.size() || rigid > bytes.size() || steps > room / each) {
+      r.fail(std::to_string(steps) + " steps of " + std::to_string(particles) + " particles and " +
+             std::to_string(rigid) + " rigid bodies need more than the " + std::to_string(room) +
+             " bytes left: the file is truncated");
+    }
+    part.steps.reserve(steps);
+    for (std::uint64_t s = 0; s < steps; ++s) {
+      r.setPlace("part " + std::to_string(p + 1) + " of " + std::to_string(parts) + ", its step " +
+                 std::to_string(s + 1) + " of " + std::to_string(steps));
+      SavedStep step = readStep(r, particles, rigid);
+      if (checksumOk) checkStep(r, step, expected);
+      expected = step.record.step + 1;
+      part.steps.push_back(std::move(step));
+    }
+    out.parts.push_back(std::move(part));
+  }
+  r.setPlace("");
+  if (r.left() < 8) r.fail("the checksum is missing: the file is truncated");
+  if (!checksumOk) {
+    r.fail("the checksum does not match the content: the file is damaged");
+  }
+  if (r.left() > 8)
+    r.fail(std::to_string(r.left() - 8) +
+           " bytes before the checksum that belong to nothing: the file is damaged");
+  if (out.stepCount() == 0) r.fail("a recording of no steps");
+  return out;
+}
+
+}  // namespace sandbox

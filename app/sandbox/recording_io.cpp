@@ -1,0 +1,96 @@
+#include "recording_io.h"
+
+#include <memory>
+#include <string>
+#include <tuple>
+
+#include "scenes/scene_writer.h"
+
+namespace sandbox {
+namespace {
+
+bool sameSettings(const phys::World& a, const phys::World& b) {
+  return a.solverSettings() == b.solverSettings() && a.worldSettings() == b.worldSettings();
+}
+
+// The world as a scene file's text, checked to load back into the same structure: a file that
+// could not be opened again is never written.
+std::string partScene(const scenes::Scene& scene, const phys::World& world, long step) {
+  scenes::Scene at{scene.name, scene.description, scene.file, world, scene.camera, scene.bodies, {}};
+  std::string xml;
+  try {
+    xml = scenes::writeSceneXml(at);
+  } catch (const std::exception& e) {
+    throw RecordingIoError("the world at step " + std::to_string(step) +
+                           " cannot be written as a scene: " + e.what());
+  }
+  try {
+    const scenes::Scene back = scenes::loadSceneText(xml, "the world at step " + std::to_string(step));
+    if (structureKey(back.world) != structureKey(world)) {
+      throw RecordingIoError("the world at step " + std::to_string(step) +
+                             " does not load back with its bodies in the same order");
+    }
+  } catch (const scenes::LoadError& e) {
+    throw RecordingIoError(std::string("the world at step ") + std::to_string(step) +
+                           " written as a scene does not load back: " + e.what());
+  }
+  return xml;
+}
+
+}  // namespace
+
+SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene) {
+  SavedRecording saved;
+  saved.sceneName = scene.name;
+  std::unique_ptr<phys::World> partStart;  // settings of the current part
+  std::string divergence;
+  const bool whole = recording.replay(
+      [&](const phys::World& world, const StepRecord& record) {
+        const std::uint64_t key = structureKey(world);
+        if (saved.parts.empty() || saved.parts.back().structure != key || !sameSettings(*partStart, world)) {
+          saved.parts.push_back({partScene(scene, world, record.step), key, {}});
+          partStart = std::make_unique<phys::World>(world.worldSettings(), world.solverSettings());
+        }
+        saved.parts.back().steps.push_back({record, world.motion()});
+      },
+      divergence);
+  if (!whole) throw RecordingIoError("the recording cannot be rebuilt: " + divergence);
+  return saved;
+}
+
+Recording fromSaved(const SavedRecording& saved, const scenes::LoadOptions& options, std::size_t budget) {
+  Recording out;
+  out.setBudget(budget);
+  for (std::size_t p = 0; p < saved.parts.size(); ++p) {
+    const SavedPart& part = saved.parts[p];
+    const std::string which = "part " + std::to_string(p + 1) + " of " + std::to_string(saved.parts.size());
+    std::shared_ptr<const phys::World> base;
+    std::size_t baseBytes = 0;
+    try {
+      std::tie(base, baseBytes) =
+          keptCopy(scenes::loadSceneText(part.sceneXml, "the recording's " + which, options).world);
+    } catch (const scenes::LoadError& e) {
+      throw RecordingIoError(which + ": its scene does not load: " + e.what());
+    }
+    if (structureKey(*base) != part.structure) {
+      throw RecordingIoError(which +
+                             ": its scene builds bodies other than the ones recorded (a scene format or "
+                             "loader of another version)");
+    }
+    for (std::size_t s = 0; s < part.steps.size(); ++s) {
+      const SavedStep& step = part.steps[s];
+      if (step.motion.position.size() != base->particles().size() ||
+          step.motion.rigidPosition.size() != base->rigidBodies().size()) {
+        throw RecordingIoError(which + ", step " + std::to_string(step.record.step) + ": " +
+                               std::to_string(step.motion.position.size()) + " particles and " +
+                               std::to_string(step.motion.rigidPosition.size()) +
+                               " rigid bodies, its scene has " + std::to_string(base->particles().size()) +
+                               " and " + std::to_string(base->rigidBodies().size()));
+      }
+      out.appendMotion(base, s == 0 ? baseBytes : 0, step.motion, step.record);  // the base counted once
+    }
+  }
+  return out;
+}
+
+}  // namespace sandbox

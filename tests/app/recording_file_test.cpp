@@ -1,0 +1,224 @@
+// Recording files (recording_file.h, Session::saveRecording / openRecording): a recording saved and
+// opened again shows every step with its recorded state hash, in every project scene; throws and
+// setting changes start new parts; a file that is truncated, damaged, of another format version or
+// of another scene is refused with a message saying so, and the world and recording are kept.
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "fileio/files.h"
+#include "project_session.h"
+#include "recording_file.h"
+#include "session.h"
+#include "temp_folder.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using testing_app::openSession;
+
+std::uint64_t hashOf(const sandbox::Session& s) {
+  return s.scene().world.stateHash();
+}
+
+std::string contentOf(const fs::path& file) {
+  return fileio::readWhole(file, std::size_t{1} << 32);
+}
+
+void writeBytes(const fs::path& file, std::string_view bytes) {
+  fileio::writeAtomically(file, bytes);
+}
+
+// Every step from first to last shown in `s` has the hash `recorded` holds for it.
+void expectSameSteps(sandbox::Session& s, const std::vector<std::uint64_t>& recorded, long first,
+                     long every = 1) {
+  for (long n = first; n < static_cast<long>(recorded.size()); n += every) {
+    ASSERT_EQ(s.rewindTo(n), "") << "step " << n;
+    ASSERT_EQ(s.scene().world.stepCount(), n);
+    ASSERT_EQ(hashOf(s), recorded[static_cast<std::size_t>(n)]) << "step " << n;
+  }
+}
+
+// Bullet's capsule ragdolls and boxes of every model, a throw and two setting changes midway: a
+// saved recording opened in a new session shows every step as it was.
+TEST(RecordingFile, ASavedRecordingOpensWithEveryStepAsRecorded) {
+  const testing_app::TempFolder dir;
+  sandbox::Session s = openSession("ragdolls");
+  std::vector<std::uint64_t> recorded{hashOf(s)};
+  for (int i = 1; i <= 150; ++i) {
+    if (i == 40) {
+      ASSERT_EQ(s.spawnBox({0.0, 4.0, 6.0}, {0.0, 0.0, -5.0}), "");
+    }
+    if (i == 70) {
+      ASSERT_EQ(s.spawnRagdoll({2.0, 4.0, 6.0}, {0.0, 0.0, -5.0}, true), "");
+    }
+    if (i == 90) {
+      ASSERT_EQ(s.changeGravity(-2.0), "");
+    }
+    if (i == 110) {
+      phys::SolverSettings more = s.scene().world.solverSettings();
+      more.iterations += 2;
+      ASSERT_EQ(s.setSolverSettings(more), "");
+    }
+    recorded.back() = hashOf(s);  // a step is recorded as it is after the commands given at it
+    s.step();
+    recorded.push_back(hashOf(s));
+  }
+  const fs::path file = dir.path / "pile.jrec";
+  ASSERT_EQ(s.saveRecording(file), "");
+  EXPECT_NE(s.status().find("saved steps 0 to 150"), std::string::npos) << s.status();
+
+  const sandbox::SavedRecording saved = sandbox::decodeRecording(contentOf(file));
+  EXPECT_EQ(saved.sceneName, s.scene().name);
+  EXPECT_EQ(saved.stepCount(), 151u);
+  // A part for the start, each throw (new bodies) and each setting change.
+  EXPECT_EQ(saved.parts.size(), 5u);
+
+  sandbox::Session other = openSession("ragdolls");
+  for (int i = 0; i < 20; ++i) other.step();
+  ASSERT_EQ(other.openRecording(file), "") << other.status();
+  EXPECT_EQ(other.recording().first(), 0);
+  EXPECT_EQ(other.recording().last(), 150);
+  EXPECT_EQ(hashOf(other), recorded[0]) << "opened at its first step";
+  expectSameSteps(other, recorded, 0);
+  // After the throws the world has their bodies, and the settings changed with it.
+  EXPECT_EQ(other.scene().world.bodies().size(), s.scene().world.bodies().size());
+  EXPECT_EQ(other.scene().world.solverSettings().iterations, s.scene().world.solverSettings().iterations);
+
+  // Saved again from what was opened: the same parts and steps. (Not byte for byte: a part's scene
+  // is written from a world rebuilt from the first one's text, whose joints' anchors differ from
+  // the original's in the last digits.)
+  const fs::path again = dir.path / "again.jrec";
+  ASSERT_EQ(other.saveRecording(again), "");
+  const sandbox::SavedRecording resaved = sandbox::decodeRecording(contentOf(again));
+  ASSERT_EQ(resaved.parts.size(), saved.parts.size());
+  for (std::size_t p = 0; p < saved.parts.size(); ++p) {
+    ASSERT_EQ(resaved.parts[p].steps.size(), saved.parts[p].steps.size());
+    for (std::size_t k = 0; k < saved.parts[p].steps.size(); ++k) {
+      EXPECT_EQ(resaved.parts[p].steps[k].record.hash, saved.parts[p].steps[k].record.hash);
+    }
+  }
+}
+
+// Resuming from a step of an opened recording forks it there, as a rewind does; the run goes on
+// from the recorded motion (with its contacts found afresh).
+TEST(RecordingFile, AnOpenedRecordingResumesFromTheStepShown) {
+  const testing_app::TempFolder dir;
+  sandbox::Session s = openSession("pyramid");
+  for (int i = 0; i < 60; ++i) s.step();
+  const fs::path file = dir.path / "p.jrec";
+  ASSERT_EQ(s.saveRecording(file), "");
+  sandbox::Session other = openSession("pyramid");
+  ASSERT_EQ(other.openRecording(file), "");
+  ASSERT_EQ(other.rewindTo(30), "");
+  for (int i = 0; i < 10; ++i) other.step();
+  EXPECT_EQ(other.scene().world.stepCount(), 40);
+  EXPECT_EQ(other.recording().first(), 0);
+  EXPECT_EQ(other.recording().last(), 40);
+  for (const phys::Vec3& p : other.scene().world.particles().position) ASSERT_TRUE(std::isfinite(p.y));
+}
+
+// Every project scene, as the sandbox opens it, a few steps in: saved and opened again, each step
+// has its hash (the scene writer and loader rebuild every kind of body in the same order).
+TEST(RecordingFile, EveryProjectSceneRoundTrips) {
+  const testing_app::TempFolder dir;
+  for (const auto& entry : fs::directory_iterator(testing_app::kProjectScenes)) {
+    if (entry.path().extension() != ".xml") continue;
+    const std::string name = entry.path().stem().string();
+    SCOPED_TRACE(name);
+    sandbox::Session s = openSession(name);
+    std::vector<std::uint64_t> recorded{hashOf(s)};
+    for (int i = 0; i < 12; ++i) {
+      s.step();
+      recorded.push_back(hashOf(s));
+    }
+    const fs::path file = dir.path / (name + ".jrec");
+    ASSERT_EQ(s.saveRecording(file), "");
+    sandbox::Session other = openSession(name);
+    ASSERT_EQ(other.openRecording(file), "");
+    expectSameSteps(other, recorded, 0, 3);
+  }
+}
+
+class BadRecording : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    sandbox::Session recorder = openSession("chain");
+    for (int i = 0; i < 30; ++i) recorder.step();
+    ASSERT_EQ(recorder.saveRecording(good_), "");
+    bytes_ = contentOf(good_);
+    for (int i = 0; i < 17; ++i) session_.step();
+    before_ = hashOf(session_);
+  }
+
+  // Opening `bytes` is refused with a message holding `words`, and nothing changes.
+  void expectRefused(std::string_view bytes, const std::string& words) {
+    writeBytes(bad_, bytes);
+    expectRefusedFile(bad_, words);
+  }
+  void expectRefusedFile(const fs::path& file, const std::string& words) {
+    const std::string error = session_.openRecording(file);
+    EXPECT_NE(error.find(words), std::string::npos) << "got: " << error;
+    EXPECT_NE(error.find(file.string()), std::string::npos) << "names the file: " << error;
+    EXPECT_NE(error.find("the current world is kept"), std::string::npos) << error;
+    EXPECT_EQ(hashOf(session_), before_);
+    EXPECT_EQ(session_.scene().world.stepCount(), 17);
+    EXPECT_EQ(session_.recording().first(), 0);
+    EXPECT_EQ(session_.recording().last(), 17);
+  }
+
+  const testing_app::TempFolder dir_;
+  const fs::path good_ = dir_.path / "good.jrec";
+  const fs::path bad_ = dir_.path / "bad.jrec";
+  std::string bytes_;
+  sandbox::Session session_ = openSession("chain");
+  std::uint64_t before_ = 0;
+};
+
+TEST_F(BadRecording, TruncatedAnywhere) {
+  for (const std::size_t size :
+       {std::size_t{0}, std::size_t{5}, std::size_t{12}, std::size_t{40}, bytes_.size() / 3,
+        bytes_.size() / 2 + 7, bytes_.size() - 9, bytes_.size() - 1}) {
+    SCOPED_TRACE(size);
+    expectRefused(std::string_view(bytes_).substr(0, size), size < 8 ? "not a recording" : "truncated");
+  }
+}
+
+TEST_F(BadRecording, FromAnotherFormatVersion) {
+  std::string other = bytes_;
+  other[8] = 2;  // the format, after the 8-byte magic
+  expectRefused(other,
+                "a recording of format 2, from another version of the sandbox; this one reads format 1");
+}
+
+TEST_F(BadRecording, OfAnotherScene) {
+  sandbox::Session pyramid = openSession("pyramid");
+  for (int i = 0; i < 5; ++i) pyramid.step();
+  const fs::path file = dir_.path / "pyramid.jrec";
+  ASSERT_EQ(pyramid.saveRecording(file), "");
+  expectRefusedFile(file, "a recording of the scene '" + pyramid.scene().name + "', and '" +
+                              session_.scene().name + "' is open");
+}
+
+TEST_F(BadRecording, DamagedOrNotARecording) {
+  std::string flipped = bytes_;
+  flipped[bytes_.size() / 2] ^= 0x10;
+  expectRefused(flipped, "the checksum does not match the content: the file is damaged");
+  expectRefused(bytes_ + "extra", "the checksum does not match");
+  expectRefusedFile(testing_app::kProjectScenes / "chain.xml", "not a recording");
+  expectRefusedFile(dir_.path / "missing.jrec", "No such file or directory");
+  expectRefusedFile(dir_.path, "folder");
+}
+
+TEST_F(BadRecording, NothingToSaveOrNowhereToSaveIt) {
+  EXPECT_NE(session_.saveRecording(dir_.path / "no-such-folder" / "x.jrec").find("No such file or directory"),
+            std::string::npos);
+  sandbox::Session empty = openSession("chain");
+  empty.setRecordingBudget(0);  // keeps the latest keyframe only: still a recording of one step
+  EXPECT_EQ(empty.saveRecording(dir_.path / "one.jrec"), "");
+}
+
+}  // namespace
