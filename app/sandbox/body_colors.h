@@ -18,7 +18,9 @@ inline constexpr float kParticleDrawSize = 0.08f;  ///< unit: m; least diameter 
 inline constexpr glm::vec3 kLooseStickColor{0.80f, 0.82f, 0.88f};  ///< light grey: a stick no mesh covers
 inline constexpr glm::vec3 kTrailColor{0.85f, 0.25f, 0.55f};       ///< magenta: Draw > trails
 inline constexpr glm::vec3 kExactColor{0.10f, 0.75f, 0.30f};       ///< green: the scene's exact answers
-inline constexpr glm::vec3 kSleepingColor{0.45f, 0.50f, 0.60f};    ///< grey-blue: an island asleep
+inline constexpr float kGhostAlpha =
+    0.35f;  ///< the exact answer's ghost: seen through, the run seen behind it
+inline constexpr glm::vec3 kSleepingColor{0.45f, 0.50f, 0.60f};  ///< grey-blue: an island asleep
 
 /// Colour k of the body palette: ten that tell neighbours apart on the grey ground and the blue
 /// sky (Tableau's ten, the grey swapped for a teal so that nothing looks asleep), orange first,

@@ -467,15 +467,22 @@ void Sandbox::frameScene() {
 }
 
 void Sandbox::fitToScene() {
+  ghost_.reset(session_->scene());
   const scenes::CameraStart& c = session_->scene().camera;
   ui_.draw.particleRadius = particleRadiusFor(glm::length(c.eye - c.target));
 }
 
 // An analytic scene's <expect kind="position" pos="x y z" at="t"> give where a body must be at
 // time t: each is a green cross, so the simulated body is seen passing by (or missing) it. The
-// one whose time is nearest the world's is drawn larger.
-void Sandbox::drawExactAnswers() {
+// one whose time is nearest the world's is drawn larger. The ghost (exact_ghost.h) is the answer
+// at the world's time, a translucent green copy of the scene as its file starts it.
+void Sandbox::drawExactAnswers(const glm::mat4& viewProjection) {
   const scenes::Scene& scene = session_->scene();
+  if (const phys::World* ghost = ghost_.at(scene.world.time(), scene.world.solverSettings().dt)) {
+    DrawOptions options = ui_.draw;
+    options.contacts = options.markers = options.bounds = options.shadows = false;
+    view_->draw(*ghost, viewProjection, options, Tint{kExactColor, kGhostAlpha});
+  }
   std::vector<std::pair<double, glm::vec3>> answers;  // time, place
   for (const scenes::Expectation& e : scene.expectations) {
     const std::string* kind = e.find("kind");
@@ -696,7 +703,7 @@ void Sandbox::renderFrame() {
   } else {
     view_->draw(session_->scene().world, viewProjection, ui_.draw);
   }
-  if (ui_.draw.exact) drawExactAnswers();
+  if (ui_.draw.exact) drawExactAnswers(viewProjection);
   if (ui_.draw.trails) {
     trails_.record(session_->scene().world, followed_);
     trails_.draw(renderer_->lines(), kTrailColor);

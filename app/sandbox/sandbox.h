@@ -12,6 +12,7 @@
 #include "engine/camera.h"
 #include "engine/renderer.h"
 #include "engine/window.h"
+#include "exact_ghost.h"
 #include "file_dialog.h"
 #include "input.h"
 #include "options.h"
@@ -58,9 +59,9 @@ class Sandbox {
   glm::vec3 focusPoint(const glm::vec3& origin, const glm::vec3& direction) const;
   void frameScene();
   void stopFollowing();
-  /// What is sized to the scene opened: loose particles, by its camera's distance.
+  /// What is sized to the scene opened (loose particles, by its camera's distance), and its ghost.
   void fitToScene();
-  void drawExactAnswers();
+  void drawExactAnswers(const glm::mat4& viewProjection);
   void updateDrag();
   /// The ray under the cursor, from the camera: origin and unit direction.
   std::pair<phys::Vec3, phys::Vec3> cursorRay() const;
@@ -105,6 +106,7 @@ class Sandbox {
   std::optional<phys::BodyId> followed_;  // the body the camera moves with
   glm::vec3 followedAt_{0.0f};            // its centre when the camera last moved with it
   Trails trails_;
+  ExactGhost ghost_;  // the exact answer of the scene opened, if it has one
 };
 
 /// Whole program: parses arguments, runs, reports errors. Returns the exit code.

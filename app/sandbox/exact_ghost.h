@@ -1,0 +1,35 @@
+#pragma once
+// The exact answer as a ghost (docs/sandbox.md, "Draw"): a scene with analytic answers (its
+// <expect kind="position"> elements) is run a second time, from the file's start, at the lab's
+// reference settings (lab::referenceSettings: 128 substeps of a method that converges), and drawn
+// beside the simulated one at the same time. Its crosses are the closed-form positions at a few
+// times; the ghost is where the answer is in between, so one sees the simulated body drift from
+// it as it goes.
+#include <optional>
+
+#include "physics/world.h"
+#include "scenes/scene.h"
+
+namespace sandbox {
+
+/// The most particles and rigid bodies a ghost steps: the analytic scenes have a few; a scene of
+/// thousands at 128 substeps would cost the frame.
+inline constexpr std::size_t kMaxGhostBodies = 200;
+
+class ExactGhost {
+ public:
+  /// Starts over from `scene` as it is now (just opened: at its start). No ghost when it has no
+  /// position answers or is too big.
+  void reset(const scenes::Scene& scene);
+  void clear();
+  bool active() const { return start_.has_value(); }
+  /// The ghost at simulated time `time` (unit: s), stepped at `dt` (the main run's) from where it
+  /// was, or from the start when time went back; null when there is none.
+  const phys::World* at(double time, double dt);
+
+ private:
+  std::optional<phys::World> start_;
+  std::optional<phys::World> now_;
+};
+
+}  // namespace sandbox
