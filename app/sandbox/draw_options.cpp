@@ -25,6 +25,20 @@ std::optional<DrawMode> parseDrawMode(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view toString(BodyColoring coloring) {
+  switch (coloring) {
+    case BodyColoring::Kind:
+      return "kind";
+    case BodyColoring::Body:
+      return "body";
+    case BodyColoring::Island:
+      return "island";
+    case BodyColoring::Sleep:
+      return "sleep";
+  }
+  return "body";
+}
+
 std::optional<BodyColoring> parseBodyColoring(std::string_view name) {
   if (name == "kind") return BodyColoring::Kind;
   if (name == "body") return BodyColoring::Body;

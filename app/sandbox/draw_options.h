@@ -21,7 +21,8 @@ enum class BodyColoring {
 
 std::string_view toString(DrawMode mode);  ///< "filled", "wireframe", "constraints"
 std::optional<DrawMode> parseDrawMode(std::string_view name);
-std::optional<BodyColoring> parseBodyColoring(std::string_view name);  ///< "kind", "body", "island", "sleep"
+std::string_view toString(BodyColoring coloring);                      ///< "kind", "body", "island", "sleep"
+std::optional<BodyColoring> parseBodyColoring(std::string_view name);  ///< the names toString gives
 /// The mode Tab goes to next.
 DrawMode nextDrawMode(DrawMode mode);
 

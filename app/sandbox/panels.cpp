@@ -112,7 +112,12 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   ui.draw.trails = options.trails;
   ui.panelsHidden = options.hidePanels;
   if (options.unfold) ui.unfolded = *options.unfold;
-  ui.draw.coloring = options.coloring.value_or(BodyColoring::Body);
+  ui.showRewind = user.showRewind;
+  ui.showLab = user.showLab;
+  ui.draw.coloring =
+      options.coloring.value_or(parseBodyColoring(user.colorBy.value_or("")).value_or(BodyColoring::Body));
+  if (user.throwSpeed) ui.throwSpeed = *user.throwSpeed;
+  if (user.recordingBudgetMb) ui.recordingBudgetMb = *user.recordingBudgetMb;
   ui.draw.shadows = !options.noShadows;
   const char* examples[kMaxOverlayRuns] = {"iterations=3", "substeps=8,iterations=1", "method=xpbd", ""};
   for (std::size_t i = 0; i < static_cast<std::size_t>(kMaxOverlayRuns); ++i) {
@@ -129,6 +134,11 @@ void remember(const UiState& ui, UserSettings& user) {
   user.showStats = ui.showStats;
   user.drawMode = std::string(toString(ui.draw.mode));
   user.markers = ui.draw.markers;
+  user.showRewind = ui.showRewind;
+  user.showLab = ui.showLab;
+  user.colorBy = std::string(toString(ui.draw.coloring));
+  user.throwSpeed = ui.throwSpeed;
+  user.recordingBudgetMb = ui.recordingBudgetMb;
 }
 
 namespace {
@@ -241,8 +251,8 @@ void rewindSection(Session& session, UiState& ui) {
   greyWrapped(figure("%.1f", r.seconds()) + " s recorded (steps " + std::to_string(r.first()) + " to " +
               std::to_string(r.last()) + "), " + figure("%.1f", static_cast<double>(r.bytes()) / (1 << 20)) +
               " MB of keyframes");
-  if (ImGui::SliderInt("budget (MB)", &ui.recordingBudgetMb, 16, 8192, "%d",
-                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+  if (ImGui::SliderInt("budget (MB)", &ui.recordingBudgetMb, kMinRecordingBudgetMb, kMaxRecordingBudgetMb,
+                       "%d", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
     session.setRecordingBudget(static_cast<std::size_t>(ui.recordingBudgetMb) << 20);
   }
   if (ImGui::Button("Save...")) ui.saveRecordingRequested = true;
@@ -408,7 +418,8 @@ void worldSection(Session& session, UiState& ui) {
   }
   ImGui::Text("ground: %s", w.ground ? "yes" : "none");
   // What F, R and T throw: boxes of this model, ragdolls of its kind.
-  ImGui::SliderFloat("throw speed (m/s)", &ui.throwSpeed, 0.0f, 40.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
+  ImGui::SliderFloat("throw speed (m/s)", &ui.throwSpeed, 0.0f, kMaxThrowSpeed, "%.1f",
+                     ImGuiSliderFlags_AlwaysClamp);
   int thrown = static_cast<int>(session.throwModel());
   if (ImGui::Combo("thrown bodies", &thrown, "corners\0tetra\0rigid\0"))
     session.setThrowModel(static_cast<phys::BodyModel>(thrown));

@@ -103,6 +103,7 @@ Sandbox::Sandbox(const Options& options)
   camera_ =
       engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   applyRemembered(user_, options_, ui_);
+  session_->setRecordingBudget(static_cast<std::size_t>(ui_.recordingBudgetMb) << 20);
   fitToScene();
   if (options_.sweep) {
     ui_.unfolded[5] = true;

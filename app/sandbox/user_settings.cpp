@@ -53,6 +53,31 @@ bool parseDrawMode(std::string_view text, std::string& out) {
   return true;
 }
 
+bool parseColoring(std::string_view text, std::optional<std::string>& out) {
+  if (text != "kind" && text != "body" && text != "island" && text != "sleep") return false;
+  out = std::string(text);
+  return true;
+}
+
+bool parseThrowSpeed(std::string_view text, std::optional<float>& out) {
+  float v = 0.0f;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !(v >= 0.0f && v <= kMaxThrowSpeed))
+    return false;
+  out = v;
+  return true;
+}
+
+bool parseBudget(std::string_view text, std::optional<int>& out) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || n < kMinRecordingBudgetMb ||
+      n > kMaxRecordingBudgetMb)
+    return false;
+  out = n;
+  return true;
+}
+
 // A value holding a line break would end its line early and corrupt the next one on reading.
 bool fitsOnOneLine(const std::string& value) {
   return value.find_first_of("\r\n") == std::string::npos;
@@ -68,9 +93,18 @@ std::string toText(const UserSettings& s) {
   out += std::string("showWorld = ") + flag(s.showWorld) + "\n";
   out += std::string("showDraw = ") + flag(s.showDraw) + "\n";
   out += std::string("showStats = ") + flag(s.showStats) + "\n";
+  out += std::string("showRewind = ") + flag(s.showRewind) + "\n";
+  out += std::string("showLab = ") + flag(s.showLab) + "\n";
   if (fitsOnOneLine(s.lastScene)) out += "lastScene = " + s.lastScene + "\n";
   out += "drawMode = " + s.drawMode + "\n";
   out += std::string("markers = ") + flag(s.markers) + "\n";
+  if (s.colorBy) out += "colorBy = " + *s.colorBy + "\n";
+  if (s.throwSpeed) {
+    char speed[32];
+    const auto [end, ec] = std::to_chars(speed, speed + sizeof speed, *s.throwSpeed);
+    if (ec == std::errc()) out += "throwSpeed = " + std::string(speed, end) + "\n";
+  }
+  if (s.recordingBudgetMb) out += "recordingBudget = " + std::to_string(*s.recordingBudgetMb) + "\n";
   for (const std::string& path : s.recentFiles) {
     if (fitsOnOneLine(path)) out += "recent = " + path + "\n";
   }
@@ -113,22 +147,34 @@ LoadedSettings loadUserSettings(const fs::path& file) {
     const std::string key(trim(text.substr(0, eq)));
     const std::string_view value = trim(text.substr(eq + 1));
     bool ok = true;
-    const char* expected = "";
+    std::string expected;
     if (key == "width" || key == "height") {
       ok = parseWindowSide(value, key == "width" ? s.windowWidth : s.windowHeight);
       expected = "a whole number from 100 to 16384";
     } else if (key == "showSimulation" || key == "showWorld" || key == "showDraw" || key == "showStats" ||
-               key == "markers") {
+               key == "showRewind" || key == "showLab" || key == "markers") {
       bool& target = key == "showSimulation" ? s.showSimulation
                      : key == "showWorld"    ? s.showWorld
                      : key == "showDraw"     ? s.showDraw
                      : key == "showStats"    ? s.showStats
+                     : key == "showRewind"   ? s.showRewind
+                     : key == "showLab"      ? s.showLab
                                              : s.markers;
       ok = parseBool(value, target);
       expected = "true or false";
     } else if (key == "drawMode") {
       ok = parseDrawMode(value, s.drawMode);
       expected = "filled, wireframe or constraints";
+    } else if (key == "colorBy") {
+      ok = parseColoring(value, s.colorBy);
+      expected = "kind, body, island or sleep";
+    } else if (key == "throwSpeed") {
+      ok = parseThrowSpeed(value, s.throwSpeed);
+      expected = "a speed in m/s from 0 to " + std::to_string(static_cast<int>(kMaxThrowSpeed));
+    } else if (key == "recordingBudget") {
+      ok = parseBudget(value, s.recordingBudgetMb);
+      expected = "a whole number of MB from " + std::to_string(kMinRecordingBudgetMb) + " to " +
+                 std::to_string(kMaxRecordingBudgetMb);
     } else if (key == "lastScene") {
       s.lastScene = std::string(value);  // empty is valid: the default scene
     } else if (key == "recent") {

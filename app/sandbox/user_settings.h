@@ -1,16 +1,21 @@
 #pragma once
 // What the sandbox remembers between runs: window size, which sections of the panels' column are
-// shown, the last scene, the draw mode and the recent files. Stored as "key = value" lines in the
-// user's config folder. Keys: width, height, showSimulation,
-// showWorld, showDraw, showStats, lastScene, drawMode, markers, and one `recent = PATH` line per
-// recent file, newest first; '#' starts a comment line.
+// shown, the last scene, the draw mode, the colouring, the throw speed, the recording's budget and
+// the recent files. Stored as "key = value" lines in the user's config folder. Keys: width,
+// height, showSimulation, showRewind, showWorld, showDraw, showStats, showLab, lastScene, drawMode,
+// markers, colorBy, throwSpeed, recordingBudget, and one `recent = PATH` line per recent file,
+// newest first; '#' starts a comment line.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace sandbox {
 
 inline constexpr int kMaxRecentFiles = 8;
+/// The World panel's throw speed slider's range (m/s) and the Rewind section's budget slider's (MB).
+inline constexpr float kMaxThrowSpeed = 40.0f;
+inline constexpr int kMinRecordingBudgetMb = 16, kMaxRecordingBudgetMb = 8192;
 
 struct UserSettings {
   int windowWidth = 1280;  ///< unit: screen pixels
@@ -19,9 +24,15 @@ struct UserSettings {
   bool showWorld = true;
   bool showDraw = true;
   bool showStats = true;
-  std::string lastScene;                 ///< a path; empty: the default scene
-  std::string drawMode = "filled";       ///< filled, wireframe or constraints
-  bool markers = false;                  ///< the seed's green collision-vertex markers
+  bool showRewind = true;
+  bool showLab = true;
+  std::string lastScene;            ///< a path; empty: the default scene
+  std::string drawMode = "filled";  ///< filled, wireframe or constraints
+  bool markers = false;             ///< the seed's green collision-vertex markers
+  // Unset until a run has written them: the panels' own defaults then hold.
+  std::optional<std::string> colorBy;    ///< kind, body, island or sleep
+  std::optional<float> throwSpeed;       ///< unit: m/s; 0 to kMaxThrowSpeed
+  std::optional<int> recordingBudgetMb;  ///< unit: MB; kMinRecordingBudgetMb to kMaxRecordingBudgetMb
   std::vector<std::string> recentFiles;  ///< newest first, at most kMaxRecentFiles
 };
 

@@ -502,6 +502,35 @@ TEST(Remembered, PanelsAndDrawModeComeBackAndTheCommandLineWins) {
   EXPECT_TRUE(next.markers);
 }
 
+// The Rewind and Lab sections, the colouring, the throw speed and the recording's budget too; the
+// panels' own defaults until a run has remembered them, and --color-by wins.
+TEST(Remembered, SectionsColouringThrowSpeedAndBudget) {
+  sandbox::UiState fresh;
+  sandbox::applyRemembered(sandbox::UserSettings{}, sandbox::Options{}, fresh);
+  EXPECT_EQ(fresh.draw.coloring, sandbox::BodyColoring::Body);
+  EXPECT_EQ(fresh.throwSpeed, static_cast<float>(sandbox::kThrowSpeed));
+  EXPECT_EQ(fresh.recordingBudgetMb, static_cast<int>(sandbox::kDefaultRecordingBudget >> 20));
+
+  fresh.showRewind = false;
+  fresh.draw.coloring = sandbox::BodyColoring::Sleep;
+  fresh.throwSpeed = 3.0f;
+  fresh.recordingBudgetMb = 100;
+  sandbox::UserSettings user;
+  sandbox::remember(fresh, user);
+  sandbox::UiState next;
+  sandbox::applyRemembered(user, sandbox::Options{}, next);
+  EXPECT_FALSE(next.showRewind);
+  EXPECT_TRUE(next.showLab);
+  EXPECT_EQ(next.draw.coloring, sandbox::BodyColoring::Sleep);
+  EXPECT_EQ(next.throwSpeed, 3.0f);
+  EXPECT_EQ(next.recordingBudgetMb, 100);
+
+  const auto parsed = sandbox::parseOptions({"--color-by", "kind"});
+  ASSERT_EQ(parsed.error, "");
+  sandbox::applyRemembered(user, parsed.options, next);
+  EXPECT_EQ(next.draw.coloring, sandbox::BodyColoring::Kind);
+}
+
 }  // namespace
 
 namespace {

@@ -64,6 +64,11 @@ TEST_F(UserSettingsTest, EveryFieldSurvivesSaveAndLoad) {
   s.lastScene = "/home/someone/my scenes/chain = long.xml";  // a space and an '=' in the value
   s.drawMode = "wireframe";
   s.markers = true;
+  s.showRewind = false;
+  s.showLab = false;
+  s.colorBy = "island";
+  s.throwSpeed = 12.5f;
+  s.recordingBudgetMb = 64;
   s.recentFiles = {"/a/one.xml", "/b/two.xml", "relative/three.xml"};
   const fs::path file = dir_ / "nested" / "folder" / "settings.ini";  // the folders do not exist yet
   sandbox::saveUserSettings(s, file);
@@ -80,6 +85,11 @@ TEST_F(UserSettingsTest, EveryFieldSurvivesSaveAndLoad) {
   EXPECT_EQ(r.lastScene, s.lastScene);
   EXPECT_EQ(r.drawMode, "wireframe");
   EXPECT_TRUE(r.markers);
+  EXPECT_FALSE(r.showRewind);
+  EXPECT_FALSE(r.showLab);
+  EXPECT_EQ(r.colorBy, "island");
+  EXPECT_EQ(r.throwSpeed, 12.5f);
+  EXPECT_EQ(r.recordingBudgetMb, 64);
   EXPECT_EQ(r.recentFiles, s.recentFiles);
   EXPECT_EQ(filesIn(dir_ / "nested" / "folder"), std::vector<std::string>{"settings.ini"});
 }
@@ -107,18 +117,28 @@ TEST_F(UserSettingsTest, BadLinesAreSkippedWithTheirLineAndKey) {
                               "markers = yes\n"            // line 6
                               "colour = blue\n"            // line 7: unknown
                               "no equals sign here\n"      // line 8
+                              "colorBy = rainbow\n"        // line 9
+                              "throwSpeed = 41\n"          // line 10: beyond the slider
+                              "recordingBudget = 8\n"      // line 11: below 16 MB
                               "  showStats = false  \r\n"  // good, with spaces and a CR
                               "lastScene = /s/ragdoll.xml\n"
                               "recent = /r/1.xml\n");
   const auto loaded = sandbox::loadUserSettings(file);
   const std::string name = file.string();
-  ASSERT_EQ(loaded.warnings.size(), 6u);
+  ASSERT_EQ(loaded.warnings.size(), 9u);
   EXPECT_TRUE(containsAll(loaded.warnings[0], {":3:", "'width'", "'abc'"})) << loaded.warnings[0];
   EXPECT_TRUE(containsAll(loaded.warnings[1], {":4:", "'height'", "'50'"})) << loaded.warnings[1];
   EXPECT_TRUE(containsAll(loaded.warnings[2], {":5:", "'drawMode'", "'sketchy'"})) << loaded.warnings[2];
   EXPECT_TRUE(containsAll(loaded.warnings[3], {":6:", "'markers'", "'yes'"})) << loaded.warnings[3];
   EXPECT_EQ(loaded.warnings[4], name + ":7: unknown key 'colour'");
   EXPECT_TRUE(containsAll(loaded.warnings[5], {":8:"})) << loaded.warnings[5];
+  EXPECT_TRUE(
+      containsAll(loaded.warnings[6], {":9:", "'colorBy'", "'rainbow'", "kind, body, island or sleep"}))
+      << loaded.warnings[6];
+  EXPECT_TRUE(containsAll(loaded.warnings[7], {":10:", "'throwSpeed'", "'41'", "from 0 to 40"}))
+      << loaded.warnings[7];
+  EXPECT_TRUE(containsAll(loaded.warnings[8], {":11:", "'recordingBudget'", "'8'", "from 16 to 8192"}))
+      << loaded.warnings[8];
   for (const std::string& w : loaded.warnings) EXPECT_EQ(w.rfind(name + ":", 0), 0u) << w;
 
   const UserSettings defaults;
@@ -127,6 +147,7 @@ TEST_F(UserSettingsTest, BadLinesAreSkippedWithTheirLineAndKey) {
   EXPECT_EQ(s.windowHeight, defaults.windowHeight);
   EXPECT_EQ(s.drawMode, defaults.drawMode);
   EXPECT_EQ(s.markers, defaults.markers);
+  EXPECT_FALSE(s.colorBy || s.throwSpeed || s.recordingBudgetMb);
   EXPECT_FALSE(s.showStats);
   EXPECT_EQ(s.lastScene, "/s/ragdoll.xml");
   EXPECT_EQ(s.recentFiles, std::vector<std::string>{"/r/1.xml"});
