@@ -255,7 +255,11 @@ void rewindSection(Session& session, UiState& ui) {
                        "%d", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
     session.setRecordingBudget(static_cast<std::size_t>(ui.recordingBudgetMb) << 20);
   }
-  if (ImGui::Button("Save...")) ui.saveRecordingRequested = true;
+  if (const std::optional<double> saving = session.savingProgress()) {
+    ImGui::ProgressBar(static_cast<float>(*saving), ImVec2(ImGui::GetFontSize() * 8.0f, 0.0f), "saving");
+  } else if (ImGui::Button("Save...")) {
+    ui.saveRecordingRequested = true;
+  }
   ImGui::SameLine();
   if (ImGui::Button("Open...")) ui.openRecordingRequested = true;
 }

@@ -1,9 +1,12 @@
 #include "recording_io.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <tuple>
 
+#include "fileio/files.h"
 #include "scenes/scene_writer.h"
 
 namespace sandbox {
@@ -39,7 +42,8 @@ std::string partScene(const scenes::Scene& scene, const phys::World& world, long
 
 }  // namespace
 
-SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene) {
+SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
+                       const std::function<void()>& stepDone) {
   SavedRecording saved;
   saved.sceneName = scene.name;
   std::unique_ptr<phys::World> partStart;  // settings of the current part
@@ -52,6 +56,7 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene) {
           partStart = std::make_unique<phys::World>(world.worldSettings(), world.solverSettings());
         }
         saved.parts.back().steps.push_back({record, world.motion()});
+        if (stepDone) stepDone();
       },
       divergence);
   if (!whole) throw RecordingIoError("the recording cannot be rebuilt: " + divergence);
@@ -91,6 +96,50 @@ Recording fromSaved(const SavedRecording& saved, const scenes::LoadOptions& opti
     }
   }
   return out;
+}
+
+RecordingSaver::~RecordingSaver() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void RecordingSaver::start(Recording recording, scenes::Scene scene, std::filesystem::path file) {
+  if (running()) return;
+  if (thread_.joinable()) thread_.join();  // an earlier save, done but not collected
+  file_ = std::move(file);
+  error_.clear();
+  saved_.clear();
+  stepsDone_ = 0;
+  steps_ = std::max(recording.last() - recording.first() + 1, 1L);
+  done_ = false;
+  thread_ = std::thread([this, r = std::move(recording), s = std::move(scene)] { run(r, s); });
+}
+
+void RecordingSaver::run(const Recording& recording, const scenes::Scene& scene) {
+  try {
+    const SavedRecording saved = toSaved(recording, scene, [this] { ++stepsDone_; });
+    const std::string bytes = encodeRecording(saved);
+    fileio::writeAtomically(file_, bytes);
+    char size[32];
+    std::snprintf(size, sizeof size, "%.1f MB", static_cast<double>(bytes.size()) / (1 << 20));
+    saved_ = "saved steps " + std::to_string(saved.firstStep()) + " to " + std::to_string(saved.lastStep()) +
+             " in " + file_.filename().string() + " (" + size + ")";
+  } catch (const RecordingIoError& e) {
+    error_ = file_.string() + ": cannot save the recording: " + e.what();
+  } catch (const std::exception& e) {  // fileio::FileError (it names the file), or memory
+    error_ = e.what();
+  }
+  done_ = true;
+}
+
+double RecordingSaver::progress() const {
+  return static_cast<double>(stepsDone_.load()) / static_cast<double>(steps_);
+}
+
+std::optional<std::string> RecordingSaver::finish(std::string& saved, bool wait) {
+  if (!thread_.joinable() || (!wait && !done_.load())) return std::nullopt;
+  thread_.join();
+  saved = saved_;
+  return error_;
 }
 
 }  // namespace sandbox

@@ -640,7 +640,7 @@ void Sandbox::showRecordingDialog(FileDialogMode mode) {
 
 void Sandbox::recordingChosen(FileDialogMode mode, const std::filesystem::path& file) {
   const std::string error =
-      mode == FileDialogMode::Open ? session_->openRecording(file) : session_->saveRecording(file);
+      mode == FileDialogMode::Open ? session_->openRecording(file) : session_->startSavingRecording(file);
   if (error.empty()) {
     if (mode == FileDialogMode::Open) ui_.paused = true;  // at its first step, to be scrubbed or played
     ui_.message = session_->status();
@@ -758,6 +758,13 @@ int Sandbox::run() {
       perform(Action::Reload);
     }
     if (std::exchange(ui_.openRecordingRequested, false)) showRecordingDialog(FileDialogMode::Open);
+    if (const std::optional<std::string> saved = session_->finishSaving()) {
+      ui_.message = session_->status();
+      if (!saved->empty()) {
+        errorText_ = *saved + "\n\nNothing was written over the file.";
+        showError_ = true;
+      }
+    }
     if (std::exchange(ui_.saveRecordingRequested, false)) showRecordingDialog(FileDialogMode::Save);
 
     if (interactive_) {

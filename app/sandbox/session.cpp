@@ -24,12 +24,6 @@ using Clock = std::chrono::steady_clock;
 // The largest recording file opened (unit: bytes): 10 s of Bullet's 136-ragdoll pile take 170 MB.
 constexpr std::size_t kMaxRecordingFile = std::size_t{8} << 30;
 
-std::string megabytes(std::size_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / (1 << 20));
-  return text;
-}
-
 // A world with the same settings as `world` and nothing in it.
 phys::World emptyLike(const phys::World& world) {
   return phys::World(world.worldSettings(), world.solverSettings());
@@ -261,22 +255,31 @@ std::string Session::rewindTo(long step) {
   return divergence;
 }
 
-std::string Session::saveRecording(const std::filesystem::path& file) {
+std::string Session::startSavingRecording(const std::filesystem::path& file) {
   if (overlayActive()) return "nothing to save: the method overlay's runs are not recorded";
   if (recording_.empty()) return "nothing recorded yet";
-  cancelSteps();
-  try {
-    const SavedRecording saved = toSaved(recording_, scene());
-    const std::string bytes = encodeRecording(saved);
-    fileio::writeAtomically(file, bytes);
-    status_ = "saved steps " + std::to_string(saved.firstStep()) + " to " + std::to_string(saved.lastStep()) +
-              " in " + file.filename().string() + " (" + megabytes(bytes.size()) + ")";
-    return {};
-  } catch (const RecordingIoError& e) {
-    return file.string() + ": cannot save the recording: " + e.what();
-  } catch (const fileio::FileError& e) {
-    return e.what();
-  }
+  if (saver_.running()) return "a recording is being saved: wait for it to finish";
+  finishSaving();  // an earlier one, done but not collected
+  saver_.start(recording_, scene(), file);
+  status_ = "saving the recording to " + file.filename().string();
+  return {};
+}
+
+std::optional<double> Session::savingProgress() const {
+  if (!saver_.running()) return std::nullopt;
+  return saver_.progress();
+}
+
+std::optional<std::string> Session::finishSaving(bool wait) {
+  std::string saved;
+  std::optional<std::string> error = saver_.finish(saved, wait);
+  if (error && error->empty()) status_ = saved;
+  return error;
+}
+
+std::string Session::saveRecording(const std::filesystem::path& file) {
+  if (std::string why = startSavingRecording(file); !why.empty()) return why;
+  return finishSaving(true).value_or("");
 }
 
 std::string Session::openRecording(const std::filesystem::path& file) {

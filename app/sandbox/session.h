@@ -17,6 +17,7 @@
 
 #include "background_steps.h"
 #include "overlay_spec.h"
+#include "recording_io.h"
 #include "run.h"
 #include "scenes/scene.h"
 
@@ -98,8 +99,17 @@ class Session {
   std::string rewindTo(long step);
   void setRecordingBudget(std::size_t bytes) { recording_.setBudget(bytes); }
   /// Writes the recording to `file` atomically (recording_file.h; docs/sandbox.md, "Recording
-  /// files"). Returns "" or why not (nothing recorded, the overlay on, a step that cannot be
-  /// rebuilt or written, a file error); the old file is then as it was.
+  /// files"), on a thread of its own (RecordingSaver), from a copy of the recording as it is now:
+  /// the runs go on stepping meanwhile. Returns "" or why it cannot start (nothing recorded, the
+  /// overlay on, a save running); finishSaving says how it ended.
+  std::string startSavingRecording(const std::filesystem::path& file);
+  /// While a save runs: the share of its steps written, 0 to 1.
+  std::optional<double> savingProgress() const;
+  /// Once the save is done: "" (status() then says what was saved) or why nothing was written (a
+  /// step that cannot be rebuilt or written as a scene, a file error; the old file is as it was).
+  /// None while it runs or when none was started. `wait` waits for it.
+  std::optional<std::string> finishSaving(bool wait = false);
+  /// startSavingRecording and finishSaving(wait): "" or why not.
   std::string saveRecording(const std::filesystem::path& file);
   /// Opens a recording saved from this scene in place of the one kept, and shows its first step
   /// (as rewindTo does: stepping or a command resumes from the step shown). Returns "" or why not
@@ -185,6 +195,7 @@ class Session {
   phys::BodyModel throwModel_ = phys::BodyModel::Corners;
   std::optional<phys::Vec3> dragTarget_;  // the drag's last target, for runs stepped meanwhile
   Recording recording_;
+  RecordingSaver saver_;
   bool rewound_ = false;        // the main run was rewound and has not stepped since
   BackgroundSteps background_;  // last: its thread stops before the rest goes
 };

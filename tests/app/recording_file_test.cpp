@@ -4,6 +4,7 @@
 // of another scene is refused with a message saying so, and the world and recording are kept.
 #include <cstdio>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,26 @@ TEST(RecordingFile, ASavedRecordingOpensWithEveryStepAsRecorded) {
       EXPECT_EQ(resaved.parts[p].steps[k].record.hash, saved.parts[p].steps[k].record.hash);
     }
   }
+}
+
+// A save runs on a thread of its own from the recording as it was when it started: the run steps
+// on meanwhile, a second save is refused until it is done, and the file holds what was asked for.
+TEST(RecordingFile, ASaveRunsBesideTheSteps) {
+  const testing_app::TempFolder dir;
+  sandbox::Session s = openSession("ragdolls");
+  for (int i = 0; i < 120; ++i) s.step();
+  const fs::path file = dir.path / "r.jrec";
+  ASSERT_EQ(s.startSavingRecording(file), "");
+  EXPECT_NE(s.startSavingRecording(dir.path / "other.jrec"), "");
+  for (int i = 0; i < 30; ++i) s.step();
+  const std::optional<std::string> done = s.finishSaving(true);
+  ASSERT_TRUE(done.has_value());
+  EXPECT_EQ(*done, "");
+  EXPECT_NE(s.status().find("saved steps 0 to 120"), std::string::npos) << s.status();
+  EXPECT_FALSE(s.finishSaving().has_value()) << "collected once";
+  EXPECT_FALSE(fs::exists(dir.path / "other.jrec"));
+  EXPECT_EQ(sandbox::decodeRecording(contentOf(file)).lastStep(), 120);
+  EXPECT_EQ(s.scene().world.stepCount(), 150);
 }
 
 // Resuming from a step of an opened recording forks it there, as a rewind does; the run goes on
@@ -211,6 +232,32 @@ TEST_F(BadRecording, DamagedOrNotARecording) {
   expectRefusedFile(testing_app::kProjectScenes / "chain.xml", "not a recording");
   expectRefusedFile(dir_.path / "missing.jrec", "No such file or directory");
   expectRefusedFile(dir_.path, "folder");
+}
+
+// Damage of every kind, anywhere (a property test; the sanitizer run includes it): each is
+// refused as a format error, never read past the end, never allocated from a damaged count.
+TEST_F(BadRecording, RandomDamageIsAlwaysRefused) {
+  std::mt19937 random(20261128);
+  auto at = [&](std::size_t size) { return std::uniform_int_distribution<std::size_t>(0, size - 1)(random); };
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::string damaged = bytes_;
+    switch (trial % 4) {
+      case 0:  // a few bytes changed
+        for (int k = 0; k < 1 + trial % 3; ++k) damaged[at(damaged.size())] ^= static_cast<char>(1 + at(255));
+        break;
+      case 1:  // a count or length made huge: the 8 bytes at a random place set to 0xff
+        damaged.replace(at(damaged.size() - 8), 8, 8, '\xff');
+        break;
+      case 2:  // cut anywhere
+        damaged.resize(at(damaged.size()));
+        break;
+      default:  // bytes put in
+        damaged.insert(at(damaged.size()), std::string(1 + at(16), '\x7f'));
+        break;
+    }
+    if (damaged == bytes_) continue;
+    EXPECT_THROW(sandbox::decodeRecording(damaged), sandbox::RecordingFormatError) << "trial " << trial;
+  }
 }
 
 TEST_F(BadRecording, NothingToSaveOrNowhereToSaveIt) {
