@@ -1,5 +1,8 @@
 #include "input.h"
 
+#include <algorithm>
+#include <utility>
+
 namespace sandbox {
 
 void InputState::keyDown(int key) {
@@ -34,6 +37,19 @@ void InputState::focusLost() {
 void InputState::endFrame() {
   pressed_.reset();
   buttonPressed_.reset();
+}
+
+bool KeyTaps::holdRelease(const Release& release) {
+  if (std::find(pressedSinceFrame_.begin(), pressedSinceFrame_.end(), release.key) ==
+      pressedSinceFrame_.end())
+    return false;
+  held_.push_back(release);
+  return true;
+}
+
+std::vector<KeyTaps::Release> KeyTaps::frameStarted() {
+  pressedSinceFrame_.clear();
+  return std::exchange(held_, {});
 }
 
 }  // namespace sandbox

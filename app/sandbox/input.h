@@ -4,6 +4,7 @@
 // window had focus cannot be missed: losing focus releases everything. (The seed's engine
 // polled key-down messages only and a key released elsewhere stayed held for ever.)
 #include <bitset>
+#include <vector>
 
 namespace sandbox {
 
@@ -39,6 +40,26 @@ class InputState {
 
   std::bitset<kKeys> held_, pressed_;
   std::bitset<kButtons> buttons_, buttonPressed_;
+};
+
+/// A key pressed and released between two frames, as a script or a quick tap on a slow frame
+/// does: Dear ImGui 1.86 reads keys as held or not when a frame starts, so it would never see the
+/// key down and Enter in a dialog would be lost. The release of a key pressed since the last frame
+/// waits for the frame to start; anything else goes through at once.
+class KeyTaps {
+ public:
+  struct Release {
+    int key = 0, scancode = 0, mods = 0;
+  };
+  void pressed(int key) { pressedSinceFrame_.push_back(key); }
+  /// True when this release must wait (it is kept, and returned by frameStarted).
+  bool holdRelease(const Release& release);
+  /// The frame has read the keys: the releases kept, to be given now.
+  std::vector<Release> frameStarted();
+
+ private:
+  std::vector<int> pressedSinceFrame_;
+  std::vector<Release> held_;
 };
 
 }  // namespace sandbox

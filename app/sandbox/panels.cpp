@@ -250,7 +250,7 @@ void rewindSection(Session& session, UiState& ui) {
   }
   greyWrapped(figure("%.1f", r.seconds()) + " s recorded (steps " + std::to_string(r.first()) + " to " +
               std::to_string(r.last()) + "), " + figure("%.1f", static_cast<double>(r.bytes()) / (1 << 20)) +
-              " MB of keyframes");
+              " MB kept");
   if (ImGui::SliderInt("budget (MB)", &ui.recordingBudgetMb, kMinRecordingBudgetMb, kMaxRecordingBudgetMb,
                        "%d", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
     session.setRecordingBudget(static_cast<std::size_t>(ui.recordingBudgetMb) << 20);
@@ -614,7 +614,10 @@ void drawStatusAndCrosshair(const Session& session, const UiState& ui) {
   const std::string& text = ui.message.empty() ? session.status() : ui.message;
   char line[512];
   std::snprintf(line, sizeof line, "%s%s   |   %s   |   F1: controls, F2: panels",
-                ui.paused ? "PAUSED   |   " : "", std::string(toString(ui.draw.mode)).c_str(), text.c_str());
+                ui.replaying ? "PLAYING THE RECORDING   |   "
+                : ui.paused  ? "PAUSED   |   "
+                             : "",
+                std::string(toString(ui.draw.mode)).c_str(), text.c_str());
   const ImVec2 at(8.0f, display.y - statusLineHeight() + 2.0f);
   draw->AddRectFilled(ImVec2(0, at.y - 2), ImVec2(display.x, display.y), IM_COL32(20, 20, 24, 230));
   draw->AddText(at, IM_COL32(235, 235, 235, 255), line);

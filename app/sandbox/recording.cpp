@@ -60,7 +60,12 @@ long Recording::last() const {
 }
 
 double Recording::seconds() const {
-  return static_cast<double>(last() - first()) * dt_;
+  if (keyframes_.empty()) return 0.0;
+  // From the keyframes' clocks, so that a dt changed on the way counts as it was; the steps after
+  // the last keyframe at the dt they were taken with.
+  auto timeOf = [](const Keyframe& k) { return k.motion ? k.motion->time : k.world->time(); };
+  return timeOf(keyframes_.back()) - timeOf(keyframes_.front()) +
+         static_cast<double>(last() - keyframes_.back().step) * dt_;
 }
 
 void Recording::setStepCost(double milliseconds) {

@@ -54,6 +54,14 @@ void focusCallback(GLFWwindow* w, int focused) {
 void scrollCallback(GLFWwindow* w, double, double y) {
   owner(w)->onScroll(y);
 }
+// In front of ImGui's key callback (which calls keyCallback in turn): a key tapped between two
+// frames reaches ImGui as held for one (KeyTaps).
+void imguiKeyCallback(GLFWwindow* w, int key, int scancode, int action, int mods) {
+  KeyTaps& taps = owner(w)->keyTaps();
+  if (action == GLFW_PRESS) taps.pressed(key);
+  if (action == GLFW_RELEASE && taps.holdRelease({key, scancode, mods})) return;
+  ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
+}
 
 engine::WindowDesc windowDesc(const Options& options, const UserSettings& user) {
   engine::WindowDesc d;
@@ -127,6 +135,7 @@ Sandbox::Sandbox(const Options& options)
   ImGui::GetIO().IniFilename = nullptr;
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_.handle(), true);
+  glfwSetKeyCallback(window_.handle(), imguiKeyCallback);  // Shutdown puts keyCallback back
   ImGui_ImplOpenGL3_Init("#version 330 core");
 }
 
@@ -721,6 +730,8 @@ void Sandbox::renderFrame() {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  for (const KeyTaps::Release& r : keyTaps_.frameStarted())
+    ImGui_ImplGlfw_KeyCallback(window_.handle(), r.key, r.scancode, GLFW_RELEASE, r.mods);
   drawMenuBar();
   drawPanels(*session_, ui_);
   drawLegend(*session_, ui_);

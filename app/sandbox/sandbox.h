@@ -39,6 +39,7 @@ class Sandbox {
 
   // GLFW callbacks (static trampolines in sandbox.cpp forward here).
   void onKey(int key, int action, int mods);
+  KeyTaps& keyTaps() { return keyTaps_; }
   void onMouseButton(int button, int action);
   void onFocus(bool focused);
   void onScroll(double amount);
@@ -89,6 +90,7 @@ class Sandbox {
   engine::FirstPersonCamera camera_;
   InputState input_;
   std::vector<std::pair<int, int>> keyPresses_;  // (key, mods) since the last frame
+  KeyTaps keyTaps_;                              // what ImGui is told of keys, a frame at a time
   UiState ui_;
   FileDialog openDialog_, saveDialog_;
   FileDialog openRecordingDialog_, saveRecordingDialog_;

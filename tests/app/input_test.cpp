@@ -96,3 +96,25 @@ TEST(Controls, TheSeedsKeysMapToTheirActions) {
 }
 
 }  // namespace
+
+namespace {
+
+// A key pressed and released between two frames (a script's key, a tap on a slow frame) is held
+// back until the frame has read it as down; any other release goes through.
+TEST(KeyTaps, AReleaseInTheFrameOfItsPressWaitsForTheFrame) {
+  sandbox::KeyTaps taps;
+  taps.pressed(257);  // Enter
+  EXPECT_TRUE(taps.holdRelease({257, 36, 0}));
+  EXPECT_FALSE(taps.holdRelease({65, 38, 0})) << "pressed in an earlier frame";
+  const auto released = taps.frameStarted();
+  ASSERT_EQ(released.size(), 1u);
+  EXPECT_EQ(released[0].key, 257);
+  EXPECT_EQ(released[0].scancode, 36);
+  EXPECT_TRUE(taps.frameStarted().empty());
+
+  taps.pressed(257);
+  EXPECT_TRUE(taps.frameStarted().empty()) << "held over the frame: nothing kept";
+  EXPECT_FALSE(taps.holdRelease({257, 36, 0})) << "its release, a frame later, goes through";
+}
+
+}  // namespace

@@ -142,3 +142,21 @@ TEST(Rewind, WhatCannotBeShownSaysWhy) {
 }
 
 }  // namespace
+
+namespace {
+
+// The time recorded counts each step at the dt it was taken with.
+TEST(Rewind, SecondsRecordedFollowADtChangedOnTheWay) {
+  sandbox::Session s = testing_app::openSession("ragdoll");
+  phys::SolverSettings settings = s.scene().world.solverSettings();
+  settings.dt = 1.0 / 60.0;
+  ASSERT_EQ(s.setSolverSettings(settings), "");
+  for (int i = 0; i < 60; ++i) s.step();
+  settings.dt = 1.0 / 240.0;
+  ASSERT_EQ(s.setSolverSettings(settings), "");
+  for (int i = 0; i < 120; ++i) s.step();
+  EXPECT_NEAR(s.recording().seconds(), 1.5, 1e-9);
+  EXPECT_NEAR(s.recording().seconds(), s.scene().world.time(), 1e-9);
+}
+
+}  // namespace
