@@ -485,7 +485,7 @@ void Sandbox::fitToScene() {
 // An analytic scene's <expect kind="position" pos="x y z" at="t"> give where a body must be at
 // time t: each is a green cross, so the simulated body is seen passing by (or missing) it. The
 // one whose time is nearest the world's is drawn larger. The ghost (exact_ghost.h) is the answer
-// at the world's time, a translucent green copy of the scene as its file starts it.
+// at the world's time, a translucent green copy of the scene as its file starts it, under the run.
 void Sandbox::drawExactAnswers(const glm::mat4& viewProjection) {
   const scenes::Scene& scene = session_->scene();
   if (const phys::World* ghost = ghost_.at(scene.world.time(), scene.world.solverSettings().dt)) {
@@ -707,13 +707,15 @@ void Sandbox::renderFrame() {
     renderer_->drawGround(viewProjection, camera_.position, glm::vec3(settings.groundNormal),
                           static_cast<float>(settings.groundHeight));
   }
+  // The exact answer first: translucent, it leaves no depth, so the run drawn after it is whole
+  // where the two overlap and the ghost shows where they part.
+  if (ui_.draw.exact) drawExactAnswers(viewProjection);
   if (session_->overlayActive()) {
     for (const Run& run : session_->runs())
       view_->draw(run.scene->world, viewProjection, ui_.draw, Tint{run.color});
   } else {
     view_->draw(session_->scene().world, viewProjection, ui_.draw);
   }
-  if (ui_.draw.exact) drawExactAnswers(viewProjection);
   if (ui_.draw.trails) {
     trails_.record(session_->scene().world, followed_);
     trails_.draw(renderer_->lines(), kTrailColor);
