@@ -18,7 +18,9 @@ bool hasPositionAnswers(const scenes::Scene& scene) {
 void ExactGhost::reset(const scenes::Scene& scene) {
   clear();
   const phys::World& w = scene.world;
-  if (!hasPositionAnswers(scene) || w.particles().size() + w.rigidBodies().size() > kMaxGhostBodies) return;
+  if (!hasPositionAnswers(scene) ||
+      w.particles().size() + w.rigidBodies().size() > kMaxGhostParticlesAndBodies)
+    return;
   start_.emplace(w);
   start_->clearDrag();
   start_->setSolverSettings(lab::referenceSettings(w, w.solverSettings().dt));
@@ -27,14 +29,32 @@ void ExactGhost::reset(const scenes::Scene& scene) {
 void ExactGhost::clear() {
   start_.reset();
   now_.reset();
+  snapshots_.clear();
 }
 
 const phys::World* ExactGhost::at(double time, double dt) {
   if (!start_) return nullptr;
-  if (!now_ || now_->time() > time + dt / 2) now_ = start_;
+  if (!now_ || now_->time() > time + dt / 2) {
+    const phys::World* from = &*start_;
+    for (const phys::World& s : snapshots_) {
+      if (s.time() <= time + dt / 2) from = &s;
+    }
+    now_ = *from;
+  }
   if (now_->solverSettings().dt != dt) now_->setSolverSettings(lab::referenceSettings(*now_, dt));
   // To the step nearest `time`: a dt changed on the way leaves the two clocks a part of a step apart.
-  while (now_->time() + dt / 2 < time) now_->step();
+  while (now_->time() + dt / 2 < time) {
+    now_->step();
+    const double last = snapshots_.empty() ? start_->time() : snapshots_.back().time();
+    if (now_->time() >= last + kGhostSnapshotEvery) {
+      snapshots_.push_back(*now_);
+      if (snapshots_.size() > kMaxGhostSnapshots) {
+        std::vector<phys::World> thinned;
+        for (std::size_t i = 1; i < snapshots_.size(); i += 2) thinned.push_back(std::move(snapshots_[i]));
+        snapshots_ = std::move(thinned);
+      }
+    }
+  }
   return &*now_;
 }
 

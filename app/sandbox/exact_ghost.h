@@ -6,15 +6,21 @@
 // times; the ghost is where the answer is in between, so one sees the simulated body drift from
 // it as it goes.
 #include <optional>
+#include <vector>
 
 #include "physics/world.h"
 #include "scenes/scene.h"
 
 namespace sandbox {
 
-/// The most particles and rigid bodies a ghost steps: the analytic scenes have a few; a scene of
-/// thousands at 128 substeps would cost the frame.
-inline constexpr std::size_t kMaxGhostBodies = 200;
+/// The most particles and rigid bodies together a ghost steps: the analytic scenes have a few; a
+/// scene of thousands at 128 substeps would cost the frame.
+inline constexpr std::size_t kMaxGhostParticlesAndBodies = 200;
+/// A copy of the ghost is kept every this many simulated seconds, so that going back in time (B,
+/// the timeline) steps it from the copy before, not from the start. unit: s
+inline constexpr double kGhostSnapshotEvery = 1.0;
+/// Copies kept at most; past it every other one goes (a long run keeps fewer, further apart).
+inline constexpr std::size_t kMaxGhostSnapshots = 256;
 
 class ExactGhost {
  public:
@@ -24,12 +30,13 @@ class ExactGhost {
   void clear();
   bool active() const { return start_.has_value(); }
   /// The ghost at simulated time `time` (unit: s), stepped at `dt` (the main run's) from where it
-  /// was, or from the start when time went back; null when there is none.
+  /// was, or from the last copy before `time` when time went back; null when there is none.
   const phys::World* at(double time, double dt);
 
  private:
   std::optional<phys::World> start_;
   std::optional<phys::World> now_;
+  std::vector<phys::World> snapshots_;  // by time
 };
 
 }  // namespace sandbox

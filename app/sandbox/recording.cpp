@@ -17,8 +17,8 @@ std::size_t heapInUse() {
 
 }  // namespace
 
-// Made on the window's thread while no steps run beside it (Session cancels or collects them first); the
-// Lab section's sweep may allocate meanwhile, which makes the figure a little off, never unsafe.
+// Made on the window's thread. The Lab section's sweep may allocate meanwhile, which makes the
+// figure a little off, never unsafe; a recording being saved allocates much more (setHeapShared).
 std::pair<std::shared_ptr<const phys::World>, std::size_t> keptCopy(const phys::World& world) {
   const std::size_t before = heapInUse();
   auto copy = std::make_shared<const phys::World>(world);
@@ -106,11 +106,16 @@ void Recording::keyframe(const phys::World& world) {
   if (!keyframes_.empty() && step < first()) clear();
   if (!keyframes_.empty() && step < last()) dropAfter(step);  // a command on a rewound world: a fork
   auto [copy, bytes] = keptCopy(world);
+  if (heapShared_ && !keyframes_.empty() && !keyframes_.back().motion &&
+      keyframes_.back().world->particles().size() == world.particles().size() &&
+      keyframes_.back().world->bodies().size() == world.bodies().size()) {
+    bytes = keyframes_.back().bytes;
+  }
   if (!keyframes_.empty() && keyframes_.back().step == step) {  // a second command in one step
     bytes_ -= keyframes_.back().bytes;
-    keyframes_.back() = {step, std::move(copy), nullptr, bytes};
+    keyframes_.back() = {step, std::move(copy), nullptr, bytes, 0};
   } else {
-    keyframes_.push_back({step, std::move(copy), nullptr, bytes});
+    keyframes_.push_back({step, std::move(copy), nullptr, bytes, 0});
   }
   bytes_ += bytes;
   // The state this step is shown as is the one after the command.
@@ -131,8 +136,8 @@ void Recording::appendMotion(std::shared_ptr<const phys::World> base, std::size_
   bytes += motion.rigidOrientation.capacity() * sizeof(phys::Quat);
   if (!keyframes_.empty()) steps_.push_back(record);
   dt_ = base->solverSettings().dt;
-  keyframes_.push_back(
-      {record.step, std::move(base), std::make_shared<const phys::Motion>(std::move(motion)), bytes});
+  keyframes_.push_back({record.step, std::move(base), std::make_shared<const phys::Motion>(std::move(motion)),
+                        bytes, baseBytes});
   bytes_ += bytes;
   keepWithinBudget();
 }
@@ -144,7 +149,15 @@ void Recording::keyframeIfDue(const phys::World& world) {
 
 void Recording::keepWithinBudget() {
   while (bytes_ > budget_ && keyframes_.size() > 1) {
-    bytes_ -= keyframes_.front().bytes;
+    Keyframe& next = keyframes_[1];
+    if (keyframes_.front().motion && next.motion && next.world == keyframes_.front().world) {
+      // The base world of a file's part stays while any step of it does: the next one carries it.
+      next.bytes += keyframes_.front().baseBytes;
+      next.baseBytes += keyframes_.front().baseBytes;
+      bytes_ -= keyframes_.front().bytes - keyframes_.front().baseBytes;
+    } else {
+      bytes_ -= keyframes_.front().bytes;
+    }
     keyframes_.pop_front();
     const long start = keyframes_.front().step;
     while (!steps_.empty() && steps_.front().step <= start) steps_.pop_front();

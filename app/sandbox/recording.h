@@ -88,6 +88,9 @@ class Recording {
   std::size_t bytes() const { return bytes_; }
   std::size_t budget() const { return budget_; }
   void setBudget(std::size_t bytes);
+  /// While another thread allocates (a recording being saved), the heap's growth over a copy is
+  /// not the copy's alone: a keyframe then counts what the last one of the same size did.
+  void setHeapShared(bool shared) { heapShared_ = shared; }
   /// Simulated seconds recorded.
   double seconds() const;
 
@@ -97,6 +100,7 @@ class Recording {
     std::shared_ptr<const phys::World> world;  // the world then, or with `motion` the base it is put in
     std::shared_ptr<const phys::Motion> motion;
     std::size_t bytes = 0;
+    std::size_t baseBytes = 0;  // of `bytes`, the base world's, counted with this step of its part
   };
   static std::unique_ptr<phys::World> build(const Keyframe& k);
   void dropAfter(long step);
@@ -109,6 +113,7 @@ class Recording {
   long interval_ = 60;
   double dt_ = 0.0;  // of the latest keyframe, for seconds()
   bool on_ = true;
+  bool heapShared_ = false;
 };
 
 }  // namespace sandbox

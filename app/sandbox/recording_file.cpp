@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 namespace sandbox {
@@ -138,7 +139,11 @@ bool finite(const phys::Vec3& v) {
 
 SavedStep readStep(Reader& r, std::size_t particles, std::size_t rigid) {
   SavedStep s;
-  s.record.step = static_cast<long>(r.value<std::int64_t>());
+  const auto step = r.value<std::int64_t>();
+  if (step < 0 || step >= std::numeric_limits<long>::max()) {
+    r.fail("step number " + std::to_string(step) + " is out of range: the file is damaged");
+  }
+  s.record.step = static_cast<long>(step);
   s.motion.steps = s.record.step;
   s.motion.time = r.value<double>();
   s.record.hash = r.value<std::uint64_t>();
@@ -175,16 +180,10 @@ void checkStep(const Reader& r, const SavedStep& s, long expected) {
     r.fail("step " + std::to_string(s.record.step) + " where step " + std::to_string(expected) +
            " should follow: the file is damaged");
   }
-  bool ok = std::isfinite(s.motion.time) && s.motion.time >= 0.0 && s.record.step >= 0 &&
-            (!s.record.dragTarget || finite(*s.record.dragTarget));
-  for (const auto* values : {&s.motion.position, &s.motion.previous, &s.motion.rigidPosition,
-                             &s.motion.rigidVelocity, &s.motion.rigidAngularVelocity}) {
-    for (const phys::Vec3& v : *values) ok = ok && finite(v);
-  }
-  for (const phys::Quat& q : s.motion.rigidOrientation) {
-    ok = ok && std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
-  }
-  if (!ok) r.fail("a non-finite or negative number: the file is damaged");
+  if (s.record.dragTarget && !finite(*s.record.dragTarget))
+    r.fail("a non-finite drag target: the file is damaged");
+  if (const std::string problem = s.motion.problem(); !problem.empty())
+    r.fail(problem + ": the file is damaged");
   if (s.motion.hash() != s.record.hash) {
     r.fail("the state does not match the step's hash: the file is damaged");
   }

@@ -12,8 +12,13 @@
 namespace sandbox {
 namespace {
 
-bool sameSettings(const phys::World& a, const phys::World& b) {
-  return a.solverSettings() == b.solverSettings() && a.worldSettings() == b.worldSettings();
+struct Settings {
+  phys::SolverSettings solver;
+  phys::WorldSettings world;
+};
+
+bool sameSettings(const Settings& a, const phys::World& b) {
+  return a.solver == b.solverSettings() && a.world == b.worldSettings();
 }
 
 // The world as a scene file's text, checked to load back into the same structure: a file that
@@ -46,14 +51,15 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
                        const std::function<void()>& stepDone) {
   SavedRecording saved;
   saved.sceneName = scene.name;
-  std::unique_ptr<phys::World> partStart;  // settings of the current part
+  Settings partSettings;  // of the current part
   std::string divergence;
   const bool whole = recording.replay(
       [&](const phys::World& world, const StepRecord& record) {
         const std::uint64_t key = structureKey(world);
-        if (saved.parts.empty() || saved.parts.back().structure != key || !sameSettings(*partStart, world)) {
+        if (saved.parts.empty() || saved.parts.back().structure != key ||
+            !sameSettings(partSettings, world)) {
           saved.parts.push_back({partScene(scene, world, record.step), key, {}});
-          partStart = std::make_unique<phys::World>(world.worldSettings(), world.solverSettings());
+          partSettings = {world.solverSettings(), world.worldSettings()};
         }
         saved.parts.back().steps.push_back({record, world.motion()});
         if (stepDone) stepDone();
@@ -63,11 +69,11 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
   return saved;
 }
 
-Recording fromSaved(const SavedRecording& saved, const scenes::LoadOptions& options, std::size_t budget) {
+Recording fromSaved(SavedRecording saved, const scenes::LoadOptions& options, std::size_t budget) {
   Recording out;
   out.setBudget(budget);
   for (std::size_t p = 0; p < saved.parts.size(); ++p) {
-    const SavedPart& part = saved.parts[p];
+    SavedPart& part = saved.parts[p];
     const std::string which = "part " + std::to_string(p + 1) + " of " + std::to_string(saved.parts.size());
     std::shared_ptr<const phys::World> base;
     std::size_t baseBytes = 0;
@@ -83,7 +89,7 @@ Recording fromSaved(const SavedRecording& saved, const scenes::LoadOptions& opti
                              "loader of another version)");
     }
     for (std::size_t s = 0; s < part.steps.size(); ++s) {
-      const SavedStep& step = part.steps[s];
+      SavedStep& step = part.steps[s];
       if (step.motion.position.size() != base->particles().size() ||
           step.motion.rigidPosition.size() != base->rigidBodies().size()) {
         throw RecordingIoError(which + ", step " + std::to_string(step.record.step) + ": " +
@@ -92,7 +98,8 @@ Recording fromSaved(const SavedRecording& saved, const scenes::LoadOptions& opti
                                " rigid bodies, its scene has " + std::to_string(base->particles().size()) +
                                " and " + std::to_string(base->rigidBodies().size()));
       }
-      out.appendMotion(base, s == 0 ? baseBytes : 0, step.motion, step.record);  // the base counted once
+      out.appendMotion(base, s == 0 ? baseBytes : 0, std::move(step.motion),
+                       step.record);  // the base counted once
     }
   }
   return out;

@@ -32,7 +32,7 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
 /// A recording holding the file's steps (within `budget` bytes: the oldest beyond it are left
 /// out), each part's world loaded with `options`. Throws RecordingIoError when a part's scene does
 /// not load or does not have the structure its steps were recorded in.
-Recording fromSaved(const SavedRecording& saved, const scenes::LoadOptions& options, std::size_t budget);
+Recording fromSaved(SavedRecording saved, const scenes::LoadOptions& options, std::size_t budget);
 
 /// Writes a recording to a file on a thread of its own: saving rebuilds every step, which takes
 /// seconds for a big scene (5.5 s for 10 s of Bullet's pile), and the window goes on meanwhile. It

@@ -21,7 +21,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The largest recording file opened (unit: bytes): 10 s of Bullet's 136-ragdoll pile take 170 MB.
+// The largest recording file opened (unit: bytes): 10 s of Bullet's 136-ragdoll pile take 166 MB.
 constexpr std::size_t kMaxRecordingFile = std::size_t{8} << 30;
 
 // A world with the same settings as `world` and nothing in it.
@@ -217,17 +217,20 @@ void Session::step() {
 
 void Session::beforeStepping() {
   if (!rewound_) return;
+  recording_.setHeapShared(saver_.running());
   rewound_ = false;
   recording_.keyframe(scene().world);
 }
 
 void Session::recordSteps(std::span<const StepRecord> records) {
+  recording_.setHeapShared(saver_.running());
   for (const StepRecord& r : records) recording_.stepped(r);
   recording_.setStepCost(runs_.front().medianMs());
   recording_.keyframeIfDue(scene().world);
 }
 
 void Session::worldChanged() {
+  recording_.setHeapShared(saver_.running());
   rewound_ = false;
   recording_.keyframe(scene().world);
 }
@@ -273,7 +276,7 @@ std::optional<double> Session::savingProgress() const {
 std::optional<std::string> Session::finishSaving(bool wait) {
   std::string saved;
   std::optional<std::string> error = saver_.finish(saved, wait);
-  if (error && error->empty()) status_ = saved;
+  if (error) status_ = error->empty() ? saved : "the recording was not saved: " + *error;
   return error;
 }
 
@@ -284,33 +287,35 @@ std::string Session::saveRecording(const std::filesystem::path& file) {
 
 std::string Session::openRecording(const std::filesystem::path& file) {
   if (overlayActive()) return "stop the method overlay first: its runs cannot be shown a recording";
+  const std::string kept = " (the current world is kept)";
   try {
-    const SavedRecording saved = decodeRecording(fileio::readWhole(file, kMaxRecordingFile));
+    SavedRecording saved = decodeRecording(fileio::readWhole(file, kMaxRecordingFile));
     if (saved.sceneName != scene().name) {
       return file.string() + ": a recording of the scene '" + saved.sceneName + "', and '" + scene().name +
-             "' is open: open '" + saved.sceneName + "' first (the current world is kept)";
+             "' is open: open '" + saved.sceneName + "' first" + kept;
     }
-    Recording opened = fromSaved(saved, load_, recording_.budget());
-    cancelSteps();
+    const long firstSaved = saved.firstStep();
+    cancelSteps();  // the heap the recording's copies are measured by is this thread's alone
+    Recording opened = fromSaved(std::move(saved), load_, recording_.budget());
+    // Everything that can fail before anything changes: the first step's world too.
+    std::string divergence;
+    std::unique_ptr<phys::World> first = opened.worldAt(opened.first(), divergence);
     drag_.reset();
     dragTarget_.reset();
     recording_ = std::move(opened);
-    std::string divergence;
-    scene().world = std::move(*recording_.worldAt(recording_.first(), divergence));
+    scene().world = std::move(*first);
     rewound_ = true;
     status_ = "opened " + file.filename().string() + ": steps " + std::to_string(recording_.first()) +
               " to " + std::to_string(recording_.last());
-    if (recording_.first() != saved.firstStep()) {
-      status_ +=
-          " (from step " + std::to_string(saved.firstStep()) + " it holds more than the recording's budget)";
+    if (recording_.first() != firstSaved) {
+      status_ += "; steps " + std::to_string(firstSaved) + " to " + std::to_string(recording_.first() - 1) +
+                 " left out: over the recording's budget";
     }
     return {};
   } catch (const fileio::FileError& e) {
-    return std::string(e.what()) + " (the current world is kept)";
-  } catch (const RecordingFormatError& e) {
-    return file.string() + ": " + e.what() + " (the current world is kept)";
-  } catch (const RecordingIoError& e) {
-    return file.string() + ": " + e.what() + " (the current world is kept)";
+    return e.what() + kept;
+  } catch (const std::exception& e) {  // RecordingFormatError, RecordingIoError, a refused motion, memory
+    return file.string() + ": " + e.what() + kept;
   }
 }
 

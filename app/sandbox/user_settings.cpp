@@ -13,6 +13,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "draw_options.h"
 #include "fileio/files.h"
 
 namespace sandbox {
@@ -54,7 +55,7 @@ bool parseDrawMode(std::string_view text, std::string& out) {
 }
 
 bool parseColoring(std::string_view text, std::optional<std::string>& out) {
-  if (text != "kind" && text != "body" && text != "island" && text != "sleep") return false;
+  if (!parseBodyColoring(text)) return false;
   out = std::string(text);
   return true;
 }

@@ -37,19 +37,8 @@ std::uint64_t stateHash(std::span<const Vec3> position, std::span<const Vec3> pr
 
 namespace {
 
-bool finite(std::span<const Vec3> values) {
-  for (const Vec3& v : values) {
-    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return false;
-  }
-  return true;
-}
-
-bool finite(std::span<const Quat> values) {
-  for (const Quat& q : values) {
-    if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-      return false;
-  }
-  return true;
+bool allFinite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 std::string sizes(std::size_t given, std::size_t wanted) {
@@ -57,6 +46,20 @@ std::string sizes(std::size_t given, std::size_t wanted) {
 }
 
 }  // namespace
+
+std::string Motion::problem() const {
+  if (!std::isfinite(time) || time < 0.0 || steps < 0) return "a non-finite or negative time or step count";
+  for (const auto* values : {&position, &previous, &rigidPosition, &rigidVelocity, &rigidAngularVelocity}) {
+    for (const Vec3& v : *values) {
+      if (!allFinite(v)) return "a non-finite position or velocity";
+    }
+  }
+  for (const Quat& q : rigidOrientation) {
+    const Real length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (!(std::abs(length - 1.0) < kUnitTolerance)) return "an orientation not of unit length";
+  }
+  return {};
+}
 
 std::uint64_t Motion::hash() const {
   return detail::stateHash(position, previous, rigidPosition, rigidVelocity, rigidAngularVelocity,
@@ -90,14 +93,8 @@ void World::setMotion(const Motion& m) {
               m.rigidAngularVelocity.size() == r,
           "setMotion: rigid body poses or velocities for " + std::to_string(m.rigidPosition.size()) +
               " bodies, the world has " + std::to_string(r));
-  require(finite(m.position) && finite(m.previous) && finite(m.rigidPosition) && finite(m.rigidVelocity) &&
-              finite(m.rigidAngularVelocity) && finite(m.rigidOrientation) && std::isfinite(m.time) &&
-              m.time >= 0.0 && m.steps >= 0,
-          "setMotion: a non-finite or negative number");
-  for (const Quat& q : m.rigidOrientation) {
-    require(std::abs(glm::length(q) - 1.0) < 1e-6,
-            "setMotion: a rigid body's orientation is not a unit quaternion");
-  }
+  const std::string problem = m.problem();
+  require(problem.empty(), "setMotion: " + problem);
   particles_.position = m.position;
   particles_.previous = m.previous;
   std::copy(m.position.begin(), m.position.end(), guard_.checked().begin());

@@ -58,7 +58,10 @@ TEST(ExactGhost, GoesBackWithTheClockAndIsNoneWithoutAnswers) {
   ghost.reset(s.scene());
   const double dt = s.scene().world.solverSettings().dt;
   const std::uint64_t early = ghost.at(0.5, dt)->stateHash();
-  ghost.at(1.5, dt);
+  const std::uint64_t later = ghost.at(2.5, dt)->stateHash();
+  ghost.at(3.5, dt);
+  // Back from 3.5 s: from the copy kept at 2 s, the same state as stepped from the start.
+  EXPECT_EQ(ghost.at(2.5, dt)->stateHash(), later);
   EXPECT_EQ(ghost.at(0.5, dt)->stateHash(), early);
   EXPECT_EQ(ghost.at(0.0, dt)->stepCount(), 0);
 

@@ -4,6 +4,8 @@
 // of another scene is refused with a message saying so, and the world and recording are kept.
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -258,6 +260,55 @@ TEST_F(BadRecording, RandomDamageIsAlwaysRefused) {
     if (damaged == bytes_) continue;
     EXPECT_THROW(sandbox::decodeRecording(damaged), sandbox::RecordingFormatError) << "trial " << trial;
   }
+}
+
+// Damage that a checksum made again would hide (a file written by another program, or by hand):
+// each is still refused by what the reader checks of every step and part, and nothing changes.
+TEST(BadRecordingContent, RefusedEvenWithAGoodChecksum) {
+  const testing_app::TempFolder dir;
+  sandbox::Session recorder = openSession("rigid-ragdolls");
+  for (int i = 0; i < 10; ++i) recorder.step();
+  const fs::path good = dir.path / "good.jrec";
+  ASSERT_EQ(recorder.saveRecording(good), "");
+  const sandbox::SavedRecording saved = sandbox::decodeRecording(contentOf(good));
+  ASSERT_FALSE(saved.parts.front().steps.front().motion.rigidOrientation.empty());
+
+  sandbox::Session s = openSession("rigid-ragdolls");
+  for (int i = 0; i < 5; ++i) s.step();
+  const std::uint64_t before = hashOf(s);
+  auto refused = [&](const std::function<void(sandbox::SavedRecording&)>& spoil, const std::string& words) {
+    sandbox::SavedRecording bad = saved;
+    spoil(bad);
+    const fs::path file = dir.path / "bad.jrec";
+    writeBytes(file, sandbox::encodeRecording(bad));
+    const std::string error = s.openRecording(file);
+    EXPECT_NE(error.find(words), std::string::npos) << error;
+    EXPECT_NE(error.find("the current world is kept"), std::string::npos) << error;
+    EXPECT_EQ(hashOf(s), before);
+    EXPECT_EQ(s.recording().last(), 5);
+  };
+  auto step = [](sandbox::SavedRecording& r, std::size_t k) -> sandbox::SavedStep& {
+    return r.parts.front().steps[k];
+  };
+  auto rehash = [](sandbox::SavedStep& x) { x.record.hash = x.motion.hash(); };
+  refused([&](auto& r) { step(r, 3).record.step = 7; }, "step 7 where step 3 should follow");
+  refused([&](auto& r) { step(r, 4).motion.position[0].x += 1e-9; }, "does not match the step's hash");
+  refused(
+      [&](auto& r) {
+        phys::Quat& q = step(r, 2).motion.rigidOrientation[0];
+        q = q * 1.01;
+        rehash(step(r, 2));
+      },
+      "an orientation not of unit length");
+  refused(
+      [&](auto& r) {
+        step(r, 0).motion.rigidVelocity[0].y = std::numeric_limits<double>::quiet_NaN();
+        rehash(step(r, 0));
+      },
+      "a non-finite position or velocity");
+  refused([&](auto& r) { r.parts.front().structure ^= 1; }, "builds bodies other than the ones recorded");
+  refused([&](auto& r) { r.parts.front().sceneXml = "<scene name=\"rigid-ragdolls\">"; },
+          "its scene does not load");
 }
 
 TEST_F(BadRecording, NothingToSaveOrNowhereToSaveIt) {

@@ -5,6 +5,7 @@
 // run go on from a state kept in a file: the sandbox's recordings (docs/sandbox.md, "Recording
 // files").
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "physics/types.h"
@@ -23,6 +24,11 @@ struct Motion {
 
   /// World::stateHash of a world in this motion: FNV-1a over the bytes of every array above.
   std::uint64_t hash() const;
+  /// "" or what World::setMotion would refuse in it whatever the world: a non-finite or negative
+  /// number, an orientation not of unit length (within kUnitTolerance). Sizes are the world's to judge.
+  std::string problem() const;
+
+  static constexpr Real kUnitTolerance = 1e-6;
 };
 
 }  // namespace phys

@@ -237,7 +237,8 @@ class World {
   Metrics metrics() const;
   /// Where the time of the last step() went.
   const Profile& profile() const { return profile_; }
-  /// FNV-1a hash of every position and previous position: equal hashes, equal states.
+  /// FNV-1a hash of every particle's position and previous position and every rigid body's
+  /// pose and velocities (Motion::hash): equal hashes, equal states.
   std::uint64_t stateHash() const;
   /// The world's motion now (motion.h): what stateHash covers, and the clock.
   Motion motion() const;
@@ -245,7 +246,7 @@ class World {
   /// particles and rigid bodies, in the same order). Only for a world that has not stepped: it
   /// then holds no contacts, warm starts or rest timers of its own, and goes on from the motion as
   /// a world built there would. Throws std::invalid_argument (and changes nothing) for a world
-  /// that has stepped, arrays of other sizes, a non-finite number or a quaternion not of unit length.
+  /// that has stepped, arrays of other sizes, or what Motion::problem finds.
   void setMotion(const Motion& motion);
   /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
   /// With sleeping off the step does not count them: they are counted here, when asked.
