@@ -35,6 +35,13 @@ void writeBytes(const fs::path& file, std::string_view bytes) {
   fileio::writeAtomically(file, bytes);
 }
 
+// The project scene `name` stepped `steps` times, its recording saved to `file`.
+void saveRecordingOf(const std::string& name, int steps, const fs::path& file) {
+  sandbox::Session s = openSession(name);
+  for (int i = 0; i < steps; ++i) s.step();
+  ASSERT_EQ(s.saveRecording(file), "");
+}
+
 // Every step from first to last shown in `s` has the hash `recorded` holds for it.
 void expectSameSteps(sandbox::Session& s, const std::vector<std::uint64_t>& recorded, long first,
                      long every = 1) {
@@ -130,10 +137,8 @@ TEST(RecordingFile, ASaveRunsBesideTheSteps) {
 // from the recorded motion (with its contacts found afresh).
 TEST(RecordingFile, AnOpenedRecordingResumesFromTheStepShown) {
   const testing_app::TempFolder dir;
-  sandbox::Session s = openSession("pyramid");
-  for (int i = 0; i < 60; ++i) s.step();
   const fs::path file = dir.path / "p.jrec";
-  ASSERT_EQ(s.saveRecording(file), "");
+  ASSERT_NO_FATAL_FAILURE(saveRecordingOf("pyramid", 60, file));
   sandbox::Session other = openSession("pyramid");
   ASSERT_EQ(other.openRecording(file), "");
   ASSERT_EQ(other.rewindTo(30), "");
@@ -169,9 +174,7 @@ TEST(RecordingFile, EveryProjectSceneRoundTrips) {
 class BadRecording : public ::testing::Test {
  protected:
   void SetUp() override {
-    sandbox::Session recorder = openSession("chain");
-    for (int i = 0; i < 30; ++i) recorder.step();
-    ASSERT_EQ(recorder.saveRecording(good_), "");
+    ASSERT_NO_FATAL_FAILURE(saveRecordingOf("chain", 30, good_));
     bytes_ = contentOf(good_);
     for (int i = 0; i < 17; ++i) session_.step();
     before_ = hashOf(session_);
@@ -218,12 +221,9 @@ TEST_F(BadRecording, FromAnotherFormatVersion) {
 }
 
 TEST_F(BadRecording, OfAnotherScene) {
-  sandbox::Session pyramid = openSession("pyramid");
-  for (int i = 0; i < 5; ++i) pyramid.step();
   const fs::path file = dir_.path / "pyramid.jrec";
-  ASSERT_EQ(pyramid.saveRecording(file), "");
-  expectRefusedFile(file, "a recording of the scene '" + pyramid.scene().name + "', and '" +
-                              session_.scene().name + "' is open");
+  ASSERT_NO_FATAL_FAILURE(saveRecordingOf("pyramid", 5, file));
+  expectRefusedFile(file, "a recording of the scene 'pyramid', and '" + session_.scene().name + "' is open");
 }
 
 TEST_F(BadRecording, DamagedOrNotARecording) {
@@ -266,10 +266,8 @@ TEST_F(BadRecording, RandomDamageIsAlwaysRefused) {
 // each is still refused by what the reader checks of every step and part, and nothing changes.
 TEST(BadRecordingContent, RefusedEvenWithAGoodChecksum) {
   const testing_app::TempFolder dir;
-  sandbox::Session recorder = openSession("rigid-ragdolls");
-  for (int i = 0; i < 10; ++i) recorder.step();
   const fs::path good = dir.path / "good.jrec";
-  ASSERT_EQ(recorder.saveRecording(good), "");
+  ASSERT_NO_FATAL_FAILURE(saveRecordingOf("rigid-ragdolls", 10, good));
   const sandbox::SavedRecording saved = sandbox::decodeRecording(contentOf(good));
   ASSERT_FALSE(saved.parts.front().steps.front().motion.rigidOrientation.empty());
 

@@ -114,6 +114,21 @@ void BM_RagdollPile(benchmark::State& state) {
 }
 BENCHMARK(BM_RagdollPile)->Arg(64)->Arg(512)->Unit(benchmark::kMillisecond);
 
+// World::stateHash, which the sandbox's recording takes after every step: 64 rigid boxes and 64
+// boxes of particles (576 particles), falling.
+void BM_StateHash(benchmark::State& state) {
+  phys::World world;
+  for (int i = 0; i < 128; ++i) {
+    phys::BodyDesc box;
+    box.model = i % 2 == 0 ? phys::BodyModel::Rigid : phys::BodyModel::Corners;
+    box.center = {1.5 * (i % 16), 1.0 + 1.5 * (i / 16), 0.0};
+    world.addBody(box);
+  }
+  for (int i = 0; i < 10; ++i) world.step();
+  for (auto _ : state) benchmark::DoNotOptimize(world.stateHash());
+}
+BENCHMARK(BM_StateHash)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();
