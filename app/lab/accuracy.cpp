@@ -10,6 +10,7 @@
 
 #include "bodies.h"
 #include "numbers.h"
+#include "text.h"
 
 // What "converged" means here. A reference is our own physics run so finely that the settings
 // being judged cannot come near it: `shake`, 128 substeps of 4 passes, at the same dt (so a
@@ -35,13 +36,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// %g with `digits` significant digits, for descriptions.
-std::string num(double value, int digits = 6) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
 
 double distance(const phys::Vec3& a, const phys::Vec3& b) {
   const phys::Vec3 d = a - b;
@@ -130,7 +124,7 @@ PositionExpect readExpect(const scenes::Scene& scene, const scenes::Expectation&
   // The run is compared at whole steps; an answer between two steps cannot be checked.
   const double steps = std::round(*t / dt);
   if (std::abs(steps * dt - *t) > 1e-6 * dt || steps > 1e9) {
-    fail(scene, e, "at", "'" + at + "' s is not a whole number of steps of " + num(dt) + " s");
+    fail(scene, e, "at", "'" + at + "' s is not a whole number of steps of " + formatNumber(dt) + " s");
   }
   x.step = static_cast<int>(steps);
 
@@ -157,8 +151,8 @@ AccuracyTarget analyticTarget(const scenes::Scene& scene, const std::vector<Posi
     t.expected[static_cast<std::size_t>(k)][x.slot] = x.pos;
   }
   t.description = "analytic: " + std::to_string(expects.size()) +
-                  " positions given by the scene, at t = " + num(t.checkpoints.front() * dt) + " to " +
-                  num(t.checkpoints.back() * dt) + " s";
+                  " positions given by the scene, at t = " + formatNumber(t.checkpoints.front() * dt) +
+                  " to " + formatNumber(t.checkpoints.back() * dt) + " s";
   return t;
 }
 
@@ -224,12 +218,12 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
     t.uncertainty.push_back(worst);
   }
   t.description = "reference: " + std::string(phys::toString(fine.method)) + ", " +
-                  std::to_string(fine.substeps) + " substeps x " + std::to_string(fine.iterations) +
-                  " iterations at dt " + num(dt) + " s; checkpoints at steps " + stepList(t.checkpoints) +
-                  " (t = " + num(t.checkpoints.front() * dt) + " to " + num(t.checkpoints.back() * dt) +
-                  " s); its uncertainty (change from " + std::to_string(half.substeps) +
-                  " substeps): " + num(t.uncertainty.front(), 2) + " m at the first checkpoint, " +
-                  num(maxUncertainty(t), 2) + " m at most";
+                  ixsWords(fine.iterations, fine.substeps) + " at dt " + formatNumber(dt) +
+                  " s; checkpoints at steps " + stepList(t.checkpoints) +
+                  " (t = " + formatNumber(t.checkpoints.front() * dt) + " to " +
+                  formatNumber(t.checkpoints.back() * dt) + " s); its uncertainty (change from " +
+                  std::to_string(half.substeps) + " substeps): " + formatNumber(t.uncertainty.front(), 2) +
+                  " m at the first checkpoint, " + formatNumber(maxUncertainty(t), 2) + " m at most";
   return t;
 }
 

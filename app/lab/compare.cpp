@@ -22,6 +22,7 @@
 #include "accuracy.h"
 #include "bodies.h"
 #include "commands.h"
+#include "json.h"
 #include "lab.h"
 #include "options.h"
 #include "peer.h"
@@ -30,6 +31,7 @@
 #include "report.h"
 #include "run.h"
 #include "scenes/scene.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -182,8 +184,7 @@ std::string ourSettings(const phys::World& world) {
   o << (particles && rigid ? "Verlet and rigid bodies, "
         : rigid            ? "rigid bodies, "
                            : "Verlet, ")
-    << s.iterations << (s.iterations == 1 ? " iteration x " : " iterations x ") << s.substeps
-    << (s.substeps == 1 ? " substep" : " substeps");
+    << ixsWords(s.iterations, s.substeps);
   if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
   if (s.sleep.enabled) o << ", sleeping";
   return o.str();
@@ -281,14 +282,23 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
 void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, const std::string& scene,
                int steps, double dt, const AccuracyTarget& target) {
   for (const Row& r : rows) {
-    out << "{\"scene\":" << jsonString(scene) << ",\"engine\":" << jsonString(r.engine)
-        << ",\"method\":" << jsonString(r.method) << ",\"settings\":" << jsonString(r.settings)
-        << ",\"steps\":" << steps << ",\"dt\":" << jsonNumber(dt) << ",\"ran\":" << (r.ran ? "true" : "false")
-        << ",\"ms_per_step\":" << jsonNumber(r.ran ? r.msPerStep : std::nan(""))
-        << ",\"ratio\":" << jsonNumber(r.ran ? r.msPerStep / fastest : std::nan(""))
-        << ",\"accuracy\":" << jsonString(target.kind) << ",\"error_first\":" << jsonNumber(r.errorFirst)
-        << ",\"error\":" << jsonNumber(r.error) << ",\"max_penetration\":" << jsonNumber(r.penetration)
-        << ",\"max_joint_gap\":" << jsonNumber(r.jointGap) << ",\"notes\":" << jsonString(r.notes) << "}\n";
+    Json j;
+    j["scene"] = scene;
+    j["engine"] = r.engine;
+    j["method"] = r.method;
+    j["settings"] = r.settings;
+    j["steps"] = steps;
+    j["dt"] = dt;
+    j["ran"] = r.ran;
+    j["ms_per_step"] = r.ran ? r.msPerStep : std::nan("");
+    j["ratio"] = r.ran ? r.msPerStep / fastest : std::nan("");
+    j["accuracy"] = target.kind;
+    j["error_first"] = r.errorFirst;
+    j["error"] = r.error;
+    j["max_penetration"] = r.penetration;
+    j["max_joint_gap"] = r.jointGap;
+    j["notes"] = r.notes;
+    out << jsonLine(j);
   }
 }
 

@@ -11,6 +11,8 @@
 #include <system_error>
 
 #include "csv.h"
+#include "json.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -19,10 +21,7 @@ namespace {
 // figure that overflowed (the guard froze the world under a gravity of 1e308, say) reads n/a,
 // never inf or nan.
 std::string num(double value, int digits = 6) {
-  if (!std::isfinite(value)) return "n/a";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
+  return std::isfinite(value) ? formatNumber(value, digits) : "n/a";
 }
 
 // "1 substep" but "3 substeps".
@@ -44,27 +43,6 @@ constexpr std::size_t kMaxFreezesListed = 10;
 
 }  // namespace
 
-std::string jsonNumber(double value) {
-  return std::isfinite(value) ? num(value, 17) : "null";
-}
-
-std::string jsonString(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += buffer;
-    } else {
-      out += c;  // UTF-8 passes through as it is
-    }
-  }
-  return out + "\"";
-}
-
 std::string hexHash(std::uint64_t hash) {
   char buffer[24];
   std::snprintf(buffer, sizeof buffer, "%016" PRIx64, hash);
@@ -73,38 +51,32 @@ std::string hexHash(std::uint64_t hash) {
 
 std::string jsonText(const RunResult& r) {
   const phys::Metrics& m = r.final;
-  std::string s = "{";
-  // Keys in the order docs/lab.md lists them; values already in their JSON form.
-  auto field = [&](const char* key, const std::string& value) {
-    s += s.size() > 1 ? ",\"" : "\"";
-    s += key;
-    s += "\":";
-    s += value;
-  };
-  field("scene", jsonString(r.scene));
-  field("method", jsonString(phys::toString(r.solver.method)));
-  field("iterations", std::to_string(r.solver.iterations));
-  field("substeps", std::to_string(r.solver.substeps));
-  field("dt", jsonNumber(r.solver.dt));
-  field("steps", std::to_string(r.steps));
-  field("particles", std::to_string(r.particles));
-  field("constraints", std::to_string(r.constraints));
-  field("bodies", std::to_string(r.bodies));
-  field("contacts", std::to_string(m.contacts));
-  field("ms_per_step", jsonNumber(r.msPerStep));
-  field("max_constraint_error", jsonNumber(m.maxConstraintError));
-  field("rms_constraint_error", jsonNumber(m.rmsConstraintError));
-  field("max_joint_error", jsonNumber(m.maxJointError));
-  field("max_penetration", jsonNumber(m.maxPenetration));
-  field("max_speed", jsonNumber(m.maxSpeed));
-  field("energy_initial", jsonNumber(r.energyInitial));
-  field("energy_final", jsonNumber(m.energy()));
-  field("frozen", std::to_string(m.frozen));
-  field("islands", std::to_string(r.islands));
-  field("awake_bodies", std::to_string(r.awakeBodies));
-  field("sleeping_bodies", std::to_string(r.sleepingBodies));
-  field("hash", jsonString(hexHash(r.hash)));
-  return s + "}\n";
+  // Keys in the order docs/lab.md lists them.
+  Json j;
+  j["scene"] = r.scene;
+  j["method"] = phys::toString(r.solver.method);
+  j["iterations"] = r.solver.iterations;
+  j["substeps"] = r.solver.substeps;
+  j["dt"] = r.solver.dt;
+  j["steps"] = r.steps;
+  j["particles"] = r.particles;
+  j["constraints"] = r.constraints;
+  j["bodies"] = r.bodies;
+  j["contacts"] = m.contacts;
+  j["ms_per_step"] = r.msPerStep;
+  j["max_constraint_error"] = m.maxConstraintError;
+  j["rms_constraint_error"] = m.rmsConstraintError;
+  j["max_joint_error"] = m.maxJointError;
+  j["max_penetration"] = m.maxPenetration;
+  j["max_speed"] = m.maxSpeed;
+  j["energy_initial"] = r.energyInitial;
+  j["energy_final"] = m.energy();
+  j["frozen"] = m.frozen;
+  j["islands"] = r.islands;
+  j["awake_bodies"] = r.awakeBodies;
+  j["sleeping_bodies"] = r.sleepingBodies;
+  j["hash"] = hexHash(r.hash);
+  return jsonLine(j);
 }
 
 std::string summaryText(const RunResult& r) {

@@ -30,20 +30,9 @@ void applyOverrides(phys::World& world, const RunOptions& options) {
   world.setSolverSettings(s);
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  // The lower middle is the largest of the elements nth_element left before mid.
-  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
-  return 0.5 * (lower + upper);
-}
-
 namespace {
 
-// A line now and then while a long run goes on (a pile at 1000 substeps x 1000 iterations takes
+// A line now and then while a long run goes on (a pile at 1000 iterations x 1000 substeps takes
 // minutes a step), so that it is not taken for a hang.
 class ProgressLine {
  public:

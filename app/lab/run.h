@@ -11,6 +11,7 @@
 #include "options.h"
 #include "physics/world.h"
 #include "scenes/scene.h"
+#include "text.h"
 
 namespace lab {
 
@@ -70,8 +71,5 @@ struct ProgressTiming {
 RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress = nullptr,
                    const ProgressTiming& timing = {},
                    const std::function<void(const phys::World&)>& afterStep = {});
-
-/// Median of the values (the mean of the middle two for an even count); 0 when empty.
-double median(std::vector<double> values);
 
 }  // namespace lab

@@ -2,6 +2,8 @@
 // generator makes the same scene at each size, at the same density, so that a step whose cost is
 // linear in the number of bodies shows as a flat line of microseconds per body-step.
 #include "scale.h"
+#include "json.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -197,13 +199,20 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
 }
 
 std::string scaleJson(const std::vector<ScaleRow>& rows) {
+  // An array with one object a line, so that a person can read it and grep can find a size.
   std::string s = "[\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ScaleRow& r = rows[i];
-    s += "{\"scene\":" + jsonString(r.scene) + ",\"n\":" + std::to_string(r.n) +
-         ",\"bodies\":" + std::to_string(r.bodies) + ",\"ms_per_step\":" + jsonNumber(r.msPerStep) +
-         ",\"us_per_body_step\":" + jsonNumber(r.usPerBodyStep) +
-         ",\"max_joint_gap\":" + jsonNumber(r.maxJointGap) + "}" + (i + 1 < rows.size() ? "," : "") + "\n";
+    Json j;
+    j["scene"] = r.scene;
+    j["n"] = r.n;
+    j["bodies"] = r.bodies;
+    j["ms_per_step"] = r.msPerStep;
+    j["us_per_body_step"] = r.usPerBodyStep;
+    j["max_joint_gap"] = r.maxJointGap;
+    std::string line = jsonLine(j);
+    if (i + 1 < rows.size()) line.insert(line.size() - 1, ",");
+    s += line;
   }
   return s + "]\n";
 }
@@ -222,8 +231,8 @@ std::string scaleTable(const std::vector<ScaleRow>& rows) {
   std::string s;
   if (!rows.empty()) {
     const phys::SolverSettings& solver = rows.front().solver;
-    s += "scale       " + rows.front().scene + ", " + std::string(phys::toString(solver.method)) + " " +
-         std::to_string(solver.iterations) + "x" + std::to_string(solver.substeps) +
+    s += "scale       " + rows.front().scene + ", " +
+         settingLabel(solver.method, solver.iterations, solver.substeps) +
          " (iterations x substeps), median of the steps' own time\n";
   }
   char line[160];

@@ -8,14 +8,13 @@
 #include <iostream>
 #include <ostream>
 
-#include <unistd.h>
-
 #include "commands.h"
 #include "fileio/files.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "options.h"
 #include "peer.h"
+#include "progress.h"
 #include "report.h"
 #include "stability_options.h"
 #include "stability_report.h"
@@ -27,42 +26,6 @@ using stability::Setting;
 using stability::StabilityOptions;
 using stability::SuiteResult;
 using stability::SuiteScene;
-
-// A progress bar on stderr: redrawn in place on a terminal, and on anything else (a log, the
-// tests' string stream) one line per finished scene instead of a line of carriage returns.
-class Progress {
- public:
-  Progress(std::ostream& err, std::size_t total)
-      : err_(err),
-        total_(total),
-        redraw_(&err == &std::cerr && ::isatty(STDERR_FILENO) == 1),
-        start_(std::chrono::steady_clock::now()) {}
-  /// `done` runs are finished and `what` runs next; `sceneDone`: the runs before were a scene's last.
-  void show(std::size_t done, const std::string& what, bool sceneDone) {
-    if (!redraw_ && !sceneDone) return;
-    constexpr std::size_t kWidth = 30;
-    const std::size_t filled = total_ == 0 ? kWidth : kWidth * done / total_;
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    std::string line = "stability [" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] " +
-                       std::to_string(done) + "/" + std::to_string(total_) + " " +
-                       std::to_string(static_cast<long>(seconds)) + " s " + what;
-    if (!redraw_) {
-      err_ << line << "\n" << std::flush;
-      return;
-    }
-    line.resize(std::max<std::size_t>(line.size(), 100), ' ');  // wipes a longer previous line
-    err_ << "\r" << line << std::flush;
-  }
-  void finish() {
-    if (redraw_) err_ << "\n" << std::flush;
-  }
-
- private:
-  std::ostream& err_;
-  std::size_t total_;
-  bool redraw_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 std::vector<Setting> settingsOf(const StabilityOptions& o) {
   std::vector<Setting> out;
@@ -88,7 +51,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   if (o.peers) r.peers = peerEngines();
   r.peerNote = !o.peers ? "--no-peers" : "the lab was built without peer engines (LAB_PEERS)";
   const auto start = std::chrono::steady_clock::now();
-  Progress progress(err, scenes.size() * (r.settings.size() + r.peers.size()));
+  Progress progress(err, "stability", scenes.size() * (r.settings.size() + r.peers.size()));
   std::size_t done = 0;
   for (const SuiteScene& s : scenes) {
     std::vector<stability::Outcome> row;

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 
 #include "numbers.h"
+#include "text.h"
 
 namespace lab::stability {
 namespace {
@@ -34,12 +34,6 @@ std::string metricList() {
   std::string out;
   for (const MetricInfo& m : kMetrics) out += (out.empty() ? "" : ", ") + std::string(m.name);
   return out;
-}
-
-std::string formatNumber(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
 }
 
 // A criterion's number: as numbers.h reads it, except that the criteria have always taken a

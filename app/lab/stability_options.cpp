@@ -8,26 +8,22 @@
 #include "numbers.h"
 #include "options.h"
 #include "scenes/scene.h"
+#include "text.h"
 
 namespace lab::stability {
 namespace {
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    out.push_back(text.substr(start, comma - start));
-    if (comma == std::string::npos) return out;
-    start = comma + 1;
-  }
+// The list's items; a list with an empty item ("a,,b") reads as one empty item, which every
+// parser below refuses by name ("unknown method ''").
+std::vector<std::string> items(const std::string& text) {
+  return lab::splitList(text).value_or(std::vector<std::string>{std::string()});
 }
 
 // A list of whole numbers from 1 to high; the error, or "" when good.
 std::string parseCounts(const std::string& option, const std::string& text, int high,
                         std::vector<int>& into) {
   into.clear();
-  for (const std::string& item : splitList(text)) {
+  for (const std::string& item : items(text)) {
     const std::optional<int> n = parseWholeNumber(item, 1, high);
     if (!n) return notWholeNumber(option, item, high);
     if (std::find(into.begin(), into.end(), *n) == into.end()) into.push_back(*n);
@@ -37,7 +33,7 @@ std::string parseCounts(const std::string& option, const std::string& text, int 
 
 std::string parseMethods(const std::string& text, std::vector<phys::SolverMethod>& into) {
   into.clear();
-  for (const std::string& item : splitList(text)) {
+  for (const std::string& item : items(text)) {
     const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(item);
     if (!m) return "--methods: unknown method '" + item + "' (gauss-seidel, jacobi, xpbd or shake)";
     if (std::find(into.begin(), into.end(), *m) == into.end()) into.push_back(*m);
@@ -47,7 +43,7 @@ std::string parseMethods(const std::string& text, std::vector<phys::SolverMethod
 
 std::string parseModels(const std::string& text, std::vector<std::string>& into) {
   into.clear();
-  for (const std::string& item : splitList(text)) {
+  for (const std::string& item : items(text)) {
     if (!phys::parseBodyModel(item))
       return "--models: unknown model '" + item + "' (corners, tetra or rigid)";
     if (std::find(into.begin(), into.end(), item) == into.end()) into.push_back(item);
@@ -108,7 +104,7 @@ std::string parseOptions(const std::vector<std::string>& args, StabilityOptions&
       // Every following word up to the next option is a name, so "--scene a b" works too.
       const std::size_t before = o.scenes.size();
       while (const std::string* v = value()) {
-        for (const std::string& name : splitList(*v)) {
+        for (const std::string& name : items(*v)) {
           if (name.empty()) return "--scene: an empty name in '" + *v + "'";
           o.scenes.push_back(name);
         }

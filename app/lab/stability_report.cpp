@@ -1,4 +1,5 @@
 #include "stability_report.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,8 +117,7 @@ void methodGrid(std::ostringstream& md, const SuiteResult& r, const std::string&
     if (settingGroup(r.settings[k]) == method) columns.push_back(k);
   }
   md << "\n### " << method << "\n\n| scene |";
-  for (std::size_t k : columns)
-    md << " " << r.settings[k].iterations << "x" << r.settings[k].substeps << " |";
+  for (std::size_t k : columns) md << " " << ixs(r.settings[k].iterations, r.settings[k].substeps) << " |";
   md << "\n|---|";
   for (std::size_t i = 0; i < columns.size(); ++i) md << "---:|";
   md << "\n";
@@ -159,7 +159,7 @@ std::vector<std::string> columnLabels(const SuiteResult& r) {
   for (const Setting& s : r.settings) {
     std::string group = settingGroup(s);
     std::replace(group.begin(), group.end(), ' ', '-');  // one token: "xpbd-rigid"
-    out.push_back(group + ":" + std::to_string(s.iterations) + "x" + std::to_string(s.substeps));
+    out.push_back(group + ":" + ixs(s.iterations, s.substeps));
   }
   for (const std::string& p : r.peers) out.push_back(p);
   return out;

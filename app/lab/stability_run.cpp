@@ -1,4 +1,5 @@
 #include "stability_run.h"
+#include "text.h"
 
 #include <chrono>
 #include <optional>
@@ -42,8 +43,8 @@ SuiteScene loadSuiteScene(const std::filesystem::path& file) {
 }
 
 std::string settingLabel(const Setting& setting) {
-  return std::string(phys::toString(setting.method)) + " " + std::to_string(setting.iterations) + "x" +
-         std::to_string(setting.substeps) + (setting.model.empty() ? "" : " " + setting.model);
+  return lab::settingLabel(setting.method, setting.iterations, setting.substeps) +
+         (setting.model.empty() ? "" : " " + setting.model);
 }
 
 std::string settingGroup(const Setting& setting) {

@@ -14,8 +14,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "accuracy.h"
 #include "charts.h"
 #include "commands.h"
@@ -26,9 +24,11 @@
 #include "numbers.h"
 #include "options.h"
 #include "peer.h"
+#include "progress.h"
 #include "report.h"
 #include "run.h"
 #include "sweep_core.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -41,8 +41,6 @@ constexpr double kErrorFloor = 1e-9;
 /// A sweep of more runs than this is surely a typo in a list.
 constexpr std::size_t kMaxCombinations = 10000;
 constexpr int kMaxRepeats = 1000;
-/// Sweeps of fewer runs finish before a progress bar would help.
-constexpr int kProgressMinRuns = 10;
 
 std::string sweepUsage() {
   return "usage: lab sweep SCENE --out DIR [--method LIST] [--iterations LIST] [--substeps LIST]\n"
@@ -159,41 +157,6 @@ struct Row {
 
   double msPerSimSecond() const { return msPerStep / dt; }
   bool blewUp() const { return figures.frozen > 0 || !std::isfinite(figures.error); }
-};
-
-/// "[#####     ] 12/40 runs" on stderr: redrawn in place on a terminal, one line per tenth
-/// otherwise (a log keeps every line, and \r would pile them up).
-class Progress {
- public:
-  Progress(std::ostream& err, int total)
-      : err_(err), total_(total), terminal_(&err == &std::cerr && ::isatty(STDERR_FILENO) == 1) {}
-
-  void advance(int runs = 1) {
-    done_ += runs;
-    if (total_ < kProgressMinRuns) return;
-    const int tenth = done_ * 10 / total_;
-    if (terminal_) {
-      err_ << "\r" << bar() << std::flush;
-      if (done_ >= total_) err_ << "\n";
-    } else if (tenth > shownTenth_) {
-      shownTenth_ = tenth;
-      err_ << bar() << "\n";
-    }
-  }
-
- private:
-  std::string bar() const {
-    const int filled = std::min(10, done_ * 10 / total_);
-    return "[" + std::string(static_cast<std::size_t>(filled), '#') +
-           std::string(static_cast<std::size_t>(10 - filled), ' ') + "] " + std::to_string(done_) + "/" +
-           std::to_string(total_) + " runs";
-  }
-
-  std::ostream& err_;
-  int total_;
-  bool terminal_;
-  int done_ = 0;
-  int shownTenth_ = 0;
 };
 
 /// What the sweep covers, after the scene's own values filled the unset dimensions.
@@ -396,7 +359,7 @@ std::string csvText(const std::string& scene, const std::vector<Row>& rows) {
 // "3x1": iterations x substeps; nothing for a peer, whose method column names it.
 std::string pointLabel(const Row& r) {
   if (r.peer) return {};
-  return std::to_string(*r.iterations) + "x" + std::to_string(*r.substeps);
+  return ixs(*r.iterations, *r.substeps);
 }
 
 // "shake 1x8", or the peer's name.
@@ -536,7 +499,7 @@ int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream
   const int total = static_cast<int>(plan.settings.size()) * (plan.repeats + 1) +
                     static_cast<int>(plan.models.size() * plan.dts.size()) +
                     engines * static_cast<int>(plan.dts.size());
-  Progress progress(err, total);
+  Progress progress(err, "sweep", static_cast<std::size_t>(total));
   TargetCache targets;
   std::vector<Row> rows;
   for (const Setting& s : plan.settings) rows.push_back(runSetting(plan, s, targets, progress));

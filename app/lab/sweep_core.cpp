@@ -245,25 +245,4 @@ int defaultSteps(double dt) {
   return std::max(1, static_cast<int>(std::lround(kDefaultHorizon / dt)));
 }
 
-std::optional<std::vector<std::string>> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    const std::string item =
-        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (item.empty()) return std::nullopt;
-    items.push_back(item);
-    if (comma == std::string::npos) return items;
-    start = comma + 1;
-  }
-}
-
-std::string formatNumber(double value, int digits) {
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
-
 }  // namespace lab

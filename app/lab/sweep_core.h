@@ -13,6 +13,7 @@
 #include "accuracy.h"
 #include "physics/settings.h"
 #include "scenes/scene.h"
+#include "text.h"
 
 namespace lab {
 
@@ -103,13 +104,5 @@ class TargetCache {
 inline constexpr double kDefaultHorizon = 1.0;
 /// Steps covering the default horizon at dt.
 int defaultSteps(double dt);
-
-// ---- command-line pieces ----------------------------------------------------------------------
-
-/// "a,b,c" split at commas; nullopt when an item is empty ("a,,b", "", "a,").
-std::optional<std::vector<std::string>> splitList(const std::string& text);
-
-/// %g with `digits` significant digits; "inf" for infinity.
-std::string formatNumber(double value, int digits = 6);
 
 }  // namespace lab

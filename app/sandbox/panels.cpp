@@ -11,6 +11,7 @@
 
 #include "controls.h"
 #include "stats_text.h"
+#include "text.h"  // the lab's setting label
 
 namespace sandbox {
 namespace {
@@ -342,8 +343,7 @@ void labChart(Session& session, UiState& ui, const std::vector<LabPoint>& points
     }
   }
   if (nearest == nullptr) return;
-  const std::string name = std::string(phys::toString(nearest->method)) + " " +
-                           std::to_string(nearest->iterations) + "x" + std::to_string(nearest->substeps);
+  const std::string name = lab::settingLabel(nearest->method, nearest->iterations, nearest->substeps);
   const std::string error =
       nearest->blewUp ? "none (it blew up)" : figure("%.3g", nearest->error * 1000.0) + " mm";
   ImGui::SetTooltip("%s: %s ms a step, error %s\nclick to use it", name.c_str(),

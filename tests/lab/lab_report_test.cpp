@@ -1,4 +1,4 @@
-// The lab's reports in-process: JSON numbers and strings, the JSON object's keys, the median,
+// The lab's reports in-process: JSON lines, the JSON object's keys, the median,
 // the summary, the CSV dump of a hand-built world, and the atomic write.
 #include <algorithm>
 #include <cmath>
@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "json.h"
 #include "lab_test_util.h"
 #include "report.h"
 #include "run.h"
@@ -42,20 +43,25 @@ const std::vector<std::string> kJsonKeys = {"scene",
                                             "sleeping_bodies",
                                             "hash"};
 
-TEST(LabReport, JsonNumbersRoundTripAndNonFiniteIsNull) {
-  EXPECT_EQ(lab::jsonNumber(0.1), "0.10000000000000001");
-  EXPECT_EQ(std::strtod(lab::jsonNumber(1.0 / 3.0).c_str(), nullptr), 1.0 / 3.0);
-  EXPECT_EQ(lab::jsonNumber(2.0), "2");
-  EXPECT_EQ(lab::jsonNumber(std::numeric_limits<double>::quiet_NaN()), "null");
-  EXPECT_EQ(lab::jsonNumber(std::numeric_limits<double>::infinity()), "null");
-  EXPECT_EQ(lab::jsonNumber(-std::numeric_limits<double>::infinity()), "null");
-}
-
-TEST(LabReport, JsonStringsAreEscaped) {
-  EXPECT_EQ(lab::jsonString("plain"), "\"plain\"");
-  EXPECT_EQ(lab::jsonString("a\"b\\c"), "\"a\\\"b\\\\c\"");
-  EXPECT_EQ(lab::jsonString("tab\there\n"), "\"tab\\u0009here\\u000a\"");
-  EXPECT_EQ(lab::jsonString("caf\xc3\xa9"), "\"caf\xc3\xa9\"");
+// Every JSON the lab writes goes through jsonLine: one line, numbers that read back the same
+// double, null for what is not finite, and a name in another encoding replaced, not thrown on.
+TEST(LabReport, JsonLinesRoundTripNumbersAndReplaceWhatJsonCannotHold) {
+  lab::Json j;
+  j["third"] = 1.0 / 3.0;
+  j["two"] = 2.0;
+  j["nan"] = std::numeric_limits<double>::quiet_NaN();
+  j["inf"] = -std::numeric_limits<double>::infinity();
+  j["text"] = "a\"b\\c\ttab\n caf\xc3\xa9";
+  j["latin1"] = "caf\xe9";
+  const std::string line = lab::jsonLine(j);
+  EXPECT_EQ(line.find('\n'), line.size() - 1) << line;
+  const auto back = lab::Json::parse(line);
+  EXPECT_EQ(back["third"].get<double>(), 1.0 / 3.0);
+  EXPECT_EQ(back["two"].dump(), "2.0");
+  EXPECT_TRUE(back["nan"].is_null());
+  EXPECT_TRUE(back["inf"].is_null());
+  EXPECT_EQ(back["text"].get<std::string>(), "a\"b\\c\ttab\n caf\xc3\xa9");
+  EXPECT_EQ(back["latin1"].get<std::string>(), "caf\xef\xbf\xbd");  // U+FFFD in place of the byte
 }
 
 TEST(LabReport, HashIsSixteenHexDigits) {

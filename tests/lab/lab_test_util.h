@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "commands.h"
+#include "json.h"
 #include "lab.h"
 
 namespace lab_testing {
@@ -150,79 +151,24 @@ inline std::string quoted(const std::filesystem::path& p) {
   return s;
 }
 
-/// One flat JSON object: each key's raw value text (strings keep their quotes), in file
-/// order in `keys`. Enough for the lab's output, which has no nesting; nullopt when the text
-/// is not such an object.
+/// One flat JSON object: each key's value as JSON text (strings keep their quotes), in file
+/// order in `keys`; nullopt when the text is not one such object (nlohmann/json reads it, so
+/// NaN, a trailing comma or a second object fail as they should).
 struct FlatJson {
   std::vector<std::string> keys;
   std::map<std::string, std::string> values;
 };
 
 inline std::optional<FlatJson> parseFlatJson(const std::string& text) {
-  FlatJson j;
-  std::size_t i = 0;
-  auto skipSpace = [&] {
-    while (i < text.size() && (text[i] == ' ' || text[i] == '\n' || text[i] == '\t' || text[i] == '\r')) ++i;
-  };
-  // A string literal starting at i, quotes included; escapes are kept as written.
-  auto stringAt = [&]() -> std::optional<std::string> {
-    if (i >= text.size() || text[i] != '"') return std::nullopt;
-    const std::size_t start = i++;
-    while (i < text.size() && text[i] != '"') {
-      if (static_cast<unsigned char>(text[i]) < 0x20) return std::nullopt;
-      i += text[i] == '\\' ? 2 : 1;
-    }
-    if (i >= text.size()) return std::nullopt;
-    ++i;
-    return text.substr(start, i - start);
-  };
-  skipSpace();
-  if (i >= text.size() || text[i++] != '{') return std::nullopt;
-  for (;;) {
-    skipSpace();
-    const std::optional<std::string> key = stringAt();
-    if (!key) return std::nullopt;
-    skipSpace();
-    if (i >= text.size() || text[i++] != ':') return std::nullopt;
-    skipSpace();
-    std::string value;
-    if (i < text.size() && text[i] == '"') {
-      const std::optional<std::string> s = stringAt();
-      if (!s) return std::nullopt;
-      value = *s;
-    } else {
-      const std::size_t start = i;
-      while (i < text.size() && text[i] != ',' && text[i] != '}' && text[i] != ' ' && text[i] != '\n') ++i;
-      value = text.substr(start, i - start);
-      // A JSON number or literal: null, or something strtod reads whole (JSON's grammar is
-      // stricter, but the lab writes %.17g or integers, which strtod covers).
-      if (value != "null" && value != "true" && value != "false") {
-        char* end = nullptr;
-        std::strtod(value.c_str(), &end);
-        if (value.empty() || end != value.c_str() + value.size() ||
-            value.find_first_of("in") != std::string::npos) {
-          return std::nullopt;
-        }
-      }
-    }
-    const std::string name = key->substr(1, key->size() - 2);
-    if (j.values.count(name) != 0) return std::nullopt;
-    j.keys.push_back(name);
-    j.values[name] = value;
-    skipSpace();
-    if (i < text.size() && text[i] == ',') {
-      ++i;
-      continue;
-    }
-    if (i < text.size() && text[i] == '}') {
-      ++i;
-      break;
-    }
-    return std::nullopt;
+  const lab::Json j = lab::Json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!j.is_object()) return std::nullopt;  // a parse error is "discarded", not an object
+  FlatJson flat;
+  for (const auto& [key, value] : j.items()) {
+    if (value.is_structured()) return std::nullopt;
+    flat.keys.push_back(key);
+    flat.values[key] = value.dump();
   }
-  skipSpace();
-  if (i != text.size()) return std::nullopt;
-  return j;
+  return flat;
 }
 
 /// A JSON number value as a double (NaN for null or a string).

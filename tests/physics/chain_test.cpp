@@ -50,7 +50,7 @@ TEST(Chain, StickErrorFallsAsIterationsRise) {
   double previous = 1e9;
   for (int iterations : {1, 2, 4, 8, 16, 32, 64}) {
     phys::World world =
-        testing_phys::openSpace(testing_phys::solver(SolverMethod::GaussSeidel, 1, iterations));
+        testing_phys::openSpace(testing_phys::solver(SolverMethod::GaussSeidel, iterations, 1));
     phys::ParticleId last = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
     for (int i = 1; i <= 20; ++i) {
       const auto p = world.addParticle({Vec3(0.1 * i, 0.0, 0.0)});
@@ -73,11 +73,11 @@ TEST(Chain, StickErrorFallsAsIterationsRise) {
 // mass ratio and with h^2, not with the link length, so shorter links stretch more in relative
 // terms (both figures are printed; docs/physics.md tabulates them).
 TEST(Chain, MassRatio100SubstepsBeatIterations) {
-  Chain substeps = hangingChain(testing_phys::solver(SolverMethod::GaussSeidel, 8, 1), 20, 1.0, 100.0);
-  Chain iterations = hangingChain(testing_phys::solver(SolverMethod::GaussSeidel, 1, 8), 20, 1.0, 100.0);
+  Chain substeps = hangingChain(testing_phys::solver(SolverMethod::GaussSeidel, 1, 8), 20, 1.0, 100.0);
+  Chain iterations = hangingChain(testing_phys::solver(SolverMethod::GaussSeidel, 8, 1), 20, 1.0, 100.0);
   const double bySubsteps = maxStretch(substeps, 600);
   const double byIterations = maxStretch(iterations, 600);
-  Chain shortLinks = hangingChain(testing_phys::solver(SolverMethod::GaussSeidel, 8, 1), 20, 0.1, 100.0);
+  Chain shortLinks = hangingChain(testing_phys::solver(SolverMethod::GaussSeidel, 1, 8), 20, 0.1, 100.0);
   const double shortLinksStretch = maxStretch(shortLinks, 600);
   std::printf(
       "20-link chain, end mass 100:1, max stretch over 10 s: 8 substeps x 1 iteration %.2f%%, "

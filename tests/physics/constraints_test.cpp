@@ -38,7 +38,7 @@ TEST(RangeSticks, PushOnlyBelowMinAndPullOnlyAboveMax) {
     // Jacobi scales each stick by 1 / the larger stick count at its ends (4 at the pivot), so it
     // needs more passes to converge; the others are exact in one.
     const int passes = m == SolverMethod::Jacobi ? 200 : 1;
-    phys::World world = testing_phys::openSpace(testing_phys::solver(m, 1, passes), Vec3(0.0));
+    phys::World world = testing_phys::openSpace(testing_phys::solver(m, passes, 1), Vec3(0.0));
     const auto pivot = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
     const auto inside = world.addParticle({Vec3(1.5, 0.0, 0.0), Vec3(0.0), 1.0});
     const auto tooClose = world.addParticle({Vec3(0.0, 0.5, 0.0), Vec3(0.0), 1.0});
@@ -62,7 +62,7 @@ TEST(RangeSticks, PushOnlyBelowMinAndPullOnlyAboveMax) {
 // spinning, is stepped for 10 s.
 TEST(Momentum, EveryMethodKeepsTheMomentumOfAFreeNetwork) {
   for (SolverMethod m : kMethods) {
-    phys::World world = testing_phys::openSpace(testing_phys::solver(m, 2, 4), Vec3(0.0));
+    phys::World world = testing_phys::openSpace(testing_phys::solver(m, 4, 2), Vec3(0.0));
     const Vec3 positions[] = {{0, 0, 0}, {1, 0, 0}, {0, 1.5, 0}, {0, 0, 2}, {1, 1, 1}};
     const double masses[] = {1.0, 3.0, 0.5, 2.0, 7.0};
     const Vec3 velocities[] = {{-3, 20, 1}, {0, 0, 0}, {5, 0, -2}, {0, -4, 0}, {1, 1, 1}};

@@ -175,7 +175,7 @@ TEST(BodyDamping, LeavesTheRigidMotionWithTheSameMomenta) {
 // sticks' corrections keep ringing through the box; with it the box moves rigidly at once.
 TEST(BodyDamping, AKnockedBoxDoesNotRing) {
   for (double damping : {0.0, 1.0}) {
-    phys::SolverSettings s = testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3);
+    phys::SolverSettings s = testing_phys::solver(phys::SolverMethod::GaussSeidel, 3, 1);
     s.bodyDamping = damping;
     phys::World w = testing_phys::openSpace(s, Vec3(0.0));
     phys::BodyDesc d;
@@ -213,7 +213,7 @@ struct FrictionRun {
 };
 FrictionRun spinPairOnce(double rate, bool pinA = false) {
   phys::World w =
-      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 2, 3), Vec3(0.0));
+      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 3, 2), Vec3(0.0));
   phys::BodyDesc d;
   d.model = phys::BodyModel::Tetra;
   d.size = Vec3(0.4, 1.2, 0.6);
@@ -267,7 +267,7 @@ TEST(JointFriction, TakesItsShareOfTheRelativeSpinAndKeepsTheMomenta) {
 // same as finding it again from its particles for every joint (massProperties, rigidMotion).
 TEST(JointFriction, ABodyInSeveralJointsIsTurnedByEachInTurn) {
   phys::World w =
-      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 1, 3), Vec3(0.0));
+      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::GaussSeidel, 3, 1), Vec3(0.0));
   for (int k = 0; k < 3; ++k) {
     phys::BodyDesc d;
     d.model = phys::BodyModel::Tetra;

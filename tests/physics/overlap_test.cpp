@@ -254,7 +254,7 @@ TEST(Overlap, JointedBodiesArePartedWholeSoTheirJointsDoNotFightIt) {
   for (const phys::RagdollModel model : {phys::RagdollModel::Lean, phys::RagdollModel::Rigid})
     for (const int substeps : {4, 128}) {
       phys::World world = testing_phys::openSpace(
-          testing_phys::solver(phys::SolverMethod::GaussSeidel, substeps, 4), phys::Vec3(0.0));
+          testing_phys::solver(phys::SolverMethod::GaussSeidel, 4, substeps), phys::Vec3(0.0));
       phys::RagdollDesc d;
       d.model = model;
       d.hips = phys::Vec3(-0.85, 0.0, 0.0);  // arms span 1.73 m: the hands overlap 3 cm

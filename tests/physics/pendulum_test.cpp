@@ -23,7 +23,7 @@ struct Swing {
 };
 
 Swing swing(SolverMethod method, int substeps, double seconds) {
-  phys::World world = testing_phys::openSpace(testing_phys::solver(method, substeps, 1));
+  phys::World world = testing_phys::openSpace(testing_phys::solver(method, 1, substeps));
   const auto pivot = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
   const auto bob = world.addParticle({Vec3(kLength, 0.0, 0.0), Vec3(0.0), kMass});
   world.addStick(pivot, bob);
@@ -75,7 +75,7 @@ TEST(Pendulum, EveryMethodConvergesOnAChain) {
        {SolverMethod::GaussSeidel, SolverMethod::Jacobi, SolverMethod::Xpbd, SolverMethod::Shake}) {
     // Jacobi's scaled corrections converge more slowly per pass than the others'.
     phys::World world =
-        testing_phys::openSpace(testing_phys::solver(m, 1, m == SolverMethod::Jacobi ? 1000 : 200));
+        testing_phys::openSpace(testing_phys::solver(m, m == SolverMethod::Jacobi ? 1000 : 200, 1));
     phys::ParticleId previous = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
     for (int i = 1; i <= 5; ++i) {
       const auto p = world.addParticle({Vec3(0.4 * i, 0.0, 0.0), Vec3(0.0), kMass});

@@ -30,7 +30,7 @@ constexpr Real kPi = std::numbers::pi;
 constexpr Real kDegree = kPi / 180.0;
 
 phys::SolverSettings xpbd(int substeps, int iterations = 1) {
-  return testing_phys::solver(phys::SolverMethod::Xpbd, substeps, iterations);
+  return testing_phys::solver(phys::SolverMethod::Xpbd, iterations, substeps);
 }
 
 phys::World space(int substeps, int iterations = 1) {

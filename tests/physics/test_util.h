@@ -27,11 +27,12 @@ inline phys::World openSpace(const phys::SolverSettings& solver = {},
   return phys::World(ws, solver);
 }
 
-inline phys::SolverSettings solver(phys::SolverMethod method, int substeps, int iterations) {
+/// Settings in the order the project writes them everywhere: iterations before substeps ("IxS").
+inline phys::SolverSettings solver(phys::SolverMethod method, int iterations, int substeps) {
   phys::SolverSettings s;
   s.method = method;
-  s.substeps = substeps;
   s.iterations = iterations;
+  s.substeps = substeps;
   return s;
 }
 

@@ -21,7 +21,7 @@ double restingStretch(int iterations, int substeps) {
   phys::WorldSettings ws;
   ws.ground = false;
   ws.damping = 2.0;  // 1/s: let the bounce die so the static stretch is what remains
-  phys::World world(ws, testing_phys::solver(SolverMethod::Xpbd, substeps, iterations));
+  phys::World world(ws, testing_phys::solver(SolverMethod::Xpbd, iterations, substeps));
   phys::ParticleId previous = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
   for (int i = 1; i <= kLinks; ++i) {
     const auto p = world.addParticle({Vec3(0.0, -kLinkLength * i, 0.0), Vec3(0.0), 1.0});
@@ -44,7 +44,7 @@ TEST(Xpbd, CompliantStickStiffnessIsTheSameFor4And40IterationsAndAnyStep) {
     phys::WorldSettings ws;
     ws.ground = false;
     ws.damping = 2.0;  // 1/s: let the bounce die so the static stretch is what remains
-    phys::SolverSettings s = testing_phys::solver(SolverMethod::Xpbd, substeps, iterations);
+    phys::SolverSettings s = testing_phys::solver(SolverMethod::Xpbd, iterations, substeps);
     s.dt = dt;
     phys::World world(ws, s);
     const auto top = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
@@ -67,7 +67,7 @@ TEST(Xpbd, GlobalComplianceAddsToEveryStick) {
     phys::WorldSettings ws;
     ws.ground = false;
     ws.damping = 2.0;  // 1/s: let the bounce die so the static stretch is what remains
-    phys::SolverSettings s = testing_phys::solver(method, 1, 4);
+    phys::SolverSettings s = testing_phys::solver(method, 4, 1);
     s.compliance = global;
     phys::World world(ws, s);
     const auto top = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
@@ -105,7 +105,7 @@ TEST(Xpbd, CompliantChainReachesTheAnalyticStretch) {
 // swinging chain of unequal masses the two agree to round-off, step after step.
 TEST(Xpbd, ZeroComplianceIsGaussSeidel) {
   auto chain = [](SolverMethod m) {
-    phys::World world = testing_phys::openSpace(testing_phys::solver(m, 2, 3));
+    phys::World world = testing_phys::openSpace(testing_phys::solver(m, 3, 2));
     phys::ParticleId previous = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
     for (int i = 1; i <= 8; ++i) {
       const auto p = world.addParticle({Vec3(0.4 * i, 0.0, 0.1 * i), Vec3(0.0), 1.0 + i});
@@ -130,7 +130,7 @@ TEST(Xpbd, OtherMethodsTreatCompliantSticksAsRigid) {
     phys::WorldSettings ws;
     ws.ground = false;
     ws.damping = 2.0;
-    phys::World world(ws, testing_phys::solver(m, 1, m == SolverMethod::Jacobi ? 1000 : 200));
+    phys::World world(ws, testing_phys::solver(m, m == SolverMethod::Jacobi ? 1000 : 200, 1));
     phys::ParticleId previous = world.addParticle({Vec3(0.0), Vec3(0.0), 0.0, true});
     for (int i = 1; i <= 5; ++i) {
       const auto p = world.addParticle({Vec3(0.0, -0.5 * i, 0.0), Vec3(0.0), 1.0});

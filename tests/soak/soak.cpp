@@ -1172,8 +1172,8 @@ void Soak::step() {
       expect(error.empty(), "the budget's lower settings were refused: " + error);
     }
     ++lowered_;
-    amend(", lowered to " + std::to_string(s.substeps) + " substeps x " + std::to_string(s.iterations) +
-          " iterations (over the budget)");
+    amend(", lowered to " + std::to_string(s.iterations) + " iterations x " + std::to_string(s.substeps) +
+          " substeps (over the budget)");
     checkWorlds();  // a new substep rescales every velocity (World::setSolverSettings)
   }
   const double one = sessionVisits(session(), 1);

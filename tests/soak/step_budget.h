@@ -15,7 +15,7 @@
 
 namespace soak {
 
-/// One step may cost up to this, 0.25 to 1.2 s: 1000 substeps x 1000 iterations fit in an empty
+/// One step may cost up to this, 0.25 to 1.2 s: 1000 iterations x 1000 substeps fit in an empty
 /// (cleared) world and on the one-particle and two-particle scenes (the orbits, the pendulums),
 /// which is where the extremes get stepped as they are.
 inline constexpr double kMaxVisitsPerStep = 5e7;

@@ -8,6 +8,7 @@
 
 #include "peer.h"
 #include "peer_scene.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -29,13 +30,6 @@ constexpr Adapter kAdapters[] = {
 #endif
     {nullptr, nullptr},  // keeps the array non-empty when no adapter is built
 };
-
-double medianOf(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t mid = v.size() / 2;
-  return v.size() % 2 == 1 ? v[mid] : 0.5 * (v[mid - 1] + v[mid]);
-}
 
 std::string joined(const std::vector<std::string>& parts) {
   std::string out;
@@ -138,7 +132,7 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   built->finish();
   result.maxPenetration = peers::groundPenetration(description, positions(), orientations());
   result.dropped = built->dropped;
-  result.medianMsPerStep = medianOf(std::move(stepMs));
+  result.medianMsPerStep = median(std::move(stepMs));
   result.unsupported = joined({joined(description.notes), joined(built->notes)});
   result.ran = true;
   return result;

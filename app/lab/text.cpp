@@ -1,0 +1,52 @@
+#include "text.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace lab {
+
+std::string formatNumber(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+std::optional<std::vector<std::string>> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item.empty()) return std::nullopt;
+    items.push_back(item);
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
+  const double upper = values[mid];
+  if (values.size() % 2 == 1) return upper;
+  // The lower middle is the largest of the elements nth_element left before mid.
+  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
+  return 0.5 * (lower + upper);
+}
+
+std::string ixs(int iterations, int substeps) {
+  return std::to_string(iterations) + "x" + std::to_string(substeps);
+}
+
+std::string settingLabel(phys::SolverMethod method, int iterations, int substeps) {
+  return std::string(phys::toString(method)) + " " + ixs(iterations, substeps);
+}
+
+std::string ixsWords(int iterations, int substeps) {
+  return std::to_string(iterations) + (iterations == 1 ? " iteration x " : " iterations x ") +
+         std::to_string(substeps) + (substeps == 1 ? " substep" : " substeps");
+}
+
+}  // namespace lab

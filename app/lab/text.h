@@ -1,0 +1,28 @@
+#pragma once
+// The lab's small text helpers, one of each: numbers as its tables print them, comma lists as
+// its options take them, the setting label every command prints, and the median of timings.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/settings.h"
+
+namespace lab {
+
+/// printf's %.{digits}g: "0.0125", "1e-06", "inf" (a figure that ran away is printed as such).
+std::string formatNumber(double value, int digits = 6);
+
+/// "a,b,c" split at the commas; nullopt when an item is empty ("a,,b", "a,", "").
+std::optional<std::vector<std::string>> splitList(const std::string& text);
+
+/// The median; 0 for no values. Takes a copy, since it reorders.
+double median(std::vector<double> values);
+
+/// "3x1": iterations before substeps, the order the project writes settings in everywhere.
+std::string ixs(int iterations, int substeps);
+/// "gauss-seidel 3x1": a method and its iterations x substeps.
+std::string settingLabel(phys::SolverMethod method, int iterations, int substeps);
+/// "3 iterations x 1 substep": the same in words, for prose.
+std::string ixsWords(int iterations, int substeps);
+
+}  // namespace lab
