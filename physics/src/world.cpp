@@ -497,6 +497,26 @@ Vec3 World::cornerPosition(BodyId id, int k) const {
          rigidBodies_.orientation[body.rigid] * boxCornerLocal(body.halfExtents, k);
 }
 
+BodyMass World::bodyMass(BodyId id) const {
+  const Body& body = bodies_.at(id);
+  BodyMass out;
+  if (body.model == BodyModel::Rigid) {
+    if (rigidBodies_.inverseMass[body.rigid] == 0.0) return out;
+    out.mass = 1.0 / rigidBodies_.inverseMass[body.rigid];
+    out.inertia = 1.0 / rigidBodies_.inverseInertia[body.rigid];
+    return out;
+  }
+  for (int k = 0; k < body.particleCount; ++k) {
+    const Real w = particles_.inverseMass.at(body.firstParticle + k);
+    if (w == 0.0) return {};
+    const Real m = 1.0 / w;
+    const Vec3 r = boxParticleLocal(body.model, body.halfExtents, k);
+    out.mass += m;
+    out.inertia += m * Vec3(r.y * r.y + r.z * r.z, r.x * r.x + r.z * r.z, r.x * r.x + r.y * r.y);
+  }
+  return out;
+}
+
 std::pair<Vec3, Vec3> World::bodyVelocity(BodyId id) const {
   const Body& body = bodies_.at(id);
   if (body.model == BodyModel::Rigid)
@@ -505,6 +525,38 @@ std::pair<Vec3, Vec3> World::bodyVelocity(BodyId id) const {
   if (!detail::massProperties(particles_, body, m)) return {Vec3(0.0), Vec3(0.0)};
   const detail::RigidMotion motion = detail::rigidMotion(particles_, body, m);
   return {motion.linear / substepDt(), motion.angular / substepDt()};
+}
+
+std::pair<Vec3, Vec3> World::poseVelocity(BodyId id) const {
+  const Body& body = bodies_.at(id);
+  const Real h = substepDt();
+  const BodyPose pose = bodyPose(id);
+  if (body.model == BodyModel::Rigid) {
+    const RigidId i = body.rigid;
+    if (rigidBodies_.inverseMass[i] == 0.0) return {Vec3(0.0), Vec3(0.0)};
+    return {rigidBodies_.velocity[i] + gravityAt(pose.center) * (h / 2), rigidBodies_.angularVelocity[i]};
+  }
+  const ParticleId first = body.firstParticle, end = first + body.particleCount;
+  auto moved = [&](ParticleId p) { return velocity(p) + gravityAt(particles_.position[p]) * (0.5 * h); };
+  Real mass = 0.0;
+  Vec3 momentum(0.0);
+  for (ParticleId p = first; p < end; ++p) {
+    if (particles_.inverseMass[p] == 0.0) return {Vec3(0.0), Vec3(0.0)};
+    const Real m = 1.0 / particles_.inverseMass[p];
+    mass += m;
+    momentum += m * moved(p);
+  }
+  const Vec3 linear = momentum / mass;
+  Vec3 angularMomentum(0.0);
+  glm::dmat3 inertia(0.0);
+  for (ParticleId p = first; p < end; ++p) {
+    const Real m = 1.0 / particles_.inverseMass[p];
+    const Vec3 r = particles_.position[p] - pose.center;
+    angularMomentum += m * glm::cross(r, moved(p) - linear);
+    inertia += m * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
+  }
+  if (!(std::abs(glm::determinant(inertia)) > 0.0)) return {linear, Vec3(0.0)};
+  return {linear, glm::inverse(inertia) * angularMomentum};
 }
 
 std::pair<Vec3, Vec3> World::rigidDescVelocity(BodyId id) const {

@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
-#include <glm/matrix.hpp>
 
 #include "physics/body.h"
 
@@ -90,56 +89,17 @@ Description describe(const scenes::Scene& scene) {
     body.mask = box.collisionMask;
     if (box.collisionGroup != 1u || box.collisionMask != 0xffffffffu) d.defaultFiltering = false;
 
-    // Mass, inertia and the rigid motion that best fits the particles' velocities: the mean
-    // velocity, and the spin omega = I^-1 L from their angular momentum about the centre. A
-    // capsule's particles sit on its box as a box's do, so it gets its box's inertia: the
+    // Mass, inertia and motion as the physics has them (World::bodyMass, poseVelocity). A
+    // capsule's particles sit on its box as a box's do, so it gets its box's inertia and the
     // engines turn it as ours turns.
-    if (box.model == phys::BodyModel::Rigid) {
-      // A rigid body's own mass properties (a solid shape's) and velocities, the centre's as it
-      // would be loaded (the substep's middle's plus g h / 2).
-      const phys::RigidBodies& rigid = world.rigidBodies();
-      body.fixed = rigid.inverseMass[box.rigid] == 0.0;
-      if (!body.fixed) {
-        const double h = solver.dt / solver.substeps;
-        body.mass = 1.0 / rigid.inverseMass[box.rigid];
-        body.inertia = 1.0 / rigid.inverseInertia[box.rigid];
-        body.velocity = rigid.velocity[box.rigid] + world.gravityAt(pose.center) * (h / 2);
-        body.angularVelocity = rigid.angularVelocity[box.rigid];
-      }
-      d.bodies.push_back(body);
-      continue;
+    for (int k = 0; k < box.particleCount; ++k) owner[box.firstParticle + k] = static_cast<int>(id);
+    const phys::BodyMass mass = world.bodyMass(id);
+    body.fixed = mass.fixed();
+    if (!body.fixed) {
+      body.mass = mass.mass;
+      body.inertia = mass.inertia;
+      std::tie(body.velocity, body.angularVelocity) = world.poseVelocity(id);
     }
-    Vec3 momentum(0.0);
-    glm::dmat3 inertiaWorld(0.0);
-    Vec3 angularMomentum(0.0);
-    for (int k = 0; k < box.particleCount; ++k) {
-      const phys::ParticleId p = box.firstParticle + k;
-      owner[p] = static_cast<int>(id);
-      const double w = particles.inverseMass[p];
-      if (w == 0.0) {
-        body.fixed = true;
-        continue;
-      }
-      const double m = 1.0 / w;
-      body.mass += m;
-      const Vec3 r0 = phys::boxParticleLocal(box.model, box.halfExtents, k);
-      body.inertia +=
-          m * Vec3(r0.y * r0.y + r0.z * r0.z, r0.x * r0.x + r0.z * r0.z, r0.x * r0.x + r0.y * r0.y);
-      momentum += m * particleVelocity(world, p);
-    }
-    if (!body.fixed && body.mass > 0.0) {
-      body.velocity = momentum / body.mass;
-      for (int k = 0; k < box.particleCount; ++k) {
-        const phys::ParticleId p = box.firstParticle + k;
-        const double m = 1.0 / particles.inverseMass[p];
-        const Vec3 r = particles.position[p] - body.centre;
-        angularMomentum += m * glm::cross(r, particleVelocity(world, p) - body.velocity);
-        inertiaWorld += m * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
-      }
-      if (std::abs(glm::determinant(inertiaWorld)) > 0.0)
-        body.angularVelocity = glm::inverse(inertiaWorld) * angularMomentum;
-    }
-    if (body.fixed) body.mass = 0.0;
     d.bodies.push_back(body);
   }
 

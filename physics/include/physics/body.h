@@ -67,6 +67,16 @@ struct BodyPose {
   Quat orientation{1.0, 0.0, 0.0, 0.0};
 };
 
+/// A body's mass properties, for whoever models it elsewhere (the lab's peer engines): its mass
+/// and its principal moments of inertia about its centre, in its own frame. A rigid body's are its
+/// solid shape's; a particle body's are its particles' at their rest places. A body held by a
+/// pinned or frozen particle is fixed: mass and inertia 0, as engines write a body nothing moves.
+struct BodyMass {
+  Real mass = 0.0;    ///< unit: kg; 0 when fixed
+  Vec3 inertia{0.0};  ///< unit: kg m^2, about the body's x, y and z axes
+  bool fixed() const { return mass == 0.0; }
+};
+
 /// A body in the world: a box, or a capsule inscribed in its box. Its particles are consecutive from
 /// firstParticle; its 8 corners are embeddings from firstCorner in World::corners(). Corner k sits at (+-hx,
 /// +-hy, +-hz) in the body frame, bit 0 of k choosing the sign of x, bit 1 of y and bit 2 of z (set =

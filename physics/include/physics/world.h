@@ -220,11 +220,19 @@ class World {
   /// Centre and orientation of a body: a rigid body's own, a particle body's fitted to its
   /// particles (polar decomposition).
   BodyPose bodyPose(BodyId id) const;
+  /// A body's mass and principal inertia (BodyMass).
+  BodyMass bodyMass(BodyId id) const;
   /// Velocity of a body's centre (m/s) and its angular velocity (rad/s, world frame) over the last
   /// substep, as velocity() is a particle's (half a substep back): a rigid body's own; a particle
   /// body's the least-squares rigid motion of its particles, which keeps their momentum and
   /// angular momentum.
   std::pair<Vec3, Vec3> bodyVelocity(BodyId id) const;
+  /// Velocity of a body's centre (m/s) and its spin (rad/s, world frame) at the pose's time, as a
+  /// body placed at bodyPose() would start (what the lab gives the peer engines): each particle's
+  /// velocity moved on half a substep (+ g h / 2), their mean by mass, and the spin that keeps
+  /// their angular momentum about the pose's centre (0 for a body crushed flat). A rigid body's
+  /// own velocity + g h / 2 and its spin. Zero for a fixed body (BodyMass::fixed).
+  std::pair<Vec3, Vec3> poseVelocity(BodyId id) const;
   /// A rigid body's velocity and spin as a BodyDesc gives them, at the pose's time: bodyVelocity's
   /// moved on half a substep (v + g h / 2, and the spin by Euler's equations, the exact inverse of
   /// addBody's shift up to a radian a substep; a faster spin is not shifted), so that a body saved
