@@ -30,7 +30,9 @@ void Progress::show(std::size_t done, const std::string& next, bool mark) {
     err_ << line << "\n" << std::flush;
     return;
   }
-  line.resize(std::max<std::size_t>(line.size(), 100), ' ');  // wipes a longer previous line
+  const std::size_t length = line.size();
+  line.resize(std::max(length, shownLength_), ' ');  // wipes what a longer previous line left
+  shownLength_ = length;
   err_ << "\r" << line << std::flush;
 }
 

@@ -28,6 +28,7 @@ class Progress {
   std::chrono::steady_clock::time_point start_;
   std::size_t done_ = 0;
   std::size_t shownTenth_ = 0;
+  std::size_t shownLength_ = 0;  ///< of the line on screen, so a shorter one can wipe it
 };
 
 }  // namespace lab

@@ -507,6 +507,7 @@ int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream
   if (plan.peers) {
     for (double dt : plan.dts) runPeers(plan, dt, targets, rows, notes, progress);
   }
+  progress.finish();
   markPareto(rows);
 
   // Each distinct target once, named by its model and dt when there are several.
