@@ -45,14 +45,14 @@ void commandDuringSteps(benchmark::State& state, const char* scene) {
   state.counters["max_ms"] = waits.back();
 }
 
-void BM_CommandDuringSteps_ragdolls(benchmark::State& state) {
-  commandDuringSteps(state, "ragdolls");
-}
-void BM_CommandDuringSteps_bullet(benchmark::State& state) {
-  commandDuringSteps(state, "bullet-ragdolls");
-}
-BENCHMARK(BM_CommandDuringSteps_ragdolls)->Iterations(20)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CommandDuringSteps_bullet)->Iterations(20)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(commandDuringSteps, ragdolls, "ragdolls")
+    ->Iterations(20)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(commandDuringSteps, bullet, "bullet-ragdolls")
+    ->Iterations(20)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 // 600 steps (10 s) of the scene, then its recording saved and opened once each (iterations = 1:
 // a save of Bullet's pile takes seconds).
@@ -82,14 +82,14 @@ void recordingFile(benchmark::State& state, const char* scene) {
   std::filesystem::remove(file);
 }
 
-void BM_RecordingFile_pile16(benchmark::State& state) {
-  recordingFile(state, "ragdolls");
-}
-void BM_RecordingFile_bullet(benchmark::State& state) {
-  recordingFile(state, "bullet-ragdolls");
-}
-BENCHMARK(BM_RecordingFile_pile16)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
-BENCHMARK(BM_RecordingFile_bullet)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(recordingFile, pile16, "ragdolls")
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(recordingFile, bullet, "bullet-ragdolls")
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 
