@@ -1,15 +1,15 @@
 #pragma once
-// The lab's commands besides `run`, each a whole program over the arguments after its name:
-// it parses them (exit 2 and its usage on an error), runs, and reports. docs/lab.md has each
-// one's options and output.
+// The lab's commands besides `run`, each a whole program over the arguments after its name: it
+// reads them through its CommandLine (command_line.h: exit 2 and its help on an error), runs,
+// and reports. docs/lab.md has each one's options and output; `lab CMD --help` lists them.
 #include <iosfwd>
 #include <string>
 #include <vector>
 
 namespace lab {
 
-/// lab sweep SCENE [--method LIST] [--iterations LIST] [--substeps LIST] [--dt LIST]
-///                 [--model LIST] [--repeat R] [--steps N] --out DIR
+/// lab sweep SCENE --out DIR [--methods LIST] [--iterations LIST] [--substeps LIST] [--dt LIST]
+///                 [--models LIST] [--repeat R] [--steps N]
 int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 /// lab stability [--out DIR]
 int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

@@ -46,97 +46,22 @@ struct CompareOptions {
   bool json = false;
   bool sleep = false;             ///< --sleep: whether ours put islands at rest to sleep, and the peers too
   std::optional<bool> peerSleep;  ///< --peer-sleep: the peers' alone, when it differs from --sleep
-  bool help = false;
 };
 
-std::string compareUsage() {
-  return "usage: lab compare SCENE [--steps N] [--dt S] [--model M] [--iterations K] [--substeps S]\n"
-         "                   [--sleep on|off] [--peer-sleep on|off] [--json] [--data DIR]\n"
-         "  Runs SCENE with each of our four methods at its own iterations and substeps (xpbd\n"
-         "  alone for rigid bodies with no stick, which every method steps alike), then in each\n"
-         "  peer engine built in (Bullet, ODE, MuJoCo), and prints one table: median ms per\n"
-         "  step, accuracy error, penetration and joint gap (by our code on every engine's poses)\n"
-         "  and what each peer could not express.\n"
-         "  --steps N   steps in every run, 1 to 10000000 (default 600; a scene's analytic\n"
-         "              checkpoints may ask for more)\n"
-         "  --dt S      seconds per step, 1e-06 to 1 (default: the scene's)\n"
-         "  --model M   corners, tetra or rigid, imposed at load on every box (rigid: ragdolls\n"
-         "              too), for ours and for the scene the peers are given\n"
-         "  --iterations K, --substeps S  ours, 1 to 1000 (default: the scene's)\n"
-         "  --sleep on|off  whether resting bodies sleep, ours and the peers' (default off: every\n"
-         "              engine steps every body, so costs compare awake with awake)\n"
-         "  --peer-sleep on|off  the peers' alone (default: as --sleep); Bullet's deactivation\n"
-         "  --json      one JSON object per row, one per line, instead of the table\n"
-         "  --data DIR  folder holding assets/ (default: the source tree)\n";
-}
-
-// Whole numbers only, as `lab run` takes them: digits, no sign, no exponent.
-std::optional<long long> wholeNumber(const std::string& s) {
-  if (s.empty() || s.size() > 18 ||
-      !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return std::nullopt;
-  return std::stoll(s);
-}
-
-std::optional<double> realNumber(const std::string& s) {
-  if (s.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
-std::string parse(const std::vector<std::string>& args, CompareOptions& o) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&](std::string& v) -> std::string {
-      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return "compare: " + a + " needs a value";
-      v = args[++i];
-      return {};
-    };
-    std::string v;
-    if (a == "--help" || a == "-h") {
-      o.help = true;
-    } else if (a == "--json") {
-      o.json = true;
-    } else if (a == "--steps") {
-      if (std::string e = value(v); !e.empty()) return e;
-      const auto n = wholeNumber(v);
-      if (!n || *n < 1 || *n > kMaxSteps)
-        return "compare: --steps '" + v + "': a whole number from 1 to " + std::to_string(kMaxSteps);
-      o.steps = static_cast<int>(*n);
-    } else if (a == "--dt") {
-      if (std::string e = value(v); !e.empty()) return e;
-      const auto d = realNumber(v);
-      if (!d || *d < phys::kMinDt || *d > phys::kMaxDt)
-        return "compare: --dt '" + v + "': a number of seconds from 1e-06 to 1";
-      o.dt = *d;
-    } else if (a == "--model") {
-      if (std::string e = parseModelOption(args, i, o.model); !e.empty()) return "compare: " + e;
-    } else if (a == "--iterations" || a == "--substeps") {
-      const int most = a == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
-      int n = 0;
-      if (std::string e = parseCountOption(a, optionValue(args, i), most, n); !e.empty())
-        return "compare: " + e;
-      (a == "--iterations" ? o.iterations : o.substeps) = n;
-    } else if (a == "--sleep" || a == "--peer-sleep") {
-      if (std::string e = value(v); !e.empty()) return e;
-      if (v != "on" && v != "off") return "compare: " + a + " '" + v + "': on or off";
-      (a == "--sleep" ? o.sleep : o.peerSleep.emplace()) = v == "on";
-    } else if (a == "--data") {
-      if (std::string e = value(v); !e.empty()) return e;
-      o.dataDir = v;
-    } else if (a.starts_with("-")) {
-      return "compare: unknown option '" + a + "'";
-    } else if (o.scene.empty()) {
-      o.scene = a;
-    } else {
-      return "compare takes one SCENE; got '" + o.scene + "' and '" + a + "'";
-    }
-  }
-  if (!o.help && o.scene.empty())
-    return "compare needs a SCENE (a scene file, or a name in <data>/assets/scenes)";
-  return {};
+void describeCompare(CommandLine& line, CompareOptions& o) {
+  line.scene(o.scene);
+  line.count(option::kSteps, kMaxSteps, o.steps,
+             "in every run (default 600; a scene's analytic checkpoints may ask for more)");
+  line.dt(o.dt, "(default: the scene's)");
+  line.model(o.model, "(rigid: ragdolls too), for ours and for the scene the peers are given");
+  line.count(option::kIterations, phys::kMaxIterations, o.iterations, "for ours (default: the scene's)");
+  line.count(option::kSubsteps, phys::kMaxSubsteps, o.substeps, "for ours (default: the scene's)");
+  line.onOff(
+      option::kSleep, o.sleep,
+      "(ours and the peers'; default off: every engine steps every body, so costs compare awake with awake)");
+  line.onOff(option::kPeerSleep, o.peerSleep, "(default: as --sleep)");
+  line.flag(option::kJson, o.json, true, "one object per row, one per line, instead of the table");
+  line.folder(option::kData, o.dataDir, "");
 }
 
 // One row of the table.
@@ -302,58 +227,28 @@ void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, 
   }
 }
 
-}  // namespace
-
-int compareMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  CompareOptions options;
-  if (const std::string e = parse(args, options); !e.empty()) {
-    err << "lab: " << e << "\n" << compareUsage();
-    return kExitUsage;
-  }
-  if (options.help) {
-    out << compareUsage();
-    return kExitOk;
-  }
-
-  RunOptions where;
-  where.dataDir = options.dataDir;
-  std::filesystem::path file = options.scene;
-  std::optional<scenes::Scene> scene;
-  AccuracyTarget target;
-  double dt = 0.0;
-  int steps = options.steps;
-  try {
-    file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(where)));
-    scene.emplace(scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep)));
-    dt = options.dt.value_or(scene->world.solverSettings().dt);
-    target = accuracyTarget(*scene, {}, dt, steps);
-  } catch (const scenes::LoadError& e) {
-    err << e.what() << "\n";
-    return kExitFailure;
-  } catch (const std::exception& e) {
-    err << "lab: compare: " << file.string() << ": " << e.what() << "\n";
-    return kExitFailure;
-  }
+// Every run, then the table or the JSON.
+int runCompare(const CompareOptions& options, std::ostream& out) {
+  const std::filesystem::path file = sceneFile(options.scene, options.dataDir);
+  const scenes::Scene scene = scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep));
+  const double dt = options.dt.value_or(scene.world.solverSettings().dt);
+  const AccuracyTarget target = accuracyTarget(scene, {}, dt, options.steps);
   // An analytic target may check a time past the steps asked for; every run goes that far.
-  steps = stepsFor(target, steps);
+  const int steps = stepsFor(target, options.steps);
 
+  // Rigid bodies and no stick step alike under the four methods (xpbdWhateverTheMethod): one row,
+  // under the method that names how they are solved.
+  std::vector<phys::SolverMethod> methods{phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
+                                          phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
+  if (xpbdWhateverTheMethod(scene.world)) methods = {phys::SolverMethod::Xpbd};
   std::vector<Row> rows;
-  try {
-    // Rigid bodies and no stick step alike under the four methods (xpbdWhateverTheMethod): one
-    // row, under the method that names how they are solved.
-    std::vector<phys::SolverMethod> methods{phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
-                                            phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
-    if (xpbdWhateverTheMethod(scene->world)) methods = {phys::SolverMethod::Xpbd};
-    for (phys::SolverMethod method : methods) rows.push_back(runOurs(file, method, options, steps, target));
-  } catch (const std::invalid_argument& e) {
-    err << "lab: compare: the overrides were refused: " << e.what() << "\n";
-    return kExitFailure;
-  }
-  const peers::Description description = peers::describe(*scene);
+  rows.reserve(methods.size() + peerEngines().size());
+  for (phys::SolverMethod method : methods) rows.push_back(runOurs(file, method, options, steps, target));
+  const peers::Description description = peers::describe(scene);
   for (const std::string& engine : peerEngines()) {
     // Each peer reads the scene as loaded, unstepped (the first load is kept for them).
     const PeerResult p =
-        runPeer(engine, *scene, dt, steps, target.checkpoints, options.peerSleep.value_or(options.sleep));
+        runPeer(engine, scene, dt, steps, target.checkpoints, options.peerSleep.value_or(options.sleep));
     Row row;
     row.engine = p.engine;
     row.settings = p.settings;
@@ -374,10 +269,10 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   }
 
   if (options.json) {
-    printJson(out, rows, fastest, scene->name, steps, dt, target);
+    printJson(out, rows, fastest, scene.name, steps, dt, target);
     return kExitOk;
   }
-  const phys::World& world = scene->world;
+  const phys::World& world = scene.world;
   std::size_t loose = world.particles().size(), capsules = 0;
   for (const phys::Body& b : world.bodies()) {
     loose -= static_cast<std::size_t>(b.particleCount);
@@ -388,8 +283,8 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   };
   // A project scene is named from the data folder (assets/scenes/x.xml), so the table that
   // docs/results.md quotes says the same on every machine.
-  const std::filesystem::path shown = shownPath(file, dataDir(where));
-  out << "scene     " << scene->name << " (" << shown.string()
+  const std::filesystem::path shown = shownPath(file, dataDir(options.dataDir));
+  out << "scene     " << scene.name << " (" << shown.string()
       << "): " << count(world.bodies().size() - capsules, "box", "boxes") << ", "
       << (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string())
       << count(loose, "loose particle", "loose particles") << ", "
@@ -404,6 +299,20 @@ int compareMain(const std::vector<std::string>& args, std::ostream& out, std::os
   out << "\n";
   printTable(out, rows, fastest);
   return kExitOk;
+}
+
+}  // namespace
+
+int compareMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  CompareOptions options;
+  CommandLine line(
+      "compare",
+      "Runs SCENE with each of our four methods at its own iterations and substeps (xpbd alone for\n"
+      "rigid bodies with no stick, which every method steps alike), then in each peer engine built in\n"
+      "(Bullet, ODE, MuJoCo), and prints one table: median ms per step, accuracy error, penetration\n"
+      "and joint gap (by our code on every engine's poses) and what each peer could not express.");
+  describeCompare(line, options);
+  return commandMain(line, args, out, err, [&] { return runCompare(options, out); });
 }
 
 }  // namespace lab

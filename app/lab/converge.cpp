@@ -34,89 +34,26 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMaxTime = 3600.0;  // s: --time; an hour of a free body is already a long run
 constexpr const char* kParticleModel = "particle";
 
-std::string usageText() {
-  return "usage: lab converge [SCENE...] [--methods LIST] [--models LIST] [--substeps LIST]\n"
-         "                    [--iterations K] [--time S] [--out DIR] [--data DIR]\n"
-         "  SCENE           scenes with an exact answer: analytic positions (<expect kind=\"position\">)\n"
-         "                  or free bodies in zero gravity, checked against Euler's equations\n"
-         "                  (default: projectile, pendulum-exact, circular-orbit, tumbling-box)\n"
-         "  --methods LIST  of gauss-seidel, jacobi, xpbd, shake (default: all four; --method too);\n"
-         "                  rigid bodies are solved by XPBD whatever the method, so they run once\n"
-         "  --models LIST   of corners, tetra, rigid (default: every model a scene's boxes take;\n"
-         "                  a scene of particles alone has none and runs as 'particle')\n"
-         "  --substeps LIST substep counts, 1 to 1000 (default 1,2,4,8,16,32,64): h = dt / each\n"
-         "  --iterations K  relaxation passes per substep, 1 to 1000 (default 4)\n"
-         "  --time S        horizon of a free-body scene, s (default 4); analytic scenes use their\n"
-         "                  answers' times\n"
-         "  --out DIR       also write DIR/converge.csv and, per scene, converge-SCENE.gp, .png, .svg\n"
-         "  --data DIR      folder holding assets/ (default: the source tree)\n"
-         "  --help          show this text\n";
-}
-
-std::string parseList(const std::string& option, const std::string* v, std::vector<std::string>& into) {
-  if (v == nullptr) return option + " needs a comma-separated list";
-  const std::optional<std::vector<std::string>> items = splitList(*v);
-  if (!items) return option + ": '" + *v + "' is not a comma-separated list";
-  into = *items;
-  return {};
-}
-
-std::string parse(const std::vector<std::string>& args, ConvergeOptions& o) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&] { return optionValue(args, i); };
-    std::vector<std::string> items;
-    if (a == "--methods" || a == "--method") {
-      if (std::string e = parseList(a, value(), items); !e.empty()) return e;
-      o.methods.clear();
-      for (const std::string& item : items) {
-        const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(item);
-        if (!m) return a + ": unknown method '" + item + "' (gauss-seidel, jacobi, xpbd or shake)";
-        o.methods.push_back(*m);
-      }
-    } else if (a == "--models" || a == "--model") {
-      if (std::string e = parseList(a, value(), items); !e.empty()) return e;
-      for (const std::string& item : items) {
-        const std::optional<phys::BodyModel> m = phys::parseBodyModel(item);
-        if (!m) return a + ": unknown model '" + item + "' (corners, tetra or rigid)";
-      }
-      o.models = items;
-    } else if (a == "--substeps") {
-      if (std::string e = parseList(a, value(), items); !e.empty()) return e;
-      o.substeps.clear();
-      for (const std::string& item : items) {
-        const std::optional<int> n = parseWholeNumber(item, 1, phys::kMaxSubsteps);
-        if (!n) return notWholeNumber(a, item, phys::kMaxSubsteps);
-        o.substeps.push_back(*n);
-      }
-    } else if (a == "--iterations") {
-      if (std::string e = parseCountOption(a, value(), phys::kMaxIterations, o.iterations); !e.empty())
-        return e;
-    } else if (a == "--time") {
-      const std::string* v = value();
-      if (v == nullptr) return "--time needs a number of seconds";
-      const std::optional<double> t = parseNumber(*v);
-      if (!t || !(*t > 0.0 && *t <= kMaxTime)) {
-        return "--time: '" + *v + "' is not a number of seconds above 0 and at most 3600";
-      }
-      o.time = *t;
-    } else if (a == "--out" || a == "--data") {
-      const std::string* v = value();
-      if (v == nullptr) return a + " needs a folder";
-      if (v->empty()) return a + ": the folder name is empty";
-      if (a == "--out") {
-        o.out = *v;
-      } else {
-        o.dataDir = *v;
-      }
-    } else if (a.size() > 1 && a[0] == '-') {
-      return "unknown option '" + a + "'";
-    } else {
-      o.scenes.push_back(a);
-    }
-  }
-  if (o.scenes.empty()) o.scenes = kConvergeScenes;
-  return {};
+void describeConverge(CommandLine& line, ConvergeOptions& o) {
+  line.positional(
+      "SCENE",
+      "scenes with an exact answer: analytic positions (<expect kind=\"position\">) or free bodies in zero "
+      "gravity, checked against Euler's equations (default: projectile, pendulum-exact, circular-orbit, "
+      "tumbling-box)",
+      true, [&o](const std::string& name) {
+        o.scenes.push_back(name);
+        return std::string();
+      });
+  line.methods(o.methods,
+               "(default: all four); rigid bodies are solved by XPBD whatever the method, so they run once");
+  line.models(o.models, false,
+              "(default: every model a scene's boxes take; a scene of particles alone has none and runs as "
+              "'particle')");
+  line.counts(option::kSubsteps, phys::kMaxSubsteps, o.substeps, "(default 1,2,4,8,16,32,64): h = dt / each");
+  line.count(option::kIterations, phys::kMaxIterations, o.iterations, "(default 4)");
+  line.seconds(option::kTime, 0.0, kMaxTime, o.time, "(default 4); analytic scenes use their answers' times");
+  line.folder(option::kOut, o.out, "converge.csv and, per scene, converge-SCENE.gp, .png, .svg");
+  line.folder(option::kData, o.dataDir, "");
 }
 
 // ---- what a scene is compared with ------------------------------------------------------------
@@ -434,19 +371,11 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
   return chart;
 }
 
-int convergeMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (asksForHelp(args)) {
-    out << usageText();
-    return kExitOk;
-  }
-  ConvergeOptions o;
-  if (std::string e = parse(args, o); !e.empty()) {
-    err << "lab: " << e << "\n" << usageText();
-    return kExitUsage;
-  }
-  RunOptions where;
-  where.dataDir = o.dataDir;
-  const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(where));
+namespace {
+
+// Every scene's runs and table, then the files of --out.
+int runConvergeCommand(const ConvergeOptions& o, std::ostream& out, std::ostream& err) {
+  const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(o.dataDir));
   std::string current;
   try {
     if (o.out) fileio::prepareFolder(*o.out);  // before the runs
@@ -494,6 +423,20 @@ int convergeMain(const std::vector<std::string>& args, std::ostream& out, std::o
     err << "lab: converge: " << current << ": " << e.what() << "\n";
   }
   return kExitFailure;
+}
+
+}  // namespace
+
+int convergeMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  ConvergeOptions o;
+  CommandLine line("converge",
+                   "Error against the substep size h for every method and model, on scenes with an exact\n"
+                   "answer; the slope of the log-log line is the method's measured order.");
+  describeConverge(line, o);
+  return commandMain(line, args, out, err, [&] {
+    if (o.scenes.empty()) o.scenes = kConvergeScenes;
+    return runConvergeCommand(o, out, err);
+  });
 }
 
 }  // namespace lab

@@ -1,6 +1,5 @@
 #include "lab.h"
 
-#include <exception>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -14,34 +13,89 @@
 #include "scenes/scene.h"
 
 namespace lab {
+namespace {
+
+// Load, override, step, report, dump.
+int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  scenes::Scene scene = scenes::loadSceneFile(sceneFile(options.scene, options.dataDir),
+                                              imposedAtLoad(options.model, options.sleep));
+  const RunResult result = runScene(scene, options, &err);
+  out << (options.json ? jsonText(result) : summaryText(result));
+  out.flush();
+  // The report goes out first, so a long run's figures survive a dump that cannot be written.
+  if (options.dump) {
+    try {
+      fileio::writeAtomically(*options.dump, dumpCsv(scene.world, scene.bodies));
+    } catch (const std::exception& e) {
+      err << "lab: --dump: " << e.what() << "\n";
+      return kExitFailure;
+    }
+    if (!options.json) {
+      out << "dump         " << scene.bodies.size() << " named bodies to " << options.dump->string() << "\n";
+    }
+  }
+  return kExitOk;
+}
+
+int runMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  RunOptions options;
+  CommandLine line("run",
+                   "Steps one scene and prints what it measured: the cost of each stage, the errors, the\n"
+                   "energy, and what the guard froze.");
+  describeRun(line, options);
+  return commandMain(line, args, out, err, [&] { return runCommand(options, out, err); });
+}
+
+struct CommandEntry {
+  const char* name;
+  const char* arguments;  // what `lab help` shows after the name
+  const char* summary;
+  CommandMain main;
+};
+
+constexpr CommandEntry kCommands[] = {
+    {"run", "SCENE", "steps a scene and reports its figures", runMain},
+    {"sweep", "SCENE --out DIR", "speed against accuracy over settings", sweepMain},
+    {"stability", "", "where each method fails", stabilityMain},
+    {"tune", "SCENE --target M=V", "the cheapest settings that meet targets", tuneMain},
+    {"compare", "SCENE", "our methods beside Bullet, ODE and MuJoCo", compareMain},
+    {"scale", "[KIND]", "cost per body against the scene's size", scaleMain},
+    {"converge", "[SCENE...]", "error against substep size: each method's order", convergeMain},
+    {"report", "", "docs/results.md and its charts", reportMain},
+};
+
+std::string commandNames() {
+  std::string names;
+  for (const CommandEntry& c : kCommands) names += std::string(c.name) + ", ";
+  return names.substr(0, names.size() - 2) + " or help";
+}
+
+}  // namespace
+
+std::string usage() {
+  std::string text = "usage: lab COMMAND [options]   (lab COMMAND --help lists a command's options)\n";
+  for (const CommandEntry& c : kCommands) {
+    std::string head = std::string("  ") + c.name + " " + c.arguments;
+    head.resize(std::max<std::size_t>(head.size() + 1, 30), ' ');
+    text += head + c.summary + "\n";
+  }
+  return text + "  help                        this text\n";
+}
 
 int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const ParsedCommand parsed = parseCommandLine(args);
-  if (!parsed.error.empty()) {
-    err << "lab: " << parsed.error << "\n" << usage();
+  if (args.empty()) {
+    err << "lab: no command (" << commandNames() << ")\n" << usage();
     return kExitUsage;
   }
-  switch (parsed.command) {
-    case Command::Help:
-      out << usage();
-      return kExitOk;
-    case Command::Run:
-      return runCommand(parsed.run, out, err);
-    case Command::Sweep:
-      return sweepMain(parsed.rest, out, err);
-    case Command::Stability:
-      return stabilityMain(parsed.rest, out, err);
-    case Command::Tune:
-      return tuneMain(parsed.rest, out, err);
-    case Command::Compare:
-      return compareMain(parsed.rest, out, err);
-    case Command::Scale:
-      return scaleMain(parsed.rest, out, err);
-    case Command::Converge:
-      return convergeMain(parsed.rest, out, err);
-    case Command::Report:
-      return reportMain(parsed.rest, out, err);
+  const std::string& name = args[0];
+  if (name == "help" || name == "--help" || name == "-h") {
+    out << usage();
+    return kExitOk;
   }
+  for (const CommandEntry& c : kCommands) {
+    if (name == c.name) return c.main({args.begin() + 1, args.end()}, out, err);
+  }
+  err << "lab: unknown command '" << name << "' (" << commandNames() << ")\n" << usage();
   return kExitUsage;
 }
 
@@ -53,49 +107,6 @@ CommandOutput runCaptured(CommandMain main, const std::vector<std::string>& args
   r.out = out.str();
   r.err = err.str();
   return r;
-}
-
-int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
-  // Optional only so the load can sit inside the try; the Scene is moved in, never copied.
-  std::optional<scenes::Scene> scene;
-  std::filesystem::path file = options.scene;
-  try {
-    file = scenes::resolveScene(options.scene, scenes::sceneDirectory(dataDir(options)));
-    scene.emplace(scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep)));
-  } catch (const scenes::LoadError& e) {
-    err << e.what() << "\n";  // already "file:line: ...", the form editors jump to
-    return kExitFailure;
-  } catch (const std::exception& e) {
-    // The loader promises LoadError only, but resolving a path can throw filesystem_error;
-    // either way a message and exit 1, not a crash.
-    err << "lab: " << file.string() << ": " << e.what() << "\n";
-    return kExitFailure;
-  }
-
-  RunResult result;
-  try {
-    result = runScene(*scene, options, &err);
-  } catch (const std::invalid_argument& e) {
-    // A combination the world refuses (options.cpp already checked each value's range).
-    err << "lab: the overrides were refused: " << e.what() << "\n";
-    return kExitFailure;
-  }
-
-  out << (options.json ? jsonText(result) : summaryText(result));
-  out.flush();
-  // The report goes out first, so a long run's figures survive a dump that cannot be written.
-  if (options.dump) {
-    try {
-      fileio::writeAtomically(*options.dump, dumpCsv(scene->world, scene->bodies));
-    } catch (const std::exception& e) {
-      err << "lab: --dump: " << e.what() << "\n";
-      return kExitFailure;
-    }
-    if (!options.json) {
-      out << "dump         " << scene->bodies.size() << " named bodies to " << options.dump->string() << "\n";
-    }
-  }
-  return kExitOk;
 }
 
 }  // namespace lab

@@ -17,7 +17,4 @@ inline constexpr int kExitUsage = 2;    ///< a command-line error
 /// Runs the program on the arguments after its name; returns the exit code.
 int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
-/// `lab run` with parsed options: load, override, step, report, dump. Returns the exit code.
-int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err);
-
 }  // namespace lab

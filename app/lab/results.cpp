@@ -27,15 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string reportUsage() {
-  return "usage: lab report [--out DIR] [--quick] [--data DIR]\n"
-         "  --out DIR   where results.md and its results/ folder go (default: <data>/docs)\n"
-         "  --quick     tiny sweeps and one stability scene: checks the pipeline, not the physics\n"
-         "  --data DIR  folder holding assets/ (default: the source tree)\n"
-         "  --help      show this text\n"
-         "Takes several minutes in full; `make charts` runs it.\n";
-}
-
 struct ReportOptions {
   fs::path out;
   fs::path data;
@@ -107,12 +98,12 @@ constexpr SweepScene kSweepScenes[] = {
 std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& scene, const fs::path& dir) {
   std::vector<std::string> args{scene, "--out", dir.string(), "--data", o.data.string()};
   if (o.quick) {
-    for (const char* a : {"--method", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps", "1",
+    for (const char* a : {"--methods", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps", "1",
                           "--repeat", "1", "--steps", "10"}) {
       args.emplace_back(a);
     }
   } else {
-    for (const char* a : {"--method", "gauss-seidel,jacobi,xpbd,shake", "--iterations", "1,2,4,8",
+    for (const char* a : {"--methods", "gauss-seidel,jacobi,xpbd,shake", "--iterations", "1,2,4,8",
                           "--substeps", "1,2,4,8", "--repeat", "3"}) {
       args.emplace_back(a);
     }
@@ -341,37 +332,18 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
 
 int reportMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   ReportOptions o;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
-    if (a == "--help" || a == "-h") {
-      out << reportUsage();
-      return kExitOk;
-    } else if (a == "--quick") {
-      o.quick = true;
-    } else if (a == "--out" || a == "--data") {
-      const std::string* v = value();
-      if (v == nullptr) {
-        err << "lab: " << a << " needs a folder\n" << reportUsage();
-        return kExitUsage;
-      }
-      (a == "--out" ? o.out : o.data) = *v;
-    } else {
-      err << "lab: report: unknown argument '" << a << "'\n" << reportUsage();
-      return kExitUsage;
-    }
-  }
-  RunOptions defaults;
-  defaults.dataDir = o.data;
-  o.data = dataDir(defaults);
-  if (o.out.empty()) o.out = o.data / "docs";
-  try {
-    fileio::prepareFolder(o.out / "results");  // before the runs, which take minutes
+  CommandLine line("report",
+                   "Runs the lab's commands and writes docs/results.md and its charts from what they print.\n"
+                   "Takes several minutes in full; `make charts` runs it.");
+  line.folder(option::kOut, o.out, "results.md and its results/ folder (default: <data>/docs)");
+  line.flag(option::kQuick, o.quick, true, "");
+  line.folder(option::kData, o.data, "");
+  return commandMain(line, args, out, err, [&] {
+    o.data = dataDir(o.data);
+    if (o.out.empty()) o.out = o.data / "docs";
+    prepareOutputFolder(o.out / "results");  // before the runs, which take minutes
     return writeReport(o, out, err);
-  } catch (const std::exception& e) {
-    err << "lab: report: " << e.what() << "\n";
-    return kExitFailure;
-  }
+  });
 }
 
 }  // namespace lab

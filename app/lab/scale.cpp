@@ -29,22 +29,6 @@ namespace {
 constexpr int kMaxSize = 4096;  // ragdolls, or a pyramid's base: 8.4 million boxes is beyond any run
 constexpr int kDefaultScaleSteps = 60;
 
-std::string usageText() {
-  return "usage: lab scale [KIND] [--sizes LIST] [--steps N] [--method M] [--iterations K]\n"
-         "                 [--substeps S] [--json] [--out DIR]\n"
-         "  KIND            capsule-ragdolls (default), box-ragdolls or pyramid\n"
-         "  --sizes LIST    sizes, comma-separated, 1 to 4096: ragdolls, or a pyramid's base row\n"
-         "                  (default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)\n"
-         "  --steps N       steps at each size, 1 to 10000000 (default 60: 1 s)\n"
-         "  --method M      gauss-seidel, jacobi, xpbd or shake (default: the generated scene's)\n"
-         "  --iterations K  relaxation passes per substep, 1 to 1000 (default: the scene's)\n"
-         "  --substeps S    integrations per step, 1 to 1000 (default: the scene's)\n"
-         "  --json          a JSON array, one object per size, instead of the table\n"
-         "  --out DIR       also write DIR/scale.csv, DIR/scale.gp and the chart scale.png, .svg\n"
-         "  --save-scenes DIR  also write each size's scene as DIR/KIND-N.xml, for lab run\n"
-         "  --help          show this text\n";
-}
-
 struct ScaleOptions {
   ScaleKind kind = ScaleKind::CapsuleRagdolls;
   std::vector<int> sizes;  // empty: the kind's defaults
@@ -54,53 +38,24 @@ struct ScaleOptions {
   std::optional<std::filesystem::path> scenes;  // --save-scenes
 };
 
-std::string parse(const std::vector<std::string>& args, ScaleOptions& o) {
-  o.run.steps = kDefaultScaleSteps;
-  bool kindGiven = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&] { return optionValue(args, i); };
-    if (a == "--sizes") {
-      const std::string* v = value();
-      if (v == nullptr) return "--sizes needs a list of sizes";
-      const std::optional<std::vector<std::string>> items = splitList(*v);
-      if (!items) return "--sizes: '" + *v + "' is not a comma-separated list";
-      o.sizes.clear();
-      for (const std::string& item : *items) {
-        const std::optional<int> n = parseWholeNumber(item, 1, kMaxSize);
-        if (!n) return notWholeNumber("--sizes", item, kMaxSize);
-        o.sizes.push_back(*n);
-      }
-    } else if (std::optional<std::string> solverError = parseSolverOption(args, i, o.run)) {
-      if (!solverError->empty()) return *solverError;
-    } else if (a == "--json") {
-      o.json = true;
-    } else if (a == "--save-scenes") {
-      const std::string* v = value();
-      if (v == nullptr) return "--save-scenes needs a folder";
-      if (v->empty()) return "--save-scenes: the folder name is empty";
-      o.scenes = *v;
-    } else if (a == "--out") {
-      const std::string* v = value();
-      if (v == nullptr) return "--out needs a folder";
-      if (v->empty()) return "--out: the folder name is empty";
-      o.out = *v;
-    } else if (a.starts_with("-")) {
-      return "unknown option '" + a + "'";
-    } else if (kindGiven) {
-      return "one KIND only: '" + a + "' after '" + std::string(toString(o.kind)) + "'";
-    } else {
-      const std::optional<ScaleKind> kind = parseScaleKind(a);
-      if (!kind) return "unknown KIND '" + a + "' (capsule-ragdolls, box-ragdolls or pyramid)";
-      o.kind = *kind;
-      kindGiven = true;
-    }
-  }
-  if (o.sizes.empty()) {
-    o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
-                                           : std::vector<int>{1, 4, 16, 64, 256, 1024};
-  }
-  return {};
+void describeScale(CommandLine& line, ScaleOptions& o) {
+  line.positional("KIND", "capsule-ragdolls (default), box-ragdolls or pyramid", false,
+                  [&o](const std::string& word) {
+                    const std::optional<ScaleKind> kind = parseScaleKind(word);
+                    if (!kind)
+                      return "unknown KIND '" + word + "' (capsule-ragdolls, box-ragdolls or pyramid)";
+                    o.kind = *kind;
+                    return std::string();
+                  });
+  line.counts(option::kSizes, kMaxSize, o.sizes,
+              "(default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)");
+  line.count(option::kSteps, kMaxSteps, o.run.steps, "at each size (default 60: 1 s)");
+  line.method(o.run.method, "(default: the generated scene's)");
+  line.count(option::kIterations, phys::kMaxIterations, o.run.iterations, "(default: the scene's)");
+  line.count(option::kSubsteps, phys::kMaxSubsteps, o.run.substeps, "(default: the scene's)");
+  line.flag(option::kJson, o.json, true, "an array, one object per size, instead of the table");
+  line.folder(option::kOut, o.out, "scale.csv, scale.gp and the chart scale.png, .svg");
+  line.folder(option::kSaveScenes, o.scenes, "");
 }
 
 // Ragdolls stand on a square grid, 2 m apart (a ragdoll is 1.7 m tall at scale 1), each tipped
@@ -269,18 +224,8 @@ Chart scaleChart(const std::vector<ScaleRow>& rows) {
   return chart;
 }
 
-}  // namespace
-
-int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (asksForHelp(args)) {
-    out << usageText();
-    return kExitOk;
-  }
-  ScaleOptions o;
-  if (std::string e = parse(args, o); !e.empty()) {
-    err << "lab: " << e << "\n" << usageText();
-    return kExitUsage;
-  }
+// The runs, the table or JSON, and the files of --out.
+int runScaleCommand(const ScaleOptions& o, std::ostream& out, std::ostream& err) {
   try {
     if (o.out) fileio::prepareFolder(*o.out);  // before the runs, which can take minutes
     if (o.scenes) {
@@ -316,12 +261,27 @@ int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostr
     return kExitOk;
   } catch (const fileio::FileError& e) {
     err << "lab: --out: " << e.what() << "\n";
-  } catch (const std::invalid_argument& e) {
-    err << "lab: scale: the settings were refused: " << e.what() << "\n";
   } catch (const scenes::LoadError& e) {
     err << "lab: scale: the generated scene: " << e.what() << "\n";  // a bug in the generator
   }
   return kExitFailure;
+}
+
+}  // namespace
+
+int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  ScaleOptions o;
+  o.run.steps = kDefaultScaleSteps;
+  CommandLine line(
+      "scale", "Generates a scene of each size and steps it: the cost per step and per body against size.");
+  describeScale(line, o);
+  return commandMain(line, args, out, err, [&] {
+    if (o.sizes.empty()) {
+      o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
+                                             : std::vector<int>{1, 4, 16, 64, 256, 1024};
+    }
+    return runScaleCommand(o, out, err);
+  });
 }
 
 }  // namespace lab

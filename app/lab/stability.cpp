@@ -97,45 +97,22 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
 }  // namespace
 
 int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (asksForHelp(args)) {
-    out << stability::usage();
-    return kExitOk;
-  }
   StabilityOptions o;
-  if (const std::string error = stability::parseOptions(args, o); !error.empty()) {
-    err << "lab: " << error << "\n" << stability::usage();
-    return kExitUsage;
-  }
-  // The suite takes minutes: a folder it cannot write to is better said now than after it.
-  if (!o.out.empty()) {
-    try {
-      fileio::prepareFolder(o.out);
-    } catch (const fileio::FileError& e) {
-      err << "lab: --out: " << e.what() << "\n";
-      return kExitFailure;
-    }
-  }
-  std::vector<SuiteScene> scenes;
-  try {
+  CommandLine line(
+      "stability",
+      "Runs every scene of <data>/assets/scenes/stability under every method x model x iterations\n"
+      "x substeps, and in each peer engine, and judges each run by the scene's <expect kind=\"pass\">.");
+  stability::describeOptions(line, o);
+  return commandMain(line, args, out, err, [&] {
+    if (!o.out.empty()) prepareOutputFolder(o.out);  // the suite takes minutes: say a bad --out now
+    std::vector<SuiteScene> scenes;
     for (const std::filesystem::path& file : stability::sceneFiles(o))
       scenes.push_back(stability::loadSuiteScene(file));
-  } catch (const scenes::LoadError& e) {
-    err << e.what() << "\n";  // "file:line: <expect> attribute 'x': why"
-    return kExitFailure;
-  } catch (const std::exception& e) {
-    err << "lab: stability: " << e.what() << "\n";
-    return kExitFailure;
-  }
-  SuiteResult result;
-  try {
-    result = runSuite(o, scenes, err);
-  } catch (const std::exception& e) {  // a file changed mid-run, or a setting the world refused
-    err << "\nlab: stability: " << e.what() << "\n";
-    return kExitFailure;
-  }
-  const std::string md = stability::markdownReport(result);
-  out << md << std::flush;
-  return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
+    const SuiteResult result = runSuite(o, scenes, err);
+    const std::string md = stability::markdownReport(result);
+    out << md << std::flush;
+    return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
+  });
 }
 
 }  // namespace lab

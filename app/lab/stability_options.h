@@ -1,11 +1,11 @@
 #pragma once
 // The command line of `lab stability` (docs/lab.md, "lab stability"), and which scene files it
-// names. Parsing never touches the file system, so every bad argument is caught (exit 2)
-// before a scene is loaded.
+// names.
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "command_line.h"
 #include "physics/settings.h"
 
 namespace lab::stability {
@@ -25,11 +25,8 @@ struct StabilityOptions {
   std::filesystem::path dataDir;  ///< holds assets/; empty: the build's default
 };
 
-/// The usage text, for --help and after a command-line error.
-std::string usage();
-
-/// Parses the arguments after "stability" into `options`; returns the error, or "" when good.
-std::string parseOptions(const std::vector<std::string>& args, StabilityOptions& options);
+/// `lab stability`'s options, into `options`.
+void describeOptions(CommandLine& line, StabilityOptions& options);
 
 /// "stack-10" < "stack-20" < "stack-100": runs of digits compare as numbers, so the suite's
 /// files sort by size.

@@ -40,23 +40,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kErrorFloor = 1e-9;
 /// A sweep of more runs than this is surely a typo in a list.
 constexpr std::size_t kMaxCombinations = 10000;
-constexpr int kMaxRepeats = 1000;
-
-std::string sweepUsage() {
-  return "usage: lab sweep SCENE --out DIR [--method LIST] [--iterations LIST] [--substeps LIST]\n"
-         "                 [--dt LIST] [--model LIST] [--repeat R] [--steps N] [--no-peers] [--data DIR]\n"
-         "  LIST            comma-separated values; every combination is run (default: the scene's)\n"
-         "  --method        gauss-seidel, jacobi, xpbd, shake\n"
-         "  --iterations    relaxation passes per substep, 1 to 1000\n"
-         "  --substeps      integrations per step, 1 to 1000\n"
-         "  --dt            seconds per step, 1e-06 to 1\n"
-         "  --model         corners, tetra (boxes), seed, lean (ragdolls), rigid (both), imposed at load\n"
-         "  --repeat R      timed runs per combination, 1 to 1000 (default 3; the median counts)\n"
-         "  --steps N       steps at the scene's dt (default: 1 s of them); other dts run as long\n"
-         "  --no-peers      leave out the peer engines (Bullet, ODE, MuJoCo when built in)\n"
-         "  --data DIR      folder holding assets/ (default: the source tree)\n"
-         "  --out DIR       where results.csv, pareto.csv, sweep.gp and the chart go (required)\n";
-}
 
 struct SweepOptions {
   std::string scene;
@@ -72,69 +55,21 @@ struct SweepOptions {
   std::filesystem::path out;
 };
 
-// Appends v unless it is there already: a value listed twice is run once.
-template <typename T>
-void addOnce(std::vector<T>& list, const T& v) {
-  if (std::find(list.begin(), list.end(), v) == list.end()) list.push_back(v);
-}
-
-// One LIST option's items into `into`; returns the error, or "".
-std::string parseListOption(const std::string& option, const std::string& text, SweepOptions& o) {
-  const std::optional<std::vector<std::string>> items = splitList(text);
-  if (!items) return option + ": '" + text + "' is not a comma-separated list (an item is empty)";
-  for (const std::string& item : *items) {
-    if (option == "--method") {
-      const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(item);
-      if (!m) return option + ": unknown method '" + item + "' (gauss-seidel, jacobi, xpbd or shake)";
-      addOnce(o.methods, *m);
-    } else if (option == "--iterations" || option == "--substeps") {
-      const int high = option == "--iterations" ? phys::kMaxIterations : phys::kMaxSubsteps;
-      const std::optional<int> n = parseWholeNumber(item, 1, high);
-      if (!n) return notWholeNumber(option, item, high);
-      addOnce(option == "--iterations" ? o.iterations : o.substeps, *n);
-    } else if (option == "--dt") {
-      const std::optional<double> dt = parseDt(item);
-      if (!dt) return option + ": '" + item + "' is not a number of seconds from 1e-06 to 1";
-      addOnce(o.dts, *dt);
-    } else {
-      addOnce(o.models, item);  // checked against the scene once it is loaded
-    }
-  }
-  return {};
-}
-
-std::string parseSweep(const std::vector<std::string>& args, SweepOptions& o) {
-  bool haveOut = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&] { return optionValue(args, i); };
-    if (a == "--method" || a == "--iterations" || a == "--substeps" || a == "--dt" || a == "--model") {
-      const std::string* v = value();
-      if (v == nullptr) return a + " needs a comma-separated list";
-      if (std::string e = parseListOption(a, *v, o); !e.empty()) return e;
-    } else if (a == "--repeat" || a == "--steps") {
-      int n = 0;
-      if (std::string e = parseCountOption(a, value(), a == "--repeat" ? kMaxRepeats : kMaxSteps, n);
-          !e.empty())
-        return e;
-      if (a == "--repeat")
-        o.repeats = n;
-      else
-        o.steps = n;
-    } else if (a == "--no-peers") {
-      o.peers = false;
-    } else if (a == "--data" || a == "--out") {
-      const std::string* v = value();
-      if (v == nullptr) return a + " needs a folder";
-      (a == "--data" ? o.dataDir : o.out) = *v;
-      haveOut = haveOut || a == "--out";
-    } else if (std::string e = sceneArgument("sweep", a, o.scene); !e.empty()) {
-      return e;
-    }
-  }
-  if (o.scene.empty()) return missingScene("sweep");
-  if (!haveOut) return "sweep needs --out DIR (where the CSV and the chart go)";
-  return {};
+void describeSweep(CommandLine& line, SweepOptions& o) {
+  const std::string scenes = "(default: the scene's)";
+  line.scene(o.scene);
+  line.methods(o.methods, scenes);
+  line.counts(option::kIterations, phys::kMaxIterations, o.iterations, scenes);
+  line.counts(option::kSubsteps, phys::kMaxSubsteps, o.substeps, scenes);
+  line.dts(o.dts, scenes);
+  line.models(o.models, true, "(ragdolls: seed, lean or rigid)");
+  line.count(option::kRepeat, kMaxRepeats, o.repeats, "(default 3)");
+  line.count(option::kSteps, kMaxSteps, o.steps,
+             "at the scene's dt (default: 1 s of them); other dts run as long");
+  line.flag(option::kNoPeers, o.peers, false, "");
+  line.folder(option::kData, o.dataDir, "");
+  line.folder(option::kOut, o.out, "results.csv, pareto.csv, sweep.gp and the chart (required)");
+  line.require(option::kOut, "sweep needs --out DIR (where the CSV and the chart go)");
 }
 
 // ---- the runs -------------------------------------------------------------------------------
@@ -174,8 +109,9 @@ struct Plan {
   int stepsAt(double dt) const { return std::max(1, static_cast<int>(std::lround(horizon / dt))); }
 };
 
-// Builds the plan; returns a usage error (a --model that does not fit the scene), or "".
-std::string makePlan(const SweepOptions& o, const std::filesystem::path& file, Plan& plan) {
+// Builds the plan; throws UsageError for a --models that does not fit the scene, or too many runs.
+Plan makePlan(const SweepOptions& o, const std::filesystem::path& file) {
+  Plan plan;
   const scenes::Scene scene = scenes::loadSceneFile(file);
   const phys::SolverSettings own = scene.world.solverSettings();
   const SceneModels models = sceneModels(file);
@@ -188,7 +124,7 @@ std::string makePlan(const SweepOptions& o, const std::filesystem::path& file, P
   for (const std::string& name : o.models) {
     std::string error;
     const std::optional<ModelChoice> c = modelChoice(name, models, error);
-    if (!c) return "--model: " + error;
+    if (!c) throw UsageError("--models: " + error);
     plan.models.push_back(*c);
   }
   if (plan.models.empty()) plan.models.push_back(models.asFile);
@@ -207,8 +143,8 @@ std::string makePlan(const SweepOptions& o, const std::filesystem::path& file, P
     count += plan.dts.size() * methodsOf.back().size() * iterations.size() * substeps.size();
   }
   if (count > kMaxCombinations) {
-    return std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) +
-           " (shorten a list)";
+    throw UsageError(std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) +
+                     " (shorten a list)");
   }
   for (std::size_t m = 0; m < plan.models.size(); ++m) {
     const ModelChoice& model = plan.models[m];
@@ -220,7 +156,7 @@ std::string makePlan(const SweepOptions& o, const std::filesystem::path& file, P
       }
     }
   }
-  return {};
+  return plan;
 }
 
 Row runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progress& progress) {
@@ -545,41 +481,16 @@ int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream
 }  // namespace
 
 int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (asksForHelp(args)) {
-    out << sweepUsage();
-    return kExitOk;
-  }
   SweepOptions o;
-  if (const std::string e = parseSweep(args, o); !e.empty()) {
-    err << "lab: " << e << "\n" << sweepUsage();
-    return kExitUsage;
-  }
-  RunOptions where;
-  where.dataDir = o.dataDir;
-  std::filesystem::path file = o.scene;
-  try {
-    file = scenes::resolveScene(o.scene, scenes::sceneDirectory(dataDir(where)));
-    Plan plan;
-    if (const std::string e = makePlan(o, file, plan); !e.empty()) {
-      err << "lab: " << e << "\n" << sweepUsage();
-      return kExitUsage;
-    }
-    // A sweep takes minutes: a folder it cannot write to is better said now than after it.
-    try {
-      fileio::prepareFolder(o.out);
-    } catch (const fileio::FileError& e) {
-      err << "lab: --out: " << e.what() << "\n";
-      return kExitFailure;
-    }
+  CommandLine line("sweep",
+                   "Runs every combination of the listed settings on SCENE (LIST: comma-separated values),\n"
+                   "times each and measures its error against the scene's accuracy target.");
+  describeSweep(line, o);
+  return commandMain(line, args, out, err, [&] {
+    const Plan plan = makePlan(o, sceneFile(o.scene, o.dataDir));
+    prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
     return runSweep(plan, o.out, out, err);
-  } catch (const scenes::LoadError& e) {
-    err << e.what() << "\n";  // "file:line: ...", as `lab run` prints it
-  } catch (const std::invalid_argument& e) {
-    err << "lab: sweep: the settings were refused: " << e.what() << "\n";
-  } catch (const std::exception& e) {
-    err << "lab: sweep: " << e.what() << "\n";
-  }
-  return kExitFailure;
+  });
 }
 
 }  // namespace lab

@@ -1,6 +1,7 @@
 #pragma once
 // The lab's small text helpers, one of each: numbers as its tables print them, comma lists as
 // its options take them, the setting label every command prints, and the median of timings.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,12 @@ std::string formatNumber(double value, int digits = 6);
 
 /// "a,b,c" split at the commas; nullopt when an item is empty ("a,,b", "a,", "").
 std::optional<std::vector<std::string>> splitList(const std::string& text);
+
+/// Appends v unless it is there already: a value listed twice counts once.
+template <typename T>
+void addOnce(std::vector<T>& list, const T& v) {
+  if (std::find(list.begin(), list.end(), v) == list.end()) list.push_back(v);
+}
 
 /// The median; 0 for no values. Takes a copy, since it reorders.
 double median(std::vector<double> values);

@@ -36,29 +36,11 @@ constexpr int kLadderSize = static_cast<int>(sizeof kLadder / sizeof kLadder[0])
 constexpr double kPruneFactor = 1.5;
 /// Qualifying settings within this factor of the cheapest (rough timing) are timed properly.
 constexpr double kFinalistFactor = 1.5;
-constexpr int kMaxRepeats = 1000;
 
 /// The seed's settings (docs/physics.md, "Defaults"): what tune compares its winner with.
 constexpr phys::SolverMethod kSeedMethod = phys::SolverMethod::GaussSeidel;
 constexpr int kSeedIterations = 3;
 constexpr int kSeedSubsteps = 1;
-
-std::string tuneUsage() {
-  return "usage: lab tune SCENE --target METRIC=VALUE [--target ...] [--steps N] [--repeat R] [--data DIR]\n"
-         "  METRIC=VALUE    an upper bound the setting must meet; METRIC is one of\n"
-         "                    error        m, largest distance from the accuracy target (analytic or "
-         "reference)\n"
-         "                    stick-error  largest stick violation / rest length over the run (0.01 = 1%)\n"
-         "                    joint-error  m, largest joint gap over the run\n"
-         "                    penetration  m, deepest penetration over the run\n"
-         "                    drift        J, |energy after the last step - energy before the first|\n"
-         "  --steps N       steps at the scene's dt, 1 to 10000000 (default: 1 s of them)\n"
-         "  --repeat R      timed runs of each finalist, 1 to 1000 (default 3; the median counts)\n"
-         "  --data DIR      folder holding assets/ (default: the source tree)\n"
-         "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
-         "(xpbd alone for rigid), and substeps and iterations over 1,2,3,4,6,8,12,16,24,32, at the\n"
-         "scene's dt. A setting whose run froze anything never qualifies.\n";
-}
 
 enum class Metric { Error, StickError, JointError, Penetration, Drift };
 
@@ -112,7 +94,7 @@ struct TuneOptions {
   std::filesystem::path dataDir;
 };
 
-std::string parseTarget(const std::string& text, TuneOptions& o) {
+std::string readTarget(const std::string& text, TuneOptions& o) {
   const std::size_t eq = text.find('=');
   const std::string name = text.substr(0, eq);
   const MetricInfo* which = nullptr;
@@ -120,46 +102,26 @@ std::string parseTarget(const std::string& text, TuneOptions& o) {
     if (name == i.name) which = &i;
   }
   if (which == nullptr) {
-    return "--target: unknown metric '" + name + "' in '" + text +
+    return "unknown metric '" + name + "' in '" + text +
            "' (error, stick-error, joint-error, penetration or drift)";
   }
   const std::optional<double> v = eq == std::string::npos ? std::nullopt : parseNumber(text.substr(eq + 1));
-  if (!v || *v <= 0.0) return "--target: '" + text + "' needs METRIC=VALUE with a finite VALUE > 0";
+  if (!v || *v <= 0.0) return "'" + text + "' needs METRIC=VALUE with a finite VALUE > 0";
   for (const Target& t : o.targets) {
-    if (t.metric == which->metric) return "--target: " + name + " is given twice";
+    if (t.metric == which->metric) return name + " is given twice";
   }
   o.targets.push_back({which->metric, *v});
   return {};
 }
 
-std::string parseTune(const std::vector<std::string>& args, TuneOptions& o) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&] { return optionValue(args, i); };
-    if (a == "--target") {
-      const std::string* v = value();
-      if (v == nullptr) return "--target needs METRIC=VALUE";
-      if (std::string e = parseTarget(*v, o); !e.empty()) return e;
-    } else if (a == "--steps" || a == "--repeat") {
-      int n = 0;
-      if (std::string e = parseCountOption(a, value(), a == "--steps" ? kMaxSteps : kMaxRepeats, n);
-          !e.empty())
-        return e;
-      if (a == "--steps")
-        o.steps = n;
-      else
-        o.repeats = n;
-    } else if (a == "--data") {
-      const std::string* v = value();
-      if (v == nullptr) return "--data needs a folder";
-      o.dataDir = *v;
-    } else if (std::string e = sceneArgument("tune", a, o.scene); !e.empty()) {
-      return e;
-    }
-  }
-  if (o.scene.empty()) return missingScene("tune");
-  if (o.targets.empty()) return "tune needs at least one --target METRIC=VALUE";
-  return {};
+void describeTune(CommandLine& line, TuneOptions& o) {
+  line.scene(o.scene);
+  line.custom(
+      option::kTarget, false, [&o](const std::string& text) { return readTarget(text, o); }, "");
+  line.require(option::kTarget, "tune needs at least one --target METRIC=VALUE");
+  line.count(option::kSteps, kMaxSteps, o.steps, "at the scene's dt (default: 1 s of them)");
+  line.count(option::kRepeat, kMaxRepeats, o.repeats, "(of each finalist; default 3)");
+  line.folder(option::kData, o.dataDir, "");
 }
 
 // ---- the search -------------------------------------------------------------------------------
@@ -409,28 +371,21 @@ int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostrea
 }  // namespace
 
 int tuneMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (asksForHelp(args)) {
-    out << tuneUsage();
-    return kExitOk;
-  }
   TuneOptions o;
-  if (const std::string e = parseTune(args, o); !e.empty()) {
-    err << "lab: " << e << "\n" << tuneUsage();
-    return kExitUsage;
-  }
-  RunOptions where;
-  where.dataDir = o.dataDir;
-  try {
-    const std::filesystem::path file = scenes::resolveScene(o.scene, scenes::sceneDirectory(dataDir(where)));
-    return runTune(o, file, out, err);
-  } catch (const scenes::LoadError& e) {
-    err << e.what() << "\n";
-  } catch (const std::invalid_argument& e) {
-    err << "lab: tune: the settings were refused: " << e.what() << "\n";
-  } catch (const std::exception& e) {
-    err << "lab: tune: " << e.what() << "\n";
-  }
-  return kExitFailure;
+  CommandLine line(
+      "tune",
+      "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n"
+      "  error        m, largest distance from the accuracy target (analytic or reference)\n"
+      "  stick-error  largest stick violation / rest length over the run (0.01 = 1%)\n"
+      "  joint-error  m, largest joint gap over the run\n"
+      "  penetration  m, deepest penetration over the run\n"
+      "  drift        J, |energy after the last step - energy before the first|\n"
+      "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
+      "(xpbd alone for rigid), and substeps and iterations over 1,2,3,4,6,8,12,16,24,32, at the\n"
+      "scene's dt. A setting whose run froze anything never qualifies.");
+  describeTune(line, o);
+  return commandMain(line, args, out, err,
+                     [&] { return runTune(o, sceneFile(o.scene, o.dataDir), out, err); });
 }
 
 }  // namespace lab

@@ -528,7 +528,7 @@ TEST(Report, QuickReportWritesEveryPart) {
 TEST(Report, BadArgumentsExitWithUsage) {
   const Output r = lab::runCaptured(lab::reportMain, {"--frobnicate"});
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("unknown argument '--frobnicate'"), std::string::npos);
+  EXPECT_NE(r.err.find("unknown option '--frobnicate'"), std::string::npos);
 }
 
 }  // namespace

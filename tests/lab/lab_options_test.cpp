@@ -7,67 +7,88 @@
 
 #include <gtest/gtest.h>
 
+#include "commands.h"
 #include "lab.h"
 #include "options.h"
 
 namespace {
 
-using lab::Command;
-using lab::parseCommandLine;
 using Args = std::vector<std::string>;
 
+lab::RunOptions parsed(const Args& args) {
+  lab::RunOptions o;
+  const std::string error = lab::parseRun(args, o);
+  EXPECT_EQ(error, "") << args.size();
+  return o;
+}
+
 TEST(LabOptions, RunWithDefaults) {
-  const lab::ParsedCommand p = parseCommandLine({"run", "pendulum"});
-  ASSERT_EQ(p.error, "");
-  EXPECT_EQ(p.command, Command::Run);
-  EXPECT_EQ(p.run.scene, "pendulum");
-  EXPECT_EQ(p.run.steps, 600);
-  EXPECT_FALSE(p.run.dt);
-  EXPECT_FALSE(p.run.method);
-  EXPECT_FALSE(p.run.iterations);
-  EXPECT_FALSE(p.run.substeps);
-  EXPECT_FALSE(p.run.json);
-  EXPECT_FALSE(p.run.dump);
-  EXPECT_TRUE(p.run.dataDir.empty());
-  EXPECT_EQ(lab::dataDir(p.run), std::filesystem::path(DATA_DIR));
+  const lab::RunOptions o = parsed({"pendulum"});
+  EXPECT_EQ(o.scene, "pendulum");
+  EXPECT_EQ(o.steps, 600);
+  EXPECT_FALSE(o.dt);
+  EXPECT_FALSE(o.method);
+  EXPECT_FALSE(o.iterations);
+  EXPECT_FALSE(o.substeps);
+  EXPECT_FALSE(o.json);
+  EXPECT_FALSE(o.dump);
+  EXPECT_TRUE(o.dataDir.empty());
+  EXPECT_EQ(lab::dataDir(o.dataDir), std::filesystem::path(DATA_DIR));
 }
 
 TEST(LabOptions, EveryOptionAnyOrder) {
-  const lab::ParsedCommand p = parseCommandLine({"run", "--steps", "10000000", "--dt", "0.005", "--method",
-                                                 "xpbd", "--iterations", "1000", "scene.xml", "--substeps",
-                                                 "1", "--json", "--dump", "out.csv", "--data", "/d"});
-  ASSERT_EQ(p.error, "");
-  EXPECT_EQ(p.run.scene, "scene.xml");
-  EXPECT_EQ(p.run.steps, 10000000);
-  EXPECT_EQ(p.run.dt, 0.005);
-  EXPECT_EQ(p.run.method, phys::SolverMethod::Xpbd);
-  EXPECT_EQ(p.run.iterations, 1000);
-  EXPECT_EQ(p.run.substeps, 1);
-  EXPECT_TRUE(p.run.json);
-  EXPECT_EQ(p.run.dump, std::filesystem::path("out.csv"));
-  EXPECT_EQ(p.run.dataDir, std::filesystem::path("/d"));
-  EXPECT_EQ(lab::dataDir(p.run), std::filesystem::path("/d"));
+  const lab::RunOptions o =
+      parsed({"--steps",   "10000000",   "--dt",    "0.005",  "--methods", "xpbd",    "--iterations", "1000",
+              "scene.xml", "--substeps", "1",       "--json", "--dump",    "out.csv", "--data",       "/d",
+              "--models",  "rigid",      "--sleep", "on",     "--threads", "2"});
+  EXPECT_EQ(o.scene, "scene.xml");
+  EXPECT_EQ(o.steps, 10000000);
+  EXPECT_EQ(o.dt, 0.005);
+  EXPECT_EQ(o.method, phys::SolverMethod::Xpbd);
+  EXPECT_EQ(o.iterations, 1000);
+  EXPECT_EQ(o.substeps, 1);
+  EXPECT_TRUE(o.json);
+  EXPECT_EQ(o.dump, std::filesystem::path("out.csv"));
+  EXPECT_EQ(o.dataDir, std::filesystem::path("/d"));
+  EXPECT_EQ(o.model, phys::BodyModel::Rigid);
+  EXPECT_TRUE(o.sleep);
+  EXPECT_EQ(o.threads, 2);
+  EXPECT_EQ(lab::dataDir(o.dataDir), std::filesystem::path("/d"));
+}
+
+// The old spellings stay as aliases, and CLI11's --option=value form works too.
+TEST(LabOptions, AliasesAndEqualsForm) {
+  const lab::RunOptions o = parsed({"s", "--method", "jacobi", "--model=tetra", "--steps=7"});
+  EXPECT_EQ(o.method, phys::SolverMethod::Jacobi);
+  EXPECT_EQ(o.model, phys::BodyModel::Tetra);
+  EXPECT_EQ(o.steps, 7);
+}
+
+// An option given twice: the last one counts.
+TEST(LabOptions, LastValueWins) {
+  EXPECT_EQ(parsed({"s", "--steps", "5", "--steps", "9"}).steps, 9);
 }
 
 TEST(LabOptions, EveryMethodName) {
   for (const char* name : {"gauss-seidel", "jacobi", "xpbd", "shake"}) {
-    const lab::ParsedCommand p = parseCommandLine({"run", "s", "--method", name});
-    ASSERT_EQ(p.error, "") << name;
-    EXPECT_EQ(phys::toString(*p.run.method), name);
+    EXPECT_EQ(phys::toString(*parsed({"s", "--methods", name}).method), name);
   }
 }
 
 TEST(LabOptions, DtLimitsAndForms) {
-  for (const char* good : {"1", "1e-3", "0.0166666666666667", "1.0"}) {
-    EXPECT_EQ(parseCommandLine({"run", "s", "--dt", good}).error, "") << good;
+  for (const char* good : {"1", "1e-3", "0.0166666666666667", "1.0", "1e-06"}) {
+    lab::RunOptions o;
+    EXPECT_EQ(lab::parseRun({"s", "--dt", good}, o), "") << good;
   }
 }
 
 TEST(LabOptions, HelpInEveryForm) {
-  for (const Args& args : {Args{"help"}, Args{"--help"}, Args{"-h"}, Args{"run", "s", "--help"}}) {
-    const lab::ParsedCommand p = parseCommandLine(args);
-    EXPECT_EQ(p.error, "") << args[0];
-    EXPECT_EQ(p.command, Command::Help) << args[0];
+  for (const Args& args : {Args{"help"}, Args{"--help"}, Args{"-h"}, Args{"run", "s", "--help"},
+                           Args{"run", "--steps", "0", "-h"}, Args{"sweep", "--help"}}) {
+    const lab::CommandOutput o = lab::runCaptured(lab::labMain, args);
+    EXPECT_EQ(o.code, lab::kExitOk) << args[0];
+    EXPECT_TRUE(o.out.starts_with("usage: lab")) << o.out;
+    EXPECT_EQ(o.err, "");
   }
 }
 
@@ -84,12 +105,16 @@ void PrintTo(const BadCase& c, std::ostream* os) {
 
 class LabOptionsBad : public ::testing::TestWithParam<BadCase> {};
 
+// Exit 2, "lab: " and one line naming the argument, then the usage; nothing on stdout.
 TEST_P(LabOptionsBad, OneLineNamingTheArgument) {
   const BadCase& c = GetParam();
-  const lab::ParsedCommand p = parseCommandLine(c.args);
-  ASSERT_NE(p.error, "");
-  EXPECT_NE(p.error.find(c.named), std::string::npos) << p.error;
-  EXPECT_EQ(p.error.find('\n'), std::string::npos) << p.error;
+  const lab::CommandOutput o = lab::runCaptured(lab::labMain, c.args);
+  EXPECT_EQ(o.code, lab::kExitUsage);
+  EXPECT_EQ(o.out, "");
+  ASSERT_TRUE(o.err.starts_with("lab: ")) << o.err;
+  const std::string line = o.err.substr(0, o.err.find('\n'));
+  EXPECT_NE(line.find(c.named), std::string::npos) << line;
+  EXPECT_NE(o.err.find("\nusage: lab"), std::string::npos) << o.err;
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -128,15 +153,34 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{{"run", "s", "--iterations", "1001"}, "--iterations: '1001'"},
         BadCase{{"run", "s", "--substeps", "0"}, "--substeps: '0'"},
         BadCase{{"run", "s", "--substeps", "1001"}, "--substeps: '1001'"},
-        BadCase{{"run", "s", "--method", "euler"}, "--method: unknown method 'euler'"},
-        BadCase{{"run", "s", "--method", "Jacobi"}, "'Jacobi'"}));
+        BadCase{{"run", "s", "--method", "euler"}, "--methods: unknown method 'euler'"},
+        BadCase{{"run", "s", "--models", "soft"}, "--models: unknown model 'soft'"},
+        BadCase{{"run", "s", "--sleep", "yes"}, "--sleep: 'yes' is not on or off"},
+        BadCase{{"run", "s", "--threads", "65"}, "--threads: '65'"},
+        BadCase{{"run", "s", "--dump", ""}, "--dump: the file name is empty"},
+        BadCase{{"run", "s", "--steps", "--json"}, "--steps needs a whole number"},
+        BadCase{{"sweep", "s", "--out", "d", "--iterations", "1,,2"}, "--iterations: '1,,2'"},
+        BadCase{{"sweep", "s", "--out", "d", "--methods", "xpbd,euler"}, "--methods: unknown method 'euler'"},
+        BadCase{{"sweep", "s"}, "--out DIR"}, BadCase{{"run", "s", "--method", "Jacobi"}, "'Jacobi'"}));
 
-TEST(LabOptions, UsageListsEveryOption) {
-  const std::string u = lab::usage();
-  for (const char* option :
-       {"run SCENE", "--steps N", "--dt S", "--method M", "--iterations K", "--substeps S", "--model M",
-        "--json", "--dump FILE", "--data DIR", "--help", "lab help"}) {
+TEST(LabOptions, HelpListsEveryOption) {
+  const std::string u = lab::runCaptured(lab::labMain, {"run", "--help"}).out;
+  for (const char* option : {"usage: lab run SCENE", "--steps N", "--dt S", "--methods M", "--iterations K",
+                             "--substeps S", "--models M", "--sleep on|off", "--threads N", "--json",
+                             "--dump FILE", "--data DIR", "--help", "--method too", "--model too"}) {
     EXPECT_NE(u.find(option), std::string::npos) << option;
+  }
+}
+
+// `lab help` names every command; the help of each begins with its usage line.
+TEST(LabOptions, EveryCommandHasHelp) {
+  const std::string overview = lab::usage();
+  for (const char* command :
+       {"run", "sweep", "stability", "tune", "compare", "scale", "converge", "report"}) {
+    EXPECT_NE(overview.find(std::string("  ") + command + " "), std::string::npos) << command;
+    const lab::CommandOutput o = lab::runCaptured(lab::labMain, {command, "--help"});
+    EXPECT_EQ(o.code, lab::kExitOk) << command;
+    EXPECT_TRUE(o.out.starts_with(std::string("usage: lab ") + command)) << o.out;
   }
 }
 
@@ -150,7 +194,8 @@ TEST(LabMain, HelpToStdoutUsageErrorsToStderr) {
   std::ostringstream out2, err2;
   EXPECT_EQ(lab::labMain({"run", "s", "--steps", "0"}, out2, err2), lab::kExitUsage);
   EXPECT_EQ(out2.str(), "");
-  EXPECT_EQ(err2.str(), "lab: --steps: '0' is not a whole number from 1 to 10000000\n" + lab::usage());
+  const std::string help = lab::runCaptured(lab::labMain, {"run", "--help"}).out;
+  EXPECT_EQ(err2.str(), "lab: --steps: '0' is not a whole number from 1 to 10000000\n" + help);
 }
 
 TEST(LabMain, MissingSceneFileExitsOneWithTheOsReason) {

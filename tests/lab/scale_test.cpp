@@ -141,7 +141,8 @@ TEST(Scale, BadArgumentsNameTheArgument) {
   lab_testing::expectUsageError(scale({"--sizes", "0"}), "scale", "--sizes: '0'");
   lab_testing::expectUsageError(scale({"--sizes", "1,,2"}), "scale", "--sizes");
   lab_testing::expectUsageError(scale({"towers"}), "scale", "unknown KIND 'towers'");
-  lab_testing::expectUsageError(scale({"pyramid", "box-ragdolls"}), "scale", "one KIND only");
+  lab_testing::expectUsageError(scale({"pyramid", "box-ragdolls"}), "scale",
+                                "scale takes one KIND; got 'pyramid' and 'box-ragdolls'");
   lab_testing::expectUsageError(scale({"--steps"}), "scale", "--steps");
   lab_testing::expectUsageError(scale({"--method", "euler"}), "scale", "unknown method 'euler'");
   lab_testing::expectUsageError(scale({"--out", ""}), "scale", "--out");

@@ -254,10 +254,10 @@ TEST(Sweep, UsageErrorsNameTheArgument) {
       {{"pendulum", "--out", out, "--dt", "2"}, "--dt: '2'"},
       {{"pendulum", "--out", out, "--repeat", "0"}, "--repeat: '0'"},
       {{"pendulum", "--out", out, "--steps", "1e3"}, "--steps: '1e3'"},
-      {{"pendulum", "--out", out, "--method"}, "--method needs"},
+      {{"pendulum", "--out", out, "--method"}, "--methods needs"},
       {{"pendulum", "--out", out, "--frobnicate"}, "'--frobnicate'"},
-      {{"pendulum", "--out", out, "--model", "corners"}, "--model: 'corners' is a box model"},
-      {{"falling-box", "--out", out, "--model", "lean"}, "--model: 'lean' is a ragdoll model"},
+      {{"pendulum", "--out", out, "--model", "corners"}, "--models: 'corners' is a box model"},
+      {{"falling-box", "--out", out, "--model", "lean"}, "--models: 'lean' is a ragdoll model"},
       {{"falling-box", "--out", out, "--model", "cubes"}, "unknown model 'cubes'"},
   };
   for (const Case& c : cases) {

@@ -1,0 +1,441 @@
+#include "command_line.h"
+
+#include <algorithm>
+#include <exception>
+#include <ostream>
+#include <sstream>
+#include <utility>
+
+#include <CLI/CLI.hpp>
+
+#include "fileio/files.h"
+#include "lab.h"
+#include "numbers.h"
+#include "scenes/scene.h"
+#include "text.h"
+
+namespace lab {
+
+/// One line of the help: "--steps N" and what it does.
+struct CommandLine::Entry {
+  std::string names;  // every spelling, comma-separated: what CLI11 was given
+  std::string label;  // "--steps N"
+  std::string help;
+  std::string needs;
+};
+
+namespace {
+
+constexpr std::size_t kHelpWidth = 100;
+constexpr std::size_t kLabelWidth = 20;
+
+// A value the option's reader refused: carries the whole message out of CLI11's parse.
+class OptionError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string firstName(const std::string& names) {
+  return names.substr(0, names.find(','));
+}
+
+// "(--method too)" for the spellings after the first.
+std::string aliasNote(const std::string& names) {
+  const std::size_t comma = names.find(',');
+  return comma == std::string::npos ? std::string() : "; " + names.substr(comma + 1) + " too";
+}
+
+// `text` wrapped to the help's width, every line after the first indented by `indent`.
+std::string wrapped(const std::string& text, std::size_t first, std::size_t indent) {
+  std::istringstream words(text);
+  std::string word, out;
+  std::size_t column = first;
+  bool lineStart = true;
+  while (words >> word) {
+    if (!lineStart && column + 1 + word.size() > kHelpWidth) {
+      out += "\n" + std::string(indent, ' ');
+      column = indent;
+      lineStart = true;
+    }
+    if (!lineStart) {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+    lineStart = false;
+  }
+  return out;
+}
+
+// Each item of a comma-separated list through `read`; an empty item is refused by name.
+std::string readList(const std::string& text, const std::function<std::string(const std::string&)>& read) {
+  const std::optional<std::vector<std::string>> items = splitList(text);
+  if (!items) return "'" + text + "' is not a comma-separated list (an item is empty)";
+  for (const std::string& item : *items) {
+    if (std::string e = read(item); !e.empty()) return e;
+  }
+  return {};
+}
+
+// A LIST option's target: the command's defaults are dropped at the first value given, and a
+// second --option adds to the first.
+template <typename T>
+std::function<void(const T&)> listAppender(std::vector<T>& into) {
+  auto fresh = std::make_shared<bool>(true);
+  return [&into, fresh](const T& v) {
+    if (*fresh) into.clear();
+    *fresh = false;
+    addOnce(into, v);
+  };
+}
+
+std::string notWholeNumber(const std::string& text, int high) {
+  return "'" + text + "' is not a whole number from 1 to " + std::to_string(high);
+}
+
+std::string readCount(const std::string& text, int high, int& into) {
+  const std::optional<int> n = parseWholeNumber(text, 1, high);
+  if (!n) return notWholeNumber(text, high);
+  into = *n;
+  return {};
+}
+
+std::string readDt(const std::string& text, double& into) {
+  const std::optional<double> v = parseNumber(text);
+  if (!v || !(*v >= phys::kMinDt && *v <= phys::kMaxDt))
+    return "'" + text + "' is not a number of seconds from 1e-06 to 1";
+  into = *v;
+  return {};
+}
+
+std::string readMethod(const std::string& text, phys::SolverMethod& into) {
+  const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(text);
+  if (!m) return "unknown method '" + text + "' (gauss-seidel, jacobi, xpbd or shake)";
+  into = *m;
+  return {};
+}
+
+std::string readOnOff(const std::string& text, bool& into) {
+  if (text != "on" && text != "off") return "'" + text + "' is not on or off";
+  into = text == "on";
+  return {};
+}
+
+std::string readPath(const std::string& text, const OptionSpec& spec, std::filesystem::path& into) {
+  if (text.empty())
+    return std::string("the ") + (spec.value == std::string("FILE") ? "file" : "folder") + " name is empty";
+  into = text;
+  return {};
+}
+
+std::string withNote(const char* help, const std::string& note) {
+  return note.empty() ? std::string(help) : std::string(help) + " " + note;
+}
+
+}  // namespace
+
+CommandLine::CommandLine(std::string command, std::string about)
+    : command_(std::move(command)),
+      about_(std::move(about)),
+      app_(std::make_unique<CLI::App>("", "lab " + command_)) {
+  app_->set_help_flag();  // asksForHelp answers --help before CLI11 sees it
+}
+
+CommandLine::~CommandLine() = default;
+
+void CommandLine::add(const OptionSpec& spec, std::string label, const std::string& note, bool many,
+                      std::function<std::string(const std::string&)> read) {
+  const std::string names = spec.names;
+  const std::string name = firstName(names);
+  const std::string needs = spec.needs;
+  CLI::Option* option = app_->add_option(names);
+  if (many) {
+    // allow_extra_args: "--scene a b" as well as "--scene a --scene b".
+    option->expected(1, CLI::detail::expected_max_vector_size)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(true);
+  } else {
+    option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+  option->check(CLI::Validator(
+      [name, needs, read = std::move(read)](std::string& value) -> std::string {
+        // CLI11 hands a following "--json" to an option that lacks its value; here, as when the
+        // value is missing at the end, that is a forgotten value, not a file called "--json".
+        if (value.starts_with("--")) throw OptionError(name + " needs " + needs);
+        if (std::string e = read(value); !e.empty()) throw OptionError(name + ": " + e);
+        return {};
+      },
+      ""));
+  entries_.push_back({names, std::move(label), withNote(spec.help, note) + aliasNote(names), needs});
+}
+
+void CommandLine::scene(std::string& into) {
+  positional("SCENE", "a scene file, or a name in <data>/assets/scenes", false,
+             [&into](const std::string& v) {
+               into = v;
+               return std::string();
+             });
+  required_.emplace_back("SCENE",
+                         command_ + " needs a SCENE (a scene file, or a name in <data>/assets/scenes)");
+}
+
+void CommandLine::positional(const std::string& name, const std::string& help, bool many,
+                             std::function<std::string(const std::string&)> read) {
+  positionalName_ = name;
+  CLI::Option* option = app_->add_option(name);
+  if (many) option->expected(0, CLI::detail::expected_max_vector_size)->allow_extra_args(true);
+  option->check(CLI::Validator(
+      [this, read = std::move(read)](std::string& value) -> std::string {
+        positionalValues_.push_back(value);
+        if (std::string e = read(value); !e.empty()) throw OptionError(e);
+        return {};
+      },
+      ""));
+  entries_.insert(entries_.begin(), Entry{"", many ? "[" + name + "...]" : name, help, ""});
+}
+
+void CommandLine::count(const OptionSpec& spec, int high, int& into, const std::string& note) {
+  add(spec, std::string(firstName(spec.names)) + " " + spec.value, note, false,
+      [high, &into](const std::string& v) { return readCount(v, high, into); });
+}
+
+void CommandLine::count(const OptionSpec& spec, int high, std::optional<int>& into, const std::string& note) {
+  add(spec, std::string(firstName(spec.names)) + " " + spec.value, note, false,
+      [high, &into](const std::string& v) { return readCount(v, high, into.emplace()); });
+}
+
+void CommandLine::counts(const OptionSpec& spec, int high, std::vector<int>& into, const std::string& note) {
+  add(spec, firstName(spec.names) + " LIST", note, false,
+      [high, append = listAppender(into)](const std::string& text) {
+        return readList(text, [&](const std::string& item) {
+          int n = 0;
+          std::string e = readCount(item, high, n);
+          if (e.empty()) append(n);
+          return e;
+        });
+      });
+}
+
+void CommandLine::dt(std::optional<double>& into, const std::string& note) {
+  add(option::kDt, "--dt S", note, false,
+      [&into](const std::string& v) { return readDt(v, into.emplace()); });
+}
+
+void CommandLine::dts(std::vector<double>& into, const std::string& note) {
+  add(option::kDt, "--dt LIST", note, false, [append = listAppender(into)](const std::string& text) {
+    return readList(text, [&](const std::string& item) {
+      double dt = 0.0;
+      std::string e = readDt(item, dt);
+      if (e.empty()) append(dt);
+      return e;
+    });
+  });
+}
+
+void CommandLine::method(std::optional<phys::SolverMethod>& into, const std::string& note) {
+  add(option::kMethods, "--methods M", note, false,
+      [&into](const std::string& v) { return readMethod(v, into.emplace()); });
+}
+
+void CommandLine::methods(std::vector<phys::SolverMethod>& into, const std::string& note) {
+  add(option::kMethods, "--methods LIST", note, false,
+      [append = listAppender(into)](const std::string& text) {
+        return readList(text, [&](const std::string& item) {
+          phys::SolverMethod m{};
+          std::string e = readMethod(item, m);
+          if (e.empty()) append(m);
+          return e;
+        });
+      });
+}
+
+void CommandLine::model(std::optional<phys::BodyModel>& into, const std::string& note) {
+  add(option::kModels, "--models M", note, false, [&into](const std::string& v) {
+    into = phys::parseBodyModel(v);
+    return into ? std::string() : "unknown model '" + v + "' (corners, tetra or rigid)";
+  });
+}
+
+void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, const std::string& note) {
+  add(option::kModels, "--models LIST", note, false,
+      [ragdollModels, append = listAppender(into)](const std::string& text) {
+        return readList(text, [&](const std::string& item) {
+          const bool known = phys::parseBodyModel(item) || (ragdollModels && phys::parseRagdollModel(item));
+          if (!known) {
+            return "unknown model '" + item + "' (corners, tetra or rigid" +
+                   (ragdollModels ? std::string("; seed or lean for ragdolls)") : std::string(")"));
+          }
+          append(item);
+          return std::string();
+        });
+      });
+}
+
+void CommandLine::onOff(const OptionSpec& spec, bool& into, const std::string& note) {
+  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+      [&into](const std::string& v) { return readOnOff(v, into); });
+}
+
+void CommandLine::onOff(const OptionSpec& spec, std::optional<bool>& into, const std::string& note) {
+  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+      [&into](const std::string& v) { return readOnOff(v, into.emplace()); });
+}
+
+void CommandLine::flag(const OptionSpec& spec, bool& into, bool value, const std::string& note) {
+  app_->add_flag_callback(spec.names, [&into, value] { into = value; });
+  entries_.push_back({spec.names, spec.names, withNote(spec.help, note), ""});
+}
+
+void CommandLine::folder(const OptionSpec& spec, std::filesystem::path& into, const std::string& note) {
+  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+      [&spec, &into](const std::string& v) { return readPath(v, spec, into); });
+}
+
+void CommandLine::folder(const OptionSpec& spec, std::optional<std::filesystem::path>& into,
+                         const std::string& note) {
+  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+      [&spec, &into](const std::string& v) { return readPath(v, spec, into.emplace()); });
+}
+
+void CommandLine::file(const OptionSpec& spec, std::optional<std::filesystem::path>& into,
+                       const std::string& note) {
+  folder(spec, into, note);
+}
+
+void CommandLine::seconds(const OptionSpec& spec, double low, double high, double& into,
+                          const std::string& note) {
+  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+      [low, high, &into](const std::string& v) {
+        const std::optional<double> t = parseNumber(v);
+        if (!t || !(*t > low && *t <= high)) {
+          return "'" + v + "' is not a number of seconds above " + formatNumber(low) + " and at most " +
+                 formatNumber(high);
+        }
+        into = *t;
+        return std::string();
+      });
+}
+
+void CommandLine::custom(const OptionSpec& spec, bool many,
+                         std::function<std::string(const std::string&)> read, const std::string& note) {
+  add(spec, std::string(firstName(spec.names)) + " " + spec.value, note, many, std::move(read));
+}
+
+void CommandLine::require(const OptionSpec& spec, std::string why) {
+  required_.emplace_back(firstName(spec.names), std::move(why));
+}
+
+std::string CommandLine::parse(const std::vector<std::string>& args) {
+  positionalValues_.clear();
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+  try {
+    app_->parse(reversed);
+  } catch (const OptionError& e) {
+    return e.what();
+  } catch (const CLI::ExtrasError&) {
+    const std::string extra = app_->remaining().empty() ? std::string("?") : app_->remaining().front();
+    if (extra.size() > 1 && extra[0] == '-') return "unknown option '" + extra + "'";
+    if (!positionalValues_.empty()) {
+      return command_ + " takes one " + positionalName_ + "; got '" + positionalValues_.front() + "' and '" +
+             extra + "'";
+    }
+    return "unexpected argument '" + extra + "'";
+  } catch (const CLI::ArgumentMismatch& e) {
+    // "--steps: 1 required N missing": a value missing at the end of the line.
+    std::string what = e.what();
+    const std::string name = what.substr(0, what.find(':'));
+    for (const Entry& entry : entries_) {
+      if (firstName(entry.names) == name && !entry.needs.empty()) return name + " needs " + entry.needs;
+    }
+    return what;
+  } catch (const CLI::ParseError& e) {
+    return e.what();
+  }
+  for (const auto& [name, why] : required_) {
+    const bool given = name == "SCENE" ? !positionalValues_.empty() : app_->count(name) > 0;
+    if (!given) return why;
+  }
+  return {};
+}
+
+std::string CommandLine::help() const {
+  std::string usage = "usage: lab " + command_;
+  for (const Entry& e : entries_) {
+    const bool required = std::any_of(required_.begin(), required_.end(), [&](const auto& r) {
+      return r.first == (e.names.empty() ? e.label : firstName(e.names));
+    });
+    if (e.names.empty())
+      usage += " " + (required || e.label.starts_with("[") ? e.label : "[" + e.label + "]");
+    else if (required)
+      usage += " " + e.label;
+  }
+  std::string out = usage + " [options]\n";
+  if (!about_.empty()) {
+    std::istringstream lines(about_);
+    for (std::string line; std::getline(lines, line);) out += "  " + line + "\n";
+  }
+  std::vector<Entry> all = entries_;
+  all.push_back({"--help", "--help", "show this text", ""});
+  for (const Entry& e : all) {
+    std::string line = "  " + e.label;
+    if (line.size() + 1 >= kLabelWidth) {
+      line += "\n" + std::string(kLabelWidth, ' ');
+    } else {
+      line += std::string(kLabelWidth - line.size(), ' ');
+    }
+    out += line + wrapped(e.help, kLabelWidth, kLabelWidth) + "\n";
+  }
+  return out;
+}
+
+bool asksForHelp(const std::vector<std::string>& args) {
+  return std::any_of(args.begin(), args.end(),
+                     [](const std::string& a) { return a == "--help" || a == "-h"; });
+}
+
+int commandMain(CommandLine& line, const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+                const std::function<int()>& body) {
+  if (asksForHelp(args)) {
+    out << line.help();
+    return kExitOk;
+  }
+  if (const std::string e = line.parse(args); !e.empty()) {
+    err << "lab: " << e << "\n" << line.help();
+    return kExitUsage;
+  }
+  try {
+    return body();
+  } catch (const UsageError& e) {
+    err << "lab: " << e.what() << "\n" << line.help();
+    return kExitUsage;
+  } catch (const CommandFailure& e) {
+    err << "lab: " << e.what() << "\n";
+  } catch (const scenes::LoadError& e) {
+    err << e.what() << "\n";  // already "file:line: ...", the form editors jump to
+  } catch (const std::invalid_argument& e) {
+    // A combination the world refuses (each value's range was checked above).
+    err << "lab: " << line.command() << ": the settings were refused: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    err << "lab: " << line.command() << ": " << e.what() << "\n";
+  }
+  return kExitFailure;
+}
+
+void prepareOutputFolder(const std::filesystem::path& folder, const char* option) {
+  try {
+    fileio::prepareFolder(folder);
+  } catch (const fileio::FileError& e) {
+    throw CommandFailure(std::string(option) + ": " + e.what());
+  }
+}
+
+std::filesystem::path dataDir(const std::filesystem::path& given) {
+  return given.empty() ? std::filesystem::path(LAB_DATA_DIR) : given;
+}
+
+std::filesystem::path sceneFile(const std::string& scene, const std::filesystem::path& dataGiven) {
+  return scenes::resolveScene(scene, scenes::sceneDirectory(dataDir(dataGiven)));
+}
+
+}  // namespace lab
