@@ -10,6 +10,7 @@
 
 #include "bodies.h"
 #include "numbers.h"
+#include "runner.h"
 #include "text.h"
 
 // What "converged" means here. A reference is our own physics run so finely that the settings
@@ -185,13 +186,10 @@ std::vector<std::vector<phys::Vec3>> recordRun(const phys::World& loaded,
                                                const std::vector<int>& checkpoints) {
   phys::World world = loaded;
   world.setSolverSettings(settings);
-  std::vector<std::vector<phys::Vec3>> out;
-  int done = 0;
-  for (int checkpoint : checkpoints) {
-    for (; done < checkpoint; ++done) world.step();
-    out.push_back(bodyPositions(world));
-  }
-  return out;
+  RunSpec spec;
+  spec.steps = checkpoints.empty() ? 0 : checkpoints.back();
+  spec.checkpoints = checkpoints;
+  return runSteps(world, spec).positions;
 }
 
 std::string stepList(const std::vector<int>& steps) {

@@ -30,6 +30,8 @@
 #include "peers/pose_measures.h"
 #include "report.h"
 #include "run.h"
+#include "run_metrics.h"
+#include "runner.h"
 #include "scenes/scene.h"
 #include "text.h"
 
@@ -77,6 +79,8 @@ struct Row {
   // (peers/pose_measures.h), the largest: so speed is compared at equal joint error.
   double penetration = std::numeric_limits<double>::quiet_NaN();  // below the ground or into a body
   double jointGap = std::numeric_limits<double>::quiet_NaN();     // the widest joint
+  // Ours alone, after every step (run_metrics.h): a peer's state is read at the checkpoints only.
+  RunMaxima maxima;
   std::string notes;
 };
 
@@ -140,27 +144,20 @@ Row runOurs(const std::filesystem::path& file, phys::SolverMethod method, const 
   row.engine = "ours";
   row.method = std::string(phys::toString(method));
   row.settings = ourSettings(scene.world);
-  std::vector<double> stepMs;
-  stepMs.reserve(static_cast<std::size_t>(steps));
-  std::vector<std::vector<phys::Vec3>> positions;
-  std::vector<std::vector<phys::Quat>> orientations;
-  std::size_t next = 0;
-  for (int s = 1; s <= steps; ++s) {
-    const auto start = std::chrono::steady_clock::now();
-    scene.world.step();
-    const auto stop = std::chrono::steady_clock::now();
-    stepMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
-    while (next < target.checkpoints.size() && target.checkpoints[next] == s) {
-      positions.push_back(bodyPositions(scene.world));
-      orientations.push_back(bodyOrientations(scene.world));
-      ++next;
-    }
-  }
+  RunSpec spec;
+  spec.steps = steps;
+  spec.checkpoints = target.checkpoints;
+  spec.orientations = true;
+  spec.stepTimes = true;
+  spec.maxima = true;
+  RunRecord run = runSteps(scene.world, spec);
+  const std::vector<std::vector<phys::Vec3>>& positions = run.positions;
+  row.maxima = run.maxima;
   row.ran = true;
-  row.msPerStep = median(std::move(stepMs));
+  row.msPerStep = median(std::move(run.stepMs));
   row.error = accuracyError(target, positions);
   row.errorFirst = firstError(target, positions);
-  measurePoses(peers::describe(scene), positions, orientations, row);
+  measurePoses(peers::describe(scene), positions, run.orientations, row);
   if (!scene.world.freezes().empty()) {
     // As in the sweep (docs/lab.md, "Accuracy"): a frozen body's position says nothing of the
     // solver, so the run has no error to report.
@@ -186,8 +183,14 @@ std::string cell(std::string text) {
 
 void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest) {
   out << "| engine | method | settings | ms/step (median) | vs our fastest | error, first checkpoint (m) | "
-         "error, all (m) | penetration (m) | joint gap (m) | unsupported / notes |\n"
-      << "|---|---|---|---:|---:|---:|---:|---:|---:|---|\n";
+         "error, all (m) | penetration (m) | joint gap (m) |";
+  // Then the figures of every step, ours alone (run_metrics.h).
+  for (const RunMetric& m : kRunMetrics)
+    out << " " << m.name << (*m.unit == '\0' ? "" : " (") << m.unit << (*m.unit == '\0' ? "" : ")")
+        << ", every step |";
+  out << " unsupported / notes |\n|---|---|---|---:|---:|---:|---:|---:|---:|";
+  for (std::size_t i = 0; i < kRunMetricCount; ++i) out << "---:|";
+  out << "---|\n";
   for (const Row& r : rows) {
     out << "| " << r.engine << " | " << (r.method.empty() ? "" : r.method) << " | " << cell(r.settings)
         << " | ";
@@ -197,8 +200,10 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
       out << fixed(r.msPerStep, "%.4g") << " | " << fixed(r.msPerStep / fastest, "%.3gx") << " | "
           << fixed(r.errorFirst, "%.3g") << " | " << fixed(r.error, "%.3g") << " | " << fixed(depth, "%.3g")
           << " | " << fixed(r.jointGap, "%.3g");
+      for (const double v : r.maxima.worst) out << " | " << (r.engine == "ours" ? fixed(v, "%.3g") : "-");
     } else {
       out << "not run | | | | | ";
+      for (std::size_t i = 0; i < kRunMetricCount; ++i) out << " | ";
     }
     out << " | " << cell(r.notes) << " |\n";
   }
@@ -222,6 +227,9 @@ void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, 
     j["error"] = r.error;
     j["max_penetration"] = r.penetration;
     j["max_joint_gap"] = r.jointGap;
+    for (std::size_t i = 0; i < kRunMetricCount; ++i) {
+      j[std::string(kRunMetrics[i].column) + "_every_step"] = r.engine == "ours" ? r.maxima[i] : std::nan("");
+    }
     j["notes"] = r.notes;
     out << jsonLine(j);
   }

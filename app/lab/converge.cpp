@@ -25,6 +25,7 @@
 #include "numbers.h"
 #include "options.h"
 #include "physics/rigid_bodies.h"
+#include "runner.h"
 #include "sweep_core.h"
 
 namespace lab {
@@ -213,28 +214,28 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
         scenes::Scene scene = loadSetting(file, setting);
         phys::World& world = scene.world;
         double error = 0.0;
-        std::vector<std::vector<phys::Vec3>> positions;
-        for (int step = 1, next = 0; next < static_cast<int>(checkpoints.size()); ++step) {
-          world.step();
-          if (!analytic && world.metrics().contacts > 0) {
+        RunSpec spec;
+        spec.steps = checkpoints.empty() ? 0 : checkpoints.back();
+        if (analytic) spec.checkpoints = checkpoints;
+        std::size_t next = 0;  // the next checkpoint of a free body
+        spec.afterStep = [&](int step) {
+          if (analytic) return true;
+          if (world.metrics().contacts > 0) {
             throw std::invalid_argument(own.name + ": a body touched something at t = " +
                                         formatNumber(world.time(), 4) + " s under " + setting.describe() +
                                         "; the free-body reference is of bodies that touch nothing");
           }
-          if (step != checkpoints[static_cast<std::size_t>(next)]) continue;
-          if (analytic) {
-            positions.push_back(bodyPositions(world));
-          } else {
-            for (std::size_t b = 0; b < free.poses.size(); ++b) {
-              const phys::BodyPose pose = world.bodyPose(phys::BodyId(static_cast<std::uint32_t>(b)));
-              const double d =
-                  cornerDistance({pose.center, pose.orientation},
-                                 free.poses[b][static_cast<std::size_t>(next)], free.halfExtents[b]);
-              error = std::isfinite(d) ? std::max(error, d) : kInf;
-            }
+          if (step != checkpoints[next]) return true;
+          for (std::size_t b = 0; b < free.poses.size(); ++b) {
+            const phys::BodyPose pose = world.bodyPose(phys::BodyId(static_cast<std::uint32_t>(b)));
+            const double d =
+                cornerDistance({pose.center, pose.orientation}, free.poses[b][next], free.halfExtents[b]);
+            error = std::isfinite(d) ? std::max(error, d) : kInf;
           }
           ++next;
-        }
+          return true;
+        };
+        const std::vector<std::vector<phys::Vec3>> positions = runSteps(world, spec).positions;
         if (analytic) error = accuracyError(t, positions);
         if (world.metrics().frozen > 0) error = kInf;  // a frozen body's position says nothing
         ConvergeRow row;

@@ -12,6 +12,7 @@
 
 #include "csv.h"
 #include "json.h"
+#include "run.h"
 #include "text.h"
 
 namespace lab {
@@ -69,6 +70,9 @@ std::string jsonText(const RunResult& r) {
   j["max_joint_error"] = m.maxJointError;
   j["max_penetration"] = m.maxPenetration;
   j["max_speed"] = m.maxSpeed;
+  // The worst after any step, where the keys above are the last step's.
+  for (std::size_t i = 0; i < kRunMetricCount; ++i)
+    j[std::string(kRunMetrics[i].column) + "_over_run"] = r.worst[i];
   j["energy_initial"] = r.energyInitial;
   j["energy_final"] = m.energy();
   j["frozen"] = m.frozen;
@@ -116,6 +120,13 @@ std::string summaryText(const RunResult& r) {
   if (r.joints > 0)
     s += "joints       " + count(r.joints, "link", "links") + ", max error " + num(m.maxJointError) + " m\n";
   s += "speed        max " + num(m.maxSpeed) + " m/s\n";
+  s += "worst        after any step:";
+  for (std::size_t i = 0; i < kRunMetricCount; ++i) {
+    const RunMetric& metric = kRunMetrics[i];
+    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + num(r.worst[i]) +
+         (*metric.unit == '\0' ? "" : " ") + metric.unit;
+  }
+  s += "\n";
   s += "energy       initial " + num(r.energyInitial) + " J, final " + num(m.energy()) + " J (change " +
        num(m.energy() - r.energyInitial) + " J)\n";
   if (r.freezes.empty()) {

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "runner.h"
+
 namespace lab {
 
 bool xpbdWhateverTheMethod(const phys::World& world) {
@@ -66,7 +68,7 @@ class ProgressLine {
 }  // namespace
 
 RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress,
-                   const ProgressTiming& timing, const std::function<void(const phys::World&)>& afterStep) {
+                   const ProgressTiming& timing) {
   phys::World& world = scene.world;
   applyOverrides(world, options);
 
@@ -80,28 +82,26 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   r.joints = world.jointCount();
   r.bodies = world.bodies().size();
   r.xpbdAlone = xpbdWhateverTheMethod(world);
-  r.energyInitial = world.metrics().energy();
 
-  // Every step's total is kept for the median (up to 80 MB at the 10^7 step limit); reserving
-  // up front keeps allocation out of the timed loop. Reading the profile inside the loop
-  // costs a few loads per step, far below a step's own time.
-  std::vector<double> stepTotals;
-  stepTotals.reserve(static_cast<std::size_t>(options.steps));
-  const auto start = std::chrono::steady_clock::now();
-  ProgressLine line(progress, options.steps, start, timing);
-  for (int i = 0; i < options.steps; ++i) {
-    world.step();
-    line.after(i + 1);
-    const phys::Profile& p = world.profile();
-    stepTotals.push_back(p.total);
-    r.stageSums += p;
-    if (afterStep) afterStep(world);
-  }
-  const auto stop = std::chrono::steady_clock::now();
+  // Every step's total is kept for the median (up to 80 MB at the 10^7 step limit), reserved
+  // before the first step by the runner.
+  RunSpec spec;
+  spec.steps = options.steps;
+  spec.profile = true;
+  spec.maxima = true;
+  ProgressLine line(progress, options.steps, std::chrono::steady_clock::now(), timing);
+  spec.afterStep = [&line](int step) {
+    line.after(step);
+    return true;
+  };
+  RunRecord run = runSteps(world, spec);
 
-  r.wallMs = std::chrono::duration<double, std::milli>(stop - start).count();
+  r.energyInitial = run.energyBefore;
+  r.wallMs = run.steppingMs;
   r.msPerStep = options.steps > 0 ? r.wallMs / options.steps : 0.0;
-  r.medianStepMs = median(std::move(stepTotals));
+  r.medianStepMs = median(std::move(run.profileTotals));
+  r.stageSums = run.stageSums;
+  r.worst = run.maxima;
   r.simulatedTime = world.time();
   r.final = world.metrics();
   r.freezes.assign(world.freezes().begin(), world.freezes().end());

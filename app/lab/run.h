@@ -2,7 +2,6 @@
 // Stepping a loaded scene under the lab's overrides, and what the run measured.
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -10,6 +9,7 @@
 
 #include "options.h"
 #include "physics/world.h"
+#include "run_metrics.h"
 #include "scenes/scene.h"
 #include "text.h"
 
@@ -29,7 +29,8 @@ struct RunResult {
   bool xpbdAlone = false;       ///< xpbdWhateverTheMethod(world): the method changes nothing
   double energyInitial = 0.0;   ///< unit: J; before the first step
   phys::Metrics final;          ///< after the last step
-  double wallMs = 0.0;          ///< unit: ms; the whole stepping loop, steady_clock
+  RunMaxima worst;              ///< each figure of run_metrics.h at its worst after any step
+  double wallMs = 0.0;          ///< unit: ms; the calls to World::step(), steady_clock
   double msPerStep = 0.0;       ///< unit: ms; wallMs / steps
   double medianStepMs = 0.0;    ///< unit: ms; median of the steps' Profile::total
   phys::Profile stageSums;      ///< unit: ms; each stage summed over the run
@@ -66,10 +67,8 @@ struct ProgressTiming {
 /// Throws std::invalid_argument (from applyOverrides) before any step when they are refused.
 /// With a progress stream, a run that takes longer than timing.after prints a line there every
 /// timing.every: the step it is at, seconds a step, and the time left.
-/// afterStep, when given, sees the world after every step, outside the step's own clock
-/// (Profile::total, whose median the result reports) but within the wall time of the loop.
+/// The figures of run_metrics.h are read after every step, outside the steps' clocks.
 RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress = nullptr,
-                   const ProgressTiming& timing = {},
-                   const std::function<void(const phys::World&)>& afterStep = {});
+                   const ProgressTiming& timing = {});
 
 }  // namespace lab

@@ -136,10 +136,7 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
   std::vector<ScaleRow> rows;
   for (const int n : sizes) {
     scenes::Scene scene = scenes::loadSceneText(scaleSceneXml(kind, n), std::string(toString(kind)) + ".xml");
-    double worstGap = 0.0;
-    const RunResult r = runScene(scene, options, progress, ProgressTiming{}, [&](const phys::World& w) {
-      worstGap = std::max(worstGap, w.metrics().maxJointError);
-    });
+    const RunResult r = runScene(scene, options, progress);
     ScaleRow row;
     row.scene = std::string(toString(kind));
     row.n = n;
@@ -147,7 +144,7 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
     row.solver = r.solver;
     row.msPerStep = r.medianStepMs;
     row.usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0;
-    row.maxJointGap = worstGap;
+    row.maxJointGap = r.worst[runMetricIndex("joint-error")];
     rows.push_back(row);
   }
   return rows;

@@ -1,13 +1,13 @@
 #include "stability_run.h"
 #include "text.h"
 
-#include <chrono>
 #include <optional>
 #include <sstream>
 
 #include "peer.h"
 #include "physics/ragdoll.h"
 #include "run.h"
+#include "runner.h"
 #include "scenes/scene.h"
 
 namespace lab::stability {
@@ -69,15 +69,15 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   phys::World& world = scene.world;
   WorldJudge judge(s.criteria, world);
   Outcome o;
-  std::chrono::steady_clock::duration stepping{};
-  int steps = 0;
-  // Only the steps are timed; the judge's figures (metrics, poses) would otherwise count too.
-  while (steps < s.steps && world.freezes().empty()) {
-    const auto start = std::chrono::steady_clock::now();
-    world.step();
-    stepping += std::chrono::steady_clock::now() - start;
-    judge.observe(world, ++steps);
-  }
+  // Only the steps are timed (runSteps), not the judge's figures; the run stops at a freeze.
+  RunSpec spec;
+  spec.steps = s.steps;
+  spec.afterStep = [&judge, &world](int step) {
+    judge.observe(world, step);
+    return world.freezes().empty();
+  };
+  const RunRecord run = runSteps(world, spec);
+  const int steps = run.stepsRun;
   const bool blewUp = !world.freezes().empty();
   if (blewUp) {
     const phys::FreezeReport& f = world.freezes().front();
@@ -92,7 +92,7 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
              std::to_string(world.bodies().size()) + " bodies";
   }
   o.verdicts = judge.verdicts(blewUp);
-  o.wallMs = std::chrono::duration<double, std::milli>(stepping).count();
+  o.wallMs = run.steppingMs;
   o.msPerStep = steps > 0 ? o.wallMs / steps : 0.0;
   summarize(o);
   return o;

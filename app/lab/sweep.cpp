@@ -212,7 +212,8 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Row
     r.msPerStep = p.medianMsPerStep;
     r.uncertainty = maxUncertainty(target);
     r.figures.error = accuracyError(target, p.positions);
-    r.figures.maxPenetration = p.maxPenetration;
+    r.figures.maxima.worst.fill(std::nan(""));  // a peer has none of our figures but this one
+    r.figures.maxima.worst[kPenetrationMetric] = p.maxPenetration;
     r.note = p.unsupported;
     rows.push_back(r);
   }
@@ -264,30 +265,32 @@ std::string csvNumber(double v) {
   return lab::csvNumber(v, 10);
 }
 
-constexpr const char* kCsvHeader =
-    "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
-    "uncertainty,"
-    "max_stick_error,max_joint_error,max_penetration,energy_drift,frozen,pareto,note\n";
+std::string csvHeader() {
+  std::string header =
+      "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
+      "uncertainty,";
+  for (const RunMetric& m : kRunMetrics) header += std::string(m.column) + ",";
+  return header + "energy_drift,frozen,pareto,note\n";
+}
 
 std::string csvRow(const std::string& scene, const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
-  auto ours = [&](double v) {
-    return r.peer ? std::string() : csvNumber(v);
-  };  // blank: no such figure for a peer
+  // Blank: no such figure for a peer.
+  auto ours = [&](double v) { return r.peer && !std::isfinite(v) ? std::string() : csvNumber(v); };
   std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
                      opt(r.iterations) + "," + opt(r.substeps) + "," + csvNumber(r.dt) + "," +
                      std::to_string(r.steps) + "," + std::to_string(r.repeats) + "," +
                      csvNumber(r.msPerStep) + "," + csvNumber(r.msPerSimSecond()) + "," +
-                     csvNumber(r.blewUp() ? kInf : r.figures.error) + "," + csvNumber(r.uncertainty) + "," +
-                     ours(r.figures.maxStickError) + "," + ours(r.figures.maxJointError) + "," +
-                     csvNumber(r.figures.maxPenetration) + "," + ours(r.figures.energyDrift) + "," +
-                     (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," +
-                     (r.pareto ? "1" : "0") + "," + csvField(r.note);
+                     csvNumber(r.blewUp() ? kInf : r.figures.error) + "," + csvNumber(r.uncertainty) + ",";
+  for (const double v : r.figures.maxima.worst) line += ours(v) + ",";
+  line += (r.peer ? std::string() : csvNumber(r.figures.energyDrift)) + "," +
+          (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (r.pareto ? "1" : "0") + "," +
+          csvField(r.note);
   return line + "\n";
 }
 
 std::string csvText(const std::string& scene, const std::vector<Row>& rows) {
-  std::string text = kCsvHeader;
+  std::string text = csvHeader();
   for (const Row& r : rows) text += csvRow(scene, r);
   return text;
 }
@@ -378,7 +381,8 @@ std::string tableLine(const Row& r) {
          padLeft(opt(r.substeps), 5) + "  " + pad(formatNumber(r.dt, 6), 10) +
          padLeft(std::to_string(r.steps), 6) + padLeft(formatNumber(r.msPerStep, 4), 10) +
          padLeft(formatNumber(r.blewUp() ? kInf : r.figures.error, 3), 11) +
-         padLeft(ours(r.figures.maxStickError), 10) + padLeft(formatNumber(r.figures.maxPenetration, 3), 10) +
+         padLeft(ours(r.figures.maxima[kStickErrorMetric]), 10) +
+         padLeft(formatNumber(r.figures.maxima[kPenetrationMetric], 3), 10) +
          padLeft(ours(r.figures.energyDrift), 10) +
          padLeft(r.peer ? "-" : std::to_string(r.figures.frozen), 7) + (r.pareto ? "  *" : "") + "\n";
 }

@@ -1,13 +1,12 @@
 #include "sweep_core.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "bodies.h"
 #include "run.h"
+#include "runner.h"
 
 namespace lab {
 namespace {
@@ -28,16 +27,6 @@ scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
   scenes::LoadOptions o;
   o.ragdollModel = m;
   return o;
-}
-
-// The larger of a running maximum and a new figure; a figure that is not finite stays so.
-double worst(double sofar, double figure) {
-  return std::isfinite(figure) ? std::max(sofar, figure) : kInf;
-}
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 // 'text' in quotes. Appended piecewise: "'" + std::string(...) trips GCC 12's false -Wrestrict
@@ -178,30 +167,17 @@ scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& sett
 Figures measureFigures(const std::filesystem::path& file, const Setting& setting, int steps,
                        const AccuracyTarget& target) {
   scenes::Scene scene = loadSetting(file, setting);
-  phys::World& world = scene.world;
-  const double energyBefore = world.metrics().energy();
+  RunSpec spec;
+  spec.steps = steps;
+  spec.checkpoints = target.checkpoints;
+  spec.maxima = true;
+  const RunRecord run = runSteps(scene.world, spec);
   Figures f;
-  std::vector<std::vector<phys::Vec3>> positions;
-  std::size_t next = 0;  // the next checkpoint to record
-  double steppingMs = 0.0;
-  phys::Metrics m = world.metrics();
-  for (int i = 1; i <= steps; ++i) {
-    const Clock::time_point start = Clock::now();
-    world.step();
-    steppingMs += msSince(start);
-    m = world.metrics();
-    f.maxStickError = worst(f.maxStickError, m.maxConstraintError);
-    f.maxJointError = worst(f.maxJointError, m.maxJointError);
-    f.maxPenetration = worst(f.maxPenetration, m.maxPenetration);
-    if (next < target.checkpoints.size() && target.checkpoints[next] == i) {
-      positions.push_back(bodyPositions(world));
-      ++next;
-    }
-  }
-  f.energyDrift = m.energy() - energyBefore;
-  f.frozen = m.frozen;
-  f.error = f.frozen > 0 ? kInf : accuracyError(target, positions);
-  f.roughMsPerStep = steps > 0 ? steppingMs / steps : 0.0;
+  f.maxima = run.maxima;
+  f.energyDrift = run.energyAfter - run.energyBefore;
+  f.frozen = scene.world.metrics().frozen;
+  f.error = f.frozen > 0 ? kInf : accuracyError(target, run.positions);
+  f.roughMsPerStep = steps > 0 ? run.steppingMs / steps : 0.0;
   return f;
 }
 
@@ -209,10 +185,9 @@ double timeSetting(const std::filesystem::path& file, const Setting& setting, in
   std::vector<double> msPerStep;
   for (int r = 0; r < repeats; ++r) {
     scenes::Scene scene = loadSetting(file, setting);  // each repeat from a fresh load
-    phys::World& world = scene.world;
-    const Clock::time_point start = Clock::now();
-    for (int i = 0; i < steps; ++i) world.step();
-    msPerStep.push_back(msSince(start) / steps);
+    RunSpec bare;
+    bare.steps = steps;
+    msPerStep.push_back(runSteps(scene.world, bare).steppingMs / steps);
   }
   return median(std::move(msPerStep));
 }

@@ -12,6 +12,7 @@
 
 #include "accuracy.h"
 #include "physics/settings.h"
+#include "run_metrics.h"
 #include "scenes/scene.h"
 #include "text.h"
 
@@ -59,14 +60,12 @@ struct Setting {
   std::string describe() const;
 };
 
-/// What one untimed pass over a setting measured. The max figures are over every step.
+/// What one untimed pass over a setting measured.
 struct Figures {
-  double error = 0.0;           ///< unit: m; accuracyError against the target; inf if it blew up
-  double maxStickError = 0.0;   ///< unitless; Metrics::maxConstraintError, max over the steps
-  double maxJointError = 0.0;   ///< unit: m; Metrics::maxJointError, max over the steps
-  double maxPenetration = 0.0;  ///< unit: m; Metrics::maxPenetration, max over the steps
-  double energyDrift = 0.0;     ///< unit: J; energy after the last step minus before the first
-  int frozen = 0;               ///< particles the guard froze by the end
+  double error = 0.0;        ///< unit: m; accuracyError against the target; inf if it blew up
+  RunMaxima maxima;          ///< each figure of run_metrics.h at its worst after any step
+  double energyDrift = 0.0;  ///< unit: J; energy after the last step minus before the first
+  int frozen = 0;            ///< particles the guard froze by the end
   /// unit: ms; this pass's own steps timed one by one and averaged: rough (one run, the
   /// metrics read between the steps disturb the caches), for the tune's pruning only.
   double roughMsPerStep = 0.0;

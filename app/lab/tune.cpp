@@ -19,6 +19,7 @@
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
+#include "run_metrics.h"
 #include "sweep_core.h"
 
 namespace lab {
@@ -42,49 +43,30 @@ constexpr phys::SolverMethod kSeedMethod = phys::SolverMethod::GaussSeidel;
 constexpr int kSeedIterations = 3;
 constexpr int kSeedSubsteps = 1;
 
-enum class Metric { Error, StickError, JointError, Penetration, Drift };
-
-struct MetricInfo {
-  Metric metric;
-  const char* name;
-  const char* unit;  // "" for a ratio
-};
-
-constexpr MetricInfo kMetrics[] = {
-    {Metric::Error, "error", " m"},
-    {Metric::StickError, "stick-error", ""},
-    {Metric::JointError, "joint-error", " m"},
-    {Metric::Penetration, "penetration", " m"},
-    {Metric::Drift, "drift", " J"},
-};
-
-const MetricInfo& info(Metric m) {
-  for (const MetricInfo& i : kMetrics) {
-    if (i.metric == m) return i;
-  }
-  return kMetrics[0];
-}
-
-double figure(const Figures& f, Metric m) {
-  switch (m) {
-    case Metric::Error:
-      return f.error;
-    case Metric::StickError:
-      return f.maxStickError;
-    case Metric::JointError:
-      return f.maxJointError;
-    case Metric::Penetration:
-      return f.maxPenetration;
-    case Metric::Drift:
-      return std::abs(f.energyDrift);
-  }
-  return kInf;
-}
-
+/// What a --target bounds: the accuracy error, the energy drift, or a figure of the run
+/// (run_metrics.h), which are all targets without a line here.
 struct Target {
-  Metric metric = Metric::Error;
+  std::string name;                   ///< "error", "drift", or a RunMetric's name
+  std::size_t run = kRunMetricCount;  ///< its place in kRunMetrics; kRunMetricCount for the two others
+  std::string unit;                   ///< " m", "" for a ratio
   double bound = 0.0;
 };
+
+constexpr const char* kError = "error";
+constexpr const char* kDrift = "drift";
+
+// "error, stick-error, ..., or drift": every name a --target takes.
+std::string metricNames() {
+  std::string names = std::string(kError) + ", ";
+  for (const RunMetric& m : kRunMetrics) names += std::string(m.name) + ", ";
+  return names.substr(0, names.size() - 2) + " or " + kDrift;
+}
+
+double figure(const Figures& f, const Target& t) {
+  if (t.name == kError) return f.error;
+  if (t.name == kDrift) return std::abs(f.energyDrift);
+  return f.maxima[t.run];
+}
 
 struct TuneOptions {
   std::string scene;
@@ -96,21 +78,25 @@ struct TuneOptions {
 
 std::string readTarget(const std::string& text, TuneOptions& o) {
   const std::size_t eq = text.find('=');
-  const std::string name = text.substr(0, eq);
-  const MetricInfo* which = nullptr;
-  for (const MetricInfo& i : kMetrics) {
-    if (name == i.name) which = &i;
-  }
-  if (which == nullptr) {
-    return "unknown metric '" + name + "' in '" + text +
-           "' (error, stick-error, joint-error, penetration or drift)";
+  Target t;
+  t.name = text.substr(0, eq);
+  t.run = runMetricIndex(t.name);
+  if (t.name == kError) {
+    t.unit = " m";
+  } else if (t.name == kDrift) {
+    t.unit = " J";
+  } else if (t.run < kRunMetricCount) {
+    t.unit = *kRunMetrics[t.run].unit == '\0' ? "" : std::string(" ") + kRunMetrics[t.run].unit;
+  } else {
+    return "unknown metric '" + t.name + "' in '" + text + "' (" + metricNames() + ")";
   }
   const std::optional<double> v = eq == std::string::npos ? std::nullopt : parseNumber(text.substr(eq + 1));
   if (!v || *v <= 0.0) return "'" + text + "' needs METRIC=VALUE with a finite VALUE > 0";
-  for (const Target& t : o.targets) {
-    if (t.metric == which->metric) return name + " is given twice";
+  for (const Target& given : o.targets) {
+    if (given.name == t.name) return t.name + " is given twice";
   }
-  o.targets.push_back({which->metric, *v});
+  t.bound = *v;
+  o.targets.push_back(t);
   return {};
 }
 
@@ -138,8 +124,7 @@ class Search {
       : file_(std::move(file)), steps_(steps), targets_(std::move(targets)) {}
 
   bool needsError() const {
-    return std::any_of(targets_.begin(), targets_.end(),
-                       [](const Target& t) { return t.metric == Metric::Error; });
+    return std::any_of(targets_.begin(), targets_.end(), [](const Target& t) { return t.name == kError; });
   }
 
   /// The target of the setting's model: the accuracy target when error is asked for, else
@@ -165,14 +150,14 @@ class Search {
   bool meets(const Figures& f) const {
     if (f.frozen > 0) return false;
     return std::all_of(targets_.begin(), targets_.end(),
-                       [&](const Target& t) { return figure(f, t.metric) <= t.bound; });
+                       [&](const Target& t) { return figure(f, t) <= t.bound; });
   }
 
   /// How far the figures are from meeting the targets: the largest figure / bound (<= 1 meets).
   double excess(const Figures& f) const {
     if (f.frozen > 0) return kInf;
     double worst = 0.0;
-    for (const Target& t : targets_) worst = std::max(worst, figure(f, t.metric) / t.bound);
+    for (const Target& t : targets_) worst = std::max(worst, figure(f, t) / t.bound);
     return std::isnan(worst) ? kInf : worst;
   }
 
@@ -254,10 +239,12 @@ class Search {
 std::string figuresText(const Figures& f, bool withError) {
   std::string s;
   if (withError) s += "error " + formatNumber(f.error, 3) + " m, ";
-  s += "stick-error " + formatNumber(f.maxStickError, 3) + ", joint-error " +
-       formatNumber(f.maxJointError, 3) + " m, penetration " + formatNumber(f.maxPenetration, 3) +
-       " m, drift " + formatNumber(std::abs(f.energyDrift), 3) + " J, frozen " + std::to_string(f.frozen);
-  return s;
+  for (std::size_t i = 0; i < kRunMetricCount; ++i) {
+    const RunMetric& m = kRunMetrics[i];
+    s += std::string(m.name) + " " + formatNumber(f.maxima[i], 3) + (*m.unit == '\0' ? "" : " ") + m.unit +
+         ", ";
+  }
+  return s + "drift " + formatNumber(std::abs(f.energyDrift), 3) + " J, frozen " + std::to_string(f.frozen);
 }
 
 // "meets the targets", or which it misses and by how much.
@@ -265,11 +252,10 @@ std::string verdict(const Search& search, const Figures& f) {
   std::string misses;
   if (f.frozen > 0) misses = "it froze " + std::to_string(f.frozen) + " particles";
   for (const Target& t : search.targets()) {
-    const double v = figure(f, t.metric);
+    const double v = figure(f, t);
     if (v <= t.bound) continue;
-    const MetricInfo& i = info(t.metric);
-    misses += (misses.empty() ? "" : ", ") + std::string(i.name) + " " + formatNumber(v, 3) + i.unit + " > " +
-              formatNumber(t.bound, 3) + i.unit;
+    misses += (misses.empty() ? "" : ", ") + t.name + " " + formatNumber(v, 3) + t.unit + " > " +
+              formatNumber(t.bound, 3) + t.unit;
   }
   return misses.empty() ? "meets the targets" : "misses: " + misses;
 }
@@ -277,8 +263,7 @@ std::string verdict(const Search& search, const Figures& f) {
 std::string targetsText(const std::vector<Target>& targets) {
   std::string s;
   for (const Target& t : targets) {
-    const MetricInfo& i = info(t.metric);
-    s += (s.empty() ? "" : ", ") + std::string(i.name) + " <= " + formatNumber(t.bound, 6) + i.unit;
+    s += (s.empty() ? "" : ", ") + t.name + " <= " + formatNumber(t.bound, 6) + t.unit;
   }
   return s;
 }
@@ -372,17 +357,20 @@ int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostrea
 
 int tuneMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   TuneOptions o;
+  std::string metrics =
+      "  error          m, largest distance from the accuracy target (analytic or reference)\n";
+  for (const RunMetric& m : kRunMetrics) {
+    std::string line = std::string("  ") + m.name;
+    line.resize(17, ' ');
+    metrics += line + (*m.unit == '\0' ? "" : std::string(m.unit) + ", ") + m.help + " after any step\n";
+  }
+  metrics += "  drift          J, |energy after the last step - energy before the first|\n";
   CommandLine line(
-      "tune",
-      "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n"
-      "  error        m, largest distance from the accuracy target (analytic or reference)\n"
-      "  stick-error  largest stick violation / rest length over the run (0.01 = 1%)\n"
-      "  joint-error  m, largest joint gap over the run\n"
-      "  penetration  m, deepest penetration over the run\n"
-      "  drift        J, |energy after the last step - energy before the first|\n"
-      "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
-      "(xpbd alone for rigid), and substeps and iterations over 1,2,3,4,6,8,12,16,24,32, at the\n"
-      "scene's dt. A setting whose run froze anything never qualifies.");
+      "tune", "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n" +
+                  metrics +
+                  "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
+                  "(xpbd alone for rigid), and substeps and iterations over 1,2,3,4,6,8,12,16,24,32, at the\n"
+                  "scene's dt. A setting whose run froze anything never qualifies.");
   describeTune(line, o);
   return commandMain(line, args, out, err,
                      [&] { return runTune(o, sceneFile(o.scene, o.dataDir), out, err); });

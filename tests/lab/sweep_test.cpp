@@ -52,7 +52,7 @@ std::optional<CsvRow> findRow(const CsvTable& csv, const std::string& method, in
 const char* const kHeader =
     "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
     "uncertainty,"
-    "max_stick_error,max_joint_error,max_penetration,energy_drift,frozen,pareto,note";
+    "max_stick_error,max_joint_error,max_penetration,max_angular_speed,energy_drift,frozen,pareto,note";
 
 TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
   TempDir dir;
@@ -72,7 +72,7 @@ TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
       EXPECT_EQ(row->at("steps"), "30");
       for (const char* column :
            {"dt", "ms_per_step", "ms_per_sim_second", "error", "ref_uncertainty", "max_stick_error",
-            "max_joint_error", "max_penetration", "energy_drift", "frozen"}) {
+            "max_joint_error", "max_penetration", "max_angular_speed", "energy_drift", "frozen"}) {
         EXPECT_TRUE(std::isfinite(fieldNumber(*row, column))) << method << " " << iterations << " " << column;
       }
       EXPECT_GT(fieldNumber(*row, "ms_per_step"), 0.0);

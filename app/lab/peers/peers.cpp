@@ -1,17 +1,39 @@
 // peerEngines() and runPeer(): the part of the peers that does not depend on any engine. It
 // reads the scene once (peer_scene.cpp), builds it in the engine asked for, and steps it
-// exactly as `lab compare` steps ours: one call per step, each timed alone.
+// through the lab's one step loop (runner.h), as `lab compare` steps ours: each step timed alone.
 #include <algorithm>
-#include <chrono>
 #include <exception>
 #include <stdexcept>
 
 #include "peer.h"
 #include "peer_scene.h"
+#include "runner.h"
 #include "text.h"
 
 namespace lab {
 namespace {
+
+// A peer engine as the runner steps it: its bodies in the description's order.
+class PeerStepper final : public Stepper {
+ public:
+  PeerStepper(peers::Engine& engine, int bodies) : engine_(engine), bodies_(bodies) {}
+  void step() override { engine_.step(); }
+  void afterStep(int step) override { engine_.afterStep(step); }
+  std::vector<phys::Vec3> positions() const override {
+    std::vector<phys::Vec3> p(static_cast<std::size_t>(bodies_));
+    for (int i = 0; i < bodies_; ++i) p[static_cast<std::size_t>(i)] = engine_.position(i);
+    return p;
+  }
+  std::vector<phys::Quat> orientations() const override {
+    std::vector<phys::Quat> q(static_cast<std::size_t>(bodies_));
+    for (int i = 0; i < bodies_; ++i) q[static_cast<std::size_t>(i)] = engine_.orientation(i);
+    return q;
+  }
+
+ private:
+  peers::Engine& engine_;
+  int bodies_;
+};
 
 // The adapters built in, in the fixed order the tables use.
 struct Adapter {
@@ -90,49 +112,29 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   }
   result.settings = built->settings;
 
-  const int bodies = static_cast<int>(description.bodies.size());
-  auto positions = [&] {
-    std::vector<phys::Vec3> p(static_cast<std::size_t>(bodies));
-    for (int i = 0; i < bodies; ++i) p[static_cast<std::size_t>(i)] = built->position(i);
-    return p;
-  };
-
-  auto orientations = [&] {
-    std::vector<phys::Quat> q(static_cast<std::size_t>(bodies));
-    for (int i = 0; i < bodies; ++i) q[static_cast<std::size_t>(i)] = built->orientation(i);
-    return q;
-  };
-
-  std::vector<double> stepMs;
-  stepMs.reserve(static_cast<std::size_t>(std::max(steps, 0)));
-  std::size_t next = 0;
+  PeerStepper stepper(*built, static_cast<int>(description.bodies.size()));
+  RunSpec spec;
+  spec.steps = steps;
+  spec.checkpoints = checkpoints;
+  spec.orientations = true;
+  spec.stepTimes = true;
+  RunRecord run;
   try {
-    for (int s = 1; s <= steps; ++s) {
-      const auto start = std::chrono::steady_clock::now();
-      built->step();
-      const auto stop = std::chrono::steady_clock::now();
-      stepMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
-      built->afterStep(s);
-      while (next < checkpoints.size() && checkpoints[next] == s) {
-        result.positions.push_back(positions());
-        result.orientations.push_back(orientations());
-        ++next;
-      }
-    }
+    run = runSteps(stepper, spec);
   } catch (const std::exception& e) {
     // An engine that gives up part way (MuJoCo's errors arrive as exceptions) has no run to
     // compare; say so rather than report half of one.
     result.unsupported =
         joined({joined(description.notes), joined(built->notes), std::string(e.what()) + ": run stopped"});
-    result.positions.clear();
-    result.orientations.clear();
     return result;
   }
+  result.positions = std::move(run.positions);
+  result.orientations = std::move(run.orientations);
 
   built->finish();
-  result.maxPenetration = peers::groundPenetration(description, positions(), orientations());
+  result.maxPenetration = peers::groundPenetration(description, stepper.positions(), stepper.orientations());
   result.dropped = built->dropped;
-  result.medianMsPerStep = median(std::move(stepMs));
+  result.medianMsPerStep = median(std::move(run.stepMs));
   result.unsupported = joined({joined(description.notes), joined(built->notes)});
   result.ran = true;
   return result;

@@ -1,0 +1,62 @@
+#pragma once
+// The figures read after every step of a run, each kept at its worst over the run. This table is
+// the one place a figure is defined: `lab run --json` and its summary, sweep's results.csv,
+// tune's targets and compare's table all list it, so a figure added here appears in each
+// (docs/lab.md, "Figures of a run").
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+#include "physics/world.h"
+
+namespace lab {
+
+/// One figure of the table.
+struct RunMetric {
+  const char* name;    ///< tune's METRIC and compare's heading: "joint-error"
+  const char* column;  ///< sweep's CSV column; run's JSON key with "_over_run" after it
+  const char* unit;    ///< "m", "rad/s"; "" for a ratio
+  const char* help;    ///< what it is, in a few words
+  /// The figure after a step; `metrics` is world.metrics(), read once for all of them.
+  double (*read)(const phys::World& world, const phys::Metrics& metrics);
+};
+
+/// The fastest spin of any body, rad/s: each body's angular velocity over the last substep
+/// (World::bodyVelocity; a particle body's from its particles' motion).
+double maxAngularSpeed(const phys::World& world);
+
+inline constexpr std::array kRunMetrics{
+    RunMetric{"stick-error", "max_stick_error", "", "largest stick violation / rest length (0.01 = 1%)",
+              [](const phys::World&, const phys::Metrics& m) { return double(m.maxConstraintError); }},
+    RunMetric{"joint-error", "max_joint_error", "m", "largest joint gap",
+              [](const phys::World&, const phys::Metrics& m) { return double(m.maxJointError); }},
+    RunMetric{"penetration", "max_penetration", "m", "deepest penetration",
+              [](const phys::World&, const phys::Metrics& m) { return double(m.maxPenetration); }},
+    RunMetric{"angular-speed", "max_angular_speed", "rad/s", "fastest spin of a body",
+              [](const phys::World& w, const phys::Metrics&) { return maxAngularSpeed(w); }},
+};
+inline constexpr std::size_t kRunMetricCount = kRunMetrics.size();
+
+/// Where a metric sits in kRunMetrics; kRunMetricCount for none.
+constexpr std::size_t runMetricIndex(std::string_view name) {
+  for (std::size_t i = 0; i < kRunMetricCount; ++i) {
+    if (name == kRunMetrics[i].name) return i;
+  }
+  return kRunMetricCount;
+}
+/// The figures some code reads by name (a peer's penetration, sweep's stdout table).
+inline constexpr std::size_t kStickErrorMetric = runMetricIndex("stick-error");
+inline constexpr std::size_t kPenetrationMetric = runMetricIndex("penetration");
+static_assert(kStickErrorMetric < kRunMetricCount && kPenetrationMetric < kRunMetricCount);
+
+/// Each figure of kRunMetrics at its worst so far: the largest, and infinity for good once a
+/// figure was not finite (a run that blew up is not rescued by a later small value).
+struct RunMaxima {
+  std::array<double, kRunMetricCount> worst{};
+
+  /// Reads every figure of the world as it is now.
+  void observe(const phys::World& world);
+  double operator[](std::size_t i) const { return worst[i]; }
+};
+
+}  // namespace lab
