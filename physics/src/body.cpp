@@ -33,6 +33,20 @@ Vec3 boxCornerLocal(const Vec3& halfExtents, int k) {
           (k & 4) ? halfExtents.z : -halfExtents.z};
 }
 
+Real lowestAlong(Shape shape, const Vec3& halfExtents, const BodyPose& pose, const Vec3& up) {
+  if (shape == Shape::Capsule) {
+    // Body::capsuleRadius and capsuleHalfSegment, from the box the capsule is inscribed in.
+    const Real radius = halfExtents.x, halfSegment = halfExtents.y - halfExtents.x;
+    const Vec3 axis = pose.orientation * Vec3(0.0, halfSegment, 0.0);
+    return glm::dot(up, pose.center) - std::abs(glm::dot(up, axis)) - radius;
+  }
+  Real lowest = std::numeric_limits<Real>::infinity();
+  for (int k = 0; k < 8; ++k) {
+    lowest = std::min(lowest, glm::dot(up, pose.center + pose.orientation * boxCornerLocal(halfExtents, k)));
+  }
+  return lowest;
+}
+
 Vec3 boxParticleLocal(BodyModel model, const Vec3& halfExtents, int j) {
   if (model == BodyModel::Corners) return boxCornerLocal(halfExtents, j);
   return boxCornerLocal(halfExtents, kTetraCorner[j]);

@@ -85,11 +85,8 @@ void World::placeRigidCapsulePoints() {
 // The height over the ground plane's origin (n . x, m) of the body's lowest point now.
 Real World::lowestHeight(BodyId id, const Body& body) const {
   const Vec3 n = world_.groundNormal;
-  const BodyPose pose = bodyPose(id);
-  if (body.shape == Shape::Capsule) {
-    const Vec3 axis = pose.orientation * Vec3(0.0, body.capsuleHalfSegment(), 0.0);
-    return glm::dot(n, pose.center) - std::abs(glm::dot(n, axis)) - body.capsuleRadius();
-  }
+  // A capsule by its pose; a box by its corners as they are, which a particle box may have bent.
+  if (body.shape == Shape::Capsule) return lowestAlong(Shape::Capsule, body.halfExtents, bodyPose(id), n);
   Real lowest = std::numeric_limits<Real>::infinity();
   for (int k = 0; k < 8; ++k) lowest = std::min(lowest, glm::dot(n, cornerPosition(id, k)));
   return lowest;

@@ -493,6 +493,35 @@ TEST(RigidBody, APatchThatDidNotPressKeepsNoImpulseForTheNextSubstep) {
 // World::bodyMass against the analytic moments: eight corner particles of M/8 at (+-hx, +-hy,
 // +-hz) give I_xx = M (hy^2 + hz^2); the solid box M (hy^2 + hz^2) / 3. The peers build their
 // bodies from these, so a wrong moment would make every engine turn a box differently from ours.
+// The lowest point of a shape at a pose (what the lab's peers measure their penetration by):
+// the analytic heights of a box and a capsule standing, lying and tilted, along a tilted "up" too.
+TEST(LowestAlong, BoxesAndCapsulesAtAnyPose) {
+  using phys::Quat;
+  using phys::Vec3;
+  const Vec3 up(0.0, 1.0, 0.0);
+  const Quat standing(1.0, 0.0, 0.0, 0.0);
+  const Quat lying = glm::angleAxis(std::numbers::pi / 2.0, Vec3(0.0, 0.0, 1.0));
+  const Quat tilted = glm::angleAxis(std::numbers::pi / 4.0, Vec3(0.0, 0.0, 1.0));
+  const Vec3 centre(3.0, 2.0, -1.0);
+  const Vec3 box(1.0, 0.5, 0.25);
+  EXPECT_NEAR(phys::lowestAlong(phys::Shape::Box, box, {centre, standing}, up), 1.5, 1e-12);
+  EXPECT_NEAR(phys::lowestAlong(phys::Shape::Box, box, {centre, lying}, up), 1.0, 1e-12);
+  // Tilted 45 degrees about z: the lowest corner is down by (hx + hy) / sqrt(2).
+  EXPECT_NEAR(phys::lowestAlong(phys::Shape::Box, box, {centre, tilted}, up), 2.0 - 1.5 / std::sqrt(2.0),
+              1e-12);
+  // A capsule inscribed in a 0.4 x 2 x 0.4 box: radius 0.2, core from -0.8 to 0.8 along y.
+  const Vec3 capsule(0.2, 1.0, 0.2);
+  EXPECT_NEAR(phys::lowestAlong(phys::Shape::Capsule, capsule, {centre, standing}, up), 1.0, 1e-12);
+  EXPECT_NEAR(phys::lowestAlong(phys::Shape::Capsule, capsule, {centre, lying}, up), 1.8, 1e-12);
+  EXPECT_NEAR(phys::lowestAlong(phys::Shape::Capsule, capsule, {centre, tilted}, up),
+              2.0 - 0.8 / std::sqrt(2.0) - 0.2, 1e-12);
+  // Along another "up" (a sloped ground's normal) the same capsule standing: its core's end and
+  // its radius, measured along that normal.
+  const Vec3 slope = glm::normalize(Vec3(1.0, 1.0, 0.0));
+  EXPECT_NEAR(phys::lowestAlong(phys::Shape::Capsule, capsule, {centre, standing}, slope),
+              glm::dot(slope, centre) - 0.8 / std::sqrt(2.0) - 0.2, 1e-12);
+}
+
 TEST(BodyMass, CornersAndSolidBoxesHaveTheirAnalyticMoments) {
   phys::World world = testing_phys::openSpace();
   BodyDesc d;

@@ -218,21 +218,13 @@ double groundPenetration(const Description& scene, const std::vector<phys::Vec3>
   double deepest = 0.0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
-    double lowest = std::numeric_limits<double>::infinity();
-    if (b.shape == Body::Shape::Sphere) {
-      lowest = glm::dot(scene.groundNormal, centres[i]) - b.radius;
-    } else if (b.shape == Body::Shape::Capsule) {
-      // The lowest point of a capsule is below one of its core's ends (or both), by its radius.
-      for (const double end : {-b.halfSegment, b.halfSegment}) {
-        const Vec3 p = toWorld(centres[i], orientations[i], Vec3(0.0, end, 0.0));
-        lowest = std::min(lowest, glm::dot(scene.groundNormal, p) - b.radius);
-      }
-    } else {
-      for (int k = 0; k < 8; ++k) {
-        const Vec3 corner = toWorld(centres[i], orientations[i], phys::boxCornerLocal(b.halfExtents, k));
-        lowest = std::min(lowest, glm::dot(scene.groundNormal, corner));
-      }
-    }
+    // A box's or a capsule's lowest point by the physics' own measure (phys::lowestAlong); a
+    // sphere's, a loose particle's stand-in, below its centre by its radius.
+    const double lowest =
+        b.shape == Body::Shape::Sphere
+            ? glm::dot(scene.groundNormal, centres[i]) - b.radius
+            : phys::lowestAlong(b.shape == Body::Shape::Capsule ? phys::Shape::Capsule : phys::Shape::Box,
+                                b.halfExtents, {centres[i], orientations[i]}, scene.groundNormal);
     // A body that has gone off to infinity or NaN is as deep as it gets, not silently skipped.
     if (!std::isfinite(lowest)) return std::numeric_limits<double>::infinity();
     deepest = std::max(deepest, scene.groundHeight - lowest);

@@ -126,6 +126,12 @@ inline constexpr int kTetraCorner[4] = {0, 3, 5, 6};
 
 /// Body-frame position of corner k of a box with the given half extents.
 Vec3 boxCornerLocal(const Vec3& halfExtents, int k);
+/// The lowest point, as a height along the unit vector `up`, of a solid box with these half
+/// extents (Shape::Box) or of the capsule inscribed in it (Shape::Capsule: Body::capsuleRadius
+/// and capsuleHalfSegment's) placed at `pose`: the height of its support point in direction
+/// -up. The world's penetration metric measures its capsules by it, and the lab's peer engines
+/// their boxes and capsules.
+Real lowestAlong(Shape shape, const Vec3& halfExtents, const BodyPose& pose, const Vec3& up);
 /// Body-frame rest position of particle j of a box of the given model.
 Vec3 boxParticleLocal(BodyModel model, const Vec3& halfExtents, int j);
 /// Particles per box of the given model.
