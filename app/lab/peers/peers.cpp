@@ -19,18 +19,18 @@ class PeerStepper final : public Stepper {
   PeerStepper(peers::Engine& engine, int bodies) : engine_(engine), bodies_(bodies) {}
   void step() override { engine_.step(); }
   void afterStep(int step) override { engine_.afterStep(step); }
-  std::vector<phys::Vec3> positions() const override {
-    std::vector<phys::Vec3> p(static_cast<std::size_t>(bodies_));
-    for (int i = 0; i < bodies_; ++i) p[static_cast<std::size_t>(i)] = engine_.position(i);
-    return p;
-  }
-  std::vector<phys::Quat> orientations() const override {
-    std::vector<phys::Quat> q(static_cast<std::size_t>(bodies_));
-    for (int i = 0; i < bodies_; ++i) q[static_cast<std::size_t>(i)] = engine_.orientation(i);
-    return q;
-  }
+  std::vector<phys::Vec3> positions() const override { return each(&peers::Engine::position); }
+  std::vector<phys::Quat> orientations() const override { return each(&peers::Engine::orientation); }
 
  private:
+  template <typename T>
+  std::vector<T> each(T (peers::Engine::*read)(int) const) const {
+    std::vector<T> out;
+    out.reserve(static_cast<std::size_t>(bodies_));
+    for (int i = 0; i < bodies_; ++i) out.push_back((engine_.*read)(i));
+    return out;
+  }
+
   peers::Engine& engine_;
   int bodies_;
 };
