@@ -273,12 +273,12 @@ void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, con
 }
 
 void CommandLine::onOff(const OptionSpec& spec, bool& into, const std::string& note) {
-  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+  add(spec, firstName(spec.names) + " " + spec.value, note, false,
       [&into](const std::string& v) { return readOnOff(v, into); });
 }
 
 void CommandLine::onOff(const OptionSpec& spec, std::optional<bool>& into, const std::string& note) {
-  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+  add(spec, firstName(spec.names) + " " + spec.value, note, false,
       [&into](const std::string& v) { return readOnOff(v, into.emplace()); });
 }
 
@@ -288,13 +288,13 @@ void CommandLine::flag(const OptionSpec& spec, bool& into, bool value, const std
 }
 
 void CommandLine::folder(const OptionSpec& spec, std::filesystem::path& into, const std::string& note) {
-  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+  add(spec, firstName(spec.names) + " " + spec.value, note, false,
       [&spec, &into](const std::string& v) { return readPath(v, spec, into); });
 }
 
 void CommandLine::folder(const OptionSpec& spec, std::optional<std::filesystem::path>& into,
                          const std::string& note) {
-  add(spec, std::string(spec.names) + " " + spec.value, note, false,
+  add(spec, firstName(spec.names) + " " + spec.value, note, false,
       [&spec, &into](const std::string& v) { return readPath(v, spec, into.emplace()); });
 }
 
@@ -305,16 +305,15 @@ void CommandLine::file(const OptionSpec& spec, std::optional<std::filesystem::pa
 
 void CommandLine::seconds(const OptionSpec& spec, double low, double high, double& into,
                           const std::string& note) {
-  add(spec, std::string(spec.names) + " " + spec.value, note, false,
-      [low, high, &into](const std::string& v) {
-        const std::optional<double> t = parseNumber(v);
-        if (!t || !(*t > low && *t <= high)) {
-          return "'" + v + "' is not a number of seconds above " + formatNumber(low) + " and at most " +
-                 formatNumber(high);
-        }
-        into = *t;
-        return std::string();
-      });
+  add(spec, firstName(spec.names) + " " + spec.value, note, false, [low, high, &into](const std::string& v) {
+    const std::optional<double> t = parseNumber(v);
+    if (!t || !(*t > low && *t <= high)) {
+      return "'" + v + "' is not a number of seconds above " + formatNumber(low) + " and at most " +
+             formatNumber(high);
+    }
+    into = *t;
+    return std::string();
+  });
 }
 
 void CommandLine::custom(const OptionSpec& spec, bool many,
@@ -334,7 +333,10 @@ std::string CommandLine::parse(const std::vector<std::string>& args) {
   } catch (const OptionError& e) {
     return e.what();
   } catch (const CLI::ExtrasError&) {
-    const std::string extra = app_->remaining().empty() ? std::string("?") : app_->remaining().front();
+    // CLI11 keeps a "--" it passed in remaining(); the extra is the first word after it.
+    std::vector<std::string> extras = app_->remaining();
+    extras.erase(std::remove(extras.begin(), extras.end(), "--"), extras.end());
+    const std::string extra = extras.empty() ? std::string("?") : extras.front();
     if (extra.size() > 1 && extra[0] == '-') return "unknown option '" + extra + "'";
     if (!positionalValues_.empty()) {
       return command_ + " takes one " + positionalName_ + "; got '" + positionalValues_.front() + "' and '" +
@@ -351,6 +353,12 @@ std::string CommandLine::parse(const std::vector<std::string>& args) {
     return what;
   } catch (const CLI::ParseError& e) {
     return e.what();
+  }
+  // CLI11 validates no empty word, so an empty positional ("lab run ''") is caught here.
+  if (!positionalName_.empty()) {
+    for (const std::string& word : app_->get_option(positionalName_)->results()) {
+      if (word.empty()) return command_ + ": the " + positionalName_ + " is empty";
+    }
   }
   for (const auto& [name, why] : required_) {
     const bool given = name == "SCENE" ? !positionalValues_.empty() : app_->count(name) > 0;

@@ -3,10 +3,8 @@
 // step, and measured against the same accuracy target at the same checkpoints (docs/lab.md,
 // "lab compare and the peers").
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <limits>
@@ -20,7 +18,6 @@
 #include <glm/geometric.hpp>
 
 #include "accuracy.h"
-#include "bodies.h"
 #include "commands.h"
 #include "json.h"
 #include "lab.h"

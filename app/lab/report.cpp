@@ -102,8 +102,8 @@ std::string summaryText(const RunResult& r) {
   s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " +
        num(r.simulatedTime) + " s simulated, in " + num(r.wallMs, 4) + " ms wall: " + num(r.msPerStep, 4) +
        " ms/step\n";
-  // Profile::total is the physics' own clock per step; the wall time above also holds the
-  // loop around it. The median shrugs off the odd step the scheduler interrupted.
+  // Profile::total is the physics' own clock per step; the wall time above is the calls to
+  // World::step() as the lab sees them. The median shrugs off the odd step the scheduler interrupted.
   s += "step time    median " + num(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";
   // One line per stage, in the step's order, then what the stages leave of the total: the
   // step's own bookkeeping and clock reads.

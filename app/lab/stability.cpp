@@ -108,7 +108,13 @@ int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::
     std::vector<SuiteScene> scenes;
     for (const std::filesystem::path& file : stability::sceneFiles(o))
       scenes.push_back(stability::loadSuiteScene(file));
-    const SuiteResult result = runSuite(o, scenes, err);
+    SuiteResult result;
+    try {
+      result = runSuite(o, scenes, err);
+    } catch (...) {
+      err << "\n";  // ends the progress line, so the message has a line of its own
+      throw;
+    }
     const std::string md = stability::markdownReport(result);
     out << md << std::flush;
     return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);

@@ -276,7 +276,7 @@ std::string csvHeader() {
 std::string csvRow(const std::string& scene, const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
   // Blank: no such figure for a peer.
-  auto ours = [&](double v) { return r.peer && !std::isfinite(v) ? std::string() : csvNumber(v); };
+  auto ours = [&](double v) { return r.peer && std::isnan(v) ? std::string() : csvNumber(v); };
   std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
                      opt(r.iterations) + "," + opt(r.substeps) + "," + csvNumber(r.dt) + "," +
                      std::to_string(r.steps) + "," + std::to_string(r.repeats) + "," +

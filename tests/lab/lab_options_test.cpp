@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "lab.h"
 #include "options.h"
+#include "stability_options.h"
 
 namespace {
 
@@ -82,6 +83,26 @@ TEST(LabOptions, DtLimitsAndForms) {
   }
 }
 
+// A LIST drops the command's defaults at its first value, a second one adds to the first, and
+// a value listed twice counts once.
+TEST(LabOptions, ListsReplaceTheDefaultsAndAddUp) {
+  lab::stability::StabilityOptions o;
+  lab::CommandLine line("stability", "");
+  lab::stability::describeOptions(line, o);
+  ASSERT_EQ(line.parse({"--iterations", "2", "--iterations", "5,2", "--scene", "a", "b", "--scene", "c,d"}),
+            "");
+  EXPECT_EQ(o.iterations, (std::vector<int>{2, 5}));
+  EXPECT_EQ(o.substeps, (std::vector<int>{1, 4, 16}));  // not given: the defaults
+  EXPECT_EQ(o.scenes, (std::vector<std::string>{"a", "b", "c", "d"}));
+}
+
+// The word after a "--" is a positional: a second SCENE, named as one.
+TEST(LabOptions, AfterTheMarkerAWordIsASecondScene) {
+  const lab::CommandOutput o = lab::runCaptured(lab::labMain, {"run", "a", "--", "b"});
+  EXPECT_EQ(o.code, lab::kExitUsage);
+  EXPECT_NE(o.err.find("run takes one SCENE; got 'a' and 'b'"), std::string::npos) << o.err;
+}
+
 TEST(LabOptions, HelpInEveryForm) {
   for (const Args& args : {Args{"help"}, Args{"--help"}, Args{"-h"}, Args{"run", "s", "--help"},
                            Args{"run", "--steps", "0", "-h"}, Args{"sweep", "--help"}}) {
@@ -121,8 +142,9 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, LabOptionsBad,
     ::testing::Values(
         BadCase{{}, "command"}, BadCase{{"frobnicate"}, "'frobnicate'"}, BadCase{{"--json"}, "'--json'"},
-        BadCase{{"run"}, "SCENE"}, BadCase{{"run", "--json"}, "SCENE"}, BadCase{{"run", "a", "b"}, "'b'"},
-        BadCase{{"run", "s", "--bogus"}, "'--bogus'"}, BadCase{{"run", "s", "-x"}, "'-x'"},
+        BadCase{{"run"}, "SCENE"}, BadCase{{"run", ""}, "SCENE"}, BadCase{{"run", "--json"}, "SCENE"},
+        BadCase{{"run", "a", "b"}, "'b'"}, BadCase{{"run", "s", "--bogus"}, "'--bogus'"},
+        BadCase{{"run", "s", "-x"}, "'-x'"},
         // missing values, at the end or followed by another option
         BadCase{{"run", "s", "--steps"}, "--steps"}, BadCase{{"run", "s", "--dt"}, "--dt"},
         BadCase{{"run", "s", "--method"}, "--method"}, BadCase{{"run", "s", "--iterations"}, "--iterations"},

@@ -490,9 +490,6 @@ TEST(RigidBody, APatchThatDidNotPressKeepsNoImpulseForTheNextSubstep) {
 
 }  // namespace
 
-// World::bodyMass against the analytic moments: eight corner particles of M/8 at (+-hx, +-hy,
-// +-hz) give I_xx = M (hy^2 + hz^2); the solid box M (hy^2 + hz^2) / 3. The peers build their
-// bodies from these, so a wrong moment would make every engine turn a box differently from ours.
 // The lowest point of a shape at a pose (what the lab's peers measure their penetration by):
 // the analytic heights of a box and a capsule standing, lying and tilted, along a tilted "up" too.
 TEST(LowestAlong, BoxesAndCapsulesAtAnyPose) {
@@ -522,6 +519,9 @@ TEST(LowestAlong, BoxesAndCapsulesAtAnyPose) {
               glm::dot(slope, centre) - 0.8 / std::sqrt(2.0) - 0.2, 1e-12);
 }
 
+// World::bodyMass against the analytic moments: eight corner particles of M/8 at (+-hx, +-hy,
+// +-hz) give I_xx = M (hy^2 + hz^2); the solid box M (hy^2 + hz^2) / 3. The peers build their
+// bodies from these, so a wrong moment would make every engine turn a box differently from ours.
 TEST(BodyMass, CornersAndSolidBoxesHaveTheirAnalyticMoments) {
   phys::World world = testing_phys::openSpace();
   BodyDesc d;
