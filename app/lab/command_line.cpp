@@ -186,8 +186,7 @@ void CommandLine::positional(const std::string& name, const std::string& help, b
   CLI::Option* option = app_->add_option(name);
   if (many) option->expected(0, CLI::detail::expected_max_vector_size)->allow_extra_args(true);
   option->check(CLI::Validator(
-      [this, read = std::move(read)](std::string& value) -> std::string {
-        positionalValues_.push_back(value);
+      [read = std::move(read)](std::string& value) -> std::string {
         if (std::string e = read(value); !e.empty()) throw OptionError(e);
         return {};
       },
@@ -325,8 +324,12 @@ void CommandLine::require(const OptionSpec& spec, std::string why) {
   required_.emplace_back(firstName(spec.names), std::move(why));
 }
 
+std::vector<std::string> CommandLine::positionalWords() const {
+  if (positionalName_.empty()) return {};
+  return app_->get_option(positionalName_)->results();
+}
+
 std::string CommandLine::parse(const std::vector<std::string>& args) {
-  positionalValues_.clear();
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
   try {
     app_->parse(reversed);
@@ -338,9 +341,8 @@ std::string CommandLine::parse(const std::vector<std::string>& args) {
     extras.erase(std::remove(extras.begin(), extras.end(), "--"), extras.end());
     const std::string extra = extras.empty() ? std::string("?") : extras.front();
     if (extra.size() > 1 && extra[0] == '-') return "unknown option '" + extra + "'";
-    if (!positionalValues_.empty()) {
-      return command_ + " takes one " + positionalName_ + "; got '" + positionalValues_.front() + "' and '" +
-             extra + "'";
+    if (const std::vector<std::string> given = positionalWords(); !given.empty()) {
+      return command_ + " takes one " + positionalName_ + "; got '" + given.front() + "' and '" + extra + "'";
     }
     return "unexpected argument '" + extra + "'";
   } catch (const CLI::ArgumentMismatch& e) {
@@ -355,13 +357,11 @@ std::string CommandLine::parse(const std::vector<std::string>& args) {
     return e.what();
   }
   // CLI11 validates no empty word, so an empty positional ("lab run ''") is caught here.
-  if (!positionalName_.empty()) {
-    for (const std::string& word : app_->get_option(positionalName_)->results()) {
-      if (word.empty()) return command_ + ": the " + positionalName_ + " is empty";
-    }
+  for (const std::string& word : positionalWords()) {
+    if (word.empty()) return command_ + ": the " + positionalName_ + " is empty";
   }
   for (const auto& [name, why] : required_) {
-    const bool given = name == "SCENE" ? !positionalValues_.empty() : app_->count(name) > 0;
+    const bool given = name == "SCENE" ? !positionalWords().empty() : app_->count(name) > 0;
     if (!given) return why;
   }
   return {};

@@ -155,11 +155,13 @@ class CommandLine {
   void add(const OptionSpec& spec, std::string label, const std::string& note, bool many,
            std::function<std::string(const std::string&)> read);
 
+  /// The words CLI11 gave the positional (none without one).
+  std::vector<std::string> positionalWords() const;
+
   std::string command_;
   std::string about_;
   std::unique_ptr<CLI::App> app_;
   std::vector<Entry> entries_;  // in the order the help lists them
-  std::vector<std::string> positionalValues_;
   std::string positionalName_;
   std::vector<std::pair<std::string, std::string>> required_;  // option, why
 };
