@@ -24,6 +24,9 @@ struct PeerResult {
   /// The engine's version, solver and settings as run, one line for tables.
   std::string settings;
   double medianMsPerStep = 0.0;  ///< unit: ms; median wall time of one step
+  /// unit: ms; the steps' summed wall time over their number: the cost of a step, spikes
+  /// included, as lab sweep and compare time ours (timeSetting)
+  double meanMsPerStep = 0.0;
   /// Per checkpoint asked for, bodyPositions() order: where the engine's bodies are.
   std::vector<std::vector<phys::Vec3>> positions;
   /// The same bodies' orientations at the same checkpoints: with the positions, the poses that

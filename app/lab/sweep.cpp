@@ -28,6 +28,7 @@
 #include "report.h"
 #include "run.h"
 #include "sweep_core.h"
+#include "sweep_plan.h"
 #include "text.h"
 
 namespace lab {
@@ -38,8 +39,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// 1e-11 m over a thousand substeps. They are drawn and compared as this, so the front does not
 /// chase noise. unit: m
 constexpr double kErrorFloor = 1e-9;
-/// A sweep of more runs than this is surely a typo in a list.
-constexpr std::size_t kMaxCombinations = 10000;
 
 struct SweepOptions {
   std::string scene;
@@ -72,151 +71,29 @@ void describeSweep(CommandLine& line, SweepOptions& o) {
   line.require(option::kOut, "sweep needs --out DIR (where the CSV and the chart go)");
 }
 
-// ---- the runs -------------------------------------------------------------------------------
+// ---- the plan -------------------------------------------------------------------------------
 
-/// One row of results.csv: one of our settings, or one peer engine at one dt.
-struct Row {
-  std::string method;
-  std::string model;
-  std::optional<int> iterations;  // none for a peer
-  std::optional<int> substeps;
-  double dt = 0.0;
-  int steps = 0;
-  int repeats = 0;
-  double msPerStep = 0.0;
-  Figures figures;
-  bool peer = false;
-  double uncertainty = 0.0;
-  std::string note;
-  bool pareto = false;
+using Row = SweepRow;
 
-  double msPerSimSecond() const { return msPerStep / dt; }
-  bool blewUp() const { return figures.frozen > 0 || !std::isfinite(figures.error); }
-};
-
-/// What the sweep covers, after the scene's own values filled the unset dimensions.
-struct Plan {
-  std::filesystem::path file;
-  std::string sceneName;
-  double sceneDt = 0.0;
-  double horizon = 0.0;  // unit: s of simulated time
-  std::vector<ModelChoice> models;
-  std::vector<Setting> settings;  // every combination, in run order
-  std::vector<double> dts;
-  int repeats = 3;
-  bool peers = true;
-
-  int stepsAt(double dt) const { return std::max(1, static_cast<int>(std::lround(horizon / dt))); }
-};
-
-// Builds the plan; throws UsageError for a --models that does not fit the scene, or too many runs.
-Plan makePlan(const SweepOptions& o, const std::filesystem::path& file) {
-  Plan plan;
-  const scenes::Scene scene = scenes::loadSceneFile(file);
-  const phys::SolverSettings own = scene.world.solverSettings();
+// The plan of the options; throws UsageError for a --models that does not fit the scene, or too
+// many runs.
+Plan sweepPlan(const SweepOptions& o, const std::filesystem::path& file) {
+  PlanRequest request;
   const SceneModels models = sceneModels(file);
-  plan.file = file;
-  plan.sceneName = scene.name;
-  plan.sceneDt = own.dt;
-  plan.horizon = (o.steps ? *o.steps : defaultSteps(own.dt)) * own.dt;
-  plan.repeats = o.repeats;
-  plan.peers = o.peers;
   for (const std::string& name : o.models) {
     std::string error;
     const std::optional<ModelChoice> c = modelChoice(name, models, error);
     if (!c) throw UsageError("--models: " + error);
-    plan.models.push_back(*c);
+    request.models.push_back(*c);
   }
-  if (plan.models.empty()) plan.models.push_back(models.asFile);
-  const std::vector<phys::SolverMethod> methods = o.methods.empty() ? std::vector{own.method} : o.methods;
-  const std::vector<int> iterations = o.iterations.empty() ? std::vector{own.iterations} : o.iterations;
-  const std::vector<int> substeps = o.substeps.empty() ? std::vector{own.substeps} : o.substeps;
-  plan.dts = o.dts.empty() ? std::vector{own.dt} : o.dts;
-  // A model that leaves the scene rigid bodies and no stick steps alike under every method
-  // (xpbdWhateverTheMethod): it runs once, as xpbd, which is how its rigid bodies are solved,
-  // instead of as equal rows under names that did nothing.
-  std::vector<std::vector<phys::SolverMethod>> methodsOf;
-  std::size_t count = 0;
-  for (const ModelChoice& model : plan.models) {
-    const bool xpbdAlone = xpbdWhateverTheMethod(scenes::loadSceneFile(file, model.options).world);
-    methodsOf.push_back(xpbdAlone ? std::vector{phys::SolverMethod::Xpbd} : methods);
-    count += plan.dts.size() * methodsOf.back().size() * iterations.size() * substeps.size();
-  }
-  if (count > kMaxCombinations) {
-    throw UsageError(std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) +
-                     " (shorten a list)");
-  }
-  for (std::size_t m = 0; m < plan.models.size(); ++m) {
-    const ModelChoice& model = plan.models[m];
-    for (double dt : plan.dts) {
-      for (phys::SolverMethod method : methodsOf[m]) {
-        for (int it : iterations) {
-          for (int sub : substeps) plan.settings.push_back(Setting{model, method, it, sub, dt});
-        }
-      }
-    }
-  }
-  return plan;
-}
-
-Row runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progress& progress) {
-  const bool fresh = !targets.has(s, plan.stepsAt(s.dt));
-  const AccuracyTarget& target = targets.get(plan.file, s, plan.stepsAt(s.dt));
-  if (fresh) progress.advance();
-  Row r;
-  r.method = std::string(phys::toString(s.method));
-  r.model = s.model.label;
-  r.iterations = s.iterations;
-  r.substeps = s.substeps;
-  r.dt = s.dt;
-  r.steps = stepsFor(target, plan.stepsAt(s.dt));
-  r.repeats = plan.repeats;
-  r.uncertainty = maxUncertainty(target);
-  r.figures = measureFigures(plan.file, s, r.steps, target);
-  progress.advance();
-  r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
-  progress.advance(plan.repeats);
-  if (r.figures.frozen > 0)
-    r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) + " particles";
-  return r;
-}
-
-// The peers at one dt, on the scene as loaded with the first model, against that model's target.
-void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Row>& rows,
-              std::vector<std::string>& notes, Progress& progress) {
-  Setting first{plan.models.front(), phys::SolverMethod::GaussSeidel, 1, 1, dt};
-  const AccuracyTarget& target = targets.get(plan.file, first, plan.stepsAt(dt));
-  const int steps = stepsFor(target, plan.stepsAt(dt));
-  for (const std::string& engine : peerEngines()) {
-    const scenes::Scene scene = scenes::loadSceneFile(plan.file, first.model.options);
-    PeerResult p;
-    try {
-      p = runPeer(engine, scene, dt, steps, target.checkpoints);
-    } catch (const std::exception& e) {
-      // One engine failing should not cost the whole sweep its results.
-      p.ran = false;
-      p.unsupported = std::string("failed: ") + e.what();
-    }
-    progress.advance();
-    if (!p.ran) {
-      notes.push_back(engine + " not run: " + p.unsupported);
-      continue;
-    }
-    Row r;
-    r.peer = true;
-    r.method = p.engine;
-    r.model = first.model.label;
-    r.dt = dt;
-    r.steps = steps;
-    r.repeats = 1;
-    r.msPerStep = p.medianMsPerStep;
-    r.uncertainty = maxUncertainty(target);
-    r.figures.error = accuracyError(target, p.positions);
-    r.figures.maxima.worst.fill(std::nan(""));  // a peer has none of our figures but this one
-    r.figures.maxima.worst[kPenetrationMetric] = p.maxPenetration;
-    r.note = p.unsupported;
-    rows.push_back(r);
-  }
+  request.methods = o.methods;
+  request.iterations = o.iterations;
+  request.substeps = o.substeps;
+  request.dts = o.dts;
+  request.steps = o.steps;
+  request.repeats = o.repeats;
+  request.peers = o.peers;
+  return makePlan(file, request);
 }
 
 // ---- the front ------------------------------------------------------------------------------
@@ -270,7 +147,7 @@ std::string csvHeader() {
       "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
       "uncertainty,";
   for (const RunMetric& m : kRunMetrics) header += std::string(m.column) + ",";
-  return header + "energy_drift,frozen,pareto,note\n";
+  return header + "error_first,pose_penetration,pose_joint_gap,energy_drift,frozen,pareto,note\n";
 }
 
 std::string csvRow(const std::string& scene, const Row& r) {
@@ -283,6 +160,8 @@ std::string csvRow(const std::string& scene, const Row& r) {
                      csvNumber(r.msPerStep) + "," + csvNumber(r.msPerSimSecond()) + "," +
                      csvNumber(r.blewUp() ? kInf : r.figures.error) + "," + csvNumber(r.uncertainty) + ",";
   for (const double v : r.figures.maxima.worst) line += ours(v) + ",";
+  line += csvNumber(r.blewUp() ? kInf : r.figures.errorFirst) + "," + csvNumber(r.figures.posePenetration) +
+          "," + csvNumber(r.figures.poseJointGap) + ",";
   line += (r.peer ? std::string() : csvNumber(r.figures.energyDrift)) + "," +
           (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (r.pareto ? "1" : "0") + "," +
           csvField(r.note);
@@ -435,19 +314,19 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
 }
 
 int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream& out, std::ostream& err) {
-  const int engines = plan.peers ? static_cast<int>(peerEngines().size()) : 0;
-  const int total = static_cast<int>(plan.settings.size()) * (plan.repeats + 1) +
-                    static_cast<int>(plan.models.size() * plan.dts.size()) +
-                    engines * static_cast<int>(plan.dts.size());
-  Progress progress(err, "sweep", static_cast<std::size_t>(total));
-  TargetCache targets;
-  std::vector<Row> rows;
-  for (const Setting& s : plan.settings) rows.push_back(runSetting(plan, s, targets, progress));
-  std::vector<std::string> notes;
-  if (plan.peers) {
-    for (double dt : plan.dts) runPeers(plan, dt, targets, rows, notes, progress);
-  }
+  Progress progress(err, "sweep", planWork(plan));
+  PlanResult result = runPlan(plan, progress);
   progress.finish();
+  TargetCache& targets = result.targets;
+  // A peer that could not run has no row in the files: a line says why.
+  std::vector<Row> rows;
+  std::vector<std::string> notes;
+  for (Row& r : result.rows) {
+    if (r.ran)
+      rows.push_back(std::move(r));
+    else
+      notes.push_back(r.method + " not run: " + r.note);
+  }
   markPareto(rows);
 
   // Each distinct target once, named by its model and dt when there are several.
@@ -466,11 +345,8 @@ int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream
       accuracy.push_back(line);
     }
   }
-  const Setting firstKey{plan.models.front(), phys::SolverMethod::GaussSeidel, 1, 1, plan.dts.front()};
-  const AccuracyTarget& firstTarget = targets.get(plan.file, firstKey, plan.stepsAt(plan.dts.front()));
-
   printReport(out, plan, rows, accuracy, notes);
-  const Written w = writeOutputs(plan, rows, firstTarget, outDir);
+  const Written w = writeOutputs(plan, rows, firstTarget(plan, targets, plan.dts.front()), outDir);
   const auto front = frontByCost(rows);
   out << "pareto      " << front.size() << (front.size() == 1 ? " setting" : " settings") << " (marked *):";
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
@@ -491,7 +367,7 @@ int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostr
                    "times each and measures its error against the scene's accuracy target.");
   describeSweep(line, o);
   return commandMain(line, args, out, err, [&] {
-    const Plan plan = makePlan(o, sceneFile(o.scene, o.dataDir));
+    const Plan plan = sweepPlan(o, sceneFile(o.scene, o.dataDir));
     prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
     return runSweep(plan, o.out, out, err);
   });

@@ -5,6 +5,10 @@
 #include <cstdio>
 #include <limits>
 
+#include <sstream>
+
+#include "peers/peer_scene.h"
+#include "peers/pose_measures.h"
 #include "run.h"
 #include "runner.h"
 
@@ -164,20 +168,59 @@ scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& sett
   return scene;
 }
 
+std::string settingsWords(const phys::World& world) {
+  const phys::SolverSettings& s = world.solverSettings();
+  const bool particles = world.particles().size() > 0, rigid = world.rigidBodies().size() > 0;
+  std::ostringstream o;
+  o << (particles && rigid ? "Verlet and rigid bodies, "
+        : rigid            ? "rigid bodies, "
+                           : "Verlet, ")
+    << ixsWords(s.iterations, s.substeps);
+  if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
+  if (s.sleep.enabled) o << ", sleeping";
+  return o.str();
+}
+
+double firstCheckpointError(const AccuracyTarget& target,
+                            const std::vector<std::vector<phys::Vec3>>& positions) {
+  if (target.expected.empty() || positions.empty()) return std::numeric_limits<double>::quiet_NaN();
+  AccuracyTarget first;
+  first.kind = target.kind;
+  first.checkpoints.push_back(target.checkpoints.front());
+  first.expected.push_back(target.expected.front());
+  return accuracyError(first, {positions.front()});
+}
+
+void poseFigures(const scenes::Scene& scene, const std::vector<std::vector<phys::Vec3>>& positions,
+                 const std::vector<std::vector<phys::Quat>>& orientations, double& penetration,
+                 double& jointGap) {
+  const peers::Description description = peers::describe(scene);
+  penetration = jointGap = 0.0;
+  for (std::size_t k = 0; k < positions.size() && k < orientations.size(); ++k) {
+    penetration = std::max(penetration, peers::posePenetration(description, positions[k], orientations[k]));
+    jointGap = std::max(jointGap, peers::jointGap(description, positions[k], orientations[k]));
+  }
+}
+
 Figures measureFigures(const std::filesystem::path& file, const Setting& setting, int steps,
                        const AccuracyTarget& target) {
   scenes::Scene scene = loadSetting(file, setting);
   RunSpec spec;
   spec.steps = steps;
   spec.checkpoints = target.checkpoints;
+  spec.orientations = true;
   spec.maxima = true;
   const RunRecord run = runSteps(scene.world, spec);
   Figures f;
   f.maxima = run.maxima;
   f.energyDrift = run.energyAfter - run.energyBefore;
   f.frozen = scene.world.metrics().frozen;
+  // A frozen body's position says nothing of the solver (docs/lab.md, "Accuracy").
   f.error = f.frozen > 0 ? kInf : accuracyError(target, run.positions);
+  f.errorFirst = f.frozen > 0 ? kInf : firstCheckpointError(target, run.positions);
   f.roughMsPerStep = steps > 0 ? run.steppingMs / steps : 0.0;
+  poseFigures(scene, run.positions, run.orientations, f.posePenetration, f.poseJointGap);
+  f.settings = settingsWords(scene.world);
   return f;
 }
 

@@ -69,7 +69,32 @@ struct Figures {
   /// unit: ms; this pass's own steps timed one by one and averaged: rough (one run, the
   /// metrics read between the steps disturb the caches), for the tune's pruning only.
   double roughMsPerStep = 0.0;
+  /// unit: m; the error at the first checkpoint alone: in a chaotic scene (a pile) later
+  /// checkpoints measure mostly which way things happened to fall, the first still how well a
+  /// setting steps. Infinity when `error` is.
+  double errorFirst = 0.0;
+  /// unit: m; the largest penetration and joint gap over the checkpoints, measured from the
+  /// bodies' poses by the code that measures every peer's (peers/pose_measures.h), so ours and
+  /// theirs compare at equal joint error.
+  double posePenetration = 0.0;
+  double poseJointGap = 0.0;
+  std::string settings;  ///< what stepped the world, one line (settingsWords)
 };
+
+/// How a world steps, one line: "Verlet, 3 iterations x 1 substep" (or "rigid bodies", or
+/// "Verlet and rigid bodies"), with body damping and sleeping when on.
+std::string settingsWords(const phys::World& world);
+
+/// The error at the first of the target's checkpoints alone (`positions` per checkpoint, as for
+/// accuracyError); NaN when the target has no checkpoint.
+double firstCheckpointError(const AccuracyTarget& target,
+                            const std::vector<std::vector<phys::Vec3>>& positions);
+
+/// The largest penetration and joint gap of `scene`'s bodies at the recorded poses
+/// (peers::posePenetration, peers::jointGap), into `penetration` and `jointGap`.
+void poseFigures(const scenes::Scene& scene, const std::vector<std::vector<phys::Vec3>>& positions,
+                 const std::vector<std::vector<phys::Quat>>& orientations, double& penetration,
+                 double& jointGap);
 
 /// Loads the file with the setting's models and puts its solver settings in. Throws
 /// scenes::LoadError, or std::invalid_argument when the world refuses the settings.

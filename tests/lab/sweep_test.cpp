@@ -16,6 +16,7 @@
 #include "gnuplot.h"
 #include "lab.h"
 #include "lab_test_util.h"
+#include "peer.h"
 #include "scenes/scene.h"
 
 namespace {
@@ -52,7 +53,8 @@ std::optional<CsvRow> findRow(const CsvTable& csv, const std::string& method, in
 const char* const kHeader =
     "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
     "uncertainty,"
-    "max_stick_error,max_joint_error,max_penetration,max_angular_speed,energy_drift,frozen,pareto,note";
+    "max_stick_error,max_joint_error,max_penetration,max_angular_speed,error_first,pose_penetration,pose_"
+    "joint_gap,energy_drift,frozen,pareto,note";
 
 TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
   TempDir dir;
@@ -72,7 +74,8 @@ TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
       EXPECT_EQ(row->at("steps"), "30");
       for (const char* column :
            {"dt", "ms_per_step", "ms_per_sim_second", "error", "ref_uncertainty", "max_stick_error",
-            "max_joint_error", "max_penetration", "max_angular_speed", "energy_drift", "frozen"}) {
+            "max_joint_error", "max_penetration", "max_angular_speed", "error_first", "pose_penetration",
+            "pose_joint_gap", "energy_drift", "frozen"}) {
         EXPECT_TRUE(std::isfinite(fieldNumber(*row, column))) << method << " " << iterations << " " << column;
       }
       EXPECT_GT(fieldNumber(*row, "ms_per_step"), 0.0);
@@ -81,6 +84,31 @@ TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
   }
   // The report names the target it measured against.
   EXPECT_NE(o.out.find("reference: shake, 4 iterations x 128 substeps"), std::string::npos) << o.out;
+}
+
+// Each peer built in has a row at the scene's dt, with the figures measured from its bodies' poses
+// by the same code as ours (pose_penetration, pose_joint_gap): a falling ragdoll's joints hold
+// within centimetres in every engine, never exactly; none of our every-step figures.
+TEST(Sweep, PeersHaveRowsWithTheirPosesMeasuredAsOurs) {
+  TempDir dir;
+  const Outcome o = sweep(
+      {"ragdoll", "--methods", "xpbd", "--steps", "30", "--repeat", "1", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 1 + lab::peerEngines().size());
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+    const CsvRow& row = csv.rows[i];
+    const std::string engine = i == 0 ? "xpbd" : lab::peerEngines()[i - 1];
+    EXPECT_EQ(row.at("method"), engine);
+    EXPECT_EQ(row.at("iterations").empty(), i > 0) << engine;
+    const double gap = fieldNumber(row, "pose_joint_gap");
+    EXPECT_GT(gap, 0.0) << engine;
+    EXPECT_LT(gap, 0.1) << engine;
+    EXPECT_GE(fieldNumber(row, "pose_penetration"), 0.0) << engine;
+    EXPECT_LT(fieldNumber(row, "pose_penetration"), 0.1) << engine;
+    EXPECT_LE(fieldNumber(row, "error_first"), fieldNumber(row, "error")) << engine;
+    EXPECT_EQ(std::isnan(fieldNumber(row, "max_stick_error")), i > 0) << engine;
+  }
 }
 
 // The four methods are ways of relaxing sticks: a model that leaves the scene none steps alike

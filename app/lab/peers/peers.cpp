@@ -134,6 +134,7 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   built->finish();
   result.maxPenetration = peers::groundPenetration(description, stepper.positions(), stepper.orientations());
   result.dropped = built->dropped;
+  result.meanMsPerStep = steps > 0 ? run.steppingMs / steps : 0.0;
   result.medianMsPerStep = median(std::move(run.stepMs));
   result.unsupported = joined({joined(description.notes), joined(built->notes)});
   result.ran = true;

@@ -1,0 +1,153 @@
+#include "sweep_plan.h"
+
+#include <algorithm>
+#include <exception>
+#include <limits>
+
+#include "lab.h"
+#include "peer.h"
+#include "run.h"
+
+namespace lab {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progress& progress) {
+  const bool fresh = !targets.has(s, plan.stepsAt(s.dt));
+  const AccuracyTarget& target = targets.get(plan.file, s, plan.stepsAt(s.dt));
+  if (fresh) progress.advance();
+  SweepRow r;
+  r.method = std::string(phys::toString(s.method));
+  r.model = s.model.label;
+  r.iterations = s.iterations;
+  r.substeps = s.substeps;
+  r.dt = s.dt;
+  r.steps = stepsFor(target, plan.stepsAt(s.dt));
+  r.repeats = plan.repeats;
+  r.uncertainty = maxUncertainty(target);
+  r.figures = measureFigures(plan.file, s, r.steps, target);
+  r.settings = r.figures.settings;
+  progress.advance();
+  r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
+  progress.advance(static_cast<std::size_t>(plan.repeats));
+  if (r.figures.frozen > 0)
+    r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) + " particles";
+  return r;
+}
+
+void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<SweepRow>& rows,
+              Progress& progress) {
+  const AccuracyTarget& target = firstTarget(plan, targets, dt);
+  const int steps = stepsFor(target, plan.stepsAt(dt));
+  const scenes::Scene scene = scenes::loadSceneFile(plan.file, plan.models.front().options);
+  for (const std::string& engine : peerEngines()) {
+    PeerResult p;
+    try {
+      p = runPeer(engine, scene, dt, steps, target.checkpoints, plan.peerSleep);
+    } catch (const std::exception& e) {
+      p.engine = engine;
+      p.ran = false;
+      p.unsupported = std::string("failed: ") + e.what();
+    }
+    progress.advance();
+    SweepRow r;
+    r.peer = true;
+    r.ran = p.ran;
+    r.method = engine;
+    r.model = plan.models.front().label;
+    r.settings = p.settings;
+    r.dt = dt;
+    r.steps = steps;
+    r.repeats = 1;
+    r.note = p.unsupported;
+    r.uncertainty = maxUncertainty(target);
+    r.figures.maxima.worst.fill(kNaN);  // a peer has none of our figures but the penetration
+    if (p.ran) {
+      r.msPerStep = p.meanMsPerStep;
+      r.figures.error = accuracyError(target, p.positions);
+      r.figures.errorFirst = firstCheckpointError(target, p.positions);
+      r.figures.maxima.worst[kPenetrationMetric] = p.maxPenetration;
+      poseFigures(scene, p.positions, p.orientations, r.figures.posePenetration, r.figures.poseJointGap);
+    } else {
+      r.figures.error = r.figures.errorFirst = kNaN;
+      r.figures.posePenetration = r.figures.poseJointGap = kNaN;
+    }
+    rows.push_back(r);
+  }
+}
+
+}  // namespace
+
+int Plan::stepsAt(double dt) const {
+  return std::max(1, static_cast<int>(std::lround(horizon / dt)));
+}
+
+Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
+  Plan plan;
+  const scenes::Scene scene = scenes::loadSceneFile(file);
+  const phys::SolverSettings own = scene.world.solverSettings();
+  plan.file = file;
+  plan.sceneName = scene.name;
+  plan.sceneDt = own.dt;
+  plan.horizon =
+      request.horizon ? *request.horizon : (request.steps ? *request.steps : defaultSteps(own.dt)) * own.dt;
+  plan.repeats = request.repeats;
+  plan.peers = request.peers;
+  plan.peerSleep = request.peerSleep;
+  plan.models = request.models;
+  if (plan.models.empty()) plan.models.push_back(sceneModels(file).asFile);
+  const std::vector<phys::SolverMethod> methods =
+      request.methods.empty() ? std::vector{own.method} : request.methods;
+  const std::vector<int> iterations =
+      request.iterations.empty() ? std::vector{own.iterations} : request.iterations;
+  const std::vector<int> substeps = request.substeps.empty() ? std::vector{own.substeps} : request.substeps;
+  plan.dts = request.dts.empty() ? std::vector{own.dt} : request.dts;
+  // A model that leaves the scene rigid bodies and no stick steps alike under every method
+  // (xpbdWhateverTheMethod): it runs once, as xpbd, which is how its rigid bodies are solved,
+  // instead of as equal rows under names that did nothing.
+  std::vector<std::vector<phys::SolverMethod>> methodsOf;
+  std::size_t count = 0;
+  for (const ModelChoice& model : plan.models) {
+    const bool xpbdAlone = xpbdWhateverTheMethod(scenes::loadSceneFile(file, model.options).world);
+    methodsOf.push_back(xpbdAlone ? std::vector{phys::SolverMethod::Xpbd} : methods);
+    count += plan.dts.size() * methodsOf.back().size() * iterations.size() * substeps.size();
+  }
+  if (count > kMaxCombinations) {
+    throw UsageError(std::to_string(count) + " combinations; at most " + std::to_string(kMaxCombinations) +
+                     " (shorten a list)");
+  }
+  for (std::size_t m = 0; m < plan.models.size(); ++m) {
+    const ModelChoice& model = plan.models[m];
+    for (double dt : plan.dts) {
+      for (phys::SolverMethod method : methodsOf[m]) {
+        for (int it : iterations) {
+          for (int sub : substeps) plan.settings.push_back(Setting{model, method, it, sub, dt});
+        }
+      }
+    }
+  }
+  return plan;
+}
+
+std::size_t planWork(const Plan& plan) {
+  const std::size_t engines = plan.peers ? peerEngines().size() : 0;
+  return plan.settings.size() * static_cast<std::size_t>(plan.repeats + 1) +
+         plan.models.size() * plan.dts.size() + engines * plan.dts.size();
+}
+
+PlanResult runPlan(const Plan& plan, Progress& progress) {
+  PlanResult result;
+  for (const Setting& s : plan.settings) result.rows.push_back(runSetting(plan, s, result.targets, progress));
+  if (plan.peers) {
+    for (double dt : plan.dts) runPeers(plan, dt, result.targets, result.rows, progress);
+  }
+  return result;
+}
+
+const AccuracyTarget& firstTarget(const Plan& plan, TargetCache& targets, double dt) {
+  const Setting first{plan.models.front(), phys::SolverMethod::GaussSeidel, 1, 1, dt};
+  return targets.get(plan.file, first, plan.stepsAt(dt));
+}
+
+}  // namespace lab

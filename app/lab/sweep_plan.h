@@ -1,0 +1,99 @@
+#pragma once
+// What `lab sweep` and `lab compare` run: a plan of settings (every combination of models, dts,
+// methods, iterations and substeps) and the peers at each dt, each run once measured and timed
+// `repeats` times, into one row type. Sweep writes the rows as a CSV and a chart, compare as a
+// table or JSON lines: compare is the sweep over our four methods at one setting, with the peers.
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "accuracy.h"
+#include "progress.h"
+#include "sweep_core.h"
+
+namespace lab {
+
+/// One row: one of our settings, or one peer engine at one dt.
+struct SweepRow {
+  std::string method;             ///< our method's name, or the peer's
+  std::string model;              ///< the model's label
+  std::optional<int> iterations;  ///< none for a peer
+  std::optional<int> substeps;
+  double dt = 0.0;
+  int steps = 0;
+  int repeats = 0;
+  bool peer = false;
+  bool ran = true;       ///< false for a peer that could not express the scene; `note` says why
+  std::string settings;  ///< what ran, one line: ours from its world (settingsWords), a peer's own
+  /// unit: ms; the stepping loop's wall time over its steps: ours the median of `repeats` runs,
+  /// a peer's of its one run
+  double msPerStep = 0.0;
+  Figures figures;
+  double uncertainty = 0.0;  ///< unit: m; the target's own (maxUncertainty)
+  std::string note;
+  bool pareto = false;  ///< set by the sweep
+
+  double msPerSimSecond() const { return msPerStep / dt; }
+  bool blewUp() const { return figures.frozen > 0 || !std::isfinite(figures.error); }
+};
+
+/// What a plan covers, once the scene's own values filled what was not asked.
+struct Plan {
+  std::filesystem::path file;
+  std::string sceneName;
+  double sceneDt = 0.0;
+  double horizon = 0.0;  ///< unit: s of simulated time
+  std::vector<ModelChoice> models;
+  std::vector<Setting> settings;  ///< every combination, in run order
+  std::vector<double> dts;
+  int repeats = 3;
+  bool peers = true;
+  bool peerSleep = false;  ///< whether the peers may put resting bodies to sleep (runPeer)
+
+  int stepsAt(double dt) const;
+};
+
+/// What to plan. Empty lists take the scene's own value; `models` empty, the file's own.
+struct PlanRequest {
+  std::vector<ModelChoice> models;
+  std::vector<phys::SolverMethod> methods;
+  std::vector<int> iterations;
+  std::vector<int> substeps;
+  std::vector<double> dts;
+  std::optional<int> steps;       ///< at the scene's dt; default kDefaultHorizon of them
+  std::optional<double> horizon;  ///< unit: s of simulated time; instead of `steps`
+  int repeats = 3;
+  bool peers = true;
+  bool peerSleep = false;
+};
+
+/// A sweep of more runs than this is surely a typo in a list.
+inline constexpr std::size_t kMaxCombinations = 10000;
+
+/// Builds the plan: every model x dt x method x iterations x substeps, except that a model that
+/// leaves rigid bodies and no stick (xpbdWhateverTheMethod) runs once, as xpbd. Throws
+/// UsageError for more than kMaxCombinations runs, scenes::LoadError like the loader.
+Plan makePlan(const std::filesystem::path& file, const PlanRequest& request);
+
+/// The progress bar's units for a plan: a measured and `repeats` timed runs per setting, a
+/// target per model and dt, a run per peer and dt.
+std::size_t planWork(const Plan& plan);
+
+/// What running a plan gives.
+struct PlanResult {
+  std::vector<SweepRow> rows;  ///< the settings in plan order, then each dt's peers (ran or not)
+  TargetCache targets;         ///< every target computed, for the reports
+};
+
+/// Runs every setting (measured, then timed `repeats` times), then the peers at each dt on the
+/// scene as loaded with the first model, against that model's target. A peer that throws gets a
+/// row that did not run, saying why: one engine failing costs no one else their results.
+PlanResult runPlan(const Plan& plan, Progress& progress);
+
+/// The target of the plan's first model at `dt` (the peers' and the chart's).
+const AccuracyTarget& firstTarget(const Plan& plan, TargetCache& targets, double dt);
+
+}  // namespace lab
