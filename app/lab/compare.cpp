@@ -206,9 +206,9 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
   const int steps = rows.front().steps;
   out << "scene     " << scene.name << " (" << shown.string() << "): " << contents(scene.world) << "\n";
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
-      << " s) in each engine, one after another in this process; ms/step is the stepping loop's time over "
-         "its steps (ours: the median of "
-      << plan.repeats << (plan.repeats == 1 ? " timed run" : " timed runs") << ", after the run measured)\n";
+      << " s) in each engine, one after another in this process; ms/step: the steps' time over their "
+         "number, ours the median of "
+      << plan.repeats << (plan.repeats == 1 ? " timed run" : " timed runs") << " after a measured one\n";
   out << "accuracy  " << target.description << "; error = the largest distance (m) of a body from it\n";
   if (peerEngines().empty())
     out << "peers     none built in (LAB_PEERS off, or no Bullet, ODE or MuJoCo found at build time)\n";

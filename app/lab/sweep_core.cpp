@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include <sstream>
 
@@ -31,6 +34,16 @@ scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
   scenes::LoadOptions o;
   o.ragdollModel = m;
   return o;
+}
+
+// The first model whose world has `count` particles: the one every body of its kind already has.
+template <class Model>
+std::optional<Model> modelWithCount(std::size_t count,
+                                    std::initializer_list<std::pair<Model, std::size_t>> particlesUnder) {
+  for (const auto& [model, particles] : particlesUnder) {
+    if (particles == count) return model;
+  }
+  return std::nullopt;
 }
 
 // 'text' in quotes. Appended piecewise: "'" + std::string(...) trips GCC 12's false -Wrestrict
@@ -66,21 +79,16 @@ SceneModels sceneModels(const std::filesystem::path& file) {
   ModelChoice c;
   std::vector<std::string> parts;
   if (m.boxes) {
-    if (asWritten == corners)
-      c.options.boxModel = phys::BodyModel::Corners;
-    else if (asWritten == tetra)
-      c.options.boxModel = phys::BodyModel::Tetra;
-    else if (asWritten == rigidBoxes)
-      c.options.boxModel = phys::BodyModel::Rigid;
+    c.options.boxModel = modelWithCount<phys::BodyModel>(asWritten, {{phys::BodyModel::Corners, corners},
+                                                                     {phys::BodyModel::Tetra, tetra},
+                                                                     {phys::BodyModel::Rigid, rigidBoxes}});
     if (c.options.boxModel) parts.emplace_back(phys::toString(*c.options.boxModel));
   }
   if (m.ragdolls) {
-    if (asWritten == seed)
-      c.options.ragdollModel = phys::RagdollModel::Seed;
-    else if (asWritten == lean)
-      c.options.ragdollModel = phys::RagdollModel::Lean;
-    else if (asWritten == rigidRagdolls)
-      c.options.ragdollModel = phys::RagdollModel::Rigid;
+    c.options.ragdollModel =
+        modelWithCount<phys::RagdollModel>(asWritten, {{phys::RagdollModel::Seed, seed},
+                                                       {phys::RagdollModel::Lean, lean},
+                                                       {phys::RagdollModel::Rigid, rigidRagdolls}});
     if (c.options.ragdollModel) parts.emplace_back(phys::toString(*c.options.ragdollModel));
   }
   if (parts.size() != static_cast<std::size_t>(m.boxes) + static_cast<std::size_t>(m.ragdolls)) {
