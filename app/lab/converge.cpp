@@ -351,16 +351,16 @@ std::string convergeTable(const std::vector<ConvergeRow>& rows, const ConvergeTa
 }
 
 Chart convergeChart(const std::vector<ConvergeRow>& rows) {
-  Chart chart;
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
-  chart.title = "Error against substep size: " + scene;
-  chart.xLabel = "substep h (s)";
-  chart.yLabel = "error (m)";
-  chart.logX = true;
-  chart.logY = true;
-  chart.output = "converge-" + scene;
-  chart.guide = kConvergeFloor;
-  chart.guideTitle = "floor: left out of the fit";
+  Chart chart{.title = "Error against substep size: " + scene,
+              .xLabel = "substep h (s)",
+              .yLabel = "error (m)",
+              .logX = true,
+              .logY = true,
+              .series = {},
+              .guide = kConvergeFloor,
+              .guideTitle = "floor: left out of the fit",
+              .output = "converge-" + scene};
   for (const std::vector<ConvergeRow>& line : convergeLines(rows)) {
     ChartSeries series;
     series.title = line.front().method + " " + line.front().model + ": order " + orderText(line);

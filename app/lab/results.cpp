@@ -208,8 +208,9 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
      << "Measured on " << today() << " on " << machine() << ", in one run of `"
      << (o.quick ? "lab report --quick" : "make charts")
      << "` (`lab report`, docs/lab.md), so every figure below "
-     << "comes from the same machine, build and load. Regenerate with `make charts`. Times are medians of "
-     << "wall-clock steps; errors are in millimetres against each scene's analytic answers or its converged "
+     << "comes from the same machine, build and load. Regenerate with `make charts`. Times are wall-clock "
+     << "ms per step as each command defines them (docs/lab.md); errors are in millimetres against each "
+        "scene's analytic answers or its converged "
      << "reference run (docs/lab.md, \"Accuracy\"). A peer's error also holds the difference between its "
      << "contact model and ours, which no setting of either removes.\n\n";
   if (o.quick)

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 
@@ -155,13 +156,12 @@ std::string scaleJson(const std::vector<ScaleRow>& rows) {
   std::string s = "[\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ScaleRow& r = rows[i];
-    Json j;
-    j["scene"] = r.scene;
-    j["n"] = r.n;
-    j["bodies"] = r.bodies;
-    j["ms_per_step"] = r.msPerStep;
-    j["us_per_body_step"] = r.usPerBodyStep;
-    j["max_joint_gap"] = r.maxJointGap;
+    const Json j = {{"scene", r.scene},
+                    {"n", r.n},
+                    {"bodies", r.bodies},
+                    {"ms_per_step", r.msPerStep},
+                    {"us_per_body_step", r.usPerBodyStep},
+                    {"max_joint_gap", r.maxJointGap}};
     std::string line = jsonLine(j);
     if (i + 1 < rows.size()) line.insert(line.size() - 1, ",");
     s += line;
@@ -203,13 +203,16 @@ std::string scaleTable(const std::vector<ScaleRow>& rows) {
 namespace {
 
 Chart scaleChart(const std::vector<ScaleRow>& rows) {
-  Chart chart;
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
-  chart.title = "Cost per body against size: " + scene;
-  chart.xLabel = "bodies";
-  chart.yLabel = "microseconds per body-step";
-  chart.logX = true;
-  chart.output = "scale";
+  Chart chart{.title = "Cost per body against size: " + scene,
+              .xLabel = "bodies",
+              .yLabel = "microseconds per body-step",
+              .logX = true,
+              .logY = false,
+              .series = {},
+              .guide = std::nullopt,
+              .guideTitle = {},
+              .output = "scale"};
   ChartSeries series;
   series.title = scene;
   series.line = true;

@@ -10,7 +10,6 @@
 
 #include <sstream>
 
-#include "peers/peer_scene.h"
 #include "peers/pose_measures.h"
 #include "run.h"
 #include "runner.h"
@@ -199,20 +198,20 @@ double firstCheckpointError(const AccuracyTarget& target,
   return accuracyError(first, {positions.front()});
 }
 
-void poseFigures(const scenes::Scene& scene, const std::vector<std::vector<phys::Vec3>>& positions,
+void poseFigures(const peers::Description& scene, const std::vector<std::vector<phys::Vec3>>& positions,
                  const std::vector<std::vector<phys::Quat>>& orientations, double& penetration,
                  double& jointGap) {
-  const peers::Description description = peers::describe(scene);
   penetration = jointGap = 0.0;
   for (std::size_t k = 0; k < positions.size() && k < orientations.size(); ++k) {
-    penetration = std::max(penetration, peers::posePenetration(description, positions[k], orientations[k]));
-    jointGap = std::max(jointGap, peers::jointGap(description, positions[k], orientations[k]));
+    penetration = std::max(penetration, peers::posePenetration(scene, positions[k], orientations[k]));
+    jointGap = std::max(jointGap, peers::jointGap(scene, positions[k], orientations[k]));
   }
 }
 
 Figures measureFigures(const std::filesystem::path& file, const Setting& setting, int steps,
                        const AccuracyTarget& target) {
   scenes::Scene scene = loadSetting(file, setting);
+  const peers::Description loaded = peers::describe(scene);
   RunSpec spec;
   spec.steps = steps;
   spec.checkpoints = target.checkpoints;
@@ -227,7 +226,7 @@ Figures measureFigures(const std::filesystem::path& file, const Setting& setting
   f.error = f.frozen > 0 ? kInf : accuracyError(target, run.positions);
   f.errorFirst = f.frozen > 0 ? kInf : firstCheckpointError(target, run.positions);
   f.roughMsPerStep = steps > 0 ? run.steppingMs / steps : 0.0;
-  poseFigures(scene, run.positions, run.orientations, f.posePenetration, f.poseJointGap);
+  poseFigures(loaded, run.positions, run.orientations, f.posePenetration, f.poseJointGap);
   f.settings = settingsWords(scene.world);
   return f;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "accuracy.h"
+#include "peers/peer_scene.h"
 #include "physics/settings.h"
 #include "run_metrics.h"
 #include "scenes/scene.h"
@@ -90,9 +91,10 @@ std::string settingsWords(const phys::World& world);
 double firstCheckpointError(const AccuracyTarget& target,
                             const std::vector<std::vector<phys::Vec3>>& positions);
 
-/// The largest penetration and joint gap of `scene`'s bodies at the recorded poses
-/// (peers::posePenetration, peers::jointGap), into `penetration` and `jointGap`.
-void poseFigures(const scenes::Scene& scene, const std::vector<std::vector<phys::Vec3>>& positions,
+/// The largest penetration and joint gap of the described bodies at the recorded poses
+/// (peers::posePenetration, peers::jointGap), into `penetration` and `jointGap`. `scene` is
+/// described as loaded: a body the guard froze later is still judged by its joints.
+void poseFigures(const peers::Description& scene, const std::vector<std::vector<phys::Vec3>>& positions,
                  const std::vector<std::vector<phys::Quat>>& orientations, double& penetration,
                  double& jointGap);
 

@@ -1,12 +1,16 @@
 #include "sweep_plan.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <limits>
 
+#include "command_line.h"
 #include "lab.h"
 #include "peer.h"
+#include "peers/peer_scene.h"
 #include "run.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -32,7 +36,8 @@ SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Pr
   r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
   progress.advance(static_cast<std::size_t>(plan.repeats));
   if (r.figures.frozen > 0)
-    r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) + " particles";
+    r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) +
+             (r.figures.frozen == 1 ? " particle" : " particles");
   return r;
 }
 
@@ -41,6 +46,7 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
   const AccuracyTarget& target = firstTarget(plan, targets, dt);
   const int steps = stepsFor(target, plan.stepsAt(dt));
   const scenes::Scene scene = scenes::loadSceneFile(plan.file, plan.models.front().options);
+  const peers::Description description = peers::describe(scene);
   for (const std::string& engine : peerEngines()) {
     PeerResult p;
     try {
@@ -68,7 +74,8 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
       r.figures.error = accuracyError(target, p.positions);
       r.figures.errorFirst = firstCheckpointError(target, p.positions);
       r.figures.maxima.worst[kPenetrationMetric] = p.maxPenetration;
-      poseFigures(scene, p.positions, p.orientations, r.figures.posePenetration, r.figures.poseJointGap);
+      poseFigures(description, p.positions, p.orientations, r.figures.posePenetration,
+                  r.figures.poseJointGap);
     } else {
       r.figures.error = r.figures.errorFirst = kNaN;
       r.figures.posePenetration = r.figures.poseJointGap = kNaN;
@@ -103,6 +110,14 @@ Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
       request.iterations.empty() ? std::vector{own.iterations} : request.iterations;
   const std::vector<int> substeps = request.substeps.empty() ? std::vector{own.substeps} : request.substeps;
   plan.dts = request.dts.empty() ? std::vector{own.dt} : request.dts;
+  for (const double dt : plan.dts) {
+    // The horizon is set at one dt and run at every other: a tiny dt may ask too many steps.
+    if (std::llround(plan.horizon / dt) > kMaxSteps) {
+      throw UsageError("at dt " + formatNumber(dt) + " the " + formatNumber(plan.horizon) +
+                       " s asked take more than " + std::to_string(kMaxSteps) +
+                       " steps (shorten --steps or raise --dt)");
+    }
+  }
   // A model that leaves the scene rigid bodies and no stick steps alike under every method
   // (xpbdWhateverTheMethod): it runs once, as xpbd, which is how its rigid bodies are solved,
   // instead of as equal rows under names that did nothing.

@@ -133,6 +133,7 @@ TEST(PeerStack, ThreeBoxesStandInEveryEngine) {
     EXPECT_LT(std::hypot(top.x, top.z), 0.05) << "top box drifted to " << top.x << ", " << top.z;
     EXPECT_NEAR(top.y, 2.5, 0.05);
     EXPECT_GT(r.medianMsPerStep, 0.0);
+    EXPECT_GT(r.meanMsPerStep, 0.0);
     EXPECT_LT(r.maxPenetration, 0.05);
   }
 }
@@ -392,12 +393,15 @@ TEST(Compare, ModelIterationsAndSubstepsAreImposed) {
 // scene's iterations and substeps, then the peers', ours figure for figure (the timings apart).
 TEST(Compare, OurRowsAreTheSweepsRows) {
   TempDir dir;
-  const auto file = dir.write("small.xml", kSmall);
-  const Output o = compare({"compare", file.string(), "--steps", "30", "--json"});
+  // A ragdoll, so the joint gap is something, at settings of neither the scene nor the defaults.
+  const Output o = compare({"compare", "ragdoll", "--steps", "30", "--dt", "0.01", "--iterations", "2",
+                            "--substeps", "3", "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
-  const Output s = lab::runCaptured(
-      lab::labMain, {"sweep", file.string(), "--steps", "30", "--methods", "gauss-seidel,jacobi,xpbd,shake",
-                     "--repeat", "1", "--out", dir.file("sweep").string()});
+  // The sweep's --steps count at the scene's dt (1/60 s): 0.3 s, the compare's 30 steps of 0.01 s.
+  const Output s =
+      lab::runCaptured(lab::labMain, {"sweep", "ragdoll", "--steps", "18", "--dt", "0.01", "--iterations",
+                                      "2", "--substeps", "3", "--methods", "gauss-seidel,jacobi,xpbd,shake",
+                                      "--repeat", "1", "--out", dir.file("sweep").string()});
   ASSERT_EQ(s.code, 0) << s.err;
   const lab::CsvTable csv = lab::readCsv(dir.file("sweep/results.csv"));
   std::istringstream lines(o.out);
@@ -410,6 +414,8 @@ TEST(Compare, OurRowsAreTheSweepsRows) {
     const lab::CsvRow& row = csv.rows[i++];
     const std::string engine = lab_testing::text(*j, "engine");
     EXPECT_EQ(engine == "ours" ? lab_testing::text(*j, "method") : engine, row.at("method"));
+    EXPECT_EQ(lab_testing::number(*j, "steps"), 30.0);
+    EXPECT_EQ(row.at("steps"), "30");
     // A peer's second run in one process need not repeat its first (ODE's solver shuffles its
     // rows from a random state that lives on between worlds): only the engine is compared.
     if (engine != "ours") continue;
@@ -422,8 +428,56 @@ TEST(Compare, OurRowsAreTheSweepsRows) {
       const double a = lab_testing::number(*j, key), b = lab::fieldNumber(row, column);
       EXPECT_NEAR(a, b, 1e-9 * std::max(1.0, std::abs(b))) << engine << " " << key;
     }
+    EXPECT_GT(lab_testing::number(*j, "max_joint_gap"), 0.0) << engine;
   }
   EXPECT_EQ(i, csv.rows.size());
+}
+
+// --steps counts steps of the dt asked; an analytic answer later than that makes every run go
+// on to it; --repeat times ours that many times (a peer once).
+TEST(Compare, StepsDtAndRepeatsAreWhatWasAsked) {
+  const Output o = compare({"compare", "falling-box", "--steps", "25", "--dt", "0.004", "--repeat", "2",
+                            "--json", "--data", DATA_DIR});
+  ASSERT_EQ(o.code, 0) << o.err;
+  std::istringstream lines(o.out);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line); ++rows) {
+    const auto j = lab_testing::parseFlatJson(line);
+    ASSERT_TRUE(j.has_value()) << line;
+    EXPECT_EQ(lab_testing::number(*j, "steps"), 25.0) << line;
+    EXPECT_EQ(lab_testing::number(*j, "dt"), 0.004) << line;
+    EXPECT_EQ(lab_testing::number(*j, "repeats"), lab_testing::text(*j, "engine") == "ours" ? 2.0 : 1.0)
+        << line;
+  }
+  EXPECT_GT(rows, 0);
+  // pendulum-exact's answers go to t = 2 s: 120 steps of its 1/60 s, whatever --steps says.
+  const Output analytic =
+      compare({"compare", "pendulum-exact", "--steps", "10", "--json", "--data", DATA_DIR});
+  ASSERT_EQ(analytic.code, 0) << analytic.err;
+  const auto first = lab_testing::parseFlatJson(analytic.out.substr(0, analytic.out.find('\n')));
+  ASSERT_TRUE(first.has_value()) << analytic.out;
+  EXPECT_EQ(lab_testing::number(*first, "steps"), 120.0);
+  EXPECT_EQ(lab_testing::text(*first, "accuracy"), "analytic");
+}
+
+// A run the guard froze has no error to report (the table says inf; JSON, which has no
+// infinity, null), and its note says why.
+TEST(Compare, AFrozenRunHasNoErrorAndSaysWhy) {
+  TempDir dir;
+  const auto file = dir.write("escape.xml", lab_testing::escapingScene());
+  const Output o = compare({"compare", file.string(), "--steps", "30"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::size_t at = o.out.find("| ours | ");
+  ASSERT_NE(at, std::string::npos) << o.out;
+  const std::string row = o.out.substr(at, o.out.find('\n', at) - at);
+  EXPECT_NE(row.find(" | inf | inf | "), std::string::npos) << row;
+  EXPECT_NE(row.find("blew up: the guard froze 1 particle |"), std::string::npos) << row;
+  const Output json = compare({"compare", file.string(), "--steps", "30", "--json"});
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto first = lab_testing::parseFlatJson(json.out.substr(0, json.out.find('\n')));
+  ASSERT_TRUE(first.has_value()) << json.out;
+  EXPECT_EQ(first->values.at("error"), "null") << json.out;
+  EXPECT_EQ(first->values.at("error_first"), "null") << json.out;
 }
 
 TEST(Compare, NamesAProjectSceneFromTheDataFolderAndAnyOtherAsGiven) {

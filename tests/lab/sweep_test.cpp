@@ -111,6 +111,33 @@ TEST(Sweep, PeersHaveRowsWithTheirPosesMeasuredAsOurs) {
   }
 }
 
+// A peer that cannot express the scene (point gravity) is named on stdout with its reason and has
+// no row in the files.
+TEST(Sweep, APeerThatCannotRunIsNamedAndHasNoRow) {
+  if (lab::peerEngines().empty()) GTEST_SKIP() << "no peer engine built in";
+  TempDir dir;
+  const Outcome o = sweep({"orbit", "--steps", "10", "--repeat", "1", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_FALSE(csv.rows[0].at("iterations").empty());
+  for (const std::string& engine : lab::peerEngines()) {
+    const std::size_t at = o.out.find("peers       " + engine + " not run: ");
+    ASSERT_NE(at, std::string::npos) << engine << "\n" << o.out;
+    EXPECT_NE(o.out.find("point gravity", at), std::string::npos) << o.out;
+  }
+}
+
+// A horizon that a smaller dt would take past the step limit is refused before anything runs.
+TEST(Sweep, TooManyStepsAtASmallDtIsAUsageError) {
+  TempDir dir;
+  const Outcome o = sweep({"falling-box", "--steps", "10000000", "--dt", "0.016666666666666666,0.000001",
+                           "--no-peers", "--out", dir.file("out").string()});
+  EXPECT_EQ(o.code, lab::kExitUsage) << o.err;
+  EXPECT_NE(o.err.find("at dt 1e-06"), std::string::npos) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/results.csv")));
+}
+
 // The four methods are ways of relaxing sticks: a model that leaves the scene none steps alike
 // under each, so it runs once, as xpbd (how rigid bodies are solved), not as equal rows under
 // names that did nothing; a model that keeps sticks runs under each method asked.
@@ -208,6 +235,7 @@ TEST(Sweep, ARunThatBlowsUpHasInfiniteErrorAndFrozenParticles) {
   const CsvTable csv = readCsv(dir.file("out/results.csv"));
   ASSERT_EQ(csv.rows.size(), 1u);
   EXPECT_EQ(csv.rows[0].at("error"), "inf");
+  EXPECT_EQ(csv.rows[0].at("error_first"), "inf");
   EXPECT_GT(fieldNumber(csv.rows[0], "frozen"), 0.0);
   EXPECT_EQ(csv.rows[0].at("pareto"), "0");
   EXPECT_NE(csv.rows[0].at("note").find("blew up"), std::string::npos);
