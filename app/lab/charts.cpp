@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace lab {
 namespace {
@@ -79,6 +80,17 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
 }
 
 }  // namespace
+
+Chart logChart(std::string title, std::string xLabel, std::string yLabel, bool logY, std::string output) {
+  Chart chart;
+  chart.title = std::move(title);
+  chart.xLabel = std::move(xLabel);
+  chart.yLabel = std::move(yLabel);
+  chart.logX = true;
+  chart.logY = logY;
+  chart.output = std::move(output);
+  return chart;
+}
 
 bool hasPoints(const Chart& chart) {
   for (const ChartSeries& s : chart.series) {

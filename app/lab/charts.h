@@ -38,6 +38,10 @@ struct Chart {
   std::string output;
 };
 
+/// A chart with no series yet: its title, axis labels and output name, logarithmic across, and
+/// up when `logY`.
+Chart logChart(std::string title, std::string xLabel, std::string yLabel, bool logY, std::string output);
+
 /// The gnuplot script drawing the chart. A series left with no points is not drawn.
 std::string gnuplotScript(const Chart& chart);
 

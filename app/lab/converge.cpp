@@ -352,15 +352,10 @@ std::string convergeTable(const std::vector<ConvergeRow>& rows, const ConvergeTa
 
 Chart convergeChart(const std::vector<ConvergeRow>& rows) {
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
-  Chart chart{.title = "Error against substep size: " + scene,
-              .xLabel = "substep h (s)",
-              .yLabel = "error (m)",
-              .logX = true,
-              .logY = true,
-              .series = {},
-              .guide = kConvergeFloor,
-              .guideTitle = "floor: left out of the fit",
-              .output = "converge-" + scene};
+  Chart chart = logChart("Error against substep size: " + scene, "substep h (s)", "error (m)", true,
+                         "converge-" + scene);
+  chart.guide = kConvergeFloor;
+  chart.guideTitle = "floor: left out of the fit";
   for (const std::vector<ConvergeRow>& line : convergeLines(rows)) {
     ChartSeries series;
     series.title = line.front().method + " " + line.front().model + ": order " + orderText(line);

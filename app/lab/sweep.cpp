@@ -78,22 +78,24 @@ using Row = SweepRow;
 // The plan of the options; throws UsageError for a --models that does not fit the scene, or too
 // many runs.
 Plan sweepPlan(const SweepOptions& o, const std::filesystem::path& file) {
-  PlanRequest request;
   const SceneModels models = sceneModels(file);
+  std::vector<ModelChoice> choices;
   for (const std::string& name : o.models) {
     std::string error;
     const std::optional<ModelChoice> c = modelChoice(name, models, error);
     if (!c) throw UsageError("--models: " + error);
-    request.models.push_back(*c);
+    choices.push_back(*c);
   }
-  request.methods = o.methods;
-  request.iterations = o.iterations;
-  request.substeps = o.substeps;
-  request.dts = o.dts;
-  request.steps = o.steps;
-  request.repeats = o.repeats;
-  request.peers = o.peers;
-  return makePlan(file, request);
+  return makePlan(file, PlanRequest{.models = choices,
+                                    .methods = o.methods,
+                                    .iterations = o.iterations,
+                                    .substeps = o.substeps,
+                                    .dts = o.dts,
+                                    .steps = o.steps,
+                                    .horizon = std::nullopt,
+                                    .repeats = o.repeats,
+                                    .peers = o.peers,
+                                    .peerSleep = false});
 }
 
 // ---- the front ------------------------------------------------------------------------------
@@ -197,15 +199,13 @@ double simulatedSeconds(const std::vector<Row>& rows) {
 
 Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget) {
   const bool perStep = oneDt(rows);
-  Chart c;
-  c.title = plan.sceneName + ": error against cost (" + formatNumber(simulatedSeconds(rows), 4) +
-            " s simulated; labels: iterations x substeps)";
-  c.xLabel = perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second";
-  c.yLabel = "error (m): largest distance from the " + firstTarget.kind +
-             (firstTarget.kind == "analytic" ? " answer" : " run");
-  c.logX = true;
-  c.logY = true;
-  c.output = "error-vs-cost";
+  Chart c = logChart(
+      plan.sceneName + ": error against cost (" + formatNumber(simulatedSeconds(rows), 4) +
+          " s simulated; labels: iterations x substeps)",
+      perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second",
+      "error (m): largest distance from the " + firstTarget.kind +
+          (firstTarget.kind == "analytic" ? " answer" : " run"),
+      true, "error-vs-cost");
   // One series per method or engine (and per model and dt when there are several).
   const bool manyModels = plan.models.size() > 1;
   const bool manyDts = plan.dts.size() > 1;
