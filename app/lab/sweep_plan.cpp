@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <utility>
 
 #include "command_line.h"
 #include "lab.h"
@@ -80,7 +81,7 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
       r.figures.error = r.figures.errorFirst = kNaN;
       r.figures.posePenetration = r.figures.poseJointGap = kNaN;
     }
-    rows.push_back(r);
+    rows.push_back(std::move(r));
   }
 }
 
@@ -96,7 +97,6 @@ Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
   const phys::SolverSettings own = scene.world.solverSettings();
   plan.file = file;
   plan.sceneName = scene.name;
-  plan.sceneDt = own.dt;
   plan.horizon =
       request.horizon ? *request.horizon : (request.steps ? *request.steps : defaultSteps(own.dt)) * own.dt;
   plan.repeats = request.repeats;

@@ -44,7 +44,6 @@ struct SweepRow {
 struct Plan {
   std::filesystem::path file;
   std::string sceneName;
-  double sceneDt = 0.0;
   double horizon = 0.0;  ///< unit: s of simulated time
   std::vector<ModelChoice> models;
   std::vector<Setting> settings;  ///< every combination, in run order
@@ -75,7 +74,8 @@ inline constexpr std::size_t kMaxCombinations = 10000;
 
 /// Builds the plan: every model x dt x method x iterations x substeps, except that a model that
 /// leaves rigid bodies and no stick (xpbdWhateverTheMethod) runs once, as xpbd. Throws
-/// UsageError for more than kMaxCombinations runs, scenes::LoadError like the loader.
+/// UsageError for more than kMaxCombinations runs or more than kMaxSteps steps at some dt,
+/// scenes::LoadError like the loader.
 Plan makePlan(const std::filesystem::path& file, const PlanRequest& request);
 
 /// The progress bar's units for a plan: a measured and `repeats` timed runs per setting, a
