@@ -118,7 +118,8 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
   for (std::size_t i = 0; i < kRunMetricCount; ++i) out << "---:|";
   out << "---|\n";
   for (const Row& r : rows) {
-    out << "| " << engineOf(r) << " | " << (r.peer ? "" : r.method) << " | " << cell(r.settings) << " | ";
+    out << "| " << engineOf(r) << " | " << (r.peer ? "" : r.method) << " | " << cell(r.figures.settings)
+        << " | ";
     if (r.ran) {
       const Figures& f = r.figures;
       // Below a nanometre a depth is round-off (ours rest at 1e-20 m or so), shown as 0.
@@ -143,7 +144,7 @@ void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, 
     j["scene"] = scene;
     j["engine"] = engineOf(r);
     j["method"] = r.peer ? "" : r.method;
-    j["settings"] = r.settings;
+    j["settings"] = r.figures.settings;
     j["steps"] = r.steps;
     j["dt"] = r.dt;
     j["repeats"] = r.repeats;

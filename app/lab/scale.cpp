@@ -204,10 +204,8 @@ namespace {
 
 Chart scaleChart(const std::vector<ScaleRow>& rows) {
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
-  // Appended, not "literal" + scene: that trips GCC 12's false -Wrestrict (bug 105329).
-  std::string title = "Cost per body against size: ";
-  title += scene;
-  Chart chart = logChart(title, "bodies", "microseconds per body-step", false, "scale");
+  Chart chart = logChart("Cost per body against size: " + scene, "bodies", "microseconds per body-step",
+                         false, "scale");
   ChartSeries series;
   series.title = scene;
   series.line = true;

@@ -79,7 +79,7 @@ struct Figures {
   /// theirs compare at equal joint error.
   double posePenetration = 0.0;
   double poseJointGap = 0.0;
-  std::string settings;  ///< what stepped the world, one line (settingsWords)
+  std::string settings;  ///< what stepped the world, one line: ours settingsWords, a peer's its own
 };
 
 /// How a world steps, one line: "Verlet, 3 iterations x 1 substep" (or "rigid bodies", or

@@ -32,7 +32,6 @@ SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Pr
   r.repeats = plan.repeats;
   r.uncertainty = maxUncertainty(target);
   r.figures = measureFigures(plan.file, s, r.steps, target);
-  r.settings = r.figures.settings;
   progress.advance();
   r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
   progress.advance(static_cast<std::size_t>(plan.repeats));
@@ -63,7 +62,7 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
     r.ran = p.ran;
     r.method = engine;
     r.model = plan.models.front().label;
-    r.settings = p.settings;
+    r.figures.settings = p.settings;
     r.dt = dt;
     r.steps = steps;
     r.repeats = 1;

@@ -26,8 +26,7 @@ struct SweepRow {
   int steps = 0;
   int repeats = 0;
   bool peer = false;
-  bool ran = true;       ///< false for a peer that could not express the scene; `note` says why
-  std::string settings;  ///< what ran, one line: ours from its world (settingsWords), a peer's own
+  bool ran = true;  ///< false for a peer that could not express the scene; `note` says why
   /// unit: ms; the stepping loop's wall time over its steps: ours the median of `repeats` runs,
   /// a peer's of its one run
   double msPerStep = 0.0;
