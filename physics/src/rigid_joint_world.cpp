@@ -14,6 +14,22 @@
 namespace phys {
 
 using detail::require;
+namespace {
+
+// The joint's frame (axis, reference, their cross product) as a turn from the body's frame.
+Quat jointFrame(const Vec3& axis, const Vec3& reference) {
+  return glm::quat_cast(glm::dmat3(axis, reference, glm::cross(axis, reference)));
+}
+
+// The child's orientation in the parent's frame when the joint is at rest, its two frames one:
+// q_a F_A = q_b F_B, so q_b = q_a F_A F_B^-1.
+Quat restTarget(const RigidJoint& j) {
+  return glm::normalize(jointFrame(j.axisA, j.referenceA) *
+                        glm::conjugate(jointFrame(j.axisB, j.referenceB)));
+}
+
+}  // namespace
+
 void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real maxLength) {
   if (a.side == ContactSide::Particles && b.side == ContactSide::Particles) {
     addLink(a.point, b.point, minLength, maxLength);
@@ -88,7 +104,7 @@ void World::addJoint(const JointDesc& d) {
   j.swing = d.swing;
   j.twist = d.twist;
   j.damping = d.damping;
-  constraints_.addRigidJoint(j);
+  constraints_.addRigidJoint(j, JointDrive{restTarget(j), 0.0, kDriveStiffness});
   rigidBodies_.jointed[j.a] = rigidBodies_.jointed[j.b] = 1;
   parting_.join(d.a, d.b);  // moved as one by the parting, as a ragdoll's particle parts are
   islands_.join(islands_.bodyNode(d.a), islands_.bodyNode(d.b));
@@ -120,6 +136,26 @@ JointDesc World::jointDesc(std::size_t k) const {
 Real World::jointAngle(std::size_t k) const {
   require(k < constraints_.rigidJoints().size(), "jointAngle: joint index must exist");
   return detail::jointAngle(rigidBodies_, constraints_.rigidJoints()[k]);
+}
+
+const JointDrive& World::jointDrive(std::size_t k) const {
+  require(k < constraints_.rigidJoints().size(), "jointDrive: joint index must exist");
+  return constraints_.drives()[k];
+}
+
+void World::setJointDrive(std::size_t k, const JointDrive& drive) {
+  require(k < constraints_.rigidJoints().size(), "setJointDrive: joint index must exist");
+  const Quat& q = drive.target;
+  const Real length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  require(std::isfinite(length) && std::abs(length - 1.0) <= 1e-6,
+          "setJointDrive: the target must be a unit quaternion");
+  require(drive.strength >= 0.0 && drive.strength <= 1.0, "setJointDrive: strength must be in [0, 1]");
+  require(std::isfinite(drive.stiffness) && drive.stiffness > 0.0,
+          "setJointDrive: stiffness must be finite and > 0 (N m/rad)");
+  JointDrive kept = drive;
+  kept.target = q / length;
+  constraints_.setDrive(k, kept);
+  islands_.wake(islands_.bodyNode(rigidBodies_.body[constraints_.rigidJoints()[k].a]));
 }
 
 BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {

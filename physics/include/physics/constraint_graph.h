@@ -30,8 +30,15 @@ class ConstraintGraph {
   void addLink(const Link& link, Real violation);
   /// Adds a link with a rigid end; it is solved as it stands (rigid links need no layout).
   void addRigidLink(const RigidLink& link) { rigidLinks_.push_back(link); }
-  /// Adds a joint between two rigid bodies, solved as it stands too.
-  void addRigidJoint(const RigidJoint& joint) { rigidJoints_.push_back(joint); }
+  /// Adds a joint between two rigid bodies, solved as it stands too, with its drive (strength 0:
+  /// none) and the drive's multiplier.
+  void addRigidJoint(const RigidJoint& joint, const JointDrive& drive) {
+    rigidJoints_.push_back(joint);
+    drives_.push_back(drive);
+    driveLambda_.push_back(0.0);
+  }
+  /// Replaces joint k's drive.
+  void setDrive(std::size_t k, const JointDrive& drive) { drives_[k] = drive; }
   /// Adds friction between two jointed particle bodies, with room for their spins.
   void addJointFriction(const JointFriction& friction);
   /// Once a step: each joint friction takes its share of its bodies' relative spin (JointFriction).
@@ -45,6 +52,10 @@ class ConstraintGraph {
   std::span<const Link> links() const { return links_; }
   std::span<const RigidLink> rigidLinks() const { return rigidLinks_; }
   std::span<const RigidJoint> rigidJoints() const { return rigidJoints_; }
+  /// Per rigid joint, its drive.
+  std::span<const JointDrive> drives() const { return drives_; }
+  /// XPBD's multipliers of the drives, per rigid joint.
+  std::span<Real> driveLambda() { return driveLambda_; }
   std::span<const JointFriction> jointFrictions() const { return jointFrictions_; }
 
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
@@ -67,6 +78,8 @@ class ConstraintGraph {
   std::vector<Link> links_;
   std::vector<RigidLink> rigidLinks_;
   std::vector<RigidJoint> rigidJoints_;
+  std::vector<JointDrive> drives_;  // per rigid joint
+  std::vector<Real> driveLambda_;   // per rigid joint: its drive's XPBD multiplier
   std::vector<JointFriction> jointFrictions_;
   std::vector<BodySpin> spins_;  // per body: the joint friction's scratch
   StickLayout stickLayout_;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 
+#include "physics/joint_drive.h"
 #include "physics/rigid_bodies.h"
 #include "physics/rigid_contacts.h"
 
@@ -58,6 +59,10 @@ Real jointAngle(const RigidBodies& r, const RigidJoint& j);
 /// One pass over the joints: for each, the angular constraints (alignment and limits) by angular
 /// impulses, then the pin by a positional one.
 void solveRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints);
+/// One pass over the joints' drives (joint_drive.h), drives[k] and lambda[k] joint k's; the first
+/// pass of a substep zeroes the multipliers.
+void driveRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints,
+                      std::span<const JointDrive> drives, std::span<Real> lambda, bool firstPass);
 /// After the velocities are derived: each joint with damping mu takes the share min(mu h, 1) of its
 /// bodies' relative spin away, by an angular impulse that keeps their angular momentum.
 void dampRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints);

@@ -179,6 +179,13 @@ class World {
   JointDesc jointDesc(std::size_t k) const;
   /// Joint k's angle now (rad): a hinge's about its axis, a cone's twist.
   Real jointAngle(std::size_t k) const;
+  /// Joint k's drive (joint_drive.h). A joint is made with strength 0 (no drive) and its rest as the
+  /// target.
+  const JointDrive& jointDrive(std::size_t k) const;
+  /// Replaces joint k's drive and wakes its island. Throws std::invalid_argument (and keeps the old
+  /// drive) for a joint that does not exist, a target that is not a unit quaternion (within 1e-6;
+  /// it is normalised), a strength outside [0, 1] or a stiffness that is not finite and > 0.
+  void setJointDrive(std::size_t k, const JointDrive& drive);
   /// Every particle body's corners, 8 per body from Body::firstCorner (a rigid body has none).
   std::span<const Embedding> corners() const { return corners_; }
   /// Corner k of any body now (bits as in Body), unit: m.

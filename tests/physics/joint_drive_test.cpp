@@ -1,0 +1,297 @@
+// Joint drives (docs/physics.md, "Joint drives"): a driven hinge against the torsion spring's
+// period, the same whatever the passes, substeps and step (XPBD's compliance); strength 1 as a
+// locked joint; strength 0 as no drive, to the bit; the pair's momentum kept; the rest as a new
+// joint's target; waking; and bad input.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "physics/world.h"
+#include "test_util.h"
+
+namespace {
+
+using phys::BodyId;
+using phys::JointDesc;
+using phys::JointDrive;
+using phys::JointKind;
+using phys::Quat;
+using phys::Real;
+using phys::Vec3;
+using testing_phys::rigidBox;
+
+const Vec3 kZ(0.0, 0.0, 1.0);
+
+// A 1 kg bar, 1 m x 0.1 m x 0.1 m, hinged about z at its end to a body a million times heavier, in
+// space: the heavy parent stands still to a part in a million, and the bar turns about the pivot.
+struct Hinged {
+  phys::World world;
+  BodyId parent, child;
+};
+
+Hinged hinged(const phys::SolverSettings& solver, Vec3 gravity = Vec3(0.0)) {
+  Hinged h{testing_phys::openSpace(solver, gravity), BodyId{}, BodyId{}};
+  h.parent = h.world.addBody(rigidBox(Vec3(-0.5, 0.0, 0.0), Vec3(1.0), 1e6));
+  h.child = h.world.addBody(rigidBox(Vec3(0.5, 0.0, 0.0), Vec3(1.0, 0.1, 0.1), 1.0));
+  JointDesc j;
+  j.kind = JointKind::Hinge;
+  j.a = h.parent;
+  j.b = h.child;
+  j.pivot = Vec3(0.0);
+  j.axis = kZ;
+  j.reference = Vec3(1.0, 0.0, 0.0);
+  j.minAngle = -std::numbers::pi;
+  j.maxAngle = std::numbers::pi;
+  h.world.addJoint(j);
+  h.world.ignoreCollision(h.parent, h.child);  // they touch at the pivot
+  return h;
+}
+
+phys::SolverSettings xpbd(int iterations, int substeps, Real dt = 1.0 / 60.0) {
+  phys::SolverSettings s = testing_phys::solver(phys::SolverMethod::Xpbd, iterations, substeps);
+  s.dt = dt;
+  return s;
+}
+
+JointDrive drive(Real angle, Real strength, Real stiffness) {
+  return JointDrive{glm::angleAxis(angle, kZ), strength, stiffness};
+}
+
+struct Swing {
+  Real period = 0.0;  // s: the mean between upward passes through the target
+  Real centre = 0.0;  // rad: the mean angle over the whole swings between the first and last crossing
+  Real decay = 0.0;   // unitless: the last swing's amplitude over the first's
+};
+
+// The bar starts at rest at angle 0 with the drive's target at `target`: it swings about the target.
+Swing swingAbout(const phys::SolverSettings& solver, Real target, Real stiffness) {
+  Hinged h = hinged(solver);
+  const Real strength = 0.5;  // the stiffness as given
+  h.world.setJointDrive(0, drive(target, strength, stiffness));
+  std::vector<Real> crossings, sums(1, 0.0), counts(1, 0.0), peaks(1, 0.0);
+  Real previous = h.world.jointAngle(0) - target;
+  const Real dt = solver.dt;
+  for (int step = 1; step * dt <= 6.0; ++step) {
+    h.world.step();
+    const Real now = h.world.jointAngle(0) - target;
+    if (previous < 0.0 && now >= 0.0) {
+      crossings.push_back((step - 1 + previous / (previous - now)) * dt);
+      sums.push_back(0.0);
+      counts.push_back(0.0);
+      peaks.push_back(0.0);
+    }
+    sums.back() += now;
+    counts.back() += 1.0;
+    peaks.back() = std::max(peaks.back(), now);
+    previous = now;
+  }
+  Swing out;
+  EXPECT_GE(crossings.size(), 4u);
+  if (crossings.size() < 4) return out;
+  out.period = (crossings.back() - crossings.front()) / static_cast<Real>(crossings.size() - 1);
+  Real sum = 0.0, count = 0.0;  // the whole swings: between the first crossing and the last
+  for (std::size_t k = 1; k + 1 < sums.size(); ++k) {
+    sum += sums[k];
+    count += counts[k];
+  }
+  out.centre = target + sum / count;
+  out.decay = peaks[peaks.size() - 2] / peaks[1];
+  return out;
+}
+
+// A torsion spring k on a bar turning about its end: T = 2 pi sqrt(I_p / k), I_p = m (L^2 + t^2) / 12
+// + m (L / 2)^2. XPBD's compliance makes k a stiffness of the model, not of the solver: the period
+// is the same at 1 and 4 passes, at 4 to 16 substeps and at two steps, within 0.5% (measured: 0.1%
+// at most). The swing's centre is the target; the mean over whole swings leans up to 1% towards each
+// swing's first half, since the swing decays: XPBD's implicit step damps it, by 20% of its amplitude
+// in four swings at 4 substeps and 5% at 16 (docs/physics.md, "Joint drives").
+TEST(JointDrive, AHingeDrivenTowardsAnAngleSwingsAtTheTorsionSpringsPeriod) {
+  const Real stiffness = 10.0, ip = 1.01 / 12.0 + 0.25;
+  const Real expected = 2.0 * std::numbers::pi * std::sqrt(ip / stiffness);
+  const struct {
+    int iterations, substeps;
+    Real dt;
+  } cases[] = {
+      {1, 4, 1.0 / 60.0}, {4, 4, 1.0 / 60.0}, {1, 16, 1.0 / 60.0}, {2, 8, 1.0 / 60.0}, {1, 4, 1.0 / 120.0}};
+  std::vector<Real> decays;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(testing::Message() << c.iterations << " x " << c.substeps << " at dt " << c.dt);
+    const Swing s = swingAbout(xpbd(c.iterations, c.substeps, c.dt), 0.3, stiffness);
+    EXPECT_NEAR(s.period, expected, 0.005 * expected);
+    EXPECT_NEAR(s.centre, 0.3, 0.005);
+    decays.push_back(s.decay);
+  }
+  // The damping is the step's, and goes as h: a quarter of the substep keeps most of what 1 x 4 lost.
+  EXPECT_GT(decays[2], 0.93);
+  EXPECT_GT(1.0 - decays[0], 3.0 * (1.0 - decays[2]));
+}
+
+// Compliance 0: each pass puts the child on its target, and the pin's corrections after it are
+// taken back by the next pass; within a few steps it holds to a thousandth of a radian.
+TEST(JointDrive, AtStrengthOneTheChildHoldsItsTargetAsALockedJoint) {
+  Hinged h = hinged(xpbd(2, 8));
+  h.world.setJointDrive(0, drive(0.5, 1.0, phys::kDriveStiffness));
+  Real worst = 0.0;
+  for (int step = 1; step <= 120; ++step) {
+    h.world.step();
+    if (step > 10) worst = std::max(worst, std::abs(h.world.jointAngle(0) - 0.5));
+  }
+  EXPECT_LT(worst, 1e-3);
+}
+
+// A limp joint is a joint with no drive: strength 0 with any target and stiffness changes nothing,
+// to the bit, under gravity and a drag.
+TEST(JointDrive, StrengthZeroIsNoDriveToTheBit) {
+  Hinged a = hinged(xpbd(2, 8), Vec3(0.0, -9.81, 0.0));
+  Hinged b = hinged(xpbd(2, 8), Vec3(0.0, -9.81, 0.0));
+  b.world.setJointDrive(0, drive(1.0, 0.0, 50.0));
+  for (Hinged* h : {&a, &b}) {
+    phys::Drag pull = h->world.dragAt(h->child, Vec3(1.0, 0.0, 0.0));
+    pull.target = Vec3(1.0, 1.0, 0.5);
+    h->world.setDrag(pull);
+    for (int step = 0; step < 90; ++step) h->world.step();
+  }
+  EXPECT_EQ(a.world.stateHash(), b.world.stateHash());
+}
+
+// The drive turns the two bodies against each other by equal and opposite angular impulses, so the
+// pair's momentum and angular momentum stay what they were (zero): two equal bars at rest, end to end
+// on a cone, bent by a drive. What is left is the angular momentum of the velocities XPBD derives from
+// the poses (each substep's turn through its start's I^-1), under a thousandth of the angular momentum
+// each bar swings with.
+TEST(JointDrive, TheDriveTurnsThePartsAgainstEachOtherNotThePair) {
+  phys::World w = testing_phys::openSpace(xpbd(2, 8), Vec3(0.0));
+  const BodyId a = w.addBody(rigidBox(Vec3(-0.5, 0.0, 0.0), Vec3(1.0, 0.1, 0.1)));
+  const BodyId b = w.addBody(rigidBox(Vec3(0.5, 0.0, 0.0), Vec3(1.0, 0.1, 0.1)));
+  JointDesc j;
+  j.kind = JointKind::Cone;
+  j.a = a;
+  j.b = b;
+  j.pivot = Vec3(0.0);
+  j.axis = Vec3(1.0, 0.0, 0.0);
+  j.reference = Vec3(0.0, 1.0, 0.0);
+  j.swing = 2.0;
+  j.twist = 1.0;
+  w.addJoint(j);
+  w.ignoreCollision(a, b);
+  w.setJointDrive(0, JointDrive{glm::angleAxis(1.2, glm::normalize(Vec3(0.0, 1.0, 1.0))), 0.5, 2.0});
+  Real worst = 0.0, largestOwn = 0.0;
+  for (int step = 0; step < 120; ++step) {
+    w.step();
+    Vec3 linear(0.0), angular(0.0), centre(0.0);
+    const phys::RigidBodies& r = w.rigidBodies();
+    for (phys::RigidId i{}; i < r.size(); ++i) centre += 0.5 * r.position[i];
+    for (phys::RigidId i{}; i < r.size(); ++i) {
+      const glm::dmat3 R = glm::mat3_cast(r.orientation[i]);
+      const glm::dmat3 inertia =
+          R *
+          glm::dmat3(1.0 / r.inverseInertia[i].x, 0.0, 0.0, 0.0, 1.0 / r.inverseInertia[i].y, 0.0, 0.0, 0.0,
+                     1.0 / r.inverseInertia[i].z) *
+          glm::transpose(R);
+      const Vec3 own = inertia * r.angularVelocity[i] + glm::cross(r.position[i] - centre, r.velocity[i]);
+      largestOwn = std::max(largestOwn, glm::length(own));
+      linear += r.velocity[i];
+      angular += own;
+    }
+    EXPECT_LT(glm::length(linear), 1e-9);
+    worst = std::max(worst, glm::length(angular));
+  }
+  EXPECT_GT(largestOwn, 0.05);  // it did bend
+  EXPECT_LT(worst, 1e-3 * largestOwn);
+}
+
+// A joint is made with its rest as the target: a joint between bodies at different orientations
+// holds them so, and one made away from its rest (its child's frame given apart) pulls back to it.
+TEST(JointDrive, AJointsDriveStartsAtItsRest) {
+  phys::World w = testing_phys::openSpace(xpbd(2, 8), Vec3(0.0));
+  phys::BodyDesc parent = rigidBox(Vec3(0.0, 1.0, 0.0));
+  parent.orientation = glm::angleAxis(0.7, glm::normalize(Vec3(1.0, 2.0, 3.0)));
+  phys::BodyDesc child = rigidBox(Vec3(0.0, -1.0, 0.0));
+  child.orientation = glm::angleAxis(-0.4, glm::normalize(Vec3(3.0, -1.0, 0.5)));
+  const BodyId a = w.addBody(parent), b = w.addBody(child);
+  JointDesc j;
+  j.kind = JointKind::Cone;
+  j.a = a;
+  j.b = b;
+  j.axis = Vec3(0.0, -1.0, 0.0);
+  j.reference = Vec3(1.0, 0.0, 0.0);
+  j.swing = 1.0;
+  j.twist = 0.5;
+  w.addJoint(j);
+  EXPECT_EQ(w.jointDrive(0).strength, 0.0);
+  EXPECT_EQ(w.jointDrive(0).stiffness, phys::kDriveStiffness);
+  const Quat relative = glm::conjugate(parent.orientation) * child.orientation;
+  EXPECT_LT(testing_phys::angleBetween(w.jointDrive(0).target, relative), 1e-12);
+
+  // The same joint made again with the child's frame turned 0.3 rad about the limb: the child
+  // is then 0.3 rad from its rest, and a full-strength drive takes it there.
+  Hinged h = hinged(xpbd(2, 8));
+  JointDesc bent = h.world.jointDesc(0);
+  bent.axisB = bent.axis;
+  bent.referenceB = glm::angleAxis(-0.3, kZ) * bent.reference;
+  h.world.addJoint(bent);
+  EXPECT_NEAR(h.world.jointAngle(1), -0.3, 1e-12);
+  JointDrive hold = h.world.jointDrive(1);
+  hold.strength = 1.0;
+  h.world.setJointDrive(1, hold);
+  for (int step = 0; step < 60; ++step) h.world.step();
+  EXPECT_NEAR(h.world.jointAngle(1), 0.0, 1e-3);
+}
+
+TEST(JointDrive, ANewDriveWakesItsIsland) {
+  phys::WorldSettings ws;
+  phys::SolverSettings s = xpbd(2, 8);
+  s.sleep.enabled = true;
+  phys::World w(ws, s);
+  const BodyId a = w.addBody(rigidBox(Vec3(-0.5, 0.05, 0.0), Vec3(1.0, 0.1, 0.1)));
+  const BodyId b = w.addBody(rigidBox(Vec3(0.5, 0.05, 0.0), Vec3(1.0, 0.1, 0.1)));
+  JointDesc j;
+  j.a = a;
+  j.b = b;
+  j.pivot = Vec3(0.0, 0.05, 0.0);
+  j.axis = Vec3(0.0, 0.0, 1.0);
+  j.reference = Vec3(1.0, 0.0, 0.0);
+  j.minAngle = -1.0;
+  j.maxAngle = 1.0;
+  w.addJoint(j);
+  w.ignoreCollision(a, b);
+  for (int step = 0; step < 120; ++step) w.step();
+  ASSERT_TRUE(w.islands().bodyAsleep(b));
+  w.setJointDrive(0, drive(0.5, 0.9, 100.0));
+  EXPECT_FALSE(w.islands().bodyAsleep(a));
+  EXPECT_FALSE(w.islands().bodyAsleep(b));
+  for (int step = 0; step < 60; ++step) w.step();
+  EXPECT_GT(w.jointAngle(0), 0.3);  // it bent up off the ground
+}
+
+TEST(JointDrive, BadDrivesAreRefusedAndTheOldOneKept) {
+  Hinged h = hinged(xpbd(1, 4));
+  h.world.setJointDrive(0, drive(0.2, 0.5, 10.0));
+  const Real nan = std::nan("");
+  const JointDrive bad[] = {
+      JointDrive{Quat(2.0, 0.0, 0.0, 0.0), 0.5, 10.0},  // not unit
+      JointDrive{Quat(nan, 0.0, 0.0, 0.0), 0.5, 10.0},  // not finite
+      drive(0.2, -0.1, 10.0),                           // strength below 0
+      drive(0.2, 1.5, 10.0),                            // above 1
+      drive(0.2, nan, 10.0),                            // not a number
+      drive(0.2, 0.5, 0.0),                             // no stiffness
+      drive(0.2, 0.5, std::numeric_limits<Real>::infinity()),
+  };
+  for (const JointDrive& d : bad) EXPECT_THROW(h.world.setJointDrive(0, d), std::invalid_argument);
+  EXPECT_THROW(h.world.setJointDrive(1, drive(0.2, 0.5, 10.0)), std::invalid_argument);
+  EXPECT_THROW((void)h.world.jointDrive(1), std::invalid_argument);
+  EXPECT_EQ(h.world.jointDrive(0).strength, 0.5);
+  EXPECT_EQ(h.world.jointDrive(0).stiffness, 10.0);
+  // A target a little off unit is taken, made unit.
+  h.world.setJointDrive(0, JointDrive{Quat(1.0 + 5e-7, 0.0, 0.0, 0.0), 0.5, 10.0});
+  EXPECT_DOUBLE_EQ(glm::length(h.world.jointDrive(0).target), 1.0);
+}
+
+}  // namespace
