@@ -149,6 +149,7 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
   CapsuleRagdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
+  ragdoll.firstJoint = world.rigidJoints().size();
   for (const PartLayout& p : kParts) {
     BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.shape = Shape::Capsule;
@@ -183,6 +184,7 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
     detail::addCone(world, ragdoll.part(c.parent), ragdoll.part(c.child), spec, place, desc.scale);
     world.ignoreCollision(ragdoll.part(c.parent), ragdoll.part(c.child));
   }
+  detail::driveRagdollJoints(world, desc, ragdoll.firstJoint);
   return ragdoll;
 }
 

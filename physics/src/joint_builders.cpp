@@ -31,6 +31,11 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   require(!desc.jointDamping || (std::isfinite(*desc.jointDamping) && *desc.jointDamping >= 0.0),
           "joint damping must be finite and >= 0 (1/s)");
   require(desc.inertiaFloor >= 0.0 && desc.inertiaFloor <= 1.0, "inertia floor must be from 0 to 1");
+  require(desc.strength >= 0.0 && desc.strength <= 1.0, "strength must be from 0 to 1");
+  require(desc.strength == 0.0 || desc.model == RagdollModel::Rigid,
+          "strength above 0 needs the rigid model (only rigid joints have drives)");
+  require(!desc.driveStiffness || (std::isfinite(*desc.driveStiffness) && *desc.driveStiffness > 0.0),
+          "drive stiffness must be finite and > 0 (N m/rad)");
   const Quat q = desc.orientation / qLength;
   const Vec3 hips = desc.hips, fromHips(0.0, hipHeight, 0.0);
   const Real scale = desc.scale;
@@ -58,6 +63,18 @@ BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {
   box.collisionGroup = desc.collisionGroup;
   box.collisionMask = desc.collisionMask;
   return box;
+}
+
+void driveRagdollJoints(World& world, const RagdollDesc& desc, std::size_t firstJoint) {
+  if (desc.strength == 0.0) return;
+  const Real stiffness =
+      desc.driveStiffness.value_or(kDriveStiffness * desc.mass / kRagdollDriveMass * desc.scale);
+  for (std::size_t k = firstJoint; k < world.rigidJoints().size(); ++k) {
+    JointDrive drive = world.jointDrive(k);
+    drive.strength = desc.strength;
+    drive.stiffness = stiffness;
+    world.setJointDrive(k, drive);
+  }
 }
 
 Real jointDamping(const RagdollDesc& desc) {

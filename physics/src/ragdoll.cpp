@@ -136,6 +136,7 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
   Ragdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
+  ragdoll.firstJoint = world.rigidJoints().size();
   for (const PartLayout& p : kParts) {
     BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.center = place(p.center);
@@ -163,6 +164,7 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
     ragdoll.hinges[h] = {layout.parent,    layout.child, Vec3(1.0, 0.0, 0.0),
                          layout.reference, minAngle,     maxAngle};
   }
+  detail::driveRagdollJoints(world, desc, ragdoll.firstJoint);
   return ragdoll;
 }
 

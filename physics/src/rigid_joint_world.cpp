@@ -143,6 +143,11 @@ const JointDrive& World::jointDrive(std::size_t k) const {
   return constraints_.drives()[k];
 }
 
+Quat World::jointRest(std::size_t k) const {
+  require(k < constraints_.rigidJoints().size(), "jointRest: joint index must exist");
+  return restTarget(constraints_.rigidJoints()[k]);
+}
+
 void World::setJointDrive(std::size_t k, const JointDrive& drive) {
   require(k < constraints_.rigidJoints().size(), "setJointDrive: joint index must exist");
   const Quat& q = drive.target;

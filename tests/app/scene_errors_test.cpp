@@ -98,6 +98,27 @@ const BadScene kCases[] = {
      "model='rigid'/>\n"
      "<joint type='cone' a='a' b='b' pivot='0 1.5 0' axis='0 1 0' reference='0 2 0' swing='30'/>\n</scene>",
      4, "", "the reference must not lie along the axis"},
+    {"drive strength above 1",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
+     "model='rigid'/>\n"
+     "<joint type='cone' a='a' b='b' pivot='0 1.5 0' axis='0 1 0' reference='1 0 0' swing='30' "
+     "strength='1.5'/>\n</scene>",
+     4, "strength", "'1.5' must be from 0 to 1"},
+    {"drive stiffness of 0",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
+     "model='rigid'/>\n"
+     "<joint type='cone' a='a' b='b' pivot='0 1.5 0' axis='0 1 0' reference='1 0 0' swing='30' "
+     "drive-stiffness='0'/>\n</scene>",
+     4, "drive-stiffness", "'0' must be > 0 (N m/rad)"},
+    {"drive target not three angles",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
+     "model='rigid'/>\n"
+     "<joint type='cone' a='a' b='b' pivot='0 1.5 0' axis='0 1 0' reference='1 0 0' swing='30' "
+     "drive-target='10 20'/>\n</scene>",
+     4, "drive-target", "'10 20' must be three finite numbers (degrees)"},
+    {"strength on a ragdoll of particles",
+     "<scene name='s'>\n<ragdoll pos='0 1 0' strength='0.5'/>\n</scene>", 2, "strength",
+     "needs model=\"rigid\": only rigid joints have drives (this ragdoll is seed)"},
     {"hinge stops crossed",
      "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
      "model='rigid'/>\n"

@@ -171,6 +171,36 @@ TEST(SceneWriter, RigidRagdollReloadsWithItsJointsAsTheyAre) {
   }
 }
 
+// Drives come back as they were: a ragdoll's strength and stiffness on each joint, and a joint's
+// own target away from its rest (a <joint> with drive-target), which a reloaded world pulls towards.
+TEST(SceneWriter, JointDrivesReloadAsTheyWere) {
+  scenes::Scene original = load(
+      "<ragdoll name=\"r\" pos=\"0 0.85 0\" model=\"rigid\" strength=\"0.7\" drive-stiffness=\"800\"/>"
+      "<box name=\"p\" pos=\"3 1 0\" model=\"rigid\"/><box name=\"c\" pos=\"3 2 0\" model=\"rigid\"/>"
+      "<joint type=\"cone\" a=\"p\" b=\"c\" pivot=\"3 1.5 0\" axis=\"0 1 0\" reference=\"1 0 0\" "
+      "swing=\"60\" "
+      "strength=\"0.9\" drive-target=\"20 -10 5\"/>",
+      "<solver substeps=\"8\" iterations=\"2\"/>");
+  for (int i = 0; i < 30; ++i) original.world.step();
+  scenes::Scene copy = reload(original);
+  const phys::World& a = original.world;
+  const phys::World& b = copy.world;
+  ASSERT_EQ(b.rigidJoints().size(), 10u);
+  for (std::size_t k = 0; k < a.rigidJoints().size(); ++k) {
+    const phys::JointDrive x = a.jointDrive(k), y = b.jointDrive(k);
+    EXPECT_EQ(y.strength, k < 9 ? 0.7 : 0.9) << "joint " << k;
+    EXPECT_EQ(y.stiffness, k < 9 ? 800.0 : phys::kDriveStiffness) << "joint " << k;
+    EXPECT_LT(angleBetween(x.target, y.target), 1e-12) << "joint " << k;
+  }
+  // The cone's target is the one the file gave, not its rest.
+  const phys::Quat given =
+      glm::angleAxis(glm::radians(5.0), phys::Vec3(0.0, 0.0, 1.0)) *
+      glm::angleAxis(glm::radians(-10.0), phys::Vec3(0.0, 1.0, 0.0)) *
+      glm::angleAxis(glm::radians(20.0), phys::Vec3(1.0, 0.0, 0.0));  // x, then y, then z
+  EXPECT_LT(angleBetween(b.jointDrive(9).target, given), 1e-12);
+  EXPECT_GT(angleBetween(b.jointDrive(9).target, b.jointRest(9)), 0.3);
+}
+
 TEST(SceneWriter, EveryProjectSceneRoundTrips) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(scenes::sceneDirectory(DATA_DIR))) {

@@ -13,6 +13,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "physics/capsule_ragdoll.h"
+#include "physics/ragdoll.h"
 #include "physics/world.h"
 #include "test_util.h"
 
@@ -292,6 +294,63 @@ TEST(JointDrive, BadDrivesAreRefusedAndTheOldOneKept) {
   // A target a little off unit is taken, made unit.
   h.world.setJointDrive(0, JointDrive{Quat(1.0 + 5e-7, 0.0, 0.0, 0.0), 0.5, 10.0});
   EXPECT_DOUBLE_EQ(glm::length(h.world.jointDrive(0).target), 1.0);
+}
+
+// A ragdoll's strength drives each of its joints towards the pose it was made in. The box ragdoll of
+// rigid parts, standing on the flat ends of its lower legs, stays standing at strength 1 (a statue)
+// and at 1/2 (each joint at kDriveStiffness); limp, it folds and falls.
+Real headHeightAfter(Real strength, Real seconds) {
+  phys::WorldSettings ws;
+  phys::World w(ws, xpbd(2, 8));
+  phys::RagdollDesc d;
+  d.model = phys::RagdollModel::Rigid;
+  d.hips = Vec3(0.0, 0.85, 0.0);  // the lower legs' ends at the ground
+  d.strength = strength;
+  const phys::Ragdoll r = phys::addRagdoll(w, d);
+  for (int step = 0; step * w.solverSettings().dt < seconds; ++step) w.step();
+  EXPECT_TRUE(w.freezes().empty());
+  return w.bodyPose(r.part(phys::RagdollPart::Head)).center.y;
+}
+
+TEST(JointDrive, ARigidRagdollHeldAtItsPoseStandsAndALimpOneFalls) {
+  const Real standing = 1.59;  // the head's centre as built
+  EXPECT_NEAR(headHeightAfter(1.0, 10.0), standing, 0.005);
+  EXPECT_NEAR(headHeightAfter(0.5, 10.0), standing, 0.005);
+  EXPECT_LT(headHeightAfter(0.0, 10.0), 0.5);
+}
+
+TEST(JointDrive, ARagdollsDrivesTakeItsStrengthAndAStiffnessForItsSize) {
+  phys::World w = testing_phys::openSpace(xpbd(2, 8));
+  phys::RagdollDesc d;
+  d.model = phys::RagdollModel::Rigid;
+  d.strength = 0.25;
+  d.mass = 35.0;
+  d.scale = 2.0;
+  const phys::Ragdoll boxes = phys::addRagdoll(w, d);
+  d.hips = Vec3(3.0, 0.0, 0.0);
+  d.driveStiffness = 400.0;
+  const phys::CapsuleRagdoll capsules = phys::addCapsuleRagdoll(w, d);
+  EXPECT_EQ(boxes.firstJoint, 0u);
+  EXPECT_EQ(capsules.firstJoint, static_cast<std::size_t>(phys::kRagdollHinges));
+  ASSERT_EQ(w.rigidJoints().size(), static_cast<std::size_t>(phys::kRagdollHinges + phys::kCapsuleJoints));
+  for (std::size_t k = 0; k < w.rigidJoints().size(); ++k) {
+    EXPECT_EQ(w.jointDrive(k).strength, 0.25);
+    // Half the mass at twice the size: the same stiffness as a 70 kg ragdoll at scale 1.
+    EXPECT_DOUBLE_EQ(w.jointDrive(k).stiffness,
+                     k < boxes.firstJoint + phys::kRagdollHinges ? phys::kDriveStiffness : 400.0);
+    EXPECT_LT(testing_phys::angleBetween(w.jointDrive(k).target, w.jointRest(k)), 1e-15);
+  }
+  d.model = phys::RagdollModel::Lean;
+  EXPECT_THROW(phys::addRagdoll(w, d), std::invalid_argument);
+  d.model = phys::RagdollModel::Rigid;
+  for (const Real strength : {-0.5, 1.5, std::nan("")}) {
+    d.strength = strength;
+    EXPECT_THROW(phys::addCapsuleRagdoll(w, d), std::invalid_argument);
+  }
+  d.strength = 0.5;
+  d.driveStiffness = 0.0;
+  EXPECT_THROW(phys::addRagdoll(w, d), std::invalid_argument);
+  EXPECT_EQ(w.rigidJoints().size(), static_cast<std::size_t>(phys::kRagdollHinges + phys::kCapsuleJoints));
 }
 
 }  // namespace

@@ -47,6 +47,24 @@ void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BodyDesc
 
 }  // namespace
 
+std::optional<phys::JointDrive> readDrive(ElementReader& e) {
+  const std::optional<double> strength = e.number("strength", "");
+  const std::optional<double> stiffness = e.number("drive-stiffness", "N m/rad");
+  if (!strength && !stiffness) return std::nullopt;
+  phys::JointDrive drive;
+  if (strength) {
+    if (!(*strength >= 0.0 && *strength <= 1.0))
+      e.fail("strength", "'" + formatNumber(*strength) + "' must be from 0 to 1");
+    drive.strength = *strength;
+  }
+  if (stiffness) {
+    if (!(*stiffness > 0.0))
+      e.fail("drive-stiffness", "'" + formatNumber(*stiffness) + "' must be > 0 (N m/rad)");
+    drive.stiffness = *stiffness;
+  }
+  return drive;
+}
+
 std::optional<double> readMass(ElementReader& e, std::string_view attribute, double least) {
   const std::optional<double> mass = e.number(attribute, "kg");
   if (mass && !(*mass >= least && *mass <= kMaxMass)) {
@@ -238,9 +256,17 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
     d.jointDamping = *damping;
   }
   if (auto floor = readInertiaFloor(e)) d.inertiaFloor = *floor;
+  if (auto drive = readDrive(e)) {
+    d.strength = drive->strength;
+    if (e.has("drive-stiffness")) d.driveStiffness = drive->stiffness;
+  }
   e.material(d.material);
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;
+  if (d.strength > 0.0 && d.model != phys::RagdollModel::Rigid) {
+    e.fail("strength", "needs model=\"rigid\": only rigid joints have drives (this ragdoll is " +
+                           std::string(phys::toString(d.model)) + ")");
+  }
   auto nameParts = [&](const auto& parts) {
     for (const phys::BodyId id : parts)
       ctx.addName(e, ctx.world.bodies()[id].name, NamedBody::Kind::Body, id);

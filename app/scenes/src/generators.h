@@ -45,6 +45,9 @@ inline constexpr double kMinRagdollMass = kMinMass / 0.05;
 /// device such as /dev/zero is refused instead of read until memory runs out.
 inline constexpr std::size_t kMaxSceneBytes = std::size_t{512} << 20;
 
+/// Reads a drive's strength (0 to 1) and drive-stiffness (N m/rad, > 0), if either is given; the
+/// one not given keeps JointDrive's default (<joint>, <ragdoll>).
+std::optional<phys::JointDrive> readDrive(ElementReader& e);
 /// Reads a mass in [least, kMaxMass] (kg), if given.
 std::optional<double> readMass(ElementReader& e, std::string_view attribute, double least = kMinMass);
 /// Fails on `attribute` unless every coordinate of `point` is within the world's bound, the

@@ -13,6 +13,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "element_reader.h"
+#include "euler_angles.h"
 #include "fileio/files.h"
 #include "generators.h"
 #include "scenes/scene.h"
@@ -404,12 +405,25 @@ class Builder {
       if (*damping < 0.0) e.fail("damping", "must be >= 0 (1/s)");
       d.damping = *damping;
     }
+    // The drive (physics/joint_drive.h): drive-target is the child's orientation in the parent's
+    // frame, as Euler angles; unset, the joint's rest.
+    const std::optional<phys::JointDrive> drive = detail::readDrive(e);
+    const std::optional<phys::Vec3> target = e.vector("drive-target", "degrees");
     e.rejectUnknownAttributes();
     try {
       scene_.world.addJoint(d);
     } catch (const std::invalid_argument& error) {
       e.fail(error.what());  // a zero axis, a reference along it
     }
+    if (!drive && !target) return;
+    const std::size_t k = scene_.world.rigidJoints().size() - 1;
+    phys::JointDrive set = scene_.world.jointDrive(k);
+    if (drive) {
+      set.strength = drive->strength;
+      set.stiffness = drive->stiffness;
+    }
+    if (target) set.target = detail::orientationFromEuler(*target);
+    scene_.world.setJointDrive(k, set);
   }
 
   // Friction in the joint between two particle bodies (World::addJointFriction); a <ragdoll>'s

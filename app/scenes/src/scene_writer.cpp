@@ -272,7 +272,8 @@ std::string linkElement(const phys::World& world, const phys::RigidLink& link,
 
 // Both bodies' frames as they are now, so that a joint saved away from its rest (at a stop, or
 // pulled a little apart) reloads as it is, not with its child's angle taken as the new zero.
-std::string jointElement(const phys::JointDesc& d, const BodyNames& names) {
+std::string jointElement(const phys::JointDesc& d, const phys::JointDrive& drive, const phys::Quat& rest,
+                         const BodyNames& names) {
   ElementWriter e("joint");
   e.text("type", d.kind == phys::JointKind::Hinge ? "hinge" : "cone");
   e.text("a", names.box(d.a)).text("b", names.box(d.b));
@@ -287,6 +288,13 @@ std::string jointElement(const phys::JointDesc& d, const BodyNames& names) {
     e.number("swing", glm::degrees(d.swing)).number("twist", glm::degrees(d.twist));
   }
   if (d.damping != 0.0) e.number("damping", d.damping);
+  const phys::JointDrive defaults;
+  if (drive.strength != defaults.strength) e.number("strength", drive.strength);
+  if (drive.stiffness != defaults.stiffness) e.number("drive-stiffness", drive.stiffness);
+  // A turn of the target off the rest so small that no Euler angle tells it apart is no turn.
+  const phys::Quat off = glm::conjugate(rest) * drive.target;
+  if (glm::length(glm::dvec3(off.x, off.y, off.z)) > 1e-15)
+    e.vector("drive-target", detail::eulerFromOrientation(drive.target));
   return e.empty();
 }
 
@@ -412,7 +420,8 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     line(linkElement(world, general, owner, names));
   }
   for (const phys::RigidLink& link : world.rigidLinks()) line(linkElement(world, link, owner, names));
-  for (std::size_t k = 0; k < world.rigidJoints().size(); ++k) line(jointElement(world.jointDesc(k), names));
+  for (std::size_t k = 0; k < world.rigidJoints().size(); ++k)
+    line(jointElement(world.jointDesc(k), world.jointDrive(k), world.jointRest(k), names));
   for (const phys::JointFriction& f : world.jointFrictions()) {
     line(ElementWriter("joint-friction")
              .text("a", names.box(f.a))

@@ -53,6 +53,9 @@ inline constexpr Real kRagdollJointDamping = 2.0;  ///< unit: 1/s
 /// elbows' stops, turn about their long axes and back every substep (docs/physics.md, "Inertia floor").
 inline constexpr Real kRagdollInertiaFloor = 2.0 / 3.0;  ///< unitless
 
+/// The mass a ragdoll's default drive stiffness is kDriveStiffness for (RagdollDesc::driveStiffness).
+inline constexpr Real kRagdollDriveMass = 70.0;  ///< unit: kg
+
 /// A ragdoll when it is created. At the identity orientation it stands upright on its feet,
 /// facing +z, 1.72 m tall at scale 1.
 struct RagdollDesc {
@@ -72,6 +75,14 @@ struct RagdollDesc {
   /// parts ignore it: their inertia is their particles'.
   Real inertiaFloor = kRagdollInertiaFloor;
   Vec3 velocity{0.0};  ///< unit: m/s; of every part at creation
+  /// unitless, 0 to 1: every joint's drive (JointDrive::strength) holds the pose the ragdoll is made
+  /// in; 0 is a limp ragdoll. Rigid parts only: a particle ragdoll's joints have no drive yet, and
+  /// refuse a strength above 0.
+  Real strength = 0.0;
+  /// unit: N m / rad; the drives' stiffness at strength 1/2 (JointDrive::stiffness). Unset:
+  /// kDriveStiffness for a 70 kg ragdoll at scale 1, in proportion to mass times scale, so that a
+  /// ragdoll of any size leans as far under its own weight.
+  std::optional<Real> driveStiffness;
   Material material;
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;
@@ -95,6 +106,8 @@ struct Ragdoll {
   RagdollModel model = RagdollModel::Seed;
   std::array<BodyId, kRagdollParts> parts{};
   std::array<RagdollHinge, kRagdollHinges> hinges{};
+  /// Rigid model only: hinge h is World joint firstJoint + h (World::jointDrive, setJointDrive).
+  std::size_t firstJoint = 0;
   BodyId part(RagdollPart p) const { return parts[static_cast<int>(p)]; }
 };
 

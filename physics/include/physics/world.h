@@ -182,6 +182,9 @@ class World {
   /// Joint k's drive (joint_drive.h). A joint is made with strength 0 (no drive) and its rest as the
   /// target.
   const JointDrive& jointDrive(std::size_t k) const;
+  /// Joint k's rest: its child's orientation in its parent's frame when the joint's two frames are
+  /// one, the target its drive is made with.
+  Quat jointRest(std::size_t k) const;
   /// Replaces joint k's drive and wakes its island. Throws std::invalid_argument (and keeps the old
   /// drive) for a joint that does not exist, a target that is not a unit quaternion (within 1e-6;
   /// it is normalised), a strength outside [0, 1] or a stiffness that is not finite and > 0.
