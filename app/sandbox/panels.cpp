@@ -389,6 +389,32 @@ void labSection(Session& session, UiState& ui) {
   ImGui::NewLine();
 }
 
+// The rigid joints' drives (phys::JointDrive): one strength for all, from limp to holding the pose
+// each joint's target gives; each joint keeps its own stiffness, shown as the range the scene has.
+void drivesBlock(Session& session, UiState& ui) {
+  const phys::World& world = session.scene().world;
+  const std::size_t joints = world.rigidJoints().size();
+  if (joints == 0) return;
+  double strength = 0.0, weakest = 1.0, least = world.jointDrive(0).stiffness, most = least;
+  for (std::size_t k = 0; k < joints; ++k) {
+    const phys::JointDrive& d = world.jointDrive(k);
+    strength = std::max(strength, d.strength);
+    weakest = std::min(weakest, d.strength);
+    least = std::min(least, d.stiffness);
+    most = std::max(most, d.stiffness);
+  }
+  auto range = [](double lo, double hi, const char* format) {
+    return lo == hi ? figure(format, lo) : figure(format, lo) + " to " + figure(format, hi);
+  };
+  if (sliderReal("drive strength", strength, 0.0f, 1.0f, "%.2f")) {
+    const std::string error = session.setDriveStrength(strength);
+    ui.message = error.empty() ? "drive strength " + figure("%.2f", strength) + " on every joint" : error;
+  }
+  greyWrapped(std::to_string(joints) + " rigid joints at strength " + range(weakest, strength, "%.2f") +
+              " (0 limp, 1 holds the pose; the slider sets all), stiffness at 1/2 " +
+              range(least, most, "%.0f") + " N m/rad");
+}
+
 void worldSection(Session& session, UiState& ui) {
   phys::WorldSettings w = session.scene().world.worldSettings();
   int mode = static_cast<int>(w.gravityMode);
@@ -421,6 +447,7 @@ void worldSection(Session& session, UiState& ui) {
     ui.message = error.empty() ? "world settings applied without restart" : error;
   }
   ImGui::Text("ground: %s", w.ground ? "yes" : "none");
+  drivesBlock(session, ui);
   // What F, R and T throw: boxes of this model, ragdolls of its kind.
   ImGui::SliderFloat("throw speed (m/s)", &ui.throwSpeed, 0.0f, kMaxThrowSpeed, "%.1f",
                      ImGuiSliderFlags_AlwaysClamp);

@@ -372,6 +372,21 @@ std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
   }
 }
 
+std::string Session::setDriveStrength(double strength) {
+  if (!(strength >= 0.0 && strength <= 1.0)) return "drives: strength must be from 0 to 1";
+  if (scene().world.rigidJoints().empty()) return "drives: the scene has no joints between rigid bodies";
+  cancelSteps();
+  forEachWorld([strength](phys::World& w) {
+    for (std::size_t k = 0; k < w.rigidJoints().size(); ++k) {
+      phys::JointDrive drive = w.jointDrive(k);
+      drive.strength = strength;
+      w.setJointDrive(k, drive);
+    }
+  });
+  worldChanged();
+  return {};
+}
+
 std::string Session::applyWorldSettings(const phys::WorldSettings& settings, const std::string& done) {
   std::string why = setWorldSettings(settings);  // not const: returned by move
   status_ = why.empty() ? done : why;

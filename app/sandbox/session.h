@@ -130,6 +130,10 @@ class Session {
   std::string setWorldSettings(const phys::WorldSettings& settings);
   /// The main run's solver settings (the panel's sliders); "" or the validation message.
   std::string setSolverSettings(const phys::SolverSettings& settings);
+  /// Every rigid joint's drive strength (phys::JointDrive::strength, 0 limp to 1 holding its
+  /// target) in every run, each joint keeping its own target and stiffness; "" or why not (a
+  /// strength outside [0, 1], no rigid joint in the scene; then nothing changes).
+  std::string setDriveStrength(double strength);
 
   /// Throws a box or a ragdoll (of boxes, or of capsules laid out like Bullet's) from `at` with
   /// velocity `velocity` into every run, never into a body: where a body reaches into the throw's

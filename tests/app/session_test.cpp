@@ -661,3 +661,26 @@ TEST(RealTimeMeter, SimulatedSecondsPerWallSecondOverTheLastSecond) {
 }
 
 }  // namespace
+
+namespace {
+
+// The World panel's drive strength: every rigid joint of every run takes it, each keeping its own
+// stiffness and target; a bad strength, or a scene without rigid joints, changes nothing and says why.
+TEST(Session, DriveStrengthReachesEveryRigidJointAndBadOnesAreRefused) {
+  sandbox::Session s = open("rigid-ragdolls");
+  const phys::World& world = s.scene().world;
+  ASSERT_EQ(world.rigidJoints().size(), 19u);  // a box ragdoll's 9 and a capsule ragdoll's 10
+  const phys::Quat target = world.jointDrive(3).target;
+  const double stiffness = world.jointDrive(3).stiffness;
+  EXPECT_EQ(s.setDriveStrength(0.8), "");
+  for (std::size_t k = 0; k < world.rigidJoints().size(); ++k) EXPECT_EQ(world.jointDrive(k).strength, 0.8);
+  EXPECT_EQ(world.jointDrive(3).stiffness, stiffness);
+  EXPECT_EQ(world.jointDrive(3).target, target);
+  EXPECT_EQ(s.setDriveStrength(1.5), "drives: strength must be from 0 to 1");
+  EXPECT_EQ(s.setDriveStrength(std::nan("")), "drives: strength must be from 0 to 1");
+  EXPECT_EQ(world.jointDrive(0).strength, 0.8);
+  sandbox::Session pyramid = open("pyramid");
+  EXPECT_EQ(pyramid.setDriveStrength(0.5), "drives: the scene has no joints between rigid bodies");
+}
+
+}  // namespace
