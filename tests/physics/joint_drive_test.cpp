@@ -42,13 +42,7 @@ Hinged hinged(const phys::SolverSettings& solver, Vec3 gravity = Vec3(0.0)) {
   Hinged h{testing_phys::openSpace(solver, gravity), BodyId{}, BodyId{}};
   h.parent = h.world.addBody(rigidBox(Vec3(-0.5, 0.0, 0.0), Vec3(1.0), 1e6));
   h.child = h.world.addBody(rigidBox(Vec3(0.5, 0.0, 0.0), Vec3(1.0, 0.1, 0.1), 1.0));
-  JointDesc j;
-  j.kind = JointKind::Hinge;
-  j.a = h.parent;
-  j.b = h.child;
-  j.pivot = Vec3(0.0);
-  j.axis = kZ;
-  j.reference = Vec3(1.0, 0.0, 0.0);
+  JointDesc j = testing_phys::joint(JointKind::Hinge, h.parent, h.child, Vec3(0.0), kZ, Vec3(1.0, 0.0, 0.0));
   j.minAngle = -std::numbers::pi;
   j.maxAngle = std::numbers::pi;
   h.world.addJoint(j);
@@ -172,13 +166,8 @@ TEST(JointDrive, TheDriveTurnsThePartsAgainstEachOtherNotThePair) {
   phys::World w = testing_phys::openSpace(xpbd(2, 8), Vec3(0.0));
   const BodyId a = w.addBody(rigidBox(Vec3(-0.5, 0.0, 0.0), Vec3(1.0, 0.1, 0.1)));
   const BodyId b = w.addBody(rigidBox(Vec3(0.5, 0.0, 0.0), Vec3(1.0, 0.1, 0.1)));
-  JointDesc j;
-  j.kind = JointKind::Cone;
-  j.a = a;
-  j.b = b;
-  j.pivot = Vec3(0.0);
-  j.axis = Vec3(1.0, 0.0, 0.0);
-  j.reference = Vec3(0.0, 1.0, 0.0);
+  JointDesc j =
+      testing_phys::joint(JointKind::Cone, a, b, Vec3(0.0), Vec3(1.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0));
   j.swing = 2.0;
   j.twist = 1.0;
   w.addJoint(j);
@@ -218,12 +207,8 @@ TEST(JointDrive, AJointsDriveStartsAtItsRest) {
   phys::BodyDesc child = rigidBox(Vec3(0.0, -1.0, 0.0));
   child.orientation = glm::angleAxis(-0.4, glm::normalize(Vec3(3.0, -1.0, 0.5)));
   const BodyId a = w.addBody(parent), b = w.addBody(child);
-  JointDesc j;
-  j.kind = JointKind::Cone;
-  j.a = a;
-  j.b = b;
-  j.axis = Vec3(0.0, -1.0, 0.0);
-  j.reference = Vec3(1.0, 0.0, 0.0);
+  JointDesc j =
+      testing_phys::joint(JointKind::Cone, a, b, Vec3(0.0), Vec3(0.0, -1.0, 0.0), Vec3(1.0, 0.0, 0.0));
   j.swing = 1.0;
   j.twist = 0.5;
   w.addJoint(j);
@@ -254,12 +239,7 @@ TEST(JointDrive, ANewDriveWakesItsIsland) {
   phys::World w(ws, s);
   const BodyId a = w.addBody(rigidBox(Vec3(-0.5, 0.05, 0.0), Vec3(1.0, 0.1, 0.1)));
   const BodyId b = w.addBody(rigidBox(Vec3(0.5, 0.05, 0.0), Vec3(1.0, 0.1, 0.1)));
-  JointDesc j;
-  j.a = a;
-  j.b = b;
-  j.pivot = Vec3(0.0, 0.05, 0.0);
-  j.axis = Vec3(0.0, 0.0, 1.0);
-  j.reference = Vec3(1.0, 0.0, 0.0);
+  JointDesc j = testing_phys::joint(JointKind::Hinge, a, b, Vec3(0.0, 0.05, 0.0), kZ, Vec3(1.0, 0.0, 0.0));
   j.minAngle = -1.0;
   j.maxAngle = 1.0;
   w.addJoint(j);

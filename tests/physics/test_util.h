@@ -47,4 +47,10 @@ inline phys::BodyDesc rigidBox(const phys::Vec3& centre, const phys::Vec3& size 
   return d;
 }
 
+/// A hinge or a cone from a to b at `pivot`; the caller sets its stops, swing or twist.
+inline phys::JointDesc joint(phys::JointKind kind, phys::BodyId a, phys::BodyId b, const phys::Vec3& pivot,
+                             const phys::Vec3& axis, const phys::Vec3& reference) {
+  return {.kind = kind, .a = a, .b = b, .pivot = pivot, .axis = axis, .reference = reference};
+}
+
 }  // namespace testing_phys
