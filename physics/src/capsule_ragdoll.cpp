@@ -185,6 +185,7 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
     world.ignoreCollision(ragdoll.part(c.parent), ragdoll.part(c.child));
   }
   detail::driveRagdollJoints(world, desc, ragdoll.firstJoint);
+  detail::driveRagdollRoot(world, desc, ragdoll.part(CapsulePart::Pelvis));
   return ragdoll;
 }
 

@@ -34,6 +34,25 @@ void ConstraintGraph::addJointFriction(const JointFriction& friction) {
   if (spins_.size() < room) spins_.resize(room);
 }
 
+void ConstraintGraph::setBodyDrive(RigidId rigid, const BodyDrive& drive) {
+  for (DrivenBody& d : bodyDrives_) {
+    if (d.rigid == rigid) {
+      d.drive = drive;
+      return;
+    }
+  }
+  bodyDrives_.push_back({rigid, drive});
+  bodyDriveLambda_.resize(2 * bodyDrives_.size(), 0.0);
+}
+
+void ConstraintGraph::clearBodyDrive(RigidId rigid) {
+  const auto gone = std::remove_if(bodyDrives_.begin(), bodyDrives_.end(),
+                                   [rigid](const DrivenBody& d) { return d.rigid == rigid; });
+  if (gone == bodyDrives_.end()) return;
+  bodyDrives_.erase(gone, bodyDrives_.end());
+  bodyDriveLambda_.resize(2 * bodyDrives_.size());
+}
+
 void ConstraintGraph::dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt) {
   detail::dampJointFriction(particles, bodies, jointFrictions_, dt, spins_);
 }

@@ -34,6 +34,9 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   require(desc.strength >= 0.0 && desc.strength <= 1.0, "strength must be from 0 to 1");
   require(desc.strength == 0.0 || desc.model == RagdollModel::Rigid,
           "strength above 0 needs the rigid model (only rigid joints have drives)");
+  require(desc.rootStrength >= 0.0 && desc.rootStrength <= 1.0, "root strength must be from 0 to 1");
+  require(desc.rootStrength == 0.0 || desc.model == RagdollModel::Rigid,
+          "root strength above 0 needs the rigid model (only rigid bodies have drives)");
   require(!desc.driveStiffness || (std::isfinite(*desc.driveStiffness) && *desc.driveStiffness > 0.0),
           "drive stiffness must be finite and > 0 (N m/rad)");
   const Quat q = desc.orientation / qLength;
@@ -75,6 +78,15 @@ void driveRagdollJoints(World& world, const RagdollDesc& desc, std::size_t first
     drive.stiffness = stiffness;
     world.setJointDrive(k, drive);
   }
+}
+
+void driveRagdollRoot(World& world, const RagdollDesc& desc, BodyId root) {
+  if (desc.rootStrength == 0.0) return;
+  const BodyPose pose = world.bodyPose(root);
+  const Real mass = desc.mass / kRagdollDriveMass;
+  world.setBodyDrive(root,
+                     BodyDrive{pose.center, pose.orientation, desc.rootStrength,
+                               kBodyDriveStiffness * mass / desc.scale, kDriveStiffness * mass * desc.scale});
 }
 
 Real jointDamping(const RagdollDesc& desc) {

@@ -16,7 +16,7 @@ namespace phys::detail {
 using PlaceFn = std::function<Vec3(const Vec3&)>;
 
 /// Checks what both ragdoll builders take from a RagdollDesc (finite hips and velocity, a scale
-/// in (0, 1e6), a positive mass, a finite non-zero orientation, valid friction, a strength from 0 to
+/// in (0, 1e6), a positive mass, a finite non-zero orientation, valid friction, strengths from 0 to
 /// 1 and above 0 only for rigid parts, a finite positive drive stiffness), throwing
 /// std::invalid_argument with `who` ("addRagdoll") in the message, and returns the orientation made
 /// unit and the function that places a layout point: the layout's (0, hipHeight, 0) goes to desc.hips.
@@ -74,6 +74,9 @@ Real jointDamping(const RagdollDesc& desc);
 /// Gives each rigid joint from `firstJoint` on its drive at desc.strength, holding the pose it was
 /// made in (RagdollDesc::strength, driveStiffness). Nothing when the strength is 0.
 void driveRagdollJoints(World& world, const RagdollDesc& desc, std::size_t firstJoint);
+/// Gives the root its drive at desc.rootStrength, holding it where it is (RagdollDesc::rootStrength).
+/// Nothing when the strength is 0.
+void driveRagdollRoot(World& world, const RagdollDesc& desc, BodyId root);
 
 /// v turned by `angle` (rad) about the unit `axis`, by Rodrigues' formula.
 Vec3 rotateAbout(const Vec3& v, const Vec3& axis, Real angle);

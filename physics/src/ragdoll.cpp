@@ -165,6 +165,7 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
                          layout.reference, minAngle,     maxAngle};
   }
   detail::driveRagdollJoints(world, desc, ragdoll.firstJoint);
+  detail::driveRagdollRoot(world, desc, ragdoll.part(RagdollPart::Torso));
   return ragdoll;
 }
 

@@ -28,6 +28,13 @@ Quat restTarget(const RigidJoint& j) {
                         glm::conjugate(jointFrame(j.axisB, j.referenceB)));
 }
 
+// q made unit, or std::invalid_argument naming `what` when it is not unit within 1e-6.
+Quat unitQuaternion(const Quat& q, const std::string& what) {
+  const Real length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  require(std::isfinite(length) && std::abs(length - 1.0) <= 1e-6, what + " must be a unit quaternion");
+  return q / length;
+}
+
 }  // namespace
 
 void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real maxLength) {
@@ -150,17 +157,43 @@ Quat World::jointRest(std::size_t k) const {
 
 void World::setJointDrive(std::size_t k, const JointDrive& drive) {
   require(k < constraints_.rigidJoints().size(), "setJointDrive: joint index must exist");
-  const Quat& q = drive.target;
-  const Real length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-  require(std::isfinite(length) && std::abs(length - 1.0) <= 1e-6,
-          "setJointDrive: the target must be a unit quaternion");
   require(drive.strength >= 0.0 && drive.strength <= 1.0, "setJointDrive: strength must be in [0, 1]");
   require(std::isfinite(drive.stiffness) && drive.stiffness > 0.0,
           "setJointDrive: stiffness must be finite and > 0 (N m/rad)");
   JointDrive kept = drive;
-  kept.target = q / length;
+  kept.target = unitQuaternion(drive.target, "setJointDrive: the target");
   constraints_.setDrive(k, kept);
   islands_.wake(islands_.bodyNode(rigidBodies_.body[constraints_.rigidJoints()[k].a]));
+}
+
+std::optional<BodyDrive> World::bodyDrive(BodyId id) const {
+  require(id < bodies_.size(), "bodyDrive: body id must exist");
+  for (const DrivenBody& d : constraints_.bodyDrives()) {
+    if (bodies_[id].model == BodyModel::Rigid && d.rigid == bodies_[id].rigid) return d.drive;
+  }
+  return std::nullopt;
+}
+
+void World::setBodyDrive(BodyId id, const BodyDrive& drive) {
+  require(id < bodies_.size() && bodies_[id].model == BodyModel::Rigid,
+          "setBodyDrive: the body must be rigid");
+  require(finite(drive.position), "setBodyDrive: the position must be finite");
+  require(drive.strength >= 0.0 && drive.strength <= 1.0, "setBodyDrive: strength must be in [0, 1]");
+  require(std::isfinite(drive.stiffness) && drive.stiffness > 0.0,
+          "setBodyDrive: stiffness must be finite and > 0 (N/m)");
+  require(std::isfinite(drive.angularStiffness) && drive.angularStiffness > 0.0,
+          "setBodyDrive: angular stiffness must be finite and > 0 (N m/rad)");
+  BodyDrive kept = drive;
+  kept.orientation = unitQuaternion(drive.orientation, "setBodyDrive: the orientation");
+  constraints_.setBodyDrive(bodies_[id].rigid, kept);
+  islands_.wake(islands_.bodyNode(id));
+}
+
+void World::clearBodyDrive(BodyId id) {
+  require(id < bodies_.size(), "clearBodyDrive: body id must exist");
+  if (bodies_[id].model != BodyModel::Rigid) return;
+  constraints_.clearBodyDrive(bodies_[id].rigid);
+  islands_.wake(islands_.bodyNode(id));
 }
 
 BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {

@@ -348,12 +348,14 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       const detail::StageTimer timer(profile_, Stage::Links);
       constraints_.solveLinks(particles_, linkSlack, workers());
     }
-    if (!constraints_.rigidLinks().empty() || !constraints_.rigidJoints().empty()) {
+    if (!constraints_.rigidLinks().empty() || !constraints_.rigidJoints().empty() ||
+        !constraints_.bodyDrives().empty()) {
       const detail::StageTimer timer(profile_, Stage::Links);
       const RigidPassInput in = rigidPassInput(h);
       detail::solveRigidLinks(in, constraints_.rigidLinks());
       // Drives before the joints' own constraints, so each pass ends with the joint's axes, stops
       // and pin held: a target beyond a stop is pulled towards, never reached.
+      detail::driveRigidBodies(in, constraints_.bodyDrives(), constraints_.bodyDriveLambda(), it == 0);
       detail::driveRigidJoints(in, constraints_.rigidJoints(), constraints_.drives(),
                                constraints_.driveLambda(), it == 0);
       detail::solveRigidJoints(in, constraints_.rigidJoints());

@@ -118,7 +118,20 @@ const BadScene kCases[] = {
      4, "drive-target", "'10 20' must be three finite numbers (degrees)"},
     {"strength on a ragdoll of particles",
      "<scene name='s'>\n<ragdoll pos='0 1 0' strength='0.5'/>\n</scene>", 2, "strength",
-     "needs model=\"rigid\": only rigid joints have drives (this ragdoll is seed)"},
+     "needs model=\"rigid\": only rigid bodies and joints have drives (this ragdoll is seed)"},
+    {"root strength on a ragdoll of particles",
+     "<scene name='s'>\n<ragdoll pos='0 1 0' model='lean' root-strength='1'/>\n</scene>", 2, "root-strength",
+     "needs model=\"rigid\""},
+    {"body drive on a particle body",
+     "<scene name='s'>\n<box name='a' pos='0 1 0'/>\n<body-drive body='a' strength='1'/>\n</scene>", 3,
+     "body", "names a body of model corners; only a rigid body has a drive"},
+    {"body drive without its strength",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<body-drive body='a'/>\n</scene>", 3,
+     "strength", "is required"},
+    {"body drive of no stiffness",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<body-drive body='a' strength='1'\n "
+     "angular-stiffness='-2'/>\n</scene>",
+     4, "angular-stiffness", "'-2' must be > 0 (N m/rad)"},
     {"hinge stops crossed",
      "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
      "model='rigid'/>\n"

@@ -175,11 +175,13 @@ TEST(SceneWriter, RigidRagdollReloadsWithItsJointsAsTheyAre) {
 // own target away from its rest (a <joint> with drive-target), which a reloaded world pulls towards.
 TEST(SceneWriter, JointDrivesReloadAsTheyWere) {
   scenes::Scene original = load(
-      "<ragdoll name=\"r\" pos=\"0 0.85 0\" model=\"rigid\" strength=\"0.7\" drive-stiffness=\"800\"/>"
+      "<ragdoll name=\"r\" pos=\"0 0.85 0\" model=\"rigid\" strength=\"0.7\" drive-stiffness=\"800\" "
+      "root-strength=\"0.6\"/>"
       "<box name=\"p\" pos=\"3 1 0\" model=\"rigid\"/><box name=\"c\" pos=\"3 2 0\" model=\"rigid\"/>"
       "<joint type=\"cone\" a=\"p\" b=\"c\" pivot=\"3 1.5 0\" axis=\"0 1 0\" reference=\"1 0 0\" "
       "swing=\"60\" "
-      "strength=\"0.9\" drive-target=\"20 -10 5\"/>",
+      "strength=\"0.9\" drive-target=\"20 -10 5\"/>"
+      "<body-drive body=\"p\" pos=\"3 1.2 0\" euler=\"0 30 0\" strength=\"0.8\" stiffness=\"500\"/>",
       "<solver substeps=\"8\" iterations=\"2\"/>");
   for (int i = 0; i < 30; ++i) original.world.step();
   scenes::Scene copy = reload(original);
@@ -199,6 +201,18 @@ TEST(SceneWriter, JointDrivesReloadAsTheyWere) {
       glm::angleAxis(glm::radians(20.0), phys::Vec3(1.0, 0.0, 0.0));  // x, then y, then z
   EXPECT_LT(angleBetween(b.jointDrive(9).target, given), 1e-12);
   EXPECT_GT(angleBetween(b.jointDrive(9).target, b.jointRest(9)), 0.3);
+  // The hands of god: the ragdoll's on its torso, where it was made, and the box's as the file gave it.
+  ASSERT_EQ(b.bodyDrives().size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const phys::DrivenBody &x = a.bodyDrives()[k], &y = b.bodyDrives()[k];
+    EXPECT_EQ(b.bodies()[b.rigidBodies().body[y.rigid]].name, k == 0 ? "r.torso" : "p");
+    EXPECT_LT(glm::length(x.drive.position - y.drive.position), 1e-12);
+    EXPECT_LT(angleBetween(x.drive.orientation, y.drive.orientation), 1e-12);
+    EXPECT_EQ(y.drive.strength, k == 0 ? 0.6 : 0.8);
+    EXPECT_EQ(y.drive.stiffness, k == 0 ? phys::kBodyDriveStiffness : 500.0);
+    EXPECT_EQ(y.drive.angularStiffness, x.drive.angularStiffness);
+  }
+  EXPECT_LT(glm::length(b.bodyDrives()[1].drive.position - phys::Vec3(3.0, 1.2, 0.0)), 1e-12);
 }
 
 TEST(SceneWriter, EveryProjectSceneRoundTrips) {

@@ -1,6 +1,7 @@
 #include "generators.h"
 
 #include <cmath>
+#include <utility>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
@@ -260,12 +261,20 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
     d.strength = drive->strength;
     if (e.has("drive-stiffness")) d.driveStiffness = drive->stiffness;
   }
+  if (auto root = e.number("root-strength", "")) {
+    if (!(*root >= 0.0 && *root <= 1.0))
+      e.fail("root-strength", "'" + formatNumber(*root) + "' must be from 0 to 1");
+    d.rootStrength = *root;
+  }
   e.material(d.material);
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;
-  if (d.strength > 0.0 && d.model != phys::RagdollModel::Rigid) {
-    e.fail("strength", "needs model=\"rigid\": only rigid joints have drives (this ragdoll is " +
-                           std::string(phys::toString(d.model)) + ")");
+  for (const auto& [attribute, strength] :
+       {std::pair{"strength", d.strength}, std::pair{"root-strength", d.rootStrength}}) {
+    if (strength > 0.0 && d.model != phys::RagdollModel::Rigid) {
+      e.fail(attribute, "needs model=\"rigid\": only rigid bodies and joints have drives (this ragdoll is " +
+                            std::string(phys::toString(d.model)) + ")");
+    }
   }
   auto nameParts = [&](const auto& parts) {
     for (const phys::BodyId id : parts)

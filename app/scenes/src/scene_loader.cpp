@@ -26,9 +26,9 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {"particle", "stick",          "box",         "capsule", "stack",
-                                              "pyramid",  "grid",           "chain",       "ragdoll", "link",
-                                              "joint",    "joint-friction", "no-collision"};
+constexpr std::string_view kBodyElements[] = {
+    "particle", "stick",   "box",  "capsule", "stack",          "pyramid",      "grid",
+    "chain",    "ragdoll", "link", "joint",   "joint-friction", "no-collision", "body-drive"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -194,6 +194,8 @@ class Builder {
       jointFriction(e);
     else if (kind == "no-collision")
       noCollision(e);
+    else if (kind == "body-drive")
+      bodyDrive(e);
     if (scene_.world.particles().size() > detail::kMaxParticles) {
       e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
     }
@@ -405,7 +407,7 @@ class Builder {
       if (*damping < 0.0) e.fail("damping", "must be >= 0 (1/s)");
       d.damping = *damping;
     }
-    // The drive (physics/joint_drive.h): drive-target is the child's orientation in the parent's
+    // The drive (physics/drives.h): drive-target is the child's orientation in the parent's
     // frame, as Euler angles; unset, the joint's rest.
     const std::optional<phys::JointDrive> drive = detail::readDrive(e);
     const std::optional<phys::Vec3> target = e.vector("drive-target", "degrees");
@@ -428,6 +430,39 @@ class Builder {
 
   // Friction in the joint between two particle bodies (World::addJointFriction); a <ragdoll>'s
   // joint-damping makes one for each of its joints.
+  // A rigid body's drive towards a pose in the world (World::setBodyDrive, the hand of god): pos and
+  // euler default to where the body is.
+  void bodyDrive(ElementReader& e) {
+    const NamedBody& named = bodyNamed(e, "body", false);
+    const phys::BodyId id = named.body();
+    const phys::Body& body = scene_.world.bodies()[id];
+    if (body.model != phys::BodyModel::Rigid) {
+      e.fail("body", "names a body of model " + std::string(phys::toString(body.model)) +
+                         "; only a rigid body has a drive");
+    }
+    const phys::BodyPose pose = scene_.world.bodyPose(id);
+    phys::BodyDrive drive{pose.center, pose.orientation};
+    if (auto pos = e.vector("pos", "m")) {
+      detail::checkInsideBound(e, scene_.world, "pos", *pos);
+      drive.position = *pos;
+    }
+    if (auto euler = e.vector("euler", "degrees")) drive.orientation = detail::orientationFromEuler(*euler);
+    drive.strength = e.requiredNumber("strength", "");
+    if (!(drive.strength >= 0.0 && drive.strength <= 1.0))
+      e.fail("strength", "'" + detail::formatNumber(drive.strength) + "' must be from 0 to 1");
+    auto stiffness = [&e](const char* attribute, const char* unit, double& value) {
+      if (auto given = e.number(attribute, unit)) {
+        if (!(*given > 0.0))
+          e.fail(attribute, "'" + detail::formatNumber(*given) + "' must be > 0 (" + unit + ")");
+        value = *given;
+      }
+    };
+    stiffness("stiffness", "N/m", drive.stiffness);
+    stiffness("angular-stiffness", "N m/rad", drive.angularStiffness);
+    e.rejectUnknownAttributes();
+    scene_.world.setBodyDrive(id, drive);
+  }
+
   void jointFriction(ElementReader& e) {
     phys::BodyId ends[2];
     for (const char* attribute : {"a", "b"}) {

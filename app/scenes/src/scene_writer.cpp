@@ -422,6 +422,23 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
   for (const phys::RigidLink& link : world.rigidLinks()) line(linkElement(world, link, owner, names));
   for (std::size_t k = 0; k < world.rigidJoints().size(); ++k)
     line(jointElement(world.jointDesc(k), world.jointDrive(k), world.jointRest(k), names));
+  for (const phys::DrivenBody& d : world.bodyDrives()) {
+    const phys::BodyDrive& drive = d.drive;
+    if (!insideBound(drive.position, bound)) {
+      throw std::invalid_argument("a body drive's target is beyond the world's bound of " +
+                                  detail::formatNumber(bound) + " m");
+    }
+    ElementWriter e("body-drive");
+    e.text("body", names.box(world.rigidBodies().body[d.rigid]))
+        .vector("pos", drive.position)
+        .vector("euler", detail::eulerFromOrientation(drive.orientation))
+        .number("strength", drive.strength);
+    const phys::BodyDrive defaults;
+    if (drive.stiffness != defaults.stiffness) e.number("stiffness", drive.stiffness);
+    if (drive.angularStiffness != defaults.angularStiffness)
+      e.number("angular-stiffness", drive.angularStiffness);
+    line(e.empty());
+  }
   for (const phys::JointFriction& f : world.jointFrictions()) {
     line(ElementWriter("joint-friction")
              .text("a", names.box(f.a))

@@ -39,6 +39,10 @@ class ConstraintGraph {
   }
   /// Replaces joint k's drive.
   void setDrive(std::size_t k, const JointDrive& drive) { drives_[k] = drive; }
+  /// Sets a rigid body's drive towards a pose, adding it when the body has none.
+  void setBodyDrive(RigidId rigid, const BodyDrive& drive);
+  /// Removes a rigid body's drive, if it has one.
+  void clearBodyDrive(RigidId rigid);
   /// Adds friction between two jointed particle bodies, with room for their spins.
   void addJointFriction(const JointFriction& friction);
   /// Once a step: each joint friction takes its share of its bodies' relative spin (JointFriction).
@@ -56,6 +60,10 @@ class ConstraintGraph {
   std::span<const JointDrive> drives() const { return drives_; }
   /// XPBD's multipliers of the drives, per rigid joint.
   std::span<Real> driveLambda() { return driveLambda_; }
+  /// The bodies' drives, in the order they were first set.
+  std::span<const DrivenBody> bodyDrives() const { return bodyDrives_; }
+  /// Their multipliers, two a drive: its centre's and its turn's.
+  std::span<Real> bodyDriveLambda() { return bodyDriveLambda_; }
   std::span<const JointFriction> jointFrictions() const { return jointFrictions_; }
 
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
@@ -80,6 +88,8 @@ class ConstraintGraph {
   std::vector<RigidJoint> rigidJoints_;
   std::vector<JointDrive> drives_;  // per rigid joint
   std::vector<Real> driveLambda_;   // per rigid joint: its drive's XPBD multiplier
+  std::vector<DrivenBody> bodyDrives_;
+  std::vector<Real> bodyDriveLambda_;  // two per body drive
   std::vector<JointFriction> jointFrictions_;
   std::vector<BodySpin> spins_;  // per body: the joint friction's scratch
   StickLayout stickLayout_;

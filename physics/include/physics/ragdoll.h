@@ -83,6 +83,12 @@ struct RagdollDesc {
   /// kDriveStiffness for a 70 kg ragdoll at scale 1, in proportion to mass times scale, so that a
   /// ragdoll of any size leans as far under its own weight.
   std::optional<Real> driveStiffness;
+  /// unitless, 0 to 1: the root's drive (BodyDrive, the hand of god) holds the root part (the box
+  /// ragdoll's torso, the capsule ragdoll's pelvis) at the pose it is made in; 0 is none. Rigid parts
+  /// only, as strength. Its stiffnesses: kBodyDriveStiffness and kDriveStiffness for a 70 kg ragdoll
+  /// at scale 1, the first in proportion to mass over scale (the root sags as far for its size), the
+  /// second to mass times scale.
+  Real rootStrength = 0.0;
   Material material;
   std::uint32_t collisionGroup = 1;
   std::uint32_t collisionMask = 0xffffffffu;

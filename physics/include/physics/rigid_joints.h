@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <span>
 
-#include "physics/joint_drive.h"
+#include "physics/drives.h"
 #include "physics/rigid_bodies.h"
 #include "physics/rigid_contacts.h"
 
@@ -59,10 +59,14 @@ Real jointAngle(const RigidBodies& r, const RigidJoint& j);
 /// One pass over the joints: for each, the angular constraints (alignment and limits) by angular
 /// impulses, then the pin by a positional one.
 void solveRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints);
-/// One pass over the joints' drives (joint_drive.h), drives[k] and lambda[k] joint k's; the first
+/// One pass over the joints' drives (drives.h), drives[k] and lambda[k] joint k's; the first
 /// pass of a substep zeroes the multipliers.
 void driveRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints,
                       std::span<const JointDrive> drives, std::span<Real> lambda, bool firstPass);
+/// One pass over the bodies' drives (drives.h), lambda holding two multipliers a drive (its centre's
+/// and its turn's); the first pass of a substep zeroes them.
+void driveRigidBodies(const RigidPassInput& in, std::span<const DrivenBody> bodies, std::span<Real> lambda,
+                      bool firstPass);
 /// After the velocities are derived: each joint with damping mu takes the share min(mu h, 1) of its
 /// bodies' relative spin away, by an angular impulse that keeps their angular momentum.
 void dampRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> joints);

@@ -179,9 +179,20 @@ class World {
   JointDesc jointDesc(std::size_t k) const;
   /// Joint k's angle now (rad): a hinge's about its axis, a cone's twist.
   Real jointAngle(std::size_t k) const;
-  /// Joint k's drive (joint_drive.h). A joint is made with strength 0 (no drive) and its rest as the
+  /// Joint k's drive (drives.h). A joint is made with strength 0 (no drive) and its rest as the
   /// target.
   const JointDrive& jointDrive(std::size_t k) const;
+  /// The body's drive towards a pose in the world (BodyDrive, the hand of god), if it has one.
+  std::optional<BodyDrive> bodyDrive(BodyId id) const;
+  /// Sets the body's drive, replacing any, and wakes its island. Throws std::invalid_argument (and
+  /// keeps the old drive) for a body that does not exist or is not rigid, a position that is not
+  /// finite, an orientation that is not a unit quaternion (within 1e-6; it is made unit), a
+  /// strength outside [0, 1] or a stiffness that is not finite and > 0.
+  void setBodyDrive(BodyId id, const BodyDrive& drive);
+  /// Removes the body's drive, if it has one, and wakes its island.
+  void clearBodyDrive(BodyId id);
+  /// Every body drive, in the order the bodies were first given one.
+  std::span<const DrivenBody> bodyDrives() const { return constraints_.bodyDrives(); }
   /// Joint k's rest: its child's orientation in its parent's frame when the joint's two frames are
   /// one, the target its drive is made with.
   Quat jointRest(std::size_t k) const;

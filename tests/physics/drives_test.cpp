@@ -1,12 +1,14 @@
-// Joint drives (docs/physics.md, "Joint drives"): a driven hinge against the torsion spring's
-// period, the same whatever the passes, substeps and step (XPBD's compliance); strength 1 as a
-// locked joint; strength 0 as no drive, to the bit; the pair's momentum kept; the rest as a new
-// joint's target; waking; and bad input.
+// Drives (docs/physics.md, "Joint drives"): a driven hinge against the torsion spring's period, the
+// same whatever the passes, substeps and step (XPBD's compliance); strength 1 as a locked joint;
+// strength 0 as no drive, to the bit; the pair's momentum kept; the rest as a new joint's target;
+// waking; ragdolls' strengths; a body's drive (the hand of god) against the spring's sag and periods;
+// and bad input.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -328,9 +330,156 @@ TEST(JointDrive, ARagdollsDrivesTakeItsStrengthAndAStiffnessForItsSize) {
     EXPECT_THROW(phys::addCapsuleRagdoll(w, d), std::invalid_argument);
   }
   d.strength = 0.5;
+  for (const Real root : {-0.5, 1.5}) {
+    d.rootStrength = root;
+    EXPECT_THROW(phys::addRagdoll(w, d), std::invalid_argument);
+  }
+  d.rootStrength = 0.5;
+  d.model = phys::RagdollModel::Seed;
+  d.strength = 0.0;
+  EXPECT_THROW(phys::addRagdoll(w, d), std::invalid_argument);
+  d.model = phys::RagdollModel::Rigid;
   d.driveStiffness = 0.0;
   EXPECT_THROW(phys::addRagdoll(w, d), std::invalid_argument);
   EXPECT_EQ(w.rigidJoints().size(), static_cast<std::size_t>(phys::kRagdollHinges + phys::kCapsuleJoints));
+}
+
+// A body's drive holds it against gravity as a spring of its stiffness: started at the sag m g / k
+// below its target, a body stays there whatever the passes and substeps, bobbing only by what it
+// starts with: a body given no velocity at the pose's time keeps g h / 2 of gravity's for the
+// substep before (World::poseVelocity), an amplitude of g h / (2 omega), 1.4 mm at 1 x 4. Started on
+// the target it bobs about the sag at 2 pi sqrt(m / k).
+TEST(BodyDrive, ABodyHeldAgainstGravitySagsByItsWeightOverTheStiffness) {
+  const Real mass = 2.0, stiffness = 400.0, g = 9.81;
+  const Real sag = mass * g / stiffness;  // 4.9 cm
+  const Vec3 target(0.0, 1.0, 0.0);
+  for (const auto& [iterations, substeps] : {std::pair{1, 4}, std::pair{2, 8}, std::pair{1, 16}}) {
+    SCOPED_TRACE(testing::Message() << iterations << " x " << substeps);
+    for (const Real start : {sag, 0.0}) {
+      phys::World w = testing_phys::openSpace(xpbd(iterations, substeps));
+      const BodyId id = w.addBody(rigidBox(target - Vec3(0.0, start, 0.0), Vec3(0.5), mass));
+      w.setBodyDrive(id, phys::BodyDrive{target, Quat(1.0, 0.0, 0.0, 0.0), 0.5, stiffness, 10.0});
+      const Real h = w.solverSettings().dt / substeps;
+      Real previous = start - sag, lowest = 0.0, highest = 0.0, first = -1.0, last = -1.0;
+      int crossings = 0;
+      for (int step = 1; step <= 180; ++step) {
+        w.step();
+        const Real off = target.y - w.bodyPose(id).center.y - sag;  // from the sag, + below it
+        lowest = std::min(lowest, off);
+        highest = std::max(highest, off);
+        if (previous < 0.0 && off >= 0.0) {
+          const Real t = (step - 1 + previous / (previous - off)) * w.solverSettings().dt;
+          if (first < 0.0) first = t;
+          last = t;
+          ++crossings;
+        }
+        previous = off;
+      }
+      if (start == sag) {
+        EXPECT_LT(std::max(-lowest, highest), 1.05 * g * h / (2.0 * std::sqrt(stiffness / mass)));
+      } else {
+        ASSERT_GE(crossings, 3);
+        const Real period = (last - first) / (crossings - 1);
+        EXPECT_NEAR(period, 2.0 * std::numbers::pi * std::sqrt(mass / stiffness), 0.005 * period);
+      }
+    }
+  }
+}
+
+// The turn the same way: a box spun about z with its drive holding it at its start twists back and
+// forth at 2 pi sqrt(I_z / k); at strength 1 the hand of god holds a body at its pose exactly,
+// against gravity and a spin, and with the drive cleared it falls.
+TEST(BodyDrive, ABodysTurnSwingsAtItsTorsionPeriodAndStrengthOneHoldsItStill) {
+  phys::World w = testing_phys::openSpace(xpbd(1, 16), Vec3(0.0));
+  phys::BodyDesc spun = rigidBox(Vec3(0.0), Vec3(1.0, 0.5, 0.2), 3.0);
+  spun.angularVelocity = Vec3(0.0, 0.0, 1.0);
+  const BodyId id = w.addBody(spun);
+  const Real k = 8.0, iz = 3.0 * (1.0 + 0.25) / 12.0;  // a period of 1.24 s
+  w.setBodyDrive(id, phys::BodyDrive{Vec3(0.0), Quat(1.0, 0.0, 0.0, 0.0), 0.5, 100.0, k});
+  std::vector<Real> crossings;
+  Real previous = 0.0;
+  for (int step = 1; step <= 6 * 60; ++step) {
+    w.step();
+    const phys::Quat q = w.bodyPose(id).orientation;
+    const Real angle = 2.0 * std::atan2(q.z, q.w);
+    if (previous < 0.0 && angle >= 0.0)
+      crossings.push_back((step - 1 + previous / (previous - angle)) / 60.0);
+    previous = angle;
+  }
+  ASSERT_GE(crossings.size(), 3u);
+  const Real period = (crossings.back() - crossings.front()) / static_cast<Real>(crossings.size() - 1);
+  EXPECT_NEAR(period, 2.0 * std::numbers::pi * std::sqrt(iz / k), 0.005 * period);
+
+  phys::World held = testing_phys::openSpace(xpbd(2, 8));
+  phys::BodyDesc d = rigidBox(Vec3(0.0, 1.0, 0.0), Vec3(0.5), 5.0);
+  d.orientation = glm::angleAxis(0.4, glm::normalize(Vec3(1.0, 1.0, 0.0)));
+  d.angularVelocity = Vec3(3.0, 0.0, 1.0);
+  const BodyId b = held.addBody(d);
+  held.setBodyDrive(
+      b, phys::BodyDrive{d.center, d.orientation, 1.0, phys::kBodyDriveStiffness, phys::kDriveStiffness});
+  for (int step = 0; step < 60; ++step) held.step();
+  EXPECT_LT(glm::length(held.bodyPose(b).center - d.center), 1e-9);
+  EXPECT_LT(testing_phys::angleBetween(held.bodyPose(b).orientation, d.orientation), 1e-9);
+  held.clearBodyDrive(b);
+  EXPECT_FALSE(held.bodyDrive(b).has_value());
+  for (int step = 0; step < 30; ++step) held.step();
+  EXPECT_LT(held.bodyPose(b).center.y, 1.0 - 0.5 * 9.81 * 0.25 + 0.01);  // half a second of fall
+}
+
+// The capsule ragdoll cannot stand on its round soles by its joints alone: a statue on two round
+// ends, given a nudge (0.5 m/s forwards at the start), it topples. With the hand of god on its pelvis
+// it is pulled back and stands, its legs held under it by their drives.
+Real capsuleHeadAfter(Real rootStrength, Real seconds) {
+  phys::WorldSettings ws;
+  phys::World w(ws, xpbd(2, 8));
+  phys::RagdollDesc d;
+  d.model = phys::RagdollModel::Rigid;
+  d.hips = Vec3(0.0, 0.9225, 0.0);  // the soles at the ground
+  d.strength = 1.0;
+  d.rootStrength = rootStrength;
+  d.velocity = Vec3(0.0, 0.0, 0.5);
+  const phys::CapsuleRagdoll r = phys::addCapsuleRagdoll(w, d);
+  if (rootStrength > 0.0) {
+    const phys::BodyDrive hand = *w.bodyDrive(r.part(phys::CapsulePart::Pelvis));
+    EXPECT_EQ(hand.strength, rootStrength);
+    EXPECT_EQ(hand.position, w.bodyPose(r.part(phys::CapsulePart::Pelvis)).center);
+    EXPECT_EQ(hand.stiffness, phys::kBodyDriveStiffness);
+  }
+  for (int step = 0; step * w.solverSettings().dt < seconds; ++step) w.step();
+  return w.bodyPose(r.part(phys::CapsulePart::Head)).center.y;
+}
+
+TEST(BodyDrive, TheHandOfGodOnItsPelvisHoldsACapsuleRagdollUp) {
+  EXPECT_GT(capsuleHeadAfter(1.0, 10.0), 1.5);
+  EXPECT_GT(capsuleHeadAfter(0.5, 10.0), 1.5);
+  EXPECT_LT(capsuleHeadAfter(0.0, 10.0), 0.5);
+}
+
+TEST(BodyDrive, BadBodyDrivesAreRefusedAndTheOldOneKept) {
+  phys::World w = testing_phys::openSpace(xpbd(1, 4));
+  const BodyId rigid = w.addBody(rigidBox(Vec3(0.0)));
+  phys::BodyDesc particles = rigidBox(Vec3(3.0, 0.0, 0.0));
+  particles.model = phys::BodyModel::Tetra;
+  const BodyId tetra = w.addBody(particles);
+  const phys::BodyDrive good{Vec3(0.0, 1.0, 0.0), Quat(1.0, 0.0, 0.0, 0.0), 0.5, 100.0, 10.0};
+  w.setBodyDrive(rigid, good);
+  const Real nan = std::nan(""), inf = std::numeric_limits<Real>::infinity();
+  std::vector<phys::BodyDrive> bad(7, good);
+  bad[0].position.x = nan;
+  bad[1].orientation = Quat(0.5, 0.0, 0.0, 0.0);
+  bad[2].strength = -0.1;
+  bad[3].strength = nan;
+  bad[4].stiffness = 0.0;
+  bad[5].angularStiffness = inf;
+  bad[6].orientation.w = inf;
+  for (const phys::BodyDrive& d : bad) EXPECT_THROW(w.setBodyDrive(rigid, d), std::invalid_argument);
+  EXPECT_THROW(w.setBodyDrive(tetra, good), std::invalid_argument);
+  EXPECT_THROW(w.setBodyDrive(BodyId(7), good), std::invalid_argument);
+  ASSERT_TRUE(w.bodyDrive(rigid).has_value());
+  EXPECT_EQ(w.bodyDrive(rigid)->position, good.position);
+  EXPECT_EQ(w.bodyDrive(rigid)->stiffness, 100.0);
+  EXPECT_FALSE(w.bodyDrive(tetra).has_value());
+  EXPECT_EQ(w.bodyDrives().size(), 1u);
 }
 
 }  // namespace

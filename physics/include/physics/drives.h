@@ -1,0 +1,55 @@
+#pragma once
+// Drives: compliant pulls towards a target, what an animation asks of a ragdoll (docs/physics.md,
+// "Joint drives"). A joint's drive pulls a rigid joint's child towards a turn relative to its
+// parent; a body's drive, the "hand of god", pulls a rigid body towards a pose in the world. Both
+// are XPBD's compliance (Macklin et al. 2016; the angular form of Müller et al. 2020, 3.3.2), so a
+// drive's stiffness is a force or torque per unit of error that does not change with the
+// iterations, the substeps or the step.
+#include "physics/rigid_bodies.h"
+#include "physics/types.h"
+
+namespace phys {
+
+/// A joint drive's stiffness at strength 1/2 unless it is given one: a joint held this hard turns
+/// 0.1 rad under 100 N m, about the torque a 70 kg body leaning 8 degrees puts on its legs.
+inline constexpr Real kDriveStiffness = 1000.0;  ///< unit: N m / rad
+/// A body drive's stiffness at strength 1/2 unless it is given one: a 70 kg body hangs 6.9 cm below
+/// its target.
+inline constexpr Real kBodyDriveStiffness = 10000.0;  ///< unit: N / m
+
+/// The compliance of a drive of strength s (0 to 1) and stiffness k at strength 1/2: (1 - s) / (s k),
+/// 0 at strength 1 and infinite (no pull) at 0. At strength s the stiffness is k s / (1 - s): a
+/// linear map could not reach 1, whose compliance is 0. Unit: the inverse of k's.
+Real driveCompliance(Real strength, Real stiffness);
+
+/// What pulls a rigid joint's child (JointDesc::b) towards a turn relative to its parent (a).
+struct JointDrive {
+  /// The child's orientation in the parent's frame that the drive pulls towards: the child is where
+  /// it should be when q_b = q_a target. A joint is made with this set to its rest (the two bodies'
+  /// orientations as addJoint found them, taken through the joint's frames), so that a drive given
+  /// a strength and nothing else holds the pose the joint was made in.
+  Quat target{1.0, 0.0, 0.0, 0.0};
+  /// unitless, 0 to 1: 0 is limp (no drive), 1 holds the target as rigidly as the joint's own axes
+  /// (driveCompliance).
+  Real strength = 0.0;
+  Real stiffness = kDriveStiffness;  ///< unit: N m / rad; at strength 1/2; finite, > 0
+};
+
+/// What pulls a rigid body's centre towards a point and its orientation towards a target, against
+/// the world: the hand of god that can carry a ragdoll by its root, or hold it up while it learns
+/// to stand.
+struct BodyDrive {
+  Vec3 position{0.0};                       ///< unit: m; where the body's centre is pulled
+  Quat orientation{1.0, 0.0, 0.0, 0.0};     ///< the orientation it is turned towards
+  Real strength = 0.0;                      ///< unitless, 0 to 1, as JointDrive::strength
+  Real stiffness = kBodyDriveStiffness;     ///< unit: N / m; of the centre, at strength 1/2
+  Real angularStiffness = kDriveStiffness;  ///< unit: N m / rad; at strength 1/2
+};
+
+/// A body drive as the solver holds it: the rigid body it pulls.
+struct DrivenBody {
+  RigidId rigid{};
+  BodyDrive drive;
+};
+
+}  // namespace phys
