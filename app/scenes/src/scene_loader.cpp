@@ -428,8 +428,6 @@ class Builder {
     scene_.world.setJointDrive(k, set);
   }
 
-  // Friction in the joint between two particle bodies (World::addJointFriction); a <ragdoll>'s
-  // joint-damping makes one for each of its joints.
   // A rigid body's drive towards a pose in the world (World::setBodyDrive, the hand of god): pos and
   // euler default to where the body is.
   void bodyDrive(ElementReader& e) {
@@ -463,6 +461,8 @@ class Builder {
     scene_.world.setBodyDrive(id, drive);
   }
 
+  // Friction in the joint between two particle bodies (World::addJointFriction); a <ragdoll>'s
+  // joint-damping makes one for each of its joints.
   void jointFriction(ElementReader& e) {
     phys::BodyId ends[2];
     for (const char* attribute : {"a", "b"}) {
