@@ -168,8 +168,9 @@ void World::setJointDrive(std::size_t k, const JointDrive& drive) {
 
 std::optional<BodyDrive> World::bodyDrive(BodyId id) const {
   require(id < bodies_.size(), "bodyDrive: body id must exist");
+  if (bodies_[id].model != BodyModel::Rigid) return std::nullopt;
   for (const DrivenBody& d : constraints_.bodyDrives()) {
-    if (bodies_[id].model == BodyModel::Rigid && d.rigid == bodies_[id].rigid) return d.drive;
+    if (d.rigid == bodies_[id].rigid) return d.drive;
   }
   return std::nullopt;
 }

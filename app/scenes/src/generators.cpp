@@ -25,11 +25,7 @@ void addBody(ElementReader& e, BuildContext& ctx, phys::BodyDesc desc, const std
 
 // inertia-floor, from 0 to 1 (BodyDesc::inertiaFloor, RagdollDesc::inertiaFloor).
 std::optional<double> readInertiaFloor(ElementReader& e) {
-  const std::optional<double> floor = e.number("inertia-floor", "");
-  if (floor && !(*floor >= 0.0 && *floor <= 1.0)) {
-    e.fail("inertia-floor", "'" + formatNumber(*floor) + "' must be from 0 to 1");
-  }
-  return floor;
+  return readFraction(e, "inertia-floor");
 }
 
 // What every rigid body element reads after its size: mass, model, friction, orientation.
@@ -48,16 +44,19 @@ void readBodyCommon(ElementReader& e, const LoadOptions& options, phys::BodyDesc
 
 }  // namespace
 
+std::optional<double> readFraction(ElementReader& e, std::string_view attribute) {
+  const std::optional<double> value = e.number(attribute, "");
+  if (value && !(*value >= 0.0 && *value <= 1.0))
+    e.fail(attribute, "'" + formatNumber(*value) + "' must be from 0 to 1");
+  return value;
+}
+
 std::optional<phys::JointDrive> readDrive(ElementReader& e) {
-  const std::optional<double> strength = e.number("strength", "");
+  const std::optional<double> strength = readFraction(e, "strength");
   const std::optional<double> stiffness = e.number("drive-stiffness", "N m/rad");
   if (!strength && !stiffness) return std::nullopt;
   phys::JointDrive drive;
-  if (strength) {
-    if (!(*strength >= 0.0 && *strength <= 1.0))
-      e.fail("strength", "'" + formatNumber(*strength) + "' must be from 0 to 1");
-    drive.strength = *strength;
-  }
+  if (strength) drive.strength = *strength;
   if (stiffness) {
     if (!(*stiffness > 0.0))
       e.fail("drive-stiffness", "'" + formatNumber(*stiffness) + "' must be > 0 (N m/rad)");
@@ -261,11 +260,7 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
     d.strength = drive->strength;
     if (e.has("drive-stiffness")) d.driveStiffness = drive->stiffness;
   }
-  if (auto root = e.number("root-strength", "")) {
-    if (!(*root >= 0.0 && *root <= 1.0))
-      e.fail("root-strength", "'" + formatNumber(*root) + "' must be from 0 to 1");
-    d.rootStrength = *root;
-  }
+  if (auto root = readFraction(e, "root-strength")) d.rootStrength = *root;
   e.material(d.material);
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;

@@ -45,6 +45,8 @@ inline constexpr double kMinRagdollMass = kMinMass / 0.05;
 /// device such as /dev/zero is refused instead of read until memory runs out.
 inline constexpr std::size_t kMaxSceneBytes = std::size_t{512} << 20;
 
+/// Reads a unitless number from 0 to 1 (a strength, an inertia floor), if given.
+std::optional<double> readFraction(ElementReader& e, std::string_view attribute);
 /// Reads a drive's strength (0 to 1) and drive-stiffness (N m/rad, > 0), if either is given; the
 /// one not given keeps JointDrive's default (<joint>, <ragdoll>).
 std::optional<phys::JointDrive> readDrive(ElementReader& e);

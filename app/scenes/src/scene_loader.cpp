@@ -445,9 +445,9 @@ class Builder {
       drive.position = *pos;
     }
     if (auto euler = e.vector("euler", "degrees")) drive.orientation = detail::orientationFromEuler(*euler);
-    drive.strength = e.requiredNumber("strength", "");
-    if (!(drive.strength >= 0.0 && drive.strength <= 1.0))
-      e.fail("strength", "'" + detail::formatNumber(drive.strength) + "' must be from 0 to 1");
+    const std::optional<double> strength = detail::readFraction(e, "strength");
+    if (!strength) e.fail("strength", "is required");
+    drive.strength = *strength;
     auto stiffness = [&e](const char* attribute, const char* unit, double& value) {
       if (auto given = e.number(attribute, unit)) {
         if (!(*given > 0.0))
