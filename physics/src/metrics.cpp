@@ -22,8 +22,8 @@ Real maxOf(Real a, Real b) {
 
 std::string_view toString(Stage stage) {
   static constexpr std::array<std::string_view, kStageCount> kNames = {
-      "integrate", "frames",   "broad-phase", "sweep",       "narrow-phase", "parting", "sticks", "links",
-      "contacts",  "friction", "velocities",  "restitution", "body-damping", "guard",   "islands"};
+      "animate", "integrate", "frames",   "broad-phase", "sweep",       "narrow-phase", "parting", "sticks",
+      "links",   "contacts",  "friction", "velocities",  "restitution", "body-damping", "guard",   "islands"};
   return kNames[static_cast<std::size_t>(stage)];
 }
 

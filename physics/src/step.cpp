@@ -55,6 +55,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   const Real h = substepDt();
   for (int s = 0; s < solver_.substeps; ++s) {
     if (stop != nullptr && stop->load(std::memory_order_relaxed)) return false;
+    animate(h);
     integrateParticles(h);
     // Contacts between bodies are found once per step, after the first substep's integration,
     // with a speculative margin of how far the two bodies can go in the step, and kept through the
@@ -84,7 +85,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
 
 // When every island sleeps, a step only passes the time (as the substeps would add it up).
 bool World::restWhileAsleep() {
-  if (!islands_.allAsleep() || drag_) return false;
+  if (!islands_.allAsleep() || drag_ || anyCharacterActive()) return false;
   for (int s = 0; s < solver_.substeps; ++s) time_ += substepDt();
   ++steps_;
   return true;

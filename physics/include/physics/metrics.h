@@ -28,6 +28,7 @@ struct Metrics {
 /// The stages of a substep, in the order World::step runs them (docs/physics.md, "One step").
 /// Each stage's time goes to Profile under its own name and nowhere else.
 enum class Stage : std::uint8_t {
+  Animate,      ///< characters' clips moved on; their drives aimed at the clips' poses
   Integrate,    ///< Verlet with gravity and damping; the mouse drag's spring
   Frames,       ///< each body's frame fitted to its particles
   BroadPhase,   ///< the pairs of bodies whose bounds may meet within the step
@@ -44,7 +45,7 @@ enum class Stage : std::uint8_t {
   Guard,        ///< non-finite, out-of-bound and crushed bodies frozen
   Islands,      ///< once a step: the islands, which sleep and which wake (Islands)
 };
-inline constexpr std::size_t kStageCount = 15;
+inline constexpr std::size_t kStageCount = 16;
 static_assert(static_cast<std::size_t>(Stage::Islands) + 1 == kStageCount, "Islands is the last stage");
 
 /// The stage's name in outputs: "integrate", "broad-phase", ...

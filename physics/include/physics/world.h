@@ -14,6 +14,7 @@
 #include "physics/body.h"
 #include "physics/body_layout.h"
 #include "physics/broad_phase.h"
+#include "physics/character.h"
 #include "physics/collision.h"
 #include "physics/constraint_graph.h"
 #include "physics/constraints.h"
@@ -200,6 +201,19 @@ class World {
   /// drive) for a joint that does not exist, a target that is not a unit quaternion (within 1e-6;
   /// it is normalised), a strength outside [0, 1] or a stiffness that is not finite and > 0.
   void setJointDrive(std::size_t k, const JointDrive& drive);
+  /// Adds a character: the ragdoll's joints driven along a clip (character.h), from the next step.
+  /// Its frame is where the ragdoll's root part is now. Throws std::invalid_argument (and adds
+  /// nothing) for a clip that clipProblem refuses or bindClip cannot bind, a strength outside
+  /// [0, 1], a speed or scale that is not finite (speed >= 0, scale > 0). Returns its index.
+  std::size_t addCharacter(const CharacterDesc& desc);
+  std::span<const Character> characters() const { return characters_; }
+  /// Fades character k from its clip to `playback` over blendTime (s, finite, >= 0; 0 cuts), the
+  /// new clip's root path starting where the old one has got to. Throws std::invalid_argument (and
+  /// changes nothing) as addCharacter would, or for a clip whose bones are not the character's.
+  void playClip(std::size_t k, const Playback& playback, Real blendTime);
+  /// Sets character k's strengths (0 to 1): its joints' drives and its root's. Throws
+  /// std::invalid_argument (and changes nothing) out of range.
+  void setCharacterStrength(std::size_t k, Real strength, Real rootStrength);
   /// Every particle body's corners, 8 per body from Body::firstCorner (a rigid body has none).
   std::span<const Embedding> corners() const { return corners_; }
   /// Corner k of any body now (bits as in Body), unit: m.
@@ -290,6 +304,8 @@ class World {
   ParticleId pushParticle(const ParticleDesc& desc);
   void settleWithoutVelocity();
   // The stages of a substep, in step()'s order (step.cpp); each times itself into profile_.
+  void animate(Real h);
+  bool anyCharacterActive() const;
   void integrateParticles(Real h);
   void collectRigidGround();
   void placeRigidCapsulePoints();
@@ -337,8 +353,10 @@ class World {
   std::vector<std::string> particleName_;
   std::vector<BodyId> particleBody_;  // kNoBody for a loose particle
   ConstraintGraph constraints_;
-  BodyLayout bodyLayout_;      // the bodies in lanes, for body damping (updateLayouts)
-  bool layoutsStale_ = false;  // bodies or collision filters added since they were laid out
+  std::vector<Character> characters_;
+  std::vector<Quat> characterTargets_;  // scratch of animate(), as long as the longest skeleton
+  BodyLayout bodyLayout_;               // the bodies in lanes, for body damping (updateLayouts)
+  bool layoutsStale_ = false;           // bodies or collision filters added since they were laid out
   std::vector<Body> bodies_;
   std::vector<Embedding> corners_;
   GroundContacts ground_;

@@ -1,0 +1,83 @@
+#pragma once
+// Characters: a rigid ragdoll whose joints' drives follow an animation clip (docs/physics.md,
+// "Animation"). A clip's bones are the ragdoll's parts by name ("<ragdoll>.<bone>"), each joined
+// to its parent's part by a rigid joint; every step the character samples its clip (blending from
+// the clip before while a change of clip fades in) and sets each joint's drive target, and, with a
+// root strength, the root part's body drive (the hand of god) to carry it along the clip's path.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "physics/animation.h"
+#include "physics/types.h"
+
+namespace phys {
+
+class World;
+
+/// A clip playing: which, from when, how fast, looping or not.
+struct Playback {
+  std::shared_ptr<const Clip> clip;
+  Real time = 0.0;   ///< unit: s; into the clip
+  Real speed = 1.0;  ///< unitless; finite, >= 0
+  bool loop = true;
+};
+
+/// What World::addCharacter takes.
+struct CharacterDesc {
+  std::string ragdoll;  ///< its parts are the bodies named "<ragdoll>.<bone>"
+  Playback playback;
+  Real strength = 1.0;      ///< unitless, 0 to 1: every joint's drive (JointDrive::strength)
+  Real rootStrength = 0.0;  ///< unitless, 0 to 1: the root's body drive; 0 is none
+  Real scale = 1.0;         ///< unitless, > 0: the ragdoll's; multiplies the clip's root path
+};
+
+/// One part of a character, bound to a clip's bone.
+struct CharacterBone {
+  BodyId body{};
+  int clipBone = 0;               ///< its index in the clip
+  int parent = -1;                ///< the parent's index in Character::bones; -1 for the root
+  std::size_t joint = 0;          ///< the rigid joint to its parent (not for the root)
+  bool reversed = false;          ///< the joint's first body is this part, not its parent
+  Quat rest{1.0, 0.0, 0.0, 0.0};  ///< its orientation in the character's frame at rest
+};
+
+/// A character as the world holds it.
+struct Character {
+  std::string ragdoll;
+  std::vector<CharacterBone> bones;  ///< the root first, parents before children
+  Playback now;                      ///< the clip playing
+  Playback before;                   ///< the clip faded out of while `blend` < 1
+  Real blend = 1.0;                  ///< unitless, 0 to 1: how far the fade to `now` has gone
+  Real blendTime = 0.0;              ///< unit: s; how long the fade takes
+  Real strength = 1.0;
+  Real rootStrength = 0.0;
+  Real scale = 1.0;
+  Real rootStiffness = 0.0;         ///< unit: N/m; of the root's body drive at strength 1/2
+  Real rootAngularStiffness = 0.0;  ///< unit: N m/rad; the same for its turn
+  Quat frame{1.0, 0.0, 0.0, 0.0};   ///< the clip's frame in the world
+  Vec3 origin{0.0};                 ///< unit: m; the clip frame's origin in the world
+  /// unit: m, clip frame; what `before`'s root path is moved by to meet `now`'s (playClip starts
+  /// the new clip where the old one has got to).
+  Vec3 beforeShift{0.0};
+  ClipPose pose;    ///< the target pose, as of the last substep
+  ClipPose fading;  ///< scratch: the pose of `before`
+};
+
+/// Binds a clip's bones to the ragdoll's parts by name: every part "<ragdoll>.<bone>" a bone of the
+/// clip, every bone a rigid part, each joined to its parent's by a rigid joint. Throws
+/// std::invalid_argument naming the bones that do not match. `rest` of each bone is from the joints'
+/// rests, so the binding does not depend on the pose the ragdoll is in.
+std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdoll, const Clip& clip);
+
+/// Each part's target orientation in the world for `pose`: frame * (the bones' turns down the
+/// chain) * rest. `out` is resized to the bones.
+void targetOrientations(const Character& c, const ClipPose& pose, std::vector<Quat>& out);
+
+/// How far character k's parts are from its target pose (Character::pose, the last substep's): the
+/// root mean square, over its parts, of the angle between each part's orientation and its target.
+/// unit: rad
+Real trackingError(const World& world, std::size_t k);
+
+}  // namespace phys

@@ -1,0 +1,91 @@
+// Animation clips (physics/animation.h): checking a clip and sampling it.
+#include "physics/animation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/quaternion.hpp>
+
+namespace phys {
+namespace {
+
+bool finiteQuat(const Quat& q) {
+  return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+}
+
+std::string bonesProblem(const Clip& clip) {
+  if (clip.bones.empty()) return "it has no bones";
+  if (clip.parents.size() != clip.bones.size()) return "it has not one parent a bone";
+  for (std::size_t i = 0; i < clip.bones.size(); ++i) {
+    const int parent = clip.parents[i];
+    if (i == 0 && parent != -1) return "its first bone '" + clip.bones[0] + "' is not the root";
+    if (i > 0 && (parent < 0 || static_cast<std::size_t>(parent) >= i))
+      return "bone '" + clip.bones[i] + "' does not come after its parent";
+    if (clip.bones[i].empty()) return "bone " + std::to_string(i) + " has no name";
+    for (std::size_t j = 0; j < i; ++j) {
+      if (clip.bones[j] == clip.bones[i]) return "two bones are named '" + clip.bones[i] + "'";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+int Clip::bone(std::string_view boneName) const {
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    if (bones[i] == boneName) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::string clipProblem(const Clip& clip) {
+  if (std::string problem = bonesProblem(clip); !problem.empty()) return problem;
+  if (!(std::isfinite(clip.frameTime) && clip.frameTime > 0.0)) return "its frame time is not finite and > 0";
+  if (clip.frames() == 0) return "it has no frames";
+  if (clip.turns.size() != clip.frames() * clip.bones.size()) return "it has not one turn a bone a frame";
+  if (!finite(clip.rootRest)) return "its rest root position is not finite";
+  for (std::size_t f = 0; f < clip.frames(); ++f) {
+    if (!finite(clip.root[f])) return "frame " + std::to_string(f) + ": the root's position is not finite";
+    for (std::size_t b = 0; b < clip.bones.size(); ++b) {
+      const Quat& q = clip.turns[f * clip.bones.size() + b];
+      if (!finiteQuat(q) || std::abs(glm::length(q) - 1.0) > 1e-6)
+        return "frame " + std::to_string(f) + ": bone '" + clip.bones[b] +
+               "' has a turn that is not a unit quaternion";
+    }
+  }
+  return "";
+}
+
+Quat slerpShort(const Quat& a, const Quat& b, Real w) {
+  const Quat to = glm::dot(a, b) < 0.0 ? -b : b;
+  return glm::normalize(glm::slerp(a, to, w));
+}
+
+void sampleClip(const Clip& clip, Real time, bool loop, ClipPose& out) {
+  const std::size_t bones = clip.bones.size();
+  out.turns.resize(bones);
+  const Real duration = clip.duration();
+  Vec3 carried(0.0);  // the root's displacement over the loops already done
+  Real t = std::isfinite(time) ? std::max(time, 0.0) : 0.0;
+  if (loop && duration > 0.0) {
+    const Real loops = std::floor(t / duration);
+    t -= loops * duration;
+    carried = loops * (clip.root.back() - clip.root.front());
+  }
+  t = std::min(t, duration);
+  const Real at = t / clip.frameTime;
+  const std::size_t f0 = std::min(static_cast<std::size_t>(at), clip.frames() - 1);
+  const std::size_t f1 = std::min(f0 + 1, clip.frames() - 1);
+  const Real w = std::clamp(at - static_cast<Real>(f0), 0.0, 1.0);
+  out.root = carried + clip.root[f0] + w * (clip.root[f1] - clip.root[f0]);
+  for (std::size_t b = 0; b < bones; ++b)
+    out.turns[b] = slerpShort(clip.turns[f0 * bones + b], clip.turns[f1 * bones + b], w);
+}
+
+void blendPoses(const ClipPose& a, const ClipPose& b, Real w, ClipPose& out) {
+  out.turns.resize(a.turns.size());
+  out.root = a.root + w * (b.root - a.root);
+  for (std::size_t i = 0; i < a.turns.size(); ++i) out.turns[i] = slerpShort(a.turns[i], b.turns[i], w);
+}
+
+}  // namespace phys

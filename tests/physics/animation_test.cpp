@@ -1,0 +1,271 @@
+// Animation (docs/physics.md, "Animation"): sampling a clip between frames, looping with the root
+// carried on, blending, refusing bad clips; binding a clip to a ragdoll by name, refusing one that
+// does not fit with the bones named; a character's drives aimed at the clip's pose and followed.
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "physics/animation.h"
+#include "physics/character.h"
+#include "physics/ragdoll.h"
+#include "physics/world.h"
+#include "test_util.h"
+
+namespace {
+
+using phys::Clip;
+using phys::ClipPose;
+using phys::Quat;
+using phys::Real;
+using phys::Vec3;
+
+const Vec3 kX(1.0, 0.0, 0.0);
+const Vec3 kZ(0.0, 0.0, 1.0);
+constexpr Real kDeg = std::numbers::pi / 180.0;
+
+Real angleOf(const Quat& q) {
+  return 2.0 * std::acos(std::min(1.0, std::abs(q.w)));
+}
+
+// One bone, three frames half a second apart: the root goes (0,0,0), (1,0,0), (2,1,0) and turns
+// 0, 90 and 180 degrees about z.
+Clip threeFrames() {
+  Clip c;
+  c.name = "three";
+  c.bones = {"root"};
+  c.parents = {-1};
+  c.frameTime = 0.5;
+  c.root = {Vec3(0.0), Vec3(1.0, 0.0, 0.0), Vec3(2.0, 1.0, 0.0)};
+  for (int f = 0; f < 3; ++f) c.turns.push_back(glm::angleAxis(f * 90.0 * kDeg, kZ));
+  return c;
+}
+
+TEST(Clip, SamplesBetweenFramesAndClampsOrLoops) {
+  const Clip c = threeFrames();
+  ASSERT_EQ(phys::clipProblem(c), "");
+  EXPECT_DOUBLE_EQ(c.duration(), 1.0);
+  ClipPose p;
+  phys::sampleClip(c, 0.25, false, p);
+  EXPECT_NEAR(glm::length(p.root - Vec3(0.5, 0.0, 0.0)), 0.0, 1e-12);
+  EXPECT_NEAR(angleOf(p.turns[0]), 45.0 * kDeg, 1e-12);
+  phys::sampleClip(c, 0.875, false, p);
+  EXPECT_NEAR(glm::length(p.root - Vec3(1.75, 0.75, 0.0)), 0.0, 1e-12);
+  EXPECT_NEAR(angleOf(p.turns[0]), 157.5 * kDeg, 1e-12);
+  // Before the start, the first frame; after the end, the last.
+  phys::sampleClip(c, -3.0, false, p);
+  EXPECT_EQ(p.root, Vec3(0.0));
+  phys::sampleClip(c, 7.0, false, p);
+  EXPECT_EQ(p.root, Vec3(2.0, 1.0, 0.0));
+  // Looping: two loops done carry the root on by twice the first-to-last displacement.
+  phys::sampleClip(c, 2.25, true, p);
+  EXPECT_NEAR(glm::length(p.root - Vec3(4.5, 2.0, 0.0)), 0.0, 1e-12);
+  EXPECT_NEAR(angleOf(p.turns[0]), 45.0 * kDeg, 1e-12);
+}
+
+TEST(Clip, BlendsHalfway) {
+  ClipPose a, b, out;
+  a.root = Vec3(0.0);
+  b.root = Vec3(2.0, 0.0, 0.0);
+  a.turns = {Quat(1.0, 0.0, 0.0, 0.0)};
+  b.turns = {-glm::angleAxis(90.0 * kDeg, kX)};  // the same turn, the other sign: blended the short way
+  phys::blendPoses(a, b, 0.5, out);
+  EXPECT_EQ(out.root, Vec3(1.0, 0.0, 0.0));
+  EXPECT_NEAR(angleOf(out.turns[0]), 45.0 * kDeg, 1e-12);
+}
+
+TEST(Clip, ProblemsAreNamed) {
+  auto problem = [](auto&& spoil) {
+    Clip c = threeFrames();
+    spoil(c);
+    return phys::clipProblem(c);
+  };
+  EXPECT_EQ(problem([](Clip& c) { c.bones.clear(); }), "it has no bones");
+  EXPECT_EQ(problem([](Clip& c) { c.frameTime = 0.0; }), "its frame time is not finite and > 0");
+  EXPECT_EQ(problem([](Clip& c) { c.turns.pop_back(); }), "it has not one turn a bone a frame");
+  EXPECT_EQ(problem([](Clip& c) { c.root[1].x = NAN; }), "frame 1: the root's position is not finite");
+  EXPECT_EQ(problem([](Clip& c) { c.turns[2] *= 2.0; }),
+            "frame 2: bone 'root' has a turn that is not a unit quaternion");
+  EXPECT_EQ(problem([](Clip& c) {
+              c.bones.push_back("root");
+              c.parents.push_back(0);
+            }),
+            "two bones are named 'root'");
+  EXPECT_EQ(problem([](Clip& c) {
+              c.bones.push_back("arm");
+              c.parents.push_back(1);
+            }),
+            "bone 'arm' does not come after its parent");
+}
+
+// The box ragdoll's skeleton (scripts/make-clips writes the same), every hinge at `angle(bone, t)`
+// about x, the root still: `frames` frames at 1/60 s.
+template <class Angle>
+Clip ragdollClip(int frames, Angle angle) {
+  Clip c;
+  c.name = "test";
+  c.bones = {"torso",           "head",           "upper-arm-left", "lower-arm-left",  "upper-arm-right",
+             "lower-arm-right", "upper-leg-left", "lower-leg-left", "upper-leg-right", "lower-leg-right"};
+  c.parents = {-1, 0, 0, 2, 0, 4, 0, 6, 0, 8};
+  c.frameTime = 1.0 / 60.0;
+  for (int f = 0; f < frames; ++f) {
+    c.root.push_back(Vec3(0.0, 1.17, 0.0));
+    for (const std::string& bone : c.bones)
+      c.turns.push_back(glm::angleAxis(angle(bone, f * c.frameTime), kX));
+  }
+  return c;
+}
+
+phys::Ragdoll rigidRagdoll(phys::World& w, const std::string& name, Vec3 hips = Vec3(0.0, 0.85, 0.0)) {
+  phys::RagdollDesc d;
+  d.name = name;
+  d.model = phys::RagdollModel::Rigid;
+  d.hips = hips;
+  return phys::addRagdoll(w, d);
+}
+
+TEST(Character, AClipThatDoesNotFitIsRefusedWithTheBonesNamed) {
+  phys::World w = testing_phys::openSpace();
+  rigidRagdoll(w, "r");
+  Clip c = ragdollClip(2, [](const std::string&, Real) { return 0.0; });
+  c.bones[1] = "tail";
+  try {
+    phys::bindClip(w, "r", c);
+    FAIL() << "bound";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no part for the bones 'tail'"), std::string::npos) << what;
+    EXPECT_NE(what.find("no bone for the parts 'head'"), std::string::npos) << what;
+  }
+  // The right names in the wrong tree: the head under an arm.
+  Clip wrongTree = ragdollClip(2, [](const std::string&, Real) { return 0.0; });
+  wrongTree.parents[1] = 0;
+  std::swap(wrongTree.bones[1], wrongTree.bones[3]);  // lower-arm-left under the torso
+  EXPECT_THROW(phys::bindClip(w, "r", wrongTree), std::invalid_argument);
+  EXPECT_THROW(phys::bindClip(w, "nobody", ragdollClip(2, [](const std::string&, Real) { return 0.0; })),
+               std::invalid_argument);
+  // A particle ragdoll has no drives.
+  phys::RagdollDesc lean;
+  lean.name = "p";
+  lean.model = phys::RagdollModel::Lean;
+  lean.hips = Vec3(3.0, 0.85, 0.0);
+  phys::addRagdoll(w, lean);
+  EXPECT_THROW(phys::bindClip(w, "p", ragdollClip(2, [](const std::string&, Real) { return 0.0; })),
+               std::invalid_argument);
+  // Nothing was added by a refused character.
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip = std::make_shared<const Clip>(c);
+  EXPECT_THROW(w.addCharacter(desc), std::invalid_argument);
+  EXPECT_TRUE(w.characters().empty());
+}
+
+// The rest pose as a clip aims every joint's drive at the joint's rest; a clip that bends the left
+// elbow aims that joint at the bend, as the hinge measures it. The root is held by its drive: a free
+// body whose elbow snaps 60 degrees in a step (strength 1 is a rigid drive) starts to turn, since
+// velocities taken from a step's change of pose keep angular momentum only for small turns.
+TEST(Character, DrivesAreAimedAtTheClipsPose) {
+  phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
+  const phys::Ragdoll r = rigidRagdoll(w, "r");
+  const Real bend = -60.0 * kDeg;
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip = std::make_shared<const Clip>(
+      ragdollClip(2, [&](const std::string& bone, Real) { return bone == "lower-arm-left" ? bend : 0.0; }));
+  desc.rootStrength = 1.0;
+  ASSERT_EQ(w.addCharacter(desc), 0u);
+  for (int i = 0; i < 120; ++i) w.step();
+  for (int h = 0; h < phys::kRagdollHinges; ++h) {
+    const phys::RagdollHinge& hinge = r.hinges[static_cast<std::size_t>(h)];
+    const bool elbow = hinge.child == phys::RagdollPart::LowerArmLeft;
+    EXPECT_NEAR(phys::hingeAngle(w, r, hinge), elbow ? bend : 0.0, 0.5 * kDeg) << h;
+    EXPECT_EQ(w.jointDrive(r.firstJoint + static_cast<std::size_t>(h)).strength, 1.0);
+  }
+  EXPECT_LT(phys::trackingError(w, 0), 0.5 * kDeg);
+  EXPECT_GT(w.profile()[phys::Stage::Animate], 0.0);
+}
+
+// A swinging clip (the legs and arms as in a run, 1.4 Hz) followed with the root carried by the hand
+// of god, at the default stiffness and strength 0.9: the parts lag their targets by a few degrees.
+TEST(Character, FollowsAMovingClipWithTheRootCarried) {
+  phys::WorldSettings ws;
+  ws.ground = false;
+  phys::World w(ws, testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8));
+  rigidRagdoll(w, "r");
+  const Real period = 0.72;
+  auto angle = [&](const std::string& bone, Real t) {
+    const Real s = std::sin(2.0 * std::numbers::pi * t / period);
+    if (bone.starts_with("upper-leg"))
+      return (bone.ends_with("left") ? -30.0 : 30.0) * s * kDeg - 25.0 * kDeg;
+    if (bone.starts_with("upper-arm")) return (bone.ends_with("left") ? 30.0 : -30.0) * s * kDeg;
+    if (bone.starts_with("lower-leg")) return 40.0 * kDeg;
+    return 0.0;
+  };
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip = std::make_shared<const Clip>(ragdollClip(44, angle));
+  desc.strength = 0.9;
+  desc.rootStrength = 1.0;
+  w.addCharacter(desc);
+  Real sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < 600; ++i) {
+    w.step();
+    if (i < 60) continue;  // the first second: the pose comes from the standing one
+    const Real e = phys::trackingError(w, 0);
+    sum += e * e;
+    ++n;
+  }
+  const Real rms = std::sqrt(sum / n);
+  std::printf("swinging clip, strength 0.9, root carried: RMS tracking error %.2f degrees\n", rms / kDeg);
+  EXPECT_LT(rms, 5.0 * kDeg);
+  EXPECT_TRUE(w.freezes().empty());
+}
+
+// playClip fades from one clip to another: halfway through the fade the elbow's target is halfway,
+// and at the end it is the new clip's. A clip of other bones is refused.
+TEST(Character, PlayClipFadesBetweenClips) {
+  phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
+  const phys::Ragdoll r = rigidRagdoll(w, "r");
+  auto bent = [](Real degrees) {
+    return std::make_shared<const Clip>(ragdollClip(2, [degrees](const std::string& bone, Real) {
+      return bone == "lower-arm-left" ? degrees * kDeg : 0.0;
+    }));
+  };
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip = bent(0.0);
+  w.addCharacter(desc);
+  w.step();
+  w.playClip(0, phys::Playback{bent(-80.0), 0.0, 1.0, true}, 0.5);
+  const std::size_t elbow = r.firstJoint + 2;  // hinge 2: upper-arm-left to lower-arm-left
+  for (int i = 0; i < 15; ++i) w.step();       // a quarter second: half the fade
+  EXPECT_NEAR(angleOf(w.jointDrive(elbow).target * glm::conjugate(w.jointRest(elbow))), 40.0 * kDeg, 1e-9);
+  for (int i = 0; i < 30; ++i) w.step();
+  EXPECT_NEAR(angleOf(w.jointDrive(elbow).target * glm::conjugate(w.jointRest(elbow))), 80.0 * kDeg, 1e-9);
+  Clip other = threeFrames();
+  EXPECT_THROW(w.playClip(0, phys::Playback{std::make_shared<const Clip>(other)}, 0.1),
+               std::invalid_argument);
+  EXPECT_THROW(w.setCharacterStrength(0, 1.5, 0.0), std::invalid_argument);
+  EXPECT_THROW(w.setCharacterStrength(1, 1.0, 0.0), std::invalid_argument);
+}
+
+// A character on the rest pose at strength 1 and no hand of god stands on flat ground for a minute.
+TEST(Character, StandsAMinuteOnItsOwnLegs) {
+  phys::World w(phys::WorldSettings{}, testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8));
+  const phys::Ragdoll r = rigidRagdoll(w, "r");
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip =
+      std::make_shared<const Clip>(ragdollClip(2, [](const std::string&, Real) { return 0.0; }));
+  w.addCharacter(desc);
+  for (int i = 0; i < 3600; ++i) w.step();
+  EXPECT_NEAR(w.bodyPose(r.part(phys::RagdollPart::Head)).center.y, 1.59, 0.01);
+  EXPECT_TRUE(w.freezes().empty());
+}
+
+}  // namespace
