@@ -255,9 +255,9 @@ TEST_F(FileDialogUi, SaveAddsXml) {
 }
 
 TEST_F(FileDialogUi, ClickingParentThenDoubleClickingAFileOpensIt) {
-  dialog.open(FileDialogMode::Open, kScenes / "..", kTitle);  // assets: .., models/, scenes/
+  dialog.open(FileDialogMode::Open, kScenes / "..", kTitle);  // assets: .., clips/, models/, scenes/
   settle();
-  EXPECT_FALSE(click(2).has_value());  // scenes/: entered on one click
+  EXPECT_FALSE(click(3).has_value());  // scenes/: entered on one click
   settle();
   // The row of chain.xml in the listing, whatever other scenes the folder holds.
   const auto entries = sandbox::listDirectory(kScenes, ".xml");

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "clips/clip_file.h"
 #include "element_reader.h"
 #include "euler_angles.h"
 #include "fileio/files.h"
@@ -27,8 +29,8 @@ using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
 constexpr std::string_view kBodyElements[] = {
-    "particle", "stick",   "box",  "capsule", "stack",          "pyramid",      "grid",
-    "chain",    "ragdoll", "link", "joint",   "joint-friction", "no-collision", "body-drive"};
+    "particle", "stick", "box",   "capsule",        "stack",        "pyramid",    "grid",     "chain",
+    "ragdoll",  "link",  "joint", "joint-friction", "no-collision", "body-drive", "character"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -155,10 +157,12 @@ void readCamera(ElementReader& e, const phys::WorldSettings& w, CameraStart& c) 
 
 class Builder {
  public:
-  Builder(Scene& scene, const LineIndex& lines, const std::string& file, const LoadOptions& options)
+  Builder(Scene& scene, const LineIndex& lines, const std::string& file, std::filesystem::path folder,
+          const LoadOptions& options)
       : scene_(scene),
         lines_(lines),
         file_(file),
+        folder_(std::move(folder)),
         ctx_{scene.world,
              [this](ElementReader& e, const std::string& name, NamedBody::Kind kind, std::uint32_t index) {
                addName(e, name, kind, index);
@@ -196,6 +200,8 @@ class Builder {
       noCollision(e);
     else if (kind == "body-drive")
       bodyDrive(e);
+    else if (kind == "character")
+      character(e);
     if (scene_.world.particles().size() > detail::kMaxParticles) {
       e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
     }
@@ -461,6 +467,47 @@ class Builder {
     scene_.world.setBodyDrive(id, drive);
   }
 
+  // An active ragdoll (World::addCharacter): a ragdoll's joints driven along a clip read from a file,
+  // named relative to the scene's folder. Two characters playing one file share its clip.
+  void character(ElementReader& e) {
+    phys::CharacterDesc desc;
+    desc.ragdoll = e.requiredText("ragdoll");
+    desc.playback.clip = clip(e);
+    if (auto time = e.number("time", "s")) desc.playback.time = *time;
+    if (auto speed = e.number("speed", "")) {
+      if (*speed < 0.0) e.fail("speed", "'" + detail::formatNumber(*speed) + "' must be >= 0");
+      desc.playback.speed = *speed;
+    }
+    if (auto loop = e.boolean("loop")) desc.playback.loop = *loop;
+    desc.strength = detail::readFraction(e, "strength").value_or(1.0);
+    desc.rootStrength = detail::readFraction(e, "root-strength").value_or(0.0);
+    if (auto scale = e.number("scale", "")) {
+      if (!(*scale > 0.0)) e.fail("scale", "'" + detail::formatNumber(*scale) + "' must be > 0");
+      desc.scale = *scale;
+    }
+    e.rejectUnknownAttributes();
+    try {
+      scene_.world.addCharacter(desc);
+    } catch (const std::invalid_argument& error) {
+      e.fail("ragdoll", error.what());
+    }
+  }
+
+  std::shared_ptr<const phys::Clip> clip(ElementReader& e) {
+    const std::string given = e.requiredText("clip");
+    std::error_code ignored;
+    const std::filesystem::path file = std::filesystem::absolute(folder_ / given, ignored).lexically_normal();
+    const auto it = clips_.find(file.string());
+    if (it != clips_.end()) return it->second;
+    try {
+      auto loaded = std::make_shared<const phys::Clip>(clips::loadClip(file));
+      clips_.emplace(file.string(), loaded);
+      return loaded;
+    } catch (const clips::ClipError& error) {
+      e.fail("clip", error.what());
+    }
+  }
+
   // Friction in the joint between two particle bodies (World::addJointFriction); a <ragdoll>'s
   // joint-damping makes one for each of its joints.
   void jointFriction(ElementReader& e) {
@@ -493,8 +540,10 @@ class Builder {
   Scene& scene_;
   const LineIndex& lines_;
   const std::string& file_;
+  std::filesystem::path folder_;  // where a clip's file name starts from
   BuildContext ctx_;
   std::map<std::string, std::size_t, std::less<>> byName_;
+  std::map<std::string, std::shared_ptr<const phys::Clip>, std::less<>> clips_;  // by absolute path
 };
 
 // Scene files are UTF-8 (ASCII is UTF-8). pugixml, told so, would read UTF-16 or UTF-32 as
@@ -521,7 +570,8 @@ std::optional<std::string> declaredOtherEncoding(const pugi::xml_node& declarati
   return encoding;
 }
 
-Scene build(std::vector<char>& buffer, const std::string& file, const LoadOptions& options) {
+Scene build(std::vector<char>& buffer, const std::string& file, const std::filesystem::path& folder,
+            const LoadOptions& options) {
   pugi::xml_document doc;
   const std::size_t size = buffer.size();
   const LineIndex lines(buffer.data(), size);
@@ -624,7 +674,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
       e.fail(
           "unknown element (known: world, solver, ground, camera, particle, stick, box, capsule, stack, "
           "pyramid, "
-          "grid, chain, ragdoll, link, no-collision, expect)");
+          "grid, chain, ragdoll, link, joint, joint-friction, no-collision, body-drive, character, expect)");
     }
   }
 
@@ -643,7 +693,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const LoadOption
   }
   Scene& scene = *built;
   scene.expectations = std::move(expectations);
-  Builder builder(scene, lines, file, options);
+  Builder builder(scene, lines, file, folder, options);
   for (const pugi::xml_node& node : bodies) {
     try {
       const std::size_t first = scene.world.particles().size();
@@ -685,7 +735,7 @@ const std::string* Expectation::find(std::string_view name) const {
 
 Scene loadSceneText(std::string_view xml, const std::string& displayName, const LoadOptions& options) {
   std::vector<char> buffer(xml.begin(), xml.end());
-  return build(buffer, displayName, options);
+  return build(buffer, displayName, {}, options);
 }
 
 Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options) {
@@ -697,7 +747,7 @@ Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& option
   }
   std::vector<char> buffer(text.begin(), text.end());
   text = {};
-  Scene scene = build(buffer, file.string(), options);
+  Scene scene = build(buffer, file.string(), file.parent_path(), options);
   scene.file = file;
   return scene;
 }

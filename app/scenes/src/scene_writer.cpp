@@ -439,6 +439,20 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
       e.number("angular-stiffness", drive.angularStiffness);
     line(e.empty());
   }
+  // A character after its ragdoll's bodies, joints and root drive, which it drives from then on. Its
+  // clip by the absolute path it was loaded from; a fade between two clips is saved as the new one.
+  for (const phys::Character& c : world.characters()) {
+    ElementWriter e("character");
+    e.text("ragdoll", c.ragdoll)
+        .text("clip", c.now.clip->name)
+        .number("time", c.now.time)
+        .number("speed", c.now.speed)
+        .text("loop", c.now.loop ? "true" : "false")
+        .number("strength", c.strength)
+        .number("root-strength", c.rootStrength);
+    if (c.scale != 1.0) e.number("scale", c.scale);
+    line(e.empty());
+  }
   for (const phys::JointFriction& f : world.jointFrictions()) {
     line(ElementWriter("joint-friction")
              .text("a", names.box(f.a))
