@@ -43,7 +43,6 @@ std::string clipProblem(const Clip& clip) {
   if (!(std::isfinite(clip.frameTime) && clip.frameTime > 0.0)) return "its frame time is not finite and > 0";
   if (clip.frames() == 0) return "it has no frames";
   if (clip.turns.size() != clip.frames() * clip.bones.size()) return "it has not one turn a bone a frame";
-  if (!finite(clip.rootRest)) return "its rest root position is not finite";
   for (std::size_t f = 0; f < clip.frames(); ++f) {
     if (!finite(clip.root[f])) return "frame " + std::to_string(f) + ": the root's position is not finite";
     for (std::size_t b = 0; b < clip.bones.size(); ++b) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -119,8 +120,10 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
   return bones;
 }
 
-void targetOrientations(const Character& c, const ClipPose& pose, std::vector<Quat>& out) {
-  out.resize(c.bones.size());
+void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat> out) {
+  // Checked before a message is made: this runs every substep, where nothing may allocate.
+  if (out.size() < c.bones.size() || pose.turns.size() < c.bones.size())
+    throw std::invalid_argument("targetOrientations: a pose or an output shorter than the skeleton");
   // First each bone's turn from rest in the clip's frame, down the chain, then the parts'.
   for (std::size_t b = 0; b < c.bones.size(); ++b) {
     const CharacterBone& bone = c.bones[b];
@@ -134,7 +137,7 @@ void targetOrientations(const Character& c, const ClipPose& pose, std::vector<Qu
 Real trackingError(const World& world, std::size_t k) {
   require(k < world.characters().size(), "trackingError: character index must exist");
   const Character& c = world.characters()[k];
-  std::vector<Quat> targets;
+  std::vector<Quat> targets(c.bones.size());
   targetOrientations(c, c.pose, targets);
   Real sum = 0.0;
   for (std::size_t b = 0; b < c.bones.size(); ++b) {
@@ -171,12 +174,13 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   const std::optional<BodyDrive> had = bodyDrive(root);
   c.rootStiffness = had ? had->stiffness : kBodyDriveStiffness * mass / kRagdollDriveMass / c.scale;
   c.rootAngularStiffness = had ? had->angularStiffness : kDriveStiffness * mass / kRagdollDriveMass * c.scale;
-  c.fading.turns.reserve(c.pose.turns.size());
+  // Scratch sized now, not reserved: a copied World (the sandbox's rewind) keeps sizes, not capacities.
+  c.fading.turns.resize(c.pose.turns.size());
   // The root's drive made now, so that the step only aims it and never allocates for it.
   if (c.rootStrength > 0.0)
     constraints_.setBodyDrive(bodies_[root].rigid, BodyDrive{pose.center, pose.orientation, c.rootStrength,
                                                              c.rootStiffness, c.rootAngularStiffness});
-  characterTargets_.reserve(std::max(characterTargets_.capacity(), c.bones.size()));
+  characterTargets_.resize(std::max(characterTargets_.size(), c.bones.size()));
   characters_.push_back(std::move(c));
   return characters_.size() - 1;
 }
@@ -202,7 +206,6 @@ void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
   c.now = playback;
   c.blendTime = blendTime;
   c.blend = blendTime > 0.0 ? 0.0 : 1.0;
-  c.fading.turns.resize(c.pose.turns.size());
   islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 

@@ -19,7 +19,6 @@ struct Clip {
   std::vector<std::string> bones;  ///< bones[0] is the root; a parent comes before its children
   std::vector<int> parents;        ///< per bone: its parent's index, -1 for the root
   Real frameTime = 1.0 / 30.0;     ///< unit: s; finite, > 0
-  Vec3 rootRest{0.0};              ///< unit: m; the root's position in the rest pose, clip frame
   std::vector<Vec3> root;          ///< per frame: the root's position, m, in the clip's frame
   /// Per frame, per bone (frame-major): the bone's turn relative to its parent from the rest pose,
   /// in the parent's frame; the root's relative to the clip's frame. At rest every turn is the

@@ -6,6 +6,7 @@
 // root strength, the root part's body drive (the hand of god) to carry it along the clip's path.
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -72,8 +73,8 @@ struct Character {
 std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdoll, const Clip& clip);
 
 /// Each part's target orientation in the world for `pose`: frame * (the bones' turns down the
-/// chain) * rest. `out` is resized to the bones.
-void targetOrientations(const Character& c, const ClipPose& pose, std::vector<Quat>& out);
+/// chain) * rest, into the first c.bones.size() elements of `out` (at least that long).
+void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat> out);
 
 /// How far character k's parts are from its target pose (Character::pose, the last substep's): the
 /// root mean square, over its parts, of the angle between each part's orientation and its target.

@@ -354,7 +354,7 @@ class World {
   std::vector<BodyId> particleBody_;  // kNoBody for a loose particle
   ConstraintGraph constraints_;
   std::vector<Character> characters_;
-  std::vector<Quat> characterTargets_;  // scratch of animate(), as long as the longest skeleton
+  std::vector<Quat> characterTargets_;  // scratch of animate(), sized to the longest skeleton
   BodyLayout bodyLayout_;               // the bodies in lanes, for body damping (updateLayouts)
   bool layoutsStale_ = false;           // bodies or collision filters added since they were laid out
   std::vector<Body> bodies_;
