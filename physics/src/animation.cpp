@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -40,11 +41,14 @@ int Clip::bone(std::string_view boneName) const {
 
 std::string clipProblem(const Clip& clip) {
   if (std::string problem = bonesProblem(clip); !problem.empty()) return problem;
-  if (!(std::isfinite(clip.frameTime) && clip.frameTime > 0.0)) return "its frame time is not finite and > 0";
+  if (!(std::isfinite(clip.frameTime) && clip.frameTime >= kMinFrameTime))
+    return "its frame time is not finite and >= 1e-6 s";
   if (clip.frames() == 0) return "it has no frames";
   if (clip.turns.size() != clip.frames() * clip.bones.size()) return "it has not one turn a bone a frame";
   for (std::size_t f = 0; f < clip.frames(); ++f) {
     if (!finite(clip.root[f])) return "frame " + std::to_string(f) + ": the root's position is not finite";
+    if (glm::length(clip.root[f]) > kMaxClipReach)
+      return "frame " + std::to_string(f) + ": the root is farther than 1e6 m from the origin";
     for (std::size_t b = 0; b < clip.bones.size(); ++b) {
       const Quat& q = clip.turns[f * clip.bones.size() + b];
       if (!finiteQuat(q) || std::abs(glm::length(q) - 1.0) > 1e-6)
@@ -65,13 +69,15 @@ void sampleClip(const Clip& clip, Real time, bool loop, ClipPose& out) {
   out.turns.resize(bones);
   const Real duration = clip.duration();
   Vec3 carried(0.0);  // the root's displacement over the loops already done
-  Real t = std::isfinite(time) ? std::max(time, 0.0) : 0.0;
+  Real t = std::isfinite(time) ? std::clamp(time, 0.0, kMaxClipTime) : 0.0;
   if (loop && duration > 0.0) {
     const Real loops = std::floor(t / duration);
     t -= loops * duration;
     carried = loops * (clip.root.back() - clip.root.front());
   }
-  t = std::min(t, duration);
+  // Clamped after the loops are taken off: at a time of 1e14 s and more, t - loops * duration can
+  // round below zero, and a negative frame index is undefined behaviour.
+  t = std::clamp(t, 0.0, duration);
   const Real at = t / clip.frameTime;
   const std::size_t f0 = std::min(static_cast<std::size_t>(at), clip.frames() - 1);
   const std::size_t f1 = std::min(f0 + 1, clip.frames() - 1);
@@ -82,6 +88,8 @@ void sampleClip(const Clip& clip, Real time, bool loop, ClipPose& out) {
 }
 
 void blendPoses(const ClipPose& a, const ClipPose& b, Real w, ClipPose& out) {
+  // A literal message: this runs every substep, where nothing may allocate.
+  if (a.turns.size() != b.turns.size()) throw std::invalid_argument("blendPoses: the poses have other bones");
   out.turns.resize(a.turns.size());
   out.root = a.root + w * (b.root - a.root);
   for (std::size_t i = 0; i < a.turns.size(); ++i) out.turns[i] = slerpShort(a.turns[i], b.turns[i], w);

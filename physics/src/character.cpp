@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <glm/gtc/quaternion.hpp>
@@ -41,7 +42,8 @@ void checkPlayback(const Playback& p, const std::string& who) {
   require(p.clip != nullptr, who + ": no clip");
   const std::string problem = clipProblem(*p.clip);
   require(problem.empty(), who + ": clip '" + p.clip->name + "': " + problem);
-  require(std::isfinite(p.time), who + ": the clip's time must be finite");
+  require(std::isfinite(p.time) && std::abs(p.time) <= kMaxClipTime,
+          who + ": the clip's time must be finite and within +-1e9 s");
   require(std::isfinite(p.speed) && p.speed >= 0.0, who + ": the clip's speed must be finite and >= 0");
 }
 
@@ -64,9 +66,96 @@ void characterPose(Character& c) {
   blendPoses(c.fading, c.pose, c.blend, c.pose);
 }
 
+// The part of a turn about the world's up (+y): its twist, as a unit quaternion.
+Quat headingOf(const Quat& q) {
+  const Real norm = std::sqrt(q.w * q.w + q.y * q.y);
+  if (norm < 1e-12) return Quat(1.0, 0.0, 0.0, 0.0);  // upside down: every heading is as good
+  return Quat(q.w / norm, 0.0, q.y / norm, 0.0);
+}
+
 // The same bones, in the same order, with the same parents: a clip the binding fits.
 bool sameSkeleton(const Clip& a, const Clip& b) {
   return a.bones == b.bones && a.parents == b.parents;
+}
+
+void checkReaction(const Reaction& r, const Clip& clip, const std::string& who) {
+  require(std::isfinite(r.threshold) && r.threshold >= 0.0,
+          who + ": the reaction threshold must be finite and >= 0");
+  require(std::isfinite(r.fallTime) && r.fallTime >= 0.0, who + ": the fall time must be finite and >= 0");
+  require(std::isfinite(r.restSpeed) && r.restSpeed > 0.0, who + ": the rest speed must be finite and > 0");
+  require(std::isfinite(r.restTime) && r.restTime >= 0.0, who + ": the rest time must be finite and >= 0");
+  require(std::isfinite(r.getUpTime) && r.getUpTime > 0.0, who + ": the get-up time must be finite and > 0");
+  require(std::isfinite(r.armTime) && r.armTime >= 0.0, who + ": the arm time must be finite and >= 0");
+  if (r.getUp.clip == nullptr) return;
+  checkPlayback(r.getUp, who + ": get-up");
+  require(sameSkeleton(*r.getUp.clip, clip),
+          who + ": get-up clip '" + r.getUp.clip->name + "' has other bones than '" + clip.name + "'");
+}
+
+// Changes the character's clip to `playback`, faded in over blendTime, its root path moved across
+// the ground (the clip frame's x and z; the height stays the clip's own) to start at `from`, in the
+// clip frame. Allocates nothing: the step calls it for a queued clip.
+void changeClip(Character& c, const Playback& playback, Real blendTime, const Vec3& from) {
+  sampleClip(*playback.clip, playback.time, playback.loop, c.starting);
+  Vec3 shift = from - c.starting.root;
+  shift.y = 0.0;
+  c.origin += c.frame * (c.scale * shift);
+  c.before = c.now;
+  c.beforeShift = shift;
+  c.now = playback;
+  c.blendTime = blendTime;
+  c.blend = blendTime > 0.0 ? 0.0 : 1.0;
+}
+
+// Whether the character moves its ragdoll, or will: a drive with strength, or a reaction under way
+// (a limp character that lies still waiting to get up still counts its rest). A limp one that
+// stays down lets its island sleep.
+bool characterMoves(const Character& c) {
+  if (c.strength > 0.0 || c.rootStrength > 0.0 || c.balance > 0.0) return true;
+  if (c.state == CharacterState::Down) return c.reaction.getUp.clip != nullptr;
+  return c.state != CharacterState::Active;
+}
+
+void enter(Character& c, CharacterState state) {
+  c.state = state;
+  c.stateTime = 0.0;
+  c.fromStrength = c.strength;
+  c.fromRootStrength = c.rootStrength;
+  c.fromBalance = c.balance;
+}
+
+// The strengths the character's state gives after `h` more of it: ramps from the strengths the
+// state began with (Reaction).
+void rampStrengths(Character& c, Real h) {
+  c.stateTime += h;
+  if (c.state == CharacterState::Active || c.state == CharacterState::Down) return;
+  const Reaction& r = c.reaction;
+  switch (c.state) {
+    case CharacterState::Falling: {
+      const Real left = r.fallTime > 0.0 ? std::max(0.0, 1.0 - c.stateTime / r.fallTime) : 0.0;
+      c.strength = c.fromStrength * left;
+      c.balance = c.fromBalance * left;
+      c.rootStrength = 0.0;  // the hand of god lets go at once: a blow is not to be held against
+      if (left == 0.0) enter(c, CharacterState::Down);
+      break;
+    }
+    case CharacterState::GettingUp: {
+      const Real done = std::min(1.0, c.stateTime / r.getUpTime);
+      c.strength = c.goalStrength * done;
+      c.balance = c.goalBalance * done;
+      c.rootStrength = done;
+      if (done == 1.0) enter(c, CharacterState::LettingGo);
+      break;
+    }
+    case CharacterState::LettingGo: {
+      const Real done = std::min(1.0, c.stateTime / r.getUpTime);
+      c.rootStrength = 1.0 + (c.goalRootStrength - 1.0) * done;
+      if (done == 1.0) enter(c, CharacterState::Active);
+      break;
+    }
+    default:
+      break;
+  }
 }
 
 }  // namespace
@@ -153,21 +242,35 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   const std::string who = "addCharacter";
   checkPlayback(desc.playback, who);
   checkStrengths(desc.strength, desc.rootStrength, who);
+  require(desc.balance >= 0.0 && desc.balance <= 1.0, who + ": balance must be in [0, 1]");
   require(std::isfinite(desc.scale) && desc.scale > 0.0, who + ": scale must be finite and > 0");
+  checkReaction(desc.reaction, *desc.playback.clip, who);
   Character c;
   c.ragdoll = desc.ragdoll;
   c.bones = bindClip(*this, desc.ragdoll, *desc.playback.clip);
+  for (const Character& other : characters_)
+    require(other.ragdoll != desc.ragdoll, who + ": ragdoll '" + desc.ragdoll + "' already has a character");
   c.now = desc.playback;
-  c.strength = desc.strength;
-  c.rootStrength = desc.rootStrength;
+  c.strength = c.goalStrength = desc.strength;
+  c.rootStrength = c.goalRootStrength = desc.rootStrength;
+  c.balance = c.goalBalance = desc.balance;
   c.scale = desc.scale;
-  // The clip's frame is where the root is now: turned so that the clip's first pose puts the root
-  // part as it is, with the clip's root path starting at its centre.
+  c.reaction = desc.reaction;
+  c.lastRootVelocity = bodyVelocity(c.bones[0].body).first;
+  // The clip's frame is where the root is now: its root path starts at the root part's centre and
+  // it faces the way the root part faces. Only the heading (the turn about the world's up) is
+  // taken: a clip whose first pose leans would otherwise tilt its whole frame, and its path with
+  // it, by the lean. A clip's y = 0 is its floor: on a ground, the frame stands on the ground, so
+  // that a ragdoll placed a little into it or above it runs on it all the same.
   const BodyId root = c.bones[0].body;
   const BodyPose pose = bodyPose(root);
   sampleClip(*c.now.clip, c.now.time, c.now.loop, c.pose);
-  c.frame = glm::normalize(pose.orientation * glm::conjugate(c.pose.turns[0]));
+  c.frame = headingOf(pose.orientation * glm::conjugate(c.pose.turns[0]));
   c.origin = pose.center - c.frame * (c.scale * c.pose.root);
+  if (world_.ground) {
+    const Vec3& n = world_.groundNormal;
+    c.origin -= n * (glm::dot(c.origin, n) - world_.groundHeight);
+  }
   // The root's drive: as stiff as the one it has, else the ragdolls' default for this mass.
   Real mass = 0.0;
   for (const CharacterBone& bone : c.bones) mass += bodyMass(bone.body).mass;
@@ -176,12 +279,18 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   c.rootAngularStiffness = had ? had->angularStiffness : kDriveStiffness * mass / kRagdollDriveMass * c.scale;
   // Scratch sized now, not reserved: a copied World (the sandbox's rewind) keeps sizes, not capacities.
   c.fading.turns.resize(c.pose.turns.size());
-  // The root's drive made now, so that the step only aims it and never allocates for it.
-  if (c.rootStrength > 0.0)
-    constraints_.setBodyDrive(bodies_[root].rigid, BodyDrive{pose.center, pose.orientation, c.rootStrength,
-                                                             c.rootStiffness, c.rootAngularStiffness});
+  c.starting.turns.resize(c.pose.turns.size());
   characterTargets_.resize(std::max(characterTargets_.size(), c.bones.size()));
+  bodyCharacter_.resize(bodies_.size(), -1);
+  for (const CharacterBone& bone : c.bones) bodyCharacter_[bone.body] = static_cast<int>(characters_.size());
   characters_.push_back(std::move(c));
+  // The root's drive made now (with any reaction, which may lift it), so that the step only aims it
+  // and never allocates for it; made last, so that a refusal above leaves the world as it was.
+  const Character& added = characters_.back();
+  if (added.rootStrength > 0.0 || added.balance > 0.0 || added.reaction.getUp.clip)
+    constraints_.setBodyDrive(
+        bodies_[root].rigid, BodyDrive{pose.center, pose.orientation, added.rootStrength, added.rootStiffness,
+                                       added.rootAngularStiffness});
   return characters_.size() - 1;
 }
 
@@ -193,28 +302,34 @@ void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
   Character& c = characters_[k];
   require(sameSkeleton(*playback.clip, *c.now.clip),
           who + ": clip '" + playback.clip->name + "' has other bones than '" + c.now.clip->name + "'");
-  // The new clip's root path starts where the target is now, across the ground (the clip frame's
-  // x and z); its height stays the clip's own.
+  // The new clip's root path starts where the target is now.
   characterPose(c);
-  ClipPose start;
-  sampleClip(*playback.clip, playback.time, playback.loop, start);
-  Vec3 shift = c.pose.root - start.root;
-  shift.y = 0.0;
-  c.origin += c.frame * (c.scale * shift);
-  c.before = c.now;
-  c.beforeShift = shift;
-  c.now = playback;
-  c.blendTime = blendTime;
-  c.blend = blendTime > 0.0 ? 0.0 : 1.0;
+  changeClip(c, playback, blendTime, c.pose.root);
+  c.queued.reset();
   islands_.wake(islands_.bodyNode(c.bones[0].body));
+}
+
+void World::queueClip(std::size_t k, const Playback& playback, Real at, Real blendTime) {
+  const std::string who = "queueClip";
+  require(k < characters_.size(), who + ": character index must exist");
+  checkPlayback(playback, who);
+  require(std::isfinite(at) && std::abs(at) <= kMaxClipTime,
+          who + ": the time must be finite and within +-1e9 s");
+  require(std::isfinite(blendTime) && blendTime >= 0.0, who + ": blend time must be finite and >= 0");
+  Character& c = characters_[k];
+  require(sameSkeleton(*playback.clip, *c.now.clip),
+          who + ": clip '" + playback.clip->name + "' has other bones than '" + c.now.clip->name + "'");
+  c.queued = QueuedClip{playback, at, blendTime};
 }
 
 void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength) {
   require(k < characters_.size(), "setCharacterStrength: character index must exist");
   checkStrengths(strength, rootStrength, "setCharacterStrength");
   Character& c = characters_[k];
-  c.strength = strength;
-  c.rootStrength = rootStrength;
+  c.strength = c.goalStrength = strength;
+  c.rootStrength = c.goalRootStrength = rootStrength;
+  enter(c, CharacterState::Active);
+  c.stateTime = 0.0;  // set by hand: whatever the reaction was doing stops
   const BodyId root = c.bones[0].body;
   if (rootStrength > 0.0 && !bodyDrive(root)) {
     const BodyPose pose = bodyPose(root);
@@ -224,13 +339,50 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
   islands_.wake(islands_.bodyNode(characters_[k].bones[0].body));
 }
 
+void World::setCharacterBalance(std::size_t k, Real balance) {
+  require(k < characters_.size(), "setCharacterBalance: character index must exist");
+  require(balance >= 0.0 && balance <= 1.0, "setCharacterBalance: balance must be in [0, 1]");
+  Character& c = characters_[k];
+  c.goalBalance = balance;
+  if (c.state == CharacterState::Active || c.state == CharacterState::LettingGo) c.balance = balance;
+  const BodyId root = c.bones[0].body;
+  if (balance > 0.0 && !bodyDrive(root)) {
+    // Made now, so that the step only aims it.
+    const BodyPose pose = bodyPose(root);
+    constraints_.setBodyDrive(bodies_[root].rigid,
+                              BodyDrive{pose.center, pose.orientation, 0.0, 0.0, c.rootAngularStiffness});
+  }
+  islands_.wake(islands_.bodyNode(root));
+}
+
+void World::setCharacterReaction(std::size_t k, const Reaction& reaction) {
+  require(k < characters_.size(), "setCharacterReaction: character index must exist");
+  Character& c = characters_[k];
+  checkReaction(reaction, *c.now.clip, "setCharacterReaction");
+  const BodyId root = c.bones[0].body;
+  if (reaction.getUp.clip && !bodyDrive(root)) {
+    const BodyPose pose = bodyPose(root);
+    constraints_.setBodyDrive(bodies_[root].rigid,
+                              BodyDrive{pose.center, pose.orientation, 0.0, 0.0, c.rootAngularStiffness});
+  }
+  c.reaction = reaction;
+  islands_.wake(islands_.bodyNode(root));
+}
+
 // Each substep: the clips move on by h and every character's drives are aimed at the pose for the
 // substep's end, so that the drives pull towards where the part should be when they are solved.
 void World::animate(Real h) {
   if (characters_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::Animate);
+  noteBlows();
   for (Character& c : characters_) {
+    rampStrengths(c, h);
     c.now.time += h * c.now.speed;
+    if (c.queued && c.now.time >= c.queued->at) {
+      characterPose(c);
+      changeClip(c, c.queued->playback, c.queued->blendTime, c.pose.root);
+      c.queued.reset();
+    }
     if (c.blend < 1.0) {
       c.before.time += h * c.before.speed;
       c.blend = c.blendTime > 0.0 ? std::min(1.0, c.blend + h / c.blendTime) : 1.0;
@@ -248,19 +400,124 @@ void World::animate(Real h) {
     }
     const Body& root = bodies_[c.bones[0].body];
     if (c.rootStrength > 0.0) {
-      const BodyDrive drive{c.origin + c.frame * (c.scale * c.pose.root), characterTargets_[0],
+      const BodyDrive carry{c.origin + c.frame * (c.scale * c.pose.root), characterTargets_[0],
                             c.rootStrength, c.rootStiffness, c.rootAngularStiffness};
-      constraints_.setBodyDrive(root.rigid, drive);
+      constraints_.setBodyDrive(root.rigid, carry);
+    } else if (c.balance > 0.0 || c.goalBalance > 0.0 || c.reaction.getUp.clip) {
+      // The balance, or a drive kept at strength 0 while limp, so that balancing or lifting it
+      // again allocates nothing.
+      const BodyDrive balance{rigidBodies_.position[root.rigid], balanceTarget(c, characterTargets_[0]),
+                              c.balance, 0.0, c.rootAngularStiffness};
+      constraints_.setBodyDrive(root.rigid, balance);
     } else {
       constraints_.clearBodyDrive(root.rigid);
     }
-    if (c.strength > 0.0 || c.rootStrength > 0.0) islands_.wake(islands_.bodyNode(c.bones[0].body));
+    if (characterMoves(c)) islands_.wake(islands_.bodyNode(c.bones[0].body));
+  }
+}
+
+// The balance (docs/physics.md, "Balance"): the root's clip orientation `upright`, leaned about the
+// feet so as to move the capture point (Pratt et al. 2006: where the centre of mass comes to rest
+// over a point foot, c + v sqrt(h / g)) back over the support, the middle of its two lowest parts.
+// A turn of the whole body by a about the feet moves the centre of mass by a h towards the lean, so
+// the lean is the capture point's distance from the support over h, at most kMaxBalanceLean.
+Quat World::balanceTarget(const Character& c, const Quat& upright) const {
+  Real mass = 0.0;
+  Vec3 com(0.0), velocity(0.0);
+  std::size_t low[2] = {0, 0};
+  Real lowY[2] = {std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
+  for (std::size_t b = 0; b < c.bones.size(); ++b) {
+    const RigidId i = bodies_[c.bones[b].body].rigid;
+    if (rigidBodies_.inverseMass[i] == 0.0) return upright;  // frozen: nothing to balance
+    const Real m = 1.0 / rigidBodies_.inverseMass[i];
+    mass += m;
+    com += m * rigidBodies_.position[i];
+    velocity += m * rigidBodies_.velocity[i];
+    const Real y = rigidBodies_.position[i].y;
+    if (y < lowY[0]) {
+      low[1] = low[0], lowY[1] = lowY[0];
+      low[0] = b, lowY[0] = y;
+    } else if (y < lowY[1]) {
+      low[1] = b, lowY[1] = y;
+    }
+  }
+  com /= mass;
+  velocity /= mass;
+  const Vec3 g = gravityAt(com);
+  const Real gLength = glm::length(g);
+  if (gLength == 0.0 || c.bones.size() < 2) return upright;
+  const Vec3 up = -g / gLength;
+  const Vec3 support = 0.5 * (rigidBodies_.position[bodies_[c.bones[low[0]].body].rigid] +
+                              rigidBodies_.position[bodies_[c.bones[low[1]].body].rigid]);
+  const Real height = glm::dot(com - support, up);
+  if (height <= 0.0) return upright;
+  Vec3 off = support - (com + velocity * std::sqrt(height / gLength));
+  off -= up * glm::dot(off, up);
+  const Real distance = glm::length(off);
+  if (distance < 1e-9) return upright;
+  const Real lean = std::min(distance / height, kMaxBalanceLean);
+  return glm::normalize(glm::angleAxis(lean, glm::cross(up, off / distance)) * upright);
+}
+
+// Each substep, of the last one's contacts: a body that is not one of a character's parts striking
+// one that is, at the closing speed its contact measured before the passes pushed it.
+void World::noteBlows() {
+  const std::span<const RigidContact> contacts = narrowPhase_.rigidContacts();
+  const RigidContactState& state = narrowPhase_.rigidState();
+  const std::size_t n = std::min({contacts.size(), state.touched.size(), state.approach.size()});
+  auto characterOf = [this](BodyId body) { return body < bodyCharacter_.size() ? bodyCharacter_[body] : -1; };
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!state.touched[k] || state.approach[k] >= 0.0) continue;
+    const RigidContact& contact = contacts[k];
+    if (contact.bodyA == kNoBody || contact.bodyB == kNoBody) continue;  // the ground is no blow
+    const int a = characterOf(contact.bodyA), b = characterOf(contact.bodyB);
+    if (a == b) continue;  // its own parts, or two bodies of no character
+    for (const int side : {a, b}) {
+      if (side < 0) continue;
+      Real& blow = characters_[static_cast<std::size_t>(side)].stepBlow;
+      blow = std::max(blow, -state.approach[k]);
+    }
+  }
+}
+
+// Once a step, after its substeps: each character's blow, the fastest strike on its parts by
+// another body or its root part's speed change over the step (a push, a fall; free fall changes it
+// by g dt, 0.16 m/s at 1/60 s),
+// against its reaction's threshold; and how long it has lain still, to get up.
+void World::react() {
+  if (characters_.empty()) return;
+  const detail::StageTimer timer(profile_, Stage::Animate);
+  for (Character& c : characters_) {
+    const Body& rootBody = bodies_[c.bones[0].body];
+    const Vec3 rootVelocity = rigidBodies_.velocity[rootBody.rigid];
+    const Real impact = std::max(c.stepBlow, glm::length(rootVelocity - c.lastRootVelocity));
+    c.lastRootVelocity = rootVelocity;
+    c.stepBlow = 0.0;
+    bool still = true;
+    for (const CharacterBone& bone : c.bones)
+      still = still && glm::length(rigidBodies_.velocity[bodies_[bone.body].rigid]) < c.reaction.restSpeed;
+    c.lastImpact = impact;
+    c.stillTime = still ? c.stillTime + solver_.dt : 0.0;
+    // Only an active character reacts, and only once it has been so for armTime: getting up, or
+    // starting a run from standing at full speed, its drives' own jolts are not blows.
+    const bool armed = c.state == CharacterState::Active && c.stateTime >= c.reaction.armTime;
+    if (armed && c.reaction.threshold > 0.0 && impact > c.reaction.threshold) {
+      enter(c, CharacterState::Falling);
+      c.queued.reset();
+    } else if (c.state == CharacterState::Down && c.reaction.getUp.clip &&
+               c.stillTime >= c.reaction.restTime) {
+      // Up where it lies: the get-up clip's root path starts under the root part's centre.
+      const Vec3 lying = glm::conjugate(c.frame) *
+                         (rigidBodies_.position[bodies_[c.bones[0].body].rigid] - c.origin) / c.scale;
+      changeClip(c, c.reaction.getUp, 0.0, lying);
+      enter(c, CharacterState::GettingUp);
+    }
   }
 }
 
 bool World::anyCharacterActive() const {
   return std::any_of(characters_.begin(), characters_.end(),
-                     [](const Character& c) { return c.strength > 0.0 || c.rootStrength > 0.0; });
+                     [](const Character& c) { return characterMoves(c); });
 }
 
 }  // namespace phys

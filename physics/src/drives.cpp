@@ -81,7 +81,7 @@ void driveRigidBodies(const RigidPassInput& in, std::span<const DrivenBody> bodi
     if (drive.strength <= 0.0 || r.inverseMass[i] == 0.0) continue;  // none, or frozen
     const Vec3 gap = drive.position - r.position[i];
     const Real distance = glm::length(gap);
-    if (distance > 0.0) {
+    if (distance > 0.0 && drive.stiffness > 0.0) {  // stiffness 0: it only turns the body
       const Real w = r.inverseMass[i];
       const Real delta =
           complianceStep(distance, w, driveCompliance(drive.strength, drive.stiffness), hh, lambda[2 * k]);

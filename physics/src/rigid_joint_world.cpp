@@ -180,8 +180,8 @@ void World::setBodyDrive(BodyId id, const BodyDrive& drive) {
           "setBodyDrive: the body must be rigid");
   require(finite(drive.position), "setBodyDrive: the position must be finite");
   require(drive.strength >= 0.0 && drive.strength <= 1.0, "setBodyDrive: strength must be in [0, 1]");
-  require(std::isfinite(drive.stiffness) && drive.stiffness > 0.0,
-          "setBodyDrive: stiffness must be finite and > 0 (N/m)");
+  require(std::isfinite(drive.stiffness) && drive.stiffness >= 0.0,
+          "setBodyDrive: stiffness must be finite and >= 0 (N/m)");
   require(std::isfinite(drive.angularStiffness) && drive.angularStiffness > 0.0,
           "setBodyDrive: angular stiffness must be finite and > 0 (N m/rad)");
   BodyDrive kept = drive;

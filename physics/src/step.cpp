@@ -76,6 +76,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
     time_ += h;
     guard(s + 1 == solver_.substeps && guard_.shapesDue(time_));
   }
+  react();
   dampJoints();
   updateIslands(freezesBefore);
   ++steps_;
@@ -85,7 +86,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
 
 // When every island sleeps, a step only passes the time (as the substeps would add it up).
 bool World::restWhileAsleep() {
-  if (!islands_.allAsleep() || drag_ || anyCharacterActive()) return false;
+  if (!islands_.allAsleep() || drag_ || !pushes_.empty() || anyCharacterActive()) return false;
   for (int s = 0; s < solver_.substeps; ++s) time_ += substepDt();
   ++steps_;
   return true;
@@ -176,6 +177,7 @@ void World::integrateParticles(Real h) {
     const Body* body = dragBody_ != kNoBody ? &bodies_[dragBody_] : nullptr;
     detail::applyDrag(particles_, body, drag_->point, drag_->target, drag_->stiffness, drag_->damping, h);
   }
+  if (!pushes_.empty()) applyPushes(h);
 }
 
 void World::fitBodyFrames() {

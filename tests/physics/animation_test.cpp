@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "character_util.h"
 #include "physics/animation.h"
 #include "physics/character.h"
 #include "physics/ragdoll.h"
@@ -23,6 +24,8 @@ using phys::ClipPose;
 using phys::Quat;
 using phys::Real;
 using phys::Vec3;
+using testing_phys::ragdollClip;
+using testing_phys::rigidRagdoll;
 
 const Vec3 kX(1.0, 0.0, 0.0);
 const Vec3 kZ(0.0, 0.0, 1.0);
@@ -65,6 +68,18 @@ TEST(Clip, SamplesBetweenFramesAndClampsOrLoops) {
   phys::sampleClip(c, 2.25, true, p);
   EXPECT_NEAR(glm::length(p.root - Vec3(4.5, 2.0, 0.0)), 0.0, 1e-12);
   EXPECT_NEAR(angleOf(p.turns[0]), 45.0 * kDeg, 1e-12);
+  // Times so large that the loops taken off round below zero, or past any clip: still a pose of the
+  // clip (a negative frame index was undefined behaviour; the sanitizer build catches it).
+  Clip odd = c;
+  odd.frameTime = 0.72 / 2.0;  // not a power of two: the remainder rounds
+  for (const Real time : {1e14, 3.7e15 + 0.3, 1e17, 1e300, -1e300, 1e9 - 1e-7}) {
+    for (const bool loop : {false, true}) {
+      phys::sampleClip(odd, time, loop, p);
+      EXPECT_TRUE(phys::finite(p.root)) << time;
+      EXPECT_LE(glm::length(p.root), 1e10) << time;  // 1e9 s of loops at 0.72 s each, 2.24 m a loop
+      for (const Quat& q : p.turns) EXPECT_NEAR(glm::length(q), 1.0, 1e-12) << time;
+    }
+  }
 }
 
 TEST(Clip, BlendsHalfway) {
@@ -85,7 +100,10 @@ TEST(Clip, ProblemsAreNamed) {
     return phys::clipProblem(c);
   };
   EXPECT_EQ(problem([](Clip& c) { c.bones.clear(); }), "it has no bones");
-  EXPECT_EQ(problem([](Clip& c) { c.frameTime = 0.0; }), "its frame time is not finite and > 0");
+  EXPECT_EQ(problem([](Clip& c) { c.frameTime = 0.0; }), "its frame time is not finite and >= 1e-6 s");
+  EXPECT_EQ(problem([](Clip& c) { c.frameTime = 1e-7; }), "its frame time is not finite and >= 1e-6 s");
+  EXPECT_EQ(problem([](Clip& c) { c.root[2].y = 2e6; }),
+            "frame 2: the root is farther than 1e6 m from the origin");
   EXPECT_EQ(problem([](Clip& c) { c.turns.pop_back(); }), "it has not one turn a bone a frame");
   EXPECT_EQ(problem([](Clip& c) { c.root[1].x = NAN; }), "frame 1: the root's position is not finite");
   EXPECT_EQ(problem([](Clip& c) { c.turns[2] *= 2.0; }),
@@ -100,32 +118,6 @@ TEST(Clip, ProblemsAreNamed) {
               c.parents.push_back(1);
             }),
             "bone 'arm' does not come after its parent");
-}
-
-// The box ragdoll's skeleton (scripts/make-clips writes the same), every hinge at `angle(bone, t)`
-// about x, the root still: `frames` frames at 1/60 s.
-template <class Angle>
-Clip ragdollClip(int frames, Angle angle) {
-  Clip c;
-  c.name = "test";
-  c.bones = {"torso",           "head",           "upper-arm-left", "lower-arm-left",  "upper-arm-right",
-             "lower-arm-right", "upper-leg-left", "lower-leg-left", "upper-leg-right", "lower-leg-right"};
-  c.parents = {-1, 0, 0, 2, 0, 4, 0, 6, 0, 8};
-  c.frameTime = 1.0 / 60.0;
-  for (int f = 0; f < frames; ++f) {
-    c.root.push_back(Vec3(0.0, 1.17, 0.0));
-    for (const std::string& bone : c.bones)
-      c.turns.push_back(glm::angleAxis(angle(bone, f * c.frameTime), kX));
-  }
-  return c;
-}
-
-phys::Ragdoll rigidRagdoll(phys::World& w, const std::string& name, Vec3 hips = Vec3(0.0, 0.85, 0.0)) {
-  phys::RagdollDesc d;
-  d.name = name;
-  d.model = phys::RagdollModel::Rigid;
-  d.hips = hips;
-  return phys::addRagdoll(w, d);
 }
 
 TEST(Character, AClipThatDoesNotFitIsRefusedWithTheBonesNamed) {

@@ -473,7 +473,7 @@ TEST(BodyDrive, BadBodyDrivesAreRefusedAndTheOldOneKept) {
   bad[1].orientation = Quat(0.5, 0.0, 0.0, 0.0);
   bad[2].strength = -0.1;
   bad[3].strength = nan;
-  bad[4].stiffness = 0.0;
+  bad[4].stiffness = -1.0;  // 0 is a drive that only turns the body (a character's balance)
   bad[5].angularStiffness = inf;
   bad[6].orientation.w = inf;
   for (const phys::BodyDrive& d : bad) EXPECT_THROW(w.setBodyDrive(rigid, d), std::invalid_argument);

@@ -13,13 +13,19 @@
 
 namespace phys {
 
+/// Bounds that keep sampling well inside a double's range: a clip's time (s; about 32 years), its
+/// shortest frame time (s) and its root's farthest position (m).
+inline constexpr Real kMaxClipTime = 1e9;
+inline constexpr Real kMinFrameTime = 1e-6;
+inline constexpr Real kMaxClipReach = 1e6;
+
 /// A skeleton's motion, sampled at a fixed rate.
 struct Clip {
   std::string name;                ///< for messages: the file it came from, or a test's name
   std::vector<std::string> bones;  ///< bones[0] is the root; a parent comes before its children
   std::vector<int> parents;        ///< per bone: its parent's index, -1 for the root
-  Real frameTime = 1.0 / 30.0;     ///< unit: s; finite, > 0
-  std::vector<Vec3> root;          ///< per frame: the root's position, m, in the clip's frame
+  Real frameTime = 1.0 / 30.0;     ///< unit: s; finite, >= kMinFrameTime
+  std::vector<Vec3> root;  ///< per frame: the root's position, m, in the clip's frame, within kMaxClipReach
   /// Per frame, per bone (frame-major): the bone's turn relative to its parent from the rest pose,
   /// in the parent's frame; the root's relative to the clip's frame. At rest every turn is the
   /// identity.
@@ -34,8 +40,8 @@ struct Clip {
 };
 
 /// Why the clip cannot be played ("" when it can): no frames or bones, a parent after its child,
-/// arrays of the wrong sizes, a name used twice, a non-finite number, a turn that is not a unit
-/// quaternion (within 1e-6).
+/// arrays of the wrong sizes, a name used twice, a non-finite number, a frame time under
+/// kMinFrameTime, a root farther than kMaxClipReach, a turn that is not a unit quaternion (within 1e-6).
 std::string clipProblem(const Clip& clip);
 
 /// A clip's pose at one time: the root's position and each bone's turn, as Clip holds them.
@@ -44,11 +50,11 @@ struct ClipPose {
   std::vector<Quat> turns;  ///< per bone of the clip
 };
 
-/// The clip's pose at `time` (s), between its two nearest frames (positions linear, turns
-/// slerped). Before 0 it is the first frame. After the end it is the last, or with `loop` the
-/// time taken modulo the duration, the root moved on by the first-to-last displacement once for
-/// every loop done (so a run cycle goes forward). `out.turns` is resized to the clip's bones
-/// (no allocation once it has that size).
+/// The clip's pose at `time` (s, clamped to kMaxClipTime), between its two nearest frames (positions linear,
+/// turns slerped). Before 0 it is the first frame. After the end it is the last, or with `loop` the time
+/// taken modulo the duration, the root moved on by the first-to-last displacement once for every loop done
+/// (so a run cycle goes forward). `out.turns` is resized to the clip's bones (no allocation once it has that
+/// size).
 void sampleClip(const Clip& clip, Real time, bool loop, ClipPose& out);
 
 /// `a` blended towards `b` by w (0: a, 1: b): positions linear, turns slerped the short way.

@@ -6,6 +6,7 @@
 // root strength, the root part's body drive (the hand of god) to carry it along the clip's path.
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,9 +21,46 @@ class World;
 /// A clip playing: which, from when, how fast, looping or not.
 struct Playback {
   std::shared_ptr<const Clip> clip;
-  Real time = 0.0;   ///< unit: s; into the clip
+  Real time = 0.0;   ///< unit: s; into the clip; |time| <= kMaxClipTime
   Real speed = 1.0;  ///< unitless; finite, >= 0
   bool loop = true;
+};
+
+/// unit: rad; the most the balance leans a character (20 degrees)
+inline constexpr Real kMaxBalanceLean = 0.35;
+
+/// How a character answers a blow: past the threshold it goes limp over fallTime, falls as a
+/// ragdoll and, with a get-up clip, once it has lain still for restTime, is lifted back onto its
+/// feet over getUpTime by its root's drive, playing the clip, and let go again.
+struct Reaction {
+  /// unit: m/s; the blow that makes it go limp (Character::lastImpact): another body striking one
+  /// of its parts this fast, or its root part's speed changing this much in a step (a push, a
+  /// fall); 0 never does
+  Real threshold = 0.0;
+  Real fallTime = 0.25;  ///< unit: s, >= 0; from its strengths to none
+  Real restSpeed = 0.2;  ///< unit: m/s; every part slower than this is lying still
+  Real restTime = 1.0;   ///< unit: s; lying still this long, it gets up
+  Real getUpTime = 1.5;  ///< unit: s, > 0; lifted over this long, then let go over as long
+  /// unit: s, >= 0; how long it must have been active (since it was added, set or got up) before a
+  /// blow counts: its own start, a run begun from standing at full speed, is not a blow
+  Real armTime = 0.5;
+  Playback getUp;  ///< the clip it gets up on (its bones the character's); none stays down
+};
+
+/// Where a character is in its reaction.
+enum class CharacterState {
+  Active,     ///< following its clip at its strengths
+  Falling,    ///< hit: its strengths fading to none
+  Down,       ///< limp, waiting to lie still
+  GettingUp,  ///< lifted by its root towards the get-up clip's pose
+  LettingGo,  ///< on its feet; the root's lift fading to the root strength it had
+};
+
+/// A clip to change to once the one playing reaches a time (World::queueClip).
+struct QueuedClip {
+  Playback playback;
+  Real at = 0.0;         ///< unit: s; on the playing clip's clock
+  Real blendTime = 0.0;  ///< unit: s
 };
 
 /// What World::addCharacter takes.
@@ -32,6 +70,11 @@ struct CharacterDesc {
   Real strength = 1.0;      ///< unitless, 0 to 1: every joint's drive (JointDrive::strength)
   Real rootStrength = 0.0;  ///< unitless, 0 to 1: the root's body drive; 0 is none
   Real scale = 1.0;         ///< unitless, > 0: the ragdoll's; multiplies the clip's root path
+  /// unitless, 0 to 1: the balance's strength, a turn of the root towards its clip's orientation
+  /// leaned so as to bring the capture point back over the feet (docs/physics.md, "Balance"); used
+  /// while the root is not carried (rootStrength 0)
+  Real balance = 0.0;
+  Reaction reaction;
 };
 
 /// One part of a character, bound to a clip's bone.
@@ -52,9 +95,27 @@ struct Character {
   Playback before;                   ///< the clip faded out of while `blend` < 1
   Real blend = 1.0;                  ///< unitless, 0 to 1: how far the fade to `now` has gone
   Real blendTime = 0.0;              ///< unit: s; how long the fade takes
-  Real strength = 1.0;
-  Real rootStrength = 0.0;
+  Real strength = 1.0;               ///< the joints' drives' strength now (the reaction changes it)
+  Real rootStrength = 0.0;           ///< the root's drive's strength now
+  Real balance = 0.0;                ///< the balance's strength now
+  Real goalStrength = 1.0;           ///< what the reaction gives back: the strengths last set
+  Real goalRootStrength = 0.0;
+  Real goalBalance = 0.0;
   Real scale = 1.0;
+  Reaction reaction;
+  CharacterState state = CharacterState::Active;
+  Real stateTime = 0.0;     ///< unit: s; since the state began
+  Real fromStrength = 0.0;  ///< the strengths the state began with, what its ramp starts from
+  Real fromRootStrength = 0.0;
+  Real fromBalance = 0.0;
+  /// unit: m/s; the last step's blow, what the threshold is held against: the fastest closing
+  /// speed at which another body struck one of its parts, or its root part's speed change over
+  /// the step, whichever is larger
+  Real lastImpact = 0.0;
+  Real stepBlow = 0.0;         ///< unit: m/s; the fastest strike so far in this step
+  Real stillTime = 0.0;        ///< unit: s; how long every part has been slower than restSpeed
+  Vec3 lastRootVelocity{0.0};  ///< unit: m/s; the root part's at the last step's end
+  std::optional<QueuedClip> queued;
   Real rootStiffness = 0.0;         ///< unit: N/m; of the root's body drive at strength 1/2
   Real rootAngularStiffness = 0.0;  ///< unit: N m/rad; the same for its turn
   Quat frame{1.0, 0.0, 0.0, 0.0};   ///< the clip's frame in the world
@@ -62,8 +123,9 @@ struct Character {
   /// unit: m, clip frame; what `before`'s root path is moved by to meet `now`'s (playClip starts
   /// the new clip where the old one has got to).
   Vec3 beforeShift{0.0};
-  ClipPose pose;    ///< the target pose, as of the last substep
-  ClipPose fading;  ///< scratch: the pose of `before`
+  ClipPose pose;      ///< the target pose, as of the last substep
+  ClipPose fading;    ///< scratch: the pose of `before`
+  ClipPose starting;  ///< scratch: the first pose of a clip changed to
 };
 
 /// Binds a clip's bones to the ragdoll's parts by name: every part "<ragdoll>.<bone>" a bone of the

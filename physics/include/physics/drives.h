@@ -39,10 +39,12 @@ struct JointDrive {
 /// the world: the hand of god that can carry a ragdoll by its root, or hold it up while it learns
 /// to stand.
 struct BodyDrive {
-  Vec3 position{0.0};                       ///< unit: m; where the body's centre is pulled
-  Quat orientation{1.0, 0.0, 0.0, 0.0};     ///< the orientation it is turned towards
-  Real strength = 0.0;                      ///< unitless, 0 to 1, as JointDrive::strength
-  Real stiffness = kBodyDriveStiffness;     ///< unit: N / m; of the centre, at strength 1/2
+  Vec3 position{0.0};                    ///< unit: m; where the body's centre is pulled
+  Quat orientation{1.0, 0.0, 0.0, 0.0};  ///< the orientation it is turned towards
+  Real strength = 0.0;                   ///< unitless, 0 to 1, as JointDrive::strength
+  /// unit: N / m; of the centre, at strength 1/2; 0 leaves the centre free (a drive that only
+  /// turns the body, as a character's balance)
+  Real stiffness = kBodyDriveStiffness;
   Real angularStiffness = kDriveStiffness;  ///< unit: N m / rad; at strength 1/2
 };
 

@@ -27,6 +27,7 @@
 #include "physics/narrow_phase.h"
 #include "physics/particles.h"
 #include "physics/parting.h"
+#include "physics/push.h"
 #include "physics/rigid_bodies.h"
 #include "physics/rigid_contacts.h"
 #include "physics/rigid_joints.h"
@@ -188,7 +189,8 @@ class World {
   /// Sets the body's drive, replacing any, and wakes its island. Throws std::invalid_argument (and
   /// keeps the old drive) for a body that does not exist or is not rigid, a position that is not
   /// finite, an orientation that is not a unit quaternion (within 1e-6; it is made unit), a
-  /// strength outside [0, 1] or a stiffness that is not finite and > 0.
+  /// strength outside [0, 1], a stiffness that is not finite and >= 0 or an angular stiffness that
+  /// is not finite and > 0.
   void setBodyDrive(BodyId id, const BodyDrive& drive);
   /// Removes the body's drive, if it has one, and wakes its island.
   void clearBodyDrive(BodyId id);
@@ -211,9 +213,28 @@ class World {
   /// new clip's root path starting where the old one has got to. Throws std::invalid_argument (and
   /// changes nothing) as addCharacter would, or for a clip whose bones are not the character's.
   void playClip(std::size_t k, const Playback& playback, Real blendTime);
-  /// Sets character k's strengths (0 to 1): its joints' drives and its root's. Throws
+  /// Changes character k's clip to `playback` once its clip's clock reaches `at` (s), faded in over
+  /// blendTime (s, >= 0), as playClip would then; replaces any clip queued before. Throws
+  /// std::invalid_argument (and changes nothing) as playClip would, or for `at` not finite.
+  void queueClip(std::size_t k, const Playback& playback, Real at, Real blendTime);
+  /// Sets character k's strengths (0 to 1): its joints' drives and its root's, and what its
+  /// reaction gives back; stops any reaction under way (CharacterState::Active). Throws
   /// std::invalid_argument (and changes nothing) out of range.
   void setCharacterStrength(std::size_t k, Real strength, Real rootStrength);
+  /// Sets character k's balance (0 to 1, CharacterDesc::balance), now and as what its reaction
+  /// gives back. Throws std::invalid_argument (and changes nothing) out of range.
+  void setCharacterBalance(std::size_t k, Real balance);
+  /// Replaces character k's reaction (Reaction), from the next step. Throws std::invalid_argument
+  /// (and changes nothing) as addCharacter would for it.
+  void setCharacterReaction(std::size_t k, const Reaction& reaction);
+  /// Pushes body `id` with `force` (N, world) for `duration` (s) at `worldPoint` (m; its centre if
+  /// none), from the next substep, and wakes its island: the point is kept in the body's frame, the
+  /// force in the world's. Pushes add up. Throws std::invalid_argument (and pushes nothing) for a
+  /// body that does not exist, a force or point that is not finite, or a duration that is not
+  /// finite and > 0.
+  void push(BodyId id, const Vec3& force, Real duration, const std::optional<Vec3>& worldPoint = {});
+  /// The pushes still acting.
+  std::span<const Push> pushes() const { return pushes_; }
   /// Every particle body's corners, 8 per body from Body::firstCorner (a rigid body has none).
   std::span<const Embedding> corners() const { return corners_; }
   /// Corner k of any body now (bits as in Body), unit: m.
@@ -305,8 +326,12 @@ class World {
   void settleWithoutVelocity();
   // The stages of a substep, in step()'s order (step.cpp); each times itself into profile_.
   void animate(Real h);
+  void react();
+  void noteBlows();
+  Quat balanceTarget(const Character& c, const Quat& upright) const;
   bool anyCharacterActive() const;
   void integrateParticles(Real h);
+  void applyPushes(Real h);
   void collectRigidGround();
   void placeRigidCapsulePoints();
   void startRigidContacts(Real h);
@@ -354,6 +379,8 @@ class World {
   std::vector<BodyId> particleBody_;  // kNoBody for a loose particle
   ConstraintGraph constraints_;
   std::vector<Character> characters_;
+  std::vector<Push> pushes_;
+  std::vector<int> bodyCharacter_;      // per body: the character whose part it is, or -1
   std::vector<Quat> characterTargets_;  // scratch of animate(), sized to the longest skeleton
   BodyLayout bodyLayout_;               // the bodies in lanes, for body damping (updateLayouts)
   bool layoutsStale_ = false;           // bodies or collision filters added since they were laid out
