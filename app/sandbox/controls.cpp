@@ -9,6 +9,7 @@ constexpr Control kControls[] = {
     {"1", "scene 1: one ragdoll (ragdoll.xml)"},
     {"2", "scene 2: a pyramid of boxes that vary in size (pyramid.xml)"},
     {"3", "scene 3: three 3x3 layers of boxes (box-of-boxes.xml)"},
+    {"4", "the tackle: a runner on the run cycle and a diving tackler (tackle.xml)"},
     {"0", "clear the scene of every body (settings stay)"},
     {"Tab", "draw mode: filled, wireframe, constraints (in red)"},
     {"C", "collision-vertex markers: green boxes on vertices moved by box-box contacts"},
@@ -54,6 +55,8 @@ std::optional<Action> actionForKey(int key, int mods) {
       return Action::Scene2;
     case GLFW_KEY_3:
       return Action::Scene3;
+    case GLFW_KEY_4:
+      return Action::SceneTackle;
     case GLFW_KEY_0:
       return Action::ClearScene;
     case GLFW_KEY_TAB:

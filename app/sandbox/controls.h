@@ -12,6 +12,7 @@ enum class Action {
   Scene1,             ///< the seed's scene 1: one ragdoll
   Scene2,             ///< the seed's scene 2: a pyramid of boxes of varying size
   Scene3,             ///< the seed's scene 3: three 3x3 layers of boxes
+  SceneTackle,        ///< the tackle the seed was written for: a runner and a diving tackler
   ClearScene,         ///< remove every body, keep the settings
   CycleDrawMode,      ///< filled, wireframe, constraints
   ToggleMarkers,      ///< green boxes on vertices moved by box-box collisions

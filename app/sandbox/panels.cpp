@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string_view>
 #include <thread>
 
@@ -415,6 +416,56 @@ void drivesBlock(Session& session, UiState& ui) {
               range(least, most, "%.0f") + " N m/rad");
 }
 
+const char* stateName(phys::CharacterState state) {
+  switch (state) {
+    case phys::CharacterState::Active:
+      return "active";
+    case phys::CharacterState::Falling:
+      return "falling (going limp)";
+    case phys::CharacterState::Down:
+      return "down";
+    case phys::CharacterState::GettingUp:
+      return "getting up";
+    case phys::CharacterState::LettingGo:
+      return "on its feet, let go";
+  }
+  return "";
+}
+
+// The scene's characters (phys::Character): each one's clip and state, its strengths and reaction
+// threshold, and shoves to watch it stagger (200 N) or fall (2000 N).
+void animationBlock(Session& session, UiState& ui) {
+  const std::size_t count = session.scene().world.characters().size();
+  if (count == 0) return;
+  ImGui::Separator();
+  ImGui::TextUnformatted("Animation");
+  for (std::size_t k = 0; k < count; ++k) {
+    const phys::Character& c = session.scene().world.characters()[k];
+    ImGui::PushID(static_cast<int>(k));
+    if (ImGui::TreeNode("character", "%s: %s", c.ragdoll.c_str(), stateName(c.state))) {
+      const std::string clip = std::filesystem::path(c.now.clip->name).filename().string();
+      greyWrapped(clip + " at " + figure("%.2f", c.now.time) + " s" +
+                  (c.queued
+                       ? ", then " + std::filesystem::path(c.queued->playback.clip->name).filename().string()
+                       : std::string()) +
+                  "; last blow " + figure("%.2f", c.lastImpact) + " m/s");
+      double strength = c.goalStrength, balance = c.goalBalance, threshold = c.reaction.threshold;
+      std::string error;
+      if (sliderReal("strength", strength, 0.0f, 1.0f, "%.2f"))
+        error = session.setCharacterStrength(k, strength);
+      if (sliderReal("balance", balance, 0.0f, 1.0f, "%.2f")) error = session.setCharacterBalance(k, balance);
+      if (sliderReal("react at (m/s)", threshold, 0.0f, 10.0f, "%.2f"))
+        error = session.setReactionThreshold(k, threshold);
+      if (ImGui::Button("push 200 N")) error = session.pushCharacter(k, kPushForce);
+      ImGui::SameLine();
+      if (ImGui::Button("shove 2000 N")) error = session.pushCharacter(k, kKnockForce);
+      if (!error.empty()) ui.message = error;
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+}
+
 void worldSection(Session& session, UiState& ui) {
   phys::WorldSettings w = session.scene().world.worldSettings();
   int mode = static_cast<int>(w.gravityMode);
@@ -448,6 +499,7 @@ void worldSection(Session& session, UiState& ui) {
   }
   ImGui::Text("ground: %s", w.ground ? "yes" : "none");
   drivesBlock(session, ui);
+  animationBlock(session, ui);
   // What F, R and T throw: boxes of this model, ragdolls of its kind.
   ImGui::SliderFloat("throw speed (m/s)", &ui.throwSpeed, 0.0f, kMaxThrowSpeed, "%.1f",
                      ImGuiSliderFlags_AlwaysClamp);

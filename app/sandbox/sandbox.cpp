@@ -226,6 +226,9 @@ void Sandbox::perform(Action action) {
     case Action::Scene3:
       openScene(scenes::resolveScene("box-of-boxes", scenes::sceneDirectory(dataDir(options_))));
       break;
+    case Action::SceneTackle:
+      openScene(scenes::resolveScene("tackle", scenes::sceneDirectory(dataDir(options_))));
+      break;
     case Action::ClearScene:
       s.clear();
       stopFollowing();

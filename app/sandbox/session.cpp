@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -385,6 +386,48 @@ std::string Session::setDriveStrength(double strength) {
   });
   worldChanged();
   return {};
+}
+
+// One change to character k in every run; "" or the world's refusal, and then no run changes.
+std::string Session::changeCharacter(std::size_t k, const std::function<void(phys::World&)>& change) {
+  if (k >= scene().world.characters().size())
+    return "character: the scene has no character " + std::to_string(k);
+  try {
+    phys::World trial = scene().world;  // the check first, on a copy: nothing half applied
+    change(trial);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  cancelSteps();
+  forEachWorld(change);
+  worldChanged();
+  return {};
+}
+
+std::string Session::setCharacterStrength(std::size_t k, double strength) {
+  return changeCharacter(k, [k, strength](phys::World& w) {
+    w.setCharacterStrength(k, strength, w.characters()[k].goalRootStrength);
+  });
+}
+
+std::string Session::setCharacterBalance(std::size_t k, double balance) {
+  return changeCharacter(k, [k, balance](phys::World& w) { w.setCharacterBalance(k, balance); });
+}
+
+std::string Session::setReactionThreshold(std::size_t k, double threshold) {
+  return changeCharacter(k, [k, threshold](phys::World& w) {
+    phys::Reaction r = w.characters()[k].reaction;
+    r.threshold = threshold;
+    w.setCharacterReaction(k, r);
+  });
+}
+
+std::string Session::pushCharacter(std::size_t k, double newtons) {
+  return changeCharacter(k, [k, newtons](phys::World& w) {
+    const phys::BodyId root = w.characters()[k].bones[0].body;
+    const phys::Vec3 facing = w.characters()[k].frame * phys::Vec3(0.0, 0.0, 1.0);  // clips face +z
+    w.push(root, newtons * facing, kPushTime);
+  });
 }
 
 std::string Session::applyWorldSettings(const phys::WorldSettings& settings, const std::string& done) {

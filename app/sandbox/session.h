@@ -40,6 +40,11 @@ inline constexpr int kThrowTries = 5;
 /// The strongest gravity changeGravity raises to, and the World panel's slider reaches: three
 /// times the Earth's (m/s^2). A scene may set more; raising then leaves it as it is.
 inline constexpr double kMaxRaisedGravity = 30.0;
+/// The Animation block's shoves: a push a balanced character withstands and one that throws it
+/// over (the targets), each held kPushTime.
+inline constexpr double kPushForce = 200.0;    ///< unit: N
+inline constexpr double kKnockForce = 2000.0;  ///< unit: N
+inline constexpr double kPushTime = 0.2;       ///< unit: s
 
 class Session {
  public:
@@ -134,6 +139,15 @@ class Session {
   /// target) in every run, each joint keeping its own target and stiffness; "" or why not (a
   /// strength outside [0, 1], no rigid joint in the scene; then nothing changes).
   std::string setDriveStrength(double strength);
+  /// Character k's joint strength, balance or reaction threshold (m/s) in every run (World's
+  /// setCharacterStrength, setCharacterBalance, setCharacterReaction); "" or why not (then nothing
+  /// changes).
+  std::string setCharacterStrength(std::size_t k, double strength);
+  std::string setCharacterBalance(std::size_t k, double balance);
+  std::string setReactionThreshold(std::size_t k, double threshold);
+  /// Pushes character k's root part forwards (along the way it faces) with `newtons` for 0.2 s in
+  /// every run: the sandbox's shove, to watch it stagger or fall.
+  std::string pushCharacter(std::size_t k, double newtons);
 
   /// Throws a box or a ragdoll (of boxes, or of capsules laid out like Bullet's) from `at` with
   /// velocity `velocity` into every run, never into a body: where a body reaches into the throw's
@@ -172,6 +186,7 @@ class Session {
   };
   void replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file);
   void forEachWorld(const std::function<void(phys::World&)>& apply);
+  std::string changeCharacter(std::size_t k, const std::function<void(phys::World&)>& change);
   std::string applyWorldSettings(const phys::WorldSettings& settings, const std::string& done);
   /// A command changed the main run's world: the recording keeps it as it is now (and forks
   /// there if it was rewound).

@@ -91,7 +91,10 @@ TEST(StepAllocation, NoProjectSceneAllocatesAfterItsFirstSecond) {
     // 3 s): its boxes fly apart and, their bounds grown by their speed, keep finding pairs they
     // never had. The room for pairs and points then grows, each of its 7 arrays at most once in
     // the second (each growth doubles it).
-    const long allowed = name == "stability/pyramid-40.xml" ? 7 : 0;
+    // line-up.xml's players fall one into the next through its second second, each fall making
+    // pairs the scene never had: the room for pairs and points grows, each of the narrow phase's
+    // arrays and the rigid contacts' state at most once (each growth doubles it).
+    const long allowed = name == "stability/pyramid-40.xml" ? 7 : name == "line-up.xml" ? 9 : 0;
     EXPECT_LE(made, allowed) << name << ": " << made << " allocations in " << steps
                              << " steps after the first second";
   }

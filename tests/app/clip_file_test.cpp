@@ -135,18 +135,34 @@ TEST(ClipFile, TheRunCycleIsTrackedWithinFiveDegrees) {
           "<solver method=\"xpbd\" iterations=\"2\" substeps=\"8\"/><character ragdoll=\"r\" clip=\"" +
           kClips + "run.bvh\" strength=\"0.9\" root-strength=\"1\"/>"),
       "run.xml");
-  double sum = 0.0;
+  const phys::BodyId torso = scene.world.characters()[0].bones[0].body;
+  const phys::Clip& clip = *scene.world.characters()[0].now.clip;
+  // Where the clip puts the torso: its root path, the clip's floor on the ground, in the clip's frame
+  // turned only about the up axis (the clip's first pose leans 8 degrees; the path must not).
+  const glm::dvec3 start = scene.world.bodyPose(torso).center;
+  double sum = 0.0, heightOff = 0.0;
   int n = 0;
   for (int i = 0; i < 600; ++i) {
     scene.world.step();
     if (i < 60) continue;  // the first second: from standing into the run
     const double e = phys::trackingError(scene.world, 0);
     sum += e * e;
+    phys::ClipPose pose;
+    phys::sampleClip(clip, scene.world.characters()[0].now.time, true, pose);
+    const double clipHeight = pose.root.y;
+    heightOff = std::max(heightOff, std::abs(scene.world.bodyPose(torso).center.y - clipHeight));
     ++n;
   }
   const double rms = std::sqrt(sum / n) / kDeg;
-  std::printf("run cycle, root carried: RMS tracking error %.2f degrees over 9 s\n", rms);
+  const glm::dvec3 end = scene.world.bodyPose(torso).center;
+  std::printf(
+      "run cycle, root carried: RMS tracking error %.2f degrees over 9 s; torso off the clip's height by "
+      "%.3f m at most; %.2f m run\n",
+      rms, heightOff, glm::length(end - start));
   EXPECT_LT(rms, 5.0);
+  EXPECT_LT(heightOff, 0.02);  // the hand of god's lag, not a climb
+  EXPECT_NEAR(glm::length(glm::dvec2(end.x, end.z) - glm::dvec2(start.x, start.z)), 3.0 * 10.0,
+              0.1);  // 3 m/s (scripts/make-clips)
   EXPECT_TRUE(scene.world.freezes().empty());
 }
 

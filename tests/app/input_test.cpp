@@ -82,6 +82,7 @@ TEST(Controls, TheSeedsKeysMapToTheirActions) {
   using sandbox::Action;
   using sandbox::actionForKey;
   EXPECT_EQ(actionForKey(GLFW_KEY_1, 0), Action::Scene1);
+  EXPECT_EQ(actionForKey(GLFW_KEY_4, 0), Action::SceneTackle);
   EXPECT_EQ(actionForKey(GLFW_KEY_0, 0), Action::ClearScene);
   EXPECT_EQ(actionForKey(GLFW_KEY_TAB, 0), Action::CycleDrawMode);
   EXPECT_EQ(actionForKey(GLFW_KEY_C, 0), Action::ToggleMarkers);

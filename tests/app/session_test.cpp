@@ -683,4 +683,29 @@ TEST(Session, DriveStrengthReachesEveryRigidJointAndBadOnesAreRefused) {
   EXPECT_EQ(pyramid.setDriveStrength(0.5), "drives: the scene has no joints between rigid bodies");
 }
 
+// The Animation block: a character's strength, balance and threshold reach the world, a bad value
+// changes nothing and says why, and the shoves push its root part the way it faces.
+TEST(Session, CharacterControlsReachTheWorldAndBadOnesAreRefused) {
+  sandbox::Session s = open("line-up");
+  const phys::World& world = s.scene().world;
+  ASSERT_EQ(world.characters().size(), 5u);
+  EXPECT_EQ(s.setCharacterStrength(1, 0.6), "");
+  EXPECT_EQ(world.characters()[1].strength, 0.6);
+  EXPECT_EQ(s.setCharacterBalance(1, 0.3), "");
+  EXPECT_EQ(world.characters()[1].goalBalance, 0.3);
+  EXPECT_EQ(s.setReactionThreshold(1, 4.0), "");
+  EXPECT_EQ(world.characters()[1].reaction.threshold, 4.0);
+  EXPECT_NE(s.setReactionThreshold(1, -1.0), "");
+  EXPECT_NE(s.setCharacterBalance(1, 2.0), "");
+  EXPECT_NE(s.setCharacterStrength(9, 0.5), "");
+  EXPECT_EQ(world.characters()[1].reaction.threshold, 4.0);
+  EXPECT_EQ(world.characters()[1].goalBalance, 0.3);
+  EXPECT_EQ(s.pushCharacter(2, sandbox::kPushForce), "");
+  ASSERT_EQ(world.pushes().size(), 1u);
+  EXPECT_EQ(world.pushes()[0].body, world.characters()[2].bones[0].body);
+  // line-up.xml's players face +x (euler 0 90 0)
+  EXPECT_NEAR(world.pushes()[0].force.x, sandbox::kPushForce, 1e-9);
+  EXPECT_NEAR(world.pushes()[0].remaining, sandbox::kPushTime, 1e-12);
+}
+
 }  // namespace

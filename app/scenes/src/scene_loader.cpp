@@ -454,15 +454,18 @@ class Builder {
     const std::optional<double> strength = detail::readFraction(e, "strength");
     if (!strength) e.fail("strength", "is required");
     drive.strength = *strength;
-    auto stiffness = [&e](const char* attribute, const char* unit, double& value) {
+    // The centre's stiffness may be 0: a drive that only turns the body (a character's balance).
+    auto stiffness = [&e](const char* attribute, const char* unit, bool zeroAllowed, double& value) {
       if (auto given = e.number(attribute, unit)) {
-        if (!(*given > 0.0))
-          e.fail(attribute, "'" + detail::formatNumber(*given) + "' must be > 0 (" + unit + ")");
+        if (zeroAllowed ? !(*given >= 0.0) : !(*given > 0.0)) {
+          e.fail(attribute, "'" + detail::formatNumber(*given) + "' must be " +
+                                (zeroAllowed ? ">= 0" : "> 0") + " (" + unit + ")");
+        }
         value = *given;
       }
     };
-    stiffness("stiffness", "N/m", drive.stiffness);
-    stiffness("angular-stiffness", "N m/rad", drive.angularStiffness);
+    stiffness("stiffness", "N/m", true, drive.stiffness);
+    stiffness("angular-stiffness", "N m/rad", false, drive.angularStiffness);
     e.rejectUnknownAttributes();
     scene_.world.setBodyDrive(id, drive);
   }
@@ -472,8 +475,8 @@ class Builder {
   void character(ElementReader& e) {
     phys::CharacterDesc desc;
     desc.ragdoll = e.requiredText("ragdoll");
-    desc.playback.clip = clip(e);
-    if (auto time = e.number("time", "s")) desc.playback.time = *time;
+    desc.playback.clip = clip(e, e.requiredText("clip"), "clip");
+    desc.playback.time = time(e, "time").value_or(0.0);
     if (auto speed = e.number("speed", "")) {
       if (*speed < 0.0) e.fail("speed", "'" + detail::formatNumber(*speed) + "' must be >= 0");
       desc.playback.speed = *speed;
@@ -481,20 +484,73 @@ class Builder {
     if (auto loop = e.boolean("loop")) desc.playback.loop = *loop;
     desc.strength = detail::readFraction(e, "strength").value_or(1.0);
     desc.rootStrength = detail::readFraction(e, "root-strength").value_or(0.0);
+    desc.balance = detail::readFraction(e, "balance").value_or(0.0);
     if (auto scale = e.number("scale", "")) {
       if (!(*scale > 0.0)) e.fail("scale", "'" + detail::formatNumber(*scale) + "' must be > 0");
       desc.scale = *scale;
     }
+    reaction(e, desc.reaction);
+    std::optional<phys::QueuedClip> then;
+    if (auto next = e.text("then")) {
+      then.emplace();
+      then->playback.clip = clip(e, *next, "then");
+      then->at = time(e, "then-at").value_or(0.0);
+      then->blendTime = duration(e, "then-blend").value_or(0.2);
+      then->playback.loop = e.boolean("then-loop").value_or(false);
+    }
     e.rejectUnknownAttributes();
     try {
-      scene_.world.addCharacter(desc);
+      const std::size_t k = scene_.world.addCharacter(desc);
+      if (then) scene_.world.queueClip(k, then->playback, then->at, then->blendTime);
     } catch (const std::invalid_argument& error) {
+      // addCharacter's own checks are all made above, attribute by attribute; what is left is the
+      // binding of the clip to the ragdoll's parts.
       e.fail("ragdoll", error.what());
     }
   }
 
-  std::shared_ptr<const phys::Clip> clip(ElementReader& e) {
-    const std::string given = e.requiredText("clip");
+  // A character's answer to a blow (phys::Reaction).
+  void reaction(ElementReader& e, phys::Reaction& r) {
+    if (auto threshold = e.number("react", "m/s")) {
+      if (*threshold < 0.0) e.fail("react", "'" + detail::formatNumber(*threshold) + "' must be >= 0 (m/s)");
+      r.threshold = *threshold;
+    }
+    r.fallTime = duration(e, "fall-time").value_or(r.fallTime);
+    r.restTime = duration(e, "rest-time").value_or(r.restTime);
+    r.armTime = duration(e, "arm-time").value_or(r.armTime);
+    if (auto speed = e.number("rest-speed", "m/s")) {
+      if (!(*speed > 0.0)) e.fail("rest-speed", "'" + detail::formatNumber(*speed) + "' must be > 0 (m/s)");
+      r.restSpeed = *speed;
+    }
+    if (auto up = duration(e, "get-up-time")) {
+      if (*up == 0.0) e.fail("get-up-time", "must be > 0 (s)");
+      r.getUpTime = *up;
+    }
+    if (auto up = e.text("get-up")) {
+      r.getUp.clip = clip(e, *up, "get-up");
+      r.getUp.loop = true;
+    }
+  }
+
+  // A time on a clip's clock (s), within +-kMaxClipTime.
+  std::optional<double> time(ElementReader& e, const char* attribute) {
+    auto t = e.number(attribute, "s");
+    if (t && std::abs(*t) > phys::kMaxClipTime)
+      e.fail(attribute, "'" + detail::formatNumber(*t) + "' must be within +-" +
+                            detail::formatNumber(phys::kMaxClipTime) + " s");
+    return t;
+  }
+
+  // A length of time (s), >= 0.
+  std::optional<double> duration(ElementReader& e, const char* attribute) {
+    auto t = e.number(attribute, "s");
+    if (t && *t < 0.0) e.fail(attribute, "'" + detail::formatNumber(*t) + "' must be >= 0 (s)");
+    return t;
+  }
+
+  // The clip file `given` (relative to the scene's folder) names, read once however many
+  // characters play it; a file that cannot be read fails `attribute`.
+  std::shared_ptr<const phys::Clip> clip(ElementReader& e, const std::string& given, const char* attribute) {
     std::error_code ignored;
     const std::filesystem::path file = std::filesystem::absolute(folder_ / given, ignored).lexically_normal();
     const auto it = clips_.find(file.string());
@@ -504,7 +560,7 @@ class Builder {
       clips_.emplace(file.string(), loaded);
       return loaded;
     } catch (const clips::ClipError& error) {
-      e.fail("clip", error.what());
+      e.fail(attribute, error.what());
     }
   }
 

@@ -448,9 +448,25 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
         .number("time", c.now.time)
         .number("speed", c.now.speed)
         .text("loop", c.now.loop ? "true" : "false")
-        .number("strength", c.strength)
-        .number("root-strength", c.rootStrength);
+        .number("strength", c.goalStrength)
+        .number("root-strength", c.goalRootStrength);
     if (c.scale != 1.0) e.number("scale", c.scale);
+    if (c.goalBalance > 0.0) e.number("balance", c.goalBalance);
+    const phys::Reaction& r = c.reaction;
+    const phys::Reaction defaults;
+    if (r.threshold > 0.0) e.number("react", r.threshold);
+    if (r.fallTime != defaults.fallTime) e.number("fall-time", r.fallTime);
+    if (r.restTime != defaults.restTime) e.number("rest-time", r.restTime);
+    if (r.armTime != defaults.armTime) e.number("arm-time", r.armTime);
+    if (r.restSpeed != defaults.restSpeed) e.number("rest-speed", r.restSpeed);
+    if (r.getUpTime != defaults.getUpTime) e.number("get-up-time", r.getUpTime);
+    if (r.getUp.clip) e.text("get-up", r.getUp.clip->name);
+    if (c.queued) {
+      e.text("then", c.queued->playback.clip->name)
+          .number("then-at", c.queued->at)
+          .number("then-blend", c.queued->blendTime)
+          .text("then-loop", c.queued->playback.loop ? "true" : "false");
+    }
     line(e.empty());
   }
   for (const phys::JointFriction& f : world.jointFrictions()) {

@@ -1,0 +1,105 @@
+// The tackle scenes (assets/scenes/tackle.xml, line-up.xml; docs/physics.md, "Reaction"): the hit
+// makes both players go limp, they fall and settle, no joint past its limit by more than 3
+// degrees, nothing frozen; the thrown box knocks the line of players down and they get up again.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "physics/character.h"
+#include "physics/world.h"
+#include "scenes/scene.h"
+
+namespace {
+
+const std::string kScenes = std::string(DATA_DIR) + "/assets/scenes/";
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// How far rigid joint k is past its limits now (rad): a hinge's angle outside its stops, a cone's
+// twist past its bound or its swing (the angle between the two bodies' limb axes) past its half-angle.
+double pastLimit(const phys::World& w, std::size_t k) {
+  const phys::JointDesc d = w.jointDesc(k);
+  const double angle = w.jointAngle(k);
+  if (d.kind == phys::JointKind::Hinge) return std::max({0.0, d.minAngle - angle, angle - d.maxAngle});
+  double past = std::max(0.0, std::abs(angle) - d.twist);
+  if (glm::length(d.axisB) > 0.0) {
+    const double swing =
+        std::acos(std::clamp(glm::dot(glm::normalize(d.axis), glm::normalize(d.axisB)), -1.0, 1.0));
+    past = std::max(past, swing - d.swing);
+  }
+  return past;
+}
+
+double fastestPart(const phys::World& w, const phys::Character& c) {
+  double fastest = 0.0;
+  for (const phys::CharacterBone& b : c.bones)
+    fastest = std::max(fastest, glm::length(w.bodyVelocity(b.body).first));
+  return fastest;
+}
+
+TEST(Tackle, BothGoLimpFallAndSettle) {
+  scenes::Scene scene = scenes::loadSceneFile(kScenes + "tackle.xml");
+  phys::World& w = scene.world;
+  ASSERT_EQ(w.characters().size(), 2u);
+  double worstLimit = 0.0, hitAt[2] = {-1.0, -1.0};
+  while (w.time() < 8.0) {
+    w.step();
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (hitAt[k] < 0.0 && w.characters()[k].state != phys::CharacterState::Active) hitAt[k] = w.time();
+    }
+    if (w.time() > 3.0) {
+      for (std::size_t k = 0; k < w.rigidJoints().size(); ++k)
+        worstLimit = std::max(worstLimit, pastLimit(w, k));
+    }
+  }
+  std::printf(
+      "tackle: runner hit at %.2f s, tackler at %.2f s; at 8 s the fastest parts %.3f and %.3f m/s; worst "
+      "joint "
+      "past its limit after 3 s %.2f degrees\n",
+      hitAt[0], hitAt[1], fastestPart(w, w.characters()[0]), fastestPart(w, w.characters()[1]),
+      worstLimit / kDeg);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const phys::Character& c = w.characters()[k];
+    EXPECT_GT(hitAt[k], 1.0) << c.ragdoll;  // not before they meet
+    EXPECT_LT(hitAt[k], 2.5) << c.ragdoll;
+    EXPECT_EQ(c.state, phys::CharacterState::Down) << c.ragdoll;
+    EXPECT_EQ(c.strength, 0.0) << c.ragdoll;
+    EXPECT_LT(fastestPart(w, c), 0.05) << c.ragdoll;  // at rest
+  }
+  EXPECT_LT(worstLimit, 3.0 * kDeg);
+  EXPECT_TRUE(w.freezes().empty());
+}
+
+// The thrown 30 kg box knocks the line down one into the next; each lies still and gets up on the
+// stand clip, and by 12 s all five stand again where they fell, heads at standing height.
+TEST(Tackle, TheLineIsKnockedDownAndGetsUp) {
+  scenes::Scene scene = scenes::loadSceneFile(kScenes + "line-up.xml");
+  phys::World& w = scene.world;
+  ASSERT_EQ(w.characters().size(), 5u);
+  int knocked = 0;
+  std::vector<bool> down(5, false);
+  while (w.time() < 12.0) {
+    w.step();
+    for (std::size_t k = 0; k < 5; ++k) {
+      if (!down[k] && w.characters()[k].state == phys::CharacterState::Down) {
+        down[k] = true;
+        ++knocked;
+      }
+    }
+  }
+  std::printf("line-up: %d of 5 knocked down\n", knocked);
+  EXPECT_GE(knocked, 4);
+  for (const phys::Character& c : w.characters()) {
+    EXPECT_EQ(c.state, phys::CharacterState::Active) << c.ragdoll;
+    EXPECT_NEAR(w.bodyPose(c.bones[1].body).center.y, 1.59, 0.05) << c.ragdoll;  // bones[1]: the head
+    EXPECT_LT(fastestPart(w, c), 0.05) << c.ragdoll;
+  }
+  EXPECT_TRUE(w.freezes().empty());
+}
+
+}  // namespace
