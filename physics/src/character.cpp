@@ -328,8 +328,7 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
   Character& c = characters_[k];
   c.strength = c.goalStrength = strength;
   c.rootStrength = c.goalRootStrength = rootStrength;
-  enter(c, CharacterState::Active);
-  c.stateTime = 0.0;  // set by hand: whatever the reaction was doing stops
+  enter(c, CharacterState::Active);  // set by hand: whatever the reaction was doing stops
   const BodyId root = c.bones[0].body;
   if (rootStrength > 0.0 && !bodyDrive(root)) {
     const BodyPose pose = bodyPose(root);
@@ -480,10 +479,10 @@ void World::noteBlows() {
   }
 }
 
-// Once a step, after its substeps: each character's blow, the fastest strike on its parts by
-// another body or its root part's speed change over the step (a push, a fall; free fall changes it
-// by g dt, 0.16 m/s at 1/60 s),
-// against its reaction's threshold; and how long it has lain still, to get up.
+// Once a step, after its substeps: each character's blow (the fastest strike on its parts by
+// another body, or its root part's speed change over the step: a push, a fall; free fall changes
+// it by g dt, 0.16 m/s at 1/60 s) against its reaction's threshold; and how long it has lain still,
+// to get up.
 void World::react() {
   if (characters_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::Animate);
