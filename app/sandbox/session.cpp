@@ -388,18 +388,18 @@ std::string Session::setDriveStrength(double strength) {
   return {};
 }
 
-// One change to character k in every run; "" or the world's refusal, and then no run changes.
+// One change to character k in every run; "" or the world's refusal, and then no run changes: the
+// runs hold the same characters, and a World refuses a change before it makes any of it, so the
+// first run refuses what every run would.
 std::string Session::changeCharacter(std::size_t k, const std::function<void(phys::World&)>& change) {
   if (k >= scene().world.characters().size())
     return "character: the scene has no character " + std::to_string(k);
+  cancelSteps();
   try {
-    phys::World trial = scene().world;  // the check first, on a copy: nothing half applied
-    change(trial);
+    forEachWorld(change);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
-  cancelSteps();
-  forEachWorld(change);
   worldChanged();
   return {};
 }

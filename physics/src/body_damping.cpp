@@ -32,6 +32,15 @@ bool massProperties(const Particles& p, const Body& box, MassProperties& out) {
   return std::abs(glm::determinant(out.inertia)) > 0.0;
 }
 
+void addBoxVelocity(Particles& p, const Body& box, const Vec3& centre, const Vec3& dv, const Vec3& dw,
+                    Real h) {
+  for (int j = 0; j < box.particleCount; ++j) {
+    const ParticleId i = box.firstParticle + j;
+    if (p.inverseMass[i] == 0.0) continue;
+    p.position[i] += (dv + glm::cross(dw, p.position[i] - centre)) * h;
+  }
+}
+
 RigidMotion rigidMotion(const Particles& p, const Body& box, const MassProperties& m) {
   const ParticleId first = box.firstParticle, end = first + box.particleCount;
   Vec3 momentum(0.0), angularMomentum(0.0);

@@ -116,11 +116,16 @@ bool characterMoves(const Character& c) {
   return c.state != CharacterState::Active;
 }
 
+// Whether the character keeps its root's drive while the root is not carried: for the balance, or
+// at strength 0 so that balancing or lifting it again allocates nothing in the step.
+bool keepsRootDrive(const Character& c) {
+  return c.balance > 0.0 || c.goalBalance > 0.0 || c.reaction.getUp.clip != nullptr;
+}
+
 void enter(Character& c, CharacterState state) {
   c.state = state;
   c.stateTime = 0.0;
   c.fromStrength = c.strength;
-  c.fromRootStrength = c.rootStrength;
   c.fromBalance = c.balance;
 }
 
@@ -284,14 +289,20 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   bodyCharacter_.resize(bodies_.size(), -1);
   for (const CharacterBone& bone : c.bones) bodyCharacter_[bone.body] = static_cast<int>(characters_.size());
   characters_.push_back(std::move(c));
-  // The root's drive made now (with any reaction, which may lift it), so that the step only aims it
-  // and never allocates for it; made last, so that a refusal above leaves the world as it was.
+  // Made last, so that a refusal above leaves the world as it was.
   const Character& added = characters_.back();
-  if (added.rootStrength > 0.0 || added.balance > 0.0 || added.reaction.getUp.clip)
-    constraints_.setBodyDrive(
-        bodies_[root].rigid, BodyDrive{pose.center, pose.orientation, added.rootStrength, added.rootStiffness,
-                                       added.rootAngularStiffness});
+  if (added.rootStrength > 0.0 || keepsRootDrive(added)) makeRootDrive(added, added.rootStrength);
   return characters_.size() - 1;
+}
+
+// The root's drive made now, at the pose the root is in, so that the step only aims it and never
+// allocates for it; the step sets its target, strength and stiffness every substep.
+void World::makeRootDrive(const Character& c, Real strength) {
+  const BodyId root = c.bones[0].body;
+  if (bodyDrive(root)) return;
+  const BodyPose pose = bodyPose(root);
+  constraints_.setBodyDrive(bodies_[root].rigid, BodyDrive{pose.center, pose.orientation, strength,
+                                                           c.rootStiffness, c.rootAngularStiffness});
 }
 
 void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
@@ -329,13 +340,8 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
   c.strength = c.goalStrength = strength;
   c.rootStrength = c.goalRootStrength = rootStrength;
   enter(c, CharacterState::Active);  // set by hand: whatever the reaction was doing stops
-  const BodyId root = c.bones[0].body;
-  if (rootStrength > 0.0 && !bodyDrive(root)) {
-    const BodyPose pose = bodyPose(root);
-    constraints_.setBodyDrive(bodies_[root].rigid, BodyDrive{pose.center, pose.orientation, rootStrength,
-                                                             c.rootStiffness, c.rootAngularStiffness});
-  }
-  islands_.wake(islands_.bodyNode(characters_[k].bones[0].body));
+  if (rootStrength > 0.0) makeRootDrive(c, rootStrength);
+  islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 
 void World::setCharacterBalance(std::size_t k, Real balance) {
@@ -344,28 +350,17 @@ void World::setCharacterBalance(std::size_t k, Real balance) {
   Character& c = characters_[k];
   c.goalBalance = balance;
   if (c.state == CharacterState::Active || c.state == CharacterState::LettingGo) c.balance = balance;
-  const BodyId root = c.bones[0].body;
-  if (balance > 0.0 && !bodyDrive(root)) {
-    // Made now, so that the step only aims it.
-    const BodyPose pose = bodyPose(root);
-    constraints_.setBodyDrive(bodies_[root].rigid,
-                              BodyDrive{pose.center, pose.orientation, 0.0, 0.0, c.rootAngularStiffness});
-  }
-  islands_.wake(islands_.bodyNode(root));
+  if (balance > 0.0) makeRootDrive(c, 0.0);
+  islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 
 void World::setCharacterReaction(std::size_t k, const Reaction& reaction) {
   require(k < characters_.size(), "setCharacterReaction: character index must exist");
   Character& c = characters_[k];
   checkReaction(reaction, *c.now.clip, "setCharacterReaction");
-  const BodyId root = c.bones[0].body;
-  if (reaction.getUp.clip && !bodyDrive(root)) {
-    const BodyPose pose = bodyPose(root);
-    constraints_.setBodyDrive(bodies_[root].rigid,
-                              BodyDrive{pose.center, pose.orientation, 0.0, 0.0, c.rootAngularStiffness});
-  }
+  if (reaction.getUp.clip) makeRootDrive(c, 0.0);
   c.reaction = reaction;
-  islands_.wake(islands_.bodyNode(root));
+  islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 
 // Each substep: the clips move on by h and every character's drives are aimed at the pose for the
@@ -402,9 +397,7 @@ void World::animate(Real h) {
       const BodyDrive carry{c.origin + c.frame * (c.scale * c.pose.root), characterTargets_[0],
                             c.rootStrength, c.rootStiffness, c.rootAngularStiffness};
       constraints_.setBodyDrive(root.rigid, carry);
-    } else if (c.balance > 0.0 || c.goalBalance > 0.0 || c.reaction.getUp.clip) {
-      // The balance, or a drive kept at strength 0 while limp, so that balancing or lifting it
-      // again allocates nothing.
+    } else if (keepsRootDrive(c)) {
       const BodyDrive balance{rigidBodies_.position[root.rigid], balanceTarget(c, characterTargets_[0]),
                               c.balance, 0.0, c.rootAngularStiffness};
       constraints_.setBodyDrive(root.rigid, balance);

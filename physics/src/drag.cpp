@@ -47,13 +47,8 @@ void applyDrag(Particles& p, const Body* box, const Embedding& point, const Vec3
   const glm::dmat3 rx = crossMatrix(x - m.centre), inverseInertia = glm::inverse(m.inertia);
   const glm::dmat3 K = glm::dmat3(1.0 / m.mass) + glm::transpose(rx) * inverseInertia * rx;
   const Vec3 impulse = glm::inverse(glm::dmat3(1.0) + (h * h * stiffness + h * damping) * K) * (h * force);
-  // Every particle's velocity changes by dv + dw x r_i; moving x by that times h, with x* kept,
-  // makes it part of the Verlet velocity.
-  const Vec3 dv = impulse / m.mass, dw = inverseInertia * glm::cross(x - m.centre, impulse);
-  for (ParticleId i = box->firstParticle;
-       i < box->firstParticle + static_cast<ParticleId>(box->particleCount); ++i) {
-    p.position[i] += (dv + glm::cross(dw, p.position[i] - m.centre)) * h;
-  }
+  // massProperties succeeded, so no carrier is pinned: every particle takes dv + dw x r_i.
+  addBoxVelocity(p, *box, m.centre, impulse / m.mass, inverseInertia * glm::cross(x - m.centre, impulse), h);
 }
 
 }  // namespace phys::detail

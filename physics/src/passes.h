@@ -189,6 +189,11 @@ struct MassProperties {
 /// False when the box cannot move as a rigid body: a particle pinned or frozen, or the box crushed
 /// flat (four or more particles not in one plane make the inertia positive definite).
 bool massProperties(const Particles& p, const Body& box, MassProperties& out);
+/// Changes a particle box's velocity by dv (m/s) at `centre` and dw (rad/s) about it, as its
+/// particles' x - x* over the substep h (the Verlet velocity): each free particle moves by
+/// (dv + dw x r_i) h; a pinned or frozen one stays.
+void addBoxVelocity(Particles& p, const Body& box, const Vec3& centre, const Vec3& dv, const Vec3& dw,
+                    Real h);
 /// A box's rigid motion over the substep, from its particles' x - x*: the centre's (m), and the
 /// rotation (rad, about the centre) that keeps the particles' angular momentum. Velocities times h.
 struct RigidMotion {

@@ -60,11 +60,7 @@ void World::applyPushes(Real h) {
       if (mass == 0.0) continue;  // all pinned or frozen: nothing to move
       dv = impulse / mass;
     }
-    for (int j = 0; j < body.particleCount; ++j) {
-      const ParticleId i = body.firstParticle + j;
-      if (particles_.inverseMass[i] == 0.0) continue;
-      particles_.position[i] += (dv + glm::cross(dw, particles_.position[i] - centre)) * h;
-    }
+    detail::addBoxVelocity(particles_, body, centre, dv, dw, h);
   }
   std::erase_if(pushes_, [](const Push& p) { return p.remaining <= 0.0; });
 }

@@ -82,17 +82,23 @@ TEST(Tackle, TheLineIsKnockedDownAndGetsUp) {
   phys::World& w = scene.world;
   ASSERT_EQ(w.characters().size(), 5u);
   int knocked = 0;
+  double allUp = -1.0;  // when the last one knocked down was active again (s)
   std::vector<bool> down(5, false);
   while (w.time() < 12.0) {
     w.step();
+    bool up = true;
     for (std::size_t k = 0; k < 5; ++k) {
-      if (!down[k] && w.characters()[k].state == phys::CharacterState::Down) {
+      const phys::CharacterState state = w.characters()[k].state;
+      if (!down[k] && state == phys::CharacterState::Down) {
         down[k] = true;
         ++knocked;
       }
+      up = up && state == phys::CharacterState::Active;
     }
+    if (knocked > 0 && up && allUp < 0.0) allUp = w.time();
+    if (!up) allUp = -1.0;
   }
-  std::printf("line-up: %d of 5 knocked down\n", knocked);
+  std::printf("line-up: %d of 5 knocked down, all standing again from %.2f s\n", knocked, allUp);
   EXPECT_GE(knocked, 4);
   for (const phys::Character& c : w.characters()) {
     EXPECT_EQ(c.state, phys::CharacterState::Active) << c.ragdoll;

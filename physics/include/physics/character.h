@@ -106,7 +106,6 @@ struct Character {
   CharacterState state = CharacterState::Active;
   Real stateTime = 0.0;     ///< unit: s; since the state began
   Real fromStrength = 0.0;  ///< the strengths the state began with, what its ramp starts from
-  Real fromRootStrength = 0.0;
   Real fromBalance = 0.0;
   /// unit: m/s; the last step's blow, what the threshold is held against: the fastest closing
   /// speed at which another body struck one of its parts, or its root part's speed change over

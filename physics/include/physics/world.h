@@ -329,6 +329,7 @@ class World {
   void react();
   void noteBlows();
   Quat balanceTarget(const Character& c, const Quat& upright) const;
+  void makeRootDrive(const Character& c, Real strength);
   bool anyCharacterActive() const;
   void integrateParticles(Real h);
   void applyPushes(Real h);
