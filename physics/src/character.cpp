@@ -291,8 +291,37 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   characters_.push_back(std::move(c));
   // Made last, so that a refusal above leaves the world as it was.
   const Character& added = characters_.back();
+  if (desc.startInPose) putInPose(added);
   if (added.rootStrength > 0.0 || keepsRootDrive(added)) makeRootDrive(added, added.rootStrength);
   return characters_.size() - 1;
+}
+
+// Each part turned to its target in the character's pose, parents first, the root put on the clip's
+// path (its feet on the clip's floor) and every other part moved so that its joint's pivot meets its
+// parent's; all at rest, so that the first substep does not read the move as a speed.
+void World::putInPose(const Character& c) {
+  std::vector<Quat> targets(c.bones.size());
+  targetOrientations(c, c.pose, targets);
+  RigidBodies& r = rigidBodies_;
+  for (std::size_t b = 0; b < c.bones.size(); ++b) {
+    const CharacterBone& bone = c.bones[b];
+    const RigidId i = bodies_[bone.body].rigid;
+    r.orientation[i] = targets[b];
+    if (bone.parent < 0) {
+      r.position[i] = c.origin + c.frame * (c.scale * c.pose.root);  // on the clip's path
+    } else {
+      const RigidJoint& j = constraints_.rigidJoints()[bone.joint];
+      const RigidId p = bodies_[c.bones[static_cast<std::size_t>(bone.parent)].body].rigid;
+      const Vec3& own = bone.reversed ? j.pivotA : j.pivotB;
+      const Vec3& parents = bone.reversed ? j.pivotB : j.pivotA;
+      r.position[i] = r.position[p] + r.orientation[p] * parents - r.orientation[i] * own;
+    }
+    r.previousPosition[i] = r.position[i];
+    r.previousOrientation[i] = r.orientation[i];
+    r.velocity[i] = Vec3(0.0);
+    r.angularVelocity[i] = Vec3(0.0);
+  }
+  islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 
 // The root's drive made now, at the pose the root is in, so that the step only aims it and never

@@ -150,6 +150,26 @@ const JointDrive& World::jointDrive(std::size_t k) const {
   return constraints_.drives()[k];
 }
 
+// A multiplier is an impulse times h (the position change it makes is w lambda), so the force is
+// lambda / h^2; the passes of a substep add to one multiplier, zeroed by the first.
+Real World::jointDriveTorque(std::size_t k) const {
+  require(k < constraints_.rigidJoints().size(), "jointDriveTorque: joint index must exist");
+  const Real h = substepDt();
+  return std::abs(constraints_.driveLambda()[k]) / (h * h);
+}
+
+DriveLoad World::bodyDriveLoad(BodyId id) const {
+  require(id < bodies_.size(), "bodyDriveLoad: body id must exist");
+  const std::span<const DrivenBody> driven = constraints_.bodyDrives();
+  const std::span<const Real> lambda = constraints_.bodyDriveLambda();
+  const Real hh = substepDt() * substepDt();
+  for (std::size_t k = 0; k < driven.size(); ++k) {
+    if (bodies_[id].model == BodyModel::Rigid && driven[k].rigid == bodies_[id].rigid)
+      return DriveLoad{std::abs(lambda[2 * k]) / hh, std::abs(lambda[2 * k + 1]) / hh};
+  }
+  return {};
+}
+
 Quat World::jointRest(std::size_t k) const {
   require(k < constraints_.rigidJoints().size(), "jointRest: joint index must exist");
   return restTarget(constraints_.rigidJoints()[k]);

@@ -181,6 +181,47 @@ TEST(Character, DrivesAreAimedAtTheClipsPose) {
   EXPECT_GT(w.profile()[phys::Stage::Animate], 0.0);
 }
 
+// startInPose: the ragdoll is put in the clip's first pose when the character is added, at rest,
+// every joint closed (the pivots meet to round-off) and every part on its target, its root on the
+// clip's path; without it the parts stay where the ragdoll was made.
+TEST(Character, StartsInTheClipsPoseWhenAsked) {
+  const Real bend = -60.0 * kDeg;
+  const auto clip = std::make_shared<const Clip>(ragdollClip(2, [&](const std::string& bone, Real) {
+    return bone.starts_with("lower-") ? bend : bone == "upper-leg-left" ? -30.0 * kDeg : 0.0;
+  }));
+  for (const bool posed : {false, true}) {
+    SCOPED_TRACE(posed ? "in the clip's pose" : "as made");
+    phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
+    const phys::Ragdoll r = rigidRagdoll(w, "r");
+    const phys::BodyId torso = r.parts[static_cast<std::size_t>(phys::RagdollPart::Torso)];
+    const Vec3 madeAt = w.bodyPose(torso).center;
+    phys::CharacterDesc desc;
+    desc.ragdoll = "r";
+    desc.playback.clip = clip;
+    desc.startInPose = posed;
+    w.addCharacter(desc);
+    for (std::size_t k = 0; k < w.rigidJoints().size(); ++k) {
+      const phys::JointDesc j = w.jointDesc(k);
+      EXPECT_LT(glm::length(j.pivot - j.pivotB), 1e-12) << k;
+    }
+    for (int h = 0; h < phys::kRagdollHinges; ++h) {
+      const phys::RagdollHinge& hinge = r.hinges[static_cast<std::size_t>(h)];
+      const bool lower =
+          hinge.child == phys::RagdollPart::LowerArmLeft || hinge.child == phys::RagdollPart::LowerArmRight ||
+          hinge.child == phys::RagdollPart::LowerLegLeft || hinge.child == phys::RagdollPart::LowerLegRight;
+      const Real want = !posed                                           ? 0.0
+                        : lower                                          ? bend
+                        : hinge.child == phys::RagdollPart::UpperLegLeft ? -30.0 * kDeg
+                                                                         : 0.0;
+      EXPECT_NEAR(phys::hingeAngle(w, r, hinge), want, 1e-9) << h;
+    }
+    for (const phys::BodyId part : r.parts) EXPECT_EQ(glm::length(w.bodyVelocity(part).first), 0.0);
+    // The clip's root is 1.17 m over its floor: in open space the frame's origin is where the torso
+    // was made, less that height, so the torso stays put.
+    EXPECT_NEAR(glm::length(w.bodyPose(torso).center - madeAt), 0.0, 1e-12);
+  }
+}
+
 // A swinging clip (the legs and arms as in a run, 1.4 Hz) followed with the root carried by the hand
 // of god, at the default stiffness and strength 0.9: the parts lag their targets by a few degrees.
 TEST(Character, FollowsAMovingClipWithTheRootCarried) {

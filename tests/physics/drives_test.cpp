@@ -41,13 +41,14 @@ struct Hinged {
   BodyId parent, child;
 };
 
-Hinged hinged(const phys::SolverSettings& solver, Vec3 gravity = Vec3(0.0)) {
+Hinged hinged(const phys::SolverSettings& solver, Vec3 gravity = Vec3(0.0), Real damping = 0.0) {
   Hinged h{testing_phys::openSpace(solver, gravity), BodyId{}, BodyId{}};
   h.parent = h.world.addBody(rigidBox(Vec3(-0.5, 0.0, 0.0), Vec3(1.0), 1e6));
   h.child = h.world.addBody(rigidBox(Vec3(0.5, 0.0, 0.0), Vec3(1.0, 0.1, 0.1), 1.0));
   JointDesc j = testing_phys::joint(JointKind::Hinge, h.parent, h.child, Vec3(0.0), kZ, Vec3(1.0, 0.0, 0.0));
   j.minAngle = -std::numbers::pi;
   j.maxAngle = std::numbers::pi;
+  j.damping = damping;
   h.world.addJoint(j);
   h.world.ignoreCollision(h.parent, h.child);  // they touch at the pivot
   return h;
@@ -133,6 +134,26 @@ TEST(JointDrive, AHingeDrivenTowardsAnAngleSwingsAtTheTorsionSpringsPeriod) {
   // The damping is the step's, and goes as h: a quarter of the substep keeps most of what 1 x 4 lost.
   EXPECT_GT(decays[2], 0.93);
   EXPECT_GT(1.0 - decays[0], 3.0 * (1.0 - decays[2]));
+}
+
+// What the drive exerts is what holds the bar: pushed at its tip by a force across it, the bar
+// settles (the joint's damping takes the swing) where the drive's torque k angle answers the push's
+// F L cos(angle), and jointDriveTorque reports that torque, at any passes and substeps, within 1%.
+TEST(JointDrive, ItsTorqueIsWhatHoldsTheChildAgainstAPush) {
+  const Real stiffness = 10.0, force = 2.0;
+  for (const auto& [iterations, substeps] : {std::pair{1, 4}, std::pair{2, 8}, std::pair{4, 16}}) {
+    SCOPED_TRACE(testing::Message() << iterations << " x " << substeps);
+    Hinged h = hinged(xpbd(iterations, substeps), Vec3(0.0), 5.0);
+    EXPECT_EQ(h.world.jointDriveTorque(0), 0.0);  // no drive, and no step yet
+    h.world.setJointDrive(0, drive(0.0, 0.5, stiffness));
+    h.world.push(h.child, Vec3(0.0, force, 0.0), 20.0, Vec3(1.0, 0.0, 0.0));
+    for (int step = 0; step < 600; ++step) h.world.step();
+    const Real angle = h.world.jointAngle(0);
+    const Real torque = h.world.jointDriveTorque(0);
+    EXPECT_GT(angle, 0.1);
+    EXPECT_NEAR(torque, force * std::cos(angle), 0.01 * force);
+    EXPECT_NEAR(torque, stiffness * angle, 0.01 * torque);
+  }
 }
 
 // Compliance 0: each pass puts the child on its target, and the pin's corrections after it are
@@ -381,6 +402,9 @@ TEST(BodyDrive, ABodyHeldAgainstGravitySagsByItsWeightOverTheStiffness) {
       }
       if (start == sag) {
         EXPECT_LT(std::max(-lowest, highest), 1.05 * g * h / (2.0 * std::sqrt(stiffness / mass)));
+        // What the drive exerted holds the body up: its weight, within the bob's 3%.
+        EXPECT_NEAR(w.bodyDriveLoad(id).force, mass * g, 0.03 * mass * g);
+        EXPECT_NEAR(w.bodyDriveLoad(id).torque, 0.0, 1e-9);
       } else {
         ASSERT_GE(crossings, 3);
         const Real period = (last - first) / (crossings - 1);

@@ -75,6 +75,11 @@ struct CharacterDesc {
   /// while the root is not carried (rootStrength 0)
   Real balance = 0.0;
   Reaction reaction;
+  /// Put the ragdoll in the clip's pose at playback.time when the character is added, at rest: the
+  /// root keeps its centre, each part turned to its target and moved so that its joint meets its
+  /// parent's. Without it the ragdoll starts in the pose it is in, and the drives turn it into the
+  /// clip's over the first steps.
+  bool startInPose = false;
 };
 
 /// One part of a character, bound to a clip's bone.

@@ -60,10 +60,12 @@ class ConstraintGraph {
   std::span<const JointDrive> drives() const { return drives_; }
   /// XPBD's multipliers of the drives, per rigid joint.
   std::span<Real> driveLambda() { return driveLambda_; }
+  std::span<const Real> driveLambda() const { return driveLambda_; }
   /// The bodies' drives, in the order they were first set.
   std::span<const DrivenBody> bodyDrives() const { return bodyDrives_; }
   /// Their multipliers, two a drive: its centre's and its turn's.
   std::span<Real> bodyDriveLambda() { return bodyDriveLambda_; }
+  std::span<const Real> bodyDriveLambda() const { return bodyDriveLambda_; }
   std::span<const JointFriction> jointFrictions() const { return jointFrictions_; }
 
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its

@@ -48,6 +48,12 @@ struct BodyDrive {
   Real angularStiffness = kDriveStiffness;  ///< unit: N m / rad; at strength 1/2
 };
 
+/// What a body drive exerted in a substep (World::bodyDriveLoad).
+struct DriveLoad {
+  Real force = 0.0;   ///< unit: N; on the body's centre
+  Real torque = 0.0;  ///< unit: N m
+};
+
 /// A body drive as the solver holds it: the rigid body it pulls.
 struct DrivenBody {
   RigidId rigid{};

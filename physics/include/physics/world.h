@@ -184,8 +184,15 @@ class World {
   /// Joint k's drive (drives.h). A joint is made with strength 0 (no drive) and its rest as the
   /// target.
   const JointDrive& jointDrive(std::size_t k) const;
+  /// unit: N m; the torque joint k's drive exerted in the last substep: XPBD's multiplier over the
+  /// substep's passes / h^2 (drives.cpp), what the joint needed to follow its target. 0 for a joint
+  /// without a drive, and before the first step.
+  Real jointDriveTorque(std::size_t k) const;
   /// The body's drive towards a pose in the world (BodyDrive, the hand of god), if it has one.
   std::optional<BodyDrive> bodyDrive(BodyId id) const;
+  /// The force (N) and torque (N m) body `id`'s drive exerted in the last substep, as
+  /// jointDriveTorque; zeros for a body without one.
+  DriveLoad bodyDriveLoad(BodyId id) const;
   /// Sets the body's drive, replacing any, and wakes its island. Throws std::invalid_argument (and
   /// keeps the old drive) for a body that does not exist or is not rigid, a position that is not
   /// finite, an orientation that is not a unit quaternion (within 1e-6; it is made unit), a
@@ -330,6 +337,8 @@ class World {
   void noteBlows();
   Quat balanceTarget(const Character& c, const Quat& upright) const;
   void makeRootDrive(const Character& c, Real strength);
+  /// Puts character c's ragdoll in its target pose, at rest (CharacterDesc::startInPose).
+  void putInPose(const Character& c);
   bool anyCharacterActive() const;
   void integrateParticles(Real h);
   void applyPushes(Real h);
