@@ -100,6 +100,13 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   const std::string backwards =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" speed=\"-1\"/>");
   EXPECT_NE(backwards.find("attribute 'speed'"), std::string::npos) << backwards;
+  const std::string pose = error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" pose=\"stand\"/>");
+  EXPECT_NE(pose.find("attribute 'pose': 'stand' must be clip or ragdoll"), std::string::npos) << pose;
+  // pose="clip" puts the ragdoll in the clip's first pose: the parts on their targets from the start.
+  const scenes::Scene posed = scenes::loadSceneText(
+      characterScene("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" pose=\"clip\"/>"), "c.xml");
+  EXPECT_LT(phys::trackingError(posed.world, 0), 1e-6);  // acos near 1: 1e-16 of round-off reads 1.5e-8 rad
+  EXPECT_GT(phys::trackingError(ok.world, 0), 0.1);      // as made: 30 degrees and more from the run's pose
   // A capsule ragdoll's parts are not the box ragdoll's bones: each side's are named.
   const std::string capsule = error(
       "<ragdoll name=\"k\" shape=\"capsule\" pos=\"3 0.92 0\" model=\"rigid\"/><character ragdoll=\"k\" "

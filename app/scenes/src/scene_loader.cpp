@@ -485,6 +485,10 @@ class Builder {
     desc.strength = detail::readFraction(e, "strength").value_or(1.0);
     desc.rootStrength = detail::readFraction(e, "root-strength").value_or(0.0);
     desc.balance = detail::readFraction(e, "balance").value_or(0.0);
+    if (auto pose = e.text("pose")) {
+      if (*pose != "clip" && *pose != "ragdoll") e.fail("pose", "'" + *pose + "' must be clip or ragdoll");
+      desc.startInPose = *pose == "clip";
+    }
     if (auto scale = e.number("scale", "")) {
       if (!(*scale > 0.0)) e.fail("scale", "'" + detail::formatNumber(*scale) + "' must be > 0");
       desc.scale = *scale;
