@@ -63,6 +63,10 @@ inline constexpr OptionSpec kDump{"--dump", "FILE", "a file name",
 inline constexpr OptionSpec kData{"--data", "DIR", "a folder",
                                   "folder holding assets/ (default: the source tree)"};
 inline constexpr OptionSpec kOut{"--out", "DIR", "a folder", "the folder for"};
+inline constexpr OptionSpec kError{"--error", "FIGURE", "a figure's name",
+                                   "what the chart and the Pareto front measure: position (the distance "
+                                   "from the accuracy target; the default) or a figure of the run table "
+                                   "(tracking-error, joint-error, ...)"};
 inline constexpr OptionSpec kNoPeers{"--no-peers", "", "",
                                      "leave out the peer engines (Bullet, ODE, MuJoCo)"};
 inline constexpr OptionSpec kScene{"--scene", "NAME...", "a scene name",

@@ -113,7 +113,7 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
   // Then the figures of every step, ours alone (run_metrics.h).
   for (const RunMetric& m : kRunMetrics)
     out << " " << m.name << (*m.unit == '\0' ? "" : " (") << m.unit << (*m.unit == '\0' ? "" : ")")
-        << ", every step |";
+        << (m.over == OverRun::Rms ? ", RMS over the run |" : ", every step |");
   out << " unsupported / notes |\n|---|---|---|---:|---:|---:|---:|---:|---:|";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) out << "---:|";
   out << "---|\n";

@@ -80,7 +80,39 @@ std::string jsonText(const RunResult& r) {
   j["awake_bodies"] = r.awakeBodies;
   j["sleeping_bodies"] = r.sleepingBodies;
   j["hash"] = hexHash(r.hash);
+  Json drives = Json::array();
+  for (const DriveFigures& d : r.drives) {
+    drives.push_back(Json{{"character", d.character},
+                          {"bone", d.bone},
+                          {"root", d.root},
+                          {"rms_torque", d.rmsTorque},
+                          {"peak_torque", d.peakTorque},
+                          {"rms_force", d.rmsForce},
+                          {"peak_force", d.peakForce}});
+  }
+  if (!r.drives.empty()) j["drives"] = drives;  // with characters alone: the object stays flat without
   return jsonLine(j);
+}
+
+// A line per character: what each part's drive needed to follow the clip, RMS over the run and
+// peak ("head 3.1/12"), the root's hand of god first as a force and a torque.
+std::string drivesText(const std::vector<DriveFigures>& drives) {
+  if (drives.empty()) return {};
+  std::string s =
+      "drives       what each character's parts needed to follow its clip, RMS/peak over the run:\n";
+  for (std::size_t i = 0; i < drives.size(); ++i) {
+    const DriveFigures& d = drives[i];
+    const bool first = i == 0 || drives[i - 1].character != d.character;
+    if (first) s += (i == 0 ? "" : " N m\n") + std::string("             ") + d.character + ":";
+    if (d.root) {
+      s += " " + d.bone + " (root) " + num(d.rmsForce, 3) + "/" + num(d.peakForce, 3) + " N and " +
+           num(d.rmsTorque, 3) + "/" + num(d.peakTorque, 3) + " N m;";
+    } else {
+      s += std::string(first || drives[i - 1].root ? " " : ", ") + d.bone + " " + num(d.rmsTorque, 3) + "/" +
+           num(d.peakTorque, 3);
+    }
+  }
+  return s + " N m\n";
 }
 
 std::string summaryText(const RunResult& r) {
@@ -124,9 +156,11 @@ std::string summaryText(const RunResult& r) {
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& metric = kRunMetrics[i];
     s += std::string(i == 0 ? " " : ", ") + metric.name + " " + num(r.worst[i]) +
-         (*metric.unit == '\0' ? "" : " ") + metric.unit;
+         (*metric.unit == '\0' ? "" : " ") + metric.unit +
+         (metric.over == OverRun::Rms ? " (RMS over the run)" : "");
   }
   s += "\n";
+  s += drivesText(r.drives);
   s += "energy       initial " + num(r.energyInitial) + " J, final " + num(m.energy()) + " J (change " +
        num(m.energy() - r.energyInitial) + " J)\n";
   if (r.freezes.empty()) {

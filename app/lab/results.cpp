@@ -17,6 +17,7 @@
 #include "converge.h"
 #include "csv.h"
 #include "fileio/files.h"
+#include "json.h"
 #include "lab.h"
 #include "options.h"
 #include "report.h"
@@ -176,6 +177,98 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
   return md.str();
 }
 
+// ---- pose tracking ---------------------------------------------------------------------------
+
+// The bar for the run cycle: its parts within 5 degrees RMS of the clip at 1/60 s.
+constexpr double kTrackingBar = 5.0;  // unit: degrees
+
+std::vector<std::string> trackingArgs(const ReportOptions& o, const fs::path& dir) {
+  std::vector<std::string> args{"run-cycle", "--error",    "tracking-error", "--no-peers",
+                                "--out",     dir.string(), "--data",         o.data.string()};
+  if (o.quick) {
+    args.insert(args.end(), {"--iterations", "1,2", "--substeps", "1", "--repeat", "1", "--steps", "10"});
+  } else {
+    args.insert(args.end(), {"--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--dt",
+                             "0.0333333333333333,0.0166666666666667,0.00833333333333333", "--steps", "600"});
+  }
+  return args;
+}
+
+// "xpbd 2x8 at dt 1/60": a tracking row's setting, its dt as a fraction.
+std::string trackingSetting(const CsvRow& r) {
+  return settingName(r) + " at dt 1/" + formatNumber(1.0 / fieldNumber(r, "dt"), 3);
+}
+
+// The front of the tracking sweep and, at each dt, the cheapest setting within the bar.
+std::string trackingWords(const std::vector<CsvRow>& rows) {
+  std::ostringstream md;
+  std::vector<const CsvRow*> front;
+  for (const CsvRow& r : rows) {
+    if (fieldText(r, "pareto") == "1") front.push_back(&r);
+  }
+  std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
+    return fieldNumber(*a, "ms_per_sim_second") < fieldNumber(*b, "ms_per_sim_second");
+  });
+  md << "Pareto front, cheapest first:";
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    md << (i == 0 ? " " : "; ") << trackingSetting(*front[i]) << " ("
+       << formatNumber(fieldNumber(*front[i], "ms_per_sim_second"), 3) << " ms per simulated s, "
+       << formatNumber(fieldNumber(*front[i], "rms_tracking_error"), 3) << " deg)";
+  }
+  md << ".\n\nCheapest setting at each dt within " << formatNumber(kTrackingBar, 3)
+     << " degrees RMS, and the best any setting at that dt reached:\n\n"
+     << "| dt | cheapest within the bar | ms/step | tracking error | best setting | its error |\n"
+     << "|---|---|---:|---:|---|---:|\n";
+  std::map<double, std::pair<const CsvRow*, const CsvRow*>> byDt;  // cheapest within, best
+  for (const CsvRow& r : rows) {
+    auto& [cheapest, best] = byDt[fieldNumber(r, "dt")];
+    const double e = fieldNumber(r, "rms_tracking_error");
+    if (!std::isfinite(e)) continue;
+    if (e <= kTrackingBar &&
+        (cheapest == nullptr || fieldNumber(r, "ms_per_step") < fieldNumber(*cheapest, "ms_per_step")))
+      cheapest = &r;
+    if (best == nullptr || e < fieldNumber(*best, "rms_tracking_error")) best = &r;
+  }
+  for (const auto& [dt, pair] : byDt) {
+    const auto& [cheapest, best] = pair;
+    md << "| 1/" << formatNumber(1.0 / dt, 3) << " | "
+       << (cheapest != nullptr ? settingName(*cheapest) : std::string("none")) << " | "
+       << (cheapest != nullptr ? formatNumber(fieldNumber(*cheapest, "ms_per_step"), 3) : std::string("-"))
+       << " | "
+       << (cheapest != nullptr ? formatNumber(fieldNumber(*cheapest, "rms_tracking_error"), 3) + " deg"
+                               : std::string("-"))
+       << " | " << (best != nullptr ? settingName(*best) : std::string("-")) << " | "
+       << (best != nullptr ? formatNumber(fieldNumber(*best, "rms_tracking_error"), 3) + " deg"
+                           : std::string("-"))
+       << " |\n";
+  }
+  return md.str();
+}
+
+// What each joint needed to follow the run cycle at the scene's own setting (`lab run --json`'s
+// drives), as a table.
+std::string drivesTable(const std::string& runJson) {
+  const Json j = Json::parse(runJson);
+  std::ostringstream md;
+  md << "What each part's drive needed over the 10 s at the scene's own setting ("
+     << j["method"].get<std::string>() << " " << j["iterations"].get<int>() << "x" << j["substeps"].get<int>()
+     << ", `lab run run-cycle --json`'s `drives`): the torque from its parent's joint, and for the root "
+        "(the torso) the hand of god's force and torque, RMS over the run's steps and the largest after "
+        "any step.\n\n| part | RMS | peak |\n|---|---:|---:|\n";
+  for (const Json& d : j["drives"]) {
+    const auto number = [&](const char* key) { return formatNumber(d[key].get<double>(), 3); };
+    if (d["root"].get<bool>()) {
+      md << "| " << d["bone"].get<std::string>() << " (root: hand of god) | " << number("rms_force") << " N, "
+         << number("rms_torque") << " N m | " << number("peak_force") << " N, " << number("peak_torque")
+         << " N m |\n";
+    } else {
+      md << "| " << d["bone"].get<std::string>() << " | " << number("rms_torque") << " N m | "
+         << number("peak_torque") << " N m |\n";
+    }
+  }
+  return md.str();
+}
+
 // ---- the report -------------------------------------------------------------------------------
 
 std::string today() {
@@ -233,6 +326,32 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     md << "![error against cost, " << s.name << "](results/" << s.name << "/error-vs-cost.png)\n\n"
        << sweepWords(readCsv(dir / "results.csv").rows) << "\nAll runs: [results.csv](results/" << s.name
        << "/results.csv).\n\n";
+  }
+
+  md << "## Pose tracking\n\n"
+     << "One ragdoll on the run cycle (`run-cycle.xml`: strength 0.9, its torso carried by the hand of god), "
+        "the RMS over the run's steps and over its parts of the angle between each part and its target "
+        "(`lab sweep run-cycle --error tracking-error`), against cost per simulated second, at dt 1/30, "
+        "1/60 and 1/120 s. Only rigid ragdolls have drives, and a rigid body is solved by XPBD whatever "
+        "the method, so the four methods are one here (docs/physics.md, \"Joint drives\"). The figure "
+        "holds the first half second, when the parts turn from the ragdoll's rest into the clip's first "
+        "pose.\n\n";
+  {
+    const fs::path dir = results / "tracking";
+    const CommandOutput r = runCommandMain(sweepMain, trackingArgs(o, dir), err);
+    failed |= r.code != 0;
+    if (r.code == 0) {
+      md << "![tracking error against cost, run-cycle](results/tracking/error-vs-cost.png)\n\n"
+         << trackingWords(readCsv(dir / "results.csv").rows)
+         << "\nAll runs: [results.csv](results/tracking/results.csv).\n\n";
+    } else {
+      md << codeBlockOrText(r) << "\n";
+    }
+    std::vector<std::string> runArgs{"run", "run-cycle", "--json", "--data", o.data.string()};
+    if (o.quick) runArgs.insert(runArgs.end(), {"--steps", "10"});
+    const CommandOutput run = runCommandMain(labMain, runArgs, err);
+    failed |= run.code != 0;
+    md << (run.code == 0 ? drivesTable(run.out) : codeBlockOrText(run)) << "\n";
   }
 
   md << "## Where methods fail\n\n";

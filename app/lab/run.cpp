@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
+#include "physics/character.h"
 #include "runner.h"
 
 namespace lab {
@@ -65,6 +67,52 @@ class ProgressLine {
   Clock::time_point start_, next_;
 };
 
+// Each character part's drive read after every step (World::jointDriveTorque, bodyDriveLoad: the
+// last substep's), kept as a sum of squares and a peak. Sized before the first step.
+class DriveLog {
+ public:
+  explicit DriveLog(const phys::World& world) {
+    for (const phys::Character& c : world.characters()) {
+      for (const phys::CharacterBone& bone : c.bones)
+        figures_.push_back({c.ragdoll, c.now.clip->bones[std::size_t(bone.clipBone)], bone.parent < 0});
+    }
+  }
+
+  void after(const phys::World& world) {
+    std::size_t i = 0;
+    for (const phys::Character& c : world.characters()) {
+      for (const phys::CharacterBone& bone : c.bones) {
+        DriveFigures& f = figures_[i++];
+        double torque = 0.0, force = 0.0;
+        if (bone.parent < 0) {
+          const phys::DriveLoad load = world.bodyDriveLoad(bone.body);
+          torque = load.torque;
+          force = load.force;
+        } else {
+          torque = world.jointDriveTorque(bone.joint);
+        }
+        f.rmsTorque += torque * torque;  // a sum of squares until finish()
+        f.rmsForce += force * force;
+        f.peakTorque = std::max(f.peakTorque, torque);
+        f.peakForce = std::max(f.peakForce, force);
+      }
+    }
+    ++steps_;
+  }
+
+  std::vector<DriveFigures> finish() {
+    for (DriveFigures& f : figures_) {
+      f.rmsTorque = steps_ > 0 ? std::sqrt(f.rmsTorque / steps_) : 0.0;
+      f.rmsForce = steps_ > 0 ? std::sqrt(f.rmsForce / steps_) : 0.0;
+    }
+    return std::move(figures_);
+  }
+
+ private:
+  std::vector<DriveFigures> figures_;
+  int steps_ = 0;
+};
+
 }  // namespace
 
 RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress,
@@ -90,7 +138,9 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   spec.profile = true;
   spec.maxima = true;
   ProgressLine line(progress, options.steps, std::chrono::steady_clock::now(), timing);
-  spec.afterStep = [&line](int step) {
+  DriveLog drives(world);
+  spec.afterStep = [&line, &drives, &world](int step) {
+    drives.after(world);
     line.after(step);
     return true;
   };
@@ -109,6 +159,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   r.islands = world.islands().islandCount();
   r.awakeBodies = world.islands().awakeBodies();
   r.sleepingBodies = world.islands().sleepingBodies();
+  r.drives = drives.finish();
   return r;
 }
 

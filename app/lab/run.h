@@ -15,6 +15,18 @@
 
 namespace lab {
 
+/// What one part of a character needed to follow its clip over a run: its joint's drive (the
+/// torque from its parent), or for the root its body drive, the hand of god (a force and a torque).
+struct DriveFigures {
+  std::string character;    ///< its ragdoll's name
+  std::string bone;         ///< the clip's name for the part
+  bool root = false;        ///< the root: driven against the world, not by a joint
+  double rmsTorque = 0.0;   ///< unit: N m; root mean square over the run's steps
+  double peakTorque = 0.0;  ///< unit: N m; the largest after any step
+  double rmsForce = 0.0;    ///< unit: N; the root's alone
+  double peakForce = 0.0;   ///< unit: N
+};
+
 /// Everything `lab run` reports, gathered once so the summary, the JSON and the tests agree.
 struct RunResult {
   std::string scene;            ///< the scene's name
@@ -39,6 +51,7 @@ struct RunResult {
   std::size_t islands = 0;                  ///< Islands::islandCount() at the end
   std::size_t awakeBodies = 0;              ///< at the end
   std::size_t sleepingBodies = 0;           ///< at the end
+  std::vector<DriveFigures> drives;         ///< every character's parts, root first, in order
 };
 
 /// Whether `world` is stepped by XPBD whatever the method: it has rigid bodies and no stick. The

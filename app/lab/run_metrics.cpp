@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <glm/geometric.hpp>
+
+#include "physics/character.h"
 
 namespace lab {
 
@@ -18,11 +21,29 @@ double maxAngularSpeed(const phys::World& world) {
   return fastest;
 }
 
+double trackingErrorDegrees(const phys::World& world) {
+  double sum = 0.0, parts = 0.0;
+  for (std::size_t k = 0; k < world.characters().size(); ++k) {
+    const double e = phys::trackingError(world, k), n = double(world.characters()[k].bones.size());
+    sum += e * e * n;
+    parts += n;
+  }
+  return parts > 0.0 ? std::sqrt(sum / parts) * 180.0 / std::numbers::pi : 0.0;
+}
+
 void RunMaxima::observe(const phys::World& world) {
   const phys::Metrics metrics = world.metrics();
+  ++steps;
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const double v = kRunMetrics[i].read(world, metrics);
-    worst[i] = std::isfinite(v) ? std::max(worst[i], v) : std::numeric_limits<double>::infinity();
+    if (!std::isfinite(v) || std::isinf(worst[i])) {
+      worst[i] = std::numeric_limits<double>::infinity();
+    } else if (kRunMetrics[i].over == OverRun::Rms) {
+      sumOfSquares[i] += v * v;
+      worst[i] = std::sqrt(sumOfSquares[i] / double(steps));
+    } else {
+      worst[i] = std::max(worst[i], v);
+    }
   }
 }
 

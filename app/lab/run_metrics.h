@@ -1,5 +1,6 @@
 #pragma once
-// The figures read after every step of a run, each kept at its worst over the run. This table is
+// The figures read after every step of a run, each kept at its worst over the run, or as the root
+// mean square over the run's steps where that says more (how well a pose is tracked). This table is
 // the one place a figure is defined: `lab run --json` and its summary, sweep's results.csv,
 // tune's targets and compare's table all list it, so a figure added here appears in each
 // (docs/lab.md, "Figures of a run").
@@ -11,6 +12,12 @@
 
 namespace lab {
 
+/// How a figure read after every step becomes the run's.
+enum class OverRun {
+  Worst,  ///< the largest after any step
+  Rms,    ///< the root mean square over the steps
+};
+
 /// One figure of the table.
 struct RunMetric {
   const char* name;    ///< tune's METRIC and compare's heading: "joint-error"
@@ -19,11 +26,16 @@ struct RunMetric {
   const char* help;    ///< what it is, in a few words
   /// The figure after a step; `metrics` is world.metrics(), read once for all of them.
   double (*read)(const phys::World& world, const phys::Metrics& metrics);
+  OverRun over = OverRun::Worst;
 };
 
 /// The fastest spin of any body, rad/s: each body's angular velocity over the last substep
 /// (World::bodyVelocity; a particle body's from its particles' motion).
 double maxAngularSpeed(const phys::World& world);
+
+/// How far the characters' parts are from their targets after a step, unit: degrees: the root mean
+/// square over every character's parts of phys::trackingError's angle; 0 without characters.
+double trackingErrorDegrees(const phys::World& world);
 
 inline constexpr std::array kRunMetrics{
     RunMetric{"stick-error", "max_stick_error", "", "largest stick violation / rest length (0.01 = 1%)",
@@ -34,6 +46,10 @@ inline constexpr std::array kRunMetrics{
               [](const phys::World&, const phys::Metrics& m) { return double(m.maxPenetration); }},
     RunMetric{"angular-speed", "max_angular_speed", "rad/s", "fastest spin of a body",
               [](const phys::World& w, const phys::Metrics&) { return maxAngularSpeed(w); }},
+    RunMetric{"tracking-error", "rms_tracking_error", "deg",
+              "characters' parts from their clip's pose, RMS over the run",
+              [](const phys::World& w, const phys::Metrics&) { return trackingErrorDegrees(w); },
+              OverRun::Rms},
 };
 inline constexpr std::size_t kRunMetricCount = kRunMetrics.size();
 
@@ -49,10 +65,13 @@ inline constexpr std::size_t kStickErrorMetric = runMetricIndex("stick-error");
 inline constexpr std::size_t kPenetrationMetric = runMetricIndex("penetration");
 static_assert(kStickErrorMetric < kRunMetricCount && kPenetrationMetric < kRunMetricCount);
 
-/// Each figure of kRunMetrics at its worst so far: the largest, and infinity for good once a
-/// figure was not finite (a run that blew up is not rescued by a later small value).
+/// Each figure of kRunMetrics over the run so far: the largest, or the root mean square for an
+/// OverRun::Rms figure, and infinity for good once a figure was not finite (a run that blew up is
+/// not rescued by a later small value).
 struct RunMaxima {
   std::array<double, kRunMetricCount> worst{};
+  std::array<double, kRunMetricCount> sumOfSquares{};  ///< of the OverRun::Rms figures
+  long steps = 0;                                      ///< observed
 
   /// Reads every figure of the world as it is now.
   void observe(const phys::World& world);

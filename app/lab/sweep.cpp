@@ -52,7 +52,23 @@ struct SweepOptions {
   bool peers = true;
   std::filesystem::path dataDir;
   std::filesystem::path out;
+  /// What the chart and the front measure: kRunMetricCount for the distance from the accuracy
+  /// target, else that figure of kRunMetrics.
+  std::size_t measure = kRunMetricCount;
 };
+
+// --error's value: "position", or a figure of the run table by name.
+std::string readMeasure(const std::string& text, std::size_t& measure) {
+  if (text == "position") {
+    measure = kRunMetricCount;
+    return {};
+  }
+  measure = runMetricIndex(text);
+  if (measure < kRunMetricCount) return {};
+  std::string names = "position";
+  for (const RunMetric& m : kRunMetrics) names += std::string(", ") + m.name;
+  return "unknown figure '" + text + "' (one of " + names + ")";
+}
 
 void describeSweep(CommandLine& line, SweepOptions& o) {
   const std::string scenes = "(default: the scene's)";
@@ -65,6 +81,8 @@ void describeSweep(CommandLine& line, SweepOptions& o) {
   line.count(option::kRepeat, kMaxRepeats, o.repeats, "(default 3)");
   line.count(option::kSteps, kMaxSteps, o.steps,
              "at the scene's dt (default: 1 s of them); other dts run as long");
+  line.custom(
+      option::kError, false, [&o](const std::string& text) { return readMeasure(text, o.measure); }, "");
   line.flag(option::kNoPeers, o.peers, false, "");
   line.folder(option::kData, o.dataDir, "");
   line.folder(option::kOut, o.out, "results.csv, pareto.csv, sweep.gp and the chart (required)");
@@ -109,19 +127,26 @@ bool oneDt(const std::vector<Row>& rows) {
 double cost(const Row& r, bool perStep) {
   return perStep ? r.msPerStep : r.msPerSimSecond();
 }
-double shownError(const Row& r) {
-  return std::max(r.figures.error, kErrorFloor);
+// The error the chart and the front measure (SweepOptions::measure); NaN for a peer that has no such
+// figure of ours.
+double shownError(const Row& r, std::size_t measure) {
+  return std::max(measure < kRunMetricCount ? r.figures.maxima[measure] : r.figures.error, kErrorFloor);
+}
+// Whether a row has its place on the chart: it did not blow up and has the figure.
+bool charted(const Row& r, std::size_t measure) {
+  return !r.blewUp() && std::isfinite(shownError(r, measure));
 }
 
 // Marks the rows no other row beats on both cost and error (a blown-up run is never on it).
-void markPareto(std::vector<Row>& rows) {
+void markPareto(std::vector<Row>& rows, std::size_t measure) {
   const bool perStep = oneDt(rows);
   for (Row& r : rows) {
-    if (r.blewUp()) continue;
+    if (!charted(r, measure)) continue;
     r.pareto = std::none_of(rows.begin(), rows.end(), [&](const Row& q) {
-      if (q.blewUp()) return false;
-      const bool noWorse = cost(q, perStep) <= cost(r, perStep) && shownError(q) <= shownError(r);
-      const bool better = cost(q, perStep) < cost(r, perStep) || shownError(q) < shownError(r);
+      if (!charted(q, measure)) return false;
+      const double qe = shownError(q, measure), re = shownError(r, measure);
+      const bool noWorse = cost(q, perStep) <= cost(r, perStep) && qe <= re;
+      const bool better = cost(q, perStep) < cost(r, perStep) || qe < re;
       return noWorse && better;
     });
   }
@@ -197,15 +222,26 @@ double simulatedSeconds(const std::vector<Row>& rows) {
   return longest;
 }
 
-Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget) {
+// The chart's up axis: the distance from the target, or the figure measured.
+std::string errorLabel(const AccuracyTarget& firstTarget, std::size_t measure) {
+  if (measure < kRunMetricCount) {
+    const RunMetric& m = kRunMetrics[measure];
+    return std::string(m.name) + (*m.unit == '\0' ? "" : " (") + m.unit + (*m.unit == '\0' ? "" : ")") +
+           ": " + m.help;
+  }
+  return "error (m): largest distance from the " + firstTarget.kind +
+         (firstTarget.kind == "analytic" ? " answer" : " run");
+}
+
+Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
+                 std::size_t measure) {
   const bool perStep = oneDt(rows);
   Chart c = logChart(
-      plan.sceneName + ": error against cost (" + formatNumber(simulatedSeconds(rows), 4) +
+      plan.sceneName + ": " + (measure < kRunMetricCount ? kRunMetrics[measure].name : "error") +
+          " against cost (" + formatNumber(simulatedSeconds(rows), 4) +
           " s simulated; labels: iterations x substeps)",
       perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second",
-      "error (m): largest distance from the " + firstTarget.kind +
-          (firstTarget.kind == "analytic" ? " answer" : " run"),
-      true, "error-vs-cost");
+      errorLabel(firstTarget, measure), true, "error-vs-cost");
   // One series per method or engine (and per model and dt when there are several).
   const bool manyModels = plan.models.size() > 1;
   const bool manyDts = plan.dts.size() > 1;
@@ -223,19 +259,19 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
   front.line = true;
   front.labels = true;
   for (const Row& r : frontByCost(rows))
-    front.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
+    front.points.push_back({cost(r, perStep), shownError(r, measure), pointLabel(r)});
   c.series.push_back(front);
   for (const std::string& name : order) {
     ChartSeries s;
     s.title = name;
     for (const Row& r : rows) {
-      if (seriesName(r) == name && !r.blewUp())
-        s.points.push_back({cost(r, perStep), shownError(r), pointLabel(r)});
+      if (seriesName(r) == name && charted(r, measure))
+        s.points.push_back({cost(r, perStep), shownError(r, measure), pointLabel(r)});
     }
     c.series.push_back(s);
   }
   const double u = maxUncertainty(firstTarget);
-  if (firstTarget.kind == "reference" && u > kErrorFloor) {
+  if (measure == kRunMetricCount && firstTarget.kind == "reference" && u > kErrorFloor) {
     c.guide = u;
     c.guideTitle = "reference's own uncertainty";
   }
@@ -290,12 +326,12 @@ struct Written {
 };
 
 Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
-                     const std::filesystem::path& dir) {
+                     std::size_t measure, const std::filesystem::path& dir) {
   Written w;
   fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
   fileio::writeAtomically(dir / "results.csv", csvText(plan.sceneName, rows));
   fileio::writeAtomically(dir / "pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
-  const Chart chart = errorChart(plan, rows, firstTarget);
+  const Chart chart = errorChart(plan, rows, firstTarget, measure);
   fileio::writeAtomically(dir / "sweep.gp", gnuplotScript(chart));
   for (const char* f : {"results.csv", "pareto.csv", "sweep.gp"}) w.files.push_back((dir / f).string());
   if (!hasPoints(chart)) {
@@ -313,7 +349,8 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
   return w;
 }
 
-int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream& out, std::ostream& err) {
+int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,
+             std::ostream& err) {
   Progress progress(err, "sweep", planWork(plan));
   PlanResult result = runPlan(plan, progress);
   progress.finish();
@@ -327,7 +364,7 @@ int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream
     else
       notes.push_back(r.method + " not run: " + r.note);
   }
-  markPareto(rows);
+  markPareto(rows, measure);
 
   // Each distinct target once, named by its model and dt when there are several.
   std::vector<std::string> accuracy;
@@ -346,7 +383,7 @@ int runSweep(const Plan& plan, const std::filesystem::path& outDir, std::ostream
     }
   }
   printReport(out, plan, rows, accuracy, notes);
-  const Written w = writeOutputs(plan, rows, firstTarget(plan, targets, plan.dts.front()), outDir);
+  const Written w = writeOutputs(plan, rows, firstTarget(plan, targets, plan.dts.front()), measure, outDir);
   const auto front = frontByCost(rows);
   out << "pareto      " << front.size() << (front.size() == 1 ? " setting" : " settings") << " (marked *):";
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
@@ -369,7 +406,7 @@ int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostr
   return commandMain(line, args, out, err, [&] {
     const Plan plan = sweepPlan(o, sceneFile(o.scene, o.dataDir));
     prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
-    return runSweep(plan, o.out, out, err);
+    return runSweep(plan, o.measure, o.out, out, err);
   });
 }
 

@@ -23,6 +23,16 @@ std::size_t particlesWhenLoadedWith(const std::filesystem::path& file, const sce
   return scenes::loadSceneFile(file, options).world.particles().size();
 }
 
+// The same for a model the file may refuse (a character needs a rigid ragdoll): none then.
+std::optional<std::size_t> particlesIfLoads(const std::filesystem::path& file,
+                                            const scenes::LoadOptions& options) {
+  try {
+    return particlesWhenLoadedWith(file, options);
+  } catch (const scenes::LoadError&) {
+    return std::nullopt;
+  }
+}
+
 scenes::LoadOptions withBoxModel(phys::BodyModel m) {
   scenes::LoadOptions o;
   o.boxModel = m;
@@ -60,8 +70,9 @@ SceneModels sceneModels(const std::filesystem::path& file) {
   const std::size_t asWritten = particlesWhenLoadedWith(file, {});
   const std::size_t corners = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Corners));
   const std::size_t tetra = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Tetra));
-  const std::size_t seed = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Seed));
-  const std::size_t lean = particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Lean));
+  // The file as written loads (or has thrown above); a ragdoll model it refuses is not one to offer.
+  const std::optional<std::size_t> seed = particlesIfLoads(file, withRagdollModel(phys::RagdollModel::Seed));
+  const std::optional<std::size_t> lean = particlesIfLoads(file, withRagdollModel(phys::RagdollModel::Lean));
   // Rigid bodies have no particles: all of a kind is rigid when making it rigid changes no count.
   const std::size_t rigidBoxes = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Rigid));
   const std::size_t rigidRagdolls =
@@ -69,7 +80,7 @@ SceneModels sceneModels(const std::filesystem::path& file) {
 
   SceneModels m;
   m.boxes = corners != tetra;
-  m.ragdolls = seed != lean;
+  m.ragdolls = seed && lean && *seed != *lean;
   // No boxes or ragdolls: there is no model to name (empty label).
   if (!m.boxes && !m.ragdolls) return m;
   // A model kind is uniform in the file when imposing one of its models changes nothing.
@@ -85,8 +96,8 @@ SceneModels sceneModels(const std::filesystem::path& file) {
   }
   if (m.ragdolls) {
     c.options.ragdollModel =
-        modelWithCount<phys::RagdollModel>(asWritten, {{phys::RagdollModel::Seed, seed},
-                                                       {phys::RagdollModel::Lean, lean},
+        modelWithCount<phys::RagdollModel>(asWritten, {{phys::RagdollModel::Seed, *seed},
+                                                       {phys::RagdollModel::Lean, *lean},
                                                        {phys::RagdollModel::Rigid, rigidRagdolls}});
     if (c.options.ragdollModel) parts.emplace_back(phys::toString(*c.options.ragdollModel));
   }

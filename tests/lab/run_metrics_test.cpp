@@ -1,6 +1,6 @@
 // The figures of a run (app/lab/run_metrics.h) are defined in one table: each reaches `lab run
-// --json`, sweep's results.csv, tune's targets and compare's table; and the fastest spin, the
-// figure added to show it, reads a known spin back.
+// --json`, sweep's results.csv, tune's targets and compare's table; the fastest spin, the
+// figure added to show it, reads a known spin back; the tracking error is an RMS over the run.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -16,7 +16,10 @@
 #include "json.h"
 #include "lab.h"
 #include "lab_test_util.h"
+#include "physics/character.h"
+#include "run.h"
 #include "run_metrics.h"
+#include "scenes/scene.h"
 
 namespace {
 
@@ -58,7 +61,8 @@ TEST(RunMetrics, EveryFigureReachesRunSweepTuneAndCompare) {
     EXPECT_TRUE(run.contains(column + "_over_run")) << m.name;
     EXPECT_NE(std::find(columns.begin(), columns.end(), column), columns.end()) << m.name;
     const std::string heading = std::string("| ") + m.name +
-                                (*m.unit == '\0' ? "" : std::string(" (") + m.unit + ")") + ", every step |";
+                                (*m.unit == '\0' ? "" : std::string(" (") + m.unit + ")") +
+                                (m.over == lab::OverRun::Rms ? ", RMS over the run |" : ", every step |");
     EXPECT_NE(compare.out.find(heading), std::string::npos) << heading << "\n" << compare.out;
     EXPECT_NE(tuneHelp.out.find(std::string("  ") + m.name + " "), std::string::npos) << m.name;
     EXPECT_NE(badTarget.err.find(std::string(" ") + m.name), std::string::npos) << badTarget.err;
@@ -93,8 +97,42 @@ TEST(RunMetrics, TheFastestSpinReadsAKnownSpinBack) {
   }
 }
 
+// The tracking error is the one figure kept as a root mean square over the run: lab run's figure for
+// the animated scene equals the RMS, over the steps and every character's parts, of
+// phys::trackingError read by hand after each step of the same load (to round-off), less than the
+// worst step's (the first second: 14 degrees, the parts turning from the ragdoll's rest to the
+// clips' first poses).
+TEST(RunMetrics, TheTrackingErrorIsItsRootMeanSquareOverTheRun) {
+  const std::filesystem::path file = std::filesystem::path(DATA_DIR) / "assets" / "scenes" / "animated.xml";
+  const lab::Json run = runJson(file);
+  scenes::Scene scene = scenes::loadSceneFile(file, lab::imposedAtLoad(std::nullopt));
+  double sum = 0.0, parts = 0.0, largest = 0.0;
+  for (int step = 0; step < 60; ++step) {
+    scene.world.step();
+    double stepSum = 0.0, stepParts = 0.0;
+    for (std::size_t k = 0; k < scene.world.characters().size(); ++k) {
+      const double e = phys::trackingError(scene.world, k) * 180.0 / std::numbers::pi;
+      const double n = double(scene.world.characters()[k].bones.size());
+      stepSum += e * e * n;
+      stepParts += n;
+    }
+    sum += stepSum / stepParts;
+    largest = std::max(largest, std::sqrt(stepSum / stepParts));
+    parts += 1.0;
+  }
+  const double rms = std::sqrt(sum / parts);
+  EXPECT_NEAR(run["rms_tracking_error_over_run"].get<double>(), rms, 1e-9 * rms);
+  EXPECT_GT(rms, 0.0);
+  EXPECT_LT(rms, largest);
+  // A scene without characters tracks nothing: 0, not NaN.
+  const TempDir dir;
+  EXPECT_EQ(runJson(dir.write("spin.xml", spinningBox("rigid")))["rms_tracking_error_over_run"].get<double>(),
+            0.0);
+}
+
 TEST(RunMetrics, NamesFindTheirRow) {
-  EXPECT_EQ(lab::runMetricIndex("angular-speed"), lab::kRunMetricCount - 1);
+  EXPECT_EQ(lab::runMetricIndex("angular-speed"), lab::kRunMetricCount - 2);
+  EXPECT_EQ(lab::runMetricIndex("tracking-error"), lab::kRunMetricCount - 1);
   EXPECT_EQ(lab::runMetricIndex("bogus"), lab::kRunMetricCount);
 }
 

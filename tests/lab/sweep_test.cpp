@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,7 +55,8 @@ std::optional<CsvRow> findRow(const CsvTable& csv, const std::string& method, in
 const char* const kHeader =
     "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
     "uncertainty,"
-    "max_stick_error,max_joint_error,max_penetration,max_angular_speed,error_first,pose_penetration,pose_"
+    "max_stick_error,max_joint_error,max_penetration,max_angular_speed,rms_tracking_error,error_first,pose_"
+    "penetration,pose_"
     "joint_gap,energy_drift,frozen,pareto,note";
 
 TEST(Sweep, WritesOneRowPerCombinationWithFiniteFigures) {
@@ -226,6 +229,34 @@ TEST(Sweep, ParetoFrontHoldsTheUnbeatenRows) {
   }
 }
 
+// --error FIGURE: the front and the chart measure a figure of the run table instead of the distance
+// from the target; here the run cycle's pose tracking, where the front is made of other rows than
+// the position error's would be.
+TEST(Sweep, TheFrontCanMeasureAFigureOfTheRunTable) {
+  TempDir dir;
+  const Outcome o =
+      sweep({"run-cycle", "--error", "tracking-error", "--iterations", "1,4", "--substeps", "1,4", "--steps",
+             "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 4u);  // rigid parts alone: one method, xpbd
+  auto beats = [&](const CsvRow& q, const CsvRow& r, const char* column) {
+    const double qc = fieldNumber(q, "ms_per_step"), rc = fieldNumber(r, "ms_per_step");
+    const double qe = fieldNumber(q, column), re = fieldNumber(r, column);
+    return qc <= rc && qe <= re && (qc < rc || qe < re);
+  };
+  for (const auto& r : csv.rows) {
+    EXPECT_GT(fieldNumber(r, "rms_tracking_error"), 0.0);
+    bool beaten = false;
+    for (const auto& q : csv.rows) beaten = beaten || beats(q, r, "rms_tracking_error");
+    EXPECT_EQ(r.at("pareto") == "1", !beaten) << r.at("iterations") << "x" << r.at("substeps");
+  }
+  std::ifstream script(dir.file("out/sweep.gp"));
+  const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("tracking-error (deg)"), std::string::npos);
+  EXPECT_NE(text.find("run-cycle: tracking-error against cost"), std::string::npos);
+}
+
 TEST(Sweep, ARunThatBlowsUpHasInfiniteErrorAndFrozenParticles) {
   TempDir dir;
   const std::filesystem::path scene = dir.write("escape.xml", lab_testing::escapingScene());
@@ -315,6 +346,8 @@ TEST(Sweep, UsageErrorsNameTheArgument) {
       {{"pendulum", "--out", out, "--model", "corners"}, "--models: 'corners' is a box model"},
       {{"falling-box", "--out", out, "--model", "lean"}, "--models: 'lean' is a ragdoll model"},
       {{"falling-box", "--out", out, "--model", "cubes"}, "unknown model 'cubes'"},
+      {{"falling-box", "--out", out, "--error", "wobble"},
+       "--error: unknown figure 'wobble' (one of position, "},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.named);
