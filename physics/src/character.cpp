@@ -228,6 +228,24 @@ void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat
     out[b] = glm::normalize(c.frame * out[b] * c.bones[b].rest);
 }
 
+void targetCentres(const World& world, const Character& c, std::span<const Quat> orientations,
+                   const Vec3& rootCentre, std::span<Vec3> out) {
+  if (out.size() < c.bones.size() || orientations.size() < c.bones.size())
+    throw std::invalid_argument("targetCentres: orientations or an output shorter than the skeleton");
+  for (std::size_t b = 0; b < c.bones.size(); ++b) {
+    const CharacterBone& bone = c.bones[b];
+    if (bone.parent < 0) {
+      out[b] = rootCentre;
+      continue;
+    }
+    const RigidJoint& j = world.rigidJoints()[bone.joint];
+    const auto parent = static_cast<std::size_t>(bone.parent);
+    const Vec3& own = bone.reversed ? j.pivotA : j.pivotB;
+    const Vec3& parents = bone.reversed ? j.pivotB : j.pivotA;
+    out[b] = out[parent] + orientations[parent] * parents - orientations[b] * own;
+  }
+}
+
 Real trackingError(const World& world, std::size_t k) {
   require(k < world.characters().size(), "trackingError: character index must exist");
   const Character& c = world.characters()[k];
@@ -301,21 +319,14 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
 // parent's; all at rest, so that the first substep does not read the move as a speed.
 void World::putInPose(const Character& c) {
   std::vector<Quat> targets(c.bones.size());
+  std::vector<Vec3> centres(c.bones.size());
   targetOrientations(c, c.pose, targets);
+  targetCentres(*this, c, targets, c.origin + c.frame * (c.scale * c.pose.root), centres);
   RigidBodies& r = rigidBodies_;
   for (std::size_t b = 0; b < c.bones.size(); ++b) {
-    const CharacterBone& bone = c.bones[b];
-    const RigidId i = bodies_[bone.body].rigid;
+    const RigidId i = bodies_[c.bones[b].body].rigid;
     r.orientation[i] = targets[b];
-    if (bone.parent < 0) {
-      r.position[i] = c.origin + c.frame * (c.scale * c.pose.root);  // on the clip's path
-    } else {
-      const RigidJoint& j = constraints_.rigidJoints()[bone.joint];
-      const RigidId p = bodies_[c.bones[static_cast<std::size_t>(bone.parent)].body].rigid;
-      const Vec3& own = bone.reversed ? j.pivotA : j.pivotB;
-      const Vec3& parents = bone.reversed ? j.pivotB : j.pivotA;
-      r.position[i] = r.position[p] + r.orientation[p] * parents - r.orientation[i] * own;
-    }
+    r.position[i] = centres[b];
     r.previousPosition[i] = r.position[i];
     r.previousOrientation[i] = r.orientation[i];
     r.velocity[i] = Vec3(0.0);

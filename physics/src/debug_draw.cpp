@@ -1,6 +1,8 @@
 // World::debugDraw: what the physics knows, through the interface the renderer implements.
 #include <algorithm>
+#include <vector>
 
+#include "physics/character.h"
 #include "physics/world.h"
 
 namespace phys {
@@ -71,6 +73,26 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
   if (flags.movedVertices) {
     for (std::size_t i = 0; i < particles_.size(); ++i) {
       if (movedByBoxContact_[i] != 0) draw.point(x[i], 0.1, colors::kContact);
+    }
+  }
+  if (flags.targets) {
+    // Drawn, not stepped: allocating here costs the step nothing.
+    std::vector<Quat> turned;
+    std::vector<Vec3> centres;
+    for (const Character& c : characters_) {
+      turned.resize(c.bones.size());
+      centres.resize(c.bones.size());
+      targetOrientations(c, c.pose, turned);
+      targetCentres(*this, c, turned, bodyPose(c.bones[0].body).center, centres);
+      for (std::size_t b = 0; b < c.bones.size(); ++b) {
+        const CharacterBone& bone = c.bones[b];
+        draw.box(centres[b], turned[b], bodies_[bone.body].halfExtents, colors::kTarget);
+        if (bone.parent < 0) continue;
+        const RigidJoint& j = constraints_.rigidJoints()[bone.joint];
+        const Vec3 pivot = centres[b] + turned[b] * (bone.reversed ? j.pivotA : j.pivotB);
+        draw.line(centres[static_cast<std::size_t>(bone.parent)], pivot, colors::kTarget);
+        draw.line(pivot, centres[b], colors::kTarget);
+      }
     }
   }
   if (flags.bounds) {

@@ -13,6 +13,7 @@
 #include "character_util.h"
 #include "physics/animation.h"
 #include "physics/character.h"
+#include "physics/debug_draw.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
 #include "test_util.h"
@@ -219,6 +220,69 @@ TEST(Character, StartsInTheClipsPoseWhenAsked) {
     // The clip's root is 1.17 m over its floor: in open space the frame's origin is where the torso
     // was made, less that height, so the torso stays put.
     EXPECT_NEAR(glm::length(w.bodyPose(torso).center - madeAt), 0.0, 1e-12);
+  }
+}
+
+// What the ghost of the target pose draws: one box a part, in the target's orientation and the
+// part's own size, placed down the joints from the root where it is.
+class GhostRecorder : public phys::DebugDraw {
+ public:
+  struct Box {
+    Vec3 centre;
+    Quat orientation;
+    Vec3 half;
+  };
+  std::vector<Box> boxes;
+  int lines = 0;
+  void line(const Vec3&, const Vec3&, phys::Color) override { ++lines; }
+  void point(const Vec3&, Real, phys::Color) override {}
+  void box(const Vec3& c, const Quat& q, const Vec3& h, phys::Color color) override {
+    EXPECT_EQ(color.b, phys::colors::kTarget.b);
+    boxes.push_back({c, q, h});
+  }
+};
+
+// The ghost (DebugDrawFlags::targets): off, nothing; on, a box and two skeleton lines a jointed part.
+// A ragdoll started in its clip's pose is its own ghost (to round-off); one as made is not, its ghost
+// turned to the targets with its joints' pivots meeting.
+TEST(Character, TheGhostIsTheTargetPosePlacedDownTheJoints) {
+  const auto clip = std::make_shared<const Clip>(ragdollClip(
+      2, [&](const std::string& bone, Real) { return bone.starts_with("lower-") ? -60.0 * kDeg : 0.0; }));
+  phys::DebugDrawFlags ghost;
+  ghost.constraints = ghost.contacts = false;
+  ghost.targets = true;
+  for (const bool posed : {true, false}) {
+    SCOPED_TRACE(posed ? "in the clip's pose" : "as made");
+    phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
+    rigidRagdoll(w, "r");
+    phys::CharacterDesc desc;
+    desc.ragdoll = "r";
+    desc.playback.clip = clip;
+    desc.startInPose = posed;
+    w.addCharacter(desc);
+    GhostRecorder off;
+    w.debugDraw(off, phys::DebugDrawFlags{false, false, false, false, false});
+    EXPECT_TRUE(off.boxes.empty());
+    GhostRecorder on;
+    w.debugDraw(on, ghost);
+    const phys::Character& c = w.characters()[0];
+    ASSERT_EQ(on.boxes.size(), c.bones.size());
+    EXPECT_EQ(on.lines, 2 * static_cast<int>(c.bones.size() - 1));
+    Real farthest = 0.0, turned = 0.0;
+    for (std::size_t b = 0; b < c.bones.size(); ++b) {
+      const phys::BodyPose pose = w.bodyPose(c.bones[b].body);
+      EXPECT_EQ(on.boxes[b].half, w.bodies()[c.bones[b].body].halfExtents);
+      farthest = std::max(farthest, glm::length(on.boxes[b].centre - pose.center));
+      turned = std::max(turned, testing_phys::angleBetween(on.boxes[b].orientation, pose.orientation));
+    }
+    EXPECT_NEAR(glm::length(on.boxes[0].centre - w.bodyPose(c.bones[0].body).center), 0.0, 1e-12);
+    if (posed) {
+      EXPECT_LT(farthest, 1e-12);
+      EXPECT_LT(turned, 1e-6);
+    } else {
+      EXPECT_GT(turned, 50.0 * kDeg);  // the lower limbs, bent 60 degrees by the clip
+      EXPECT_GT(farthest, 0.05);
+    }
   }
 }
 

@@ -142,6 +142,13 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
 /// chain) * rest, into the first c.bones.size() elements of `out` (at least that long).
 void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat> out);
 
+/// Where each part's centre is with the parts turned to `orientations` (as targetOrientations gives
+/// them): the root's at `rootCentre`, every other part's where its joint's two pivots meet, parents
+/// first; into the first c.bones.size() elements of `out` (at least that long). The ghost of the
+/// target pose (DebugDrawFlags::targets) and CharacterDesc::startInPose place the parts so.
+void targetCentres(const World& world, const Character& c, std::span<const Quat> orientations,
+                   const Vec3& rootCentre, std::span<Vec3> out);
+
 /// How far character k's parts are from its target pose (Character::pose, the last substep's): the
 /// root mean square, over its parts, of the angle between each part's orientation and its target.
 /// unit: rad

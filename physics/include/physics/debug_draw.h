@@ -17,6 +17,7 @@ inline constexpr Color kParticle{0.20f, 0.35f, 0.85f};  ///< blue
 inline constexpr Color kContact{0.10f, 0.85f, 0.20f};   ///< green: the seed's collision markers
 inline constexpr Color kBounds{0.60f, 0.60f, 0.60f};    ///< grey
 inline constexpr Color kFrozen{0.85f, 0.10f, 0.85f};    ///< magenta
+inline constexpr Color kTarget{0.35f, 0.95f, 1.00f};    ///< pale cyan: a character's target pose
 /// Box-box contact points and normals, by ContactKind: face-face, face-edge, face-vertex,
 /// edge-edge, edge-vertex, vertex-vertex.
 inline constexpr Color kFeature[6] = {{0.10f, 0.85f, 0.85f}, {0.20f, 0.55f, 1.00f}, {0.60f, 0.40f, 1.00f},
@@ -41,6 +42,9 @@ struct DebugDrawFlags {
   bool movedVertices =
       false;            ///< particles a box-box contact moved in the last step (the seed's green markers)
   bool bounds = false;  ///< each box's axis-aligned bounding box
+  /// Each character's target pose as a ghost: its parts' outlines turned to their targets, placed
+  /// from the root part where it is down the joints, and the skeleton through the joints' pivots.
+  bool targets = false;
 };
 
 }  // namespace phys
