@@ -34,6 +34,7 @@ struct DrawOptions {
   bool bounds = false;    ///< each box's axis-aligned bounds
   bool particles = true;  ///< loose particles as lit spheres
   bool trails = false;    ///< the paths of loose particles and of the followed body (trails.h)
+  bool targets = false;   ///< each character's target pose as a ghost (phys::DebugDrawFlags::targets)
   bool exact = true;      ///< the scene's exact answers (<expect kind="position">) as green crosses
   bool shadows = false;   ///< a soft shadow of each body on the ground (the sandbox starts with them)
   BodyColoring coloring = BodyColoring::Kind;  ///< the sandbox starts with Body (panels.h)

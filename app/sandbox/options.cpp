@@ -42,7 +42,8 @@ std::optional<SectionFlags> parseSections(const std::string& text) {
 }  // namespace
 
 std::string usage() {
-  return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers] [--trails]\n"
+  return "usage: sandbox [SCENE] [--screenshot FILE --frames N] [--draw MODE] [--markers] [--trails] "
+         "[--targets]\n"
          "               [--color-by WHAT] [--threads N] [--overlay SETTINGS...] [--pause-at N]\n"
          "               [--hide-panels] [--unfold SECTIONS] [--no-shadows] [--sweep] [--data DIR]\n"
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: ragdoll)\n"
@@ -52,6 +53,7 @@ std::string usage() {
          "  --draw MODE        filled, wireframe or constraints (default: the last one used)\n"
          "  --markers          green boxes on vertices moved by box-box contacts (key C)\n"
          "  --trails           the paths of loose particles and of the followed body\n"
+         "  --targets          each character's target pose as a ghost\n"
          "  --no-shadows       no shadows of the bodies on the ground (Draw > shadows)\n"
          "  --sweep            start the Lab section's sweep of the scene at once, and unfold it\n"
          "  --color-by WHAT    kind, body, island or sleep: what bodies' colours say (default body)\n"
@@ -120,6 +122,8 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       o.markers = true;
     } else if (a == "--trails") {
       o.trails = true;
+    } else if (a == "--targets") {
+      o.targets = true;
     } else if (a == "--no-shadows") {
       o.noShadows = true;
     } else if (a == "--sweep") {

@@ -1,7 +1,7 @@
 #pragma once
 // The sandbox's command line:
 //   sandbox [SCENE] [--screenshot FILE --frames N] [--draw filled|wireframe|constraints]
-//           [--markers] [--trails] [--color-by WHAT] [--threads N] [--overlay SETTINGS...]
+//           [--markers] [--trails] [--targets] [--color-by WHAT] [--threads N] [--overlay SETTINGS...]
 //           [--pause-at N] [--hide-panels] [--unfold SECTIONS] [--no-shadows] [--sweep]
 //           [--data DIR] [--help]
 #include <array>
@@ -28,6 +28,7 @@ struct Options {
   std::optional<DrawMode> draw;   ///< given: overrides the remembered draw mode
   bool markers = false;           ///< the seed's collision-vertex markers from the start
   bool trails = false;            ///< Draw > trails from the start
+  bool targets = false;           ///< Draw > target poses from the start
   bool noShadows = false;         ///< no shadows on the ground (the rendering tests read ground pixels)
   bool sweep = false;             ///< start the Lab section's sweep of the scene at once, and unfold it
   bool hidePanels = false;        ///< the side column hidden from the start (F2 shows it)

@@ -112,6 +112,7 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   ui.draw.mode = options.draw.value_or(parseDrawMode(user.drawMode).value_or(DrawMode::Filled));
   ui.draw.markers = options.markers || user.markers;
   ui.draw.trails = options.trails;
+  ui.draw.targets = options.targets;
   ui.panelsHidden = options.hidePanels;
   if (options.unfold) ui.unfolded = *options.unfold;
   ui.showRewind = user.showRewind;
@@ -439,6 +440,8 @@ void animationBlock(Session& session, UiState& ui) {
   if (count == 0) return;
   ImGui::Separator();
   ImGui::TextUnformatted("Animation");
+  ImGui::SameLine();
+  ImGui::Checkbox("show target poses", &ui.draw.targets);
   for (std::size_t k = 0; k < count; ++k) {
     const phys::Character& c = session.scene().world.characters()[k];
     ImGui::PushID(static_cast<int>(k));
@@ -528,6 +531,8 @@ void drawSection(UiState& ui) {
   ImGui::Checkbox("trails", &ui.draw.trails);
   ImGui::SameLine();
   ImGui::Checkbox("exact answers", &ui.draw.exact);
+  ImGui::SameLine();
+  ImGui::Checkbox("target poses", &ui.draw.targets);
   ImGui::Checkbox("shadows", &ui.draw.shadows);
   int coloring = static_cast<int>(ui.draw.coloring);
   ImGui::Text("colour by");

@@ -182,6 +182,7 @@ void SceneView::draw(const phys::World& world, const glm::mat4& viewProjection, 
   flags.contacts = options.contacts;
   flags.movedVertices = options.markers;
   flags.bounds = options.bounds;
+  flags.targets = options.targets;
   if (tint) {
     TintedDraw tinted(debugDraw, tint->color);
     world.debugDraw(tinted, flags);

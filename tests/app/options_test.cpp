@@ -50,12 +50,14 @@ namespace {
 
 TEST(Options, DrawMarkersOverlayAndPauseAt) {
   const auto p =
-      sandbox::parseOptions({"pyramid", "--draw", "wireframe", "--markers", "--overlay", "iterations=3",
-                             "substeps=8,iterations=1", "method=xpbd", "--pause-at", "40"});
+      sandbox::parseOptions({"pyramid", "--draw", "wireframe", "--markers", "--targets", "--overlay",
+                             "iterations=3", "substeps=8,iterations=1", "method=xpbd", "--pause-at", "40"});
   ASSERT_EQ(p.error, "");
   EXPECT_EQ(p.options.scene, "pyramid");
   EXPECT_EQ(p.options.draw, sandbox::DrawMode::Wireframe);
   EXPECT_TRUE(p.options.markers);
+  EXPECT_TRUE(p.options.targets);
+  EXPECT_FALSE(sandbox::parseOptions({"pyramid"}).options.targets);
   ASSERT_EQ(p.options.overlay.size(), 3u);
   EXPECT_EQ(p.options.overlay[1].text, "substeps=8,iterations=1");
   EXPECT_EQ(p.options.pauseAt, 40);

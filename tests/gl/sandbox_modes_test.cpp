@@ -103,6 +103,16 @@ TEST(SandboxModes, MarkersShowGreenBoxesWhereBoxesCollide) {
   EXPECT_LT(countPixels(plain, kViewX, kViewY, kViewW, kViewH, green), 5);
 }
 
+// --targets (Draw > target poses): the runner's target pose drawn over it as a pale cyan ghost, a
+// colour nothing else in the scene has.
+TEST(SandboxModes, TargetsDrawTheCharactersGhostInPaleCyan) {
+  const auto cyan = [](int r, int g, int b) { return r < 150 && g > 200 && b > 220; };
+  const engine::Image ghost = runSandbox("run-cycle --targets", "targets-on.png", 20);
+  const engine::Image plain = runSandbox("run-cycle", "targets-off.png", 20);
+  EXPECT_GT(countPixels(ghost, kViewX, kViewY, kViewW, kViewH, cyan), 100);
+  EXPECT_LT(countPixels(plain, kViewX, kViewY, kViewW, kViewH, cyan), 5);
+}
+
 // The stack settles in about a second and sleeps half a second later: coloured by sleep, its boxes are
 // grey-blue where they are orange by kind.
 TEST(SandboxModes, ColourBySleepShowsTheSleepingStack) {
