@@ -58,10 +58,15 @@ void samplePlayback(const Playback& p, const Vec3& shift, ClipPose& out) {
   out.root -= shift;
 }
 
-// The target pose: the clip playing, blended from the one before while it fades in.
+// The target pose: the clip playing, blended from the one before (or from the pose held when the
+// change came during a fade) while it fades in.
 void characterPose(Character& c) {
   samplePlayback(c.now, Vec3(0.0), c.pose);
   if (c.blend >= 1.0) return;
+  if (c.holding) {
+    blendPoses(c.held, c.pose, c.blend, c.pose);
+    return;
+  }
   samplePlayback(c.before, c.beforeShift, c.fading);
   blendPoses(c.fading, c.pose, c.blend, c.pose);
 }
@@ -94,11 +99,18 @@ void checkReaction(const Reaction& r, const Clip& clip, const std::string& who) 
 
 // Changes the character's clip to `playback`, faded in over blendTime, its root path moved across
 // the ground (the clip frame's x and z; the height stays the clip's own) to start at `from`, in the
-// clip frame. Allocates nothing: the step calls it for a queued clip.
+// clip frame. A fade still under way is not cut short: the pose it has reached (c.pose, which the
+// callers have just made) is held and faded out of. Allocates nothing: the step calls it for a
+// queued clip.
 void changeClip(Character& c, const Playback& playback, Real blendTime, const Vec3& from) {
   sampleClip(*playback.clip, playback.time, playback.loop, c.starting);
   Vec3 shift = from - c.starting.root;
   shift.y = 0.0;
+  c.holding = c.blend < 1.0 && blendTime > 0.0;
+  if (c.holding) {
+    c.held.turns = c.pose.turns;  // sized alike at addCharacter: no allocation
+    c.held.root = c.pose.root - shift;
+  }
   c.origin += c.frame * (c.scale * shift);
   c.before = c.now;
   c.beforeShift = shift;
@@ -302,6 +314,7 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   c.rootAngularStiffness = had ? had->angularStiffness : kDriveStiffness * mass / kRagdollDriveMass * c.scale;
   // Scratch sized now, not reserved: a copied World (the sandbox's rewind) keeps sizes, not capacities.
   c.fading.turns.resize(c.pose.turns.size());
+  c.held.turns.resize(c.pose.turns.size());
   c.starting.turns.resize(c.pose.turns.size());
   characterTargets_.resize(std::max(characterTargets_.size(), c.bones.size()));
   bodyCharacter_.resize(bodies_.size(), -1);

@@ -325,6 +325,8 @@ TEST(Character, FollowsAMovingClipWithTheRootCarried) {
 
 // playClip fades from one clip to another: halfway through the fade the elbow's target is halfway,
 // and at the end it is the new clip's. A clip of other bones is refused.
+// playClip fades from the pose the last change had reached, even when that change was itself
+// still fading in.
 TEST(Character, PlayClipFadesBetweenClips) {
   phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
   const phys::Ragdoll r = rigidRagdoll(w, "r");
@@ -344,6 +346,21 @@ TEST(Character, PlayClipFadesBetweenClips) {
   EXPECT_NEAR(angleOf(w.jointDrive(elbow).target * glm::conjugate(w.jointRest(elbow))), 40.0 * kDeg, 1e-9);
   for (int i = 0; i < 30; ++i) w.step();
   EXPECT_NEAR(angleOf(w.jointDrive(elbow).target * glm::conjugate(w.jointRest(elbow))), 80.0 * kDeg, 1e-9);
+  // A change during a fade fades from where that fade had got to: to -80 degrees, then halfway
+  // (-40) off to -20. Cutting the first fade short would jump the target to -80 and back.
+  auto bend = [&] { return angleOf(w.jointDrive(elbow).target * glm::conjugate(w.jointRest(elbow))); };
+  w.playClip(0, phys::Playback{bent(0.0), 0.0, 1.0, true}, 0.0);
+  w.step();
+  w.playClip(0, phys::Playback{bent(-80.0), 0.0, 1.0, true}, 0.5);
+  for (int i = 0; i < 15; ++i) w.step();
+  EXPECT_NEAR(bend(), 40.0 * kDeg, 1e-9);
+  w.playClip(0, phys::Playback{bent(-20.0), 0.0, 1.0, true}, 0.5);
+  w.step();
+  EXPECT_NEAR(bend(), (40.0 - 20.0 / 30.0) * kDeg, 1e-9);  // one step of 30 into the fade
+  for (int i = 0; i < 14; ++i) w.step();
+  EXPECT_NEAR(bend(), 30.0 * kDeg, 1e-9);
+  for (int i = 0; i < 15; ++i) w.step();
+  EXPECT_NEAR(bend(), 20.0 * kDeg, 1e-9);
   Clip other = threeFrames();
   EXPECT_THROW(w.playClip(0, phys::Playback{std::make_shared<const Clip>(other)}, 0.1),
                std::invalid_argument);

@@ -127,8 +127,12 @@ struct Character {
   /// unit: m, clip frame; what `before`'s root path is moved by to meet `now`'s (playClip starts
   /// the new clip where the old one has got to).
   Vec3 beforeShift{0.0};
-  ClipPose pose;      ///< the target pose, as of the last substep
-  ClipPose fading;    ///< scratch: the pose of `before`
+  ClipPose pose;    ///< the target pose, as of the last substep
+  ClipPose fading;  ///< scratch: the pose of `before`
+  /// The target pose a change of clip found a fade still under way at, held still and faded out of
+  /// (`before` would cut that fade short); used while `holding`
+  ClipPose held;
+  bool holding = false;
   ClipPose starting;  ///< scratch: the first pose of a clip changed to
 };
 
