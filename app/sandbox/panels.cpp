@@ -1,11 +1,13 @@
 #include "panels.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string_view>
 #include <thread>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <imgui.h>
@@ -433,8 +435,51 @@ const char* stateName(phys::CharacterState state) {
   return "";
 }
 
-// The scene's characters (phys::Character): each one's clip and state, its strengths and reaction
-// threshold, and shoves to watch it stagger (200 N) or fall (2000 N).
+// The clip files beside `folder`'s clip that clips::loadClip may read, by name; read only while
+// the list is open, so a closed list costs nothing a frame.
+std::vector<std::filesystem::path> clipFiles(const std::filesystem::path& folder) {
+  std::vector<std::filesystem::path> files;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    std::string ext = entry.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (entry.is_regular_file(error) &&
+        (ext == ".bvh" || ext == ".fbx" || ext == ".gltf" || ext == ".glb" || ext == ".x" || ext == ".dae"))
+      files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Character k's clip: chosen among the files beside it, scrubbed in time, looping or not.
+std::string clipControls(Session& session, std::size_t k) {
+  const phys::Character& c = session.scene().world.characters()[k];
+  const std::filesystem::path playing(c.now.clip->name);
+  std::string error;
+  if (ImGui::BeginCombo("clip", playing.filename().string().c_str())) {
+    for (const std::filesystem::path& file : clipFiles(playing.parent_path())) {
+      if (ImGui::Selectable(file.filename().string().c_str(), file.filename() == playing.filename()))
+        error = session.playCharacterClip(k, file, c.now.loop);
+    }
+    ImGui::EndCombo();
+  }
+  const double duration = c.now.clip->duration();
+  double time = c.now.loop && duration > 0.0 ? std::fmod(c.now.time, duration) : c.now.time;
+  phys::Playback playback = c.now;
+  if (sliderReal("clip time (s)", time, 0.0f, static_cast<float>(duration), "%.2f")) {
+    playback.time = time;
+    error = session.setCharacterPlayback(k, playback, 0.0);
+  }
+  bool loop = c.now.loop;
+  if (ImGui::Checkbox("loop", &loop)) {
+    playback.loop = loop;
+    error = session.setCharacterPlayback(k, playback, 0.0);
+  }
+  return error;
+}
+
+// The scene's characters (phys::Character): each one's clip and state, its clip's controls, its strengths and
+// reaction threshold, and shoves to watch it stagger (200 N) or fall (2000 N).
 void animationBlock(Session& session, UiState& ui) {
   const std::size_t count = session.scene().world.characters().size();
   if (count == 0) return;
@@ -452,8 +497,8 @@ void animationBlock(Session& session, UiState& ui) {
                        ? ", then " + std::filesystem::path(c.queued->playback.clip->name).filename().string()
                        : std::string()) +
                   "; last blow " + figure("%.2f", c.lastImpact) + " m/s");
+      std::string error = clipControls(session, k);
       double strength = c.goalStrength, balance = c.goalBalance, threshold = c.reaction.threshold;
-      std::string error;
       if (sliderReal("strength", strength, 0.0f, 1.0f, "%.2f"))
         error = session.setCharacterStrength(k, strength);
       if (sliderReal("balance", balance, 0.0f, 1.0f, "%.2f")) error = session.setCharacterBalance(k, balance);

@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "clips/clip_file.h"
 #include "fileio/files.h"
 #include "physics/capsule_ragdoll.h"
 #include "physics/ragdoll.h"
@@ -428,6 +430,23 @@ std::string Session::pushCharacter(std::size_t k, double newtons) {
     const phys::Vec3 facing = w.characters()[k].frame * phys::Vec3(0.0, 0.0, 1.0);  // clips face +z
     w.push(root, newtons * facing, kPushTime);
   });
+}
+
+std::string Session::playCharacterClip(std::size_t k, const std::filesystem::path& file, bool loop) {
+  if (k >= scene().world.characters().size())
+    return "character: the scene has no character " + std::to_string(k);
+  std::shared_ptr<const phys::Clip> clip;
+  try {
+    clip = std::make_shared<const phys::Clip>(clips::loadClip(file));
+  } catch (const clips::ClipError& e) {
+    return e.what();
+  }
+  return setCharacterPlayback(k, phys::Playback{clip, 0.0, scene().world.characters()[k].now.speed, loop},
+                              kClipBlendTime);
+}
+
+std::string Session::setCharacterPlayback(std::size_t k, const phys::Playback& playback, double blendTime) {
+  return changeCharacter(k, [&](phys::World& w) { w.playClip(k, playback, blendTime); });
 }
 
 std::string Session::applyWorldSettings(const phys::WorldSettings& settings, const std::string& done) {

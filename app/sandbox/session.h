@@ -40,6 +40,8 @@ inline constexpr int kThrowTries = 5;
 /// The strongest gravity changeGravity raises to, and the World panel's slider reaches: three
 /// times the Earth's (m/s^2). A scene may set more; raising then leaves it as it is.
 inline constexpr double kMaxRaisedGravity = 30.0;
+/// unit: s; how long a clip chosen in the Animation block fades in over the one playing.
+inline constexpr double kClipBlendTime = 0.3;
 /// The Animation block's shoves: a push a balanced character withstands and one that throws it
 /// over (the targets), each held kPushTime.
 inline constexpr double kPushForce = 200.0;    ///< unit: N
@@ -148,6 +150,14 @@ class Session {
   /// Pushes character k's root part forwards (along the way it faces) with `newtons` for 0.2 s in
   /// every run: the sandbox's shove, to watch it stagger or fall.
   std::string pushCharacter(std::size_t k, double newtons);
+  /// Character k changes to the clip in `file` (any format clips::loadClip reads; its bones must be
+  /// the character's), from its start, faded in over kClipBlendTime, in every run; "" or why not (the
+  /// file's error, or bones that do not match: then nothing changes).
+  std::string playCharacterClip(std::size_t k, const std::filesystem::path& file, bool loop);
+  /// Character k plays `playback` from now, faded in over blendTime (s; 0 cuts), in every run
+  /// (World::playClip): the panel's scrub and loop switch cut to the same clip at another time or
+  /// looping otherwise. "" or why not (then nothing changes).
+  std::string setCharacterPlayback(std::size_t k, const phys::Playback& playback, double blendTime);
 
   /// Throws a box or a ragdoll (of boxes, or of capsules laid out like Bullet's) from `at` with
   /// velocity `velocity` into every run, never into a body: where a body reaches into the throw's

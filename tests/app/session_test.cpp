@@ -708,4 +708,32 @@ TEST(Session, CharacterControlsReachTheWorldAndBadOnesAreRefused) {
   EXPECT_NEAR(world.pushes()[0].remaining, sandbox::kPushTime, 1e-12);
 }
 
+// The Animation block's clip controls: a clip chosen from a file fades in from its start; the scrub
+// cuts to a time on the clip playing; a file that is no clip, or whose bones are not the
+// character's, is refused with the file named and the clip kept.
+TEST(Session, CharacterClipsAreChosenFromFilesAndScrubbed) {
+  sandbox::Session s = open("line-up");
+  const phys::World& world = s.scene().world;
+  const std::filesystem::path clips = std::filesystem::path(DATA_DIR) / "assets" / "clips";
+  EXPECT_EQ(s.playCharacterClip(0, clips / "run.bvh", true), "");
+  const phys::Character& c = world.characters()[0];
+  EXPECT_EQ(std::filesystem::path(c.now.clip->name).filename(), "run.bvh");
+  EXPECT_EQ(c.now.time, 0.0);
+  EXPECT_TRUE(c.now.loop);
+  EXPECT_EQ(c.blendTime, sandbox::kClipBlendTime);
+  EXPECT_EQ(std::filesystem::path(c.before.clip->name).filename(), "stand.bvh");
+  phys::Playback scrubbed = c.now;
+  scrubbed.time = 0.5;
+  EXPECT_EQ(s.setCharacterPlayback(0, scrubbed, 0.0), "");
+  EXPECT_EQ(c.now.time, 0.5);
+  EXPECT_EQ(c.blend, 1.0);  // a cut
+  const std::string missing = s.playCharacterClip(0, clips / "nonexistent.bvh", true);
+  EXPECT_NE(missing.find("nonexistent.bvh"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("No such file or directory"), std::string::npos) << missing;
+  scrubbed.time = 2e9;  // beyond any clip's clock
+  EXPECT_NE(s.setCharacterPlayback(0, scrubbed, 0.0), "");
+  EXPECT_EQ(std::filesystem::path(c.now.clip->name).filename(), "run.bvh");
+  EXPECT_EQ(c.now.time, 0.5);
+}
+
 }  // namespace
