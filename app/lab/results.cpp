@@ -250,7 +250,8 @@ std::string trackingWords(const std::vector<CsvRow>& rows) {
 std::string drivesTable(const std::string& runJson) {
   const Json j = Json::parse(runJson);
   std::ostringstream md;
-  md << "What each part's drive needed over the 10 s at the scene's own setting ("
+  md << "What each part's drive needed over the run's " << j["steps"].get<int>() << " steps ("
+     << formatNumber(j["steps"].get<int>() * j["dt"].get<double>(), 3) << " s) at the scene's own setting ("
      << j["method"].get<std::string>() << " " << j["iterations"].get<int>() << "x" << j["substeps"].get<int>()
      << ", `lab run run-cycle --json`'s `drives`): the torque from its parent's joint, and for the root "
         "(the torso) the hand of god's force and torque, RMS over the run's steps and the largest after "
@@ -333,9 +334,9 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
         "the RMS over the run's steps and over its parts of the angle between each part and its target "
         "(`lab sweep run-cycle --error tracking-error`), against cost per simulated second, at dt 1/30, "
         "1/60 and 1/120 s. Only rigid ragdolls have drives, and a rigid body is solved by XPBD whatever "
-        "the method, so the four methods are one here (docs/physics.md, \"Joint drives\"). The figure "
-        "holds the first half second, when the parts turn from the ragdoll's rest into the clip's first "
-        "pose.\n\n";
+        "the method, so the four methods are one here (docs/physics.md, \"Joint drives\"). The runner "
+        "starts in the clip's first pose (`pose=\"clip\"`), so the figure is the tracking and not the "
+        "turn into the clip.\n\n";
   {
     const fs::path dir = results / "tracking";
     const CommandOutput r = runCommandMain(sweepMain, trackingArgs(o, dir), err);
