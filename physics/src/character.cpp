@@ -119,6 +119,21 @@ void changeClip(Character& c, const Playback& playback, Real blendTime, const Ve
   c.blend = blendTime > 0.0 ? 0.0 : 1.0;
 }
 
+// Where the clip's bone `bone` is among the character's bones, checked with the share to give it:
+// a bone of the clip, not the root, a share in [0, 1].
+std::size_t partOf(const Character& c, const Clip& clip, const std::string& bone, Real share,
+                   const std::string& who) {
+  require(share >= 0.0 && share <= 1.0, who + ": part '" + bone + "': strength must be in [0, 1]");
+  for (std::size_t b = 0; b < c.bones.size(); ++b) {
+    if (clip.bones[static_cast<std::size_t>(c.bones[b].clipBone)] != bone) continue;
+    require(
+        c.bones[b].parent >= 0,
+        who + ": part '" + bone + "' is the root, which has no joint (its strength is the root strength)");
+    return b;
+  }
+  throw std::invalid_argument(who + ": clip '" + clip.name + "' has no bone '" + bone + "'");
+}
+
 // Whether the character moves its ragdoll, or will: a drive with strength, or a reaction under way
 // (a limp character that lies still waiting to get up still counts its rest). A limp one that
 // stays down lets its island sleep.
@@ -283,6 +298,9 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   Character c;
   c.ragdoll = desc.ragdoll;
   c.bones = bindClip(*this, desc.ragdoll, *desc.playback.clip);
+  c.partStrength.assign(c.bones.size(), 1.0);
+  for (const auto& [bone, share] : desc.partStrengths)
+    c.partStrength[partOf(c, *desc.playback.clip, bone, share, who)] = share;
   for (const Character& other : characters_)
     require(other.ragdoll != desc.ragdoll, who + ": ragdoll '" + desc.ragdoll + "' already has a character");
   c.now = desc.playback;
@@ -397,6 +415,13 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
   islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 
+void World::setPartStrength(std::size_t k, const std::string& bone, Real share) {
+  require(k < characters_.size(), "setPartStrength: character index must exist");
+  Character& c = characters_[k];
+  c.partStrength[partOf(c, *c.now.clip, bone, share, "setPartStrength")] = share;
+  islands_.wake(islands_.bodyNode(c.bones[0].body));
+}
+
 void World::setCharacterBalance(std::size_t k, Real balance) {
   require(k < characters_.size(), "setCharacterBalance: character index must exist");
   require(balance >= 0.0 && balance <= 1.0, "setCharacterBalance: balance must be in [0, 1]");
@@ -442,7 +467,7 @@ void World::animate(Real h) {
       const Quat& parent = characterTargets_[static_cast<std::size_t>(bone.parent)];
       const Quat target = glm::normalize(glm::conjugate(parent) * characterTargets_[b]);
       drive.target = bone.reversed ? glm::conjugate(target) : target;
-      drive.strength = c.strength;
+      drive.strength = c.strength * c.partStrength[b];
       constraints_.setDrive(bone.joint, drive);
     }
     const Body& root = bodies_[c.bones[0].body];

@@ -325,6 +325,44 @@ TEST(Character, FollowsAMovingClipWithTheRootCarried) {
 
 // playClip fades from one clip to another: halfway through the fade the elbow's target is halfway,
 // and at the end it is the new clip's. A clip of other bones is refused.
+// A part's share of the strength: its joint's drive gets the character's strength times it, from the
+// next step, as the desc gives it or setPartStrength sets it; a bone the clip has not, the root and
+// a share out of [0, 1] are refused with nothing changed.
+TEST(Character, EachJointTakesItsPartsShareOfTheStrength) {
+  phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
+  const phys::Ragdoll r = rigidRagdoll(w, "r");
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip =
+      std::make_shared<const Clip>(ragdollClip(2, [](const std::string&, Real) { return 0.0; }));
+  desc.strength = 0.8;
+  desc.partStrengths = {{"head", 0.5}};
+  w.addCharacter(desc);
+  w.step();
+  const std::size_t neck = r.firstJoint, elbow = r.firstJoint + 2;  // hinges 0 and 2
+  EXPECT_DOUBLE_EQ(w.jointDrive(neck).strength, 0.4);
+  EXPECT_DOUBLE_EQ(w.jointDrive(elbow).strength, 0.8);
+  w.setPartStrength(0, "lower-arm-left", 0.25);
+  w.step();
+  EXPECT_DOUBLE_EQ(w.jointDrive(elbow).strength, 0.2);
+  EXPECT_THROW(w.setPartStrength(0, "tail", 0.5), std::invalid_argument);
+  EXPECT_THROW(w.setPartStrength(0, "torso", 0.5), std::invalid_argument);  // the root: no joint
+  EXPECT_THROW(w.setPartStrength(0, "head", 1.5), std::invalid_argument);
+  EXPECT_THROW(w.setPartStrength(1, "head", 0.5), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(w.characters()[0].partStrength[1], 0.5);  // kept
+  phys::World other =
+      testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
+  rigidRagdoll(other, "r");
+  desc.partStrengths = {{"wing", 0.5}};
+  try {
+    other.addCharacter(desc);
+    ADD_FAILURE() << "a bone the clip has not was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no bone 'wing'"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(other.characters().empty());
+}
+
 // playClip fades from the pose the last change had reached, even when that change was itself
 // still fading in.
 TEST(Character, PlayClipFadesBetweenClips) {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/animation.h"
@@ -80,6 +81,9 @@ struct CharacterDesc {
   /// parent's. Without it the ragdoll starts in the pose it is in, and the drives turn it into the
   /// clip's over the first steps.
   bool startInPose = false;
+  /// Per bone by name, 0 to 1: its joint's share of the character's strength (1 for a bone not
+  /// named): an arm held loosely, a stiff neck. Not the root's, which has no joint.
+  std::vector<std::pair<std::string, Real>> partStrengths;
 };
 
 /// One part of a character, bound to a clip's bone.
@@ -101,9 +105,12 @@ struct Character {
   Real blend = 1.0;                  ///< unitless, 0 to 1: how far the fade to `now` has gone
   Real blendTime = 0.0;              ///< unit: s; how long the fade takes
   Real strength = 1.0;               ///< the joints' drives' strength now (the reaction changes it)
-  Real rootStrength = 0.0;           ///< the root's drive's strength now
-  Real balance = 0.0;                ///< the balance's strength now
-  Real goalStrength = 1.0;           ///< what the reaction gives back: the strengths last set
+  /// Per bone (Character::bones' order), 0 to 1: its joint's drive has strength * this; 1 unless set
+  /// (the root's, which has no joint, stays 1)
+  std::vector<Real> partStrength;
+  Real rootStrength = 0.0;  ///< the root's drive's strength now
+  Real balance = 0.0;       ///< the balance's strength now
+  Real goalStrength = 1.0;  ///< what the reaction gives back: the strengths last set
   Real goalRootStrength = 0.0;
   Real goalBalance = 0.0;
   Real scale = 1.0;

@@ -228,6 +228,10 @@ class World {
   /// reaction gives back; stops any reaction under way (CharacterState::Active). Throws
   /// std::invalid_argument (and changes nothing) out of range.
   void setCharacterStrength(std::size_t k, Real strength, Real rootStrength);
+  /// Sets the share (0 to 1) of character k's strength that the joint of its bone `bone` (a clip's
+  /// name) gets (CharacterDesc::partStrengths), from the next step. Throws std::invalid_argument (and
+  /// changes nothing) for a bone the character has not, its root, or a share out of range.
+  void setPartStrength(std::size_t k, const std::string& bone, Real share);
   /// Sets character k's balance (0 to 1, CharacterDesc::balance), now and as what its reaction
   /// gives back. Throws std::invalid_argument (and changes nothing) out of range.
   void setCharacterBalance(std::size_t k, Real balance);
