@@ -504,6 +504,16 @@ void animationBlock(Session& session, UiState& ui) {
       if (sliderReal("balance", balance, 0.0f, 1.0f, "%.2f")) error = session.setCharacterBalance(k, balance);
       if (sliderReal("react at (m/s)", threshold, 0.0f, 10.0f, "%.2f"))
         error = session.setReactionThreshold(k, threshold);
+      // Each joint's share of the strength: an arm let hang, a stiff neck.
+      if (ImGui::TreeNode("parts", "parts' share of the strength")) {
+        for (std::size_t b = 1; b < c.bones.size(); ++b) {
+          const std::string& bone = c.now.clip->bones[static_cast<std::size_t>(c.bones[b].clipBone)];
+          double share = c.partStrength[b];
+          if (sliderReal(bone.c_str(), share, 0.0f, 1.0f, "%.2f"))
+            error = session.setPartStrength(k, bone, share);
+        }
+        ImGui::TreePop();
+      }
       if (ImGui::Button("push 200 N")) error = session.pushCharacter(k, kPushForce);
       ImGui::SameLine();
       if (ImGui::Button("shove 2000 N")) error = session.pushCharacter(k, kKnockForce);

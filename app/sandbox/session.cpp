@@ -416,6 +416,10 @@ std::string Session::setCharacterBalance(std::size_t k, double balance) {
   return changeCharacter(k, [k, balance](phys::World& w) { w.setCharacterBalance(k, balance); });
 }
 
+std::string Session::setPartStrength(std::size_t k, const std::string& bone, double share) {
+  return changeCharacter(k, [&](phys::World& w) { w.setPartStrength(k, bone, share); });
+}
+
 std::string Session::setReactionThreshold(std::size_t k, double threshold) {
   return changeCharacter(k, [k, threshold](phys::World& w) {
     phys::Reaction r = w.characters()[k].reaction;

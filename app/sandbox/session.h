@@ -146,6 +146,8 @@ class Session {
   /// changes).
   std::string setCharacterStrength(std::size_t k, double strength);
   std::string setCharacterBalance(std::size_t k, double balance);
+  /// The share (0 to 1) of character k's strength its bone `bone`'s joint gets (World::setPartStrength).
+  std::string setPartStrength(std::size_t k, const std::string& bone, double share);
   std::string setReactionThreshold(std::size_t k, double threshold);
   /// Pushes character k's root part forwards (along the way it faces) with `newtons` for 0.2 s in
   /// every run: the sandbox's shove, to watch it stagger or fall.

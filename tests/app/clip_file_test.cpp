@@ -100,6 +100,31 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   const std::string backwards =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" speed=\"-1\"/>");
   EXPECT_NE(backwards.find("attribute 'speed'"), std::string::npos) << backwards;
+  const std::string share =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" part-strengths=\"head=0.5 tail=1\"/>");
+  EXPECT_NE(share.find("attribute 'part-strengths': clip"), std::string::npos) << share;
+  EXPECT_NE(share.find("has no bone 'tail'"), std::string::npos) << share;
+  const std::string root =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" part-strengths=\"torso=0.5\"/>");
+  EXPECT_NE(root.find("attribute 'part-strengths': 'torso' is the clip's root"), std::string::npos) << root;
+  const std::string junk =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" part-strengths=\"head:0.5\"/>");
+  EXPECT_NE(junk.find("'head:0.5' is not BONE=SHARE"), std::string::npos) << junk;
+  const std::string big =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" part-strengths=\"head=2\"/>");
+  EXPECT_NE(big.find("'head=2': the share must be from 0 to 1"), std::string::npos) << big;
+  // A get-up or then clip of other bones is blamed on its own attribute, not on the ragdoll.
+  const testing_app::TempFolder dir;
+  std::ofstream(dir.path / "one.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition "
+                                         "Yposition Zposition Zrotation Xrotation Yrotation\n}\nMOTION\n"
+                                         "Frames: 2\nFrame Time: 0.1\n0 0 0 0 0 0\n0 0 0 0 0 0\n";
+  const std::string one = (dir.path / "one.bvh").string();
+  for (const char* attribute : {"get-up", "then"}) {
+    const std::string other =
+        error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" " + attribute + "=\"" + one + "\"/>");
+    EXPECT_NE(other.find(std::string("attribute '") + attribute + "': clip"), std::string::npos) << other;
+    EXPECT_NE(other.find("has other bones than"), std::string::npos) << other;
+  }
   const std::string pose = error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" pose=\"stand\"/>");
   EXPECT_NE(pose.find("attribute 'pose': 'stand' must be clip or ragdoll"), std::string::npos) << pose;
   // pose="clip" puts the ragdoll in the clip's first pose: the parts on their targets from the start.
@@ -119,6 +144,7 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
 TEST(ClipFile, SaveAsKeepsTheCharacter) {
   scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/animated.xml");
   for (int i = 0; i < 30; ++i) scene.world.step();
+  scene.world.setPartStrength(1, "head", 1.0 / 3.0);  // a share that needs every digit to read back
   const scenes::Scene again = scenes::loadSceneText(scenes::writeSceneXml(scene), "again.xml");
   ASSERT_EQ(again.world.characters().size(), scene.world.characters().size());
   for (std::size_t k = 0; k < scene.world.characters().size(); ++k) {
@@ -130,7 +156,9 @@ TEST(ClipFile, SaveAsKeepsTheCharacter) {
     EXPECT_EQ(a.now.loop, b.now.loop);
     EXPECT_EQ(a.strength, b.strength);
     EXPECT_EQ(a.rootStrength, b.rootStrength);
+    EXPECT_EQ(a.partStrength, b.partStrength);
   }
+  EXPECT_EQ(again.world.characters()[1].partStrength[1], 1.0 / 3.0);
 }
 
 // The target: with the root carried, the parts track the run cycle within 5 degrees RMS at

@@ -700,6 +700,9 @@ TEST(Session, CharacterControlsReachTheWorldAndBadOnesAreRefused) {
   EXPECT_NE(s.setCharacterStrength(9, 0.5), "");
   EXPECT_EQ(world.characters()[1].reaction.threshold, 4.0);
   EXPECT_EQ(world.characters()[1].goalBalance, 0.3);
+  EXPECT_EQ(s.setPartStrength(1, "lower-arm-left", 0.2), "");
+  EXPECT_EQ(world.characters()[1].partStrength[3], 0.2);  // the box skeleton's fourth bone
+  EXPECT_NE(s.setPartStrength(1, "torso", 0.2), "");
   EXPECT_EQ(s.pushCharacter(2, sandbox::kPushForce), "");
   ASSERT_EQ(world.pushes().size(), 1u);
   EXPECT_EQ(world.pushes()[0].body, world.characters()[2].bones[0].body);

@@ -493,7 +493,12 @@ class Builder {
       if (!(*scale > 0.0)) e.fail("scale", "'" + detail::formatNumber(*scale) + "' must be > 0");
       desc.scale = *scale;
     }
+    if (auto parts = e.text("part-strengths"))
+      desc.partStrengths = partStrengths(e, *parts, *desc.playback.clip);
     reaction(e, desc.reaction);
+    if (desc.reaction.getUp.clip && !sameBones(*desc.reaction.getUp.clip, *desc.playback.clip))
+      e.fail("get-up", "clip '" + desc.reaction.getUp.clip->name + "' has other bones than '" +
+                           desc.playback.clip->name + "'");
     std::optional<phys::QueuedClip> then;
     if (auto next = e.text("then")) {
       then.emplace();
@@ -501,16 +506,50 @@ class Builder {
       then->at = time(e, "then-at").value_or(0.0);
       then->blendTime = duration(e, "then-blend").value_or(0.2);
       then->playback.loop = e.boolean("then-loop").value_or(false);
+      if (!sameBones(*then->playback.clip, *desc.playback.clip))
+        e.fail("then", "clip '" + then->playback.clip->name + "' has other bones than '" +
+                           desc.playback.clip->name + "'");
     }
     e.rejectUnknownAttributes();
+    std::size_t k = 0;
     try {
-      const std::size_t k = scene_.world.addCharacter(desc);
-      if (then) scene_.world.queueClip(k, then->playback, then->at, then->blendTime);
+      k = scene_.world.addCharacter(desc);
     } catch (const std::invalid_argument& error) {
       // addCharacter's own checks are all made above, attribute by attribute; what is left is the
       // binding of the clip to the ragdoll's parts.
       e.fail("ragdoll", error.what());
     }
+    if (then) scene_.world.queueClip(k, then->playback, then->at, then->blendTime);  // checked above
+  }
+
+  // The same bones, in the same order, with the same parents: clips one character can change between.
+  static bool sameBones(const phys::Clip& a, const phys::Clip& b) {
+    return a.bones == b.bones && a.parents == b.parents;
+  }
+
+  // part-strengths="BONE=SHARE ...": each a bone of the clip other than its root, each share 0 to 1.
+  std::vector<std::pair<std::string, double>> partStrengths(ElementReader& e, const std::string& text,
+                                                            const phys::Clip& clip) {
+    std::vector<std::pair<std::string, double>> parts;
+    std::istringstream words(text);
+    std::string word;
+    while (words >> word) {
+      const std::size_t eq = word.find('=');
+      const std::string bone = word.substr(0, eq);
+      const std::optional<double> share =
+          eq == std::string::npos ? std::nullopt : detail::parseReal(word.substr(eq + 1));
+      if (bone.empty() || !share)
+        e.fail("part-strengths", "'" + word + "' is not BONE=SHARE (a share from 0 to 1)");
+      if (!(*share >= 0.0 && *share <= 1.0))
+        e.fail("part-strengths", "'" + word + "': the share must be from 0 to 1");
+      const auto it = std::find(clip.bones.begin(), clip.bones.end(), bone);
+      if (it == clip.bones.end())
+        e.fail("part-strengths", "clip '" + clip.name + "' has no bone '" + bone + "'");
+      if (it == clip.bones.begin())
+        e.fail("part-strengths", "'" + bone + "' is the clip's root, which has no joint (use root-strength)");
+      parts.emplace_back(bone, *share);
+    }
+    return parts;
   }
 
   // A character's answer to a blow (phys::Reaction).

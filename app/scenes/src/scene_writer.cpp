@@ -452,6 +452,14 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
         .number("root-strength", c.goalRootStrength);
     if (c.scale != 1.0) e.number("scale", c.scale);
     if (c.goalBalance > 0.0) e.number("balance", c.goalBalance);
+    std::string parts;
+    for (std::size_t b = 1; b < c.bones.size(); ++b) {
+      if (c.partStrength[b] == 1.0) continue;
+      if (!parts.empty()) parts += ' ';
+      parts += c.now.clip->bones[static_cast<std::size_t>(c.bones[b].clipBone)] + "=" +
+               detail::exactNumber(c.partStrength[b]);
+    }
+    if (!parts.empty()) e.text("part-strengths", parts);
     const phys::Reaction& r = c.reaction;
     const phys::Reaction defaults;
     if (r.threshold > 0.0) e.number("react", r.threshold);
