@@ -112,21 +112,29 @@ std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& sc
   return args;
 }
 
+// A sweep's Pareto front (its rows marked so), cheapest per simulated second first.
+std::vector<const CsvRow*> frontByCost(const std::vector<CsvRow>& rows) {
+  std::vector<const CsvRow*> front;
+  for (const CsvRow& r : rows) {
+    if (fieldText(r, "pareto") == "1") front.push_back(&r);
+  }
+  std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
+    return fieldNumber(*a, "ms_per_sim_second") < fieldNumber(*b, "ms_per_sim_second");
+  });
+  return front;
+}
+
 // What the figures say about a sweep, in sentences: the front from cheap to accurate, and for
 // each method its cheapest setting that comes within reach of the most accurate run.
 std::string sweepWords(const std::vector<CsvRow>& rows) {
-  std::vector<const CsvRow*> front;
+  const std::vector<const CsvRow*> front = frontByCost(rows);
   double best = std::numeric_limits<double>::infinity(), uncertainty = 0.0;
   for (const CsvRow& r : rows) {
-    if (fieldText(r, "pareto") == "1") front.push_back(&r);
     best = std::min(best, fieldNumber(r, "error"));
     const double u = fieldNumber(r, "ref_uncertainty");
     if (std::isfinite(u)) uncertainty = std::max(uncertainty, u);
   }
   std::ostringstream md;
-  std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
-    return fieldNumber(*a, "ms_per_sim_second") < fieldNumber(*b, "ms_per_sim_second");
-  });
   md << "Pareto front, cheapest first:";
   for (std::size_t i = 0; i < front.size(); ++i) {
     md << (i == 0 ? " " : "; ") << settingName(*front[i]) << " ("
@@ -202,13 +210,7 @@ std::string trackingSetting(const CsvRow& r) {
 // The front of the tracking sweep and, at each dt, the cheapest setting within the bar.
 std::string trackingWords(const std::vector<CsvRow>& rows) {
   std::ostringstream md;
-  std::vector<const CsvRow*> front;
-  for (const CsvRow& r : rows) {
-    if (fieldText(r, "pareto") == "1") front.push_back(&r);
-  }
-  std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
-    return fieldNumber(*a, "ms_per_sim_second") < fieldNumber(*b, "ms_per_sim_second");
-  });
+  const std::vector<const CsvRow*> front = frontByCost(rows);
   md << "Pareto front, cheapest first:";
   for (std::size_t i = 0; i < front.size(); ++i) {
     md << (i == 0 ? " " : "; ") << trackingSetting(*front[i]) << " ("

@@ -77,9 +77,9 @@ struct CharacterDesc {
   Real balance = 0.0;
   Reaction reaction;
   /// Put the ragdoll in the clip's pose at playback.time when the character is added, at rest: the
-  /// root keeps its centre, each part turned to its target and moved so that its joint meets its
-  /// parent's. Without it the ragdoll starts in the pose it is in, and the drives turn it into the
-  /// clip's over the first steps.
+  /// root on the clip's path (its feet on the clip's floor), each part turned to its target and
+  /// moved so that its joint meets its parent's. Without it the ragdoll starts in the pose it is
+  /// in, and the drives turn it into the clip's over the first steps.
   bool startInPose = false;
   /// Per bone by name, 0 to 1: its joint's share of the character's strength (1 for a bone not
   /// named): an arm held loosely, a stiff neck. Not the root's, which has no joint.
