@@ -39,6 +39,10 @@ int Clip::bone(std::string_view boneName) const {
   return -1;
 }
 
+bool sameSkeleton(const Clip& a, const Clip& b) {
+  return a.bones == b.bones && a.parents == b.parents;
+}
+
 std::string clipProblem(const Clip& clip) {
   if (std::string problem = bonesProblem(clip); !problem.empty()) return problem;
   if (!(std::isfinite(clip.frameTime) && clip.frameTime >= kMinFrameTime))

@@ -78,11 +78,6 @@ Quat headingOf(const Quat& q) {
   return Quat(q.w / norm, 0.0, q.y / norm, 0.0);
 }
 
-// The same bones, in the same order, with the same parents: a clip the binding fits.
-bool sameSkeleton(const Clip& a, const Clip& b) {
-  return a.bones == b.bones && a.parents == b.parents;
-}
-
 void checkReaction(const Reaction& r, const Clip& clip, const std::string& who) {
   require(std::isfinite(r.threshold) && r.threshold >= 0.0,
           who + ": the reaction threshold must be finite and >= 0");

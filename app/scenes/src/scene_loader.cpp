@@ -496,7 +496,7 @@ class Builder {
     if (auto parts = e.text("part-strengths"))
       desc.partStrengths = partStrengths(e, *parts, *desc.playback.clip);
     reaction(e, desc.reaction);
-    if (desc.reaction.getUp.clip && !sameBones(*desc.reaction.getUp.clip, *desc.playback.clip))
+    if (desc.reaction.getUp.clip && !phys::sameSkeleton(*desc.reaction.getUp.clip, *desc.playback.clip))
       e.fail("get-up", "clip '" + desc.reaction.getUp.clip->name + "' has other bones than '" +
                            desc.playback.clip->name + "'");
     std::optional<phys::QueuedClip> then;
@@ -506,7 +506,7 @@ class Builder {
       then->at = time(e, "then-at").value_or(0.0);
       then->blendTime = duration(e, "then-blend").value_or(0.2);
       then->playback.loop = e.boolean("then-loop").value_or(false);
-      if (!sameBones(*then->playback.clip, *desc.playback.clip))
+      if (!phys::sameSkeleton(*then->playback.clip, *desc.playback.clip))
         e.fail("then", "clip '" + then->playback.clip->name + "' has other bones than '" +
                            desc.playback.clip->name + "'");
     }
@@ -519,12 +519,12 @@ class Builder {
       // binding of the clip to the ragdoll's parts.
       e.fail("ragdoll", error.what());
     }
-    if (then) scene_.world.queueClip(k, then->playback, then->at, then->blendTime);  // checked above
-  }
-
-  // The same bones, in the same order, with the same parents: clips one character can change between.
-  static bool sameBones(const phys::Clip& a, const phys::Clip& b) {
-    return a.bones == b.bones && a.parents == b.parents;
+    if (!then) return;
+    try {
+      scene_.world.queueClip(k, then->playback, then->at, then->blendTime);
+    } catch (const std::invalid_argument& error) {
+      e.fail("then", error.what());  // its bones and times are checked above: a safety net
+    }
   }
 
   // part-strengths="BONE=SHARE ...": each a bone of the clip other than its root, each share 0 to 1.

@@ -44,6 +44,10 @@ struct Clip {
 /// kMinFrameTime, a root farther than kMaxClipReach, a turn that is not a unit quaternion (within 1e-6).
 std::string clipProblem(const Clip& clip);
 
+/// The same bones, in the same order, with the same parents: clips one character can change
+/// between (World::playClip, queueClip, a reaction's get-up clip).
+bool sameSkeleton(const Clip& a, const Clip& b);
+
 /// A clip's pose at one time: the root's position and each bone's turn, as Clip holds them.
 struct ClipPose {
   Vec3 root{0.0};
