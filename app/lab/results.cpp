@@ -190,9 +190,21 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
 // The bar for the run cycle: its parts within 5 degrees RMS of the clip at 1/60 s.
 constexpr double kTrackingBar = 5.0;  // unit: degrees
 
-std::vector<std::string> trackingArgs(const ReportOptions& o, const fs::path& dir) {
-  std::vector<std::string> args{"run-cycle", "--error",    "tracking-error", "--no-peers",
-                                "--out",     dir.string(), "--data",         o.data.string()};
+// The tracking scenes, one a ragdoll shape, each swept into results/<folder>.
+struct TrackingScene {
+  const char* scene;
+  const char* folder;
+  const char* what;
+};
+constexpr TrackingScene kTrackingScenes[] = {
+    {"run-cycle", "tracking", "The box ragdoll (`run-cycle.xml`)"},
+    {"run-cycle-capsule", "tracking-capsule",
+     "The capsule ragdoll (`run-cycle-capsule.xml`, on its own run cycle)"},
+};
+
+std::vector<std::string> trackingArgs(const ReportOptions& o, const std::string& scene, const fs::path& dir) {
+  std::vector<std::string> args{scene,   "--error",    "tracking-error", "--no-peers",
+                                "--out", dir.string(), "--data",         o.data.string()};
   if (o.quick) {
     args.insert(args.end(), {"--iterations", "1,2", "--substeps", "1", "--repeat", "1", "--steps", "10"});
   } else {
@@ -332,24 +344,29 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   }
 
   md << "## Pose tracking\n\n"
-     << "One ragdoll on the run cycle (`run-cycle.xml`: strength 0.9, its torso carried by the hand of god), "
-        "the RMS over the run's steps and over its parts of the angle between each part and its target "
-        "(`lab sweep run-cycle --error tracking-error`), against cost per simulated second, at dt 1/30, "
-        "1/60 and 1/120 s. Only rigid ragdolls have drives, and a rigid body is solved by XPBD whatever "
-        "the method, so the four methods are one here (docs/physics.md, \"Joint drives\"). The runner "
-        "starts in the clip's first pose (`pose=\"clip\"`), so the figure is the tracking and not the "
-        "turn into the clip.\n\n";
-  {
-    const fs::path dir = results / "tracking";
-    const CommandOutput r = runCommandMain(sweepMain, trackingArgs(o, dir), err);
+     << "One ragdoll on the run cycle (strength 0.9, its root part carried by the hand of god), the RMS over "
+        "the run's steps and over its parts of the angle between each part and its target (`lab sweep "
+        "run-cycle --error tracking-error`), against cost per simulated second, at dt 1/30, 1/60 and 1/120 "
+        "s, for each model of ragdoll that has drives: the box ragdoll and the capsule ragdoll, both rigid. "
+        "Only rigid ragdolls have drives, and a rigid body is solved by XPBD whatever the method, so the "
+        "four "
+        "methods are one here (docs/physics.md, \"Joint drives\"). The runner starts in the clip's first "
+        "pose (`pose=\"clip\"`), so the figure is the tracking and not the turn into the clip.\n\n";
+  for (const TrackingScene& t : kTrackingScenes) {
+    const fs::path dir = results / t.folder;
+    const CommandOutput r = runCommandMain(sweepMain, trackingArgs(o, t.scene, dir), err);
     failed |= r.code != 0;
+    md << "### " << t.scene << "\n\n" << t.what << ".\n\n";
     if (r.code == 0) {
-      md << "![tracking error against cost, run-cycle](results/tracking/error-vs-cost.png)\n\n"
-         << trackingWords(readCsv(dir / "results.csv").rows)
-         << "\nAll runs: [results.csv](results/tracking/results.csv).\n\n";
+      md << "![tracking error against cost, " << t.scene << "](results/" << t.folder
+         << "/error-vs-cost.png)\n\n"
+         << trackingWords(readCsv(dir / "results.csv").rows) << "\nAll runs: [results.csv](results/"
+         << t.folder << "/results.csv).\n\n";
     } else {
       md << codeBlockOrText(r) << "\n";
     }
+  }
+  {
     std::vector<std::string> runArgs{"run", "run-cycle", "--json", "--data", o.data.string()};
     if (o.quick) runArgs.insert(runArgs.end(), {"--steps", "10"});
     const CommandOutput run = runCommandMain(labMain, runArgs, err);

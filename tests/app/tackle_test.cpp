@@ -1,6 +1,6 @@
-// The tackle scenes (assets/scenes/tackle.xml, line-up.xml; docs/physics.md, "Reaction"): the hit
-// makes both players go limp, they fall and settle, no joint past its limit by more than 3
-// degrees, nothing frozen; the thrown box knocks the line of players down and they get up again.
+// The tackle scenes (assets/scenes/tackle.xml, tackle-capsules.xml, line-up.xml; docs/physics.md,
+// "Reaction"): the hit makes both players go limp, they fall and settle, no joint past its limit by more than
+// 3 degrees, nothing frozen; the thrown box knocks the line of players down and they get up again.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -42,8 +42,11 @@ double fastestPart(const phys::World& w, const phys::Character& c) {
   return fastest;
 }
 
-TEST(Tackle, BothGoLimpFallAndSettle) {
-  scenes::Scene scene = scenes::loadSceneFile(kScenes + "tackle.xml");
+// tackle.xml, and tackle-capsules.xml: the same play with capsule ragdolls on their own clips.
+class Tackle : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Tackle, BothGoLimpFallAndSettle) {
+  scenes::Scene scene = scenes::loadSceneFile(kScenes + GetParam());
   phys::World& w = scene.world;
   ASSERT_EQ(w.characters().size(), 2u);
   double worstLimit = 0.0, hitAt[2] = {-1.0, -1.0};
@@ -58,10 +61,10 @@ TEST(Tackle, BothGoLimpFallAndSettle) {
     }
   }
   std::printf(
-      "tackle: runner hit at %.2f s, tackler at %.2f s; at 8 s the fastest parts %.3f and %.3f m/s; worst "
+      "%s: runner hit at %.2f s, tackler at %.2f s; at 8 s the fastest parts %.3f and %.3f m/s; worst "
       "joint "
       "past its limit after 3 s %.2f degrees\n",
-      hitAt[0], hitAt[1], fastestPart(w, w.characters()[0]), fastestPart(w, w.characters()[1]),
+      GetParam(), hitAt[0], hitAt[1], fastestPart(w, w.characters()[0]), fastestPart(w, w.characters()[1]),
       worstLimit / kDeg);
   for (std::size_t k = 0; k < 2; ++k) {
     const phys::Character& c = w.characters()[k];
@@ -75,9 +78,11 @@ TEST(Tackle, BothGoLimpFallAndSettle) {
   EXPECT_TRUE(w.freezes().empty());
 }
 
+INSTANTIATE_TEST_SUITE_P(Scenes, Tackle, ::testing::Values("tackle.xml", "tackle-capsules.xml"));
+
 // The thrown 30 kg box knocks the line down one into the next; each lies still and gets up on the
 // stand clip, and by 12 s all five stand again where they fell, heads at standing height.
-TEST(Tackle, TheLineIsKnockedDownAndGetsUp) {
+TEST(TackleLine, TheLineIsKnockedDownAndGetsUp) {
   scenes::Scene scene = scenes::loadSceneFile(kScenes + "line-up.xml");
   phys::World& w = scene.world;
   ASSERT_EQ(w.characters().size(), 5u);

@@ -605,7 +605,8 @@ TEST(Report, QuickReportWritesEveryPart) {
                            "Pareto front, cheapest first:", "**Winner here:", "## Where methods fail",
                            "### The rigid model on the same suite", "| face-face |", "xpbd rigid",
                            "## Beside Bullet, ODE and MuJoCo", "## Cost against size", "us/body-step",
-                           "## Error against substep size", "converge    circular-orbit"}) {
+                           "## Error against substep size", "converge    circular-orbit", "## Pose tracking",
+                           "### run-cycle\n", "### run-cycle-capsule", "(root: hand of god)"}) {
     EXPECT_NE(md.find(part), std::string::npos) << part;
   }
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "pyramid" / "results.csv"));
@@ -613,6 +614,8 @@ TEST(Report, QuickReportWritesEveryPart) {
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "stability-rigid" / "stability.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "scale" / "scale.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "converge" / "converge.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "results" / "tracking" / "results.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "results" / "tracking-capsule" / "results.csv"));
   if (!lab::findGnuplot().empty()) {
     EXPECT_TRUE(std::filesystem::exists(out / "results" / "converge" / "converge-circular-orbit.png"));
     EXPECT_TRUE(std::filesystem::exists(out / "results" / "chain" / "error-vs-cost.png"));
