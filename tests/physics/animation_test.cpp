@@ -2,6 +2,8 @@
 // carried on, blending, refusing bad clips; binding a clip to a ragdoll by name, refusing one that
 // does not fit with the bones named; a character's drives aimed at the clip's pose and followed.
 #include <cmath>
+#include <cstdint>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -404,6 +406,35 @@ TEST(Character, PlayClipFadesBetweenClips) {
                std::invalid_argument);
   EXPECT_THROW(w.setCharacterStrength(0, 1.5, 0.0), std::invalid_argument);
   EXPECT_THROW(w.setCharacterStrength(1, 1.0, 0.0), std::invalid_argument);
+}
+
+// A limp character (strength 0) lets its ragdoll fall asleep, and its clip keeps the world's time
+// while every island sleeps and the step does nothing else: the clock is not frozen with the bodies.
+TEST(Character, ALimpCharactersClipPlaysOnWhileEverythingSleeps) {
+  phys::SolverSettings settings = testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8);
+  settings.sleep.enabled = true;
+  phys::World w(phys::WorldSettings{}, settings);
+  rigidRagdoll(w, "r");
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.strength = 0.0;
+  desc.playback.clip = std::make_shared<const Clip>(ragdollClip(120, [](const std::string&, Real t) { return t; }));
+  desc.playback.loop = true;
+  w.addCharacter(desc);
+  int steps = 0;
+  while (!w.islands().allAsleep() && steps < 1200) {
+    w.step();
+    ++steps;
+  }
+  ASSERT_TRUE(w.islands().allAsleep()) << "still awake after " << steps << " steps";
+  const Real clock = w.characters()[0].now.time;
+  EXPECT_NEAR(clock, w.time(), 1e-9);
+  const std::uint64_t hash = w.stateHash();
+  for (int i = 0; i < 60; ++i) w.step();
+  EXPECT_TRUE(w.islands().allAsleep());
+  EXPECT_EQ(w.stateHash(), hash);  // nothing moved
+  EXPECT_NEAR(w.characters()[0].now.time - clock, 60.0 * settings.dt, 1e-9);
+  EXPECT_NEAR(w.characters()[0].now.time, w.time(), 1e-9);
 }
 
 // A character on the rest pose at strength 1 and no hand of god stands on flat ground for a minute.
