@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -19,6 +20,7 @@
 #include "scenes/scene.h"
 #include "scenes/scene_writer.h"
 #include "temp_folder.h"
+#include "world_compare.h"
 
 namespace {
 
@@ -162,6 +164,42 @@ TEST(ClipFile, SaveAsKeepsTheCharacter) {
     EXPECT_EQ(a.partStrength, b.partStrength);
   }
   EXPECT_EQ(again.world.characters()[1].partStrength[1], 1.0 / 3.0);
+  EXPECT_EQ(testsupport::compareScenes(scene, again), "");
+}
+
+// Save As names each clip file relative to the saved file's folder, as the project's scenes do, so a
+// scene saved beside its clips can move with them; the text for a recording, which has no folder,
+// names them by absolute path. Either way the reload plays the same files.
+TEST(ClipFile, SaveAsNamesClipsRelativeToTheFile) {
+  scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/tackle.xml");
+  for (int i = 0; i < 30; ++i) scene.world.step();
+  const testing_app::TempFolder dir;
+  std::filesystem::copy(kClips, dir.path / "clips");
+  std::filesystem::create_directories(dir.path / "scenes");
+  // The scene's clips as if loaded from the copy beside the file (the names are the files' paths).
+  scenes::Scene moved = scenes::loadSceneText(scenes::writeSceneXml(scene), "moved.xml");
+  const std::string copied = (dir.path / "clips").lexically_normal().string() + "/";
+  std::string text = scenes::writeSceneXml(moved);
+  for (std::size_t at = 0; (at = text.find(kClips, at)) != std::string::npos; at += copied.size())
+    text.replace(at, kClips.size(), copied);
+  EXPECT_EQ(text.find(kClips), std::string::npos);
+  moved = scenes::loadSceneText(text, "moved.xml");
+  const std::filesystem::path file = dir.path / "scenes" / "saved.xml";
+  scenes::saveSceneFile(moved, file);
+  std::ifstream in(file);
+  const std::string saved((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(saved.find("clip=\"../clips/run.bvh\""), std::string::npos) << saved;
+  EXPECT_NE(saved.find("then=\"../clips/dive.bvh\""), std::string::npos) << saved;
+  EXPECT_EQ(saved.find(dir.path.string()), std::string::npos) << saved;
+  // The folder moves with its clips, and the file still plays them.
+  const std::filesystem::path elsewhere = dir.path.string() + "-moved";
+  std::filesystem::rename(dir.path, elsewhere);
+  const scenes::Scene again = scenes::loadSceneFile(elsewhere / "scenes" / "saved.xml");
+  std::filesystem::rename(elsewhere, dir.path);
+  ASSERT_EQ(again.world.characters().size(), 2u);
+  EXPECT_EQ(again.world.characters()[0].now.clip->name, (elsewhere / "clips" / "run.bvh").string());
+  ASSERT_TRUE(again.world.characters()[1].queued.has_value());
+  EXPECT_EQ(again.world.characters()[1].queued->playback.clip->name, (elsewhere / "clips" / "dive.bvh").string());
 }
 
 // The target: with the root carried, the parts track the run cycle within 5 degrees RMS at

@@ -8,11 +8,14 @@
 #include <limits>
 #include <map>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
+
+#include "physics/character.h"
 
 namespace testsupport {
 namespace {
@@ -193,6 +196,7 @@ class Comparison {
       if (!(d = link(k)).empty()) return d;
     }
     if (!(d = jointFrictions()).empty()) return d;
+    if (!(d = characters()).empty()) return d;
     return noCollision();
   }
 
@@ -487,6 +491,60 @@ class Comparison {
                boxLabel(r_, b[k].a) + " and " + boxLabel(r_, b[k].b) + " when reloaded";
       }
       if (a[k].rate != b[k].rate) return unequal(who + ": rate", a[k].rate, b[k].rate);
+    }
+    return {};
+  }
+
+  // A character is saved as the clip it plays (a fade as the clip it fades to), by the file that clip
+  // came from, with its clock, the strengths last set (not as a reaction has ramped them), each part's
+  // share and its reaction's settings, and a queued change of clip: every number to the bit.
+  std::string characters() const {
+    const auto a = s_.characters(), b = r_.characters();
+    if (a.size() != b.size()) {
+      return "characters: saved " + std::to_string(a.size()) + ", reloaded " + std::to_string(b.size());
+    }
+    auto clipName = [](const phys::Playback& p) { return p.clip ? p.clip->name : std::string("none"); };
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      const phys::Character &x = a[k], &y = b[k];
+      const std::string who = "character " + std::to_string(k) + " on '" + x.ragdoll + "'";
+      if (x.ragdoll != y.ragdoll) return unequalText(who + ": ragdoll", x.ragdoll, y.ragdoll);
+      if (clipName(x.now) != clipName(y.now)) return unequalText(who + ": clip", clipName(x.now), clipName(y.now));
+      const std::pair<const char*, std::pair<Real, Real>> numbers[] = {
+          {"time", {x.now.time, y.now.time}},
+          {"speed", {x.now.speed, y.now.speed}},
+          {"loop", {Real(x.now.loop), Real(y.now.loop)}},
+          {"strength", {x.goalStrength, y.goalStrength}},
+          {"root-strength", {x.goalRootStrength, y.goalRootStrength}},
+          {"balance", {x.goalBalance, y.goalBalance}},
+          {"scale", {x.scale, y.scale}},
+          {"react", {x.reaction.threshold, y.reaction.threshold}},
+          {"fall-time", {x.reaction.fallTime, y.reaction.fallTime}},
+          {"rest-time", {x.reaction.restTime, y.reaction.restTime}},
+          {"arm-time", {x.reaction.armTime, y.reaction.armTime}},
+          {"rest-speed", {x.reaction.restSpeed, y.reaction.restSpeed}},
+          {"get-up-time", {x.reaction.getUpTime, y.reaction.getUpTime}},
+      };
+      for (const auto& [name, pair] : numbers) {
+        if (pair.first != pair.second) return unequal(who + ": " + name, pair.first, pair.second);
+      }
+      if (x.partStrength.size() != y.partStrength.size())
+        return unequal<Real>(who + ": parts", Real(x.partStrength.size()), Real(y.partStrength.size()));
+      for (std::size_t p = 0; p < x.partStrength.size(); ++p) {
+        if (x.partStrength[p] != y.partStrength[p])
+          return unequal(who + ": part " + std::to_string(p) + "'s strength", x.partStrength[p], y.partStrength[p]);
+      }
+      if (clipName(x.reaction.getUp) != clipName(y.reaction.getUp))
+        return unequalText(who + ": get-up", clipName(x.reaction.getUp), clipName(y.reaction.getUp));
+      if (x.queued.has_value() != y.queued.has_value())
+        return unequalText(who + ": then", x.queued ? "a clip" : "none", y.queued ? "a clip" : "none");
+      if (!x.queued) continue;
+      const phys::QueuedClip &qx = *x.queued, &qy = *y.queued;
+      if (clipName(qx.playback) != clipName(qy.playback))
+        return unequalText(who + ": then", clipName(qx.playback), clipName(qy.playback));
+      if (qx.at != qy.at) return unequal(who + ": then-at", qx.at, qy.at);
+      if (qx.blendTime != qy.blendTime) return unequal(who + ": then-blend", qx.blendTime, qy.blendTime);
+      if (qx.playback.loop != qy.playback.loop)
+        return unequal<Real>(who + ": then-loop", Real(qx.playback.loop), Real(qy.playback.loop));
     }
     return {};
   }

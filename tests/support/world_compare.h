@@ -37,8 +37,9 @@ struct Tolerance {
 /// Boxes are compared as rigid bodies (World::bodyPose, the rigid velocity and spin fitted to
 /// their particles, mass), since a saved box loses the deformation its particles had; frozen
 /// boxes as saved at rest with 1 kg; loose particles one by one; links by the world positions
-/// of their two points. The reloaded world's clock, drag, freezes and <expect> elements are
-/// not compared: a file does not hold them.
+/// of their two points; characters by their clips, clocks, strengths as last set and reaction
+/// settings. The reloaded world's clock, drag, freezes and <expect> elements are not compared, nor
+/// a character's reaction under way or a fade: a file does not hold them.
 std::string compareScenes(const scenes::Scene& saved, const scenes::Scene& reloaded,
                           const Tolerance& tolerance = {});
 

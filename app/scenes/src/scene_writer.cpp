@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 #include <span>
 #include <stdexcept>
+#include <system_error>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -312,7 +314,7 @@ std::string header(const phys::World& world) {
 SaveError::SaveError(std::filesystem::path file, const std::string& message)
     : std::runtime_error(file.string() + ": " + message), file_(std::move(file)) {}
 
-std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
+std::string writeSceneXml(const Scene& scene, const CameraStart& camera, const std::filesystem::path& folder) {
   const phys::World& world = scene.world;
   const phys::Particles& particles = world.particles();
   if (particles.size() > detail::kMaxParticles) {
@@ -440,11 +442,19 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     line(e.empty());
   }
   // A character after its ragdoll's bodies, joints and root drive, which it drives from then on. Its
-  // clip by the absolute path it was loaded from; a fade between two clips is saved as the new one.
+  // clips by the paths they were loaded from (a clip's name), relative to the file's folder when
+  // there is one, so that a scene saved beside its clips moves with them; a fade between two clips
+  // is saved as the new one.
+  const auto clipPath = [&folder](const phys::Clip& clip) {
+    const std::filesystem::path path(clip.name);
+    if (folder.empty() || !path.is_absolute()) return clip.name;
+    const std::filesystem::path relative = path.lexically_relative(folder);
+    return relative.empty() ? clip.name : relative.generic_string();
+  };
   for (const phys::Character& c : world.characters()) {
     ElementWriter e("character");
     e.text("ragdoll", c.ragdoll)
-        .text("clip", c.now.clip->name)
+        .text("clip", clipPath(*c.now.clip))
         .number("time", c.now.time)
         .number("speed", c.now.speed)
         .text("loop", c.now.loop ? "true" : "false")
@@ -468,9 +478,9 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera) {
     if (r.armTime != defaults.armTime) e.number("arm-time", r.armTime);
     if (r.restSpeed != defaults.restSpeed) e.number("rest-speed", r.restSpeed);
     if (r.getUpTime != defaults.getUpTime) e.number("get-up-time", r.getUpTime);
-    if (r.getUp.clip) e.text("get-up", r.getUp.clip->name);
+    if (r.getUp.clip) e.text("get-up", clipPath(*r.getUp.clip));
     if (c.queued) {
-      e.text("then", c.queued->playback.clip->name)
+      e.text("then", clipPath(*c.queued->playback.clip))
           .number("then-at", c.queued->at)
           .number("then-blend", c.queued->blendTime)
           .text("then-loop", c.queued->playback.loop ? "true" : "false");
@@ -503,7 +513,8 @@ std::string writeSceneXml(const Scene& scene) {
 void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::filesystem::path& file) {
   std::string xml;
   try {
-    xml = writeSceneXml(scene, camera);
+    std::error_code ignored;  // no folder: clips by their absolute paths
+    xml = writeSceneXml(scene, camera, std::filesystem::absolute(file, ignored).lexically_normal().parent_path());
   } catch (const std::invalid_argument& e) {
     throw SaveError(file, std::string("cannot save this world as a scene: ") + e.what());
   }
