@@ -60,10 +60,14 @@ int stepsFor(const phys::World& world, double seconds) {
   return std::max(1, static_cast<int>(seconds / world.solverSettings().dt + 0.5));
 }
 
+// Where the vector below goes, so that the compiler may not leave out its allocations (it may
+// drop a new and delete whose memory nothing sees, and did at -O1).
+std::vector<int>* volatile seen = nullptr;
+
 TEST(StepAllocation, TheCounterSeesAnAllocation) {
   const long before = allocations.load();
-  auto* p = new std::vector<int>(1000);
-  delete p;
+  seen = new std::vector<int>(1000);
+  delete seen;
   EXPECT_GE(allocations.load() - before, 2);  // the vector and its array
 }
 

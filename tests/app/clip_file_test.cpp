@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
@@ -61,6 +63,14 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   std::ofstream(dir.path / "cut.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0\n";
   const std::string cut = clipError(dir.path / "cut.bvh");
   EXPECT_NE(cut.find("cut.bvh: not a clip assimp can read"), std::string::npos) << cut;
+  // A pipe with no writer would block the loader (and the sandbox) in open(): refused at once, as
+  // is a folder.
+  ASSERT_EQ(::mkfifo((dir.path / "pipe.bvh").c_str(), 0600), 0);
+  const std::string pipe = clipError(dir.path / "pipe.bvh");
+  EXPECT_NE(pipe.find("pipe.bvh: is not a regular file"), std::string::npos) << pipe;
+  std::filesystem::create_directory(dir.path / "folder.bvh");
+  const std::string folder = clipError(dir.path / "folder.bvh");
+  EXPECT_NE(folder.find("folder.bvh: is not a regular file"), std::string::npos) << folder;
   // A well-formed BVH with a turn no quaternion can hold is refused by the clip's own check.
   std::ofstream(dir.path / "nan.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition "
                                          "Yposition Zposition Zrotation Xrotation Yrotation\n}\nMOTION\n"
@@ -199,7 +209,8 @@ TEST(ClipFile, SaveAsNamesClipsRelativeToTheFile) {
   ASSERT_EQ(again.world.characters().size(), 2u);
   EXPECT_EQ(again.world.characters()[0].now.clip->name, (elsewhere / "clips" / "run.bvh").string());
   ASSERT_TRUE(again.world.characters()[1].queued.has_value());
-  EXPECT_EQ(again.world.characters()[1].queued->playback.clip->name, (elsewhere / "clips" / "dive.bvh").string());
+  EXPECT_EQ(again.world.characters()[1].queued->playback.clip->name,
+            (elsewhere / "clips" / "dive.bvh").string());
 }
 
 // The target: with the root carried, the parts track the run cycle within 5 degrees RMS at

@@ -418,7 +418,8 @@ TEST(Character, ALimpCharactersClipPlaysOnWhileEverythingSleeps) {
   phys::CharacterDesc desc;
   desc.ragdoll = "r";
   desc.strength = 0.0;
-  desc.playback.clip = std::make_shared<const Clip>(ragdollClip(120, [](const std::string&, Real t) { return t; }));
+  desc.playback.clip =
+      std::make_shared<const Clip>(ragdollClip(120, [](const std::string&, Real t) { return t; }));
   desc.playback.loop = true;
   w.addCharacter(desc);
   int steps = 0;

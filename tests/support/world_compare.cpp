@@ -508,7 +508,8 @@ class Comparison {
       const phys::Character &x = a[k], &y = b[k];
       const std::string who = "character " + std::to_string(k) + " on '" + x.ragdoll + "'";
       if (x.ragdoll != y.ragdoll) return unequalText(who + ": ragdoll", x.ragdoll, y.ragdoll);
-      if (clipName(x.now) != clipName(y.now)) return unequalText(who + ": clip", clipName(x.now), clipName(y.now));
+      if (clipName(x.now) != clipName(y.now))
+        return unequalText(who + ": clip", clipName(x.now), clipName(y.now));
       const std::pair<const char*, std::pair<Real, Real>> numbers[] = {
           {"time", {x.now.time, y.now.time}},
           {"speed", {x.now.speed, y.now.speed}},
@@ -531,7 +532,8 @@ class Comparison {
         return unequal<Real>(who + ": parts", Real(x.partStrength.size()), Real(y.partStrength.size()));
       for (std::size_t p = 0; p < x.partStrength.size(); ++p) {
         if (x.partStrength[p] != y.partStrength[p])
-          return unequal(who + ": part " + std::to_string(p) + "'s strength", x.partStrength[p], y.partStrength[p]);
+          return unequal(who + ": part " + std::to_string(p) + "'s strength", x.partStrength[p],
+                         y.partStrength[p]);
       }
       if (clipName(x.reaction.getUp) != clipName(y.reaction.getUp))
         return unequalText(who + ": get-up", clipName(x.reaction.getUp), clipName(y.reaction.getUp));

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <filesystem>
+#include <system_error>
 #include <vector>
 
 #include <assimp/Importer.hpp>
@@ -102,6 +104,12 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
 }
 
 phys::Clip loadClip(const std::filesystem::path& file) {
+  // Only a regular file: a clip is named by a scene, and a pipe there with no writer would block
+  // the loader in open() for good (a scene file itself may come from a pipe the user opens).
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(file, error);
+  if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw ClipError(file, "is not a regular file (a folder, pipe, device or socket)");
   std::string content;
   try {
     content = fileio::readWhole(file, kMaxClipBytes);

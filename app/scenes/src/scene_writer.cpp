@@ -314,7 +314,8 @@ std::string header(const phys::World& world) {
 SaveError::SaveError(std::filesystem::path file, const std::string& message)
     : std::runtime_error(file.string() + ": " + message), file_(std::move(file)) {}
 
-std::string writeSceneXml(const Scene& scene, const CameraStart& camera, const std::filesystem::path& folder) {
+std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
+                          const std::filesystem::path& folder) {
   const phys::World& world = scene.world;
   const phys::Particles& particles = world.particles();
   if (particles.size() > detail::kMaxParticles) {
@@ -514,7 +515,8 @@ void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::fil
   std::string xml;
   try {
     std::error_code ignored;  // no folder: clips by their absolute paths
-    xml = writeSceneXml(scene, camera, std::filesystem::absolute(file, ignored).lexically_normal().parent_path());
+    xml = writeSceneXml(scene, camera,
+                        std::filesystem::absolute(file, ignored).lexically_normal().parent_path());
   } catch (const std::invalid_argument& e) {
     throw SaveError(file, std::string("cannot save this world as a scene: ") + e.what());
   }
