@@ -48,7 +48,7 @@ fuzz: deps
 	scripts/run-fuzzer $(SECONDS) $(FUZZ_FLAGS)
 
 # The fast physics and scene tests under AddressSanitizer and UndefinedBehaviorSanitizer (the
-# asan preset, building physics_tests, app_tests and testsupport_tests only;
+# asan preset, building physics_tests, scene_tests and testsupport_tests only;
 # scripts/ctest-asan-fast says which run). The whole suite is make test PRESET=asan.
 asan-fast: deps
 	cmake --preset asan
