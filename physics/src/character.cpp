@@ -236,6 +236,11 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
   return bones;
 }
 
+Vec3 rootCentre(const Character& c, const ClipPose& pose) {
+  const Quat& rootTurn = pose.turns[static_cast<std::size_t>(c.bones[0].clipBone)];
+  return c.origin + c.frame * (c.scale * (pose.root + rootTurn * c.rootOffset));
+}
+
 void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat> out) {
   // Checked before a message is made: this runs every substep, where nothing may allocate.
   if (out.size() < c.bones.size() || pose.turns.size() < c.bones.size())
@@ -289,6 +294,8 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   checkStrengths(desc.strength, desc.rootStrength, who);
   require(desc.balance >= 0.0 && desc.balance <= 1.0, who + ": balance must be in [0, 1]");
   require(std::isfinite(desc.scale) && desc.scale > 0.0, who + ": scale must be finite and > 0");
+  require(finite(desc.rootOffset) && glm::length(desc.rootOffset) <= kMaxClipReach,
+          who + ": root offset must be finite and within " + std::to_string(kMaxClipReach) + " m");
   checkReaction(desc.reaction, *desc.playback.clip, who);
   Character c;
   c.ragdoll = desc.ragdoll;
@@ -303,6 +310,7 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   c.rootStrength = c.goalRootStrength = desc.rootStrength;
   c.balance = c.goalBalance = desc.balance;
   c.scale = desc.scale;
+  c.rootOffset = desc.rootOffset;
   c.reaction = desc.reaction;
   c.lastRootVelocity = bodyVelocity(c.bones[0].body).first;
   // The clip's frame is where the root is now: its root path starts at the root part's centre and
@@ -314,7 +322,8 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   const BodyPose pose = bodyPose(root);
   sampleClip(*c.now.clip, c.now.time, c.now.loop, c.pose);
   c.frame = headingOf(pose.orientation * glm::conjugate(c.pose.turns[0]));
-  c.origin = pose.center - c.frame * (c.scale * c.pose.root);
+  c.origin = Vec3(0.0);  // what rootCentre adds the clip's path to: the path starts at the root
+  c.origin = pose.center - rootCentre(c, c.pose);
   if (world_.ground) {
     const Vec3& n = world_.groundNormal;
     c.origin -= n * (glm::dot(c.origin, n) - world_.groundHeight);
@@ -347,7 +356,7 @@ void World::putInPose(const Character& c) {
   std::vector<Quat> targets(c.bones.size());
   std::vector<Vec3> centres(c.bones.size());
   targetOrientations(c, c.pose, targets);
-  targetCentres(*this, c, targets, c.origin + c.frame * (c.scale * c.pose.root), centres);
+  targetCentres(*this, c, targets, rootCentre(c, c.pose), centres);
   RigidBodies& r = rigidBodies_;
   for (std::size_t b = 0; b < c.bones.size(); ++b) {
     const RigidId i = bodies_[c.bones[b].body].rigid;
@@ -467,8 +476,8 @@ void World::animate(Real h) {
     }
     const Body& root = bodies_[c.bones[0].body];
     if (c.rootStrength > 0.0) {
-      const BodyDrive carry{c.origin + c.frame * (c.scale * c.pose.root), characterTargets_[0],
-                            c.rootStrength, c.rootStiffness, c.rootAngularStiffness};
+      const BodyDrive carry{rootCentre(c, c.pose), characterTargets_[0], c.rootStrength, c.rootStiffness,
+                            c.rootAngularStiffness};
       constraints_.setBodyDrive(root.rigid, carry);
     } else if (keepsRootDrive(c)) {
       const BodyDrive balance{rigidBodies_.position[root.rigid], balanceTarget(c, characterTargets_[0]),
@@ -572,8 +581,10 @@ void World::react() {
     } else if (c.state == CharacterState::Down && c.reaction.getUp.clip &&
                c.stillTime >= c.reaction.restTime) {
       // Up where it lies: the get-up clip's root path starts under the root part's centre.
+      const Quat& rootTurn = c.pose.turns[static_cast<std::size_t>(c.bones[0].clipBone)];
       const Vec3 lying = glm::conjugate(c.frame) *
-                         (rigidBodies_.position[bodies_[c.bones[0].body].rigid] - c.origin) / c.scale;
+                             (rigidBodies_.position[bodies_[c.bones[0].body].rigid] - c.origin) / c.scale -
+                         rootTurn * c.rootOffset;
       changeClip(c, c.reaction.getUp, 0.0, lying);
       enter(c, CharacterState::GettingUp);
     }

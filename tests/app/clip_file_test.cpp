@@ -84,11 +84,11 @@ std::string characterScene(const std::string& character) {
 }
 
 TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
-  const scenes::Scene ok =
-      scenes::loadSceneText(characterScene("<character ragdoll=\"r\" clip=\"" + kClips +
-                                           "run.bvh\" strength=\"0.8\" root-strength=\"1\" "
-                                           "time=\"0.1\" speed=\"2\" loop=\"false\"/>"),
-                            "c.xml");
+  const scenes::Scene ok = scenes::loadSceneText(
+      characterScene("<character ragdoll=\"r\" clip=\"" + kClips +
+                     "run.bvh\" strength=\"0.8\" root-strength=\"1\" "
+                     "time=\"0.1\" speed=\"2\" loop=\"false\" root-offset=\"0 0.29 0\"/>"),
+      "c.xml");
   ASSERT_EQ(ok.world.characters().size(), 1u);
   const phys::Character& c = ok.world.characters()[0];
   EXPECT_EQ(c.strength, 0.8);
@@ -96,6 +96,9 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   EXPECT_EQ(c.now.time, 0.1);
   EXPECT_EQ(c.now.speed, 2.0);
   EXPECT_FALSE(c.now.loop);
+  EXPECT_EQ(c.rootOffset, phys::Vec3(0.0, 0.29, 0.0));
+  EXPECT_EQ(testsupport::compareScenes(ok, scenes::loadSceneText(scenes::writeSceneXml(ok), "again.xml")),
+            "");
   auto error = [](const std::string& character) {
     try {
       scenes::loadSceneText(characterScene(character), "c.xml");
@@ -112,6 +115,9 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   const std::string strong =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" strength=\"2\"/>");
   EXPECT_NE(strong.find("attribute 'strength'"), std::string::npos) << strong;
+  const std::string far =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" root-offset=\"2e6 0 0\"/>");
+  EXPECT_NE(far.find("attribute 'root-offset': must be within"), std::string::npos) << far;
   const std::string backwards =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" speed=\"-1\"/>");
   EXPECT_NE(backwards.find("attribute 'speed'"), std::string::npos) << backwards;

@@ -1,6 +1,7 @@
 // Animation (docs/physics.md, "Animation"): sampling a clip between frames, looping with the root
 // carried on, blending, refusing bad clips; binding a clip to a ragdoll by name, refusing one that
 // does not fit with the bones named; a character's drives aimed at the clip's pose and followed.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -323,6 +324,40 @@ TEST(Character, FollowsAMovingClipWithTheRootCarried) {
   std::printf("swinging clip, strength 0.9, root carried: RMS tracking error %.2f degrees\n", rms / kDeg);
   EXPECT_LT(rms, 5.0 * kDeg);
   EXPECT_TRUE(w.freezes().empty());
+}
+
+// A clip whose root is the hip joint (as motion capture's is), with the root offset from it to the torso's
+// centre: as the clip pitches its root 60 degrees forwards about the still hips, the hand of god (strength
+// 1, in space) carries the torso's centre round the hips, the offset turned with the root; without the
+// offset it would hold the centre still and turn the torso about it, 0.29 m from where the clip has it.
+TEST(Character, TheRootOffsetTurnsWithTheRoot) {
+  phys::WorldSettings ws;
+  ws.ground = false;
+  phys::World w(ws, testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8));
+  const phys::Ragdoll r = rigidRagdoll(w, "r");
+  const Real pitch = 60.0 * kDeg;
+  Clip clip = ragdollClip(
+      121, [&](const std::string& bone, Real t) { return bone == "torso" ? pitch * std::min(t, 1.0) : 0.0; });
+  for (Vec3& root : clip.root) root = Vec3(0.0, 0.88, 0.0);  // the hips, 0.29 m below the torso's centre
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip = std::make_shared<const Clip>(clip);
+  desc.playback.loop = false;
+  desc.rootStrength = 1.0;
+  desc.rootOffset = Vec3(0.0, 0.29, 0.0);
+  const Vec3 start = w.bodyPose(r.part(phys::RagdollPart::Torso)).center;
+  w.addCharacter(desc);
+  for (int i = 0; i < 120; ++i) w.step();
+  const Vec3 hips = start - desc.rootOffset;
+  const Vec3 expected = hips + glm::angleAxis(pitch, Vec3(1.0, 0.0, 0.0)) * desc.rootOffset;
+  EXPECT_LT(glm::length(w.bodyPose(r.part(phys::RagdollPart::Torso)).center - expected), 2e-3);
+  EXPECT_NEAR(glm::length(expected - start), 0.29, 1e-12);  // what a missing offset would be off by
+  // Refused: an offset no clip's reach allows.
+  desc.ragdoll = "r";
+  desc.rootOffset = Vec3(2e6, 0.0, 0.0);
+  phys::World other(ws, testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8));
+  rigidRagdoll(other, "r");
+  EXPECT_THROW(other.addCharacter(desc), std::invalid_argument);
 }
 
 // playClip fades from one clip to another: halfway through the fade the elbow's target is halfway,

@@ -528,6 +528,7 @@ class Comparison {
       for (const auto& [name, pair] : numbers) {
         if (pair.first != pair.second) return unequal(who + ": " + name, pair.first, pair.second);
       }
+      if (x.rootOffset != y.rootOffset) return unequal(who + ": root-offset", x.rootOffset, y.rootOffset);
       if (x.partStrength.size() != y.partStrength.size())
         return unequal<Real>(who + ": parts", Real(x.partStrength.size()), Real(y.partStrength.size()));
       for (std::size_t p = 0; p < x.partStrength.size(); ++p) {

@@ -493,6 +493,11 @@ class Builder {
       if (!(*scale > 0.0)) e.fail("scale", "'" + detail::formatNumber(*scale) + "' must be > 0");
       desc.scale = *scale;
     }
+    if (auto offset = e.vector("root-offset", "m")) {
+      if (glm::length(*offset) > phys::kMaxClipReach)
+        e.fail("root-offset", "must be within " + detail::formatNumber(phys::kMaxClipReach) + " m");
+      desc.rootOffset = *offset;
+    }
     if (auto parts = e.text("part-strengths"))
       desc.partStrengths = partStrengths(e, *parts, *desc.playback.clip);
     reaction(e, desc.reaction);

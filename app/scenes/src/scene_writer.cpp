@@ -462,6 +462,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
         .number("strength", c.goalStrength)
         .number("root-strength", c.goalRootStrength);
     if (c.scale != 1.0) e.number("scale", c.scale);
+    if (c.rootOffset != phys::Vec3(0.0)) e.vector("root-offset", c.rootOffset);
     if (c.goalBalance > 0.0) e.number("balance", c.goalBalance);
     std::string parts;
     for (std::size_t b = 1; b < c.bones.size(); ++b) {

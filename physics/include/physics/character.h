@@ -84,6 +84,10 @@ struct CharacterDesc {
   /// Per bone by name, 0 to 1: its joint's share of the character's strength (1 for a bone not
   /// named): an arm held loosely, a stiff neck. Not the root's, which has no joint.
   std::vector<std::pair<std::string, Real>> partStrengths;
+  /// unit: m, in the clip's root bone's frame, times `scale`: where the root part's centre is from
+  /// the clip's root position. 0 for the project's clips, whose root is the root part's centre; a
+  /// clip whose root is the hip joint (most motion capture) needs the centre's offset from it.
+  Vec3 rootOffset{0.0};
 };
 
 /// One part of a character, bound to a clip's bone.
@@ -114,6 +118,7 @@ struct Character {
   Real goalRootStrength = 0.0;
   Real goalBalance = 0.0;
   Real scale = 1.0;
+  Vec3 rootOffset{0.0};  ///< unit: m; CharacterDesc::rootOffset
   Reaction reaction;
   CharacterState state = CharacterState::Active;
   Real stateTime = 0.0;     ///< unit: s; since the state began
@@ -148,6 +153,10 @@ struct Character {
 /// std::invalid_argument naming the bones that do not match. `rest` of each bone is from the joints'
 /// rests, so the binding does not depend on the pose the ragdoll is in.
 std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdoll, const Clip& clip);
+
+/// Where `pose` puts the root part's centre in the world: the clip's root position and the root
+/// offset turned with the root bone, in the character's frame. unit: m
+Vec3 rootCentre(const Character& c, const ClipPose& pose);
 
 /// Each part's target orientation in the world for `pose`: frame * (the bones' turns down the
 /// chain) * rest, into the first c.bones.size() elements of `out` (at least that long).
