@@ -349,9 +349,8 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
         "run-cycle --error tracking-error`), against cost per simulated second, at dt 1/30, 1/60 and 1/120 "
         "s, for each model of ragdoll that has drives: the box ragdoll and the capsule ragdoll, both rigid. "
         "Only rigid ragdolls have drives, and a rigid body is solved by XPBD whatever the method, so the "
-        "four "
-        "methods are one here (docs/physics.md, \"Joint drives\"). The runner starts in the clip's first "
-        "pose (`pose=\"clip\"`), so the figure is the tracking and not the turn into the clip.\n\n";
+        "four methods are one here (docs/physics.md, \"Joint drives\"). The runner starts in the clip's "
+        "first pose (`pose=\"clip\"`), so the figure is the tracking and not the turn into the clip.\n\n";
   for (const TrackingScene& t : kTrackingScenes) {
     const fs::path dir = results / t.folder;
     const CommandOutput r = runCommandMain(sweepMain, trackingArgs(o, t.scene, dir), err);
