@@ -84,11 +84,12 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   return true;
 }
 
-// When every island sleeps, a step only passes the time (as the substeps would add it up).
+// When every island sleeps, a step only passes the time (as the substeps would add it up) and
+// plays the characters' clips: nothing moves, but a limp character's clip plays on, so that a
+// strength given back later finds the clip where the world's clock says; the drives this aims are
+// not solved until a wake.
 bool World::restWhileAsleep() {
   if (!islands_.allAsleep() || drag_ || !pushes_.empty() || anyCharacterActive()) return false;
-  // Nothing moves, but a limp character's clip plays on, so that a strength given back later finds
-  // the clip where the world's clock says; the drives this aims are not solved until a wake.
   for (int s = 0; s < solver_.substeps; ++s) {
     animate(substepDt());
     time_ += substepDt();
