@@ -5,6 +5,8 @@
 // particles now): moving only the contact particles' x* would send a landing box's bottom
 // corners up while its top kept falling, and its sticks would cancel the bounce in the next
 // substep. The impulses change the boxes' rigid states, and reach the particles once, at the end.
+#include <cmath>
+
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -74,7 +76,8 @@ void measureRigidStates(const Particles& p, std::span<const Body> boxes, Real h,
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     RigidState& s = rigid[k];
     s = {};
-    if (!massProperties(p, boxes[k], m)) continue;  // inverse mass 0: impulses leave it alone
+    if (!massProperties(p, boxes[k], m)) continue;                 // inverse mass 0: impulses leave it alone
+    if (!(std::abs(glm::determinant(m.inertia)) > 0.0)) continue;  // crushed flat: no inertia to turn
     const RigidMotion motion = rigidMotion(p, boxes[k], m);
     s.inverseMass = 1.0 / m.mass;
     s.centre = m.centre;
@@ -128,6 +131,8 @@ void applyRigidChanges(Particles& p, std::span<const Body> boxes, std::span<cons
     const Body& box = boxes[k];
     for (ParticleId i = box.firstParticle; i < box.firstParticle + static_cast<ParticleId>(box.particleCount);
          ++i) {
+      // A particle the guard froze since the states were measured is never written again.
+      if (p.inverseMass[i] == 0.0) continue;
       p.previous[i] -= (s.velocityChange + glm::cross(s.spinChange, p.position[i] - s.centre)) * h;
     }
   }
