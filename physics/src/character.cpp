@@ -185,6 +185,12 @@ void rampStrengths(Character& c, Real h) {
   }
 }
 
+// Where the root part's centre is from the clip's root position in `pose`, in the clip's frame
+// (before the character's scale): the root offset turned with the root bone.
+Vec3 turnedRootOffset(const Character& c, const ClipPose& pose) {
+  return pose.turns[static_cast<std::size_t>(c.bones[0].clipBone)] * c.rootOffset;
+}
+
 }  // namespace
 
 std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdoll, const Clip& clip) {
@@ -237,8 +243,7 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
 }
 
 Vec3 rootCentre(const Character& c, const ClipPose& pose) {
-  const Quat& rootTurn = pose.turns[static_cast<std::size_t>(c.bones[0].clipBone)];
-  return c.origin + c.frame * (c.scale * (pose.root + rootTurn * c.rootOffset));
+  return c.origin + c.frame * (c.scale * (pose.root + turnedRootOffset(c, pose)));
 }
 
 void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat> out) {
@@ -322,8 +327,7 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   const BodyPose pose = bodyPose(root);
   sampleClip(*c.now.clip, c.now.time, c.now.loop, c.pose);
   c.frame = headingOf(pose.orientation * glm::conjugate(c.pose.turns[0]));
-  c.origin = Vec3(0.0);  // what rootCentre adds the clip's path to: the path starts at the root
-  c.origin = pose.center - rootCentre(c, c.pose);
+  c.origin = pose.center - c.frame * (c.scale * (c.pose.root + turnedRootOffset(c, c.pose)));
   if (world_.ground) {
     const Vec3& n = world_.groundNormal;
     c.origin -= n * (glm::dot(c.origin, n) - world_.groundHeight);
@@ -581,10 +585,9 @@ void World::react() {
     } else if (c.state == CharacterState::Down && c.reaction.getUp.clip &&
                c.stillTime >= c.reaction.restTime) {
       // Up where it lies: the get-up clip's root path starts under the root part's centre.
-      const Quat& rootTurn = c.pose.turns[static_cast<std::size_t>(c.bones[0].clipBone)];
       const Vec3 lying = glm::conjugate(c.frame) *
                              (rigidBodies_.position[bodies_[c.bones[0].body].rigid] - c.origin) / c.scale -
-                         rootTurn * c.rootOffset;
+                         turnedRootOffset(c, c.pose);
       changeClip(c, c.reaction.getUp, 0.0, lying);
       enter(c, CharacterState::GettingUp);
     }

@@ -5,8 +5,6 @@
 // particles now): moving only the contact particles' x* would send a landing box's bottom
 // corners up while its top kept falling, and its sticks would cancel the bounce in the next
 // substep. The impulses change the boxes' rigid states, and reach the particles once, at the end.
-#include <cmath>
-
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -76,8 +74,7 @@ void measureRigidStates(const Particles& p, std::span<const Body> boxes, Real h,
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     RigidState& s = rigid[k];
     s = {};
-    if (!massProperties(p, boxes[k], m)) continue;                 // inverse mass 0: impulses leave it alone
-    if (!(std::abs(glm::determinant(m.inertia)) > 0.0)) continue;  // crushed flat: no inertia to turn
+    if (!massProperties(p, boxes[k], m)) continue;  // inverse mass 0 or crushed flat: impulses leave it alone
     const RigidMotion motion = rigidMotion(p, boxes[k], m);
     s.inverseMass = 1.0 / m.mass;
     s.centre = m.centre;
