@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <type_traits>
 
 namespace sandbox {
@@ -53,6 +54,12 @@ class Writer {
     value(v.y);
     value(v.z);
   }
+  void quat(const phys::Quat& q) {
+    value(q.w);
+    value(q.x);
+    value(q.y);
+    value(q.z);
+  }
   std::string& out() { return out_; }
 
  private:
@@ -87,6 +94,15 @@ class Reader {
     const double x = value<double>(), y = value<double>(), z = value<double>();
     return {x, y, z};
   }
+  phys::Quat quat() {
+    const double w = value<double>(), x = value<double>(), y = value<double>(), z = value<double>();
+    return {w, x, y, z};
+  }
+  bool flag(const char* what) {
+    const auto f = value<std::uint8_t>();
+    if (f > 1) fail(std::string(what) + " is " + std::to_string(f) + ", not 0 or 1: the file is damaged");
+    return f == 1;
+  }
   std::size_t offset() const { return at_; }
   std::size_t left() const { return bytes_.size() - at_; }
   /// Where the reader is, for messages: "part 2, step 140".
@@ -108,12 +124,92 @@ class Reader {
   std::string place_;
 };
 
-// Bytes one step takes in a part of `particles` particles and `rigid` rigid bodies.
-std::size_t stepBytes(std::size_t particles, std::size_t rigid) {
-  return 8 + 8 + 8 + 1 + 3 * 8 + particles * 6 * 8 + rigid * 13 * 8;
+// A part's clips: the names its characters' playbacks refer to by index, in the order they first
+// appear.
+constexpr std::uint32_t kNoClip = std::numeric_limits<std::uint32_t>::max();
+
+std::uint32_t clipIndex(std::vector<std::string>& names, const phys::Playback& p) {
+  if (p.clip == nullptr) return kNoClip;
+  const auto it = std::find(names.begin(), names.end(), p.clip->name);
+  if (it != names.end()) return static_cast<std::uint32_t>(it - names.begin());
+  names.push_back(p.clip->name);
+  return static_cast<std::uint32_t>(names.size() - 1);
 }
 
-void writeStep(Writer& w, const SavedStep& s) {
+// Every playback of a character: the clip playing, the one faded from, the get-up, the queued.
+template <class F>
+void forEachPlayback(const phys::CharacterMotion& c, F f) {
+  f(c.now);
+  f(c.before);
+  f(c.reaction.getUp);
+  if (c.queued) f(c.queued->playback);
+}
+
+std::vector<std::string> clipNames(const SavedPart& part) {
+  std::vector<std::string> names;
+  for (const SavedStep& s : part.steps) {
+    for (const phys::CharacterMotion& c : s.motion.characters)
+      forEachPlayback(c, [&names](const phys::Playback& p) { clipIndex(names, p); });
+  }
+  return names;
+}
+
+// Bytes of one character's motion with `bones` bones (docs/sandbox.md, "Recording files"): four
+// playbacks of 21, 13 numbers (104), the reaction's 6 (48), the state (1), the root's velocity (24),
+// the queued flag and 2 numbers (17), the frame (32), origin and shift (48), the two poses' roots (48)
+// and the holding flag (1): 407; and per bone its strength and two turns, 72.
+std::size_t characterBytes(std::size_t bones) {
+  constexpr std::size_t kFixed = 407, kPerBone = 72;
+  return kFixed + bones * kPerBone;
+}
+
+// Bytes one step takes in a part of `particles` particles, `rigid` rigid bodies and characters of
+// `bones` bones each.
+std::size_t stepBytes(std::size_t particles, std::size_t rigid, std::span<const std::size_t> bones) {
+  std::size_t n = 8 + 8 + 8 + 1 + 3 * 8 + particles * 6 * 8 + rigid * 13 * 8;
+  for (const std::size_t b : bones) n += characterBytes(b);
+  return n;
+}
+
+void writePlayback(Writer& w, std::vector<std::string>& names, const phys::Playback& p) {
+  w.value(clipIndex(names, p));
+  w.value(p.time);
+  w.value(p.speed);
+  w.value(static_cast<std::uint8_t>(p.loop ? 1 : 0));
+}
+
+void writePose(Writer& w, const phys::ClipPose& pose) {
+  w.vec(pose.root);
+  for (const phys::Quat& q : pose.turns) w.quat(q);
+}
+
+void writeCharacter(Writer& w, std::vector<std::string>& names, const phys::CharacterMotion& c) {
+  writePlayback(w, names, c.now);
+  writePlayback(w, names, c.before);
+  writePlayback(w, names, c.reaction.getUp);
+  writePlayback(w, names, c.queued ? c.queued->playback : phys::Playback{});
+  for (const double v :
+       {c.blend, c.blendTime, c.strength, c.rootStrength, c.balance, c.goalStrength, c.goalRootStrength,
+        c.goalBalance, c.stateTime, c.fromStrength, c.fromBalance, c.lastImpact, c.stillTime})
+    w.value(v);
+  for (const double share : c.partStrength) w.value(share);
+  const phys::Reaction& r = c.reaction;
+  for (const double v : {r.threshold, r.fallTime, r.restSpeed, r.restTime, r.getUpTime, r.armTime})
+    w.value(v);
+  w.value(static_cast<std::uint8_t>(c.state));
+  w.vec(c.lastRootVelocity);
+  w.value(static_cast<std::uint8_t>(c.queued ? 1 : 0));
+  w.value(c.queued ? c.queued->at : 0.0);
+  w.value(c.queued ? c.queued->blendTime : 0.0);
+  w.quat(c.frame);
+  w.vec(c.origin);
+  w.vec(c.beforeShift);
+  writePose(w, c.pose);
+  writePose(w, c.held);
+  w.value(static_cast<std::uint8_t>(c.holding ? 1 : 0));
+}
+
+void writeStep(Writer& w, std::vector<std::string>& names, const SavedStep& s) {
   w.value(static_cast<std::int64_t>(s.record.step));
   w.value(s.motion.time);
   w.value(s.record.hash);
@@ -122,22 +218,76 @@ void writeStep(Writer& w, const SavedStep& s) {
   for (const phys::Vec3& p : s.motion.position) w.vec(p);
   for (const phys::Vec3& p : s.motion.previous) w.vec(p);
   for (std::size_t r = 0; r < s.motion.rigidPosition.size(); ++r) {
-    const phys::Quat& q = s.motion.rigidOrientation[r];
     w.vec(s.motion.rigidPosition[r]);
-    w.value(q.w);
-    w.value(q.x);
-    w.value(q.y);
-    w.value(q.z);
+    w.quat(s.motion.rigidOrientation[r]);
     w.vec(s.motion.rigidVelocity[r]);
     w.vec(s.motion.rigidAngularVelocity[r]);
   }
+  for (const phys::CharacterMotion& c : s.motion.characters) writeCharacter(w, names, c);
+}
+
+// A part's clips as the source gave them; none where the file is not to be trusted yet.
+using Clips = std::vector<std::shared_ptr<const phys::Clip>>;
+
+phys::Playback readPlayback(Reader& r, const Clips& clips) {
+  phys::Playback p;
+  const auto clip = r.value<std::uint32_t>();
+  if (clip != kNoClip && clip >= clips.size()) {
+    r.fail("clip " + std::to_string(clip) + " of a part that names " + std::to_string(clips.size()) +
+           ": the file is damaged");
+  }
+  if (clip != kNoClip) p.clip = clips[clip];
+  p.time = r.value<double>();
+  p.speed = r.value<double>();
+  p.loop = r.flag("a clip's loop flag");
+  return p;
+}
+
+void readPose(Reader& r, std::size_t bones, phys::ClipPose& pose) {
+  pose.root = r.vec();
+  pose.turns.resize(bones);
+  for (phys::Quat& q : pose.turns) q = r.quat();
+}
+
+phys::CharacterMotion readCharacter(Reader& r, const Clips& clips, std::size_t bones) {
+  phys::CharacterMotion c;
+  c.now = readPlayback(r, clips);
+  c.before = readPlayback(r, clips);
+  c.reaction.getUp = readPlayback(r, clips);
+  const phys::Playback queued = readPlayback(r, clips);
+  for (double* v : {&c.blend, &c.blendTime, &c.strength, &c.rootStrength, &c.balance, &c.goalStrength,
+                    &c.goalRootStrength, &c.goalBalance, &c.stateTime, &c.fromStrength, &c.fromBalance,
+                    &c.lastImpact, &c.stillTime})
+    *v = r.value<double>();
+  c.partStrength.resize(bones);
+  for (double& share : c.partStrength) share = r.value<double>();
+  phys::Reaction& reaction = c.reaction;
+  for (double* v : {&reaction.threshold, &reaction.fallTime, &reaction.restSpeed, &reaction.restTime,
+                    &reaction.getUpTime, &reaction.armTime})
+    *v = r.value<double>();
+  const auto state = r.value<std::uint8_t>();
+  if (state > static_cast<std::uint8_t>(phys::CharacterState::LettingGo))
+    r.fail("a character's state " + std::to_string(state) + ": the file is damaged");
+  c.state = static_cast<phys::CharacterState>(state);
+  c.lastRootVelocity = r.vec();
+  const bool hasQueued = r.flag("the queued clip's flag");
+  const double at = r.value<double>(), blendTime = r.value<double>();
+  if (hasQueued) c.queued = phys::QueuedClip{queued, at, blendTime};
+  c.frame = r.quat();
+  c.origin = r.vec();
+  c.beforeShift = r.vec();
+  readPose(r, bones, c.pose);
+  readPose(r, bones, c.held);
+  c.holding = r.flag("the holding flag");
+  return c;
 }
 
 bool finite(const phys::Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-SavedStep readStep(Reader& r, std::size_t particles, std::size_t rigid) {
+SavedStep readStep(Reader& r, std::size_t particles, std::size_t rigid, const Clips& clips,
+                   std::span<const std::size_t> bones) {
   SavedStep s;
   const auto step = r.value<std::int64_t>();
   if (step < 0 || step >= std::numeric_limits<long>::max()) {
@@ -147,11 +297,9 @@ SavedStep readStep(Reader& r, std::size_t particles, std::size_t rigid) {
   s.motion.steps = s.record.step;
   s.motion.time = r.value<double>();
   s.record.hash = r.value<std::uint64_t>();
-  const auto hasDrag = r.value<std::uint8_t>();
+  const bool hasDrag = r.flag("the drag flag");
   const phys::Vec3 drag = r.vec();
-  if (hasDrag > 1)
-    r.fail("the drag flag is " + std::to_string(hasDrag) + ", not 0 or 1: the file is damaged");
-  if (hasDrag == 1) s.record.dragTarget = drag;
+  if (hasDrag) s.record.dragTarget = drag;
   s.motion.position.resize(particles);
   s.motion.previous.resize(particles);
   for (phys::Vec3& p : s.motion.position) p = r.vec();
@@ -162,14 +310,12 @@ SavedStep readStep(Reader& r, std::size_t particles, std::size_t rigid) {
   s.motion.rigidAngularVelocity.resize(rigid);
   for (std::size_t k = 0; k < rigid; ++k) {
     s.motion.rigidPosition[k] = r.vec();
-    phys::Quat& q = s.motion.rigidOrientation[k];
-    q.w = r.value<double>();
-    q.x = r.value<double>();
-    q.y = r.value<double>();
-    q.z = r.value<double>();
+    s.motion.rigidOrientation[k] = r.quat();
     s.motion.rigidVelocity[k] = r.vec();
     s.motion.rigidAngularVelocity[k] = r.vec();
   }
+  s.motion.characters.reserve(bones.size());
+  for (const std::size_t b : bones) s.motion.characters.push_back(readCharacter(r, clips, b));
   return s;
 }
 
@@ -233,11 +379,21 @@ std::uint64_t structureKey(const phys::World& world) {
     f.value(static_cast<std::uint32_t>(j.b));
   }
   f.value(static_cast<std::uint64_t>(world.jointFrictions().size()));
+  f.value(static_cast<std::uint64_t>(world.characters().size()));
+  for (const phys::Character& c : world.characters()) {
+    f.value(static_cast<std::uint64_t>(c.bones.size()));
+    for (const phys::CharacterBone& bone : c.bones) {
+      f.value(static_cast<std::uint32_t>(bone.body));
+      f.value(bone.clipBone);
+      f.value(bone.parent);
+    }
+  }
   return f.hash();
 }
 
 // Layout (docs/sandbox.md, "Recording files"): the magic, the format, the scene's name, the parts
-// (each: its scene text, structure key, counts, then its steps), and the checksum of all before it.
+// (each: its scene text, structure key, counts, its clips' names, its characters' bone counts, then
+// its steps), and the checksum of all before it.
 std::string encodeRecording(const SavedRecording& recording) {
   Writer w;
   w.out().append(kMagic);
@@ -251,7 +407,14 @@ std::string encodeRecording(const SavedRecording& recording) {
     w.value(static_cast<std::uint64_t>(first != nullptr ? first->position.size() : 0));
     w.value(static_cast<std::uint64_t>(first != nullptr ? first->rigidPosition.size() : 0));
     w.value(static_cast<std::uint64_t>(part.steps.size()));
-    for (const SavedStep& s : part.steps) writeStep(w, s);
+    std::vector<std::string> names = clipNames(part);
+    w.value(static_cast<std::uint32_t>(names.size()));
+    for (const std::string& name : names) w.text(name);
+    const std::size_t characters = first != nullptr ? first->characters.size() : 0;
+    w.value(static_cast<std::uint32_t>(characters));
+    for (std::size_t c = 0; c < characters; ++c)
+      w.value(static_cast<std::uint32_t>(first->characters[c].partStrength.size()));
+    for (const SavedStep& s : part.steps) writeStep(w, names, s);
   }
   Fnv checksum;
   checksum.bytes(w.out().data(), w.out().size());
@@ -259,7 +422,7 @@ std::string encodeRecording(const SavedRecording& recording) {
   return std::move(w.out());
 }
 
-SavedRecording decodeRecording(std::string_view bytes) {
+SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSource) {
   Reader r(bytes);
   if (bytes.size() < kMagic.size() || bytes.substr(0, kMagic.size()) != kMagic) {
     r.fail("not a recording: it does not start with \"" + std::string(kMagic) + "\"");
@@ -292,20 +455,37 @@ SavedRecording decodeRecording(std::string_view bytes) {
     const auto particles = r.value<std::uint64_t>();
     const auto rigid = r.value<std::uint64_t>();
     const auto steps = r.value<std::uint64_t>();
+    const auto clipCount = r.value<std::uint32_t>();
+    if (clipCount > r.left()) r.fail(std::to_string(clipCount) + " clips: the file is truncated");
+    std::vector<std::string> names(clipCount);
+    for (std::string& name : names) name = r.text("a clip's name");
+    const auto characters = r.value<std::uint32_t>();
+    if (characters > r.left() / 4) r.fail(std::to_string(characters) + " characters: the file is truncated");
+    std::vector<std::size_t> bones(characters);
+    for (std::size_t& b : bones) {
+      b = r.value<std::uint32_t>();
+      if (b > bytes.size()) r.fail("a character of " + std::to_string(b) + " bones: the file is damaged");
+    }
     // Sizes from a damaged file must not allocate what the file cannot hold.
     const std::size_t each = stepBytes(std::min<std::uint64_t>(particles, bytes.size()),
-                                       std::min<std::uint64_t>(rigid, bytes.size()));
+                                       std::min<std::uint64_t>(rigid, bytes.size()), bones);
     const std::size_t room = r.left() - std::min<std::size_t>(r.left(), 8);  // before the checksum
     if (particles > bytes.size() || rigid > bytes.size() || steps > room / each) {
-      r.fail(std::to_string(steps) + " steps of " + std::to_string(particles) + " particles and " +
-             std::to_string(rigid) + " rigid bodies need more than the " + std::to_string(room) +
-             " bytes left: the file is truncated");
+      r.fail(std::to_string(steps) + " steps of " + std::to_string(particles) + " particles, " +
+             std::to_string(rigid) + " rigid bodies and " + std::to_string(characters) +
+             " characters need more than the " + std::to_string(room) + " bytes left: the file is truncated");
+    }
+    // The clips only from a file whose checksum holds: a damaged name must not be looked for.
+    Clips clips(names.size());
+    if (checksumOk && steps > 0) {
+      if (!names.empty() && !clipSource) r.fail("the recording names clips and no clip source was given");
+      for (std::size_t c = 0; c < names.size(); ++c) clips[c] = clipSource(names[c]);
     }
     part.steps.reserve(steps);
     for (std::uint64_t s = 0; s < steps; ++s) {
       r.setPlace("part " + std::to_string(p + 1) + " of " + std::to_string(parts) + ", its step " +
                  std::to_string(s + 1) + " of " + std::to_string(steps));
-      SavedStep step = readStep(r, particles, rigid);
+      SavedStep step = readStep(r, particles, rigid, clips, bones);
       if (checksumOk) checkStep(r, step, expected);
       expected = step.record.step + 1;
       part.steps.push_back(std::move(step));

@@ -5,6 +5,8 @@
 // world the motions are put back in. Binary, little-endian, with a checksum; this file only encodes
 // and decodes, Session reads and writes the files.
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -18,8 +20,8 @@ namespace sandbox {
 
 /// What a recording file's name ends in.
 inline constexpr std::string_view kRecordingExtension = ".jrec";
-/// The format this sandbox writes, and the only one it reads.
-inline constexpr std::uint32_t kRecordingFormat = 1;
+/// The format this sandbox writes, and the only one it reads (2: characters' motions added).
+inline constexpr std::uint32_t kRecordingFormat = 2;
 
 /// One step: its record (step, hash, drag target) and the world's motion after it.
 struct SavedStep {
@@ -45,8 +47,8 @@ struct SavedRecording {
 };
 
 /// A hash of what a world is made of (its particles and which body each belongs to, its bodies'
-/// models, shapes and particle ranges, its rigid bodies, sticks and joints), not of where any of
-/// it is: equal keys, a motion of one fits the other.
+/// models, shapes and particle ranges, its rigid bodies, sticks and joints, its characters' parts),
+/// not of where any of it is: equal keys, a motion of one fits the other.
 std::uint64_t structureKey(const phys::World& world);
 
 /// A file that is not a recording this sandbox can read; what() says what is wrong and where (the
@@ -56,10 +58,16 @@ class RecordingFormatError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The file's bytes.
+/// The clip a recording names (a file's path, phys::Clip::name), for the characters' motions: a
+/// clip of that name, or an exception saying why there is none.
+using ClipSource = std::function<std::shared_ptr<const phys::Clip>(const std::string& name)>;
+
+/// The file's bytes. Characters' clips are written by name, once per part.
 std::string encodeRecording(const SavedRecording& recording);
 /// Throws RecordingFormatError: not a recording, another format version, truncated, damaged (the
-/// checksum, a step out of order, a motion not matching its hash, a non-finite number).
-SavedRecording decodeRecording(std::string_view bytes);
+/// checksum, a step out of order, a motion not matching its hash, a non-finite number). The clips
+/// the characters play are asked of `clips` by name, once each, and only of a file whose checksum
+/// holds; what it throws goes through. A file that names clips needs a source.
+SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clips = {});
 
 }  // namespace sandbox

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -288,11 +289,34 @@ std::string Session::saveRecording(const std::filesystem::path& file) {
   return finishSaving(true).value_or("");
 }
 
+// The clips a recording's characters play, by name: those the scene's characters hold already (the
+// recording is of this scene), else read from the file the name is the path of.
+ClipSource Session::recordedClips() const {
+  auto known = std::make_shared<std::map<std::string, std::shared_ptr<const phys::Clip>>>();
+  for (const phys::Character& c : scene().world.characters()) {
+    for (const phys::Playback* p :
+         {&c.now, &c.before, &c.reaction.getUp, c.queued ? &c.queued->playback : nullptr}) {
+      if (p != nullptr && p->clip != nullptr) known->emplace(p->clip->name, p->clip);
+    }
+  }
+  return [known](const std::string& name) {
+    const auto it = known->find(name);
+    if (it != known->end()) return it->second;
+    try {
+      auto clip = std::make_shared<const phys::Clip>(clips::loadClip(name));
+      known->emplace(name, clip);
+      return clip;
+    } catch (const clips::ClipError& e) {
+      throw std::runtime_error(std::string("a clip its characters play: ") + e.what());
+    }
+  };
+}
+
 std::string Session::openRecording(const std::filesystem::path& file) {
   if (overlayActive()) return "stop the method overlay first: its runs cannot be shown a recording";
   const std::string kept = " (the current world is kept)";
   try {
-    SavedRecording saved = decodeRecording(fileio::readWhole(file, kMaxRecordingFile));
+    SavedRecording saved = decodeRecording(fileio::readWhole(file, kMaxRecordingFile), recordedClips());
     if (saved.sceneName != scene().name) {
       return file.string() + ": a recording of the scene '" + saved.sceneName + "', and '" + scene().name +
              "' is open: open '" + saved.sceneName + "' first" + kept;

@@ -199,6 +199,8 @@ class Session {
   void replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file);
   void forEachWorld(const std::function<void(phys::World&)>& apply);
   std::string changeCharacter(std::size_t k, const std::function<void(phys::World&)>& change);
+  /// Where openRecording finds the clips a recording's characters play.
+  ClipSource recordedClips() const;
   std::string applyWorldSettings(const phys::WorldSettings& settings, const std::string& done);
   /// A command changed the main run's world: the recording keeps it as it is now (and forks
   /// there if it was rewound).

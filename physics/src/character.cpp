@@ -349,8 +349,12 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   // Made last, so that a refusal above leaves the world as it was.
   const Character& added = characters_.back();
   if (desc.startInPose) putInPose(added);
-  if (added.rootStrength > 0.0 || keepsRootDrive(added)) makeRootDrive(added, added.rootStrength);
+  makeRootDriveIfNeeded(added);
   return characters_.size() - 1;
+}
+
+void World::makeRootDriveIfNeeded(const Character& c) {
+  if (c.rootStrength > 0.0 || keepsRootDrive(c)) makeRootDrive(c, c.rootStrength);
 }
 
 // Each part turned to its target in the character's pose, parents first, the root put on the clip's

@@ -158,7 +158,8 @@ Metrics World::metrics() const {
 
 std::uint64_t World::stateHash() const {
   return detail::stateHash(particles_.position, particles_.previous, rigidBodies_.position,
-                           rigidBodies_.velocity, rigidBodies_.angularVelocity, rigidBodies_.orientation);
+                           rigidBodies_.velocity, rigidBodies_.angularVelocity, rigidBodies_.orientation,
+                           std::span<const Character>(characters_));
 }
 
 }  // namespace phys

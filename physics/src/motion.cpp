@@ -10,30 +10,6 @@
 #include "state_hash.h"
 
 namespace phys {
-namespace detail {
-
-std::uint64_t stateHash(std::span<const Vec3> position, std::span<const Vec3> previous,
-                        std::span<const Vec3> rigidPosition, std::span<const Vec3> rigidVelocity,
-                        std::span<const Vec3> rigidAngularVelocity, std::span<const Quat> rigidOrientation) {
-  std::uint64_t hash = 14695981039346656037ull;
-  auto mix = [&hash](const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      hash ^= bytes[i];
-      hash *= 1099511628211ull;
-    }
-  };
-  for (const std::span<const Vec3> values :
-       {position, previous, rigidPosition, rigidVelocity, rigidAngularVelocity})
-    mix(values.data(), values.size_bytes());
-  for (const Quat& q : rigidOrientation) {
-    const Real wxyz[4] = {q.w, q.x, q.y, q.z};
-    mix(wxyz, sizeof(wxyz));
-  }
-  return hash;
-}
-
-}  // namespace detail
 
 namespace {
 
@@ -45,6 +21,92 @@ std::string sizes(std::size_t given, std::size_t wanted) {
   return std::to_string(given) + " given for " + std::to_string(wanted);
 }
 
+bool finitePlayback(const Playback& p) {
+  return std::isfinite(p.time) && std::isfinite(p.speed);
+}
+
+bool unitLength(const Quat& q) {
+  const Real length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  return std::abs(length - 1.0) < Motion::kUnitTolerance;
+}
+
+bool unitTurns(const ClipPose& pose) {
+  return allFinite(pose.root) && std::all_of(pose.turns.begin(), pose.turns.end(), unitLength);
+}
+
+// What Motion::problem finds in one character; "" for nothing.
+std::string characterProblem(const CharacterMotion& c) {
+  if (c.now.clip == nullptr) return "no clip playing";
+  if (c.blend < 1.0 && !c.holding && c.before.clip == nullptr) return "a fade from no clip";
+  if (c.queued && c.queued->playback.clip == nullptr) return "a queued change to no clip";
+  const bool finite = finitePlayback(c.now) && finitePlayback(c.before) && finitePlayback(c.reaction.getUp) &&
+                      (!c.queued || (finitePlayback(c.queued->playback) && std::isfinite(c.queued->at) &&
+                                     std::isfinite(c.queued->blendTime))) &&
+                      std::isfinite(c.blendTime) && std::isfinite(c.stateTime) &&
+                      std::isfinite(c.lastImpact) && std::isfinite(c.stillTime) &&
+                      allFinite(c.lastRootVelocity) && allFinite(c.origin) && allFinite(c.beforeShift);
+  if (!finite) return "a non-finite clock, speed, impact or position";
+  for (const Real unit : {c.blend, c.strength, c.rootStrength, c.balance, c.goalStrength, c.goalRootStrength,
+                          c.goalBalance, c.fromStrength, c.fromBalance}) {
+    if (!(unit >= 0.0 && unit <= 1.0)) return "a strength, balance or blend out of [0, 1]";
+  }
+  if (!std::all_of(c.partStrength.begin(), c.partStrength.end(), [](Real s) { return s >= 0.0 && s <= 1.0; }))
+    return "a part's strength out of [0, 1]";
+  if (static_cast<unsigned>(c.state) > static_cast<unsigned>(CharacterState::LettingGo))
+    return "no such state";
+  if (!unitLength(c.frame) || !unitTurns(c.pose) || (c.holding && !unitTurns(c.held)))
+    return "a frame or a pose's turn not of unit length, or a pose's root not finite";
+  return {};
+}
+
+// The same-named fields of a Character and a CharacterMotion, either way.
+template <class From, class To>
+void copyCharacterMotion(const From& from, To& to) {
+  to.now = from.now;
+  to.before = from.before;
+  to.blend = from.blend;
+  to.blendTime = from.blendTime;
+  to.strength = from.strength;
+  to.partStrength = from.partStrength;
+  to.rootStrength = from.rootStrength;
+  to.balance = from.balance;
+  to.goalStrength = from.goalStrength;
+  to.goalRootStrength = from.goalRootStrength;
+  to.goalBalance = from.goalBalance;
+  to.reaction = from.reaction;
+  to.state = from.state;
+  to.stateTime = from.stateTime;
+  to.fromStrength = from.fromStrength;
+  to.fromBalance = from.fromBalance;
+  to.lastImpact = from.lastImpact;
+  to.stillTime = from.stillTime;
+  to.lastRootVelocity = from.lastRootVelocity;
+  to.queued = from.queued;
+  to.frame = from.frame;
+  to.origin = from.origin;
+  to.beforeShift = from.beforeShift;
+  to.pose = from.pose;
+  to.held = from.held;
+  to.holding = from.holding;
+}
+
+// Why character `c` of a motion cannot be given to the world's `w` ("" when it can): its per-bone
+// arrays must be the character's size and every clip it names of the character's skeleton.
+std::string characterMismatch(const CharacterMotion& c, const Character& w) {
+  const std::size_t bones = w.bones.size();
+  if (c.partStrength.size() != bones || c.pose.turns.size() != w.pose.turns.size() ||
+      c.held.turns.size() != w.held.turns.size())
+    return "part strengths or pose turns for " + std::to_string(c.partStrength.size()) +
+           " bones, the character has " + std::to_string(bones);
+  const Playback* playbacks[] = {&c.now, &c.before, &c.reaction.getUp,
+                                 c.queued ? &c.queued->playback : nullptr};
+  for (const Playback* p : playbacks) {
+    if (p != nullptr && p->clip != nullptr && !sameSkeleton(*p->clip, *w.now.clip))
+      return "clip '" + p->clip->name + "' has other bones than '" + w.now.clip->name + "'";
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string Motion::problem() const {
@@ -54,16 +116,18 @@ std::string Motion::problem() const {
       if (!allFinite(v)) return "a non-finite position or velocity";
     }
   }
-  for (const Quat& q : rigidOrientation) {
-    const Real length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    if (!(std::abs(length - 1.0) < kUnitTolerance)) return "an orientation not of unit length";
+  if (!std::all_of(rigidOrientation.begin(), rigidOrientation.end(), unitLength))
+    return "an orientation not of unit length";
+  for (std::size_t k = 0; k < characters.size(); ++k) {
+    if (std::string problem = characterProblem(characters[k]); !problem.empty())
+      return "character " + std::to_string(k) + ": " + problem;
   }
   return {};
 }
 
 std::uint64_t Motion::hash() const {
   return detail::stateHash(position, previous, rigidPosition, rigidVelocity, rigidAngularVelocity,
-                           rigidOrientation);
+                           rigidOrientation, std::span<const CharacterMotion>(characters));
 }
 
 Motion World::motion() const {
@@ -74,6 +138,8 @@ Motion World::motion() const {
   m.rigidOrientation = rigidBodies_.orientation;
   m.rigidVelocity = rigidBodies_.velocity;
   m.rigidAngularVelocity = rigidBodies_.angularVelocity;
+  m.characters.resize(characters_.size());
+  for (std::size_t k = 0; k < characters_.size(); ++k) copyCharacterMotion(characters_[k], m.characters[k]);
   m.time = time_;
   m.steps = steps_;
   return m;
@@ -93,8 +159,15 @@ void World::setMotion(const Motion& m) {
               m.rigidAngularVelocity.size() == r,
           "setMotion: rigid body poses or velocities for " + std::to_string(m.rigidPosition.size()) +
               " bodies, the world has " + std::to_string(r));
+  require(m.characters.size() == characters_.size(), "setMotion: " + std::to_string(m.characters.size()) +
+                                                         " characters given, the world has " +
+                                                         std::to_string(characters_.size()));
   const std::string problem = m.problem();
   require(problem.empty(), "setMotion: " + problem);
+  for (std::size_t k = 0; k < characters_.size(); ++k) {
+    const std::string mismatch = characterMismatch(m.characters[k], characters_[k]);
+    require(mismatch.empty(), "setMotion: character " + std::to_string(k) + ": " + mismatch);
+  }
   particles_.position = m.position;
   particles_.previous = m.previous;
   std::copy(m.position.begin(), m.position.end(), guard_.checked().begin());
@@ -102,6 +175,11 @@ void World::setMotion(const Motion& m) {
   rigidBodies_.orientation = rigidBodies_.previousOrientation = m.rigidOrientation;
   rigidBodies_.velocity = m.rigidVelocity;
   rigidBodies_.angularVelocity = m.rigidAngularVelocity;
+  for (std::size_t k = 0; k < characters_.size(); ++k) {
+    Character& c = characters_[k];
+    copyCharacterMotion(m.characters[k], c);
+    makeRootDriveIfNeeded(c);
+  }
   time_ = m.time;
   steps_ = m.steps;
   updateBodyFrames();  // what raycast and the drawing read between steps

@@ -1,16 +1,102 @@
 #pragma once
 // The state hash World::stateHash and Motion::hash share, so that a motion saved from a world
-// hashes as the world did.
+// hashes as the world did. A world's characters (Character) and a motion's (CharacterMotion) have
+// their fields under the same names, so one template hashes both.
 #include <cstdint>
 #include <span>
+#include <string_view>
+#include <type_traits>
 
+#include "physics/character.h"
 #include "physics/types.h"
 
 namespace phys::detail {
 
-/// FNV-1a, 64 bit, over the bytes of each array in turn; a quaternion counts as (w, x, y, z).
+/// FNV-1a, 64 bit.
+class StateHasher {
+ public:
+  void bytes(const void* data, std::size_t size) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+      hash_ ^= b[i];
+      hash_ *= 1099511628211ull;
+    }
+  }
+  template <typename T>
+  void value(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes(&v, sizeof(v));
+  }
+  /// A quaternion counts as (w, x, y, z).
+  void quat(const Quat& q) {
+    const Real wxyz[4] = {q.w, q.x, q.y, q.z};
+    bytes(wxyz, sizeof(wxyz));
+  }
+  void text(std::string_view s) {
+    value(s.size());
+    bytes(s.data(), s.size());
+  }
+  /// A clip counts by its name: two loads of one file hash alike.
+  void playback(const Playback& p) {
+    value(p.clip != nullptr);
+    if (p.clip != nullptr) text(p.clip->name);
+    value(p.time);
+    value(p.speed);
+    value(p.loop);
+  }
+  void pose(const ClipPose& p) {
+    value(p.root);
+    for (const Quat& q : p.turns) quat(q);
+  }
+  std::uint64_t hash() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+/// Every field of a character that changes as it steps (CharacterMotion's), `C` a Character or a
+/// CharacterMotion. The pose held for a fade counts only while it is held.
+template <class C>
+void hashCharacter(StateHasher& h, const C& c) {
+  h.playback(c.now);
+  h.playback(c.before);
+  for (const Real v :
+       {c.blend, c.blendTime, c.strength, c.rootStrength, c.balance, c.goalStrength, c.goalRootStrength,
+        c.goalBalance, c.stateTime, c.fromStrength, c.fromBalance, c.lastImpact, c.stillTime})
+    h.value(v);
+  for (const Real share : c.partStrength) h.value(share);
+  const Reaction& r = c.reaction;
+  for (const Real v : {r.threshold, r.fallTime, r.restSpeed, r.restTime, r.getUpTime, r.armTime}) h.value(v);
+  h.playback(r.getUp);
+  h.value(c.state);
+  h.value(c.lastRootVelocity);
+  h.value(c.queued.has_value());
+  if (c.queued) {
+    h.playback(c.queued->playback);
+    h.value(c.queued->at);
+    h.value(c.queued->blendTime);
+  }
+  h.quat(c.frame);
+  h.value(c.origin);
+  h.value(c.beforeShift);
+  h.pose(c.pose);
+  h.value(c.holding);
+  if (c.holding) h.pose(c.held);
+}
+
+/// The bytes of each array in turn, then each character's fields.
+template <class C>
 std::uint64_t stateHash(std::span<const Vec3> position, std::span<const Vec3> previous,
                         std::span<const Vec3> rigidPosition, std::span<const Vec3> rigidVelocity,
-                        std::span<const Vec3> rigidAngularVelocity, std::span<const Quat> rigidOrientation);
+                        std::span<const Vec3> rigidAngularVelocity, std::span<const Quat> rigidOrientation,
+                        std::span<const C> characters) {
+  StateHasher h;
+  for (const std::span<const Vec3> values :
+       {position, previous, rigidPosition, rigidVelocity, rigidAngularVelocity})
+    h.bytes(values.data(), values.size_bytes());
+  for (const Quat& q : rigidOrientation) h.quat(q);
+  for (const C& c : characters) hashCharacter(h, c);
+  return h.hash();
+}
 
 }  // namespace phys::detail

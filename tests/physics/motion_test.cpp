@@ -1,11 +1,15 @@
 // A world's motion taken out and given to a fresh world of the same structure (World::motion,
 // setMotion): the sandbox's recording files rest on it.
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <string>
 
 #include <gtest/gtest.h>
 
+#include "character_util.h"
 #include "test_util.h"
 
 namespace {
@@ -55,6 +59,39 @@ void stepTimes(phys::World& world, int steps) {
   for (int i = 0; i < steps; ++i) world.step();
 }
 
+// A clip of the box ragdoll's skeleton whose hinges swing by `amplitude` (rad) once a second.
+std::shared_ptr<const phys::Clip> swinging(const std::string& name, phys::Real amplitude) {
+  phys::Clip c = testing_phys::ragdollClip(61, [amplitude](const std::string& bone, phys::Real t) {
+    return bone == "torso" ? 0.0 : amplitude * std::sin(2.0 * M_PI * t);
+  });
+  c.name = name;
+  return std::make_shared<const phys::Clip>(std::move(c));
+}
+
+// A character on a rigid ragdoll hung in open space by its root's drive (no contact with anything,
+// so nothing but the motion is carried from step to step), playing a swing.
+phys::World characterWorld() {
+  phys::World world = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 4));
+  testing_phys::rigidRagdoll(world, "r", phys::Vec3(0.0, 2.0, 0.0));
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip = swinging("swing", 0.6);
+  desc.rootStrength = 1.0;
+  desc.reaction.getUp.clip = swinging("get-up", 0.1);
+  world.addCharacter(desc);
+  return world;
+}
+
+// A run of it told things on the way: a strength, a fade to another clip, a queued change back.
+void characterRun(phys::World& world, int from, int to) {
+  for (int s = from; s < to; ++s) {
+    if (s == 20) world.setCharacterStrength(0, 0.7, 1.0);
+    if (s == 30) world.playClip(0, phys::Playback{swinging("other", -0.4), 0.25, 1.5, true}, 0.4);
+    if (s == 35) world.queueClip(0, phys::Playback{swinging("swing", 0.6), 0.0, 1.0, true}, 1.2, 0.3);
+    world.step();
+  }
+}
+
 TEST(Motion, AFreshWorldGivenAMotionHasItsState) {
   phys::World original = mixedWorld();
   stepTimes(original, 90);
@@ -100,6 +137,80 @@ TEST(Motion, WithContactsTheRunGoesOnClosely) {
     EXPECT_LT(glm::length(a.center - r.center), 1e-6) << "body " << b;
     EXPECT_LT(testing_phys::angleBetween(a.orientation, r.orientation), 1e-6) << "body " << b;
   }
+}
+
+// A character's clocks, fade, strengths and queued clip are in the motion: a world given it mid-fade
+// goes on bit for bit as the original (a world given only the bodies' state played its clips from
+// the start again and swung its parts elsewhere).
+TEST(Motion, ACharacterGoesOnExactly) {
+  phys::World original = characterWorld();
+  characterRun(original, 0, 40);  // the fade to "other" under way, the change back queued
+  const phys::Motion motion = original.motion();
+  ASSERT_EQ(motion.characters.size(), 1u);
+  EXPECT_LT(motion.characters[0].blend, 1.0);
+  EXPECT_TRUE(motion.characters[0].queued.has_value());
+  EXPECT_EQ(motion.hash(), original.stateHash());
+
+  phys::World resumed = characterWorld();
+  resumed.setMotion(motion);
+  EXPECT_EQ(resumed.stateHash(), original.stateHash());
+  characterRun(original, 40, 160);
+  characterRun(resumed, 40, 160);
+  EXPECT_EQ(resumed.characters()[0].now.clip->name, "swing");  // the queued change came in both
+  EXPECT_EQ(resumed.characters()[0].now.time, original.characters()[0].now.time);
+  EXPECT_EQ(resumed.stateHash(), original.stateHash());
+}
+
+// The hash sees a character's clock, and which clip it plays.
+TEST(Motion, HashSeesTheCharacters) {
+  phys::World world = characterWorld();
+  stepTimes(world, 5);
+  const phys::Motion m = world.motion();
+  const std::function<void(phys::Motion&)> changes[] = {
+      [](phys::Motion& x) { x.characters[0].now.time += 1e-12; },
+      [](phys::Motion& x) { x.characters[0].now.clip = swinging("another name", 0.6); },
+      [](phys::Motion& x) { x.characters[0].partStrength[3] = 0.5; },
+      [](phys::Motion& x) { x.characters[0].state = phys::CharacterState::Down; },
+      [](phys::Motion& x) { x.characters[0].pose.turns[2].x += 1e-12; },
+  };
+  for (const auto& change : changes) {
+    phys::Motion x = m;
+    change(x);
+    EXPECT_NE(x.hash(), m.hash());
+  }
+}
+
+TEST(Motion, BadCharacterMotionIsRefusedAndChangesNothing) {
+  phys::World source = characterWorld();
+  stepTimes(source, 10);
+  const phys::Motion good = source.motion();
+  phys::World fresh = characterWorld();
+  const std::uint64_t before = fresh.stateHash();
+  auto refused = [&](const std::function<void(phys::Motion&)>& spoil, const char* what) {
+    phys::Motion m = good;
+    spoil(m);
+    try {
+      fresh.setMotion(m);
+      ADD_FAILURE() << what << ": accepted";
+    } catch (const std::invalid_argument& e) {
+      std::printf("%s: %s\n", what, e.what());
+    }
+    EXPECT_EQ(fresh.stateHash(), before) << what;
+  };
+  refused([](phys::Motion& m) { m.characters.clear(); }, "no characters");
+  refused([](phys::Motion& m) { m.characters[0].now.clip.reset(); }, "no clip");
+  refused([](phys::Motion& m) { m.characters[0].now.time = std::nan(""); }, "NaN clock");
+  refused([](phys::Motion& m) { m.characters[0].strength = 1.5; }, "strength over 1");
+  refused([](phys::Motion& m) { m.characters[0].partStrength.pop_back(); }, "a part short");
+  refused([](phys::Motion& m) { m.characters[0].frame = phys::Quat(0.0, 0.0, 0.0, 0.0); }, "no frame");
+  refused(
+      [](phys::Motion& m) {
+        phys::Clip other = *m.characters[0].now.clip;
+        other.bones[1] = "neck";
+        other.name = "necked";
+        m.characters[0].reaction.getUp.clip = std::make_shared<const phys::Clip>(std::move(other));
+      },
+      "a get-up clip of other bones");
 }
 
 TEST(Motion, BadMotionIsRefusedAndChangesNothing) {

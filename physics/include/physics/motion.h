@@ -1,31 +1,70 @@
 #pragma once
 // A world's motion: everything that changes as it steps and that its state hash covers (particle
-// positions and previous positions, rigid bodies' poses and velocities) and its clock. Saved and
+// positions and previous positions, rigid bodies' poses and velocities, characters' clips, strengths
+// and reactions) and its clock. Saved and
 // given back to a world of the same structure that has not stepped (World::setMotion), it lets a
 // run go on from a state kept in a file: the sandbox's recordings (docs/sandbox.md, "Recording
 // files").
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "physics/character.h"
 #include "physics/types.h"
 
 namespace phys {
 
-struct Motion {
-  std::vector<Vec3> position;              ///< per particle, unit: m
-  std::vector<Vec3> previous;              ///< per particle, unit: m; position a substep back
-  std::vector<Vec3> rigidPosition;         ///< per rigid body (RigidId), unit: m
-  std::vector<Quat> rigidOrientation;      ///< per rigid body, unit quaternion
-  std::vector<Vec3> rigidVelocity;         ///< per rigid body, unit: m/s
-  std::vector<Vec3> rigidAngularVelocity;  ///< per rigid body, unit: rad/s, world frame
-  Real time = 0.0;                         ///< unit: s; World::time()
-  long steps = 0;                          ///< World::stepCount()
+/// What of a character changes as the world steps or as it is told to (World::playClip,
+/// setCharacterStrength, ...): Character less its binding to the ragdoll and the settings it was
+/// added with (scale, root offset, root stiffness). The fields mean what Character's of the same
+/// names mean.
+struct CharacterMotion {
+  Playback now;
+  Playback before;  ///< its clip may be none (no clip was faded out of yet)
+  Real blend = 1.0;
+  Real blendTime = 0.0;
+  Real strength = 1.0;
+  std::vector<Real> partStrength;  ///< per bone
+  Real rootStrength = 0.0;
+  Real balance = 0.0;
+  Real goalStrength = 1.0;
+  Real goalRootStrength = 0.0;
+  Real goalBalance = 0.0;
+  Reaction reaction;
+  CharacterState state = CharacterState::Active;
+  Real stateTime = 0.0;
+  Real fromStrength = 0.0;
+  Real fromBalance = 0.0;
+  Real lastImpact = 0.0;
+  Real stillTime = 0.0;
+  Vec3 lastRootVelocity{0.0};
+  std::optional<QueuedClip> queued;
+  Quat frame{1.0, 0.0, 0.0, 0.0};
+  Vec3 origin{0.0};
+  Vec3 beforeShift{0.0};
+  ClipPose pose;  ///< the last substep's target pose
+  ClipPose held;  ///< read only while `holding` (until then its turns may be zeros)
+  bool holding = false;
+};
 
-  /// World::stateHash of a world in this motion: FNV-1a over the bytes of every array above.
+struct Motion {
+  std::vector<Vec3> position;               ///< per particle, unit: m
+  std::vector<Vec3> previous;               ///< per particle, unit: m; position a substep back
+  std::vector<Vec3> rigidPosition;          ///< per rigid body (RigidId), unit: m
+  std::vector<Quat> rigidOrientation;       ///< per rigid body, unit quaternion
+  std::vector<Vec3> rigidVelocity;          ///< per rigid body, unit: m/s
+  std::vector<Vec3> rigidAngularVelocity;   ///< per rigid body, unit: rad/s, world frame
+  std::vector<CharacterMotion> characters;  ///< per character (World::characters)
+  Real time = 0.0;                          ///< unit: s; World::time()
+  long steps = 0;                           ///< World::stepCount()
+
+  /// World::stateHash of a world in this motion: FNV-1a over the bytes of every array above, then
+  /// over each character's fields (its clips by name).
   std::uint64_t hash() const;
   /// "" or what World::setMotion would refuse in it whatever the world: a non-finite or negative
-  /// number, an orientation not of unit length (within kUnitTolerance). Sizes are the world's to judge.
+  /// number, an orientation not of unit length (within kUnitTolerance), a character's playback
+  /// without a clip or a strength out of [0, 1]. Sizes and skeletons are the world's to judge.
   std::string problem() const;
 
   static constexpr Real kUnitTolerance = 1e-6;

@@ -312,16 +312,18 @@ class World {
   Metrics metrics() const;
   /// Where the time of the last step() went.
   const Profile& profile() const { return profile_; }
-  /// FNV-1a hash of every particle's position and previous position and every rigid body's
-  /// pose and velocities (Motion::hash): equal hashes, equal states.
+  /// FNV-1a hash of every particle's position and previous position, every rigid body's pose and
+  /// velocities and every character's clips, strengths and reaction (Motion::hash): equal hashes,
+  /// equal states.
   std::uint64_t stateHash() const;
   /// The world's motion now (motion.h): what stateHash covers, and the clock.
   Motion motion() const;
   /// Puts the world in `motion`, taken from a world of the same structure (the same bodies,
-  /// particles and rigid bodies, in the same order). Only for a world that has not stepped: it
-  /// then holds no contacts, warm starts or rest timers of its own, and goes on from the motion as
-  /// a world built there would. Throws std::invalid_argument (and changes nothing) for a world
-  /// that has stepped, arrays of other sizes, or what Motion::problem finds.
+  /// particles, rigid bodies and characters, in the same order). Only for a world that has not
+  /// stepped: it then holds no contacts, warm starts or rest timers of its own, and goes on from the
+  /// motion as a world built there would. Throws std::invalid_argument (and changes nothing) for a
+  /// world that has stepped, arrays of other sizes, another number of characters, a character's
+  /// clip of other bones than its own, or what Motion::problem finds.
   void setMotion(const Motion& motion);
   /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
   /// With sleeping off the step does not count them: they are counted here, when asked.
@@ -341,6 +343,9 @@ class World {
   void noteBlows();
   Quat balanceTarget(const Character& c, const Quat& upright) const;
   void makeRootDrive(const Character& c, Real strength);
+  /// The root's drive, made now if the character's strengths or reaction will use it (addCharacter,
+  /// setMotion), so that the step never allocates one.
+  void makeRootDriveIfNeeded(const Character& c);
   /// Puts character c's ragdoll in its target pose, at rest (CharacterDesc::startInPose).
   void putInPose(const Character& c);
   bool anyCharacterActive() const;
