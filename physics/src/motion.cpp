@@ -22,7 +22,15 @@ std::string sizes(std::size_t given, std::size_t wanted) {
 }
 
 bool finitePlayback(const Playback& p) {
-  return std::isfinite(p.time) && std::isfinite(p.speed);
+  return std::isfinite(p.time) && std::isfinite(p.speed) && p.speed >= 0.0;
+}
+
+// Reaction's ranges, as World::addCharacter checks them.
+bool validReaction(const Reaction& r) {
+  const auto atLeast0 = [](Real v) { return std::isfinite(v) && v >= 0.0; };
+  const auto over0 = [](Real v) { return std::isfinite(v) && v > 0.0; };
+  return atLeast0(r.threshold) && atLeast0(r.fallTime) && over0(r.restSpeed) && atLeast0(r.restTime) &&
+         over0(r.getUpTime) && atLeast0(r.armTime);
 }
 
 bool unitLength(const Quat& q) {
@@ -45,7 +53,8 @@ std::string characterProblem(const CharacterMotion& c) {
                       std::isfinite(c.blendTime) && std::isfinite(c.stateTime) &&
                       std::isfinite(c.lastImpact) && std::isfinite(c.stillTime) &&
                       allFinite(c.lastRootVelocity) && allFinite(c.origin) && allFinite(c.beforeShift);
-  if (!finite) return "a non-finite clock, speed, impact or position";
+  if (!finite) return "a non-finite clock, impact or position, or a negative speed";
+  if (!validReaction(c.reaction)) return "a reaction's threshold or time non-finite or out of range";
   for (const Real unit : {c.blend, c.strength, c.rootStrength, c.balance, c.goalStrength, c.goalRootStrength,
                           c.goalBalance, c.fromStrength, c.fromBalance}) {
     if (!(unit >= 0.0 && unit <= 1.0)) return "a strength, balance or blend out of [0, 1]";

@@ -20,7 +20,7 @@ namespace {
 
 // chain.xml stepped 30 times, each step kept as the sandbox keeps it: one part, its scene as saved.
 sandbox::SavedRecording chainRecording() {
-  scenes::Scene scene = scenes::loadSceneFile(std::string(DATA_DIR) + "/assets/scenes/chain.xml");
+  scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/chain.xml");
   sandbox::SavedRecording r;
   r.sceneName = scene.name;
   sandbox::SavedPart& part = r.parts.emplace_back();
@@ -54,7 +54,7 @@ struct CharacterRecording {
 };
 
 CharacterRecording characterRecording() {
-  scenes::Scene scene = scenes::loadSceneFile(std::string(DATA_DIR) + "/assets/scenes/tackle-capsules.xml");
+  scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/tackle-capsules.xml");
   CharacterRecording out;
   sandbox::SavedRecording& r = out.recording;
   r.sceneName = scene.name;

@@ -201,6 +201,8 @@ TEST(Motion, BadCharacterMotionIsRefusedAndChangesNothing) {
   refused([](phys::Motion& m) { m.characters[0].now.clip.reset(); }, "no clip");
   refused([](phys::Motion& m) { m.characters[0].now.time = std::nan(""); }, "NaN clock");
   refused([](phys::Motion& m) { m.characters[0].strength = 1.5; }, "strength over 1");
+  refused([](phys::Motion& m) { m.characters[0].reaction.restSpeed = 0.0; }, "a rest speed of 0");
+  refused([](phys::Motion& m) { m.characters[0].now.speed = -1.0; }, "a clip played backwards");
   refused([](phys::Motion& m) { m.characters[0].partStrength.pop_back(); }, "a part short");
   refused([](phys::Motion& m) { m.characters[0].frame = phys::Quat(0.0, 0.0, 0.0, 0.0); }, "no frame");
   refused(
