@@ -191,7 +191,20 @@ Vec3 turnedRootOffset(const Character& c, const ClipPose& pose) {
   return pose.turns[static_cast<std::size_t>(c.bones[0].clipBone)] * c.rootOffset;
 }
 
+constexpr std::string_view kStateNames[] = {"active", "falling", "down", "getting-up", "letting-go"};
+
 }  // namespace
+
+std::string_view toString(CharacterState state) {
+  return kStateNames[static_cast<std::size_t>(state)];
+}
+
+std::optional<CharacterState> parseCharacterState(std::string_view name) {
+  for (std::size_t k = 0; k < std::size(kStateNames); ++k) {
+    if (kStateNames[k] == name) return static_cast<CharacterState>(k);
+  }
+  return std::nullopt;
+}
 
 std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdoll, const Clip& clip) {
   const std::string who = "clip '" + clip.name + "' on ragdoll '" + ragdoll + "'";

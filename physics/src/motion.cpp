@@ -194,4 +194,24 @@ void World::setMotion(const Motion& m) {
   updateBodyFrames();  // what raycast and the drawing read between steps
 }
 
+CharacterMotion World::characterMotion(std::size_t k) const {
+  detail::require(k < characters_.size(), "characterMotion: character index must exist");
+  CharacterMotion m;
+  copyCharacterMotion(characters_[k], m);
+  return m;
+}
+
+void World::setCharacterMotion(std::size_t k, const CharacterMotion& m) {
+  using detail::require;
+  require(k < characters_.size(), "setCharacterMotion: character index must exist");
+  const std::string problem = characterProblem(m);
+  require(problem.empty(), "setCharacterMotion: " + problem);
+  const std::string mismatch = characterMismatch(m, characters_[k]);
+  require(mismatch.empty(), "setCharacterMotion: " + mismatch);
+  Character& c = characters_[k];
+  copyCharacterMotion(m, c);
+  makeRootDriveIfNeeded(c);
+  islands_.wake(islands_.bodyNode(c.bones[0].body));
+}
+
 }  // namespace phys

@@ -134,6 +134,20 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   const std::string big =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" part-strengths=\"head=2\"/>");
   EXPECT_NE(big.find("'head=2': the share must be from 0 to 1"), std::string::npos) << big;
+  // Where a saved character was: each value checked where it is read.
+  const std::string asleep =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"asleep\"/>");
+  EXPECT_NE(asleep.find("attribute 'state': 'asleep' must be active, falling, down"), std::string::npos)
+      << asleep;
+  const std::string early =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" state-time=\"-1\"/>");
+  EXPECT_NE(early.find("attribute 'state-time'"), std::string::npos) << early;
+  const std::string overStrong =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" strength-now=\"1.5\"/>");
+  EXPECT_NE(overStrong.find("attribute 'strength-now'"), std::string::npos) << overStrong;
+  const std::string nowhere =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" origin=\"1 nan 0\"/>");
+  EXPECT_NE(nowhere.find("attribute 'origin'"), std::string::npos) << nowhere;
   // A get-up or then clip of other bones is blamed on its own attribute, not on the ragdoll.
   const testing_app::TempFolder dir;
   std::ofstream(dir.path / "one.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition "

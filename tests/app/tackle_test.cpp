@@ -14,6 +14,8 @@
 #include "physics/character.h"
 #include "physics/world.h"
 #include "scenes/scene.h"
+#include "scenes/scene_writer.h"
+#include "world_compare.h"
 
 namespace {
 
@@ -76,6 +78,32 @@ TEST_P(Tackle, BothGoLimpFallAndSettle) {
   }
   EXPECT_LT(worstLimit, 3.0 * kDeg);
   EXPECT_TRUE(w.freezes().empty());
+}
+
+// Saved while they fall, the players reload falling: the reaction under way, the strengths it has
+// ramped so far and the clip frame are in the file, so the reloaded pair fall and lie as the saved
+// pair do (saved as they were last set, active at full strength, they stood back up into their clips).
+TEST_P(Tackle, SavedMidFallTheyReloadFalling) {
+  scenes::Scene scene = scenes::loadSceneFile(kScenes + GetParam());
+  phys::World& w = scene.world;
+  while (w.characters()[0].state == phys::CharacterState::Active && w.time() < 4.0) w.step();
+  for (int i = 0; i < 6; ++i) w.step();  // 0.1 s into the fall
+  ASSERT_EQ(w.characters()[0].state, phys::CharacterState::Falling);
+  ASSERT_GT(w.characters()[0].strength, 0.0);
+  ASSERT_LT(w.characters()[0].strength, w.characters()[0].goalStrength);
+  scenes::Scene reloaded = scenes::loadSceneText(scenes::writeSceneXml(scene), "saved mid-fall");
+  EXPECT_EQ(testsupport::compareScenes(scene, reloaded), "");
+  for (int i = 0; i < 180; ++i) {
+    w.step();
+    reloaded.world.step();
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    const phys::Character &a = w.characters()[k], &b = reloaded.world.characters()[k];
+    EXPECT_EQ(b.state, a.state) << a.ragdoll;
+    EXPECT_EQ(b.strength, 0.0) << a.ragdoll;
+    const phys::Vec3 root = w.bodyPose(a.bones[0].body).center;
+    EXPECT_LT(glm::length(reloaded.world.bodyPose(b.bones[0].body).center - root), 0.05) << a.ragdoll;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Tackle, ::testing::Values("tackle.xml", "tackle-capsules.xml"));

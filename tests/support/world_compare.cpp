@@ -496,8 +496,9 @@ class Comparison {
   }
 
   // A character is saved as the clip it plays (a fade as the clip it fades to), by the file that clip
-  // came from, with its clock, the strengths last set (not as a reaction has ramped them), each part's
-  // share and its reaction's settings, and a queued change of clip: every number to the bit.
+  // came from, with its clock, the strengths last set and as a reaction has ramped them, each part's
+  // share, its reaction's settings and state, a queued change of clip and its clip frame's origin:
+  // every number to the bit; its heading, written in degrees, within 1e-12 rad.
   std::string characters() const {
     const auto a = s_.characters(), b = r_.characters();
     if (a.size() != b.size()) {
@@ -524,11 +525,22 @@ class Comparison {
           {"arm-time", {x.reaction.armTime, y.reaction.armTime}},
           {"rest-speed", {x.reaction.restSpeed, y.reaction.restSpeed}},
           {"get-up-time", {x.reaction.getUpTime, y.reaction.getUpTime}},
+          {"state", {Real(x.state), Real(y.state)}},
+          {"state-time", {x.stateTime, y.stateTime}},
+          {"still-time", {x.stillTime, y.stillTime}},
+          {"strength-now", {x.strength, y.strength}},
+          {"root-strength-now", {x.rootStrength, y.rootStrength}},
+          {"balance-now", {x.balance, y.balance}},
+          {"from-strength", {x.fromStrength, y.fromStrength}},
+          {"from-balance", {x.fromBalance, y.fromBalance}},
       };
       for (const auto& [name, pair] : numbers) {
         if (pair.first != pair.second) return unequal(who + ": " + name, pair.first, pair.second);
       }
       if (x.rootOffset != y.rootOffset) return unequal(who + ": root-offset", x.rootOffset, y.rootOffset);
+      if (x.origin != y.origin) return unequal(who + ": origin", x.origin, y.origin);
+      if (const Real turn = angleBetween(x.frame, y.frame); turn > 1e-12)
+        return unequal<Real>(who + ": heading, turned by (rad)", 0.0, turn);
       if (x.partStrength.size() != y.partStrength.size())
         return unequal<Real>(who + ": parts", Real(x.partStrength.size()), Real(y.partStrength.size()));
       for (std::size_t p = 0; p < x.partStrength.size(); ++p) {

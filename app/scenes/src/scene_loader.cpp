@@ -515,6 +515,7 @@ class Builder {
         e.fail("then", "clip '" + then->playback.clip->name + "' has other bones than '" +
                            desc.playback.clip->name + "'");
     }
+    const std::optional<CharacterState> motion = characterState(e);
     e.rejectUnknownAttributes();
     std::size_t k = 0;
     try {
@@ -524,12 +525,64 @@ class Builder {
       // binding of the clip to the ragdoll's parts.
       e.fail("ragdoll", error.what());
     }
-    if (!then) return;
-    try {
-      scene_.world.queueClip(k, then->playback, then->at, then->blendTime);
-    } catch (const std::invalid_argument& error) {
-      e.fail("then", error.what());  // its bones and times are checked above: a safety net
+    if (then) {
+      try {
+        scene_.world.queueClip(k, then->playback, then->at, then->blendTime);
+      } catch (const std::invalid_argument& error) {
+        e.fail("then", error.what());  // its bones and times are checked above: a safety net
+      }
     }
+    if (!motion) return;
+    try {
+      scene_.world.setCharacterMotion(k, motion->applied(scene_.world.characterMotion(k)));
+    } catch (const std::invalid_argument& error) {
+      e.fail("state", error.what());  // every value is checked above: a safety net
+    }
+  }
+
+  // Where a saved character was (Save As writes it): its reaction under way, its strengths as the
+  // reaction has ramped them, and its clip frame; each attribute optional, what is not given as
+  // addCharacter made it.
+  struct CharacterState {
+    std::optional<phys::CharacterState> state;
+    std::optional<double> stateTime, stillTime, strength, rootStrength, balance, fromStrength, fromBalance,
+        heading;
+    std::optional<phys::Vec3> origin;
+
+    phys::CharacterMotion applied(phys::CharacterMotion m) const {
+      if (state) m.state = *state;
+      m.stateTime = stateTime.value_or(m.stateTime);
+      m.stillTime = stillTime.value_or(m.stillTime);
+      m.strength = strength.value_or(m.strength);
+      m.rootStrength = rootStrength.value_or(m.rootStrength);
+      m.balance = balance.value_or(m.balance);
+      m.fromStrength = fromStrength.value_or(m.fromStrength);
+      m.fromBalance = fromBalance.value_or(m.fromBalance);
+      if (heading) m.frame = glm::angleAxis(glm::radians(*heading), phys::Vec3(0.0, 1.0, 0.0));
+      m.origin = origin.value_or(m.origin);
+      return m;
+    }
+  };
+
+  std::optional<CharacterState> characterState(ElementReader& e) {
+    CharacterState c;
+    if (auto state = e.text("state")) {
+      c.state = phys::parseCharacterState(*state);
+      if (!c.state)
+        e.fail("state", "'" + *state + "' must be active, falling, down, getting-up or letting-go");
+    }
+    c.stateTime = duration(e, "state-time");
+    c.stillTime = duration(e, "still-time");
+    c.strength = detail::readFraction(e, "strength-now");
+    c.rootStrength = detail::readFraction(e, "root-strength-now");
+    c.balance = detail::readFraction(e, "balance-now");
+    c.fromStrength = detail::readFraction(e, "from-strength");
+    c.fromBalance = detail::readFraction(e, "from-balance");
+    c.heading = e.number("heading", "deg");
+    c.origin = e.vector("origin", "m");
+    const bool any = c.state || c.stateTime || c.stillTime || c.strength || c.rootStrength || c.balance ||
+                     c.fromStrength || c.fromBalance || c.heading || c.origin;
+    return any ? std::optional<CharacterState>(c) : std::nullopt;
   }
 
   // part-strengths="BONE=SHARE ...": each a bone of the clip other than its root, each share 0 to 1.

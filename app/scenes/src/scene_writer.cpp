@@ -446,6 +446,22 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
   // clips by the paths they were loaded from (a clip's name), relative to the file's folder when
   // there is one, so that a scene saved beside its clips moves with them; a fade between two clips
   // is saved as the new one.
+  // Where it is (the loader's `state` and the attributes after it): a reaction under way and the
+  // strengths it has ramped, written only where they differ from a character just added; and its
+  // clip frame, always, so that it goes on along the path it was on rather than one found again
+  // from where its root part has got to.
+  const auto characterState = [](ElementWriter& e, const phys::Character& c) {
+    if (c.state != phys::CharacterState::Active) e.text("state", std::string(phys::toString(c.state)));
+    if (c.stateTime != 0.0) e.number("state-time", c.stateTime);
+    if (c.stillTime != 0.0) e.number("still-time", c.stillTime);
+    if (c.strength != c.goalStrength) e.number("strength-now", c.strength);
+    if (c.rootStrength != c.goalRootStrength) e.number("root-strength-now", c.rootStrength);
+    if (c.balance != c.goalBalance) e.number("balance-now", c.balance);
+    if (c.fromStrength != 0.0) e.number("from-strength", c.fromStrength);
+    if (c.fromBalance != 0.0) e.number("from-balance", c.fromBalance);
+    e.number("heading", glm::degrees(2.0 * std::atan2(c.frame.y, c.frame.w)));
+    e.vector("origin", c.origin);
+  };
   const auto clipPath = [&folder](const phys::Clip& clip) {
     const std::filesystem::path path(clip.name);
     if (folder.empty() || !path.is_absolute()) return clip.name;
@@ -487,6 +503,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
           .number("then-blend", c.queued->blendTime)
           .text("then-loop", c.queued->playback.loop ? "true" : "false");
     }
+    characterState(e, c);
     line(e.empty());
   }
   for (const phys::JointFriction& f : world.jointFrictions()) {

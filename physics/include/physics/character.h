@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -56,6 +57,10 @@ enum class CharacterState {
   GettingUp,  ///< lifted by its root towards the get-up clip's pose
   LettingGo,  ///< on its feet; the root's lift fading to the root strength it had
 };
+
+/// "active", "falling", "down", "getting-up", "letting-go" (the scene format's names)
+std::string_view toString(CharacterState state);
+std::optional<CharacterState> parseCharacterState(std::string_view name);
 
 /// A clip to change to once the one playing reaches a time (World::queueClip).
 struct QueuedClip {

@@ -238,6 +238,13 @@ class World {
   /// Replaces character k's reaction (Reaction), from the next step. Throws std::invalid_argument
   /// (and changes nothing) as addCharacter would for it.
   void setCharacterReaction(std::size_t k, const Reaction& reaction);
+  /// What of character k changes as it steps (motion.h): its clips' clocks, fade, strengths now,
+  /// reaction state and clip frame. Throws std::invalid_argument for a character that does not exist.
+  CharacterMotion characterMotion(std::size_t k) const;
+  /// Puts character k in `motion` (as characterMotion gives it, changed; a saved scene's reaction
+  /// under way) and wakes its island. Throws std::invalid_argument (and changes nothing) for what
+  /// setMotion would refuse in a character.
+  void setCharacterMotion(std::size_t k, const CharacterMotion& motion);
   /// Pushes body `id` with `force` (N, world) for `duration` (s) at `worldPoint` (m; its centre if
   /// none), from the next substep, and wakes its island: the point is kept in the body's frame, the
   /// force in the world's. Pushes add up. Throws std::invalid_argument (and pushes nothing) for a
