@@ -9,6 +9,8 @@
 #include <span>
 #include <type_traits>
 
+#include "physics/fnv1a.h"
+
 namespace sandbox {
 namespace {
 
@@ -17,26 +19,8 @@ static_assert(std::endian::native == std::endian::little,
 
 constexpr std::string_view kMagic = "JKRECORD";
 
-// FNV-1a, 64 bit: the file's checksum and the structure key.
-class Fnv {
- public:
-  void bytes(const void* data, std::size_t size) {
-    const auto* b = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      hash_ ^= b[i];
-      hash_ *= 1099511628211ull;
-    }
-  }
-  template <typename T>
-  void value(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes(&v, sizeof(v));
-  }
-  std::uint64_t hash() const { return hash_; }
-
- private:
-  std::uint64_t hash_ = 14695981039346656037ull;
-};
+// The file's checksum and the structure key.
+using Fnv = phys::Fnv1a;
 
 class Writer {
  public:

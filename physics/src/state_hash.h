@@ -5,28 +5,16 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
-#include <type_traits>
 
 #include "physics/character.h"
+#include "physics/fnv1a.h"
 #include "physics/types.h"
 
 namespace phys::detail {
 
-/// FNV-1a, 64 bit.
-class StateHasher {
+/// FNV-1a over a state: the arrays' bytes, then the characters' fields.
+class StateHasher : public Fnv1a {
  public:
-  void bytes(const void* data, std::size_t size) {
-    const auto* b = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      hash_ ^= b[i];
-      hash_ *= 1099511628211ull;
-    }
-  }
-  template <typename T>
-  void value(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes(&v, sizeof(v));
-  }
   /// A quaternion counts as (w, x, y, z).
   void quat(const Quat& q) {
     const Real wxyz[4] = {q.w, q.x, q.y, q.z};
@@ -48,10 +36,6 @@ class StateHasher {
     value(p.root);
     for (const Quat& q : p.turns) quat(q);
   }
-  std::uint64_t hash() const { return hash_; }
-
- private:
-  std::uint64_t hash_ = 14695981039346656037ull;
 };
 
 /// Every field of a character that changes as it steps (CharacterMotion's), `C` a Character or a
