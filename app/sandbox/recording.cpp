@@ -134,6 +134,11 @@ void Recording::appendMotion(std::shared_ptr<const phys::World> base, std::size_
     bytes += v->capacity() * sizeof(phys::Vec3);
   }
   bytes += motion.rigidOrientation.capacity() * sizeof(phys::Quat);
+  bytes += motion.characters.capacity() * sizeof(phys::CharacterMotion);
+  for (const phys::CharacterMotion& c : motion.characters) {
+    bytes += c.partStrength.capacity() * sizeof(phys::Real) +
+             (c.pose.turns.capacity() + c.held.turns.capacity()) * sizeof(phys::Quat);
+  }
   if (!keyframes_.empty()) steps_.push_back(record);
   dt_ = base->solverSettings().dt;
   keyframes_.push_back({record.step, std::move(base), std::make_shared<const phys::Motion>(std::move(motion)),

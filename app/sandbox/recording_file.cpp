@@ -440,20 +440,24 @@ SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSou
     const auto rigid = r.value<std::uint64_t>();
     const auto steps = r.value<std::uint64_t>();
     const auto clipCount = r.value<std::uint32_t>();
-    if (clipCount > r.left()) r.fail(std::to_string(clipCount) + " clips: the file is truncated");
+    if (clipCount > r.left() / 8) r.fail(std::to_string(clipCount) + " clips: the file is truncated");
     std::vector<std::string> names(clipCount);
     for (std::string& name : names) name = r.text("a clip's name");
     const auto characters = r.value<std::uint32_t>();
     if (characters > r.left() / 4) r.fail(std::to_string(characters) + " characters: the file is truncated");
     std::vector<std::size_t> bones(characters);
+    std::size_t characterStep = 0;  // each step's bytes of characters, at most what is left
     for (std::size_t& b : bones) {
       b = r.value<std::uint32_t>();
-      if (b > bytes.size()) r.fail("a character of " + std::to_string(b) + " bones: the file is damaged");
+      if (b <= r.left() / 72) characterStep += characterBytes(b);
+      if (b > r.left() / 72 || characterStep > r.left())
+        r.fail("a character of " + std::to_string(b) + " bones: the file is truncated");
     }
-    // Sizes from a damaged file must not allocate what the file cannot hold.
+    // Sizes from a damaged file must not allocate what the file cannot hold. Each count is below the
+    // file's size, so no sum here can overflow.
+    const std::size_t room = r.left() - std::min<std::size_t>(r.left(), 8);  // before the checksum
     const std::size_t each = stepBytes(std::min<std::uint64_t>(particles, bytes.size()),
                                        std::min<std::uint64_t>(rigid, bytes.size()), bones);
-    const std::size_t room = r.left() - std::min<std::size_t>(r.left(), 8);  // before the checksum
     if (particles > bytes.size() || rigid > bytes.size() || steps > room / each) {
       r.fail(std::to_string(steps) + " steps of " + std::to_string(particles) + " particles, " +
              std::to_string(rigid) + " rigid bodies and " + std::to_string(characters) +
@@ -463,7 +467,10 @@ SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSou
     Clips clips(names.size());
     if (checksumOk && steps > 0) {
       if (!names.empty() && !clipSource) r.fail("the recording names clips and no clip source was given");
-      for (std::size_t c = 0; c < names.size(); ++c) clips[c] = clipSource(names[c]);
+      for (std::size_t c = 0; c < names.size(); ++c) {
+        clips[c] = clipSource(names[c]);
+        if (clips[c] == nullptr) r.fail("the clip source gave no clip for '" + names[c] + "'");
+      }
     }
     part.steps.reserve(steps);
     for (std::uint64_t s = 0; s < steps; ++s) {

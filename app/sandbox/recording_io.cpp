@@ -90,17 +90,10 @@ Recording fromSaved(SavedRecording saved, const scenes::LoadOptions& options, st
     }
     for (std::size_t s = 0; s < part.steps.size(); ++s) {
       SavedStep& step = part.steps[s];
-      if (step.motion.position.size() != base->particles().size() ||
-          step.motion.rigidPosition.size() != base->rigidBodies().size() ||
-          step.motion.characters.size() != base->characters().size()) {
-        throw RecordingIoError(which + ", step " + std::to_string(step.record.step) + ": " +
-                               std::to_string(step.motion.position.size()) + " particles, " +
-                               std::to_string(step.motion.rigidPosition.size()) + " rigid bodies and " +
-                               std::to_string(step.motion.characters.size()) + " characters, its scene has " +
-                               std::to_string(base->particles().size()) + ", " +
-                               std::to_string(base->rigidBodies().size()) + " and " +
-                               std::to_string(base->characters().size()));
-      }
+      // Every step checked now, against the world it will be put in: a clip file changed since the
+      // recording (other bones, no frames) is found on opening, not on a rewind to its step.
+      if (const std::string problem = base->motionProblem(step.motion); !problem.empty())
+        throw RecordingIoError(which + ", step " + std::to_string(step.record.step) + ": " + problem);
       out.appendMotion(base, s == 0 ? baseBytes : 0, std::move(step.motion),
                        step.record);  // the base counted once
     }

@@ -139,9 +139,11 @@ bool characterMoves(const Character& c) {
 }
 
 // Whether the character keeps its root's drive while the root is not carried: for the balance, or
-// at strength 0 so that balancing or lifting it again allocates nothing in the step.
+// at strength 0 so that balancing or lifting it again allocates nothing in the step (a character
+// given a get-up under way, as a saved scene can, lifts with it too).
 bool keepsRootDrive(const Character& c) {
-  return c.balance > 0.0 || c.goalBalance > 0.0 || c.reaction.getUp.clip != nullptr;
+  return c.balance > 0.0 || c.goalBalance > 0.0 || c.reaction.getUp.clip != nullptr ||
+         c.state == CharacterState::GettingUp || c.state == CharacterState::LettingGo;
 }
 
 void enter(Character& c, CharacterState state) {

@@ -54,6 +54,14 @@ std::string characterProblem(const CharacterMotion& c) {
                       std::isfinite(c.lastImpact) && std::isfinite(c.stillTime) &&
                       allFinite(c.lastRootVelocity) && allFinite(c.origin) && allFinite(c.beforeShift);
   if (!finite) return "a non-finite clock, impact or position, or a negative speed";
+  const auto onClock = [](const Playback& p) { return std::abs(p.time) <= kMaxClipTime; };
+  if (!onClock(c.now) || !onClock(c.before) || !onClock(c.reaction.getUp) ||
+      (c.queued && (!onClock(c.queued->playback) || std::abs(c.queued->at) > kMaxClipTime)))
+    return "a clip's time beyond +-1e9 s";
+  for (const Real span :
+       {c.blendTime, c.stateTime, c.stillTime, c.lastImpact, c.queued ? c.queued->blendTime : 0.0}) {
+    if (span < 0.0) return "a negative blend time, time in a state, time lain still or blow";
+  }
   if (!validReaction(c.reaction)) return "a reaction's threshold or time non-finite or out of range";
   for (const Real unit : {c.blend, c.strength, c.rootStrength, c.balance, c.goalStrength, c.goalRootStrength,
                           c.goalBalance, c.fromStrength, c.fromBalance}) {
@@ -107,11 +115,19 @@ std::string characterMismatch(const CharacterMotion& c, const Character& w) {
       c.held.turns.size() != w.held.turns.size())
     return "part strengths or pose turns for " + std::to_string(c.partStrength.size()) +
            " bones, the character has " + std::to_string(bones);
+  const auto held = [&w](const Clip* clip) {
+    return clip == w.now.clip.get() || clip == w.before.clip.get() || clip == w.reaction.getUp.clip.get() ||
+           (w.queued && clip == w.queued->playback.clip.get());
+  };
   const Playback* playbacks[] = {&c.now, &c.before, &c.reaction.getUp,
                                  c.queued ? &c.queued->playback : nullptr};
   for (const Playback* p : playbacks) {
-    if (p != nullptr && p->clip != nullptr && !sameSkeleton(*p->clip, *w.now.clip))
+    if (p == nullptr || p->clip == nullptr) continue;
+    if (!sameSkeleton(*p->clip, *w.now.clip))
       return "clip '" + p->clip->name + "' has other bones than '" + w.now.clip->name + "'";
+    // A clip the character holds was checked when it was given; another is checked as addCharacter would.
+    if (std::string problem = held(p->clip.get()) ? "" : clipProblem(*p->clip); !problem.empty())
+      return "clip '" + p->clip->name + "': " + problem;
   }
   return {};
 }
@@ -154,29 +170,34 @@ Motion World::motion() const {
   return m;
 }
 
+std::string World::motionProblem(const Motion& m) const {
+  const std::size_t n = particles_.size(), r = rigidBodies_.size();
+  if (m.position.size() != n || m.previous.size() != n)
+    return "particle positions " + sizes(m.position.size(), n) + " particles, previous " +
+           sizes(m.previous.size(), n);
+  if (m.rigidPosition.size() != r || m.rigidOrientation.size() != r || m.rigidVelocity.size() != r ||
+      m.rigidAngularVelocity.size() != r)
+    return "rigid body poses or velocities for " + std::to_string(m.rigidPosition.size()) +
+           " bodies, the world has " + std::to_string(r);
+  if (m.characters.size() != characters_.size())
+    return std::to_string(m.characters.size()) + " characters given, the world has " +
+           std::to_string(characters_.size());
+  if (std::string problem = m.problem(); !problem.empty()) return problem;
+  for (std::size_t k = 0; k < characters_.size(); ++k) {
+    if (std::string mismatch = characterMismatch(m.characters[k], characters_[k]); !mismatch.empty())
+      return "character " + std::to_string(k) + ": " + mismatch;
+  }
+  return {};
+}
+
 void World::setMotion(const Motion& m) {
   using detail::require;
   // A world that has stepped keeps contacts, warm starts, rest timers and the guard's last good
   // positions from its own motion; none of them would belong to the one given.
   require(steps_ == 0 && time_ == 0.0, "setMotion: the world has stepped (" + std::to_string(steps_) +
                                            " steps); give the motion to a world that has not");
-  const std::size_t n = particles_.size(), r = rigidBodies_.size();
-  require(m.position.size() == n && m.previous.size() == n,
-          "setMotion: particle positions " + sizes(m.position.size(), n) + " particles, previous " +
-              sizes(m.previous.size(), n));
-  require(m.rigidPosition.size() == r && m.rigidOrientation.size() == r && m.rigidVelocity.size() == r &&
-              m.rigidAngularVelocity.size() == r,
-          "setMotion: rigid body poses or velocities for " + std::to_string(m.rigidPosition.size()) +
-              " bodies, the world has " + std::to_string(r));
-  require(m.characters.size() == characters_.size(), "setMotion: " + std::to_string(m.characters.size()) +
-                                                         " characters given, the world has " +
-                                                         std::to_string(characters_.size()));
-  const std::string problem = m.problem();
+  const std::string problem = motionProblem(m);
   require(problem.empty(), "setMotion: " + problem);
-  for (std::size_t k = 0; k < characters_.size(); ++k) {
-    const std::string mismatch = characterMismatch(m.characters[k], characters_[k]);
-    require(mismatch.empty(), "setMotion: character " + std::to_string(k) + ": " + mismatch);
-  }
   particles_.position = m.position;
   particles_.previous = m.previous;
   std::copy(m.position.begin(), m.position.end(), guard_.checked().begin());

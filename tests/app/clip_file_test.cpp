@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -148,6 +149,18 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   const std::string nowhere =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" origin=\"1 nan 0\"/>");
   EXPECT_NE(nowhere.find("attribute 'origin'"), std::string::npos) << nowhere;
+  const std::string halfFade =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" blend=\"0.5\"/>");
+  EXPECT_NE(halfFade.find("attribute 'blend': a fade under way needs what it fades from"), std::string::npos)
+      << halfFade;
+  const std::string fewTurns = error("<character ragdoll=\"r\" clip=\"" + kClips +
+                                     "run.bvh\" blend=\"0.5\" held-turns=\"1 0 0 0, 1 0 0 0\"/>");
+  EXPECT_NE(fewTurns.find("attribute 'held-turns': 2 turns for the clip's 10 bones"), std::string::npos)
+      << fewTurns;
+  const std::string notUnit =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" blend=\"0.5\" held-turns=\"2 0 0 0\"/>");
+  EXPECT_NE(notUnit.find("attribute 'held-turns': '2 0 0 0' is not a unit quaternion"), std::string::npos)
+      << notUnit;
   // A get-up or then clip of other bones is blamed on its own attribute, not on the ragdoll.
   const testing_app::TempFolder dir;
   std::ofstream(dir.path / "one.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition "
@@ -195,6 +208,35 @@ TEST(ClipFile, SaveAsKeepsTheCharacter) {
   }
   EXPECT_EQ(again.world.characters()[1].partStrength[1], 1.0 / 3.0);
   EXPECT_EQ(testsupport::compareScenes(scene, again), "");
+}
+
+// Saved during a fade, from the clip before or from a pose held (a change of clip during a fade), a
+// character reloads with the fade where it had got to: the target poses of the saved and the
+// reloaded world agree to the bit for the rest of the fade (saved as the new clip alone, the target
+// jumped to it).
+TEST(ClipFile, SaveAsKeepsAFadeUnderWay) {
+  scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/run-cycle.xml");
+  const std::shared_ptr<const phys::Clip> stand =
+      std::make_shared<const phys::Clip>(clips::loadClip(kClips + "stand.bvh"));
+  for (int i = 0; i < 20; ++i) scene.world.step();
+  scene.world.playClip(0, phys::Playback{stand, 0.0, 1.0, true}, 0.5);
+  for (const bool holding : {false, true}) {
+    SCOPED_TRACE(holding ? "from a pose held" : "from the clip before");
+    if (holding) scene.world.playClip(0, scene.world.characters()[0].before, 0.4);  // back, mid-fade
+    for (int i = 0; i < 8; ++i) scene.world.step();
+    ASSERT_LT(scene.world.characters()[0].blend, 1.0);
+    ASSERT_EQ(scene.world.characters()[0].holding, holding);
+    scenes::Scene again = scenes::loadSceneText(scenes::writeSceneXml(scene), "again.xml");
+    EXPECT_EQ(testsupport::compareScenes(scene, again), "");
+    phys::World saved = scene.world;  // the scene goes on unstepped into the next case
+    for (int i = 0; i < 40; ++i) {
+      saved.step();
+      again.world.step();
+      const phys::ClipPose &a = saved.characters()[0].pose, &b = again.world.characters()[0].pose;
+      ASSERT_EQ(a.root, b.root) << "step " << i;
+      ASSERT_EQ(a.turns, b.turns) << "step " << i;
+    }
+  }
 }
 
 // Save As names each clip file relative to the saved file's folder, as the project's scenes do, so a

@@ -174,6 +174,39 @@ TEST(RecordingFile, AnOpenedRecordingOfACharacterResumesAsItRan) {
   EXPECT_LT(glm::length(w.bodyPose(w.characters()[0].bones[0].body).center - root[90]), 1e-6);
 }
 
+// A clip file changed since the recording to other bones is found as the file is opened, naming the
+// step that plays it, and nothing changes; one that has gone stops the opening with its reason.
+TEST(RecordingFile, ARecordingWhoseClipChangedIsRefusedOnOpening) {
+  const testing_app::TempFolder dir;
+  for (const char* clip : {"run.bvh", "stand.bvh"})
+    fs::copy_file(testing_app::kProjectScenes / "../clips" / clip, dir.path / clip);
+  std::string xml = contentOf(testing_app::kProjectScenes / "run-cycle.xml");
+  xml.replace(xml.find("../clips/run.bvh"), 16, "run.bvh");
+  writeBytes(dir.path / "run-cycle.xml", xml);
+  {
+    sandbox::Session s(dir.path / "run-cycle.xml", dir.path);
+    for (int i = 0; i < 5; ++i) s.step();
+    ASSERT_EQ(s.playCharacterClip(0, dir.path / "stand.bvh", true), "");
+    for (int i = 0; i < 5; ++i) s.step();
+    ASSERT_EQ(s.saveRecording(dir.path / "r.jrec"), "");
+  }
+  std::string bvh = contentOf(dir.path / "stand.bvh");
+  bvh.replace(bvh.find("head"), 4, "neck");
+  writeBytes(dir.path / "stand.bvh", bvh);
+  sandbox::Session other(dir.path / "run-cycle.xml", dir.path);  // holds no stand clip of its own
+  const std::uint64_t before = hashOf(other);
+  const std::string changed = other.openRecording(dir.path / "r.jrec");
+  EXPECT_NE(changed.find("step 5: character 0: clip"), std::string::npos) << changed;
+  EXPECT_NE(changed.find("stand.bvh' has other bones"), std::string::npos) << changed;
+  EXPECT_NE(changed.find("the current world is kept"), std::string::npos) << changed;
+  EXPECT_EQ(hashOf(other), before);
+  fs::remove(dir.path / "stand.bvh");
+  const std::string gone = other.openRecording(dir.path / "r.jrec");
+  EXPECT_NE(gone.find("stand.bvh"), std::string::npos) << gone;
+  EXPECT_NE(gone.find("No such file or directory"), std::string::npos) << gone;
+  EXPECT_EQ(hashOf(other), before);
+}
+
 // Every project scene, as the sandbox opens it, a few steps in: saved and opened again, each step
 // has its hash (the scene writer and loader rebuild every kind of body in the same order).
 TEST(RecordingFile, EveryProjectSceneRoundTrips) {

@@ -218,6 +218,16 @@ TEST(Motion, BadCharacterMotionIsRefusedAndChangesNothing) {
   refused([](phys::Motion& m) { m.characters[0].reaction.restSpeed = 0.0; }, "a rest speed of 0");
   refused([](phys::Motion& m) { m.characters[0].now.speed = -1.0; }, "a clip played backwards");
   refused([](phys::Motion& m) { m.characters[0].partStrength.pop_back(); }, "a part short");
+  refused([](phys::Motion& m) { m.characters[0].stateTime = -1.0; }, "a negative time in its state");
+  refused([](phys::Motion& m) { m.characters[0].now.time = 2e9; }, "a clock past 1e9 s");
+  refused(
+      [](phys::Motion& m) {
+        phys::Clip frameless = *m.characters[0].now.clip;
+        frameless.root.clear();
+        frameless.turns.clear();
+        m.characters[0].now.clip = std::make_shared<const phys::Clip>(std::move(frameless));
+      },
+      "a clip of no frames");
   refused([](phys::Motion& m) { m.characters[0].frame = phys::Quat(0.0, 0.0, 0.0, 0.0); }, "no frame");
   refused(
       [](phys::Motion& m) {

@@ -167,8 +167,6 @@ TEST_P(RestitutionBoxes, BoxDroppedOnABoxBounces) {
 INSTANTIATE_TEST_SUITE_P(Models, RestitutionBoxes, ::testing::Values(BodyModel::Corners, BodyModel::Tetra),
                          [](const auto& param) { return std::string(toString(param.param)); });
 
-// Full restitution on a tumbling pile of both box models and a ragdoll: nothing goes non-finite
-// and the guard freezes nothing.
 // The soak's find (seed 1): a capsule crushed by a thrown ragdoll had its particles frozen by the
 // guard within the substep, after restitution had measured its box, and the box's change, not
 // finite, went into the frozen particles' previous positions. A particle of inverse mass 0 is
@@ -191,6 +189,8 @@ TEST(Restitution, AFrozenParticleTakesNoChange) {
   EXPECT_TRUE(std::isnan(p.previous[frozen + 1].y));  // a particle that moves takes it
 }
 
+// Full restitution on a tumbling pile of both box models and a ragdoll: nothing goes non-finite
+// and the guard freezes nothing.
 TEST(Restitution, FullRestitutionOnAPileStaysFinite) {
   phys::SolverSettings s = bouncy(1.0, 4);
   s.iterations = 2;

@@ -495,10 +495,10 @@ class Comparison {
     return {};
   }
 
-  // A character is saved as the clip it plays (a fade as the clip it fades to), by the file that clip
+  // A character is saved as the clip it plays, by the file that clip
   // came from, with its clock, the strengths last set and as a reaction has ramped them, each part's
-  // share, its reaction's settings and state, a queued change of clip and its clip frame's origin:
-  // every number to the bit; its heading, written in degrees, within 1e-12 rad.
+  // share, its reaction's settings and state, a queued change of clip, a fade under way and its clip
+  // frame's origin: every number to the bit; its heading, written in degrees, within 1e-12 rad.
   std::string characters() const {
     const auto a = s_.characters(), b = r_.characters();
     if (a.size() != b.size()) {
@@ -539,6 +539,21 @@ class Comparison {
       }
       if (x.rootOffset != y.rootOffset) return unequal(who + ": root-offset", x.rootOffset, y.rootOffset);
       if (x.origin != y.origin) return unequal(who + ": origin", x.origin, y.origin);
+      if (x.blend != y.blend) return unequal(who + ": blend", x.blend, y.blend);
+      if (x.blend < 1.0) {
+        if (x.blendTime != y.blendTime) return unequal(who + ": blend-time", x.blendTime, y.blendTime);
+        if (clipName(x.before) != clipName(y.before))
+          return unequalText(who + ": from-clip", clipName(x.before), clipName(y.before));
+        if (x.before.time != y.before.time) return unequal(who + ": from-time", x.before.time, y.before.time);
+        if (x.beforeShift != y.beforeShift)
+          return unequal(who + ": from-shift", x.beforeShift, y.beforeShift);
+        if (x.holding != y.holding) return unequal<Real>(who + ": holding", Real(x.holding), Real(y.holding));
+        if (x.holding && x.held.root != y.held.root)
+          return unequal(who + ": held-root", x.held.root, y.held.root);
+        for (std::size_t t = 0; x.holding && t < x.held.turns.size(); ++t) {
+          if (x.held.turns[t] != y.held.turns[t]) return unequalText(who + ": held-turns", "saved", "other");
+        }
+      }
       if (const Real turn = angleBetween(x.frame, y.frame); turn > 1e-12)
         return unequal<Real>(who + ": heading, turned by (rad)", 0.0, turn);
       if (x.partStrength.size() != y.partStrength.size())

@@ -515,7 +515,7 @@ class Builder {
         e.fail("then", "clip '" + then->playback.clip->name + "' has other bones than '" +
                            desc.playback.clip->name + "'");
     }
-    const std::optional<CharacterState> motion = characterState(e);
+    const std::optional<CharacterState> motion = characterState(e, *desc.playback.clip);
     e.rejectUnknownAttributes();
     std::size_t k = 0;
     try {
@@ -548,6 +548,11 @@ class Builder {
     std::optional<double> stateTime, stillTime, strength, rootStrength, balance, fromStrength, fromBalance,
         heading;
     std::optional<phys::Vec3> origin;
+    // A fade under way: from the clip before, or from a pose held (a change of clip during a fade).
+    std::optional<phys::Playback> before;
+    std::optional<double> blend, blendTime;
+    std::optional<phys::Vec3> beforeShift;
+    std::optional<phys::ClipPose> held;
 
     phys::CharacterMotion applied(phys::CharacterMotion m) const {
       if (state) m.state = *state;
@@ -560,11 +565,17 @@ class Builder {
       m.fromBalance = fromBalance.value_or(m.fromBalance);
       if (heading) m.frame = glm::angleAxis(glm::radians(*heading), phys::Vec3(0.0, 1.0, 0.0));
       m.origin = origin.value_or(m.origin);
+      if (before) m.before = *before;
+      m.blend = blend.value_or(m.blend);
+      m.blendTime = blendTime.value_or(m.blendTime);
+      m.beforeShift = beforeShift.value_or(m.beforeShift);
+      m.holding = held.has_value();
+      if (held) m.held = *held;
       return m;
     }
   };
 
-  std::optional<CharacterState> characterState(ElementReader& e) {
+  std::optional<CharacterState> characterState(ElementReader& e, const phys::Clip& playing) {
     CharacterState c;
     if (auto state = e.text("state")) {
       c.state = phys::parseCharacterState(*state);
@@ -578,11 +589,68 @@ class Builder {
     c.balance = detail::readFraction(e, "balance-now");
     c.fromStrength = detail::readFraction(e, "from-strength");
     c.fromBalance = detail::readFraction(e, "from-balance");
-    c.heading = e.number("heading", "deg");
+    c.heading = e.number("heading", "degrees");
     c.origin = e.vector("origin", "m");
+    fade(e, playing, c);
     const bool any = c.state || c.stateTime || c.stillTime || c.strength || c.rootStrength || c.balance ||
-                     c.fromStrength || c.fromBalance || c.heading || c.origin;
+                     c.fromStrength || c.fromBalance || c.heading || c.origin || c.blend;
     return any ? std::optional<CharacterState>(c) : std::nullopt;
+  }
+
+  // blend (under 1: a fade under way) and blend-time, with what it fades from: from-clip (a clip of
+  // the same bones), from-time, from-speed, from-loop and from-shift, or held-root and held-turns (a
+  // pose held still, one turn "w x y z" a bone, separated by commas).
+  void fade(ElementReader& e, const phys::Clip& playing, CharacterState& c) {
+    c.blend = detail::readFraction(e, "blend");
+    c.blendTime = duration(e, "blend-time");
+    std::optional<phys::Playback> before;
+    if (auto file = e.text("from-clip")) {
+      before.emplace();
+      before->clip = clip(e, *file, "from-clip");
+      if (!phys::sameSkeleton(*before->clip, playing))
+        e.fail("from-clip", "clip '" + before->clip->name + "' has other bones than '" + playing.name + "'");
+      before->time = time(e, "from-time").value_or(0.0);
+      if (auto speed = e.number("from-speed", "")) {
+        if (*speed < 0.0) e.fail("from-speed", "'" + detail::formatNumber(*speed) + "' must be >= 0");
+        before->speed = *speed;
+      }
+      before->loop = e.boolean("from-loop").value_or(true);
+    }
+    c.before = before;
+    c.beforeShift = e.vector("from-shift", "m");
+    const std::optional<phys::Vec3> heldRoot = e.vector("held-root", "m");
+    if (auto turns = e.text("held-turns")) {
+      phys::ClipPose pose;
+      pose.root = heldRoot.value_or(phys::Vec3(0.0));
+      std::istringstream items(*turns);
+      std::string item;
+      while (std::getline(items, item, ',')) {
+        std::istringstream numbers(item);
+        std::string word;
+        std::vector<double> q;
+        while (numbers >> word) {
+          const std::optional<double> v = detail::parseReal(word);
+          if (!v) e.fail("held-turns", "'" + word + "' is not a number");
+          q.push_back(*v);
+        }
+        const bool unit =
+            q.size() == 4 &&
+            std::abs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]) - 1.0) < 1e-6;
+        if (!unit) e.fail("held-turns", "'" + item + "' is not a unit quaternion w x y z");
+        pose.turns.emplace_back(q[0], q[1], q[2], q[3]);
+      }
+      if (pose.turns.size() != playing.bones.size())
+        e.fail("held-turns", std::to_string(pose.turns.size()) + " turns for the clip's " +
+                                 std::to_string(playing.bones.size()) + " bones");
+      c.held = std::move(pose);
+    } else if (heldRoot) {
+      e.fail("held-root", "goes with held-turns");
+    }
+    const bool fading = c.before || c.held;
+    if (c.blend && *c.blend < 1.0 && !fading)
+      e.fail("blend", "a fade under way needs what it fades from: from-clip, or held-turns");
+    if (fading && !(c.blend && *c.blend < 1.0))
+      e.fail(c.held ? "held-turns" : "from-clip", "goes with a blend under 1 (a fade under way)");
   }
 
   // part-strengths="BONE=SHARE ...": each a bone of the clip other than its root, each share 0 to 1.

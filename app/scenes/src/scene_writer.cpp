@@ -444,8 +444,8 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
   }
   // A character after its ragdoll's bodies, joints and root drive, which it drives from then on. Its
   // clips by the paths they were loaded from (a clip's name), relative to the file's folder when
-  // there is one, so that a scene saved beside its clips moves with them; a fade between two clips
-  // is saved as the new one.
+  // there is one, so that a scene saved beside its clips moves with them.
+  //
   // Where it is (the loader's `state` and the attributes after it): a reaction under way and the
   // strengths it has ramped, written only where they differ from a character just added; and its
   // clip frame, always, so that it goes on along the path it was on rather than one found again
@@ -467,6 +467,26 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
     if (folder.empty() || !path.is_absolute()) return clip.name;
     const std::filesystem::path relative = path.lexically_relative(folder);
     return relative.empty() ? clip.name : relative.generic_string();
+  };
+  // A fade under way: how far it has got, and what it fades from (the clip before, or a pose held).
+  const auto fade = [&clipPath](ElementWriter& e, const phys::Character& c) {
+    if (c.blend >= 1.0) return;
+    e.number("blend", c.blend).number("blend-time", c.blendTime);
+    if (c.before.clip) {
+      e.text("from-clip", clipPath(*c.before.clip))
+          .number("from-time", c.before.time)
+          .number("from-speed", c.before.speed)
+          .text("from-loop", c.before.loop ? "true" : "false")
+          .vector("from-shift", c.beforeShift);
+    }
+    if (!c.holding) return;
+    std::string turns;
+    for (const phys::Quat& q : c.held.turns) {
+      if (!turns.empty()) turns += ", ";
+      turns += detail::exactNumber(q.w) + ' ' + detail::exactNumber(q.x) + ' ' + detail::exactNumber(q.y) +
+               ' ' + detail::exactNumber(q.z);
+    }
+    e.vector("held-root", c.held.root).text("held-turns", turns);
   };
   for (const phys::Character& c : world.characters()) {
     ElementWriter e("character");
@@ -504,6 +524,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
           .text("then-loop", c.queued->playback.loop ? "true" : "false");
     }
     characterState(e, c);
+    fade(e, c);
     line(e.empty());
   }
   for (const phys::JointFriction& f : world.jointFrictions()) {

@@ -332,6 +332,8 @@ class World {
   /// world that has stepped, arrays of other sizes, another number of characters, a character's
   /// clip of other bones than its own, or what Motion::problem finds.
   void setMotion(const Motion& motion);
+  /// "" or why setMotion would refuse `motion` in a world that has not stepped.
+  std::string motionProblem(const Motion& motion) const;
   /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
   /// With sleeping off the step does not count them: they are counted here, when asked.
   const Islands& islands() const;
