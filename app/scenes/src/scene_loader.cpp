@@ -515,7 +515,7 @@ class Builder {
         e.fail("then", "clip '" + then->playback.clip->name + "' has other bones than '" +
                            desc.playback.clip->name + "'");
     }
-    const std::optional<CharacterState> motion = characterState(e, *desc.playback.clip);
+    const std::optional<SavedCharacter> motion = savedCharacter(e, *desc.playback.clip);
     e.rejectUnknownAttributes();
     std::size_t k = 0;
     try {
@@ -543,7 +543,7 @@ class Builder {
   // Where a saved character was (Save As writes it): its reaction under way, its strengths as the
   // reaction has ramped them, and its clip frame; each attribute optional, what is not given as
   // addCharacter made it.
-  struct CharacterState {
+  struct SavedCharacter {
     std::optional<phys::CharacterState> state;
     std::optional<double> stateTime, stillTime, strength, rootStrength, balance, fromStrength, fromBalance,
         heading;
@@ -575,8 +575,8 @@ class Builder {
     }
   };
 
-  std::optional<CharacterState> characterState(ElementReader& e, const phys::Clip& playing) {
-    CharacterState c;
+  std::optional<SavedCharacter> savedCharacter(ElementReader& e, const phys::Clip& playing) {
+    SavedCharacter c;
     if (auto state = e.text("state")) {
       c.state = phys::parseCharacterState(*state);
       if (!c.state)
@@ -593,14 +593,15 @@ class Builder {
     c.origin = e.vector("origin", "m");
     fade(e, playing, c);
     const bool any = c.state || c.stateTime || c.stillTime || c.strength || c.rootStrength || c.balance ||
-                     c.fromStrength || c.fromBalance || c.heading || c.origin || c.blend;
-    return any ? std::optional<CharacterState>(c) : std::nullopt;
+                     c.fromStrength || c.fromBalance || c.heading || c.origin || c.blend || c.blendTime ||
+                     c.beforeShift;
+    return any ? std::optional<SavedCharacter>(c) : std::nullopt;
   }
 
   // blend (under 1: a fade under way) and blend-time, with what it fades from: from-clip (a clip of
   // the same bones), from-time, from-speed, from-loop and from-shift, or held-root and held-turns (a
   // pose held still, one turn "w x y z" a bone, separated by commas).
-  void fade(ElementReader& e, const phys::Clip& playing, CharacterState& c) {
+  void fade(ElementReader& e, const phys::Clip& playing, SavedCharacter& c) {
     c.blend = detail::readFraction(e, "blend");
     c.blendTime = duration(e, "blend-time");
     std::optional<phys::Playback> before;
