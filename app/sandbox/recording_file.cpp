@@ -406,8 +406,10 @@ std::string encodeRecording(const SavedRecording& recording) {
   return std::move(w.out());
 }
 
-SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSource) {
-  Reader r(bytes);
+namespace {
+
+// The magic and the format, checked.
+void readHeader(Reader& r, std::string_view bytes) {
   if (bytes.size() < kMagic.size() || bytes.substr(0, kMagic.size()) != kMagic) {
     r.fail("not a recording: it does not start with \"" + std::string(kMagic) + "\"");
   }
@@ -418,6 +420,19 @@ SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSou
            ", from another version of the sandbox; this one reads format " +
            std::to_string(kRecordingFormat));
   }
+}
+
+}  // namespace
+
+std::string recordingSceneName(std::string_view bytes) {
+  Reader r(bytes);
+  readHeader(r, bytes);
+  return r.text("the scene's name");
+}
+
+SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSource) {
+  Reader r(bytes);
+  readHeader(r, bytes);
   // The checksum first, so that damage anywhere is called damage, not whatever it looks like.
   if (bytes.size() < kMagic.size() + 4 + 8)
     r.fail("the file ends after " + std::to_string(bytes.size()) + " bytes: it is truncated");

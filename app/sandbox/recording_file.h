@@ -62,6 +62,11 @@ class RecordingFormatError : public std::runtime_error {
 /// clip of that name, or an exception saying why there is none.
 using ClipSource = std::function<std::shared_ptr<const phys::Clip>(const std::string& name)>;
 
+/// The name of the scene a recording's bytes were recorded in, read from its header alone (so that a
+/// file of another scene is told apart before its clips are looked for). Throws RecordingFormatError
+/// as decodeRecording would for a header that is not a recording's of this format.
+std::string recordingSceneName(std::string_view bytes);
+
 /// The file's bytes. Characters' clips are written by name, once per part.
 std::string encodeRecording(const SavedRecording& recording);
 /// Throws RecordingFormatError: not a recording, another format version, truncated, damaged (the

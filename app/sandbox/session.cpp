@@ -316,11 +316,13 @@ std::string Session::openRecording(const std::filesystem::path& file) {
   if (overlayActive()) return "stop the method overlay first: its runs cannot be shown a recording";
   const std::string kept = " (the current world is kept)";
   try {
-    SavedRecording saved = decodeRecording(fileio::readWhole(file, kMaxRecordingFile), recordedClips());
-    if (saved.sceneName != scene().name) {
-      return file.string() + ": a recording of the scene '" + saved.sceneName + "', and '" + scene().name +
-             "' is open: open '" + saved.sceneName + "' first" + kept;
+    const std::string bytes = fileio::readWhole(file, kMaxRecordingFile);
+    // The scene first: a file of another scene is that, whatever clips it names.
+    if (const std::string name = recordingSceneName(bytes); name != scene().name) {
+      return file.string() + ": a recording of the scene '" + name + "', and '" + scene().name +
+             "' is open: open '" + name + "' first" + kept;
     }
+    SavedRecording saved = decodeRecording(bytes, recordedClips());
     const long firstSaved = saved.firstStep();
     cancelSteps();  // the heap the recording's copies are measured by is this thread's alone
     Recording opened = fromSaved(std::move(saved), load_, recording_.budget());

@@ -205,6 +205,11 @@ TEST(RecordingFile, ARecordingWhoseClipChangedIsRefusedOnOpening) {
   EXPECT_NE(gone.find("stand.bvh"), std::string::npos) << gone;
   EXPECT_NE(gone.find("No such file or directory"), std::string::npos) << gone;
   EXPECT_EQ(hashOf(other), before);
+  // Opened in another scene, the file is called that, not a file whose clip has gone.
+  sandbox::Session pyramid = openSession("pyramid");
+  const std::string elsewhere = pyramid.openRecording(dir.path / "r.jrec");
+  EXPECT_NE(elsewhere.find("a recording of the scene 'run-cycle', and 'pyramid' is open"), std::string::npos)
+      << elsewhere;
 }
 
 // Every project scene, as the sandbox opens it, a few steps in: saved and opened again, each step
