@@ -149,7 +149,8 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
   CapsuleRagdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
-  ragdoll.firstJoint = world.rigidJoints().size();
+  ragdoll.firstJoint =
+      desc.model == RagdollModel::Rigid ? world.rigidJoints().size() : world.particleJoints().size();
   for (const PartLayout& p : kParts) {
     BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.shape = Shape::Capsule;

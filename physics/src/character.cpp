@@ -9,6 +9,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "passes.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
 #include "require.h"
@@ -25,9 +26,10 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-// The rigid joint between two rigid bodies, either way round; false when there is none.
-bool jointBetween(const World& world, RigidId parent, RigidId child, std::size_t& joint, bool& reversed) {
-  const std::span<const RigidJoint> joints = world.rigidJoints();
+// The joint between two bodies among `joints` (rigid joints by RigidId, particle joints by BodyId),
+// either way round; false when there is none.
+template <typename Joint, typename Id>
+bool jointBetween(std::span<const Joint> joints, Id parent, Id child, std::size_t& joint, bool& reversed) {
   for (std::size_t k = 0; k < joints.size(); ++k) {
     if ((joints[k].a == parent && joints[k].b == child) || (joints[k].a == child && joints[k].b == parent)) {
       joint = k;
@@ -237,21 +239,29 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
   }
 
   std::vector<CharacterBone> bones(clip.bones.size());
+  // Rigid parts are driven through rigid joints, particle parts through particle joints: the root
+  // part's model says which the character is.
+  const bool rigid = bodies[partIds[0]].model == BodyModel::Rigid;
   for (std::size_t b = 0; b < clip.bones.size(); ++b) {
     const auto at = std::find(partNames.begin(), partNames.end(), clip.bones[b]) - partNames.begin();
     CharacterBone& bone = bones[b];
     bone.body = partIds[static_cast<std::size_t>(at)];
     bone.clipBone = static_cast<int>(b);
     bone.parent = clip.parents[b];
-    require(bodies[bone.body].model == BodyModel::Rigid,
-            who + ": part '" + clip.bones[b] + "' is not rigid (only rigid ragdolls have drives)");
+    require((bodies[bone.body].model == BodyModel::Rigid) == rigid,
+            who + ": part '" + clip.bones[b] + "' is " + (rigid ? "not rigid" : "rigid") + " and part '" +
+                partNames[0] + "' is " + (rigid ? "" : "not ") +
+                "(a character's parts are all rigid or all particle bodies)");
     if (bone.parent < 0) continue;
     const CharacterBone& parent = bones[static_cast<std::size_t>(bone.parent)];
-    require(
-        jointBetween(world, bodies[parent.body].rigid, bodies[bone.body].rigid, bone.joint, bone.reversed),
-        who + ": bone '" + clip.bones[b] + "': no rigid joint joins it to its parent '" +
-            clip.bones[static_cast<std::size_t>(bone.parent)] + "'");
-    const Quat rest = world.jointRest(bone.joint);
+    const bool joined =
+        rigid ? jointBetween(world.rigidJoints(), bodies[parent.body].rigid, bodies[bone.body].rigid,
+                             bone.joint, bone.reversed)
+              : jointBetween(world.particleJoints(), parent.body, bone.body, bone.joint, bone.reversed);
+    require(joined, who + ": bone '" + clip.bones[b] + "': no " + (rigid ? "rigid" : "particle") +
+                        " joint joins it to its parent '" +
+                        clip.bones[static_cast<std::size_t>(bone.parent)] + "'");
+    const Quat rest = rigid ? world.jointRest(bone.joint) : world.particleJoints()[bone.joint].rest;
     bone.rest = parent.rest * (bone.reversed ? glm::conjugate(rest) : rest);
   }
   return bones;
@@ -285,10 +295,17 @@ void targetCentres(const World& world, const Character& c, std::span<const Quat>
       out[b] = rootCentre;
       continue;
     }
-    const RigidJoint& j = world.rigidJoints()[bone.joint];
+    Vec3 pivotA(0.0), pivotB(0.0);
+    if (c.particleParts) {
+      const ParticleJoint& j = world.particleJoints()[bone.joint];
+      pivotA = j.pivotA, pivotB = j.pivotB;
+    } else {
+      const RigidJoint& j = world.rigidJoints()[bone.joint];
+      pivotA = j.pivotA, pivotB = j.pivotB;
+    }
     const auto parent = static_cast<std::size_t>(bone.parent);
-    const Vec3& own = bone.reversed ? j.pivotA : j.pivotB;
-    const Vec3& parents = bone.reversed ? j.pivotB : j.pivotA;
+    const Vec3& own = bone.reversed ? pivotA : pivotB;
+    const Vec3& parents = bone.reversed ? pivotB : pivotA;
     out[b] = out[parent] + orientations[parent] * parents - orientations[b] * own;
   }
 }
@@ -320,6 +337,7 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   Character c;
   c.ragdoll = desc.ragdoll;
   c.bones = bindClip(*this, desc.ragdoll, *desc.playback.clip);
+  c.particleParts = bodies_[c.bones[0].body].model != BodyModel::Rigid;
   c.partStrength.assign(c.bones.size(), 1.0);
   for (const auto& [bone, share] : desc.partStrengths)
     c.partStrength[partOf(c, *desc.playback.clip, bone, share, who)] = share;
@@ -380,16 +398,8 @@ void World::putInPose(const Character& c) {
   std::vector<Vec3> centres(c.bones.size());
   targetOrientations(c, c.pose, targets);
   targetCentres(*this, c, targets, rootCentre(c, c.pose), centres);
-  RigidBodies& r = rigidBodies_;
-  for (std::size_t b = 0; b < c.bones.size(); ++b) {
-    const RigidId i = bodies_[c.bones[b].body].rigid;
-    r.orientation[i] = targets[b];
-    r.position[i] = centres[b];
-    r.previousPosition[i] = r.position[i];
-    r.previousOrientation[i] = r.orientation[i];
-    r.velocity[i] = Vec3(0.0);
-    r.angularVelocity[i] = Vec3(0.0);
-  }
+  for (std::size_t b = 0; b < c.bones.size(); ++b)
+    placeAtRest(c.bones[b].body, BodyPose{centres[b], targets[b]});
   islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 
@@ -399,8 +409,46 @@ void World::makeRootDrive(const Character& c, Real strength) {
   const BodyId root = c.bones[0].body;
   if (bodyDrive(root)) return;
   const BodyPose pose = bodyPose(root);
-  constraints_.setBodyDrive(bodies_[root].rigid, BodyDrive{pose.center, pose.orientation, strength,
-                                                           c.rootStiffness, c.rootAngularStiffness});
+  setRootDrive(c,
+               BodyDrive{pose.center, pose.orientation, strength, c.rootStiffness, c.rootAngularStiffness});
+}
+
+void World::setRootDrive(const Character& c, const BodyDrive& drive) {
+  const BodyId root = c.bones[0].body;
+  constraints_.setBodyDrive(DrivenBody{root, bodies_[root].rigid, c.particleParts, drive});
+}
+
+// A part's mass, centre and velocity, of the pose and velocities of a rigid part, or of a particle
+// part's particles (their velocities over the last substep); mass 0 for a part that cannot move.
+World::PartMotion World::partMotion(BodyId id) const {
+  const Body& body = bodies_[id];
+  if (body.model == BodyModel::Rigid) {
+    const RigidId i = body.rigid;
+    const Real inverseMass = rigidBodies_.inverseMass[i];
+    return {inverseMass > 0.0 ? 1.0 / inverseMass : 0.0, rigidBodies_.position[i], rigidBodies_.velocity[i]};
+  }
+  detail::MassProperties m;
+  if (!detail::massProperties(particles_, body, m)) return {0.0, bodyPose(id).center, Vec3(0.0)};
+  return {m.mass, m.centre, detail::rigidMotion(particles_, body, m).linear / substepDt()};
+}
+
+// Put where `pose` says at rest: a rigid body's pose and previous pose, or a particle body's particles
+// at their places in the pose and their previous positions with them.
+void World::placeAtRest(BodyId id, const BodyPose& pose) {
+  const Body& body = bodies_[id];
+  if (body.model == BodyModel::Rigid) {
+    RigidBodies& r = rigidBodies_;
+    const RigidId i = body.rigid;
+    r.orientation[i] = r.previousOrientation[i] = pose.orientation;
+    r.position[i] = r.previousPosition[i] = pose.center;
+    r.velocity[i] = r.angularVelocity[i] = Vec3(0.0);
+    return;
+  }
+  for (int j = 0; j < body.particleCount; ++j) {
+    const ParticleId p = body.firstParticle + j;
+    particles_.position[p] = particles_.previous[p] =
+        pose.center + pose.orientation * boxParticleLocal(body.model, body.halfExtents, j);
+  }
 }
 
 void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
@@ -490,24 +538,26 @@ void World::animate(Real h) {
     targetOrientations(c, c.pose, characterTargets_);
     for (std::size_t b = 1; b < c.bones.size(); ++b) {
       const CharacterBone& bone = c.bones[b];
-      JointDrive drive = constraints_.drives()[bone.joint];
+      JointDrive drive =
+          c.particleParts ? constraints_.particleDrives()[bone.joint] : constraints_.drives()[bone.joint];
       const Quat& parent = characterTargets_[static_cast<std::size_t>(bone.parent)];
       const Quat target = glm::normalize(glm::conjugate(parent) * characterTargets_[b]);
       drive.target = bone.reversed ? glm::conjugate(target) : target;
       drive.strength = c.strength * c.partStrength[b];
-      constraints_.setDrive(bone.joint, drive);
+      if (c.particleParts)
+        constraints_.setParticleDrive(bone.joint, drive);
+      else
+        constraints_.setDrive(bone.joint, drive);
     }
-    const Body& root = bodies_[c.bones[0].body];
     if (c.rootStrength > 0.0) {
-      const BodyDrive carry{rootCentre(c, c.pose), characterTargets_[0], c.rootStrength, c.rootStiffness,
-                            c.rootAngularStiffness};
-      constraints_.setBodyDrive(root.rigid, carry);
+      setRootDrive(c, BodyDrive{rootCentre(c, c.pose), characterTargets_[0], c.rootStrength, c.rootStiffness,
+                                c.rootAngularStiffness});
     } else if (keepsRootDrive(c)) {
-      const BodyDrive balance{rigidBodies_.position[root.rigid], balanceTarget(c, characterTargets_[0]),
-                              c.balance, 0.0, c.rootAngularStiffness};
-      constraints_.setBodyDrive(root.rigid, balance);
+      // Stiffness 0: the balance only turns the root, wherever it is.
+      setRootDrive(c, BodyDrive{bodyPose(c.bones[0].body).center, balanceTarget(c, characterTargets_[0]),
+                                c.balance, 0.0, c.rootAngularStiffness});
     } else {
-      constraints_.clearBodyDrive(root.rigid);
+      constraints_.clearBodyDrive(c.bones[0].body);
     }
     if (characterMoves(c)) islands_.wake(islands_.bodyNode(c.bones[0].body));
   }
@@ -521,21 +571,20 @@ void World::animate(Real h) {
 Quat World::balanceTarget(const Character& c, const Quat& upright) const {
   Real mass = 0.0;
   Vec3 com(0.0), velocity(0.0);
-  std::size_t low[2] = {0, 0};
   Real lowY[2] = {std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
+  Vec3 lowCentre[2] = {Vec3(0.0), Vec3(0.0)};
   for (std::size_t b = 0; b < c.bones.size(); ++b) {
-    const RigidId i = bodies_[c.bones[b].body].rigid;
-    if (rigidBodies_.inverseMass[i] == 0.0) return upright;  // frozen: nothing to balance
-    const Real m = 1.0 / rigidBodies_.inverseMass[i];
-    mass += m;
-    com += m * rigidBodies_.position[i];
-    velocity += m * rigidBodies_.velocity[i];
-    const Real y = rigidBodies_.position[i].y;
+    const PartMotion part = partMotion(c.bones[b].body);
+    if (part.mass == 0.0) return upright;  // frozen: nothing to balance
+    mass += part.mass;
+    com += part.mass * part.centre;
+    velocity += part.mass * part.velocity;
+    const Real y = part.centre.y;
     if (y < lowY[0]) {
-      low[1] = low[0], lowY[1] = lowY[0];
-      low[0] = b, lowY[0] = y;
+      lowCentre[1] = lowCentre[0], lowY[1] = lowY[0];
+      lowCentre[0] = part.centre, lowY[0] = y;
     } else if (y < lowY[1]) {
-      low[1] = b, lowY[1] = y;
+      lowCentre[1] = part.centre, lowY[1] = y;
     }
   }
   com /= mass;
@@ -544,8 +593,7 @@ Quat World::balanceTarget(const Character& c, const Quat& upright) const {
   const Real gLength = glm::length(g);
   if (gLength == 0.0 || c.bones.size() < 2) return upright;
   const Vec3 up = -g / gLength;
-  const Vec3 support = 0.5 * (rigidBodies_.position[bodies_[c.bones[low[0]].body].rigid] +
-                              rigidBodies_.position[bodies_[c.bones[low[1]].body].rigid]);
+  const Vec3 support = 0.5 * (lowCentre[0] + lowCentre[1]);
   const Real height = glm::dot(com - support, up);
   if (height <= 0.0) return upright;
   Vec3 off = support - (com + velocity * std::sqrt(height / gLength));
@@ -559,21 +607,34 @@ Quat World::balanceTarget(const Character& c, const Quat& upright) const {
 // Each substep, of the last one's contacts: a body that is not one of a character's parts striking
 // one that is, at the closing speed its contact measured before the passes pushed it.
 void World::noteBlows() {
-  const std::span<const RigidContact> contacts = narrowPhase_.rigidContacts();
-  const RigidContactState& state = narrowPhase_.rigidState();
-  const std::size_t n = std::min({contacts.size(), state.touched.size(), state.approach.size()});
   auto characterOf = [this](BodyId body) { return body < bodyCharacter_.size() ? bodyCharacter_[body] : -1; };
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!state.touched[k] || state.approach[k] >= 0.0) continue;
-    const RigidContact& contact = contacts[k];
-    if (contact.bodyA == kNoBody || contact.bodyB == kNoBody) continue;  // the ground is no blow
-    const int a = characterOf(contact.bodyA), b = characterOf(contact.bodyB);
-    if (a == b) continue;  // its own parts, or two bodies of no character
+  auto note = [&](BodyId bodyA, BodyId bodyB, Real closing) {
+    if (bodyA == kNoBody || bodyB == kNoBody) return;  // the ground is no blow
+    const int a = characterOf(bodyA), b = characterOf(bodyB);
+    if (a == b) return;  // its own parts, or two bodies of no character
     for (const int side : {a, b}) {
       if (side < 0) continue;
       Real& blow = characters_[static_cast<std::size_t>(side)].stepBlow;
-      blow = std::max(blow, -state.approach[k]);
+      blow = std::max(blow, closing);
     }
+  };
+  const std::span<const RigidContact> contacts = narrowPhase_.rigidContacts();
+  const RigidContactState& state = narrowPhase_.rigidState();
+  const std::size_t n = std::min({contacts.size(), state.touched.size(), state.approach.size()});
+  for (std::size_t k = 0; k < n; ++k) {
+    // A rigid contact's approach is its separation speed: negative closing.
+    if (state.touched[k] && state.approach[k] < 0.0)
+      note(contacts[k].bodyA, contacts[k].bodyB, -state.approach[k]);
+  }
+  // Particle bodies' contacts, whose approach measureApproaches takes while a character has particle
+  // parts: their points' closing speed, positive closing, as restitution reads it.
+  const std::span<const BodyContact> particleContacts = narrowPhase_.contacts();
+  const BodyContactState& particleState = narrowPhase_.state();
+  const std::size_t m =
+      std::min({particleContacts.size(), particleState.touched.size(), particleState.approach.size()});
+  for (std::size_t k = 0; k < m; ++k) {
+    if (particleState.touched[k] && particleState.approach[k] > 0.0)
+      note(particleContacts[k].bodyA, particleContacts[k].bodyB, particleState.approach[k]);
   }
 }
 
@@ -585,14 +646,13 @@ void World::react() {
   if (characters_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::Animate);
   for (Character& c : characters_) {
-    const Body& rootBody = bodies_[c.bones[0].body];
-    const Vec3 rootVelocity = rigidBodies_.velocity[rootBody.rigid];
+    const Vec3 rootVelocity = partMotion(c.bones[0].body).velocity;
     const Real impact = std::max(c.stepBlow, glm::length(rootVelocity - c.lastRootVelocity));
     c.lastRootVelocity = rootVelocity;
     c.stepBlow = 0.0;
     bool still = true;
     for (const CharacterBone& bone : c.bones)
-      still = still && glm::length(rigidBodies_.velocity[bodies_[bone.body].rigid]) < c.reaction.restSpeed;
+      still = still && glm::length(partMotion(bone.body).velocity) < c.reaction.restSpeed;
     c.lastImpact = impact;
     c.stillTime = still ? c.stillTime + solver_.dt : 0.0;
     // Only an active character reacts, and only once it has been so for armTime: getting up, or
@@ -604,8 +664,7 @@ void World::react() {
     } else if (c.state == CharacterState::Down && c.reaction.getUp.clip &&
                c.stillTime >= c.reaction.restTime) {
       // Up where it lies: the get-up clip's root path starts under the root part's centre.
-      const Vec3 lying = glm::conjugate(c.frame) *
-                             (rigidBodies_.position[bodies_[c.bones[0].body].rigid] - c.origin) / c.scale -
+      const Vec3 lying = glm::conjugate(c.frame) * (partMotion(c.bones[0].body).centre - c.origin) / c.scale -
                          turnedRootOffset(c, c.pose);
       changeClip(c, c.reaction.getUp, 0.0, lying);
       enter(c, CharacterState::GettingUp);

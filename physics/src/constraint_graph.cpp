@@ -34,20 +34,20 @@ void ConstraintGraph::addJointFriction(const JointFriction& friction) {
   if (spins_.size() < room) spins_.resize(room);
 }
 
-void ConstraintGraph::setBodyDrive(RigidId rigid, const BodyDrive& drive) {
+void ConstraintGraph::setBodyDrive(const DrivenBody& driven) {
   for (DrivenBody& d : bodyDrives_) {
-    if (d.rigid == rigid) {
-      d.drive = drive;
+    if (d.body == driven.body) {
+      d.drive = driven.drive;
       return;
     }
   }
-  bodyDrives_.push_back({rigid, drive});
+  bodyDrives_.push_back(driven);
   bodyDriveLambda_.resize(2 * bodyDrives_.size(), 0.0);
 }
 
-void ConstraintGraph::clearBodyDrive(RigidId rigid) {
+void ConstraintGraph::clearBodyDrive(BodyId body) {
   const auto gone = std::remove_if(bodyDrives_.begin(), bodyDrives_.end(),
-                                   [rigid](const DrivenBody& d) { return d.rigid == rigid; });
+                                   [body](const DrivenBody& d) { return d.body == body; });
   if (gone == bodyDrives_.end()) return;
   bodyDrives_.erase(gone, bodyDrives_.end());
   bodyDriveLambda_.resize(2 * bodyDrives_.size());

@@ -2,6 +2,9 @@
 // substep's passes (Macklin et al. 2016, eqs. 17-18, in the angular form of Müller et al. 2020,
 // 3.3.2). A joint's drive is an angular constraint between its two bodies; a body's drive a
 // positional constraint on its centre and an angular one on its orientation, against the world.
+// A particle body takes the same corrections as a rigid body whose mass and inertia are its
+// particles' (massProperties): a turn of all its particles about their centre, or a move of them
+// all, so its sticks keep their lengths and the links see the body move as one.
 #include "physics/drives.h"
 
 #include <algorithm>
@@ -9,7 +12,12 @@
 
 #include <glm/geometric.hpp>
 
+#include <glm/gtc/quaternion.hpp>
+#include <glm/matrix.hpp>
+
+#include "passes.h"
 #include "physics/rigid_joints.h"
+#include "pose.h"
 #include "rigid_motion.h"
 
 namespace phys {
@@ -43,6 +51,38 @@ bool turnTowards(const Quat& from, const Quat& to, Real& angle, Vec3& axis) {
   return true;
 }
 
+// A particle body as a drive moves it: its pose and centre of mass, and the inverses of its mass and
+// inertia (world axes) from its particles now. One with a particle pinned, frozen or asleep, or crushed
+// flat, is held still (inverses 0), as a frozen rigid body is; its pose still counts.
+struct ParticleFrame {
+  BodyPose pose;
+  Vec3 centre{0.0};  ///< unit: m; of mass, what it turns about
+  Real inverseMass = 0.0;
+  glm::dmat3 inverseInertia{0.0};
+  bool movable() const { return inverseMass > 0.0; }
+};
+
+ParticleFrame frameOf(const Particles& p, const Body& body) {
+  ParticleFrame f;
+  f.pose = particleBodyPose(p, body);
+  MassProperties m;
+  if (!massProperties(p, body, m)) return f;
+  f.centre = m.centre;
+  f.inverseMass = 1.0 / m.mass;
+  f.inverseInertia = glm::inverse(m.inertia);
+  return f;
+}
+
+// Turns the body's particles by the rotation vector `by` (rad) about its centre: the exact rotation,
+// not its first order, so that a large correction does not stretch the body.
+void turnParticles(Particles& p, const Body& body, const ParticleFrame& f, const Vec3& by) {
+  const Real angle = glm::length(by);
+  if (!(angle > 0.0) || !f.movable()) return;
+  const Quat q = glm::angleAxis(angle, by / angle);
+  for (ParticleId i = body.firstParticle; i < body.firstParticle + body.particleCount; ++i)
+    p.position[i] = f.centre + q * (p.position[i] - f.centre);
+}
+
 }  // namespace
 
 // The constraint is the angle of the turn that takes the child to its target, about that turn's own
@@ -73,9 +113,10 @@ void driveRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> join
 void driveRigidBodies(const RigidPassInput& in, std::span<const DrivenBody> bodies, std::span<Real> lambda,
                       bool firstPass) {
   RigidBodies& r = in.rigid;
-  if (firstPass) std::fill(lambda.begin(), lambda.end(), 0.0);
   const Real hh = in.h * in.h;
   for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (bodies[k].particles) continue;  // driveParticleBodies' own, and their multipliers
+    if (firstPass) lambda[2 * k] = lambda[2 * k + 1] = 0.0;
     const BodyDrive& drive = bodies[k].drive;
     const RigidId i = bodies[k].rigid;
     if (drive.strength <= 0.0 || r.inverseMass[i] == 0.0) continue;  // none, or frozen
@@ -94,6 +135,62 @@ void driveRigidBodies(const RigidPassInput& in, std::span<const DrivenBody> bodi
     const Real delta = complianceStep(angle, w, driveCompliance(drive.strength, drive.angularStiffness), hh,
                                       lambda[2 * k + 1]);
     applyAngularImpulse(r, i, delta * n);
+  }
+}
+
+// As driveRigidJoints, with each body's orientation read from its particles (shape matching) and its
+// inertia theirs, found again for every drive, since the drive before may have turned it.
+void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<const ParticleJoint> joints,
+                         std::span<const JointDrive> drives, std::span<Real> lambda, bool firstPass, Real h) {
+  if (firstPass) std::fill(lambda.begin(), lambda.end(), 0.0);
+  const Real hh = h * h;
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    const JointDrive& drive = drives[k];
+    if (drive.strength <= 0.0) continue;
+    const Body &bodyA = bodies[joints[k].a], &bodyB = bodies[joints[k].b];
+    const ParticleFrame a = frameOf(p, bodyA), b = frameOf(p, bodyB);
+    Real angle = 0.0;
+    Vec3 n(0.0);
+    if (!turnTowards(b.pose.orientation, a.pose.orientation * drive.target, angle, n)) continue;
+    const Real w = glm::dot(n, a.inverseInertia * n) + glm::dot(n, b.inverseInertia * n);
+    if (w <= 0.0) continue;  // both held still
+    const Real delta =
+        complianceStep(angle, w, driveCompliance(drive.strength, drive.stiffness), hh, lambda[k]);
+    turnParticles(p, bodyB, b, b.inverseInertia * (delta * n));
+    turnParticles(p, bodyA, a, a.inverseInertia * (-delta * n));
+  }
+}
+
+// As driveRigidBodies, for the drives of particle bodies: the centre moved by moving every particle,
+// the turn as driveParticleJoints' with the world on the other side.
+void driveParticleBodies(Particles& p, std::span<const Body> bodies, std::span<const DrivenBody> driven,
+                         std::span<Real> lambda, bool firstPass, Real h) {
+  const Real hh = h * h;
+  for (std::size_t k = 0; k < driven.size(); ++k) {
+    if (!driven[k].particles) continue;
+    if (firstPass) lambda[2 * k] = lambda[2 * k + 1] = 0.0;
+    const BodyDrive& drive = driven[k].drive;
+    if (drive.strength <= 0.0) continue;
+    const Body& body = bodies[driven[k].body];
+    ParticleFrame f = frameOf(p, body);
+    if (!f.movable()) continue;
+    const Vec3 gap = drive.position - f.centre;
+    const Real distance = glm::length(gap);
+    if (distance > 0.0 && drive.stiffness > 0.0) {
+      const Real delta = complianceStep(distance, f.inverseMass,
+                                        driveCompliance(drive.strength, drive.stiffness), hh, lambda[2 * k]);
+      const Vec3 move = (delta * f.inverseMass / distance) * gap;
+      for (ParticleId i = body.firstParticle; i < body.firstParticle + body.particleCount; ++i)
+        p.position[i] += move;
+      f.centre += move;
+    }
+    Real angle = 0.0;
+    Vec3 n(0.0);
+    if (!turnTowards(f.pose.orientation, drive.orientation, angle, n)) continue;
+    const Real w = glm::dot(n, f.inverseInertia * n);
+    const Real delta = complianceStep(angle, w, driveCompliance(drive.strength, drive.angularStiffness), hh,
+                                      lambda[2 * k + 1]);
+    turnParticles(p, body, f, f.inverseInertia * (delta * n));
   }
 }
 

@@ -32,11 +32,7 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
           "joint damping must be finite and >= 0 (1/s)");
   require(desc.inertiaFloor >= 0.0 && desc.inertiaFloor <= 1.0, "inertia floor must be from 0 to 1");
   require(desc.strength >= 0.0 && desc.strength <= 1.0, "strength must be from 0 to 1");
-  require(desc.strength == 0.0 || desc.model == RagdollModel::Rigid,
-          "strength above 0 needs the rigid model (only rigid joints have drives)");
   require(desc.rootStrength >= 0.0 && desc.rootStrength <= 1.0, "root strength must be from 0 to 1");
-  require(desc.rootStrength == 0.0 || desc.model == RagdollModel::Rigid,
-          "root strength above 0 needs the rigid model (only rigid bodies have drives)");
   require(!desc.driveStiffness || (std::isfinite(*desc.driveStiffness) && *desc.driveStiffness > 0.0),
           "drive stiffness must be finite and > 0 (N m/rad)");
   const Quat q = desc.orientation / qLength;
@@ -72,6 +68,15 @@ void driveRagdollJoints(World& world, const RagdollDesc& desc, std::size_t first
   if (desc.strength == 0.0) return;
   const Real stiffness =
       desc.driveStiffness.value_or(kDriveStiffness * desc.mass / kRagdollDriveMass * desc.scale);
+  if (desc.model != RagdollModel::Rigid) {
+    for (std::size_t k = firstJoint; k < world.particleJoints().size(); ++k) {
+      JointDrive drive = world.particleJointDrive(k);
+      drive.strength = desc.strength;
+      drive.stiffness = stiffness;
+      world.setParticleJointDrive(k, drive);
+    }
+    return;
+  }
   for (std::size_t k = firstJoint; k < world.rigidJoints().size(); ++k) {
     JointDrive drive = world.jointDrive(k);
     drive.strength = desc.strength;
@@ -136,6 +141,7 @@ void addHinge(World& world, BodyId parent, BodyId child, const HingeSpec& spec, 
     return;
   }
   if (spec.damping > 0.0) world.addJointFriction(parent, child, spec.damping);
+  world.addParticleJoint(parent, child, place(spec.pivot));  // what a drive needs of it
   // Two pins on the axis make the hinge.
   for (const Real side : {-1.0, 1.0}) {
     const Vec3 pin = place(spec.pivot + spec.axis * (side * spec.halfSpan));
@@ -169,6 +175,7 @@ void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, co
   }
   if (spec.damping > 0.0) world.addJointFriction(parent, child, spec.damping);
   const Vec3 pivot = place(spec.pivot);
+  world.addParticleJoint(parent, child, pivot);  // what a drive needs of it
   world.addLink(world.anchor(parent, pivot), world.anchor(child, pivot));
   // A point at `radius` along the limb's axis, fixed in both parts where it is laid out: after
   // the child swings by s (about any line through the pivot) the two copies are 2 r sin(s / 2)

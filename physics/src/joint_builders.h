@@ -17,7 +17,7 @@ using PlaceFn = std::function<Vec3(const Vec3&)>;
 
 /// Checks what both ragdoll builders take from a RagdollDesc (finite hips and velocity, a scale
 /// in (0, 1e6), a positive mass, a finite non-zero orientation, valid friction, strengths from 0 to
-/// 1 and above 0 only for rigid parts, a finite positive drive stiffness), throwing
+/// 1, a finite positive drive stiffness), throwing
 /// std::invalid_argument with `who` ("addRagdoll") in the message, and returns the orientation made
 /// unit and the function that places a layout point: the layout's (0, hipHeight, 0) goes to desc.hips.
 struct RagdollFrame {

@@ -10,6 +10,7 @@
 #include "physics/body_layout.h"
 #include "physics/collision.h"
 #include "physics/constraints.h"
+#include "physics/drives.h"
 #include "physics/link_layout.h"
 #include "physics/particles.h"
 #include "physics/rigid_bodies.h"
@@ -206,6 +207,16 @@ RigidMotion rigidMotion(const Particles& p, const Body& box, const MassPropertie
 /// `spins` holds one per body a friction joins (indexed by body id), any state on entry.
 void dampJointFriction(Particles& p, std::span<const Body> bodies, std::span<const JointFriction> frictions,
                        Real dt, std::span<BodySpin> spins);
+
+/// One pass over the particle joints' drives (drives.h), drives[k] and lambda[k] joint k's, each
+/// body turned about its centre as a rigid body of its particles' inertia; the first pass of a
+/// substep zeroes the multipliers. h: the substep (s).
+void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<const ParticleJoint> joints,
+                         std::span<const JointDrive> drives, std::span<Real> lambda, bool firstPass, Real h);
+/// One pass over the drives of particle bodies among `driven` (the rigid ones are driveRigidBodies'),
+/// lambda holding two multipliers a drive, as driveRigidBodies'.
+void driveParticleBodies(Particles& p, std::span<const Body> bodies, std::span<const DrivenBody> driven,
+                         std::span<Real> lambda, bool firstPass, Real h);
 
 /// How far the link is outside its bounds with the particles at x (positions or previous
 /// positions): > 0 beyond max (a pin's whole gap), < 0 short of min, 0 within. unit: m

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
 
 namespace phys::detail {
@@ -64,6 +65,21 @@ glm::dmat3 nearestRotation(const glm::dmat3& unscaled) {
     if (!std::isfinite(X[c].x + X[c].y + X[c].z)) return gramSchmidt(A);
   }
   return X;
+}
+
+BodyPose particleBodyPose(const Particles& p, const Body& body) {
+  BodyPose pose;
+  const Vec3* x = &p.position[body.firstParticle];
+  // Each particle's share summed, not the sum divided: the same digits for 4 or 8 particles (a
+  // power of two), and no overflow for a body near the largest double (a bound of infinity).
+  const Real share = 1.0 / static_cast<Real>(body.particleCount);
+  for (int j = 0; j < body.particleCount; ++j) pose.center += x[j] * share;
+  // A = sum (x_j - c) r_j^T is R S for a rigid motion.
+  glm::dmat3 A(0.0);
+  for (int j = 0; j < body.particleCount; ++j)
+    A += glm::outerProduct(x[j] - pose.center, boxParticleLocal(body.model, body.halfExtents, j));
+  pose.orientation = glm::normalize(glm::quat_cast(nearestRotation(A)));
+  return pose;
 }
 
 }  // namespace phys::detail

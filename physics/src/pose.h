@@ -1,6 +1,8 @@
 #pragma once
 #include <glm/mat3x3.hpp>
 
+#include "physics/body.h"
+#include "physics/particles.h"
 #include "physics/types.h"
 
 namespace phys::detail {
@@ -10,5 +12,10 @@ namespace phys::detail {
 /// it is R S with S symmetric positive definite while the body is not inverted; if it is
 /// (det A <= 0), falls back to Gram-Schmidt on A's columns.
 glm::dmat3 nearestRotation(const glm::dmat3& A);
+
+/// A particle body's pose read back from its particles: the centre their mean (a body's particles
+/// share its mass evenly), the orientation the rotation that best takes their rest places to where
+/// they are (shape matching, Müller et al. 2005).
+BodyPose particleBodyPose(const Particles& p, const Body& body);
 
 }  // namespace phys::detail

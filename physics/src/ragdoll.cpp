@@ -136,7 +136,8 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
   Ragdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
-  ragdoll.firstJoint = world.rigidJoints().size();
+  ragdoll.firstJoint =
+      desc.model == RagdollModel::Rigid ? world.rigidJoints().size() : world.particleJoints().size();
   for (const PartLayout& p : kParts) {
     BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.center = place(p.center);

@@ -164,7 +164,7 @@ DriveLoad World::bodyDriveLoad(BodyId id) const {
   const std::span<const Real> lambda = constraints_.bodyDriveLambda();
   const Real hh = substepDt() * substepDt();
   for (std::size_t k = 0; k < driven.size(); ++k) {
-    if (bodies_[id].model == BodyModel::Rigid && driven[k].rigid == bodies_[id].rigid)
+    if (driven[k].body == id)
       return DriveLoad{std::abs(lambda[2 * k]) / hh, std::abs(lambda[2 * k + 1]) / hh};
   }
   return {};
@@ -188,16 +188,14 @@ void World::setJointDrive(std::size_t k, const JointDrive& drive) {
 
 std::optional<BodyDrive> World::bodyDrive(BodyId id) const {
   require(id < bodies_.size(), "bodyDrive: body id must exist");
-  if (bodies_[id].model != BodyModel::Rigid) return std::nullopt;
   for (const DrivenBody& d : constraints_.bodyDrives()) {
-    if (d.rigid == bodies_[id].rigid) return d.drive;
+    if (d.body == id) return d.drive;
   }
   return std::nullopt;
 }
 
 void World::setBodyDrive(BodyId id, const BodyDrive& drive) {
-  require(id < bodies_.size() && bodies_[id].model == BodyModel::Rigid,
-          "setBodyDrive: the body must be rigid");
+  require(id < bodies_.size(), "setBodyDrive: body id must exist");
   require(finite(drive.position), "setBodyDrive: the position must be finite");
   require(drive.strength >= 0.0 && drive.strength <= 1.0, "setBodyDrive: strength must be in [0, 1]");
   require(std::isfinite(drive.stiffness) && drive.stiffness >= 0.0,
@@ -206,15 +204,57 @@ void World::setBodyDrive(BodyId id, const BodyDrive& drive) {
           "setBodyDrive: angular stiffness must be finite and > 0 (N m/rad)");
   BodyDrive kept = drive;
   kept.orientation = unitQuaternion(drive.orientation, "setBodyDrive: the orientation");
-  constraints_.setBodyDrive(bodies_[id].rigid, kept);
+  const Body& body = bodies_[id];
+  constraints_.setBodyDrive(DrivenBody{id, body.rigid, body.model != BodyModel::Rigid, kept});
   islands_.wake(islands_.bodyNode(id));
 }
 
 void World::clearBodyDrive(BodyId id) {
   require(id < bodies_.size(), "clearBodyDrive: body id must exist");
-  if (bodies_[id].model != BodyModel::Rigid) return;
-  constraints_.clearBodyDrive(bodies_[id].rigid);
+  constraints_.clearBodyDrive(id);
   islands_.wake(islands_.bodyNode(id));
+}
+
+std::size_t World::addParticleJoint(BodyId parent, BodyId child, const Vec3& pivot) {
+  const std::string who = "addParticleJoint: ";
+  require(parent < bodies_.size() && child < bodies_.size(), who + "body id must exist");
+  require(parent != child, who + "a joint needs two bodies");
+  require(bodies_[parent].model != BodyModel::Rigid && bodies_[child].model != BodyModel::Rigid,
+          who + "both bodies must be particle bodies (a rigid joint is addJoint's)");
+  require(finite(pivot), who + "the pivot must be finite");
+  const BodyPose a = bodyPose(parent), b = bodyPose(child);
+  ParticleJoint j;
+  j.a = parent;
+  j.b = child;
+  j.pivotA = glm::conjugate(a.orientation) * (pivot - a.center);
+  j.pivotB = glm::conjugate(b.orientation) * (pivot - b.center);
+  j.rest = glm::normalize(glm::conjugate(a.orientation) * b.orientation);
+  constraints_.addParticleJoint(j, JointDrive{j.rest, 0.0, kDriveStiffness});
+  return constraints_.particleJoints().size() - 1;
+}
+
+const JointDrive& World::particleJointDrive(std::size_t k) const {
+  require(k < constraints_.particleJoints().size(), "particleJointDrive: particle joint index must exist");
+  return constraints_.particleDrives()[k];
+}
+
+Real World::particleJointDriveTorque(std::size_t k) const {
+  require(k < constraints_.particleJoints().size(),
+          "particleJointDriveTorque: particle joint index must exist");
+  const Real h = substepDt();
+  return std::abs(constraints_.particleDriveLambda()[k]) / (h * h);
+}
+
+void World::setParticleJointDrive(std::size_t k, const JointDrive& drive) {
+  const std::string who = "setParticleJointDrive: ";
+  require(k < constraints_.particleJoints().size(), who + "particle joint index must exist");
+  require(drive.strength >= 0.0 && drive.strength <= 1.0, who + "strength must be in [0, 1]");
+  require(std::isfinite(drive.stiffness) && drive.stiffness > 0.0,
+          who + "stiffness must be finite and > 0 (N m/rad)");
+  JointDrive kept = drive;
+  kept.target = unitQuaternion(drive.target, who + "the target");
+  constraints_.setParticleDrive(k, kept);
+  islands_.wake(islands_.bodyNode(constraints_.particleJoints()[k].a));
 }
 
 BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {

@@ -308,11 +308,15 @@ void World::partOverlaps() {
 
 // Restitution needs each contact's approach speed before the passes stop it, and which ground
 // contacts the passes push (GroundContactState::hit, set by the friction pass, read by restitute() alone).
+// A character of particle parts reads the bodies' approach too: it is how hard they strike its parts.
 void World::measureApproaches(Real h) {
-  if (solver_.restitution <= 0.0) return;
+  const bool blows =
+      std::any_of(characters_.begin(), characters_.end(), [](const Character& c) { return c.particleParts; });
+  if (solver_.restitution <= 0.0 && !blows) return;
   const detail::StageTimer timer(profile_, Stage::Restitution);
-  std::fill(ground_.state().hit.begin(), ground_.state().hit.end(), std::uint8_t{0});
   detail::measureBodyApproach(particles_, narrowPhase_.contacts(), h, narrowPhase_.state().approach);
+  if (solver_.restitution <= 0.0) return;
+  std::fill(ground_.state().hit.begin(), ground_.state().hit.end(), std::uint8_t{0});
   if (world_.ground) {
     detail::measureGroundApproach(particles_, ground_.points(), world_.groundNormal, h,
                                   ground_.state().approach);
@@ -346,6 +350,17 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   GroundContactState& groundState = ground_.state();
   const bool contacts = ground || !bodyContacts.empty();
   for (int it = 0; it < solver_.iterations; ++it) {
+    if (!constraints_.particleJoints().empty() || !constraints_.bodyDrives().empty()) {
+      // Particle bodies' drives first, so each pass ends with their links (the joints' pins and
+      // stops) held, as the rigid drives come before their joints below. A drive turns or moves a
+      // body whole, which its own sticks do not see.
+      const detail::StageTimer timer(profile_, Stage::Links);
+      detail::driveParticleBodies(particles_, bodies_, constraints_.bodyDrives(),
+                                  constraints_.bodyDriveLambda(), it == 0, h);
+      detail::driveParticleJoints(particles_, bodies_, constraints_.particleJoints(),
+                                  constraints_.particleDrives(), constraints_.particleDriveLambda(), it == 0,
+                                  h);
+    }
     if (!constraints_.sticks().empty()) {
       const detail::StageTimer timer(profile_, Stage::Sticks);
       constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers());

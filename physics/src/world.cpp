@@ -591,19 +591,7 @@ BodyPose World::bodyPose(BodyId id) const {
   const Body& box = bodies_.at(id);
   if (box.model == BodyModel::Rigid)
     return {rigidBodies_.position[box.rigid], rigidBodies_.orientation[box.rigid]};
-  BodyPose pose;
-  const Vec3* x = &particles_.position[box.firstParticle];
-  // Each particle's share summed, not the sum divided: the same digits for 4 or 8 particles (a
-  // power of two), and no overflow for a body near the largest double (a bound of infinity).
-  const Real share = 1.0 / static_cast<Real>(box.particleCount);
-  for (int j = 0; j < box.particleCount; ++j) pose.center += x[j] * share;
-  // Shape matching (Müller et al. 2005): A = sum (x_j - c) r_j^T is R S for a rigid motion.
-  glm::dmat3 A(0.0);
-  for (int j = 0; j < box.particleCount; ++j) {
-    A += glm::outerProduct(x[j] - pose.center, boxParticleLocal(box.model, box.halfExtents, j));
-  }
-  pose.orientation = glm::normalize(glm::quat_cast(detail::nearestRotation(A)));
-  return pose;
+  return detail::particleBodyPose(particles_, box);
 }
 
 }  // namespace phys

@@ -1,5 +1,6 @@
 #pragma once
-// What the character tests share: the box ragdoll's skeleton as a clip, and a rigid box ragdoll.
+// What the character tests share: the box ragdoll's skeleton as a clip, and a box ragdoll (rigid
+// unless asked).
 #include <string>
 
 #include <glm/gtc/quaternion.hpp>
@@ -29,10 +30,11 @@ phys::Clip ragdollClip(int frames, Angle angle) {
 }
 
 inline phys::Ragdoll rigidRagdoll(phys::World& w, const std::string& name,
-                                  phys::Vec3 hips = phys::Vec3(0.0, 0.85, 0.0)) {
+                                  phys::Vec3 hips = phys::Vec3(0.0, 0.85, 0.0),
+                                  phys::RagdollModel model = phys::RagdollModel::Rigid) {
   phys::RagdollDesc d;
   d.name = name;
-  d.model = phys::RagdollModel::Rigid;
+  d.model = model;
   d.hips = hips;
   return phys::addRagdoll(w, d);
 }

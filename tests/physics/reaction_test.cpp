@@ -35,8 +35,9 @@ std::shared_ptr<const phys::Clip> standClip() {
 struct Standing {
   phys::World world{phys::WorldSettings{}, testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8)};
   phys::Ragdoll ragdoll;
-  explicit Standing(const phys::Reaction& reaction = {}, Real balance = kBalance) {
-    ragdoll = rigidRagdoll(world, "r");
+  explicit Standing(const phys::Reaction& reaction = {}, Real balance = kBalance,
+                    phys::RagdollModel model = phys::RagdollModel::Rigid) {
+    ragdoll = rigidRagdoll(world, "r", Vec3(0.0, 0.85, 0.0), model);
     phys::CharacterDesc desc;
     desc.ragdoll = "r";
     desc.playback.clip = standClip();
@@ -55,8 +56,9 @@ struct AfterPush {
   Real lowest = 0.0, end = 0.0, blow = 0.0;
 };
 
-AfterPush push(Real newtons, Vec3 direction = Vec3(0.0, 0.0, 1.0), Real balance = kBalance) {
-  Standing s({}, balance);
+AfterPush push(Real newtons, Vec3 direction = Vec3(0.0, 0.0, 1.0), Real balance = kBalance,
+               phys::RagdollModel model = phys::RagdollModel::Rigid) {
+  Standing s({}, balance, model);
   s.world.push(s.torso(), newtons * direction, 0.2);
   AfterPush out;
   out.lowest = s.head();
@@ -68,9 +70,10 @@ AfterPush push(Real newtons, Vec3 direction = Vec3(0.0, 0.0, 1.0), Real balance 
   out.end = s.head();
   EXPECT_TRUE(s.world.freezes().empty());
   std::printf(
-      "%.0f N towards (%g %g %g) for 0.2 s at balance %.1f: head lowest %.3f m, at 5 s %.3f m; largest "
+      "%s: %.0f N towards (%g %g %g) for 0.2 s at balance %.1f: head lowest %.3f m, at 5 s %.3f m; largest "
       "blow %.2f m/s\n",
-      newtons, direction.x, direction.y, direction.z, balance, out.lowest, out.end, out.blow);
+      std::string(phys::toString(model)).c_str(), newtons, direction.x, direction.y, direction.z, balance,
+      out.lowest, out.end, out.blow);
   return out;
 }
 
@@ -123,6 +126,45 @@ TEST(Reaction, ABlowPastTheThresholdMakesItFallAndGetUp) {
   EXPECT_NEAR(s.head(), kHeadHeight, 0.05);              // and stands again
   EXPECT_EQ(s.world.characters()[0].rootStrength, 0.0);  // on its own legs
   EXPECT_TRUE(s.world.freezes().empty());
+}
+
+// The particle ragdolls (lean: tetra parts, seed: corners parts) stand and react as the rigid one:
+// their drives are particle joints' and their balance turns the torso's particles. A minute standing,
+// 200 N from the front withstood, 2000 N thrown over, and past the threshold down and up again.
+TEST(Reaction, ParticleCharactersStandPushedAndGetUpAsTheRigidOne) {
+  for (const phys::RagdollModel model : {phys::RagdollModel::Lean, phys::RagdollModel::Seed}) {
+    SCOPED_TRACE(phys::toString(model));
+    {
+      Standing s({}, kBalance, model);
+      for (int i = 0; i < 59 * 60; ++i) s.world.step();
+      EXPECT_NEAR(s.head(), kHeadHeight, 0.02);
+      EXPECT_TRUE(s.world.freezes().empty());
+    }
+    for (Vec3 d : {Vec3(0, 0, 1), Vec3(1, 0, 0)}) {
+      const AfterPush a = push(200.0, d, kBalance, model);
+      EXPECT_GT(a.lowest, kHeadHeight - 0.15);
+      EXPECT_NEAR(a.end, kHeadHeight, 0.05);
+      EXPECT_LT(a.blow, 1.5);
+    }
+    EXPECT_LT(push(2000.0, Vec3(0.0, 0.0, 1.0), kBalance, model).end, 0.6);
+    phys::Reaction reaction;
+    reaction.threshold = 1.5;
+    reaction.getUp.clip = standClip();
+    Standing s(reaction, kBalance, model);
+    s.world.push(s.torso(), Vec3(0.0, 0.0, 2000.0), 0.2);
+    std::vector<phys::CharacterState> seen{phys::CharacterState::Active};
+    Real lowest = s.head();
+    for (int i = 0; i < 12 * 60; ++i) {
+      s.world.step();
+      if (s.world.characters()[0].state != seen.back()) seen.push_back(s.world.characters()[0].state);
+      lowest = std::min(lowest, s.head());
+    }
+    using enum phys::CharacterState;
+    EXPECT_EQ(seen, (std::vector{Active, Falling, Down, GettingUp, LettingGo, Active}));
+    EXPECT_LT(lowest, 0.6);
+    EXPECT_NEAR(s.head(), kHeadHeight, 0.05);
+    EXPECT_TRUE(s.world.freezes().empty());
+  }
 }
 
 // Under the threshold nothing changes: 200 N leaves it active at full strength.

@@ -432,7 +432,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
                                   detail::formatNumber(bound) + " m");
     }
     ElementWriter e("body-drive");
-    e.text("body", names.box(world.rigidBodies().body[d.rigid]))
+    e.text("body", names.box(d.body))
         .vector("pos", drive.position)
         .vector("euler", detail::eulerFromOrientation(drive.orientation))
         .number("strength", drive.strength);

@@ -38,8 +38,9 @@ struct CapsuleRagdoll {
   std::string name;
   RagdollModel model = RagdollModel::Seed;
   std::array<BodyId, kCapsuleParts> parts{};
-  /// Rigid model only: its joints are World joints firstJoint to firstJoint + kCapsuleJoints - 1, the
-  /// five hinges (spine, knees, elbows) and then the five cones (neck, hips, shoulders).
+  /// Its joints are World joints firstJoint to firstJoint + kCapsuleJoints - 1 (rigid joints for the
+  /// rigid model, particle joints for the others), the five hinges (spine, knees, elbows) and then
+  /// the five cones (neck, hips, shoulders).
   std::size_t firstJoint = 0;
   BodyId part(CapsulePart p) const { return parts[static_cast<int>(p)]; }
 };

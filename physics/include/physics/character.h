@@ -1,9 +1,10 @@
 #pragma once
-// Characters: a rigid ragdoll whose joints' drives follow an animation clip (docs/physics.md,
+// Characters: a ragdoll whose joints' drives follow an animation clip (docs/physics.md,
 // "Animation"). A clip's bones are the ragdoll's parts by name ("<ragdoll>.<bone>"), each joined
-// to its parent's part by a rigid joint; every step the character samples its clip (blending from
-// the clip before while a change of clip fades in) and sets each joint's drive target, and, with a
-// root strength, the root part's body drive (the hand of god) to carry it along the clip's path.
+// to its parent's part by a rigid joint (rigid parts) or a particle joint (particle parts); every step the
+// character samples its clip (blending from the clip before while a change of clip fades in) and sets each
+// joint's drive target, and, with a root strength, the root part's body drive (the hand of god) to carry it
+// along the clip's path.
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -98,9 +99,11 @@ struct CharacterDesc {
 /// One part of a character, bound to a clip's bone.
 struct CharacterBone {
   BodyId body{};
-  int clipBone = 0;               ///< its index in the clip
-  int parent = -1;                ///< the parent's index in Character::bones; -1 for the root
-  std::size_t joint = 0;          ///< the rigid joint to its parent (not for the root)
+  int clipBone = 0;  ///< its index in the clip
+  int parent = -1;   ///< the parent's index in Character::bones; -1 for the root
+  /// the joint to its parent (not for the root): World::rigidJoints()' index, or
+  /// World::particleJoints()' for a character of particle parts
+  std::size_t joint = 0;
   bool reversed = false;          ///< the joint's first body is this part, not its parent
   Quat rest{1.0, 0.0, 0.0, 0.0};  ///< its orientation in the character's frame at rest
 };
@@ -108,6 +111,7 @@ struct CharacterBone {
 /// A character as the world holds it.
 struct Character {
   std::string ragdoll;
+  bool particleParts = false;        ///< its parts are particle bodies (CharacterBone::joint)
   std::vector<CharacterBone> bones;  ///< the root first, parents before children
   Playback now;                      ///< the clip playing
   Playback before;                   ///< the clip faded out of while `blend` < 1
@@ -154,8 +158,9 @@ struct Character {
 };
 
 /// Binds a clip's bones to the ragdoll's parts by name: every part "<ragdoll>.<bone>" a bone of the
-/// clip, every bone a rigid part, each joined to its parent's by a rigid joint. Throws
-/// std::invalid_argument naming the bones that do not match. `rest` of each bone is from the joints'
+/// clip, every bone a part, all rigid or all of particles, each joined to its parent's by a rigid
+/// joint or a particle joint (World::addParticleJoint). Throws std::invalid_argument naming the
+/// bones that do not match. `rest` of each bone is from the joints'
 /// rests, so the binding does not depend on the pose the ragdoll is in.
 std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdoll, const Clip& clip);
 

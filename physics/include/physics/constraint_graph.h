@@ -9,6 +9,7 @@
 
 #include "physics/body.h"
 #include "physics/constraints.h"
+#include "physics/drives.h"
 #include "physics/link_layout.h"
 #include "physics/particles.h"
 #include "physics/rigid_joints.h"
@@ -39,10 +40,18 @@ class ConstraintGraph {
   }
   /// Replaces joint k's drive.
   void setDrive(std::size_t k, const JointDrive& drive) { drives_[k] = drive; }
-  /// Sets a rigid body's drive towards a pose, adding it when the body has none.
-  void setBodyDrive(RigidId rigid, const BodyDrive& drive);
-  /// Removes a rigid body's drive, if it has one.
-  void clearBodyDrive(RigidId rigid);
+  /// Adds what a drive needs of a joint between two particle bodies, with its drive and multiplier.
+  void addParticleJoint(const ParticleJoint& joint, const JointDrive& drive) {
+    particleJoints_.push_back(joint);
+    particleDrives_.push_back(drive);
+    particleDriveLambda_.push_back(0.0);
+  }
+  /// Replaces particle joint k's drive.
+  void setParticleDrive(std::size_t k, const JointDrive& drive) { particleDrives_[k] = drive; }
+  /// Sets a body's drive towards a pose (driven.drive), adding it when the body has none.
+  void setBodyDrive(const DrivenBody& driven);
+  /// Removes a body's drive, if it has one.
+  void clearBodyDrive(BodyId body);
   /// Adds friction between two jointed particle bodies, with room for their spins.
   void addJointFriction(const JointFriction& friction);
   /// Once a step: each joint friction takes its share of its bodies' relative spin (JointFriction).
@@ -61,6 +70,11 @@ class ConstraintGraph {
   /// XPBD's multipliers of the drives, per rigid joint.
   std::span<Real> driveLambda() { return driveLambda_; }
   std::span<const Real> driveLambda() const { return driveLambda_; }
+  std::span<const ParticleJoint> particleJoints() const { return particleJoints_; }
+  /// Per particle joint, its drive, and XPBD's multiplier of it.
+  std::span<const JointDrive> particleDrives() const { return particleDrives_; }
+  std::span<Real> particleDriveLambda() { return particleDriveLambda_; }
+  std::span<const Real> particleDriveLambda() const { return particleDriveLambda_; }
   /// The bodies' drives, in the order they were first set.
   std::span<const DrivenBody> bodyDrives() const { return bodyDrives_; }
   /// Their multipliers, two a drive: its centre's and its turn's.
@@ -90,6 +104,9 @@ class ConstraintGraph {
   std::vector<RigidJoint> rigidJoints_;
   std::vector<JointDrive> drives_;  // per rigid joint
   std::vector<Real> driveLambda_;   // per rigid joint: its drive's XPBD multiplier
+  std::vector<ParticleJoint> particleJoints_;
+  std::vector<JointDrive> particleDrives_;  // per particle joint
+  std::vector<Real> particleDriveLambda_;   // per particle joint
   std::vector<DrivenBody> bodyDrives_;
   std::vector<Real> bodyDriveLambda_;  // two per body drive
   std::vector<JointFriction> jointFrictions_;

@@ -1,7 +1,8 @@
 #pragma once
 // Drives: compliant pulls towards a target, what an animation asks of a ragdoll (docs/physics.md,
-// "Joint drives"). A joint's drive pulls a rigid joint's child towards a turn relative to its
-// parent; a body's drive, the "hand of god", pulls a rigid body towards a pose in the world. Both
+// "Joint drives"). A joint's drive pulls a joint's child towards a turn relative to its parent
+// (a rigid joint's, or a particle joint's: two particle bodies' turns, made of their particles'
+// moves); a body's drive, the "hand of god", pulls a body towards a pose in the world. All
 // are XPBD's compliance (Macklin et al. 2016; the angular form of Müller et al. 2020, 3.3.2), so a
 // drive's stiffness is a force or torque per unit of error that does not change with the
 // iterations, the substeps or the step.
@@ -48,15 +49,29 @@ struct BodyDrive {
   Real angularStiffness = kDriveStiffness;  ///< unit: N m / rad; at strength 1/2
 };
 
+/// What a drive needs of a joint between two particle bodies (World::addParticleJoint), which their
+/// links hold together: the turn the joint was made at, and where its pivot is in each body. The
+/// drive turns each body about its centre as a rigid body of its particles' inertia.
+struct ParticleJoint {
+  BodyId a{}, b{};   ///< the parent and the child; both particle bodies
+  Vec3 pivotA{0.0};  ///< unit: m; the pivot in a's frame (BodyPose's)
+  Vec3 pivotB{0.0};  ///< unit: m; in b's frame
+  /// b's orientation in a's frame when the joint was made: conj(q_a) q_b. Its drive is made with
+  /// this as its target, as a rigid joint's is with its rest.
+  Quat rest{1.0, 0.0, 0.0, 0.0};
+};
+
 /// What a body drive exerted in a substep (World::bodyDriveLoad).
 struct DriveLoad {
   Real force = 0.0;   ///< unit: N; on the body's centre
   Real torque = 0.0;  ///< unit: N m
 };
 
-/// A body drive as the solver holds it: the rigid body it pulls.
+/// A body drive as the solver holds it: the body it pulls, rigid or of particles.
 struct DrivenBody {
-  RigidId rigid{};
+  BodyId body{};
+  RigidId rigid{};         ///< a rigid body's pose and velocities; unused for a particle body
+  bool particles = false;  ///< a particle body: its particles are moved, as a rigid body of their inertia
   BodyDrive drive;
 };
 

@@ -76,8 +76,7 @@ struct RagdollDesc {
   Real inertiaFloor = kRagdollInertiaFloor;
   Vec3 velocity{0.0};  ///< unit: m/s; of every part at creation
   /// unitless, 0 to 1: every joint's drive (JointDrive::strength) holds the pose the ragdoll is made
-  /// in; 0 is a limp ragdoll. Rigid parts only: a particle ragdoll's joints have no drive yet, and
-  /// refuse a strength above 0.
+  /// in; 0 is a limp ragdoll. A particle ragdoll's joints are driven through their particle joints.
   Real strength = 0.0;
   /// unit: N m / rad; the drives' stiffness at strength 1/2 (JointDrive::stiffness). Unset:
   /// kDriveStiffness for a 70 kg ragdoll at scale 1, in proportion to mass times scale, so that a
@@ -112,7 +111,8 @@ struct Ragdoll {
   RagdollModel model = RagdollModel::Seed;
   std::array<BodyId, kRagdollParts> parts{};
   std::array<RagdollHinge, kRagdollHinges> hinges{};
-  /// Rigid model only: hinge h is World joint firstJoint + h (World::jointDrive, setJointDrive).
+  /// Hinge h is World joint firstJoint + h: a rigid joint (World::jointDrive, setJointDrive) for the
+  /// rigid model, a particle joint (World::particleJointDrive, setParticleJointDrive) for the others.
   std::size_t firstJoint = 0;
   BodyId part(RagdollPart p) const { return parts[static_cast<int>(p)]; }
 };

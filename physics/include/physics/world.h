@@ -115,6 +115,11 @@ class World {
   /// relative spin decays by the share min(rate dt, 1). Throws std::invalid_argument on bad input
   /// (bodies not particle bodies or the same, a negative or non-finite rate) and adds nothing.
   void addJointFriction(BodyId a, BodyId b, Real rate);
+  /// Adds what a drive needs of a joint between two particle bodies (ParticleJoint): the pivot
+  /// (unit: m, in the world) and the turn they are at now, its drive's target, at strength 0. The
+  /// links that hold the joint are addLink's. Returns its index. Throws std::invalid_argument on
+  /// bad input (bodies not particle bodies or the same, a pivot not finite) and adds nothing.
+  std::size_t addParticleJoint(BodyId parent, BodyId child, const Vec3& pivot);
   /// The point at `worldPoint` (unit: m) carried by the body from now on, whatever its model:
   /// anchor() for a particle body, fixed in its frame for a rigid one.
   BodyPoint pointOn(BodyId body, const Vec3& worldPoint) const;
@@ -177,6 +182,14 @@ class World {
   std::span<const JointFriction> jointFrictions() const { return constraints_.jointFrictions(); }
   /// Every joint of every kind: links(), rigidLinks() and rigidJoints().
   std::size_t jointCount() const { return links().size() + rigidLinks().size() + rigidJoints().size(); }
+  /// What drives need of the joints between particle bodies, in the order they were added.
+  std::span<const ParticleJoint> particleJoints() const { return constraints_.particleJoints(); }
+  /// Particle joint k's drive, made at strength 0 with the joint's rest as its target.
+  const JointDrive& particleJointDrive(std::size_t k) const;
+  /// unit: N m; as jointDriveTorque, for particle joint k's drive.
+  Real particleJointDriveTorque(std::size_t k) const;
+  /// Replaces particle joint k's drive and wakes its island; refuses what setJointDrive refuses.
+  void setParticleJointDrive(std::size_t k, const JointDrive& drive);
   /// Joint k as addJoint would take it to make it again as it is now: both bodies' pivots and frames.
   JointDesc jointDesc(std::size_t k) const;
   /// Joint k's angle now (rad): a hinge's about its axis, a cone's twist.
@@ -194,7 +207,7 @@ class World {
   /// jointDriveTorque; zeros for a body without one.
   DriveLoad bodyDriveLoad(BodyId id) const;
   /// Sets the body's drive, replacing any, and wakes its island. Throws std::invalid_argument (and
-  /// keeps the old drive) for a body that does not exist or is not rigid, a position that is not
+  /// keeps the old drive) for a body that does not exist, a position that is not
   /// finite, an orientation that is not a unit quaternion (within 1e-6; it is made unit), a
   /// strength outside [0, 1], a stiffness that is not finite and >= 0 or an angular stiffness that
   /// is not finite and > 0.
@@ -352,6 +365,15 @@ class World {
   void noteBlows();
   Quat balanceTarget(const Character& c, const Quat& upright) const;
   void makeRootDrive(const Character& c, Real strength);
+  /// Sets the character's root part's drive (a rigid or a particle body's).
+  void setRootDrive(const Character& c, const BodyDrive& drive);
+  struct PartMotion {
+    Real mass = 0.0;  ///< unit: kg; 0 when the part cannot move (frozen, pinned, asleep)
+    Vec3 centre{0.0};
+    Vec3 velocity{0.0};
+  };
+  PartMotion partMotion(BodyId id) const;
+  void placeAtRest(BodyId id, const BodyPose& pose);
   /// The root's drive, made now if the character's strengths or reaction will use it (addCharacter,
   /// setMotion), so that the step never allocates one.
   void makeRootDriveIfNeeded(const Character& c);
