@@ -347,9 +347,10 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
      << "One ragdoll on the run cycle (strength 0.9, its root part carried by the hand of god), the RMS over "
         "the run's steps and over its parts of the angle between each part and its target (`lab sweep "
         "run-cycle --error tracking-error`), against cost per simulated second, at dt 1/30, 1/60 and 1/120 "
-        "s, for each model of ragdoll that has drives: the box ragdoll and the capsule ragdoll, both rigid. "
-        "Only rigid ragdolls have drives, and a rigid body is solved by XPBD whatever the method, so the "
-        "four methods are one here (docs/physics.md, \"Joint drives\"). The runner starts in the clip's "
+        "s, for the box ragdoll and the capsule ragdoll, both rigid. A rigid body is solved by XPBD "
+        "whatever the method, so the four methods are one here. Particle ragdolls have drives too (their "
+        "particle joints', docs/physics.md, \"Joint drives\"), not charted here: `lab run run-cycle-lean` "
+        "gives their figure. The runner starts in the clip's "
         "first pose (`pose=\"clip\"`), so the figure is the tracking and not the turn into the clip.\n\n";
   for (const TrackingScene& t : kTrackingScenes) {
     const fs::path dir = results / t.folder;

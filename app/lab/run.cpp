@@ -89,7 +89,8 @@ class DriveLog {
           torque = load.torque;
           force = load.force;
         } else {
-          torque = world.jointDriveTorque(bone.joint);
+          torque = c.particleParts ? world.particleJointDriveTorque(bone.joint)
+                                   : world.jointDriveTorque(bone.joint);
         }
         f.rmsTorque += torque * torque;  // a sum of squares until finish()
         f.rmsForce += force * force;

@@ -393,15 +393,19 @@ void labSection(Session& session, UiState& ui) {
   ImGui::NewLine();
 }
 
-// The rigid joints' drives (phys::JointDrive): one strength for all, from limp to holding the pose
-// each joint's target gives; each joint keeps its own stiffness, shown as the range the scene has.
+// The joints' drives (phys::JointDrive: rigid joints' and particle joints'): one strength for all,
+// from limp to holding the pose each joint's target gives; each joint keeps its own stiffness, shown
+// as the range the scene has.
 void drivesBlock(Session& session, UiState& ui) {
   const phys::World& world = session.scene().world;
-  const std::size_t joints = world.rigidJoints().size();
+  const std::size_t rigid = world.rigidJoints().size(), joints = rigid + world.particleJoints().size();
   if (joints == 0) return;
-  double strength = 0.0, weakest = 1.0, least = world.jointDrive(0).stiffness, most = least;
+  auto driveOf = [&](std::size_t k) -> const phys::JointDrive& {
+    return k < rigid ? world.jointDrive(k) : world.particleJointDrive(k - rigid);
+  };
+  double strength = 0.0, weakest = 1.0, least = driveOf(0).stiffness, most = least;
   for (std::size_t k = 0; k < joints; ++k) {
-    const phys::JointDrive& d = world.jointDrive(k);
+    const phys::JointDrive& d = driveOf(k);
     strength = std::max(strength, d.strength);
     weakest = std::min(weakest, d.strength);
     least = std::min(least, d.stiffness);
@@ -414,7 +418,7 @@ void drivesBlock(Session& session, UiState& ui) {
     const std::string error = session.setDriveStrength(strength);
     ui.message = error.empty() ? "drive strength " + figure("%.2f", strength) + " on every joint" : error;
   }
-  greyWrapped(std::to_string(joints) + " rigid joints at strength " + range(weakest, strength, "%.2f") +
+  greyWrapped(std::to_string(joints) + " driven joints at strength " + range(weakest, strength, "%.2f") +
               " (0 limp, 1 holds the pose; the slider sets all), stiffness at 1/2 " +
               range(least, most, "%.0f") + " N m/rad");
 }

@@ -403,13 +403,19 @@ std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
 
 std::string Session::setDriveStrength(double strength) {
   if (!(strength >= 0.0 && strength <= 1.0)) return "drives: strength must be from 0 to 1";
-  if (scene().world.rigidJoints().empty()) return "drives: the scene has no joints between rigid bodies";
+  if (scene().world.rigidJoints().empty() && scene().world.particleJoints().empty())
+    return "drives: the scene has no joints with drives (rigid joints, or particle joints of ragdolls)";
   cancelSteps();
   forEachWorld([strength](phys::World& w) {
     for (std::size_t k = 0; k < w.rigidJoints().size(); ++k) {
       phys::JointDrive drive = w.jointDrive(k);
       drive.strength = strength;
       w.setJointDrive(k, drive);
+    }
+    for (std::size_t k = 0; k < w.particleJoints().size(); ++k) {
+      phys::JointDrive drive = w.particleJointDrive(k);
+      drive.strength = strength;
+      w.setParticleJointDrive(k, drive);
     }
   });
   worldChanged();

@@ -216,12 +216,8 @@ void World::clearBodyDrive(BodyId id) {
 }
 
 std::size_t World::addParticleJoint(BodyId parent, BodyId child, const Vec3& pivot) {
-  const std::string who = "addParticleJoint: ";
-  require(parent < bodies_.size() && child < bodies_.size(), who + "body id must exist");
-  require(parent != child, who + "a joint needs two bodies");
-  require(bodies_[parent].model != BodyModel::Rigid && bodies_[child].model != BodyModel::Rigid,
-          who + "both bodies must be particle bodies (a rigid joint is addJoint's)");
-  require(finite(pivot), who + "the pivot must be finite");
+  require(parent < bodies_.size() && child < bodies_.size(), "addParticleJoint: body id must exist");
+  require(finite(pivot), "addParticleJoint: the pivot must be finite");
   const BodyPose a = bodyPose(parent), b = bodyPose(child);
   ParticleJoint j;
   j.a = parent;
@@ -229,6 +225,18 @@ std::size_t World::addParticleJoint(BodyId parent, BodyId child, const Vec3& piv
   j.pivotA = glm::conjugate(a.orientation) * (pivot - a.center);
   j.pivotB = glm::conjugate(b.orientation) * (pivot - b.center);
   j.rest = glm::normalize(glm::conjugate(a.orientation) * b.orientation);
+  return addParticleJoint(j);
+}
+
+std::size_t World::addParticleJoint(const ParticleJoint& joint) {
+  const std::string who = "addParticleJoint: ";
+  require(joint.a < bodies_.size() && joint.b < bodies_.size(), who + "body id must exist");
+  require(joint.a != joint.b, who + "a joint needs two bodies");
+  require(bodies_[joint.a].model != BodyModel::Rigid && bodies_[joint.b].model != BodyModel::Rigid,
+          who + "both bodies must be particle bodies (a rigid joint is addJoint's)");
+  require(finite(joint.pivotA) && finite(joint.pivotB), who + "the pivots must be finite");
+  ParticleJoint j = joint;
+  j.rest = unitQuaternion(joint.rest, who + "the rest");
   constraints_.addParticleJoint(j, JointDrive{j.rest, 0.0, kDriveStiffness});
   return constraints_.particleJoints().size() - 1;
 }

@@ -679,8 +679,14 @@ TEST(Session, DriveStrengthReachesEveryRigidJointAndBadOnesAreRefused) {
   EXPECT_EQ(s.setDriveStrength(1.5), "drives: strength must be from 0 to 1");
   EXPECT_EQ(s.setDriveStrength(std::nan("")), "drives: strength must be from 0 to 1");
   EXPECT_EQ(world.jointDrive(0).strength, 0.8);
+  // A particle ragdoll's joints take it through their particle joints.
+  sandbox::Session lean = open("run-cycle-lean");
+  ASSERT_EQ(lean.scene().world.particleJoints().size(), 9u);
+  EXPECT_EQ(lean.setDriveStrength(0.3), "");
+  for (std::size_t k = 0; k < 9; ++k) EXPECT_EQ(lean.scene().world.particleJointDrive(k).strength, 0.3);
   sandbox::Session pyramid = open("pyramid");
-  EXPECT_EQ(pyramid.setDriveStrength(0.5), "drives: the scene has no joints between rigid bodies");
+  EXPECT_EQ(pyramid.setDriveStrength(0.5),
+            "drives: the scene has no joints with drives (rigid joints, or particle joints of ragdolls)");
 }
 
 // The Animation block: a character's strength, balance and threshold reach the world, a bad value

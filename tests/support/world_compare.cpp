@@ -196,6 +196,7 @@ class Comparison {
       if (!(d = link(k)).empty()) return d;
     }
     if (!(d = jointFrictions()).empty()) return d;
+    if (!(d = particleJoints()).empty()) return d;
     if (!(d = characters()).empty()) return d;
     return noCollision();
   }
@@ -288,6 +289,8 @@ class Comparison {
     if (!(d = count("sticks", s_.sticks().size(), r_.sticks().size())).empty()) return d;
     if (!(d = count("links", s_.links().size(), r_.links().size())).empty()) return d;
     if (!(d = count("joint frictions", s_.jointFrictions().size(), r_.jointFrictions().size())).empty())
+      return d;
+    if (!(d = count("particle joints", s_.particleJoints().size(), r_.particleJoints().size())).empty())
       return d;
     owner_ = s_.particleBodies();
     if (!std::ranges::equal(owner_, r_.particleBodies()))
@@ -491,6 +494,32 @@ class Comparison {
                boxLabel(r_, b[k].a) + " and " + boxLabel(r_, b[k].b) + " when reloaded";
       }
       if (a[k].rate != b[k].rate) return unequal(who + ": rate", a[k].rate, b[k].rate);
+    }
+    return {};
+  }
+
+  // A particle joint joins the same two bodies; its pivots, written in the world, come back in the
+  // bodies' frames within 1e-9 m; its rest and its drive's target, written in degrees, within 1e-12 rad;
+  // the drive's strength and stiffness to the bit.
+  std::string particleJoints() const {
+    const auto a = s_.particleJoints(), b = r_.particleJoints();
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      const std::string who = "particle joint " + std::to_string(k);
+      if (a[k].a != b[k].a || a[k].b != b[k].b) {
+        return who + ": joins " + boxLabel(s_, a[k].a) + " and " + boxLabel(s_, a[k].b) + " when saved, " +
+               boxLabel(r_, b[k].a) + " and " + boxLabel(r_, b[k].b) + " when reloaded";
+      }
+      if (glm::length(a[k].pivotA - b[k].pivotA) > 1e-9)
+        return unequal(who + ": pivot in a", a[k].pivotA, b[k].pivotA);
+      if (glm::length(a[k].pivotB - b[k].pivotB) > 1e-9)
+        return unequal(who + ": pivot in b", a[k].pivotB, b[k].pivotB);
+      if (const Real turn = angleBetween(a[k].rest, b[k].rest); turn > 1e-12)
+        return who + ": the rest turned by " + std::to_string(turn) + " rad";
+      const phys::JointDrive &x = s_.particleJointDrive(k), &y = r_.particleJointDrive(k);
+      if (x.strength != y.strength) return unequal(who + ": drive strength", x.strength, y.strength);
+      if (x.stiffness != y.stiffness) return unequal(who + ": drive stiffness", x.stiffness, y.stiffness);
+      if (const Real turn = angleBetween(x.target, y.target); turn > 1e-12)
+        return who + ": the drive's target turned by " + std::to_string(turn) + " rad";
     }
     return {};
   }

@@ -264,13 +264,6 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   e.material(d.material);
   e.rejectUnknownAttributes();
   if (ctx.options.ragdollModel) d.model = *ctx.options.ragdollModel;
-  for (const auto& [attribute, strength] :
-       {std::pair{"strength", d.strength}, std::pair{"root-strength", d.rootStrength}}) {
-    if (strength > 0.0 && d.model != phys::RagdollModel::Rigid) {
-      e.fail(attribute, "needs model=\"rigid\": only rigid bodies and joints have drives (this ragdoll is " +
-                            std::string(phys::toString(d.model)) + ")");
-    }
-  }
   auto nameParts = [&](const auto& parts) {
     for (const phys::BodyId id : parts)
       ctx.addName(e, ctx.world.bodies()[id].name, NamedBody::Kind::Body, id);

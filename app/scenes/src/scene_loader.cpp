@@ -28,9 +28,10 @@ using detail::ElementReader;
 using detail::LineIndex;
 
 constexpr std::string_view kSettingsElements[] = {"world", "solver", "ground", "camera"};
-constexpr std::string_view kBodyElements[] = {
-    "particle", "stick", "box",   "capsule",        "stack",        "pyramid",    "grid",     "chain",
-    "ragdoll",  "link",  "joint", "joint-friction", "no-collision", "body-drive", "character"};
+constexpr std::string_view kBodyElements[] = {"particle",     "stick",      "box",       "capsule",
+                                              "stack",        "pyramid",    "grid",      "chain",
+                                              "ragdoll",      "link",       "joint",     "joint-friction",
+                                              "no-collision", "body-drive", "character", "particle-joint"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -196,6 +197,8 @@ class Builder {
       joint(e);
     else if (kind == "joint-friction")
       jointFriction(e);
+    else if (kind == "particle-joint")
+      particleJoint(e);
     else if (kind == "no-collision")
       noCollision(e);
     else if (kind == "body-drive")
@@ -434,16 +437,54 @@ class Builder {
     scene_.world.setJointDrive(k, set);
   }
 
-  // A rigid body's drive towards a pose in the world (World::setBodyDrive, the hand of god): pos and
+  // What a drive needs of a joint between two particle bodies, which <link>s hold (World::addParticleJoint):
+  // its pivot in the world as the two bodies lie (b-pivot the child's where it is apart, a joint saved
+  // away from rest), and its rest, the child's orientation in the parent's frame as Euler angles, unset
+  // the turn between them now. The drive's attributes are a <joint>'s.
+  void particleJoint(ElementReader& e) {
+    phys::BodyId ends[2];
+    for (const char* attribute : {"a", "b"}) {
+      const NamedBody& body = bodyNamed(e, attribute, false);
+      const phys::Body& part = scene_.world.bodies()[body.body()];
+      if (part.model == phys::BodyModel::Rigid) {
+        e.fail(attribute,
+               "names a rigid body; a <particle-joint> joins particle bodies (a rigid <joint> "
+               "has its own drive)");
+      }
+      ends[attribute[0] == 'a' ? 0 : 1] = body.body();
+    }
+    if (ends[0] == ends[1]) e.fail("b", "must name a different body from a");
+    const phys::Vec3 pivot = e.requiredVector("pivot", "m");
+    detail::checkInsideBound(e, scene_.world, "pivot", pivot);
+    const phys::Vec3 pivotB = e.vector("b-pivot", "m").value_or(pivot);
+    detail::checkInsideBound(e, scene_.world, "b-pivot", pivotB);
+    const std::optional<phys::Vec3> rest = e.vector("rest", "degrees");
+    const std::optional<phys::JointDrive> drive = detail::readDrive(e);
+    const std::optional<phys::Vec3> target = e.vector("drive-target", "degrees");
+    e.rejectUnknownAttributes();
+    const phys::BodyPose a = scene_.world.bodyPose(ends[0]), b = scene_.world.bodyPose(ends[1]);
+    phys::ParticleJoint j;
+    j.a = ends[0];
+    j.b = ends[1];
+    j.pivotA = glm::conjugate(a.orientation) * (pivot - a.center);
+    j.pivotB = glm::conjugate(b.orientation) * (pivotB - b.center);
+    j.rest = rest ? detail::orientationFromEuler(*rest)
+                  : glm::normalize(glm::conjugate(a.orientation) * b.orientation);
+    const std::size_t k = scene_.world.addParticleJoint(j);
+    phys::JointDrive set = scene_.world.particleJointDrive(k);
+    if (drive) {
+      set.strength = drive->strength;
+      set.stiffness = drive->stiffness;
+    }
+    if (target) set.target = detail::orientationFromEuler(*target);
+    scene_.world.setParticleJointDrive(k, set);
+  }
+
+  // A body's drive towards a pose in the world (World::setBodyDrive, the hand of god): pos and
   // euler default to where the body is.
   void bodyDrive(ElementReader& e) {
     const NamedBody& named = bodyNamed(e, "body", false);
     const phys::BodyId id = named.body();
-    const phys::Body& body = scene_.world.bodies()[id];
-    if (body.model != phys::BodyModel::Rigid) {
-      e.fail("body", "names a body of model " + std::string(phys::toString(body.model)) +
-                         "; only a rigid body has a drive");
-    }
     const phys::BodyPose pose = scene_.world.bodyPose(id);
     phys::BodyDrive drive{pose.center, pose.orientation};
     if (auto pos = e.vector("pos", "m")) {

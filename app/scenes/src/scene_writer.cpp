@@ -300,6 +300,26 @@ std::string jointElement(const phys::JointDesc& d, const phys::JointDrive& drive
   return e.empty();
 }
 
+// A particle joint as it lies: its two pivots in the world (the same point while the links hold it),
+// its rest always (not found again from the bodies' poses on loading), its drive as a <joint>'s.
+std::string particleJointElement(const phys::World& world, const phys::ParticleJoint& j,
+                                 const phys::JointDrive& drive, const BodyNames& names) {
+  ElementWriter e("particle-joint");
+  e.text("a", names.box(j.a)).text("b", names.box(j.b));
+  const phys::BodyPose a = world.bodyPose(j.a), b = world.bodyPose(j.b);
+  const phys::Vec3 pivot = a.center + a.orientation * j.pivotA, pivotB = b.center + b.orientation * j.pivotB;
+  e.vector("pivot", pivot);
+  if (pivotB != pivot) e.vector("b-pivot", pivotB);
+  e.vector("rest", detail::eulerFromOrientation(j.rest));
+  const phys::JointDrive defaults;
+  if (drive.strength != defaults.strength) e.number("strength", drive.strength);
+  if (drive.stiffness != defaults.stiffness) e.number("drive-stiffness", drive.stiffness);
+  const phys::Quat off = glm::conjugate(j.rest) * drive.target;
+  if (glm::length(glm::dvec3(off.x, off.y, off.z)) > 1e-15)
+    e.vector("drive-target", detail::eulerFromOrientation(drive.target));
+  return e.empty();
+}
+
 std::string header(const phys::World& world) {
   char text[160];
   std::snprintf(
@@ -425,6 +445,8 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
   for (const phys::RigidLink& link : world.rigidLinks()) line(linkElement(world, link, owner, names));
   for (std::size_t k = 0; k < world.rigidJoints().size(); ++k)
     line(jointElement(world.jointDesc(k), world.jointDrive(k), world.jointRest(k), names));
+  for (std::size_t k = 0; k < world.particleJoints().size(); ++k)
+    line(particleJointElement(world, world.particleJoints()[k], world.particleJointDrive(k), names));
   for (const phys::DrivenBody& d : world.bodyDrives()) {
     const phys::BodyDrive& drive = d.drive;
     if (!insideBound(drive.position, bound)) {

@@ -120,6 +120,9 @@ class World {
   /// links that hold the joint are addLink's. Returns its index. Throws std::invalid_argument on
   /// bad input (bodies not particle bodies or the same, a pivot not finite) and adds nothing.
   std::size_t addParticleJoint(BodyId parent, BodyId child, const Vec3& pivot);
+  /// The same, as described: its pivots in the two bodies' frames and its rest given (a saved
+  /// scene's); refuses a rest that is not a unit quaternion (within 1e-6) too.
+  std::size_t addParticleJoint(const ParticleJoint& joint);
   /// The point at `worldPoint` (unit: m) carried by the body from now on, whatever its model:
   /// anchor() for a particle body, fixed in its frame for a rigid one.
   BodyPoint pointOn(BodyId body, const Vec3& worldPoint) const;
