@@ -23,7 +23,7 @@ std::size_t particlesWhenLoadedWith(const std::filesystem::path& file, const sce
   return scenes::loadSceneFile(file, options).world.particles().size();
 }
 
-// The same for a model the file may refuse (a character needs a rigid ragdoll): none then.
+// The same for a model the file may refuse: none then.
 std::optional<std::size_t> particlesIfLoads(const std::filesystem::path& file,
                                             const scenes::LoadOptions& options) {
   try {

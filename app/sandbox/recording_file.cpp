@@ -120,20 +120,11 @@ std::uint32_t clipIndex(std::vector<std::string>& names, const phys::Playback& p
   return static_cast<std::uint32_t>(names.size() - 1);
 }
 
-// Every playback of a character: the clip playing, the one faded from, the get-up, the queued.
-template <class F>
-void forEachPlayback(const phys::CharacterMotion& c, F f) {
-  f(c.now);
-  f(c.before);
-  f(c.reaction.getUp);
-  if (c.queued) f(c.queued->playback);
-}
-
 std::vector<std::string> clipNames(const SavedPart& part) {
   std::vector<std::string> names;
   for (const SavedStep& s : part.steps) {
     for (const phys::CharacterMotion& c : s.motion.characters)
-      forEachPlayback(c, [&names](const phys::Playback& p) { clipIndex(names, p); });
+      phys::forEachPlayback(c, [&names](const phys::Playback& p) { clipIndex(names, p); });
   }
   return names;
 }
@@ -363,6 +354,11 @@ std::uint64_t structureKey(const phys::World& world) {
     f.value(static_cast<std::uint32_t>(j.b));
   }
   f.value(static_cast<std::uint64_t>(world.jointFrictions().size()));
+  f.value(static_cast<std::uint64_t>(world.particleJoints().size()));
+  for (const phys::ParticleJoint& j : world.particleJoints()) {
+    f.value(static_cast<std::uint32_t>(j.a));
+    f.value(static_cast<std::uint32_t>(j.b));
+  }
   f.value(static_cast<std::uint64_t>(world.characters().size()));
   for (const phys::Character& c : world.characters()) {
     f.value(static_cast<std::uint64_t>(c.bones.size()));

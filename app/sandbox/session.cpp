@@ -294,10 +294,9 @@ std::string Session::saveRecording(const std::filesystem::path& file) {
 ClipSource Session::recordedClips() const {
   auto known = std::make_shared<std::map<std::string, std::shared_ptr<const phys::Clip>>>();
   for (const phys::Character& c : scene().world.characters()) {
-    for (const phys::Playback* p :
-         {&c.now, &c.before, &c.reaction.getUp, c.queued ? &c.queued->playback : nullptr}) {
-      if (p != nullptr && p->clip != nullptr) known->emplace(p->clip->name, p->clip);
-    }
+    phys::forEachPlayback(c, [&known](const phys::Playback& p) {
+      if (p.clip != nullptr) known->emplace(p.clip->name, p.clip);
+    });
   }
   return [known](const std::string& name) {
     const auto it = known->find(name);

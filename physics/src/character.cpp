@@ -239,8 +239,8 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
   }
 
   std::vector<CharacterBone> bones(clip.bones.size());
-  // Rigid parts are driven through rigid joints, particle parts through particle joints: the root
-  // part's model says which the character is.
+  // Rigid parts are driven through rigid joints, particle parts through particle joints: the first
+  // part's model says which the character is, and every other part must be of its kind.
   const bool rigid = bodies[partIds[0]].model == BodyModel::Rigid;
   for (std::size_t b = 0; b < clip.bones.size(); ++b) {
     const auto at = std::find(partNames.begin(), partNames.end(), clip.bones[b]) - partNames.begin();
@@ -285,6 +285,19 @@ void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat
     out[b] = glm::normalize(c.frame * out[b] * c.bones[b].rest);
 }
 
+std::pair<Vec3, Vec3> bonePivots(const World& world, const Character& c, std::size_t b) {
+  const CharacterBone& bone = c.bones[b];
+  Vec3 pivotA(0.0), pivotB(0.0);
+  if (c.particleParts) {
+    const ParticleJoint& j = world.particleJoints()[bone.joint];
+    pivotA = j.pivotA, pivotB = j.pivotB;
+  } else {
+    const RigidJoint& j = world.rigidJoints()[bone.joint];
+    pivotA = j.pivotA, pivotB = j.pivotB;
+  }
+  return bone.reversed ? std::pair{pivotB, pivotA} : std::pair{pivotA, pivotB};
+}
+
 void targetCentres(const World& world, const Character& c, std::span<const Quat> orientations,
                    const Vec3& rootCentre, std::span<Vec3> out) {
   if (out.size() < c.bones.size() || orientations.size() < c.bones.size())
@@ -295,17 +308,8 @@ void targetCentres(const World& world, const Character& c, std::span<const Quat>
       out[b] = rootCentre;
       continue;
     }
-    Vec3 pivotA(0.0), pivotB(0.0);
-    if (c.particleParts) {
-      const ParticleJoint& j = world.particleJoints()[bone.joint];
-      pivotA = j.pivotA, pivotB = j.pivotB;
-    } else {
-      const RigidJoint& j = world.rigidJoints()[bone.joint];
-      pivotA = j.pivotA, pivotB = j.pivotB;
-    }
     const auto parent = static_cast<std::size_t>(bone.parent);
-    const Vec3& own = bone.reversed ? pivotA : pivotB;
-    const Vec3& parents = bone.reversed ? pivotB : pivotA;
+    const auto [parents, own] = bonePivots(world, c, b);
     out[b] = out[parent] + orientations[parent] * parents - orientations[b] * own;
   }
 }

@@ -88,8 +88,7 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
         const CharacterBone& bone = c.bones[b];
         draw.box(centres[b], turned[b], bodies_[bone.body].halfExtents, colors::kTarget);
         if (bone.parent < 0) continue;
-        const RigidJoint& j = constraints_.rigidJoints()[bone.joint];
-        const Vec3 pivot = centres[b] + turned[b] * (bone.reversed ? j.pivotA : j.pivotB);
+        const Vec3 pivot = centres[b] + turned[b] * bonePivots(*this, c, b).second;
         draw.line(centres[static_cast<std::size_t>(bone.parent)], pivot, colors::kTarget);
         draw.line(pivot, centres[b], colors::kTarget);
       }

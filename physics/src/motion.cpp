@@ -116,20 +116,22 @@ std::string characterMismatch(const CharacterMotion& c, const Character& w) {
     return "part strengths or pose turns for " + std::to_string(c.partStrength.size()) +
            " bones, the character has " + std::to_string(bones);
   const auto held = [&w](const Clip* clip) {
-    return clip == w.now.clip.get() || clip == w.before.clip.get() || clip == w.reaction.getUp.clip.get() ||
-           (w.queued && clip == w.queued->playback.clip.get());
+    bool found = false;
+    forEachPlayback(w, [&](const Playback& p) { found = found || p.clip.get() == clip; });
+    return found;
   };
-  const Playback* playbacks[] = {&c.now, &c.before, &c.reaction.getUp,
-                                 c.queued ? &c.queued->playback : nullptr};
-  for (const Playback* p : playbacks) {
-    if (p == nullptr || p->clip == nullptr) continue;
-    if (!sameSkeleton(*p->clip, *w.now.clip))
-      return "clip '" + p->clip->name + "' has other bones than '" + w.now.clip->name + "'";
+  std::string why;  // the first playback's problem
+  forEachPlayback(c, [&](const Playback& p) {
+    if (!why.empty() || p.clip == nullptr) return;
+    if (!sameSkeleton(*p.clip, *w.now.clip)) {
+      why = "clip '" + p.clip->name + "' has other bones than '" + w.now.clip->name + "'";
+      return;
+    }
     // A clip the character holds was checked when it was given; another is checked as addCharacter would.
-    if (std::string problem = held(p->clip.get()) ? "" : clipProblem(*p->clip); !problem.empty())
-      return "clip '" + p->clip->name + "': " + problem;
-  }
-  return {};
+    if (std::string problem = held(p.clip.get()) ? "" : clipProblem(*p.clip); !problem.empty())
+      why = "clip '" + p.clip->name + "': " + problem;
+  });
+  return why;
 }
 
 }  // namespace

@@ -218,14 +218,19 @@ void World::clearBodyDrive(BodyId id) {
 std::size_t World::addParticleJoint(BodyId parent, BodyId child, const Vec3& pivot) {
   require(parent < bodies_.size() && child < bodies_.size(), "addParticleJoint: body id must exist");
   require(finite(pivot), "addParticleJoint: the pivot must be finite");
+  return addParticleJoint(particleJointAt(parent, child, pivot, pivot));
+}
+
+ParticleJoint World::particleJointAt(BodyId parent, BodyId child, const Vec3& pivot,
+                                     const Vec3& pivotB) const {
   const BodyPose a = bodyPose(parent), b = bodyPose(child);
   ParticleJoint j;
   j.a = parent;
   j.b = child;
   j.pivotA = glm::conjugate(a.orientation) * (pivot - a.center);
-  j.pivotB = glm::conjugate(b.orientation) * (pivot - b.center);
+  j.pivotB = glm::conjugate(b.orientation) * (pivotB - b.center);
   j.rest = glm::normalize(glm::conjugate(a.orientation) * b.orientation);
-  return addParticleJoint(j);
+  return j;
 }
 
 std::size_t World::addParticleJoint(const ParticleJoint& joint) {

@@ -308,10 +308,12 @@ void World::partOverlaps() {
 
 // Restitution needs each contact's approach speed before the passes stop it, and which ground
 // contacts the passes push (GroundContactState::hit, set by the friction pass, read by restitute() alone).
-// A character of particle parts reads the bodies' approach too: it is how hard they strike its parts.
+// A character of particle parts that reacts to blows reads the bodies' approach too: it is how hard
+// they strike its parts.
 void World::measureApproaches(Real h) {
-  const bool blows =
-      std::any_of(characters_.begin(), characters_.end(), [](const Character& c) { return c.particleParts; });
+  const bool blows = std::any_of(characters_.begin(), characters_.end(), [](const Character& c) {
+    return c.particleParts && c.reaction.threshold > 0.0;
+  });
   if (solver_.restitution <= 0.0 && !blows) return;
   const detail::StageTimer timer(profile_, Stage::Restitution);
   detail::measureBodyApproach(particles_, narrowPhase_.contacts(), h, narrowPhase_.state().approach);

@@ -70,10 +70,9 @@ CharacterRecording characterRecording() {
     s.motion = scene.world.motion();
   }
   for (const phys::Character& c : scene.world.characters()) {
-    for (const phys::Playback* p :
-         {&c.now, &c.before, &c.reaction.getUp, c.queued ? &c.queued->playback : nullptr}) {
-      if (p != nullptr && p->clip) out.clips.emplace(p->clip->name, p->clip);
-    }
+    phys::forEachPlayback(c, [&out](const phys::Playback& p) {
+      if (p.clip) out.clips.emplace(p.clip->name, p.clip);
+    });
   }
   return out;
 }

@@ -44,14 +44,17 @@ double fastestPart(const phys::World& w, const phys::Character& c) {
   return fastest;
 }
 
-// tackle.xml, and tackle-capsules.xml: the same play with capsule ragdolls on their own clips.
+// tackle.xml, tackle-capsules.xml (the same play with capsule ragdolls on their own clips) and
+// tackle-lean.xml (box ragdolls of particles, driven through their particle joints). A particle
+// ragdoll's limits are range links: past a stop by 3 degrees is about 5 mm outside a limit link at
+// its 0.1 m radius, so its joints are held to that (World::metrics' largest link error, pins too).
 class Tackle : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(Tackle, BothGoLimpFallAndSettle) {
   scenes::Scene scene = scenes::loadSceneFile(kScenes + GetParam());
   phys::World& w = scene.world;
   ASSERT_EQ(w.characters().size(), 2u);
-  double worstLimit = 0.0, hitAt[2] = {-1.0, -1.0};
+  double worstLimit = 0.0, worstLink = 0.0, hitAt[2] = {-1.0, -1.0};
   while (w.time() < 8.0) {
     w.step();
     for (std::size_t k = 0; k < 2; ++k) {
@@ -60,14 +63,15 @@ TEST_P(Tackle, BothGoLimpFallAndSettle) {
     if (w.time() > 3.0) {
       for (std::size_t k = 0; k < w.rigidJoints().size(); ++k)
         worstLimit = std::max(worstLimit, pastLimit(w, k));
+      worstLink = std::max(worstLink, w.metrics().maxJointError);
     }
   }
   std::printf(
       "%s: runner hit at %.2f s, tackler at %.2f s; at 8 s the fastest parts %.3f and %.3f m/s; worst "
       "joint "
-      "past its limit after 3 s %.2f degrees\n",
+      "past its limit after 3 s %.2f degrees, worst link %.2f mm\n",
       GetParam(), hitAt[0], hitAt[1], fastestPart(w, w.characters()[0]), fastestPart(w, w.characters()[1]),
-      worstLimit / kDeg);
+      worstLimit / kDeg, worstLink * 1e3);
   for (std::size_t k = 0; k < 2; ++k) {
     const phys::Character& c = w.characters()[k];
     EXPECT_GT(hitAt[k], 1.0) << c.ragdoll;  // not before they meet
@@ -77,6 +81,7 @@ TEST_P(Tackle, BothGoLimpFallAndSettle) {
     EXPECT_LT(fastestPart(w, c), 0.05) << c.ragdoll;  // at rest
   }
   EXPECT_LT(worstLimit, 3.0 * kDeg);
+  EXPECT_LT(worstLink, 0.005);
   EXPECT_TRUE(w.freezes().empty());
 }
 
@@ -101,12 +106,18 @@ TEST_P(Tackle, SavedMidFallTheyReloadFalling) {
     const phys::Character &a = w.characters()[k], &b = reloaded.world.characters()[k];
     EXPECT_EQ(b.state, a.state) << a.ragdoll;
     EXPECT_EQ(b.strength, 0.0) << a.ragdoll;
+    // Where they lie is compared for rigid parts, whose poses and velocities the file holds exactly. A
+    // particle part is saved as the rigid body fitted to its particles (scene-format.md), without its
+    // particles' own strain and motion, and 3 s of a tumble make that half a metre (measured 0.57 m for
+    // tackle-lean's runner).
+    if (a.particleParts) continue;
     const phys::Vec3 root = w.bodyPose(a.bones[0].body).center;
     EXPECT_LT(glm::length(reloaded.world.bodyPose(b.bones[0].body).center - root), 0.05) << a.ragdoll;
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, Tackle, ::testing::Values("tackle.xml", "tackle-capsules.xml"));
+INSTANTIATE_TEST_SUITE_P(Scenes, Tackle,
+                         ::testing::Values("tackle.xml", "tackle-capsules.xml", "tackle-lean.xml"));
 
 // The thrown 30 kg box knocks the line down one into the next; each lies still and gets up on the
 // stand clip, and by 12 s all five stand again where they fell, heads at standing height.

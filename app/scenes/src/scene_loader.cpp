@@ -441,12 +441,19 @@ class Builder {
   // its pivot in the world as the two bodies lie (b-pivot the child's where it is apart, a joint saved
   // away from rest), and its rest, the child's orientation in the parent's frame as Euler angles, unset
   // the turn between them now. The drive's attributes are a <joint>'s.
+  //
+  // Under an imposed box model of rigid (LoadOptions::boxModel: the lab's --model rigid), the bodies
+  // of a saved particle ragdoll are made rigid and their joints stay links: the element is read and
+  // left out, as a rigid body has no particle joint.
   void particleJoint(ElementReader& e) {
     phys::BodyId ends[2];
+    bool madeRigid = false;
     for (const char* attribute : {"a", "b"}) {
       const NamedBody& body = bodyNamed(e, attribute, false);
       const phys::Body& part = scene_.world.bodies()[body.body()];
-      if (part.model == phys::BodyModel::Rigid) {
+      if (part.model == phys::BodyModel::Rigid && ctx_.options.boxModel == phys::BodyModel::Rigid) {
+        madeRigid = true;
+      } else if (part.model == phys::BodyModel::Rigid) {
         e.fail(attribute,
                "names a rigid body; a <particle-joint> joins particle bodies (a rigid <joint> "
                "has its own drive)");
@@ -462,14 +469,9 @@ class Builder {
     const std::optional<phys::JointDrive> drive = detail::readDrive(e);
     const std::optional<phys::Vec3> target = e.vector("drive-target", "degrees");
     e.rejectUnknownAttributes();
-    const phys::BodyPose a = scene_.world.bodyPose(ends[0]), b = scene_.world.bodyPose(ends[1]);
-    phys::ParticleJoint j;
-    j.a = ends[0];
-    j.b = ends[1];
-    j.pivotA = glm::conjugate(a.orientation) * (pivot - a.center);
-    j.pivotB = glm::conjugate(b.orientation) * (pivotB - b.center);
-    j.rest = rest ? detail::orientationFromEuler(*rest)
-                  : glm::normalize(glm::conjugate(a.orientation) * b.orientation);
+    if (madeRigid) return;
+    phys::ParticleJoint j = scene_.world.particleJointAt(ends[0], ends[1], pivot, pivotB);
+    if (rest) j.rest = detail::orientationFromEuler(*rest);
     const std::size_t k = scene_.world.addParticleJoint(j);
     phys::JointDrive set = scene_.world.particleJointDrive(k);
     if (drive) {

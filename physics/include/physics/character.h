@@ -157,6 +157,17 @@ struct Character {
   ClipPose starting;  ///< scratch: the first pose of a clip changed to
 };
 
+/// Calls f(const Playback&) for every playback a character, or its motion (CharacterMotion), holds:
+/// the clip playing, the one faded out of, the get-up and the queued one, if any (a playback's clip
+/// may be none).
+template <class CharacterOrMotion, class F>
+void forEachPlayback(const CharacterOrMotion& c, F&& f) {
+  f(c.now);
+  f(c.before);
+  f(c.reaction.getUp);
+  if (c.queued) f(c.queued->playback);
+}
+
 /// Binds a clip's bones to the ragdoll's parts by name: every part "<ragdoll>.<bone>" a bone of the
 /// clip, every bone a part, all rigid or all of particles, each joined to its parent's by a rigid
 /// joint or a particle joint (World::addParticleJoint). Throws std::invalid_argument naming the
@@ -171,6 +182,11 @@ Vec3 rootCentre(const Character& c, const ClipPose& pose);
 /// Each part's target orientation in the world for `pose`: frame * (the bones' turns down the
 /// chain) * rest, into the first c.bones.size() elements of `out` (at least that long).
 void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat> out);
+
+/// Bone b's joint's two pivots, each in its own body's frame (unit: m): the parent part's first, then
+/// the bone's own; of its rigid joint, or its particle joint for a character of particle parts. Not
+/// for the root, which has no joint.
+std::pair<Vec3, Vec3> bonePivots(const World& world, const Character& c, std::size_t b);
 
 /// Where each part's centre is with the parts turned to `orientations` (as targetOrientations gives
 /// them): the root's at `rootCentre`, every other part's where its joint's two pivots meet, parents

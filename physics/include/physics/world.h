@@ -123,6 +123,10 @@ class World {
   /// The same, as described: its pivots in the two bodies' frames and its rest given (a saved
   /// scene's); refuses a rest that is not a unit quaternion (within 1e-6) too.
   std::size_t addParticleJoint(const ParticleJoint& joint);
+  /// The particle joint between two bodies as they lie now, the parent's pivot at `pivot` and the
+  /// child's at `pivotB` (unit: m, in the world; the same point for a joint at rest), its rest the
+  /// turn between them: what addParticleJoint(parent, child, pivot) adds. Checks nothing.
+  ParticleJoint particleJointAt(BodyId parent, BodyId child, const Vec3& pivot, const Vec3& pivotB) const;
   /// The point at `worldPoint` (unit: m) carried by the body from now on, whatever its model:
   /// anchor() for a particle body, fixed in its frame for a rigid one.
   BodyPoint pointOn(BodyId body, const Vec3& worldPoint) const;
