@@ -250,7 +250,7 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
     bone.parent = clip.parents[b];
     require((bodies[bone.body].model == BodyModel::Rigid) == rigid,
             who + ": part '" + clip.bones[b] + "' is " + (rigid ? "not rigid" : "rigid") + " and part '" +
-                partNames[0] + "' is " + (rigid ? "" : "not ") +
+                partNames[0] + "' is " + (rigid ? "rigid " : "not ") +
                 "(a character's parts are all rigid or all particle bodies)");
     if (bone.parent < 0) continue;
     const CharacterBone& parent = bones[static_cast<std::size_t>(bone.parent)];

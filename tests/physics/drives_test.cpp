@@ -306,11 +306,11 @@ TEST(JointDrive, BadDrivesAreRefusedAndTheOldOneKept) {
 // A ragdoll's strength drives each of its joints towards the pose it was made in. The box ragdoll of
 // rigid parts, standing on the flat ends of its lower legs, stays standing at strength 1 (a statue)
 // and at 1/2 (each joint at kDriveStiffness); limp, it folds and falls.
-Real headHeightAfter(Real strength, Real seconds) {
+Real headHeightAfter(Real strength, Real seconds, phys::RagdollModel model = phys::RagdollModel::Rigid) {
   phys::WorldSettings ws;
   phys::World w(ws, xpbd(2, 8));
   phys::RagdollDesc d;
-  d.model = phys::RagdollModel::Rigid;
+  d.model = model;
   d.hips = Vec3(0.0, 0.85, 0.0);  // the lower legs' ends at the ground
   d.strength = strength;
   const phys::Ragdoll r = phys::addRagdoll(w, d);
@@ -324,6 +324,18 @@ TEST(JointDrive, ARigidRagdollHeldAtItsPoseStandsAndALimpOneFalls) {
   EXPECT_NEAR(headHeightAfter(1.0, 10.0), standing, 0.005);
   EXPECT_NEAR(headHeightAfter(0.5, 10.0), standing, 0.005);
   EXPECT_LT(headHeightAfter(0.0, 10.0), 0.5);
+}
+
+// The particle ragdolls too, their joints driven through their particle joints
+// (particle_drives_test.cpp): a little lower, their pins and sticks giving a little.
+TEST(JointDrive, AParticleRagdollHeldAtItsPoseStandsAndALimpOneFalls) {
+  const Real standing = 1.59;
+  for (const phys::RagdollModel model : {phys::RagdollModel::Lean, phys::RagdollModel::Seed}) {
+    SCOPED_TRACE(phys::toString(model));
+    EXPECT_NEAR(headHeightAfter(1.0, 10.0, model), standing, 0.01);
+    EXPECT_NEAR(headHeightAfter(0.5, 10.0, model), standing, 0.02);
+    EXPECT_LT(headHeightAfter(0.0, 10.0, model), 0.5);
+  }
 }
 
 TEST(JointDrive, ARagdollsDrivesTakeItsStrengthAndAStiffnessForItsSize) {

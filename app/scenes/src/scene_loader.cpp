@@ -156,6 +156,18 @@ void readCamera(ElementReader& e, const phys::WorldSettings& w, CameraStart& c) 
   c.given = true;
 }
 
+// A joint's drive as made (its rest as the target, strength 0) with what a <joint> or a
+// <particle-joint> gave: strength and drive-stiffness (detail::readDrive), drive-target in degrees.
+phys::JointDrive givenDrive(phys::JointDrive made, const std::optional<phys::JointDrive>& drive,
+                            const std::optional<phys::Vec3>& target) {
+  if (drive) {
+    made.strength = drive->strength;
+    made.stiffness = drive->stiffness;
+  }
+  if (target) made.target = detail::orientationFromEuler(*target);
+  return made;
+}
+
 class Builder {
  public:
   Builder(Scene& scene, const LineIndex& lines, const std::string& file, std::filesystem::path folder,
@@ -428,13 +440,7 @@ class Builder {
     }
     if (!drive && !target) return;
     const std::size_t k = scene_.world.rigidJoints().size() - 1;
-    phys::JointDrive set = scene_.world.jointDrive(k);
-    if (drive) {
-      set.strength = drive->strength;
-      set.stiffness = drive->stiffness;
-    }
-    if (target) set.target = detail::orientationFromEuler(*target);
-    scene_.world.setJointDrive(k, set);
+    scene_.world.setJointDrive(k, givenDrive(scene_.world.jointDrive(k), drive, target));
   }
 
   // What a drive needs of a joint between two particle bodies, which <link>s hold (World::addParticleJoint):
@@ -473,13 +479,7 @@ class Builder {
     phys::ParticleJoint j = scene_.world.particleJointAt(ends[0], ends[1], pivot, pivotB);
     if (rest) j.rest = detail::orientationFromEuler(*rest);
     const std::size_t k = scene_.world.addParticleJoint(j);
-    phys::JointDrive set = scene_.world.particleJointDrive(k);
-    if (drive) {
-      set.strength = drive->strength;
-      set.stiffness = drive->stiffness;
-    }
-    if (target) set.target = detail::orientationFromEuler(*target);
-    scene_.world.setParticleJointDrive(k, set);
+    scene_.world.setParticleJointDrive(k, givenDrive(scene_.world.particleJointDrive(k), drive, target));
   }
 
   // A body's drive towards a pose in the world (World::setBodyDrive, the hand of god): pos and
