@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -39,8 +41,40 @@ int Clip::bone(std::string_view boneName) const {
   return -1;
 }
 
-bool sameSkeleton(const Clip& a, const Clip& b) {
-  return a.bones == b.bones && a.parents == b.parents;
+std::string skeletonDifference(const Clip& a, const Clip& b) {
+  if (a.bones == b.bones && a.parents == b.parents) return "";
+  const auto quoted = [](const std::vector<std::string>& names) {
+    std::string s;
+    for (const std::string& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
+    return s;
+  };
+  const auto parentName = [](const Clip& c, std::size_t bone) {
+    const int p = bone < c.parents.size() ? c.parents[bone] : -1;
+    return p >= 0 && static_cast<std::size_t>(p) < c.bones.size()
+               ? "'" + c.bones[static_cast<std::size_t>(p)] + "'"
+               : std::string("none (the root)");
+  };
+  std::vector<std::string> lacks, extra, reparented;
+  for (const std::string& bone : b.bones) {
+    if (a.bone(bone) < 0) lacks.push_back(bone);
+  }
+  for (std::size_t i = 0; i < a.bones.size(); ++i) {
+    const int j = b.bone(a.bones[i]);
+    if (j < 0) {
+      extra.push_back(a.bones[i]);
+    } else if (const std::string pa = parentName(a, i), pb = parentName(b, static_cast<std::size_t>(j));
+               pa != pb) {
+      reparented.push_back("bone '" + a.bones[i] + "''s parent is " + pa + " where '" + b.name + "' has " +
+                           pb);
+    }
+  }
+  std::string why = "clip '" + a.name + "' has other bones than '" + b.name + "':";
+  if (!lacks.empty()) why += " it lacks " + quoted(lacks) + ";";
+  if (!extra.empty()) why += " it has " + quoted(extra) + " that '" + b.name + "' has not;";
+  for (const std::string& r : reparented) why += " " + r + ";";
+  if (lacks.empty() && extra.empty() && reparented.empty()) why += " the same bones in another order;";
+  why.pop_back();
+  return why;
 }
 
 std::string clipProblem(const Clip& clip) {

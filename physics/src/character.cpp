@@ -90,8 +90,8 @@ void checkReaction(const Reaction& r, const Clip& clip, const std::string& who) 
   require(std::isfinite(r.armTime) && r.armTime >= 0.0, who + ": the arm time must be finite and >= 0");
   if (r.getUp.clip == nullptr) return;
   checkPlayback(r.getUp, who + ": get-up");
-  require(sameSkeleton(*r.getUp.clip, clip),
-          who + ": get-up clip '" + r.getUp.clip->name + "' has other bones than '" + clip.name + "'");
+  const std::string difference = skeletonDifference(*r.getUp.clip, clip);
+  require(difference.empty(), who + ": get-up " + difference);
 }
 
 // Changes the character's clip to `playback`, faded in over blendTime, its root path moved across
@@ -461,8 +461,8 @@ void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
   checkPlayback(playback, who);
   require(std::isfinite(blendTime) && blendTime >= 0.0, who + ": blend time must be finite and >= 0");
   Character& c = characters_[k];
-  require(sameSkeleton(*playback.clip, *c.now.clip),
-          who + ": clip '" + playback.clip->name + "' has other bones than '" + c.now.clip->name + "'");
+  const std::string difference = skeletonDifference(*playback.clip, *c.now.clip);
+  require(difference.empty(), who + ": " + difference);
   // The new clip's root path starts where the target is now.
   characterPose(c);
   changeClip(c, playback, blendTime, c.pose.root);
@@ -478,8 +478,8 @@ void World::queueClip(std::size_t k, const Playback& playback, Real at, Real ble
           who + ": the time must be finite and within +-1e9 s");
   require(std::isfinite(blendTime) && blendTime >= 0.0, who + ": blend time must be finite and >= 0");
   Character& c = characters_[k];
-  require(sameSkeleton(*playback.clip, *c.now.clip),
-          who + ": clip '" + playback.clip->name + "' has other bones than '" + c.now.clip->name + "'");
+  const std::string difference = skeletonDifference(*playback.clip, *c.now.clip);
+  require(difference.empty(), who + ": " + difference);
   c.queued = QueuedClip{playback, at, blendTime};
 }
 
@@ -650,13 +650,13 @@ void World::react() {
   if (characters_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::Animate);
   for (Character& c : characters_) {
-    const Vec3 rootVelocity = partMotion(c.bones[0].body).velocity;
-    const Real impact = std::max(c.stepBlow, glm::length(rootVelocity - c.lastRootVelocity));
-    c.lastRootVelocity = rootVelocity;
+    const PartMotion root = partMotion(c.bones[0].body);  // a particle part's is a pass over its particles
+    const Real impact = std::max(c.stepBlow, glm::length(root.velocity - c.lastRootVelocity));
+    c.lastRootVelocity = root.velocity;
     c.stepBlow = 0.0;
-    bool still = true;
-    for (const CharacterBone& bone : c.bones)
-      still = still && glm::length(partMotion(bone.body).velocity) < c.reaction.restSpeed;
+    bool still = glm::length(root.velocity) < c.reaction.restSpeed;
+    for (std::size_t b = 1; b < c.bones.size(); ++b)
+      still = still && glm::length(partMotion(c.bones[b].body).velocity) < c.reaction.restSpeed;
     c.lastImpact = impact;
     c.stillTime = still ? c.stillTime + solver_.dt : 0.0;
     // Only an active character reacts, and only once it has been so for armTime: getting up, or
@@ -668,8 +668,8 @@ void World::react() {
     } else if (c.state == CharacterState::Down && c.reaction.getUp.clip &&
                c.stillTime >= c.reaction.restTime) {
       // Up where it lies: the get-up clip's root path starts under the root part's centre.
-      const Vec3 lying = glm::conjugate(c.frame) * (partMotion(c.bones[0].body).centre - c.origin) / c.scale -
-                         turnedRootOffset(c, c.pose);
+      const Vec3 lying =
+          glm::conjugate(c.frame) * (root.centre - c.origin) / c.scale - turnedRootOffset(c, c.pose);
       changeClip(c, c.reaction.getUp, 0.0, lying);
       enter(c, CharacterState::GettingUp);
     }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "physics/world.h"
 #include "require.h"
@@ -123,8 +124,8 @@ std::string characterMismatch(const CharacterMotion& c, const Character& w) {
   std::string why;  // the first playback's problem
   forEachPlayback(c, [&](const Playback& p) {
     if (!why.empty() || p.clip == nullptr) return;
-    if (!sameSkeleton(*p.clip, *w.now.clip)) {
-      why = "clip '" + p.clip->name + "' has other bones than '" + w.now.clip->name + "'";
+    if (std::string difference = skeletonDifference(*p.clip, *w.now.clip); !difference.empty()) {
+      why = std::move(difference);
       return;
     }
     // A clip the character holds was checked when it was given; another is checked as addCharacter would.

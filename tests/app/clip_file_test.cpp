@@ -172,6 +172,7 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
         error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" " + attribute + "=\"" + one + "\"/>");
     EXPECT_NE(other.find(std::string("attribute '") + attribute + "': clip"), std::string::npos) << other;
     EXPECT_NE(other.find("has other bones than"), std::string::npos) << other;
+    EXPECT_NE(other.find("it lacks 'torso', 'head'"), std::string::npos) << other;
   }
   const std::string pose = error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" pose=\"stand\"/>");
   EXPECT_NE(pose.find("attribute 'pose': 'stand' must be clip or ragdoll"), std::string::npos) << pose;

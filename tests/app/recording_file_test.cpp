@@ -198,6 +198,7 @@ TEST(RecordingFile, ARecordingWhoseClipChangedIsRefusedOnOpening) {
   const std::string changed = other.openRecording(dir.path / "r.jrec");
   EXPECT_NE(changed.find("step 5: character 0: clip"), std::string::npos) << changed;
   EXPECT_NE(changed.find("stand.bvh' has other bones"), std::string::npos) << changed;
+  EXPECT_NE(changed.find("it lacks 'head'; it has 'neck' that"), std::string::npos) << changed;
   EXPECT_NE(changed.find("the current world is kept"), std::string::npos) << changed;
   EXPECT_EQ(hashOf(other), before);
   fs::remove(dir.path / "stand.bvh");

@@ -3,6 +3,7 @@
 // does not fit with the bones named; a character's drives aimed at the clip's pose and followed.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <numbers>
@@ -125,6 +126,28 @@ TEST(Clip, ProblemsAreNamed) {
             "bone 'arm' does not come after its parent");
 }
 
+// Clips a character changes between must have its bones: the message names those that differ.
+TEST(Clip, SkeletonDifferencesNameTheBones) {
+  const auto skeleton = [](const char* name, std::vector<std::string> bones, std::vector<int> parents) {
+    Clip c;
+    c.name = name;
+    c.bones = std::move(bones);
+    c.parents = std::move(parents);
+    return c;
+  };
+  const Clip body = skeleton("body", {"torso", "head", "arm"}, {-1, 0, 0});
+  EXPECT_EQ(phys::skeletonDifference(body, body), "");
+  EXPECT_EQ(phys::skeletonDifference(skeleton("a", {"torso", "neck", "arm"}, {-1, 0, 0}), body),
+            "clip 'a' has other bones than 'body': it lacks 'head'; it has 'neck' that 'body' has not");
+  EXPECT_EQ(phys::skeletonDifference(skeleton("b", {"torso", "head", "arm"}, {-1, 0, 1}), body),
+            "clip 'b' has other bones than 'body': bone 'arm''s parent is 'head' where 'body' has 'torso'");
+  EXPECT_EQ(phys::skeletonDifference(skeleton("c", {"torso", "arm", "head"}, {-1, 0, 0}), body),
+            "clip 'c' has other bones than 'body': the same bones in another order");
+  EXPECT_EQ(phys::skeletonDifference(skeleton("d", {"head", "torso", "arm"}, {-1, 0, 1}), body),
+            "clip 'd' has other bones than 'body': bone 'head''s parent is none (the root) where 'body' has "
+            "'torso'; bone 'torso''s parent is 'head' where 'body' has none (the root)");
+}
+
 TEST(Character, AClipThatDoesNotFitIsRefusedWithTheBonesNamed) {
   phys::World w = testing_phys::openSpace();
   rigidRagdoll(w, "r");
@@ -163,7 +186,8 @@ TEST(Character, AClipThatDoesNotFitIsRefusedWithTheBonesNamed) {
   tailed.bones.push_back("tail");
   tailed.parents.push_back(0);
   for (int f = 0; f < 2; ++f)
-    tailed.turns.insert(tailed.turns.begin() + (f + 1) * 11 - 1, Quat(1.0, 0.0, 0.0, 0.0));
+    tailed.turns.insert(tailed.turns.begin() + (static_cast<std::ptrdiff_t>(f) + 1) * 11 - 1,
+                        Quat(1.0, 0.0, 0.0, 0.0));
   ASSERT_EQ(phys::clipProblem(tailed), "");
   try {
     phys::bindClip(w, "m", tailed);

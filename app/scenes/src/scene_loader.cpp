@@ -544,9 +544,11 @@ class Builder {
     if (auto parts = e.text("part-strengths"))
       desc.partStrengths = partStrengths(e, *parts, *desc.playback.clip);
     reaction(e, desc.reaction);
-    if (desc.reaction.getUp.clip && !phys::sameSkeleton(*desc.reaction.getUp.clip, *desc.playback.clip))
-      e.fail("get-up", "clip '" + desc.reaction.getUp.clip->name + "' has other bones than '" +
-                           desc.playback.clip->name + "'");
+    if (desc.reaction.getUp.clip) {
+      if (const std::string why = phys::skeletonDifference(*desc.reaction.getUp.clip, *desc.playback.clip);
+          !why.empty())
+        e.fail("get-up", why);
+    }
     std::optional<phys::QueuedClip> then;
     if (auto next = e.text("then")) {
       then.emplace();
@@ -554,9 +556,9 @@ class Builder {
       then->at = time(e, "then-at").value_or(0.0);
       then->blendTime = duration(e, "then-blend").value_or(0.2);
       then->playback.loop = e.boolean("then-loop").value_or(false);
-      if (!phys::sameSkeleton(*then->playback.clip, *desc.playback.clip))
-        e.fail("then", "clip '" + then->playback.clip->name + "' has other bones than '" +
-                           desc.playback.clip->name + "'");
+      if (const std::string why = phys::skeletonDifference(*then->playback.clip, *desc.playback.clip);
+          !why.empty())
+        e.fail("then", why);
     }
     const std::optional<SavedCharacter> motion = savedCharacter(e, *desc.playback.clip);
     e.rejectUnknownAttributes();
@@ -651,8 +653,8 @@ class Builder {
     if (auto file = e.text("from-clip")) {
       before.emplace();
       before->clip = clip(e, *file, "from-clip");
-      if (!phys::sameSkeleton(*before->clip, playing))
-        e.fail("from-clip", "clip '" + before->clip->name + "' has other bones than '" + playing.name + "'");
+      if (const std::string why = phys::skeletonDifference(*before->clip, playing); !why.empty())
+        e.fail("from-clip", why);
       before->time = time(e, "from-time").value_or(0.0);
       if (auto speed = e.number("from-speed", "")) {
         if (*speed < 0.0) e.fail("from-speed", "'" + detail::formatNumber(*speed) + "' must be >= 0");

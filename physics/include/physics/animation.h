@@ -44,9 +44,11 @@ struct Clip {
 /// kMinFrameTime, a root farther than kMaxClipReach, a turn that is not a unit quaternion (within 1e-6).
 std::string clipProblem(const Clip& clip);
 
-/// The same bones, in the same order, with the same parents: clips one character can change
-/// between (World::playClip, queueClip, a reaction's get-up clip).
-bool sameSkeleton(const Clip& a, const Clip& b);
+/// "" when `a` has the same bones as `b`, in the same order, with the same parents: clips one
+/// character can change between (World::playClip, queueClip, a reaction's get-up clip). Otherwise
+/// why not, naming the bones: "clip 'A' has other bones than 'B': it lacks 'x'; it has 'y' that
+/// 'B' has not; bone 'z''s parent is 'p' where 'B' has 'q'" (or "... in another order").
+std::string skeletonDifference(const Clip& a, const Clip& b);
 
 /// A clip's pose at one time: the root's position and each bone's turn, as Clip holds them.
 struct ClipPose {
