@@ -7,7 +7,10 @@
 #include <system_error>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include <assimp/Importer.hpp>
+#include <assimp/config.h>
 #include <assimp/scene.h>
 
 #include "fileio/files.h"
@@ -25,21 +28,48 @@ const aiNodeAnim* channelOf(const aiAnimation& a, const aiString& node) {
   return nullptr;
 }
 
+phys::Quat toQuat(const aiQuaternion& q) {
+  return phys::Quat(q.w, q.x, q.y, q.z);
+}
+
+phys::Quat rotationOf(const aiMatrix4x4& m) {
+  aiVector3D scaling, position;
+  aiQuaternion rotation;
+  m.Decompose(scaling, rotation, position);
+  return glm::normalize(toQuat(rotation));
+}
+
+// An animated node: its channel, its rotation in the file's rest pose (the node's own transform,
+// relative to its parent node), and its parent node's rest transform in the file's frame (animated
+// or not: FBX and glTF put whole armatures, turned and scaled, under the scene's root).
+struct Animated {
+  const aiNodeAnim* channel;
+  phys::Quat rest;
+  aiMatrix4x4 parentRest;
+};
+
 // The animated nodes in depth-first order, each with the nearest animated ancestor as its parent.
-void collectBones(const aiNode& node, int parent, const aiAnimation& a, phys::Clip& clip,
-                  std::vector<const aiNodeAnim*>& channels) {
+void collectBones(const aiNode& node, const aiMatrix4x4& parentRest, int parent, const aiAnimation& a,
+                  phys::Clip& clip, std::vector<Animated>& bones) {
   int self = parent;
   if (const aiNodeAnim* channel = channelOf(a, node.mName)) {
     self = static_cast<int>(clip.bones.size());
     clip.bones.emplace_back(node.mName.C_Str());
     clip.parents.push_back(parent);
-    channels.push_back(channel);
+    bones.push_back({channel, rotationOf(node.mTransformation), parentRest});
   }
-  for (unsigned i = 0; i < node.mNumChildren; ++i) collectBones(*node.mChildren[i], self, a, clip, channels);
+  const aiMatrix4x4 rest = parentRest * node.mTransformation;
+  for (unsigned i = 0; i < node.mNumChildren; ++i)
+    collectBones(*node.mChildren[i], rest, self, a, clip, bones);
 }
 
-phys::Quat toQuat(const aiQuaternion& q) {
-  return phys::Quat(q.w, q.x, q.y, q.z);
+// A key's local rotation K taken back to the turn from rest a clip holds. A bone turned by K from
+// its parent node, whose rest is P in the file's frame and whose own rest rotation is R, is turned
+// from rest by P K R^-1 P^-1 relative to its parent's turn, in the file's frame (docs/physics.md,
+// "Animation"). In BVH every rest rotation is the identity, and the key is the turn.
+phys::Quat turnFromRest(const Animated& bone, const aiQuaternion& key) {
+  const phys::Quat parent = rotationOf(bone.parentRest);
+  return glm::normalize(parent * toQuat(key) * glm::conjugate(bone.rest) * glm::conjugate(parent));
 }
 
 }  // namespace
@@ -49,6 +79,8 @@ ClipError::ClipError(const std::filesystem::path& file, const std::string& why)
 
 phys::Clip parseClip(std::string_view content, const std::string& name, const std::string& format) {
   Assimp::Importer importer;
+  // FBX's pivots as the nodes' own transforms, not as helper nodes the animation would key instead.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
   const aiScene* scene = importer.ReadFileFromMemory(content.data(), content.size(), 0, format.c_str());
   if (scene == nullptr)
     throw ClipError(name, std::string("not a clip assimp can read: ") + importer.GetErrorString());
@@ -57,14 +89,14 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   const aiAnimation& anim = *scene->mAnimations[0];
   phys::Clip clip;
   clip.name = name;
-  std::vector<const aiNodeAnim*> channels;
-  collectBones(*scene->mRootNode, -1, anim, clip, channels);
+  std::vector<Animated> bones;
+  collectBones(*scene->mRootNode, aiMatrix4x4(), -1, anim, clip, bones);
   if (clip.bones.empty()) throw ClipError(name, "its animation moves no node of its skeleton");
   for (std::size_t b = 1; b < clip.bones.size(); ++b) {
     if (clip.parents[b] < 0)
       throw ClipError(name, "bones '" + clip.bones[0] + "' and '" + clip.bones[b] + "' are two roots");
   }
-  const aiNodeAnim& root = *channels[0];
+  const aiNodeAnim& root = *bones[0].channel;
   const unsigned frames = root.mNumRotationKeys;
   const double ticks = anim.mTicksPerSecond > 0.0 ? anim.mTicksPerSecond : 25.0;  // assimp's own default
   if (frames == 0) throw ClipError(name, "it has no frames");
@@ -72,8 +104,8 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   // holds, and all a clip keeps.
   clip.frameTime =
       frames > 1 ? (root.mRotationKeys[1].mTime - root.mRotationKeys[0].mTime) / ticks : 1.0 / ticks;
-  for (std::size_t b = 0; b < channels.size(); ++b) {
-    const aiNodeAnim& ch = *channels[b];
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    const aiNodeAnim& ch = *bones[b].channel;
     if (ch.mNumRotationKeys != frames)
       throw ClipError(name, "bone '" + clip.bones[b] + "' has " + std::to_string(ch.mNumRotationKeys) +
                                 " turns where the root has " + std::to_string(frames) + " frames");
@@ -90,13 +122,16 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   clip.root.resize(frames);
   clip.turns.resize(static_cast<std::size_t>(frames) * clip.bones.size());
   for (unsigned f = 0; f < frames; ++f) {
-    const aiVector3D& p = root.mPositionKeys[f].mValue;
+    // The root's position is in its parent node's space: put in the file's frame.
+    const aiVector3D p = bones[0].parentRest * root.mPositionKeys[f].mValue;
     clip.root[f] = phys::Vec3(p.x, p.y, p.z);
-    for (std::size_t b = 0; b < channels.size(); ++b) {
-      phys::Quat q = toQuat(channels[b]->mRotationKeys[f].mValue);
-      const double length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-      if (std::isfinite(length) && length > 0.0) q /= length;  // assimp's are floats: made unit again
-      clip.turns[f * clip.bones.size() + b] = q;
+    for (std::size_t b = 0; b < bones.size(); ++b) {
+      const aiQuaternion& key = bones[b].channel->mRotationKeys[f].mValue;
+      // A key of no length or not finite is kept as it is for clipProblem to name: glm::normalize
+      // would make it the identity or NaN.
+      const double length = std::sqrt(key.w * key.w + key.x * key.x + key.y * key.y + key.z * key.z);
+      clip.turns[f * clip.bones.size() + b] =
+          std::isfinite(length) && length > 0.0 ? turnFromRest(bones[b], key) : toQuat(key);
     }
   }
   if (const std::string problem = phys::clipProblem(clip); !problem.empty()) throw ClipError(name, problem);
