@@ -416,6 +416,10 @@ std::string Session::setDriveStrength(double strength) {
       drive.strength = strength;
       w.setParticleJointDrive(k, drive);
     }
+    // A character sets its joints' drives from its own strength every substep: it takes the value
+    // too, or the slider would hold for one substep.
+    for (std::size_t k = 0; k < w.characters().size(); ++k)
+      w.setCharacterStrength(k, strength, w.characters()[k].goalRootStrength);
   });
   worldChanged();
   return {};

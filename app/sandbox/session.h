@@ -137,9 +137,10 @@ class Session {
   std::string setWorldSettings(const phys::WorldSettings& settings);
   /// The main run's solver settings (the panel's sliders); "" or the validation message.
   std::string setSolverSettings(const phys::SolverSettings& settings);
-  /// Every rigid joint's drive strength (phys::JointDrive::strength, 0 limp to 1 holding its
-  /// target) in every run, each joint keeping its own target and stiffness; "" or why not (a
-  /// strength outside [0, 1], no rigid joint in the scene; then nothing changes).
+  /// Every rigid and particle joint's drive strength (phys::JointDrive::strength, 0 limp to 1
+  /// holding its target) in every run, each joint keeping its own target and stiffness, and every
+  /// character's strength (World::setCharacterStrength, its root's kept); "" or why not (a strength
+  /// outside [0, 1], no joint with a drive in the scene; then nothing changes).
   std::string setDriveStrength(double strength);
   /// Character k's joint strength, balance or reaction threshold (m/s) in every run (World's
   /// setCharacterStrength, setCharacterBalance, setCharacterReaction); "" or why not (then nothing

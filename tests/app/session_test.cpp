@@ -1,7 +1,9 @@
 // The sandbox's command layer (session.h), driven as the keys, menus and panels drive it, with
 // no window: loading and its failures, clear, the seed's world keys, spawning, picking and
 // dragging, the method overlay, and Save As.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -293,6 +295,52 @@ TEST(Session, PickingARigidBodyPullsItToo) {
   EXPECT_LT(glm::length(line->first - line->second), 0.1);  // 1 kg on 2000 N/m: 5 mm, and the swing
   s.release();
   EXPECT_FALSE(w.drag().has_value());
+}
+
+// An active ragdoll picked and pulled: a short pull at about the Animation block's push (200 N) makes
+// it stagger and it stands again; a long hard one knocks it past its threshold, limp.
+TEST(Session, DraggingAStandingCharacterStaggersItOrKnocksItOver) {
+  const TempDir dir;
+  std::ofstream(dir.path / "player.xml")
+      << "<scene name=\"player\"><world gravity=\"0 -9.81 0\"/><solver method=\"xpbd\" iterations=\"2\" "
+         "substeps=\"8\"/><ground/><ragdoll name=\"p\" pos=\"0 0.85 0\" euler=\"0 90 0\" model=\"rigid\"/>"
+         "<character ragdoll=\"p\" clip=\""
+      << (fs::path(DATA_DIR) / "assets" / "clips" / "stand.bvh").string()
+      << "\" balance=\"0.2\" react=\"1.5\"/></scene>\n";
+  const auto pull = [&](double how_far, int steps, double& moved, double& headLowest) {
+    sandbox::Session s(dir.path / "player.xml", dir.path);
+    const phys::World& w = s.scene().world;
+    const phys::Character& c = w.characters()[0];
+    for (int i = 0; i < 30; ++i) s.step();
+    const phys::Vec3 torso = w.bodyPose(c.bones[0].body).center;
+    const double head = w.bodyPose(c.bones[1].body).center.y;
+    // From in front (it faces +x), at the torso, between the arms; pulled sideways.
+    const phys::Vec3 eye = torso + phys::Vec3(4, 0, 0);
+    EXPECT_TRUE(s.pick(eye, phys::Vec3(-1, 0, 0)));
+    EXPECT_TRUE(w.drag().has_value() && w.drag()->body == c.bones[0].body);
+    s.dragAlong(eye, glm::normalize(torso + phys::Vec3(0, 0, how_far) - eye));
+    moved = 0.0, headLowest = head;
+    for (int i = 0; i < 240; ++i) {
+      if (i == steps) s.release();
+      s.step();
+      moved = std::max(moved, glm::length(w.bodyPose(c.bones[0].body).center - torso));
+      headLowest = std::min(headLowest, w.bodyPose(c.bones[1].body).center.y);
+    }
+    headLowest = head - headLowest;
+    return c.state;
+  };
+  double moved = 0.0, dropped = 0.0;
+  // 0.1 m on the 2000 N/m spring: 200 N, for 0.2 s.
+  EXPECT_EQ(pull(0.1, 12, moved, dropped), phys::CharacterState::Active);
+  std::printf("a 0.1 m pull for 0.2 s: the torso moved up to %.3f m, the head dropped %.3f m\n", moved,
+              dropped);
+  EXPECT_GT(moved, 0.01);   // it staggered
+  EXPECT_LT(dropped, 0.1);  // and stood
+  // 1 m: 2000 N at first, for half a second.
+  EXPECT_NE(pull(1.0, 30, moved, dropped), phys::CharacterState::Active);
+  std::printf("a 1 m pull for 0.5 s: the torso moved up to %.3f m, the head dropped %.3f m\n", moved,
+              dropped);
+  EXPECT_GT(dropped, 0.5);  // down
 }
 
 TEST(Session, TheOverlayRunsEachSettingFromTheSameStateAndRefusesBadCounts) {
@@ -664,8 +712,9 @@ TEST(RealTimeMeter, SimulatedSecondsPerWallSecondOverTheLastSecond) {
 
 namespace {
 
-// The World panel's drive strength: every rigid joint of every run takes it, each keeping its own
-// stiffness and target; a bad strength, or a scene without rigid joints, changes nothing and says why.
+// The World panel's drive strength: every rigid and particle joint of every run takes it, each
+// keeping its own stiffness and target, and so does every character; a bad strength, or a scene
+// without joints with drives, changes nothing and says why.
 TEST(Session, DriveStrengthReachesEveryRigidJointAndBadOnesAreRefused) {
   sandbox::Session s = open("rigid-ragdolls");
   const phys::World& world = s.scene().world;
@@ -684,6 +733,13 @@ TEST(Session, DriveStrengthReachesEveryRigidJointAndBadOnesAreRefused) {
   ASSERT_EQ(lean.scene().world.particleJoints().size(), 9u);
   EXPECT_EQ(lean.setDriveStrength(0.3), "");
   for (std::size_t k = 0; k < 9; ++k) EXPECT_EQ(lean.scene().world.particleJointDrive(k).strength, 0.3);
+  // Its character takes it too (a character sets its joints' drives every substep from its own
+  // strength), so the joints keep it through a step.
+  ASSERT_EQ(lean.scene().world.characters().size(), 1u);
+  EXPECT_EQ(lean.scene().world.characters()[0].strength, 0.3);
+  lean.step();
+  for (std::size_t k = 0; k < 9; ++k)
+    EXPECT_NEAR(lean.scene().world.particleJointDrive(k).strength, 0.3, 1e-12);
   sandbox::Session pyramid = open("pyramid");
   EXPECT_EQ(pyramid.setDriveStrength(0.5),
             "drives: the scene has no joints with drives (rigid joints, or particle joints of ragdolls)");
