@@ -54,24 +54,28 @@ TEST_P(Tackle, BothGoLimpFallAndSettle) {
   scenes::Scene scene = scenes::loadSceneFile(kScenes + GetParam());
   phys::World& w = scene.world;
   ASSERT_EQ(w.characters().size(), 2u);
-  double worstLimit = 0.0, worstLink = 0.0, hitAt[2] = {-1.0, -1.0};
+  // The worst over the whole run, and since 3 s, once the hit is over and they lie settling.
+  double worstLimit = 0.0, worstLink = 0.0, everLimit = 0.0, everLink = 0.0, hitAt[2] = {-1.0, -1.0};
   while (w.time() < 8.0) {
     w.step();
     for (std::size_t k = 0; k < 2; ++k) {
       if (hitAt[k] < 0.0 && w.characters()[k].state != phys::CharacterState::Active) hitAt[k] = w.time();
     }
+    double limit = 0.0;
+    for (std::size_t k = 0; k < w.rigidJoints().size(); ++k) limit = std::max(limit, pastLimit(w, k));
+    everLimit = std::max(everLimit, limit);
+    everLink = std::max(everLink, w.metrics().maxJointError);
     if (w.time() > 3.0) {
-      for (std::size_t k = 0; k < w.rigidJoints().size(); ++k)
-        worstLimit = std::max(worstLimit, pastLimit(w, k));
+      worstLimit = std::max(worstLimit, limit);
       worstLink = std::max(worstLink, w.metrics().maxJointError);
     }
   }
   std::printf(
       "%s: runner hit at %.2f s, tackler at %.2f s; at 8 s the fastest parts %.3f and %.3f m/s; worst "
-      "joint "
-      "past its limit after 3 s %.2f degrees, worst link %.2f mm\n",
+      "joint past its limit %.2f degrees over the run, %.2f after 3 s; worst link %.2f mm over the run, "
+      "%.2f after 3 s\n",
       GetParam(), hitAt[0], hitAt[1], fastestPart(w, w.characters()[0]), fastestPart(w, w.characters()[1]),
-      worstLimit / kDeg, worstLink * 1e3);
+      everLimit / kDeg, worstLimit / kDeg, everLink * 1e3, worstLink * 1e3);
   for (std::size_t k = 0; k < 2; ++k) {
     const phys::Character& c = w.characters()[k];
     EXPECT_GT(hitAt[k], 1.0) << c.ragdoll;  // not before they meet
