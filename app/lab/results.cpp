@@ -297,15 +297,16 @@ std::string trackingWords(const std::vector<CsvRow>& rows) {
 
 // What each joint needed to follow the run cycle at the scene's own setting (`lab run --json`'s
 // drives), as a table.
-std::string drivesTable(const std::string& runJson) {
+std::string drivesTable(const std::string& scene, const std::string& runJson) {
   const Json j = Json::parse(runJson);
   std::ostringstream md;
   md << "What each part's drive needed over the run's " << j["steps"].get<int>() << " steps ("
      << formatNumber(j["steps"].get<int>() * j["dt"].get<double>(), 3) << " s) at the scene's own setting ("
      << j["method"].get<std::string>() << " " << j["iterations"].get<int>() << "x" << j["substeps"].get<int>()
-     << ", `lab run run-cycle --json`'s `drives`): the torque from its parent's joint, and for the root "
-        "(the torso) the hand of god's force and torque, RMS over the run's steps and the largest after "
-        "any step.\n\n| part | RMS | peak |\n|---|---:|---:|\n";
+     << ", `lab run " << scene
+     << " --json`'s `drives`): the torque from its parent's joint, and for the root part the hand of god's "
+        "force and torque, RMS over the run's steps and the largest after any step.\n\n"
+        "| part | RMS | peak |\n|---|---:|---:|\n";
   for (const Json& d : j["drives"]) {
     const auto number = [&](const char* key) { return formatNumber(d[key].get<double>(), 3); };
     if (d["root"].get<bool>()) {
@@ -402,13 +403,11 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     } else {
       md << codeBlockOrText(r) << "\n";
     }
-  }
-  {
-    std::vector<std::string> runArgs{"run", "run-cycle", "--json", "--data", o.data.string()};
+    std::vector<std::string> runArgs{"run", t.scene, "--json", "--data", o.data.string()};
     if (o.quick) runArgs.insert(runArgs.end(), {"--steps", "10"});
     const CommandOutput run = runCommandMain(labMain, runArgs, err);
     failed |= run.code != 0;
-    md << (run.code == 0 ? drivesTable(run.out) : codeBlockOrText(run)) << "\n";
+    md << (run.code == 0 ? drivesTable(t.scene, run.out) : codeBlockOrText(run)) << "\n";
   }
 
   md << "## Where methods fail\n\n";

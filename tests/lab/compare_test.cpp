@@ -630,6 +630,13 @@ TEST(Report, QuickReportWritesEveryPart) {
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "converge" / "converge.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "tracking" / "results.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "results" / "tracking-capsule" / "results.csv"));
+  // Each tracking scene has its table of what its joints needed, the particle ragdoll's too.
+  std::size_t tables = 0;
+  for (std::size_t at = md.find("What each part's drive needed"); at != std::string::npos;
+       at = md.find("What each part's drive needed", at + 1))
+    ++tables;
+  EXPECT_EQ(tables, 3u);
+  EXPECT_NE(md.find("`lab run run-cycle-lean --json`'s `drives`"), std::string::npos);
   // The particle ragdoll is swept under every method, the rigid ones under their own alone.
   const std::string lean = lab_testing::readFile(out / "results" / "tracking-lean" / "results.csv");
   for (const char* method : {",gauss-seidel,", ",jacobi,", ",xpbd,", ",shake,"})
