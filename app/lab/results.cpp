@@ -307,7 +307,7 @@ std::string drivesTable(const std::string& scene, const std::string& runJson) {
      << " --json`'s `drives`): the torque from its parent's joint, and for the root part the hand of god's "
         "force and torque, RMS over the run's steps and the largest after any step.\n\n"
         "| part | RMS | peak |\n|---|---:|---:|\n";
-  for (const Json& d : j["drives"]) {
+  for (const Json& d : j.value("drives", Json::array())) {  // a run without drives has none
     const auto number = [&](const char* key) { return formatNumber(d[key].get<double>(), 3); };
     if (d["root"].get<bool>()) {
       md << "| " << d["bone"].get<std::string>() << " (root: hand of god) | " << number("rms_force") << " N, "

@@ -64,8 +64,8 @@ std::string skeletonDifference(const Clip& a, const Clip& b) {
       extra.push_back(a.bones[i]);
     } else if (const std::string pa = parentName(a, i), pb = parentName(b, static_cast<std::size_t>(j));
                pa != pb) {
-      reparented.push_back("bone '" + a.bones[i] + "''s parent is " + pa + " where '" + b.name + "' has " +
-                           pb);
+      reparented.push_back("the parent of bone '" + a.bones[i] + "' is " + pa + " where '" + b.name +
+                           "' has " + pb);
     }
   }
   std::string why = "clip '" + a.name + "' has other bones than '" + b.name + "':";

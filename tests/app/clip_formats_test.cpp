@@ -122,10 +122,11 @@ Quat turnAbout(double degrees, const Vec3& axis) {
   return glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
 }
 
-// A leg under an armature the way exporters leave one: the armature turned a quarter about x
+// A leg under an armature the way exporters leave one: the armature moved, turned a quarter about x
 // (z-up to y-up) and scaled to centimetres, the hips turned at rest, a twist node that is not
-// animated between the hips and the thigh, and each animated bone keyed at rest in frame 0 and
-// turned in frames 1 and 2. A triangle, since some exporters want a mesh.
+// animated between the hips and the thigh, and each animated bone keyed at rest in frame 1 (not the
+// first, so that a loader taking its rest from the first key fails) and turned either way of it in
+// frames 0 and 2. A triangle, since some exporters want a mesh.
 std::unique_ptr<aiScene> legScene() {
   auto scene = std::make_unique<aiScene>();
   scene->mRootNode = new aiNode("scene");
@@ -139,7 +140,7 @@ std::unique_ptr<aiScene> legScene() {
   hips->addChildren(1, &twist);
   twist->addChildren(1, &thigh);
   thigh->addChildren(1, &shin);
-  armature->mTransformation = transform(Vec3(0.0), turnAbout(-90.0, Vec3(1, 0, 0)), 0.01);
+  armature->mTransformation = transform(Vec3(0.5, 0.0, -0.2), turnAbout(-90.0, Vec3(1, 0, 0)), 0.01);
   const std::map<std::string, std::pair<Vec3, Quat>> rest{
       {"hips", {Vec3(0.0, 0.0, 95.0), turnAbout(30.0, Vec3(0, 1, 1))}},
       {"thigh", {Vec3(10.0, 0.0, 0.0), turnAbout(-50.0, Vec3(1, 0, 0.3))}},
@@ -183,7 +184,8 @@ std::unique_ptr<aiScene> legScene() {
     channel->mScalingKeys = new aiVectorKey[kFrames];
     const auto& [at, restTurn] = rest.at(bones[c]);
     for (unsigned f = 0; f < kFrames; ++f) {
-      const Quat turn = turnAbout(25.0 * f * (c + 1), Vec3(1.0, 0.5 * c, 0.2 * f)) * restTurn;
+      const double degrees = 25.0 * (static_cast<double>(f) - 1.0) * (c + 1);
+      const Quat turn = turnAbout(degrees, Vec3(1.0, 0.5 * c, 0.2 * f)) * restTurn;
       const aiMatrix4x4 key = transform(at + Vec3(f * 3.0, 0.0, 0.0), turn);
       aiVector3D scaling, position;
       aiQuaternion rotation;
@@ -210,15 +212,16 @@ TEST(ClipFormats, KeysOfTurnedRestPosesAreReadAsTurnsFromRest) {
     EXPECT_EQ(clip.bones, (std::vector<std::string>{"hips", "thigh", "shin"})) << format;
     EXPECT_EQ(clip.parents, (std::vector<int>{-1, 0, 1})) << format;
     EXPECT_NEAR(clip.frameTime, kFrameTime, 1e-6) << format;
-    expectSameMotion(clip, *scene, 0, format);
-    // The hips' position in the file's frame: the armature turns z up to y up and scales to metres.
-    EXPECT_NEAR(glm::length(clip.root[0] - Vec3(0.0, 0.95, 0.0)), 0.0, 1e-5) << format;
-    EXPECT_NEAR(glm::length(clip.root[2] - Vec3(0.06, 0.95, 0.0)), 0.0, 1e-5) << format;
+    expectSameMotion(clip, *scene, 1, format);
+    // The hips' position in the file's frame: the armature moves, turns z up to y up and scales to
+    // metres.
+    EXPECT_NEAR(glm::length(clip.root[0] - Vec3(0.5, 0.95, -0.2)), 0.0, 1e-5) << format;
+    EXPECT_NEAR(glm::length(clip.root[2] - Vec3(0.56, 0.95, -0.2)), 0.0, 1e-5) << format;
   }
 }
 
 // A .x file as the seed's engine read them: frames with their rest matrices (row vectors, the
-// translation in the last row), an animation of matrix keys, frame 0 at rest.
+// translation in the last row), an animation of matrix keys, frame 1 at rest.
 std::string xFile() {
   const auto matrix = [](const Vec3& at, const Quat& turn) {
     const glm::dmat4 m = glm::translate(glm::dmat4(1.0), at) * glm::mat4_cast(turn);
@@ -235,7 +238,7 @@ std::string xFile() {
   std::ostringstream x;
   x << "xof 0303txt 0032\n"
     << "AnimTicksPerSecond { " << 1.0 / kFrameTime << "; }\n"
-    << "Frame root {\n FrameTransformMatrix { " << matrix(Vec3(0.0), turnAbout(15.0, Vec3(0, 1, 0)))
+    << "Frame root {\n FrameTransformMatrix { " << matrix(Vec3(1.0, 0.0, 2.0), turnAbout(15.0, Vec3(0, 1, 0)))
     << ";; }\n"
     << " Frame hips {\n  FrameTransformMatrix { " << matrix(hipsAt, hipsRest) << ";; }\n"
     << "  Frame knee {\n   FrameTransformMatrix { " << matrix(kneeAt, kneeRest) << ";; }\n  }\n }\n}\n"
@@ -244,8 +247,8 @@ std::string xFile() {
                                              std::tuple{"knee", kneeAt, kneeRest, Vec3(1, 0, 0)}}) {
     x << " Animation {\n  {" << name << "}\n  AnimationKey { 4; " << kFrames << ";\n";
     for (unsigned f = 0; f < kFrames; ++f)
-      x << "   " << f << "; 16; " << matrix(at, turnAbout(30.0 * f, axis) * rest) << ";;"
-        << (f + 1 < kFrames ? ",\n" : ";\n");
+      x << "   " << f << "; 16; " << matrix(at, turnAbout(30.0 * (static_cast<double>(f) - 1.0), axis) * rest)
+        << ";;" << (f + 1 < kFrames ? ",\n" : ";\n");
     x << "  }\n }\n";
   }
   x << "}\n";
@@ -261,10 +264,15 @@ TEST(ClipFormats, TheSeedsXFilesAreReadAsTurnsFromRest) {
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(file.string(), 0);
   ASSERT_NE(scene, nullptr) << importer.GetErrorString();
-  expectSameMotion(clip, *scene, 0, "walk.x");
-  // Frame 2 turns the knee 60 degrees about its own x from rest, whatever the file's rest pose.
+  expectSameMotion(clip, *scene, 1, "walk.x");
+  // Frame 2 turns the knee 30 degrees from rest (about the hips' x, as the key is the turn times the
+  // rest), whatever the file's rest pose.
   const Quat knee = clip.turns[2 * clip.bones.size() + 1];
-  EXPECT_NEAR(2.0 * std::acos(std::min(1.0, std::abs(knee.w))), glm::radians(60.0), 1e-5);
+  EXPECT_NEAR(2.0 * std::acos(std::min(1.0, std::abs(knee.w))), glm::radians(30.0), 1e-5);
+  // The hips at (0, 0.9, 0) in the root frame, which is turned about the up axis and moved to
+  // (1, 0, 2); .x is left-handed, and assimp makes it right-handed by turning z round.
+  EXPECT_NEAR(glm::length(clip.root[1] - Vec3(1.0, 0.9, -2.0)), 0.0, 1e-5)
+      << clip.root[1].x << " " << clip.root[1].y << " " << clip.root[1].z;
 }
 
 }  // namespace

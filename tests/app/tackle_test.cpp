@@ -85,6 +85,9 @@ TEST_P(Tackle, BothGoLimpFallAndSettle) {
     EXPECT_LT(fastestPart(w, c), 0.05) << c.ragdoll;  // at rest
   }
   EXPECT_LT(worstLimit, 3.0 * kDeg);
+  // Through the hit itself a joint may be forced past its stop for a moment (9.1 degrees for the
+  // capsule ragdolls, 2.8 for the box ones: docs/physics.md quotes these), never far.
+  EXPECT_LT(everLimit, 12.0 * kDeg);
   EXPECT_LT(worstLink, 0.005);
   EXPECT_TRUE(w.freezes().empty());
 }

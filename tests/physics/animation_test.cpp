@@ -139,13 +139,14 @@ TEST(Clip, SkeletonDifferencesNameTheBones) {
   EXPECT_EQ(phys::skeletonDifference(body, body), "");
   EXPECT_EQ(phys::skeletonDifference(skeleton("a", {"torso", "neck", "arm"}, {-1, 0, 0}), body),
             "clip 'a' has other bones than 'body': it lacks 'head'; it has 'neck' that 'body' has not");
-  EXPECT_EQ(phys::skeletonDifference(skeleton("b", {"torso", "head", "arm"}, {-1, 0, 1}), body),
-            "clip 'b' has other bones than 'body': bone 'arm''s parent is 'head' where 'body' has 'torso'");
+  EXPECT_EQ(
+      phys::skeletonDifference(skeleton("b", {"torso", "head", "arm"}, {-1, 0, 1}), body),
+      "clip 'b' has other bones than 'body': the parent of bone 'arm' is 'head' where 'body' has 'torso'");
   EXPECT_EQ(phys::skeletonDifference(skeleton("c", {"torso", "arm", "head"}, {-1, 0, 0}), body),
             "clip 'c' has other bones than 'body': the same bones in another order");
   EXPECT_EQ(phys::skeletonDifference(skeleton("d", {"head", "torso", "arm"}, {-1, 0, 1}), body),
-            "clip 'd' has other bones than 'body': bone 'head''s parent is none (the root) where 'body' has "
-            "'torso'; bone 'torso''s parent is 'head' where 'body' has none (the root)");
+            "clip 'd' has other bones than 'body': the parent of bone 'head' is none (the root) where 'body' "
+            "has 'torso'; the parent of bone 'torso' is 'head' where 'body' has none (the root)");
 }
 
 TEST(Character, AClipThatDoesNotFitIsRefusedWithTheBonesNamed) {

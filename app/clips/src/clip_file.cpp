@@ -46,6 +46,7 @@ struct Animated {
   const aiNodeAnim* channel;
   phys::Quat rest;
   aiMatrix4x4 parentRest;
+  phys::Quat parentTurn;  // parentRest's rotation
 };
 
 // The animated nodes in depth-first order, each with the nearest animated ancestor as its parent.
@@ -56,7 +57,7 @@ void collectBones(const aiNode& node, const aiMatrix4x4& parentRest, int parent,
     self = static_cast<int>(clip.bones.size());
     clip.bones.emplace_back(node.mName.C_Str());
     clip.parents.push_back(parent);
-    bones.push_back({channel, rotationOf(node.mTransformation), parentRest});
+    bones.push_back({channel, rotationOf(node.mTransformation), parentRest, rotationOf(parentRest)});
   }
   const aiMatrix4x4 rest = parentRest * node.mTransformation;
   for (unsigned i = 0; i < node.mNumChildren; ++i)
@@ -66,9 +67,10 @@ void collectBones(const aiNode& node, const aiMatrix4x4& parentRest, int parent,
 // A key's local rotation K taken back to the turn from rest a clip holds. A bone turned by K from
 // its parent node, whose rest is P in the file's frame and whose own rest rotation is R, is turned
 // from rest by P K R^-1 P^-1 relative to its parent's turn, in the file's frame (docs/physics.md,
-// "Animation"). In BVH every rest rotation is the identity, and the key is the turn.
+// "Animation"). In BVH every rest rotation is the identity, and the key is the turn. Only rotations
+// are composed: a node scaled unevenly above a bone is taken as if its scale were even.
 phys::Quat turnFromRest(const Animated& bone, const aiQuaternion& key) {
-  const phys::Quat parent = rotationOf(bone.parentRest);
+  const phys::Quat& parent = bone.parentTurn;
   return glm::normalize(parent * toQuat(key) * glm::conjugate(bone.rest) * glm::conjugate(parent));
 }
 

@@ -26,8 +26,9 @@ struct Clip {
   std::vector<int> parents;        ///< per bone: its parent's index, -1 for the root
   Real frameTime = 1.0 / 30.0;     ///< unit: s; finite, >= kMinFrameTime
   std::vector<Vec3> root;  ///< per frame: the root's position, m, in the clip's frame, within kMaxClipReach
-  /// Per frame, per bone (frame-major): the bone's turn relative to its parent from the rest pose,
-  /// in the parent's frame; the root's relative to the clip's frame. At rest every turn is the
+  /// Per frame, per bone (frame-major): the bone's turn from the rest pose relative to its parent's
+  /// turn, in the clip's axes carried by the parent's turn (a bone's turn in the clip's frame is its
+  /// parent's times its own); the root's relative to the clip's frame. At rest every turn is the
   /// identity.
   std::vector<Quat> turns;
 
@@ -47,7 +48,7 @@ std::string clipProblem(const Clip& clip);
 /// "" when `a` has the same bones as `b`, in the same order, with the same parents: clips one
 /// character can change between (World::playClip, queueClip, a reaction's get-up clip). Otherwise
 /// why not, naming the bones: "clip 'A' has other bones than 'B': it lacks 'x'; it has 'y' that
-/// 'B' has not; bone 'z''s parent is 'p' where 'B' has 'q'" (or "... in another order").
+/// 'B' has not; the parent of bone 'z' is 'p' where 'B' has 'q'" (or "... in another order").
 std::string skeletonDifference(const Clip& a, const Clip& b);
 
 /// A clip's pose at one time: the root's position and each bone's turn, as Clip holds them.

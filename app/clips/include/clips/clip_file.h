@@ -1,8 +1,8 @@
 #pragma once
-// Reading an animation clip from a file: the first animation assimp finds in it, as a phys::Clip. BVH
-// keys are turns from the rest pose, as a clip holds them; other formats' keys (FBX, glTF, .x) are
-// whole local rotations, bind pose included, read as they are (docs/physics.md, "Animation"; the project's
-// own clips are BVH files written by scripts/make-clips).
+// Reading an animation clip from a file: the first animation assimp finds in it, as a phys::Clip. A
+// key is a bone's whole local rotation, its rest included (in BVH the rest is the identity), and is
+// taken back to the clip's turn from the file's rest pose (docs/physics.md, "Animation"; the
+// project's own clips are BVH files written by scripts/make-clips).
 #include <filesystem>
 #include <stdexcept>
 #include <string>
