@@ -140,7 +140,7 @@ class Session {
   /// Every rigid and particle joint's drive strength (phys::JointDrive::strength, 0 limp to 1
   /// holding its target) in every run, each joint keeping its own target and stiffness, and every
   /// character's strength (World::setCharacterStrength, its root's kept, a reaction under way
-  /// stopped: a fallen character stands up into its clip); "" or why not (a strength
+  /// stopped: a fallen character is active again where it lies); "" or why not (a strength
   /// outside [0, 1], no joint with a drive in the scene; then nothing changes).
   std::string setDriveStrength(double strength);
   /// Character k's joint strength, balance or reaction threshold (m/s) in every run (World's
