@@ -28,6 +28,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The four methods, as --methods takes them: the seed's scenes and the particle ragdoll are swept over all.
+constexpr const char* kEveryMethod = "gauss-seidel,jacobi,xpbd,shake";
+
 struct ReportOptions {
   fs::path out;
   fs::path data;
@@ -104,8 +107,8 @@ std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& sc
       args.emplace_back(a);
     }
   } else {
-    for (const char* a : {"--methods", "gauss-seidel,jacobi,xpbd,shake", "--iterations", "1,2,4,8",
-                          "--substeps", "1,2,4,8", "--repeat", "3"}) {
+    for (const char* a :
+         {"--methods", kEveryMethod, "--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--repeat", "3"}) {
       args.emplace_back(a);
     }
   }
@@ -190,6 +193,20 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
 // The bar for the run cycle: its parts within 5 degrees RMS of the clip at 1/60 s.
 constexpr double kTrackingBar = 5.0;  // unit: degrees
 
+// The row to keep of `kept` and `r`: the cheaper of those whose tracking error is within the bar.
+const CsvRow* cheaperWithinBar(const CsvRow* kept, const CsvRow& r) {
+  const double e = fieldNumber(r, "rms_tracking_error");
+  if (!(std::isfinite(e) && e <= kTrackingBar)) return kept;
+  return kept == nullptr || fieldNumber(r, "ms_per_step") < fieldNumber(*kept, "ms_per_step") ? &r : kept;
+}
+
+// "setting | ms/step | error" of a cheapest-within-the-bar row, or "none | - | -".
+std::string cheapestCells(const CsvRow* r) {
+  if (r == nullptr) return "none | - | -";
+  return settingName(*r) + " | " + formatNumber(fieldNumber(*r, "ms_per_step"), 3) + " | " +
+         formatNumber(fieldNumber(*r, "rms_tracking_error"), 3) + " deg";
+}
+
 // The tracking scenes, one a ragdoll shape, each swept into results/<folder>.
 // A rigid ragdoll is solved by XPBD whatever the method, so only particle ones sweep the four.
 struct TrackingScene {
@@ -212,7 +229,7 @@ std::vector<std::string> trackingArgs(const ReportOptions& o, const TrackingScen
                                       const fs::path& dir) {
   std::vector<std::string> args{scene.scene, "--error",    "tracking-error", "--no-peers",
                                 "--out",     dir.string(), "--data",         o.data.string()};
-  if (scene.everyMethod) args.insert(args.end(), {"--methods", "gauss-seidel,jacobi,xpbd,shake"});
+  if (scene.everyMethod) args.insert(args.end(), {"--methods", kEveryMethod});
   if (o.quick) {
     args.insert(args.end(), {"--iterations", "1,2", "--substeps", "1", "--repeat", "1", "--steps", "10"});
   } else {
@@ -235,22 +252,13 @@ std::string trackingByMethod(const std::vector<CsvRow>& rows) {
   for (const CsvRow& r : rows) {
     if (std::abs(fieldNumber(r, "dt") - kDt) > 1e-9) continue;
     const CsvRow*& c = cheapest[fieldText(r, "method")];
-    const double e = fieldNumber(r, "rms_tracking_error");
-    if (std::isfinite(e) && e <= kTrackingBar &&
-        (c == nullptr || fieldNumber(r, "ms_per_step") < fieldNumber(*c, "ms_per_step")))
-      c = &r;
+    c = cheaperWithinBar(c, r);
   }
   if (cheapest.size() < 2) return {};
   std::ostringstream md;
   md << "\nAt dt 1/60, each method's cheapest setting within the bar:\n\n"
      << "| method | cheapest within the bar | ms/step | tracking error |\n|---|---|---:|---:|\n";
-  for (const auto& [method, r] : cheapest) {
-    md << "| " << method << " | "
-       << (r != nullptr ? settingName(*r) + " | " + formatNumber(fieldNumber(*r, "ms_per_step"), 3) + " | " +
-                              formatNumber(fieldNumber(*r, "rms_tracking_error"), 3) + " deg"
-                        : std::string("none | - | -"))
-       << " |\n";
-  }
+  for (const auto& [method, r] : cheapest) md << "| " << method << " | " << cheapestCells(r) << " |\n";
   return md.str();
 }
 
@@ -273,20 +281,13 @@ std::string trackingWords(const std::vector<CsvRow>& rows) {
     auto& [cheapest, best] = byDt[fieldNumber(r, "dt")];
     const double e = fieldNumber(r, "rms_tracking_error");
     if (!std::isfinite(e)) continue;
-    if (e <= kTrackingBar &&
-        (cheapest == nullptr || fieldNumber(r, "ms_per_step") < fieldNumber(*cheapest, "ms_per_step")))
-      cheapest = &r;
+    cheapest = cheaperWithinBar(cheapest, r);
     if (best == nullptr || e < fieldNumber(*best, "rms_tracking_error")) best = &r;
   }
   for (const auto& [dt, pair] : byDt) {
     const auto& [cheapest, best] = pair;
-    md << "| 1/" << formatNumber(1.0 / dt, 3) << " | "
-       << (cheapest != nullptr ? settingName(*cheapest) : std::string("none")) << " | "
-       << (cheapest != nullptr ? formatNumber(fieldNumber(*cheapest, "ms_per_step"), 3) : std::string("-"))
-       << " | "
-       << (cheapest != nullptr ? formatNumber(fieldNumber(*cheapest, "rms_tracking_error"), 3) + " deg"
-                               : std::string("-"))
-       << " | " << (best != nullptr ? settingName(*best) : std::string("-")) << " | "
+    md << "| 1/" << formatNumber(1.0 / dt, 3) << " | " << cheapestCells(cheapest) << " | "
+       << (best != nullptr ? settingName(*best) : std::string("-")) << " | "
        << (best != nullptr ? formatNumber(fieldNumber(*best, "rms_tracking_error"), 3) + " deg"
                            : std::string("-"))
        << " |\n";
