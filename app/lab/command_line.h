@@ -52,6 +52,9 @@ inline constexpr OptionSpec kModels{"--models,--model", "M", "a body model (corn
                                     "corners, tetra or rigid, imposed at load on every box and capsule"};
 inline constexpr OptionSpec kSleep{"--sleep", "on|off", "a value (on or off)",
                                    "whether islands at rest sleep"};
+inline constexpr OptionSpec kJointProjection{
+    "--joint-projection", "on|off", "a value (on or off)",
+    "whether rigid joints are closed exactly after each substep's passes"};
 inline constexpr OptionSpec kPeerSleep{"--peer-sleep", "on|off", "a value (on or off)",
                                        "whether the peers' bodies at rest sleep (Bullet's deactivation)"};
 inline constexpr OptionSpec kThreads{"--threads", "N", "a whole number", "threads the step may use, 1 to 64"};

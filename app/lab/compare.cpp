@@ -39,6 +39,7 @@ struct CompareOptions {
   bool json = false;
   bool sleep = false;             ///< --sleep: whether ours put islands at rest to sleep, and the peers too
   std::optional<bool> peerSleep;  ///< --peer-sleep: the peers' alone, when it differs from --sleep
+  std::optional<bool> jointProjection;  ///< --joint-projection: ours; the scene's when unset
 };
 
 void describeCompare(CommandLine& line, CompareOptions& o) {
@@ -55,6 +56,7 @@ void describeCompare(CommandLine& line, CompareOptions& o) {
       option::kSleep, o.sleep,
       "(ours and the peers'; default off: every engine steps every body, so costs compare awake with awake)");
   line.onOff(option::kPeerSleep, o.peerSleep, "(default: as --sleep)");
+  line.onOff(option::kJointProjection, o.jointProjection, "for ours (default: the scene's)");
   line.flag(option::kJson, o.json, true, "one object per row, one per line, instead of the table");
   line.folder(option::kData, o.dataDir, "");
 }
@@ -66,7 +68,7 @@ using Row = SweepRow;
 Plan comparePlan(const CompareOptions& o, const std::filesystem::path& file, double dt) {
   PlanRequest request;
   const std::string label = o.model ? std::string(phys::toString(*o.model)) : std::string();
-  request.models.push_back(ModelChoice{label, imposedAtLoad(o.model, o.sleep)});
+  request.models.push_back(ModelChoice{label, imposedAtLoad(o.model, o.sleep, o.jointProjection)});
   request.methods = {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi, phys::SolverMethod::Xpbd,
                      phys::SolverMethod::Shake};
   if (o.iterations) request.iterations = {*o.iterations};
@@ -184,7 +186,8 @@ std::string contents(const phys::World& world) {
 // Every run, then the table or the JSON.
 int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& err) {
   const std::filesystem::path file = sceneFile(options.scene, options.dataDir);
-  const scenes::Scene scene = scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep));
+  const scenes::Scene scene =
+      scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep, options.jointProjection));
   const double dt = options.dt.value_or(scene.world.solverSettings().dt);
   const Plan plan = comparePlan(options, file, dt);
   Progress progress(err, "compare", planWork(plan));

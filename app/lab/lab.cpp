@@ -17,8 +17,9 @@ namespace {
 
 // Load, override, step, report, dump.
 int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
-  scenes::Scene scene = scenes::loadSceneFile(sceneFile(options.scene, options.dataDir),
-                                              imposedAtLoad(options.model, options.sleep));
+  scenes::Scene scene =
+      scenes::loadSceneFile(sceneFile(options.scene, options.dataDir),
+                            imposedAtLoad(options.model, options.sleep, options.jointProjection));
   const RunResult result = runScene(scene, options, &err);
   out << (options.json ? jsonText(result) : summaryText(result));
   out.flush();

@@ -11,6 +11,7 @@ void describeRun(CommandLine& line, RunOptions& o) {
   line.count(option::kSubsteps, phys::kMaxSubsteps, o.substeps, "(default: the scene's)");
   line.model(o.model, "(rigid on ragdolls too; a rigid body is solved by XPBD whatever the method)");
   line.onOff(option::kSleep, o.sleep, "(default off, whatever the scene says)");
+  line.onOff(option::kJointProjection, o.jointProjection, "(default: the scene's)");
   line.count(option::kThreads, phys::kMaxThreads, o.threads, "(default: the scene's, else 1)");
   line.flag(option::kJson, o.json, true, "one object instead of the summary");
   line.file(option::kDump, o.dump, "");

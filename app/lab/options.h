@@ -29,6 +29,7 @@ struct RunOptions {
   /// --sleep on: islands at rest sleep (SolverSettings::sleep). Off, the lab's default, steps every
   /// body whatever the scene says, so that costs and errors compare like with like.
   bool sleep = false;
+  std::optional<bool> jointProjection;        ///< --joint-projection: SolverSettings::jointProjection
   std::optional<int> threads;                 ///< --threads N: SolverSettings::threads (default: the scene's)
   bool json = false;                          ///< one JSON object instead of the summary
   std::optional<std::filesystem::path> dump;  ///< CSV of the named bodies' final poses

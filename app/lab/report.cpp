@@ -59,6 +59,7 @@ std::string jsonText(const RunResult& r) {
   j["iterations"] = r.solver.iterations;
   j["substeps"] = r.solver.substeps;
   j["dt"] = r.solver.dt;
+  j["joint_projection"] = r.solver.jointProjection.enabled;
   j["steps"] = r.steps;
   j["particles"] = r.particles;
   j["constraints"] = r.constraints;
@@ -125,7 +126,7 @@ std::string summaryText(const RunResult& r) {
       (r.xpbdAlone ? " (no stick to relax: every method steps this world alike, rigid bodies by XPBD)" : "") +
       ", " + count(static_cast<std::size_t>(r.solver.iterations), "iteration", "iterations") + ", " +
       count(static_cast<std::size_t>(r.solver.substeps), "substep", "substeps") + ", dt " + num(r.solver.dt) +
-      " s\n";
+      " s" + (r.solver.jointProjection.enabled ? ", rigid joints projected" : "") + "\n";
   s += "world        " + count(r.particles, "particle", "particles") + ", " +
        count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
   s += "islands      " + std::to_string(r.islands) + " at the end, " + std::to_string(r.awakeBodies) +

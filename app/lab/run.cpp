@@ -14,10 +14,12 @@ bool xpbdWhateverTheMethod(const phys::World& world) {
   return world.rigidBodies().size() > 0 && world.sticks().empty();
 }
 
-scenes::LoadOptions imposedAtLoad(std::optional<phys::BodyModel> model, bool sleep) {
+scenes::LoadOptions imposedAtLoad(std::optional<phys::BodyModel> model, bool sleep,
+                                  std::optional<bool> jointProjection) {
   scenes::LoadOptions load;
   load.boxModel = model;
   load.sleep = sleep;
+  load.jointProjection = jointProjection;
   if (model == phys::BodyModel::Rigid) load.ragdollModel = phys::RagdollModel::Rigid;
   return load;
 }

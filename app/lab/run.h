@@ -63,7 +63,8 @@ bool xpbdWhateverTheMethod(const phys::World& world);
 /// pyramid and grid box; ragdolls keep their own models (seed, lean), except that rigid makes
 /// their parts rigid too; nothing for no model. `--sleep`: sleeping off unless `sleep`, whatever
 /// the file says.
-scenes::LoadOptions imposedAtLoad(std::optional<phys::BodyModel> model, bool sleep = false);
+scenes::LoadOptions imposedAtLoad(std::optional<phys::BodyModel> model, bool sleep = false,
+                                  std::optional<bool> jointProjection = {});
 
 /// Puts the options' overrides into the world's solver settings; rethrows the
 /// std::invalid_argument of World::setSolverSettings when the world refuses them.

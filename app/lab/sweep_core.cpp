@@ -196,6 +196,7 @@ std::string settingsWords(const phys::World& world) {
     << ixsWords(s.iterations, s.substeps);
   if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
   if (s.sleep.enabled) o << ", sleeping";
+  if (s.jointProjection.enabled && !world.rigidJoints().empty()) o << ", joints projected";
   return o.str();
 }
 

@@ -187,6 +187,9 @@ void settingsSection(Session& session, UiState& ui) {
   const int mostThreads =
       std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, phys::kMaxThreads);
   changed |= settingSlider("threads", s.threads, 1, std::max(mostThreads, s.threads), ui);
+  changed |= ImGui::Checkbox("joint projection", &s.jointProjection.enabled);
+  ImGui::SameLine();
+  greyWrapped("rigid joints closed exactly after each substep");
   changed |= ImGui::Checkbox("sleep", &s.sleep.enabled);
   ImGui::SameLine();
   greyWrapped("islands at rest " + figure("%.1f", s.sleep.time) + " s under " +

@@ -30,6 +30,12 @@ std::vector<StatsLine> statsLines(const phys::World& world) {
                    figure("%.2e", m.rmsConstraintError)});
   lines.push_back({"joint gap " + figure("%.2e", m.maxJointError) + " m, penetration " +
                    figure("%.2e", m.maxPenetration) + " m"});
+  if (world.solverSettings().jointProjection.enabled && !world.rigidJoints().empty()) {
+    const phys::JointProjectionReport& p = world.lastJointProjection();
+    lines.push_back({"joint projection: " + std::to_string(p.iterations) +
+                     " solves in the last step, widest " + figure("%.2e", p.errorBefore) + " before, " +
+                     figure("%.2e", p.errorAfter) + " after"});
+  }
   lines.push_back({"energy " + figure("%.3f", m.energy()) + " J (kinetic " + figure("%.3f", m.kineticEnergy) +
                    "), max speed " + figure("%.2f", m.maxSpeed) + " m/s"});
   if (m.frozen > 0) {

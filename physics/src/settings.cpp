@@ -80,6 +80,11 @@ std::string validate(const SolverSettings& s) {
   if (s.threads < 1 || s.threads > kMaxThreads) why << "threads must be from 1 to " << kMaxThreads << "; ";
   if (!finiteNonNegative(s.sleep.speed)) why << "sleep.speed must be finite and >= 0 (m/s); ";
   if (!finiteNonNegative(s.sleep.time)) why << "sleep.time must be finite and >= 0 (s); ";
+  const JointProjectionSettings& j = s.jointProjection;
+  if (!(j.tolerance > 0.0 && std::isfinite(j.tolerance)))
+    why << "jointProjection.tolerance must be finite and > 0 (m); ";
+  if (j.iterations < 1 || j.iterations > kMaxProjectionIterations)
+    why << "jointProjection.iterations must be from 1 to " << kMaxProjectionIterations << "; ";
   const PartingSettings& p = s.parting;
   if (p.plainSweeps < 0 || p.plainSweeps > kMaxPartingSweeps)
     why << "parting.plainSweeps must be from 0 to " << kMaxPartingSweeps << "; ";

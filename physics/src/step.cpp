@@ -70,6 +70,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
     startRigidContacts(h);
     const std::span<const Real> linkSlack = limitCorrections(h);
     relax(h, linkSlack);
+    projectJoints(s == 0);
     rigidVelocities(h);
     restitute(h);
     dampBodies();
@@ -461,6 +462,23 @@ void World::dampJoints() {
 
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the
 // guard that), so all of it from one instant, whichever particle went bad.
+// After the passes, before the velocities are taken from the change of pose: the poses moved so that
+// every rigid joint's pin closes and every hinge's axes align (joint_projection.h), so that the
+// substep's velocities carry the correction, as they carry every pass's. Once a step, after the
+// substeps and without touching the velocities (post-stabilisation proper), it kept the piles from
+// resting; in the last substep alone it turned a step's worth of opening into one substep's speed
+// and blew Bullet's pile apart (docs/physics.md, "Joint projection").
+void World::projectJoints(bool firstSubstep) {
+  if (firstSubstep) lastProjection_ = {};
+  if (!solver_.jointProjection.enabled || constraints_.rigidJoints().empty()) return;
+  const detail::StageTimer timer(profile_, Stage::Links);
+  const JointProjectionReport r =
+      jointProjection_.project(rigidBodies_, constraints_.rigidJoints(), solver_.jointProjection);
+  lastProjection_.iterations += r.iterations;
+  lastProjection_.errorBefore = std::max(lastProjection_.errorBefore, r.errorBefore);
+  lastProjection_.errorAfter = r.errorAfter;
+}
+
 void World::guard(bool shapes) {
   const detail::StageTimer timer(profile_, Stage::Guard);
   guardParticles();

@@ -104,4 +104,23 @@ TEST(StepAllocation, NoProjectSceneAllocatesAfterItsFirstSecond) {
   }
 }
 
+// The joint projection keeps its trees and blocks from step to step (joint_projection.h): the
+// 16-ragdoll pile, rigid and projected, lands in its first second and falls on through the next.
+TEST(StepAllocation, TheJointProjectionAllocatesNothingAfterItsFirstSecond) {
+  scenes::LoadOptions load;
+  load.ragdollModel = phys::RagdollModel::Rigid;
+  load.jointProjection = true;
+  scenes::Scene scene = scenes::loadSceneFile(scenes::sceneDirectory(DATA_DIR) / "ragdolls.xml", load);
+  phys::World& world = scene.world;
+  for (int i = stepsFor(world, 1.0); i > 0; --i) world.step();
+  const long before = allocations.load();
+  int solves = 0;
+  for (int i = stepsFor(world, 1.0); i > 0; --i) {
+    world.step();
+    solves += world.lastJointProjection().iterations;
+  }
+  EXPECT_EQ(allocations.load() - before, 0);
+  EXPECT_GT(solves, 0);  // it did project
+}
+
 }  // namespace

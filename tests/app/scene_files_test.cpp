@@ -321,4 +321,36 @@ TEST(SceneFiles, SleepIsTheFilesWordElseTheProgramsDefault) {
   }
 }
 
+// <solver joint-projection>: off unless the file says, the lab's --joint-projection imposed over the
+// file's word, and the tolerance and the cap read with their errors named by attribute.
+TEST(SceneFiles, JointProjectionIsTheFilesWordUnlessImposed) {
+  const auto projection = [](const std::string& solver, const scenes::LoadOptions& options = {}) {
+    return scenes::loadSceneText("<scene name=\"s\">" + solver + "</scene>", "s.xml", options)
+        .world.solverSettings()
+        .jointProjection;
+  };
+  scenes::LoadOptions off;
+  off.jointProjection = false;
+  EXPECT_FALSE(projection("").enabled);
+  EXPECT_TRUE(projection("<solver joint-projection=\"on\"/>").enabled);
+  EXPECT_FALSE(projection("<solver joint-projection=\"on\"/>", off).enabled);
+  const phys::JointProjectionSettings s = projection(
+      "<solver joint-projection=\"on\" projection-tolerance=\"0.001\" projection-iterations=\"5\"/>");
+  EXPECT_EQ(s.tolerance, 0.001);
+  EXPECT_EQ(s.iterations, 5);
+  for (const auto& [xml, attribute] :
+       {std::pair{"<solver joint-projection=\"yes\"/>", "joint-projection"},
+        std::pair{"<solver projection-tolerance=\"0\"/>", "projection-tolerance"},
+        std::pair{"<solver projection-iterations=\"0\"/>", "projection-iterations"},
+        std::pair{"<solver projection-iterations=\"101\"/>", "projection-iterations"}}) {
+    try {
+      projection(xml);
+      ADD_FAILURE() << xml << " was accepted";
+    } catch (const scenes::LoadError& e) {
+      EXPECT_EQ(e.attribute(), attribute) << e.what();
+      EXPECT_EQ(e.line(), 1) << e.what();
+    }
+  }
+}
+
 }  // namespace

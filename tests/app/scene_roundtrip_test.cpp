@@ -110,6 +110,9 @@ class SceneGenerator {
     if (chance(0.2)) e += attr("threads", std::to_string(integer(1, 4)));
     if (chance(0.2)) e += attr("sleep-speed", num(real(0.0, 0.2)));
     if (chance(0.2)) e += attr("sleep-time", num(real(0.0, 2.0)));
+    if (chance(0.3)) e += attr("joint-projection", chance(0.5) ? "on" : "off");
+    if (chance(0.2)) e += attr("projection-tolerance", num(real(1e-6, 1e-2)));
+    if (chance(0.2)) e += attr("projection-iterations", std::to_string(integer(1, 8)));
     return e + "/>\n";
   }
 

@@ -18,6 +18,7 @@ const std::vector<std::string> kJsonKeys = {"scene",
                                             "iterations",
                                             "substeps",
                                             "dt",
+                                            "joint_projection",
                                             "steps",
                                             "particles",
                                             "constraints",
@@ -143,6 +144,35 @@ TEST(LabRun, SleepsOnlyWhenAsked) {
   const ProcessResult bad = runLab("run " + quoted(scene) + " --sleep maybe", dir);
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("--sleep: 'maybe' is not on or off"), std::string::npos) << bad.err;
+}
+
+// --joint-projection on closes a rigid ragdoll's joints after every substep (docs/physics.md, "Joint
+// projection"): at 1 x 1 its worst joint error over the fall comes down to the projection's
+// tolerance, the summary says so, and --joint-projection off overrides a file that asks for it.
+TEST(LabRun, ProjectsRigidJointsWhenAsked) {
+  const TempDir dir;
+  const std::string run = "run ragdoll --model rigid --iterations 1 --substeps 1 --steps 120";
+  const FlatJson loose = runJson(run, dir);
+  const FlatJson held = runJson(run + " --joint-projection on", dir);
+  EXPECT_EQ(loose.values.at("joint_projection"), "false");
+  EXPECT_EQ(held.values.at("joint_projection"), "true");
+  EXPECT_GT(number(loose, "max_joint_error_over_run"), 1e-3);
+  EXPECT_LT(number(held, "max_joint_error_over_run"), 2e-4);
+  const ProcessResult summary = runLab(run + " --joint-projection on", dir);
+  EXPECT_NE(summary.out.find("rigid joints projected"), std::string::npos) << summary.out;
+  const auto scene = dir.write("p.xml",
+                               "<scene name=\"p\">\n"
+                               "  <solver joint-projection=\"on\"/>\n"
+                               "  <ground/>\n"
+                               "  <ragdoll name=\"r\" model=\"rigid\" pos=\"0 2 0\"/>\n"
+                               "</scene>\n");
+  EXPECT_EQ(runJson("run " + quoted(scene) + " --steps 10", dir).values.at("joint_projection"), "true");
+  EXPECT_EQ(runJson("run " + quoted(scene) + " --steps 10 --joint-projection off", dir)
+                .values.at("joint_projection"),
+            "false");
+  const ProcessResult bad = runLab("run ragdoll --joint-projection maybe", dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--joint-projection: 'maybe' is not on or off"), std::string::npos) << bad.err;
 }
 
 // Where the dropped particle "p" of freeFallScene() is in the dump of a run with these args.

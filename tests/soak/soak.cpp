@@ -188,7 +188,7 @@ bool sameSolver(const phys::SolverSettings& a, const phys::SolverSettings& b) {
   return a.method == b.method && a.dt == b.dt && a.substeps == b.substeps && a.iterations == b.iterations &&
          a.featureEpsilon == b.featureEpsilon && a.contactSlop == b.contactSlop &&
          a.bodyDamping == b.bodyDamping && a.restitution == b.restitution && a.compliance == b.compliance &&
-         a.maxDepenetrationSpeed == b.maxDepenetrationSpeed;
+         a.maxDepenetrationSpeed == b.maxDepenetrationSpeed && a.jointProjection == b.jointProjection;
 }
 
 /// Everything a refused command must leave as it was.
@@ -624,6 +624,9 @@ phys::SolverSettings Soak::randomSolver() {
                             : v < 0.15 ? random_.logUniform(1e-9, 1e-3)
                             : v < 0.2  ? random_.logUniform(1e3, 1e300)
                                        : random_.logUniform(0.1, 100);
+  s.jointProjection.enabled = random_.chance(0.5);
+  s.jointProjection.tolerance = random_.logUniform(1e-9, 1.0);
+  s.jointProjection.iterations = count(phys::kMaxProjectionIterations);
   return s;
 }
 

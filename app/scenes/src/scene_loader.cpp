@@ -122,6 +122,17 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
     if (*time < 0.0) e.fail("sleep-time", "must be >= 0 (s)");
     s.sleep.time = *time;
   }
+  if (auto projection = e.text("joint-projection")) {
+    if (*projection != "on" && *projection != "off")
+      e.fail("joint-projection", "'" + *projection + "' must be on or off");
+    s.jointProjection.enabled = *projection == "on";
+  }
+  if (auto tolerance = e.number("projection-tolerance", "m")) {
+    if (!(*tolerance > 0.0)) e.fail("projection-tolerance", "must be > 0 (m)");
+    s.jointProjection.tolerance = *tolerance;
+  }
+  if (auto n = e.integer("projection-iterations", 1, phys::kMaxProjectionIterations))
+    s.jointProjection.iterations = static_cast<int>(*n);
   e.rejectUnknownAttributes();
 }
 
@@ -954,6 +965,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
     readCamera(e, worldSettings, camera);
   }
   if (options.sleep) solverSettings.sleep.enabled = *options.sleep;
+  if (options.jointProjection) solverSettings.jointProjection.enabled = *options.jointProjection;
   if (options.threads) solverSettings.threads = *options.threads;
 
   std::optional<Scene> built;

@@ -160,7 +160,10 @@ std::string solverElement(const phys::SolverSettings& s) {
   solver.integer("threads", s.threads);
   solver.text("sleep", s.sleep.enabled ? "on" : "off")
       .number("sleep-speed", s.sleep.speed)
-      .number("sleep-time", s.sleep.time);
+      .number("sleep-time", s.sleep.time)
+      .text("joint-projection", s.jointProjection.enabled ? "on" : "off")
+      .number("projection-tolerance", s.jointProjection.tolerance)
+      .integer("projection-iterations", s.jointProjection.iterations);
   return solver.empty();
 }
 

@@ -36,7 +36,8 @@ enum class Stage : std::uint8_t {
   NarrowPhase,  ///< the contacts of those pairs; capsules' ground points; each contact's depth at x*
   Parting,      ///< deep overlaps parted without velocity
   Sticks,       ///< the bodies' own sticks and the loose ones, by the chosen method
-  Links,        ///< the joints and their drives, links created apart closing; joint friction, once a step
+  Links,        ///< the joints and their drives, links created apart closing, rigid joints projected; joint
+                ///< friction, once a step
   Contacts,     ///< contact projection, box-box and ground
   Friction,     ///< friction of the contacts just projected
   Velocities,   ///< rigid bodies' velocities from their change of pose; their dynamic friction and bounce

@@ -117,6 +117,20 @@ struct SleepSettings {
   bool operator==(const SleepSettings&) const = default;
 };
 
+/// The rigid joints' pins closed and hinges' axes aligned exactly after each substep's passes
+/// (JointProjection; docs/physics.md, "Joint projection"). Off unless asked: a joint is then held by
+/// the passes alone, as the 2020 XPBD paper solves it, and gives way to the contacts where the two
+/// disagree.
+struct JointProjectionSettings {
+  bool enabled = false;
+  /// The projection stops once every pin is this close (m) and every hinge's axes this far out of
+  /// line (rad: the gap they open 1 m along the axis); > 0.
+  Real tolerance = 1e-4;  ///< unit: m, and rad for the axes
+  int iterations = 3;     ///< Newton steps at most, 1 to kMaxProjectionIterations
+  bool operator==(const JointProjectionSettings&) const = default;
+};
+inline constexpr int kMaxProjectionIterations = 100;  ///< JointProjectionSettings::iterations
+
 /// How the equations are stepped and relaxed.
 struct SolverSettings {
   SolverMethod method = SolverMethod::GaussSeidel;
@@ -159,6 +173,7 @@ struct SolverSettings {
   PartingSettings parting;
   ManifoldReuseSettings manifoldReuse;
   SleepSettings sleep;
+  JointProjectionSettings jointProjection;
   /// Threads the step may use, the caller's included: the stages whose pieces share nothing
   /// (integration, frames, the stick, link and body-damping lanes) run them at once. The result is
   /// the same bit for bit for any number (docs/physics.md, "Threads").

@@ -22,6 +22,7 @@
 #include "physics/ground_contacts.h"
 #include "physics/guard.h"
 #include "physics/islands.h"
+#include "physics/joint_projection.h"
 #include "physics/metrics.h"
 #include "physics/motion.h"
 #include "physics/narrow_phase.h"
@@ -357,6 +358,10 @@ class World {
   /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
   /// With sleeping off the step does not count them: they are counted here, when asked.
   const Islands& islands() const;
+  /// What the last step's joint projections did (SolverSettings::jointProjection): the solves of
+  /// all its substeps, the widest error found before any, the widest left after the last; all zero
+  /// when it is off or there are no rigid joints.
+  const JointProjectionReport& lastJointProjection() const { return lastProjection_; }
   /// Draws what the flags ask for through the given interface.
   void debugDraw(DebugDraw& draw, const DebugDrawFlags& flags = {}) const;
 
@@ -409,6 +414,7 @@ class World {
   void restitute(Real h);
   void dampBodies();
   void dampJoints();
+  void projectJoints(bool firstSubstep);
   void guard(bool shapes);
   bool restWhileAsleep();
   void updateIslands(std::size_t freezesBefore);
@@ -462,6 +468,8 @@ class World {
   std::optional<Drag> drag_;
   BodyId dragBody_ = kNoBody;  // the body carrying the drag's point, if one body does
   Guard guard_;
+  JointProjection jointProjection_;  // SolverSettings::jointProjection
+  JointProjectionReport lastProjection_;
   // Mutable for islands(), which counts them when the step did not (sleeping off): a cache.
   mutable Islands islands_;
   Workers workers_;  // SolverSettings::threads

@@ -59,6 +59,9 @@ struct LoadOptions {
   bool sleepUnlessSaid = false;
   /// Sleeping imposed whatever the file says: the lab's --sleep.
   std::optional<bool> sleep;
+  /// SolverSettings::jointProjection's on or off imposed whatever the file says: the lab's
+  /// --joint-projection.
+  std::optional<bool> jointProjection;
   /// SolverSettings::threads imposed whatever the file says: the sandbox's --threads.
   std::optional<int> threads;
 };
