@@ -56,24 +56,46 @@ Real jointError(const RigidBodies& r, const RigidJoint& j) {
   return error;
 }
 
-// In place, the inverse of the n x n leading block of a row-major 6x6 matrix by Gauss-Jordan
+// In place, the inverse of the N x N leading block of a row-major 6x6 matrix by Gauss-Jordan
 // without pivoting, which a definite matrix (a body's, positive; a joint's, negative) never needs.
-// False when a pivot is not a finite non-zero number.
-bool invert(std::array<Real, 36>& m, int n) {
-  for (int k = 0; k < n; ++k) {
+// False when a pivot is not a finite non-zero number. N is fixed so that the loops unroll.
+template <int N>
+bool invertBlock(std::array<Real, 36>& m) {
+  for (int k = 0; k < N; ++k) {
     const Real pivot = m[k * 6 + k];
     if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return false;
     const Real inverse = 1.0 / pivot;
     m[k * 6 + k] = 1.0;
-    for (int c = 0; c < n; ++c) m[k * 6 + c] *= inverse;
-    for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < N; ++c) m[k * 6 + c] *= inverse;
+    for (int i = 0; i < N; ++i) {
       if (i == k) continue;
       const Real f = m[i * 6 + k];
       m[i * 6 + k] = 0.0;
-      for (int c = 0; c < n; ++c) m[i * 6 + c] -= f * m[k * 6 + c];
+      for (int c = 0; c < N; ++c) m[i * 6 + c] -= f * m[k * 6 + c];
     }
   }
   return true;
+}
+
+bool invert(std::array<Real, 36>& m, int n) {
+  return n == 5 ? invertBlock<5>(m) : invertBlock<3>(m);
+}
+
+// out = the N x N leading block of m times v's first N entries.
+template <int N>
+void multiplyBlock(const std::array<Real, 36>& m, const std::array<Real, 6>& v, std::array<Real, 6>& out) {
+  for (int a = 0; a < N; ++a) {
+    Real sum = 0.0;
+    for (int k = 0; k < N; ++k) sum += m[a * 6 + k] * v[k];
+    out[a] = sum;
+  }
+}
+
+void multiply(const std::array<Real, 36>& m, int n, const std::array<Real, 6>& v, std::array<Real, 6>& out) {
+  if (n == 5)
+    multiplyBlock<5>(m, v, out);
+  else
+    multiplyBlock<3>(m, v, out);
 }
 
 bool allFinite(const std::array<Real, 6>& v) {
@@ -289,8 +311,7 @@ void JointProjection::solve(RigidBodies& r, std::span<const RigidJoint> joints) 
       parent.b -= h;
       parent.c -= xt * h + glm::outerProduct(rows.u, k1) + glm::outerProduct(rows.v, k2);
       Vector6 z{};
-      for (int a = 0; a < node.rows; ++a)
-        for (int k = 0; k < node.rows; ++k) z[a] += d[a * 6 + k] * rhs_[i][k];
+      multiply(d, node.rows, rhs_[i], z);
       const Vec3 zp(z[0], z[1], z[2]);
       const Vec3 turn = xt * zp + z[3] * rows.u + z[4] * rows.v;
       for (int a = 0; a < 3; ++a) {
@@ -331,12 +352,7 @@ void JointProjection::solve(RigidBodies& r, std::span<const RigidJoint> joints) 
       t[3] -= s * glm::dot(joint_[i].u, turn);
       t[4] -= s * glm::dot(joint_[i].v, turn);
     }
-    const Matrix6& d = joint_[i].block;
-    for (int a = 0; a < node.rows; ++a) {
-      Real sum = 0.0;
-      for (int k = 0; k < node.rows; ++k) sum += d[a * 6 + k] * t[k];
-      solution[a] = sum;
-    }
+    multiply(joint_[i].block, node.rows, t, solution);
   }
 
   for (std::size_t i = 0; i < count; ++i) {
