@@ -458,6 +458,19 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     md << "### " << scene << "\n\n" << codeBlockOrText(r) << "\n";
     if (o.quick) break;
   }
+  if (!o.quick) {
+    const CommandOutput r =
+        runCommandMain(compareMain,
+                       {"bullet-ragdolls", "--data", o.data.string(), "--models", "rigid", "--iterations",
+                        "1", "--substeps", "2", "--joint-projection", "on", "--steps", "120"},
+                       err);
+    failed |= r.code != 0;
+    md << "### bullet-ragdolls, rigid ragdolls with their joints projected\n\n"
+       << "The same pile with every ragdoll rigid at 1 iteration x 2 substeps, its joints closed by a direct "
+          "solve after each substep's passes (docs/physics.md, \"Joint projection\"): the joint gap against "
+          "the peers' at a fraction of Bullet's step.\n\n"
+       << codeBlockOrText(r) << "\n";
+  }
 
   md << "## Cost against size\n\n"
      << "Capsule ragdolls on a grid, 2 m apart, tipped to fall onto each other, at each size for 1 s at "

@@ -110,6 +110,15 @@ bool allFinite(const std::array<Real, 6>& v) {
 // ask two immovable points of one tree).
 void JointProjection::buildTrees(const RigidBodies& r, std::span<const RigidJoint> joints) {
   const std::size_t n = r.size();
+  // Room for every body and joint at once, so that bodies waking or thawing later (more nodes)
+  // never make a step allocate.
+  const std::size_t most = n + joints.size();
+  nodes_.reserve(most);
+  treeJoints_.reserve(joints.size());
+  adjacency_.reserve(2 * joints.size());
+  body_.reserve(most);
+  joint_.reserve(most);
+  rhs_.reserve(most);
   root_.resize(n);
   std::iota(root_.begin(), root_.end(), 0u);
   anchored_.assign(n, 0);
@@ -199,7 +208,7 @@ Real JointProjection::measure(const RigidBodies& r, std::span<const RigidJoint> 
 // (a hinge's axes' cross product, in the two directions u and v normal to A's axis, changes by the
 // two bodies' relative turn in those directions); for a, the same negated. The products below are
 // those of J D^-1 J^T and J^T D^-1 J written out in 3x3 blocks, the zeros of J left out.
-void JointProjection::solve(RigidBodies& r, std::span<const RigidJoint> joints) {
+bool JointProjection::solve(RigidBodies& r, std::span<const RigidJoint> joints) {
   const std::size_t count = nodes_.size();
   body_.resize(count);
   joint_.resize(count);
@@ -291,7 +300,7 @@ void JointProjection::solve(RigidBodies& r, std::span<const RigidJoint> joints) 
       }
     } else {
       JointRows& rows = joint_[i];
-      if (!invert(rows.block, node.rows)) return;  // cannot happen for finite masses: move nothing
+      if (!invert(rows.block, node.rows)) return false;  // cannot happen for finite masses: move nothing
       if (node.parent == kNone) continue;
       // The parent body's block less J^T D^-1 J, its right-hand side less J^T D^-1 rhs.
       const auto p = static_cast<std::size_t>(node.parent);
@@ -356,7 +365,7 @@ void JointProjection::solve(RigidBodies& r, std::span<const RigidJoint> joints) 
   }
 
   for (std::size_t i = 0; i < count; ++i) {
-    if (nodes_[i].rows == 6 && !allFinite(rhs_[i])) return;
+    if (nodes_[i].rows == 6 && !allFinite(rhs_[i])) return false;
   }
   for (std::size_t i = 0; i < count; ++i) {
     if (nodes_[i].rows != 6) continue;
@@ -365,6 +374,7 @@ void JointProjection::solve(RigidBodies& r, std::span<const RigidJoint> joints) 
     r.position[b] += Vec3(x[0], x[1], x[2]);
     r.orientation[b] = detail::turned(r.orientation[b], Vec3(x[3], x[4], x[5]));
   }
+  return true;
 }
 
 JointProjectionReport JointProjection::project(RigidBodies& r, std::span<const RigidJoint> joints,
@@ -375,7 +385,7 @@ JointProjectionReport JointProjection::project(RigidBodies& r, std::span<const R
   if (treeJoints_.empty()) return report;
   report.errorBefore = report.errorAfter = measure(r, joints);
   while (report.errorAfter > settings.tolerance && report.iterations < settings.iterations) {
-    solve(r, joints);
+    if (!solve(r, joints)) break;
     ++report.iterations;
     report.errorAfter = measure(r, joints);
   }

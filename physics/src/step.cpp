@@ -39,6 +39,7 @@ bool World::step(const std::atomic<bool>& stop) {
 bool World::stepUnless(const std::atomic<bool>* stop) {
   const auto stepStart = Clock::now();
   profile_ = {};
+  lastProjection_ = {};
   swept_ = 0;
   if (restWhileAsleep()) {
     profile_.total = millisecondsSince(stepStart);
@@ -70,7 +71,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
     startRigidContacts(h);
     const std::span<const Real> linkSlack = limitCorrections(h);
     relax(h, linkSlack);
-    projectJoints(s == 0);
+    projectJoints();
     rigidVelocities(h);
     restitute(h);
     dampBodies();
@@ -460,16 +461,13 @@ void World::dampJoints() {
   constraints_.dampJointFriction(particles_, bodies_, solver_.dt);
 }
 
-// A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the
-// guard that), so all of it from one instant, whichever particle went bad.
 // After the passes, before the velocities are taken from the change of pose: the poses moved so that
 // every rigid joint's pin closes and every hinge's axes align (joint_projection.h), so that the
 // substep's velocities carry the correction, as they carry every pass's. Once a step, after the
 // substeps and without touching the velocities (post-stabilisation proper), it kept the piles from
 // resting; in the last substep alone it turned a step's worth of opening into one substep's speed
 // and blew Bullet's pile apart (docs/physics.md, "Joint projection").
-void World::projectJoints(bool firstSubstep) {
-  if (firstSubstep) lastProjection_ = {};
+void World::projectJoints() {
   if (!solver_.jointProjection.enabled || constraints_.rigidJoints().empty()) return;
   const detail::StageTimer timer(profile_, Stage::Links);
   const JointProjectionReport r =
@@ -479,6 +477,8 @@ void World::projectJoints(bool firstSubstep) {
   lastProjection_.errorAfter = r.errorAfter;
 }
 
+// A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the
+// guard that), so all of it from one instant, whichever particle went bad.
 void World::guard(bool shapes) {
   const detail::StageTimer timer(profile_, Stage::Guard);
   guardParticles();

@@ -61,7 +61,8 @@ class JointProjection {
 
   void buildTrees(const RigidBodies& r, std::span<const RigidJoint> joints);
   Real measure(const RigidBodies& r, std::span<const RigidJoint> joints) const;
-  void solve(RigidBodies& r, std::span<const RigidJoint> joints);
+  /// False, moving nothing, when a block could not be inverted or the result is not finite.
+  bool solve(RigidBodies& r, std::span<const RigidJoint> joints);
 
   std::vector<Node> nodes_;  // parents before children
   std::vector<std::int32_t> bodyNode_;

@@ -414,7 +414,7 @@ class World {
   void restitute(Real h);
   void dampBodies();
   void dampJoints();
-  void projectJoints(bool firstSubstep);
+  void projectJoints();
   void guard(bool shapes);
   bool restWhileAsleep();
   void updateIslands(std::size_t freezesBefore);
