@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 3.3253636363636363 "n=1"
-44 2.8681590909090913 "n=4"
-176 2.2190937499999999 "n=16"
-704 2.2192102272727272 "n=64"
-2816 2.3732878196022726 "n=256"
-11264 2.8467581232244319 "n=1024"
+11 2.4524090909090912 "n=1"
+44 1.9473295454545452 "n=4"
+176 1.5195909090909092 "n=16"
+704 1.5038615056818181 "n=64"
+2816 1.4870896661931818 "n=256"
+11264 1.7976722301136363 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
