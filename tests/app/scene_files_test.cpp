@@ -2,6 +2,9 @@
 // scene in assets/scenes/ loads and steps.
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
+#include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -288,13 +291,30 @@ TEST(SceneFiles, DepenetrationSpeedIsReadAndNoneTurnsTheLimitOff) {
   }
 }
 
+// The solver settings of a scene whose only element is `solver`, loaded with `options`.
+phys::SolverSettings solverOf(const std::string& solver, const scenes::LoadOptions& options = {}) {
+  return scenes::loadSceneText("<scene name=\"s\">" + solver + "</scene>", "s.xml", options)
+      .world.solverSettings();
+}
+
+// Each one-line scene element refused, naming its attribute, on line 1.
+void expectRefused(std::initializer_list<std::pair<const char*, const char*>> cases) {
+  for (const auto& [xml, attribute] : cases) {
+    try {
+      solverOf(xml);
+      ADD_FAILURE() << xml << " was accepted";
+    } catch (const scenes::LoadError& e) {
+      EXPECT_EQ(e.attribute(), attribute) << e.what();
+      EXPECT_EQ(e.line(), 1) << e.what();
+    }
+  }
+}
+
 // <solver sleep>: on or off as the file says; without it, what the loader is told (the sandbox on,
 // everyone else off); the lab's --sleep imposed over the file's word.
 TEST(SceneFiles, SleepIsTheFilesWordElseTheProgramsDefault) {
   const auto sleeps = [](const std::string& solver, const scenes::LoadOptions& options = {}) {
-    return scenes::loadSceneText("<scene name=\"s\">" + solver + "</scene>", "s.xml", options)
-        .world.solverSettings()
-        .sleep;
+    return solverOf(solver, options).sleep;
   };
   scenes::LoadOptions sandbox;
   sandbox.sleepUnlessSaid = true;
@@ -308,26 +328,16 @@ TEST(SceneFiles, SleepIsTheFilesWordElseTheProgramsDefault) {
   const phys::SleepSettings s = sleeps("<solver sleep=\"on\" sleep-speed=\"0.02\" sleep-time=\"2\"/>");
   EXPECT_EQ(s.speed, 0.02);
   EXPECT_EQ(s.time, 2.0);
-  for (const auto& [xml, attribute] : {std::pair{"<solver sleep=\"yes\"/>", "sleep"},
-                                       std::pair{"<solver sleep-speed=\"-1\"/>", "sleep-speed"},
-                                       std::pair{"<solver sleep-time=\"-0.5\"/>", "sleep-time"}}) {
-    try {
-      sleeps(xml);
-      ADD_FAILURE() << xml << " was accepted";
-    } catch (const scenes::LoadError& e) {
-      EXPECT_EQ(e.attribute(), attribute) << e.what();
-      EXPECT_EQ(e.line(), 1) << e.what();
-    }
-  }
+  expectRefused({{"<solver sleep=\"yes\"/>", "sleep"},
+                 {"<solver sleep-speed=\"-1\"/>", "sleep-speed"},
+                 {"<solver sleep-time=\"-0.5\"/>", "sleep-time"}});
 }
 
 // <solver joint-projection>: off unless the file says, the lab's --joint-projection imposed over the
 // file's word, and the tolerance and the cap read with their errors named by attribute.
 TEST(SceneFiles, JointProjectionIsTheFilesWordUnlessImposed) {
   const auto projection = [](const std::string& solver, const scenes::LoadOptions& options = {}) {
-    return scenes::loadSceneText("<scene name=\"s\">" + solver + "</scene>", "s.xml", options)
-        .world.solverSettings()
-        .jointProjection;
+    return solverOf(solver, options).jointProjection;
   };
   scenes::LoadOptions off;
   off.jointProjection = false;
@@ -338,19 +348,10 @@ TEST(SceneFiles, JointProjectionIsTheFilesWordUnlessImposed) {
       "<solver joint-projection=\"on\" projection-tolerance=\"0.001\" projection-iterations=\"5\"/>");
   EXPECT_EQ(s.tolerance, 0.001);
   EXPECT_EQ(s.iterations, 5);
-  for (const auto& [xml, attribute] :
-       {std::pair{"<solver joint-projection=\"yes\"/>", "joint-projection"},
-        std::pair{"<solver projection-tolerance=\"0\"/>", "projection-tolerance"},
-        std::pair{"<solver projection-iterations=\"0\"/>", "projection-iterations"},
-        std::pair{"<solver projection-iterations=\"101\"/>", "projection-iterations"}}) {
-    try {
-      projection(xml);
-      ADD_FAILURE() << xml << " was accepted";
-    } catch (const scenes::LoadError& e) {
-      EXPECT_EQ(e.attribute(), attribute) << e.what();
-      EXPECT_EQ(e.line(), 1) << e.what();
-    }
-  }
+  expectRefused({{"<solver joint-projection=\"yes\"/>", "joint-projection"},
+                 {"<solver projection-tolerance=\"0\"/>", "projection-tolerance"},
+                 {"<solver projection-iterations=\"0\"/>", "projection-iterations"},
+                 {"<solver projection-iterations=\"101\"/>", "projection-iterations"}});
 }
 
 }  // namespace

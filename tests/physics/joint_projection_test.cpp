@@ -57,6 +57,21 @@ RigidJoint joint(JointKind kind, std::uint32_t a, std::uint32_t b, const Vec3& p
   return j;
 }
 
+// `rods` rods 1 m long hung end to end below the origin, rod k of mass 1 + massStep k, each joined
+// to the one above at their meeting ends: by hinges, or, `alternating`, a hinge above every odd rod
+// and a cone above every even one.
+std::vector<RigidJoint> hangChain(RigidBodies& r, int rods, Real massStep, bool alternating) {
+  std::vector<RigidJoint> joints;
+  for (int k = 0; k < rods; ++k) {
+    addRod(r, Vec3(0.0, -0.5 - k, 0.0), 1.0 + massStep * k, 1.0);
+    if (k == 0) continue;
+    const JointKind kind = !alternating || k % 2 == 1 ? JointKind::Hinge : JointKind::Cone;
+    joints.push_back(joint(kind, static_cast<std::uint32_t>(k - 1), static_cast<std::uint32_t>(k),
+                           Vec3(0.0, -0.5, 0.0), Vec3(0.0, 0.5, 0.0)));
+  }
+  return joints;
+}
+
 Vec3 pinGap(const RigidBodies& r, const RigidJoint& j) {
   return (r.position[j.b] + r.orientation[j.b] * j.pivotB) -
          (r.position[j.a] + r.orientation[j.a] * j.pivotA);
@@ -124,14 +139,7 @@ TEST(JointProjection, TwoBodiesMeetWhereTheirMassesSay) {
 // equal and opposite in every solve).
 TEST(JointProjection, AChainPulledApartClosesAndKeepsItsCentreOfMass) {
   RigidBodies r;
-  std::vector<RigidJoint> joints;
-  for (int k = 0; k < 10; ++k) {
-    addRod(r, Vec3(0.0, -0.5 - k, 0.0), 1.0 + 0.3 * k, 1.0);
-    if (k > 0) {
-      joints.push_back(joint(JointKind::Hinge, static_cast<std::uint32_t>(k - 1),
-                             static_cast<std::uint32_t>(k), Vec3(0.0, -0.5, 0.0), Vec3(0.0, 0.5, 0.0)));
-    }
-  }
+  const std::vector<RigidJoint> joints = hangChain(r, 10, 0.3, false);
   shake(r, 0.05, 0.2, 1);
   const Vec3 centre = centreOfMass(r);
   JointProjection projection;
@@ -180,16 +188,8 @@ TEST(JointProjection, ABranchedTreeCloses) {
 // since one tree cannot be held at two immovable points by a change of its poses alone.
 TEST(JointProjection, FrozenBodiesDoNotMoveAndATreeIsHeldByOneOfThem) {
   RigidBodies r;
-  std::vector<RigidJoint> joints;
-  for (int k = 0; k < 5; ++k) {
-    addRod(r, Vec3(0.0, -0.5 - k, 0.0), 1.0, 1.0);
-    if (k > 0) {
-      // The root joint, to the frozen body, a hinge: a tree's root of 5 rows.
-      joints.push_back(joint(k % 2 == 1 ? JointKind::Hinge : JointKind::Cone,
-                             static_cast<std::uint32_t>(k - 1), static_cast<std::uint32_t>(k),
-                             Vec3(0.0, -0.5, 0.0), Vec3(0.0, 0.5, 0.0)));
-    }
-  }
+  // The root joint, to the frozen body 0, a hinge: a tree's root of 5 rows.
+  std::vector<RigidJoint> joints = hangChain(r, 5, 0.0, true);
   addRod(r, Vec3(0.0, -5.5, 0.0), 1.0, 1.0);  // 5, frozen below the chain's end
   joints.push_back(joint(JointKind::Cone, 4, 5, Vec3(0.0, -0.5, 0.0), Vec3(0.0, 0.5, 0.0)));
   shake(r, 0.05, 0.1, 3);
@@ -235,15 +235,7 @@ TEST(JointProjection, ALoopIsCutAtItsLastJoint) {
 // the chain's parts are 1 m long), until round-off.
 TEST(JointProjection, EachSolveSquaresTheError) {
   RigidBodies r;
-  std::vector<RigidJoint> joints;
-  for (int k = 0; k < 6; ++k) {
-    addRod(r, Vec3(0.0, -0.5 - k, 0.0), 1.0, 1.0);
-    if (k > 0) {
-      joints.push_back(joint(k % 2 == 0 ? JointKind::Hinge : JointKind::Cone,
-                             static_cast<std::uint32_t>(k - 1), static_cast<std::uint32_t>(k),
-                             Vec3(0.0, -0.5, 0.0), Vec3(0.0, 0.5, 0.0)));
-    }
-  }
+  const std::vector<RigidJoint> joints = hangChain(r, 6, 0.0, true);
   shake(r, 0.1, 0.5, 13);
   JointProjection projection;
   std::vector<Real> errors{worstError(r, joints)};
@@ -265,14 +257,7 @@ TEST(JointProjection, EachSolveSquaresTheError) {
 // what one linearised step leaves of a large turn.
 TEST(JointProjection, StopsAtItsToleranceOrItsCap) {
   RigidBodies r;
-  std::vector<RigidJoint> joints;
-  for (int k = 0; k < 4; ++k) {
-    addRod(r, Vec3(0.0, -0.5 - k, 0.0), 1.0, 1.0);
-    if (k > 0) {
-      joints.push_back(joint(JointKind::Hinge, static_cast<std::uint32_t>(k - 1),
-                             static_cast<std::uint32_t>(k), Vec3(0.0, -0.5, 0.0), Vec3(0.0, 0.5, 0.0)));
-    }
-  }
+  const std::vector<RigidJoint> joints = hangChain(r, 4, 0.0, false);
   JointProjection projection;
   EXPECT_EQ(projection.project(r, joints, exact()).iterations, 0);
   shake(r, 0.1, 0.5, 11);
