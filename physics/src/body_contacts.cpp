@@ -2,6 +2,8 @@
 // bodies, and each correction is the weighted projection of REFERENCES.md applied to the pair:
 // lambda = -C / (sum_A c_i^2 w_i + sum_B c_j^2 w_j), x_i(A) -= c_i w_i lambda n,
 // x_j(B) += c_j w_j lambda n. No matrix inverse, so nothing to go singular when faces align.
+#include <cmath>
+
 #include <glm/geometric.hpp>
 
 #include "passes.h"
@@ -24,7 +26,7 @@ void movePair(std::vector<Vec3>& x, const Particles& p, const Embedding& a, cons
 }  // namespace
 
 void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real slop, std::span<Real> push,
-                       std::span<std::uint8_t> moved, std::span<const Real> allowance) {
+                       std::span<const Real> allowance) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const BodyContact& c = contacts[k];
     const Real allowed = allowance.empty() ? 0.0 : allowance[k];  // overlap it may keep
@@ -36,8 +38,15 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
     if (denominator == 0.0) continue;  // both sides pinned or frozen
     movePair(p.position, p, c.pointA, c.pointB, (-gap / denominator) * c.normal);
     push[k] = -gap;
-    for (int i = 0; i < c.pointA.count; ++i) moved[c.pointA.particle[i]] = 1;
-    for (int j = 0; j < c.pointB.count; ++j) moved[c.pointB.particle[j]] = 1;
+  }
+}
+
+void markPushedParticles(std::span<const BodyContact> contacts, std::span<const std::uint8_t> touched,
+                         std::span<std::uint8_t> moved) {
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    if (touched[k] == 0) continue;
+    for (int i = 0; i < contacts[k].pointA.count; ++i) moved[contacts[k].pointA.particle[i]] = 1;
+    for (int j = 0; j < contacts[k].pointB.count; ++j) moved[contacts[k].pointB.particle[j]] = 1;
   }
 }
 
@@ -52,14 +61,14 @@ void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std:
     const Vec3 motionB = embeddedPosition(p.position, b) - embeddedPosition(p.previous, b);
     Vec3 slide = motionB - motionA;
     slide -= glm::dot(slide, c.normal) * c.normal;
-    const Real slideLength = glm::length(slide);
-    if (slideLength == 0.0) continue;
+    // Squared lengths, so that a contact friction holds (most of a resting stack's) takes no root.
+    const Real slide2 = glm::dot(slide, slide);
+    if (slide2 == 0.0) continue;
     const Real denominator = weightSum(p, a, b);
     if (denominator == 0.0) continue;
+    const Real held = c.combined.staticFriction * push[k];
     Real cut = 1.0;
-    if (slideLength > c.combined.staticFriction * push[k]) {
-      cut = std::min(1.0, c.combined.dynamicFriction * push[k] / slideLength);
-    }
+    if (slide2 > held * held) cut = std::min(1.0, c.combined.dynamicFriction * push[k] / std::sqrt(slide2));
     // Shrink the relative slide by cut: B moves back, A moves along, by their weights.
     movePair(p.position, p, a, b, (cut / denominator) * slide * -1.0);
   }

@@ -403,7 +403,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     {
       const detail::StageTimer timer(profile_, Stage::Contacts);
       detail::solveBodyContacts(particles_, bodyContacts, solver_.contactSlop, bodyState.push,
-                                movedByBoxContact_, bodyState.allowance);
+                                bodyState.allowance);
       if (ground) {
         detail::collideGround(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
                               groundState.push, groundState.allowance);
@@ -420,6 +420,10 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
         if (groundState.push[c] > 0.0) groundState.touched[c] = groundState.hit[c] = 1;
       }
     }
+  }
+  if (!bodyContacts.empty()) {
+    const detail::StageTimer timer(profile_, Stage::Contacts);
+    detail::markPushedParticles(bodyContacts, bodyState.touched, movedByBoxContact_);
   }
 }
 

@@ -107,7 +107,7 @@ void World::settleWithoutVelocity() {
     constraints_.relaxSticks(particles_, SolverMethod::GaussSeidel, pass == 0, substepDt(), 0.0);
     constraints_.solveLinks(particles_, slack);
     detail::solveBodyContacts(particles_, narrowPhase_.contacts(), solver_.contactSlop,
-                              narrowPhase_.state().push, movedByBoxContact_);
+                              narrowPhase_.state().push);
     if (world_.ground)
       detail::collideGround(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
                             ground_.state().push);
