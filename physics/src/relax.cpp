@@ -1,6 +1,6 @@
 // The four ways to relax sticks. Each is one pass over all sticks; the caller repeats it. A pass
-// runs over the StickLayout: its lane groups eight bodies at a time (relax_lanes.h; Gauss-Seidel
-// and XPBD), each block (a body) in locals, then the runs in the world's arrays. The same
+// runs over the StickLayout: its lane groups eight bodies at a time (relax_lanes.h), each block
+// (a body) in locals, then the runs in the world's arrays. The same
 // projection code serves blocks and runs, and the lanes repeat its operations, so the result is
 // the same.
 #include <algorithm>
@@ -48,29 +48,16 @@ inline void project(const View& v, std::uint32_t a, std::uint32_t b, const Stick
   if (m.w2 != 0.0) v.x[b] -= (m.w2 * k) * m.d;
 }
 
-// Calls visit(block) for every block and, when kLaneBodies, for every body of the lane groups
-// too (the methods that do not run in lanes relax those one by one).
-template <bool kLaneBodies, class Visit>
-void forEachBlock(const StickLayout& layout, Visit visit) {
-  for (const StickBlock& block : layout.blocks()) visit(block);
-  if constexpr (kLaneBodies) {
-    for (const StickLanes& group : layout.lanes()) {
-      for (int l = 0; l < kStickLanes; ++l) {
-        visit(StickBlock{group.firstParticle[l], group.firstStick[l], group.particleCount, group.stickCount});
-      }
-    }
-  }
-}
-
-// Runs `relaxStick(view, a, b, stick, index)` over every stick in the layout's order: each block
-// copied into locals (its previous positions too when SHAKE needs them), then the runs.
-template <bool kPrevious, bool kLaneBodies, class RelaxStick>
+// Runs `relaxStick(view, a, b, stick, index)` over every stick outside the lane groups (which
+// relax_lanes.h relaxes) in the layout's order: each block copied into locals (its previous
+// positions too when SHAKE needs them), then the runs.
+template <bool kPrevious, class RelaxStick>
 void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                   RelaxStick relaxStick) {
   Vec3 x[kMaxBlockParticles], previous[kMaxBlockParticles];
   Real w[kMaxBlockParticles];
   const View local{x, kPrevious ? previous : nullptr, w};
-  forEachBlock<kLaneBodies>(layout, [&](const StickBlock& block) {
+  for (const StickBlock& block : layout.blocks()) {
     const std::uint32_t first = block.firstParticle;
     for (int i = 0; i < block.particleCount; ++i) {
       x[i] = p.position[first + i];
@@ -82,7 +69,7 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
       relaxStick(local, s.a - first, s.b - first, s, k);
     }
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
-  });
+  }
   const View world{p.position.data(), kPrevious ? p.previous.data() : nullptr, p.inverseMass.data()};
   for (const StickRun& run : layout.runs()) {
     for (std::uint32_t k = run.begin; k < run.end; ++k)
@@ -97,12 +84,12 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                       const Workers* workers) {
   inLanePieces(laneArguments(p, layout), workers, [](const LaneArguments& a) { relaxGaussSeidelLanes(a); });
-  forEachStick<false, false>(
-      p, sticks, layout, [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
-        StickState m;
-        if (!measure(v, a, b, s, m) || m.length == 0.0) return;  // no direction at 0
-        project(v, a, b, m);
-      });
+  forEachStick<false>(p, sticks, layout,
+                      [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
+                        StickState m;
+                        if (!measure(v, a, b, s, m) || m.length == 0.0) return;  // no direction at 0
+                        project(v, a, b, m);
+                      });
 }
 
 // Jacobi: every stick's correction from the same positions, summed per particle. Each stick's
@@ -121,7 +108,10 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
     sum[a] += (m.w1 * k) * m.d;
     sum[b] -= (m.w2 * k) * m.d;
   };
-  forEachBlock<true>(layout, [&](const StickBlock& block) {
+  LaneArguments lanes = laneArguments(p, layout);
+  lanes.degree = degree.data();
+  relaxJacobiLanes(lanes);
+  for (const StickBlock& block : layout.blocks()) {
     const std::uint32_t first = block.firstParticle;
     Vec3 x[kMaxBlockParticles], sum[kMaxBlockParticles];
     Real w[kMaxBlockParticles];
@@ -138,7 +128,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
     for (int i = 0; i < block.particleCount; ++i) {
       if (w[i] != 0.0) p.position[first + i] = x[i] + sum[i];
     }
-  });
+  }
   if (layout.runs().empty()) return;
   std::fill(delta.begin(), delta.end(), Vec3(0.0));
   const View world{p.position.data(), nullptr, p.inverseMass.data()};
@@ -165,50 +155,51 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
   lanes.inverseH2 = inverseH2;
   lanes.compliance = compliance;
   inLanePieces(lanes, workers, [](const LaneArguments& a) { relaxXpbdLanes(a); });
-  forEachStick<false, false>(
-      p, sticks, layout,
-      [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t c) {
-        StickState m;
-        if (!measure(v, a, b, s, m) || m.length == 0.0) return;
-        // finite: both compliances and h are bounded (settings.h)
-        const Real alpha = (s.compliance + compliance) * inverseH2;
-        const Real dLambda = (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
-        lambda[c] += dLambda;
-        const Vec3 n = m.d / m.length;
-        if (m.w1 != 0.0) v.x[a] -= (m.w1 * dLambda) * n;
-        if (m.w2 != 0.0) v.x[b] += (m.w2 * dLambda) * n;
-      });
+  forEachStick<false>(p, sticks, layout,
+                      [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t c) {
+                        StickState m;
+                        if (!measure(v, a, b, s, m) || m.length == 0.0) return;
+                        // finite: both compliances and h are bounded (settings.h)
+                        const Real alpha = (s.compliance + compliance) * inverseH2;
+                        const Real dLambda =
+                            (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
+                        lambda[c] += dLambda;
+                        const Vec3 n = m.d / m.length;
+                        if (m.w1 != 0.0) v.x[a] -= (m.w1 * dLambda) * n;
+                        if (m.w2 != 0.0) v.x[b] += (m.w2 * dLambda) * n;
+                      });
 }
 
 // SHAKE for one stick: move x1 by -w1 g r and x2 by +w2 g r, where r is the stick at the start
 // of the substep, with g the root of |d + (w1 + w2) g r|^2 = L^2 nearest zero. Where no root
 // exists (the stick turned too far within one substep), fall back to Jakobsen's projection.
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout) {
-  forEachStick<true, true>(
-      p, sticks, layout, [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
-        StickState m;
-        if (!measure(v, a, b, s, m)) return;
-        const Real w1 = m.w1, w2 = m.w2, w = w1 + w2, length = m.length, target = m.target;
-        const Vec3& d = m.d;
-        const Vec3 r = v.previous[b] - v.previous[a];
-        const Real qa = w * w * glm::dot(r, r);
-        const Real qb = 2.0 * w * glm::dot(d, r);
-        const Real qc = glm::dot(d, d) - target * target;
-        const Real discriminant = qb * qb - 4.0 * qa * qc;
-        if (qa > 0.0 && discriminant >= 0.0) {
-          // The numerically stable pair of roots; keep the smaller in magnitude.
-          const Real q = -0.5 * (qb + std::copysign(std::sqrt(discriminant), qb));
-          Real g = 0.0;
-          if (q != 0.0) {
-            const Real g1 = q / qa, g2 = qc / q;
-            g = std::abs(g1) < std::abs(g2) ? g1 : g2;
-          }
-          if (w1 != 0.0) v.x[a] -= (w1 * g) * r;
-          if (w2 != 0.0) v.x[b] += (w2 * g) * r;
-        } else if (length > 0.0) {
-          project(v, a, b, m);
-        }
-      });
+  relaxShakeLanes(laneArguments(p, layout));
+  forEachStick<true>(p, sticks, layout,
+                     [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
+                       StickState m;
+                       if (!measure(v, a, b, s, m)) return;
+                       const Real w1 = m.w1, w2 = m.w2, w = w1 + w2, length = m.length, target = m.target;
+                       const Vec3& d = m.d;
+                       const Vec3 r = v.previous[b] - v.previous[a];
+                       const Real qa = w * w * glm::dot(r, r);
+                       const Real qb = 2.0 * w * glm::dot(d, r);
+                       const Real qc = glm::dot(d, d) - target * target;
+                       const Real discriminant = qb * qb - 4.0 * qa * qc;
+                       if (qa > 0.0 && discriminant >= 0.0) {
+                         // The numerically stable pair of roots; keep the smaller in magnitude.
+                         const Real q = -0.5 * (qb + std::copysign(std::sqrt(discriminant), qb));
+                         Real g = 0.0;
+                         if (q != 0.0) {
+                           const Real g1 = q / qa, g2 = qc / q;
+                           g = std::abs(g1) < std::abs(g2) ? g1 : g2;
+                         }
+                         if (w1 != 0.0) v.x[a] -= (w1 * g) * r;
+                         if (w2 != 0.0) v.x[b] += (w2 * g) * r;
+                       } else if (length > 0.0) {
+                         project(v, a, b, m);
+                       }
+                     });
 }
 
 }  // namespace phys::detail

@@ -36,6 +36,7 @@ LaneArguments laneArguments(Particles& p, const StickLayout& layout) {
   a.groupCount = layout.lanes().size();
   a.localSticks = layout.localSticks().data();
   a.laneValues = layout.laneValues().data();
+  a.previous = coordinates(p.previous);
   return a;
 }
 
@@ -91,6 +92,22 @@ void relaxXpbdLanes(const LaneArguments& a, LaneIsa isa) {
   if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxXpbdLanes(a);
 #endif
   baseline::relaxXpbdLanes(a);
+}
+
+void relaxShakeLanes(const LaneArguments& a, LaneIsa isa) {
+  if (a.groupCount == 0) return;
+#if defined(PHYS_AVX2_LANES)
+  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxShakeLanes(a);
+#endif
+  baseline::relaxShakeLanes(a);
+}
+
+void relaxJacobiLanes(const LaneArguments& a, LaneIsa isa) {
+  if (a.groupCount == 0) return;
+#if defined(PHYS_AVX2_LANES)
+  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxJacobiLanes(a);
+#endif
+  baseline::relaxJacobiLanes(a);
 }
 
 }  // namespace phys::detail

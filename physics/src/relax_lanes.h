@@ -1,6 +1,6 @@
 #pragma once
-// The passes that run eight bodies (or ragdolls) at a time, one per SIMD lane: Gauss-Seidel and
-// XPBD over a StickLayout's lane groups, the links over a LinkLayout's, body damping over a
+// The passes that run eight bodies (or ragdolls) at a time, one per SIMD lane: the four stick
+// methods over a StickLayout's lane groups, the links over a LinkLayout's, body damping over a
 // BodyLayout's (the layouts' headers say why the order allows it). The kernels are compiled twice,
 // for the x86-64 baseline and for AVX2 (relax_lanes_kernels.inc), and these functions pick the
 // one the CPU can run, once. Both do per lane exactly what the scalar pass does per body.
@@ -26,9 +26,11 @@ struct LaneArguments {
   Real* lambda = nullptr;            ///< XPBD: per stick, in World::sticks() order
   Real inverseH2 = 0.0;              ///< XPBD: 1 / h^2 (1/s^2)
   Real compliance = 0.0;             ///< XPBD: the world's, added to each stick's (m/N)
+  const Real* previous = nullptr;    ///< SHAKE: x* of each particle, x, y, z one after the other
+  const Real* degree = nullptr;      ///< Jacobi: per particle, the number of sticks at it
 };
 
-/// The arguments for the world's particles and a layout (lambda and XPBD's numbers not set).
+/// The arguments for the world's particles and a layout (XPBD's and Jacobi's numbers not set).
 LaneArguments laneArguments(Particles& p, const StickLayout& layout);
 
 /// What the link kernel reads and writes, raw as LaneArguments.
@@ -87,6 +89,8 @@ LaneIsa laneIsa();
 /// The kernels of laneIsa(), or of the given copy (which must be laneIsa() or Baseline).
 void relaxGaussSeidelLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
 void relaxXpbdLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
+void relaxShakeLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
+void relaxJacobiLanes(const LaneArguments& a, LaneIsa isa = laneIsa());
 /// solveLinks() with no slack over the link lane groups.
 void solveLinkLanes(const LinkLaneArguments& a, LaneIsa isa = laneIsa());
 /// dampBodyMotion() over the body lane groups.
@@ -95,6 +99,8 @@ void dampBodyLanes(const DampLaneArguments& a, LaneIsa isa = laneIsa());
 namespace baseline {
 void relaxGaussSeidelLanes(const LaneArguments& a);
 void relaxXpbdLanes(const LaneArguments& a);
+void relaxShakeLanes(const LaneArguments& a);
+void relaxJacobiLanes(const LaneArguments& a);
 void solveLinkLanes(const LinkLaneArguments& a);
 void dampBodyLanes(const DampLaneArguments& a);
 }  // namespace baseline
@@ -102,6 +108,8 @@ void dampBodyLanes(const DampLaneArguments& a);
 namespace avx2 {
 void relaxGaussSeidelLanes(const LaneArguments& a);
 void relaxXpbdLanes(const LaneArguments& a);
+void relaxShakeLanes(const LaneArguments& a);
+void relaxJacobiLanes(const LaneArguments& a);
 void solveLinkLanes(const LinkLaneArguments& a);
 void dampBodyLanes(const DampLaneArguments& a);
 }  // namespace avx2

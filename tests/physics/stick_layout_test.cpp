@@ -1,6 +1,7 @@
 // The sticks laid out by body (physics/stick_layout.h): which bodies become blocks and lanes, and
 // that every method relaxes them to exactly the bits of the plain loop in creation order, with the
 // SIMD kernels of every instruction set this machine can run.
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -84,7 +85,33 @@ phys::Particles disturbed(const phys::World& world) {
   for (int i = 0; i < frozen.particleCount; ++i) p.inverseMass[frozen.firstParticle + i] = 0.0;
   const phys::Body& collapsed = world.bodies()[9];
   p.position[collapsed.firstParticle + 1] = p.position[collapsed.firstParticle];
+  // Body 12 (in a lane group) stretched half again, and turned a quarter about an axis across its
+  // first stick at x*: that stick has no SHAKE root (|d| > L, r across d), and falls back to
+  // Jakobsen's projection (shakeFallsBack checks it).
+  const phys::Body& turned = world.bodies()[12];
+  const phys::Stick& first = world.sticks()[turned.firstStick];
+  const Vec3 along =
+      glm::normalize(world.particles().position[first.b] - world.particles().position[first.a]);
+  const Vec3 across =
+      glm::normalize(glm::cross(along, std::abs(along.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
+  const Vec3 center = world.particles().position[turned.firstParticle];
+  for (int i = 0; i < turned.particleCount; ++i) {
+    const Vec3 r = world.particles().position[turned.firstParticle + i] - center;
+    p.position[turned.firstParticle + i] = center + 1.5 * r;
+    // A quarter turn about `across`: Rodrigues' formula at 90 degrees.
+    p.previous[turned.firstParticle + i] = center + glm::cross(across, r) + across * glm::dot(across, r);
+  }
   return p;
+}
+
+// Whether the first stick of body 12 in `p` has no SHAKE root (relax.cpp, relaxShake).
+bool shakeFallsBack(const phys::World& world, const phys::Particles& p) {
+  const phys::Stick& s = world.sticks()[world.bodies()[12].firstStick];
+  const double w = p.inverseMass[s.a] + p.inverseMass[s.b];
+  const Vec3 d = p.position[s.b] - p.position[s.a], r = p.previous[s.b] - p.previous[s.a];
+  const double qa = w * w * glm::dot(r, r), qb = 2.0 * w * glm::dot(d, r);
+  const double qc = glm::dot(d, d) - s.maxLength * s.maxLength;
+  return qb * qb - 4.0 * qa * qc < 0.0;
 }
 
 bool sameBits(const phys::Particles& a, const phys::Particles& b) {
@@ -133,6 +160,20 @@ TEST(StickLayout, EveryMethodGivesTheBitsOfThePlainLoopInCreationOrder) {
   }
 }
 
+// Every particle of the lane groups has the same bits in `lanes` as in `plain`.
+void expectLanesEqual(const phys::StickLayout& layout, const phys::Particles& lanes,
+                      const phys::Particles& plain, const char* method) {
+  for (const phys::StickLanes& group : layout.lanes()) {
+    for (int l = 0; l < phys::kStickLanes; ++l) {
+      for (int i = 0; i < group.particleCount; ++i) {
+        const phys::ParticleId id = group.firstParticle[l] + i;
+        EXPECT_EQ(std::memcmp(&lanes.position[id], &plain.position[id], sizeof(Vec3)), 0)
+            << method << " particle " << id;
+      }
+    }
+  }
+}
+
 // The baseline copy of the lane kernels runs on every machine, the AVX2 one where the CPU has it:
 // on a machine with AVX2, both are compared here; the scalar passes are the reference.
 TEST(StickLayout, BothCopiesOfTheLaneKernelsGiveTheSameBits) {
@@ -167,18 +208,38 @@ TEST(StickLayout, BothCopiesOfTheLaneKernelsGiveTheSameBits) {
     a.compliance = 1e-5;
     phys::detail::relaxXpbdLanes(a, isa);
     phys::detail::relaxXpbd(plain, world.sticks(), inOrder, lambdaPlain, 1.0 / 240.0, 1e-5);
+    expectLanesEqual(layout, lanes, plain, "xpbd");
     for (const phys::StickLanes& group : layout.lanes()) {
       for (int l = 0; l < phys::kStickLanes; ++l) {
-        for (int i = 0; i < group.particleCount; ++i) {
-          const phys::ParticleId id = group.firstParticle[l] + i;
-          EXPECT_EQ(std::memcmp(&lanes.position[id], &plain.position[id], sizeof(Vec3)), 0)
-              << "xpbd particle " << id;
-        }
         for (std::uint32_t k = 0; k < group.stickCount; ++k) {
           EXPECT_EQ(lambdaLanes[group.firstStick[l] + k], lambdaPlain[group.firstStick[l] + k]);
         }
       }
     }
+
+    lanes = disturbed(world);
+    plain = lanes;
+    ASSERT_TRUE(shakeFallsBack(world, plain)) << "the fallback must be exercised";
+    bool inLanes = false;
+    for (const phys::StickLanes& group : layout.lanes()) {
+      for (int l = 0; l < phys::kStickLanes; ++l)
+        inLanes |= group.firstParticle[l] == world.bodies()[12].firstParticle;
+    }
+    ASSERT_TRUE(inLanes) << "body 12 must be in a lane group";
+    phys::detail::relaxShakeLanes(phys::detail::laneArguments(lanes, layout), isa);
+    phys::detail::relaxShake(plain, world.sticks(), inOrder);
+    expectLanesEqual(layout, lanes, plain, "shake");
+
+    std::vector<double> degree(world.particles().size(), 0.0);
+    for (const phys::Stick& s : world.sticks()) degree[s.a] += 1.0, degree[s.b] += 1.0;
+    std::vector<Vec3> delta(world.particles().size());
+    lanes = disturbed(world);
+    plain = lanes;
+    a = phys::detail::laneArguments(lanes, layout);
+    a.degree = degree.data();
+    phys::detail::relaxJacobiLanes(a, isa);
+    phys::detail::relaxJacobi(plain, world.sticks(), inOrder, degree, delta);
+    expectLanesEqual(layout, lanes, plain, "jacobi");
   }
 }
 
