@@ -1,10 +1,19 @@
 // Points of a body's surface embedded in its particles, as the body lies in its frame of this
 // substep: where contacts between bodies and with the ground are carried.
+#include <cmath>
+
 #include <glm/geometric.hpp>
 
 #include "passes.h"
 
 namespace phys::detail {
+namespace {
+
+// How near an edge of its face, in face coordinates (-1 to 1), a point is taken to be on it: a
+// billionth of the half extent, far above rounding and far below anything a contact resolves.
+constexpr Real kEdgeSnap = 1e-9;
+
+}  // namespace
 
 Vec3 frameCoordinates(const Body& body, const Obb& f, const Vec3& point) {
   const Vec3 d = point - f.center;
@@ -60,11 +69,22 @@ Embedding surfacePoint(const Body& box, const Obb& f, const Vec3& point, Vec3* m
     carried[axis] = u[axis] >= 0.0 ? 1.0 : -1.0;
     for (int k = 0; k < 3; ++k) *moved += f.axes[k] * ((carried[k] - unclamped[k]) * box.halfExtents[k]);
   }
+  // A point on an edge or at a corner of its face, as most of a stack's are (a face's corner
+  // resting on the face below), is carried by 2 corners or 1: snapped there from rounding's
+  // 1e-16 off, its other corners weigh exactly 0 and are left out, so each pass reads and moves
+  // 4.5 particles a contact point in a pyramid instead of 8.
+  for (const int a : {ua, va}) {
+    if (std::abs(u[a]) > 1.0 - kEdgeSnap) u[a] = u[a] > 0.0 ? 1.0 : -1.0;
+  }
+  e.count = 0;
   for (int j = 0; j < 4; ++j) {
     const bool plusU = (j & 1) != 0, plusV = (j & 2) != 0;
+    const Real weight = 0.25 * (plusU ? 1.0 + u[ua] : 1.0 - u[ua]) * (plusV ? 1.0 + u[va] : 1.0 - u[va]);
+    if (weight == 0.0) continue;
     const int corner = side | (plusU ? 1 << ua : 0) | (plusV ? 1 << va : 0);
-    e.particle[j] = box.firstParticle + corner;
-    e.weight[j] = 0.25 * (plusU ? 1.0 + u[ua] : 1.0 - u[ua]) * (plusV ? 1.0 + u[va] : 1.0 - u[va]);
+    e.particle[e.count] = box.firstParticle + corner;
+    e.weight[e.count] = weight;
+    ++e.count;
   }
   return e;
 }
