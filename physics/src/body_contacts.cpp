@@ -61,7 +61,8 @@ void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std:
     const Vec3 motionB = embeddedPosition(p.position, b) - embeddedPosition(p.previous, b);
     Vec3 slide = motionB - motionA;
     slide -= glm::dot(slide, c.normal) * c.normal;
-    // Squared lengths, so that a contact friction holds (most of a resting stack's) takes no root.
+    // Squared lengths, so that a contact friction holds (most of a resting stack's) takes no root
+    // (the same test as |slide| > held but within a rounding of the threshold).
     const Real slide2 = glm::dot(slide, slide);
     if (slide2 == 0.0) continue;
     const Real denominator = weightSum(p, a, b);

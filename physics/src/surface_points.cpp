@@ -70,9 +70,9 @@ Embedding surfacePoint(const Body& box, const Obb& f, const Vec3& point, Vec3* m
     for (int k = 0; k < 3; ++k) *moved += f.axes[k] * ((carried[k] - unclamped[k]) * box.halfExtents[k]);
   }
   // A point on an edge or at a corner of its face, as most of a stack's are (a face's corner
-  // resting on the face below), is carried by 2 corners or 1: snapped there from rounding's
-  // 1e-16 off, its other corners weigh exactly 0 and are left out, so each pass reads and moves
-  // 4.5 particles a contact point in a pyramid instead of 8.
+  // resting on the face below), is carried by 2 corners or 1: snapped there from within kEdgeSnap
+  // (rounding leaves it some 1e-16 off), its other corners weigh exactly 0 and are left out, so
+  // each pass reads and moves 4.5 particles a contact point (both sides) in a pyramid, not 8.
   for (const int a : {ua, va}) {
     if (std::abs(u[a]) > 1.0 - kEdgeSnap) u[a] = u[a] > 0.0 ? 1.0 : -1.0;
   }

@@ -109,9 +109,10 @@ bool shakeFallsBack(const phys::World& world, const phys::Particles& p) {
   const phys::Stick& s = world.sticks()[world.bodies()[12].firstStick];
   const double w = p.inverseMass[s.a] + p.inverseMass[s.b];
   const Vec3 d = p.position[s.b] - p.position[s.a], r = p.previous[s.b] - p.previous[s.a];
+  const double target = phys::detail::stickTarget(s, glm::length(d));
   const double qa = w * w * glm::dot(r, r), qb = 2.0 * w * glm::dot(d, r);
-  const double qc = glm::dot(d, d) - s.maxLength * s.maxLength;
-  return qb * qb - 4.0 * qa * qc < 0.0;
+  const double qc = glm::dot(d, d) - target * target;
+  return target >= 0.0 && qa > 0.0 && qb * qb - 4.0 * qa * qc < 0.0;
 }
 
 bool sameBits(const phys::Particles& a, const phys::Particles& b) {
