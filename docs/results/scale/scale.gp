@@ -1,12 +1,12 @@
 # Cost per body against size: capsule-ragdolls
 # Run gnuplot on this file in its folder: it writes scale.png and scale.svg. The data is inline, below.
 $s0 << EOD
-11 2.4524090909090912 "n=1"
-44 1.9473295454545452 "n=4"
-176 1.5195909090909092 "n=16"
-704 1.5038615056818181 "n=64"
-2816 1.4870896661931818 "n=256"
-11264 1.7976722301136363 "n=1024"
+11 2.9319545454545453 "n=1"
+44 2.3114318181818181 "n=4"
+176 1.8251647727272726 "n=16"
+704 1.6275404829545457 "n=64"
+2816 1.5857141335227269 "n=256"
+11264 1.924341042258523 "n=1024"
 EOD
 set termoption noenhanced
 set title 'Cost per body against size: capsule-ragdolls'
