@@ -62,52 +62,55 @@ DampLaneArguments dampLaneArguments(Particles& p, const BodyLayout& layout, Real
   return a;
 }
 
-void dampBodyLanes(const DampLaneArguments& a, LaneIsa isa) {
+namespace {
+
+template <class Arguments>
+using Kernel = void (*)(const Arguments&);
+
+// The copy `isa` asks for where the CPU has it (avx2 is null in a build without that copy), else
+// the baseline's; nothing for no groups.
+template <class Arguments>
+void runKernel(const Arguments& a, [[maybe_unused]] LaneIsa isa, [[maybe_unused]] Kernel<Arguments> avx2,
+               Kernel<Arguments> baseline) {
   if (a.groupCount == 0) return;
 #if defined(PHYS_AVX2_LANES)
-  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::dampBodyLanes(a);
+  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2(a);
 #endif
-  baseline::dampBodyLanes(a);
+  baseline(a);
+}
+
+#if defined(PHYS_AVX2_LANES)
+#define PHYS_AVX2_KERNEL(name) &avx2::name
+#else
+#define PHYS_AVX2_KERNEL(name) nullptr
+#endif
+
+}  // namespace
+
+void dampBodyLanes(const DampLaneArguments& a, LaneIsa isa) {
+  runKernel(a, isa, PHYS_AVX2_KERNEL(dampBodyLanes), &baseline::dampBodyLanes);
 }
 
 void solveLinkLanes(const LinkLaneArguments& a, LaneIsa isa) {
-  if (a.groupCount == 0) return;
-#if defined(PHYS_AVX2_LANES)
-  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::solveLinkLanes(a);
-#endif
-  baseline::solveLinkLanes(a);
+  runKernel(a, isa, PHYS_AVX2_KERNEL(solveLinkLanes), &baseline::solveLinkLanes);
 }
 
 void relaxGaussSeidelLanes(const LaneArguments& a, LaneIsa isa) {
-  if (a.groupCount == 0) return;
-#if defined(PHYS_AVX2_LANES)
-  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxGaussSeidelLanes(a);
-#endif
-  baseline::relaxGaussSeidelLanes(a);
+  runKernel(a, isa, PHYS_AVX2_KERNEL(relaxGaussSeidelLanes), &baseline::relaxGaussSeidelLanes);
 }
 
 void relaxXpbdLanes(const LaneArguments& a, LaneIsa isa) {
-  if (a.groupCount == 0) return;
-#if defined(PHYS_AVX2_LANES)
-  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxXpbdLanes(a);
-#endif
-  baseline::relaxXpbdLanes(a);
+  runKernel(a, isa, PHYS_AVX2_KERNEL(relaxXpbdLanes), &baseline::relaxXpbdLanes);
 }
 
 void relaxShakeLanes(const LaneArguments& a, LaneIsa isa) {
-  if (a.groupCount == 0) return;
-#if defined(PHYS_AVX2_LANES)
-  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxShakeLanes(a);
-#endif
-  baseline::relaxShakeLanes(a);
+  runKernel(a, isa, PHYS_AVX2_KERNEL(relaxShakeLanes), &baseline::relaxShakeLanes);
 }
 
 void relaxJacobiLanes(const LaneArguments& a, LaneIsa isa) {
-  if (a.groupCount == 0) return;
-#if defined(PHYS_AVX2_LANES)
-  if (isa == LaneIsa::Avx2 && kBest == LaneIsa::Avx2) return avx2::relaxJacobiLanes(a);
-#endif
-  baseline::relaxJacobiLanes(a);
+  runKernel(a, isa, PHYS_AVX2_KERNEL(relaxJacobiLanes), &baseline::relaxJacobiLanes);
 }
+
+#undef PHYS_AVX2_KERNEL
 
 }  // namespace phys::detail
