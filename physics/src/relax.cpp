@@ -1,8 +1,7 @@
 // The four ways to relax sticks. Each is one pass over all sticks; the caller repeats it. A pass
 // runs over the StickLayout: its lane groups eight bodies at a time (relax_lanes.h), each block
-// (a body) in locals, then the runs in the world's arrays. The same
-// projection code serves blocks and runs, and the lanes repeat its operations, so the result is
-// the same.
+// (a body) in locals, then the runs in the world's arrays. The same projection code serves blocks
+// and runs, and the lanes repeat its operations, so the result is the same.
 #include <algorithm>
 #include <cmath>
 
