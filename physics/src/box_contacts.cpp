@@ -192,8 +192,9 @@ void contactAlong(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, 
 
 }  // namespace
 
-bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out) {
-  out.sat = satTest(a, b, margin);
+bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out,
+                  int previousAxis) {
+  out.sat = satTest(a, b, margin, previousAxis);
   out.count = 0;
   if (!out.sat.overlap) return false;
   contactAlong(a, b, featureEpsilon, margin, out);

@@ -47,12 +47,13 @@ void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies) {
 
 // Each pair's contact by its shapes, normal from a towards b; boxes keep at most 4 points. Points
 // up to the pair's speculative margin apart are kept, which the passes leave alone until they close.
-bool NarrowPhase::collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, BoxContact& contact) const {
+bool NarrowPhase::collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, int previousAxis,
+                              BoxContact& contact) const {
   const Real margin = speculativeMargin(in, a, b);
   const std::span<const Obb> frames = in.frames;
   const bool capsuleA = in.bodies[a].shape == Shape::Capsule, capsuleB = in.bodies[b].shape == Shape::Capsule;
   if (!capsuleA && !capsuleB) {
-    if (!collideBoxes(frames[a], frames[b], in.featureEpsilon, margin, contact)) return false;
+    if (!collideBoxes(frames[a], frames[b], in.featureEpsilon, margin, contact, previousAxis)) return false;
     reduceToFourPoints(contact, in.featureEpsilon);
     return true;
   }
@@ -104,7 +105,8 @@ void NarrowPhase::build(const NarrowPhaseInput& in) {
       continue;
     }
     const auto [a, b] = pair;
-    if (collidePair(in, a, b, contact)) addManifold(in, a, b, contact);
+    const bool had = old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair;
+    if (collidePair(in, a, b, had ? spareManifolds_[old].axis : -1, contact)) addManifold(in, a, b, contact);
   }
   sizeState();
 }
@@ -167,7 +169,7 @@ void NarrowPhase::refresh(const NarrowPhaseInput& in) {
   BoxContact contact;
   for (const Manifold& m : spareManifolds_) {
     if (!m.kept) {
-      if (collidePair(in, m.a, m.b, contact)) addManifold(in, m.a, m.b, contact);
+      if (collidePair(in, m.a, m.b, m.axis, contact)) addManifold(in, m.a, m.b, contact);
       continue;
     }
     carry(in, m);
@@ -223,6 +225,7 @@ void NarrowPhase::pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, c
   manifolds_.push_back({a, b, rigid, static_cast<std::uint32_t>(first),
                         static_cast<std::uint32_t>(contact.count), contact.sat.normal});
   Manifold& m = manifolds_.back();
+  m.axis = in.bodies[a].shape == Shape::Box && in.bodies[b].shape == Shape::Box ? contact.sat.axis : -1;
   m.kept = contact.kind == ContactKind::FaceFace && in.bodies[a].shape == Shape::Box &&
            in.bodies[b].shape == Shape::Box;
   if (!m.kept) return;

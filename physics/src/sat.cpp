@@ -64,7 +64,7 @@ Vec3 Obb::corner(int k) const {
          axes[2] * ((k & 4) ? halfExtents.z : -halfExtents.z);
 }
 
-SatResult satTest(const Obb& a, const Obb& b, Real margin) {
+SatResult satTest(const Obb& a, const Obb& b, Real margin, int previousAxis) {
   const Vec3 t = b.center - a.center;
   Best face, edge;
   for (int i = 0; i < 3; ++i) {
@@ -78,8 +78,11 @@ SatResult satTest(const Obb& a, const Obb& b, Real margin) {
       if (!testEdge(a, b, a.axes[i], b.axes[j], 6 + 3 * i + j, t, margin, edge)) return {};
     }
   }
-  const Best& best =
-      edge.axis >= 0 && edge.depth < kFaceBiasRelative * face.depth - kFaceBiasAbsolute ? edge : face;
+  const bool wasEdge = previousAxis >= 6;
+  const Best& best = edge.axis >= 0 && (edge.depth < kFaceBiasRelative * face.depth - kFaceBiasAbsolute ||
+                                        (wasEdge && edge.depth < face.depth))
+                         ? edge
+                         : face;
   SatResult r;
   r.overlap = true;
   r.axis = best.axis;

@@ -97,6 +97,41 @@ TEST(Sat, NearlyEqualEdgeAxisLosesToTheFace) {
   EXPECT_NEAR(r.depth, 0.01, 1e-12);
 }
 
+// A cube over the edge of another, tilted 0.3 rad about x and turned 0.1 rad about z: the shallowest
+// edge-edge axis is 1 cm shallower than the shallowest face axis (depths 0.0106 and 0.0204 m), but not
+// by the face bias (0.95 * 0.0204 - 0.01 = 0.0094 m).
+Obb tiltedOverTheEdge(const Vec3& center) {
+  Obb b = box(center, Vec3(0.5));
+  b.axes =
+      glm::mat3_cast(glm::angleAxis(0.1, Vec3(0.0, 0.0, 1.0)) * glm::angleAxis(0.3, Vec3(1.0, 0.0, 0.0)));
+  return b;
+}
+
+TEST(Sat, AnEdgeAxisOnceTakenIsKeptWhileItIsTheShallowest) {
+  const Obb a = box(Vec3(0.0), Vec3(0.5));
+  const Obb b = tiltedOverTheEdge(Vec3(0.96, 0.0, 1.105));
+  const phys::SatResult first = phys::satTest(a, b);
+  ASSERT_TRUE(first.overlap);
+  ASSERT_LT(first.axis, 6);  // the bias takes the face
+  ASSERT_GE(first.edgeAxis, 6);
+  ASSERT_LT(first.edgeDepth, first.depth);
+  // After the edge, the edge: the biased test alone gave the face and the edge by turns to a pair
+  // on this side of the bias and the other (a limb rocking every other step in a ragdoll pile).
+  const phys::SatResult afterEdge = phys::satTest(a, b, 0.0, first.edgeAxis);
+  EXPECT_EQ(afterEdge.axis, first.edgeAxis);
+  EXPECT_DOUBLE_EQ(afterEdge.depth, first.edgeDepth);
+  const phys::SatResult afterFace = phys::satTest(a, b, 0.0, first.axis);
+  EXPECT_EQ(afterFace.axis, first.axis);
+  // Wholly over it, no edge axis is shallower than the face (the shallowest ties with it): an edge
+  // taken before gives way to the face.
+  const Obb over = tiltedOverTheEdge(Vec3(0.0, 0.0, 1.105));
+  const phys::SatResult plain = phys::satTest(a, over);
+  ASSERT_TRUE(plain.overlap);
+  ASSERT_GE(plain.edgeAxis, 6);
+  ASSERT_GE(plain.edgeDepth, plain.depth);
+  EXPECT_EQ(phys::satTest(a, over, 0.0, plain.edgeAxis).axis, plain.axis);
+}
+
 TEST(Features, SupportFeatureIsFaceEdgeOrVertexWithinEpsilon) {
   const Obb b = box(Vec3(0.0), Vec3(0.5));
   const phys::SupportFeature face = phys::supportFeature(b, {0, 1, 0}, 0.01);

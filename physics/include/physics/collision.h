@@ -42,8 +42,12 @@ inline constexpr Real kFaceBiasAbsolute = 0.01;  ///< unit: m
 
 /// The separating-axis test; stops at the first axis that separates. Boxes less than `margin`
 /// apart count as touching (depth down to -margin), so a resting contact that a relaxation pass
-/// left a hair open is still found in the next substep.
-SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0);
+/// left a hair open is still found in the next substep. `previousAxis` is the axis the pair's
+/// last test chose (-1: none): after an edge-edge axis, the edge is kept while it is the shallowest
+/// (no bias), so that a pair between the biased and the unbiased choice does not take a face axis
+/// and an edge axis by turns (a limb rocked against another every other step: docs/physics.md,
+/// "Box-box contact").
+SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0, int previousAxis = -1);
 
 /// The first touch of two oriented boxes as B moves by `moved` relative to A, neither turning: the
 /// separating-axis test swept over the move. On each of the 15 axes the projections overlap over
@@ -101,7 +105,9 @@ struct BoxContact {
 bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& out);
 /// The same, keeping boxes and points up to `margin` apart (>= featureEpsilon: a speculative
 /// margin), while the features are still told apart by featureEpsilon.
-bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out);
+/// `previousAxis` as satTest's.
+bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out,
+                  int previousAxis = -1);
 
 /// Keeps at most 4 of a contact's points: the deepest, the farthest from it, and the two that
 /// span the largest area with them. The solver uses this, so a face contact has 4 points

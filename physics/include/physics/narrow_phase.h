@@ -27,6 +27,9 @@ struct Manifold {
   /// Its points hold for the whole step (face on face); every other manifold is collided again in
   /// every substep.
   bool kept = false;
+  /// The axis of the separating-axis test that made it (SatResult::axis; a capsule's: -1), which
+  /// the pair's next test is given (satTest's previousAxis).
+  int axis = -1;
   BodyId reference{};     ///< kept: the body whose face the normal is
   Vec3 localNormal{0.0};  ///< kept: the normal in that body's frame
   /// kept: where b was in a's frame when the manifold was made (its centre, unit m, and its axes),
@@ -94,7 +97,8 @@ class NarrowPhase {
   const BodyContactState& state() const { return state_; }
 
  private:
-  bool collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, BoxContact& contact) const;
+  bool collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, int previousAxis,
+                   BoxContact& contact) const;
   void addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact);
   void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts) const;
   bool canCarry(const NarrowPhaseInput& in, const Manifold& m) const;
