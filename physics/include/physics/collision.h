@@ -43,10 +43,10 @@ inline constexpr Real kFaceBiasAbsolute = 0.01;  ///< unit: m
 /// The separating-axis test; stops at the first axis that separates. Boxes less than `margin`
 /// apart count as touching (depth down to -margin), so a resting contact that a relaxation pass
 /// left a hair open is still found in the next substep. `previousAxis` is the axis the pair's
-/// last test chose (-1: none): after an edge-edge axis, the edge is kept while it is the shallowest
-/// (no bias), so that a pair between the biased and the unbiased choice does not take a face axis
-/// and an edge axis by turns (a limb rocked against another every other step: docs/physics.md,
-/// "Box-box contact").
+/// last test chose (-1: none): after an edge-edge axis, the shallowest edge axis is taken whenever
+/// it is shallower than every face axis (no bias), so that a pair between the biased and the
+/// unbiased choice does not take a face axis and an edge axis by turns (a limb rocked against
+/// another every other step: docs/physics.md, "Box-box contact").
 SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0, int previousAxis = -1);
 
 /// The first touch of two oriented boxes as B moves by `moved` relative to A, neither turning: the
