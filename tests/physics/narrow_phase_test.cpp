@@ -93,8 +93,9 @@ std::vector<int> kindsPassingBy(const Vec3& start, int steps) {
 }
 
 // B's contact is found where it is after each step: at (0.97, 0, 1.04) an edge-edge axis wins
-// outright (the edges 6.9 mm apart); at (0.96, 0, 1.05) the same edge axis is still the shallowest
-// (6.9 mm against the face's 2.6) but not by the face bias. Met there first, the pair takes the face;
+// outright (the boxes 6.9 mm apart along it); at (0.96, 0, 1.05) the same edge axis is still the
+// shallowest (6.9 mm apart along it, 2.6 mm along the best face axis) but not by the face bias, which
+// asks for 0.95 * 2.6 + 10 mm. Met there first, the pair takes the face;
 // come from the first place, it keeps the edge it had (satTest's previousAxis, passed on by the
 // narrow phase from the pair's manifold).
 TEST(NarrowPhase, APairKeepsTheEdgeAxisItHadWhileItIsTheShallowest) {
