@@ -225,9 +225,9 @@ void NarrowPhase::pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, c
   manifolds_.push_back({a, b, rigid, static_cast<std::uint32_t>(first),
                         static_cast<std::uint32_t>(contact.count), contact.sat.normal});
   Manifold& m = manifolds_.back();
-  m.axis = in.bodies[a].shape == Shape::Box && in.bodies[b].shape == Shape::Box ? contact.sat.axis : -1;
-  m.kept = contact.kind == ContactKind::FaceFace && in.bodies[a].shape == Shape::Box &&
-           in.bodies[b].shape == Shape::Box;
+  const bool boxes = in.bodies[a].shape == Shape::Box && in.bodies[b].shape == Shape::Box;
+  m.axis = boxes ? contact.sat.axis : -1;
+  m.kept = boxes && contact.kind == ContactKind::FaceFace;
   if (!m.kept) return;
   const Vec3 n = m.normal;
   // The reference face: the box one of whose axes the normal lies along (the better aligned).
