@@ -4,8 +4,13 @@
 #include <map>
 
 #include "physics/stick_layout.h"
+#include "still_groups.h"
 
 namespace phys {
+
+void BodyLayout::markStill(std::span<const Real> inverseMass) {
+  detail::markStillGroups<BodyLanes, kBodyLanes>(lanes_, inverseMass, still_);
+}
 
 void BodyLayout::build(std::span<const Body> boxes) {
   lanes_.clear();
@@ -29,6 +34,8 @@ void BodyLayout::build(std::span<const Body> boxes) {
   }
   for (const auto& [count, alike] : waiting) others_.insert(others_.end(), alike.begin(), alike.end());
   std::sort(others_.begin(), others_.end());
+  still_.clear();
+  still_.reserve(lanes_.size());
 }
 
 }  // namespace phys

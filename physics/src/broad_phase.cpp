@@ -32,6 +32,7 @@ void BroadPhase::addBody() {
   travel_.push_back(0.0);
   motion_.emplace_back();
   pairFrames_.emplace_back();
+  keptAsleep_.push_back(0);
   stale_ = true;
 }
 
@@ -107,7 +108,12 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
   const Real margin = step.featureEpsilon;
   const Real dt = step.dt, h = step.h;
   const Real g = step.gravity;
+  const std::span<const std::uint8_t> asleep = step.asleep;
   for (BodyId id{}; id < bodies.size(); ++id) {
+    // A sleeping body's particles and frame do not change, nor do the bounds found from them.
+    const bool sleeps = !asleep.empty() && asleep[id] != 0;
+    if (sleeps && keptAsleep_[id] != 0) continue;
+    keptAsleep_[id] = sleeps ? 1 : 0;
     const Body& box = bodies[id];
     Real fastest = 0.0;  // squared displacement over the last substep
     Vec3 mean(0.0);
@@ -162,7 +168,7 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
     sweep_[j] = moving;
   }
   unsortedPairs_.clear();
-  findPairsInStrips(bodies, step.strips);
+  findPairsInStrips(bodies, step.strips, asleep);
   sortPairsByBody();
   for (BodyId id{}; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
   stale_ = false;
@@ -172,9 +178,10 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
 }
 
 // A body's corners moved at most |dc| + sum_k |da_k| h_k since the pairs were found.
-bool BroadPhase::needsUpdate(std::span<const Obb> frames) const {
+bool BroadPhase::needsUpdate(std::span<const Obb> frames, std::span<const std::uint8_t> asleep) const {
   if (stale_) return true;
   for (BodyId id{}; id < frames.size(); ++id) {
+    if (!asleep.empty() && asleep[id] != 0) continue;  // its frame has not moved
     const Obb& now = frames[id];
     const Obb& then = pairFrames_[id];
     Real moved = glm::length(now.center - then.center);
@@ -195,7 +202,8 @@ bool BroadPhase::needsUpdate(std::span<const Obb> frames) const {
 // cross more than settings.maxStripsPerBody strips (a floor, or bounds grown by a huge speed) is left out of
 // the strips and tested against every box. The pairs found are the same set, in the same sorted
 // order, as one sweep finds: the state after a step does not depend on the strips.
-void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings) {
+void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings,
+                                   std::span<const std::uint8_t> asleep) {
   const std::size_t n = bodies.size();
   const int s = sweepAxis_;
   const int other1 = (s + 1) % 3, other2 = (s + 2) % 3;
@@ -263,23 +271,47 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
   for (std::size_t k = strips; k > 0; --k) stripStart_[k] = stripStart_[k - 1];
   stripStart_[0] = 0;
 
-  for (std::size_t k = 0; k < strips; ++k) {
-    const std::size_t end = stripStart_[k + 1];
-    for (std::size_t i = stripStart_[k]; i < end; ++i) {
-      const BodyId a = stripBodies_[i];
-      const Bounds& ba = bounds_[a];
-      for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= ba.hi[s]; ++j) {
-        const BodyId b = stripBodies_[j];
-        const Bounds& bb = bounds_[b];
-        if (!overlap(ba, bb, t) || !overlap(ba, bb, u)) continue;
-        if (stripOf(std::max(ba.lo[t], bb.lo[t])) != k) continue;  // kept in another strip
-        if (collides(bodies, a, b)) unsortedPairs_.emplace_back(std::min(a, b), std::max(a, b));
+  auto meet = [&](std::size_t k, BodyId a, BodyId b) {
+    const Bounds &ba = bounds_[a], &bb = bounds_[b];
+    if (!overlap(ba, bb, t) || !overlap(ba, bb, u)) return;
+    if (stripOf(std::max(ba.lo[t], bb.lo[t])) != k) return;  // kept in another strip
+    if (collides(bodies, a, b)) unsortedPairs_.emplace_back(std::min(a, b), std::max(a, b));
+  };
+  if (asleep.empty()) {
+    for (std::size_t k = 0; k < strips; ++k) {
+      const std::size_t end = stripStart_[k + 1];
+      for (std::size_t i = stripStart_[k]; i < end; ++i) {
+        const BodyId a = stripBodies_[i];
+        const Real reach = bounds_[a].hi[s];
+        for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= reach; ++j)
+          meet(k, a, stripBodies_[j]);
+      }
+    }
+  } else {
+    // Only the pairs with an awake body: each awake body sweeps forward as above, and back over
+    // the sleeping bodies before it whose intervals can reach it (none begins more than the
+    // longest interval before it), so a sleeping pile costs the awake bodies' neighbours alone.
+    Real longest = 0.0;
+    for (const Bounds& b : bounds_) longest = std::max(longest, b.hi[s] - b.lo[s]);
+    for (std::size_t k = 0; k < strips; ++k) {
+      const std::size_t begin = stripStart_[k], end = stripStart_[k + 1];
+      for (std::size_t i = begin; i < end; ++i) {
+        const BodyId a = stripBodies_[i];
+        if (asleep[a] != 0) continue;
+        const Bounds& ba = bounds_[a];
+        for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= ba.hi[s]; ++j)
+          meet(k, a, stripBodies_[j]);
+        for (std::size_t j = i; j > begin && bounds_[stripBodies_[j - 1]].lo[s] >= ba.lo[s] - longest; --j) {
+          const BodyId b = stripBodies_[j - 1];
+          if (asleep[b] != 0 && bounds_[b].hi[s] >= ba.lo[s]) meet(k, a, b);
+        }
       }
     }
   }
   for (const BodyId w : wideBodies_) {
     for (BodyId b{}; b < n; ++b) {
       if (b == w || (b < w && wide(b))) continue;  // two wide boxes: once, from the lower id
+      if (!asleep.empty() && asleep[w] != 0 && asleep[b] != 0) continue;
       const Bounds &bw = bounds_[w], &bb = bounds_[b];
       if (overlap(bw, bb, s) && overlap(bw, bb, t) && overlap(bw, bb, u) && collides(bodies, w, b)) {
         unsortedPairs_.emplace_back(std::min(w, b), std::max(w, b));

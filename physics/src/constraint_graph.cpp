@@ -63,6 +63,16 @@ void ConstraintGraph::layOut(std::span<const Body> bodies, std::size_t particleC
   stale_ = false;
 }
 
+void ConstraintGraph::markStill(std::span<const Real> inverseMass) {
+  stickLayout_.markStill(inverseMass);
+  linkLayout_.markStill(inverseMass);
+}
+
+void ConstraintGraph::clearStill() {
+  stickLayout_.clearStill();
+  linkLayout_.clearStill();
+}
+
 void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h,
                                   Real compliance, const Workers* workers) {
   switch (method) {

@@ -5,7 +5,14 @@
 #include <map>
 #include <numeric>
 
+#include "still_groups.h"
+
 namespace phys {
+
+void LinkLayout::markStill(std::span<const Real> inverseMass) {
+  detail::markStillGroups<LinkLanes, kLinkLanes>(lanes_, inverseMass, still_);
+}
+
 namespace {
 
 ParticleId findRoot(std::vector<ParticleId>& parent, ParticleId i) {
@@ -129,6 +136,8 @@ void LinkLayout::build(std::span<const Link> links, std::size_t particleCount) {
     for (const Group* group : alike) others_.insert(others_.end(), group->links.begin(), group->links.end());
   }
   std::sort(others_.begin(), others_.end());
+  still_.clear();
+  still_.reserve(lanes_.size());
 }
 
 }  // namespace phys

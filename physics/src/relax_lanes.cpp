@@ -37,6 +37,7 @@ LaneArguments laneArguments(Particles& p, const StickLayout& layout) {
   a.localSticks = layout.localSticks().data();
   a.laneValues = layout.laneValues().data();
   a.previous = coordinates(p.previous);
+  a.still = layout.still().empty() ? nullptr : layout.still().data();
   return a;
 }
 
@@ -48,6 +49,7 @@ LinkLaneArguments linkLaneArguments(Particles& p, const LinkLayout& layout) {
   a.groupCount = layout.lanes().size();
   a.localLinks = layout.localLinks().data();
   a.laneValues = layout.laneValues().data();
+  a.still = layout.still().empty() ? nullptr : layout.still().data();
   return a;
 }
 
@@ -59,6 +61,7 @@ DampLaneArguments dampLaneArguments(Particles& p, const BodyLayout& layout, Real
   a.groups = layout.lanes().data();
   a.groupCount = layout.lanes().size();
   a.fraction = fraction;
+  a.still = layout.still().empty() ? nullptr : layout.still().data();
   return a;
 }
 

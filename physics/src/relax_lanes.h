@@ -5,6 +5,7 @@
 // for the x86-64 baseline and for AVX2 (relax_lanes_kernels.inc), and these functions pick the
 // one the CPU can run, once. Both do per lane exactly what the scalar pass does per body.
 #include <cstddef>
+#include <cstdint>
 
 #include "physics/body_layout.h"
 #include "physics/link_layout.h"
@@ -22,12 +23,13 @@ struct LaneArguments {
   const StickLanes* groups = nullptr;
   std::size_t groupCount = 0;
   const LocalStick* localSticks = nullptr;
-  const Real* laneValues = nullptr;  ///< StickLayout::laneValues()
-  Real* lambda = nullptr;            ///< XPBD: per stick, in World::sticks() order
-  Real inverseH2 = 0.0;              ///< XPBD: 1 / h^2 (1/s^2)
-  Real compliance = 0.0;             ///< XPBD: the world's, added to each stick's (m/N)
-  const Real* previous = nullptr;    ///< SHAKE: x* of each particle, x, y, z one after the other
-  const Real* degree = nullptr;      ///< Jacobi: per particle, the number of sticks at it
+  const Real* laneValues = nullptr;     ///< StickLayout::laneValues()
+  Real* lambda = nullptr;               ///< XPBD: per stick, in World::sticks() order
+  Real inverseH2 = 0.0;                 ///< XPBD: 1 / h^2 (1/s^2)
+  Real compliance = 0.0;                ///< XPBD: the world's, added to each stick's (m/N)
+  const Real* previous = nullptr;       ///< SHAKE: x* of each particle, x, y, z one after the other
+  const Real* degree = nullptr;         ///< Jacobi: per particle, the number of sticks at it
+  const std::uint8_t* still = nullptr;  ///< per group, 1 to skip it (StickLayout::still); or none
 };
 
 /// The arguments for the world's particles and a layout (XPBD's and Jacobi's numbers not set).
@@ -40,7 +42,8 @@ struct LinkLaneArguments {
   const LinkLanes* groups = nullptr;
   std::size_t groupCount = 0;
   const LocalLink* localLinks = nullptr;
-  const Real* laneValues = nullptr;  ///< LinkLayout::laneValues()
+  const Real* laneValues = nullptr;     ///< LinkLayout::laneValues()
+  const std::uint8_t* still = nullptr;  ///< per group, 1 to skip it (LinkLayout::still); or none
 };
 
 /// What the body damping kernel reads and writes.
@@ -50,7 +53,8 @@ struct DampLaneArguments {
   const Real* inverseMass = nullptr;
   const BodyLanes* groups = nullptr;
   std::size_t groupCount = 0;
-  Real fraction = 0.0;  ///< SolverSettings::bodyDamping
+  Real fraction = 0.0;                  ///< SolverSettings::bodyDamping
+  const std::uint8_t* still = nullptr;  ///< per group, 1 to skip it (BodyLayout::still); or none
 };
 
 /// The damping arguments for the world's particles and a layout.
@@ -76,6 +80,7 @@ void inLanePieces(const Arguments& args, const Workers* workers, Kernel kernel) 
     Arguments part = args;
     part.groups += begin;
     part.groupCount = end - begin;
+    if (part.still != nullptr) part.still += begin;
     kernel(part);
   };
   workers->forEach(args.groupCount, kLaneGroupsPerPiece, piece);

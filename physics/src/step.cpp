@@ -47,10 +47,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   }
   updateLayouts();
   const std::size_t freezesBefore = guard_.freezes().size();
-  if (islands_.anyAsleep()) {
-    const detail::StageTimer timer(profile_, Stage::Islands);
-    islands_.mask(particles_, rigidBodies_, bodies_);
-  }
+  skipSleepers();
   std::fill(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{0});
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
   const Real h = substepDt();
@@ -84,6 +81,21 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
   return true;
+}
+
+// A sleeping island's particles get inverse mass 0 for the step (Islands::mask), which every
+// stage treats as pinned; the lane groups all of whose particles are then still are skipped by the
+// passes, so that a pile asleep beside a few moving bodies costs little more than they do.
+void World::skipSleepers() {
+  if (!islands_.anyAsleep()) {
+    constraints_.clearStill();
+    bodyLayout_.clearStill();
+    return;
+  }
+  const detail::StageTimer timer(profile_, Stage::Islands);
+  islands_.mask(particles_, rigidBodies_, bodies_);
+  constraints_.markStill(particles_.inverseMass);
+  bodyLayout_.markStill(particles_.inverseMass);
 }
 
 // When every island sleeps, a step only passes the time (as the substeps would add it up) and
@@ -199,9 +211,11 @@ void World::fitBodyFrames() {
 bool World::findPairs(bool firstSubstep) {
   if (bodies_.size() < 2) return false;
   const detail::StageTimer timer(profile_, Stage::BroadPhase);
-  if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_))) return false;
-  const BroadPhaseStep step{solver_.dt, substepDt(), solver_.featureEpsilon, gravityMagnitude(),
-                            solver_.broadPhase};
+  const std::span<const std::uint8_t> asleep =
+      islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>();
+  if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_, asleep))) return false;
+  const BroadPhaseStep step{solver_.dt,         substepDt(),        solver_.featureEpsilon,
+                            gravityMagnitude(), solver_.broadPhase, asleep};
   broadPhase_.update(particles_, rigidBodies_, bodies_, frames_, step);
   const std::size_t pairs = broadPhase_.pairs().size();
   narrowPhase_.reserve(pairs, bodies_.size());

@@ -2,7 +2,13 @@
 
 #include <map>
 
+#include "still_groups.h"
+
 namespace phys {
+
+void StickLayout::markStill(std::span<const Real> inverseMass) {
+  detail::markStillGroups<StickLanes, kStickLanes>(lanes_, inverseMass, still_);
+}
 
 StickLayout StickLayout::inOrder(std::size_t stickCount) {
   StickLayout layout;
@@ -57,6 +63,8 @@ void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> box
     if (stickOwner[k] == kNone) addToRuns(static_cast<std::uint32_t>(k));
   }
   groupIntoLanes(sticks);
+  still_.clear();
+  still_.reserve(lanes_.size());
 }
 
 // Blocks of one shape (particle count and local sticks), kStickLanes at a time, in body order;

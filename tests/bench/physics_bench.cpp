@@ -129,6 +129,36 @@ void BM_StateHash(benchmark::State& state) {
 }
 BENCHMARK(BM_StateHash)->Unit(benchmark::kMicrosecond);
 
+// A world mostly asleep: BM_RagdollPile's 64 ragdolls come to rest and, with sleeping on
+// (argument 1), fall asleep, while a chain of 10 loose particles hung from a pin 30 m away swings
+// on for the whole run. With sleeping off (argument 0) the resting pile is stepped in full. What a
+// step costs with the pile asleep is what sleeping saves (docs/performance.md, "Islands and
+// sleeping": the passes, the broad phase and the ground skip what sleeps).
+void BM_SleepingPileBesideAPendulum(benchmark::State& state) {
+  phys::SolverSettings s;
+  s.sleep.enabled = state.range(0) != 0;
+  phys::World world({}, s);
+  for (int i = 0; i < 64; ++i) {
+    phys::RagdollDesc desc;
+    desc.model = phys::RagdollModel::Lean;
+    desc.hips = {2.0 * (i % 8 - 3.5), 1.2, 2.0 * (i / 8 - 3.5)};
+    const double tip = glm::radians(20.0);
+    desc.orientation = phys::Quat(phys::Vec3(i % 2 == 0 ? tip : -tip, 0.0, (i / 2) % 2 == 0 ? tip : -tip));
+    phys::addCapsuleRagdoll(world, desc);
+  }
+  phys::ParticleId previous = world.addParticle({phys::Vec3(30.0, 12.0, 0.0), phys::Vec3(0.0), 0.0, true});
+  for (int i = 1; i <= 10; ++i) {
+    const phys::ParticleId p = world.addParticle({phys::Vec3(30.0 + i, 12.0, 0.0)});
+    world.addStick(previous, p);
+    previous = p;
+  }
+  for (int i = 0; i < 3600 && (i < 600 || world.islands().awakeBodies() > 0); ++i) world.step();
+  for (auto _ : state) world.step();
+  state.counters["bodies_asleep"] = static_cast<double>(world.islands().sleepingBodies());
+  state.counters["bodies"] = static_cast<double>(world.bodies().size());
+}
+BENCHMARK(BM_SleepingPileBesideAPendulum)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

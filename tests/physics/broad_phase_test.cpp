@@ -177,4 +177,56 @@ TEST(BroadPhase, FindsPairsOnlyWhenUpdatedAndSaysWhenItMust) {
   EXPECT_TRUE(broad.needsUpdate(moved));
 }
 
+// With some bodies asleep (BroadPhaseStep::asleep) the pairs are those a sweep of every body finds,
+// less the pairs of two sleeping bodies: each awake body sweeps forward and back over the sleeping
+// ones before it, within strips or not, and a wide body is tested against all. 60 boxes tumbled
+// into a heap, and sleeping patterns from one body awake to all but one.
+TEST(BroadPhase, SleepingBodiesMeetOnlyAwakeOnes) {
+  phys::World world;
+  phys::BodyDesc box;
+  for (int i = 0; i < 60; ++i) {
+    box.center = {0.3 * (i % 7), 0.6 + 1.1 * (i / 7), 0.25 * (i % 5)};
+    box.orientation = glm::angleAxis(0.3 * i, glm::normalize(Vec3(1.0, 2.0, 0.5)));
+    box.size = Vec3(i == 30 ? 6.0 : 1.0, 1.0, 1.0);  // one wide enough to span strips
+    world.addBody(box);
+  }
+  for (int n = 0; n < 40; ++n) world.step();
+  phys::BroadPhaseSettings oneStrip, narrow, allWide;
+  oneStrip.maxStrips = 1;
+  narrow.stripsPerBody = 1;
+  allWide.maxStripsPerBody = 1;
+  const std::size_t n = world.bodies().size();
+  for (const phys::BroadPhaseSettings& strips : {phys::BroadPhaseSettings{}, oneStrip, narrow, allWide}) {
+    auto pairsWith = [&](std::span<const std::uint8_t> asleep) {
+      phys::BroadPhase broad;
+      for (std::size_t i = 0; i < n; ++i) broad.addBody();
+      broad.indexFilters();
+      const phys::BroadPhaseStep step{1.0 / 60.0, 1.0 / 240.0, 0.01, 9.81, strips, asleep};
+      broad.update(world.particles(), world.rigidBodies(), world.bodies(), world.bodyFrames(), step);
+      broad.update(world.particles(), world.rigidBodies(), world.bodies(), world.bodyFrames(),
+                   step);  // kept bounds
+      return std::vector<phys::BroadPhase::Pair>(broad.pairs().begin(), broad.pairs().end());
+    };
+    const std::vector<phys::BroadPhase::Pair> all = pairsWith({});
+    ASSERT_GT(all.size(), 100u);
+    for (int pattern = 0; pattern < 5; ++pattern) {
+      std::vector<std::uint8_t> asleep(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool awake = pattern == 0   ? i == 17
+                           : pattern == 1 ? i % 2 == 0
+                           : pattern == 2 ? i % 7 == 3
+                           : pattern == 3 ? i != 30
+                                          : i == 30;
+        asleep[i] = awake ? 0 : 1;
+      }
+      std::vector<phys::BroadPhase::Pair> expected;
+      for (const auto& [a, b] : all) {
+        if (asleep[a] == 0 || asleep[b] == 0) expected.emplace_back(a, b);
+      }
+      ASSERT_FALSE(expected.empty());
+      EXPECT_EQ(pairsWith(asleep), expected) << "pattern " << pattern << ", max strips " << strips.maxStrips;
+    }
+  }
+}
+
 }  // namespace

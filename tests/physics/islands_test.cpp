@@ -186,6 +186,35 @@ TEST(Islands, ASleepingIslandIsNotSteppedWhileAnotherMoves) {
   }
 }
 
+// The passes, the broad phase and the lanes skip what sleeps (World::skipSleepers), and that must
+// change nothing for what is awake: a ragdoll of boxes dropped beside a sleeping row of 20 boxes
+// moves to the bit as the same ragdoll alone in a world. Its first four parts share a lane group of
+// the sticks and of the body damping with the row's last four boxes (groups of eight of one shape,
+// in body order), so a group half asleep must still be relaxed.
+TEST(Islands, ABodyBesideASleepingRowMovesAsIfAlone) {
+  phys::SolverSettings s = sleeping();
+  s.bodyDamping = 0.3;
+  phys::World beside({}, s), alone({}, s);
+  for (int k = 0; k < 20; ++k) beside.addBody(box(Vec3(1.5 * k, 0.5, 0.0)));
+  for (int k = 0; k < 20; ++k) ASSERT_GT(stepUntilAsleep(beside, BodyId(k), 10.0), 0.0) << k;
+  const std::size_t rowParticles = beside.particles().size();
+  phys::RagdollDesc r;
+  r.hips = Vec3(-6.0, 2.5, 0.0);
+  r.orientation = glm::angleAxis(0.7, glm::normalize(Vec3(1.0, 0.0, 1.0)));
+  phys::addRagdoll(beside, r);
+  phys::addRagdoll(alone, r);
+  for (int i = 0; i < 180; ++i) {
+    beside.step();
+    alone.step();
+    ASSERT_EQ(beside.islands().sleepingBodies(), 20u) << "step " << i;
+    const auto& b = beside.particles().position;
+    const auto& a = alone.particles().position;
+    ASSERT_EQ(std::vector<Vec3>(b.begin() + static_cast<std::ptrdiff_t>(rowParticles), b.end()), a)
+        << "step " << i;
+  }
+  EXPECT_LT(alone.metrics().maxSpeed, 2.0);  // it fell, landed and tumbled (not still in the air)
+}
+
 // A box dropped on a sleeping one wakes it through their contact; neither falls through, and the
 // two sleep again once they rest together.
 TEST(Islands, ABodyThatLandsOnASleepingOneWakesIt) {

@@ -23,6 +23,9 @@ struct BroadPhaseStep {
   Real featureEpsilon = 0.0;  ///< unit: m; added to every body's bounds
   Real gravity = 0.0;         ///< unit: m/s^2; |g|, whose g dt^2 a body held still can still travel
   BroadPhaseSettings strips;
+  /// Per body, 1 when it sleeps (Islands::bodiesAsleep), or empty: two sleeping bodies make no pair,
+  /// and a sleeping body's bounds, once found asleep, are kept (nothing of it moves).
+  std::span<const std::uint8_t> asleep;
 };
 
 /// How a body moves over a step at the speeds of the broad phase's substep: its particles' mean
@@ -52,7 +55,7 @@ class BroadPhase {
   void markStale() { stale_ = true; }
   /// True when the pairs are stale, or some body has gone further since they were found than its
   /// bounds allowed (an impact or a joint gave it speed within the step).
-  bool needsUpdate(std::span<const Obb> frames) const;
+  bool needsUpdate(std::span<const Obb> frames, std::span<const std::uint8_t> asleep = {}) const;
   /// Finds the pairs from the bodies' frames now and their motion over the last substep (their
   /// particles', or a rigid body's velocities); allocates only when the world has gathered many
   /// more pairs than it ever had.
@@ -74,17 +77,19 @@ class BroadPhase {
     Vec3 lo, hi;
   };
   bool chooseSweepAxis(std::span<const Obb> frames);
-  void findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings);
+  void findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings,
+                         std::span<const std::uint8_t> asleep);
   void sortPairsByBody();
 
-  std::vector<Interval> sweep_;          // sweep-and-prune list, kept sorted between steps
-  std::vector<std::size_t> stripStart_;  // per strip and one more: where its bodies start in stripBodies_
-  std::vector<BodyId> stripBodies_;      // the bodies of each strip, in sweep order
-  std::vector<BodyId> wideBodies_;       // bodies across too many strips, tested against all
-  std::vector<Bounds> bounds_;           // per body: AABB grown by its reach over a step
-  std::vector<Real> travel_;             // per body: that reach (m)
-  std::vector<BodyMotion> motion_;       // per body
-  std::vector<Obb> pairFrames_;          // per body: its frame when pairs_ was found
+  std::vector<Interval> sweep_;           // sweep-and-prune list, kept sorted between steps
+  std::vector<std::size_t> stripStart_;   // per strip and one more: where its bodies start in stripBodies_
+  std::vector<BodyId> stripBodies_;       // the bodies of each strip, in sweep order
+  std::vector<BodyId> wideBodies_;        // bodies across too many strips, tested against all
+  std::vector<Bounds> bounds_;            // per body: AABB grown by its reach over a step
+  std::vector<Real> travel_;              // per body: that reach (m)
+  std::vector<BodyMotion> motion_;        // per body
+  std::vector<Obb> pairFrames_;           // per body: its frame when pairs_ was found
+  std::vector<std::uint8_t> keptAsleep_;  // per body: 1 when its bounds were found while it slept
   bool stale_ = true;
   int sweepAxis_ = 0;  // the axis sweep_ is sorted along
   std::vector<Pair> pairs_;

@@ -60,6 +60,10 @@ class ConstraintGraph {
   bool stale() const { return stale_; }
   /// Lays the sticks out by body and the links by ragdoll. Allocates: after things were added.
   void layOut(std::span<const Body> bodies, std::size_t particleCount);
+  /// Marks the lane groups of sticks and links that this step's passes skip (StickLayout::still),
+  /// from the inverse masses with the sleeping islands masked; clearStill skips none.
+  void markStill(std::span<const Real> inverseMass);
+  void clearStill();
 
   std::span<const Stick> sticks() const { return sticks_; }
   std::span<const Link> links() const { return links_; }

@@ -54,6 +54,12 @@ class LinkLayout {
   std::span<const std::uint32_t> laneLinks() const { return laneLinks_; }
   /// The links in no lane group, in creation order.
   std::span<const std::uint32_t> others() const { return others_; }
+  /// Per lane group, 1 when every particle of its lanes has inverse mass 0 in this step (asleep,
+  /// pinned or frozen), so that the passes skip it: they would move none of them. Empty unless
+  /// markStill was called since the last clearStill.
+  std::span<const std::uint8_t> still() const { return still_; }
+  void markStill(std::span<const Real> inverseMass);
+  void clearStill() { still_.clear(); }
 
  private:
   std::vector<LinkLanes> lanes_;
@@ -61,6 +67,7 @@ class LinkLayout {
   std::vector<Real> laneValues_;
   std::vector<std::uint32_t> laneLinks_;
   std::vector<std::uint32_t> others_;
+  std::vector<std::uint8_t> still_;
 };
 
 }  // namespace phys

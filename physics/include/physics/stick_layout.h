@@ -73,6 +73,12 @@ class StickLayout {
   std::span<const LocalStick> localSticks() const { return localSticks_; }
   /// Per lane group and stick: kStickLanes min lengths, then max lengths, then compliances.
   std::span<const Real> laneValues() const { return laneValues_; }
+  /// Per lane group, 1 when every particle of its lanes has inverse mass 0 in this step (asleep,
+  /// pinned or frozen), so that the passes skip it: they would move none of them. Empty unless
+  /// markStill was called since the last clearStill.
+  std::span<const std::uint8_t> still() const { return still_; }
+  void markStill(std::span<const Real> inverseMass);
+  void clearStill() { still_.clear(); }
 
  private:
   void addToRuns(std::uint32_t stick);
@@ -83,6 +89,7 @@ class StickLayout {
   std::vector<StickRun> runs_;
   std::vector<LocalStick> localSticks_;
   std::vector<Real> laneValues_;
+  std::vector<std::uint8_t> still_;
 };
 
 }  // namespace phys

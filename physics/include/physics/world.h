@@ -411,6 +411,7 @@ class World {
   std::span<const Real> limitCorrections(Real h);
   void relax(Real h, std::span<const Real> linkSlack);
   void updateLayouts();
+  void skipSleepers();
   void restitute(Real h);
   void dampBodies();
   void dampJoints();
