@@ -36,9 +36,17 @@ void World::joinBodies(ParticleId a, ParticleId b) {
 constexpr std::size_t kBodiesPerPiece = 256;
 
 void World::updateBodyFrames() {
-  // Each body's frame is its own: ranges of bodies at once on the step's threads.
-  auto range = [this](std::size_t begin, std::size_t end) {
-    for (BodyId id(begin); id < end; ++id) fitFrame(id);
+  // Each body's frame is its own: ranges of bodies at once on the step's threads. A sleeping body's
+  // particles and pose do not move, so its frame, once fitted while it sleeps, stays as it is.
+  const std::span<const std::uint8_t> asleep =
+      islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>();
+  auto range = [this, asleep](std::size_t begin, std::size_t end) {
+    for (BodyId id(begin); id < end; ++id) {
+      const std::uint8_t sleeps = !asleep.empty() && asleep[id] != 0 ? 1 : 0;
+      if (sleeps != 0 && frameAsleep_[id] != 0) continue;
+      frameAsleep_[id] = sleeps;
+      fitFrame(id);
+    }
   };
   if (workers() == nullptr)
     range(0, bodies_.size());

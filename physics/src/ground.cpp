@@ -8,8 +8,10 @@
 namespace phys::detail {
 
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
-                   std::span<Real> normalPush, std::span<const Real> allowance) {
+                   std::span<Real> normalPush, std::span<const Real> allowance,
+                   std::span<const std::uint8_t> still) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
+    if (!still.empty() && still[c] != 0) continue;
     const Embedding& e = contacts[c].point;
     const Real allowed = allowance.empty() ? 0.0 : allowance[c];  // depth it may keep
     const Real depth = height + contacts[c].lift - glm::dot(n, embeddedPosition(p.position, e)) - allowed;
@@ -21,8 +23,9 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
 }
 
 void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                             Real height, std::span<Real> depth) {
+                             Real height, std::span<Real> depth, std::span<const std::uint8_t> still) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
+    if (!still.empty() && still[c] != 0) continue;
     depth[c] = height + contacts[c].lift - glm::dot(n, embeddedPosition(p.previous, contacts[c].point));
   }
 }
@@ -30,10 +33,10 @@ void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> 
 // Jakobsen 2001, "Friction", made Coulomb: a pass's push out of the ground is that pass's normal
 // impulse times h / m, and its tangential cut is bounded by mu times it.
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                         std::span<const Real> normalPush) {
+                         std::span<const Real> normalPush, std::span<const std::uint8_t> still) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Real push = normalPush[c];
-    if (push <= 0.0) continue;
+    if (push <= 0.0 || (!still.empty() && still[c] != 0)) continue;
     const Embedding& e = contacts[c].surface.count > 0 ? contacts[c].surface : contacts[c].point;
     Vec3 slide = embeddedPosition(p.position, e) - embeddedPosition(p.previous, e);
     slide -= glm::dot(slide, n) * n;

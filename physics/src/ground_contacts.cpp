@@ -27,6 +27,8 @@ void GroundContacts::add(const Embedding& point, const Material& material, BodyI
   state_.hit.push_back(0);
   state_.approach.push_back(0.0);
   state_.allowance.push_back(0.0);
+  still_.push_back(0);
+  wasStill_.push_back(0);
 }
 
 void GroundContacts::followCapsuleEnd(Real end) {
@@ -40,6 +42,27 @@ void GroundContacts::truncate(std::size_t count) {
   state_.hit.resize(count);
   state_.approach.resize(count);
   state_.allowance.resize(count);
+  still_.resize(count);
+  wasStill_.resize(count);
+}
+
+void GroundContacts::markStill(std::span<const Real> inverseMass) {
+  anyStill_ = false;
+  for (std::size_t c = 0; c < points_.size(); ++c) {
+    const Embedding& e = points_[c].point;
+    bool still = true;
+    for (int i = 0; i < e.count && still; ++i) still = inverseMass[e.particle[i]] == 0.0;
+    still_[c] = still && wasStill_[c] != 0 ? 1 : 0;
+    wasStill_[c] = still ? 1 : 0;
+    anyStill_ = anyStill_ || still_[c] != 0;
+  }
+}
+
+void GroundContacts::clearStill() {
+  if (!anyStill_ && std::find(wasStill_.begin(), wasStill_.end(), std::uint8_t{1}) == wasStill_.end()) return;
+  std::fill(still_.begin(), still_.end(), std::uint8_t{0});
+  std::fill(wasStill_.begin(), wasStill_.end(), std::uint8_t{0});
+  anyStill_ = false;
 }
 
 void GroundContacts::combineMaterials(const Material& ground) {
@@ -50,6 +73,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
                                         const Vec3& groundNormal) {
   const Vec3 n = groundNormal;
   for (const CapsuleEnd& g : capsuleEnds_) {
+    if (anyStill_ && still_[g.point] != 0) continue;  // its body's frame has not moved
     GroundContact& contact = points_[g.point];
     const BodyId id = contact.body;
     const Body& box = bodies[id];

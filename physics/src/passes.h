@@ -110,26 +110,33 @@ void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& 
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").
 /// `allowance`, if not empty, is per point the depth it may keep in this substep
 /// (toAllowance): the point is moved up to that depth, not onto the plane.
+/// `still`, if not empty, is per point 1 for a point to leave as it is (GroundContacts::markStill),
+/// here and in the other ground passes.
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
-                   std::span<Real> normalPush, std::span<const Real> allowance = {});
+                   std::span<Real> normalPush, std::span<const Real> allowance = {},
+                   std::span<const std::uint8_t> still = {});
 /// Depth (m) of each contact point below the plane at x*, where the substep started; negative above.
 void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                             Real height, std::span<Real> depth);
+                             Real height, std::span<Real> depth, std::span<const std::uint8_t> still = {});
 
 /// Depenetration limit (SolverSettings::maxDepenetrationSpeed): turns each contact's overlap at
 /// the start of the substep (ground depth, or box-box overlap beyond the slop, at x*) into the
 /// overlap it may keep at the end, max(0, overlap - step), step = the speed limit times h. A
 /// contact that started apart gets 0, so its approach is stopped in full; one that started deeper
 /// than step sheds `step` of it, and so parts at most at that speed.
-inline void toAllowance(std::span<Real> startOverlap, Real step) {
-  for (Real& v : startOverlap) v = v > step ? v - step : 0.0;
+/// `still`, if not empty: per entry, 1 to leave it (it was turned already; GroundContacts::markStill).
+inline void toAllowance(std::span<Real> startOverlap, Real step, std::span<const std::uint8_t> still = {}) {
+  for (std::size_t k = 0; k < startOverlap.size(); ++k) {
+    Real& v = startOverlap[k];
+    if (still.empty() || still[k] == 0) v = v > step ? v - step : 0.0;
+  }
 }
 /// Cuts the tangential motion (x - x*) of each contact point the last ground pass pushed: stops
 /// it when it is within mu_s * push, else shortens it by mu_d * push, by moving the point's
 /// particles back along it; never reverses it. Run after each ground pass, so the sticks
 /// relax what friction bends, and the cuts of all passes together stay within mu * the push.
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                         std::span<const Real> normalPush);
+                         std::span<const Real> normalPush, std::span<const std::uint8_t> still = {});
 
 /// Pushes each pair of contact points apart along its normal until n . (pB - pA) >= -slop, moving
 /// both bodies' particles by their embedding weights and inverse masses; writes the distance

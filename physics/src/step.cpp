@@ -26,6 +26,18 @@ double millisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+// Zeroes each flag but those of the points left still (GroundContacts::markStill), which keep
+// what the step would find for them again.
+void clearUnlessStill(std::vector<std::uint8_t>& flags, std::span<const std::uint8_t> still) {
+  if (still.empty()) {
+    std::fill(flags.begin(), flags.end(), std::uint8_t{0});
+    return;
+  }
+  for (std::size_t k = 0; k < flags.size(); ++k) {
+    if (still[k] == 0) flags[k] = 0;
+  }
+}
+
 }  // namespace
 
 void World::step() {
@@ -48,7 +60,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   updateLayouts();
   const std::size_t freezesBefore = guard_.freezes().size();
   skipSleepers();
-  std::fill(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{0});
+  clearUnlessStill(ground_.state().touched, ground_.still());
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
   const Real h = substepDt();
   for (int s = 0; s < solver_.substeps; ++s) {
@@ -90,12 +102,14 @@ void World::skipSleepers() {
   if (!islands_.anyAsleep()) {
     constraints_.clearStill();
     bodyLayout_.clearStill();
+    ground_.clearStill();
     return;
   }
   const detail::StageTimer timer(profile_, Stage::Islands);
   islands_.mask(particles_, rigidBodies_, bodies_);
   constraints_.markStill(particles_.inverseMass);
   bodyLayout_.markStill(particles_.inverseMass);
+  ground_.markStill(particles_.inverseMass);
 }
 
 // When every island sleeps, a step only passes the time (as the substeps would add it up) and
@@ -242,7 +256,7 @@ void World::findContacts(bool newPairs, bool firstSubstep, Real h) {
     // Each contact's overlap at x*, where the substep starts: what the parting measures, and
     // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
     detail::measureGroundStartDepth(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
-                                    ground_.state().allowance);
+                                    ground_.state().allowance, ground_.still());
   }
   if (firstSubstep || newPairs) collectRigidGround();
   if (rigidGround_.empty()) return;
@@ -334,7 +348,7 @@ void World::measureApproaches(Real h) {
   const detail::StageTimer timer(profile_, Stage::Restitution);
   detail::measureBodyApproach(particles_, narrowPhase_.contacts(), h, narrowPhase_.state().approach);
   if (solver_.restitution <= 0.0) return;
-  std::fill(ground_.state().hit.begin(), ground_.state().hit.end(), std::uint8_t{0});
+  clearUnlessStill(ground_.state().hit, ground_.still());
   if (world_.ground) {
     detail::measureGroundApproach(particles_, ground_.points(), world_.groundNormal, h,
                                   ground_.state().approach);
@@ -354,7 +368,7 @@ std::span<const Real> World::limitCorrections(Real h) {
   if (!bodyAllowance.empty() || world_.ground) {
     const detail::StageTimer timer(profile_, Stage::Contacts);
     detail::toAllowance(bodyAllowance, depenetration);
-    if (world_.ground) detail::toAllowance(ground_.state().allowance, depenetration);
+    if (world_.ground) detail::toAllowance(ground_.state().allowance, depenetration, ground_.still());
   }
   if (!constraints_.linksApart()) return {};
   const detail::StageTimer timer(profile_, Stage::Links);
@@ -420,7 +434,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
                                 bodyState.allowance);
       if (ground) {
         detail::collideGround(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
-                              groundState.push, groundState.allowance);
+                              groundState.push, groundState.allowance, ground_.still());
       }
     }
     const detail::StageTimer timer(profile_, Stage::Friction);
@@ -429,7 +443,8 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
     }
     if (ground) {
-      detail::applyGroundFriction(particles_, ground_.points(), world_.groundNormal, groundState.push);
+      detail::applyGroundFriction(particles_, ground_.points(), world_.groundNormal, groundState.push,
+                                  ground_.still());
       for (std::size_t c = 0; c < groundState.touched.size(); ++c) {
         if (groundState.push[c] > 0.0) groundState.touched[c] = groundState.hit[c] = 1;
       }

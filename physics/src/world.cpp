@@ -435,6 +435,7 @@ BodyId World::registerBody(const Body& body) {
   bodies_.push_back(body);
   layoutsStale_ = true;
   frames_.emplace_back();
+  frameAsleep_.push_back(0);
   rigid_.emplace_back();
   guard_.addBody();
   broadPhase_.addBody();

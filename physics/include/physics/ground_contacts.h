@@ -38,6 +38,16 @@ class GroundContacts {
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
                           const Vec3& groundNormal);
   bool hasCapsules() const { return !capsuleEnds_.empty(); }
+  /// Marks the points whose every particle has inverse mass 0 in this step and had in the last
+  /// one (a sleeping body's, from its second step asleep): nothing of them moves, so what the
+  /// passes found for them in the last step is what they would find again, and the step leaves
+  /// them and their state as they are. clearStill marks none.
+  void markStill(std::span<const Real> inverseMass);
+  void clearStill();
+  /// Per point, 1 when marked still; empty when none is.
+  std::span<const std::uint8_t> still() const {
+    return anyStill_ ? std::span<const std::uint8_t>(still_) : std::span<const std::uint8_t>();
+  }
 
   std::span<const GroundContact> points() const { return points_; }
   std::size_t size() const { return points_.size(); }
@@ -52,6 +62,9 @@ class GroundContacts {
   std::vector<GroundContact> points_;
   GroundContactState state_;
   std::vector<CapsuleEnd> capsuleEnds_;
+  std::vector<std::uint8_t> still_;     // per point: 1 to leave it in this step
+  std::vector<std::uint8_t> wasStill_;  // per point: its particles had inverse mass 0 last step
+  bool anyStill_ = false;
 };
 
 }  // namespace phys

@@ -452,8 +452,9 @@ class World {
   std::vector<Embedding> corners_;
   GroundContacts ground_;
 
-  std::vector<Obb> frames_;  // per box, fitted in every substep
-  int swept_ = 0;            // pairs stopFastBodies stopped in this step
+  std::vector<Obb> frames_;                // per box, fitted in every substep
+  std::vector<std::uint8_t> frameAsleep_;  // per box: 1 when its frame was fitted while it sleeps
+  int swept_ = 0;                          // pairs stopFastBodies stopped in this step
   BroadPhase broadPhase_;
   NarrowPhase narrowPhase_;
   Parting parting_;
