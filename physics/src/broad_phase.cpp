@@ -289,10 +289,19 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
     }
   } else {
     // Only the pairs with an awake body: each awake body sweeps forward as above, and back over
-    // the sleeping bodies before it whose intervals can reach it (none begins more than the
-    // longest interval before it), so a sleeping pile costs the awake bodies' neighbours alone.
-    Real longest = 0.0;
-    for (const Bounds& b : bounds_) longest = std::max(longest, b.hi[s] - b.lo[s]);
+    // the sleeping bodies before it while one of them can still reach it (the furthest reach of
+    // the sleeping bodies up to each entry, kept per strip), so a sleeping pile costs the awake
+    // bodies' neighbours alone.
+    keepRoom(sleepingReach_, 0, settings.maxStripsPerBody * n);
+    sleepingReach_.resize(entries);
+    for (std::size_t k = 0; k < strips; ++k) {
+      Real reach = -kInfinity;
+      for (std::size_t i = stripStart_[k]; i < stripStart_[k + 1]; ++i) {
+        const BodyId b = stripBodies_[i];
+        if (asleep[b] != 0) reach = std::max(reach, bounds_[b].hi[s]);
+        sleepingReach_[i] = reach;
+      }
+    }
     for (std::size_t k = 0; k < strips; ++k) {
       const std::size_t begin = stripStart_[k], end = stripStart_[k + 1];
       for (std::size_t i = begin; i < end; ++i) {
@@ -301,7 +310,7 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
         const Bounds& ba = bounds_[a];
         for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= ba.hi[s]; ++j)
           meet(k, a, stripBodies_[j]);
-        for (std::size_t j = i; j > begin && bounds_[stripBodies_[j - 1]].lo[s] >= ba.lo[s] - longest; --j) {
+        for (std::size_t j = i; j > begin && sleepingReach_[j - 1] >= ba.lo[s]; --j) {
           const BodyId b = stripBodies_[j - 1];
           if (asleep[b] != 0 && bounds_[b].hi[s] >= ba.lo[s]) meet(k, a, b);
         }

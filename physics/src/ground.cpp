@@ -23,9 +23,8 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
 }
 
 void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                             Real height, std::span<Real> depth, std::span<const std::uint8_t> still) {
+                             Real height, std::span<Real> depth) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
-    if (!still.empty() && still[c] != 0) continue;
     depth[c] = height + contacts[c].lift - glm::dot(n, embeddedPosition(p.previous, contacts[c].point));
   }
 }

@@ -48,6 +48,7 @@ void GroundContacts::truncate(std::size_t count) {
 
 void GroundContacts::markStill(std::span<const Real> inverseMass) {
   anyStill_ = false;
+  anyMarked_ = true;
   for (std::size_t c = 0; c < points_.size(); ++c) {
     const Embedding& e = points_[c].point;
     bool still = true;
@@ -59,10 +60,10 @@ void GroundContacts::markStill(std::span<const Real> inverseMass) {
 }
 
 void GroundContacts::clearStill() {
-  if (!anyStill_ && std::find(wasStill_.begin(), wasStill_.end(), std::uint8_t{1}) == wasStill_.end()) return;
+  if (!anyMarked_) return;
   std::fill(still_.begin(), still_.end(), std::uint8_t{0});
   std::fill(wasStill_.begin(), wasStill_.end(), std::uint8_t{0});
-  anyStill_ = false;
+  anyStill_ = anyMarked_ = false;
 }
 
 void GroundContacts::combineMaterials(const Material& ground) {

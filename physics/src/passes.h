@@ -117,19 +117,15 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
                    std::span<const std::uint8_t> still = {});
 /// Depth (m) of each contact point below the plane at x*, where the substep started; negative above.
 void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                             Real height, std::span<Real> depth, std::span<const std::uint8_t> still = {});
+                             Real height, std::span<Real> depth);
 
 /// Depenetration limit (SolverSettings::maxDepenetrationSpeed): turns each contact's overlap at
 /// the start of the substep (ground depth, or box-box overlap beyond the slop, at x*) into the
 /// overlap it may keep at the end, max(0, overlap - step), step = the speed limit times h. A
 /// contact that started apart gets 0, so its approach is stopped in full; one that started deeper
 /// than step sheds `step` of it, and so parts at most at that speed.
-/// `still`, if not empty: per entry, 1 to leave it (it was turned already; GroundContacts::markStill).
-inline void toAllowance(std::span<Real> startOverlap, Real step, std::span<const std::uint8_t> still = {}) {
-  for (std::size_t k = 0; k < startOverlap.size(); ++k) {
-    Real& v = startOverlap[k];
-    if (still.empty() || still[k] == 0) v = v > step ? v - step : 0.0;
-  }
+inline void toAllowance(std::span<Real> startOverlap, Real step) {
+  for (Real& v : startOverlap) v = v > step ? v - step : 0.0;
 }
 /// Cuts the tangential motion (x - x*) of each contact point the last ground pass pushed: stops
 /// it when it is within mu_s * push, else shortens it by mu_d * push, by moving the point's

@@ -135,6 +135,10 @@ void World::updateIslands(std::size_t freezesBefore) {
   const detail::StageTimer timer(profile_, Stage::Islands);
   if (islands_.anyAsleep()) {
     islands_.unmask(particles_, rigidBodies_, bodies_);
+    // The lanes' still groups were still for the masks alone: a pass run between steps
+    // (settleWithoutVelocity) must relax them all.
+    constraints_.clearStill();
+    bodyLayout_.clearStill();
     // A sleeping body the guard froze in this step (crushed too long) stays frozen: unmask gave
     // back the masses the freeze had taken.
     const std::span<const FreezeReport> freezes = guard_.freezes();
@@ -256,7 +260,7 @@ void World::findContacts(bool newPairs, bool firstSubstep, Real h) {
     // Each contact's overlap at x*, where the substep starts: what the parting measures, and
     // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
     detail::measureGroundStartDepth(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
-                                    ground_.state().allowance, ground_.still());
+                                    ground_.state().allowance);
   }
   if (firstSubstep || newPairs) collectRigidGround();
   if (rigidGround_.empty()) return;
@@ -368,7 +372,7 @@ std::span<const Real> World::limitCorrections(Real h) {
   if (!bodyAllowance.empty() || world_.ground) {
     const detail::StageTimer timer(profile_, Stage::Contacts);
     detail::toAllowance(bodyAllowance, depenetration);
-    if (world_.ground) detail::toAllowance(ground_.state().allowance, depenetration, ground_.still());
+    if (world_.ground) detail::toAllowance(ground_.state().allowance, depenetration);
   }
   if (!constraints_.linksApart()) return {};
   const detail::StageTimer timer(profile_, Stage::Links);

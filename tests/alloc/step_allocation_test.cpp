@@ -123,4 +123,32 @@ TEST(StepAllocation, TheJointProjectionAllocatesNothingAfterItsFirstSecond) {
   EXPECT_GT(solves, 0);  // it did project
 }
 
+// Sleeping on: the 16-ragdoll pile, one island, lands in its first second and is asleep by 6 s;
+// then a box dropped from 30 m far from it falls alone for two seconds beside the sleeping pile.
+// The step's ways of skipping what sleeps (World::skipSleepers, the broad phase with sleepers) run
+// on room kept since the box was added and fell a second (checked to fail with the lanes' marks
+// allocated in every step).
+TEST(StepAllocation, SleepingAllocatesNothingAfterTheFirstSecond) {
+  scenes::LoadOptions load;
+  load.sleep = true;
+  scenes::Scene scene = scenes::loadSceneFile(scenes::sceneDirectory(DATA_DIR) / "ragdolls.xml", load);
+  phys::World& world = scene.world;
+  for (int i = stepsFor(world, 1.0); i > 0; --i) world.step();
+  long before = allocations.load();
+  for (int i = stepsFor(world, 5.0); i > 0; --i) world.step();
+  EXPECT_EQ(allocations.load() - before, 0) << "while the pile falls asleep";
+  ASSERT_EQ(world.islands().awakeBodies(), 0u);
+
+  phys::BodyDesc box;
+  box.center = phys::Vec3(40.0, 30.0, 0.0);
+  world.addBody(box);
+  for (int i = stepsFor(world, 1.0); i > 0; --i) world.step();
+  before = allocations.load();
+  for (int i = stepsFor(world, 1.0); i > 0; --i) {
+    world.step();
+    ASSERT_EQ(world.islands().awakeBodies(), 1u);  // the box, beside the sleeping pile
+  }
+  EXPECT_EQ(allocations.load() - before, 0) << "with the pile asleep beside the falling box";
+}
+
 }  // namespace

@@ -24,7 +24,9 @@ struct BroadPhaseStep {
   Real gravity = 0.0;         ///< unit: m/s^2; |g|, whose g dt^2 a body held still can still travel
   BroadPhaseSettings strips;
   /// Per body, 1 when it sleeps (Islands::bodiesAsleep), or empty: two sleeping bodies make no pair,
-  /// and a sleeping body's bounds, once found asleep, are kept (nothing of it moves).
+  /// and a sleeping body's bounds, once found asleep, are kept (nothing of it moves). So a body must
+  /// not sleep through a change of the other fields: World wakes every island when its settings
+  /// change.
   std::span<const std::uint8_t> asleep;
 };
 
@@ -85,6 +87,7 @@ class BroadPhase {
   std::vector<std::size_t> stripStart_;   // per strip and one more: where its bodies start in stripBodies_
   std::vector<BodyId> stripBodies_;       // the bodies of each strip, in sweep order
   std::vector<BodyId> wideBodies_;        // bodies across too many strips, tested against all
+  std::vector<Real> sleepingReach_;       // per strip entry: the furthest hi of the sleeping ones up to it
   std::vector<Bounds> bounds_;            // per body: AABB grown by its reach over a step
   std::vector<Real> travel_;              // per body: that reach (m)
   std::vector<BodyMotion> motion_;        // per body

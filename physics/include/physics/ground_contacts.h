@@ -40,8 +40,9 @@ class GroundContacts {
   bool hasCapsules() const { return !capsuleEnds_.empty(); }
   /// Marks the points whose every particle has inverse mass 0 in this step and had in the last
   /// one (a sleeping body's, from its second step asleep): nothing of them moves, so what the
-  /// passes found for them in the last step is what they would find again, and the step leaves
-  /// them and their state as they are. clearStill marks none.
+  /// passes found for them in the last step is what they would find again, and the passes leave
+  /// them and their push and flags as they are (their depths at x* are still measured: the
+  /// parting reads them). clearStill marks none.
   void markStill(std::span<const Real> inverseMass);
   void clearStill();
   /// Per point, 1 when marked still; empty when none is.
@@ -65,6 +66,7 @@ class GroundContacts {
   std::vector<std::uint8_t> still_;     // per point: 1 to leave it in this step
   std::vector<std::uint8_t> wasStill_;  // per point: its particles had inverse mass 0 last step
   bool anyStill_ = false;
+  bool anyMarked_ = false;  // markStill ran since the last clearStill
 };
 
 }  // namespace phys

@@ -290,7 +290,8 @@ class World {
   /// Each box as an oriented box, fitted at the start of the last substep.
   std::span<const Obb> bodyFrames() const { return frames_; }
   /// Box pairs whose bounds, grown by how far each can go in a step, overlapped at the start of
-  /// the last step (the broad phase's output, which every substep's narrow phase tests).
+  /// the last step (the broad phase's output, which every substep's narrow phase tests), less the
+  /// pairs of two sleeping bodies, which it does not look for.
   std::size_t broadPhasePairs() const { return broadPhase_.pairs().size(); }
   const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
   /// Per particle: the body it belongs to, or kNoBody for a loose particle.
