@@ -96,8 +96,10 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
 }
 
 // A sleeping island's particles get inverse mass 0 for the step (Islands::mask), which every
-// stage treats as pinned; the lane groups all of whose particles are then still are skipped by the
-// passes, so that a pile asleep beside a few moving bodies costs little more than they do.
+// stage treats as pinned; the lane groups all of whose particles are then still, and the ground
+// points still since the step before, are skipped by the passes (as are sleeping bodies' frames
+// and bounds, in their stages), so that a pile asleep beside a few moving bodies costs little more
+// than they do.
 void World::skipSleepers() {
   if (!islands_.anyAsleep()) {
     constraints_.clearStill();
