@@ -189,9 +189,9 @@ TEST(Islands, ASleepingIslandIsNotSteppedWhileAnotherMoves) {
 // The step skips what sleeps (World::skipSleepers: the lanes' still groups, the ground points,
 // frames and bounds of sleeping bodies, their pairs with each other), and that must change nothing
 // for what is awake: a ragdoll of boxes dropped beside a sleeping row of 20 boxes (whose ground
-// points it lands among) moves to the bit as the same ragdoll alone in a world. Its first four parts share a
-// lane group of the sticks and of the body damping with the row's last four boxes (groups of eight of one
-// shape, in body order), so a group half asleep must still be relaxed.
+// points it lands among) moves to the bit as the same ragdoll alone in a world. Its first four
+// parts share a lane group of the sticks and of the body damping with the row's last four boxes
+// (groups of eight of one shape, in body order), so a group half asleep must still be relaxed.
 TEST(Islands, ABodyBesideASleepingRowMovesAsIfAlone) {
   phys::SolverSettings s = sleeping();
   s.bodyDamping = 0.3;
