@@ -9,7 +9,7 @@
 namespace phys {
 
 void BodyLayout::markStill(std::span<const Real> inverseMass) {
-  detail::markStillGroups<BodyLanes, kBodyLanes>(lanes_, inverseMass, still_);
+  detail::markStillGroups(std::span<const BodyLanes>(lanes_), inverseMass, still_);
 }
 
 void BodyLayout::build(std::span<const Body> boxes) {

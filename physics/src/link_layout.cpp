@@ -10,7 +10,7 @@
 namespace phys {
 
 void LinkLayout::markStill(std::span<const Real> inverseMass) {
-  detail::markStillGroups<LinkLanes, kLinkLanes>(lanes_, inverseMass, still_);
+  detail::markStillGroups(std::span<const LinkLanes>(lanes_), inverseMass, still_);
 }
 
 namespace {

@@ -7,7 +7,7 @@
 namespace phys {
 
 void StickLayout::markStill(std::span<const Real> inverseMass) {
-  detail::markStillGroups<StickLanes, kStickLanes>(lanes_, inverseMass, still_);
+  detail::markStillGroups(std::span<const StickLanes>(lanes_), inverseMass, still_);
 }
 
 StickLayout StickLayout::inOrder(std::size_t stickCount) {
