@@ -51,15 +51,18 @@ NodeId Islands::addBody(int particleCount) {
 // Room for mask() to take every particle's and body's masses, made as they are added (doubling,
 // so that adding a particle does not allocate each time) and never in the step.
 void Islands::keepMaskRoom() {
+  if (maskedNodes_.capacity() < asleep_.size()) maskedNodes_.reserve(2 * asleep_.size());
   if (maskedParticles_.capacity() < particleNode_.size()) maskedParticles_.reserve(2 * particleNode_.size());
   if (maskedRigid_.capacity() < bodyNode_.size()) maskedRigid_.reserve(2 * bodyNode_.size());
 }
 
 void Islands::mask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
+  maskedNodes_.clear();
   maskedParticles_.clear();
   maskedRigid_.clear();
   for (NodeId n{}; n < asleep_.size(); ++n) {
     if (asleep_[n] == 0) continue;
+    maskedNodes_.push_back(n);
     const BodyId id = nodeBody_[n];
     if (id == kNoBody) {
       maskedParticles_.push_back(std::exchange(p.inverseMass[nodeParticle_[n]], 0.0));
@@ -78,8 +81,7 @@ void Islands::mask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
 
 void Islands::unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
   std::size_t particle = 0, rigid = 0;
-  for (NodeId n{}; n < asleep_.size(); ++n) {
-    if (asleep_[n] == 0) continue;
+  for (const NodeId n : maskedNodes_) {
     const BodyId id = nodeBody_[n];
     if (id == kNoBody) {
       p.inverseMass[nodeParticle_[n]] = maskedParticles_[particle++];
@@ -94,6 +96,7 @@ void Islands::unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies)
     r.inverseInertia[body.rigid] = m.inverseInertia;
     r.inverseInertiaWorld[body.rigid] = m.inverseInertiaWorld;
   }
+  maskedNodes_.clear();
 }
 
 void Islands::join(NodeId a, NodeId b) {

@@ -132,10 +132,11 @@ bool World::restWhileAsleep() {
 // manifolds, and some wake or fall asleep.
 void World::updateIslands(std::size_t freezesBefore) {
   // With sleeping off nothing of the step depends on the islands: islands() counts them if asked.
-  islandsCounted_ = solver_.sleep.enabled || islands_.anyAsleep();
+  islandsCounted_ = solver_.sleep.enabled || islands_.masked();
   if (!islandsCounted_) return;
   const detail::StageTimer timer(profile_, Stage::Islands);
-  if (islands_.anyAsleep()) {
+  // masked(), not anyAsleep(): an island woken in the step (a character's drives) was masked too.
+  if (islands_.masked()) {
     islands_.unmask(particles_, rigidBodies_, bodies_);
     // The lanes' still groups were still for the masks alone: a pass run between steps
     // (settleWithoutVelocity) must relax them all.

@@ -3,6 +3,8 @@
 // wakes it.
 #include <gtest/gtest.h>
 
+#include "character_util.h"
+#include "physics/animation.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
 #include "test_util.h"
@@ -280,6 +282,45 @@ TEST(Islands, ADragWakesTheBodyAndHoldsItAwake) {
   EXPECT_FALSE(world.islands().bodyAsleep(id));  // held awake while dragged, though it does not move
   world.clearDrag();
   EXPECT_GT(stepUntilAsleep(world, id, world.time() + 5.0), 0.0);
+}
+
+// A character standing on its own drives can come to rest and sleep; the next step's drives wake
+// it in its first substep, after the masks were made. The masses come back to the bodies they were
+// taken from, the woken character's with them: none is left pinned, none given another's. Alone,
+// and with a heavy box asleep beside it in an island of its own (to tell the masses apart, and so
+// that something still sleeps when the character wakes).
+TEST(Islands, ACharacterWokenInTheStepGetsItsMassesBack) {
+  for (const bool withBlock : {false, true}) {
+    phys::SolverSettings settings = testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8);
+    settings.sleep.enabled = true;
+    phys::World w(phys::WorldSettings{}, settings);
+    const phys::Ragdoll r = testing_phys::rigidRagdoll(w, "r");
+    if (withBlock) {
+      phys::BodyDesc heavy = box(Vec3(3.0, 0.5, 0.0), phys::BodyModel::Rigid);
+      heavy.mass = 7.0;
+      w.addBody(heavy);
+    }
+    phys::CharacterDesc desc;
+    desc.ragdoll = "r";
+    desc.playback.clip = std::make_shared<const phys::Clip>(
+        testing_phys::ragdollClip(2, [](const std::string&, phys::Real) { return 0.0; }));
+    w.addCharacter(desc);
+    std::vector<phys::BodyMass> masses;
+    for (BodyId id{}; id < w.bodies().size(); ++id) masses.push_back(w.bodyMass(id));
+    const BodyId root = r.part(phys::RagdollPart::Torso);
+    int wokenInStep = 0;
+    for (int i = 0; i < 600; ++i) {
+      const bool asleep = w.islands().bodyAsleep(root);
+      w.step();
+      if (asleep && !w.islands().bodyAsleep(root)) ++wokenInStep;
+      for (BodyId id{}; id < w.bodies().size(); ++id) {
+        ASSERT_EQ(w.bodyMass(id).mass, masses[id].mass)
+            << "body " << id << ", step " << i << ", " << withBlock;
+        ASSERT_EQ(w.bodyMass(id).inertia, masses[id].inertia) << "body " << id << ", step " << i;
+      }
+    }
+    EXPECT_GT(wokenInStep, 0) << withBlock;  // what the test is about happened
+  }
 }
 
 TEST(Islands, AMovingBodyNeverSleeps) {

@@ -64,9 +64,13 @@ class Islands {
 
   /// Makes every sleeping node look pinned to the passes (inverse masses and inertias 0), keeping
   /// its own, which unmask() gives back: between the two, a step moves nothing of a sleeping
-  /// island, through the same paths that leave a pinned particle or a frozen body alone.
+  /// island, through the same paths that leave a pinned particle or a frozen body alone. unmask()
+  /// gives back exactly what mask() took, to the nodes it took it from: an island woken between
+  /// the two (a character's drives wake theirs in the step) stays pinned until the step's end.
   void mask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
   void unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
+  /// True between mask() and unmask() when mask() took something.
+  bool masked() const { return !maskedNodes_.empty(); }
 
   NodeId particleNode(ParticleId id) const { return particleNode_[id]; }
   NodeId bodyNode(BodyId id) const { return bodyNode_[id]; }
@@ -112,12 +116,14 @@ class Islands {
   std::vector<Real> islandRest_;            // per root: scratch, the least rest of its nodes
   std::vector<std::uint32_t> bodyIsland_;
   std::vector<std::uint32_t> islandNumber_;  // per root: scratch
-  // What mask() took, in node order; room for every particle and body, made as they are added.
+  // What mask() took and from which nodes, in node order; room for every node, particle and body,
+  // made as they are added.
   struct RigidMass {
     Real inverseMass = 0.0;
     Vec3 inverseInertia{0.0};
     glm::dmat3 inverseInertiaWorld{0.0};
   };
+  std::vector<NodeId> maskedNodes_;
   std::vector<Real> maskedParticles_;
   std::vector<RigidMass> maskedRigid_;
   std::size_t sleepingNodes_ = 0;
