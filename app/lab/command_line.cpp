@@ -90,44 +90,99 @@ std::function<void(const T&)> listAppender(std::vector<T>& into) {
   };
 }
 
-std::string notWholeNumber(const std::string& text, int high) {
-  return "'" + text + "' is not a whole number from 1 to " + std::to_string(high);
-}
-
-std::string readCount(const std::string& text, int high, int& into) {
-  const std::optional<int> n = parseWholeNumber(text, 1, high);
-  if (!n) return notWholeNumber(text, high);
+// One value of each type an option reads into; the error without the option's name, or "".
+std::string read(const std::string& text, const OptionSpec& spec, int& into) {
+  const int most = static_cast<int>(spec.most);
+  const std::optional<int> n = parseWholeNumber(text, 1, most);
+  if (!n) return "'" + text + "' is not a whole number from 1 to " + std::to_string(most);
   into = *n;
   return {};
 }
 
-std::string readDt(const std::string& text, double& into) {
+std::string read(const std::string& text, const OptionSpec& spec, double& into) {
   const std::optional<double> v = parseNumber(text);
-  if (!v || !(*v >= phys::kMinDt && *v <= phys::kMaxDt))
-    return "'" + text + "' is not a number of seconds from 1e-06 to 1";
-  into = *v;
-  return {};
+  if (v && (spec.aboveLeast ? *v > spec.least : *v >= spec.least) && *v <= spec.most) {
+    into = *v;
+    return {};
+  }
+  const std::string range =
+      spec.aboveLeast ? "above " + formatNumber(spec.least) + " and at most " + formatNumber(spec.most)
+                      : "from " + formatNumber(spec.least) + " to " + formatNumber(spec.most);
+  return "'" + text + "' is not a number of seconds " + range;
 }
 
-std::string readMethod(const std::string& text, phys::SolverMethod& into) {
+std::string read(const std::string& text, const OptionSpec&, phys::SolverMethod& into) {
   const std::optional<phys::SolverMethod> m = phys::parseSolverMethod(text);
   if (!m) return "unknown method '" + text + "' (gauss-seidel, jacobi, xpbd or shake)";
   into = *m;
   return {};
 }
 
-std::string readOnOff(const std::string& text, bool& into) {
+std::string read(const std::string& text, const OptionSpec&, phys::BodyModel& into) {
+  const std::optional<phys::BodyModel> m = phys::parseBodyModel(text);
+  if (!m) return "unknown model '" + text + "' (corners, tetra or rigid)";
+  into = *m;
+  return {};
+}
+
+std::string read(const std::string& text, const OptionSpec&, bool& into) {
   if (text != "on" && text != "off") return "'" + text + "' is not on or off";
   into = text == "on";
   return {};
 }
 
-std::string readPath(const std::string& text, const OptionSpec& spec, std::filesystem::path& into) {
-  if (text.empty())
-    return std::string("the ") + (spec.value == std::string("FILE") ? "file" : "folder") + " name is empty";
+bool namesFile(const OptionSpec& spec) {
+  return spec.value == std::string_view("FILE");
+}
+
+std::string read(const std::string& text, const OptionSpec& spec, std::filesystem::path& into) {
+  if (text.empty()) return std::string("the ") + (namesFile(spec) ? "file" : "folder") + " name is empty";
   into = text;
   return {};
 }
+
+// "--help" or "-h" anywhere: help wins wherever it is, so "lab run x --help" shows the help
+// instead of running.
+bool asksForHelp(const std::vector<std::string>& args) {
+  return std::any_of(args.begin(), args.end(),
+                     [](const std::string& a) { return a == "--help" || a == "-h"; });
+}
+
+// What a missing value should have been, when the table does not say.
+const char* needsOf(const OptionSpec& spec, const int*) {
+  return spec.needs != nullptr ? spec.needs : "a whole number";
+}
+const char* needsOf(const OptionSpec& spec, const double*) {
+  return spec.needs != nullptr ? spec.needs : "a number of seconds";
+}
+const char* needsOf(const OptionSpec& spec, const phys::SolverMethod*) {
+  return spec.needs != nullptr ? spec.needs : "a method (gauss-seidel, jacobi, xpbd or shake)";
+}
+const char* needsOf(const OptionSpec& spec, const phys::BodyModel*) {
+  return spec.needs != nullptr ? spec.needs : "a body model (corners, tetra or rigid)";
+}
+const char* needsOf(const OptionSpec& spec, const bool*) {
+  return spec.needs != nullptr ? spec.needs : "a value (on or off)";
+}
+const char* needsOf(const OptionSpec& spec, const std::filesystem::path*) {
+  return spec.needs != nullptr ? spec.needs : namesFile(spec) ? "a file name" : "a folder";
+}
+
+template <typename T>
+struct Target {  // a plain value
+  using Value = T;
+  static T& slot(T& into) { return into; }
+};
+template <typename T>
+struct Target<std::optional<T>> {
+  using Value = T;
+  static T& slot(std::optional<T>& into) { return into.emplace(); }
+};
+
+template <typename T>
+constexpr bool kIsList = false;
+template <typename T>
+constexpr bool kIsList<std::vector<T>> = true;
 
 std::string withNote(const char* help, const std::string& note) {
   return note.empty() ? std::string(help) : std::string(help) + " " + note;
@@ -135,20 +190,17 @@ std::string withNote(const char* help, const std::string& note) {
 
 }  // namespace
 
-CommandLine::CommandLine(std::string command, std::string about)
-    : command_(std::move(command)),
-      about_(std::move(about)),
-      app_(std::make_unique<CLI::App>("", "lab " + command_)) {
+CommandLine::CommandLine(std::string command)
+    : command_(std::move(command)), app_(std::make_unique<CLI::App>("", "lab " + command_)) {
   app_->set_help_flag();  // asksForHelp answers --help before CLI11 sees it
 }
 
 CommandLine::~CommandLine() = default;
 
-void CommandLine::add(const OptionSpec& spec, std::string label, const std::string& note, bool many,
-                      std::function<std::string(const std::string&)> read) {
+void CommandLine::add(const OptionSpec& spec, std::string label, std::string needs, const std::string& note,
+                      bool many, std::function<std::string(const std::string&)> read) {
   const std::string names = spec.names;
   const std::string name = firstName(names);
-  const std::string needs = spec.needs;
   CLI::Option* option = app_->add_option(names);
   if (many) {
     // allow_extra_args: "--scene a b" as well as "--scene a --scene b".
@@ -167,7 +219,8 @@ void CommandLine::add(const OptionSpec& spec, std::string label, const std::stri
         return {};
       },
       ""));
-  entries_.push_back({names, std::move(label), withNote(spec.help, note) + aliasNote(names), needs});
+  entries_.push_back(
+      {names, std::move(label), withNote(spec.help, note) + aliasNote(names), std::move(needs)});
 }
 
 void CommandLine::scene(std::string& into) {
@@ -194,70 +247,45 @@ void CommandLine::positional(const std::string& name, const std::string& help, b
   entries_.insert(entries_.begin(), Entry{"", many ? "[" + name + "...]" : name, help, ""});
 }
 
-void CommandLine::count(const OptionSpec& spec, int high, int& into, const std::string& note) {
-  add(spec, std::string(firstName(spec.names)) + " " + spec.value, note, false,
-      [high, &into](const std::string& v) { return readCount(v, high, into); });
-}
-
-void CommandLine::count(const OptionSpec& spec, int high, std::optional<int>& into, const std::string& note) {
-  add(spec, std::string(firstName(spec.names)) + " " + spec.value, note, false,
-      [high, &into](const std::string& v) { return readCount(v, high, into.emplace()); });
-}
-
-void CommandLine::counts(const OptionSpec& spec, int high, std::vector<int>& into, const std::string& note) {
-  add(spec, firstName(spec.names) + " LIST", note, false,
-      [high, append = listAppender(into)](const std::string& text) {
-        return readList(text, [&](const std::string& item) {
-          int n = 0;
-          std::string e = readCount(item, high, n);
-          if (e.empty()) append(n);
-          return e;
+template <typename T>
+void CommandLine::option(const OptionSpec& spec, T& into, const std::string& note) {
+  const std::string name = firstName(spec.names);
+  if constexpr (kIsList<T>) {
+    using Value = typename T::value_type;
+    add(spec, name + " LIST", needsOf(spec, static_cast<const Value*>(nullptr)), note, false,
+        [&spec, append = listAppender(into)](const std::string& text) {
+          return readList(text, [&](const std::string& item) {
+            Value v{};
+            std::string e = read(item, spec, v);
+            if (e.empty()) append(v);
+            return e;
+          });
         });
-      });
+  } else {
+    using Value = typename Target<T>::Value;
+    add(spec, name + " " + spec.value, needsOf(spec, static_cast<const Value*>(nullptr)), note, false,
+        [&spec, &into](const std::string& v) { return read(v, spec, Target<T>::slot(into)); });
+  }
 }
 
-void CommandLine::dt(std::optional<double>& into, const std::string& note) {
-  add(option::kDt, "--dt S", note, false,
-      [&into](const std::string& v) { return readDt(v, into.emplace()); });
-}
-
-void CommandLine::dts(std::vector<double>& into, const std::string& note) {
-  add(option::kDt, "--dt LIST", note, false, [append = listAppender(into)](const std::string& text) {
-    return readList(text, [&](const std::string& item) {
-      double dt = 0.0;
-      std::string e = readDt(item, dt);
-      if (e.empty()) append(dt);
-      return e;
-    });
-  });
-}
-
-void CommandLine::method(std::optional<phys::SolverMethod>& into, const std::string& note) {
-  add(option::kMethods, "--methods M", note, false,
-      [&into](const std::string& v) { return readMethod(v, into.emplace()); });
-}
-
-void CommandLine::methods(std::vector<phys::SolverMethod>& into, const std::string& note) {
-  add(option::kMethods, "--methods LIST", note, false,
-      [append = listAppender(into)](const std::string& text) {
-        return readList(text, [&](const std::string& item) {
-          phys::SolverMethod m{};
-          std::string e = readMethod(item, m);
-          if (e.empty()) append(m);
-          return e;
-        });
-      });
-}
-
-void CommandLine::model(std::optional<phys::BodyModel>& into, const std::string& note) {
-  add(option::kModels, "--models M", note, false, [&into](const std::string& v) {
-    into = phys::parseBodyModel(v);
-    return into ? std::string() : "unknown model '" + v + "' (corners, tetra or rigid)";
-  });
-}
+template void CommandLine::option(const OptionSpec&, int&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::optional<int>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::vector<int>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, double&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::optional<double>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::vector<double>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::optional<phys::SolverMethod>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::vector<phys::SolverMethod>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::optional<phys::BodyModel>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, bool&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::optional<bool>&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::filesystem::path&, const std::string&);
+template void CommandLine::option(const OptionSpec&, std::optional<std::filesystem::path>&,
+                                  const std::string&);
 
 void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, const std::string& note) {
-  add(option::kModels, "--models LIST", note, false,
+  add(option::kModels, "--models LIST",
+      needsOf(option::kModels, static_cast<const phys::BodyModel*>(nullptr)), note, false,
       [ragdollModels, append = listAppender(into)](const std::string& text) {
         return readList(text, [&](const std::string& item) {
           const bool known = phys::parseBodyModel(item) || (ragdollModels && phys::parseRagdollModel(item));
@@ -271,53 +299,15 @@ void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, con
       });
 }
 
-void CommandLine::onOff(const OptionSpec& spec, bool& into, const std::string& note) {
-  add(spec, firstName(spec.names) + " " + spec.value, note, false,
-      [&into](const std::string& v) { return readOnOff(v, into); });
-}
-
-void CommandLine::onOff(const OptionSpec& spec, std::optional<bool>& into, const std::string& note) {
-  add(spec, firstName(spec.names) + " " + spec.value, note, false,
-      [&into](const std::string& v) { return readOnOff(v, into.emplace()); });
-}
-
 void CommandLine::flag(const OptionSpec& spec, bool& into, bool value, const std::string& note) {
   app_->add_flag_callback(spec.names, [&into, value] { into = value; });
   entries_.push_back({spec.names, spec.names, withNote(spec.help, note), ""});
 }
 
-void CommandLine::folder(const OptionSpec& spec, std::filesystem::path& into, const std::string& note) {
-  add(spec, firstName(spec.names) + " " + spec.value, note, false,
-      [&spec, &into](const std::string& v) { return readPath(v, spec, into); });
-}
-
-void CommandLine::folder(const OptionSpec& spec, std::optional<std::filesystem::path>& into,
-                         const std::string& note) {
-  add(spec, firstName(spec.names) + " " + spec.value, note, false,
-      [&spec, &into](const std::string& v) { return readPath(v, spec, into.emplace()); });
-}
-
-void CommandLine::file(const OptionSpec& spec, std::optional<std::filesystem::path>& into,
-                       const std::string& note) {
-  folder(spec, into, note);
-}
-
-void CommandLine::seconds(const OptionSpec& spec, double low, double high, double& into,
-                          const std::string& note) {
-  add(spec, firstName(spec.names) + " " + spec.value, note, false, [low, high, &into](const std::string& v) {
-    const std::optional<double> t = parseNumber(v);
-    if (!t || !(*t > low && *t <= high)) {
-      return "'" + v + "' is not a number of seconds above " + formatNumber(low) + " and at most " +
-             formatNumber(high);
-    }
-    into = *t;
-    return std::string();
-  });
-}
-
 void CommandLine::custom(const OptionSpec& spec, bool many,
                          std::function<std::string(const std::string&)> read, const std::string& note) {
-  add(spec, std::string(firstName(spec.names)) + " " + spec.value, note, many, std::move(read));
+  add(spec, std::string(firstName(spec.names)) + " " + spec.value, spec.needs != nullptr ? spec.needs : "",
+      note, many, std::move(read));
 }
 
 void CommandLine::require(const OptionSpec& spec, std::string why) {
@@ -395,11 +385,6 @@ std::string CommandLine::help() const {
     out += line + wrapped(e.help, kLabelWidth, kLabelWidth) + "\n";
   }
   return out;
-}
-
-bool asksForHelp(const std::vector<std::string>& args) {
-  return std::any_of(args.begin(), args.end(),
-                     [](const std::string& a) { return a == "--help" || a == "-h"; });
 }
 
 int commandMain(CommandLine& line, const std::vector<std::string>& args, std::ostream& out, std::ostream& err,

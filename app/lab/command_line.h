@@ -24,67 +24,77 @@ class App;
 
 namespace lab {
 
-// The ranges of the lab's own counts; --iterations, --substeps, --dt and --threads take the
-// physics' (physics/settings.h).
-inline constexpr int kMaxSteps = 10000000;
-inline constexpr int kMaxRepeats = 1000;
-
 /// One option, everything about it but where its value goes and the command's default.
 struct OptionSpec {
   const char* names;  ///< "--steps", or "--methods,--method": the first is the one errors name
   const char* value;  ///< what one value is called in the help ("N", "DIR"); "" for a flag
-  const char* needs;  ///< what a missing value should have been: "--steps needs a whole number"
   const char* help;   ///< what it does, with its range
+  double most = 0.0;  ///< a count's or a time's largest value (counts start at 1)
+  /// What a missing value should have been ("--dt needs a time step in seconds"); when null, what
+  /// the option's type reads ("a whole number", "a folder", "a value (on or off)"...).
+  const char* needs = nullptr;
+  double least = 0.0;  ///< a time's smallest value, itself allowed unless `aboveLeast`
+  bool aboveLeast = false;
 };
 
-/// The table: every option any command takes.
+/// The most steps a run may take (--steps, and a sweep's horizon over its dt).
+inline constexpr int kMaxSteps = 10000000;
+
+/// The table: every option any command takes. --iterations, --substeps, --dt and --threads take
+/// the physics' ranges (physics/settings.h).
 namespace option {
-inline constexpr OptionSpec kSteps{"--steps", "N", "a whole number", "steps to run, 1 to 10000000"};
-inline constexpr OptionSpec kDt{"--dt", "S", "a time step in seconds", "seconds per step, 1e-06 to 1"};
-inline constexpr OptionSpec kMethods{"--methods,--method", "M",
-                                     "a method (gauss-seidel, jacobi, xpbd or shake)",
-                                     "gauss-seidel, jacobi, xpbd or shake"};
-inline constexpr OptionSpec kIterations{"--iterations", "K", "a whole number",
-                                        "relaxation passes per substep, 1 to 1000"};
-inline constexpr OptionSpec kSubsteps{"--substeps", "S", "a whole number",
-                                      "integrations per step, 1 to 1000"};
-inline constexpr OptionSpec kModels{"--models,--model", "M", "a body model (corners, tetra or rigid)",
+inline constexpr OptionSpec kSteps{"--steps", "N", "steps to run, 1 to 10000000", kMaxSteps};
+inline constexpr OptionSpec kDt{
+    "--dt", "S", "seconds per step, 1e-06 to 1", phys::kMaxDt, "a time step in seconds", phys::kMinDt};
+inline constexpr OptionSpec kMethods{"--methods,--method", "M", "gauss-seidel, jacobi, xpbd or shake"};
+inline constexpr OptionSpec kIterations{"--iterations", "K", "relaxation passes per substep, 1 to 1000",
+                                        phys::kMaxIterations};
+inline constexpr OptionSpec kSubsteps{"--substeps", "S", "integrations per step, 1 to 1000",
+                                      phys::kMaxSubsteps};
+inline constexpr OptionSpec kModels{"--models,--model", "M",
                                     "corners, tetra or rigid, imposed at load on every box and capsule"};
-inline constexpr OptionSpec kSleep{"--sleep", "on|off", "a value (on or off)",
-                                   "whether islands at rest sleep"};
+inline constexpr OptionSpec kSleep{"--sleep", "on|off", "whether islands at rest sleep"};
 inline constexpr OptionSpec kJointProjection{
-    "--joint-projection", "on|off", "a value (on or off)",
-    "whether rigid joints are closed exactly after each substep's passes"};
-inline constexpr OptionSpec kPeerSleep{"--peer-sleep", "on|off", "a value (on or off)",
+    "--joint-projection", "on|off", "whether rigid joints are closed exactly after each substep's passes"};
+inline constexpr OptionSpec kPeerSleep{"--peer-sleep", "on|off",
                                        "whether the peers' bodies at rest sleep (Bullet's deactivation)"};
-inline constexpr OptionSpec kThreads{"--threads", "N", "a whole number", "threads the step may use, 1 to 64"};
-inline constexpr OptionSpec kRepeat{"--repeat", "R", "a whole number",
-                                    "timed runs of each setting, 1 to 1000; the median counts"};
-inline constexpr OptionSpec kJson{"--json", "", "", "print JSON:"};
-inline constexpr OptionSpec kDump{"--dump", "FILE", "a file name",
-                                  "write each named body's final pose to FILE as CSV"};
-inline constexpr OptionSpec kData{"--data", "DIR", "a folder",
-                                  "folder holding assets/ (default: the source tree)"};
-inline constexpr OptionSpec kOut{"--out", "DIR", "a folder", "the folder for"};
-inline constexpr OptionSpec kError{"--error", "FIGURE", "a figure's name",
-                                   "what the chart and the Pareto front measure: position (the distance "
-                                   "from the accuracy target; the default) or a figure of the run table "
-                                   "(tracking-error, joint-error, ...)"};
-inline constexpr OptionSpec kNoPeers{"--no-peers", "", "",
-                                     "leave out the peer engines (Bullet, ODE, MuJoCo)"};
-inline constexpr OptionSpec kScene{"--scene", "NAME...", "a scene name",
-                                   "only these scenes: names in the suite's folder, or scene files "
-                                   "(repeatable; comma-separated lists too)"};
-inline constexpr OptionSpec kTarget{"--target", "METRIC=VALUE", "METRIC=VALUE",
-                                    "an upper bound the setting must meet (repeatable)"};
-inline constexpr OptionSpec kSizes{"--sizes", "LIST", "a list of sizes",
-                                   "sizes, comma-separated, 1 to 4096: ragdolls, or a pyramid's base row"};
-inline constexpr OptionSpec kSaveScenes{"--save-scenes", "DIR", "a folder",
+inline constexpr OptionSpec kThreads{"--threads", "N", "threads the step may use, 1 to 64",
+                                     phys::kMaxThreads};
+inline constexpr OptionSpec kRepeat{"--repeat", "R",
+                                    "timed runs of each setting, 1 to 1000; the median counts", 1000};
+inline constexpr OptionSpec kJson{"--json", "", "print JSON:"};
+inline constexpr OptionSpec kDump{"--dump", "FILE", "write each named body's final pose to FILE as CSV"};
+inline constexpr OptionSpec kData{"--data", "DIR", "folder holding assets/ (default: the source tree)"};
+inline constexpr OptionSpec kOut{"--out", "DIR", "the folder for"};
+inline constexpr OptionSpec kError{
+    "--error", "FIGURE",
+    "what the chart and the Pareto front measure: position (the distance from the "
+    "accuracy target; the default) or a figure of the run table (tracking-error, "
+    "joint-error, ...)",
+    0.0, "a figure's name"};
+inline constexpr OptionSpec kNoPeers{"--no-peers", "", "leave out the peer engines (Bullet, ODE, MuJoCo)"};
+inline constexpr OptionSpec kScene{
+    "--scene", "NAME...",
+    "only these scenes: names in the suite's folder, or scene files (repeatable; "
+    "comma-separated lists too)",
+    0.0, "a scene name"};
+inline constexpr OptionSpec kTarget{"--target", "METRIC=VALUE",
+                                    "an upper bound the setting must meet (repeatable)", 0.0, "METRIC=VALUE"};
+// 4096 ragdolls, or a pyramid's base: 8.4 million boxes, is beyond any run.
+inline constexpr OptionSpec kSizes{"--sizes", "LIST",
+                                   "sizes, comma-separated, 1 to 4096: ragdolls, or a pyramid's base row",
+                                   4096, "a list of sizes"};
+inline constexpr OptionSpec kSaveScenes{"--save-scenes", "DIR",
                                         "also write each size's scene as DIR/KIND-N.xml, for lab run"};
-inline constexpr OptionSpec kTime{"--time", "S", "a number of seconds",
-                                  "horizon of a free-body scene, s, above 0 and at most 3600"};
+// An hour of a free body is already a long run.
+inline constexpr OptionSpec kTime{.names = "--time",
+                                  .value = "S",
+                                  .help = "horizon of a free-body scene, s, above 0 and at most 3600",
+                                  .most = 3600.0,
+                                  .needs = "a number of seconds",
+                                  .aboveLeast = true};
 inline constexpr OptionSpec kQuick{
-    "--quick", "", "", "tiny sweeps and one stability scene: checks the pipeline, not the physics"};
+    "--quick", "", "tiny sweeps and one stability scene: checks the pipeline, not the physics"};
 }  // namespace option
 
 /// A mistake on the command line found after parsing (a --model the scene has no body for):
@@ -108,11 +118,13 @@ void prepareOutputFolder(const std::filesystem::path& folder, const char* option
 /// help. The targets passed in must outlive parse().
 class CommandLine {
  public:
-  /// `about`: what the command does, printed under the usage line.
-  CommandLine(std::string command, std::string about);
+  explicit CommandLine(std::string command);
   ~CommandLine();
   CommandLine(const CommandLine&) = delete;
   CommandLine& operator=(const CommandLine&) = delete;
+
+  /// What the command does, printed under the usage line.
+  void about(std::string text) { about_ = std::move(text); }
 
   // ---- positionals -------------------------------------------------------------------------
   /// The one SCENE, required: a scene file, or a name in <data>/assets/scenes.
@@ -123,26 +135,17 @@ class CommandLine {
                   std::function<std::string(const std::string&)> read);
 
   // ---- options, each from the table; `note` goes after the table's help ---------------------
-  void count(const OptionSpec& spec, int high, int& into, const std::string& note);
-  void count(const OptionSpec& spec, int high, std::optional<int>& into, const std::string& note);
-  /// A comma-separated list of counts; a value listed twice counts once.
-  void counts(const OptionSpec& spec, int high, std::vector<int>& into, const std::string& note);
-  void dt(std::optional<double>& into, const std::string& note);
-  void dts(std::vector<double>& into, const std::string& note);
-  void method(std::optional<phys::SolverMethod>& into, const std::string& note);
-  void methods(std::vector<phys::SolverMethod>& into, const std::string& note);
-  void model(std::optional<phys::BodyModel>& into, const std::string& note);
+  /// An option read as its target's type: int (a count from 1 to spec.most), double (seconds, in
+  /// the spec's range), phys::SolverMethod, phys::BodyModel, bool (on or off) or a path (a file or
+  /// folder). A std::optional target is set when the option is given; a std::vector takes
+  /// comma-separated lists (LIST): the command's defaults go at the first value given, a second
+  /// option adds to the first, and a value given twice counts once.
+  template <typename T>
+  void option(const OptionSpec& spec, T& into, const std::string& note);
   /// Names of body models; with `ragdollModels`, the ragdoll models (seed, lean) too.
   void models(std::vector<std::string>& into, bool ragdollModels, const std::string& note);
-  void onOff(const OptionSpec& spec, bool& into, const std::string& note);
-  void onOff(const OptionSpec& spec, std::optional<bool>& into, const std::string& note);
   /// A flag: sets `into` to `value` when given.
   void flag(const OptionSpec& spec, bool& into, bool value, const std::string& note);
-  void folder(const OptionSpec& spec, std::filesystem::path& into, const std::string& note);
-  void folder(const OptionSpec& spec, std::optional<std::filesystem::path>& into, const std::string& note);
-  void file(const OptionSpec& spec, std::optional<std::filesystem::path>& into, const std::string& note);
-  /// A number from above `low` to `high`, with its unit in the message.
-  void seconds(const OptionSpec& spec, double low, double high, double& into, const std::string& note);
   /// Any option whose values the command reads itself: `read` returns the error (without the
   /// option's name), or "". `many`: every word up to the next option is a value.
   void custom(const OptionSpec& spec, bool many, std::function<std::string(const std::string&)> read,
@@ -159,7 +162,7 @@ class CommandLine {
 
  private:
   struct Entry;
-  void add(const OptionSpec& spec, std::string label, const std::string& note, bool many,
+  void add(const OptionSpec& spec, std::string label, std::string needs, const std::string& note, bool many,
            std::function<std::string(const std::string&)> read);
 
   /// The words CLI11 gave the positional (none without one).
@@ -173,16 +176,22 @@ class CommandLine {
   std::vector<std::pair<std::string, std::string>> required_;  // option, why
 };
 
-/// "--help" or "-h" anywhere: help wins wherever it is, so "lab run x --help" shows the help
-/// instead of running.
-bool asksForHelp(const std::vector<std::string>& args);
-
 /// The frame every command runs in: its help on --help (exit 0); a command-line error as
 /// "lab: ERROR" and the help (exit 2); else `body`, whose exceptions become one line and exit 1
 /// (a scene's LoadError as "file:line: ...", settings the world refused, anything else) or,
 /// for a UsageError, the same as a parse error.
 int commandMain(CommandLine& line, const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
                 const std::function<int()>& body);
+/// A command's main (commands.h) made of its options struct, the function that describes them to
+/// the command line, `kDescribe(line, options)`, and the one that runs the command, `kRun(options,
+/// out, err)`, in the frame above.
+template <typename Options, auto kDescribe, auto kRun>
+int commandMainOf(CommandLine& line, const std::vector<std::string>& args, std::ostream& out,
+                  std::ostream& err) {
+  Options options;
+  kDescribe(line, options);
+  return commandMain(line, args, out, err, [&] { return kRun(options, out, err); });
+}
 
 /// The folder holding assets/: `given`, or the source tree set at build time when it is empty.
 std::filesystem::path dataDir(const std::filesystem::path& given);

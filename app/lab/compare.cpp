@@ -28,37 +28,36 @@
 namespace lab {
 namespace {
 
+// The scene's overrides as `lab run` takes them (--methods, --threads and --dump aside); ours only
+// where the help says so.
 struct CompareOptions {
-  std::string scene;
-  int steps = kDefaultSteps;
-  std::optional<double> dt;
-  std::optional<phys::BodyModel> model;     ///< imposed at load on ours and on what the peers are given
-  std::optional<int> iterations, substeps;  ///< ours; the scene's own when unset
-  std::filesystem::path dataDir;
-  int repeats = 1;  ///< timed runs of each of ours
-  bool json = false;
-  bool sleep = false;             ///< --sleep: whether ours put islands at rest to sleep, and the peers too
+  RunOptions run;
+  int repeats = 1;                ///< timed runs of each of ours
   std::optional<bool> peerSleep;  ///< --peer-sleep: the peers' alone, when it differs from --sleep
-  std::optional<bool> jointProjection;  ///< --joint-projection: ours; the scene's when unset
 };
 
 void describeCompare(CommandLine& line, CompareOptions& o) {
-  line.scene(o.scene);
-  line.count(option::kSteps, kMaxSteps, o.steps,
-             "in every run (default 600; a scene's analytic checkpoints may ask for more)");
-  line.dt(o.dt, "(default: the scene's)");
-  line.model(o.model, "(rigid: ragdolls too), for ours and for the scene the peers are given");
-  line.count(option::kIterations, phys::kMaxIterations, o.iterations, "for ours (default: the scene's)");
-  line.count(option::kSubsteps, phys::kMaxSubsteps, o.substeps, "for ours (default: the scene's)");
-  line.count(option::kRepeat, kMaxRepeats, o.repeats,
-             "timed runs of each of ours, the median kept (default 1)");
-  line.onOff(
-      option::kSleep, o.sleep,
+  line.about(
+      "Runs SCENE with each of our four methods at its own iterations and substeps (xpbd alone for\n"
+      "rigid bodies with no stick, which every method steps alike), then in each peer engine built in\n"
+      "(Bullet, ODE, MuJoCo), and prints one table: ms per step, accuracy error, penetration\n"
+      "and joint gap (by our code on every engine's poses) and what each peer could not express.");
+  line.scene(o.run.scene);
+  line.option(option::kSteps, o.run.steps,
+              "in every run (default 600; a scene's analytic checkpoints may ask for more)");
+  line.option(option::kDt, o.run.dt, "(default: the scene's)");
+  line.option(option::kModels, o.run.model,
+              "(rigid: ragdolls too), for ours and for the scene the peers are given");
+  line.option(option::kIterations, o.run.iterations, "for ours (default: the scene's)");
+  line.option(option::kSubsteps, o.run.substeps, "for ours (default: the scene's)");
+  line.option(option::kRepeat, o.repeats, "timed runs of each of ours, the median kept (default 1)");
+  line.option(
+      option::kSleep, o.run.sleep,
       "(ours and the peers'; default off: every engine steps every body, so costs compare awake with awake)");
-  line.onOff(option::kPeerSleep, o.peerSleep, "(default: as --sleep)");
-  line.onOff(option::kJointProjection, o.jointProjection, "for ours (default: the scene's)");
-  line.flag(option::kJson, o.json, true, "one object per row, one per line, instead of the table");
-  line.folder(option::kData, o.dataDir, "");
+  line.option(option::kPeerSleep, o.peerSleep, "(default: as --sleep)");
+  line.option(option::kJointProjection, o.run.jointProjection, "for ours (default: the scene's)");
+  line.flag(option::kJson, o.run.json, true, "one object per row, one per line, instead of the table");
+  line.option(option::kData, o.run.dataDir, "");
 }
 
 using Row = SweepRow;
@@ -67,16 +66,17 @@ using Row = SweepRow;
 // peers, on the scene as loaded with --models and --sleep.
 Plan comparePlan(const CompareOptions& o, const std::filesystem::path& file, double dt) {
   PlanRequest request;
-  const std::string label = o.model ? std::string(phys::toString(*o.model)) : std::string();
-  request.models.push_back(ModelChoice{label, imposedAtLoad(o.model, o.sleep, o.jointProjection)});
+  const std::string label = o.run.model ? std::string(phys::toString(*o.run.model)) : std::string();
+  request.models.push_back(
+      ModelChoice{label, imposedAtLoad(o.run.model, o.run.sleep, o.run.jointProjection)});
   request.methods = {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi, phys::SolverMethod::Xpbd,
                      phys::SolverMethod::Shake};
-  if (o.iterations) request.iterations = {*o.iterations};
-  if (o.substeps) request.substeps = {*o.substeps};
+  if (o.run.iterations) request.iterations = {*o.run.iterations};
+  if (o.run.substeps) request.substeps = {*o.run.substeps};
   request.dts = {dt};
   request.repeats = o.repeats;
-  request.peerSleep = o.peerSleep.value_or(o.sleep);
-  request.horizon = o.steps * dt;  // --steps counts steps of the dt asked, not of the scene's
+  request.peerSleep = o.peerSleep.value_or(o.run.sleep);
+  request.horizon = o.run.steps * dt;  // --steps counts steps of the dt asked, not of the scene's
   return makePlan(file, request);
 }
 
@@ -185,10 +185,10 @@ std::string contents(const phys::World& world) {
 
 // Every run, then the table or the JSON.
 int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& err) {
-  const std::filesystem::path file = sceneFile(options.scene, options.dataDir);
-  const scenes::Scene scene =
-      scenes::loadSceneFile(file, imposedAtLoad(options.model, options.sleep, options.jointProjection));
-  const double dt = options.dt.value_or(scene.world.solverSettings().dt);
+  const std::filesystem::path file = sceneFile(options.run.scene, options.run.dataDir);
+  const scenes::Scene scene = scenes::loadSceneFile(
+      file, imposedAtLoad(options.run.model, options.run.sleep, options.run.jointProjection));
+  const double dt = options.run.dt.value_or(scene.world.solverSettings().dt);
   const Plan plan = comparePlan(options, file, dt);
   Progress progress(err, "compare", planWork(plan));
   PlanResult result = runPlan(plan, progress);
@@ -200,13 +200,13 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
   for (const Row& r : rows) {
     if (!r.peer && r.msPerStep > 0.0) fastest = std::min(fastest, r.msPerStep);
   }
-  if (options.json) {
+  if (options.run.json) {
     printJson(out, rows, fastest, scene.name, target);
     return kExitOk;
   }
   // A project scene is named from the data folder (assets/scenes/x.xml), so the table that
   // docs/results.md quotes says the same on every machine.
-  const std::filesystem::path shown = shownPath(file, dataDir(options.dataDir));
+  const std::filesystem::path shown = shownPath(file, dataDir(options.run.dataDir));
   const int steps = rows.front().steps;
   out << "scene     " << scene.name << " (" << shown.string() << "): " << contents(scene.world) << "\n";
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
@@ -223,16 +223,6 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
 
 }  // namespace
 
-int compareMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  CompareOptions options;
-  CommandLine line(
-      "compare",
-      "Runs SCENE with each of our four methods at its own iterations and substeps (xpbd alone for\n"
-      "rigid bodies with no stick, which every method steps alike), then in each peer engine built in\n"
-      "(Bullet, ODE, MuJoCo), and prints one table: ms per step, accuracy error, penetration\n"
-      "and joint gap (by our code on every engine's poses) and what each peer could not express.");
-  describeCompare(line, options);
-  return commandMain(line, args, out, err, [&] { return runCompare(options, out, err); });
-}
+const CommandMain compareMain = commandMainOf<CompareOptions, describeCompare, runCompare>;
 
 }  // namespace lab

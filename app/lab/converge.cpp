@@ -32,10 +32,12 @@ namespace lab {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kMaxTime = 3600.0;  // s: --time; an hour of a free body is already a long run
 constexpr const char* kParticleModel = "particle";
 
 void describeConverge(CommandLine& line, ConvergeOptions& o) {
+  line.about(
+      "Error against the substep size h for every method and model, on scenes with an exact\n"
+      "answer; the slope of the log-log line is the method's measured order.");
   line.positional(
       "SCENE",
       "scenes with an exact answer: analytic positions (<expect kind=\"position\">) or free bodies in zero "
@@ -45,16 +47,16 @@ void describeConverge(CommandLine& line, ConvergeOptions& o) {
         o.scenes.push_back(name);
         return std::string();
       });
-  line.methods(o.methods,
-               "(default: all four); rigid bodies are solved by XPBD whatever the method, so they run once");
+  line.option(option::kMethods, o.methods,
+              "(default: all four); rigid bodies are solved by XPBD whatever the method, so they run once");
   line.models(o.models, false,
               "(default: every model a scene's boxes take; a scene of particles alone has none and runs as "
               "'particle')");
-  line.counts(option::kSubsteps, phys::kMaxSubsteps, o.substeps, "(default 1,2,4,8,16,32,64): h = dt / each");
-  line.count(option::kIterations, phys::kMaxIterations, o.iterations, "(default 4)");
-  line.seconds(option::kTime, 0.0, kMaxTime, o.time, "(default 4); analytic scenes use their answers' times");
-  line.folder(option::kOut, o.out, "converge.csv and, per scene, converge-SCENE.gp, .png, .svg");
-  line.folder(option::kData, o.dataDir, "");
+  line.option(option::kSubsteps, o.substeps, "(default 1,2,4,8,16,32,64): h = dt / each");
+  line.option(option::kIterations, o.iterations, "(default 4)");
+  line.option(option::kTime, o.time, "(default 4); analytic scenes use their answers' times");
+  line.option(option::kOut, o.out, "converge.csv and, per scene, converge-SCENE.gp, .png, .svg");
+  line.option(option::kData, o.dataDir, "");
 }
 
 // ---- what a scene is compared with ------------------------------------------------------------
@@ -370,7 +372,8 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
 namespace {
 
 // Every scene's runs and table, then the files of --out.
-int runConvergeCommand(const ConvergeOptions& o, std::ostream& out, std::ostream& err) {
+int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) {
+  if (o.scenes.empty()) o.scenes = kConvergeScenes;
   const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(o.dataDir));
   std::string current;
   try {
@@ -423,16 +426,6 @@ int runConvergeCommand(const ConvergeOptions& o, std::ostream& out, std::ostream
 
 }  // namespace
 
-int convergeMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  ConvergeOptions o;
-  CommandLine line("converge",
-                   "Error against the substep size h for every method and model, on scenes with an exact\n"
-                   "answer; the slope of the log-log line is the method's measured order.");
-  describeConverge(line, o);
-  return commandMain(line, args, out, err, [&] {
-    if (o.scenes.empty()) o.scenes = kConvergeScenes;
-    return runConvergeCommand(o, out, err);
-  });
-}
+const CommandMain convergeMain = commandMainOf<ConvergeOptions, describeConverge, runConvergeCommand>;
 
 }  // namespace lab

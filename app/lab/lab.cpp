@@ -38,31 +38,22 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   return kExitOk;
 }
 
-int runMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  RunOptions options;
-  CommandLine line("run",
-                   "Steps one scene and prints what it measured: the cost of each stage, the errors, the\n"
-                   "energy, and what the guard froze.");
-  describeRun(line, options);
-  return commandMain(line, args, out, err, [&] { return runCommand(options, out, err); });
-}
-
 struct CommandEntry {
   const char* name;
   const char* arguments;  // what `lab help` shows after the name
   const char* summary;
-  CommandMain main;
+  const CommandMain* main;
 };
 
 constexpr CommandEntry kCommands[] = {
-    {"run", "SCENE", "steps a scene and reports its figures", runMain},
-    {"sweep", "SCENE --out DIR", "speed against accuracy over settings", sweepMain},
-    {"stability", "", "where each method fails", stabilityMain},
-    {"tune", "SCENE --target M=V", "the cheapest settings that meet targets", tuneMain},
-    {"compare", "SCENE", "our methods beside Bullet, ODE and MuJoCo", compareMain},
-    {"scale", "[KIND]", "cost per body against the scene's size", scaleMain},
-    {"converge", "[SCENE...]", "error against substep size: each method's order", convergeMain},
-    {"report", "", "docs/results.md and its charts", reportMain},
+    {"run", "SCENE", "steps a scene and reports its figures", &runMain},
+    {"sweep", "SCENE --out DIR", "speed against accuracy over settings", &sweepMain},
+    {"stability", "", "where each method fails", &stabilityMain},
+    {"tune", "SCENE --target M=V", "the cheapest settings that meet targets", &tuneMain},
+    {"compare", "SCENE", "our methods beside Bullet, ODE and MuJoCo", &compareMain},
+    {"scale", "[KIND]", "cost per body against the scene's size", &scaleMain},
+    {"converge", "[SCENE...]", "error against substep size: each method's order", &convergeMain},
+    {"report", "", "docs/results.md and its charts", &reportMain},
 };
 
 std::string commandNames() {
@@ -94,20 +85,29 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return kExitOk;
   }
   for (const CommandEntry& c : kCommands) {
-    if (name == c.name) return c.main({args.begin() + 1, args.end()}, out, err);
+    if (name != c.name) continue;
+    CommandLine line(c.name);
+    return (*c.main)(line, {args.begin() + 1, args.end()}, out, err);
   }
   err << "lab: unknown command '" << name << "' (" << commandNames() << ")\n" << usage();
   return kExitUsage;
 }
 
-CommandOutput runCaptured(CommandMain main, const std::vector<std::string>& args) {
+const CommandMain runMain = commandMainOf<RunOptions, describeRun, runCommand>;
+
+CommandOutput runCaptured(const std::vector<std::string>& args) {
   std::ostringstream out;
   std::ostringstream err;
   CommandOutput r;
-  r.code = main(args, out, err);
+  r.code = labMain(args, out, err);
   r.out = out.str();
   r.err = err.str();
   return r;
+}
+
+CommandOutput runCaptured(const std::string& command, std::vector<std::string> args) {
+  args.insert(args.begin(), command);
+  return runCaptured(args);
 }
 
 }  // namespace lab

@@ -76,11 +76,12 @@ std::string demoteHeadings(const std::string& markdown) {
 // ---- running the commands ---------------------------------------------------------------------
 
 // Says which command runs (the full report takes minutes), then runs it captured.
-CommandOutput runCommandMain(CommandMain main, const std::vector<std::string>& args, std::ostream& progress) {
-  progress << "lab report: lab";
+CommandOutput runCommandMain(const std::string& command, const std::vector<std::string>& args,
+                             std::ostream& progress) {
+  progress << "lab report: lab " << command;
   for (const std::string& a : args) progress << ' ' << a;
   progress << std::endl;
-  return runCaptured(main, args);
+  return runCaptured(command, args);
 }
 
 // ---- the sweeps -------------------------------------------------------------------------------
@@ -347,7 +348,19 @@ std::string codeBlockOrText(const CommandOutput& r) {
   return "The command failed (exit " + std::to_string(r.code) + "):\n\n```\n" + r.err + "```\n";
 }
 
-int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
+void describeReport(CommandLine& line, ReportOptions& o) {
+  line.about(
+      "Runs the lab's commands and writes docs/results.md and its charts from what they print.\n"
+      "Takes several minutes in full; `make charts` runs it.");
+  line.option(option::kOut, o.out, "results.md and its results/ folder (default: <data>/docs)");
+  line.flag(option::kQuick, o.quick, true, "");
+  line.option(option::kData, o.data, "");
+}
+
+int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
+  o.data = dataDir(o.data);
+  if (o.out.empty()) o.out = o.data / "docs";
+  prepareOutputFolder(o.out / "results");  // before the runs, which take minutes
   const fs::path results = o.out / "results";
   std::ostringstream md;
   md << "# Results\n\n"
@@ -369,7 +382,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   bool failed = false;
   for (const SweepScene& s : kSweepScenes) {
     const fs::path dir = results / s.name;
-    const CommandOutput r = runCommandMain(sweepMain, sweepArgs(o, s.name, dir), err);
+    const CommandOutput r = runCommandMain("sweep", sweepArgs(o, s.name, dir), err);
     md << "### " << s.name << "\n\n" << s.why << ".\n\n";
     if (r.code != 0) {
       failed = true;
@@ -393,7 +406,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
         "tracking and not the turn into the clip.\n\n";
   for (const TrackingScene& t : kTrackingScenes) {
     const fs::path dir = results / t.folder;
-    const CommandOutput r = runCommandMain(sweepMain, trackingArgs(o, t, dir), err);
+    const CommandOutput r = runCommandMain("sweep", trackingArgs(o, t, dir), err);
     failed |= r.code != 0;
     md << "### " << t.scene << "\n\n" << t.what << ".\n\n";
     if (r.code == 0) {
@@ -404,9 +417,9 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     } else {
       md << codeBlockOrText(r) << "\n";
     }
-    std::vector<std::string> runArgs{"run", t.scene, "--json", "--data", o.data.string()};
+    std::vector<std::string> runArgs{t.scene, "--json", "--data", o.data.string()};
     if (o.quick) runArgs.insert(runArgs.end(), {"--steps", "10"});
-    const CommandOutput run = runCommandMain(labMain, runArgs, err);
+    const CommandOutput run = runCommandMain("run", runArgs, err);
     failed |= run.code != 0;
     md << (run.code == 0 ? drivesTable(t.scene, run.out) : codeBlockOrText(run)) << "\n";
   }
@@ -420,7 +433,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
       stabilityArgs.emplace_back(a);
     }
   }
-  const CommandOutput stability = runCommandMain(stabilityMain, stabilityArgs, err);
+  const CommandOutput stability = runCommandMain("stability", stabilityArgs, err);
   failed |= stability.code != 0;
   md << "![pass or fail per scene and setting](results/stability/stability-pass.png)\n\n"
      << "![error figure per scene and setting](results/stability/stability-error.png)\n\n"
@@ -437,7 +450,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     for (const char* a : {"--scene", "face-face", "--iterations", "1", "--substeps", "1"})
       rigidArgs.emplace_back(a);
   }
-  const CommandOutput rigid = runCommandMain(stabilityMain, rigidArgs, err);
+  const CommandOutput rigid = runCommandMain("stability", rigidArgs, err);
   failed |= rigid.code != 0;
   md << "### The rigid model on the same suite\n\n"
      << "Every box and ragdoll of each scene made rigid (`lab stability --models rigid --methods xpbd "
@@ -453,14 +466,14 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     if (o.quick || std::string(scene) == "bullet-ragdolls") {
       args.insert(args.end(), {"--steps", o.quick ? "5" : "120"});
     }
-    const CommandOutput r = runCommandMain(compareMain, args, err);
+    const CommandOutput r = runCommandMain("compare", args, err);
     failed |= r.code != 0;
     md << "### " << scene << "\n\n" << codeBlockOrText(r) << "\n";
     if (o.quick) break;
   }
   if (!o.quick) {
     const CommandOutput r =
-        runCommandMain(compareMain,
+        runCommandMain("compare",
                        {"bullet-ragdolls", "--data", o.data.string(), "--models", "rigid", "--iterations",
                         "1", "--substeps", "2", "--joint-projection", "on", "--steps", "120"},
                        err);
@@ -478,7 +491,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
         "bodies draws a flat line.\n\n";
   std::vector<std::string> scaleArgs{"--out", (results / "scale").string()};
   if (o.quick) scaleArgs.insert(scaleArgs.end(), {"--sizes", "1,2", "--steps", "5"});
-  const CommandOutput scaled = runCommandMain(scaleMain, scaleArgs, err);
+  const CommandOutput scaled = runCommandMain("scale", scaleArgs, err);
   failed |= scaled.code != 0;
   if (scaled.code == 0) {
     // The table without its last line, which names the files by their paths on this machine.
@@ -498,7 +511,7 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
         "current direction is first order and SHAKE second.\n\n";
   std::vector<std::string> convergeArgs{"--out", (results / "converge").string(), "--data", o.data.string()};
   if (o.quick) convergeArgs.insert(convergeArgs.end(), {"circular-orbit", "--substeps", "1,2"});
-  const CommandOutput converged = runCommandMain(convergeMain, convergeArgs, err);
+  const CommandOutput converged = runCommandMain("converge", convergeArgs, err);
   failed |= converged.code != 0;
   if (converged.code == 0) {
     std::string tables = converged.out;
@@ -520,20 +533,6 @@ int writeReport(const ReportOptions& o, std::ostream& out, std::ostream& err) {
 
 }  // namespace
 
-int reportMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  ReportOptions o;
-  CommandLine line("report",
-                   "Runs the lab's commands and writes docs/results.md and its charts from what they print.\n"
-                   "Takes several minutes in full; `make charts` runs it.");
-  line.folder(option::kOut, o.out, "results.md and its results/ folder (default: <data>/docs)");
-  line.flag(option::kQuick, o.quick, true, "");
-  line.folder(option::kData, o.data, "");
-  return commandMain(line, args, out, err, [&] {
-    o.data = dataDir(o.data);
-    if (o.out.empty()) o.out = o.data / "docs";
-    prepareOutputFolder(o.out / "results");  // before the runs, which take minutes
-    return writeReport(o, out, err);
-  });
-}
+const CommandMain reportMain = commandMainOf<ReportOptions, describeReport, writeReport>;
 
 }  // namespace lab

@@ -26,19 +26,19 @@
 namespace lab {
 namespace {
 
-constexpr int kMaxSize = 4096;  // ragdolls, or a pyramid's base: 8.4 million boxes is beyond any run
 constexpr int kDefaultScaleSteps = 60;
 
 struct ScaleOptions {
   ScaleKind kind = ScaleKind::CapsuleRagdolls;
-  std::vector<int> sizes;  // empty: the kind's defaults
-  RunOptions run;          // steps and solver overrides
+  std::vector<int> sizes;                       // empty: the kind's defaults
+  RunOptions run{.steps = kDefaultScaleSteps};  // steps and solver overrides
   bool json = false;
   std::optional<std::filesystem::path> out;
   std::optional<std::filesystem::path> scenes;  // --save-scenes
 };
 
 void describeScale(CommandLine& line, ScaleOptions& o) {
+  line.about("Generates a scene of each size and steps it: the cost per step and per body against size.");
   line.positional("KIND", "capsule-ragdolls (default), box-ragdolls or pyramid", false,
                   [&o](const std::string& word) {
                     const std::optional<ScaleKind> kind = parseScaleKind(word);
@@ -47,15 +47,14 @@ void describeScale(CommandLine& line, ScaleOptions& o) {
                     o.kind = *kind;
                     return std::string();
                   });
-  line.counts(option::kSizes, kMaxSize, o.sizes,
-              "(default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)");
-  line.count(option::kSteps, kMaxSteps, o.run.steps, "at each size (default 60: 1 s)");
-  line.method(o.run.method, "(default: the generated scene's)");
-  line.count(option::kIterations, phys::kMaxIterations, o.run.iterations, "(default: the scene's)");
-  line.count(option::kSubsteps, phys::kMaxSubsteps, o.run.substeps, "(default: the scene's)");
+  line.option(option::kSizes, o.sizes, "(default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)");
+  line.option(option::kSteps, o.run.steps, "at each size (default 60: 1 s)");
+  line.option(option::kMethods, o.run.method, "(default: the generated scene's)");
+  line.option(option::kIterations, o.run.iterations, "(default: the scene's)");
+  line.option(option::kSubsteps, o.run.substeps, "(default: the scene's)");
   line.flag(option::kJson, o.json, true, "an array, one object per size, instead of the table");
-  line.folder(option::kOut, o.out, "scale.csv, scale.gp and the chart scale.png, .svg");
-  line.folder(option::kSaveScenes, o.scenes, "");
+  line.option(option::kOut, o.out, "scale.csv, scale.gp and the chart scale.png, .svg");
+  line.option(option::kSaveScenes, o.scenes, "");
 }
 
 // Ragdolls stand on a square grid, 2 m apart (a ragdoll is 1.7 m tall at scale 1), each tipped
@@ -218,7 +217,11 @@ Chart scaleChart(const std::vector<ScaleRow>& rows) {
 }
 
 // The runs, the table or JSON, and the files of --out.
-int runScaleCommand(const ScaleOptions& o, std::ostream& out, std::ostream& err) {
+int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
+  if (o.sizes.empty()) {
+    o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
+                                           : std::vector<int>{1, 4, 16, 64, 256, 1024};
+  }
   try {
     if (o.out) fileio::prepareFolder(*o.out);  // before the runs, which can take minutes
     if (o.scenes) {
@@ -262,19 +265,6 @@ int runScaleCommand(const ScaleOptions& o, std::ostream& out, std::ostream& err)
 
 }  // namespace
 
-int scaleMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  ScaleOptions o;
-  o.run.steps = kDefaultScaleSteps;
-  CommandLine line(
-      "scale", "Generates a scene of each size and steps it: the cost per step and per body against size.");
-  describeScale(line, o);
-  return commandMain(line, args, out, err, [&] {
-    if (o.sizes.empty()) {
-      o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
-                                             : std::vector<int>{1, 4, 16, 64, 256, 1024};
-    }
-    return runScaleCommand(o, out, err);
-  });
-}
+const CommandMain scaleMain = commandMainOf<ScaleOptions, describeScale, runScaleCommand>;
 
 }  // namespace lab

@@ -94,31 +94,26 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
   return kExitOk;
 }
 
+int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream& err) {
+  if (!o.out.empty()) prepareOutputFolder(o.out);  // the suite takes minutes: say a bad --out now
+  std::vector<SuiteScene> scenes;
+  for (const std::filesystem::path& file : stability::sceneFiles(o))
+    scenes.push_back(stability::loadSuiteScene(file));
+  SuiteResult result;
+  try {
+    result = runSuite(o, scenes, err);
+  } catch (...) {
+    err << "\n";  // ends the progress line, so the message has a line of its own
+    throw;
+  }
+  const std::string md = stability::markdownReport(result);
+  out << md << std::flush;
+  return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
+}
+
 }  // namespace
 
-int stabilityMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  StabilityOptions o;
-  CommandLine line(
-      "stability",
-      "Runs every scene of <data>/assets/scenes/stability under every method x model x iterations\n"
-      "x substeps, and in each peer engine, and judges each run by the scene's <expect kind=\"pass\">.");
-  stability::describeOptions(line, o);
-  return commandMain(line, args, out, err, [&] {
-    if (!o.out.empty()) prepareOutputFolder(o.out);  // the suite takes minutes: say a bad --out now
-    std::vector<SuiteScene> scenes;
-    for (const std::filesystem::path& file : stability::sceneFiles(o))
-      scenes.push_back(stability::loadSuiteScene(file));
-    SuiteResult result;
-    try {
-      result = runSuite(o, scenes, err);
-    } catch (...) {
-      err << "\n";  // ends the progress line, so the message has a line of its own
-      throw;
-    }
-    const std::string md = stability::markdownReport(result);
-    out << md << std::flush;
-    return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
-  });
-}
+const CommandMain stabilityMain =
+    commandMainOf<StabilityOptions, stability::describeOptions, stabilityCommand>;
 
 }  // namespace lab

@@ -10,13 +10,16 @@
 namespace lab::stability {
 
 void describeOptions(CommandLine& line, StabilityOptions& o) {
-  line.folder(
+  line.about(
+      "Runs every scene of <data>/assets/scenes/stability under every method x model x iterations\n"
+      "x substeps, and in each peer engine, and judges each run by the scene's <expect kind=\"pass\">.");
+  line.option(
       option::kOut, o.out,
       "stability.md, .csv, .gp and the heat maps stability-pass.png/.svg and stability-error.png/.svg "
       "(default: the report on stdout alone)");
-  line.methods(o.methods, "(default: all four)");
-  line.counts(option::kIterations, phys::kMaxIterations, o.iterations, "(default 1,3,10)");
-  line.counts(option::kSubsteps, phys::kMaxSubsteps, o.substeps, "(default 1,4,16)");
+  line.option(option::kMethods, o.methods, "(default: all four)");
+  line.option(option::kIterations, o.iterations, "(default 1,3,10)");
+  line.option(option::kSubsteps, o.substeps, "(default 1,4,16)");
   line.models(o.models, false, "(ragdolls: seed, lean, rigid; default: each file's own)");
   line.custom(
       option::kScene, true,
@@ -27,9 +30,9 @@ void describeOptions(CommandLine& line, StabilityOptions& o) {
         return std::string();
       },
       "");
-  line.onOff(option::kSleep, o.sleep, "(ours and the peers'; default off, whatever the scene says)");
+  line.option(option::kSleep, o.sleep, "(ours and the peers'; default off, whatever the scene says)");
   line.flag(option::kNoPeers, o.peers, false, "");
-  line.folder(option::kData, o.dataDir, "");
+  line.option(option::kData, o.dataDir, "");
 }
 
 bool naturalLess(const std::string& a, const std::string& b) {

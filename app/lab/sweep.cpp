@@ -71,21 +71,23 @@ std::string readMeasure(const std::string& text, std::size_t& measure) {
 }
 
 void describeSweep(CommandLine& line, SweepOptions& o) {
+  line.about(
+      "Runs every combination of the listed settings on SCENE (LIST: comma-separated values),\n"
+      "times each and measures its error against the scene's accuracy target.");
   const std::string scenes = "(default: the scene's)";
   line.scene(o.scene);
-  line.methods(o.methods, scenes);
-  line.counts(option::kIterations, phys::kMaxIterations, o.iterations, scenes);
-  line.counts(option::kSubsteps, phys::kMaxSubsteps, o.substeps, scenes);
-  line.dts(o.dts, scenes);
+  line.option(option::kMethods, o.methods, scenes);
+  line.option(option::kIterations, o.iterations, scenes);
+  line.option(option::kSubsteps, o.substeps, scenes);
+  line.option(option::kDt, o.dts, scenes);
   line.models(o.models, true, "(ragdolls: seed, lean or rigid)");
-  line.count(option::kRepeat, kMaxRepeats, o.repeats, "(default 3)");
-  line.count(option::kSteps, kMaxSteps, o.steps,
-             "at the scene's dt (default: 1 s of them); other dts run as long");
+  line.option(option::kRepeat, o.repeats, "(default 3)");
+  line.option(option::kSteps, o.steps, "at the scene's dt (default: 1 s of them); other dts run as long");
   line.custom(
       option::kError, false, [&o](const std::string& text) { return readMeasure(text, o.measure); }, "");
   line.flag(option::kNoPeers, o.peers, false, "");
-  line.folder(option::kData, o.dataDir, "");
-  line.folder(option::kOut, o.out, "results.csv, pareto.csv, sweep.gp and the chart (required)");
+  line.option(option::kData, o.dataDir, "");
+  line.option(option::kOut, o.out, "results.csv, pareto.csv, sweep.gp and the chart (required)");
   line.require(option::kOut, "sweep needs --out DIR (where the CSV and the chart go)");
 }
 
@@ -395,19 +397,14 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
   return w.chartFailed ? kExitFailure : kExitOk;
 }
 
+int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
+  const Plan plan = sweepPlan(o, sceneFile(o.scene, o.dataDir));
+  prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
+  return runSweep(plan, o.measure, o.out, out, err);
+}
+
 }  // namespace
 
-int sweepMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  SweepOptions o;
-  CommandLine line("sweep",
-                   "Runs every combination of the listed settings on SCENE (LIST: comma-separated values),\n"
-                   "times each and measures its error against the scene's accuracy target.");
-  describeSweep(line, o);
-  return commandMain(line, args, out, err, [&] {
-    const Plan plan = sweepPlan(o, sceneFile(o.scene, o.dataDir));
-    prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
-    return runSweep(plan, o.measure, o.out, out, err);
-  });
-}
+const CommandMain sweepMain = commandMainOf<SweepOptions, describeSweep, sweepCommand>;
 
 }  // namespace lab

@@ -100,14 +100,31 @@ std::string readTarget(const std::string& text, TuneOptions& o) {
   return {};
 }
 
+// What `lab tune --help` says: the metrics a --target may bound, from the run table.
+std::string tuneAbout() {
+  std::string metrics =
+      "  error          m, largest distance from the accuracy target (analytic or reference)\n";
+  for (const RunMetric& m : kRunMetrics) {
+    std::string line = std::string("  ") + m.name;
+    line.resize(17, ' ');
+    metrics += line + (*m.unit == '\0' ? "" : std::string(m.unit) + ", ") + m.help + " after any step\n";
+  }
+  metrics += "  drift          J, |energy after the last step - energy before the first|\n";
+  return "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n" + metrics +
+         "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
+         "(xpbd alone for rigid), and substeps and iterations over 1,2,3,4,6,8,12,16,24,32, at the\n"
+         "scene's dt. A setting whose run froze anything never qualifies.";
+}
+
 void describeTune(CommandLine& line, TuneOptions& o) {
+  line.about(tuneAbout());
   line.scene(o.scene);
   line.custom(
       option::kTarget, false, [&o](const std::string& text) { return readTarget(text, o); }, "");
   line.require(option::kTarget, "tune needs at least one --target METRIC=VALUE");
-  line.count(option::kSteps, kMaxSteps, o.steps, "at the scene's dt (default: 1 s of them)");
-  line.count(option::kRepeat, kMaxRepeats, o.repeats, "(of each finalist; default 3)");
-  line.folder(option::kData, o.dataDir, "");
+  line.option(option::kSteps, o.steps, "at the scene's dt (default: 1 s of them)");
+  line.option(option::kRepeat, o.repeats, "(of each finalist; default 3)");
+  line.option(option::kData, o.dataDir, "");
 }
 
 // ---- the search -------------------------------------------------------------------------------
@@ -279,7 +296,8 @@ void printCompared(std::ostream& out, const char* label, const Candidate& c, con
 
 // ---- the command --------------------------------------------------------------------------------
 
-int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostream& out, std::ostream& err) {
+int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
+  const std::filesystem::path file = sceneFile(o.scene, o.dataDir);
   const scenes::Scene scene = scenes::loadSceneFile(file);
   const phys::SolverSettings own = scene.world.solverSettings();
   const SceneModels models = sceneModels(file);
@@ -355,25 +373,6 @@ int runTune(const TuneOptions& o, const std::filesystem::path& file, std::ostrea
 
 }  // namespace
 
-int tuneMain(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  TuneOptions o;
-  std::string metrics =
-      "  error          m, largest distance from the accuracy target (analytic or reference)\n";
-  for (const RunMetric& m : kRunMetrics) {
-    std::string line = std::string("  ") + m.name;
-    line.resize(17, ' ');
-    metrics += line + (*m.unit == '\0' ? "" : std::string(m.unit) + ", ") + m.help + " after any step\n";
-  }
-  metrics += "  drift          J, |energy after the last step - energy before the first|\n";
-  CommandLine line(
-      "tune", "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n" +
-                  metrics +
-                  "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
-                  "(xpbd alone for rigid), and substeps and iterations over 1,2,3,4,6,8,12,16,24,32, at the\n"
-                  "scene's dt. A setting whose run froze anything never qualifies.");
-  describeTune(line, o);
-  return commandMain(line, args, out, err,
-                     [&] { return runTune(o, sceneFile(o.scene, o.dataDir), out, err); });
-}
+const CommandMain tuneMain = commandMainOf<TuneOptions, describeTune, runTune>;
 
 }  // namespace lab

@@ -327,7 +327,7 @@ TEST(PeerUnsupported, PointGravityIsReportedInWords) {
 // `lab compare` in-process, on a scene file in a temporary folder.
 using Output = lab::CommandOutput;
 Output compare(const std::vector<std::string>& args) {
-  return lab::runCaptured(lab::labMain, args);
+  return lab::runCaptured(args);
 }
 
 // A box and a loose particle falling onto the ground: something for every column.
@@ -398,10 +398,9 @@ TEST(Compare, OurRowsAreTheSweepsRows) {
                             "--substeps", "3", "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
   // The sweep's --steps count at the scene's dt (1/60 s): 0.3 s, the compare's 30 steps of 0.01 s.
-  const Output s =
-      lab::runCaptured(lab::labMain, {"sweep", "ragdoll", "--steps", "18", "--dt", "0.01", "--iterations",
-                                      "2", "--substeps", "3", "--methods", "gauss-seidel,jacobi,xpbd,shake",
-                                      "--repeat", "1", "--out", dir.file("sweep").string()});
+  const Output s = lab::runCaptured({"sweep", "ragdoll", "--steps", "18", "--dt", "0.01", "--iterations", "2",
+                                     "--substeps", "3", "--methods", "gauss-seidel,jacobi,xpbd,shake",
+                                     "--repeat", "1", "--out", dir.file("sweep").string()});
   ASSERT_EQ(s.code, 0) << s.err;
   const lab::CsvTable csv = lab::readCsv(dir.file("sweep/results.csv"));
   std::istringstream lines(o.out);
@@ -598,7 +597,7 @@ TEST(Report, QuickReportWritesEveryPart) {
   const std::filesystem::path out =
       std::filesystem::temp_directory_path() / ("lab-report-" + std::to_string(::getpid()));
   std::filesystem::remove_all(out);
-  const Output r = lab::runCaptured(lab::reportMain, {"--quick", "--out", out.string(), "--data", DATA_DIR});
+  const Output r = lab::runCaptured("report", {"--quick", "--out", out.string(), "--data", DATA_DIR});
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string md = lab_testing::readFile(out / "results.md");
   for (const char* part : {"## Speed against accuracy",
@@ -652,7 +651,7 @@ TEST(Report, QuickReportWritesEveryPart) {
 }
 
 TEST(Report, BadArgumentsExitWithUsage) {
-  const Output r = lab::runCaptured(lab::reportMain, {"--frobnicate"});
+  const Output r = lab::runCaptured("report", {"--frobnicate"});
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("unknown option '--frobnicate'"), std::string::npos);
 }

@@ -30,7 +30,7 @@ using phys::Vec3;
 
 lab::CommandOutput converge(std::vector<std::string> args) {
   args.insert(args.end(), {"--data", DATA_DIR});
-  return lab::runCaptured(lab::convergeMain, args);
+  return lab::runCaptured("converge", args);
 }
 
 std::filesystem::path sceneFile(const std::string& name) {

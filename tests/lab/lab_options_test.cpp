@@ -87,7 +87,7 @@ TEST(LabOptions, DtLimitsAndForms) {
 // a value listed twice counts once.
 TEST(LabOptions, ListsReplaceTheDefaultsAndAddUp) {
   lab::stability::StabilityOptions o;
-  lab::CommandLine line("stability", "");
+  lab::CommandLine line("stability");
   lab::stability::describeOptions(line, o);
   ASSERT_EQ(line.parse({"--iterations", "2", "--iterations", "5,2", "--scene", "a", "b", "--scene", "c,d"}),
             "");
@@ -98,7 +98,7 @@ TEST(LabOptions, ListsReplaceTheDefaultsAndAddUp) {
 
 // The word after a "--" is a positional: a second SCENE, named as one.
 TEST(LabOptions, AfterTheMarkerAWordIsASecondScene) {
-  const lab::CommandOutput o = lab::runCaptured(lab::labMain, {"run", "a", "--", "b"});
+  const lab::CommandOutput o = lab::runCaptured({"run", "a", "--", "b"});
   EXPECT_EQ(o.code, lab::kExitUsage);
   EXPECT_NE(o.err.find("run takes one SCENE; got 'a' and 'b'"), std::string::npos) << o.err;
 }
@@ -106,7 +106,7 @@ TEST(LabOptions, AfterTheMarkerAWordIsASecondScene) {
 TEST(LabOptions, HelpInEveryForm) {
   for (const Args& args : {Args{"help"}, Args{"--help"}, Args{"-h"}, Args{"run", "s", "--help"},
                            Args{"run", "--steps", "0", "-h"}, Args{"sweep", "--help"}}) {
-    const lab::CommandOutput o = lab::runCaptured(lab::labMain, args);
+    const lab::CommandOutput o = lab::runCaptured(args);
     EXPECT_EQ(o.code, lab::kExitOk) << args[0];
     EXPECT_TRUE(o.out.starts_with("usage: lab")) << o.out;
     EXPECT_EQ(o.err, "");
@@ -129,7 +129,7 @@ class LabOptionsBad : public ::testing::TestWithParam<BadCase> {};
 // Exit 2, "lab: " and one line naming the argument, then the usage; nothing on stdout.
 TEST_P(LabOptionsBad, OneLineNamingTheArgument) {
   const BadCase& c = GetParam();
-  const lab::CommandOutput o = lab::runCaptured(lab::labMain, c.args);
+  const lab::CommandOutput o = lab::runCaptured(c.args);
   EXPECT_EQ(o.code, lab::kExitUsage);
   EXPECT_EQ(o.out, "");
   ASSERT_TRUE(o.err.starts_with("lab: ")) << o.err;
@@ -186,7 +186,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{{"sweep", "s"}, "--out DIR"}, BadCase{{"run", "s", "--method", "Jacobi"}, "'Jacobi'"}));
 
 TEST(LabOptions, HelpListsEveryOption) {
-  const std::string u = lab::runCaptured(lab::labMain, {"run", "--help"}).out;
+  const std::string u = lab::runCaptured({"run", "--help"}).out;
   for (const char* option : {"usage: lab run SCENE", "--steps N", "--dt S", "--methods M", "--iterations K",
                              "--substeps S", "--models M", "--sleep on|off", "--threads N", "--json",
                              "--dump FILE", "--data DIR", "--help", "--method too", "--model too"}) {
@@ -200,7 +200,7 @@ TEST(LabOptions, EveryCommandHasHelp) {
   for (const char* command :
        {"run", "sweep", "stability", "tune", "compare", "scale", "converge", "report"}) {
     EXPECT_NE(overview.find(std::string("  ") + command + " "), std::string::npos) << command;
-    const lab::CommandOutput o = lab::runCaptured(lab::labMain, {command, "--help"});
+    const lab::CommandOutput o = lab::runCaptured({command, "--help"});
     EXPECT_EQ(o.code, lab::kExitOk) << command;
     EXPECT_TRUE(o.out.starts_with(std::string("usage: lab ") + command)) << o.out;
   }
@@ -216,7 +216,7 @@ TEST(LabMain, HelpToStdoutUsageErrorsToStderr) {
   std::ostringstream out2, err2;
   EXPECT_EQ(lab::labMain({"run", "s", "--steps", "0"}, out2, err2), lab::kExitUsage);
   EXPECT_EQ(out2.str(), "");
-  const std::string help = lab::runCaptured(lab::labMain, {"run", "--help"}).out;
+  const std::string help = lab::runCaptured({"run", "--help"}).out;
   EXPECT_EQ(err2.str(), "lab: --steps: '0' is not a whole number from 1 to 10000000\n" + help);
 }
 

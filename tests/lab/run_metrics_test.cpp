@@ -35,8 +35,7 @@ std::string spinningBox(const char* model) {
 }
 
 lab::Json runJson(const std::filesystem::path& scene) {
-  const lab::CommandOutput o =
-      lab::runCaptured(lab::labMain, {"run", scene.string(), "--steps", "60", "--json"});
+  const lab::CommandOutput o = lab::runCaptured({"run", scene.string(), "--steps", "60", "--json"});
   EXPECT_EQ(o.code, lab::kExitOk) << o.err;
   return lab::Json::parse(o.out);
 }
@@ -45,17 +44,14 @@ TEST(RunMetrics, EveryFigureReachesRunSweepTuneAndCompare) {
   const TempDir dir;
   const std::filesystem::path scene = dir.write("spin.xml", spinningBox("corners"));
   const lab::Json run = runJson(scene);
-  const lab::CommandOutput sweep =
-      lab::runCaptured(lab::labMain, {"sweep", scene.string(), "--steps", "5", "--repeat", "1", "--no-peers",
-                                      "--out", dir.file("sweep").string()});
+  const lab::CommandOutput sweep = lab::runCaptured({"sweep", scene.string(), "--steps", "5", "--repeat", "1",
+                                                     "--no-peers", "--out", dir.file("sweep").string()});
   ASSERT_EQ(sweep.code, lab::kExitOk) << sweep.err;
   const std::vector<std::string> columns = lab::readCsv(dir.file("sweep/results.csv")).header;
-  const lab::CommandOutput compare =
-      lab::runCaptured(lab::labMain, {"compare", scene.string(), "--steps", "5"});
+  const lab::CommandOutput compare = lab::runCaptured({"compare", scene.string(), "--steps", "5"});
   ASSERT_EQ(compare.code, lab::kExitOk) << compare.err;
-  const lab::CommandOutput tuneHelp = lab::runCaptured(lab::labMain, {"tune", "--help"});
-  const lab::CommandOutput badTarget =
-      lab::runCaptured(lab::labMain, {"tune", scene.string(), "--target", "bogus=1"});
+  const lab::CommandOutput tuneHelp = lab::runCaptured({"tune", "--help"});
+  const lab::CommandOutput badTarget = lab::runCaptured({"tune", scene.string(), "--target", "bogus=1"});
   for (const lab::RunMetric& m : lab::kRunMetrics) {
     const std::string column = m.column;
     EXPECT_TRUE(run.contains(column + "_over_run")) << m.name;
@@ -73,13 +69,12 @@ TEST(RunMetrics, TuneMeetsATargetOnTheFastestSpin) {
   const TempDir dir;
   const std::filesystem::path scene = dir.write("spin.xml", spinningBox("rigid"));
   const lab::CommandOutput o = lab::runCaptured(
-      lab::labMain,
       {"tune", scene.string(), "--target", "angular-speed=3.2", "--steps", "5", "--repeat", "1"});
   EXPECT_EQ(o.code, lab::kExitOk) << o.err;
   EXPECT_NE(o.out.find("angular-speed <= 3.2 rad/s"), std::string::npos) << o.out;
   // A bound below pi rad/s cannot be met by any setting: the spin is the scene's, not an error.
   const lab::CommandOutput missed = lab::runCaptured(
-      lab::labMain, {"tune", scene.string(), "--target", "angular-speed=3", "--steps", "5", "--repeat", "1"});
+      {"tune", scene.string(), "--target", "angular-speed=3", "--steps", "5", "--repeat", "1"});
   EXPECT_EQ(missed.code, lab::kExitFailure) << missed.out;
 }
 

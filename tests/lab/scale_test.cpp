@@ -19,7 +19,7 @@ using lab::ScaleKind;
 using lab_testing::TempDir;
 
 lab::CommandOutput scale(const std::vector<std::string>& args) {
-  return lab::runCaptured(lab::scaleMain, args);
+  return lab::runCaptured("scale", args);
 }
 
 // The JSON array's objects, one a line as scaleJson writes them.

@@ -44,7 +44,7 @@ Setting setting(phys::SolverMethod method, int iterations, int substeps) {
 using Output = lab::CommandOutput;
 
 Output stability(const std::vector<std::string>& args) {
-  return lab::runCaptured(lab::stabilityMain, args);
+  return lab::runCaptured("stability", args);
 }
 
 // A one-box scene with the given <expect> on line 5 (and a particle "p" for the errors that
@@ -519,7 +519,7 @@ TEST(StabilityCli, AMissingOrBrokenSceneExits1) {
 
 TEST(StabilityCli, TheLabProgramRunsTheCommand) {
   // Through labMain, as `lab stability` is dispatched.
-  const Output o = lab::runCaptured(lab::labMain, {"stability", "--help"});
+  const Output o = lab::runCaptured({"stability", "--help"});
   EXPECT_EQ(o.code, lab::kExitOk);
   EXPECT_TRUE(o.out.starts_with("usage: lab stability"));
 }

@@ -31,7 +31,7 @@ using lab_testing::TempDir;
 
 Outcome sweep(std::vector<std::string> args) {
   args.insert(args.end(), {"--data", DATA_DIR});
-  return lab::runCaptured(lab::sweepMain, args);
+  return lab::runCaptured("sweep", args);
 }
 
 // A CSV the sweep wrote, whose every row must have the header's columns.

@@ -19,7 +19,7 @@ using lab_testing::TempDir;
 
 Outcome tune(std::vector<std::string> args) {
   args.insert(args.end(), {"--data", DATA_DIR});
-  return lab::runCaptured(lab::tuneMain, args);
+  return lab::runCaptured("tune", args);
 }
 
 /// The winner's line: "winner      shake, 1 iteration, 2 substeps, model tetra: ...".
@@ -49,7 +49,7 @@ lab::CsvRow rerun(const std::string& scene, const Winner& w, const std::string& 
                                    "--out",      dir.file("rerun").string(),
                                    "--data",     DATA_DIR};
   if (!w.model.empty()) args.insert(args.end(), {"--model", w.model});
-  const Outcome o = lab::runCaptured(lab::sweepMain, args);
+  const Outcome o = lab::runCaptured("sweep", args);
   EXPECT_EQ(o.code, 0) << o.err;
   const lab::CsvTable csv = lab::readCsv(dir.file("rerun/results.csv"));
   return csv.rows.empty() ? lab::CsvRow() : csv.rows.front();
