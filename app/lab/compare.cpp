@@ -173,9 +173,6 @@ std::string contents(const phys::World& world) {
     loose -= static_cast<std::size_t>(b.particleCount);
     capsules += b.shape == phys::Shape::Capsule ? 1 : 0;
   }
-  auto count = [](std::size_t n, const char* one, const char* many) {
-    return std::to_string(n) + " " + (n == 1 ? one : many);
-  };
   return count(world.bodies().size() - capsules, "box", "boxes") + ", " +
          (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string()) +
          count(loose, "loose particle", "loose particles") + ", " +

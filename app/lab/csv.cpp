@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "text.h"
+
 namespace lab {
 
 std::string csvField(std::string_view text) {
@@ -18,11 +20,7 @@ std::string csvField(std::string_view text) {
 }
 
 std::string csvNumber(double value, int digits) {
-  if (std::isnan(value)) return {};
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
+  return std::isnan(value) ? std::string() : formatNumber(value, digits);  // "inf", "-inf" as printf
 }
 
 std::vector<std::string> csvFields(std::string_view line) {

@@ -25,11 +25,6 @@ std::string num(double value, int digits = 6) {
   return std::isfinite(value) ? formatNumber(value, digits) : "n/a";
 }
 
-// "1 substep" but "3 substeps".
-std::string count(std::size_t n, const char* singular, const char* plural) {
-  return std::to_string(n) + " " + (n == 1 ? singular : plural);
-}
-
 // A stage's summed time and its share of the summed step totals, in aligned columns.
 std::string stageLine(std::string_view name, double ms, double totalMs) {
   std::string s(name);

@@ -16,23 +16,11 @@ namespace {
 // Beyond a factor of 1000 either way the colour says nothing more: a clean pass, or a blow-up.
 constexpr double kLogClip = 3.0;
 
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
-
-std::string join(const std::vector<std::string>& parts, const std::string& separator) {
-  std::string out;
-  for (const std::string& p : parts) out += (out.empty() ? "" : separator) + p;
-  return out;
-}
-
 template <typename T>
 std::string joinNumbers(const std::vector<T>& values) {
   std::vector<std::string> parts;
   parts.reserve(values.size());
-  for (T v : values) parts.push_back(number(static_cast<double>(v)));
+  for (T v : values) parts.push_back(formatNumber(static_cast<double>(v)));
   return join(parts, ", ");
 }
 
@@ -92,8 +80,8 @@ void summaryTable(std::ostringstream& md, const SuiteResult& r) {
   md << "---|\n";
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     const SuiteScene& sc = r.scenes[s];
-    md << "| " << sc.name << " | " << cell(criteriaText(sc)) << " | " << number(sc.steps * sc.dt) << " s, "
-       << sc.steps << " steps |";
+    md << "| " << sc.name << " | " << cell(criteriaText(sc)) << " | " << formatNumber(sc.steps * sc.dt)
+       << " s, " << sc.steps << " steps |";
     for (const std::string& m : r.methods) {
       int passed = 0, runs = 0;
       for (std::size_t k = 0; k < r.settings.size(); ++k) {
@@ -107,7 +95,7 @@ void summaryTable(std::ostringstream& md, const SuiteResult& r) {
       const Outcome& o = r.outcomes[s][r.settings.size() + p];
       md << " " << (!o.judged ? "n/a" : o.passed ? "pass" : "**fail**") << " |";
     }
-    md << " " << number(sceneSeconds(r.outcomes[s])) << " s |\n";
+    md << " " << formatNumber(sceneSeconds(r.outcomes[s])) << " s |\n";
   }
 }
 
@@ -185,14 +173,13 @@ std::string matrix(const SuiteResult& r, F value) {
 
 std::string formatRatio(double ratio) {
   if (std::isnan(ratio)) return "n/a";
-  if (std::isinf(ratio)) return ratio > 0 ? "inf" : "-inf";
   // Three digits, or as many more as keep a failing 1.0004 from reading as a passing "1".
-  char buffer[32];
+  std::string text;
   for (int digits = 3; digits <= 9; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, ratio);
-    if ((std::strtod(buffer, nullptr) > 1.0) == (ratio > 1.0)) break;
+    text = formatNumber(ratio, digits);
+    if ((std::strtod(text.c_str(), nullptr) > 1.0) == (ratio > 1.0)) break;
   }
-  return buffer;
+  return text;
 }
 
 std::string markdownReport(const SuiteResult& r) {
@@ -203,7 +190,7 @@ std::string markdownReport(const SuiteResult& r) {
      << "; iterations " << joinNumbers(distinct(r.settings, [](const Setting& s) { return s.iterations; }))
      << "; substeps " << joinNumbers(distinct(r.settings, [](const Setting& s) { return s.substeps; })) << ")"
      << (r.peers.empty() ? "" : " and the peers " + join(r.peers, ", ")) << ": " << runs << " runs in "
-     << number(r.seconds) << " s.\n\n"
+     << formatNumber(r.seconds) << " s.\n\n"
      << (!r.settings.empty() && r.settings.front().sleep
              ? "Sleeping on (--sleep on): islands at rest sleep, ours and Bullet's.\n\n"
              : "")
@@ -261,7 +248,7 @@ std::string errorMatrix(const SuiteResult& r) {
     if (!o.judged) return std::string("NaN");
     const double ratio = o.verdicts[o.worst].ratio;
     const double log = ratio > 0.0 ? std::log10(ratio) : -kLogClip;  // 0 (no drift at all) is a clean pass
-    return number(std::isnan(log) ? kLogClip : std::clamp(log, -kLogClip, kLogClip));
+    return formatNumber(std::isnan(log) ? kLogClip : std::clamp(log, -kLogClip, kLogClip));
   });
 }
 
@@ -278,7 +265,7 @@ std::string gnuplotScript(const SuiteResult& r) {
   const std::size_t width = std::max<std::size_t>(plotRight + kRight, 760),
                     height = kTop + kBottom + kCell * r.scenes.size();
   auto at = [](std::size_t pixels, std::size_t of) {
-    return number(static_cast<double>(pixels) / static_cast<double>(of));
+    return formatNumber(static_cast<double>(pixels) / static_cast<double>(of));
   };
   // A title as a label from the left edge: a centred title overflows a narrow chart.
   const std::string titleY = at(height - 25, height);

@@ -13,6 +13,7 @@
 #include "peers/pose_measures.h"
 #include "run.h"
 #include "runner.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -169,9 +170,10 @@ std::vector<ModelChoice> allModelChoices(const SceneModels& models) {
 }
 
 std::string Setting::describe() const {
-  return std::string(phys::toString(method)) + ", " + std::to_string(iterations) +
-         (iterations == 1 ? " iteration, " : " iterations, ") + std::to_string(substeps) +
-         (substeps == 1 ? " substep" : " substeps") + (model.label.empty() ? "" : ", model " + model.label);
+  return std::string(phys::toString(method)) + ", " +
+         count(static_cast<std::size_t>(iterations), "iteration", "iterations") + ", " +
+         count(static_cast<std::size_t>(substeps), "substep", "substeps") +
+         (model.label.empty() ? "" : ", model " + model.label);
 }
 
 scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& setting) {

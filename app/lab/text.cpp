@@ -11,6 +11,16 @@ std::string formatNumber(double value, int digits) {
   return buffer;
 }
 
+std::string count(std::size_t n, const char* singular, const char* plural) {
+  return std::to_string(n) + " " + (n == 1 ? singular : plural);
+}
+
+std::string join(const std::vector<std::string>& parts, const std::string& separator) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : separator) + p;
+  return out;
+}
+
 std::optional<std::vector<std::string>> splitList(const std::string& text) {
   std::vector<std::string> items;
   std::size_t start = 0;
@@ -45,8 +55,8 @@ std::string settingLabel(phys::SolverMethod method, int iterations, int substeps
 }
 
 std::string ixsWords(int iterations, int substeps) {
-  return std::to_string(iterations) + (iterations == 1 ? " iteration x " : " iterations x ") +
-         std::to_string(substeps) + (substeps == 1 ? " substep" : " substeps");
+  return count(static_cast<std::size_t>(iterations), "iteration", "iterations") + " x " +
+         count(static_cast<std::size_t>(substeps), "substep", "substeps");
 }
 
 }  // namespace lab

@@ -13,6 +13,12 @@ namespace lab {
 /// printf's %.{digits}g: "0.0125", "1e-06", "inf" (a figure that ran away is printed as such).
 std::string formatNumber(double value, int digits = 6);
 
+/// "1 substep", "3 substeps": a count and its noun.
+std::string count(std::size_t n, const char* singular, const char* plural);
+
+/// The parts with `separator` between each two.
+std::string join(const std::vector<std::string>& parts, const std::string& separator);
+
 /// "a,b,c" split at the commas; nullopt when an item is empty ("a,,b", "a,", "").
 std::optional<std::vector<std::string>> splitList(const std::string& text);
 
