@@ -80,7 +80,6 @@ class ExpectReader {
       }
     }
   }
-  int line() const { return x_.line; }
 
  private:
   static std::string withUnit(const std::string& unit) { return unit.empty() ? "" : " (" + unit + ")"; }
@@ -203,7 +202,6 @@ Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, con
   ExpectReader r(x, file);
   r.find("kind");
   Criterion c;
-  c.line = x.line;
   const std::string& metric = r.required("metric", metricList());
   const auto info = std::find_if(std::begin(kMetrics), std::end(kMetrics),
                                  [&](const MetricInfo& m) { return metric == m.name; });

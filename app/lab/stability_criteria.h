@@ -32,7 +32,6 @@ std::string metricName(Metric metric);
 /// One parsed <expect kind="pass">.
 struct Criterion {
   Metric metric = Metric::Drift;
-  int line = 0;                     ///< of the <expect> in the scene file
   std::string body;                 ///< as written: a body's name, "*" (drift), or "" (none taken)
   std::vector<std::size_t> bodies;  ///< the body's index in bodyPositions() order (all for "*")
   std::int64_t boxId = -1;          ///< flips: the box (World::bodies() index)
