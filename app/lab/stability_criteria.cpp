@@ -14,22 +14,6 @@ namespace {
 // A run longer than this is a typo in a window (10 h of simulated time), not a test.
 constexpr double kMaxWindowEnd = 36000.0;  // unit: s
 
-struct MetricInfo {
-  Metric metric;
-  const char* name;
-  const char* unit;
-};
-
-constexpr MetricInfo kMetrics[] = {
-    {Metric::Drift, "drift", "m"},
-    {Metric::Penetration, "penetration", "m"},
-    {Metric::StickError, "stick-error", ""},
-    {Metric::JointGap, "joint-gap", "m"},
-    {Metric::Speed, "speed", "m/s"},
-    {Metric::StaysBehind, "stays-behind", "m"},
-    {Metric::Flips, "flips", ""},
-};
-
 std::string metricList() {
   std::string out;
   for (const MetricInfo& m : kMetrics) out += (out.empty() ? "" : ", ") + std::string(m.name);
@@ -229,18 +213,9 @@ Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, con
 
 }  // namespace
 
-std::string metricName(Metric metric) {
-  for (const MetricInfo& m : kMetrics) {
-    if (m.metric == metric) return m.name;
-  }
-  return "?";
-}
-
-std::string Criterion::unit() const {
-  for (const MetricInfo& m : kMetrics) {
-    if (m.metric == metric) return m.unit;
-  }
-  return "";
+const MetricInfo& metricInfo(Metric metric) {
+  return *std::find_if(std::begin(kMetrics), std::end(kMetrics),
+                       [&](const MetricInfo& m) { return m.metric == metric; });
 }
 
 std::string Criterion::describe() const {
@@ -263,7 +238,7 @@ std::string Criterion::describe() const {
     out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
     return out;
   } else {
-    out.append(metricName(metric));
+    out.append(metricInfo(metric).name);
     if (body == "*")
       out.append(" of every body");
     else if (!body.empty())
@@ -271,7 +246,7 @@ std::string Criterion::describe() const {
     out.append(" <= ");
   }
   out.append(formatNumber(limit));
-  if (!unit().empty()) out.append(" ").append(unit());
+  if (const std::string unit = metricInfo(metric).unit; !unit.empty()) out.append(" ").append(unit);
   out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
   return out;
 }

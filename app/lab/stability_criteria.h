@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/metrics.h"
 #include "physics/types.h"
 #include "scenes/scene.h"
 
@@ -16,18 +17,34 @@ namespace lab::stability {
 
 /// What a criterion measures. Every one of them also fails when the guard froze anything
 /// (the run blew up or left the world), whatever the figure says.
-enum class Metric {
-  Drift,        ///< m: farthest a body (or every body) gets from where it was at the window's start
-  Penetration,  ///< m: World::metrics().maxPenetration, the worst in the window
-  StickError,   ///< unitless: World::metrics().maxConstraintError, the worst in the window
-  JointGap,     ///< m: World::metrics().maxJointError, the worst in the window
-  Speed,        ///< m/s: World::metrics().maxSpeed, the worst in the window
-  StaysBehind,  ///< m: a body's coordinate must stay below max (or above min): tunnelling
-  Flips,        ///< count: a box's middle axis turns over from min to max times (Dzhanibekov)
+enum class Metric { Drift, Penetration, StickError, JointGap, Speed, StaysBehind, Flips };
+
+/// All that the parser, the judge and the reports know of a metric: one row of kMetrics.
+struct MetricInfo {
+  Metric metric;
+  const char* name;  ///< as a scene file writes it
+  const char* unit;  ///< for reports; "" for ratios and counts
+  /// Our world's figure, World::metrics(), the worst in the window; null for those measured
+  /// from the bodies' poses (drift, stays-behind, flips).
+  phys::Real phys::Metrics::*figure;
+  bool needsOrientations;  ///< a peer's positions alone cannot answer it
 };
 
-/// The name a scene file uses for the metric ("drift", "stick-error", ...).
-std::string metricName(Metric metric);
+inline constexpr MetricInfo kMetrics[] = {
+    // The farthest a body (or every body) gets from where it was at the window's start.
+    {Metric::Drift, "drift", "m", nullptr, false},
+    {Metric::Penetration, "penetration", "m", &phys::Metrics::maxPenetration, true},
+    {Metric::StickError, "stick-error", "", &phys::Metrics::maxConstraintError, false},
+    {Metric::JointGap, "joint-gap", "m", &phys::Metrics::maxJointError, true},
+    {Metric::Speed, "speed", "m/s", &phys::Metrics::maxSpeed, false},
+    // A body's coordinate must stay below max (or above min): tunnelling.
+    {Metric::StaysBehind, "stays-behind", "m", nullptr, false},
+    // A box's middle axis turns over from min to max times (Dzhanibekov).
+    {Metric::Flips, "flips", "", nullptr, true},
+};
+
+/// The metric's row of kMetrics.
+const MetricInfo& metricInfo(Metric metric);
 
 /// One parsed <expect kind="pass">.
 struct Criterion {
@@ -46,8 +63,6 @@ struct Criterion {
 
   /// One line for reports: "drift of stack[9] <= 0.05 m over 2-10 s".
   std::string describe() const;
-  /// The figure's unit for reports ("m", "m/s", "" for ratios and counts).
-  std::string unit() const;
 };
 
 /// Every kind="pass" criterion of a loaded (not yet stepped) scene, in file order. <expect>s of

@@ -22,23 +22,6 @@ bool inWindow(const Criterion& c, int step) {
   return step >= c.fromStep && step <= c.toStep;
 }
 
-bool needsMetrics(Metric m) {
-  return m == Metric::Penetration || m == Metric::StickError || m == Metric::JointGap || m == Metric::Speed;
-}
-
-double metricFigure(Metric m, const phys::Metrics& metrics) {
-  switch (m) {
-    case Metric::Penetration:
-      return metrics.maxPenetration;
-    case Metric::StickError:
-      return metrics.maxConstraintError;
-    case Metric::JointGap:
-      return metrics.maxJointError;
-    default:
-      return metrics.maxSpeed;
-  }
-}
-
 // Keeps the extreme of a stays-behind coordinate: the highest for a max plane, the lowest for min.
 void keepExtreme(const Criterion& c, double& value, double sample) {
   if (std::isinf(value)) return;  // blown up already: stays so
@@ -141,10 +124,10 @@ void WorldJudge::observe(const phys::World& world, int step) {
     const Criterion& c = criteria_[i];
     if (!inWindow(c, step)) continue;
     State& s = states_[i];
-    if (needsMetrics(c.metric)) {
+    if (const auto figure = metricInfo(c.metric).figure) {
       if (!haveMetrics) metrics = world.metrics();  // once per step, for all that need it
       haveMetrics = true;
-      const double f = metricFigure(c.metric, metrics);
+      const double f = metrics.*figure;
       s.value = std::isfinite(f) ? std::max(s.value, f) : kInf;
     } else if (c.metric == Metric::Drift) {
       sampleDrift(c, s, world, step);
@@ -272,10 +255,6 @@ double judgeOne(const Criterion& c, const phys::World& world, double dt, const P
   return value;
 }
 
-bool needsOrientations(Metric m) {
-  return m == Metric::Penetration || m == Metric::JointGap || m == Metric::Flips;
-}
-
 }  // namespace
 
 std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const scenes::Scene& scene, double dt,
@@ -306,11 +285,12 @@ std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const sce
     std::string why;
     if (c.metric == Metric::StickError && !hasLooseSticks(world))
       why = "stick-error: rigid bodies";
-    else if (needsOrientations(c.metric) && p.orientations.empty())
-      why = metricName(c.metric) + ": needs orientations";
+    else if (metricInfo(c.metric).needsOrientations && p.orientations.empty())
+      why = std::string(metricInfo(c.metric).name) + ": needs orientations";
     else if (!sameBodies || p.positions.size() <= static_cast<std::size_t>(c.toStep)) {
-      why = metricName(c.metric) + ": the peer recorded " + std::to_string(p.positions.size() - 1) + " of " +
-            std::to_string(c.toStep) + " steps, or not every body";
+      why = std::string(metricInfo(c.metric).name) + ": the peer recorded " +
+            std::to_string(p.positions.size() - 1) + " of " + std::to_string(c.toStep) +
+            " steps, or not every body";
     }
     if (why.empty()) {
       out.push_back(verdictOf(c, judgeOne(c, world, dt, p)));
