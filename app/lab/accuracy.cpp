@@ -80,19 +80,10 @@ std::optional<phys::Vec3> parseVector(const std::string& text) {
 
 // The body's place in bodyPositions(): boxes by id, then loose particles by id.
 std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name) {
-  const auto boxes = scene.world.bodies();
   for (const scenes::NamedBody& b : scene.bodies) {
     if (b.name != name) continue;
     if (b.kind == scenes::NamedBody::Kind::Body) return b.index;
-    std::vector<bool> inBox(scene.world.particles().size(), false);
-    for (const phys::Body& box : boxes) {
-      for (int k = 0; k < box.particleCount; ++k)
-        inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
-    }
-    if (inBox[b.index]) return std::nullopt;
-    std::size_t slot = boxes.size();
-    for (std::size_t i = 0; i < b.index; ++i) slot += inBox[i] ? 0 : 1;
-    return slot;
+    return particleSlot(scene.world, b.particle());
   }
   return std::nullopt;
 }

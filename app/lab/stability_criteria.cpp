@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "bodies.h"
 #include "numbers.h"
 #include "text.h"
 
@@ -100,18 +101,11 @@ const scenes::NamedBody& findBody(ExpectReader& r, const scenes::Scene& scene, c
   r.fail("body", "no body named '" + name + "' in the scene");
 }
 
-// A named body's index in bodyPositions() order: boxes first, then the loose particles by id.
+// A named body's index in bodyPositions() order. A name is a box's or a loose particle's: the
+// loader names no particle of a box.
 std::size_t positionIndex(const scenes::Scene& scene, const scenes::NamedBody& body) {
-  const phys::World& world = scene.world;
   if (body.kind == scenes::NamedBody::Kind::Body) return body.index;
-  std::vector<bool> inBox(world.particles().size(), false);
-  for (const phys::Body& box : world.bodies()) {
-    for (int k = 0; k < box.particleCount; ++k)
-      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
-  }
-  std::size_t index = world.bodies().size();
-  for (std::size_t i = 0; i < body.index; ++i) index += inBox[i] ? 0 : 1;
-  return index;
+  return particleSlot(scene.world, body.particle()).value();
 }
 
 phys::Vec3 loadedPosition(const scenes::Scene& scene, const scenes::NamedBody& body) {
@@ -122,11 +116,7 @@ phys::Vec3 loadedPosition(const scenes::Scene& scene, const scenes::NamedBody& b
 void readBodies(ExpectReader& r, const scenes::Scene& scene, Criterion& c, bool allowAll) {
   c.body = r.required("body", allowAll ? "a body's name, or * for every body" : "a body's name");
   if (allowAll && c.body == "*") {
-    const std::size_t count = scene.world.bodies().size() + [&] {
-      std::size_t loose = scene.world.particles().size();
-      for (const phys::Body& box : scene.world.bodies()) loose -= static_cast<std::size_t>(box.particleCount);
-      return loose;
-    }();
+    const std::size_t count = scene.world.bodies().size() + looseParticles(scene.world).size();
     for (std::size_t i = 0; i < count; ++i) c.bodies.push_back(i);
     return;
   }

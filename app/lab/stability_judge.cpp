@@ -73,25 +73,15 @@ void FlipCounter::sample(const phys::Vec3& axis) {
 }
 
 WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world)
-    : criteria_(criteria) {
-  // bodies.h's order, kept as ids so a criterion reads only its own bodies, not all of them.
-  std::vector<bool> inBox(world.particles().size(), false);
-  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
-    bodies_.push_back({true, id});
-    const phys::Body& box = world.bodies()[id];
-    for (int k = 0; k < box.particleCount; ++k)
-      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
-  }
-  for (std::size_t i = 0; i < inBox.size(); ++i) {
-    if (!inBox[i]) bodies_.push_back({false, static_cast<std::uint32_t>(i)});
-  }
+    : criteria_(criteria), loose_(looseParticles(world)) {
   for (const Criterion& c : criteria_) states_.push_back({startValue(c), {}, {}});
   observe(world, 0);
 }
 
 phys::Vec3 WorldJudge::position(const phys::World& world, std::size_t body) const {
-  const BodyRef& b = bodies_.at(body);
-  return b.box ? world.bodyPose(phys::BodyId(b.id)).center : world.particles().position[b.id];
+  const std::size_t boxes = world.bodies().size();
+  return body < boxes ? world.bodyPose(phys::BodyId(body)).center
+                      : world.particles().position[loose_.at(body - boxes)];
 }
 
 void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& world, int step) const {
@@ -150,13 +140,9 @@ namespace {
 
 // Each particle's index in bodies.h order when it is a loose particle, else -1 (a box's).
 std::vector<std::int64_t> looseIndex(const phys::World& world) {
-  std::vector<std::int64_t> index(world.particles().size(), 0);
-  for (const phys::Body& box : world.bodies()) {
-    for (int k = 0; k < box.particleCount; ++k)
-      index[box.firstParticle + static_cast<phys::ParticleId>(k)] = -1;
-  }
+  std::vector<std::int64_t> index(world.particles().size(), -1);
   std::int64_t next = static_cast<std::int64_t>(world.bodies().size());
-  for (std::int64_t& i : index) i = i < 0 ? -1 : next++;
+  for (phys::ParticleId p : looseParticles(world)) index[p] = next++;
   return index;
 }
 

@@ -52,10 +52,6 @@ class WorldJudge {
   std::vector<Verdict> verdicts(bool blewUp) const;
 
  private:
-  struct BodyRef {  // a body of bodies.h order: a box, or a loose particle
-    bool box = true;
-    std::uint32_t id = 0;
-  };
   struct State {
     double value = 0.0;
     std::vector<phys::Vec3> reference;  // drift: the bodies at the window's start
@@ -66,7 +62,7 @@ class WorldJudge {
   void sampleFlips(const Criterion& c, State& s, const phys::World& world, int step) const;
 
   const std::vector<Criterion>& criteria_;
-  std::vector<BodyRef> bodies_;
+  std::vector<phys::ParticleId> loose_;  // bodies.h's, so a criterion reads only its own bodies
   std::vector<State> states_;
 };
 

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "accuracy.h"
+#include "bodies.h"
 #include "commands.h"
 #include "csv.h"
 #include "gnuplot.h"
@@ -443,6 +444,28 @@ TEST(Accuracy, AnalyticTargetHoldsTheGivenPositionsAtTheirSteps) {
   EXPECT_TRUE(
       std::isinf(lab::accuracyError(t, {{phys::Vec3(1, 2, 3), phys::Vec3(0.0)}})));  // body counts differ
   EXPECT_TRUE(std::isinf(lab::accuracyError(t, {})));
+}
+
+TEST(Accuracy, BodiesAreTheBoxesThenTheLooseParticlesInIdOrder) {
+  // A particle on either side of the box, whose own particles lie between them by id.
+  const scenes::Scene scene = scenes::loadSceneText(
+      "<scene name=\"order\">\n  <world/>\n"
+      "  <particle name=\"first\" pos=\"1 0 0\" mass=\"1\"/>\n"
+      "  <box name=\"crate\" pos=\"0 5 0\" size=\"1\"/>\n"
+      "  <particle name=\"last\" pos=\"2 0 0\" mass=\"1\"/>\n</scene>\n",
+      "o.xml");
+  const phys::World& world = scene.world;
+  const phys::Body& box = world.bodies()[0];
+  const std::vector<phys::ParticleId> loose = lab::looseParticles(world);
+  ASSERT_EQ(loose,
+            (std::vector<phys::ParticleId>{phys::ParticleId(0), box.firstParticle + box.particleCount}));
+  EXPECT_EQ(lab::particleSlot(world, loose[0]), 1u);
+  EXPECT_EQ(lab::particleSlot(world, loose[1]), 2u);
+  EXPECT_EQ(lab::particleSlot(world, box.firstParticle), std::nullopt);  // the list holds its box
+  const std::vector<phys::Vec3> positions = lab::bodyPositions(world);
+  ASSERT_EQ(positions.size(), 3u);
+  EXPECT_EQ(positions[1], phys::Vec3(1, 0, 0));
+  EXPECT_EQ(positions[2], phys::Vec3(2, 0, 0));
 }
 
 TEST(Accuracy, ReferenceIsShakeUnlessTheSceneAsksForCompliance) {
