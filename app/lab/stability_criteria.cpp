@@ -153,7 +153,6 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   if (h.x == h.y || h.y == h.z || h.x == h.z) {
     r.fail("body", "'" + c.body + "' needs three different side lengths to have a middle axis");
   }
-  c.boxId = body.index;
   c.bodies.push_back(body.index);
   // A count at least min, at most max, or both: a dissipating solver flips too seldom (the body
   // settles about its major axis) or, nutating off the separatrix, too often.

@@ -5,7 +5,6 @@
 // criteria do. Parsing is strict, like the loader's: a bad attribute is a scenes::LoadError
 // naming the file, the <expect>'s line and the attribute.
 #include <cstddef>
-#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -50,8 +49,7 @@ const MetricInfo& metricInfo(Metric metric);
 struct Criterion {
   Metric metric = Metric::Drift;
   std::string body;                 ///< as written: a body's name, "*" (drift), or "" (none taken)
-  std::vector<std::size_t> bodies;  ///< the body's index in bodyPositions() order (all for "*")
-  std::int64_t boxId = -1;          ///< flips: the box (World::bodies() index)
+  std::vector<std::size_t> bodies;  ///< in bodyPositions() order, boxes first (all for "*")
   int fromStep = 0;                 ///< the window, in World::step() counts: from this state...
   int toStep = 0;                   ///< ...to this one, both included (0 is the loaded state)
   double from = 0.0, to = 0.0;      ///< unit: s; the window as written
