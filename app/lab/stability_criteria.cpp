@@ -28,51 +28,16 @@ std::optional<double> parseSignedNumber(std::string_view text) {
   return lab::parseNumber(text);
 }
 
-// Reads one <expect>'s attributes the way the scene loader reads an element's: every attribute
-// asked for is remembered, so anything left over is named as unknown with the known ones listed.
-class ExpectReader {
- public:
-  ExpectReader(const scenes::Expectation& x, std::string file) : x_(x), file_(std::move(file)) {}
+std::string withUnit(const std::string& unit) {
+  return unit.empty() ? "" : " (" + unit + ")";
+}
 
-  [[noreturn]] void fail(const std::string& attribute, const std::string& message) const {
-    throw scenes::LoadError(file_, x_.line, attribute, "<expect> attribute '" + attribute + "': " + message);
-  }
-  const std::string* find(const std::string& name) {
-    asked_.push_back(name);
-    return x_.find(name);
-  }
-  const std::string& required(const std::string& name, const std::string& what) {
-    const std::string* v = find(name);
-    if (v == nullptr) fail(name, "is required (" + what + ")");
-    return *v;
-  }
-  double positive(const std::string& name, const std::string& unit) {
-    const std::string& raw = required(name, "a number > 0" + withUnit(unit));
-    const std::optional<double> v = parseSignedNumber(raw);
-    if (!v || *v <= 0.0) fail(name, "'" + raw + "' must be a number > 0" + withUnit(unit));
-    return *v;
-  }
-  void rejectUnknown() const {
-    for (std::size_t i = 0; i < x_.attributes.size(); ++i) {
-      const std::string& name = x_.attributes[i].first;
-      for (std::size_t j = i + 1; j < x_.attributes.size(); ++j) {
-        if (x_.attributes[j].first == name) fail(name, "given twice");
-      }
-      if (std::find(asked_.begin(), asked_.end(), name) == asked_.end()) {
-        std::string known;
-        for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
-        fail(name, "unknown attribute for this metric (known: " + known + ")");
-      }
-    }
-  }
-
- private:
-  static std::string withUnit(const std::string& unit) { return unit.empty() ? "" : " (" + unit + ")"; }
-
-  const scenes::Expectation& x_;
-  std::string file_;
-  std::vector<std::string> asked_;
-};
+double readPositive(ExpectReader& r, const std::string& name, const std::string& unit) {
+  const std::string& raw = r.required(name, "a number > 0" + withUnit(unit));
+  const std::optional<double> v = parseSignedNumber(raw);
+  if (!v || *v <= 0.0) r.fail(name, "'" + raw + "' must be a number > 0" + withUnit(unit));
+  return *v;
+}
 
 // over="T0 T1": the window in seconds, turned into whole steps of the scene's dt.
 void readWindow(ExpectReader& r, Criterion& c, double dt) {
@@ -171,9 +136,7 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   c.atLeast = true;
 }
 
-Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, const std::string& file) {
-  ExpectReader r(x, file);
-  r.find("kind");
+Criterion parseOne(ExpectReader& r, const scenes::Scene& scene) {
   Criterion c;
   const std::string& metric = r.required("metric", metricList());
   const auto info = std::find_if(std::begin(kMetrics), std::end(kMetrics),
@@ -181,22 +144,15 @@ Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, con
   if (info == std::end(kMetrics)) r.fail("metric", "'" + metric + "' must be one of " + metricList());
   c.metric = info->metric;
   readWindow(r, c, scene.world.solverSettings().dt);
-  switch (c.metric) {
-    case Metric::Drift:
-      readBodies(r, scene, c, true);
-      c.limit = r.positive("max", info->unit);
-      break;
-    case Metric::StaysBehind:
-      readStaysBehind(r, scene, c);
-      break;
-    case Metric::Flips:
-      readFlips(r, scene, c);
-      break;
-    default:
-      c.limit = r.positive("max", info->unit);
-      break;
+  if (c.metric == Metric::StaysBehind) {
+    readStaysBehind(r, scene, c);
+  } else if (c.metric == Metric::Flips) {
+    readFlips(r, scene, c);
+  } else {
+    if (c.metric == Metric::Drift) readBodies(r, scene, c, true);
+    c.limit = readPositive(r, "max", info->unit);
   }
-  r.rejectUnknown();
+  r.rejectUnknown(" for this metric");
   return c;
 }
 
@@ -244,17 +200,11 @@ std::vector<Criterion> parseCriteria(const scenes::Scene& scene) {
   const std::string file = scene.file.empty() ? scene.name : scene.file.string();
   std::vector<Criterion> out;
   for (const scenes::Expectation& x : scene.expectations) {
-    const std::string* kind = x.find("kind");
-    if (kind == nullptr) {
-      throw scenes::LoadError(file, x.line, "kind",
-                              "<expect> attribute 'kind': is required (pass or position)");
-    }
-    if (*kind == "position") continue;  // an accuracy answer (accuracy.h), not ours
-    if (*kind != "pass") {
-      throw scenes::LoadError(file, x.line, "kind",
-                              "<expect> attribute 'kind': '" + *kind + "' must be pass or position");
-    }
-    out.push_back(parseOne(x, scene, file));
+    ExpectReader r(x, file, "<expect>");
+    const std::string& kind = r.required("kind", "pass or position");
+    if (kind == "position") continue;  // an accuracy answer (accuracy.h), not ours
+    if (kind != "pass") r.fail("kind", "'" + kind + "' must be pass or position");
+    out.push_back(parseOne(r, scene));
   }
   if (out.empty()) {
     throw scenes::LoadError(file, 0, "", "no <expect kind=\"pass\"> criterion: not a stability scene");
@@ -285,3 +235,39 @@ double errorRatio(const Criterion& c, double value) {
 }
 
 }  // namespace lab::stability
+
+namespace lab {
+
+ExpectReader::ExpectReader(const scenes::Expectation& x, std::string file, std::string element)
+    : x_(x), file_(std::move(file)), element_(std::move(element)) {}
+
+void ExpectReader::fail(const std::string& attribute, const std::string& message) const {
+  throw scenes::LoadError(file_, x_.line, attribute, element_ + " attribute '" + attribute + "': " + message);
+}
+
+const std::string* ExpectReader::find(const std::string& name) {
+  asked_.push_back(name);
+  return x_.find(name);
+}
+
+const std::string& ExpectReader::required(const std::string& name, const std::string& what) {
+  const std::string* v = find(name);
+  if (v == nullptr) fail(name, what.empty() ? "is required" : "is required (" + what + ")");
+  return *v;
+}
+
+void ExpectReader::rejectUnknown(const std::string& scope) const {
+  for (std::size_t i = 0; i < x_.attributes.size(); ++i) {
+    const std::string& name = x_.attributes[i].first;
+    if (std::find(asked_.begin(), asked_.end(), name) == asked_.end()) {
+      std::string known;
+      for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
+      fail(name, "unknown attribute" + scope + " (known: " + known + ")");
+    }
+    for (std::size_t j = i + 1; j < x_.attributes.size(); ++j) {
+      if (x_.attributes[j].first == name) fail(name, "given twice");
+    }
+  }
+}
+
+}  // namespace lab

@@ -402,6 +402,7 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
       {R"(<expect kind="position" body="p" at="1" pos="0 nan 0"/>)", "pos", "must be three finite numbers"},
       {R"(<expect kind="position" body="p" at="1" pos="0 0 0" tolerance="1"/>)", "tolerance",
        "unknown attribute"},
+      {R"(<expect kind="position" body="p" at="1" pos="0 0 0" at="2"/>)", "at", "given twice"},
   };
   for (const Case& c : cases) {
     const scenes::Scene scene = scenes::loadSceneText(sceneWithExpect(c.expect), "e.xml");
