@@ -58,16 +58,6 @@ std::optional<phys::Vec3> parseVector(const std::string& text) {
   return phys::Vec3(values[0], values[1], values[2]);
 }
 
-// The body's place in bodyPositions(): boxes by id, then loose particles by id.
-std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name) {
-  for (const scenes::NamedBody& b : scene.bodies) {
-    if (b.name != name) continue;
-    if (b.kind == scenes::NamedBody::Kind::Body) return b.index;
-    return particleSlot(scene.world, b.particle());
-  }
-  return std::nullopt;
-}
-
 struct PositionExpect {
   std::size_t slot = 0;
   int step = 0;

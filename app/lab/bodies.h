@@ -3,8 +3,6 @@
 // centre (World::bodies() order), then every loose particle, one that belongs to no box (id
 // order). A peer engine builds one rigid body for each, in the same order, so one list of
 // positions serves both.
-#include <cstddef>
-#include <optional>
 #include <vector>
 
 #include "physics/world.h"
@@ -17,7 +15,5 @@ std::vector<phys::Quat> bodyOrientations(const phys::World& world);
 
 /// The loose particles, in id order: the k-th of them is body bodies().size() + k of the list.
 std::vector<phys::ParticleId> looseParticles(const phys::World& world);
-/// A particle's place in the list; none for a box's particle, which the list holds as its box.
-std::optional<std::size_t> particleSlot(const phys::World& world, phys::ParticleId particle);
 
 }  // namespace lab

@@ -66,18 +66,6 @@ const scenes::NamedBody& findBody(ExpectReader& r, const scenes::Scene& scene, c
   r.fail("body", "no body named '" + name + "' in the scene");
 }
 
-// A named body's index in bodyPositions() order. A name is a box's or a loose particle's: the
-// loader names no particle of a box.
-std::size_t positionIndex(const scenes::Scene& scene, const scenes::NamedBody& body) {
-  if (body.kind == scenes::NamedBody::Kind::Body) return body.index;
-  return particleSlot(scene.world, body.particle()).value();
-}
-
-phys::Vec3 loadedPosition(const scenes::Scene& scene, const scenes::NamedBody& body) {
-  if (body.kind == scenes::NamedBody::Kind::Body) return scene.world.bodyPose(body.body()).center;
-  return scene.world.particles().position[body.index];
-}
-
 void readBodies(ExpectReader& r, const scenes::Scene& scene, Criterion& c, bool allowAll) {
   c.body = r.required("body", allowAll ? "a body's name, or * for every body" : "a body's name");
   if (allowAll && c.body == "*") {
@@ -85,7 +73,9 @@ void readBodies(ExpectReader& r, const scenes::Scene& scene, Criterion& c, bool 
     for (std::size_t i = 0; i < count; ++i) c.bodies.push_back(i);
     return;
   }
-  c.bodies.push_back(positionIndex(scene, findBody(r, scene, c.body)));
+  const std::optional<std::size_t> slot = bodySlot(scene, c.body);
+  if (!slot) r.fail("body", "no body named '" + c.body + "' in the scene");
+  c.bodies.push_back(*slot);
 }
 
 void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
@@ -102,7 +92,7 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
   if (!plane) r.fail(attribute, "'" + (max ? *max : *min) + "' must be a finite number (m)");
   c.limit = *plane;
   c.atLeast = min != nullptr;
-  c.start = loadedPosition(scene, findBody(r, scene, c.body))[c.axis];
+  c.start = bodyPositions(scene.world)[c.bodies.front()][c.axis];
   if (c.atLeast ? c.start <= c.limit : c.start >= c.limit) {
     r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", already " +
                           (c.atLeast ? "below" : "above") + " the plane " + formatNumber(c.limit));
@@ -237,6 +227,18 @@ double errorRatio(const Criterion& c, double value) {
 }  // namespace lab::stability
 
 namespace lab {
+
+std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name) {
+  for (const scenes::NamedBody& b : scene.bodies) {
+    if (b.name != name) continue;
+    if (b.kind == scenes::NamedBody::Kind::Body) return b.index;
+    const std::vector<phys::ParticleId> loose = looseParticles(scene.world);
+    const auto it = std::lower_bound(loose.begin(), loose.end(), b.particle());
+    if (it == loose.end() || *it != b.particle()) return std::nullopt;  // a box's: the list holds its box
+    return scene.world.bodies().size() + static_cast<std::size_t>(it - loose.begin());
+  }
+  return std::nullopt;
+}
 
 ExpectReader::ExpectReader(const scenes::Expectation& x, std::string file, std::string element)
     : x_(x), file_(std::move(file)), element_(std::move(element)) {}

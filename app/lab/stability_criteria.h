@@ -4,8 +4,9 @@
 // over a window of simulated time and compares it with a limit; a scene passes when all of its
 // criteria do. Parsing is strict, like the loader's: a bad attribute is a scenes::LoadError
 // naming the file, the <expect>'s line and the attribute; the accuracy answers (accuracy.h) are
-// read by the same ExpectReader.
+// read by the same ExpectReader and bodySlot.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,10 @@ double errorRatio(const Criterion& criterion, double value);
 }  // namespace lab::stability
 
 namespace lab {
+
+/// The place in bodyPositions() (bodies.h) of the body the scene names `name`; none if it names
+/// no box or loose particle.
+std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name);
 
 /// Reads one <expect>'s attributes the way the scene loader reads an element's, for the pass
 /// criteria and the accuracy answers (accuracy.h) alike: every attribute asked for is

@@ -21,6 +21,7 @@
 #include "lab_test_util.h"
 #include "peer.h"
 #include "scenes/scene.h"
+#include "stability_criteria.h"
 
 namespace {
 
@@ -460,9 +461,10 @@ TEST(Accuracy, BodiesAreTheBoxesThenTheLooseParticlesInIdOrder) {
   const std::vector<phys::ParticleId> loose = lab::looseParticles(world);
   ASSERT_EQ(loose,
             (std::vector<phys::ParticleId>{phys::ParticleId(0), box.firstParticle + box.particleCount}));
-  EXPECT_EQ(lab::particleSlot(world, loose[0]), 1u);
-  EXPECT_EQ(lab::particleSlot(world, loose[1]), 2u);
-  EXPECT_EQ(lab::particleSlot(world, box.firstParticle), std::nullopt);  // the list holds its box
+  EXPECT_EQ(lab::bodySlot(scene, "crate"), 0u);
+  EXPECT_EQ(lab::bodySlot(scene, "first"), 1u);
+  EXPECT_EQ(lab::bodySlot(scene, "last"), 2u);
+  EXPECT_EQ(lab::bodySlot(scene, "nobody"), std::nullopt);
   const std::vector<phys::Vec3> positions = lab::bodyPositions(world);
   ASSERT_EQ(positions.size(), 3u);
   EXPECT_EQ(positions[1], phys::Vec3(1, 0, 0));
