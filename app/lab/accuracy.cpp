@@ -38,11 +38,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double distance(const phys::Vec3& a, const phys::Vec3& b) {
-  const phys::Vec3 d = a - b;
-  return std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-}
-
 // ---- <expect kind="position"> ----------------------------------------------------------------
 
 std::optional<phys::Vec3> parseVector(const std::string& text) {
@@ -165,7 +160,7 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
   for (std::size_t k = 0; k < t.checkpoints.size(); ++k) {
     double worst = 0.0;
     for (std::size_t b = 0; b < t.expected[k].size(); ++b) {
-      const double d = distance(t.expected[k][b], coarse[k][b]);
+      const double d = glm::length(t.expected[k][b] - coarse[k][b]);
       worst = std::isfinite(d) ? std::max(worst, d) : kInf;
     }
     t.uncertainty.push_back(worst);
@@ -220,7 +215,7 @@ double accuracyError(const AccuracyTarget& target, const std::vector<std::vector
       const phys::Vec3& want = target.expected[k][b];
       if (std::isnan(want.x)) continue;  // the target says nothing of this body here
       if (!phys::finite(positions[k][b])) return kInf;
-      worst = std::max(worst, distance(positions[k][b], want));
+      worst = std::max(worst, glm::length(positions[k][b] - want));
     }
   }
   return worst;
