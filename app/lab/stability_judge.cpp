@@ -250,14 +250,8 @@ std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const sce
             std::to_string(p.positions.size() - 1) + " of " + std::to_string(c.toStep) +
             " steps, or not every body";
     }
-    if (why.empty()) {
-      out.push_back(verdictOf(c, judgeOne(c, world, dt, p)));
-    } else {
-      Verdict v;
-      v.judged = false;
-      v.why = why;
-      out.push_back(v);
-    }
+    out.push_back(why.empty() ? verdictOf(c, judgeOne(c, world, dt, p))
+                              : Verdict{false, why, 0.0, 0.0, false});
   }
   return out;
 }
