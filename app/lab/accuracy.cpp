@@ -6,11 +6,11 @@
 #include <limits>
 #include <optional>
 #include <sstream>
-#include <string_view>
 
 #include "bodies.h"
 #include "numbers.h"
 #include "runner.h"
+#include "stability_criteria.h"
 #include "text.h"
 
 // What "converged" means here. A reference is our own physics run so finely that the settings
@@ -38,32 +38,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double distance(const phys::Vec3& a, const phys::Vec3& b) {
-  const phys::Vec3 d = a - b;
-  return std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-}
-
-bool finite(const phys::Vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 // ---- <expect kind="position"> ----------------------------------------------------------------
-
-constexpr std::string_view kKnownAttributes = "kind, body, at, pos";
-
-// Throws the loader's kind of error, worded like its own ("<box> attribute 'size': ...").
-[[noreturn]] void fail(const scenes::Scene& scene, const scenes::Expectation& e, std::string_view attribute,
-                       const std::string& why) {
-  std::string message = "<expect kind=\"position\"> ";
-  if (!attribute.empty()) message += "attribute '" + std::string(attribute) + "': ";
-  throw scenes::LoadError(scene.file.string(), e.line, std::string(attribute), message + why);
-}
-
-const std::string& required(const scenes::Scene& scene, const scenes::Expectation& e, std::string_view name) {
-  const std::string* value = e.find(name);
-  if (value == nullptr) fail(scene, e, name, "is required");
-  return *value;
-}
 
 std::optional<phys::Vec3> parseVector(const std::string& text) {
   std::istringstream words(text);
@@ -78,60 +53,35 @@ std::optional<phys::Vec3> parseVector(const std::string& text) {
   return phys::Vec3(values[0], values[1], values[2]);
 }
 
-// The body's place in bodyPositions(): boxes by id, then loose particles by id.
-std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name) {
-  const auto boxes = scene.world.bodies();
-  for (const scenes::NamedBody& b : scene.bodies) {
-    if (b.name != name) continue;
-    if (b.kind == scenes::NamedBody::Kind::Body) return b.index;
-    std::vector<bool> inBox(scene.world.particles().size(), false);
-    for (const phys::Body& box : boxes) {
-      for (int k = 0; k < box.particleCount; ++k)
-        inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
-    }
-    if (inBox[b.index]) return std::nullopt;
-    std::size_t slot = boxes.size();
-    for (std::size_t i = 0; i < b.index; ++i) slot += inBox[i] ? 0 : 1;
-    return slot;
-  }
-  return std::nullopt;
-}
-
 struct PositionExpect {
   std::size_t slot = 0;
   int step = 0;
   phys::Vec3 pos{0.0};
 };
 
-PositionExpect readExpect(const scenes::Scene& scene, const scenes::Expectation& e, double dt) {
-  for (std::size_t i = 0; i < e.attributes.size(); ++i) {
-    const std::string& name = e.attributes[i].first;
-    if (name != "kind" && name != "body" && name != "at" && name != "pos") {
-      fail(scene, e, name, "unknown attribute (known: " + std::string(kKnownAttributes) + ")");
-    }
-    for (std::size_t j = i + 1; j < e.attributes.size(); ++j) {
-      if (e.attributes[j].first == name) fail(scene, e, name, "given twice");
-    }
-  }
+PositionExpect readExpect(ExpectReader& r, const scenes::Scene& scene, double dt) {
+  // All known up front, so an unknown attribute is named before a missing one.
+  for (const char* name : {"kind", "body", "at", "pos"}) r.find(name);
+  r.rejectUnknown();
   PositionExpect x;
-  const std::string& body = required(scene, e, "body");
+  const std::string& body = r.required("body");
   const std::optional<std::size_t> slot = bodySlot(scene, body);
-  if (!slot) fail(scene, e, "body", "'" + body + "' names no box or loose particle of the scene");
+  if (!slot) r.fail("body", "'" + body + "' names no box or loose particle of the scene");
   x.slot = *slot;
 
-  const std::string& at = required(scene, e, "at");
+  const std::string& at = r.required("at");
   const std::optional<double> t = parseNumber(at);
-  if (!t || *t <= 0.0) fail(scene, e, "at", "'" + at + "' must be a finite number > 0 (s)");
+  if (!t || *t <= 0.0) r.fail("at", "'" + at + "' must be a finite number > 0 (s)");
   // The run is compared at whole steps; an answer between two steps cannot be checked.
   const double steps = std::round(*t / dt);
   if (std::abs(steps * dt - *t) > 1e-6 * dt || steps > 1e9) {
-    fail(scene, e, "at", "'" + at + "' s is not a whole number of steps of " + formatNumber(dt) + " s");
+    r.fail("at", "'" + at + "' s is not a whole number of steps of " + formatNumber(dt) + " s");
   }
   x.step = static_cast<int>(steps);
 
-  const std::string& pos = required(scene, e, "pos");
+  const std::string& pos = r.required("pos");
   const std::optional<phys::Vec3> p = parseVector(pos);
-  if (!p) fail(scene, e, "pos", "'" + pos + "' must be three finite numbers (m)");
+  if (!p) r.fail("pos", "'" + pos + "' must be three finite numbers (m)");
   x.pos = *p;
   return x;
 }
@@ -210,7 +160,7 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
   for (std::size_t k = 0; k < t.checkpoints.size(); ++k) {
     double worst = 0.0;
     for (std::size_t b = 0; b < t.expected[k].size(); ++b) {
-      const double d = distance(t.expected[k][b], coarse[k][b]);
+      const double d = glm::length(t.expected[k][b] - coarse[k][b]);
       worst = std::isfinite(d) ? std::max(worst, d) : kInf;
     }
     t.uncertainty.push_back(worst);
@@ -243,10 +193,11 @@ AccuracyTarget accuracyTarget(const scenes::Scene& scene, const scenes::LoadOpti
   for (const scenes::Expectation& e : scene.expectations) {
     const std::string* kind = e.find("kind");
     if (kind == nullptr || *kind != "position") continue;  // other kinds are other commands'
-    const PositionExpect x = readExpect(scene, e, dt);
+    ExpectReader r(e, scene.file.string(), "<expect kind=\"position\">");
+    const PositionExpect x = readExpect(r, scene, dt);
     for (const PositionExpect& earlier : expects) {
       if (earlier.slot == x.slot && earlier.step == x.step) {
-        fail(scene, e, "at", "the same body and time as an earlier <expect kind=\"position\">");
+        r.fail("at", "the same body and time as an earlier <expect kind=\"position\">");
       }
     }
     expects.push_back(x);
@@ -263,8 +214,8 @@ double accuracyError(const AccuracyTarget& target, const std::vector<std::vector
     for (std::size_t b = 0; b < positions[k].size(); ++b) {
       const phys::Vec3& want = target.expected[k][b];
       if (std::isnan(want.x)) continue;  // the target says nothing of this body here
-      if (!finite(positions[k][b])) return kInf;
-      worst = std::max(worst, distance(positions[k][b], want));
+      if (!phys::finite(positions[k][b])) return kInf;
+      worst = std::max(worst, glm::length(positions[k][b] - want));
     }
   }
   return worst;

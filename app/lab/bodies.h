@@ -13,4 +13,7 @@ std::vector<phys::Vec3> bodyPositions(const phys::World& world);
 /// The same bodies' orientations: a box's fitted pose (World::bodyPose), identity for a particle.
 std::vector<phys::Quat> bodyOrientations(const phys::World& world);
 
+/// The loose particles, in id order: the k-th of them is body bodies().size() + k of the list.
+std::vector<phys::ParticleId> looseParticles(const phys::World& world);
+
 }  // namespace lab

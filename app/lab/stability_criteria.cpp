@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "bodies.h"
 #include "numbers.h"
 #include "text.h"
 
@@ -13,22 +14,6 @@ namespace {
 
 // A run longer than this is a typo in a window (10 h of simulated time), not a test.
 constexpr double kMaxWindowEnd = 36000.0;  // unit: s
-
-struct MetricInfo {
-  Metric metric;
-  const char* name;
-  const char* unit;
-};
-
-constexpr MetricInfo kMetrics[] = {
-    {Metric::Drift, "drift", "m"},
-    {Metric::Penetration, "penetration", "m"},
-    {Metric::StickError, "stick-error", ""},
-    {Metric::JointGap, "joint-gap", "m"},
-    {Metric::Speed, "speed", "m/s"},
-    {Metric::StaysBehind, "stays-behind", "m"},
-    {Metric::Flips, "flips", ""},
-};
 
 std::string metricList() {
   std::string out;
@@ -43,52 +28,16 @@ std::optional<double> parseSignedNumber(std::string_view text) {
   return lab::parseNumber(text);
 }
 
-// Reads one <expect>'s attributes the way the scene loader reads an element's: every attribute
-// asked for is remembered, so anything left over is named as unknown with the known ones listed.
-class ExpectReader {
- public:
-  ExpectReader(const scenes::Expectation& x, std::string file) : x_(x), file_(std::move(file)) {}
+std::string withUnit(const std::string& unit) {
+  return unit.empty() ? "" : " (" + unit + ")";
+}
 
-  [[noreturn]] void fail(const std::string& attribute, const std::string& message) const {
-    throw scenes::LoadError(file_, x_.line, attribute, "<expect> attribute '" + attribute + "': " + message);
-  }
-  const std::string* find(const std::string& name) {
-    asked_.push_back(name);
-    return x_.find(name);
-  }
-  const std::string& required(const std::string& name, const std::string& what) {
-    const std::string* v = find(name);
-    if (v == nullptr) fail(name, "is required (" + what + ")");
-    return *v;
-  }
-  double positive(const std::string& name, const std::string& unit) {
-    const std::string& raw = required(name, "a number > 0" + withUnit(unit));
-    const std::optional<double> v = parseSignedNumber(raw);
-    if (!v || *v <= 0.0) fail(name, "'" + raw + "' must be a number > 0" + withUnit(unit));
-    return *v;
-  }
-  void rejectUnknown() const {
-    for (std::size_t i = 0; i < x_.attributes.size(); ++i) {
-      const std::string& name = x_.attributes[i].first;
-      for (std::size_t j = i + 1; j < x_.attributes.size(); ++j) {
-        if (x_.attributes[j].first == name) fail(name, "given twice");
-      }
-      if (std::find(asked_.begin(), asked_.end(), name) == asked_.end()) {
-        std::string known;
-        for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
-        fail(name, "unknown attribute for this metric (known: " + known + ")");
-      }
-    }
-  }
-  int line() const { return x_.line; }
-
- private:
-  static std::string withUnit(const std::string& unit) { return unit.empty() ? "" : " (" + unit + ")"; }
-
-  const scenes::Expectation& x_;
-  std::string file_;
-  std::vector<std::string> asked_;
-};
+double readPositive(ExpectReader& r, const std::string& name, const std::string& unit) {
+  const std::string& raw = r.required(name, "a number > 0" + withUnit(unit));
+  const std::optional<double> v = parseSignedNumber(raw);
+  if (!v || *v <= 0.0) r.fail(name, "'" + raw + "' must be a number > 0" + withUnit(unit));
+  return *v;
+}
 
 // over="T0 T1": the window in seconds, turned into whole steps of the scene's dt.
 void readWindow(ExpectReader& r, Criterion& c, double dt) {
@@ -117,37 +66,16 @@ const scenes::NamedBody& findBody(ExpectReader& r, const scenes::Scene& scene, c
   r.fail("body", "no body named '" + name + "' in the scene");
 }
 
-// A named body's index in bodyPositions() order: boxes first, then the loose particles by id.
-std::size_t positionIndex(const scenes::Scene& scene, const scenes::NamedBody& body) {
-  const phys::World& world = scene.world;
-  if (body.kind == scenes::NamedBody::Kind::Body) return body.index;
-  std::vector<bool> inBox(world.particles().size(), false);
-  for (const phys::Body& box : world.bodies()) {
-    for (int k = 0; k < box.particleCount; ++k)
-      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
-  }
-  std::size_t index = world.bodies().size();
-  for (std::size_t i = 0; i < body.index; ++i) index += inBox[i] ? 0 : 1;
-  return index;
-}
-
-phys::Vec3 loadedPosition(const scenes::Scene& scene, const scenes::NamedBody& body) {
-  if (body.kind == scenes::NamedBody::Kind::Body) return scene.world.bodyPose(body.body()).center;
-  return scene.world.particles().position[body.index];
-}
-
 void readBodies(ExpectReader& r, const scenes::Scene& scene, Criterion& c, bool allowAll) {
   c.body = r.required("body", allowAll ? "a body's name, or * for every body" : "a body's name");
   if (allowAll && c.body == "*") {
-    const std::size_t count = scene.world.bodies().size() + [&] {
-      std::size_t loose = scene.world.particles().size();
-      for (const phys::Body& box : scene.world.bodies()) loose -= static_cast<std::size_t>(box.particleCount);
-      return loose;
-    }();
+    const std::size_t count = scene.world.bodies().size() + looseParticles(scene.world).size();
     for (std::size_t i = 0; i < count; ++i) c.bodies.push_back(i);
     return;
   }
-  c.bodies.push_back(positionIndex(scene, findBody(r, scene, c.body)));
+  const std::optional<std::size_t> slot = bodySlot(scene, c.body);
+  if (!slot) r.fail("body", "no body named '" + c.body + "' in the scene");
+  c.bodies.push_back(*slot);
 }
 
 void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
@@ -164,7 +92,7 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
   if (!plane) r.fail(attribute, "'" + (max ? *max : *min) + "' must be a finite number (m)");
   c.limit = *plane;
   c.atLeast = min != nullptr;
-  c.start = loadedPosition(scene, findBody(r, scene, c.body))[c.axis];
+  c.start = bodyPositions(scene.world)[c.bodies.front()][c.axis];
   if (c.atLeast ? c.start <= c.limit : c.start >= c.limit) {
     r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", already " +
                           (c.atLeast ? "below" : "above") + " the plane " + formatNumber(c.limit));
@@ -180,7 +108,6 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   if (h.x == h.y || h.y == h.z || h.x == h.z) {
     r.fail("body", "'" + c.body + "' needs three different side lengths to have a middle axis");
   }
-  c.boxId = body.index;
   c.bodies.push_back(body.index);
   // A count at least min, at most max, or both: a dissipating solver flips too seldom (the body
   // settles about its major axis) or, nutating off the separatrix, too often.
@@ -199,50 +126,31 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   c.atLeast = true;
 }
 
-Criterion parseOne(const scenes::Expectation& x, const scenes::Scene& scene, const std::string& file) {
-  ExpectReader r(x, file);
-  r.find("kind");
+Criterion parseOne(ExpectReader& r, const scenes::Scene& scene) {
   Criterion c;
-  c.line = x.line;
   const std::string& metric = r.required("metric", metricList());
   const auto info = std::find_if(std::begin(kMetrics), std::end(kMetrics),
                                  [&](const MetricInfo& m) { return metric == m.name; });
   if (info == std::end(kMetrics)) r.fail("metric", "'" + metric + "' must be one of " + metricList());
   c.metric = info->metric;
   readWindow(r, c, scene.world.solverSettings().dt);
-  switch (c.metric) {
-    case Metric::Drift:
-      readBodies(r, scene, c, true);
-      c.limit = r.positive("max", info->unit);
-      break;
-    case Metric::StaysBehind:
-      readStaysBehind(r, scene, c);
-      break;
-    case Metric::Flips:
-      readFlips(r, scene, c);
-      break;
-    default:
-      c.limit = r.positive("max", info->unit);
-      break;
+  if (c.metric == Metric::StaysBehind) {
+    readStaysBehind(r, scene, c);
+  } else if (c.metric == Metric::Flips) {
+    readFlips(r, scene, c);
+  } else {
+    if (c.metric == Metric::Drift) readBodies(r, scene, c, true);
+    c.limit = readPositive(r, "max", info->unit);
   }
-  r.rejectUnknown();
+  r.rejectUnknown(" for this metric");
   return c;
 }
 
 }  // namespace
 
-std::string metricName(Metric metric) {
-  for (const MetricInfo& m : kMetrics) {
-    if (m.metric == metric) return m.name;
-  }
-  return "?";
-}
-
-std::string Criterion::unit() const {
-  for (const MetricInfo& m : kMetrics) {
-    if (m.metric == metric) return m.unit;
-  }
-  return "";
+const MetricInfo& metricInfo(Metric metric) {
+  return *std::find_if(std::begin(kMetrics), std::end(kMetrics),
+                       [&](const MetricInfo& m) { return m.metric == metric; });
 }
 
 std::string Criterion::describe() const {
@@ -265,7 +173,7 @@ std::string Criterion::describe() const {
     out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
     return out;
   } else {
-    out.append(metricName(metric));
+    out.append(metricInfo(metric).name);
     if (body == "*")
       out.append(" of every body");
     else if (!body.empty())
@@ -273,7 +181,7 @@ std::string Criterion::describe() const {
     out.append(" <= ");
   }
   out.append(formatNumber(limit));
-  if (!unit().empty()) out.append(" ").append(unit());
+  if (const std::string unit = metricInfo(metric).unit; !unit.empty()) out.append(" ").append(unit);
   out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
   return out;
 }
@@ -282,17 +190,11 @@ std::vector<Criterion> parseCriteria(const scenes::Scene& scene) {
   const std::string file = scene.file.empty() ? scene.name : scene.file.string();
   std::vector<Criterion> out;
   for (const scenes::Expectation& x : scene.expectations) {
-    const std::string* kind = x.find("kind");
-    if (kind == nullptr) {
-      throw scenes::LoadError(file, x.line, "kind",
-                              "<expect> attribute 'kind': is required (pass or position)");
-    }
-    if (*kind == "position") continue;  // an accuracy answer (accuracy.h), not ours
-    if (*kind != "pass") {
-      throw scenes::LoadError(file, x.line, "kind",
-                              "<expect> attribute 'kind': '" + *kind + "' must be pass or position");
-    }
-    out.push_back(parseOne(x, scene, file));
+    ExpectReader r(x, file, "<expect>");
+    const std::string& kind = r.required("kind", "pass or position");
+    if (kind == "position") continue;  // an accuracy answer (accuracy.h), not ours
+    if (kind != "pass") r.fail("kind", "'" + kind + "' must be pass or position");
+    out.push_back(parseOne(r, scene));
   }
   if (out.empty()) {
     throw scenes::LoadError(file, 0, "", "no <expect kind=\"pass\"> criterion: not a stability scene");
@@ -323,3 +225,51 @@ double errorRatio(const Criterion& c, double value) {
 }
 
 }  // namespace lab::stability
+
+namespace lab {
+
+std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name) {
+  for (const scenes::NamedBody& b : scene.bodies) {
+    if (b.name != name) continue;
+    if (b.kind == scenes::NamedBody::Kind::Body) return b.index;
+    const std::vector<phys::ParticleId> loose = looseParticles(scene.world);
+    const auto it = std::lower_bound(loose.begin(), loose.end(), b.particle());
+    if (it == loose.end() || *it != b.particle()) return std::nullopt;  // a box's: the list holds its box
+    return scene.world.bodies().size() + static_cast<std::size_t>(it - loose.begin());
+  }
+  return std::nullopt;
+}
+
+ExpectReader::ExpectReader(const scenes::Expectation& x, std::string file, std::string element)
+    : x_(x), file_(std::move(file)), element_(std::move(element)) {}
+
+void ExpectReader::fail(const std::string& attribute, const std::string& message) const {
+  throw scenes::LoadError(file_, x_.line, attribute, element_ + " attribute '" + attribute + "': " + message);
+}
+
+const std::string* ExpectReader::find(const std::string& name) {
+  asked_.push_back(name);
+  return x_.find(name);
+}
+
+const std::string& ExpectReader::required(const std::string& name, const std::string& what) {
+  const std::string* v = find(name);
+  if (v == nullptr) fail(name, what.empty() ? "is required" : "is required (" + what + ")");
+  return *v;
+}
+
+void ExpectReader::rejectUnknown(const std::string& scope) const {
+  for (std::size_t i = 0; i < x_.attributes.size(); ++i) {
+    const std::string& name = x_.attributes[i].first;
+    if (std::find(asked_.begin(), asked_.end(), name) == asked_.end()) {
+      std::string known;
+      for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
+      fail(name, "unknown attribute" + scope + " (known: " + known + ")");
+    }
+    for (std::size_t j = i + 1; j < x_.attributes.size(); ++j) {
+      if (x_.attributes[j].first == name) fail(name, "given twice");
+    }
+  }
+}
+
+}  // namespace lab

@@ -3,12 +3,14 @@
 // file (docs/scene-format.md, docs/lab.md "lab stability"). Each criterion measures one figure
 // over a window of simulated time and compares it with a limit; a scene passes when all of its
 // criteria do. Parsing is strict, like the loader's: a bad attribute is a scenes::LoadError
-// naming the file, the <expect>'s line and the attribute.
+// naming the file, the <expect>'s line and the attribute; the accuracy answers (accuracy.h) are
+// read by the same ExpectReader and bodySlot.
 #include <cstddef>
-#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "physics/metrics.h"
 #include "physics/types.h"
 #include "scenes/scene.h"
 
@@ -16,26 +18,40 @@ namespace lab::stability {
 
 /// What a criterion measures. Every one of them also fails when the guard froze anything
 /// (the run blew up or left the world), whatever the figure says.
-enum class Metric {
-  Drift,        ///< m: farthest a body (or every body) gets from where it was at the window's start
-  Penetration,  ///< m: World::metrics().maxPenetration, the worst in the window
-  StickError,   ///< unitless: World::metrics().maxConstraintError, the worst in the window
-  JointGap,     ///< m: World::metrics().maxJointError, the worst in the window
-  Speed,        ///< m/s: World::metrics().maxSpeed, the worst in the window
-  StaysBehind,  ///< m: a body's coordinate must stay below max (or above min): tunnelling
-  Flips,        ///< count: a box's middle axis turns over from min to max times (Dzhanibekov)
+enum class Metric { Drift, Penetration, StickError, JointGap, Speed, StaysBehind, Flips };
+
+/// All that the parser, the judge and the reports know of a metric: one row of kMetrics.
+struct MetricInfo {
+  Metric metric;
+  const char* name;  ///< as a scene file writes it
+  const char* unit;  ///< for reports; "" for ratios and counts
+  /// Our world's figure, World::metrics(), the worst in the window; null for those measured
+  /// from the bodies' poses (drift, stays-behind, flips).
+  phys::Real phys::Metrics::*figure;
+  bool needsOrientations;  ///< a peer's positions alone cannot answer it
 };
 
-/// The name a scene file uses for the metric ("drift", "stick-error", ...).
-std::string metricName(Metric metric);
+inline constexpr MetricInfo kMetrics[] = {
+    // The farthest a body (or every body) gets from where it was at the window's start.
+    {Metric::Drift, "drift", "m", nullptr, false},
+    {Metric::Penetration, "penetration", "m", &phys::Metrics::maxPenetration, true},
+    {Metric::StickError, "stick-error", "", &phys::Metrics::maxConstraintError, false},
+    {Metric::JointGap, "joint-gap", "m", &phys::Metrics::maxJointError, true},
+    {Metric::Speed, "speed", "m/s", &phys::Metrics::maxSpeed, false},
+    // A body's coordinate must stay below max (or above min): tunnelling.
+    {Metric::StaysBehind, "stays-behind", "m", nullptr, false},
+    // A box's middle axis turns over from min to max times (Dzhanibekov).
+    {Metric::Flips, "flips", "", nullptr, true},
+};
+
+/// The metric's row of kMetrics.
+const MetricInfo& metricInfo(Metric metric);
 
 /// One parsed <expect kind="pass">.
 struct Criterion {
   Metric metric = Metric::Drift;
-  int line = 0;                     ///< of the <expect> in the scene file
   std::string body;                 ///< as written: a body's name, "*" (drift), or "" (none taken)
-  std::vector<std::size_t> bodies;  ///< the body's index in bodyPositions() order (all for "*")
-  std::int64_t boxId = -1;          ///< flips: the box (World::bodies() index)
+  std::vector<std::size_t> bodies;  ///< in bodyPositions() order, boxes first (all for "*")
   int fromStep = 0;                 ///< the window, in World::step() counts: from this state...
   int toStep = 0;                   ///< ...to this one, both included (0 is the loaded state)
   double from = 0.0, to = 0.0;      ///< unit: s; the window as written
@@ -47,8 +63,6 @@ struct Criterion {
 
   /// One line for reports: "drift of stack[9] <= 0.05 m over 2-10 s".
   std::string describe() const;
-  /// The figure's unit for reports ("m", "m/s", "" for ratios and counts).
-  std::string unit() const;
 };
 
 /// Every kind="pass" criterion of a loaded (not yet stepped) scene, in file order. <expect>s of
@@ -66,3 +80,33 @@ int runSteps(const std::vector<Criterion>& criteria);
 double errorRatio(const Criterion& criterion, double value);
 
 }  // namespace lab::stability
+
+namespace lab {
+
+/// The place in bodyPositions() (bodies.h) of the body the scene names `name`; none if it names
+/// no box or loose particle.
+std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name);
+
+/// Reads one <expect>'s attributes the way the scene loader reads an element's, for the pass
+/// criteria and the accuracy answers (accuracy.h) alike: every attribute asked for is
+/// remembered, so anything left over is named as unknown with the known ones listed. Errors
+/// are scenes::LoadErrors naming the file, the <expect>'s line and the attribute.
+class ExpectReader {
+ public:
+  /// `element` opens every message: "<expect>", "<expect kind=\"position\">".
+  ExpectReader(const scenes::Expectation& x, std::string file, std::string element);
+
+  [[noreturn]] void fail(const std::string& attribute, const std::string& message) const;
+  const std::string* find(const std::string& name);
+  /// Fails "is required", with what it should be in brackets unless `what` is empty.
+  const std::string& required(const std::string& name, const std::string& what = "");
+  /// Fails on an attribute not asked for ("unknown attribute" + `scope`), or given twice.
+  void rejectUnknown(const std::string& scope = "") const;
+
+ private:
+  const scenes::Expectation& x_;
+  std::string file_, element_;
+  std::vector<std::string> asked_;
+};
+
+}  // namespace lab

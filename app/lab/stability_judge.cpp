@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 
 #include "bodies.h"
 #include "peers/peer_scene.h"
@@ -22,21 +24,9 @@ bool inWindow(const Criterion& c, int step) {
   return step >= c.fromStep && step <= c.toStep;
 }
 
-bool needsMetrics(Metric m) {
-  return m == Metric::Penetration || m == Metric::StickError || m == Metric::JointGap || m == Metric::Speed;
-}
-
-double metricFigure(Metric m, const phys::Metrics& metrics) {
-  switch (m) {
-    case Metric::Penetration:
-      return metrics.maxPenetration;
-    case Metric::StickError:
-      return metrics.maxConstraintError;
-    case Metric::JointGap:
-      return metrics.maxJointError;
-    default:
-      return metrics.maxSpeed;
-  }
+// The largest of a figure's samples; infinity once one is not finite (the run blew up).
+void keepLargest(double& value, double sample) {
+  value = std::isfinite(sample) && std::isfinite(value) ? std::max(value, sample) : kInf;
 }
 
 // Keeps the extreme of a stays-behind coordinate: the highest for a max plane, the lowest for min.
@@ -50,9 +40,14 @@ void keepExtreme(const Criterion& c, double& value, double sample) {
     value = c.atLeast ? std::min(value, sample) : std::max(value, sample);
 }
 
-double startValue(const Criterion& c) {
-  // NaN for stays-behind: the first sample sets it (min and max both take a number over NaN).
-  return c.metric == Metric::StaysBehind ? std::numeric_limits<double>::quiet_NaN() : 0.0;
+// The body-frame axis of the middle side length, which is also that of the middle moment of
+// inertia: a box's moment about x is m (hy^2 + hz^2) / 3, so the orders agree.
+phys::Vec3 middleAxis(const phys::Vec3& h) {
+  const int big = h.x >= h.y && h.x >= h.z ? 0 : (h.y >= h.z ? 1 : 2);
+  const int small = h.x <= h.y && h.x <= h.z ? 0 : (h.y <= h.z ? 1 : 2);
+  phys::Vec3 axis(0.0);
+  axis[3 - big - small] = 1.0;
+  return axis;
 }
 
 Verdict verdictOf(const Criterion& c, double value) {
@@ -65,93 +60,63 @@ Verdict verdictOf(const Criterion& c, double value) {
 
 }  // namespace
 
-// The body-frame axis of the middle side length, which is also that of the middle moment of
-// inertia: a box's moment about x is m (hy^2 + hz^2) / 3, so the orders agree.
-phys::Vec3 FlipCounter::middleAxis(const phys::Vec3& h) {
-  const int big = h.x >= h.y && h.x >= h.z ? 0 : (h.y >= h.z ? 1 : 2);
-  const int small = h.x <= h.y && h.x <= h.z ? 0 : (h.y <= h.z ? 1 : 2);
-  phys::Vec3 axis(0.0);
-  axis[3 - big - small] = 1.0;
-  return axis;
+Tally::Tally(const Criterion& criterion, const phys::World& loaded)
+    : criterion_(&criterion),
+      // NaN for stays-behind: the first sample sets it (min and max both take a number over NaN).
+      value_(criterion.metric == Metric::StaysBehind ? std::numeric_limits<double>::quiet_NaN() : 0.0) {
+  if (criterion.metric == Metric::Flips)
+    middleAxis_ = middleAxis(loaded.bodies()[criterion.bodies.front()].halfExtents);
 }
 
-void FlipCounter::start(const phys::Vec3& axis) {
-  axisAtStart_ = axis;
-  sign_ = 1;
-  flips_ = 0.0;
-}
-
-void FlipCounter::sample(const phys::Vec3& axis) {
-  const double along = glm::dot(axis, axisAtStart_);
-  if (along * sign_ < -kFlipThreshold) {
-    sign_ = -sign_;
-    flips_ += 1.0;
+void Tally::samplePoses(int step, const std::function<phys::Vec3(std::size_t)>& position,
+                        const std::function<phys::Quat(std::size_t)>& orientation) {
+  const Criterion& c = *criterion_;
+  if (c.metric == Metric::Drift) {
+    if (step == c.fromStep) {
+      for (std::size_t b : c.bodies) reference_.push_back(position(b));
+      return;
+    }
+    for (std::size_t i = 0; i < c.bodies.size(); ++i)
+      sampleFigure(glm::length(position(c.bodies[i]) - reference_[i]));
+  } else if (c.metric == Metric::StaysBehind) {
+    keepExtreme(c, value_, position(c.bodies.front())[c.axis]);
+  } else if (c.metric == Metric::Flips) {
+    const phys::Vec3 axis = orientation(c.bodies.front()) * middleAxis_;
+    if (!phys::finite(axis)) value_ = kInf;  // blown up: stays so, as infinity + 1 is infinity
+    if (step == c.fromStep) {
+      axisAtStart_ = axis;
+    } else if (glm::dot(axis, axisAtStart_) * sign_ < -kFlipThreshold) {
+      sign_ = -sign_;  // a flip (kFlipThreshold)
+      value_ += 1.0;
+    }
   }
+}
+
+void Tally::sampleFigure(double figure) {
+  keepLargest(value_, figure);
 }
 
 WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world)
-    : criteria_(criteria) {
-  // bodies.h's order, kept as ids so a criterion reads only its own bodies, not all of them.
-  std::vector<bool> inBox(world.particles().size(), false);
-  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
-    bodies_.push_back({true, id});
-    const phys::Body& box = world.bodies()[id];
-    for (int k = 0; k < box.particleCount; ++k)
-      inBox[box.firstParticle + static_cast<phys::ParticleId>(k)] = true;
-  }
-  for (std::size_t i = 0; i < inBox.size(); ++i) {
-    if (!inBox[i]) bodies_.push_back({false, static_cast<std::uint32_t>(i)});
-  }
-  for (const Criterion& c : criteria_) states_.push_back({startValue(c), {}, {}});
+    : criteria_(criteria), loose_(looseParticles(world)) {
+  for (const Criterion& c : criteria_) tallies_.emplace_back(c, world);
   observe(world, 0);
 }
 
-phys::Vec3 WorldJudge::position(const phys::World& world, std::size_t body) const {
-  const BodyRef& b = bodies_.at(body);
-  return b.box ? world.bodyPose(phys::BodyId(b.id)).center : world.particles().position[b.id];
-}
-
-void WorldJudge::sampleDrift(const Criterion& c, State& s, const phys::World& world, int step) const {
-  if (step == c.fromStep) {
-    s.reference.clear();
-    for (std::size_t b : c.bodies) s.reference.push_back(position(world, b));
-    return;
-  }
-  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
-    const double d = glm::length(position(world, c.bodies[i]) - s.reference[i]);
-    s.value = std::isfinite(d) ? std::max(s.value, d) : kInf;
-  }
-}
-
-void WorldJudge::sampleFlips(const Criterion& c, State& s, const phys::World& world, int step) const {
-  const auto id = static_cast<phys::BodyId>(c.boxId);
-  const phys::Vec3 axis =
-      world.bodyPose(id).orientation * FlipCounter::middleAxis(world.bodies()[id].halfExtents);
-  if (step == c.fromStep)
-    s.flips.start(axis);
-  else
-    s.flips.sample(axis);
-  s.value = s.flips.flips();
-}
-
 void WorldJudge::observe(const phys::World& world, int step) {
-  bool haveMetrics = false;
-  phys::Metrics metrics;
+  const std::size_t boxes = world.bodies().size();
+  const auto position = [&](std::size_t b) {
+    return b < boxes ? world.bodyPose(phys::BodyId(b)).center
+                     : world.particles().position[loose_.at(b - boxes)];
+  };
+  const auto orientation = [&](std::size_t b) { return world.bodyPose(phys::BodyId(b)).orientation; };
+  std::optional<phys::Metrics> metrics;  // once per step, for all that need it
   for (std::size_t i = 0; i < criteria_.size(); ++i) {
-    const Criterion& c = criteria_[i];
-    if (!inWindow(c, step)) continue;
-    State& s = states_[i];
-    if (needsMetrics(c.metric)) {
-      if (!haveMetrics) metrics = world.metrics();  // once per step, for all that need it
-      haveMetrics = true;
-      const double f = metricFigure(c.metric, metrics);
-      s.value = std::isfinite(f) ? std::max(s.value, f) : kInf;
-    } else if (c.metric == Metric::Drift) {
-      sampleDrift(c, s, world, step);
-    } else if (c.metric == Metric::StaysBehind) {
-      keepExtreme(c, s.value, position(world, c.bodies.front())[c.axis]);
+    if (!inWindow(criteria_[i], step)) continue;
+    if (const auto figure = metricInfo(criteria_[i].metric).figure) {
+      if (!metrics) metrics = world.metrics();
+      tallies_[i].sampleFigure(*metrics.*figure);
     } else {
-      sampleFlips(c, s, world, step);
+      tallies_[i].samplePoses(step, position, orientation);
     }
   }
 }
@@ -159,7 +124,7 @@ void WorldJudge::observe(const phys::World& world, int step) {
 std::vector<Verdict> WorldJudge::verdicts(bool blewUp) const {
   std::vector<Verdict> out;
   for (std::size_t i = 0; i < criteria_.size(); ++i)
-    out.push_back(verdictOf(criteria_[i], blewUp ? kInf : states_[i].value));
+    out.push_back(verdictOf(criteria_[i], blewUp ? kInf : tallies_[i].value()));
   return out;
 }
 
@@ -167,13 +132,9 @@ namespace {
 
 // Each particle's index in bodies.h order when it is a loose particle, else -1 (a box's).
 std::vector<std::int64_t> looseIndex(const phys::World& world) {
-  std::vector<std::int64_t> index(world.particles().size(), 0);
-  for (const phys::Body& box : world.bodies()) {
-    for (int k = 0; k < box.particleCount; ++k)
-      index[box.firstParticle + static_cast<phys::ParticleId>(k)] = -1;
-  }
+  std::vector<std::int64_t> index(world.particles().size(), -1);
   std::int64_t next = static_cast<std::int64_t>(world.bodies().size());
-  for (std::int64_t& i : index) i = i < 0 ? -1 : next++;
+  for (phys::ParticleId p : looseParticles(world)) index[p] = next++;
   return index;
 }
 
@@ -196,11 +157,6 @@ double looseStickError(const phys::World& world, const std::vector<phys::Vec3>& 
     if (bound > 0.0) worst = std::max(worst, std::abs(d - bound) / bound);
   }
   return worst;
-}
-
-// The largest of a figure's samples; infinity once one is not finite (the peer blew up).
-void keepLargest(double& value, double sample) {
-  value = std::isfinite(sample) && std::isfinite(value) ? std::max(value, sample) : kInf;
 }
 
 // A peer's run as the judge reads it: the bodies' poses after k steps, k = 0 the loaded scene.
@@ -237,43 +193,24 @@ double peerSpeed(const PeerStates& p, int k, double dt) {
 }
 
 double judgeOne(const Criterion& c, const phys::World& world, double dt, const PeerStates& p) {
-  double value = startValue(c);
-  FlipCounter flips;
-  const std::vector<phys::Vec3>& first = p.positions[static_cast<std::size_t>(c.fromStep)];
+  Tally tally(c, world);
   for (int k = c.fromStep; k <= c.toStep; ++k) {
     const auto at = static_cast<std::size_t>(k);
     const std::vector<phys::Vec3>& now = p.positions[at];
-    if (c.metric == Metric::Drift) {
-      for (std::size_t b : c.bodies) keepLargest(value, glm::length(now[b] - first[b]));
-    } else if (c.metric == Metric::StaysBehind) {
-      keepExtreme(c, value, now[c.bodies.front()][c.axis]);
-    } else if (c.metric == Metric::Speed && k > 0) {
-      keepLargest(value, peerSpeed(p, k, dt));
+    if (c.metric == Metric::Speed) {
+      if (k > 0) tally.sampleFigure(peerSpeed(p, k, dt));
     } else if (c.metric == Metric::StickError) {
-      keepLargest(value, looseStickError(world, now));
+      tally.sampleFigure(looseStickError(world, now));
     } else if (c.metric == Metric::Penetration) {
-      keepLargest(value, peers::posePenetration(p.scene, now, p.orientations[at]));
+      tally.sampleFigure(peers::posePenetration(p.scene, now, p.orientations[at]));
     } else if (c.metric == Metric::JointGap) {
-      keepLargest(value, peers::jointGap(p.scene, now, p.orientations[at]));
-    } else if (c.metric == Metric::Flips) {
-      const auto box = static_cast<std::size_t>(c.boxId);  // boxes come first in bodies.h order
-      const phys::Vec3 axis =
-          p.orientations[at][box] * FlipCounter::middleAxis(p.scene.bodies[box].halfExtents);
-      if (k == c.fromStep)
-        flips.start(axis);
-      else
-        flips.sample(axis);
-      if (!std::isfinite(axis.x + axis.y + axis.z))
-        value = kInf;  // blown up: stays so
-      else if (!std::isinf(value))
-        value = flips.flips();
+      tally.sampleFigure(peers::jointGap(p.scene, now, p.orientations[at]));
+    } else {
+      tally.samplePoses(
+          k, [&](std::size_t b) { return now[b]; }, [&](std::size_t b) { return p.orientations[at][b]; });
     }
   }
-  return value;
-}
-
-bool needsOrientations(Metric m) {
-  return m == Metric::Penetration || m == Metric::JointGap || m == Metric::Flips;
+  return tally.value();
 }
 
 }  // namespace
@@ -306,20 +243,15 @@ std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const sce
     std::string why;
     if (c.metric == Metric::StickError && !hasLooseSticks(world))
       why = "stick-error: rigid bodies";
-    else if (needsOrientations(c.metric) && p.orientations.empty())
-      why = metricName(c.metric) + ": needs orientations";
+    else if (metricInfo(c.metric).needsOrientations && p.orientations.empty())
+      why = std::string(metricInfo(c.metric).name) + ": needs orientations";
     else if (!sameBodies || p.positions.size() <= static_cast<std::size_t>(c.toStep)) {
-      why = metricName(c.metric) + ": the peer recorded " + std::to_string(p.positions.size() - 1) + " of " +
-            std::to_string(c.toStep) + " steps, or not every body";
+      why = std::string(metricInfo(c.metric).name) + ": the peer recorded " +
+            std::to_string(p.positions.size() - 1) + " of " + std::to_string(c.toStep) +
+            " steps, or not every body";
     }
-    if (why.empty()) {
-      out.push_back(verdictOf(c, judgeOne(c, world, dt, p)));
-    } else {
-      Verdict v;
-      v.judged = false;
-      v.why = why;
-      out.push_back(v);
-    }
+    out.push_back(why.empty() ? verdictOf(c, judgeOne(c, world, dt, p))
+                              : Verdict{false, why, 0.0, 0.0, false});
   }
   return out;
 }

@@ -3,6 +3,8 @@
 // step, or a peer engine's run from the body poses it recorded (peer.h). A peer has no
 // particles, sticks or contact report of ours, so its figures come from its poses, measured by
 // one geometry code for every engine (peers/pose_measures.h).
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,24 +23,29 @@ struct Verdict {
   bool passed = false;
 };
 
-/// Counts a box's flips (Metric::Flips) from its orientations: the turns over of its middle
-/// axis (that of its middle side, and of its middle moment of inertia) relative to where it
-/// pointed at the window's start. Ours and the peers' are counted by this one code.
-class FlipCounter {
+/// One criterion's figure over its window, step by step: the one code for our world and a
+/// peer's poses. Drift, stays-behind and flips read the poses of the criterion's own bodies; the
+/// other metrics take a figure of the whole step (World::metrics(), or a peer's from its poses).
+class Tally {
  public:
-  /// The box's middle axis in its own frame, from its half extents.
-  static phys::Vec3 middleAxis(const phys::Vec3& halfExtents);
-  /// The window's first sample: the middle axis, in the world, at its start.
-  void start(const phys::Vec3& axis);
-  /// Every later sample; counts a flip when the axis has swung more than 60 degrees past the
-  /// plane across its last side.
-  void sample(const phys::Vec3& axis);
-  double flips() const { return flips_; }
+  /// `loaded`: the scene's world, whose box gives flips its middle axis.
+  Tally(const Criterion& criterion, const phys::World& loaded);
+
+  /// The poses after `step`, a step of the window: body b's (bodies.h order) centre and turn.
+  void samplePoses(int step, const std::function<phys::Vec3(std::size_t)>& position,
+                   const std::function<phys::Quat(std::size_t)>& orientation);
+  /// A figure of the step: the largest counts, and infinity once one is not finite.
+  void sampleFigure(double figure);
+  double value() const { return value_; }
 
  private:
-  phys::Vec3 axisAtStart_{0.0};
-  int sign_ = 1;  // which way the middle axis points now
-  double flips_ = 0.0;
+  const Criterion* criterion_;
+  double value_;
+  std::vector<phys::Vec3> reference_;  // drift: the bodies at the window's start
+  // Flips: the box's middle axis (that of its middle side, and of its middle moment of inertia)
+  // in its own frame; in the world at the window's start; and which way it points now.
+  phys::Vec3 middleAxis_{0.0}, axisAtStart_{0.0};
+  int sign_ = 1;
 };
 
 /// Follows our world through a run: observe() after loading (step 0) and after every step.
@@ -52,30 +59,17 @@ class WorldJudge {
   std::vector<Verdict> verdicts(bool blewUp) const;
 
  private:
-  struct BodyRef {  // a body of bodies.h order: a box, or a loose particle
-    bool box = true;
-    std::uint32_t id = 0;
-  };
-  struct State {
-    double value = 0.0;
-    std::vector<phys::Vec3> reference;  // drift: the bodies at the window's start
-    FlipCounter flips;
-  };
-  phys::Vec3 position(const phys::World& world, std::size_t body) const;
-  void sampleDrift(const Criterion& c, State& s, const phys::World& world, int step) const;
-  void sampleFlips(const Criterion& c, State& s, const phys::World& world, int step) const;
-
   const std::vector<Criterion>& criteria_;
-  std::vector<BodyRef> bodies_;
-  std::vector<State> states_;
+  std::vector<phys::ParticleId> loose_;  // bodies.h's, so a criterion reads only its own bodies
+  std::vector<Tally> tallies_;
 };
 
 /// A peer's run judged: `positions[k]` and `orientations[k]` are its bodies' poses (bodies.h
 /// order) after step k + 1, for every step of the run; `scene` is the scene as loaded (step 0,
 /// the sticks' lengths, and the peers' description of it). Drift, stays-behind, speed (of the
 /// bodies' centres), stick-error (of sticks between loose particles: a peer's rigid bodies have
-/// no error of their own), penetration and joint-gap (peers/pose_measures.h) and flips (the
-/// FlipCounter on its orientations) are judged. With no orientations (empty), those needing
+/// no error of their own), penetration and joint-gap (peers/pose_measures.h) and flips (its
+/// orientations, counted by our Tally) are judged. With no orientations (empty), those needing
 /// them are not judged and say why.
 std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const scenes::Scene& scene, double dt,
                                const std::vector<std::vector<phys::Vec3>>& positions,

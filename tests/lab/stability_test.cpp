@@ -143,6 +143,10 @@ TEST(StabilityCriteria, MalformedExpectNamesTheLineAndTheAttribute) {
        "'fast' must be a number > 0 (m/s)"},
       {R"(<expect kind="pass" metric="speed" max="1" over="0 1" body="crate"/>)", "body",
        "unknown attribute"},
+      {R"(<expect kind="pass" metric="speed" max="1" over="0 1" max="2"/>)", "max", "given twice"},
+      // Unknown before twice: it must go whatever its count.
+      {R"(<expect kind="pass" metric="speed" max="1" over="0 1" zz="1" zz="2"/>)", "zz",
+       "unknown attribute for this metric (known: kind, metric, over, max)"},
       {R"(<expect kind="pass" metric="flips" body="p" min="1" over="0 1"/>)", "body", "is a particle"},
       {R"(<expect kind="pass" metric="flips" body="crate" min="3" max="2" over="0 1"/>)", "max",
        "must be >= min"},

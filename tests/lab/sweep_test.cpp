@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "accuracy.h"
+#include "bodies.h"
 #include "commands.h"
 #include "csv.h"
 #include "gnuplot.h"
@@ -20,6 +21,7 @@
 #include "lab_test_util.h"
 #include "peer.h"
 #include "scenes/scene.h"
+#include "stability_criteria.h"
 
 namespace {
 
@@ -401,6 +403,7 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
       {R"(<expect kind="position" body="p" at="1" pos="0 nan 0"/>)", "pos", "must be three finite numbers"},
       {R"(<expect kind="position" body="p" at="1" pos="0 0 0" tolerance="1"/>)", "tolerance",
        "unknown attribute"},
+      {R"(<expect kind="position" body="p" at="1" pos="0 0 0" at="2"/>)", "at", "given twice"},
   };
   for (const Case& c : cases) {
     const scenes::Scene scene = scenes::loadSceneText(sceneWithExpect(c.expect), "e.xml");
@@ -443,6 +446,29 @@ TEST(Accuracy, AnalyticTargetHoldsTheGivenPositionsAtTheirSteps) {
   EXPECT_TRUE(
       std::isinf(lab::accuracyError(t, {{phys::Vec3(1, 2, 3), phys::Vec3(0.0)}})));  // body counts differ
   EXPECT_TRUE(std::isinf(lab::accuracyError(t, {})));
+}
+
+TEST(Accuracy, BodiesAreTheBoxesThenTheLooseParticlesInIdOrder) {
+  // A particle on either side of the box, whose own particles lie between them by id.
+  const scenes::Scene scene = scenes::loadSceneText(
+      "<scene name=\"order\">\n  <world/>\n"
+      "  <particle name=\"first\" pos=\"1 0 0\" mass=\"1\"/>\n"
+      "  <box name=\"crate\" pos=\"0 5 0\" size=\"1\"/>\n"
+      "  <particle name=\"last\" pos=\"2 0 0\" mass=\"1\"/>\n</scene>\n",
+      "o.xml");
+  const phys::World& world = scene.world;
+  const phys::Body& box = world.bodies()[0];
+  const std::vector<phys::ParticleId> loose = lab::looseParticles(world);
+  ASSERT_EQ(loose,
+            (std::vector<phys::ParticleId>{phys::ParticleId(0), box.firstParticle + box.particleCount}));
+  EXPECT_EQ(lab::bodySlot(scene, "crate"), 0u);
+  EXPECT_EQ(lab::bodySlot(scene, "first"), 1u);
+  EXPECT_EQ(lab::bodySlot(scene, "last"), 2u);
+  EXPECT_EQ(lab::bodySlot(scene, "nobody"), std::nullopt);
+  const std::vector<phys::Vec3> positions = lab::bodyPositions(world);
+  ASSERT_EQ(positions.size(), 3u);
+  EXPECT_EQ(positions[1], phys::Vec3(1, 0, 0));
+  EXPECT_EQ(positions[2], phys::Vec3(2, 0, 0));
 }
 
 TEST(Accuracy, ReferenceIsShakeUnlessTheSceneAsksForCompliance) {
