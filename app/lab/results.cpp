@@ -12,6 +12,7 @@
 #include <map>
 #include <ostream>
 #include <sstream>
+#include <type_traits>
 
 #include "commands.h"
 #include "converge.h"
@@ -116,8 +117,27 @@ std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& sc
   return args;
 }
 
-// A sweep's Pareto front (its rows marked so), cheapest per simulated second first.
-std::vector<const CsvRow*> frontByCost(const std::vector<CsvRow>& rows) {
+// The row of least `cost` for each key (`keyOf` a row) among the rows `keep` accepts, the first
+// on a tie; every key of the rows is there, null where `keep` accepts none of its rows, so a
+// table can say which never qualified.
+template <typename KeyOf, typename Keep>
+auto cheapestBy(const std::vector<CsvRow>& rows, KeyOf keyOf, const char* cost, Keep keep) {
+  std::map<std::invoke_result_t<KeyOf, const CsvRow&>, const CsvRow*> cheapest;
+  for (const CsvRow& r : rows) {
+    const CsvRow*& c = cheapest[keyOf(r)];
+    if (keep(r) && (c == nullptr || fieldNumber(r, cost) < fieldNumber(*c, cost))) c = &r;
+  }
+  return cheapest;
+}
+
+// The keys the report's tables group rows by.
+constexpr auto methodOf = [](const CsvRow& r) { return fieldText(r, "method"); };
+constexpr auto dtOf = [](const CsvRow& r) { return fieldNumber(r, "dt"); };
+
+// "Pareto front, cheapest first: a; b.": a sweep's rows marked as on its front, cheapest per
+// simulated second first, each as `describe` puts it.
+template <typename Describe>
+std::string frontSentence(const std::vector<CsvRow>& rows, Describe describe) {
   std::vector<const CsvRow*> front;
   for (const CsvRow& r : rows) {
     if (fieldText(r, "pareto") == "1") front.push_back(&r);
@@ -125,13 +145,14 @@ std::vector<const CsvRow*> frontByCost(const std::vector<CsvRow>& rows) {
   std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
     return fieldNumber(*a, "ms_per_sim_second") < fieldNumber(*b, "ms_per_sim_second");
   });
-  return front;
+  std::string text = "Pareto front, cheapest first:";
+  for (std::size_t i = 0; i < front.size(); ++i) text += (i == 0 ? " " : "; ") + describe(*front[i]);
+  return text + ".";
 }
 
 // What the figures say about a sweep, in sentences: the front from cheap to accurate, and for
 // each method its cheapest setting that comes within reach of the most accurate run.
 std::string sweepWords(const std::vector<CsvRow>& rows) {
-  const std::vector<const CsvRow*> front = frontByCost(rows);
   double best = std::numeric_limits<double>::infinity(), uncertainty = 0.0;
   for (const CsvRow& r : rows) {
     best = std::min(best, fieldNumber(r, "error"));
@@ -139,45 +160,32 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
     if (std::isfinite(u)) uncertainty = std::max(uncertainty, u);
   }
   std::ostringstream md;
-  md << "Pareto front, cheapest first:";
-  for (std::size_t i = 0; i < front.size(); ++i) {
-    md << (i == 0 ? " " : "; ") << settingName(*front[i]) << " ("
-       << formatNumber(fieldNumber(*front[i], "ms_per_step"), 3) << " ms/step, "
-       << millimetres(fieldNumber(*front[i], "error")) << ")";
-  }
-  md << ".\n\n";
+  md << frontSentence(rows, [](const CsvRow& r) {
+    return settingName(r) + " (" + formatNumber(fieldNumber(r, "ms_per_step"), 3) + " ms/step, " +
+           millimetres(fieldNumber(r, "error")) + ")";
+  }) << "\n\n";
   // "Within reach": ten times the best error, or the reference's own uncertainty if larger
   // (errors below it cannot be told apart), and never below 1 mm.
   const double reach = std::max({10.0 * best, uncertainty, 1e-3});
   md << "Cheapest setting of each method within " << millimetres(reach) << " of the target:\n\n";
   md << "| method | setting | ms/step | error |\n|---|---|---|---|\n";
-  std::map<std::string, const CsvRow*> cheapest;
-  for (const CsvRow& r : rows) {
-    if (!(fieldNumber(r, "error") <= reach)) continue;
-    const CsvRow*& c = cheapest[fieldText(r, "method")];
-    if (c == nullptr || fieldNumber(r, "ms_per_sim_second") < fieldNumber(*c, "ms_per_sim_second")) c = &r;
-  }
+  const auto cheapest = cheapestBy(rows, methodOf, "ms_per_sim_second",
+                                   [&](const CsvRow& r) { return fieldNumber(r, "error") <= reach; });
   std::vector<std::pair<double, const CsvRow*>> ordered;
-  ordered.reserve(cheapest.size());
-  for (const auto& [method, row] : cheapest)
-    ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
+  std::string never;
+  for (const auto& [method, row] : cheapest) {
+    if (row == nullptr)
+      never += (never.empty() ? " " : ", ") + method;
+    else
+      ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
+  }
   std::sort(ordered.begin(), ordered.end());
   for (const auto& [cost, row] : ordered) {
     md << "| " << fieldText(*row, "method") << " | " << settingName(*row) << " | "
        << formatNumber(fieldNumber(*row, "ms_per_step"), 3) << " | "
        << millimetres(fieldNumber(*row, "error")) << " |\n";
   }
-  std::vector<std::string> never;
-  std::map<std::string, bool> seen;
-  for (const CsvRow& r : rows) seen[fieldText(r, "method")] = true;
-  for (const auto& [method, unused] : seen) {
-    if (cheapest.count(method) == 0) never.push_back(method);
-  }
-  if (!never.empty()) {
-    md << "\nNever within reach at the settings swept:";
-    for (std::size_t i = 0; i < never.size(); ++i) md << (i == 0 ? " " : ", ") << never[i];
-    md << ".\n";
-  }
+  if (!never.empty()) md << "\nNever within reach at the settings swept:" << never << ".\n";
   if (!ordered.empty()) {
     md << "\n**Winner here: " << settingName(*ordered.front().second) << "**";
     if (ordered.size() > 1) {
@@ -194,18 +202,21 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
 // The bar for the run cycle: its parts within 5 degrees RMS of the clip at 1/60 s.
 constexpr double kTrackingBar = 5.0;  // unit: degrees
 
-// The row to keep of `kept` and `r`: the cheaper of those whose tracking error is within the bar.
-const CsvRow* cheaperWithinBar(const CsvRow* kept, const CsvRow& r) {
+// Whether a tracking row is within the bar; a run that blew up (inf or NaN) is not.
+bool withinBar(const CsvRow& r) {
   const double e = fieldNumber(r, "rms_tracking_error");
-  if (!(std::isfinite(e) && e <= kTrackingBar)) return kept;
-  return kept == nullptr || fieldNumber(r, "ms_per_step") < fieldNumber(*kept, "ms_per_step") ? &r : kept;
+  return std::isfinite(e) && e <= kTrackingBar;
+}
+
+// A row's tracking error as the report prints it: "11.4 deg".
+std::string degrees(const CsvRow& r) {
+  return formatNumber(fieldNumber(r, "rms_tracking_error"), 3) + " deg";
 }
 
 // "setting | ms/step | error" of a cheapest-within-the-bar row, or "none | - | -".
 std::string cheapestCells(const CsvRow* r) {
   if (r == nullptr) return "none | - | -";
-  return settingName(*r) + " | " + formatNumber(fieldNumber(*r, "ms_per_step"), 3) + " | " +
-         formatNumber(fieldNumber(*r, "rms_tracking_error"), 3) + " deg";
+  return settingName(*r) + " | " + formatNumber(fieldNumber(*r, "ms_per_step"), 3) + " | " + degrees(*r);
 }
 
 // The tracking scenes, one a ragdoll shape, each swept into results/<folder>.
@@ -240,21 +251,15 @@ std::vector<std::string> trackingArgs(const ReportOptions& o, const TrackingScen
   return args;
 }
 
-// "xpbd 2x8 at dt 1/60": a tracking row's setting, its dt as a fraction.
-std::string trackingSetting(const CsvRow& r) {
-  return settingName(r) + " at dt 1/" + formatNumber(1.0 / fieldNumber(r, "dt"), 3);
-}
-
 // Where a sweep ran more than one method: each one's cheapest setting within the bar at the issue's
 // dt of 1/60 s, so that the methods can be read against each other at one step size.
 std::string trackingByMethod(const std::vector<CsvRow>& rows) {
-  constexpr double kDt = 1.0 / 60.0;              // unit: s
-  std::map<std::string, const CsvRow*> cheapest;  // by method; null: none within the bar
+  constexpr double kDt = 1.0 / 60.0;  // unit: s
+  std::vector<CsvRow> atDt;
   for (const CsvRow& r : rows) {
-    if (std::abs(fieldNumber(r, "dt") - kDt) > 1e-9) continue;
-    const CsvRow*& c = cheapest[fieldText(r, "method")];
-    c = cheaperWithinBar(c, r);
+    if (std::abs(dtOf(r) - kDt) <= 1e-9) atDt.push_back(r);
   }
+  const auto cheapest = cheapestBy(atDt, methodOf, "ms_per_step", withinBar);
   if (cheapest.size() < 2) return {};
   std::ostringstream md;
   md << "\nAt dt 1/60, each method's cheapest setting within the bar:\n\n"
@@ -266,32 +271,21 @@ std::string trackingByMethod(const std::vector<CsvRow>& rows) {
 // The front of the tracking sweep and, at each dt, the cheapest setting within the bar.
 std::string trackingWords(const std::vector<CsvRow>& rows) {
   std::ostringstream md;
-  const std::vector<const CsvRow*> front = frontByCost(rows);
-  md << "Pareto front, cheapest first:";
-  for (std::size_t i = 0; i < front.size(); ++i) {
-    md << (i == 0 ? " " : "; ") << trackingSetting(*front[i]) << " ("
-       << formatNumber(fieldNumber(*front[i], "ms_per_sim_second"), 3) << " ms per simulated s, "
-       << formatNumber(fieldNumber(*front[i], "rms_tracking_error"), 3) << " deg)";
-  }
-  md << ".\n\nCheapest setting at each dt within " << formatNumber(kTrackingBar, 3)
+  md << frontSentence(rows, [](const CsvRow& r) {
+    return settingName(r) + " at dt 1/" + formatNumber(1.0 / dtOf(r), 3) + " (" +
+           formatNumber(fieldNumber(r, "ms_per_sim_second"), 3) + " ms per simulated s, " + degrees(r) + ")";
+  }) << "\n\n";
+  md << "Cheapest setting at each dt within " << formatNumber(kTrackingBar, 3)
      << " degrees RMS, and the best any setting at that dt reached:\n\n"
      << "| dt | cheapest within the bar | ms/step | tracking error | best setting | its error |\n"
      << "|---|---|---:|---:|---|---:|\n";
-  std::map<double, std::pair<const CsvRow*, const CsvRow*>> byDt;  // cheapest within, best
-  for (const CsvRow& r : rows) {
-    auto& [cheapest, best] = byDt[fieldNumber(r, "dt")];
-    const double e = fieldNumber(r, "rms_tracking_error");
-    if (!std::isfinite(e)) continue;
-    cheapest = cheaperWithinBar(cheapest, r);
-    if (best == nullptr || e < fieldNumber(*best, "rms_tracking_error")) best = &r;
-  }
-  for (const auto& [dt, pair] : byDt) {
-    const auto& [cheapest, best] = pair;
+  const auto best = cheapestBy(rows, dtOf, "rms_tracking_error", [](const CsvRow& r) {
+    return std::isfinite(fieldNumber(r, "rms_tracking_error"));
+  });
+  for (const auto& [dt, cheapest] : cheapestBy(rows, dtOf, "ms_per_step", withinBar)) {
+    const CsvRow* b = best.at(dt);
     md << "| 1/" << formatNumber(1.0 / dt, 3) << " | " << cheapestCells(cheapest) << " | "
-       << (best != nullptr ? settingName(*best) : std::string("-")) << " | "
-       << (best != nullptr ? formatNumber(fieldNumber(*best, "rms_tracking_error"), 3) + " deg"
-                           : std::string("-"))
-       << " |\n";
+       << (b != nullptr ? settingName(*b) + " | " + degrees(*b) : std::string("- | -")) << " |\n";
   }
   md << trackingByMethod(rows);
   return md.str();
