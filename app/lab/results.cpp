@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <ostream>
@@ -76,14 +77,55 @@ std::string demoteHeadings(const std::string& markdown) {
 
 // ---- running the commands ---------------------------------------------------------------------
 
-// Says which command runs (the full report takes minutes), then runs it captured.
-CommandOutput runCommandMain(const std::string& command, const std::vector<std::string>& args,
-                             std::ostream& progress) {
-  progress << "lab report: lab " << command;
-  for (const std::string& a : args) progress << ' ' << a;
-  progress << std::endl;
-  return runCaptured(command, args);
+// A command's table as a code block, without its last line ("wrote ..."), which names the files
+// by their paths on this machine.
+std::string tableBlock(std::string printed) {
+  if (const std::size_t wrote = printed.rfind("wrote "); wrote != std::string::npos) printed.erase(wrote);
+  return "```\n" + printed + "```\n";
 }
+
+// results.md as it is written, and whether any of the commands it ran failed.
+struct Report {
+  const ReportOptions& o;
+  std::ostream& progress;
+  std::ostringstream md;
+  bool failed = false;
+
+  // `common`, then the quick report's own arguments or the full report's.
+  std::vector<std::string> quickOrFull(std::vector<std::string> common, const std::vector<std::string>& quick,
+                                       const std::vector<std::string>& full = {}) const {
+    const std::vector<std::string>& own = o.quick ? quick : full;
+    common.insert(common.end(), own.begin(), own.end());
+    return common;
+  }
+
+  // Runs `lab COMMAND ARGS`, saying which first (the full report takes minutes), and writes what
+  // `shown` makes of its output; if it failed, its message stands where its figures would be.
+  void section(const std::string& command, const std::vector<std::string>& args,
+               const std::function<std::string(const std::string&)>& shown = demoteHeadings) {
+    progress << "lab report: lab " << command;
+    for (const std::string& a : args) progress << ' ' << a;
+    progress << std::endl;
+    const CommandOutput r = runCaptured(command, args);
+    failed |= r.code != 0;
+    if (r.code == 0)
+      md << shown(r.out);
+    else
+      md << "The command failed (exit " << r.code << "):\n\n```\n" << r.err << "```\n";
+    md << "\n";
+  }
+
+  // A sweep into results/FOLDER: its chart (`chart` its alt text), what `words` make of its
+  // figures, and a link to all its runs.
+  void sweep(const std::string& folder, const std::string& chart,
+             std::string (*words)(const std::vector<CsvRow>&), const std::vector<std::string>& args) {
+    section("sweep", args, [&](const std::string&) {
+      return "![" + chart + "](results/" + folder + "/error-vs-cost.png)\n\n" +
+             words(readCsv(o.out / "results" / folder / "results.csv").rows) +
+             "\nAll runs: [results.csv](results/" + folder + "/results.csv).\n";
+    });
+  }
+};
 
 // ---- the sweeps -------------------------------------------------------------------------------
 
@@ -100,22 +142,6 @@ constexpr SweepScene kSweepScenes[] = {
     {"chain", "a 20-link chain with a 100:1 end mass (reference run)"},
     {"pendulum-exact", "a 2 m pendulum released at 90 degrees, against its exact motion (analytic)"},
 };
-
-std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& scene, const fs::path& dir) {
-  std::vector<std::string> args{scene, "--out", dir.string(), "--data", o.data.string()};
-  if (o.quick) {
-    for (const char* a : {"--methods", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps", "1",
-                          "--repeat", "1", "--steps", "10"}) {
-      args.emplace_back(a);
-    }
-  } else {
-    for (const char* a :
-         {"--methods", kEveryMethod, "--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--repeat", "3"}) {
-      args.emplace_back(a);
-    }
-  }
-  return args;
-}
 
 // The row of least `cost` for each key (`keyOf` a row) among the rows `keep` accepts, the first
 // on a tie; every key of the rows is there, null where `keep` accepts none of its rows, so a
@@ -237,20 +263,6 @@ constexpr TrackingScene kTrackingScenes[] = {
      true},
 };
 
-std::vector<std::string> trackingArgs(const ReportOptions& o, const TrackingScene& scene,
-                                      const fs::path& dir) {
-  std::vector<std::string> args{scene.scene, "--error",    "tracking-error", "--no-peers",
-                                "--out",     dir.string(), "--data",         o.data.string()};
-  if (scene.everyMethod) args.insert(args.end(), {"--methods", kEveryMethod});
-  if (o.quick) {
-    args.insert(args.end(), {"--iterations", "1,2", "--substeps", "1", "--repeat", "1", "--steps", "10"});
-  } else {
-    args.insert(args.end(), {"--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--dt",
-                             "0.0333333333333333,0.0166666666666667,0.00833333333333333", "--steps", "600"});
-  }
-  return args;
-}
-
 // Where a sweep ran more than one method: each one's cheapest setting within the bar at the issue's
 // dt of 1/60 s, so that the methods can be read against each other at one step size.
 std::string trackingByMethod(const std::vector<CsvRow>& rows) {
@@ -337,11 +349,6 @@ std::string machine() {
   return (model.empty() ? std::string("unknown CPU") : model) + ", " + std::to_string(cores) + " cores";
 }
 
-std::string codeBlockOrText(const CommandOutput& r) {
-  if (r.code == 0) return demoteHeadings(r.out);
-  return "The command failed (exit " + std::to_string(r.code) + "):\n\n```\n" + r.err + "```\n";
-}
-
 void describeReport(CommandLine& line, ReportOptions& o) {
   line.about(
       "Runs the lab's commands and writes docs/results.md and its charts from what they print.\n"
@@ -354,9 +361,11 @@ void describeReport(CommandLine& line, ReportOptions& o) {
 int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   o.data = dataDir(o.data);
   if (o.out.empty()) o.out = o.data / "docs";
-  prepareOutputFolder(o.out / "results");  // before the runs, which take minutes
   const fs::path results = o.out / "results";
-  std::ostringstream md;
+  prepareOutputFolder(results);  // before the runs, which take minutes
+  const std::string data = o.data.string();
+  Report report{o, err};
+  std::ostringstream& md = report.md;
   md << "# Results\n\n"
      << "Measured on " << today() << " on " << machine() << ", in one run of `"
      << (o.quick ? "lab report --quick" : "make charts")
@@ -373,19 +382,14 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
      << "Each chart plots error against cost for every method x iterations x substeps combination (and each "
      << "peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats on "
         "both.\n\n";
-  bool failed = false;
   for (const SweepScene& s : kSweepScenes) {
-    const fs::path dir = results / s.name;
-    const CommandOutput r = runCommandMain("sweep", sweepArgs(o, s.name, dir), err);
     md << "### " << s.name << "\n\n" << s.why << ".\n\n";
-    if (r.code != 0) {
-      failed = true;
-      md << codeBlockOrText(r) << "\n";
-      continue;
-    }
-    md << "![error against cost, " << s.name << "](results/" << s.name << "/error-vs-cost.png)\n\n"
-       << sweepWords(readCsv(dir / "results.csv").rows) << "\nAll runs: [results.csv](results/" << s.name
-       << "/results.csv).\n\n";
+    report.sweep(s.name, "error against cost, " + std::string(s.name), sweepWords,
+                 report.quickOrFull({s.name, "--out", (results / s.name).string(), "--data", data},
+                                    {"--methods", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps",
+                                     "1", "--repeat", "1", "--steps", "10"},
+                                    {"--methods", kEveryMethod, "--iterations", "1,2,4,8", "--substeps",
+                                     "1,2,4,8", "--repeat", "3"}));
   }
 
   md << "## Pose tracking\n\n"
@@ -399,103 +403,66 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
         "under all four. The runner starts in the clip's first pose (`pose=\"clip\"`), so the figure is the "
         "tracking and not the turn into the clip.\n\n";
   for (const TrackingScene& t : kTrackingScenes) {
-    const fs::path dir = results / t.folder;
-    const CommandOutput r = runCommandMain("sweep", trackingArgs(o, t, dir), err);
-    failed |= r.code != 0;
     md << "### " << t.scene << "\n\n" << t.what << ".\n\n";
-    if (r.code == 0) {
-      md << "![tracking error against cost, " << t.scene << "](results/" << t.folder
-         << "/error-vs-cost.png)\n\n"
-         << trackingWords(readCsv(dir / "results.csv").rows) << "\nAll runs: [results.csv](results/"
-         << t.folder << "/results.csv).\n\n";
-    } else {
-      md << codeBlockOrText(r) << "\n";
-    }
-    std::vector<std::string> runArgs{t.scene, "--json", "--data", o.data.string()};
-    if (o.quick) runArgs.insert(runArgs.end(), {"--steps", "10"});
-    const CommandOutput run = runCommandMain("run", runArgs, err);
-    failed |= run.code != 0;
-    md << (run.code == 0 ? drivesTable(t.scene, run.out) : codeBlockOrText(run)) << "\n";
+    std::vector<std::string> args{t.scene,      "--error", "tracking-error",
+                                  "--no-peers", "--out",   (results / t.folder).string(),
+                                  "--data",     data};
+    if (t.everyMethod) args.insert(args.end(), {"--methods", kEveryMethod});
+    report.sweep(
+        t.folder, "tracking error against cost, " + std::string(t.scene), trackingWords,
+        report.quickOrFull(args, {"--iterations", "1,2", "--substeps", "1", "--repeat", "1", "--steps", "10"},
+                           {"--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--dt",
+                            "0.0333333333333333,0.0166666666666667,0.00833333333333333", "--steps", "600"}));
+    report.section("run", report.quickOrFull({t.scene, "--json", "--data", data}, {"--steps", "10"}),
+                   [&](const std::string& json) { return drivesTable(t.scene, json); });
   }
 
-  md << "## Where methods fail\n\n";
-  std::vector<std::string> stabilityArgs{"--out", (results / "stability").string(), "--data",
-                                         o.data.string()};
-  if (o.quick) {
-    for (const char* a :
-         {"--scene", "face-face", "--methods", "gauss-seidel,xpbd", "--iterations", "1", "--substeps", "1"}) {
-      stabilityArgs.emplace_back(a);
-    }
-  }
-  const CommandOutput stability = runCommandMain("stability", stabilityArgs, err);
-  failed |= stability.code != 0;
-  md << "![pass or fail per scene and setting](results/stability/stability-pass.png)\n\n"
-     << "![error figure per scene and setting](results/stability/stability-error.png)\n\n"
-     << codeBlockOrText(stability) << "\n";
-
+  md << "## Where methods fail\n\n"
+     << "![pass or fail per scene and setting](results/stability/stability-pass.png)\n\n"
+     << "![error figure per scene and setting](results/stability/stability-error.png)\n\n";
+  report.section("stability", report.quickOrFull({"--out", (results / "stability").string(), "--data", data},
+                                                 {"--scene", "face-face", "--methods", "gauss-seidel,xpbd",
+                                                  "--iterations", "1", "--substeps", "1"}));
   // The same suite with every box and ragdoll rigid, the model as the map's axis: a rigid body
   // is solved by XPBD whatever the method, so one block of settings.
-  std::vector<std::string> rigidArgs{"--out",     (results / "stability-rigid").string(),
-                                     "--data",    o.data.string(),
-                                     "--models",  "rigid",
-                                     "--methods", "xpbd",
-                                     "--no-peers"};
-  if (o.quick) {
-    for (const char* a : {"--scene", "face-face", "--iterations", "1", "--substeps", "1"})
-      rigidArgs.emplace_back(a);
-  }
-  const CommandOutput rigid = runCommandMain("stability", rigidArgs, err);
-  failed |= rigid.code != 0;
   md << "### The rigid model on the same suite\n\n"
      << "Every box and ragdoll of each scene made rigid (`lab stability --models rigid --methods xpbd "
         "--no-peers`): the chains have no body and run as they are. Set beside the table above, it shows "
         "which model holds each scene at the fewest passes.\n\n"
-     << "![pass or fail per scene and setting, rigid](results/stability-rigid/stability-pass.png)\n\n"
-     << codeBlockOrText(rigid) << "\n";
+     << "![pass or fail per scene and setting, rigid](results/stability-rigid/stability-pass.png)\n\n";
+  report.section("stability",
+                 report.quickOrFull({"--out", (results / "stability-rigid").string(), "--data", data,
+                                     "--models", "rigid", "--methods", "xpbd", "--no-peers"},
+                                    {"--scene", "face-face", "--iterations", "1", "--substeps", "1"}));
 
   md << "## Beside Bullet, ODE and MuJoCo\n\n";
-  const char* compareScenes[] = {"pyramid", "ragdoll", "bullet-ragdolls"};
-  for (const char* scene : compareScenes) {
-    std::vector<std::string> args{scene, "--data", o.data.string()};
-    if (o.quick || std::string(scene) == "bullet-ragdolls") {
-      args.insert(args.end(), {"--steps", o.quick ? "5" : "120"});
-    }
-    const CommandOutput r = runCommandMain("compare", args, err);
-    failed |= r.code != 0;
-    md << "### " << scene << "\n\n" << codeBlockOrText(r) << "\n";
-    if (o.quick) break;
+  const std::pair<const char*, std::vector<std::string>> compared[] = {
+      {"pyramid", {}}, {"ragdoll", {}}, {"bullet-ragdolls", {"--steps", "120"}}};  // the full report's
+  for (const auto& [scene, full] : compared) {
+    md << "### " << scene << "\n\n";
+    report.section("compare", report.quickOrFull({scene, "--data", data}, {"--steps", "5"}, full));
+    if (o.quick) break;  // one scene checks the pipeline
   }
   if (!o.quick) {
-    const CommandOutput r =
-        runCommandMain("compare",
-                       {"bullet-ragdolls", "--data", o.data.string(), "--models", "rigid", "--iterations",
-                        "1", "--substeps", "2", "--joint-projection", "on", "--steps", "120"},
-                       err);
-    failed |= r.code != 0;
     md << "### bullet-ragdolls, rigid ragdolls with their joints projected\n\n"
        << "The same pile with every ragdoll rigid at 1 iteration x 2 substeps, its joints closed by a direct "
           "solve after each substep's passes (docs/physics.md, \"Joint projection\"): the joint gap against "
-          "the peers' at a fraction of Bullet's step.\n\n"
-       << codeBlockOrText(r) << "\n";
+          "the peers' at a fraction of Bullet's step.\n\n";
+    report.section("compare", {"bullet-ragdolls", "--data", data, "--models", "rigid", "--iterations", "1",
+                               "--substeps", "2", "--joint-projection", "on", "--steps", "120"});
   }
 
   md << "## Cost against size\n\n"
      << "Capsule ragdolls on a grid, 2 m apart, tipped to fall onto each other, at each size for 1 s at "
         "Bullet's pile's settings (`lab scale`, docs/lab.md): a step whose cost is linear in the number of "
         "bodies draws a flat line.\n\n";
-  std::vector<std::string> scaleArgs{"--out", (results / "scale").string()};
-  if (o.quick) scaleArgs.insert(scaleArgs.end(), {"--sizes", "1,2", "--steps", "5"});
-  const CommandOutput scaled = runCommandMain("scale", scaleArgs, err);
-  failed |= scaled.code != 0;
-  if (scaled.code == 0) {
-    // The table without its last line, which names the files by their paths on this machine.
-    std::string table = scaled.out;
-    if (const std::size_t wrote = table.rfind("wrote "); wrote != std::string::npos) table.erase(wrote);
-    md << "![microseconds per body-step against bodies](results/scale/scale.png)\n\n```\n"
-       << table << "```\n\n";
-  } else {
-    md << codeBlockOrText(scaled) << "\n";
-  }
+  report.section(
+      "scale",
+      report.quickOrFull({"--out", (results / "scale").string()}, {"--sizes", "1,2", "--steps", "5"}),
+      [](const std::string& printed) {
+        return "![microseconds per body-step against bodies](results/scale/scale.png)\n\n" +
+               tableBlock(printed);
+      });
 
   md << "## Error against substep size\n\n"
      << "Each method and model on the scenes with exact answers, at the scene's dt of 1/60 s and 4 "
@@ -503,26 +470,21 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
         "the substep h halving from dt to dt / 64 (`lab converge`, docs/lab.md): a method of order p draws a "
         "line of slope p. docs/physics.md, \"Order of accuracy\", says why projection along the stick's "
         "current direction is first order and SHAKE second.\n\n";
-  std::vector<std::string> convergeArgs{"--out", (results / "converge").string(), "--data", o.data.string()};
-  if (o.quick) convergeArgs.insert(convergeArgs.end(), {"circular-orbit", "--substeps", "1,2"});
-  const CommandOutput converged = runCommandMain("converge", convergeArgs, err);
-  failed |= converged.code != 0;
-  if (converged.code == 0) {
-    std::string tables = converged.out;
-    if (const std::size_t wrote = tables.rfind("wrote "); wrote != std::string::npos) tables.erase(wrote);
-    const std::vector<std::string> shown =
-        o.quick ? std::vector<std::string>{"circular-orbit"} : kConvergeScenes;
-    for (const std::string& scene : shown) {
-      md << "![error against h, " << scene << "](results/converge/converge-" << scene << ".png)\n\n";
-    }
-    md << "```\n" << tables << "```\n\nAll runs: [converge.csv](results/converge/converge.csv).\n\n";
-  } else {
-    md << codeBlockOrText(converged) << "\n";
-  }
+  report.section(
+      "converge",
+      report.quickOrFull({"--out", (results / "converge").string(), "--data", data},
+                         {"circular-orbit", "--substeps", "1,2"}),
+      [&](const std::string& printed) {
+        std::string charts;
+        for (const std::string& scene :
+             o.quick ? std::vector<std::string>{"circular-orbit"} : kConvergeScenes)
+          charts += "![error against h, " + scene + "](results/converge/converge-" + scene + ".png)\n\n";
+        return charts + tableBlock(printed) + "\nAll runs: [converge.csv](results/converge/converge.csv).\n";
+      });
 
   fileio::writeAtomically(o.out / "results.md", md.str());
   out << "wrote " << (o.out / "results.md").string() << " and " << results.string() << "/\n";
-  return failed ? kExitFailure : kExitOk;
+  return report.failed ? kExitFailure : kExitOk;
 }
 
 }  // namespace
