@@ -3,7 +3,6 @@
 // from them), and writes docs/results.md around their files. The words about which method wins
 // where are computed from the figures, so regenerating the report cannot leave them stale.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -15,15 +14,14 @@
 #include <sstream>
 #include <type_traits>
 
+#include "command_line.h"
 #include "commands.h"
 #include "converge.h"
 #include "csv.h"
 #include "fileio/files.h"
 #include "json.h"
 #include "lab.h"
-#include "options.h"
-#include "report.h"
-#include "sweep_core.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -316,15 +314,13 @@ std::string drivesTable(const std::string& scene, const std::string& runJson) {
         "force and torque, RMS over the run's steps and the largest after any step.\n\n"
         "| part | RMS | peak |\n|---|---:|---:|\n";
   for (const Json& d : j.value("drives", Json::array())) {  // a run without drives has none
-    const auto number = [&](const char* key) { return formatNumber(d[key].get<double>(), 3); };
-    if (d["root"].get<bool>()) {
-      md << "| " << d["bone"].get<std::string>() << " (root: hand of god) | " << number("rms_force") << " N, "
-         << number("rms_torque") << " N m | " << number("peak_force") << " N, " << number("peak_torque")
-         << " N m |\n";
-    } else {
-      md << "| " << d["bone"].get<std::string>() << " | " << number("rms_torque") << " N m | "
-         << number("peak_torque") << " N m |\n";
-    }
+    const auto number = [&](const std::string& key) { return formatNumber(d[key].get<double>(), 3); };
+    const bool root = d["root"].get<bool>();
+    const auto cell = [&](const std::string& figure) {  // "rms" or "peak"; the root's has the force too
+      return (root ? number(figure + "_force") + " N, " : "") + number(figure + "_torque") + " N m";
+    };
+    md << "| " << d["bone"].get<std::string>() << (root ? " (root: hand of god)" : "") << " | " << cell("rms")
+       << " | " << cell("peak") << " |\n";
   }
   return md.str();
 }
@@ -366,22 +362,20 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   const std::string data = o.data.string();
   Report report{o, err};
   std::ostringstream& md = report.md;
-  md << "# Results\n\n"
-     << "Measured on " << today() << " on " << machine() << ", in one run of `"
+  md << "# Results\n\nMeasured on " << today() << " on " << machine() << ", in one run of `"
      << (o.quick ? "lab report --quick" : "make charts")
-     << "` (`lab report`, docs/lab.md), so every figure below "
-     << "comes from the same machine, build and load. Regenerate with `make charts`. Times are wall-clock "
-     << "ms per step as each command defines them (docs/lab.md); errors are in millimetres against each "
-        "scene's analytic answers or its converged "
-     << "reference run (docs/lab.md, \"Accuracy\"). A peer's error also holds the difference between its "
-     << "contact model and ours, which no setting of either removes.\n\n";
+     << "` (`lab report`, docs/lab.md), so every figure below comes from the same machine, build and load. "
+        "Regenerate with `make charts`. Times are wall-clock ms per step as each command defines them "
+        "(docs/lab.md); errors are in millimetres against each scene's analytic answers or its converged "
+        "reference run (docs/lab.md, \"Accuracy\"). A peer's error also holds the difference between its "
+        "contact model and ours, which no setting of either removes.\n\n";
   if (o.quick)
     md << "**This is a --quick report: tiny sweeps that check the pipeline, not figures to quote.**\n\n";
 
   md << "## Speed against accuracy\n\n"
-     << "Each chart plots error against cost for every method x iterations x substeps combination (and each "
-     << "peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats on "
-        "both.\n\n";
+     << "Each chart plots error against cost for every method x iterations x substeps combination "
+        "(and each peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats "
+        "on both.\n\n";
   for (const SweepScene& s : kSweepScenes) {
     md << "### " << s.name << "\n\n" << s.why << ".\n\n";
     report.sweep(s.name, "error against cost, " + std::string(s.name), sweepWords,
@@ -466,10 +460,9 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
 
   md << "## Error against substep size\n\n"
      << "Each method and model on the scenes with exact answers, at the scene's dt of 1/60 s and 4 "
-        "iterations, "
-        "the substep h halving from dt to dt / 64 (`lab converge`, docs/lab.md): a method of order p draws a "
-        "line of slope p. docs/physics.md, \"Order of accuracy\", says why projection along the stick's "
-        "current direction is first order and SHAKE second.\n\n";
+        "iterations, the substep h halving from dt to dt / 64 (`lab converge`, docs/lab.md): a method of "
+        "order p draws a line of slope p. docs/physics.md, \"Order of accuracy\", says why projection along "
+        "the stick's current direction is first order and SHAKE second.\n\n";
   report.section(
       "converge",
       report.quickOrFull({"--out", (results / "converge").string(), "--data", data},
