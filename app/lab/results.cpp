@@ -430,8 +430,9 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
                                     {"--scene", "face-face", "--iterations", "1", "--substeps", "1"}));
 
   md << "## Beside Bullet, ODE and MuJoCo\n\n";
+  // The scenes set beside the peers, each with what the full report adds to its arguments.
   const std::pair<const char*, std::vector<std::string>> compared[] = {
-      {"pyramid", {}}, {"ragdoll", {}}, {"bullet-ragdolls", {"--steps", "120"}}};  // the full report's
+      {"pyramid", {}}, {"ragdoll", {}}, {"bullet-ragdolls", {"--steps", "120"}}};
   for (const auto& [scene, full] : compared) {
     md << "### " << scene << "\n\n";
     report.section("compare", report.quickOrFull({scene, "--data", data}, {"--steps", "5"}, full));
