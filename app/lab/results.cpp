@@ -3,25 +3,25 @@
 // from them), and writes docs/results.md around their files. The words about which method wins
 // where are computed from the figures, so regenerating the report cannot leave them stale.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <ostream>
 #include <sstream>
+#include <type_traits>
 
+#include "command_line.h"
 #include "commands.h"
 #include "converge.h"
 #include "csv.h"
 #include "fileio/files.h"
 #include "json.h"
 #include "lab.h"
-#include "options.h"
-#include "report.h"
-#include "sweep_core.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -75,14 +75,55 @@ std::string demoteHeadings(const std::string& markdown) {
 
 // ---- running the commands ---------------------------------------------------------------------
 
-// Says which command runs (the full report takes minutes), then runs it captured.
-CommandOutput runCommandMain(const std::string& command, const std::vector<std::string>& args,
-                             std::ostream& progress) {
-  progress << "lab report: lab " << command;
-  for (const std::string& a : args) progress << ' ' << a;
-  progress << std::endl;
-  return runCaptured(command, args);
+// A command's table as a code block, without its last line ("wrote ..."), which names the files
+// by their paths on this machine.
+std::string tableBlock(std::string printed) {
+  if (const std::size_t wrote = printed.rfind("wrote "); wrote != std::string::npos) printed.erase(wrote);
+  return "```\n" + printed + "```\n";
 }
+
+// results.md as it is written, and whether any of the commands it ran failed.
+struct Report {
+  const ReportOptions& o;
+  std::ostream& progress;
+  std::ostringstream md;
+  bool failed = false;
+
+  // `common`, then the quick report's own arguments or the full report's.
+  std::vector<std::string> quickOrFull(std::vector<std::string> common, const std::vector<std::string>& quick,
+                                       const std::vector<std::string>& full = {}) const {
+    const std::vector<std::string>& own = o.quick ? quick : full;
+    common.insert(common.end(), own.begin(), own.end());
+    return common;
+  }
+
+  // Runs `lab COMMAND ARGS`, saying which first (the full report takes minutes), and writes what
+  // `shown` makes of its output; if it failed, its message stands where its figures would be.
+  void section(const std::string& command, const std::vector<std::string>& args,
+               const std::function<std::string(const std::string&)>& shown = demoteHeadings) {
+    progress << "lab report: lab " << command;
+    for (const std::string& a : args) progress << ' ' << a;
+    progress << std::endl;
+    const CommandOutput r = runCaptured(command, args);
+    failed |= r.code != 0;
+    if (r.code == 0)
+      md << shown(r.out);
+    else
+      md << "The command failed (exit " << r.code << "):\n\n```\n" << r.err << "```\n";
+    md << "\n";
+  }
+
+  // A sweep into results/FOLDER: its chart (`chart` its alt text), what `words` make of its
+  // figures, and a link to all its runs.
+  void sweep(const std::string& folder, const std::string& chart,
+             std::string (*words)(const std::vector<CsvRow>&), const std::vector<std::string>& args) {
+    section("sweep", args, [&](const std::string&) {
+      return "![" + chart + "](results/" + folder + "/error-vs-cost.png)\n\n" +
+             words(readCsv(o.out / "results" / folder / "results.csv").rows) +
+             "\nAll runs: [results.csv](results/" + folder + "/results.csv).\n";
+    });
+  }
+};
 
 // ---- the sweeps -------------------------------------------------------------------------------
 
@@ -100,24 +141,27 @@ constexpr SweepScene kSweepScenes[] = {
     {"pendulum-exact", "a 2 m pendulum released at 90 degrees, against its exact motion (analytic)"},
 };
 
-std::vector<std::string> sweepArgs(const ReportOptions& o, const std::string& scene, const fs::path& dir) {
-  std::vector<std::string> args{scene, "--out", dir.string(), "--data", o.data.string()};
-  if (o.quick) {
-    for (const char* a : {"--methods", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps", "1",
-                          "--repeat", "1", "--steps", "10"}) {
-      args.emplace_back(a);
-    }
-  } else {
-    for (const char* a :
-         {"--methods", kEveryMethod, "--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--repeat", "3"}) {
-      args.emplace_back(a);
-    }
+// The row of least `cost` for each key (`keyOf` a row) among the rows `keep` accepts, the first
+// on a tie; every key of the rows is there, null where `keep` accepts none of its rows, so a
+// table can say which never qualified.
+template <typename KeyOf, typename Keep>
+auto cheapestBy(const std::vector<CsvRow>& rows, KeyOf keyOf, const char* cost, Keep keep) {
+  std::map<std::invoke_result_t<KeyOf, const CsvRow&>, const CsvRow*> cheapest;
+  for (const CsvRow& r : rows) {
+    const CsvRow*& c = cheapest[keyOf(r)];
+    if (keep(r) && (c == nullptr || fieldNumber(r, cost) < fieldNumber(*c, cost))) c = &r;
   }
-  return args;
+  return cheapest;
 }
 
-// A sweep's Pareto front (its rows marked so), cheapest per simulated second first.
-std::vector<const CsvRow*> frontByCost(const std::vector<CsvRow>& rows) {
+// The keys the report's tables group rows by.
+constexpr auto methodOf = [](const CsvRow& r) { return fieldText(r, "method"); };
+constexpr auto dtOf = [](const CsvRow& r) { return fieldNumber(r, "dt"); };
+
+// "Pareto front, cheapest first: a; b.": a sweep's rows marked as on its front, cheapest per
+// simulated second first, each as `describe` puts it.
+template <typename Describe>
+std::string frontSentence(const std::vector<CsvRow>& rows, Describe describe) {
   std::vector<const CsvRow*> front;
   for (const CsvRow& r : rows) {
     if (fieldText(r, "pareto") == "1") front.push_back(&r);
@@ -125,13 +169,14 @@ std::vector<const CsvRow*> frontByCost(const std::vector<CsvRow>& rows) {
   std::sort(front.begin(), front.end(), [](const CsvRow* a, const CsvRow* b) {
     return fieldNumber(*a, "ms_per_sim_second") < fieldNumber(*b, "ms_per_sim_second");
   });
-  return front;
+  std::string text = "Pareto front, cheapest first:";
+  for (std::size_t i = 0; i < front.size(); ++i) text += (i == 0 ? " " : "; ") + describe(*front[i]);
+  return text + ".";
 }
 
 // What the figures say about a sweep, in sentences: the front from cheap to accurate, and for
 // each method its cheapest setting that comes within reach of the most accurate run.
 std::string sweepWords(const std::vector<CsvRow>& rows) {
-  const std::vector<const CsvRow*> front = frontByCost(rows);
   double best = std::numeric_limits<double>::infinity(), uncertainty = 0.0;
   for (const CsvRow& r : rows) {
     best = std::min(best, fieldNumber(r, "error"));
@@ -139,45 +184,32 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
     if (std::isfinite(u)) uncertainty = std::max(uncertainty, u);
   }
   std::ostringstream md;
-  md << "Pareto front, cheapest first:";
-  for (std::size_t i = 0; i < front.size(); ++i) {
-    md << (i == 0 ? " " : "; ") << settingName(*front[i]) << " ("
-       << formatNumber(fieldNumber(*front[i], "ms_per_step"), 3) << " ms/step, "
-       << millimetres(fieldNumber(*front[i], "error")) << ")";
-  }
-  md << ".\n\n";
+  md << frontSentence(rows, [](const CsvRow& r) {
+    return settingName(r) + " (" + formatNumber(fieldNumber(r, "ms_per_step"), 3) + " ms/step, " +
+           millimetres(fieldNumber(r, "error")) + ")";
+  }) << "\n\n";
   // "Within reach": ten times the best error, or the reference's own uncertainty if larger
   // (errors below it cannot be told apart), and never below 1 mm.
   const double reach = std::max({10.0 * best, uncertainty, 1e-3});
   md << "Cheapest setting of each method within " << millimetres(reach) << " of the target:\n\n";
   md << "| method | setting | ms/step | error |\n|---|---|---|---|\n";
-  std::map<std::string, const CsvRow*> cheapest;
-  for (const CsvRow& r : rows) {
-    if (!(fieldNumber(r, "error") <= reach)) continue;
-    const CsvRow*& c = cheapest[fieldText(r, "method")];
-    if (c == nullptr || fieldNumber(r, "ms_per_sim_second") < fieldNumber(*c, "ms_per_sim_second")) c = &r;
-  }
+  const auto cheapest = cheapestBy(rows, methodOf, "ms_per_sim_second",
+                                   [&](const CsvRow& r) { return fieldNumber(r, "error") <= reach; });
   std::vector<std::pair<double, const CsvRow*>> ordered;
-  ordered.reserve(cheapest.size());
-  for (const auto& [method, row] : cheapest)
-    ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
+  std::string never;
+  for (const auto& [method, row] : cheapest) {
+    if (row == nullptr)
+      never += (never.empty() ? " " : ", ") + method;
+    else
+      ordered.emplace_back(fieldNumber(*row, "ms_per_sim_second"), row);
+  }
   std::sort(ordered.begin(), ordered.end());
   for (const auto& [cost, row] : ordered) {
     md << "| " << fieldText(*row, "method") << " | " << settingName(*row) << " | "
        << formatNumber(fieldNumber(*row, "ms_per_step"), 3) << " | "
        << millimetres(fieldNumber(*row, "error")) << " |\n";
   }
-  std::vector<std::string> never;
-  std::map<std::string, bool> seen;
-  for (const CsvRow& r : rows) seen[fieldText(r, "method")] = true;
-  for (const auto& [method, unused] : seen) {
-    if (cheapest.count(method) == 0) never.push_back(method);
-  }
-  if (!never.empty()) {
-    md << "\nNever within reach at the settings swept:";
-    for (std::size_t i = 0; i < never.size(); ++i) md << (i == 0 ? " " : ", ") << never[i];
-    md << ".\n";
-  }
+  if (!never.empty()) md << "\nNever within reach at the settings swept:" << never << ".\n";
   if (!ordered.empty()) {
     md << "\n**Winner here: " << settingName(*ordered.front().second) << "**";
     if (ordered.size() > 1) {
@@ -194,18 +226,21 @@ std::string sweepWords(const std::vector<CsvRow>& rows) {
 // The bar for the run cycle: its parts within 5 degrees RMS of the clip at 1/60 s.
 constexpr double kTrackingBar = 5.0;  // unit: degrees
 
-// The row to keep of `kept` and `r`: the cheaper of those whose tracking error is within the bar.
-const CsvRow* cheaperWithinBar(const CsvRow* kept, const CsvRow& r) {
+// Whether a tracking row is within the bar; a run that blew up (inf or NaN) is not.
+bool withinBar(const CsvRow& r) {
   const double e = fieldNumber(r, "rms_tracking_error");
-  if (!(std::isfinite(e) && e <= kTrackingBar)) return kept;
-  return kept == nullptr || fieldNumber(r, "ms_per_step") < fieldNumber(*kept, "ms_per_step") ? &r : kept;
+  return std::isfinite(e) && e <= kTrackingBar;
+}
+
+// A row's tracking error as the report prints it: "11.4 deg".
+std::string degrees(const CsvRow& r) {
+  return formatNumber(fieldNumber(r, "rms_tracking_error"), 3) + " deg";
 }
 
 // "setting | ms/step | error" of a cheapest-within-the-bar row, or "none | - | -".
 std::string cheapestCells(const CsvRow* r) {
   if (r == nullptr) return "none | - | -";
-  return settingName(*r) + " | " + formatNumber(fieldNumber(*r, "ms_per_step"), 3) + " | " +
-         formatNumber(fieldNumber(*r, "rms_tracking_error"), 3) + " deg";
+  return settingName(*r) + " | " + formatNumber(fieldNumber(*r, "ms_per_step"), 3) + " | " + degrees(*r);
 }
 
 // The tracking scenes, one a ragdoll shape, each swept into results/<folder>.
@@ -226,35 +261,15 @@ constexpr TrackingScene kTrackingScenes[] = {
      true},
 };
 
-std::vector<std::string> trackingArgs(const ReportOptions& o, const TrackingScene& scene,
-                                      const fs::path& dir) {
-  std::vector<std::string> args{scene.scene, "--error",    "tracking-error", "--no-peers",
-                                "--out",     dir.string(), "--data",         o.data.string()};
-  if (scene.everyMethod) args.insert(args.end(), {"--methods", kEveryMethod});
-  if (o.quick) {
-    args.insert(args.end(), {"--iterations", "1,2", "--substeps", "1", "--repeat", "1", "--steps", "10"});
-  } else {
-    args.insert(args.end(), {"--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--dt",
-                             "0.0333333333333333,0.0166666666666667,0.00833333333333333", "--steps", "600"});
-  }
-  return args;
-}
-
-// "xpbd 2x8 at dt 1/60": a tracking row's setting, its dt as a fraction.
-std::string trackingSetting(const CsvRow& r) {
-  return settingName(r) + " at dt 1/" + formatNumber(1.0 / fieldNumber(r, "dt"), 3);
-}
-
 // Where a sweep ran more than one method: each one's cheapest setting within the bar at the issue's
 // dt of 1/60 s, so that the methods can be read against each other at one step size.
 std::string trackingByMethod(const std::vector<CsvRow>& rows) {
-  constexpr double kDt = 1.0 / 60.0;              // unit: s
-  std::map<std::string, const CsvRow*> cheapest;  // by method; null: none within the bar
+  constexpr double kDt = 1.0 / 60.0;  // unit: s
+  std::vector<CsvRow> atDt;
   for (const CsvRow& r : rows) {
-    if (std::abs(fieldNumber(r, "dt") - kDt) > 1e-9) continue;
-    const CsvRow*& c = cheapest[fieldText(r, "method")];
-    c = cheaperWithinBar(c, r);
+    if (std::abs(dtOf(r) - kDt) <= 1e-9) atDt.push_back(r);
   }
+  const auto cheapest = cheapestBy(atDt, methodOf, "ms_per_step", withinBar);
   if (cheapest.size() < 2) return {};
   std::ostringstream md;
   md << "\nAt dt 1/60, each method's cheapest setting within the bar:\n\n"
@@ -266,32 +281,21 @@ std::string trackingByMethod(const std::vector<CsvRow>& rows) {
 // The front of the tracking sweep and, at each dt, the cheapest setting within the bar.
 std::string trackingWords(const std::vector<CsvRow>& rows) {
   std::ostringstream md;
-  const std::vector<const CsvRow*> front = frontByCost(rows);
-  md << "Pareto front, cheapest first:";
-  for (std::size_t i = 0; i < front.size(); ++i) {
-    md << (i == 0 ? " " : "; ") << trackingSetting(*front[i]) << " ("
-       << formatNumber(fieldNumber(*front[i], "ms_per_sim_second"), 3) << " ms per simulated s, "
-       << formatNumber(fieldNumber(*front[i], "rms_tracking_error"), 3) << " deg)";
-  }
-  md << ".\n\nCheapest setting at each dt within " << formatNumber(kTrackingBar, 3)
+  md << frontSentence(rows, [](const CsvRow& r) {
+    return settingName(r) + " at dt 1/" + formatNumber(1.0 / dtOf(r), 3) + " (" +
+           formatNumber(fieldNumber(r, "ms_per_sim_second"), 3) + " ms per simulated s, " + degrees(r) + ")";
+  }) << "\n\n";
+  md << "Cheapest setting at each dt within " << formatNumber(kTrackingBar, 3)
      << " degrees RMS, and the best any setting at that dt reached:\n\n"
      << "| dt | cheapest within the bar | ms/step | tracking error | best setting | its error |\n"
      << "|---|---|---:|---:|---|---:|\n";
-  std::map<double, std::pair<const CsvRow*, const CsvRow*>> byDt;  // cheapest within, best
-  for (const CsvRow& r : rows) {
-    auto& [cheapest, best] = byDt[fieldNumber(r, "dt")];
-    const double e = fieldNumber(r, "rms_tracking_error");
-    if (!std::isfinite(e)) continue;
-    cheapest = cheaperWithinBar(cheapest, r);
-    if (best == nullptr || e < fieldNumber(*best, "rms_tracking_error")) best = &r;
-  }
-  for (const auto& [dt, pair] : byDt) {
-    const auto& [cheapest, best] = pair;
+  const auto best = cheapestBy(rows, dtOf, "rms_tracking_error", [](const CsvRow& r) {
+    return std::isfinite(fieldNumber(r, "rms_tracking_error"));
+  });
+  for (const auto& [dt, cheapest] : cheapestBy(rows, dtOf, "ms_per_step", withinBar)) {
+    const CsvRow* b = best.at(dt);
     md << "| 1/" << formatNumber(1.0 / dt, 3) << " | " << cheapestCells(cheapest) << " | "
-       << (best != nullptr ? settingName(*best) : std::string("-")) << " | "
-       << (best != nullptr ? formatNumber(fieldNumber(*best, "rms_tracking_error"), 3) + " deg"
-                           : std::string("-"))
-       << " |\n";
+       << (b != nullptr ? settingName(*b) + " | " + degrees(*b) : std::string("- | -")) << " |\n";
   }
   md << trackingByMethod(rows);
   return md.str();
@@ -310,15 +314,13 @@ std::string drivesTable(const std::string& scene, const std::string& runJson) {
         "force and torque, RMS over the run's steps and the largest after any step.\n\n"
         "| part | RMS | peak |\n|---|---:|---:|\n";
   for (const Json& d : j.value("drives", Json::array())) {  // a run without drives has none
-    const auto number = [&](const char* key) { return formatNumber(d[key].get<double>(), 3); };
-    if (d["root"].get<bool>()) {
-      md << "| " << d["bone"].get<std::string>() << " (root: hand of god) | " << number("rms_force") << " N, "
-         << number("rms_torque") << " N m | " << number("peak_force") << " N, " << number("peak_torque")
-         << " N m |\n";
-    } else {
-      md << "| " << d["bone"].get<std::string>() << " | " << number("rms_torque") << " N m | "
-         << number("peak_torque") << " N m |\n";
-    }
+    const auto number = [&](const std::string& key) { return formatNumber(d[key].get<double>(), 3); };
+    const bool root = d["root"].get<bool>();
+    const auto cell = [&](const std::string& figure) {  // "rms" or "peak"; the root's has the force too
+      return (root ? number(figure + "_force") + " N, " : "") + number(figure + "_torque") + " N m";
+    };
+    md << "| " << d["bone"].get<std::string>() << (root ? " (root: hand of god)" : "") << " | " << cell("rms")
+       << " | " << cell("peak") << " |\n";
   }
   return md.str();
 }
@@ -343,11 +345,6 @@ std::string machine() {
   return (model.empty() ? std::string("unknown CPU") : model) + ", " + std::to_string(cores) + " cores";
 }
 
-std::string codeBlockOrText(const CommandOutput& r) {
-  if (r.code == 0) return demoteHeadings(r.out);
-  return "The command failed (exit " + std::to_string(r.code) + "):\n\n```\n" + r.err + "```\n";
-}
-
 void describeReport(CommandLine& line, ReportOptions& o) {
   line.about(
       "Runs the lab's commands and writes docs/results.md and its charts from what they print.\n"
@@ -360,38 +357,33 @@ void describeReport(CommandLine& line, ReportOptions& o) {
 int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   o.data = dataDir(o.data);
   if (o.out.empty()) o.out = o.data / "docs";
-  prepareOutputFolder(o.out / "results");  // before the runs, which take minutes
   const fs::path results = o.out / "results";
-  std::ostringstream md;
-  md << "# Results\n\n"
-     << "Measured on " << today() << " on " << machine() << ", in one run of `"
+  prepareOutputFolder(results);  // before the runs, which take minutes
+  const std::string data = o.data.string();
+  Report report{o, err};
+  std::ostringstream& md = report.md;
+  md << "# Results\n\nMeasured on " << today() << " on " << machine() << ", in one run of `"
      << (o.quick ? "lab report --quick" : "make charts")
-     << "` (`lab report`, docs/lab.md), so every figure below "
-     << "comes from the same machine, build and load. Regenerate with `make charts`. Times are wall-clock "
-     << "ms per step as each command defines them (docs/lab.md); errors are in millimetres against each "
-        "scene's analytic answers or its converged "
-     << "reference run (docs/lab.md, \"Accuracy\"). A peer's error also holds the difference between its "
-     << "contact model and ours, which no setting of either removes.\n\n";
+     << "` (`lab report`, docs/lab.md), so every figure below comes from the same machine, build and load. "
+        "Regenerate with `make charts`. Times are wall-clock ms per step as each command defines them "
+        "(docs/lab.md); errors are in millimetres against each scene's analytic answers or its converged "
+        "reference run (docs/lab.md, \"Accuracy\"). A peer's error also holds the difference between its "
+        "contact model and ours, which no setting of either removes.\n\n";
   if (o.quick)
     md << "**This is a --quick report: tiny sweeps that check the pipeline, not figures to quote.**\n\n";
 
   md << "## Speed against accuracy\n\n"
-     << "Each chart plots error against cost for every method x iterations x substeps combination (and each "
-     << "peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats on "
-        "both.\n\n";
-  bool failed = false;
+     << "Each chart plots error against cost for every method x iterations x substeps combination "
+        "(and each peer engine at the scene's dt); the line joins the Pareto front, the runs nothing beats "
+        "on both.\n\n";
   for (const SweepScene& s : kSweepScenes) {
-    const fs::path dir = results / s.name;
-    const CommandOutput r = runCommandMain("sweep", sweepArgs(o, s.name, dir), err);
     md << "### " << s.name << "\n\n" << s.why << ".\n\n";
-    if (r.code != 0) {
-      failed = true;
-      md << codeBlockOrText(r) << "\n";
-      continue;
-    }
-    md << "![error against cost, " << s.name << "](results/" << s.name << "/error-vs-cost.png)\n\n"
-       << sweepWords(readCsv(dir / "results.csv").rows) << "\nAll runs: [results.csv](results/" << s.name
-       << "/results.csv).\n\n";
+    report.sweep(s.name, "error against cost, " + std::string(s.name), sweepWords,
+                 report.quickOrFull({s.name, "--out", (results / s.name).string(), "--data", data},
+                                    {"--methods", "gauss-seidel,xpbd", "--iterations", "1,2", "--substeps",
+                                     "1", "--repeat", "1", "--steps", "10"},
+                                    {"--methods", kEveryMethod, "--iterations", "1,2,4,8", "--substeps",
+                                     "1,2,4,8", "--repeat", "3"}));
   }
 
   md << "## Pose tracking\n\n"
@@ -405,130 +397,88 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
         "under all four. The runner starts in the clip's first pose (`pose=\"clip\"`), so the figure is the "
         "tracking and not the turn into the clip.\n\n";
   for (const TrackingScene& t : kTrackingScenes) {
-    const fs::path dir = results / t.folder;
-    const CommandOutput r = runCommandMain("sweep", trackingArgs(o, t, dir), err);
-    failed |= r.code != 0;
     md << "### " << t.scene << "\n\n" << t.what << ".\n\n";
-    if (r.code == 0) {
-      md << "![tracking error against cost, " << t.scene << "](results/" << t.folder
-         << "/error-vs-cost.png)\n\n"
-         << trackingWords(readCsv(dir / "results.csv").rows) << "\nAll runs: [results.csv](results/"
-         << t.folder << "/results.csv).\n\n";
-    } else {
-      md << codeBlockOrText(r) << "\n";
-    }
-    std::vector<std::string> runArgs{t.scene, "--json", "--data", o.data.string()};
-    if (o.quick) runArgs.insert(runArgs.end(), {"--steps", "10"});
-    const CommandOutput run = runCommandMain("run", runArgs, err);
-    failed |= run.code != 0;
-    md << (run.code == 0 ? drivesTable(t.scene, run.out) : codeBlockOrText(run)) << "\n";
+    std::vector<std::string> args{t.scene,      "--error", "tracking-error",
+                                  "--no-peers", "--out",   (results / t.folder).string(),
+                                  "--data",     data};
+    if (t.everyMethod) args.insert(args.end(), {"--methods", kEveryMethod});
+    report.sweep(
+        t.folder, "tracking error against cost, " + std::string(t.scene), trackingWords,
+        report.quickOrFull(args, {"--iterations", "1,2", "--substeps", "1", "--repeat", "1", "--steps", "10"},
+                           {"--iterations", "1,2,4,8", "--substeps", "1,2,4,8", "--dt",
+                            "0.0333333333333333,0.0166666666666667,0.00833333333333333", "--steps", "600"}));
+    report.section("run", report.quickOrFull({t.scene, "--json", "--data", data}, {"--steps", "10"}),
+                   [&](const std::string& json) { return drivesTable(t.scene, json); });
   }
 
-  md << "## Where methods fail\n\n";
-  std::vector<std::string> stabilityArgs{"--out", (results / "stability").string(), "--data",
-                                         o.data.string()};
-  if (o.quick) {
-    for (const char* a :
-         {"--scene", "face-face", "--methods", "gauss-seidel,xpbd", "--iterations", "1", "--substeps", "1"}) {
-      stabilityArgs.emplace_back(a);
-    }
-  }
-  const CommandOutput stability = runCommandMain("stability", stabilityArgs, err);
-  failed |= stability.code != 0;
-  md << "![pass or fail per scene and setting](results/stability/stability-pass.png)\n\n"
-     << "![error figure per scene and setting](results/stability/stability-error.png)\n\n"
-     << codeBlockOrText(stability) << "\n";
-
+  md << "## Where methods fail\n\n"
+     << "![pass or fail per scene and setting](results/stability/stability-pass.png)\n\n"
+     << "![error figure per scene and setting](results/stability/stability-error.png)\n\n";
+  report.section("stability", report.quickOrFull({"--out", (results / "stability").string(), "--data", data},
+                                                 {"--scene", "face-face", "--methods", "gauss-seidel,xpbd",
+                                                  "--iterations", "1", "--substeps", "1"}));
   // The same suite with every box and ragdoll rigid, the model as the map's axis: a rigid body
   // is solved by XPBD whatever the method, so one block of settings.
-  std::vector<std::string> rigidArgs{"--out",     (results / "stability-rigid").string(),
-                                     "--data",    o.data.string(),
-                                     "--models",  "rigid",
-                                     "--methods", "xpbd",
-                                     "--no-peers"};
-  if (o.quick) {
-    for (const char* a : {"--scene", "face-face", "--iterations", "1", "--substeps", "1"})
-      rigidArgs.emplace_back(a);
-  }
-  const CommandOutput rigid = runCommandMain("stability", rigidArgs, err);
-  failed |= rigid.code != 0;
   md << "### The rigid model on the same suite\n\n"
      << "Every box and ragdoll of each scene made rigid (`lab stability --models rigid --methods xpbd "
         "--no-peers`): the chains have no body and run as they are. Set beside the table above, it shows "
         "which model holds each scene at the fewest passes.\n\n"
-     << "![pass or fail per scene and setting, rigid](results/stability-rigid/stability-pass.png)\n\n"
-     << codeBlockOrText(rigid) << "\n";
+     << "![pass or fail per scene and setting, rigid](results/stability-rigid/stability-pass.png)\n\n";
+  report.section("stability",
+                 report.quickOrFull({"--out", (results / "stability-rigid").string(), "--data", data,
+                                     "--models", "rigid", "--methods", "xpbd", "--no-peers"},
+                                    {"--scene", "face-face", "--iterations", "1", "--substeps", "1"}));
 
   md << "## Beside Bullet, ODE and MuJoCo\n\n";
-  const char* compareScenes[] = {"pyramid", "ragdoll", "bullet-ragdolls"};
-  for (const char* scene : compareScenes) {
-    std::vector<std::string> args{scene, "--data", o.data.string()};
-    if (o.quick || std::string(scene) == "bullet-ragdolls") {
-      args.insert(args.end(), {"--steps", o.quick ? "5" : "120"});
-    }
-    const CommandOutput r = runCommandMain("compare", args, err);
-    failed |= r.code != 0;
-    md << "### " << scene << "\n\n" << codeBlockOrText(r) << "\n";
-    if (o.quick) break;
+  // The scenes set beside the peers, each with what the full report adds to its arguments.
+  const std::pair<const char*, std::vector<std::string>> compared[] = {
+      {"pyramid", {}}, {"ragdoll", {}}, {"bullet-ragdolls", {"--steps", "120"}}};
+  for (const auto& [scene, full] : compared) {
+    md << "### " << scene << "\n\n";
+    report.section("compare", report.quickOrFull({scene, "--data", data}, {"--steps", "5"}, full));
+    if (o.quick) break;  // one scene checks the pipeline
   }
   if (!o.quick) {
-    const CommandOutput r =
-        runCommandMain("compare",
-                       {"bullet-ragdolls", "--data", o.data.string(), "--models", "rigid", "--iterations",
-                        "1", "--substeps", "2", "--joint-projection", "on", "--steps", "120"},
-                       err);
-    failed |= r.code != 0;
     md << "### bullet-ragdolls, rigid ragdolls with their joints projected\n\n"
        << "The same pile with every ragdoll rigid at 1 iteration x 2 substeps, its joints closed by a direct "
           "solve after each substep's passes (docs/physics.md, \"Joint projection\"): the joint gap against "
-          "the peers' at a fraction of Bullet's step.\n\n"
-       << codeBlockOrText(r) << "\n";
+          "the peers' at a fraction of Bullet's step.\n\n";
+    report.section("compare", {"bullet-ragdolls", "--data", data, "--models", "rigid", "--iterations", "1",
+                               "--substeps", "2", "--joint-projection", "on", "--steps", "120"});
   }
 
   md << "## Cost against size\n\n"
      << "Capsule ragdolls on a grid, 2 m apart, tipped to fall onto each other, at each size for 1 s at "
         "Bullet's pile's settings (`lab scale`, docs/lab.md): a step whose cost is linear in the number of "
         "bodies draws a flat line.\n\n";
-  std::vector<std::string> scaleArgs{"--out", (results / "scale").string()};
-  if (o.quick) scaleArgs.insert(scaleArgs.end(), {"--sizes", "1,2", "--steps", "5"});
-  const CommandOutput scaled = runCommandMain("scale", scaleArgs, err);
-  failed |= scaled.code != 0;
-  if (scaled.code == 0) {
-    // The table without its last line, which names the files by their paths on this machine.
-    std::string table = scaled.out;
-    if (const std::size_t wrote = table.rfind("wrote "); wrote != std::string::npos) table.erase(wrote);
-    md << "![microseconds per body-step against bodies](results/scale/scale.png)\n\n```\n"
-       << table << "```\n\n";
-  } else {
-    md << codeBlockOrText(scaled) << "\n";
-  }
+  report.section(
+      "scale",
+      report.quickOrFull({"--out", (results / "scale").string()}, {"--sizes", "1,2", "--steps", "5"}),
+      [](const std::string& printed) {
+        return "![microseconds per body-step against bodies](results/scale/scale.png)\n\n" +
+               tableBlock(printed);
+      });
 
   md << "## Error against substep size\n\n"
      << "Each method and model on the scenes with exact answers, at the scene's dt of 1/60 s and 4 "
-        "iterations, "
-        "the substep h halving from dt to dt / 64 (`lab converge`, docs/lab.md): a method of order p draws a "
-        "line of slope p. docs/physics.md, \"Order of accuracy\", says why projection along the stick's "
-        "current direction is first order and SHAKE second.\n\n";
-  std::vector<std::string> convergeArgs{"--out", (results / "converge").string(), "--data", o.data.string()};
-  if (o.quick) convergeArgs.insert(convergeArgs.end(), {"circular-orbit", "--substeps", "1,2"});
-  const CommandOutput converged = runCommandMain("converge", convergeArgs, err);
-  failed |= converged.code != 0;
-  if (converged.code == 0) {
-    std::string tables = converged.out;
-    if (const std::size_t wrote = tables.rfind("wrote "); wrote != std::string::npos) tables.erase(wrote);
-    const std::vector<std::string> shown =
-        o.quick ? std::vector<std::string>{"circular-orbit"} : kConvergeScenes;
-    for (const std::string& scene : shown) {
-      md << "![error against h, " << scene << "](results/converge/converge-" << scene << ".png)\n\n";
-    }
-    md << "```\n" << tables << "```\n\nAll runs: [converge.csv](results/converge/converge.csv).\n\n";
-  } else {
-    md << codeBlockOrText(converged) << "\n";
-  }
+        "iterations, the substep h halving from dt to dt / 64 (`lab converge`, docs/lab.md): a method of "
+        "order p draws a line of slope p. docs/physics.md, \"Order of accuracy\", says why projection along "
+        "the stick's current direction is first order and SHAKE second.\n\n";
+  report.section(
+      "converge",
+      report.quickOrFull({"--out", (results / "converge").string(), "--data", data},
+                         {"circular-orbit", "--substeps", "1,2"}),
+      [&](const std::string& printed) {
+        std::string charts;
+        for (const std::string& scene :
+             o.quick ? std::vector<std::string>{"circular-orbit"} : kConvergeScenes)
+          charts += "![error against h, " + scene + "](results/converge/converge-" + scene + ".png)\n\n";
+        return charts + tableBlock(printed) + "\nAll runs: [converge.csv](results/converge/converge.csv).\n";
+      });
 
   fileio::writeAtomically(o.out / "results.md", md.str());
   out << "wrote " << (o.out / "results.md").string() << " and " << results.string() << "/\n";
-  return failed ? kExitFailure : kExitOk;
+  return report.failed ? kExitFailure : kExitOk;
 }
 
 }  // namespace
