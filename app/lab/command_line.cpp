@@ -148,24 +148,29 @@ bool asksForHelp(const std::vector<std::string>& args) {
                      [](const std::string& a) { return a == "--help" || a == "-h"; });
 }
 
-// What a missing value should have been, when the table does not say.
-const char* needsOf(const OptionSpec& spec, const int*) {
-  return spec.needs != nullptr ? spec.needs : "a whole number";
+// What a missing value should have been, by the option's type, when the table does not say.
+const char* typeNeeds(const OptionSpec&, const int*) {
+  return "a whole number";
 }
-const char* needsOf(const OptionSpec& spec, const double*) {
-  return spec.needs != nullptr ? spec.needs : "a number of seconds";
+const char* typeNeeds(const OptionSpec&, const double*) {
+  return "a number of seconds";
 }
-const char* needsOf(const OptionSpec& spec, const phys::SolverMethod*) {
-  return spec.needs != nullptr ? spec.needs : "a method (gauss-seidel, jacobi, xpbd or shake)";
+const char* typeNeeds(const OptionSpec&, const phys::SolverMethod*) {
+  return "a method (gauss-seidel, jacobi, xpbd or shake)";
 }
-const char* needsOf(const OptionSpec& spec, const phys::BodyModel*) {
-  return spec.needs != nullptr ? spec.needs : "a body model (corners, tetra or rigid)";
+const char* typeNeeds(const OptionSpec&, const phys::BodyModel*) {
+  return "a body model (corners, tetra or rigid)";
 }
-const char* needsOf(const OptionSpec& spec, const bool*) {
-  return spec.needs != nullptr ? spec.needs : "a value (on or off)";
+const char* typeNeeds(const OptionSpec&, const bool*) {
+  return "a value (on or off)";
 }
-const char* needsOf(const OptionSpec& spec, const std::filesystem::path*) {
-  return spec.needs != nullptr ? spec.needs : namesFile(spec) ? "a file name" : "a folder";
+const char* typeNeeds(const OptionSpec& spec, const std::filesystem::path*) {
+  return namesFile(spec) ? "a file name" : "a folder";
+}
+
+template <typename Value>
+std::string needsOf(const OptionSpec& spec) {
+  return spec.needs != nullptr ? spec.needs : typeNeeds(spec, static_cast<const Value*>(nullptr));
 }
 
 template <typename T>
@@ -252,7 +257,7 @@ void CommandLine::option(const OptionSpec& spec, T& into, const std::string& not
   const std::string name = firstName(spec.names);
   if constexpr (kIsList<T>) {
     using Value = typename T::value_type;
-    add(spec, name + " LIST", needsOf(spec, static_cast<const Value*>(nullptr)), note, false,
+    add(spec, name + " LIST", needsOf<Value>(spec), note, false,
         [&spec, append = listAppender(into)](const std::string& text) {
           return readList(text, [&](const std::string& item) {
             Value v{};
@@ -263,7 +268,7 @@ void CommandLine::option(const OptionSpec& spec, T& into, const std::string& not
         });
   } else {
     using Value = typename Target<T>::Value;
-    add(spec, name + " " + spec.value, needsOf(spec, static_cast<const Value*>(nullptr)), note, false,
+    add(spec, name + " " + spec.value, needsOf<Value>(spec), note, false,
         [&spec, &into](const std::string& v) { return read(v, spec, Target<T>::slot(into)); });
   }
 }
@@ -284,8 +289,7 @@ template void CommandLine::option(const OptionSpec&, std::optional<std::filesyst
                                   const std::string&);
 
 void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, const std::string& note) {
-  add(option::kModels, "--models LIST",
-      needsOf(option::kModels, static_cast<const phys::BodyModel*>(nullptr)), note, false,
+  add(option::kModels, "--models LIST", needsOf<phys::BodyModel>(option::kModels), note, false,
       [ragdollModels, append = listAppender(into)](const std::string& text) {
         return readList(text, [&](const std::string& item) {
           const bool known = phys::parseBodyModel(item) || (ragdollModels && phys::parseRagdollModel(item));
