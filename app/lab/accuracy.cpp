@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "bodies.h"
+#include "expect_reader.h"
 #include "numbers.h"
 #include "runner.h"
-#include "stability_criteria.h"
 #include "text.h"
 
 // What "converged" means here. A reference is our own physics run so finely that the settings

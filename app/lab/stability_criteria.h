@@ -3,10 +3,8 @@
 // file (docs/scene-format.md, docs/lab.md "lab stability"). Each criterion measures one figure
 // over a window of simulated time and compares it with a limit; a scene passes when all of its
 // criteria do. Parsing is strict, like the loader's: a bad attribute is a scenes::LoadError
-// naming the file, the <expect>'s line and the attribute; the accuracy answers (accuracy.h) are
-// read by the same ExpectReader and bodySlot.
+// naming the file, the <expect>'s line and the attribute (expect_reader.h).
 #include <cstddef>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,33 +78,3 @@ int runSteps(const std::vector<Criterion>& criteria);
 double errorRatio(const Criterion& criterion, double value);
 
 }  // namespace lab::stability
-
-namespace lab {
-
-/// The place in bodyPositions() (bodies.h) of the body the scene names `name`; none if it names
-/// no box or loose particle.
-std::optional<std::size_t> bodySlot(const scenes::Scene& scene, const std::string& name);
-
-/// Reads one <expect>'s attributes the way the scene loader reads an element's, for the pass
-/// criteria and the accuracy answers (accuracy.h) alike: every attribute asked for is
-/// remembered, so anything left over is named as unknown with the known ones listed. Errors
-/// are scenes::LoadErrors naming the file, the <expect>'s line and the attribute.
-class ExpectReader {
- public:
-  /// `element` opens every message: "<expect>", "<expect kind=\"position\">".
-  ExpectReader(const scenes::Expectation& x, std::string file, std::string element);
-
-  [[noreturn]] void fail(const std::string& attribute, const std::string& message) const;
-  const std::string* find(const std::string& name);
-  /// Fails "is required", with what it should be in brackets unless `what` is empty.
-  const std::string& required(const std::string& name, const std::string& what = "");
-  /// Fails on an attribute not asked for ("unknown attribute" + `scope`), or given twice.
-  void rejectUnknown(const std::string& scope = "") const;
-
- private:
-  const scenes::Expectation& x_;
-  std::string file_, element_;
-  std::vector<std::string> asked_;
-};
-
-}  // namespace lab

@@ -16,12 +16,12 @@
 #include "bodies.h"
 #include "commands.h"
 #include "csv.h"
+#include "expect_reader.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "lab_test_util.h"
 #include "peer.h"
 #include "scenes/scene.h"
-#include "stability_criteria.h"
 
 namespace {
 
