@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -186,9 +185,9 @@ phys::SolverSettings referenceSettings(const phys::World& world, double dt) {
   return s;
 }
 
-AccuracyTarget accuracyTarget(const scenes::Scene& scene, const scenes::LoadOptions&, double dt, int steps) {
-  // The options were applied when `scene` was loaded; the reference steps a copy of that world,
-  // so it has the same models without loading the file again.
+AccuracyTarget accuracyTarget(const scenes::Scene& scene, double dt, int steps) {
+  // The reference steps a copy of the loaded world, so it has the run's models without loading
+  // the file again.
   std::vector<PositionExpect> expects;
   for (const scenes::Expectation& e : scene.expectations) {
     const std::string* kind = e.find("kind");

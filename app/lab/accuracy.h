@@ -49,12 +49,11 @@ int stepsFor(const AccuracyTarget& target, int steps);
 /// The largest of the target's uncertainties (0 when it has none). unit: m
 double maxUncertainty(const AccuracyTarget& target);
 
-/// The target for `scene` (freshly loaded with `options`) stepped `steps` times at `dt`: its
-/// analytic answers if it has any (then the checkpoints are their times, and `steps` is only a
-/// minimum), else a reference run. Throws scenes::LoadError naming file, line and attribute for
+/// The target for `scene` (freshly loaded, with the run's model) stepped `steps` times at `dt`:
+/// its analytic answers if it has any (then the checkpoints are their times, and `steps` is only
+/// a minimum), else a reference run. Throws scenes::LoadError naming file, line and attribute for
 /// a malformed <expect kind="position">.
-AccuracyTarget accuracyTarget(const scenes::Scene& scene, const scenes::LoadOptions& options, double dt,
-                              int steps);
+AccuracyTarget accuracyTarget(const scenes::Scene& scene, double dt, int steps);
 
 /// The run's error: the largest distance (m) between a body's position at a checkpoint and the
 /// target's, over every body and checkpoint the target says something of. `positions` holds,

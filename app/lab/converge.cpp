@@ -173,11 +173,10 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   FreeBodies freeRigid, freeParticle;  // the references for the rigid model and the particle ones
   AccuracyTarget t;  // analytic: the answers, the same whatever the model (bodies.h's order)
   if (analytic) {
-    t = accuracyTarget(own, {}, dt, 1);
+    t = accuracyTarget(own, dt, 1);
     checkpoints = t.checkpoints;
     target.kind = "analytic";
     target.description = t.description;
-    target.uncertainty = 0.0;
   } else {
     if (const std::string why = notFreeBodies(own.world); !why.empty()) {
       throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " +
@@ -195,7 +194,6 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
                          " s, every corner, at t = " + formatNumber(times.front(), 4) + " to " +
                          formatNumber(times.back(), 4) + " s; the reference's own uncertainty " +
                          formatNumber(uncertainty, 2) + " m";
-    target.uncertainty = uncertainty;
   }
 
   std::vector<ConvergeRow> rows;

@@ -60,9 +60,8 @@ struct ConvergeOptions {
 
 /// What one scene is measured against, in one line for the table's heading.
 struct ConvergeTarget {
-  std::string kind;          ///< "analytic" or "free body"
-  std::string description;   ///< what and when
-  double uncertainty = 0.0;  ///< unit: m; how far the answer itself may be off
+  std::string kind;         ///< "analytic" or "free body"
+  std::string description;  ///< what and when
 };
 
 /// Every run of one scene file under the options (its own dt), and what they were compared

@@ -22,10 +22,4 @@ void describeRun(CommandLine& line, RunOptions& o) {
   line.option(option::kData, o.dataDir, "");
 }
 
-std::string parseRun(const std::vector<std::string>& args, RunOptions& o) {
-  CommandLine line("run");
-  describeRun(line, o);
-  return line.parse(args);
-}
-
 }  // namespace lab

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "command_line.h"
 #include "physics/body.h"
@@ -38,8 +37,6 @@ struct RunOptions {
 
 /// `lab run`'s options, into `o`.
 void describeRun(CommandLine& line, RunOptions& o);
-/// The arguments after "run" into `o`; returns the error, or "" when they are good.
-std::string parseRun(const std::vector<std::string>& args, RunOptions& o);
 
 /// `lab help`: every command and what it does.
 std::string usage();

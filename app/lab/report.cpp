@@ -5,10 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
-#include <stdexcept>
 #include <string_view>
-#include <system_error>
 
 #include "csv.h"
 #include "json.h"

@@ -2,7 +2,6 @@
 // The three ways `lab run` reports: a summary for people, one JSON object for scripts, and a
 // CSV of the named bodies' final poses.
 #include <cstdint>
-#include <filesystem>
 #include <span>
 #include <string>
 

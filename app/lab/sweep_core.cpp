@@ -6,12 +6,10 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <utility>
 
-#include <sstream>
-
 #include "peers/pose_measures.h"
-#include "run.h"
 #include "runner.h"
 #include "text.h"
 
@@ -271,7 +269,7 @@ const AccuracyTarget& TargetCache::get(const std::filesystem::path& file, const 
   auto it = targets_.find(key);
   if (it == targets_.end()) {
     const scenes::Scene scene = scenes::loadSceneFile(file, setting.model.options);
-    it = targets_.emplace(key, accuracyTarget(scene, setting.model.options, setting.dt, steps)).first;
+    it = targets_.emplace(key, accuracyTarget(scene, setting.dt, steps)).first;
   }
   return it->second;
 }

@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "command_line.h"
-#include "lab.h"
 #include "peer.h"
 #include "peers/peer_scene.h"
 #include "run.h"

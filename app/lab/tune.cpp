@@ -4,21 +4,19 @@
 // "lab tune", documents the search and the output.
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <optional>
 #include <ostream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "accuracy.h"
+#include "command_line.h"
 #include "commands.h"
 #include "lab.h"
 #include "numbers.h"
-#include "options.h"
 #include "run_metrics.h"
 #include "sweep_core.h"
 

@@ -16,10 +16,12 @@ namespace {
 
 using Args = std::vector<std::string>;
 
+// The arguments after "run", parsed by lab run's own command line.
 lab::RunOptions parsed(const Args& args) {
   lab::RunOptions o;
-  const std::string error = lab::parseRun(args, o);
-  EXPECT_EQ(error, "") << args.size();
+  lab::CommandLine line("run");
+  lab::describeRun(line, o);
+  EXPECT_EQ(line.parse(args), "") << (args.empty() ? "" : args.back());
   return o;
 }
 
@@ -77,10 +79,7 @@ TEST(LabOptions, EveryMethodName) {
 }
 
 TEST(LabOptions, DtLimitsAndForms) {
-  for (const char* good : {"1", "1e-3", "0.0166666666666667", "1.0", "1e-06"}) {
-    lab::RunOptions o;
-    EXPECT_EQ(lab::parseRun({"s", "--dt", good}, o), "") << good;
-  }
+  for (const char* good : {"1", "1e-3", "0.0166666666666667", "1.0", "1e-06"}) parsed({"s", "--dt", good});
 }
 
 // A LIST drops the command's defaults at its first value, a second one adds to the first, and

@@ -408,7 +408,7 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
   for (const Case& c : cases) {
     const scenes::Scene scene = scenes::loadSceneText(sceneWithExpect(c.expect), "e.xml");
     try {
-      (void)lab::accuracyTarget(scene, {}, 1.0 / 60.0, 60);
+      (void)lab::accuracyTarget(scene, 1.0 / 60.0, 60);
       ADD_FAILURE() << "no error for " << c.expect;
     } catch (const scenes::LoadError& e) {
       EXPECT_EQ(e.line(), 4) << e.what();
@@ -420,7 +420,7 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
   // Other kinds belong to other commands and are left alone.
   const scenes::Scene other =
       scenes::loadSceneText(sceneWithExpect(R"(<expect kind="pass" max-speed="1"/>)"), "e.xml");
-  EXPECT_EQ(lab::accuracyTarget(other, {}, 1.0 / 60.0, 8).kind, "reference");
+  EXPECT_EQ(lab::accuracyTarget(other, 1.0 / 60.0, 8).kind, "reference");
 }
 
 TEST(Accuracy, SweepReportsABadExpectationLikeTheLoader) {
@@ -436,7 +436,7 @@ TEST(Accuracy, SweepReportsABadExpectationLikeTheLoader) {
 TEST(Accuracy, AnalyticTargetHoldsTheGivenPositionsAtTheirSteps) {
   const scenes::Scene scene = scenes::loadSceneText(
       sceneWithExpect(R"(<expect kind="position" body="p" at="0.5" pos="1 2 3"/>)"), "e.xml");
-  const lab::AccuracyTarget t = lab::accuracyTarget(scene, {}, 0.01, 10);
+  const lab::AccuracyTarget t = lab::accuracyTarget(scene, 0.01, 10);
   EXPECT_EQ(t.kind, "analytic");
   ASSERT_EQ(t.checkpoints, std::vector<int>{50});
   EXPECT_EQ(lab::stepsFor(t, 10), 50);  // the run goes on to the answer's time
@@ -485,7 +485,7 @@ TEST(Accuracy, ReferenceIsShakeUnlessTheSceneAsksForCompliance) {
   EXPECT_EQ(lab::referenceSettings(soft.world, 0.02).method, phys::SolverMethod::Xpbd);
 
   // Four checkpoints spread over the run, the last step among them, and an error bar.
-  const lab::AccuracyTarget t = lab::accuracyTarget(rigid, {}, 1.0 / 60.0, 30);
+  const lab::AccuracyTarget t = lab::accuracyTarget(rigid, 1.0 / 60.0, 30);
   EXPECT_EQ(t.kind, "reference");
   EXPECT_EQ(t.checkpoints, (std::vector<int>{8, 15, 23, 30}));
   ASSERT_EQ(t.uncertainty.size(), 4u);
