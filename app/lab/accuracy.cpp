@@ -114,20 +114,6 @@ bool hasCompliance(const phys::World& world) {
                      [](const phys::Stick& s) { return s.compliance > 0.0; });
 }
 
-}  // namespace
-
-std::vector<int> spreadCheckpoints(int steps) {
-  std::vector<int> out;
-  for (int k = 1; k <= kReferenceCheckpoints; ++k) {
-    const int step =
-        std::max(1, static_cast<int>(std::lround(static_cast<double>(steps) * k / kReferenceCheckpoints)));
-    if (out.empty() || step > out.back()) out.push_back(step);
-  }
-  return out;
-}
-
-namespace {
-
 // A copy of the loaded world (a scene loaded from text has no file to load again), stepped
 // with `settings`, recorded after each checkpoint step.
 std::vector<std::vector<phys::Vec3>> recordRun(const phys::World& loaded,
@@ -175,6 +161,16 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
 }
 
 }  // namespace
+
+std::vector<int> spreadCheckpoints(int steps) {
+  std::vector<int> out;
+  for (int k = 1; k <= kReferenceCheckpoints; ++k) {
+    const int step =
+        std::max(1, static_cast<int>(std::lround(static_cast<double>(steps) * k / kReferenceCheckpoints)));
+    if (out.empty() || step > out.back()) out.push_back(step);
+  }
+  return out;
+}
 
 phys::SolverSettings referenceSettings(const phys::World& world, double dt) {
   phys::SolverSettings s = world.solverSettings();
