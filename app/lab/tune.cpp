@@ -29,6 +29,17 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// true cheapest.
 constexpr int kLadder[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
 constexpr int kLadderSize = static_cast<int>(sizeof kLadder / sizeof kLadder[0]);
+
+// The ladder as the help and the output write it: "1,2,3,4,6,8,12,16,24,32".
+std::string ladderText() {
+  std::string out;
+  for (int n : kLadder) {
+    if (!out.empty()) out += ',';  // piecewise: "," + std::string trips GCC 12's false -Wrestrict
+    out += std::to_string(n);
+  }
+  return out;
+}
+
 /// A substep count whose 1-iteration run already costs this much more than the cheapest
 /// qualifying setting so far ends the search of its method: more substeps only cost more. The
 /// margin absorbs the rough timings' noise (one run each).
@@ -108,10 +119,11 @@ std::string tuneAbout() {
     metrics += line + (*m.unit == '\0' ? "" : std::string(m.unit) + ", ") + m.help + " after any step\n";
   }
   metrics += "  drift          J, |energy after the last step - energy before the first|\n";
+  const std::string counts = "substeps and iterations over " + ladderText() + ", at the\nscene's dt.";
   return "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n" + metrics +
          "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
-         "(xpbd alone for rigid), and substeps and iterations over 1,2,3,4,6,8,12,16,24,32, at the\n"
-         "scene's dt. A setting whose run froze anything never qualifies.";
+         "(xpbd alone for rigid), and " +
+         counts + " A setting whose run froze anything never qualifies.";
 }
 
 void describeTune(CommandLine& line, TuneOptions& o) {
@@ -343,7 +355,7 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   for (const ModelChoice& m : choices) modelNames += (modelNames.empty() ? "" : ", ") + m.label;
   out << "searched    " << search.evaluations()
       << " settings: " << (modelNames.empty() ? std::string() : "models " + modelNames + "; ")
-      << "4 methods (rigid: xpbd); substeps and iterations from 1,2,3,4,6,8,12,16,24,32\n";
+      << "4 methods (rigid: xpbd); substeps and iterations from " << ladderText() << "\n";
   const bool withError = search.needsError();
   if (withError && search.target(sceneOwn).kind == "reference") {
     const double u = maxUncertainty(search.target(sceneOwn));
