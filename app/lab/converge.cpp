@@ -18,9 +18,7 @@
 #include "bodies.h"
 #include "commands.h"
 #include "csv.h"
-#include "fileio/files.h"
 #include "free_body.h"
-#include "gnuplot.h"
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
@@ -375,11 +373,11 @@ namespace {
 int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) {
   if (o.scenes.empty()) o.scenes = kConvergeScenes;
   const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(o.dataDir));
+  if (o.out) prepareOutputFolder(*o.out);  // before the runs
+  std::vector<ConvergeRow> all;
+  std::vector<Chart> charts;
   std::string current;
   try {
-    if (o.out) fileio::prepareFolder(*o.out);  // before the runs
-    std::vector<ConvergeRow> all;
-    std::vector<Chart> charts;
     for (const std::string& name : o.scenes) {
       current = name;
       ConvergeTarget target;
@@ -390,38 +388,29 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
       all.insert(all.end(), rows.begin(), rows.end());
       charts.push_back(convergeChart(rows));
     }
-    current.clear();
-    if (!o.out) return kExitOk;
-    const std::filesystem::path dir = *o.out;
-    fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
-    fileio::writeAtomically(dir / "converge.csv", convergeCsv(all));
-    const bool haveGnuplot = !findGnuplot().empty();
-    std::string problems;
-    out << "wrote       " << (dir / "converge.csv").string();
-    for (const Chart& chart : charts) {
-      const std::filesystem::path script = dir / (chart.output + ".gp");
-      fileio::writeAtomically(script, gnuplotScript(chart));
-      const std::string problem = hasPoints(chart) ? runGnuplot(script, dir) : "no run has a finite error";
-      out << ", " << script.string();
-      if (problem.empty()) {
-        out << ", " << (dir / (chart.output + ".png")).string();
-      } else {
-        problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
-      }
-    }
-    out << "\n";
-    err << problems;
-    return problems.empty() || !haveGnuplot ? kExitOk : kExitFailure;
-  } catch (const fileio::FileError& e) {
-    err << "lab: --out: " << e.what() << "\n";
-  } catch (const scenes::LoadError& e) {
-    err << e.what() << "\n";  // "file:line: ..."
+  } catch (const scenes::LoadError&) {
+    throw;  // commandMain says it: "file:line: ..."
   } catch (const std::invalid_argument& e) {
     err << "lab: converge: " << e.what() << "\n";
+    return kExitFailure;
   } catch (const std::exception& e) {
     err << "lab: converge: " << current << ": " << e.what() << "\n";
+    return kExitFailure;
   }
-  return kExitFailure;
+  if (!o.out) return kExitOk;
+  OutputFolder files(*o.out);
+  files.write("converge.csv", convergeCsv(all));
+  std::string problems;
+  for (const Chart& chart : charts) {
+    const std::string problem = files.draw(chart.output + ".gp", chart, "no run has a finite error");
+    if (problem.empty())
+      files.list(chart.output + ".png");
+    else
+      problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
+  }
+  out << files.wroteLine();
+  err << problems;
+  return files.failed() ? kExitFailure : kExitOk;
 }
 
 }  // namespace
