@@ -3,7 +3,6 @@
 #include "command_line.h"
 #include "fileio/files.h"
 #include "gnuplot.h"
-#include "text.h"
 
 #include <cmath>
 #include <cstdio>
@@ -134,10 +133,7 @@ std::string gnuplotScript(const Chart& chart) {
 
 OutputFolder::OutputFolder(std::filesystem::path folder, bool sayOut)
     : folder_(std::move(folder)), sayOut_(sayOut) {
-  if (sayOut_)
-    prepareOutputFolder(folder_);
-  else
-    fileio::prepareFolder(folder_);
+  sayOut_ ? prepareOutputFolder(folder_) : fileio::prepareFolder(folder_);
 }
 
 void OutputFolder::write(const std::string& name, std::string_view content) {
@@ -155,10 +151,6 @@ std::string OutputFolder::draw(const std::string& name, const Chart& chart, cons
   const std::string problem = hasPoints(chart) ? runGnuplot(folder_ / name, folder_) : noPoints;
   failed_ = failed_ || (!problem.empty() && !findGnuplot().empty());
   return problem;
-}
-
-std::string OutputFolder::wroteLine() const {
-  return "wrote       " + join(files_, ", ") + "\n";
 }
 
 }  // namespace lab

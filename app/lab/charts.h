@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "text.h"
+
 namespace lab {
 
 struct ChartPoint {
@@ -64,7 +66,7 @@ class OutputFolder {
   std::string draw(const std::string& name, const Chart& chart, const std::string& noPoints);
   /// A chart was not drawn though gnuplot is there (without it the script waits to be run).
   bool failed() const { return failed_; }
-  std::string wroteLine() const;  ///< "wrote       FILE, FILE\n"
+  std::string wroteLine() const { return "wrote       " + join(files_, ", ") + "\n"; }
 
  private:
   std::filesystem::path folder_;
