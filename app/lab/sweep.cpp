@@ -171,8 +171,8 @@ std::string csvNumber(double v) {
 
 std::string csvHeader() {
   std::string header =
-      "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
-      "uncertainty,";
+      "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,"
+      "error,ref_uncertainty,";
   for (const RunMetric& m : kRunMetrics) header += std::string(m.column) + ",";
   return header + "error_first,pose_penetration,pose_joint_gap,energy_drift,frozen,pareto,note\n";
 }
@@ -207,7 +207,6 @@ std::string pointLabel(const Row& r) {
   return ixs(*r.iterations, *r.substeps);
 }
 
-// "shake 1x8", or the peer's name.
 // "shake 1x8" (with its model and dt when the sweep has several), or the peer's name.
 std::string rowName(const Row& r, const Plan& plan) {
   std::string name = r.peer ? r.method : r.method + " " + pointLabel(r);
