@@ -205,12 +205,8 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
       if (rigid && method != o.methods.front()) continue;
       const phys::SolverMethod used = rigid ? phys::SolverMethod::Xpbd : method;
       for (const int substeps : o.substeps) {
-        Setting setting;
-        setting.model = model;
-        setting.method = used;
-        setting.iterations = o.iterations;
-        setting.substeps = substeps;
-        setting.dt = dt;
+        const Setting setting{
+            .model = model, .method = used, .iterations = o.iterations, .substeps = substeps, .dt = dt};
         scenes::Scene scene = loadSetting(file, setting);
         phys::World& world = scene.world;
         double error = 0.0;
@@ -238,14 +234,12 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
         const std::vector<std::vector<phys::Vec3>> positions = runSteps(world, spec).positions;
         if (analytic) error = accuracyError(t, positions);
         if (world.metrics().frozen > 0) error = kInf;  // a frozen body's position says nothing
-        ConvergeRow row;
-        row.scene = own.name;
-        row.method = std::string(phys::toString(used));
-        row.model = model.label.empty() ? kParticleModel : model.label;
-        row.substeps = substeps;
-        row.h = dt / substeps;
-        row.error = error;
-        rows.push_back(row);
+        rows.push_back({.scene = own.name,
+                        .method = std::string(phys::toString(used)),
+                        .model = model.label.empty() ? kParticleModel : model.label,
+                        .substeps = substeps,
+                        .h = dt / substeps,
+                        .error = error});
       }
     }
   }

@@ -134,15 +134,14 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
   for (const int n : sizes) {
     scenes::Scene scene = scenes::loadSceneText(scaleSceneXml(kind, n), std::string(toString(kind)) + ".xml");
     const RunResult r = runScene(scene, options, progress);
-    ScaleRow row;
-    row.scene = std::string(toString(kind));
-    row.n = n;
-    row.bodies = r.bodies;
-    row.solver = r.solver;
-    row.msPerStep = r.medianStepMs;
-    row.usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0;
-    row.maxJointGap = r.worst[runMetricIndex("joint-error")];
-    rows.push_back(row);
+    rows.push_back(
+        {.scene = std::string(toString(kind)),
+         .n = n,
+         .bodies = r.bodies,
+         .solver = r.solver,
+         .msPerStep = r.medianStepMs,
+         .usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0,
+         .maxJointGap = r.worst[runMetricIndex("joint-error")]});
   }
   return rows;
 }
