@@ -351,10 +351,9 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
   chart.guide = kConvergeFloor;
   chart.guideTitle = "floor: left out of the fit";
   for (const std::vector<ConvergeRow>& line : convergeLines(rows)) {
-    ChartSeries series;
-    series.title = line.front().method + " " + line.front().model + ": order " + orderText(line);
-    series.line = true;
-    series.markers = true;
+    ChartSeries series{.title = line.front().method + " " + line.front().model + ": order " + orderText(line),
+                       .line = true,
+                       .markers = true};
     for (const ConvergeRow& r : line) series.points.push_back({r.h, r.error, ""});
     chart.series.push_back(series);
   }

@@ -202,10 +202,7 @@ Chart scaleChart(const std::vector<ScaleRow>& rows) {
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
   Chart chart = logChart("Cost per body against size: " + scene, "bodies", "microseconds per body-step",
                          false, "scale");
-  ChartSeries series;
-  series.title = scene;
-  series.line = true;
-  series.labels = true;
+  ChartSeries series{.title = scene, .line = true, .labels = true};
   for (const ScaleRow& r : rows) {
     series.points.push_back({static_cast<double>(r.bodies), r.usPerBodyStep, "n=" + std::to_string(r.n)});
   }

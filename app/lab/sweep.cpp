@@ -253,16 +253,12 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
   };
   for (const Row& r : rows) addOnce(order, seriesName(r));
   // The front first, so the points are drawn over its line.
-  ChartSeries front;
-  front.title = "Pareto front";
-  front.line = true;
-  front.labels = true;
+  ChartSeries front{.title = "Pareto front", .line = true, .labels = true};
   for (const Row& r : frontByCost(rows))
     front.points.push_back({cost(r, perStep), shownError(r, measure), pointLabel(r)});
   c.series.push_back(front);
   for (const std::string& name : order) {
-    ChartSeries s;
-    s.title = name;
+    ChartSeries s{.title = name};
     for (const Row& r : rows) {
       if (seriesName(r) == name && charted(r, measure))
         s.points.push_back({cost(r, perStep), shownError(r, measure), pointLabel(r)});
