@@ -1,5 +1,7 @@
 #include "charts.h"
 
+#include "command_line.h"
+#include "fileio/files.h"
 #include "gnuplot.h"
 
 #include <cmath>
@@ -127,6 +129,28 @@ std::string gnuplotScript(const Chart& chart) {
   out += "replot\n";
   out += "unset output\n";
   return out;
+}
+
+OutputFolder::OutputFolder(std::filesystem::path folder, bool sayOut)
+    : folder_(std::move(folder)), sayOut_(sayOut) {
+  sayOut_ ? prepareOutputFolder(folder_) : fileio::prepareFolder(folder_);
+}
+
+void OutputFolder::write(const std::string& name, std::string_view content) {
+  try {
+    fileio::writeAtomically(folder_ / name, content);
+  } catch (const fileio::FileError& e) {
+    if (!sayOut_) throw;
+    throw CommandFailure(std::string("--out: ") + e.what());
+  }
+  list(name);
+}
+
+std::string OutputFolder::draw(const std::string& name, const Chart& chart, const std::string& noPoints) {
+  write(name, gnuplotScript(chart));
+  const std::string problem = hasPoints(chart) ? runGnuplot(folder_ / name, folder_) : noPoints;
+  failed_ = failed_ || (!problem.empty() && !findGnuplot().empty());
+  return problem;
 }
 
 }  // namespace lab

@@ -2,9 +2,13 @@
 // Scatter charts as gnuplot scripts (gnuplot.h runs them). A script carries its data inline
 // (gnuplot's datablocks), so the one file redraws the chart anywhere, and writes the chart
 // twice: a PNG to look at and an SVG to put in documents.
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "text.h"
 
 namespace lab {
 
@@ -47,5 +51,28 @@ std::string gnuplotScript(const Chart& chart);
 
 /// Whether the chart has any point to draw (gnuplot fails on a chart without one).
 bool hasPoints(const Chart& chart);
+
+/// A command's --out folder, written at the end of its runs (the one frame of sweep, scale,
+/// converge and stability, which word their own messages): files whole, charts drawn, and the
+/// list of them for the "wrote" line. A file that cannot be written throws CommandFailure
+/// "--out: <why>", or with `sayOut` false the FileError itself.
+class OutputFolder {
+ public:
+  /// Prepares the folder again: it may have gone while the runs ran.
+  explicit OutputFolder(std::filesystem::path folder, bool sayOut = true);
+  void write(const std::string& name, std::string_view content);  ///< FOLDER/NAME, listed
+  void list(const std::string& name) { files_.push_back((folder_ / name).string()); }
+  /// Writes the chart's script NAME and runs gnuplot: "" when drawn, else why not (`noPoints`).
+  std::string draw(const std::string& name, const Chart& chart, const std::string& noPoints);
+  /// A chart was not drawn though gnuplot is there (without it the script waits to be run).
+  bool failed() const { return failed_; }
+  std::string wroteLine() const { return "wrote       " + join(files_, ", ") + "\n"; }
+
+ private:
+  std::filesystem::path folder_;
+  bool sayOut_;
+  std::vector<std::string> files_;
+  bool failed_ = false;
+};
 
 }  // namespace lab

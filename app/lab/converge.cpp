@@ -18,9 +18,7 @@
 #include "bodies.h"
 #include "commands.h"
 #include "csv.h"
-#include "fileio/files.h"
 #include "free_body.h"
-#include "gnuplot.h"
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
@@ -205,12 +203,8 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
       if (rigid && method != o.methods.front()) continue;
       const phys::SolverMethod used = rigid ? phys::SolverMethod::Xpbd : method;
       for (const int substeps : o.substeps) {
-        Setting setting;
-        setting.model = model;
-        setting.method = used;
-        setting.iterations = o.iterations;
-        setting.substeps = substeps;
-        setting.dt = dt;
+        const Setting setting{
+            .model = model, .method = used, .iterations = o.iterations, .substeps = substeps, .dt = dt};
         scenes::Scene scene = loadSetting(file, setting);
         phys::World& world = scene.world;
         double error = 0.0;
@@ -238,14 +232,12 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
         const std::vector<std::vector<phys::Vec3>> positions = runSteps(world, spec).positions;
         if (analytic) error = accuracyError(t, positions);
         if (world.metrics().frozen > 0) error = kInf;  // a frozen body's position says nothing
-        ConvergeRow row;
-        row.scene = own.name;
-        row.method = std::string(phys::toString(used));
-        row.model = model.label.empty() ? kParticleModel : model.label;
-        row.substeps = substeps;
-        row.h = dt / substeps;
-        row.error = error;
-        rows.push_back(row);
+        rows.push_back({.scene = own.name,
+                        .method = std::string(phys::toString(used)),
+                        .model = model.label.empty() ? kParticleModel : model.label,
+                        .substeps = substeps,
+                        .h = dt / substeps,
+                        .error = error});
       }
     }
   }
@@ -357,10 +349,9 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
   chart.guide = kConvergeFloor;
   chart.guideTitle = "floor: left out of the fit";
   for (const std::vector<ConvergeRow>& line : convergeLines(rows)) {
-    ChartSeries series;
-    series.title = line.front().method + " " + line.front().model + ": order " + orderText(line);
-    series.line = true;
-    series.markers = true;
+    ChartSeries series{.title = line.front().method + " " + line.front().model + ": order " + orderText(line),
+                       .line = true,
+                       .markers = true};
     for (const ConvergeRow& r : line) series.points.push_back({r.h, r.error, ""});
     chart.series.push_back(series);
   }
@@ -373,11 +364,11 @@ namespace {
 int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) {
   if (o.scenes.empty()) o.scenes = kConvergeScenes;
   const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(o.dataDir));
+  if (o.out) prepareOutputFolder(*o.out);  // before the runs
+  std::vector<ConvergeRow> all;
+  std::vector<Chart> charts;
   std::string current;
   try {
-    if (o.out) fileio::prepareFolder(*o.out);  // before the runs
-    std::vector<ConvergeRow> all;
-    std::vector<Chart> charts;
     for (const std::string& name : o.scenes) {
       current = name;
       ConvergeTarget target;
@@ -388,38 +379,29 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
       all.insert(all.end(), rows.begin(), rows.end());
       charts.push_back(convergeChart(rows));
     }
-    current.clear();
-    if (!o.out) return kExitOk;
-    const std::filesystem::path dir = *o.out;
-    fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
-    fileio::writeAtomically(dir / "converge.csv", convergeCsv(all));
-    const bool haveGnuplot = !findGnuplot().empty();
-    std::string problems;
-    out << "wrote       " << (dir / "converge.csv").string();
-    for (const Chart& chart : charts) {
-      const std::filesystem::path script = dir / (chart.output + ".gp");
-      fileio::writeAtomically(script, gnuplotScript(chart));
-      const std::string problem = hasPoints(chart) ? runGnuplot(script, dir) : "no run has a finite error";
-      out << ", " << script.string();
-      if (problem.empty()) {
-        out << ", " << (dir / (chart.output + ".png")).string();
-      } else {
-        problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
-      }
-    }
-    out << "\n";
-    err << problems;
-    return problems.empty() || !haveGnuplot ? kExitOk : kExitFailure;
-  } catch (const fileio::FileError& e) {
-    err << "lab: --out: " << e.what() << "\n";
-  } catch (const scenes::LoadError& e) {
-    err << e.what() << "\n";  // "file:line: ..."
+  } catch (const scenes::LoadError&) {
+    throw;  // commandMain says it: "file:line: ..."
   } catch (const std::invalid_argument& e) {
     err << "lab: converge: " << e.what() << "\n";
+    return kExitFailure;
   } catch (const std::exception& e) {
     err << "lab: converge: " << current << ": " << e.what() << "\n";
+    return kExitFailure;
   }
-  return kExitFailure;
+  if (!o.out) return kExitOk;
+  OutputFolder files(*o.out);
+  files.write("converge.csv", convergeCsv(all));
+  std::string problems;
+  for (const Chart& chart : charts) {
+    const std::string problem = files.draw(chart.output + ".gp", chart, "no run has a finite error");
+    if (problem.empty())
+      files.list(chart.output + ".png");
+    else
+      problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
+  }
+  out << files.wroteLine();
+  err << problems;
+  return files.failed() ? kExitFailure : kExitOk;
 }
 
 }  // namespace

@@ -14,8 +14,6 @@
 #include "charts.h"
 #include "commands.h"
 #include "csv.h"
-#include "fileio/files.h"
-#include "gnuplot.h"
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
@@ -136,15 +134,14 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
   for (const int n : sizes) {
     scenes::Scene scene = scenes::loadSceneText(scaleSceneXml(kind, n), std::string(toString(kind)) + ".xml");
     const RunResult r = runScene(scene, options, progress);
-    ScaleRow row;
-    row.scene = std::string(toString(kind));
-    row.n = n;
-    row.bodies = r.bodies;
-    row.solver = r.solver;
-    row.msPerStep = r.medianStepMs;
-    row.usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0;
-    row.maxJointGap = r.worst[runMetricIndex("joint-error")];
-    rows.push_back(row);
+    rows.push_back(
+        {.scene = std::string(toString(kind)),
+         .n = n,
+         .bodies = r.bodies,
+         .solver = r.solver,
+         .msPerStep = r.medianStepMs,
+         .usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0,
+         .maxJointGap = r.worst[runMetricIndex("joint-error")]});
   }
   return rows;
 }
@@ -205,10 +202,7 @@ Chart scaleChart(const std::vector<ScaleRow>& rows) {
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
   Chart chart = logChart("Cost per body against size: " + scene, "bodies", "microseconds per body-step",
                          false, "scale");
-  ChartSeries series;
-  series.title = scene;
-  series.line = true;
-  series.labels = true;
+  ChartSeries series{.title = scene, .line = true, .labels = true};
   for (const ScaleRow& r : rows) {
     series.points.push_back({static_cast<double>(r.bodies), r.usPerBodyStep, "n=" + std::to_string(r.n)});
   }
@@ -222,45 +216,33 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
     o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
                                            : std::vector<int>{1, 4, 16, 64, 256, 1024};
   }
+  if (o.out) prepareOutputFolder(*o.out);  // before the runs, which can take minutes
+  if (o.scenes) {
+    // The generated scenes as files, so that `lab run` can show one size's stages.
+    OutputFolder scenes(*o.scenes);
+    for (const int n : o.sizes)
+      scenes.write(std::string(toString(o.kind)) + "-" + std::to_string(n) + ".xml",
+                   scaleSceneXml(o.kind, n));
+  }
+  std::vector<ScaleRow> rows;
   try {
-    if (o.out) fileio::prepareFolder(*o.out);  // before the runs, which can take minutes
-    if (o.scenes) {
-      // The generated scenes as files, so that `lab run` can show one size's stages.
-      fileio::prepareFolder(*o.scenes);
-      for (const int n : o.sizes) {
-        fileio::writeAtomically(
-            *o.scenes / (std::string(toString(o.kind)) + "-" + std::to_string(n) + ".xml"),
-            scaleSceneXml(o.kind, n));
-      }
-    }
-    const std::vector<ScaleRow> rows = runScale(o.kind, o.sizes, o.run, &err);
-    out << (o.json ? scaleJson(rows) : scaleTable(rows));
-    if (!o.out) return kExitOk;
-    const std::filesystem::path dir = *o.out;
-    fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
-    fileio::writeAtomically(dir / "scale.csv", scaleCsv(rows));
-    const Chart chart = scaleChart(rows);
-    fileio::writeAtomically(dir / "scale.gp", gnuplotScript(chart));
-    const bool haveGnuplot = !findGnuplot().empty();
-    const std::string problem =
-        hasPoints(chart) ? runGnuplot(dir / "scale.gp", dir) : "no size has a finite cost";
-    if (!o.json) {
-      out << "wrote       " << (dir / "scale.csv").string() << ", " << (dir / "scale.gp").string();
-      if (problem.empty())
-        out << ", " << (dir / "scale.png").string() << ", " << (dir / "scale.svg").string();
-      out << "\n";
-    }
-    if (!problem.empty()) {
-      err << "lab: scale: the chart: " << problem << "\n";
-      if (haveGnuplot) return kExitFailure;
-    }
-    return kExitOk;
-  } catch (const fileio::FileError& e) {
-    err << "lab: --out: " << e.what() << "\n";
+    rows = runScale(o.kind, o.sizes, o.run, &err);
   } catch (const scenes::LoadError& e) {
     err << "lab: scale: the generated scene: " << e.what() << "\n";  // a bug in the generator
+    return kExitFailure;
   }
-  return kExitFailure;
+  out << (o.json ? scaleJson(rows) : scaleTable(rows));
+  if (!o.out) return kExitOk;
+  OutputFolder files(*o.out);
+  files.write("scale.csv", scaleCsv(rows));
+  const std::string problem = files.draw("scale.gp", scaleChart(rows), "no size has a finite cost");
+  if (problem.empty()) {
+    files.list("scale.png");
+    files.list("scale.svg");
+  }
+  if (!o.json) out << files.wroteLine();
+  if (!problem.empty()) err << "lab: scale: the chart: " << problem << "\n";
+  return files.failed() ? kExitFailure : kExitOk;
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <ostream>
 
+#include "charts.h"
 #include "commands.h"
-#include "fileio/files.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "options.h"
@@ -75,17 +75,13 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
 // The files of --out; the heat maps last, so a missing gnuplot leaves everything else written.
 int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir,
                  std::ostream& err) {
-  try {
-    fileio::prepareFolder(dir);  // again: it may have gone while the suite ran
-    fileio::writeAtomically(dir / "stability.md", md);
-    fileio::writeAtomically(dir / "stability.csv", stability::csvReport(r));
-    fileio::writeAtomically(dir / "stability-pass.dat", stability::passMatrix(r));
-    fileio::writeAtomically(dir / "stability-error.dat", stability::errorMatrix(r));
-    fileio::writeAtomically(dir / "stability.gp", stability::gnuplotScript(r));
-  } catch (const std::exception& e) {
-    err << "lab: --out: " << e.what() << "\n";
-    return kExitFailure;
-  }
+  OutputFolder files(dir);
+  files.write("stability.md", md);
+  files.write("stability.csv", stability::csvReport(r));
+  files.write("stability-pass.dat", stability::passMatrix(r));
+  files.write("stability-error.dat", stability::errorMatrix(r));
+  files.write("stability.gp", stability::gnuplotScript(r));
+  // Unlike the other commands' charts, heat maps left undrawn for want of gnuplot fail the suite.
   const std::string problem = runGnuplot(dir / "stability.gp", dir);
   if (!problem.empty()) {
     err << "lab: stability: the heat maps were not drawn: " << problem << "\n";

@@ -123,12 +123,9 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
     return;
   }
   md << "Each engine with its default solver at the scene's dt, judged on its bodies' poses after every "
-        "step, "
-        "measured alike for all: penetration and joint gaps by our geometry on those poses, speed at the "
-        "bodies' "
-        "particles' places, flips from the orientations (docs/lab.md, \"Peers\"). A peer's rigid bodies have "
-        "no "
-        "stick error of their own.\n\n| scene |";
+        "step, measured alike for all: penetration and joint gaps by our geometry on those poses, speed at "
+        "the bodies' particles' places, flips from the orientations (docs/lab.md, \"Peers\"). A peer's "
+        "rigid bodies have no stick error of their own.\n\n| scene |";
   for (const std::string& p : r.peers) md << " " << p << " |";
   md << "\n|---|";
   for (std::size_t i = 0; i < r.peers.size(); ++i) md << "---|";
@@ -200,8 +197,7 @@ std::string markdownReport(const SuiteResult& r) {
   summaryTable(md, r);
   md << "\n## Per method\n\nColumns are iterations x substeps. Each entry is the worst criterion's value / "
         "limit (for flips, min / value or value / max; for stays-behind, the share of the way to the plane): "
-        "at most 1 "
-        "passes, **bold** fails, inf is a blow-up (the guard froze a body).\n";
+        "at most 1 passes, **bold** fails, inf is a blow-up (the guard froze a body).\n";
   for (const std::string& m : r.methods) methodGrid(md, r, m);
   peerTable(md, r);
   return md.str();
@@ -301,8 +297,7 @@ std::string gnuplotScript(const SuiteResult& r) {
      << "  plot 'stability-pass.dat' matrix rowheaders columnheaders with image\n"
      << "  set output outdir.'/stability-error.'.format\n"
      << "  set label 1 'Stability: log10(value / limit) of the worst criterion: > 0 fails, 3 is 1000 or a "
-        "blow-up, grey n/a' at "
-        "screen 0.01, screen "
+        "blow-up, grey n/a' at screen 0.01, screen "
      << titleY << " left\n"
      << "  set cbrange [" << -kLogClip << ":" << kLogClip << "]\n"
      << "  set palette defined (-3 '#2166ac', -1 '#d1e5f0', 0 '#f7f7f7', 0.001 '#fddbc7', 1 '#ef8a62', 3 "

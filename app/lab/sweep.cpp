@@ -18,8 +18,6 @@
 #include "charts.h"
 #include "commands.h"
 #include "csv.h"
-#include "fileio/files.h"
-#include "gnuplot.h"
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
@@ -173,8 +171,8 @@ std::string csvNumber(double v) {
 
 std::string csvHeader() {
   std::string header =
-      "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,error,ref_"
-      "uncertainty,";
+      "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,"
+      "error,ref_uncertainty,";
   for (const RunMetric& m : kRunMetrics) header += std::string(m.column) + ",";
   return header + "error_first,pose_penetration,pose_joint_gap,energy_drift,frozen,pareto,note\n";
 }
@@ -209,7 +207,6 @@ std::string pointLabel(const Row& r) {
   return ixs(*r.iterations, *r.substeps);
 }
 
-// "shake 1x8", or the peer's name.
 // "shake 1x8" (with its model and dt when the sweep has several), or the peer's name.
 std::string rowName(const Row& r, const Plan& plan) {
   std::string name = r.peer ? r.method : r.method + " " + pointLabel(r);
@@ -256,16 +253,12 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
   };
   for (const Row& r : rows) addOnce(order, seriesName(r));
   // The front first, so the points are drawn over its line.
-  ChartSeries front;
-  front.title = "Pareto front";
-  front.line = true;
-  front.labels = true;
+  ChartSeries front{.title = "Pareto front", .line = true, .labels = true};
   for (const Row& r : frontByCost(rows))
     front.points.push_back({cost(r, perStep), shownError(r, measure), pointLabel(r)});
   c.series.push_back(front);
   for (const std::string& name : order) {
-    ChartSeries s;
-    s.title = name;
+    ChartSeries s{.title = name};
     for (const Row& r : rows) {
       if (seriesName(r) == name && charted(r, measure))
         s.points.push_back({cost(r, perStep), shownError(r, measure), pointLabel(r)});
@@ -322,33 +315,26 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
 // ---- the command ----------------------------------------------------------------------------
 
 struct Written {
-  std::vector<std::string> files;
+  OutputFolder files;
   std::string chartProblem;  // "" when the chart was drawn
-  bool chartFailed = false;  // gnuplot was there and failed
+  bool chartFailed;          // gnuplot was there and failed (no point to draw is no failure)
 };
 
+// The CSVs and the chart. A file that cannot be written is said as its FileError alone.
 Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
                      std::size_t measure, const std::filesystem::path& dir) {
-  Written w;
-  fileio::prepareFolder(dir);  // again: it may have gone while the runs ran
-  fileio::writeAtomically(dir / "results.csv", csvText(plan.sceneName, rows));
-  fileio::writeAtomically(dir / "pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
+  OutputFolder files(dir, false);
+  files.write("results.csv", csvText(plan.sceneName, rows));
+  files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
-  fileio::writeAtomically(dir / "sweep.gp", gnuplotScript(chart));
-  for (const char* f : {"results.csv", "pareto.csv", "sweep.gp"}) w.files.push_back((dir / f).string());
-  if (!hasPoints(chart)) {
-    w.chartProblem = "no run has a finite error, so there is no chart to draw";
-    return w;
+  const std::string problem =
+      files.draw("sweep.gp", chart, "no run has a finite error, so there is no chart to draw");
+  const bool failed = hasPoints(chart) && files.failed();
+  if (hasPoints(chart) && !failed) {  // also without gnuplot: the script draws them
+    files.list(chart.output + ".png");
+    files.list(chart.output + ".svg");
   }
-  // Without gnuplot, runGnuplot says so and how to draw the chart later: not a failure.
-  const bool haveGnuplot = !findGnuplot().empty();
-  w.chartProblem = runGnuplot(dir / "sweep.gp", dir);
-  w.chartFailed = haveGnuplot && !w.chartProblem.empty();
-  if (!w.chartFailed) {
-    w.files.push_back((dir / "error-vs-cost.png").string());
-    w.files.push_back((dir / "error-vs-cost.svg").string());
-  }
-  return w;
+  return {files, problem, failed};
 }
 
 int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,
@@ -389,10 +375,7 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
   const auto front = frontByCost(rows);
   out << "pareto      " << front.size() << (front.size() == 1 ? " setting" : " settings") << " (marked *):";
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
-  out << "\n";
-  out << "wrote       ";
-  for (std::size_t i = 0; i < w.files.size(); ++i) out << (i == 0 ? "" : ", ") << w.files[i];
-  out << "\n";
+  out << "\n" << w.files.wroteLine();
   if (!w.chartProblem.empty()) err << "lab: sweep: " << w.chartProblem << "\n";
   return w.chartFailed ? kExitFailure : kExitOk;
 }

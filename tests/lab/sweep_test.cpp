@@ -14,9 +14,12 @@
 
 #include "accuracy.h"
 #include "bodies.h"
+#include "charts.h"
+#include "command_line.h"
 #include "commands.h"
 #include "csv.h"
 #include "expect_reader.h"
+#include "fileio/files.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "lab_test_util.h"
@@ -323,6 +326,54 @@ TEST(Sweep, SaysSoAndStillWritesTheDataWithoutGnuplot) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/results.csv")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/sweep.gp")));
   EXPECT_FALSE(std::filesystem::exists(dir.file("out/error-vs-cost.png")));
+}
+
+// OutputFolder, the frame sweep, scale, converge and stability write --out through: what it
+// lists, and which charts not drawn are failures.
+lab::Chart onePointChart(const std::string& output) {
+  lab::Chart chart = lab::logChart("t", "x", "y", false, output);
+  chart.series.push_back({.title = "s", .points = {{1.0, 1.0, ""}}});
+  return chart;
+}
+
+TEST(OutputFolder, ListsWhatItWroteAndAMissingGnuplotIsNoFailure) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("empty-bin"));
+  const ScopedPath noGnuplot(dir.file("empty-bin").string());
+  lab::OutputFolder files(dir.file("out"));
+  files.write("a.csv", "x\n");
+  EXPECT_NE(files.draw("c.gp", onePointChart("c"), "none").find("gnuplot is not installed"),
+            std::string::npos);
+  EXPECT_EQ(files.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
+  EXPECT_FALSE(files.failed());
+  files.list("c.png");
+  const std::string out = dir.file("out").string();
+  EXPECT_EQ(files.wroteLine(),
+            "wrote       " + out + "/a.csv, " + out + "/c.gp, " + out + "/e.gp, " + out + "/c.png\n");
+  EXPECT_EQ(lab_testing::readFile(dir.file("out/a.csv")), "x\n");
+}
+
+TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("bin"));
+  const std::filesystem::path fake = dir.write("bin/gnuplot", "#!/bin/sh\necho broken\nexit 3\n");
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  const ScopedPath failing(dir.file("bin").string());
+  lab::OutputFolder files(dir.file("out"));
+  EXPECT_NE(files.draw("c.gp", onePointChart("c"), "none").find("broken"), std::string::npos);
+  EXPECT_TRUE(files.failed());
+}
+
+TEST(OutputFolder, AFolderItCannotWriteIsWordedAsOutOrLeftAsTheFileError) {
+  TempDir dir;
+  const std::filesystem::path file = dir.write("file", "not a folder");
+  try {
+    lab::OutputFolder files(file / "out");
+    FAIL() << "no CommandFailure";
+  } catch (const lab::CommandFailure& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("--out: " + (file / "out").string(), 0), 0u) << e.what();
+  }
+  EXPECT_THROW(lab::OutputFolder(file / "out", false), fileio::FileError);
 }
 
 TEST(Sweep, UsageErrorsNameTheArgument) {
