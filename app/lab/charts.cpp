@@ -131,24 +131,28 @@ std::string gnuplotScript(const Chart& chart) {
   return out;
 }
 
-OutputFolder::OutputFolder(std::filesystem::path folder, bool sayOut)
-    : folder_(std::move(folder)), sayOut_(sayOut) {
-  sayOut_ ? prepareOutputFolder(folder_) : fileio::prepareFolder(folder_);
+OutputFolder::OutputFolder(std::filesystem::path folder, const char* option)
+    : folder_(std::move(folder)), option_(option) {
+  prepareOutputFolder(folder_, option_);
 }
 
 void OutputFolder::write(const std::string& name, std::string_view content) {
   try {
     fileio::writeAtomically(folder_ / name, content);
   } catch (const fileio::FileError& e) {
-    if (!sayOut_) throw;
-    throw CommandFailure(std::string("--out: ") + e.what());
+    throw CommandFailure(std::string(option_) + ": " + e.what());
   }
   list(name);
 }
 
 std::string OutputFolder::draw(const std::string& name, const Chart& chart, const std::string& noPoints) {
   write(name, gnuplotScript(chart));
-  const std::string problem = hasPoints(chart) ? runGnuplot(folder_ / name, folder_) : noPoints;
+  if (!hasPoints(chart)) return noPoints;
+  const std::string problem = runGnuplot(folder_ / name, folder_);
+  if (problem.empty()) {
+    list(chart.output + ".png");
+    list(chart.output + ".svg");
+  }
   failed_ = failed_ || (!problem.empty() && !findGnuplot().empty());
   return problem;
 }

@@ -52,25 +52,29 @@ std::string gnuplotScript(const Chart& chart);
 /// Whether the chart has any point to draw (gnuplot fails on a chart without one).
 bool hasPoints(const Chart& chart);
 
-/// A command's --out folder, written at the end of its runs (the one frame of sweep, scale,
-/// converge and stability, which word their own messages): files whole, charts drawn, and the
-/// list of them for the "wrote" line. A file that cannot be written throws CommandFailure
-/// "--out: <why>", or with `sayOut` false the FileError itself.
+/// A command's output folder, written at the end of its runs (the one frame of sweep, scale,
+/// converge and stability, which word their own messages about charts): files whole, charts drawn,
+/// and the list of what is there for the "wrote" line. A file that cannot be written throws
+/// CommandFailure "OPTION: <why>", OPTION the option that named the folder.
 class OutputFolder {
  public:
   /// Prepares the folder again: it may have gone while the runs ran.
-  explicit OutputFolder(std::filesystem::path folder, bool sayOut = true);
+  explicit OutputFolder(std::filesystem::path folder, const char* option = "--out");
   void write(const std::string& name, std::string_view content);  ///< FOLDER/NAME, listed
-  void list(const std::string& name) { files_.push_back((folder_ / name).string()); }
-  /// Writes the chart's script NAME and runs gnuplot: "" when drawn, else why not (`noPoints`).
+  /// Writes the chart's script NAME and runs gnuplot: "" when it drew the chart's OUTPUT.png and
+  /// .svg (then listed), else why not: `noPoints` for a chart with nothing to draw, or what
+  /// runGnuplot said.
   std::string draw(const std::string& name, const Chart& chart, const std::string& noPoints);
-  /// A chart was not drawn though gnuplot is there (without it the script waits to be run).
+  /// A chart with points was not drawn though gnuplot is there. Without gnuplot the script waits
+  /// to be run, and a chart with nothing to draw is said, not failed.
   bool failed() const { return failed_; }
   std::string wroteLine() const { return "wrote       " + join(files_, ", ") + "\n"; }
 
  private:
+  void list(const std::string& name) { files_.push_back((folder_ / name).string()); }
+
   std::filesystem::path folder_;
-  bool sayOut_;
+  const char* option_;
   std::vector<std::string> files_;
   bool failed_ = false;
 };

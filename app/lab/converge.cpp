@@ -394,10 +394,7 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
   std::string problems;
   for (const Chart& chart : charts) {
     const std::string problem = files.draw(chart.output + ".gp", chart, "no run has a finite error");
-    if (problem.empty())
-      files.list(chart.output + ".png");
-    else
-      problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
+    if (!problem.empty()) problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
   }
   out << files.wroteLine();
   err << problems;

@@ -219,7 +219,7 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
   if (o.out) prepareOutputFolder(*o.out);  // before the runs, which can take minutes
   if (o.scenes) {
     // The generated scenes as files, so that `lab run` can show one size's stages.
-    OutputFolder scenes(*o.scenes);
+    OutputFolder scenes(*o.scenes, "--save-scenes");
     for (const int n : o.sizes)
       scenes.write(std::string(toString(o.kind)) + "-" + std::to_string(n) + ".xml",
                    scaleSceneXml(o.kind, n));
@@ -236,10 +236,6 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
   OutputFolder files(*o.out);
   files.write("scale.csv", scaleCsv(rows));
   const std::string problem = files.draw("scale.gp", scaleChart(rows), "no size has a finite cost");
-  if (problem.empty()) {
-    files.list("scale.png");
-    files.list("scale.svg");
-  }
   if (!o.json) out << files.wroteLine();
   if (!problem.empty()) err << "lab: scale: the chart: " << problem << "\n";
   return files.failed() ? kExitFailure : kExitOk;

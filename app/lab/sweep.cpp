@@ -320,21 +320,16 @@ struct Written {
   bool chartFailed;          // gnuplot was there and failed (no point to draw is no failure)
 };
 
-// The CSVs and the chart. A file that cannot be written is said as its FileError alone.
+// The CSVs and the chart.
 Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
                      std::size_t measure, const std::filesystem::path& dir) {
-  OutputFolder files(dir, false);
+  OutputFolder files(dir);
   files.write("results.csv", csvText(plan.sceneName, rows));
   files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
   const std::string problem =
       files.draw("sweep.gp", chart, "no run has a finite error, so there is no chart to draw");
-  const bool failed = hasPoints(chart) && files.failed();
-  if (hasPoints(chart) && !failed) {  // also without gnuplot: the script draws them
-    files.list(chart.output + ".png");
-    files.list(chart.output + ".svg");
-  }
-  return {files, problem, failed};
+  return {files, problem, files.failed()};
 }
 
 int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,

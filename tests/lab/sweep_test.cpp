@@ -346,11 +346,22 @@ TEST(OutputFolder, ListsWhatItWroteAndAMissingGnuplotIsNoFailure) {
             std::string::npos);
   EXPECT_EQ(files.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
   EXPECT_FALSE(files.failed());
-  files.list("c.png");
+  // The pictures were not drawn, so they are not listed.
   const std::string out = dir.file("out").string();
-  EXPECT_EQ(files.wroteLine(),
-            "wrote       " + out + "/a.csv, " + out + "/c.gp, " + out + "/e.gp, " + out + "/c.png\n");
+  EXPECT_EQ(files.wroteLine(), "wrote       " + out + "/a.csv, " + out + "/c.gp, " + out + "/e.gp\n");
   EXPECT_EQ(lab_testing::readFile(dir.file("out/a.csv")), "x\n");
+}
+
+TEST(OutputFolder, ListsThePicturesGnuplotDrew) {
+  if (lab::findGnuplot().empty()) GTEST_SKIP() << "no gnuplot on PATH (scripts/install-deps installs it)";
+  TempDir dir;
+  lab::OutputFolder files(dir.file("out"));
+  EXPECT_EQ(files.draw("c.gp", onePointChart("c"), "none"), "");
+  EXPECT_FALSE(files.failed());
+  const std::string out = dir.file("out").string();
+  EXPECT_EQ(files.wroteLine(), "wrote       " + out + "/c.gp, " + out + "/c.png, " + out + "/c.svg\n");
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/c.png")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/c.svg")));
 }
 
 TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
@@ -362,18 +373,24 @@ TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
   lab::OutputFolder files(dir.file("out"));
   EXPECT_NE(files.draw("c.gp", onePointChart("c"), "none").find("broken"), std::string::npos);
   EXPECT_TRUE(files.failed());
+  // A chart with nothing to draw is said, not failed, whatever gnuplot would do.
+  lab::OutputFolder other(dir.file("other"));
+  EXPECT_EQ(other.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
+  EXPECT_FALSE(other.failed());
 }
 
-TEST(OutputFolder, AFolderItCannotWriteIsWordedAsOutOrLeftAsTheFileError) {
+TEST(OutputFolder, AFolderItCannotWriteIsNamedByItsOption) {
   TempDir dir;
   const std::filesystem::path file = dir.write("file", "not a folder");
-  try {
-    lab::OutputFolder files(file / "out");
-    FAIL() << "no CommandFailure";
-  } catch (const lab::CommandFailure& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("--out: " + (file / "out").string(), 0), 0u) << e.what();
+  for (const char* option : {"--out", "--save-scenes"}) {
+    try {
+      lab::OutputFolder files(file / "out", option);
+      ADD_FAILURE() << "no CommandFailure for " << option;
+    } catch (const lab::CommandFailure& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(std::string(option) + ": " + (file / "out").string(), 0), 0u)
+          << e.what();
+    }
   }
-  EXPECT_THROW(lab::OutputFolder(file / "out", false), fileio::FileError);
 }
 
 TEST(Sweep, UsageErrorsNameTheArgument) {
