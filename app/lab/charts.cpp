@@ -148,7 +148,7 @@ void OutputFolder::write(const std::string& name, std::string_view content) {
 std::string OutputFolder::draw(const std::string& name, const Chart& chart, const std::string& noPoints) {
   write(name, gnuplotScript(chart));
   if (!hasPoints(chart)) return noPoints;
-  const std::string problem = runGnuplot(folder_ / name, folder_);
+  std::string problem = runGnuplot(folder_ / name, folder_);
   if (problem.empty()) {
     list(chart.output + ".png");
     list(chart.output + ".svg");
