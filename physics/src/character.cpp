@@ -380,6 +380,7 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   c.held.turns.resize(c.pose.turns.size());
   c.starting.turns.resize(c.pose.turns.size());
   characterTargets_.resize(std::max(characterTargets_.size(), c.bones.size()));
+  held_.resize(held_.size() + 1);
   bodyCharacter_.resize(bodies_.size(), -1);
   for (const CharacterBone& bone : c.bones) bodyCharacter_[bone.body] = static_cast<int>(characters_.size());
   characters_.push_back(std::move(c));
@@ -674,6 +675,17 @@ void World::react() {
       enter(c, CharacterState::GettingUp);
     }
   }
+}
+
+// Each character whose drives move it (as animate wakes it for) is held awake by its root: at rest
+// it would otherwise fall asleep at a step's end and be woken in the next step's first substep,
+// after the masks, to stand pinned for that step (and for good with a sleep time under a step).
+std::size_t World::holdMovingCharacters(std::span<NodeId> into) const {
+  std::size_t n = 0;
+  for (const Character& c : characters_) {
+    if (characterMoves(c)) into[n++] = islands_.bodyNode(c.bones[0].body);
+  }
+  return n;
 }
 
 bool World::anyCharacterActive() const {

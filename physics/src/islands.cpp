@@ -196,6 +196,8 @@ void Islands::update(const IslandInput& in) {
     (asleep_[i] != 0 ? islandAsleep_[r] : islandAwake_[r]) = 1;
     islandRest_[r] = std::min(islandRest_[r], rest_[i]);
   }
+  // A held island never sleeps, even with a sleep time of 0 that a rest of 0 would meet.
+  for (const NodeId held : in.held) islandRest_[root(held)] = -std::numeric_limits<Real>::infinity();
   for (NodeId i{}; i < n; ++i) {
     if (fixed_[i] != 0) continue;
     const NodeId r = root(i);

@@ -147,9 +147,12 @@ void World::updateIslands(std::size_t freezesBefore) {
     const std::span<const FreezeReport> freezes = guard_.freezes();
     for (std::size_t k = freezesBefore; k < freezes.size(); ++k) refreeze(freezes[k]);
   }
-  const HeldNodes held = heldNodes();
+  // Held awake: the moving characters' roots, then a drag's nodes (held_ has room for both).
+  std::size_t held = holdMovingCharacters(held_);
+  const HeldNodes drag = heldNodes();
+  for (int i = 0; i < drag.count; ++i) held_[held++] = drag.nodes[static_cast<std::size_t>(i)];
   islands_.update({particles_, rigidBodies_, bodies_, narrowPhase_.manifolds(), substepDt(), solver_.dt,
-                   solver_.sleep, std::span<const NodeId>(held.nodes.data(), held.count)});
+                   solver_.sleep, std::span<const NodeId>(held_.data(), held)});
 }
 
 const Islands& World::islands() const {

@@ -426,6 +426,7 @@ class World {
     int count = 0;
   };
   HeldNodes heldNodes() const;
+  std::size_t holdMovingCharacters(std::span<NodeId> into) const;
   void guardParticles();
   GuardInput guardInput();
   void checkEmbedding(const Embedding& e, const std::string& who) const;
@@ -447,8 +448,11 @@ class World {
   std::vector<Push> pushes_;
   std::vector<int> bodyCharacter_;      // per body: the character whose part it is, or -1
   std::vector<Quat> characterTargets_;  // scratch of animate(), sized to the longest skeleton
-  BodyLayout bodyLayout_;               // the bodies in lanes, for body damping (updateLayouts)
-  bool layoutsStale_ = false;           // bodies or collision filters added since they were laid out
+  // Scratch of updateIslands, sized (a copy keeps sizes, not capacities) for a drag's nodes and
+  // every character's root: the nodes held awake.
+  std::vector<NodeId> held_ = std::vector<NodeId>(4);
+  BodyLayout bodyLayout_;      // the bodies in lanes, for body damping (updateLayouts)
+  bool layoutsStale_ = false;  // bodies or collision filters added since they were laid out
   std::vector<Body> bodies_;
   std::vector<Embedding> corners_;
   GroundContacts ground_;
