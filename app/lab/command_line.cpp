@@ -258,7 +258,7 @@ void CommandLine::option(const OptionSpec& spec, T& into, const std::string& not
   if constexpr (kIsList<T>) {
     using Value = typename T::value_type;
     add(spec, name + " LIST", needsOf<Value>(spec), note, false,
-        [&spec, append = listAppender(into)](const std::string& text) {
+        [spec, append = listAppender(into)](const std::string& text) {
           return readList(text, [&](const std::string& item) {
             Value v{};
             std::string e = read(item, spec, v);
@@ -269,7 +269,7 @@ void CommandLine::option(const OptionSpec& spec, T& into, const std::string& not
   } else {
     using Value = typename Target<T>::Value;
     add(spec, name + " " + spec.value, needsOf<Value>(spec), note, false,
-        [&spec, &into](const std::string& v) { return read(v, spec, Target<T>::slot(into)); });
+        [spec, &into](const std::string& v) { return read(v, spec, Target<T>::slot(into)); });
   }
 }
 

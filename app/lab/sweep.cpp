@@ -317,7 +317,6 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
 struct Written {
   OutputFolder files;
   std::string chartProblem;  // "" when the chart was drawn
-  bool chartFailed;          // gnuplot was there and failed (no point to draw is no failure)
 };
 
 // The CSVs and the chart.
@@ -329,7 +328,7 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
   const std::string problem =
       files.draw("sweep.gp", chart, "no run has a finite error, so there is no chart to draw");
-  return {files, problem, files.failed()};
+  return {files, problem};
 }
 
 int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,
@@ -372,7 +371,7 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
   out << "\n" << w.files.wroteLine();
   if (!w.chartProblem.empty()) err << "lab: sweep: " << w.chartProblem << "\n";
-  return w.chartFailed ? kExitFailure : kExitOk;
+  return w.files.failed() ? kExitFailure : kExitOk;
 }
 
 int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
