@@ -135,7 +135,7 @@ void World::updateIslands(std::size_t freezesBefore) {
   islandsCounted_ = solver_.sleep.enabled || islands_.masked();
   if (!islandsCounted_) return;
   const detail::StageTimer timer(profile_, Stage::Islands);
-  // masked(), not anyAsleep(): an island woken in the step (a character's drives) was masked too.
+  // masked(), not anyAsleep(): an island woken in the step was masked too.
   if (islands_.masked()) {
     islands_.unmask(particles_, rigidBodies_, bodies_);
     // The lanes' still groups were still for the masks alone: a pass run between steps

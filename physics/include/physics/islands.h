@@ -38,7 +38,8 @@ struct IslandInput {
   Real h = 0.0;                         ///< unit: s; the last substep, over which x - x* was made
   Real dt = 0.0;                        ///< unit: s; the step
   SleepSettings sleep;
-  /// Nodes kept awake this step (a drag's), or none.
+  /// Nodes kept awake this step (a drag's, the roots of characters whose drives move them), or
+  /// none: their islands do not sleep.
   std::span<const NodeId> held;
 };
 
@@ -66,7 +67,7 @@ class Islands {
   /// its own, which unmask() gives back: between the two, a step moves nothing of a sleeping
   /// island, through the same paths that leave a pinned particle or a frozen body alone. unmask()
   /// gives back exactly what mask() took, to the nodes it took it from: an island woken between
-  /// the two (a character's drives wake theirs in the step) stays pinned until the step's end.
+  /// the two stays pinned until the step's end.
   void mask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
   void unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
   /// True between mask() and unmask() when mask() took something.
