@@ -220,6 +220,6 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
 
 }  // namespace
 
-const CommandMain compareMain = commandMainOf<CompareOptions, describeCompare, runCompare>;
+constinit const CommandMain compareMain = commandMainOf<CompareOptions, describeCompare, runCompare>;
 
 }  // namespace lab

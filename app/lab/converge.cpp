@@ -403,6 +403,7 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
 
 }  // namespace
 
-const CommandMain convergeMain = commandMainOf<ConvergeOptions, describeConverge, runConvergeCommand>;
+constinit const CommandMain convergeMain =
+    commandMainOf<ConvergeOptions, describeConverge, runConvergeCommand>;
 
 }  // namespace lab

@@ -42,6 +42,8 @@ struct CommandEntry {
   const char* name;
   const char* arguments;  // what `lab help` shows after the name
   const char* summary;
+  // The address of the command's main, defined (constinit) in the command's own file: its value
+  // is not a constant here, its address is.
   const CommandMain* main;
 };
 
@@ -93,7 +95,7 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   return kExitUsage;
 }
 
-const CommandMain runMain = commandMainOf<RunOptions, describeRun, runCommand>;
+constinit const CommandMain runMain = commandMainOf<RunOptions, describeRun, runCommand>;
 
 CommandOutput runCaptured(const std::vector<std::string>& args) {
   std::ostringstream out;

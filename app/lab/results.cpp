@@ -483,6 +483,6 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
 
 }  // namespace
 
-const CommandMain reportMain = commandMainOf<ReportOptions, describeReport, writeReport>;
+constinit const CommandMain reportMain = commandMainOf<ReportOptions, describeReport, writeReport>;
 
 }  // namespace lab

@@ -243,6 +243,6 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
 
 }  // namespace
 
-const CommandMain scaleMain = commandMainOf<ScaleOptions, describeScale, runScaleCommand>;
+constinit const CommandMain scaleMain = commandMainOf<ScaleOptions, describeScale, runScaleCommand>;
 
 }  // namespace lab

@@ -109,7 +109,7 @@ int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream&
 
 }  // namespace
 
-const CommandMain stabilityMain =
+constinit const CommandMain stabilityMain =
     commandMainOf<StabilityOptions, stability::describeOptions, stabilityCommand>;
 
 }  // namespace lab

@@ -251,7 +251,7 @@ std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const sce
             " steps, or not every body";
     }
     out.push_back(why.empty() ? verdictOf(c, judgeOne(c, world, dt, p))
-                              : Verdict{false, why, 0.0, 0.0, false});
+                              : Verdict{.judged = false, .why = why});
   }
   return out;
 }

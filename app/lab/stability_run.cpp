@@ -112,7 +112,7 @@ Outcome runPeerEngine(const SuiteScene& s, const std::string& engine, bool sleep
     // nothing of its solver's stability: not judged, as a scene it cannot build.
     if (o.note.empty()) o.note = "not run";
     if (r.dropped) o.note = "too large: " + o.note;
-    o.verdicts.assign(s.criteria.size(), Verdict{false, o.note, 0.0, 0.0, false});
+    o.verdicts.assign(s.criteria.size(), Verdict{.judged = false, .why = o.note});
   } else {
     o.verdicts = judgePeer(s.criteria, scene, s.dt, r.positions, r.orientations);
   }

@@ -382,6 +382,6 @@ int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
 
 }  // namespace
 
-const CommandMain sweepMain = commandMainOf<SweepOptions, describeSweep, sweepCommand>;
+constinit const CommandMain sweepMain = commandMainOf<SweepOptions, describeSweep, sweepCommand>;
 
 }  // namespace lab

@@ -383,6 +383,6 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
 
 }  // namespace
 
-const CommandMain tuneMain = commandMainOf<TuneOptions, describeTune, runTune>;
+constinit const CommandMain tuneMain = commandMainOf<TuneOptions, describeTune, runTune>;
 
 }  // namespace lab
