@@ -19,6 +19,7 @@
 #include "numbers.h"
 #include "run_metrics.h"
 #include "sweep_core.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -32,12 +33,9 @@ constexpr int kLadderSize = static_cast<int>(sizeof kLadder / sizeof kLadder[0])
 
 // The ladder as the help and the output write it: "1,2,3,4,6,8,12,16,24,32".
 std::string ladderText() {
-  std::string out;
-  for (int n : kLadder) {
-    if (!out.empty()) out += ',';  // piecewise: "," + std::string trips GCC 12's false -Wrestrict
-    out += std::to_string(n);
-  }
-  return out;
+  std::vector<std::string> steps;
+  for (int n : kLadder) steps.push_back(std::to_string(n));
+  return join(steps, ",");
 }
 
 /// A substep count whose 1-iteration run already costs this much more than the cheapest

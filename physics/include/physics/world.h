@@ -422,7 +422,8 @@ class World {
   void updateIslands(std::size_t freezesBefore);
   void refreeze(const FreezeReport& freeze);
   struct HeldNodes {
-    std::array<NodeId, 4> nodes{};
+    static constexpr std::size_t kMost = std::tuple_size_v<decltype(Embedding::particle)>;  // a drag's point
+    std::array<NodeId, kMost> nodes{};
     int count = 0;
   };
   HeldNodes heldNodes() const;
@@ -450,7 +451,7 @@ class World {
   std::vector<Quat> characterTargets_;  // scratch of animate(), sized to the longest skeleton
   // Scratch of updateIslands, sized (a copy keeps sizes, not capacities) for a drag's nodes and
   // every character's root: the nodes held awake.
-  std::vector<NodeId> held_ = std::vector<NodeId>(4);
+  std::vector<NodeId> held_ = std::vector<NodeId>(HeldNodes::kMost);
   BodyLayout bodyLayout_;      // the bodies in lanes, for body damping (updateLayouts)
   bool layoutsStale_ = false;  // bodies or collision filters added since they were laid out
   std::vector<Body> bodies_;
