@@ -2,9 +2,12 @@
 #include "physics/guard.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -16,10 +19,35 @@ void Guard::addBody() {
   crushedSince_.push_back(std::numeric_limits<Real>::infinity());
 }
 
+namespace {
+
+// Whether any coordinate is beyond `limit` or not a number. A non-negative double's bits ordered
+// as an integer order it as a number, NaN above infinity, so |x| <= limit is bits(|x|) <=
+// bits(limit): bits(limit) - bits(|x|) goes negative for every coordinate that is not, and the
+// sign bits of all of them or'd together answer. Integer subtraction and or, with no branch and
+// no call, run in SIMD lanes (GCC 12 vectorises none of the comparisons of doubles written out).
+bool anyBeyond(const std::vector<Vec3>& points, Real limit) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(Real) && alignof(Vec3) == alignof(Real));
+  const Real* coordinates = reinterpret_cast<const Real*>(points.data());
+  const auto limitBits = std::bit_cast<std::int64_t>(limit);
+  constexpr std::int64_t kMagnitude = std::numeric_limits<std::int64_t>::max();  // all but the sign
+  std::int64_t signs = 0;
+  for (std::size_t i = 0; i < 3 * points.size(); ++i)
+    signs |= limitBits - (std::bit_cast<std::int64_t>(coordinates[i]) & kMagnitude);
+  return signs < 0;
+}
+
+}  // namespace
+
 // Every particle, pinned or not: World runs it after each substep and after a change of settings
-// (World::guardParticles says why).
+// (World::guardParticles says why). Nearly always nothing is wrong, which one pass over the
+// positions (within the bound) and the previous positions (finite) says in less than half the
+// time that looking at each particle's case takes; only otherwise is each particle looked at.
 void Guard::checkParticles(const GuardInput& in, Real bound) {
   const Particles& particles = in.particles;
+  if (!anyBeyond(particles.position, std::min(bound, std::numeric_limits<Real>::max())) &&
+      !anyBeyond(particles.previous, std::numeric_limits<Real>::max()))
+    return;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3& x = particles.position[i];
     const auto id = static_cast<ParticleId>(i);

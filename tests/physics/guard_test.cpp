@@ -2,12 +2,14 @@
 // it last was good, reported by name, and the rest of the world keeps stepping.
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "passes.h"
 #include "physics/capsule_ragdoll.h"
+#include "physics/guard.h"
 #include "test_util.h"
 
 namespace {
@@ -251,3 +253,66 @@ TEST(Guard, UnderGravityOf1e308EveryFrozenPoseAndEveryMetricIsFinite) {
 }
 
 }  // namespace
+
+// Guard::checkParticles first asks one pass over all coordinates whether anything is wrong, and
+// looks at each particle only then: every kind of bad coordinate, on each axis and at each place
+// in the array (the pass runs in SIMD lanes, whose last lane a short array leaves half used), must
+// still be found, and a coordinate exactly on the bound is in it.
+TEST(Guard, EveryBadCoordinateIsFoundWhereverItIs) {
+  constexpr double kBound = 100.0;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Case {
+    bool previous;  // the bad value in x* rather than x
+    double value;
+    const char* reason;
+  };
+  const std::vector<Case> cases = {
+      {false, nan, "non-finite position"},
+      {false, kInf, "non-finite position"},
+      {false, -kInf, "non-finite position"},
+      {false, 100.5, "left the world bound of 100 m"},
+      {false, -1e300, "left the world bound of 100 m"},
+      {true, nan, "non-finite velocity"},
+      {true, -kInf, "non-finite velocity"},
+  };
+  for (std::size_t count : {1u, 2u, 5u}) {
+    for (const Case& c : cases) {
+      for (std::size_t bad = 0; bad < count; ++bad) {
+        for (int axis = 0; axis < 3; ++axis) {
+          phys::Particles particles;
+          phys::Guard guard;
+          for (std::size_t i = 0; i < count; ++i) {
+            const Vec3 x(kBound, -kBound, 0.5 * static_cast<double>(i));  // on the bound: good
+            particles.position.push_back(x);
+            particles.previous.push_back(x);
+            particles.inverseMass.push_back(1.0);
+            guard.addParticle(x);
+          }
+          (c.previous ? particles.previous : particles.position)[bad][axis] = c.value;
+          const std::vector<std::string> names(count);
+          const std::vector<phys::BodyId> bodies(count, phys::kNoBody);
+          guard.checkParticles({particles, {}, {}, names, bodies, 0.0}, kBound);
+          const std::string where = std::to_string(count) + " particles, the bad one " + std::to_string(bad) +
+                                    ", axis " + std::to_string(axis) + ", " + c.reason;
+          ASSERT_EQ(guard.freezes().size(), 1u) << where;
+          EXPECT_EQ(guard.freezes()[0].particle, phys::ParticleId(bad)) << where;
+          EXPECT_EQ(guard.freezes()[0].reason, c.reason) << where;
+        }
+      }
+    }
+  }
+  // Nothing wrong: nothing frozen, the bound itself included.
+  phys::Particles particles;
+  phys::Guard guard;
+  for (const Vec3& x : {Vec3(kBound, -kBound, kBound), Vec3(-kBound, 0.0, 99.999)}) {
+    particles.position.push_back(x);
+    particles.previous.push_back(x);
+    particles.inverseMass.push_back(1.0);
+    guard.addParticle(x);
+  }
+  const std::vector<std::string> names(2);
+  const std::vector<phys::BodyId> bodies(2, phys::kNoBody);
+  guard.checkParticles({particles, {}, {}, names, bodies, 0.0}, kBound);
+  EXPECT_TRUE(guard.freezes().empty());
+}
