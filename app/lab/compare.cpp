@@ -114,8 +114,7 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
          "error, all (m) | penetration (m) | joint gap (m) |";
   // Then the figures of every step, ours alone (run_metrics.h).
   for (const RunMetric& m : kRunMetrics)
-    out << " " << m.name << (*m.unit == '\0' ? "" : " (") << m.unit << (*m.unit == '\0' ? "" : ")")
-        << (m.over == OverRun::Rms ? ", RMS over the run |" : ", every step |");
+    out << " " << m.nameAndUnit() << (m.over == OverRun::Rms ? ", RMS over the run |" : ", every step |");
   out << " unsupported / notes |\n|---|---|---|---:|---:|---:|---:|---:|---:|";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) out << "---:|";
   out << "---|\n";

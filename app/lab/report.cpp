@@ -148,8 +148,7 @@ std::string summaryText(const RunResult& r) {
   s += "worst        after any step:";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& metric = kRunMetrics[i];
-    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + num(r.worst[i]) +
-         (*metric.unit == '\0' ? "" : " ") + metric.unit +
+    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + num(r.worst[i]) + metric.unitAfter() +
          (metric.over == OverRun::Rms ? " (RMS over the run)" : "");
   }
   s += "\n";

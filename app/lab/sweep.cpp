@@ -225,8 +225,7 @@ double simulatedSeconds(const std::vector<Row>& rows) {
 std::string errorLabel(const AccuracyTarget& firstTarget, std::size_t measure) {
   if (measure < kRunMetricCount) {
     const RunMetric& m = kRunMetrics[measure];
-    return std::string(m.name) + (*m.unit == '\0' ? "" : " (") + m.unit + (*m.unit == '\0' ? "" : ")") +
-           ": " + m.help;
+    return m.nameAndUnit() + ": " + m.help;
   }
   return "error (m): largest distance from the " + firstTarget.kind +
          (firstTarget.kind == "analytic" ? " answer" : " run");

@@ -93,7 +93,7 @@ std::string readTarget(const std::string& text, TuneOptions& o) {
   } else if (t.name == kDrift) {
     t.unit = " J";
   } else if (t.run < kRunMetricCount) {
-    t.unit = *kRunMetrics[t.run].unit == '\0' ? "" : std::string(" ") + kRunMetrics[t.run].unit;
+    t.unit = kRunMetrics[t.run].unitAfter();
   } else {
     return "unknown metric '" + t.name + "' in '" + text + "' (" + metricNames() + ")";
   }
@@ -266,8 +266,7 @@ std::string figuresText(const Figures& f, bool withError) {
   if (withError) s += "error " + formatNumber(f.error, 3) + " m, ";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& m = kRunMetrics[i];
-    s += std::string(m.name) + " " + formatNumber(f.maxima[i], 3) + (*m.unit == '\0' ? "" : " ") + m.unit +
-         ", ";
+    s += std::string(m.name) + " " + formatNumber(f.maxima[i], 3) + m.unitAfter() + ", ";
   }
   return s + "drift " + formatNumber(std::abs(f.energyDrift), 3) + " J, frozen " + std::to_string(f.frozen);
 }
