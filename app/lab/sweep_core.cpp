@@ -104,8 +104,7 @@ SceneModels sceneModels(const std::filesystem::path& file) {
     m.asFile = ModelChoice{"scene", {}};  // models mixed within a kind: keep the file's as they are
     return m;
   }
-  c.label = parts[0];
-  for (std::size_t i = 1; i < parts.size(); ++i) c.label += "+" + parts[i];
+  c.label = join(parts, "+");
   m.asFile = c;
   return m;
 }
@@ -168,9 +167,7 @@ std::vector<ModelChoice> allModelChoices(const SceneModels& models) {
 }
 
 std::string Setting::describe() const {
-  return std::string(phys::toString(method)) + ", " +
-         count(static_cast<std::size_t>(iterations), "iteration", "iterations") + ", " +
-         count(static_cast<std::size_t>(substeps), "substep", "substeps") +
+  return std::string(phys::toString(method)) + ", " + ixsWords(iterations, substeps, ", ") +
          (model.label.empty() ? "" : ", model " + model.label);
 }
 

@@ -19,6 +19,9 @@ std::string count(std::size_t n, const char* singular, const char* plural);
 /// The parts with `separator` between each two.
 std::string join(const std::vector<std::string>& parts, const std::string& separator);
 
+/// Whole numbers with `separator` between each two: "1, 3, 10".
+std::string joinNumbers(const std::vector<int>& numbers, const std::string& separator = ", ");
+
 /// "a,b,c" split at the commas; nullopt when an item is empty ("a,,b", "a,", "").
 std::optional<std::vector<std::string>> splitList(const std::string& text);
 
@@ -35,7 +38,7 @@ double median(std::vector<double> values);
 std::string ixs(int iterations, int substeps);
 /// "gauss-seidel 3x1": a method and its iterations x substeps.
 std::string settingLabel(phys::SolverMethod method, int iterations, int substeps);
-/// "3 iterations x 1 substep": the same in words, for prose.
-std::string ixsWords(int iterations, int substeps);
+/// "3 iterations x 1 substep": the same in words, for prose; `between` in place of " x ".
+std::string ixsWords(int iterations, int substeps, const char* between = " x ");
 
 }  // namespace lab

@@ -33,9 +33,7 @@ constexpr int kLadderSize = static_cast<int>(sizeof kLadder / sizeof kLadder[0])
 
 // The ladder as the help and the output write it: "1,2,3,4,6,8,12,16,24,32".
 std::string ladderText() {
-  std::vector<std::string> steps;
-  for (int n : kLadder) steps.push_back(std::to_string(n));
-  return join(steps, ",");
+  return joinNumbers({std::begin(kLadder), std::end(kLadder)}, ",");
 }
 
 /// A substep count whose 1-iteration run already costs this much more than the cheapest
