@@ -3,14 +3,10 @@
 // cost with the Pareto front. docs/lab.md, "lab sweep", documents the options and the files.
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
-#include <iostream>
 #include <limits>
 #include <optional>
 #include <ostream>
-#include <set>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
