@@ -155,29 +155,18 @@ bool asksForHelp(const std::vector<std::string>& args) {
                      [](const std::string& a) { return a == "--help" || a == "-h"; });
 }
 
-// What a missing value should have been, by the option's type, when the table does not say.
-const char* typeNeeds(const OptionSpec&, const int*) {
-  return "a whole number";
-}
-const char* typeNeeds(const OptionSpec&, const double*) {
-  return "a number of seconds";
-}
-const char* typeNeeds(const OptionSpec&, const phys::SolverMethod*) {
-  return "a method (gauss-seidel, jacobi, xpbd or shake)";
-}
-const char* typeNeeds(const OptionSpec&, const phys::BodyModel*) {
-  return "a body model (corners, tetra or rigid)";
-}
-const char* typeNeeds(const OptionSpec&, const bool*) {
-  return "a value (on or off)";
-}
-const char* typeNeeds(const OptionSpec& spec, const std::filesystem::path*) {
-  return namesFile(spec) ? "a file name" : "a folder";
-}
-
+// What a missing value should have been: the table's word, else what the option's type reads.
 template <typename Value>
 std::string needsOf(const OptionSpec& spec) {
-  return spec.needs != nullptr ? spec.needs : typeNeeds(spec, static_cast<const Value*>(nullptr));
+  if (spec.needs != nullptr) return spec.needs;
+  if constexpr (std::is_same_v<Value, int>) return "a whole number";
+  if constexpr (std::is_same_v<Value, double>) return "a number of seconds";
+  if constexpr (std::is_same_v<Value, phys::SolverMethod>)
+    return "a method (gauss-seidel, jacobi, xpbd or shake)";
+  if constexpr (std::is_same_v<Value, phys::BodyModel>) return "a body model (corners, tetra or rigid)";
+  if constexpr (std::is_same_v<Value, bool>) return "a value (on or off)";
+  if constexpr (std::is_same_v<Value, std::filesystem::path>)
+    return namesFile(spec) ? "a file name" : "a folder";
 }
 
 template <typename T>
