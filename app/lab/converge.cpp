@@ -95,9 +95,7 @@ struct FreeBodies {
 
 FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vector<double>& times,
                              bool boxInertia) {
-  scenes::LoadOptions rigid;
-  rigid.boxModel = phys::BodyModel::Rigid;
-  const scenes::Scene scene = scenes::loadSceneFile(file, rigid);
+  const scenes::Scene scene = scenes::loadSceneFile(file, {.boxModel = phys::BodyModel::Rigid});
   const phys::World& world = scene.world;
   const double h = world.solverSettings().dt / world.solverSettings().substeps;
   FreeBodies out;

@@ -33,15 +33,11 @@ std::optional<std::size_t> particlesIfLoads(const std::filesystem::path& file,
 }
 
 scenes::LoadOptions withBoxModel(phys::BodyModel m) {
-  scenes::LoadOptions o;
-  o.boxModel = m;
-  return o;
+  return {.boxModel = m};
 }
 
 scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
-  scenes::LoadOptions o;
-  o.ragdollModel = m;
-  return o;
+  return {.ragdollModel = m};
 }
 
 // The first model whose world has `count` particles: the one every body of its kind already has.
