@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -192,7 +191,7 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
   const AccuracyTarget& target = firstTarget(plan, result.targets, dt);
   const std::vector<Row>& rows = result.rows;
 
-  double fastest = std::numeric_limits<double>::infinity();
+  double fastest = kInf;
   for (const Row& r : rows) {
     if (!r.peer && r.msPerStep > 0.0) fastest = std::min(fastest, r.msPerStep);
   }

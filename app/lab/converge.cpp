@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
@@ -25,11 +24,11 @@
 #include "physics/rigid_bodies.h"
 #include "runner.h"
 #include "sweep_core.h"
+#include "text.h"
 
 namespace lab {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr const char* kParticleModel = "particle";
 
 void describeConverge(CommandLine& line, ConvergeOptions& o) {

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -28,7 +27,6 @@
 namespace lab {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Errors below this are round-off: a Verlet projectile, exact in exact arithmetic, collects
 /// 1e-11 m over a thousand substeps. They are drawn and compared as this, so the front does not
 /// chase noise. unit: m

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
-#include <limits>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -15,8 +14,6 @@
 
 namespace lab {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::size_t particlesWhenLoadedWith(const std::filesystem::path& file, const scenes::LoadOptions& options) {
   return scenes::loadSceneFile(file, options).world.particles().size();
@@ -195,7 +192,7 @@ std::string settingsWords(const phys::World& world) {
 
 double firstCheckpointError(const AccuracyTarget& target,
                             const std::vector<std::vector<phys::Vec3>>& positions) {
-  if (target.expected.empty() || positions.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (target.expected.empty() || positions.empty()) return kNaN;
   AccuracyTarget first;
   first.kind = target.kind;
   first.checkpoints.push_back(target.checkpoints.front());

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <limits>
 #include <utility>
 
 #include "command_line.h"
@@ -14,8 +13,6 @@
 
 namespace lab {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progress& progress) {
   const bool fresh = !targets.has(s, plan.stepsAt(s.dt));

@@ -2,6 +2,7 @@
 // The lab's small text helpers, one of each: numbers as its tables print them, comma lists as
 // its options take them, the setting label every command prints, and the median of timings.
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,11 @@
 #include "physics/settings.h"
 
 namespace lab {
+
+/// The figure of a run that blew up, and one a run does not have (a peer's of ours): formatNumber
+/// prints them "inf" and "nan".
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// printf's %.{digits}g: "0.0125", "1e-06", "inf" (a figure that ran away is printed as such).
 std::string formatNumber(double value, int digits = 6);

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -24,7 +23,6 @@
 namespace lab {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// The counts searched for iterations and for substeps: roughly geometric, so a search over
 /// both stays short, and fine enough (steps of 1.33 to 1.5 above 2) that the winner is near the
 /// true cheapest.
