@@ -201,11 +201,16 @@ std::string pointLabel(const Row& r) {
   return ixs(*r.iterations, *r.substeps);
 }
 
+// " tetra dt 0.01": what tells a row from the others of its method, the model (ours) and the dt,
+// each where the sweep has several.
+std::string modelAndDt(const Row& r, const Plan& plan) {
+  const std::string model = plan.models.size() > 1 && !r.peer ? " " + r.model : "";
+  return plan.dts.size() > 1 ? model + " dt " + formatNumber(r.dt, 4) : model;
+}
+
 // "shake 1x8" (with its model and dt when the sweep has several), or the peer's name.
 std::string rowName(const Row& r, const Plan& plan) {
-  std::string name = r.peer ? r.method : r.method + " " + pointLabel(r);
-  if (plan.models.size() > 1 && !r.peer) name += " " + r.model;
-  return plan.dts.size() > 1 ? name + " dt " + formatNumber(r.dt, 4) : name;
+  return (r.peer ? r.method : r.method + " " + pointLabel(r)) + modelAndDt(r, plan);
 }
 
 // The simulated time the runs covered: the horizon, or later for an analytic answer after it.
@@ -235,14 +240,9 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
       perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second",
       errorLabel(firstTarget, measure), true, "error-vs-cost");
   // One series per method or engine (and per model and dt when there are several).
-  const bool manyModels = plan.models.size() > 1;
-  const bool manyDts = plan.dts.size() > 1;
   std::vector<std::string> order;
   auto seriesName = [&](const Row& r) {
-    std::string name = r.peer ? r.method + " (peer)" : r.method;
-    if (manyModels && !r.peer) name += " " + r.model;
-    if (manyDts) name += " dt " + formatNumber(r.dt, 4);
-    return name;
+    return (r.peer ? r.method + " (peer)" : r.method) + modelAndDt(r, plan);
   };
   for (const Row& r : rows) addOnce(order, seriesName(r));
   // The front first, so the points are drawn over its line.
