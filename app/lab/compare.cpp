@@ -207,7 +207,8 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
       << " s) in each engine, one after another in this process; ms/step: the steps' time over their "
          "number, ours the median of "
-      << plan.repeats << (plan.repeats == 1 ? " timed run" : " timed runs") << " after a measured one\n";
+      << count(static_cast<std::size_t>(plan.repeats), "timed run", "timed runs")
+      << " after a measured one\n";
   out << "accuracy  " << target.description << "; error = the largest distance (m) of a body from it\n";
   if (peerEngines().empty())
     out << "peers     none built in (LAB_PEERS off, or no Bullet, ODE or MuJoCo found at build time)\n";

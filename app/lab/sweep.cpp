@@ -293,9 +293,9 @@ std::string tableLine(const Row& r) {
 void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows,
                  const std::vector<std::string>& accuracy, const std::vector<std::string>& notes) {
   out << "sweep       " << plan.sceneName << " (" << plan.file.string() << ")\n";
-  out << "runs        " << plan.settings.size() << (plan.settings.size() == 1 ? " setting" : " settings")
-      << " x " << plan.repeats << " timed " << (plan.repeats == 1 ? "run" : "runs")
-      << " and 1 measured, each " << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
+  out << "runs        " << count(plan.settings.size(), "setting", "settings") << " x "
+      << count(static_cast<std::size_t>(plan.repeats), "timed run", "timed runs") << " and 1 measured, each "
+      << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
   out << pad("method", 13) << " " << pad("model", 12) << padLeft("iter", 5) << padLeft("sub", 5) << "  "
@@ -360,7 +360,7 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
   printReport(out, plan, rows, accuracy, notes);
   const Written w = writeOutputs(plan, rows, firstTarget(plan, targets, plan.dts.front()), measure, outDir);
   const auto front = frontByCost(rows);
-  out << "pareto      " << front.size() << (front.size() == 1 ? " setting" : " settings") << " (marked *):";
+  out << "pareto      " << count(front.size(), "setting", "settings") << " (marked *):";
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
   out << "\n" << w.files.wroteLine();
   if (!w.chartProblem.empty()) err << "lab: sweep: " << w.chartProblem << "\n";

@@ -32,8 +32,8 @@ SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Pr
   r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
   progress.advance(static_cast<std::size_t>(plan.repeats));
   if (r.figures.frozen > 0)
-    r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) +
-             (r.figures.frozen == 1 ? " particle" : " particles");
+    r.note = "blew up: the guard froze " +
+             count(static_cast<std::size_t>(r.figures.frozen), "particle", "particles");
   return r;
 }
 
