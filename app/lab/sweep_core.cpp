@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "peers/pose_measures.h"
+#include "run.h"
 #include "runner.h"
 #include "text.h"
 
@@ -166,13 +167,11 @@ std::string Setting::describe() const {
 
 scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& setting) {
   scenes::Scene scene = scenes::loadSceneFile(file, setting.model.options);
-  phys::SolverSettings s = scene.world.solverSettings();
-  s.method = setting.method;
-  s.iterations = setting.iterations;
-  s.substeps = setting.substeps;
-  s.dt = setting.dt;
-  // All at once, so the world judges the combination; it keeps every particle's velocity.
-  scene.world.setSolverSettings(s);
+  // As `lab run` puts its overrides in: all at once, so the world judges the combination.
+  applyOverrides(scene.world, RunOptions{.dt = setting.dt,
+                                         .method = setting.method,
+                                         .iterations = setting.iterations,
+                                         .substeps = setting.substeps});
   return scene;
 }
 
