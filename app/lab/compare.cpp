@@ -17,7 +17,6 @@
 #include "lab.h"
 #include "options.h"
 #include "peer.h"
-#include "progress.h"
 #include "run.h"
 #include "run_metrics.h"
 #include "scenes/scene.h"
@@ -185,9 +184,7 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
       file, imposedAtLoad(options.run.model, options.run.sleep, options.run.jointProjection));
   const double dt = options.run.dt.value_or(scene.world.solverSettings().dt);
   const Plan plan = comparePlan(options, file, dt);
-  Progress progress(err, "compare", planWork(plan));
-  PlanResult result = runPlan(plan, progress);
-  progress.finish();
+  PlanResult result = runPlan(plan, err, "compare");
   const AccuracyTarget& target = firstTarget(plan, result.targets, dt);
   const std::vector<Row>& rows = result.rows;
 

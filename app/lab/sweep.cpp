@@ -17,7 +17,6 @@
 #include "numbers.h"
 #include "options.h"
 #include "peer.h"
-#include "progress.h"
 #include "report.h"
 #include "run.h"
 #include "sweep_core.h"
@@ -326,9 +325,7 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
 
 int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,
              std::ostream& err) {
-  Progress progress(err, "sweep", planWork(plan));
-  PlanResult result = runPlan(plan, progress);
-  progress.finish();
+  PlanResult result = runPlan(plan, err, "sweep");
   TargetCache& targets = result.targets;
   // A peer that could not run has no row in the files: a line says why.
   std::vector<Row> rows;
