@@ -331,9 +331,8 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   std::vector<ModelChoice> choices = allModelChoices(models);
   std::vector<phys::SolverMethod> methods{own.method};
   for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
-                               phys::SolverMethod::Xpbd, phys::SolverMethod::Shake}) {
-    if (m != own.method) methods.push_back(m);
-  }
+                               phys::SolverMethod::Xpbd, phys::SolverMethod::Shake})
+    addOnce(methods, m);
   for (const ModelChoice& model : choices) {
     // A rigid body is solved by XPBD whatever the method: the other three would repeat it.
     if (model.label == phys::toString(phys::BodyModel::Rigid)) {
