@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -33,9 +32,6 @@
 
 namespace lab {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // ---- <expect kind="position"> ----------------------------------------------------------------
 
@@ -127,12 +123,6 @@ std::vector<std::vector<phys::Vec3>> recordRun(const phys::World& loaded,
   return runSteps(world, spec).positions;
 }
 
-std::string stepList(const std::vector<int>& steps) {
-  std::string out;
-  for (int s : steps) out += (out.empty() ? "" : ", ") + std::to_string(s);
-  return out;
-}
-
 AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps) {
   AccuracyTarget t;
   t.kind = "reference";
@@ -152,7 +142,7 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
   }
   t.description = "reference: " + std::string(phys::toString(fine.method)) + ", " +
                   ixsWords(fine.iterations, fine.substeps) + " at dt " + formatNumber(dt) +
-                  " s; checkpoints at steps " + stepList(t.checkpoints) +
+                  " s; checkpoints at steps " + joinNumbers(t.checkpoints) +
                   " (t = " + formatNumber(t.checkpoints.front() * dt) + " to " +
                   formatNumber(t.checkpoints.back() * dt) + " s); its uncertainty (change from " +
                   std::to_string(half.substeps) + " substeps): " + formatNumber(t.uncertainty.front(), 2) +

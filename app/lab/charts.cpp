@@ -4,6 +4,7 @@
 #include "fileio/files.h"
 #include "gnuplot.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -95,10 +96,8 @@ Chart logChart(std::string title, std::string xLabel, std::string yLabel, bool l
 }
 
 bool hasPoints(const Chart& chart) {
-  for (const ChartSeries& s : chart.series) {
-    if (!drawablePoints(chart, s).empty()) return true;
-  }
-  return false;
+  return std::any_of(chart.series.begin(), chart.series.end(),
+                     [&](const ChartSeries& s) { return !drawablePoints(chart, s).empty(); });
 }
 
 std::string gnuplotScript(const Chart& chart) {

@@ -4,6 +4,8 @@
 #include <exception>
 #include <ostream>
 #include <sstream>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 
 #include <CLI/CLI.hpp>
@@ -90,11 +92,18 @@ std::function<void(const T&)> listAppender(std::vector<T>& into) {
   };
 }
 
+// The range of a count (`whole`: 1 to spec.most) or of a time, as the help and the errors write it:
+// "1 to 1000", "1e-06 to 1", "above 0 and at most 3600".
+std::string rangeText(const OptionSpec& spec, bool whole) {
+  if (whole) return "1 to " + std::to_string(static_cast<int>(spec.most));
+  return (spec.aboveLeast ? "above " : "") + formatNumber(spec.least) +
+         (spec.aboveLeast ? " and at most " : " to ") + formatNumber(spec.most);
+}
+
 // One value of each type an option reads into; the error without the option's name, or "".
 std::string read(const std::string& text, const OptionSpec& spec, int& into) {
-  const int most = static_cast<int>(spec.most);
-  const std::optional<int> n = parseWholeNumber(text, 1, most);
-  if (!n) return "'" + text + "' is not a whole number from 1 to " + std::to_string(most);
+  const std::optional<int> n = parseWholeNumber(text, 1, static_cast<int>(spec.most));
+  if (!n) return "'" + text + "' is not a whole number from " + rangeText(spec, true);
   into = *n;
   return {};
 }
@@ -105,10 +114,8 @@ std::string read(const std::string& text, const OptionSpec& spec, double& into) 
     into = *v;
     return {};
   }
-  const std::string range =
-      spec.aboveLeast ? "above " + formatNumber(spec.least) + " and at most " + formatNumber(spec.most)
-                      : "from " + formatNumber(spec.least) + " to " + formatNumber(spec.most);
-  return "'" + text + "' is not a number of seconds " + range;
+  return "'" + text + "' is not a number of seconds " + (spec.aboveLeast ? "" : "from ") +
+         rangeText(spec, false);
 }
 
 std::string read(const std::string& text, const OptionSpec&, phys::SolverMethod& into) {
@@ -148,29 +155,18 @@ bool asksForHelp(const std::vector<std::string>& args) {
                      [](const std::string& a) { return a == "--help" || a == "-h"; });
 }
 
-// What a missing value should have been, by the option's type, when the table does not say.
-const char* typeNeeds(const OptionSpec&, const int*) {
-  return "a whole number";
-}
-const char* typeNeeds(const OptionSpec&, const double*) {
-  return "a number of seconds";
-}
-const char* typeNeeds(const OptionSpec&, const phys::SolverMethod*) {
-  return "a method (gauss-seidel, jacobi, xpbd or shake)";
-}
-const char* typeNeeds(const OptionSpec&, const phys::BodyModel*) {
-  return "a body model (corners, tetra or rigid)";
-}
-const char* typeNeeds(const OptionSpec&, const bool*) {
-  return "a value (on or off)";
-}
-const char* typeNeeds(const OptionSpec& spec, const std::filesystem::path*) {
-  return namesFile(spec) ? "a file name" : "a folder";
-}
-
+// What a missing value should have been: the table's word, else what the option's type reads.
 template <typename Value>
 std::string needsOf(const OptionSpec& spec) {
-  return spec.needs != nullptr ? spec.needs : typeNeeds(spec, static_cast<const Value*>(nullptr));
+  if (spec.needs != nullptr) return spec.needs;
+  if constexpr (std::is_same_v<Value, int>) return "a whole number";
+  if constexpr (std::is_same_v<Value, double>) return "a number of seconds";
+  if constexpr (std::is_same_v<Value, phys::SolverMethod>)
+    return "a method (gauss-seidel, jacobi, xpbd or shake)";
+  if constexpr (std::is_same_v<Value, phys::BodyModel>) return "a body model (corners, tetra or rigid)";
+  if constexpr (std::is_same_v<Value, bool>) return "a value (on or off)";
+  if constexpr (std::is_same_v<Value, std::filesystem::path>)
+    return namesFile(spec) ? "a file name" : "a folder";
 }
 
 template <typename T>
@@ -189,8 +185,13 @@ constexpr bool kIsList = false;
 template <typename T>
 constexpr bool kIsList<std::vector<T>> = true;
 
-std::string withNote(const char* help, const std::string& note) {
-  return note.empty() ? std::string(help) : std::string(help) + " " + note;
+// The table's help, its "{range}" written out (`whole`: a count's), then the command's note.
+std::string helpText(const OptionSpec& spec, const std::string& note, bool whole = false) {
+  constexpr std::string_view kRange = "{range}";
+  std::string help = spec.help;
+  if (const std::size_t at = help.find(kRange); at != std::string::npos)
+    help.replace(at, kRange.size(), rangeText(spec, whole));
+  return note.empty() ? help : help + " " + note;
 }
 
 }  // namespace
@@ -202,7 +203,7 @@ CommandLine::CommandLine(std::string command)
 
 CommandLine::~CommandLine() = default;
 
-void CommandLine::add(const OptionSpec& spec, std::string label, std::string needs, const std::string& note,
+void CommandLine::add(const OptionSpec& spec, std::string label, std::string needs, const std::string& help,
                       bool many, std::function<std::string(const std::string&)> read) {
   const std::string names = spec.names;
   const std::string name = firstName(names);
@@ -224,8 +225,7 @@ void CommandLine::add(const OptionSpec& spec, std::string label, std::string nee
         return {};
       },
       ""));
-  entries_.push_back(
-      {names, std::move(label), withNote(spec.help, note) + aliasNote(names), std::move(needs)});
+  entries_.push_back({names, std::move(label), help + aliasNote(names), std::move(needs)});
 }
 
 void CommandLine::scene(std::string& into) {
@@ -257,7 +257,7 @@ void CommandLine::option(const OptionSpec& spec, T& into, const std::string& not
   const std::string name = firstName(spec.names);
   if constexpr (kIsList<T>) {
     using Value = typename T::value_type;
-    add(spec, name + " LIST", needsOf<Value>(spec), note, false,
+    add(spec, name + " LIST", needsOf<Value>(spec), helpText(spec, note, std::is_same_v<Value, int>), false,
         [spec, append = listAppender(into)](const std::string& text) {
           return readList(text, [&](const std::string& item) {
             Value v{};
@@ -268,8 +268,8 @@ void CommandLine::option(const OptionSpec& spec, T& into, const std::string& not
         });
   } else {
     using Value = typename Target<T>::Value;
-    add(spec, name + " " + spec.value, needsOf<Value>(spec), note, false,
-        [spec, &into](const std::string& v) { return read(v, spec, Target<T>::slot(into)); });
+    add(spec, name + " " + spec.value, needsOf<Value>(spec), helpText(spec, note, std::is_same_v<Value, int>),
+        false, [spec, &into](const std::string& v) { return read(v, spec, Target<T>::slot(into)); });
   }
 }
 
@@ -289,7 +289,8 @@ template void CommandLine::option(const OptionSpec&, std::optional<std::filesyst
                                   const std::string&);
 
 void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, const std::string& note) {
-  add(option::kModels, "--models LIST", needsOf<phys::BodyModel>(option::kModels), note, false,
+  add(option::kModels, "--models LIST", needsOf<phys::BodyModel>(option::kModels),
+      helpText(option::kModels, note), false,
       [ragdollModels, append = listAppender(into)](const std::string& text) {
         return readList(text, [&](const std::string& item) {
           const bool known = phys::parseBodyModel(item) || (ragdollModels && phys::parseRagdollModel(item));
@@ -305,13 +306,13 @@ void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, con
 
 void CommandLine::flag(const OptionSpec& spec, bool& into, bool value, const std::string& note) {
   app_->add_flag_callback(spec.names, [&into, value] { into = value; });
-  entries_.push_back({spec.names, spec.names, withNote(spec.help, note), ""});
+  entries_.push_back({spec.names, spec.names, helpText(spec, note), ""});
 }
 
 void CommandLine::custom(const OptionSpec& spec, bool many,
                          std::function<std::string(const std::string&)> read, const std::string& note) {
   add(spec, std::string(firstName(spec.names)) + " " + spec.value, spec.needs != nullptr ? spec.needs : "",
-      note, many, std::move(read));
+      helpText(spec, note), many, std::move(read));
 }
 
 void CommandLine::require(const OptionSpec& spec, std::string why) {

@@ -28,7 +28,9 @@ namespace lab {
 struct OptionSpec {
   const char* names;  ///< "--steps", or "--methods,--method": the first is the one errors name
   const char* value;  ///< what one value is called in the help ("N", "DIR"); "" for a flag
-  const char* help;   ///< what it does, with its range
+  /// What it does; "{range}" in it stands for the range below, written from the numbers ("1 to
+  /// 1000", "above 0 and at most 3600"), so the help never disagrees with what is refused.
+  const char* help;
   double most = 0.0;  ///< a count's or a time's largest value (counts start at 1)
   /// What a missing value should have been ("--dt needs a time step in seconds"); when null, what
   /// the option's type reads ("a whole number", "a folder", "a value (on or off)"...).
@@ -43,13 +45,13 @@ inline constexpr int kMaxSteps = 10000000;
 /// The table: every option any command takes. --iterations, --substeps, --dt and --threads take
 /// the physics' ranges (physics/settings.h).
 namespace option {
-inline constexpr OptionSpec kSteps{"--steps", "N", "steps to run, 1 to 10000000", kMaxSteps};
+inline constexpr OptionSpec kSteps{"--steps", "N", "steps to run, {range}", kMaxSteps};
 inline constexpr OptionSpec kDt{
-    "--dt", "S", "seconds per step, 1e-06 to 1", phys::kMaxDt, "a time step in seconds", phys::kMinDt};
+    "--dt", "S", "seconds per step, {range}", phys::kMaxDt, "a time step in seconds", phys::kMinDt};
 inline constexpr OptionSpec kMethods{"--methods,--method", "M", "gauss-seidel, jacobi, xpbd or shake"};
-inline constexpr OptionSpec kIterations{"--iterations", "K", "relaxation passes per substep, 1 to 1000",
+inline constexpr OptionSpec kIterations{"--iterations", "K", "relaxation passes per substep, {range}",
                                         phys::kMaxIterations};
-inline constexpr OptionSpec kSubsteps{"--substeps", "S", "integrations per step, 1 to 1000",
+inline constexpr OptionSpec kSubsteps{"--substeps", "S", "integrations per step, {range}",
                                       phys::kMaxSubsteps};
 inline constexpr OptionSpec kModels{"--models,--model", "M",
                                     "corners, tetra or rigid, imposed at load on every box and capsule"};
@@ -58,10 +60,10 @@ inline constexpr OptionSpec kJointProjection{
     "--joint-projection", "on|off", "whether rigid joints are closed exactly after each substep's passes"};
 inline constexpr OptionSpec kPeerSleep{"--peer-sleep", "on|off",
                                        "whether the peers' bodies at rest sleep (Bullet's deactivation)"};
-inline constexpr OptionSpec kThreads{"--threads", "N", "threads the step may use, 1 to 64",
+inline constexpr OptionSpec kThreads{"--threads", "N", "threads the step may use, {range}",
                                      phys::kMaxThreads};
-inline constexpr OptionSpec kRepeat{"--repeat", "R",
-                                    "timed runs of each setting, 1 to 1000; the median counts", 1000};
+inline constexpr OptionSpec kRepeat{"--repeat", "R", "timed runs of each setting, {range}; the median counts",
+                                    1000};
 inline constexpr OptionSpec kJson{"--json", "", "print JSON:"};
 inline constexpr OptionSpec kDump{"--dump", "FILE", "write each named body's final pose to FILE as CSV"};
 inline constexpr OptionSpec kData{"--data", "DIR", "folder holding assets/ (default: the source tree)"};
@@ -82,14 +84,14 @@ inline constexpr OptionSpec kTarget{"--target", "METRIC=VALUE",
                                     "an upper bound the setting must meet (repeatable)", 0.0, "METRIC=VALUE"};
 // 4096 ragdolls, or a pyramid's base: 8.4 million boxes, is beyond any run.
 inline constexpr OptionSpec kSizes{"--sizes", "LIST",
-                                   "sizes, comma-separated, 1 to 4096: ragdolls, or a pyramid's base row",
-                                   4096, "a list of sizes"};
+                                   "sizes, comma-separated, {range}: ragdolls, or a pyramid's base row", 4096,
+                                   "a list of sizes"};
 inline constexpr OptionSpec kSaveScenes{"--save-scenes", "DIR",
                                         "also write each size's scene as DIR/KIND-N.xml, for lab run"};
 // An hour of a free body is already a long run.
 inline constexpr OptionSpec kTime{.names = "--time",
                                   .value = "S",
-                                  .help = "horizon of a free-body scene, s, above 0 and at most 3600",
+                                  .help = "horizon of a free-body scene, s, {range}",
                                   .most = 3600.0,
                                   .needs = "a number of seconds",
                                   .aboveLeast = true};
@@ -162,7 +164,8 @@ class CommandLine {
 
  private:
   struct Entry;
-  void add(const OptionSpec& spec, std::string label, std::string needs, const std::string& note, bool many,
+  /// `help`: the table's, its range written out, with the command's note.
+  void add(const OptionSpec& spec, std::string label, std::string needs, const std::string& help, bool many,
            std::function<std::string(const std::string&)> read);
 
   /// The words CLI11 gave the positional (none without one).

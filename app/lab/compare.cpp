@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -18,7 +17,6 @@
 #include "lab.h"
 #include "options.h"
 #include "peer.h"
-#include "progress.h"
 #include "run.h"
 #include "run_metrics.h"
 #include "scenes/scene.h"
@@ -114,8 +112,7 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
          "error, all (m) | penetration (m) | joint gap (m) |";
   // Then the figures of every step, ours alone (run_metrics.h).
   for (const RunMetric& m : kRunMetrics)
-    out << " " << m.name << (*m.unit == '\0' ? "" : " (") << m.unit << (*m.unit == '\0' ? "" : ")")
-        << (m.over == OverRun::Rms ? ", RMS over the run |" : ", every step |");
+    out << " " << m.nameAndUnit() << (m.over == OverRun::Rms ? ", RMS over the run |" : ", every step |");
   out << " unsupported / notes |\n|---|---|---|---:|---:|---:|---:|---:|---:|";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) out << "---:|";
   out << "---|\n";
@@ -187,13 +184,11 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
       file, imposedAtLoad(options.run.model, options.run.sleep, options.run.jointProjection));
   const double dt = options.run.dt.value_or(scene.world.solverSettings().dt);
   const Plan plan = comparePlan(options, file, dt);
-  Progress progress(err, "compare", planWork(plan));
-  PlanResult result = runPlan(plan, progress);
-  progress.finish();
+  PlanResult result = runPlan(plan, err, "compare");
   const AccuracyTarget& target = firstTarget(plan, result.targets, dt);
   const std::vector<Row>& rows = result.rows;
 
-  double fastest = std::numeric_limits<double>::infinity();
+  double fastest = kInf;
   for (const Row& r : rows) {
     if (!r.peer && r.msPerStep > 0.0) fastest = std::min(fastest, r.msPerStep);
   }
@@ -209,7 +204,8 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
   out << "run       " << steps << " steps of " << dt << " s (" << steps * dt
       << " s) in each engine, one after another in this process; ms/step: the steps' time over their "
          "number, ours the median of "
-      << plan.repeats << (plan.repeats == 1 ? " timed run" : " timed runs") << " after a measured one\n";
+      << count(static_cast<std::size_t>(plan.repeats), "timed run", "timed runs")
+      << " after a measured one\n";
   out << "accuracy  " << target.description << "; error = the largest distance (m) of a body from it\n";
   if (peerEngines().empty())
     out << "peers     none built in (LAB_PEERS off, or no Bullet, ODE or MuJoCo found at build time)\n";

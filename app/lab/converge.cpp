@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
@@ -25,11 +24,11 @@
 #include "physics/rigid_bodies.h"
 #include "runner.h"
 #include "sweep_core.h"
+#include "text.h"
 
 namespace lab {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr const char* kParticleModel = "particle";
 
 void describeConverge(CommandLine& line, ConvergeOptions& o) {
@@ -95,9 +94,7 @@ struct FreeBodies {
 
 FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vector<double>& times,
                              bool boxInertia) {
-  scenes::LoadOptions rigid;
-  rigid.boxModel = phys::BodyModel::Rigid;
-  const scenes::Scene scene = scenes::loadSceneFile(file, rigid);
+  const scenes::Scene scene = scenes::loadSceneFile(file, {.boxModel = phys::BodyModel::Rigid});
   const phys::World& world = scene.world;
   const double h = world.solverSettings().dt / world.solverSettings().substeps;
   FreeBodies out;
@@ -277,11 +274,10 @@ std::vector<std::vector<ConvergeRow>> convergeLines(const std::vector<ConvergeRo
       return l.front().scene == r.scene && l.front().method == r.method && l.front().model == r.model;
     };
     auto it = std::find_if(lines.begin(), lines.end(), same);
-    if (it == lines.end()) {
+    if (it == lines.end())
       lines.push_back({r});
-    } else {
+    else
       it->push_back(r);
-    }
   }
   return lines;
 }
@@ -317,24 +313,22 @@ std::string convergeTable(const std::vector<ConvergeRow>& rows, const ConvergeTa
        formatNumber(kConvergeFloor, 2) + " m (exact: every error below it)\n";
   const std::vector<std::vector<ConvergeRow>> lines = convergeLines(rows);
   char cell[64];
-  std::string header;
   std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", "method", "model", "order");
-  header += cell;
+  s += cell;
   for (const ConvergeRow& r : lines.front()) {
     std::snprintf(cell, sizeof cell, " %9s", ("S=" + std::to_string(r.substeps)).c_str());
-    header += cell;
+    s += cell;
   }
-  s += header + "\n";
+  s += "\n";
   for (const std::vector<ConvergeRow>& line : lines) {
     std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", line.front().method.c_str(),
                   line.front().model.c_str(), orderText(line).c_str());
     s += cell;
     for (const ConvergeRow& r : line) {
-      if (std::isfinite(r.error)) {
+      if (std::isfinite(r.error))
         std::snprintf(cell, sizeof cell, " %9.2e", r.error);
-      } else {
+      else
         std::snprintf(cell, sizeof cell, " %9s", "blew up");
-      }
       s += cell;
     }
     s += "\n";

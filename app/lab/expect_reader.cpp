@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "bodies.h"
+#include "text.h"
 
 namespace lab {
 
@@ -41,9 +42,7 @@ void ExpectReader::rejectUnknown(const std::string& scope) const {
   for (std::size_t i = 0; i < x_.attributes.size(); ++i) {
     const std::string& name = x_.attributes[i].first;
     if (std::find(asked_.begin(), asked_.end(), name) == asked_.end()) {
-      std::string known;
-      for (const std::string& k : asked_) known += (known.empty() ? "" : ", ") + k;
-      fail(name, "unknown attribute" + scope + " (known: " + known + ")");
+      fail(name, "unknown attribute" + scope + " (known: " + join(asked_, ", ") + ")");
     }
     for (std::size_t j = i + 1; j < x_.attributes.size(); ++j) {
       if (x_.attributes[j].first == name) fail(name, "given twice");

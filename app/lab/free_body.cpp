@@ -37,12 +37,8 @@ Spin rk4(const Spin& s, const Vec3& inertia, double h) {
   const Spin k2 = rate(add(s, k1, h / 2), inertia);
   const Spin k3 = rate(add(s, k2, h / 2), inertia);
   const Spin k4 = rate(add(s, k3, h), inertia);
-  Spin out = s;
-  out.q.w += h / 6 * (k1.q.w + 2 * k2.q.w + 2 * k3.q.w + k4.q.w);
-  out.q.x += h / 6 * (k1.q.x + 2 * k2.q.x + 2 * k3.q.x + k4.q.x);
-  out.q.y += h / 6 * (k1.q.y + 2 * k2.q.y + 2 * k3.q.y + k4.q.y);
-  out.q.z += h / 6 * (k1.q.z + 2 * k2.q.z + 2 * k3.q.z + k4.q.z);
-  out.w += h / 6 * (k1.w + 2.0 * k2.w + 2.0 * k3.w + k4.w);
+  // s + h/6 (k1 + 2 k2 + 2 k3 + k4), summed in that order.
+  Spin out = add(s, add(add(add(k1, k2, 2.0), k3, 2.0), k4, 1.0), h / 6);
   // RK4 lets |q| drift by O(h^5) a step; putting it back on the unit sphere changes nothing else.
   out.q = glm::normalize(out.q);
   return out;

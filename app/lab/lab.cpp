@@ -98,13 +98,9 @@ int labMain(const std::vector<std::string>& args, std::ostream& out, std::ostrea
 constinit const CommandMain runMain = commandMainOf<RunOptions, describeRun, runCommand>;
 
 CommandOutput runCaptured(const std::vector<std::string>& args) {
-  std::ostringstream out;
-  std::ostringstream err;
-  CommandOutput r;
-  r.code = labMain(args, out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
+  std::ostringstream out, err;
+  const int code = labMain(args, out, err);
+  return {code, out.str(), err.str()};
 }
 
 CommandOutput runCaptured(const std::string& command, std::vector<std::string> args) {

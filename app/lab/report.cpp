@@ -116,9 +116,8 @@ std::string summaryText(const RunResult& r) {
   s +=
       "solver       " + std::string(phys::toString(r.solver.method)) +
       (r.xpbdAlone ? " (no stick to relax: every method steps this world alike, rigid bodies by XPBD)" : "") +
-      ", " + count(static_cast<std::size_t>(r.solver.iterations), "iteration", "iterations") + ", " +
-      count(static_cast<std::size_t>(r.solver.substeps), "substep", "substeps") + ", dt " + num(r.solver.dt) +
-      " s" + (r.solver.jointProjection.enabled ? ", rigid joints projected" : "") + "\n";
+      ", " + ixsWords(r.solver.iterations, r.solver.substeps, ", ") + ", dt " + num(r.solver.dt) + " s" +
+      (r.solver.jointProjection.enabled ? ", rigid joints projected" : "") + "\n";
   s += "world        " + count(r.particles, "particle", "particles") + ", " +
        count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
   s += "islands      " + std::to_string(r.islands) + " at the end, " + std::to_string(r.awakeBodies) +
@@ -148,8 +147,7 @@ std::string summaryText(const RunResult& r) {
   s += "worst        after any step:";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& metric = kRunMetrics[i];
-    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + num(r.worst[i]) +
-         (*metric.unit == '\0' ? "" : " ") + metric.unit +
+    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + num(r.worst[i]) + metric.unitAfter() +
          (metric.over == OverRun::Rms ? " (RMS over the run)" : "");
   }
   s += "\n";

@@ -8,7 +8,6 @@
 #include <ctime>
 #include <fstream>
 #include <functional>
-#include <limits>
 #include <map>
 #include <ostream>
 #include <sstream>
@@ -177,7 +176,7 @@ std::string frontSentence(const std::vector<CsvRow>& rows, Describe describe) {
 // What the figures say about a sweep, in sentences: the front from cheap to accurate, and for
 // each method its cheapest setting that comes within reach of the most accurate run.
 std::string sweepWords(const std::vector<CsvRow>& rows) {
-  double best = std::numeric_limits<double>::infinity(), uncertainty = 0.0;
+  double best = kInf, uncertainty = 0.0;
   for (const CsvRow& r : rows) {
     best = std::min(best, fieldNumber(r, "error"));
     const double u = fieldNumber(r, "ref_uncertainty");

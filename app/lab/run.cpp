@@ -16,10 +16,7 @@ bool xpbdWhateverTheMethod(const phys::World& world) {
 
 scenes::LoadOptions imposedAtLoad(std::optional<phys::BodyModel> model, bool sleep,
                                   std::optional<bool> jointProjection) {
-  scenes::LoadOptions load;
-  load.boxModel = model;
-  load.sleep = sleep;
-  load.jointProjection = jointProjection;
+  scenes::LoadOptions load{.boxModel = model, .sleep = sleep, .jointProjection = jointProjection};
   if (model == phys::BodyModel::Rigid) load.ragdollModel = phys::RagdollModel::Rigid;
   return load;
 }

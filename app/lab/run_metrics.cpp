@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include <glm/geometric.hpp>
 
 #include "physics/character.h"
+#include "text.h"
 
 namespace lab {
 
@@ -37,7 +37,7 @@ void RunMaxima::observe(const phys::World& world) {
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const double v = kRunMetrics[i].read(world, metrics);
     if (!std::isfinite(v) || std::isinf(worst[i])) {
-      worst[i] = std::numeric_limits<double>::infinity();
+      worst[i] = kInf;
     } else if (kRunMetrics[i].over == OverRun::Rms) {
       sumOfSquares[i] += v * v;
       worst[i] = std::sqrt(sumOfSquares[i] / double(steps));

@@ -6,6 +6,7 @@
 // (docs/lab.md, "Figures of a run").
 #include <array>
 #include <cstddef>
+#include <string>
 #include <string_view>
 
 #include "physics/world.h"
@@ -27,6 +28,11 @@ struct RunMetric {
   /// The figure after a step; `metrics` is world.metrics(), read once for all of them.
   double (*read)(const phys::World& world, const phys::Metrics& metrics);
   OverRun over = OverRun::Worst;
+
+  /// "joint-error (m)", or the name alone for a ratio: the figure's heading.
+  std::string nameAndUnit() const { return *unit == '\0' ? name : std::string(name) + " (" + unit + ")"; }
+  /// " m" to put after the figure's value; "" for a ratio.
+  std::string unitAfter() const { return *unit == '\0' ? "" : std::string(" ") + unit; }
 };
 
 /// The fastest spin of any body, rad/s: each body's angular velocity over the last substep

@@ -5,11 +5,9 @@
 #include "json.h"
 #include "text.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
-#include <stdexcept>
 
 #include "charts.h"
 #include "commands.h"

@@ -1,12 +1,11 @@
 // lab stability: the suite of scenes where solvers are known to fail (assets/scenes/stability/),
 // each run under every setting asked for and in every peer engine, judged against the pass
 // criteria in its file (docs/lab.md, "lab stability").
-#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <filesystem>
-#include <iostream>
 #include <ostream>
+#include <utility>
 
 #include "charts.h"
 #include "commands.h"

@@ -123,7 +123,7 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   if (!min && !max) r.fail("min", "is required, or max, or both (whole numbers of flips)");
   if (min && max && *max < *min) r.fail("max", "must be >= min");
   c.limit = min.value_or(0);
-  c.upper = max ? static_cast<double>(*max) : std::numeric_limits<double>::infinity();
+  c.upper = max ? static_cast<double>(*max) : kInf;
   c.atLeast = true;
 }
 
@@ -210,12 +210,11 @@ int runSteps(const std::vector<Criterion>& criteria) {
 }
 
 double errorRatio(const Criterion& c, double value) {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  if (!std::isfinite(value)) return inf;
+  if (!std::isfinite(value)) return kInf;
   switch (c.metric) {
     case Metric::Flips: {
       // The nearer bound's ratio, oriented so that > 1 is outside: min / value, value / max.
-      const double low = c.limit <= 0.0 ? 0.0 : (value > 0.0 ? c.limit / value : inf);
+      const double low = c.limit <= 0.0 ? 0.0 : (value > 0.0 ? c.limit / value : kInf);
       return std::max(low, value / c.upper);
     }
     case Metric::StaysBehind:

@@ -3,18 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 
 #include "bodies.h"
 #include "peers/peer_scene.h"
 #include "peers/pose_measures.h"
 #include "physics/body.h"
+#include "text.h"
 
 namespace lab::stability {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 // A flip is counted when the middle axis points more than 60 degrees the other way from the
 // side it was last counted on: the hysteresis keeps a wobble about 90 degrees from counting
 // twice, and a real Dzhanibekov flip swings the axis all the way round.
@@ -63,7 +62,7 @@ Verdict verdictOf(const Criterion& c, double value) {
 Tally::Tally(const Criterion& criterion, const phys::World& loaded)
     : criterion_(&criterion),
       // NaN for stays-behind: the first sample sets it (min and max both take a number over NaN).
-      value_(criterion.metric == Metric::StaysBehind ? std::numeric_limits<double>::quiet_NaN() : 0.0) {
+      value_(criterion.metric == Metric::StaysBehind ? kNaN : 0.0) {
   if (criterion.metric == Metric::Flips)
     middleAxis_ = middleAxis(loaded.bodies()[criterion.bodies.front()].halfExtents);
 }

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -16,21 +15,11 @@ namespace {
 // Beyond a factor of 1000 either way the colour says nothing more: a clean pass, or a blow-up.
 constexpr double kLogClip = 3.0;
 
-template <typename T>
-std::string joinNumbers(const std::vector<T>& values) {
-  std::vector<std::string> parts;
-  parts.reserve(values.size());
-  for (T v : values) parts.push_back(formatNumber(static_cast<double>(v)));
-  return join(parts, ", ");
-}
-
 // The distinct values of one field of the settings, in first-seen order.
 template <typename F>
 std::vector<int> distinct(const std::vector<Setting>& settings, F field) {
   std::vector<int> out;
-  for (const Setting& s : settings) {
-    if (std::find(out.begin(), out.end(), field(s)) == out.end()) out.push_back(field(s));
-  }
+  for (const Setting& s : settings) addOnce(out, field(s));
   return out;
 }
 

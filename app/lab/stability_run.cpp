@@ -60,11 +60,10 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
     load.ragdollModel = phys::ragdollModelOf(*model);
   }
   scenes::Scene scene = scenes::loadSceneFile(s.file, load);
-  RunOptions overrides;
-  overrides.method = setting.method;
-  overrides.iterations = setting.iterations;
-  overrides.substeps = setting.substeps;
-  applyOverrides(scene.world, overrides);  // one call, as `lab run` does: the world judges the whole
+  // One call, as `lab run` does: the world judges the whole.
+  applyOverrides(
+      scene.world,
+      RunOptions{.method = setting.method, .iterations = setting.iterations, .substeps = setting.substeps});
 
   phys::World& world = scene.world;
   WorldJudge judge(s.criteria, world);

@@ -3,14 +3,9 @@
 // cost with the Pareto front. docs/lab.md, "lab sweep", documents the options and the files.
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
-#include <iostream>
-#include <limits>
 #include <optional>
 #include <ostream>
-#include <set>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -22,7 +17,6 @@
 #include "numbers.h"
 #include "options.h"
 #include "peer.h"
-#include "progress.h"
 #include "report.h"
 #include "run.h"
 #include "sweep_core.h"
@@ -32,7 +26,6 @@
 namespace lab {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Errors below this are round-off: a Verlet projectile, exact in exact arithmetic, collects
 /// 1e-11 m over a thousand substeps. They are drawn and compared as this, so the front does not
 /// chase noise. unit: m
@@ -207,11 +200,16 @@ std::string pointLabel(const Row& r) {
   return ixs(*r.iterations, *r.substeps);
 }
 
+// " tetra dt 0.01": what tells a row from the others of its method, the model (ours) and the dt,
+// each where the sweep has several.
+std::string modelAndDt(const Row& r, const Plan& plan) {
+  const std::string model = plan.models.size() > 1 && !r.peer ? " " + r.model : "";
+  return plan.dts.size() > 1 ? model + " dt " + formatNumber(r.dt, 4) : model;
+}
+
 // "shake 1x8" (with its model and dt when the sweep has several), or the peer's name.
 std::string rowName(const Row& r, const Plan& plan) {
-  std::string name = r.peer ? r.method : r.method + " " + pointLabel(r);
-  if (plan.models.size() > 1 && !r.peer) name += " " + r.model;
-  return plan.dts.size() > 1 ? name + " dt " + formatNumber(r.dt, 4) : name;
+  return (r.peer ? r.method : r.method + " " + pointLabel(r)) + modelAndDt(r, plan);
 }
 
 // The simulated time the runs covered: the horizon, or later for an analytic answer after it.
@@ -225,8 +223,7 @@ double simulatedSeconds(const std::vector<Row>& rows) {
 std::string errorLabel(const AccuracyTarget& firstTarget, std::size_t measure) {
   if (measure < kRunMetricCount) {
     const RunMetric& m = kRunMetrics[measure];
-    return std::string(m.name) + (*m.unit == '\0' ? "" : " (") + m.unit + (*m.unit == '\0' ? "" : ")") +
-           ": " + m.help;
+    return m.nameAndUnit() + ": " + m.help;
   }
   return "error (m): largest distance from the " + firstTarget.kind +
          (firstTarget.kind == "analytic" ? " answer" : " run");
@@ -242,14 +239,9 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
       perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second",
       errorLabel(firstTarget, measure), true, "error-vs-cost");
   // One series per method or engine (and per model and dt when there are several).
-  const bool manyModels = plan.models.size() > 1;
-  const bool manyDts = plan.dts.size() > 1;
   std::vector<std::string> order;
   auto seriesName = [&](const Row& r) {
-    std::string name = r.peer ? r.method + " (peer)" : r.method;
-    if (manyModels && !r.peer) name += " " + r.model;
-    if (manyDts) name += " dt " + formatNumber(r.dt, 4);
-    return name;
+    return (r.peer ? r.method + " (peer)" : r.method) + modelAndDt(r, plan);
   };
   for (const Row& r : rows) addOnce(order, seriesName(r));
   // The front first, so the points are drawn over its line.
@@ -300,9 +292,9 @@ std::string tableLine(const Row& r) {
 void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows,
                  const std::vector<std::string>& accuracy, const std::vector<std::string>& notes) {
   out << "sweep       " << plan.sceneName << " (" << plan.file.string() << ")\n";
-  out << "runs        " << plan.settings.size() << (plan.settings.size() == 1 ? " setting" : " settings")
-      << " x " << plan.repeats << " timed " << (plan.repeats == 1 ? "run" : "runs")
-      << " and 1 measured, each " << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
+  out << "runs        " << count(plan.settings.size(), "setting", "settings") << " x "
+      << count(static_cast<std::size_t>(plan.repeats), "timed run", "timed runs") << " and 1 measured, each "
+      << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
   out << pad("method", 13) << " " << pad("model", 12) << padLeft("iter", 5) << padLeft("sub", 5) << "  "
@@ -333,9 +325,7 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
 
 int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,
              std::ostream& err) {
-  Progress progress(err, "sweep", planWork(plan));
-  PlanResult result = runPlan(plan, progress);
-  progress.finish();
+  PlanResult result = runPlan(plan, err, "sweep");
   TargetCache& targets = result.targets;
   // A peer that could not run has no row in the files: a line says why.
   std::vector<Row> rows;
@@ -367,7 +357,7 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
   printReport(out, plan, rows, accuracy, notes);
   const Written w = writeOutputs(plan, rows, firstTarget(plan, targets, plan.dts.front()), measure, outDir);
   const auto front = frontByCost(rows);
-  out << "pareto      " << front.size() << (front.size() == 1 ? " setting" : " settings") << " (marked *):";
+  out << "pareto      " << count(front.size(), "setting", "settings") << " (marked *):";
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
   out << "\n" << w.files.wroteLine();
   if (!w.chartProblem.empty()) err << "lab: sweep: " << w.chartProblem << "\n";

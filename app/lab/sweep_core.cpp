@@ -4,19 +4,17 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
-#include <limits>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "peers/pose_measures.h"
+#include "run.h"
 #include "runner.h"
 #include "text.h"
 
 namespace lab {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::size_t particlesWhenLoadedWith(const std::filesystem::path& file, const scenes::LoadOptions& options) {
   return scenes::loadSceneFile(file, options).world.particles().size();
@@ -33,15 +31,11 @@ std::optional<std::size_t> particlesIfLoads(const std::filesystem::path& file,
 }
 
 scenes::LoadOptions withBoxModel(phys::BodyModel m) {
-  scenes::LoadOptions o;
-  o.boxModel = m;
-  return o;
+  return {.boxModel = m};
 }
 
 scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
-  scenes::LoadOptions o;
-  o.ragdollModel = m;
-  return o;
+  return {.ragdollModel = m};
 }
 
 // The first model whose world has `count` particles: the one every body of its kind already has.
@@ -104,8 +98,7 @@ SceneModels sceneModels(const std::filesystem::path& file) {
     m.asFile = ModelChoice{"scene", {}};  // models mixed within a kind: keep the file's as they are
     return m;
   }
-  c.label = parts[0];
-  for (std::size_t i = 1; i < parts.size(); ++i) c.label += "+" + parts[i];
+  c.label = join(parts, "+");
   m.asFile = c;
   return m;
 }
@@ -168,21 +161,17 @@ std::vector<ModelChoice> allModelChoices(const SceneModels& models) {
 }
 
 std::string Setting::describe() const {
-  return std::string(phys::toString(method)) + ", " +
-         count(static_cast<std::size_t>(iterations), "iteration", "iterations") + ", " +
-         count(static_cast<std::size_t>(substeps), "substep", "substeps") +
+  return std::string(phys::toString(method)) + ", " + ixsWords(iterations, substeps, ", ") +
          (model.label.empty() ? "" : ", model " + model.label);
 }
 
 scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& setting) {
   scenes::Scene scene = scenes::loadSceneFile(file, setting.model.options);
-  phys::SolverSettings s = scene.world.solverSettings();
-  s.method = setting.method;
-  s.iterations = setting.iterations;
-  s.substeps = setting.substeps;
-  s.dt = setting.dt;
-  // All at once, so the world judges the combination; it keeps every particle's velocity.
-  scene.world.setSolverSettings(s);
+  // As `lab run` puts its overrides in: all at once, so the world judges the combination.
+  applyOverrides(scene.world, RunOptions{.dt = setting.dt,
+                                         .method = setting.method,
+                                         .iterations = setting.iterations,
+                                         .substeps = setting.substeps});
   return scene;
 }
 
@@ -202,7 +191,7 @@ std::string settingsWords(const phys::World& world) {
 
 double firstCheckpointError(const AccuracyTarget& target,
                             const std::vector<std::vector<phys::Vec3>>& positions) {
-  if (target.expected.empty() || positions.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (target.expected.empty() || positions.empty()) return kNaN;
   AccuracyTarget first;
   first.kind = target.kind;
   first.checkpoints.push_back(target.checkpoints.front());

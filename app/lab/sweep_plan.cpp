@@ -3,19 +3,25 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <limits>
 #include <utility>
 
 #include "command_line.h"
 #include "peer.h"
 #include "peers/peer_scene.h"
+#include "progress.h"
 #include "run.h"
 #include "text.h"
 
 namespace lab {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The progress bar's units for a plan: a measured and `repeats` timed runs per setting, a target
+// per model and dt, a run per peer and dt.
+std::size_t planWork(const Plan& plan) {
+  const std::size_t engines = plan.peers ? peerEngines().size() : 0;
+  return plan.settings.size() * static_cast<std::size_t>(plan.repeats + 1) +
+         plan.models.size() * plan.dts.size() + engines * plan.dts.size();
+}
 
 SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progress& progress) {
   const bool fresh = !targets.has(s, plan.stepsAt(s.dt));
@@ -35,8 +41,8 @@ SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Pr
   r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
   progress.advance(static_cast<std::size_t>(plan.repeats));
   if (r.figures.frozen > 0)
-    r.note = "blew up: the guard froze " + std::to_string(r.figures.frozen) +
-             (r.figures.frozen == 1 ? " particle" : " particles");
+    r.note = "blew up: the guard froze " +
+             count(static_cast<std::size_t>(r.figures.frozen), "particle", "particles");
   return r;
 }
 
@@ -143,18 +149,14 @@ Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
   return plan;
 }
 
-std::size_t planWork(const Plan& plan) {
-  const std::size_t engines = plan.peers ? peerEngines().size() : 0;
-  return plan.settings.size() * static_cast<std::size_t>(plan.repeats + 1) +
-         plan.models.size() * plan.dts.size() + engines * plan.dts.size();
-}
-
-PlanResult runPlan(const Plan& plan, Progress& progress) {
+PlanResult runPlan(const Plan& plan, std::ostream& err, const std::string& name) {
+  Progress progress(err, name, planWork(plan));
   PlanResult result;
   for (const Setting& s : plan.settings) result.rows.push_back(runSetting(plan, s, result.targets, progress));
   if (plan.peers) {
     for (double dt : plan.dts) runPeers(plan, dt, result.targets, result.rows, progress);
   }
+  progress.finish();
   return result;
 }
 

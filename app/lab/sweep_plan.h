@@ -7,11 +7,11 @@
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include "accuracy.h"
-#include "progress.h"
 #include "sweep_core.h"
 
 namespace lab {
@@ -77,10 +77,6 @@ inline constexpr std::size_t kMaxCombinations = 10000;
 /// scenes::LoadError like the loader.
 Plan makePlan(const std::filesystem::path& file, const PlanRequest& request);
 
-/// The progress bar's units for a plan: a measured and `repeats` timed runs per setting, a
-/// target per model and dt, a run per peer and dt.
-std::size_t planWork(const Plan& plan);
-
 /// What running a plan gives.
 struct PlanResult {
   std::vector<SweepRow> rows;  ///< the settings in plan order, then each dt's peers (ran or not)
@@ -89,8 +85,9 @@ struct PlanResult {
 
 /// Runs every setting (measured, then timed `repeats` times), then the peers at each dt on the
 /// scene as loaded with the first model, against that model's target. A peer that throws gets a
-/// row that did not run, saying why: one engine failing costs no one else their results.
-PlanResult runPlan(const Plan& plan, Progress& progress);
+/// row that did not run, saying why: one engine failing costs no one else their results. A
+/// progress bar called `name` ("sweep") goes to `err` meanwhile.
+PlanResult runPlan(const Plan& plan, std::ostream& err, const std::string& name);
 
 /// The target of the plan's first model at `dt` (the peers' and the chart's).
 const AccuracyTarget& firstTarget(const Plan& plan, TargetCache& targets, double dt);

@@ -21,6 +21,12 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
   return out;
 }
 
+std::string joinNumbers(const std::vector<int>& numbers, const std::string& separator) {
+  std::string out;
+  for (const int n : numbers) out += (out.empty() ? "" : separator) + std::to_string(n);
+  return out;
+}
+
 std::optional<std::vector<std::string>> splitList(const std::string& text) {
   std::vector<std::string> items;
   std::size_t start = 0;
@@ -54,8 +60,8 @@ std::string settingLabel(phys::SolverMethod method, int iterations, int substeps
   return std::string(phys::toString(method)) + " " + ixs(iterations, substeps);
 }
 
-std::string ixsWords(int iterations, int substeps) {
-  return count(static_cast<std::size_t>(iterations), "iteration", "iterations") + " x " +
+std::string ixsWords(int iterations, int substeps, const char* between) {
+  return count(static_cast<std::size_t>(iterations), "iteration", "iterations") + between +
          count(static_cast<std::size_t>(substeps), "substep", "substeps");
 }
 

@@ -2,6 +2,7 @@
 // The lab's small text helpers, one of each: numbers as its tables print them, comma lists as
 // its options take them, the setting label every command prints, and the median of timings.
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,11 @@
 #include "physics/settings.h"
 
 namespace lab {
+
+/// The figure of a run that blew up, and one a run does not have (a peer's of ours): formatNumber
+/// prints them "inf" and "nan".
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// printf's %.{digits}g: "0.0125", "1e-06", "inf" (a figure that ran away is printed as such).
 std::string formatNumber(double value, int digits = 6);
@@ -18,6 +24,9 @@ std::string count(std::size_t n, const char* singular, const char* plural);
 
 /// The parts with `separator` between each two.
 std::string join(const std::vector<std::string>& parts, const std::string& separator);
+
+/// Whole numbers with `separator` between each two: "1, 3, 10".
+std::string joinNumbers(const std::vector<int>& numbers, const std::string& separator = ", ");
 
 /// "a,b,c" split at the commas; nullopt when an item is empty ("a,,b", "a,", "").
 std::optional<std::vector<std::string>> splitList(const std::string& text);
@@ -35,7 +44,7 @@ double median(std::vector<double> values);
 std::string ixs(int iterations, int substeps);
 /// "gauss-seidel 3x1": a method and its iterations x substeps.
 std::string settingLabel(phys::SolverMethod method, int iterations, int substeps);
-/// "3 iterations x 1 substep": the same in words, for prose.
-std::string ixsWords(int iterations, int substeps);
+/// "3 iterations x 1 substep": the same in words, for prose; `between` in place of " x ".
+std::string ixsWords(int iterations, int substeps, const char* between = " x ");
 
 }  // namespace lab

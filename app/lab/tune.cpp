@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -24,7 +23,6 @@
 namespace lab {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// The counts searched for iterations and for substeps: roughly geometric, so a search over
 /// both stays short, and fine enough (steps of 1.33 to 1.5 above 2) that the winner is near the
 /// true cheapest.
@@ -33,9 +31,7 @@ constexpr int kLadderSize = static_cast<int>(sizeof kLadder / sizeof kLadder[0])
 
 // The ladder as the help and the output write it: "1,2,3,4,6,8,12,16,24,32".
 std::string ladderText() {
-  std::vector<std::string> steps;
-  for (int n : kLadder) steps.push_back(std::to_string(n));
-  return join(steps, ",");
+  return joinNumbers({std::begin(kLadder), std::end(kLadder)}, ",");
 }
 
 /// A substep count whose 1-iteration run already costs this much more than the cheapest
@@ -93,7 +89,7 @@ std::string readTarget(const std::string& text, TuneOptions& o) {
   } else if (t.name == kDrift) {
     t.unit = " J";
   } else if (t.run < kRunMetricCount) {
-    t.unit = *kRunMetrics[t.run].unit == '\0' ? "" : std::string(" ") + kRunMetrics[t.run].unit;
+    t.unit = kRunMetrics[t.run].unitAfter();
   } else {
     return "unknown metric '" + t.name + "' in '" + text + "' (" + metricNames() + ")";
   }
@@ -266,8 +262,7 @@ std::string figuresText(const Figures& f, bool withError) {
   if (withError) s += "error " + formatNumber(f.error, 3) + " m, ";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& m = kRunMetrics[i];
-    s += std::string(m.name) + " " + formatNumber(f.maxima[i], 3) + (*m.unit == '\0' ? "" : " ") + m.unit +
-         ", ";
+    s += std::string(m.name) + " " + formatNumber(f.maxima[i], 3) + m.unitAfter() + ", ";
   }
   return s + "drift " + formatNumber(std::abs(f.energyDrift), 3) + " J, frozen " + std::to_string(f.frozen);
 }
@@ -336,9 +331,8 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   std::vector<ModelChoice> choices = allModelChoices(models);
   std::vector<phys::SolverMethod> methods{own.method};
   for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
-                               phys::SolverMethod::Xpbd, phys::SolverMethod::Shake}) {
-    if (m != own.method) methods.push_back(m);
-  }
+                               phys::SolverMethod::Xpbd, phys::SolverMethod::Shake})
+    addOnce(methods, m);
   for (const ModelChoice& model : choices) {
     // A rigid body is solved by XPBD whatever the method: the other three would repeat it.
     if (model.label == phys::toString(phys::BodyModel::Rigid)) {

@@ -193,6 +193,22 @@ TEST(LabOptions, HelpListsEveryOption) {
   }
 }
 
+// The help writes each range from the option table's numbers, as the errors do: a count's, a
+// time's, a time above its least; no "{range}" is left standing.
+TEST(LabOptions, HelpWritesTheRangesOutFromTheTable) {
+  const std::string run = lab::runCaptured({"run", "--help"}).out;
+  for (const char* text :
+       {"steps to run, 1 to 10000000", "seconds per step, 1e-06 to 1", "threads the step may use, 1 to 64"}) {
+    EXPECT_NE(run.find(text), std::string::npos) << text;
+  }
+  EXPECT_NE(lab::runCaptured({"converge", "--help"}).out.find("s, above 0 and at most 3600"),
+            std::string::npos);
+  EXPECT_NE(lab::runCaptured({"scale", "--help"}).out.find("sizes, comma-separated, 1 to 4096: ragdolls"),
+            std::string::npos);
+  for (const char* command : {"run", "sweep", "stability", "tune", "compare", "scale", "converge", "report"})
+    EXPECT_EQ(lab::runCaptured({command, "--help"}).out.find("{range}"), std::string::npos) << command;
+}
+
 // `lab help` names every command; the help of each begins with its usage line.
 TEST(LabOptions, EveryCommandHasHelp) {
   const std::string overview = lab::usage();
