@@ -97,56 +97,68 @@ bool BroadPhase::chooseSweepAxis(std::span<const Obb> frames) {
   return true;
 }
 
-// Once per step, for all its substeps: each box's bounds are its AABB grown by how far it can go
-// in the step at its speed of the first substep (its fastest particle's speed times dt, and
-// gravity's g dt^2, twice what free fall adds). A box that goes further within the step (an
-// impact, a joint, a drag gave it speed) makes the next substep find them again (needsUpdate). Found every
-// substep, the pairs of Bullet's 136-ragdoll pile (each ragdoll's bounds overlap ~200 others' along any one
-// axis) cost a fifth of the step.
-void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, std::span<const Body> bodies,
-                        std::span<const Obb> frames, const BroadPhaseStep& step) {
+// Bodies whose bounds one thread measures at a time: a few microseconds of work.
+constexpr std::size_t kBodiesPerPiece = 256;
+
+// A body's bounds and motion for the step: its AABB grown by how far it can go in the step at its
+// speed of the step's first substep (its fastest particle's speed times dt, and gravity's g dt^2,
+// twice what free fall adds).
+void BroadPhase::measure(const Particles& particles, const RigidBodies& rigid, const Body& box, const Obb& f,
+                         BodyId id, const BroadPhaseStep& step) {
   const Real margin = step.featureEpsilon;
   const Real dt = step.dt, h = step.h;
   const Real g = step.gravity;
   const std::span<const std::uint8_t> asleep = step.asleep;
-  for (BodyId id{}; id < bodies.size(); ++id) {
-    // A sleeping body's particles and frame do not change, nor do the bounds found from them.
-    const bool sleeps = !asleep.empty() && asleep[id] != 0;
-    if (sleeps && keptAsleep_[id] != 0) continue;
-    keptAsleep_[id] = sleeps ? 1 : 0;
-    const Body& box = bodies[id];
-    Real fastest = 0.0;  // squared displacement over the last substep
-    Vec3 mean(0.0);
-    Real turning = 0.0;  // squared, the most a particle's displacement differs from the mean
-    if (box.model == BodyModel::Rigid) {
-      // A rigid body's centre moves v h, and no point of it turns further than |w| h times the
-      // half diagonal.
-      mean = rigid.velocity[box.rigid] * h;
-      const Real turn = glm::length(rigid.angularVelocity[box.rigid]) * h * glm::length(box.halfExtents);
-      turning = turn * turn;
-      fastest = (glm::length(mean) + turn) * (glm::length(mean) + turn);
-    }
-    for (int j = 0; j < box.particleCount; ++j) {
-      const Vec3 d = particles.position[box.firstParticle + j] - particles.previous[box.firstParticle + j];
-      fastest = std::max(fastest, glm::dot(d, d));
-      mean += d;
-    }
-    if (box.particleCount > 0) mean /= static_cast<Real>(box.particleCount);
-    for (int j = 0; j < box.particleCount; ++j) {
-      const Vec3 d =
-          particles.position[box.firstParticle + j] - particles.previous[box.firstParticle + j] - mean;
-      turning = std::max(turning, glm::dot(d, d));
-    }
-    const Real travel = std::sqrt(fastest) / h * dt + g * dt * dt;
-    motion_[id] = {mean / h * dt, std::sqrt(turning) / h * dt};
-    const Obb& f = frames[id];
-    Vec3 reach(margin + travel);
-    for (int k = 0; k < 3; ++k) {
-      for (int j = 0; j < 3; ++j) reach[k] += std::abs(f.axes[j][k]) * f.halfExtents[j];
-    }
-    bounds_[id] = {f.center - reach, f.center + reach};
-    travel_[id] = travel;
+  // A sleeping body's particles and frame do not change, nor do the bounds found from them.
+  const bool sleeps = !asleep.empty() && asleep[id] != 0;
+  if (sleeps && keptAsleep_[id] != 0) return;
+  keptAsleep_[id] = sleeps ? 1 : 0;
+  Real fastest = 0.0;  // squared displacement over the last substep
+  Vec3 mean(0.0);
+  Real turning = 0.0;  // squared, the most a particle's displacement differs from the mean
+  if (box.model == BodyModel::Rigid) {
+    // A rigid body's centre moves v h, and no point of it turns further than |w| h times the
+    // half diagonal.
+    mean = rigid.velocity[box.rigid] * h;
+    const Real turn = glm::length(rigid.angularVelocity[box.rigid]) * h * glm::length(box.halfExtents);
+    turning = turn * turn;
+    fastest = (glm::length(mean) + turn) * (glm::length(mean) + turn);
   }
+  for (int j = 0; j < box.particleCount; ++j) {
+    const Vec3 d = particles.position[box.firstParticle + j] - particles.previous[box.firstParticle + j];
+    fastest = std::max(fastest, glm::dot(d, d));
+    mean += d;
+  }
+  if (box.particleCount > 0) mean /= static_cast<Real>(box.particleCount);
+  for (int j = 0; j < box.particleCount; ++j) {
+    const Vec3 d =
+        particles.position[box.firstParticle + j] - particles.previous[box.firstParticle + j] - mean;
+    turning = std::max(turning, glm::dot(d, d));
+  }
+  const Real travel = std::sqrt(fastest) / h * dt + g * dt * dt;
+  motion_[id] = {mean / h * dt, std::sqrt(turning) / h * dt};
+  Vec3 reach(margin + travel);
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) reach[k] += std::abs(f.axes[j][k]) * f.halfExtents[j];
+  }
+  bounds_[id] = {f.center - reach, f.center + reach};
+  travel_[id] = travel;
+}
+
+// Once per step, for all its substeps. A box that goes further within the step than its bounds
+// allow (an impact, a joint, a drag gave it speed) makes the next substep find them again
+// (needsUpdate). Found every substep, the pairs of Bullet's 136-ragdoll pile (each ragdoll's bounds
+// overlap ~200 others' along any one axis) cost a fifth of the step.
+void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, std::span<const Body> bodies,
+                        std::span<const Obb> frames, const BroadPhaseStep& step) {
+  auto range = [&](std::size_t begin, std::size_t end) {
+    for (BodyId id(begin); id < end; ++id) measure(particles, rigid, bodies[id], frames[id], id, step);
+  };
+  // Each body's bounds are its own: ranges of bodies at once on the step's threads.
+  if (step.workers == nullptr)
+    range(0, bodies.size());
+  else
+    step.workers->forEach(bodies.size(), kBodiesPerPiece, range);
   const bool newAxis = chooseSweepAxis(frames);
   const int s = sweepAxis_;
   for (Interval& it : sweep_) {
@@ -168,7 +180,7 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
     sweep_[j] = moving;
   }
   unsortedPairs_.clear();
-  findPairsInStrips(bodies, step.strips, asleep);
+  findPairsInStrips(bodies, step.strips, step.asleep);
   sortPairsByBody();
   for (BodyId id{}; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
   stale_ = false;

@@ -70,21 +70,32 @@ void GroundContacts::combineMaterials(const Material& ground) {
   for (GroundContact& c : points_) c.combined = combined(c, ground);
 }
 
+// Capsule ends one thread places at a time.
+constexpr std::size_t kEndsPerPiece = 1024;
+
 void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
-                                        const Vec3& groundNormal) {
+                                        const Vec3& groundNormal, const Workers* workers) {
   const Vec3 n = groundNormal;
-  for (const CapsuleEnd& g : capsuleEnds_) {
-    if (anyStill_ && still_[g.point] != 0) continue;  // its body's frame has not moved
-    GroundContact& contact = points_[g.point];
-    const BodyId id = contact.body;
-    const Body& box = bodies[id];
-    const Obb& f = frames[id];
-    const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();
-    Vec3 moved(0.0);
-    contact.point = detail::surfacePoint(box, f, lowest, &moved);
-    contact.lift = glm::dot(n, moved);
-    if (box.model == BodyModel::Corners) contact.surface = detail::rigidPoint(box, f, lowest);
-  }
+  // Each end writes its own point alone: ranges of them at once on the step's threads.
+  auto range = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const CapsuleEnd& g = capsuleEnds_[k];
+      if (anyStill_ && still_[g.point] != 0) continue;  // its body's frame has not moved
+      GroundContact& contact = points_[g.point];
+      const BodyId id = contact.body;
+      const Body& box = bodies[id];
+      const Obb& f = frames[id];
+      const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();
+      Vec3 moved(0.0);
+      contact.point = detail::surfacePoint(box, f, lowest, &moved);
+      contact.lift = glm::dot(n, moved);
+      if (box.model == BodyModel::Corners) contact.surface = detail::rigidPoint(box, f, lowest);
+    }
+  };
+  if (workers == nullptr)
+    range(0, capsuleEnds_.size());
+  else
+    workers->forEach(capsuleEnds_.size(), kEndsPerPiece, range);
 }
 
 }  // namespace phys

@@ -26,8 +26,14 @@ Obb poseInFrameOf(const Obb& a, const Obb& b) {
 
 // Contact points are made in every substep: their room is made in each step's first substep, from
 // the last substep's count, before any is made.
-void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies) {
+void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies, int threads) {
   const std::size_t room = detail::kRoomPerBody * bodies;
+  pieces_.resize(static_cast<std::size_t>(std::max(threads, 1)) - 1);
+  for (Piece& piece : pieces_) {
+    detail::keepRoom(piece.manifolds, pairs, room);
+    detail::keepRoom(piece.contacts, contacts_.size(), room);
+    detail::keepRoom(piece.rigidContacts, rigidContacts_.size(), room);
+  }
   const std::size_t points = contacts_.size();
   detail::keepRoom(manifolds_, pairs, room);
   detail::keepRoom(spareManifolds_, pairs, room);
@@ -84,31 +90,92 @@ Real NarrowPhase::speculativeMargin(const NarrowPhaseInput& in, BodyId a, BodyId
 // nearer than the pair can close in the step (speculativeMargin), so that a contact that closes
 // within the step is there when it does; the passes push a point only once it touches.
 void NarrowPhase::build(const NarrowPhaseInput& in) {
-  // The last substep's manifolds are in the pairs' order, (a, b) ascending, as the new pairs are:
-  // one walk finds each pair's old manifold.
+  swapToSpare();
+  inPieces(in, in.broadPhase.pairs().size(),
+           [&](Sink& out, std::size_t begin, std::size_t end) { buildRange(in, begin, end, out); });
+  sizeState();
+}
+
+// The last substep's manifolds are in the pairs' order, (a, b) ascending, as the new pairs are:
+// one walk from the run's first pair finds each pair's old manifold.
+void NarrowPhase::buildRange(const NarrowPhaseInput& in, std::size_t begin, std::size_t end,
+                             Sink& out) const {
+  const std::span<const BroadPhase::Pair> pairs = in.broadPhase.pairs();
+  auto pairOf = [](const Manifold& m) { return BroadPhase::Pair(m.a, m.b); };
+  std::size_t old = 0;
+  if (begin < end) {
+    old = static_cast<std::size_t>(
+        std::lower_bound(spareManifolds_.begin(), spareManifolds_.end(), pairs[begin],
+                         [&](const Manifold& m, const BroadPhase::Pair& p) { return pairOf(m) < p; }) -
+        spareManifolds_.begin());
+  }
+  BoxContact contact;
+  for (std::size_t k = begin; k < end; ++k) {
+    const BroadPhase::Pair& pair = pairs[k];
+    // Two sleeping bodies: their island keeps them as they fell asleep (Islands).
+    if (!in.asleep.empty() && in.asleep[pair.first] != 0 && in.asleep[pair.second] != 0) continue;
+    while (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) < pair) ++old;
+    if (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair &&
+        canCarry(in, spareManifolds_[old])) {
+      carry(in, spareManifolds_[old], out);
+      continue;
+    }
+    const auto [a, b] = pair;
+    const bool had = old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair;
+    if (collidePair(in, a, b, had ? spareManifolds_[old].axis : -1, contact))
+      addManifold(in, a, b, contact, out);
+  }
+}
+
+// Pairs one thread collides at a time: a capsule pair costs some tenths of a microsecond, so a
+// piece this size is worth what handing it to another thread costs.
+constexpr std::size_t kPairsPerPiece = 256;
+
+template <class Work>
+void NarrowPhase::inPieces(const NarrowPhaseInput& in, std::size_t count, Work&& work) {
+  Sink own{manifolds_, contacts_, rigidContacts_};
+  const std::size_t pieces =
+      in.workers == nullptr ? 1 : std::min({pieces_.size() + 1, count / kPairsPerPiece, std::size_t{64}});
+  if (pieces <= 1) {
+    work(own, 0, count);
+    return;
+  }
+  auto range = [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < last; ++k) {
+      if (k == 0) {
+        work(own, 0, count / pieces);
+        continue;
+      }
+      Piece& piece = pieces_[k - 1];
+      piece.manifolds.clear();
+      piece.contacts.clear();
+      piece.rigidContacts.clear();
+      Sink out{piece.manifolds, piece.contacts, piece.rigidContacts};
+      work(out, count * k / pieces, count * (k + 1) / pieces);
+    }
+  };
+  in.workers->forEach(pieces, 1, range);
+  for (std::size_t k = 1; k < pieces; ++k) append(pieces_[k - 1]);
+}
+
+void NarrowPhase::append(Piece& piece) {
+  const auto points = static_cast<std::uint32_t>(contacts_.size());
+  const auto rigidPoints = static_cast<std::uint32_t>(rigidContacts_.size());
+  for (Manifold m : piece.manifolds) {
+    m.firstContact += m.rigid ? rigidPoints : points;
+    manifolds_.push_back(m);
+  }
+  contacts_.insert(contacts_.end(), piece.contacts.begin(), piece.contacts.end());
+  rigidContacts_.insert(rigidContacts_.end(), piece.rigidContacts.begin(), piece.rigidContacts.end());
+}
+
+void NarrowPhase::swapToSpare() {
   std::swap(contacts_, spareContacts_);
   std::swap(rigidContacts_, spareRigidContacts_);
   std::swap(manifolds_, spareManifolds_);
   contacts_.clear();
   rigidContacts_.clear();
   manifolds_.clear();
-  auto pairOf = [](const Manifold& m) { return BroadPhase::Pair(m.a, m.b); };
-  std::size_t old = 0;
-  BoxContact contact;
-  for (const BroadPhase::Pair& pair : in.broadPhase.pairs()) {
-    // Two sleeping bodies: their island keeps them as they fell asleep (Islands).
-    if (!in.asleep.empty() && in.asleep[pair.first] != 0 && in.asleep[pair.second] != 0) continue;
-    while (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) < pair) ++old;
-    if (old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair &&
-        canCarry(in, spareManifolds_[old])) {
-      carry(in, spareManifolds_[old]);
-      continue;
-    }
-    const auto [a, b] = pair;
-    const bool had = old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair;
-    if (collidePair(in, a, b, had ? spareManifolds_[old].axis : -1, contact)) addManifold(in, a, b, contact);
-  }
-  sizeState();
 }
 
 // Whether a kept manifold still holds: b has moved in a's frame by no more than the settings since
@@ -125,21 +192,21 @@ bool NarrowPhase::canCarry(const NarrowPhaseInput& in, const Manifold& m) const 
 }
 
 // A kept manifold into contacts_ and manifolds_ as it is, its normal turned with its face.
-void NarrowPhase::carry(const NarrowPhaseInput& in, const Manifold& m) {
+void NarrowPhase::carry(const NarrowPhaseInput& in, const Manifold& m, Sink& out) const {
   Manifold moved = m;
   if (m.rigid) {
-    moved.firstContact = static_cast<std::uint32_t>(rigidContacts_.size());
-    rigidContacts_.insert(rigidContacts_.end(), spareRigidContacts_.begin() + m.firstContact,
-                          spareRigidContacts_.begin() + m.firstContact + m.contactCount);
-    manifolds_.push_back(moved);
-    turnRigidNormal(in, manifolds_.back());
+    moved.firstContact = static_cast<std::uint32_t>(out.rigidContacts.size());
+    out.rigidContacts.insert(out.rigidContacts.end(), spareRigidContacts_.begin() + m.firstContact,
+                             spareRigidContacts_.begin() + m.firstContact + m.contactCount);
+    turnRigidNormal(in, moved, out.rigidContacts.data() + moved.firstContact);
+    out.manifolds.push_back(moved);
     return;
   }
-  moved.firstContact = static_cast<std::uint32_t>(contacts_.size());
-  contacts_.insert(contacts_.end(), spareContacts_.begin() + m.firstContact,
-                   spareContacts_.begin() + m.firstContact + m.contactCount);
-  turnNormal(in, moved, contacts_.data() + moved.firstContact);
-  manifolds_.push_back(moved);
+  moved.firstContact = static_cast<std::uint32_t>(out.contacts.size());
+  out.contacts.insert(out.contacts.end(), spareContacts_.begin() + m.firstContact,
+                      spareContacts_.begin() + m.firstContact + m.contactCount);
+  turnNormal(in, moved, out.contacts.data() + moved.firstContact);
+  out.manifolds.push_back(moved);
 }
 
 // In the step's later substeps: the contacts that cannot be kept through the step are found again.
@@ -154,50 +221,53 @@ void NarrowPhase::refresh(const NarrowPhaseInput& in) {
   if (allKept) {
     for (Manifold& m : manifolds_) {
       if (m.rigid)
-        turnRigidNormal(in, m);
+        turnRigidNormal(in, m, rigidContacts_.data() + m.firstContact);
       else
         turnNormal(in, m, contacts_.data() + m.firstContact);
     }
     return;
   }
-  std::swap(contacts_, spareContacts_);
-  std::swap(rigidContacts_, spareRigidContacts_);
-  std::swap(manifolds_, spareManifolds_);
-  contacts_.clear();
-  rigidContacts_.clear();
-  manifolds_.clear();
+  swapToSpare();
+  inPieces(in, spareManifolds_.size(),
+           [&](Sink& out, std::size_t begin, std::size_t end) { refreshRange(in, begin, end, out); });
+  sizeState();
+}
+
+void NarrowPhase::refreshRange(const NarrowPhaseInput& in, std::size_t begin, std::size_t end,
+                               Sink& out) const {
   BoxContact contact;
-  for (const Manifold& m : spareManifolds_) {
+  for (std::size_t k = begin; k < end; ++k) {
+    const Manifold& m = spareManifolds_[k];
     if (!m.kept) {
-      if (collidePair(in, m.a, m.b, m.axis, contact)) addManifold(in, m.a, m.b, contact);
+      if (collidePair(in, m.a, m.b, m.axis, contact)) addManifold(in, m.a, m.b, contact, out);
       continue;
     }
-    carry(in, m);
+    carry(in, m, out);
   }
-  sizeState();
 }
 
 // A kept contact's normal turns with the face it is the normal of: held fixed in the world while
 // a resting box rocked by a hair, it pushed a little sideways, and a stack of ten at rest still
 // moved at 1.4 mm/s after 20 s (0.1 mm/s with its contacts found every substep).
-void NarrowPhase::turnNormal(const NarrowPhaseInput& in, Manifold& m, BodyContact* contacts) const {
+void NarrowPhase::turnNormal(const NarrowPhaseInput& in, Manifold& m, BodyContact* contacts) {
   m.normal = in.frames[m.reference].axes * m.localNormal;
   for (std::uint32_t k = 0; k < m.contactCount; ++k) contacts[k].normal = m.normal;
 }
 
-void NarrowPhase::turnRigidNormal(const NarrowPhaseInput& in, Manifold& m) {
+void NarrowPhase::turnRigidNormal(const NarrowPhaseInput& in, Manifold& m, RigidContact* contacts) {
   m.normal = in.frames[m.reference].axes * m.localNormal;
-  for (std::uint32_t k = 0; k < m.contactCount; ++k) rigidContacts_[m.firstContact + k].normal = m.normal;
+  for (std::uint32_t k = 0; k < m.contactCount; ++k) contacts[k].normal = m.normal;
 }
 
-void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact) {
+void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
+                              Sink& out) {
   const Body &bodyA = in.bodies[a], &bodyB = in.bodies[b];
   if (bodyA.model == BodyModel::Rigid || bodyB.model == BodyModel::Rigid) {
-    addRigidManifold(in, a, b, contact);
+    addRigidManifold(in, a, b, contact, out);
     return;
   }
   const Material combined = combine(bodyA.material, bodyB.material);
-  const std::size_t first = contacts_.size();
+  const std::size_t first = out.contacts.size();
   for (int i = 0; i < contact.count; ++i) {
     BodyContact c;
     Vec3 movedA(0.0), movedB(0.0);
@@ -213,18 +283,18 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
       if (movedA != Vec3(0.0)) c.surfaceA = detail::rigidPoint(bodyA, in.frames[a], contact.points[i].onA);
       if (movedB != Vec3(0.0)) c.surfaceB = detail::rigidPoint(bodyB, in.frames[b], contact.points[i].onB);
     }
-    contacts_.push_back(c);
+    out.contacts.push_back(c);
   }
-  pushManifold(in, a, b, contact, false, first);
+  pushManifold(in, a, b, contact, false, first, out);
 }
 
 // The pair's manifold over its points from `first`, kept through the step when it is face on face
 // between two boxes: its reference face, and where b was in a's frame.
 void NarrowPhase::pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
-                               bool rigid, std::size_t first) {
-  manifolds_.push_back({a, b, rigid, static_cast<std::uint32_t>(first),
-                        static_cast<std::uint32_t>(contact.count), contact.sat.normal});
-  Manifold& m = manifolds_.back();
+                               bool rigid, std::size_t first, Sink& out) {
+  out.manifolds.push_back({a, b, rigid, static_cast<std::uint32_t>(first),
+                           static_cast<std::uint32_t>(contact.count), contact.sat.normal});
+  Manifold& m = out.manifolds.back();
   const bool boxes = in.bodies[a].shape == Shape::Box && in.bodies[b].shape == Shape::Box;
   m.axis = boxes ? contact.sat.axis : -1;
   m.kept = boxes && contact.kind == ContactKind::FaceFace;
@@ -266,11 +336,11 @@ void setSide(const Body& body, const Obb& frame, const Vec3& point, ContactSide&
 
 // A pair with a rigid body: its points into rigidContacts_, where the rigid passes solve them. Face
 // on face between two boxes is kept through the step as for particle bodies.
-void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId b,
-                                   const BoxContact& contact) {
+void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
+                                   Sink& out) {
   const Body &bodyA = in.bodies[a], &bodyB = in.bodies[b];
   const Material combined = combine(bodyA.material, bodyB.material);
-  const std::size_t first = rigidContacts_.size();
+  const std::size_t first = out.rigidContacts.size();
   for (int i = 0; i < contact.count; ++i) {
     RigidContact c;
     c.bodyA = a;
@@ -280,9 +350,9 @@ void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId 
     c.normal = contact.sat.normal;
     c.combined = combined;
     c.kind = static_cast<std::uint8_t>(contact.kind);
-    rigidContacts_.push_back(c);
+    out.rigidContacts.push_back(c);
   }
-  pushManifold(in, a, b, contact, true, first);
+  pushManifold(in, a, b, contact, true, first, out);
 }
 
 void NarrowPhase::sizeState() {

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "ground_pieces.h"
 #include "passes.h"
 #include "physics/world.h"
 #include "rigid_motion.h"
@@ -239,10 +240,11 @@ bool World::findPairs(bool firstSubstep) {
       islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>();
   if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_, asleep))) return false;
   const BroadPhaseStep step{solver_.dt,         substepDt(),        solver_.featureEpsilon,
-                            gravityMagnitude(), solver_.broadPhase, asleep};
+                            gravityMagnitude(), solver_.broadPhase, asleep,
+                            workers()};
   broadPhase_.update(particles_, rigidBodies_, bodies_, frames_, step);
   const std::size_t pairs = broadPhase_.pairs().size();
-  narrowPhase_.reserve(pairs, bodies_.size());
+  narrowPhase_.reserve(pairs, bodies_.size(), workers_.threads());
   parting_.reserve(pairs, bodies_.size());
   return true;
 }
@@ -262,11 +264,15 @@ void World::findContacts(bool newPairs, bool firstSubstep, Real h) {
     narrowPhase_.measureStarts(in);
   }
   if (world_.ground) {
-    ground_.placeCapsulePoints(bodies_, frames_, world_.groundNormal);
+    ground_.placeCapsulePoints(bodies_, frames_, world_.groundNormal, workers());
     // Each contact's overlap at x*, where the substep starts: what the parting measures, and
     // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
-    detail::measureGroundStartDepth(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
-                                    ground_.state().allowance);
+    // Each point's own: pieces of them at once.
+    detail::forEachGroundPiece(workers(), ground_.points(), [this](std::size_t b, std::size_t e) {
+      detail::measureGroundStartDepth(particles_, ground_.points().subspan(b, e - b), world_.groundNormal,
+                                      world_.groundHeight,
+                                      std::span(ground_.state().allowance).subspan(b, e - b));
+    });
   }
   if (firstSubstep || newPairs) collectRigidGround();
   if (rigidGround_.empty()) return;
@@ -285,7 +291,8 @@ NarrowPhaseInput World::narrowPhaseInput() const {
           solver_.dt,
           gravityMagnitude(),
           solver_.manifoldReuse,
-          islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>()};
+          islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>(),
+          workers()};
 }
 
 // Each contact with a rigid body: its overlap at the substep's start, of which the substep may remove
@@ -387,6 +394,11 @@ std::span<const Real> World::limitCorrections(Real h) {
 
 void World::relax(Real h, std::span<const Real> linkSlack) {
   const bool ground = world_.ground;
+  auto inGroundPieces = [this](auto&& f) { detail::forEachGroundPiece(workers(), ground_.points(), f); };
+  auto stillPart = [this](std::size_t b, std::size_t e) {
+    const std::span<const std::uint8_t> still = ground_.still();
+    return still.empty() ? still : still.subspan(b, e - b);
+  };
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
@@ -443,8 +455,12 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       detail::solveBodyContacts(particles_, bodyContacts, solver_.contactSlop, bodyState.push,
                                 bodyState.allowance);
       if (ground) {
-        detail::collideGround(particles_, ground_.points(), world_.groundNormal, world_.groundHeight,
-                              groundState.push, groundState.allowance, ground_.still());
+        // Each ground point moves its own body's particles: pieces of them at once (ground_pieces.h).
+        inGroundPieces([&](std::size_t b, std::size_t e) {
+          detail::collideGround(particles_, ground_.points().subspan(b, e - b), world_.groundNormal,
+                                world_.groundHeight, std::span(groundState.push).subspan(b, e - b),
+                                std::span(groundState.allowance).subspan(b, e - b), stillPart(b, e));
+        });
       }
     }
     const detail::StageTimer timer(profile_, Stage::Friction);
@@ -453,11 +469,14 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
     }
     if (ground) {
-      detail::applyGroundFriction(particles_, ground_.points(), world_.groundNormal, groundState.push,
-                                  ground_.still());
-      for (std::size_t c = 0; c < groundState.touched.size(); ++c) {
-        if (groundState.push[c] > 0.0) groundState.touched[c] = groundState.hit[c] = 1;
-      }
+      inGroundPieces([&](std::size_t b, std::size_t e) {
+        detail::applyGroundFriction(particles_, ground_.points().subspan(b, e - b), world_.groundNormal,
+                                    std::span<const Real>(groundState.push).subspan(b, e - b),
+                                    stillPart(b, e));
+        for (std::size_t c = b; c < e; ++c) {
+          if (groundState.push[c] > 0.0) groundState.touched[c] = groundState.hit[c] = 1;
+        }
+      });
     }
   }
   if (!bodyContacts.empty()) {

@@ -1,5 +1,9 @@
 // The step on several threads (SolverSettings::threads) gives the state it gives on one, bit for
 // bit: every piece it runs at once shares nothing with the others (docs/physics.md, "Threads").
+#include <algorithm>
+#include <set>
+#include <utility>
+
 #include <gtest/gtest.h>
 
 #include "physics/capsule_ragdoll.h"
@@ -12,8 +16,8 @@ using phys::Vec3;
 
 // Enough of everything that the threaded stages cut it into several pieces: 40 box ragdolls and 40
 // capsule ragdolls (many lane groups of sticks, links and body damping), over 512 bodies (three
-// pieces of frames), falling into a pile. (Integration takes pieces of 16,384 particles: this world
-// integrates in one, and a piece of integration touches its own particles only.)
+// pieces of frames and bounds), falling into a pile. (Integration takes pieces of 16,384 particles: this
+// world integrates in one, and a piece of integration touches its own particles only.)
 phys::World pile(phys::SolverMethod method, int threads) {
   phys::SolverSettings s;
   s.method = method;
@@ -44,14 +48,25 @@ TEST(Threads, TheSameStateOnOneTwoAndThreeThreads) {
        {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Xpbd, phys::SolverMethod::Jacobi}) {
     phys::World one = pile(method, 1), two = pile(method, 2), three = pile(method, 3);
     ASSERT_GT(one.bodies().size(), 2 * 256u);
+    std::size_t mostPairs = 0, mostManifolds = 0;
     for (int i = 0; i < 60; ++i) {
       one.step();
       two.step();
       three.step();
+      mostPairs = std::max(mostPairs, one.broadPhasePairs());
+      std::set<std::pair<phys::BodyId, phys::BodyId>> manifolds;
+      for (const phys::BodyContact& c : one.bodyContacts()) manifolds.emplace(c.bodyA, c.bodyB);
+      mostManifolds = std::max(mostManifolds, manifolds.size());
     }
     EXPECT_EQ(two.stateHash(), one.stateHash()) << phys::toString(method);
     EXPECT_EQ(three.stateHash(), one.stateHash()) << phys::toString(method);
     EXPECT_GT(one.metrics().contacts, 100u);  // they fell into each other
+    // The narrow phase collides the pairs in pieces of 256 or more, one a thread: the pile made
+    // three pieces of pairs, and two of manifolds collided again in later substeps. The ground's
+    // points go in pieces of 4,096 (ground_pieces.h): two.
+    EXPECT_GT(mostPairs, 3 * 256u) << phys::toString(method);
+    EXPECT_GT(mostManifolds, 2 * 256u) << phys::toString(method);
+    EXPECT_GT(one.groundContacts().size(), 4096u);
   }
 }
 

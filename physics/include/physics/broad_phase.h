@@ -13,6 +13,7 @@
 #include "physics/particles.h"
 #include "physics/rigid_bodies.h"
 #include "physics/settings.h"
+#include "physics/workers.h"
 
 namespace phys {
 
@@ -28,6 +29,7 @@ struct BroadPhaseStep {
   /// not sleep through a change of the other fields: World wakes every island when its settings
   /// change.
   std::span<const std::uint8_t> asleep;
+  const Workers* workers = nullptr;  ///< the step's threads, which measure the bodies' bounds; null on one
 };
 
 /// How a body moves over a step at the speeds of the broad phase's substep: its particles' mean
@@ -78,6 +80,8 @@ class BroadPhase {
   struct Bounds {
     Vec3 lo, hi;
   };
+  void measure(const Particles& particles, const RigidBodies& rigid, const Body& box, const Obb& f, BodyId id,
+               const BroadPhaseStep& step);
   bool chooseSweepAxis(std::span<const Obb> frames);
   void findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings,
                          std::span<const std::uint8_t> asleep);

@@ -9,6 +9,7 @@
 #include "physics/body.h"
 #include "physics/collision.h"
 #include "physics/constraints.h"
+#include "physics/workers.h"
 
 namespace phys {
 
@@ -34,9 +35,9 @@ class GroundContacts {
   /// The ground's material changed: every point's friction again.
   void combineMaterials(const Material& ground);
   /// Re-embeds each capsule's points at the lowest points of its end spheres, at its frame of this
-  /// substep (they move over its surface as it turns).
-  void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
-                          const Vec3& groundNormal);
+  /// substep (they move over its surface as it turns), on the step's threads (null: on this one).
+  void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames, const Vec3& groundNormal,
+                          const Workers* workers);
   bool hasCapsules() const { return !capsuleEnds_.empty(); }
   /// Marks the points whose every particle has inverse mass 0 in this step and had in the last
   /// one (a sleeping body's, from its second step asleep): nothing of them moves, so what the

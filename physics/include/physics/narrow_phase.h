@@ -13,6 +13,7 @@
 #include "physics/constraints.h"
 #include "physics/particles.h"
 #include "physics/rigid_contacts.h"
+#include "physics/workers.h"
 
 namespace phys {
 
@@ -61,13 +62,15 @@ struct NarrowPhaseInput {
   Real gravity = 0.0;         ///< unit: m/s^2; |g|
   ManifoldReuseSettings reuse;
   std::span<const std::uint8_t> asleep;  ///< per body, 1 when asleep (Islands); empty when none is
+  const Workers* workers = nullptr;      ///< the step's threads; null on one
 };
 
 class NarrowPhase {
  public:
   /// Makes room for the manifolds and points of `pairs` pairs among `bodies` bodies (room.h), from
-  /// the last substep's count, before any is made, so that the step does not allocate.
-  void reserve(std::size_t pairs, std::size_t bodies);
+  /// the last substep's count, before any is made, so that the step does not allocate; and the
+  /// same room in each of the pieces that `threads` threads would collide at once.
+  void reserve(std::size_t pairs, std::size_t bodies, int threads);
   /// After the broad phase found its pairs: every pair's manifold, its points kept when they are
   /// nearer than the pair can close in the step (speculativeMargin). A face-on-face manifold of
   /// the last step whose bodies have stayed within ManifoldReuseSettings of where they were to each
@@ -97,18 +100,42 @@ class NarrowPhase {
   const BodyContactState& state() const { return state_; }
 
  private:
+  /// Where a run of pairs puts its manifolds and points: the narrow phase's own arrays, or a
+  /// piece's, whose firstContact count from the piece's first point.
+  struct Sink {
+    std::vector<Manifold>& manifolds;
+    std::vector<BodyContact>& contacts;
+    std::vector<RigidContact>& rigidContacts;
+  };
+  struct Piece {
+    std::vector<Manifold> manifolds;
+    std::vector<BodyContact> contacts;
+    std::vector<RigidContact> rigidContacts;
+  };
+  /// work(sink, begin, end) over [0, count): at once in contiguous pieces on the step's threads,
+  /// each into its own sink, then the pieces appended in order, so the arrays are what one run
+  /// over all of it makes.
+  template <class Work>
+  void inPieces(const NarrowPhaseInput& in, std::size_t count, Work&& work);
+  void append(Piece& piece);
+  void buildRange(const NarrowPhaseInput& in, std::size_t begin, std::size_t end, Sink& out) const;
+  void refreshRange(const NarrowPhaseInput& in, std::size_t begin, std::size_t end, Sink& out) const;
+  void swapToSpare();
+
   bool collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, int previousAxis,
                    BoxContact& contact) const;
-  void addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact);
-  void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts) const;
+  static void addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
+                          Sink& out);
+  static void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts);
   bool canCarry(const NarrowPhaseInput& in, const Manifold& m) const;
-  void carry(const NarrowPhaseInput& in, const Manifold& m);
+  void carry(const NarrowPhaseInput& in, const Manifold& m, Sink& out) const;
   void sizeState();
 
-  void pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact, bool rigid,
-                    std::size_t first);
-  void addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact);
-  void turnRigidNormal(const NarrowPhaseInput& in, Manifold& m);
+  static void pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
+                           bool rigid, std::size_t first, Sink& out);
+  static void addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
+                               Sink& out);
+  static void turnRigidNormal(const NarrowPhaseInput& in, Manifold& m, RigidContact* contacts);
 
   std::vector<BodyContact> contacts_;
   std::vector<RigidContact> rigidContacts_;
@@ -118,6 +145,7 @@ class NarrowPhase {
   BodyContactState state_;
   std::vector<Manifold> spareManifolds_;    // manifolds_'s room for refresh
   std::vector<BodyContact> spareContacts_;  // contacts_'s room for refresh
+  std::vector<Piece> pieces_;               // the second piece's on, when pieces run at once
 };
 
 }  // namespace phys
