@@ -154,6 +154,7 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
   auto range = [&](std::size_t begin, std::size_t end) {
     for (BodyId id(begin); id < end; ++id) measure(particles, rigid, bodies[id], frames[id], id, step);
   };
+  stripPairs_.resize(step.workers == nullptr ? 0 : static_cast<std::size_t>(step.workers->threads()) - 1);
   // Each body's bounds are its own: ranges of bodies at once on the step's threads.
   if (step.workers == nullptr)
     range(0, bodies.size());
@@ -180,13 +181,14 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
     sweep_[j] = moving;
   }
   unsortedPairs_.clear();
-  findPairsInStrips(bodies, step.strips, step.asleep);
+  findPairsInStrips(bodies, step.strips, step.asleep, step.workers);
   sortPairsByBody();
   for (BodyId id{}; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
   stale_ = false;
   const std::size_t room = kRoomPerBody * bodies.size();
   keepRoom(pairs_, pairs_.size(), room);
   keepRoom(unsortedPairs_, pairs_.size(), room);
+  for (std::vector<Pair>& piece : stripPairs_) keepRoom(piece, pairs_.size(), room);
 }
 
 // A body's corners moved at most |dc| + sum_k |da_k| h_k since the pairs were found.
@@ -215,7 +217,7 @@ bool BroadPhase::needsUpdate(std::span<const Obb> frames, std::span<const std::u
 // the strips and tested against every box. The pairs found are the same set, in the same sorted
 // order, as one sweep finds: the state after a step does not depend on the strips.
 void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings,
-                                   std::span<const std::uint8_t> asleep) {
+                                   std::span<const std::uint8_t> asleep, const Workers* workers) {
   const std::size_t n = bodies.size();
   const int s = sweepAxis_;
   const int other1 = (s + 1) % 3, other2 = (s + 2) % 3;
@@ -283,22 +285,26 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
   for (std::size_t k = strips; k > 0; --k) stripStart_[k] = stripStart_[k - 1];
   stripStart_[0] = 0;
 
-  auto meet = [&](std::size_t k, BodyId a, BodyId b) {
+  auto meetInto = [&](std::vector<Pair>& out, std::size_t k, BodyId a, BodyId b) {
     const Bounds &ba = bounds_[a], &bb = bounds_[b];
     if (!overlap(ba, bb, t) || !overlap(ba, bb, u)) return;
     if (stripOf(std::max(ba.lo[t], bb.lo[t])) != k) return;  // kept in another strip
-    if (collides(bodies, a, b)) unsortedPairs_.emplace_back(std::min(a, b), std::max(a, b));
+    if (collides(bodies, a, b)) out.emplace_back(std::min(a, b), std::max(a, b));
   };
+  auto meet = [&](std::size_t k, BodyId a, BodyId b) { meetInto(unsortedPairs_, k, a, b); };
   if (asleep.empty()) {
-    for (std::size_t k = 0; k < strips; ++k) {
-      const std::size_t end = stripStart_[k + 1];
-      for (std::size_t i = stripStart_[k]; i < end; ++i) {
-        const BodyId a = stripBodies_[i];
-        const Real reach = bounds_[a].hi[s];
-        for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= reach; ++j)
-          meet(k, a, stripBodies_[j]);
+    auto sweepStrips = [&](std::size_t first, std::size_t last, std::vector<Pair>& out) {
+      for (std::size_t k = first; k < last; ++k) {
+        const std::size_t end = stripStart_[k + 1];
+        for (std::size_t i = stripStart_[k]; i < end; ++i) {
+          const BodyId a = stripBodies_[i];
+          const Real reach = bounds_[a].hi[s];
+          for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= reach; ++j)
+            meetInto(out, k, a, stripBodies_[j]);
+        }
       }
-    }
+    };
+    sweepInPieces(strips, entries, workers, sweepStrips);
   } else {
     // Only the pairs with an awake body: each awake body sweeps forward as above, and back over
     // the sleeping bodies before it while one of them can still reach it (the furthest reach of
@@ -339,6 +345,42 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
       }
     }
   }
+}
+
+// Strip entries one thread sweeps at a time.
+constexpr std::size_t kEntriesPerPiece = 256;
+
+// sweep(first, last, out) over the strips: on the step's threads in one run of strips a thread,
+// cut where the strips' entries are shared evenly, each into pairs of its own, then appended. The
+// strips share nothing, and sortPairsByBody puts the pairs (each found once) into one order
+// whatever the order they come in, so the pairs are the same on any number of threads.
+template <class Sweep>
+void BroadPhase::sweepInPieces(std::size_t strips, std::size_t entries, const Workers* workers,
+                               Sweep&& sweep) {
+  const std::size_t pieces =
+      workers == nullptr ? 1 : std::min({stripPairs_.size() + 1, strips, entries / kEntriesPerPiece});
+  if (pieces <= 1) {
+    sweep(0, strips, unsortedPairs_);
+    return;
+  }
+  // Where piece p starts: the first strip whose entries start at or after its even share.
+  auto start = [&](std::size_t p) -> std::size_t {
+    if (p == pieces) return strips;
+    return static_cast<std::size_t>(
+        std::lower_bound(stripStart_.begin(), stripStart_.begin() + static_cast<std::ptrdiff_t>(strips),
+                         entries * p / pieces) -
+        stripStart_.begin());
+  };
+  auto range = [&](std::size_t first, std::size_t last) {
+    for (std::size_t p = first; p < last; ++p) {
+      std::vector<Pair>& out = p == 0 ? unsortedPairs_ : stripPairs_[p - 1];
+      if (p > 0) out.clear();
+      sweep(start(p), start(p + 1), out);
+    }
+  };
+  workers->forEach(pieces, 1, range);
+  for (std::size_t p = 1; p < pieces; ++p)
+    unsortedPairs_.insert(unsortedPairs_.end(), stripPairs_[p - 1].begin(), stripPairs_[p - 1].end());
 }
 
 // Into body order, not sweep order: the contacts are solved in this order, which then depends on

@@ -257,3 +257,36 @@ TEST(BroadPhase, SleepingBodiesMeetOnlyAwakeOnes) {
 }
 
 }  // namespace
+
+namespace {
+
+// On several threads the strips are swept in pieces, each into pairs of its own (broad_phase.cpp,
+// sweepInPieces): the same pairs, and so the same contacts in the same order, as on one. A grid
+// 5 mm apart over about a dozen strips, some 700 strip entries: two and three pieces.
+TEST(BroadPhase, TheSamePairsOnOneTwoAndThreeThreads) {
+  auto contactsOf = [](int threads) {
+    phys::SolverSettings solver;
+    solver.threads = threads;
+    phys::World world = testing_phys::openSpace(solver, Vec3(0.0));
+    phys::BodyDesc box;
+    for (int i = 0; i < 26; ++i) {
+      for (int j = 0; j < 26; ++j) {
+        box.center = {1.005 * i, 0.5, 1.005 * j};
+        world.addBody(box);
+      }
+    }
+    world.step();
+    std::vector<std::pair<phys::BodyId, phys::BodyId>> pairs;
+    for (const phys::BodyContact& c : world.bodyContacts()) pairs.emplace_back(c.bodyA, c.bodyB);
+    return std::make_pair(world.broadPhasePairs(), pairs);
+  };
+  const auto one = contactsOf(1);
+  EXPECT_EQ(one.first, 2u * 26 * 25 + 2u * 25 * 25);  // as AGridOfBoxesFindsEachNeighbourPairOnce
+  for (const int threads : {2, 3}) {
+    const auto many = contactsOf(threads);
+    EXPECT_EQ(many.first, one.first) << threads << " threads";
+    EXPECT_EQ(many.second, one.second) << threads << " threads";
+  }
+}
+
+}  // namespace

@@ -84,7 +84,9 @@ class BroadPhase {
                const BroadPhaseStep& step);
   bool chooseSweepAxis(std::span<const Obb> frames);
   void findPairsInStrips(std::span<const Body> bodies, const BroadPhaseSettings& settings,
-                         std::span<const std::uint8_t> asleep);
+                         std::span<const std::uint8_t> asleep, const Workers* workers);
+  template <class Sweep>
+  void sweepInPieces(std::size_t strips, std::size_t entries, const Workers* workers, Sweep&& sweep);
   void sortPairsByBody();
 
   std::vector<Interval> sweep_;           // sweep-and-prune list, kept sorted between steps
@@ -100,10 +102,11 @@ class BroadPhase {
   bool stale_ = true;
   int sweepAxis_ = 0;  // the axis sweep_ is sorted along
   std::vector<Pair> pairs_;
-  std::vector<Pair> unsortedPairs_;          // as the strips find them
-  std::vector<std::uint32_t> pairStart_;     // per body and one more: its pairs as the lower id
-  std::vector<std::uint64_t> ignored_;       // sorted keys (min << 32 | max)
-  std::vector<std::uint32_t> ignoredStart_;  // per body and one more: its keys as min (indexFilters)
+  std::vector<Pair> unsortedPairs_;            // as the strips find them
+  std::vector<std::vector<Pair>> stripPairs_;  // the second piece's on, when strips are swept at once
+  std::vector<std::uint32_t> pairStart_;       // per body and one more: its pairs as the lower id
+  std::vector<std::uint64_t> ignored_;         // sorted keys (min << 32 | max)
+  std::vector<std::uint32_t> ignoredStart_;    // per body and one more: its keys as min (indexFilters)
 };
 
 }  // namespace phys
