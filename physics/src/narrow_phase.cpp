@@ -392,33 +392,45 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
     return !satTest(startA, startB).overlap;
   };
   rigidState_.resize(rigidContacts_.size());
-  for (Manifold& m : manifolds_) {
-    Real overlap = -std::numeric_limits<Real>::infinity();
-    // The start overlaps, "for now": the parting moves them with the bodies, then the depenetration
-    // limit makes them what each point may keep.
-    std::span<Real> start =
-        m.rigid ? std::span<Real>(rigidState_.allowance) : std::span<Real>(state_.allowance);
-    for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
-      if (m.rigid) {
-        start[k] = detail::startOverlap(particles, in.rigid, rigidContacts_[k], 0.0);  // never the ground
-      } else {
-        const BodyContact& c = contacts_[k];
-        const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles.previous, c.pointB) -
-                                                     detail::embeddedPosition(particles.previous, c.pointA)) -
-                              c.offset;
-        start[k] = -(startGap + in.contactSlop);
-      }
-      overlap = std::max(overlap, start[k]);
-    }
-    if (overlap > in.featureEpsilon && passed(m.a, m.b)) {
-      for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
-        start[k] = std::min(start[k], 0.0);
-      }
-      overlap = std::min(overlap, 0.0);
-    }
-    m.overlap = overlap;
-  }
+  // Each manifold's points are its own: ranges of manifolds at once on the step's threads.
+  auto range = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) measureStart(in, manifolds_[i], passed);
+  };
+  if (in.workers == nullptr)
+    range(0, manifolds_.size());
+  else
+    in.workers->forEach(manifolds_.size(), kPairsPerPiece, range);
   std::fill(state_.touched.begin(), state_.touched.end(), std::uint8_t{0});
+}
+
+// One manifold's start overlaps (measureStarts says what they are).
+template <class Passed>
+void NarrowPhase::measureStart(const NarrowPhaseInput& in, Manifold& m, const Passed& passed) {
+  const Particles& particles = in.particles;
+  Real overlap = -std::numeric_limits<Real>::infinity();
+  // The start overlaps, "for now": the parting moves them with the bodies, then the depenetration
+  // limit makes them what each point may keep.
+  std::span<Real> start =
+      m.rigid ? std::span<Real>(rigidState_.allowance) : std::span<Real>(state_.allowance);
+  for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
+    if (m.rigid) {
+      start[k] = detail::startOverlap(particles, in.rigid, rigidContacts_[k], 0.0);  // never the ground
+    } else {
+      const BodyContact& c = contacts_[k];
+      const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles.previous, c.pointB) -
+                                                   detail::embeddedPosition(particles.previous, c.pointA)) -
+                            c.offset;
+      start[k] = -(startGap + in.contactSlop);
+    }
+    overlap = std::max(overlap, start[k]);
+  }
+  if (overlap > in.featureEpsilon && passed(m.a, m.b)) {
+    for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k) {
+      start[k] = std::min(start[k], 0.0);
+    }
+    overlap = std::min(overlap, 0.0);
+  }
+  m.overlap = overlap;
 }
 
 }  // namespace phys

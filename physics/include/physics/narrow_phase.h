@@ -121,6 +121,8 @@ class NarrowPhase {
   void buildRange(const NarrowPhaseInput& in, std::size_t begin, std::size_t end, Sink& out) const;
   void refreshRange(const NarrowPhaseInput& in, std::size_t begin, std::size_t end, Sink& out) const;
   void swapToSpare();
+  template <class Passed>
+  void measureStart(const NarrowPhaseInput& in, Manifold& m, const Passed& passed);
 
   bool collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, int previousAxis,
                    BoxContact& contact) const;
