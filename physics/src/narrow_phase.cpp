@@ -134,8 +134,7 @@ constexpr std::size_t kPairsPerPiece = 256;
 template <class Work>
 void NarrowPhase::inPieces(const NarrowPhaseInput& in, std::size_t count, Work&& work) {
   Sink own{manifolds_, contacts_, rigidContacts_};
-  const std::size_t pieces =
-      in.workers == nullptr ? 1 : std::min({pieces_.size() + 1, count / kPairsPerPiece, std::size_t{64}});
+  const std::size_t pieces = in.workers == nullptr ? 1 : std::min(pieces_.size() + 1, count / kPairsPerPiece);
   if (pieces <= 1) {
     work(own, 0, count);
     return;
