@@ -22,9 +22,10 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
 }
 
 std::string joinNumbers(const std::vector<int>& numbers, const std::string& separator) {
-  std::string out;
-  for (const int n : numbers) out += (out.empty() ? "" : separator) + std::to_string(n);
-  return out;
+  std::vector<std::string> parts;
+  parts.reserve(numbers.size());
+  for (const int n : numbers) parts.push_back(std::to_string(n));
+  return join(parts, separator);
 }
 
 std::optional<std::vector<std::string>> splitList(const std::string& text) {
