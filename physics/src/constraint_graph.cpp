@@ -29,6 +29,7 @@ void ConstraintGraph::addLink(const Link& link, Real violation) {
 
 void ConstraintGraph::addJointFriction(const JointFriction& friction) {
   jointFrictions_.push_back(friction);
+  stale_ = true;  // its pieces are cut again
   // The pass reads and writes the spins of the bodies it joins alone.
   const std::size_t room = std::size_t{std::max(friction.a, friction.b)} + 1;
   if (spins_.size() < room) spins_.resize(room);
@@ -53,13 +54,54 @@ void ConstraintGraph::clearBodyDrive(BodyId body) {
   bodyDriveLambda_.resize(2 * bodyDrives_.size());
 }
 
-void ConstraintGraph::dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt) {
-  detail::dampJointFriction(particles, bodies, jointFrictions_, dt, spins_);
+// Each run of frictions reads and writes its own bodies' particles and spins alone, so the runs
+// at once give what one loop over them all gives, bit for bit.
+void ConstraintGraph::dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt,
+                                        const Workers* workers) {
+  const std::span<const JointFriction> all = jointFrictions_;
+  if (stale_ || frictionPieces_.size() < 2) {  // not laid out since frictions were added
+    detail::dampJointFriction(particles, bodies, all, dt, spins_);
+    return;
+  }
+  auto range = [&](std::size_t first, std::size_t last) {
+    const std::size_t begin = frictionPieces_[first], end = frictionPieces_[last];
+    detail::dampJointFriction(particles, bodies, all.subspan(begin, end - begin), dt, spins_);
+  };
+  const std::size_t pieces = frictionPieces_.size() - 1;
+  if (workers == nullptr)
+    range(0, pieces);
+  else
+    workers->forEach(pieces, 1, range);
 }
+
+namespace {
+
+// Joint frictions one thread takes at a time, at least: a few tens of microseconds.
+constexpr std::size_t kFrictionsPerPiece = 256;
+
+// Cuts the frictions, in their order, into runs of at least kFrictionsPerPiece that share no body
+// with each other: a cut after friction i is allowed when no body of the frictions up to i
+// appears after it. Returns the runs' starts and the end.
+std::vector<std::size_t> cutFrictions(std::span<const JointFriction> frictions, std::size_t bodies) {
+  std::vector<std::size_t> last(bodies, 0);  // per body: the last friction it is in
+  for (std::size_t i = 0; i < frictions.size(); ++i) last[frictions[i].a] = last[frictions[i].b] = i;
+  std::vector<std::size_t> starts{0};
+  std::size_t reach = 0;  // the last friction that a body of the current run is in
+  for (std::size_t i = 0; i < frictions.size(); ++i) {
+    reach = std::max({reach, last[frictions[i].a], last[frictions[i].b]});
+    if (reach == i && i + 1 - starts.back() >= kFrictionsPerPiece && i + 1 < frictions.size())
+      starts.push_back(i + 1);
+  }
+  starts.push_back(frictions.size());
+  return starts;
+}
+
+}  // namespace
 
 void ConstraintGraph::layOut(std::span<const Body> bodies, std::size_t particleCount) {
   stickLayout_.build(sticks_, bodies, particleCount);
   linkLayout_.build(links_, particleCount);
+  frictionPieces_ = cutFrictions(jointFrictions_, spins_.size());
   stale_ = false;
 }
 

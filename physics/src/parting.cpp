@@ -30,6 +30,23 @@ void Parting::join(BodyId a, BodyId b) {
   detail::unite(parent_, a, b);
 }
 
+namespace {
+
+// Whether any contact starts deeper than epsilon, whatever it joins: nearly always not, and then
+// no group needs finding. Those within a group, and loose particles on the ground, are told apart
+// only when one is.
+bool anyDeeper(std::span<const Manifold> manifolds, const PartingGround& ground, const PartingRigid& rigid,
+               Real epsilon) {
+  auto deeper = [epsilon](Real depth) { return depth > epsilon; };
+  if (std::any_of(manifolds.begin(), manifolds.end(), [&](const Manifold& m) { return deeper(m.overlap); }))
+    return true;
+  if (!ground.enabled) return false;
+  return std::any_of(ground.allowance.begin(), ground.allowance.end(), deeper) ||
+         std::any_of(rigid.groundOverlap.begin(), rigid.groundOverlap.end(), deeper);
+}
+
+}  // namespace
+
 void Parting::reserve(std::size_t pairs, std::size_t bodies) {
   const std::size_t room = detail::kRoomPerBody * bodies;
   detail::keepRoom(need_, pairs, room);
@@ -63,6 +80,7 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
                    std::span<Real> contactAllowance, const PartingGround& ground, const PartingRigid& rigid,
                    Real featureEpsilon, const PartingSettings& settings) {
   const Real epsilon = featureEpsilon;
+  if (!anyDeeper(manifolds, ground, rigid, epsilon)) return;
   for (BodyId id{}; id < bodies.size(); ++id) root_[id] = group(id);
   bool deep = false;
   need_.resize(manifolds.size());

@@ -520,7 +520,7 @@ void World::dampBodies() {
 void World::dampJoints() {
   if (constraints_.jointFrictions().empty()) return;
   const detail::StageTimer timer(profile_, Stage::Links);
-  constraints_.dampJointFriction(particles_, bodies_, solver_.dt);
+  constraints_.dampJointFriction(particles_, bodies_, solver_.dt, workers());
 }
 
 // After the passes, before the velocities are taken from the change of pose: the poses moved so that

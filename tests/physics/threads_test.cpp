@@ -16,7 +16,8 @@ using phys::Vec3;
 
 // Enough of everything that the threaded stages cut it into several pieces: 40 box ragdolls and 40
 // capsule ragdolls (many lane groups of sticks, links and body damping), over 512 bodies (three
-// pieces of frames and bounds), falling into a pile. (Integration takes pieces of 16,384 particles: this
+// pieces of frames and bounds), with friction in their joints (runs of ragdolls' frictions at once),
+// falling into a pile. (Integration takes pieces of 16,384 particles: this
 // world integrates in one, and a piece of integration touches its own particles only.)
 phys::World pile(phys::SolverMethod method, int threads) {
   phys::SolverSettings s;
@@ -30,6 +31,7 @@ phys::World pile(phys::SolverMethod method, int threads) {
     phys::RagdollDesc r;
     r.hips = Vec3((k % 8) * 2.5, 1.5 + (k / 8) * 2.0, 0.0);
     r.model = k % 2 == 0 ? phys::RagdollModel::Seed : phys::RagdollModel::Lean;
+    r.jointDamping = 2.0;
     phys::addRagdoll(world, r);
     r.hips.z = 3.0;
     phys::addCapsuleRagdoll(world, r);
@@ -63,8 +65,10 @@ TEST(Threads, TheSameStateOnOneTwoAndThreeThreads) {
     EXPECT_GT(one.metrics().contacts, 100u);  // they fell into each other
     // The narrow phase collides the pairs in pieces of 256 or more, one a thread: the pile made
     // three pieces of pairs, and two of manifolds collided again in later substeps. The ground's
-    // points go in pieces of 4,096 (ground_pieces.h): two.
+    // points go in pieces of 4,096 (ground_pieces.h): two. The joints' frictions in runs of 256
+    // or more between two ragdolls: two.
     EXPECT_GT(mostPairs, 3 * 256u) << phys::toString(method);
+    EXPECT_GT(one.jointFrictions().size(), 2 * 256u);
     EXPECT_GT(mostManifolds, 2 * 256u) << phys::toString(method);
     EXPECT_GT(one.groundContacts().size(), 4096u);
   }

@@ -55,7 +55,9 @@ class ConstraintGraph {
   /// Adds friction between two jointed particle bodies, with room for their spins.
   void addJointFriction(const JointFriction& friction);
   /// Once a step: each joint friction takes its share of its bodies' relative spin (JointFriction).
-  void dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt);
+  /// `workers`, if given, run runs of frictions that share no body (frictionPieces_) at once.
+  void dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt,
+                         const Workers* workers = nullptr);
   /// True when sticks or links were added since the last layOut().
   bool stale() const { return stale_; }
   /// Lays the sticks out by body and the links by ragdoll. Allocates: after things were added.
@@ -115,6 +117,9 @@ class ConstraintGraph {
   std::vector<Real> bodyDriveLambda_;  // two per body drive
   std::vector<JointFriction> jointFrictions_;
   std::vector<BodySpin> spins_;  // per body: the joint friction's scratch
+  // Where runs of joint frictions begin that share no body with the runs before (and the end):
+  // in creation order, so one ragdoll's frictions are never cut apart. Found by layOut().
+  std::vector<std::size_t> frictionPieces_;
   StickLayout stickLayout_;
   LinkLayout linkLayout_;
   bool stale_ = false;
