@@ -3,6 +3,7 @@
 #include "physics/broad_phase.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -109,6 +110,7 @@ void BroadPhase::measure(const Particles& particles, const RigidBodies& rigid, c
   const Real dt = step.dt, h = step.h;
   const Real g = step.gravity;
   const std::span<const std::uint8_t> asleep = step.asleep;
+  pairFrames_[id] = f;
   // A sleeping body's particles and frame do not change, nor do the bounds found from them.
   const bool sleeps = !asleep.empty() && asleep[id] != 0;
   if (sleeps && keptAsleep_[id] != 0) return;
@@ -183,7 +185,6 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
   unsortedPairs_.clear();
   findPairsInStrips(bodies, step.strips, step.asleep, step.workers);
   sortPairsByBody();
-  for (BodyId id{}; id < bodies.size(); ++id) pairFrames_[id] = frames[id];
   stale_ = false;
   const std::size_t room = kRoomPerBody * bodies.size();
   keepRoom(pairs_, pairs_.size(), room);
@@ -191,18 +192,27 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
   for (std::vector<Pair>& piece : stripPairs_) keepRoom(piece, pairs_.size(), room);
 }
 
-// A body's corners moved at most |dc| + sum_k |da_k| h_k since the pairs were found.
-bool BroadPhase::needsUpdate(std::span<const Obb> frames, std::span<const std::uint8_t> asleep) const {
+// A body's corners moved at most |dc| + sum_k |da_k| h_k since the pairs were found. Looked at every
+// substep but the first: ranges of bodies at once, each stopping once any range found one.
+bool BroadPhase::needsUpdate(std::span<const Obb> frames, std::span<const std::uint8_t> asleep,
+                             const Workers* workers) const {
   if (stale_) return true;
-  for (BodyId id{}; id < frames.size(); ++id) {
-    if (!asleep.empty() && asleep[id] != 0) continue;  // its frame has not moved
-    const Obb& now = frames[id];
-    const Obb& then = pairFrames_[id];
-    Real moved = glm::length(now.center - then.center);
-    for (int k = 0; k < 3; ++k) moved += glm::length(now.axes[k] - then.axes[k]) * now.halfExtents[k];
-    if (moved > travel_[id]) return true;
-  }
-  return false;
+  std::atomic<bool> found{false};
+  auto range = [&](std::size_t begin, std::size_t end) {
+    for (BodyId id(begin); id < end && !found.load(std::memory_order_relaxed); ++id) {
+      if (!asleep.empty() && asleep[id] != 0) continue;  // its frame has not moved
+      const Obb& now = frames[id];
+      const Obb& then = pairFrames_[id];
+      Real moved = glm::length(now.center - then.center);
+      for (int k = 0; k < 3; ++k) moved += glm::length(now.axes[k] - then.axes[k]) * now.halfExtents[k];
+      if (moved > travel_[id]) found.store(true, std::memory_order_relaxed);
+    }
+  };
+  if (workers == nullptr)
+    range(0, frames.size());
+  else
+    workers->forEach(frames.size(), kBodiesPerPiece, range);
+  return found.load();
 }
 
 // The pairs whose bounds overlap on all three axes. One sweep along one axis tests every box

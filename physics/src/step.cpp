@@ -238,7 +238,7 @@ bool World::findPairs(bool firstSubstep) {
   const detail::StageTimer timer(profile_, Stage::BroadPhase);
   const std::span<const std::uint8_t> asleep =
       islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>();
-  if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_, asleep))) return false;
+  if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_, asleep, workers()))) return false;
   const BroadPhaseStep step{solver_.dt,         substepDt(),        solver_.featureEpsilon,
                             gravityMagnitude(), solver_.broadPhase, asleep,
                             workers()};

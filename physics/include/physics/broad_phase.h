@@ -59,7 +59,8 @@ class BroadPhase {
   void markStale() { stale_ = true; }
   /// True when the pairs are stale, or some body has gone further since they were found than its
   /// bounds allowed (an impact or a joint gave it speed within the step).
-  bool needsUpdate(std::span<const Obb> frames, std::span<const std::uint8_t> asleep = {}) const;
+  bool needsUpdate(std::span<const Obb> frames, std::span<const std::uint8_t> asleep = {},
+                   const Workers* workers = nullptr) const;
   /// Finds the pairs from the bodies' frames now and their motion over the last substep (their
   /// particles', or a rigid body's velocities); allocates only when the world has gathered many
   /// more pairs than it ever had.
