@@ -3,6 +3,7 @@
 // share its particles and a loose particle has one point, so a cut between two points of
 // different owners leaves each piece its own particles, and the pieces at once do exactly what one
 // loop over all the points does (docs/physics.md, "Threads").
+#include <algorithm>
 #include <cstddef>
 #include <span>
 
@@ -13,13 +14,20 @@ namespace phys::detail {
 
 /// Ground points one thread takes at a time: some tens of microseconds of a pass.
 inline constexpr std::size_t kGroundPointsPerPiece = 4096;
+/// Fewer points than this are not worth a thread: a few microseconds of a pass.
+inline constexpr std::size_t kFewestGroundPointsPerPiece = 1024;
 
 /// f(begin, end) over [0, points.size()): on the step's threads in pieces of about
-/// kGroundPointsPerPiece cut only between owners, or once over all of them without threads.
+/// kGroundPointsPerPiece, or one a thread of at least kFewestGroundPointsPerPiece (Bullet's pile
+/// has 2,992 points), cut only between owners; or once over all of them without threads.
 template <class F>
 void forEachGroundPiece(const Workers* workers, std::span<const GroundContact> points, F&& f) {
   const std::size_t count = points.size();
-  const std::size_t pieces = (count + kGroundPointsPerPiece - 1) / kGroundPointsPerPiece;
+  const std::size_t oneAThread = workers == nullptr ? 1
+                                                    : std::min(static_cast<std::size_t>(workers->threads()),
+                                                               count / kFewestGroundPointsPerPiece);
+  const std::size_t pieces =
+      std::max((count + kGroundPointsPerPiece - 1) / kGroundPointsPerPiece, oneAThread);
   if (workers == nullptr || pieces <= 1) {
     f(std::size_t{0}, count);
     return;
