@@ -5,6 +5,7 @@
 #include "json.h"
 #include "text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -28,6 +29,7 @@ struct ScaleOptions {
   ScaleKind kind = ScaleKind::CapsuleRagdolls;
   std::vector<int> sizes;                       // empty: the kind's defaults
   RunOptions run{.steps = kDefaultScaleSteps};  // steps and solver overrides
+  std::vector<int> threads;                     // --threads: each size at each; empty: the scene's
   bool json = false;
   std::optional<std::filesystem::path> out;
   std::optional<std::filesystem::path> scenes;  // --save-scenes
@@ -48,7 +50,8 @@ void describeScale(CommandLine& line, ScaleOptions& o) {
   line.option(option::kMethods, o.run.method, "(default: the generated scene's)");
   line.option(option::kIterations, o.run.iterations, "(default: the scene's)");
   line.option(option::kSubsteps, o.run.substeps, "(default: the scene's)");
-  line.flag(option::kJson, o.json, true, "an array, one object per size, instead of the table");
+  line.option(option::kThreads, o.threads, "(default 1); each size runs once at each, in turn");
+  line.flag(option::kJson, o.json, true, "an array, one object per run, instead of the table");
   line.option(option::kOut, o.out, "scale.csv, scale.gp and the chart scale.png, .svg");
   line.option(option::kSaveScenes, o.scenes, "");
 }
@@ -126,20 +129,29 @@ std::string scaleSceneXml(ScaleKind kind, int n) {
   return xml + "</scene>\n";
 }
 
+// The thread counts of one size's runs follow each other, so that their ratio is measured while the
+// machine is as loaded for one as for the other.
 std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, const RunOptions& options,
-                               std::ostream* progress) {
+                               const std::vector<int>& threads, std::ostream* progress) {
   std::vector<ScaleRow> rows;
+  std::vector<std::optional<int>> counts(threads.begin(), threads.end());
+  if (counts.empty()) counts.push_back(options.threads);
   for (const int n : sizes) {
-    scenes::Scene scene = scenes::loadSceneText(scaleSceneXml(kind, n), std::string(toString(kind)) + ".xml");
-    const RunResult r = runScene(scene, options, progress);
-    rows.push_back(
-        {.scene = std::string(toString(kind)),
-         .n = n,
-         .bodies = r.bodies,
-         .solver = r.solver,
-         .msPerStep = r.medianStepMs,
-         .usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0,
-         .maxJointGap = r.worst[runMetricIndex("joint-error")]});
+    for (const std::optional<int> count : counts) {
+      scenes::Scene scene =
+          scenes::loadSceneText(scaleSceneXml(kind, n), std::string(toString(kind)) + ".xml");
+      RunOptions run = options;
+      run.threads = count;
+      const RunResult r = runScene(scene, run, progress);
+      rows.push_back(
+          {.scene = std::string(toString(kind)),
+           .n = n,
+           .bodies = r.bodies,
+           .solver = r.solver,
+           .msPerStep = r.medianStepMs,
+           .usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0,
+           .maxJointGap = r.worst[runMetricIndex("joint-error")]});
+    }
   }
   return rows;
 }
@@ -151,6 +163,7 @@ std::string scaleJson(const std::vector<ScaleRow>& rows) {
     const ScaleRow& r = rows[i];
     const Json j = {{"scene", r.scene},
                     {"n", r.n},
+                    {"threads", r.solver.threads},
                     {"bodies", r.bodies},
                     {"ms_per_step", r.msPerStep},
                     {"us_per_body_step", r.usPerBodyStep},
@@ -164,11 +177,11 @@ std::string scaleJson(const std::vector<ScaleRow>& rows) {
 }
 
 std::string scaleCsv(const std::vector<ScaleRow>& rows) {
-  std::string s = "scene,n,bodies,ms_per_step,us_per_body_step,max_joint_gap\n";
+  std::string s = "scene,n,threads,bodies,ms_per_step,us_per_body_step,max_joint_gap\n";
   for (const ScaleRow& r : rows) {
-    s += csvField(r.scene) + "," + std::to_string(r.n) + "," + std::to_string(r.bodies) + "," +
-         csvNumber(r.msPerStep, 6) + "," + csvNumber(r.usPerBodyStep, 6) + "," + csvNumber(r.maxJointGap, 6) +
-         "\n";
+    s += csvField(r.scene) + "," + std::to_string(r.n) + "," + std::to_string(r.solver.threads) + "," +
+         std::to_string(r.bodies) + "," + csvNumber(r.msPerStep, 6) + "," + csvNumber(r.usPerBodyStep, 6) +
+         "," + csvNumber(r.maxJointGap, 6) + "\n";
   }
   return s;
 }
@@ -182,11 +195,11 @@ std::string scaleTable(const std::vector<ScaleRow>& rows) {
          " (iterations x substeps), median of the steps' own time\n";
   }
   char line[160];
-  std::snprintf(line, sizeof line, "%8s %8s %12s %16s %20s\n", "n", "bodies", "ms/step", "us/body-step",
-                "max joint gap (m)");
+  std::snprintf(line, sizeof line, "%8s %8s %8s %12s %16s %20s\n", "n", "threads", "bodies", "ms/step",
+                "us/body-step", "max joint gap (m)");
   s += line;
   for (const ScaleRow& r : rows) {
-    std::snprintf(line, sizeof line, "%8d %8zu %12s %16s %20s\n", r.n, r.bodies,
+    std::snprintf(line, sizeof line, "%8d %8d %8zu %12s %16s %20s\n", r.n, r.solver.threads, r.bodies,
                   formatNumber(r.msPerStep, 4).c_str(), formatNumber(r.usPerBodyStep, 4).c_str(),
                   formatNumber(r.maxJointGap, 3).c_str());
     s += line;
@@ -200,11 +213,26 @@ Chart scaleChart(const std::vector<ScaleRow>& rows) {
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
   Chart chart = logChart("Cost per body against size: " + scene, "bodies", "microseconds per body-step",
                          false, "scale");
-  ChartSeries series{.title = scene, .line = true, .labels = true};
+  // One line a number of threads, in the order they ran; named by it when there are several.
+  std::vector<int> counts;
   for (const ScaleRow& r : rows) {
-    series.points.push_back({static_cast<double>(r.bodies), r.usPerBodyStep, "n=" + std::to_string(r.n)});
+    if (std::find(counts.begin(), counts.end(), r.solver.threads) == counts.end())
+      counts.push_back(r.solver.threads);
   }
-  chart.series.push_back(series);
+  for (const int threads : counts) {
+    ChartSeries series{
+        .title = counts.size() > 1
+                     ? scene + ", " + count(static_cast<std::size_t>(threads), "thread", "threads")
+                     : scene,
+        .line = true,
+        .markers = counts.size() > 1,
+        .labels = threads == counts.front()};
+    for (const ScaleRow& r : rows) {
+      if (r.solver.threads != threads) continue;
+      series.points.push_back({static_cast<double>(r.bodies), r.usPerBodyStep, "n=" + std::to_string(r.n)});
+    }
+    chart.series.push_back(series);
+  }
   return chart;
 }
 
@@ -224,7 +252,7 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
   }
   std::vector<ScaleRow> rows;
   try {
-    rows = runScale(o.kind, o.sizes, o.run, &err);
+    rows = runScale(o.kind, o.sizes, o.run, o.threads, &err);
   } catch (const scenes::LoadError& e) {
     err << "lab: scale: the generated scene: " << e.what() << "\n";  // a bug in the generator
     return kExitFailure;

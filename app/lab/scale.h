@@ -30,18 +30,20 @@ struct ScaleRow {
   std::string scene;            ///< the kind's name
   int n = 0;                    ///< ragdolls, or the pyramid's base
   std::size_t bodies = 0;       ///< boxes and capsules
-  phys::SolverSettings solver;  ///< what it ran at, after the overrides
+  phys::SolverSettings solver;  ///< what it ran at, after the overrides (its threads too)
   double msPerStep = 0.0;       ///< unit: ms; median of the steps' Profile::total
   double usPerBodyStep = 0.0;   ///< unit: microseconds; msPerStep per body
   double maxJointGap = 0.0;     ///< unit: m; the largest Metrics::maxJointError after any step
 };
 
-/// Generates and runs each size for options.steps steps under options' overrides; progress lines
+/// Generates and runs each size for options.steps steps under options' overrides, once at each
+/// number of `threads` in turn (none given: at options.threads, or the scene's); progress lines
 /// for long runs go to `progress`. Throws std::invalid_argument when the overrides are refused.
 std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, const RunOptions& options,
-                               std::ostream* progress = nullptr);
+                               const std::vector<int>& threads = {}, std::ostream* progress = nullptr);
 
-/// A JSON array, one object a size: scene, n, bodies, ms_per_step, us_per_body_step, max_joint_gap.
+/// A JSON array, one object a run: scene, n, threads, bodies, ms_per_step, us_per_body_step,
+/// max_joint_gap.
 std::string scaleJson(const std::vector<ScaleRow>& rows);
 /// The same as CSV, with a header.
 std::string scaleCsv(const std::vector<ScaleRow>& rows);

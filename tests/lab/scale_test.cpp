@@ -76,8 +76,8 @@ TEST(Scale, JsonHasOneObjectPerSizeWithItsFigures) {
   ASSERT_EQ(o.code, 0) << o.err;
   const auto rows = objects(o.out);
   ASSERT_EQ(rows.size(), 2u) << o.out;
-  const std::vector<std::string> keys = {"scene",        "n", "bodies", "ms_per_step", "us_per_body_step",
-                                         "max_joint_gap"};
+  const std::vector<std::string> keys = {
+      "scene", "n", "threads", "bodies", "ms_per_step", "us_per_body_step", "max_joint_gap"};
   for (std::size_t i = 0; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i].keys, keys);
     EXPECT_EQ(rows[i].values.at("scene"), "\"box-ragdolls\"");
@@ -89,6 +89,7 @@ TEST(Scale, JsonHasOneObjectPerSizeWithItsFigures) {
     EXPECT_GE(std::stod(rows[i].values.at("max_joint_gap")), 0.0);
   }
   EXPECT_EQ(rows[0].values.at("n"), "1");
+  EXPECT_EQ(rows[0].values.at("threads"), "1");  // the generated scenes' own
   EXPECT_EQ(rows[0].values.at("bodies"), "10");
   EXPECT_EQ(rows[1].values.at("bodies"), "40");
 }
@@ -120,8 +121,38 @@ TEST(Scale, WritesTheDataAndTheChartWhenGnuplotIsThere) {
     EXPECT_GT(std::filesystem::file_size(dir.file("out") / f), 0u) << f;
   }
   const std::string csv = lab_testing::readFile(dir.file("out/scale.csv"));
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "scene,n,bodies,ms_per_step,us_per_body_step,max_joint_gap");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "scene,n,threads,bodies,ms_per_step,us_per_body_step,max_joint_gap");
   EXPECT_EQ(lab_testing::readFile(dir.file("out/scale.png")).substr(1, 3), "PNG");
+}
+
+// --threads LIST runs each size at each count, one after the other, and the chart has a line for
+// each: what two threads save at each size, measured side by side.
+TEST(Scale, EachSizeRunsAtEachNumberOfThreadsInTurn) {
+  lab::RunOptions options;
+  options.steps = 3;
+  const std::vector<lab::ScaleRow> rows = lab::runScale(ScaleKind::CapsuleRagdolls, {1, 4}, options, {2, 1});
+  ASSERT_EQ(rows.size(), 4u);
+  const int threads[] = {2, 1, 2, 1}, sizes[] = {1, 1, 4, 4};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].solver.threads, threads[i]) << i;
+    EXPECT_EQ(rows[i].n, sizes[i]) << i;
+    EXPECT_GT(rows[i].msPerStep, 0.0) << i;
+  }
+  // The same state on either count (docs/physics.md, "Threads"): the same figures.
+  EXPECT_EQ(rows[2].maxJointGap, rows[3].maxJointGap);
+  const std::string table = lab::scaleTable(rows);
+  EXPECT_NE(table.find("threads"), std::string::npos) << table;
+  EXPECT_NE(lab::scaleCsv(rows).find("\ncapsule-ragdolls,4,2,44,"), std::string::npos) << lab::scaleCsv(rows);
+
+  if (lab::findGnuplot().empty()) GTEST_SKIP() << "gnuplot is not installed";
+  const TempDir dir;
+  const lab::CommandOutput o =
+      scale({"--sizes", "1,4", "--steps", "2", "--threads", "1,2", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::string script = lab_testing::readFile(dir.file("out/scale.gp"));
+  EXPECT_NE(script.find("capsule-ragdolls, 1 thread"), std::string::npos) << script;
+  EXPECT_NE(script.find("capsule-ragdolls, 2 threads"), std::string::npos) << script;
 }
 
 // --save-scenes writes the very scenes it runs, for `lab run` to show one size's stages.
@@ -144,6 +175,7 @@ TEST(Scale, BadArgumentsNameTheArgument) {
   lab_testing::expectUsageError(scale({"pyramid", "box-ragdolls"}), "scale",
                                 "scale takes one KIND; got 'pyramid' and 'box-ragdolls'");
   lab_testing::expectUsageError(scale({"--steps"}), "scale", "--steps");
+  lab_testing::expectUsageError(scale({"--threads", "1,65"}), "scale", "--threads: '65'");
   lab_testing::expectUsageError(scale({"--method", "euler"}), "scale", "unknown method 'euler'");
   lab_testing::expectUsageError(scale({"--out", ""}), "scale", "--out");
   lab_testing::expectUsageError(scale({"--save-scenes"}), "scale", "--save-scenes needs a folder");
