@@ -409,6 +409,22 @@ TEST(SceneWriter, CameraIsTheOneGivenAndReadsBackAsTheSameFloats) {
   EXPECT_EQ(reload(scene).camera.eye, glm::vec3(1, 2, 3));  // without one, the scene's own
 }
 
+// A scene without a <camera> is written without one: the sandbox's default view is not the scene's,
+// and need not be within a world bound nearer than it (found by the scene fuzzer).
+TEST(SceneWriter, NoCameraGivenNoCameraWritten) {
+  const scenes::Scene scene = load("<box pos=\"0 1 0\"/>", "<world bound=\"5\"/>");
+  ASSERT_FALSE(scene.camera.given);
+  ASSERT_GT(scene.camera.eye.z, 5.0f);  // the default view, beyond the bound
+  const std::string xml = scenes::writeSceneXml(scene);
+  EXPECT_EQ(xml.find("<camera"), std::string::npos) << xml;
+  const scenes::Scene copy = scenes::loadSceneText(xml, "saved.xml");
+  EXPECT_FALSE(copy.camera.given);
+  EXPECT_EQ(copy.camera.eye, scene.camera.eye);
+  // A camera passed in is the user's view, and written.
+  const scenes::CameraStart view{glm::vec3(1.0f, 2.0f, 3.0f), glm::vec3(0.0f)};
+  EXPECT_TRUE(scenes::loadSceneText(scenes::writeSceneXml(scene, view), "view.xml").camera.given);
+}
+
 // The <box euler="..."> a world's box is written with.
 Vec3 writtenEuler(const scenes::Scene& scene) {
   const std::string xml = scenes::writeSceneXml(scene);

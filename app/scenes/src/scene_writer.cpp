@@ -337,8 +337,10 @@ std::string header(const phys::World& world) {
 SaveError::SaveError(std::filesystem::path file, const std::string& message)
     : std::runtime_error(file.string() + ": " + message), file_(std::move(file)) {}
 
-std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
-                          const std::filesystem::path& folder) {
+namespace {
+
+// The scene's text, with a <camera> when `camera` is given.
+std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::filesystem::path& folder) {
   const phys::World& world = scene.world;
   const phys::Particles& particles = world.particles();
   if (particles.size() > detail::kMaxParticles) {
@@ -413,7 +415,7 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
   line(worldElement(world.worldSettings()));
   line(solverElement(world.solverSettings()));
   if (world.worldSettings().ground) line(groundElement(world.worldSettings()));
-  line(cameraElement(camera, world.worldSettings().bound));
+  if (camera != nullptr) line(cameraElement(*camera, world.worldSettings().bound));
   // Bodies and sticks in the order the world made them, so that the reloaded world gives each
   // the same index. The world keeps no such record across kinds, but the sticks show it: a box's
   // bracing is added with the box, and a stick after both its particles.
@@ -571,16 +573,18 @@ std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
   return out;
 }
 
-std::string writeSceneXml(const Scene& scene) {
-  return writeSceneXml(scene, scene.camera);
+// A scene loaded without a <camera> is written without one, so that it reloads as it loaded (the
+// sandbox keeps its view): the default view is not the scene's, and need not be within a small
+// world bound (found by the scene fuzzer: <world bound="5"/> and no camera could not be saved).
+const CameraStart* ownCamera(const Scene& scene) {
+  return scene.camera.given ? &scene.camera : nullptr;
 }
 
-void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::filesystem::path& file) {
+void save(const Scene& scene, const CameraStart* camera, const std::filesystem::path& file) {
   std::string xml;
   try {
     std::error_code ignored;  // no folder: clips by their absolute paths
-    xml = writeSceneXml(scene, camera,
-                        std::filesystem::absolute(file, ignored).lexically_normal().parent_path());
+    xml = sceneXml(scene, camera, std::filesystem::absolute(file, ignored).lexically_normal().parent_path());
   } catch (const std::invalid_argument& e) {
     throw SaveError(file, std::string("cannot save this world as a scene: ") + e.what());
   }
@@ -591,8 +595,23 @@ void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::fil
   }
 }
 
+}  // namespace
+
+std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
+                          const std::filesystem::path& folder) {
+  return sceneXml(scene, &camera, folder);
+}
+
+std::string writeSceneXml(const Scene& scene) {
+  return sceneXml(scene, ownCamera(scene), {});
+}
+
+void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::filesystem::path& file) {
+  save(scene, &camera, file);
+}
+
 void saveSceneFile(const Scene& scene, const std::filesystem::path& file) {
-  saveSceneFile(scene, scene.camera, file);
+  save(scene, ownCamera(scene), file);
 }
 
 }  // namespace scenes

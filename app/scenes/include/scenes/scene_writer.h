@@ -29,14 +29,14 @@ class SaveError : public std::runtime_error {
 /// text is to be saved in), relative to it, as a scene file names them.
 std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
                           const std::filesystem::path& folder = {});
-/// The same, with the camera the scene was loaded with.
+/// The same, with the camera the scene was loaded with, or none if it had no <camera>.
 std::string writeSceneXml(const Scene& scene);
 
 /// Writes writeSceneXml's text to `file` atomically, clip files named relative to its folder: a temporary
 /// file in the same folder, flushed to disk, then renamed over `file`. Throws SaveError naming the file on
 /// any error, leaving the old file untouched and no temporary file behind.
 void saveSceneFile(const Scene& scene, const CameraStart& camera, const std::filesystem::path& file);
-/// The same, with the camera the scene was loaded with.
+/// The same, with the camera the scene was loaded with, or none if it had no <camera>.
 void saveSceneFile(const Scene& scene, const std::filesystem::path& file);
 
 }  // namespace scenes
