@@ -52,6 +52,8 @@ std::string jsonText(const RunResult& r) {
   j["substeps"] = r.solver.substeps;
   j["dt"] = r.solver.dt;
   j["joint_projection"] = r.solver.jointProjection.enabled;
+  j["threads"] = r.solver.threads;
+  j["sleep"] = r.solver.sleep.enabled;
   j["steps"] = r.steps;
   j["particles"] = r.particles;
   j["constraints"] = r.constraints;
@@ -124,8 +126,9 @@ std::string summaryText(const RunResult& r) {
        " bodies awake, " + std::to_string(r.sleepingBodies) + " asleep" +
        (r.solver.sleep.enabled ? "" : " (sleep off)") + "\n";
   s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " +
-       num(r.simulatedTime) + " s simulated, in " + num(r.wallMs, 4) + " ms wall: " + num(r.msPerStep, 4) +
-       " ms/step\n";
+       num(r.simulatedTime) + " s simulated, on " +
+       count(static_cast<std::size_t>(r.solver.threads), "thread", "threads") + ", in " + num(r.wallMs, 4) +
+       " ms wall: " + num(r.msPerStep, 4) + " ms/step\n";
   // Profile::total is the physics' own clock per step; the wall time above is the calls to
   // World::step() as the lab sees them. The median shrugs off the odd step the scheduler interrupted.
   s += "step time    median " + num(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";

@@ -19,6 +19,8 @@ const std::vector<std::string> kJsonKeys = {"scene",
                                             "substeps",
                                             "dt",
                                             "joint_projection",
+                                            "threads",
+                                            "sleep",
                                             "steps",
                                             "particles",
                                             "constraints",
@@ -233,8 +235,14 @@ TEST(LabRun, SameRunTwiceSameHash) {
 TEST(LabRun, ThreadsChangeNothingButTheTime) {
   const TempDir dir;
   const std::string args = "run bullet-ragdolls --steps 20";
-  EXPECT_EQ(text(runJson(args + " --threads 2", dir), "hash"),
-            text(runJson(args + " --threads 1", dir), "hash"));
+  const FlatJson two = runJson(args + " --threads 2", dir), one = runJson(args + " --threads 1", dir);
+  EXPECT_EQ(text(two, "hash"), text(one, "hash"));
+  // The run says what it ran on, as it says its other settings.
+  EXPECT_EQ(number(two, "threads"), 2);
+  EXPECT_EQ(number(one, "threads"), 1);
+  EXPECT_EQ(one.values.at("sleep"), "false");  // the lab's default, whatever the scene says
+  EXPECT_EQ(runJson(args + " --sleep on", dir).values.at("sleep"), "true");
+  EXPECT_NE(runLab(args + " --threads 2", dir).out.find("on 2 threads"), std::string::npos);
   const ProcessResult bad = runLab(args + " --threads 0", dir);
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("--threads: '0' is not a whole number from 1 to 64"), std::string::npos) << bad.err;
