@@ -137,9 +137,9 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
   std::vector<std::optional<int>> counts(threads.begin(), threads.end());
   if (counts.empty()) counts.push_back(options.threads);
   for (const int n : sizes) {
+    const std::string xml = scaleSceneXml(kind, n);
     for (const std::optional<int> count : counts) {
-      scenes::Scene scene =
-          scenes::loadSceneText(scaleSceneXml(kind, n), std::string(toString(kind)) + ".xml");
+      scenes::Scene scene = scenes::loadSceneText(xml, std::string(toString(kind)) + ".xml");
       RunOptions run = options;
       run.threads = count;
       const RunResult r = runScene(scene, run, progress);

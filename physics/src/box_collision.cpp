@@ -48,10 +48,7 @@ void World::updateBodyFrames() {
       fitFrame(id);
     }
   };
-  if (workers() == nullptr)
-    range(0, bodies_.size());
-  else
-    workers_.forEach(bodies_.size(), kBodiesPerPiece, range);
+  forEachRange(workers(), bodies_.size(), kBodiesPerPiece, range);
 }
 
 // Centre: the mean of the corners. Axes: the mean edge along each, made orthonormal. Cheaper

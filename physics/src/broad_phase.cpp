@@ -158,10 +158,7 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
   };
   stripPairs_.resize(step.workers == nullptr ? 0 : static_cast<std::size_t>(step.workers->threads()) - 1);
   // Each body's bounds are its own: ranges of bodies at once on the step's threads.
-  if (step.workers == nullptr)
-    range(0, bodies.size());
-  else
-    step.workers->forEach(bodies.size(), kBodiesPerPiece, range);
+  forEachRange(step.workers, bodies.size(), kBodiesPerPiece, range);
   const bool newAxis = chooseSweepAxis(frames);
   const int s = sweepAxis_;
   for (Interval& it : sweep_) {
@@ -208,10 +205,7 @@ bool BroadPhase::needsUpdate(std::span<const Obb> frames, std::span<const std::u
       if (moved > travel_[id]) found.store(true, std::memory_order_relaxed);
     }
   };
-  if (workers == nullptr)
-    range(0, frames.size());
-  else
-    workers->forEach(frames.size(), kBodiesPerPiece, range);
+  forEachRange(workers, frames.size(), kBodiesPerPiece, range);
   return found.load();
 }
 

@@ -59,7 +59,7 @@ void ConstraintGraph::clearBodyDrive(BodyId body) {
 void ConstraintGraph::dampJointFriction(Particles& particles, std::span<const Body> bodies, Real dt,
                                         const Workers* workers) {
   const std::span<const JointFriction> all = jointFrictions_;
-  if (stale_ || frictionPieces_.size() < 2) {  // not laid out since frictions were added
+  if (stale_) {  // frictions were added since the runs were cut
     detail::dampJointFriction(particles, bodies, all, dt, spins_);
     return;
   }
@@ -67,11 +67,7 @@ void ConstraintGraph::dampJointFriction(Particles& particles, std::span<const Bo
     const std::size_t begin = frictionPieces_[first], end = frictionPieces_[last];
     detail::dampJointFriction(particles, bodies, all.subspan(begin, end - begin), dt, spins_);
   };
-  const std::size_t pieces = frictionPieces_.size() - 1;
-  if (workers == nullptr)
-    range(0, pieces);
-  else
-    workers->forEach(pieces, 1, range);
+  forEachRange(workers, frictionPieces_.size() - 1, 1, range);
 }
 
 namespace {

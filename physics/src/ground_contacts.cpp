@@ -92,10 +92,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
       if (box.model == BodyModel::Corners) contact.surface = detail::rigidPoint(box, f, lowest);
     }
   };
-  if (workers == nullptr)
-    range(0, capsuleEnds_.size());
-  else
-    workers->forEach(capsuleEnds_.size(), kEndsPerPiece, range);
+  forEachRange(workers, capsuleEnds_.size(), kEndsPerPiece, range);
 }
 
 }  // namespace phys

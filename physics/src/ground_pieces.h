@@ -23,12 +23,12 @@ inline constexpr std::size_t kFewestGroundPointsPerPiece = 1024;
 template <class F>
 void forEachGroundPiece(const Workers* workers, std::span<const GroundContact> points, F&& f) {
   const std::size_t count = points.size();
-  const std::size_t oneAThread = workers == nullptr ? 1
-                                                    : std::min(static_cast<std::size_t>(workers->threads()),
-                                                               count / kFewestGroundPointsPerPiece);
-  const std::size_t pieces =
-      std::max((count + kGroundPointsPerPiece - 1) / kGroundPointsPerPiece, oneAThread);
-  if (workers == nullptr || pieces <= 1) {
+  const std::size_t pieces = workers == nullptr
+                                 ? 1
+                                 : std::max((count + kGroundPointsPerPiece - 1) / kGroundPointsPerPiece,
+                                            std::min(static_cast<std::size_t>(workers->threads()),
+                                                     count / kFewestGroundPointsPerPiece));
+  if (pieces <= 1) {
     f(std::size_t{0}, count);
     return;
   }

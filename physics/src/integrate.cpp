@@ -32,10 +32,7 @@ void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3>
       p.previous[i] = checked[i] = x;
     }
   };
-  if (workers == nullptr)
-    range(0, p.size());
-  else
-    workers->forEach(p.size(), kParticlesPerPiece, range);
+  forEachRange(workers, p.size(), kParticlesPerPiece, range);
 }
 
 }  // namespace phys::detail

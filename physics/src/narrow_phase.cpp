@@ -139,17 +139,18 @@ void NarrowPhase::inPieces(const NarrowPhaseInput& in, std::size_t count, Work&&
     work(own, 0, count);
     return;
   }
+  // The first run into the narrow phase's own arrays, each other into its piece's.
+  auto sink = [&](std::size_t k) {
+    if (k == 0) return own;
+    Piece& piece = pieces_[k - 1];
+    piece.manifolds.clear();
+    piece.contacts.clear();
+    piece.rigidContacts.clear();
+    return Sink{piece.manifolds, piece.contacts, piece.rigidContacts};
+  };
   auto range = [&](std::size_t first, std::size_t last) {
     for (std::size_t k = first; k < last; ++k) {
-      if (k == 0) {
-        work(own, 0, count / pieces);
-        continue;
-      }
-      Piece& piece = pieces_[k - 1];
-      piece.manifolds.clear();
-      piece.contacts.clear();
-      piece.rigidContacts.clear();
-      Sink out{piece.manifolds, piece.contacts, piece.rigidContacts};
+      Sink out = sink(k);
       work(out, count * k / pieces, count * (k + 1) / pieces);
     }
   };
@@ -395,10 +396,7 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
   auto range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) measureStart(in, manifolds_[i], passed);
   };
-  if (in.workers == nullptr)
-    range(0, manifolds_.size());
-  else
-    in.workers->forEach(manifolds_.size(), kPairsPerPiece, range);
+  forEachRange(in.workers, manifolds_.size(), kPairsPerPiece, range);
   std::fill(state_.touched.begin(), state_.touched.end(), std::uint8_t{0});
 }
 

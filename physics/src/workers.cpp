@@ -49,4 +49,11 @@ void Workers::forEach(std::size_t count, std::size_t grain, RangeFunction f) con
   });
 }
 
+void forEachRange(const Workers* workers, std::size_t count, std::size_t grain, RangeFunction f) {
+  if (workers == nullptr)
+    f(0, count);
+  else
+    workers->forEach(count, grain, f);
+}
+
 }  // namespace phys

@@ -18,39 +18,6 @@ namespace {
 
 using lab_testing::parseFlatJson;
 
-// The keys the issue fixes, in the order the lab writes them.
-const std::vector<std::string> kJsonKeys = {"scene",
-                                            "method",
-                                            "iterations",
-                                            "substeps",
-                                            "dt",
-                                            "joint_projection",
-                                            "threads",
-                                            "sleep",
-                                            "steps",
-                                            "particles",
-                                            "constraints",
-                                            "bodies",
-                                            "contacts",
-                                            "ms_per_step",
-                                            "max_constraint_error",
-                                            "rms_constraint_error",
-                                            "max_joint_error",
-                                            "max_penetration",
-                                            "max_speed",
-                                            "max_stick_error_over_run",
-                                            "max_joint_error_over_run",
-                                            "max_penetration_over_run",
-                                            "max_angular_speed_over_run",
-                                            "rms_tracking_error_over_run",
-                                            "energy_initial",
-                                            "energy_final",
-                                            "frozen",
-                                            "islands",
-                                            "awake_bodies",
-                                            "sleeping_bodies",
-                                            "hash"};
-
 // Every JSON the lab writes goes through jsonLine: one line, numbers that read back the same
 // double, null for what is not finite, and a name in another encoding replaced, not thrown on.
 TEST(LabReport, JsonLinesRoundTripNumbersAndReplaceWhatJsonCannotHold) {
@@ -98,7 +65,7 @@ TEST(LabReport, JsonHasEveryKeyInOrderEvenWhenFiguresAreNotFinite) {
   EXPECT_EQ(json.find('\n'), json.size() - 1) << "one line";
   const auto j = parseFlatJson(json);
   ASSERT_TRUE(j) << json;
-  EXPECT_EQ(j->keys, kJsonKeys);
+  EXPECT_EQ(j->keys, lab_testing::kRunJsonKeys);
   EXPECT_EQ(j->values.at("energy_initial"), "null");
   EXPECT_EQ(j->values.at("max_speed"), "null");
   EXPECT_EQ(j->values.at("energy_final"), "null");

@@ -26,6 +26,39 @@
 
 namespace lab_testing {
 
+/// The keys of `lab run --json`, in the order the lab writes them (docs/lab.md, "lab run").
+inline const std::vector<std::string> kRunJsonKeys = {"scene",
+                                                      "method",
+                                                      "iterations",
+                                                      "substeps",
+                                                      "dt",
+                                                      "joint_projection",
+                                                      "threads",
+                                                      "sleep",
+                                                      "steps",
+                                                      "particles",
+                                                      "constraints",
+                                                      "bodies",
+                                                      "contacts",
+                                                      "ms_per_step",
+                                                      "max_constraint_error",
+                                                      "rms_constraint_error",
+                                                      "max_joint_error",
+                                                      "max_penetration",
+                                                      "max_speed",
+                                                      "max_stick_error_over_run",
+                                                      "max_joint_error_over_run",
+                                                      "max_penetration_over_run",
+                                                      "max_angular_speed_over_run",
+                                                      "rms_tracking_error_over_run",
+                                                      "energy_initial",
+                                                      "energy_final",
+                                                      "frozen",
+                                                      "islands",
+                                                      "awake_bodies",
+                                                      "sleeping_bodies",
+                                                      "hash"};
+
 /// Standard gravity, as the scenes below state it. unit: m/s^2
 inline constexpr double kGravity = 9.81;
 /// Where the free-falling particle starts. unit: m

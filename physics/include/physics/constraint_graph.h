@@ -118,8 +118,9 @@ class ConstraintGraph {
   std::vector<JointFriction> jointFrictions_;
   std::vector<BodySpin> spins_;  // per body: the joint friction's scratch
   // Where runs of joint frictions begin that share no body with the runs before (and the end):
-  // in creation order, so one ragdoll's frictions are never cut apart. Found by layOut().
-  std::vector<std::size_t> frictionPieces_;
+  // in creation order, so one ragdoll's frictions are never cut apart. Found by layOut(); one run
+  // of none before it.
+  std::vector<std::size_t> frictionPieces_{0, 0};
   StickLayout stickLayout_;
   LinkLayout linkLayout_;
   bool stale_ = false;

@@ -47,4 +47,8 @@ class Workers {
   int threads_ = 1;
 };
 
+/// workers->forEach(count, grain, f), or f(0, count) on the calling thread when `workers` is null
+/// (a world on one thread hands its stages none).
+void forEachRange(const Workers* workers, std::size_t count, std::size_t grain, RangeFunction f);
+
 }  // namespace phys
