@@ -2,6 +2,7 @@
 #include "physics/guard.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -26,7 +27,7 @@ namespace {
 // bits(limit): bits(limit) - bits(|x|) goes negative for every coordinate that is not, and the
 // sign bits of all of them or'd together answer. Integer subtraction and or, with no branch and
 // no call, run in SIMD lanes (GCC 12 vectorises none of the comparisons of doubles written out).
-bool anyBeyond(const std::vector<Vec3>& points, Real limit) {
+bool anyBeyond(std::span<const Vec3> points, Real limit) {
   static_assert(sizeof(Vec3) == 3 * sizeof(Real) && alignof(Vec3) == alignof(Real));
   const Real* coordinates = reinterpret_cast<const Real*>(points.data());
   const auto limitBits = std::bit_cast<std::int64_t>(limit);
@@ -37,17 +38,26 @@ bool anyBeyond(const std::vector<Vec3>& points, Real limit) {
   return signs < 0;
 }
 
+// Particles one thread looks over at a time: a pass over their positions is a few microseconds.
+constexpr std::size_t kParticlesPerPiece = 2048;
+
 }  // namespace
 
 // Every particle, pinned or not: World runs it after each substep and after a change of settings
 // (World::guardParticles says why). Nearly always nothing is wrong, which one pass over the
 // positions (within the bound) and the previous positions (finite) says in less than half the
 // time that looking at each particle's case takes; only otherwise is each particle looked at.
-void Guard::checkParticles(const GuardInput& in, Real bound) {
+void Guard::checkParticles(const GuardInput& in, Real bound, const Workers* workers) {
   const Particles& particles = in.particles;
-  if (!anyBeyond(particles.position, std::min(bound, std::numeric_limits<Real>::max())) &&
-      !anyBeyond(particles.previous, std::numeric_limits<Real>::max()))
-    return;
+  std::atomic<bool> anyBad{false};
+  auto range = [&](std::size_t begin, std::size_t end) {
+    const std::span<const Vec3> position(particles.position), previous(particles.previous);
+    if (anyBeyond(position.subspan(begin, end - begin), std::min(bound, std::numeric_limits<Real>::max())) ||
+        anyBeyond(previous.subspan(begin, end - begin), std::numeric_limits<Real>::max()))
+      anyBad.store(true, std::memory_order_relaxed);
+  };
+  forEachRange(workers, particles.size(), kParticlesPerPiece, range);
+  if (!anyBad.load()) return;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3& x = particles.position[i];
     const auto id = static_cast<ParticleId>(i);

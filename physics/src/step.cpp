@@ -553,7 +553,7 @@ void World::guard(bool shapes) {
 // next integration and frozen at NaN (found by the soak test, seed 21: a chain under gravity of
 // 1e244 m/s^2 given 1000 iterations).
 void World::guardParticles() {
-  guard_.checkParticles(guardInput(), world_.bound);
+  guard_.checkParticles(guardInput(), world_.bound, workers());
 }
 
 GuardInput World::guardInput() {

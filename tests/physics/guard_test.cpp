@@ -316,3 +316,32 @@ TEST(Guard, EveryBadCoordinateIsFoundWhereverItIs) {
   guard.checkParticles({particles, {}, {}, names, bodies, 0.0}, kBound);
   EXPECT_TRUE(guard.freezes().empty());
 }
+
+// On the step's threads the look runs in ranges of particles (2,048 a range): a bad coordinate in
+// any range, the last one's short tail included, is found and frozen as on one thread.
+TEST(Guard, OnThreadsTheLookFindsABadCoordinateInAnyRange) {
+  constexpr double kBound = 100.0;
+  constexpr std::size_t kCount = 5000;  // ranges of 2,048, 2,048 and 904
+  phys::Workers workers;
+  workers.setThreads(2);
+  for (const std::size_t bad : {std::size_t{0}, std::size_t{2047}, std::size_t{2048}, kCount - 1}) {
+    for (const bool threads : {false, true}) {
+      phys::Particles particles;
+      phys::Guard guard;
+      for (std::size_t i = 0; i < kCount; ++i) {
+        const Vec3 x(0.001 * static_cast<double>(i), 1.0, 0.0);
+        particles.position.push_back(x);
+        particles.previous.push_back(x);
+        particles.inverseMass.push_back(1.0);
+        guard.addParticle(x);
+      }
+      particles.position[bad].y = kBound + 1.0;
+      const std::vector<std::string> names(kCount);
+      const std::vector<phys::BodyId> bodies(kCount, phys::kNoBody);
+      guard.checkParticles({particles, {}, {}, names, bodies, 0.0}, kBound, threads ? &workers : nullptr);
+      ASSERT_EQ(guard.freezes().size(), 1u) << "bad " << bad << (threads ? " on threads" : "");
+      EXPECT_EQ(guard.freezes()[0].particle, phys::ParticleId(bad));
+      EXPECT_EQ(particles.inverseMass[bad], 0.0);
+    }
+  }
+}

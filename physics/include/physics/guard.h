@@ -11,6 +11,7 @@
 #include "physics/constraints.h"
 #include "physics/particles.h"
 #include "physics/rigid_bodies.h"
+#include "physics/workers.h"
 
 namespace phys {
 
@@ -46,8 +47,8 @@ class Guard {
   std::span<const FreezeReport> freezes() const { return freezes_; }
 
   /// Freezes every particle (and its whole body) that is non-finite or beyond `bound` (m) on an
-  /// axis.
-  void checkParticles(const GuardInput& in, Real bound);
+  /// axis. The look for any such particle runs in ranges on `workers`, when given.
+  void checkParticles(const GuardInput& in, Real bound, const Workers* workers = nullptr);
   /// Freezes each rigid body whose pose or velocities are non-finite or whose centre is beyond
   /// `bound` (m) on an axis: put back at the pose its substep started from (finite, as the last
   /// check found it), at rest, with no inverse mass or inertia, so nothing moves it again.
