@@ -317,14 +317,14 @@ TEST(Guard, EveryBadCoordinateIsFoundWhereverItIs) {
   EXPECT_TRUE(guard.freezes().empty());
 }
 
-// On the step's threads the look runs in ranges of particles (2,048 a range): a bad coordinate in
-// any range, the last one's short tail included, is found and frozen as on one thread.
+// On the step's threads the look runs in ranges of at most 2,048 particles (5,000 are halved into
+// four of 1,250): a bad coordinate at either end of any range is found and frozen as on one thread.
 TEST(Guard, OnThreadsTheLookFindsABadCoordinateInAnyRange) {
   constexpr double kBound = 100.0;
-  constexpr std::size_t kCount = 5000;  // ranges of 2,048, 2,048 and 904
+  constexpr std::size_t kCount = 5000;
   phys::Workers workers;
   workers.setThreads(2);
-  for (const std::size_t bad : {std::size_t{0}, std::size_t{2047}, std::size_t{2048}, kCount - 1}) {
+  for (const std::size_t bad : {0, 1249, 1250, 2047, 2048, 2499, 2500, 3749, 3750, 4999}) {
     for (const bool threads : {false, true}) {
       phys::Particles particles;
       phys::Guard guard;
