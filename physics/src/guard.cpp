@@ -49,10 +49,11 @@ constexpr std::size_t kParticlesPerPiece = 2048;
 // time that looking at each particle's case takes; only otherwise is each particle looked at.
 void Guard::checkParticles(const GuardInput& in, Real bound, const Workers* workers) {
   const Particles& particles = in.particles;
+  const std::span<const Vec3> position(particles.position), previous(particles.previous);
+  const Real positionLimit = std::min(bound, std::numeric_limits<Real>::max());
   std::atomic<bool> anyBad{false};
   auto range = [&](std::size_t begin, std::size_t end) {
-    const std::span<const Vec3> position(particles.position), previous(particles.previous);
-    if (anyBeyond(position.subspan(begin, end - begin), std::min(bound, std::numeric_limits<Real>::max())) ||
+    if (anyBeyond(position.subspan(begin, end - begin), positionLimit) ||
         anyBeyond(previous.subspan(begin, end - begin), std::numeric_limits<Real>::max()))
       anyBad.store(true, std::memory_order_relaxed);
   };
