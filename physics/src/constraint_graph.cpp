@@ -118,7 +118,7 @@ void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, boo
       detail::relaxGaussSeidel(particles, sticks_, stickLayout_, workers);
       break;
     case SolverMethod::Jacobi:
-      detail::relaxJacobi(particles, sticks_, stickLayout_, degree_, jacobiDelta_);
+      detail::relaxJacobi(particles, sticks_, stickLayout_, degree_, jacobiDelta_, workers);
       break;
     case SolverMethod::Xpbd:
       // The multipliers accumulate over the substep's passes (Macklin et al. 2016).
@@ -126,7 +126,7 @@ void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, boo
       detail::relaxXpbd(particles, sticks_, stickLayout_, lambda_, h, compliance, workers);
       break;
     case SolverMethod::Shake:
-      detail::relaxShake(particles, sticks_, stickLayout_);
+      detail::relaxShake(particles, sticks_, stickLayout_, workers);
       break;
   }
 }

@@ -93,9 +93,9 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLa
                       const Workers* workers = nullptr);
 /// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
 /// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
-/// particle.
+/// particle. `workers` as for Gauss-Seidel: a lane group's bodies sum and apply their own.
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                 std::span<const Real> degree, std::span<Vec3> delta);
+                 std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers = nullptr);
 /// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
 /// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
 /// zeroed at the start of each substep.
@@ -103,8 +103,10 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
                Real h, Real compliance, const Workers* workers = nullptr);
 /// SHAKE (Ryckaert, Ciccotti, Berendsen 1977): each stick moved along its direction at the
-/// start of the substep (x* after integration), by the root of a scalar quadratic.
-void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout);
+/// start of the substep (x* after integration), by the root of a scalar quadratic. `workers` as
+/// for Gauss-Seidel.
+void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
+                const Workers* workers = nullptr);
 
 /// Projects every contact point below the ground plane n . x = height back onto it, writing the
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").

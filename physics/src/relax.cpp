@@ -98,7 +98,7 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLa
 // from overshooting (Müller et al. 2007 discuss both orders). A block shares no particle with
 // any other stick, so it can sum and apply its own corrections before the next block reads.
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                 std::span<const Real> degree, std::span<Vec3> delta) {
+                 std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers) {
   auto correction = [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, Real scale,
                         Vec3* sum) {
     StickState m;
@@ -109,7 +109,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
   };
   LaneArguments lanes = laneArguments(p, layout);
   lanes.degree = degree.data();
-  relaxJacobiLanes(lanes);
+  inLanePieces(lanes, workers, [](const LaneArguments& a) { relaxJacobiLanes(a); });
   for (const StickBlock& block : layout.blocks()) {
     const std::uint32_t first = block.firstParticle;
     Vec3 x[kMaxBlockParticles], sum[kMaxBlockParticles];
@@ -172,8 +172,9 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
 // SHAKE for one stick: move x1 by -w1 g r and x2 by +w2 g r, where r is the stick at the start
 // of the substep, with g the root of |d + (w1 + w2) g r|^2 = L^2 nearest zero. Where no root
 // exists (the stick turned too far within one substep), fall back to Jakobsen's projection.
-void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout) {
-  relaxShakeLanes(laneArguments(p, layout));
+void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
+                const Workers* workers) {
+  inLanePieces(laneArguments(p, layout), workers, [](const LaneArguments& a) { relaxShakeLanes(a); });
   forEachStick<true>(p, sticks, layout,
                      [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
                        StickState m;

@@ -46,8 +46,8 @@ phys::World pile(phys::SolverMethod method, int threads) {
 }
 
 TEST(Threads, TheSameStateOnOneTwoAndThreeThreads) {
-  for (const auto method :
-       {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Xpbd, phys::SolverMethod::Jacobi}) {
+  for (const auto method : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Xpbd,
+                            phys::SolverMethod::Jacobi, phys::SolverMethod::Shake}) {
     phys::World one = pile(method, 1), two = pile(method, 2), three = pile(method, 3);
     ASSERT_GT(one.bodies().size(), 2 * 256u);
     std::size_t mostPairs = 0, mostManifolds = 0;
