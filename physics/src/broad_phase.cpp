@@ -100,6 +100,8 @@ bool BroadPhase::chooseSweepAxis(std::span<const Obb> frames) {
 
 // Bodies whose bounds one thread measures at a time: a few microseconds of work.
 constexpr std::size_t kBodiesPerPiece = 256;
+// Runs of strips each thread sweeps (sweepInPieces).
+constexpr std::size_t kSweepPiecesPerThread = 4;
 
 // A body's bounds and motion for the step: its AABB grown by how far it can go in the step at its
 // speed of the step's first substep (its fastest particle's speed times dt, and gravity's g dt^2,
@@ -156,7 +158,9 @@ void BroadPhase::update(const Particles& particles, const RigidBodies& rigid, st
   auto range = [&](std::size_t begin, std::size_t end) {
     for (BodyId id(begin); id < end; ++id) measure(particles, rigid, bodies[id], frames[id], id, step);
   };
-  stripPairs_.resize(step.workers == nullptr ? 0 : static_cast<std::size_t>(step.workers->threads()) - 1);
+  stripPairs_.resize(step.workers == nullptr
+                         ? 0
+                         : kSweepPiecesPerThread * static_cast<std::size_t>(step.workers->threads()) - 1);
   // Each body's bounds are its own: ranges of bodies at once on the step's threads.
   forEachRange(step.workers, bodies.size(), kBodiesPerPiece, range);
   const bool newAxis = chooseSweepAxis(frames);
@@ -254,8 +258,16 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
     if (!(k > 0.0)) return 0;  // also NaN
     return k >= static_cast<Real>(strips - 1) ? strips - 1 : static_cast<std::size_t>(k);
   };
+  // Each body's strips, found once: the dealing and the sweep read them. stripOf is monotone, so
+  // the strip where two bodies' overlap along t begins, stripOf(max(lo)), is the later of their
+  // first strips.
+  keepRoom(stripsOf_, 0, n);
+  stripsOf_.resize(n);
+  for (BodyId id{}; id < n; ++id)
+    stripsOf_[id] = {static_cast<std::uint32_t>(stripOf(bounds_[id].lo[t])),
+                     static_cast<std::uint32_t>(stripOf(bounds_[id].hi[t]))};
   auto wide = [&](BodyId id) {
-    return stripOf(bounds_[id].hi[t]) - stripOf(bounds_[id].lo[t]) >= settings.maxStripsPerBody;
+    return stripsOf_[id].second - stripsOf_[id].first >= settings.maxStripsPerBody;
   };
   auto overlap = [&](const Bounds& a, const Bounds& b, int axis) {
     return a.lo[axis] <= b.hi[axis] && b.lo[axis] <= a.hi[axis];
@@ -273,7 +285,7 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
       wideBodies_.push_back(it.body);
       continue;
     }
-    const std::size_t first = stripOf(bounds_[it.body].lo[t]), last = stripOf(bounds_[it.body].hi[t]);
+    const auto [first, last] = stripsOf_[it.body];
     for (std::size_t k = first; k <= last; ++k) ++stripStart_[k + 1];
     entries += last - first + 1;
   }
@@ -282,7 +294,7 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
   stripBodies_.resize(entries);
   for (const Interval& it : sweep_) {
     if (wide(it.body)) continue;
-    const std::size_t first = stripOf(bounds_[it.body].lo[t]), last = stripOf(bounds_[it.body].hi[t]);
+    const auto [first, last] = stripsOf_[it.body];
     for (std::size_t k = first; k <= last; ++k) stripBodies_[stripStart_[k]++] = it.body;
   }
   // The fill moved each start to the next strip's: move them back.
@@ -292,7 +304,7 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
   auto meetInto = [&](std::vector<Pair>& out, std::size_t k, BodyId a, BodyId b) {
     const Bounds &ba = bounds_[a], &bb = bounds_[b];
     if (!overlap(ba, bb, t) || !overlap(ba, bb, u)) return;
-    if (stripOf(std::max(ba.lo[t], bb.lo[t])) != k) return;  // kept in another strip
+    if (std::max(stripsOf_[a].first, stripsOf_[b].first) != k) return;  // kept in another strip
     if (collides(bodies, a, b)) out.emplace_back(std::min(a, b), std::max(a, b));
   };
   auto meet = [&](std::size_t k, BodyId a, BodyId b) { meetInto(unsortedPairs_, k, a, b); };
@@ -354,8 +366,10 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
 // Strip entries one thread sweeps at a time.
 constexpr std::size_t kEntriesPerPiece = 256;
 
-// sweep(first, last, out) over the strips: on the step's threads in one run of strips a thread,
-// cut where the strips' entries are shared evenly, each into pairs of its own, then appended. The
+// sweep(first, last, out) over the strips: on the step's threads in runs of strips,
+// kSweepPiecesPerThread a thread, cut where the strips' entries are shared evenly (an entry's
+// candidates are as many as the bodies near it, so runs of equal entries are not equal work: a thread
+// done first takes another), each into pairs of its own, then appended. The
 // strips share nothing, and sortPairsByBody puts the pairs (each found once) into one order
 // whatever the order they come in, so the pairs are the same on any number of threads.
 template <class Sweep>

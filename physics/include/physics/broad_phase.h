@@ -90,10 +90,11 @@ class BroadPhase {
   void sweepInPieces(std::size_t strips, std::size_t entries, const Workers* workers, Sweep&& sweep);
   void sortPairsByBody();
 
-  std::vector<Interval> sweep_;           // sweep-and-prune list, kept sorted between steps
-  std::vector<std::size_t> stripStart_;   // per strip and one more: where its bodies start in stripBodies_
-  std::vector<BodyId> stripBodies_;       // the bodies of each strip, in sweep order
-  std::vector<BodyId> wideBodies_;        // bodies across too many strips, tested against all
+  std::vector<Interval> sweep_;          // sweep-and-prune list, kept sorted between steps
+  std::vector<std::size_t> stripStart_;  // per strip and one more: where its bodies start in stripBodies_
+  std::vector<BodyId> stripBodies_;      // the bodies of each strip, in sweep order
+  std::vector<BodyId> wideBodies_;       // bodies across too many strips, tested against all
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> stripsOf_;  // per body: its first and last strip
   std::vector<Real> sleepingReach_;       // per strip entry: the furthest hi of the sleeping ones up to it
   std::vector<Bounds> bounds_;            // per body: AABB grown by its reach over a step
   std::vector<Real> travel_;              // per body: that reach (m)
