@@ -76,6 +76,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
     const bool newPairs = findPairs(s == 0);
     stopFastBodies();
     findContacts(newPairs, s == 0, h);
+    dealContacts(newPairs);
     partOverlaps();
     measureApproaches(h);
     startRigidContacts(h);
@@ -206,6 +207,7 @@ void World::updateLayouts() {
   if (!layoutsStale_ && !constraints_.stale()) return;
   constraints_.layOut(bodies_, particles_.size());
   bodyLayout_.build(bodies_);
+  contactBins_.indexGround(ground_.points());
   broadPhase_.indexFilters();
   layoutsStale_ = false;
 }
@@ -278,6 +280,22 @@ void World::findContacts(bool newPairs, bool firstSubstep, Real h) {
   if (rigidGround_.empty()) return;
   placeRigidCapsulePoints();
   detail::measureRigidGroundStarts(rigidPassInput(h), rigidGround_, rigidGroundState_);
+}
+
+// On two or more threads, the contacts of particle bodies dealt into two bins that share no
+// particle (contact_bins.h), when the narrow phase has found its manifolds from the broad phase's
+// pairs; in the step's other substeps only their ranges found again. Not with rigid bodies, whose
+// contacts are passes of their own on the calling thread.
+void World::dealContacts(bool newPairs) {
+  if (workers() == nullptr || rigidBodies_.size() > 0 || bodies_.size() < 2) {
+    contactBins_.clear();
+    return;
+  }
+  const detail::StageTimer timer(profile_, Stage::Contacts);
+  if (newPairs)
+    contactBins_.deal(narrowPhase_.manifolds(), ground_.points(), bodies_.size());
+  else if (contactBins_.dealt())
+    contactBins_.rangeContacts(narrowPhase_.manifolds());
 }
 
 NarrowPhaseInput World::narrowPhaseInput() const {
@@ -403,6 +421,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
   const bool contacts = ground || !bodyContacts.empty();
+  const bool binned = contactBins_.dealt() && workers() != nullptr;
   for (int it = 0; it < solver_.iterations; ++it) {
     if (!constraints_.particleJoints().empty() || !constraints_.bodyDrives().empty()) {
       // Particle bodies' drives first, so each pass ends with their links (the joints' pins and
@@ -450,6 +469,10 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     // friction bent (run once after all passes, friction would leave every resting box
     // sheared by the last correction).
     if (!contacts) continue;
+    if (binned) {
+      relaxContactBins(ground);
+      continue;
+    }
     {
       const detail::StageTimer timer(profile_, Stage::Contacts);
       detail::solveBodyContacts(particles_, bodyContacts, solver_.contactSlop, bodyState.push,
@@ -483,6 +506,57 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     const detail::StageTimer timer(profile_, Stage::Contacts);
     detail::markPushedParticles(bodyContacts, bodyState.touched, movedByBoxContact_);
   }
+}
+
+// A pass's contacts and friction as relax() takes them, each bin of contactBins_ on a thread of its
+// own: its contacts between bodies, then its ground points; then their friction likewise.
+void World::relaxContactBins(bool ground) {
+  const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
+  BodyContactState& bodyState = narrowPhase_.state();
+  GroundContactState& groundState = ground_.state();
+  const std::span<const GroundContact> points = ground_.points();
+  const std::span<const std::uint8_t> still = ground_.still();
+  auto inBins = [this](auto&& f) {
+    auto range = [&f](std::size_t begin, std::size_t end) {
+      for (std::size_t bin = begin; bin < end; ++bin) f(static_cast<int>(bin));
+    };
+    workers()->forEach(2, 1, range);
+  };
+  auto part = [](auto& v, ContactBins::Range r) { return std::span(v).subspan(r.begin, r.end - r.begin); };
+  auto stillPart = [&](ContactBins::Range r) {
+    return still.empty() ? still : still.subspan(r.begin, r.end - r.begin);
+  };
+  {
+    const detail::StageTimer timer(profile_, Stage::Contacts);
+    inBins([&](int bin) {
+      for (const ContactBins::Range r : contactBins_.contactRanges(bin)) {
+        detail::solveBodyContacts(particles_, part(bodyContacts, r), solver_.contactSlop,
+                                  part(bodyState.push, r), part(bodyState.allowance, r));
+      }
+      if (!ground) return;
+      for (const ContactBins::Range r : contactBins_.groundRanges(bin)) {
+        detail::collideGround(particles_, part(points, r), world_.groundNormal, world_.groundHeight,
+                              part(groundState.push, r), part(groundState.allowance, r), stillPart(r));
+      }
+    });
+  }
+  const detail::StageTimer timer(profile_, Stage::Friction);
+  inBins([&](int bin) {
+    for (const ContactBins::Range r : contactBins_.contactRanges(bin)) {
+      detail::applyBodyFriction(particles_, part(bodyContacts, r), part(bodyState.push, r));
+      for (std::uint32_t k = r.begin; k < r.end; ++k) {
+        if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
+      }
+    }
+    if (!ground) return;
+    for (const ContactBins::Range r : contactBins_.groundRanges(bin)) {
+      detail::applyGroundFriction(particles_, part(points, r), world_.groundNormal, part(groundState.push, r),
+                                  stillPart(r));
+      for (std::uint32_t c = r.begin; c < r.end; ++c) {
+        if (groundState.push[c] > 0.0) groundState.touched[c] = groundState.hit[c] = 1;
+      }
+    }
+  });
 }
 
 // Restitution, after the position passes: each contact pushed in this substep that approached

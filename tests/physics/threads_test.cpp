@@ -74,6 +74,43 @@ TEST(Threads, TheSameStateOnOneTwoAndThreeThreads) {
   }
 }
 
+// On two threads the pile's contacts go in two bins (ContactBins): the bodies of one bin's contacts
+// and ground points are none of the other's, and every contact and ground point is in one of them.
+TEST(Threads, TheContactBinsShareNoBody) {
+  phys::World world = pile(phys::SolverMethod::GaussSeidel, 2);
+  int dealt = 0;
+  for (int i = 0; i < 60; ++i) {
+    world.step();
+    const phys::ContactBins& bins = world.contactBins();
+    if (!bins.dealt()) continue;
+    ++dealt;
+    std::set<phys::BodyId> bodies[2];
+    std::size_t contacts = 0, points = 0;
+    for (int bin = 0; bin < 2; ++bin) {
+      for (const phys::ContactBins::Range r : bins.contactRanges(bin)) {
+        for (std::uint32_t k = r.begin; k < r.end; ++k) {
+          bodies[bin].insert(world.bodyContacts()[k].bodyA);
+          bodies[bin].insert(world.bodyContacts()[k].bodyB);
+          ++contacts;
+        }
+      }
+      for (const phys::ContactBins::Range r : bins.groundRanges(bin)) {
+        for (std::uint32_t k = r.begin; k < r.end; ++k) bodies[bin].insert(world.groundContacts()[k].body);
+        points += r.end - r.begin;
+      }
+    }
+    ASSERT_EQ(contacts, world.bodyContacts().size()) << "step " << i;
+    ASSERT_EQ(points, world.groundContacts().size()) << "step " << i;
+    for (const phys::BodyId b : bodies[0])
+      ASSERT_EQ(bodies[1].count(b), 0u) << "body " << b << ", step " << i;
+  }
+  EXPECT_GT(dealt, 50);  // the pile falls apart into rows and ragdolls: two bins nearly always
+  // On one thread there are no bins.
+  phys::World one = pile(phys::SolverMethod::GaussSeidel, 1);
+  one.step();
+  EXPECT_FALSE(one.contactBins().dealt());
+}
+
 // The number of threads can change between steps, and a world copied keeps its own threads.
 TEST(Threads, ChangingTheThreadsMidRunChangesNothing) {
   phys::World steady = pile(phys::SolverMethod::GaussSeidel, 1);

@@ -18,6 +18,7 @@
 #include "physics/collision.h"
 #include "physics/constraint_graph.h"
 #include "physics/constraints.h"
+#include "physics/contact_bins.h"
 #include "physics/debug_draw.h"
 #include "physics/ground_contacts.h"
 #include "physics/guard.h"
@@ -287,6 +288,9 @@ class World {
   std::span<const GroundContact> groundContacts() const { return ground_.points(); }
   /// Box-box contacts of the last substep.
   std::span<const BodyContact> bodyContacts() const { return narrowPhase_.contacts(); }
+  /// The last substep's contacts of particle bodies as two threads took them (dealt() false: on
+  /// one thread, or as one loop; docs/physics.md, "Threads").
+  const ContactBins& contactBins() const { return contactBins_; }
   /// Each box as an oriented box, fitted at the start of the last substep.
   std::span<const Obb> bodyFrames() const { return frames_; }
   /// Box pairs whose bounds, grown by how far each can go in a step, overlapped at the start of
@@ -407,10 +411,12 @@ class World {
   bool findPairs(bool firstSubstep);
   void stopFastBodies();
   void findContacts(bool newPairs, bool firstSubstep, Real h);
+  void dealContacts(bool newPairs);
   void partOverlaps();
   void measureApproaches(Real h);
   std::span<const Real> limitCorrections(Real h);
   void relax(Real h, std::span<const Real> linkSlack);
+  void relaxContactBins(bool ground);
   void updateLayouts();
   void skipSleepers();
   void restitute(Real h);
@@ -463,6 +469,7 @@ class World {
   int swept_ = 0;                          // pairs stopFastBodies stopped in this step
   BroadPhase broadPhase_;
   NarrowPhase narrowPhase_;
+  ContactBins contactBins_;  // on two or more threads: the contact stages in two bins at once
   Parting parting_;
   std::vector<RigidState> rigid_;                // per box: restitution's rigid-body view
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
