@@ -94,7 +94,7 @@ void ContactBins::rangeContacts(std::span<const Manifold> manifolds) {
   }
   if (!dealt_) return;
   for (const Manifold& m : manifolds) {
-    if (m.contactCount == 0) continue;
+    if (m.rigid || m.contactCount == 0) continue;  // a rigid pair's points are in another list
     append(contactRanges_[bin_[m.a]], m.firstContact, m.contactCount);
   }
 }

@@ -35,11 +35,11 @@ class ContactBins {
     std::uint32_t begin = 0, end = 0;
   };
 
-  /// Groups the `bodies` bodies by the manifolds between them (particle bodies': rigid ones have
-  /// none here) and deals the groups into the two
-  /// bins, each to the bin with less work so far (a contact or a ground point is a unit of work),
-  /// then ranges the ground points and the contacts. Returns dealt(): whether the larger bin
-  /// holds at most kMostBinShare of the work.
+  /// Groups the `bodies` bodies by the manifolds between them (the world deals only without rigid
+  /// bodies) and deals the groups, in the order of their first bodies, to the first bin until it
+  /// holds half the work (a contact or a ground point each), then to the second; then ranges the
+  /// ground points and the contacts. Returns dealt(): whether the larger bin holds at most
+  /// kMostBinShare of the work.
   bool deal(std::span<const Manifold> manifolds, std::span<const GroundContact> ground, std::size_t bodies);
   /// Ranges the contacts again by the bins of the last deal (the narrow phase's later substeps).
   void rangeContacts(std::span<const Manifold> manifolds);
