@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -6,10 +7,12 @@
 
 namespace phys::detail {
 
-// Particles integrated by one thread at a time. Integration reads and writes each particle once,
-// so it is bound by memory, and smaller pieces measured slower on two threads than one: the
-// pile's 5,984 particles in pieces of 2,048 took 38 ms over 300 steps against 19 on one thread.
-constexpr std::size_t kParticlesPerPiece = 16384;
+// Integration reads and writes each particle once, so it is bound by memory, and many small pieces
+// cost more than they save: one piece a thread, of at least this many particles. (Pieces of 2,048
+// once measured slower on two threads than one piece; one a thread measured faster once the
+// contacts went in two bins, which left each core less of the other's writes to read:
+// docs/performance.md, "Integration in one piece a thread".)
+constexpr std::size_t kFewestParticlesPerPiece = 2048;
 
 void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked,
                const Workers* workers) {
@@ -32,7 +35,9 @@ void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3>
       p.previous[i] = checked[i] = x;
     }
   };
-  forEachRange(workers, p.size(), kParticlesPerPiece, range);
+  const std::size_t threads = workers == nullptr ? 1 : static_cast<std::size_t>(workers->threads());
+  forEachRange(workers, p.size(), std::max(kFewestParticlesPerPiece, (p.size() + threads - 1) / threads),
+               range);
 }
 
 }  // namespace phys::detail

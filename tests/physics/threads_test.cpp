@@ -17,8 +17,8 @@ using phys::Vec3;
 // Enough of everything that the threaded stages cut it into several pieces: 40 box ragdolls and 40
 // capsule ragdolls (many lane groups of sticks, links and body damping), over 512 bodies (three
 // pieces of frames and bounds), with friction in their joints (runs of ragdolls' frictions at once),
-// falling into a pile. (Integration takes pieces of 16,384 particles: this
-// world integrates in one, and a piece of integration touches its own particles only.)
+// falling into a pile. (Integration takes one piece a thread of at least 2,048 particles: this
+// world's 5,704 make two on two threads and three on three.)
 phys::World pile(phys::SolverMethod method, int threads) {
   phys::SolverSettings s;
   s.method = method;
