@@ -8,10 +8,8 @@
 namespace phys::detail {
 
 // Integration reads and writes each particle once, so it is bound by memory, and many small pieces
-// cost more than they save: one piece a thread, of at least this many particles. (Pieces of 2,048
-// once measured slower on two threads than one piece; one a thread measured faster once the
-// contacts went in two bins, which left each core less of the other's writes to read:
-// docs/performance.md, "Integration in one piece a thread".)
+// cost more than they save: one piece a thread, of at least this many particles
+// (docs/performance.md, "Integration in one piece a thread").
 constexpr std::size_t kFewestParticlesPerPiece = 2048;
 
 void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked,

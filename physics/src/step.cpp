@@ -421,7 +421,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
   const bool contacts = ground || !bodyContacts.empty();
-  const bool binned = contactBins_.dealt() && workers() != nullptr;
+  const bool binned = contactBins_.dealt();  // only ever with workers (dealContacts)
   for (int it = 0; it < solver_.iterations; ++it) {
     if (!constraints_.particleJoints().empty() || !constraints_.bodyDrives().empty()) {
       // Particle bodies' drives first, so each pass ends with their links (the joints' pins and
@@ -509,7 +509,12 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
 }
 
 // A pass's contacts and friction as relax() takes them, each bin of contactBins_ on a thread of its
-// own: its contacts between bodies, then its ground points; then their friction likewise.
+// own: its contacts between bodies, then its ground points; then their friction likewise. The
+// same calls as relax()'s own block, over ranges. One function for both (lambdas over ranges, the
+// whole lists on one thread) gave the same state but made pyramid-20's friction stage at 10 x 16 on
+// one thread 7% slower (318 to 341 ms over 60 steps, four runs each): what the compiler inlines into
+// these passes decides their cost (docs/performance.md, "Contact points by fewer particles").
+
 void World::relaxContactBins(bool ground) {
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
   BodyContactState& bodyState = narrowPhase_.state();
