@@ -24,6 +24,19 @@ Obb poseInFrameOf(const Obb& a, const Obb& b) {
 
 }  // namespace
 
+// Pairs one thread collides at a time: a capsule pair costs some tenths of a microsecond, so a
+// piece this size is worth what handing it to another thread costs.
+constexpr std::size_t kPairsPerPiece = 256;
+// Manifolds one thread finds again at a time (refresh): each is a pair that touches, and every
+// capsule's is collided again, so it costs more than the average pair of the broad phase
+// (five or six of which touch no other): a smaller piece pays. Bullet's pile's refresh (213
+// manifolds on average) was one piece at 256 (docs/performance.md, "The narrow phase's short runs").
+constexpr std::size_t kManifoldsPerPiece = 64;
+// Manifolds whose start overlaps one thread measures at a time: a few tens of nanoseconds each, on
+// points the narrow phase has just written, so below this many a run costs more on two threads
+// than on one (the other core fetches the lines).
+constexpr std::size_t kStartsPerPiece = 2048;
+
 // Contact points are made in every substep: their room is made in each step's first substep, from
 // the last substep's count, before any is made.
 void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies, int threads) {
@@ -91,7 +104,7 @@ Real NarrowPhase::speculativeMargin(const NarrowPhaseInput& in, BodyId a, BodyId
 // within the step is there when it does; the passes push a point only once it touches.
 void NarrowPhase::build(const NarrowPhaseInput& in) {
   swapToSpare();
-  inPieces(in, in.broadPhase.pairs().size(),
+  inPieces(in, in.broadPhase.pairs().size(), kPairsPerPiece,
            [&](Sink& out, std::size_t begin, std::size_t end) { buildRange(in, begin, end, out); });
   sizeState();
 }
@@ -127,14 +140,10 @@ void NarrowPhase::buildRange(const NarrowPhaseInput& in, std::size_t begin, std:
   }
 }
 
-// Pairs one thread collides at a time: a capsule pair costs some tenths of a microsecond, so a
-// piece this size is worth what handing it to another thread costs.
-constexpr std::size_t kPairsPerPiece = 256;
-
 template <class Work>
-void NarrowPhase::inPieces(const NarrowPhaseInput& in, std::size_t count, Work&& work) {
+void NarrowPhase::inPieces(const NarrowPhaseInput& in, std::size_t count, std::size_t perPiece, Work&& work) {
   Sink own{manifolds_, contacts_, rigidContacts_};
-  const std::size_t pieces = in.workers == nullptr ? 1 : std::min(pieces_.size() + 1, count / kPairsPerPiece);
+  const std::size_t pieces = in.workers == nullptr ? 1 : std::min(pieces_.size() + 1, count / perPiece);
   if (pieces <= 1) {
     work(own, 0, count);
     return;
@@ -228,7 +237,7 @@ void NarrowPhase::refresh(const NarrowPhaseInput& in) {
     return;
   }
   swapToSpare();
-  inPieces(in, spareManifolds_.size(),
+  inPieces(in, spareManifolds_.size(), kManifoldsPerPiece,
            [&](Sink& out, std::size_t begin, std::size_t end) { refreshRange(in, begin, end, out); });
   sizeState();
 }
@@ -396,7 +405,7 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
   auto range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) measureStart(in, manifolds_[i], passed);
   };
-  forEachRange(in.workers, manifolds_.size(), kPairsPerPiece, range);
+  forEachRange(in.workers, manifolds_.size(), kStartsPerPiece, range);
   std::fill(state_.touched.begin(), state_.touched.end(), std::uint8_t{0});
 }
 
