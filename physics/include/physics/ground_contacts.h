@@ -36,8 +36,10 @@ class GroundContacts {
   void combineMaterials(const Material& ground);
   /// Re-embeds each capsule's points at the lowest points of its end spheres, at its frame of this
   /// substep (they move over its surface as it turns), on the step's threads (null: on this one).
+  /// An end further above the ground (at groundHeight along groundNormal) than the capsule's half
+  /// length keeps the point it had, which no pass pushes from there.
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames, const Vec3& groundNormal,
-                          const Workers* workers);
+                          Real groundHeight, const Workers* workers);
   bool hasCapsules() const { return !capsuleEnds_.empty(); }
   /// Marks the points whose every particle has inverse mass 0 in this step and had in the last
   /// one (a sleeping body's, from its second step asleep): nothing of them moves, so what the
