@@ -9,9 +9,13 @@ namespace phys::detail {
 
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
                    std::span<Real> normalPush, std::span<const Real> allowance,
-                   std::span<const std::uint8_t> still) {
+                   std::span<const std::uint8_t> still, std::span<const std::uint8_t> far) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (!still.empty() && still[c] != 0) continue;
+    if (!far.empty() && far[c] != 0) {
+      normalPush[c] = 0.0;
+      continue;
+    }
     const Embedding& e = contacts[c].point;
     const Real allowed = allowance.empty() ? 0.0 : allowance[c];  // depth it may keep
     const Real depth = height + contacts[c].lift - glm::dot(n, embeddedPosition(p.position, e)) - allowed;

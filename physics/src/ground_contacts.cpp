@@ -29,6 +29,7 @@ void GroundContacts::add(const Embedding& point, const Material& material, BodyI
   state_.allowance.push_back(0.0);
   still_.push_back(0);
   wasStill_.push_back(0);
+  far_.push_back(0);
 }
 
 void GroundContacts::followCapsuleEnd(Real end) {
@@ -44,6 +45,7 @@ void GroundContacts::truncate(std::size_t count) {
   state_.allowance.resize(count);
   still_.resize(count);
   wasStill_.resize(count);
+  far_.resize(count);
 }
 
 void GroundContacts::markStill(std::span<const Real> inverseMass) {
@@ -91,7 +93,9 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
       // placed now would, unless the substep's passes moved the capsule that far, and no pass
       // reads a point above the ground but to find it there (docs/performance.md, "Capsules' ground
       // points placed near the ground only"). Placing them all was 8% of Bullet's pile's step.
-      if (glm::dot(n, lowest) - groundHeight > box.capsuleRadius() + box.capsuleHalfSegment()) continue;
+      const bool far = glm::dot(n, lowest) - groundHeight > box.capsuleRadius() + box.capsuleHalfSegment();
+      far_[g.point] = far ? 1 : 0;
+      if (far) continue;
       Vec3 moved(0.0);
       contact.point = detail::surfacePoint(box, f, lowest, &moved);
       contact.lift = glm::dot(n, moved);

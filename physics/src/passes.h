@@ -113,10 +113,11 @@ void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& 
 /// `allowance`, if not empty, is per point the depth it may keep in this substep
 /// (toAllowance): the point is moved up to that depth, not onto the plane.
 /// `still`, if not empty, is per point 1 for a point to leave as it is (GroundContacts::markStill),
-/// here and in the other ground passes.
+/// here and in the other ground passes. `far`, if not empty, is per point 1 for a point known to be
+/// far above the plane (GroundContacts::far): not pushed.
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
                    std::span<Real> normalPush, std::span<const Real> allowance = {},
-                   std::span<const std::uint8_t> still = {});
+                   std::span<const std::uint8_t> still = {}, std::span<const std::uint8_t> far = {});
 /// Depth (m) of each contact point below the plane at x*, where the substep started; negative above.
 void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
                              Real height, std::span<Real> depth);

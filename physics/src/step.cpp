@@ -417,6 +417,10 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     const std::span<const std::uint8_t> still = ground_.still();
     return still.empty() ? still : still.subspan(b, e - b);
   };
+  auto farPart = [this](std::size_t b, std::size_t e) {
+    const std::span<const std::uint8_t> far = ground_.far();
+    return far.empty() ? far : far.subspan(b, e - b);
+  };
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
@@ -482,7 +486,8 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
         inGroundPieces([&](std::size_t b, std::size_t e) {
           detail::collideGround(particles_, ground_.points().subspan(b, e - b), world_.groundNormal,
                                 world_.groundHeight, std::span(groundState.push).subspan(b, e - b),
-                                std::span(groundState.allowance).subspan(b, e - b), stillPart(b, e));
+                                std::span(groundState.allowance).subspan(b, e - b), stillPart(b, e),
+                                farPart(b, e));
         });
       }
     }
@@ -531,6 +536,10 @@ void World::relaxContactBins(bool ground) {
   auto stillPart = [&](ContactBins::Range r) {
     return still.empty() ? still : still.subspan(r.begin, r.end - r.begin);
   };
+  const std::span<const std::uint8_t> far = ground_.far();
+  auto farPart = [&](ContactBins::Range r) {
+    return far.empty() ? far : far.subspan(r.begin, r.end - r.begin);
+  };
   {
     const detail::StageTimer timer(profile_, Stage::Contacts);
     inBins([&](int bin) {
@@ -541,7 +550,8 @@ void World::relaxContactBins(bool ground) {
       if (!ground) return;
       for (const ContactBins::Range r : contactBins_.groundRanges(bin)) {
         detail::collideGround(particles_, part(points, r), world_.groundNormal, world_.groundHeight,
-                              part(groundState.push, r), part(groundState.allowance, r), stillPart(r));
+                              part(groundState.push, r), part(groundState.allowance, r), stillPart(r),
+                              farPart(r));
       }
     });
   }

@@ -8,6 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "passes.h"
 #include "physics/collision.h"
 #include "physics/world.h"
 
@@ -310,6 +311,28 @@ TEST_P(CapsuleModels, GroundPointsFarAboveTheGroundAreNotPlacedAgain) {
   for (int i = 0; i < 300; ++i) world.step();
   const std::vector<double> landed = heights();
   for (const double h : landed) EXPECT_NEAR(h, 0.0, 3e-3);
+}
+
+TEST(GroundPass, APointMarkedFarIsNotPushedAndItsPushIsZero) {
+  // The ground pass trusts GroundContacts::far(): a capsule's end placed far above the ground in
+  // this substep cannot reach it in the substep's passes, so the pass skips it. Marked far, even a
+  // point below the plane is left where it is, its push 0 (not last pass's), so friction skips it
+  // too; unmarked, it is pushed up onto the plane.
+  phys::Particles p;
+  for (double y : {-0.2, -0.3}) {
+    p.position.push_back(Vec3(0.0, y, 0.0));
+    p.previous.push_back(Vec3(0.0, y, 0.0));
+    p.inverseMass.push_back(1.0);
+  }
+  std::vector<phys::GroundContact> points(2);
+  for (std::size_t k = 0; k < 2; ++k) points[k].point = phys::embedParticle(static_cast<phys::ParticleId>(k));
+  std::vector<double> push{0.5, 0.5};
+  const std::vector<std::uint8_t> far{1, 0};
+  phys::detail::collideGround(p, points, Vec3(0.0, 1.0, 0.0), 0.0, push, {}, {}, far);
+  EXPECT_EQ(p.position[0].y, -0.2);
+  EXPECT_EQ(push[0], 0.0);
+  EXPECT_NEAR(p.position[1].y, 0.0, 1e-15);
+  EXPECT_NEAR(push[1], 0.3, 1e-15);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, CapsuleModels,

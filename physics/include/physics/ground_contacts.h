@@ -37,9 +37,16 @@ class GroundContacts {
   /// Re-embeds each capsule's points at the lowest points of its end spheres, at its frame of this
   /// substep (they move over its surface as it turns), on the step's threads (null: on this one).
   /// An end further above the ground (at groundHeight along groundNormal) than the capsule's half
-  /// length keeps the point it had, which no pass pushes from there.
+  /// length keeps the point it had, which no pass pushes from there, and is marked far.
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames, const Vec3& groundNormal,
                           Real groundHeight, const Workers* workers);
+  /// Per point, 1 for a capsule's end that placeCapsulePoints left far above the ground in this
+  /// substep: the collision pass skips it (no push) as it would find it above the ground. Its depth at
+  /// x* is still measured: the parting reads it.
+  /// Empty without capsules.
+  std::span<const std::uint8_t> far() const {
+    return capsuleEnds_.empty() ? std::span<const std::uint8_t>() : std::span<const std::uint8_t>(far_);
+  }
   bool hasCapsules() const { return !capsuleEnds_.empty(); }
   /// Marks the points whose every particle has inverse mass 0 in this step and had in the last
   /// one (a sleeping body's, from its second step asleep): nothing of them moves, so what the
@@ -67,6 +74,7 @@ class GroundContacts {
   GroundContactState state_;
   std::vector<CapsuleEnd> capsuleEnds_;
   std::vector<std::uint8_t> still_;     // per point: 1 to leave it in this step
+  std::vector<std::uint8_t> far_;       // per point: 1 for a capsule's end far above the ground
   std::vector<std::uint8_t> wasStill_;  // per point: its particles had inverse mass 0 last step
   bool anyStill_ = false;
   bool anyMarked_ = false;  // markStill ran since the last clearStill
