@@ -313,6 +313,26 @@ TEST_P(CapsuleModels, GroundPointsFarAboveTheGroundAreNotPlacedAgain) {
   for (const double h : landed) EXPECT_NEAR(h, 0.0, 3e-3);
 }
 
+TEST_P(CapsuleModels, CapsulesEndToEndFindTheirContact) {
+  // Collinear cores are where the spheres around two capsules (half core plus radius) only just
+  // reach each other, so this is where a too tight early out in the narrow phase would drop the
+  // pair: two capsules end to end along x, 1 cm into each other, touch, and are parted to within
+  // the contact slop.
+  phys::WorldSettings ws;
+  ws.gravity = Vec3(0.0);
+  ws.ground = false;
+  phys::World world(ws, ragdollSettings());
+  phys::BodyDesc a = capsuleDesc(GetParam(), Vec3(0.0, 1.0, 0.0), 0.1, 0.8);
+  a.orientation = kLying;
+  phys::BodyDesc b = a;
+  b.center.x = 0.8 - 1e-2;
+  const phys::BodyId ia = world.addBody(a), ib = world.addBody(b);
+  world.step();
+  ASSERT_FALSE(world.bodyContacts().empty());
+  for (int i = 0; i < 30; ++i) world.step();
+  EXPECT_GT(world.bodyPose(ib).center.x - world.bodyPose(ia).center.x, 0.8 - 2.0 * ragdollSettings().contactSlop);
+}
+
 TEST(GroundPass, APointMarkedFarIsNotPushedAndItsPushIsZero) {
   // The ground pass trusts GroundContacts::far(): a capsule's end placed far above the ground in
   // this substep cannot reach it in the substep's passes, so the pass skips it. Marked far, even a
