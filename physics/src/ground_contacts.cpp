@@ -33,7 +33,7 @@ void GroundContacts::add(const Embedding& point, const Material& material, BodyI
 }
 
 void GroundContacts::followCapsuleEnd(Real end) {
-  capsuleEnds_.push_back({static_cast<std::uint32_t>(points_.size() - 1), end});
+  capsuleEnds_.push_back({static_cast<std::uint32_t>(points_.size() - 1), points_.back().body, end});
 }
 
 void GroundContacts::truncate(std::size_t count) {
@@ -83,10 +83,8 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
     for (std::size_t k = begin; k < end; ++k) {
       const CapsuleEnd& g = capsuleEnds_[k];
       if (anyStill_ && still_[g.point] != 0) continue;  // its body's frame has not moved
-      GroundContact& contact = points_[g.point];
-      const BodyId id = contact.body;
-      const Body& box = bodies[id];
-      const Obb& f = frames[id];
+      const Body& box = bodies[g.body];
+      const Obb& f = frames[g.body];
       const Vec3 lowest = f.center + f.axes[1] * (g.end * box.capsuleHalfSegment()) - n * box.capsuleRadius();
       // An end further above the ground than the capsule's half length keeps the point it had:
       // a point of the capsule, no lower than its lowest, so it stays above the ground as a point
@@ -96,6 +94,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
       const bool far = glm::dot(n, lowest) - groundHeight > box.capsuleRadius() + box.capsuleHalfSegment();
       far_[g.point] = far ? 1 : 0;
       if (far) continue;
+      GroundContact& contact = points_[g.point];
       Vec3 moved(0.0);
       contact.point = detail::surfacePoint(box, f, lowest, &moved);
       contact.lift = glm::dot(n, moved);

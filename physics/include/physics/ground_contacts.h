@@ -67,7 +67,8 @@ class GroundContacts {
 
  private:
   struct CapsuleEnd {
-    std::uint32_t point;  // which point; its body is the capsule
+    std::uint32_t point;  // which point
+    BodyId body;          // the capsule: a far end reads its frame, not its point
     Real end;             // -1 or +1 along the body's y axis
   };
   std::vector<GroundContact> points_;
