@@ -330,7 +330,8 @@ TEST_P(CapsuleModels, CapsulesEndToEndFindTheirContact) {
   world.step();
   ASSERT_FALSE(world.bodyContacts().empty());
   for (int i = 0; i < 30; ++i) world.step();
-  EXPECT_GT(world.bodyPose(ib).center.x - world.bodyPose(ia).center.x, 0.8 - 2.0 * ragdollSettings().contactSlop);
+  EXPECT_GT(world.bodyPose(ib).center.x - world.bodyPose(ia).center.x,
+            0.8 - 2.0 * ragdollSettings().contactSlop);
 }
 
 TEST(GroundPass, APointMarkedFarIsNotPushedAndItsPushIsZero) {
