@@ -291,11 +291,18 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
   }
   for (std::size_t k = 0; k < strips; ++k) stripStart_[k + 1] += stripStart_[k];
   keepRoom(stripBodies_, 0, settings.maxStripsPerBody * n);  // what the bodies that are not wide can fill
+  keepRoom(stripEntries_, 0, settings.maxStripsPerBody * n);
   stripBodies_.resize(entries);
+  stripEntries_.resize(entries);
   for (const Interval& it : sweep_) {
     if (wide(it.body)) continue;
     const auto [first, last] = stripsOf_[it.body];
-    for (std::size_t k = first; k <= last; ++k) stripBodies_[stripStart_[k]++] = it.body;
+    const Bounds& b = bounds_[it.body];
+    const StripEntry entry{{b.lo[s], b.hi[s]}, {b.lo[t], b.hi[t]}, {b.lo[u], b.hi[u]}, it.body, first};
+    for (std::size_t k = first; k <= last; ++k) {
+      stripEntries_[stripStart_[k]] = entry;
+      stripBodies_[stripStart_[k]++] = it.body;
+    }
   }
   // The fill moved each start to the next strip's: move them back.
   for (std::size_t k = strips; k > 0; --k) stripStart_[k] = stripStart_[k - 1];
@@ -309,14 +316,21 @@ void BroadPhase::findPairsInStrips(std::span<const Body> bodies, const BroadPhas
   };
   auto meet = [&](std::size_t k, BodyId a, BodyId b) { meetInto(unsortedPairs_, k, a, b); };
   if (asleep.empty()) {
+    // Over the strips' own copies of the bounds, in sweep order: the nearest entries are the next
+    // ones in memory, not bodies scattered through bounds_.
     auto sweepStrips = [&](std::size_t first, std::size_t last, std::vector<Pair>& out) {
+      const StripEntry* e = stripEntries_.data();
       for (std::size_t k = first; k < last; ++k) {
         const std::size_t end = stripStart_[k + 1];
         for (std::size_t i = stripStart_[k]; i < end; ++i) {
-          const BodyId a = stripBodies_[i];
-          const Real reach = bounds_[a].hi[s];
-          for (std::size_t j = i + 1; j < end && bounds_[stripBodies_[j]].lo[s] <= reach; ++j)
-            meetInto(out, k, a, stripBodies_[j]);
+          const StripEntry& a = e[i];
+          for (std::size_t j = i + 1; j < end && e[j].s[0] <= a.s[1]; ++j) {
+            const StripEntry& b = e[j];
+            if (!(a.t[0] <= b.t[1] && b.t[0] <= a.t[1] && a.u[0] <= b.u[1] && b.u[0] <= a.u[1])) continue;
+            if (std::max(a.firstStrip, b.firstStrip) != k) continue;  // kept in another strip
+            if (collides(bodies, a.body, b.body))
+              out.emplace_back(std::min(a.body, b.body), std::max(a.body, b.body));
+          }
         }
       }
     };

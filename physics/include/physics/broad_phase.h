@@ -81,6 +81,13 @@ class BroadPhase {
   struct Bounds {
     Vec3 lo, hi;
   };
+  /// A body's entry in a strip: its bounds along the sweep axis s and the strips' axes t and u
+  /// (lo, hi), copied so that a strip's sweep reads them in order.
+  struct StripEntry {
+    Real s[2], t[2], u[2];
+    BodyId body;
+    std::uint32_t firstStrip;
+  };
   void measure(const Particles& particles, const RigidBodies& rigid, const Body& box, const Obb& f, BodyId id,
                const BroadPhaseStep& step);
   bool chooseSweepAxis(std::span<const Obb> frames);
@@ -90,10 +97,11 @@ class BroadPhase {
   void sweepInPieces(std::size_t strips, std::size_t entries, const Workers* workers, Sweep&& sweep);
   void sortPairsByBody();
 
-  std::vector<Interval> sweep_;          // sweep-and-prune list, kept sorted between steps
-  std::vector<std::size_t> stripStart_;  // per strip and one more: where its bodies start in stripBodies_
-  std::vector<BodyId> stripBodies_;      // the bodies of each strip, in sweep order
-  std::vector<BodyId> wideBodies_;       // bodies across too many strips, tested against all
+  std::vector<Interval> sweep_;           // sweep-and-prune list, kept sorted between steps
+  std::vector<std::size_t> stripStart_;   // per strip and one more: where its bodies start in stripBodies_
+  std::vector<BodyId> stripBodies_;       // the bodies of each strip, in sweep order
+  std::vector<StripEntry> stripEntries_;  // the same entries with their bounds
+  std::vector<BodyId> wideBodies_;        // bodies across too many strips, tested against all
   std::vector<std::pair<std::uint32_t, std::uint32_t>> stripsOf_;  // per body: its first and last strip
   std::vector<Real> sleepingReach_;       // per strip entry: the furthest hi of the sleeping ones up to it
   std::vector<Bounds> bounds_;            // per body: AABB grown by its reach over a step
