@@ -113,9 +113,8 @@ class NarrowPhase {
     std::vector<RigidContact> rigidContacts;
   };
   /// work(sink, begin, end) over [0, count): at once in contiguous pieces of at least perPiece on
-  /// the step's threads,
-  /// each into its own sink, then the pieces appended in order, so the arrays are what one run
-  /// over all of it makes.
+  /// the step's threads, each into its own sink, then the pieces appended in order, so the arrays
+  /// are what one run over all of it makes.
   template <class Work>
   void inPieces(const NarrowPhaseInput& in, std::size_t count, std::size_t perPiece, Work&& work);
   void append(Piece& piece);
