@@ -27,6 +27,12 @@ double millisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+// Flags per ground point (still, far) for the points [begin, end): none when there are none.
+std::span<const std::uint8_t> flagsOf(std::span<const std::uint8_t> flags, std::size_t begin,
+                                      std::size_t end) {
+  return flags.empty() ? flags : flags.subspan(begin, end - begin);
+}
+
 // Zeroes each flag but those of the points left still (GroundContacts::markStill), which keep
 // what the step would find for them again.
 void clearUnlessStill(std::vector<std::uint8_t>& flags, std::span<const std::uint8_t> still) {
@@ -413,14 +419,7 @@ std::span<const Real> World::limitCorrections(Real h) {
 void World::relax(Real h, std::span<const Real> linkSlack) {
   const bool ground = world_.ground;
   auto inGroundPieces = [this](auto&& f) { detail::forEachGroundPiece(workers(), ground_.points(), f); };
-  auto stillPart = [this](std::size_t b, std::size_t e) {
-    const std::span<const std::uint8_t> still = ground_.still();
-    return still.empty() ? still : still.subspan(b, e - b);
-  };
-  auto farPart = [this](std::size_t b, std::size_t e) {
-    const std::span<const std::uint8_t> far = ground_.far();
-    return far.empty() ? far : far.subspan(b, e - b);
-  };
+  auto stillPart = [this](std::size_t b, std::size_t e) { return flagsOf(ground_.still(), b, e); };
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
@@ -487,7 +486,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
           detail::collideGround(particles_, ground_.points().subspan(b, e - b), world_.groundNormal,
                                 world_.groundHeight, std::span(groundState.push).subspan(b, e - b),
                                 std::span(groundState.allowance).subspan(b, e - b), stillPart(b, e),
-                                farPart(b, e));
+                                flagsOf(ground_.far(), b, e));
         });
       }
     }
@@ -519,13 +518,11 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
 // whole lists on one thread) gave the same state but made pyramid-20's friction stage at 10 x 16 on
 // one thread 7% slower (318 to 341 ms over 60 steps, four runs each): what the compiler inlines into
 // these passes decides their cost (docs/performance.md, "Contact points by fewer particles").
-
 void World::relaxContactBins(bool ground) {
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
   const std::span<const GroundContact> points = ground_.points();
-  const std::span<const std::uint8_t> still = ground_.still();
   auto inBins = [this](auto&& f) {
     auto range = [&f](std::size_t begin, std::size_t end) {
       for (std::size_t bin = begin; bin < end; ++bin) f(static_cast<int>(bin));
@@ -533,13 +530,8 @@ void World::relaxContactBins(bool ground) {
     workers()->forEach(2, 1, range);
   };
   auto part = [](auto& v, ContactBins::Range r) { return std::span(v).subspan(r.begin, r.end - r.begin); };
-  auto stillPart = [&](ContactBins::Range r) {
-    return still.empty() ? still : still.subspan(r.begin, r.end - r.begin);
-  };
-  const std::span<const std::uint8_t> far = ground_.far();
-  auto farPart = [&](ContactBins::Range r) {
-    return far.empty() ? far : far.subspan(r.begin, r.end - r.begin);
-  };
+  auto stillPart = [this](ContactBins::Range r) { return flagsOf(ground_.still(), r.begin, r.end); };
+  auto farPart = [this](ContactBins::Range r) { return flagsOf(ground_.far(), r.begin, r.end); };
   {
     const detail::StageTimer timer(profile_, Stage::Contacts);
     inBins([&](int bin) {
