@@ -50,16 +50,24 @@ void markPushedParticles(std::span<const BodyContact> contacts, std::span<const 
   }
 }
 
-void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push) {
+void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<const Real> push) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (push[k] <= 0.0) continue;
-    const BodyContact& c = contacts[k];
+    BodyContact& c = contacts[k];
     // Friction acts where the surfaces touch (BodyContact::surfaceA, surfaceB).
     const Embedding& a = c.surfaceA.count > 0 ? c.surfaceA : c.pointA;
     const Embedding& b = c.surfaceB.count > 0 ? c.surfaceB : c.pointB;
-    const Vec3 motionA = embeddedPosition(p.position, a) - embeddedPosition(p.previous, a);
-    const Vec3 motionB = embeddedPosition(p.position, b) - embeddedPosition(p.previous, b);
-    Vec3 slide = motionB - motionA;
+    Vec3 slide;
+    if (c.anchored) {
+      // Held to its anchor: what the pair has slid since static friction took hold, this substep's
+      // slide and what earlier ones left.
+      c.held = true;
+      slide = embeddedPosition(p.position, b) - embeddedPosition(p.position, a) - c.anchor;
+    } else {
+      const Vec3 motionA = embeddedPosition(p.position, a) - embeddedPosition(p.previous, a);
+      const Vec3 motionB = embeddedPosition(p.position, b) - embeddedPosition(p.previous, b);
+      slide = motionB - motionA;
+    }
     slide -= glm::dot(slide, c.normal) * c.normal;
     // Squared lengths, so that a contact friction holds (most of a resting stack's) takes no root
     // (the same test as |slide| > held but within a rounding of the threshold).
@@ -72,6 +80,7 @@ void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std:
     if (slide2 > held * held) cut = std::min(1.0, c.combined.dynamicFriction * push[k] / std::sqrt(slide2));
     // Shrink the relative slide by cut: B moves back, A moves along, by their weights.
     movePair(p.position, p, a, b, (cut / denominator) * slide * -1.0);
+    if (c.anchored && cut < 1.0) c.anchor += (1.0 - cut) * slide;  // it slipped: the anchor follows
   }
 }
 

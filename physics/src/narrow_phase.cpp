@@ -274,8 +274,15 @@ void NarrowPhase::refreshRange(const NarrowPhaseInput& in, std::size_t begin, st
 // a resting box rocked by a hair, it pushed a little sideways, and a stack of ten at rest still
 // moved at 1.4 mm/s after 20 s (0.1 mm/s with its contacts found every substep).
 void NarrowPhase::turnNormal(const NarrowPhaseInput& in, Manifold& m, BodyContact* contacts) {
-  m.normal = in.frames[m.reference].axes * m.localNormal;
-  for (std::uint32_t k = 0; k < m.contactCount; ++k) contacts[k].normal = m.normal;
+  const glm::dmat3& axes = in.frames[m.reference].axes;
+  m.normal = axes * m.localNormal;
+  // The anchors turn as the face does, so that a pair that turns together keeps them.
+  const glm::dmat3 turn = axes * glm::transpose(m.turnedAxes);
+  m.turnedAxes = axes;
+  for (std::uint32_t k = 0; k < m.contactCount; ++k) {
+    contacts[k].normal = m.normal;
+    contacts[k].anchor = turn * contacts[k].anchor;
+  }
 }
 
 void NarrowPhase::turnRigidNormal(const NarrowPhaseInput& in, Manifold& m, RigidContact* contacts) {
@@ -331,6 +338,7 @@ void NarrowPhase::pushManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, c
   };
   m.reference = alignment(in.frames[m.a]) >= alignment(in.frames[m.b]) ? m.a : m.b;
   m.localNormal = glm::transpose(in.frames[m.reference].axes) * n;
+  m.turnedAxes = in.frames[m.reference].axes;
   m.madeAt = poseInFrameOf(in.frames[m.a], in.frames[m.b]);
   m.whole = contact.dropped == 0;
 }
@@ -424,6 +432,17 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
   std::fill(state_.touched.begin(), state_.touched.end(), std::uint8_t{0});
 }
 
+// A kept point's friction anchor at the substep's start: where it is at x* when it is new or did
+// not touch in the last substep (a point that parted is not pulled back where it was), else as it
+// was. Friction then marks it held again when it pushes.
+void NarrowPhase::anchor(BodyContact& c, const Vec3& startApart) {
+  if (!c.anchored || !c.held) {
+    c.anchor = startApart - glm::dot(startApart, c.normal) * c.normal;
+    c.anchored = true;
+  }
+  c.held = false;
+}
+
 // One manifold's start overlaps (measureStarts says what they are).
 template <class Passed>
 void NarrowPhase::measureStart(const NarrowPhaseInput& in, Manifold& m, const Passed& passed) {
@@ -437,10 +456,11 @@ void NarrowPhase::measureStart(const NarrowPhaseInput& in, Manifold& m, const Pa
     if (m.rigid) {
       start[k] = detail::startOverlap(particles, in.rigid, rigidContacts_[k], 0.0);  // never the ground
     } else {
-      const BodyContact& c = contacts_[k];
-      const Real startGap = glm::dot(c.normal, detail::embeddedPosition(particles.previous, c.pointB) -
-                                                   detail::embeddedPosition(particles.previous, c.pointA)) -
-                            c.offset;
+      BodyContact& c = contacts_[k];
+      const Vec3 startApart = detail::embeddedPosition(particles.previous, c.pointB) -
+                              detail::embeddedPosition(particles.previous, c.pointA);
+      const Real startGap = glm::dot(c.normal, startApart) - c.offset;
+      if (m.kept) anchor(c, startApart);
       start[k] = -(startGap + in.contactSlop);
     }
     overlap = std::max(overlap, start[k]);

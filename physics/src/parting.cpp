@@ -77,8 +77,9 @@ void Parting::reserve(std::size_t pairs, std::size_t bodies) {
 // Bullet's pile, whose neighbours' hands start 5.5 cm into each other, threw them at 120 m/s at
 // 128 substeps. Overlaps within one such group are left to the projections.
 void Parting::part(Particles& particles, std::span<const Body> bodies, std::span<const Manifold> manifolds,
-                   std::span<Real> contactAllowance, const PartingGround& ground, const PartingRigid& rigid,
-                   Real featureEpsilon, const PartingSettings& settings) {
+                   std::span<BodyContact> contacts, std::span<Real> contactAllowance,
+                   const PartingGround& ground, const PartingRigid& rigid, Real featureEpsilon,
+                   const PartingSettings& settings) {
   const Real epsilon = featureEpsilon;
   if (!anyDeeper(manifolds, ground, rigid, epsilon)) return;
   for (BodyId id{}; id < bodies.size(); ++id) root_[id] = group(id);
@@ -209,11 +210,16 @@ void Parting::part(Particles& particles, std::span<const Body> bodies, std::span
       particles.previous[box.firstParticle + j] += t;
     }
   }
-  // The start overlaps the depenetration limit is reckoned from move with the boxes.
+  // The start overlaps the depenetration limit is reckoned from move with the boxes, and so do
+  // friction's anchors: a move the parting makes is not a slide for friction to take back.
   for (const Manifold& m : manifolds) {
-    const Real parted = glm::dot(m.normal, shift_[root_[m.b]] - shift_[root_[m.a]]);
+    const Vec3 moved = shift_[root_[m.b]] - shift_[root_[m.a]];
+    const Real parted = glm::dot(m.normal, moved);
     const std::span<Real> overlap = m.rigid ? rigid.contactOverlap : contactAllowance;
     for (std::uint32_t k = 0; k < m.contactCount; ++k) overlap[m.firstContact + k] -= parted;
+    if (m.rigid || !m.kept) continue;
+    for (std::uint32_t k = m.firstContact; k < m.firstContact + m.contactCount; ++k)
+      contacts[k].anchor += moved - glm::dot(moved, contacts[k].normal) * contacts[k].normal;
   }
   for (std::size_t c = 0; c < ground.contacts.size() && ground.enabled; ++c) {
     const BodyId body = ground.contacts[c].body;

@@ -148,9 +148,9 @@ void solveBodyContacts(Particles& p, std::span<const BodyContact> contacts, Real
 void markPushedParticles(std::span<const BodyContact> contacts, std::span<const std::uint8_t> touched,
                          std::span<std::uint8_t> moved);
 /// Coulomb friction between the bodies of each contact the last pass pushed, as for the ground:
-/// the tangential part of the relative motion this substep is stopped within mu_s * push, else
-/// shortened by mu_d * push.
-void applyBodyFriction(Particles& p, std::span<const BodyContact> contacts, std::span<const Real> push);
+/// the tangential part of the relative motion this substep (of an anchored point, since its
+/// anchor: BodyContact::anchor) is stopped within mu_s * push, else shortened by mu_d * push.
+void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<const Real> push);
 
 /// What restitution needs to know in a substep (SolverSettings::restitution).
 struct Restitution {

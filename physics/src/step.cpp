@@ -373,8 +373,8 @@ void World::partOverlaps() {
   const PartingGround ground{world_.ground, world_.groundNormal, ground_.points(), ground_.state().allowance};
   const PartingRigid rigid{rigidBodies_, narrowPhase_.rigidState().allowance, rigidGround_,
                            rigidGroundState_.allowance};
-  parting_.part(particles_, bodies_, narrowPhase_.manifolds(), narrowPhase_.state().allowance, ground, rigid,
-                solver_.featureEpsilon, solver_.parting);
+  parting_.part(particles_, bodies_, narrowPhase_.manifolds(), narrowPhase_.movableContacts(),
+                narrowPhase_.state().allowance, ground, rigid, solver_.featureEpsilon, solver_.parting);
 }
 
 // Restitution needs each contact's approach speed before the passes stop it, and which ground
@@ -491,7 +491,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       }
     }
     const detail::StageTimer timer(profile_, Stage::Friction);
-    detail::applyBodyFriction(particles_, bodyContacts, bodyState.push);
+    detail::applyBodyFriction(particles_, narrowPhase_.movableContacts(), bodyState.push);
     for (std::size_t k = 0; k < bodyState.push.size(); ++k) {
       if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
     }
@@ -550,7 +550,8 @@ void World::relaxContactBins(bool ground) {
   const detail::StageTimer timer(profile_, Stage::Friction);
   inBins([&](int bin) {
     for (const ContactBins::Range r : contactBins_.contactRanges(bin)) {
-      detail::applyBodyFriction(particles_, part(bodyContacts, r), part(bodyState.push, r));
+      detail::applyBodyFriction(particles_, narrowPhase_.movableContacts().subspan(r.begin, r.end - r.begin),
+                                part(bodyState.push, r));
       for (std::uint32_t k = r.begin; k < r.end; ++k) {
         if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
       }

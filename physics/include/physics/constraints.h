@@ -99,6 +99,13 @@ struct BodyContact {
   /// point, carried rigidly, as GroundContact::surface.
   Embedding surfaceA;
   Embedding surfaceB;
+  /// Static friction's anchor (unit: m), for a point of a face-on-face manifold between particle
+  /// boxes: the tangential part of pointB - pointA that friction holds the two to. Set from x* at
+  /// the point's first substep, and again after a substep in which it did not touch; moved along
+  /// when it slips; turned with its manifold's reference face (docs/physics.md, "Friction anchors").
+  Vec3 anchor{0.0};
+  bool anchored = false;
+  bool held = false;  ///< pushed, so held by friction, in the substep so far
 };
 
 /// A point that collides with the ground: a loose particle or a box corner.

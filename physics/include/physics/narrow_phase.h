@@ -39,6 +39,9 @@ struct Manifold {
   /// kept: the clipping dropped no point, so every corner of the faces' overlap is here; only
   /// such a manifold is carried into the next step.
   bool whole = false;
+  /// kept: the reference body's axes when the normal and the points' friction anchors were last
+  /// turned with it.
+  glm::dmat3 turnedAxes{1.0};
 };
 
 /// What the passes keep per contact point, index for index with NarrowPhase::contacts().
@@ -90,6 +93,9 @@ class NarrowPhase {
 
   /// Points of pairs of particle bodies.
   std::span<const BodyContact> contacts() const { return contacts_; }
+  /// The same, for the stages that move the kept points' friction anchors: friction as they slip,
+  /// the parting as it moves bodies.
+  std::span<BodyContact> movableContacts() { return contacts_; }
   /// Points of pairs with a rigid body.
   std::span<const RigidContact> rigidContacts() const { return rigidContacts_; }
   std::span<RigidContact> rigidContacts() { return rigidContacts_; }
@@ -129,6 +135,7 @@ class NarrowPhase {
   static void addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
                           Sink& out);
   static void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts);
+  static void anchor(BodyContact& c, const Vec3& startApart);
   bool canCarry(const NarrowPhaseInput& in, const Manifold& m) const;
   void carry(const NarrowPhaseInput& in, const Manifold& m, Sink& out) const;
   void sizeState();

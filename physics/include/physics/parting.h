@@ -46,10 +46,10 @@ class Parting {
   /// Parts the overlaps deeper than `featureEpsilon` (m) that the manifolds and the ground start
   /// the substep with, moving particle bodies' x and x* and rigid bodies' position and previous
   /// position alike; the contacts' start overlaps (`contactAllowance`, the ground's, the rigid
-  /// ones) move with the bodies.
+  /// ones) and the kept points' friction anchors (`contacts`) move with the bodies.
   void part(Particles& particles, std::span<const Body> bodies, std::span<const Manifold> manifolds,
-            std::span<Real> contactAllowance, const PartingGround& ground, const PartingRigid& rigid,
-            Real featureEpsilon, const PartingSettings& settings);
+            std::span<BodyContact> contacts, std::span<Real> contactAllowance, const PartingGround& ground,
+            const PartingRigid& rigid, Real featureEpsilon, const PartingSettings& settings);
 
  private:
   BodyId group(BodyId id);
