@@ -432,11 +432,11 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
   std::fill(state_.touched.begin(), state_.touched.end(), std::uint8_t{0});
 }
 
-// A kept point's friction anchor at the substep's start: where it is at x* when it is new or did
-// not touch in the last substep (a point that parted is not pulled back where it was), else as it
-// was. Friction then marks it held again when it pushes.
+// A kept point's friction anchor at the substep's start: where it is at x* unless friction held
+// it in the last substep (a new point has not been held; a point that parted is not pulled back
+// where it was), else as it was. Friction marks it held again when it pushes.
 void NarrowPhase::anchor(BodyContact& c, const Vec3& startApart) {
-  if (!c.anchored || !c.held) {
+  if (!c.held) {
     c.anchor = startApart - glm::dot(startApart, c.normal) * c.normal;
     c.anchored = true;
   }

@@ -520,6 +520,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
 // these passes decides their cost (docs/performance.md, "Contact points by fewer particles").
 void World::relaxContactBins(bool ground) {
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
+  const std::span<BodyContact> anchoredContacts = narrowPhase_.movableContacts();  // friction moves anchors
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
   const std::span<const GroundContact> points = ground_.points();
@@ -550,8 +551,7 @@ void World::relaxContactBins(bool ground) {
   const detail::StageTimer timer(profile_, Stage::Friction);
   inBins([&](int bin) {
     for (const ContactBins::Range r : contactBins_.contactRanges(bin)) {
-      detail::applyBodyFriction(particles_, narrowPhase_.movableContacts().subspan(r.begin, r.end - r.begin),
-                                part(bodyState.push, r));
+      detail::applyBodyFriction(particles_, part(anchoredContacts, r), part(bodyState.push, r));
       for (std::uint32_t k = r.begin; k < r.end; ++k) {
         if (bodyState.push[k] > 0.0) bodyState.touched[k] = 1;
       }

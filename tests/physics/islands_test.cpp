@@ -212,8 +212,7 @@ TEST(Islands, ABodyBesideASleepingRowMovesAsIfAlone) {
   for (int i = 0; i < 180; ++i) {
     beside.step();
     alone.step();
-    // The row sleeps throughout; the ragdoll as it does alone (since friction anchors it comes to
-    // rest within the 3 s, at step 165).
+    // The row sleeps throughout; the ragdoll sleeps as it does alone (it comes to rest at step 165).
     ASSERT_EQ(beside.islands().sleepingBodies(), 20u + alone.islands().sleepingBodies()) << "step " << i;
     const auto& b = beside.particles().position;
     const auto& a = alone.particles().position;

@@ -104,7 +104,7 @@ struct BodyContact {
   /// the point's first substep, and again after a substep in which it did not touch; moved along
   /// when it slips; turned with its manifold's reference face (docs/physics.md, "Friction anchors").
   Vec3 anchor{0.0};
-  bool anchored = false;
+  bool anchored = false;  ///< of a kept manifold: friction holds it to `anchor`
   bool held = false;  ///< pushed, so held by friction, in the substep so far
 };
 
