@@ -105,7 +105,7 @@ struct BodyContact {
   /// when it slips; turned with its manifold's reference face (docs/physics.md, "Friction anchors").
   Vec3 anchor{0.0};
   bool anchored = false;  ///< of a kept manifold: friction holds it to `anchor`
-  bool held = false;  ///< pushed, so held by friction, in the substep so far
+  bool held = false;      ///< pushed, so held by friction, in the substep so far
 };
 
 /// A point that collides with the ground: a loose particle or a box corner.
