@@ -2,6 +2,7 @@
 // bodies, and each correction is the weighted projection of REFERENCES.md applied to the pair:
 // lambda = -C / (sum_A c_i^2 w_i + sum_B c_j^2 w_j), x_i(A) -= c_i w_i lambda n,
 // x_j(B) += c_j w_j lambda n. No matrix inverse, so nothing to go singular when faces align.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -61,7 +62,7 @@ void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<
     if (c.anchored) {
       // Held to its anchor: what the pair has slid since static friction took hold, this substep's
       // slide and what earlier ones left.
-      c.held = true;
+      c.held = Grip::Held;
       slide = embeddedPosition(p.position, b) - embeddedPosition(p.position, a) - c.anchor;
     } else {
       const Vec3 motionA = embeddedPosition(p.position, a) - embeddedPosition(p.previous, a);
@@ -80,7 +81,13 @@ void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<
     if (slide2 > held * held) cut = std::min(1.0, c.combined.dynamicFriction * push[k] / std::sqrt(slide2));
     // Shrink the relative slide by cut: B moves back, A moves along, by their weights.
     movePair(p.position, p, a, b, (cut / denominator) * slide * -1.0);
-    if (c.anchored && cut < 1.0) c.anchor += (1.0 - cut) * slide;  // it slipped: the anchor follows
+    // It slipped: the anchor stays to the substep's end, so that each later pass cuts the whole
+    // slide, as an unanchored point's would; where this slip left the pair is the next substep's
+    // anchor unless a later pass holds it (NarrowPhase::anchor).
+    if (c.anchored && cut < 1.0) {
+      c.held = Grip::Slipped;
+      c.slipEnd = c.anchor + (1.0 - cut) * slide;
+    }
   }
 }
 

@@ -282,6 +282,7 @@ void NarrowPhase::turnNormal(const NarrowPhaseInput& in, Manifold& m, BodyContac
   for (std::uint32_t k = 0; k < m.contactCount; ++k) {
     contacts[k].normal = m.normal;
     contacts[k].anchor = turn * contacts[k].anchor;
+    contacts[k].slipEnd = turn * contacts[k].slipEnd;
   }
 }
 
@@ -432,15 +433,17 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
   std::fill(state_.touched.begin(), state_.touched.end(), std::uint8_t{0});
 }
 
-// A kept point's friction anchor at the substep's start: where it is at x* unless friction held
-// it in the last substep (a new point has not been held; a point that parted is not pulled back
-// where it was), else as it was. Friction marks it held again when it pushes.
+// A kept point's friction anchor at the substep's start: as it was if friction held it at the
+// last substep's end; where its last slip left it if it slipped; else where it is at x* (a new
+// point has not been held; a point that parted is not pulled back where it was).
 void NarrowPhase::anchor(BodyContact& c, const Vec3& startApart) {
-  if (!c.held) {
+  if (c.held == Grip::Slipped) {
+    c.anchor = c.slipEnd;
+  } else if (c.held == Grip::None) {
     c.anchor = startApart - glm::dot(startApart, c.normal) * c.normal;
     c.anchored = true;
   }
-  c.held = false;
+  c.held = Grip::None;
 }
 
 // One manifold's start overlaps (measureStarts says what they are).

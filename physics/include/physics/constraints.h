@@ -81,6 +81,10 @@ struct BodySpin {
   Vec3 angular{0.0};               ///< unit: rad over the substep
 };
 
+/// What friction did to an anchored contact point in the last pass of the substep that pushed it
+/// (docs/physics.md, "Friction anchors"): none pushed it, held it, or let it slip.
+enum class Grip : std::uint8_t { None, Held, Slipped };
+
 /// A contact between two boxes for one substep: a point embedded in each, kept apart along the
 /// normal (from A towards B): n . (pointB - pointA) >= 0.
 struct BodyContact {
@@ -101,11 +105,15 @@ struct BodyContact {
   Embedding surfaceB;
   /// Static friction's anchor (unit: m), for a point of a face-on-face manifold between particle
   /// boxes: the tangential part of pointB - pointA that friction holds the two to. Set from x* at
-  /// the point's first substep, and again after a substep in which it did not touch; moved along
-  /// when it slips; turned with its manifold's reference face (docs/physics.md, "Friction anchors").
+  /// the point's first substep and after a substep in which it did not touch; set to slipEnd after
+  /// one that ended in a slip; fixed within a substep; turned with its manifold's reference face
+  /// (docs/physics.md, "Friction anchors").
   Vec3 anchor{0.0};
-  bool anchored = false;  ///< of a kept manifold: friction holds it to `anchor`
-  bool held = false;      ///< pushed, so held by friction, in the substep so far
+  /// unit: m; where the pair's last slip left the tangential part of pointB - pointA, friction's
+  /// cut made: the next substep's anchor if the substep's last push slipped.
+  Vec3 slipEnd{0.0};
+  bool anchored = false;   ///< of a kept manifold: friction holds it to `anchor`
+  Grip held = Grip::None;  ///< what the substep's last pass that pushed it did
 };
 
 /// A point that collides with the ground: a loose particle or a box corner.
@@ -122,6 +130,9 @@ struct GroundContact {
   /// surface point, carried rigidly. Held at the face point, up to 0.29 r off the surface, friction
   /// stopped it slipping there, and the capsule rolled as on a larger radius, 11% fast.
   Embedding surface;
+  /// Friction holds the point to GroundContactState::anchor: every point but a capsule's, which
+  /// placeCapsulePoints moves over its surface as it rolls (docs/physics.md, "Friction anchors").
+  bool anchored = true;
 };
 
 }  // namespace phys
