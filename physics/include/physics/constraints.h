@@ -130,9 +130,6 @@ struct GroundContact {
   /// surface point, carried rigidly. Held at the face point, up to 0.29 r off the surface, friction
   /// stopped it slipping there, and the capsule rolled as on a larger radius, 11% fast.
   Embedding surface;
-  /// Friction holds the point to GroundContactState::anchor: every point but a capsule's, which
-  /// placeCapsulePoints moves over its surface as it rolls (docs/physics.md, "Friction anchors").
-  bool anchored = true;
 };
 
 }  // namespace phys
