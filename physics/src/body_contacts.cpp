@@ -62,7 +62,7 @@ void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<
     if (c.anchored) {
       // Held to its anchor: what the pair has slid since static friction took hold, this substep's
       // slide and what earlier ones left.
-      c.held = Grip::Held;
+      c.grip = Grip::Held;
       slide = embeddedPosition(p.position, b) - embeddedPosition(p.position, a) - c.anchor;
     } else {
       const Vec3 motionA = embeddedPosition(p.position, a) - embeddedPosition(p.previous, a);
@@ -85,7 +85,7 @@ void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<
     // slide, as an unanchored point's would; where this slip left the pair is the next substep's
     // anchor unless a later pass holds it (NarrowPhase::anchor).
     if (c.anchored && cut < 1.0) {
-      c.held = Grip::Slipped;
+      c.grip = Grip::Slipped;
       c.slipEnd = c.anchor + (1.0 - cut) * slide;
     }
   }

@@ -437,13 +437,13 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
 // last substep's end; where its last slip left it if it slipped; else where it is at x* (a new
 // point has not been held; a point that parted is not pulled back where it was).
 void NarrowPhase::anchor(BodyContact& c, const Vec3& startApart) {
-  if (c.held == Grip::Slipped) {
+  if (c.grip == Grip::Slipped) {
     c.anchor = c.slipEnd;
-  } else if (c.held == Grip::None) {
+  } else if (c.grip == Grip::None) {
     c.anchor = startApart - glm::dot(startApart, c.normal) * c.normal;
     c.anchored = true;
   }
-  c.held = Grip::None;
+  c.grip = Grip::None;
 }
 
 // One manifold's start overlaps (measureStarts says what they are).

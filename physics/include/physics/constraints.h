@@ -113,7 +113,7 @@ struct BodyContact {
   /// cut made: the next substep's anchor if the substep's last push slipped.
   Vec3 slipEnd{0.0};
   bool anchored = false;   ///< of a kept manifold: friction holds it to `anchor`
-  Grip held = Grip::None;  ///< what the substep's last pass that pushed it did
+  Grip grip = Grip::None;  ///< what the substep's last pass that pushed it did
 };
 
 /// A point that collides with the ground: a loose particle or a box corner.
