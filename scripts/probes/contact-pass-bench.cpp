@@ -15,8 +15,8 @@
 // each pass relaxes the boxes' sticks (which pull back what the contacts pushed, so that most
 // contacts push in every pass, as in a step), the form's push (timed), and friction. It prints each
 // form's median, least and most thread CPU time per contact and pass over 15 rounds, the forms in
-// turn in every round. The sticks are the world's own, reached by making World's members public
-// here (a probe, not an API).
+// turn in every round, after the points' kinds (how many particles carry each side). The sticks
+// are the world's own, reached by making World's members public here (a probe, not an API).
 #include <time.h>
 
 #include <algorithm>
@@ -48,24 +48,22 @@ void asItIs(Particles& p, std::span<const BodyContact> c, std::span<Real> push) 
   solveBodyContacts(p, c, 0.0, push, {});
 }
 
+// A point's gap: n . (B - A) less its offset, as the push reads it.
+Real gapOf(const Particles& p, const BodyContact& c) {
+  return glm::dot(c.normal, embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA)) -
+         c.offset;
+}
+
 // The gap alone: every read of the push, no correction.
 void gapOnly(Particles& p, std::span<const BodyContact> contacts, std::span<Real> push) {
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const BodyContact& c = contacts[k];
-    const Real gap =
-        glm::dot(c.normal, embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA)) -
-        c.offset;
-    push[k] = gap < 0.0 ? -gap : 0.0;
-  }
+  for (std::size_t k = 0; k < contacts.size(); ++k) push[k] = std::max(-gapOf(p, contacts[k]), 0.0);
 }
 
 // The push but for writing its corrections: the gap, its branch, the weights and the division.
 void noWrites(Particles& p, std::span<const BodyContact> contacts, std::span<Real> push) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const BodyContact& c = contacts[k];
-    const Real gap =
-        glm::dot(c.normal, embeddedPosition(p.position, c.pointB) - embeddedPosition(p.position, c.pointA)) -
-        c.offset;
+    const Real gap = gapOf(p, c);
     push[k] = 0.0;
     if (gap >= 0.0) continue;
     const Real denominator =
@@ -175,6 +173,15 @@ int main() {
   const Particles start = world.particles();
   std::vector<BodyContact> contacts(world.bodyContacts().begin(), world.bodyContacts().end());
   std::vector<Real> push(contacts.size());
+  int kinds[5][5] = {};  // points by the counts of their two sides' particles
+  for (const BodyContact& c : contacts) ++kinds[c.pointA.count][c.pointB.count];
+  std::printf("points by particles a side (A/B: count):");
+  for (int a = 1; a <= 4; ++a) {
+    for (int b = 1; b <= 4; ++b) {
+      if (kinds[a][b] > 0) std::printf(" %d/%d: %d", a, b, kinds[a][b]);
+    }
+  }
+  std::printf("\n");
   const std::vector<std::pair<const char*, PushForm>> forms = {{"as it is", asItIs},
                                                                {"gap only", gapOnly},
                                                                {"no writes", noWrites},
