@@ -161,8 +161,9 @@ void Guard::checkRigidBodies(RigidBodies& rigid, std::span<const Body> bodies, R
     } else {
       continue;
     }
-    rigid.position[i] = rigid.previousPosition[i];
-    rigid.orientation[i] = rigid.previousOrientation[i];
+    // Not previousPosition: the parting may have moved it with the body, beyond the bound.
+    rigid.position[i] = rigid.previousPosition[i] = checkedRigidPosition_[i];
+    rigid.orientation[i] = rigid.previousOrientation[i] = checkedRigidOrientation_[i];
     rigid.velocity[i] = rigid.angularVelocity[i] = Vec3(0.0);
     rigid.inverseMass[i] = 0.0;
     rigid.inverseInertia[i] = Vec3(0.0);

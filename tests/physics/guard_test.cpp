@@ -217,6 +217,24 @@ TEST(Guard, ABoxLeavingTheBoundIsFrozenAtItsLastPlaceInside) {
   }
 }
 
+// A rigid box half buried in the ground is parted out of it at the substep's start, its previous
+// pose moved with it; lifted past the bound, it is frozen where the substep started, inside it, not
+// at its previous pose out there (found by the scene fuzzer: the writer then refused the world).
+TEST(Guard, ARigidBoxPartedPastTheBoundIsFrozenWhereItStarted) {
+  phys::WorldSettings ws;
+  ws.bound = 100.0;
+  phys::World world(ws);
+  phys::BodyDesc d = testing_phys::rigidBox(Vec3(0.0), Vec3(400.0));  // 200 m into the ground
+  world.addBody(d);
+  world.step();
+  ASSERT_EQ(world.freezes().size(), 1u);
+  EXPECT_NE(world.freezes()[0].reason.find("left the world bound"), std::string::npos);
+  const phys::BodyPose pose = world.bodyPose(phys::BodyId{0});
+  EXPECT_EQ(pose.center, Vec3(0.0));
+  for (int i = 0; i < 3; ++i) world.step();
+  EXPECT_EQ(world.bodyPose(phys::BodyId{0}).center, Vec3(0.0));  // frozen: it stays
+}
+
 // Gravity of 1e308 m/s^2 on a capsule ragdoll: every part leaves the bound (or overflows) in the
 // first substep. Each is frozen where it was created, so every pose is finite and where it was,
 // and so is every figure metrics() gives of the world after a step.

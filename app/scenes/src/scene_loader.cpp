@@ -233,20 +233,25 @@ class Builder {
     }
   }
 
-  /// Every particle from `first` on must be inside the world's bound, as the guard tests it: an
-  /// element's pos was checked before it was built, this catches what reaches beyond it from
-  /// there (a box's corners, a stack's top, a chain's end).
-  void checkParticlesInsideBound(const pugi::xml_node& node, std::size_t first) {
+  /// Every particle from `first` on, and the centre of every rigid body from `firstBody` on (a
+  /// rigid body has no particles), must be inside the world's bound, as the guard and the writer
+  /// test it: an element's pos was checked before it was built, this catches what reaches beyond
+  /// it from there (a box's corners, a stack's top, a chain's end, a rigid pyramid's row).
+  void checkInsideBound(const pugi::xml_node& node, std::size_t first, std::size_t firstBody) {
+    const double bound = scene_.world.worldSettings().bound;
+    auto check = [&](const phys::Vec3& x) {
+      if (std::abs(x.x) <= bound && std::abs(x.y) <= bound && std::abs(x.z) <= bound) return;
+      ElementReader e(node, lines_, file_);
+      e.fail("makes a body that reaches (" + detail::formatNumber(x.x) + ", " + detail::formatNumber(x.y) +
+             ", " + detail::formatNumber(x.z) + "), beyond the world's bound of " +
+             detail::formatNumber(bound) + " m along an axis (<world bound>)");
+    };
     const phys::Particles& particles = scene_.world.particles();
-    for (std::size_t i = first; i < particles.size(); ++i) {
-      const phys::Vec3& x = particles.position[i];
-      const double bound = scene_.world.worldSettings().bound;
-      if (std::abs(x.x) > bound || std::abs(x.y) > bound || std::abs(x.z) > bound) {
-        ElementReader e(node, lines_, file_);
-        e.fail("makes a body that reaches (" + detail::formatNumber(x.x) + ", " + detail::formatNumber(x.y) +
-               ", " + detail::formatNumber(x.z) + "), beyond the world's bound of " +
-               detail::formatNumber(bound) + " m along an axis (<world bound>)");
-      }
+    for (std::size_t i = first; i < particles.size(); ++i) check(particles.position[i]);
+    const std::span<const phys::Body> bodies = scene_.world.bodies();
+    for (std::size_t id = firstBody; id < bodies.size(); ++id) {
+      if (bodies[id].model == phys::BodyModel::Rigid)
+        check(scene_.world.bodyPose(static_cast<phys::BodyId>(id)).center);
     }
   }
 
@@ -980,8 +985,9 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   for (const pugi::xml_node& node : bodies) {
     try {
       const std::size_t first = scene.world.particles().size();
+      const std::size_t firstBody = scene.world.bodies().size();
       builder.body(node);
-      builder.checkParticlesInsideBound(node, first);
+      builder.checkInsideBound(node, first, firstBody);
     } catch (const std::invalid_argument& e) {  // the physics refused a value we did not check
       throw LoadError(file, lines.lineOf(node.name()), "", "<" + std::string(node.name()) + ">: " + e.what());
     }

@@ -43,6 +43,12 @@ class Guard {
   /// Per particle, where the guard last found it good: the integration writes x there before it
   /// moves a particle, so a body frozen in a substep goes back to where that substep started.
   std::span<Vec3> checked() { return checked_; }
+  /// Each rigid body's pose as the last check found it good, taken before the substep moves it
+  /// (by integration or by the parting, which shifts previousPosition with position).
+  void rememberRigidBodies(const RigidBodies& rigid) {
+    checkedRigidPosition_.assign(rigid.position.begin(), rigid.position.end());
+    checkedRigidOrientation_.assign(rigid.orientation.begin(), rigid.orientation.end());
+  }
   void setCallback(std::function<void(const FreezeReport&)> callback) { onFreeze_ = std::move(callback); }
   std::span<const FreezeReport> freezes() const { return freezes_; }
 
@@ -63,7 +69,9 @@ class Guard {
   void freeze(const GuardInput& in, ParticleId bad, const std::string& reason);
   static Real worstStickError(const GuardInput& in, const Body& box);
 
-  std::vector<Vec3> checked_;       // per particle
+  std::vector<Vec3> checked_;                  // per particle
+  std::vector<Vec3> checkedRigidPosition_;     // per rigid body (rememberRigidBodies)
+  std::vector<Quat> checkedRigidOrientation_;  // per rigid body
   std::vector<Real> crushedSince_;  // per body: time it went past kCrushedStickError, infinity if not
   Real nextShapeCheck_ = 0.0;       // s
   std::function<void(const FreezeReport&)> onFreeze_;
