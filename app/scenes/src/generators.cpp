@@ -77,7 +77,7 @@ std::optional<double> readMass(ElementReader& e, std::string_view attribute, dou
 void checkInsideBound(ElementReader& e, const phys::World& world, std::string_view attribute,
                       const phys::Vec3& point) {
   const double bound = world.worldSettings().bound;
-  if (std::abs(point.x) <= bound && std::abs(point.y) <= bound && std::abs(point.z) <= bound) return;
+  if (insideBound(point, bound)) return;
   e.fail(attribute, "puts a body at (" + formatNumber(point.x) + ", " + formatNumber(point.y) + ", " +
                         formatNumber(point.z) + "), beyond the world's bound of " + formatNumber(bound) +
                         " m along an axis (<world bound>)");

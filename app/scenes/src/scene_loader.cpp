@@ -154,7 +154,7 @@ void readCamera(ElementReader& e, const phys::WorldSettings& w, CameraStart& c) 
   auto point = [&](std::string_view attribute) -> std::optional<glm::vec3> {
     const std::optional<phys::Vec3> p = e.vector(attribute, "m");
     if (!p) return std::nullopt;
-    if (std::abs(p->x) > w.bound || std::abs(p->y) > w.bound || std::abs(p->z) > w.bound) {
+    if (!detail::insideBound(*p, w.bound)) {
       e.fail(attribute, "must be within the world's bound of " + detail::formatNumber(w.bound) +
                             " m along each axis (<world bound>)");
     }
@@ -237,10 +237,10 @@ class Builder {
   /// rigid body has no particles), must be inside the world's bound, as the guard and the writer
   /// test it: an element's pos was checked before it was built, this catches what reaches beyond
   /// it from there (a box's corners, a stack's top, a chain's end, a rigid pyramid's row).
-  void checkInsideBound(const pugi::xml_node& node, std::size_t first, std::size_t firstBody) {
+  void checkBuiltInsideBound(const pugi::xml_node& node, std::size_t first, std::size_t firstBody) {
     const double bound = scene_.world.worldSettings().bound;
     auto check = [&](const phys::Vec3& x) {
-      if (std::abs(x.x) <= bound && std::abs(x.y) <= bound && std::abs(x.z) <= bound) return;
+      if (detail::insideBound(x, bound)) return;
       ElementReader e(node, lines_, file_);
       e.fail("makes a body that reaches (" + detail::formatNumber(x.x) + ", " + detail::formatNumber(x.y) +
              ", " + detail::formatNumber(x.z) + "), beyond the world's bound of " +
@@ -987,7 +987,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
       const std::size_t first = scene.world.particles().size();
       const std::size_t firstBody = scene.world.bodies().size();
       builder.body(node);
-      builder.checkInsideBound(node, first, firstBody);
+      builder.checkBuiltInsideBound(node, first, firstBody);
     } catch (const std::invalid_argument& e) {  // the physics refused a value we did not check
       throw LoadError(file, lines.lineOf(node.name()), "", "<" + std::string(node.name()) + ">: " + e.what());
     }

@@ -176,17 +176,14 @@ std::string groundElement(const phys::WorldSettings& w) {
       .empty();
 }
 
-bool insideBound(const phys::Vec3& p, double bound) {
-  return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;
-}
-
 std::string cameraElement(const CameraStart& camera, double bound) {
   // The loader refuses a camera looking at its own eye, or beyond the world's bound; better to
   // say so now than on reload.
   if (glm::length(camera.eye - camera.target) < 1e-6f) {
     throw std::invalid_argument("the camera's eye and target coincide");
   }
-  if (!insideBound(phys::Vec3(camera.eye), bound) || !insideBound(phys::Vec3(camera.target), bound)) {
+  if (!detail::insideBound(phys::Vec3(camera.eye), bound) ||
+      !detail::insideBound(phys::Vec3(camera.target), bound)) {
     throw std::invalid_argument("the camera is beyond the world's bound of " + detail::formatNumber(bound) +
                                 " m; bring it back first");
   }
@@ -358,7 +355,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
   }
   // The loader refuses a body beyond the bound (the bound was lowered under it at run time).
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (insideBound(particles.position[i], bound)) continue;
+    if (detail::insideBound(particles.position[i], bound)) continue;
     const std::string body = owner[i] == phys::kNoBody ? "particle " + std::to_string(i)
                                                        : "box " + std::to_string(owner[i]) + " '" +
                                                              world.bodies()[owner[i]].name + "'";
@@ -369,7 +366,8 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
   // rigid box flung to 3e261 m under a huge gravity, then the bound lowered, saved a file the
   // loader refused.)
   for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
-    if (world.bodies()[id].model != phys::BodyModel::Rigid || insideBound(world.bodyPose(id).center, bound))
+    if (world.bodies()[id].model != phys::BodyModel::Rigid ||
+        detail::insideBound(world.bodyPose(id).center, bound))
       continue;
     throw std::invalid_argument("box " + std::to_string(id) + " '" + world.bodies()[id].name +
                                 "' is beyond the world's bound of " + detail::formatNumber(bound) +
@@ -454,7 +452,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     line(particleJointElement(world, world.particleJoints()[k], world.particleJointDrive(k), names));
   for (const phys::DrivenBody& d : world.bodyDrives()) {
     const phys::BodyDrive& drive = d.drive;
-    if (!insideBound(drive.position, bound)) {
+    if (!detail::insideBound(drive.position, bound)) {
       throw std::invalid_argument("a body drive's target is beyond the world's bound of " +
                                   detail::formatNumber(bound) + " m");
     }
