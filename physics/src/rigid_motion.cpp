@@ -99,11 +99,12 @@ Vec3 turnBetween(const Quat& from, const Quat& to) {
   return v * (2.0 * std::atan2(s, d.w) / s);
 }
 
-void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h) {
+void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h, std::span<Vec3> checkedPosition,
+                    std::span<Quat> checkedOrientation) {
   const Real keep = std::exp(-world.damping * h);
   for (RigidId i{}; i < r.size(); ++i) {
-    r.previousPosition[i] = r.position[i];
-    r.previousOrientation[i] = r.orientation[i];
+    r.previousPosition[i] = checkedPosition[i] = r.position[i];
+    r.previousOrientation[i] = checkedOrientation[i] = r.orientation[i];
     if (r.inverseMass[i] == 0.0) continue;
     r.velocity[i] = (r.velocity[i] + gravityAt(world, r.position[i]) * h) * keep;
     const Quat& q = r.orientation[i];

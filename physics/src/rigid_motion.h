@@ -2,6 +2,7 @@
 // The rigid body model's motion (rigid_motion.cpp): integration of a substep, the velocities
 // derived from the change of pose, and the pose corrections every rigid constraint applies.
 #include <optional>
+#include <span>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -50,12 +51,14 @@ Vec3 shiftedSpin(const Quat& q, const Vec3& principalInverse, const Vec3& kept, 
 
 /// q turned by a correction's small angle (rad, world frame): q + [angle / 2, 0] q, normalised.
 Quat nudged(const Quat& q, const Vec3& angle);
-/// The start of a substep (the 2020 paper's integration): the pose is kept as the previous one,
+/// The start of a substep (the 2020 paper's integration): the pose is kept as the previous one
+/// and as where the guard last found the body good (Guard::checkedRigidPositions),
 /// gravity and the world's damping act on the velocities, the angular velocity follows Euler's
 /// equations for a free body (implicit midpoint rule, which keeps both the kinetic energy and the
 /// angular momentum's length: docs/physics.md, "Rigid bodies"), and the pose moves on by them.
 /// Frozen bodies (inverse mass 0) do not move.
-void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h);
+void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h, std::span<Vec3> checkedPosition,
+                    std::span<Quat> checkedOrientation);
 /// After the position passes: v = (x - x*) / h, w = turnBetween(q*, q) / h.
 void deriveRigidVelocities(RigidBodies& r, Real h);
 

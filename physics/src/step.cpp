@@ -221,8 +221,8 @@ void World::updateLayouts() {
 void World::integrateParticles(Real h) {
   const detail::StageTimer timer(profile_, Stage::Integrate);
   detail::integrate(particles_, world_, h, guard_.checked(), workers());
-  guard_.rememberRigidBodies(rigidBodies_);
-  detail::integrateRigid(rigidBodies_, world_, h);
+  detail::integrateRigid(rigidBodies_, world_, h, guard_.checkedRigidPositions(),
+                         guard_.checkedRigidOrientations());
   // The mouse spring is a force: applied with gravity, before the passes share it out.
   if (drag_ && drag_->body != kNoBody) {
     detail::applyRigidDrag(rigidBodies_, bodies_[drag_->body].rigid, drag_->local, drag_->target,

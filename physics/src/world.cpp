@@ -484,6 +484,7 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
   const Vec3 spin = detail::spinShiftedBack(q, inverseInertia, desc.angularVelocity, h);
   rigidBodies_.position.push_back(desc.center);
   rigidBodies_.orientation.push_back(q);
+  guard_.addRigidBody(desc.center, q);
   rigidBodies_.previousPosition.push_back(desc.center - velocity * h);
   rigidBodies_.previousOrientation.push_back(detail::turned(q, -spin * h));
   rigidBodies_.velocity.push_back(velocity);

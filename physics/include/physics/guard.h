@@ -43,12 +43,15 @@ class Guard {
   /// Per particle, where the guard last found it good: the integration writes x there before it
   /// moves a particle, so a body frozen in a substep goes back to where that substep started.
   std::span<Vec3> checked() { return checked_; }
-  /// Each rigid body's pose as the last check found it good, taken before the substep moves it
-  /// (by integration or by the parting, which shifts previousPosition with position).
-  void rememberRigidBodies(const RigidBodies& rigid) {
-    checkedRigidPosition_.assign(rigid.position.begin(), rigid.position.end());
-    checkedRigidOrientation_.assign(rigid.orientation.begin(), rigid.orientation.end());
+  /// The same per rigid body, its pose: written by its integration, so that a rigid body frozen in
+  /// a substep goes back to where that substep started, not to its previous pose, which the
+  /// parting moves with it.
+  void addRigidBody(const Vec3& position, const Quat& orientation) {
+    checkedRigidPosition_.push_back(position);
+    checkedRigidOrientation_.push_back(orientation);
   }
+  std::span<Vec3> checkedRigidPositions() { return checkedRigidPosition_; }
+  std::span<Quat> checkedRigidOrientations() { return checkedRigidOrientation_; }
   void setCallback(std::function<void(const FreezeReport&)> callback) { onFreeze_ = std::move(callback); }
   std::span<const FreezeReport> freezes() const { return freezes_; }
 
@@ -70,7 +73,7 @@ class Guard {
   static Real worstStickError(const GuardInput& in, const Body& box);
 
   std::vector<Vec3> checked_;                  // per particle
-  std::vector<Vec3> checkedRigidPosition_;     // per rigid body (rememberRigidBodies)
+  std::vector<Vec3> checkedRigidPosition_;     // per rigid body
   std::vector<Quat> checkedRigidOrientation_;  // per rigid body
   std::vector<Real> crushedSince_;  // per body: time it went past kCrushedStickError, infinity if not
   Real nextShapeCheck_ = 0.0;       // s
