@@ -19,6 +19,7 @@
 // mode would cap the force at mu newtons). Restitution: dContactBounce with e, never below
 // kRestitutionMinSpeed, as ours. The world's damping: ODE scales velocities by (1 - s) each step,
 // so s = 1 - exp(-damping dt), linear and angular, with the speed threshold set to 0.
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdint>
@@ -48,9 +49,46 @@ void countMessage(int, const char*, va_list) {
 
 constexpr int kMaxContactsPerPair = 8;
 
+// ODE aborts the whole program (an internal assertion, not an error it returns) for a geom its hash
+// space cannot place: it counts cells of at least 2^-3 m in ints, so 2^31 / 8 = 2.7e8 m is as far
+// as it reaches (a box at 5e8 m aborted the first collision); and for a quaternion whose
+// normalisation overflows, a turn of some 1e150 rad in a step. A scene may lie within our bound of
+// up to 1e9 m, and a body thrown at 1e12 m/s or under a gravity of 1e20 m/s^2 gets there in a
+// step, so the engine looks before the first step and after each: a scene that starts beyond them
+// is not run, and a run that gets there stops, each with a message that says which body and where.
+constexpr double kReach = 1e8;            // unit: m, from the origin along any axis
+constexpr double kMostTurnPerStep = 1e6;  // unit: rad
+
 // ODE's capsule lies along its geom's z; ours along the body's y. A turn of -90 degrees about x
 // takes z to y: the geom's offset from its body, so the body's frame stays ours.
 const phys::Quat kCapsuleOffset(std::sqrt(0.5), -std::sqrt(0.5), 0.0, 0.0);
+
+std::string fmt(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+// Why a body at `centre` spinning at `spin` could abort ODE's next step ("body 'b' is at (...) m,
+// beyond the 1e+08 m ODE's collision reaches"), or "" when it cannot. No figure in the words is
+// ever inf or nan: a state ODE has lost is said to be not finite.
+std::string beyondReach(const std::string& name, const phys::Vec3& centre, const phys::Vec3& spin,
+                        double dt) {
+  const auto who = [&name] { return "body '" + name + "'"; };  // only when it says why: each step, each body
+  if (!phys::finite(centre) || !phys::finite(spin))
+    return who() + " has a position or spin that is not finite";
+  if (!(std::abs(centre.x) <= kReach && std::abs(centre.y) <= kReach && std::abs(centre.z) <= kReach)) {
+    return who() + " is at (" + fmt(centre.x) + ", " + fmt(centre.y) + ", " + fmt(centre.z) +
+           ") m, beyond the " + fmt(kReach) + " m ODE's collision reaches";
+  }
+  // Each axis alone, so that no square overflows: within a factor of sqrt(3) of |w| dt.
+  if (!(std::max({std::abs(spin.x), std::abs(spin.y), std::abs(spin.z)}) * dt <= kMostTurnPerStep)) {
+    return who() + " spins at (" + fmt(spin.x) + ", " + fmt(spin.y) + ", " + fmt(spin.z) +
+           ") rad/s, more than " + fmt(kMostTurnPerStep) +
+           " rad a step, as far as ODE's integration is given";
+  }
+  return {};
+}
 
 void* tag(int index) {
   return reinterpret_cast<void*>(static_cast<std::intptr_t>(index) + 1);
@@ -62,6 +100,11 @@ int untag(dGeomID g) {
 class OdeEngine : public Engine {
  public:
   OdeEngine(const Description& scene, double dt) : scene_(scene), dt_(dt) {
+    // Before anything of ODE's is made, so that a refusal leaves nothing to free.
+    for (const Body& b : scene.bodies) {
+      if (const std::string why = beyondReach(b.name, b.centre, b.angularVelocity, dt); !why.empty())
+        throw std::runtime_error(why);
+    }
     dInitODE2(0);
     dSetMessageHandler(&countMessage);
     messagesBefore_ = g_odeMessages;
@@ -172,6 +215,12 @@ class OdeEngine : public Engine {
     dJointGroupEmpty(contacts_);
   }
 
+  // Outside the step's clock: the run stops here if the next step could abort ODE.
+  void afterStep(int step) override {
+    if (const std::string why = outOfReach(); !why.empty())
+      throw std::runtime_error("after step " + std::to_string(step) + ", " + why);
+  }
+
   void finish() override {
     if (g_odeMessages != messagesBefore_) {
       notes.push_back("ODE printed " + std::to_string(g_odeMessages - messagesBefore_) + " solver messages");
@@ -193,12 +242,6 @@ class OdeEngine : public Engine {
   }
 
  private:
-  static std::string fmt(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%g", v);
-    return buffer;
-  }
-
   static void nearCallback(void* data, dGeomID g1, dGeomID g2) {
     static_cast<OdeEngine*>(data)->collide(g1, g2);
   }
@@ -227,6 +270,19 @@ class OdeEngine : public Engine {
       dJointID j = dJointCreateContact(world_, contacts_, &c);
       dJointAttach(j, b1, b2);
     }
+  }
+
+  // Why the next step could abort ODE, or "" (beyondReach).
+  std::string outOfReach() const {
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      if (bodies_[i] == nullptr) continue;
+      const dReal* p = dBodyGetPosition(bodies_[i]);
+      const dReal* w = dBodyGetAngularVel(bodies_[i]);
+      const std::string why = beyondReach(scene_.bodies[i].name, {p[0], p[1], p[2]}, {w[0], w[1], w[2]},
+                                          static_cast<double>(dt_));
+      if (!why.empty()) return why;
+    }
+    return {};
   }
 
   phys::Vec3 worldPoint(int i, const phys::Vec3& local) const {
