@@ -1,11 +1,13 @@
 #include "text.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace lab {
 
 std::string formatNumber(double value, int digits) {
+  if (std::isnan(value)) return "n/a";
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;

@@ -12,11 +12,12 @@
 namespace lab {
 
 /// The figure of a run that blew up, and one a run does not have (a peer's of ours): formatNumber
-/// prints them "inf" and "nan".
+/// prints them "inf" and "n/a".
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// printf's %.{digits}g: "0.0125", "1e-06", "inf" (a figure that ran away is printed as such).
+/// printf's %.{digits}g: "0.0125", "1e-06", "inf" (a figure that ran away is printed as such);
+/// "n/a" for NaN, a figure that is not a number at all (an energy drift of inf - inf), never "nan".
 std::string formatNumber(double value, int digits = 6);
 
 /// "1 substep", "3 substeps": a count and its noun.
