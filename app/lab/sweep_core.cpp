@@ -16,15 +16,24 @@
 namespace lab {
 namespace {
 
-std::size_t particlesWhenLoadedWith(const std::filesystem::path& file, const scenes::LoadOptions& options) {
-  return scenes::loadSceneFile(file, options).world.particles().size();
+// What tells the models of a world apart: its particles and its rigid bodies. Particles alone did
+// not: a rigid box (none) beside a corners box (8) counts as two tetra boxes (4 each).
+struct ModelCounts {
+  std::size_t particles = 0;
+  std::size_t rigidBodies = 0;
+  bool operator==(const ModelCounts&) const = default;
+};
+
+ModelCounts countsWhenLoadedWith(const std::filesystem::path& file, const scenes::LoadOptions& options) {
+  const scenes::Scene scene = scenes::loadSceneFile(file, options);
+  return {scene.world.particles().size(), scene.world.rigidBodies().size()};
 }
 
 // The same for a model the file may refuse: none then.
-std::optional<std::size_t> particlesIfLoads(const std::filesystem::path& file,
-                                            const scenes::LoadOptions& options) {
+std::optional<ModelCounts> countsIfLoads(const std::filesystem::path& file,
+                                         const scenes::LoadOptions& options) {
   try {
-    return particlesWhenLoadedWith(file, options);
+    return countsWhenLoadedWith(file, options);
   } catch (const scenes::LoadError&) {
     return std::nullopt;
   }
@@ -38,12 +47,12 @@ scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
   return {.ragdollModel = m};
 }
 
-// The first model whose world has `count` particles: the one every body of its kind already has.
+// The first model whose world has `counts`: the one every body of its kind already has.
 template <class Model>
-std::optional<Model> modelWithCount(std::size_t count,
-                                    std::initializer_list<std::pair<Model, std::size_t>> particlesUnder) {
-  for (const auto& [model, particles] : particlesUnder) {
-    if (particles == count) return model;
+std::optional<Model> modelWithCount(const ModelCounts& counts,
+                                    std::initializer_list<std::pair<Model, ModelCounts>> countsUnder) {
+  for (const auto& [model, under] : countsUnder) {
+    if (under == counts) return model;
   }
   return std::nullopt;
 }
@@ -60,16 +69,15 @@ std::string inQuotes(std::string_view text) {
 }  // namespace
 
 SceneModels sceneModels(const std::filesystem::path& file) {
-  const std::size_t asWritten = particlesWhenLoadedWith(file, {});
-  const std::size_t corners = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Corners));
-  const std::size_t tetra = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Tetra));
+  const ModelCounts asWritten = countsWhenLoadedWith(file, {});
+  const ModelCounts corners = countsWhenLoadedWith(file, withBoxModel(phys::BodyModel::Corners));
+  const ModelCounts tetra = countsWhenLoadedWith(file, withBoxModel(phys::BodyModel::Tetra));
   // The file as written loads (or has thrown above); a ragdoll model it refuses is not one to offer.
-  const std::optional<std::size_t> seed = particlesIfLoads(file, withRagdollModel(phys::RagdollModel::Seed));
-  const std::optional<std::size_t> lean = particlesIfLoads(file, withRagdollModel(phys::RagdollModel::Lean));
-  // Rigid bodies have no particles: all of a kind is rigid when making it rigid changes no count.
-  const std::size_t rigidBoxes = particlesWhenLoadedWith(file, withBoxModel(phys::BodyModel::Rigid));
-  const std::size_t rigidRagdolls =
-      particlesWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Rigid));
+  const std::optional<ModelCounts> seed = countsIfLoads(file, withRagdollModel(phys::RagdollModel::Seed));
+  const std::optional<ModelCounts> lean = countsIfLoads(file, withRagdollModel(phys::RagdollModel::Lean));
+  // All of a kind is rigid when making it rigid changes no count.
+  const ModelCounts rigidBoxes = countsWhenLoadedWith(file, withBoxModel(phys::BodyModel::Rigid));
+  const ModelCounts rigidRagdolls = countsWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Rigid));
 
   SceneModels m;
   m.boxes = corners != tetra;

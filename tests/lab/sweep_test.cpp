@@ -25,6 +25,7 @@
 #include "lab_test_util.h"
 #include "peer.h"
 #include "scenes/scene.h"
+#include "sweep_core.h"
 
 namespace {
 
@@ -297,6 +298,25 @@ TEST(Sweep, AFigureThatIsNotANumberIsPrintedNA) {
     EXPECT_NE(o->out.find("n/a"), std::string::npos) << o->out;
     EXPECT_EQ(o->out.find("nan"), std::string::npos) << o->out;
   }
+}
+
+// A rigid box (no particles) beside a corners box (8) has as many particles as two tetra boxes:
+// counted by particles alone, the file was taken as all tetra, labelled so, and swept with tetra
+// imposed on both, another world. Models mixed within a kind keep the file's own: "scene".
+TEST(Sweep, ARigidBoxBesideACornersBoxIsSweptAsTheFileHasThem) {
+  TempDir dir;
+  const std::filesystem::path scene = dir.write("mixed.xml",
+                                                "<scene name=\"mixed\"><ground/>\n"
+                                                "  <box name=\"a\" pos=\"0 0.5 0\" model=\"rigid\"/>\n"
+                                                "  <box name=\"b\" pos=\"3 0.5 0\" model=\"corners\"/>\n"
+                                                "</scene>\n");
+  EXPECT_EQ(lab::sceneModels(scene).asFile.label, "scene");
+  const Outcome o = sweep(
+      {scene.string(), "--steps", "5", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_EQ(csv.rows[0].at("model"), "scene");
 }
 
 TEST(Sweep, DrawsTheChartWhenGnuplotIsThere) {
