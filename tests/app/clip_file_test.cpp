@@ -77,6 +77,24 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
                                          "Yposition Zposition Zrotation Xrotation Yrotation\n}\nMOTION\n"
                                          "Frames: 1\nFrame Time: 0.1\n0 0 0 0 nan 0\n";
   EXPECT_THROW(clips::loadClip(dir.path / "nan.bvh"), clips::ClipError);
+  // A Frame Time that is no time, and a header of no frames: assimp took 25 frames a second for the
+  // first (played at 0.04 s a frame) and one key of its own for the second; refused, not guessed.
+  const std::string header =
+      "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition "
+      "Zrotation Xrotation Yrotation\n}\nMOTION\n";
+  for (const char* time : {"-1", "nan", "inf"}) {
+    SCOPED_TRACE(time);
+    std::ofstream(dir.path / "time.bvh")
+        << header << "Frames: 2\nFrame Time: " << time << "\n0 0 0 0 0 0\n0 0 0 0 0 0\n";
+    const std::string e = clipError(dir.path / "time.bvh");
+    EXPECT_NE(e.find("time.bvh: its Frame Time is not a finite number of seconds > 0"), std::string::npos)
+        << e;
+  }
+  std::ofstream(dir.path / "none.bvh") << header << "Frames: 0\nFrame Time: 0.1\n";
+  const std::string none = clipError(dir.path / "none.bvh");
+  EXPECT_NE(none.find("none.bvh: it has no frames"), std::string::npos) << none;
+  std::ofstream(dir.path / "two.bvh") << header << "Frames: 2\nFrame Time: 0.1\n0 0 0 0 0 0\n0 0 0 0 0 0\n";
+  EXPECT_EQ(clipError(dir.path / "two.bvh"), "loaded");
 }
 
 std::string characterScene(const std::string& character) {

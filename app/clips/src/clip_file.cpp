@@ -100,8 +100,19 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   }
   const aiNodeAnim& root = *bones[0].channel;
   const unsigned frames = root.mNumRotationKeys;
-  const double ticks = anim.mTicksPerSecond > 0.0 ? anim.mTicksPerSecond : 25.0;  // assimp's own default
-  if (frames == 0) throw ClipError(name, "it has no frames");
+  // assimp gives 0 ticks a second for a file that does not say, and then takes 25 itself; a BVH
+  // always says (1 / its Frame Time), so there a tick rate that is not a finite number > 0 is a
+  // Frame Time that is not one (-1 gave -1, nan nan), refused rather than guessed.
+  const bool bvh = format == "bvh" || format == "BVH";
+  const double ticksGiven = anim.mTicksPerSecond;
+  if (!(ticksGiven >= 0.0 && std::isfinite(ticksGiven)) || (bvh && ticksGiven == 0.0))
+    throw ClipError(name, bvh ? "its Frame Time is not a finite number of seconds > 0"
+                              : "its animation's ticks per second are negative or not a finite number");
+  const double ticks = ticksGiven > 0.0 ? ticksGiven : 25.0;  // assimp's own default
+  // A BVH's animation lasts its Frames less one; assimp keys "Frames: 0" once, with a duration of
+  // 2^32 - 1, and that lone key is no frame of the file's.
+  if (frames == 0 || (bvh && anim.mDuration + 1.0 != static_cast<double>(frames)))
+    throw ClipError(name, "it has no frames");
   // Frames evenly spaced, every bone keyed at every frame, the root's position too: what a BVH file
   // holds, and all a clip keeps.
   clip.frameTime =
