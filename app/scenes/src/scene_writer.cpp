@@ -248,6 +248,18 @@ std::string stickElement(const phys::Stick& s, const BodyNames& names) {
   return e.empty();
 }
 
+// A point the file places on a body (a link's end, a particle joint's pivot) where it is now: the
+// loader takes none beyond the bound. A body the guard froze stretched can carry one there while
+// all its particles are inside (the fuzzer: a capsule ragdoll under a gravity of 9.1e10 m/s^2, a
+// link's end 14 km past a bound of 1e6 m), and such a world is refused rather than saved unloadable.
+void requireInsideBound(const phys::Vec3& point, double bound, const std::string& what) {
+  if (detail::insideBound(point, bound)) return;
+  throw std::invalid_argument(what + " lies at (" + detail::formatNumber(point.x) + ", " +
+                              detail::formatNumber(point.y) + ", " + detail::formatNumber(point.z) +
+                              "), beyond the world's bound of " + detail::formatNumber(bound) +
+                              " m, which no scene file can hold");
+}
+
 std::string linkElement(const phys::World& world, const phys::RigidLink& link,
                         std::span<const phys::BodyId> owner, const BodyNames& names) {
   const LinkEnd endA = linkEnd(world, link.a, owner), endB = linkEnd(world, link.b, owner);
@@ -258,6 +270,11 @@ std::string linkElement(const phys::World& world, const phys::RigidLink& link,
   ElementWriter e("link");
   e.text("a", names.end(endA)).text("b", names.end(endB));
   const phys::Vec3 a = world.position(link.a), b = world.position(link.b);
+  const double bound = world.worldSettings().bound;
+  const std::string end =
+      "the end of the link from '" + names.end(endA) + "' to '" + names.end(endB) + "' on '";
+  requireInsideBound(a, bound, end + names.end(endA) + "'");
+  requireInsideBound(b, bound, end + names.end(endB) + "'");
   // Each end where it is now, so the reloaded world is this one: a pin whose ends are apart
   // (by what the passes left, or because it was made so) pulls them together in the next step
   // there as it would here. An end that is a loose particle is that particle, wherever written.
@@ -308,6 +325,11 @@ std::string particleJointElement(const phys::World& world, const phys::ParticleJ
   e.text("a", names.box(j.a)).text("b", names.box(j.b));
   const phys::BodyPose a = world.bodyPose(j.a), b = world.bodyPose(j.b);
   const phys::Vec3 pivot = a.center + a.orientation * j.pivotA, pivotB = b.center + b.orientation * j.pivotB;
+  const double bound = world.worldSettings().bound;
+  requireInsideBound(pivot, bound,
+                     "the pivot of the particle joint from " + names.box(j.a) + " to " + names.box(j.b));
+  requireInsideBound(pivotB, bound,
+                     "the pivot of the particle joint from " + names.box(j.b) + " to " + names.box(j.a));
   e.vector("pivot", pivot);
   if (pivotB != pivot) e.vector("b-pivot", pivotB);
   e.vector("rest", detail::eulerFromOrientation(j.rest));
