@@ -235,11 +235,13 @@ TEST(ScenePaths, NamesResolveInTheSceneFolderAndPathsAsGiven) {
 
 namespace {
 
+// Kept as written, but for its kind, which the loader checks is pass or position (a misspelt kind
+// was a check that silently never ran: Accuracy.MalformedPositionExpectationsAreLoadErrors).
 TEST(SceneFiles, ExpectElementsAreKeptAsWrittenForTheLab) {
   const scenes::Scene s = scenes::loadSceneText(
       "<scene name=\"x\">\n"
       "  <particle name=\"p\" pos=\"0 1 0\"/>\n"
-      "  <expect body=\"p\" at=\"1\" pos=\"0 -3.905 0\"/>\n"
+      "  <expect kind=\"position\" body=\"p\" at=\"1\" pos=\"0 -3.905 0\"/>\n"
       "</scene>\n",
       "x.xml");
   ASSERT_EQ(s.expectations.size(), 1u);

@@ -514,6 +514,9 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
       {R"(<expect kind="position" body="p" at="1" pos="0 0 0" tolerance="1"/>)", "tolerance",
        "unknown attribute"},
       {R"(<expect kind="position" body="p" at="1" pos="0 0 0" at="2"/>)", "at", "given twice"},
+      // Where no body can be: its error overflowed to the inf of a run that blew up.
+      {R"(<expect kind="position" body="p" at="1" pos="1e308 0 0"/>)", "pos",
+       "'1e308 0 0' is beyond the world's bound of 1e+06 m"},
   };
   for (const Case& c : cases) {
     const scenes::Scene scene = scenes::loadSceneText(sceneWithExpect(c.expect), "e.xml");
@@ -525,6 +528,16 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
       EXPECT_EQ(e.attribute(), c.attribute) << e.what();
       EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
       EXPECT_TRUE(std::string(e.what()).starts_with("e.xml:4: <expect")) << e.what();
+    }
+  }
+  // A kind misspelt or left out was a check that never ran: the loader refuses it.
+  for (const char* expect : {R"(<expect kind="positon" body="p" at="1" pos="0 0 0"/>)", R"(<expect/>)"}) {
+    try {
+      (void)scenes::loadSceneText(sceneWithExpect(expect), "e.xml");
+      ADD_FAILURE() << "no error for " << expect;
+    } catch (const scenes::LoadError& e) {
+      EXPECT_EQ(e.attribute(), "kind") << e.what();
+      EXPECT_TRUE(std::string(e.what()).starts_with("e.xml:4: <expect> attribute 'kind'")) << e.what();
     }
   }
   // Other kinds belong to other commands and are left alone.

@@ -950,7 +950,10 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
     } else if (isOneOf(kind, kBodyElements)) {
       bodies.push_back(child);
     } else if (kind == "expect") {
-      // Kept as written for the lab, which knows what each attribute means.
+      // Kept as written for the lab, which knows what each attribute means; but which kind it is
+      // here, so that a misspelt kind is not a check that silently never runs.
+      const std::string what = e.requiredText("kind");
+      if (what != "pass" && what != "position") e.fail("kind", "'" + what + "' must be pass or position");
       Expectation x;
       x.line = e.line();
       for (pugi::xml_attribute a = child.first_attribute(); a; a = a.next_attribute()) {
