@@ -28,13 +28,13 @@ const BadScene kCases[] = {
     {"junk after a number", "<scene name='s'>\n<solver dt='0.01s'/>\n</scene>", 2, "dt",
      "not a finite number"},
     {"negative size", "<scene name='s'>\n<box pos='0 0 0' size='1 -1 1'/>\n</scene>", 2, "size",
-     "at least 0.001 (m)"},
+     "sizes must be from 0.001 to 2e+09 (m)"},
     {"negative mass", "<scene name='s'>\n<box pos='0 0 0' mass='-2'/>\n</scene>", 2, "mass",
      "from 1e-06 to 1e+09 (kg)"},
     // Tiny or huge values the physics cannot represent are refused by attribute, not by a
     // message from deep in the physics that names none.
     {"tiny size", "<scene name='s'>\n<box pos='0 0 0' size='1e-300'/>\n</scene>", 2, "size",
-     "at least 0.001"},
+     "sizes must be from 0.001"},
     {"tiny mass", "<scene name='s'>\n<box pos='0 0 0' mass='1e-300'/>\n</scene>", 2, "mass", "from 1e-06"},
     {"huge mass", "<scene name='s'>\n<particle pos='0 0 0' mass='1e300'/>\n</scene>", 2, "mass",
      "to 1e+09 (kg)"},
@@ -72,6 +72,20 @@ const BadScene kCases[] = {
     {"rigid stack that grows beyond the bound",
      "<scene name='e'>\n<world bound='10'/>\n<stack pos='0 0 0' count='20' model='rigid'/>\n</scene>", 3, "",
      "reaches (0, 10.5, 0), beyond the world's bound of 10 m"},
+    // Sizes a generator makes are held to a body's, as a <box>'s are: a pyramid tapering below
+    // 1 mm loaded and its file did not; a side of 1e200 m made corners no double tells apart and
+    // a message ("addBody: centre or size too large") that named no attribute.
+    {"pyramid that tapers below the smallest size",
+     "<scene name='e'>\n<pyramid pos='0 0 0' base='3' taper='1e-3'/>\n</scene>", 2, "taper",
+     "'0.001' makes the top row's boxes 1e-06 m, below the smallest size of 0.001 m"},
+    {"box larger than any world", "<scene name='e'>\n<box pos='0 0 0' size='1e200'/>\n</scene>", 2, "size",
+     "sizes must be from 0.001 to 2e+09 (m)"},
+    {"capsule longer than any world",
+     "<scene name='e'>\n<capsule pos='0 0 0' radius='0.1' length='1e200'/>\n</scene>", 2, "length",
+     "must be at most 2e+09 (m)"},
+    {"grid spaced wider than any world",
+     "<scene name='e'>\n<grid pos='0 0 0' count='2 1 1' spacing='1e200'/>\n</scene>", 2, "spacing",
+     "must be > 0 and at most 2e+09 (m)"},
     {"link point beyond the bound",
      "<scene name='s'>\n<box name='a' pos='0 0 0'/><box name='b' pos='2 0 0'/>\n"
      "<link a='a' b='b' point='1 0 1e12'/>\n</scene>",

@@ -1,5 +1,6 @@
 #include "generators.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -86,8 +87,10 @@ void checkInsideBound(ElementReader& e, const phys::World& world, std::string_vi
 phys::BodyDesc readBoxCommon(ElementReader& e, const LoadOptions& options) {
   phys::BodyDesc d;
   if (auto size = e.vector("size", "m", true)) {
-    if (!(size->x >= kMinBodySize && size->y >= kMinBodySize && size->z >= kMinBodySize)) {
-      e.fail("size", "sizes must be at least " + formatNumber(kMinBodySize) + " (m)");
+    const double least = std::min({size->x, size->y, size->z}), most = std::max({size->x, size->y, size->z});
+    if (!(least >= kMinBodySize && most <= kMaxBodySize)) {
+      e.fail("size", "sizes must be from " + formatNumber(kMinBodySize) + " to " +
+                         formatNumber(kMaxBodySize) + " (m)");
     }
     d.size = *size;
   }
@@ -104,6 +107,8 @@ phys::BodyDesc readCapsuleCommon(ElementReader& e, const LoadOptions& options) {
            "'" + formatNumber(radius) + "' must be at least " + formatNumber(kMinBodySize / 2) + " (m)");
   }
   const double length = e.requiredNumber("length", "m");
+  if (!(length <= kMaxBodySize))
+    e.fail("length", "'" + formatNumber(length) + "' must be at most " + formatNumber(kMaxBodySize) + " (m)");
   // The box it is inscribed in is 2 radius wide: the physics needs size.y >= size.x, computed
   // here the same way, so a sphere (length exactly 2 radius) passes both checks.
   const double diameter = 2.0 * radius;
@@ -143,6 +148,13 @@ void generatePyramid(ElementReader& e, BuildContext& ctx) {
   phys::BodyDesc box = readBoxCommon(e, ctx.options);
   e.rejectUnknownAttributes();
   const phys::Vec3 baseSize = box.size;
+  // Each row taper times the one below: the top row's boxes must still be a body's size.
+  const phys::Vec3 top = baseSize * std::pow(taper, static_cast<double>(base - 1));
+  if (!(std::min({top.x, top.y, top.z}) >= kMinBodySize)) {
+    e.fail("taper", "'" + formatNumber(taper) + "' makes the top row's boxes " +
+                        formatNumber(std::min({top.x, top.y, top.z})) + " m, below the smallest size of " +
+                        formatNumber(kMinBodySize) + " m");
+  }
   long index = 0;
   double bottom = pos.y;
   for (long row = 0; row < base; ++row) {
@@ -170,7 +182,10 @@ void generateGrid(ElementReader& e, BuildContext& ctx) {
   }
   phys::BodyDesc box = readBoxCommon(e, ctx.options);
   const phys::Vec3 spacing = e.vector("spacing", "m", true).value_or(box.size);
-  if (spacing.x <= 0.0 || spacing.y <= 0.0 || spacing.z <= 0.0) e.fail("spacing", "must be > 0 (m)");
+  if (!(std::min({spacing.x, spacing.y, spacing.z}) > 0.0 &&
+        std::max({spacing.x, spacing.y, spacing.z}) <= kMaxBodySize)) {
+    e.fail("spacing", "must be > 0 and at most " + formatNumber(kMaxBodySize) + " (m)");
+  }
   e.rejectUnknownAttributes();
   long index = 0;
   for (int j = 0; j < count->y; ++j) {

@@ -32,8 +32,11 @@ inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
 /// corners stay distinct and its sticks keep their lengths to 1e-4 of the smallest box.
 inline constexpr double kMaxBound = 1e9;      ///< unit: m; <world bound> at most
 inline constexpr double kMinBodySize = 1e-3;  ///< unit: m; a box's side, a capsule's diameter
-inline constexpr double kMinMass = 1e-6;      ///< unit: kg; a body's or a particle's
-inline constexpr double kMaxMass = 1e9;       ///< unit: kg
+/// unit: m; a box's side, a capsule's length: none larger than the largest world is wide (a side of
+/// 1e200 m made corners no double tells apart, and a message that named no attribute).
+inline constexpr double kMaxBodySize = 2.0 * kMaxBound;
+inline constexpr double kMinMass = 1e-6;  ///< unit: kg; a body's or a particle's
+inline constexpr double kMaxMass = 1e9;   ///< unit: kg
 /// A ragdoll's scale: its thinnest part (0.08 m across at scale 1) is then 1.6 mm, above
 /// kMinBodySize with room for the round-off of a saved and reloaded part.
 inline constexpr double kMinRagdollScale = 0.02;
