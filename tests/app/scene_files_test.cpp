@@ -229,6 +229,25 @@ TEST(ScenePaths, NamesResolveInTheSceneFolderAndPathsAsGiven) {
   EXPECT_EQ(scenes::resolveScene("pendulum", dir), dir / "pendulum.xml");
   EXPECT_EQ(scenes::resolveScene("x/y.xml", dir), std::filesystem::path("x/y.xml"));
   EXPECT_TRUE(std::filesystem::exists(scenes::resolveScene(scenes::kDefaultScene, dir)));
+  // A bare name of a folder here that is no project scene is that folder, so that loading says so
+  // (it said the project had no "held.xml", and lost the reason); a project scene's name is the
+  // project's scene whatever lies here. Each test is a process of its own: the folder may change.
+  const std::filesystem::path before = std::filesystem::current_path();
+  const std::filesystem::path here = std::filesystem::temp_directory_path() / "scene_paths_test";
+  std::filesystem::remove_all(here);
+  std::filesystem::create_directories(here / "held");
+  std::filesystem::create_directories(here / "pendulum");
+  std::filesystem::current_path(here);
+  EXPECT_EQ(scenes::resolveScene("held", dir), std::filesystem::path("held"));
+  EXPECT_EQ(scenes::resolveScene("pendulum", dir), dir / "pendulum.xml");
+  try {
+    (void)scenes::loadSceneFile(scenes::resolveScene("held", dir));
+    ADD_FAILURE() << "a folder loaded";
+  } catch (const scenes::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("held: is a folder, not a file"), std::string::npos) << e.what();
+  }
+  std::filesystem::current_path(before);
+  std::filesystem::remove_all(here);
 }
 
 }  // namespace

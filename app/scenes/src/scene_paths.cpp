@@ -14,7 +14,14 @@ std::filesystem::path resolveScene(std::string_view nameOrPath, const std::files
   if (std::filesystem::is_regular_file(given, ec)) return given;
   if (given.has_extension() || given.has_parent_path())
     return given;  // a path; let loading say it is missing
-  return sceneDir / (std::string(nameOrPath) + ".xml");
+  std::filesystem::path project = sceneDir / (std::string(nameOrPath) + ".xml");
+  // A bare name that is no project scene but names something here that is not a file (a folder, a
+  // pipe, a link in a loop): that, so that loading says what it is ("is a folder, not a file"),
+  // not that the project has no such scene.
+  if (!std::filesystem::exists(std::filesystem::symlink_status(project, ec)) &&
+      std::filesystem::exists(std::filesystem::symlink_status(given, ec)))
+    return given;
+  return project;
 }
 
 }  // namespace scenes

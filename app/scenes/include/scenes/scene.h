@@ -101,7 +101,8 @@ Scene loadSceneText(std::string_view xml, const std::string& displayName, const 
 /// The folder of the project's scenes: <data dir>/assets/scenes.
 std::filesystem::path sceneDirectory(const std::filesystem::path& dataDir);
 /// A path as given if it names an existing file; otherwise <sceneDir>/<name>.xml (so
-/// "pendulum" finds assets/scenes/pendulum.xml). Does not check that the result exists.
+/// "pendulum" finds assets/scenes/pendulum.xml), unless there is no such scene and the name is of
+/// something else here (a folder), which loading then names. Does not check that the result exists.
 std::filesystem::path resolveScene(std::string_view nameOrPath, const std::filesystem::path& sceneDir);
 /// The scene the sandbox opens with no argument, as a name for resolveScene.
 inline constexpr std::string_view kDefaultScene = "ragdoll";  // the seed's scene 1
