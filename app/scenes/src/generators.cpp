@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "element_writer.h"
 #include "euler_angles.h"
 #include "physics/capsule_ragdoll.h"
 #include "physics/ragdoll.h"
@@ -79,8 +80,8 @@ void checkInsideBound(ElementReader& e, const phys::World& world, std::string_vi
                       const phys::Vec3& point) {
   const double bound = world.worldSettings().bound;
   if (insideBound(point, bound)) return;
-  e.fail(attribute, "puts a body at (" + formatNumber(point.x) + ", " + formatNumber(point.y) + ", " +
-                        formatNumber(point.z) + "), beyond the world's bound of " + formatNumber(bound) +
+  e.fail(attribute, "puts a body at (" + exactNumber(point.x) + ", " + exactNumber(point.y) + ", " +
+                        exactNumber(point.z) + "), beyond the world's bound of " + formatNumber(bound) +
                         " m along an axis (<world bound>)");
 }
 

@@ -15,6 +15,7 @@
 
 #include "clips/clip_file.h"
 #include "element_reader.h"
+#include "element_writer.h"
 #include "euler_angles.h"
 #include "fileio/files.h"
 #include "generators.h"
@@ -242,8 +243,9 @@ class Builder {
     auto check = [&](const phys::Vec3& x) {
       if (detail::insideBound(x, bound)) return;
       ElementReader e(node, lines_, file_);
-      e.fail("makes a body that reaches (" + detail::formatNumber(x.x) + ", " + detail::formatNumber(x.y) +
-             ", " + detail::formatNumber(x.z) + "), beyond the world's bound of " +
+      // Each coordinate to all its digits: 999999.9 + 0.5 read "1e+06", as if on the bound.
+      e.fail("makes a body that reaches (" + detail::exactNumber(x.x) + ", " + detail::exactNumber(x.y) +
+             ", " + detail::exactNumber(x.z) + "), beyond the world's bound of " +
              detail::formatNumber(bound) + " m along an axis (<world bound>)");
     };
     const phys::Particles& particles = scene_.world.particles();
