@@ -305,7 +305,8 @@ void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, con
 }
 
 void CommandLine::flag(const OptionSpec& spec, bool& into, bool value, const std::string& note) {
-  app_->add_flag_callback(spec.names, [&into, value] { into = value; });
+  // A flag takes no value: CLI11 would read "--json=no" as off and "--json=" as on.
+  app_->add_flag_callback(spec.names, [&into, value] { into = value; })->disable_flag_override();
   entries_.push_back({spec.names, spec.names, helpText(spec, note), ""});
 }
 
@@ -343,6 +344,9 @@ std::string CommandLine::parse(const std::vector<std::string>& args) {
   } catch (const CLI::ArgumentMismatch& e) {
     // "--steps: 1 required N missing": a value missing at the end of the line.
     std::string what = e.what();
+    // "json was given a disallowed flag override": a value given to a flag ("--json=banana").
+    if (const std::size_t at = what.find(" was given a disallowed flag override"); at != std::string::npos)
+      return "--" + what.substr(0, at) + " takes no value";
     const std::string name = what.substr(0, what.find(':'));
     for (const Entry& entry : entries_) {
       if (firstName(entry.names) == name && !entry.needs.empty()) return name + " needs " + entry.needs;

@@ -144,6 +144,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{{"run"}, "SCENE"}, BadCase{{"run", ""}, "SCENE"}, BadCase{{"run", "--json"}, "SCENE"},
         BadCase{{"run", "a", "b"}, "'b'"}, BadCase{{"run", "s", "--bogus"}, "'--bogus'"},
         BadCase{{"run", "s", "-x"}, "'-x'"},
+        // a value given to a flag: CLI11's own words were "Could not convert: --json = banana"
+        BadCase{{"run", "s", "--json=banana"}, "--json takes no value"},
+        BadCase{{"run", "s", "--json=no"}, "--json takes no value"},
         // missing values, at the end or followed by another option
         BadCase{{"run", "s", "--steps"}, "--steps"}, BadCase{{"run", "s", "--dt"}, "--dt"},
         BadCase{{"run", "s", "--method"}, "--method"}, BadCase{{"run", "s", "--iterations"}, "--iterations"},
