@@ -146,7 +146,13 @@ void OutputFolder::write(const std::string& name, std::string_view content) {
 
 std::string OutputFolder::draw(const std::string& name, const Chart& chart, const std::string& noPoints) {
   write(name, gnuplotScript(chart));
-  if (!hasPoints(chart)) return noPoints;
+  if (!hasPoints(chart)) {
+    // No chart of these figures: one an earlier run drew here would stand beside CSVs it does not show.
+    std::error_code ignored;
+    std::filesystem::remove(folder_ / (chart.output + ".png"), ignored);
+    std::filesystem::remove(folder_ / (chart.output + ".svg"), ignored);
+    return noPoints;
+  }
   std::string problem = runGnuplot(folder_ / name, folder_);
   if (problem.empty()) {
     list(chart.output + ".png");

@@ -387,7 +387,8 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
   files.write("converge.csv", convergeCsv(all));
   std::string problems;
   for (const Chart& chart : charts) {
-    const std::string problem = files.draw(chart.output + ".gp", chart, "no run has a finite error");
+    const std::string problem = files.draw(chart.output + ".gp", chart,
+                                           "no run has a finite error above 0 (the axes are logarithmic)");
     if (!problem.empty()) problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
   }
   out << files.wroteLine();

@@ -318,8 +318,9 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
   files.write("results.csv", csvText(plan.sceneName, rows));
   files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
-  const std::string problem =
-      files.draw("sweep.gp", chart, "no run has a finite error, so there is no chart to draw");
+  const std::string problem = files.draw(
+      "sweep.gp", chart,
+      "no run has a finite error above 0 (the axes are logarithmic), so there is no chart to draw");
   return {files, problem};
 }
 

@@ -266,9 +266,16 @@ TEST(Sweep, TheFrontCanMeasureAFigureOfTheRunTable) {
 TEST(Sweep, ARunThatBlowsUpHasInfiniteErrorAndFrozenParticles) {
   TempDir dir;
   const std::filesystem::path scene = dir.write("escape.xml", lab_testing::escapingScene());
+  // A chart an earlier sweep drew there: with no error to draw, it would stand beside CSVs it
+  // does not show, so it goes.
+  std::filesystem::create_directories(dir.file("out"));
+  const std::filesystem::path stale = dir.write("out/error-vs-cost.png", "an earlier sweep's chart");
+  ASSERT_TRUE(std::filesystem::exists(stale));
   const Outcome o = sweep(
       {scene.string(), "--steps", "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_NE((o.out + o.err).find("no run has a finite error above 0"), std::string::npos) << o.out << o.err;
   const CsvTable csv = readCsv(dir.file("out/results.csv"));
   ASSERT_EQ(csv.rows.size(), 1u);
   EXPECT_EQ(csv.rows[0].at("error"), "inf");
