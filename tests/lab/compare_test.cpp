@@ -349,7 +349,9 @@ TEST(PeerReach, ABodyBeyondWhatAnEngineReachesStopsItsRunWithAReason) {
     for (const std::string& engine : engines()) {
       SCOPED_TRACE(engine);
       const lab::PeerResult r = lab::runPeer(engine, scene, kDt, 3, {3});
-      if (!r.ran) EXPECT_FALSE(r.unsupported.empty());
+      if (!r.ran) {
+        EXPECT_FALSE(r.unsupported.empty());
+      }
       if (engine != "ode") continue;
       EXPECT_FALSE(r.ran);
       EXPECT_NE(r.unsupported.find(c.odeSays), std::string::npos) << r.unsupported;

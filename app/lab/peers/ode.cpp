@@ -278,8 +278,8 @@ class OdeEngine : public Engine {
       if (bodies_[i] == nullptr) continue;
       const dReal* p = dBodyGetPosition(bodies_[i]);
       const dReal* w = dBodyGetAngularVel(bodies_[i]);
-      const std::string why = beyondReach(scene_.bodies[i].name, {p[0], p[1], p[2]}, {w[0], w[1], w[2]},
-                                          static_cast<double>(dt_));
+      std::string why = beyondReach(scene_.bodies[i].name, {p[0], p[1], p[2]}, {w[0], w[1], w[2]},
+                                    static_cast<double>(dt_));
       if (!why.empty()) return why;
     }
     return {};
