@@ -80,7 +80,7 @@ PositionExpect readExpect(ExpectReader& r, const scenes::Scene& scene, double dt
   // An answer beyond the bound is where no body can be (the guard freezes it first); its error
   // would overflow to the inf of a run that blew up.
   const double bound = scene.world.worldSettings().bound;
-  if (!(std::abs(p->x) <= bound && std::abs(p->y) <= bound && std::abs(p->z) <= bound))
+  if (!phys::insideBound(*p, bound))
     r.fail("pos", "'" + pos + "' is beyond the world's bound of " + formatNumber(bound) + " m");
   x.pos = *p;
   return x;

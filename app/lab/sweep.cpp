@@ -320,7 +320,7 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
   const std::string problem = files.draw(
       "sweep.gp", chart,
-      "no run has a finite error above 0 (the axes are logarithmic), so there is no chart to draw");
+      "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
   return {files, problem};
 }
 

@@ -577,7 +577,7 @@ std::string Session::spawn(const phys::Vec3& at, const std::string& done,
   // What the loader would refuse to load, a throw refuses to make: beyond the bound the guard
   // would freeze it at once, and Save As could not write it.
   const double bound = scene().world.worldSettings().bound;
-  if (!(std::abs(at.x) <= bound && std::abs(at.y) <= bound && std::abs(at.z) <= bound)) {
+  if (!phys::insideBound(at, bound)) {
     status_ = "nothing thrown: the camera is beyond the world's bound of " + std::to_string(bound) + " m";
     return status_;
   }

@@ -77,7 +77,7 @@ std::string beyondReach(const std::string& name, const phys::Vec3& centre, const
   const auto who = [&name] { return "body '" + name + "'"; };  // only when it says why: each step, each body
   if (!phys::finite(centre) || !phys::finite(spin))
     return who() + " has a position or spin that is not finite";
-  if (!(std::abs(centre.x) <= kReach && std::abs(centre.y) <= kReach && std::abs(centre.z) <= kReach)) {
+  if (!phys::insideBound(centre, kReach)) {
     return who() + " is at (" + fmt(centre.x) + ", " + fmt(centre.y) + ", " + fmt(centre.z) +
            ") m, beyond the " + fmt(kReach) + " m ODE's collision reaches";
   }

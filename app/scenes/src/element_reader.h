@@ -2,7 +2,6 @@
 // Reads one XML element's attributes strictly: every attribute must be asked for (an unknown
 // one is an error), numbers must parse whole and be finite, and every error names the file,
 // the line of the offending attribute and its name.
-#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -74,11 +73,9 @@ class ElementReader {
 /// A number as the error messages print it: "1e-06", "1000", "0.5".
 std::string formatNumber(phys::Real value);
 
-/// Whether a point is within the world's bound along every axis, as the guard holds it: what a
-/// scene file may place, and what the writer may save.
-inline bool insideBound(const phys::Vec3& p, phys::Real bound) {
-  return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;
-}
+/// Whether a point is within the world's bound along every axis: what a scene file may place, and
+/// what the writer may save.
+using phys::insideBound;
 
 /// Parses a whole finite number; nullopt for anything else (junk after it, NaN, infinity).
 std::optional<phys::Real> parseReal(std::string_view text);

@@ -24,6 +24,12 @@ inline bool finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+/// True when v is within `bound` of the origin along every axis (false for NaN): the world's
+/// bound (WorldSettings::bound) as a scene file may place a body, and any other reach held the same way.
+inline bool insideBound(const Vec3& v, Real bound) {
+  return std::abs(v.x) <= bound && std::abs(v.y) <= bound && std::abs(v.z) <= bound;
+}
+
 /// An index into one of the world's lists, of a type of its own for each list (Tag), so that a
 /// particle's index is never passed where a body's is wanted: it is made from a number only
 /// explicitly, and reads as its number wherever an index is wanted (arrays, comparisons, sums).
