@@ -318,9 +318,9 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
   files.write("results.csv", csvText(plan.sceneName, rows));
   files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
-  const std::string problem = files.draw(
-      "sweep.gp", chart,
-      "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
+  const std::string problem =
+      files.draw("sweep.gp", chart,
+                 "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
   return {files, problem};
 }
 
