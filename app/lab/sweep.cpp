@@ -267,13 +267,15 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
 
 // ---- the report on stdout ---------------------------------------------------------------------
 
+// A figure wider than its column still gets a space on its side, so that no two run together
+// ("1.23456e-05101250" was a dt and a step count).
 std::string pad(std::string text, std::size_t width) {
-  if (text.size() < width) text.append(width - text.size(), ' ');
+  text.append(text.size() < width ? width - text.size() : 1, ' ');
   return text;
 }
 
 std::string padLeft(const std::string& text, std::size_t width) {
-  return text.size() < width ? std::string(width - text.size(), ' ') + text : text;
+  return std::string(text.size() < width ? width - text.size() : 1, ' ') + text;
 }
 
 std::string tableLine(const Row& r) {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -305,6 +306,26 @@ TEST(Sweep, AFigureThatIsNotANumberIsPrintedNA) {
     EXPECT_NE(o->out.find("n/a"), std::string::npos) << o->out;
     EXPECT_EQ(o->out.find("nan"), std::string::npos) << o->out;
   }
+}
+
+// A figure wider than its column is still set apart from the next: a dt of six digits with an
+// exponent (11 characters in a column of 10) ran into a step count of six figures.
+TEST(Sweep, AFigureWiderThanItsColumnDoesNotRunIntoTheNext) {
+  TempDir dir;
+  const std::filesystem::path scene =
+      dir.write("still.xml",
+                "<scene name=\"still\"><world gravity=\"0 0 0\"/><box name=\"a\" pos=\"0 1 0\"/>\n"
+                "  <expect kind=\"position\" body=\"a\" at=\"1.00001\" pos=\"0 1 0\"/></scene>\n");
+  const Outcome o = sweep({scene.string(), "--steps", "61", "--dt", "1.00001e-05", "--repeat", "1",
+                           "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::size_t at = o.out.find("\ngauss-seidel ");  // the table's one row
+  ASSERT_NE(at, std::string::npos) << o.out;
+  std::istringstream row(o.out.substr(at, o.out.find('\n', at + 1) - at));
+  std::string method, model, iterations, substeps, dt, steps;
+  row >> method >> model >> iterations >> substeps >> dt >> steps;
+  EXPECT_EQ(dt, "1.00001e-05") << o.out;
+  EXPECT_EQ(steps, readCsv(dir.file("out/results.csv")).rows.at(0).at("steps")) << o.out;
 }
 
 // A rigid box (no particles) beside a corners box (8) has as many particles as two tetra boxes:
