@@ -72,10 +72,12 @@ engine::WindowDesc windowDesc(const Options& options, const UserSettings& user) 
   return d;
 }
 
-UserSettings loadRemembered(bool interactive, const std::filesystem::path& file) {
+// Clears `file` when it is there but unreadable, so that the exit does not write over it.
+UserSettings loadRemembered(bool interactive, std::filesystem::path& file) {
   if (!interactive || file.empty()) return {};
   LoadedSettings loaded = loadUserSettings(file);
   for (const std::string& w : loaded.warnings) std::cerr << "sandbox: warning: " << w << '\n';
+  if (loaded.keepFile) file.clear();
   return loaded.settings;
 }
 

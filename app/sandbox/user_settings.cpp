@@ -131,7 +131,10 @@ LoadedSettings loadUserSettings(const fs::path& file) {
   try {
     content = fileio::readWhole(file, kMaxSettingsBytes);
   } catch (const fileio::FileError& e) {
-    out.warnings.push_back(std::string(e.what()) + "; using the defaults");
+    out.warnings.push_back(
+        std::string(e.what()) +
+        "; using the defaults, and leaving the file as it is (this run's settings are not saved)");
+    out.keepFile = true;
     return out;
   }
   std::istringstream in(content);

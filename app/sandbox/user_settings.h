@@ -42,10 +42,14 @@ std::filesystem::path configDirectory();
 struct LoadedSettings {
   UserSettings settings;
   std::vector<std::string> warnings;  ///< "file:line: why" for each line that was skipped
+  /// The file is there but could not be read (no permission, too large, a folder): writing it on
+  /// exit would replace what the user had with the defaults, so it must be left as it is.
+  bool keepFile = false;
 };
 
 /// Reads the file; a missing file gives the defaults and no warning. A bad line is skipped with
-/// a warning and the rest is kept.
+/// a warning and the rest is kept. A file that cannot be read gives the defaults, a warning and
+/// keepFile.
 LoadedSettings loadUserSettings(const std::filesystem::path& file);
 /// Writes through fileio::writeAtomically, creating the folder first; throws fileio::FileError
 /// (a std::runtime_error) naming the file and the reason when it cannot.

@@ -170,6 +170,24 @@ TEST_F(UserSettingsTest, AMissingFileGivesTheDefaultsQuietly) {
   EXPECT_TRUE(loaded.settings.recentFiles.empty());
 }
 
+// A file that is there but cannot be read is the user's still: the sandbox must not replace it with
+// the defaults on exit (keepFile). Too large and a folder stand for every reason, permission
+// included, that CI's root would not meet.
+TEST_F(UserSettingsTest, AFileThatCannotBeReadIsKeptAsItIs) {
+  const fs::path large = write("large.ini", "width = 800\n" + std::string(std::size_t{2} << 20, '#') + "\n");
+  fs::create_directories(dir_ / "folder.ini");
+  for (const fs::path& file : {large, dir_ / "folder.ini"}) {
+    const auto loaded = sandbox::loadUserSettings(file);
+    EXPECT_TRUE(loaded.keepFile) << file;
+    ASSERT_EQ(loaded.warnings.size(), 1u) << file;
+    EXPECT_TRUE(containsAll(loaded.warnings[0], {file.string().c_str(), "leaving the file as it is"}))
+        << loaded.warnings[0];
+    EXPECT_EQ(loaded.settings.windowWidth, UserSettings().windowWidth);
+  }
+  EXPECT_FALSE(sandbox::loadUserSettings(dir_ / "never-written.ini").keepFile);
+  EXPECT_FALSE(sandbox::loadUserSettings(write("bad.ini", "width = wide\n")).keepFile);  // read, line skipped
+}
+
 TEST_F(UserSettingsTest, ALoadedRecentListIsDedupedAndCapped) {
   std::string text = "recent = /dup.xml\nrecent = /dup.xml\n";
   for (int i = 0; i < 20; ++i) text += "recent = /f" + std::to_string(i) + ".xml\n";
