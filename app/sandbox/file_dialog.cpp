@@ -105,6 +105,7 @@ TypedPath resolveTypedPath(FileDialogMode mode, const fs::path& folder, std::str
   } else {
     out.action = TypedPath::Action::Choose;
     out.path = path;
+    out.replaces = mode == FileDialogMode::Save && fs::exists(path, ec);
   }
   return out;
 }
@@ -125,6 +126,7 @@ void FileDialog::enterFolder(const fs::path& folder) {
   folder_ = cleanFolder(folder);
   entries_ = listDirectory(folder_, extension_, &listError_);
   message_.clear();
+  replacing_.clear();
   // A name typed for saving should follow the user into the new folder; a file picked for
   // opening belonged to the old one.
   const std::string name =
@@ -136,6 +138,12 @@ std::optional<fs::path> FileDialog::accept() {
   const TypedPath result = resolveTypedPath(mode_, folder_, typed_, extension_);
   switch (result.action) {
     case TypedPath::Action::Choose:
+      // A recording saved as "ragdoll.xml" replaced the scene without a word: ask once.
+      if (result.replaces && result.path != replacing_) {
+        replacing_ = result.path;
+        message_ = result.path.filename().string() + " exists: Replace writes over it";
+        return std::nullopt;
+      }
       return result.path;
     case TypedPath::Action::EnterFolder:
       typed_[0] = '\0';  // the text was the folder itself; keeping it would point inside itself
@@ -188,6 +196,7 @@ std::optional<fs::path> FileDialog::draw() {
       if (ImGui::Selectable(entry.name.c_str(), selected, flags)) {
         std::snprintf(typed_, sizeof typed_, "%s", full.string().c_str());
         message_.clear();
+        replacing_.clear();
         // Only a double click on the file already picked confirms: the second click of a
         // double click on a folder lands on whatever the new listing shows in its place.
         if (selected && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) chosen = accept();
@@ -204,8 +213,10 @@ std::optional<fs::path> FileDialog::draw() {
   // field takes the keyboard back so the user can keep typing.
   const bool enterPressed =
       ImGui::InputText("##path", typed_, sizeof typed_, ImGuiInputTextFlags_EnterReturnsTrue);
+  if (ImGui::IsItemEdited()) replacing_.clear();            // another name: the question was of the old one
   ImGui::TextColored(kErrorColor, "%s", message_.c_str());  // an empty line keeps the layout still
-  if (ImGui::Button(mode_ == FileDialogMode::Open ? "Open" : "Save") || enterPressed) chosen = accept();
+  const char* button = mode_ == FileDialogMode::Open ? "Open" : replacing_.empty() ? "Save" : "Replace";
+  if (ImGui::Button(button) || enterPressed) chosen = accept();
   focusPath_ = enterPressed && !chosen;
   ImGui::SameLine();
   if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))

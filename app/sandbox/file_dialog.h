@@ -30,6 +30,7 @@ struct TypedPath {
   Action action = Action::Refuse;
   std::filesystem::path path;  ///< the folder to enter or the file chosen
   std::string message;         ///< why it was refused
+  bool replaces = false;       ///< Save chose a file that exists: the dialog asks before writing over it
 };
 TypedPath resolveTypedPath(FileDialogMode mode, const std::filesystem::path& folder, std::string_view typed,
                            std::string_view extension = ".xml");
@@ -42,7 +43,8 @@ class FileDialog {
             std::string_view extension = ".xml");
   bool isOpen() const { return open_; }
   /// Draws the dialog if it is open (inside an ImGui frame). Returns the chosen path once, on the
-  /// frame the user confirms; the dialog then closes.
+  /// frame the user confirms; the dialog then closes. Save onto a file that exists only says so,
+  /// and its button turns to Replace: a second press writes over it.
   std::optional<std::filesystem::path> draw();
 
  private:
@@ -59,8 +61,9 @@ class FileDialog {
   std::vector<DirectoryEntry> entries_;
   std::string listError_;
   char typed_[1024] = {};
-  bool focusPath_ = false;  ///< give the path field the keyboard on the next frame
-  std::string message_;     ///< why the typed path was refused, shown under the field
+  bool focusPath_ = false;           ///< give the path field the keyboard on the next frame
+  std::string message_;              ///< why the typed path was refused, shown under the field
+  std::filesystem::path replacing_;  ///< the existing file the next Save writes over; empty: none asked
 };
 
 }  // namespace sandbox

@@ -112,9 +112,11 @@ TEST(FileDialogTypedPath, SaveWantsAnExistingFolderAndAddsXml) {
   EXPECT_EQ(sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "run", ".jrec").path,
             dir.path / "run.jrec");
 
+  EXPECT_FALSE(plain.replaces);
   dir.touch("old.xml");
-  EXPECT_EQ(sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "old.xml").action,
-            TypedPath::Action::Choose);  // replacing is the caller's question
+  const TypedPath old = sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "old.xml");
+  EXPECT_EQ(old.action, TypedPath::Action::Choose);
+  EXPECT_TRUE(old.replaces);  // the dialog asks first
 
   const TypedPath noFolder = sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "missing/x.xml");
   EXPECT_EQ(noFolder.action, TypedPath::Action::Refuse);
@@ -252,6 +254,34 @@ TEST_F(FileDialogUi, SaveAddsXml) {
   const auto chosen = press(kEnter);
   ASSERT_TRUE(chosen.has_value());
   EXPECT_EQ(*chosen, fs::absolute(dir.path / "mine.xml").lexically_normal());
+}
+
+// A recording saved as "ragdoll.xml" wrote over the scene without a word. Save onto a file that
+// exists now only says so; a second Save (the button reads Replace) writes over it, and another
+// name typed in between is asked about afresh.
+TEST_F(FileDialogUi, SaveAsksBeforeWritingOverAFile) {
+  TempFolder dir;
+  dir.touch("scene.xml");
+  dir.touch("other.xml");
+  dialog.open(FileDialogMode::Save, dir.path, kTitle, ".jrec");
+  settle();
+  type("scene.xml");
+  EXPECT_FALSE(press(kEnter).has_value());
+  EXPECT_TRUE(dialog.isOpen());
+  settle();
+  type("x");  // "scene.xmlx": a new file, chosen at once
+  const auto fresh = press(kEnter);
+  ASSERT_TRUE(fresh.has_value());
+  EXPECT_EQ(*fresh, fs::absolute(dir.path / "scene.xmlx").lexically_normal());
+
+  dialog.open(FileDialogMode::Save, dir.path, kTitle);
+  settle();
+  type("other");
+  EXPECT_FALSE(press(kEnter).has_value());
+  settle();
+  const auto replaced = press(kEnter);
+  ASSERT_TRUE(replaced.has_value());
+  EXPECT_EQ(*replaced, fs::absolute(dir.path / "other.xml").lexically_normal());
 }
 
 TEST_F(FileDialogUi, ClickingParentThenDoubleClickingAFileOpensIt) {
