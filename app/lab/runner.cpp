@@ -19,7 +19,21 @@ class WorldStepper final : public Stepper {
   phys::World& world_;
 };
 
+thread_local const std::atomic<bool>* tStopFlag = nullptr;
+
+void throwIfStopped() {
+  if (tStopFlag != nullptr && tStopFlag->load(std::memory_order_relaxed)) throw RunStopped();
+}
+
 }  // namespace
+
+StopOnFlag::StopOnFlag(const std::atomic<bool>& flag) : outer_(tStopFlag) {
+  tStopFlag = &flag;
+}
+
+StopOnFlag::~StopOnFlag() {
+  tStopFlag = outer_;
+}
 
 RunRecord runSteps(Stepper& stepper, const RunSpec& spec) {
   using Clock = std::chrono::steady_clock;
@@ -37,7 +51,10 @@ RunRecord runSteps(Stepper& stepper, const RunSpec& spec) {
   Clock::duration stepping{};
   if (!between) {
     const Clock::time_point start = Clock::now();
-    for (int i = 0; i < spec.steps; ++i) stepper.step();
+    for (int i = 0; i < spec.steps; ++i) {
+      stepper.step();
+      throwIfStopped();
+    }
     stepping = Clock::now() - start;
     r.stepsRun = spec.steps;
   }
@@ -46,6 +63,7 @@ RunRecord runSteps(Stepper& stepper, const RunSpec& spec) {
     const Clock::time_point start = Clock::now();
     stepper.step();
     const Clock::duration took = Clock::now() - start;
+    throwIfStopped();
     stepping += took;
     r.stepsRun = i;
     if (spec.stepTimes) r.stepMs.push_back(std::chrono::duration<double, std::milli>(took).count());

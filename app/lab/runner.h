@@ -4,6 +4,8 @@
 // runSteps, asking for what it needs: the bodies' poses at checkpoints, the figures of
 // run_metrics.h after every step, each step's time, the physics' own profile, or a look after
 // every step that may stop the run. Only the steps are timed; what is read between them is not.
+#include <atomic>
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -50,6 +52,25 @@ class Stepper {
   virtual std::vector<phys::Quat> orientations() const = 0;
   /// Our world, for what only it has (energy, the figures, the profile); nullptr for a peer.
   virtual const phys::World* world() const { return nullptr; }
+};
+
+/// What runSteps throws, after the step under way, once the flag of a StopOnFlag on its thread is set.
+struct RunStopped : std::exception {
+  const char* what() const noexcept override { return "the run was stopped"; }
+};
+
+/// While one lives, every runSteps on its thread checks `flag` after each step and throws
+/// RunStopped once it is set: how the sandbox's Lab sweep, on a thread of its own, stops within a
+/// step, where a setting of a big scene (its reference at 128 substeps) took half a minute.
+class StopOnFlag {
+ public:
+  explicit StopOnFlag(const std::atomic<bool>& flag);
+  ~StopOnFlag();
+  StopOnFlag(const StopOnFlag&) = delete;
+  StopOnFlag& operator=(const StopOnFlag&) = delete;
+
+ private:
+  const std::atomic<bool>* outer_;  ///< the one it hides, back in place when it dies
 };
 
 /// Steps as the spec says. Reserves what it records before the first step; a peer's exception

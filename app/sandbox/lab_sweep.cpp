@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "accuracy.h"  // the lab's (lab_core)
+#include "runner.h"    // the lab's
 #include "scenes/scene.h"
 #include "sweep_core.h"  // the lab's
 
@@ -32,7 +33,7 @@ void LabSweep::start(const std::filesystem::path& file) {
 }
 
 void LabSweep::cancel() {
-  stop_.store(true);  // it stops after the setting it is on; running() says when
+  stop_.store(true);  // it stops after the step it is on; running() says when
 }
 
 void LabSweep::stop() {
@@ -52,6 +53,7 @@ std::string LabSweep::error() const {
 }
 
 void LabSweep::run() {
+  const lab::StopOnFlag stopWithin(stop_);  // every run below stops after the step it is on
   try {
     const scenes::Scene scene = scenes::loadSceneFile(file_);
     const double dt = scene.world.solverSettings().dt;
@@ -80,6 +82,8 @@ void LabSweep::run() {
       }
       done_.fetch_add(1);
     }
+  } catch (const lab::RunStopped&) {
+    // cancelled or closing: the setting under way is dropped, and that is no error
   } catch (const std::exception& e) {
     const std::lock_guard<std::mutex> lock(mutex_);
     error_ = e.what();

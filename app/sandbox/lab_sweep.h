@@ -2,7 +2,7 @@
 // The Lab panel's sweep (docs/sandbox.md, "Lab"): the open scene's file under each method x
 // iterations x substeps of a small grid, measured by the lab's own functions (lab::measureFigures
 // against lab::accuracyTarget, lab::timeSetting), the same figures `lab sweep` writes, on a
-// thread of its own so the window goes on; cancelled between settings.
+// thread of its own so the window goes on; cancelled within a step (lab::StopOnFlag).
 #include <atomic>
 #include <filesystem>
 #include <mutex>
@@ -38,8 +38,8 @@ class LabSweep {
   /// Starts sweeping `file` (at its own dt, over lab sweep's default horizon); drops what an
   /// earlier sweep found.
   void start(const std::filesystem::path& file);
-  /// Asks it to stop after the setting it is measuring (which can take a while on a big scene);
-  /// returns at once, so the window goes on.
+  /// Asks it to stop after the step it is on, dropping the setting it was measuring; returns at
+  /// once, so the window goes on.
   void cancel();
   bool cancelling() const { return stop_.load() && running(); }
   bool running() const { return running_.load(); }
