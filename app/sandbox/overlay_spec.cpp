@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace sandbox {
 namespace {
@@ -89,7 +90,11 @@ ParsedOverlaySpec parseOverlaySpec(std::string_view text) {
     } else if (key == "slop") {
       real(spec.slop);
     } else if (key == "depenetration-speed") {
-      real(spec.depenetrationSpeed);
+      if (value == "none") {  // no limit, as <solver depenetration-speed="none">
+        spec.depenetrationSpeed = std::numeric_limits<double>::infinity();
+      } else {
+        real(spec.depenetrationSpeed);
+      }
     } else {
       out.error =
           "unknown key '" + key +

@@ -1,4 +1,6 @@
 // The method overlay's settings strings: "key=value,..." with <solver>'s attribute names.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "overlay_spec.h"
@@ -63,6 +65,12 @@ TEST(OverlaySpec, DepenetrationSpeedIsAKeyToo) {
   const auto parsed = sandbox::parseOverlaySpec("depenetration-speed=0.5");
   ASSERT_EQ(parsed.error, "");
   EXPECT_EQ(parsed.spec.applyTo({}).maxDepenetrationSpeed, 0.5);
+  // "none" is no limit, as <solver>'s own name for it; other words are still refused.
+  const auto none = sandbox::parseOverlaySpec("depenetration-speed=none");
+  ASSERT_EQ(none.error, "");
+  EXPECT_TRUE(std::isinf(none.spec.applyTo({}).maxDepenetrationSpeed));
+  EXPECT_EQ(sandbox::parseOverlaySpec("depenetration-speed=inf").error,
+            "depenetration-speed: 'inf' is not a number");
 }
 
 }  // namespace
