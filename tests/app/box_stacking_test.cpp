@@ -147,18 +147,18 @@ TEST(BoxContact, ThousandRandomOverlapsSeparateWithoutSpeed) {
 
 // The largest distance any box moved between two moments, in units of its own size.
 struct Standing {
-  double topDrift;    // m, the last box of the scene, from 2 s to 10 s
+  double topDrift;    // m, the last box of the scene, from 2 s to the end
   double worstDrift;  // the largest drift of any box over its smallest edge
   double maxPenetration;
 };
 
-Standing standFor10Seconds(scenes::Scene scene) {
+Standing standFor(scenes::Scene scene, double seconds = 10.0) {
   phys::World& w = scene.world;
   while (w.time() < 2.0) w.step();
   std::vector<Vec3> settled;
   for (phys::BodyId b{}; b < w.bodies().size(); ++b) settled.push_back(w.bodyPose(b).center);
   Standing s{0.0, 0.0, 0.0};
-  while (w.time() < 10.0) {
+  while (w.time() < seconds) {
     w.step();
     s.maxPenetration = std::max(s.maxPenetration, w.metrics().maxPenetration);
   }
@@ -174,7 +174,7 @@ Standing standFor10Seconds(scenes::Scene scene) {
 }
 
 TEST(Stacking, TenBoxStackStandsFor10Seconds) {
-  const Standing s = standFor10Seconds(projectScene("stack"));
+  const Standing s = standFor(projectScene("stack"));
   std::printf(
       "stack of 10 (1 iteration x 8 substeps): top drift %.5f m from 2 s to 10 s, max overlap %.4f m\n",
       s.topDrift, s.maxPenetration);
@@ -183,7 +183,7 @@ TEST(Stacking, TenBoxStackStandsFor10Seconds) {
 }
 
 TEST(Stacking, SeedsBoxOfBoxesStandsFor10Seconds) {
-  const Standing s = standFor10Seconds(projectScene("box-of-boxes"));
+  const Standing s = standFor(projectScene("box-of-boxes"));
   std::printf(
       "box of boxes (3 iterations, 1 substep): worst drift %.4f of a box's size, max overlap %.4f m\n",
       s.worstDrift, s.maxPenetration);
@@ -191,13 +191,16 @@ TEST(Stacking, SeedsBoxOfBoxesStandsFor10Seconds) {
   EXPECT_LT(s.maxPenetration, 0.01);
 }
 
-TEST(Stacking, SeedsPyramidStandsFor10Seconds) {
-  const Standing s = standFor10Seconds(projectScene("pyramid"));
+// For a minute, not 10 s: at 10 iterations x 1 substep, its settings before, it crept 2% of a box
+// in the first 10 s and 20% in the minute. At 1 x 8 it comes to rest (0.005%); the bound, 1%,
+// is what "stands" means here.
+TEST(Stacking, SeedsPyramidStandsForAMinute) {
+  const Standing s = standFor(projectScene("pyramid"), 60.0);
   std::printf(
-      "pyramid of 15 boxes that vary in size (10 iterations, 1 substep): worst drift %.4f of a box's size, "
-      "max overlap %.4f m\n",
+      "pyramid of 15 boxes that vary in size (1 iteration x 8 substeps): worst drift %.6f of a box's size "
+      "from 2 s to 60 s, max overlap %.4f m\n",
       s.worstDrift, s.maxPenetration);
-  EXPECT_LT(s.worstDrift, 0.05);
+  EXPECT_LT(s.worstDrift, 0.01);
   EXPECT_LT(s.maxPenetration, 0.01);
 }
 
@@ -283,7 +286,7 @@ TEST(Stacking, TenBoxStackAtTheSeedsSettingsDoesNotStand) {
   seed.iterations = 3;
   seed.substeps = 1;
   scene.world.setSolverSettings(seed);
-  const Standing s = standFor10Seconds(std::move(scene));
+  const Standing s = standFor(std::move(scene));
   std::printf("stack of 10 at 3 iterations x 1 substep: top drift %.3f m\n", s.topDrift);
   EXPECT_GT(s.topDrift, 0.05);
 }
