@@ -84,7 +84,8 @@ Metrics World::metrics() const {
     m.kineticEnergy += 0.5 * mass * glm::dot(r.velocity[i], r.velocity[i]) +
                        0.5 * glm::dot(spin, spin / r.inverseInertia[i]);
     m.potentialEnergy += potential(mass, 0.5 * (r.position[i] + r.previousPosition[i]));
-    // The fastest point: the centre's speed and the turning of the farthest corner.
+    // A bound on the fastest point (the centre's speed and the turning of the farthest corner),
+    // as sleeping measures rest: loose for a spin about the long axis, never under.
     const Body& body = bodies_[r.body[i]];
     m.maxSpeed = maxOf(m.maxSpeed, glm::length(r.velocity[i]) +
                                        glm::length(r.angularVelocity[i]) * glm::length(body.halfExtents));

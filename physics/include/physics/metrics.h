@@ -18,7 +18,7 @@ struct Metrics {
   Real rmsConstraintError = 0.0;  ///< unitless; root mean square of the same
   Real maxJointError = 0.0;   ///< unit: m; max over links of the distance outside [min, max] (a pin's gap)
   Real maxPenetration = 0.0;  ///< unit: m; deepest point below the ground or inside another box now
-  Real maxSpeed = 0.0;        ///< unit: m/s; the fastest point; a sleeping body's is 0
+  Real maxSpeed = 0.0;        ///< unit: m/s; fastest particle, or rigid |v| + |w| half diagonal; asleep 0
   int contacts = 0;           ///< ground contact points pushed, and box-box contact points, in the last step
   int frozen = 0;             ///< particles frozen by the guard so far
 
