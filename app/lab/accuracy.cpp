@@ -15,10 +15,10 @@
 // being judged cannot come near it: `shake`, 128 substeps of 4 passes, at the same dt (so a
 // dt sweep compares each dt with its own reference, at the same checkpoint steps).
 //  - shake, because it is the second-order method for sticks: on the 2 m pendulum released at
-//    90 degrees its 64-substep run is 3e-7 m from the exact (elliptic-function) answer after
-//    1 s and falls 16 times per 4 times the substeps, while gauss-seidel and xpbd, whose
-//    projection bleeds energy at O(h), are still 2.7e-3 m off at 64 substeps and 6.8e-4 m at
-//    256 (measured with this file's runs against assets/scenes/pendulum-exact.xml's answers).
+//    90 degrees its 64-substep run is 3.3e-7 m from the exact (elliptic-function) answer at
+//    worst over 2 s and falls 16 times per 4 times the substeps, while gauss-seidel and xpbd,
+//    whose projection bleeds energy at O(h), are still 0.011 m off at 64 substeps and 2.8e-3 m
+//    at 256 (`lab sweep pendulum-exact --methods gauss-seidel,xpbd,shake --substeps 64,256`).
 //    xpbd instead when the scene asks for compliance, which only xpbd honours.
 //  - Substeps rather than passes (Macklin et al. 2019, "Small Steps"), but not one pass: over
 //    2 s at 64 substeps, the 20-link chain with its 100:1 end mass still moved 1.3e-2 m between

@@ -267,28 +267,70 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
 
 // ---- the report on stdout ---------------------------------------------------------------------
 
-// A figure wider than its column still gets a space on its side, so that no two run together
-// ("1.23456e-05101250" was a dt and a step count).
-std::string pad(std::string text, std::size_t width) {
-  text.append(text.size() < width ? width - text.size() : 1, ' ');
-  return text;
-}
+// A line of the table: columns of fixed widths, each figure set apart from the one before by at
+// least a space. A figure wider than its column pushes what follows right only as far as it must,
+// and the line is back in its columns where later figures leave room ("1.00001e-05101666" was a dt
+// run into a step count).
+class TableLine {
+ public:
+  TableLine& left(const std::string& text, std::size_t width) {
+    gapTo(end_);
+    line_ += text;
+    end_ += width;
+    return *this;
+  }
+  TableLine& right(const std::string& text, std::size_t width) {
+    end_ += width;
+    gapTo(end_ > text.size() ? end_ - text.size() : 0);
+    line_ += text;
+    return *this;
+  }
+  TableLine& skip(std::size_t width) {
+    end_ += width;
+    return *this;
+  }
+  /// Text right after the last column, with no gap of its own (the Pareto front's mark).
+  TableLine& append(const std::string& text) {
+    line_ += text;
+    return *this;
+  }
+  std::string str() const { return line_ + "\n"; }
 
-std::string padLeft(const std::string& text, std::size_t width) {
-  return std::string(text.size() < width ? width - text.size() : 1, ' ') + text;
+ private:
+  void gapTo(std::size_t column) {
+    const bool touching = !line_.empty() && line_.back() != ' ';
+    const std::size_t spaces = column > line_.size() ? column - line_.size() : touching ? 1 : 0;
+    line_.append(spaces, ' ');
+  }
+
+  std::string line_;
+  std::size_t end_ = 0;  ///< where the last column ends when nothing overflowed
+};
+
+// The columns: method, model, iterations, substeps, dt, steps, ms/step, error, stick error,
+// penetration, energy drift, frozen; the header and the rows through the same widths.
+TableLine tableColumns(const std::string& method, const std::string& model, const std::string& iterations,
+                       const std::string& substeps, const std::string& dt, const std::string& steps,
+                       const std::string& ms, const std::string& error, const std::string& stick,
+                       const std::string& penetration, const std::string& drift, const std::string& frozen) {
+  TableLine t;
+  t.left(method, 14).left(model, 12).right(iterations, 5).right(substeps, 5).skip(2).left(dt, 10);
+  t.right(steps, 6).right(ms, 10).right(error, 11).right(stick, 10).right(penetration, 10).right(drift, 10);
+  t.right(frozen, 7);
+  return t;
 }
 
 std::string tableLine(const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("-"); };
   auto ours = [&](double v) { return r.peer ? std::string("-") : formatNumber(v, 3); };
-  return pad(r.method, 13) + " " + pad(r.model.empty() ? "-" : r.model, 12) + padLeft(opt(r.iterations), 5) +
-         padLeft(opt(r.substeps), 5) + "  " + pad(formatNumber(r.dt, 6), 10) +
-         padLeft(std::to_string(r.steps), 6) + padLeft(formatNumber(r.msPerStep, 4), 10) +
-         padLeft(formatNumber(r.blewUp() ? kInf : r.figures.error, 3), 11) +
-         padLeft(ours(r.figures.maxima[kStickErrorMetric]), 10) +
-         padLeft(formatNumber(r.figures.maxima[kPenetrationMetric], 3), 10) +
-         padLeft(ours(r.figures.energyDrift), 10) +
-         padLeft(r.peer ? "-" : std::to_string(r.figures.frozen), 7) + (r.pareto ? "  *" : "") + "\n";
+  TableLine t = tableColumns(r.method, r.model.empty() ? "-" : r.model, opt(r.iterations), opt(r.substeps),
+                             formatNumber(r.dt, 6), std::to_string(r.steps), formatNumber(r.msPerStep, 4),
+                             formatNumber(r.blewUp() ? kInf : r.figures.error, 3),
+                             ours(r.figures.maxima[kStickErrorMetric]),
+                             formatNumber(r.figures.maxima[kPenetrationMetric], 3),
+                             ours(r.figures.energyDrift), r.peer ? "-" : std::to_string(r.figures.frozen));
+  if (r.pareto) t.append("  *");
+  return t.str();
 }
 
 void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows,
@@ -299,10 +341,9 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
       << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
-  out << pad("method", 13) << " " << pad("model", 12) << padLeft("iter", 5) << padLeft("sub", 5) << "  "
-      << pad("dt (s)", 10) << padLeft("steps", 6) << padLeft("ms/step", 10) << padLeft("error (m)", 11)
-      << padLeft("stick err", 10) << padLeft("penet (m)", 10) << padLeft("drift (J)", 10)
-      << padLeft("frozen", 7) << "\n";
+  out << tableColumns("method", "model", "iter", "sub", "dt (s)", "steps", "ms/step", "error (m)",
+                      "stick err", "penet (m)", "drift (J)", "frozen")
+             .str();
   for (const Row& r : rows) out << tableLine(r);
 }
 

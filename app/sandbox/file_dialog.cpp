@@ -213,7 +213,10 @@ std::optional<fs::path> FileDialog::draw() {
   // field takes the keyboard back so the user can keep typing.
   const bool enterPressed =
       ImGui::InputText("##path", typed_, sizeof typed_, ImGuiInputTextFlags_EnterReturnsTrue);
-  if (ImGui::IsItemEdited()) replacing_.clear();            // another name: the question was of the old one
+  if (ImGui::IsItemEdited() && !replacing_.empty()) {  // another name: the question was of the old one
+    replacing_.clear();
+    message_.clear();
+  }
   ImGui::TextColored(kErrorColor, "%s", message_.c_str());  // an empty line keeps the layout still
   const char* button = mode_ == FileDialogMode::Open ? "Open" : replacing_.empty() ? "Save" : "Replace";
   if (ImGui::Button(button) || enterPressed) chosen = accept();

@@ -46,6 +46,8 @@ class FileDialog {
   /// frame the user confirms; the dialog then closes. Save onto a file that exists only says so,
   /// and its button turns to Replace: a second press writes over it.
   std::optional<std::filesystem::path> draw();
+  /// What the line under the path field says: why a path was refused, or that Save would replace a file.
+  const std::string& message() const { return message_; }
 
  private:
   // see file_dialog.cpp

@@ -160,8 +160,11 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
         const ParsedOverlaySpec parsed = parseOverlaySpec(args[++i]);
         if (!parsed.error.empty()) {
           out.error = "--overlay: " + parsed.error;
-          // A word with no '=' is most likely the scene, written after the settings took over.
-          if (args[i].find('=') == std::string::npos) out.error += " (a scene goes before --overlay)";
+          // With no scene yet, a plain word with no '=' is most likely the scene, written after
+          // the settings took over.
+          const std::string& word = args[i];
+          if (o.scene.empty() && !word.empty() && word.find('=') == std::string::npos && word.front() != '-')
+            out.error += " (a scene goes before --overlay)";
           return out;
         }
         o.overlay.push_back(parsed.spec);

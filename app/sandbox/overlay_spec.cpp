@@ -93,7 +93,8 @@ ParsedOverlaySpec parseOverlaySpec(std::string_view text) {
       if (value == "none") {  // no limit, as <solver depenetration-speed="none">
         spec.depenetrationSpeed = std::numeric_limits<double>::infinity();
       } else {
-        real(spec.depenetrationSpeed);
+        spec.depenetrationSpeed = parseDouble(value);
+        if (!spec.depenetrationSpeed) bad("must be a number > 0 (m/s) or none");  // the loader's words
       }
     } else {
       out.error =

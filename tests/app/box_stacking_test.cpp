@@ -191,8 +191,8 @@ TEST(Stacking, SeedsBoxOfBoxesStandsFor10Seconds) {
   EXPECT_LT(s.maxPenetration, 0.01);
 }
 
-// For a minute, not 10 s: at 10 iterations x 1 substep, its settings before, it crept 2% of a box
-// in the first 10 s and 20% in the minute. At 1 x 8 it comes to rest (0.005%); the bound, 1%,
+// For a minute, not 10 s: at 10 iterations x 1 substep, its settings before, its worst box crept
+// 2% of its size in the first 10 s and 20% in the minute. At 1 x 8 it comes to rest (0.005%); the bound, 1%,
 // is what "stands" means here.
 TEST(Stacking, SeedsPyramidStandsForAMinute) {
   const Standing s = standFor(projectScene("pyramid"), 60.0);

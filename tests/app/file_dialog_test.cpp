@@ -258,21 +258,27 @@ TEST_F(FileDialogUi, SaveAddsXml) {
 
 // A recording saved as "ragdoll.xml" wrote over the scene without a word. Save onto a file that
 // exists now only says so; a second Save (the button reads Replace) writes over it, and another
-// name typed in between is asked about afresh.
+// name typed in between, even of a file that exists too, is asked about afresh.
 TEST_F(FileDialogUi, SaveAsksBeforeWritingOverAFile) {
   TempFolder dir;
   dir.touch("scene.xml");
+  dir.touch("scene.xmlx");
   dir.touch("other.xml");
   dialog.open(FileDialogMode::Save, dir.path, kTitle, ".jrec");
   settle();
   type("scene.xml");
   EXPECT_FALSE(press(kEnter).has_value());
   EXPECT_TRUE(dialog.isOpen());
+  EXPECT_NE(dialog.message().find("scene.xml exists"), std::string::npos) << dialog.message();
   settle();
-  type("x");  // "scene.xmlx": a new file, chosen at once
-  const auto fresh = press(kEnter);
-  ASSERT_TRUE(fresh.has_value());
-  EXPECT_EQ(*fresh, fs::absolute(dir.path / "scene.xmlx").lexically_normal());
+  type("x");  // "scene.xmlx": the question was of scene.xml, and goes with it
+  EXPECT_EQ(dialog.message(), "");
+  EXPECT_FALSE(press(kEnter).has_value());  // asked again, of scene.xmlx
+  EXPECT_NE(dialog.message().find("scene.xmlx exists"), std::string::npos) << dialog.message();
+  settle();
+  const auto second = press(kEnter);
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(*second, fs::absolute(dir.path / "scene.xmlx").lexically_normal());
 
   dialog.open(FileDialogMode::Save, dir.path, kTitle);
   settle();

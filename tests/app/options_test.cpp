@@ -70,6 +70,8 @@ TEST(Options, BadDrawOverlayAndPauseAtSayWhat) {
             "--overlay needs 2 to 4 settings, got 1");
   EXPECT_EQ(sandbox::parseOptions({"--overlay", "iterations=3", "substeps=2", "pendulum"}).error,
             "--overlay: 'pendulum' is not key=value (a scene goes before --overlay)");
+  EXPECT_EQ(sandbox::parseOptions({"chain", "--overlay", "iterations=3", "substeps=2", "pendulum"}).error,
+            "--overlay: 'pendulum' is not key=value");  // a scene was given: no such guess
   EXPECT_EQ(sandbox::parseOptions({"--overlay", "a=1", "b=2", "c=3", "d=4", "e=5"}).error.substr(0, 19),
             "--overlay: unknown ");
   EXPECT_EQ(sandbox::parseOptions({"--overlay", "iterations=0", "iterations=2"}).error.substr(0, 25),

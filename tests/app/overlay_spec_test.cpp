@@ -70,7 +70,7 @@ TEST(OverlaySpec, DepenetrationSpeedIsAKeyToo) {
   ASSERT_EQ(none.error, "");
   EXPECT_TRUE(std::isinf(none.spec.applyTo({}).maxDepenetrationSpeed));
   EXPECT_EQ(sandbox::parseOverlaySpec("depenetration-speed=inf").error,
-            "depenetration-speed: 'inf' is not a number");
+            "depenetration-speed: 'inf' must be a number > 0 (m/s) or none");
 }
 
 }  // namespace

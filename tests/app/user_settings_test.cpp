@@ -173,7 +173,7 @@ TEST_F(UserSettingsTest, AMissingFileGivesTheDefaultsQuietly) {
 // A file that is there but cannot be read is the user's still: the sandbox must not replace it with
 // the defaults on exit (keepFile). Too large and a folder stand for every reason, permission
 // included, that CI's root would not meet.
-TEST_F(UserSettingsTest, AFileThatCannotBeReadIsKeptAsItIs) {
+TEST_F(UserSettingsTest, AFileThatCannotBeReadIsMarkedToBeKept) {
   const fs::path large = write("large.ini", "width = 800\n" + std::string(std::size_t{2} << 20, '#') + "\n");
   fs::create_directories(dir_ / "folder.ini");
   for (const fs::path& file : {large, dir_ / "folder.ini"}) {
