@@ -71,7 +71,7 @@ void Guard::checkParticles(const GuardInput& in, Real bound, const Workers* work
       freeze(in, id, "non-finite position");
     } else if (!finite(particles.previous[i])) {
       freeze(in, id, "non-finite velocity");  // x - x*, and so the metrics, must stay finite too
-    } else if (std::abs(x.x) > bound || std::abs(x.y) > bound || std::abs(x.z) > bound) {
+    } else if (!insideBound(x, bound)) {
       char reason[64];
       std::snprintf(reason, sizeof reason, "left the world bound of %g m", bound);
       freeze(in, id, reason);
@@ -154,7 +154,7 @@ void Guard::checkRigidBodies(RigidBodies& rigid, std::span<const Body> bodies, R
       reason = "non-finite pose";
     } else if (!finite(rigid.velocity[i]) || !finite(rigid.angularVelocity[i])) {
       reason = "non-finite velocity";
-    } else if (std::abs(x.x) > bound || std::abs(x.y) > bound || std::abs(x.z) > bound) {
+    } else if (!insideBound(x, bound)) {
       char text[64];
       std::snprintf(text, sizeof text, "left the world bound of %g m", bound);
       reason = text;

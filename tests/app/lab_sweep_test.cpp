@@ -63,7 +63,6 @@ TEST(LabSweep, CancelStopsItAndABadFileSaysWhy) {
   lab.start(scene("ragdolls"));
   std::this_thread::sleep_for(20ms);
   lab.cancel();  // returns at once; the setting being measured is dropped after its step
-  EXPECT_TRUE(lab.cancelling() || !lab.running());  // it may have unwound already
   for (int i = 0; i < 600000 && lab.running(); ++i) std::this_thread::sleep_for(1ms);
   EXPECT_FALSE(lab.running());
   EXPECT_LT(lab.done(), 48);
