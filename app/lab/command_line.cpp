@@ -327,16 +327,24 @@ std::vector<std::string> CommandLine::positionalWords() const {
 
 std::string CommandLine::parse(const std::vector<std::string>& args) {
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+  // The first word CLI11 did not take; it keeps a "--" it passed in remaining().
+  auto firstExtra = [this] {
+    std::vector<std::string> extras = app_->remaining();
+    extras.erase(std::remove(extras.begin(), extras.end(), "--"), extras.end());
+    return extras.empty() ? std::string() : extras.front();
+  };
+  auto isOption = [](const std::string& word) { return word.size() > 1 && word[0] == '-'; };
   try {
     app_->parse(reversed);
   } catch (const OptionError& e) {
+    // An unknown option's value can be read as the positional ("lab scale --data DIR" read DIR as
+    // a KIND): the unknown option is the mistake to name.
+    if (const std::string extra = firstExtra(); isOption(extra)) return "unknown option '" + extra + "'";
     return e.what();
   } catch (const CLI::ExtrasError&) {
-    // CLI11 keeps a "--" it passed in remaining(); the extra is the first word after it.
-    std::vector<std::string> extras = app_->remaining();
-    extras.erase(std::remove(extras.begin(), extras.end(), "--"), extras.end());
-    const std::string extra = extras.empty() ? std::string("?") : extras.front();
-    if (extra.size() > 1 && extra[0] == '-') return "unknown option '" + extra + "'";
+    std::string extra = firstExtra();
+    if (extra.empty()) extra = "?";
+    if (isOption(extra)) return "unknown option '" + extra + "'";
     if (const std::vector<std::string> given = positionalWords(); !given.empty()) {
       return command_ + " takes one " + positionalName_ + "; got '" + given.front() + "' and '" + extra + "'";
     }

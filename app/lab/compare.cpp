@@ -48,7 +48,7 @@ void describeCompare(CommandLine& line, CompareOptions& o) {
               "(rigid: ragdolls too), for ours and for the scene the peers are given");
   line.option(option::kIterations, o.run.iterations, "for ours (default: the scene's)");
   line.option(option::kSubsteps, o.run.substeps, "for ours (default: the scene's)");
-  line.option(option::kRepeat, o.repeats, "timed runs of each of ours, the median kept (default 1)");
+  line.option(option::kRepeat, o.repeats, "(of ours; default 1)");
   line.option(
       option::kSleep, o.run.sleep,
       "(ours and the peers'; default off: every engine steps every body, so costs compare awake with awake)");

@@ -20,7 +20,8 @@ void describeOptions(CommandLine& line, StabilityOptions& o) {
   line.option(option::kMethods, o.methods, "(default: all four)");
   line.option(option::kIterations, o.iterations, "(default 1,3,10)");
   line.option(option::kSubsteps, o.substeps, "(default 1,4,16)");
-  line.models(o.models, false, "(ragdolls: seed, lean, rigid; default: each file's own)");
+  line.models(o.models, false,
+              "(ragdolls take their kind's: corners seed, tetra lean; default: each file's own)");
   line.custom(
       option::kScene, true,
       [&o](const std::string& text) {

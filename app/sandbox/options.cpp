@@ -49,7 +49,7 @@ std::string usage() {
          "  SCENE              a scene file, or the name of one in assets/scenes/ (default: the\n"
          "                     scene open when the sandbox last closed, else ragdoll; a\n"
          "                     screenshot's is always ragdoll)\n"
-         "  --screenshot FILE  render N frames, write them to FILE as PNG and exit\n"
+         "  --screenshot FILE  render N frames, write the last to FILE as PNG and exit\n"
          "  --frames N         frames before the screenshot, 1 to 1000000 (default 60);\n"
          "                     each frame advances the simulation by one step\n"
          "  --draw MODE        filled, wireframe or constraints (default: the last one used)\n"

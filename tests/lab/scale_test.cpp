@@ -180,6 +180,8 @@ TEST(Scale, BadArgumentsNameTheArgument) {
   lab_testing::expectUsageError(scale({"--out", ""}), "scale", "--out");
   lab_testing::expectUsageError(scale({"--save-scenes"}), "scale", "--save-scenes needs a folder");
   lab_testing::expectUsageError(scale({"--frobnicate"}), "scale", "unknown option '--frobnicate'");
+  // An unknown option's value, which the KIND would otherwise take: scale has no --data.
+  lab_testing::expectUsageError(scale({"--data", "/work"}), "scale", "unknown option '--data'");
 }
 
 TEST(Scale, AnUnwritableOutFolderIsRefusedBeforeAnyRun) {
