@@ -5,6 +5,8 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <system_error>
 
 #include "commands.h"
 #include "fileio/files.h"
@@ -15,8 +17,24 @@
 namespace lab {
 namespace {
 
+// What makes a dump unwritable that can be told before the run: its folder missing, or a folder
+// where the file would go. What only writing finds out is said after the report.
+std::string dumpProblem(const std::filesystem::path& file) {
+  std::error_code ec;
+  const std::filesystem::path folder = file.parent_path().empty() ? "." : file.parent_path();
+  if (!std::filesystem::is_directory(folder, ec)) return folder.string() + ": no such folder";
+  if (std::filesystem::is_directory(file, ec)) return file.string() + ": is a folder, not a file";
+  return {};
+}
+
 // Load, override, step, report, dump.
 int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  if (options.dump) {
+    if (const std::string problem = dumpProblem(*options.dump); !problem.empty()) {
+      err << "lab: --dump: " << problem << "\n";
+      return kExitFailure;
+    }
+  }
   scenes::Scene scene =
       scenes::loadSceneFile(sceneFile(options.scene, options.dataDir),
                             imposedAtLoad(options.model, options.sleep, options.jointProjection));

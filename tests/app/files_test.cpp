@@ -3,6 +3,7 @@
 // followed as documented, and every failure names the file and gives the OS's reason.
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -223,6 +224,34 @@ TEST(ReadWhole, SaysWhyItCannotRead) {
   EXPECT_NE(readError(folder.path / "big.txt", 1999).find("is larger than 1999 bytes"), std::string::npos);
   // A device without end is cut off at the limit instead of filling memory.
   EXPECT_NE(readError("/dev/zero").find("/dev/zero: is larger than"), std::string::npos);
+}
+
+// A named pipe nobody writes to held open() for ever (`lab run FIFO` hung): it reads as empty now.
+// In a child process with an alarm, so that a hang fails the test instead of holding it.
+TEST(ReadWhole, APipeWithNoWriterDoesNotHang) {
+  const TempFolder folder;
+  const fs::path fifo = folder.path / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::alarm(5);
+    _exit(fileio::readWhole(fifo, 100).empty() ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status)) << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0);
+}
+
+// A pipe that has a writer is read whole, as before: reads block again once it is open.
+TEST(ReadWhole, APipeWithAWriterIsReadWhole) {
+  int ends[2];
+  ASSERT_EQ(::pipe(ends), 0);
+  ASSERT_EQ(::write(ends[1], "<scene/>", 8), 8);
+  ::close(ends[1]);
+  EXPECT_EQ(fileio::readWhole("/dev/fd/" + std::to_string(ends[0]), 100), "<scene/>");
+  ::close(ends[0]);
 }
 
 TEST(ReadWhole, AnUnreadableFileGivesTheOsReason) {

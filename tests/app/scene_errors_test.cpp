@@ -288,6 +288,17 @@ TEST(SceneErrors, EachNamesFileLineAndAttribute) {
   for (const BadScene& c : kCases) testing_scenes::expectRefused(c);
 }
 
+// Rigid bodies have no particles, so the particle limit let through ten grids of 100,000 rigid
+// boxes, which took 17.6 GB in their first step: the grid that passes 250,000 bodies is named.
+TEST(SceneErrors, TooManyBodiesAreRefusedAtTheElementThatPassesTheLimit) {
+  testing_scenes::expectRefused({"250,000 bodies",
+                                 "<scene name='s'>\n"
+                                 "<grid name='a' pos='0 0 0' count='100 10 100' model='rigid'/>\n"
+                                 "<grid name='b' pos='300 0 0' count='100 10 100' model='rigid'/>\n"
+                                 "<grid name='c' pos='600 0 0' count='100 10 100' model='rigid'/>\n</scene>",
+                                 4, "", "the scene has more than 250000 bodies"});
+}
+
 // What loadSceneFile says, or "" when it loaded.
 std::string fileError(const std::filesystem::path& file) {
   try {

@@ -336,13 +336,23 @@ TEST(LabExit, MissingSceneExitsOne) {
   EXPECT_NE(r.err.find("no-such-scene.xml"), std::string::npos) << r.err;
 }
 
+// A dump whose folder is missing, or that names a folder, is refused before the run (it was
+// found out after all the steps); one the OS refuses is said after the report, which it keeps.
 TEST(LabExit, UnwritableDumpExitsOne) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());
-  const ProcessResult r =
-      runLab("run " + quoted(scene) + " --steps 1 --dump " + quoted(dir.file("no/dir/x.csv")), dir);
-  EXPECT_EQ(r.exitCode, 1);
-  EXPECT_NE(r.err.find("--dump"), std::string::npos) << r.err;
+  for (const std::filesystem::path& dump : {dir.file("no/dir/x.csv"), dir.file("")}) {
+    const ProcessResult r = runLab("run " + quoted(scene) + " --steps 1 --dump " + quoted(dump), dir);
+    EXPECT_EQ(r.exitCode, 1) << dump;
+    EXPECT_NE(r.err.find("--dump"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(dump.filename() == "x.csv" ? "no such folder" : "is a folder"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out, "") << "nothing ran";
+  }
+  const ProcessResult proc = runLab("run " + quoted(scene) + " --steps 1 --dump /proc/x.csv", dir);
+  EXPECT_EQ(proc.exitCode, 1);
+  EXPECT_NE(proc.err.find("--dump"), std::string::npos) << proc.err;
+  EXPECT_NE(proc.out.find("steps"), std::string::npos) << "the report comes first: " << proc.out;
 }
 
 TEST(LabExit, BadArgumentsExitTwoNamingTheArgumentWithUsage) {

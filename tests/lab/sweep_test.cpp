@@ -308,6 +308,19 @@ TEST(Sweep, AFigureThatIsNotANumberIsPrintedNA) {
   }
 }
 
+// A box of 1e9 kg thrown at 1e200 m/s starts with inf J: its drift was written -inf, where only a
+// blown-up run's error may read inf.
+TEST(Sweep, AnEnergyThatOverflowsLeavesTheDriftEmpty) {
+  TempDir dir;
+  const std::filesystem::path scene = dir.write(
+      "heavy.xml",
+      "<scene name=\"heavy\"><box name=\"b\" pos=\"0 3 0\" mass=\"1e9\" velocity=\"1e200 0 0\"/></scene>\n");
+  const Outcome swept = sweep({scene.string(), "--steps", "5", "--repeat", "1", "--no-peers", "--methods",
+                               "xpbd", "--out", dir.file("out").string()});
+  ASSERT_EQ(swept.code, 0) << swept.err;
+  EXPECT_EQ(readCsv(dir.file("out/results.csv")).rows.at(0).at("energy_drift"), "");
+}
+
 // A figure wider than its column is still set apart from the next: a dt of six digits with an
 // exponent (11 characters in a column of 10) ran into a step count of six figures.
 TEST(Sweep, AFigureWiderThanItsColumnDoesNotRunIntoTheNext) {

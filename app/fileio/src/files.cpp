@@ -169,12 +169,17 @@ void prepareFolder(const fs::path& folder) {
 
 std::string readWhole(const fs::path& file, std::size_t maxBytes) {
   if (file.empty()) throw FileError(file, "no file name given");
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  // Opened without blocking: a named pipe with no writer would hold open() for ever. Reads block
+  // again, so a pipe that has a writer (/dev/stdin under a shell's pipe) is read whole.
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw FileError(file, "cannot open: " + reason(errno));
   struct Closer {
     int fd;
     ~Closer() { ::close(fd); }
   } closer{fd};
+  if (const int flags = ::fcntl(fd, F_GETFL); flags < 0 || ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
+    throw FileError(file, "cannot read: " + reason(errno));
+  }
   struct stat info {};
   if (::fstat(fd, &info) != 0) throw FileError(file, "cannot read: " + reason(errno));
   if (S_ISDIR(info.st_mode)) throw FileError(file, "is a folder, not a file");

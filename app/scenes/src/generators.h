@@ -25,6 +25,9 @@ inline constexpr int kMaxGridSide = 100;      // per axis
 inline constexpr long kMaxGridBoxes = 100000;
 inline constexpr long kMaxChainLinks = 100000;
 inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
+/// Whole scene: as many as kMaxParticles make corners boxes. A rigid body has no particles, so
+/// the particle limit does not hold rigid bodies back: a million of them take some 18 GB in a step.
+inline constexpr std::size_t kMaxBodies = kMaxParticles / 8;
 
 /// What a file may say of one body, so that every body it makes is one the physics can
 /// represent and every file the writer saves loads back (docs/scene-format.md, "Limits"). At

@@ -232,6 +232,9 @@ class Builder {
     if (scene_.world.particles().size() > detail::kMaxParticles) {
       e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
     }
+    if (scene_.world.bodies().size() > detail::kMaxBodies) {
+      e.fail("the scene has more than " + std::to_string(detail::kMaxBodies) + " bodies");
+    }
   }
 
   /// Every particle from `first` on, and the centre of every rigid body from `firstBody` on (a

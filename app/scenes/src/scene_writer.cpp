@@ -367,6 +367,10 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
                                 " particles; a scene file loads at most " +
                                 std::to_string(detail::kMaxParticles));
   }
+  if (world.bodies().size() > detail::kMaxBodies) {
+    throw std::invalid_argument("the world has " + std::to_string(world.bodies().size()) +
+                                " bodies; a scene file loads at most " + std::to_string(detail::kMaxBodies));
+  }
   const std::span<const phys::BodyId> owner = world.particleBodies();
   // The physics takes any bound > 0; a file holds at most kMaxBound (the loader's limit).
   const double bound = world.worldSettings().bound;
