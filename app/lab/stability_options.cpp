@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
+#include <system_error>
 
 #include "scenes/scene.h"
 #include "text.h"
@@ -63,7 +64,13 @@ std::vector<std::filesystem::path> sceneFiles(const StabilityOptions& o) {
   if (!o.scenes.empty()) {
     for (const std::string& name : o.scenes) {
       const std::filesystem::path file = scenes::resolveScene(name, folder);
-      if (!std::filesystem::is_regular_file(file)) {
+      std::error_code ec;
+      const std::filesystem::file_status status = std::filesystem::status(file, ec);
+      if (std::filesystem::is_directory(status))
+        throw std::runtime_error("--scene: " + file.string() + ": is a folder, not a scene file");
+      if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw std::runtime_error("--scene: " + file.string() + ": is not a regular file");
+      if (!std::filesystem::is_regular_file(status)) {
         throw std::runtime_error("--scene: no scene '" + name + "' (looked for " + file.string() + ")");
       }
       files.push_back(file);

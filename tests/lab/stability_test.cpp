@@ -3,6 +3,8 @@
 // passes (measured first: docs/lab.md, "lab stability"); peers are judged on their poses;
 // --out writes its files; usage errors exit 2. The runs are short scenes at cheap settings, so
 // the whole file takes a few seconds in Release.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -514,6 +516,15 @@ TEST(StabilityCli, AMissingOrBrokenSceneExits1) {
   EXPECT_NE(missing.err.find("no scene 'no-such-scene'"), std::string::npos) << missing.err;
 
   TempDir dir;
+  // A folder is named as one (it read "no scene", with no reason), and so is a pipe.
+  const Output folder = stability({"--scene", dir.file("").string(), "--no-peers"});
+  EXPECT_EQ(folder.code, lab::kExitFailure);
+  EXPECT_NE(folder.err.find("is a folder, not a scene file"), std::string::npos) << folder.err;
+  ASSERT_EQ(::mkfifo(dir.file("pipe.xml").c_str(), 0600), 0);
+  const Output pipe = stability({"--scene", dir.file("pipe.xml").string(), "--no-peers"});
+  EXPECT_EQ(pipe.code, lab::kExitFailure);
+  EXPECT_NE(pipe.err.find("is not a regular file"), std::string::npos) << pipe.err;
+
   const std::filesystem::path file =
       dir.write("bad.xml", sceneWithExpect(R"(<expect kind="pass" metric="speed" max="0" over="0 1"/>)"));
   const Output broken = stability({"--scene", file.string(), "--no-peers"});
