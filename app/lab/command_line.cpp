@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <new>
 #include <ostream>
 #include <sstream>
 #include <string_view>
@@ -426,6 +427,9 @@ int commandMain(CommandLine& line, const std::vector<std::string>& args, std::os
   } catch (const std::invalid_argument& e) {
     // A combination the world refuses (each value's range was checked above).
     err << "lab: " << line.command() << ": the settings were refused: " << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    err << "lab: " << line.command()
+        << ": out of memory (the scene or the run is too large for this machine)\n";
   } catch (const std::exception& e) {
     err << "lab: " << line.command() << ": " << e.what() << "\n";
   }

@@ -1,5 +1,6 @@
 // The lab's command line, parsed in-process: every option's good values and every kind of bad
 // argument, whose one-line message must name the argument.
+#include <new>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -244,6 +245,14 @@ TEST(LabMain, MissingSceneFileExitsOneWithTheOsReason) {
   EXPECT_EQ(out.str(), "");
   EXPECT_EQ(err.str().rfind("/no/such/dir/scene.xml: cannot open: No such file or directory", 0), 0u)
       << err.str();
+}
+
+// A run too large for the machine says so in words (it printed "lab: run: std::bad_alloc").
+TEST(LabMain, OutOfMemoryIsSaidInWords) {
+  lab::CommandLine line("run");
+  std::ostringstream out, err;
+  EXPECT_EQ(lab::commandMain(line, {}, out, err, []() -> int { throw std::bad_alloc(); }), lab::kExitFailure);
+  EXPECT_EQ(err.str(), "lab: run: out of memory (the scene or the run is too large for this machine)\n");
 }
 
 }  // namespace
