@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <optional>
 #include <ostream>
+#include <set>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -355,6 +356,17 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
 
 namespace {
 
+// A chart's files are named after its scene's name, which two files can share and which can hold
+// a '/': each chart gets a name of its own within the folder (the second of two overwrote the first).
+void nameChartsApart(std::vector<Chart>& charts) {
+  std::set<std::string> taken;
+  for (Chart& chart : charts) {
+    std::replace(chart.output.begin(), chart.output.end(), '/', '-');
+    const std::string base = chart.output;
+    for (int k = 2; !taken.insert(chart.output).second; ++k) chart.output = base + "-" + std::to_string(k);
+  }
+}
+
 // Every scene's runs and table, then the files of --out.
 int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) {
   if (o.scenes.empty()) o.scenes = kConvergeScenes;
@@ -384,6 +396,7 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
     return kExitFailure;
   }
   if (!o.out) return kExitOk;
+  nameChartsApart(charts);
   OutputFolder files(*o.out);
   files.write("converge.csv", convergeCsv(all));
   std::string problems;

@@ -177,6 +177,24 @@ TEST(Converge, WritesItsCsvAndOneChartPerScene) {
   }
 }
 
+// Two files may give their scenes one name, and a name may hold a '/': each chart has files of its
+// own in the folder (the second overwrote the first; a '/' failed after all the runs).
+TEST(Converge, ScenesOfOneNameGetChartsOfTheirOwn) {
+  TempDir dir;
+  std::string orbit =
+      lab_testing::readFile(std::filesystem::path(DATA_DIR) / "assets/scenes/circular-orbit.xml");
+  const std::filesystem::path a = dir.write("a.xml", orbit);
+  const std::filesystem::path b = dir.write("b.xml", orbit);
+  orbit.replace(orbit.find("name=\"circular-orbit\""), 21, "name=\"orbit/slash\"");
+  const std::filesystem::path c = dir.write("c.xml", orbit);
+  const auto o = converge({a.string(), b.string(), c.string(), "--methods", "shake", "--substeps", "1,2",
+                           "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  for (const char* gp :
+       {"converge-circular-orbit.gp", "converge-circular-orbit-2.gp", "converge-orbit-slash.gp"})
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out") / gp)) << gp;
+}
+
 // Several lines on one chart are told apart: each in its own colour and point type, not the single
 // black line of a front.
 TEST(Converge, TheChartDrawsEachLineInItsOwnStyle) {
