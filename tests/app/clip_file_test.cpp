@@ -64,6 +64,12 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   std::ofstream(dir.path / "cut.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0\n";
   const std::string cut = clipError(dir.path / "cut.bvh");
   EXPECT_NE(cut.find("cut.bvh: not a clip assimp can read"), std::string::npos) << cut;
+  // A format assimp has no reader for: the reason without assimp's placeholder name for memory.
+  std::ofstream(dir.path / "script.sh") << "#!/bin/sh\necho\n";
+  const std::string script = clipError(dir.path / "script.sh");
+  EXPECT_NE(script.find("script.sh: not a clip assimp can read: No suitable reader"), std::string::npos)
+      << script;
+  EXPECT_EQ(script.find("magic"), std::string::npos) << script;
   // A pipe with no writer would block the loader (and the sandbox) in open(): refused at once, as
   // is a folder.
   ASSERT_EQ(::mkfifo((dir.path / "pipe.bvh").c_str(), 0600), 0);

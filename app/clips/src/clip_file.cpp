@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
 #include <assimp/scene.h>
 
@@ -84,8 +85,16 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   // FBX's pivots as the nodes' own transforms, not as helper nodes the animation would key instead.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
   const aiScene* scene = importer.ReadFileFromMemory(content.data(), content.size(), 0, format.c_str());
-  if (scene == nullptr)
-    throw ClipError(name, std::string("not a clip assimp can read: ") + importer.GetErrorString());
+  if (scene == nullptr) {
+    // Read from memory, assimp names the file after its placeholder ("$$$___magic___$$$.sh"),
+    // which the message has already said before the colon: the placeholder goes.
+    std::string why = importer.GetErrorString();
+    const std::string placeholder =
+        std::string(" of file \"") + AI_MEMORYIO_MAGIC_FILENAME + "." + format + "\"";
+    if (const std::size_t at = why.find(placeholder); at != std::string::npos)
+      why.erase(at, placeholder.size());
+    throw ClipError(name, "not a clip assimp can read: " + why);
+  }
   if (scene->mNumAnimations == 0 || scene->mRootNode == nullptr)
     throw ClipError(name, "it holds no animation");
   const aiAnimation& anim = *scene->mAnimations[0];
