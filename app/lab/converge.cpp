@@ -114,9 +114,10 @@ FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vecto
     const std::optional<phys::Vec3> spin = spinAtStart(kept, pose.orientation, ownInertia, h);
     // Beyond a radian a substep the physics keeps a spin unshifted, and the shift has no inverse.
     if (!spin || !(h * glm::length(*spin) <= 1.0)) {
+      const double turn = h * glm::length(kept);  // inf for a spin of 1e300 on each axis
       throw std::invalid_argument(
-          scene.name + ": body '" + body.name +
-          "' spins too fast for its substep (h |w| = " + formatNumber(h * glm::length(kept), 3) +
+          scene.name + ": body '" + body.name + "' spins too fast for its substep (h |w| = " +
+          (std::isfinite(turn) ? formatNumber(turn, 3) : std::string("more than 1e308")) +
           " rad; the free-body reference needs at most 1 rad a substep at the scene's " + formatNumber(h, 4) +
           " s)");
     }

@@ -265,6 +265,15 @@ TEST(Converge, ASpinTooFastForTheSubstepIsAClearError) {
   const auto o = converge({file.string(), "--substeps", "1"});
   EXPECT_EQ(o.code, lab::kExitFailure);
   EXPECT_NE(o.err.find("fast: body 'spinner' spins too fast for its substep"), std::string::npos) << o.err;
+  // A spin whose length no double holds is said in words, not as inf.
+  const auto huge = converge({dir.write("huge.xml",
+                                        "<scene name=\"huge\">\n  <world gravity=\"0 0 0\"/>\n"
+                                        "  <box name=\"b\" pos=\"0 0 0\" size=\"0.4 1 2\" "
+                                        "angular-velocity=\"1e300 1e300 1e300\"/>\n</scene>\n")
+                                  .string(),
+                              "--substeps", "1"});
+  EXPECT_EQ(huge.code, lab::kExitFailure);
+  EXPECT_NE(huge.err.find("h |w| = more than 1e308 rad"), std::string::npos) << huge.err;
 }
 
 TEST(Converge, BadOptionsAreUsageErrors) {
