@@ -22,7 +22,8 @@ namespace {
 std::string dumpProblem(const std::filesystem::path& file) {
   std::error_code ec;
   const std::filesystem::path folder = file.parent_path().empty() ? "." : file.parent_path();
-  if (!std::filesystem::is_directory(folder, ec)) return folder.string() + ": no such folder";
+  if (!std::filesystem::is_directory(folder, ec))
+    return folder.string() + (std::filesystem::exists(folder, ec) ? ": is not a folder" : ": no such folder");
   if (std::filesystem::is_directory(file, ec)) return file.string() + ": is a folder, not a file";
   return {};
 }

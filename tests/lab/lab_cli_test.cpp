@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -336,17 +337,20 @@ TEST(LabExit, MissingSceneExitsOne) {
   EXPECT_NE(r.err.find("no-such-scene.xml"), std::string::npos) << r.err;
 }
 
-// A dump whose folder is missing, or that names a folder, is refused before the run (it was
-// found out after all the steps); one the OS refuses is said after the report, which it keeps.
+// A dump whose folder is missing or is a file, or that names a folder, is refused before the run
+// (it was found out after all the steps); one the OS refuses is said after the report, which it
+// keeps.
 TEST(LabExit, UnwritableDumpExitsOne) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());
-  for (const std::filesystem::path& dump : {dir.file("no/dir/x.csv"), dir.file("")}) {
+  const std::pair<std::filesystem::path, const char*> cases[] = {{dir.file("no/dir/x.csv"), "no such folder"},
+                                                                 {dir.file(""), "is a folder"},
+                                                                 {scene / "x.csv", "is not a folder"}};
+  for (const auto& [dump, says] : cases) {
     const ProcessResult r = runLab("run " + quoted(scene) + " --steps 1 --dump " + quoted(dump), dir);
     EXPECT_EQ(r.exitCode, 1) << dump;
     EXPECT_NE(r.err.find("--dump"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find(dump.filename() == "x.csv" ? "no such folder" : "is a folder"), std::string::npos)
-        << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "") << "nothing ran";
   }
   const ProcessResult proc = runLab("run " + quoted(scene) + " --steps 1 --dump /proc/x.csv", dir);
