@@ -42,8 +42,7 @@ void describeConverge(CommandLine& line, ConvergeOptions& o) {
       "gravity, checked against Euler's equations (default: projectile, pendulum-exact, circular-orbit, "
       "tumbling-box)",
       true, [&o](const std::string& name) {
-        // A scene named twice runs once, as a list option's repeats are dropped.
-        if (std::find(o.scenes.begin(), o.scenes.end(), name) == o.scenes.end()) o.scenes.push_back(name);
+        addOnce(o.scenes, name);  // a scene named twice runs once, as a list option's repeats are dropped
         return std::string();
       });
   line.option(option::kMethods, o.methods,

@@ -182,10 +182,7 @@ std::string csvRow(const std::string& scene, const Row& r) {
   for (const double v : r.figures.maxima.worst) line += ours(v) + ",";
   line += csvNumber(r.blewUp() ? kInf : r.figures.errorFirst) + "," + csvNumber(r.figures.posePenetration) +
           "," + csvNumber(r.figures.poseJointGap) + ",";
-  // A drift is no figure when the energy overflowed (a start of inf J leaves -inf); only a blown-up
-  // run's error stands in the CSV as inf.
-  const bool drift = !r.peer && std::isfinite(r.figures.energyDrift);
-  line += (drift ? csvNumber(r.figures.energyDrift) : std::string()) + "," +
+  line += (r.peer ? std::string() : csvNumber(r.figures.energyDrift)) + "," +
           (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (r.pareto ? "1" : "0") + "," +
           csvField(r.note);
   return line + "\n";

@@ -229,7 +229,10 @@ Figures measureFigures(const std::filesystem::path& file, const Setting& setting
   const RunRecord run = runSteps(scene.world, spec);
   Figures f;
   f.maxima = run.maxima;
-  f.energyDrift = run.energyAfter - run.energyBefore;
+  // An energy that overflowed leaves no drift (a start of inf J gives -inf): NaN, which the CSV
+  // leaves empty and the tables and tune print n/a, as they do inf - inf.
+  const double drift = run.energyAfter - run.energyBefore;
+  f.energyDrift = std::isfinite(drift) ? drift : kNaN;
   f.frozen = scene.world.metrics().frozen;
   // A frozen body's position says nothing of the solver (docs/lab.md, "Accuracy").
   f.error = f.frozen > 0 ? kInf : accuracyError(target, run.positions);

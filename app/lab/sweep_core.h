@@ -63,10 +63,11 @@ struct Setting {
 
 /// What one untimed pass over a setting measured.
 struct Figures {
-  double error = 0.0;        ///< unit: m; accuracyError against the target; inf if it blew up
-  RunMaxima maxima;          ///< each figure of run_metrics.h at its worst after any step
-  double energyDrift = 0.0;  ///< unit: J; energy after the last step minus before the first
-  int frozen = 0;            ///< particles the guard froze by the end
+  double error = 0.0;  ///< unit: m; accuracyError against the target; inf if it blew up
+  RunMaxima maxima;    ///< each figure of run_metrics.h at its worst after any step
+  /// unit: J; energy after the last step minus before the first; NaN where that is not finite
+  double energyDrift = 0.0;
+  int frozen = 0;  ///< particles the guard froze by the end
   /// unit: ms; this pass's own steps timed one by one and averaged: rough (one run, the
   /// metrics read between the steps disturb the caches), for the tune's pruning only.
   double roughMsPerStep = 0.0;

@@ -309,7 +309,7 @@ TEST(Sweep, AFigureThatIsNotANumberIsPrintedNA) {
 }
 
 // A box of 1e9 kg thrown at 1e200 m/s starts with inf J: its drift was written -inf, where only a
-// blown-up run's error may read inf.
+// blown-up run's error may read inf; the table printed it too.
 TEST(Sweep, AnEnergyThatOverflowsLeavesTheDriftEmpty) {
   TempDir dir;
   const std::filesystem::path scene = dir.write(
@@ -319,6 +319,7 @@ TEST(Sweep, AnEnergyThatOverflowsLeavesTheDriftEmpty) {
                                "xpbd", "--out", dir.file("out").string()});
   ASSERT_EQ(swept.code, 0) << swept.err;
   EXPECT_EQ(readCsv(dir.file("out/results.csv")).rows.at(0).at("energy_drift"), "");
+  EXPECT_EQ(swept.out.find("-inf"), std::string::npos) << swept.out;
 }
 
 // A figure wider than its column is still set apart from the next: a dt of six digits with an
