@@ -285,10 +285,12 @@ std::vector<std::vector<ConvergeRow>> convergeLines(const std::vector<ConvergeRo
 }
 
 std::string convergeCsv(const std::vector<ConvergeRow>& rows) {
-  std::string s = "scene,method,model,substeps,h,error\n";
+  std::string s = "scene,method,model,substeps,h,error,blew_up\n";
   for (const ConvergeRow& r : rows) {
+    // A blow-up's error, infinity, is written blank, as every figure that is not finite.
     s += csvField(r.scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
-         std::to_string(r.substeps) + "," + csvNumber(r.h, 10) + "," + csvNumber(r.error, 6) + "\n";
+         std::to_string(r.substeps) + "," + csvNumber(r.h, 10) + "," + csvNumber(r.error, 6) + "," +
+         (std::isfinite(r.error) ? "0" : "1") + "\n";
   }
   return s;
 }

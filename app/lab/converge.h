@@ -79,7 +79,7 @@ std::optional<double> fittedOrder(const std::vector<ConvergeRow>& line);
 /// The rows grouped into lines, one per scene, method and model, in first-seen order.
 std::vector<std::vector<ConvergeRow>> convergeLines(const std::vector<ConvergeRow>& rows);
 
-/// converge.csv: scene,method,model,substeps,h,error.
+/// converge.csv: scene,method,model,substeps,h,error,blew_up.
 std::string convergeCsv(const std::vector<ConvergeRow>& rows);
 /// The table `lab converge` prints for one scene: a line per method and model, its error at each
 /// substep count and its fitted order.

@@ -20,7 +20,7 @@ std::string csvField(std::string_view text) {
 }
 
 std::string csvNumber(double value, int digits) {
-  return std::isnan(value) ? std::string() : formatNumber(value, digits);  // "inf", "-inf" as printf
+  return std::isfinite(value) ? formatNumber(value, digits) : std::string();
 }
 
 std::vector<std::string> csvFields(std::string_view line) {
@@ -68,7 +68,7 @@ CsvTable readCsv(const std::filesystem::path& file) {
 double fieldNumber(const CsvRow& row, const std::string& column) {
   const auto it = row.find(column);
   if (it == row.end() || it->second.empty()) return std::nan("");
-  return std::strtod(it->second.c_str(), nullptr);  // reads "inf" too, as formatNumber writes it
+  return std::strtod(it->second.c_str(), nullptr);
 }
 
 std::string fieldText(const CsvRow& row, const std::string& column) {

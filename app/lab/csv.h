@@ -14,9 +14,9 @@ namespace lab {
 /// or a line break.
 std::string csvField(std::string_view text);
 
-/// A number as the lab's CSV files write it: %.{digits}g; "inf" or "-inf" for a figure that
-/// blew up (fieldNumber reads it back as such); and, for NaN, an empty field, CSV's missing
-/// value, never "nan".
+/// A number as the lab's CSV files write it: %.{digits}g; an empty field, CSV's missing value,
+/// for a figure that is not a finite number, never "inf" or "nan". A file whose figures can blow
+/// up says so in a column of its own (`blew_up`), not through the number.
 std::string csvNumber(double value, int digits);
 
 /// One CSV line split into fields, undoing csvField's quoting (a quoted field may hold commas;
@@ -38,7 +38,7 @@ struct CsvTable {
 /// The file read as CsvTable; empty when it cannot be read or is empty.
 CsvTable readCsv(const std::filesystem::path& file);
 
-/// A row's field as a number: NaN when the column is missing or blank, inf for "inf".
+/// A row's field as a number: NaN when the column is missing or blank.
 double fieldNumber(const CsvRow& row, const std::string& column);
 /// A row's field as written ("" when the column is missing).
 std::string fieldText(const CsvRow& row, const std::string& column);

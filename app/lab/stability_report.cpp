@@ -194,7 +194,8 @@ std::string markdownReport(const SuiteResult& r) {
 
 std::string csvReport(const SuiteResult& r) {
   std::ostringstream csv;
-  csv << "scene,method,model,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n";
+  csv << "scene,method,model,iterations,substeps,passed,blew_up,value,limit,ratio,criterion,ms_per_step,"
+         "note\n";
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     const SuiteScene& sc = r.scenes[s];
     for (std::size_t k = 0; k < r.outcomes[s].size(); ++k) {
@@ -209,16 +210,17 @@ std::string csvReport(const SuiteResult& r) {
             << csvField(sc.boxes == 0 ? std::string() : r.settings[k].model) << ","
             << r.settings[k].iterations << "," << r.settings[k].substeps << ",";
       if (!o.judged) {
-        csv << "n/a,,,,," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
+        csv << "n/a,,,,,," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
         continue;
       }
       const Criterion& c = sc.criteria[o.worst];
       const Verdict& v = o.verdicts[o.worst];
       // A flips criterion with only a max has min 0; its max is the limit then.
       const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
-      csv << (o.passed ? 1 : 0) << "," << csvNumber(v.value, 6) << "," << csvNumber(limit, 6) << ","
-          << csvNumber(v.ratio, 6) << "," << csvField(c.describe()) << "," << csvNumber(o.msPerStep, 6) << ","
-          << csvField(o.note) << "\n";
+      // A blow-up's figure is infinity: written blank, as every figure that is not finite.
+      csv << (o.passed ? 1 : 0) << "," << (std::isfinite(v.value) ? 0 : 1) << "," << csvNumber(v.value, 6)
+          << "," << csvNumber(limit, 6) << "," << csvNumber(v.ratio, 6) << "," << csvField(c.describe())
+          << "," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
     }
   }
   return csv.str();

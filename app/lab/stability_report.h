@@ -25,8 +25,8 @@ struct SuiteResult {
 /// of value / limit per setting, then the peers' figures and notes.
 std::string markdownReport(const SuiteResult& result);
 
-/// scene,method,model,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note: one row
-/// per run (a peer's row has its engine as the method and no iterations or substeps).
+/// scene,method,model,iterations,substeps,passed,blew_up,value,limit,ratio,criterion,ms_per_step,note:
+/// one row per run (a peer's row has its engine as the method and no iterations or substeps).
 std::string csvReport(const SuiteResult& result);
 
 /// The heat maps' matrices (gnuplot's "matrix rowheaders columnheaders" form): pass is 1, fail

@@ -167,24 +167,25 @@ std::string csvHeader() {
       "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,"
       "error,ref_uncertainty,";
   for (const RunMetric& m : kRunMetrics) header += std::string(m.column) + ",";
-  return header + "error_first,pose_penetration,pose_joint_gap,energy_drift,frozen,pareto,note\n";
+  return header + "error_first,pose_penetration,pose_joint_gap,energy_drift,frozen,blew_up,pareto,note\n";
 }
 
 std::string csvRow(const std::string& scene, const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
-  // Blank: no such figure for a peer.
-  auto ours = [&](double v) { return r.peer && std::isnan(v) ? std::string() : csvNumber(v); };
+  // A blown-up run's errors are no figure: blank, as any figure that is not finite, and
+  // `blew_up` says why.
+  const bool blewUp = r.ran && r.blewUp();
   std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
                      opt(r.iterations) + "," + opt(r.substeps) + "," + csvNumber(r.dt) + "," +
                      std::to_string(r.steps) + "," + std::to_string(r.repeats) + "," +
                      csvNumber(r.msPerStep) + "," + csvNumber(r.msPerSimSecond()) + "," +
-                     csvNumber(r.blewUp() ? kInf : r.figures.error) + "," + csvNumber(r.uncertainty) + ",";
-  for (const double v : r.figures.maxima.worst) line += ours(v) + ",";
-  line += csvNumber(r.blewUp() ? kInf : r.figures.errorFirst) + "," + csvNumber(r.figures.posePenetration) +
-          "," + csvNumber(r.figures.poseJointGap) + ",";
+                     csvNumber(blewUp ? kNaN : r.figures.error) + "," + csvNumber(r.uncertainty) + ",";
+  for (const double v : r.figures.maxima.worst) line += csvNumber(v) + ",";
+  line += csvNumber(blewUp ? kNaN : r.figures.errorFirst) + "," + csvNumber(r.figures.posePenetration) + "," +
+          csvNumber(r.figures.poseJointGap) + ",";
   line += (r.peer ? std::string() : csvNumber(r.figures.energyDrift)) + "," +
-          (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (r.pareto ? "1" : "0") + "," +
-          csvField(r.note);
+          (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," +
+          (r.ran ? (blewUp ? "1" : "0") : "") + "," + (r.pareto ? "1" : "0") + "," + csvField(r.note);
   return line + "\n";
 }
 

@@ -81,6 +81,7 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
       r.figures.maxima.worst[kPenetrationMetric] = p.maxPenetration;
       poseFigures(description, p.positions, p.orientations, r.figures.posePenetration,
                   r.figures.poseJointGap);
+      if (r.blewUp()) r.note = "blew up: a body's position is not finite";
     } else {
       r.figures.error = r.figures.errorFirst = kNaN;
       r.figures.posePenetration = r.figures.poseJointGap = kNaN;

@@ -111,6 +111,16 @@ TEST(ConvergeOrder, IsTheSlopeOverTheFinestPointsAboveTheFloor) {
   EXPECT_NEAR(*lab::fittedOrder(rows), 2.0, 1e-12);  // the blown-up run is left out too
 }
 
+// A run that blew up has error infinity: the CSV writes it blank, never inf, and says so in blew_up.
+TEST(ConvergeCsv, ABlowUpIsSaidInItsColumnNotAsInf) {
+  std::vector<ConvergeRow> rows = line({0.1, 0.05}, 1.0, 2.0);
+  rows.back().error = std::numeric_limits<double>::infinity();
+  const std::string csv = lab::convergeCsv(rows);
+  EXPECT_EQ(csv.find("inf"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0.01,0\n"), std::string::npos) << csv;   // h 0.1: 1 x 0.1^2
+  EXPECT_NE(csv.find(",0.05,,1\n"), std::string::npos) << csv;  // h 0.05: blew up
+}
+
 // The order each method has, measured: Verlet is second order on the orbit whatever relaxes the
 // (absent) sticks; Jakobsen's projection along the stick's current direction is first order on the
 // pendulum (it drains energy at O(h)), SHAKE second. A free box's rotation is second order under
@@ -162,7 +172,8 @@ TEST(Converge, WritesItsCsvAndOneChartPerScene) {
                            "--models", "rigid", "--substeps", "2,4", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;
   const lab::CsvTable csv = lab::readCsv(dir.file("out") / "converge.csv");
-  EXPECT_EQ(csv.header, (std::vector<std::string>{"scene", "method", "model", "substeps", "h", "error"}));
+  EXPECT_EQ(csv.header,
+            (std::vector<std::string>{"scene", "method", "model", "substeps", "h", "error", "blew_up"}));
   ASSERT_EQ(csv.rows.size(), 4u);  // the orbit's particle at 2 and 4, the rigid box at 2 and 4
   EXPECT_NE(o.err.find("circular-orbit has no boxes or ragdolls: --models does not apply"), std::string::npos)
       << o.err;

@@ -384,11 +384,28 @@ TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
   EXPECT_NE(md.find("| face-face | n/a: not built |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 1/1 | n/a |"), std::string::npos) << md;  // the summary: our pass, the peer's n/a
   const std::string csv = lab::stability::csvReport(r);
-  EXPECT_NE(csv.find("\nface-face,gauss-seidel,,3,4,1,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\nface-face,fake,,,,n/a,,,,,0,not built\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nface-face,gauss-seidel,,3,4,1,0,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nface-face,fake,,,,n/a,,,,,,0,not built\n"), std::string::npos) << csv;
   // The heat maps' matrices: the scene's row, our pass and the peer's grey.
   EXPECT_EQ(lab::stability::passMatrix(r), "scene gauss-seidel:3x4 fake\nface-face 1 0.5\n");
   EXPECT_NE(lab::stability::errorMatrix(r).find(" NaN\n"), std::string::npos);
+}
+
+// A run that blew up fails with the figure infinity; the CSV writes no such number (a blank value
+// and ratio) and says it in blew_up.
+TEST(StabilityReport, ABlowUpIsSaidInItsColumnNotAsInf) {
+  lab::stability::SuiteResult r;
+  r.scenes.push_back(suiteScene("face-face"));
+  r.methods.push_back("gauss-seidel");
+  r.peers.push_back("fake");
+  const double inf = std::numeric_limits<double>::infinity();
+  lab::stability::Outcome peer;
+  peer.verdicts.assign(2, lab::stability::Verdict{true, "", inf, inf, false});
+  peer.judged = true;
+  r.outcomes.push_back({peer});
+  const std::string csv = lab::stability::csvReport(r);
+  EXPECT_NE(csv.find("\nface-face,fake,,,,0,1,,"), std::string::npos) << csv;
+  EXPECT_EQ(csv.find("inf"), std::string::npos) << csv;
 }
 
 TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
@@ -406,11 +423,12 @@ TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
   // The progress bar ends with the count of runs.
   EXPECT_NE(o.err.find("8/8"), std::string::npos);
   const std::string csv = lab_testing::readFile(out / "stability.csv");
-  EXPECT_TRUE(csv.starts_with(
-      "scene,method,model,iterations,substeps,passed,value,limit,ratio,criterion,ms_per_step,note\n"));
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 4);             // header, 2 scenes x 4 settings
-  EXPECT_NE(csv.find("bullet-50,gauss-seidel,,1,1,1,"), std::string::npos);   // stopped by the sweep
-  EXPECT_NE(csv.find("bullet-50,gauss-seidel,,1,16,1,"), std::string::npos);  // by the contacts
+  EXPECT_TRUE(
+      csv.starts_with("scene,method,model,iterations,substeps,passed,blew_up,value,limit,ratio,criterion,ms_"
+                      "per_step,note\n"));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 4);  // header, 2 scenes x 4 settings
+  EXPECT_NE(csv.find("bullet-50,gauss-seidel,,1,1,1,0,"), std::string::npos);   // stopped by the sweep
+  EXPECT_NE(csv.find("bullet-50,gauss-seidel,,1,16,1,0,"), std::string::npos);  // by the contacts
   EXPECT_TRUE(std::filesystem::exists(out / "stability.gp"));
   EXPECT_TRUE(std::filesystem::exists(out / "stability-pass.dat"));
   EXPECT_TRUE(std::filesystem::exists(out / "stability-error.dat"));
