@@ -385,6 +385,39 @@ TEST(SceneErrors, AZeroByteIsNamedWithItsLine) {
   }
 }
 
+// Bytes that are not UTF-8 (a name saved as Latin-1, say) are named with their line: pugixml
+// would pass them through to the sandbox's labels and the lab's CSVs. Every form UTF-8 forbids is
+// refused (RFC 3629), and every character it allows loads, up to U+10FFFF.
+TEST(SceneErrors, BytesThatAreNotUtf8AreNamedWithTheirLine) {
+  auto load = [](const std::string& name) {
+    try {
+      scenes::loadSceneText("<scene name='s'>\n<box name='" + name + "' pos='0 1 0'/>\n</scene>", "n.xml");
+      return std::string();
+    } catch (const scenes::LoadError& e) {
+      return std::string(e.what());
+    }
+  };
+  const struct {
+    const char* bytes;
+    const char* says;
+  } bad[] = {{"M\xFCller", "0xFC"},         // Latin-1's u with umlaut
+             {"a\x80", "0x80"},             // a continuation byte alone
+             {"\xC0\xAF", "0xC0"},          // '/' in an overlong form
+             {"\xE0\x80\xAF", "0xE0"},      // the same in three bytes
+             {"\xED\xA0\x80", "0xED"},      // a surrogate, U+D800
+             {"\xF4\x90\x80\x80", "0xF4"},  // U+110000, past the last code point
+             {"\xE2\x82", "0xE2"}};         // a character cut short (by the quote)
+  for (const auto& b : bad) {
+    EXPECT_EQ(load(b.bytes), std::string("n.xml:2: byte ") + b.says +
+                                 " is not UTF-8; scene files are UTF-8 (save it as UTF-8)")
+        << b.bytes;
+  }
+  for (const char* good :
+       {"M\xC3\xBCller", "\xE2\x82\xAC", "\xED\x9F\xBF", "\xF0\x9F\xA6\xB4", "\xF4\x8F\xBF\xBF"}) {
+    EXPECT_EQ(load(good), "") << good;  // u umlaut, the euro sign, U+D7FF, a bone emoji, U+10FFFF
+  }
+}
+
 TEST(SceneErrors, GarbageNeverCrashes) {
   // Truncations of a valid scene at every byte: each loads or throws LoadError, nothing else.
   const std::string good =

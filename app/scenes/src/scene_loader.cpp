@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <memory>
@@ -851,6 +852,40 @@ std::string_view otherEncoding(std::string_view bytes) {
   return {};
 }
 
+// Where the bytes first stop being UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing
+// past U+10FFFF), or npos. pugixml passes such bytes through, so a Latin-1 name would reach the
+// sandbox's labels and the lab's CSVs as bytes no reader can decode.
+std::size_t firstNotUtf8(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size()) {
+    const auto lead = static_cast<unsigned char>(bytes[i]);
+    std::size_t length = 0;
+    unsigned char low = 0x80, high = 0xBF;  // the second byte's range, narrowed for some leads
+    if (lead < 0x80) {
+      length = 1;
+    } else if (lead >= 0xC2 && lead <= 0xDF) {
+      length = 2;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+      length = 3;
+      if (lead == 0xE0) low = 0xA0;   // overlong below U+0800
+      if (lead == 0xED) high = 0x9F;  // the surrogates U+D800 to U+DFFF
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+      length = 4;
+      if (lead == 0xF0) low = 0x90;   // overlong below U+10000
+      if (lead == 0xF4) high = 0x8F;  // past U+10FFFF
+    } else {
+      return i;  // a continuation byte alone, an overlong lead (C0, C1) or F5 to FF
+    }
+    if (i + length > bytes.size()) return i;
+    for (std::size_t k = 1; k < length; ++k) {
+      const auto c = static_cast<unsigned char>(bytes[i + k]);
+      if (c < (k == 1 ? low : 0x80) || c > (k == 1 ? high : 0xBF)) return i;
+    }
+    i += length;
+  }
+  return std::string_view::npos;
+}
+
 // The encoding an XML declaration names, if there is one and it is not UTF-8 or ASCII.
 std::optional<std::string> declaredOtherEncoding(const pugi::xml_node& declaration) {
   const std::string encoding = declaration.attribute("encoding").value();
@@ -874,6 +909,13 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   }
   if (const auto nul = std::find(buffer.begin(), buffer.end(), '\0'); nul != buffer.end()) {
     throw LoadError(file, lines.lineOf(&*nul), "", "a zero byte: this is not a text file");
+  }
+  if (const std::size_t bad = firstNotUtf8(std::string_view(buffer.data(), size));
+      bad != std::string_view::npos) {
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(buffer[bad]));
+    throw LoadError(file, lines.lineOf(buffer.data() + bad), "",
+                    std::string("byte ") + byte + " is not UTF-8; scene files are UTF-8 (save it as UTF-8)");
   }
   // What follows the last '>' (before in-place parsing rewrites the buffer): only white space
   // may.
