@@ -7,10 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <system_error>
 #include <utility>
 
 namespace lab {
 namespace {
+
+// The most a drawn chart is read back: gnuplot's PNGs and SVGs of the lab's charts are under 1 MB.
+constexpr std::size_t kMaxChartBytes = std::size_t{64} << 20;
 
 // A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
 std::string quoted(const std::string& text) {
@@ -135,31 +139,79 @@ OutputFolder::OutputFolder(std::filesystem::path folder, const char* option)
   prepareOutputFolder(folder_, option_);
 }
 
-void OutputFolder::write(const std::string& name, std::string_view content) {
-  try {
-    fileio::writeAtomically(folder_ / name, content);
-  } catch (const fileio::FileError& e) {
-    throw CommandFailure(std::string(option_) + ": " + e.what());
+void OutputFolder::hold(const std::string& name, std::string content) {
+  const auto same = [&](const auto& held) { return held.first == name; };
+  if (const auto it = std::find_if(held_.begin(), held_.end(), same); it != held_.end()) {
+    it->second = std::move(content);
+    return;
   }
-  list(name);
+  held_.emplace_back(name, std::move(content));
+  listed_.push_back((folder_ / name).string());
+}
+
+void OutputFolder::write(const std::string& name, std::string_view content) {
+  hold(name, std::string(content));
 }
 
 std::string OutputFolder::draw(const std::string& name, const Chart& chart, const std::string& noPoints) {
   write(name, gnuplotScript(chart));
   if (!hasPoints(chart)) {
     // No chart of these figures: one an earlier run drew here would stand beside CSVs it does not show.
-    std::error_code ignored;
-    std::filesystem::remove(folder_ / (chart.output + ".png"), ignored);
-    std::filesystem::remove(folder_ / (chart.output + ".svg"), ignored);
+    stale_.push_back(chart.output + ".png");
+    stale_.push_back(chart.output + ".svg");
     return noPoints;
   }
-  std::string problem = runGnuplot(folder_ / name, folder_);
-  if (problem.empty()) {
-    list(chart.output + ".png");
-    list(chart.output + ".svg");
+  return render(name);
+}
+
+std::string OutputFolder::render(const std::string& name) {
+  // The script reads its data by names relative to its folder: the scratch folder holds them all.
+  const PrivateFolder scratch(folder_, ".drawing-");
+  if (scratch.path().empty()) {
+    failed_ = true;
+    return "cannot create a folder to draw in, in " + folder_.string() + ": " +
+           std::generic_category().message(scratch.error());
   }
-  failed_ = failed_ || (!problem.empty() && !findGnuplot().empty());
-  return problem;
+  std::vector<fileio::FileContent> inputs;
+  for (const auto& [file, content] : held_) inputs.push_back({scratch.path() / file, content});
+  try {
+    fileio::writeAllAtomically(inputs);
+    const std::string problem = runGnuplot(scratch.path() / name, scratch.path());
+    failed_ = failed_ || (!problem.empty() && !findGnuplot().empty());
+    if (!problem.empty()) return problem;
+    std::vector<std::string> drawn;
+    for (const auto& entry : std::filesystem::directory_iterator(scratch.path())) {
+      const std::string file = entry.path().filename().string();
+      const auto same = [&](const auto& held) { return held.first == file; };
+      if (std::none_of(held_.begin(), held_.end(), same)) drawn.push_back(file);
+    }
+    std::sort(drawn.begin(), drawn.end());  // the listing's order is the file system's
+    for (const std::string& file : drawn)
+      hold(file, fileio::readWhole(scratch.path() / file, kMaxChartBytes));
+  } catch (const fileio::FileError& e) {
+    failed_ = true;
+    return e.what();
+  } catch (const std::filesystem::filesystem_error& e) {
+    failed_ = true;
+    return e.what();
+  }
+  return {};
+}
+
+void OutputFolder::commit() {
+  std::vector<fileio::FileContent> files;
+  for (const auto& [name, content] : held_) files.push_back({folder_ / name, content});
+  try {
+    fileio::writeAllAtomically(files);
+  } catch (const fileio::FileError& e) {
+    throw CommandFailure(std::string(option_) + ": " + e.what());
+  }
+  for (const std::string& name : stale_) {
+    std::error_code ignored;
+    std::filesystem::remove(folder_ / name, ignored);
+  }
+  held_.clear();
+  stale_.clear();
 }
 
 }  // namespace lab

@@ -53,29 +53,38 @@ std::string gnuplotScript(const Chart& chart);
 bool hasPoints(const Chart& chart);
 
 /// A command's output folder, written at the end of its runs (the one frame of sweep, scale,
-/// converge and stability, which word their own messages about charts): files whole, charts drawn,
-/// and the list of what is there for the "wrote" line. A file that cannot be written throws
+/// converge and stability, which word their own messages about charts): its files are held
+/// until commit() replaces them all as one set (fileio::writeAllAtomically), so a file that
+/// cannot be written leaves every file of an earlier run there, not a mix of old and new. Charts
+/// are drawn in a scratch folder and held like the rest. A file that cannot be written throws
 /// CommandFailure "OPTION: <why>", OPTION the option that named the folder.
 class OutputFolder {
  public:
   /// Prepares the folder again: it may have gone while the runs ran.
   explicit OutputFolder(std::filesystem::path folder, const char* option = "--out");
-  void write(const std::string& name, std::string_view content);  ///< FOLDER/NAME, listed
-  /// Writes the chart's script NAME and runs gnuplot: "" when it drew the chart's OUTPUT.png and
-  /// .svg (then listed), else why not: `noPoints` for a chart with nothing to draw, or what
-  /// runGnuplot said.
+  void write(const std::string& name, std::string_view content);  ///< FOLDER/NAME at commit, listed
+  /// Writes the chart's script NAME and draws it: "" when gnuplot drew the chart's OUTPUT.png
+  /// and .svg (then listed), else why not: `noPoints` for a chart with nothing to draw (whose
+  /// charts an earlier run drew go at commit), or what runGnuplot said.
   std::string draw(const std::string& name, const Chart& chart, const std::string& noPoints);
+  /// Runs gnuplot on the script NAME, written before with the data it reads: "" when it drew
+  /// (every file it drew then held and listed), else what runGnuplot said.
+  std::string render(const std::string& name);
+  /// Writes every file held, all at once.
+  void commit();
   /// A chart with points was not drawn though gnuplot is there. Without gnuplot the script waits
   /// to be run, and a chart with nothing to draw is said, not failed.
   bool failed() const { return failed_; }
-  std::string wroteLine() const { return "wrote       " + join(files_, ", ") + "\n"; }
+  std::string wroteLine() const { return "wrote       " + join(listed_, ", ") + "\n"; }
 
  private:
-  void list(const std::string& name) { files_.push_back((folder_ / name).string()); }
+  void hold(const std::string& name, std::string content);
 
   std::filesystem::path folder_;
   const char* option_;
-  std::vector<std::string> files_;
+  std::vector<std::pair<std::string, std::string>> held_;  // name, content; written by commit()
+  std::vector<std::string> stale_;                         // removed by commit()
+  std::vector<std::string> listed_;
   bool failed_ = false;
 };
 

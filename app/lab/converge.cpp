@@ -407,6 +407,7 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
                                            "no run has a finite error above 0 (the axes are logarithmic)");
     if (!problem.empty()) problems += "lab: converge: the chart " + chart.output + ": " + problem + "\n";
   }
+  files.commit();
   out << files.wroteLine();
   err << problems;
   return files.failed() ? kExitFailure : kExitOk;

@@ -37,26 +37,6 @@ std::string shellQuoted(const std::string& text) {
   return out + "'";
 }
 
-// A new folder inside `parent` (same file system, so its files rename into `parent`), removed
-// with whatever is left in it when this goes.
-class PrivateFolder {
- public:
-  explicit PrivateFolder(const std::filesystem::path& parent) {
-    std::string name = (parent / ".charts-XXXXXX").string();
-    if (::mkdtemp(name.data()) != nullptr) path_ = name;
-  }
-  PrivateFolder(const PrivateFolder&) = delete;
-  PrivateFolder& operator=(const PrivateFolder&) = delete;
-  ~PrivateFolder() {
-    std::error_code ignored;
-    if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
-  }
-  const std::filesystem::path& path() const { return path_; }  ///< empty if it could not be made
-
- private:
-  std::filesystem::path path_;
-};
-
 // Each chart gnuplot drew, flushed to disk and renamed over its old self; "" or why not.
 std::string moveIntoPlace(const std::filesystem::path& from, const std::filesystem::path& folder) {
   std::error_code ec;
@@ -78,16 +58,29 @@ std::string moveIntoPlace(const std::filesystem::path& from, const std::filesyst
 
 }  // namespace
 
+PrivateFolder::PrivateFolder(const std::filesystem::path& parent, const char* prefix) {
+  std::string name = (parent / (std::string(prefix) + "XXXXXX")).string();
+  if (::mkdtemp(name.data()) != nullptr)
+    path_ = name;
+  else
+    error_ = errno;
+}
+
+PrivateFolder::~PrivateFolder() {
+  std::error_code ignored;
+  if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
+}
+
 std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder) {
   const std::filesystem::path gnuplot = findGnuplot();
   if (gnuplot.empty()) {
     return "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the data and " + script.string() +
            " are written, run gnuplot on it to draw the charts";
   }
-  const PrivateFolder drawn(folder);
+  const PrivateFolder drawn(folder, ".charts-");
   if (drawn.path().empty()) {
     return "cannot create a folder for the charts in " + folder.string() + ": " +
-           std::generic_category().message(errno);
+           std::generic_category().message(drawn.error());
   }
   // The folder's name is ours (letters and digits), so it needs no quoting inside gnuplot's.
   const std::string command = "cd " + shellQuoted(folder.string()) + " && " + shellQuoted(gnuplot.string()) +

@@ -7,6 +7,22 @@
 
 namespace lab {
 
+/// A new hidden folder PREFIXxxxxxx inside `parent` (the same file system, so its files rename
+/// into `parent`), removed with whatever is left in it when this goes.
+class PrivateFolder {
+ public:
+  PrivateFolder(const std::filesystem::path& parent, const char* prefix);
+  PrivateFolder(const PrivateFolder&) = delete;
+  PrivateFolder& operator=(const PrivateFolder&) = delete;
+  ~PrivateFolder();
+  const std::filesystem::path& path() const { return path_; }  ///< empty if it could not be made
+  int error() const { return error_; }                         ///< errno when it could not
+
+ private:
+  std::filesystem::path path_;
+  int error_ = 0;
+};
+
 /// The gnuplot program found on PATH, or empty when there is none.
 std::filesystem::path findGnuplot();
 

@@ -249,6 +249,7 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
     for (const int n : o.sizes)
       scenes.write(std::string(toString(o.kind)) + "-" + std::to_string(n) + ".xml",
                    scaleSceneXml(o.kind, n));
+    scenes.commit();
   }
   std::vector<ScaleRow> rows;
   try {
@@ -262,6 +263,7 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
   OutputFolder files(*o.out);
   files.write("scale.csv", scaleCsv(rows));
   const std::string problem = files.draw("scale.gp", scaleChart(rows), "no size has a finite cost");
+  files.commit();
   if (!o.json) out << files.wroteLine();
   if (!problem.empty()) err << "lab: scale: the chart: " << problem << "\n";
   return files.failed() ? kExitFailure : kExitOk;

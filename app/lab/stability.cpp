@@ -71,7 +71,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   return r;
 }
 
-// The files of --out; the heat maps last, so a missing gnuplot leaves everything else written.
+// The files of --out, written as one set; without gnuplot they are written without the heat maps.
 int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir,
                  std::ostream& err) {
   OutputFolder files(dir);
@@ -81,7 +81,8 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
   files.write("stability-error.dat", stability::errorMatrix(r));
   files.write("stability.gp", stability::gnuplotScript(r));
   // Unlike the other commands' charts, heat maps left undrawn for want of gnuplot fail the suite.
-  const std::string problem = runGnuplot(dir / "stability.gp", dir);
+  const std::string problem = files.render("stability.gp");
+  files.commit();
   if (!problem.empty()) {
     err << "lab: stability: the heat maps were not drawn: " << problem << "\n";
     return kExitFailure;

@@ -174,7 +174,7 @@ std::string csvRow(const std::string& scene, const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
   // A blown-up run's errors are no figure: blank, as any figure that is not finite, and
   // `blew_up` says why.
-  const bool blewUp = r.ran && r.blewUp();
+  const bool blewUp = r.blewUp();  // a peer that did not run has no row
   std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
                      opt(r.iterations) + "," + opt(r.substeps) + "," + csvNumber(r.dt) + "," +
                      std::to_string(r.steps) + "," + std::to_string(r.repeats) + "," +
@@ -184,8 +184,8 @@ std::string csvRow(const std::string& scene, const Row& r) {
   line += csvNumber(blewUp ? kNaN : r.figures.errorFirst) + "," + csvNumber(r.figures.posePenetration) + "," +
           csvNumber(r.figures.poseJointGap) + ",";
   line += (r.peer ? std::string() : csvNumber(r.figures.energyDrift)) + "," +
-          (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," +
-          (r.ran ? (blewUp ? "1" : "0") : "") + "," + (r.pareto ? "1" : "0") + "," + csvField(r.note);
+          (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (blewUp ? "1" : "0") + "," +
+          (r.pareto ? "1" : "0") + "," + csvField(r.note);
   return line + "\n";
 }
 
@@ -365,7 +365,8 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
   const std::string problem =
       files.draw("sweep.gp", chart,
                  "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
-  return {files, problem};
+  files.commit();
+  return {std::move(files), problem};
 }
 
 int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,

@@ -191,6 +191,37 @@ TEST(AtomicWrite, AFullDiskKeepsTheOldFileAndSaysWhy) {
   EXPECT_EQ(entries(folder.path), std::vector<std::string>{"shot.png"});
 }
 
+// A set of files is replaced together: when the disk fills on the last one, the first two, whose
+// new content was already written, keep their old content too, and no temporary file is left.
+TEST(AtomicWrite, ASetOfFilesIsReplacedTogetherOrNotAtAll) {
+  const TempFolder folder;
+  for (const char* name : {"a.csv", "b.csv", "c.png"}) writeFile(folder.path / name, "old");
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = old;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const std::string big(100000, 'x');
+  const fileio::FileContent set[] = {
+      {folder.path / "a.csv", "new"}, {folder.path / "b.csv", "new"}, {folder.path / "c.png", big}};
+  std::string error;
+  try {
+    fileio::writeAllAtomically(set);
+  } catch (const fileio::FileError& e) {
+    error = e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, previous);
+  EXPECT_NE(error.find("c.png: cannot write: File too large"), std::string::npos) << error;
+  for (const char* name : {"a.csv", "b.csv", "c.png"}) EXPECT_EQ(readFile(folder.path / name), "old") << name;
+  EXPECT_EQ(entries(folder.path), (std::vector<std::string>{"a.csv", "b.csv", "c.png"}));
+  // With room, all three are new.
+  fileio::writeAllAtomically(set);
+  for (const char* name : {"a.csv", "b.csv"}) EXPECT_EQ(readFile(folder.path / name), "new") << name;
+  EXPECT_EQ(readFile(folder.path / "c.png"), big);
+}
+
 TEST(AtomicWrite, AReadOnlyFolderFailsEvenWhenTheTestsRunAsRoot) {
   const TempFolder folder;
   const fs::path locked = folder.path / "locked";

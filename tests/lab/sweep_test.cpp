@@ -1,6 +1,7 @@
 // lab sweep and the accuracy it measures (app/lab/sweep.cpp, accuracy.cpp), in-process through
 // sweepMain with string streams and a temporary --out folder. Runs are short (tens of steps, one
 // timed repeat) so each test takes well under a second in Release.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -440,6 +441,8 @@ TEST(OutputFolder, ListsWhatItWroteAndAMissingGnuplotIsNoFailure) {
             std::string::npos);
   EXPECT_EQ(files.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
   EXPECT_FALSE(files.failed());
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/a.csv")));  // nothing before the commit
+  files.commit();
   // The pictures were not drawn, so they are not listed.
   const std::string out = dir.file("out").string();
   EXPECT_EQ(files.wroteLine(), "wrote       " + out + "/a.csv, " + out + "/c.gp, " + out + "/e.gp\n");
@@ -452,6 +455,7 @@ TEST(OutputFolder, ListsThePicturesGnuplotDrew) {
   lab::OutputFolder files(dir.file("out"));
   EXPECT_EQ(files.draw("c.gp", onePointChart("c"), "none"), "");
   EXPECT_FALSE(files.failed());
+  files.commit();
   const std::string out = dir.file("out").string();
   EXPECT_EQ(files.wroteLine(), "wrote       " + out + "/c.gp, " + out + "/c.png, " + out + "/c.svg\n");
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/c.png")));
@@ -471,6 +475,54 @@ TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
   lab::OutputFolder other(dir.file("other"));
   EXPECT_EQ(other.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
   EXPECT_FALSE(other.failed());
+}
+
+// The files of a run replace an earlier run's as one set: when one cannot be written (here a
+// folder stands where it would go), none is, and the earlier run's files, charts included, stay
+// as they were, not a mix of the two runs. The drawing leaves nothing behind either way.
+TEST(OutputFolder, AFileThatCannotBeWrittenLeavesEveryEarlierFile) {
+  TempDir dir;
+  const std::filesystem::path out = dir.file("out");
+  std::filesystem::create_directories(out / "b.csv");
+  dir.write("out/a.csv", "the earlier run\n");
+  dir.write("out/e.png", "the earlier chart");
+  lab::OutputFolder files(out);
+  files.write("a.csv", "this run\n");
+  files.write("b.csv", "this run\n");
+  EXPECT_EQ(files.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
+  try {
+    files.commit();
+    ADD_FAILURE() << "no CommandFailure";
+  } catch (const lab::CommandFailure& e) {
+    EXPECT_EQ(std::string(e.what()), "--out: " + (out / "b.csv").string() + ": is a folder, not a file");
+  }
+  EXPECT_EQ(lab_testing::readFile(out / "a.csv"), "the earlier run\n");
+  EXPECT_EQ(lab_testing::readFile(out / "e.png"), "the earlier chart");
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(out)) left.push_back(entry.path().filename());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"a.csv", "b.csv", "e.png"}));
+}
+
+// A chart is drawn from the files held for it (the script reads its data by name), and what
+// gnuplot drew is held and written with them.
+TEST(OutputFolder, RendersAScriptFromTheDataItHolds) {
+  if (lab::findGnuplot().empty()) GTEST_SKIP() << "no gnuplot on PATH (scripts/install-deps installs it)";
+  TempDir dir;
+  lab::OutputFolder files(dir.file("out"));
+  files.write("d.dat", "1 2\n2 3\n");
+  files.write("d.gp",
+              std::string(lab::kOutdirDefault) +
+                  "set terminal svg\nset output outdir.'/d.svg'\nplot 'd.dat' using 1:2\nunset output\n");
+  EXPECT_EQ(files.render("d.gp"), "");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/d.svg")));
+  files.commit();
+  EXPECT_GT(std::filesystem::file_size(dir.file("out/d.svg")), 100u);
+  const std::string out = dir.file("out").string();
+  EXPECT_EQ(files.wroteLine(), "wrote       " + out + "/d.dat, " + out + "/d.gp, " + out + "/d.svg\n");
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.file("out"))) ++entries;
+  EXPECT_EQ(entries, 3u);  // no scratch folder left
 }
 
 TEST(OutputFolder, AFolderItCannotWriteIsNamedByItsOption) {

@@ -4,10 +4,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <memory>
 #include <random>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace fileio {
 namespace {
@@ -145,17 +148,30 @@ fs::path followLinks(const fs::path& file) {
 }
 
 void writeAtomically(const fs::path& file, std::string_view content) {
-  if (file.empty()) throw FileError(file, "no file name given");
-  if (!file.has_filename()) throw FileError(file, "names a folder, not a file");
-  // Renaming over a symbolic link would replace the link; replace what it points at instead.
-  const fs::path target = followLinks(file);
-  checkReplaceable(target, file);
-  TemporaryFile temporary(target, file);
-  temporary.write(content);
-  temporary.copyPermissionsOf(target);
-  temporary.flushAndClose();
-  temporary.renameTo(target);
-  flushFolder(target);
+  const FileContent one{file, content};
+  writeAllAtomically(std::span(&one, 1));
+}
+
+void writeAllAtomically(std::span<const FileContent> files) {
+  std::vector<fs::path> targets;
+  std::vector<std::unique_ptr<TemporaryFile>> written;  // unlinked as they go, unless renamed
+  for (const FileContent& f : files) {
+    if (f.file.empty()) throw FileError(f.file, "no file name given");
+    if (!f.file.has_filename()) throw FileError(f.file, "names a folder, not a file");
+    // Renaming over a symbolic link would replace the link; replace what it points at instead.
+    targets.push_back(followLinks(f.file));
+    checkReplaceable(targets.back(), f.file);
+    written.push_back(std::make_unique<TemporaryFile>(targets.back(), f.file));
+    written.back()->write(f.content);
+    written.back()->copyPermissionsOf(targets.back());
+    written.back()->flushAndClose();
+  }
+  for (std::size_t i = 0; i < written.size(); ++i) written[i]->renameTo(targets[i]);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const bool flushed = std::any_of(targets.begin(), targets.begin() + static_cast<std::ptrdiff_t>(i),
+                                     [&](const fs::path& t) { return folderOf(t) == folderOf(targets[i]); });
+    if (!flushed) flushFolder(targets[i]);
+  }
 }
 
 void prepareFolder(const fs::path& folder) {

@@ -5,6 +5,7 @@
 // every failure says which file and why, in the operating system's words.
 #include <cstddef>
 #include <filesystem>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -36,6 +37,19 @@ class FileError : public std::runtime_error {
 /// temporary file is gone. An empty name, a folder as the target and a link loop are refused
 /// before anything is written.
 void writeAtomically(const std::filesystem::path& file, std::string_view content);
+
+/// A file to write and what to write in it.
+struct FileContent {
+  std::filesystem::path file;
+  std::string_view content;
+};
+
+/// Replaces the files as one set, each as writeAtomically would: every new content is written
+/// and flushed to disk first, and only once all of them are there are they renamed into place,
+/// so a failure on any file (a full disk, a folder in the way) leaves every target with its old
+/// content. The renames themselves can fail only if the folders change under us; then the
+/// files renamed before stay new, and FileError names the one that failed.
+void writeAllAtomically(std::span<const FileContent> files);
 
 /// Makes sure `folder` exists (creating it and its parents) and that a file can be created in
 /// it, by creating one and removing it; throws FileError with the OS's reason otherwise. For
