@@ -165,29 +165,40 @@ std::string OutputFolder::draw(const std::string& name, const Chart& chart, cons
 }
 
 std::string OutputFolder::render(const std::string& name) {
-  // The script reads its data by names relative to its folder: the scratch folder holds them all.
+  if (findGnuplot().empty()) return runGnuplot(folder_ / name, folder_);  // says how to draw them
+  // The script reads its data by names relative to its folder: the scratch folder holds them all
+  // but the charts drawn before, which no script reads.
   const PrivateFolder scratch(folder_, ".drawing-");
   if (scratch.path().empty()) {
     failed_ = true;
     return "cannot create a folder to draw in, in " + folder_.string() + ": " +
            std::generic_category().message(scratch.error());
   }
+  const auto isIn = [](const std::vector<std::string>& names, const std::string& file) {
+    return std::find(names.begin(), names.end(), file) != names.end();
+  };
+  std::vector<std::string> given;
   std::vector<fileio::FileContent> inputs;
-  for (const auto& [file, content] : held_) inputs.push_back({scratch.path() / file, content});
+  for (const auto& [file, content] : held_) {
+    if (isIn(drawn_, file)) continue;
+    given.push_back(file);
+    inputs.push_back({scratch.path() / file, content});
+  }
   try {
     fileio::writeAllAtomically(inputs);
-    const std::string problem = runGnuplot(scratch.path() / name, scratch.path());
-    failed_ = failed_ || (!problem.empty() && !findGnuplot().empty());
+    std::string problem = runGnuplot(scratch.path() / name, scratch.path(), folder_ / name);
+    failed_ = failed_ || !problem.empty();
     if (!problem.empty()) return problem;
     std::vector<std::string> drawn;
     for (const auto& entry : std::filesystem::directory_iterator(scratch.path())) {
-      const std::string file = entry.path().filename().string();
-      const auto same = [&](const auto& held) { return held.first == file; };
-      if (std::none_of(held_.begin(), held_.end(), same)) drawn.push_back(file);
+      if (const std::string file = entry.path().filename().string(); !isIn(given, file))
+        drawn.push_back(file);
     }
     std::sort(drawn.begin(), drawn.end());  // the listing's order is the file system's
-    for (const std::string& file : drawn)
+    for (const std::string& file : drawn) {
       hold(file, fileio::readWhole(scratch.path() / file, kMaxChartBytes));
+      if (!isIn(drawn_, file)) drawn_.push_back(file);
+    }
   } catch (const fileio::FileError& e) {
     failed_ = true;
     return e.what();
@@ -212,6 +223,9 @@ void OutputFolder::commit() {
   }
   held_.clear();
   stale_.clear();
+  drawn_.clear();
+  written_.insert(written_.end(), listed_.begin(), listed_.end());
+  listed_.clear();
 }
 
 }  // namespace lab

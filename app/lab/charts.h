@@ -70,12 +70,12 @@ class OutputFolder {
   /// Runs gnuplot on the script NAME, written before with the data it reads: "" when it drew
   /// (every file it drew then held and listed), else what runGnuplot said.
   std::string render(const std::string& name);
-  /// Writes every file held, all at once.
+  /// Writes every file held, all at once; they are listed from then on.
   void commit();
   /// A chart with points was not drawn though gnuplot is there. Without gnuplot the script waits
   /// to be run, and a chart with nothing to draw is said, not failed.
   bool failed() const { return failed_; }
-  std::string wroteLine() const { return "wrote       " + join(listed_, ", ") + "\n"; }
+  std::string wroteLine() const { return "wrote       " + join(written_, ", ") + "\n"; }
 
  private:
   void hold(const std::string& name, std::string content);
@@ -84,7 +84,9 @@ class OutputFolder {
   const char* option_;
   std::vector<std::pair<std::string, std::string>> held_;  // name, content; written by commit()
   std::vector<std::string> stale_;                         // removed by commit()
-  std::vector<std::string> listed_;
+  std::vector<std::string> drawn_;                         // the held files gnuplot drew
+  std::vector<std::string> listed_;                        // the held files as FOLDER/NAME
+  std::vector<std::string> written_;                       // what commit() wrote
   bool failed_ = false;
 };
 

@@ -71,10 +71,12 @@ PrivateFolder::~PrivateFolder() {
   if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
 }
 
-std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder) {
+std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder,
+                       const std::filesystem::path& shownAs) {
+  const std::string shown = (shownAs.empty() ? script : shownAs).string();
   const std::filesystem::path gnuplot = findGnuplot();
   if (gnuplot.empty()) {
-    return "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the data and " + script.string() +
+    return "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the data and " + shown +
            " are written, run gnuplot on it to draw the charts";
   }
   const PrivateFolder drawn(folder, ".charts-");
@@ -94,7 +96,7 @@ std::string runGnuplot(const std::filesystem::path& script, const std::filesyste
   const int status = pclose(pipe);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return moveIntoPlace(drawn.path(), folder);
   if (output.size() > 400) output = "..." + output.substr(output.size() - 400);
-  return "gnuplot failed on " + script.string() + " (status " + std::to_string(status) + "): " + output;
+  return "gnuplot failed on " + shown + " (status " + std::to_string(status) + "): " + output;
 }
 
 }  // namespace lab

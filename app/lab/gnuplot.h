@@ -34,7 +34,9 @@ inline constexpr const char* kOutdirDefault = "if (!exists('outdir')) outdir = '
 /// its charts drawn into a new hidden folder there and then each renamed into `folder`, so a
 /// chart is replaced whole or not at all and a failed run leaves the old charts. Returns "" on
 /// success, else one line saying why: gnuplot missing (with the package to install), its exit
-/// status and the end of what it printed, or which chart could not be moved into place.
-std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder);
+/// status and the end of what it printed, or which chart could not be moved into place. The
+/// messages name the script as `shownAs` when given (a script run where the user will not find it).
+std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder,
+                       const std::filesystem::path& shownAs = {});
 
 }  // namespace lab

@@ -150,7 +150,8 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
            .solver = r.solver,
            .msPerStep = r.medianStepMs,
            .usPerBodyStep = r.bodies > 0 ? 1000.0 * r.medianStepMs / static_cast<double>(r.bodies) : 0.0,
-           .maxJointGap = r.worst[runMetricIndex("joint-error")]});
+           .maxJointGap = r.worst[runMetricIndex("joint-error")],
+           .blewUp = !r.freezes.empty()});
     }
   }
   return rows;
@@ -177,11 +178,11 @@ std::string scaleJson(const std::vector<ScaleRow>& rows) {
 }
 
 std::string scaleCsv(const std::vector<ScaleRow>& rows) {
-  std::string s = "scene,n,threads,bodies,ms_per_step,us_per_body_step,max_joint_gap\n";
+  std::string s = "scene,n,threads,bodies,ms_per_step,us_per_body_step,max_joint_gap,blew_up\n";
   for (const ScaleRow& r : rows) {
     s += csvField(r.scene) + "," + std::to_string(r.n) + "," + std::to_string(r.solver.threads) + "," +
          std::to_string(r.bodies) + "," + csvNumber(r.msPerStep, 6) + "," + csvNumber(r.usPerBodyStep, 6) +
-         "," + csvNumber(r.maxJointGap, 6) + "\n";
+         "," + csvNumber(r.maxJointGap, 6) + "," + (r.blewUp ? "1" : "0") + "\n";
   }
   return s;
 }

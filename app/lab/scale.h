@@ -34,6 +34,7 @@ struct ScaleRow {
   double msPerStep = 0.0;       ///< unit: ms; median of the steps' Profile::total
   double usPerBodyStep = 0.0;   ///< unit: microseconds; msPerStep per body
   double maxJointGap = 0.0;     ///< unit: m; the largest Metrics::maxJointError after any step
+  bool blewUp = false;          ///< the guard froze something
 };
 
 /// Generates and runs each size for options.steps steps under options' overrides, once at each

@@ -81,7 +81,9 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
       r.figures.maxima.worst[kPenetrationMetric] = p.maxPenetration;
       poseFigures(description, p.positions, p.orientations, r.figures.posePenetration,
                   r.figures.poseJointGap);
-      if (r.blewUp()) r.note = "blew up: a body's position is not finite";
+      // Before what the peer left out, which may be why.
+      if (r.blewUp())
+        r.note = "blew up: a body's position is not finite" + (r.note.empty() ? "" : "; " + r.note);
     } else {
       r.figures.error = r.figures.errorFirst = kNaN;
       r.figures.posePenetration = r.figures.poseJointGap = kNaN;

@@ -400,18 +400,35 @@ TEST(SceneErrors, BytesThatAreNotUtf8AreNamedWithTheirLine) {
   const struct {
     const char* bytes;
     const char* says;
-  } bad[] = {{"M\xFCller", "0xFC"},         // Latin-1's u with umlaut
-             {"a\x80", "0x80"},             // a continuation byte alone
-             {"\xC0\xAF", "0xC0"},          // '/' in an overlong form
-             {"\xE0\x80\xAF", "0xE0"},      // the same in three bytes
-             {"\xED\xA0\x80", "0xED"},      // a surrogate, U+D800
-             {"\xF4\x90\x80\x80", "0xF4"},  // U+110000, past the last code point
-             {"\xE2\x82", "0xE2"}};         // a character cut short (by the quote)
+  } bad[] = {{"M\xFCller", "byte 0xFC is"},                // Latin-1's u with umlaut
+             {"a\x80", "byte 0x80 is"},                    // a continuation byte alone
+             {"\xC0\xAF", "byte 0xC0 is"},                 // '/' in an overlong form
+             {"\xE0\x80\xAF", "bytes 0xE0 0x80 are"},      // the same in three bytes
+             {"\xED\xA0\x80", "bytes 0xED 0xA0 are"},      // a surrogate, U+D800
+             {"\xF4\x90\x80\x80", "bytes 0xF4 0x90 are"},  // U+110000, past the last code point
+             {"\xE2\x82", "bytes 0xE2 0x82 0x27 are"}};    // a character cut short by the quote
   for (const auto& b : bad) {
-    EXPECT_EQ(load(b.bytes), std::string("n.xml:2: byte ") + b.says +
-                                 " is not UTF-8; scene files are UTF-8 (save it as UTF-8)")
+    EXPECT_EQ(load(b.bytes),
+              std::string("n.xml:2: ") + b.says + " not UTF-8; scene files are UTF-8 (save it as UTF-8)")
         << b.bytes;
   }
+  // A file that says it is Latin-1 is told so (the declaration is read first); bytes that are
+  // not UTF-8 before the XML breaks are named before the XML error.
+  auto loadText = [](const std::string& text) {
+    try {
+      scenes::loadSceneText(text, "n.xml");
+      return std::string();
+    } catch (const scenes::LoadError& e) {
+      return std::string(e.what());
+    }
+  };
+  const std::string latin = "<?xml version='1.0' encoding='ISO-8859-1'?>\n<scene name='M\xFCller'/>\n";
+  EXPECT_NE(loadText(latin).find("'ISO-8859-1' is not supported"), std::string::npos) << loadText(latin);
+  EXPECT_EQ(loadText("<scene name='s'>\n<box name='\xFC'/>\n<box"),
+            "n.xml:2: byte 0xFC is not UTF-8; scene files are UTF-8 (save it as UTF-8)");
+  // At the very end of the file, cut short by it.
+  EXPECT_EQ(loadText("<scene name='s'/>\n<!-- -->\xE2\x82"),
+            "n.xml:2: bytes 0xE2 0x82 are not UTF-8; scene files are UTF-8 (save it as UTF-8)");
   for (const char* good :
        {"M\xC3\xBCller", "\xE2\x82\xAC", "\xED\x9F\xBF", "\xF0\x9F\xA6\xB4", "\xF4\x8F\xBF\xBF"}) {
     EXPECT_EQ(load(good), "") << good;  // u umlaut, the euro sign, U+D7FF, a bone emoji, U+10FFFF

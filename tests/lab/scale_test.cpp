@@ -1,6 +1,7 @@
 // lab scale: the generated scenes, the measurements at each size and the command's outputs.
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -122,7 +123,10 @@ TEST(Scale, WritesTheDataAndTheChartWhenGnuplotIsThere) {
   }
   const std::string csv = lab_testing::readFile(dir.file("out/scale.csv"));
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "scene,n,threads,bodies,ms_per_step,us_per_body_step,max_joint_gap");
+            "scene,n,threads,bodies,ms_per_step,us_per_body_step,max_joint_gap,blew_up");
+  EXPECT_NE(csv.find("\npyramid,3,"), std::string::npos) << csv;
+  EXPECT_EQ(csv.back(), '\n');
+  EXPECT_EQ(csv.substr(csv.size() - 3), ",0\n") << csv;  // it did not blow up
   EXPECT_EQ(lab_testing::readFile(dir.file("out/scale.png")).substr(1, 3), "PNG");
 }
 
@@ -144,6 +148,11 @@ TEST(Scale, EachSizeRunsAtEachNumberOfThreadsInTurn) {
   const std::string table = lab::scaleTable(rows);
   EXPECT_NE(table.find("threads"), std::string::npos) << table;
   EXPECT_NE(lab::scaleCsv(rows).find("\ncapsule-ragdolls,4,2,44,"), std::string::npos) << lab::scaleCsv(rows);
+  // A size that blew up: its joint gap, infinity, is blank and blew_up says why.
+  std::vector<lab::ScaleRow> blown(1, rows[0]);
+  blown[0].maxJointGap = std::numeric_limits<double>::infinity();
+  blown[0].blewUp = true;
+  EXPECT_TRUE(lab::scaleCsv(blown).ends_with(",,1\n")) << lab::scaleCsv(blown);
 
   if (lab::findGnuplot().empty()) GTEST_SKIP() << "gnuplot is not installed";
   const TempDir dir;

@@ -437,8 +437,10 @@ TEST(OutputFolder, ListsWhatItWroteAndAMissingGnuplotIsNoFailure) {
   const ScopedPath noGnuplot(dir.file("empty-bin").string());
   lab::OutputFolder files(dir.file("out"));
   files.write("a.csv", "x\n");
-  EXPECT_NE(files.draw("c.gp", onePointChart("c"), "none").find("gnuplot is not installed"),
-            std::string::npos);
+  const std::string missing = files.draw("c.gp", onePointChart("c"), "none");
+  EXPECT_NE(missing.find("gnuplot is not installed"), std::string::npos) << missing;
+  // The script named where it will be, not where it was drawn.
+  EXPECT_NE(missing.find(dir.file("out/c.gp").string() + " are written"), std::string::npos) << missing;
   EXPECT_EQ(files.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
   EXPECT_FALSE(files.failed());
   EXPECT_FALSE(std::filesystem::exists(dir.file("out/a.csv")));  // nothing before the commit
@@ -469,7 +471,10 @@ TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
   std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
   const ScopedPath failing(dir.file("bin").string());
   lab::OutputFolder files(dir.file("out"));
-  EXPECT_NE(files.draw("c.gp", onePointChart("c"), "none").find("broken"), std::string::npos);
+  const std::string broken = files.draw("c.gp", onePointChart("c"), "none");
+  EXPECT_NE(broken.find("broken"), std::string::npos) << broken;
+  EXPECT_NE(broken.find("gnuplot failed on " + dir.file("out/c.gp").string() + " "), std::string::npos)
+      << broken;
   EXPECT_TRUE(files.failed());
   // A chart with nothing to draw is said, not failed, whatever gnuplot would do.
   lab::OutputFolder other(dir.file("other"));

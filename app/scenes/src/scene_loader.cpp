@@ -852,10 +852,11 @@ std::string_view otherEncoding(std::string_view bytes) {
   return {};
 }
 
-// Where the bytes first stop being UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing
-// past U+10FFFF), or npos. pugixml passes such bytes through, so a Latin-1 name would reach the
-// sandbox's labels and the lab's CSVs as bytes no reader can decode.
-std::size_t firstNotUtf8(std::string_view bytes) {
+// The first bytes that are not UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing past
+// U+10FFFF): a sequence's lead up to the byte that breaks it; empty if there are none. pugixml
+// passes such bytes through, so a Latin-1 name would reach the sandbox's labels and the lab's
+// CSVs as bytes no reader can decode.
+std::string_view firstNotUtf8(std::string_view bytes) {
   std::size_t i = 0;
   while (i < bytes.size()) {
     const auto lead = static_cast<unsigned char>(bytes[i]);
@@ -874,16 +875,28 @@ std::size_t firstNotUtf8(std::string_view bytes) {
       if (lead == 0xF0) low = 0x90;   // overlong below U+10000
       if (lead == 0xF4) high = 0x8F;  // past U+10FFFF
     } else {
-      return i;  // a continuation byte alone, an overlong lead (C0, C1) or F5 to FF
+      return bytes.substr(i, 1);  // a continuation byte alone, an overlong lead (C0, C1) or F5 to FF
     }
-    if (i + length > bytes.size()) return i;
     for (std::size_t k = 1; k < length; ++k) {
+      if (i + k == bytes.size()) return bytes.substr(i);  // cut short by the end of the file
       const auto c = static_cast<unsigned char>(bytes[i + k]);
-      if (c < (k == 1 ? low : 0x80) || c > (k == 1 ? high : 0xBF)) return i;
+      if (c < (k == 1 ? low : 0x80) || c > (k == 1 ? high : 0xBF)) return bytes.substr(i, k + 1);
     }
     i += length;
   }
-  return std::string_view::npos;
+  return {};
+}
+
+// "byte 0xFC is not UTF-8", "bytes 0xE2 0x82 0x27 are not UTF-8".
+std::string notUtf8Message(std::string_view bad) {
+  std::string hex;
+  for (const char c : bad) {
+    char byte[8];
+    std::snprintf(byte, sizeof byte, " 0x%02X", static_cast<unsigned char>(c));
+    hex += byte;
+  }
+  return (bad.size() == 1 ? "byte" : "bytes") + hex + (bad.size() == 1 ? " is" : " are") +
+         " not UTF-8; scene files are UTF-8 (save it as UTF-8)";
 }
 
 // The encoding an XML declaration names, if there is one and it is not UTF-8 or ASCII.
@@ -910,13 +923,12 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   if (const auto nul = std::find(buffer.begin(), buffer.end(), '\0'); nul != buffer.end()) {
     throw LoadError(file, lines.lineOf(&*nul), "", "a zero byte: this is not a text file");
   }
-  if (const std::size_t bad = firstNotUtf8(std::string_view(buffer.data(), size));
-      bad != std::string_view::npos) {
-    char byte[8];
-    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(buffer[bad]));
-    throw LoadError(file, lines.lineOf(buffer.data() + bad), "",
-                    std::string("byte ") + byte + " is not UTF-8; scene files are UTF-8 (save it as UTF-8)");
-  }
+  // Said after the XML declaration, which may name the file's encoding, unless the XML breaks
+  // first. Its line and text are taken now: parsing in place rewrites the buffer.
+  const std::string_view bad = firstNotUtf8(std::string_view(buffer.data(), size));
+  const std::size_t badAt = bad.empty() ? size : static_cast<std::size_t>(bad.data() - buffer.data());
+  const int badLine = bad.empty() ? 0 : lines.lineOf(bad.data());
+  const std::string badMessage = bad.empty() ? std::string() : notUtf8Message(bad);
   // What follows the last '>' (before in-place parsing rewrites the buffer): only white space
   // may.
   std::string trailing;
@@ -935,14 +947,11 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   }
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
       buffer.data(), size, pugi::parse_default | pugi::parse_declaration, pugi::encoding_utf8);
+  if (!parsed && badAt < static_cast<std::size_t>(parsed.offset))
+    throw LoadError(file, badLine, "", badMessage);
   if (!parsed) {
     throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
                     std::string("not well-formed XML: ") + parsed.description());
-  }
-  // pugixml drops text after the root element without a trace; look for it ourselves. The
-  // buffer was parsed in place, so scan a copy of its end made before parsing (see below).
-  if (!trailing.empty()) {
-    throw LoadError(file, trailingLine, "", "nothing may follow </scene> but comments and white space");
   }
   const pugi::xml_node root = doc.document_element();
   for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
@@ -958,6 +967,12 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
     // Anything beside the root (a second element, stray text) would otherwise vanish unread.
     ElementReader stray(top, lines, file);
     stray.fail("nothing may follow or precede <scene> but comments");
+  }
+  if (!badMessage.empty()) throw LoadError(file, badLine, "", badMessage);
+  // pugixml drops text after the root element without a trace; look for it ourselves. The
+  // buffer was parsed in place, so scan a copy of its end made before parsing (see above).
+  if (!trailing.empty()) {
+    throw LoadError(file, trailingLine, "", "nothing may follow </scene> but comments and white space");
   }
   if (std::string_view(root.name()) != "scene") {
     throw LoadError(file, lines.lineOf(root.name()), "",
