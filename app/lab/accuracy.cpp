@@ -176,9 +176,10 @@ phys::SolverSettings referenceSettings(const phys::World& world, double dt) {
   return s;
 }
 
-AccuracyTarget accuracyTarget(const scenes::Scene& scene, double dt, int steps) {
-  // The reference steps a copy of the loaded world, so it has the run's models without loading
-  // the file again.
+namespace {
+
+// The scene's <expect kind="position"> elements, each checked at `dt`.
+std::vector<PositionExpect> readExpects(const scenes::Scene& scene, double dt) {
   std::vector<PositionExpect> expects;
   for (const scenes::Expectation& e : scene.expectations) {
     const std::string* kind = e.find("kind");
@@ -192,6 +193,22 @@ AccuracyTarget accuracyTarget(const scenes::Scene& scene, double dt, int steps) 
     }
     expects.push_back(x);
   }
+  return expects;
+}
+
+}  // namespace
+
+std::vector<PositionAnswer> positionAnswers(const scenes::Scene& scene) {
+  const double dt = scene.world.solverSettings().dt;
+  std::vector<PositionAnswer> answers;
+  for (const PositionExpect& x : readExpects(scene, dt)) answers.push_back({x.step * dt, x.pos});
+  return answers;
+}
+
+AccuracyTarget accuracyTarget(const scenes::Scene& scene, double dt, int steps) {
+  // The reference steps a copy of the loaded world, so it has the run's models without loading
+  // the file again.
+  const std::vector<PositionExpect> expects = readExpects(scene, dt);
   if (!expects.empty()) return analyticTarget(scene, expects, dt);
   return referenceTarget(scene, dt, std::max(1, steps));
 }

@@ -55,6 +55,16 @@ double maxUncertainty(const AccuracyTarget& target);
 /// a malformed <expect kind="position">.
 AccuracyTarget accuracyTarget(const scenes::Scene& scene, double dt, int steps);
 
+/// One of a scene's analytic answers: where a body should be, when.
+struct PositionAnswer {
+  double time = 0.0;    ///< unit: s
+  phys::Vec3 pos{0.0};  ///< unit: m
+};
+/// The scene's <expect kind="position"> answers at its own dt, each checked as accuracyTarget
+/// checks them (the sandbox draws them, and refuses a scene whose answers are wrong); throws
+/// scenes::LoadError naming the file, line and attribute of one that is.
+std::vector<PositionAnswer> positionAnswers(const scenes::Scene& scene);
+
 /// The run's error: the largest distance (m) between a body's position at a checkpoint and the
 /// target's, over every body and checkpoint the target says something of. `positions` holds,
 /// per checkpoint, bodyPositions() at that step. Infinity when a position is not finite or the

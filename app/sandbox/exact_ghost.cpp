@@ -5,28 +5,33 @@
 namespace sandbox {
 namespace {
 
-bool hasPositionAnswers(const scenes::Scene& scene) {
-  for (const scenes::Expectation& e : scene.expectations) {
-    const std::string* kind = e.find("kind");
-    if (kind != nullptr && *kind == "position") return true;
+// The scene's answers; none when they are wrong, which the session refused at load (a scene given
+// in a recording is not checked there, so is not trusted here either).
+std::vector<std::pair<double, glm::vec3>> answersOf(const scenes::Scene& scene) {
+  std::vector<std::pair<double, glm::vec3>> out;
+  try {
+    for (const lab::PositionAnswer& a : lab::positionAnswers(scene))
+      out.emplace_back(a.time, glm::vec3(a.pos));
+  } catch (const scenes::LoadError&) {
+    out.clear();
   }
-  return false;
+  return out;
 }
 
 }  // namespace
 
 void ExactGhost::reset(const scenes::Scene& scene) {
   clear();
+  answers_ = answersOf(scene);
   const phys::World& w = scene.world;
-  if (!hasPositionAnswers(scene) ||
-      w.particles().size() + w.rigidBodies().size() > kMaxGhostParticlesAndBodies)
-    return;
+  if (answers_.empty() || w.particles().size() + w.rigidBodies().size() > kMaxGhostParticlesAndBodies) return;
   start_.emplace(w);
   start_->clearDrag();
   start_->setSolverSettings(lab::referenceSettings(w, w.solverSettings().dt));
 }
 
 void ExactGhost::clear() {
+  answers_.clear();
   start_.reset();
   now_.reset();
   snapshots_.clear();

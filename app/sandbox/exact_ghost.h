@@ -6,7 +6,10 @@
 // times; the ghost is where the answer is in between, so one sees the simulated body drift from
 // it as it goes.
 #include <optional>
+#include <utility>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "physics/world.h"
 #include "scenes/scene.h"
@@ -32,8 +35,11 @@ class ExactGhost {
   /// The ghost at simulated time `time` (unit: s), stepped at `dt` (the main run's) from where it
   /// was, or from the last copy before `time` when time went back; null when there is none.
   const phys::World* at(double time, double dt);
+  /// The scene's answers, time (unit: s) and place (unit: m): its crosses.
+  const std::vector<std::pair<double, glm::vec3>>& answers() const { return answers_; }
 
  private:
+  std::vector<std::pair<double, glm::vec3>> answers_;
   std::optional<phys::World> start_;
   std::optional<phys::World> now_;
   std::vector<phys::World> snapshots_;  // by time

@@ -192,9 +192,12 @@ std::optional<fs::path> FileDialog::draw() {
     if (entry.isFolder) {
       if (ImGui::Selectable((entry.name + "/").c_str(), false, flags)) folderToEnter = full;
     } else {
-      const bool selected = full.string() == typed_;
+      // The field holds the full path, or, when that does not fit it, the name alone, which
+      // resolves against the folder shown: a path cut short would name another file.
+      const std::string picked = full.string().size() < sizeof typed_ ? full.string() : entry.name;
+      const bool selected = picked == typed_;
       if (ImGui::Selectable(entry.name.c_str(), selected, flags)) {
-        std::snprintf(typed_, sizeof typed_, "%s", full.string().c_str());
+        std::snprintf(typed_, sizeof typed_, "%s", picked.c_str());
         message_.clear();
         replacing_.clear();
         // Only a double click on the file already picked confirms: the second click of a

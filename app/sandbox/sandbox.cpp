@@ -100,8 +100,13 @@ Sandbox::Sandbox(const Options& options)
 
   // The scene: the one named, else the last one used (if it still loads), else the default.
   std::filesystem::path file = scenePath(options_);
-  if (options_.scene.empty() && !user_.lastScene.empty() && std::filesystem::exists(user_.lastScene)) {
-    file = user_.lastScene;
+  if (options_.scene.empty() && !user_.lastScene.empty()) {
+    std::error_code ec;  // a path too long or a folder not to be entered: said, and the default opens
+    if (std::filesystem::exists(user_.lastScene, ec))
+      file = user_.lastScene;
+    else if (ec)
+      std::cerr << "sandbox: " << settingsFile_.string() << ": lastScene '" << user_.lastScene
+                << "': " << ec.message() << "; opening the default scene instead\n";
   }
   try {
     session_ = std::make_unique<Session>(file, scenes::sceneDirectory(data), options_.threads);
@@ -155,7 +160,10 @@ void Sandbox::saveUserSettingsOnExit() {
   user_.windowWidth = std::clamp(user_.windowWidth, 640, 16384);
   user_.windowHeight = std::clamp(user_.windowHeight, 360, 16384);
   remember(ui_, user_);
-  user_.lastScene = std::filesystem::absolute(session_->file()).string();
+  // A relative name whose working folder has gone keeps the last scene remembered before it.
+  std::error_code ec;
+  if (const std::filesystem::path file = std::filesystem::absolute(session_->file(), ec); !ec)
+    user_.lastScene = file.string();
   try {
     saveUserSettings(user_, settingsFile_);
   } catch (const std::exception& e) {
@@ -201,7 +209,9 @@ void Sandbox::openScene(const std::filesystem::path& file) {
     ui_.message = "could not open " + file.string();
     return;
   }
-  addRecentFile(user_, std::filesystem::absolute(file).string());
+  std::error_code ec;  // a working folder that has gone: the name as it was given
+  const std::filesystem::path absolute = std::filesystem::absolute(file, ec);
+  addRecentFile(user_, (ec ? file : absolute).string());
   stopFollowing();
   trails_.clear();
   fitToScene();
@@ -498,16 +508,7 @@ void Sandbox::drawExactAnswers(const glm::mat4& viewProjection) {
     options.contacts = options.markers = options.bounds = options.shadows = false;
     view_->draw(*ghost, viewProjection, options, Tint{kExactColor, kGhostAlpha});
   }
-  std::vector<std::pair<double, glm::vec3>> answers;  // time, place
-  for (const scenes::Expectation& e : scene.expectations) {
-    const std::string* kind = e.find("kind");
-    const std::string* pos = e.find("pos");
-    const std::string* at = e.find("at");
-    if (kind == nullptr || *kind != "position" || pos == nullptr || at == nullptr) continue;
-    glm::vec3 p(0.0f);
-    if (std::sscanf(pos->c_str(), "%f %f %f", &p.x, &p.y, &p.z) != 3) continue;  // the loader checked it
-    answers.emplace_back(std::atof(at->c_str()), p);
-  }
+  const std::vector<std::pair<double, glm::vec3>>& answers = ghost_.answers();  // time, place
   const double now = scene.world.time();
   const auto nearest = std::min_element(answers.begin(), answers.end(), [&](const auto& a, const auto& b) {
     return std::abs(a.first - now) < std::abs(b.first - now);

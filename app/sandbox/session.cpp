@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "accuracy.h"  // lab_core: <expect kind="position"> checked as the lab checks it
 #include "clips/clip_file.h"
 #include "fileio/files.h"
 #include "physics/capsule_ragdoll.h"
@@ -94,6 +95,15 @@ phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::
   return origin + dir * (glm::dot(p0 - origin, n) / along);
 }
 
+// A scene as the sandbox opens it: loaded, and its analytic answers, which the sandbox draws as
+// crosses, checked as the lab checks them, so a wrong one is refused with its line.
+std::unique_ptr<scenes::Scene> loadChecked(const std::filesystem::path& file,
+                                           const scenes::LoadOptions& options) {
+  auto scene = std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, options));
+  static_cast<void>(lab::positionAnswers(*scene));
+  return scene;
+}
+
 }  // namespace
 
 Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory,
@@ -103,7 +113,7 @@ Session::Session(const std::filesystem::path& file, const std::filesystem::path&
   // nothing while the user looks at it (docs/sandbox.md).
   load_.sleepUnlessSaid = true;
   load_.threads = threads;
-  replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, load_)), file);
+  replaceMain(loadChecked(file, load_), file);
 }
 
 void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file) {
@@ -124,7 +134,7 @@ void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::files
 
 std::string Session::open(const std::filesystem::path& file) {
   try {
-    replaceMain(std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, load_)), file);
+    replaceMain(loadChecked(file, load_), file);
     return {};
   } catch (const std::exception& e) {  // LoadError, or anything else: keep what we have
     status_ = std::string(e.what()) + " (the current world is kept)";

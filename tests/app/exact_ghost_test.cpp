@@ -68,6 +68,21 @@ TEST(ExactGhost, GoesBackWithTheClockAndIsNoneWithoutAnswers) {
   ghost.reset(testing_app::openSession("ragdoll").scene());
   EXPECT_FALSE(ghost.active());
   EXPECT_EQ(ghost.at(1.0, dt), nullptr);
+  EXPECT_TRUE(ghost.answers().empty());
+}
+
+// The crosses are the file's answers, read as the lab reads them (they were parsed apart, with
+// sscanf, which took "nan" and "1e39" as numbers).
+TEST(ExactGhost, ItsCrossesAreTheFilesAnswers) {
+  const sandbox::Session s = testing_app::openSession("projectile");
+  sandbox::ExactGhost ghost;
+  ghost.reset(s.scene());
+  ASSERT_EQ(ghost.answers().size(), s.scene().expectations.size());
+  for (std::size_t i = 0; i < ghost.answers().size(); ++i) {
+    const scenes::Expectation& e = s.scene().expectations[i];
+    EXPECT_NEAR(ghost.answers()[i].first, std::atof(e.find("at")->c_str()), 1e-12);
+    EXPECT_LT(glm::length(glm::dvec3(ghost.answers()[i].second) - parsed(*e.find("pos"))), 1e-5);
+  }
 }
 
 }  // namespace

@@ -331,6 +331,26 @@ TEST_F(FileDialogUi, DoubleClickingAFolderDoesNotOpenTheFileThatTakesItsPlace) {
   EXPECT_EQ(*chosen, fs::absolute(dir.path / "sub" / "a.xml").lexically_normal());
 }
 
+// A file picked in a folder whose path does not fit the 1023-byte field is picked by its name,
+// which resolves against the folder shown: the full path cut short named another file (here
+// "a.xml" for "a.xml.xml").
+TEST_F(FileDialogUi, AFileInAFolderTooDeepForTheFieldIsPickedWhole) {
+  TempFolder dir;
+  fs::path deep = dir.path;
+  while (deep.string().size() < 1015) deep /= std::string(100, 'd');
+  fs::create_directories(deep);
+  std::ofstream(deep / "a.xml.xml") << "x";
+  std::ofstream(deep / "a.xml") << "x";
+  ASSERT_GT((deep / "a.xml.xml").string().size(), 1023u);
+  dialog.open(FileDialogMode::Open, deep, kTitle);  // .., a.xml, a.xml.xml
+  settle();
+  EXPECT_FALSE(click(2).has_value());
+  settle();
+  const auto chosen = click(2, 2);  // a double click on the picked file confirms
+  ASSERT_TRUE(chosen.has_value());
+  EXPECT_EQ(*chosen, fs::absolute(deep / "a.xml.xml").lexically_normal());
+}
+
 TEST_F(FileDialogUi, EscapeCancels) {
   dialog.open(FileDialogMode::Open, kScenes, kTitle);
   settle();

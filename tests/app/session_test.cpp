@@ -52,6 +52,25 @@ TEST(Session, ABadSceneKeepsTheCurrentWorldAndSaysWhereTheErrorIs) {
   EXPECT_EQ(s.scene().name, "pyramid");
 }
 
+// The sandbox draws a scene's analytic answers: one that is no place or no time is refused at
+// load, as the lab refuses it, with its line and attribute.
+TEST(Session, AWrongAnalyticAnswerIsRefusedWithItsLine) {
+  sandbox::Session s = open("pyramid");
+  const TempDir dir;
+  const fs::path bad = dir.path / "answer.xml";
+  const char* cases[][2] = {
+      {"at=\"1\" pos=\"nan 1 0\"", "attribute 'pos': 'nan 1 0' must be three finite numbers (m)"},
+      {"at=\"1\" pos=\"1 2\"", "attribute 'pos': '1 2' must be three finite numbers (m)"},
+      {"at=\"soon\" pos=\"0 1 0\"", "attribute 'at': 'soon' must be a finite number > 0 (s)"}};
+  for (const auto& c : cases) {
+    std::ofstream(bad) << "<scene name=\"answer\">\n  <particle name=\"p\" pos=\"0 1 0\"/>\n"
+                       << "  <expect kind=\"position\" body=\"p\" " << c[0] << "/>\n</scene>\n";
+    const std::string error = s.open(bad);
+    EXPECT_EQ(error, bad.string() + ":3: <expect kind=\"position\"> " + c[1]) << c[0];
+    EXPECT_EQ(s.scene().name, "pyramid");
+  }
+}
+
 TEST(Session, ReloadRestartsFromTheFileAndBuiltinsOpenTheSeedsScenes) {
   sandbox::Session s = open("ragdoll");
   const std::uint64_t start = s.scene().world.stateHash();
