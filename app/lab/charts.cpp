@@ -5,8 +5,10 @@
 #include "gnuplot.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <system_error>
 #include <utility>
 
@@ -15,6 +17,31 @@ namespace {
 
 // The most a drawn chart is read back: gnuplot's PNGs and SVGs of the lab's charts are under 1 MB.
 constexpr std::size_t kMaxChartBytes = std::size_t{64} << 20;
+
+// A new hidden folder PREFIXxxxxxx inside `parent`, removed with whatever is left in it when this
+// goes.
+class PrivateFolder {
+ public:
+  PrivateFolder(const std::filesystem::path& parent, const char* prefix) {
+    std::string name = (parent / (std::string(prefix) + "XXXXXX")).string();
+    if (::mkdtemp(name.data()) != nullptr)
+      path_ = name;
+    else
+      error_ = errno;
+  }
+  PrivateFolder(const PrivateFolder&) = delete;
+  PrivateFolder& operator=(const PrivateFolder&) = delete;
+  ~PrivateFolder() {
+    std::error_code ignored;
+    if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }  ///< empty if it could not be made
+  int error() const { return error_; }                         ///< errno when it could not
+
+ private:
+  std::filesystem::path path_;
+  int error_ = 0;
+};
 
 // A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
 std::string quoted(const std::string& text) {
@@ -146,7 +173,6 @@ void OutputFolder::hold(const std::string& name, std::string content) {
     return;
   }
   held_.emplace_back(name, std::move(content));
-  listed_.push_back((folder_ / name).string());
 }
 
 void OutputFolder::write(const std::string& name, std::string_view content) {
@@ -221,11 +247,10 @@ void OutputFolder::commit() {
     std::error_code ignored;
     std::filesystem::remove(folder_ / name, ignored);
   }
+  for (const auto& [name, content] : held_) written_.push_back((folder_ / name).string());
   held_.clear();
   stale_.clear();
   drawn_.clear();
-  written_.insert(written_.end(), listed_.begin(), listed_.end());
-  listed_.clear();
 }
 
 }  // namespace lab

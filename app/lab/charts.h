@@ -85,7 +85,6 @@ class OutputFolder {
   std::vector<std::pair<std::string, std::string>> held_;  // name, content; written by commit()
   std::vector<std::string> stale_;                         // removed by commit()
   std::vector<std::string> drawn_;                         // the held files gnuplot drew
-  std::vector<std::string> listed_;                        // the held files as FOLDER/NAME
   std::vector<std::string> written_;                       // what commit() wrote
   bool failed_ = false;
 };
