@@ -87,6 +87,10 @@ class Reader {
     if (f > 1) fail(std::string(what) + " is " + std::to_string(f) + ", not 0 or 1: the file is damaged");
     return f == 1;
   }
+  void skip(std::size_t n) {
+    need(n);
+    at_ += n;
+  }
   std::size_t offset() const { return at_; }
   std::size_t left() const { return bytes_.size() - at_; }
   /// Where the reader is, for messages: "part 2, step 140".
@@ -394,7 +398,13 @@ std::string encodeRecording(const SavedRecording& recording) {
     w.value(static_cast<std::uint32_t>(characters));
     for (std::size_t c = 0; c < characters; ++c)
       w.value(static_cast<std::uint32_t>(first->characters[c].partStrength.size()));
-    for (const SavedStep& s : part.steps) writeStep(w, names, s);
+    for (const SavedStep& s : part.steps) {
+      if (const std::string problem = s.motion.problem(); !problem.empty()) {
+        throw RecordingFormatError("step " + std::to_string(s.record.step) + ": " + problem +
+                                   ": a recording holding it could not be opened");
+      }
+      writeStep(w, names, s);
+    }
   }
   Fnv checksum;
   checksum.bytes(w.out().data(), w.out().size());
@@ -420,13 +430,7 @@ void readHeader(Reader& r, std::string_view bytes) {
 
 }  // namespace
 
-std::string recordingSceneName(std::string_view bytes) {
-  Reader r(bytes);
-  readHeader(r, bytes);
-  return r.text("the scene's name");
-}
-
-SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSource) {
+void readRecording(std::string_view bytes, const RecordingVisitor& visit) {
   Reader r(bytes);
   readHeader(r, bytes);
   // The checksum first, so that damage anywhere is called damage, not whatever it looks like.
@@ -438,10 +442,11 @@ SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSou
   std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
   const bool checksumOk = checksum.hash() == stored;
 
-  SavedRecording out;
-  out.sceneName = r.text("the scene's name");
+  const std::string sceneName = r.text("the scene's name");
+  if (checksumOk && visit.scene) visit.scene(sceneName);
   const auto parts = r.value<std::uint32_t>();
   long expected = -1;
+  std::size_t stepsRead = 0;
   for (std::uint32_t p = 0; p < parts; ++p) {
     r.setPlace("part " + std::to_string(p + 1) + " of " + std::to_string(parts));
     SavedPart part;
@@ -474,25 +479,28 @@ SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSou
              std::to_string(rigid) + " rigid bodies and " + std::to_string(characters) +
              " characters need more than the " + std::to_string(room) + " bytes left: the file is truncated");
     }
+    if (!checksumOk) {  // nothing of a damaged file is decoded: a step's size is known without it
+      r.skip(steps * each);
+      continue;
+    }
     // The clips only from a file whose checksum holds: a damaged name must not be looked for.
     Clips clips(names.size());
-    if (checksumOk && steps > 0) {
-      if (!names.empty() && !clipSource) r.fail("the recording names clips and no clip source was given");
+    if (steps > 0) {
+      if (!names.empty() && !visit.clips) r.fail("the recording names clips and no clip source was given");
       for (std::size_t c = 0; c < names.size(); ++c) {
-        clips[c] = clipSource(names[c]);
+        clips[c] = visit.clips(names[c]);
         if (clips[c] == nullptr) r.fail("the clip source gave no clip for '" + names[c] + "'");
       }
     }
-    part.steps.reserve(steps);
     for (std::uint64_t s = 0; s < steps; ++s) {
       r.setPlace("part " + std::to_string(p + 1) + " of " + std::to_string(parts) + ", its step " +
                  std::to_string(s + 1) + " of " + std::to_string(steps));
       SavedStep step = readStep(r, particles, rigid, clips, bones);
-      if (checksumOk) checkStep(r, step, expected);
+      checkStep(r, step, expected);
       expected = step.record.step + 1;
-      part.steps.push_back(std::move(step));
+      ++stepsRead;
+      if (visit.step) visit.step(p, part, std::move(step));
     }
-    out.parts.push_back(std::move(part));
   }
   r.setPlace("");
   if (r.left() < 8) r.fail("the checksum is missing: the file is truncated");
@@ -502,7 +510,19 @@ SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clipSou
   if (r.left() > 8)
     r.fail(std::to_string(r.left() - 8) +
            " bytes before the checksum that belong to nothing: the file is damaged");
-  if (out.stepCount() == 0) r.fail("a recording of no steps");
+  if (stepsRead == 0) r.fail("a recording of no steps");
+}
+
+SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clips) {
+  SavedRecording out;
+  std::size_t lastPart = 0;
+  readRecording(bytes, {[&out](const std::string& name) { out.sceneName = name; }, clips,
+                        [&](std::size_t index, const SavedPart& part, SavedStep step) {
+                          if (out.parts.empty() || index != lastPart)
+                            out.parts.push_back({part.sceneXml, part.structure, {}});
+                          lastPart = index;
+                          out.parts.back().steps.push_back(std::move(step));
+                        }});
   return out;
 }
 

@@ -62,17 +62,35 @@ class RecordingFormatError : public std::runtime_error {
 /// clip of that name, or an exception saying why there is none.
 using ClipSource = std::function<std::shared_ptr<const phys::Clip>(const std::string& name)>;
 
-/// The name of the scene a recording's bytes were recorded in, read from its header alone (so that a
-/// file of another scene is told apart before its clips are looked for). Throws RecordingFormatError
-/// as decodeRecording would for a header that is not a recording's of this format.
-std::string recordingSceneName(std::string_view bytes);
-
-/// The file's bytes. Characters' clips are written by name, once per part.
+/// The file's bytes. Characters' clips are written by name, once per part. Throws
+/// RecordingFormatError for a step whose motion the reader would refuse (phys::Motion::problem: a
+/// non-finite number, an orientation not of unit length): a file that could not be opened is never
+/// made.
 std::string encodeRecording(const SavedRecording& recording);
-/// Throws RecordingFormatError: not a recording, another format version, truncated, damaged (the
-/// checksum, a step out of order, a motion not matching its hash, a non-finite number). The clips
-/// the characters play are asked of `clips` by name, once each, and only of a file whose checksum
-/// holds; what it throws goes through. A file that names clips needs a source.
+
+/// What readRecording hands over, in the order the file holds it.
+struct RecordingVisitor {
+  /// The scene's name, once the checksum holds and before any clip is asked for or step read; it
+  /// may throw to refuse the file (a recording of another scene: a damaged name is damage, not
+  /// another scene's).
+  std::function<void(const std::string& sceneName)> scene;
+  /// The clips the characters play, by name, asked once each per part; a file that names clips
+  /// needs a source. What it throws goes through.
+  ClipSource clips;
+  /// Each step in order, checked, with its part's index and its part (scene and structure; its
+  /// steps left empty). A part of no steps is not handed over.
+  std::function<void(std::size_t partIndex, const SavedPart& part, SavedStep step)> step;
+};
+
+/// Reads a recording one step at a time, so that a caller keeping only some of them (a budget)
+/// never holds the rest. The checksum is checked over the whole file first: a damaged file hands
+/// nothing over, and of it only the parts' headers are read (to say "truncated" where it is), no
+/// step. Throws RecordingFormatError: not a recording, another format version, truncated, damaged
+/// (the checksum, a step out of order, a motion not matching its hash, a non-finite number), or a
+/// recording of no steps.
+void readRecording(std::string_view bytes, const RecordingVisitor& visit);
+
+/// readRecording with every step kept, for a file known to be small (tests, tools).
 SavedRecording decodeRecording(std::string_view bytes, const ClipSource& clips = {});
 
 }  // namespace sandbox

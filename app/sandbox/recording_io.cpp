@@ -69,35 +69,41 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
   return saved;
 }
 
-Recording fromSaved(SavedRecording saved, const scenes::LoadOptions& options, std::size_t budget) {
-  Recording out;
-  out.setBudget(budget);
-  for (std::size_t p = 0; p < saved.parts.size(); ++p) {
-    SavedPart& part = saved.parts[p];
-    const std::string which = "part " + std::to_string(p + 1) + " of " + std::to_string(saved.parts.size());
-    std::shared_ptr<const phys::World> base;
-    std::size_t baseBytes = 0;
-    try {
-      std::tie(base, baseBytes) =
-          keptCopy(scenes::loadSceneText(part.sceneXml, "the recording's " + which, options).world);
-    } catch (const scenes::LoadError& e) {
-      throw RecordingIoError(which + ": its scene does not load: " + e.what());
+OpenedRecording recordingFromFile(std::string_view bytes,
+                                  const std::function<void(const std::string&)>& scene,
+                                  const ClipSource& clips, const scenes::LoadOptions& options,
+                                  std::size_t budget) {
+  OpenedRecording out;
+  out.recording.setBudget(budget);
+  std::size_t parts = 0;                    // begun
+  std::shared_ptr<const phys::World> base;  // of the part being read
+  std::size_t baseBytes = 0;
+  auto step = [&](std::size_t index, const SavedPart& part, SavedStep saved) {
+    const std::string which = "part " + std::to_string(index + 1);
+    if (parts == 0 || index + 1 != parts) {  // a part's first step: the world its steps are put in
+      try {
+        std::tie(base, baseBytes) =
+            keptCopy(scenes::loadSceneText(part.sceneXml, "the recording's " + which, options).world);
+      } catch (const scenes::LoadError& e) {
+        throw RecordingIoError(which + ": its scene does not load: " + e.what());
+      }
+      if (structureKey(*base) != part.structure) {
+        throw RecordingIoError(which +
+                               ": its scene builds bodies other than the ones recorded (a scene format or "
+                               "loader of another version)");
+      }
+      if (parts == 0) out.fileFirst = saved.record.step;
+      parts = index + 1;
+    } else {
+      baseBytes = 0;  // counted with the part's first step
     }
-    if (structureKey(*base) != part.structure) {
-      throw RecordingIoError(which +
-                             ": its scene builds bodies other than the ones recorded (a scene format or "
-                             "loader of another version)");
-    }
-    for (std::size_t s = 0; s < part.steps.size(); ++s) {
-      SavedStep& step = part.steps[s];
-      // Every step checked now, against the world it will be put in: a clip file changed since the
-      // recording (other bones, no frames) is found on opening, not on a rewind to its step.
-      if (const std::string problem = base->motionProblem(step.motion); !problem.empty())
-        throw RecordingIoError(which + ", step " + std::to_string(step.record.step) + ": " + problem);
-      out.appendMotion(base, s == 0 ? baseBytes : 0, std::move(step.motion),
-                       step.record);  // the base counted once
-    }
-  }
+    // Every step checked now, against the world it will be put in: a clip file changed since the
+    // recording (other bones, no frames) is found on opening, not on a rewind to its step.
+    if (const std::string problem = base->motionProblem(saved.motion); !problem.empty())
+      throw RecordingIoError(which + ", step " + std::to_string(saved.record.step) + ": " + problem);
+    out.recording.appendMotion(base, baseBytes, std::move(saved.motion), saved.record);
+  };
+  readRecording(bytes, {scene, clips, step});
   return out;
 }
 

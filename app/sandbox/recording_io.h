@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include "recording.h"
@@ -29,10 +30,24 @@ class RecordingIoError : public std::runtime_error {
 SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
                        const std::function<void()>& stepDone = {});
 
-/// A recording holding the file's steps (within `budget` bytes: the oldest beyond it are left
-/// out), each part's world loaded with `options`. Throws RecordingIoError when a part's scene does
-/// not load or does not have the structure its steps were recorded in.
-Recording fromSaved(SavedRecording saved, const scenes::LoadOptions& options, std::size_t budget);
+/// A recording file opened: its steps as a recording, and the file's first step, before the budget
+/// left any out.
+struct OpenedRecording {
+  Recording recording;
+  long fileFirst = 0;
+};
+
+/// A recording file's content (recording_file.h) as a recording: each part's world loaded with
+/// `options`, and each step put in it as it is read, the oldest beyond `budget` bytes let go on the
+/// way, so that a file longer than the budget never takes more memory than the budget and a step.
+/// `scene` is told the file's scene name before anything else is read and may throw to refuse it;
+/// `clips` gives the clips the characters play. Throws RecordingFormatError for a file that is not
+/// a recording this sandbox reads, and RecordingIoError when a part's scene does not load, does not
+/// have the structure its steps were recorded in, or a step does not fit it.
+OpenedRecording recordingFromFile(std::string_view bytes,
+                                  const std::function<void(const std::string&)>& scene,
+                                  const ClipSource& clips, const scenes::LoadOptions& options,
+                                  std::size_t budget);
 
 /// Writes a recording to a file on a thread of its own: saving rebuilds every step, which takes
 /// seconds for a big scene (5.5 s for 10 s of Bullet's pile), and the window goes on meanwhile. It

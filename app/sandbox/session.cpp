@@ -326,15 +326,16 @@ std::string Session::openRecording(const std::filesystem::path& file) {
   const std::string kept = " (the current world is kept)";
   try {
     const std::string bytes = fileio::readWhole(file, kMaxRecordingFile);
-    // The scene first: a file of another scene is that, whatever clips it names.
-    if (const std::string name = recordingSceneName(bytes); name != scene().name) {
-      return file.string() + ": a recording of the scene '" + name + "', and '" + scene().name +
-             "' is open: open '" + name + "' first" + kept;
-    }
-    SavedRecording saved = decodeRecording(bytes, recordedClips());
-    const long firstSaved = saved.firstStep();
+    // The scene before the clips: a file of another scene is that, whatever clips it names.
+    const std::string open = scene().name;
+    auto sameScene = [&open](const std::string& name) {
+      if (name != open)
+        throw RecordingIoError("a recording of the scene '" + name + "', and '" + open + "' is open: open '" +
+                               name + "' first");
+    };
     cancelSteps();  // the heap the recording's copies are measured by is this thread's alone
-    Recording opened = fromSaved(std::move(saved), load_, recording_.budget());
+    auto [opened, firstSaved] =
+        recordingFromFile(bytes, sameScene, recordedClips(), load_, recording_.budget());
     // Everything that can fail before anything changes: the first step's world too.
     std::string divergence;
     std::unique_ptr<phys::World> first = opened.worldAt(opened.first(), divergence);

@@ -2,6 +2,9 @@
 // opened again shows every step with its recorded state hash, in every project scene; throws and
 // setting changes start new parts; a file that is truncated, damaged, of another format version or
 // of another scene is refused with a message saying so, and the world and recording are kept.
+#include <malloc.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -12,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "fileio/files.h"
+#include "physics/fnv1a.h"
 #include "project_session.h"
 #include "recording_file.h"
 #include "session.h"
@@ -130,6 +134,39 @@ TEST(RecordingFile, ASaveRunsBesideTheSteps) {
   EXPECT_FALSE(fs::exists(dir.path / "other.jrec"));
   EXPECT_EQ(sandbox::decodeRecording(contentOf(file)).lastStep(), 120);
   EXPECT_EQ(s.scene().world.stepCount(), 150);
+}
+
+// A file longer than the recording's budget opens with its latest steps, says which it left out, and
+// is read a step at a time: the steps let go are never all held at once (the heap in use, glibc's
+// count, grows by no more than a few steps' worth while 600 steps go by).
+TEST(RecordingFile, AFileOverTheBudgetIsReadAStepAtATime) {
+  const testing_app::TempFolder dir;
+  const fs::path file = dir.path / "r.jrec";
+  ASSERT_NO_FATAL_FAILURE(saveRecordingOf("chain", 600, file));
+  const std::string bytes = contentOf(file);
+  std::size_t atFirst = 0, most = 0, steps = 0;
+  sandbox::readRecording(bytes,
+                         {{}, {}, [&](std::size_t, const sandbox::SavedPart&, const sandbox::SavedStep&) {
+                            const struct mallinfo2 m = mallinfo2();
+                            const std::size_t inUse = m.uordblks + m.hblkhd;
+                            if (steps++ == 0) atFirst = inUse;
+                            most = std::max(most, inUse > atFirst ? inUse - atFirst : 0);
+                          }});
+  ASSERT_EQ(steps, 601u);
+  const std::size_t stepBytes = bytes.size() / steps;  // a step's motion takes about its bytes in the file
+  EXPECT_LT(most, 20 * stepBytes) << "the heap grew by " << most << " bytes, " << steps << " steps of about "
+                                  << stepBytes;
+
+  sandbox::Session s = openSession("chain");
+  s.setRecordingBudget(bytes.size() / 4);
+  ASSERT_EQ(s.openRecording(file), "");
+  EXPECT_GT(s.recording().first(), 300);
+  EXPECT_EQ(s.recording().last(), 600);
+  EXPECT_LE(s.recording().bytes(), bytes.size() / 4);
+  EXPECT_NE(s.status().find("steps 0 to " + std::to_string(s.recording().first() - 1) +
+                            " left out: over the recording's budget"),
+            std::string::npos)
+      << s.status();
 }
 
 // Resuming from a step of an opened recording forks it there, as a rewind does; the run goes on
@@ -290,6 +327,16 @@ TEST_F(BadRecording, OfAnotherScene) {
   expectRefusedFile(file, "a recording of the scene 'pyramid', and '" + session_.scene().name + "' is open");
 }
 
+// The scene's name is read before anything else, but trusted only once the checksum holds: a name
+// damaged on disk is damage, not a recording of another scene.
+TEST_F(BadRecording, ADamagedSceneNameIsDamage) {
+  std::string renamed = bytes_;
+  const std::size_t name = renamed.find(session_.scene().name);
+  ASSERT_LT(name, 40u);
+  renamed[name] = 'X';
+  expectRefused(renamed, "the checksum does not match the content: the file is damaged");
+}
+
 TEST_F(BadRecording, DamagedOrNotARecording) {
   std::string flipped = bytes_;
   flipped[bytes_.size() / 2] ^= 0x10;
@@ -312,16 +359,19 @@ TEST(BadRecordingContent, RefusedEvenWithAGoodChecksum) {
   sandbox::Session s = openSession("rigid-ragdolls");
   for (int i = 0; i < 5; ++i) s.step();
   const std::uint64_t before = hashOf(s);
-  auto refused = [&](const std::function<void(sandbox::SavedRecording&)>& spoil, const std::string& words) {
-    sandbox::SavedRecording bad = saved;
-    spoil(bad);
+  auto refusedBytes = [&](const std::string& bytes, const std::string& words) {
     const fs::path file = dir.path / "bad.jrec";
-    writeBytes(file, sandbox::encodeRecording(bad));
+    writeBytes(file, bytes);
     const std::string error = s.openRecording(file);
     EXPECT_NE(error.find(words), std::string::npos) << error;
     EXPECT_NE(error.find("the current world is kept"), std::string::npos) << error;
     EXPECT_EQ(hashOf(s), before);
     EXPECT_EQ(s.recording().last(), 5);
+  };
+  auto refused = [&](const std::function<void(sandbox::SavedRecording&)>& spoil, const std::string& words) {
+    sandbox::SavedRecording bad = saved;
+    spoil(bad);
+    refusedBytes(sandbox::encodeRecording(bad), words);
   };
   auto step = [](sandbox::SavedRecording& r, std::size_t k) -> sandbox::SavedStep& {
     return r.parts.front().steps[k];
@@ -329,19 +379,50 @@ TEST(BadRecordingContent, RefusedEvenWithAGoodChecksum) {
   auto rehash = [](sandbox::SavedStep& x) { x.record.hash = x.motion.hash(); };
   refused([&](auto& r) { step(r, 3).record.step = 7; }, "step 7 where step 3 should follow");
   refused([&](auto& r) { step(r, 4).motion.position[0].x += 1e-9; }, "does not match the step's hash");
-  refused(
-      [&](auto& r) {
-        phys::Quat& q = step(r, 2).motion.rigidOrientation[0];
-        q = q * 1.01;
-        rehash(step(r, 2));
+
+  // A number the encoder refuses to write, put in by hand: step k encoded with the number `mark`
+  // sets (to a valid value found nowhere else in the file), then that value's bytes replaced by
+  // `bad`, and the step's hash and the file's checksum made again to match.
+  auto refusedOnceWritten = [&](std::size_t k, const std::function<double&(phys::Motion&)>& mark, double bad,
+                                const std::string& words) {
+    sandbox::SavedRecording r = saved;
+    sandbox::SavedStep& x = step(r, k);
+    double& number = mark(x.motion);
+    const double was = number;
+    rehash(x);
+    std::string bytes = sandbox::encodeRecording(r);
+    const std::uint64_t hashWas = x.record.hash;
+    number = bad;
+    rehash(x);
+    auto replaceOnce = [&bytes](const auto& from, const auto& to) {
+      const std::string_view pattern(reinterpret_cast<const char*>(&from), sizeof from);
+      const std::size_t at = bytes.find(pattern);
+      ASSERT_NE(at, std::string::npos);
+      ASSERT_EQ(bytes.find(pattern, at + 1), std::string::npos) << "found twice";
+      bytes.replace(at, sizeof to, reinterpret_cast<const char*>(&to), sizeof to);
+    };
+    replaceOnce(was, bad);
+    replaceOnce(hashWas, x.record.hash);
+    phys::Fnv1a checksum;
+    checksum.bytes(bytes.data(), bytes.size() - 8);
+    const std::uint64_t sum = checksum.hash();
+    bytes.replace(bytes.size() - 8, 8, reinterpret_cast<const char*>(&sum), 8);
+    refusedBytes(bytes, words);
+  };
+  refusedOnceWritten(
+      2,
+      [](phys::Motion& m) -> double& {
+        m.rigidOrientation[0] = phys::Quat(5.0 / 13.0, 12.0 / 13.0, 0.0, 0.0);
+        return m.rigidOrientation[0].w;
       },
-      "an orientation not of unit length");
-  refused(
-      [&](auto& r) {
-        step(r, 0).motion.rigidVelocity[0].y = std::numeric_limits<double>::quiet_NaN();
-        rehash(step(r, 0));
+      5.0 / 13.0 * 1.01, "an orientation not of unit length");
+  refusedOnceWritten(
+      0,
+      [](phys::Motion& m) -> double& {
+        m.rigidVelocity[0].y = 0.123456789012345;
+        return m.rigidVelocity[0].y;
       },
-      "a non-finite position or velocity");
+      std::numeric_limits<double>::quiet_NaN(), "a non-finite position or velocity");
   refused([&](auto& r) { r.parts.front().structure ^= 1; }, "builds bodies other than the ones recorded");
   refused([&](auto& r) { r.parts.front().sceneXml = "<scene name=\"rigid-ragdolls\">"; },
           "its scene does not load");

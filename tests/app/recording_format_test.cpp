@@ -3,6 +3,7 @@
 // of every kind is refused. In the scene tests, so that the sanitizer run (which builds no sandbox)
 // reads damaged files too; recording_file_test.cpp drives the same files through the sandbox.
 #include <cstddef>
+#include <limits>
 #include <map>
 #include <memory>
 #include <random>
@@ -115,6 +116,47 @@ TEST(RecordingFormat, ClipsComeFromTheSource) {
   r.asked = 0;
   EXPECT_THROW(sandbox::decodeRecording(damaged, r.source()), sandbox::RecordingFormatError);
   EXPECT_EQ(r.asked, 0);
+}
+
+// A file whose checksum fails hands nothing over: not its scene's name, not a clip's, not a step,
+// however far its headers read well.
+TEST(RecordingFormat, ADamagedFileHandsNothingOver) {
+  CharacterRecording r = characterRecording();
+  const std::string bytes = sandbox::encodeRecording(r.recording);
+  int handed = 0;
+  const sandbox::RecordingVisitor visit{
+      [&handed](const std::string&) { ++handed; }, r.source(),
+      [&handed](std::size_t, const sandbox::SavedPart&, const sandbox::SavedStep&) { ++handed; }};
+  sandbox::readRecording(bytes, visit);
+  EXPECT_EQ(handed, 1 + 41);
+  for (const std::size_t at : {std::size_t{30}, bytes.size() / 2, bytes.size() - 20}) {
+    std::string damaged = bytes;
+    damaged[at] ^= 0x01;
+    handed = 0;
+    r.asked = 0;
+    try {
+      sandbox::readRecording(damaged, visit);
+      ADD_FAILURE() << "read with byte " << at << " damaged";
+    } catch (const sandbox::RecordingFormatError& e) {
+      EXPECT_NE(std::string(e.what()).find("the checksum does not match"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(handed, 0) << "byte " << at;
+    EXPECT_EQ(r.asked, 0) << "byte " << at;
+  }
+}
+
+// What the reader would refuse is never written: a step whose motion holds a non-finite number or
+// an orientation not of unit length stops the encoding, naming the step.
+TEST(RecordingFormat, AMotionTheReaderWouldRefuseIsNotWritten) {
+  sandbox::SavedRecording r = chainRecording();
+  r.parts[0].steps[12].motion.position[3].y = std::numeric_limits<double>::infinity();
+  try {
+    sandbox::encodeRecording(r);
+    ADD_FAILURE() << "encoded a non-finite position";
+  } catch (const sandbox::RecordingFormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("step 12: a non-finite position or velocity"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(RecordingFormat, DecodesAsEncoded) {
