@@ -24,6 +24,9 @@ namespace fs = std::filesystem;
 constexpr int kMinWindowSide = 100;
 constexpr std::size_t kMaxSettingsBytes = std::size_t{1} << 20;  // a few hundred bytes in use
 constexpr int kMaxWindowSide = 16384;
+// The first line written, not kept as a comment of the user's when read back.
+constexpr std::string_view kHeader = "# jakobsen-sandbox settings, rewritten on exit";
+constexpr const char* kKept = "; kept in the file as it is";
 
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");
@@ -87,7 +90,7 @@ bool fitsOnOneLine(const std::string& value) {
 // Everything that can go in the file, in the order it is written.
 std::string toText(const UserSettings& s) {
   auto flag = [](bool b) { return b ? "true" : "false"; };
-  std::string out = "# jakobsen-sandbox settings, rewritten on exit\n";
+  std::string out = std::string(kHeader) + "\n";
   out += "width = " + std::to_string(s.windowWidth) + "\n";
   out += "height = " + std::to_string(s.windowHeight) + "\n";
   out += std::string("showSimulation = ") + flag(s.showSimulation) + "\n";
@@ -109,6 +112,9 @@ std::string toText(const UserSettings& s) {
   for (const std::string& path : s.recentFiles) {
     if (fitsOnOneLine(path)) out += "recent = " + path + "\n";
   }
+  for (const std::string& line : s.keptLines) {
+    if (fitsOnOneLine(line)) out += line + "\n";
+  }
   return out;
 }
 
@@ -125,15 +131,21 @@ fs::path configDirectory() {
 LoadedSettings loadUserSettings(const fs::path& file) {
   LoadedSettings out;
   UserSettings& s = out.settings;
+  const std::string unread =
+      "; using the defaults, and leaving the file as it is (this run's settings are not saved)";
   std::error_code ec;
-  if (!fs::exists(file, ec)) return out;  // first run: nothing saved yet
+  const fs::file_status status = fs::status(file, ec);
+  if (status.type() == fs::file_type::not_found) return out;  // first run: nothing saved yet
+  if (ec) {  // a folder on the way that cannot be searched: the file may well be there
+    out.warnings.push_back(file.string() + ": cannot look at it: " + ec.message() + unread);
+    out.keepFile = true;
+    return out;
+  }
   std::string content;
   try {
     content = fileio::readWhole(file, kMaxSettingsBytes);
   } catch (const fileio::FileError& e) {
-    out.warnings.push_back(
-        std::string(e.what()) +
-        "; using the defaults, and leaving the file as it is (this run's settings are not saved)");
+    out.warnings.push_back(e.what() + unread);
     out.keepFile = true;
     return out;
   }
@@ -142,10 +154,15 @@ LoadedSettings loadUserSettings(const fs::path& file) {
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {
     const std::string where = file.string() + ":" + std::to_string(lineNo) + ": ";
     const std::string_view text = trim(line);
-    if (text.empty() || text.front() == '#') continue;
+    if (text.empty() || text == kHeader) continue;
+    if (text.front() == '#') {
+      s.keptLines.emplace_back(text);
+      continue;
+    }
     const auto eq = text.find('=');
     if (eq == std::string_view::npos) {
-      out.warnings.push_back(where + "expected 'key = value'");
+      out.warnings.push_back(where + "expected 'key = value'" + kKept);
+      s.keptLines.emplace_back(text);
       continue;
     }
     const std::string key(trim(text.substr(0, eq)));
@@ -191,12 +208,13 @@ LoadedSettings loadUserSettings(const fs::path& file) {
         s.recentFiles.emplace_back(value);
       }
     } else {
-      out.warnings.push_back(where + "unknown key '" + key + "'");
+      out.warnings.push_back(where + "unknown key '" + key + "'" + kKept);
+      s.keptLines.emplace_back(text);
       continue;
     }
     if (!ok) {
       out.warnings.push_back(where + "bad value '" + std::string(value) + "' for '" + key + "' (expected " +
-                             expected + "); keeping the default");
+                             expected + "); using the default, which replaces the line on closing");
     }
   }
   return out;

@@ -4,7 +4,7 @@
 // the recent files. Stored as "key = value" lines in the user's config folder. Keys: width,
 // height, showSimulation, showRewind, showWorld, showDraw, showStats, showLab, lastScene, drawMode,
 // markers, colorBy, throwSpeed, recordingBudget, and one `recent = PATH` line per recent file,
-// newest first; '#' starts a comment line.
+// newest first; '#' starts a comment line. Lines it does not understand are kept as they were.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -34,6 +34,10 @@ struct UserSettings {
   std::optional<float> throwSpeed;       ///< unit: m/s; 0 to kMaxThrowSpeed
   std::optional<int> recordingBudgetMb;  ///< unit: MB; kMinRecordingBudgetMb to kMaxRecordingBudgetMb
   std::vector<std::string> recentFiles;  ///< newest first, at most kMaxRecentFiles
+  /// Lines of the file read that this version does not understand (an unknown key, a line that
+  /// is not 'key = value', a comment), written back after the rest as they were: a key of a newer
+  /// version, or a typo the user can still see and mend, is never lost by a save.
+  std::vector<std::string> keptLines;
 };
 
 /// $XDG_CONFIG_HOME/jakobsen-sandbox, else $HOME/.config/jakobsen-sandbox; empty if neither is set.
@@ -47,9 +51,11 @@ struct LoadedSettings {
   bool keepFile = false;
 };
 
-/// Reads the file; a missing file gives the defaults and no warning. A bad line is skipped with
-/// a warning and the rest is kept. A file that cannot be read gives the defaults, a warning and
-/// keepFile.
+/// Reads the file; a missing file gives the defaults and no warning. A line it does not
+/// understand is kept (UserSettings::keptLines) with a warning; a known key's bad value is
+/// skipped with a warning (its default is written in its place on saving), and the rest is
+/// used. A file that cannot be read, or looked at, gives the defaults, a warning with the
+/// system's reason, and keepFile.
 LoadedSettings loadUserSettings(const std::filesystem::path& file);
 /// Writes through fileio::writeAtomically, creating the folder first; throws fileio::FileError
 /// (a std::runtime_error) naming the file and the reason when it cannot.

@@ -6,9 +6,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "user_settings.h"
 
@@ -30,7 +32,7 @@ class UserSettingsTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const std::string& name, const std::string& text) {
-    const fs::path file = dir_ / name;
+    fs::path file = dir_ / name;
     std::ofstream(file) << text;
     return file;
   }
@@ -130,7 +132,7 @@ TEST_F(UserSettingsTest, BadLinesAreSkippedWithTheirLineAndKey) {
   EXPECT_TRUE(containsAll(loaded.warnings[1], {":4:", "'height'", "'50'"})) << loaded.warnings[1];
   EXPECT_TRUE(containsAll(loaded.warnings[2], {":5:", "'drawMode'", "'sketchy'"})) << loaded.warnings[2];
   EXPECT_TRUE(containsAll(loaded.warnings[3], {":6:", "'markers'", "'yes'"})) << loaded.warnings[3];
-  EXPECT_EQ(loaded.warnings[4], name + ":7: unknown key 'colour'");
+  EXPECT_EQ(loaded.warnings[4], name + ":7: unknown key 'colour'; kept in the file as it is");
   EXPECT_TRUE(containsAll(loaded.warnings[5], {":8:"})) << loaded.warnings[5];
   EXPECT_TRUE(
       containsAll(loaded.warnings[6], {":9:", "'colorBy'", "'rainbow'", "kind, body, island or sleep"}))
@@ -151,6 +153,33 @@ TEST_F(UserSettingsTest, BadLinesAreSkippedWithTheirLineAndKey) {
   EXPECT_FALSE(s.showStats);
   EXPECT_EQ(s.lastScene, "/s/ragdoll.xml");
   EXPECT_EQ(s.recentFiles, std::vector<std::string>{"/r/1.xml"});
+  EXPECT_TRUE(containsAll(loaded.warnings[0], {"using the default, which replaces the line on closing"}))
+      << loaded.warnings[0];
+}
+
+// What this version does not understand (a key of a newer one, a typo, a comment) is written back
+// as it was when the file is saved, and read back the same; a known key's bad value is replaced.
+TEST_F(UserSettingsTest, LinesNotUnderstoodSurviveASave) {
+  const fs::path file = write("settings.ini",
+                              "# my own note\n"
+                              "width = abc\n"
+                              "futureKey = 3\n"
+                              "no equals sign here\n"
+                              "height = 800\n");
+  const auto loaded = sandbox::loadUserSettings(file);
+  EXPECT_EQ(loaded.settings.keptLines,
+            (std::vector<std::string>{"# my own note", "futureKey = 3", "no equals sign here"}));
+  sandbox::saveUserSettings(loaded.settings, file);
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(containsAll(text, {"# my own note\n", "futureKey = 3\n", "no equals sign here\n",
+                                 "height = 800\n", "width = 1280\n"}))
+      << text;
+  EXPECT_EQ(text.find("abc"), std::string::npos) << text;
+  const auto again = sandbox::loadUserSettings(file);
+  EXPECT_EQ(again.settings.keptLines, loaded.settings.keptLines) << "kept once, not once more per save";
+  EXPECT_EQ(again.settings.windowHeight, 800);
+  EXPECT_EQ(again.warnings.size(), 2u) << "the unknown key and the line without '=' are still told";
 }
 
 TEST_F(UserSettingsTest, WindowSizeLimitsAreInclusive) {
@@ -186,6 +215,18 @@ TEST_F(UserSettingsTest, AFileThatCannotBeReadIsMarkedToBeKept) {
   }
   EXPECT_FALSE(sandbox::loadUserSettings(dir_ / "never-written.ini").keepFile);
   EXPECT_FALSE(sandbox::loadUserSettings(write("bad.ini", "width = wide\n")).keepFile);  // read, line skipped
+}
+
+// A path that cannot even be looked at (a name too long, a folder that cannot be searched) is not
+// taken for a first run: the system's reason is told and the file is left alone.
+TEST_F(UserSettingsTest, APathThatCannotBeLookedAtIsToldWithItsReason) {
+  const fs::path file = dir_ / std::string(300, 'a') / "sandbox.ini";
+  const auto loaded = sandbox::loadUserSettings(file);
+  EXPECT_TRUE(loaded.keepFile);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_TRUE(
+      containsAll(loaded.warnings[0], {"cannot look at it: File name too long", "leaving the file as it is"}))
+      << loaded.warnings[0];
 }
 
 TEST_F(UserSettingsTest, ALoadedRecentListIsDedupedAndCapped) {
