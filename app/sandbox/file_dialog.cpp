@@ -47,6 +47,16 @@ fs::path cleanFolder(const fs::path& folder) {
   return out;
 }
 
+// What is at `path`: a type, not_found when nothing is there, or none with `why` set to the
+// system's reason it cannot be looked at (a name too long, a folder on the way that cannot be
+// searched), which is not the same as its not being there.
+fs::file_type typeAt(const fs::path& path, std::string& why) {
+  std::error_code ec;
+  const fs::file_type type = fs::status(path, ec).type();
+  if (ec && type != fs::file_type::not_found) why = "cannot look at " + path.string() + ": " + ec.message();
+  return type;
+}
+
 }  // namespace
 
 std::vector<DirectoryEntry> listDirectory(const fs::path& folder, std::string_view extension,
@@ -87,25 +97,32 @@ TypedPath resolveTypedPath(FileDialogMode mode, const fs::path& folder, std::str
   fs::path path(typed);
   if (path.is_relative()) path = folder / path;
   path = path.lexically_normal();
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) {
+  std::string why;  // the system's reason a path on the way cannot be looked at
+  fs::file_type type = typeAt(path, why);
+  if (type == fs::file_type::directory) {
     out.action = TypedPath::Action::EnterFolder;
     out.path = cleanFolder(path);
     return out;
   }
-  if (mode == FileDialogMode::Save && path.has_filename() && !path.has_extension()) path += extension;
+  if (why.empty() && mode == FileDialogMode::Save && path.has_filename() && !path.has_extension()) {
+    path += extension;
+    type = typeAt(path, why);
+  }
   const fs::path parent = path.parent_path();
-  if (mode == FileDialogMode::Open && !fs::is_regular_file(path, ec)) {
-    out.message =
-        fs::exists(path, ec) ? path.string() + " is not a regular file" : "no such file: " + path.string();
-  } else if (mode == FileDialogMode::Save && !fs::is_directory(parent, ec)) {
-    out.message = "no such folder: " + parent.string();
-  } else if (mode == FileDialogMode::Save && fs::exists(path, ec) && !fs::is_regular_file(path, ec)) {
+  if (!why.empty()) {
+    out.message = why;
+  } else if (mode == FileDialogMode::Open && type != fs::file_type::regular) {
+    out.message = type == fs::file_type::not_found ? "no such file: " + path.string()
+                                                   : path.string() + " is not a regular file";
+  } else if (mode == FileDialogMode::Save && typeAt(parent, why) != fs::file_type::directory) {
+    out.message = why.empty() ? "no such folder: " + parent.string() : why;
+  } else if (mode == FileDialogMode::Save && type != fs::file_type::not_found &&
+             type != fs::file_type::regular) {
     out.message = path.string() + " exists and is not a regular file";
   } else {
     out.action = TypedPath::Action::Choose;
     out.path = path;
-    out.replaces = mode == FileDialogMode::Save && fs::exists(path, ec);
+    out.replaces = mode == FileDialogMode::Save && type == fs::file_type::regular;
   }
   return out;
 }

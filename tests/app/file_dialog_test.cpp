@@ -26,6 +26,7 @@ const fs::path kScenes = fs::path(DATA_DIR) / "assets" / "scenes";
 
 std::vector<std::string> names(const std::vector<DirectoryEntry>& entries) {
   std::vector<std::string> out;
+  out.reserve(entries.size());
   for (const auto& e : entries) out.push_back(e.isFolder ? e.name + "/" : e.name);
   return out;
 }
@@ -121,6 +122,21 @@ TEST(FileDialogTypedPath, SaveWantsAnExistingFolderAndAddsXml) {
   const TypedPath noFolder = sandbox::resolveTypedPath(FileDialogMode::Save, dir.path, "missing/x.xml");
   EXPECT_EQ(noFolder.action, TypedPath::Action::Refuse);
   EXPECT_NE(noFolder.message.find("missing"), std::string::npos) << noFolder.message;
+}
+
+// A path that cannot be looked at is not called missing: the system's reason is told (a name
+// longer than a file system allows stands for an unsearchable folder too, which CI's root would
+// not meet).
+TEST(FileDialogTypedPath, APathThatCannotBeLookedAtIsToldWithItsReason) {
+  TempFolder dir;
+  const std::string tooLong = std::string(300, 'a') + "/x.xml";
+  for (const FileDialogMode mode : {FileDialogMode::Open, FileDialogMode::Save}) {
+    const TypedPath typed = sandbox::resolveTypedPath(mode, dir.path, tooLong);
+    EXPECT_EQ(typed.action, TypedPath::Action::Refuse);
+    EXPECT_NE(typed.message.find("cannot look at " + (dir.path / tooLong).string() + ": File name too long"),
+              std::string::npos)
+        << typed.message;
+  }
 }
 
 // One ImGui context per test with a fake display and a built font atlas, which is all NewFrame()
