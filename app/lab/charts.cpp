@@ -161,6 +161,20 @@ std::string gnuplotScript(const Chart& chart) {
   return out;
 }
 
+namespace {
+
+// Whether a picture gnuplot drew is all there: a PNG ends with its IEND chunk, an SVG with its
+// closing tag; other files are taken as they are.
+bool whole(const std::string& file, std::string_view content) {
+  if (file.ends_with(".png"))
+    return content.starts_with("\x89PNG") && content.ends_with("IEND\xae\x42\x60\x82");
+  if (file.ends_with(".svg"))
+    return content.find("</svg>", content.size() > 64 ? content.size() - 64 : 0) != std::string_view::npos;
+  return true;
+}
+
+}  // namespace
+
 OutputFolder::OutputFolder(std::filesystem::path folder, const char* option)
     : folder_(std::move(folder)), option_(option) {
   prepareOutputFolder(folder_, option_);
@@ -181,22 +195,32 @@ void OutputFolder::write(const std::string& name, std::string_view content) {
 
 std::string OutputFolder::draw(const std::string& name, const Chart& chart, const std::string& noPoints) {
   write(name, gnuplotScript(chart));
+  const std::vector<std::string> outputs{chart.output + ".png", chart.output + ".svg"};
   if (!hasPoints(chart)) {
-    // No chart of these figures: one an earlier run drew here would stand beside CSVs it does not show.
-    stale_.push_back(chart.output + ".png");
-    stale_.push_back(chart.output + ".svg");
+    stale_.insert(stale_.end(), outputs.begin(), outputs.end());
     return noPoints;
   }
-  return render(name);
+  return render(name, outputs);
 }
 
-std::string OutputFolder::render(const std::string& name) {
-  if (findGnuplot().empty()) return runGnuplot(folder_ / name, folder_);  // says how to draw them
+std::string OutputFolder::render(const std::string& name, const std::vector<std::string>& outputs) {
+  if (findGnuplot().empty()) {
+    stale_.insert(stale_.end(), outputs.begin(), outputs.end());
+    return runGnuplot(folder_ / name, folder_);  // says how to draw them, and is no failure
+  }
+  std::string problem = drawInScratch(name, outputs);
+  if (!problem.empty()) {
+    stale_.insert(stale_.end(), outputs.begin(), outputs.end());
+    failed_ = true;
+  }
+  return problem;
+}
+
+std::string OutputFolder::drawInScratch(const std::string& name, const std::vector<std::string>& outputs) {
   // The script reads its data by names relative to its folder: the scratch folder holds them all
   // but the charts drawn before, which no script reads.
   const PrivateFolder scratch(folder_, ".drawing-");
   if (scratch.path().empty()) {
-    failed_ = true;
     return "cannot create a folder to draw in, in " + folder_.string() + ": " +
            std::generic_category().message(scratch.error());
   }
@@ -212,24 +236,35 @@ std::string OutputFolder::render(const std::string& name) {
   }
   try {
     fileio::writeAllAtomically(inputs);
-    std::string problem = runGnuplot(scratch.path() / name, scratch.path(), folder_ / name);
-    failed_ = failed_ || !problem.empty();
-    if (!problem.empty()) return problem;
+    if (std::string problem = runGnuplot(scratch.path() / name, scratch.path(), folder_ / name);
+        !problem.empty())
+      return problem;
     std::vector<std::string> drawn;
     for (const auto& entry : std::filesystem::directory_iterator(scratch.path())) {
       if (const std::string file = entry.path().filename().string(); !isIn(given, file))
         drawn.push_back(file);
     }
     std::sort(drawn.begin(), drawn.end());  // the listing's order is the file system's
-    for (const std::string& file : drawn) {
-      hold(file, fileio::readWhole(scratch.path() / file, kMaxChartBytes));
+    std::vector<std::pair<std::string, std::string>> pictures;
+    pictures.reserve(drawn.size());
+    for (const std::string& file : drawn)
+      pictures.emplace_back(file, fileio::readWhole(scratch.path() / file, kMaxChartBytes));
+    // gnuplot says nothing of a write that failed (a full disk, a file size limit) and exits 0.
+    for (const std::string& output : outputs) {
+      const auto it =
+          std::find_if(pictures.begin(), pictures.end(), [&](const auto& p) { return p.first == output; });
+      if (it == pictures.end())
+        return "gnuplot did not draw " + output + " from " + (folder_ / name).string();
+      if (!whole(output, it->second))
+        return "gnuplot's " + output + " is cut short (" + std::to_string(it->second.size()) + " bytes)";
+    }
+    for (auto& [file, content] : pictures) {
+      hold(file, std::move(content));
       if (!isIn(drawn_, file)) drawn_.push_back(file);
     }
   } catch (const fileio::FileError& e) {
-    failed_ = true;
     return e.what();
   } catch (const std::filesystem::filesystem_error& e) {
-    failed_ = true;
     return e.what();
   }
   return {};

@@ -64,12 +64,15 @@ class OutputFolder {
   explicit OutputFolder(std::filesystem::path folder, const char* option = "--out");
   void write(const std::string& name, std::string_view content);  ///< FOLDER/NAME at commit, listed
   /// Writes the chart's script NAME and draws it: "" when gnuplot drew the chart's OUTPUT.png
-  /// and .svg (then listed), else why not: `noPoints` for a chart with nothing to draw (whose
-  /// charts an earlier run drew go at commit), or what runGnuplot said.
+  /// and .svg (then listed), else why not: `noPoints` for a chart with nothing to draw, or what
+  /// render said.
   std::string draw(const std::string& name, const Chart& chart, const std::string& noPoints);
-  /// Runs gnuplot on the script NAME, written before with the data it reads: "" when it drew
-  /// (every file it drew then held and listed), else what runGnuplot said.
-  std::string render(const std::string& name);
+  /// Runs gnuplot on the script NAME, written before with the data it reads, which draws the files
+  /// `outputs`: "" when it drew each of them whole (every file it drew then held and listed), else
+  /// why not (what runGnuplot said, or which output is missing or cut short). A chart not drawn,
+  /// for whatever reason, is removed at commit where an earlier run drew it: it would stand beside
+  /// data it does not show.
+  std::string render(const std::string& name, const std::vector<std::string>& outputs);
   /// Writes every file held, all at once; they are listed from then on.
   void commit();
   /// A chart with points was not drawn though gnuplot is there. Without gnuplot the script waits
@@ -79,6 +82,7 @@ class OutputFolder {
 
  private:
   void hold(const std::string& name, std::string content);
+  std::string drawInScratch(const std::string& name, const std::vector<std::string>& outputs);
 
   std::filesystem::path folder_;
   const char* option_;

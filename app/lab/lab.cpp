@@ -17,10 +17,13 @@
 namespace lab {
 namespace {
 
-// What makes a dump unwritable that can be told before the run: its folder missing, or a folder
-// where the file would go. What only writing finds out is said after the report.
-std::string dumpProblem(const std::filesystem::path& file) {
+// What makes a dump unwritable that can be told before the run: its folder missing, a folder
+// where the file would go, or the scene itself there (by any name). What only writing finds out is
+// said after the report.
+std::string dumpProblem(const std::filesystem::path& file, const std::filesystem::path& scene) {
   std::error_code ec;
+  if (std::filesystem::equivalent(file, scene, ec))
+    return file.string() + ": is the scene being run; the dump would write over it";
   const std::filesystem::path folder = file.parent_path().empty() ? "." : file.parent_path();
   if (!std::filesystem::is_directory(folder, ec))
     return folder.string() + (std::filesystem::exists(folder, ec) ? ": is not a folder" : ": no such folder");
@@ -31,7 +34,8 @@ std::string dumpProblem(const std::filesystem::path& file) {
 // Load, override, step, report, dump.
 int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.dump) {
-    if (const std::string problem = dumpProblem(*options.dump); !problem.empty()) {
+    if (const std::string problem = dumpProblem(*options.dump, sceneFile(options.scene, options.dataDir));
+        !problem.empty()) {
       err << "lab: --dump: " << problem << "\n";
       return kExitFailure;
     }

@@ -81,7 +81,8 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
   files.write("stability-error.dat", stability::errorMatrix(r));
   files.write("stability.gp", stability::gnuplotScript(r));
   // Unlike the other commands' charts, heat maps left undrawn for want of gnuplot fail the suite.
-  const std::string problem = files.render("stability.gp");
+  const std::string problem = files.render("stability.gp", {"stability-pass.png", "stability-pass.svg",
+                                                            "stability-error.png", "stability-error.svg"});
   files.commit();
   if (!problem.empty()) {
     err << "lab: stability: the heat maps were not drawn: " << problem << "\n";

@@ -337,7 +337,8 @@ TEST(LabExit, MissingSceneExitsOne) {
   EXPECT_NE(r.err.find("no-such-scene.xml"), std::string::npos) << r.err;
 }
 
-// A dump whose folder is missing or is a file, or that names a folder, is refused before the run
+// A dump whose folder is missing or is a file, or that names a folder or the scene itself (it was
+// written over), is refused before the run
 // (it was found out after all the steps); one the OS refuses is said after the report, which it
 // keeps.
 TEST(LabExit, UnwritableDumpExitsOne) {
@@ -345,7 +346,8 @@ TEST(LabExit, UnwritableDumpExitsOne) {
   const auto scene = dir.write("t.xml", freeFallScene());
   const std::pair<std::filesystem::path, const char*> cases[] = {{dir.file("no/dir/x.csv"), "no such folder"},
                                                                  {dir.file(""), "is a folder"},
-                                                                 {scene / "x.csv", "is not a folder"}};
+                                                                 {scene / "x.csv", "is not a folder"},
+                                                                 {scene, "is the scene being run"}};
   for (const auto& [dump, says] : cases) {
     const ProcessResult r = runLab("run " + quoted(scene) + " --steps 1 --dump " + quoted(dump), dir);
     EXPECT_EQ(r.exitCode, 1) << dump;
@@ -353,6 +355,7 @@ TEST(LabExit, UnwritableDumpExitsOne) {
     EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "") << "nothing ran";
   }
+  EXPECT_EQ(readFile(scene), freeFallScene()) << "the scene is as it was";
   const ProcessResult proc = runLab("run " + quoted(scene) + " --steps 1 --dump /proc/x.csv", dir);
   EXPECT_EQ(proc.exitCode, 1);
   EXPECT_NE(proc.err.find("--dump"), std::string::npos) << proc.err;
@@ -384,6 +387,20 @@ TEST(LabExit, BadArgumentsExitTwoNamingTheArgumentWithUsage) {
     const std::string firstLine = r.err.substr(0, r.err.find('\n'));
     EXPECT_NE(firstLine.find(named), std::string::npos) << args << ": " << r.err;
     EXPECT_NE(r.err.find("\nusage: lab "), std::string::npos) << args;
+  }
+}
+
+// A report that could not be written is a failure, with the system's reason: `lab run x --json >
+// r.json` on a full disk ended in success with the file empty.
+TEST(LabExit, AnOutputThatCannotBeWrittenExitsOne) {
+  const TempDir dir;
+  const auto scene = quoted(dir.write("t.xml", freeFallScene()));
+  for (const std::string& args :
+       {"run " + scene + " --steps 2 --json", "run " + scene + " --steps 2", std::string("help")}) {
+    const ProcessResult r = runLab(args + " > /dev/full", dir);
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_NE(r.err.find("lab: the output could not be written: No space left on device"), std::string::npos)
+        << args << ": " << r.err;
   }
 }
 

@@ -444,7 +444,9 @@ TEST(OutputFolder, ListsWhatItWroteAndAMissingGnuplotIsNoFailure) {
   EXPECT_EQ(files.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
   EXPECT_FALSE(files.failed());
   EXPECT_FALSE(std::filesystem::exists(dir.file("out/a.csv")));  // nothing before the commit
+  dir.write("out/c.svg", "the earlier run's chart");
   files.commit();
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/c.svg"))) << "not drawn this time, so not left";
   // The pictures were not drawn, so they are not listed.
   const std::string out = dir.file("out").string();
   EXPECT_EQ(files.wroteLine(), "wrote       " + out + "/a.csv, " + out + "/c.gp, " + out + "/e.gp\n");
@@ -464,18 +466,39 @@ TEST(OutputFolder, ListsThePicturesGnuplotDrew) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/c.svg")));
 }
 
+// A gnuplot that fails, draws nothing, or draws pictures cut short (it says nothing of a write that
+// failed and exits 0) is a failure; and the charts an earlier run drew go, so that none stands
+// beside data it does not show.
 TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
   TempDir dir;
   std::filesystem::create_directories(dir.file("bin"));
   const std::filesystem::path fake = dir.write("bin/gnuplot", "#!/bin/sh\necho broken\nexit 3\n");
   std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
   const ScopedPath failing(dir.file("bin").string());
+  dir.write("out/c.png", "the earlier run's chart");
   lab::OutputFolder files(dir.file("out"));
   const std::string broken = files.draw("c.gp", onePointChart("c"), "none");
   EXPECT_NE(broken.find("broken"), std::string::npos) << broken;
   EXPECT_NE(broken.find("gnuplot failed on " + dir.file("out/c.gp").string() + " "), std::string::npos)
       << broken;
   EXPECT_TRUE(files.failed());
+  files.commit();
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/c.png")))
+      << "an earlier run's chart beside this run's data";
+
+  const std::pair<const char*, const char*> quiet[] = {
+      {"exit 0\n", "gnuplot did not draw c.png"},
+      {"printf '\\211PNG' > c.png\nprintf '<svg>' > c.svg\nexit 0\n",
+       "gnuplot's c.png is cut short (4 bytes)"}};
+  for (const auto& [script, says] : quiet) {
+    dir.write("bin/gnuplot", std::string("#!/bin/sh\n") + script);
+    lab::OutputFolder again(dir.file("again"));
+    const std::string problem = again.draw("c.gp", onePointChart("c"), "none");
+    EXPECT_NE(problem.find(says), std::string::npos) << problem;
+    EXPECT_TRUE(again.failed()) << script;
+    again.commit();
+    EXPECT_FALSE(std::filesystem::exists(dir.file("again/c.png"))) << script;
+  }
   // A chart with nothing to draw is said, not failed, whatever gnuplot would do.
   lab::OutputFolder other(dir.file("other"));
   EXPECT_EQ(other.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
@@ -519,7 +542,7 @@ TEST(OutputFolder, RendersAScriptFromTheDataItHolds) {
   files.write("d.gp",
               std::string(lab::kOutdirDefault) +
                   "set terminal svg\nset output outdir.'/d.svg'\nplot 'd.dat' using 1:2\nunset output\n");
-  EXPECT_EQ(files.render("d.gp"), "");
+  EXPECT_EQ(files.render("d.gp", {"d.svg"}), "");
   EXPECT_FALSE(std::filesystem::exists(dir.file("out/d.svg")));
   files.commit();
   EXPECT_GT(std::filesystem::file_size(dir.file("out/d.svg")), 100u);
