@@ -148,7 +148,11 @@ std::string matrix(const SuiteResult& r, F value) {
   // gnuplot draws the first row at the bottom; the scenes are written last first so that the
   // chart reads top-down in the report's order.
   for (std::size_t s = r.scenes.size(); s-- > 0;) {
-    m << r.scenes[s].name;
+    // Quoted, as a name may hold spaces ("my scene" read as two columns broke the grid); gnuplot's
+    // data files have no escape for a quote within quotes.
+    std::string name = r.scenes[s].name;
+    std::replace(name.begin(), name.end(), '"', '\'');
+    m << '"' << name << '"';
     for (const Outcome& o : r.outcomes[s]) m << " " << value(o);
     m << "\n";
   }
@@ -239,6 +243,12 @@ std::string errorMatrix(const SuiteResult& r) {
   });
 }
 
+// Each cell a filled box a unit wide at its column and row (gnuplot's `with image` draws nothing of
+// a matrix of one row: a suite of one scene), one of no size where the value is NaN.
+constexpr const char* kCells =
+    "matrix rowheaders columnheaders using 1:2:($3 == $3 ? 0.5 : 0):($3 == $3 ? 0.5 : 0):3 "
+    "with boxxyerror fillstyle solid noborder fillcolor palette";
+
 std::string gnuplotScript(const SuiteResult& r) {
   const std::size_t columns = r.settings.size() + r.peers.size();
   // 22 pixels a cell, square, with fixed margins in pixels for the labels, the title and the
@@ -249,8 +259,10 @@ std::string gnuplotScript(const SuiteResult& r) {
   const std::size_t kLeft = 40 + 7 * longest;
   // At least wide enough for the titles; extra width is left blank on the right, so cells stay square.
   const std::size_t plotRight = kLeft + kCell * columns;
-  const std::size_t width = std::max<std::size_t>(plotRight + kRight, 760),
-                    height = kTop + kBottom + kCell * r.scenes.size();
+  // The colour bar is at least kBar high, so that its labels stand apart for a suite of one scene.
+  constexpr std::size_t kBar = 120;
+  const std::size_t cells = kCell * r.scenes.size(), bar = std::max(cells, kBar);
+  const std::size_t width = std::max<std::size_t>(plotRight + kRight, 760), height = kTop + kBottom + bar;
   auto at = [](std::size_t pixels, std::size_t of) {
     return formatNumber(static_cast<double>(pixels) / static_cast<double>(of));
   };
@@ -261,11 +273,13 @@ std::string gnuplotScript(const SuiteResult& r) {
      << "# Scenes on y, solver settings (method:iterations x substeps) then peers on x.\n"
      << "unset key\nset xtics rotate by 90 right font ',8'\nset ytics font ',9'\nset tics scale 0\n"
      << "set lmargin at screen " << at(kLeft, width) << "\nset rmargin at screen " << at(plotRight, width)
-     << "\nset bmargin at screen " << at(kBottom, height) << "\nset tmargin at screen "
-     << at(height - kTop, height)
+     << "\nset bmargin at screen " << at(height - kTop - cells, height) << "\nset tmargin at screen "
+     << at(height - kTop, height) << "\nset colorbox user origin screen " << at(plotRight + 12, width)
+     << ", screen " << at(height - kTop - bar, height) << " size screen " << at(16, width) << ", screen "
+     << at(bar, height)
      << "\n"
-     // Cells not judged (NaN) are left undrawn: a grey ground behind the image shows them.
-     << "set object 1 rectangle from graph 0, graph 0 to graph 1, graph 1 behind fillcolor rgb '#bdbdbd' "
+     // Cells not judged (NaN) are drawn as boxes of no size: a grey ground behind the cells shows them.
+     << "set object 1 rectangle from graph 0, graph 0 to graph 1, graph 1 back fillcolor rgb '#bdbdbd' "
         "fillstyle solid noborder\n";
   // Lines between the methods' blocks of settings, and between the settings and the peers.
   for (std::size_t k = 1; k < columns; ++k) {
@@ -285,7 +299,7 @@ std::string gnuplotScript(const SuiteResult& r) {
      << titleY << " left\n"
      << "  set cbrange [0:1]\n  set palette defined (0 '#d73027', 0.5 '#bdbdbd', 1 '#1a9850')\n"
      << "  set cbtics ('fail' 0, 'n/a' 0.5, 'pass' 1)\n  set palette maxcolors 3\n"
-     << "  plot 'stability-pass.dat' matrix rowheaders columnheaders with image\n"
+     << "  plot 'stability-pass.dat' " << kCells << "\n"
      << "  set output outdir.'/stability-error.'.format\n"
      << "  set label 1 'Stability: log10(value / limit) of the worst criterion: > 0 fails, 3 is 1000 or a "
         "blow-up, grey n/a' at screen 0.01, screen "
@@ -294,7 +308,7 @@ std::string gnuplotScript(const SuiteResult& r) {
      << "  set palette defined (-3 '#2166ac', -1 '#d1e5f0', 0 '#f7f7f7', 0.001 '#fddbc7', 1 '#ef8a62', 3 "
         "'#67001f')\n"
      << "  set cbtics autofreq\n  set palette maxcolors 0\n"
-     << "  plot 'stability-error.dat' matrix rowheaders columnheaders with image\n"
+     << "  plot 'stability-error.dat' " << kCells << "\n"
      << "  unset output\n}\n";
   return gp.str();
 }

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <stb_image.h>
 
 #include "bodies.h"
 #include "commands.h"
@@ -387,7 +389,7 @@ TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
   EXPECT_NE(csv.find("\nface-face,gauss-seidel,,3,4,1,0,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nface-face,fake,,,,n/a,,,,,,0,not built\n"), std::string::npos) << csv;
   // The heat maps' matrices: the scene's row, our pass and the peer's grey.
-  EXPECT_EQ(lab::stability::passMatrix(r), "scene gauss-seidel:3x4 fake\nface-face 1 0.5\n");
+  EXPECT_EQ(lab::stability::passMatrix(r), "scene gauss-seidel:3x4 fake\n\"face-face\" 1 0.5\n");
   EXPECT_NE(lab::stability::errorMatrix(r).find(" NaN\n"), std::string::npos);
 }
 
@@ -439,6 +441,39 @@ TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
   }
 }
 
+// The colour at the centre of a heat map's top-left cell, read back from its PNG where its script
+// puts the cells: between the margins, in as many columns as the data's header names and as many
+// rows as it has lines.
+std::array<int, 3> firstCellColour(const std::filesystem::path& png, const std::filesystem::path& script) {
+  const std::string gp = lab_testing::readFile(script);
+  auto number = [&gp](const std::string& after) {
+    const std::size_t at = gp.find(after);
+    return at == std::string::npos ? std::nan("") : std::strtod(gp.c_str() + at + after.size(), nullptr);
+  };
+  const double width = number("pngcairo size "),
+               height = number("pngcairo size " + std::to_string(int(width)) + ",");
+  const double left = number("set lmargin at screen "), right = number("set rmargin at screen ");
+  const double top = number("set tmargin at screen "), bottom = number("set bmargin at screen ");
+  const std::string data = lab_testing::readFile(png.parent_path() / "stability-pass.dat");
+  const std::string header = data.substr(0, data.find('\n'));
+  const auto columns = static_cast<double>(std::count(header.begin(), header.end(), ' '));
+  const auto rows = static_cast<double>(std::count(data.begin(), data.end(), '\n') - 1);
+  const int x = static_cast<int>((left + (right - left) / (2.0 * columns)) * width);
+  const int y = static_cast<int>((1.0 - top + (top - bottom) / (2.0 * rows)) * height);
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load(png.c_str(), &w, &h, &channels, 3);
+  if (pixels == nullptr || x < 0 || y < 0 || x >= w || y >= h) {
+    stbi_image_free(pixels);
+    ADD_FAILURE() << png << " cannot be read, or the cell (" << x << ", " << y << ") is outside it";
+    return {};
+  }
+  const unsigned char* p =
+      pixels + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x));
+  const std::array<int, 3> colour{p[0], p[1], p[2]};
+  stbi_image_free(pixels);
+  return colour;
+}
+
 // The model as an axis: each model a block of settings of its own, with its own column, grid and
 // CSV rows; issue 14 keeps this exact run valid.
 TEST(StabilityCli, ModelsAreAnAxisOfTheMap) {
@@ -453,6 +488,12 @@ TEST(StabilityCli, ModelsAreAnAxisOfTheMap) {
   EXPECT_NE(csv.find("\nstack-10,xpbd,rigid,1,4,1,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nstack-10,xpbd,rigid,1,16,1,"), std::string::npos) << csv;
   EXPECT_NE(lab_testing::readFile(out / "stability-pass.dat").find("xpbd-rigid:1x4"), std::string::npos);
+  // A suite of one scene is one row, which gnuplot's image style drew as nothing (every cell the
+  // grey of "not judged"): its first cell, a pass, is green.
+  if (!lab::findGnuplot().empty()) {
+    const std::array<int, 3> green{26, 152, 80};
+    EXPECT_EQ(firstCellColour(out / "stability-pass.png", out / "stability.gp"), green);
+  }
   // Two models: two blocks, each counted on its own.
   const Output both = stability({"--scene", "stack-10", "--models", "corners,rigid", "--methods", "xpbd",
                                  "--iterations", "1", "--substeps", "1", "--no-peers"});
