@@ -61,9 +61,13 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   const std::string missing = clipError(dir.path / "missing.bvh");
   EXPECT_NE(missing.find("missing.bvh"), std::string::npos) << missing;
   EXPECT_NE(missing.find("No such file or directory"), std::string::npos) << missing;
+  // assimp's BVH reader says the line, after its placeholder name for memory: the file's own name
+  // stands there, the line kept.
   std::ofstream(dir.path / "cut.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0\n";
   const std::string cut = clipError(dir.path / "cut.bvh");
-  EXPECT_NE(cut.find("cut.bvh: not a clip assimp can read"), std::string::npos) << cut;
+  EXPECT_NE(cut.find("cut.bvh:5: not a clip assimp can read: Unexpected end of file"), std::string::npos)
+      << cut;
+  EXPECT_EQ(cut.find("magic"), std::string::npos) << cut;
   // A format assimp has no reader for: the reason without assimp's placeholder name for memory.
   std::ofstream(dir.path / "script.sh") << "#!/bin/sh\necho\n";
   const std::string script = clipError(dir.path / "script.sh");
@@ -101,6 +105,135 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   EXPECT_NE(none.find("none.bvh: it has no frames"), std::string::npos) << none;
   std::ofstream(dir.path / "two.bvh") << header << "Frames: 2\nFrame Time: 0.1\n0 0 0 0 0 0\n0 0 0 0 0 0\n";
   EXPECT_EQ(clipError(dir.path / "two.bvh"), "loaded");
+}
+
+const std::string kBvhHeader =
+    "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition "
+    "Zrotation Xrotation Yrotation\n}\nMOTION\n";  // Frames: on line 8
+
+// A BVH whose root has `joints` joints below it, each inside the one before (`nested`) or all side
+// by side, every one turning; one frame, at rest. The root's "{" is on line 3, joint j's on line
+// 7 + 4j nested and its JOINT on line 6 + 5j side by side.
+std::string skeletonBvh(int joints, bool nested) {
+  std::string bvh =
+      "HIERARCHY\nROOT root\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation "
+      "Xrotation Yrotation\n";
+  std::string frame = "0 0 0 0 0 0";
+  for (int j = 0; j < joints; ++j) {
+    bvh +=
+        "JOINT j" + std::to_string(j) + "\n{\n  OFFSET 0 1 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n";
+    if (!nested) bvh += "}\n";
+    frame += " 0 0 0";
+  }
+  if (nested) {
+    for (int j = 0; j < joints; ++j) bvh += "}\n";
+  }
+  return bvh + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n" + frame + "\n";
+}
+
+TEST(ClipFile, JointsNestedTooDeepAreRefusedWithTheLine) {
+  const testing_app::TempFolder dir;
+  // 50,000 levels, 2 MB: assimp's reader, which recurses once a level, overflowed the stack.
+  std::ofstream(dir.path / "deep.bvh") << skeletonBvh(50000, true);
+  const std::string deep = clipError(dir.path / "deep.bvh");
+  EXPECT_NE(deep.find("deep.bvh:1027: joints nested more than 256 deep"), std::string::npos) << deep;
+  // 256 levels, the root's and 255 joints', are read; one more is refused.
+  std::ofstream(dir.path / "limit.bvh") << skeletonBvh(255, true);
+  EXPECT_EQ(clipError(dir.path / "limit.bvh"), "loaded");
+  std::ofstream(dir.path / "past.bvh") << skeletonBvh(256, true);
+  const std::string past = clipError(dir.path / "past.bvh");
+  EXPECT_NE(past.find("past.bvh:1027: joints nested more than 256 deep"), std::string::npos) << past;
+}
+
+TEST(ClipFile, MoreJointsThanASkeletonHasAreRefusedWithTheLine) {
+  // Each node's channel is looked for among all of them: 50,000 joints side by side took a minute.
+  const testing_app::TempFolder dir;
+  std::ofstream(dir.path / "wide.bvh") << skeletonBvh(999, false);
+  EXPECT_EQ(clipError(dir.path / "wide.bvh"), "loaded");
+  std::ofstream(dir.path / "wider.bvh") << skeletonBvh(1000, false);
+  const std::string wider = clipError(dir.path / "wider.bvh");
+  EXPECT_NE(wider.find("wider.bvh:5001: more than 1000 joints"), std::string::npos) << wider;
+}
+
+// The refusals below are ours, so assimp never read the files, and allocated nothing for them.
+TEST(ClipFile, AFrameCountTheFileDoesNotHoldIsRefusedWithTheLine) {
+  const testing_app::TempFolder dir;
+  const auto refusal = [&](const std::string& frames, const std::string& motion) {
+    std::ofstream(dir.path / "frames.bvh") << kBvhHeader << "Frames: " << frames << "\nFrame Time: 0.1\n"
+                                           << motion;
+    return clipError(dir.path / "frames.bvh");
+  };
+  const std::string two = "0 0 0 0 0 0\n0 0 0 0 0 0\n";
+  // assimp read a count as a float and truncated it: 2.7 was 2 frames, -1 or 1e9 a bad_alloc.
+  for (const char* frames : {"-1", "2.7", "1e3", "two"}) {
+    SCOPED_TRACE(frames);
+    const std::string e = refusal(frames, two);
+    EXPECT_NE(e.find("frames.bvh:8: Frames: '" + std::string(frames) + "' is not a whole number >= 0"),
+              std::string::npos)
+        << e;
+  }
+  const std::string billion = refusal("1000000000", two);
+  EXPECT_NE(
+      billion.find("frames.bvh:8: Frames: 1000000000 of 6 numbers each is more than the file holds: its "
+                   "motion ends on line 11 after 12 numbers"),
+      std::string::npos)
+      << billion;
+  const std::string huge = refusal("99999999999999999999999", two);
+  EXPECT_NE(huge.find("frames.bvh:8: Frames: 99999999999999999999999 of 6 numbers each is more"),
+            std::string::npos)
+      << huge;
+  // Motion past the last frame was left unread.
+  const std::string extra = refusal("2", two + "0 0 0 0 0 0\n");
+  EXPECT_NE(extra.find("frames.bvh:12: motion past its last frame (Frames: 2 on line 8, 6 numbers a frame)"),
+            std::string::npos)
+      << extra;
+  EXPECT_EQ(refusal("2", two), "loaded");
+}
+
+TEST(ClipFile, AFileOfNoChannelsHoldsOneFrame) {
+  // Its frames are empty lines, which assimp took on trust, keying every joint at each: three
+  // joints and "Frames: 50000000", 200 bytes, made it allocate 3.5 GB.
+  const testing_app::TempFolder dir;
+  const std::string still =
+      "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 0\nJOINT b\n{\nOFFSET 0 1 0\nCHANNELS 0\nJOINT c\n{\n"
+      "OFFSET 0 1 0\nCHANNELS 0\n}\n}\n}\nMOTION\n";  // Frames: on line 18
+  std::ofstream(dir.path / "still.bvh") << still << "Frames: 1000\nFrame Time: 0.1\n";
+  const std::string many = clipError(dir.path / "still.bvh");
+  EXPECT_NE(many.find("still.bvh:18: Frames: 1000, but no joint has a channel"), std::string::npos) << many;
+  std::ofstream(dir.path / "still.bvh") << still << "Frames: 1\nFrame Time: 0.1\n";
+  const phys::Clip pose = clips::loadClip(dir.path / "still.bvh");
+  EXPECT_EQ(pose.frames(), 1u);
+  EXPECT_EQ(pose.bones.size(), 3u);
+}
+
+TEST(ClipFile, MoreKeysThanAClipFileHoldsAreRefused) {
+  // A joint of no channels is keyed at every frame all the same, so the frames a root's numbers make
+  // are keyed at every joint: 1000 joints at 11,185 frames make more keys than 64 MB of turns.
+  const testing_app::TempFolder dir;
+  std::string bvh = "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
+  for (int j = 0; j < 999; ++j) bvh += "JOINT j" + std::to_string(j) + " { OFFSET 0 1 0 CHANNELS 0 }\n";
+  bvh += "}\nMOTION\nFrames: 11185\nFrame Time: 0.1\n";  // Frames: on line 1007
+  for (int f = 0; f < 11185; ++f) bvh += "0 0 0\n";
+  std::ofstream(dir.path / "keys.bvh") << bvh;
+  const std::string keys = clipError(dir.path / "keys.bvh");
+  EXPECT_NE(keys.find("keys.bvh:1007: Frames: 11185 of 1000 joints is more keys than a clip file holds"),
+            std::string::npos)
+      << keys;
+}
+
+TEST(ClipFile, ABvhIsOneInAnyCaseOrByItsFirstWord) {
+  // "Frames: 0" refused as no frames in a .bvh, where a .Bvh or .txt loaded as assimp's one key.
+  const testing_app::TempFolder dir;
+  for (const char* file : {"none.Bvh", "none.BVH", "none.txt", "none"}) {
+    SCOPED_TRACE(file);
+    std::ofstream(dir.path / file) << kBvhHeader << "Frames: 0\nFrame Time: 0.1\n";
+    const std::string e = clipError(dir.path / file);
+    EXPECT_NE(e.find(std::string(file) + ": it has no frames"), std::string::npos) << e;
+  }
+  // And so are the checks before assimp reads the file.
+  std::ofstream(dir.path / "frames.txt") << kBvhHeader << "Frames: 2.7\nFrame Time: 0.1\n0 0 0 0 0 0\n";
+  const std::string e = clipError(dir.path / "frames.txt");
+  EXPECT_NE(e.find("frames.txt:8: Frames: '2.7' is not a whole number"), std::string::npos) << e;
 }
 
 std::string characterScene(const std::string& character) {

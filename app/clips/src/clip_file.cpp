@@ -1,9 +1,16 @@
 // Clips from files through assimp (clips/clip_file.h).
 #include "clips/clip_file.h"
 
+#include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
+#include <optional>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -22,6 +29,23 @@ namespace {
 // Larger than any clip we would play: minutes of motion capture of a full skeleton.
 constexpr std::size_t kMaxClipBytes = 64u << 20;
 
+// A skeleton nests tens of joints deep (hips to a fingertip is about fifteen). assimp's BVH reader
+// recurses once a level, as collectBones does, and 50,000 levels (a 4 MB file) overflowed the
+// stack; 256 is far from both.
+constexpr int kMaxBvhDepth = 256;
+
+// A body with hands and a face has a few hundred joints. More, and reading them takes time that
+// grows as their square (a node's channel is looked for among all of them): 50,000 joints side by
+// side, a 2 MB file, took a minute.
+constexpr std::uint64_t kMaxBvhJoints = 1000;
+
+// The most keys (a joint at a frame) the largest clip file can hold: every joint's three turns at
+// every frame, each number a digit and a space. assimp keys every joint at every frame a BVH says
+// it has, a joint with no channels too, whatever the file holds: three such joints and "Frames:
+// 50000000", 200 bytes, made it allocate 3.5 GB. Under 2^24, so the count is exact in the float
+// assimp reads it into.
+constexpr std::uint64_t kMaxClipKeys = kMaxClipBytes / 6;
+
 const aiNodeAnim* channelOf(const aiAnimation& a, const aiString& node) {
   for (unsigned c = 0; c < a.mNumChannels; ++c) {
     if (a.mChannels[c]->mNodeName == node) return a.mChannels[c];
@@ -38,6 +62,175 @@ phys::Quat rotationOf(const aiMatrix4x4& m) {
   aiQuaternion rotation;
   m.Decompose(scaling, rotation, position);
   return glm::normalize(toQuat(rotation));
+}
+
+// A BVH file's words as assimp's reader splits it (runs of anything but white space, a brace that
+// starts one a word of its own), each with its line.
+class BvhWords {
+ public:
+  explicit BvhWords(std::string_view text) : text_(text) {}
+
+  /// The next word, "" at the end of the file.
+  std::string_view next() {
+    while (at_ < text_.size() && isSpace(text_[at_])) {
+      if (text_[at_] == '\n') ++line_;
+      ++at_;
+    }
+    const std::size_t start = at_;
+    if (at_ < text_.size() && (text_[at_] == '{' || text_[at_] == '}')) {
+      ++at_;
+    } else {
+      while (at_ < text_.size() && !isSpace(text_[at_])) ++at_;
+    }
+    return text_.substr(start, at_ - start);
+  }
+  /// The line of the word last read.
+  std::size_t line() const { return line_; }
+
+ private:
+  static bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
+
+  std::string_view text_;
+  std::size_t at_ = 0;
+  std::size_t line_ = 1;
+};
+
+// A BVH is what assimp reads as one: a file named so, or one of another name that starts as a BVH
+// does (assimp reads a .txt or a file with no extension so).
+bool isBvh(std::string_view content, const std::string& format) {
+  return format == "bvh" || BvhWords(content).next() == "HIERARCHY";
+}
+
+// The count a BVH's count too large for 64 bits is taken as: more than any file holds.
+constexpr std::uint64_t kMostCount = std::numeric_limits<std::uint64_t>::max();
+
+// A count written as digits alone: assimp reads a count as a float and truncates it ("Frames: 2.7"
+// was 2 frames, "-1" more than any memory holds), so anything else is refused, not read its way.
+std::optional<std::uint64_t> wholeNumber(std::string_view word) {
+  std::uint64_t n = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
+  if (end != word.data() + word.size() || word.empty()) return std::nullopt;
+  if (error == std::errc::result_out_of_range) return kMostCount;
+  if (error != std::errc()) return std::nullopt;
+  return n;
+}
+
+// The count `word` on `line`, after `what`.
+std::uint64_t countIn(std::string_view word, std::size_t line, const std::string& name,
+                      const std::string& what) {
+  const std::optional<std::uint64_t> n = wholeNumber(word);
+  if (!n) throw ClipError(name, line, what + " '" + std::string(word) + "' is not a whole number >= 0");
+  return *n;
+}
+
+// A BVH's skeleton as far as the motion: its joints and the numbers each frame holds for them.
+struct BvhSkeleton {
+  std::uint64_t joints = 0;  // ROOT and JOINT: assimp keys each (an End Site is a node of no keys)
+  std::uint64_t channels = 0;
+  bool complete = false;  // MOTION was reached
+};
+
+// Reads the skeleton, refusing joints nested deeper than kMaxBvhDepth or more than kMaxBvhJoints
+// before assimp's reader meets them; what it does not follow is left for that reader to refuse.
+BvhSkeleton readBvhSkeleton(BvhWords& words, const std::string& name) {
+  BvhSkeleton skeleton;
+  int depth = 0;
+  for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
+    if (word == "ROOT" || word == "JOINT") {
+      if (++skeleton.joints > kMaxBvhJoints)
+        throw ClipError(name, words.line(),
+                        "more than " + std::to_string(kMaxBvhJoints) + " joints (a skeleton has tens)");
+      words.next();  // its name, which may be any word
+    } else if (word == "{") {
+      if (++depth > kMaxBvhDepth)
+        throw ClipError(
+            name, words.line(),
+            "joints nested more than " + std::to_string(kMaxBvhDepth) + " deep (a skeleton's are tens deep)");
+    } else if (word == "}") {
+      --depth;
+    } else if (word == "CHANNELS") {
+      const std::string_view count = words.next();
+      const std::uint64_t channels = countIn(count, words.line(), name, "CHANNELS");
+      for (std::uint64_t c = 0; c < channels; ++c) {
+        if (words.next().empty()) return skeleton;  // the file ends in the channels' names
+      }
+      skeleton.channels += channels;
+    } else if (word == "MOTION") {
+      skeleton.complete = true;
+      return skeleton;
+    }
+  }
+  return skeleton;
+}
+
+// Reads the motion's header and counts its numbers, refusing a frame count the file does not hold
+// (assimp allocates every key before it finds the numbers missing) or that more numbers follow
+// (assimp leaves them unread), and more keys than kMaxClipKeys.
+void checkBvhMotion(BvhWords& words, const BvhSkeleton& skeleton, const std::string& name) {
+  if (skeleton.joints == 0 || words.next() != "Frames:") return;  // assimp names what is missing
+  const std::string_view count = words.next();
+  const std::size_t framesLine = words.line();
+  const std::uint64_t frames = countIn(count, framesLine, name, "Frames:");
+  const std::string said = "Frames: " + std::string(count);
+  // Every frame would be an empty line, keyed by assimp at the rest pose; and a clip whose root
+  // has no position channels has one position, which is one frame.
+  if (skeleton.channels == 0 && frames > 1)
+    throw ClipError(name, framesLine,
+                    said + ", but no joint has a channel: a file of no motion holds one frame");
+  if (words.next() != "Frame" || words.next() != "Time:" || words.next().empty()) return;
+  // A product past 64 bits is also more than any file holds.
+  const std::uint64_t wanted = frames > kMostCount / std::max<std::uint64_t>(skeleton.channels, 1)
+                                   ? kMostCount
+                                   : frames * skeleton.channels;
+  std::uint64_t held = 0;
+  std::size_t lastLine = words.line();  // the Frame Time's, while no number is read
+  for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
+    if (++held > wanted)
+      throw ClipError(name, words.line(),
+                      "motion past its last frame (" + said + " on line " + std::to_string(framesLine) +
+                          ", " + std::to_string(skeleton.channels) + " numbers a frame)");
+    lastLine = words.line();
+  }
+  if (held < wanted)
+    throw ClipError(name, framesLine,
+                    said + " of " + std::to_string(skeleton.channels) +
+                        " numbers each is more than the file holds: its motion ends on line " +
+                        std::to_string(lastLine) + " after " + std::to_string(held) + " numbers");
+  if (frames > kMaxClipKeys / skeleton.joints)
+    throw ClipError(name, framesLine,
+                    said + " of " + std::to_string(skeleton.joints) +
+                        " joints is more keys than a clip file holds (" + std::to_string(kMaxClipKeys) + ")");
+}
+
+// What assimp would take on trust in a BVH, refused with its line before assimp reads the file.
+void checkBvh(std::string_view content, const std::string& name) {
+  BvhWords words(content);
+  const BvhSkeleton skeleton = readBvhSkeleton(words, name);
+  if (skeleton.complete) checkBvhMotion(words, skeleton, name);
+}
+
+// assimp's reason for refusing a file read from memory, and the line it names (0 if none). assimp
+// names the file after its placeholder ("$$$___magic___$$$.bvh"), which the message has already
+// said before the colon: the placeholder goes, and a line it gives is kept.
+struct AssimpReason {
+  std::string why;
+  std::size_t line = 0;
+};
+
+AssimpReason assimpReason(std::string why, const std::string& format) {
+  const std::string placeholder = std::string(AI_MEMORYIO_MAGIC_FILENAME) + "." + format;
+  // Most readers: "... of file \"PLACEHOLDER\"".
+  const std::string ofFile = " of file \"" + placeholder + "\"";
+  if (const std::size_t at = why.find(ofFile); at != std::string::npos) why.erase(at, ofFile.size());
+  // BVH's: "PLACEHOLDER:LINE - why".
+  if (why.starts_with(placeholder + ":")) {
+    const char* const begin = why.data() + placeholder.size() + 1;
+    std::size_t line = 0;
+    const auto [end, error] = std::from_chars(begin, why.data() + why.size(), line);
+    const std::string_view rest(end, static_cast<std::size_t>(why.data() + why.size() - end));
+    if (error == std::errc() && rest.starts_with(" - ")) return {std::string(rest.substr(3)), line};
+  }
+  return {why, 0};
 }
 
 // An animated node: its channel, its rotation in the file's rest pose (the node's own transform,
@@ -80,20 +273,25 @@ phys::Quat turnFromRest(const Animated& bone, const aiQuaternion& key) {
 ClipError::ClipError(const std::filesystem::path& file, const std::string& why)
     : std::runtime_error(file.string() + ": " + why) {}
 
-phys::Clip parseClip(std::string_view content, const std::string& name, const std::string& format) {
+ClipError::ClipError(const std::filesystem::path& file, std::size_t line, const std::string& why)
+    : std::runtime_error(file.string() + ":" + std::to_string(line) + ": " + why) {}
+
+phys::Clip parseClip(std::string_view content, const std::string& name, const std::string& givenFormat) {
+  // An extension in any case: "Bvh" is a BVH file too.
+  std::string format = givenFormat;
+  std::transform(format.begin(), format.end(), format.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const bool bvh = isBvh(content, format);
+  if (bvh) checkBvh(content, name);
   Assimp::Importer importer;
   // FBX's pivots as the nodes' own transforms, not as helper nodes the animation would key instead.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
   const aiScene* scene = importer.ReadFileFromMemory(content.data(), content.size(), 0, format.c_str());
   if (scene == nullptr) {
-    // Read from memory, assimp names the file after its placeholder ("$$$___magic___$$$.sh"),
-    // which the message has already said before the colon: the placeholder goes.
-    std::string why = importer.GetErrorString();
-    const std::string placeholder =
-        std::string(" of file \"") + AI_MEMORYIO_MAGIC_FILENAME + "." + format + "\"";
-    if (const std::size_t at = why.find(placeholder); at != std::string::npos)
-      why.erase(at, placeholder.size());
-    throw ClipError(name, "not a clip assimp can read: " + why);
+    const AssimpReason reason = assimpReason(importer.GetErrorString(), format);
+    const std::string why = "not a clip assimp can read: " + reason.why;
+    if (reason.line > 0) throw ClipError(name, reason.line, why);
+    throw ClipError(name, why);
   }
   if (scene->mNumAnimations == 0 || scene->mRootNode == nullptr)
     throw ClipError(name, "it holds no animation");
@@ -112,7 +310,6 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   // assimp gives 0 ticks a second for a file that does not say, and then takes 25 itself; a BVH
   // always says (1 / its Frame Time), so there a tick rate that is not a finite number > 0 is a
   // Frame Time that is not one (-1 gave -1, nan nan), refused rather than guessed.
-  const bool bvh = format == "bvh" || format == "BVH";
   const double ticksGiven = anim.mTicksPerSecond;
   if (!(ticksGiven >= 0.0 && std::isfinite(ticksGiven)) || (bvh && ticksGiven == 0.0))
     throw ClipError(name, bvh ? "its Frame Time is not a finite number of seconds > 0"
