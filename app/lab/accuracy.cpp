@@ -69,7 +69,11 @@ PositionExpect readExpect(ExpectReader& r, const scenes::Scene& scene, double dt
   if (!t || *t <= 0.0) r.fail("at", "'" + at + "' must be a finite number > 0 (s)");
   // The run is compared at whole steps; an answer between two steps cannot be checked.
   const double steps = std::round(*t / dt);
-  if (std::abs(steps * dt - *t) > 1e-6 * dt || steps > 1e9) {
+  if (steps > kMaxSteps) {
+    r.fail("at", "'" + at + "' s at the scene's dt " + formatNumber(dt) + " s is more than " +
+                     std::to_string(kMaxSteps) + " steps");
+  }
+  if (std::abs(steps * dt - *t) > 1e-6 * dt) {
     r.fail("at", "'" + at + "' s is not a whole number of steps of " + formatNumber(dt) + " s");
   }
   x.step = static_cast<int>(steps);

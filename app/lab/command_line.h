@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "numbers.h"  // kMaxSteps
 #include "physics/body.h"
 #include "physics/settings.h"
 
@@ -38,9 +39,6 @@ struct OptionSpec {
   double least = 0.0;  ///< a time's smallest value, itself allowed unless `aboveLeast`
   bool aboveLeast = false;
 };
-
-/// The most steps a run may take (--steps, and a sweep's horizon over its dt).
-inline constexpr int kMaxSteps = 10000000;
 
 /// The table: every option any command takes. --iterations, --substeps, --dt and --threads take
 /// the physics' ranges (physics/settings.h).

@@ -153,7 +153,7 @@ std::vector<ModelChoice> chosenModels(const std::filesystem::path& file, const s
   for (const std::string& name : o.models) {
     std::string error;
     const std::optional<ModelChoice> c = modelChoice(name, models, error);
-    if (!c) throw std::invalid_argument("--models: " + error);
+    if (!c) throw UsageError("--models: " + error);
     out.push_back(*c);
   }
   return out;
@@ -166,6 +166,8 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   const scenes::Scene own = scenes::loadSceneFile(file);
   const double dt = own.world.solverSettings().dt;
   const bool analytic = hasAnalyticAnswers(own);
+  // The options first: a model the scene has nothing for is said before what its bodies lack.
+  const std::vector<ModelChoice> models = chosenModels(file, own.name, o, progress);
   std::vector<int> checkpoints;
   FreeBodies freeRigid, freeParticle;  // the references for the rigid model and the particle ones
   AccuracyTarget t;  // analytic: the answers, the same whatever the model (bodies.h's order)
@@ -178,6 +180,10 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
     if (const std::string why = notFreeBodies(own.world); !why.empty()) {
       throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " +
                                   why + " (a free-body reference needs boxes alone in zero gravity)");
+    }
+    if (std::llround(o.time / dt) > kMaxSteps) {
+      throw UsageError("--time: at the scene's dt " + formatNumber(dt) + " s the " + formatNumber(o.time) +
+                       " s asked take more than " + std::to_string(kMaxSteps) + " steps");
     }
     checkpoints = spreadCheckpoints(std::max(1, static_cast<int>(std::lround(o.time / dt))));
     std::vector<double> times;
@@ -194,7 +200,7 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   }
 
   std::vector<ConvergeRow> rows;
-  for (const ModelChoice& model : chosenModels(file, own.name, o, progress)) {
+  for (const ModelChoice& model : models) {
     const bool rigid = model.options.boxModel == phys::BodyModel::Rigid;
     const FreeBodies& free = rigid ? freeRigid : freeParticle;
     for (const phys::SolverMethod method : o.methods) {
@@ -390,6 +396,8 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
     }
   } catch (const scenes::LoadError&) {
     throw;  // commandMain says it: "file:line: ..."
+  } catch (const UsageError&) {
+    throw;  // an option the scene cannot take: commandMain says it with the usage, exit 2
   } catch (const std::invalid_argument& e) {
     err << "lab: converge: " << e.what() << "\n";
     return kExitFailure;

@@ -7,6 +7,10 @@
 
 namespace lab {
 
+/// The most steps a run may take: --steps, a sweep's horizon or converge's --time over its dt, a
+/// scene's answer or window in steps of its dt.
+inline constexpr int kMaxSteps = 10000000;
+
 /// A whole number from low to high, nothing else: no sign, spaces, exponent or trailing text.
 std::optional<int> parseWholeNumber(std::string_view text, int low, int high);
 

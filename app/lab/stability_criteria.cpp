@@ -53,6 +53,10 @@ void readWindow(ExpectReader& r, Criterion& c, double dt) {
   }
   c.from = *from;
   c.to = *to;
+  if (std::llround(*to / dt) > kMaxSteps) {
+    r.fail("over", "'" + raw + "' at the scene's dt " + formatNumber(dt) + " s is more than " +
+                       std::to_string(kMaxSteps) + " steps");
+  }
   c.fromStep = static_cast<int>(std::lround(*from / dt));
   c.toStep = static_cast<int>(std::lround(*to / dt));
   if (c.toStep <= c.fromStep) {

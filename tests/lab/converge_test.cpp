@@ -294,6 +294,21 @@ TEST(Converge, BadOptionsAreUsageErrors) {
   lab_testing::expectUsageError(converge({"--time", "0"}), "converge", "--time");
   lab_testing::expectUsageError(converge({"--iterations"}), "converge", "--iterations");
   lab_testing::expectUsageError(converge({"--bogus"}), "converge", "--bogus");
+  // Options the scene cannot take are usage errors too, as in sweep: a model it has nothing for,
+  // and a --time of more steps than a run may take at its dt (3.6e9 steps ran as one, "exact").
+  TempDir dir;
+  const auto rag = dir.write("rag.xml",
+                             "<scene name=\"rag\">\n  <world gravity=\"0 0 0\"/>\n"
+                             "  <ragdoll name=\"r\" pos=\"0 2 0\"/>\n</scene>\n");
+  lab_testing::expectUsageError(converge({rag.string(), "--models", "corners"}), "converge",
+                                "--models: 'corners' is a box model and the scene has no boxes");
+  std::string tumbling = lab_testing::readFile(sceneFile("tumbling-box"));
+  const std::string dt = "dt=\"0.0166666666666667\"";
+  ASSERT_NE(tumbling.find(dt), std::string::npos);
+  tumbling.replace(tumbling.find(dt), dt.size(), "dt=\"1e-6\"");
+  lab_testing::expectUsageError(
+      converge({dir.write("tiny-dt.xml", tumbling).string(), "--time", "3600", "--substeps", "1,2"}),
+      "converge", "--time: at the scene's dt 1e-06 s the 3600 s asked take more than 10000000 steps");
 }
 
 TEST(Converge, AMissingSceneNamesTheFile) {

@@ -138,6 +138,9 @@ TEST(StabilityCriteria, MalformedExpectNamesTheLineAndTheAttribute) {
       {R"(<expect kind="pass" metric="drift" body="crate" max="1" over="0 1 2"/>)", "over", "two numbers"},
       {R"(<expect kind="pass" metric="drift" body="crate" max="1" over="0 0.001"/>)", "over",
        "shorter than one step"},
+      // 3e9 steps overflowed the step count and read as "shorter than one step".
+      {R"(<solver dt="1e-5"/><expect kind="pass" metric="drift" body="crate" max="1" over="0 30000"/>)",
+       "over", "'0 30000' at the scene's dt 1e-05 s is more than 10000000 steps"},
       {R"(<expect kind="pass" metric="drift" body="ghost" max="1" over="0 1"/>)", "body",
        "no body named 'ghost'"},
       {R"(<expect kind="pass" metric="drift" max="1" over="0 1"/>)", "body", "is required"},
