@@ -18,6 +18,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "bad_scene.h"
 #include "clips/clip_file.h"
 #include "physics/character.h"
 #include "scenes/scene.h"
@@ -345,6 +346,82 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
       kClips + "run.bvh\"/>");
   EXPECT_NE(capsule.find("no part for the bones 'torso'"), std::string::npos) << capsule;
   EXPECT_NE(capsule.find("no bone for the parts 'pelvis'"), std::string::npos) << capsule;
+}
+
+// A <character> playing the run cycle with `given` after its clip (line 2), refused naming `attribute`.
+void expectCharacterRefused(const std::string& given, const char* attribute, const char* says) {
+  const std::string xml =
+      characterScene("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" " + given + "/>");
+  testing_scenes::expectRefused({given.c_str(), xml.c_str(), 2, attribute, says});
+}
+
+// A clip's speed is held so that its clock stays where a file can hold it: speed="1e9" loaded and, two
+// seconds on, Save As wrote time="2e+09", which the loader refuses. What the physics lets past the
+// loader's limit at run time, Save As refuses by name rather than write a file that would not load.
+TEST(ClipFile, ClipSpeedsAreHeldSoThatTheClockSavesAndLoads) {
+  const std::string clip = kClips + "run.bvh";
+  expectCharacterRefused("speed=\"1e9\"", "speed", "'1e+09' must be from 0 to 1000");
+  expectCharacterRefused("speed=\"-1\"", "speed", "'-1' must be from 0 to 1000");
+  expectCharacterRefused("blend=\"0.5\" from-clip=\"" + clip + "\" from-speed=\"1001\"", "from-speed",
+                         "'1001' must be from 0 to 1000");
+  // The fastest a file may give: two seconds on, the clock is where a file holds it.
+  scenes::Scene fastest = scenes::loadSceneText(
+      characterScene("<character ragdoll=\"r\" clip=\"" + clip + "\" speed=\"1000\"/>"), "c.xml");
+  for (int i = 0; i < 120; ++i) fastest.world.step();
+  EXPECT_NO_THROW(scenes::loadSceneText(scenes::writeSceneXml(fastest), "again.xml"));
+  auto refusal = [](const scenes::Scene& scene) {
+    try {
+      scenes::writeSceneXml(scene);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("saved");
+  };
+  phys::Playback playback = fastest.world.characters()[0].now;
+  playback.speed = 1e9;
+  fastest.world.playClip(0, playback, 0.0);
+  const std::string fast = refusal(fastest);
+  EXPECT_NE(
+      fast.find("the clip of character 'r' plays at a speed of 1e+09, over the 1000 a scene file holds"),
+      std::string::npos)
+      << fast;
+  playback.speed = 1.0;
+  fastest.world.playClip(0, playback, 0.5);  // fading from the fast one
+  const std::string from = refusal(fastest);
+  EXPECT_NE(from.find("the clip character 'r' fades from plays at a speed of 1e+09"), std::string::npos)
+      << from;
+  // A clock run on past 1e9 s (at the fastest, after 11 days).
+  playback.speed = 1000.0;
+  playback.time = phys::kMaxClipTime - 1.0;
+  fastest.world.playClip(0, playback, 0.0);
+  fastest.world.step();
+  const std::string late = refusal(fastest);
+  EXPECT_NE(late.find("the clip of character 'r' is at 1000000015."), std::string::npos) << late;
+  EXPECT_NE(late.find("s, beyond the +-1e+09 s a scene file holds"), std::string::npos) << late;
+}
+
+// A character's scale is a ragdoll's, 0.02 to 1000: 5e-324 loaded and could not be saved (its root
+// drive's stiffness, which goes as 1 / scale, was inf), and 1e308 froze the world.
+TEST(ClipFile, ACharactersScaleIsHeldToARagdolls) {
+  expectCharacterRefused("scale=\"5e-324\"", "scale", "must be from 0.02 to 1000");
+  expectCharacterRefused("scale=\"1e308\"", "scale", "'1e+308' must be from 0.02 to 1000");
+  for (const char* scale : {"0.02", "1000"}) {
+    SCOPED_TRACE(scale);
+    scenes::Scene scene =
+        scenes::loadSceneText(characterScene("<character ragdoll=\"r\" clip=\"" + kClips +
+                                             "run.bvh\" root-strength=\"1\" scale=\"" + scale + "\"/>"),
+                              "c.xml");
+    scene.world.step();
+    EXPECT_EQ(
+        testsupport::compareScenes(scene, scenes::loadSceneText(scenes::writeSceneXml(scene), "again.xml")),
+        "");
+  }
+}
+
+// A bone named twice in part-strengths took the last share without a word.
+TEST(ClipFile, PartStrengthsNameEachBoneOnce) {
+  expectCharacterRefused("part-strengths=\"head=0.5 lower-arm-left=0.1 head=0.2\"", "part-strengths",
+                         "bone 'head' is given twice");
 }
 
 TEST(ClipFile, SaveAsKeepsTheCharacter) {

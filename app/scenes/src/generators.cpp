@@ -53,6 +53,15 @@ std::optional<double> readFraction(ElementReader& e, std::string_view attribute)
   return value;
 }
 
+std::optional<double> readRagdollScale(ElementReader& e) {
+  const std::optional<double> scale = e.number("scale", "");
+  if (scale && !(*scale >= kMinRagdollScale && *scale <= kMaxRagdollScale)) {
+    e.fail("scale", "'" + formatNumber(*scale) + "' must be from " + formatNumber(kMinRagdollScale) + " to " +
+                        formatNumber(kMaxRagdollScale));
+  }
+  return scale;
+}
+
 std::optional<phys::JointDrive> readDrive(ElementReader& e) {
   const std::optional<double> strength = readFraction(e, "strength");
   const std::optional<double> stiffness = e.number("drive-stiffness", "N m/rad");
@@ -253,13 +262,7 @@ void generateRagdoll(ElementReader& e, BuildContext& ctx) {
   d.hips = e.requiredVector("pos", "m");
   checkInsideBound(e, ctx.world, "pos", d.hips);
   if (auto euler = e.vector("euler", "degrees")) d.orientation = orientationFromEuler(*euler);
-  if (auto scale = e.number("scale", "")) {
-    if (!(*scale >= kMinRagdollScale && *scale <= kMaxRagdollScale)) {
-      e.fail("scale", "'" + formatNumber(*scale) + "' must be from " + formatNumber(kMinRagdollScale) +
-                          " to " + formatNumber(kMaxRagdollScale));
-    }
-    d.scale = *scale;
-  }
+  if (auto scale = readRagdollScale(e)) d.scale = *scale;
   if (auto mass = readMass(e, "mass", kMinRagdollMass)) d.mass = *mass;
   if (auto model = e.text("model")) {
     const auto parsed = phys::parseRagdollModel(*model);

@@ -44,6 +44,13 @@ inline constexpr double kMaxMass = 1e9;   ///< unit: kg
 /// kMinBodySize with room for the round-off of a saved and reloaded part.
 inline constexpr double kMinRagdollScale = 0.02;
 inline constexpr double kMaxRagdollScale = 1000.0;
+/// unitless: clip seconds a second; a character's clip speed (speed, from-speed) at most. The physics
+/// runs a clip's clock on without a bound, and a scene file holds a time within phys::kMaxClipTime
+/// (1e9 s): at this speed that lasts 1e6 s of simulated time, over 11 days, where any finite speed
+/// was taken (speed="1e9" passed it within a second, and Save As wrote a time the loader refused).
+/// Faster says nothing a clip can show: at 1/60 s a step it is 17 s of clip a step, many loops of a
+/// run cycle.
+inline constexpr double kMaxClipSpeed = 1000.0;
 /// A ragdoll's whole mass: its lightest part (a box ragdoll's forearm is 5% of it) is then still
 /// kMinMass, so that the part saves as a box the loader takes.
 inline constexpr double kMinRagdollMass = kMinMass / 0.05;
@@ -56,6 +63,9 @@ std::optional<double> readFraction(ElementReader& e, std::string_view attribute)
 /// Reads a drive's strength (0 to 1) and drive-stiffness (N m/rad, > 0), if either is given; the
 /// one not given keeps JointDrive's default (<joint>, <ragdoll>).
 std::optional<phys::JointDrive> readDrive(ElementReader& e);
+/// Reads a ragdoll's scale in [kMinRagdollScale, kMaxRagdollScale], if given: a <ragdoll>'s, and
+/// the <character>'s that plays on it.
+std::optional<double> readRagdollScale(ElementReader& e);
 /// Reads a mass in [least, kMaxMass] (kg), if given.
 std::optional<double> readMass(ElementReader& e, std::string_view attribute, double least = kMinMass);
 /// Fails on `attribute` unless every coordinate of `point` is within the world's bound, the

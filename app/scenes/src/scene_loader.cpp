@@ -542,10 +542,7 @@ class Builder {
     desc.ragdoll = e.requiredText("ragdoll");
     desc.playback.clip = clip(e, e.requiredText("clip"), "clip");
     desc.playback.time = time(e, "time").value_or(0.0);
-    if (auto speed = e.number("speed", "")) {
-      if (*speed < 0.0) e.fail("speed", "'" + detail::formatNumber(*speed) + "' must be >= 0");
-      desc.playback.speed = *speed;
-    }
+    if (auto speed = clipSpeed(e, "speed")) desc.playback.speed = *speed;
     if (auto loop = e.boolean("loop")) desc.playback.loop = *loop;
     desc.strength = detail::readFraction(e, "strength").value_or(1.0);
     desc.rootStrength = detail::readFraction(e, "root-strength").value_or(0.0);
@@ -554,10 +551,9 @@ class Builder {
       if (*pose != "clip" && *pose != "ragdoll") e.fail("pose", "'" + *pose + "' must be clip or ragdoll");
       desc.startInPose = *pose == "clip";
     }
-    if (auto scale = e.number("scale", "")) {
-      if (!(*scale > 0.0)) e.fail("scale", "'" + detail::formatNumber(*scale) + "' must be > 0");
-      desc.scale = *scale;
-    }
+    // The ragdoll's range: the root drive's stiffness goes as 1 / scale (5e-324 made it inf) and
+    // the clip's path as scale (1e308 froze the world).
+    if (auto scale = detail::readRagdollScale(e)) desc.scale = *scale;
     if (auto offset = e.vector("root-offset", "m")) {
       if (glm::length(*offset) > phys::kMaxClipReach)
         e.fail("root-offset", "must be within " + detail::formatNumber(phys::kMaxClipReach) + " m");
@@ -678,10 +674,7 @@ class Builder {
       if (const std::string why = phys::skeletonDifference(*before->clip, playing); !why.empty())
         e.fail("from-clip", why);
       before->time = time(e, "from-time").value_or(0.0);
-      if (auto speed = e.number("from-speed", "")) {
-        if (*speed < 0.0) e.fail("from-speed", "'" + detail::formatNumber(*speed) + "' must be >= 0");
-        before->speed = *speed;
-      }
+      if (auto speed = clipSpeed(e, "from-speed")) before->speed = *speed;
       before->loop = e.boolean("from-loop").value_or(true);
     }
     c.before = before;
@@ -741,6 +734,9 @@ class Builder {
         e.fail("part-strengths", "clip '" + clip.name + "' has no bone '" + bone + "'");
       if (it == clip.bones.begin())
         e.fail("part-strengths", "'" + bone + "' is the clip's root, which has no joint (use root-strength)");
+      // The physics would take the last share given without a word.
+      if (std::any_of(parts.begin(), parts.end(), [&](const auto& part) { return part.first == bone; }))
+        e.fail("part-strengths", "bone '" + bone + "' is given twice");
       parts.emplace_back(bone, *share);
     }
     return parts;
@@ -776,6 +772,16 @@ class Builder {
       e.fail(attribute, "'" + detail::formatNumber(*t) + "' must be within +-" +
                             detail::formatNumber(phys::kMaxClipTime) + " s");
     return t;
+  }
+
+  // A clip's speed (clip seconds a second), 0 to kMaxClipSpeed, so that its clock stays within what
+  // time() takes for as long as generators.h says.
+  std::optional<double> clipSpeed(ElementReader& e, const char* attribute) {
+    auto speed = e.number(attribute, "");
+    if (speed && !(*speed >= 0.0 && *speed <= detail::kMaxClipSpeed))
+      e.fail(attribute, "'" + detail::formatNumber(*speed) + "' must be from 0 to " +
+                            detail::formatNumber(detail::kMaxClipSpeed));
+    return speed;
   }
 
   // A length of time (s), >= 0.

@@ -260,6 +260,22 @@ void requireInsideBound(const phys::Vec3& point, double bound, const std::string
                               " m, which no scene file can hold");
 }
 
+// A clip's clock as the loader takes it (a character's speed and time, from-speed and from-time): a
+// speed set past kMaxClipSpeed through the physics, or a time the physics ran on past
+// phys::kMaxClipTime (it bounds neither; at the loader's fastest that takes 11 days), is refused
+// rather than saved in a file that would not load.
+void requireLoadableClock(const phys::Playback& p, const std::string& what) {
+  if (!(p.speed <= detail::kMaxClipSpeed)) {
+    throw std::invalid_argument(what + " plays at a speed of " + detail::exactNumber(p.speed) +
+                                ", over the " + detail::formatNumber(detail::kMaxClipSpeed) +
+                                " a scene file holds");
+  }
+  if (!(std::abs(p.time) <= phys::kMaxClipTime)) {
+    throw std::invalid_argument(what + " is at " + detail::exactNumber(p.time) + " s, beyond the +-" +
+                                detail::formatNumber(phys::kMaxClipTime) + " s a scene file holds");
+  }
+}
+
 std::string linkElement(const phys::World& world, const phys::RigidLink& link,
                         std::span<const phys::BodyId> owner, const BodyNames& names) {
   const LinkEnd endA = linkEnd(world, link.a, owner), endB = linkEnd(world, link.b, owner);
@@ -524,6 +540,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     if (c.blend >= 1.0) return;
     e.number("blend", c.blend).number("blend-time", c.blendTime);
     if (c.before.clip) {
+      requireLoadableClock(c.before, "the clip character '" + c.ragdoll + "' fades from");
       e.text("from-clip", clipPath(*c.before.clip))
           .number("from-time", c.before.time)
           .number("from-speed", c.before.speed)
@@ -540,6 +557,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     e.vector("held-root", c.held.root).text("held-turns", turns);
   };
   for (const phys::Character& c : world.characters()) {
+    requireLoadableClock(c.now, "the clip of character '" + c.ragdoll + "'");
     ElementWriter e("character");
     e.text("ragdoll", c.ragdoll)
         .text("clip", clipPath(*c.now.clip))
