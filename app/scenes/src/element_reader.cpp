@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <glm/geometric.hpp>
+
 namespace scenes::detail {
 namespace {
 
@@ -173,6 +175,14 @@ phys::Vec3 ElementReader::requiredVector(std::string_view name, std::string_view
   const std::optional<phys::Vec3> value = vector(name, unit, allowScalar);
   if (!value) fail(name, "is required" + withUnit(unit));
   return *value;
+}
+
+std::optional<phys::Vec3> ElementReader::direction(std::string_view name) {
+  const std::optional<phys::Vec3> v = vector(name, "");
+  if (!v) return std::nullopt;
+  const phys::Real length = glm::length(*v);  // inf for components near 1e308, and v / inf is 0
+  if (!std::isfinite(length) || length < 1e-9) fail(name, "must be non-zero and of finite length");
+  return *v / length;
 }
 
 std::optional<glm::ivec3> ElementReader::integers3(std::string_view name, int min, int max) {

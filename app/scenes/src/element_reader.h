@@ -47,6 +47,9 @@ class ElementReader {
   /// three equal ones.
   std::optional<phys::Vec3> vector(std::string_view name, std::string_view unit, bool allowScalar = false);
   phys::Vec3 requiredVector(std::string_view name, std::string_view unit, bool allowScalar = false);
+  /// A vector of no unit made of length 1: refused when zero (under 1e-9 long) or when its length
+  /// overflows (components past about 1e154), which divided it down to zero.
+  std::optional<phys::Vec3> direction(std::string_view name);
   /// Three whole numbers in [min, max].
   std::optional<glm::ivec3> integers3(std::string_view name, int min, int max);
   std::optional<bool> boolean(std::string_view name);

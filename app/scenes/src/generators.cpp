@@ -226,10 +226,7 @@ void generateChain(ElementReader& e, BuildContext& ctx) {
   if (compliance < 0.0 || compliance > phys::kMaxCompliance) {
     e.fail("compliance", "must be from 0 to " + formatNumber(phys::kMaxCompliance) + " (m/N)");
   }
-  phys::Vec3 direction = e.vector("direction", "").value_or(phys::Vec3(0.0, -1.0, 0.0));
-  const double directionLength = glm::length(direction);
-  if (directionLength < 1e-9) e.fail("direction", "must not be zero");
-  direction /= directionLength;
+  const phys::Vec3 direction = e.direction("direction").value_or(phys::Vec3(0.0, -1.0, 0.0));
   e.rejectUnknownAttributes();
   phys::ParticleId previous{};
   for (long i = 0; i <= links; ++i) {

@@ -141,11 +141,7 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
 void readGround(ElementReader& e, phys::WorldSettings& w) {
   w.ground = true;
   if (auto h = e.number("height", "m")) w.groundHeight = *h;
-  if (auto n = e.vector("normal", "")) {
-    const double length = glm::length(*n);  // can overflow for components near 1e308
-    if (!std::isfinite(length) || length < 1e-9) e.fail("normal", "must be non-zero and of finite length");
-    w.groundNormal = *n / length;
-  }
+  if (auto n = e.direction("normal")) w.groundNormal = *n;
   e.material(w.groundMaterial);
   e.rejectUnknownAttributes();
 }
