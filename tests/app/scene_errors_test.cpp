@@ -235,6 +235,12 @@ const BadScene kCases[] = {
     {"text after the root", "<scene name='s'>\n</scene>\n\n  junk\n", 4, "", "nothing may follow"},
     {"attribute twice", "<scene name='s'>\n<box pos='0 1 0'\n pos='0 50 0'/>\n</scene>", 3, "pos",
      "given twice"},
+    // <expect> keeps its attributes as written, so no rejectUnknownAttributes saw a doubled one: the lab
+    // read the first kind, and the stability suite passed over kind="position" kind="pass".
+    {"expect attribute twice",
+     "<scene name='s'>\n<particle name='p' pos='0 1 0'/>\n<expect kind='position'\n kind='pass' body='p' "
+     "at='1' pos='0 1 0'/>\n</scene>",
+     4, "kind", "given twice"},
     {"text inside scene", "<scene name='s'>\n<world/>\n  stray words\n</scene>", 3, "",
      "text: unexpected text"},
     {"dt too small", "<scene name='s'>\n<solver dt='1e-200'/>\n</scene>", 2, "dt", "from 1e-06 to 1"},
