@@ -241,6 +241,11 @@ const BadScene kCases[] = {
      "<scene name='s'>\n<particle name='p' pos='0 1 0'/>\n<expect kind='position'\n kind='pass' body='p' "
      "at='1' pos='0 1 0'/>\n</scene>",
      4, "kind", "given twice"},
+    // A body has one drive: a second <body-drive> replaced the first without a word.
+    {"second body drive",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<body-drive body='a' strength='1'/>\n"
+     "<body-drive body='a' strength='0.5'/>\n</scene>",
+     4, "body", "'a' already has a <body-drive>, on line 3"},
     {"text inside scene", "<scene name='s'>\n<world/>\n  stray words\n</scene>", 3, "",
      "text: unexpected text"},
     {"dt too small", "<scene name='s'>\n<solver dt='1e-200'/>\n</scene>", 2, "dt", "from 1e-06 to 1"},

@@ -505,6 +505,12 @@ class Builder {
   void bodyDrive(ElementReader& e) {
     const NamedBody& named = bodyNamed(e, "body", false);
     const phys::BodyId id = named.body();
+    // A body has one drive, and World::setBodyDrive replaces it: a second element would silently
+    // undo the first.
+    if (const auto [first, added] = bodyDriveLines_.emplace(id, e.line()); !added) {
+      e.fail("body", "'" + named.name + "' already has a <body-drive>, on line " +
+                         std::to_string(first->second) + "; a body has one drive");
+    }
     const phys::BodyPose pose = scene_.world.bodyPose(id);
     phys::BodyDrive drive{pose.center, pose.orientation};
     if (auto pos = e.vector("pos", "m")) {
@@ -838,6 +844,7 @@ class Builder {
   std::filesystem::path folder_;  // where a clip's file name starts from
   BuildContext ctx_;
   std::map<std::string, std::size_t, std::less<>> byName_;
+  std::map<phys::BodyId, int> bodyDriveLines_;  // each <body-drive>'s body, and its line
   std::map<std::string, std::shared_ptr<const phys::Clip>, std::less<>> clips_;  // by absolute path
 };
 
