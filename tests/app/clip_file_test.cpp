@@ -510,6 +510,50 @@ TEST(ClipFile, SaveAsNamesClipsRelativeToTheFile) {
             (elsewhere / "clips" / "dive.bvh").string());
 }
 
+// A scene file's clip names start from the folder the file is in once links are followed, in the
+// writer and the loader alike (the next test): saving through lk/link.xml -> ../real/scene.xml named a
+// clip in lk/ "run.bvh", from the link's folder, in a file in real/ that then did not load.
+TEST(ClipFile, SaveAsThroughALinkNamesClipsFromTheFolderTheFileLandsIn) {
+  namespace fs = std::filesystem;
+  const testing_app::TempFolder dir;
+  const fs::path at = fs::canonical(dir.path);  // the temporary folder may itself be reached by a link
+  fs::create_directory(dir.path / "lk");
+  fs::create_directory(dir.path / "real");
+  fs::copy_file(kClips + "run.bvh", dir.path / "lk" / "run.bvh");
+  fs::create_symlink("../real/scene.xml", dir.path / "lk" / "link.xml");
+  const scenes::Scene scene = scenes::loadSceneText(
+      characterScene("<character ragdoll=\"r\" clip=\"" + (at / "lk" / "run.bvh").string() + "\"/>"),
+      "c.xml");
+  scenes::saveSceneFile(scene, dir.path / "lk" / "link.xml");
+  ASSERT_TRUE(fs::is_symlink(dir.path / "lk" / "link.xml"));
+  std::ifstream in(dir.path / "real" / "scene.xml");
+  const std::string saved((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(saved.find("clip=\"../lk/run.bvh\""), std::string::npos) << saved;
+  for (const char* file : {"real/scene.xml", "lk/link.xml"}) {
+    SCOPED_TRACE(file);
+    const scenes::Scene again = scenes::loadSceneFile(dir.path / file);
+    ASSERT_EQ(again.world.characters().size(), 1u);
+    EXPECT_EQ(again.world.characters()[0].now.clip->name, (at / "lk" / "run.bvh").string());
+  }
+}
+
+// A file in real/ naming the clip beside it did not load through a link in lk/: the loader took the
+// clip's name from the link's folder.
+TEST(ClipFile, ALinkedSceneReadsClipsFromTheFolderItIsIn) {
+  namespace fs = std::filesystem;
+  const testing_app::TempFolder dir;
+  fs::create_directory(dir.path / "lk");
+  fs::create_directory(dir.path / "real");
+  fs::copy_file(kClips + "run.bvh", dir.path / "real" / "own.bvh");
+  std::ofstream(dir.path / "real" / "own.xml")
+      << characterScene("<character ragdoll=\"r\" clip=\"own.bvh\"/>");
+  fs::create_symlink("../real/own.xml", dir.path / "lk" / "link.xml");
+  const scenes::Scene linked = scenes::loadSceneFile(dir.path / "lk" / "link.xml");
+  ASSERT_EQ(linked.world.characters().size(), 1u);
+  EXPECT_EQ(linked.world.characters()[0].now.clip->name,
+            (fs::canonical(dir.path) / "real" / "own.bvh").string());
+}
+
 // The target: with the root carried, the parts track the run cycle within 5 degrees RMS at
 // 1/60 s (XPBD 2 x 8, strength 0.9, the ragdolls' default stiffness) (the parts against their targets, in the
 // clip frame the character chose). `ragdoll` is the <ragdoll> element's attributes past its name.

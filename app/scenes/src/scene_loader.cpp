@@ -20,6 +20,7 @@
 #include "euler_angles.h"
 #include "fileio/files.h"
 #include "generators.h"
+#include "scene_paths.h"
 #include "scenes/scene.h"
 
 namespace scenes {
@@ -793,8 +794,8 @@ class Builder {
     return t;
   }
 
-  // The clip file `given` (relative to the scene's folder) names, read once however many
-  // characters play it; a file that cannot be read fails `attribute`.
+  // The clip file `given` (relative to the scene's folder, detail::clipFolder) names, read once
+  // however many characters play it; a file that cannot be read fails `attribute`.
   std::shared_ptr<const phys::Clip> clip(ElementReader& e, const std::string& given, const char* attribute) {
     std::error_code ignored;
     const std::filesystem::path file = std::filesystem::absolute(folder_ / given, ignored).lexically_normal();
@@ -1114,7 +1115,13 @@ Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& option
   }
   std::vector<char> buffer(text.begin(), text.end());
   text = {};
-  Scene scene = build(buffer, file.string(), file.parent_path(), options);
+  std::filesystem::path folder;
+  try {
+    folder = detail::clipFolder(file);  // the folder of the file a link names, as Save As writes it
+  } catch (const fileio::FileError& e) {
+    throw LoadError(file.string(), 0, "", e.message());
+  }
+  Scene scene = build(buffer, file.string(), folder, options);
   scene.file = file;
   return scene;
 }

@@ -1,5 +1,8 @@
+#include "scene_paths.h"
+
 #include <system_error>
 
+#include "fileio/files.h"
 #include "scenes/scene.h"
 
 namespace scenes {
@@ -25,3 +28,23 @@ std::filesystem::path resolveScene(std::string_view nameOrPath, const std::files
 }
 
 }  // namespace scenes
+
+namespace scenes::detail {
+
+std::filesystem::path clipFolder(const std::filesystem::path& sceneFile) {
+  std::error_code ec;
+  const std::filesystem::path file = std::filesystem::absolute(fileio::followLinks(sceneFile), ec);
+  if (!ec) {
+    std::filesystem::path folder = std::filesystem::weakly_canonical(file.parent_path(), ec);
+    if (!ec) return folder;
+  }
+  throw fileio::FileError(sceneFile, "cannot find the folder its clips are named from: " + ec.message());
+}
+
+std::filesystem::path resolvedClip(const std::filesystem::path& clip) {
+  std::error_code ec;
+  const std::filesystem::path folder = std::filesystem::weakly_canonical(clip.parent_path(), ec);
+  return ec ? clip : folder / clip.filename();
+}
+
+}  // namespace scenes::detail

@@ -12,7 +12,6 @@
 #include <set>
 #include <span>
 #include <stdexcept>
-#include <system_error>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -23,6 +22,7 @@
 #include "euler_angles.h"
 #include "fileio/files.h"
 #include "generators.h"
+#include "scene_paths.h"
 
 namespace scenes {
 namespace {
@@ -532,7 +532,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
   const auto clipPath = [&folder](const phys::Clip& clip) {
     const std::filesystem::path path(clip.name);
     if (folder.empty() || !path.is_absolute()) return clip.name;
-    const std::filesystem::path relative = path.lexically_relative(folder);
+    const std::filesystem::path relative = detail::resolvedClip(path).lexically_relative(folder);
     return relative.empty() ? clip.name : relative.generic_string();
   };
   // A fade under way: how far it has got, and what it fades from (the clip before, or a pose held).
@@ -625,10 +625,12 @@ const CameraStart* ownCamera(const Scene& scene) {
 void save(const Scene& scene, const CameraStart* camera, const std::filesystem::path& file) {
   std::string xml;
   try {
-    std::error_code ignored;  // no folder: clips by their absolute paths
-    xml = sceneXml(scene, camera, std::filesystem::absolute(file, ignored).lexically_normal().parent_path());
+    // Clips named from the folder the file lands in, a link's target's, as the loader reads them.
+    xml = sceneXml(scene, camera, detail::clipFolder(file));
   } catch (const std::invalid_argument& e) {
     throw SaveError(file, std::string("cannot save this world as a scene: ") + e.what());
+  } catch (const fileio::FileError& e) {
+    throw SaveError(file, e.message());
   }
   try {
     fileio::writeAtomically(file, xml);

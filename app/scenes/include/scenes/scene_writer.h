@@ -26,7 +26,7 @@ class SaveError : public std::runtime_error {
 /// Throws std::invalid_argument for what no scene file can express (a stick from a loose
 /// particle to a box's particle, a non-finite number).
 /// Characters' clip files are named by their absolute paths, or, with `folder` (the folder the
-/// text is to be saved in), relative to it, as a scene file names them.
+/// text is to be saved in, its symbolic links resolved), relative to it, as a scene file names them.
 std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
                           const std::filesystem::path& folder = {});
 /// The same, with the camera the scene was loaded with, or none if it had no <camera>.
