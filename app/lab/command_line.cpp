@@ -308,6 +308,11 @@ void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, con
 void CommandLine::flag(const OptionSpec& spec, bool& into, bool value, const std::string& note) {
   // A flag takes no value: CLI11 would read "--json=no" as off and "--json=" as on.
   app_->add_flag_callback(spec.names, [&into, value] { into = value; })->disable_flag_override();
+  for (std::string_view names = spec.names; !names.empty();) {
+    const std::size_t comma = std::min(names.find(','), names.size());
+    flags_.emplace_back(names.substr(0, comma));
+    names.remove_prefix(std::min(comma + 1, names.size()));
+  }
   entries_.push_back({spec.names, spec.names, helpText(spec, note), ""});
 }
 
@@ -335,6 +340,14 @@ std::string CommandLine::parse(const std::vector<std::string>& args) {
     return extras.empty() ? std::string() : extras.front();
   };
   auto isOption = [](const std::string& word) { return word.size() > 1 && word[0] == '-'; };
+  // CLI11 refuses a value given to a flag ("--json=no") but takes an empty one ("--json=") as on.
+  for (const std::string& arg : args) {
+    const std::size_t eq = arg.find('=');
+    if (!arg.starts_with("--") || eq == std::string::npos) continue;
+    if (const std::string name = arg.substr(0, eq);
+        std::find(flags_.begin(), flags_.end(), name) != flags_.end())
+      return name + " takes no value";
+  }
   try {
     app_->parse(reversed);
   } catch (const OptionError& e) {

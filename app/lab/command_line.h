@@ -172,7 +172,8 @@ class CommandLine {
   std::string command_;
   std::string about_;
   std::unique_ptr<CLI::App> app_;
-  std::vector<Entry> entries_;  // in the order the help lists them
+  std::vector<Entry> entries_;      // in the order the help lists them
+  std::vector<std::string> flags_;  // every spelling of every flag
   std::string positionalName_;
   std::vector<std::pair<std::string, std::string>> required_;  // option, why
 };

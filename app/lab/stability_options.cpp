@@ -28,7 +28,7 @@ void describeOptions(CommandLine& line, StabilityOptions& o) {
       [&o](const std::string& text) {
         const std::optional<std::vector<std::string>> names = splitList(text);
         if (!names) return "an empty name in '" + text + "'";
-        o.scenes.insert(o.scenes.end(), names->begin(), names->end());
+        for (const std::string& name : *names) addOnce(o.scenes, name);  // a scene listed twice runs once
         return std::string();
       },
       "");
@@ -66,6 +66,9 @@ std::vector<std::filesystem::path> sceneFiles(const StabilityOptions& o) {
       const std::filesystem::path file = scenes::resolveScene(name, folder);
       std::error_code ec;
       const std::filesystem::file_status status = std::filesystem::status(file, ec);
+      // Nothing there is "no scene"; a path that cannot be looked at says the system's reason.
+      if (ec && status.type() != std::filesystem::file_type::not_found)
+        throw std::runtime_error("--scene: " + file.string() + ": cannot open: " + ec.message());
       if (std::filesystem::is_directory(status))
         throw std::runtime_error("--scene: " + file.string() + ": is a folder, not a scene file");
       if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))

@@ -148,6 +148,9 @@ INSTANTIATE_TEST_SUITE_P(
         // a value given to a flag: CLI11's own words were "Could not convert: --json = banana"
         BadCase{{"run", "s", "--json=banana"}, "--json takes no value"},
         BadCase{{"run", "s", "--json=no"}, "--json takes no value"},
+        // and an empty one, which CLI11 took as on
+        BadCase{{"run", "s", "--json="}, "--json takes no value"},
+        BadCase{{"stability", "--no-peers="}, "--no-peers takes no value"},
         // missing values, at the end or followed by another option
         BadCase{{"run", "s", "--steps"}, "--steps"}, BadCase{{"run", "s", "--dt"}, "--dt"},
         BadCase{{"run", "s", "--method"}, "--method"}, BadCase{{"run", "s", "--iterations"}, "--iterations"},

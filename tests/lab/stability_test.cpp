@@ -572,6 +572,15 @@ TEST(StabilityCli, SleepOnIsSaidInTheReport) {
   EXPECT_EQ(awake.out.find("Sleeping on"), std::string::npos);
 }
 
+// A scene listed twice runs once, as a value listed twice does everywhere.
+TEST(StabilityCli, ASceneListedTwiceRunsOnce) {
+  const Output o = stability({"--scene", "stack-10,stack-10", "--methods", "xpbd", "--iterations", "1",
+                              "--substeps", "1", "--no-peers"});
+  ASSERT_EQ(o.code, lab::kExitOk) << o.err;
+  EXPECT_NE(o.out.find("1 scene"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("2 scenes"), std::string::npos) << o.out;
+}
+
 TEST(StabilityCli, AMissingOrBrokenSceneExits1) {
   const Output missing = stability({"--scene", "no-such-scene", "--no-peers"});
   EXPECT_EQ(missing.code, lab::kExitFailure);
@@ -586,6 +595,13 @@ TEST(StabilityCli, AMissingOrBrokenSceneExits1) {
   const Output pipe = stability({"--scene", dir.file("pipe.xml").string(), "--no-peers"});
   EXPECT_EQ(pipe.code, lab::kExitFailure);
   EXPECT_NE(pipe.err.find("is not a regular file"), std::string::npos) << pipe.err;
+  // A path that cannot be looked at says the system's reason, not "no scene".
+  std::filesystem::create_symlink("loop.xml", dir.file("loop.xml"));
+  const Output loop = stability({"--scene", dir.file("loop.xml").string(), "--no-peers"});
+  EXPECT_EQ(loop.code, lab::kExitFailure);
+  EXPECT_NE(loop.err.find(dir.file("loop.xml").string() + ": cannot open: Too many levels of symbolic links"),
+            std::string::npos)
+      << loop.err;
 
   const std::filesystem::path file =
       dir.write("bad.xml", sceneWithExpect(R"(<expect kind="pass" metric="speed" max="0" over="0 1"/>)"));

@@ -288,6 +288,10 @@ TEST(Sweep, ARunThatBlowsUpHasNoErrorAndSaysItBlewUp) {
   EXPECT_GT(fieldNumber(csv.rows[0], "frozen"), 0.0);
   EXPECT_EQ(csv.rows[0].at("pareto"), "0");
   EXPECT_NE(csv.rows[0].at("note").find("blew up"), std::string::npos);
+  // The reference blew up as well: two of its runs frozen alike agreed to 0 m, which was printed
+  // as its uncertainty. It is unknown, and said.
+  EXPECT_NE(o.out.find("the reference itself blew up (the guard froze"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("0 m at most"), std::string::npos) << o.out;
 }
 
 // A box thrown at 1e308 m/s under a gravity of 1e308: its energy's drift is inf - inf. The CSV
