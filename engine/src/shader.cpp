@@ -1,7 +1,6 @@
 #include "engine/shader.h"
 
-#include <fstream>
-#include <sstream>
+#include <algorithm>
 #include <utility>
 
 #include <glad/gl.h>
@@ -9,16 +8,19 @@
 
 #include "engine/error.h"
 #include "engine/shader_log.h"
+#include "files.h"
 
 namespace engine {
 namespace {
 
-std::string readText(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot open shader file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+// GL takes the source as a C string and stops at its first NUL byte, so the rest would be left
+// out without a word: say where the NUL is instead, as "file:line:" as a compiler's error.
+void refuseNulBytes(const std::filesystem::path& file, const std::string& source) {
+  const std::size_t nul = source.find('\0');
+  if (nul == std::string::npos) return;
+  const auto line = 1 + std::count(source.begin(), source.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
+  throw Error(file.string() + ":" + std::to_string(line) +
+              ": the shader file holds a NUL byte, which GLSL text cannot (GL would stop reading there)");
 }
 
 std::string infoLog(GLuint object, bool isProgram) {
@@ -38,7 +40,7 @@ std::string infoLog(GLuint object, bool isProgram) {
 }
 
 GLuint compile(GLenum stage, const std::filesystem::path& file) {
-  const std::string source = readText(file);
+  const std::string source = readShaderSource(file);
   const GLuint shader = glCreateShader(stage);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
@@ -57,6 +59,12 @@ GLuint compile(GLenum stage, const std::filesystem::path& file) {
 }
 
 }  // namespace
+
+std::string readShaderSource(const std::filesystem::path& file) {
+  std::string source = detail::readWhole(file, kMaxShaderBytes, "shader file");
+  refuseNulBytes(file, source);
+  return source;
+}
 
 ShaderProgram::ShaderProgram(const std::filesystem::path& vertexFile,
                              const std::filesystem::path& fragmentFile) {

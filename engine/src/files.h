@@ -1,0 +1,17 @@
+#pragma once
+// How the engine reads its input files (shaders), with the failures app/fileio's
+// readWhole reports (docs/architecture.md, "Files"): the engine cannot link fileio, which is in
+// app/, a layer above it (docs/architecture.md, "Layers"). Every failure throws engine::Error
+// "FILE: what failed: the OS's reason", `kind` saying what the file was meant to be.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace engine::detail {
+
+/// The whole content of `file`: a regular file, or a pipe or device read until its end. Refuses
+/// a folder, and more than maxBytes (so /dev/zero is refused, not read until memory runs out).
+std::string readWhole(const std::filesystem::path& file, std::size_t maxBytes, std::string_view kind);
+
+}  // namespace engine::detail
