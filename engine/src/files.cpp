@@ -71,6 +71,13 @@ class OpenFile {
 
 }  // namespace
 
+void checkRegularFile(const fs::path& file, std::string_view kind) {
+  const OpenFile open(file, kind);
+  if (!S_ISREG(open.info().st_mode)) {
+    fail(file, "is not a regular file (a device, pipe or socket), so it is not read as a " + open.kind());
+  }
+}
+
 std::string readWhole(const fs::path& file, std::size_t maxBytes, std::string_view kind) {
   const OpenFile open(file, kind);
   std::string content;

@@ -1,5 +1,10 @@
-// The project's box model loads through assimp as a closed unit cube with outward normals; the
+// The project's box model loads through assimp as a closed unit cube with outward normals; a file
+// that cannot be read, or whose numbers are not finite, is refused saying what and where; the
 // capsule built in code lies on its surface, smooth, closed and facing out.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -13,10 +18,14 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "../app/temp_folder.h"
 #include "engine/error.h"
 #include "engine/mesh_data.h"
 
 namespace {
+
+namespace fs = std::filesystem;
+using testing_app::TempFolder;
 
 const std::filesystem::path kBoxModel = std::filesystem::path(DATA_DIR) / "assets/models/box.obj";
 
@@ -68,6 +77,108 @@ TEST(MeshData, BrokenFileIsAnErrorNotACrash) {
   std::ofstream(file) << "v 0 0 0\nf 1 2 3 4 5\nthis is not obj\n";
   EXPECT_THROW(engine::loadMeshData(file), engine::Error);
   std::filesystem::remove(file);
+}
+
+// The engine::Error's message, or "(no error)".
+std::string loadError(const fs::path& file) {
+  try {
+    engine::loadMeshData(file);
+  } catch (const engine::Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+fs::path writeModel(const TempFolder& folder, const std::string& name, const std::string& text) {
+  std::ofstream(folder.path / name, std::ios::binary) << text;
+  return folder.path / name;
+}
+
+// assimp alone said `Unable to open file "missing.obj".`, without why.
+TEST(MeshData, AFileThatCannotBeOpenedGivesTheSystemsReason) {
+  const TempFolder folder;
+  const fs::path missing = folder.path / "missing.obj";
+  EXPECT_EQ(loadError(missing), missing.string() + ": cannot open model file: No such file or directory");
+}
+
+// assimp read a folder as a file with no mesh in it ("aiScene::mNumMeshes is 0").
+TEST(MeshData, AFolderIsRefusedAsAFolder) {
+  const TempFolder folder;
+  fs::create_directory(folder.path / "box.obj");
+  EXPECT_EQ(loadError(folder.path / "box.obj"),
+            (folder.path / "box.obj").string() + ": is a folder, not a model file");
+}
+
+// assimp's fopen would wait for ever on a pipe nobody writes to. This one is held open for
+// writing by the test, so that a loader that opens it anyway fails rather than hangs.
+TEST(MeshData, APipeIsRefusedNotWaitedFor) {
+  const TempFolder folder;
+  const fs::path pipe = folder.path / "box.obj";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  const int writer = ::open(pipe.c_str(), O_RDWR | O_NONBLOCK);
+  ASSERT_GE(writer, 0);
+  EXPECT_EQ(loadError(pipe),
+            pipe.string() +
+                ": is not a regular file (a device, pipe or socket), so it is not read as a model file");
+  ::close(writer);
+}
+
+// Each was loaded, and NaN or infinite positions and normals reached the GPU (the bounds became
+// infinite). The face and corner are counted from 1 in the file's order: "f 2 4 3" is face 2,
+// and its corner 2 is vertex 4.
+TEST(MeshData, ANonFinitePositionIsRefusedNamingItsFaceAndCorner) {
+  const TempFolder folder;
+  const fs::path nan =
+      writeModel(folder, "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nf 1 2 3\nf 2 4 3\n");
+  EXPECT_EQ(loadError(nan), nan.string() + ": face 2, corner 2: the position (nan, 0, 0) is not finite");
+  // 1e39 is beyond a float's range, so it is read as infinity.
+  const fs::path big =
+      writeModel(folder, "big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e39 0 0\nf 1 2 3\nf 2 4 3\n");
+  EXPECT_EQ(loadError(big), big.string() + ": face 2, corner 2: the position (inf, 0, 0) is not finite");
+}
+
+TEST(MeshData, ANonFiniteNormalInTheFileIsRefused) {
+  const TempFolder folder;
+  const fs::path file =
+      writeModel(folder, "n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 nan\nf 1//1 2//1 3//2\n");
+  EXPECT_EQ(loadError(file), file.string() + ": face 1, corner 3: the normal (0, 0, nan) is not finite");
+}
+
+// With several meshes in the file, the mesh is named too.
+TEST(MeshData, ANonFiniteNumberInTheSecondMeshNamesTheMesh) {
+  const TempFolder folder;
+  const fs::path file = writeModel(folder, "two.obj",
+                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 -inf\n"
+                                   "o first\nf 1 2 3\no second\nf 1 2 4\n");
+  EXPECT_EQ(
+      loadError(file),
+      file.string() + ": mesh 'second' (2 of 2), face 1, corner 3: the position (0, 0, -inf) is not finite");
+}
+
+// Every position is finite, but the edges' cross product, from which assimp computes the
+// normal of a file that gives none, is beyond a float's range: there is no normal in the file
+// to look for, so the message gives the triangle and says where its normal came from.
+TEST(MeshData, ANormalComputedFromAHugeTriangleIsRefusedAsComputed) {
+  const TempFolder folder;
+  const fs::path file = writeModel(folder, "huge.obj", "v -3e38 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n");
+  EXPECT_EQ(loadError(file),
+            file.string() +
+                ": the triangle (-3e+38, 0, 0), (3e+38, 0, 0), (0, 3e+38, 0): its normal, computed "
+                "from its corners as the file gives none, is not finite: the corners are too far "
+                "apart for float arithmetic");
+}
+
+// A line is not drawn: assimp gives its vertices NaN normals, which stayed in the vertex buffer,
+// and its far end widened the bounds.
+TEST(MeshData, PointsAndLinesAreLeftOutWithTheirVertices) {
+  const TempFolder folder;
+  const engine::MeshData m = engine::loadMeshData(
+      writeModel(folder, "line.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nl 3 4\np 4\n"));
+  EXPECT_EQ(m.indices.size(), 3u);
+  EXPECT_EQ(m.positions.size(), 3u);
+  for (const glm::vec3& n : m.normals) EXPECT_EQ(n, glm::vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_EQ(m.boundsMin, glm::vec3(0.0f));
+  EXPECT_EQ(m.boundsMax, glm::vec3(1.0f, 1.0f, 0.0f));
 }
 
 // The capsules the sandbox draws: long and thin, short and fat, a sphere, a ragdoll's limb.

@@ -18,7 +18,10 @@ struct MeshData {
 };
 
 /// Loads every mesh of the file into one, triangulated, with normals (made flat where the file
-/// has none). Throws engine::Error naming the file and assimp's reason.
+/// has none); points and lines are left out with their vertices. Throws engine::Error naming the
+/// file and why: the OS's reason when it cannot be opened, a folder, a pipe or device, assimp's
+/// reason, or a position or normal that is not finite, with the face and corner (counted from 1
+/// in the file's order) or, for a normal computed from corners too far apart, the triangle.
 MeshData loadMeshData(const std::filesystem::path& file);
 
 /// A unit cube centred on the origin with flat normals, built in code: the fallback when a
