@@ -308,11 +308,7 @@ void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, con
 void CommandLine::flag(const OptionSpec& spec, bool& into, bool value, const std::string& note) {
   // A flag takes no value: CLI11 would read "--json=no" as off and "--json=" as on.
   app_->add_flag_callback(spec.names, [&into, value] { into = value; })->disable_flag_override();
-  for (std::string_view names = spec.names; !names.empty();) {
-    const std::size_t comma = std::min(names.find(','), names.size());
-    flags_.emplace_back(names.substr(0, comma));
-    names.remove_prefix(std::min(comma + 1, names.size()));
-  }
+  if (const auto names = splitList(spec.names)) flags_.insert(flags_.end(), names->begin(), names->end());
   entries_.push_back({spec.names, spec.names, helpText(spec, note), ""});
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -69,33 +70,45 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
   return saved;
 }
 
+namespace {
+
+// The world a file's part puts its steps in, and the memory it took: its scene loaded with
+// `options`, checked to build the bodies the steps were recorded in.
+std::pair<std::shared_ptr<const phys::World>, std::size_t> partBase(const SavedPart& part,
+                                                                    const std::string& which,
+                                                                    const scenes::LoadOptions& options) {
+  std::pair<std::shared_ptr<const phys::World>, std::size_t> base;
+  try {
+    base = keptCopy(scenes::loadSceneText(part.sceneXml, "the recording's " + which, options).world);
+  } catch (const scenes::LoadError& e) {
+    throw RecordingIoError(which + ": its scene does not load: " + e.what());
+  }
+  if (structureKey(*base.first) != part.structure) {
+    throw RecordingIoError(which +
+                           ": its scene builds bodies other than the ones recorded (a scene format or "
+                           "loader of another version)");
+  }
+  return base;
+}
+
+}  // namespace
+
 OpenedRecording recordingFromFile(std::string_view bytes,
                                   const std::function<void(const std::string&)>& scene,
                                   const ClipSource& clips, const scenes::LoadOptions& options,
                                   std::size_t budget) {
+  constexpr std::size_t kNoPart = std::numeric_limits<std::size_t>::max();
   OpenedRecording out;
   out.recording.setBudget(budget);
-  std::size_t parts = 0;                    // begun
-  std::shared_ptr<const phys::World> base;  // of the part being read
-  std::size_t baseBytes = 0;
+  std::size_t current = kNoPart;            // the part being read
+  std::shared_ptr<const phys::World> base;  // its world
   auto step = [&](std::size_t index, const SavedPart& part, SavedStep saved) {
     const std::string which = "part " + std::to_string(index + 1);
-    if (parts == 0 || index + 1 != parts) {  // a part's first step: the world its steps are put in
-      try {
-        std::tie(base, baseBytes) =
-            keptCopy(scenes::loadSceneText(part.sceneXml, "the recording's " + which, options).world);
-      } catch (const scenes::LoadError& e) {
-        throw RecordingIoError(which + ": its scene does not load: " + e.what());
-      }
-      if (structureKey(*base) != part.structure) {
-        throw RecordingIoError(which +
-                               ": its scene builds bodies other than the ones recorded (a scene format or "
-                               "loader of another version)");
-      }
-      if (parts == 0) out.fileFirst = saved.record.step;
-      parts = index + 1;
-    } else {
-      baseBytes = 0;  // counted with the part's first step
+    std::size_t baseBytes = 0;  // the base's memory, counted with its part's first step
+    if (index != current) {
+      if (current == kNoPart) out.fileFirst = saved.record.step;
+      std::tie(base, baseBytes) = partBase(part, which, options);
+      current = index;
     }
     // Every step checked now, against the world it will be put in: a clip file changed since the
     // recording (other bones, no frames) is found on opening, not on a rewind to its step.
