@@ -38,14 +38,18 @@ charts: build
 	$(BUILD_DIR)/app/lab/lab report
 
 # The reliability checks CI runs besides `make test PRESET=ci` (docs/architecture.md, "CI").
-# make fuzz SECONDS=N: the scene fuzzer (fuzz preset, clang) for N seconds on the corpus in
-# build/fuzz/corpus, seeded from assets/scenes; FUZZ_FLAGS adds libFuzzer options
-# (FUZZ_FLAGS=-fork=2 runs two at once). Findings go to build/fuzz/artifacts/.
+# make fuzz SECONDS=N: each fuzz target (fuzz preset, clang; FUZZ_TARGETS, by default scene files,
+# recording files and BVH clips) for N seconds on its corpus in build/fuzz/corpus/TARGET, seeded
+# by scripts/run-fuzzer; FUZZ_FLAGS adds libFuzzer options (FUZZ_FLAGS=-fork=2 runs two at once).
+# Every target runs even when one fails; findings go to build/fuzz/artifacts/TARGET/.
 fuzz: SECONDS ?= 60
+fuzz: FUZZ_TARGETS ?= scene recording clip
 fuzz: deps
 	cmake --preset fuzz
 	cmake --build --preset fuzz -j $(JOBS)
-	scripts/run-fuzzer $(SECONDS) $(FUZZ_FLAGS)
+	status=0; for target in $(FUZZ_TARGETS); do \
+	  scripts/run-fuzzer $$target $(SECONDS) $(FUZZ_FLAGS) || status=1; \
+	done; exit $$status
 
 # The fast physics and scene tests under AddressSanitizer and UndefinedBehaviorSanitizer (the
 # asan preset, building physics_tests, scene_tests and testsupport_tests only;

@@ -1,13 +1,14 @@
-// The fuzz target without libFuzzer: runs LLVMFuzzerTestOneInput once on each file named on the
-// command line, or on every file under a folder named there. Built by every preset but fuzz, so
-// the harness compiles with the project's own compiler and warnings, and CTest replays the seed
-// corpus (assets/scenes) through it: every project scene round-trips as loaded and after steps.
+// A fuzz target without libFuzzer: runs LLVMFuzzerTestOneInput once on each file named on the
+// command line, or on every file under a folder named there. Linked with each harness by every
+// preset but fuzz, so the harnesses compile with the project's own compiler and warnings, and
+// CTest replays each seed corpus through its harness (docs/architecture.md, "Fuzzing").
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
 #include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
@@ -16,10 +17,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool replay(const fs::path& file) {
+bool replay(const char* program, const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) {
-    std::fprintf(stderr, "scene_fuzz_replay: cannot open %s\n", file.c_str());
+    std::fprintf(stderr, "%s: cannot open %s\n", program, file.c_str());
     return false;
   }
   const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -31,8 +32,9 @@ bool replay(const fs::path& file) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const std::string program = fs::path(argv[0]).filename().string();
   if (argc < 2) {
-    std::fprintf(stderr, "usage: scene_fuzz_replay FILE_OR_FOLDER...\n");
+    std::fprintf(stderr, "usage: %s FILE_OR_FOLDER...\n", program.c_str());
     return 2;
   }
   std::vector<fs::path> files;
@@ -49,7 +51,8 @@ int main(int argc, char** argv) {
   }
   std::sort(files.begin(), files.end());  // the same order on every machine
   int failed = 0;
-  for (const fs::path& file : files) failed += replay(file) ? 0 : 1;
-  std::fprintf(stderr, "scene_fuzz_replay: %zu inputs, %d unreadable\n", files.size(), failed);
+  for (const fs::path& file : files) failed += replay(program.c_str(), file) ? 0 : 1;
+  std::fprintf(stderr, "%s: %zu inputs, %d unreadable\n", program.c_str(), files.size(), failed);
+  if (files.empty()) return 1;  // a corpus that is not there is no replay
   return failed == 0 ? 0 : 1;
 }
