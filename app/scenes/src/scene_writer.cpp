@@ -404,6 +404,27 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     throw std::invalid_argument(body + " is beyond the world's bound of " + detail::formatNumber(bound) +
                                 " m, where a scene file places nothing");
   }
+  // A box or capsule is written as its pose and rebuilt at its rest shape: one pressed out of
+  // shape against the bound, its particles inside it, can be rebuilt reaching past it. Its
+  // particles are placed here as the loader will place them: the pose as written (through Euler
+  // angles) and World::addBody's normalised turn.
+  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
+    const phys::Body& body = world.bodies()[id];
+    if (body.model == phys::BodyModel::Rigid) continue;
+    const phys::BodyPose pose = world.bodyPose(id);
+    const phys::Quat written = detail::orientationFromEuler(detail::eulerFromOrientation(pose.orientation));
+    const phys::Quat turn = written / glm::length(written);
+    for (int j = 0; j < body.particleCount; ++j) {
+      if (detail::insideBound(pose.center + turn * phys::boxParticleLocal(body.model, body.halfExtents, j),
+                              bound))
+        continue;
+      throw std::invalid_argument(
+          "box " + std::to_string(id) + " '" + body.name +
+          "', pressed out of shape, would be rebuilt from its pose reaching beyond the "
+          "world's bound of " +
+          detail::formatNumber(bound) + " m, which no scene file can hold");
+    }
+  }
   // A rigid body has no particles: its centre is where the file puts it. (Found by the soak: a
   // rigid box flung to 3e261 m under a huge gravity, then the bound lowered, saved a file the
   // loader refused.)
