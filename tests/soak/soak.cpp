@@ -69,6 +69,7 @@ enum class Kind {
   Refused,
   Step,
   Rewind,
+  RecordingFile,
   Count
 };
 
@@ -78,10 +79,11 @@ struct KindInfo {
 };
 
 constexpr std::array<KindInfo, static_cast<std::size_t>(Kind::Count)> kKinds{{
-    {"open", 6},    {"reload", 3},       {"save", 6},         {"clear", 2},        {"box", 4},
-    {"ragdoll", 3}, {"capsules", 3},     {"pick", 5},         {"drag", 5},         {"release", 2},
-    {"world", 5},   {"solver", 7},       {"gravity-keys", 2}, {"damping-keys", 2}, {"gravity-mode", 2},
-    {"overlay", 3}, {"overlay-stop", 2}, {"refused", 4},      {"step", 30},        {"rewind", 4},
+    {"open", 6},      {"reload", 3},       {"save", 6},         {"clear", 2},        {"box", 4},
+    {"ragdoll", 3},   {"capsules", 3},     {"pick", 5},         {"drag", 5},         {"release", 2},
+    {"world", 5},     {"solver", 7},       {"gravity-keys", 2}, {"damping-keys", 2}, {"gravity-mode", 2},
+    {"overlay", 3},   {"overlay-stop", 2}, {"refused", 4},      {"step", 30},        {"rewind", 4},
+    {"recording", 2},
 }};
 
 /// Throws into one world stop here until the next open: enough for pile-ups, and it bounds the
@@ -92,6 +94,9 @@ constexpr int kMaxThrowsPerEpisode = 40;
 constexpr std::size_t kRecordingBudget = std::size_t{8} << 20;
 /// Steps one step command takes at most (fewer when the budget says so).
 constexpr int kMaxStepsPerCommand = 20;
+/// Saving a recording steps every step it holds again: a recording whose steps would cost more than
+/// this many step commands is not saved (0.5 to 2.5 s; the budget's unit, step_budget.h).
+constexpr double kMaxVisitsPerRecordingSave = 10 * kMaxVisitsPerCommand;
 
 /// An invariant that did not hold: what broke, in words.
 class Broken : public std::runtime_error {
@@ -317,6 +322,7 @@ class Soak {
   void step();
   void collectBackgroundSteps(int expected);
   void rewind();
+  void recordingFile();
 
   // Drawing arguments.
   phys::WorldSettings randomWorld();
@@ -366,6 +372,7 @@ class Soak {
   std::array<long, static_cast<std::size_t>(Kind::Count)> counts_{};
   long steps_ = 0, lowered_ = 0, skipped_ = 0, overlaysStoppedForBudget_ = 0;
   long saves_ = 0, reopened_ = 0, reloads_ = 0, throwsCapped_ = 0;
+  long recordingsSaved_ = 0, recordingsOverBudget_ = 0;
   std::map<std::string, long> saveRefusals_;  // by message, with the file name taken out
   std::map<std::string, long> freezeReasons_;
   std::vector<std::size_t> freezesSeen_;  // per run: freeze reports already counted
@@ -1151,6 +1158,75 @@ void Soak::rewind() {
   checkWorlds();
 }
 
+// Save the recording to a file and open it, as the File menu's Save Recording and Open Recording
+// do: the file shows the steps it was saved with (the earliest may go, over the recording's
+// budget), each as the recording had it, and stepping on from it forks the run there.
+void Soak::recordingFile() {
+  const fs::path file = tempDir_ / ("recording-" + std::to_string(command_) + ".jrec");
+  const sandbox::Recording& r = session().recording();
+  if (session().overlayActive() || !r.on() || r.empty()) {
+    begin(Kind::RecordingFile,
+          "save the recording as " + file.filename().string() + ": nothing recorded (the overlay is on)");
+    const SessionState before = snapshot(session());
+    expect(!session().saveRecording(file).empty(), "saving a recording of nothing was not refused");
+    checkUnchanged(before, "saving a recording of nothing was refused");
+    expect(!fs::exists(file), "a refused recording save left a file behind");
+    return;
+  }
+  begin(Kind::RecordingFile, "save the recording of steps " + std::to_string(r.first()) + " to " +
+                                 std::to_string(r.last()) + " as " + file.filename().string() +
+                                 ", then open it");
+  if (session().stepping()) {
+    amend(", after collecting the background steps left running");
+    collectBackgroundSteps(0);
+  }
+  const double visits = static_cast<double>(r.last() - r.first()) * stepVisits(session().scene().world);
+  if (visits > kMaxVisitsPerRecordingSave) {
+    amend(": skipped, saving it would step it again over the budget");
+    ++recordingsOverBudget_;
+    return;
+  }
+  const sandbox::Recording original = r;  // shares its keyframes: what the file must give back
+  const SessionState before = snapshot(session());
+  const std::string error = session().saveRecording(file);
+  if (!error.empty()) {
+    // A step no scene file can hold (as Save As refuses) is refused, and then nothing changes.
+    std::string reason = error;
+    if (const std::size_t at = reason.find(file.string()); at != std::string::npos)
+      reason.replace(at, file.string().size(), "FILE");
+    tally(saveRefusals_, reason.substr(0, 160));
+    checkUnchanged(before, "saving the recording was refused (\"" + error + "\")");
+    expect(!fs::exists(file), "a refused recording save left a file behind: " + error);
+    return;
+  }
+  const std::string openError = session().openRecording(file);
+  expect(openError.empty(), "a recording just saved does not open: " + openError);
+  ++recordingsSaved_;
+  const sandbox::Recording& back = session().recording();
+  expect(back.last() == original.last() && back.first() >= original.first(),
+         "the recording saved with steps " + std::to_string(original.first()) + " to " +
+             std::to_string(original.last()) + " opens with steps " + std::to_string(back.first()) + " to " +
+             std::to_string(back.last()));
+  expect(session().file() == before.file, "opening a recording changed the current file");
+  // The first step kept and the last, each as the recording had it.
+  for (const long step : {back.first(), back.last()}) {
+    if (step != back.first()) {
+      const std::string rewound = session().rewindTo(step);
+      expect(rewound.empty(), "the opened recording's step " + std::to_string(step) + ": " + rewound);
+    }
+    std::string divergence;
+    const std::unique_ptr<phys::World> then = original.worldAt(step, divergence);
+    expect(divergence.empty(), "the recording before it was saved: " + divergence);
+    const phys::World& shown = session().scene().world;
+    expect(shown.stepCount() == step && shown.stateHash() == then->stateHash(),
+           "the opened recording shows step " + std::to_string(shown.stepCount()) +
+               (shown.stateHash() == then->stateHash() ? "" : ", not as it was recorded") + " for step " +
+               std::to_string(step));
+  }
+  fs::remove(file);
+  checkWorlds();
+}
+
 void Soak::step() {
   const int drawn = random_.chance(0.4) ? 1 : random_.integer(1, kMaxStepsPerCommand);
   begin(Kind::Step, "step up to " + std::to_string(drawn) + " times");
@@ -1288,8 +1364,9 @@ std::string Soak::summary(double seconds) const {
        std::to_string(skipped_) + " skipped, " + std::to_string(overlaysStoppedForBudget_) +
        " overlays stopped); " + std::to_string(throwsCapped_) + " throws capped; " + std::to_string(saves_) +
        " saves (" + std::to_string(reopened_) + " reopened, " + std::to_string(saveRefusals) + " refused); " +
-       std::to_string(reloads_) + " reloads; " +
-       std::to_string(std::count(opened_.begin(), opened_.end(), true)) + "/" +
+       std::to_string(recordingsSaved_) + " recordings saved and opened (" +
+       std::to_string(recordingsOverBudget_) + " over the budget); " + std::to_string(reloads_) +
+       " reloads; " + std::to_string(std::count(opened_.begin(), opened_.end(), true)) + "/" +
        std::to_string(scenes_.size()) + " project scenes opened; " + std::to_string(freezes) +
        " guard freezes; peak RSS " + mib(memory_.peakRss()) + "; RSS on reopening (trimmed) " +
        mib(memory_.warmUpRss()) + " in the warm-up, at most " + mib(memory_.laterRss()) + " in " +
@@ -1420,6 +1497,9 @@ int Soak::run() {
           break;
         case Kind::Rewind:
           rewind();
+          break;
+        case Kind::RecordingFile:
+          recordingFile();
           break;
         case Kind::Count:
           break;
