@@ -172,6 +172,14 @@ void tally(std::map<std::string, long>& counts, const std::string& message) {
     ++counts[message];
 }
 
+// A save's refusal, to tally: the file's name taken out (each command saves to its own), cut short.
+std::string refusalReason(const std::string& error, const fs::path& file) {
+  std::string reason = error;
+  if (const std::size_t at = reason.find(file.string()); at != std::string::npos)
+    reason.replace(at, file.string().size(), "FILE");
+  return reason.substr(0, 160);
+}
+
 bool sameVec(const Vec3& a, const Vec3& b, double tolerance = 0.0) {
   return magnitude(a - b) <= tolerance || a == b;
 }
@@ -729,10 +737,7 @@ void Soak::saveAndOpen() {
   if (!error.empty()) {
     // A world no scene file can express is refused, and then nothing may change: not the
     // session, not the file on disk.
-    std::string reason = error;
-    if (const std::size_t at = reason.find(file.string()); at != std::string::npos)
-      reason.replace(at, file.string().size(), "FILE");
-    tally(saveRefusals_, reason.substr(0, 160));
+    tally(saveRefusals_, refusalReason(error, file));
     checkUnchanged(before, "Save As was refused (\"" + error + "\")");
     if (overwrite) {
       const std::string nowText = (std::stringstream() << std::ifstream(file).rdbuf()).str();
@@ -1191,10 +1196,7 @@ void Soak::recordingFile() {
   const std::string error = session().saveRecording(file);
   if (!error.empty()) {
     // A step no scene file can hold (as Save As refuses) is refused, and then nothing changes.
-    std::string reason = error;
-    if (const std::size_t at = reason.find(file.string()); at != std::string::npos)
-      reason.replace(at, file.string().size(), "FILE");
-    tally(saveRefusals_, reason.substr(0, 160));
+    tally(saveRefusals_, refusalReason(error, file));
     checkUnchanged(before, "saving the recording was refused (\"" + error + "\")");
     expect(!fs::exists(file), "a refused recording save left a file behind: " + error);
     return;
