@@ -258,6 +258,7 @@ std::string Session::rewindTo(long step) {
   cancelSteps();
   drag_.reset();
   dragTarget_.reset();
+  scene().world.clearDrag();  // a spring picked on a rewound world and not stepped with
   std::string divergence;
   // A world shown as recorded (rewound, and not changed since) is a step to rebuild from.
   std::unique_ptr<phys::World> world =
@@ -658,7 +659,10 @@ bool Session::pick(const phys::Vec3& origin, const phys::Vec3& direction) {
   }
   drag_ = d;
   dragTarget_.reset();
-  worldChanged();
+  // A spring the world has not stepped with has moved nothing: a rewound world is still the
+  // recorded step, so a click on a body (or a double-click to follow it) leaves the recording
+  // whole. It forks once the world steps with the spring (beforeStepping) or a command changes it.
+  if (!rewound_) worldChanged();
   return true;
 }
 
@@ -679,7 +683,7 @@ void Session::release() {
   drag_.reset();
   dragTarget_.reset();
   forEachWorld([](phys::World& w) { w.clearDrag(); });
-  worldChanged();
+  if (!rewound_) worldChanged();  // a rewound world the spring never stepped is as recorded (pick)
 }
 
 std::optional<std::pair<phys::Vec3, phys::Vec3>> Session::dragLine() const {

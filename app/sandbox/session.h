@@ -177,7 +177,8 @@ class Session {
 
   /// Left-drag picking: the body or particle hit by the ray gets a spring to the ray's point,
   /// in every run at the same place on the same body. False when the ray hits nothing or is
-  /// not a ray (a zero or non-finite direction, as a zero-sized window gives).
+  /// not a ray (a zero or non-finite direction, as a zero-sized window gives). On a rewound world
+  /// the recording forks only once the world steps with the spring: a click changes nothing.
   bool pick(const phys::Vec3& origin, const phys::Vec3& direction);
   /// Moves the spring's far end: the point on the picked plane (through the hit point, facing
   /// the view) under the ray.

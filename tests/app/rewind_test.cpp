@@ -160,3 +160,42 @@ TEST(Rewind, SecondsRecordedFollowADtChangedOnTheWay) {
 }
 
 }  // namespace
+
+namespace {
+
+// A click on a body while a recorded step is shown (a double-click to follow it is two) picks it
+// and lets go without the world taking a step: nothing of the run changed, so the recording stays
+// whole, and Play or N go on along it. It forked at the click, dropping every later step.
+TEST(Rewind, AClickOnARewoundWorldKeepsTheRecording) {
+  sandbox::Session s = open("ragdoll");
+  for (int i = 0; i < 100; ++i) s.step();
+  const std::uint64_t at80 = [&] {
+    EXPECT_EQ(s.rewindTo(80), "");
+    return hashOf(s);
+  }();
+  ASSERT_EQ(s.rewindTo(50), "");
+  const std::uint64_t at50 = hashOf(s);
+  const phys::Vec3 centre = s.scene().world.bodyPose(phys::BodyId(0)).center;
+  const phys::Vec3 eye = centre + phys::Vec3(0.0, 0.0, 5.0);
+  for (int click = 0; click < 2; ++click) {
+    ASSERT_TRUE(s.pick(eye, centre - eye));
+    s.release();
+  }
+  EXPECT_EQ(s.recording().last(), 100);
+  EXPECT_EQ(hashOf(s), at50);
+  ASSERT_EQ(s.rewindTo(80), "");  // along the recording, from the world shown
+  EXPECT_EQ(hashOf(s), at80);
+
+  // A drag the world steps with is a command: the run forks there, the spring in it.
+  ASSERT_EQ(s.rewindTo(50), "");
+  ASSERT_TRUE(s.pick(eye, centre - eye));
+  s.dragAlong(eye, centre + phys::Vec3(0.0, 1.0, 0.0) - eye);
+  s.step();
+  EXPECT_EQ(s.recording().last(), 51);
+  const std::uint64_t dragged = hashOf(s);
+  s.release();
+  ASSERT_EQ(s.rewindTo(51), "");
+  EXPECT_EQ(hashOf(s), dragged);
+}
+
+}  // namespace
