@@ -79,9 +79,17 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
   bool framesGiven = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
+    // The option's value, or nullptr with the error set. An option in its place is refused rather
+    // than taken as the value: `--screenshot --hide-panels` wrote a PNG named "--hide-panels".
     auto value = [&](const char* what) -> const std::string* {
       if (i + 1 >= args.size()) {
         out.error = a + " needs " + what;
+        return nullptr;
+      }
+      const std::string& next = args[i + 1];
+      if (next.size() > 2 && next.compare(0, 2, "--") == 0) {
+        out.error = a + " needs " + what + ", and '" + next + "' is an option";
+        if (a == "--screenshot" || a == "--data") out.error += " (one of that name is ./" + next + ")";
         return nullptr;
       }
       return &args[++i];
@@ -181,6 +189,10 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
     } else if (a == "--data") {
       const std::string* v = value("a folder");
       if (v == nullptr) return out;
+      if (v->empty()) {  // it would mean the default folder, which no --data is the way to say
+        out.error = "--data: the folder name is empty";
+        return out;
+      }
       o.dataDir = *v;
     } else if (a.size() > 1 && a[0] == '-') {
       out.error = "unknown option '" + a + "'";

@@ -39,6 +39,26 @@ TEST(Options, MissingValuesUnknownOptionsAndTwoScenes) {
   EXPECT_NE(parseOptions({"--frames", "5"}).error.find("--frames needs --screenshot"), std::string::npos);
 }
 
+// An option where a value goes is a value forgotten: `--screenshot --hide-panels` wrote a PNG
+// named "--hide-panels", `--data --sweep` looked for the shaders in "--sweep/".
+TEST(Options, AnOptionIsNotTakenAsTheValueBeforeIt) {
+  EXPECT_EQ(parseOptions({"pendulum", "--screenshot", "--hide-panels", "--frames", "5"}).error,
+            "--screenshot needs a file name, and '--hide-panels' is an option (one of that name is "
+            "./--hide-panels)");
+  EXPECT_EQ(parseOptions({"--data", "--sweep"}).error,
+            "--data needs a folder, and '--sweep' is an option (one of that name is ./--sweep)");
+  EXPECT_EQ(parseOptions({"--draw", "--markers"}).error,
+            "--draw needs filled, wireframe or constraints, and '--markers' is an option");
+  EXPECT_EQ(parseOptions({"--threads", "--sweep"}).error,
+            "--threads needs a whole number from 1 to 64, and '--sweep' is an option");
+  EXPECT_EQ(parseOptions({"--data", ""}).error, "--data: the folder name is empty");
+  // A name that only looks like one is written as a path.
+  const auto p = parseOptions({"--screenshot", "./--hide-panels", "--data", "-d"});
+  EXPECT_EQ(p.error, "");
+  EXPECT_EQ(p.options.screenshot->string(), "./--hide-panels");
+  EXPECT_EQ(p.options.dataDir, "-d");
+}
+
 TEST(Options, DataDirDefaultsToTheBuildsAndCanBeOverridden) {
   EXPECT_FALSE(sandbox::dataDir(parseOptions({}).options).empty());
   EXPECT_EQ(sandbox::dataDir(parseOptions({"--data", "/x"}).options), "/x");
