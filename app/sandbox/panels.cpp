@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <string_view>
 #include <thread>
 #include <vector>
@@ -116,9 +117,18 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   ui.draw.trails = options.trails;
   ui.draw.targets = options.targets;
   ui.panelsHidden = options.hidePanels;
-  if (options.unfold) ui.unfolded = *options.unfold;
   ui.showRewind = user.showRewind;
   ui.showLab = user.showLab;
+  if (options.unfold) ui.unfolded = *options.unfold;
+  SectionFlags named = options.unfold.value_or(SectionFlags{});
+  named[5] = named[5] || options.sweep;  // --sweep unfolds the Lab, for its progress and chart
+  // A section the command line unfolds is shown, though the last run hid it (its close button).
+  bool* shown[] = {&ui.showSimulation, &ui.showRewind, &ui.showWorld,
+                   &ui.showDraw,       &ui.showStats,  &ui.showLab};
+  static_assert(std::size(shown) == kSectionNames.size());
+  for (std::size_t i = 0; i < kSectionNames.size(); ++i) {
+    if (named[i]) ui.unfolded[i] = *shown[i] = true;
+  }
   ui.draw.coloring =
       options.coloring.value_or(parseBodyColoring(user.colorBy.value_or("")).value_or(BodyColoring::Body));
   if (user.throwSpeed) ui.throwSpeed = *user.throwSpeed;

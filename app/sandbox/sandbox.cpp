@@ -120,10 +120,7 @@ Sandbox::Sandbox(const Options& options)
   applyRemembered(user_, options_, ui_);
   session_->setRecordingBudget(static_cast<std::size_t>(ui_.recordingBudgetMb) << 20);
   fitToScene();
-  if (options_.sweep) {
-    ui_.unfolded[5] = true;
-    ui_.lab.start(session_->file());
-  }
+  if (options_.sweep) ui_.lab.start(session_->file());  // its section unfolded by applyRemembered
   if (!options_.overlay.empty()) {
     const std::string error = session_->startOverlay(options_.overlay);
     if (!error.empty()) throw std::invalid_argument("--overlay: " + error);

@@ -598,6 +598,30 @@ TEST(Remembered, SectionsColouringThrowSpeedAndBudget) {
   EXPECT_EQ(next.draw.coloring, sandbox::BodyColoring::Kind);
 }
 
+// A section the last run hid (its close button) is shown when the command line unfolds it, or
+// starts the Lab's sweep: `--sweep` swept behind a Lab section the user had closed, out of sight.
+TEST(Remembered, ASectionTheCommandLineUnfoldsIsShown) {
+  sandbox::UserSettings user;
+  user.showWorld = user.showLab = user.showStats = false;
+  const auto parsed = sandbox::parseOptions({"--unfold", "world,draw", "--sweep"});
+  ASSERT_EQ(parsed.error, "");
+  sandbox::UiState ui;
+  sandbox::applyRemembered(user, parsed.options, ui);
+  EXPECT_TRUE(ui.showWorld);
+  EXPECT_TRUE(ui.unfolded[2]);
+  EXPECT_TRUE(ui.showLab);
+  EXPECT_TRUE(ui.unfolded[5]);
+  EXPECT_FALSE(ui.showStats);  // not named: as the last run left it
+  EXPECT_FALSE(ui.unfolded[4]);
+
+  sandbox::UiState sweeping;
+  sandbox::applyRemembered(user, sandbox::parseOptions({"--sweep"}).options, sweeping);
+  EXPECT_TRUE(sweeping.showLab);
+  EXPECT_TRUE(sweeping.unfolded[5]);
+  EXPECT_FALSE(sweeping.showWorld);
+  EXPECT_TRUE(sweeping.unfolded[0]);  // the other sections as they start
+}
+
 }  // namespace
 
 namespace {
