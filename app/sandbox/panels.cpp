@@ -168,7 +168,10 @@ void settingsSection(Session& session, UiState& ui) {
   if (ImGui::Button("Step (N)")) ui.stepOnce = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset (F5)")) ui.reloadRequested = true;
-  ImGui::SliderFloat("time scale", &ui.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  // Clamped when typed too (Ctrl+click): 0 would stop the clock unsaid, and a negative scale run up
+  // a debt of simulated time that kept the world still for as long again once set right.
+  ImGui::SliderFloat("time scale", &ui.timeScale, 0.05f, 4.0f, "%.2f",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
 
   // The settings edited through a copy and handed back to the setter, which validates; the
   // ranges below keep every value valid.
