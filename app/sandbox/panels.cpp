@@ -101,7 +101,10 @@ void overlaySection(Session& session, UiState& ui) {
   }
   if (session.overlayActive()) {
     ImGui::SameLine();
-    if (ImGui::Button("Stop overlay")) session.stopOverlay();
+    if (ImGui::Button("Stop overlay")) {
+      session.stopOverlay();
+      ui.message = session.status();  // the status line said the overlay still ran
+    }
   }
 }
 
@@ -222,7 +225,8 @@ void settingsSection(Session& session, UiState& ui) {
                              : 5.0 / 6.0;
     w.groundMaterial.staticFriction = mu;
     w.groundMaterial.dynamicFriction = mu * ratio;
-    ui.message = session.setWorldSettings(w);
+    const std::string error = session.setWorldSettings(w);  // "" left the last command's words
+    ui.message = error.empty() ? "world settings applied without restart" : error;
   }
 }
 
@@ -548,7 +552,10 @@ void worldSection(Session& session, UiState& ui) {
   phys::WorldSettings w = session.scene().world.worldSettings();
   int mode = static_cast<int>(w.gravityMode);
   if (ImGui::Combo("gravity (G)", &mode, "uniform\0point\0")) {
-    if (mode != static_cast<int>(w.gravityMode)) session.toggleGravityMode();
+    if (mode != static_cast<int>(w.gravityMode)) {
+      session.toggleGravityMode();
+      ui.message = session.status();  // as G says it
+    }
     w = session.scene().world.worldSettings();
   }
   bool changed = false;

@@ -4,7 +4,9 @@
 #include <imgui.h>
 #include <imgui_internal.h>  // to find where an item was drawn, for the mouse
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "panels.h"
 #include "project_session.h"
@@ -37,22 +39,41 @@ class PanelsUi : public ::testing::Test {
   // What the status line shows (drawStatusAndCrosshair).
   std::string statusLine() const { return ui.message.empty() ? session.status() : ui.message; }
 
-  // Moves the mouse over the item labelled `label` in the panels' column: down the column's left
-  // side until ImGui says that item is hovered.
+  // Moves the mouse over the item labelled `label` in the panels' column: across the column, row
+  // by row, until ImGui says that item is hovered.
   void hover(const char* label) {
     frame();
     ImGuiWindow* panels = ImGui::FindWindowByName("Panels");
     ASSERT_NE(panels, nullptr);
-    const ImGuiID id = panels->GetID(label);
+    hover(panels, panels->GetID(label), label);
+  }
+  // The same over item `index` of the open combo's list: the index-th item met going down it.
+  void hoverListItem(int index) {
+    frame();  // the list sizes itself to its items in its first frames
+    frame();
+    ImGuiWindow* list = ImGui::FindWindowByName("##Combo_00");
+    ASSERT_NE(list, nullptr);
     ImGuiIO& io = ImGui::GetIO();
-    for (float y = panels->Pos.y; y < panels->Pos.y + panels->Size.y; y += 3.0f) {
-      for (float x : {panels->Pos.x + 20.0f, panels->Pos.x + 120.0f}) {
+    std::vector<ImGuiID> met;
+    for (float y = list->Pos.y; y < list->Pos.y + list->Size.y; y += 2.0f) {
+      io.MousePos = ImVec2(list->Pos.x + 20.0f, y);
+      frame();
+      const ImGuiID id = GImGui->HoveredId;
+      if (id != 0 && std::find(met.begin(), met.end(), id) == met.end()) met.push_back(id);
+      if (met.size() == static_cast<std::size_t>(index) + 1) return;
+    }
+    FAIL() << "no item " << index << " in the open list";
+  }
+  void hover(ImGuiWindow* window, ImGuiID id, const char* label) {
+    ImGuiIO& io = ImGui::GetIO();
+    for (float y = window->Pos.y; y < window->Pos.y + window->Size.y; y += 3.0f) {
+      for (float x = window->Pos.x + 20.0f; x < window->Pos.x + window->Size.x; x += 50.0f) {
         io.MousePos = ImVec2(x, y);
         frame();
         if (GImGui->HoveredId == id) return;
       }
     }
-    FAIL() << "no item '" << label << "' in the panels";
+    FAIL() << "no item '" << label << "' in " << window->Name;
   }
   void click(bool ctrl = false) {
     ImGuiIO& io = ImGui::GetIO();
@@ -91,6 +112,36 @@ TEST_F(PanelsUi, ATypedTimeScaleStaysInTheSlidersRange) {
   EXPECT_FLOAT_EQ(ui.timeScale, 4.0f);
   typeInto("time scale", "0.5");
   EXPECT_FLOAT_EQ(ui.timeScale, 0.5f);
+}
+
+// What a control of the panels did is what the status line says, not what came before it: Stop
+// overlay left "overlay of 2 runs" there, and the ground friction and the gravity mode's list left
+// the last command's words ("opened ragdoll.xml", "threw a box").
+TEST_F(PanelsUi, TheStatusLineSaysWhatAControlDid) {
+  std::vector<sandbox::OverlaySpec> specs(2);
+  specs[0] = sandbox::parseOverlaySpec("iterations=2").spec;
+  specs[1] = sandbox::parseOverlaySpec("iterations=4").spec;
+  ASSERT_EQ(session.startOverlay(specs), "");
+  ui.message = session.status();  // as its Start button does
+  hover("Stop overlay");
+  click();
+  ASSERT_FALSE(session.overlayActive());
+  EXPECT_EQ(statusLine(), "overlay off; the solver settings are as before it");
+
+  ASSERT_EQ(session.spawnBox(phys::Vec3(0.0, 8.0, 0.0), phys::Vec3(0.0)), "");
+  ui.message = session.status();
+  typeInto("ground friction", "0.3");
+  EXPECT_DOUBLE_EQ(session.scene().world.worldSettings().groundMaterial.staticFriction, 0.3f);
+  EXPECT_EQ(statusLine(), "world settings applied without restart");
+
+  ui.unfolded[2] = true;  // the World section
+  ui.resetLayout = true;
+  hover("gravity (G)");
+  click();
+  hoverListItem(1);  // "point"
+  click();
+  ASSERT_EQ(session.scene().world.worldSettings().gravityMode, phys::GravityMode::Point);
+  EXPECT_EQ(statusLine(), "gravity: towards the point");
 }
 
 }  // namespace
