@@ -20,6 +20,7 @@
 #include "physics/ragdoll.h"
 #include "recording_io.h"
 #include "scenes/scene_writer.h"
+#include "stats_text.h"  // figure
 
 namespace sandbox {
 namespace {
@@ -529,7 +530,7 @@ std::string Session::changeGravity(double delta) {
     s.gravityStrength = strength;
   else
     s.gravity = gravityAlong(directionOf(s.gravity), strength);
-  const std::string done = "gravity " + std::to_string(strength).substr(0, 5) + " m/s^2";
+  const std::string done = "gravity " + figure("%.10g", strength) + " m/s^2";
   return applyWorldSettings(
       s, delta > 0.0 && strength == most && strength == now ? done + " (the most Y gives)" : done);
 }
@@ -538,7 +539,7 @@ std::string Session::changeDamping(double delta) {
   phys::WorldSettings s = scene().world.worldSettings();
   // Round to the step so that ten presses up and ten down come back to exactly where they began.
   s.damping = std::max(0.0, std::round((s.damping + delta) * 1000.0) / 1000.0);
-  return applyWorldSettings(s, "wind resistance " + std::to_string(s.damping).substr(0, 5) + " 1/s");
+  return applyWorldSettings(s, "wind resistance " + figure("%.10g", s.damping) + " 1/s");
 }
 
 std::optional<phys::Vec3> Session::clearSpot(const phys::Vec3& at, double room) const {

@@ -149,6 +149,29 @@ TEST(Session, GravityKeyStopsAtTheSlidersTop) {
   EXPECT_EQ(s.scene().world.worldSettings().gravity.y, -49.0);
 }
 
+// The status line's figure after Y/H and U/J is the setting's value: it was the first five
+// characters of std::to_string's, so 123455 m/s^2 read "12345" and 0.0004 read "0.000".
+TEST(Session, TheWorldKeysSayTheValueTheySet) {
+  sandbox::Session s = open("ragdoll");
+  phys::WorldSettings w = s.scene().world.worldSettings();
+  w.gravity = phys::Vec3(0.0, -123456.0, 0.0);
+  w.damping = 123456.7;
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  ASSERT_EQ(s.changeGravity(-1.0), "");
+  EXPECT_EQ(s.status(), "gravity 123455 m/s^2");
+  ASSERT_EQ(s.changeDamping(0.1), "");
+  EXPECT_EQ(s.status(), "wind resistance 123456.8 1/s");
+  w.gravity = phys::Vec3(0.0, -1.0004, 0.0);
+  w.damping = 0.0;
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  ASSERT_EQ(s.changeGravity(-1.0), "");
+  EXPECT_EQ(s.status(), "gravity 0.0004 m/s^2");
+  ASSERT_EQ(s.changeGravity(1.0), "");
+  EXPECT_EQ(s.status(), "gravity 1.0004 m/s^2");
+  ASSERT_EQ(s.changeDamping(0.1), "");
+  EXPECT_EQ(s.status(), "wind resistance 0.1 1/s");
+}
+
 // Found by the soak test (seed 11): a gravity whose length is one ulp under the largest double.
 // Each press of H rounded it a little longer, until its length and then a component overflowed and
 // the key was refused ("gravity must be finite"). The keys now keep it finite and its direction.
