@@ -110,6 +110,18 @@ void overlaySection(Session& session, UiState& ui) {
 
 }  // namespace
 
+void stepOnce(Session& session, UiState& ui) {
+  ui.replaying = false;
+  const Recording& r = session.recording();
+  const long now = session.scene().world.stepCount();
+  if (ui.paused && !session.dragging() && now < r.last() && r.covers(now)) {
+    const std::string error = session.rewindTo(now + 1);
+    ui.message = error.empty() ? session.status() : error;
+  } else {
+    ui.stepOnce = true;
+  }
+}
+
 void applyRemembered(const UserSettings& user, const Options& options, UiState& ui) {
   ui.showSimulation = user.showSimulation;
   ui.showWorld = user.showWorld;
@@ -168,7 +180,7 @@ void settingsSection(Session& session, UiState& ui) {
   ImGui::Text("t = %.2f s, step %ld", world.time(), world.stepCount());
   ImGui::Checkbox("Pause (Space)", &ui.paused);
   ImGui::SameLine();
-  if (ImGui::Button("Step (N)")) ui.stepOnce = true;
+  if (ImGui::Button("Step (N)")) stepOnce(session, ui);
   ImGui::SameLine();
   if (ImGui::Button("Reset (F5)")) ui.reloadRequested = true;
   // Clamped when typed too (Ctrl+click): 0 would stop the clock unsaid, and a negative scale run up

@@ -66,6 +66,11 @@ struct UiState {
   std::string message;  ///< the status line: what the last command did
 };
 
+/// N, and the panels' Step: while paused on a step of the recording with more after it (after B or
+/// the timeline), shows the next one, as recorded; else asks for a new step (ui.stepOnce), which
+/// with a body held pulls it, and forks the recording there.
+void stepOnce(Session& session, UiState& ui);
+
 /// The panels as the last run left them, with the command line's --draw, --markers and
 /// --overlay on top (the overlay's fields get examples where the command line gave none).
 void applyRemembered(const UserSettings& user, const Options& options, UiState& ui);

@@ -273,19 +273,9 @@ void Sandbox::perform(Action action) {
       if (std::exchange(ui_.replaying, false)) break;  // Space stops Play, paused where it was
       ui_.paused = !ui_.paused;
       break;
-    case Action::StepOnce: {
-      ui_.replaying = false;
-      // Along the recording while there is more of it (after B or the timeline), else a new step:
-      // with a body held, the step pulls it, and the recording forks there.
-      const long now = s.scene().world.stepCount();
-      if (ui_.paused && !s.dragging() && now < s.recording().last() && s.recording().covers(now)) {
-        const std::string error = s.rewindTo(now + 1);
-        ui_.message = error.empty() ? s.status() : error;
-      } else {
-        ui_.stepOnce = true;
-      }
+    case Action::StepOnce:
+      stepOnce(s, ui_);
       break;
-    }
     case Action::Reload:
       openScene(s.file());
       break;

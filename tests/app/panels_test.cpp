@@ -144,4 +144,24 @@ TEST_F(PanelsUi, TheStatusLineSaysWhatAControlDid) {
   EXPECT_EQ(statusLine(), "gravity: towards the point");
 }
 
+// The Simulation panel's "Step (N)" does what N does: after B or the timeline it shows the
+// recording's next step. It took a new step instead, forking the recording there and dropping
+// every later step.
+TEST_F(PanelsUi, StepGoesAlongTheRecordingAsNDoes) {
+  for (int i = 0; i < 100; ++i) session.step();
+  ASSERT_EQ(session.rewindTo(50), "");
+  ui.paused = true;
+  hover("Step (N)");
+  click();
+  EXPECT_EQ(session.scene().world.stepCount(), 51);
+  EXPECT_FALSE(ui.stepOnce);
+  EXPECT_EQ(session.recording().last(), 100);
+  EXPECT_EQ(statusLine(), session.status());
+
+  // At the recording's end it asks for a new step, which the sandbox takes.
+  ASSERT_EQ(session.rewindTo(100), "");
+  click();
+  EXPECT_TRUE(ui.stepOnce);
+}
+
 }  // namespace
