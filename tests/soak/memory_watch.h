@@ -7,6 +7,8 @@
 // 1. The resident set size (/proc/self/statm), at most every kRssSampleSeconds, after handing
 //    freed memory back to the system (malloc_trim): glibc otherwise keeps up to 64 MiB of freed
 //    heap mapped by its dynamic thresholds, which would hide a leak of that size or fake one.
+//    The soak keeps to one glibc arena (M_ARENA_MAX), as malloc_trim does not hand back the freed
+//    top of the other threads' arenas.
 //    After a warm-up (the first third of the run, at least 5 s) every sample must stay within
 //    kRssAllowance of the warm-up's largest. The largest project scene's world is about 10 MiB,
 //    so the allowance covers opening it for the first time after the warm-up, and a leak of a
