@@ -144,6 +144,11 @@ Sandbox::Sandbox(const Options& options)
 }
 
 Sandbox::~Sandbox() {
+  // A save still running is waited for, and how it ended said where it can still be read: a
+  // failure (a full disk) would otherwise go unseen, the old file kept.
+  if (session_->savingProgress()) std::cerr << "sandbox: waiting for the recording's save to finish\n";
+  if (const std::string saved = session_->finishSavingOnClose(); !saved.empty())
+    std::cerr << "sandbox: " << saved << '\n';
   saveUserSettingsOnExit();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

@@ -301,6 +301,10 @@ std::string Session::saveRecording(const std::filesystem::path& file) {
   return finishSaving(true).value_or("");
 }
 
+std::string Session::finishSavingOnClose() {
+  return finishSaving(true) ? status_ : std::string();
+}
+
 // The clips a recording's characters play, by name: those the scene's characters hold already (the
 // recording is of this scene), else read from the file the name is the path of.
 ClipSource Session::recordedClips() const {

@@ -118,6 +118,10 @@ class Session {
   std::optional<std::string> finishSaving(bool wait = false);
   /// startSavingRecording and finishSaving(wait): "" or why not.
   std::string saveRecording(const std::filesystem::path& file);
+  /// When the program closes, with no window left to show it in: waits for a save still running
+  /// and says how it ended ("saved ..." or "the recording was not saved: why"), or how one that
+  /// ended unseen did; "" when there was none.
+  std::string finishSavingOnClose();
   /// Opens a recording saved from this scene in place of the one kept, and shows its first step
   /// (as rewindTo does: stepping or a command resumes from the step shown). Returns "" or why not
   /// (a file error, not a recording, another format version, truncated or damaged, recorded in

@@ -136,6 +136,26 @@ TEST(RecordingFile, ASaveRunsBesideTheSteps) {
   EXPECT_EQ(s.scene().world.stepCount(), 150);
 }
 
+// Closing the program with a save under way waits for it and says how it ended, saved or not (a
+// failure would otherwise go unseen); with none, nothing is said.
+TEST(RecordingFile, ClosingWithASaveUnderWaySaysHowItEnded) {
+  const testing_app::TempFolder dir;
+  sandbox::Session s = openSession("ragdolls");
+  EXPECT_EQ(s.finishSavingOnClose(), "");
+  for (int i = 0; i < 60; ++i) s.step();
+  const fs::path file = dir.path / "r.jrec";
+  ASSERT_EQ(s.startSavingRecording(file), "");
+  const std::string saved = s.finishSavingOnClose();
+  EXPECT_NE(saved.find("saved steps 0 to 60"), std::string::npos) << saved;
+  EXPECT_EQ(sandbox::decodeRecording(contentOf(file)).lastStep(), 60);
+  EXPECT_EQ(s.finishSavingOnClose(), "") << "said once";
+  const fs::path nowhere = dir.path / "missing" / "r.jrec";
+  ASSERT_EQ(s.startSavingRecording(nowhere), "");
+  const std::string failed = s.finishSavingOnClose();
+  EXPECT_EQ(failed.rfind("the recording was not saved: ", 0), 0u) << failed;
+  EXPECT_NE(failed.find("No such file or directory"), std::string::npos) << failed;
+}
+
 // A file longer than the recording's budget opens with its latest steps, says which it left out, and
 // is read a step at a time: the steps let go are never all held at once (the heap in use, glibc's
 // count, grows by no more than a few steps' worth while 600 steps go by).
