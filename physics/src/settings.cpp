@@ -41,8 +41,10 @@ std::string validate(const WorldSettings& s) {
   if (!finite(s.gravityPoint)) why << "gravityPoint must be finite; ";
   if (!finiteNonNegative(s.gravityStrength)) why << "gravityStrength must be finite and >= 0 (m/s^2); ";
   if (!finiteNonNegative(s.damping)) why << "damping must be finite and >= 0 (1/s); ";
-  if (!finite(s.groundNormal) || glm::length(s.groundNormal) < 1e-9)
-    why << "groundNormal must be finite and non-zero; ";
+  // Its length too must be finite: 1e200 overflows it to inf, and normalising would make the normal 0.
+  if (const Real n = glm::length(s.groundNormal); !finite(s.groundNormal) || !(n >= 1e-9 && std::isfinite(n)))
+    why << "groundNormal must be non-zero and of finite length (is " << s.groundNormal.x << " "
+        << s.groundNormal.y << " " << s.groundNormal.z << "); ";
   if (!std::isfinite(s.groundHeight)) why << "groundHeight must be finite; ";
   if (const std::string m = validate(s.groundMaterial); !m.empty()) why << "groundMaterial: " << m << "; ";
   if (!(s.bound > 0.0)) why << "bound must be > 0 (m); ";

@@ -141,6 +141,21 @@ TEST(Validation, WorldSettingsNameTheBadField) {
   EXPECT_NE(phys::validate(w).find("shapeCheckInterval"), std::string::npos);
 }
 
+// Every component finite, but the length overflows to inf: setWorldSettings would normalise the
+// normal to 0, a ground that holds nothing up, without a word.
+TEST(Validation, GroundNormalOfOverflowingLengthIsRefused) {
+  phys::WorldSettings w;
+  w.groundNormal = Vec3(0.0, 1e200, 0.0);
+  EXPECT_NE(phys::validate(w).find("groundNormal"), std::string::npos);
+  phys::World world;
+  EXPECT_THROW(world.setWorldSettings(w), std::invalid_argument);
+  EXPECT_EQ(world.worldSettings().groundNormal, Vec3(0.0, 1.0, 0.0));
+  w.groundNormal = Vec3(0.0, 1e150, 0.0);  // long, but its length is finite: made unit
+  ASSERT_EQ(phys::validate(w), "");
+  world.setWorldSettings(w);
+  EXPECT_EQ(world.worldSettings().groundNormal, Vec3(0.0, 1.0, 0.0));
+}
+
 TEST(Validation, RejectedInputChangesNothing) {
   phys::World world;
   phys::SolverSettings bad;
