@@ -35,6 +35,11 @@ Quat unitQuaternion(const Quat& q, const std::string& what) {
   return q / length;
 }
 
+// "x y z", for a message.
+std::string vectorText(const Vec3& v) {
+  return detail::numberText(v.x) + " " + detail::numberText(v.y) + " " + detail::numberText(v.z);
+}
+
 }  // namespace
 
 void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real maxLength) {
@@ -78,11 +83,18 @@ void World::addJoint(const JointDesc& d) {
               finite(d.referenceB),
           "addJoint: the pivot, axes and references must be finite");
   // Each body's axis made unit and its reference made normal to it, in the body's own frame.
+  // A length that overflows (a component near 1e200) would normalise the vector to 0.
   auto frame = [this](BodyId id, Vec3 axis, Vec3 reference, Vec3& axisOut, Vec3& referenceOut) {
-    require(glm::length(axis) > 0.0, "addJoint: the axis must not be zero");
+    const Real axisLength = glm::length(axis);
+    require(axisLength > 0.0, "addJoint: the axis must not be zero");
+    require(std::isfinite(axisLength),
+            "addJoint: the axis's length must be finite (is " + vectorText(axis) + ")");
     axis = glm::normalize(axis);
     reference -= glm::dot(reference, axis) * axis;
-    require(glm::length(reference) > 1e-9, "addJoint: the reference must not lie along the axis");
+    const Real referenceLength = glm::length(reference);
+    require(referenceLength > 1e-9, "addJoint: the reference must not lie along the axis");
+    require(std::isfinite(referenceLength),
+            "addJoint: the reference's length must be finite (is " + vectorText(reference) + ")");
     const Quat toBody = glm::conjugate(rigidBodies_.orientation[bodies_[id].rigid]);
     axisOut = toBody * axis;
     referenceOut = toBody * glm::normalize(reference);

@@ -120,6 +120,12 @@ const BadScene kCases[] = {
      "model='rigid'/>\n"
      "<joint type='cone' a='a' b='b' pivot='0 1.5 0' axis='0 1 0' reference='0 2 0' swing='30'/>\n</scene>",
      4, "", "the reference must not lie along the axis"},
+    {"joint axis whose length overflows",
+     "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
+     "model='rigid'/>\n"
+     "<joint type='hinge' a='a' b='b' pivot='0 1.5 0' axis='1e200 0 0' reference='0 -1 0' min='-10' "
+     "max='10'/>\n</scene>",
+     4, "", "the axis's length must be finite (is 1e+200 0 0)"},
     {"drive strength above 1",
      "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
      "model='rigid'/>\n"

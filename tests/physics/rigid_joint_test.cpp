@@ -252,6 +252,17 @@ TEST(RigidJoint, BadInputIsRefusedAndNothingIsAdded) {
   d = good;
   d.damping = -1.0;
   refused(d);
+  // Finite, but of a length that overflows: normalised, the axis or the reference would be 0.
+  d = good;
+  d.axis = Vec3(1e200, 0.0, 0.0);
+  refused(d);
+  d = good;
+  d.reference = Vec3(0.0, -1e200, 0.0);
+  refused(d);
+  d = good;
+  d.axisB = Vec3(1e200, 0.0, 0.0);
+  d.referenceB = good.reference;
+  refused(d);
   EXPECT_TRUE(w.rigidJoints().empty());
   w.addJoint(good);
   EXPECT_EQ(w.rigidJoints().size(), 1u);
