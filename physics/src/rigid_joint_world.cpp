@@ -293,12 +293,20 @@ BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {
 
 Vec3 World::position(const BodyPoint& point) const {
   if (point.side != ContactSide::Rigid) return position(point.point);
+  require(point.rigid < rigidBodies_.size(),
+          "position: rigid body " + std::to_string(point.rigid) + " does not exist");
   return rigidBodies_.position[point.rigid] + rigidBodies_.orientation[point.rigid] * point.local;
 }
 
 BodyId World::carrier(const BodyPoint& point) const {
-  return point.side == ContactSide::Rigid ? rigidBodies_.body[point.rigid]
-                                          : particleBody_[point.point.particle[0]];
+  if (point.side == ContactSide::Rigid) {
+    require(point.rigid < rigidBodies_.size(),
+            "carrier: rigid body " + std::to_string(point.rigid) + " does not exist");
+    return rigidBodies_.body[point.rigid];
+  }
+  require(point.point.count >= 1 && point.point.particle[0] < particles_.size(),
+          "carrier: the point's first particle does not exist");
+  return particleBody_[point.point.particle[0]];
 }
 
 }  // namespace phys

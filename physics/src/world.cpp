@@ -498,7 +498,9 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
 }
 
 Vec3 World::cornerPosition(BodyId id, int k) const {
-  const Body& body = bodies_.at(id);
+  require(id < bodies_.size(), "cornerPosition: body " + std::to_string(id) + " does not exist");
+  require(k >= 0 && k < 8, "cornerPosition: corner " + std::to_string(k) + " must be from 0 to 7");
+  const Body& body = bodies_[id];
   if (body.model != BodyModel::Rigid) return position(corners_[body.firstCorner + k]);
   return rigidBodies_.position[body.rigid] +
          rigidBodies_.orientation[body.rigid] * boxCornerLocal(body.halfExtents, k);
@@ -582,6 +584,13 @@ Vec3 World::velocity(ParticleId id) const {
 }
 
 Vec3 World::position(const Embedding& point) const {
+  // Checked as a query is: the weights may be any (checkEmbedding's sum is the adders' rule).
+  require(point.count >= 1 && point.count <= 4,
+          "position: an embedding needs 1 to 4 particles (has " + std::to_string(point.count) + ")");
+  for (int i = 0; i < point.count; ++i) {
+    require(point.particle[i] < particles_.size(),
+            "position: particle " + std::to_string(point.particle[i]) + " does not exist");
+  }
   return detail::embeddedPosition(particles_.position, point);
 }
 

@@ -1,0 +1,54 @@
+// Bad input at the library's API, from a program that uses it directly (the scene loader checks
+// most of it first): it is refused with std::invalid_argument naming the call, and the world keeps
+// what it had.
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "character_util.h"
+#include "physics/capsule_ragdoll.h"
+#include "physics/ragdoll.h"
+#include "physics/world.h"
+
+namespace {
+
+using phys::Real;
+using phys::Vec3;
+
+// is at for a rigid one.
+TEST(ApiInput, CornerPositionRefusesACornerThatDoesNotExist) {
+  phys::World w;
+  phys::BodyDesc d;
+  d.center = Vec3(0.0, 1.0, 0.0);
+  const phys::BodyId box = w.addBody(d);
+  d.model = phys::BodyModel::Rigid;
+  const phys::BodyId rigid = w.addBody(d);
+  for (const phys::BodyId id : {box, rigid}) {
+    EXPECT_THROW(w.cornerPosition(id, 8), std::invalid_argument);
+    EXPECT_THROW(w.cornerPosition(id, -1), std::invalid_argument);
+    EXPECT_NEAR(w.cornerPosition(id, 7).y, 1.5, 1e-12);
+  }
+  EXPECT_THROW(w.cornerPosition(phys::BodyId(2), 0), std::invalid_argument);
+}
+
+// is refused.
+TEST(ApiInput, APointOfParticlesOrBodiesThatDoNotExistIsRefused) {
+  phys::World w;
+  w.addParticle({});
+  phys::Embedding far = phys::embedParticle(phys::ParticleId(100000));
+  EXPECT_THROW(w.position(far), std::invalid_argument);
+  EXPECT_THROW(w.position(phys::Embedding{}), std::invalid_argument);  // no particles at all
+  EXPECT_THROW(w.position(phys::BodyPoint::embedded(far)), std::invalid_argument);
+  EXPECT_THROW(w.carrier(phys::BodyPoint::embedded(far)), std::invalid_argument);
+  const phys::BodyPoint onRigid = phys::BodyPoint::onRigid(phys::RigidId(100000), Vec3(0.0));
+  EXPECT_THROW(w.position(onRigid), std::invalid_argument);
+  EXPECT_THROW(w.carrier(onRigid), std::invalid_argument);
+  EXPECT_EQ(w.position(phys::embedParticle(phys::ParticleId(0))), Vec3(0.0));
+  EXPECT_EQ(w.carrier(phys::BodyPoint::embedded(phys::embedParticle(phys::ParticleId(0)))), phys::kNoBody);
+}
+
+}  // namespace
