@@ -18,6 +18,7 @@
 namespace phys {
 namespace {
 
+using detail::numberText;
 using detail::require;
 
 std::string joined(const std::vector<std::string>& names) {
@@ -375,6 +376,12 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   const std::optional<BodyDrive> had = bodyDrive(root);
   c.rootStiffness = had ? had->stiffness : kBodyDriveStiffness * mass / kRagdollDriveMass / c.scale;
   c.rootAngularStiffness = had ? had->angularStiffness : kDriveStiffness * mass / kRagdollDriveMass * c.scale;
+  // The step gives the root these without setBodyDrive's checks: a scale near 0 or 1e308 overflows one
+  // to inf, which the drive turns into non-finite motion (the guard freezes the ragdoll at once).
+  require(std::isfinite(c.rootStiffness) && std::isfinite(c.rootAngularStiffness),
+          who + ": scale " + numberText(desc.scale) + " makes the root drive's stiffness " +
+              numberText(c.rootStiffness) + " N/m and " + numberText(c.rootAngularStiffness) +
+              " N m/rad for a ragdoll of " + numberText(mass) + " kg; both must be finite");
   // Scratch sized now, not reserved: a copied World (the sandbox's rewind) keeps sizes, not capacities.
   c.fading.turns.resize(c.pose.turns.size());
   c.held.turns.resize(c.pose.turns.size());

@@ -51,4 +51,27 @@ TEST(ApiInput, APointOfParticlesOrBodiesThatDoNotExistIsRefused) {
   EXPECT_EQ(w.carrier(phys::BodyPoint::embedded(phys::embedParticle(phys::ParticleId(0)))), phys::kNoBody);
 }
 
+// guard froze the ragdoll in its first step) is refused.
+TEST(ApiInput, ACharacterWhoseScaleOverflowsItsRootDriveIsRefused) {
+  const auto clip = std::make_shared<phys::Clip>(
+      testing_phys::ragdollClip(10, [](const std::string&, Real) { return 0.0; }));
+  for (const Real scale : {1e-320, 1e307}) {
+    phys::World w;
+    testing_phys::rigidRagdoll(w, "r");
+    phys::CharacterDesc desc;
+    desc.ragdoll = "r";
+    desc.playback.clip = clip;
+    desc.rootStrength = 0.5;
+    desc.scale = scale;
+    try {
+      w.addCharacter(desc);
+      ADD_FAILURE() << "scale " << scale << " was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("addCharacter: scale"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(w.characters().empty());
+    EXPECT_TRUE(w.bodyDrives().empty());
+  }
+}
+
 }  // namespace
