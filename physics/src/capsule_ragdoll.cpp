@@ -136,16 +136,11 @@ std::string_view toString(CapsulePart part) {
   return kNames[static_cast<int>(part)];
 }
 
-CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
-  const detail::RagdollFrame frame = detail::ragdollFrame(desc, kHipHeight, "addCapsuleRagdoll");
+namespace {
+
+CapsuleRagdoll build(World& world, const RagdollDesc& desc, const detail::RagdollFrame& frame) {
   const detail::PlaceFn& place = frame.place;
   const Quat q = frame.orientation;
-  for (const PartLayout& p : kParts) {
-    const Vec3 reach(p.coreLength + 2.0 * p.radius);
-    require(finite(place(p.center + reach)) && finite(place(p.center - reach)),
-            "addCapsuleRagdoll: position or scale too large to represent");
-  }
-
   CapsuleRagdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
@@ -188,6 +183,20 @@ CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
   detail::driveRagdollJoints(world, desc, ragdoll.firstJoint);
   detail::driveRagdollRoot(world, desc, ragdoll.part(CapsulePart::Pelvis));
   return ragdoll;
+}
+
+}  // namespace
+
+CapsuleRagdoll addCapsuleRagdoll(World& world, const RagdollDesc& desc) {
+  const detail::RagdollFrame frame = detail::ragdollFrame(desc, kHipHeight, "addCapsuleRagdoll");
+  for (const PartLayout& p : kParts) {
+    const Vec3 reach(p.coreLength + 2.0 * p.radius);
+    require(finite(frame.place(p.center + reach)) && finite(frame.place(p.center - reach)),
+            "addCapsuleRagdoll: position or scale too large to represent");
+  }
+  detail::buildInEmptyWorld(world, desc, "addCapsuleRagdoll",
+                            [&](World& empty) { build(empty, desc, frame); });
+  return build(world, desc, frame);
 }
 
 }  // namespace phys

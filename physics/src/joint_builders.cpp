@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "require.h"
+
 namespace phys::detail {
 namespace {
 
@@ -40,6 +42,19 @@ RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::st
   const Real scale = desc.scale;
   return {
       q, [hips, q, fromHips, scale](const Vec3& layout) { return hips + q * ((layout - fromHips) * scale); }};
+}
+
+void buildInEmptyWorld(const World& world, const RagdollDesc& desc, const std::string& who,
+                       const std::function<void(World&)>& build) {
+  SolverSettings solver = world.solverSettings();
+  solver.threads = 1;  // no worker threads for a world that never steps
+  World empty(world.worldSettings(), solver);
+  try {
+    build(empty);
+  } catch (const std::invalid_argument& refused) {
+    throw std::invalid_argument(who + ": mass " + numberText(desc.mass) + " kg at scale " +
+                                numberText(desc.scale) + ": " + refused.what());
+  }
 }
 
 BodyDesc ragdollPart(const RagdollDesc& desc, std::string_view part) {

@@ -26,6 +26,13 @@ struct RagdollFrame {
 };
 RagdollFrame ragdollFrame(const RagdollDesc& desc, Real hipHeight, const std::string& who);
 
+/// Runs `build` on an empty world of `world`'s settings and rethrows what it refuses prefixed with
+/// `who` and the desc's mass and scale: a builder adds part after part, and World takes nothing
+/// back, so a part or a drive refused half way (a mass or size addBody cannot represent, a drive's
+/// stiffness overflowing) would leave the parts before it in `world`. What a ragdoll's build
+/// refuses does not depend on the bodies already in the world, only on its settings.
+void buildInEmptyWorld(const World& world, const RagdollDesc& desc, const std::string& who,
+                       const std::function<void(World&)>& build);
 /// What every part of a ragdoll takes from it: the name "<ragdoll or 'ragdoll'>.<part>", the
 /// velocity, the body model (seed: corners, lean: tetra, rigid: rigid), the material and the collision
 /// filter. The caller sets the shape, place, size, orientation and mass.

@@ -123,16 +123,11 @@ std::string_view toString(RagdollPart part) {
   return kNames[static_cast<int>(part)];
 }
 
-Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
-  // Where a point of the standing layout goes in the world.
-  const detail::RagdollFrame frame = detail::ragdollFrame(desc, kHipHeight, "addRagdoll");
+namespace {
+
+Ragdoll build(World& world, const RagdollDesc& desc, const detail::RagdollFrame& frame) {
   const detail::PlaceFn& place = frame.place;
   const Quat q = frame.orientation;
-  for (const PartLayout& p : kParts) {
-    require(finite(place(p.center + p.size)) && finite(place(p.center - p.size)),
-            "addRagdoll: position or scale too large to represent");
-  }
-
   Ragdoll ragdoll;
   ragdoll.name = desc.name;
   ragdoll.model = desc.model;
@@ -168,6 +163,19 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
   detail::driveRagdollJoints(world, desc, ragdoll.firstJoint);
   detail::driveRagdollRoot(world, desc, ragdoll.part(RagdollPart::Torso));
   return ragdoll;
+}
+
+}  // namespace
+
+Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
+  // Where a point of the standing layout goes in the world.
+  const detail::RagdollFrame frame = detail::ragdollFrame(desc, kHipHeight, "addRagdoll");
+  for (const PartLayout& p : kParts) {
+    require(finite(frame.place(p.center + p.size)) && finite(frame.place(p.center - p.size)),
+            "addRagdoll: position or scale too large to represent");
+  }
+  detail::buildInEmptyWorld(world, desc, "addRagdoll", [&](World& empty) { build(empty, desc, frame); });
+  return build(world, desc, frame);
 }
 
 Real hingeAngle(const World& world, const Ragdoll& ragdoll, const RagdollHinge& hinge) {

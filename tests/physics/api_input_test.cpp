@@ -74,4 +74,55 @@ TEST(ApiInput, ACharacterWhoseScaleOverflowsItsRootDriveIsRefused) {
   }
 }
 
+// any part is in the world.
+TEST(ApiInput, ARagdollRefusedHalfWayAddsNothing) {
+  struct Case {
+    Real mass, scale, strength, rootStrength;
+  };
+  const Case cases[] = {
+      {7e-307, 1.0, 0.0, 0.0},   // a corners box's particle of the head is representable, the forearm's not
+      {3e-305, 1.0, 0.0, 0.0},   // the same of the rigid parts' inertia
+      {1e300, 1e-10, 0.0, 0.5},  // the root's drive: mass / scale overflows
+      {1e306, 1e5, 0.5, 0.0},    // the joints' drives: mass times scale overflows
+  };
+  int refused = 0;
+  for (const phys::RagdollModel model :
+       {phys::RagdollModel::Seed, phys::RagdollModel::Lean, phys::RagdollModel::Rigid}) {
+    for (const Case& c : cases) {
+      for (const bool capsules : {false, true}) {
+        phys::World w;
+        phys::BodyDesc box;
+        box.center = Vec3(5.0, 1.0, 0.0);
+        w.addBody(box);  // something the world had
+        phys::RagdollDesc d;
+        d.model = model;
+        d.hips = Vec3(0.0, 1.0, 0.0);
+        d.mass = c.mass;
+        d.scale = c.scale;
+        d.strength = c.strength;
+        d.rootStrength = c.rootStrength;
+        try {
+          if (capsules)
+            phys::addCapsuleRagdoll(w, d);
+          else
+            phys::addRagdoll(w, d);
+        } catch (const std::invalid_argument& e) {
+          ++refused;
+          EXPECT_NE(std::string(e.what()).find(capsules ? "addCapsuleRagdoll: mass" : "addRagdoll: mass"),
+                    std::string::npos)
+              << e.what();
+          EXPECT_EQ(w.bodies().size(), 1u) << e.what();
+          EXPECT_EQ(w.particles().size(), 8u);
+          EXPECT_TRUE(w.links().empty() && w.rigidJoints().empty() && w.particleJoints().empty());
+          EXPECT_TRUE(w.ignoredCollisions().empty() && w.bodyDrives().empty());
+          continue;
+        }
+        // Taken whole: every part.
+        EXPECT_EQ(w.bodies().size(), 1u + (capsules ? phys::kCapsuleParts : phys::kRagdollParts));
+      }
+    }
+  }
+  EXPECT_GT(refused, 0);
+}
+
 }  // namespace
