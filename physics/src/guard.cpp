@@ -141,7 +141,6 @@ void Guard::freeze(const GuardInput& in, ParticleId bad, const std::string& reas
     in.particles.inverseMass[i] = 0.0;
   }
   freezes_.push_back({name, reason, bad, in.time, in.particleBodies[bad]});
-  if (onFreeze_) onFreeze_(freezes_.back());
 }
 
 void Guard::checkRigidBodies(RigidBodies& rigid, std::span<const Body> bodies, Real bound, Real time) {
@@ -172,7 +171,15 @@ void Guard::checkRigidBodies(RigidBodies& rigid, std::span<const Body> bodies, R
     const Body& b = bodies[body];
     freezes_.push_back(
         {b.name.empty() ? "box " + std::to_string(body) : b.name, reason, ParticleId{}, time, body});
-    if (onFreeze_) onFreeze_(freezes_.back());
+  }
+}
+
+void Guard::report() {
+  while (reported_ < freezes_.size()) {
+    // Copies: the callback may step the world, which adds freezes and moves the list, or replace
+    // itself.
+    const FreezeReport freeze = freezes_[reported_++];
+    if (const std::function<void(const FreezeReport&)> callback = onFreeze_; callback) callback(freeze);
   }
 }
 

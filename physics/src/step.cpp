@@ -71,7 +71,10 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   std::fill(movedByBoxContact_.begin(), movedByBoxContact_.end(), std::uint8_t{0});
   const Real h = substepDt();
   for (int s = 0; s < solver_.substeps; ++s) {
-    if (stop != nullptr && stop->load(std::memory_order_relaxed)) return false;
+    if (stop != nullptr && stop->load(std::memory_order_relaxed)) {
+      guard_.report();
+      return false;
+    }
     animate(h);
     integrateParticles(h);
     // Contacts between bodies are found once per step, after the first substep's integration,
@@ -100,6 +103,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   updateIslands(freezesBefore);
   ++steps_;
   profile_.total = millisecondsSince(stepStart);
+  guard_.report();  // now that the world is whole: the callback may change it
   return true;
 }
 

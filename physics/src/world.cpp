@@ -92,6 +92,7 @@ void World::setSolverSettings(const SolverSettings& settings) {
   if (projectionOn && !constraints_.rigidJoints().empty())
     jointProjection_.project(rigidBodies_, constraints_.rigidJoints(), solver_.jointProjection);
   guardParticles();  // both can overflow under absurd gravity or speeds
+  guard_.report();
 }
 
 // More passes per step relax what fewer left: a resting box's sag, a chain's stretch. Projected

@@ -125,4 +125,37 @@ TEST(ApiInput, ARagdollRefusedHalfWayAddsNothing) {
   EXPECT_GT(refused, 0);
 }
 
+// stages, a body it added would leave the rest of the step reading arrays of the old size.
+TEST(ApiInput, TheFreezeCallbackRunsWhenTheStepIsDoneAndMayChangeTheWorld) {
+  phys::WorldSettings ws;
+  ws.bound = 10.0;
+  ws.ground = false;
+  phys::World w(ws);
+  phys::ParticleDesc fast;
+  fast.position = Vec3(9.9, 0.0, 0.0);
+  fast.velocity = Vec3(100.0, 0.0, 0.0);  // out of the bound in the first substep
+  w.addParticle(fast);
+  std::vector<long> seenAt;
+  w.setFreezeCallback([&](const phys::FreezeReport&) {
+    seenAt.push_back(w.stepCount());
+    phys::BodyDesc box;
+    box.center = Vec3(0.0, 1.0, 0.0);
+    w.addBody(box);
+    box.model = phys::BodyModel::Rigid;
+    box.center.x = 2.0;
+    w.addBody(box);
+    w.setFreezeCallback(nullptr);  // a callback may replace itself
+  });
+  w.step();
+  ASSERT_EQ(seenAt.size(), 1u);
+  EXPECT_EQ(seenAt[0], 1);  // after the step
+  EXPECT_EQ(w.bodies().size(), 2u);
+  EXPECT_EQ(w.freezes().size(), 1u);
+  for (int i = 0; i < 30; ++i) w.step();
+  EXPECT_EQ(w.freezes().size(), 1u);
+  for (const Vec3& p : w.particles().position) EXPECT_TRUE(phys::finite(p));
+  EXPECT_LT(w.bodyPose(phys::BodyId(1)).center.y, 0.0);  // both fell
+  EXPECT_LT(w.bodyPose(phys::BodyId(0)).center.y, 0.0);
+}
+
 }  // namespace

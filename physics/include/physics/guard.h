@@ -53,6 +53,9 @@ class Guard {
   std::span<Vec3> checkedRigidPositions() { return checkedRigidPosition_; }
   std::span<Quat> checkedRigidOrientations() { return checkedRigidOrientation_; }
   void setCallback(std::function<void(const FreezeReport&)> callback) { onFreeze_ = std::move(callback); }
+  /// Gives the callback each freeze it has not been given, oldest first. The world calls it once it
+  /// is whole again (after a step, not inside one), so that the callback may change the world.
+  void report();
   std::span<const FreezeReport> freezes() const { return freezes_; }
 
   /// Freezes every particle (and its whole body) that is non-finite or beyond `bound` (m) on an
@@ -79,6 +82,7 @@ class Guard {
   Real nextShapeCheck_ = 0.0;       // s
   std::function<void(const FreezeReport&)> onFreeze_;
   std::vector<FreezeReport> freezes_;
+  std::size_t reported_ = 0;  // freezes_ given to the callback (report)
 };
 
 }  // namespace phys

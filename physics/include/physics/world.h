@@ -174,7 +174,8 @@ class World {
   /// A new dt or substep count keeps every particle's velocity (exactly in free flight); more
   /// passes per step first relax the stored error without changing any velocity.
   void setSolverSettings(const SolverSettings& settings);
-  /// Called once for each particle or body the guard freezes.
+  /// Called once for each particle or body the guard freezes, at the end of the step (or of the
+  /// setSolverSettings) that froze it, when the world is whole: the callback may change the world.
   void setFreezeCallback(std::function<void(const FreezeReport&)> callback);
 
   const WorldSettings& worldSettings() const { return world_; }
