@@ -79,6 +79,8 @@ void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real
 void World::addJoint(const JointDesc& d) {
   auto rigid = [this](BodyId id) { return id < bodies_.size() && bodies_[id].model == BodyModel::Rigid; };
   require(rigid(d.a) && rigid(d.b) && d.a != d.b, "addJoint: a and b must be two different rigid bodies");
+  require(d.kind == JointKind::Hinge || d.kind == JointKind::Cone,
+          "addJoint: kind must be Hinge or Cone (is " + std::to_string(static_cast<int>(d.kind)) + ")");
   require(finite(d.pivot) && finite(d.pivotB) && finite(d.axis) && finite(d.reference) && finite(d.axisB) &&
               finite(d.referenceB),
           "addJoint: the pivot, axes and references must be finite");

@@ -37,6 +37,8 @@ Material combine(const Material& a, const Material& b) {
 
 std::string validate(const WorldSettings& s) {
   std::ostringstream why;
+  if (s.gravityMode != GravityMode::Uniform && s.gravityMode != GravityMode::Point)
+    why << "gravityMode must be Uniform or Point (is " << static_cast<int>(s.gravityMode) << "); ";
   if (!finite(s.gravity)) why << "gravity must be finite; ";
   if (!finite(s.gravityPoint)) why << "gravityPoint must be finite; ";
   if (!finiteNonNegative(s.gravityStrength)) why << "gravityStrength must be finite and >= 0 (m/s^2); ";
@@ -55,6 +57,9 @@ std::string validate(const WorldSettings& s) {
 
 std::string validate(const SolverSettings& s) {
   std::ostringstream why;
+  // A value cast from outside the enum would relax no stick at all (ConstraintGraph::relaxSticks).
+  if (!parseSolverMethod(toString(s.method)))
+    why << "method must be one of SolverMethod's (is " << static_cast<int>(s.method) << "); ";
   if (!std::isfinite(s.dt) || s.dt < kMinDt || s.dt > kMaxDt) {
     why << "dt must be from " << kMinDt << " to " << kMaxDt << " (s); ";
   }

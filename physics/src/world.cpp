@@ -335,6 +335,12 @@ Embedding World::anchor(BodyId id, const Vec3& worldPoint) const {
 }
 
 BodyId World::addBody(const BodyDesc& desc) {
+  require(
+      desc.model == BodyModel::Corners || desc.model == BodyModel::Tetra || desc.model == BodyModel::Rigid,
+      "addBody: model must be Corners, Tetra or Rigid (is " + std::to_string(static_cast<int>(desc.model)) +
+          ")");
+  require(desc.shape == Shape::Box || desc.shape == Shape::Capsule,
+          "addBody: shape must be Box or Capsule (is " + std::to_string(static_cast<int>(desc.shape)) + ")");
   require(finite(desc.center) && finite(desc.velocity) && finite(desc.angularVelocity),
           "addBody: center, velocity and angular velocity must be finite");
   require(finite(desc.size) && desc.size.x > 0.0 && desc.size.y > 0.0 && desc.size.z > 0.0,

@@ -19,6 +19,7 @@ namespace {
 using phys::Real;
 using phys::Vec3;
 
+// A corner index outside 0 to 7 would read past a particle body's corners, or give a point no corner
 // is at for a rigid one.
 TEST(ApiInput, CornerPositionRefusesACornerThatDoesNotExist) {
   phys::World w;
@@ -35,6 +36,7 @@ TEST(ApiInput, CornerPositionRefusesACornerThatDoesNotExist) {
   EXPECT_THROW(w.cornerPosition(phys::BodyId(2), 0), std::invalid_argument);
 }
 
+// position and carrier index the particles or the rigid body a point names: one that does not exist
 // is refused.
 TEST(ApiInput, APointOfParticlesOrBodiesThatDoNotExistIsRefused) {
   phys::World w;
@@ -51,6 +53,8 @@ TEST(ApiInput, APointOfParticlesOrBodiesThatDoNotExistIsRefused) {
   EXPECT_EQ(w.carrier(phys::BodyPoint::embedded(phys::embedParticle(phys::ParticleId(0)))), phys::kNoBody);
 }
 
+// The root's drive stiffnesses are the ragdoll's mass over and times the scale, and the step gives
+// them to the root without setBodyDrive's checks: a scale that overflows one to inf (at 1e-320 the
 // guard froze the ragdoll in its first step) is refused.
 TEST(ApiInput, ACharacterWhoseScaleOverflowsItsRootDriveIsRefused) {
   const auto clip = std::make_shared<phys::Clip>(
@@ -74,6 +78,8 @@ TEST(ApiInput, ACharacterWhoseScaleOverflowsItsRootDriveIsRefused) {
   }
 }
 
+// A ragdoll is added part by part: a part addBody refuses (a mass too small to represent for the
+// lighter parts only) or a drive whose stiffness overflows (mass times scale) must be refused before
 // any part is in the world.
 TEST(ApiInput, ARagdollRefusedHalfWayAddsNothing) {
   struct Case {
@@ -125,6 +131,7 @@ TEST(ApiInput, ARagdollRefusedHalfWayAddsNothing) {
   EXPECT_GT(refused, 0);
 }
 
+// The guard's callback is called once the step is done, and may change the world: between the step's
 // stages, a body it added would leave the rest of the step reading arrays of the old size.
 TEST(ApiInput, TheFreezeCallbackRunsWhenTheStepIsDoneAndMayChangeTheWorld) {
   phys::WorldSettings ws;
@@ -156,6 +163,47 @@ TEST(ApiInput, TheFreezeCallbackRunsWhenTheStepIsDoneAndMayChangeTheWorld) {
   for (const Vec3& p : w.particles().position) EXPECT_TRUE(phys::finite(p));
   EXPECT_LT(w.bodyPose(phys::BodyId(1)).center.y, 0.0);  // both fell
   EXPECT_LT(w.bodyPose(phys::BodyId(0)).center.y, 0.0);
+}
+
+// A value cast from outside an enum is refused: such a method relaxes no stick at all (boxes collapse
+// and the guard freezes them as crushed), a gravity mode pulls as Point mode but is named "uniform",
+// a body model is made as a tetra box and a joint kind as a cone.
+TEST(ApiInput, ValuesOutsideAnEnumAreRefused) {
+  phys::SolverSettings solver;
+  solver.method = static_cast<phys::SolverMethod>(9);
+  EXPECT_NE(phys::validate(solver).find("method"), std::string::npos);
+  phys::World w;
+  EXPECT_THROW(w.setSolverSettings(solver), std::invalid_argument);
+  EXPECT_EQ(w.solverSettings().method, phys::SolverMethod::GaussSeidel);
+  phys::WorldSettings world;
+  world.gravityMode = static_cast<phys::GravityMode>(5);
+  EXPECT_NE(phys::validate(world).find("gravityMode"), std::string::npos);
+  EXPECT_THROW(w.setWorldSettings(world), std::invalid_argument);
+
+  phys::BodyDesc box;
+  box.model = static_cast<phys::BodyModel>(7);
+  EXPECT_THROW(w.addBody(box), std::invalid_argument);
+  box = {};
+  box.shape = static_cast<phys::Shape>(7);
+  EXPECT_THROW(w.addBody(box), std::invalid_argument);
+  EXPECT_TRUE(w.bodies().empty());
+  EXPECT_TRUE(w.particles().position.empty());
+
+  box = {};
+  box.model = phys::BodyModel::Rigid;
+  const phys::BodyId a = w.addBody(box);
+  box.center.y = 1.0;
+  const phys::BodyId b = w.addBody(box);
+  phys::JointDesc joint;
+  joint.kind = static_cast<phys::JointKind>(7);
+  joint.a = a;
+  joint.b = b;
+  joint.pivot = Vec3(0.0, 0.5, 0.0);
+  joint.axis = Vec3(1.0, 0.0, 0.0);
+  joint.reference = Vec3(0.0, -1.0, 0.0);
+  joint.swing = 1.0;
+  EXPECT_THROW(w.addJoint(joint), std::invalid_argument);
+  EXPECT_TRUE(w.rigidJoints().empty());
 }
 
 }  // namespace
