@@ -11,6 +11,13 @@ inline void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
+/// require for the queries, which may run for every body of every step (metrics, drawing): the
+/// message is only made when the check fails.
+template <class Message>
+void requireLazily(bool ok, const Message& what) {
+  if (!ok) throw std::invalid_argument(what());
+}
+
 /// A number as a message shows it: "1e+200", "inf", "nan", not std::to_string's 200 digits.
 inline std::string numberText(double v) {
   std::ostringstream text;

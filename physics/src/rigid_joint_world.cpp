@@ -14,6 +14,7 @@
 namespace phys {
 
 using detail::require;
+using detail::requireLazily;
 namespace {
 
 // The joint's frame (axis, reference, their cross product) as a turn from the body's frame.
@@ -295,19 +296,21 @@ BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {
 
 Vec3 World::position(const BodyPoint& point) const {
   if (point.side != ContactSide::Rigid) return position(point.point);
-  require(point.rigid < rigidBodies_.size(),
-          "position: rigid body " + std::to_string(point.rigid) + " does not exist");
+  requireLazily(point.rigid < rigidBodies_.size(), [&point] {
+    return "position: rigid body " + std::to_string(point.rigid) + " does not exist";
+  });
   return rigidBodies_.position[point.rigid] + rigidBodies_.orientation[point.rigid] * point.local;
 }
 
 BodyId World::carrier(const BodyPoint& point) const {
   if (point.side == ContactSide::Rigid) {
-    require(point.rigid < rigidBodies_.size(),
-            "carrier: rigid body " + std::to_string(point.rigid) + " does not exist");
+    requireLazily(point.rigid < rigidBodies_.size(), [&point] {
+      return "carrier: rigid body " + std::to_string(point.rigid) + " does not exist";
+    });
     return rigidBodies_.body[point.rigid];
   }
-  require(point.point.count >= 1 && point.point.particle[0] < particles_.size(),
-          "carrier: the point's first particle does not exist");
+  requireLazily(point.point.count >= 1 && point.point.particle[0] < particles_.size(),
+                [] { return std::string("carrier: the point's first particle does not exist"); });
   return particleBody_[point.point.particle[0]];
 }
 

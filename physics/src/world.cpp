@@ -19,6 +19,7 @@
 namespace phys {
 
 using detail::require;
+using detail::requireLazily;
 
 namespace {
 
@@ -505,8 +506,10 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
 }
 
 Vec3 World::cornerPosition(BodyId id, int k) const {
-  require(id < bodies_.size(), "cornerPosition: body " + std::to_string(id) + " does not exist");
-  require(k >= 0 && k < 8, "cornerPosition: corner " + std::to_string(k) + " must be from 0 to 7");
+  requireLazily(id < bodies_.size(),
+                [id] { return "cornerPosition: body " + std::to_string(id) + " does not exist"; });
+  requireLazily(k >= 0 && k < 8,
+                [k] { return "cornerPosition: corner " + std::to_string(k) + " must be from 0 to 7"; });
   const Body& body = bodies_[id];
   if (body.model != BodyModel::Rigid) return position(corners_[body.firstCorner + k]);
   return rigidBodies_.position[body.rigid] +
@@ -592,11 +595,13 @@ Vec3 World::velocity(ParticleId id) const {
 
 Vec3 World::position(const Embedding& point) const {
   // Checked as a query is: the weights may be any (checkEmbedding's sum is the adders' rule).
-  require(point.count >= 1 && point.count <= 4,
-          "position: an embedding needs 1 to 4 particles (has " + std::to_string(point.count) + ")");
+  requireLazily(point.count >= 1 && point.count <= 4, [&point] {
+    return "position: an embedding needs 1 to 4 particles (has " + std::to_string(point.count) + ")";
+  });
   for (int i = 0; i < point.count; ++i) {
-    require(point.particle[i] < particles_.size(),
-            "position: particle " + std::to_string(point.particle[i]) + " does not exist");
+    requireLazily(point.particle[i] < particles_.size(), [&point, i] {
+      return "position: particle " + std::to_string(point.particle[i]) + " does not exist";
+    });
   }
   return detail::embeddedPosition(particles_.position, point);
 }
