@@ -13,7 +13,7 @@
 #include <glm/vec2.hpp>
 
 #include "engine/error.h"
-#include "files.h"
+#include "fileio/files.h"
 
 namespace engine {
 namespace {
@@ -97,7 +97,11 @@ void checkComputedNormals(const std::filesystem::path& file, const aiScene& scen
 // with no mesh in it, and would wait for ever on a named pipe; checkRegularFile says which, with
 // the OS's reason.
 const aiScene& importFile(Assimp::Importer& importer, const std::filesystem::path& file) {
-  detail::checkRegularFile(file, "model file");
+  try {
+    fileio::checkRegularFile(file, "model file");
+  } catch (const fileio::FileError& e) {
+    throw Error(e.what());
+  }
   const aiScene* scene = importer.ReadFile(file.string(), aiProcess_ValidateDataStructure);
   if (scene == nullptr) throw Error(file.string() + ": cannot load mesh: " + importer.GetErrorString());
   if (scene->mNumMeshes == 0) throw Error(file.string() + ": the file holds no mesh");

@@ -8,7 +8,7 @@
 
 #include "engine/error.h"
 #include "engine/shader_log.h"
-#include "files.h"
+#include "fileio/files.h"
 
 namespace engine {
 namespace {
@@ -61,7 +61,12 @@ GLuint compile(GLenum stage, const std::filesystem::path& file) {
 }  // namespace
 
 std::string readShaderSource(const std::filesystem::path& file) {
-  std::string source = detail::readWhole(file, kMaxShaderBytes, "shader file");
+  std::string source;
+  try {
+    source = fileio::readWhole(file, kMaxShaderBytes, "shader file");
+  } catch (const fileio::FileError& e) {
+    throw Error(e.what());
+  }
   refuseNulBytes(file, source);
   return source;
 }

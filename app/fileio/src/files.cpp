@@ -183,34 +183,82 @@ void prepareFolder(const fs::path& folder) {
   TemporaryFile probe(folder / "probe", folder);  // removed again as it goes out of scope
 }
 
-std::string readWhole(const fs::path& file, std::size_t maxBytes) {
-  if (file.empty()) throw FileError(file, "no file name given");
+namespace {
+
+// A file descriptor, closed as it goes out of scope: also when the constructor of the OpenFile
+// holding it throws, as members already built are destroyed.
+struct Descriptor {
+  int fd = -1;
+  Descriptor() = default;
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+// A file open for reading, with what fstat says of it; failures say what the file was meant to be
+// (`kind`: "cannot open shader file: ..."), or nothing of it when `kind` is empty.
+class OpenFile {
+ public:
   // Opened without blocking: a named pipe with no writer would hold open() for ever. Reads block
   // again, so a pipe that has a writer (/dev/stdin under a shell's pipe) is read whole.
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) throw FileError(file, "cannot open: " + reason(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  if (const int flags = ::fcntl(fd, F_GETFL); flags < 0 || ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
-    throw FileError(file, "cannot read: " + reason(errno));
+  OpenFile(const fs::path& file, std::string_view kind) : file_(file), kind_(kind) {
+    if (file.empty()) throw FileError(file, "no " + noun() + " name given");
+    const int fd = descriptor_.fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) failWithErrno("cannot open");
+    if (const int flags = ::fcntl(fd, F_GETFL); flags < 0 || ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0)
+      failWithErrno("cannot read");
+    if (::fstat(fd, &info_) != 0) failWithErrno("cannot read");
+    if (S_ISDIR(info_.st_mode)) throw FileError(file, "is a folder, not a " + noun());
   }
-  struct stat info {};
-  if (::fstat(fd, &info) != 0) throw FileError(file, "cannot read: " + reason(errno));
-  if (S_ISDIR(info.st_mode)) throw FileError(file, "is a folder, not a file");
+  int fd() const { return descriptor_.fd; }
+  const struct stat& info() const { return info_; }
+  /// What the file is called in messages: its kind, or "file".
+  std::string noun() const { return kind_.empty() ? "file" : std::string(kind_); }
+  bool hasKind() const { return !kind_.empty(); }
+
+  // "cannot open shader file: the OS's reason". `what` is a literal, so nothing allocates (and
+  // may change errno) before errno is read.
+  [[noreturn]] void failWithErrno(const char* what) const {
+    const int error = errno;
+    throw FileError(
+        file_, std::string(what) + (kind_.empty() ? "" : " " + std::string(kind_)) + ": " + reason(error));
+  }
+
+ private:
+  fs::path file_;
+  std::string_view kind_;
+  Descriptor descriptor_;
+  struct stat info_ {};
+};
+
+}  // namespace
+
+void checkRegularFile(const fs::path& file, std::string_view kind) {
+  const OpenFile open(file, kind);
+  if (!S_ISREG(open.info().st_mode)) {
+    throw FileError(
+        file, "is not a regular file (a device, pipe or socket), so it is not read as a " + open.noun());
+  }
+}
+
+std::string readWhole(const fs::path& file, std::size_t maxBytes, std::string_view kind) {
+  const OpenFile open(file, kind);
   std::string content;
-  if (S_ISREG(info.st_mode) && static_cast<std::uintmax_t>(info.st_size) <= maxBytes) {
-    content.reserve(static_cast<std::size_t>(info.st_size));
+  if (S_ISREG(open.info().st_mode) && static_cast<std::uintmax_t>(open.info().st_size) <= maxBytes) {
+    content.reserve(static_cast<std::size_t>(open.info().st_size));
   }
   char buffer[1 << 16];
   for (;;) {
-    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    const ssize_t n = ::read(open.fd(), buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw FileError(file, "cannot read: " + reason(errno));
+    if (n < 0) open.failWithErrno("cannot read");
     if (n == 0) return content;
     if (content.size() + static_cast<std::size_t>(n) > maxBytes) {
-      throw FileError(file, "is larger than " + std::to_string(maxBytes) + " bytes, the most that is read");
+      throw FileError(
+          file, "is larger than " + std::to_string(maxBytes) + " bytes, " +
+                    (open.hasKind() ? "the most a " + open.noun() + " may hold" : "the most that is read"));
     }
     content.append(buffer, static_cast<std::size_t>(n));
   }

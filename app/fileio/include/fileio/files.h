@@ -64,6 +64,14 @@ std::filesystem::path followLinks(const std::filesystem::path& file);
 /// The whole content of a file: a regular file, or a pipe or device read until its end. Throws
 /// FileError with the OS's reason when it cannot be opened or read, when it is a folder, and
 /// when it holds more than maxBytes (so /dev/zero is refused, not read until memory runs out).
-std::string readWhole(const std::filesystem::path& file, std::size_t maxBytes);
+/// `kind` names what the file is meant to be in the messages ("shader file": "cannot open shader
+/// file: ...", "is a folder, not a shader file"); without it they say "file" or nothing.
+std::string readWhole(const std::filesystem::path& file, std::size_t maxBytes, std::string_view kind = {});
+
+/// Opens `file` and closes it again, for a reader that says less than FileError does (assimp:
+/// "Unable to open file") and must only be handed a file it can open: the failures of readWhole
+/// (`kind` as there), and anything but a regular file, which such a reader would wait on for ever
+/// (a pipe with no writer) or seek in.
+void checkRegularFile(const std::filesystem::path& file, std::string_view kind);
 
 }  // namespace fileio
