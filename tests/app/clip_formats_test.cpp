@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -273,6 +274,183 @@ TEST(ClipFormats, TheSeedsXFilesAreReadAsTurnsFromRest) {
   // (1, 0, 2); .x is left-handed, and assimp makes it right-handed by turning z round.
   EXPECT_NEAR(glm::length(clip.root[1] - Vec3(1.0, 0.9, -2.0)), 0.0, 1e-5)
       << clip.root[1].x << " " << clip.root[1].y << " " << clip.root[1].z;
+}
+
+// The message parseClip refuses `content` with, or "loaded".
+std::string refusal(const std::string& content, const std::string& name) {
+  try {
+    clips::parseClip(content, name, std::filesystem::path(name).extension().string().substr(1));
+  } catch (const clips::ClipError& e) {
+    return e.what();
+  }
+  return "loaded";
+}
+
+std::string readText(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The leg written by assimp as `format`, as text.
+std::string legFile(const testing_app::TempFolder& dir, const char* format, const char* extension) {
+  const std::unique_ptr<aiScene> scene = legScene();
+  const std::filesystem::path file = dir.path / (std::string("leg.") + extension);
+  Assimp::Exporter exporter;
+  EXPECT_EQ(exporter.Export(scene.get(), format, file.string()), aiReturn_SUCCESS)
+      << exporter.GetErrorString();
+  return readText(file);
+}
+
+// `text` with its first `from` made `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+std::string repeated(const std::string& s, int times) {
+  std::string out;
+  for (int i = 0; i < times; ++i) out += s;
+  return out;
+}
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// assimp reads forty formats, most of them meshes; a clip is read from five, each through its own
+// reader alone.
+TEST(ClipFormats, OnlyTheClipFormatsAreRead) {
+  const std::string obj = refusal("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "mesh.obj");
+  EXPECT_TRUE(has(obj, "mesh.obj: not a clip file: clips are read from BVH (.bvh), FBX (.fbx), glTF")) << obj;
+  const std::string none = refusal("#!/bin/sh\n", "script.sh");
+  EXPECT_TRUE(has(none, "script.sh: not a clip file")) << none;
+}
+
+// A glTF names its buffers by path, which assimp opened from the working folder, and any path at all
+// (a pipe there held the reader for good): a clip is read from its own bytes alone.
+TEST(ClipFormats, AGltfReadsNoFileButItself) {
+  const testing_app::TempFolder dir;
+  std::string gltf = legFile(dir, "gltf2", "gltf");
+  const std::string bin = (dir.path / "leg.bin").string();
+  ASSERT_TRUE(std::filesystem::exists(bin));
+  gltf = replaced(gltf, "\"uri\": \"leg.bin\"", "\"uri\": \"" + bin + "\"");
+  const std::string e = refusal(gltf, "leg.gltf");
+  EXPECT_TRUE(has(e, "leg.gltf: not a clip assimp can read: GLTF: could not open referenced file \"" + bin))
+      << e;
+}
+
+// assimp's readers recurse once a level of JSON, XML, braces or nodes: 50,000 levels overflowed the
+// stack in each. Refused past 256, with the line (or the node).
+TEST(ClipFormats, NestingTooDeepIsRefusedWithTheLine) {
+  constexpr int kLevels = 50000;
+  const std::string deepJson = "{\"asset\": {\"version\": \"2.0\"},\n\"extras\": " + repeated("[", kLevels) +
+                               repeated("]", kLevels) + "}";
+  EXPECT_EQ(refusal(deepJson, "deep.gltf"),
+            "deep.gltf:2: objects and arrays nested more than 256 deep (a skeleton's are tens deep)");
+  std::string chain =
+      "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [";
+  for (int i = 0; i < kLevels; ++i) chain += "{\"children\": [" + std::to_string(i + 1) + "]}, ";
+  chain += "{}]}";
+  EXPECT_EQ(refusal(chain, "chain.gltf"),
+            "chain.gltf: node 257: nodes nested more than 256 deep (a skeleton's are tens deep)");
+
+  const testing_app::TempFolder dir;
+  const std::string dae = legFile(dir, "collada", "dae");
+  const std::string deepDae =
+      replaced(dae, "<node id=\"shin\"",
+               repeated("<node>", kLevels) + repeated("</node>", kLevels) + "<node id=\"shin\"");
+  const std::size_t line = 1 + std::count(dae.begin(), dae.begin() + dae.find("<node id=\"shin\""), '\n');
+  const std::string e = refusal(deepDae, "deep.dae");
+  EXPECT_TRUE(has(e, "deep.dae:" + std::to_string(line) + ": elements nested more than 256 deep")) << e;
+
+  const std::string fbx = legFile(dir, "fbxa", "fbx");
+  const std::string deepFbx =
+      replaced(fbx, "Objects:  {", "Deep: " + repeated("{ A: ", kLevels) + "\nObjects:  {");
+  const std::size_t fbxLine = 1 + std::count(fbx.begin(), fbx.begin() + fbx.find("Objects:  {"), '\n');
+  const std::string f = refusal(deepFbx, "deep.fbx");
+  EXPECT_EQ(f, "deep.fbx:" + std::to_string(fbxLine) +
+                   ": braces nested more than 256 deep (a skeleton's are tens deep)");
+
+  const std::string deepX =
+      replaced(xFile(), " Frame hips {", repeated(" Frame f {\n", kLevels) + " Frame hips {");
+  const std::string x = refusal(deepX, "deep.x");
+  EXPECT_TRUE(has(x, "deep.x:") && has(x, ": braces nested more than 256 deep")) << x;
+}
+
+// assimp allocates what a count says before it reads the values: a COLLADA array, an FBX array and
+// a .x mesh of 4,000,000,000 each asked for 16 GB or more.
+TEST(ClipFormats, CountsTheFileDoesNotHoldAreRefusedWithTheLine) {
+  const testing_app::TempFolder dir;
+  const std::string dae = legFile(dir, "collada", "dae");
+  const std::size_t array = dae.find("<float_array");
+  const std::size_t count = dae.find("count=\"", array) + 7;
+  const std::string bigDae = dae.substr(0, count) + "4000000000" + dae.substr(dae.find('"', count));
+  const std::string d = refusal(bigDae, "big.dae");
+  EXPECT_TRUE(has(d, "big.dae:" + std::to_string(1 + std::count(dae.begin(), dae.begin() + array, '\n')) +
+                         ": <float_array> says count=\"4000000000\" but holds "))
+      << d;
+  const std::string negative = dae.substr(0, count) + "-1" + dae.substr(dae.find('"', count));
+  EXPECT_TRUE(has(refusal(negative, "neg.dae"), "<float_array> count=\"-1\" is not a whole number"));
+
+  const std::string fbx = legFile(dir, "fbxa", "fbx");
+  const std::string keyTimes =
+      fbx.substr(fbx.find("KeyTime: *"), fbx.find(" {", fbx.find("KeyTime: *")) - fbx.find("KeyTime: *"));
+  const std::string bigFbx = replaced(fbx, keyTimes + " {", "KeyTime: *4000000000 {");
+  const std::string f = refusal(bigFbx, "big.fbx");
+  EXPECT_TRUE(has(f, ": KeyTime: *4000000000 holds ")) << f;
+
+  const std::string bigX =
+      replaced(xFile(), "Frame root {", "Mesh m { 4000000000; 0.0;0.0;0.0;; }\nFrame root {");
+  const std::string x = refusal(bigX, "big.x");
+  EXPECT_TRUE(has(x, "big.x:3: Mesh of 4000000000, more than the ")) << x;
+}
+
+// assimp 5.2 asserts that each index of a COLLADA accessor is within its array, and aborted on a
+// stride that reads past it.
+TEST(ClipFormats, ColladaAccessorsStayWithinTheirArrays) {
+  const testing_app::TempFolder dir;
+  const std::string dae = legFile(dir, "collada", "dae");
+  const std::string strided = replaced(dae, "stride=\"16\"", "stride=\"4000000000\"");
+  const std::string e = refusal(strided, "stride.dae");
+  EXPECT_TRUE(has(e, "<accessor> of count=\"3\" reads ")) << e;
+}
+
+// An FBX curve of no times and no values made assimp 5.2 read through a null pointer.
+TEST(ClipFormats, AnFbxCurveOfNoKeysIsRefused) {
+  const testing_app::TempFolder dir;
+  std::string fbx = legFile(dir, "fbxa", "fbx");
+  const std::size_t times = fbx.find("KeyTime: *");
+  const std::size_t end = fbx.find("KeyAttrFlags", times);
+  fbx.replace(times, end - times, "KeyTime: *0 {\n a: \n}\nKeyValueFloat: *0 {\n a: \n}\n");
+  const std::string e = refusal(fbx, "empty.fbx");
+  EXPECT_TRUE(has(e, ": KeyTime: *0: an animation curve of no keys")) << e;
+}
+
+// What assimp reads or refuses itself, and what the clip's own checks then refuse: every format's
+// truncated file, and keys that are not finite, out of time order or at one time.
+TEST(ClipFormats, WhatAssimpRefusesOrReadsIsRefusedWithTheReason) {
+  const testing_app::TempFolder dir;
+  for (const auto& [format, extension] : {std::pair{"fbxa", "fbx"}, {"collada", "dae"}, {"glb2", "glb"}}) {
+    const std::string whole = legFile(dir, format, extension);
+    EXPECT_EQ(refusal(whole, std::string("leg.") + extension), "loaded") << format;
+    const std::string cut = refusal(whole.substr(0, whole.size() / 2), std::string("cut.") + extension);
+    EXPECT_TRUE(has(cut, "not a clip assimp can read: ")) << cut;
+  }
+  EXPECT_TRUE(has(refusal(xFile().substr(0, 300), "cut.x"), "cut.x: not a clip assimp can read: "));
+
+  const std::string dae = legFile(dir, "collada", "dae");
+  const std::size_t times = dae.find("<float_array", dae.find("<library_animations"));
+  const std::size_t from = dae.find('>', times) + 1;
+  const std::string keys = dae.substr(from, dae.find('<', from) - from);
+  const std::string nan = refusal(replaced(dae, keys, " 0 nan 0.0666 "), "nan.dae");
+  EXPECT_TRUE(nan != "loaded" && has(nan, "nan.dae: ")) << nan;
+  EXPECT_NE(refusal(replaced(dae, keys, " 0 0.0666 0.0333 "), "order.dae"), "loaded");
+  EXPECT_NE(refusal(replaced(dae, keys, " 0 0 0 "), "same.dae"), "loaded");
+  const std::string x = xFile();
+  const std::string turned = replaced(x, "AnimTicksPerSecond { 30; }", "AnimTicksPerSecond { -30; }");
+  EXPECT_EQ(refusal(turned, "ticks.x"), "ticks.x: its frame time is not finite and >= 1e-6 s");
 }
 
 }  // namespace

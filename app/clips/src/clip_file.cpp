@@ -8,20 +8,25 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <iterator>
 #include <limits>
 #include <optional>
+#include <set>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <assimp/BaseImporter.h>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
 #include <assimp/scene.h>
 
 #include "fileio/files.h"
+#include "format_checks.h"
 
 namespace clips {
 namespace {
@@ -209,6 +214,40 @@ void checkBvh(std::string_view content, const std::string& name) {
   if (skeleton.complete) checkBvhMotion(words, skeleton, name);
 }
 
+// The formats a clip is read from, by extension (a BVH also by its first word), and the check each
+// is given before assimp reads it. assimp reads some forty more, most of them meshes with no
+// skeleton; each is a reader more for a hostile file to reach, so none of them is asked.
+struct ClipFormat {
+  const char* extension;
+  void (*check)(std::string_view content, const std::string& name);
+};
+constexpr ClipFormat kClipFormats[] = {
+    {"bvh", checkBvh},         {"fbx", detail::checkFbx},     {"gltf", detail::checkGltf},
+    {"glb", detail::checkGlb}, {"dae", detail::checkCollada}, {"x", detail::checkX}};
+
+// No file but the one in memory: a glTF names its buffers by path, which assimp opened from the
+// working folder (not the clip's), and any path at all: a pipe there held the reader for good.
+class NoOtherFiles : public Assimp::IOSystem {
+ public:
+  bool Exists(const char* /*file*/) const override { return false; }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char* /*file*/, const char* /*mode*/) override { return nullptr; }
+  void Close(Assimp::IOStream* file) override { delete file; }
+};
+
+// Leaves `importer` only the reader of `extension`, so that the file is read as the format its
+// check assumed, whatever its bytes look like to the other readers.
+void keepOnlyReaderOf(Assimp::Importer& importer, const std::string& extension) {
+  for (std::size_t i = importer.GetImporterCount(); i-- > 0;) {
+    Assimp::BaseImporter* reader = importer.GetImporter(i);
+    std::set<std::string> extensions;
+    reader->GetExtensionList(extensions);
+    if (extensions.contains(extension)) continue;
+    importer.UnregisterLoader(reader);
+    delete reader;  // unregistered, it is ours
+  }
+}
+
 // assimp's reason for refusing a file read from memory, and the line it names (0 if none). assimp
 // names the file after its placeholder ("$$$___magic___$$$.bvh"), which the message has already
 // said before the colon: the placeholder goes, and a line it gives is kept.
@@ -282,8 +321,17 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   std::transform(format.begin(), format.end(), format.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   const bool bvh = isBvh(content, format);
-  if (bvh) checkBvh(content, name);
+  if (bvh) format = "bvh";
+  const auto* known = std::find_if(std::begin(kClipFormats), std::end(kClipFormats),
+                                   [&](const ClipFormat& f) { return format == f.extension; });
+  if (known == std::end(kClipFormats))
+    throw ClipError(name,
+                    "not a clip file: clips are read from BVH (.bvh), FBX (.fbx), glTF (.gltf, .glb), "
+                    "COLLADA (.dae) and DirectX (.x) files");
+  known->check(content, name);
   Assimp::Importer importer;
+  importer.SetIOHandler(new NoOtherFiles);  // the importer owns it
+  keepOnlyReaderOf(importer, format);
   // FBX's pivots as the nodes' own transforms, not as helper nodes the animation would key instead.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
   const aiScene* scene = importer.ReadFileFromMemory(content.data(), content.size(), 0, format.c_str());

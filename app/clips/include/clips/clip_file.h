@@ -15,9 +15,9 @@ namespace clips {
 
 /// A clip file that cannot be read or used. what() reads "FILE: why", or "FILE:LINE: why" where the
 /// reason has a line (the OS's reason when the file could not be read, assimp's when it could not
-/// be parsed, ours when what it holds is no clip; and ours, before assimp reads a BVH, for what
-/// assimp would take on trust: joints nested too deep or too many, a frame count its numbers do not
-/// make).
+/// be parsed, ours when what it holds is no clip; and ours, before assimp reads the file, for a
+/// format no clip is read from and for what assimp would take on trust: nesting too deep, counts the
+/// file does not hold; docs/physics.md, "Animation").
 class ClipError : public std::runtime_error {
  public:
   ClipError(const std::filesystem::path& file, const std::string& why);

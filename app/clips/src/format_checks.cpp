@@ -1,0 +1,383 @@
+// What assimp takes on trust in FBX, glTF, COLLADA and .x (format_checks.h).
+#include "format_checks.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include <pugixml.hpp>
+
+#include "clips/clip_file.h"
+
+namespace clips::detail {
+namespace {
+
+std::size_t lineAt(std::string_view text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  return 1 + static_cast<std::size_t>(
+                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+}
+
+bool isSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
+
+// A count written as digits alone, nullopt otherwise; a count past 64 bits is the most there is.
+std::optional<std::uint64_t> wholeNumber(std::string_view word) {
+  std::uint64_t n = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
+  if (word.empty() || end != word.data() + word.size()) return std::nullopt;
+  if (error == std::errc::result_out_of_range) return std::numeric_limits<std::uint64_t>::max();
+  if (error != std::errc()) return std::nullopt;
+  return n;
+}
+
+std::string tooDeep(const std::string& what) {
+  return what + " nested more than " + std::to_string(kMaxDepth) + " deep (a skeleton's are tens deep)";
+}
+
+// ---- glTF ----
+
+// An open JSON container, and what it is in a glTF: the top-level "nodes" array, a node, or a
+// node's "children".
+struct JsonFrame {
+  char type;        // '{' or '['
+  std::string key;  // an object's last key
+  bool expectKey = true;
+  bool nodes = false;
+  bool node = false;
+  bool children = false;
+  std::size_t nodeIndex = 0;  // a node's, or the node whose children these are
+};
+
+// The JSON's containers, nested no deeper than kMaxDepth (assimp's JSON reader recurses once a level:
+// 200,000 '[' overflowed the stack), and each node's children; a JSON that is not well formed is
+// left for assimp's reader to refuse.
+std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, const std::string& name,
+                                                     const std::string& where) {
+  std::vector<std::vector<std::uint64_t>> children;
+  std::vector<JsonFrame> stack;
+  std::size_t i = 0;
+  const auto fail = [&](const std::string& why) {
+    if (where.empty()) throw ClipError(name, lineAt(json, i), why);
+    throw ClipError(name, where + "line " + std::to_string(lineAt(json, i)) + ": " + why);
+  };
+  while (i < json.size()) {
+    const char c = json[i];
+    if (isSpace(c) || c == ':') {
+      ++i;
+    } else if (c == ',') {
+      if (!stack.empty() && stack.back().type == '{') stack.back().expectKey = true;
+      ++i;
+    } else if (c == '{' || c == '[') {
+      JsonFrame frame{c, "", true};
+      if (!stack.empty()) {
+        const JsonFrame& parent = stack.back();
+        frame.nodes = c == '[' && stack.size() == 1 && parent.type == '{' && parent.key == "nodes";
+        frame.node = c == '{' && parent.nodes;
+        frame.children = c == '[' && parent.node && parent.key == "children";
+        if (frame.node) {
+          frame.nodeIndex = children.size();
+          children.emplace_back();
+        } else if (frame.children) {
+          frame.nodeIndex = parent.nodeIndex;
+        }
+      }
+      stack.push_back(frame);
+      if (stack.size() > static_cast<std::size_t>(kMaxDepth)) fail(tooDeep("objects and arrays"));
+      ++i;
+    } else if (c == '}' || c == ']') {
+      if (stack.empty()) return children;
+      stack.pop_back();
+      ++i;
+    } else if (c == '"') {
+      const std::size_t start = ++i;
+      while (i < json.size() && json[i] != '"') i += json[i] == '\\' ? 2 : 1;
+      if (i >= json.size()) return children;
+      if (!stack.empty() && stack.back().type == '{' && stack.back().expectKey) {
+        stack.back().key = std::string(json.substr(start, i - start));
+        stack.back().expectKey = false;
+      }
+      ++i;
+    } else {
+      const std::size_t start = i;
+      while (i < json.size() && !isSpace(json[i]) && std::strchr(",:{}[]\"", json[i]) == nullptr) ++i;
+      if (i == start) ++i;
+      if (!stack.empty() && stack.back().children) {
+        if (const std::optional<std::uint64_t> child = wholeNumber(json.substr(start, i - start)))
+          children[stack.back().nodeIndex].push_back(*child);
+      }
+    }
+  }
+  return children;
+}
+
+// The nodes' tree no deeper than kMaxDepth: assimp's glTF reader recurses once a level, and a chain
+// of 100,000 nodes overflowed the stack. A node that is its own ancestor is left for assimp, which
+// refuses it.
+void checkNodeDepth(const std::vector<std::vector<std::uint64_t>>& children, const std::string& name) {
+  const std::size_t n = children.size();
+  std::vector<bool> isChild(n, false);
+  for (const auto& list : children)
+    for (const std::uint64_t c : list)
+      if (c < n) isChild[c] = true;
+  std::vector<int> level(n, -1);
+  std::vector<std::size_t> frontier;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!isChild[i]) {
+      level[i] = 0;
+      frontier.push_back(i);
+    }
+  while (!frontier.empty()) {
+    std::vector<std::size_t> next;
+    for (const std::size_t parent : frontier) {
+      for (const std::uint64_t c : children[parent]) {
+        if (c >= n || level[c] >= 0) continue;
+        level[c] = level[parent] + 1;
+        if (level[c] > kMaxDepth)
+          throw ClipError(name, "node " + std::to_string(c) + ": " + tooDeep("nodes"));
+        next.push_back(c);
+      }
+    }
+    frontier = std::move(next);
+  }
+}
+
+// ---- COLLADA ----
+
+// Values a <param> of this type takes in an accessor's stride.
+std::uint64_t paramWidth(std::string_view type) {
+  const auto digit = [](char c) { return c >= '1' && c <= '9' ? static_cast<std::uint64_t>(c - '0') : 1; };
+  if (type.starts_with("float") && type.size() == 8 && type[6] == 'x') return digit(type[5]) * digit(type[7]);
+  if (type.starts_with("float") && type.size() == 6) return digit(type[5]);
+  return 1;
+}
+
+std::uint64_t wordsIn(const char* text) {
+  std::uint64_t words = 0;
+  bool inWord = false;
+  for (; *text != '\0'; ++text) {
+    const bool space = isSpace(*text);
+    if (!space && !inWord) ++words;
+    inWord = !space;
+  }
+  return words;
+}
+
+struct Accessor {
+  std::uint64_t count, offset, stride, width;
+  std::string source;
+  std::size_t line;
+};
+
+// Counts larger than this are more than any clip file holds (it is read whole, at most 64 MB).
+constexpr std::uint64_t kMostValues = std::uint64_t{1} << 32;
+
+class ColladaWalker : public pugi::xml_tree_walker {
+ public:
+  ColladaWalker(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+
+  bool for_each(pugi::xml_node& node) override {
+    if (node.type() != pugi::node_element) return true;
+    const std::size_t line =
+        lineAt(text_, static_cast<std::size_t>(std::max<std::ptrdiff_t>(node.offset_debug(), 0)));
+    if (depth() >= kMaxDepth) throw ClipError(name_, line, tooDeep("elements"));
+    const std::string_view element = node.name();
+    if (element.ends_with("_array") && node.attribute("count")) {
+      const std::uint64_t count = countOf(node, "count", line);
+      const std::uint64_t held = wordsIn(node.child_value());
+      if (held < count)
+        throw ClipError(name_, line,
+                        "<" + std::string(element) + "> says count=\"" + std::to_string(count) +
+                            "\" but holds " + std::to_string(held) + " values");
+      if (const char* id = node.attribute("id").value(); *id != '\0') arrays_[id] = count;
+    } else if (element == "accessor") {
+      Accessor a{countOf(node, "count", line), 0, 1, 0, node.attribute("source").value(), line};
+      if (node.attribute("offset")) a.offset = countOf(node, "offset", line);
+      if (node.attribute("stride")) a.stride = countOf(node, "stride", line);
+      for (const pugi::xml_node param : node.children("param"))
+        a.width += paramWidth(param.attribute("type").value());
+      if (a.source.starts_with('#')) a.source.erase(0, 1);
+      accessors_.push_back(a);
+    }
+    return true;
+  }
+
+  // Each accessor reads its values within its array (assimp 5.2 asserts each index, and aborted on
+  // one past the end: stride="4000000000").
+  void checkAccessors() const {
+    for (const Accessor& a : accessors_) {
+      const auto array = arrays_.find(a.source);
+      if (array == arrays_.end() || a.count == 0) continue;
+      const std::uint64_t need = a.offset + a.stride * (a.count - 1) + std::max(a.stride, a.width);
+      if (need > array->second)
+        throw ClipError(name_, a.line,
+                        "<accessor> of count=\"" + std::to_string(a.count) + "\" reads " +
+                            std::to_string(need) + " values of '" + a.source + "', which holds " +
+                            std::to_string(array->second));
+    }
+  }
+
+ private:
+  std::uint64_t countOf(const pugi::xml_node& node, const char* attribute, std::size_t line) const {
+    const std::string_view value = node.attribute(attribute).value();
+    const std::optional<std::uint64_t> n = wholeNumber(value);
+    if (!n || *n > kMostValues)
+      throw ClipError(name_, line,
+                      "<" + std::string(node.name()) + "> " + attribute + "=\"" + std::string(value) +
+                          "\" is not a whole number of values a file holds");
+    return *n;
+  }
+
+  std::string_view text_;
+  const std::string& name_;
+  std::map<std::string, std::uint64_t, std::less<>> arrays_;
+  std::vector<Accessor> accessors_;
+};
+
+// ---- FBX and .x as text ----
+
+// A text's tokens: words, strings and braces, each with its offset; comments begin with `comment`.
+class Tokens {
+ public:
+  Tokens(std::string_view text, std::string_view comment) : text_(text), comment_(comment) {}
+
+  std::string_view next() {
+    for (;;) {
+      while (at_ < text_.size() && isSpace(text_[at_])) ++at_;
+      if (at_ >= text_.size()) return {};
+      if (!text_.substr(at_).starts_with(comment_)) break;
+      while (at_ < text_.size() && text_[at_] != '\n') ++at_;
+    }
+    start_ = at_;
+    if (text_[at_] == '"') {
+      const std::size_t close = text_.find('"', at_ + 1);
+      at_ = close == std::string_view::npos ? text_.size() : close + 1;
+    } else if (std::strchr("{},;", text_[at_]) != nullptr) {
+      ++at_;
+    } else {
+      while (at_ < text_.size() && !isSpace(text_[at_]) && std::strchr("{},;\"", text_[at_]) == nullptr)
+        ++at_;
+    }
+    return text_.substr(start_, at_ - start_);
+  }
+  /// The line of the token last read, and the bytes after it.
+  std::size_t line() const { return lineAt(text_, start_); }
+  std::size_t left() const { return text_.size() - at_; }
+
+ private:
+  std::string_view text_;
+  std::string_view comment_;
+  std::size_t at_ = 0;
+  std::size_t start_ = 0;
+};
+
+// An FBX array's values after its `*N`: `{ a: v,v,... }`, counted; nullopt if it is not one.
+std::optional<std::uint64_t> fbxArrayValues(Tokens& tokens) {
+  if (tokens.next() != "{" || tokens.next() != "a:") return std::nullopt;
+  std::uint64_t values = 0;
+  for (std::string_view word = tokens.next(); !word.empty() && word != "}"; word = tokens.next())
+    if (word != ",") ++values;
+  return values;
+}
+
+}  // namespace
+
+void checkGltf(std::string_view json, const std::string& name) {
+  checkNodeDepth(scanGltfJson(json, name, ""), name);
+}
+
+void checkGlb(std::string_view content, const std::string& name) {
+  // The header (magic, version, length), then the first chunk (length, type), which is the JSON.
+  constexpr std::size_t kJsonAt = 20;
+  if (content.size() < kJsonAt || !content.starts_with("glTF") || content.substr(16, 4) != "JSON") return;
+  std::uint32_t length = 0;
+  std::memcpy(&length, content.data() + 12, sizeof length);
+  const std::string_view json = content.substr(kJsonAt, length);
+  checkNodeDepth(scanGltfJson(json, name, "its JSON chunk, "), name);
+}
+
+void checkCollada(std::string_view content, const std::string& name) {
+  pugi::xml_document document;
+  if (!document.load_buffer(content.data(), content.size())) return;  // assimp's reader says why
+  ColladaWalker walker(content, name);
+  document.traverse(walker);
+  walker.checkAccessors();
+}
+
+void checkFbx(std::string_view content, const std::string& name) {
+  if (content.starts_with("Kaydara FBX Binary")) return;
+  Tokens tokens(content, ";");
+  int depth = 0;
+  std::string_view key;
+  for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next()) {
+    if (word == "{") {
+      if (++depth > kMaxDepth) throw ClipError(name, tokens.line(), tooDeep("braces"));
+    } else if (word == "}") {
+      --depth;
+    } else if (word.starts_with('*')) {
+      // assimp allocates the N values of `*N` before it reads them: *4000000000 asked for 16 GB.
+      const std::size_t line = tokens.line();
+      const std::optional<std::uint64_t> count = wholeNumber(word.substr(1));
+      if (!count)
+        throw ClipError(name, line,
+                        std::string(key) + " " + std::string(word) + ": not a whole number of values");
+      const std::optional<std::uint64_t> values = fbxArrayValues(tokens);
+      if (!values) continue;  // not an array: left for assimp's reader
+      if (*values < *count)
+        throw ClipError(
+            name, line,
+            std::string(key) + " " + std::string(word) + " holds " + std::to_string(*values) + " values");
+      // A curve of no times and no values made assimp 5.2 read through a null pointer.
+      if (*count == 0 && (key == "KeyTime:" || key == "KeyValueFloat:"))
+        throw ClipError(name, line, std::string(key) + " *0: an animation curve of no keys");
+    } else if (word.ends_with(':')) {
+      key = word;
+    }
+  }
+}
+
+void checkX(std::string_view content, const std::string& name) {
+  if (content.size() < 16 || !content.starts_with("xof ") || content.substr(8, 4) != "txt ") return;
+  Tokens tokens(content.substr(16), "//");
+  int depth = 0;
+  std::string_view first;  // the first word of the block's header: its template's name
+  bool header = true;
+  const auto line = [&] { return tokens.line() + lineAt(content, 16) - 1; };
+  for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next()) {
+    if (word == "{") {
+      if (++depth > kMaxDepth) throw ClipError(name, line(), tooDeep("braces"));
+      // A mesh's first number is a count of what follows, and assimp allocates them all before
+      // reading one: 4000000000 vertices asked for 48 GB.
+      if (first == "Mesh" || first == "MeshNormals" || first == "MeshTextureCoords" ||
+          first == "MeshVertexColors" || first == "MeshMaterialList") {
+        const std::string_view count = tokens.next();
+        const std::optional<std::uint64_t> n = wholeNumber(count);
+        if (n && *n > tokens.left())
+          throw ClipError(name, line(),
+                          std::string(first) + " of " + std::string(count) + ", more than the " +
+                              std::to_string(tokens.left()) + " bytes after it hold");
+      }
+      header = true;
+      first = {};
+    } else if (word == "}" || word == ";" || word == ",") {
+      if (word == "}") --depth;
+      header = true;
+      first = {};
+    } else if (header) {
+      first = word;
+      header = false;
+    }
+  }
+}
+
+}  // namespace clips::detail
