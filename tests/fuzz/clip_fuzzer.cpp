@@ -1,6 +1,8 @@
-// libFuzzer target: the bytes are a BVH clip file (app/clips; docs/architecture.md, "Fuzzing"). The
-// clip reader (its own checks of what assimp would take on trust, then assimp's BVH reader, then its
-// own of the animation assimp gives) must refuse what is no clip with ClipError, and a clip it
+// libFuzzer target: the bytes are a clip file (app/clips; docs/architecture.md, "Fuzzing"): a first
+// byte of 1 to 5 says the rest is FBX, glTF, binary glTF, COLLADA or .x, and any other first byte
+// that the whole is a BVH (so BVH files are seeds as they are). The clip reader (its own checks of
+// what assimp would take on trust, then assimp's reader, then its own of the animation assimp
+// gives) must refuse what is no clip with ClipError, and a clip it
 // returns must play: sampled before its start, within it, at its end, looped many times over and at
 // the largest time a clock holds, every pose is finite with turns of unit length. Anything else (a
 // crash, a sanitizer report, another exception, a pose that is not sound) prints what and aborts,
@@ -10,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -56,13 +59,22 @@ void checkPlays(const phys::Clip& clip) {
   }
 }
 
+// The formats a first byte of 1 to 5 picks.
+constexpr const char* kOtherFormats[] = {"fbx", "gltf", "glb", "dae", "x"};
+constexpr std::size_t kOtherFormatCount = std::size(kOtherFormats);
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string_view input(reinterpret_cast<const char*>(data), size);
+  std::string_view input(reinterpret_cast<const char*>(data), size);
+  std::string format = "bvh";
+  if (size > 0 && data[0] >= 1 && data[0] <= kOtherFormatCount) {
+    format = kOtherFormats[data[0] - 1];
+    input.remove_prefix(1);
+  }
   std::optional<phys::Clip> clip;
   try {
-    clip.emplace(clips::parseClip(input, "input.bvh", "bvh"));
+    clip.emplace(clips::parseClip(input, "input." + format, format));
   } catch (const clips::ClipError&) {
     return 0;  // refused with file, line and reason: what the reader is for
   } catch (const std::exception& e) {
