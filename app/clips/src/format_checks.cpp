@@ -218,7 +218,13 @@ class ColladaWalker : public pugi::xml_tree_walker {
     for (const Accessor& a : accessors_) {
       const auto array = arrays_.find(a.source);
       if (array == arrays_.end() || a.count == 0) continue;
-      const std::uint64_t need = a.offset + a.stride * (a.count - 1) + std::max(a.stride, a.width);
+      // Each term is at most 2^32 (countOf) and the product under 2^64, but the sum can pass 2^64:
+      // it stops at the largest count, so that a wrapped sum never reads as a small one.
+      const auto plus = [](std::uint64_t x, std::uint64_t y) {
+        return x > std::numeric_limits<std::uint64_t>::max() - y ? std::numeric_limits<std::uint64_t>::max()
+                                                                 : x + y;
+      };
+      const std::uint64_t need = plus(plus(a.offset, a.stride * (a.count - 1)), std::max(a.stride, a.width));
       if (need > array->second)
         throw ClipError(name_, a.line,
                         "<accessor> of count=\"" + std::to_string(a.count) + "\" reads " +
