@@ -8,6 +8,7 @@
 #include <iterator>
 #include <string_view>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -122,6 +123,11 @@ void stepOnce(Session& session, UiState& ui) {
   }
 }
 
+void togglePause(UiState& ui) {
+  if (std::exchange(ui.replaying, false)) return;  // Play stops, paused where it was
+  ui.paused = !ui.paused;
+}
+
 void applyRemembered(const UserSettings& user, const Options& options, UiState& ui) {
   ui.showSimulation = user.showSimulation;
   ui.showWorld = user.showWorld;
@@ -178,7 +184,10 @@ void settingsSection(Session& session, UiState& ui) {
   const phys::World& world = session.scene().world;
   ImGui::TextWrapped("%s: %s", scene.name.c_str(), scene.description.c_str());
   ImGui::Text("t = %.2f s, step %ld", world.time(), world.stepCount());
-  ImGui::Checkbox("Pause (Space)", &ui.paused);
+  // The box shows the state and a click does what Space does (togglePause): during Play, which
+  // shows the recording paused, a click stops Play rather than leave it going with the clock running.
+  bool paused = ui.paused;
+  if (ImGui::Checkbox("Pause (Space)", &paused)) togglePause(ui);
   ImGui::SameLine();
   if (ImGui::Button("Step (N)")) stepOnce(session, ui);
   ImGui::SameLine();

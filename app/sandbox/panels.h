@@ -70,6 +70,9 @@ struct UiState {
 /// the timeline), shows the next one, as recorded; else asks for a new step (ui.stepOnce), which
 /// with a body held pulls it, and forks the recording there.
 void stepOnce(Session& session, UiState& ui);
+/// Space, and the panels' Pause: while Play shows the recording, stops it, paused at the step shown;
+/// else pauses or runs.
+void togglePause(UiState& ui);
 
 /// The panels as the last run left them, with the command line's --draw, --markers and
 /// --overlay on top (the overlay's fields get examples where the command line gave none).

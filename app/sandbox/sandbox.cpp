@@ -275,8 +275,7 @@ void Sandbox::perform(Action action) {
       ui_.message = s.status();
       break;
     case Action::Pause:
-      if (std::exchange(ui_.replaying, false)) break;  // Space stops Play, paused where it was
-      ui_.paused = !ui_.paused;
+      togglePause(ui_);
       break;
     case Action::StepOnce:
       stepOnce(s, ui_);

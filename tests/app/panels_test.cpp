@@ -164,4 +164,29 @@ TEST_F(PanelsUi, StepGoesAlongTheRecordingAsNDoes) {
   EXPECT_TRUE(ui.stepOnce);
 }
 
+// The Simulation panel's "Pause (Space)" does what Space does in every state. During Play (which
+// shows the recording paused) unticking it left Play going, where Space stops it, paused at the
+// step shown.
+TEST_F(PanelsUi, PauseDoesWhatSpaceDoes) {
+  for (int i = 0; i < 100; ++i) session.step();
+  ASSERT_EQ(session.rewindTo(10), "");
+  ui.paused = true;
+  hover("Play");
+  click();
+  ASSERT_TRUE(ui.replaying);
+  ASSERT_TRUE(ui.paused);
+
+  hover("Pause (Space)");
+  click();
+  EXPECT_FALSE(ui.replaying);
+  EXPECT_TRUE(ui.paused);
+  EXPECT_EQ(session.scene().world.stepCount(), 10);
+
+  click();  // paused: runs
+  EXPECT_FALSE(ui.paused);
+  click();  // running: pauses
+  EXPECT_TRUE(ui.paused);
+  EXPECT_FALSE(ui.replaying);
+}
+
 }  // namespace
