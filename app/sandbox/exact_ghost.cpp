@@ -19,17 +19,47 @@ void ExactGhost::reset(const scenes::Scene& scene) {
   clear();
   answers_ = answersOf(scene);
   const phys::World& w = scene.world;
-  if (answers_.empty() || w.particles().size() + w.rigidBodies().size() > kMaxGhostParticlesAndBodies) return;
+  if (answers_.empty()) return;
+  for (std::size_t i = 0; i < w.particles().size(); ++i) {
+    const phys::ParticleId id(i);
+    particles_.push_back({w.particleName(id), w.particles().inverseMass[i], w.particleBodies()[i]});
+  }
+  for (const phys::Body& b : w.bodies()) bodies_.push_back(b.name);
+  if (w.particles().size() + w.rigidBodies().size() > kMaxGhostParticlesAndBodies) return;
   start_.emplace(w);
   start_->clearDrag();
   start_->setSolverSettings(lab::referenceSettings(w, w.solverSettings().dt));
 }
 
 void ExactGhost::clear() {
+  particles_.clear();
+  bodies_.clear();
   answers_.clear();
   start_.reset();
   now_.reset();
   snapshots_.clear();
+}
+
+bool ExactGhost::holds(const phys::World& shown) const {
+  if (answers_.empty() || shown.particles().size() < particles_.size() ||
+      shown.bodies().size() < bodies_.size())
+    return false;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const Particle& p = particles_[i];
+    const phys::ParticleId id(i);
+    if (shown.particles().inverseMass[i] != p.inverseMass || shown.particleBodies()[i] != p.body ||
+        shown.particleName(id) != p.name)
+      return false;
+  }
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (shown.bodies()[b].name != bodies_[b]) return false;
+  }
+  return true;
+}
+
+ExactGhost::Drawn ExactGhost::beside(const phys::World& shown) {
+  if (!holds(shown)) return {};
+  return {at(shown.time(), shown.solverSettings().dt), answers_};
 }
 
 const phys::World* ExactGhost::at(double time, double dt) {

@@ -4,8 +4,12 @@
 // reference settings (lab::referenceSettings: 128 substeps of a method that converges), and drawn
 // beside the simulated one at the same time. Its crosses are the closed-form positions at a few
 // times; the ghost is where the answer is in between, so one sees the simulated body drift from
-// it as it goes.
+// it as it goes. Both are of the scene's bodies, so they are drawn only beside a world that holds
+// them: not once key 0 has cleared them, back when a rewind, Reload or a recording brings them.
+#include <cstddef>
 #include <optional>
+#include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -27,11 +31,24 @@ inline constexpr std::size_t kMaxGhostSnapshots = 256;
 
 class ExactGhost {
  public:
+  /// What is drawn beside a world: the ghost at its time (null when there is none) and the crosses.
+  struct Drawn {
+    const phys::World* ghost = nullptr;
+    std::span<const std::pair<double, glm::vec3>> answers;
+  };
+
   /// Starts over from `scene` as it is now (just opened: at its start). No ghost when it has no
   /// position answers or is too big.
   void reset(const scenes::Scene& scene);
   void clear();
   bool active() const { return start_.has_value(); }
+  /// What to draw beside `shown`, the world on screen: the ghost at its time, stepped at its dt
+  /// (at()), and the crosses; nothing when `shown` does not hold the scene's bodies (holds()).
+  Drawn beside(const phys::World& shown);
+  /// Whether `shown` holds the bodies of the scene last reset from, as its file made them: its
+  /// particles (by name, inverse mass and body) and bodies (by name) first, in order; bodies thrown
+  /// in since come after them. A cleared world (key 0), and one rebuilt from it, does not.
+  bool holds(const phys::World& shown) const;
   /// The ghost at simulated time `time` (unit: s), stepped at `dt` (the main run's) from where it
   /// was, or from the last copy before `time` when time went back; null when there is none.
   const phys::World* at(double time, double dt);
@@ -39,6 +56,14 @@ class ExactGhost {
   const std::vector<std::pair<double, glm::vec3>>& answers() const { return answers_; }
 
  private:
+  /// What holds() compares: the scene's particles and bodies as reset() found them.
+  struct Particle {
+    std::string name;
+    phys::Real inverseMass = 0.0;
+    phys::BodyId body = phys::kNoBody;
+  };
+  std::vector<Particle> particles_;
+  std::vector<std::string> bodies_;
   std::vector<std::pair<double, glm::vec3>> answers_;
   std::optional<phys::World> start_;
   std::optional<phys::World> now_;

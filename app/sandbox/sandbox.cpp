@@ -494,14 +494,15 @@ void Sandbox::fitToScene() {
 // one whose time is nearest the world's is drawn larger. The ghost (exact_ghost.h) is the answer
 // at the world's time, a translucent green copy of the scene as its file starts it, under the run.
 void Sandbox::drawExactAnswers(const glm::mat4& viewProjection) {
-  const scenes::Scene& scene = session_->scene();
-  if (const phys::World* ghost = ghost_.at(scene.world.time(), scene.world.solverSettings().dt)) {
+  const phys::World& world = session_->scene().world;
+  const ExactGhost::Drawn drawn = ghost_.beside(world);  // nothing once the scene's bodies are gone
+  if (drawn.ghost != nullptr) {
     DrawOptions options = ui_.draw;
     options.contacts = options.markers = options.bounds = options.shadows = false;
-    view_->draw(*ghost, viewProjection, options, Tint{kExactColor, kGhostAlpha});
+    view_->draw(*drawn.ghost, viewProjection, options, Tint{kExactColor, kGhostAlpha});
   }
-  const std::vector<std::pair<double, glm::vec3>>& answers = ghost_.answers();  // time, place
-  const double now = scene.world.time();
+  const std::span<const std::pair<double, glm::vec3>> answers = drawn.answers;  // time, place
+  const double now = world.time();
   const auto nearest = std::min_element(answers.begin(), answers.end(), [&](const auto& a, const auto& b) {
     return std::abs(a.first - now) < std::abs(b.first - now);
   });

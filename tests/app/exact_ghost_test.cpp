@@ -9,6 +9,7 @@
 
 #include "exact_ghost.h"
 #include "project_session.h"
+#include "temp_folder.h"
 
 namespace {
 
@@ -83,6 +84,52 @@ TEST(ExactGhost, ItsCrossesAreTheFilesAnswers) {
     EXPECT_NEAR(ghost.answers()[i].first, std::atof(e.find("at")->c_str()), 1e-12);
     EXPECT_LT(glm::length(glm::dvec3(ghost.answers()[i].second) - parsed(*e.find("pos"))), 1e-5);
   }
+}
+
+// The ghost and the crosses are of the scene's bodies: key 0 (Session::clear) takes them away with
+// the bodies, and Reload brings them back. They stayed, the ghost of a scene no longer there going
+// on beside an empty world. A recording of the scene's run shows them, one of the cleared world
+// does not, and a rewind shows them at the time rewound to.
+TEST(ExactGhost, GoesWithTheScenesBodiesAndComesBackWithThem) {
+  const testing_app::TempFolder dir;
+  sandbox::Session s = testing_app::openSession("projectile");
+  sandbox::ExactGhost ghost;
+  auto expectShown = [&](const char* when) {
+    const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
+    ASSERT_NE(drawn.ghost, nullptr) << when;
+    EXPECT_NEAR(drawn.ghost->time(), s.scene().world.time(), 1e-9) << when;
+    EXPECT_EQ(drawn.answers.size(), s.scene().expectations.size()) << when;
+  };
+  auto expectNone = [&](const char* when) {
+    const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
+    EXPECT_EQ(drawn.ghost, nullptr) << when;
+    EXPECT_TRUE(drawn.answers.empty()) << when;
+  };
+  ghost.reset(s.scene());  // as the sandbox does on opening a scene (Sandbox::fitToScene)
+  for (int i = 0; i < 40; ++i) s.step();
+  ASSERT_EQ(s.spawnBox(phys::Vec3(0.0, 3.0, 6.0), phys::Vec3(0.0)), "");
+  s.step();
+  expectShown("with a box thrown in");
+  ASSERT_EQ(s.rewindTo(20), "");
+  expectShown("rewound");
+  ASSERT_EQ(s.saveRecording(dir.path / "run.jrec"), "");
+
+  s.clear();
+  expectNone("cleared");
+  ASSERT_EQ(s.spawnBox(phys::Vec3(0.0, 3.0, 6.0), phys::Vec3(0.0)), "");
+  for (int i = 0; i < 10; ++i) s.step();
+  expectNone("a box thrown into the cleared world");
+  ASSERT_EQ(s.saveRecording(dir.path / "cleared.jrec"), "");
+
+  ASSERT_EQ(s.openRecording(dir.path / "run.jrec"), "");
+  expectShown("the scene's run opened from a file");
+  ASSERT_EQ(s.openRecording(dir.path / "cleared.jrec"), "");
+  expectNone("the cleared world's run opened from a file");
+
+  s.clear();
+  ASSERT_EQ(s.reload(), "");
+  ghost.reset(s.scene());
+  expectShown("reloaded");
 }
 
 }  // namespace
