@@ -29,7 +29,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr int kMaxStepsPerFrame = 8;  // beyond this the sim slows down instead of spiralling
 // Wall time the background steps may take before the window shows their world: a step begun is
 // finished, so a frame shows the world at least this often unless a single step takes longer.
 constexpr std::chrono::milliseconds kStepBudget{30};
@@ -246,6 +245,7 @@ void Sandbox::perform(Action action) {
     case Action::ClearScene:
       s.clear();
       stopFollowing();
+      trails_.clear();  // the bodies' paths went with them (the ghost hides itself: ExactGhost::holds)
       ui_.message = s.status();
       break;
     case Action::CycleDrawMode:
@@ -650,7 +650,10 @@ void Sandbox::recordingChosen(FileDialogMode mode, const std::filesystem::path& 
   const std::string error =
       mode == FileDialogMode::Open ? session_->openRecording(file) : session_->startSavingRecording(file);
   if (error.empty()) {
-    if (mode == FileDialogMode::Open) ui_.paused = true;  // at its first step, to be scrubbed or played
+    if (mode == FileDialogMode::Open) {
+      ui_.paused = true;  // at its first step, to be scrubbed or played
+      trails_.clear();    // another run than the one the trails followed
+    }
     ui_.message = session_->status();
   } else {
     errorText_ = error;

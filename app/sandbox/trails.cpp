@@ -4,34 +4,54 @@ namespace sandbox {
 
 void Trails::clear() {
   paths_.clear();
+  steps_.clear();
+  joined_.clear();
   lastStep_ = -1;
+}
+
+void Trails::dropBack() {
+  for (std::deque<glm::vec3>& path : paths_) path.pop_back();
+  steps_.pop_back();
+  joined_.pop_back();
 }
 
 void Trails::record(const phys::World& world, std::optional<phys::BodyId> followed) {
   const long step = world.stepCount();
   if (step == lastStep_ && followed == followed_) return;
-  if (step < lastStep_ || followed != followed_) clear();
+  if (followed != followed_) clear();
   lastStep_ = step;
   followed_ = followed;
+  // Rewound: the points after the step shown are a future the world has not reached (yet); the
+  // ones before it are the path it took to get there, the same whether stepped or rebuilt.
+  while (!steps_.empty() && steps_.back() >= step) dropBack();
   std::vector<glm::vec3> points;
   const auto owners = world.particleBodies();
   for (std::size_t i = 0; i < owners.size() && points.size() < kMaxTrails; ++i) {
     if (owners[i] == phys::kNoBody) points.emplace_back(world.particles().position[i]);
   }
   if (followed && *followed < world.bodies().size()) points.emplace_back(world.bodyPose(*followed).center);
-  if (points.size() != paths_.size()) paths_.assign(points.size(), {});  // particles came or went
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    paths_[k].push_back(points[k]);
-    if (paths_[k].size() > kTrailPoints) paths_[k].pop_front();
+  if (points.size() != paths_.size()) {  // particles came or went
+    paths_.assign(points.size(), {});
+    steps_.clear();
+    joined_.clear();
+  }
+  // A line only where the world stepped from one point to the next: across a jump (the timeline,
+  // >|) it would cut straight through where the body went.
+  joined_.push_back(!steps_.empty() && step - steps_.back() <= kMaxStepsPerFrame);
+  steps_.push_back(step);
+  for (std::size_t k = 0; k < points.size(); ++k) paths_[k].push_back(points[k]);
+  if (steps_.size() > kTrailPoints) {
+    for (std::deque<glm::vec3>& path : paths_) path.pop_front();
+    steps_.pop_front();
+    joined_.pop_front();
   }
 }
 
 void Trails::draw(engine::DebugLines& lines, const glm::vec3& color) const {
-  for (const std::deque<glm::vec3>& path : paths_) {
-    for (std::size_t k = 1; k < path.size(); ++k) {
-      const float age = static_cast<float>(k) / static_cast<float>(path.size());  // 1 is the newest
-      lines.addLine(path[k - 1], path[k], color * (0.35f + 0.65f * age));
-    }
+  for (std::size_t path = 0; path < paths_.size(); ++path) {
+    forEachLine(path, [&](const glm::vec3& a, const glm::vec3& b, float age) {  // age 1 is the newest
+      lines.addLine(a, b, color * (0.35f + 0.65f * age));
+    });
   }
 }
 
