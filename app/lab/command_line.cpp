@@ -143,10 +143,15 @@ bool namesFile(const OptionSpec& spec) {
   return spec.value == std::string_view("FILE");
 }
 
-std::string read(const std::string& text, const OptionSpec& spec, std::filesystem::path& into) {
-  if (text.empty()) return std::string("the ") + (namesFile(spec) ? "file" : "folder") + " name is empty";
-  into = text;
+std::string read(const std::string& text, const OptionSpec&, std::filesystem::path& into) {
+  into = text;  // an empty name is refused before (emptyValue), as every option's empty value
   return {};
+}
+
+// An empty value ("--steps ''", "--out=", a shell variable that expanded to nothing), worded
+// here alike for every option of every command, before the option's own reader sees it.
+std::string emptyValue(const std::string& name, const std::string& needs) {
+  return name + " is empty: it needs " + (needs.empty() ? std::string("a value") : needs);
 }
 
 // "--help" or "-h" anywhere: help wins wherever it is, so "lab run x --help" shows the help
@@ -222,6 +227,7 @@ void CommandLine::add(const OptionSpec& spec, std::string label, std::string nee
         // CLI11 hands a following "--json" to an option that lacks its value; here, as when the
         // value is missing at the end, that is a forgotten value, not a file called "--json".
         if (value.starts_with("--")) throw OptionError(name + " needs " + needs);
+        if (value.empty()) throw OptionError(emptyValue(name, needs));
         if (std::string e = read(value); !e.empty()) throw OptionError(name + ": " + e);
         return {};
       },
@@ -340,9 +346,16 @@ std::string CommandLine::parse(const std::vector<std::string>& args) {
   for (const std::string& arg : args) {
     const std::size_t eq = arg.find('=');
     if (!arg.starts_with("--") || eq == std::string::npos) continue;
-    if (const std::string name = arg.substr(0, eq);
-        std::find(flags_.begin(), flags_.end(), name) != flags_.end())
-      return name + " takes no value";
+    const std::string name = arg.substr(0, eq);
+    if (std::find(flags_.begin(), flags_.end(), name) != flags_.end()) return name + " takes no value";
+    // CLI11 takes "--out=" for a missing value; it is an empty one, said as "--out ''" is.
+    if (eq + 1 == arg.size()) {
+      for (const Entry& entry : entries_) {
+        const std::optional<std::vector<std::string>> spellings = splitList(entry.names);
+        if (spellings && std::find(spellings->begin(), spellings->end(), name) != spellings->end())
+          return emptyValue(firstName(entry.names), entry.needs);
+      }
+    }
   }
   try {
     app_->parse(reversed);

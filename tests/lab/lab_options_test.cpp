@@ -161,7 +161,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{{"run", "s", "--steps", "10x"}, "--steps: '10x'"},
         BadCase{{"run", "s", "--steps", "1e3"}, "--steps: '1e3'"},
         BadCase{{"run", "s", "--steps", "+5"}, "--steps: '+5'"},
-        BadCase{{"run", "s", "--steps", ""}, "--steps: ''"},
+        BadCase{{"run", "s", "--steps", ""}, "--steps is empty: it needs a whole number"},
         BadCase{{"run", "s", "--dt", "fast"}, "--dt: 'fast'"},
         BadCase{{"run", "s", "--dt", "0.01s"}, "--dt: '0.01s'"},
         BadCase{{"run", "s", "--iterations", "3.5"}, "--iterations: '3.5'"},
@@ -185,11 +185,57 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{{"run", "s", "--models", "soft"}, "--models: unknown model 'soft'"},
         BadCase{{"run", "s", "--sleep", "yes"}, "--sleep: 'yes' is not on or off"},
         BadCase{{"run", "s", "--threads", "65"}, "--threads: '65'"},
-        BadCase{{"run", "s", "--dump", ""}, "--dump: the file name is empty"},
+        BadCase{{"run", "s", "--dump", ""}, "--dump is empty: it needs a file name"},
         BadCase{{"run", "s", "--steps", "--json"}, "--steps needs a whole number"},
         BadCase{{"sweep", "s", "--out", "d", "--iterations", "1,,2"}, "--iterations: '1,,2'"},
         BadCase{{"sweep", "s", "--out", "d", "--methods", "xpbd,euler"}, "--methods: unknown method 'euler'"},
         BadCase{{"sweep", "s"}, "--out DIR"}, BadCase{{"run", "s", "--method", "Jacobi"}, "'Jacobi'"}));
+
+// The options of a command that take a value, as its help lists them ("  --steps N", the first
+// spelling of each).
+std::vector<std::string> optionsTakingAValue(const std::string& command) {
+  std::istringstream help(lab::runCaptured({command, "--help"}).out);
+  std::vector<std::string> options;
+  for (std::string line; std::getline(help, line);) {
+    if (!line.starts_with("  --")) continue;
+    std::istringstream words(line);
+    std::string name, value;
+    words >> name >> value;
+    // A flag's help follows its name; an option's value is in capitals or on|off ("N", "DIR").
+    const bool takesValue =
+        !value.empty() &&
+        (value == "on|off" || value.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ=.") == std::string::npos);
+    if (takesValue && name != "--help") options.push_back(name);
+  }
+  return options;
+}
+
+// An empty value is said in one wording, whatever the option and the command: `--steps ""` read
+// "'' is not a whole number", `--methods ""` "'' is not a comma-separated list", `--out ""` "the
+// folder name is empty", `--error ""` "unknown figure ''".
+TEST(LabOptions, AnEmptyValueIsSaidAlikeForEveryOptionOfEveryCommand) {
+  std::size_t checked = 0;
+  for (const char* command :
+       {"run", "sweep", "stability", "tune", "compare", "scale", "converge", "report"}) {
+    const std::vector<std::string> options = optionsTakingAValue(command);
+    EXPECT_FALSE(options.empty()) << command;
+    const bool takesScene = lab::runCaptured({command, "--help"})
+                                .out.starts_with(std::string("usage: lab ") + command + " SCENE");
+    for (const std::string& option : options) {
+      for (const Args& given : {Args{option, ""}, Args{option + "="}}) {
+        Args args{command};
+        if (takesScene) args.push_back("s");
+        args.insert(args.end(), given.begin(), given.end());
+        const lab::CommandOutput o = lab::runCaptured(args);
+        EXPECT_EQ(o.code, lab::kExitUsage) << command << " " << option;
+        const std::string line = o.err.substr(0, o.err.find('\n'));
+        EXPECT_TRUE(line.starts_with("lab: " + option + " is empty: it needs ")) << command << ": " << line;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 60u);  // every command's options, each as `--x ""` and `--x=`
+}
 
 TEST(LabOptions, HelpListsEveryOption) {
   const std::string u = lab::runCaptured({"run", "--help"}).out;
