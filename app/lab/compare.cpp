@@ -62,7 +62,7 @@ using Row = SweepRow;
 
 // The plan: our four methods at the scene's iterations and substeps, or those asked, then the
 // peers, on the scene as loaded with --models and --sleep.
-Plan comparePlan(const CompareOptions& o, const std::filesystem::path& file, double dt) {
+Plan comparePlan(const CompareOptions& o, const scenes::SceneSource& source, double dt) {
   PlanRequest request;
   const std::string label = o.run.model ? std::string(phys::toString(*o.run.model)) : std::string();
   request.models.push_back(
@@ -75,7 +75,7 @@ Plan comparePlan(const CompareOptions& o, const std::filesystem::path& file, dou
   request.repeats = o.repeats;
   request.peerSleep = o.peerSleep.value_or(o.run.sleep);
   request.horizon = o.run.steps * dt;  // --steps counts steps of the dt asked, not of the scene's
-  return makePlan(file, request);
+  return makePlan(source, request);
 }
 
 // `file` relative to `data` when it lies inside it, else as given.
@@ -180,10 +180,11 @@ std::string contents(const phys::World& world) {
 // Every run, then the table or the JSON.
 int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& err) {
   const std::filesystem::path file = sceneFile(options.run.scene, options.run.dataDir);
-  const scenes::Scene scene = scenes::loadSceneFile(
-      file, imposedAtLoad(options.run.model, options.run.sleep, options.run.jointProjection));
+  const scenes::SceneSource source = scenes::readSceneSource(file);  // ours and the peers' alike
+  const scenes::Scene scene = scenes::loadSceneSource(
+      source, imposedAtLoad(options.run.model, options.run.sleep, options.run.jointProjection));
   const double dt = options.run.dt.value_or(scene.world.solverSettings().dt);
-  const Plan plan = comparePlan(options, file, dt);
+  const Plan plan = comparePlan(options, source, dt);
   PlanResult result = runPlan(plan, err, "compare");
   const AccuracyTarget& target = firstTarget(plan, result.targets, dt);
   const std::vector<Row>& rows = result.rows;

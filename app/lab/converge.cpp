@@ -93,9 +93,9 @@ struct FreeBodies {
   double uncertainty = 0.0;
 };
 
-FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vector<double>& times,
+FreeBodies freeBodyReference(const scenes::SceneSource& source, const std::vector<double>& times,
                              bool boxInertia) {
-  const scenes::Scene scene = scenes::loadSceneFile(file, {.boxModel = phys::BodyModel::Rigid});
+  const scenes::Scene scene = scenes::loadSceneSource(source, {.boxModel = phys::BodyModel::Rigid});
   const phys::World& world = scene.world;
   const double h = world.solverSettings().dt / world.solverSettings().substeps;
   FreeBodies out;
@@ -139,9 +139,9 @@ FreeBodies freeBodyReference(const std::filesystem::path& file, const std::vecto
 // The model choices of the file that the options ask for; "particle" for a scene without boxes.
 // A scene of particles alone has no model to choose: a --models list is then said to be left aside,
 // not dropped in silence.
-std::vector<ModelChoice> chosenModels(const std::filesystem::path& file, const std::string& sceneName,
+std::vector<ModelChoice> chosenModels(const scenes::SceneSource& source, const std::string& sceneName,
                                       const ConvergeOptions& o, std::ostream* progress) {
-  const SceneModels models = sceneModels(file);
+  const SceneModels models = sceneModels(source);
   if (!models.boxes && !models.ragdolls) {
     if (!o.models.empty() && progress != nullptr)
       *progress << "converge    " << sceneName
@@ -163,11 +163,13 @@ std::vector<ModelChoice> chosenModels(const std::filesystem::path& file, const s
 
 std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const ConvergeOptions& o,
                                      ConvergeTarget& target, std::ostream* progress) {
-  const scenes::Scene own = scenes::loadSceneFile(file);
+  // Read once: every run and reference is built from this text, whatever happens to the file.
+  const scenes::SceneSource source = scenes::readSceneSource(file);
+  const scenes::Scene own = scenes::loadSceneSource(source);
   const double dt = own.world.solverSettings().dt;
   const bool analytic = hasAnalyticAnswers(own);
   // The options first: a model the scene has nothing for is said before what its bodies lack.
-  const std::vector<ModelChoice> models = chosenModels(file, own.name, o, progress);
+  const std::vector<ModelChoice> models = chosenModels(source, own.name, o, progress);
   std::vector<int> checkpoints;
   FreeBodies freeRigid, freeParticle;  // the references for the rigid model and the particle ones
   AccuracyTarget t;  // analytic: the answers, the same whatever the model (bodies.h's order)
@@ -189,8 +191,8 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
     std::vector<double> times;
     times.reserve(checkpoints.size());
     for (const int step : checkpoints) times.push_back(step * dt);
-    freeRigid = freeBodyReference(file, times, false);
-    freeParticle = freeBodyReference(file, times, true);
+    freeRigid = freeBodyReference(source, times, false);
+    freeParticle = freeBodyReference(source, times, true);
     const double uncertainty = std::max(freeRigid.uncertainty, freeParticle.uncertainty);
     target.kind = "free body";
     target.description = "free body: Euler's equations by RK4 at " + formatNumber(kFreeBodyStep, 3) +
@@ -210,7 +212,7 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
       for (const int substeps : o.substeps) {
         const Setting setting{
             .model = model, .method = used, .iterations = o.iterations, .substeps = substeps, .dt = dt};
-        scenes::Scene scene = loadSetting(file, setting);
+        scenes::Scene scene = loadSetting(source, setting);
         phys::World& world = scene.world;
         double error = 0.0;
         RunSpec spec;

@@ -30,10 +30,10 @@ void summarize(Outcome& o) {
 }  // namespace
 
 SuiteScene loadSuiteScene(const std::filesystem::path& file) {
-  const scenes::Scene scene = scenes::loadSceneFile(file);
   SuiteScene s;
+  s.source = scenes::readSceneSource(file);
+  const scenes::Scene scene = scenes::loadSceneSource(s.source);
   s.name = file.stem().string();
-  s.file = file;
   s.description = scene.description;
   s.criteria = parseCriteria(scene);
   s.steps = runSteps(s.criteria);
@@ -59,7 +59,7 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
     load.boxModel = *model;
     load.ragdollModel = phys::ragdollModelOf(*model);
   }
-  scenes::Scene scene = scenes::loadSceneFile(s.file, load);
+  scenes::Scene scene = scenes::loadSceneSource(s.source, load);
   // One call, as `lab run` does: the world judges the whole.
   applyOverrides(
       scene.world,
@@ -98,7 +98,7 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
 }
 
 Outcome runPeerEngine(const SuiteScene& s, const std::string& engine, bool sleep) {
-  const scenes::Scene scene = scenes::loadSceneFile(s.file);
+  const scenes::Scene scene = scenes::loadSceneSource(s.source);
   std::vector<int> checkpoints;
   for (int k = 1; k <= s.steps; ++k) checkpoints.push_back(k);
   const PeerResult r = runPeer(engine, scene, s.dt, s.steps, checkpoints, sleep);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "physics/settings.h"
+#include "scenes/scene.h"
 #include "stability_criteria.h"
 #include "stability_judge.h"
 
@@ -21,10 +22,11 @@ struct Setting {
   bool sleep = false;  ///< islands at rest sleep (--sleep on), whatever the file says
 };
 
-/// A scene of the suite, loaded once to read its criteria; every run loads it afresh.
+/// A scene of the suite, read once: every run builds its world afresh from that one text, so a
+/// file saved over during the suite changes no run.
 struct SuiteScene {
   std::string name;  ///< the file's stem ("stack-10")
-  std::filesystem::path file;
+  scenes::SceneSource source;
   std::string description;  ///< the scene's own one line
   std::vector<Criterion> criteria;
   int steps = 0;          ///< runSteps(criteria)
@@ -49,7 +51,7 @@ struct Outcome {
 };
 
 /// Runs the scene under the setting for its steps; stops at the first freeze (a blow-up).
-/// Throws scenes::LoadError if the file changed under us, std::invalid_argument if the world
+/// Throws scenes::LoadError for a model the file refuses, std::invalid_argument if the world
 /// refuses the setting.
 Outcome runSetting(const SuiteScene& scene, const Setting& setting);
 

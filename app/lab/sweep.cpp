@@ -88,8 +88,8 @@ using Row = SweepRow;
 
 // The plan of the options; throws UsageError for a --models that does not fit the scene, or too
 // many runs.
-Plan sweepPlan(const SweepOptions& o, const std::filesystem::path& file) {
-  const SceneModels models = sceneModels(file);
+Plan sweepPlan(const SweepOptions& o, const scenes::SceneSource& scene) {
+  const SceneModels models = sceneModels(scene);
   std::vector<ModelChoice> choices;
   for (const std::string& name : o.models) {
     std::string error;
@@ -97,16 +97,16 @@ Plan sweepPlan(const SweepOptions& o, const std::filesystem::path& file) {
     if (!c) throw UsageError("--models: " + error);
     choices.push_back(*c);
   }
-  return makePlan(file, PlanRequest{.models = choices,
-                                    .methods = o.methods,
-                                    .iterations = o.iterations,
-                                    .substeps = o.substeps,
-                                    .dts = o.dts,
-                                    .steps = o.steps,
-                                    .horizon = std::nullopt,
-                                    .repeats = o.repeats,
-                                    .peers = o.peers,
-                                    .peerSleep = false});
+  return makePlan(scene, PlanRequest{.models = choices,
+                                     .methods = o.methods,
+                                     .iterations = o.iterations,
+                                     .substeps = o.substeps,
+                                     .dts = o.dts,
+                                     .steps = o.steps,
+                                     .horizon = std::nullopt,
+                                     .repeats = o.repeats,
+                                     .peers = o.peers,
+                                     .peerSleep = false});
 }
 
 // ---- the front ------------------------------------------------------------------------------
@@ -336,7 +336,7 @@ std::string tableLine(const Row& r) {
 
 void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows,
                  const std::vector<std::string>& accuracy, const std::vector<std::string>& notes) {
-  out << "sweep       " << plan.sceneName << " (" << plan.file.string() << ")\n";
+  out << "sweep       " << plan.sceneName << " (" << plan.scene.file.string() << ")\n";
   out << "runs        " << count(plan.settings.size(), "setting", "settings") << " x "
       << count(static_cast<std::size_t>(plan.repeats), "timed run", "timed runs") << " and 1 measured, each "
       << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
@@ -389,7 +389,7 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
   for (const ModelChoice& m : plan.models) {
     for (double dt : plan.dts) {
       const Setting key{m, phys::SolverMethod::GaussSeidel, 1, 1, dt};
-      std::string line = targets.get(plan.file, key, plan.stepsAt(dt)).description;
+      std::string line = targets.get(plan.scene, key, plan.stepsAt(dt)).description;
       if (plan.models.size() > 1 || plan.dts.size() > 1) {
         // Built piecewise: "(" + std::string trips GCC 12's false -Wrestrict (bug 105329).
         std::string which(1, '(');
@@ -411,7 +411,7 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
 }
 
 int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
-  const Plan plan = sweepPlan(o, sceneFile(o.scene, o.dataDir));
+  const Plan plan = sweepPlan(o, scenes::readSceneSource(sceneFile(o.scene, o.dataDir)));
   prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
   return runSweep(plan, o.measure, o.out, out, err);
 }

@@ -24,16 +24,16 @@ struct ModelCounts {
   bool operator==(const ModelCounts&) const = default;
 };
 
-ModelCounts countsWhenLoadedWith(const std::filesystem::path& file, const scenes::LoadOptions& options) {
-  const scenes::Scene scene = scenes::loadSceneFile(file, options);
+ModelCounts countsWhenLoadedWith(const scenes::SceneSource& source, const scenes::LoadOptions& options) {
+  const scenes::Scene scene = scenes::loadSceneSource(source, options);
   return {scene.world.particles().size(), scene.world.rigidBodies().size()};
 }
 
 // The same for a model the file may refuse: none then.
-std::optional<ModelCounts> countsIfLoads(const std::filesystem::path& file,
+std::optional<ModelCounts> countsIfLoads(const scenes::SceneSource& source,
                                          const scenes::LoadOptions& options) {
   try {
-    return countsWhenLoadedWith(file, options);
+    return countsWhenLoadedWith(source, options);
   } catch (const scenes::LoadError&) {
     return std::nullopt;
   }
@@ -68,16 +68,16 @@ std::string inQuotes(std::string_view text) {
 
 }  // namespace
 
-SceneModels sceneModels(const std::filesystem::path& file) {
-  const ModelCounts asWritten = countsWhenLoadedWith(file, {});
-  const ModelCounts corners = countsWhenLoadedWith(file, withBoxModel(phys::BodyModel::Corners));
-  const ModelCounts tetra = countsWhenLoadedWith(file, withBoxModel(phys::BodyModel::Tetra));
+SceneModels sceneModels(const scenes::SceneSource& source) {
+  const ModelCounts asWritten = countsWhenLoadedWith(source, {});
+  const ModelCounts corners = countsWhenLoadedWith(source, withBoxModel(phys::BodyModel::Corners));
+  const ModelCounts tetra = countsWhenLoadedWith(source, withBoxModel(phys::BodyModel::Tetra));
   // The file as written loads (or has thrown above); a ragdoll model it refuses is not one to offer.
-  const std::optional<ModelCounts> seed = countsIfLoads(file, withRagdollModel(phys::RagdollModel::Seed));
-  const std::optional<ModelCounts> lean = countsIfLoads(file, withRagdollModel(phys::RagdollModel::Lean));
+  const std::optional<ModelCounts> seed = countsIfLoads(source, withRagdollModel(phys::RagdollModel::Seed));
+  const std::optional<ModelCounts> lean = countsIfLoads(source, withRagdollModel(phys::RagdollModel::Lean));
   // All of a kind is rigid when making it rigid changes no count.
-  const ModelCounts rigidBoxes = countsWhenLoadedWith(file, withBoxModel(phys::BodyModel::Rigid));
-  const ModelCounts rigidRagdolls = countsWhenLoadedWith(file, withRagdollModel(phys::RagdollModel::Rigid));
+  const ModelCounts rigidBoxes = countsWhenLoadedWith(source, withBoxModel(phys::BodyModel::Rigid));
+  const ModelCounts rigidRagdolls = countsWhenLoadedWith(source, withRagdollModel(phys::RagdollModel::Rigid));
 
   SceneModels m;
   m.boxes = corners != tetra;
@@ -173,8 +173,8 @@ std::string Setting::describe() const {
          (model.label.empty() ? "" : ", model " + model.label);
 }
 
-scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& setting) {
-  scenes::Scene scene = scenes::loadSceneFile(file, setting.model.options);
+scenes::Scene loadSetting(const scenes::SceneSource& source, const Setting& setting) {
+  scenes::Scene scene = scenes::loadSceneSource(source, setting.model.options);
   // As `lab run` puts its overrides in: all at once, so the world judges the combination.
   applyOverrides(scene.world, RunOptions{.dt = setting.dt,
                                          .method = setting.method,
@@ -217,9 +217,9 @@ void poseFigures(const peers::Description& scene, const std::vector<std::vector<
   }
 }
 
-Figures measureFigures(const std::filesystem::path& file, const Setting& setting, int steps,
+Figures measureFigures(const scenes::SceneSource& source, const Setting& setting, int steps,
                        const AccuracyTarget& target) {
-  scenes::Scene scene = loadSetting(file, setting);
+  scenes::Scene scene = loadSetting(source, setting);
   const peers::Description loaded = peers::describe(scene);
   RunSpec spec;
   spec.steps = steps;
@@ -243,10 +243,10 @@ Figures measureFigures(const std::filesystem::path& file, const Setting& setting
   return f;
 }
 
-double timeSetting(const std::filesystem::path& file, const Setting& setting, int steps, int repeats) {
+double timeSetting(const scenes::SceneSource& source, const Setting& setting, int steps, int repeats) {
   std::vector<double> msPerStep;
   for (int r = 0; r < repeats; ++r) {
-    scenes::Scene scene = loadSetting(file, setting);  // each repeat from a fresh load
+    scenes::Scene scene = loadSetting(source, setting);  // each repeat from a fresh load
     RunSpec bare;
     bare.steps = steps;
     msPerStep.push_back(runSteps(scene.world, bare).steppingMs / steps);
@@ -264,11 +264,11 @@ std::string cacheKey(const Setting& setting, int steps) {
 
 }  // namespace
 
-const AccuracyTarget& TargetCache::get(const std::filesystem::path& file, const Setting& setting, int steps) {
+const AccuracyTarget& TargetCache::get(const scenes::SceneSource& source, const Setting& setting, int steps) {
   const std::string key = cacheKey(setting, steps);
   auto it = targets_.find(key);
   if (it == targets_.end()) {
-    const scenes::Scene scene = scenes::loadSceneFile(file, setting.model.options);
+    const scenes::Scene scene = scenes::loadSceneSource(source, setting.model.options);
     it = targets_.emplace(key, accuracyTarget(scene, setting.dt, steps)).first;
   }
   return it->second;

@@ -38,7 +38,7 @@ struct SceneModels {
 };
 
 /// Throws scenes::LoadError like the loader.
-SceneModels sceneModels(const std::filesystem::path& file);
+SceneModels sceneModels(const scenes::SceneSource& scene);
 
 /// The model named by a --model value, or nullopt with `error` set: an unknown name, or one of
 /// a kind the scene does not have ("lean" for a scene without ragdolls).
@@ -99,25 +99,28 @@ void poseFigures(const peers::Description& scene, const std::vector<std::vector<
                  const std::vector<std::vector<phys::Quat>>& orientations, double& penetration,
                  double& jointGap);
 
-/// Loads the file with the setting's models and puts its solver settings in. Throws
+// Every point of a command is built from the scene file as read once (scenes::SceneSource), so a
+// file saved over during a long sweep changes none of them.
+
+/// Loads the scene with the setting's models and puts its solver settings in. Throws
 /// scenes::LoadError, or std::invalid_argument when the world refuses the settings.
-scenes::Scene loadSetting(const std::filesystem::path& file, const Setting& setting);
+scenes::Scene loadSetting(const scenes::SceneSource& scene, const Setting& setting);
 
 /// Runs the setting `steps` times (the target's checkpoints must be among them) with the
 /// world's metrics read after every step, and compares it with the target. A run in which the
 /// guard froze anything has error infinity: a frozen body's position says nothing.
-Figures measureFigures(const std::filesystem::path& file, const Setting& setting, int steps,
+Figures measureFigures(const scenes::SceneSource& scene, const Setting& setting, int steps,
                        const AccuracyTarget& target);
 
 /// Median over `repeats` fresh loads of the wall time of the bare stepping loop / steps.
 /// unit: ms
-double timeSetting(const std::filesystem::path& file, const Setting& setting, int steps, int repeats);
+double timeSetting(const scenes::SceneSource& scene, const Setting& setting, int steps, int repeats);
 
 /// Targets computed once per (model, dt, steps) and reused: a reference costs two fine runs.
 class TargetCache {
  public:
   /// The target for the setting's model and dt over `steps` steps.
-  const AccuracyTarget& get(const std::filesystem::path& file, const Setting& setting, int steps);
+  const AccuracyTarget& get(const scenes::SceneSource& scene, const Setting& setting, int steps);
   /// Whether get() would compute (for progress counts).
   bool has(const Setting& setting, int steps) const;
 

@@ -25,7 +25,7 @@ std::size_t planWork(const Plan& plan) {
 
 SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Progress& progress) {
   const bool fresh = !targets.has(s, plan.stepsAt(s.dt));
-  const AccuracyTarget& target = targets.get(plan.file, s, plan.stepsAt(s.dt));
+  const AccuracyTarget& target = targets.get(plan.scene, s, plan.stepsAt(s.dt));
   if (fresh) progress.advance();
   SweepRow r;
   r.method = std::string(phys::toString(s.method));
@@ -36,9 +36,9 @@ SweepRow runSetting(const Plan& plan, const Setting& s, TargetCache& targets, Pr
   r.steps = stepsFor(target, plan.stepsAt(s.dt));
   r.repeats = plan.repeats;
   r.uncertainty = maxUncertainty(target);
-  r.figures = measureFigures(plan.file, s, r.steps, target);
+  r.figures = measureFigures(plan.scene, s, r.steps, target);
   progress.advance();
-  r.msPerStep = timeSetting(plan.file, s, r.steps, plan.repeats);
+  r.msPerStep = timeSetting(plan.scene, s, r.steps, plan.repeats);
   progress.advance(static_cast<std::size_t>(plan.repeats));
   if (r.figures.frozen > 0)
     r.note = "blew up: the guard froze " +
@@ -50,7 +50,7 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
               Progress& progress) {
   const AccuracyTarget& target = firstTarget(plan, targets, dt);
   const int steps = stepsFor(target, plan.stepsAt(dt));
-  const scenes::Scene scene = scenes::loadSceneFile(plan.file, plan.models.front().options);
+  const scenes::Scene scene = scenes::loadSceneSource(plan.scene, plan.models.front().options);
   const peers::Description description = peers::describe(scene);
   for (const std::string& engine : peerEngines()) {
     PeerResult p;
@@ -98,11 +98,11 @@ int Plan::stepsAt(double dt) const {
   return std::max(1, static_cast<int>(std::lround(horizon / dt)));
 }
 
-Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
+Plan makePlan(const scenes::SceneSource& source, const PlanRequest& request) {
   Plan plan;
-  const scenes::Scene scene = scenes::loadSceneFile(file);
+  const scenes::Scene scene = scenes::loadSceneSource(source);
   const phys::SolverSettings own = scene.world.solverSettings();
-  plan.file = file;
+  plan.scene = source;
   plan.sceneName = scene.name;
   plan.horizon =
       request.horizon ? *request.horizon : (request.steps ? *request.steps : defaultSteps(own.dt)) * own.dt;
@@ -110,7 +110,7 @@ Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
   plan.peers = request.peers;
   plan.peerSleep = request.peerSleep;
   plan.models = request.models;
-  if (plan.models.empty()) plan.models.push_back(sceneModels(file).asFile);
+  if (plan.models.empty()) plan.models.push_back(sceneModels(source).asFile);
   const std::vector<phys::SolverMethod> methods =
       request.methods.empty() ? std::vector{own.method} : request.methods;
   const std::vector<int> iterations =
@@ -131,7 +131,7 @@ Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
   std::vector<std::vector<phys::SolverMethod>> methodsOf;
   std::size_t count = 0;
   for (const ModelChoice& model : plan.models) {
-    const bool xpbdAlone = xpbdWhateverTheMethod(scenes::loadSceneFile(file, model.options).world);
+    const bool xpbdAlone = xpbdWhateverTheMethod(scenes::loadSceneSource(source, model.options).world);
     methodsOf.push_back(xpbdAlone ? std::vector{phys::SolverMethod::Xpbd} : methods);
     count += plan.dts.size() * methodsOf.back().size() * iterations.size() * substeps.size();
   }
@@ -155,7 +155,10 @@ Plan makePlan(const std::filesystem::path& file, const PlanRequest& request) {
 PlanResult runPlan(const Plan& plan, std::ostream& err, const std::string& name) {
   Progress progress(err, name, planWork(plan));
   PlanResult result;
-  for (const Setting& s : plan.settings) result.rows.push_back(runSetting(plan, s, result.targets, progress));
+  for (std::size_t i = 0; i < plan.settings.size(); ++i) {
+    result.rows.push_back(runSetting(plan, plan.settings[i], result.targets, progress));
+    if (plan.afterSetting) plan.afterSetting(i);
+  }
   if (plan.peers) {
     for (double dt : plan.dts) runPeers(plan, dt, result.targets, result.rows, progress);
   }
@@ -165,7 +168,7 @@ PlanResult runPlan(const Plan& plan, std::ostream& err, const std::string& name)
 
 const AccuracyTarget& firstTarget(const Plan& plan, TargetCache& targets, double dt) {
   const Setting first{plan.models.front(), phys::SolverMethod::GaussSeidel, 1, 1, dt};
-  return targets.get(plan.file, first, plan.stepsAt(dt));
+  return targets.get(plan.scene, first, plan.stepsAt(dt));
 }
 
 }  // namespace lab

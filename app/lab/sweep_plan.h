@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -41,7 +42,7 @@ struct SweepRow {
 
 /// What a plan covers, once the scene's own values filled what was not asked.
 struct Plan {
-  std::filesystem::path file;
+  scenes::SceneSource scene;  ///< the file as read once: every setting and peer is built from it
   std::string sceneName;
   double horizon = 0.0;  ///< unit: s of simulated time
   std::vector<ModelChoice> models;
@@ -50,6 +51,9 @@ struct Plan {
   int repeats = 3;
   bool peers = true;
   bool peerSleep = false;  ///< whether the peers may put resting bodies to sleep (runPeer)
+  /// Called after each setting has run, with its place in `settings` (tests: a file saved over
+  /// mid-sweep); none by default.
+  std::function<void(std::size_t)> afterSetting;
 
   int stepsAt(double dt) const;
 };
@@ -75,7 +79,7 @@ inline constexpr std::size_t kMaxCombinations = 10000;
 /// leaves rigid bodies and no stick (xpbdWhateverTheMethod) runs once, as xpbd. Throws
 /// UsageError for more than kMaxCombinations runs or more than kMaxSteps steps at some dt,
 /// scenes::LoadError like the loader.
-Plan makePlan(const std::filesystem::path& file, const PlanRequest& request);
+Plan makePlan(const scenes::SceneSource& scene, const PlanRequest& request);
 
 /// What running a plan gives.
 struct PlanResult {

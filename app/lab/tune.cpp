@@ -141,8 +141,8 @@ struct Candidate {
 
 class Search {
  public:
-  Search(std::filesystem::path file, int steps, std::vector<Target> targets)
-      : file_(std::move(file)), steps_(steps), targets_(std::move(targets)) {}
+  Search(scenes::SceneSource scene, int steps, std::vector<Target> targets)
+      : scene_(std::move(scene)), steps_(steps), targets_(std::move(targets)) {}
 
   bool needsError() const {
     return std::any_of(targets_.begin(), targets_.end(), [](const Target& t) { return t.name == kError; });
@@ -152,7 +152,7 @@ class Search {
   /// none (a reference costs two fine runs, wasted when no error is asked for).
   const AccuracyTarget& target(const Setting& s) {
     static const AccuracyTarget kNone{};
-    return needsError() ? targets_cache_.get(file_, s, steps_) : kNone;
+    return needsError() ? targets_cache_.get(scene_, s, steps_) : kNone;
   }
 
   int stepsOf(const Setting& s) { return stepsFor(target(s), steps_); }
@@ -162,7 +162,7 @@ class Search {
     const std::string key = s.describe();  // one dt per search
     auto it = measured_.find(key);
     if (it == measured_.end()) {
-      it = measured_.emplace(key, measureFigures(file_, s, stepsOf(s), target(s))).first;
+      it = measured_.emplace(key, measureFigures(scene_, s, stepsOf(s), target(s))).first;
       noteClosest(s, it->second);
     }
     return it->second;
@@ -215,7 +215,7 @@ class Search {
     std::optional<Candidate> best;
     for (Candidate& c : qualifying_) {
       if (c.figures.roughMsPerStep > kFinalistFactor * cheapestRough_) continue;
-      c.msPerStep = timeSetting(file_, c.setting, stepsOf(c.setting), repeats);
+      c.msPerStep = timeSetting(scene_, c.setting, stepsOf(c.setting), repeats);
       if (!best || c.msPerStep < best->msPerStep) best = c;
     }
     return best;
@@ -225,7 +225,7 @@ class Search {
   Candidate measureAndTime(const Setting& s, int repeats) {
     Candidate c{s, evaluate(s)};
     if (meets(c.figures)) record(s, c.figures);
-    c.msPerStep = timeSetting(file_, s, stepsOf(s), repeats);
+    c.msPerStep = timeSetting(scene_, s, stepsOf(s), repeats);
     return c;
   }
 
@@ -245,7 +245,7 @@ class Search {
     if (!closest_ || excess(f) < excess(closest_->figures)) closest_ = Candidate{s, f};
   }
 
-  std::filesystem::path file_;
+  scenes::SceneSource scene_;  // the file as read once: every setting is built from it
   int steps_;
   std::vector<Target> targets_;
   TargetCache targets_cache_;
@@ -301,11 +301,12 @@ void printCompared(std::ostream& out, const char* label, const Candidate& c, con
 
 int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   const std::filesystem::path file = sceneFile(o.scene, o.dataDir);
-  const scenes::Scene scene = scenes::loadSceneFile(file);
+  const scenes::SceneSource source = scenes::readSceneSource(file);
+  const scenes::Scene scene = scenes::loadSceneSource(source);
   const phys::SolverSettings own = scene.world.solverSettings();
-  const SceneModels models = sceneModels(file);
+  const SceneModels models = sceneModels(source);
   const int steps = o.steps ? *o.steps : defaultSteps(own.dt);
-  Search search(file, steps, o.targets);
+  Search search(source, steps, o.targets);
 
   // The seed's defaults: its method and counts with its models (corners boxes, seed ragdolls).
   ModelChoice seedModel = models.asFile;
@@ -358,7 +359,7 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
     out << "winner      none: no setting meets the targets\n";
     if (search.closest()) {
       Candidate c = *search.closest();
-      c.msPerStep = timeSetting(file, c.setting, search.stepsOf(c.setting), o.repeats);
+      c.msPerStep = timeSetting(source, c.setting, search.stepsOf(c.setting), o.repeats);
       printCompared(out, "closest     ", c, nullptr, search, withError);
     }
     printCompared(out, "defaults    ", seedResult, nullptr, search, withError);

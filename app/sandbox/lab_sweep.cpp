@@ -55,9 +55,11 @@ std::string LabSweep::error() const {
 void LabSweep::run() {
   const lab::StopOnFlag stopWithin(stop_);  // every run below stops after the step it is on
   try {
-    const scenes::Scene scene = scenes::loadSceneFile(file_);
-    const double dt = scene.world.solverSettings().dt;
-    const lab::SceneModels models = lab::sceneModels(file_);
+    // Read once, so that every point measures the same scene even if Save As overwrites the file
+    // while the sweep runs.
+    const scenes::SceneSource source = scenes::readSceneSource(file_);
+    const double dt = scenes::loadSceneSource(source).world.solverSettings().dt;
+    const lab::SceneModels models = lab::sceneModels(source);
     std::vector<lab::Setting> settings;
     for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
                                  phys::SolverMethod::Xpbd, phys::SolverMethod::Shake}) {
@@ -69,12 +71,12 @@ void LabSweep::run() {
     lab::TargetCache targets;
     for (const lab::Setting& s : settings) {
       if (stop_.load()) break;
-      const lab::AccuracyTarget& target = targets.get(file_, s, lab::defaultSteps(dt));
+      const lab::AccuracyTarget& target = targets.get(source, s, lab::defaultSteps(dt));
       const int steps = lab::stepsFor(target, lab::defaultSteps(dt));
-      const lab::Figures f = lab::measureFigures(file_, s, steps, target);
+      const lab::Figures f = lab::measureFigures(source, s, steps, target);
       if (stop_.load()) break;
       LabPoint p{s.method,   s.iterations,
-                 s.substeps, lab::timeSetting(file_, s, steps, kRepeats),
+                 s.substeps, lab::timeSetting(source, s, steps, kRepeats),
                  f.error,    f.frozen > 0 || !std::isfinite(f.error)};
       {
         const std::lock_guard<std::mutex> lock(mutex_);

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <string>
 #include <thread>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -71,6 +73,32 @@ TEST(LabSweep, CancelStopsItAndABadFileSaysWhy) {
   for (int i = 0; i < 10000 && lab.running(); ++i) std::this_thread::sleep_for(1ms);
   EXPECT_NE(lab.error().find("/nonexistent/scene.xml"), std::string::npos) << lab.error();
   EXPECT_TRUE(lab.points().empty());
+}
+
+// The sweep reads the file once: the user may Save As over it while the sweep runs, and the points
+// after that must still measure the scene the sweep started on.
+TEST(LabSweep, AFileSavedOverWhileItRunsChangesNoPoint) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("lab-sweep-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path swept = dir / "swept.xml", untouched = dir / "untouched.xml";
+  fs::copy_file(scene("pendulum-exact"), swept, fs::copy_options::overwrite_existing);
+  fs::copy_file(scene("pendulum-exact"), untouched, fs::copy_options::overwrite_existing);
+  sandbox::LabSweep lab, reference;
+  lab.start(swept);
+  for (int i = 0; i < 120000 && lab.running() && lab.done() < 1; ++i) std::this_thread::sleep_for(1ms);
+  ASSERT_GE(lab.done(), 1);
+  ASSERT_LT(lab.done(), 48);  // saved over while the sweep still had points to measure
+  fs::copy_file(scene("projectile"), swept, fs::copy_options::overwrite_existing);
+  reference.start(untouched);
+  for (int i = 0; i < 240000 && (lab.running() || reference.running()); ++i) std::this_thread::sleep_for(1ms);
+  ASSERT_FALSE(lab.running());
+  ASSERT_FALSE(reference.running());
+  EXPECT_EQ(lab.error(), "");
+  const std::vector<sandbox::LabPoint> got = lab.points(), want = reference.points();
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].error, want[i].error) << "point " << i;
+  fs::remove_all(dir);
 }
 
 }  // namespace

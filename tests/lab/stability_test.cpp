@@ -275,7 +275,7 @@ TEST(StabilityRun, TheBulletIsStoppedAtTheWallAtOneSubstepAnd16) {
 // contacts and the swept test of docs/physics.md, "Fast bodies".
 TEST(StabilityRun, TheFastestBulletStopsAtTheWallUnderEveryModel) {
   const lab::stability::SuiteScene s = suiteScene("bullet-200");
-  const phys::SolverSettings own = scenes::loadSceneFile(s.file).world.solverSettings();
+  const phys::SolverSettings own = scenes::loadSceneFile(s.source.file).world.solverSettings();
   for (const char* model : {"corners", "tetra", "rigid"}) {
     const auto r = lab::stability::runSetting(s, {own.method, own.iterations, own.substeps, model});
     EXPECT_TRUE(r.passed) << model << ": " << r.note;
@@ -341,7 +341,7 @@ TEST(StabilityJudge, PeersAreJudgedOnTheirPoses) {
 // its run, in small steps, counts 3; a wobble of the axis to 80 degrees and back counts none.
 TEST(StabilityJudge, APeersFlipsAreCountedFromItsOrientations) {
   const lab::stability::SuiteScene s = suiteScene("dzhanibekov");
-  const scenes::Scene scene = scenes::loadSceneFile(s.file);
+  const scenes::Scene scene = scenes::loadSceneFile(s.source.file);
   const std::size_t flips = 0;
   ASSERT_EQ(s.criteria.at(flips).metric, lab::stability::Metric::Flips);
   const phys::Vec3 centre = lab::bodyPositions(scene.world).at(0);

@@ -26,8 +26,11 @@
 #include "lab.h"
 #include "lab_test_util.h"
 #include "peer.h"
+#include "scale.h"
 #include "scenes/scene.h"
+#include "stability_report.h"
 #include "sweep_core.h"
+#include "sweep_plan.h"
 
 namespace {
 
@@ -294,6 +297,34 @@ TEST(Sweep, ARunThatBlowsUpHasNoErrorAndSaysItBlewUp) {
   EXPECT_EQ(o.out.find("0 m at most"), std::string::npos) << o.out;
 }
 
+// A sweep builds every point from the scene file as read once: a file saved over after the first
+// point (the sandbox's Save As during a long sweep) measured the new scene at every later point.
+TEST(Sweep, ASceneFileSavedOverMidSweepChangesNoPoint) {
+  TempDir dir;
+  const std::string first =
+      "<scene name=\"drop\"><box name=\"b\" pos=\"0 3 0\" velocity=\"1 0 0\"/></scene>\n";
+  const std::string other =
+      "<scene name=\"drop\"><world gravity=\"0 0 0\"/><box name=\"b\" pos=\"5 1 0\"/></scene>\n";
+  const std::filesystem::path file = dir.write("drop.xml", first);
+  const lab::PlanRequest request{.substeps = {1, 2, 4}, .steps = 20, .repeats = 1, .peers = false};
+  lab::Plan plan = lab::makePlan(scenes::readSceneSource(file), request);
+  plan.afterSetting = [&](std::size_t) { dir.write("drop.xml", other); };
+  std::ostringstream progress;
+  const lab::PlanResult saved = lab::runPlan(plan, progress, "sweep");
+  ASSERT_EQ(lab_testing::readFile(file), other);
+  // The same plan on the first scene, left alone.
+  const lab::PlanResult alone = lab::runPlan(
+      lab::makePlan(scenes::readSceneSource(dir.write("alone.xml", first)), request), progress, "sweep");
+  ASSERT_EQ(saved.rows.size(), 3u);
+  ASSERT_EQ(alone.rows.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(saved.rows[i].figures.error, alone.rows[i].figures.error) << i;
+    EXPECT_EQ(saved.rows[i].figures.energyDrift, alone.rows[i].figures.energyDrift) << i;
+    EXPECT_EQ(saved.rows[i].figures.posePenetration, alone.rows[i].figures.posePenetration) << i;
+  }
+  EXPECT_GT(saved.rows[2].figures.error, 0.0);  // a real error, not two zeros agreeing
+}
+
 // A box thrown at 1e308 m/s under a gravity of 1e308: its energy's drift is inf - inf. The CSV
 // leaves it empty; the tables printed "-nan" and "drift nan J" before formatNumber said n/a.
 TEST(Sweep, AFigureThatIsNotANumberIsPrintedNA) {
@@ -367,7 +398,7 @@ TEST(Sweep, ARigidBoxBesideACornersBoxIsSweptAsTheFileHasThem) {
                                                 "  <box name=\"a\" pos=\"0 0.5 0\" model=\"rigid\"/>\n"
                                                 "  <box name=\"b\" pos=\"3 0.5 0\" model=\"corners\"/>\n"
                                                 "</scene>\n");
-  EXPECT_EQ(lab::sceneModels(scene).asFile.label, "scene");
+  EXPECT_EQ(lab::sceneModels(scenes::readSceneSource(scene)).asFile.label, "scene");
   const Outcome o = sweep(
       {scene.string(), "--steps", "5", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
   ASSERT_EQ(o.code, 0) << o.err;

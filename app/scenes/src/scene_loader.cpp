@@ -1106,23 +1106,31 @@ Scene loadSceneText(std::string_view xml, const std::string& displayName, const 
   return build(buffer, displayName, {}, options);
 }
 
+SceneSource readSceneSource(const std::filesystem::path& file) {
+  SceneSource source;
+  source.file = file;
+  try {
+    source.text = fileio::readWhole(file, detail::kMaxSceneBytes);
+    source.folder = detail::clipFolder(file);  // the folder of the file a link names, as Save As writes it
+  } catch (const fileio::FileError& e) {
+    throw LoadError(file.string(), 0, "", e.message());
+  }
+  return source;
+}
+
+Scene loadSceneSource(const SceneSource& source, const LoadOptions& options) {
+  std::vector<char> buffer(source.text.begin(), source.text.end());
+  Scene scene = build(buffer, source.file.string(), source.folder, options);
+  scene.file = source.file;
+  return scene;
+}
+
 Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options) {
-  std::string text;
-  try {
-    text = fileio::readWhole(file, detail::kMaxSceneBytes);
-  } catch (const fileio::FileError& e) {
-    throw LoadError(file.string(), 0, "", e.message());
-  }
-  std::vector<char> buffer(text.begin(), text.end());
-  text = {};
-  std::filesystem::path folder;
-  try {
-    folder = detail::clipFolder(file);  // the folder of the file a link names, as Save As writes it
-  } catch (const fileio::FileError& e) {
-    throw LoadError(file.string(), 0, "", e.message());
-  }
-  Scene scene = build(buffer, file.string(), folder, options);
-  scene.file = file;
+  SceneSource source = readSceneSource(file);
+  std::vector<char> buffer(source.text.begin(), source.text.end());
+  source.text = {};  // a large scene is held once, not twice, while it is built
+  Scene scene = build(buffer, source.file.string(), source.folder, options);
+  scene.file = source.file;
   return scene;
 }
 

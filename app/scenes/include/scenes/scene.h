@@ -92,8 +92,22 @@ class LoadError : public std::runtime_error {
   std::string attribute_;
 };
 
+/// A scene file's text as read once, with what loading needs of the file besides: its name for
+/// errors and Scene::file, and the folder its relative clip and mesh paths are read from. Every
+/// world built from it is the same scene, however the file changes after (the lab builds a run's
+/// every point from one).
+struct SceneSource {
+  std::filesystem::path file;
+  std::string text;
+  std::filesystem::path folder;  ///< where relative paths in the scene lead from
+};
+
 /// Loads a scene file; throws LoadError and builds nothing on any error.
 Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options = {});
+/// Reads a scene file for loadSceneSource; throws LoadError (line 0) when it cannot be read.
+SceneSource readSceneSource(const std::filesystem::path& file);
+/// Loads a scene from a file read before, as loadSceneFile loads the file.
+Scene loadSceneSource(const SceneSource& source, const LoadOptions& options = {});
 /// Loads a scene from text (tests, and files already in memory); `displayName` stands for the
 /// file name in errors.
 Scene loadSceneText(std::string_view xml, const std::string& displayName, const LoadOptions& options = {});
