@@ -159,10 +159,12 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
                   " s; checkpoints at steps " + joinNumbers(t.checkpoints) +
                   " (t = " + formatNumber(t.checkpoints.front() * dt) + " to " +
                   formatNumber(t.checkpoints.back() * dt) + " s); its uncertainty (change from " +
-                  std::to_string(half.substeps) + " substeps): " + formatNumber(t.uncertainty.front(), 2) +
-                  " m at the first checkpoint, " + formatNumber(maxUncertainty(t), 2) + " m at most";
-  if (froze + frozeCoarse > 0) {
-    t.description += "; the reference itself blew up (the guard froze " +
+                  std::to_string(half.substeps) + " substeps): ";
+  if (froze + frozeCoarse == 0) {
+    t.description += formatFigure(t.uncertainty.front(), " m", 2) + " at the first checkpoint, " +
+                     formatFigure(maxUncertainty(t), " m", 2) + " at most";
+  } else {
+    t.description += "unknown, since the reference itself blew up (the guard froze " +
                      count(std::max(froze, frozeCoarse), "part", "parts") +
                      "), so no error measured against it means anything";
   }

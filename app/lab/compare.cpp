@@ -90,7 +90,7 @@ std::filesystem::path shownPath(const std::filesystem::path& file, const std::fi
 }
 
 std::string fixed(double v, const char* format) {
-  if (!std::isfinite(v)) return v > 0 ? "inf" : "n/a";
+  if (!std::isfinite(v)) return formatNumber(v);  // "blew up" or "n/a", as every table says it
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, format, v);
   return buffer;

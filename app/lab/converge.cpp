@@ -126,8 +126,8 @@ FreeBodies freeBodyReference(const scenes::SceneSource& source, const std::vecto
     const double uncertainty = freeBodyUncertainty(start, times, body.halfExtents);
     if (!std::isfinite(uncertainty)) {
       throw std::invalid_argument(scene.name + ": body '" + body.name +
-                                  "': the free-body reference is not finite (its own uncertainty is " +
-                                  formatNumber(uncertainty, 3) + " m)");
+                                  "': the free-body reference is not finite (its own uncertainty: " +
+                                  formatNumber(uncertainty, 3) + ")");
     }
     out.poses.push_back(freeBodyPoses(start, times, kFreeBodyStep));
     out.halfExtents.push_back(body.halfExtents);

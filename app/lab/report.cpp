@@ -15,11 +15,14 @@
 namespace lab {
 namespace {
 
-// printf-style %.{digits}g, for the summary's rounded figures and the exact ones of JSON. A
-// figure that overflowed (the guard froze the world under a gravity of 1e308, say) reads n/a,
-// never inf or nan.
+// printf-style %.{digits}g, for the summary's rounded figures. A figure that overflowed (the guard
+// froze the world under a gravity of 1e308, say) reads "blew up", one that is not a number "n/a"
+// (formatNumber), and `fig` then leaves its unit out.
 std::string num(double value, int digits = 6) {
-  return std::isfinite(value) ? formatNumber(value, digits) : "n/a";
+  return formatNumber(value, digits);
+}
+std::string fig(double value, const std::string& unitAfter) {
+  return formatFigure(value, unitAfter);
 }
 
 // A stage's summed time and its share of the summed step totals, in aligned columns.
@@ -141,22 +144,23 @@ std::string summaryText(const RunResult& r) {
   }
   s += "             " + stageLine("other", p.total - p.staged(), p.total);
   s += "contacts     " + std::to_string(m.contacts) + " in the last step, max penetration " +
-       num(m.maxPenetration) + " m\n";
+       fig(m.maxPenetration, " m") + "\n";
   s += "constraints  error max " + num(m.maxConstraintError) + ", rms " + num(m.rmsConstraintError) +
        " (of rest length)\n";
   if (r.joints > 0)
-    s += "joints       " + count(r.joints, "link", "links") + ", max error " + num(m.maxJointError) + " m\n";
-  s += "speed        max " + num(m.maxSpeed) + " m/s\n";
+    s += "joints       " + count(r.joints, "link", "links") + ", max error " + fig(m.maxJointError, " m") +
+         "\n";
+  s += "speed        max " + fig(m.maxSpeed, " m/s") + "\n";
   s += "worst        after any step:";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& metric = kRunMetrics[i];
-    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + num(r.worst[i]) + metric.unitAfter() +
+    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + fig(r.worst[i], metric.unitAfter()) +
          (metric.over == OverRun::Rms ? " (RMS over the run)" : "");
   }
   s += "\n";
   s += drivesText(r.drives);
-  s += "energy       initial " + num(r.energyInitial) + " J, final " + num(m.energy()) + " J (change " +
-       num(m.energy() - r.energyInitial) + " J)\n";
+  s += "energy       initial " + fig(r.energyInitial, " J") + ", final " + fig(m.energy(), " J") +
+       " (change " + fig(m.energy() - r.energyInitial, " J") + ")\n";
   if (r.freezes.empty()) {
     s += "frozen       none\n";
   } else {

@@ -162,7 +162,7 @@ std::string matrix(const SuiteResult& r, F value) {
 }  // namespace
 
 std::string formatRatio(double ratio) {
-  if (std::isnan(ratio)) return "n/a";
+  if (!std::isfinite(ratio)) return formatNumber(ratio);  // "n/a", or "blew up" for a blow-up
   // Three digits, or as many more as keep a failing 1.0004 from reading as a passing "1".
   std::string text;
   for (int digits = 3; digits <= 9; ++digits) {
@@ -190,7 +190,7 @@ std::string markdownReport(const SuiteResult& r) {
   summaryTable(md, r);
   md << "\n## Per method\n\nColumns are iterations x substeps. Each entry is the worst criterion's value / "
         "limit (for flips, min / value or value / max; for stays-behind, the share of the way to the plane): "
-        "at most 1 passes, **bold** fails, inf is a blow-up (the guard froze a body).\n";
+        "at most 1 passes, **bold** fails, `blew up` is a blow-up (the guard froze a body).\n";
   for (const std::string& m : r.methods) methodGrid(md, r, m);
   peerTable(md, r);
   return md.str();

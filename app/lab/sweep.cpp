@@ -259,7 +259,8 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
     c.series.push_back(s);
   }
   const double u = maxUncertainty(firstTarget);
-  if (measure == kRunMetricCount && firstTarget.kind == "reference" && u > kErrorFloor) {
+  // A reference that blew up has no uncertainty to draw (gnuplot read "inf" as a variable).
+  if (measure == kRunMetricCount && firstTarget.kind == "reference" && std::isfinite(u) && u > kErrorFloor) {
     c.guide = u;
     c.guideTitle = "reference's own uncertainty";
   }

@@ -8,9 +8,14 @@ namespace lab {
 
 std::string formatNumber(double value, int digits) {
   if (std::isnan(value)) return "n/a";
+  if (std::isinf(value)) return kBlewUp;
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
+}
+
+std::string formatFigure(double value, const std::string& unitAfter, int digits) {
+  return std::isfinite(value) ? formatNumber(value, digits) + unitAfter : formatNumber(value, digits);
 }
 
 std::string count(std::size_t n, const char* singular, const char* plural) {

@@ -12,13 +12,20 @@
 namespace lab {
 
 /// The figure of a run that blew up, and one a run does not have (a peer's of ours): formatNumber
-/// prints them "inf" and "n/a".
+/// prints them kBlewUp and "n/a".
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// printf's %.{digits}g: "0.0125", "1e-06", "inf" (a figure that ran away is printed as such);
-/// "n/a" for NaN, a figure that is not a number at all (an energy drift of inf - inf), never "nan".
+/// What every table, summary and sentence of the lab prints for a figure that ran away to
+/// infinity (a run that blew up: its error, its gap, its worst ratio), never "inf".
+inline constexpr const char* kBlewUp = "blew up";
+
+/// printf's %.{digits}g: "0.0125", "1e-06"; kBlewUp for an infinite figure, and "n/a" for NaN, a
+/// figure that is not a number at all (an energy drift of inf - inf), never "inf" or "nan".
 std::string formatNumber(double value, int digits = 6);
+/// formatNumber and the unit after it ("0.0125 m"), or the words alone for a figure that is not
+/// finite ("blew up", not "blew up m").
+std::string formatFigure(double value, const std::string& unitAfter, int digits = 6);
 
 /// "1 substep", "3 substeps": a count and its noun.
 std::string count(std::size_t n, const char* singular, const char* plural);

@@ -259,12 +259,13 @@ class Search {
 
 std::string figuresText(const Figures& f, bool withError) {
   std::string s;
-  if (withError) s += "error " + formatNumber(f.error, 3) + " m, ";
+  if (withError) s += "error " + formatFigure(f.error, " m", 3) + ", ";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& m = kRunMetrics[i];
-    s += std::string(m.name) + " " + formatNumber(f.maxima[i], 3) + m.unitAfter() + ", ";
+    s += std::string(m.name) + " " + formatFigure(f.maxima[i], m.unitAfter(), 3) + ", ";
   }
-  return s + "drift " + formatNumber(std::abs(f.energyDrift), 3) + " J, frozen " + std::to_string(f.frozen);
+  return s + "drift " + formatFigure(std::abs(f.energyDrift), " J", 3) + ", frozen " +
+         std::to_string(f.frozen);
 }
 
 // "meets the targets", or which it misses and by how much.
@@ -274,7 +275,7 @@ std::string verdict(const Search& search, const Figures& f) {
   for (const Target& t : search.targets()) {
     const double v = figure(f, t);
     if (v <= t.bound) continue;
-    misses += (misses.empty() ? "" : ", ") + t.name + " " + formatNumber(v, 3) + t.unit + " > " +
+    misses += (misses.empty() ? "" : ", ") + t.name + " " + formatFigure(v, t.unit, 3) + " > " +
               formatNumber(t.bound, 3) + t.unit;
   }
   return misses.empty() ? "meets the targets" : "misses: " + misses;
@@ -352,8 +353,12 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   const bool withError = search.needsError();
   if (withError && search.target(sceneOwn).kind == "reference") {
     const double u = maxUncertainty(search.target(sceneOwn));
-    out << "note        the reference itself is uncertain to " << formatNumber(u, 2)
-        << " m here; error targets below that cannot be told apart\n";
+    if (std::isfinite(u)) {
+      out << "note        the reference itself is uncertain to " << formatNumber(u, 2)
+          << " m here; error targets below that cannot be told apart\n";
+    } else {
+      out << "note        the reference itself blew up here: no error target can be judged against it\n";
+    }
   }
   if (!win) {
     out << "winner      none: no setting meets the targets\n";

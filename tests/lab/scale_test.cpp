@@ -153,6 +153,8 @@ TEST(Scale, EachSizeRunsAtEachNumberOfThreadsInTurn) {
   blown[0].maxJointGap = std::numeric_limits<double>::infinity();
   blown[0].blewUp = true;
   EXPECT_TRUE(lab::scaleCsv(blown).ends_with(",,1\n")) << lab::scaleCsv(blown);
+  // and the table says it in words, where it printed "inf"
+  EXPECT_TRUE(lab::scaleTable(blown).ends_with(" blew up\n")) << lab::scaleTable(blown);
 
   if (lab::findGnuplot().empty()) GTEST_SKIP() << "gnuplot is not installed";
   const TempDir dir;

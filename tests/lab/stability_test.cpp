@@ -369,7 +369,7 @@ TEST(StabilityReport, RatiosNeverReadAsTheWrongSideOfOne) {
   EXPECT_EQ(lab::stability::formatRatio(1.0), "1");
   EXPECT_EQ(lab::stability::formatRatio(1.0004), "1.0004");  // fails: not "1"
   EXPECT_EQ(lab::stability::formatRatio(123.456), "123");
-  EXPECT_EQ(lab::stability::formatRatio(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(lab::stability::formatRatio(std::numeric_limits<double>::infinity()), "blew up");
 }
 
 // Peers are extra columns: a peer that did not run reads "n/a: why" in the report, and "n/a"
@@ -411,6 +411,23 @@ TEST(StabilityReport, ABlowUpIsSaidInItsColumnNotAsInf) {
   const std::string csv = lab::stability::csvReport(r);
   EXPECT_NE(csv.find("\nface-face,fake,,,,0,1,,"), std::string::npos) << csv;
   EXPECT_EQ(csv.find("inf"), std::string::npos) << csv;
+}
+
+// The report says a blow-up in words: its grids printed the worst ratio, infinity, as "inf".
+TEST(StabilityReport, ABlowUpIsSaidInWordsInTheReport) {
+  lab::stability::SuiteResult r;
+  r.scenes.push_back(suiteScene("face-face"));
+  r.methods.push_back("gauss-seidel");
+  r.settings.push_back(setting(phys::SolverMethod::GaussSeidel, 3, 4));
+  const double inf = std::numeric_limits<double>::infinity();
+  lab::stability::Outcome blown;
+  blown.verdicts.assign(2, lab::stability::Verdict{true, "", inf, inf, false});
+  blown.judged = true;
+  r.outcomes.push_back({blown});
+  EXPECT_EQ(lab::stability::formatRatio(inf), "blew up");
+  const std::string md = lab::stability::markdownReport(r);
+  EXPECT_NE(md.find("| face-face | **blew up** |"), std::string::npos) << md;
+  EXPECT_EQ(md.find(" inf"), std::string::npos) << md;
 }
 
 TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {

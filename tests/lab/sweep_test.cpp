@@ -297,6 +297,59 @@ TEST(Sweep, ARunThatBlowsUpHasNoErrorAndSaysItBlewUp) {
   EXPECT_EQ(o.out.find("0 m at most"), std::string::npos) << o.out;
 }
 
+// Whether `text` holds "inf" as a figure (not as part of a word such as "infinity").
+bool holdsInf(const std::string& text) {
+  for (std::size_t at = text.find("inf"); at != std::string::npos; at = text.find("inf", at + 1)) {
+    const bool wordBefore = at > 0 && std::isalpha(static_cast<unsigned char>(text[at - 1]));
+    const bool wordAfter = at + 3 < text.size() && std::isalpha(static_cast<unsigned char>(text[at + 3]));
+    if (!wordBefore && !wordAfter) return true;
+  }
+  return false;
+}
+
+// A run that blew up is said in words wherever a command prints its figures: the sweep's table
+// and accuracy line, tune's figures and verdicts, compare's table, run's summary printed "inf" (or
+// "n/a", as for a figure that is no number at all), and the chart drew the blown-up reference's
+// uncertainty as "inf", which gnuplot read as a variable.
+TEST(Sweep, EveryCommandSaysABlowUpInWords) {
+  TempDir dir;
+  const std::filesystem::path escape = dir.write("escape.xml", lab_testing::escapingScene());
+  const std::filesystem::path box =
+      dir.write("box.xml",
+                "<scene name=\"escbox\"><world bound=\"10\"/><ground/>\n"
+                "  <box name=\"b\" pos=\"0 5 0\" velocity=\"100 0 0\"/></scene>\n");
+  // A box of 1e9 kg thrown at 1e200 m/s starts with inf J: run's summary printed "n/a J".
+  const std::filesystem::path overflow = dir.write(
+      "heavy.xml",
+      "<scene name=\"heavy\"><box name=\"b\" pos=\"0 3 0\" mass=\"1e9\" velocity=\"1e200 0 0\"/></scene>\n");
+  const Outcome swept = sweep(
+      {escape.string(), "--steps", "30", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  const Outcome sweptBox =
+      sweep({box.string(), "--steps", "30", "--repeat", "1", "--out", dir.file("box").string()});
+  const Outcome tuned = lab::runCaptured("tune", {escape.string(), "--steps", "30", "--repeat", "1",
+                                                  "--target", "error=0.1", "--data", DATA_DIR});
+  const Outcome compared = lab::runCaptured("compare", {box.string(), "--steps", "30", "--repeat", "1"});
+  const Outcome ran = lab::runCaptured("run", {overflow.string(), "--steps", "2"});
+  for (const Outcome* o : {&swept, &sweptBox, &tuned, &compared, &ran}) {
+    EXPECT_NE(o->out.find(lab::kBlewUp), std::string::npos) << o->out;
+    EXPECT_FALSE(holdsInf(o->out)) << o->out;
+    EXPECT_FALSE(holdsInf(o->err)) << o->err;
+  }
+  EXPECT_EQ(swept.code, 0) << swept.err;
+  EXPECT_EQ(sweptBox.code, 0) << sweptBox.err;
+  EXPECT_NE(swept.out.find("its uncertainty (change from 64 substeps): unknown, since the reference itself "
+                           "blew up"),
+            std::string::npos)
+      << swept.out;
+  EXPECT_NE(tuned.out.find("error blew up, "), std::string::npos) << tuned.out;
+  EXPECT_NE(tuned.out.find("error blew up > 0.1 m"), std::string::npos) << tuned.out;
+  EXPECT_NE(compared.out.find("| blew up | blew up |"), std::string::npos) << compared.out;
+  EXPECT_NE(ran.out.find("energy       initial blew up, "), std::string::npos) << ran.out;
+  if (std::filesystem::exists(dir.file("box/sweep.gp"))) {  // drawn when a peer's run has an error
+    EXPECT_FALSE(holdsInf(lab_testing::readFile(dir.file("box/sweep.gp"))));
+  }
+}
+
 // A sweep builds every point from the scene file as read once: a file saved over after the first
 // point (the sandbox's Save As during a long sweep) measured the new scene at every later point.
 TEST(Sweep, ASceneFileSavedOverMidSweepChangesNoPoint) {
