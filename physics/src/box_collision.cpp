@@ -10,13 +10,14 @@
 
 #include "passes.h"
 #include "physics/world.h"
+#include "require.h"
 
 namespace phys {
 
 void World::ignoreCollision(BodyId a, BodyId b) {
-  if (a >= bodies_.size() || b >= bodies_.size() || a == b) {
-    throw std::invalid_argument("ignoreCollision: box ids must exist and differ");
-  }
+  detail::requireIndex(a, bodies_.size(), "ignoreCollision", "body");
+  detail::requireIndex(b, bodies_.size(), "ignoreCollision", "body");
+  if (a == b) throw std::invalid_argument("ignoreCollision: the two bodies must differ");
   broadPhase_.ignore(a, b);
   layoutsStale_ = true;  // the filters' index
 }

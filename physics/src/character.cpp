@@ -20,6 +20,7 @@ namespace {
 
 using detail::numberText;
 using detail::require;
+using detail::requireIndex;
 
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
@@ -286,7 +287,10 @@ void targetOrientations(const Character& c, const ClipPose& pose, std::span<Quat
     out[b] = glm::normalize(c.frame * out[b] * c.bones[b].rest);
 }
 
-std::pair<Vec3, Vec3> bonePivots(const World& world, const Character& c, std::size_t b) {
+namespace {
+
+// bonePivots without its checks, for targetCentres, which runs it for every bone it places.
+std::pair<Vec3, Vec3> pivotsOf(const World& world, const Character& c, std::size_t b) {
   const CharacterBone& bone = c.bones[b];
   Vec3 pivotA(0.0), pivotB(0.0);
   if (c.particleParts) {
@@ -297,6 +301,18 @@ std::pair<Vec3, Vec3> bonePivots(const World& world, const Character& c, std::si
     pivotA = j.pivotA, pivotB = j.pivotB;
   }
   return bone.reversed ? std::pair{pivotB, pivotA} : std::pair{pivotA, pivotB};
+}
+
+}  // namespace
+
+std::pair<Vec3, Vec3> bonePivots(const World& world, const Character& c, std::size_t b) {
+  requireIndex(b, c.bones.size(), "bonePivots", "bone");
+  // The root's joint index means nothing: it has none.
+  if (c.bones[b].parent < 0) [[unlikely]]
+    throw std::invalid_argument("bonePivots: bone " + std::to_string(b) + " is the root, which has no joint");
+  const std::size_t joints = c.particleParts ? world.particleJoints().size() : world.rigidJoints().size();
+  requireIndex(c.bones[b].joint, joints, "bonePivots", c.particleParts ? "particle joint" : "joint");
+  return pivotsOf(world, c, b);
 }
 
 void targetCentres(const World& world, const Character& c, std::span<const Quat> orientations,
@@ -310,13 +326,13 @@ void targetCentres(const World& world, const Character& c, std::span<const Quat>
       continue;
     }
     const auto parent = static_cast<std::size_t>(bone.parent);
-    const auto [parents, own] = bonePivots(world, c, b);
+    const auto [parents, own] = pivotsOf(world, c, b);
     out[b] = out[parent] + orientations[parent] * parents - orientations[b] * own;
   }
 }
 
 Real trackingError(const World& world, std::size_t k) {
-  require(k < world.characters().size(), "trackingError: character index must exist");
+  requireIndex(k, world.characters().size(), "trackingError", "character");
   const Character& c = world.characters()[k];
   std::vector<Quat> targets(c.bones.size());
   targetOrientations(c, c.pose, targets);
@@ -440,7 +456,7 @@ World::PartMotion World::partMotion(BodyId id) const {
     return {inverseMass > 0.0 ? 1.0 / inverseMass : 0.0, rigidBodies_.position[i], rigidBodies_.velocity[i]};
   }
   detail::MassProperties m;
-  if (!detail::massProperties(particles_, body, m)) return {0.0, bodyPose(id).center, Vec3(0.0)};
+  if (!detail::massProperties(particles_, body, m)) return {0.0, poseOf(id).center, Vec3(0.0)};
   return {m.mass, m.centre, detail::rigidMotion(particles_, body, m).linear / substepDt()};
 }
 
@@ -464,8 +480,8 @@ void World::placeAtRest(BodyId id, const BodyPose& pose) {
 }
 
 void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
+  requireIndex(k, characters_.size(), "playClip", "character");
   const std::string who = "playClip";
-  require(k < characters_.size(), who + ": character index must exist");
   checkPlayback(playback, who);
   require(std::isfinite(blendTime) && blendTime >= 0.0, who + ": blend time must be finite and >= 0");
   Character& c = characters_[k];
@@ -479,8 +495,8 @@ void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
 }
 
 void World::queueClip(std::size_t k, const Playback& playback, Real at, Real blendTime) {
+  requireIndex(k, characters_.size(), "queueClip", "character");
   const std::string who = "queueClip";
-  require(k < characters_.size(), who + ": character index must exist");
   checkPlayback(playback, who);
   require(std::isfinite(at) && std::abs(at) <= kMaxClipTime,
           who + ": the time must be finite and within +-1e9 s");
@@ -492,7 +508,7 @@ void World::queueClip(std::size_t k, const Playback& playback, Real at, Real ble
 }
 
 void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength) {
-  require(k < characters_.size(), "setCharacterStrength: character index must exist");
+  requireIndex(k, characters_.size(), "setCharacterStrength", "character");
   checkStrengths(strength, rootStrength, "setCharacterStrength");
   Character& c = characters_[k];
   c.strength = c.goalStrength = strength;
@@ -503,14 +519,14 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
 }
 
 void World::setPartStrength(std::size_t k, const std::string& bone, Real share) {
-  require(k < characters_.size(), "setPartStrength: character index must exist");
+  requireIndex(k, characters_.size(), "setPartStrength", "character");
   Character& c = characters_[k];
   c.partStrength[partOf(c, *c.now.clip, bone, share, "setPartStrength")] = share;
   islands_.wake(islands_.bodyNode(c.bones[0].body));
 }
 
 void World::setCharacterBalance(std::size_t k, Real balance) {
-  require(k < characters_.size(), "setCharacterBalance: character index must exist");
+  requireIndex(k, characters_.size(), "setCharacterBalance", "character");
   require(balance >= 0.0 && balance <= 1.0, "setCharacterBalance: balance must be in [0, 1]");
   Character& c = characters_[k];
   c.goalBalance = balance;
@@ -520,7 +536,7 @@ void World::setCharacterBalance(std::size_t k, Real balance) {
 }
 
 void World::setCharacterReaction(std::size_t k, const Reaction& reaction) {
-  require(k < characters_.size(), "setCharacterReaction: character index must exist");
+  requireIndex(k, characters_.size(), "setCharacterReaction", "character");
   Character& c = characters_[k];
   checkReaction(reaction, *c.now.clip, "setCharacterReaction");
   if (reaction.getUp.clip) makeRootDrive(c, 0.0);
@@ -566,7 +582,7 @@ void World::animate(Real h) {
                                 c.rootAngularStiffness});
     } else if (keepsRootDrive(c)) {
       // Stiffness 0: the balance only turns the root, wherever it is.
-      setRootDrive(c, BodyDrive{bodyPose(c.bones[0].body).center, balanceTarget(c, characterTargets_[0]),
+      setRootDrive(c, BodyDrive{poseOf(c.bones[0].body).center, balanceTarget(c, characterTargets_[0]),
                                 c.balance, 0.0, c.rootAngularStiffness});
     } else {
       constraints_.clearBodyDrive(c.bones[0].body);

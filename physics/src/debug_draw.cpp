@@ -18,9 +18,10 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
       else
         draw.line(a, b, colors::kRange);
     };
-    for (const Link& link : constraints_.links()) drawLink(position(link.a), position(link.b), link.isPin());
+    for (const Link& link : constraints_.links())
+      drawLink(positionOf(link.a), positionOf(link.b), link.isPin());
     for (const RigidLink& link : constraints_.rigidLinks())
-      drawLink(position(link.a), position(link.b), link.isPin());
+      drawLink(positionOf(link.a), positionOf(link.b), link.isPin());
     for (const RigidJoint& j : constraints_.rigidJoints())
       drawLink(rigidBodies_.position[j.a] + rigidBodies_.orientation[j.a] * j.pivotA, Vec3(0.0), true);
   }
@@ -38,12 +39,12 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
     const std::span<const GroundContact> groundPoints = ground_.points();
     for (std::size_t c = 0; c < groundPoints.size(); ++c) {
       if (ground_.state().touched[c] != 0)
-        draw.point(position(groundPoints[c].point), 0.08, colors::kContact);
+        draw.point(positionOf(groundPoints[c].point), 0.08, colors::kContact);
     }
     for (std::size_t k = 0; k < narrowPhase_.contacts().size(); ++k) {
       if (narrowPhase_.state().touched[k] == 0) continue;  // speculative: not touching in the last substep
       const BodyContact& c = narrowPhase_.contacts()[k];
-      const Vec3 p = position(c.pointA);
+      const Vec3 p = positionOf(c.pointA);
       const Color color = colors::kFeature[c.kind % 6];
       draw.point(p, 0.05, color);
       draw.line(p, p + 0.25 * c.normal, color);
@@ -83,7 +84,7 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
       turned.resize(c.bones.size());
       centres.resize(c.bones.size());
       targetOrientations(c, c.pose, turned);
-      targetCentres(*this, c, turned, bodyPose(c.bones[0].body).center, centres);
+      targetCentres(*this, c, turned, poseOf(c.bones[0].body).center, centres);
       for (std::size_t b = 0; b < c.bones.size(); ++b) {
         const CharacterBone& bone = c.bones[b];
         draw.box(centres[b], turned[b], bodies_[bone.body].halfExtents, colors::kTarget);
@@ -99,14 +100,14 @@ void World::debugDraw(DebugDraw& draw, const DebugDrawFlags& flags) const {
       const Body& box = bodies_[id];
       Vec3 lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
       for (int k = 0; k < 8; ++k) {
-        const Vec3 p = cornerPosition(id, k);
+        const Vec3 p = cornerOf(id, k);
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
       }
       if (box.shape == Shape::Capsule) {
         // A capsule's own bounds: its core's ends, out by the radius on every axis.
         const Vec3 centre = (lo + hi) * 0.5;
-        const Vec3 corner0 = cornerPosition(id, 0), corner2 = cornerPosition(id, 2);
+        const Vec3 corner0 = cornerOf(id, 0), corner2 = cornerOf(id, 2);
         const Vec3 axis = glm::normalize(corner2 - corner0) * box.capsuleHalfSegment();
         lo = glm::min(centre - axis, centre + axis) - Vec3(box.capsuleRadius());
         hi = glm::max(centre - axis, centre + axis) + Vec3(box.capsuleRadius());

@@ -109,16 +109,16 @@ Metrics World::metrics() const {
     m.maxJointError = maxOf(m.maxJointError, violation);
   };
   for (const Link& link : constraints_.links())
-    jointError(position(link.a), position(link.b), link.minLength, link.maxLength);
+    jointError(positionOf(link.a), positionOf(link.b), link.minLength, link.maxLength);
   for (const RigidLink& link : constraints_.rigidLinks())
-    jointError(position(link.a), position(link.b), link.minLength, link.maxLength);
+    jointError(positionOf(link.a), positionOf(link.b), link.minLength, link.maxLength);
   for (const RigidJoint& j : constraints_.rigidJoints()) {
     jointError(r.position[j.a] + r.orientation[j.a] * j.pivotA,
                r.position[j.b] + r.orientation[j.b] * j.pivotB, 0.0, 0.0);
   }
   if (world_.ground) {
     for (const GroundContact& c : ground_.points()) {
-      const Real depth = world_.groundHeight + c.lift - glm::dot(world_.groundNormal, position(c.point));
+      const Real depth = world_.groundHeight + c.lift - glm::dot(world_.groundNormal, positionOf(c.point));
       m.maxPenetration = maxOf(m.maxPenetration, depth);
     }
   }
@@ -126,7 +126,7 @@ Metrics World::metrics() const {
       std::count(ground_.state().touched.begin(), ground_.state().touched.end(), std::uint8_t{1}));
   for (std::size_t k = 0; k < narrowPhase_.contacts().size(); ++k) {
     const BodyContact& c = narrowPhase_.contacts()[k];
-    const Real gap = glm::dot(c.normal, position(c.pointB) - position(c.pointA)) - c.offset;
+    const Real gap = glm::dot(c.normal, positionOf(c.pointB) - positionOf(c.pointA)) - c.offset;
     m.maxPenetration = maxOf(m.maxPenetration, -gap);
     if (narrowPhase_.state().touched[k] != 0) ++m.contacts;
   }

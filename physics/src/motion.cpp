@@ -219,7 +219,7 @@ void World::setMotion(const Motion& m) {
 }
 
 CharacterMotion World::characterMotion(std::size_t k) const {
-  detail::require(k < characters_.size(), "characterMotion: character index must exist");
+  detail::requireIndex(k, characters_.size(), "characterMotion", "character");
   CharacterMotion m;
   copyCharacterMotion(characters_[k], m);
   return m;
@@ -227,7 +227,7 @@ CharacterMotion World::characterMotion(std::size_t k) const {
 
 void World::setCharacterMotion(std::size_t k, const CharacterMotion& m) {
   using detail::require;
-  require(k < characters_.size(), "setCharacterMotion: character index must exist");
+  detail::requireIndex(k, characters_.size(), "setCharacterMotion", "character");
   const std::string problem = characterProblem(m);
   require(problem.empty(), "setCharacterMotion: " + problem);
   const std::string mismatch = characterMismatch(m, characters_[k]);

@@ -18,12 +18,12 @@ namespace phys {
 using detail::require;
 
 void World::push(BodyId body, const Vec3& force, Real duration, const std::optional<Vec3>& worldPoint) {
+  detail::requireIndex(body, bodies_.size(), "push", "body");
   const std::string who = "push";
-  require(body < bodies_.size(), who + ": body must exist");
   require(finite(force), who + ": the force must be finite");
   require(std::isfinite(duration) && duration > 0.0, who + ": the duration must be finite and > 0");
   require(!worldPoint || finite(*worldPoint), who + ": the point must be finite");
-  const BodyPose pose = bodyPose(body);
+  const BodyPose pose = poseOf(body);
   const Vec3 at = worldPoint ? *worldPoint - pose.center : Vec3(0.0);
   pushes_.push_back(Push{body, glm::conjugate(pose.orientation) * at, force, duration});
   islands_.wake(islands_.bodyNode(body));
@@ -47,7 +47,7 @@ void World::applyPushes(Real h) {
     detail::MassProperties m;
     Vec3 dv(0.0), dw(0.0), centre(0.0);
     if (detail::massProperties(particles_, body, m)) {
-      const Vec3 at = bodyPose(p.body).orientation * p.local;
+      const Vec3 at = poseOf(p.body).orientation * p.local;
       dv = impulse / m.mass;
       dw = glm::inverse(m.inertia) * glm::cross(at, impulse);
       centre = m.centre;

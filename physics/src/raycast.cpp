@@ -86,7 +86,7 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, 
     best = RayHit{box, particle, *t, origin + *t * d};
   };
   for (BodyId id{}; id < bodies_.size(); ++id) {
-    const BodyPose pose = bodyPose(id);
+    const BodyPose pose = poseOf(id);
     const Quat toBox = glm::conjugate(pose.orientation);
     const Body& box = bodies_[id];
     const Vec3 o = toBox * (origin - pose.center), local = toBox * d;

@@ -1,9 +1,11 @@
 #pragma once
 // The check the world's adders and the builders make of their input: bad input is refused with
 // std::invalid_argument, whose message says what and which call.
+#include <cstddef>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace phys::detail {
 
@@ -11,11 +13,19 @@ inline void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
-/// require for the queries, which may run for every body of every step (metrics, drawing): the
-/// message is only made when the check fails.
-template <class Message>
-void requireLazily(bool ok, const Message& what) {
-  if (!ok) throw std::invalid_argument(what());
+/// The message of requireIndex's refusal, made out of line: the check itself stays a compare.
+[[noreturn]] inline void refuseIndex(std::string_view call, std::string_view what, std::size_t index,
+                                     std::size_t count) {
+  throw std::invalid_argument(std::string(call) + ": " + std::string(what) + " " + std::to_string(index) +
+                              " does not exist (there are " + std::to_string(count) + ")");
+}
+
+/// Refuses an id or index of one of `count` things that does not exist, naming the call and what it
+/// indexes: "bodyPose: body 7 does not exist (there are 2)". Nothing is made unless it fails, so a
+/// query may check every call.
+inline void requireIndex(std::size_t index, std::size_t count, std::string_view call, std::string_view what) {
+  if (index >= count) [[unlikely]]
+    refuseIndex(call, what, index, count);
 }
 
 /// A number as a message shows it: "1e+200", "inf", "nan", not std::to_string's 200 digits.

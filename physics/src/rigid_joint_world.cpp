@@ -14,7 +14,7 @@
 namespace phys {
 
 using detail::require;
-using detail::requireLazily;
+using detail::requireIndex;
 namespace {
 
 // The joint's frame (axis, reference, their cross product) as a turn from the body's frame.
@@ -54,7 +54,7 @@ void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real
       continue;
     }
     require(end->side == ContactSide::Rigid, "addLink: an end is on a body or on particles, not the ground");
-    require(end->rigid < rigidBodies_.size(), "addLink: rigid body ids must exist");
+    requireIndex(end->rigid, rigidBodies_.size(), "addLink", "rigid body");
     require(finite(end->local), "addLink: a rigid body's point must be finite");
   }
   require(std::isfinite(minLength) && minLength >= 0.0, "addLink: min length must be finite and >= 0 (m)");
@@ -78,7 +78,9 @@ void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real
 }
 
 void World::addJoint(const JointDesc& d) {
-  auto rigid = [this](BodyId id) { return id < bodies_.size() && bodies_[id].model == BodyModel::Rigid; };
+  requireIndex(d.a, bodies_.size(), "addJoint", "body");
+  requireIndex(d.b, bodies_.size(), "addJoint", "body");
+  auto rigid = [this](BodyId id) { return bodies_[id].model == BodyModel::Rigid; };
   require(rigid(d.a) && rigid(d.b) && d.a != d.b, "addJoint: a and b must be two different rigid bodies");
   require(d.kind == JointKind::Hinge || d.kind == JointKind::Cone,
           "addJoint: kind must be Hinge or Cone (is " + std::to_string(static_cast<int>(d.kind)) + ")");
@@ -133,7 +135,7 @@ void World::addJoint(const JointDesc& d) {
 }
 
 JointDesc World::jointDesc(std::size_t k) const {
-  require(k < constraints_.rigidJoints().size(), "jointDesc: joint index must exist");
+  requireIndex(k, constraints_.rigidJoints().size(), "jointDesc", "joint");
   const RigidJoint& j = constraints_.rigidJoints()[k];
   const RigidBodies& r = rigidBodies_;
   JointDesc d;
@@ -156,25 +158,25 @@ JointDesc World::jointDesc(std::size_t k) const {
 }
 
 Real World::jointAngle(std::size_t k) const {
-  require(k < constraints_.rigidJoints().size(), "jointAngle: joint index must exist");
+  requireIndex(k, constraints_.rigidJoints().size(), "jointAngle", "joint");
   return detail::jointAngle(rigidBodies_, constraints_.rigidJoints()[k]);
 }
 
 const JointDrive& World::jointDrive(std::size_t k) const {
-  require(k < constraints_.rigidJoints().size(), "jointDrive: joint index must exist");
+  requireIndex(k, constraints_.rigidJoints().size(), "jointDrive", "joint");
   return constraints_.drives()[k];
 }
 
 // A multiplier is an impulse times h (the position change it makes is w lambda), so the force is
 // lambda / h^2; the passes of a substep add to one multiplier, zeroed by the first.
 Real World::jointDriveTorque(std::size_t k) const {
-  require(k < constraints_.rigidJoints().size(), "jointDriveTorque: joint index must exist");
+  requireIndex(k, constraints_.rigidJoints().size(), "jointDriveTorque", "joint");
   const Real h = substepDt();
   return std::abs(constraints_.driveLambda()[k]) / (h * h);
 }
 
 DriveLoad World::bodyDriveLoad(BodyId id) const {
-  require(id < bodies_.size(), "bodyDriveLoad: body id must exist");
+  requireIndex(id, bodies_.size(), "bodyDriveLoad", "body");
   const std::span<const DrivenBody> driven = constraints_.bodyDrives();
   const std::span<const Real> lambda = constraints_.bodyDriveLambda();
   const Real hh = substepDt() * substepDt();
@@ -186,12 +188,12 @@ DriveLoad World::bodyDriveLoad(BodyId id) const {
 }
 
 Quat World::jointRest(std::size_t k) const {
-  require(k < constraints_.rigidJoints().size(), "jointRest: joint index must exist");
+  requireIndex(k, constraints_.rigidJoints().size(), "jointRest", "joint");
   return restTarget(constraints_.rigidJoints()[k]);
 }
 
 void World::setJointDrive(std::size_t k, const JointDrive& drive) {
-  require(k < constraints_.rigidJoints().size(), "setJointDrive: joint index must exist");
+  requireIndex(k, constraints_.rigidJoints().size(), "setJointDrive", "joint");
   require(drive.strength >= 0.0 && drive.strength <= 1.0, "setJointDrive: strength must be in [0, 1]");
   require(std::isfinite(drive.stiffness) && drive.stiffness > 0.0,
           "setJointDrive: stiffness must be finite and > 0 (N m/rad)");
@@ -202,7 +204,7 @@ void World::setJointDrive(std::size_t k, const JointDrive& drive) {
 }
 
 std::optional<BodyDrive> World::bodyDrive(BodyId id) const {
-  require(id < bodies_.size(), "bodyDrive: body id must exist");
+  requireIndex(id, bodies_.size(), "bodyDrive", "body");
   for (const DrivenBody& d : constraints_.bodyDrives()) {
     if (d.body == id) return d.drive;
   }
@@ -210,7 +212,7 @@ std::optional<BodyDrive> World::bodyDrive(BodyId id) const {
 }
 
 void World::setBodyDrive(BodyId id, const BodyDrive& drive) {
-  require(id < bodies_.size(), "setBodyDrive: body id must exist");
+  requireIndex(id, bodies_.size(), "setBodyDrive", "body");
   require(finite(drive.position), "setBodyDrive: the position must be finite");
   require(drive.strength >= 0.0 && drive.strength <= 1.0, "setBodyDrive: strength must be in [0, 1]");
   require(std::isfinite(drive.stiffness) && drive.stiffness >= 0.0,
@@ -225,20 +227,23 @@ void World::setBodyDrive(BodyId id, const BodyDrive& drive) {
 }
 
 void World::clearBodyDrive(BodyId id) {
-  require(id < bodies_.size(), "clearBodyDrive: body id must exist");
+  requireIndex(id, bodies_.size(), "clearBodyDrive", "body");
   constraints_.clearBodyDrive(id);
   islands_.wake(islands_.bodyNode(id));
 }
 
 std::size_t World::addParticleJoint(BodyId parent, BodyId child, const Vec3& pivot) {
-  require(parent < bodies_.size() && child < bodies_.size(), "addParticleJoint: body id must exist");
+  requireIndex(parent, bodies_.size(), "addParticleJoint", "body");
+  requireIndex(child, bodies_.size(), "addParticleJoint", "body");
   require(finite(pivot), "addParticleJoint: the pivot must be finite");
   return addParticleJoint(particleJointAt(parent, child, pivot, pivot));
 }
 
 ParticleJoint World::particleJointAt(BodyId parent, BodyId child, const Vec3& pivot,
                                      const Vec3& pivotB) const {
-  const BodyPose a = bodyPose(parent), b = bodyPose(child);
+  requireIndex(parent, bodies_.size(), "particleJointAt", "body");
+  requireIndex(child, bodies_.size(), "particleJointAt", "body");
+  const BodyPose a = poseOf(parent), b = poseOf(child);
   ParticleJoint j;
   j.a = parent;
   j.b = child;
@@ -250,7 +255,8 @@ ParticleJoint World::particleJointAt(BodyId parent, BodyId child, const Vec3& pi
 
 std::size_t World::addParticleJoint(const ParticleJoint& joint) {
   const std::string who = "addParticleJoint: ";
-  require(joint.a < bodies_.size() && joint.b < bodies_.size(), who + "body id must exist");
+  requireIndex(joint.a, bodies_.size(), "addParticleJoint", "body");
+  requireIndex(joint.b, bodies_.size(), "addParticleJoint", "body");
   require(joint.a != joint.b, who + "a joint needs two bodies");
   require(bodies_[joint.a].model != BodyModel::Rigid && bodies_[joint.b].model != BodyModel::Rigid,
           who + "both bodies must be particle bodies (a rigid joint is addJoint's)");
@@ -262,20 +268,19 @@ std::size_t World::addParticleJoint(const ParticleJoint& joint) {
 }
 
 const JointDrive& World::particleJointDrive(std::size_t k) const {
-  require(k < constraints_.particleJoints().size(), "particleJointDrive: particle joint index must exist");
+  requireIndex(k, constraints_.particleJoints().size(), "particleJointDrive", "particle joint");
   return constraints_.particleDrives()[k];
 }
 
 Real World::particleJointDriveTorque(std::size_t k) const {
-  require(k < constraints_.particleJoints().size(),
-          "particleJointDriveTorque: particle joint index must exist");
+  requireIndex(k, constraints_.particleJoints().size(), "particleJointDriveTorque", "particle joint");
   const Real h = substepDt();
   return std::abs(constraints_.particleDriveLambda()[k]) / (h * h);
 }
 
 void World::setParticleJointDrive(std::size_t k, const JointDrive& drive) {
   const std::string who = "setParticleJointDrive: ";
-  require(k < constraints_.particleJoints().size(), who + "particle joint index must exist");
+  requireIndex(k, constraints_.particleJoints().size(), "setParticleJointDrive", "particle joint");
   require(drive.strength >= 0.0 && drive.strength <= 1.0, who + "strength must be in [0, 1]");
   require(std::isfinite(drive.stiffness) && drive.stiffness > 0.0,
           who + "stiffness must be finite and > 0 (N m/rad)");
@@ -286,7 +291,7 @@ void World::setParticleJointDrive(std::size_t k, const JointDrive& drive) {
 }
 
 BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {
-  require(id < bodies_.size(), "pointOn: body id must exist");
+  requireIndex(id, bodies_.size(), "pointOn", "body");
   if (bodies_[id].model != BodyModel::Rigid) return BodyPoint::embedded(anchor(id, worldPoint));
   require(finite(worldPoint), "pointOn: the point must be finite");
   const RigidId i = bodies_[id].rigid;
@@ -296,21 +301,23 @@ BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {
 
 Vec3 World::position(const BodyPoint& point) const {
   if (point.side != ContactSide::Rigid) return position(point.point);
-  requireLazily(point.rigid < rigidBodies_.size(), [&point] {
-    return "position: rigid body " + std::to_string(point.rigid) + " does not exist";
-  });
+  requireIndex(point.rigid, rigidBodies_.size(), "position", "rigid body");
+  return positionOf(point);
+}
+
+Vec3 World::positionOf(const BodyPoint& point) const {
+  if (point.side != ContactSide::Rigid) return positionOf(point.point);
   return rigidBodies_.position[point.rigid] + rigidBodies_.orientation[point.rigid] * point.local;
 }
 
 BodyId World::carrier(const BodyPoint& point) const {
   if (point.side == ContactSide::Rigid) {
-    requireLazily(point.rigid < rigidBodies_.size(), [&point] {
-      return "carrier: rigid body " + std::to_string(point.rigid) + " does not exist";
-    });
+    requireIndex(point.rigid, rigidBodies_.size(), "carrier", "rigid body");
     return rigidBodies_.body[point.rigid];
   }
-  requireLazily(point.point.count >= 1 && point.point.particle[0] < particles_.size(),
-                [] { return std::string("carrier: the point's first particle does not exist"); });
+  if (point.point.count < 1) [[unlikely]]
+    throw std::invalid_argument("carrier: an embedding needs a particle");
+  requireIndex(point.point.particle[0], particles_.size(), "carrier", "particle");
   return particleBody_[point.point.particle[0]];
 }
 

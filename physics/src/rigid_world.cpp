@@ -86,9 +86,9 @@ void World::placeRigidCapsulePoints() {
 Real World::lowestHeight(BodyId id, const Body& body) const {
   const Vec3 n = world_.groundNormal;
   // A capsule by its pose; a box by its corners as they are, which a particle box may have bent.
-  if (body.shape == Shape::Capsule) return lowestAlong(Shape::Capsule, body.halfExtents, bodyPose(id), n);
+  if (body.shape == Shape::Capsule) return lowestAlong(Shape::Capsule, body.halfExtents, poseOf(id), n);
   Real lowest = std::numeric_limits<Real>::infinity();
-  for (int k = 0; k < 8; ++k) lowest = std::min(lowest, glm::dot(n, cornerPosition(id, k)));
+  for (int k = 0; k < 8; ++k) lowest = std::min(lowest, glm::dot(n, cornerOf(id, k)));
   return lowest;
 }
 

@@ -19,7 +19,7 @@
 namespace phys {
 
 using detail::require;
-using detail::requireLazily;
+using detail::requireIndex;
 
 namespace {
 
@@ -208,8 +208,9 @@ ParticleId World::pushParticle(const ParticleDesc& desc) {
 }
 
 void World::addStick(ParticleId a, ParticleId b, Real compliance) {
-  require(a < particles_.size() && b < particles_.size() && a != b,
-          "addStick: particle ids must exist and differ");
+  requireIndex(a, particles_.size(), "addStick", "particle");
+  requireIndex(b, particles_.size(), "addStick", "particle");
+  require(a != b, "addStick: the two particles must differ");
   addStick(a, b, glm::length(particles_.position[b] - particles_.position[a]), compliance);
 }
 
@@ -219,8 +220,9 @@ void World::addStick(ParticleId a, ParticleId b, Real length, Real compliance) {
 }
 
 void World::addRange(ParticleId a, ParticleId b, Real minLength, Real maxLength, Real compliance) {
-  require(a < particles_.size() && b < particles_.size() && a != b,
-          "stick: particle ids must exist and differ");
+  requireIndex(a, particles_.size(), "stick", "particle");
+  requireIndex(b, particles_.size(), "stick", "particle");
+  require(a != b, "stick: the two particles must differ");
   require(std::isfinite(minLength) && minLength >= 0.0, "stick: min length must be finite and >= 0 (m)");
   require(!std::isnan(maxLength) && maxLength > 0.0 && maxLength >= minLength,
           "stick: max length must be > 0 (m) and >= min length");
@@ -236,7 +238,7 @@ void World::checkEmbedding(const Embedding& e, const std::string& who) const {
   require(e.count >= 1 && e.count <= 4, who + ": an embedding needs 1 to 4 particles");
   Real sum = 0.0;
   for (int i = 0; i < e.count; ++i) {
-    require(e.particle[i] < particles_.size(), who + ": particle ids must exist");
+    requireIndex(e.particle[i], particles_.size(), who, "particle");
     require(std::isfinite(e.weight[i]), who + ": weights must be finite");
     sum += e.weight[i];
   }
@@ -259,11 +261,10 @@ void World::addLink(const Embedding& a, const Embedding& b, Real minLength, Real
 }
 
 void World::addJointFriction(BodyId a, BodyId b, Real rate) {
-  const auto isParticleBody = [&](BodyId id) {
-    return id < bodies_.size() && bodies_[id].model != BodyModel::Rigid;
-  };
-  require(isParticleBody(a) && isParticleBody(b) && a != b,
-          "addJointFriction: bodies must exist, differ and be particle bodies (a rigid joint has "
+  requireIndex(a, bodies_.size(), "addJointFriction", "body");
+  requireIndex(b, bodies_.size(), "addJointFriction", "body");
+  require(bodies_[a].model != BodyModel::Rigid && bodies_[b].model != BodyModel::Rigid && a != b,
+          "addJointFriction: bodies must differ and be particle bodies (a rigid joint has "
           "JointDesc::damping)");
   require(std::isfinite(rate) && rate >= 0.0, "addJointFriction: rate must be finite and >= 0 (1/s)");
   constraints_.addJointFriction({a, b, rate});
@@ -272,7 +273,8 @@ void World::addJointFriction(BodyId a, BodyId b, Real rate) {
 
 void World::setDrag(const Drag& drag) {
   if (drag.body != kNoBody) {
-    require(drag.body < bodies_.size() && bodies_[drag.body].model == BodyModel::Rigid,
+    requireIndex(drag.body, bodies_.size(), "setDrag", "body");
+    require(bodies_[drag.body].model == BodyModel::Rigid,
             "setDrag: body must be a rigid body (a particle body's point is an embedding)");
     require(finite(drag.local), "setDrag: the point must be finite");
   } else {
@@ -297,7 +299,7 @@ void World::setDrag(const Drag& drag) {
 }
 
 Drag World::dragAt(BodyId body, const Vec3& worldPoint) const {
-  require(body < bodies_.size(), "dragAt: body id must exist");
+  requireIndex(body, bodies_.size(), "dragAt", "body");
   require(finite(worldPoint), "dragAt: the point must be finite");
   Drag drag;
   drag.target = worldPoint;
@@ -313,7 +315,7 @@ Drag World::dragAt(BodyId body, const Vec3& worldPoint) const {
 
 Vec3 World::dragPoint() const {
   require(drag_.has_value(), "dragPoint: no drag is set");
-  if (drag_->body == kNoBody) return position(drag_->point);
+  if (drag_->body == kNoBody) return positionOf(drag_->point);
   const RigidId i = bodies_[drag_->body].rigid;
   return rigidBodies_.position[i] + rigidBodies_.orientation[i] * drag_->local;
 }
@@ -325,12 +327,12 @@ void World::setDragTarget(const Vec3& target) {
 }
 
 Embedding World::anchor(BodyId id, const Vec3& worldPoint) const {
-  require(id < bodies_.size(), "anchor: box id must exist");
+  requireIndex(id, bodies_.size(), "anchor", "body");
   require(bodies_[id].model != BodyModel::Rigid,
           "anchor: a rigid body carries no embedded point (pointOn gives its point for a joint)");
   require(finite(worldPoint), "anchor: the point must be finite");
   const Body& box = bodies_[id];
-  const BodyPose pose = bodyPose(id);
+  const BodyPose pose = poseOf(id);
   return detail::rigidEmbedding(
       box, (glm::inverse(pose.orientation) * (worldPoint - pose.center)) / box.halfExtents);
 }
@@ -506,18 +508,22 @@ BodyId World::addRigidBody(const BodyDesc& desc, const Quat& q) {
 }
 
 Vec3 World::cornerPosition(BodyId id, int k) const {
-  requireLazily(id < bodies_.size(),
-                [id] { return "cornerPosition: body " + std::to_string(id) + " does not exist"; });
-  requireLazily(k >= 0 && k < 8,
-                [k] { return "cornerPosition: corner " + std::to_string(k) + " must be from 0 to 7"; });
+  requireIndex(id, bodies_.size(), "cornerPosition", "body");
+  if (k < 0 || k >= 8) [[unlikely]]
+    throw std::invalid_argument("cornerPosition: corner " + std::to_string(k) + " must be from 0 to 7");
+  return cornerOf(id, k);
+}
+
+Vec3 World::cornerOf(BodyId id, int k) const {
   const Body& body = bodies_[id];
-  if (body.model != BodyModel::Rigid) return position(corners_[body.firstCorner + k]);
+  if (body.model != BodyModel::Rigid) return positionOf(corners_[body.firstCorner + k]);
   return rigidBodies_.position[body.rigid] +
          rigidBodies_.orientation[body.rigid] * boxCornerLocal(body.halfExtents, k);
 }
 
 BodyMass World::bodyMass(BodyId id) const {
-  const Body& body = bodies_.at(id);
+  requireIndex(id, bodies_.size(), "bodyMass", "body");
+  const Body& body = bodies_[id];
   BodyMass out;
   if (body.model == BodyModel::Rigid) {
     if (rigidBodies_.inverseMass[body.rigid] == 0.0) return out;
@@ -526,7 +532,7 @@ BodyMass World::bodyMass(BodyId id) const {
     return out;
   }
   for (int k = 0; k < body.particleCount; ++k) {
-    const Real w = particles_.inverseMass.at(body.firstParticle + k);
+    const Real w = particles_.inverseMass[body.firstParticle + k];
     if (w == 0.0) return {};
     const Real m = 1.0 / w;
     const Vec3 r = boxParticleLocal(body.model, body.halfExtents, k);
@@ -537,7 +543,8 @@ BodyMass World::bodyMass(BodyId id) const {
 }
 
 std::pair<Vec3, Vec3> World::bodyVelocity(BodyId id) const {
-  const Body& body = bodies_.at(id);
+  requireIndex(id, bodies_.size(), "bodyVelocity", "body");
+  const Body& body = bodies_[id];
   if (body.model == BodyModel::Rigid)
     return {rigidBodies_.velocity[body.rigid], rigidBodies_.angularVelocity[body.rigid]};
   detail::MassProperties m;
@@ -547,16 +554,17 @@ std::pair<Vec3, Vec3> World::bodyVelocity(BodyId id) const {
 }
 
 std::pair<Vec3, Vec3> World::poseVelocity(BodyId id) const {
-  const Body& body = bodies_.at(id);
+  requireIndex(id, bodies_.size(), "poseVelocity", "body");
+  const Body& body = bodies_[id];
   const Real h = substepDt();
-  const BodyPose pose = bodyPose(id);
+  const BodyPose pose = poseOf(id);
   if (body.model == BodyModel::Rigid) {
     const RigidId i = body.rigid;
     if (rigidBodies_.inverseMass[i] == 0.0) return {Vec3(0.0), Vec3(0.0)};
     return {rigidBodies_.velocity[i] + gravityAt(pose.center) * (h / 2), rigidBodies_.angularVelocity[i]};
   }
   const ParticleId first = body.firstParticle, end = first + body.particleCount;
-  auto moved = [&](ParticleId p) { return velocity(p) + gravityAt(particles_.position[p]) * (0.5 * h); };
+  auto moved = [&](ParticleId p) { return velocityOf(p) + gravityAt(particles_.position[p]) * (0.5 * h); };
   Real mass = 0.0;
   Vec3 momentum(0.0);
   for (ParticleId p = first; p < end; ++p) {
@@ -579,7 +587,8 @@ std::pair<Vec3, Vec3> World::poseVelocity(BodyId id) const {
 }
 
 std::pair<Vec3, Vec3> World::rigidDescVelocity(BodyId id) const {
-  const Body& body = bodies_.at(id);
+  requireIndex(id, bodies_.size(), "rigidDescVelocity", "body");
+  const Body& body = bodies_[id];
   require(body.model == BodyModel::Rigid, "rigidDescVelocity: the body is not of the rigid model");
   const RigidId i = body.rigid;
   const Real h = substepDt();
@@ -590,19 +599,31 @@ std::pair<Vec3, Vec3> World::rigidDescVelocity(BodyId id) const {
 }
 
 Vec3 World::velocity(ParticleId id) const {
-  return (particles_.position.at(id) - particles_.previous.at(id)) / substepDt();
+  requireIndex(id, particles_.size(), "velocity", "particle");
+  return velocityOf(id);
+}
+
+Vec3 World::velocityOf(ParticleId id) const {
+  return (particles_.position[id] - particles_.previous[id]) / substepDt();
+}
+
+const std::string& World::particleName(ParticleId id) const {
+  requireIndex(id, particleName_.size(), "particleName", "particle");
+  return particleName_[id];
 }
 
 Vec3 World::position(const Embedding& point) const {
   // Checked as a query is: the weights may be any (checkEmbedding's sum is the adders' rule).
-  requireLazily(point.count >= 1 && point.count <= 4, [&point] {
-    return "position: an embedding needs 1 to 4 particles (has " + std::to_string(point.count) + ")";
-  });
-  for (int i = 0; i < point.count; ++i) {
-    requireLazily(point.particle[i] < particles_.size(), [&point, i] {
-      return "position: particle " + std::to_string(point.particle[i]) + " does not exist";
-    });
+  if (point.count < 1 || point.count > 4) [[unlikely]] {
+    throw std::invalid_argument("position: an embedding needs 1 to 4 particles (has " +
+                                std::to_string(point.count) + ")");
   }
+  for (int i = 0; i < point.count; ++i)
+    requireIndex(point.particle[i], particles_.size(), "position", "particle");
+  return positionOf(point);
+}
+
+Vec3 World::positionOf(const Embedding& point) const {
   return detail::embeddedPosition(particles_.position, point);
 }
 
@@ -616,7 +637,12 @@ Real World::gravityMagnitude() const {
 }
 
 BodyPose World::bodyPose(BodyId id) const {
-  const Body& box = bodies_.at(id);
+  requireIndex(id, bodies_.size(), "bodyPose", "body");
+  return poseOf(id);
+}
+
+BodyPose World::poseOf(BodyId id) const {
+  const Body& box = bodies_[id];
   if (box.model == BodyModel::Rigid)
     return {rigidBodies_.position[box.rigid], rigidBodies_.orientation[box.rigid]};
   return detail::particleBodyPose(particles_, box);

@@ -2,6 +2,7 @@
 // most of it first): it is refused with std::invalid_argument naming the call, and the world keeps
 // what it had.
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "character_util.h"
 #include "physics/capsule_ragdoll.h"
+#include "physics/character.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
 
@@ -51,6 +53,139 @@ TEST(ApiInput, APointOfParticlesOrBodiesThatDoNotExistIsRefused) {
   EXPECT_THROW(w.carrier(onRigid), std::invalid_argument);
   EXPECT_EQ(w.position(phys::embedParticle(phys::ParticleId(0))), Vec3(0.0));
   EXPECT_EQ(w.carrier(phys::BodyPoint::embedded(phys::embedParticle(phys::ParticleId(0)))), phys::kNoBody);
+}
+
+// `call` must refuse an id or index that does not exist with std::invalid_argument naming the call, the
+// id and how many there are.
+void expectNoSuch(const std::function<void()>& call, const std::string& name, const std::string& what,
+                  std::size_t id, std::size_t count) {
+  try {
+    call();
+    ADD_FAILURE() << name << " took " << what << " " << id;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), name + ": " + what + " " + std::to_string(id) +
+                                         " does not exist (there are " + std::to_string(count) + ")");
+  }
+}
+
+// Every query and setter that takes an id or an index refuses one that does not exist, naming itself:
+// vector::at's bare out_of_range, or a read past the end, told the caller neither.
+TEST(ApiInput, EveryCallRefusesAnIdThatDoesNotExistNamingItself) {
+  phys::World w;
+  phys::BodyDesc d;
+  d.center = Vec3(0.0, 1.0, 0.0);
+  w.addBody(d);
+  d.model = phys::BodyModel::Rigid;
+  d.center.x = 2.0;
+  const phys::BodyId rigid = w.addBody(d);
+  w.addParticle({});
+  const std::size_t bodies = w.bodies().size(), particles = w.particles().size();
+  const std::size_t rigids = w.rigidBodies().size(), sticks = w.sticks().size();
+  ASSERT_EQ(bodies, 2u);
+  ASSERT_EQ(particles, 9u);
+  const auto body = phys::BodyId(bodies + 3);
+  const auto particle = phys::ParticleId(particles + 3);
+  const phys::BodyId first(0);
+  const Vec3 at(0.0, 1.0, 0.0);
+
+  const std::pair<std::string, std::function<void()>> onBodies[] = {
+      {"bodyPose", [&] { (void)w.bodyPose(body); }},
+      {"bodyMass", [&] { (void)w.bodyMass(body); }},
+      {"bodyVelocity", [&] { (void)w.bodyVelocity(body); }},
+      {"poseVelocity", [&] { (void)w.poseVelocity(body); }},
+      {"rigidDescVelocity", [&] { (void)w.rigidDescVelocity(body); }},
+      {"cornerPosition", [&] { (void)w.cornerPosition(body, 0); }},
+      {"anchor", [&] { (void)w.anchor(body, at); }},
+      {"pointOn", [&] { (void)w.pointOn(body, at); }},
+      {"dragAt", [&] { (void)w.dragAt(body, at); }},
+      {"setDrag",
+       [&] {
+         phys::Drag drag;
+         drag.body = body;
+         w.setDrag(drag);
+       }},
+      {"bodyDrive", [&] { (void)w.bodyDrive(body); }},
+      {"bodyDriveLoad", [&] { (void)w.bodyDriveLoad(body); }},
+      {"setBodyDrive", [&] { w.setBodyDrive(body, phys::BodyDrive{}); }},
+      {"clearBodyDrive", [&] { w.clearBodyDrive(body); }},
+      {"push", [&] { w.push(body, Vec3(1.0, 0.0, 0.0), 1.0); }},
+      {"ignoreCollision", [&] { w.ignoreCollision(first, body); }},
+      {"addJointFriction", [&] { w.addJointFriction(first, body, 1.0); }},
+      {"addParticleJoint", [&] { w.addParticleJoint(first, body, at); }},
+      {"addParticleJoint",
+       [&] {
+         phys::ParticleJoint joint;
+         joint.a = first;
+         joint.b = body;
+         w.addParticleJoint(joint);
+       }},
+      {"particleJointAt", [&] { (void)w.particleJointAt(first, body, at, at); }},
+      {"addJoint",
+       [&] {
+         phys::JointDesc joint;
+         joint.a = rigid;
+         joint.b = body;
+         w.addJoint(joint);
+       }},
+  };
+  for (const auto& [name, call] : onBodies) expectNoSuch(call, name, "body", body, bodies);
+
+  const std::pair<std::string, std::function<void()>> onParticles[] = {
+      {"velocity", [&] { (void)w.velocity(particle); }},
+      {"particleName", [&] { (void)w.particleName(particle); }},
+      {"position", [&] { (void)w.position(phys::embedParticle(particle)); }},
+      {"carrier", [&] { (void)w.carrier(phys::BodyPoint::embedded(phys::embedParticle(particle))); }},
+      {"addStick", [&] { w.addStick(phys::ParticleId(0), particle); }},
+      {"stick", [&] { w.addRange(phys::ParticleId(0), particle, 0.0, 1.0); }},
+      {"addLink",
+       [&] { w.addLink(phys::embedParticle(phys::ParticleId(0)), phys::embedParticle(particle)); }},
+  };
+  for (const auto& [name, call] : onParticles) expectNoSuch(call, name, "particle", particle, particles);
+
+  const phys::BodyPoint onRigid = phys::BodyPoint::onRigid(phys::RigidId(rigids + 3), Vec3(0.0));
+  for (const auto& [name, call] : std::initializer_list<std::pair<std::string, std::function<void()>>>{
+           {"position", [&] { (void)w.position(onRigid); }},
+           {"carrier", [&] { (void)w.carrier(onRigid); }},
+           {"addLink", [&] { w.addLink(onRigid, w.pointOn(rigid, at)); }},
+       })
+    expectNoSuch(call, name, "rigid body", rigids + 3, rigids);
+
+  // No joints, particle joints or characters at all: index 0 is one too many.
+  const std::pair<std::string, std::function<void()>> onJoints[] = {
+      {"jointDesc", [&] { (void)w.jointDesc(0); }},
+      {"jointAngle", [&] { (void)w.jointAngle(0); }},
+      {"jointDrive", [&] { (void)w.jointDrive(0); }},
+      {"jointDriveTorque", [&] { (void)w.jointDriveTorque(0); }},
+      {"jointRest", [&] { (void)w.jointRest(0); }},
+      {"setJointDrive", [&] { w.setJointDrive(0, phys::JointDrive{}); }},
+  };
+  for (const auto& [name, call] : onJoints) expectNoSuch(call, name, "joint", 0, 0);
+  const std::pair<std::string, std::function<void()>> onParticleJoints[] = {
+      {"particleJointDrive", [&] { (void)w.particleJointDrive(0); }},
+      {"particleJointDriveTorque", [&] { (void)w.particleJointDriveTorque(0); }},
+      {"setParticleJointDrive", [&] { w.setParticleJointDrive(0, phys::JointDrive{}); }},
+  };
+  for (const auto& [name, call] : onParticleJoints) expectNoSuch(call, name, "particle joint", 0, 0);
+  const std::pair<std::string, std::function<void()>> onCharacters[] = {
+      {"playClip", [&] { w.playClip(0, phys::Playback{}, 0.0); }},
+      {"queueClip", [&] { w.queueClip(0, phys::Playback{}, 0.0, 0.0); }},
+      {"setCharacterStrength", [&] { w.setCharacterStrength(0, 1.0, 0.0); }},
+      {"setPartStrength", [&] { w.setPartStrength(0, "head", 1.0); }},
+      {"setCharacterBalance", [&] { w.setCharacterBalance(0, 0.0); }},
+      {"setCharacterReaction", [&] { w.setCharacterReaction(0, phys::Reaction{}); }},
+      {"characterMotion", [&] { (void)w.characterMotion(0); }},
+      {"setCharacterMotion", [&] { w.setCharacterMotion(0, phys::CharacterMotion{}); }},
+      {"trackingError", [&] { (void)phys::trackingError(w, 0); }},
+  };
+  for (const auto& [name, call] : onCharacters) expectNoSuch(call, name, "character", 0, 0);
+  expectNoSuch([&] { (void)phys::bonePivots(w, phys::Character{}, 0); }, "bonePivots", "bone", 0, 0);
+
+  // What was refused changed nothing, and the ids that exist still answer.
+  EXPECT_TRUE(w.pushes().empty() && w.bodyDrives().empty() && w.links().empty() && w.rigidLinks().empty());
+  EXPECT_EQ(w.sticks().size(), sticks);
+  EXPECT_FALSE(w.drag().has_value());
+  EXPECT_NEAR(w.bodyPose(first).center.y, 1.0, 1e-12);
+  EXPECT_EQ(w.particleName(phys::ParticleId(particles - 1)), "");
 }
 
 // The root's drive stiffnesses are the ragdoll's mass over and times the scale, and the step gives

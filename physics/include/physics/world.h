@@ -127,7 +127,8 @@ class World {
   std::size_t addParticleJoint(const ParticleJoint& joint);
   /// The particle joint between two bodies as they lie now, the parent's pivot at `pivot` and the
   /// child's at `pivotB` (unit: m, in the world; the same point for a joint at rest), its rest the
-  /// turn between them: what addParticleJoint(parent, child, pivot) adds. Checks nothing.
+  /// turn between them: what addParticleJoint(parent, child, pivot) adds. Checks only that
+  /// both bodies exist.
   ParticleJoint particleJointAt(BodyId parent, BodyId child, const Vec3& pivot, const Vec3& pivotB) const;
   /// The point at `worldPoint` (unit: m) carried by the body from now on, whatever its model:
   /// anchor() for a particle body, fixed in its frame for a rigid one.
@@ -298,7 +299,8 @@ class World {
   /// the last step (the broad phase's output, which every substep's narrow phase tests), less the
   /// pairs of two sleeping bodies, which it does not look for.
   std::size_t broadPhasePairs() const { return broadPhase_.pairs().size(); }
-  const std::string& particleName(ParticleId id) const { return particleName_.at(id); }
+  /// The name the particle was added with (ParticleDesc::name).
+  const std::string& particleName(ParticleId id) const;
   /// Per particle: the body it belongs to, or kNoBody for a loose particle.
   std::span<const BodyId> particleBodies() const { return particleBody_; }
   /// Freezes so far, oldest first.
@@ -308,6 +310,10 @@ class World {
   /// Pairs the sweep (Stage::Sweep) stopped in the last step: bodies that would have passed
   /// through another within a substep.
   int sweptPairs() const { return swept_; }
+
+  // The queries below that take an id or an index, and those above (joints, drives, characters,
+  // pushes, corners, names), throw std::invalid_argument naming the call, the id and how many there
+  // are for one that does not exist.
 
   /// Velocity of a particle over its last substep. unit: m/s
   Vec3 velocity(ParticleId id) const;
@@ -373,6 +379,13 @@ class World {
 
  private:
   Real substepDt() const { return solver_.dt / solver_.substeps; }
+  // The queries' work without their checks, for the step, the metrics and the drawing, whose ids
+  // are the world's own: there a check would be paid for every body or link of every substep.
+  BodyPose poseOf(BodyId id) const;
+  Vec3 cornerOf(BodyId id, int k) const;
+  Vec3 positionOf(const Embedding& point) const;
+  Vec3 positionOf(const BodyPoint& point) const;
+  Vec3 velocityOf(ParticleId id) const;
   bool stepUnless(const std::atomic<bool>* stop);
   void keepVelocities(Real hOld, Real hNew);
   ParticleId pushParticle(const ParticleDesc& desc);
