@@ -139,6 +139,9 @@ std::string characterMismatch(const CharacterMotion& c, const Character& w) {
 
 std::string Motion::problem() const {
   if (!std::isfinite(time) || time < 0.0 || steps < 0) return "a non-finite or negative time or step count";
+  if (steps > kMaxSteps)
+    return "step count " + std::to_string(steps) + " over " + std::to_string(kMaxSteps) +
+           " (2^53): stepping on would count past the largest long";
   for (const auto* values : {&position, &previous, &rigidPosition, &rigidVelocity, &rigidAngularVelocity}) {
     for (const Vec3& v : *values) {
       if (!allFinite(v)) return "a non-finite position or velocity";

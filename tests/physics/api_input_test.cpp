@@ -3,6 +3,7 @@
 // what it had.
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,7 @@
 #include "character_util.h"
 #include "physics/capsule_ragdoll.h"
 #include "physics/character.h"
+#include "physics/motion.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
 
@@ -186,6 +188,29 @@ TEST(ApiInput, EveryCallRefusesAnIdThatDoesNotExistNamingItself) {
   EXPECT_FALSE(w.drag().has_value());
   EXPECT_NEAR(w.bodyPose(first).center.y, 1.0, 1e-12);
   EXPECT_EQ(w.particleName(phys::ParticleId(particles - 1)), "");
+}
+
+// A step count near the largest long would overflow the world's counter as it steps (signed
+// overflow): setMotion refuses one over Motion::kMaxSteps and takes that one.
+TEST(ApiInput, AMotionWhoseStepCountWouldOverflowIsRefused) {
+  phys::World w;
+  w.addParticle({});
+  phys::Motion m = w.motion();
+  for (const long steps : {std::numeric_limits<long>::max(), phys::Motion::kMaxSteps + 1}) {
+    m.steps = steps;
+    EXPECT_NE(m.problem().find("step count " + std::to_string(steps)), std::string::npos) << m.problem();
+    try {
+      w.setMotion(m);
+      ADD_FAILURE() << "step count " << steps << " was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("setMotion: step count"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(w.stepCount(), 0);
+  }
+  m.steps = phys::Motion::kMaxSteps;
+  w.setMotion(m);
+  w.step();
+  EXPECT_EQ(w.stepCount(), phys::Motion::kMaxSteps + 1);
 }
 
 // The root's drive stiffnesses are the ragdoll's mass over and times the scale, and the step gives

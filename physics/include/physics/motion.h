@@ -57,17 +57,22 @@ struct Motion {
   std::vector<Vec3> rigidAngularVelocity;   ///< per rigid body, unit: rad/s, world frame
   std::vector<CharacterMotion> characters;  ///< per character (World::characters)
   Real time = 0.0;                          ///< unit: s; World::time()
-  long steps = 0;                           ///< World::stepCount()
+  long steps = 0;                           ///< World::stepCount(); from 0 to kMaxSteps
 
   /// World::stateHash of a world in this motion: FNV-1a over the bytes of every array above, then
   /// over each character's fields (its clips by name).
   std::uint64_t hash() const;
   /// "" or what World::setMotion would refuse in it whatever the world: a non-finite or negative
-  /// number, an orientation not of unit length (within kUnitTolerance), a character's playback
-  /// without a clip or a strength out of [0, 1]. Sizes and skeletons are the world's to judge.
+  /// number, a step count over kMaxSteps, an orientation not of unit length (within kUnitTolerance), a
+  /// character's playback without a clip or a strength out of [0, 1]. Sizes and skeletons are the world's to
+  /// judge.
   std::string problem() const;
 
   static constexpr Real kUnitTolerance = 1e-6;
+  /// The most steps a motion may have taken, 2^53 (9.0e15, every count to it exact in a double): a
+  /// world given more could count past the largest long (9.2e18, signed overflow) as it steps, and
+  /// one given 2^53 would need 9.2e18 more steps, 290,000 years at a million steps a second.
+  static constexpr long kMaxSteps = 1L << 53;
 };
 
 }  // namespace phys
