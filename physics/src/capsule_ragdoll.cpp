@@ -141,11 +141,7 @@ namespace {
 CapsuleRagdoll build(World& world, const RagdollDesc& desc, const detail::RagdollFrame& frame) {
   const detail::PlaceFn& place = frame.place;
   const Quat q = frame.orientation;
-  CapsuleRagdoll ragdoll;
-  ragdoll.name = desc.name;
-  ragdoll.model = desc.model;
-  ragdoll.firstJoint =
-      desc.model == RagdollModel::Rigid ? world.rigidJoints().size() : world.particleJoints().size();
+  auto ragdoll = detail::startRagdoll<CapsuleRagdoll>(world, desc);
   for (const PartLayout& p : kParts) {
     BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.shape = Shape::Capsule;

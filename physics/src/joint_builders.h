@@ -74,6 +74,19 @@ struct ConeSpec {
 void addCone(World& world, BodyId parent, BodyId child, const ConeSpec& spec, const PlaceFn& place,
              Real scale);
 
+/// A ragdoll (Ragdoll or CapsuleRagdoll) of no parts yet: the desc's name and model, and the index
+/// its first joint will have in `world`, among the rigid joints for the rigid model and among the
+/// particle joints for the others.
+template <class AnyRagdoll>
+AnyRagdoll startRagdoll(const World& world, const RagdollDesc& desc) {
+  AnyRagdoll ragdoll;
+  ragdoll.name = desc.name;
+  ragdoll.model = desc.model;
+  ragdoll.firstJoint =
+      desc.model == RagdollModel::Rigid ? world.rigidJoints().size() : world.particleJoints().size();
+  return ragdoll;
+}
+
 /// The joints' damping a ragdoll's parts take: desc.jointDamping if set, else kRagdollJointDamping
 /// for rigid parts and 0 for particle ones (RagdollDesc::jointDamping).
 Real jointDamping(const RagdollDesc& desc);

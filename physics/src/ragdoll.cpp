@@ -128,11 +128,7 @@ namespace {
 Ragdoll build(World& world, const RagdollDesc& desc, const detail::RagdollFrame& frame) {
   const detail::PlaceFn& place = frame.place;
   const Quat q = frame.orientation;
-  Ragdoll ragdoll;
-  ragdoll.name = desc.name;
-  ragdoll.model = desc.model;
-  ragdoll.firstJoint =
-      desc.model == RagdollModel::Rigid ? world.rigidJoints().size() : world.particleJoints().size();
+  auto ragdoll = detail::startRagdoll<Ragdoll>(world, desc);
   for (const PartLayout& p : kParts) {
     BodyDesc box = detail::ragdollPart(desc, toString(p.part));
     box.center = place(p.center);
