@@ -15,22 +15,12 @@
 namespace lab {
 namespace {
 
-// printf-style %.{digits}g, for the summary's rounded figures. A figure that overflowed (the guard
-// froze the world under a gravity of 1e308, say) reads "blew up", one that is not a number "n/a"
-// (formatNumber), and `fig` then leaves its unit out.
-std::string num(double value, int digits = 6) {
-  return formatNumber(value, digits);
-}
-std::string fig(double value, const std::string& unitAfter) {
-  return formatFigure(value, unitAfter);
-}
-
 // A stage's summed time and its share of the summed step totals, in aligned columns.
 std::string stageLine(std::string_view name, double ms, double totalMs) {
   std::string s(name);
   s.resize(std::max<std::size_t>(s.size(), 14), ' ');
-  s += num(ms, 4) + " ms";
-  if (totalMs > 0.0) s += " (" + num(100.0 * ms / totalMs, 3) + "%)";
+  s += formatNumber(ms, 4) + " ms";
+  if (totalMs > 0.0) s += " (" + formatNumber(100.0 * ms / totalMs, 3) + "%)";
   return s + "\n";
 }
 
@@ -103,11 +93,11 @@ std::string drivesText(const std::vector<DriveFigures>& drives) {
     const bool first = i == 0 || drives[i - 1].character != d.character;
     if (first) s += (i == 0 ? "" : " N m\n") + std::string("             ") + d.character + ":";
     if (d.root) {
-      s += " " + d.bone + " (root) " + num(d.rmsForce, 3) + "/" + num(d.peakForce, 3) + " N and " +
-           num(d.rmsTorque, 3) + "/" + num(d.peakTorque, 3) + " N m;";
+      s += " " + d.bone + " (root) " + formatNumber(d.rmsForce, 3) + "/" + formatNumber(d.peakForce, 3) +
+           " N and " + formatNumber(d.rmsTorque, 3) + "/" + formatNumber(d.peakTorque, 3) + " N m;";
     } else {
-      s += std::string(first || drives[i - 1].root ? " " : ", ") + d.bone + " " + num(d.rmsTorque, 3) + "/" +
-           num(d.peakTorque, 3);
+      s += std::string(first || drives[i - 1].root ? " " : ", ") + d.bone + " " +
+           formatNumber(d.rmsTorque, 3) + "/" + formatNumber(d.peakTorque, 3);
     }
   }
   return s + " N m\n";
@@ -121,20 +111,20 @@ std::string summaryText(const RunResult& r) {
   s +=
       "solver       " + std::string(phys::toString(r.solver.method)) +
       (r.xpbdAlone ? " (no stick to relax: every method steps this world alike, rigid bodies by XPBD)" : "") +
-      ", " + ixsWords(r.solver.iterations, r.solver.substeps, ", ") + ", dt " + num(r.solver.dt) + " s" +
-      (r.solver.jointProjection.enabled ? ", rigid joints projected" : "") + "\n";
+      ", " + ixsWords(r.solver.iterations, r.solver.substeps, ", ") + ", dt " + formatNumber(r.solver.dt) +
+      " s" + (r.solver.jointProjection.enabled ? ", rigid joints projected" : "") + "\n";
   s += "world        " + count(r.particles, "particle", "particles") + ", " +
        count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
   s += "islands      " + std::to_string(r.islands) + " at the end, " + std::to_string(r.awakeBodies) +
        " bodies awake, " + std::to_string(r.sleepingBodies) + " asleep" +
        (r.solver.sleep.enabled ? "" : " (sleep off)") + "\n";
   s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " +
-       num(r.simulatedTime) + " s simulated, on " +
-       count(static_cast<std::size_t>(r.solver.threads), "thread", "threads") + ", in " + num(r.wallMs, 4) +
-       " ms wall: " + num(r.msPerStep, 4) + " ms/step\n";
+       formatNumber(r.simulatedTime) + " s simulated, on " +
+       count(static_cast<std::size_t>(r.solver.threads), "thread", "threads") + ", in " +
+       formatNumber(r.wallMs, 4) + " ms wall: " + formatNumber(r.msPerStep, 4) + " ms/step\n";
   // Profile::total is the physics' own clock per step; the wall time above is the calls to
   // World::step() as the lab sees them. The median shrugs off the odd step the scheduler interrupted.
-  s += "step time    median " + num(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";
+  s += "step time    median " + formatNumber(r.medianStepMs, 4) + " ms (the physics' own Profile::total)\n";
   // One line per stage, in the step's order, then what the stages leave of the total: the
   // step's own bookkeeping and clock reads.
   s += "stages       summed over the run, and their share of the steps' total:\n";
@@ -144,23 +134,24 @@ std::string summaryText(const RunResult& r) {
   }
   s += "             " + stageLine("other", p.total - p.staged(), p.total);
   s += "contacts     " + std::to_string(m.contacts) + " in the last step, max penetration " +
-       fig(m.maxPenetration, " m") + "\n";
-  s += "constraints  error max " + num(m.maxConstraintError) + ", rms " + num(m.rmsConstraintError) +
-       " (of rest length)\n";
+       formatFigure(m.maxPenetration, " m") + "\n";
+  s += "constraints  error max " + formatNumber(m.maxConstraintError) + ", rms " +
+       formatNumber(m.rmsConstraintError) + " (of rest length)\n";
   if (r.joints > 0)
-    s += "joints       " + count(r.joints, "link", "links") + ", max error " + fig(m.maxJointError, " m") +
-         "\n";
-  s += "speed        max " + fig(m.maxSpeed, " m/s") + "\n";
+    s += "joints       " + count(r.joints, "link", "links") + ", max error " +
+         formatFigure(m.maxJointError, " m") + "\n";
+  s += "speed        max " + formatFigure(m.maxSpeed, " m/s") + "\n";
   s += "worst        after any step:";
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& metric = kRunMetrics[i];
-    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + fig(r.worst[i], metric.unitAfter()) +
+    s += std::string(i == 0 ? " " : ", ") + metric.name + " " + formatFigure(r.worst[i], metric.unitAfter()) +
          (metric.over == OverRun::Rms ? " (RMS over the run)" : "");
   }
   s += "\n";
   s += drivesText(r.drives);
-  s += "energy       initial " + fig(r.energyInitial, " J") + ", final " + fig(m.energy(), " J") +
-       " (change " + fig(m.energy() - r.energyInitial, " J") + ")\n";
+  s += "energy       initial " + formatFigure(r.energyInitial, " J") + ", final " +
+       formatFigure(m.energy(), " J") + " (change " + formatFigure(m.energy() - r.energyInitial, " J") +
+       ")\n";
   if (r.freezes.empty()) {
     s += "frozen       none\n";
   } else {
@@ -168,7 +159,7 @@ std::string summaryText(const RunResult& r) {
          count(r.freezes.size(), "report", "reports") + "\n";
     for (std::size_t i = 0; i < r.freezes.size() && i < kMaxFreezesListed; ++i) {
       const phys::FreezeReport& f = r.freezes[i];
-      s += "  t=" + num(f.time) + " s  " + f.name + ": " + f.reason + "\n";
+      s += "  t=" + formatNumber(f.time) + " s  " + f.name + ": " + f.reason + "\n";
     }
     if (r.freezes.size() > kMaxFreezesListed) {
       s += "  ... and " + std::to_string(r.freezes.size() - kMaxFreezesListed) + " more\n";

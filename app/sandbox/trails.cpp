@@ -5,21 +5,17 @@ namespace sandbox {
 void Trails::clear() {
   paths_.clear();
   steps_.clear();
-  joined_.clear();
-  lastStep_ = -1;
 }
 
 void Trails::dropBack() {
   for (std::deque<glm::vec3>& path : paths_) path.pop_back();
   steps_.pop_back();
-  joined_.pop_back();
 }
 
 void Trails::record(const phys::World& world, std::optional<phys::BodyId> followed) {
   const long step = world.stepCount();
-  if (step == lastStep_ && followed == followed_) return;
   if (followed != followed_) clear();
-  lastStep_ = step;
+  if (!steps_.empty() && steps_.back() == step) return;
   followed_ = followed;
   // Rewound: the points after the step shown are a future the world has not reached (yet); the
   // ones before it are the path it took to get there, the same whether stepped or rebuilt.
@@ -33,17 +29,12 @@ void Trails::record(const phys::World& world, std::optional<phys::BodyId> follow
   if (points.size() != paths_.size()) {  // particles came or went
     paths_.assign(points.size(), {});
     steps_.clear();
-    joined_.clear();
   }
-  // A line only where the world stepped from one point to the next: across a jump (the timeline,
-  // >|) it would cut straight through where the body went.
-  joined_.push_back(!steps_.empty() && step - steps_.back() <= kMaxStepsPerFrame);
   steps_.push_back(step);
   for (std::size_t k = 0; k < points.size(); ++k) paths_[k].push_back(points[k]);
   if (steps_.size() > kTrailPoints) {
     for (std::deque<glm::vec3>& path : paths_) path.pop_front();
     steps_.pop_front();
-    joined_.pop_front();
   }
 }
 

@@ -42,18 +42,19 @@ class Trails {
   void forEachLine(std::size_t path, Line&& line) const {
     const std::deque<glm::vec3>& p = paths_[path];
     for (std::size_t k = 1; k < p.size(); ++k) {
-      if (joined_[k]) line(p[k - 1], p[k], static_cast<float>(k) / static_cast<float>(p.size()));
+      // A line only where the world stepped from one point to the next: across a jump (the
+      // timeline, >|) it would cut straight through where the body went.
+      if (steps_[k] - steps_[k - 1] <= kMaxStepsPerFrame)
+        line(p[k - 1], p[k], static_cast<float>(k) / static_cast<float>(p.size()));
     }
   }
 
  private:
   void dropBack();
 
-  long lastStep_ = -1;
   std::optional<phys::BodyId> followed_;
   std::vector<std::deque<glm::vec3>> paths_;  // the loose particles' in order, then the followed body's
   std::deque<long> steps_;                    // each point's step, the same for every path
-  std::deque<bool> joined_;                   // each point joined to the one before it
 };
 
 }  // namespace sandbox

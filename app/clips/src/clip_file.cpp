@@ -106,24 +106,14 @@ bool isBvh(std::string_view content, const std::string& format) {
   return format == "bvh" || BvhWords(content).next() == "HIERARCHY";
 }
 
-// The count a BVH's count too large for 64 bits is taken as: more than any file holds.
+// The count a BVH's count too large for 64 bits is taken as (detail::wholeNumber's): more than any
+// file holds.
 constexpr std::uint64_t kMostCount = std::numeric_limits<std::uint64_t>::max();
-
-// A count written as digits alone: assimp reads a count as a float and truncates it ("Frames: 2.7"
-// was 2 frames, "-1" more than any memory holds), so anything else is refused, not read its way.
-std::optional<std::uint64_t> wholeNumber(std::string_view word) {
-  std::uint64_t n = 0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
-  if (end != word.data() + word.size() || word.empty()) return std::nullopt;
-  if (error == std::errc::result_out_of_range) return kMostCount;
-  if (error != std::errc()) return std::nullopt;
-  return n;
-}
 
 // The count `word` on `line`, after `what`.
 std::uint64_t countIn(std::string_view word, std::size_t line, const std::string& name,
                       const std::string& what) {
-  const std::optional<std::uint64_t> n = wholeNumber(word);
+  const std::optional<std::uint64_t> n = detail::wholeNumber(word);
   if (!n) throw ClipError(name, line, what + " '" + std::string(word) + "' is not a whole number >= 0");
   return *n;
 }

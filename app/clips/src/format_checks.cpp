@@ -31,16 +31,6 @@ bool isSpace(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
 }
 
-// A count written as digits alone, nullopt otherwise; a count past 64 bits is the most there is.
-std::optional<std::uint64_t> wholeNumber(std::string_view word) {
-  std::uint64_t n = 0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
-  if (word.empty() || end != word.data() + word.size()) return std::nullopt;
-  if (error == std::errc::result_out_of_range) return std::numeric_limits<std::uint64_t>::max();
-  if (error != std::errc()) return std::nullopt;
-  return n;
-}
-
 std::string tooDeep(const std::string& what) {
   return what + " nested more than " + std::to_string(kMaxDepth) + " deep (a skeleton's are tens deep)";
 }
@@ -297,6 +287,15 @@ std::optional<std::uint64_t> fbxArrayValues(Tokens& tokens) {
 }
 
 }  // namespace
+
+std::optional<std::uint64_t> wholeNumber(std::string_view word) {
+  std::uint64_t n = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
+  if (word.empty() || end != word.data() + word.size()) return std::nullopt;
+  if (error == std::errc::result_out_of_range) return std::numeric_limits<std::uint64_t>::max();
+  if (error != std::errc()) return std::nullopt;
+  return n;
+}
 
 void checkGltf(std::string_view json, const std::string& name) {
   checkNodeDepth(scanGltfJson(json, name, ""), name);

@@ -3,6 +3,8 @@
 // each check refuses, with a ClipError naming the line or the item, a file that would make one of
 // assimp 5.2's readers recurse past the stack, allocate what a count claims, or crash, before that
 // reader sees it.
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -10,6 +12,11 @@ namespace clips::detail {
 
 /// A skeleton nests tens of nodes deep; the readers recurse once a level (BVH's limit too).
 constexpr int kMaxDepth = 256;
+
+/// A count written as digits alone, nullopt otherwise (a sign, a point, a space): assimp reads a
+/// count as a float and truncates it ("Frames: 2.7" was 2 frames, "-1" more than any memory
+/// holds), so anything else is refused, not read its way. A count past 64 bits is the largest.
+std::optional<std::uint64_t> wholeNumber(std::string_view word);
 
 /// glTF as text (.gltf): its JSON nested no deeper than kMaxDepth, its nodes' children no deeper.
 void checkGltf(std::string_view json, const std::string& name);

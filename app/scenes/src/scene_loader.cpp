@@ -1118,20 +1118,27 @@ SceneSource readSceneSource(const std::filesystem::path& file) {
   return source;
 }
 
-Scene loadSceneSource(const SceneSource& source, const LoadOptions& options) {
-  std::vector<char> buffer(source.text.begin(), source.text.end());
+namespace {
+
+// The scene of `source`, whose text `buffer` holds as a copy to parse in place.
+Scene buildSource(std::vector<char>& buffer, const SceneSource& source, const LoadOptions& options) {
   Scene scene = build(buffer, source.file.string(), source.folder, options);
   scene.file = source.file;
   return scene;
+}
+
+}  // namespace
+
+Scene loadSceneSource(const SceneSource& source, const LoadOptions& options) {
+  std::vector<char> buffer(source.text.begin(), source.text.end());
+  return buildSource(buffer, source, options);
 }
 
 Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options) {
   SceneSource source = readSceneSource(file);
   std::vector<char> buffer(source.text.begin(), source.text.end());
   source.text = {};  // a large scene is held once, not twice, while it is built
-  Scene scene = build(buffer, source.file.string(), source.folder, options);
-  scene.file = source.file;
-  return scene;
+  return buildSource(buffer, source, options);
 }
 
 }  // namespace scenes
