@@ -1,9 +1,10 @@
 #pragma once
 // The recent paths of chosen points (Draw > trails): every loose particle, up to kMaxTrails of
-// them, and the centre of the body the camera follows. One point per step shown, the last
-// kTrailPoints of them: an orbit's circle, a pendulum's arc, a projectile's parabola. A trail is
-// the path the body took: where the world jumped (the timeline scrubbed forward, >|) the two
-// points are not joined, and going back in time keeps the path up to the step shown.
+// them, and the centre of the body the camera follows. One point per frame, at the step shown (a
+// step a frame at the default pace), the last kTrailPoints of them: an orbit's circle, a pendulum's
+// arc, a projectile's parabola. A trail is the path the body took: where the world jumped (the
+// timeline scrubbed forward, >|) the two points are not joined, and going back in time keeps the
+// path up to the step shown.
 #include <cstddef>
 #include <deque>
 #include <optional>
