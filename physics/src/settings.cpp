@@ -1,5 +1,6 @@
 #include "physics/settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -35,6 +36,13 @@ Material combine(const Material& a, const Material& b) {
   return {std::sqrt(a.staticFriction * b.staticFriction), std::sqrt(a.dynamicFriction * b.dynamicFriction)};
 }
 
+bool groundWithinBound(const WorldSettings& s) {
+  const Real n = glm::length(s.groundNormal);
+  if (!s.ground || !std::isfinite(s.groundHeight) || !(n >= 1e-9 && std::isfinite(n))) return true;
+  const Vec3 nearest = s.groundNormal * (s.groundHeight / n);
+  return std::max({std::abs(nearest.x), std::abs(nearest.y), std::abs(nearest.z)}) <= s.bound;
+}
+
 std::string validate(const WorldSettings& s) {
   std::ostringstream why;
   if (s.gravityMode != GravityMode::Uniform && s.gravityMode != GravityMode::Point)
@@ -48,6 +56,7 @@ std::string validate(const WorldSettings& s) {
     why << "groundNormal must be non-zero and of finite length (is " << s.groundNormal.x << " "
         << s.groundNormal.y << " " << s.groundNormal.z << "); ";
   if (!std::isfinite(s.groundHeight)) why << "groundHeight must be finite; ";
+  if (!groundWithinBound(s)) why << "groundHeight puts the ground beyond the bound of " << s.bound << " m; ";
   if (const std::string m = validate(s.groundMaterial); !m.empty()) why << "groundMaterial: " << m << "; ";
   if (!(s.bound > 0.0)) why << "bound must be > 0 (m); ";
   if (!(s.shapeCheckInterval > 0.0 && std::isfinite(s.shapeCheckInterval)))

@@ -64,6 +64,9 @@ const BadScene kCases[] = {
     {"particle beyond a small bound",
      "<scene name='e'>\n<world bound='10'/>\n<particle pos='0 11 0'/>\n</scene>", 3, "pos",
      "beyond the world's bound of 10 m"},
+    // The ground too, whichever of <ground> and <world> comes first.
+    {"ground beyond a small bound", "<scene name='e'>\n<ground height='-11'/>\n<world bound='10'/>\n</scene>",
+     2, "height", "puts the ground beyond the world's bound of 10 m"},
     // Every digit of where it reaches: 999999.9 + 0.5 read "1e+06", as if on the bound.
     {"box whose corner just crosses the bound", "<scene name='e'>\n<box pos='0 999999.9 0'/>\n</scene>", 2,
      "", "reaches (-0.5, 1000000.4, -0.5), beyond the world's bound of 1e+06 m"},

@@ -141,6 +141,21 @@ TEST(Validation, WorldSettingsNameTheBadField) {
   EXPECT_NE(phys::validate(w).find("shapeCheckInterval"), std::string::npos);
 }
 
+// The ground's point nearest the origin must lie within the bound along each axis, or every body
+// resting on it would be frozen as lost; a tilted ground may lie farther than the bound.
+TEST(Validation, AGroundBeyondTheBoundIsRefused) {
+  phys::WorldSettings w;
+  w.bound = 100.0;
+  w.groundHeight = 100.0;
+  EXPECT_EQ(phys::validate(w), "");
+  w.groundHeight = -100.5;
+  EXPECT_NE(phys::validate(w).find("groundHeight"), std::string::npos);
+  w.groundNormal = Vec3(1.0, 1.0, 0.0);  // its nearest point at (71, 71, 0) m
+  EXPECT_EQ(phys::validate(w), "");
+  w.groundHeight = 1e300;
+  EXPECT_NE(phys::validate(w).find("groundHeight"), std::string::npos);
+}
+
 // Every component finite, but the length overflows to inf: setWorldSettings would normalise the
 // normal to 0, a ground that holds nothing up, without a word.
 TEST(Validation, GroundNormalOfOverflowingLengthIsRefused) {

@@ -1001,6 +1001,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   solverSettings.sleep.enabled = options.sleepUnlessSaid;
   CameraStart camera;
   pugi::xml_node cameraNode;
+  pugi::xml_node groundNode;
   std::vector<pugi::xml_node> bodies;
   std::vector<Expectation> expectations;
   std::map<std::string, int, std::less<>> seen;
@@ -1015,9 +1016,10 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
         readWorld(e, worldSettings);
       else if (kind == "solver")
         readSolver(e, solverSettings);
-      else if (kind == "ground")
+      else if (kind == "ground") {
         readGround(e, worldSettings);
-      else
+        groundNode = child;
+      } else
         cameraNode = child;
     } else if (isOneOf(kind, kBodyElements)) {
       bodies.push_back(child);
@@ -1044,6 +1046,12 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
     }
   }
 
+  // Held to the bound once both are read, whichever comes first in the file.
+  if (groundNode && !phys::groundWithinBound(worldSettings)) {
+    ElementReader e(groundNode, lines, file);
+    e.fail("height", "puts the ground beyond the world's bound of " +
+                         detail::formatNumber(worldSettings.bound) + " m along an axis (<world bound>)");
+  }
   if (cameraNode) {
     ElementReader e(cameraNode, lines, file);
     readCamera(e, worldSettings, camera);

@@ -186,6 +186,10 @@ inline constexpr Real kRestitutionMinSpeed = 0.5;  ///< unit: m/s
 
 /// Empty when the settings can be stepped; otherwise says which field is wrong and why.
 std::string validate(const WorldSettings& settings);
+/// Whether the ground's point nearest the origin lies within the bound along each axis; a ground
+/// beyond it would hold every body that lands on it beyond the bound, where the guard freezes it.
+/// True when there is no ground or its normal or height cannot be used (validate says why).
+bool groundWithinBound(const WorldSettings& settings);
 /// Empty when the settings can be stepped; otherwise says which field is wrong and why.
 std::string validate(const SolverSettings& settings);
 /// Empty when the coefficients are finite and >= 0.
