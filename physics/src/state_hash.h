@@ -4,8 +4,10 @@
 // their fields under the same names, so one template hashes both.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 
+#include "physics/animation.h"
 #include "physics/character.h"
 #include "physics/fnv1a.h"
 #include "physics/types.h"
@@ -24,10 +26,19 @@ class StateHasher : public Fnv1a {
     value(s.size());
     bytes(s.data(), s.size());
   }
-  /// A clip counts by its name: two loads of one file hash alike.
+  /// A clip counts by its skeleton, frame time and length, not by its name, which is the path it was
+  /// read from: the same scene hashes alike from any folder. Its frames are not read (a long clip
+  /// would cost the recording's hash of every step); what it plays shows in the target pose.
+  void clip(const Clip& c) {
+    value(c.bones.size());
+    for (const std::string& bone : c.bones) text(bone);
+    bytes(c.parents.data(), c.parents.size() * sizeof(int));
+    value(c.frameTime);
+    value(c.frames());
+  }
   void playback(const Playback& p) {
     value(p.clip != nullptr);
-    if (p.clip != nullptr) text(p.clip->name);
+    if (p.clip != nullptr) clip(*p.clip);
     value(p.time);
     value(p.speed);
     value(p.loop);
