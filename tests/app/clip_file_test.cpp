@@ -557,6 +557,52 @@ TEST(ClipFile, ALinkedSceneReadsClipsFromTheFolderItIsIn) {
             (fs::canonical(dir.path) / "real" / "own.bvh").string());
 }
 
+// A scene read once (scenes::SceneSource, the lab's every point) keeps every clip its character names
+// (clip, then, get-up, from-clip): with the files gone, each world built from it plays the clips as
+// read, the same clip objects, not a parse of each a world. A clip that could not be read is refused
+// at each load as the file was, even once it can be.
+TEST(ClipFile, ASceneReadOnceKeepsEveryClipItNames) {
+  namespace fs = std::filesystem;
+  const testing_app::TempFolder dir;
+  const char* names[] = {"a.bvh", "b.bvh", "c.bvh", "d.bvh"};
+  for (const char* name : names) fs::copy_file(kClips + "run.bvh", dir.path / name);
+  std::ofstream(dir.path / "four.xml") << characterScene(
+      "<character ragdoll=\"r\" clip=\"a.bvh\" then=\"b.bvh\" get-up=\"c.bvh\" blend=\"0.5\" "
+      "from-clip=\"d.bvh\"/>");
+  const scenes::Scene asFile = scenes::loadSceneFile(dir.path / "four.xml");
+  const scenes::SceneSource source = scenes::readSceneSource(dir.path / "four.xml");
+  ASSERT_EQ(source.clips.size(), 4u);
+  for (const char* name : names) fs::remove(dir.path / name);
+  const scenes::Scene first = scenes::loadSceneSource(source);
+  EXPECT_EQ(testsupport::compareScenes(asFile, first), "");
+  const scenes::Scene second = scenes::loadSceneSource(source);
+  std::vector<const phys::Clip*> played[2];
+  for (int i = 0; i < 2; ++i) {
+    const scenes::Scene& scene = i == 0 ? first : second;
+    ASSERT_EQ(scene.world.characters().size(), 1u);
+    forEachPlayback(scene.world.characters()[0],
+                    [&](const phys::Playback& p) { played[i].push_back(p.clip.get()); });
+  }
+  ASSERT_EQ(played[0].size(), 4u);  // a queued clip (then) among them
+  EXPECT_EQ(played[0], played[1]);
+  for (const phys::Clip* clip : played[0]) EXPECT_NE(clip, nullptr);
+
+  std::ofstream(dir.path / "none.xml") << characterScene("<character ragdoll=\"r\" clip=\"e.bvh\"/>");
+  auto error = [](const auto& load) {
+    try {
+      load();
+    } catch (const scenes::LoadError& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  const std::string missing = error([&] { scenes::loadSceneFile(dir.path / "none.xml"); });
+  EXPECT_NE(missing.find("attribute 'clip'"), std::string::npos) << missing;
+  const scenes::SceneSource withoutClip = scenes::readSceneSource(dir.path / "none.xml");
+  fs::copy_file(kClips + "run.bvh", dir.path / "e.bvh");
+  EXPECT_EQ(error([&] { scenes::loadSceneSource(withoutClip); }), missing);
+}
+
 // The target: with the root carried, the parts track the run cycle within 5 degrees RMS at
 // 1/60 s (XPBD 2 x 8, strength 0.9, the ragdolls' default stiffness) (the parts against their targets, in the
 // clip frame the character chose). `ragdoll` is the <ragdoll> element's attributes past its name.

@@ -378,6 +378,42 @@ TEST(Sweep, ASceneFileSavedOverMidSweepChangesNoPoint) {
   EXPECT_GT(saved.rows[2].figures.error, 0.0);  // a real error, not two zeros agreeing
 }
 
+// The clip a scene's character plays is read with the scene: a clip file saved over after the first
+// point measured the new clip at every later point.
+TEST(Sweep, AClipFileSavedOverMidSweepChangesNoPoint) {
+  TempDir dir;
+  const std::string clips = std::string(DATA_DIR) + "/assets/clips/";
+  const std::string run = lab_testing::readFile(clips + "run.bvh");
+  const std::string dive = lab_testing::readFile(clips + "dive.bvh");
+  const std::string scene =
+      "<scene name=\"runner\"><ground/><ragdoll name=\"r\" pos=\"0 0.85 0\" model=\"rigid\"/>\n"
+      "  <character ragdoll=\"r\" clip=\"move.bvh\" strength=\"0.9\" root-strength=\"1\"/></scene>\n";
+  const lab::PlanRequest request{.substeps = {1, 2, 4}, .steps = 20, .repeats = 1, .peers = false};
+  auto sweepOf = [&](const char* folder, const std::string& clip, bool savedOver) {
+    std::filesystem::create_directory(dir.file(folder));
+    const std::string at = std::string(folder) + "/";
+    dir.write(at + "move.bvh", clip);
+    lab::Plan plan = lab::makePlan(scenes::readSceneSource(dir.write(at + "runner.xml", scene)), request);
+    if (savedOver) plan.afterSetting = [&](std::size_t) { dir.write(at + "move.bvh", dive); };
+    std::ostringstream progress;
+    return lab::runPlan(plan, progress, "sweep");
+  };
+  const lab::PlanResult saved = sweepOf("saved", run, true);
+  ASSERT_EQ(lab_testing::readFile(dir.file("saved/move.bvh")), dive);
+  const lab::PlanResult alone = sweepOf("alone", run, false);  // the same plan on the run, left alone
+  const lab::PlanResult diving = sweepOf("diving", dive, false);
+  ASSERT_EQ(saved.rows.size(), 3u);
+  ASSERT_EQ(alone.rows.size(), 3u);
+  ASSERT_EQ(diving.rows.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(saved.rows[i].figures.error, alone.rows[i].figures.error) << i;
+    EXPECT_EQ(saved.rows[i].figures.energyDrift, alone.rows[i].figures.energyDrift) << i;
+    EXPECT_EQ(saved.rows[i].figures.posePenetration, alone.rows[i].figures.posePenetration) << i;
+  }
+  // The clips move the ragdoll apart: two equal sweeps are not two clips agreeing.
+  EXPECT_NE(alone.rows[2].figures.error, diving.rows[2].figures.error);
+}
+
 // A box thrown at 1e308 m/s under a gravity of 1e308: its energy's drift is inf - inf. The CSV
 // leaves it empty; the tables printed "-nan" and "drift nan J" before formatNumber said n/a.
 TEST(Sweep, AFigureThatIsNotANumberIsPrintedNA) {

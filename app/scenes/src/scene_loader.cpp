@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <system_error>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -178,14 +179,29 @@ phys::JointDrive givenDrive(phys::JointDrive made, const std::optional<phys::Joi
   return made;
 }
 
+// The attributes of a <character> that name a clip file: what readSceneSource reads with the
+// scene, so every one that Builder::character and the reading it calls pass to clip() is here.
+constexpr const char* kClipAttributes[] = {"clip", "then", "get-up", "from-clip"};
+
+// The clip file `given` names in a scene read from `folder`, absolute: one file, one key.
+std::string clipKey(const std::filesystem::path& folder, const std::string& given) {
+  std::error_code ignored;
+  return std::filesystem::absolute(folder / given, ignored).lexically_normal().string();
+}
+
+using ReadClips = std::map<std::string, ReadClip, std::less<>>;
+
 class Builder {
  public:
+  // `readBefore`: clips read with the scene's text (SceneSource::clips), or null to read each from
+  // its file.
   Builder(Scene& scene, const LineIndex& lines, const std::string& file, std::filesystem::path folder,
-          const LoadOptions& options)
+          const ReadClips* readBefore, const LoadOptions& options)
       : scene_(scene),
         lines_(lines),
         file_(file),
         folder_(std::move(folder)),
+        readBefore_(readBefore),
         ctx_{scene.world,
              [this](ElementReader& e, const std::string& name, NamedBody::Kind kind, std::uint32_t index) {
                addName(e, name, kind, index);
@@ -795,15 +811,21 @@ class Builder {
   }
 
   // The clip file `given` (relative to the scene's folder, detail::clipFolder) names, read once
-  // however many characters play it; a file that cannot be read fails `attribute`.
+  // however many characters play it, or taken as read with the scene's text; a file that cannot be
+  // read fails `attribute`.
   std::shared_ptr<const phys::Clip> clip(ElementReader& e, const std::string& given, const char* attribute) {
-    std::error_code ignored;
-    const std::filesystem::path file = std::filesystem::absolute(folder_ / given, ignored).lexically_normal();
-    const auto it = clips_.find(file.string());
+    const std::string file = clipKey(folder_, given);
+    const auto it = clips_.find(file);
     if (it != clips_.end()) return it->second;
+    if (readBefore_ != nullptr) {
+      if (const auto read = readBefore_->find(file); read != readBefore_->end()) {
+        if (!read->second.clip) e.fail(attribute, read->second.error);
+        return read->second.clip;
+      }
+    }
     try {
       auto loaded = std::make_shared<const phys::Clip>(clips::loadClip(file));
-      clips_.emplace(file.string(), loaded);
+      clips_.emplace(file, loaded);
       return loaded;
     } catch (const clips::ClipError& error) {
       e.fail(attribute, error.what());
@@ -843,6 +865,7 @@ class Builder {
   const LineIndex& lines_;
   const std::string& file_;
   std::filesystem::path folder_;  // where a clip's file name starts from
+  const ReadClips* readBefore_;   // null when clips are read from their files
   BuildContext ctx_;
   std::map<std::string, std::size_t, std::less<>> byName_;
   std::map<phys::BodyId, int> bodyDriveLines_;  // each <body-drive>'s body, and its line
@@ -921,7 +944,7 @@ std::optional<std::string> declaredOtherEncoding(const pugi::xml_node& declarati
 }
 
 Scene build(std::vector<char>& buffer, const std::string& file, const std::filesystem::path& folder,
-            const LoadOptions& options) {
+            const ReadClips* readBefore, const LoadOptions& options) {
   pugi::xml_document doc;
   const std::size_t size = buffer.size();
   const LineIndex lines(buffer.data(), size);
@@ -1068,7 +1091,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   }
   Scene& scene = *built;
   scene.expectations = std::move(expectations);
-  Builder builder(scene, lines, file, folder, options);
+  Builder builder(scene, lines, file, folder, readBefore, options);
   for (const pugi::xml_node& node : bodies) {
     try {
       const std::size_t first = scene.world.particles().size();
@@ -1111,8 +1134,35 @@ const std::string* Expectation::find(std::string_view name) const {
 
 Scene loadSceneText(std::string_view xml, const std::string& displayName, const LoadOptions& options) {
   std::vector<char> buffer(xml.begin(), xml.end());
-  return build(buffer, displayName, {}, options);
+  return build(buffer, displayName, {}, nullptr, options);
 }
+
+namespace {
+
+// Every clip file the <character>s of `source.text` name (kClipAttributes), read into
+// source.clips. Text that is no scene names none here: building it says what is wrong, and where.
+void readClips(SceneSource& source) {
+  pugi::xml_document doc;
+  if (!doc.load_buffer(source.text.data(), source.text.size(), pugi::parse_default, pugi::encoding_utf8))
+    return;
+  for (const pugi::xml_node character : doc.document_element().children("character")) {
+    for (const char* attribute : kClipAttributes) {
+      const std::string given = character.attribute(attribute).value();
+      if (given.empty()) continue;
+      std::string file = clipKey(source.folder, given);
+      if (source.clips.contains(file)) continue;
+      ReadClip read;
+      try {
+        read.clip = std::make_shared<const phys::Clip>(clips::loadClip(file));
+      } catch (const clips::ClipError& error) {
+        read.error = error.what();
+      }
+      source.clips.emplace(std::move(file), std::move(read));
+    }
+  }
+}
+
+}  // namespace
 
 SceneSource readSceneSource(const std::filesystem::path& file) {
   SceneSource source;
@@ -1123,6 +1173,7 @@ SceneSource readSceneSource(const std::filesystem::path& file) {
   } catch (const fileio::FileError& e) {
     throw LoadError(file.string(), 0, "", e.message());
   }
+  readClips(source);
   return source;
 }
 
@@ -1130,7 +1181,7 @@ namespace {
 
 // The scene of `source`, whose text `buffer` holds as a copy to parse in place.
 Scene buildSource(std::vector<char>& buffer, const SceneSource& source, const LoadOptions& options) {
-  Scene scene = build(buffer, source.file.string(), source.folder, options);
+  Scene scene = build(buffer, source.file.string(), source.folder, &source.clips, options);
   scene.file = source.file;
   return scene;
 }

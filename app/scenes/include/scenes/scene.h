@@ -4,6 +4,9 @@
 // tests all load scenes through here, so a file means the same world everywhere.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -13,6 +16,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "physics/animation.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
 
@@ -92,19 +96,32 @@ class LoadError : public std::runtime_error {
   std::string attribute_;
 };
 
+/// A clip file a scene names, as read with the scene: its clip, or why it could not be read
+/// (clips::ClipError's what(), which loading gives as the naming attribute's error).
+struct ReadClip {
+  std::shared_ptr<const phys::Clip> clip;  ///< null when the file could not be read
+  std::string error;
+};
+
 /// A scene file's text as read once, with what loading needs of the file besides: its name for
-/// errors and Scene::file, and the folder its relative clip and mesh paths are read from. Every
-/// world built from it is the same scene, however the file changes after (the lab builds a run's
-/// every point from one).
+/// errors and Scene::file, the folder its relative clip and mesh paths are read from, and the clip
+/// files it names. Every world built from it is the same scene, however the file or its clips
+/// change after (the lab builds a run's every point from one).
 struct SceneSource {
   std::filesystem::path file;
   std::string text;
   std::filesystem::path folder;  ///< where relative paths in the scene lead from
+  /// Every clip file the text's <character>s name, by absolute path, read and parsed with the text:
+  /// the worlds built from the source share them. A clip not here is read from its file as a world
+  /// is built.
+  std::map<std::string, ReadClip, std::less<>> clips;
 };
 
 /// Loads a scene file; throws LoadError and builds nothing on any error.
 Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options = {});
-/// Reads a scene file for loadSceneSource; throws LoadError (line 0) when it cannot be read.
+/// Reads a scene file and the clip files it names for loadSceneSource; throws LoadError (line 0)
+/// when the scene file cannot be read. A clip that cannot be read is kept as its error, which
+/// loading the source reports as loading the file would.
 SceneSource readSceneSource(const std::filesystem::path& file);
 /// Loads a scene from a file read before, as loadSceneFile loads the file.
 Scene loadSceneSource(const SceneSource& source, const LoadOptions& options = {});
