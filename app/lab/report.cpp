@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <span>
 #include <string_view>
 
 #include "csv.h"
@@ -82,25 +83,49 @@ std::string jsonText(const RunResult& r) {
   return jsonLine(j);
 }
 
+// What a character's drives came to when some figure of theirs is not finite, as every figure of
+// the lab says it: a drive that ran away to infinity blew up, and one that is no number is n/a.
+// Empty when every figure is finite.
+std::string unfiniteDrives(std::span<const DriveFigures> parts) {
+  bool notANumber = false;
+  for (const DriveFigures& d : parts) {
+    for (const double v : {d.rmsTorque, d.peakTorque, d.rmsForce, d.peakForce}) {
+      if (std::isinf(v)) return kBlewUp;
+      notANumber = notANumber || std::isnan(v);
+    }
+  }
+  return notANumber ? "n/a" : "";
+}
+
 // A line per character: what each part's drive needed to follow the clip, RMS over the run and
-// peak ("head 3.1/12"), the root's hand of god first as a force and a torque.
+// peak ("head 3.1/12"), the root's hand of god first as a force and a torque. A character whose
+// figures are not all finite reads "blew up" (or "n/a") once, not part by part ("blew up/blew up").
 std::string drivesText(const std::vector<DriveFigures>& drives) {
   if (drives.empty()) return {};
   std::string s =
       "drives       what each character's parts needed to follow its clip, RMS/peak over the run:\n";
-  for (std::size_t i = 0; i < drives.size(); ++i) {
-    const DriveFigures& d = drives[i];
-    const bool first = i == 0 || drives[i - 1].character != d.character;
-    if (first) s += (i == 0 ? "" : " N m\n") + std::string("             ") + d.character + ":";
-    if (d.root) {
-      s += " " + d.bone + " (root) " + formatNumber(d.rmsForce, 3) + "/" + formatNumber(d.peakForce, 3) +
-           " N and " + formatNumber(d.rmsTorque, 3) + "/" + formatNumber(d.peakTorque, 3) + " N m;";
-    } else {
-      s += std::string(first || drives[i - 1].root ? " " : ", ") + d.bone + " " +
-           formatNumber(d.rmsTorque, 3) + "/" + formatNumber(d.peakTorque, 3);
+  for (std::size_t first = 0, end = 0; first < drives.size(); first = end) {
+    end = first + 1;
+    while (end < drives.size() && drives[end].character == drives[first].character) ++end;
+    const std::span<const DriveFigures> parts(drives.data() + first, end - first);
+    s += "             " + drives[first].character + ":";
+    if (const std::string words = unfiniteDrives(parts); !words.empty()) {
+      s += " " + words + "\n";
+      continue;
     }
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      const DriveFigures& d = parts[i];
+      if (d.root) {
+        s += " " + d.bone + " (root) " + formatNumber(d.rmsForce, 3) + "/" + formatNumber(d.peakForce, 3) +
+             " N and " + formatNumber(d.rmsTorque, 3) + "/" + formatNumber(d.peakTorque, 3) + " N m;";
+      } else {
+        s += std::string(i == 0 || parts[i - 1].root ? " " : ", ") + d.bone + " " +
+             formatNumber(d.rmsTorque, 3) + "/" + formatNumber(d.peakTorque, 3);
+      }
+    }
+    s += " N m\n";
   }
-  return s + " N m\n";
+  return s;
 }
 
 std::string summaryText(const RunResult& r) {

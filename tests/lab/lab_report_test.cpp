@@ -129,6 +129,31 @@ TEST(LabReport, SummaryNamesStagesFreezesAndHash) {
   }
 }
 
+// A character's drives that ran away printed "head blew up/blew up" part by part (and "n/a/12" for a
+// torque that was no number); the summary says it once a character, in words, without a unit after.
+TEST(LabReport, DrivesThatAreNotFiniteAreSaidInWords) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  lab::RunResult r;
+  r.scene = "s";
+  r.drives = {{"steady", "torso", true, 1.0, 2.0, 3.0, 4.0},
+              {"steady", "head", false, 0.5, 0.75},
+              {"steady", "neck", false, 0.25, 1.5},
+              {"wild", "torso", true, 1.0, 2.0, inf, inf},
+              {"wild", "head", false, inf, inf},
+              {"odd", "torso", true, 1.0, 2.0, 3.0, 4.0},
+              {"odd", "head", false, nan, 12.0}};
+  const std::string s = lab::summaryText(r);
+  EXPECT_NE(s.find("             steady: torso (root) 3/4 N and 1/2 N m; head 0.5/0.75, neck 0.25/1.5 N m\n"),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("             wild: blew up\n"), std::string::npos) << s;
+  EXPECT_NE(s.find("             odd: n/a\n"), std::string::npos) << s;
+  EXPECT_EQ(s.find("blew up/"), std::string::npos) << s;
+  EXPECT_EQ(s.find("/blew up"), std::string::npos) << s;
+  EXPECT_EQ(s.find("n/a/"), std::string::npos) << s;
+}
+
 TEST(LabReport, DumpHasHeaderAndOneRowPerNamedBody) {
   phys::WorldSettings ws;
   ws.ground = false;
