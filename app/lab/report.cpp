@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <span>
+#include <sstream>
 #include <string_view>
 
 #include "csv.h"
@@ -192,6 +193,32 @@ std::string summaryText(const RunResult& r) {
   }
   s += "hash         " + hexHash(r.hash) + "\n";
   return s;
+}
+
+std::string drivesTable(const std::string& scene, const std::string& runJson) {
+  const Json j = Json::parse(runJson);
+  std::ostringstream md;
+  md << "What each part's drive needed over the run's " << j["steps"].get<int>() << " steps ("
+     << formatNumber(j["steps"].get<int>() * j["dt"].get<double>(), 3) << " s) at the scene's own setting ("
+     << j["method"].get<std::string>() << " " << j["iterations"].get<int>() << "x" << j["substeps"].get<int>()
+     << ", `lab run " << scene
+     << " --json`'s `drives`): the torque from its parent's joint, and for the root part the hand of god's "
+        "force and torque, RMS over the run's steps and the largest after any step.\n\n"
+        "| part | RMS | peak |\n|---|---:|---:|\n";
+  for (const Json& d : j.value("drives", Json::array())) {  // a run without drives has none
+    // jsonText writes a figure that is not finite as null: a drive of a run that blew up.
+    const auto figure = [&](const std::string& key, const std::string& unit) {
+      const Json& v = d[key];
+      return v.is_null() ? std::string(kBlewUp) : formatFigure(v.get<double>(), unit, 3);
+    };
+    const bool root = d["root"].get<bool>();
+    const auto cell = [&](const std::string& which) {  // "rms" or "peak"; the root's has the force too
+      return (root ? figure(which + "_force", " N") + ", " : "") + figure(which + "_torque", " N m");
+    };
+    md << "| " << d["bone"].get<std::string>() << (root ? " (root: hand of god)" : "") << " | " << cell("rms")
+       << " | " << cell("peak") << " |\n";
+  }
+  return md.str();
 }
 
 std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody> bodies) {

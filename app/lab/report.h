@@ -19,6 +19,11 @@ std::string jsonText(const RunResult& result);
 /// The hash as JSON wants it: 16 lower-case hex digits (a JSON number would lose bits).
 std::string hexHash(std::uint64_t hash);
 
+/// What each character part's drive needed over a run (the `drives` of `runJson`, a line of
+/// `lab run SCENE --json`) as the Markdown table `lab report` shows; a figure the JSON holds as null
+/// (not finite) reads "blew up", with no unit after it.
+std::string drivesTable(const std::string& scene, const std::string& runJson);
+
 /// The CSV text of a dump: header name,x,y,z,qw,qx,qy,qz and one row per named body.
 std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody> bodies);
 

@@ -20,6 +20,7 @@
 #include "fileio/files.h"
 #include "json.h"
 #include "lab.h"
+#include "report.h"
 #include "text.h"
 
 namespace lab {
@@ -297,30 +298,6 @@ std::string trackingWords(const std::vector<CsvRow>& rows) {
        << (b != nullptr ? settingName(*b) + " | " + degrees(*b) : std::string("- | -")) << " |\n";
   }
   md << trackingByMethod(rows);
-  return md.str();
-}
-
-// What each joint needed to follow the run cycle at the scene's own setting (`lab run --json`'s
-// drives), as a table.
-std::string drivesTable(const std::string& scene, const std::string& runJson) {
-  const Json j = Json::parse(runJson);
-  std::ostringstream md;
-  md << "What each part's drive needed over the run's " << j["steps"].get<int>() << " steps ("
-     << formatNumber(j["steps"].get<int>() * j["dt"].get<double>(), 3) << " s) at the scene's own setting ("
-     << j["method"].get<std::string>() << " " << j["iterations"].get<int>() << "x" << j["substeps"].get<int>()
-     << ", `lab run " << scene
-     << " --json`'s `drives`): the torque from its parent's joint, and for the root part the hand of god's "
-        "force and torque, RMS over the run's steps and the largest after any step.\n\n"
-        "| part | RMS | peak |\n|---|---:|---:|\n";
-  for (const Json& d : j.value("drives", Json::array())) {  // a run without drives has none
-    const auto number = [&](const std::string& key) { return formatNumber(d[key].get<double>(), 3); };
-    const bool root = d["root"].get<bool>();
-    const auto cell = [&](const std::string& figure) {  // "rms" or "peak"; the root's has the force too
-      return (root ? number(figure + "_force") + " N, " : "") + number(figure + "_torque") + " N m";
-    };
-    md << "| " << d["bone"].get<std::string>() << (root ? " (root: hand of god)" : "") << " | " << cell("rms")
-       << " | " << cell("peak") << " |\n";
-  }
   return md.str();
 }
 

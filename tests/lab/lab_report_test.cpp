@@ -154,6 +154,22 @@ TEST(LabReport, DrivesThatAreNotFiniteAreSaidInWords) {
   EXPECT_EQ(s.find("n/a/"), std::string::npos) << s;
 }
 
+// `lab report`'s table of a run's drives read each figure back as a number: one the JSON holds as null
+// (a run that blew up) threw nlohmann's type error out of the whole report.
+TEST(LabReport, TheDrivesTableSaysAFigureThatIsNotFiniteInWords) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  lab::RunResult r;
+  r.scene = "s";
+  r.steps = 60;
+  r.solver.dt = 1.0 / 60.0;
+  r.drives = {{"r", "torso", true, 1.0, 2.0, inf, inf}, {"r", "head", false, 0.5, inf}};
+  std::string md;
+  ASSERT_NO_THROW(md = lab::drivesTable("s", lab::jsonText(r)));
+  EXPECT_NE(md.find("| torso (root: hand of god) | blew up, 1 N m | blew up, 2 N m |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| head | 0.5 N m | blew up |"), std::string::npos) << md;
+}
+
 TEST(LabReport, DumpHasHeaderAndOneRowPerNamedBody) {
   phys::WorldSettings ws;
   ws.ground = false;
