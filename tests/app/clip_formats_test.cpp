@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -429,7 +430,7 @@ TEST(ClipFormats, AnFbxCurveOfNoKeysIsRefused) {
 }
 
 // What assimp reads or refuses itself, and what the clip's own checks then refuse: every format's
-// truncated file, and keys that are not finite, out of time order or at one time.
+// truncated file, and COLLADA keys that are not finite, out of time order or at one time.
 TEST(ClipFormats, WhatAssimpRefusesOrReadsIsRefusedWithTheReason) {
   const testing_app::TempFolder dir;
   for (const auto& [format, extension] : {std::pair{"fbxa", "fbx"}, {"collada", "dae"}, {"glb2", "glb"}}) {
@@ -448,9 +449,227 @@ TEST(ClipFormats, WhatAssimpRefusesOrReadsIsRefusedWithTheReason) {
   EXPECT_TRUE(nan != "loaded" && has(nan, "nan.dae: ")) << nan;
   EXPECT_NE(refusal(replaced(dae, keys, " 0 0.0666 0.0333 "), "order.dae"), "loaded");
   EXPECT_NE(refusal(replaced(dae, keys, " 0 0 0 "), "same.dae"), "loaded");
+}
+
+// assimp reads a .x file's AnimTicksPerSecond of 0 as no rate given (the clip then played at 25
+// ticks a second), and wraps a negative one to more than 4 billion.
+TEST(ClipFormats, AnXTickRateThatIsNotAWholeNumberAboveZeroIsRefusedWithTheLine) {
   const std::string x = xFile();
-  const std::string turned = replaced(x, "AnimTicksPerSecond { 30; }", "AnimTicksPerSecond { -30; }");
-  EXPECT_EQ(refusal(turned, "ticks.x"), "ticks.x: its frame time is not finite and >= 1e-6 s");
+  ASSERT_TRUE(has(x, "\nAnimTicksPerSecond { 30; }\n"));
+  for (const std::string rate : {"0", "-30", "4294967296", "2.5"}) {
+    const std::string ticks =
+        replaced(x, "AnimTicksPerSecond { 30; }", "AnimTicksPerSecond {\n " + rate + "; }");
+    EXPECT_EQ(refusal(ticks, "ticks.x"),
+              "ticks.x:3: AnimTicksPerSecond " + rate +
+                  ": the ticks a second are not a whole number from 1 to 4294967295");
+  }
+  const std::string named = replaced(x, "AnimTicksPerSecond { 30; }", "AnimTicksPerSecond rate { 0; }");
+  EXPECT_TRUE(has(refusal(named, "named.x"), "named.x:2: AnimTicksPerSecond 0: "))
+      << refusal(named, "named.x");
+  EXPECT_EQ(refusal(replaced(x, "AnimTicksPerSecond { 30; }", "AnimTicksPerSecond { 4800; }"), "fast.x"),
+            "loaded");
+}
+
+// assimp's binary .x reader takes counts on trust as its text reader does, and a compressed .x is
+// inflated before anything could check it: only .x as text is read.
+TEST(ClipFormats, BinaryAndCompressedXFilesAreRefused) {
+  const std::string body = xFile().substr(16);
+  EXPECT_EQ(refusal("xof 0303bin 0032" + body, "bin.x"),
+            "bin.x:1: a binary .x file ('xof 0303bin '): clips are read from .x files as text "
+            "('xof 0303txt 0032') alone");
+  EXPECT_TRUE(has(refusal("xof 0303bzip0032" + body, "bzip.x"), "bzip.x:1: a compressed binary .x file"));
+  EXPECT_TRUE(has(refusal("xof 0303tzip0032" + body, "tzip.x"), "tzip.x:1: a compressed .x file"));
+}
+
+// assimp 5.2 drops an FBX curve whose key times do not rise, with a warning no caller sees: a file
+// of such curves read as one that "holds no animation". Refused naming the curve, its property and
+// its node.
+TEST(ClipFormats, FbxKeysOutOfTimeOrderAreRefusedNamingTheCurve) {
+  const testing_app::TempFolder dir;
+  const std::string fbx = legFile(dir, "fbxa", "fbx");
+  const std::size_t array = fbx.find("a: ", fbx.find("KeyTime: *3"));
+  const std::size_t end = fbx.find('\n', array);
+  const std::string times = fbx.substr(array, end - array);  // a: t0,t1,t2
+  const std::size_t comma = times.find(',');
+  const std::size_t second = times.find(',', comma + 1);
+  const std::string t0 = times.substr(3, comma - 3), t1 = times.substr(comma + 1, second - comma - 1);
+  const std::string swapped = "a: " + t1 + "," + t0 + times.substr(second);
+  const std::string e = refusal(replaced(fbx, times, swapped), "order.fbx");
+  const std::size_t line = 1 + std::count(fbx.begin(), fbx.begin() + fbx.find("KeyTime: *3"), '\n');
+  EXPECT_TRUE(has(e, "order.fbx:" + std::to_string(line) + ": KeyTime: key 1 at " + t0 +
+                         " is not after key 0 at " + t1 + ": the keys of the curve d|"))
+      << e;
+  EXPECT_TRUE(has(e, " of node 'hips' are out of time order")) << e;
+  // Two keys at one time are out of order too (assimp drops the curve as well).
+  EXPECT_TRUE(has(refusal(replaced(fbx, times, "a: " + t0 + "," + t0 + times.substr(second)), "same.fbx"),
+                  ": KeyTime: key 1 at " + t0 + " is not after key 0 at " + t0));
+}
+
+// ---- binary FBX, written byte by byte ----
+
+std::string littleEndian(std::uint64_t value, int bytes) {
+  std::string out;
+  for (int i = 0; i < bytes; ++i) out += static_cast<char>((value >> (8 * i)) & 0xff);
+  return out;
+}
+
+// Properties: a 64-bit integer, a string, an array of 64-bit integers (as they are, or as a zlib
+// stream of one stored deflate block), an array of any type with what its header says.
+std::string longProperty(std::int64_t value) {
+  return "L" + littleEndian(static_cast<std::uint64_t>(value), 8);
+}
+std::string stringProperty(const std::string& text) {
+  return "S" + littleEndian(text.size(), 4) + text;
+}
+std::string arrayProperty(char type, std::uint64_t count, std::uint64_t encoding, const std::string& stored) {
+  return type + littleEndian(count, 4) + littleEndian(encoding, 4) + littleEndian(stored.size(), 4) + stored;
+}
+std::string longsProperty(const std::vector<std::int64_t>& values, bool compressed) {
+  std::string plain;
+  for (const std::int64_t v : values) plain += littleEndian(static_cast<std::uint64_t>(v), 8);
+  if (!compressed) return arrayProperty('l', values.size(), 0, plain);
+  std::uint32_t a = 1, b = 0;  // Adler-32 (RFC 1950)
+  for (const char c : plain) {
+    a = (a + static_cast<unsigned char>(c)) % 65521;
+    b = (b + a) % 65521;
+  }
+  const std::uint32_t adler = b << 16 | a;
+  std::string stream =
+      "\x78\x01\x01" + littleEndian(plain.size(), 2) + littleEndian(~plain.size() & 0xffff, 2) + plain;
+  for (int i = 3; i >= 0; --i) stream += static_cast<char>((adler >> (8 * i)) & 0xff);
+  return arrayProperty('l', values.size(), 1, stream);
+}
+
+// A node record of version 7500 (8-byte words): its properties already written, `count` of them.
+struct FbxRecord {
+  std::string name;
+  std::string properties;
+  std::uint64_t count = 0;
+  std::vector<FbxRecord> children;
+};
+
+std::string recordAt(const FbxRecord& r, std::uint64_t at) {
+  const std::uint64_t headerSize = 25 + r.name.size();
+  std::string children;
+  for (const FbxRecord& child : r.children)
+    children += recordAt(child, at + headerSize + r.properties.size() + children.size());
+  if (!r.children.empty()) children += std::string(25, '\0');
+  const std::uint64_t end = at + headerSize + r.properties.size() + children.size();
+  return littleEndian(end, 8) + littleEndian(r.count, 8) + littleEndian(r.properties.size(), 8) +
+         static_cast<char>(r.name.size()) + r.name + r.properties + children;
+}
+
+std::string binaryFbx(const std::vector<FbxRecord>& records) {
+  std::string out = std::string("Kaydara FBX Binary  ") + '\0' + '\x1a' + '\0' + littleEndian(7500, 4);
+  for (const FbxRecord& r : records) out += recordAt(r, out.size());
+  return out + std::string(25, '\0');
+}
+
+// A curve of `times` under Objects, moving "d|X" of "Lcl Rotation" of the model 'knee'.
+std::string binaryFbxCurve(const std::vector<std::int64_t>& times, bool compressed) {
+  const FbxRecord model{
+      "Model",
+      longProperty(10) + stringProperty(std::string("knee\0\1Model", 11)) + stringProperty("LimbNode"),
+      3,
+      {}};
+  const FbxRecord curveNode{
+      "AnimationCurveNode",
+      longProperty(20) + stringProperty(std::string("R\0\1AnimCurveNode", 16)) + stringProperty(""),
+      3,
+      {}};
+  const FbxRecord keyTime{"KeyTime", longsProperty(times, compressed), 1, {}};
+  const FbxRecord curve{
+      "AnimationCurve",
+      longProperty(30) + stringProperty(std::string("\0\1AnimCurve", 11)) + stringProperty(""),
+      3,
+      {keyTime}};
+  const auto link = [](std::int64_t from, std::int64_t to, const std::string& property) {
+    return FbxRecord{
+        "C", stringProperty("OP") + longProperty(from) + longProperty(to) + stringProperty(property), 4, {}};
+  };
+  return binaryFbx({{"Objects", "", 0, {model, curveNode, curve}},
+                    {"Connections", "", 0, {link(30, 20, "d|X"), link(20, 10, "Lcl Rotation")}}});
+}
+
+TEST(ClipFormats, BinaryFbxKeysOutOfTimeOrderAreRefusedNamingTheCurve) {
+  for (const bool compressed : {false, true}) {
+    const std::string inOrder = refusal(binaryFbxCurve({0, 100, 200}, compressed), "order.fbx");
+    EXPECT_FALSE(has(inOrder, "KeyTime")) << inOrder;
+    const std::string e = refusal(binaryFbxCurve({0, 200, 100}, compressed), "order.fbx");
+    EXPECT_TRUE(has(e, "order.fbx: node record 'KeyTime' at byte ")) << e;
+    EXPECT_TRUE(has(e,
+                    ": KeyTime: key 2 at 100 is not after key 1 at 200: the keys of the curve d|X of Lcl "
+                    "Rotation of node 'knee' are out of time order"))
+        << e;
+  }
+}
+
+// assimp's binary FBX reader recurses once a level of node records, computes an array's size in 32
+// bits and reads its count of values out of what that size allocated, and takes a count of
+// properties on trust: each refused, naming the record and its byte, before assimp reads the file.
+TEST(ClipFormats, BinaryFbxRecordsAreCheckedBeforeAssimpReadsThem) {
+  FbxRecord deep{"Deep", "", 0, {}};
+  for (int level = 0; level < 300; ++level) deep = FbxRecord{"Deep", "", 0, {deep}};
+  const std::string nested = refusal(binaryFbx({deep}), "deep.fbx");
+  EXPECT_TRUE(has(nested, "deep.fbx: node record 'Deep' at byte ")) << nested;
+  EXPECT_TRUE(has(nested, ": node records nested more than 256 deep")) << nested;
+  FbxRecord shallow{"Deep", "", 0, {}};
+  for (int level = 0; level < 200; ++level) shallow = FbxRecord{"Deep", "", 0, {shallow}};
+  EXPECT_FALSE(has(refusal(binaryFbx({shallow}), "shallow.fbx"), "node record")) << "200 deep is a file";
+
+  const std::string one = binaryFbx({{"Objects", "", 0, {}}});
+  std::string past = one;
+  past.replace(27, 8, littleEndian(one.size() + 100, 8));
+  EXPECT_EQ(refusal(past, "past.fbx"), "past.fbx: node record 'Objects' at byte 27: it ends at byte " +
+                                           std::to_string(one.size() + 100) +
+                                           ", outside the file (bytes 59 to " + std::to_string(one.size()) +
+                                           ")");
+
+  const auto withProperty = [](const std::string& property, std::uint64_t count = 1) {
+    return binaryFbx({{"Objects", "", 0, {{"Data", property, count, {}}}}});
+  };
+  std::string longList = withProperty(longProperty(1));
+  longList.replace(59 + 16, 8, littleEndian(1000, 8));  // Data's property list length
+  EXPECT_TRUE(has(refusal(longList, "list.fbx"),
+                  "list.fbx: node record 'Data' at byte 59: its properties' 1000 "
+                  "bytes run past its end at byte "));
+  EXPECT_EQ(refusal(withProperty(longProperty(1), 1000), "count.fbx"),
+            "count.fbx: node record 'Data' at byte 59: 1000 properties in 9 bytes");
+  const std::string wraps =
+      refusal(withProperty(arrayProperty('l', 0x20000001, 0, std::string(8, '\0'))), "wraps.fbx");
+  EXPECT_TRUE(has(wraps,
+                  "node record 'Data' at byte 59: an array of 536870913 values of 8 bytes in 8 bytes: 1 GB "
+                  "or more"))
+      << wraps;
+  EXPECT_TRUE(has(refusal(withProperty(arrayProperty('d', 1000, 0, std::string(8, '\0'))), "short.fbx"),
+                  "an array of 1000 values of 8 bytes in 8 bytes, stored as they are"));
+  EXPECT_TRUE(has(refusal(withProperty(arrayProperty('f', 10000000, 1, std::string(8, '\0'))), "bomb.fbx"),
+                  "an array of 10000000 values of 4 bytes in 8 bytes, more than they inflate to"));
+  EXPECT_FALSE(
+      has(refusal(withProperty(arrayProperty('f', 2, 0, std::string(8, '\0'))), "fine.fbx"), "node record"));
+}
+
+// Nodes looked up among all the channels, once a node, took seconds for 20,000: a clip of 20,000
+// bones, each keyed at two frames, loads with every bone under its parent.
+TEST(ClipFormats, AClipOfTwentyThousandChannelsLoads) {
+  constexpr int kBones = 20000;
+  const std::string identity = "1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0";
+  std::string x = "xof 0303txt 0032\nAnimTicksPerSecond { 30; }\nFrame root {\n FrameTransformMatrix { " +
+                  identity + ";; }\n";
+  for (int b = 1; b < kBones; ++b)
+    x += " Frame b" + std::to_string(b) + " { FrameTransformMatrix { " + identity + ";; } }\n";
+  x += "}\nAnimationSet all {\n";
+  for (int b = 0; b < kBones; ++b) {
+    x += " Animation { {" + (b == 0 ? std::string("root") : "b" + std::to_string(b)) +
+         "} AnimationKey { 4; 2; 0; 16; " + identity + ";;, 1; 16; " + identity + ";;; } }\n";
+  }
+  x += "}\n";
+  const phys::Clip clip = clips::parseClip(x, "many.x", "x");
+  ASSERT_EQ(clip.bones.size(), static_cast<std::size_t>(kBones));
+  EXPECT_EQ(clip.bones[0], "root");
+  EXPECT_EQ(clip.bones[kBones - 1], "b" + std::to_string(kBones - 1));
+  EXPECT_EQ(std::count(clip.parents.begin(), clip.parents.end(), 0), kBones - 1);
+  EXPECT_EQ(clip.frames(), 2u);
 }
 
 }  // namespace

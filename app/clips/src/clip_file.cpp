@@ -14,6 +14,7 @@
 #include <set>
 #include <string_view>
 #include <system_error>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -39,9 +40,9 @@ constexpr std::size_t kMaxClipBytes = 64u << 20;
 // stack; 256 is far from both.
 constexpr int kMaxBvhDepth = 256;
 
-// A body with hands and a face has a few hundred joints. More, and reading them takes time that
-// grows as their square (a node's channel is looked for among all of them): 50,000 joints side by
-// side, a 2 MB file, took a minute.
+// A body with hands and a face has a few hundred joints. More, and checking them takes time that
+// grows as their square (phys::clipProblem compares each bone's name with those before it): 20,000
+// bones took over a second.
 constexpr std::uint64_t kMaxBvhJoints = 1000;
 
 // The most keys (a joint at a frame) the largest clip file can hold: every joint's three turns at
@@ -51,12 +52,26 @@ constexpr std::uint64_t kMaxBvhJoints = 1000;
 // assimp reads it into.
 constexpr std::uint64_t kMaxClipKeys = kMaxClipBytes / 6;
 
-const aiNodeAnim* channelOf(const aiAnimation& a, const aiString& node) {
-  for (unsigned c = 0; c < a.mNumChannels; ++c) {
-    if (a.mChannels[c]->mNodeName == node) return a.mChannels[c];
+// The animation's channels by the name of the node each moves, the first where two name one node
+// (as assimp's own lookups take it). A node's channel was looked for among all of them, once a node:
+// 20,000 channels and nodes took seconds.
+class ChannelsByNode {
+ public:
+  explicit ChannelsByNode(const aiAnimation& a) {
+    byName_.reserve(a.mNumChannels);
+    for (unsigned c = 0; c < a.mNumChannels; ++c)
+      byName_.emplace(nameOf(a.mChannels[c]->mNodeName), a.mChannels[c]);
   }
-  return nullptr;
-}
+  /// The channel that moves `node`, nullptr if none does.
+  const aiNodeAnim* of(const aiString& node) const {
+    const auto found = byName_.find(nameOf(node));
+    return found == byName_.end() ? nullptr : found->second;
+  }
+
+ private:
+  static std::string_view nameOf(const aiString& s) { return {s.data, s.length}; }
+  std::unordered_map<std::string_view, const aiNodeAnim*> byName_;
+};
 
 phys::Quat toQuat(const aiQuaternion& q) {
   return phys::Quat(q.w, q.x, q.y, q.z);
@@ -273,10 +288,10 @@ struct Animated {
 };
 
 // The animated nodes in depth-first order, each with the nearest animated ancestor as its parent.
-void collectBones(const aiNode& node, const aiMatrix4x4& parentRest, int parent, const aiAnimation& a,
-                  phys::Clip& clip, std::vector<Animated>& bones) {
+void collectBones(const aiNode& node, const aiMatrix4x4& parentRest, int parent,
+                  const ChannelsByNode& channels, phys::Clip& clip, std::vector<Animated>& bones) {
   int self = parent;
-  if (const aiNodeAnim* channel = channelOf(a, node.mName)) {
+  if (const aiNodeAnim* channel = channels.of(node.mName)) {
     self = static_cast<int>(clip.bones.size());
     clip.bones.emplace_back(node.mName.C_Str());
     clip.parents.push_back(parent);
@@ -284,7 +299,7 @@ void collectBones(const aiNode& node, const aiMatrix4x4& parentRest, int parent,
   }
   const aiMatrix4x4 rest = parentRest * node.mTransformation;
   for (unsigned i = 0; i < node.mNumChildren; ++i)
-    collectBones(*node.mChildren[i], rest, self, a, clip, bones);
+    collectBones(*node.mChildren[i], rest, self, channels, clip, bones);
 }
 
 // A key's local rotation K taken back to the turn from rest a clip holds. A bone turned by K from
@@ -337,7 +352,7 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   phys::Clip clip;
   clip.name = name;
   std::vector<Animated> bones;
-  collectBones(*scene->mRootNode, aiMatrix4x4(), -1, anim, clip, bones);
+  collectBones(*scene->mRootNode, aiMatrix4x4(), -1, ChannelsByNode(anim), clip, bones);
   if (clip.bones.empty()) throw ClipError(name, "its animation moves no node of its skeleton");
   for (std::size_t b = 1; b < clip.bones.size(); ++b) {
     if (clip.parents[b] < 0)
@@ -345,7 +360,8 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   }
   const aiNodeAnim& root = *bones[0].channel;
   const unsigned frames = root.mNumRotationKeys;
-  // assimp gives 0 ticks a second for a file that does not say, and then takes 25 itself; a BVH
+  // assimp gives 0 ticks a second for a file that does not say, and then takes 25 itself (a .x
+  // that says 0 is refused by checkX, since assimp reads it as one that does not say); a BVH
   // always says (1 / its Frame Time), so there a tick rate that is not a finite number > 0 is a
   // Frame Time that is not one (-1 gave -1, nan nan), refused rather than guessed.
   const double ticksGiven = anim.mTicksPerSecond;

@@ -277,13 +277,49 @@ class Tokens {
   std::size_t start_ = 0;
 };
 
-// An FBX array's values after its `*N`: `{ a: v,v,... }`, counted; nullopt if it is not one.
-std::optional<std::uint64_t> fbxArrayValues(Tokens& tokens) {
+std::optional<std::int64_t> integer(std::string_view word) {
+  std::int64_t n = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
+  if (word.empty() || end != word.data() + word.size() || error != std::errc()) return std::nullopt;
+  return n;
+}
+
+// An FBX array's values after its `*N`: `{ a: v,v,... }`, counted, and read into `integers` if given
+// (emptied if one is not an integer); nullopt if it is not one.
+std::optional<std::uint64_t> fbxArrayValues(Tokens& tokens, std::vector<std::int64_t>* integers) {
   if (tokens.next() != "{" || tokens.next() != "a:") return std::nullopt;
   std::uint64_t values = 0;
-  for (std::string_view word = tokens.next(); !word.empty() && word != "}"; word = tokens.next())
-    if (word != ",") ++values;
+  bool allIntegers = true;
+  for (std::string_view word = tokens.next(); !word.empty() && word != "}"; word = tokens.next()) {
+    if (word == ",") continue;
+    ++values;
+    if (integers == nullptr || !allIntegers) continue;
+    const std::optional<std::int64_t> n = integer(word);
+    allIntegers = n.has_value();
+    if (n) integers->push_back(*n);
+  }
+  if (integers != nullptr && !allIntegers) integers->clear();
   return values;
+}
+
+std::string_view unquoted(std::string_view word) {
+  if (word.size() >= 2 && word.front() == '"' && word.back() == '"') return word.substr(1, word.size() - 2);
+  return word;
+}
+
+// A text FBX's models and connections, for FbxCurves: `Model: id, "Model::name", ...` under
+// Objects, `C: "OP", source, target, "property"` under Connections.
+void gatherFbxLink(const std::vector<std::string_view>& path, std::string_view key,
+                   const std::vector<std::string_view>& values, FbxCurves& curves) {
+  if (path.size() != 1) return;
+  if (path[0] == "Objects:" && key == "Model:" && values.size() >= 2) {
+    std::string_view model = unquoted(values[1]);
+    if (model.starts_with("Model::")) model.remove_prefix(7);
+    if (const std::optional<std::int64_t> id = integer(values[0])) curves.model(*id, std::string(model));
+  } else if (path[0] == "Connections:" && key == "C:" && values.size() >= 4) {
+    const std::optional<std::int64_t> source = integer(values[1]), target = integer(values[2]);
+    if (source && target) curves.link(*source, *target, std::string(unquoted(values[3])));
+  }
 }
 
 }  // namespace
@@ -320,15 +356,30 @@ void checkCollada(std::string_view content, const std::string& name) {
 }
 
 void checkFbx(std::string_view content, const std::string& name) {
-  if (content.starts_with("Kaydara FBX Binary")) return;
+  if (content.starts_with("Kaydara FBX Binary")) {
+    checkBinaryFbx(content, name);
+    return;
+  }
   Tokens tokens(content, ";");
-  int depth = 0;
+  std::vector<std::string_view> path;  // the key before each open brace
   std::string_view key;
+  std::vector<std::string_view> values;  // the words after `key`, up to a brace or the next key
+  FbxCurves curves;
+  std::int64_t curve = 0;  // the AnimationCurve the braces are in, if path is {Objects:, AnimationCurve:}
   for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next()) {
     if (word == "{") {
-      if (++depth > kMaxDepth) throw ClipError(name, tokens.line(), tooDeep("braces"));
+      gatherFbxLink(path, key, values, curves);
+      if (path.size() == 1 && path[0] == "Objects:" && key == "AnimationCurve:" && !values.empty())
+        curve = integer(values[0]).value_or(0);
+      path.push_back(key);
+      values.clear();
+      if (path.size() > static_cast<std::size_t>(kMaxDepth))
+        throw ClipError(name, tokens.line(), tooDeep("braces"));
     } else if (word == "}") {
-      --depth;
+      gatherFbxLink(path, key, values, curves);
+      if (!path.empty()) path.pop_back();
+      key = {};
+      values.clear();
     } else if (word.starts_with('*')) {
       // assimp allocates the N values of `*N` before it reads them: *4000000000 asked for 16 GB.
       const std::size_t line = tokens.line();
@@ -336,23 +387,42 @@ void checkFbx(std::string_view content, const std::string& name) {
       if (!count)
         throw ClipError(name, line,
                         std::string(key) + " " + std::string(word) + ": not a whole number of values");
-      const std::optional<std::uint64_t> values = fbxArrayValues(tokens);
-      if (!values) continue;  // not an array: left for assimp's reader
-      if (*values < *count)
+      const bool times =
+          key == "KeyTime:" && path.size() == 2 && path[0] == "Objects:" && path[1] == "AnimationCurve:";
+      std::vector<std::int64_t> integers;
+      const std::optional<std::uint64_t> held = fbxArrayValues(tokens, times ? &integers : nullptr);
+      if (!held) continue;  // not an array: left for assimp's reader
+      if (*held < *count)
         throw ClipError(
             name, line,
-            std::string(key) + " " + std::string(word) + " holds " + std::to_string(*values) + " values");
+            std::string(key) + " " + std::string(word) + " holds " + std::to_string(*held) + " values");
       // A curve of no times and no values made assimp 5.2 read through a null pointer.
       if (*count == 0 && (key == "KeyTime:" || key == "KeyValueFloat:"))
         throw ClipError(name, line, std::string(key) + " *0: an animation curve of no keys");
-    } else if (word.ends_with(':')) {
+      if (times) curves.keyTimes(curve, integers, line, "");
+    } else if (word.ends_with(':') && !word.starts_with('"')) {
+      gatherFbxLink(path, key, values, curves);
       key = word;
+      values.clear();
+    } else if (word != ",") {
+      values.push_back(word);
     }
   }
+  curves.check(name);
 }
 
 void checkX(std::string_view content, const std::string& name) {
-  if (content.size() < 16 || !content.starts_with("xof ") || content.substr(8, 4) != "txt ") return;
+  if (content.size() < 16 || !content.starts_with("xof ")) return;  // assimp's reader says what it is not
+  // assimp's binary reader takes counts and lengths on trust as the text one does, and a compressed
+  // file (tzip, bzip) is checked by nothing before it is inflated; exporters write .x as text.
+  if (const std::string_view form = content.substr(8, 4); form != "txt ")
+    throw ClipError(name, 1,
+                    "a " +
+                        std::string(form == "tzip"   ? "compressed"
+                                    : form == "bin " ? "binary"
+                                                     : "compressed binary") +
+                        " .x file ('" + std::string(content.substr(0, 12)) +
+                        "'): clips are read from .x files as text ('xof 0303txt 0032') alone");
   Tokens tokens(content.substr(16), "//");
   int depth = 0;
   std::string_view first;  // the first word of the block's header: its template's name
@@ -371,6 +441,16 @@ void checkX(std::string_view content, const std::string& name) {
           throw ClipError(name, line(),
                           std::string(first) + " of " + std::string(count) + ", more than the " +
                               std::to_string(tokens.left()) + " bytes after it hold");
+      }
+      // assimp reads a tick rate of 0 as one the file does not give, and the clip would play at
+      // its default of 25; a negative one it wraps to more than 4 billion.
+      if (first == "AnimTicksPerSecond") {
+        const std::string_view rate = tokens.next();
+        const std::optional<std::uint64_t> n = wholeNumber(rate);
+        if (!n || *n == 0 || *n > std::numeric_limits<std::uint32_t>::max())
+          throw ClipError(name, line(),
+                          "AnimTicksPerSecond " + std::string(rate) +
+                              ": the ticks a second are not a whole number from 1 to 4294967295");
       }
       header = true;
       first = {};

@@ -3,10 +3,13 @@
 // each check refuses, with a ClipError naming the line or the item, a file that would make one of
 // assimp 5.2's readers recurse past the stack, allocate what a count claims, or crash, before that
 // reader sees it.
+#include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace clips::detail {
 
@@ -27,10 +30,48 @@ void checkGlb(std::string_view content, const std::string& name);
 /// count says, every accessor within its array.
 void checkCollada(std::string_view content, const std::string& name);
 /// FBX as text: braces nested no deeper than kMaxDepth, every array (`*N { a: ... }`) holding the
-/// N values it declares, no animation curve of no keys. A binary FBX is left to assimp's reader.
+/// N values it declares, no animation curve of no keys, every curve's keys in time order. A binary
+/// FBX is checked by checkBinaryFbx.
 void checkFbx(std::string_view content, const std::string& name);
+/// Binary FBX: every node record within its parent and the file, its properties within its property
+/// list, records nested no deeper than kMaxDepth, every array's count within what its bytes hold
+/// (and its size within 32 bits, where assimp computes it), every curve's keys in time order.
+void checkBinaryFbx(std::string_view content, const std::string& name);
 /// DirectX .x as text: braces nested no deeper than kMaxDepth, no count at the start of a block
-/// (a Mesh's vertices, ...) larger than the bytes that follow it.
+/// (a Mesh's vertices, ...) larger than the bytes that follow it, a tick rate (AnimTicksPerSecond) a
+/// whole number > 0. A binary or compressed .x is refused.
 void checkX(std::string_view content, const std::string& name);
+
+/// An FBX's animation curves and what each moves, gathered from either form of the file, so that a
+/// curve whose keys are out of time order is refused naming what it moves: assimp 5.2 drops such a
+/// curve with a warning no caller sees, and a file of them read as one of no animation.
+class FbxCurves {
+ public:
+  /// A model (a node of the scene) and its name.
+  void model(std::int64_t id, std::string name);
+  /// A link from object `source` to `property` of object `target` (a curve to "d|X" of a curve
+  /// node, a curve node to "Lcl Rotation" of a model); the first link from an object is kept.
+  void link(std::int64_t source, std::int64_t target, std::string property);
+  /// A curve's key times, at `line` (0 if the file has no lines) or at `where` ("byte N: ").
+  void keyTimes(std::int64_t curve, const std::vector<std::int64_t>& times, std::size_t line,
+                const std::string& where);
+  /// Throws ClipError for the first curve whose keys do not rise in time, naming what it moves.
+  void check(const std::string& name) const;
+
+ private:
+  struct Link {
+    std::int64_t target;
+    std::string property;
+  };
+  struct Unordered {
+    std::int64_t curve;
+    std::size_t line;
+    std::string where;
+    std::string why;
+  };
+  std::map<std::int64_t, std::string> models_;
+  std::map<std::int64_t, Link> links_;
+  std::optional<Unordered> unordered_;
+};
 
 }  // namespace clips::detail
