@@ -10,7 +10,9 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "engine/error.h"
 #include "fileio/files.h"
@@ -117,25 +119,59 @@ const aiScene& triangulate(Assimp::Importer& importer, const std::filesystem::pa
   return *scene;
 }
 
+glm::dvec3 asDouble(const aiVector3D& v) {
+  return {v.x, v.y, v.z};
+}
+
+bool isZero(const aiVector3D& v) {
+  return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f;
+}
+
+// The triangle's own normal, from its corners in the order that makes it face out (assimp's
+// GenNormals makes the same one), in double so that neither corners far apart overflow nor
+// corners close together underflow: zero only when the corners are in line.
+glm::dvec3 triangleNormal(const aiMesh& mesh, const aiFace& face) {
+  const glm::dvec3 a = asDouble(mesh.mVertices[face.mIndices[0]]);
+  const glm::dvec3 b = asDouble(mesh.mVertices[face.mIndices[1]]);
+  const glm::dvec3 c = asDouble(mesh.mVertices[face.mIndices[2]]);
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  return n == glm::dvec3(0.0) ? n : glm::normalize(n);
+}
+
 // The mesh's triangles and the vertices they use, added to `out`. The points and lines that
 // triangulation leaves are not drawn; their vertices are left out too, so they do not widen the
 // bounds, and the NaN normals assimp gives them do not reach the GPU.
+//
+// A normal of zero length (`vn 0 0 0`, or assimp's normal of a triangle whose corners are in
+// line) gives the shader's normalize() nothing to work with: the light is undefined there. Such a
+// corner is given its triangle's own normal, as a file that gives no normals gets them all (a
+// zero normal is no normal), on a vertex of its own, since the triangles that share it face
+// different ways. A triangle whose corners are in line has none to give; it covers no pixel, so
+// it is left out. Every other normal is made unit length, as MeshData promises (OBJ allows any).
 void appendTriangles(const std::filesystem::path& file, const aiMesh& mesh, unsigned m, MeshData& out) {
   constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> index(mesh.mNumVertices, kUnused);
+  auto addVertex = [&](unsigned v, const glm::dvec3& normal) {
+    const aiVector3D& p = mesh.mVertices[v];
+    out.positions.emplace_back(p.x, p.y, p.z);
+    out.normals.emplace_back(normal);
+    return static_cast<std::uint32_t>(out.positions.size() - 1);
+  };
   for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
     const aiFace& face = mesh.mFaces[f];
     if (face.mNumIndices != 3) continue;
     if (!mesh.HasNormals()) throw Error(file.string() + ": mesh " + std::to_string(m) + " has no normals");
+    const bool noNormal = isZero(mesh.mNormals[face.mIndices[0]]) ||
+                          isZero(mesh.mNormals[face.mIndices[1]]) || isZero(mesh.mNormals[face.mIndices[2]]);
+    const glm::dvec3 own = noNormal ? triangleNormal(mesh, face) : glm::dvec3(0.0);
+    if (noNormal && own == glm::dvec3(0.0)) continue;
     for (unsigned k = 0; k < 3; ++k) {
       const unsigned v = face.mIndices[k];
-      if (index[v] == kUnused) {
-        index[v] = static_cast<std::uint32_t>(out.positions.size());
-        const aiVector3D& p = mesh.mVertices[v];
-        const aiVector3D& n = mesh.mNormals[v];
-        out.positions.emplace_back(p.x, p.y, p.z);
-        out.normals.emplace_back(n.x, n.y, n.z);
+      if (isZero(mesh.mNormals[v])) {
+        out.indices.push_back(addVertex(v, own));
+        continue;
       }
+      if (index[v] == kUnused) index[v] = addVertex(v, glm::normalize(asDouble(mesh.mNormals[v])));
       out.indices.push_back(index[v]);
     }
   }

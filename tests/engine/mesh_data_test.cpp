@@ -181,6 +181,87 @@ TEST(MeshData, PointsAndLinesAreLeftOutWithTheirVertices) {
   EXPECT_EQ(m.boundsMax, glm::vec3(1.0f, 1.0f, 0.0f));
 }
 
+// Each triangle's normal from its corners, wound as it is drawn (counter-clockwise seen from the
+// side it faces).
+glm::vec3 windingNormal(const engine::MeshData& m, std::size_t triangle) {
+  const glm::vec3 a = m.positions[m.indices[3 * triangle]], b = m.positions[m.indices[3 * triangle + 1]],
+                  c = m.positions[m.indices[3 * triangle + 2]];
+  return glm::normalize(glm::cross(b - a, c - a));
+}
+
+// `vn 0 0 0` was loaded as it is, and mesh.frag's normalize() of a zero vector is undefined (NaN
+// light on Mesa). A zero normal is no normal: each corner that has one gets its own triangle's,
+// as a file without normals gets them all, even where two triangles facing different ways share
+// the vertex (here the fold of a quad bent at right angles).
+TEST(MeshData, AZeroNormalInTheFileBecomesItsTrianglesNormal) {
+  const TempFolder folder;
+  const engine::MeshData m = engine::loadMeshData(writeModel(folder, "zero.obj",
+                                                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                                             "v 1 0 -1\nv 1 1 -1\nvn 0 0 0\n"
+                                                             "f 1//1 2//1 3//1\nf 1//1 3//1 4//1\n"
+                                                             "f 2//1 5//1 6//1\nf 2//1 6//1 3//1\n"));
+  ASSERT_EQ(m.indices.size(), 12u);
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  const glm::vec3 expected[] = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}};
+  for (std::size_t t = 0; t < 4; ++t) {
+    EXPECT_LT(glm::length(windingNormal(m, t) - expected[t]), 1e-6f) << "triangle " << t + 1;
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(m.normals[m.indices[3 * t + k]], expected[t]) << "triangle " << t + 1 << ", corner " << k + 1;
+    }
+  }
+}
+
+// Only the corner without a normal gets the triangle's; the file's other normals stay, made unit
+// length as MeshData promises (OBJ allows any length; the shader does not need it, the CPU's
+// users of MeshData may).
+TEST(MeshData, OnlyTheZeroNormalIsReplacedAndTheOthersAreMadeUnitLength) {
+  const TempFolder folder;
+  const engine::MeshData m =
+      engine::loadMeshData(writeModel(folder, "mixed.obj",
+                                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0.6 0.8\nvn 0 0 5\nvn 0 0 0\n"
+                                      "f 1//1 2//2 3//3\n"));
+  ASSERT_EQ(m.indices.size(), 3u);
+  EXPECT_LT(glm::length(m.normals[m.indices[0]] - glm::vec3(0.0f, 0.6f, 0.8f)), 1e-6f);
+  EXPECT_EQ(m.normals[m.indices[1]], glm::vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_EQ(m.normals[m.indices[2]], glm::vec3(0.0f, 0.0f, 1.0f));
+}
+
+// Through assimp from another format: a PLY whose normals are zero, as some exporters write for
+// vertices they have none for.
+TEST(MeshData, AZeroNormalFromAnyFormatBecomesItsTrianglesNormal) {
+  const TempFolder folder;
+  const engine::MeshData m = engine::loadMeshData(
+      writeModel(folder, "zero.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                 "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                 "0 0 0 0 0 0\n0 1 0 0 0 0\n0 0 1 0 0 0\n3 0 1 2\n"));
+  ASSERT_EQ(m.indices.size(), 3u);
+  for (const glm::vec3& n : m.normals) EXPECT_EQ(n, glm::vec3(1.0f, 0.0f, 0.0f));
+}
+
+// A triangle whose corners are in line has no normal to give a zero-normal corner (assimp gives
+// its corners zero when the file has no normals): it covers no pixel, so it is left out with its
+// vertices. One with normals of its own is kept as it is.
+TEST(MeshData, ATriangleInALineWithoutANormalIsLeftOut) {
+  const TempFolder folder;
+  for (const char* normals : {"", "vn 0 0 0\n"}) {
+    SCOPED_TRACE(normals);
+    const std::string n = *normals == '\0' ? "" : "//1";
+    const engine::MeshData m = engine::loadMeshData(
+        writeModel(folder, "line.obj",
+                   std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\n") + normals + "f 1" + n + " 2" + n +
+                       " 3" + n + "\nf 1" + n + " 2" + n + " 4" + n + "\n"));
+    EXPECT_EQ(m.indices.size(), 3u);
+    EXPECT_EQ(m.positions.size(), 3u);
+    for (const glm::vec3& v : m.normals) EXPECT_EQ(v, glm::vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(m.boundsMax, glm::vec3(1.0f, 1.0f, 0.0f));
+  }
+  const engine::MeshData kept = engine::loadMeshData(
+      writeModel(folder, "kept.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nvn 0 1 0\nf 1//1 2//1 3//1\n"));
+  EXPECT_EQ(kept.indices.size(), 3u);
+}
+
 // The capsules the sandbox draws: long and thin, short and fat, a sphere, a ragdoll's limb.
 struct CapsuleCase {
   float radius, halfSegment;

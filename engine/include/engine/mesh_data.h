@@ -17,8 +17,11 @@ struct MeshData {
   glm::vec3 boundsMax{0.0f};
 };
 
-/// Loads every mesh of the file into one, triangulated, with normals (made flat where the file
-/// has none); points and lines are left out with their vertices. Throws engine::Error naming the
+/// Loads every mesh of the file into one, triangulated, with unit normals (made flat where the
+/// file has none, and for each corner whose normal has zero length, which has no direction to
+/// light: that corner gets its triangle's own normal); points and lines are left out with their
+/// vertices, and so are triangles whose corners are in line where a corner has no normal (they
+/// cover no pixel, and have no normal to give it). Throws engine::Error naming the
 /// file and why: the OS's reason when it cannot be opened, a folder, a pipe or device, assimp's
 /// reason, or a position or normal that is not finite, with the face and corner (counted from 1
 /// in the file's order) or, for a normal computed from corners too far apart, the triangle.
