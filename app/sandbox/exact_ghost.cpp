@@ -1,5 +1,10 @@
 #include "exact_ghost.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
 #include "accuracy.h"  // lab_core's referenceSettings: the same reference the lab measures with
 
 namespace sandbox {
@@ -13,6 +18,59 @@ std::vector<std::pair<double, glm::vec3>> answersOf(const scenes::Scene& scene) 
   return out;
 }
 
+// The file's number, or one a slider or a key gave back for it (kSameSetting).
+bool same(double a, double b) {
+  return std::abs(a - b) <= kSameSetting * std::max(std::abs(a), std::abs(b));
+}
+bool same(const phys::Vec3& a, const phys::Vec3& b) {
+  return glm::length(a - b) <= kSameSetting * std::max(glm::length(a), glm::length(b));
+}
+bool same(const phys::Material& a, const phys::Material& b) {
+  return same(a.staticFriction, b.staticFriction) && same(a.dynamicFriction, b.dynamicFriction);
+}
+
+// Gravity as it acts: the vector in uniform mode, the point and the pull in point mode.
+bool sameGravity(const phys::WorldSettings& a, const phys::WorldSettings& b) {
+  if (a.gravityMode != b.gravityMode) return false;
+  if (a.gravityMode == phys::GravityMode::Uniform) return same(a.gravity, b.gravity);
+  return same(a.gravityPoint, b.gravityPoint) && same(a.gravityStrength, b.gravityStrength);
+}
+
+bool sameGround(const phys::WorldSettings& a, const phys::WorldSettings& b) {
+  if (a.ground != b.ground) return false;
+  return !a.ground || (same(a.groundNormal, b.groundNormal) && same(a.groundHeight, b.groundHeight));
+}
+
+bool sameSleep(const phys::SleepSettings& a, const phys::SleepSettings& b) {
+  if (a.enabled != b.enabled) return false;
+  return !a.enabled || (same(a.speed, b.speed) && same(a.time, b.time));
+}
+
+bool sameProjection(const phys::JointProjectionSettings& a, const phys::JointProjectionSettings& b) {
+  if (a.enabled != b.enabled) return false;
+  return !a.enabled || (same(a.tolerance, b.tolerance) && a.iterations == b.iterations);
+}
+
+bool sameParting(const phys::PartingSettings& a, const phys::PartingSettings& b) {
+  return a.plainSweeps == b.plainSweeps && a.overRelaxedSweeps == b.overRelaxedSweeps &&
+         same(a.overRelaxation, b.overRelaxation) && same(a.tolerance, b.tolerance) &&
+         a.progressSweeps == b.progressSweeps;
+}
+
+bool sameReuse(const phys::ManifoldReuseSettings& a, const phys::ManifoldReuseSettings& b) {
+  return same(a.maxShift, b.maxShift) && same(a.maxTurn, b.maxTurn);
+}
+
+// "a", "a and b", "a, b and c".
+std::string listed(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " and " : ", ";
+    out += names[i];
+  }
+  return out;
+}
+
 }  // namespace
 
 void ExactGhost::reset(const scenes::Scene& scene) {
@@ -20,6 +78,8 @@ void ExactGhost::reset(const scenes::Scene& scene) {
   answers_ = answersOf(scene);
   const phys::World& w = scene.world;
   if (answers_.empty()) return;
+  worldSettings_ = w.worldSettings();
+  solverSettings_ = w.solverSettings();
   for (std::size_t i = 0; i < w.particles().size(); ++i) {
     const phys::ParticleId id(i);
     particles_.push_back({w.particleName(id), w.particles().inverseMass[i], w.particleBodies()[i]});
@@ -32,6 +92,8 @@ void ExactGhost::reset(const scenes::Scene& scene) {
 }
 
 void ExactGhost::clear() {
+  worldSettings_ = {};
+  solverSettings_ = {};
   particles_.clear();
   bodies_.clear();
   answers_.clear();
@@ -58,8 +120,45 @@ bool ExactGhost::holds(const phys::World& shown) const {
 }
 
 ExactGhost::Drawn ExactGhost::beside(const phys::World& shown) {
-  if (!holds(shown)) return {};
+  if (!holds(shown) || !settingsChanged(shown).empty()) return {};
   return {at(shown.time(), shown.solverSettings().dt), answers_};
+}
+
+std::string ExactGhost::hiddenBecause(const phys::World& shown) const {
+  if (answers_.empty()) return "";
+  if (!holds(shown)) return "the scene's bodies are gone";
+  const std::vector<std::string> changed = settingsChanged(shown);
+  return changed.empty() ? "" : listed(changed) + " changed";
+}
+
+std::vector<std::string> ExactGhost::settingsChanged(const phys::World& shown) const {
+  const phys::WorldSettings& w = shown.worldSettings();
+  const phys::SolverSettings& s = shown.solverSettings();
+  const phys::WorldSettings& fw = worldSettings_;
+  const phys::SolverSettings& fs = solverSettings_;
+  std::vector<std::string> changed;
+  auto check = [&](bool unchanged, const char* name) {
+    if (!unchanged) changed.emplace_back(name);
+  };
+  // The Simulation panel's, in its order; then the World panel's; then what only a file sets.
+  check(same(s.featureEpsilon, fs.featureEpsilon), "feature epsilon");
+  check(same(s.restitution, fs.restitution), "restitution");
+  check(same(s.compliance, fs.compliance), "compliance");
+  check(same(s.bodyDamping, fs.bodyDamping), "body damping");
+  check(same(s.maxDepenetrationSpeed, fs.maxDepenetrationSpeed), "depenetration");
+  check(sameProjection(s.jointProjection, fs.jointProjection), "joint projection");
+  check(sameSleep(s.sleep, fs.sleep), "sleep");
+  check(!w.ground || !fw.ground || same(w.groundMaterial, fw.groundMaterial), "ground friction");
+  check(sameGravity(w, fw), "gravity");
+  check(same(w.damping, fw.damping), "damping");
+  check(sameGround(w, fw), "ground");
+  check(same(s.contactSlop, fs.contactSlop), "contact slop");
+  check(s.broadPhase == fs.broadPhase, "broad phase");
+  check(sameParting(s.parting, fs.parting), "parting");
+  check(sameReuse(s.manifoldReuse, fs.manifoldReuse), "manifold reuse");
+  check(same(w.bound, fw.bound), "world bound");
+  check(same(w.shapeCheckInterval, fw.shapeCheckInterval), "shape check interval");
+  return changed;
 }
 
 const phys::World* ExactGhost::at(double time, double dt) {

@@ -6,6 +6,9 @@
 // times; the ghost is where the answer is in between, so one sees the simulated body drift from
 // it as it goes. Both are of the scene's bodies, so they are drawn only beside a world that holds
 // them: not once key 0 has cleared them, back when a rewind, Reload or a recording brings them.
+// Both are the answer under the file's settings, so they are drawn only while the world has them
+// too: not once gravity, damping or any other setting the answer depends on is changed, back when
+// it is changed back or Reload restores it (settingsChanged()).
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -26,6 +29,10 @@ inline constexpr std::size_t kMaxGhostParticlesAndBodies = 200;
 /// A copy of the ghost is kept every this many simulated seconds, so that going back in time (B,
 /// the timeline) steps it from the copy before, not from the start. unit: s
 inline constexpr double kGhostSnapshotEvery = 1.0;
+/// How near (relative) a setting must be to the file's to count as the file's again: a float
+/// slider gives 9.81 back as 9.8100004 (4e-8 off), and ten presses of Y and ten of H give
+/// 9.809999999999999.
+inline constexpr double kSameSetting = 1e-6;
 /// Copies kept at most; past it every other one goes (a long run keeps fewer, further apart).
 inline constexpr std::size_t kMaxGhostSnapshots = 256;
 
@@ -43,8 +50,20 @@ class ExactGhost {
   void clear();
   bool active() const { return start_.has_value(); }
   /// What to draw beside `shown`, the world on screen: the ghost at its time, stepped at its dt
-  /// (at()), and the crosses; nothing when `shown` does not hold the scene's bodies (holds()).
+  /// (at()), and the crosses; nothing when `shown` does not hold the scene's bodies (holds()) or
+  /// has other settings than the file's (settingsChanged()).
   Drawn beside(const phys::World& shown);
+  /// Why beside(shown) draws nothing though the scene has answers, for the panel: "the scene's
+  /// bodies are gone", "gravity changed", "gravity and damping changed"; "" when it draws them, or
+  /// when the scene has none.
+  std::string hiddenBecause(const phys::World& shown) const;
+  /// The settings of `shown` that the exact answer depends on and that differ from the file's,
+  /// named as the panels name them ("gravity", "damping", "restitution", ...), in the panels'
+  /// order; empty when there are none. It depends on every world setting in effect (not the
+  /// gravity point in uniform mode), and on every solver setting the ghost does not set itself
+  /// (it has its own method, substeps and iterations, and follows dt) or that changes nothing
+  /// (threads). A number counts as the file's within a relative 1e-6 (kSameSetting).
+  std::vector<std::string> settingsChanged(const phys::World& shown) const;
   /// Whether `shown` holds the bodies of the scene last reset from, as its file made them: its
   /// particles (by name, inverse mass and body) and bodies (by name) first, in order; bodies thrown
   /// in since come after them. A cleared world (key 0), and one rebuilt from it, does not.
@@ -65,6 +84,8 @@ class ExactGhost {
   std::vector<Particle> particles_;
   std::vector<std::string> bodies_;
   std::vector<std::pair<double, glm::vec3>> answers_;
+  phys::WorldSettings worldSettings_;  // the file's, that the answers are for
+  phys::SolverSettings solverSettings_;
   std::optional<phys::World> start_;
   std::optional<phys::World> now_;
   std::vector<phys::World> snapshots_;  // by time

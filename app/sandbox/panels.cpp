@@ -636,6 +636,8 @@ void drawSection(UiState& ui) {
   ImGui::Checkbox("exact answers", &ui.draw.exact);
   ImGui::SameLine();
   ImGui::Checkbox("target poses", &ui.draw.targets);
+  // The answer is the file's: beside a world it no longer fits it would be wrong, so it is hidden.
+  if (ui.draw.exact && !ui.exactHidden.empty()) greyWrapped("exact answer hidden: " + ui.exactHidden);
   ImGui::Checkbox("shadows", &ui.draw.shadows);
   int coloring = static_cast<int>(ui.draw.coloring);
   ImGui::Text("colour by");

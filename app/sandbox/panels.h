@@ -58,6 +58,9 @@ struct UiState {
   float timeScale = 1.0f;                              ///< simulated seconds per real second
   float throwSpeed = static_cast<float>(kThrowSpeed);  ///< unit: m/s; F, R and T throw at it
   DrawOptions draw;
+  /// Why the scene's exact answer is not drawn though it has one (ExactGhost::hiddenBecause):
+  /// "gravity changed"; "" when it is drawn. The sandbox sets it every frame; the Draw section shows it.
+  std::string exactHidden;
   std::array<char, 128> overlayText[kMaxOverlayRuns] = {};  ///< the overlay panel's settings
   // For the Stats panel.
   float frameMs = 0.0f;  ///< unit: ms; the last frame

@@ -495,7 +495,8 @@ void Sandbox::fitToScene() {
 // at the world's time, a translucent green copy of the scene as its file starts it, under the run.
 void Sandbox::drawExactAnswers(const glm::mat4& viewProjection) {
   const phys::World& world = session_->scene().world;
-  const ExactGhost::Drawn drawn = ghost_.beside(world);  // nothing once the scene's bodies are gone
+  // Nothing once the scene's bodies are gone or its settings changed (the panel says which).
+  const ExactGhost::Drawn drawn = ghost_.beside(world);
   if (drawn.ghost != nullptr) {
     DrawOptions options = ui_.draw;
     options.contacts = options.markers = options.bounds = options.shadows = false;
@@ -737,6 +738,7 @@ void Sandbox::renderFrame() {
   for (const KeyTaps::Release& r : keyTaps_.frameStarted())
     ImGui_ImplGlfw_KeyCallback(window_.handle(), r.key, r.scancode, GLFW_RELEASE, r.mods);
   drawMenuBar();
+  ui_.exactHidden = ghost_.hiddenBecause(session_->scene().world);
   drawPanels(*session_, ui_);
   drawLegend(*session_, ui_);
   drawHelp(ui_);

@@ -132,4 +132,91 @@ TEST(ExactGhost, GoesWithTheScenesBodiesAndComesBackWithThem) {
   expectShown("reloaded");
 }
 
+// The answer is the file's: under other gravity or damping the ghost and the crosses stayed, and
+// showed where the body would be under the file's settings, beside a run under the user's. They
+// go while any setting the answer depends on differs from the file's, the panel says which, and
+// they come back when it is set back (to a float slider's or Y's and H's rounding) or on Reload.
+// What the ghost sets itself (method, substeps, iterations), follows (dt) or what changes
+// nothing (threads) does not hide it: that is what one changes to watch the run drift from it.
+TEST(ExactGhost, GoesWhileASettingItDependsOnDiffersFromTheFilesAndComesBack) {
+  sandbox::Session s = testing_app::openSession("projectile");
+  sandbox::ExactGhost ghost;
+  auto shown = [&](const char* when) {
+    const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
+    EXPECT_NE(drawn.ghost, nullptr) << when;
+    EXPECT_EQ(drawn.answers.size(), s.scene().expectations.size()) << when;
+    EXPECT_EQ(ghost.hiddenBecause(s.scene().world), "") << when;
+  };
+  auto hidden = [&](const char* when, const std::string& why) {
+    const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
+    EXPECT_EQ(drawn.ghost, nullptr) << when;
+    EXPECT_TRUE(drawn.answers.empty()) << when;
+    EXPECT_EQ(ghost.hiddenBecause(s.scene().world), why) << when;
+  };
+  ghost.reset(s.scene());
+  for (int i = 0; i < 30; ++i) s.step();
+  shown("as opened");
+
+  ASSERT_EQ(s.changeGravity(1.0), "");  // Y
+  hidden("gravity raised", "gravity changed");
+  ASSERT_EQ(s.changeDamping(0.1), "");  // U
+  hidden("and damping", "gravity and damping changed");
+  ASSERT_EQ(s.changeGravity(-1.0), "");  // H: 9.809999999999999
+  hidden("gravity back", "damping changed");
+  ASSERT_EQ(s.changeDamping(-0.1), "");
+  shown("both back");
+
+  ASSERT_EQ(s.toggleGravityMode(), "");  // G
+  hidden("gravity towards a point", "gravity changed");
+  ASSERT_EQ(s.toggleGravityMode(), "");
+  shown("gravity uniform again");
+
+  // The World panel's strength slider, a float: 12, then 9.81 as a float gives it back.
+  const phys::Material fileGround = s.scene().world.worldSettings().groundMaterial;
+  phys::WorldSettings w = s.scene().world.worldSettings();
+  w.gravity = phys::Vec3(0.0, -12.0, 0.0);
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  hidden("gravity from the slider", "gravity changed");
+  w.gravity = phys::Vec3(0.0, -static_cast<double>(9.81f), 0.0);
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  shown("the slider back at 9.81");
+  w.groundMaterial.staticFriction = 0.2;
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  hidden("ground friction", "ground friction changed");
+
+  const phys::SolverSettings file = s.scene().world.solverSettings();
+  w = s.scene().world.worldSettings();
+  w.groundMaterial = fileGround;
+  ASSERT_EQ(s.setWorldSettings(w), "");
+  phys::SolverSettings solver = file;
+  solver.method = phys::SolverMethod::Jacobi;
+  solver.substeps = 4;
+  solver.iterations = 8;
+  solver.threads = 2;
+  solver.dt = file.dt / 2;
+  ASSERT_EQ(s.setSolverSettings(solver), "");
+  s.step();
+  shown("another method, substeps, iterations, threads and dt");
+  solver.restitution = 0.5;
+  solver.compliance = 1e-4;
+  ASSERT_EQ(s.setSolverSettings(solver), "");
+  hidden("restitution and compliance", "restitution and compliance changed");
+  ASSERT_EQ(s.setSolverSettings(file), "");
+  shown("the file's solver settings");
+
+  ASSERT_EQ(s.changeGravity(2.0), "");
+  hidden("gravity again", "gravity changed");
+  ASSERT_EQ(s.reload(), "");
+  ghost.reset(s.scene());  // as the sandbox does on Reload (Sandbox::fitToScene)
+  shown("reloaded");
+
+  // A rewind to a step before the change shows the world as it was then, settings and all.
+  for (int i = 0; i < 10; ++i) s.step();
+  ASSERT_EQ(s.changeDamping(0.5), "");
+  s.step();
+  hidden("damping", "damping changed");
+  ASSERT_EQ(s.rewindTo(5), "");
+  shown("rewound to before the change");
+}
+
 }  // namespace
