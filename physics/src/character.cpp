@@ -428,7 +428,7 @@ void World::putInPose(const Character& c) {
   targetCentres(*this, c, targets, rootCentre(c, c.pose), centres);
   for (std::size_t b = 0; b < c.bones.size(); ++b)
     placeAtRest(c.bones[b].body, BodyPose{centres[b], targets[b]});
-  islands_.wake(islands_.bodyNode(c.bones[0].body));
+  islands_.wake(islands_.nodeOf(c.bones[0].body));
 }
 
 // The root's drive made now, at the pose the root is in, so that the step only aims it and never
@@ -491,7 +491,7 @@ void World::playClip(std::size_t k, const Playback& playback, Real blendTime) {
   characterPose(c);
   changeClip(c, playback, blendTime, c.pose.root);
   c.queued.reset();
-  islands_.wake(islands_.bodyNode(c.bones[0].body));
+  islands_.wake(islands_.nodeOf(c.bones[0].body));
 }
 
 void World::queueClip(std::size_t k, const Playback& playback, Real at, Real blendTime) {
@@ -515,14 +515,14 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
   c.rootStrength = c.goalRootStrength = rootStrength;
   enter(c, CharacterState::Active);  // set by hand: whatever the reaction was doing stops
   if (rootStrength > 0.0) makeRootDrive(c, rootStrength);
-  islands_.wake(islands_.bodyNode(c.bones[0].body));
+  islands_.wake(islands_.nodeOf(c.bones[0].body));
 }
 
 void World::setPartStrength(std::size_t k, const std::string& bone, Real share) {
   requireIndex(k, characters_.size(), "setPartStrength", "character");
   Character& c = characters_[k];
   c.partStrength[partOf(c, *c.now.clip, bone, share, "setPartStrength")] = share;
-  islands_.wake(islands_.bodyNode(c.bones[0].body));
+  islands_.wake(islands_.nodeOf(c.bones[0].body));
 }
 
 void World::setCharacterBalance(std::size_t k, Real balance) {
@@ -532,7 +532,7 @@ void World::setCharacterBalance(std::size_t k, Real balance) {
   c.goalBalance = balance;
   if (c.state == CharacterState::Active || c.state == CharacterState::LettingGo) c.balance = balance;
   if (balance > 0.0) makeRootDrive(c, 0.0);
-  islands_.wake(islands_.bodyNode(c.bones[0].body));
+  islands_.wake(islands_.nodeOf(c.bones[0].body));
 }
 
 void World::setCharacterReaction(std::size_t k, const Reaction& reaction) {
@@ -541,7 +541,7 @@ void World::setCharacterReaction(std::size_t k, const Reaction& reaction) {
   checkReaction(reaction, *c.now.clip, "setCharacterReaction");
   if (reaction.getUp.clip) makeRootDrive(c, 0.0);
   c.reaction = reaction;
-  islands_.wake(islands_.bodyNode(c.bones[0].body));
+  islands_.wake(islands_.nodeOf(c.bones[0].body));
 }
 
 // Each substep: the clips move on by h and every character's drives are aimed at the pose for the
@@ -587,7 +587,7 @@ void World::animate(Real h) {
     } else {
       constraints_.clearBodyDrive(c.bones[0].body);
     }
-    if (characterMoves(c)) islands_.wake(islands_.bodyNode(c.bones[0].body));
+    if (characterMoves(c)) islands_.wake(islands_.nodeOf(c.bones[0].body));
   }
 }
 
@@ -706,7 +706,7 @@ void World::react() {
 std::size_t World::holdMovingCharacters(std::span<NodeId> into) const {
   std::size_t n = 0;
   for (const Character& c : characters_) {
-    if (characterMoves(c)) into[n++] = islands_.bodyNode(c.bones[0].body);
+    if (characterMoves(c)) into[n++] = islands_.nodeOf(c.bones[0].body);
   }
   return n;
 }

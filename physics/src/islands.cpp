@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "require.h"
 #include "union_find.h"
 
 namespace phys {
@@ -142,6 +143,26 @@ void Islands::wake(NodeId node) {
   for (NodeId n{}; n < asleep_.size(); ++n) {
     if (asleep_[n] != 0 && sleepGroup_[n] == group) setAsleep(n, false);
   }
+}
+
+NodeId Islands::particleNode(ParticleId id) const {
+  detail::requireIndex(id, particleNode_.size(), "particleNode", "particle");
+  return nodeOf(id);
+}
+
+NodeId Islands::bodyNode(BodyId id) const {
+  detail::requireIndex(id, bodyNode_.size(), "bodyNode", "body");
+  return nodeOf(id);
+}
+
+bool Islands::asleep(NodeId node) const {
+  detail::requireIndex(node, asleep_.size(), "asleep", "node");
+  return sleeps(node);
+}
+
+bool Islands::bodyAsleep(BodyId id) const {
+  detail::requireIndex(id, bodyNode_.size(), "bodyAsleep", "body");
+  return bodySleeps(id);
 }
 
 std::size_t Islands::sleepingBodies() const {

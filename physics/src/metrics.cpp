@@ -56,7 +56,7 @@ Metrics World::metrics() const {
     if (w == 0.0) continue;
     const Real mass = 1.0 / w;
     const Vec3& x = particles_.position[i];
-    if (anyAsleep && islands_.asleep(islands_.particleNode(i))) {
+    if (anyAsleep && islands_.sleeps(islands_.nodeOf(i))) {
       m.potentialEnergy += potential(mass, x);
       continue;
     }
@@ -76,7 +76,7 @@ Metrics World::metrics() const {
   for (RigidId i{}; i < r.size(); ++i) {
     if (r.inverseMass[i] == 0.0) continue;
     const Real mass = 1.0 / r.inverseMass[i];
-    if (anyAsleep && islands_.bodyAsleep(r.body[i])) {
+    if (anyAsleep && islands_.bodySleeps(r.body[i])) {
       m.potentialEnergy += potential(mass, r.position[i]);
       continue;
     }

@@ -238,7 +238,7 @@ void World::setCharacterMotion(std::size_t k, const CharacterMotion& m) {
   Character& c = characters_[k];
   copyCharacterMotion(m, c);
   makeRootDriveIfNeeded(c);
-  islands_.wake(islands_.bodyNode(c.bones[0].body));
+  islands_.wake(islands_.nodeOf(c.bones[0].body));
 }
 
 }  // namespace phys

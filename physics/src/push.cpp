@@ -26,7 +26,7 @@ void World::push(BodyId body, const Vec3& force, Real duration, const std::optio
   const BodyPose pose = poseOf(body);
   const Vec3 at = worldPoint ? *worldPoint - pose.center : Vec3(0.0);
   pushes_.push_back(Push{body, glm::conjugate(pose.orientation) * at, force, duration});
-  islands_.wake(islands_.bodyNode(body));
+  islands_.wake(islands_.nodeOf(body));
 }
 
 // Each substep, after the integration: the impulse F h at the point, as a velocity change and the

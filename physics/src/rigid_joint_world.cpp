@@ -71,8 +71,8 @@ void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real
   const BodyId bodyA = bodyOf(a), bodyB = bodyOf(b);
   if (bodyA != kNoBody && bodyB != kNoBody && bodyA != bodyB) parting_.join(bodyA, bodyB);
   auto nodeOf = [this](const BodyPoint& end) {
-    return end.side == ContactSide::Rigid ? islands_.bodyNode(rigidBodies_.body[end.rigid])
-                                          : islands_.particleNode(end.point.particle[0]);
+    return end.side == ContactSide::Rigid ? islands_.nodeOf(rigidBodies_.body[end.rigid])
+                                          : islands_.nodeOf(end.point.particle[0]);
   };
   islands_.join(nodeOf(a), nodeOf(b));
 }
@@ -131,7 +131,7 @@ void World::addJoint(const JointDesc& d) {
   constraints_.addRigidJoint(j, JointDrive{restTarget(j), 0.0, kDriveStiffness});
   rigidBodies_.jointed[j.a] = rigidBodies_.jointed[j.b] = 1;
   parting_.join(d.a, d.b);  // moved as one by the parting, as a ragdoll's particle parts are
-  islands_.join(islands_.bodyNode(d.a), islands_.bodyNode(d.b));
+  islands_.join(islands_.nodeOf(d.a), islands_.nodeOf(d.b));
 }
 
 JointDesc World::jointDesc(std::size_t k) const {
@@ -200,7 +200,7 @@ void World::setJointDrive(std::size_t k, const JointDrive& drive) {
   JointDrive kept = drive;
   kept.target = unitQuaternion(drive.target, "setJointDrive: the target");
   constraints_.setDrive(k, kept);
-  islands_.wake(islands_.bodyNode(rigidBodies_.body[constraints_.rigidJoints()[k].a]));
+  islands_.wake(islands_.nodeOf(rigidBodies_.body[constraints_.rigidJoints()[k].a]));
 }
 
 std::optional<BodyDrive> World::bodyDrive(BodyId id) const {
@@ -223,13 +223,13 @@ void World::setBodyDrive(BodyId id, const BodyDrive& drive) {
   kept.orientation = unitQuaternion(drive.orientation, "setBodyDrive: the orientation");
   const Body& body = bodies_[id];
   constraints_.setBodyDrive(DrivenBody{id, body.rigid, body.model != BodyModel::Rigid, kept});
-  islands_.wake(islands_.bodyNode(id));
+  islands_.wake(islands_.nodeOf(id));
 }
 
 void World::clearBodyDrive(BodyId id) {
   requireIndex(id, bodies_.size(), "clearBodyDrive", "body");
   constraints_.clearBodyDrive(id);
-  islands_.wake(islands_.bodyNode(id));
+  islands_.wake(islands_.nodeOf(id));
 }
 
 std::size_t World::addParticleJoint(BodyId parent, BodyId child, const Vec3& pivot) {
@@ -287,7 +287,7 @@ void World::setParticleJointDrive(std::size_t k, const JointDrive& drive) {
   JointDrive kept = drive;
   kept.target = unitQuaternion(drive.target, who + "the target");
   constraints_.setParticleDrive(k, kept);
-  islands_.wake(islands_.bodyNode(constraints_.particleJoints()[k].a));
+  islands_.wake(islands_.nodeOf(constraints_.particleJoints()[k].a));
 }
 
 BodyPoint World::pointOn(BodyId id, const Vec3& worldPoint) const {

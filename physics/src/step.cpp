@@ -203,11 +203,11 @@ World::HeldNodes World::heldNodes() const {
   HeldNodes held;
   if (!drag_) return held;
   if (drag_->body != kNoBody) {
-    held.nodes[held.count++] = islands_.bodyNode(drag_->body);
+    held.nodes[held.count++] = islands_.nodeOf(drag_->body);
     return held;
   }
   for (int i = 0; i < drag_->point.count; ++i)
-    held.nodes[held.count++] = islands_.particleNode(drag_->point.particle[i]);
+    held.nodes[held.count++] = islands_.nodeOf(drag_->point.particle[i]);
   return held;
 }
 

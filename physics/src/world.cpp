@@ -268,7 +268,7 @@ void World::addJointFriction(BodyId a, BodyId b, Real rate) {
           "JointDesc::damping)");
   require(std::isfinite(rate) && rate >= 0.0, "addJointFriction: rate must be finite and >= 0 (1/s)");
   constraints_.addJointFriction({a, b, rate});
-  islands_.join(islands_.bodyNode(a), islands_.bodyNode(b));
+  islands_.join(islands_.nodeOf(a), islands_.nodeOf(b));
 }
 
 void World::setDrag(const Drag& drag) {

@@ -14,6 +14,7 @@
 #include "character_util.h"
 #include "physics/capsule_ragdoll.h"
 #include "physics/character.h"
+#include "physics/islands.h"
 #include "physics/motion.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
@@ -188,6 +189,32 @@ TEST(ApiInput, EveryCallRefusesAnIdThatDoesNotExistNamingItself) {
   EXPECT_FALSE(w.drag().has_value());
   EXPECT_NEAR(w.bodyPose(first).center.y, 1.0, 1e-12);
   EXPECT_EQ(w.particleName(phys::ParticleId(particles - 1)), "");
+}
+
+// world.islands() hands out the islands, whose queries indexed their tables unchecked: an id past the
+// end read whatever lay beyond them.
+TEST(ApiInput, TheIslandsRefuseAnIdThatDoesNotExistNamingTheCall) {
+  phys::World w;
+  phys::BodyDesc d;
+  d.center = Vec3(0.0, 1.0, 0.0);
+  const phys::BodyId box = w.addBody(d);
+  w.addParticle({});
+  const phys::Islands& islands = w.islands();
+  const std::size_t particles = w.particles().size(), bodies = w.bodies().size();
+  ASSERT_EQ(particles, 9u);
+  const std::size_t nodes = 2;  // the box and the loose particle
+  expectNoSuch([&] { (void)islands.particleNode(phys::ParticleId(particles + 3)); }, "particleNode",
+               "particle", particles + 3, particles);
+  expectNoSuch([&] { (void)islands.bodyNode(phys::BodyId(bodies + 3)); }, "bodyNode", "body", bodies + 3,
+               bodies);
+  expectNoSuch([&] { (void)islands.asleep(phys::NodeId(nodes + 3)); }, "asleep", "node", nodes + 3, nodes);
+  expectNoSuch([&] { (void)islands.bodyAsleep(phys::BodyId(bodies + 3)); }, "bodyAsleep", "body", bodies + 3,
+               bodies);
+  // The ids that exist still answer.
+  EXPECT_EQ(islands.particleNode(phys::ParticleId(0)), islands.bodyNode(box));
+  EXPECT_EQ(islands.particleNode(phys::ParticleId(particles - 1)), phys::NodeId(1));
+  EXPECT_FALSE(islands.asleep(phys::NodeId(nodes - 1)));
+  EXPECT_FALSE(islands.bodyAsleep(box));
 }
 
 // A step count near the largest long would overflow the world's counter as it steps (signed

@@ -29,6 +29,8 @@ namespace phys {
 /// Index of a node: a body or a loose particle, in the order they were added.
 using NodeId = Id<struct NodeTag>;
 
+class World;
+
 /// What Islands::update reads of the world once a step.
 struct IslandInput {
   const Particles& particles;  ///< with their own inverse masses (none masked)
@@ -73,10 +75,16 @@ class Islands {
   /// True between mask() and unmask() when mask() took something.
   bool masked() const { return !maskedNodes_.empty(); }
 
-  NodeId particleNode(ParticleId id) const { return particleNode_[id]; }
-  NodeId bodyNode(BodyId id) const { return bodyNode_[id]; }
-  bool asleep(NodeId node) const { return asleep_[node] != 0; }
-  bool bodyAsleep(BodyId id) const { return asleep_[bodyNode_[id]] != 0; }
+  // The four queries below throw std::invalid_argument naming the call, the id and how many there
+  // are for an id that does not exist: "bodyAsleep: body 7 does not exist (there are 2)".
+  /// The node of a particle: its body's, or its own for a loose one.
+  NodeId particleNode(ParticleId id) const;
+  /// The node of a body.
+  NodeId bodyNode(BodyId id) const;
+  /// True when the node's island sleeps.
+  bool asleep(NodeId node) const;
+  /// True when the body's island sleeps.
+  bool bodyAsleep(BodyId id) const;
   /// Per body: 1 when asleep (what the narrow phase skips pairs by).
   std::span<const std::uint8_t> bodiesAsleep() const { return bodyAsleep_; }
   /// True when some node sleeps: the step masks their masses.
@@ -94,6 +102,14 @@ class Islands {
   std::size_t awakeBodies() const { return bodyNode_.size() - sleepingBodies(); }
 
  private:
+  // The queries above without their checks, for the world that owns the islands: its ids are its
+  // own, and the step and the metrics ask for every particle and body.
+  friend class World;
+  NodeId nodeOf(ParticleId id) const { return particleNode_[id]; }
+  NodeId nodeOf(BodyId id) const { return bodyNode_[id]; }
+  bool sleeps(NodeId node) const { return asleep_[node] != 0; }
+  bool bodySleeps(BodyId id) const { return asleep_[bodyNode_[id]] != 0; }
+
   NodeId addNode(bool fixed);
   void keepMaskRoom();
   NodeId root(NodeId node);
