@@ -133,7 +133,13 @@ std::string_view toString(CapsulePart part) {
                                                       "upper-leg-left",  "lower-leg-left", "upper-leg-right",
                                                       "lower-leg-right", "upper-arm-left", "lower-arm-left",
                                                       "upper-arm-right", "lower-arm-right"};
+  detail::requireEnum(static_cast<int>(part), kCapsuleParts, "toString(CapsulePart)", "part", "CapsulePart");
   return kNames[static_cast<int>(part)];
+}
+
+BodyId CapsuleRagdoll::part(CapsulePart p) const {
+  detail::requireEnum(static_cast<int>(p), kCapsuleParts, "CapsuleRagdoll::part", "part", "CapsulePart");
+  return parts[static_cast<std::size_t>(p)];
 }
 
 namespace {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string_view>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -120,7 +121,13 @@ std::string_view toString(RagdollPart part) {
                                                       "lower-arm-left", "upper-arm-right", "lower-arm-right",
                                                       "upper-leg-left", "lower-leg-left",  "upper-leg-right",
                                                       "lower-leg-right"};
+  detail::requireEnum(static_cast<int>(part), kRagdollParts, "toString(RagdollPart)", "part", "RagdollPart");
   return kNames[static_cast<int>(part)];
+}
+
+BodyId Ragdoll::part(RagdollPart p) const {
+  detail::requireEnum(static_cast<int>(p), kRagdollParts, "Ragdoll::part", "part", "RagdollPart");
+  return parts[static_cast<std::size_t>(p)];
 }
 
 namespace {

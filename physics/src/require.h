@@ -28,6 +28,22 @@ inline void requireIndex(std::size_t index, std::size_t count, std::string_view 
     refuseIndex(call, what, index, count);
 }
 
+/// The message of requireEnum's refusal, made out of line as refuseIndex's.
+[[noreturn]] inline void refuseEnum(std::string_view call, std::string_view what, std::string_view type,
+                                    int value, int count) {
+  throw std::invalid_argument(std::string(call) + ": " + std::string(what) + " must be a " +
+                              std::string(type) + ", 0 to " + std::to_string(count - 1) + " (is " +
+                              std::to_string(value) + ")");
+}
+
+/// Refuses a value cast from outside an enum whose `count` values are numbered from 0, before it
+/// indexes a table: "Ragdoll::part: part must be a RagdollPart, 0 to 9 (is 40)".
+inline void requireEnum(int value, int count, std::string_view call, std::string_view what,
+                        std::string_view type) {
+  if (value < 0 || value >= count) [[unlikely]]
+    refuseEnum(call, what, type, value, count);
+}
+
 /// A number as a message shows it: "1e+200", "inf", "nan", not std::to_string's 200 digits.
 inline std::string numberText(double v) {
   std::ostringstream text;

@@ -217,6 +217,41 @@ TEST(ApiInput, TheIslandsRefuseAnIdThatDoesNotExistNamingTheCall) {
   EXPECT_FALSE(islands.bodyAsleep(box));
 }
 
+// `call` must refuse `value` cast from outside an enum of `count` values, naming the call and the value.
+void expectNotInEnum(const std::function<void()>& call, const std::string& name, const std::string& what,
+                     const std::string& type, int value, int count) {
+  try {
+    call();
+    ADD_FAILURE() << name << " took " << type << " " << value;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), name + ": " + what + " must be a " + type + ", 0 to " +
+                                         std::to_string(count - 1) + " (is " + std::to_string(value) + ")");
+  }
+}
+
+// A part cast from outside RagdollPart or CapsulePart indexed the parts or the names past their end.
+TEST(ApiInput, APartOutsideItsEnumIsRefusedNamingTheCall) {
+  const phys::Ragdoll ragdoll;
+  const phys::CapsuleRagdoll capsules;
+  for (const int value : {40, phys::kRagdollParts, -1}) {
+    const auto part = static_cast<phys::RagdollPart>(value);
+    expectNotInEnum([&] { (void)ragdoll.part(part); }, "Ragdoll::part", "part", "RagdollPart", value,
+                    phys::kRagdollParts);
+    expectNotInEnum([&] { (void)phys::toString(part); }, "toString(RagdollPart)", "part", "RagdollPart",
+                    value, phys::kRagdollParts);
+  }
+  for (const int value : {40, phys::kCapsuleParts, -1}) {
+    const auto part = static_cast<phys::CapsulePart>(value);
+    expectNotInEnum([&] { (void)capsules.part(part); }, "CapsuleRagdoll::part", "part", "CapsulePart", value,
+                    phys::kCapsuleParts);
+    expectNotInEnum([&] { (void)phys::toString(part); }, "toString(CapsulePart)", "part", "CapsulePart",
+                    value, phys::kCapsuleParts);
+  }
+  EXPECT_EQ(phys::toString(phys::RagdollPart::LowerLegRight), "lower-leg-right");
+  EXPECT_EQ(phys::toString(phys::CapsulePart::LowerArmRight), "lower-arm-right");
+  EXPECT_EQ(ragdoll.part(phys::RagdollPart::LowerLegRight), phys::BodyId(0));
+}
+
 // A step count near the largest long would overflow the world's counter as it steps (signed
 // overflow): setMotion refuses one over Motion::kMaxSteps and takes that one.
 TEST(ApiInput, AMotionWhoseStepCountWouldOverflowIsRefused) {

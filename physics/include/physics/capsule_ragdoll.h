@@ -31,7 +31,9 @@ enum class CapsulePart {
 };
 inline constexpr int kCapsuleParts = 11;
 inline constexpr int kCapsuleJoints = 10;
-std::string_view toString(CapsulePart part);  ///< "pelvis", "spine", "head", "upper-leg-left", ...
+/// "pelvis", "spine", "head", "upper-leg-left", ...; throws std::invalid_argument for a value
+/// outside CapsulePart.
+std::string_view toString(CapsulePart part);
 
 /// What addCapsuleRagdoll built.
 struct CapsuleRagdoll {
@@ -42,7 +44,8 @@ struct CapsuleRagdoll {
   /// rigid model, particle joints for the others), the five hinges (spine, knees, elbows) and then
   /// the five cones (neck, hips, shoulders).
   std::size_t firstJoint = 0;
-  BodyId part(CapsulePart p) const { return parts[static_cast<int>(p)]; }
+  /// The body of a part; throws std::invalid_argument for a value outside CapsulePart.
+  BodyId part(CapsulePart p) const;
 };
 
 /// Adds a capsule ragdoll: its parts are capsules (Shape::Capsule) of the desc's model (seed:

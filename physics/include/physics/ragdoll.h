@@ -41,7 +41,8 @@ enum class RagdollPart {
 };
 inline constexpr int kRagdollParts = 10;
 inline constexpr int kRagdollHinges = 9;
-std::string_view toString(RagdollPart part);  ///< "head", "upper-arm-left", ...
+/// "head", "upper-arm-left", ...; throws std::invalid_argument for a value outside RagdollPart.
+std::string_view toString(RagdollPart part);
 
 /// Default friction of a rigid ragdoll's joints (RagdollDesc::jointDamping). Without it a limb of
 /// rigid parts swings on its joint as a pendulum, slowed only by the air (docs/physics.md, "Rigid
@@ -114,7 +115,8 @@ struct Ragdoll {
   /// Hinge h is World joint firstJoint + h: a rigid joint (World::jointDrive, setJointDrive) for the
   /// rigid model, a particle joint (World::particleJointDrive, setParticleJointDrive) for the others.
   std::size_t firstJoint = 0;
-  BodyId part(RagdollPart p) const { return parts[static_cast<int>(p)]; }
+  /// The body of a part; throws std::invalid_argument for a value outside RagdollPart.
+  BodyId part(RagdollPart p) const;
 };
 
 /// Adds a ragdoll's boxes, pins and limits to the world, and keeps the parts that share a
