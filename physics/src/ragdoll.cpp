@@ -182,8 +182,15 @@ Ragdoll addRagdoll(World& world, const RagdollDesc& desc) {
 }
 
 Real hingeAngle(const World& world, const Ragdoll& ragdoll, const RagdollHinge& hinge) {
-  const Quat parent = world.bodyPose(ragdoll.part(hinge.parent)).orientation;
-  const Quat child = world.bodyPose(ragdoll.part(hinge.child)).orientation;
+  // Checked here, so that a bad part or body is refused in hingeAngle's name, not part's or bodyPose's.
+  auto body = [&](RagdollPart p, std::string_view end) {
+    detail::requireEnum(static_cast<int>(p), kRagdollParts, "hingeAngle", end, "RagdollPart");
+    const BodyId id = ragdoll.parts[static_cast<std::size_t>(p)];
+    detail::requireIndex(id, world.bodies().size(), "hingeAngle", "body");
+    return id;
+  };
+  const Quat parent = world.bodyPose(body(hinge.parent, "the hinge's parent")).orientation;
+  const Quat child = world.bodyPose(body(hinge.child, "the hinge's child")).orientation;
   const Vec3 axis = parent * hinge.axis;
   const Vec3 from = parent * hinge.reference;
   Vec3 to = child * hinge.reference;

@@ -252,6 +252,27 @@ TEST(ApiInput, APartOutsideItsEnumIsRefusedNamingTheCall) {
   EXPECT_EQ(ragdoll.part(phys::RagdollPart::LowerLegRight), phys::BodyId(0));
 }
 
+// hingeAngle refuses a bad part or a body the world does not have in its own name: it was refused as
+// Ragdoll::part's or bodyPose's, calls the caller never made.
+TEST(ApiInput, HingeAngleRefusesABadPartOrBodyNamingItself) {
+  phys::World w;
+  phys::Ragdoll ragdoll = phys::addRagdoll(w, phys::RagdollDesc{});
+  phys::RagdollHinge hinge = ragdoll.hinges[0];
+  EXPECT_NO_THROW((void)phys::hingeAngle(w, ragdoll, hinge));
+  hinge.parent = static_cast<phys::RagdollPart>(40);
+  expectNotInEnum([&] { (void)phys::hingeAngle(w, ragdoll, hinge); }, "hingeAngle", "the hinge's parent",
+                  "RagdollPart", 40, phys::kRagdollParts);
+  hinge = ragdoll.hinges[0];
+  hinge.child = static_cast<phys::RagdollPart>(-1);
+  expectNotInEnum([&] { (void)phys::hingeAngle(w, ragdoll, hinge); }, "hingeAngle", "the hinge's child",
+                  "RagdollPart", -1, phys::kRagdollParts);
+  // A ragdoll of another, larger world.
+  const std::size_t bodies = w.bodies().size();
+  hinge = ragdoll.hinges[0];
+  ragdoll.parts[static_cast<std::size_t>(hinge.child)] = phys::BodyId(bodies + 5);
+  expectNoSuch([&] { (void)phys::hingeAngle(w, ragdoll, hinge); }, "hingeAngle", "body", bodies + 5, bodies);
+}
+
 // A step count near the largest long would overflow the world's counter as it steps (signed
 // overflow): setMotion refuses one over Motion::kMaxSteps and takes that one.
 TEST(ApiInput, AMotionWhoseStepCountWouldOverflowIsRefused) {

@@ -124,7 +124,9 @@ struct Ragdoll {
 /// input and adds nothing.
 Ragdoll addRagdoll(World& world, const RagdollDesc& desc);
 
-/// The hinge's angle now, from its two parts' poses. unit: rad, in (-pi, pi]
+/// The hinge's angle now, from its two parts' poses. unit: rad, in (-pi, pi]. Throws
+/// std::invalid_argument, naming itself, for a part outside RagdollPart or a body the world does not
+/// have (a ragdoll of another world).
 Real hingeAngle(const World& world, const Ragdoll& ragdoll, const RagdollHinge& hinge);
 
 }  // namespace phys
