@@ -70,7 +70,9 @@ class BroadPhase {
   /// The pairs whose grown bounds overlapped at the last update, (lower id, higher id), in body
   /// order: by lower id, then higher.
   std::span<const Pair> pairs() const { return pairs_; }
-  /// A body's motion over a step, measured at the last update.
+  /// A body's motion over a step, measured at the last update. The id must exist, unchecked: the
+  /// narrow phase and the sweep read it for every pair of every substep, with the world's own ids,
+  /// and World does not hand its broad phase out.
   const BodyMotion& motion(BodyId id) const { return motion_[id]; }
 
  private:
