@@ -26,15 +26,14 @@ class StateHasher : public Fnv1a {
     value(s.size());
     bytes(s.data(), s.size());
   }
-  /// A clip counts by its skeleton, frame time and length, not by its name, which is the path it was
-  /// read from: the same scene hashes alike from any folder. Its frames are not read (a long clip
-  /// would cost the recording's hash of every step); what it plays shows in the target pose.
+  /// A clip counts by its name's last part, the file it was read from without its folder: two loads
+  /// of one file hash alike, and the same scene hashes alike from any checkout. Its frames are not
+  /// read (a long clip would cost the recording's hash of every step); what it plays shows in the
+  /// target pose.
   void clip(const Clip& c) {
-    value(c.bones.size());
-    for (const std::string& bone : c.bones) text(bone);
-    bytes(c.parents.data(), c.parents.size() * sizeof(int));
-    value(c.frameTime);
-    value(c.frames());
+    const std::string_view name = c.name;
+    const std::size_t slash = name.find_last_of('/');
+    text(slash == std::string_view::npos ? name : name.substr(slash + 1));
   }
   void playback(const Playback& p) {
     value(p.clip != nullptr);

@@ -60,7 +60,7 @@ struct Motion {
   long steps = 0;                           ///< World::stepCount(); from 0 to kMaxSteps
 
   /// World::stateHash of a world in this motion: FNV-1a over the bytes of every array above, then
-  /// over each character's fields (its clips by skeleton, frame time and length).
+  /// over each character's fields (its clips by their names' file part, without the folder).
   std::uint64_t hash() const;
   /// "" or what World::setMotion would refuse in it whatever the world: a non-finite or negative
   /// number, a step count over kMaxSteps, an orientation not of unit length (within kUnitTolerance), a
