@@ -350,6 +350,16 @@ TEST(Sweep, EveryCommandSaysABlowUpInWords) {
   }
 }
 
+// The rows of two sweeps of one plan measured the same at every point.
+void expectSameFigures(const lab::PlanResult& a, const lab::PlanResult& b) {
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    EXPECT_EQ(a.rows[i].figures.error, b.rows[i].figures.error) << i;
+    EXPECT_EQ(a.rows[i].figures.energyDrift, b.rows[i].figures.energyDrift) << i;
+    EXPECT_EQ(a.rows[i].figures.posePenetration, b.rows[i].figures.posePenetration) << i;
+  }
+}
+
 // A sweep builds every point from the scene file as read once: a file saved over after the first
 // point (the sandbox's Save As during a long sweep) measured the new scene at every later point.
 TEST(Sweep, ASceneFileSavedOverMidSweepChangesNoPoint) {
@@ -370,11 +380,7 @@ TEST(Sweep, ASceneFileSavedOverMidSweepChangesNoPoint) {
       lab::makePlan(scenes::readSceneSource(dir.write("alone.xml", first)), request), progress, "sweep");
   ASSERT_EQ(saved.rows.size(), 3u);
   ASSERT_EQ(alone.rows.size(), 3u);
-  for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(saved.rows[i].figures.error, alone.rows[i].figures.error) << i;
-    EXPECT_EQ(saved.rows[i].figures.energyDrift, alone.rows[i].figures.energyDrift) << i;
-    EXPECT_EQ(saved.rows[i].figures.posePenetration, alone.rows[i].figures.posePenetration) << i;
-  }
+  expectSameFigures(saved, alone);
   EXPECT_GT(saved.rows[2].figures.error, 0.0);  // a real error, not two zeros agreeing
 }
 
@@ -405,11 +411,7 @@ TEST(Sweep, AClipFileSavedOverMidSweepChangesNoPoint) {
   ASSERT_EQ(saved.rows.size(), 3u);
   ASSERT_EQ(alone.rows.size(), 3u);
   ASSERT_EQ(diving.rows.size(), 3u);
-  for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(saved.rows[i].figures.error, alone.rows[i].figures.error) << i;
-    EXPECT_EQ(saved.rows[i].figures.energyDrift, alone.rows[i].figures.energyDrift) << i;
-    EXPECT_EQ(saved.rows[i].figures.posePenetration, alone.rows[i].figures.posePenetration) << i;
-  }
+  expectSameFigures(saved, alone);
   // The clips move the ragdoll apart: two equal sweeps are not two clips agreeing.
   EXPECT_NE(alone.rows[2].figures.error, diving.rows[2].figures.error);
 }

@@ -191,6 +191,17 @@ std::string clipKey(const std::filesystem::path& folder, const std::string& give
 
 using ReadClips = std::map<std::string, ReadClip, std::less<>>;
 
+// The clip file `file` read: its clip, or why it could not be read.
+ReadClip readClip(const std::string& file) {
+  ReadClip read;
+  try {
+    read.clip = std::make_shared<const phys::Clip>(clips::loadClip(file));
+  } catch (const clips::ClipError& error) {
+    read.error = error.what();
+  }
+  return read;
+}
+
 class Builder {
  public:
   // `readBefore`: clips read with the scene's text (SceneSource::clips), or null to read each from
@@ -815,21 +826,17 @@ class Builder {
   // read fails `attribute`.
   std::shared_ptr<const phys::Clip> clip(ElementReader& e, const std::string& given, const char* attribute) {
     const std::string file = clipKey(folder_, given);
-    const auto it = clips_.find(file);
-    if (it != clips_.end()) return it->second;
+    const ReadClip* read = nullptr;
     if (readBefore_ != nullptr) {
-      if (const auto read = readBefore_->find(file); read != readBefore_->end()) {
-        if (!read->second.clip) e.fail(attribute, read->second.error);
-        return read->second.clip;
-      }
+      if (const auto before = readBefore_->find(file); before != readBefore_->end()) read = &before->second;
     }
-    try {
-      auto loaded = std::make_shared<const phys::Clip>(clips::loadClip(file));
-      clips_.emplace(file, loaded);
-      return loaded;
-    } catch (const clips::ClipError& error) {
-      e.fail(attribute, error.what());
+    if (read == nullptr) {
+      auto it = clips_.find(file);
+      if (it == clips_.end()) it = clips_.emplace(file, readClip(file)).first;
+      read = &it->second;
     }
+    if (!read->clip) e.fail(attribute, read->error);
+    return read->clip;
   }
 
   // Friction in the joint between two particle bodies (World::addJointFriction); a <ragdoll>'s
@@ -869,7 +876,7 @@ class Builder {
   BuildContext ctx_;
   std::map<std::string, std::size_t, std::less<>> byName_;
   std::map<phys::BodyId, int> bodyDriveLines_;  // each <body-drive>'s body, and its line
-  std::map<std::string, std::shared_ptr<const phys::Clip>, std::less<>> clips_;  // by absolute path
+  ReadClips clips_;                             // read from their files as they are named, by absolute path
 };
 
 // Scene files are UTF-8 (ASCII is UTF-8). pugixml, told so, would read UTF-16 or UTF-32 as
@@ -1149,15 +1156,8 @@ void readClips(SceneSource& source) {
     for (const char* attribute : kClipAttributes) {
       const std::string given = character.attribute(attribute).value();
       if (given.empty()) continue;
-      std::string file = clipKey(source.folder, given);
-      if (source.clips.contains(file)) continue;
-      ReadClip read;
-      try {
-        read.clip = std::make_shared<const phys::Clip>(clips::loadClip(file));
-      } catch (const clips::ClipError& error) {
-        read.error = error.what();
-      }
-      source.clips.emplace(std::move(file), std::move(read));
+      const std::string file = clipKey(source.folder, given);
+      if (!source.clips.contains(file)) source.clips.emplace(file, readClip(file));
     }
   }
 }
