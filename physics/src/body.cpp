@@ -1,24 +1,24 @@
 #include "physics/body.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+
+#include "require.h"
 
 namespace phys {
 
 std::string_view toString(BodyModel model) {
-  switch (model) {
-    case BodyModel::Tetra:
-      return "tetra";
-    case BodyModel::Rigid:
-      return "rigid";
-    case BodyModel::Corners:
-      break;
-  }
-  return "corners";
+  detail::requireEnum(static_cast<int>(model), static_cast<int>(BodyModel::Rigid) + 1, "toString(BodyModel)",
+                      "model", "BodyModel");
+  static constexpr std::array<std::string_view, 3> kNames = {"corners", "tetra", "rigid"};
+  return kNames[static_cast<std::size_t>(model)];
 }
 
 std::string_view toString(Shape shape) {
+  detail::requireEnum(static_cast<int>(shape), static_cast<int>(Shape::Capsule) + 1, "toString(Shape)",
+                      "shape", "Shape");
   return shape == Shape::Capsule ? "capsule" : "box";
 }
 

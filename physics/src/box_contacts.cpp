@@ -1,6 +1,7 @@
 // Contact features and points of two overlapping boxes, along the normal the SAT found.
 // One function per feature case; each fills onA / onB so that n . (onB - onA) = -depth.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -8,6 +9,7 @@
 
 #include "geometry.h"
 #include "physics/collision.h"
+#include "require.h"
 
 namespace phys {
 namespace {
@@ -107,21 +109,11 @@ void closestFeatureContact(const Obb& a, const SupportFeature& fa, const Obb& b,
 }  // namespace
 
 const char* toString(ContactKind kind) {
-  switch (kind) {
-    case ContactKind::FaceFace:
-      return "face-face";
-    case ContactKind::FaceEdge:
-      return "face-edge";
-    case ContactKind::FaceVertex:
-      return "face-vertex";
-    case ContactKind::EdgeEdge:
-      return "edge-edge";
-    case ContactKind::EdgeVertex:
-      return "edge-vertex";
-    case ContactKind::VertexVertex:
-      return "vertex-vertex";
-  }
-  return "?";
+  static constexpr std::array<const char*, 6> kNames = {"face-face", "face-edge",   "face-vertex",
+                                                        "edge-edge", "edge-vertex", "vertex-vertex"};
+  detail::requireEnum(static_cast<int>(kind), static_cast<int>(kNames.size()), "toString(ContactKind)",
+                      "kind", "ContactKind");
+  return kNames[static_cast<std::size_t>(kind)];
 }
 
 SupportFeature supportFeature(const Obb& box, const Vec3& direction, Real epsilon) {

@@ -202,6 +202,8 @@ constexpr std::string_view kStateNames[] = {"active", "falling", "down", "gettin
 }  // namespace
 
 std::string_view toString(CharacterState state) {
+  detail::requireEnum(static_cast<int>(state), static_cast<int>(std::size(kStateNames)),
+                      "toString(CharacterState)", "state", "CharacterState");
   return kStateNames[static_cast<std::size_t>(state)];
 }
 

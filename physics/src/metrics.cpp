@@ -7,6 +7,7 @@
 
 #include "passes.h"
 #include "physics/world.h"
+#include "require.h"
 #include "state_hash.h"
 
 namespace phys {
@@ -24,6 +25,8 @@ std::string_view toString(Stage stage) {
   static constexpr std::array<std::string_view, kStageCount> kNames = {
       "animate", "integrate", "frames",   "broad-phase", "sweep",       "narrow-phase", "parting", "sticks",
       "links",   "contacts",  "friction", "velocities",  "restitution", "body-damping", "guard",   "islands"};
+  detail::requireEnum(static_cast<int>(stage), static_cast<int>(kStageCount), "toString(Stage)", "stage",
+                      "Stage");
   return kNames[static_cast<std::size_t>(stage)];
 }
 

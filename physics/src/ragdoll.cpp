@@ -1,5 +1,6 @@
 #include "physics/ragdoll.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -86,15 +87,10 @@ constexpr HingeLayout kHinges[kRagdollHinges] = {
 }  // namespace
 
 std::string_view toString(RagdollModel model) {
-  switch (model) {
-    case RagdollModel::Seed:
-      return "seed";
-    case RagdollModel::Lean:
-      return "lean";
-    case RagdollModel::Rigid:
-      break;
-  }
-  return "rigid";
+  detail::requireEnum(static_cast<int>(model), static_cast<int>(RagdollModel::Rigid) + 1,
+                      "toString(RagdollModel)", "model", "RagdollModel");
+  static constexpr std::array<std::string_view, 3> kNames = {"seed", "lean", "rigid"};
+  return kNames[static_cast<std::size_t>(model)];
 }
 
 std::optional<RagdollModel> parseRagdollModel(std::string_view name) {

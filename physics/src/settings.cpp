@@ -1,6 +1,7 @@
 #include "physics/settings.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -8,6 +9,7 @@
 
 #include "physics/body.h"
 #include "physics/types.h"
+#include "require.h"
 
 namespace phys {
 namespace {
@@ -120,17 +122,10 @@ std::string validate(const SolverSettings& s) {
 }
 
 std::string_view toString(SolverMethod method) {
-  switch (method) {
-    case SolverMethod::GaussSeidel:
-      return "gauss-seidel";
-    case SolverMethod::Jacobi:
-      return "jacobi";
-    case SolverMethod::Xpbd:
-      return "xpbd";
-    case SolverMethod::Shake:
-      return "shake";
-  }
-  return "?";
+  detail::requireEnum(static_cast<int>(method), static_cast<int>(SolverMethod::Shake) + 1,
+                      "toString(SolverMethod)", "method", "SolverMethod");
+  static constexpr std::array<std::string_view, 4> kNames = {"gauss-seidel", "jacobi", "xpbd", "shake"};
+  return kNames[static_cast<std::size_t>(method)];
 }
 
 std::optional<SolverMethod> parseSolverMethod(std::string_view name) {
@@ -142,6 +137,8 @@ std::optional<SolverMethod> parseSolverMethod(std::string_view name) {
 }
 
 std::string_view toString(GravityMode mode) {
+  detail::requireEnum(static_cast<int>(mode), static_cast<int>(GravityMode::Point) + 1,
+                      "toString(GravityMode)", "mode", "GravityMode");
   return mode == GravityMode::Point ? "point" : "uniform";
 }
 

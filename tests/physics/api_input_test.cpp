@@ -14,7 +14,9 @@
 #include "character_util.h"
 #include "physics/capsule_ragdoll.h"
 #include "physics/character.h"
+#include "physics/collision.h"
 #include "physics/islands.h"
+#include "physics/metrics.h"
 #include "physics/motion.h"
 #include "physics/ragdoll.h"
 #include "physics/world.h"
@@ -250,6 +252,36 @@ TEST(ApiInput, APartOutsideItsEnumIsRefusedNamingTheCall) {
   EXPECT_EQ(phys::toString(phys::RagdollPart::LowerLegRight), "lower-leg-right");
   EXPECT_EQ(phys::toString(phys::CapsulePart::LowerArmRight), "lower-arm-right");
   EXPECT_EQ(ragdoll.part(phys::RagdollPart::LowerLegRight), phys::BodyId(0));
+}
+
+// Every other enum's name: a value cast from outside it was named as one of its values ("rigid",
+// "corners", "uniform"), as "?", or read past the end of a table of names.
+template <typename Enum>
+void expectNameRefused(const std::string& type, const std::string& what, int count) {
+  for (const int value : {count, 40, -1}) {
+    expectNotInEnum([&] { (void)phys::toString(static_cast<Enum>(value)); }, "toString(" + type + ")", what,
+                    type, value, count);
+  }
+}
+
+TEST(ApiInput, AnEnumsNameRefusesAValueOutsideIt) {
+  expectNameRefused<phys::RagdollModel>("RagdollModel", "model", 3);
+  expectNameRefused<phys::BodyModel>("BodyModel", "model", 3);
+  expectNameRefused<phys::Shape>("Shape", "shape", 2);
+  expectNameRefused<phys::ContactKind>("ContactKind", "kind", 6);
+  expectNameRefused<phys::CharacterState>("CharacterState", "state", 5);
+  expectNameRefused<phys::Stage>("Stage", "stage", static_cast<int>(phys::kStageCount));
+  expectNameRefused<phys::SolverMethod>("SolverMethod", "method", 4);
+  expectNameRefused<phys::GravityMode>("GravityMode", "mode", 2);
+  // The last of each still has its name.
+  EXPECT_EQ(phys::toString(phys::RagdollModel::Rigid), "rigid");
+  EXPECT_EQ(phys::toString(phys::BodyModel::Rigid), "rigid");
+  EXPECT_EQ(phys::toString(phys::Shape::Capsule), "capsule");
+  EXPECT_EQ(std::string(phys::toString(phys::ContactKind::VertexVertex)), "vertex-vertex");
+  EXPECT_EQ(phys::toString(phys::CharacterState::LettingGo), "letting-go");
+  EXPECT_EQ(phys::toString(phys::Stage::Islands), "islands");
+  EXPECT_EQ(phys::toString(phys::SolverMethod::Shake), "shake");
+  EXPECT_EQ(phys::toString(phys::GravityMode::Point), "point");
 }
 
 // hingeAngle refuses a bad part or a body the world does not have in its own name: it was refused as
