@@ -5,6 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -16,18 +19,27 @@ bool finiteQuat(const Quat& q) {
   return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
 }
 
+// Each bone's index by name: a clip read from a file may have thousands of bones, and looking each
+// one up by a walk over all of them made checking and comparing skeletons quadratic.
+std::unordered_map<std::string_view, std::size_t> boneIndex(const Clip& clip) {
+  std::unordered_map<std::string_view, std::size_t> index;
+  index.reserve(clip.bones.size());
+  for (std::size_t i = 0; i < clip.bones.size(); ++i) index.emplace(clip.bones[i], i);  // the first of a name
+  return index;
+}
+
 std::string bonesProblem(const Clip& clip) {
   if (clip.bones.empty()) return "it has no bones";
   if (clip.parents.size() != clip.bones.size()) return "it has not one parent a bone";
+  std::unordered_set<std::string_view> seen;
+  seen.reserve(clip.bones.size());
   for (std::size_t i = 0; i < clip.bones.size(); ++i) {
     const int parent = clip.parents[i];
     if (i == 0 && parent != -1) return "its first bone '" + clip.bones[0] + "' is not the root";
     if (i > 0 && (parent < 0 || static_cast<std::size_t>(parent) >= i))
       return "bone '" + clip.bones[i] + "' does not come after its parent";
     if (clip.bones[i].empty()) return "bone " + std::to_string(i) + " has no name";
-    for (std::size_t j = 0; j < i; ++j) {
-      if (clip.bones[j] == clip.bones[i]) return "two bones are named '" + clip.bones[i] + "'";
-    }
+    if (!seen.insert(clip.bones[i]).second) return "two bones are named '" + clip.bones[i] + "'";
   }
   return "";
 }
@@ -55,15 +67,15 @@ std::string skeletonDifference(const Clip& a, const Clip& b) {
                : std::string("none (the root)");
   };
   std::vector<std::string> lacks, extra, reparented;
+  const std::unordered_map<std::string_view, std::size_t> inA = boneIndex(a), inB = boneIndex(b);
   for (const std::string& bone : b.bones) {
-    if (a.bone(bone) < 0) lacks.push_back(bone);
+    if (!inA.contains(bone)) lacks.push_back(bone);
   }
   for (std::size_t i = 0; i < a.bones.size(); ++i) {
-    const int j = b.bone(a.bones[i]);
-    if (j < 0) {
+    const auto j = inB.find(a.bones[i]);
+    if (j == inB.end()) {
       extra.push_back(a.bones[i]);
-    } else if (const std::string pa = parentName(a, i), pb = parentName(b, static_cast<std::size_t>(j));
-               pa != pb) {
+    } else if (const std::string pa = parentName(a, i), pb = parentName(b, j->second); pa != pb) {
       reparented.push_back("the parent of bone '" + a.bones[i] + "' is " + pa + " where '" + b.name +
                            "' has " + pb);
     }

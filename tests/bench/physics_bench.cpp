@@ -4,9 +4,11 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <string>
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "physics/animation.h"
 #include "physics/capsule_ragdoll.h"
 #include "physics/world.h"
 
@@ -175,6 +177,30 @@ void BM_AddCapsuleRagdolls(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_AddCapsuleRagdolls)->Unit(benchmark::kMillisecond);
+
+// Checking a clip read from a file, and comparing its skeleton with another's, as the scene loader
+// does for each character's clips: linear in the bones (a clip may have thousands), with one frame
+// so that the turns' check does not hide the bones'.
+void BM_ClipBones(benchmark::State& state) {
+  const auto bones = static_cast<std::size_t>(state.range(0));
+  phys::Clip clip;
+  clip.name = "chain";
+  clip.frameTime = 1.0 / 30.0;
+  clip.root = {phys::Vec3(0.0)};
+  for (std::size_t b = 0; b < bones; ++b) {
+    clip.bones.push_back("bone" + std::to_string(b));
+    clip.parents.push_back(static_cast<int>(b) - 1);
+  }
+  clip.turns.assign(bones, phys::Quat(1.0, 0.0, 0.0, 0.0));
+  phys::Clip other = clip;
+  other.bones.back() = "other";
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(phys::clipProblem(clip));
+    benchmark::DoNotOptimize(phys::skeletonDifference(clip, other));
+  }
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_ClipBones)->RangeMultiplier(8)->Range(64, 32768)->Complexity()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
