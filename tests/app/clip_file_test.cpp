@@ -57,6 +57,16 @@ std::string clipError(const std::filesystem::path& file) {
   return "loaded";
 }
 
+// The message parseClip refuses `content` with, or "loaded".
+std::string refusalOf(const std::string& content, const std::string& name) {
+  try {
+    clips::parseClip(content, name, std::filesystem::path(name).extension().string().substr(1));
+  } catch (const clips::ClipError& e) {
+    return e.what();
+  }
+  return "loaded";
+}
+
 TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   const testing_app::TempFolder dir;
   const std::string missing = clipError(dir.path / "missing.bvh");
@@ -109,6 +119,29 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   EXPECT_NE(none.find("none.bvh: it has no frames"), std::string::npos) << none;
   std::ofstream(dir.path / "two.bvh") << header << "Frames: 2\nFrame Time: 0.1\n0 0 0 0 0 0\n0 0 0 0 0 0\n";
   EXPECT_EQ(clipError(dir.path / "two.bvh"), "loaded");
+}
+
+// A reason quotes what the file holds, ours a number, assimp a keyword: a megabyte token that starts
+// with a terminal's "clear screen" is cut, saying how much more there was, and its control byte shown.
+TEST(ClipFile, AssimpsReasonIsCutAndItsControlBytesShown) {
+  const std::string channels =
+      "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition "
+      "Zrotation Xrotation Yrotation\n";
+  const std::string token = "\x1b[2J" + std::string(std::size_t{1} << 20, '9');
+  const auto expectCut = [](const std::string& e, const std::string& start) {
+    EXPECT_EQ(e.rfind(start, 0), 0u) << e.substr(0, 200);
+    EXPECT_LT(e.size(), 600u);
+    EXPECT_NE(e.find(" more bytes)"), std::string::npos) << e.substr(0, 600);
+    EXPECT_EQ(e.find('\x1b'), std::string::npos);
+  };
+  expectCut(refusalOf(channels + "}\nMOTION\nFrames: " + token + "\nFrame Time: 0.1\n", "ours.bvh"),
+            "ours.bvh:8: Frames: '\\x1b[2J999");
+  expectCut(
+      refusalOf(channels + token + "\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0 0 0 0\n", "theirs.bvh"),
+      "theirs.bvh:6: not a clip assimp can read: Unknown keyword \"\\x1b[2J999");
+  // A short reason is kept whole.
+  EXPECT_EQ(refusalOf(channels + "}\nMOTION\nFrames: x\nFrame Time: 0.1\n", "short.bvh"),
+            "short.bvh:8: Frames: 'x' is not a whole number >= 0");
 }
 
 const std::string kBvhHeader =
