@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "exact_ghost.h"
 #include "panels.h"
 #include "project_session.h"
 
@@ -35,6 +36,15 @@ class PanelsUi : public ::testing::Test {
     ImGui::NewFrame();
     sandbox::drawPanels(session, ui);
     ImGui::Render();
+  }
+  // The text the panels draw in a frame, as ImGui's log captures it: the panels' window ends the
+  // log and hands it to the clipboard (ImGui's own, in memory, with no platform behind it).
+  std::string frameText() {
+    ImGui::NewFrame();
+    ImGui::LogToClipboard();
+    sandbox::drawPanels(session, ui);
+    ImGui::Render();
+    return ImGui::GetClipboardText();
   }
   // What the status line shows (drawStatusAndCrosshair).
   std::string statusLine() const { return ui.message.empty() ? session.status() : ui.message; }
@@ -187,6 +197,33 @@ TEST_F(PanelsUi, PauseDoesWhatSpaceDoes) {
   click();  // running: pauses
   EXPECT_TRUE(ui.paused);
   EXPECT_FALSE(ui.replaying);
+}
+
+// The Draw section says why the scene's exact answer is not drawn, in the ghost's words
+// (ExactGhost::hiddenBecause, which the sandbox hands it each frame), and says nothing while it is
+// drawn or while exact answers are off.
+TEST_F(PanelsUi, TheDrawSectionSaysWhyTheExactAnswerIsHidden) {
+  ASSERT_EQ(session.openBuiltin("projectile"), "");
+  sandbox::ExactGhost ghost;
+  ghost.reset(session.scene());
+  ui.unfolded[3] = true;  // the Draw section
+  ui.resetLayout = true;
+  auto shownLine = [&]() {
+    ui.exactHidden = ghost.hiddenBecause(session.scene().world);  // as Sandbox::renderFrame does
+    const std::string text = frameText();
+    EXPECT_NE(text.find("] exact answers"), std::string::npos) << "the Draw section is not drawn:\n" << text;
+    const std::size_t at = text.find("exact answer hidden");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(shownLine(), "");
+
+  ASSERT_EQ(session.changeGravity(1.0), "");
+  ASSERT_EQ(session.changeDamping(0.1), "");
+  EXPECT_EQ(shownLine(), "exact answer hidden: gravity and damping changed");
+  session.clear();
+  EXPECT_EQ(shownLine(), "exact answer hidden: the scene's bodies are gone");
+  ui.draw.exact = false;  // nothing drawn, so nothing hidden to explain
+  EXPECT_EQ(shownLine(), "");
 }
 
 }  // namespace
