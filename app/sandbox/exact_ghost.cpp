@@ -61,6 +61,35 @@ bool sameReuse(const phys::ManifoldReuseSettings& a, const phys::ManifoldReuseSe
   return same(a.maxShift, b.maxShift) && same(a.maxTurn, b.maxTurn);
 }
 
+// The settings of w and s that the exact answer depends on and that differ from fw and fs, by
+// the panels' names (ExactGhost::settingsChanged).
+std::vector<std::string> changedSettings(const phys::WorldSettings& w, const phys::SolverSettings& s,
+                                         const phys::WorldSettings& fw, const phys::SolverSettings& fs) {
+  std::vector<std::string> changed;
+  auto check = [&](bool unchanged, const char* name) {
+    if (!unchanged) changed.emplace_back(name);
+  };
+  // The Simulation panel's, in its order; then the World panel's; then what only a file sets.
+  check(same(s.featureEpsilon, fs.featureEpsilon), "feature epsilon");
+  check(same(s.restitution, fs.restitution), "restitution");
+  check(same(s.compliance, fs.compliance), "compliance");
+  check(same(s.bodyDamping, fs.bodyDamping), "body damping");
+  check(same(s.maxDepenetrationSpeed, fs.maxDepenetrationSpeed), "depenetration");
+  check(sameProjection(s.jointProjection, fs.jointProjection), "joint projection");
+  check(sameSleep(s.sleep, fs.sleep), "sleep");
+  check(!w.ground || !fw.ground || same(w.groundMaterial, fw.groundMaterial), "ground friction");
+  check(sameGravity(w, fw), "gravity");
+  check(same(w.damping, fw.damping), "damping");
+  check(sameGround(w, fw), "ground");
+  check(same(s.contactSlop, fs.contactSlop), "contact slop");
+  check(s.broadPhase == fs.broadPhase, "broad phase");
+  check(sameParting(s.parting, fs.parting), "parting");
+  check(sameReuse(s.manifoldReuse, fs.manifoldReuse), "manifold reuse");
+  check(same(w.bound, fw.bound), "world bound");
+  check(same(w.shapeCheckInterval, fw.shapeCheckInterval), "shape check interval");
+  return changed;
+}
+
 // "a", "a and b", "a, b and c".
 std::string listed(const std::vector<std::string>& names) {
   std::string out;
@@ -78,8 +107,9 @@ void ExactGhost::reset(const scenes::Scene& scene) {
   answers_ = answersOf(scene);
   const phys::World& w = scene.world;
   if (answers_.empty()) return;
-  worldSettings_ = w.worldSettings();
-  solverSettings_ = w.solverSettings();
+  answerFile_ = scene.file.filename().string();
+  answerWorldSettings_ = fileWorldSettings_ = w.worldSettings();
+  answerSolverSettings_ = fileSolverSettings_ = w.solverSettings();
   for (std::size_t i = 0; i < w.particles().size(); ++i) {
     const phys::ParticleId id(i);
     particles_.push_back({w.particleName(id), w.particles().inverseMass[i], w.particleBodies()[i]});
@@ -91,9 +121,19 @@ void ExactGhost::reset(const scenes::Scene& scene) {
   start_->setSolverSettings(lab::referenceSettings(w, w.solverSettings().dt));
 }
 
+void ExactGhost::fileSaved(const phys::World& saved) {
+  if (answers_.empty()) return;
+  fileWorldSettings_ = saved.worldSettings();
+  fileSolverSettings_ = saved.solverSettings();
+  savedChanged_ =
+      changedSettings(fileWorldSettings_, fileSolverSettings_, answerWorldSettings_, answerSolverSettings_);
+}
+
 void ExactGhost::clear() {
-  worldSettings_ = {};
-  solverSettings_ = {};
+  answerFile_.clear();
+  answerWorldSettings_ = fileWorldSettings_ = {};
+  answerSolverSettings_ = fileSolverSettings_ = {};
+  savedChanged_.clear();
   particles_.clear();
   bodies_.clear();
   answers_.clear();
@@ -120,45 +160,26 @@ bool ExactGhost::holds(const phys::World& shown) const {
 }
 
 ExactGhost::Drawn ExactGhost::beside(const phys::World& shown) {
-  if (!holds(shown) || !settingsChanged(shown).empty()) return {};
+  if (answers_.empty() || !hiddenBecause(shown).empty()) return {};
   return {at(shown.time(), shown.solverSettings().dt), answers_};
 }
 
 std::string ExactGhost::hiddenBecause(const phys::World& shown) const {
   if (answers_.empty()) return "";
   if (!holds(shown)) return "the scene's bodies are gone";
+  // Before the world's own changes: no setting brings back an answer the current file has not.
+  if (!savedChanged_.empty()) {
+    const std::string whose = answerFile_.empty() ? "the scene's" : answerFile_ + "'s";
+    return "saved with " + listed(savedChanged_) + " changed, and the answer (" + whose +
+           ") cannot be recomputed for the saved settings";
+  }
   const std::vector<std::string> changed = settingsChanged(shown);
   return changed.empty() ? "" : listed(changed) + " changed";
 }
 
 std::vector<std::string> ExactGhost::settingsChanged(const phys::World& shown) const {
-  const phys::WorldSettings& w = shown.worldSettings();
-  const phys::SolverSettings& s = shown.solverSettings();
-  const phys::WorldSettings& fw = worldSettings_;
-  const phys::SolverSettings& fs = solverSettings_;
-  std::vector<std::string> changed;
-  auto check = [&](bool unchanged, const char* name) {
-    if (!unchanged) changed.emplace_back(name);
-  };
-  // The Simulation panel's, in its order; then the World panel's; then what only a file sets.
-  check(same(s.featureEpsilon, fs.featureEpsilon), "feature epsilon");
-  check(same(s.restitution, fs.restitution), "restitution");
-  check(same(s.compliance, fs.compliance), "compliance");
-  check(same(s.bodyDamping, fs.bodyDamping), "body damping");
-  check(same(s.maxDepenetrationSpeed, fs.maxDepenetrationSpeed), "depenetration");
-  check(sameProjection(s.jointProjection, fs.jointProjection), "joint projection");
-  check(sameSleep(s.sleep, fs.sleep), "sleep");
-  check(!w.ground || !fw.ground || same(w.groundMaterial, fw.groundMaterial), "ground friction");
-  check(sameGravity(w, fw), "gravity");
-  check(same(w.damping, fw.damping), "damping");
-  check(sameGround(w, fw), "ground");
-  check(same(s.contactSlop, fs.contactSlop), "contact slop");
-  check(s.broadPhase == fs.broadPhase, "broad phase");
-  check(sameParting(s.parting, fs.parting), "parting");
-  check(sameReuse(s.manifoldReuse, fs.manifoldReuse), "manifold reuse");
-  check(same(w.bound, fw.bound), "world bound");
-  check(same(w.shapeCheckInterval, fw.shapeCheckInterval), "shape check interval");
-  return changed;
+  return changedSettings(shown.worldSettings(), shown.solverSettings(), fileWorldSettings_,
+                         fileSolverSettings_);
 }
 
 const phys::World* ExactGhost::at(double time, double dt) {

@@ -8,7 +8,10 @@
 // them: not once key 0 has cleared them, back when a rewind, Reload or a recording brings them.
 // Both are the answer under the file's settings, so they are drawn only while the world has them
 // too: not once gravity, damping or any other setting the answer depends on is changed, back when
-// it is changed back or Reload restores it (settingsChanged()).
+// it is changed back or Reload restores it (settingsChanged()). Save As makes the saved file the
+// current one (fileSaved()): the world is then compared with what that file says, and a file saved
+// with other settings than the answer's has no answer (Save As leaves its <expect>s out, and
+// closed-form positions cannot be recomputed for other settings), which the panel says.
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -47,22 +50,27 @@ class ExactGhost {
   /// Starts over from `scene` as it is now (just opened: at its start). No ghost when it has no
   /// position answers or is too big.
   void reset(const scenes::Scene& scene);
+  /// Save As wrote `saved`, and its file is now the current one: settings are compared with that
+  /// file's from here. Saved with other settings than the answer's, the answer is not that file's,
+  /// and stays hidden (hiddenBecause says so) until a file is opened or saved again.
+  void fileSaved(const phys::World& saved);
   void clear();
   bool active() const { return start_.has_value(); }
   /// What to draw beside `shown`, the world on screen: the ghost at its time, stepped at its dt
-  /// (at()), and the crosses; nothing when `shown` does not hold the scene's bodies (holds()) or
-  /// has other settings than the file's (settingsChanged()).
+  /// (at()), and the crosses; nothing when hiddenBecause(shown) gives a reason.
   Drawn beside(const phys::World& shown);
   /// Why beside(shown) draws nothing though the scene has answers, for the panel: "the scene's
-  /// bodies are gone", "gravity changed", "gravity and damping changed"; "" when it draws them, or
-  /// when the scene has none.
+  /// bodies are gone", "saved with gravity changed, and the answer (projectile.xml's) cannot be
+  /// recomputed for the saved settings", "gravity changed", "gravity and damping changed"; "" when
+  /// it draws them, or when the scene has none.
   std::string hiddenBecause(const phys::World& shown) const;
-  /// The settings of `shown` that the exact answer depends on and that differ from the file's,
-  /// named as the panels name them ("gravity", "damping", "restitution", ...), in the panels'
-  /// order; empty when there are none. It depends on every world setting in effect (not the
-  /// gravity point in uniform mode), and on every solver setting the ghost does not set itself
-  /// (it has its own method, substeps and iterations, and follows dt) or that changes nothing
-  /// (threads). A number counts as the file's within a relative 1e-6 (kSameSetting).
+  /// The settings of `shown` that the exact answer depends on and that differ from the current
+  /// file's (the one opened, or the one Save As wrote last), named as the panels name them
+  /// ("gravity", "damping", "restitution", ...), in the panels' order; empty when there are none.
+  /// It depends on every world setting in effect (not the gravity point in uniform mode), and on
+  /// every solver setting the ghost does not set itself (it has its own method, substeps and
+  /// iterations, and follows dt) or that changes nothing (threads). A number counts as the file's
+  /// within a relative 1e-6 (kSameSetting).
   std::vector<std::string> settingsChanged(const phys::World& shown) const;
   /// Whether `shown` holds the bodies of the scene last reset from, as its file made them: its
   /// particles (by name, inverse mass and body) and bodies (by name) first, in order; bodies thrown
@@ -84,8 +92,12 @@ class ExactGhost {
   std::vector<Particle> particles_;
   std::vector<std::string> bodies_;
   std::vector<std::pair<double, glm::vec3>> answers_;
-  phys::WorldSettings worldSettings_;  // the file's, that the answers are for
-  phys::SolverSettings solverSettings_;
+  std::string answerFile_;                   // the name of the file the answers are from
+  phys::WorldSettings answerWorldSettings_;  // that file's, that the answers are for
+  phys::SolverSettings answerSolverSettings_;
+  phys::WorldSettings fileWorldSettings_;  // the current file's: the answer's until a Save As
+  phys::SolverSettings fileSolverSettings_;
+  std::vector<std::string> savedChanged_;  // the current file's settings that are not the answer's
   std::optional<phys::World> start_;
   std::optional<phys::World> now_;
   std::vector<phys::World> snapshots_;  // by time

@@ -672,6 +672,7 @@ void Sandbox::drawDialogs() {
     camera.target = camera_.position + camera_.forward();
     const std::string error = session_->saveAs(*chosen, camera);
     if (error.empty()) {
+      ghost_.fileSaved(session_->scene().world);  // Reload reads that file now: compare with it
       ui_.message = "saved " + chosen->string();
       addRecentFile(user_, std::filesystem::absolute(*chosen).string());
     } else {

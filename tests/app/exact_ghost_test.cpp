@@ -24,6 +24,23 @@ phys::Vec3 parsed(const std::string& text) {
   return v;
 }
 
+// The ghost and the crosses drawn beside the session's world, and no reason given against them.
+void expectShown(sandbox::ExactGhost& ghost, const sandbox::Session& s, const char* when) {
+  const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
+  EXPECT_NE(drawn.ghost, nullptr) << when;
+  EXPECT_EQ(drawn.answers.size(), s.scene().expectations.size()) << when;
+  EXPECT_EQ(ghost.hiddenBecause(s.scene().world), "") << when;
+}
+
+// Neither drawn, for the reason `why`.
+void expectHidden(sandbox::ExactGhost& ghost, const sandbox::Session& s, const char* when,
+                  const std::string& why) {
+  const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
+  EXPECT_EQ(drawn.ghost, nullptr) << when;
+  EXPECT_TRUE(drawn.answers.empty()) << when;
+  EXPECT_EQ(ghost.hiddenBecause(s.scene().world), why) << when;
+}
+
 // The closed-form answers are met within a micrometre at 128 substeps (measured: at most 1.1e-8 m
 // for the projectile, 2.7e-8 m for the orbit, 8.2e-8 m for the pendulum): the ghost is the answer
 // to the eye, and between the crosses it is where the answer is.
@@ -141,18 +158,8 @@ TEST(ExactGhost, GoesWithTheScenesBodiesAndComesBackWithThem) {
 TEST(ExactGhost, GoesWhileASettingItDependsOnDiffersFromTheFilesAndComesBack) {
   sandbox::Session s = testing_app::openSession("projectile");
   sandbox::ExactGhost ghost;
-  auto shown = [&](const char* when) {
-    const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
-    EXPECT_NE(drawn.ghost, nullptr) << when;
-    EXPECT_EQ(drawn.answers.size(), s.scene().expectations.size()) << when;
-    EXPECT_EQ(ghost.hiddenBecause(s.scene().world), "") << when;
-  };
-  auto hidden = [&](const char* when, const std::string& why) {
-    const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
-    EXPECT_EQ(drawn.ghost, nullptr) << when;
-    EXPECT_TRUE(drawn.answers.empty()) << when;
-    EXPECT_EQ(ghost.hiddenBecause(s.scene().world), why) << when;
-  };
+  auto shown = [&](const char* when) { expectShown(ghost, s, when); };
+  auto hidden = [&](const char* when, const std::string& why) { expectHidden(ghost, s, when, why); };
   ghost.reset(s.scene());
   for (int i = 0; i < 30; ++i) s.step();
   shown("as opened");
@@ -217,6 +224,50 @@ TEST(ExactGhost, GoesWhileASettingItDependsOnDiffersFromTheFilesAndComesBack) {
   hidden("damping", "damping changed");
   ASSERT_EQ(s.rewindTo(5), "");
   shown("rewound to before the change");
+}
+
+// Save As makes the saved file the current one (Reload reads it) and leaves the <expect>s out.
+// The ghost went on comparing with the file opened: saved with gravity raised, it said "gravity
+// changed" of a world with the saved file's very gravity, and gravity set back to the opened
+// file's brought the answer back beside a file that has none. It compares with the file saved,
+// says when that file's settings are not the answer's, which cannot be recomputed for them, and
+// comes back once the file is saved again with the answer's settings.
+TEST(ExactGhost, ComparesWithTheFileSaveAsWroteAndSaysWhenTheAnswerIsNotItsOwn) {
+  const testing_app::TempFolder dir;
+  sandbox::Session s = testing_app::openSession("projectile");
+  sandbox::ExactGhost ghost;
+  auto saveAs = [&](const char* name) {
+    ASSERT_EQ(s.saveAs(dir.path / name, scenes::CameraStart{}), "");
+    ghost.fileSaved(s.scene().world);  // as the sandbox does after Save As (Sandbox::drawDialogs)
+  };
+  ghost.reset(s.scene());
+  for (int i = 0; i < 30; ++i) s.step();
+  saveAs("same.xml");
+  expectShown(ghost, s, "saved with the answer's settings");
+
+  ASSERT_EQ(s.changeGravity(1.0), "");  // Y
+  saveAs("heavier.xml");
+  const std::string notItsOwn =
+      "saved with gravity changed, and the answer (projectile.xml's) cannot be recomputed for the saved "
+      "settings";
+  expectHidden(ghost, s, "saved with gravity raised", notItsOwn);
+  s.step();
+  ASSERT_EQ(s.changeGravity(-1.0), "");  // H: the answer's gravity, no longer the file's
+  expectHidden(ghost, s, "gravity set back after the save", notItsOwn);
+  ASSERT_EQ(s.changeDamping(0.1), "");
+  expectHidden(ghost, s, "and damping", notItsOwn);
+  ASSERT_EQ(s.changeDamping(-0.1), "");
+
+  saveAs("back.xml");
+  expectShown(ghost, s, "saved again with the answer's settings");
+  ASSERT_EQ(s.changeDamping(0.1), "");
+  expectHidden(ghost, s, "damping changed from the file saved", "damping changed");
+
+  // Reload reads the file saved, which has no answers: nothing to draw, and nothing to explain.
+  ASSERT_EQ(s.reload(), "");
+  ghost.reset(s.scene());  // as the sandbox does on Reload (Sandbox::fitToScene)
+  EXPECT_FALSE(ghost.active());
+  EXPECT_EQ(ghost.hiddenBecause(s.scene().world), "");
 }
 
 }  // namespace
