@@ -140,6 +140,7 @@ void ExactGhost::clear() {
   start_.reset();
   now_.reset();
   snapshots_.clear();
+  stepsTaken_ = 0;
 }
 
 bool ExactGhost::holds(const phys::World& shown) const {
@@ -160,8 +161,12 @@ bool ExactGhost::holds(const phys::World& shown) const {
 }
 
 ExactGhost::Drawn ExactGhost::beside(const phys::World& shown) {
-  if (answers_.empty() || !hiddenBecause(shown).empty()) return {};
-  return {at(shown.time(), shown.solverSettings().dt), answers_};
+  if (answers_.empty()) return {};
+  // Kept at the world's time while hidden too: else a setting set back after a minute costs that
+  // frame the minute's steps at 128 substeps (a second of them in pendulum-exact).
+  const phys::World* ghost = at(shown.time(), shown.solverSettings().dt);
+  if (!hiddenBecause(shown).empty()) return {};
+  return {ghost, answers_};
 }
 
 std::string ExactGhost::hiddenBecause(const phys::World& shown) const {
@@ -184,17 +189,18 @@ std::vector<std::string> ExactGhost::settingsChanged(const phys::World& shown) c
 
 const phys::World* ExactGhost::at(double time, double dt) {
   if (!start_) return nullptr;
-  if (!now_ || now_->time() > time + dt / 2) {
-    const phys::World* from = &*start_;
-    for (const phys::World& s : snapshots_) {
-      if (s.time() <= time + dt / 2) from = &s;
-    }
-    now_ = *from;
+  // From the last copy not past `time` where that is nearer than the ghost: back in time, and
+  // forward past copies kept on an earlier way there (the timeline dragged back, then on).
+  const phys::World* from = &*start_;
+  for (const phys::World& s : snapshots_) {
+    if (s.time() <= time + dt / 2) from = &s;
   }
+  if (!now_ || now_->time() > time + dt / 2 || from->time() > now_->time()) now_ = *from;
   if (now_->solverSettings().dt != dt) now_->setSolverSettings(lab::referenceSettings(*now_, dt));
   // To the step nearest `time`: a dt changed on the way leaves the two clocks a part of a step apart.
   while (now_->time() + dt / 2 < time) {
     now_->step();
+    ++stepsTaken_;
     const double last = snapshots_.empty() ? start_->time() : snapshots_.back().time();
     if (now_->time() >= last + kGhostSnapshotEvery) {
       snapshots_.push_back(*now_);

@@ -57,7 +57,8 @@ class ExactGhost {
   void clear();
   bool active() const { return start_.has_value(); }
   /// What to draw beside `shown`, the world on screen: the ghost at its time, stepped at its dt
-  /// (at()), and the crosses; nothing when hiddenBecause(shown) gives a reason.
+  /// (at()), and the crosses; nothing when hiddenBecause(shown) gives a reason (the ghost is
+  /// stepped to its time all the same, so that it comes back without a minute's steps at once).
   Drawn beside(const phys::World& shown);
   /// Why beside(shown) draws nothing though the scene has answers, for the panel: "the scene's
   /// bodies are gone", "saved with gravity changed, and the answer (projectile.xml's) cannot be
@@ -77,8 +78,11 @@ class ExactGhost {
   /// in since come after them. A cleared world (key 0), and one rebuilt from it, does not.
   bool holds(const phys::World& shown) const;
   /// The ghost at simulated time `time` (unit: s), stepped at `dt` (the main run's) from where it
-  /// was, or from the last copy before `time` when time went back; null when there is none.
+  /// was, or from the last copy before `time` when that is nearer (time went back, or on past copies
+  /// kept before); null when there is none.
   const phys::World* at(double time, double dt);
+  /// The steps at() has taken since reset: what the ghost has cost, over every jump of the clock.
+  long stepsTaken() const { return stepsTaken_; }
   /// The scene's answers, time (unit: s) and place (unit: m): its crosses.
   const std::vector<std::pair<double, glm::vec3>>& answers() const { return answers_; }
 
@@ -101,6 +105,7 @@ class ExactGhost {
   std::optional<phys::World> start_;
   std::optional<phys::World> now_;
   std::vector<phys::World> snapshots_;  // by time
+  long stepsTaken_ = 0;
 };
 
 }  // namespace sandbox

@@ -1,5 +1,6 @@
 // The exact answer's ghost (exact_ghost.h): in every scene with analytic answers it passes through
 // each of them at its time, goes back when time does, and there is none in other scenes.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -87,6 +88,42 @@ TEST(ExactGhost, GoesBackWithTheClockAndIsNoneWithoutAnswers) {
   EXPECT_FALSE(ghost.active());
   EXPECT_EQ(ghost.at(1.0, dt), nullptr);
   EXPECT_TRUE(ghost.answers().empty());
+}
+
+// Back to the start and on again (the timeline dragged back, then to the end): the ghost went on
+// from where it was, stepping again every step to the end at 128 substeps (about a second a
+// simulated minute), though it had kept copies on the way. It goes from the last copy before the
+// time asked for, to the same state.
+TEST(ExactGhost, GoesForwardFromTheCopiesKeptAsItGoesBack) {
+  const sandbox::Session s = testing_app::openSession("projectile");
+  sandbox::ExactGhost ghost;
+  ghost.reset(s.scene());
+  const double dt = s.scene().world.solverSettings().dt;
+  const std::uint64_t late = ghost.at(30.0, dt)->stateHash();
+  ghost.at(0.0, dt);
+  const long before = ghost.stepsTaken();
+  EXPECT_EQ(ghost.at(30.0, dt)->stateHash(), late);
+  EXPECT_LE(ghost.stepsTaken() - before, std::lround(sandbox::kGhostSnapshotEvery / dt) + 1);
+}
+
+// Gravity changed for 10 s and set back: the ghost, left where it was hidden, took the 10 s of
+// steps at 128 substeps in the frame it came back (a minute's took half a second to a second, a
+// freeze). It keeps up while hidden, so coming back costs no more than a frame's step.
+TEST(ExactGhost, KeepsUpWhileHiddenSoThatComingBackCostsAFramesStep) {
+  sandbox::Session s = testing_app::openSession("projectile");
+  sandbox::ExactGhost ghost;
+  ghost.reset(s.scene());
+  ASSERT_EQ(s.changeGravity(1.0), "");
+  for (int i = 0; i < 600; ++i) {
+    s.step();
+    EXPECT_EQ(ghost.beside(s.scene().world).ghost, nullptr);  // each frame, as the sandbox draws
+  }
+  ASSERT_EQ(s.changeGravity(-1.0), "");
+  const long before = ghost.stepsTaken();
+  const sandbox::ExactGhost::Drawn drawn = ghost.beside(s.scene().world);
+  ASSERT_NE(drawn.ghost, nullptr);
+  EXPECT_NEAR(drawn.ghost->time(), s.scene().world.time(), 1e-9);
+  EXPECT_LE(ghost.stepsTaken() - before, 1);
 }
 
 // The crosses are the file's answers, read as the lab reads them (they were parsed apart, with
