@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 
 #include "physics/character.h"
+#include "root_mean_square.h"
 #include "runner.h"
 
 namespace lab {
@@ -67,7 +67,7 @@ class ProgressLine {
 };
 
 // Each character part's drive read after every step (World::jointDriveTorque, bodyDriveLoad: the
-// last substep's), kept as a sum of squares and a peak. Sized before the first step.
+// last substep's), kept as a root mean square and a peak. Sized before the first step.
 class DriveLog {
  public:
   explicit DriveLog(const phys::World& world) {
@@ -75,13 +75,15 @@ class DriveLog {
       for (const phys::CharacterBone& bone : c.bones)
         figures_.push_back({c.ragdoll, c.now.clip->bones[std::size_t(bone.clipBone)], bone.parent < 0});
     }
+    squares_.resize(figures_.size());
   }
 
   void after(const phys::World& world) {
     std::size_t i = 0;
     for (const phys::Character& c : world.characters()) {
       for (const phys::CharacterBone& bone : c.bones) {
-        DriveFigures& f = figures_[i++];
+        const std::size_t part = i++;
+        DriveFigures& f = figures_[part];
         double torque = 0.0, force = 0.0;
         if (bone.parent < 0) {
           const phys::DriveLoad load = world.bodyDriveLoad(bone.body);
@@ -91,26 +93,28 @@ class DriveLog {
           torque = c.particleParts ? world.particleJointDriveTorque(bone.joint)
                                    : world.jointDriveTorque(bone.joint);
         }
-        f.rmsTorque += torque * torque;  // a sum of squares until finish()
-        f.rmsForce += force * force;
+        squares_[part].torque.add(torque);
+        squares_[part].force.add(force);
         f.peakTorque = std::max(f.peakTorque, torque);
         f.peakForce = std::max(f.peakForce, force);
       }
     }
-    ++steps_;
   }
 
   std::vector<DriveFigures> finish() {
-    for (DriveFigures& f : figures_) {
-      f.rmsTorque = steps_ > 0 ? std::sqrt(f.rmsTorque / steps_) : 0.0;
-      f.rmsForce = steps_ > 0 ? std::sqrt(f.rmsForce / steps_) : 0.0;
+    for (std::size_t i = 0; i < figures_.size(); ++i) {
+      figures_[i].rmsTorque = squares_[i].torque.value();
+      figures_[i].rmsForce = squares_[i].force.value();
     }
     return std::move(figures_);
   }
 
  private:
+  struct Squares {
+    RootMeanSquare torque, force;
+  };
   std::vector<DriveFigures> figures_;
-  int steps_ = 0;
+  std::vector<Squares> squares_;  // one a part, as figures_
 };
 
 }  // namespace

@@ -22,25 +22,28 @@ double maxAngularSpeed(const phys::World& world) {
 }
 
 double trackingErrorDegrees(const phys::World& world) {
-  double sum = 0.0, parts = 0.0;
-  for (std::size_t k = 0; k < world.characters().size(); ++k) {
-    const double e = phys::trackingError(world, k), n = double(world.characters()[k].bones.size());
-    sum += e * e * n;
-    parts += n;
-  }
-  return parts > 0.0 ? std::sqrt(sum / parts) * 180.0 / std::numbers::pi : 0.0;
+  RootMeanSquare overParts;
+  for (std::size_t k = 0; k < world.characters().size(); ++k)
+    overParts.add(phys::trackingError(world, k), double(world.characters()[k].bones.size()));
+  return overParts.value() * 180.0 / std::numbers::pi;
 }
 
 void RunMaxima::observe(const phys::World& world) {
   const phys::Metrics metrics = world.metrics();
+  std::array<double, kRunMetricCount> figures{};
+  for (std::size_t i = 0; i < kRunMetricCount; ++i) figures[i] = kRunMetrics[i].read(world, metrics);
+  observe(figures);
+}
+
+void RunMaxima::observe(const std::array<double, kRunMetricCount>& figures) {
   ++steps;
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
-    const double v = kRunMetrics[i].read(world, metrics);
+    const double v = figures[i];
     if (!std::isfinite(v) || std::isinf(worst[i])) {
       worst[i] = kInf;
     } else if (kRunMetrics[i].over == OverRun::Rms) {
-      sumOfSquares[i] += v * v;
-      worst[i] = std::sqrt(sumOfSquares[i] / double(steps));
+      rms[i].add(v);
+      worst[i] = rms[i].value();
     } else {
       worst[i] = std::max(worst[i], v);
     }

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "physics/world.h"
+#include "root_mean_square.h"
 
 namespace lab {
 
@@ -76,11 +77,13 @@ static_assert(kStickErrorMetric < kRunMetricCount && kPenetrationMetric < kRunMe
 /// not rescued by a later small value).
 struct RunMaxima {
   std::array<double, kRunMetricCount> worst{};
-  std::array<double, kRunMetricCount> sumOfSquares{};  ///< of the OverRun::Rms figures
-  long steps = 0;                                      ///< observed
+  std::array<RootMeanSquare, kRunMetricCount> rms{};  ///< of the OverRun::Rms figures
+  long steps = 0;                                     ///< observed
 
   /// Reads every figure of the world as it is now.
   void observe(const phys::World& world);
+  /// Takes one step's figures, in the order of kRunMetrics.
+  void observe(const std::array<double, kRunMetricCount>& figures);
   double operator[](std::size_t i) const { return worst[i]; }
 };
 
