@@ -2,8 +2,10 @@
 // --json`, sweep's results.csv, tune's targets and compare's table; the fastest spin, the
 // figure added to show it, reads a known spin back; the tracking error is an RMS over the run.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -17,9 +19,11 @@
 #include "lab.h"
 #include "lab_test_util.h"
 #include "physics/character.h"
+#include "root_mean_square.h"
 #include "run.h"
 #include "run_metrics.h"
 #include "scenes/scene.h"
+#include "text.h"
 
 namespace {
 
@@ -123,6 +127,71 @@ TEST(RunMetrics, TheTrackingErrorIsItsRootMeanSquareOverTheRun) {
   const TempDir dir;
   EXPECT_EQ(runJson(dir.write("spin.xml", spinningBox("rigid")))["rms_tracking_error_over_run"].get<double>(),
             0.0);
+}
+
+// Samples of 1e200 are finite, so their RMS is too: squaring them as they come would overflow to
+// infinity and read "blew up". Scaled by the largest, they keep their RMS, and so do samples too
+// small to square (1e-200, whose square is 0).
+TEST(RootMeanSquare, HugeAndTinyFiniteSamplesKeepTheirRms) {
+  for (const double scale : {1e200, 1e300, 1.7e308, 1e-200, 1e-300}) {
+    lab::RootMeanSquare rms;
+    rms.add(0.6 * scale);
+    rms.add(-0.8 * scale);
+    EXPECT_NEAR(rms.value(), std::sqrt(0.5) * scale, 1e-15 * std::sqrt(0.5) * scale) << scale;
+  }
+  lab::RootMeanSquare growing;  // the largest arrives last: what came before is rescaled to it
+  for (const double v : {1.0, 1e100, 1e200, 1e300}) growing.add(v);
+  EXPECT_DOUBLE_EQ(growing.value(), 0.5e300);
+  lab::RootMeanSquare weighted;
+  weighted.add(1e200, 3.0);
+  weighted.add(0.0, 1.0);
+  EXPECT_DOUBLE_EQ(weighted.value(), std::sqrt(0.75) * 1e200);
+}
+
+// The scale is a power of two, which multiplies and divides exactly: ordinary samples give the
+// same bits as the plain sqrt(sum x^2 / n), so no pinned figure moves.
+TEST(RootMeanSquare, OrdinarySamplesGiveThePlainFormulaBitForBit) {
+  const double samples[] = {0.0123, 3.5, -7.25e-3, 1e-9, 42.0, 0.1, 6.02e23, 1e-30, 2.5};
+  double sum = 0.0, weights = 0.0;
+  lab::RootMeanSquare rms;
+  for (std::size_t i = 0; i < std::size(samples); ++i) {
+    const double w = double(i % 3 + 1);
+    sum += samples[i] * samples[i] * w;
+    weights += w;
+    rms.add(samples[i], w);
+    EXPECT_EQ(rms.value(), std::sqrt(sum / weights)) << i;
+  }
+  EXPECT_EQ(lab::RootMeanSquare().value(), 0.0);
+}
+
+// A sample that is not finite is kept as it would be in a plain sum of squares: infinity makes
+// the RMS infinite (blew up), NaN makes it NaN (n/a), whatever comes after.
+TEST(RootMeanSquare, ASampleThatIsNotFiniteStays) {
+  lab::RootMeanSquare inf, nan;
+  inf.add(1.0);
+  inf.add(-lab::kInf);
+  inf.add(1e300);
+  EXPECT_EQ(inf.value(), lab::kInf);
+  nan.add(lab::kNaN);
+  nan.add(lab::kInf);
+  nan.add(1.0);
+  EXPECT_TRUE(std::isnan(nan.value()));
+}
+
+// A run's RMS figure of huge but finite values is that value, not "blew up"; a value that is not
+// finite still makes it infinite for the run.
+TEST(RunMetrics, AnRmsFigureOfHugeFiniteValuesStaysFinite) {
+  const std::size_t tracking = lab::runMetricIndex("tracking-error");
+  ASSERT_EQ(lab::kRunMetrics[tracking].over, lab::OverRun::Rms);
+  lab::RunMaxima maxima;
+  std::array<double, lab::kRunMetricCount> figures{};
+  figures[tracking] = 1e200;
+  maxima.observe(figures);
+  maxima.observe(figures);
+  EXPECT_DOUBLE_EQ(maxima[tracking], 1e200);
+  figures[tracking] = lab::kNaN;
+  maxima.observe(figures);
+  EXPECT_EQ(maxima[tracking], lab::kInf);
 }
 
 TEST(RunMetrics, NamesFindTheirRow) {
