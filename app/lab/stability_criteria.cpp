@@ -214,16 +214,22 @@ int runSteps(const std::vector<Criterion>& criteria) {
 
 double errorRatio(const Criterion& c, double value) {
   if (!std::isfinite(value)) return kInf;
+  // A finite figure over a limit near 0 (max="1e-320") overflows the quotient; the largest double
+  // fails as surely, and is not taken for a blow-up.
+  const auto finite = [](double ratio) {
+    return std::clamp(ratio, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+  };
   switch (c.metric) {
     case Metric::Flips: {
-      // The nearer bound's ratio, oriented so that > 1 is outside: min / value, value / max.
+      // The nearer bound's ratio, oriented so that > 1 is outside: min / value, value / max; no
+      // flip at all under a min is min / 0, infinite.
       const double low = c.limit <= 0.0 ? 0.0 : (value > 0.0 ? c.limit / value : kInf);
       return std::max(low, value / c.upper);
     }
     case Metric::StaysBehind:
-      return (value - c.start) / (c.limit - c.start);
+      return finite((value - c.start) / (c.limit - c.start));
     default:
-      return value / c.limit;
+      return finite(value / c.limit);
   }
 }
 

@@ -71,10 +71,10 @@ std::vector<Criterion> parseCriteria(const scenes::Scene& scene);
 /// Steps a run of the scene takes: the latest window end over its criteria.
 int runSteps(const std::vector<Criterion>& criteria);
 
-/// How far a measured figure is from its limit, as one number where <= 1 passes and > 1 fails
-/// (infinity when the run blew up): value / max for the "at most" metrics, the larger of
-/// min / value and value / max for flips, and for stays-behind the share of the way from the body's start to
-/// the plane.
+/// How far a measured figure is from its limit, as one number where <= 1 passes and > 1 fails:
+/// value / max for the "at most" metrics, the larger of min / value and value / max for flips, and
+/// for stays-behind the share of the way from the body's start to the plane. Infinity when the run
+/// blew up, or when a flips body never flipped under a min; finite for any other finite figure.
 double errorRatio(const Criterion& criterion, double value);
 
 }  // namespace lab::stability

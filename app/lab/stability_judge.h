@@ -19,7 +19,7 @@ struct Verdict {
   bool judged = true;  ///< false: a peer's positions cannot answer it (`why` says why)
   std::string why;     ///< when not judged: "needs orientation", ...
   double value = 0.0;  ///< the figure measured, in the criterion's unit
-  double ratio = 0.0;  ///< errorRatio(): <= 1 passes; infinity when the run blew up
+  double ratio = 0.0;  ///< errorRatio(): <= 1 passes; infinity when the run blew up or never flipped
   bool passed = false;
 };
 

@@ -42,10 +42,13 @@ double sceneSeconds(const std::vector<Outcome>& row) {
   return ms / 1000.0;
 }
 
-// A run's entry in a grid: the worst ratio, bold when the run failed.
+// A run's entry in a grid: the worst ratio, bold when the run failed. An infinite ratio of a
+// finite figure is a body that never flipped under a flips min (min / 0): it did not blow up.
 std::string gridEntry(const Outcome& o) {
   if (!o.judged) return "n/a";
-  const std::string r = formatRatio(o.verdicts[o.worst].ratio);
+  const Verdict& worst = o.verdicts[o.worst];
+  const bool neverFlipped = std::isinf(worst.ratio) && std::isfinite(worst.value);
+  const std::string r = neverFlipped ? "no flips" : formatRatio(worst.ratio);
   return o.passed ? r : "**" + r + "**";
 }
 
@@ -190,7 +193,8 @@ std::string markdownReport(const SuiteResult& r) {
   summaryTable(md, r);
   md << "\n## Per method\n\nColumns are iterations x substeps. Each entry is the worst criterion's value / "
         "limit (for flips, min / value or value / max; for stays-behind, the share of the way to the plane): "
-        "at most 1 passes, **bold** fails, `blew up` is a blow-up (the guard froze a body).\n";
+        "at most 1 passes, **bold** fails, `blew up` is a blow-up (the guard froze a body), `no flips` a "
+        "body that never flipped where a least number of flips was asked.\n";
   for (const std::string& m : r.methods) methodGrid(md, r, m);
   peerTable(md, r);
   return md.str();

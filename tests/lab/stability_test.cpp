@@ -217,6 +217,24 @@ TEST(StabilityCriteria, RatiosAreAtMostOneWhenPassing) {
   EXPECT_DOUBLE_EQ(lab::stability::errorRatio(plane, 2.0), 2.0);   // through it
 }
 
+// A limit near 0 ("1e-320") overflows value / limit; only a run that blew up has an infinite
+// ratio, which the report reads as "blew up", so a finite figure's ratio stays finite and fails.
+TEST(StabilityCriteria, AFiniteFigureOverATinyLimitIsNotABlowUp) {
+  Criterion drift;
+  drift.metric = Metric::Drift;
+  drift.limit = 1e-320;
+  const double ratio = lab::stability::errorRatio(drift, 1.0);
+  EXPECT_TRUE(std::isfinite(ratio));
+  EXPECT_GT(ratio, 1.0);
+  Criterion plane;
+  plane.metric = Metric::StaysBehind;
+  plane.start = 0.0;
+  plane.limit = 1e-320;
+  EXPECT_TRUE(std::isfinite(lab::stability::errorRatio(plane, 1.0)));
+  EXPECT_TRUE(std::isfinite(lab::stability::errorRatio(plane, -1.0)));
+  EXPECT_LT(lab::stability::errorRatio(plane, -1.0), 1.0);  // away from the plane: passes
+}
+
 // Measured (docs/lab.md): the 20-link chain with a 10000:1 end mass stretches 96% at one
 // substep of one iteration and 2.1% at 64 substeps; the limit is 5%.
 TEST(StabilityRun, TheHeaviestChainFailsAtOneSubstepAndHoldsAt64) {
@@ -428,6 +446,19 @@ TEST(StabilityReport, ABlowUpIsSaidInWordsInTheReport) {
   const std::string md = lab::stability::markdownReport(r);
   EXPECT_NE(md.find("| face-face | **blew up** |"), std::string::npos) << md;
   EXPECT_EQ(md.find(" inf"), std::string::npos) << md;
+}
+
+// A box that never flips under a flips min has the ratio min / 0, infinite, but nothing blew up:
+// its grid entry says "no flips" (ODE on dzhanibekov read as a blow-up in docs/results.md).
+TEST(StabilityReport, ABodyThatNeverFlippedIsNotABlowUp) {
+  TempDir dir;
+  const std::filesystem::path scene = dir.write(
+      "x.xml", sceneWithExpect(R"(<expect kind="pass" metric="flips" body="crate" min="1" over="0 0.1"/>)"));
+  const Output o = stability({"--scene", scene.string(), "--methods", "xpbd", "--iterations", "1",
+                              "--substeps", "1", "--models", "rigid", "--no-peers"});
+  ASSERT_EQ(o.code, lab::kExitOk) << o.err;  // a failing run is the report's news, not an error
+  EXPECT_NE(o.out.find("| x | **no flips** |"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("| x | **blew up** |"), std::string::npos) << o.out;
 }
 
 TEST(StabilityCli, OutWritesTheTableTheCsvAndTheHeatMaps) {
