@@ -73,6 +73,8 @@ PositionExpect readExpect(ExpectReader& r, const scenes::Scene& scene, double dt
     r.fail("at", "'" + at + "' s at the scene's dt " + formatNumber(dt) + " s is more than " +
                      std::to_string(kMaxSteps) + " steps");
   }
+  // A time within round-off of 0 rounds to step 0, which no run's checkpoints reach.
+  if (steps < 1) r.fail("at", "'" + at + "' s is before the first step of " + formatNumber(dt) + " s");
   if (std::abs(steps * dt - *t) > 1e-6 * dt) {
     r.fail("at", "'" + at + "' s is not a whole number of steps of " + formatNumber(dt) + " s");
   }

@@ -767,6 +767,9 @@ TEST(Accuracy, MalformedPositionExpectationsAreLoadErrors) {
       {R"(<expect kind="position" body="p" pos="0 0 0"/>)", "at", "is required"},
       {R"(<expect kind="position" body="p" at="-1" pos="0 0 0"/>)", "at", "must be a finite number > 0"},
       {R"(<expect kind="position" body="p" at="0.01" pos="0 0 0"/>)", "at", "not a whole number of steps"},
+      // Within round-off of t = 0: step 0, a checkpoint no run reaches, read as a blow-up.
+      {R"(<expect kind="position" body="p" at="1e-300" pos="0 0 0"/>)", "at",
+       "'1e-300' s is before the first step of 0.0166667 s"},
       {R"(<expect kind="position" body="p" at="1000000" pos="0 0 0"/>)", "at",
        "'1000000' s at the scene's dt 0.0166667 s is more than 10000000 steps"},
       {R"(<expect kind="position" body="p" at="1" pos="0 0"/>)", "pos", "must be three finite numbers"},
