@@ -69,7 +69,7 @@ std::string validate(const WorldSettings& s) {
 std::string validate(const SolverSettings& s) {
   std::ostringstream why;
   // A value cast from outside the enum would relax no stick at all (ConstraintGraph::relaxSticks).
-  if (!parseSolverMethod(toString(s.method)))
+  if (static_cast<int>(s.method) < 0 || s.method > SolverMethod::Shake)
     why << "method must be one of SolverMethod's (is " << static_cast<int>(s.method) << "); ";
   if (!std::isfinite(s.dt) || s.dt < kMinDt || s.dt > kMaxDt) {
     why << "dt must be from " << kMinDt << " to " << kMaxDt << " (s); ";
