@@ -451,8 +451,21 @@ TEST(ClipFormats, WhatAssimpRefusesOrReadsIsRefusedWithTheReason) {
   EXPECT_NE(refusal(replaced(dae, keys, " 0 0 0 "), "same.dae"), "loaded");
 }
 
-// assimp reads a .x file's AnimTicksPerSecond of 0 as no rate given (the clip then played at 25
-// ticks a second), and wraps a negative one to more than 4 billion.
+// A .x that gives no AnimTicksPerSecond runs at DirectX's 4800 ticks a second, as D3DX and the
+// exporters take it; assimp gives 0, and the clip played at 25 (keys a tick apart at 0.04 s).
+TEST(ClipFormats, AnXFileOfNoTickRateRunsAtDirectXsDefault) {
+  const std::string x = xFile();
+  ASSERT_TRUE(has(x, "\nAnimTicksPerSecond { 30; }\n"));
+  const testing_app::TempFolder dir;
+  std::ofstream(dir.path / "default.x") << replaced(x, "AnimTicksPerSecond { 30; }\n", "");
+  const phys::Clip clip = clips::loadClip(dir.path / "default.x");
+  EXPECT_DOUBLE_EQ(clip.frameTime, 1.0 / 4800.0);
+  std::ofstream(dir.path / "stated.x") << x;
+  EXPECT_DOUBLE_EQ(clips::loadClip(dir.path / "stated.x").frameTime, 1.0 / 30.0);
+}
+
+// assimp reads a .x file's AnimTicksPerSecond of 0 as no rate given (the clip then plays at
+// DirectX's 4800 ticks a second), and wraps a negative one to more than 4 billion.
 TEST(ClipFormats, AnXTickRateThatIsNotAWholeNumberAboveZeroIsRefusedWithTheLine) {
   const std::string x = xFile();
   ASSERT_TRUE(has(x, "\nAnimTicksPerSecond { 30; }\n"));

@@ -40,9 +40,13 @@ constexpr std::size_t kMaxClipBytes = 64u << 20;
 // stack; 256 is far from both.
 constexpr int kMaxBvhDepth = 256;
 
-// A body with hands and a face has a few hundred joints. More, and checking them takes time that
-// grows as their square (phys::clipProblem compares each bone's name with those before it): 20,000
-// bones took over a second.
+// Ticks a second of an animation whose file does not say: a .x file's (DirectX's default), any
+// other's (assimp's).
+constexpr double kXDefaultTicks = 4800.0;
+constexpr double kAssimpDefaultTicks = 25.0;
+
+// A body with hands and a face has a few hundred joints; a BVH of more is refused before assimp
+// reads it (50,000 side by side took a minute to read).
 constexpr std::uint64_t kMaxBvhJoints = 1000;
 
 // The most keys (a joint at a frame) the largest clip file can hold: every joint's three turns at
@@ -387,15 +391,17 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   }
   const aiNodeAnim& root = *bones[0].channel;
   const unsigned frames = root.mNumRotationKeys;
-  // assimp gives 0 ticks a second for a file that does not say, and then takes 25 itself (a .x
-  // that says 0 is refused by checkX, since assimp reads it as one that does not say); a BVH
-  // always says (1 / its Frame Time), so there a tick rate that is not a finite number > 0 is a
-  // Frame Time that is not one (-1 gave -1, nan nan), refused rather than guessed.
+  // assimp gives 0 ticks a second for a file that does not say, and would then take 25. A .x that
+  // gives no AnimTicksPerSecond is DirectX's default of 4800, as D3DX and the exporters that write
+  // it take it (one that says 0 is refused by checkX, since assimp reads it as one that does not
+  // say); other formats, assimp's 25. A BVH always says (1 / its Frame Time), so there a tick rate
+  // that is not a finite number > 0 is a Frame Time that is not one (-1 gave -1, nan nan), refused
+  // rather than guessed.
   const double ticksGiven = anim.mTicksPerSecond;
   if (!(ticksGiven >= 0.0 && std::isfinite(ticksGiven)) || (bvh && ticksGiven == 0.0))
     throw ClipError(name, bvh ? "its Frame Time is not a finite number of seconds > 0"
                               : "its animation's ticks per second are negative or not a finite number");
-  const double ticks = ticksGiven > 0.0 ? ticksGiven : 25.0;  // assimp's own default
+  const double ticks = ticksGiven > 0.0 ? ticksGiven : format == "x" ? kXDefaultTicks : kAssimpDefaultTicks;
   // A BVH's animation lasts its Frames less one; assimp keys "Frames: 0" once, with a duration of
   // 2^32 - 1, and that lone key is no frame of the file's.
   if (frames == 0 || (bvh && anim.mDuration + 1.0 != static_cast<double>(frames)))
