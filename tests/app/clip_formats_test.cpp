@@ -660,6 +660,15 @@ TEST(ClipFormats, BinaryFbxRecordsAreCheckedBeforeAssimpReadsThem) {
                   "an array of 10000000 values of 4 bytes in 8 bytes, more than they inflate to"));
   EXPECT_FALSE(
       has(refusal(withProperty(arrayProperty('f', 2, 0, std::string(8, '\0'))), "fine.fbx"), "node record"));
+  // Arrays each within bounds that come to more than 256 MB together: assimp inflates and keeps them
+  // all. Three of 96 MB (in 93,100 bytes each, within deflate's 1032 to 1).
+  const std::string big = arrayProperty('d', 12'000'000, 1, std::string(93'100, '\0'));
+  const std::string many = refusal(withProperty(big + big + big, 3), "many.fbx");
+  EXPECT_TRUE(has(many,
+                  "many.fbx: node record 'Data' at byte 59: an array of 12000000 values of 8 bytes in 93100 "
+                  "bytes: the file's arrays come to 288000000 bytes, more than 256 MB"))
+      << many;
+  EXPECT_FALSE(has(refusal(withProperty(big + big, 2), "two.fbx"), "node record")) << "192 MB is a file";
 }
 
 // Nodes looked up among all the channels, once a node, took seconds for 20,000: a clip of 20,000

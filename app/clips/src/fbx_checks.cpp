@@ -27,6 +27,11 @@ constexpr std::uint64_t kMostInflation = 1032;
 // clip file is at most 64 MB, and no array in one needs 1 GB.
 constexpr std::uint64_t kMostArrayBytes = std::uint64_t{1} << 30;
 
+// assimp inflates every array and keeps them all: a file of 64 arrays of 1 MB each claiming 1 GB
+// would take 64 GB. Together they may come to four times the largest clip file, 256 MB, which is
+// more keys than any clip has.
+constexpr std::uint64_t kMostArraysBytes = std::uint64_t{256} << 20;
+
 // Node records nest this deep under one another: the header (23 bytes of magic, a version), then
 // records of an end offset, a count of properties, the properties' length in bytes (each 4 bytes
 // before version 7500, 8 after), a name of a byte's length, the properties, and the children closed
@@ -210,6 +215,10 @@ class BinaryFbx {
           if (bytes >= kMostArrayBytes) fail(r, says + ": 1 GB or more, more than a clip file needs");
           if (encoding == 0 && bytes != stored) fail(r, says + ", stored as they are");
           if (encoding == 1 && bytes > stored * kMostInflation) fail(r, says + ", more than they inflate to");
+          arraysBytes_ += bytes;
+          if (arraysBytes_ > kMostArraysBytes)
+            fail(r, says + ": the file's arrays come to " + std::to_string(arraysBytes_) +
+                        " bytes, more than 256 MB, more than a clip's keys");
           if (property.type == 'l' && (encoding == 0 || encoding == 1))
             property.int64s = int64s(bytes_.substr(at, stored), count, encoding == 1);
           at += stored;
@@ -267,6 +276,7 @@ class BinaryFbx {
   const std::string& name_;
   std::size_t word_ = 4;
   std::int64_t curveId_ = 0;
+  std::uint64_t arraysBytes_ = 0;  // the arrays' values read so far, inflated
   FbxCurves curves_;
 };
 
