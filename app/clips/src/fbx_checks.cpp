@@ -27,8 +27,8 @@ constexpr std::uint64_t kMostInflation = 1032;
 // clip file is at most 64 MB, and no array in one needs 1 GB.
 constexpr std::uint64_t kMostArrayBytes = std::uint64_t{1} << 30;
 
-// assimp inflates every array and keeps them all: a file of 64 arrays of 1 MB each claiming 1 GB
-// would take 64 GB. Together they may come to four times the largest clip file, 256 MB, which is
+// assimp inflates each array it reads (a curve's keys, a mesh's vertices) and keeps them until the
+// file is read: 64 arrays of 1 MB each claiming 1 GB would take 64 GB. Together they may come to four times the largest clip file, 256 MB, which is
 // more keys than any clip has.
 constexpr std::uint64_t kMostArraysBytes = std::uint64_t{256} << 20;
 
