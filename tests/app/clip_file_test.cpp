@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "bad_scene.h"
+#include "clip_refusal.h"
 #include "clips/clip_file.h"
 #include "physics/character.h"
 #include "scenes/scene.h"
@@ -51,16 +52,6 @@ TEST(ClipFile, TheRunCycleIsReadAsWritten) {
 std::string clipError(const std::filesystem::path& file) {
   try {
     clips::loadClip(file);
-  } catch (const clips::ClipError& e) {
-    return e.what();
-  }
-  return "loaded";
-}
-
-// The message parseClip refuses `content` with, or "loaded".
-std::string refusalOf(const std::string& content, const std::string& name) {
-  try {
-    clips::parseClip(content, name, std::filesystem::path(name).extension().string().substr(1));
   } catch (const clips::ClipError& e) {
     return e.what();
   }
@@ -134,13 +125,14 @@ TEST(ClipFile, AssimpsReasonIsCutAndItsControlBytesShown) {
     EXPECT_NE(e.find(" more bytes)"), std::string::npos) << e.substr(0, 600);
     EXPECT_EQ(e.find('\x1b'), std::string::npos);
   };
-  expectCut(refusalOf(channels + "}\nMOTION\nFrames: " + token + "\nFrame Time: 0.1\n", "ours.bvh"),
-            "ours.bvh:8: Frames: '\\x1b[2J999");
   expectCut(
-      refusalOf(channels + token + "\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0 0 0 0\n", "theirs.bvh"),
-      "theirs.bvh:6: not a clip assimp can read: Unknown keyword \"\\x1b[2J999");
+      testing_clips::refusal(channels + "}\nMOTION\nFrames: " + token + "\nFrame Time: 0.1\n", "ours.bvh"),
+      "ours.bvh:8: Frames: '\\x1b[2J999");
+  expectCut(testing_clips::refusal(
+                channels + token + "\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0 0 0 0\n", "theirs.bvh"),
+            "theirs.bvh:6: not a clip assimp can read: Unknown keyword \"\\x1b[2J999");
   // A short reason is kept whole.
-  EXPECT_EQ(refusalOf(channels + "}\nMOTION\nFrames: x\nFrame Time: 0.1\n", "short.bvh"),
+  EXPECT_EQ(testing_clips::refusal(channels + "}\nMOTION\nFrames: x\nFrame Time: 0.1\n", "short.bvh"),
             "short.bvh:8: Frames: 'x' is not a whole number >= 0");
 }
 

@@ -26,6 +26,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "clip_refusal.h"
 #include "clips/clip_file.h"
 #include "physics/animation.h"
 #include "temp_folder.h"
@@ -277,15 +278,7 @@ TEST(ClipFormats, TheSeedsXFilesAreReadAsTurnsFromRest) {
       << clip.root[1].x << " " << clip.root[1].y << " " << clip.root[1].z;
 }
 
-// The message parseClip refuses `content` with, or "loaded".
-std::string refusal(const std::string& content, const std::string& name) {
-  try {
-    clips::parseClip(content, name, std::filesystem::path(name).extension().string().substr(1));
-  } catch (const clips::ClipError& e) {
-    return e.what();
-  }
-  return "loaded";
-}
+using testing_clips::refusal;
 
 std::string readText(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);

@@ -28,8 +28,8 @@ constexpr std::uint64_t kMostInflation = 1032;
 constexpr std::uint64_t kMostArrayBytes = std::uint64_t{1} << 30;
 
 // assimp inflates each array it reads (a curve's keys, a mesh's vertices) and keeps them until the
-// file is read: 64 arrays of 1 MB each claiming 1 GB would take 64 GB. Together they may come to four times the largest clip file, 256 MB, which is
-// more keys than any clip has.
+// file is read: 64 arrays of 1 MB each claiming 1 GB would take 64 GB. Together they may come to four times
+// the largest clip file, 256 MB, which is more keys than any clip has.
 constexpr std::uint64_t kMostArraysBytes = std::uint64_t{256} << 20;
 
 // Node records nest this deep under one another: the header (23 bytes of magic, a version), then
