@@ -27,6 +27,7 @@
 #include <assimp/scene.h>
 
 #include "fileio/files.h"
+#include "fileio/printable.h"
 #include "format_checks.h"
 
 namespace clips {
@@ -316,40 +317,13 @@ phys::Quat turnFromRest(const Animated& bone, const aiQuaternion& key) {
   return glm::normalize(parent * toQuat(key) * glm::conjugate(bone.rest) * glm::conjugate(parent));
 }
 
-// A reason quotes what the file holds (assimp the token it stopped at, our checks a number or a
-// name), and in a file of one long line or of binary bytes that can be megabytes of anything: it
-// keeps its first kMostReasonBytes, with control bytes shown as \xNN, so that a message fits a log
-// line or the sandbox's status bar and cannot drive a terminal.
-constexpr std::size_t kMostReasonBytes = 400;
-
-std::string printableReason(std::string_view why) {
-  while (!why.empty() && std::isspace(static_cast<unsigned char>(why.back()))) why.remove_suffix(1);
-  std::string out;
-  for (std::size_t i = 0; i < why.size(); ++i) {
-    const auto byte = static_cast<unsigned char>(why[i]);
-    if (out.size() >= kMostReasonBytes && (byte & 0xc0) != 0x80) {  // cut between UTF-8 characters
-      out += "... (" + std::to_string(why.size() - i) + " more bytes)";
-      break;
-    }
-    if (byte < 0x20 || byte == 0x7f) {
-      static constexpr std::string_view kHex = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[byte >> 4];
-      out += kHex[byte & 15];
-    } else {
-      out += static_cast<char>(byte);
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 ClipError::ClipError(const std::filesystem::path& file, const std::string& why)
-    : std::runtime_error(file.string() + ": " + printableReason(why)) {}
+    : std::runtime_error(file.string() + ": " + fileio::printableReason(why)) {}
 
 ClipError::ClipError(const std::filesystem::path& file, std::size_t line, const std::string& why)
-    : std::runtime_error(file.string() + ":" + std::to_string(line) + ": " + printableReason(why)) {}
+    : std::runtime_error(file.string() + ":" + std::to_string(line) + ": " + fileio::printableReason(why)) {}
 
 phys::Clip parseClip(std::string_view content, const std::string& name, const std::string& givenFormat) {
   // An extension in any case: "Bvh" is a BVH file too.
