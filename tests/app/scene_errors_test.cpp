@@ -480,4 +480,55 @@ TEST(SceneErrors, GarbageNeverCrashes) {
   EXPECT_EQ(loaded, 1);  // only the whole text
 }
 
+// A message quotes what the file holds (a number, a name, a method, an attribute's or an element's
+// name, a clip's path), and pugixml takes a control byte in an attribute: a megabyte value that
+// starts with a terminal's "clear screen" is cut, saying how much more there was, with its control
+// byte shown, and the message still names the line and the attribute.
+TEST(SceneErrors, AHugeValueWithControlBytesIsCutAndShown) {
+  const std::string huge = "\x1b[2J" + std::string(std::size_t{1} << 20, '9');
+  const struct {
+    std::string xml;
+    const char* attribute;
+    const char* starts;
+  } cases[] = {
+      {"<box pos='0 1 0'\n mass='" + huge + "'/>", "mass", "<box> attribute 'mass': '\\x1b[2J999"},
+      {"<particle name='p' pos='0 1 0'/><particle name='q' pos='1 1 0'/>\n<stick a='p' b='" + huge + "'/>",
+       "b", "<stick> attribute 'b': '\\x1b[2J999"},
+      {"\n<solver method='" + huge + "'/>", "method", "<solver> attribute 'method': '\\x1b[2J999"},
+      {"\n<character ragdoll='r' clip='" + huge + "'/>", "clip", "<character> attribute 'clip': "},
+      {"\n<box pos='0 1 0' x" + huge.substr(4) + "='1'/>", "", "<box> attribute 'x999"},
+      {"\n<box" + huge.substr(4) + "/>", "", "<box999"},
+  };
+  for (const auto& c : cases) {
+    try {
+      scenes::loadSceneText("<scene name='s'>\n" + c.xml + "\n</scene>", "huge.xml");
+      ADD_FAILURE() << c.starts << ": loaded";
+    } catch (const scenes::LoadError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(std::string("huge.xml:3: ") + c.starts, 0), 0u) << message.substr(0, 200);
+      EXPECT_LT(message.size(), 1100u) << c.starts;
+      EXPECT_NE(message.find(" more bytes)"), std::string::npos) << message.substr(0, 500);
+      EXPECT_EQ(message.find('\x1b'), std::string::npos) << c.starts;
+      if (*c.attribute != '\0') {
+        EXPECT_EQ(e.attribute(), c.attribute);
+      }
+      EXPECT_LT(e.attribute().size(), 1100u);
+      EXPECT_EQ(e.attribute().find('\x1b'), std::string::npos);
+    }
+  }
+  // A message of the loader's own that is long, <character>'s list of known attributes, is whole.
+  try {
+    scenes::loadSceneText(
+        "<scene name='s'>\n<ragdoll name='r' pos='0 1 0' model='rigid'/>\n<character "
+        "ragdoll='r' clip='" DATA_DIR "/assets/clips/run.bvh'\n bogus='1'/>\n</scene>",
+        "long.xml");
+    ADD_FAILURE() << "loaded";
+  } catch (const scenes::LoadError& e) {
+    const std::string message = e.what();
+    EXPECT_GT(message.size(), 420u);  // more than the 400 bytes a clip error keeps
+    EXPECT_EQ(message.find("more bytes"), std::string::npos) << message;
+    EXPECT_NE(message.find("held-turns)"), std::string::npos) << message;
+  }
+}
+
 }  // namespace

@@ -20,6 +20,7 @@
 #include "element_writer.h"
 #include "euler_angles.h"
 #include "fileio/files.h"
+#include "fileio/printable.h"
 #include "generators.h"
 #include "scene_paths.h"
 #include "scenes/scene.h"
@@ -1116,6 +1117,12 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
 
 namespace {
 
+// The most bytes of a message kept (fileio::printableReason). More than a clip error's 400: the
+// loader's own words can pass that, as <character>'s list of known attributes (about 560 bytes)
+// or a clip that does not fit another (both paths and every bone one lacks) do; a value of a
+// megabyte quoted is cut all the same.
+constexpr std::size_t kMostMessageBytes = 1000;
+
 // "file:line: message", or "file: message" for line 0 (the file as a whole). Appended piece by
 // piece: "a" + std::string trips GCC 12's -Wrestrict false positive (GCC bug 105329).
 std::string located(const std::string& file, int line, const std::string& message) {
@@ -1126,11 +1133,13 @@ std::string located(const std::string& file, int line, const std::string& messag
 
 }  // namespace
 
-LoadError::LoadError(std::string file, int line, std::string attribute, const std::string& message)
-    : std::runtime_error(located(file, line, message)),
+// The message and the attribute's name quote the file (a value, a name, a clip's path and its
+// error) and are made printable; the file's own name is the caller's, and kept as given.
+LoadError::LoadError(std::string file, int line, const std::string& attribute, const std::string& message)
+    : std::runtime_error(located(file, line, fileio::printableReason(message, kMostMessageBytes))),
       file_(std::move(file)),
       line_(line),
-      attribute_(std::move(attribute)) {}
+      attribute_(fileio::printableReason(attribute, kMostMessageBytes)) {}
 
 const std::string* Expectation::find(std::string_view name) const {
   for (const auto& [key, value] : attributes) {

@@ -82,10 +82,12 @@ struct Scene {
 
 /// A scene file that cannot be loaded. what() reads "file:line: <element> attribute 'a': why"
 /// (the attribute part only when one attribute is to blame), or "file: why" when the file could
-/// not be read at all (why then ends with the OS's reason).
+/// not be read at all (why then ends with the OS's reason). What follows "file:line: " and the
+/// attribute quote the file, so they are made printable (fileio::printableReason: cut after 1000
+/// bytes, control bytes as \xNN); the file's name is kept as given.
 class LoadError : public std::runtime_error {
  public:
-  LoadError(std::string file, int line, std::string attribute, const std::string& message);
+  LoadError(std::string file, int line, const std::string& attribute, const std::string& message);
   const std::string& file() const { return file_; }
   int line() const { return line_; }  ///< 1-based; 0 when the file could not be read at all
   const std::string& attribute() const { return attribute_; }
