@@ -531,4 +531,18 @@ TEST(SceneErrors, AHugeValueWithControlBytesIsCutAndShown) {
   }
 }
 
+// then, get-up and from-clip name a clip as clip does, and an empty one is refused as clip's is
+// (it read "attribute 'then': : no file name given").
+TEST(SceneErrors, AnEmptyClipNameIsRefusedLikeClips) {
+  const std::string ragdoll = "<scene name='s'>\n<ragdoll name='r' pos='0 1 0' model='rigid'/>\n";
+  const std::string character = "<character ragdoll='r' clip='" DATA_DIR "/assets/clips/run.bvh'\n ";
+  for (const std::string attribute : {"clip", "then", "get-up", "from-clip"}) {
+    const std::string own = attribute == "clip" ? "<character ragdoll='r'\n " : character;
+    const std::string more = attribute == "from-clip" ? " blend='0.5'" : "";
+    testing_scenes::expectRefused({attribute.c_str(),
+                                   (ragdoll + own + attribute + "=''" + more + "/>\n</scene>").c_str(), 4,
+                                   attribute.c_str(), "must not be empty"});
+  }
+}
+
 }  // namespace

@@ -826,6 +826,9 @@ class Builder {
   // however many characters play it, or taken as read with the scene's text; a file that cannot be
   // read fails `attribute`.
   std::shared_ptr<const phys::Clip> clip(ElementReader& e, const std::string& given, const char* attribute) {
+    // As requiredText refuses an empty clip: the reader's own word for it (": no file name
+    // given") names no file and reads as a stray colon.
+    if (given.empty()) e.fail(attribute, "must not be empty");
     const std::string file = clipKey(folder_, given);
     const ReadClip* read = nullptr;
     if (readBefore_ != nullptr) {
