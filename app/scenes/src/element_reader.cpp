@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -108,7 +109,22 @@ bool ElementReader::has(std::string_view name) const {
 std::optional<std::string> ElementReader::text(std::string_view name) {
   const pugi::xml_attribute a = find(name);
   if (!a) return std::nullopt;
-  return std::string(a.value());
+  std::string value = a.value();
+  refuseControlCharacters(name, value);
+  return value;
+}
+
+// A name holding an escape would reach the sandbox's labels and the lab's terminal and files as
+// one; XML forbids them, so the file is wrong, whatever pugixml takes.
+void ElementReader::refuseControlCharacters(std::string_view attribute, std::string_view value) const {
+  for (const char c : value) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 || c == '\t' || c == '\n' || c == '\r') continue;
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02X", byte);
+    fail(attribute, std::string("holds the control character ") + hex +
+                        ", which XML does not allow (only tab, line feed and carriage return)");
+  }
 }
 
 std::string ElementReader::requiredText(std::string_view name) {

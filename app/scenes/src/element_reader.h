@@ -57,6 +57,11 @@ class ElementReader {
   /// >= 0, over what `material` already holds.
   void material(phys::Material& material);
 
+  /// Refuses a value that holds a control character XML does not allow (all below U+0020 but tab,
+  /// line feed and carriage return), as a byte or as a reference such as &#27;, which pugixml
+  /// takes. text() checks every value it reads.
+  void refuseControlCharacters(std::string_view attribute, std::string_view value) const;
+
   /// Call once every attribute has been read: any attribute not asked for is an error.
   void rejectUnknownAttributes() const;
   int line() const;

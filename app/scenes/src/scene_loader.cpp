@@ -1069,6 +1069,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
       x.line = e.line();
       for (pugi::xml_attribute a = child.first_attribute(); a; a = a.next_attribute()) {
         if (std::string_view(a.name()) == "kind" && x.find("kind") != nullptr) e.fail("kind", "given twice");
+        e.refuseControlCharacters(a.name(), a.value());
         x.attributes.emplace_back(a.name(), a.value());
       }
       expectations.push_back(std::move(x));
