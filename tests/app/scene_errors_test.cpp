@@ -606,4 +606,15 @@ TEST(SceneErrors, AnEmptyClipNameIsRefusedLikeClips) {
   }
 }
 
+// A character's clip frame is a position like any the file places: from 1e300 m its root's drive
+// flung the ragdoll out on the first step, for the guard to freeze, and the world could not be saved.
+TEST(SceneErrors, ACharactersOriginIsHeldToTheBound) {
+  const std::string scene =
+      "<scene name='s'>\n<world bound='100'/><ragdoll name='r' pos='0 1 0' model='rigid'/>\n"
+      "<character ragdoll='r' clip='" DATA_DIR "/assets/clips/run.bvh' root-strength='1'\n ";
+  testing_scenes::expectRefused({"far origin", (scene + "origin='0 0 101'/>\n</scene>").c_str(), 4, "origin",
+                                 "must be within the world's bound of 100 m along each axis"});
+  EXPECT_NO_THROW(scenes::loadSceneText(scene + "origin='0 0 99'/>\n</scene>", "near.xml"));
+}
+
 }  // namespace

@@ -521,6 +521,18 @@ TEST(SceneWriter, WhatTheLoaderWouldRefuseIsNotWritten) {
   EXPECT_NE(refusal(near, flown).find("the camera is beyond the world's bound of 20 m"), std::string::npos);
   flown.eye.z = 19.0f;
   EXPECT_NO_THROW(scenes::loadSceneText(scenes::writeSceneXml(near, flown), "near.xml"));
+  // A character's clip frame, which each change of clip moves on to where its parts are: the
+  // loader holds it to the bound too.
+  scenes::Scene acting = load(
+      "<ragdoll name=\"r\" pos=\"0 1 0\" model=\"rigid\"/><character ragdoll=\"r\" "
+      "clip=\"" DATA_DIR "/assets/clips/run.bvh\"/>",
+      "<world bound=\"20\"/>");
+  phys::CharacterMotion motion = acting.world.characterMotion(0);
+  motion.origin = phys::Vec3(0.0, 0.0, 21.0);
+  acting.world.setCharacterMotion(0, motion);
+  EXPECT_NE(refusal(acting, acting.camera).find("the clip frame of character 'r' lies at (0, 0, 21), beyond"),
+            std::string::npos)
+      << refusal(acting, acting.camera);
   // The physics takes any bound; a file holds at most 1e9 m (found by the soak test).
   phys::WorldSettings wider = near.world.worldSettings();
   wider.bound = 4.5e229;

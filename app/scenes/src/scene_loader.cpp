@@ -685,6 +685,13 @@ class Builder {
     c.fromBalance = detail::readFraction(e, "from-balance");
     c.heading = e.number("heading", "degrees");
     c.origin = e.vector("origin", "m");
+    // Held to the bound as every position the file places: the root's drive pulls it along the
+    // clip from here, and from beyond the bound it flung the ragdoll out for the guard to freeze.
+    if (c.origin && !detail::insideBound(*c.origin, scene_.world.worldSettings().bound)) {
+      e.fail("origin", "must be within the world's bound of " +
+                           detail::formatNumber(scene_.world.worldSettings().bound) +
+                           " m along each axis (<world bound>)");
+    }
     fade(e, playing, c);
     const bool any = c.state || c.stateTime || c.stillTime || c.strength || c.rootStrength || c.balance ||
                      c.fromStrength || c.fromBalance || c.heading || c.origin || c.blend || c.blendTime ||

@@ -538,7 +538,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
   // strengths it has ramped, written only where they differ from a character just added; and its
   // clip frame, always, so that it goes on along the path it was on rather than one found again
   // from where its root part has got to.
-  const auto characterState = [](ElementWriter& e, const phys::Character& c) {
+  const auto characterState = [bound](ElementWriter& e, const phys::Character& c) {
     if (c.state != phys::CharacterState::Active) e.text("state", std::string(phys::toString(c.state)));
     if (c.stateTime != 0.0) e.number("state-time", c.stateTime);
     if (c.stillTime != 0.0) e.number("still-time", c.stillTime);
@@ -548,6 +548,8 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     if (c.fromStrength != 0.0) e.number("from-strength", c.fromStrength);
     if (c.fromBalance != 0.0) e.number("from-balance", c.fromBalance);
     e.number("heading", glm::degrees(2.0 * std::atan2(c.frame.y, c.frame.w)));
+    // Each change of clip moves the frame on to where the new one starts, wherever the parts are.
+    requireInsideBound(c.origin, bound, "the clip frame of character '" + c.ragdoll + "'");
     e.vector("origin", c.origin);
   };
   const auto clipPath = [&folder](const phys::Clip& clip) {
