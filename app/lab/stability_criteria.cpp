@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include "bodies.h"
 #include "expect_reader.h"
@@ -22,11 +24,25 @@ std::string metricList() {
   return out;
 }
 
-// A criterion's number: as numbers.h reads it, except that the criteria have always taken a
-// leading '+' as well, and a scene file that writes one must keep loading.
+// A criterion's number is read as numbers.h reads it, except that the criteria have always taken
+// a leading '+' as well, and a scene file that writes one must keep loading. One '+' before the
+// digits, so "+-1" and "++1" stay errors.
+std::string_view withoutPlus(std::string_view text) {
+  if (text.size() > 1 && text.front() == '+' && text[1] != '+' && text[1] != '-') text.remove_prefix(1);
+  return text;
+}
+
 std::optional<double> parseSignedNumber(std::string_view text) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  return lab::parseNumber(text);
+  return lab::parseNumber(withoutPlus(text));
+}
+
+std::optional<int> parseSignedCount(std::string_view text) {
+  return lab::parseWholeNumber(withoutPlus(text), 1, std::numeric_limits<int>::max());
+}
+
+// A flips bound: a whole count, printed whole ("2147483647", not %g's "2.14748e+09").
+std::string countText(double flips) {
+  return std::to_string(std::llround(flips));
 }
 
 std::string withUnit(const std::string& unit) {
@@ -100,7 +116,7 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
   c.start = bodyPositions(scene.world)[c.bodies.front()][c.axis];
   if (c.atLeast ? c.start <= c.limit : c.start >= c.limit) {
     r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", already " +
-                          (c.atLeast ? "below" : "above") + " the plane " + formatNumber(c.limit));
+                          (c.atLeast ? "below" : "above") + " the plane " + formatLimit(c.limit));
   }
 }
 
@@ -119,7 +135,7 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   auto count = [&](const std::string& name) -> std::optional<int> {
     const std::string* raw = r.find(name);
     if (raw == nullptr) return std::nullopt;
-    const std::optional<int> n = lab::parseWholeNumber(*raw, 1, std::numeric_limits<int>::max());
+    const std::optional<int> n = parseSignedCount(*raw);
     if (!n) r.fail(name, "'" + *raw + "' must be a whole number >= 1");
     return n;
   };
@@ -171,10 +187,10 @@ std::string Criterion::describe() const {
     else if (std::isinf(upper))
       out.append(" >= ");
     else if (limit == 0.0)
-      out.append(" <= ").append(formatNumber(upper));
+      out.append(" <= ").append(countText(upper));
     else
-      out.append(" from ").append(formatNumber(limit)).append(" to ").append(formatNumber(upper));
-    if (limit == upper || std::isinf(upper)) out.append(formatNumber(limit));
+      out.append(" from ").append(countText(limit)).append(" to ").append(countText(upper));
+    if (limit == upper || std::isinf(upper)) out.append(countText(limit));
     out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
     return out;
   } else {
@@ -185,7 +201,7 @@ std::string Criterion::describe() const {
       out.append(" of ").append(body);
     out.append(" <= ");
   }
-  out.append(formatNumber(limit));
+  out.append(formatLimit(limit));
   if (const std::string unit = metricInfo(metric).unit; !unit.empty()) out.append(" ").append(unit);
   out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
   return out;

@@ -227,8 +227,8 @@ std::string csvReport(const SuiteResult& r) {
       const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
       // A blow-up's figure is infinity: written blank, as every figure that is not finite.
       csv << (o.passed ? 1 : 0) << "," << (std::isfinite(v.value) ? 0 : 1) << "," << csvNumber(v.value, 6)
-          << "," << csvNumber(limit, 6) << "," << csvNumber(v.ratio, 6) << "," << csvField(c.describe())
-          << "," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
+          << "," << formatLimit(limit) << "," << csvNumber(v.ratio, 6) << "," << csvField(c.describe()) << ","
+          << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
     }
   }
   return csv.str();

@@ -1,8 +1,10 @@
 #include "text.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <system_error>
 
 namespace lab {
 
@@ -16,6 +18,13 @@ std::string formatNumber(double value, int digits) {
 
 std::string formatFigure(double value, const std::string& unitAfter, int digits) {
   return std::isfinite(value) ? formatNumber(value, digits) + unitAfter : formatNumber(value, digits);
+}
+
+std::string formatLimit(double value) {
+  if (!std::isfinite(value)) return formatNumber(value);
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return ec == std::errc() ? std::string(buffer, end) : formatNumber(value, 17);
 }
 
 std::string count(std::size_t n, const char* singular, const char* plural) {

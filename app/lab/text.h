@@ -27,6 +27,12 @@ std::string formatNumber(double value, int digits = 6);
 /// finite ("blew up", not "blew up m").
 std::string formatFigure(double value, const std::string& unitAfter, int digits = 6);
 
+/// A limit someone wrote (a --target bound, a criterion's max): the shortest text that reads back
+/// as the same double ("0.001", "1e-320", "2147483647"), so it prints as written wherever it
+/// appears, where %g would round a subnormal's few bits to other digits ("9.99989e-321").
+/// Not finite: as formatNumber.
+std::string formatLimit(double value);
+
 /// "1 substep", "3 substeps": a count and its noun.
 std::string count(std::size_t n, const char* singular, const char* plural);
 

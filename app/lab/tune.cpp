@@ -276,7 +276,7 @@ std::string verdict(const Search& search, const Figures& f) {
     const double v = figure(f, t);
     if (v <= t.bound) continue;
     misses += (misses.empty() ? "" : ", ") + t.name + " " + formatFigure(v, t.unit, 3) + " > " +
-              formatNumber(t.bound, 3) + t.unit;
+              formatLimit(t.bound) + t.unit;
   }
   return misses.empty() ? "meets the targets" : "misses: " + misses;
 }
@@ -284,7 +284,7 @@ std::string verdict(const Search& search, const Figures& f) {
 std::string targetsText(const std::vector<Target>& targets) {
   std::string s;
   for (const Target& t : targets) {
-    s += (s.empty() ? "" : ", ") + t.name + " <= " + formatNumber(t.bound, 6) + t.unit;
+    s += (s.empty() ? "" : ", ") + t.name + " <= " + formatLimit(t.bound) + t.unit;
   }
   return s;
 }

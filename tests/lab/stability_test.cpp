@@ -27,6 +27,7 @@
 #include "stability_options.h"
 #include "stability_report.h"
 #include "stability_run.h"
+#include "text.h"
 
 namespace {
 
@@ -182,6 +183,58 @@ TEST(StabilityCriteria, MalformedExpectNamesTheLineAndTheAttribute) {
       EXPECT_NE(message.find(c.why), std::string::npos) << message;
     }
   }
+}
+
+// The criteria of one scene file holding `expects` (each on its own line), as the suite reads them.
+std::vector<Criterion> criteriaOf(const TempDir& dir, const std::string& expects) {
+  return lab::stability::loadSuiteScene(dir.write("x.xml", sceneWithExpect(expects))).criteria;
+}
+
+// Flip counts are whole numbers: printed whole, not in %g's "2.14748e+09".
+TEST(StabilityCriteria, FlipCountsPrintAsWholeNumbers) {
+  TempDir dir;
+  const std::vector<Criterion> c =
+      criteriaOf(dir, R"(<expect kind="pass" metric="flips" body="crate" min="2147483647" over="0 1"/>
+  <expect kind="pass" metric="flips" body="crate" min="1234567" max="2147483647" over="0 1"/>
+  <expect kind="pass" metric="flips" body="crate" max="1234567" over="0 1"/>)");
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].describe(), "flips of crate >= 2147483647 over 0-1 s");
+  EXPECT_EQ(c[1].describe(), "flips of crate from 1234567 to 2147483647 over 0-1 s");
+  EXPECT_EQ(c[2].describe(), "flips of crate <= 1234567 over 0-1 s");
+}
+
+// Every criterion number takes a leading '+' (a scene file that writes one keeps loading): the
+// flips counts as well as max, the plane and the window. One '+', before the digits.
+TEST(StabilityCriteria, FlipCountsTakeALeadingPlusAsTheOtherNumbersDo) {
+  TempDir dir;
+  const std::vector<Criterion> c =
+      criteriaOf(dir, R"(<expect kind="pass" metric="flips" body="crate" min="+2" max="+3" over="+0 +1"/>
+  <expect kind="pass" metric="drift" body="crate" max="+0.5" over="0 1"/>)");
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0].limit, 2.0);
+  EXPECT_EQ(c[0].upper, 3.0);
+  EXPECT_EQ(c[1].limit, 0.5);
+  for (const char* bad : {"++2", "+-2", "+"}) {
+    SCOPED_TRACE(bad);
+    EXPECT_THROW(criteriaOf(dir, std::string(R"(<expect kind="pass" metric="flips" body="crate" min=")") +
+                                     bad + R"(" over="0 1"/>)"),
+                 scenes::LoadError);
+  }
+}
+
+// A limit prints as written, with the digits it was read with: a subnormal max="1e-320" is not
+// rounded to %g's "9.99989e-321" (tune's targets and misses print it the same way).
+TEST(StabilityCriteria, ALimitPrintsAsWritten) {
+  TempDir dir;
+  const std::vector<Criterion> c =
+      criteriaOf(dir, R"(<expect kind="pass" metric="penetration" max="1e-320" over="0 1"/>
+  <expect kind="pass" metric="speed" max="0.05" over="0 1"/>)");
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0].describe(), "penetration <= 1e-320 m over 0-1 s");
+  EXPECT_EQ(c[1].describe(), "speed <= 0.05 m/s over 0-1 s");
+  EXPECT_EQ(lab::formatLimit(1e-320), "1e-320");
+  EXPECT_EQ(lab::formatLimit(0.001), "0.001");
+  EXPECT_EQ(lab::formatLimit(2147483647.0), "2147483647");
 }
 
 TEST(StabilityCriteria, AStabilitySceneNeedsAPassCriterion) {

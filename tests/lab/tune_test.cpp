@@ -98,6 +98,16 @@ TEST(Tune, SaysNoSettingMeetsAnImpossibleTarget) {
   EXPECT_NE(o.err.find("lab: tune: no setting meets the targets"), std::string::npos) << o.err;
 }
 
+// A subnormal bound has few bits: %g at 6 digits read them as 9.99989e-321 under targets while
+// the misses, at 3, said 1e-320. A limit prints one way, as written, everywhere.
+TEST(Tune, ALimitPrintsTheSameUnderTargetsAndInTheMisses) {
+  const Outcome o = tune({"pendulum", "--target", "drift=1e-320", "--steps", "1", "--repeat", "1"});
+  EXPECT_EQ(o.code, lab::kExitFailure) << o.err;
+  EXPECT_NE(o.out.find("targets     drift <= 1e-320 J\n"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find(" > 1e-320 J"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("e-321"), std::string::npos) << o.out;
+}
+
 TEST(Tune, UsageErrorsNameTheArgument) {
   struct Case {
     std::vector<std::string> args;
