@@ -321,8 +321,9 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   const Setting sceneOwn{models.asFile, own.method, own.iterations, own.substeps, own.dt};
 
   // An analytic answer later than the horizon lengthens every run to reach it.
-  out << "tune        " << scene.name << " (" << file.string() << "), " << search.stepsOf(sceneOwn)
-      << " steps at dt " << formatNumber(own.dt) << " s\n";
+  out << "tune        " << scene.name << " (" << file.string() << "), "
+      << count(static_cast<std::size_t>(search.stepsOf(sceneOwn)), "step", "steps") << " at dt "
+      << formatNumber(own.dt) << " s\n";
   out << "targets     " << targetsText(o.targets) << "\n";
   if (search.needsError()) out << "accuracy    " << search.target(sceneOwn).description << "\n";
   out.flush();

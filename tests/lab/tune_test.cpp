@@ -108,6 +108,13 @@ TEST(Tune, ALimitPrintsTheSameUnderTargetsAndInTheMisses) {
   EXPECT_EQ(o.out.find("e-321"), std::string::npos) << o.out;
 }
 
+TEST(Tune, OneStepIsSaidInTheSingular) {
+  const Outcome o = tune({"pendulum", "--target", "drift=1", "--steps", "1", "--repeat", "1"});
+  EXPECT_NE(o.out.find("), 1 step at dt 0.0166667 s\n"), std::string::npos) << o.out;
+  const Outcome two = tune({"pendulum", "--target", "drift=1", "--steps", "2", "--repeat", "1"});
+  EXPECT_NE(two.out.find("), 2 steps at dt 0.0166667 s\n"), std::string::npos) << two.out;
+}
+
 TEST(Tune, UsageErrorsNameTheArgument) {
   struct Case {
     std::vector<std::string> args;
