@@ -187,7 +187,13 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
       throw UsageError("--time: at the scene's dt " + formatNumber(dt) + " s the " + formatNumber(o.time) +
                        " s asked take more than " + std::to_string(kMaxSteps) + " steps");
     }
-    checkpoints = spreadCheckpoints(std::max(1, static_cast<int>(std::lround(o.time / dt))));
+    // Less than half a step rounds to none: refused, not run as one step the user did not ask for.
+    const int steps = static_cast<int>(std::lround(o.time / dt));
+    if (steps < 1) {
+      throw UsageError("--time: '" + formatNumber(o.time) +
+                       "' s is shorter than one step of the scene's dt " + formatNumber(dt) + " s");
+    }
+    checkpoints = spreadCheckpoints(steps);
     std::vector<double> times;
     times.reserve(checkpoints.size());
     for (const int step : checkpoints) times.push_back(step * dt);

@@ -311,6 +311,17 @@ TEST(Converge, BadOptionsAreUsageErrors) {
       "converge", "--time: at the scene's dt 1e-06 s the 3600 s asked take more than 10000000 steps");
 }
 
+// A --time under half the scene's dt rounds to no step; it ran one, and the header said
+// "t = 0.01667 to 0.01667 s". Refused like any option out of its range, naming the option and
+// the step.
+TEST(Converge, ATimeShorterThanOneStepIsAUsageError) {
+  lab_testing::expectUsageError(converge({"tumbling-box", "--time", "0.001", "--substeps", "1"}), "converge",
+                                "--time: '0.001' s is shorter than one step of the scene's dt 0.0166667 s");
+  // One step's time is one step, measured.
+  const auto one = converge({"tumbling-box", "--time", "0.0166666666666667", "--substeps", "1"});
+  EXPECT_EQ(one.code, lab::kExitOk) << one.err;
+}
+
 TEST(Converge, AMissingSceneNamesTheFile) {
   const auto o = converge({"no-such-scene"});
   EXPECT_EQ(o.code, lab::kExitFailure);
