@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 #include <string_view>
+#include <system_error>
 #include <type_traits>
 #include <utility>
 
@@ -464,6 +465,15 @@ void prepareOutputFolder(const std::filesystem::path& folder, const char* option
   } catch (const fileio::FileError& e) {
     throw CommandFailure(std::string(option) + ": " + e.what());
   }
+}
+
+void requireFolder(const std::filesystem::path& folder, const char* option) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(folder, ec);
+  if (!ec && std::filesystem::is_directory(status)) return;
+  // A file where the folder should be is what the system calls ENOTDIR when a path goes through it.
+  const std::string why = ec ? ec.message() : std::make_error_code(std::errc::not_a_directory).message();
+  throw CommandFailure(std::string(option) + ": " + folder.string() + ": " + why);
 }
 
 std::filesystem::path dataDir(const std::filesystem::path& given) {

@@ -114,6 +114,11 @@ class CommandFailure : public std::runtime_error {
 /// run for minutes call it first, so a folder they cannot write to is said at once.
 void prepareOutputFolder(const std::filesystem::path& folder, const char* option = "--out");
 
+/// Throws CommandFailure "OPTION: FOLDER: <the system's reason>" unless `folder` is an existing
+/// folder ("No such file or directory", "Not a directory"). A command that runs others and
+/// writes what they print calls it first, so a wrong folder is said before anything runs.
+void requireFolder(const std::filesystem::path& folder, const char* option);
+
 /// One command's command line: which options of the table it takes, where their values go, its
 /// help. The targets passed in must outlive parse().
 class CommandLine {

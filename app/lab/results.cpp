@@ -332,6 +332,8 @@ void describeReport(CommandLine& line, ReportOptions& o) {
 
 int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   o.data = dataDir(o.data);
+  // Every part would fail on it, and the default --out lies inside it: said before either.
+  requireFolder(o.data, "--data");
   if (o.out.empty()) o.out = o.data / "docs";
   const fs::path results = o.out / "results";
   prepareOutputFolder(results);  // before the runs, which take minutes

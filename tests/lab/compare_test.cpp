@@ -686,6 +686,27 @@ TEST(Report, QuickReportWritesEveryPart) {
   std::filesystem::remove_all(out);
 }
 
+// Every part would fail on a --data that is no folder, after writing a results.md of failures
+// (and, as root, creating the folder for the default --out inside it): it is refused first,
+// with the system's reason, and nothing is written.
+TEST(Report, ADataThatIsNotAFolderIsRefusedBeforeAnythingRuns) {
+  TempDir dir;
+  const std::filesystem::path missing = dir.file("missing");
+  const Output gone = lab::runCaptured("report", {"--quick", "--data", missing.string()});
+  EXPECT_EQ(gone.code, lab::kExitFailure);
+  EXPECT_EQ(gone.err, "lab: --data: " + missing.string() + ": No such file or directory\n");
+  EXPECT_TRUE(gone.out.empty()) << gone.out;
+  EXPECT_FALSE(std::filesystem::exists(missing));
+
+  const std::filesystem::path file = dir.write("file", "not a folder\n");
+  const std::filesystem::path out = dir.file("out");
+  const Output notFolder =
+      lab::runCaptured("report", {"--quick", "--data", file.string(), "--out", out.string()});
+  EXPECT_EQ(notFolder.code, lab::kExitFailure);
+  EXPECT_EQ(notFolder.err, "lab: --data: " + file.string() + ": Not a directory\n");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(Report, BadArgumentsExitWithUsage) {
   const Output r = lab::runCaptured("report", {"--frobnicate"});
   EXPECT_EQ(r.code, 2);
