@@ -231,6 +231,12 @@ AccuracyTarget accuracyTarget(const scenes::Scene& scene, double dt, int steps) 
   return referenceTarget(scene, dt, std::max(1, steps));
 }
 
+int stepsToCover(const scenes::Scene& scene, double dt, int steps) {
+  int last = 0;
+  for (const PositionExpect& x : readExpects(scene, dt)) last = std::max(last, x.step);
+  return std::max(steps, last);
+}
+
 double accuracyError(const AccuracyTarget& target, const std::vector<std::vector<phys::Vec3>>& positions) {
   if (positions.size() != target.expected.size()) return kInf;
   double worst = 0.0;

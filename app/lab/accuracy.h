@@ -46,6 +46,11 @@ std::vector<int> spreadCheckpoints(int steps);
 /// answer later than that.
 int stepsFor(const AccuracyTarget& target, int steps);
 
+/// The steps a run of `scene` at `dt` takes, as stepsFor(accuracyTarget(scene, dt, steps), steps)
+/// says, without running a reference: `steps`, or more to reach a later analytic answer. Throws
+/// as accuracyTarget does for a malformed answer.
+int stepsToCover(const scenes::Scene& scene, double dt, int steps);
+
 /// The largest of the target's uncertainties (0 when it has none). unit: m
 double maxUncertainty(const AccuracyTarget& target);
 

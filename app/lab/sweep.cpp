@@ -213,11 +213,19 @@ std::string rowName(const Row& r, const Plan& plan) {
   return (r.peer ? r.method : r.method + " " + pointLabel(r)) + modelAndDt(r, plan);
 }
 
-// The simulated time the runs covered: the horizon, or later for an analytic answer after it.
-double simulatedSeconds(const std::vector<Row>& rows) {
-  double longest = 0.0;
-  for (const Row& r : rows) longest = std::max(longest, r.steps * r.dt);
-  return longest;
+// The simulated time the runs covered, "1" or, when dts cover it differently (a whole step of a
+// dt longer than the horizon, rounding), "0.03333 to 1": the horizon, or later for an analytic
+// answer after it.
+std::string simulatedSeconds(const std::vector<Row>& rows) {
+  double shortest = kInf, longest = 0.0;
+  for (const Row& r : rows) {
+    shortest = std::min(shortest, r.steps * r.dt);
+    longest = std::max(longest, r.steps * r.dt);
+  }
+  if (rows.empty()) shortest = 0.0;
+  const std::string most = formatNumber(longest, 4);
+  const std::string least = formatNumber(shortest, 4);
+  return least == most ? most : least + " to " + most;
 }
 
 // The chart's up axis: the distance from the target, or the figure measured.
@@ -235,8 +243,7 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
   const bool perStep = oneDt(rows);
   Chart c = logChart(
       plan.sceneName + ": " + (measure < kRunMetricCount ? kRunMetrics[measure].name : "error") +
-          " against cost (" + formatNumber(simulatedSeconds(rows), 4) +
-          " s simulated; labels: iterations x substeps)",
+          " against cost (" + simulatedSeconds(rows) + " s simulated; labels: iterations x substeps)",
       perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second",
       errorLabel(firstTarget, measure), true, "error-vs-cost");
   // One series per method or engine (and per model and dt when there are several).
@@ -340,7 +347,7 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
   out << "sweep       " << plan.sceneName << " (" << plan.scene.file.string() << ")\n";
   out << "runs        " << count(plan.settings.size(), "setting", "settings") << " x "
       << count(static_cast<std::size_t>(plan.repeats), "timed run", "timed runs") << " and 1 measured, each "
-      << formatNumber(simulatedSeconds(rows), 4) << " s simulated\n";
+      << simulatedSeconds(rows) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
   out << tableColumns("method", "model", "iter", "sub", "dt (s)", "steps", "ms/step", "error (m)",
@@ -370,8 +377,27 @@ Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const Accur
   return {std::move(files), problem};
 }
 
+// A line for each dt whose runs cover more than the horizon asked: one whole step of a dt longer
+// than it, or a later analytic answer. Said before running, since a small dt then runs long.
+std::vector<std::string> longerRuns(const Plan& plan) {
+  const scenes::Scene scene = scenes::loadSceneSource(plan.scene, plan.models.front().options);
+  std::vector<std::string> lines;
+  for (const double dt : plan.dts) {
+    const long long asked = std::llround(plan.horizon / dt);
+    const int steps = stepsToCover(scene, dt, plan.stepsAt(dt));
+    if (steps <= asked) continue;
+    lines.push_back("dt " + formatNumber(dt) + " runs " +
+                    count(static_cast<std::size_t>(steps), "step", "steps") + " to cover " +
+                    formatNumber(steps * dt, 4) + " s (the horizon asked: " + formatNumber(plan.horizon, 4) +
+                    " s)");
+  }
+  return lines;
+}
+
 int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path& outDir, std::ostream& out,
              std::ostream& err) {
+  for (const std::string& line : longerRuns(plan)) out << "longer      " << line << "\n";
+  out.flush();
   PlanResult result = runPlan(plan, err, "sweep");
   TargetCache& targets = result.targets;
   // A peer that could not run has no row in the files: a line says why.

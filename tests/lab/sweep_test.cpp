@@ -152,6 +152,33 @@ TEST(Sweep, TooManyStepsAtASmallDtIsAUsageError) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("out/results.csv")));
 }
 
+// Every dt runs the horizon asked (--steps at the scene's dt), but a dt longer than it runs one
+// whole step, and an analytic answer later than it stretches every run to reach it: a small dt
+// then takes many steps. Each such dt is said before anything runs.
+TEST(Sweep, ARunLongerThanTheHorizonAskedIsSaidBeforeRunning) {
+  TempDir dir;
+  const Outcome o = sweep({"pendulum", "--dt", "1,0.001", "--steps", "2", "--repeat", "1", "--no-peers",
+                           "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, lab::kExitOk) << o.err;
+  EXPECT_TRUE(
+      o.out.starts_with("longer      dt 1 runs 1 step to cover 1 s (the horizon asked: 0.03333 s)\n"
+                        "sweep       pendulum"))
+      << o.out;
+  EXPECT_EQ(o.out.find("dt 0.001 runs"), std::string::npos) << o.out;  // 33 steps: as asked
+  EXPECT_NE(o.out.find("each 0.033 to 1 s simulated"), std::string::npos) << o.out;
+
+  const Outcome answers = sweep({"projectile", "--dt", "0.001", "--steps", "2", "--repeat", "1", "--no-peers",
+                                 "--out", dir.file("projectile").string()});
+  ASSERT_EQ(answers.code, lab::kExitOk) << answers.err;
+  EXPECT_TRUE(answers.out.starts_with(
+      "longer      dt 0.001 runs 2000 steps to cover 2 s (the horizon asked: 0.03333 s)\n"))
+      << answers.out;
+
+  const Outcome asked =
+      sweep({"pendulum", "--steps", "2", "--repeat", "1", "--no-peers", "--out", dir.file("asked").string()});
+  EXPECT_EQ(asked.out.find("longer"), std::string::npos) << asked.out;
+}
+
 // The four methods are ways of relaxing sticks: a model that leaves the scene none steps alike
 // under each, so it runs once, as xpbd (how rigid bodies are solved), not as equal rows under
 // names that did nothing; a model that keeps sticks runs under each method asked.
