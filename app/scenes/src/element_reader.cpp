@@ -1,12 +1,16 @@
 #include "element_reader.h"
 
 #include <algorithm>
+#include <cassert>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include <glm/geometric.hpp>
+
+#include "generators.h"
 
 namespace scenes::detail {
 namespace {
@@ -29,15 +33,21 @@ std::string withUnit(std::string_view unit) {
 
 }  // namespace
 
+static_assert(kMaxSceneBytes <= std::numeric_limits<LineIndex::Offset>::max(),
+              "LineIndex's offsets must reach the end of the largest scene file");
+
 LineIndex::LineIndex(const char* begin, std::size_t size) : begin_(begin) {
+  assert(size <= kMaxSceneBytes);
+  const auto newlines = static_cast<std::size_t>(std::count(begin, begin + size, '\n'));
+  newlines_.reserve(newlines);  // exactly: a file of newlines would otherwise hold up to twice that
   for (std::size_t i = 0; i < size; ++i) {
-    if (begin[i] == '\n') newlines_.push_back(i);
+    if (begin[i] == '\n') newlines_.push_back(static_cast<Offset>(i));
   }
 }
 
 int LineIndex::lineOf(const char* p) const {
   if (p == nullptr || p < begin_) return 0;
-  const auto offset = static_cast<std::size_t>(p - begin_);
+  const auto offset = static_cast<Offset>(p - begin_);
   return static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin()) +
          1;
 }

@@ -2,6 +2,7 @@
 // Reads one XML element's attributes strictly: every attribute must be asked for (an unknown
 // one is an error), numbers must parse whole and be finite, and every error names the file,
 // the line of the offending attribute and its name.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,12 +19,19 @@ namespace scenes::detail {
 /// Maps a pointer into the parsed buffer back to a 1-based line number.
 class LineIndex {
  public:
+  /// An offset into the buffer: 32 bits, as a scene is at most kMaxSceneBytes (generators.h), so
+  /// that a file of newlines costs 4 bytes of index a byte, not 8.
+  using Offset = std::uint32_t;
+
+  /// `size` must not pass kMaxSceneBytes (the loader refuses a longer text first).
   LineIndex(const char* begin, std::size_t size);
   int lineOf(const char* p) const;
+  /// The memory the index holds (bytes).
+  std::size_t bytes() const { return newlines_.capacity() * sizeof(Offset); }
 
  private:
   const char* begin_;
-  std::vector<std::size_t> newlines_;  // offsets of '\n'
+  std::vector<Offset> newlines_;  // offsets of '\n'
 };
 
 class ElementReader {

@@ -965,6 +965,13 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
             const ReadClips* readBefore, const LoadOptions& options) {
   pugi::xml_document doc;
   const std::size_t size = buffer.size();
+  // A file is read only up to this (readSceneSource); text handed in whole is held to it too, so
+  // that every offset fits LineIndex's.
+  if (size > detail::kMaxSceneBytes) {
+    throw LoadError(
+        file, 0, "",
+        "is larger than " + std::to_string(detail::kMaxSceneBytes) + " bytes, the most that is read");
+  }
   const LineIndex lines(buffer.data(), size);
   if (const std::string_view encoding = otherEncoding(std::string_view(buffer.data(), size));
       !encoding.empty()) {
