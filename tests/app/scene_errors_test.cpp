@@ -618,3 +618,23 @@ TEST(SceneErrors, ACharactersOriginIsHeldToTheBound) {
 }
 
 }  // namespace
+
+// 1e-400 is finite but nearer zero than any double; refused as too small, not as "not finite".
+TEST(SceneErrors, ANumberThatUnderflowsIsSaidToBeTooSmall) {
+  for (const char* value : {"1e-400", "-1e-400", "+0.000001e-320", "1000e-330", "1e-99999999999999999999"}) {
+    const std::string says = "'" + std::string(value) + "' is too small to represent";
+    testing_scenes::expectRefused(
+        {value,
+         ("<scene name='s'>\n<box pos='0 1 0'\n mass='" + std::string(value) + "'/>\n</scene>").c_str(), 3,
+         "mass", says.c_str()});
+    testing_scenes::expectRefused(
+        {value, ("<scene name='s'>\n<box\n pos='0 " + std::string(value) + " 0'/>\n</scene>").c_str(), 3,
+         "pos", says.c_str()});
+  }
+  for (const char* value : {"1e400", "0.001e312", "1e99999999999999999999", "x"}) {
+    testing_scenes::expectRefused(
+        {value,
+         ("<scene name='s'>\n<box pos='0 1 0'\n mass='" + std::string(value) + "'/>\n</scene>").c_str(), 3,
+         "mass", "is not a finite number"});
+  }
+}

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -29,6 +30,17 @@ std::vector<std::string_view> splitWhitespace(std::string_view text) {
 
 std::string withUnit(std::string_view unit) {
   return unit.empty() ? "" : " (" + std::string(unit) + ")";
+}
+
+// Why parseReal refused `text`. A number that underflows is refused rather than rounded to zero:
+// zero often means something else here (a rigid stick's compliance, no friction, no damping), so
+// a value a user wrote as non-zero must not quietly become it.
+std::string notANumber(std::string_view text) {
+  if (tooSmallToRepresent(text)) {
+    return "is too small to represent (the smallest besides 0 is " +
+           formatNumber(std::numeric_limits<double>::denorm_min()) + ")";
+  }
+  return "is not a finite number";
 }
 
 }  // namespace
@@ -65,6 +77,31 @@ std::optional<phys::Real> parseReal(std::string_view text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+bool tooSmallToRepresent(std::string_view text) {
+  if (!text.empty() && (text.front() == '+' || text.front() == '-')) text.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc::result_out_of_range || end != text.data() + text.size()) return false;
+  // Out of range either way: too small if its first significant digit stands below the units.
+  const std::size_t e = text.find_first_of("eE");
+  const std::string_view mantissa = text.substr(0, e);
+  long long exponent = 0;
+  if (e != std::string_view::npos) {
+    std::string_view digits = text.substr(e + 1);
+    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+    const auto parsed = std::from_chars(digits.data(), digits.data() + digits.size(), exponent);
+    // An exponent past 1e15 outweighs any mantissa a scene file can hold.
+    if (parsed.ec != std::errc() || std::llabs(exponent) > 1'000'000'000'000'000LL)
+      return !digits.empty() && digits.front() == '-';
+  }
+  const std::size_t point = std::min(mantissa.find('.'), mantissa.size());
+  const std::size_t first = mantissa.find_first_not_of("0.");
+  if (first == std::string_view::npos) return false;  // zero, which is never out of range
+  const long long power =
+      first < point ? static_cast<long long>(point - first - 1) : -static_cast<long long>(first - point);
+  return power + exponent < 0;
 }
 
 ElementReader::ElementReader(const pugi::xml_node& node, const LineIndex& lines, const std::string& file)
@@ -148,7 +185,7 @@ std::optional<phys::Real> ElementReader::number(std::string_view name, std::stri
   const std::optional<std::string> raw = text(name);
   if (!raw) return std::nullopt;
   const std::optional<phys::Real> value = parseReal(*raw);
-  if (!value) fail(name, "'" + *raw + "' is not a finite number" + withUnit(unit));
+  if (!value) fail(name, "'" + *raw + "' " + notANumber(*raw) + withUnit(unit));
   return value;
 }
 
@@ -190,6 +227,13 @@ std::optional<phys::Vec3> ElementReader::vector(std::string_view name, std::stri
   phys::Vec3 v(0.0);
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const std::optional<phys::Real> x = parseReal(parts[i]);
+    if (!x && tooSmallToRepresent(parts[i])) {
+      // Appended piece by piece: "'" + std::string(part) trips GCC 12's -Wrestrict false positive
+      // (GCC bug 105329).
+      std::string message("'");
+      message.append(parts[i]).append("' ").append(notANumber(parts[i])).append(withUnit(unit));
+      fail(name, message);
+    }
     if (!x) fail(name, "'" + *raw + "' must be " + expected + withUnit(unit));
     v[static_cast<int>(i)] = *x;
   }

@@ -95,5 +95,8 @@ using phys::insideBound;
 
 /// Parses a whole finite number; nullopt for anything else (junk after it, NaN, infinity).
 std::optional<phys::Real> parseReal(std::string_view text);
+/// Whether parseReal refused `text` only because it is a number nearer zero than any double but
+/// zero (it underflows, as 1e-400 does): finite, but not representable.
+bool tooSmallToRepresent(std::string_view text);
 
 }  // namespace scenes::detail
