@@ -619,6 +619,28 @@ TEST(SceneErrors, ACharactersOriginIsHeldToTheBound) {
 
 }  // namespace
 
+// pugixml decodes &#0; to a zero byte, which ended the value there (name='a&#0;b' loaded as "a");
+// XML forbids U+0000, so each spelling is refused naming the attribute, or the text, holding it.
+TEST(SceneErrors, AZeroCharacterReferenceIsRefusedNotCut) {
+  for (const std::string reference :
+       {"&#0;", "&#x0;", "&#x000;", "&#00;", "&#4294967296;", "&#x100000000;"}) {
+    testing_scenes::expectRefused(
+        {reference.c_str(),
+         ("<scene name='s'>\n<box pos='0 1 0'\n name='a" + reference + "b'/>\n</scene>").c_str(), 3, "name",
+         ("holds the character reference " + reference).c_str()});
+  }
+  testing_scenes::expectRefused(
+      {"scene", "<scene\n name='a&#0;'>\n</scene>", 2, "name", "holds the character reference &#0;"});
+  testing_scenes::expectRefused(
+      {"text", "<scene name='s'>\n<box pos='0 1 0'>\nx&#0;</box>\n</scene>", 3, "", "(U+0000)"});
+  // Where it is no reference it stays text, as are references that are not zero.
+  const scenes::Scene fine = scenes::loadSceneText(
+      "<scene name='a&#48;&#x30;&#10;'><!-- &#0; --><?pi &#0;?><box name='x&amp;#0;' pos='0 1 0'/></scene>",
+      "fine.xml");
+  EXPECT_EQ(fine.name, "a00\n");
+  EXPECT_EQ(fine.bodies.at(0).name, "x&#0;");
+}
+
 // 1e-400 is finite but nearer zero than any double; refused as too small, not as "not finite".
 TEST(SceneErrors, ANumberThatUnderflowsIsSaidToBeTooSmall) {
   for (const char* value : {"1e-400", "-1e-400", "+0.000001e-320", "1000e-330", "1e-99999999999999999999"}) {

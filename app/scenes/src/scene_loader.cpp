@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -961,6 +964,84 @@ std::optional<std::string> declaredOtherEncoding(const pugi::xml_node& declarati
   return encoding;
 }
 
+// The first character reference pugixml decodes to U+0000 (&#0;, &#x00;, or one past 32 bits,
+// which it wraps to 0), outside comments, CDATA and processing instructions; empty if none. XML
+// forbids the character, and pugixml would end the value at it: name='a&#0;b' would load as "a".
+std::string_view firstNulReference(std::string_view text) {
+  constexpr std::pair<std::string_view, std::string_view> kSkipped[] = {
+      {"<!--", "-->"}, {"<![CDATA[", "]]>"}, {"<?", "?>"}};
+  std::size_t i = 0;
+  while ((i = text.find_first_of("<&", i)) != std::string_view::npos) {
+    const std::string_view rest = text.substr(i);
+    const auto skipped = std::find_if(std::begin(kSkipped), std::end(kSkipped),
+                                      [&](const auto& s) { return rest.starts_with(s.first); });
+    if (skipped != std::end(kSkipped)) {
+      const std::size_t end = text.find(skipped->second, i + skipped->first.size());
+      if (end == std::string_view::npos) return {};
+      i = end + skipped->second.size();
+      continue;
+    }
+    if (!rest.starts_with("&#")) {
+      ++i;
+      continue;
+    }
+    const bool hex = rest.starts_with("&#x");
+    std::size_t k = hex ? 3 : 2;
+    std::uint32_t code = 0;  // as pugixml sums it
+    for (; k < rest.size(); ++k) {
+      const auto c = static_cast<unsigned char>(rest[k]);
+      const int lower = std::tolower(c);
+      if (std::isdigit(c)) {
+        code = code * (hex ? 16 : 10) + static_cast<std::uint32_t>(c - '0');
+      } else if (hex && lower >= 'a' && lower <= 'f') {
+        code = code * 16 + static_cast<std::uint32_t>(lower - 'a' + 10);
+      } else {
+        break;
+      }
+    }
+    const bool hasDigits = k > (hex ? 3u : 2u);
+    if (hasDigits && k < rest.size() && rest[k] == ';' && code == 0) return rest.substr(0, k + 1);
+    i += k;
+  }
+  return {};
+}
+
+// Refuses `reference` (firstNulReference's, at `at` in the buffer parsed in place) in the value
+// that holds it: the attribute or text whose value starts last before it.
+[[noreturn]] void refuseNulReference(const pugi::xml_document& doc, const char* begin, const char* at,
+                                     const std::string& reference, const LineIndex& lines,
+                                     const std::string& file) {
+  const std::string message =
+      "holds the character reference " + reference + " (U+0000), which XML does not allow";
+  const char* best = nullptr;
+  pugi::xml_node owner;
+  pugi::xml_attribute attribute;
+  auto consider = [&](const char* start, const pugi::xml_node& node, const pugi::xml_attribute& a) {
+    // Names and values outside the buffer (the document's own, empty ones) hold nothing of it.
+    if (std::less_equal<>()(begin, start) && std::less_equal<>()(start, at) &&
+        (best == nullptr || std::less<>()(best, start))) {
+      best = start;
+      owner = node;
+      attribute = a;
+    }
+  };
+  std::vector<pugi::xml_node> pending{doc};
+  while (!pending.empty()) {
+    const pugi::xml_node node = pending.back();
+    pending.pop_back();
+    consider(node.name(), {}, {});
+    if (node.type() == pugi::node_pcdata) consider(node.value(), node, {});
+    for (const pugi::xml_attribute a : node.attributes()) {
+      consider(a.name(), {}, {});
+      consider(a.value(), node, a);
+    }
+    for (const pugi::xml_node child : node.children()) pending.push_back(child);
+  }
+  if (attribute) ElementReader(owner, lines, file).fail(attribute.name(), message);
+  if (owner) ElementReader(owner, lines, file).fail(message);
+  throw LoadError(file, lines.lineOf(at), "", message);
+}
+
 Scene build(std::vector<char>& buffer, const std::string& file, const std::filesystem::path& folder,
             const ReadClips* readBefore, const LoadOptions& options) {
   pugi::xml_document doc;
@@ -1003,6 +1084,10 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
       trailingLine = lines.lineOf(buffer.data() + first);
     }
   }
+  // Taken before parsing in place rewrites the buffer.
+  const std::string_view nulReference = firstNulReference(std::string_view(buffer.data(), size));
+  const char* nulAt = nulReference.empty() ? nullptr : nulReference.data();
+  const std::string nulText(nulReference);
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
       buffer.data(), size, pugi::parse_default | pugi::parse_declaration, pugi::encoding_utf8);
   if (!parsed && badAt < static_cast<std::size_t>(parsed.offset))
@@ -1011,6 +1096,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
     throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
                     std::string("not well-formed XML: ") + parsed.description());
   }
+  if (nulAt != nullptr) refuseNulReference(doc, buffer.data(), nulAt, nulText, lines, file);
   const pugi::xml_node root = doc.document_element();
   for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
     if (top == root) continue;
