@@ -5,7 +5,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "accuracy.h"  // lab_core's referenceSettings: the same reference the lab measures with
+#include "accuracy.h"    // lab_core's referenceSettings: the same reference the lab measures with
+#include "stats_text.h"  // figure
 
 namespace sandbox {
 namespace {
@@ -119,6 +120,7 @@ void ExactGhost::reset(const scenes::Scene& scene) {
   start_.emplace(w);
   start_->clearDrag();
   start_->setSolverSettings(lab::referenceSettings(w, w.solverSettings().dt));
+  reached_ = start_->time();
 }
 
 void ExactGhost::fileSaved(const phys::World& saved) {
@@ -140,6 +142,7 @@ void ExactGhost::clear() {
   start_.reset();
   now_.reset();
   snapshots_.clear();
+  reached_ = 0.0;
   stepsTaken_ = 0;
 }
 
@@ -164,7 +167,7 @@ ExactGhost::Drawn ExactGhost::beside(const phys::World& shown) {
   if (answers_.empty()) return {};
   // Kept at the world's time while hidden too: else a setting set back after a minute costs that
   // frame the minute's steps at 128 substeps (a second of them in pendulum-exact).
-  const phys::World* ghost = at(shown.time(), shown.solverSettings().dt);
+  const phys::World* ghost = at(shown.time(), shown.solverSettings().dt, kGhostStepsPerFrame);
   if (!hiddenBecause(shown).empty()) return {};
   return {ghost, answers_};
 }
@@ -179,7 +182,14 @@ std::string ExactGhost::hiddenBecause(const phys::World& shown) const {
            ") cannot be recomputed for the saved settings";
   }
   const std::vector<std::string> changed = settingsChanged(shown);
-  return changed.empty() ? "" : listed(changed) + " changed";
+  if (!changed.empty()) return listed(changed) + " changed";
+  // Drawn short of the world's time, the ghost would show the answer where it is not yet.
+  const double ghostTime = now_ ? now_->time() : start_ ? start_->time() : shown.time();
+  if (ghostTime + shown.solverSettings().dt / 2 < shown.time()) {
+    return "catching up with the run (at " + figure("%.1f", ghostTime) + " of " +
+           figure("%.1f", shown.time()) + " s)";
+  }
+  return "";
 }
 
 std::vector<std::string> ExactGhost::settingsChanged(const phys::World& shown) const {
@@ -187,7 +197,7 @@ std::vector<std::string> ExactGhost::settingsChanged(const phys::World& shown) c
                          fileSolverSettings_);
 }
 
-const phys::World* ExactGhost::at(double time, double dt) {
+const phys::World* ExactGhost::at(double time, double dt, long newSteps) {
   if (!start_) return nullptr;
   // From the last copy not past `time` where that is nearer than the ghost: back in time, and
   // forward past copies kept on an earlier way there (the timeline dragged back, then on).
@@ -198,9 +208,15 @@ const phys::World* ExactGhost::at(double time, double dt) {
   if (!now_ || now_->time() > time + dt / 2 || from->time() > now_->time()) now_ = *from;
   if (now_->solverSettings().dt != dt) now_->setSolverSettings(lab::referenceSettings(*now_, dt));
   // To the step nearest `time`: a dt changed on the way leaves the two clocks a part of a step apart.
+  // Steps through time already been to are bounded by the copies' spacing; those into new time
+  // are as many as the clock jumped, and are what `newSteps` bounds.
+  const double known = reached_;
+  long fresh = 0;
   while (now_->time() + dt / 2 < time) {
+    if (now_->time() + dt / 2 >= known && fresh++ >= newSteps) break;
     now_->step();
     ++stepsTaken_;
+    reached_ = std::max(reached_, now_->time());
     const double last = snapshots_.empty() ? start_->time() : snapshots_.back().time();
     if (now_->time() >= last + kGhostSnapshotEvery) {
       snapshots_.push_back(*now_);

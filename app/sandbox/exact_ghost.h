@@ -13,6 +13,7 @@
 // with other settings than the answer's has no answer (Save As leaves its <expect>s out, and
 // closed-form positions cannot be recomputed for other settings), which the panel says.
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -23,6 +24,7 @@
 
 #include "physics/world.h"
 #include "scenes/scene.h"
+#include "trails.h"  // kMaxStepsPerFrame
 
 namespace sandbox {
 
@@ -38,6 +40,11 @@ inline constexpr double kGhostSnapshotEvery = 1.0;
 inline constexpr double kSameSetting = 1e-6;
 /// Copies kept at most; past it every other one goes (a long run keeps fewer, further apart).
 inline constexpr std::size_t kMaxGhostSnapshots = 256;
+/// The most steps beside() takes a frame into time the ghost has not been to. At 128 substeps a
+/// step of an analytic scene costs 0.15 to 0.3 ms, so a frame spends at most about 10 ms on it;
+/// four times the run's own most a frame, so a running world is always kept up with, and a backlog
+/// (exact answers turned on after a minute off) is caught up at four times the run's fastest.
+inline constexpr int kGhostStepsPerFrame = 4 * kMaxStepsPerFrame;
 
 class ExactGhost {
  public:
@@ -57,8 +64,9 @@ class ExactGhost {
   void clear();
   bool active() const { return start_.has_value(); }
   /// What to draw beside `shown`, the world on screen: the ghost at its time, stepped at its dt
-  /// (at()), and the crosses; nothing when hiddenBecause(shown) gives a reason (the ghost is
-  /// stepped to its time all the same, so that it comes back without a minute's steps at once).
+  /// (at(), at most kGhostStepsPerFrame steps into time it has not been to), and the crosses;
+  /// nothing when hiddenBecause(shown) gives a reason (the ghost is stepped to its time all the
+  /// same, so that it comes back without a minute's steps at once), or while it is catching up.
   Drawn beside(const phys::World& shown);
   /// Why beside(shown) draws nothing though the scene has answers, for the panel: "the scene's
   /// bodies are gone", "saved with gravity changed, and the answer (projectile.xml's) cannot be
@@ -79,8 +87,9 @@ class ExactGhost {
   bool holds(const phys::World& shown) const;
   /// The ghost at simulated time `time` (unit: s), stepped at `dt` (the main run's) from where it
   /// was, or from the last copy before `time` when that is nearer (time went back, or on past copies
-  /// kept before); null when there is none.
-  const phys::World* at(double time, double dt);
+  /// kept before); null when there is none. It takes at most `newSteps` steps beyond the furthest
+  /// time it has been to, and is then short of `time`.
+  const phys::World* at(double time, double dt, long newSteps = std::numeric_limits<long>::max());
   /// The steps at() has taken since reset: what the ghost has cost, over every jump of the clock.
   long stepsTaken() const { return stepsTaken_; }
   /// The scene's answers, time (unit: s) and place (unit: m): its crosses.
@@ -105,6 +114,7 @@ class ExactGhost {
   std::optional<phys::World> start_;
   std::optional<phys::World> now_;
   std::vector<phys::World> snapshots_;  // by time
+  double reached_ = 0.0;                // the furthest time the ghost has been to (unit: s)
   long stepsTaken_ = 0;
 };
 

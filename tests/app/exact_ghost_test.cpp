@@ -126,6 +126,41 @@ TEST(ExactGhost, KeepsUpWhileHiddenSoThatComingBackCostsAFramesStep) {
   EXPECT_LE(ghost.stepsTaken() - before, 1);
 }
 
+// Exact answers turned on after 30 s with them off: the ghost, not stepped since, took the 1,800
+// steps at 128 substeps in one frame (a minute's froze the sandbox for a second). It catches up
+// kGhostStepsPerFrame steps a frame, hidden and saying so until it is there, and then is the same
+// state as a ghost stepped there at once.
+TEST(ExactGhost, CatchesUpAFramesStepsAtATimeAfterAStretchNotDrawn) {
+  sandbox::Session s = testing_app::openSession("projectile");
+  sandbox::ExactGhost ghost;
+  ghost.reset(s.scene());
+  const int steps = 1800;
+  for (int i = 0; i < steps; ++i) s.step();
+  const phys::World& world = s.scene().world;
+  int frames = 0;
+  for (;;) {
+    const long before = ghost.stepsTaken();
+    const sandbox::ExactGhost::Drawn drawn = ghost.beside(world);
+    ++frames;
+    EXPECT_LE(ghost.stepsTaken() - before, sandbox::kGhostStepsPerFrame);
+    if (drawn.ghost != nullptr) break;
+    ASSERT_EQ(ghost.hiddenBecause(world).rfind("catching up with the run (at ", 0), 0U)
+        << ghost.hiddenBecause(world);
+    ASSERT_LT(frames, steps) << "the ghost never caught up";
+  }
+  EXPECT_EQ(frames, (steps + sandbox::kGhostStepsPerFrame - 1) / sandbox::kGhostStepsPerFrame);
+  EXPECT_EQ(ghost.hiddenBecause(world), "");
+  sandbox::ExactGhost atOnce;
+  atOnce.reset(testing_app::openSession("projectile").scene());
+  const phys::World* direct = atOnce.at(world.time(), world.solverSettings().dt);
+  EXPECT_EQ(ghost.beside(world).ghost->stateHash(), direct->stateHash());
+  // Caught up, it goes with the run a step a frame.
+  s.step();
+  const long before = ghost.stepsTaken();
+  EXPECT_NE(ghost.beside(world).ghost, nullptr);
+  EXPECT_EQ(ghost.stepsTaken() - before, 1);
+}
+
 // The crosses are the file's answers, read as the lab reads them (they were parsed apart, with
 // sscanf, which took "nan" and "1e39" as numbers).
 TEST(ExactGhost, ItsCrossesAreTheFilesAnswers) {
@@ -160,7 +195,10 @@ TEST(ExactGhost, GoesWithTheScenesBodiesAndComesBackWithThem) {
     EXPECT_TRUE(drawn.answers.empty()) << when;
   };
   ghost.reset(s.scene());  // as the sandbox does on opening a scene (Sandbox::fitToScene)
-  for (int i = 0; i < 40; ++i) s.step();
+  for (int i = 0; i < 40; ++i) {
+    s.step();
+    ghost.beside(s.scene().world);  // each frame, as the sandbox draws: it steps a frame's worth at most
+  }
   ASSERT_EQ(s.spawnBox(phys::Vec3(0.0, 3.0, 6.0), phys::Vec3(0.0)), "");
   s.step();
   expectShown("with a box thrown in");
