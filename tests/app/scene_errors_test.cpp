@@ -660,3 +660,26 @@ TEST(SceneErrors, ANumberThatUnderflowsIsSaidToBeTooSmall) {
          "mass", "is not a finite number"});
   }
 }
+
+// The values the loader splits itself (a stick's length, a share of part-strengths, a turn of
+// held-turns) or reads beside a word (depenetration-speed's none) say so too.
+TEST(SceneErrors, ANumberThatUnderflowsIsTooSmallInEveryAttribute) {
+  const std::string says = "'1e-400' is too small to represent (the smallest besides 0 is 4.94066e-324)";
+  const std::string particles =
+      "<scene name='s'>\n<particle name='p' pos='0 1 0'/><particle name='q' pos='0 2 0'/>\n";
+  testing_scenes::expectRefused({"length",
+                                 (particles + "<stick a='p' b='q'\n length='1e-400'/>\n</scene>").c_str(), 4,
+                                 "length", (says + " (m)").c_str()});
+  testing_scenes::expectRefused({"depenetration-speed",
+                                 "<scene name='s'>\n<solver\n depenetration-speed='1e-400'/>\n</scene>", 3,
+                                 "depenetration-speed", (says + " (m/s)").c_str()});
+  const std::string character =
+      "<scene name='s'>\n<ragdoll name='r' pos='0 1 0'/>\n"
+      "<character ragdoll='r' clip='" DATA_DIR "/assets/clips/run.bvh'\n ";
+  testing_scenes::expectRefused({"part-strengths",
+                                 (character + "part-strengths='head=1e-400'/>\n</scene>").c_str(), 4,
+                                 "part-strengths", says.c_str()});
+  testing_scenes::expectRefused({"held-turns",
+                                 (character + "blend='0.5' held-turns='1e-400 0 0 1'/>\n</scene>").c_str(), 4,
+                                 "held-turns", says.c_str()});
+}

@@ -32,15 +32,17 @@ std::string withUnit(std::string_view unit) {
   return unit.empty() ? "" : " (" + std::string(unit) + ")";
 }
 
-// Why parseReal refused `text`. A number that underflows is refused rather than rounded to zero:
-// zero often means something else here (a rigid stick's compliance, no friction, no damping), so
-// a value a user wrote as non-zero must not quietly become it.
-std::string notANumber(std::string_view text) {
-  if (tooSmallToRepresent(text)) {
-    return "is too small to represent (the smallest besides 0 is " +
-           formatNumber(std::numeric_limits<double>::denorm_min()) + ")";
-  }
-  return "is not a finite number";
+// Why parseReal refused `text`, a number that underflows. It is refused rather than rounded to
+// zero: zero often means something else here (a rigid stick's compliance, no friction, no
+// damping), so a value a user wrote as non-zero must not quietly become it.
+std::string tooSmallMessage(std::string_view text, std::string_view unit) {
+  // Appended piece by piece: "'" + std::string(text) trips GCC 12's -Wrestrict false positive
+  // (GCC bug 105329).
+  std::string message("'");
+  message.append(text).append("' is too small to represent (the smallest besides 0 is ");
+  return message.append(formatNumber(std::numeric_limits<double>::denorm_min()))
+      .append(")")
+      .append(withUnit(unit));
 }
 
 }  // namespace
@@ -184,8 +186,15 @@ std::string ElementReader::requiredText(std::string_view name) {
 std::optional<phys::Real> ElementReader::number(std::string_view name, std::string_view unit) {
   const std::optional<std::string> raw = text(name);
   if (!raw) return std::nullopt;
-  const std::optional<phys::Real> value = parseReal(*raw);
-  if (!value) fail(name, "'" + *raw + "' " + notANumber(*raw) + withUnit(unit));
+  const std::optional<phys::Real> value = real(name, *raw, unit);
+  if (!value) fail(name, "'" + *raw + "' is not a finite number" + withUnit(unit));
+  return value;
+}
+
+std::optional<phys::Real> ElementReader::real(std::string_view name, std::string_view word,
+                                              std::string_view unit) const {
+  const std::optional<phys::Real> value = parseReal(word);
+  if (!value && tooSmallToRepresent(word)) fail(name, tooSmallMessage(word, unit));
   return value;
 }
 
@@ -226,14 +235,7 @@ std::optional<phys::Vec3> ElementReader::vector(std::string_view name, std::stri
   }
   phys::Vec3 v(0.0);
   for (std::size_t i = 0; i < parts.size(); ++i) {
-    const std::optional<phys::Real> x = parseReal(parts[i]);
-    if (!x && tooSmallToRepresent(parts[i])) {
-      // Appended piece by piece: "'" + std::string(part) trips GCC 12's -Wrestrict false positive
-      // (GCC bug 105329).
-      std::string message("'");
-      message.append(parts[i]).append("' ").append(notANumber(parts[i])).append(withUnit(unit));
-      fail(name, message);
-    }
+    const std::optional<phys::Real> x = real(name, parts[i], unit);
     if (!x) fail(name, "'" + *raw + "' must be " + expected + withUnit(unit));
     v[static_cast<int>(i)] = *x;
   }

@@ -47,6 +47,10 @@ class ElementReader {
   std::string requiredText(std::string_view name);
   /// A finite number; `unit` goes into the error message ("m", "kg", ...).
   std::optional<phys::Real> number(std::string_view name, std::string_view unit);
+  /// `word`, a piece of attribute `name`'s value, as parseReal reads it (nullopt when it is no
+  /// finite number, for the caller to say what was expected), except that a number that
+  /// underflows is refused here as too small to represent: the one place that says so.
+  std::optional<phys::Real> real(std::string_view name, std::string_view word, std::string_view unit) const;
   phys::Real requiredNumber(std::string_view name, std::string_view unit);
   /// A whole number in [min, max].
   std::optional<long> integer(std::string_view name, long min, long max);

@@ -112,7 +112,7 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
     // "none" turns the limit off (infinity, which no number in a file can say).
     const std::optional<double> value = *speed == "none"
                                             ? std::optional<double>(std::numeric_limits<double>::infinity())
-                                            : detail::parseReal(*speed);
+                                            : e.real("depenetration-speed", *speed, "m/s");
     if (!value || !(*value > 0.0))
       e.fail("depenetration-speed", "'" + *speed + "' must be a number > 0 (m/s) or none");
     s.maxDepenetrationSpeed = *value;
@@ -358,7 +358,7 @@ class Builder {
       scene_.world.addStick(a, b, compliance);
       return;
     }
-    const std::optional<double> value = detail::parseReal(*length);
+    const std::optional<double> value = e.real("length", *length, "m");
     if (!value || *value <= 0.0) e.fail("length", "'" + *length + "' must be auto or a number > 0 (m)");
     scene_.world.addStick(a, b, *value, compliance);
   }
@@ -731,7 +731,7 @@ class Builder {
         std::string word;
         std::vector<double> q;
         while (numbers >> word) {
-          const std::optional<double> v = detail::parseReal(word);
+          const std::optional<double> v = e.real("held-turns", word, "");
           if (!v) e.fail("held-turns", "'" + word + "' is not a number");
           q.push_back(*v);
         }
@@ -765,7 +765,7 @@ class Builder {
       const std::size_t eq = word.find('=');
       const std::string bone = word.substr(0, eq);
       const std::optional<double> share =
-          eq == std::string::npos ? std::nullopt : detail::parseReal(word.substr(eq + 1));
+          eq == std::string::npos ? std::nullopt : e.real("part-strengths", word.substr(eq + 1), "");
       if (bone.empty() || !share)
         e.fail("part-strengths", "'" + word + "' is not BONE=SHARE (a share from 0 to 1)");
       if (!(*share >= 0.0 && *share <= 1.0))
