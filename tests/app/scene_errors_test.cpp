@@ -327,6 +327,17 @@ TEST(SceneErrors, TooManyBodiesAreRefusedAtTheElementThatPassesTheLimit) {
                                  4, "", "the scene has more than 250000 bodies"});
 }
 
+// Each <expect> keeps its attributes as strings, some 20 times their bytes in the file: a file of a
+// million took gigabytes. The one past the limit is named.
+TEST(SceneErrors, TooManyExpectationsAreRefusedAtTheFirstPastTheLimit) {
+  std::string xml = "<scene name='s'>\n";
+  for (int i = 0; i < 1001; ++i) xml += "<expect kind='pass' metric='speed' max='1' over='0 1'/>\n";
+  testing_scenes::expectRefused({"1001 expects", (xml + "</scene>").c_str(), 1002, "",
+                                 "<expect>: the scene has more than 1000 <expect> elements"});
+  const std::size_t end = xml.rfind("<expect");
+  EXPECT_EQ(scenes::loadSceneText(xml.substr(0, end) + "</scene>", "s.xml").expectations.size(), 1000u);
+}
+
 // What loadSceneFile says, or "" when it loaded.
 std::string fileError(const std::filesystem::path& file) {
   try {

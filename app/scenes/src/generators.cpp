@@ -85,6 +85,12 @@ std::optional<double> readMass(ElementReader& e, std::string_view attribute, dou
   return mass;
 }
 
+void refuseMoreThan(const ElementReader& e, std::size_t count, std::size_t limit, std::string_view what) {
+  if (count <= limit) return;
+  std::string message = "the scene has more than " + std::to_string(limit) + " ";
+  e.fail(message.append(what));
+}
+
 void checkInsideBound(ElementReader& e, const phys::World& world, std::string_view attribute,
                       const phys::Vec3& point) {
   const double bound = world.worldSettings().bound;

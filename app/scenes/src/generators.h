@@ -28,6 +28,11 @@ inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
 /// Whole scene: as many as kMaxParticles make corners boxes. A rigid body has no particles, so
 /// the particle limit does not hold rigid bodies back: a million of them take some 18 GB in a step.
 inline constexpr std::size_t kMaxBodies = kMaxParticles / 8;
+/// Whole scene: <expect> elements. The lab checks a handful of figures a scene (the project's
+/// scenes have at most 8), and each element's attributes are kept as strings, some 20 times the
+/// bytes they take in the file, so that a file of a million took gigabytes: 1000 is over 100
+/// times what any check needs.
+inline constexpr std::size_t kMaxExpectations = 1000;
 
 /// What a file may say of one body, so that every body it makes is one the physics can
 /// represent and every file the writer saves loads back (docs/scene-format.md, "Limits"). At
@@ -68,6 +73,9 @@ std::optional<phys::JointDrive> readDrive(ElementReader& e);
 std::optional<double> readRagdollScale(ElementReader& e);
 /// Reads a mass in [least, kMaxMass] (kg), if given.
 std::optional<double> readMass(ElementReader& e, std::string_view attribute, double least = kMinMass);
+/// Fails on the element `e` reads if it brought the scene's `count` of `what` ("bodies") past
+/// `limit`, naming the limit: the scene-wide limits above.
+void refuseMoreThan(const ElementReader& e, std::size_t count, std::size_t limit, std::string_view what);
 /// Fails on `attribute` unless every coordinate of `point` is within the world's bound, the
 /// guard's test: a body placed beyond it would be frozen on the first step.
 void checkInsideBound(ElementReader& e, const phys::World& world, std::string_view attribute,

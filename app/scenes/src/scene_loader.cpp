@@ -258,12 +258,8 @@ class Builder {
       bodyDrive(e);
     else if (kind == "character")
       character(e);
-    if (scene_.world.particles().size() > detail::kMaxParticles) {
-      e.fail("the scene has more than " + std::to_string(detail::kMaxParticles) + " particles");
-    }
-    if (scene_.world.bodies().size() > detail::kMaxBodies) {
-      e.fail("the scene has more than " + std::to_string(detail::kMaxBodies) + " bodies");
-    }
+    detail::refuseMoreThan(e, scene_.world.particles().size(), detail::kMaxParticles, "particles");
+    detail::refuseMoreThan(e, scene_.world.bodies().size(), detail::kMaxBodies, "bodies");
   }
 
   /// Every particle from `first` on, and the centre of every rigid body from `firstBody` on (a
@@ -1173,6 +1169,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
         x.attributes.emplace_back(a.name(), a.value());
       }
       expectations.push_back(std::move(x));
+      detail::refuseMoreThan(e, expectations.size(), detail::kMaxExpectations, "<expect> elements");
     } else {
       e.fail(
           "unknown element (known: world, solver, ground, camera, particle, stick, box, capsule, stack, "
