@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "bad_scene.h"
+#include "scene_text.h"
 #include "scenes/scene.h"
 #include "temp_folder.h"
 #include "unprivileged.h"
@@ -380,6 +381,20 @@ TEST(SceneErrors, AnEndlessDeviceIsCutOff) {
 }
 
 // UTF-16 and UTF-32 files got pugixml's "Could not determine tag type".
+// Text handed in whole is held to the limit a file is read to, before it is copied; the limit
+// is given small here so as not to hold 512 MiB (the public loadSceneText gives kMaxSceneBytes).
+TEST(SceneErrors, TextOverTheLimitIsRefusedAsAWhole) {
+  const std::string xml = "<scene name='s'/>";
+  try {
+    scenes::detail::loadSceneText(xml, "big.xml", xml.size() - 1);
+    ADD_FAILURE() << "loaded";
+  } catch (const scenes::LoadError& e) {
+    EXPECT_EQ(std::string(e.what()), "big.xml: is larger than 16 bytes, the most that is read");
+    EXPECT_EQ(e.line(), 0);
+  }
+  EXPECT_EQ(scenes::detail::loadSceneText(xml, "fits.xml", xml.size()).name, "s");
+}
+
 TEST(SceneErrors, OtherEncodingsAreNamed) {
   const testing_app::TempFolder folder;
   const std::string ascii = "<scene name='s'/>";

@@ -26,6 +26,7 @@
 #include "fileio/printable.h"
 #include "generators.h"
 #include "scene_paths.h"
+#include "scene_text.h"
 #include "scenes/scene.h"
 
 namespace scenes {
@@ -1038,17 +1039,19 @@ std::string_view firstNulReference(std::string_view text) {
   throw LoadError(file, lines.lineOf(at), "", message);
 }
 
+// A file is read only up to kMaxSceneBytes (readSceneSource); text handed in whole is held to it
+// too, so that every offset fits LineIndex's.
+void refuseLargerThan(std::size_t size, std::size_t mostBytes, const std::string& file) {
+  if (size <= mostBytes) return;
+  throw LoadError(file, 0, "",
+                  "is larger than " + std::to_string(mostBytes) + " bytes, the most that is read");
+}
+
 Scene build(std::vector<char>& buffer, const std::string& file, const std::filesystem::path& folder,
             const ReadClips* readBefore, const LoadOptions& options) {
   pugi::xml_document doc;
   const std::size_t size = buffer.size();
-  // A file is read only up to this (readSceneSource); text handed in whole is held to it too, so
-  // that every offset fits LineIndex's.
-  if (size > detail::kMaxSceneBytes) {
-    throw LoadError(
-        file, 0, "",
-        "is larger than " + std::to_string(detail::kMaxSceneBytes) + " bytes, the most that is read");
-  }
+  refuseLargerThan(size, detail::kMaxSceneBytes, file);
   const LineIndex lines(buffer.data(), size);
   if (const std::string_view encoding = otherEncoding(std::string_view(buffer.data(), size));
       !encoding.empty()) {
@@ -1250,6 +1253,12 @@ const std::string* Expectation::find(std::string_view name) const {
 }
 
 Scene loadSceneText(std::string_view xml, const std::string& displayName, const LoadOptions& options) {
+  return detail::loadSceneText(xml, displayName, detail::kMaxSceneBytes, options);
+}
+
+Scene detail::loadSceneText(std::string_view xml, const std::string& displayName, std::size_t mostBytes,
+                            const LoadOptions& options) {
+  refuseLargerThan(xml.size(), std::min(mostBytes, kMaxSceneBytes), displayName);
   std::vector<char> buffer(xml.begin(), xml.end());
   return build(buffer, displayName, {}, nullptr, options);
 }
