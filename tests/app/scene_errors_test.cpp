@@ -339,6 +339,17 @@ TEST(SceneErrors, TooManyExpectationsAreRefusedAtTheFirstPastTheLimit) {
   EXPECT_EQ(scenes::loadSceneText(xml.substr(0, end) + "</scene>", "s.xml").expectations.size(), 1000u);
 }
 
+// A description is one line; XML makes a line break of &#10; or &#13; only (a typed one is read as
+// a space, and loads).
+TEST(SceneErrors, ADescriptionOfTwoLinesIsRefused) {
+  for (const char* lineBreak : {"&#10;", "&#13;", "&#xA;"}) {
+    testing_scenes::expectRefused(
+        {lineBreak, (std::string("<scene name='s'\n description='a") + lineBreak + "b'>\n</scene>").c_str(),
+         2, "description", "holds a line break (&#10; or &#13;); a description is one line"});
+  }
+  EXPECT_EQ(scenes::loadSceneText("<scene name='s' description='a\nb\tc'/>", "s.xml").description, "a b c");
+}
+
 // What loadSceneFile says, or "" when it loaded.
 std::string fileError(const std::filesystem::path& file) {
   try {

@@ -391,13 +391,21 @@ TEST(SceneWriter, EveryBoxGetsAUniqueName) {
 
 TEST(SceneWriter, NamesWithMarkupAndLineBreaksComeBackUnchanged) {
   scenes::Scene scene = load("");
-  scene.description = "a \"quoted\" <tag> & \t tab\nnew line";
+  scene.description = "a \"quoted\" <tag> & \t tab";
   phys::BodyDesc box;
   box.name = "odd & <name> \"x\"\n'y'";
   scene.world.addBody(box);
   const scenes::Scene copy = reload(scene);
   EXPECT_EQ(copy.description, scene.description);
   EXPECT_EQ(copy.world.bodies()[0].name, box.name);
+}
+
+// A description is one line (the loader refuses a line break in it): not written, rather than
+// written into a file that does not load.
+TEST(SceneWriter, ADescriptionOfTwoLinesIsRefused) {
+  scenes::Scene scene = load("");
+  scene.description = "two\nlines";
+  EXPECT_THROW(scenes::writeSceneXml(scene), std::invalid_argument);
 }
 
 TEST(SceneWriter, CameraIsTheOneGivenAndReadsBackAsTheSameFloats) {

@@ -172,6 +172,15 @@ void readCamera(ElementReader& e, const phys::WorldSettings& w, CameraStart& c) 
   c.given = true;
 }
 
+// <scene description>: one line, as the sandbox shows it after the name and the lab keeps it
+// (SuiteScene). XML reads a line break typed in a value as a space; only &#10; or &#13; make one.
+std::string readDescription(ElementReader& e) {
+  std::string description = e.text("description").value_or("");
+  if (description.find_first_of("\n\r") != std::string::npos)
+    e.fail("description", "holds a line break (&#10; or &#13;); a description is one line");
+  return description;
+}
+
 // A joint's drive as made (its rest as the target, strength 0) with what a <joint> or a
 // <particle-joint> gave: strength and drive-stiffness (detail::readDrive), drive-target in degrees.
 phys::JointDrive givenDrive(phys::JointDrive made, const std::optional<phys::JointDrive>& drive,
@@ -1123,7 +1132,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   }
   ElementReader sceneReader(root, lines, file);
   const std::string name = sceneReader.requiredText("name");
-  const std::string description = sceneReader.text("description").value_or("");
+  const std::string description = readDescription(sceneReader);
   sceneReader.rejectUnknownAttributes();
 
   // Settings first, whatever their place in the file: bodies take their initial velocity under

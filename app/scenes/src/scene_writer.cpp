@@ -387,6 +387,8 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     throw std::invalid_argument("the world has " + std::to_string(world.bodies().size()) +
                                 " bodies; a scene file loads at most " + std::to_string(detail::kMaxBodies));
   }
+  if (scene.description.find_first_of("\n\r") != std::string::npos)
+    throw std::invalid_argument("the scene's description holds a line break; a scene file's is one line");
   const std::span<const phys::BodyId> owner = world.particleBodies();
   // The physics takes any bound > 0; a file holds at most kMaxBound (the loader's limit).
   const double bound = world.worldSettings().bound;

@@ -24,7 +24,7 @@ class SaveError : public std::runtime_error {
 /// Bodies come from the world's current state: each box as the rigid body fitted to its
 /// particles, loose particles, sticks between them, links, and pairs kept from colliding.
 /// Throws std::invalid_argument for what no scene file can express (a stick from a loose
-/// particle to a box's particle, a non-finite number).
+/// particle to a box's particle, a non-finite number, a description of more than one line).
 /// Characters' clip files are named by their absolute paths, or, with `folder` (the folder the
 /// text is to be saved in, its symbolic links resolved), relative to it, as a scene file names them.
 std::string writeSceneXml(const Scene& scene, const CameraStart& camera,
