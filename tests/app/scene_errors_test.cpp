@@ -678,6 +678,30 @@ TEST(SceneErrors, AZeroCharacterReferenceIsRefusedNotCut) {
   EXPECT_EQ(fine.bodies.at(0).name, "x&#0;");
 }
 
+// pugixml reads no DOCTYPE and expands only XML's five entities: any other reference, declared or
+// not, loaded as its own text (name='&a;' as "&a;"), so it is refused, naming where it stands.
+TEST(SceneErrors, AnEntityReferenceTheLoaderWouldTakeAsTextIsRefused) {
+  const std::string says = "holds the entity reference &a;, which would load as that text";
+  testing_scenes::expectRefused(
+      {"declared",
+       "<!DOCTYPE scene [\n<!ENTITY a 'x'>\n]>\n<scene name='s'>\n<box pos='0 1 0'\n name='&a;'/>\n</scene>",
+       6, "name", says.c_str()});
+  testing_scenes::expectRefused({"undeclared", "<scene name='s'>\n<box pos='0 1 0'\n name='b&a;'/>\n</scene>",
+                                 3, "name", says.c_str()});
+  testing_scenes::expectRefused({"description", "<scene name='s'\n description='&nbsp;'>\n</scene>", 2,
+                                 "description", "holds the entity reference &nbsp;"});
+  testing_scenes::expectRefused(
+      {"text", "<scene name='s'>\n<box pos='0 1 0'>\n&a;</box>\n</scene>", 3, "", says.c_str()});
+  // XML's five are expanded; in a comment, a processing instruction or the DOCTYPE it is only text.
+  const scenes::Scene fine = scenes::loadSceneText(
+      "<!DOCTYPE scene [<!ENTITY a '&b;'> <!-- &c; ' --> ]>\n"
+      "<scene name='&amp;a;&lt;&gt;&quot;&apos;'><!-- &a; --><?pi &a;?><box name='x&amp;y' pos='0 1 "
+      "0'/></scene>",
+      "fine.xml");
+  EXPECT_EQ(fine.name, "&a;<>\"'");
+  EXPECT_EQ(fine.bodies.at(0).name, "x&y");
+}
+
 // 1e-400 is finite but nearer zero than any double; refused as too small, not as "not finite".
 TEST(SceneErrors, ANumberThatUnderflowsIsSaidToBeTooSmall) {
   for (const char* value : {"1e-400", "-1e-400", "+0.000001e-320", "1000e-330", "1e-99999999999999999999"}) {

@@ -970,55 +970,131 @@ std::optional<std::string> declaredOtherEncoding(const pugi::xml_node& declarati
   return encoding;
 }
 
-// The first character reference pugixml decodes to U+0000 (&#0;, &#x00;, or one past 32 bits,
-// which it wraps to 0), outside comments, CDATA and processing instructions; empty if none. XML
-// forbids the character, and pugixml would end the value at it: name='a&#0;b' would load as "a".
-std::string_view firstNulReference(std::string_view text) {
+// Where the <!DOCTYPE> that starts at `i` ends (past its '>'), skipping the quoted values and
+// comments of its internal subset as pugixml does; npos if it does not end (the parse says so).
+std::size_t doctypeEnd(std::string_view text, std::size_t i) {
+  int depth = 0;  // of '<' ... '>': the DOCTYPE's own, and its declarations'
+  for (; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"' || c == '\'') {
+      i = text.find(c, i + 1);
+    } else if (text.substr(i).starts_with("<!--")) {
+      i = text.find("-->", i + 4);
+      if (i != std::string_view::npos) i += 2;
+    } else if (c == '<') {
+      ++depth;
+    } else if (c == '>' && --depth == 0) {
+      return i + 1;
+    }
+    if (i == std::string_view::npos) break;
+  }
+  return std::string_view::npos;
+}
+
+// Where the next '&' from `i` on stands in text that pugixml decodes (an attribute's value or an
+// element's text), or npos: comments, CDATA, processing instructions and the DOCTYPE hold none.
+std::size_t nextReference(std::string_view text, std::size_t i) {
   constexpr std::pair<std::string_view, std::string_view> kSkipped[] = {
       {"<!--", "-->"}, {"<![CDATA[", "]]>"}, {"<?", "?>"}};
-  std::size_t i = 0;
   while ((i = text.find_first_of("<&", i)) != std::string_view::npos) {
     const std::string_view rest = text.substr(i);
+    if (rest.front() == '&') return i;
     const auto skipped = std::find_if(std::begin(kSkipped), std::end(kSkipped),
                                       [&](const auto& s) { return rest.starts_with(s.first); });
     if (skipped != std::end(kSkipped)) {
       const std::size_t end = text.find(skipped->second, i + skipped->first.size());
-      if (end == std::string_view::npos) return {};
+      if (end == std::string_view::npos) return end;
       i = end + skipped->second.size();
-      continue;
-    }
-    if (!rest.starts_with("&#")) {
+    } else if (rest.starts_with("<!DOCTYPE")) {
+      i = doctypeEnd(text, i);
+      if (i == std::string_view::npos) return i;
+    } else {
       ++i;
-      continue;
     }
-    const bool hex = rest.starts_with("&#x");
-    std::size_t k = hex ? 3 : 2;
-    std::uint32_t code = 0;  // as pugixml sums it
-    for (; k < rest.size(); ++k) {
-      const auto c = static_cast<unsigned char>(rest[k]);
-      const int lower = std::tolower(c);
-      if (std::isdigit(c)) {
-        code = code * (hex ? 16 : 10) + static_cast<std::uint32_t>(c - '0');
-      } else if (hex && lower >= 'a' && lower <= 'f') {
-        code = code * 16 + static_cast<std::uint32_t>(lower - 'a' + 10);
-      } else {
-        break;
-      }
+  }
+  return std::string_view::npos;
+}
+
+// The character reference at the start of `rest` if pugixml decodes it to U+0000 (&#0;, &#x00;,
+// or one past 32 bits, which it wraps to 0); empty otherwise.
+std::string_view nulReferenceAt(std::string_view rest) {
+  if (!rest.starts_with("&#")) return {};
+  const bool hex = rest.starts_with("&#x");
+  std::size_t k = hex ? 3 : 2;
+  std::uint32_t code = 0;  // as pugixml sums it
+  for (; k < rest.size(); ++k) {
+    const auto c = static_cast<unsigned char>(rest[k]);
+    const int lower = std::tolower(c);
+    if (std::isdigit(c)) {
+      code = code * (hex ? 16 : 10) + static_cast<std::uint32_t>(c - '0');
+    } else if (hex && lower >= 'a' && lower <= 'f') {
+      code = code * 16 + static_cast<std::uint32_t>(lower - 'a' + 10);
+    } else {
+      break;
     }
-    const bool hasDigits = k > (hex ? 3u : 2u);
-    if (hasDigits && k < rest.size() && rest[k] == ';' && code == 0) return rest.substr(0, k + 1);
-    i += k;
+  }
+  const bool hasDigits = k > (hex ? 3u : 2u);
+  if (hasDigits && k < rest.size() && rest[k] == ';' && code == 0) return rest.substr(0, k + 1);
+  return {};
+}
+
+// The entity reference at the start of `rest` (&name;) if it is not one of XML's five, which are
+// all pugixml expands; empty otherwise. pugixml reads no DOCTYPE, so an entity one declares, or
+// one never declared, would load as its own text: name='&a;' as "&a;".
+std::string_view unexpandedEntityAt(std::string_view rest) {
+  std::size_t k = 1;
+  auto nameByte = [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return std::isalnum(byte) || c == '_' || c == ':' || c == '-' || c == '.' || byte >= 0x80;
+  };
+  while (k < rest.size() && nameByte(rest[k])) ++k;
+  if (k == 1 || k == rest.size() || rest[k] != ';') return {};
+  const std::string_view name = rest.substr(1, k - 1);
+  constexpr std::string_view kExpanded[] = {"amp", "lt", "gt", "quot", "apos"};
+  if (std::find(std::begin(kExpanded), std::end(kExpanded), name) != std::end(kExpanded)) return {};
+  return rest.substr(0, k + 1);
+}
+
+// The first reference in `text` that `at` finds at an '&' outside comments, CDATA, processing
+// instructions and the DOCTYPE; empty if none.
+std::string_view firstReference(std::string_view text, std::string_view (*at)(std::string_view)) {
+  for (std::size_t i = 0; (i = nextReference(text, i)) != std::string_view::npos; ++i) {
+    if (const std::string_view found = at(text.substr(i)); !found.empty()) return found;
   }
   return {};
 }
 
-// Refuses `reference` (firstNulReference's, at `at` in the buffer parsed in place) in the value
-// that holds it: the attribute or text whose value starts last before it.
-[[noreturn]] void refuseNulReference(const pugi::xml_document& doc, const char* begin, const char* at,
-                                     const std::string& reference, const LineIndex& lines,
-                                     const std::string& file) {
-  const std::string message =
-      "holds the character reference " + reference + " (U+0000), which XML does not allow";
+// A reference the loader refuses, found before parsing in place rewrites the buffer: where it is
+// and what to say of it.
+struct RefusedReference {
+  const char* at = nullptr;
+  std::string message;
+};
+
+// The first character reference to U+0000 (XML forbids the character, and pugixml would end the
+// value at it: name='a&#0;b' would load as "a"), else the first entity reference pugixml would
+// take as text.
+RefusedReference refusedReference(std::string_view text) {
+  if (const std::string_view nul = firstReference(text, nulReferenceAt); !nul.empty()) {
+    return {nul.data(),
+            "holds the character reference " + std::string(nul) + " (U+0000), which XML does not allow"};
+  }
+  if (const std::string_view entity = firstReference(text, unexpandedEntityAt); !entity.empty()) {
+    return {entity.data(), "holds the entity reference " + std::string(entity) +
+                               ", which would load as that text: entities are not expanded (a <!DOCTYPE> "
+                               "declares none that the loader reads); write the text itself, or a character "
+                               "reference such as &#233;"};
+  }
+  return {};
+}
+
+// Refuses `refused` (at a place in the buffer parsed in place) in the value that holds it: the
+// attribute or text whose value starts last before it.
+[[noreturn]] void refuseReference(const pugi::xml_document& doc, const char* begin,
+                                  const RefusedReference& refused, const LineIndex& lines,
+                                  const std::string& file) {
+  const char* at = refused.at;
+  const std::string& message = refused.message;
   const char* best = nullptr;
   pugi::xml_node owner;
   pugi::xml_attribute attribute;
@@ -1092,10 +1168,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
       trailingLine = lines.lineOf(buffer.data() + first);
     }
   }
-  // Taken before parsing in place rewrites the buffer.
-  const std::string_view nulReference = firstNulReference(std::string_view(buffer.data(), size));
-  const char* nulAt = nulReference.empty() ? nullptr : nulReference.data();
-  const std::string nulText(nulReference);
+  const RefusedReference refused = refusedReference(std::string_view(buffer.data(), size));
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
       buffer.data(), size, pugi::parse_default | pugi::parse_declaration, pugi::encoding_utf8);
   if (!parsed && badAt < static_cast<std::size_t>(parsed.offset))
@@ -1104,7 +1177,7 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
     throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
                     std::string("not well-formed XML: ") + parsed.description());
   }
-  if (nulAt != nullptr) refuseNulReference(doc, buffer.data(), nulAt, nulText, lines, file);
+  if (refused.at != nullptr) refuseReference(doc, buffer.data(), refused, lines, file);
   const pugi::xml_node root = doc.document_element();
   for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
     if (top == root) continue;
