@@ -302,9 +302,8 @@ std::string convergeCsv(const std::vector<ConvergeRow>& rows) {
   std::string s = "scene,method,model,substeps,h,error,blew_up\n";
   for (const ConvergeRow& r : rows) {
     // A blow-up's error, infinity, is written blank, as every figure that is not finite.
-    s += csvField(r.scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
-         std::to_string(r.substeps) + "," + csvNumber(r.h, 10) + "," + csvNumber(r.error, 6) + "," +
-         (std::isfinite(r.error) ? "0" : "1") + "\n";
+    s += csvLine({csvField(r.scene), csvField(r.method), csvField(r.model), std::to_string(r.substeps),
+                  csvNumber(r.h, 10), csvNumber(r.error, 6), std::isfinite(r.error) ? "0" : "1"});
   }
   return s;
 }

@@ -23,6 +23,10 @@ std::string csvNumber(double value, int digits) {
   return std::isfinite(value) ? formatNumber(value, digits) : std::string();
 }
 
+std::string csvLine(const std::vector<std::string>& fields) {
+  return join(fields, ",") + "\n";
+}
+
 std::vector<std::string> csvFields(std::string_view line) {
   std::vector<std::string> fields(1);
   bool quoted = false;

@@ -19,6 +19,10 @@ std::string csvField(std::string_view text);
 /// up says so in a column of its own (`blew_up`), not through the number.
 std::string csvNumber(double value, int digits);
 
+/// One CSV line: the fields, each already written as CSV (csvField, csvNumber), with a comma
+/// between each two and a newline after the last.
+std::string csvLine(const std::vector<std::string>& fields);
+
 /// One CSV line split into fields, undoing csvField's quoting (a quoted field may hold commas;
 /// a doubled quote inside it is one quote). Always at least one field.
 std::vector<std::string> csvFields(std::string_view line);

@@ -200,7 +200,7 @@ std::string drivesTable(const std::string& scene, const std::string& runJson) {
   std::ostringstream md;
   md << "What each part's drive needed over the run's " << j["steps"].get<int>() << " steps ("
      << formatNumber(j["steps"].get<int>() * j["dt"].get<double>(), 3) << " s) at the scene's own setting ("
-     << j["method"].get<std::string>() << " " << j["iterations"].get<int>() << "x" << j["substeps"].get<int>()
+     << j["method"].get<std::string>() << " " << ixs(j["iterations"].get<int>(), j["substeps"].get<int>())
      << ", `lab run " << scene
      << " --json`'s `drives`): the torque from its parent's joint, and for the root part the hand of god's "
         "force and torque, RMS over the run's steps and the largest after any step.\n\n"
@@ -232,13 +232,9 @@ std::string dumpCsv(const phys::World& world, std::span<const scenes::NamedBody>
     }
     const phys::Vec3& c = pose.center;
     const phys::Quat& q = pose.orientation;
-    s += csvField(b.name);
-    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about "," + std::string here.
-    for (double v : {c.x, c.y, c.z, q.w, q.x, q.y, q.z}) {
-      s += ',';
-      s += csvNumber(v, 17);
-    }
-    s += "\n";
+    std::vector<std::string> fields{csvField(b.name)};
+    for (double v : {c.x, c.y, c.z, q.w, q.x, q.y, q.z}) fields.push_back(csvNumber(v, 17));
+    s += csvLine(fields);
   }
   return s;
 }

@@ -175,18 +175,19 @@ std::string csvRow(const std::string& scene, const Row& r) {
   // A blown-up run's errors are no figure: blank, as any figure that is not finite, and
   // `blew_up` says why.
   const bool blewUp = r.blewUp();  // a peer that did not run has no row
-  std::string line = csvField(scene) + "," + csvField(r.method) + "," + csvField(r.model) + "," +
-                     opt(r.iterations) + "," + opt(r.substeps) + "," + csvNumber(r.dt) + "," +
-                     std::to_string(r.steps) + "," + std::to_string(r.repeats) + "," +
-                     csvNumber(r.msPerStep) + "," + csvNumber(r.msPerSimSecond()) + "," +
-                     csvNumber(blewUp ? kNaN : r.figures.error) + "," + csvNumber(r.uncertainty) + ",";
-  for (const double v : r.figures.maxima.worst) line += csvNumber(v) + ",";
-  line += csvNumber(blewUp ? kNaN : r.figures.errorFirst) + "," + csvNumber(r.figures.posePenetration) + "," +
-          csvNumber(r.figures.poseJointGap) + ",";
-  line += (r.peer ? std::string() : csvNumber(r.figures.energyDrift)) + "," +
-          (r.peer ? std::string() : std::to_string(r.figures.frozen)) + "," + (blewUp ? "1" : "0") + "," +
-          (r.pareto ? "1" : "0") + "," + csvField(r.note);
-  return line + "\n";
+  std::vector<std::string> fields;
+  fields.insert(
+      fields.end(),
+      {csvField(scene), csvField(r.method), csvField(r.model), opt(r.iterations), opt(r.substeps),
+       csvNumber(r.dt), std::to_string(r.steps), std::to_string(r.repeats), csvNumber(r.msPerStep),
+       csvNumber(r.msPerSimSecond()), csvNumber(blewUp ? kNaN : r.figures.error), csvNumber(r.uncertainty)});
+  for (const double v : r.figures.maxima.worst) fields.push_back(csvNumber(v));
+  fields.insert(fields.end(),
+                {csvNumber(blewUp ? kNaN : r.figures.errorFirst), csvNumber(r.figures.posePenetration),
+                 csvNumber(r.figures.poseJointGap), r.peer ? std::string() : csvNumber(r.figures.energyDrift),
+                 r.peer ? std::string() : std::to_string(r.figures.frozen), blewUp ? "1" : "0",
+                 r.pareto ? "1" : "0", csvField(r.note)});
+  return csvLine(fields);
 }
 
 std::string csvText(const std::string& scene, const std::vector<Row>& rows) {
