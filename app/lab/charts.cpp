@@ -3,11 +3,11 @@
 #include "command_line.h"
 #include "fileio/files.h"
 #include "gnuplot.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <system_error>
 #include <utility>
@@ -45,9 +45,7 @@ class PrivateFolder {
 
 // A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
 std::string quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
+  return singleQuoted(text, "''");
 }
 
 // A label inside a datablock is one double-quoted column: keep it free of quotes and breaks.
@@ -57,10 +55,9 @@ std::string labelColumn(const std::string& text) {
   return out + "\"";
 }
 
+// Every figure a chart draws is finite (drawable), so formatNumber's words never reach a script.
 std::string exact(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
+  return formatNumber(value, 17);
 }
 
 bool drawable(const Chart& chart, const ChartPoint& p) {
@@ -74,6 +71,12 @@ std::vector<ChartPoint> drawablePoints(const Chart& chart, const ChartSeries& s)
     if (drawable(chart, p)) out.push_back(p);
   }
   return out;
+}
+
+// Whether the chart has any point to draw (gnuplot fails on a chart without one).
+bool hasPoints(const Chart& chart) {
+  return std::any_of(chart.series.begin(), chart.series.end(),
+                     [&](const ChartSeries& s) { return !drawablePoints(chart, s).empty(); });
 }
 
 // Point types that stay apart in print: filled circle, square, diamond, triangles, then open ones.
@@ -126,11 +129,6 @@ Chart logChart(std::string title, std::string xLabel, std::string yLabel, bool l
   return chart;
 }
 
-bool hasPoints(const Chart& chart) {
-  return std::any_of(chart.series.begin(), chart.series.end(),
-                     [&](const ChartSeries& s) { return !drawablePoints(chart, s).empty(); });
-}
-
 std::string gnuplotScript(const Chart& chart) {
   std::vector<std::vector<ChartPoint>> kept;
   for (const ChartSeries& s : chart.series) kept.push_back(drawablePoints(chart, s));
@@ -180,17 +178,13 @@ OutputFolder::OutputFolder(std::filesystem::path folder, const char* option)
   prepareOutputFolder(folder_, option_);
 }
 
-void OutputFolder::hold(const std::string& name, std::string content) {
+void OutputFolder::write(const std::string& name, std::string content) {
   const auto same = [&](const auto& held) { return held.first == name; };
   if (const auto it = std::find_if(held_.begin(), held_.end(), same); it != held_.end()) {
     it->second = std::move(content);
     return;
   }
   held_.emplace_back(name, std::move(content));
-}
-
-void OutputFolder::write(const std::string& name, std::string_view content) {
-  hold(name, std::string(content));
 }
 
 std::string OutputFolder::draw(const std::string& name, const Chart& chart, const std::string& noPoints) {
@@ -259,7 +253,7 @@ std::string OutputFolder::drawInScratch(const std::string& name, const std::vect
         return "gnuplot's " + output + " is cut short (" + std::to_string(it->second.size()) + " bytes)";
     }
     for (auto& [file, content] : pictures) {
-      hold(file, std::move(content));
+      write(file, std::move(content));
       if (!isIn(drawn_, file)) drawn_.push_back(file);
     }
   } catch (const fileio::FileError& e) {

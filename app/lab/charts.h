@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "text.h"
@@ -49,9 +48,6 @@ Chart logChart(std::string title, std::string xLabel, std::string yLabel, bool l
 /// The gnuplot script drawing the chart. A series left with no points is not drawn.
 std::string gnuplotScript(const Chart& chart);
 
-/// Whether the chart has any point to draw (gnuplot fails on a chart without one).
-bool hasPoints(const Chart& chart);
-
 /// A command's output folder, written at the end of its runs (the one frame of sweep, scale,
 /// converge and stability, which word their own messages about charts): its files are held
 /// until commit() replaces them all as one set (fileio::writeAllAtomically), so a file that
@@ -62,7 +58,8 @@ class OutputFolder {
  public:
   /// Prepares the folder again: it may have gone while the runs ran.
   explicit OutputFolder(std::filesystem::path folder, const char* option = "--out");
-  void write(const std::string& name, std::string_view content);  ///< FOLDER/NAME at commit, listed
+  void write(const std::string& name,
+             std::string content);  ///< FOLDER/NAME at commit, listed; again: replaced
   /// Writes the chart's script NAME and draws it: "" when gnuplot drew the chart's OUTPUT.png
   /// and .svg (then listed), else why not: `noPoints` for a chart with nothing to draw, or what
   /// render said.
@@ -81,7 +78,6 @@ class OutputFolder {
   std::string wroteLine() const { return "wrote       " + join(written_, ", ") + "\n"; }
 
  private:
-  void hold(const std::string& name, std::string content);
   std::string drawInScratch(const std::string& name, const std::vector<std::string>& outputs);
 
   std::filesystem::path folder_;

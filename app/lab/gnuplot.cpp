@@ -23,13 +23,17 @@ std::filesystem::path findGnuplot() {
   return {};
 }
 
+std::string singleQuoted(const std::string& text, const std::string& quoteInside) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? quoteInside : std::string(1, c);
+  return out + "'";
+}
+
 namespace {
 
 // Single quotes for the shell, with any quote inside closed, escaped and reopened.
 std::string shellQuoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+  return singleQuoted(text, "'\\''");
 }
 
 }  // namespace

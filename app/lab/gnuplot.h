@@ -10,6 +10,10 @@ namespace lab {
 /// The gnuplot program found on PATH, or empty when there is none.
 std::filesystem::path findGnuplot();
 
+/// `text` in single quotes, each quote inside it written as `quoteInside`: two quotes for
+/// gnuplot's strings, a closing, escaped and reopening one ('\'') for the shell.
+std::string singleQuoted(const std::string& text, const std::string& quoteInside);
+
 /// The lab's scripts write their charts into the folder `outdir` names: the script's own folder
 /// unless set (`gnuplot -e "outdir='charts'" sweep.gp` draws elsewhere).
 inline constexpr const char* kOutdirDefault = "if (!exists('outdir')) outdir = '.'\n";

@@ -906,3 +906,25 @@ TEST(Accuracy, ReferenceIsShakeUnlessTheSceneAsksForCompliance) {
 }
 
 }  // namespace
+
+TEST(LabCsv, ALineIsItsFieldsWithCommasBetweenAndANewlineAfter) {
+  EXPECT_EQ(lab::csvLine({"a", lab::csvField("b,c"), "", lab::csvNumber(0.5, 6)}), "a,\"b,c\",,0.5\n");
+  EXPECT_EQ(lab::csvLine({""}), "\n");
+  const std::vector<std::string> fields = lab::csvFields("a,\"b,c\",,0.5");
+  EXPECT_EQ(fields, (std::vector<std::string>{"a", "b,c", "", "0.5"}));
+}
+
+TEST(LabGnuplot, SingleQuotedWritesEachQuoteInsideAsAsked) {
+  EXPECT_EQ(lab::singleQuoted("it's", "''"), "'it''s'");        // gnuplot
+  EXPECT_EQ(lab::singleQuoted("it's", "'\\''"), "'it'\\''s'");  // the shell
+  EXPECT_EQ(lab::singleQuoted("", "''"), "''");
+}
+
+TEST(LabCharts, AScriptQuotesItsTextsAndWritesItsPointsExactly) {
+  lab::Chart chart = lab::logChart("it's a chart", "x", "y", true, "out");
+  chart.series.push_back(lab::ChartSeries{.title = "a 'b'", .points = {{0.1, 2.0, "p"}}});
+  const std::string script = lab::gnuplotScript(chart);
+  EXPECT_NE(script.find("set title 'it''s a chart'\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("title 'a ''b'''"), std::string::npos) << script;
+  EXPECT_NE(script.find("0.10000000000000001 2 \"p\"\n"), std::string::npos) << script;
+}
