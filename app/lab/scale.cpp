@@ -25,6 +25,41 @@ namespace {
 
 constexpr int kDefaultScaleSteps = 60;
 
+// What each kind generates, in ScaleKind's order: its name, the <world>, <solver> and <ground> it
+// is run at elsewhere, and each ragdoll's attributes (none for the pyramid).
+struct ScaleKindSpec {
+  const char* name;
+  const char* settings;
+  const char* ragdoll;
+};
+constexpr ScaleKindSpec kScaleKinds[] = {
+    // Bullet's pile's settings (bullet-ragdolls.xml) at scale 1.
+    {"capsule-ragdolls",
+     "  <world gravity=\"0 -10 0\" damping=\"0.05\"/>\n"
+     "  <solver method=\"gauss-seidel\" iterations=\"2\" substeps=\"4\" body-damping=\"1\"/>\n"
+     "  <ground friction=\"0.25\"/>\n",
+     "shape=\"capsule\" model=\"lean\" mass=\"11\" friction=\"0.25\" joint-damping=\"2\""},
+    // The 16 ragdolls' settings (ragdolls.xml).
+    {"box-ragdolls",
+     "  <world gravity=\"0 -9.81 0\" damping=\"0.2\"/>\n"
+     "  <solver method=\"gauss-seidel\" iterations=\"2\" substeps=\"4\" body-damping=\"1\"/>\n"
+     "  <ground friction=\"0.6\"/>\n",
+     "shape=\"box\""},
+    // 10 passes x 4 substeps: where the stability suite's pyramids stand.
+    {"pyramid",
+     "  <world gravity=\"0 -9.81 0\"/>\n"
+     "  <solver method=\"gauss-seidel\" iterations=\"10\" substeps=\"4\"/>\n"
+     "  <ground friction=\"0.6\"/>\n",
+     nullptr},
+};
+
+static_assert(std::string_view(kScaleKinds[static_cast<std::size_t>(ScaleKind::Pyramid)].name) == "pyramid",
+              "kScaleKinds follows ScaleKind's order");
+
+const ScaleKindSpec& specOf(ScaleKind kind) {
+  return kScaleKinds[static_cast<std::size_t>(kind)];
+}
+
 struct ScaleOptions {
   ScaleKind kind = ScaleKind::CapsuleRagdolls;
   std::vector<int> sizes;                       // empty: the kind's defaults
@@ -39,11 +74,12 @@ void describeScale(CommandLine& line, ScaleOptions& o) {
   line.about("Generates a scene of each size and steps it: the cost per step and per body against size.");
   line.positional("KIND", "capsule-ragdolls (default), box-ragdolls or pyramid", false,
                   [&o](const std::string& word) {
-                    const std::optional<ScaleKind> kind = parseScaleKind(word);
-                    if (!kind)
-                      return "unknown KIND '" + word + "' (capsule-ragdolls, box-ragdolls or pyramid)";
-                    o.kind = *kind;
-                    return std::string();
+                    for (std::size_t i = 0; i < std::size(kScaleKinds); ++i) {
+                      if (word != kScaleKinds[i].name) continue;
+                      o.kind = static_cast<ScaleKind>(i);
+                      return std::string();
+                    }
+                    return "unknown KIND '" + word + "' (capsule-ragdolls, box-ragdolls or pyramid)";
                   });
   line.option(option::kSizes, o.sizes, "(default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)");
   line.option(option::kSteps, o.run.steps, "at each size (default 60: 1 s)");
@@ -77,55 +113,18 @@ std::string ragdollGrid(int n, const char* attributes) {
 }  // namespace
 
 std::string_view toString(ScaleKind kind) {
-  switch (kind) {
-    case ScaleKind::CapsuleRagdolls:
-      return "capsule-ragdolls";
-    case ScaleKind::BoxRagdolls:
-      return "box-ragdolls";
-    case ScaleKind::Pyramid:
-      return "pyramid";
-  }
-  return "?";
-}
-
-std::optional<ScaleKind> parseScaleKind(std::string_view name) {
-  for (const ScaleKind k : {ScaleKind::CapsuleRagdolls, ScaleKind::BoxRagdolls, ScaleKind::Pyramid}) {
-    if (toString(k) == name) return k;
-  }
-  return std::nullopt;
+  return specOf(kind).name;
 }
 
 std::string scaleSceneXml(ScaleKind kind, int n) {
-  const std::string name = std::string(toString(kind)) + "-" + std::to_string(n);
-  std::string xml = "<scene name=\"" + name + "\">\n";
-  switch (kind) {
-    case ScaleKind::CapsuleRagdolls:
-      // Bullet's pile's settings (bullet-ragdolls.xml) at scale 1.
-      xml +=
-          "  <world gravity=\"0 -10 0\" damping=\"0.05\"/>\n"
-          "  <solver method=\"gauss-seidel\" iterations=\"2\" substeps=\"4\" body-damping=\"1\"/>\n"
-          "  <ground friction=\"0.25\"/>\n";
-      xml += ragdollGrid(
-          n, "shape=\"capsule\" model=\"lean\" mass=\"11\" friction=\"0.25\" joint-damping=\"2\"");
-      break;
-    case ScaleKind::BoxRagdolls:
-      // The 16 ragdolls' settings (ragdolls.xml).
-      xml +=
-          "  <world gravity=\"0 -9.81 0\" damping=\"0.2\"/>\n"
-          "  <solver method=\"gauss-seidel\" iterations=\"2\" substeps=\"4\" body-damping=\"1\"/>\n"
-          "  <ground friction=\"0.6\"/>\n";
-      xml += ragdollGrid(n, "shape=\"box\"");
-      break;
-    case ScaleKind::Pyramid:
-      // 10 passes x 4 substeps: where the stability suite's pyramids stand.
-      xml +=
-          "  <world gravity=\"0 -9.81 0\"/>\n"
-          "  <solver method=\"gauss-seidel\" iterations=\"10\" substeps=\"4\"/>\n"
-          "  <ground friction=\"0.6\"/>\n"
-          "  <pyramid name=\"pyramid\" pos=\"0 0 0\" base=\"" +
-          std::to_string(n) + "\" size=\"1\" mass=\"1\"/>\n";
-      break;
-  }
+  const ScaleKindSpec& spec = specOf(kind);
+  std::string xml =
+      "<scene name=\"" + std::string(spec.name) + "-" + std::to_string(n) + "\">\n" + spec.settings;
+  if (spec.ragdoll != nullptr)
+    xml += ragdollGrid(n, spec.ragdoll);
+  else
+    xml += "  <pyramid name=\"pyramid\" pos=\"0 0 0\" base=\"" + std::to_string(n) +
+           "\" size=\"1\" mass=\"1\"/>\n";
   return xml + "</scene>\n";
 }
 
@@ -180,9 +179,9 @@ std::string scaleJson(const std::vector<ScaleRow>& rows) {
 std::string scaleCsv(const std::vector<ScaleRow>& rows) {
   std::string s = "scene,n,threads,bodies,ms_per_step,us_per_body_step,max_joint_gap,blew_up\n";
   for (const ScaleRow& r : rows) {
-    s += csvField(r.scene) + "," + std::to_string(r.n) + "," + std::to_string(r.solver.threads) + "," +
-         std::to_string(r.bodies) + "," + csvNumber(r.msPerStep, 6) + "," + csvNumber(r.usPerBodyStep, 6) +
-         "," + csvNumber(r.maxJointGap, 6) + "," + (r.blewUp ? "1" : "0") + "\n";
+    s += csvLine({csvField(r.scene), std::to_string(r.n), std::to_string(r.solver.threads),
+                  std::to_string(r.bodies), csvNumber(r.msPerStep, 6), csvNumber(r.usPerBodyStep, 6),
+                  csvNumber(r.maxJointGap, 6), r.blewUp ? "1" : "0"});
   }
   return s;
 }
@@ -216,10 +215,7 @@ Chart scaleChart(const std::vector<ScaleRow>& rows) {
                          false, "scale");
   // One line a number of threads, in the order they ran; named by it when there are several.
   std::vector<int> counts;
-  for (const ScaleRow& r : rows) {
-    if (std::find(counts.begin(), counts.end(), r.solver.threads) == counts.end())
-      counts.push_back(r.solver.threads);
-  }
+  for (const ScaleRow& r : rows) addOnce(counts, r.solver.threads);
   for (const int threads : counts) {
     ChartSeries series{
         .title = counts.size() > 1

@@ -20,7 +20,6 @@ enum class ScaleKind {
 };
 
 std::string_view toString(ScaleKind kind);  ///< "capsule-ragdolls", "box-ragdolls", "pyramid"
-std::optional<ScaleKind> parseScaleKind(std::string_view name);
 
 /// The scene file of the kind at size n, with the solver settings its kind is run at elsewhere.
 std::string scaleSceneXml(ScaleKind kind, int n);
