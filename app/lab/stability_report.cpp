@@ -30,6 +30,15 @@ std::string cell(std::string text) {
   return text;
 }
 
+// A Markdown table's header and the rule under it: the first column left-aligned, the others as
+// `rule` aligns them ("---" left, "---:" right).
+std::string tableHead(const std::vector<std::string>& columns, const std::string& rule = "---") {
+  std::string head = "|", below = "|---|";
+  for (const std::string& c : columns) head += " " + c + " |";
+  for (std::size_t i = 1; i < columns.size(); ++i) below += rule + "|";
+  return head + "\n" + below + "\n";
+}
+
 std::string criteriaText(const SuiteScene& s) {
   std::vector<std::string> parts;
   for (const Criterion& c : s.criteria) parts.push_back(c.describe());
@@ -63,25 +72,30 @@ std::string peerEntry(const Outcome& o) {
   return cell(entry);
 }
 
+// The columns of the settings in a method's block (settingGroup), in order.
+std::vector<std::size_t> columnsOf(const SuiteResult& r, const std::string& method) {
+  std::vector<std::size_t> columns;
+  for (std::size_t k = 0; k < r.settings.size(); ++k) {
+    if (settingGroup(r.settings[k]) == method) columns.push_back(k);
+  }
+  return columns;
+}
+
 void summaryTable(std::ostringstream& md, const SuiteResult& r) {
-  md << "| scene | what must hold | run |";
-  for (const std::string& m : r.methods) md << " " << m << " |";
-  for (const std::string& p : r.peers) md << " " << p << " |";
-  md << " stepping |\n|---|---|---|";
-  for (std::size_t i = 0; i < r.methods.size() + r.peers.size(); ++i) md << "---|";
-  md << "---|\n";
+  std::vector<std::string> columns{"scene", "what must hold", "run"};
+  columns.insert(columns.end(), r.methods.begin(), r.methods.end());
+  columns.insert(columns.end(), r.peers.begin(), r.peers.end());
+  columns.push_back("stepping");
+  md << tableHead(columns);
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     const SuiteScene& sc = r.scenes[s];
     md << "| " << sc.name << " | " << cell(criteriaText(sc)) << " | " << formatNumber(sc.steps * sc.dt)
        << " s, " << sc.steps << " steps |";
     for (const std::string& m : r.methods) {
-      int passed = 0, runs = 0;
-      for (std::size_t k = 0; k < r.settings.size(); ++k) {
-        if (settingGroup(r.settings[k]) != m) continue;
-        ++runs;
-        passed += r.outcomes[s][k].passed ? 1 : 0;
-      }
-      md << " " << passed << "/" << runs << " |";
+      const std::vector<std::size_t> runs = columnsOf(r, m);
+      const auto passed =
+          std::count_if(runs.begin(), runs.end(), [&](std::size_t k) { return r.outcomes[s][k].passed; });
+      md << " " << passed << "/" << runs.size() << " |";
     }
     for (std::size_t p = 0; p < r.peers.size(); ++p) {
       const Outcome& o = r.outcomes[s][r.settings.size() + p];
@@ -92,15 +106,10 @@ void summaryTable(std::ostringstream& md, const SuiteResult& r) {
 }
 
 void methodGrid(std::ostringstream& md, const SuiteResult& r, const std::string& method) {
-  std::vector<std::size_t> columns;
-  for (std::size_t k = 0; k < r.settings.size(); ++k) {
-    if (settingGroup(r.settings[k]) == method) columns.push_back(k);
-  }
-  md << "\n### " << method << "\n\n| scene |";
-  for (std::size_t k : columns) md << " " << ixs(r.settings[k].iterations, r.settings[k].substeps) << " |";
-  md << "\n|---|";
-  for (std::size_t i = 0; i < columns.size(); ++i) md << "---:|";
-  md << "\n";
+  const std::vector<std::size_t> columns = columnsOf(r, method);
+  std::vector<std::string> head{"scene"};
+  for (std::size_t k : columns) head.push_back(ixs(r.settings[k].iterations, r.settings[k].substeps));
+  md << "\n### " << method << "\n\n" << tableHead(head, "---:");
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     md << "| " << r.scenes[s].name << " |";
     for (std::size_t k : columns) md << " " << gridEntry(r.outcomes[s][k]) << " |";
@@ -117,11 +126,10 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
   md << "Each engine with its default solver at the scene's dt, judged on its bodies' poses after every "
         "step, measured alike for all: penetration and joint gaps by our geometry on those poses, speed at "
         "the bodies' particles' places, flips from the orientations (docs/lab.md, \"Peers\"). A peer's "
-        "rigid bodies have no stick error of their own.\n\n| scene |";
-  for (const std::string& p : r.peers) md << " " << p << " |";
-  md << "\n|---|";
-  for (std::size_t i = 0; i < r.peers.size(); ++i) md << "---|";
-  md << "\n";
+        "rigid bodies have no stick error of their own.\n\n";
+  std::vector<std::string> columns{"scene"};
+  columns.insert(columns.end(), r.peers.begin(), r.peers.end());
+  md << tableHead(columns);
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     md << "| " << r.scenes[s].name << " |";
     for (std::size_t p = 0; p < r.peers.size(); ++p)
@@ -201,37 +209,39 @@ std::string markdownReport(const SuiteResult& r) {
 }
 
 std::string csvReport(const SuiteResult& r) {
-  std::ostringstream csv;
-  csv << "scene,method,model,iterations,substeps,passed,blew_up,value,limit,ratio,criterion,ms_per_step,"
-         "note\n";
+  std::string csv =
+      "scene,method,model,iterations,substeps,passed,blew_up,value,limit,ratio,criterion,ms_per_step,note\n";
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     const SuiteScene& sc = r.scenes[s];
     for (std::size_t k = 0; k < r.outcomes[s].size(); ++k) {
       const Outcome& o = r.outcomes[s][k];
-      const bool peer = k >= r.settings.size();
-      csv << csvField(sc.name) << ",";
-      if (peer)
-        csv << csvField(r.peers[k - r.settings.size()]) << ",,,,";
-      else
+      std::vector<std::string> fields{csvField(sc.name)};
+      if (k >= r.settings.size()) {  // a peer
+        fields.insert(fields.end(), {csvField(r.peers[k - r.settings.size()]), "", "", ""});
+      } else {
+        const Setting& setting = r.settings[k];
         // A model imposed on a scene with no body changed nothing: not named as if it ran.
-        csv << phys::toString(r.settings[k].method) << ","
-            << csvField(sc.boxes == 0 ? std::string() : r.settings[k].model) << ","
-            << r.settings[k].iterations << "," << r.settings[k].substeps << ",";
-      if (!o.judged) {
-        csv << "n/a,,,,,," << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
-        continue;
+        fields.insert(fields.end(), {std::string(phys::toString(setting.method)),
+                                     csvField(sc.boxes == 0 ? std::string() : setting.model),
+                                     std::to_string(setting.iterations), std::to_string(setting.substeps)});
       }
-      const Criterion& c = sc.criteria[o.worst];
-      const Verdict& v = o.verdicts[o.worst];
-      // A flips criterion with only a max has min 0; its max is the limit then.
-      const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
-      // A blow-up's figure is infinity: written blank, as every figure that is not finite.
-      csv << (o.passed ? 1 : 0) << "," << (std::isfinite(v.value) ? 0 : 1) << "," << csvNumber(v.value, 6)
-          << "," << formatLimit(limit) << "," << csvNumber(v.ratio, 6) << "," << csvField(c.describe()) << ","
-          << csvNumber(o.msPerStep, 6) << "," << csvField(o.note) << "\n";
+      if (!o.judged) {
+        fields.insert(fields.end(), {"n/a", "", "", "", "", ""});
+      } else {
+        const Criterion& c = sc.criteria[o.worst];
+        const Verdict& v = o.verdicts[o.worst];
+        // A flips criterion with only a max has min 0; its max is the limit then.
+        const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
+        // A blow-up's figure is infinity: written blank, as every figure that is not finite.
+        fields.insert(fields.end(),
+                      {o.passed ? "1" : "0", std::isfinite(v.value) ? "0" : "1", csvNumber(v.value, 6),
+                       formatLimit(limit), csvNumber(v.ratio, 6), csvField(c.describe())});
+      }
+      fields.insert(fields.end(), {csvNumber(o.msPerStep, 6), csvField(o.note)});
+      csv += csvLine(fields);
     }
   }
-  return csv.str();
+  return csv;
 }
 
 std::string passMatrix(const SuiteResult& r) {
