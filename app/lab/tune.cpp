@@ -46,23 +46,41 @@ constexpr phys::SolverMethod kSeedMethod = phys::SolverMethod::GaussSeidel;
 constexpr int kSeedIterations = 3;
 constexpr int kSeedSubsteps = 1;
 
-/// What a --target bounds: the accuracy error, the energy drift, or a figure of the run
-/// (run_metrics.h), which are all targets without a line here.
+/// What a --target bounds: the accuracy error, a figure of the run (run_metrics.h), or the energy
+/// drift; and its bound once a --target gives one.
 struct Target {
   std::string name;                   ///< "error", "drift", or a RunMetric's name
   std::size_t run = kRunMetricCount;  ///< its place in kRunMetrics; kRunMetricCount for the two others
-  std::string unit;                   ///< " m", "" for a ratio
+  std::string unit;                   ///< "m"; "" for a ratio
+  std::string help;                   ///< what it is, for `lab tune --help`
   double bound = 0.0;
+
+  /// " m" to put after a value; "" for a ratio.
+  std::string unitAfter() const { return unit.empty() ? "" : " " + unit; }
 };
 
 constexpr const char* kError = "error";
 constexpr const char* kDrift = "drift";
 
-// "error, stick-error, ..., or drift": every name a --target takes.
+// Every figure a --target may bound, in the order the help and the output list them.
+std::vector<Target> boundable() {
+  std::vector<Target> all{
+      {kError, kRunMetricCount, "m", "largest distance from the accuracy target (analytic or reference)"}};
+  for (std::size_t i = 0; i < kRunMetricCount; ++i) {
+    const RunMetric& m = kRunMetrics[i];
+    all.push_back({m.name, i, m.unit, std::string(m.help) + " after any step"});
+  }
+  all.push_back({kDrift, kRunMetricCount, "J", "|energy after the last step - energy before the first|"});
+  return all;
+}
+
+// "error, stick-error, ... or drift": every name a --target takes.
 std::string metricNames() {
-  std::string names = std::string(kError) + ", ";
-  for (const RunMetric& m : kRunMetrics) names += std::string(m.name) + ", ";
-  return names.substr(0, names.size() - 2) + " or " + kDrift;
+  std::vector<std::string> names;
+  for (const Target& t : boundable()) names.push_back(t.name);
+  const std::string last = names.back();
+  names.pop_back();
+  return join(names, ", ") + " or " + last;
 }
 
 double figure(const Figures& f, const Target& t) {
@@ -81,38 +99,28 @@ struct TuneOptions {
 
 std::string readTarget(const std::string& text, TuneOptions& o) {
   const std::size_t eq = text.find('=');
-  Target t;
-  t.name = text.substr(0, eq);
-  t.run = runMetricIndex(t.name);
-  if (t.name == kError) {
-    t.unit = " m";
-  } else if (t.name == kDrift) {
-    t.unit = " J";
-  } else if (t.run < kRunMetricCount) {
-    t.unit = kRunMetrics[t.run].unitAfter();
-  } else {
-    return "unknown metric '" + t.name + "' in '" + text + "' (" + metricNames() + ")";
-  }
+  const std::string name = text.substr(0, eq);
+  const std::vector<Target> all = boundable();
+  const auto known = std::find_if(all.begin(), all.end(), [&](const Target& t) { return t.name == name; });
+  if (known == all.end()) return "unknown metric '" + name + "' in '" + text + "' (" + metricNames() + ")";
   const std::optional<double> v = eq == std::string::npos ? std::nullopt : parseNumber(text.substr(eq + 1));
   if (!v || *v <= 0.0) return "'" + text + "' needs METRIC=VALUE with a finite VALUE > 0";
   for (const Target& given : o.targets) {
-    if (given.name == t.name) return t.name + " is given twice";
+    if (given.name == name) return name + " is given twice";
   }
-  t.bound = *v;
-  o.targets.push_back(t);
+  o.targets.push_back(*known);
+  o.targets.back().bound = *v;
   return {};
 }
 
 // What `lab tune --help` says: the metrics a --target may bound, from the run table.
 std::string tuneAbout() {
-  std::string metrics =
-      "  error          m, largest distance from the accuracy target (analytic or reference)\n";
-  for (const RunMetric& m : kRunMetrics) {
-    std::string line = std::string("  ") + m.name;
+  std::string metrics;
+  for (const Target& t : boundable()) {
+    std::string line = "  " + t.name;
     line.resize(17, ' ');
-    metrics += line + (*m.unit == '\0' ? "" : std::string(m.unit) + ", ") + m.help + " after any step\n";
+    metrics += line + (t.unit.empty() ? "" : t.unit + ", ") + t.help + "\n";
   }
-  metrics += "  drift          J, |energy after the last step - energy before the first|\n";
   const std::string counts = "substeps and iterations over " + ladderText() + ", at the\nscene's dt.";
   return "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n" + metrics +
          "Searched: the box and ragdoll models the scene has and the rigid model, the four methods\n"
@@ -259,13 +267,11 @@ class Search {
 
 std::string figuresText(const Figures& f, bool withError) {
   std::string s;
-  if (withError) s += "error " + formatFigure(f.error, " m", 3) + ", ";
-  for (std::size_t i = 0; i < kRunMetricCount; ++i) {
-    const RunMetric& m = kRunMetrics[i];
-    s += std::string(m.name) + " " + formatFigure(f.maxima[i], m.unitAfter(), 3) + ", ";
+  for (const Target& t : boundable()) {
+    if (t.name != kError || withError)
+      s += t.name + " " + formatFigure(figure(f, t), t.unitAfter(), 3) + ", ";
   }
-  return s + "drift " + formatFigure(std::abs(f.energyDrift), " J", 3) + ", frozen " +
-         std::to_string(f.frozen);
+  return s + "frozen " + std::to_string(f.frozen);
 }
 
 // "meets the targets", or which it misses and by how much.
@@ -275,8 +281,8 @@ std::string verdict(const Search& search, const Figures& f) {
   for (const Target& t : search.targets()) {
     const double v = figure(f, t);
     if (v <= t.bound) continue;
-    misses += (misses.empty() ? "" : ", ") + t.name + " " + formatFigure(v, t.unit, 3) + " > " +
-              formatLimit(t.bound) + t.unit;
+    misses += (misses.empty() ? "" : ", ") + t.name + " " + formatFigure(v, t.unitAfter(), 3) + " > " +
+              formatLimit(t.bound) + t.unitAfter();
   }
   return misses.empty() ? "meets the targets" : "misses: " + misses;
 }
@@ -284,7 +290,7 @@ std::string verdict(const Search& search, const Figures& f) {
 std::string targetsText(const std::vector<Target>& targets) {
   std::string s;
   for (const Target& t : targets) {
-    s += (s.empty() ? "" : ", ") + t.name + " <= " + formatLimit(t.bound) + t.unit;
+    s += (s.empty() ? "" : ", ") + t.name + " <= " + formatLimit(t.bound) + t.unitAfter();
   }
   return s;
 }
@@ -361,23 +367,24 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
       out << "note        the reference itself blew up here: no error target can be judged against it\n";
     }
   }
-  if (!win) {
+  if (win) {
+    out << "winner      " << win->setting.describe() << ": " << formatNumber(win->msPerStep, 4)
+        << " ms/step\n";
+    out << "            " << figuresText(win->figures, withError) << "\n";
+  } else {
     out << "winner      none: no setting meets the targets\n";
     if (search.closest()) {
       Candidate c = *search.closest();
       c.msPerStep = timeSetting(source, c.setting, search.stepsOf(c.setting), o.repeats);
       printCompared(out, "closest     ", c, nullptr, search, withError);
     }
-    printCompared(out, "defaults    ", seedResult, nullptr, search, withError);
-    printCompared(out, "scene       ", ownResult, nullptr, search, withError);
-    err << "lab: tune: no setting meets the targets (the closest found is on stdout)\n";
-    return kExitFailure;
   }
-  out << "winner      " << win->setting.describe() << ": " << formatNumber(win->msPerStep, 4) << " ms/step\n";
-  out << "            " << figuresText(win->figures, withError) << "\n";
-  printCompared(out, "defaults    ", seedResult, &*win, search, withError);
-  printCompared(out, "scene       ", ownResult, &*win, search, withError);
-  return kExitOk;
+  const Candidate* winner = win ? &*win : nullptr;
+  printCompared(out, "defaults    ", seedResult, winner, search, withError);
+  printCompared(out, "scene       ", ownResult, winner, search, withError);
+  if (win) return kExitOk;
+  err << "lab: tune: no setting meets the targets (the closest found is on stdout)\n";
+  return kExitFailure;
 }
 
 }  // namespace
