@@ -359,23 +359,17 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
 
 // ---- the command ----------------------------------------------------------------------------
 
-struct Written {
-  OutputFolder files;
-  std::string chartProblem;  // "" when the chart was drawn
-};
-
-// The CSVs and the chart.
-Written writeOutputs(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
-                     std::size_t measure, const std::filesystem::path& dir) {
-  OutputFolder files(dir);
+// The CSVs and the chart, into `files`: "" when the chart was drawn, else why not.
+std::string writeOutputs(OutputFolder& files, const Plan& plan, const std::vector<Row>& rows,
+                         const AccuracyTarget& firstTarget, std::size_t measure) {
   files.write("results.csv", csvText(plan.sceneName, rows));
   files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
-  const std::string problem =
+  std::string problem =  // not const: moved out
       files.draw("sweep.gp", chart,
                  "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
   files.commit();
-  return {std::move(files), problem};
+  return problem;
 }
 
 // A line for each dt whose runs cover more than the horizon asked: one whole step of a dt longer
@@ -429,13 +423,15 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
     }
   }
   printReport(out, plan, rows, accuracy, notes);
-  const Written w = writeOutputs(plan, rows, firstTarget(plan, targets, plan.dts.front()), measure, outDir);
+  OutputFolder files(outDir);
+  const std::string chartProblem =
+      writeOutputs(files, plan, rows, firstTarget(plan, targets, plan.dts.front()), measure);
   const auto front = frontByCost(rows);
   out << "pareto      " << count(front.size(), "setting", "settings") << " (marked *):";
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);
-  out << "\n" << w.files.wroteLine();
-  if (!w.chartProblem.empty()) err << "lab: sweep: " << w.chartProblem << "\n";
-  return w.files.failed() ? kExitFailure : kExitOk;
+  out << "\n" << files.wroteLine();
+  if (!chartProblem.empty()) err << "lab: sweep: " << chartProblem << "\n";
+  return files.failed() ? kExitFailure : kExitOk;
 }
 
 int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
