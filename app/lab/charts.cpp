@@ -55,11 +55,6 @@ std::string labelColumn(const std::string& text) {
   return out + "\"";
 }
 
-// Every figure a chart draws is finite (drawable), so formatNumber's words never reach a script.
-std::string exact(double value) {
-  return formatNumber(value, 17);
-}
-
 bool drawable(const Chart& chart, const ChartPoint& p) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
   return (!chart.logX || p.x > 0.0) && (!chart.logY || p.y > 0.0);
@@ -84,7 +79,9 @@ constexpr int kPointTypes[] = {7, 5, 13, 9, 11, 6, 4, 12, 8, 10, 1, 2, 3};
 
 std::string seriesBlock(std::size_t index, const std::vector<ChartPoint>& points) {
   std::string out = "$s" + std::to_string(index) + " << EOD\n";
-  for (const ChartPoint& p : points) out += exact(p.x) + " " + exact(p.y) + " " + labelColumn(p.label) + "\n";
+  // Every point drawn is finite (drawable), so formatNumber writes its %.17g, never words.
+  for (const ChartPoint& p : points)
+    out += formatNumber(p.x, 17) + " " + formatNumber(p.y, 17) + " " + labelColumn(p.label) + "\n";
   return out + "EOD\n";
 }
 
@@ -110,7 +107,7 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
     }
   }
   if (chart.guide) {
-    plot += ", \\\n     " + exact(*chart.guide) + " with lines dt 2 lw 1.5 lc 'gray40' title " +
+    plot += ", \\\n     " + formatNumber(*chart.guide, 17) + " with lines dt 2 lw 1.5 lc 'gray40' title " +
             quoted(chart.guideTitle);
   }
   return plot + "\n";
