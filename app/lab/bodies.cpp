@@ -17,15 +17,27 @@ std::vector<phys::Quat> bodyOrientations(const phys::World& world) {
 }
 
 std::vector<phys::ParticleId> looseParticles(const phys::World& world) {
-  std::vector<bool> inBox(world.particles().size(), false);
-  for (const phys::Body& box : world.bodies()) {
-    for (int k = 0; k < box.particleCount; ++k) inBox[box.firstParticle + k] = true;
-  }
+  const std::vector<std::size_t> body = particleBodies(world);
   std::vector<phys::ParticleId> out;
-  for (phys::ParticleId p{}; p < inBox.size(); ++p) {
-    if (!inBox[p]) out.push_back(p);
+  for (phys::ParticleId p{}; p < body.size(); ++p) {
+    if (body[p] >= world.bodies().size()) out.push_back(p);
   }
   return out;
+}
+
+std::vector<std::size_t> particleBodies(const phys::World& world) {
+  const std::size_t boxes = world.bodies().size();
+  std::vector<std::size_t> body(world.particles().size(), boxes);
+  for (phys::BodyId id{}; id < boxes; ++id) {
+    const phys::Body& box = world.bodies()[id];
+    for (int k = 0; k < box.particleCount; ++k) body[box.firstParticle + k] = id;
+  }
+  // Loose particles (still marked `boxes`) take their places after the boxes, in id order.
+  std::size_t next = boxes;
+  for (std::size_t& b : body) {
+    if (b == boxes) b = next++;
+  }
+  return body;
 }
 
 }  // namespace lab

@@ -16,4 +16,8 @@ std::vector<phys::Quat> bodyOrientations(const phys::World& world);
 /// The loose particles, in id order: the k-th of them is body bodies().size() + k of the list.
 std::vector<phys::ParticleId> looseParticles(const phys::World& world);
 
+/// Each particle's body, its place in the list: its box's id, or for a loose particle
+/// bodies().size() + k as above.
+std::vector<std::size_t> particleBodies(const phys::World& world);
+
 }  // namespace lab

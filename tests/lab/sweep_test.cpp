@@ -884,6 +884,22 @@ TEST(Accuracy, BodiesAreTheBoxesThenTheLooseParticlesInIdOrder) {
   EXPECT_EQ(positions[2], phys::Vec3(2, 0, 0));
 }
 
+TEST(Accuracy, EachParticleBelongsToItsBoxOrToItsOwnPlaceAfterTheBoxes) {
+  // As above: a loose particle, the box's particles, another loose particle, by id.
+  const scenes::Scene scene = scenes::loadSceneText(
+      "<scene name=\"order\">\n  <world/>\n"
+      "  <particle name=\"first\" pos=\"1 0 0\" mass=\"1\"/>\n"
+      "  <box name=\"crate\" pos=\"0 5 0\" size=\"1\"/>\n"
+      "  <particle name=\"last\" pos=\"2 0 0\" mass=\"1\"/>\n</scene>\n",
+      "o.xml");
+  const phys::Body& box = scene.world.bodies()[0];
+  std::vector<std::size_t> expected(scene.world.particles().size(), 0u);
+  expected.front() = 1u;
+  expected.back() = 2u;
+  ASSERT_EQ(expected.size(), static_cast<std::size_t>(box.particleCount) + 2u);
+  EXPECT_EQ(lab::particleBodies(scene.world), expected);
+}
+
 TEST(Accuracy, ReferenceIsShakeUnlessTheSceneAsksForCompliance) {
   const scenes::Scene rigid = scenes::loadSceneText(lab_testing::namedBodiesScene(), "n.xml");
   phys::SolverSettings s = lab::referenceSettings(rigid.world, 0.02);

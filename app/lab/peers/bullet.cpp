@@ -145,9 +145,9 @@ class BulletEngine : public Engine {
     if (scene.ground) {
       shapes_.push_back(std::make_unique<btStaticPlaneShape>(bt(scene.groundNormal),
                                                              static_cast<btScalar>(scene.groundHeight)));
-      ground_ = addBody(*shapes_.back(), 0.0, btVector3(0, 0, 0), btTransform::getIdentity(), -1);
-      ground_->setFriction(static_cast<btScalar>(std::sqrt(scene.groundFriction)));
-      ground_->setRestitution(static_cast<btScalar>(std::sqrt(scene.restitution)));
+      btRigidBody* ground = addBody(*shapes_.back(), 0.0, btVector3(0, 0, 0), btTransform::getIdentity(), -1);
+      ground->setFriction(static_cast<btScalar>(std::sqrt(scene.groundFriction)));
+      ground->setRestitution(static_cast<btScalar>(std::sqrt(scene.restitution)));
     }
 
     const btScalar damping = static_cast<btScalar>(1.0 - std::exp(-scene.damping));
@@ -259,7 +259,6 @@ class BulletEngine : public Engine {
   std::vector<std::unique_ptr<btRigidBody>> owned_;
   std::vector<std::unique_ptr<btTypedConstraint>> constraints_;
   std::vector<btRigidBody*> bodies_;  // description order
-  btRigidBody* ground_ = nullptr;
   btScalar dt_;
   int allAsleepFrom_ = 0;  // the first step after which every moving body slept; 0 if none
 };

@@ -23,7 +23,6 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdint>
-#include <cstdio>
 #include <stdexcept>
 
 #include <ode/ode.h>
@@ -32,6 +31,7 @@
 
 #include "peer_scene.h"
 #include "physics/settings.h"
+#include "text.h"
 
 #ifndef LAB_ODE_VERSION
 #define LAB_ODE_VERSION ""
@@ -63,12 +63,6 @@ constexpr double kMostTurnPerStep = 1e6;  // unit: rad
 // takes z to y: the geom's offset from its body, so the body's frame stays ours.
 const phys::Quat kCapsuleOffset(std::sqrt(0.5), -std::sqrt(0.5), 0.0, 0.0);
 
-std::string fmt(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
 // Why a body at `centre` spinning at `spin` could abort ODE's next step ("body 'b' is at (...) m,
 // beyond the 1e+08 m ODE's collision reaches"), or "" when it cannot. No figure in the words is
 // ever inf or nan: a state ODE has lost is said to be not finite.
@@ -78,13 +72,13 @@ std::string beyondReach(const std::string& name, const phys::Vec3& centre, const
   if (!phys::finite(centre) || !phys::finite(spin))
     return who() + " has a position or spin that is not finite";
   if (!phys::insideBound(centre, kReach)) {
-    return who() + " is at (" + fmt(centre.x) + ", " + fmt(centre.y) + ", " + fmt(centre.z) +
-           ") m, beyond the " + fmt(kReach) + " m ODE's collision reaches";
+    return who() + " is at (" + formatNumber(centre.x) + ", " + formatNumber(centre.y) + ", " +
+           formatNumber(centre.z) + ") m, beyond the " + formatNumber(kReach) + " m ODE's collision reaches";
   }
   // Each axis alone, so that no square overflows: within a factor of sqrt(3) of |w| dt.
   if (!(std::max({std::abs(spin.x), std::abs(spin.y), std::abs(spin.z)}) * dt <= kMostTurnPerStep)) {
-    return who() + " spins at (" + fmt(spin.x) + ", " + fmt(spin.y) + ", " + fmt(spin.z) +
-           ") rad/s, more than " + fmt(kMostTurnPerStep) +
+    return who() + " spins at (" + formatNumber(spin.x) + ", " + formatNumber(spin.y) + ", " +
+           formatNumber(spin.z) + ") rad/s, more than " + formatNumber(kMostTurnPerStep) +
            " rad a step, as far as ODE's integration is given";
   }
   return {};
@@ -114,18 +108,16 @@ class OdeEngine : public Engine {
     dWorldSetGravity(world_, scene.gravity.x, scene.gravity.y, scene.gravity.z);
     settings = std::string("ODE ") + LAB_ODE_VERSION + " (" + (sizeof(dReal) == 8 ? "double" : "float") +
                "): dWorldQuickStep, " + std::to_string(dWorldGetQuickStepNumIterations(world_)) +
-               " iterations, ERP " + fmt(static_cast<double>(dWorldGetERP(world_))) + ", CFM " +
-               fmt(static_cast<double>(dWorldGetCFM(world_)));
+               " iterations, ERP " + formatNumber(static_cast<double>(dWorldGetERP(world_))) + ", CFM " +
+               formatNumber(static_cast<double>(dWorldGetCFM(world_)));
 
     if (scene.ground) {
       const phys::Vec3 n = scene.groundNormal;
-      ground_ = dCreatePlane(space_, n.x, n.y, n.z, scene.groundHeight);
-      dGeomSetData(ground_, tag(-1));
+      dGeomSetData(dCreatePlane(space_, n.x, n.y, n.z, scene.groundHeight), tag(-1));
     }
 
     const double damping = 1.0 - std::exp(-scene.damping * dt);
     bodies_.assign(scene.bodies.size(), nullptr);
-    geoms_.assign(scene.bodies.size(), nullptr);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
       dGeomID geom = nullptr;
@@ -146,43 +138,37 @@ class OdeEngine : public Engine {
         dGeomSetPosition(geom, b.centre.x, b.centre.y, b.centre.z);
         dGeomSetQuaternion(geom, gq);
       } else {
-        dBodyID body = dBodyCreate(world_);
+        dBodyID created = dBodyCreate(world_);
         dMass mass;
         dMassSetZero(&mass);
         dMassSetParameters(&mass, b.mass, 0, 0, 0, b.inertia.x, b.inertia.y, b.inertia.z, 0, 0, 0);
-        dBodySetMass(body, &mass);
-        dBodySetPosition(body, b.centre.x, b.centre.y, b.centre.z);
-        dBodySetQuaternion(body, q);
-        dBodySetLinearVel(body, b.velocity.x, b.velocity.y, b.velocity.z);
-        dBodySetAngularVel(body, b.angularVelocity.x, b.angularVelocity.y, b.angularVelocity.z);
+        dBodySetMass(created, &mass);
+        dBodySetPosition(created, b.centre.x, b.centre.y, b.centre.z);
+        dBodySetQuaternion(created, q);
+        dBodySetLinearVel(created, b.velocity.x, b.velocity.y, b.velocity.z);
+        dBodySetAngularVel(created, b.angularVelocity.x, b.angularVelocity.y, b.angularVelocity.z);
         if (damping > 0.0) {
-          dBodySetDamping(body, damping, damping);
-          dBodySetLinearDampingThreshold(body, 0);
-          dBodySetAngularDampingThreshold(body, 0);
+          dBodySetDamping(created, damping, damping);
+          dBodySetLinearDampingThreshold(created, 0);
+          dBodySetAngularDampingThreshold(created, 0);
         }
-        dGeomSetBody(geom, body);
+        dGeomSetBody(geom, created);
         if (b.shape == Body::Shape::Capsule) {
           const dQuaternion offset = {kCapsuleOffset.w, kCapsuleOffset.x, kCapsuleOffset.y, kCapsuleOffset.z};
           dGeomSetOffsetQuaternion(geom, offset);
         }
-        bodies_[i] = body;
+        bodies_[i] = created;
       }
-      geoms_[i] = geom;
     }
 
-    for (const Pin& p : scene.pins) {
-      // ODE wants a body first; a pin to a fixed sphere holds the other body to the world.
-      const bool swap = bodies_[static_cast<std::size_t>(p.a)] == nullptr;
-      const int a = swap ? p.b : p.a, b = swap ? p.a : p.b;
-      const phys::Vec3 wa = swap ? p.worldB : p.worldA;
+    for (const Pin& pin : scene.pins) {
+      const Ends p = bodyFirst(pin);
       dJointID j = dJointCreateBall(world_, nullptr);
-      dJointAttach(j, bodies_[static_cast<std::size_t>(a)], bodies_[static_cast<std::size_t>(b)]);
-      dJointSetBallAnchor(j, wa.x, wa.y, wa.z);
+      dJointAttach(j, body(p.a), body(p.b));
+      dJointSetBallAnchor(j, p.worldA.x, p.worldA.y, p.worldA.z);
       // A pin may start with its points apart: the second anchor on its own. ODE takes this
       // one as it stores it, in the second body's frame (the world's when there is none).
-      const phys::Vec3 second = bodies_[static_cast<std::size_t>(b)] != nullptr
-                                    ? (swap ? p.localA : p.localB)
-                                    : (swap ? p.worldA : p.worldB);
+      const phys::Vec3 second = body(p.b) != nullptr ? p.localB : p.worldB;
       dJointSetBallAnchor2(j, second.x, second.y, second.z);
     }
     for (const Distance& d : scene.distances) {
@@ -190,13 +176,11 @@ class OdeEngine : public Engine {
         ranges_.push_back(&d);
         continue;
       }
-      const bool swap = bodies_[static_cast<std::size_t>(d.a)] == nullptr;
-      const int a = swap ? d.b : d.a, b = swap ? d.a : d.b;
-      const phys::Vec3 wa = swap ? d.worldB : d.worldA, wb = swap ? d.worldA : d.worldB;
+      const Ends e = bodyFirst(d);
       dJointID j = dJointCreateDBall(world_, nullptr);
-      dJointAttach(j, bodies_[static_cast<std::size_t>(a)], bodies_[static_cast<std::size_t>(b)]);
-      dJointSetDBallAnchor1(j, wa.x, wa.y, wa.z);
-      dJointSetDBallAnchor2(j, wb.x, wb.y, wb.z);
+      dJointAttach(j, body(e.a), body(e.b));
+      dJointSetDBallAnchor1(j, e.worldA.x, e.worldA.y, e.worldA.z);
+      dJointSetDBallAnchor2(j, e.worldB.x, e.worldB.y, e.worldB.z);
       dJointSetDBallDistance(j, d.min);
     }
   }
@@ -229,19 +213,23 @@ class OdeEngine : public Engine {
 
   // The body's pose, not the geom's: a capsule's geom is turned from its body by the offset.
   phys::Vec3 position(int i) const override {
-    const dBodyID body = bodies_[static_cast<std::size_t>(i)];
-    if (body == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].centre;  // fixed: never moves
-    const dReal* p = dBodyGetPosition(body);
+    if (body(i) == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].centre;  // fixed: never moves
+    const dReal* p = dBodyGetPosition(body(i));
     return {p[0], p[1], p[2]};
   }
   phys::Quat orientation(int i) const override {
-    const dBodyID body = bodies_[static_cast<std::size_t>(i)];
-    if (body == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].orientation;
-    const dReal* q = dBodyGetQuaternion(body);
+    if (body(i) == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].orientation;
+    const dReal* q = dBodyGetQuaternion(body(i));
     return {q[0], q[1], q[2], q[3]};
   }
 
  private:
+  // The ODE body of description body i; null for a fixed one.
+  dBodyID body(int i) const { return bodies_[static_cast<std::size_t>(i)]; }
+
+  // ODE wants a body first: a joint to a fixed body holds the other body to the world.
+  Ends bodyFirst(const Ends& e) const { return body(e.a) == nullptr ? e.swapped() : e; }
+
   static void nearCallback(void* data, dGeomID g1, dGeomID g2) {
     static_cast<OdeEngine*>(data)->collide(g1, g2);
   }
@@ -309,13 +297,8 @@ class OdeEngine : public Engine {
     c.geom.normal[1] = n.y;
     c.geom.normal[2] = n.z;
     c.geom.depth = apart ? d.min - length : length - d.max;
-    dJointID j = dJointCreateContact(world_, contacts_, &c);
-    dBodyID ba = bodies_[static_cast<std::size_t>(d.a)], bb = bodies_[static_cast<std::size_t>(d.b)];
-    if (apart) {
-      dJointAttach(j, bb, ba);
-    } else {
-      dJointAttach(j, ba, bb);
-    }
+    const Ends first = apart ? d.swapped() : Ends(d);
+    dJointAttach(dJointCreateContact(world_, contacts_, &c), body(first.a), body(first.b));
   }
 
   const Description& scene_;
@@ -323,9 +306,7 @@ class OdeEngine : public Engine {
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
   dJointGroupID contacts_ = nullptr;
-  dGeomID ground_ = nullptr;
   std::vector<dBodyID> bodies_;  // description order; null for a fixed body
-  std::vector<dGeomID> geoms_;
   std::vector<const Distance*> ranges_;
   int messagesBefore_ = 0;
 };

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "bodies.h"
 #include "physics/body.h"
 
 namespace lab::peers {
@@ -68,7 +69,7 @@ Description describe(const scenes::Scene& scene) {
   d.restitution = solver.restitution;
 
   // Which body each particle belongs to, in bodies.h order: boxes by id, then loose particles.
-  std::vector<int> owner(particles.size(), -1);
+  const std::vector<std::size_t> owner = particleBodies(world);
   const auto boxes = world.bodies();
   for (phys::BodyId id{}; id < boxes.size(); ++id) {
     const phys::Body& box = boxes[id];
@@ -92,7 +93,6 @@ Description describe(const scenes::Scene& scene) {
     // Mass, inertia and motion as the physics has them (World::bodyMass, poseVelocity). A
     // capsule's particles sit on its box as a box's do, so it gets its box's inertia and the
     // engines turn it as ours turns.
-    for (int k = 0; k < box.particleCount; ++k) owner[box.firstParticle + k] = static_cast<int>(id);
     const phys::BodyMass mass = world.bodyMass(id);
     body.fixed = mass.fixed();
     if (!body.fixed) {
@@ -108,19 +108,16 @@ Description describe(const scenes::Scene& scene) {
   for (const phys::GroundContact& c : world.groundContacts()) {
     if (c.body == phys::kNoBody && c.point.count == 1) contactOf[c.point.particle[0]] = &c;
   }
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (owner[i] >= 0) continue;
-    const auto id = static_cast<phys::ParticleId>(i);
-    owner[i] = static_cast<int>(d.bodies.size());
+  for (const phys::ParticleId i : looseParticles(world)) {
     Body body;
     body.shape = Body::Shape::Sphere;
-    body.name = world.particleName(id);
+    body.name = world.particleName(i);
     body.centre = particles.position[i];
     body.radius = kParticleRadius;
     body.fixed = particles.inverseMass[i] == 0.0;
     body.mass = body.fixed ? 0.0 : 1.0 / particles.inverseMass[i];
     body.inertia = Vec3(0.4 * body.mass * kParticleRadius * kParticleRadius);
-    if (!body.fixed) body.velocity = particleVelocity(world, id);
+    if (!body.fixed) body.velocity = particleVelocity(world, i);
     body.friction =
         contactOf[i] != nullptr ? contactOf[i]->material.dynamicFriction : phys::Material{}.dynamicFriction;
     d.bodies.push_back(body);
@@ -129,29 +126,28 @@ Description describe(const scenes::Scene& scene) {
   // The body an embedded point belongs to: all its particles are one body's (a box's anchor
   // or a loose particle); -1 when they are not, which no scene file can make.
   auto bodyOf = [&](const phys::Embedding& e) {
-    const int b = owner[e.particle[0]];
+    const std::size_t b = owner[e.particle[0]];
     for (int k = 1; k < e.count; ++k) {
       if (owner[e.particle[static_cast<std::size_t>(k)]] != b) return -1;
     }
-    return b;
+    return static_cast<int>(b);
   };
+  const auto bodyAt = [&](int i) -> const Body& { return d.bodies[static_cast<std::size_t>(i)]; };
+  // A constraint's ends on bodies a and b, at the world points pa and pb.
+  const auto endsOf = [&](int a, int b, const Vec3& pa, const Vec3& pb) {
+    return Ends{a, b, toLocal(bodyAt(a), pa), toLocal(bodyAt(b), pb), pa, pb};
+  };
+  // Nothing to hold between two bodies that never move.
+  const auto bothFixed = [&](int a, int b) { return bodyAt(a).fixed && bodyAt(b).fixed; };
 
   bool compliant = false;
   for (const phys::Stick& s : world.sticks()) {
-    const int a = owner[s.a], b = owner[s.b];
+    const int a = static_cast<int>(owner[s.a]), b = static_cast<int>(owner[s.b]);
     if (a == b) continue;  // a box's own sticks: the rigid body is them
     if (s.compliance > 0.0) compliant = true;
-    if (d.bodies[static_cast<std::size_t>(a)].fixed && d.bodies[static_cast<std::size_t>(b)].fixed) continue;
-    Distance dist;
-    dist.a = a;
-    dist.b = b;
-    dist.worldA = particles.position[s.a];
-    dist.worldB = particles.position[s.b];
-    dist.localA = toLocal(d.bodies[static_cast<std::size_t>(a)], dist.worldA);
-    dist.localB = toLocal(d.bodies[static_cast<std::size_t>(b)], dist.worldB);
-    dist.min = s.minLength;
-    dist.max = s.maxLength;
-    d.distances.push_back(dist);
+    if (bothFixed(a, b)) continue;
+    d.distances.push_back(
+        {endsOf(a, b, particles.position[s.a], particles.position[s.b]), s.minLength, s.maxLength});
   }
   if (compliant) d.notes.push_back("compliant sticks made rigid");
   if (solver.method == phys::SolverMethod::Xpbd && solver.compliance > 0.0) {
@@ -177,15 +173,12 @@ Description describe(const scenes::Scene& scene) {
       continue;
     }
     if (a == b) continue;  // both ends in one rigid body: nothing to hold
-    if (d.bodies[static_cast<std::size_t>(a)].fixed && d.bodies[static_cast<std::size_t>(b)].fixed) continue;
-    const Vec3 pa = world.position(link.a), pb = world.position(link.b);
-    const Body& A = d.bodies[static_cast<std::size_t>(a)];
-    const Body& B = d.bodies[static_cast<std::size_t>(b)];
+    if (bothFixed(a, b)) continue;
+    const Ends ends = endsOf(a, b, world.position(link.a), world.position(link.b));
     if (link.isPin()) {
-      d.pins.push_back(Pin{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb});
+      d.pins.push_back({ends});
     } else {
-      d.distances.push_back(
-          Distance{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb, link.minLength, link.maxLength, true});
+      d.distances.push_back({ends, link.minLength, link.maxLength, true});
     }
   }
   if (crossing > 0)
@@ -194,13 +187,11 @@ Description describe(const scenes::Scene& scene) {
   // cone's limits have no pin or distance to be.
   for (std::size_t k = 0; k < world.rigidJoints().size(); ++k) {
     const phys::JointDesc j = world.jointDesc(k);
-    const int a = static_cast<int>(j.a), b = static_cast<int>(j.b);
-    const Body& A = d.bodies[static_cast<std::size_t>(a)];
-    const Body& B = d.bodies[static_cast<std::size_t>(b)];
     std::vector<std::pair<Vec3, Vec3>> points{{j.pivot, j.pivotB}};
     if (j.kind == phys::JointKind::Hinge)
       points.emplace_back(j.pivot + 0.1 * j.axis, j.pivotB + 0.1 * j.axisB);
-    for (const auto& [pa, pb] : points) d.pins.push_back(Pin{a, b, toLocal(A, pa), toLocal(B, pb), pa, pb});
+    for (const auto& [pa, pb] : points)
+      d.pins.push_back({endsOf(static_cast<int>(j.a), static_cast<int>(j.b), pa, pb)});
   }
   if (!world.rigidJoints().empty())
     d.notes.push_back(std::to_string(world.rigidJoints().size()) +

@@ -54,21 +54,23 @@ struct Body {
   bool solid() const { return shape != Shape::Sphere; }
 };
 
-/// A ball joint: a point of body a held on a point of body b (our pin link).
-struct Pin {
+/// What a constraint joins: a point of body a and a point of body b.
+struct Ends {
   int a = 0, b = 0;
   phys::Vec3 localA{0.0}, localB{0.0};  ///< unit: m; in each body's frame
   phys::Vec3 worldA{0.0}, worldB{0.0};  ///< unit: m; where they are at the start
+  /// The same ends with b first (an engine that wants a moving body first).
+  Ends swapped() const { return {b, a, localB, localA, worldB, worldA}; }
 };
+
+/// A ball joint: a point of body a held on a point of body b (our pin link).
+struct Pin : Ends {};
 
 /// A distance between a point of body a and a point of body b kept within [min, max]: a stick
 /// (min = max), a range stick, or a range link (a ragdoll's joint stop).
-struct Distance {
-  int a = 0, b = 0;
-  phys::Vec3 localA{0.0}, localB{0.0};  ///< unit: m
-  phys::Vec3 worldA{0.0}, worldB{0.0};  ///< unit: m; at the start
-  double min = 0.0;                     ///< unit: m
-  double max = 0.0;                     ///< unit: m; may be infinite
+struct Distance : Ends {
+  double min = 0.0;  ///< unit: m
+  double max = 0.0;  ///< unit: m; may be infinite
   /// True for a range link (a joint stop), false for a stick: our joint gap counts links
   /// (Metrics::maxJointError), our stick error sticks, and the peers' are measured alike.
   bool link = false;
