@@ -8,6 +8,7 @@
 #include "bodies.h"
 #include "expect_reader.h"
 #include "numbers.h"
+#include "run_metrics.h"
 #include "runner.h"
 #include "text.h"
 
@@ -149,8 +150,7 @@ AccuracyTarget referenceTarget(const scenes::Scene& scene, double dt, int steps)
   for (std::size_t k = 0; k < t.checkpoints.size(); ++k) {
     double worst = 0.0;
     for (std::size_t b = 0; b < t.expected[k].size(); ++b) {
-      const double d = glm::length(t.expected[k][b] - coarse[k][b]);
-      worst = std::isfinite(d) ? std::max(worst, d) : kInf;
+      keepLargest(worst, glm::length(t.expected[k][b] - coarse[k][b]));
     }
     // A reference the guard froze holds its parts where they went bad: two such runs can agree
     // (0 m) and both be meaningless, so its uncertainty is unknown, which reads as unbounded.

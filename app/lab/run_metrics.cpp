@@ -28,6 +28,10 @@ double trackingErrorDegrees(const phys::World& world) {
   return overParts.value() * 180.0 / std::numbers::pi;
 }
 
+void keepLargest(double& worst, double sample) {
+  worst = std::isfinite(sample) && std::isfinite(worst) ? std::max(worst, sample) : kInf;
+}
+
 void RunMaxima::observe(const phys::World& world) {
   const phys::Metrics metrics = world.metrics();
   std::array<double, kRunMetricCount> figures{};

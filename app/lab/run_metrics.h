@@ -72,6 +72,10 @@ inline constexpr std::size_t kStickErrorMetric = runMetricIndex("stick-error");
 inline constexpr std::size_t kPenetrationMetric = runMetricIndex("penetration");
 static_assert(kStickErrorMetric < kRunMetricCount && kPenetrationMetric < kRunMetricCount);
 
+/// Keeps the largest of a figure's samples in `worst`, and infinity for good once one is not
+/// finite: a run that blew up is not rescued by a later small value.
+void keepLargest(double& worst, double sample);
+
 /// Each figure of kRunMetrics over the run so far: the largest, or the root mean square for an
 /// OverRun::Rms figure, and infinity for good once a figure was not finite (a run that blew up is
 /// not rescued by a later small value).

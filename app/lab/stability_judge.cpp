@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <optional>
 
 #include "bodies.h"
 #include "peers/peer_scene.h"
 #include "peers/pose_measures.h"
 #include "physics/body.h"
+#include "run_metrics.h"
 #include "text.h"
 
 namespace lab::stability {
@@ -21,11 +21,6 @@ constexpr double kFlipThreshold = 0.5;
 
 bool inWindow(const Criterion& c, int step) {
   return step >= c.fromStep && step <= c.toStep;
-}
-
-// The largest of a figure's samples; infinity once one is not finite (the run blew up).
-void keepLargest(double& value, double sample) {
-  value = std::isfinite(sample) && std::isfinite(value) ? std::max(value, sample) : kInf;
 }
 
 // Keeps the extreme of a stays-behind coordinate: the highest for a max plane, the lowest for min.
@@ -129,29 +124,25 @@ std::vector<Verdict> WorldJudge::verdicts(bool blewUp) const {
 
 namespace {
 
-// Each particle's index in bodies.h order when it is a loose particle, else -1 (a box's).
-std::vector<std::int64_t> looseIndex(const phys::World& world) {
-  std::vector<std::int64_t> index(world.particles().size(), -1);
-  std::int64_t next = static_cast<std::int64_t>(world.bodies().size());
-  for (phys::ParticleId p : looseParticles(world)) index[p] = next++;
-  return index;
+// Whether a stick joins two loose particles, given particleBodies(world) (their places are after the boxes').
+bool isLooseStick(const phys::World& world, const std::vector<std::size_t>& body, const phys::Stick& s) {
+  return body[s.a] >= world.bodies().size() && body[s.b] >= world.bodies().size();
 }
 
 bool hasLooseSticks(const phys::World& world) {
-  const std::vector<std::int64_t> index = looseIndex(world);
+  const std::vector<std::size_t> body = particleBodies(world);
   return std::any_of(world.sticks().begin(), world.sticks().end(),
-                     [&](const phys::Stick& s) { return index[s.a] >= 0 && index[s.b] >= 0; });
+                     [&](const phys::Stick& s) { return isLooseStick(world, body, s); });
 }
 
 // Stick error from positions: the sticks between two loose particles (a peer's rigid bodies
 // keep their own shape exactly, so a box's internal sticks have no error there).
 double looseStickError(const phys::World& world, const std::vector<phys::Vec3>& at) {
-  const std::vector<std::int64_t> index = looseIndex(world);
+  const std::vector<std::size_t> body = particleBodies(world);
   double worst = 0.0;
   for (const phys::Stick& s : world.sticks()) {
-    if (index[s.a] < 0 || index[s.b] < 0) continue;
-    const double d =
-        glm::length(at[static_cast<std::size_t>(index[s.b])] - at[static_cast<std::size_t>(index[s.a])]);
+    if (!isLooseStick(world, body, s)) continue;
+    const double d = glm::length(at[body[s.b]] - at[body[s.a]]);
     const double bound = d < s.minLength ? s.minLength : (d > s.maxLength ? s.maxLength : d);
     if (bound > 0.0) worst = std::max(worst, std::abs(d - bound) / bound);
   }

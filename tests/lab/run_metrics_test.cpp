@@ -194,6 +194,17 @@ TEST(RunMetrics, AnRmsFigureOfHugeFiniteValuesStaysFinite) {
   EXPECT_EQ(maxima[tracking], lab::kInf);
 }
 
+TEST(RunMetrics, KeepLargestHoldsInfinityOnceASampleIsNotFinite) {
+  double worst = 0.0;
+  lab::keepLargest(worst, 0.5);
+  lab::keepLargest(worst, 0.25);
+  EXPECT_EQ(worst, 0.5);
+  lab::keepLargest(worst, std::nan(""));
+  EXPECT_TRUE(std::isinf(worst));
+  lab::keepLargest(worst, 1.0);  // a later small sample does not rescue a run that blew up
+  EXPECT_TRUE(std::isinf(worst));
+}
+
 TEST(RunMetrics, NamesFindTheirRow) {
   EXPECT_EQ(lab::runMetricIndex("angular-speed"), lab::kRunMetricCount - 2);
   EXPECT_EQ(lab::runMetricIndex("tracking-error"), lab::kRunMetricCount - 1);

@@ -2,18 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "run_metrics.h"
+#include "text.h"
+
 namespace lab::peers {
 namespace {
 
 using phys::Vec3;
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The deepest point of a contact. Depths are measured with margin 0, so a contact found at all
 // has its points at depth >= 0; bodies merely touching read 0.
@@ -109,14 +109,12 @@ double jointGap(const Description& scene, const std::vector<Vec3>& centres,
     return toWorld(centres[k], orientations[k], local);
   };
   double worst = 0.0;
-  auto keep = [&](double gap) {
-    worst = std::isfinite(gap) && std::isfinite(worst) ? std::max(worst, gap) : kInf;
-  };
-  for (const Pin& p : scene.pins) keep(glm::length(point(p.b, p.localB) - point(p.a, p.localA)));
+  for (const Pin& p : scene.pins)
+    keepLargest(worst, glm::length(point(p.b, p.localB) - point(p.a, p.localA)));
   for (const Distance& d : scene.distances) {
     if (!d.link) continue;
     const double length = glm::length(point(d.b, d.localB) - point(d.a, d.localA));
-    keep(std::isfinite(length) ? std::max({0.0, d.min - length, length - d.max}) : kInf);
+    keepLargest(worst, std::isfinite(length) ? std::max({0.0, d.min - length, length - d.max}) : kInf);
   }
   return worst;
 }
