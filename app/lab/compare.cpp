@@ -4,7 +4,6 @@
 // table or JSON lines (docs/lab.md, "lab compare and the peers").
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -12,6 +11,7 @@
 #include <vector>
 
 #include "accuracy.h"
+#include "bodies.h"
 #include "commands.h"
 #include "json.h"
 #include "lab.h"
@@ -89,13 +89,6 @@ std::filesystem::path shownPath(const std::filesystem::path& file, const std::fi
   return relative;
 }
 
-std::string fixed(double v, const char* format) {
-  if (!std::isfinite(v)) return formatNumber(v);  // "blew up" or "n/a", as every table says it
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, format, v);
-  return buffer;
-}
-
 // Table cells may not hold a '|' or a line break.
 std::string cell(std::string text) {
   std::replace(text.begin(), text.end(), '|', '/');
@@ -123,10 +116,10 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
       const Figures& f = r.figures;
       // Below a nanometre a depth is round-off (ours rest at 1e-20 m or so), shown as 0.
       const double depth = std::abs(f.posePenetration) < 1e-9 ? 0.0 : f.posePenetration;
-      out << fixed(r.msPerStep, "%.4g") << " | " << fixed(r.msPerStep / fastest, "%.3gx") << " | "
-          << fixed(f.errorFirst, "%.3g") << " | " << fixed(f.error, "%.3g") << " | " << fixed(depth, "%.3g")
-          << " | " << fixed(f.poseJointGap, "%.3g");
-      for (const double v : f.maxima.worst) out << " | " << (r.peer ? "-" : fixed(v, "%.3g"));
+      out << formatNumber(r.msPerStep, 4) << " | " << formatFigure(r.msPerStep / fastest, "x", 3) << " | "
+          << formatNumber(f.errorFirst, 3) << " | " << formatNumber(f.error, 3) << " | "
+          << formatNumber(depth, 3) << " | " << formatNumber(f.poseJointGap, 3);
+      for (const double v : f.maxima.worst) out << " | " << (r.peer ? "-" : formatNumber(v, 3));
     } else {
       out << "not run | | | | | ";
       for (std::size_t i = 0; i < kRunMetricCount; ++i) out << " | ";
@@ -165,14 +158,12 @@ void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, 
 
 // "2 boxes, 1 capsule, 3 loose particles, 9 links, 0 joints"
 std::string contents(const phys::World& world) {
-  std::size_t loose = world.particles().size(), capsules = 0;
-  for (const phys::Body& b : world.bodies()) {
-    loose -= static_cast<std::size_t>(b.particleCount);
-    capsules += b.shape == phys::Shape::Capsule ? 1 : 0;
-  }
+  const auto capsules = static_cast<std::size_t>(
+      std::count_if(world.bodies().begin(), world.bodies().end(),
+                    [](const phys::Body& b) { return b.shape == phys::Shape::Capsule; }));
   return count(world.bodies().size() - capsules, "box", "boxes") + ", " +
          (capsules > 0 ? count(capsules, "capsule", "capsules") + ", " : std::string()) +
-         count(loose, "loose particle", "loose particles") + ", " +
+         count(looseParticles(world).size(), "loose particle", "loose particles") + ", " +
          count(world.links().size() + world.rigidLinks().size(), "link", "links") + ", " +
          count(world.rigidJoints().size(), "joint", "joints");
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <initializer_list>
 #include <optional>
 #include <sstream>
@@ -257,9 +256,7 @@ double timeSetting(const scenes::SceneSource& source, const Setting& setting, in
 namespace {
 
 std::string cacheKey(const Setting& setting, int steps) {
-  char dt[32];
-  std::snprintf(dt, sizeof dt, "%.17g", setting.dt);
-  return setting.model.label + "|" + dt + "|" + std::to_string(steps);
+  return setting.model.label + "|" + formatNumber(setting.dt, 17) + "|" + std::to_string(steps);
 }
 
 }  // namespace

@@ -2,21 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "joint_forest.h"
+#include "text.h"
 
 namespace lab::peers::mjcf {
 namespace {
 
+// Every digit a double has, so MuJoCo reads back the very number.
 std::string num(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
+  return formatNumber(v, 17);
 }
 std::string vec(const phys::Vec3& v) {
   return num(v.x) + " " + num(v.y) + " " + num(v.z);
