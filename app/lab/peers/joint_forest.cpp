@@ -50,16 +50,8 @@ TreeNode jointOf(const std::vector<phys::Vec3>& points) {
 }  // namespace
 
 int dofsOf(TreeJoint joint) {
-  switch (joint) {
-    case TreeJoint::Free:
-      return 6;
-    case TreeJoint::Ball:
-      return 3;
-    case TreeJoint::Hinge:
-      return 1;
-    default:
-      return 0;
-  }
+  constexpr int kDofs[] = {6, 0, 3, 1, 0};  // TreeJoint's order: free, fixed, ball, hinge, weld
+  return kDofs[static_cast<int>(joint)];
 }
 
 JointForest jointForest(const Description& scene, bool tree) {
@@ -115,17 +107,13 @@ JointForest jointForest(const Description& scene, bool tree) {
       }
     }
   };
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!scene.bodies[i].fixed) continue;
-    f.nodes[i].joint = TreeJoint::Fixed;
-    f.roots.push_back(static_cast<int>(i));
-    grow(static_cast<int>(i));
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (reached[i]) continue;
-    f.nodes[i].joint = TreeJoint::Free;
-    f.roots.push_back(static_cast<int>(i));
-    grow(static_cast<int>(i));
+  for (const bool fixedRoots : {true, false}) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (fixedRoots ? !scene.bodies[i].fixed : reached[i]) continue;
+      f.nodes[i].joint = fixedRoots ? TreeJoint::Fixed : TreeJoint::Free;
+      f.roots.push_back(static_cast<int>(i));
+      grow(static_cast<int>(i));
+    }
   }
   std::sort(f.roots.begin(), f.roots.end());
   for (auto& c : f.children) std::sort(c.begin(), c.end());

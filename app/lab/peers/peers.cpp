@@ -53,6 +53,13 @@ constexpr Adapter kAdapters[] = {
     {nullptr, nullptr},  // keeps the array non-empty when no adapter is built
 };
 
+const Adapter* findAdapter(std::string_view name) {
+  for (const Adapter& a : kAdapters) {
+    if (a.name != nullptr && name == a.name) return &a;
+  }
+  return nullptr;
+}
+
 std::string joined(const std::vector<std::string>& parts) {
   std::string out;
   for (const std::string& p : parts) {
@@ -69,10 +76,8 @@ std::unique_ptr<peers::Engine> peers::makeEngine(std::string_view name, const De
 #ifdef LAB_PEER_MUJOCO
   if (name == "mujoco-tree") return makeMujocoTree(scene, dt);  // the tests' way to the tree form
 #endif
-  for (const Adapter& a : kAdapters) {
-    if (a.name != nullptr && name == a.name) return a.make(scene, dt);
-  }
-  return nullptr;
+  const Adapter* adapter = findAdapter(name);
+  return adapter != nullptr ? adapter->make(scene, dt) : nullptr;
 }
 
 std::vector<std::string> peerEngines() {
@@ -87,10 +92,7 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
                    const std::vector<int>& checkpoints, bool sleep) {
   PeerResult result;
   result.engine = std::string(engine);
-  const Adapter* adapter = nullptr;
-  for (const Adapter& a : kAdapters) {
-    if (a.name != nullptr && engine == a.name) adapter = &a;
-  }
+  const Adapter* adapter = findAdapter(engine);
   if (adapter == nullptr) {
     result.unsupported = "not built into this lab";
     return result;
