@@ -183,16 +183,13 @@ std::string Criterion::describe() const {
   } else if (metric == Metric::Flips) {
     out.append("flips of ").append(body);
     if (limit == upper)
-      out.append(" = ");
+      out.append(" = ").append(countText(limit));
     else if (std::isinf(upper))
-      out.append(" >= ");
+      out.append(" >= ").append(countText(limit));
     else if (limit == 0.0)
       out.append(" <= ").append(countText(upper));
     else
       out.append(" from ").append(countText(limit)).append(" to ").append(countText(upper));
-    if (limit == upper || std::isinf(upper)) out.append(countText(limit));
-    out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
-    return out;
   } else {
     out.append(metricInfo(metric).name);
     if (body == "*")
@@ -201,8 +198,10 @@ std::string Criterion::describe() const {
       out.append(" of ").append(body);
     out.append(" <= ");
   }
-  out.append(formatLimit(limit));
-  if (const std::string unit = metricInfo(metric).unit; !unit.empty()) out.append(" ").append(unit);
+  if (metric != Metric::Flips) {
+    out.append(formatLimit(limit));
+    if (const std::string unit = metricInfo(metric).unit; !unit.empty()) out.append(" ").append(unit);
+  }
   out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
   return out;
 }

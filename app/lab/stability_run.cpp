@@ -6,9 +6,9 @@
 
 #include "peer.h"
 #include "physics/ragdoll.h"
-#include "run.h"
 #include "runner.h"
 #include "scenes/scene.h"
+#include "sweep_core.h"
 
 namespace lab::stability {
 namespace {
@@ -53,18 +53,15 @@ std::string settingGroup(const Setting& setting) {
 
 Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   // A box model and the ragdolls' of the same kind: corners and seed, tetra and lean, rigid.
-  scenes::LoadOptions load;
-  load.sleep = setting.sleep;
+  scenes::LoadOptions load{.sleep = setting.sleep};
   if (const std::optional<phys::BodyModel> model = phys::parseBodyModel(setting.model)) {
     load.boxModel = *model;
     load.ragdollModel = phys::ragdollModelOf(*model);
   }
-  scenes::Scene scene = scenes::loadSceneSource(s.source, load);
-  // One call, as `lab run` does: the world judges the whole.
-  applyOverrides(
-      scene.world,
-      RunOptions{.method = setting.method, .iterations = setting.iterations, .substeps = setting.substeps});
-
+  // At the scene's own dt, which the world keeps as it is.
+  scenes::Scene scene = loadSetting(
+      s.source,
+      lab::Setting{{setting.model, load}, setting.method, setting.iterations, setting.substeps, s.dt});
   phys::World& world = scene.world;
   WorldJudge judge(s.criteria, world);
   Outcome o;
