@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "physics/body.h"
+
 namespace lab {
 namespace {
 
@@ -89,8 +91,7 @@ std::vector<FreeBodyPose> freeBodyPoses(const FreeBodyStart& start, const std::v
 double cornerDistance(const FreeBodyPose& a, const FreeBodyPose& b, const Vec3& halfExtents) {
   double worst = 0.0;
   for (int k = 0; k < 8; ++k) {
-    const Vec3 corner((k & 1) ? halfExtents.x : -halfExtents.x, (k & 2) ? halfExtents.y : -halfExtents.y,
-                      (k & 4) ? halfExtents.z : -halfExtents.z);
+    const Vec3 corner = phys::boxCornerLocal(halfExtents, k);
     const double d = glm::length((a.centre + a.orientation * corner) - (b.centre + b.orientation * corner));
     if (std::isnan(d)) return d;  // std::max would drop it
     worst = std::max(worst, d);

@@ -57,8 +57,6 @@ void runPeers(const Plan& plan, double dt, TargetCache& targets, std::vector<Swe
     try {
       p = runPeer(engine, scene, dt, steps, target.checkpoints, plan.peerSleep);
     } catch (const std::exception& e) {
-      p.engine = engine;
-      p.ran = false;
       p.unsupported = std::string("failed: ") + e.what();
     }
     progress.advance();
