@@ -2,7 +2,6 @@
 #include "text.h"
 
 #include <optional>
-#include <sstream>
 
 #include "peer.h"
 #include "physics/ragdoll.h"
@@ -77,9 +76,7 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   const bool blewUp = !world.freezes().empty();
   if (blewUp) {
     const phys::FreezeReport& f = world.freezes().front();
-    std::ostringstream note;
-    note << "froze " << f.name << " at " << f.time << " s: " << f.reason;
-    o.note = note.str();
+    o.note = "froze " + f.name + " at " + formatNumber(f.time) + " s: " + f.reason;
   } else if (!setting.model.empty() && s.boxes == 0) {
     o.note = "no body for the model: the scene's own run";
   } else if (setting.sleep) {

@@ -302,6 +302,21 @@ TEST(StabilityRun, TheHeaviestChainFailsAtOneSubstepAndHoldsAt64) {
   EXPECT_GT(good.msPerStep, 0.0);
 }
 
+// A run the guard stops says who froze, when and why, in the note the report shows.
+TEST(StabilityRun, ABlowUpsNoteNamesTheFrozenBodyItsTimeAndReason) {
+  const TempDir dir;
+  const std::filesystem::path file =
+      dir.write("away.xml",
+                "<scene name=\"away\">\n  <world bound=\"2\" gravity=\"0 0 0\"/>\n"
+                "  <particle name=\"runner\" pos=\"0 1 0\" velocity=\"0 60 0\"/>\n"
+                "  <expect kind=\"pass\" metric=\"speed\" max=\"100\" over=\"0 1\"/>\n</scene>\n");
+  const lab::stability::Outcome o = lab::stability::runSetting(
+      lab::stability::loadSuiteScene(file), setting(phys::SolverMethod::GaussSeidel, 1, 1));
+  EXPECT_FALSE(o.passed);
+  EXPECT_TRUE(o.note.starts_with("froze runner at 0.0")) << o.note;
+  EXPECT_NE(o.note.find(" s: left the world bound of 2 m"), std::string::npos) << o.note;
+}
+
 TEST(StabilityRun, FaceToFaceStaysStackedAtAGoodSetting) {
   const auto o =
       lab::stability::runSetting(suiteScene("face-face"), setting(phys::SolverMethod::GaussSeidel, 3, 4));
