@@ -215,9 +215,7 @@ std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const sce
   p.positions.push_back(bodyPositions(world));
   p.positions.insert(p.positions.end(), positions.begin(), positions.end());
   if (!orientations.empty()) {
-    std::vector<phys::Quat> loaded;
-    for (const peers::Body& b : description.bodies) loaded.push_back(b.orientation);
-    p.orientations.push_back(std::move(loaded));
+    p.orientations.push_back(bodyOrientations(world));
     p.orientations.insert(p.orientations.end(), orientations.begin(), orientations.end());
   }
   const std::size_t bodies = description.bodies.size();
