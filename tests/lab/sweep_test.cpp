@@ -861,14 +861,18 @@ TEST(Accuracy, AnalyticTargetHoldsTheGivenPositionsAtTheirSteps) {
   EXPECT_TRUE(std::isinf(lab::accuracyError(t, {})));
 }
 
-TEST(Accuracy, BodiesAreTheBoxesThenTheLooseParticlesInIdOrder) {
-  // A particle on either side of the box, whose own particles lie between them by id.
-  const scenes::Scene scene = scenes::loadSceneText(
+// A particle on either side of a box, whose own particles lie between them by id.
+scenes::Scene boxBetweenParticles() {
+  return scenes::loadSceneText(
       "<scene name=\"order\">\n  <world/>\n"
       "  <particle name=\"first\" pos=\"1 0 0\" mass=\"1\"/>\n"
       "  <box name=\"crate\" pos=\"0 5 0\" size=\"1\"/>\n"
       "  <particle name=\"last\" pos=\"2 0 0\" mass=\"1\"/>\n</scene>\n",
       "o.xml");
+}
+
+TEST(Accuracy, BodiesAreTheBoxesThenTheLooseParticlesInIdOrder) {
+  const scenes::Scene scene = boxBetweenParticles();
   const phys::World& world = scene.world;
   const phys::Body& box = world.bodies()[0];
   const std::vector<phys::ParticleId> loose = lab::looseParticles(world);
@@ -885,13 +889,7 @@ TEST(Accuracy, BodiesAreTheBoxesThenTheLooseParticlesInIdOrder) {
 }
 
 TEST(Accuracy, EachParticleBelongsToItsBoxOrToItsOwnPlaceAfterTheBoxes) {
-  // As above: a loose particle, the box's particles, another loose particle, by id.
-  const scenes::Scene scene = scenes::loadSceneText(
-      "<scene name=\"order\">\n  <world/>\n"
-      "  <particle name=\"first\" pos=\"1 0 0\" mass=\"1\"/>\n"
-      "  <box name=\"crate\" pos=\"0 5 0\" size=\"1\"/>\n"
-      "  <particle name=\"last\" pos=\"2 0 0\" mass=\"1\"/>\n</scene>\n",
-      "o.xml");
+  const scenes::Scene scene = boxBetweenParticles();
   const phys::Body& box = scene.world.bodies()[0];
   std::vector<std::size_t> expected(scene.world.particles().size(), 0u);
   expected.front() = 1u;
