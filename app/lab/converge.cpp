@@ -148,15 +148,7 @@ std::vector<ModelChoice> chosenModels(const scenes::SceneSource& source, const s
                 << " has no boxes or ragdolls: --models does not apply to it\n";
     return {ModelChoice{kParticleModel, {}}};
   }
-  if (o.models.empty()) return allModelChoices(models);
-  std::vector<ModelChoice> out;
-  for (const std::string& name : o.models) {
-    std::string error;
-    const std::optional<ModelChoice> c = modelChoice(name, models, error);
-    if (!c) throw UsageError("--models: " + error);
-    out.push_back(*c);
-  }
-  return out;
+  return o.models.empty() ? allModelChoices(models) : modelChoices(o.models, models);
 }
 
 }  // namespace

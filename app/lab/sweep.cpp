@@ -89,15 +89,7 @@ using Row = SweepRow;
 // The plan of the options; throws UsageError for a --models that does not fit the scene, or too
 // many runs.
 Plan sweepPlan(const SweepOptions& o, const scenes::SceneSource& scene) {
-  const SceneModels models = sceneModels(scene);
-  std::vector<ModelChoice> choices;
-  for (const std::string& name : o.models) {
-    std::string error;
-    const std::optional<ModelChoice> c = modelChoice(name, models, error);
-    if (!c) throw UsageError("--models: " + error);
-    choices.push_back(*c);
-  }
-  return makePlan(scene, PlanRequest{.models = choices,
+  return makePlan(scene, PlanRequest{.models = modelChoices(o.models, sceneModels(scene)),
                                      .methods = o.methods,
                                      .iterations = o.iterations,
                                      .substeps = o.substeps,

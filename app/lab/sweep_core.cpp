@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "command_line.h"  // UsageError
 #include "peers/pose_measures.h"
 #include "run.h"
 #include "runner.h"
@@ -138,6 +139,17 @@ std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels&
   }
   error = "unknown model " + inQuotes(name) + " (corners, tetra, seed, lean or rigid)";
   return std::nullopt;
+}
+
+std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, const SceneModels& models) {
+  std::vector<ModelChoice> out;
+  for (const std::string& name : names) {
+    std::string error;
+    const std::optional<ModelChoice> c = modelChoice(name, models, error);
+    if (!c) throw UsageError("--models: " + error);
+    out.push_back(*c);
+  }
+  return out;
 }
 
 std::vector<ModelChoice> allModelChoices(const SceneModels& models) {

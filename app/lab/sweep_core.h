@@ -44,6 +44,10 @@ SceneModels sceneModels(const scenes::SceneSource& scene);
 /// a kind the scene does not have ("lean" for a scene without ragdolls).
 std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error);
 
+/// The models a --models list names, in its order; throws UsageError "--models: <modelChoice's
+/// error>" at the first that does not fit the scene.
+std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, const SceneModels& models);
+
 /// Every model choice that applies: the box models times the ragdoll models the scene has
 /// ("corners", "tetra+lean", ...), then "rigid" (both kinds rigid); just the file's own when it has
 /// neither kind.
