@@ -391,7 +391,6 @@ TEST(SceneErrors, AnEndlessDeviceIsCutOff) {
   EXPECT_NE(fileError("/dev/zero").find("/dev/zero: is larger than"), std::string::npos);
 }
 
-// UTF-16 and UTF-32 files got pugixml's "Could not determine tag type".
 // Text handed in whole is held to the limit a file is read to, before it is copied; the limit
 // is given small here so as not to hold 512 MiB (the public loadSceneText gives kMaxSceneBytes).
 TEST(SceneErrors, TextOverTheLimitIsRefusedAsAWhole) {
@@ -406,6 +405,7 @@ TEST(SceneErrors, TextOverTheLimitIsRefusedAsAWhole) {
   EXPECT_EQ(scenes::detail::loadSceneText(xml, "fits.xml", xml.size()).name, "s");
 }
 
+// UTF-16 and UTF-32 files got pugixml's "Could not determine tag type".
 TEST(SceneErrors, OtherEncodingsAreNamed) {
   const testing_app::TempFolder folder;
   const std::string ascii = "<scene name='s'/>";
