@@ -702,6 +702,23 @@ TEST(SceneErrors, AnEntityReferenceTheLoaderWouldTakeAsTextIsRefused) {
   EXPECT_EQ(fine.bodies.at(0).name, "x&y");
 }
 
+// A quote in a processing instruction or a conditional section of the DOCTYPE is only text there,
+// as pugixml reads it; taken for the start of a quoted value, it would hide every reference after
+// it from the check, and name='&a;' would load as that text, name='a&#0;b' as "a".
+TEST(SceneErrors, AQuoteInsideTheDoctypesInstructionsHidesNoReference) {
+  for (const char* inside : {"<?pi it's?>", "<![IGNORE[ it's ]]>", "<![IGNORE[ <![ \" ]]> ' ]]>"}) {
+    const std::string doctype = std::string("<!DOCTYPE scene [\n") + inside + "\n]>\n";
+    testing_scenes::expectRefused(
+        {inside, (doctype + "<scene name='s'>\n<box pos='0 1 0'\n name='&a;'/>\n</scene>").c_str(), 6, "name",
+         "holds the entity reference &a;"});
+    testing_scenes::expectRefused(
+        {inside, (doctype + "<scene name='s'>\n<box pos='0 1 0'\n name='a&#0;b'/>\n</scene>").c_str(), 6,
+         "name", "holds the character reference &#0;"});
+    // And the DOCTYPE still ends where pugixml ends it: what follows loads.
+    EXPECT_EQ(scenes::loadSceneText(doctype + "<scene name='s&amp;'/>", "fine.xml").name, "s&") << inside;
+  }
+}
+
 // 1e-400 is finite but nearer zero than any double; refused as too small, not as "not finite".
 TEST(SceneErrors, ANumberThatUnderflowsIsSaidToBeTooSmall) {
   for (const char* value : {"1e-400", "-1e-400", "+0.000001e-320", "1000e-330", "1e-99999999999999999999"}) {

@@ -970,17 +970,44 @@ std::optional<std::string> declaredOtherEncoding(const pugi::xml_node& declarati
   return encoding;
 }
 
-// Where the <!DOCTYPE> that starts at `i` ends (past its '>'), skipping the quoted values and
-// comments of its internal subset as pugixml does; npos if it does not end (the parse says so).
+// Where the conditional section (<![ ... ]]>) that starts at `i` ends (at the '>' of its "]]>"),
+// counting those nested in it as pugixml does, quotes being no quotes there; npos if it does not end.
+std::size_t conditionalSectionEnd(std::string_view text, std::size_t i) {
+  int depth = 0;
+  while (i < text.size()) {
+    const std::string_view rest = text.substr(i);
+    if (rest.starts_with("<![")) {
+      ++depth;
+      i += 3;
+    } else if (rest.starts_with("]]>")) {
+      if (--depth == 0) return i + 2;
+      i += 3;
+    } else {
+      ++i;
+    }
+  }
+  return std::string_view::npos;
+}
+
+// Where the <!DOCTYPE> that starts at `i` ends (past its '>'), skipping the quoted values,
+// comments, processing instructions and conditional sections of its internal subset as pugixml
+// does: a quote inside one of the last three is only text, and taken for a quote it would hide
+// every reference after it; npos if it does not end (the parse says so).
 std::size_t doctypeEnd(std::string_view text, std::size_t i) {
   int depth = 0;  // of '<' ... '>': the DOCTYPE's own, and its declarations'
   for (; i < text.size(); ++i) {
     const char c = text[i];
+    const std::string_view rest = text.substr(i);
     if (c == '"' || c == '\'') {
       i = text.find(c, i + 1);
-    } else if (text.substr(i).starts_with("<!--")) {
+    } else if (rest.starts_with("<!--")) {
       i = text.find("-->", i + 4);
       if (i != std::string_view::npos) i += 2;
+    } else if (rest.starts_with("<?")) {
+      i = text.find("?>", i + 2);
+      if (i != std::string_view::npos) i += 1;
+    } else if (rest.starts_with("<![")) {
+      i = conditionalSectionEnd(text, i);
     } else if (c == '<') {
       ++depth;
     } else if (c == '>' && --depth == 0) {
