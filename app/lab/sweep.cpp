@@ -357,7 +357,7 @@ std::string writeOutputs(OutputFolder& files, const Plan& plan, const std::vecto
   files.write("results.csv", csvText(plan.sceneName, rows));
   files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
-  std::string problem =  // not const: moved out
+  std::string problem =  // not const, so that the return moves it
       files.draw("sweep.gp", chart,
                  "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
   files.commit();

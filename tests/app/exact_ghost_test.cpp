@@ -126,8 +126,8 @@ TEST(ExactGhost, KeepsUpWhileHiddenSoThatComingBackCostsAFramesStep) {
   EXPECT_LE(ghost.stepsTaken() - before, 1);
 }
 
-// Exact answers turned on after 30 s with them off: the ghost, not stepped since, took the 1,800
-// steps at 128 substeps in one frame (a minute's froze the sandbox for a second). It catches up
+// Exact answers turned on after 30 s with them off: the ghost, not stepped since, would take the
+// 1,800 steps at 128 substeps in one frame (a minute's would freeze the sandbox for a second). It catches up
 // kGhostStepsPerFrame steps a frame, hidden and saying so until it is there, and then is the same
 // state as a ghost stepped there at once.
 TEST(ExactGhost, CatchesUpAFramesStepsAtATimeAfterAStretchNotDrawn) {

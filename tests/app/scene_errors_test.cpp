@@ -391,8 +391,8 @@ TEST(SceneErrors, AnEndlessDeviceIsCutOff) {
   EXPECT_NE(fileError("/dev/zero").find("/dev/zero: is larger than"), std::string::npos);
 }
 
-// Text handed in whole is held to the limit a file is read to, before it is copied; the limit
-// is given small here so as not to hold 512 MiB (the public loadSceneText gives kMaxSceneBytes).
+// Text handed in whole is held to the limit a file is read to. The limit is given small here so
+// as not to hold 512 MiB; the public loadSceneText gives kMaxSceneBytes, which this does not run.
 TEST(SceneErrors, TextOverTheLimitIsRefusedAsAWhole) {
   const std::string xml = "<scene name='s'/>";
   try {

@@ -1,6 +1,7 @@
 #include "joint_forest.h"
 
 #include <algorithm>
+#include <array>
 #include <deque>
 #include <map>
 #include <utility>
@@ -50,8 +51,8 @@ TreeNode jointOf(const std::vector<phys::Vec3>& points) {
 }  // namespace
 
 int dofsOf(TreeJoint joint) {
-  constexpr int kDofs[] = {6, 0, 3, 1, 0};  // TreeJoint's order: free, fixed, ball, hinge, weld
-  return kDofs[static_cast<int>(joint)];
+  constexpr std::array<int, 5> kDofs{6, 0, 3, 1, 0};  // TreeJoint's order: free, fixed, ball, hinge, weld
+  return kDofs.at(static_cast<std::size_t>(joint));   // a value cast from outside the enum throws
 }
 
 JointForest jointForest(const Description& scene, bool tree) {

@@ -30,7 +30,7 @@ inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
 inline constexpr std::size_t kMaxBodies = kMaxParticles / 8;
 /// Whole scene: <expect> elements. The lab checks a handful of figures a scene (the project's
 /// scenes have at most 8), and each element's attributes are kept as strings, some 20 times the
-/// bytes they take in the file, so that a file of a million took gigabytes: 1000 is over 100
+/// bytes they take in the file, so that a file of a million would take gigabytes: 1000 is over 100
 /// times what any check needs.
 inline constexpr std::size_t kMaxExpectations = 1000;
 
