@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <optional>
+#include <set>
 
 #include "scenes/scene.h"
 
@@ -10,6 +12,11 @@ namespace sandbox {
 namespace {
 
 constexpr int kMaxFrames = 1000000;
+// An argument longer than this is shown in a message by its start and its length: a 100 kB value
+// pasted by mistake would otherwise fill the terminal and hide what is wrong with it. Paths and
+// overlay settings of any use are far shorter.
+constexpr std::size_t kLongArgument = 1024;
+constexpr std::size_t kShownStart = 60;
 
 // A whole number from min to max written as nothing else, or nothing.
 std::optional<long> wholeNumber(const std::string& text, long min, long max) {
@@ -37,6 +44,53 @@ std::optional<SectionFlags> parseSections(const std::string& text) {
     start = comma + 1;
   }
   return open;
+}
+
+// A long argument as its first bytes (never cutting a UTF-8 character) and its length.
+std::string shortened(const std::string& arg) {
+  std::size_t cut = kShownStart;
+  while (cut > 0 && (static_cast<unsigned char>(arg[cut]) & 0xC0U) == 0x80U) --cut;
+  return arg.substr(0, cut) + "... (" + std::to_string(arg.size()) + " bytes)";
+}
+
+// Control characters as \xNN: a value holding an escape sequence must not drive the terminal the
+// message is printed on, and a newline in it must not pass for the end of the message.
+std::string escapeControls(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20U && byte != 0x7FU) {
+      out += c;
+      continue;
+    }
+    char hex[5];
+    std::snprintf(hex, sizeof hex, "\\x%02x", byte);
+    out += hex;
+  }
+  return out;
+}
+
+// The message as it can be printed: every long argument it quotes shortened, every control
+// character escaped. Done once on the finished message, so that every message, the overlay's own
+// among them, is shown the same way.
+std::string printable(std::string error, const std::vector<std::string>& args) {
+  for (const std::string& arg : args) {
+    if (arg.size() <= kLongArgument) continue;
+    const std::string shown = shortened(arg);
+    for (std::size_t at = error.find(arg); at != std::string::npos; at = error.find(arg, at + shown.size()))
+      error.replace(at, arg.size(), shown);
+  }
+  return escapeControls(error);
+}
+
+// The options without a value: given twice, they say the same thing twice.
+const std::set<std::string> kFlags = {"--markers", "--trails",      "--targets", "--no-shadows",
+                                      "--sweep",   "--hide-panels", "--help"};
+
+// "--" alone, or "--" and a name: where an option goes, not a value.
+bool isOption(const std::string& arg) {
+  return arg.size() >= 2 && arg.compare(0, 2, "--") == 0;
 }
 
 }  // namespace
@@ -70,15 +124,29 @@ std::string usage() {
          "                     simulation, rewind, world, draw, stats, lab, or all (default\n"
          "                     simulation,rewind,stats)\n"
          "  --data DIR         folder holding shaders/ and assets/ (default: the source tree)\n"
-         "  --help             show this text\n";
+         "  --help             show this text\n"
+         "  --                 ends the options: the scene may follow, whatever it starts with\n";
 }
 
-ParsedOptions parseOptions(const std::vector<std::string>& args) {
+namespace {
+
+// The arguments as given; the error quotes them unshortened (parseOptions makes it printable).
+ParsedOptions parseArguments(const std::vector<std::string>& args) {
   ParsedOptions out;
   Options& o = out.options;
   bool framesGiven = false;
+  bool optionsEnded = false;        // after "--" every argument is the scene
+  std::set<std::string> givenOnce;  // options with a value: a second one would silently win
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
+    if (!optionsEnded && a == "--") {
+      optionsEnded = true;
+      continue;
+    }
+    if (!optionsEnded && isOption(a) && kFlags.count(a) == 0 && !givenOnce.insert(a).second) {
+      out.error = a + " is given twice; give it once";
+      return out;
+    }
     // The option's value, or nullptr with the error set. An option in its place is refused rather
     // than taken as the value: `--screenshot --hide-panels` wrote a PNG named "--hide-panels".
     auto value = [&](const char* what) -> const std::string* {
@@ -87,8 +155,9 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
         return nullptr;
       }
       const std::string& next = args[i + 1];
-      if (next.size() > 2 && next.compare(0, 2, "--") == 0) {
-        out.error = a + " needs " + what + ", and '" + next + "' is an option";
+      if (isOption(next)) {
+        out.error = a + " needs " + what + ", and '" + next + "' " +
+                    (next == "--" ? "ends the options" : "is an option");
         if (a == "--screenshot" || a == "--data") out.error += " (one of that name is ./" + next + ")";
         return nullptr;
       }
@@ -105,7 +174,17 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       }
       return n;
     };
-    if (a == "--help" || a == "-h") {
+    if (optionsEnded || a.empty() || a[0] != '-' || a == "-") {
+      if (a.empty()) {
+        out.error = "the scene's name is empty";
+        return out;
+      }
+      if (!o.scene.empty()) {
+        out.error = "one scene only; got '" + o.scene + "' and '" + a + "'";
+        return out;
+      }
+      o.scene = a;
+    } else if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--screenshot") {
       const std::string* v = value("a file name");
@@ -165,6 +244,11 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
       // Every following argument that is not an option is one run's settings.
       while (i + 1 < args.size() &&
              !(args[i + 1].size() > 1 && args[i + 1][0] == '-' && args[i + 1][1] == '-')) {
+        if (args[i + 1].size() > kLongArgument) {  // its messages quote a part of it, not shortened
+          out.error = "--overlay: '" + args[i + 1] + "' is longer than a setting can be (" +
+                      std::to_string(kLongArgument) + " bytes)";
+          return out;
+        }
         const ParsedOverlaySpec parsed = parseOverlaySpec(args[++i]);
         if (!parsed.error.empty()) {
           out.error = "--overlay: " + parsed.error;
@@ -194,17 +278,20 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
         return out;
       }
       o.dataDir = *v;
-    } else if (a.size() > 1 && a[0] == '-') {
-      out.error = "unknown option '" + a + "'";
-      return out;
-    } else if (o.scene.empty()) {
-      o.scene = a;
     } else {
-      out.error = "one scene only; got '" + o.scene + "' and '" + a + "'";
+      out.error = "unknown option '" + a + "'";
       return out;
     }
   }
   if (framesGiven && !o.screenshot) out.error = "--frames needs --screenshot FILE";
+  return out;
+}
+
+}  // namespace
+
+ParsedOptions parseOptions(const std::vector<std::string>& args) {
+  ParsedOptions out = parseArguments(args);
+  if (!out.error.empty()) out.error = printable(out.error, args);
   return out;
 }
 

@@ -3,7 +3,7 @@
 //   sandbox [SCENE] [--screenshot FILE --frames N] [--draw filled|wireframe|constraints]
 //           [--markers] [--trails] [--targets] [--color-by WHAT] [--threads N] [--overlay SETTINGS...]
 //           [--pause-at N] [--hide-panels] [--unfold SECTIONS] [--no-shadows] [--sweep]
-//           [--data DIR] [--help]
+//           [--data DIR] [--help] [-- SCENE]
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -47,6 +47,8 @@ struct ParsedOptions {
   std::string error;  ///< empty on success; otherwise what is wrong with which argument
 };
 
+/// The options in `args` (argv without the program), or what is wrong with which argument; a value
+/// the error quotes has its control characters escaped and, past 1024 bytes, only its start shown.
 ParsedOptions parseOptions(const std::vector<std::string>& args);
 /// The usage text printed by --help and after an error.
 std::string usage();

@@ -1,5 +1,6 @@
 // The sandbox's command line: what it accepts and what it says about what it does not.
 #include <array>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -134,6 +135,79 @@ TEST(Options, HidePanelsAndUnfold) {
         << bad;
   }
   EXPECT_NE(sandbox::parseOptions({"--unfold"}).error.find("--unfold needs"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// A second value would silently win over the first (`--threads 2 ... --threads 8` ran with 8), and
+// a second --overlay added its runs to the first's.
+TEST(Options, AnOptionWithAValueIsRefusedWhenGivenTwice) {
+  EXPECT_EQ(parseOptions({"--threads", "2", "--threads", "3"}).error,
+            "--threads is given twice; give it once");
+  EXPECT_EQ(
+      parseOptions({"--overlay", "iterations=2", "substeps=2", "--overlay", "iterations=3", "substeps=3"})
+          .error,
+      "--overlay is given twice; give it once");
+  EXPECT_EQ(parseOptions({"--screenshot", "a.png", "--screenshot", "b.png"}).error,
+            "--screenshot is given twice; give it once");
+  // A flag given twice says the same thing twice.
+  EXPECT_EQ(parseOptions({"--markers", "--sweep", "--markers"}).error, "");
+}
+
+// "--" ends the options, as for most command-line programs: what follows is the scene, whatever it
+// starts with.
+TEST(Options, DoubleDashEndsTheOptions) {
+  const auto p = parseOptions({"--sweep", "--", "--hide-panels"});
+  ASSERT_EQ(p.error, "");
+  EXPECT_EQ(p.options.scene, "--hide-panels");
+  EXPECT_TRUE(p.options.sweep);
+  EXPECT_FALSE(p.options.hidePanels);
+  EXPECT_EQ(parseOptions({"--", "-x"}).options.scene, "-x");
+  EXPECT_EQ(parseOptions({"--", "a", "b"}).error, "one scene only; got 'a' and 'b'");
+  EXPECT_EQ(parseOptions({"--screenshot", "--"}).error,
+            "--screenshot needs a file name, and '--' ends the options (one of that name is ./--)");
+}
+
+// An empty scene name opened the default scene as if none had been given.
+TEST(Options, AnEmptySceneNameIsRefused) {
+  EXPECT_EQ(parseOptions({""}).error, "the scene's name is empty");
+  EXPECT_EQ(parseOptions({"--", ""}).error, "the scene's name is empty");
+  EXPECT_EQ(parseOptions({"pendulum", ""}).error, "the scene's name is empty");
+}
+
+// A value is quoted in the message as the terminal can show it: an escape sequence must not clear
+// the screen, and a 100 kB value pasted by mistake must not bury what is wrong with it.
+TEST(Options, ValuesAreQuotedPrintableAndShort) {
+  EXPECT_EQ(parseOptions({"--draw", "\x1b[2Jx"}).error,
+            "--draw: '\\x1b[2Jx' must be filled, wireframe or constraints");
+  EXPECT_EQ(parseOptions({"--color-by", "a\nb\tc"}).error,
+            "--color-by: 'a\\x0ab\\x09c' must be kind, body, island or sleep");
+  EXPECT_EQ(parseOptions({"--bogus\x07"}).error, "unknown option '--bogus\\x07'");
+  const std::string huge(100000, '9');
+  EXPECT_EQ(parseOptions({"--threads", huge}).error,
+            "--threads: '" + std::string(60, '9') + "... (100000 bytes)' is not a whole number from 1 to 64");
+  // The overlay's own messages quote a part of a setting: one that long is refused as that.
+  const std::string longSetting = "iterations=" + std::string(100000, '1');
+  EXPECT_EQ(parseOptions({"--overlay", longSetting, "substeps=2"}).error,
+            "--overlay: '" + longSetting.substr(0, 60) +
+                "... (100011 bytes)' is longer than a setting can be (1024 bytes)");
+  // A multi-byte character is not cut in half.
+  std::string accents = "a";
+  for (int k = 0; k < 600; ++k) accents += "\xc3\xa9";  // byte 60 is the second of one
+  const std::string shown = parseOptions({"--unfold", accents}).error;
+  EXPECT_NE(shown.find("'" + accents.substr(0, 59) + "... (1201 bytes)'"), std::string::npos) << shown;
+}
+
+TEST(Options, NumbersOutsideTheirRangeOrNotWholeAreRefused) {
+  for (const char* bad : {"nan", "inf", "-inf", "1e999", "1e3", "2.0", "+3", " 3", "0x10", "-0", "",
+                          "99999999999999999999999"}) {
+    EXPECT_EQ(parseOptions({"--threads", bad}).error,
+              std::string("--threads: '") + bad + "' is not a whole number from 1 to 64")
+        << bad;
+  }
+  EXPECT_EQ(parseOptions({"--pause-at", "-0"}).options.pauseAt, 0);  // -0 is 0, which is allowed
 }
 
 }  // namespace
