@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <optional>
 #include <set>
+#include <system_error>
 
+#include "fileio/files.h"
 #include "scenes/scene.h"
 
 namespace sandbox {
@@ -293,6 +295,64 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
   ParsedOptions out = parseArguments(args);
   if (!out.error.empty()) out.error = printable(out.error, args);
   return out;
+}
+
+namespace {
+
+// "" or why `folder` is no folder to use: the OS's reason when it cannot be looked at.
+std::string folderProblem(const std::filesystem::path& folder) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(folder, ec);
+  if (ec) return ec.message();
+  return std::filesystem::is_directory(status) ? "" : "not a folder";
+}
+
+std::string dataDirProblem(const std::filesystem::path& folder) {
+  if (std::string why = folderProblem(folder); !why.empty())
+    return "--data '" + folder.string() + "': " + why;
+  for (const char* inside : {"shaders", "assets"}) {
+    if (std::string why = folderProblem(folder / inside); !why.empty())
+      return "--data '" + folder.string() + "': its " + inside + "/ folder: " + why;
+  }
+  return {};
+}
+
+// Loaded here once to be checked, before a window opens; the sandbox loads it again for itself,
+// which costs milliseconds for the project's scenes.
+std::string sceneProblem(const Options& options) {
+  const std::filesystem::path file = scenePath(options);
+  try {
+    fileio::checkRegularFile(file, "scene file");
+    static_cast<void>(scenes::loadSceneFile(file));
+  } catch (const std::exception& e) {  // fileio::FileError, scenes::LoadError: each names the file
+    return std::string("scene: ") + e.what();
+  }
+  return {};
+}
+
+// The screenshot is written at the end of the run: a name it cannot have is said at the start.
+std::string screenshotProblem(const std::filesystem::path& file) {
+  const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : ".";
+  if (std::string why = folderProblem(folder); !why.empty())
+    return "--screenshot '" + file.string() + "': its folder '" + folder.string() + "': " + why;
+  std::error_code ec;  // a file not there yet is the usual case; anything else (a name too long) is said
+  const std::filesystem::file_status status = std::filesystem::status(file, ec);
+  if (std::filesystem::is_directory(status)) return "--screenshot '" + file.string() + "': is a folder";
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    return "--screenshot '" + file.string() + "': " + ec.message();
+  return {};
+}
+
+}  // namespace
+
+std::string checkFiles(const Options& options) {
+  std::string error;
+  if (!options.dataDir.empty()) error = dataDirProblem(options.dataDir);
+  if (error.empty() && !options.scene.empty()) error = sceneProblem(options);
+  if (error.empty() && options.screenshot) error = screenshotProblem(*options.screenshot);
+  const std::vector<std::string> named = {options.scene, options.dataDir.string(),
+                                          options.screenshot.value_or("").string()};
+  return printable(error, named);
 }
 
 std::filesystem::path dataDir(const Options& options) {

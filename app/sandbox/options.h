@@ -50,6 +50,11 @@ struct ParsedOptions {
 /// The options in `args` (argv without the program), or what is wrong with which argument; a value
 /// the error quotes has its control characters escaped and, past 1024 bytes, only its start shown.
 ParsedOptions parseOptions(const std::vector<std::string>& args);
+/// What is wrong with the files and folders the options name, in the OS's words and naming the
+/// option: a scene that is no readable file, a --data that is no folder with shaders/ and assets/
+/// in it, a --screenshot that is a folder or whose folder is missing; "" when nothing is. Checked before a
+/// window opens, so that a mistyped name is said without a display.
+std::string checkFiles(const Options& options);
 /// The usage text printed by --help and after an error.
 std::string usage();
 /// The folder holding shaders/ and assets/: options.dataDir, or the one set at build time.

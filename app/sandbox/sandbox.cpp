@@ -824,6 +824,10 @@ int runSandbox(int argc, char** argv) {
     std::cout << usage();
     return 0;
   }
+  if (const std::string badFile = checkFiles(parsed.options); !badFile.empty()) {
+    std::cerr << "sandbox: " << badFile << '\n';
+    return 1;
+  }
   const std::string noDisplay = engine::missingDisplayReason();
   if (!noDisplay.empty()) {
     std::cerr << "sandbox: " << noDisplay << '\n';

@@ -1,10 +1,13 @@
 // The sandbox's command line: what it accepts and what it says about what it does not.
 #include <array>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "options.h"
+#include "temp_folder.h"
 
 namespace {
 
@@ -208,6 +211,43 @@ TEST(Options, NumbersOutsideTheirRangeOrNotWholeAreRefused) {
         << bad;
   }
   EXPECT_EQ(parseOptions({"--pause-at", "-0"}).options.pauseAt, 0);  // -0 is 0, which is allowed
+}
+
+using testing_app::TempFolder;
+
+// Files named on the command line are checked before a window opens (sandbox.cpp), so a mistyped
+// name is said without a display; each message names the argument and gives the OS's reason.
+TEST(Options, FilesThatCannotBeUsedAreSaidWithTheOsReason) {
+  const TempFolder temp;
+  const std::string dir = temp.path.string();
+  temp.touch("file");
+  auto problem = [](const std::vector<std::string>& args) {
+    const auto p = parseOptions(args);
+    EXPECT_EQ(p.error, "");
+    return sandbox::checkFiles(p.options);
+  };
+  EXPECT_EQ(problem({"pendulum"}), "");
+  EXPECT_EQ(problem({dir + "/none.xml"}),
+            "scene: " + dir + "/none.xml: cannot open scene file: No such file or directory");
+  EXPECT_EQ(problem({dir}), "scene: " + dir + ": is a folder, not a scene file");
+  std::ofstream(temp.path / "bad.xml") << "<scene name=\"x\">\n  <box size=\"1 nan 1\"/>\n</scene>\n";
+  EXPECT_EQ(problem({dir + "/bad.xml"}),
+            "scene: " + dir +
+                "/bad.xml:2: <box> attribute 'size': '1 nan 1' must be one or three finite numbers (m)");
+  EXPECT_EQ(problem({"--data", dir + "/none"}), "--data '" + dir + "/none': No such file or directory");
+  EXPECT_EQ(problem({"--data", dir + "/file"}), "--data '" + dir + "/file': not a folder");
+  EXPECT_EQ(problem({"--data", dir}), "--data '" + dir + "': its shaders/ folder: No such file or directory");
+  EXPECT_EQ(problem({"--screenshot", dir}), "--screenshot '" + dir + "': is a folder");
+  EXPECT_EQ(
+      problem({"--screenshot", dir + "/none/a.png"}),
+      "--screenshot '" + dir + "/none/a.png': its folder '" + dir + "/none': No such file or directory");
+  EXPECT_EQ(problem({"--screenshot", dir + "/file/a.png"}),
+            "--screenshot '" + dir + "/file/a.png': its folder '" + dir + "/file': not a folder");
+  EXPECT_EQ(problem({"--screenshot", dir + "/a.png"}), "");
+  // A name too long for the OS: its reason, the name shortened.
+  const std::string huge = problem({"--screenshot", std::string(100000, 'x') + ".png"});
+  EXPECT_LT(huge.size(), 300u);
+  EXPECT_NE(huge.find("File name too long"), std::string::npos) << huge;
 }
 
 }  // namespace

@@ -42,6 +42,27 @@ TEST(SandboxCli, UsageErrorsExitTwoAndShowUsage) {
   EXPECT_NE(r.output.find("usage: sandbox"), std::string::npos) << r.output;
 }
 
+// The arguments are checked before the display is looked for: a mistyped name is said as that,
+// not as a missing display, and no window is opened for a run that cannot work.
+TEST(SandboxCli, BadArgumentsAreRefusedBeforeTheDisplayIsLookedFor) {
+  const std::string noDisplay = "env -u DISPLAY -u WAYLAND_DISPLAY " + kSandbox;
+  ProcessResult r = runShell(noDisplay + " /no-such-folder/x.xml");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.output,
+            "sandbox: scene: /no-such-folder/x.xml: cannot open scene file: No such file or directory\n");
+  r = runShell(noDisplay + " --screenshot /no-such-folder/a.png");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.output,
+            "sandbox: --screenshot '/no-such-folder/a.png': its folder '/no-such-folder': No such file or "
+            "directory\n");
+  r = runShell(noDisplay + " --data /no-such-folder");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.output, "sandbox: --data '/no-such-folder': No such file or directory\n");
+  r = runShell(noDisplay + " --threads 2 --threads 3");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_EQ(r.output.substr(0, r.output.find('\n')), "sandbox: --threads is given twice; give it once");
+}
+
 TEST(SandboxCli, HelpExitsZero) {
   const ProcessResult r = runShell(kSandbox + " --help");
   EXPECT_EQ(r.exitCode, 0);
