@@ -448,6 +448,24 @@ TEST(BadRecordingContent, RefusedEvenWithAGoodChecksum) {
           "its scene does not load");
 }
 
+// A part's scene is written body by body; a generator in it is a file made otherwise, and one line
+// of it could ask for 100,000 boxes: built, they took 1 GB and 1.3 s before the structure check
+// refused them. Each is refused before anything is built.
+TEST_F(BadRecording, APartSceneWithAGeneratorIsRefusedBeforeItIsBuilt) {
+  const sandbox::SavedRecording saved = sandbox::decodeRecording(bytes_);
+  for (const std::string element : {R"(<grid name="g" pos="0 0 0" count="100 100 10" size="1" mass="1"/>)",
+                                    R"(<pyramid name="p" pos="0 0 0" base="200" size="1" mass="1"/>)",
+                                    R"(<stack name="s" pos="0 0 0" count="1000" size="1" mass="1"/>)",
+                                    R"(<chain name="c" pos="0 0 0" links="100000" length="0.1"/>)",
+                                    R"(<ragdoll name="r" pos="0 1 0"/>)"}) {
+    sandbox::SavedRecording bad = saved;
+    bad.parts.front().sceneXml = "<scene name=\"" + saved.sceneName + "\">\n  " + element + "\n</scene>\n";
+    const std::string kind = element.substr(1, element.find(' ') - 1);
+    SCOPED_TRACE(kind);
+    expectRefused(sandbox::encodeRecording(bad), "part 1: its scene holds a <" + kind + ">");
+  }
+}
+
 TEST_F(BadRecording, NothingToSaveOrNowhereToSaveIt) {
   EXPECT_NE(session_.saveRecording(dir_.path / "no-such-folder" / "x.jrec").find("No such file or directory"),
             std::string::npos);
