@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdio>
+#include <limits>
 #include <optional>
 #include <set>
 #include <system_error>
 
 #include "fileio/files.h"
+#include "fileio/printable.h"
 #include "scenes/scene.h"
 
 namespace sandbox {
@@ -55,24 +56,6 @@ std::string shortened(const std::string& arg) {
   return arg.substr(0, cut) + "... (" + std::to_string(arg.size()) + " bytes)";
 }
 
-// Control characters as \xNN: a value holding an escape sequence must not drive the terminal the
-// message is printed on, and a newline in it must not pass for the end of the message.
-std::string escapeControls(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20U && byte != 0x7FU) {
-      out += c;
-      continue;
-    }
-    char hex[5];
-    std::snprintf(hex, sizeof hex, "\\x%02x", byte);
-    out += hex;
-  }
-  return out;
-}
-
 // The message as it can be printed: every long argument it quotes shortened, every control
 // character escaped. Done once on the finished message, so that every message, the overlay's own
 // among them, is shown the same way.
@@ -83,7 +66,9 @@ std::string printable(std::string error, const std::vector<std::string>& args) {
     for (std::size_t at = error.find(arg); at != std::string::npos; at = error.find(arg, at + shown.size()))
       error.replace(at, arg.size(), shown);
   }
-  return escapeControls(error);
+  // Control characters as \xNN: a value holding an escape sequence must not drive the terminal the
+  // message is printed on, and a newline in it must not pass for the end of the message.
+  return fileio::printableReason(error, std::numeric_limits<std::size_t>::max());
 }
 
 // The options without a value: given twice, they say the same thing twice.
