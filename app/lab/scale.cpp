@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
+#include <stdexcept>
 
 #include "charts.h"
 #include "commands.h"
@@ -56,8 +57,12 @@ constexpr ScaleKindSpec kScaleKinds[] = {
 static_assert(std::string_view(kScaleKinds[static_cast<std::size_t>(ScaleKind::Pyramid)].name) == "pyramid",
               "kScaleKinds follows ScaleKind's order");
 
+// A value cast from outside ScaleKind is refused, as the physics' enums refuse theirs.
 const ScaleKindSpec& specOf(ScaleKind kind) {
-  return kScaleKinds[static_cast<std::size_t>(kind)];
+  const auto index = static_cast<std::size_t>(kind);
+  if (index >= std::size(kScaleKinds))
+    throw std::invalid_argument("ScaleKind " + std::to_string(index) + " is not a kind of lab scale");
+  return kScaleKinds[index];
 }
 
 struct ScaleOptions {

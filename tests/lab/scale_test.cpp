@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,13 @@ TEST(Scale, EachKindGeneratesItsBodiesAtEverySize) {
     EXPECT_EQ(s.world.bodies().size(), c.bodies) << lab::toString(c.kind) << " " << c.n;
     EXPECT_TRUE(s.world.worldSettings().ground);
   }
+}
+
+// A kind cast from outside the enum read past the table of kinds; it is refused.
+TEST(Scale, AKindOutsideTheEnumIsRefused) {
+  const auto outside = static_cast<ScaleKind>(3);
+  EXPECT_THROW(static_cast<void>(lab::toString(outside)), std::invalid_argument);
+  EXPECT_THROW(static_cast<void>(lab::scaleSceneXml(outside, 1)), std::invalid_argument);
 }
 
 // A grid of ragdolls keeps its density: 2 m between neighbours at every size, so the floor area
