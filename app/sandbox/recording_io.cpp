@@ -1,14 +1,11 @@
 #include "recording_io.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 #include <limits>
 #include <memory>
 #include <string>
 #include <tuple>
-
-#include <pugixml.hpp>
 
 #include "fileio/files.h"
 #include "scenes/scene_writer.h"
@@ -75,36 +72,17 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
 
 namespace {
 
-// The scene elements that make many bodies from one line (docs/scene-format.md, "Generators" and
-// "<ragdoll>"). A part's scene is a world written body by body, which never holds one ("Files the
-// sandbox saves"); in a file made otherwise, one line of a few dozen bytes could ask for 100,000
-// boxes, a gigabyte built before the structure check could refuse them.
-constexpr std::array<std::string_view, 5> kGenerators = {"stack", "pyramid", "grid", "chain", "ragdoll"};
-
-// Throws when the part's scene holds a generator; text that is no XML is left for the loader to
-// refuse with its line.
-void refuseGenerators(const SavedPart& part, const std::string& which) {
-  pugi::xml_document doc;
-  if (!doc.load_buffer(part.sceneXml.data(), part.sceneXml.size())) return;
-  for (const pugi::xml_node node : doc.document_element().children()) {
-    const std::string_view name = node.name();
-    if (std::find(kGenerators.begin(), kGenerators.end(), name) != kGenerators.end()) {
-      throw RecordingIoError(which + ": its scene holds a <" + std::string(name) +
-                             ">, which a recording's scene never does (each body is written on its own): "
-                             "the file is damaged");
-    }
-  }
-}
-
 // The world a file's part puts its steps in, and the memory it took: its scene loaded with
-// `options`, checked to build the bodies the steps were recorded in.
+// `options`, as a world written body by body (a generator in it is refused before anything is
+// built), checked to build the bodies the steps were recorded in.
 std::pair<std::shared_ptr<const phys::World>, std::size_t> partBase(const SavedPart& part,
                                                                     const std::string& which,
                                                                     const scenes::LoadOptions& options) {
-  refuseGenerators(part, which);
+  scenes::LoadOptions bodyByBody = options;
+  bodyByBody.bodyByBody = true;
   std::pair<std::shared_ptr<const phys::World>, std::size_t> base;
   try {
-    base = keptCopy(scenes::loadSceneText(part.sceneXml, "the recording's " + which, options).world);
+    base = keptCopy(scenes::loadSceneText(part.sceneXml, "the recording's " + which, bodyByBody).world);
   } catch (const scenes::LoadError& e) {
     throw RecordingIoError(which + ": its scene does not load: " + e.what());
   }

@@ -462,7 +462,9 @@ TEST_F(BadRecording, APartSceneWithAGeneratorIsRefusedBeforeItIsBuilt) {
     bad.parts.front().sceneXml = "<scene name=\"" + saved.sceneName + "\">\n  " + element + "\n</scene>\n";
     const std::string kind = element.substr(1, element.find(' ') - 1);
     SCOPED_TRACE(kind);
-    expectRefused(sandbox::encodeRecording(bad), "part 1: its scene holds a <" + kind + ">");
+    expectRefused(sandbox::encodeRecording(bad),
+                  "part 1: its scene does not load: the recording's part 1:2: <" + kind +
+                      ">: makes many bodies from one line");
   }
 }
 

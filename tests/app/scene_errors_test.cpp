@@ -339,6 +339,35 @@ TEST(SceneErrors, TooManyExpectationsAreRefusedAtTheFirstPastTheLimit) {
   EXPECT_EQ(scenes::loadSceneText(xml.substr(0, end) + "</scene>", "s.xml").expectations.size(), 1000u);
 }
 
+// A file written body by body (a recording's part scene) never holds a generator: under
+// LoadOptions::bodyByBody each is refused at its line, before the first body of the file is built,
+// and the same text loads without the option.
+TEST(SceneErrors, AGeneratorInAFileWrittenBodyByBodyIsRefusedAtItsLine) {
+  scenes::LoadOptions bodyByBody;
+  bodyByBody.bodyByBody = true;
+  const std::string boxOnly = "<scene name='s'>\n<box name='b' pos='0 3 0'/>\n</scene>";
+  const phys::World oneBox = scenes::loadSceneText(boxOnly, "s.xml", bodyByBody).world;
+  EXPECT_EQ(oneBox.bodies().size(), 1u);
+  for (const std::string element :
+       {"<stack name='s' pos='0 0.5 0' count='3'/>", "<pyramid name='p' pos='0 0.5 0' base='3'/>",
+        "<grid name='g' pos='0 0.5 0' count='2 2 2'/>",
+        "<chain name='c' pos='0 2 0' links='3' length='0.1'/>", "<ragdoll name='r' pos='0 1 0'/>"}) {
+    const std::string kind = element.substr(1, element.find(' ') - 1);
+    SCOPED_TRACE(kind);
+    const std::string xml = "<scene name='s'>\n<box name='b' pos='0 3 0'/>\n" + element + "\n</scene>";
+    EXPECT_GT(scenes::loadSceneText(xml, "s.xml").world.particles().size(), oneBox.particles().size());
+    try {
+      (void)scenes::loadSceneText(xml, "s.xml", bodyByBody);
+      ADD_FAILURE() << "loaded";
+    } catch (const scenes::LoadError& e) {
+      EXPECT_EQ(e.line(), 3);
+      EXPECT_NE(std::string(e.what()).find("s.xml:3: <" + kind + ">: makes many bodies from one line"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // A description is one line; XML makes a line break of &#10; or &#13; only (a typed one is read as
 // a space, and loads).
 TEST(SceneErrors, ADescriptionOfTwoLinesIsRefused) {

@@ -41,6 +41,9 @@ constexpr std::string_view kBodyElements[] = {"particle",     "stick",      "box
                                               "stack",        "pyramid",    "grid",      "chain",
                                               "ragdoll",      "link",       "joint",     "joint-friction",
                                               "no-collision", "body-drive", "character", "particle-joint"};
+// The body elements that make many bodies from one line (docs/scene-format.md, "Generators" and
+// "<ragdoll>"), which a file written body by body never holds (LoadOptions::bodyByBody).
+constexpr std::string_view kGeneratorElements[] = {"stack", "pyramid", "grid", "chain", "ragdoll"};
 
 bool isOneOf(std::string_view name, std::span<const std::string_view> names) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -1264,6 +1267,10 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
       } else
         cameraNode = child;
     } else if (isOneOf(kind, kBodyElements)) {
+      if (options.bodyByBody && isOneOf(kind, kGeneratorElements))
+        e.fail(
+            "makes many bodies from one line, which a world written body by body never holds: the "
+            "file is damaged");
       bodies.push_back(child);
     } else if (kind == "expect") {
       // Kept as written for the lab, which knows what each attribute means (and refuses one given

@@ -68,6 +68,11 @@ struct LoadOptions {
   std::optional<bool> jointProjection;
   /// SolverSettings::threads imposed whatever the file says: the sandbox's --threads.
   std::optional<int> threads;
+  /// The file is a world written body by body (a recording's part scene, docs/scene-format.md
+  /// "Files the sandbox saves"), which never holds an element that makes many bodies from one line
+  /// (stack, pyramid, grid, chain, ragdoll): each is refused with its line before anything is built,
+  /// as in a damaged file one such line of a few dozen bytes could ask for a gigabyte of boxes.
+  bool bodyByBody = false;
 };
 
 struct Scene {
