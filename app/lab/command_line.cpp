@@ -468,12 +468,8 @@ void prepareOutputFolder(const std::filesystem::path& folder, const char* option
 }
 
 void requireFolder(const std::filesystem::path& folder, const char* option) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(folder, ec);
-  if (!ec && std::filesystem::is_directory(status)) return;
-  // A file where the folder should be is what the system calls ENOTDIR when a path goes through it.
-  const std::string why = ec ? ec.message() : std::make_error_code(std::errc::not_a_directory).message();
-  throw CommandFailure(std::string(option) + ": " + folder.string() + ": " + why);
+  if (const std::string why = fileio::folderProblem(folder); !why.empty())
+    throw CommandFailure(std::string(option) + ": " + folder.string() + ": " + why);
 }
 
 std::filesystem::path dataDir(const std::filesystem::path& given) {

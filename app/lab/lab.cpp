@@ -25,8 +25,8 @@ std::string dumpProblem(const std::filesystem::path& file, const std::filesystem
   if (std::filesystem::equivalent(file, scene, ec))
     return file.string() + ": is the scene being run; the dump would write over it";
   const std::filesystem::path folder = file.parent_path().empty() ? "." : file.parent_path();
-  if (!std::filesystem::is_directory(folder, ec))
-    return folder.string() + (std::filesystem::exists(folder, ec) ? ": is not a folder" : ": no such folder");
+  if (const std::string why = fileio::folderProblem(folder); !why.empty())
+    return folder.string() + ": " + why;
   if (std::filesystem::is_directory(file, ec)) return file.string() + ": is a folder, not a file";
   return {};
 }

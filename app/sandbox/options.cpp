@@ -284,19 +284,11 @@ ParsedOptions parseOptions(const std::vector<std::string>& args) {
 
 namespace {
 
-// "" or why `folder` is no folder to use: the OS's reason when it cannot be looked at.
-std::string folderProblem(const std::filesystem::path& folder) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(folder, ec);
-  if (ec) return ec.message();
-  return std::filesystem::is_directory(status) ? "" : "not a folder";
-}
-
 std::string dataDirProblem(const std::filesystem::path& folder) {
-  if (std::string why = folderProblem(folder); !why.empty())
+  if (std::string why = fileio::folderProblem(folder); !why.empty())
     return "--data '" + folder.string() + "': " + why;
   for (const char* inside : {"shaders", "assets"}) {
-    if (std::string why = folderProblem(folder / inside); !why.empty())
+    if (std::string why = fileio::folderProblem(folder / inside); !why.empty())
       return "--data '" + folder.string() + "': its " + inside + "/ folder: " + why;
   }
   return {};
@@ -318,7 +310,7 @@ std::string sceneProblem(const Options& options) {
 // The screenshot is written at the end of the run: a name it cannot have is said at the start.
 std::string screenshotProblem(const std::filesystem::path& file) {
   const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : ".";
-  if (std::string why = folderProblem(folder); !why.empty())
+  if (std::string why = fileio::folderProblem(folder); !why.empty())
     return "--screenshot '" + file.string() + "': its folder '" + folder.string() + "': " + why;
   std::error_code ec;  // a file not there yet is the usual case; anything else (a name too long) is said
   const std::filesystem::file_status status = std::filesystem::status(file, ec);

@@ -317,4 +317,23 @@ TEST(PrepareFolder, CreatesTheFolderOrSaysWhyItCannotBeWritten) {
   fs::permissions(folder.path / "locked", fs::perms::owner_all);
 }
 
+// The one check of a folder named on a command line (the sandbox's --data and --screenshot, the
+// lab's --data and --dump): a folder, a link to one, or the OS's reason it is not one.
+TEST(FolderProblem, AFolderOrTheOsReason) {
+  const TempFolder folder;
+  writeFile(folder.path / "plain", "x");
+  fs::create_directory(folder.path / "inner");
+  fs::create_directory_symlink(folder.path / "inner", folder.path / "link");
+  EXPECT_EQ(fileio::folderProblem(folder.path / "inner"), "");
+  EXPECT_EQ(fileio::folderProblem(folder.path / "link"), "");
+  EXPECT_EQ(fileio::folderProblem(folder.path / "plain"), "Not a directory");
+  EXPECT_EQ(fileio::folderProblem(folder.path / "plain" / "below"), "Not a directory");
+  EXPECT_EQ(fileio::folderProblem(folder.path / "missing"), "No such file or directory");
+  fs::create_directory(folder.path / "locked");
+  fs::permissions(folder.path, fs::perms::owner_all | fs::perms::others_read | fs::perms::others_exec);
+  fs::permissions(folder.path / "locked", fs::perms::owner_all);
+  EXPECT_EQ(testing_app::runAsNobody([&] { return fileio::folderProblem(folder.path / "locked" / "in"); }),
+            "Permission denied");
+}
+
 }  // namespace

@@ -235,14 +235,14 @@ TEST(Options, FilesThatCannotBeUsedAreSaidWithTheOsReason) {
             "scene: " + dir +
                 "/bad.xml:2: <box> attribute 'size': '1 nan 1' must be one or three finite numbers (m)");
   EXPECT_EQ(problem({"--data", dir + "/none"}), "--data '" + dir + "/none': No such file or directory");
-  EXPECT_EQ(problem({"--data", dir + "/file"}), "--data '" + dir + "/file': not a folder");
+  EXPECT_EQ(problem({"--data", dir + "/file"}), "--data '" + dir + "/file': Not a directory");
   EXPECT_EQ(problem({"--data", dir}), "--data '" + dir + "': its shaders/ folder: No such file or directory");
   EXPECT_EQ(problem({"--screenshot", dir}), "--screenshot '" + dir + "': is a folder");
   EXPECT_EQ(
       problem({"--screenshot", dir + "/none/a.png"}),
       "--screenshot '" + dir + "/none/a.png': its folder '" + dir + "/none': No such file or directory");
   EXPECT_EQ(problem({"--screenshot", dir + "/file/a.png"}),
-            "--screenshot '" + dir + "/file/a.png': its folder '" + dir + "/file': not a folder");
+            "--screenshot '" + dir + "/file/a.png': its folder '" + dir + "/file': Not a directory");
   EXPECT_EQ(problem({"--screenshot", dir + "/a.png"}), "");
   // A name too long for the OS: its reason, the name shortened.
   const std::string huge = problem({"--screenshot", std::string(100000, 'x') + ".png"});

@@ -344,10 +344,11 @@ TEST(LabExit, MissingSceneExitsOne) {
 TEST(LabExit, UnwritableDumpExitsOne) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());
-  const std::pair<std::filesystem::path, const char*> cases[] = {{dir.file("no/dir/x.csv"), "no such folder"},
-                                                                 {dir.file(""), "is a folder"},
-                                                                 {scene / "x.csv", "is not a folder"},
-                                                                 {scene, "is the scene being run"}};
+  const std::pair<std::filesystem::path, const char*> cases[] = {
+      {dir.file("no/dir/x.csv"), "No such file or directory"},
+      {dir.file(""), "is a folder"},
+      {scene / "x.csv", "Not a directory"},
+      {scene, "is the scene being run"}};
   for (const auto& [dump, says] : cases) {
     const ProcessResult r = runLab("run " + quoted(scene) + " --steps 1 --dump " + quoted(dump), dir);
     EXPECT_EQ(r.exitCode, 1) << dump;

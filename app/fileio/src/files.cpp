@@ -243,6 +243,13 @@ void checkRegularFile(const fs::path& file, std::string_view kind) {
   }
 }
 
+std::string folderProblem(const fs::path& folder) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(folder, ec);
+  if (ec) return ec.message();
+  return fs::is_directory(status) ? "" : std::make_error_code(std::errc::not_a_directory).message();
+}
+
 std::string readWhole(const fs::path& file, std::size_t maxBytes, std::string_view kind) {
   const OpenFile open(file, kind);
   std::string content;

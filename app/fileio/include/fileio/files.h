@@ -74,4 +74,9 @@ std::string readWhole(const std::filesystem::path& file, std::size_t maxBytes, s
 /// (a pipe with no writer) or seek in.
 void checkRegularFile(const std::filesystem::path& file, std::string_view kind);
 
+/// "" when `folder` is a folder (or a link to one), else the OS's reason: the one it gave for
+/// looking at the path ("No such file or directory", "Permission denied"), or, for anything but a
+/// folder, the reason it gives when a path goes through a file ("Not a directory").
+std::string folderProblem(const std::filesystem::path& folder);
+
 }  // namespace fileio
