@@ -10,6 +10,7 @@
 #include "fileio/files.h"
 #include "fileio/printable.h"
 #include "scenes/scene.h"
+#include "session.h"
 
 namespace sandbox {
 namespace {
@@ -294,13 +295,12 @@ std::string dataDirProblem(const std::filesystem::path& folder) {
   return {};
 }
 
-// Loaded here once to be checked, before a window opens; the sandbox loads it again for itself,
-// which costs milliseconds for the project's scenes.
-std::string sceneProblem(const Options& options) {
+// Opened here as the sandbox opens it, before a window does; `scene` is left null on failure.
+std::string sceneProblem(const Options& options, std::unique_ptr<scenes::Scene>& scene) {
   const std::filesystem::path file = scenePath(options);
   try {
     fileio::checkRegularFile(file, "scene file");
-    static_cast<void>(scenes::loadSceneFile(file));
+    scene = Session::load(file, options.threads);
   } catch (const std::exception& e) {  // fileio::FileError, scenes::LoadError: each names the file
     return std::string("scene: ") + e.what();
   }
@@ -322,14 +322,17 @@ std::string screenshotProblem(const std::filesystem::path& file) {
 
 }  // namespace
 
-std::string checkFiles(const Options& options) {
-  std::string error;
+CheckedFiles checkFiles(const Options& options) {
+  CheckedFiles out;
+  std::string& error = out.error;
   if (!options.dataDir.empty()) error = dataDirProblem(options.dataDir);
-  if (error.empty() && !options.scene.empty()) error = sceneProblem(options);
+  if (error.empty() && !options.scene.empty()) error = sceneProblem(options, out.scene);
   if (error.empty() && options.screenshot) error = screenshotProblem(*options.screenshot);
   const std::vector<std::string> named = {options.scene, options.dataDir.string(),
                                           options.screenshot.value_or("").string()};
-  return printable(error, named);
+  error = printable(error, named);
+  if (!error.empty()) out.scene.reset();
+  return out;
 }
 
 std::filesystem::path dataDir(const Options& options) {

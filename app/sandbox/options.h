@@ -6,12 +6,14 @@
 //           [--data DIR] [--help] [-- SCENE]
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "draw_options.h"
 #include "overlay_spec.h"
+#include "scenes/scene.h"
 
 namespace sandbox {
 
@@ -50,11 +52,16 @@ struct ParsedOptions {
 /// The options in `args` (argv without the program), or what is wrong with which argument; a value
 /// the error quotes has its control characters escaped and, past 1024 bytes, only its start shown.
 ParsedOptions parseOptions(const std::vector<std::string>& args);
+struct CheckedFiles {
+  std::string error;                     ///< "" when nothing is wrong
+  std::unique_ptr<scenes::Scene> scene;  ///< the scene named, as the sandbox opens it; null if none
+};
 /// What is wrong with the files and folders the options name, in the OS's words and naming the
-/// option: a scene that is no readable file, a --data that is no folder with shaders/ and assets/
-/// in it, a --screenshot that is a folder or whose folder is missing; "" when nothing is. Checked before a
-/// window opens, so that a mistyped name is said without a display.
-std::string checkFiles(const Options& options);
+/// option: a scene that is no readable file or does not open as the sandbox opens it
+/// (Session::load), a --data that is no folder with shaders/ and assets/ in it, a --screenshot that
+/// is a folder or whose folder is missing. Checked before a window opens, so that a mistyped name
+/// is said without a display; the scene opened for it is kept, for the sandbox to start with.
+CheckedFiles checkFiles(const Options& options);
 /// The usage text printed by --help and after an error.
 std::string usage();
 /// The folder holding shaders/ and assets/: options.dataDir, or the one set at build time.

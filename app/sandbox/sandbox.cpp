@@ -87,17 +87,9 @@ std::filesystem::path settingsPath(bool interactive) {
 
 }  // namespace
 
-Sandbox::Sandbox(const Options& options)
-    : options_(options),
-      interactive_(!options.screenshot),
-      settingsFile_(settingsPath(interactive_)),
-      user_(loadRemembered(interactive_, settingsFile_)),
-      window_(windowDesc(options, user_)) {
-  const std::filesystem::path data = dataDir(options_);
-  renderer_ = std::make_unique<engine::Renderer>(data / "shaders");
-  view_ = std::make_unique<SceneView>(*renderer_, data / "assets" / "models");
-
-  // The scene: the one named, else the last one used (if it still loads), else the default.
+// No scene named (or none opened before the window): the last one used, if it still loads, else the
+// default.
+std::unique_ptr<Session> Sandbox::openUnnamed(const std::filesystem::path& data) const {
   std::filesystem::path file = scenePath(options_);
   if (options_.scene.empty() && !user_.lastScene.empty()) {
     std::error_code ec;  // a path too long or a folder not to be entered: said, and the default opens
@@ -108,12 +100,27 @@ Sandbox::Sandbox(const Options& options)
                 << "': " << ec.message() << "; opening the default scene instead\n";
   }
   try {
-    session_ = std::make_unique<Session>(file, scenes::sceneDirectory(data), options_.threads);
+    return std::make_unique<Session>(file, scenes::sceneDirectory(data), options_.threads);
   } catch (const std::exception& e) {
     if (file == scenePath(options_)) throw;
     std::cerr << "sandbox: " << e.what() << "; opening the default scene instead\n";
-    session_ = std::make_unique<Session>(scenePath(options_), scenes::sceneDirectory(data), options_.threads);
+    return std::make_unique<Session>(scenePath(options_), scenes::sceneDirectory(data), options_.threads);
   }
+}
+
+Sandbox::Sandbox(const Options& options, std::unique_ptr<scenes::Scene> named)
+    : options_(options),
+      interactive_(!options.screenshot),
+      settingsFile_(settingsPath(interactive_)),
+      user_(loadRemembered(interactive_, settingsFile_)),
+      window_(windowDesc(options, user_)) {
+  const std::filesystem::path data = dataDir(options_);
+  renderer_ = std::make_unique<engine::Renderer>(data / "shaders");
+  view_ = std::make_unique<SceneView>(*renderer_, data / "assets" / "models");
+
+  session_ = named ? std::make_unique<Session>(std::move(named), scenePath(options_),
+                                               scenes::sceneDirectory(data), options_.threads)
+                   : openUnnamed(data);
   camera_ =
       engine::FirstPersonCamera::lookingAt(session_->scene().camera.eye, session_->scene().camera.target);
   applyRemembered(user_, options_, ui_);
@@ -824,8 +831,9 @@ int runSandbox(int argc, char** argv) {
     std::cout << usage();
     return 0;
   }
-  if (const std::string badFile = checkFiles(parsed.options); !badFile.empty()) {
-    std::cerr << "sandbox: " << badFile << '\n';
+  CheckedFiles files = checkFiles(parsed.options);
+  if (!files.error.empty()) {
+    std::cerr << "sandbox: " << files.error << '\n';
     return 1;
   }
   const std::string noDisplay = engine::missingDisplayReason();
@@ -834,7 +842,7 @@ int runSandbox(int argc, char** argv) {
     return 1;
   }
   try {
-    Sandbox app(parsed.options);
+    Sandbox app(parsed.options, std::move(files.scene));
     return app.run();
   } catch (const std::exception& e) {
     std::cerr << "sandbox: " << e.what() << '\n';

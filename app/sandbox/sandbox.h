@@ -26,9 +26,10 @@ namespace sandbox {
 
 class Sandbox {
  public:
-  /// Opens the window and loads shaders, models and the scene; throws engine::Error or
-  /// scenes::LoadError with a message for the user.
-  explicit Sandbox(const Options& options);
+  /// Opens the window and loads shaders, models and the scene (`named`, the scene options.scene
+  /// names as checkFiles opened it, or else the last one used or the default); throws
+  /// engine::Error or scenes::LoadError with a message for the user.
+  explicit Sandbox(const Options& options, std::unique_ptr<scenes::Scene> named = nullptr);
   ~Sandbox();
   Sandbox(const Sandbox&) = delete;
   Sandbox& operator=(const Sandbox&) = delete;
@@ -45,6 +46,7 @@ class Sandbox {
   void onScroll(double amount);
 
  private:
+  std::unique_ptr<Session> openUnnamed(const std::filesystem::path& data) const;
   void saveUserSettingsOnExit();
   void perform(Action action);
   void openScene(const std::filesystem::path& file);

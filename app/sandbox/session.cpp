@@ -105,16 +105,30 @@ std::unique_ptr<scenes::Scene> loadChecked(const std::filesystem::path& file,
   return scene;
 }
 
+// How every scene is opened. The sandbox sleeps unless the scene says `<solver sleep="off">`: a
+// resting pile should cost nothing while the user looks at it (docs/sandbox.md).
+scenes::LoadOptions sessionLoadOptions(std::optional<int> threads) {
+  scenes::LoadOptions options;
+  options.sleepUnlessSaid = true;
+  options.threads = threads;
+  return options;
+}
+
 }  // namespace
+
+std::unique_ptr<scenes::Scene> Session::load(const std::filesystem::path& file, std::optional<int> threads) {
+  return loadChecked(file, sessionLoadOptions(threads));
+}
 
 Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory,
                  std::optional<int> threads)
-    : sceneDirectory_(sceneDirectory) {
-  // The sandbox sleeps unless the scene says `<solver sleep="off">`: a resting pile should cost
-  // nothing while the user looks at it (docs/sandbox.md).
-  load_.sleepUnlessSaid = true;
-  load_.threads = threads;
-  replaceMain(loadChecked(file, load_), file);
+    : Session(load(file, threads), file, sceneDirectory, threads) {}
+
+Session::Session(std::unique_ptr<scenes::Scene> first, const std::filesystem::path& file,
+                 const std::filesystem::path& sceneDirectory, std::optional<int> threads)
+    : sceneDirectory_(sceneDirectory), load_(sessionLoadOptions(threads)) {
+  if (!first) throw std::invalid_argument("Session: no first scene");
+  replaceMain(std::move(first), file);
 }
 
 void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::filesystem::path& file) {

@@ -2,11 +2,14 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "options.h"
+#include "scenes/scene.h"
+#include "session.h"
 #include "temp_folder.h"
 
 namespace {
@@ -224,7 +227,9 @@ TEST(Options, FilesThatCannotBeUsedAreSaidWithTheOsReason) {
   auto problem = [](const std::vector<std::string>& args) {
     const auto p = parseOptions(args);
     EXPECT_EQ(p.error, "");
-    return sandbox::checkFiles(p.options);
+    sandbox::CheckedFiles checked = sandbox::checkFiles(p.options);
+    EXPECT_EQ(checked.scene != nullptr, checked.error.empty() && !p.options.scene.empty()) << checked.error;
+    return checked.error;
   };
   EXPECT_EQ(problem({"pendulum"}), "");
   EXPECT_EQ(problem({dir + "/none.xml"}),
@@ -234,6 +239,14 @@ TEST(Options, FilesThatCannotBeUsedAreSaidWithTheOsReason) {
   EXPECT_EQ(problem({dir + "/bad.xml"}),
             "scene: " + dir +
                 "/bad.xml:2: <box> attribute 'size': '1 nan 1' must be one or three finite numbers (m)");
+  // Opened as the sandbox opens it: an analytic answer that is no place is refused before a window
+  // does (it was said only once the window had opened).
+  std::ofstream(temp.path / "answer.xml")
+      << "<scene name=\"x\">\n  <particle name=\"p\" pos=\"0 1 0\"/>\n"
+         "  <expect kind=\"position\" body=\"p\" at=\"1\" pos=\"1 2\"/>\n</scene>\n";
+  EXPECT_EQ(problem({dir + "/answer.xml"}), "scene: " + dir +
+                                                "/answer.xml:3: <expect kind=\"position\"> attribute 'pos': "
+                                                "'1 2' must be three finite numbers (m)");
   EXPECT_EQ(problem({"--data", dir + "/none"}), "--data '" + dir + "/none': No such file or directory");
   EXPECT_EQ(problem({"--data", dir + "/file"}), "--data '" + dir + "/file': Not a directory");
   EXPECT_EQ(problem({"--data", dir}), "--data '" + dir + "': its shaders/ folder: No such file or directory");
@@ -248,6 +261,25 @@ TEST(Options, FilesThatCannotBeUsedAreSaidWithTheOsReason) {
   const std::string huge = problem({"--screenshot", std::string(100000, 'x') + ".png"});
   EXPECT_LT(huge.size(), 300u);
   EXPECT_NE(huge.find("File name too long"), std::string::npos) << huge;
+}
+
+// The scene checkFiles opens is the one the sandbox starts with: opened as every scene of the
+// session is, sleeping unless it says and with --threads imposed.
+TEST(Options, TheSceneCheckedIsOpenedAsTheSandboxOpensIt) {
+  const auto p = parseOptions({"pendulum", "--threads", "2"});
+  ASSERT_EQ(p.error, "");
+  const sandbox::CheckedFiles checked = sandbox::checkFiles(p.options);
+  ASSERT_EQ(checked.error, "");
+  ASSERT_NE(checked.scene, nullptr);
+  const std::unique_ptr<scenes::Scene> asSession = sandbox::Session::load(sandbox::scenePath(p.options), 2);
+  EXPECT_EQ(checked.scene->world.solverSettings(), asSession->world.solverSettings());
+  EXPECT_TRUE(checked.scene->world.solverSettings().sleep.enabled);
+  EXPECT_EQ(checked.scene->world.solverSettings().threads, 2);
+  EXPECT_EQ(checked.scene->world.stateHash(), asSession->world.stateHash());
+  sandbox::Session session(std::make_unique<scenes::Scene>(*checked.scene), sandbox::scenePath(p.options),
+                           scenes::sceneDirectory(sandbox::dataDir(p.options)), 2);
+  EXPECT_EQ(session.file(), sandbox::scenePath(p.options));
+  EXPECT_EQ(session.scene().world.stateHash(), asSession->world.stateHash());
 }
 
 }  // namespace
