@@ -611,21 +611,54 @@ void carryAnchors(std::span<const RigidContact> contacts, std::span<const Contac
 
 namespace {
 
-// A patch with a particle body on a side, point after point: each pushed along n, then the patch's
-// static friction and twist at its centre.
+// Whether a patch solved point by point keeps an anchor: a rigid body's on the ground. Between two
+// bodies it holds against the substep's own motion, as the 2020 paper has it: anchored there too, a
+// chain's links under a 200 kg box could not slip out from under it and sank 0.35 m where they sink
+// 0.12 m (JointProjection.HoldsAChainTheContactsPullOpen).
+bool anchorsByPoints(const RigidContact& c) {
+  return c.sideA == ContactSide::Ground && c.sideB == ContactSide::Rigid;
+}
+
+// The slip that static friction undoes, B's centre less A's: from the patch's anchor, made at the
+// centre's place at the substep's start when the patch first holds or its pressing points change, as
+// a block's (addPositionRows). Held against each substep's own motion alone, a slip that one substep
+// left was never undone: a rigid ragdoll lying on the edges and corners of its parts, whose joints
+// and contacts pull against each other every substep, crept at 3 mm/s and gained 0.005 J/s
+// (docs/physics.md, "Standing for a minute" and "Reaction").
+Vec3 anchoredSlip(const RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
+                  const ContactPatch& patch, const PatchCentre& centre) {
+  const RigidContact& c = contacts[patch.first];
+  Vec3 local(0.0);  // the pressing points' centre in B's frame
+  for (std::size_t k = patch.first; k < patch.first + patch.count; ++k) {
+    if (state.lambdaNormal[k] > 0.0) local += contacts[k].localB;
+  }
+  local /= static_cast<Real>(centre.count);
+  PatchAnchor& anchor = state.anchors[patch.anchor];
+  if (!anchor.held || anchor.onB != local) {
+    anchor.onA = heldAtStart(in, c.sideA, c.rigidA, centre.startB);
+    anchor.onB = local;
+    anchor.held = true;
+  }
+  return heldNow(in, c.sideB, c.rigidB, anchor.onB) - heldNow(in, c.sideA, c.rigidA, anchor.onA);
+}
+
+// A patch of one or two points, or with a particle body on a side, point after point: each pushed
+// along n, then the patch's static friction and twist at its centre.
 void solvePatchByPoints(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
                         const ContactPatch& patch, Hold hold) {
   const std::size_t lo = patch.first, hi = patch.first + patch.count;
   const Real normal = pushPatch(in, contacts, state, lo, hi, hold);
   if (normal <= 0.0) return;
-  // Static friction: the patch centre's tangential motion over the substep undone, and its twist,
-  // while the patch's tangential impulse, and its twist's over its radius, stay within mu_s
-  // times its normal impulse. Both are kept, summed over the passes, on the patch's first point.
+  // Static friction: the patch centre's slip undone (on the ground from its anchor, else over the
+  // substep), and its twist over the substep, while the patch's tangential impulse, and its
+  // twist's over its radius, stay within mu_s times its normal impulse. Both are kept, summed over
+  // the passes, on the patch's first point.
   const RigidContact& c = contacts[lo];
   const Real limit = c.combined.staticFriction * normal;
   const PatchCentre centre = centreOf(in, contacts, state, lo, hi, true);
+  const bool anchored = anchorsByPoints(c);
   Vec3 slide = (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
-  if (c.sideA == ContactSide::Ground) slide = centre.nowB - centre.startB;
+  if (anchored) slide = anchoredSlip(in, contacts, state, patch, centre);
   slide -= glm::dot(slide, c.normal) * c.normal;
   const Real length = glm::length(slide);
   if (length > 0.0) {
@@ -638,6 +671,8 @@ void solvePatchByPoints(RigidPassInput& in, std::span<const RigidContact> contac
       applyAtCentre(in, contacts, state, lo, hi, false, a, dLambda * t, centre.count, false);
       applyAtCentre(in, contacts, state, lo, hi, true, b, -dLambda * t, centre.count, false);
       state.lambdaTangent[lo] += dLambda;
+    } else if (anchored) {
+      state.anchors[patch.anchor].held = false;  // it slides: the dynamic friction's
     }
   }
   const Real twist = twistOf(in, c);

@@ -162,6 +162,39 @@ TEST(Ragdoll, RigidPartsTakeTheInertiaFloor) {
   EXPECT_EQ(w.bodies().size(), bodies);
 }
 
+// Two rigid ragdolls, one dropped across the other, lie on the edges and corners of their parts,
+// held on the ground by patches of one or two points while their joints and contacts pull against
+// each other every substep. Nothing drives them, so once they lie their energy must not rise. While
+// static friction held such a patch only against each substep's own motion, what one substep left
+// slipped for good, and the pile gained 7.9 mJ from 20 s to 60 s (the tackle 0.005 J/s: docs/physics.md,
+// "Reaction"); held at its anchor, it loses 6e-7 J. The bound, 1 mJ, is an eighth of the creep's gain
+// and far above round-off.
+TEST(Ragdoll, RigidPileGainsNoEnergyOnceItLies) {
+  phys::WorldSettings ground;
+  ground.ground = true;
+  phys::SolverSettings solver;
+  solver.iterations = 2;
+  solver.substeps = 8;
+  phys::World w(ground, solver);
+  phys::RagdollDesc below;
+  below.model = phys::RagdollModel::Rigid;
+  below.hips = Vec3(0.0, 1.2, 0.0);
+  below.orientation = glm::angleAxis(std::numbers::pi / 2, Vec3(1.0, 0.0, 0.0));  // face down
+  phys::addRagdoll(w, below);
+  phys::RagdollDesc across = below;
+  across.name = "across";
+  across.hips = Vec3(0.3, 2.0, 0.3);
+  across.orientation = glm::angleAxis(std::numbers::pi / 2, Vec3(0.0, 1.0, 0.0)) * below.orientation;
+  phys::addRagdoll(w, across);
+  const int perSecond = 60;
+  for (int step = 0; step < 20 * perSecond; ++step) w.step();
+  const double settled = w.metrics().energy();
+  for (int step = 0; step < 40 * perSecond; ++step) w.step();
+  const double gain = w.metrics().energy() - settled;
+  std::printf("energy gained from 20 s to 60 s: %.3g J\n", gain);
+  EXPECT_LT(gain, 1e-3);
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, RagdollDrop,
                          testing::Values(phys::RagdollModel::Seed, phys::RagdollModel::Lean,
                                          phys::RagdollModel::Rigid),
