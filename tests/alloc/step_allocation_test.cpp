@@ -96,9 +96,12 @@ TEST(StepAllocation, NoProjectSceneAllocatesAfterItsFirstSecond) {
     // never had. The room for pairs and points then grows, each of its 7 arrays at most once in
     // the second (each growth doubles it).
     // line-up.xml's players fall one into the next through its second second, each fall making
-    // pairs the scene never had: the room for pairs and points grows, each of the narrow phase's
-    // arrays and the rigid contacts' state at most once (each growth doubles it).
-    const long allowed = name == "stability/pyramid-40.xml" ? 7 : name == "line-up.xml" ? 9 : 0;
+    // pairs the scene never had: the room for pairs and points grows (each growth doubles it), in
+    // the narrow phase's arrays (10 of the growths), the broad phase's pairs (2) and the rigid
+    // contacts' state (3). It was 9 before a rigid foot standing on its edge kept its ground anchor
+    // (docs/physics.md, "Standing for a minute"), which changed how the players fall, not what
+    // grows; the third second makes one growth more, the fourth none.
+    const long allowed = name == "stability/pyramid-40.xml" ? 7 : name == "line-up.xml" ? 15 : 0;
     EXPECT_LE(made, allowed) << name << ": " << made << " allocations in " << steps
                              << " steps after the first second";
   }
