@@ -731,6 +731,74 @@ TEST(SceneErrors, AnEntityReferenceTheLoaderWouldTakeAsTextIsRefused) {
   EXPECT_EQ(fine.bodies.at(0).name, "x&y");
 }
 
+// XML has an '&' start a reference (&name;, &#N;, &#xH;); pugixml kept one that starts none as
+// text, so name='a & b' loaded where XML says the file is not well-formed. Refused, naming where
+// it stands and what to write instead.
+TEST(SceneErrors, AnAmpersandThatStartsNoReferenceIsRefused) {
+  const char* says =
+      "an '&' that starts no reference (&name;, &#N; or &#xH;): XML does not allow it; write &amp;";
+  const struct {
+    const char* value;
+    const char* shown;
+  } cases[] = {{"a & b", "'&'"},
+               {"a&", "'&'"},
+               {"&amp b", "'&amp'"},
+               {"&lt", "'&lt'"},
+               {"&#12", "'&#12'"},
+               {"&#;", "'&#;'"},
+               {"&#x;", "'&#x;'"},
+               {"&#xG1;", "'&#x'"},
+               {"&#X41;", "'&#'"},
+               {"&;", "'&;'"},
+               {"&abcdefghijklmnop", "'&abcdefghijk'"}};
+  for (const auto& c : cases) {
+    const std::string name = std::string("holds ") + c.shown + ", " + says;
+    testing_scenes::expectRefused(
+        {c.value,
+         ("<scene name='s'>\n<box pos='0 1 0'\n name='" + std::string(c.value) + "'/>\n</scene>").c_str(), 3,
+         "name", name.c_str()});
+  }
+  testing_scenes::expectRefused(
+      {"description", "<scene name='s'\n description='salt & pepper'>\n</scene>", 2, "description", says});
+  testing_scenes::expectRefused({"scene name", "<scene\n name='R&D'/>", 2, "name", says});
+  testing_scenes::expectRefused(
+      {"text", "<scene name='s'>\n<box pos='0 1 0'>\n& </box>\n</scene>", 3, "", "holds '&', an '&'"});
+  testing_scenes::expectRefused({"after a DOCTYPE",
+                                 "<!DOCTYPE scene [ <!ENTITY a 'x & y'> ]>\n<scene name='s'>\n<box pos='0 1 "
+                                 "0'\n name='a&b'/>\n</scene>",
+                                 4, "name", says});
+  // Outside <scene> it is text where none may be, said as that where it stands.
+  testing_scenes::expectRefused(
+      {"after </scene>", "<scene name='s'>\n</scene>\nR & D", 3, "", "nothing may follow </scene>"});
+  testing_scenes::expectRefused(
+      {"before <scene>", "<?xml version='1.0'?>\n& <scene name='s'>\n</scene>", 2, "", "precede <scene>"});
+  // Not cut inside a character: a long name of two-byte letters is shown to a whole one.
+  testing_scenes::expectRefused({"UTF-8",
+                                 "<scene name='s'>\n<box pos='0 1 0'\n "
+                                 "name='&\xC3\xA9\xC3\xA9\xC3\xA9\xC3\xA9\xC3\xA9\xC3\xA9 '/>\n</scene>",
+                                 3, "name", "holds '&\xC3\xA9\xC3\xA9\xC3\xA9\xC3\xA9\xC3\xA9', an"});
+}
+
+// In a comment, CDATA, a processing instruction or the DOCTYPE an '&' is only text, as XML has it:
+// nothing there is refused for it, and a reference XML allows loads as what it stands for.
+TEST(SceneErrors, AnAmpersandOutsideValuesAndTextIsOnlyText) {
+  const scenes::Scene fine = scenes::loadSceneText(
+      "<?xml version='1.0' encoding='UTF-8'?>\n"
+      "<!DOCTYPE scene [ <!ENTITY a 'x & y'> <!-- & --> <?pi & ?> ]>\n"
+      "<!-- R & D -->\n"
+      "<scene name='&amp;&#38;&#x26;&lt;'><!-- a & b --><?pi & ?><box name='&#233;' pos='0 1 0'/></scene>\n"
+      "<!-- & -->",
+      "fine.xml");
+  EXPECT_EQ(fine.name, "&&&<");
+  EXPECT_EQ(fine.bodies.at(0).name, "\xC3\xA9");
+  // CDATA is text the scene refuses where it stands; refused as that, not for its '&'.
+  testing_scenes::expectRefused({"CDATA in <scene>", "<scene name='s'>\n<![CDATA[ a & b ]]>\n</scene>", 2, "",
+                                 "unexpected text inside <scene>"});
+  testing_scenes::expectRefused({"CDATA in <box>",
+                                 "<scene name='s'>\n<box pos='0 1 0'><![CDATA[&]]></box>\n</scene>", 2, "",
+                                 "takes no child elements or text"});
+}
+
 // A quote in a processing instruction or a conditional section of the DOCTYPE is only text there,
 // as pugixml reads it; taken for the start of a quoted value, it would hide every reference after
 // it from the check, and name='&a;' would load as that text, name='a&#0;b' as "a".

@@ -27,7 +27,8 @@ class SceneGenerator {
     // Most scenes near the origin; some far out, where a coordinate keeps fewer digits.
     far_ = chance(0.15);
     origin_ = far_ ? vector(-8e5, 8e5) : Vec(0.0, 0.0, 0.0);
-    std::string xml = "<scene name=\"generated\" description=\"" + pick({"", "a, b & <c>", "line"}) + "\">\n";
+    std::string xml =
+        "<scene name=\"generated\" description=\"" + pick({"", "a, b &amp; &lt;c&gt;", "line"}) + "\">\n";
     if (chance(0.8)) xml += world();
     if (chance(0.8)) xml += solver();
     if (chance(0.7)) xml += ground();

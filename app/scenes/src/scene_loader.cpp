@@ -1085,6 +1085,43 @@ std::string_view unexpandedEntityAt(std::string_view rest) {
   return rest.substr(0, k + 1);
 }
 
+// The '&' at the start of `rest`, with what follows it up to where it stops looking like a
+// reference, if it starts no reference XML allows (&name;, &#N;, &#xH;); empty if it does.
+// pugixml keeps such an '&' as text, where XML says the file is not well-formed: name='a & b'
+// would load, and a tool that reads XML as XML would refuse the file.
+std::string_view bareAmpersandAt(std::string_view rest) {
+  auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  auto hexDigit = [&](char c) { return digit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F'); };
+  auto nameStart = [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return std::isalpha(byte) || c == '_' || c == ':' || byte >= 0x80;
+  };
+  auto nameByte = [&](char c) { return nameStart(c) || digit(c) || c == '-' || c == '.'; };
+  auto runEnd = [&](std::size_t from, auto in) {
+    while (from < rest.size() && in(rest[from])) ++from;
+    return from;
+  };
+  std::size_t from = 1;  // past "&", "&#" or "&#x": where the name or the digits start
+  std::size_t end = 1;   // where they end
+  if (rest.starts_with("&#x")) {
+    from = 3;
+    end = runEnd(from, hexDigit);
+  } else if (rest.starts_with("&#")) {
+    from = 2;
+    end = runEnd(from, digit);
+  } else if (rest.size() > 1 && nameStart(rest[1])) {
+    end = runEnd(from, nameByte);
+  }
+  const bool semicolon = end < rest.size() && rest[end] == ';';
+  if (end > from && semicolon) return {};
+  // Shown as far as it looked like a reference (a few bytes of a long name, whole characters).
+  constexpr std::size_t kMostShown = 12;
+  std::size_t shown = std::min(end + (semicolon ? 1 : 0), kMostShown);
+  while (shown > 1 && shown < rest.size() && (static_cast<unsigned char>(rest[shown]) & 0xC0) == 0x80)
+    --shown;
+  return rest.substr(0, shown);
+}
+
 // The first reference in `text` that `at` finds at an '&' outside comments, CDATA, processing
 // instructions and the DOCTYPE; empty if none.
 std::string_view firstReference(std::string_view text, std::string_view (*at)(std::string_view)) {
@@ -1114,6 +1151,11 @@ RefusedReference refusedReference(std::string_view text) {
                                ", which would load as that text: entities are not expanded (a <!DOCTYPE> "
                                "declares none that the loader reads); write the text itself, or a character "
                                "reference such as &#233;"};
+  }
+  if (const std::string_view bare = firstReference(text, bareAmpersandAt); !bare.empty()) {
+    return {bare.data(), "holds '" + std::string(bare) +
+                             "', an '&' that starts no reference (&name;, &#N; or &#xH;): XML does not "
+                             "allow it; write &amp; for the character '&'"};
   }
   return {};
 }
@@ -1186,13 +1228,15 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   // may.
   std::string trailing;
   int trailingLine = 0;
+  const char* trailingFrom = nullptr;
   {
     std::size_t end = size;
     while (end > 0 && std::isspace(static_cast<unsigned char>(buffer[end - 1]))) --end;
     std::size_t lastTag = end;
     while (lastTag > 0 && buffer[lastTag - 1] != '>') --lastTag;
     if (lastTag < end && lastTag > 0) {
-      trailing.assign(buffer.data() + lastTag, end - lastTag);
+      trailingFrom = buffer.data() + lastTag;
+      trailing.assign(trailingFrom, end - lastTag);
       std::size_t first = lastTag;
       while (std::isspace(static_cast<unsigned char>(buffer[first]))) ++first;
       trailingLine = lines.lineOf(buffer.data() + first);
@@ -1207,8 +1251,13 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
     throw LoadError(file, lines.lineOf(buffer.data() + parsed.offset), "",
                     std::string("not well-formed XML: ") + parsed.description());
   }
-  if (refused.at != nullptr) refuseReference(doc, buffer.data(), refused, lines, file);
   const pugi::xml_node root = doc.document_element();
+  // pugixml drops text outside <scene> unread, and nothing there could own a reference: an '&'
+  // in it is stray text, said as that (after </scene>, below).
+  if (refused.at != nullptr && std::less<>()(refused.at, root.name()))
+    throw LoadError(file, lines.lineOf(refused.at), "", "nothing may follow or precede <scene> but comments");
+  if (refused.at != nullptr && (trailingFrom == nullptr || std::less<>()(refused.at, trailingFrom)))
+    refuseReference(doc, buffer.data(), refused, lines, file);
   for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
     if (top == root) continue;
     if (top.type() == pugi::node_declaration && top == doc.first_child()) {
