@@ -628,6 +628,40 @@ TEST(ClipFile, ASceneReadOnceKeepsEveryClipItNames) {
   EXPECT_EQ(error([&] { scenes::loadSceneSource(withoutClip); }), missing);
 }
 
+// A scene whose text shows an error alone (one found before any body is built: an unknown
+// element, a bad <world>, XML that is not well-formed) says it before any clip it names is read,
+// which may be large or slow: reading the source throws the scene's own error, whatever the clip
+// is (missing, a pipe with no writer), as loading the file does.
+TEST(ClipFile, ASceneWithAnErrorOfItsOwnSaysItBeforeReadingAClip) {
+  const testing_app::TempFolder dir;
+  ASSERT_EQ(::mkfifo((dir.path / "pipe.bvh").c_str(), 0600), 0);
+  const std::filesystem::path file = dir.path / "bad.xml";
+  for (const std::string clip : {"pipe.bvh", "missing.bvh"}) {
+    const std::string character = "<character ragdoll=\"r\" clip=\"" + clip + "\"/>\n";
+    const std::pair<std::string, std::string> cases[] = {
+        {character + "<bogus/>", "unknown element"},
+        {character + "<world damping=\"-1\"/>", "attribute 'damping': must be >= 0"},
+        {character + "<box pos='0 1 0' name='R&D'/>", "an '&' that starts no reference"},
+    };
+    for (const auto& [bad, says] : cases) {
+      std::ofstream(file) << characterScene(bad);
+      for (const bool source : {true, false}) {
+        try {
+          if (source)
+            scenes::readSceneSource(file);
+          else
+            scenes::loadSceneFile(file);
+          ADD_FAILURE() << (source ? "read: " : "loaded: ") << bad;
+        } catch (const scenes::LoadError& e) {
+          const std::string message = e.what();
+          EXPECT_EQ(message.rfind(file.string() + ":3: ", 0), 0u) << message;
+          EXPECT_NE(message.find(says), std::string::npos) << message;
+        }
+      }
+    }
+  }
+}
+
 // The target: with the root carried, the parts track the run cycle within 5 degrees RMS at
 // 1/60 s (XPBD 2 x 8, strength 0.9, the ragdolls' default stiffness) (the parts against their targets, in the
 // clip frame the character chose). `ragdoll` is the <ragdoll> element's attributes past its name.

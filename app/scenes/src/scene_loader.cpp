@@ -1204,12 +1204,26 @@ void refuseLargerThan(std::size_t size, std::size_t mostBytes, const std::string
                   "is larger than " + std::to_string(mostBytes) + " bytes, the most that is read");
 }
 
-Scene build(std::vector<char>& buffer, const std::string& file, const std::filesystem::path& folder,
-            const ReadClips* readBefore, const LoadOptions& options) {
-  pugi::xml_document doc;
+// A scene file's text parsed and checked as a document: all but its bodies, which only building
+// finds wrong (a name not defined above, what a generator reaches, a character's clip).
+struct SceneDocument {
+  pugi::xml_document doc;  // parsed in place: its nodes point into the buffer it was read from
+  pugi::xml_node root;
+  std::string name;
+  std::string description;
+  phys::WorldSettings world;
+  phys::SolverSettings solver;
+  CameraStart camera;
+  std::vector<pugi::xml_node> bodies;  // the body elements, in the file's order
+  std::vector<Expectation> expectations;
+};
+
+// Parses `buffer` (which `lines` indexes) in place into `d`, and throws LoadError at the first
+// error a document shows without building its bodies.
+void readDocument(std::vector<char>& buffer, const std::string& file, const LineIndex& lines,
+                  const LoadOptions& options, SceneDocument& d) {
+  pugi::xml_document& doc = d.doc;
   const std::size_t size = buffer.size();
-  refuseLargerThan(size, detail::kMaxSceneBytes, file);
-  const LineIndex lines(buffer.data(), size);
   if (const std::string_view encoding = otherEncoding(std::string_view(buffer.data(), size));
       !encoding.empty()) {
     throw LoadError(file, 1, "",
@@ -1283,21 +1297,21 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
                     "the root element must be <scene>, not <" + std::string(root.name()) + ">");
   }
   ElementReader sceneReader(root, lines, file);
-  const std::string name = sceneReader.requiredText("name");
-  const std::string description = readDescription(sceneReader);
+  d.root = root;
+  d.name = sceneReader.requiredText("name");
+  d.description = readDescription(sceneReader);
   sceneReader.rejectUnknownAttributes();
 
   // Settings first, whatever their place in the file: bodies take their initial velocity under
   // the world's gravity and step.
-  phys::WorldSettings worldSettings;
+  phys::WorldSettings& worldSettings = d.world;
   worldSettings.ground = false;  // a scene has a ground only if it says so
-  phys::SolverSettings solverSettings;
+  phys::SolverSettings& solverSettings = d.solver;
   solverSettings.sleep.enabled = options.sleepUnlessSaid;
-  CameraStart camera;
   pugi::xml_node cameraNode;
   pugi::xml_node groundNode;
-  std::vector<pugi::xml_node> bodies;
-  std::vector<Expectation> expectations;
+  std::vector<pugi::xml_node>& bodies = d.bodies;
+  std::vector<Expectation>& expectations = d.expectations;
   std::map<std::string, int, std::less<>> seen;
   for (pugi::xml_node child = root.first_child(); child; child = child.next_sibling()) {
     ElementReader e(child, lines, file);
@@ -1354,22 +1368,29 @@ Scene build(std::vector<char>& buffer, const std::string& file, const std::files
   }
   if (cameraNode) {
     ElementReader e(cameraNode, lines, file);
-    readCamera(e, worldSettings, camera);
+    readCamera(e, worldSettings, d.camera);
   }
   if (options.sleep) solverSettings.sleep.enabled = *options.sleep;
   if (options.jointProjection) solverSettings.jointProjection.enabled = *options.jointProjection;
   if (options.threads) solverSettings.threads = *options.threads;
+}
 
+Scene build(std::vector<char>& buffer, const std::string& file, const std::filesystem::path& folder,
+            const ReadClips* readBefore, const LoadOptions& options) {
+  refuseLargerThan(buffer.size(), detail::kMaxSceneBytes, file);
+  const LineIndex lines(buffer.data(), buffer.size());
+  SceneDocument d;
+  readDocument(buffer, file, lines, options, d);
   std::optional<Scene> built;
   try {
-    built.emplace(Scene{name, description, file, phys::World(worldSettings, solverSettings), camera, {}});
+    built.emplace(Scene{d.name, d.description, file, phys::World(d.world, d.solver), d.camera, {}});
   } catch (const std::invalid_argument& e) {  // a combination the element checks did not catch
-    throw LoadError(file, lines.lineOf(root.name()), "", std::string("<scene>: ") + e.what());
+    throw LoadError(file, lines.lineOf(d.root.name()), "", std::string("<scene>: ") + e.what());
   }
   Scene& scene = *built;
-  scene.expectations = std::move(expectations);
+  scene.expectations = std::move(d.expectations);
   Builder builder(scene, lines, file, folder, readBefore, options);
-  for (const pugi::xml_node& node : bodies) {
+  for (const pugi::xml_node& node : d.bodies) {
     try {
       const std::size_t first = scene.world.particles().size();
       const std::size_t firstBody = scene.world.bodies().size();
@@ -1431,12 +1452,17 @@ Scene detail::loadSceneText(std::string_view xml, const std::string& displayName
 namespace {
 
 // Every clip file the <character>s of `source.text` name (kClipAttributes), read into
-// source.clips. Text that is no scene names none here: building it says what is wrong, and where.
+// source.clips, once the text is checked as a document (readDocument): a scene with an error
+// that its text shows alone says it without reading a clip first, which may be large. An error
+// only building finds (in a body element) is said when the source is loaded, in the file's order
+// among the clips' own, as loading the file says it.
 void readClips(SceneSource& source) {
-  pugi::xml_document doc;
-  if (!doc.load_buffer(source.text.data(), source.text.size(), pugi::parse_default, pugi::encoding_utf8))
-    return;
-  for (const pugi::xml_node character : doc.document_element().children("character")) {
+  std::vector<char> buffer(source.text.begin(), source.text.end());
+  const LineIndex lines(buffer.data(), buffer.size());
+  SceneDocument d;
+  readDocument(buffer, source.file.string(), lines, {}, d);
+  for (const pugi::xml_node& character : d.bodies) {
+    if (std::string_view(character.name()) != "character") continue;
     for (const char* attribute : kClipAttributes) {
       const std::string given = character.attribute(attribute).value();
       if (given.empty()) continue;

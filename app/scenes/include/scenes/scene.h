@@ -127,8 +127,9 @@ struct SceneSource {
 /// Loads a scene file; throws LoadError and builds nothing on any error.
 Scene loadSceneFile(const std::filesystem::path& file, const LoadOptions& options = {});
 /// Reads a scene file and the clip files it names for loadSceneSource; throws LoadError (line 0)
-/// when the scene file cannot be read. A clip that cannot be read is kept as its error, which
-/// loading the source reports as loading the file would.
+/// when the scene file cannot be read, and, before reading any clip, at an error its text shows
+/// without building a body (not XML, an unknown element, a bad setting). A clip that cannot be
+/// read is kept as its error, which loading the source reports as loading the file would.
 SceneSource readSceneSource(const std::filesystem::path& file);
 /// Loads a scene from a file read before, as loadSceneFile loads the file.
 Scene loadSceneSource(const SceneSource& source, const LoadOptions& options = {});
