@@ -296,6 +296,18 @@ template void CommandLine::option(const OptionSpec&, std::filesystem::path&, con
 template void CommandLine::option(const OptionSpec&, std::optional<std::filesystem::path>&,
                                   const std::string&);
 
+void CommandLine::existingFolder(const OptionSpec& spec, std::filesystem::path& into,
+                                 const std::string& note) {
+  option(spec, into, note);
+  folders_.emplace_back(firstName(spec.names), &into);
+}
+
+void CommandLine::requireGivenFolders() const {
+  for (const auto& [name, folder] : folders_) {
+    if (!folder->empty()) requireFolder(*folder, name.c_str());
+  }
+}
+
 void CommandLine::models(std::vector<std::string>& into, bool ragdollModels, const std::string& note) {
   add(option::kModels, "--models LIST", needsOf<phys::BodyModel>(option::kModels),
       helpText(option::kModels, note), false,
@@ -439,6 +451,7 @@ int commandMain(CommandLine& line, const std::vector<std::string>& args, std::os
     return kExitUsage;
   }
   try {
+    line.requireGivenFolders();
     return body();
   } catch (const UsageError& e) {
     err << "lab: " << e.what() << "\n" << line.help();

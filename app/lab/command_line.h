@@ -157,6 +157,12 @@ class CommandLine {
               const std::string& note);
   /// The option must be given; else the error is `why`.
   void require(const OptionSpec& spec, std::string why);
+  /// A folder that must exist when given (--data): read as option() reads a path, and held to
+  /// requireFolder by requireGivenFolders before the command runs, so a wrong one is said up
+  /// front with the system's reason rather than when a run first reads from it.
+  void existingFolder(const OptionSpec& spec, std::filesystem::path& into, const std::string& note);
+  /// Throws CommandFailure (requireFolder) for the first existingFolder given that is not a folder.
+  void requireGivenFolders() const;
 
   /// Parses the arguments after the command's name; returns the error (one line naming the
   /// argument), or "" when they are good.
@@ -180,7 +186,8 @@ class CommandLine {
   std::vector<Entry> entries_;      // in the order the help lists them
   std::vector<std::string> flags_;  // every spelling of every flag
   std::string positionalName_;
-  std::vector<std::pair<std::string, std::string>> required_;  // option, why
+  std::vector<std::pair<std::string, std::string>> required_;                  // option, why
+  std::vector<std::pair<std::string, const std::filesystem::path*>> folders_;  // option, its target
 };
 
 /// The frame every command runs in: its help on --help (exit 0); a command-line error as

@@ -55,7 +55,7 @@ void describeCompare(CommandLine& line, CompareOptions& o) {
   line.option(option::kPeerSleep, o.peerSleep, "(default: as --sleep)");
   line.option(option::kJointProjection, o.run.jointProjection, "for ours (default: the scene's)");
   line.flag(option::kJson, o.run.json, true, "one object per row, one per line, instead of the table");
-  line.option(option::kData, o.run.dataDir, "");
+  line.existingFolder(option::kData, o.run.dataDir, "");
 }
 
 using Row = SweepRow;

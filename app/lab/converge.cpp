@@ -54,7 +54,7 @@ void describeConverge(CommandLine& line, ConvergeOptions& o) {
   line.option(option::kIterations, o.iterations, "(default 4)");
   line.option(option::kTime, o.time, "(default 4); analytic scenes use their answers' times");
   line.option(option::kOut, o.out, "converge.csv and, per scene, converge-SCENE.gp, .png, .svg");
-  line.option(option::kData, o.dataDir, "");
+  line.existingFolder(option::kData, o.dataDir, "");
 }
 
 // ---- what a scene is compared with ------------------------------------------------------------

@@ -19,7 +19,7 @@ void describeRun(CommandLine& line, RunOptions& o) {
   line.option(option::kThreads, o.threads, "(default: the scene's, else 1)");
   line.flag(option::kJson, o.json, true, "one object instead of the summary");
   line.option(option::kDump, o.dump, "");
-  line.option(option::kData, o.dataDir, "");
+  line.existingFolder(option::kData, o.dataDir, "");
 }
 
 }  // namespace lab

@@ -34,7 +34,7 @@ void describeOptions(CommandLine& line, StabilityOptions& o) {
       "");
   line.option(option::kSleep, o.sleep, "(ours and the peers'; default off, whatever the scene says)");
   line.flag(option::kNoPeers, o.peers, false, "");
-  line.option(option::kData, o.dataDir, "");
+  line.existingFolder(option::kData, o.dataDir, "");
 }
 
 bool naturalLess(const std::string& a, const std::string& b) {

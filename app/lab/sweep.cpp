@@ -77,7 +77,7 @@ void describeSweep(CommandLine& line, SweepOptions& o) {
   line.custom(
       option::kError, false, [&o](const std::string& text) { return readMeasure(text, o.measure); }, "");
   line.flag(option::kNoPeers, o.peers, false, "");
-  line.option(option::kData, o.dataDir, "");
+  line.existingFolder(option::kData, o.dataDir, "");
   line.option(option::kOut, o.out, "results.csv, pareto.csv, sweep.gp and the chart (required)");
   line.require(option::kOut, "sweep needs --out DIR (where the CSV and the chart go)");
 }

@@ -136,7 +136,7 @@ void describeTune(CommandLine& line, TuneOptions& o) {
   line.require(option::kTarget, "tune needs at least one --target METRIC=VALUE");
   line.option(option::kSteps, o.steps, "at the scene's dt (default: 1 s of them)");
   line.option(option::kRepeat, o.repeats, "(of each finalist; default 3)");
-  line.option(option::kData, o.dataDir, "");
+  line.existingFolder(option::kData, o.dataDir, "");
 }
 
 // ---- the search -------------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 // The real `lab` program, run as a user would through the shell: JSON, free fall against the
 // closed form, determinism, overrides, the dump, and the exit codes.
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -335,6 +336,39 @@ TEST(LabExit, MissingSceneExitsOne) {
   const ProcessResult r = runLab("run no-such-scene --data " + quoted(dir.file("")), dir);
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("no-such-scene.xml"), std::string::npos) << r.err;
+}
+
+// --data names the folder that holds assets/; a missing one, or a file, was said only when a run
+// first read from it, and not at all by a run given its scene as a file. Every command that takes
+// it refuses it first, with the system's reason, as lab report does, and runs nothing.
+TEST(LabExit, ADataThatIsNotAFolderIsRefusedBeforeAnyRun) {
+  const TempDir dir;
+  const std::string scene = dir.write("fall.xml", freeFallScene()).string();
+  const std::filesystem::path sweepOut = dir.file("sweep-out");
+  const std::vector<std::vector<std::string>> commands = {
+      {"run", scene, "--steps", "1"},
+      {"sweep", scene, "--out", sweepOut.string()},
+      {"stability"},
+      {"tune", scene, "--target", "error=1e-3", "--repeat", "1"},
+      {"compare", scene},
+      {"converge", scene},
+  };
+  const std::pair<std::filesystem::path, std::string> folders[] = {
+      {dir.file("missing"), "No such file or directory"},
+      {dir.write("file", "not a folder\n"), "Not a directory"},
+  };
+  for (std::vector<std::string> args : commands) {
+    for (const auto& [data, why] : folders) {
+      args.insert(args.end(), {"--data", data.string()});
+      const lab::CommandOutput o = lab::runCaptured(args);
+      EXPECT_EQ(o.code, lab::kExitFailure) << args[0];
+      EXPECT_EQ(o.err, "lab: --data: " + data.string() + ": " + why + "\n") << args[0];
+      EXPECT_EQ(o.out, "") << args[0];
+      args.resize(args.size() - 2);
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists(sweepOut));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("missing")));
 }
 
 // A dump whose folder is missing or is a file, or that names a folder or the scene itself (it was
