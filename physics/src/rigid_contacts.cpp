@@ -125,6 +125,7 @@ namespace {
 struct PatchCentre {
   int count = 0;
   Vec3 nowA{0.0}, nowB{0.0}, startA{0.0}, startB{0.0};
+  Vec3 localB{0.0};   // B's pressing points' mean in B's frame, for a rigid B
   Real radius = 0.0;  // unit: m
 };
 
@@ -166,6 +167,7 @@ PatchCentre centreOf(const RigidPassInput& in, std::span<const RigidContact> con
   place(first.sideA, first.rigidA, sumA, startSumA, p.nowA, p.startA);
   place(first.sideB, first.rigidB, sumB, startSumB, p.nowB, p.startB);
   const Vec3 meanB = sumB * share;
+  p.localB = meanB;
   for (std::size_t k = lo; k < hi; ++k) {
     if (state.lambdaNormal[k] <= 0.0) continue;
     const RigidContact& c = contacts[k];
@@ -321,6 +323,16 @@ Vec3 heldNow(const RigidPassInput& in, ContactSide side, RigidId rigid, const Ve
   return in.rigid.position[rigid] + in.rigid.orientation[rigid] * held;
 }
 
+// Makes `anchor` at B's point `onB` (in B's frame) where it was at the substep's start, unless it
+// holds there already: a patch is anchored when it first holds or its pressing points change.
+void holdAt(const RigidPassInput& in, const RigidContact& c, PatchAnchor& anchor, const Vec3& onB) {
+  if (anchor.held && anchor.onB == onB) return;
+  const Vec3 start = in.rigid.previousPosition[c.rigidB] + in.rigid.previousOrientation[c.rigidB] * onB;
+  anchor.onA = heldAtStart(in, c.sideA, c.rigidA, start);
+  anchor.onB = onB;
+  anchor.held = true;
+}
+
 // A patch of three to eight points whose sides are rigid bodies or the ground (a face on a face or
 // on the ground) is solved as one block (rigid_block.h): its points, its friction and its twist
 // together; and a body resting on several held bodies (a box across two boxes of a pyramid) takes
@@ -410,12 +422,7 @@ void addPositionRows(const RigidPassInput& in, std::span<const RigidContact> con
   // Held where it stuck while the same points press; a patch whose points move over B (a ball or a
   // capsule rolling, its point on the ground placed anew each substep) holds only against the
   // substep's own motion, as the 2020 paper has it: held at the old point, a rolling ball was braked.
-  if (!anchor.held || anchor.onB != centre) {
-    const Vec3 start = in.rigid.previousPosition[c.rigidB] + in.rigid.previousOrientation[c.rigidB] * centre;
-    anchor.onA = heldAtStart(in, c.sideA, c.rigidA, start);
-    anchor.onB = centre;
-    anchor.held = true;
-  }
+  holdAt(in, c, anchor, centre);
   const Vec3 onA = heldNow(in, c.sideA, c.rigidA, anchor.onA),
              onB = heldNow(in, c.sideB, c.rigidB, anchor.onB);
   const Vec3 slip = onB - onA;
@@ -628,17 +635,8 @@ bool anchorsByPoints(const RigidContact& c) {
 Vec3 anchoredSlip(const RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
                   const ContactPatch& patch, const PatchCentre& centre) {
   const RigidContact& c = contacts[patch.first];
-  Vec3 local(0.0);  // the pressing points' centre in B's frame
-  for (std::size_t k = patch.first; k < patch.first + patch.count; ++k) {
-    if (state.lambdaNormal[k] > 0.0) local += contacts[k].localB;
-  }
-  local /= static_cast<Real>(centre.count);
   PatchAnchor& anchor = state.anchors[patch.anchor];
-  if (!anchor.held || anchor.onB != local) {
-    anchor.onA = heldAtStart(in, c.sideA, c.rigidA, centre.startB);
-    anchor.onB = local;
-    anchor.held = true;
-  }
+  holdAt(in, c, anchor, centre.localB);
   return heldNow(in, c.sideB, c.rigidB, anchor.onB) - heldNow(in, c.sideA, c.rigidA, anchor.onA);
 }
 

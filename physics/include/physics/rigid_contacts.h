@@ -59,7 +59,8 @@ struct ContactPatch {
 /// each substep's own motion, as the 2020 paper has it, the top of a rigid pyramid of 20 rows went
 /// 0.57 m in 60 s, and 0.29 m with anchors alone (docs/physics.md, "Standing for a minute"). A
 /// patch with a particle body on a side keeps no anchor, nor does one of one or two points between
-/// two bodies (solved point by point); such a patch on the ground does.
+/// two bodies (solved point by point); a box's such patch on the ground does (a capsule's points
+/// are placed anew each substep, so its patch is anchored anew each substep).
 struct PatchAnchor {
   /// The most points whose impulses a patch keeps for the next substep (a block's most points).
   static constexpr std::size_t kKeptPoints = 8;
