@@ -128,9 +128,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Tackle,
 
 // The thrown 30 kg box knocks the line down one into the next; each lies still and gets up on the
 // stand clip, and by 13 s all five stand again where they fell, heads at standing height, every part
-// slower than 0.05 m/s. Since a rigid foot on its edge is held at its anchor by static friction
-// (docs/physics.md, "Standing for a minute"), p1's sway after its get-up reaches 0.11 m/s at 11.75 s
-// and is under 0.05 m/s from 12.5 s; before, every part was under 0.03 m/s from 10 s.
+// slower than 0.05 m/s: p1 sways after its get-up, a foot on its edge held at its anchor by static
+// friction (docs/physics.md, "Standing for a minute"), at 0.11 m/s at 11.75 s and under 0.05 m/s
+// from 12.5 s.
 TEST(TackleLine, TheLineIsKnockedDownAndGetsUp) {
   scenes::Scene scene = scenes::loadSceneFile(kScenes + "line-up.xml");
   phys::World& w = scene.world;
