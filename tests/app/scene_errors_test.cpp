@@ -772,6 +772,20 @@ TEST(SceneErrors, AnAmpersandThatStartsNoReferenceIsRefused) {
       {"after </scene>", "<scene name='s'>\n</scene>\nR & D", 3, "", "nothing may follow </scene>"});
   testing_scenes::expectRefused(
       {"before <scene>", "<?xml version='1.0'?>\n& <scene name='s'>\n</scene>", 2, "", "precede <scene>"});
+  // Comments may end the file; text before them may not, an '&' in it or not.
+  testing_scenes::expectRefused({"after </scene>, before a comment",
+                                 "<scene name='s'>\n</scene>\nR & D\n<!-- c -->", 3, "",
+                                 "nothing may follow </scene>"});
+  testing_scenes::expectRefused({"text before a comment",
+                                 "<scene name='s'>\n</scene>\n<!-- a -->\nstray\n<!-- b -->\n", 4, "",
+                                 "nothing may follow </scene>"});
+  EXPECT_NO_THROW(
+      scenes::loadSceneText("<scene name='s'>\n</scene>\n<!-- a & b -->\n<?pi x?>\n<!-- c -->\n", "s.xml"));
+  // The first in the file is said, whatever its kind: an entity reference further on does not hide it.
+  testing_scenes::expectRefused(
+      {"before an entity",
+       "<scene name='s'>\n<box pos='0 1 0' name='a & b'/>\n<box pos='0 3 0' name='&c;'/>\n</scene>", 2,
+       "name", says});
   // Not cut inside a character: a long name of two-byte letters is shown to a whole one.
   testing_scenes::expectRefused({"UTF-8",
                                  "<scene name='s'>\n<box pos='0 1 0'\n "
