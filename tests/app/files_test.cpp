@@ -331,9 +331,10 @@ TEST(FolderProblem, AFolderOrTheOsReason) {
   EXPECT_EQ(fileio::folderProblem(folder.path / "missing"), "No such file or directory");
   fs::create_directory(folder.path / "locked");
   fs::permissions(folder.path, fs::perms::owner_all | fs::perms::others_read | fs::perms::others_exec);
-  fs::permissions(folder.path / "locked", fs::perms::owner_all);
+  fs::permissions(folder.path / "locked", fs::perms::none);  // no one but root may look inside
   EXPECT_EQ(testing_app::runAsNobody([&] { return fileio::folderProblem(folder.path / "locked" / "in"); }),
             "Permission denied");
+  fs::permissions(folder.path / "locked", fs::perms::owner_all);  // for the folder to be removed
 }
 
 }  // namespace

@@ -179,7 +179,7 @@ void prepareFolder(const fs::path& folder) {
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (ec) throw FileError(folder, "cannot create the folder: " + ec.message());
-  if (!fs::is_directory(folder, ec)) throw FileError(folder, "is not a folder");
+  if (const std::string why = folderProblem(folder); !why.empty()) throw FileError(folder, why);
   TemporaryFile probe(folder / "probe", folder);  // removed again as it goes out of scope
 }
 
