@@ -12,7 +12,7 @@ namespace sandbox {
 namespace {
 
 // The scene's answers as the crosses are drawn. The session opened the scene only once they had
-// passed this same check (Session's loadChecked), so it does not throw here.
+// passed this same check (loadCheckedScene, open_scene.h), so it does not throw here.
 std::vector<std::pair<double, glm::vec3>> answersOf(const scenes::Scene& scene) {
   std::vector<std::pair<double, glm::vec3>> out;
   for (const lab::PositionAnswer& a : lab::positionAnswers(scene)) out.emplace_back(a.time, glm::vec3(a.pos));

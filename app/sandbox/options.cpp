@@ -9,8 +9,8 @@
 
 #include "fileio/files.h"
 #include "fileio/printable.h"
+#include "open_scene.h"
 #include "scenes/scene.h"
-#include "session.h"
 
 namespace sandbox {
 namespace {
@@ -300,7 +300,7 @@ std::string sceneProblem(const Options& options, std::unique_ptr<scenes::Scene>&
   const std::filesystem::path file = scenePath(options);
   try {
     fileio::checkRegularFile(file, "scene file");
-    scene = Session::load(file, options.threads);
+    scene = loadCheckedScene(file, sceneLoadOptions(options.threads));
   } catch (const std::exception& e) {  // fileio::FileError, scenes::LoadError: each names the file
     return std::string("scene: ") + e.what();
   }

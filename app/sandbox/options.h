@@ -58,7 +58,7 @@ struct CheckedFiles {
 };
 /// What is wrong with the files and folders the options name, in the OS's words and naming the
 /// option: a scene that is no readable file or does not open as the sandbox opens it
-/// (Session::load), a --data that is no folder with shaders/ and assets/ in it, a --screenshot that
+/// (loadCheckedScene), a --data that is no folder with shaders/ and assets/ in it, a --screenshot that
 /// is a folder or whose folder is missing. Checked before a window opens, so that a mistyped name
 /// is said without a display; the scene opened for it is kept, for the sandbox to start with.
 CheckedFiles checkFiles(const Options& options);

@@ -13,9 +13,9 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "accuracy.h"  // lab_core: <expect kind="position"> checked as the lab checks it
 #include "clips/clip_file.h"
 #include "fileio/files.h"
+#include "open_scene.h"
 #include "physics/capsule_ragdoll.h"
 #include "physics/ragdoll.h"
 #include "recording_io.h"
@@ -96,37 +96,15 @@ phys::Vec3 onPlane(const phys::Vec3& origin, const phys::Vec3& dir, const phys::
   return origin + dir * (glm::dot(p0 - origin, n) / along);
 }
 
-// A scene as the sandbox opens it: loaded, and its analytic answers, which the sandbox draws as
-// crosses, checked as the lab checks them, so a wrong one is refused with its line.
-std::unique_ptr<scenes::Scene> loadChecked(const std::filesystem::path& file,
-                                           const scenes::LoadOptions& options) {
-  auto scene = std::make_unique<scenes::Scene>(scenes::loadSceneFile(file, options));
-  static_cast<void>(lab::positionAnswers(*scene));
-  return scene;
-}
-
-// How every scene is opened. The sandbox sleeps unless the scene says `<solver sleep="off">`: a
-// resting pile should cost nothing while the user looks at it (docs/sandbox.md).
-scenes::LoadOptions sessionLoadOptions(std::optional<int> threads) {
-  scenes::LoadOptions options;
-  options.sleepUnlessSaid = true;
-  options.threads = threads;
-  return options;
-}
-
 }  // namespace
-
-std::unique_ptr<scenes::Scene> Session::load(const std::filesystem::path& file, std::optional<int> threads) {
-  return loadChecked(file, sessionLoadOptions(threads));
-}
 
 Session::Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory,
                  std::optional<int> threads)
-    : Session(load(file, threads), file, sceneDirectory, threads) {}
+    : Session(loadCheckedScene(file, sceneLoadOptions(threads)), file, sceneDirectory, threads) {}
 
 Session::Session(std::unique_ptr<scenes::Scene> first, const std::filesystem::path& file,
                  const std::filesystem::path& sceneDirectory, std::optional<int> threads)
-    : sceneDirectory_(sceneDirectory), load_(sessionLoadOptions(threads)) {
+    : sceneDirectory_(sceneDirectory), load_(sceneLoadOptions(threads)) {
   if (!first) throw std::invalid_argument("Session: no first scene");
   replaceMain(std::move(first), file);
 }
@@ -149,7 +127,7 @@ void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::files
 
 std::string Session::open(const std::filesystem::path& file) {
   try {
-    replaceMain(loadChecked(file, load_), file);
+    replaceMain(loadCheckedScene(file, load_), file);
     return {};
   } catch (const std::exception& e) {  // LoadError, or anything else: keep what we have
     status_ = std::string(e.what()) + " (the current world is kept)";

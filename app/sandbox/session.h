@@ -54,15 +54,10 @@ class Session {
   /// `threads`, if given, is imposed on every scene opened (the command line's --threads).
   Session(const std::filesystem::path& file, const std::filesystem::path& sceneDirectory,
           std::optional<int> threads = std::nullopt);
-  /// Starts with `first`, which load() read from `file` with the same `threads` (the sandbox opens
-  /// the scene it is given before its window, to say what is wrong with it without one).
+  /// Starts with `first`, which loadCheckedScene read from `file` with sceneLoadOptions(threads) (the
+  /// sandbox opens the scene it is given before its window, to say what is wrong with it without one).
   Session(std::unique_ptr<scenes::Scene> first, const std::filesystem::path& file,
           const std::filesystem::path& sceneDirectory, std::optional<int> threads = std::nullopt);
-
-  /// A scene as every Session opens one: sleeping unless it says `<solver sleep="off">`, `threads`
-  /// imposed if given, its analytic answers checked as the lab checks them (a wrong one is refused
-  /// with its line). Throws scenes::LoadError, or fileio::FileError.
-  static std::unique_ptr<scenes::Scene> load(const std::filesystem::path& file, std::optional<int> threads);
 
   // Files. Each returns "" on success, else the message to show; on failure nothing changes.
   std::string open(const std::filesystem::path& file);

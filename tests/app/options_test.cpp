@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "open_scene.h"
 #include "options.h"
 #include "scenes/scene.h"
 #include "session.h"
@@ -264,22 +265,28 @@ TEST(Options, FilesThatCannotBeUsedAreSaidWithTheOsReason) {
 }
 
 // The scene checkFiles opens is the one the sandbox starts with: opened as every scene of the
-// session is, sleeping unless it says and with --threads imposed.
+// session is (sleeping unless it says, --threads imposed, which the loader's defaults are not), and
+// taken by the session as it is, not read again.
 TEST(Options, TheSceneCheckedIsOpenedAsTheSandboxOpensIt) {
   const auto p = parseOptions({"pendulum", "--threads", "2"});
   ASSERT_EQ(p.error, "");
-  const sandbox::CheckedFiles checked = sandbox::checkFiles(p.options);
+  sandbox::CheckedFiles checked = sandbox::checkFiles(p.options);
   ASSERT_EQ(checked.error, "");
   ASSERT_NE(checked.scene, nullptr);
-  const std::unique_ptr<scenes::Scene> asSession = sandbox::Session::load(sandbox::scenePath(p.options), 2);
-  EXPECT_EQ(checked.scene->world.solverSettings(), asSession->world.solverSettings());
+  const phys::SolverSettings byDefault =
+      scenes::loadSceneFile(sandbox::scenePath(p.options)).world.solverSettings();
+  ASSERT_FALSE(byDefault.sleep.enabled);
+  ASSERT_NE(byDefault.threads, 2);
   EXPECT_TRUE(checked.scene->world.solverSettings().sleep.enabled);
   EXPECT_EQ(checked.scene->world.solverSettings().threads, 2);
-  EXPECT_EQ(checked.scene->world.stateHash(), asSession->world.stateHash());
-  sandbox::Session session(std::make_unique<scenes::Scene>(*checked.scene), sandbox::scenePath(p.options),
+  const std::unique_ptr<scenes::Scene> asSession =
+      sandbox::loadCheckedScene(sandbox::scenePath(p.options), sandbox::sceneLoadOptions(2));
+  EXPECT_EQ(checked.scene->world.solverSettings(), asSession->world.solverSettings());
+  const scenes::Scene* given = checked.scene.get();
+  sandbox::Session session(std::move(checked.scene), sandbox::scenePath(p.options),
                            scenes::sceneDirectory(sandbox::dataDir(p.options)), 2);
+  EXPECT_EQ(&session.scene(), given);
   EXPECT_EQ(session.file(), sandbox::scenePath(p.options));
-  EXPECT_EQ(session.scene().world.stateHash(), asSession->world.stateHash());
 }
 
 }  // namespace
