@@ -685,9 +685,10 @@ TEST(SceneErrors, ACharactersOriginIsHeldToTheBound) {
 
 }  // namespace
 
-// pugixml decodes &#0; to a zero byte, which ended the value there (name='a&#0;b' loaded as "a");
-// XML forbids U+0000, so each spelling is refused naming the attribute, or the text, holding it.
-TEST(SceneErrors, AZeroCharacterReferenceIsRefusedNotCut) {
+// pugixml decodes &#0; to a zero byte, which ended the value there (name='a&#0;b' loaded as "a"),
+// and a surrogate or a code past U+10FFFF to bytes that are no UTF-8; XML forbids them all, so each
+// is refused naming the attribute, or the text, holding it.
+TEST(SceneErrors, ACharacterReferenceXmlForbidsIsRefusedNotCut) {
   for (const std::string reference :
        {"&#0;", "&#x0;", "&#x000;", "&#00;", "&#4294967296;", "&#x100000000;"}) {
     testing_scenes::expectRefused(
@@ -699,6 +700,20 @@ TEST(SceneErrors, AZeroCharacterReferenceIsRefusedNotCut) {
       {"scene", "<scene\n name='a&#0;'>\n</scene>", 2, "name", "holds the character reference &#0;"});
   testing_scenes::expectRefused(
       {"text", "<scene name='s'>\n<box pos='0 1 0'>\nx&#0;</box>\n</scene>", 3, "", "(U+0000)"});
+  // A surrogate, U+FFFE, U+FFFF and past U+10FFFF, which pugixml would make bytes that are no
+  // UTF-8 (a world saved with them would not load again).
+  for (const auto& [reference, named] :
+       {std::pair{"&#xD800;", "(U+D800)"}, std::pair{"&#57343;", "(U+DFFF)"},
+        std::pair{"&#xFFFE;", "(U+FFFE)"}, std::pair{"&#xffff;", "(U+FFFF)"},
+        std::pair{"&#x110000;", "(past U+10FFFF)"}, std::pair{"&#4294967295;", "(past U+10FFFF)"}}) {
+    testing_scenes::expectRefused(
+        {reference,
+         ("<scene name='s'>\n<box pos='0 1 0'\n name='a" + std::string(reference) + "b'/>\n</scene>").c_str(),
+         3, "name", (std::string("holds the character reference ") + reference + " " + named).c_str()});
+  }
+  const scenes::Scene edges =
+      scenes::loadSceneText("<scene name='&#xD7FF;&#xE000;&#xFFFD;&#x10000;&#x10FFFF;'/>", "edges.xml");
+  EXPECT_EQ(edges.name, "\xED\x9F\xBF\xEE\x80\x80\xEF\xBF\xBD\xF0\x90\x80\x80\xF4\x8F\xBF\xBF");
   // Where it is no reference it stays text, as are references that are not zero.
   const scenes::Scene fine = scenes::loadSceneText(
       "<scene name='a&#48;&#x30;&#10;'><!-- &#0; --><?pi &#0;?><box name='x&amp;#0;' pos='0 1 0'/></scene>",

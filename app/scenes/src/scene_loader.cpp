@@ -1055,10 +1055,32 @@ std::size_t nextReference(std::string_view text, std::size_t i) {
   return std::string_view::npos;
 }
 
-// The character reference at the start of `rest` if pugixml decodes it to U+0000 (&#0;, &#x00;,
-// or one past 32 bits, which it wraps to 0); empty otherwise.
-std::string_view nulReferenceAt(std::string_view rest) {
-  if (!rest.starts_with("&#")) return {};
+// Whether XML forbids the character `code` as a character reference's, beyond the control
+// characters that every value refuses with its own message (ElementReader): U+0000, which pugixml
+// would end the value at; a surrogate, U+FFFE, U+FFFF and anything past U+10FFFF, which pugixml
+// writes as bytes that are no UTF-8, so that the world saved again would not load.
+bool forbiddenCode(std::uint32_t code) {
+  return code == 0 || (code >= 0xD800 && code <= 0xDFFF) || code == 0xFFFE || code == 0xFFFF ||
+         code > 0x10FFFF;
+}
+
+// The character, as "U+XXXX", for a message.
+std::string codePointName(std::uint32_t code) {
+  if (code > 0x10FFFF) return "past U+10FFFF";
+  char out[16];
+  std::snprintf(out, sizeof out, "U+%04X", static_cast<unsigned>(code));
+  return out;
+}
+
+// What pugixml decodes the character reference at the start of `rest` to (its sum wrapped at 32
+// bits, as pugixml sums it: one past 32 bits is U+0000 to it), and the reference's length.
+struct CharacterReference {
+  std::uint32_t code = 0;
+  std::size_t length = 0;
+};
+
+std::optional<CharacterReference> characterReferenceAt(std::string_view rest) {
+  if (!rest.starts_with("&#")) return std::nullopt;
   const bool hex = rest.starts_with("&#x");
   std::size_t k = hex ? 3 : 2;
   std::uint32_t code = 0;  // as pugixml sums it
@@ -1074,8 +1096,16 @@ std::string_view nulReferenceAt(std::string_view rest) {
     }
   }
   const bool hasDigits = k > (hex ? 3u : 2u);
-  if (hasDigits && k < rest.size() && rest[k] == ';' && code == 0) return rest.substr(0, k + 1);
-  return {};
+  if (!hasDigits || k >= rest.size() || rest[k] != ';') return std::nullopt;
+  return CharacterReference{code, k + 1};
+}
+
+// The character reference at the start of `rest` if XML forbids its character (forbiddenCode);
+// empty otherwise.
+std::string_view forbiddenCharacterAt(std::string_view rest) {
+  const std::optional<CharacterReference> reference = characterReferenceAt(rest);
+  if (!reference || !forbiddenCode(reference->code)) return {};
+  return rest.substr(0, reference->length);
 }
 
 // The entity reference at the start of `rest` (&name;) if it is not one of XML's five, which are
@@ -1148,20 +1178,20 @@ struct RefusedReference {
   std::string message;
 };
 
-// The first character reference to U+0000 (XML forbids the character, and pugixml would end the
-// value at it: name='a&#0;b' would load as "a"), else the first entity reference pugixml would
-// take as text.
+// The first in the text of: a character reference to a character XML forbids (forbiddenCode), an
+// entity reference pugixml would take as text, an '&' that starts no reference.
 RefusedReference refusedReference(std::string_view text) {
-  const std::string_view nul = firstReference(text, nulReferenceAt);
+  const std::string_view character = firstReference(text, forbiddenCharacterAt);
   const std::string_view entity = firstReference(text, unexpandedEntityAt);
   const std::string_view bare = firstReference(text, bareAmpersandAt);
   // The first in the file of any kind: a later one of another kind must not hide it.
   auto before = [](std::string_view a, std::string_view b) {
     return !a.empty() && (b.empty() || std::less<>()(a.data(), b.data()));
   };
-  if (!nul.empty() && !before(entity, nul) && !before(bare, nul)) {
-    return {nul.data(),
-            "holds the character reference " + std::string(nul) + " (U+0000), which XML does not allow"};
+  if (!character.empty() && !before(entity, character) && !before(bare, character)) {
+    return {character.data(), "holds the character reference " + std::string(character) + " (" +
+                                  codePointName(characterReferenceAt(character)->code) +
+                                  "), which XML does not allow"};
   }
   if (!entity.empty() && !before(bare, entity)) {
     return {entity.data(), "holds the entity reference " + std::string(entity) +
