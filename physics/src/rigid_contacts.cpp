@@ -655,8 +655,8 @@ void solvePatchByPoints(RigidPassInput& in, std::span<const RigidContact> contac
   const Real limit = c.combined.staticFriction * normal;
   const PatchCentre centre = centreOf(in, contacts, state, lo, hi, true);
   const bool anchored = anchorsByPoints(c);
-  Vec3 slide = (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
-  if (anchored) slide = anchoredSlip(in, contacts, state, patch, centre);
+  Vec3 slide = anchored ? anchoredSlip(in, contacts, state, patch, centre)
+                        : (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
   slide -= glm::dot(slide, c.normal) * c.normal;
   const Real length = glm::length(slide);
   if (length > 0.0) {
