@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -335,6 +336,39 @@ TEST(ClipFormats, AGltfReadsNoFileButItself) {
       << e;
 }
 
+// assimp allocates what a .glb's header and chunks say they hold before it reads them: a JSON chunk
+// said to be 1.7 GB long was allocated whole (found by the clip fuzzer). A length past the file's end
+// is refused, saying which.
+TEST(ClipFormats, AGlbLengthPastTheFilesEndIsRefused) {
+  const testing_app::TempFolder dir;
+  const std::string glb = legFile(dir, "glb2", "glb");
+  ASSERT_EQ(glb.substr(16, 4), "JSON");
+  const auto with = [&](std::size_t at, std::uint32_t value) {
+    std::string changed = glb;
+    std::memcpy(changed.data() + at, &value, sizeof value);
+    return changed;
+  };
+  const auto size = static_cast<std::uint32_t>(glb.size());
+  const std::string holds = " bytes, but the file has " + std::to_string(size);
+  const std::string past = " bytes, past the file's end (" + std::to_string(size) + " bytes)";
+  EXPECT_EQ(refusal(with(8, size + 1), "long.glb"),
+            "long.glb: its header says the file has " + std::to_string(size + 1) + holds);
+  EXPECT_EQ(refusal(with(12, 0x670003b8), "json.glb"),
+            "json.glb: the chunk at byte 12 says it has 1728054200" + past);
+  std::uint32_t json = 0;
+  std::memcpy(&json, glb.data() + 12, sizeof json);
+  const std::uint32_t bin = (20 + json + 3) / 4 * 4;
+  ASSERT_EQ(glb.substr(bin + 4, 4), std::string("BIN\0", 4));
+  // One byte more than the file holds after the chunk's own eight.
+  const std::uint32_t over = size - bin - 7;
+  EXPECT_EQ(refusal(with(bin, over), "bin.glb"), "bin.glb: the chunk at byte " + std::to_string(bin) +
+                                                     " says it has " + std::to_string(over) + past);
+  // glTF 1's binary header gives the JSON's length where glTF 2's first chunk does.
+  std::string one = with(4, 1);
+  std::memcpy(one.data() + 12, &size, sizeof size);
+  EXPECT_EQ(refusal(one, "one.glb"), "one.glb: its header says the JSON has " + std::to_string(size) + holds);
+}
+
 // assimp's readers recurse once a level of JSON, XML, braces or nodes: 50,000 levels overflowed the
 // stack in each. Refused past 256, with the line (or the node).
 TEST(ClipFormats, NestingTooDeepIsRefusedWithTheLine) {
@@ -430,7 +464,10 @@ TEST(ClipFormats, WhatAssimpRefusesOrReadsIsRefusedWithTheReason) {
     const std::string whole = legFile(dir, format, extension);
     EXPECT_EQ(refusal(whole, std::string("leg.") + extension), "loaded") << format;
     const std::string cut = refusal(whole.substr(0, whole.size() / 2), std::string("cut.") + extension);
-    EXPECT_TRUE(has(cut, "not a clip assimp can read: ")) << cut;
+    // A .glb says its length in its header, which is checked before assimp reads it.
+    const std::string why =
+        format == std::string("glb2") ? "its header says the file has " : "not a clip assimp can read: ";
+    EXPECT_TRUE(has(cut, why)) << cut;
   }
   EXPECT_TRUE(has(refusal(xFile().substr(0, 300), "cut.x"), "cut.x: not a clip assimp can read: "));
 

@@ -338,12 +338,36 @@ void checkGltf(std::string_view json, const std::string& name) {
 }
 
 void checkGlb(std::string_view content, const std::string& name) {
-  // The header (magic, version, length), then the first chunk (length, type), which is the JSON.
-  constexpr std::size_t kJsonAt = 20;
-  if (content.size() < kJsonAt || !content.starts_with("glTF") || content.substr(16, 4) != "JSON") return;
-  std::uint32_t length = 0;
-  std::memcpy(&length, content.data() + 12, sizeof length);
-  const std::string_view json = content.substr(kJsonAt, length);
+  // The header is magic, version and length; then version 1 gives the JSON's length and format, and
+  // version 2 chunks of (length, type, bytes), the first the JSON, each padded to 4 bytes. assimp
+  // allocates every length before it reads the bytes: a JSON chunk said to be 1.7 GB was.
+  constexpr std::size_t kHeader = 12, kChunkHeader = 8;
+  if (content.size() < kHeader || !content.starts_with("glTF"))
+    return;  // assimp's reader says what it is not
+  const auto word = [&](std::size_t at) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, content.data() + at, sizeof n);
+    return std::uint64_t{n};
+  };
+  const std::string bytes = " bytes, but the file has " + std::to_string(content.size());
+  if (const std::uint64_t length = word(8); length > content.size())
+    throw ClipError(name, "its header says the file has " + std::to_string(length) + bytes);
+  if (word(4) == 1) {
+    constexpr std::size_t kSceneAt = 20;
+    if (content.size() >= kSceneAt && word(12) > content.size() - kSceneAt)
+      throw ClipError(name, "its header says the JSON has " + std::to_string(word(12)) + bytes);
+    return;
+  }
+  std::string_view json;
+  for (std::uint64_t at = kHeader; at + kChunkHeader <= content.size();) {
+    const std::uint64_t length = word(at), start = at + kChunkHeader;
+    if (length > content.size() - start)
+      throw ClipError(name, "the chunk at byte " + std::to_string(at) + " says it has " +
+                                std::to_string(length) + " bytes, past the file's end (" +
+                                std::to_string(content.size()) + " bytes)");
+    if (at == kHeader && content.substr(at + 4, 4) == "JSON") json = content.substr(start, length);
+    at = (start + length + 3) / 4 * 4;
+  }
   checkNodeDepth(scanGltfJson(json, name, "its JSON chunk, "), name);
 }
 

@@ -23,8 +23,8 @@ std::optional<std::uint64_t> wholeNumber(std::string_view word);
 
 /// glTF as text (.gltf): its JSON nested no deeper than kMaxDepth, its nodes' children no deeper.
 void checkGltf(std::string_view json, const std::string& name);
-/// Binary glTF (.glb): the JSON chunk as checkGltf checks a .gltf; what is not a .glb is left to
-/// assimp's reader.
+/// Binary glTF (.glb): the lengths in its header and chunks within the file, and the JSON chunk as
+/// checkGltf checks a .gltf; what is not a .glb is left to assimp's reader.
 void checkGlb(std::string_view content, const std::string& name);
 /// COLLADA (.dae): elements nested no deeper than kMaxDepth, every array holding the values its
 /// count says, every accessor within its array.
