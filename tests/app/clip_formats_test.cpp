@@ -369,6 +369,31 @@ TEST(ClipFormats, AGlbLengthPastTheFilesEndIsRefused) {
   EXPECT_EQ(refusal(one, "one.glb"), "one.glb: its header says the JSON has " + std::to_string(size) + holds);
 }
 
+// assimp allocates a sparse accessor's elements before it reads any: 400,000,000 of vec4 asked for
+// 6.4 GB (no bufferView: the elements not given are zeros). A clip's accessors hold their elements,
+// so a count of more elements than the file has bytes is refused, the accessor's and its sparse's.
+TEST(ClipFormats, AGltfAccessorCountPastTheFilesBytesIsRefused) {
+  const testing_app::TempFolder dir;
+  const std::string gltf = legFile(dir, "gltf2", "gltf");
+  const std::size_t digits = gltf.find_first_of("0123456789", gltf.find("\"count\""));
+  const std::size_t end = gltf.find_first_not_of("0123456789", digits);
+  const std::string line = std::to_string(1 + std::count(gltf.begin(), gltf.begin() + digits, '\n'));
+  const auto withCount = [&](const std::string& count) {
+    return gltf.substr(0, digits) + count + gltf.substr(end);
+  };
+  const std::string big = withCount("400000000");
+  EXPECT_EQ(refusal(big, "big.gltf"),
+            "big.gltf:" + line + ": accessor 0: a count of 400000000 is more elements than the file's " +
+                std::to_string(big.size()) + " bytes hold");
+  const std::string sparse = withCount(gltf.substr(digits, end - digits) +
+                                       R"(, "sparse": {"count": 400000000, "indices": {"bufferView": 0, )"
+                                       R"("componentType": 5125}, "values": {"bufferView": 0}})");
+  EXPECT_EQ(refusal(sparse, "sparse.gltf"),
+            "sparse.gltf:" + line +
+                ": accessor 0's sparse: a count of 400000000 is more elements than the file's " +
+                std::to_string(sparse.size()) + " bytes hold");
+}
+
 // assimp's readers recurse once a level of JSON, XML, braces or nodes: 50,000 levels overflowed the
 // stack in each. Refused past 256, with the line (or the node).
 TEST(ClipFormats, NestingTooDeepIsRefusedWithTheLine) {

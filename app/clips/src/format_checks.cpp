@@ -38,7 +38,7 @@ std::string tooDeep(const std::string& what) {
 // ---- glTF ----
 
 // An open JSON container, and what it is in a glTF: the top-level "nodes" array, a node, or a
-// node's "children".
+// node's "children"; the top-level "accessors" array, an accessor or its "sparse".
 struct JsonFrame {
   char type;        // '{' or '['
   std::string key;  // an object's last key
@@ -47,14 +47,18 @@ struct JsonFrame {
   bool node = false;
   bool children = false;
   std::size_t nodeIndex = 0;  // a node's, or the node whose children these are
+  bool accessors = false;
+  bool counted = false;  // an accessor or its "sparse", whose "count" is checked
+  std::size_t accessorIndex = 0;
 };
 
 // The JSON's containers, nested no deeper than kMaxDepth (assimp's JSON reader recurses once a level:
-// 200,000 '[' overflowed the stack), and each node's children; a JSON that is not well formed is
-// left for assimp's reader to refuse.
-std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, const std::string& name,
-                                                     const std::string& where) {
+// 200,000 '[' overflowed the stack), every accessor's count no more than `fileBytes`, and each
+// node's children; a JSON that is not well formed is left for assimp's reader to refuse.
+std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, std::size_t fileBytes,
+                                                     const std::string& name, const std::string& where) {
   std::vector<std::vector<std::uint64_t>> children;
+  std::size_t accessorCount = 0;
   std::vector<JsonFrame> stack;
   std::size_t i = 0;
   const auto fail = [&](const std::string& why) {
@@ -75,6 +79,10 @@ std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, cons
         frame.nodes = c == '[' && stack.size() == 1 && parent.type == '{' && parent.key == "nodes";
         frame.node = c == '{' && parent.nodes;
         frame.children = c == '[' && parent.node && parent.key == "children";
+        frame.accessors = c == '[' && stack.size() == 1 && parent.type == '{' && parent.key == "accessors";
+        const bool accessor = c == '{' && parent.accessors;
+        frame.counted = accessor || (c == '{' && parent.counted && parent.key == "sparse");
+        frame.accessorIndex = accessor ? accessorCount++ : parent.accessorIndex;
         if (frame.node) {
           frame.nodeIndex = children.size();
           children.emplace_back();
@@ -105,6 +113,17 @@ std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, cons
       if (!stack.empty() && stack.back().children) {
         if (const std::optional<std::uint64_t> child = wholeNumber(json.substr(start, i - start)))
           children[stack.back().nodeIndex].push_back(*child);
+      }
+      // assimp allocates a sparse accessor's elements before it reads any (a count of 400,000,000
+      // vec4 asked for 6.4 GB); a clip's accessors hold their elements, at least a byte each.
+      const JsonFrame* frame = stack.empty() ? nullptr : &stack.back();
+      if (frame != nullptr && frame->counted && frame->key == "count") {
+        const std::string_view count = json.substr(start, i - start);
+        if (wholeNumber(count).value_or(0) > fileBytes)
+          // An accessor is the third container down (the root, "accessors", itself); its sparse, deeper.
+          fail("accessor " + std::to_string(frame->accessorIndex) + (stack.size() > 3 ? "'s sparse" : "") +
+               ": a count of " + std::string(count) + " is more elements than the file's " +
+               std::to_string(fileBytes) + " bytes hold");
       }
     }
   }
@@ -334,7 +353,7 @@ std::optional<std::uint64_t> wholeNumber(std::string_view word) {
 }
 
 void checkGltf(std::string_view json, const std::string& name) {
-  checkNodeDepth(scanGltfJson(json, name, ""), name);
+  checkNodeDepth(scanGltfJson(json, json.size(), name, ""), name);
 }
 
 void checkGlb(std::string_view content, const std::string& name) {
@@ -368,7 +387,7 @@ void checkGlb(std::string_view content, const std::string& name) {
     if (at == kHeader && content.substr(at + 4, 4) == "JSON") json = content.substr(start, length);
     at = (start + length + 3) / 4 * 4;
   }
-  checkNodeDepth(scanGltfJson(json, name, "its JSON chunk, "), name);
+  checkNodeDepth(scanGltfJson(json, content.size(), name, "its JSON chunk, "), name);
 }
 
 void checkCollada(std::string_view content, const std::string& name) {

@@ -21,7 +21,8 @@ constexpr int kMaxDepth = 256;
 /// holds), so anything else is refused, not read its way. A count past 64 bits is the largest.
 std::optional<std::uint64_t> wholeNumber(std::string_view word);
 
-/// glTF as text (.gltf): its JSON nested no deeper than kMaxDepth, its nodes' children no deeper.
+/// glTF as text (.gltf): its JSON nested no deeper than kMaxDepth, its nodes' children no deeper,
+/// no accessor of more elements than the file has bytes.
 void checkGltf(std::string_view json, const std::string& name);
 /// Binary glTF (.glb): the lengths in its header and chunks within the file, and the JSON chunk as
 /// checkGltf checks a .gltf; what is not a .glb is left to assimp's reader.
