@@ -369,29 +369,37 @@ TEST(ClipFormats, AGlbLengthPastTheFilesEndIsRefused) {
   EXPECT_EQ(refusal(one, "one.glb"), "one.glb: its header says the JSON has " + std::to_string(size) + holds);
 }
 
-// assimp allocates a sparse accessor's elements before it reads any: 400,000,000 of vec4 asked for
-// 6.4 GB (no bufferView: the elements not given are zeros). A clip's accessors hold their elements,
-// so a count of more elements than the file has bytes is refused, the accessor's and its sparse's.
-TEST(ClipFormats, AGltfAccessorCountPastTheFilesBytesIsRefused) {
+// assimp adds a glTF's offsets and lengths unchecked in 64 bits (a bufferView's byteOffset of
+// 2^64 - 8 wrapped its bounds check, and it read before its buffer) and allocates a sparse
+// accessor's elements before it reads any (400,000,000 vec4 asked for 6.4 GB). A clip's own bytes
+// hold every element and offset, so a size, offset or count past the file's bytes is refused.
+TEST(ClipFormats, AGltfSizePastTheFilesBytesIsRefused) {
   const testing_app::TempFolder dir;
   const std::string gltf = legFile(dir, "gltf2", "gltf");
-  const std::size_t digits = gltf.find_first_of("0123456789", gltf.find("\"count\""));
-  const std::size_t end = gltf.find_first_not_of("0123456789", digits);
-  const std::string line = std::to_string(1 + std::count(gltf.begin(), gltf.begin() + digits, '\n'));
-  const auto withCount = [&](const std::string& count) {
-    return gltf.substr(0, digits) + count + gltf.substr(end);
+  // `gltf` with the number after the first `key` made `value`, and the line it is on.
+  const auto with = [&](const std::string& key, const std::string& value) {
+    const std::size_t digits = gltf.find_first_of("0123456789", gltf.find("\"" + key + "\""));
+    const std::size_t end = gltf.find_first_not_of("0123456789", digits);
+    const std::string line = std::to_string(1 + std::count(gltf.begin(), gltf.begin() + digits, '\n'));
+    return std::pair{gltf.substr(0, digits) + value + gltf.substr(end), line};
   };
-  const std::string big = withCount("400000000");
-  EXPECT_EQ(refusal(big, "big.gltf"),
-            "big.gltf:" + line + ": accessor 0: a count of 400000000 is more elements than the file's " +
-                std::to_string(big.size()) + " bytes hold");
-  const std::string sparse = withCount(gltf.substr(digits, end - digits) +
-                                       R"(, "sparse": {"count": 400000000, "indices": {"bufferView": 0, )"
-                                       R"("componentType": 5125}, "values": {"bufferView": 0}})");
-  EXPECT_EQ(refusal(sparse, "sparse.gltf"),
-            "sparse.gltf:" + line +
-                ": accessor 0's sparse: a count of 400000000 is more elements than the file's " +
-                std::to_string(sparse.size()) + " bytes hold");
+  // What `file` named `name` is refused with when `what` is its size past its bytes.
+  const auto refusedFor = [](const std::pair<std::string, std::string>& file, const std::string& name,
+                             const std::string& what) {
+    return name + ":" + file.second + ": " + what + " is more than the file's " +
+           std::to_string(file.first.size()) + " bytes could hold";
+  };
+  const auto offset = with("byteOffset", "18446744073709551608");
+  EXPECT_EQ(refusal(offset.first, "offset.gltf"),
+            refusedFor(offset, "offset.gltf", R"("byteOffset": 18446744073709551608)"));
+  const auto count = with("count", "400000000");
+  EXPECT_EQ(refusal(count.first, "count.gltf"), refusedFor(count, "count.gltf", R"("count": 400000000)"));
+  const auto sparse = with("count", R"(3, "sparse": {"count": 400000000, "indices": {"bufferView": 0, )"
+                                    R"("componentType": 5125}, "values": {"bufferView": 0}})");
+  EXPECT_EQ(refusal(sparse.first, "sparse.gltf"), refusedFor(sparse, "sparse.gltf", R"("count": 400000000)"));
+  // What an application keeps in "extras" is its own.
+  const auto extras = with("count", R"(3, "extras": {"count": 400000000})");
+  EXPECT_EQ(refusal(extras.first, "extras.gltf").find("is more than the file's"), std::string::npos);
 }
 
 // assimp's readers recurse once a level of JSON, XML, braces or nodes: 50,000 levels overflowed the

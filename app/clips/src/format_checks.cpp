@@ -38,7 +38,7 @@ std::string tooDeep(const std::string& what) {
 // ---- glTF ----
 
 // An open JSON container, and what it is in a glTF: the top-level "nodes" array, a node, or a
-// node's "children"; the top-level "accessors" array, an accessor or its "sparse".
+// node's "children"; or what an "extras" holds.
 struct JsonFrame {
   char type;        // '{' or '['
   std::string key;  // an object's last key
@@ -47,18 +47,21 @@ struct JsonFrame {
   bool node = false;
   bool children = false;
   std::size_t nodeIndex = 0;  // a node's, or the node whose children these are
-  bool accessors = false;
-  bool counted = false;  // an accessor or its "sparse", whose "count" is checked
-  std::size_t accessorIndex = 0;
+  bool extras = false;        // the application's own data, which the reader does not interpret
 };
 
+// Sizes, offsets and counts of bytes or elements in the file: assimp adds and multiplies them in
+// 64 bits unchecked, and allocates a sparse accessor's elements before it reads any.
+bool isSize(std::string_view key) {
+  return key == "byteOffset" || key == "byteLength" || key == "byteStride" || key == "count";
+}
+
 // The JSON's containers, nested no deeper than kMaxDepth (assimp's JSON reader recurses once a level:
-// 200,000 '[' overflowed the stack), every accessor's count no more than `fileBytes`, and each
-// node's children; a JSON that is not well formed is left for assimp's reader to refuse.
+// 200,000 '[' overflowed the stack), every size (isSize) no more than `fileBytes`, and each node's
+// children; a JSON that is not well formed is left for assimp's reader to refuse.
 std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, std::size_t fileBytes,
                                                      const std::string& name, const std::string& where) {
   std::vector<std::vector<std::uint64_t>> children;
-  std::size_t accessorCount = 0;
   std::vector<JsonFrame> stack;
   std::size_t i = 0;
   const auto fail = [&](const std::string& why) {
@@ -79,10 +82,7 @@ std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, std:
         frame.nodes = c == '[' && stack.size() == 1 && parent.type == '{' && parent.key == "nodes";
         frame.node = c == '{' && parent.nodes;
         frame.children = c == '[' && parent.node && parent.key == "children";
-        frame.accessors = c == '[' && stack.size() == 1 && parent.type == '{' && parent.key == "accessors";
-        const bool accessor = c == '{' && parent.accessors;
-        frame.counted = accessor || (c == '{' && parent.counted && parent.key == "sparse");
-        frame.accessorIndex = accessor ? accessorCount++ : parent.accessorIndex;
+        frame.extras = parent.extras || (parent.type == '{' && parent.key == "extras");
         if (frame.node) {
           frame.nodeIndex = children.size();
           children.emplace_back();
@@ -114,16 +114,15 @@ std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, std:
         if (const std::optional<std::uint64_t> child = wholeNumber(json.substr(start, i - start)))
           children[stack.back().nodeIndex].push_back(*child);
       }
-      // assimp allocates a sparse accessor's elements before it reads any (a count of 400,000,000
-      // vec4 asked for 6.4 GB); a clip's accessors hold their elements, at least a byte each.
+      // A file's own bytes hold every element and every offset: a bufferView's byteOffset of 2^64 - 8
+      // wrapped assimp's bounds check and read before its buffer; 400,000,000 vec4 of a sparse
+      // accessor asked for 6.4 GB.
       const JsonFrame* frame = stack.empty() ? nullptr : &stack.back();
-      if (frame != nullptr && frame->counted && frame->key == "count") {
-        const std::string_view count = json.substr(start, i - start);
-        if (wholeNumber(count).value_or(0) > fileBytes)
-          // An accessor is the third container down (the root, "accessors", itself); its sparse, deeper.
-          fail("accessor " + std::to_string(frame->accessorIndex) + (stack.size() > 3 ? "'s sparse" : "") +
-               ": a count of " + std::string(count) + " is more elements than the file's " +
-               std::to_string(fileBytes) + " bytes hold");
+      if (frame != nullptr && frame->type == '{' && !frame->extras && isSize(frame->key)) {
+        const std::string_view value = json.substr(start, i - start);
+        if (wholeNumber(value).value_or(0) > fileBytes)
+          fail("\"" + frame->key + "\": " + std::string(value) + " is more than the file's " +
+               std::to_string(fileBytes) + " bytes could hold");
       }
     }
   }

@@ -22,7 +22,7 @@ constexpr int kMaxDepth = 256;
 std::optional<std::uint64_t> wholeNumber(std::string_view word);
 
 /// glTF as text (.gltf): its JSON nested no deeper than kMaxDepth, its nodes' children no deeper,
-/// no accessor of more elements than the file has bytes.
+/// no size, offset or count in it past the file's bytes.
 void checkGltf(std::string_view json, const std::string& name);
 /// Binary glTF (.glb): the lengths in its header and chunks within the file, and the JSON chunk as
 /// checkGltf checks a .gltf; what is not a .glb is left to assimp's reader.
