@@ -245,6 +245,13 @@ class NoOtherFiles : public Assimp::IOSystem {
   void Close(Assimp::IOStream* file) override { delete file; }
 };
 
+// assimp keeps a reader of glTF 1.0 beside glTF 2.0's, both for .gltf and .glb. Exporters have
+// written 2.0 since 2017, and the 1.0 reader recursed once a level of a binary file's JSON
+// unchecked (300,000 '[' overflowed the stack): a clip is read as glTF 2.0 or not at all.
+bool isGltf1Reader(const Assimp::BaseImporter& reader) {
+  return std::string_view(reader.GetInfo()->mName) == "glTF Importer";
+}
+
 // Leaves `importer` only the reader of `extension`, so that the file is read as the format its
 // check assumed, whatever its bytes look like to the other readers.
 void keepOnlyReaderOf(Assimp::Importer& importer, const std::string& extension) {
@@ -252,7 +259,7 @@ void keepOnlyReaderOf(Assimp::Importer& importer, const std::string& extension) 
     Assimp::BaseImporter* reader = importer.GetImporter(i);
     std::set<std::string> extensions;
     reader->GetExtensionList(extensions);
-    if (extensions.contains(extension)) continue;
+    if (extensions.contains(extension) && !isGltf1Reader(*reader)) continue;
     importer.UnregisterLoader(reader);
     delete reader;  // unregistered, it is ours
   }
