@@ -479,6 +479,47 @@ TEST(ClipFormats, ColladaAccessorsStayWithinTheirArrays) {
   EXPECT_TRUE(has(e, "<accessor> of count=\"3\" reads ")) << e;
 }
 
+// assimp sizes a COLLADA mesh's indices and a skin's weights by their counts before it reads them:
+// 1,000,000,000 triangles asked for 24 GB, an <input offset="100000000"> for 2.4 GB. What they need
+// must be there first, refused with the element's line.
+TEST(ClipFormats, ColladaIndicesAndWeightsAreThereBeforeTheyAreSized) {
+  const auto refusalOf = [](const std::string& element) {
+    return refusal("<?xml version=\"1.0\"?>\n<COLLADA version=\"1.4.1\"><library_geometries>" + element +
+                       "</library_geometries></COLLADA>\n",
+                   "mesh.dae");
+  };
+  EXPECT_EQ(refusalOf(R"(<triangles count="1000000000"><input offset="0"/><p>0 1 2</p></triangles>)"),
+            R"(mesh.dae:2: <triangles> of count="1000000000" needs 3000000000 indices, but holds 3)");
+  EXPECT_EQ(refusalOf(R"(<lines count="2"><input offset="0"/><p>0 1 2</p></lines>)"),
+            R"(mesh.dae:2: <lines> of count="2" needs 4 indices, but holds 3)");
+  EXPECT_EQ(
+      refusalOf(
+          R"(<polylist count="1"><input offset="0"/><vcount>3000000000</vcount><p>0 1 2</p></polylist>)"),
+      R"(mesh.dae:2: <polylist> of count="1" needs 3000000000 indices, but holds 3)");
+  EXPECT_EQ(refusalOf(R"(<triangles count="1"><input offset="100000000"/><p>0 1 2</p></triangles>)"),
+            R"(mesh.dae:2: <triangles> of count="1" needs 300000003 indices, but holds 3)");
+  EXPECT_EQ(
+      refusalOf(R"(<polygons count="2"><input offset="0"/><ph><p>0 1 2</p><h>3 4 5</h></ph></polygons>)")
+          .find("needs"),
+      std::string::npos);
+  EXPECT_EQ(
+      refusalOf(R"(<polygons count="7"><input offset="0"/><ph><p>0 1 2</p><h>3 4 5</h></ph></polygons>)"),
+      R"(mesh.dae:2: <polygons> of count="7" needs 7 indices, but holds 6)");
+  EXPECT_EQ(
+      refusalOf(
+          R"(<triangles count="1"><input offset="0"/><input offset="1"/><p>0 0 1 1 2 2</p></triangles>)")
+          .find("needs"),
+      std::string::npos);
+  EXPECT_EQ(refusalOf(R"(<vertex_weights count="1000000000"><input offset="0"/><input offset="1"/>)"
+                      R"(<vcount>1</vcount><v>0 0</v></vertex_weights>)"),
+            R"(mesh.dae:2: <vertex_weights> of count="1000000000" needs 1000000000 counts and 2 indices, )"
+            R"(but holds 1 and 2)");
+  EXPECT_EQ(
+      refusalOf(R"(<vertex_weights count="1"><input offset="0"/><input offset="1"/>)"
+                R"(<vcount>2000000000</vcount><v>0 0</v></vertex_weights>)"),
+      R"(mesh.dae:2: <vertex_weights> of count="1" needs 1 counts and 4000000000 indices, but holds 1 and 2)");
+}
+
 // An FBX curve of no times and no values made assimp 5.2 read through a null pointer.
 TEST(ClipFormats, AnFbxCurveOfNoKeysIsRefused) {
   const testing_app::TempFolder dir;

@@ -181,6 +181,42 @@ std::uint64_t wordsIn(const char* text) {
   return words;
 }
 
+// Sums and products of counts that stop at the largest count, so that a wrapped one never reads as
+// a small one.
+std::uint64_t plus(std::uint64_t x, std::uint64_t y) {
+  return x > std::numeric_limits<std::uint64_t>::max() - y ? std::numeric_limits<std::uint64_t>::max()
+                                                           : x + y;
+}
+std::uint64_t times(std::uint64_t x, std::uint64_t y) {
+  return x != 0 && y > std::numeric_limits<std::uint64_t>::max() / x
+             ? std::numeric_limits<std::uint64_t>::max()
+             : x * y;
+}
+
+// The indices a mesh's primitives hold: in their <p>s, and a polygon with holes' <p> and <h>s.
+std::uint64_t indicesIn(const pugi::xml_node& primitives) {
+  std::uint64_t words = 0;
+  for (const pugi::xml_node p : primitives.children("p")) words = plus(words, wordsIn(p.child_value()));
+  for (const pugi::xml_node ph : primitives.children("ph")) {
+    for (const pugi::xml_node part : ph.children()) {
+      const std::string_view name = part.name();
+      if (name == "p" || name == "h") words = plus(words, wordsIn(part.child_value()));
+    }
+  }
+  return words;
+}
+
+// The sum of the whole numbers in `text` (a <vcount>'s), a word that is none counting 0.
+std::uint64_t sumOf(std::string_view text) {
+  std::uint64_t sum = 0;
+  for (auto at = text.begin();;) {
+    const auto begin = std::find_if_not(at, text.end(), isSpace);
+    if (begin == text.end()) return sum;
+    at = std::find_if(begin, text.end(), isSpace);
+    sum = plus(sum, wholeNumber(std::string_view(begin, at)).value_or(0));
+  }
+}
+
 struct Accessor {
   std::uint64_t count, offset, stride, width;
   std::string source;
@@ -216,6 +252,10 @@ class ColladaWalker : public pugi::xml_tree_walker {
         a.width += paramWidth(param.attribute("type").value());
       if (a.source.starts_with('#')) a.source.erase(0, 1);
       accessors_.push_back(a);
+    } else if (isPrimitives(element) && node.attribute("count")) {
+      checkIndices(node, line);
+    } else if (element == "vertex_weights" && node.attribute("count")) {
+      checkWeights(node, line);
     }
     return true;
   }
@@ -226,12 +266,7 @@ class ColladaWalker : public pugi::xml_tree_walker {
     for (const Accessor& a : accessors_) {
       const auto array = arrays_.find(a.source);
       if (array == arrays_.end() || a.count == 0) continue;
-      // Each term is at most 2^32 (countOf) and the product under 2^64, but the sum can pass 2^64:
-      // it stops at the largest count, so that a wrapped sum never reads as a small one.
-      const auto plus = [](std::uint64_t x, std::uint64_t y) {
-        return x > std::numeric_limits<std::uint64_t>::max() - y ? std::numeric_limits<std::uint64_t>::max()
-                                                                 : x + y;
-      };
+      // Each term is at most 2^32 (countOf) and the product under 2^64, but the sum can pass 2^64.
       const std::uint64_t need = plus(plus(a.offset, a.stride * (a.count - 1)), std::max(a.stride, a.width));
       if (need > array->second)
         throw ClipError(name_, a.line,
@@ -250,6 +285,53 @@ class ColladaWalker : public pugi::xml_tree_walker {
                       "<" + std::string(node.name()) + "> " + attribute + "=\"" + std::string(value) +
                           "\" is not a whole number of values a file holds");
     return *n;
+  }
+
+  static bool isPrimitives(std::string_view element) {
+    return element == "triangles" || element == "lines" || element == "polylist" || element == "polygons" ||
+           element == "trifans" || element == "tristrips" || element == "linestrips";
+  }
+
+  // The indices a vertex takes: one for each offset its <input>s use.
+  std::uint64_t offsetsOf(const pugi::xml_node& node, std::size_t line) const {
+    std::uint64_t offsets = 1;
+    for (const pugi::xml_node input : node.children("input"))
+      if (input.attribute("offset")) offsets = std::max(offsets, plus(countOf(input, "offset", line), 1));
+    return offsets;
+  }
+
+  // A mesh's primitives hold the indices their count says (three a triangle, two a line, a
+  // <vcount> each in a polylist, at least one a polygon, fan or strip) for each offset their inputs
+  // use: assimp reserves that many before it reads any, and count="1000000000" of triangles asked
+  // for 24 GB, an <input offset="100000000"> for 2.4 GB.
+  void checkIndices(const pugi::xml_node& node, std::size_t line) const {
+    const std::string_view element = node.name();
+    const std::uint64_t count = countOf(node, "count", line);
+    std::uint64_t points = count;
+    if (element == "triangles") points = times(count, 3);
+    if (element == "lines") points = times(count, 2);
+    if (element == "polylist") points = sumOf(node.child("vcount").child_value());
+    const std::uint64_t need = times(std::max(points, count), offsetsOf(node, line));
+    const std::uint64_t held = indicesIn(node);
+    if (held < need)
+      throw ClipError(name_, line,
+                      "<" + std::string(element) + "> of count=\"" + std::to_string(count) + "\" needs " +
+                          std::to_string(need) + " indices, but holds " + std::to_string(held));
+  }
+
+  // A skin's weights: a <vcount> for each of its count vertices, and in <v> an index for each
+  // offset of each weight those give. assimp sizes both before it reads them.
+  void checkWeights(const pugi::xml_node& node, std::size_t line) const {
+    const std::uint64_t count = countOf(node, "count", line);
+    const char* vcount = node.child("vcount").child_value();
+    const std::uint64_t counts = wordsIn(vcount);
+    const std::uint64_t need = times(sumOf(vcount), offsetsOf(node, line));
+    const std::uint64_t held = wordsIn(node.child("v").child_value());
+    if (counts < count || held < need)
+      throw ClipError(name_, line,
+                      "<vertex_weights> of count=\"" + std::to_string(count) + "\" needs " +
+                          std::to_string(count) + " counts and " + std::to_string(need) +
+                          " indices, but holds " + std::to_string(counts) + " and " + std::to_string(held));
   }
 
   std::string_view text_;
