@@ -520,6 +520,43 @@ TEST(ClipFormats, ColladaIndicesAndWeightsAreThereBeforeTheyAreSized) {
       R"(mesh.dae:2: <vertex_weights> of count="1" needs 1 counts and 4000000000 indices, but holds 1 and 2)");
 }
 
+// assimp copies the node an <instance_node> names into the node it is in, recursing once a level: a
+// node instancing itself or a node it is in overflowed the stack, and nodes instancing each other
+// twice over unfold to billions.
+TEST(ClipFormats, ColladaNodeInstancesAreRefusedWhereTheyNeverEnd) {
+  const auto refusalOf = [](const std::string& library, const std::string& scene) {
+    return refusal("<?xml version=\"1.0\"?>\n<COLLADA version=\"1.4.1\">\n<library_nodes>" + library +
+                       "</library_nodes>\n<library_visual_scenes><visual_scene id=\"s\">\n" + scene +
+                       "</visual_scene></library_visual_scenes></COLLADA>\n",
+                   "nodes.dae");
+  };
+  EXPECT_EQ(
+      refusalOf("", "<node id=\"hips\"><node id=\"knee\">\n<instance_node url=\"#hips\"/></node></node>"),
+      R"(nodes.dae:6: <instance_node url="#hips"> instances a node it is within)");
+  EXPECT_EQ(refusalOf("", "<node id=\"hips\">\n<instance_node url=\"#hips\"/></node>"),
+            R"(nodes.dae:6: <instance_node url="#hips"> instances a node it is within)");
+  EXPECT_EQ(refusalOf(R"(<node id="a"><instance_node url="#b"/></node><node id="b">)"
+                      "\n"
+                      R"(<instance_node url="#a"/></node>)",
+                      R"(<node id="hips"><instance_node url="#a"/></node>)"),
+            R"(nodes.dae:4: <instance_node url="#a"> instances a node it is within)");
+  std::string doubling;
+  for (int i = 0; i < 20; ++i) {
+    const std::string next = "#n" + std::to_string(i + 1);
+    doubling += "<node id=\"n" + std::to_string(i) + "\"><instance_node url=\"" + next +
+                "\"/><instance_node url=\"" + next + "\"/></node>";
+  }
+  doubling += "<node id=\"n20\"/>";
+  EXPECT_EQ(refusalOf(doubling, ""),
+            "nodes.dae:3: <node> unfolds through its <instance_node>s to more than 100000 nodes (a skeleton "
+            "has tens)");
+  // A node instanced twice, from the library, is no cycle.
+  const std::string twice = refusalOf(
+      R"(<node id="leg"><node id="foot"/></node>)",
+      R"(<node id="hips"><instance_node url="#leg"/><node id="other"><instance_node url="#leg"/></node></node>)");
+  EXPECT_EQ(twice.find("instance"), std::string::npos) << twice;
+}
+
 // An FBX curve of no times and no values made assimp 5.2 read through a null pointer.
 TEST(ClipFormats, AnFbxCurveOfNoKeysIsRefused) {
   const testing_app::TempFolder dir;

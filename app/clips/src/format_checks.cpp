@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <unordered_map>
 #include <vector>
 
 #include <pugixml.hpp>
@@ -256,8 +257,59 @@ class ColladaWalker : public pugi::xml_tree_walker {
       checkIndices(node, line);
     } else if (element == "vertex_weights" && node.attribute("count")) {
       checkWeights(node, line);
+    } else if (element == "node") {
+      nodeIndex_[node.internal_object()] = nodes_.size();
+      nodes_.push_back({line, enclosingNode(node), {}});
+      for (const char* key : {"id", "name"})
+        if (const char* value = node.attribute(key).value(); *value != '\0')
+          nodesNamed_[value].push_back(nodes_.size() - 1);
+    } else if (element == "instance_node") {
+      std::string url = node.attribute("url").value();
+      if (url.starts_with('#')) url.erase(0, 1);
+      instances_.push_back({line, enclosingNode(node), std::move(url)});
     }
     return true;
+  }
+
+  // assimp copies the node an <instance_node> names into the one it is in, and then what that one
+  // instances, recursing once a level: a node that instances itself or a node it is in overflowed
+  // the stack, and a few nodes instancing each other twice over would unfold to billions.
+  void checkNodeInstances() {
+    for (const Instance& instance : instances_) {
+      if (instance.in == kNone) continue;
+      for (const std::size_t target : nodesNamed_[instance.url])
+        nodes_[instance.in].edges.push_back({target, instance.line, instance.url});
+    }
+    for (std::size_t i = 0; i < nodes_.size(); ++i)
+      if (nodes_[i].parent != kNone) nodes_[nodes_[i].parent].edges.push_back({i, 0, {}});
+    enum class Mark { unseen, open, done };
+    std::vector<Mark> marks(nodes_.size(), Mark::unseen);
+    std::vector<std::uint64_t> unfolded(nodes_.size(), 1);
+    for (std::size_t root = 0; root < nodes_.size(); ++root) {
+      if (marks[root] != Mark::unseen) continue;
+      std::vector<std::pair<std::size_t, std::size_t>> path{{root, 0}};  // a node, and its next edge
+      marks[root] = Mark::open;
+      while (!path.empty()) {
+        auto& [at, next] = path.back();
+        if (next == nodes_[at].edges.size()) {
+          marks[at] = Mark::done;
+          for (const Edge& edge : nodes_[at].edges) unfolded[at] = plus(unfolded[at], unfolded[edge.to]);
+          if (unfolded[at] > kMostNodes)
+            throw ClipError(name_, nodes_[at].line,
+                            "<node> unfolds through its <instance_node>s to more than " +
+                                std::to_string(kMostNodes) + " nodes (a skeleton has tens)");
+          path.pop_back();
+          continue;
+        }
+        const Edge& edge = nodes_[at].edges[next++];
+        if (marks[edge.to] == Mark::open)
+          throw ClipError(name_, edge.line,
+                          "<instance_node url=\"#" + edge.url + "\"> instances a node it is within");
+        if (marks[edge.to] == Mark::done) continue;
+        marks[edge.to] = Mark::open;
+        path.emplace_back(edge.to, 0);
+      }
+    }
   }
 
   // Each accessor reads its values within its array (assimp 5.2 asserts each index, and aborted on
@@ -338,6 +390,37 @@ class ColladaWalker : public pugi::xml_tree_walker {
   const std::string& name_;
   std::map<std::string, std::uint64_t, std::less<>> arrays_;
   std::vector<Accessor> accessors_;
+
+  static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  static constexpr std::uint64_t kMostNodes = 100000;
+  // What a node holds (its child nodes, line 0) or instances (the <instance_node>'s line and url).
+  struct Edge {
+    std::size_t to, line;
+    std::string url;
+  };
+  struct Node {
+    std::size_t line, parent;
+    std::vector<Edge> edges;
+  };
+  struct Instance {
+    std::size_t line, in;
+    std::string url;
+  };
+
+  // The <node> that `element` is in (its index), or kNone.
+  std::size_t enclosingNode(const pugi::xml_node& element) const {
+    for (pugi::xml_node up = element.parent(); up; up = up.parent()) {
+      if (std::string_view(up.name()) != "node") continue;
+      const auto found = nodeIndex_.find(up.internal_object());
+      return found == nodeIndex_.end() ? kNone : found->second;
+    }
+    return kNone;
+  }
+
+  std::vector<Node> nodes_;
+  std::unordered_map<const void*, std::size_t> nodeIndex_;
+  std::map<std::string, std::vector<std::size_t>, std::less<>> nodesNamed_;
+  std::vector<Instance> instances_;
 };
 
 // ---- FBX and .x as text ----
@@ -472,6 +555,7 @@ void checkCollada(std::string_view content, const std::string& name) {
   ColladaWalker walker(content, name);
   document.traverse(walker);
   walker.checkAccessors();
+  walker.checkNodeInstances();
 }
 
 void checkFbx(std::string_view content, const std::string& name) {

@@ -29,7 +29,8 @@ void checkGltf(std::string_view json, const std::string& name);
 void checkGlb(std::string_view content, const std::string& name);
 /// COLLADA (.dae): elements nested no deeper than kMaxDepth, every array holding the values its
 /// count says, every accessor within its array, every mesh's primitives and skin's weights holding
-/// the indices their counts need.
+/// the indices their counts need, no node instancing a node it is within or unfolding to more than
+/// 100,000.
 void checkCollada(std::string_view content, const std::string& name);
 /// FBX as text: braces nested no deeper than kMaxDepth, every array (`*N { a: ... }`) holding the
 /// N values it declares, no animation curve of no keys, every curve's keys in time order. A binary
