@@ -759,6 +759,58 @@ TEST(ClipFormats, BinaryFbxKeysOutOfTimeOrderAreRefusedNamingTheCurve) {
   }
 }
 
+// assimp converts an FBX model under each model it is linked to, recursing once a level: a model
+// linked under a model below it overflowed the stack, and models each linked twice under the next
+// unfold to millions. Refused at the link, with its line in text and its byte in binary.
+TEST(ClipFormats, FbxModelsThatNestWithoutEndAreRefusedAtTheLink) {
+  const auto textFbx = [](const std::vector<std::string>& models, const std::string& links) {
+    std::string fbx = "Objects:  {\n";
+    for (std::size_t i = 0; i < models.size(); ++i)
+      fbx += "\tModel: " + std::to_string(i + 1) + ", \"Model::" + models[i] + "\", \"Null\" {\n\t}\n";
+    return fbx + "}\nConnections:  {\n" + links + "}\n";
+  };
+  // Lines 1 to 6 are the objects, 7 opens the connections.
+  EXPECT_EQ(refusal(textFbx({"hips", "knee"}, "\tC: \"OO\", 1, 0\n\tC: \"OO\", 2, 1\n\tC: \"OO\", 1, 2\n"),
+                    "cycle.fbx"),
+            "cycle.fbx:10: model 1 'hips' is linked under model 2 'knee', which is under it: the models "
+            "would nest without end");
+  std::vector<std::string> names;
+  std::string doubled = "\tC: \"OO\", 1, 0\n";
+  for (int i = 1; i <= 20; ++i) {
+    names.push_back("m" + std::to_string(i));
+    if (i < 20)
+      doubled += repeated("\tC: \"OO\", " + std::to_string(i + 1) + ", " + std::to_string(i) + "\n", 2);
+  }
+  // Model k unfolds to 2^(21 - k) - 1 nodes: model 4 is the first past 100,000, linked under 3 on
+  // line 49, after 2 x 20 lines of objects, 3 of braces, 1 of model 1's link, 4 of models 2 and 3's.
+  EXPECT_EQ(
+      refusal(textFbx(names, doubled), "twice.fbx"),
+      "twice.fbx:49: model 4 'm4' unfolds, a copy under each model it is linked to, to more than 100000 "
+      "nodes (a skeleton has tens)");
+  // A model linked under two others is a copy under each, no cycle.
+  EXPECT_FALSE(has(refusal(textFbx({"hips", "knee", "foot"},
+                                   "\tC: \"OO\", 1, 0\n\tC: \"OO\", 2, 1\n"
+                                   "\tC: \"OO\", 3, 1\n\tC: \"OO\", 3, 2\n"),
+                           "shared.fbx"),
+                   "linked under"));
+
+  const auto model = [](std::int64_t id, const std::string& name) {
+    return FbxRecord{
+        "Model",
+        longProperty(id) + stringProperty(name + std::string("\0\1Model", 7)) + stringProperty("Null"),
+        3,
+        {}};
+  };
+  const auto link = [](std::int64_t from, std::int64_t to) {
+    return FbxRecord{"C", stringProperty("OO") + longProperty(from) + longProperty(to), 3, {}};
+  };
+  const std::string binary = binaryFbx({{"Objects", "", 0, {model(1, "hips"), model(2, "knee")}},
+                                        {"Connections", "", 0, {link(1, 0), link(2, 1), link(1, 2)}}});
+  const std::string e = refusal(binary, "cycle.fbx");
+  EXPECT_TRUE(has(e, "cycle.fbx: node record 'C' at byte ")) << e;
+  EXPECT_TRUE(has(e, ": model 1 'hips' is linked under model 2 'knee', which is under it")) << e;
+}
+
 // assimp's binary FBX reader recurses once a level of node records, computes an array's size in 32
 // bits and reads its count of values out of what that size allocated, and takes a count of
 // properties on trust: each refused, naming the record and its byte, before assimp reads the file.

@@ -262,8 +262,9 @@ class BinaryFbx {
       // "name\0\1Model": the name, then the class.
       const std::string& text = properties[1].text;
       curves_.model(properties[0].integer, text.substr(0, text.find(std::string_view("\0\1", 2))));
-    } else if (r.name == "C" && under(1, "Connections") && is(1, 'L') && is(2, 'L') && is(3, 'S')) {
-      curves_.link(properties[1].integer, properties[2].integer, properties[3].text);
+    } else if (r.name == "C" && under(1, "Connections") && is(1, 'L') && is(2, 'L')) {
+      curves_.link(properties[1].integer, properties[2].integer, is(3, 'S') ? properties[3].text : "", 0,
+                   r.at);
     } else if (r.name == "KeyTime" && open.size() == 2 && open[0].name == "Objects" &&
                open[1].name == "AnimationCurve" && is(0, 'l') && properties[0].int64s) {
       curves_.keyTimes(curveId_, *properties[0].int64s, 0,
@@ -286,8 +287,67 @@ void FbxCurves::model(std::int64_t id, std::string name) {
   models_.emplace(id, std::move(name));
 }
 
-void FbxCurves::link(std::int64_t source, std::int64_t target, std::string property) {
-  if (!property.empty()) links_.emplace(source, Link{target, std::move(property)});
+void FbxCurves::link(std::int64_t source, std::int64_t target, std::string property, std::size_t line,
+                     std::size_t byte) {
+  if (property.empty())
+    children_[target].push_back({source, line, byte});
+  else
+    links_.emplace(source, Link{target, std::move(property)});
+}
+
+std::string FbxCurves::modelName(std::int64_t id) const {
+  const auto named = models_.find(id);
+  return "model " + std::to_string(id) + (named == models_.end() ? "" : " '" + named->second + "'");
+}
+
+// The models under the root (0) as assimp converts them, depth first, without recursion.
+void FbxCurves::checkModels(const std::string& name) const {
+  const auto refuse = [&](const Child& at, const std::string& why) {
+    if (at.line > 0) throw ClipError(name, at.line, why);
+    throw ClipError(name, "node record 'C' at byte " + std::to_string(at.byte) + ": " + why);
+  };
+  const std::vector<Child> none;
+  const auto childrenOf = [&](std::int64_t id) -> const std::vector<Child>& {
+    const auto found = children_.find(id);
+    return found == children_.end() ? none : found->second;
+  };
+  enum class Mark { open, done };
+  std::map<std::int64_t, Mark> marks{{0, Mark::open}};
+  std::map<std::int64_t, std::uint64_t> unfolded;
+  struct Frame {
+    Child self;  // the link that put the model here (none for the root)
+    std::size_t next;
+  };
+  std::vector<Frame> path{{{0, 0, 0}, 0}};
+  while (!path.empty()) {
+    Frame& top = path.back();
+    const std::vector<Child>& children = childrenOf(top.self.id);
+    if (top.next < children.size()) {
+      const Child& child = children[top.next++];
+      if (!models_.contains(child.id)) continue;  // assimp converts models alone
+      const auto mark = marks.find(child.id);
+      if (mark != marks.end() && mark->second == Mark::open)
+        refuse(child, modelName(child.id) + " is linked under " + modelName(top.self.id) +
+                          ", which is under it: the models would nest without end");
+      if (mark != marks.end()) continue;
+      marks.emplace(child.id, Mark::open);
+      path.push_back({child, 0});
+      continue;
+    }
+    std::uint64_t nodes = 1;
+    for (const Child& child : children)
+      if (models_.contains(child.id)) nodes = std::min(nodes + unfolded[child.id], kMaxUnfoldedNodes + 1);
+    if (nodes > kMaxUnfoldedNodes && top.self.id != 0)
+      refuse(top.self, modelName(top.self.id) +
+                           " unfolds, a copy under each model it is linked to, to more than " +
+                           std::to_string(kMaxUnfoldedNodes) + " nodes (a skeleton has tens)");
+    if (nodes > kMaxUnfoldedNodes)
+      throw ClipError(name, "the models unfold, a copy under each model they are linked to, to more than " +
+                                std::to_string(kMaxUnfoldedNodes) + " nodes (a skeleton has tens)");
+    unfolded[top.self.id] = nodes;
+    marks[top.self.id] = Mark::done;
+    path.pop_back();
+  }
 }
 
 void FbxCurves::keyTimes(std::int64_t curve, const std::vector<std::int64_t>& times, std::size_t line,
@@ -304,6 +364,7 @@ void FbxCurves::keyTimes(std::int64_t curve, const std::vector<std::int64_t>& ti
 }
 
 void FbxCurves::check(const std::string& name) const {
+  checkModels(name);
   if (!unordered_) return;
   // The curve is linked to a component ("d|X") of a curve node, the curve node to a property
   // ("Lcl Rotation") of a model.

@@ -294,10 +294,10 @@ class ColladaWalker : public pugi::xml_tree_walker {
         if (next == nodes_[at].edges.size()) {
           marks[at] = Mark::done;
           for (const Edge& edge : nodes_[at].edges) unfolded[at] = plus(unfolded[at], unfolded[edge.to]);
-          if (unfolded[at] > kMostNodes)
+          if (unfolded[at] > kMaxUnfoldedNodes)
             throw ClipError(name_, nodes_[at].line,
                             "<node> unfolds through its <instance_node>s to more than " +
-                                std::to_string(kMostNodes) + " nodes (a skeleton has tens)");
+                                std::to_string(kMaxUnfoldedNodes) + " nodes (a skeleton has tens)");
           path.pop_back();
           continue;
         }
@@ -392,7 +392,6 @@ class ColladaWalker : public pugi::xml_tree_walker {
   std::vector<Accessor> accessors_;
 
   static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  static constexpr std::uint64_t kMostNodes = 100000;
   // What a node holds (its child nodes, line 0) or instances (the <instance_node>'s line and url).
   struct Edge {
     std::size_t to, line;
@@ -491,17 +490,19 @@ std::string_view unquoted(std::string_view word) {
 }
 
 // A text FBX's models and connections, for FbxCurves: `Model: id, "Model::name", ...` under
-// Objects, `C: "OP", source, target, "property"` under Connections.
-void gatherFbxLink(const std::vector<std::string_view>& path, std::string_view key,
+// Objects, `C: "OO", source, target` and `C: "OP", source, target, "property"` under Connections,
+// the key at `line`.
+void gatherFbxLink(const std::vector<std::string_view>& path, std::string_view key, std::size_t line,
                    const std::vector<std::string_view>& values, FbxCurves& curves) {
   if (path.size() != 1) return;
   if (path[0] == "Objects:" && key == "Model:" && values.size() >= 2) {
     std::string_view model = unquoted(values[1]);
     if (model.starts_with("Model::")) model.remove_prefix(7);
     if (const std::optional<std::int64_t> id = integer(values[0])) curves.model(*id, std::string(model));
-  } else if (path[0] == "Connections:" && key == "C:" && values.size() >= 4) {
+  } else if (path[0] == "Connections:" && key == "C:" && values.size() >= 3) {
     const std::optional<std::int64_t> source = integer(values[1]), target = integer(values[2]);
-    if (source && target) curves.link(*source, *target, std::string(unquoted(values[3])));
+    const std::string property = values.size() >= 4 ? std::string(unquoted(values[3])) : "";
+    if (source && target) curves.link(*source, *target, property, line, 0);
   }
 }
 
@@ -566,12 +567,13 @@ void checkFbx(std::string_view content, const std::string& name) {
   Tokens tokens(content, ";");
   std::vector<std::string_view> path;  // the key before each open brace
   std::string_view key;
+  std::size_t keyLine = 0;
   std::vector<std::string_view> values;  // the words after `key`, up to a brace or the next key
   FbxCurves curves;
   std::int64_t curve = 0;  // the AnimationCurve the braces are in, if path is {Objects:, AnimationCurve:}
   for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next()) {
     if (word == "{") {
-      gatherFbxLink(path, key, values, curves);
+      gatherFbxLink(path, key, keyLine, values, curves);
       if (path.size() == 1 && path[0] == "Objects:" && key == "AnimationCurve:" && !values.empty())
         curve = integer(values[0]).value_or(0);
       path.push_back(key);
@@ -579,7 +581,7 @@ void checkFbx(std::string_view content, const std::string& name) {
       if (path.size() > static_cast<std::size_t>(kMaxDepth))
         throw ClipError(name, tokens.line(), tooDeep("braces"));
     } else if (word == "}") {
-      gatherFbxLink(path, key, values, curves);
+      gatherFbxLink(path, key, keyLine, values, curves);
       if (!path.empty()) path.pop_back();
       key = {};
       values.clear();
@@ -604,8 +606,9 @@ void checkFbx(std::string_view content, const std::string& name) {
         throw ClipError(name, line, std::string(key) + " *0: an animation curve of no keys");
       if (times) curves.keyTimes(curve, integers, line, "");
     } else if (word.ends_with(':') && !word.starts_with('"')) {
-      gatherFbxLink(path, key, values, curves);
+      gatherFbxLink(path, key, keyLine, values, curves);
       key = word;
+      keyLine = tokens.line();
       values.clear();
     } else if (word != ",") {
       values.push_back(word);

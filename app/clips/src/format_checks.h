@@ -15,6 +15,9 @@ namespace clips::detail {
 
 /// A skeleton nests tens of nodes deep; the readers recurse once a level (BVH's limit too).
 constexpr int kMaxDepth = 256;
+/// A skeleton has tens of nodes; COLLADA and FBX readers copy a node once for each place it is put,
+/// so a few nodes each put twice under the next unfold to billions.
+constexpr std::uint64_t kMaxUnfoldedNodes = 100000;
 
 /// A count written as digits alone, nullopt otherwise (a sign, a point, a space): assimp reads a
 /// count as a float and truncates it ("Frames: 2.7" was 2 frames, "-1" more than any memory
@@ -45,23 +48,37 @@ void checkBinaryFbx(std::string_view content, const std::string& name);
 /// whole number > 0. A binary or compressed .x is refused.
 void checkX(std::string_view content, const std::string& name);
 
-/// An FBX's animation curves and what each moves, gathered from either form of the file, so that a
-/// curve whose keys are out of time order is refused naming what it moves: assimp 5.2 drops such a
-/// curve with a warning no caller sees, and a file of them read as one of no animation.
+/// An FBX's models, the links between them and its animation curves, gathered from either form of
+/// the file. A model that is its own ancestor, or models that unfold to more than kMaxUnfoldedNodes,
+/// are refused: assimp converts a model once under each model it is linked to, recursing once a
+/// level, and a cycle overflowed the stack. A curve whose keys are out of time order is refused
+/// naming what it moves: assimp 5.2 drops such a curve with a warning no caller sees, and a file of
+/// them read as one of no animation.
 class FbxCurves {
  public:
   /// A model (a node of the scene) and its name.
   void model(std::int64_t id, std::string name);
-  /// A link from object `source` to `property` of object `target` (a curve to "d|X" of a curve
-  /// node, a curve node to "Lcl Rotation" of a model); the first link from an object is kept.
-  void link(std::int64_t source, std::int64_t target, std::string property);
+  /// A link from object `source` to object `target` (a model to its parent model, or to 0, the
+  /// root), or to its `property` (a curve to "d|X" of a curve node, a curve node to "Lcl Rotation"
+  /// of a model; the first such link from an object is kept); at `line`, or at `byte` of a binary
+  /// file.
+  void link(std::int64_t source, std::int64_t target, std::string property, std::size_t line,
+            std::size_t byte);
   /// A curve's key times, at `line` (0 if the file has no lines) or at `where` ("byte N: ").
   void keyTimes(std::int64_t curve, const std::vector<std::int64_t>& times, std::size_t line,
                 const std::string& where);
-  /// Throws ClipError for the first curve whose keys do not rise in time, naming what it moves.
+  /// Throws ClipError for models that nest without end or unfold past kMaxUnfoldedNodes, then for
+  /// the first curve whose keys do not rise in time, naming what it moves.
   void check(const std::string& name) const;
 
  private:
+  struct Child {
+    std::int64_t id;
+    std::size_t line, byte;
+  };
+  void checkModels(const std::string& name) const;
+  std::string modelName(std::int64_t id) const;
+
   struct Link {
     std::int64_t target;
     std::string property;
@@ -74,6 +91,7 @@ class FbxCurves {
   };
   std::map<std::int64_t, std::string> models_;
   std::map<std::int64_t, Link> links_;
+  std::map<std::int64_t, std::vector<Child>> children_;  // by the parent's id
   std::optional<Unordered> unordered_;
 };
 
