@@ -403,6 +403,35 @@ TEST(ClipFormats, AGltfSizePastTheFilesBytesIsRefused) {
   EXPECT_EQ(refusal(extras.first, "extras.gltf").find("is more than the file's"), std::string::npos);
 }
 
+// assimp imports a glTF node under each node that lists it as a child, as often as it does: 25
+// nodes each listing the next twice unfolded to 2^25 (2 GB), and a chain whose nodes the root lists
+// too nests as deep as the chain, though each node is one level below the root.
+TEST(ClipFormats, GltfNodesThatUnfoldTooFarAreRefused) {
+  const auto gltf = [](const std::vector<std::string>& children) {
+    std::string nodes;
+    for (const std::string& list : children)
+      nodes += std::string(nodes.empty() ? "" : ", ") + "{\"children\": [" + list + "]}";
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [)" + nodes +
+           "]}";
+  };
+  std::vector<std::string> doubling;
+  for (int i = 0; i < 25; ++i) doubling.push_back(std::to_string(i + 1) + ", " + std::to_string(i + 1));
+  doubling.emplace_back("");
+  // Node k unfolds to 2^(26 - k) - 1 nodes: node 9 is the first past 100,000.
+  EXPECT_EQ(refusal(gltf(doubling), "dag.gltf"),
+            "dag.gltf: node 9 unfolds, a copy under each node that lists it as a child, to more than 100000 "
+            "nodes (a skeleton has tens)");
+  constexpr int kChain = 400;
+  std::vector<std::string> chain{""};
+  for (int i = 1; i <= kChain; ++i) {
+    chain[0] += (i > 1 ? ", " : "") + std::to_string(i);
+    chain.push_back(i < kChain ? std::to_string(i + 1) : "");
+  }
+  // Node k has kChain - k levels below it: node 143 is the first with more than 256.
+  EXPECT_EQ(refusal(gltf(chain), "chain.gltf"),
+            "chain.gltf: node 143: nodes below it nested more than 256 deep (a skeleton's are tens deep)");
+}
+
 // assimp's readers recurse once a level of JSON, XML, braces or nodes: 50,000 levels overflowed the
 // stack in each. Refused past 256, with the line (or the node).
 TEST(ClipFormats, NestingTooDeepIsRefusedWithTheLine) {

@@ -161,6 +161,53 @@ void checkNodeDepth(const std::vector<std::vector<std::uint64_t>>& children, con
   }
 }
 
+// assimp's glTF reader imports a node under each node that lists it as a child, as often as it does,
+// recursing once a level: 25 nodes each listing the next twice unfolded to 2^25 (2 GB), and a
+// chain of nodes each listed by the root too nests as deep as the chain, which checkNodeDepth's
+// shortest levels do not see. Each node's copies and height are counted once, depth first, without
+// recursion; a node that is its own ancestor is skipped (assimp refuses it).
+void checkNodeCopies(const std::vector<std::vector<std::uint64_t>>& children, const std::string& name) {
+  const std::size_t n = children.size();
+  enum class Mark { unseen, open, done };
+  std::vector<Mark> marks(n, Mark::unseen);
+  std::vector<std::uint64_t> unfolded(n, 1);
+  std::vector<int> height(n, 0);
+  for (std::size_t root = 0; root < n; ++root) {
+    if (marks[root] != Mark::unseen) continue;
+    marks[root] = Mark::open;
+    std::vector<std::pair<std::size_t, std::size_t>> path{{root, 0}};  // a node, and its next child
+    while (!path.empty()) {
+      auto& [at, next] = path.back();
+      if (next < children[at].size()) {
+        const std::uint64_t child = children[at][next++];
+        if (child >= n || marks[child] != Mark::unseen) continue;
+        marks[child] = Mark::open;
+        path.emplace_back(child, 0);
+        continue;
+      }
+      for (const std::uint64_t child : children[at]) {
+        if (child >= n || marks[child] != Mark::done) continue;
+        unfolded[at] = std::min(unfolded[at] + unfolded[child], kMaxUnfoldedNodes + 1);
+        height[at] = std::max(height[at], height[child] + 1);
+      }
+      if (unfolded[at] > kMaxUnfoldedNodes)
+        throw ClipError(name, "node " + std::to_string(at) +
+                                  " unfolds, a copy under each node that lists it as a child, to more than " +
+                                  std::to_string(kMaxUnfoldedNodes) + " nodes (a skeleton has tens)");
+      if (height[at] > kMaxDepth)
+        throw ClipError(name, "node " + std::to_string(at) + ": " + tooDeep("nodes below it"));
+      marks[at] = Mark::done;
+      path.pop_back();
+    }
+  }
+}
+
+// The nodes' tree as assimp imports it (checkNodeDepth, checkNodeCopies).
+void checkNodes(const std::vector<std::vector<std::uint64_t>>& children, const std::string& name) {
+  checkNodeDepth(children, name);
+  checkNodeCopies(children, name);
+}
+
 // ---- COLLADA ----
 
 // Values a <param> of this type takes in an accessor's stride.
@@ -518,7 +565,7 @@ std::optional<std::uint64_t> wholeNumber(std::string_view word) {
 }
 
 void checkGltf(std::string_view json, const std::string& name) {
-  checkNodeDepth(scanGltfJson(json, json.size(), name, ""), name);
+  checkNodes(scanGltfJson(json, json.size(), name, ""), name);
 }
 
 void checkGlb(std::string_view content, const std::string& name) {
@@ -547,7 +594,7 @@ void checkGlb(std::string_view content, const std::string& name) {
     if (at == kHeader && content.substr(at + 4, 4) == "JSON") json = content.substr(start, length);
     at = (start + length + 3) / 4 * 4;
   }
-  checkNodeDepth(scanGltfJson(json, content.size(), name, "its JSON chunk, "), name);
+  checkNodes(scanGltfJson(json, content.size(), name, "its JSON chunk, "), name);
 }
 
 void checkCollada(std::string_view content, const std::string& name) {
