@@ -527,6 +527,15 @@ TEST(ClipFormats, ColladaIndicesAndWeightsAreThereBeforeTheyAreSized) {
       R"(mesh.dae:2: <polylist> of count="1" needs 3000000000 indices, but holds 3)");
   EXPECT_EQ(refusalOf(R"(<triangles count="1"><input offset="100000000"/><p>0 1 2</p></triangles>)"),
             R"(mesh.dae:2: <triangles> of count="1" needs 300000003 indices, but holds 3)");
+  // assimp reads an index where the last stopped: at a word that is none it read zeros for good.
+  EXPECT_EQ(refusalOf(R"(<polylist count="1"><input offset="0"/><vcount>1</vcount><p>0 1 Z</p></polylist>)"),
+            R"(mesh.dae:2: <polylist> <p> holds 'Z', which is not an index)");
+  EXPECT_EQ(
+      refusalOf(R"(<polygons count="1"><input offset="0"/><ph><p>0 1 2</p><h>3 1.5 5</h></ph></polygons>)"),
+      R"(mesh.dae:2: <polygons> <h> holds '1.5', which is not an index)");
+  EXPECT_EQ(
+      refusalOf(R"(<triangles count="1"><input offset="0"/><p> -1 +1 2 </p></triangles>)").find("index"),
+      std::string::npos);
   EXPECT_EQ(
       refusalOf(R"(<polygons count="2"><input offset="0"/><ph><p>0 1 2</p><h>3 4 5</h></ph></polygons>)")
           .find("needs"),

@@ -241,17 +241,17 @@ std::uint64_t times(std::uint64_t x, std::uint64_t y) {
              : x * y;
 }
 
-// The indices a mesh's primitives hold: in their <p>s, and a polygon with holes' <p> and <h>s.
-std::uint64_t indicesIn(const pugi::xml_node& primitives) {
-  std::uint64_t words = 0;
-  for (const pugi::xml_node p : primitives.children("p")) words = plus(words, wordsIn(p.child_value()));
-  for (const pugi::xml_node ph : primitives.children("ph")) {
-    for (const pugi::xml_node part : ph.children()) {
-      const std::string_view name = part.name();
-      if (name == "p" || name == "h") words = plus(words, wordsIn(part.child_value()));
-    }
+// The first word of `text` that is not an index (digits after an optional sign), if any.
+std::optional<std::string_view> notAnIndex(std::string_view text) {
+  for (auto at = text.begin();;) {
+    const auto begin = std::find_if_not(at, text.end(), isSpace);
+    if (begin == text.end()) return std::nullopt;
+    at = std::find_if(begin, text.end(), isSpace);
+    std::string_view word(begin, at);
+    const std::string_view whole = word;
+    if (word.starts_with('-') || word.starts_with('+')) word.remove_prefix(1);
+    if (word.empty() || word.find_first_not_of("0123456789") != std::string_view::npos) return whole;
   }
-  return words;
 }
 
 // The sum of the whole numbers in `text` (a <vcount>'s), a word that is none counting 0.
@@ -391,6 +391,29 @@ class ColladaWalker : public pugi::xml_tree_walker {
            element == "trifans" || element == "tristrips" || element == "linestrips";
   }
 
+  // The indices a mesh's primitives hold: in their <p>s, and a polygon with holes' <p> and <h>s.
+  // assimp reads an index where the last one stopped, and a word that is none (`Z`, `1.5`) stopped
+  // it for good: it read zeros there until it had asked for gigabytes.
+  std::uint64_t indicesIn(const pugi::xml_node& primitives, std::size_t line) const {
+    std::uint64_t words = 0;
+    const auto add = [&](const pugi::xml_node& list) {
+      const char* text = list.child_value();
+      if (const std::optional<std::string_view> word = notAnIndex(text))
+        throw ClipError(name_, line,
+                        "<" + std::string(primitives.name()) + "> <" + list.name() + "> holds '" +
+                            std::string(*word) + "', which is not an index");
+      words = plus(words, wordsIn(text));
+    };
+    for (const pugi::xml_node p : primitives.children("p")) add(p);
+    for (const pugi::xml_node ph : primitives.children("ph")) {
+      for (const pugi::xml_node part : ph.children()) {
+        const std::string_view name = part.name();
+        if (name == "p" || name == "h") add(part);
+      }
+    }
+    return words;
+  }
+
   // The indices a vertex takes: one for each offset its <input>s use.
   std::uint64_t offsetsOf(const pugi::xml_node& node, std::size_t line) const {
     std::uint64_t offsets = 1;
@@ -411,7 +434,7 @@ class ColladaWalker : public pugi::xml_tree_walker {
     if (element == "lines") points = times(count, 2);
     if (element == "polylist") points = sumOf(node.child("vcount").child_value());
     const std::uint64_t need = times(std::max(points, count), offsetsOf(node, line));
-    const std::uint64_t held = indicesIn(node);
+    const std::uint64_t held = indicesIn(node, line);
     if (held < need)
       throw ClipError(name_, line,
                       "<" + std::string(element) + "> of count=\"" + std::to_string(count) + "\" needs " +
