@@ -828,6 +828,58 @@ TEST(SceneErrors, AnAmpersandOutsideValuesAndTextIsOnlyText) {
                                  "takes no child elements or text"});
 }
 
+// pugixml keeps a '<' in an attribute's value as text, where XML does not allow one: name="a<b"
+// loaded, and a tool that reads XML as XML would refuse the file. Refused where it stands, in a
+// value quoted either way, whatever the other quote or a '>' before it.
+TEST(SceneErrors, ALessThanInAnAttributeValueIsRefused) {
+  const char* says =
+      "holds '<', which XML does not allow in an attribute value; write &lt; for the character '<'";
+  for (const char* value : {"'a<b'", "\"a<b\"", "'<'", "'say \"<\"'", "\"it's a>b<c\"", "'&lt;<'"}) {
+    testing_scenes::expectRefused(
+        {value, (std::string("<scene name='s'>\n<box pos='0 1 0'\n name=") + value + "/>\n</scene>").c_str(),
+         3, "name", says});
+  }
+  testing_scenes::expectRefused(
+      {"after other attributes",
+       "<scene name='s'>\n<box name='a>b' pos='0 1 0'\n model='corners<'/>\n</scene>", 3, "model", says});
+  testing_scenes::expectRefused(
+      {"description", "<scene name='s'\n description='1 < 2'>\n</scene>", 2, "description", says});
+  testing_scenes::expectRefused(
+      {"a later element",
+       "<scene name='s' description='it\"s'>\n<box pos='0 1 0' name='&lt;'/>\n<box pos='0 3 "
+       "0'\n name='b<'/>\n</scene>",
+       4, "name", says});
+  // The first in the file is said, whatever its kind: a bad '&' after it does not hide it.
+  testing_scenes::expectRefused(
+      {"before an '&'",
+       "<scene name='s'>\n<box pos='0 1 0' name='a<b'/>\n<box pos='0 3 0' name='&'/>\n</scene>", 2, "name",
+       says});
+  testing_scenes::expectRefused(
+      {"after an '&'",
+       "<scene name='s'>\n<box pos='0 1 0' name='a&b'/>\n<box pos='0 3 0' name='<'/>\n</scene>", 2, "name",
+       "holds '&b'"});
+}
+
+// Outside a tag a '<' starts markup, and in a comment, CDATA, a processing instruction or the
+// DOCTYPE it is only text, quotes and all: nothing there is refused for it.
+TEST(SceneErrors, ALessThanOutsideAttributeValuesIsNotRefusedForIt) {
+  const scenes::Scene fine = scenes::loadSceneText(
+      "<?xml version='1.0' encoding='UTF-8'?>\n"
+      "<!DOCTYPE scene [ <!ENTITY a '<'> <!-- \" < --> <?pi ' < ?> ]>\n"
+      "<!-- it's a < b -->\n"
+      "<scene name='&lt;&#60;&#x3C;' description='a > b'><!-- ' < --><?pi \" <?><box name='x>y' pos='0 1 "
+      "0'/>\n<box name=\"it's\" pos='0 3 0'/></scene>\n"
+      "<!-- \" < -->",
+      "fine.xml");
+  EXPECT_EQ(fine.name, "<<<");
+  EXPECT_EQ(fine.description, "a > b");
+  EXPECT_EQ(fine.bodies.at(0).name, "x>y");
+  EXPECT_EQ(fine.bodies.at(1).name, "it's");
+  testing_scenes::expectRefused({"CDATA in <box>",
+                                 "<scene name='s'>\n<box pos='0 1 0'><![CDATA[ ' < ]]></box>\n</scene>", 2,
+                                 "", "takes no child elements or text"});
+}
+
 // A quote in a processing instruction or a conditional section of the DOCTYPE is only text there,
 // as pugixml reads it; taken for the start of a quoted value, it would hide every reference after
 // it from the check, and name='&a;' would load as that text, name='a&#0;b' as "a".

@@ -403,6 +403,32 @@ TEST(SceneWriter, NamesWithMarkupAndLineBreaksComeBackUnchanged) {
   EXPECT_EQ(copy.world.bodies()[0].name, box.name);
 }
 
+// The loader refuses a '<' in a value as XML does, so every name the writer puts in one, where a
+// body is made and where another element names it, must be escaped: a file written with a markup
+// name loads back with the same names and links.
+TEST(SceneWriter, MarkupInNamesIsEscapedWhereverANameIsWritten) {
+  const std::string p = "p<&\"'", q = "<q>", a = "a < b & \"c\" 'd'", b = "<b";
+  const scenes::Scene scene = load(
+      "<particle name='p&lt;&amp;&quot;&apos;' pos='0 1 0'/><particle name='&lt;q>' pos='0 2 0'/>"
+      "<stick a='p&lt;&amp;&quot;&apos;' b='&lt;q>'/>"
+      "<box name='a &lt; b &amp; \"c\" &apos;d&apos;' pos='0 5 0'/><box name=\"&lt;b\" pos='2 5 0'/>"
+      "<link a=\"a &lt; b &amp; &quot;c&quot; 'd'\" b='&lt;b' point='1 5 0'/>"
+      "<no-collision a='&lt;b' b='a &lt; b &amp; \"c\" &apos;d&apos;'/>");
+  ASSERT_EQ(scene.bodies.size(), 4u);
+  EXPECT_EQ(scene.bodies[0].name, p);
+  EXPECT_EQ(scene.bodies[1].name, q);
+  EXPECT_EQ(scene.bodies[2].name, a);
+  EXPECT_EQ(scene.bodies[3].name, b);
+  const std::string xml = scenes::writeSceneXml(scene);
+  EXPECT_NE(xml.find("&lt;"), std::string::npos) << xml;
+  const scenes::Scene copy = scenes::loadSceneText(xml, "saved.xml");
+  ASSERT_EQ(copy.bodies.size(), scene.bodies.size());
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) EXPECT_EQ(copy.bodies[i].name, scene.bodies[i].name);
+  EXPECT_EQ(copy.world.sticks().size(), scene.world.sticks().size());
+  EXPECT_EQ(copy.world.links().size(), 1u);
+  EXPECT_EQ(copy.world.ignoredCollisions(), scene.world.ignoredCollisions());
+}
+
 // A description is one line (the loader refuses a line break in it): not written, rather than
 // written into a file that does not load.
 TEST(SceneWriter, ADescriptionOfTwoLinesIsRefused) {

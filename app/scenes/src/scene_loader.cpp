@@ -1031,26 +1031,32 @@ std::size_t doctypeEnd(std::string_view text, std::size_t i) {
   return std::string_view::npos;
 }
 
+// Where the comment, CDATA section, processing instruction or DOCTYPE that starts at `i` ends (past
+// its end), `i` itself if none starts there, or npos if it does not end. pugixml decodes nothing
+// in them: they hold no attribute value and no text, whatever quotes, '&' or '<' they hold.
+std::size_t pastSection(std::string_view text, std::size_t i) {
+  if (i + 1 < text.size() && text[i + 1] != '!' && text[i + 1] != '?') return i;  // a tag: most are
+  constexpr std::pair<std::string_view, std::string_view> kSkipped[] = {
+      {"<!--", "-->"}, {"<![CDATA[", "]]>"}, {"<?", "?>"}};
+  const std::string_view rest = text.substr(i);
+  const auto skipped = std::find_if(std::begin(kSkipped), std::end(kSkipped),
+                                    [&](const auto& s) { return rest.starts_with(s.first); });
+  if (skipped != std::end(kSkipped)) {
+    const std::size_t end = text.find(skipped->second, i + skipped->first.size());
+    return end == std::string_view::npos ? end : end + skipped->second.size();
+  }
+  if (rest.starts_with("<!DOCTYPE")) return doctypeEnd(text, i);
+  return i;
+}
+
 // Where the next '&' from `i` on stands in text that pugixml decodes (an attribute's value or an
 // element's text), or npos: comments, CDATA, processing instructions and the DOCTYPE hold none.
 std::size_t nextReference(std::string_view text, std::size_t i) {
-  constexpr std::pair<std::string_view, std::string_view> kSkipped[] = {
-      {"<!--", "-->"}, {"<![CDATA[", "]]>"}, {"<?", "?>"}};
   while ((i = text.find_first_of("<&", i)) != std::string_view::npos) {
-    const std::string_view rest = text.substr(i);
-    if (rest.front() == '&') return i;
-    const auto skipped = std::find_if(std::begin(kSkipped), std::end(kSkipped),
-                                      [&](const auto& s) { return rest.starts_with(s.first); });
-    if (skipped != std::end(kSkipped)) {
-      const std::size_t end = text.find(skipped->second, i + skipped->first.size());
-      if (end == std::string_view::npos) return end;
-      i = end + skipped->second.size();
-    } else if (rest.starts_with("<!DOCTYPE")) {
-      i = doctypeEnd(text, i);
-      if (i == std::string_view::npos) return i;
-    } else {
-      ++i;
-    }
+    if (text[i] == '&') return i;
+    const std::size_t past = pastSection(text, i);
+    if (past == std::string_view::npos) return past;
+    i = past == i ? i + 1 : past;
   }
   return std::string_view::npos;
 }
@@ -1171,16 +1177,16 @@ std::string_view firstReference(std::string_view text, std::string_view (*at)(st
   return {};
 }
 
-// A reference the loader refuses, found before parsing in place rewrites the buffer: where it is
-// and what to say of it.
-struct RefusedReference {
+// Markup the loader refuses in a value or text (a reference, a '<'), found before parsing in place
+// rewrites the buffer: where it is and what to say of it.
+struct Refusal {
   const char* at = nullptr;
   std::string message;
 };
 
 // The first in the text of: a character reference to a character XML forbids (forbiddenCode), an
 // entity reference pugixml would take as text, an '&' that starts no reference.
-RefusedReference refusedReference(std::string_view text) {
+Refusal refusedReference(std::string_view text) {
   const std::string_view character = firstReference(text, forbiddenCharacterAt);
   const std::string_view entity = firstReference(text, unexpandedEntityAt);
   const std::string_view bare = firstReference(text, bareAmpersandAt);
@@ -1207,11 +1213,60 @@ RefusedReference refusedReference(std::string_view text) {
   return {};
 }
 
+// Where the first of `a`, `b` or `c` from `i` on stands, or npos. A plain loop: find_first_of looks
+// each byte up in its set, and a value of a few bytes is too short for a memchr to pay; either made
+// the scan below several times dearer.
+std::size_t firstOf(std::string_view text, std::size_t i, char a, char b, char c) {
+  for (; i < text.size(); ++i) {
+    if (text[i] == a || text[i] == b || text[i] == c) return i;
+  }
+  return std::string_view::npos;
+}
+
+// Where the first '<' inside an attribute's quoted value stands, or npos. XML does not allow one
+// there, and pugixml keeps it as text: name="a<b" would load, and a tool that reads XML as XML
+// would refuse the file. Only tags hold values: text, comments, CDATA, processing instructions and
+// the DOCTYPE are stepped over as pugixml steps over them. Each byte is looked at once.
+std::size_t lessThanInValue(std::string_view text) {
+  constexpr auto npos = std::string_view::npos;
+  for (std::size_t i = 0; (i = text.find('<', i)) != npos;) {
+    if (const std::size_t past = pastSection(text, i); past != i) {
+      i = past;
+      continue;
+    }
+    // A tag: its quoted values, up to the '>' that ends it.
+    for (++i; (i = firstOf(text, i, '"', '\'', '>')) != npos && text[i] != '>'; ++i) {
+      const char quote = text[i];
+      i = firstOf(text, i + 1, quote, quote, '<');  // the value's end, or a '<' in it
+      if (i == npos) return npos;                   // the parse says so
+      if (text[i] == '<') return i;
+    }
+  }
+  return npos;
+}
+
+// The first '<' in an attribute's value (lessThanInValue), refused.
+Refusal refusedLessThan(std::string_view text) {
+  const std::size_t at = lessThanInValue(text);
+  if (at == std::string_view::npos) return {};
+  return {text.data() + at,
+          "holds '<', which XML does not allow in an attribute value; write &lt; for the "
+          "character '<'"};
+}
+
+// The first in the text of what refusedReference and refusedLessThan refuse.
+Refusal firstRefusal(std::string_view text) {
+  Refusal reference = refusedReference(text);
+  Refusal lessThan = refusedLessThan(text);
+  if (lessThan.at != nullptr && (reference.at == nullptr || std::less<>()(lessThan.at, reference.at)))
+    return lessThan;
+  return reference;
+}
+
 // Refuses `refused` (at a place in the buffer parsed in place) in the value that holds it: the
 // attribute or text whose value starts last before it.
-[[noreturn]] void refuseReference(const pugi::xml_document& doc, const char* begin,
-                                  const RefusedReference& refused, const LineIndex& lines,
-                                  const std::string& file) {
+[[noreturn]] void refuseInValue(const pugi::xml_document& doc, const char* begin, const Refusal& refused,
+                                const LineIndex& lines, const std::string& file) {
   const char* at = refused.at;
   const std::string& message = refused.message;
   const char* best = nullptr;
@@ -1313,7 +1368,7 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
       trailingLine = lines.lineOf(buffer.data() + first);
     }
   }
-  const RefusedReference refused = refusedReference(std::string_view(buffer.data(), size));
+  const Refusal refused = firstRefusal(std::string_view(buffer.data(), size));
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
       buffer.data(), size, pugi::parse_default | pugi::parse_declaration, pugi::encoding_utf8);
   if (!parsed && badAt < static_cast<std::size_t>(parsed.offset))
@@ -1328,7 +1383,7 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
   if (refused.at != nullptr && std::less<>()(refused.at, root.name()))
     throw LoadError(file, lines.lineOf(refused.at), "", "nothing may follow or precede <scene> but comments");
   if (refused.at != nullptr && (trailingFrom == nullptr || std::less<>()(refused.at, trailingFrom)))
-    refuseReference(doc, buffer.data(), refused, lines, file);
+    refuseInValue(doc, buffer.data(), refused, lines, file);
   for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
     if (top == root) continue;
     if (top.type() == pugi::node_declaration && top == doc.first_child()) {
