@@ -339,6 +339,52 @@ TEST(SceneErrors, TooManyExpectationsAreRefusedAtTheFirstPastTheLimit) {
   EXPECT_EQ(scenes::loadSceneText(xml.substr(0, end) + "</scene>", "s.xml").expectations.size(), 1000u);
 }
 
+// Each element that adds a constraint was held by nothing but the file's size: 512 MiB of
+// <no-collision> or <joint> elements between two boxes. They are held together to kMaxConstraints,
+// refused at the one past it; the limit is given small here, so as not to write millions.
+TEST(SceneErrors, TooManyConstraintsAreRefusedAtTheFirstPastTheLimit) {
+  const std::string bodies =
+      "<scene name='s'>\n<particle name='p' pos='0 1 0'/>\n<particle name='q' pos='0 2 0'/>\n"
+      "<box name='a' pos='0 5 0' model='rigid'/>\n<box name='b' pos='2 5 0' model='rigid'/>\n"
+      "<box name='c' pos='0 9 0'/>\n<box name='d' pos='2 9 0'/>\n";  // lines 1 to 7
+  const std::string constraints[] = {
+      "<stick a='p' b='q'/>",
+      "<link a='a' b='b' point='1 5 0'/>",
+      "<joint type='cone' a='a' b='b' pivot='1 5 0' axis='1 0 0' reference='0 1 0' swing='30'/>",
+      "<particle-joint a='c' b='d' pivot='1 9 0'/>",
+      "<joint-friction a='c' b='d' damping='2'/>",
+      "<no-collision a='a' b='b'/>"};
+  const std::string says =
+      "the scene has more than 3 constraints (<stick>, <link>, <joint>, <particle-joint>, "
+      "<joint-friction> and <no-collision> elements)";
+  auto refusedAt = [&](const std::string& xml) {
+    try {
+      (void)scenes::detail::loadSceneText(xml, "s.xml", {.constraints = 3});
+    } catch (const scenes::LoadError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+      return e.line();
+    }
+    return 0;
+  };
+  for (const std::string& constraint : constraints) {
+    SCOPED_TRACE(constraint);
+    std::string xml = bodies;
+    for (int i = 0; i < 4; ++i) xml += constraint + "\n";
+    EXPECT_EQ(refusedAt(xml + "</scene>"), 11);
+    const std::size_t last = xml.rfind(constraint);
+    EXPECT_EQ(refusedAt(xml.substr(0, last) + "</scene>"), 0);
+  }
+  // All kinds count together: the fourth is refused, whatever the first three were.
+  std::string mixed = bodies;
+  for (const std::string& constraint : constraints) mixed += constraint + "\n";
+  EXPECT_EQ(refusedAt(mixed + "</scene>"), 11);
+  // Under the loader's own limit the scene holds them all.
+  const scenes::Scene all = scenes::loadSceneText(mixed + "</scene>", "s.xml");
+  EXPECT_EQ(all.world.rigidJoints().size(), 1u);
+  EXPECT_EQ(all.world.particleJoints().size(), 1u);
+  EXPECT_EQ(all.world.jointFrictions().size(), 1u);
+}
+
 // A file written body by body (a recording's part scene) never holds a generator: under
 // LoadOptions::bodyByBody each is refused at its line, before the first body of the file is built,
 // and the same text loads without the option.
@@ -425,13 +471,13 @@ TEST(SceneErrors, AnEndlessDeviceIsCutOff) {
 TEST(SceneErrors, TextOverTheLimitIsRefusedAsAWhole) {
   const std::string xml = "<scene name='s'/>";
   try {
-    scenes::detail::loadSceneText(xml, "big.xml", xml.size() - 1);
+    scenes::detail::loadSceneText(xml, "big.xml", {.bytes = xml.size() - 1});
     ADD_FAILURE() << "loaded";
   } catch (const scenes::LoadError& e) {
     EXPECT_EQ(std::string(e.what()), "big.xml: is larger than 16 bytes, the most that is read");
     EXPECT_EQ(e.line(), 0);
   }
-  EXPECT_EQ(scenes::detail::loadSceneText(xml, "fits.xml", xml.size()).name, "s");
+  EXPECT_EQ(scenes::detail::loadSceneText(xml, "fits.xml", {.bytes = xml.size()}).name, "s");
 }
 
 // UTF-16 and UTF-32 files got pugixml's "Could not determine tag type".

@@ -28,6 +28,14 @@ inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene
 /// Whole scene: as many as kMaxParticles make corners boxes. A rigid body has no particles, so
 /// the particle limit does not hold rigid bodies back: a million of them take some 18 GB in a step.
 inline constexpr std::size_t kMaxBodies = kMaxParticles / 8;
+/// Whole scene: the elements that add one constraint each (<stick>, <link>, <joint>,
+/// <particle-joint>, <joint-friction>, <no-collision>) together. A stick joins two particles: a
+/// cloth of kMaxParticles braced along its rows and its columns has two a particle, and what the
+/// generators make within the limits above fits with room (a chain of particles has one a particle,
+/// a ragdoll of particle boxes 63 for its 80 particles, a rigid one 18 for its 10 bodies). Only the
+/// file's size held them before: a <joint> takes some 900 bytes loading, a <link> 500, so that
+/// 512 MiB of short ones asked for 5 to 8 GB; at this limit it is at most 3.6 GB.
+inline constexpr std::size_t kMaxConstraints = 2 * kMaxParticles;
 /// Whole scene: <expect> elements. The lab checks a handful of figures a scene (the project's
 /// scenes have at most 8), and each element's attributes are kept as strings, some 20 times the
 /// bytes they take in the file, so that a file of a million would take gigabytes: 1000 is over 100

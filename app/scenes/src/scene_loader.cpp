@@ -44,6 +44,12 @@ constexpr std::string_view kBodyElements[] = {"particle",     "stick",      "box
 // The body elements that make many bodies from one line (docs/scene-format.md, "Generators" and
 // "<ragdoll>"), which a file written body by body never holds (LoadOptions::bodyByBody).
 constexpr std::string_view kGeneratorElements[] = {"stack", "pyramid", "grid", "chain", "ragdoll"};
+// The body elements that each add one constraint, held together to kMaxConstraints (generators.h).
+// A <body-drive> or a <character> is held by the bodies: a body has one drive, a ragdoll one character.
+constexpr std::string_view kConstraintElements[] = {"stick",          "link",           "joint",
+                                                    "particle-joint", "joint-friction", "no-collision"};
+constexpr std::string_view kConstraintsCounted =
+    "constraints (<stick>, <link>, <joint>, <particle-joint>, <joint-friction> and <no-collision> elements)";
 
 // Every element a <scene> may hold, for the message that refuses another.
 std::string knownElements() {
@@ -1321,9 +1327,10 @@ struct SceneDocument {
 };
 
 // Parses `buffer` (which `lines` indexes) in place into `d`, and throws LoadError at the first
-// error a document shows without building its bodies.
+// error a document shows without building its bodies; at most `mostConstraints` constraint
+// elements (kConstraintElements) are taken.
 void readDocument(std::vector<char>& buffer, const std::string& file, const LineIndex& lines,
-                  const LoadOptions& options, SceneDocument& d) {
+                  const LoadOptions& options, std::size_t mostConstraints, SceneDocument& d) {
   pugi::xml_document& doc = d.doc;
   const std::size_t size = buffer.size();
   if (const std::string_view encoding = otherEncoding(std::string_view(buffer.data(), size));
@@ -1425,6 +1432,7 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
   std::vector<pugi::xml_node>& bodies = d.bodies;
   std::vector<Expectation>& expectations = d.expectations;
   std::map<std::string, int, std::less<>> seen;
+  std::size_t constraints = 0;
   for (pugi::xml_node child = root.first_child(); child; child = child.next_sibling()) {
     ElementReader e(child, lines, file);
     if (child.type() != pugi::node_element) e.fail("unexpected text inside <scene>");
@@ -1447,6 +1455,8 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
             "makes many bodies from one line, which a world written body by body never holds: the "
             "file is damaged");
       bodies.push_back(child);
+      if (isOneOf(kind, kConstraintElements))
+        detail::refuseMoreThan(e, ++constraints, mostConstraints, kConstraintsCounted);
     } else if (kind == "expect") {
       // Kept as written for the lab, which knows what each attribute means (and refuses one given
       // twice as it reads them); but which kind it is here, once, so that a misspelt kind is not a
@@ -1485,11 +1495,12 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
 }
 
 Scene build(std::vector<char>& buffer, const std::string& file, const std::filesystem::path& folder,
-            const ReadClips* readBefore, const LoadOptions& options) {
+            const ReadClips* readBefore, const LoadOptions& options,
+            std::size_t mostConstraints = detail::kMaxConstraints) {
   refuseLargerThan(buffer.size(), detail::kMaxSceneBytes, file);
   const LineIndex lines(buffer.data(), buffer.size());
   SceneDocument d;
-  readDocument(buffer, file, lines, options, d);
+  readDocument(buffer, file, lines, options, mostConstraints, d);
   std::optional<Scene> built;
   try {
     built.emplace(Scene{d.name, d.description, file, phys::World(d.world, d.solver), d.camera, {}});
@@ -1548,14 +1559,14 @@ const std::string* Expectation::find(std::string_view name) const {
 }
 
 Scene loadSceneText(std::string_view xml, const std::string& displayName, const LoadOptions& options) {
-  return detail::loadSceneText(xml, displayName, detail::kMaxSceneBytes, options);
+  return detail::loadSceneText(xml, displayName, detail::TextLimits{}, options);
 }
 
-Scene detail::loadSceneText(std::string_view xml, const std::string& displayName, std::size_t mostBytes,
+Scene detail::loadSceneText(std::string_view xml, const std::string& displayName, const TextLimits& limits,
                             const LoadOptions& options) {
-  refuseLargerThan(xml.size(), std::min(mostBytes, kMaxSceneBytes), displayName);
+  refuseLargerThan(xml.size(), std::min(limits.bytes, kMaxSceneBytes), displayName);
   std::vector<char> buffer(xml.begin(), xml.end());
-  return build(buffer, displayName, {}, nullptr, options);
+  return build(buffer, displayName, {}, nullptr, options, std::min(limits.constraints, kMaxConstraints));
 }
 
 namespace {
@@ -1570,7 +1581,7 @@ void readClips(SceneSource& source) {
   std::vector<char> buffer(source.text.begin(), source.text.end());
   const LineIndex lines(buffer.data(), buffer.size());
   SceneDocument d;
-  readDocument(buffer, source.file.string(), lines, {}, d);
+  readDocument(buffer, source.file.string(), lines, {}, detail::kMaxConstraints, d);
   for (const pugi::xml_node& character : d.bodies) {
     if (std::string_view(character.name()) != "character") continue;
     for (const char* attribute : kClipAttributes) {

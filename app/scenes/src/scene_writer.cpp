@@ -358,6 +358,18 @@ std::string particleJointElement(const phys::World& world, const phys::ParticleJ
   return e.empty();
 }
 
+// How many elements of the kinds kMaxConstraints holds the file would have: a box's own bracing is
+// its <box>'s, every other stick a <stick>.
+std::size_t constraintElements(const phys::World& world) {
+  const std::span<const phys::BodyId> owner = world.particleBodies();
+  const auto braces = std::count_if(world.sticks().begin(), world.sticks().end(), [&](const phys::Stick& s) {
+    return owner[s.a] != phys::kNoBody && owner[s.a] == owner[s.b];
+  });
+  return world.sticks().size() - static_cast<std::size_t>(braces) + world.links().size() +
+         world.rigidLinks().size() + world.rigidJoints().size() + world.particleJoints().size() +
+         world.jointFrictions().size() + world.ignoredCollisions().size();
+}
+
 std::string header(const phys::World& world) {
   char text[160];
   std::snprintf(
@@ -386,6 +398,12 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
   if (world.bodies().size() > detail::kMaxBodies) {
     throw std::invalid_argument("the world has " + std::to_string(world.bodies().size()) +
                                 " bodies; a scene file loads at most " + std::to_string(detail::kMaxBodies));
+  }
+  if (const std::size_t n = constraintElements(world); n > detail::kMaxConstraints) {
+    throw std::invalid_argument("the world has " + std::to_string(n) +
+                                " constraints (sticks, links, joints and pairs that do not collide); a scene "
+                                "file loads at most " +
+                                std::to_string(detail::kMaxConstraints));
   }
   if (scene.description.find_first_of("\n\r") != std::string::npos)
     throw std::invalid_argument("the scene's description holds a line break; a scene file's is one line");
