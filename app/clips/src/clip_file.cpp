@@ -29,6 +29,7 @@
 #include "fileio/files.h"
 #include "fileio/printable.h"
 #include "format_checks.h"
+#include "skeleton_only.h"
 
 namespace clips {
 namespace {
@@ -227,13 +228,19 @@ void checkBvh(std::string_view content, const std::string& name) {
 // The formats a clip is read from, by extension (a BVH also by its first word), and the check each
 // is given before assimp reads it. assimp reads some forty more, most of them meshes with no
 // skeleton; each is a reader more for a hostile file to reach, so none of them is asked.
+// FBX has no second function: assimp's own settings leave what it can unread (readOnlySkeletons).
 struct ClipFormat {
   const char* extension;
   void (*check)(std::string_view content, const std::string& name);
+  // The file as assimp is given it (skeleton_only.h), if not as it is.
+  std::optional<std::string> (*skeletonOnly)(std::string_view content, const std::string& name);
 };
-constexpr ClipFormat kClipFormats[] = {
-    {"bvh", checkBvh},         {"fbx", detail::checkFbx},     {"gltf", detail::checkGltf},
-    {"glb", detail::checkGlb}, {"dae", detail::checkCollada}, {"x", detail::checkX}};
+constexpr ClipFormat kClipFormats[] = {{"bvh", checkBvh, nullptr},
+                                       {"fbx", detail::checkFbx, nullptr},
+                                       {"gltf", detail::checkGltf, detail::gltfSkeletonOnly},
+                                       {"glb", detail::checkGlb, detail::glbSkeletonOnly},
+                                       {"dae", detail::checkCollada, detail::colladaSkeletonOnly},
+                                       {"x", detail::checkX, detail::xSkeletonOnly}};
 
 // No file but the one in memory: a glTF names its buffers by path, which assimp opened from the
 // working folder (not the clip's), and any path at all: a pipe there held the reader for good.
@@ -263,6 +270,18 @@ void keepOnlyReaderOf(Assimp::Importer& importer, const std::string& extension) 
     importer.UnregisterLoader(reader);
     delete reader;  // unregistered, it is ours
   }
+}
+
+// What a clip reads of an FBX: its nodes and their animation. Its skins' weights (a cluster's
+// vertex index is taken unchecked: 99 on a mesh of 3 failed an assertion that aborts), materials,
+// textures, cameras and lights are left unread.
+void readOnlySkeletons(Assimp::Importer& importer) {
+  // FBX's pivots as the nodes' own transforms, not as helper nodes the animation would key instead.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
+  for (const char* part : {AI_CONFIG_IMPORT_FBX_READ_WEIGHTS, AI_CONFIG_IMPORT_FBX_READ_MATERIALS,
+                           AI_CONFIG_IMPORT_FBX_READ_TEXTURES, AI_CONFIG_IMPORT_FBX_READ_CAMERAS,
+                           AI_CONFIG_IMPORT_FBX_READ_LIGHTS})
+    importer.SetPropertyBool(part, false);
 }
 
 // assimp's reason for refusing a file read from memory, and the line it names (0 if none). assimp
@@ -346,12 +365,14 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
                     "not a clip file: clips are read from BVH (.bvh), FBX (.fbx), glTF (.gltf, .glb), "
                     "COLLADA (.dae) and DirectX (.x) files");
   known->check(content, name);
+  const std::optional<std::string> skeleton =
+      known->skeletonOnly == nullptr ? std::nullopt : known->skeletonOnly(content, name);
+  const std::string_view given = skeleton ? std::string_view(*skeleton) : content;
   Assimp::Importer importer;
   importer.SetIOHandler(new NoOtherFiles);  // the importer owns it
   keepOnlyReaderOf(importer, format);
-  // FBX's pivots as the nodes' own transforms, not as helper nodes the animation would key instead.
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
-  const aiScene* scene = importer.ReadFileFromMemory(content.data(), content.size(), 0, format.c_str());
+  readOnlySkeletons(importer);
+  const aiScene* scene = importer.ReadFileFromMemory(given.data(), given.size(), 0, format.c_str());
   if (scene == nullptr) {
     const AssimpReason reason = assimpReason(importer.GetErrorString(), format);
     const std::string why = "not a clip assimp can read: " + reason.why;
