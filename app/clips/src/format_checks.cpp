@@ -18,19 +18,10 @@
 #include <pugixml.hpp>
 
 #include "clips/clip_file.h"
+#include "text_tokens.h"
 
 namespace clips::detail {
 namespace {
-
-std::size_t lineAt(std::string_view text, std::size_t offset) {
-  offset = std::min(offset, text.size());
-  return 1 + static_cast<std::size_t>(
-                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
-}
-
-bool isSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-}
 
 std::string tooDeep(const std::string& what) {
   return what + " nested more than " + std::to_string(kMaxDepth) + " deep (a skeleton's are tens deep)";
@@ -494,41 +485,6 @@ class ColladaWalker : public pugi::xml_tree_walker {
 
 // ---- FBX and .x as text ----
 
-// A text's tokens: words, strings and braces, each with its offset; comments begin with `comment`.
-class Tokens {
- public:
-  Tokens(std::string_view text, std::string_view comment) : text_(text), comment_(comment) {}
-
-  std::string_view next() {
-    for (;;) {
-      while (at_ < text_.size() && isSpace(text_[at_])) ++at_;
-      if (at_ >= text_.size()) return {};
-      if (!text_.substr(at_).starts_with(comment_)) break;
-      while (at_ < text_.size() && text_[at_] != '\n') ++at_;
-    }
-    start_ = at_;
-    if (text_[at_] == '"') {
-      const std::size_t close = text_.find('"', at_ + 1);
-      at_ = close == std::string_view::npos ? text_.size() : close + 1;
-    } else if (std::strchr("{},;", text_[at_]) != nullptr) {
-      ++at_;
-    } else {
-      while (at_ < text_.size() && !isSpace(text_[at_]) && std::strchr("{},;\"", text_[at_]) == nullptr)
-        ++at_;
-    }
-    return text_.substr(start_, at_ - start_);
-  }
-  /// The line of the token last read, and the bytes after it.
-  std::size_t line() const { return lineAt(text_, start_); }
-  std::size_t left() const { return text_.size() - at_; }
-
- private:
-  std::string_view text_;
-  std::string_view comment_;
-  std::size_t at_ = 0;
-  std::size_t start_ = 0;
-};
-
 std::optional<std::int64_t> integer(std::string_view word) {
   std::int64_t n = 0;
   const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
@@ -634,7 +590,7 @@ void checkFbx(std::string_view content, const std::string& name) {
     checkBinaryFbx(content, name);
     return;
   }
-  Tokens tokens(content, ";");
+  Tokens tokens(content, {";"});
   std::vector<std::string_view> path;  // the key before each open brace
   std::string_view key;
   std::size_t keyLine = 0;
@@ -699,11 +655,11 @@ void checkX(std::string_view content, const std::string& name) {
                                                      : "compressed binary") +
                         " .x file ('" + std::string(content.substr(0, 12)) +
                         "'): clips are read from .x files as text ('xof 0303txt 0032') alone");
-  Tokens tokens(content.substr(16), "//");
+  Tokens tokens(content.substr(kXHeader), kXComments);
   int depth = 0;
   std::string_view first;  // the first word of the block's header: its template's name
   bool header = true;
-  const auto line = [&] { return tokens.line() + lineAt(content, 16) - 1; };
+  const auto line = [&] { return tokens.line() + lineAt(content, kXHeader) - 1; };
   for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next()) {
     if (word == "{") {
       if (++depth > kMaxDepth) throw ClipError(name, line(), tooDeep("braces"));
