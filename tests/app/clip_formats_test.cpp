@@ -605,7 +605,8 @@ void expectSameClip(const phys::Clip& a, const phys::Clip& b, const std::string&
 
 // A clip reads nodes and their keys; assimp's readers take a mesh's and a skin's counts and indices
 // on trust (a COLLADA skin's joint index of 50,000,000 was written unchecked, a .x skin weight's
-// vertex index too, a .x face's material read from an empty list). What a clip does not read is
+// vertex index too, a .x face's material read from an empty list, an FBX mesh's layer past its
+// table). What a clip does not read is
 // taken out before assimp reads the file, so broken meshes and skins change nothing.
 TEST(ClipFormats, MeshesAndSkinsAreNotRead) {
   const std::string x = xFile();
@@ -628,7 +629,22 @@ TEST(ClipFormats, MeshesAndSkinsAreNotRead) {
   EXPECT_TRUE(has(refusal(hashed, "hashed.x"), "Mesh of 4000000000, more than the "))
       << refusal(hashed, "hashed.x");
 
+  // An FBX mesh's texture coordinates indexed per control point, with more indices (the polygon
+  // vertices') than control points: assimp read its table past its end.
   const testing_app::TempFolder dir;
+  const std::string fbx = legFile(dir, "fbxa", "fbx");
+  const std::size_t polygons = fbx.find("PolygonVertexIndex: *");
+  ASSERT_NE(polygons, std::string::npos);
+  const std::size_t polygonsEnd = fbx.find('}', polygons) + 1;
+  const std::string uv =
+      "PolygonVertexIndex: *6 {\n a: 0,1,-3,0,1,-3\n}\n"
+      "LayerElementUV: 0 {\n Version: 101\n Name: \"uv\"\n MappingInformationType: \"ByVertice\"\n"
+      " ReferenceInformationType: \"IndexToDirect\"\n UV: *2 {\n a: 0,0\n }\n UVIndex: *6 {\n a: "
+      "0,0,0,0,0,0\n }\n}";
+  const std::string layered = fbx.substr(0, polygons) + uv + fbx.substr(polygonsEnd);
+  expectSameClip(clips::parseClip(layered, "layered.fbx", "fbx"), clips::parseClip(fbx, "leg.fbx", "fbx"),
+                 "layered.fbx");
+
   const std::string dae = legFile(dir, "collada", "dae");
   const std::string instance = "<instance_geometry url=\"#";
   ASSERT_TRUE(has(dae, instance) && has(dae, "</instance_geometry>"));

@@ -228,7 +228,6 @@ void checkBvh(std::string_view content, const std::string& name) {
 // The formats a clip is read from, by extension (a BVH also by its first word), and the check each
 // is given before assimp reads it. assimp reads some forty more, most of them meshes with no
 // skeleton; each is a reader more for a hostile file to reach, so none of them is asked.
-// FBX has no second function: assimp's own settings leave what it can unread (readOnlySkeletons).
 struct ClipFormat {
   const char* extension;
   void (*check)(std::string_view content, const std::string& name);
@@ -236,7 +235,7 @@ struct ClipFormat {
   std::optional<std::string> (*skeletonOnly)(std::string_view content, const std::string& name);
 };
 constexpr ClipFormat kClipFormats[] = {{"bvh", checkBvh, nullptr},
-                                       {"fbx", detail::checkFbx, nullptr},
+                                       {"fbx", detail::checkFbx, detail::fbxSkeletonOnly},
                                        {"gltf", detail::checkGltf, detail::gltfSkeletonOnly},
                                        {"glb", detail::checkGlb, detail::glbSkeletonOnly},
                                        {"dae", detail::checkCollada, detail::colladaSkeletonOnly},

@@ -2,6 +2,7 @@
 #include "skeleton_only.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <iterator>
 #include <sstream>
 #include <vector>
@@ -27,7 +28,83 @@ bool unreadCollada(const pugi::xml_node& node) {
              std::end(kUnreadCollada);
 }
 
+// A little-endian number of `width` bytes at `at`.
+std::uint64_t little(std::string_view bytes, std::size_t at, std::size_t width) {
+  std::uint64_t value = 0;
+  for (std::size_t i = width; i-- > 0;) value = value << 8 | static_cast<unsigned char>(bytes[at + i]);
+  return value;
+}
+
+// An FBX object type assimp knows no class for, of the length of "Geometry": an object renamed to it
+// is read as a record and never made a mesh.
+constexpr std::string_view kFbxUnread = "Unread__";
+
+// Where each "Geometry" record under "Objects" names itself in a binary FBX (checkBinaryFbx has
+// checked that every record lies within its parent and the file). The header is 27 bytes; a record
+// is its end, its count of properties and their length (4 bytes each before version 7500, 8 after),
+// its name's length in a byte, its name, its properties, then its children.
+std::vector<std::size_t> binaryFbxGeometries(std::string_view bytes) {
+  constexpr std::size_t kFirstRecord = 27;
+  std::vector<std::size_t> names;
+  if (bytes.size() < kFirstRecord) return names;
+  const std::size_t word = little(bytes, 23, 4) >= 7500 ? 8 : 4;
+  const std::size_t header = 3 * word + 1;
+  // The records from `at` to `limit`, each given to `visit` with where its name starts, its name and
+  // where its children start; false where one does not lie within them.
+  const auto walk = [&](std::uint64_t at, std::uint64_t limit, const auto& visit) {
+    while (limit >= header && at <= limit - header) {
+      const std::uint64_t end = little(bytes, at, word);
+      const std::uint64_t length = static_cast<unsigned char>(bytes[at + 3 * word]);
+      if (end == 0 || end <= at || end > limit || at + header + length > end) return;
+      const std::uint64_t children = at + header + length + little(bytes, at + 2 * word, word);
+      visit(at + header, bytes.substr(at + header, length), std::min(children, end), end);
+      at = end;
+    }
+  };
+  walk(kFirstRecord, bytes.size(),
+       [&](std::uint64_t, std::string_view name, std::uint64_t from, std::uint64_t end) {
+         if (name != "Objects") return;
+         walk(from, end, [&](std::uint64_t nameAt, std::string_view child, std::uint64_t, std::uint64_t) {
+           if (child == "Geometry") names.push_back(nameAt);
+         });
+       });
+  return names;
+}
+
+// Where each "Geometry:" key under "Objects:" starts in a text FBX.
+std::vector<std::size_t> textFbxGeometries(std::string_view text) {
+  std::vector<std::size_t> names;
+  Tokens tokens(text, {";"});
+  std::string_view key;  // the last key read
+  int depth = 0;
+  bool inObjects = false;
+  for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next()) {
+    if (word == "{") {
+      if (depth++ == 0) inObjects = key == "Objects:";
+    } else if (word == "}") {
+      depth = std::max(depth - 1, 0);
+    } else if (word.ends_with(':') && !word.starts_with('"')) {
+      key = word;
+      if (depth == 1 && inObjects && word == "Geometry:") names.push_back(tokens.start());
+    }
+  }
+  return names;
+}
+
 }  // namespace
+
+std::optional<std::string> fbxSkeletonOnly(std::string_view content, const std::string& /*name*/) {
+  // A mesh's layers (normals, texture coordinates, colours) index tables the reader sized by another
+  // count: a layer of texture coordinates indexed per control point with more indices than control
+  // points was read past its table. Every Geometry object is renamed, in place so that a binary
+  // file's offsets hold, to a type assimp does not read.
+  const bool binary = content.starts_with("Kaydara FBX Binary");
+  const std::vector<std::size_t> names = binary ? binaryFbxGeometries(content) : textFbxGeometries(content);
+  if (names.empty()) return std::nullopt;
+  std::string out(content);
+  for (const std::size_t at : names) out.replace(at, kFbxUnread.size(), kFbxUnread);
+  return out;
+}
 
 std::optional<std::string> colladaSkeletonOnly(std::string_view content, const std::string& /*name*/) {
   pugi::xml_document document;

@@ -15,6 +15,8 @@ namespace clips::detail {
 std::optional<std::string> gltfSkeletonOnly(std::string_view json, const std::string& name);
 /// Binary glTF: the same, its JSON chunk rewritten, its binary chunk kept.
 std::optional<std::string> glbSkeletonOnly(std::string_view content, const std::string& name);
+/// FBX, text or binary: the file with every Geometry object renamed to a type assimp does not read.
+std::optional<std::string> fbxSkeletonOnly(std::string_view content, const std::string& name);
 /// COLLADA: the document without its geometries, controllers, materials, effects, images, cameras
 /// and lights, or any instance of them.
 std::optional<std::string> colladaSkeletonOnly(std::string_view content, const std::string& name);
