@@ -415,6 +415,7 @@ TEST(ClipFormats, GltfNodesThatUnfoldTooFarAreRefused) {
            "]}";
   };
   std::vector<std::string> doubling;
+  doubling.reserve(26);
   for (int i = 0; i < 25; ++i) doubling.push_back(std::to_string(i + 1) + ", " + std::to_string(i + 1));
   doubling.emplace_back("");
   // Node k unfolds to 2^(26 - k) - 1 nodes: node 9 is the first past 100,000.
