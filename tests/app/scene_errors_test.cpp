@@ -926,6 +926,17 @@ TEST(SceneErrors, ALessThanOutsideAttributeValuesIsNotRefusedForIt) {
                                  "", "takes no child elements or text"});
 }
 
+// "&1a;", "&-a;" and "&.5;" start no name, so they are no reference, yet they end as an entity
+// reference does: two refusals at one '&'. Each is said as the entity reference it looks like.
+TEST(SceneErrors, AnAmpersandBothAnEntityAndNoReferenceIsSaidAsTheEntity) {
+  for (const std::string reference : {"&1a;", "&-a;", "&.5;"}) {
+    testing_scenes::expectRefused(
+        {reference.c_str(),
+         ("<scene name='s'>\n<box pos='0 1 0'\n name='" + reference + "'/>\n</scene>").c_str(), 3, "name",
+         ("holds the entity reference " + reference + ",").c_str()});
+  }
+}
+
 // A quote in a processing instruction or a conditional section of the DOCTYPE is only text there,
 // as pugixml reads it; taken for the start of a quoted value, it would hide every reference after
 // it from the check, and name='&a;' would load as that text, name='a&#0;b' as "a".

@@ -1055,18 +1055,6 @@ std::size_t pastSection(std::string_view text, std::size_t i) {
   return i;
 }
 
-// Where the next '&' from `i` on stands in text that pugixml decodes (an attribute's value or an
-// element's text), or npos: comments, CDATA, processing instructions and the DOCTYPE hold none.
-std::size_t nextReference(std::string_view text, std::size_t i) {
-  while ((i = text.find_first_of("<&", i)) != std::string_view::npos) {
-    if (text[i] == '&') return i;
-    const std::size_t past = pastSection(text, i);
-    if (past == std::string_view::npos) return past;
-    i = past == i ? i + 1 : past;
-  }
-  return std::string_view::npos;
-}
-
 // Whether XML forbids the character `code` as a character reference's, beyond the control
 // characters that every value refuses with its own message (ElementReader): U+0000, which pugixml
 // would end the value at; a surrogate, U+FFFE, U+FFFF and anything past U+10FFFF, which pugixml
@@ -1174,15 +1162,6 @@ std::string_view bareAmpersandAt(std::string_view rest) {
   return rest.substr(0, shown);
 }
 
-// The first reference in `text` that `at` finds at an '&' outside comments, CDATA, processing
-// instructions and the DOCTYPE; empty if none.
-std::string_view firstReference(std::string_view text, std::string_view (*at)(std::string_view)) {
-  for (std::size_t i = 0; (i = nextReference(text, i)) != std::string_view::npos; ++i) {
-    if (const std::string_view found = at(text.substr(i)); !found.empty()) return found;
-  }
-  return {};
-}
-
 // Markup the loader refuses in a value or text (a reference, a '<'), found before parsing in place
 // rewrites the buffer: where it is and what to say of it.
 struct Refusal {
@@ -1190,33 +1169,36 @@ struct Refusal {
   std::string message;
 };
 
-// The first in the text of: a character reference to a character XML forbids (forbiddenCode), an
-// entity reference pugixml would take as text, an '&' that starts no reference.
-Refusal refusedReference(std::string_view text) {
-  const std::string_view character = firstReference(text, forbiddenCharacterAt);
-  const std::string_view entity = firstReference(text, unexpandedEntityAt);
-  const std::string_view bare = firstReference(text, bareAmpersandAt);
-  // The first in the file of any kind: a later one of another kind must not hide it.
-  auto before = [](std::string_view a, std::string_view b) {
-    return !a.empty() && (b.empty() || std::less<>()(a.data(), b.data()));
-  };
-  if (!character.empty() && !before(entity, character) && !before(bare, character)) {
+// The refusal of the '&' at the start of `rest`, or none: a character reference to a character XML
+// forbids (forbiddenCode), an entity reference pugixml would take as text, an '&' that starts no
+// reference. An '&' can be both of the last two ("&1a;" starts no name, yet ends as an entity
+// reference does); it is said as the entity reference it looks like.
+Refusal refusedReference(std::string_view rest) {
+  if (const std::string_view character = forbiddenCharacterAt(rest); !character.empty()) {
     return {character.data(), "holds the character reference " + std::string(character) + " (" +
                                   codePointName(characterReferenceAt(character)->code) +
                                   "), which XML does not allow"};
   }
-  if (!entity.empty() && !before(bare, entity)) {
+  if (const std::string_view entity = unexpandedEntityAt(rest); !entity.empty()) {
     return {entity.data(), "holds the entity reference " + std::string(entity) +
                                ", which would load as that text: entities are not expanded (a <!DOCTYPE> "
                                "declares none that the loader reads); write the text itself, or a character "
                                "reference such as &#233;"};
   }
-  if (!bare.empty()) {
+  if (const std::string_view bare = bareAmpersandAt(rest); !bare.empty()) {
     return {bare.data(), "holds '" + std::string(bare) +
                              "', an '&' that starts no reference (&name;, &#N; or &#xH;): XML does not "
                              "allow it; write &amp; for the character '&'"};
   }
   return {};
+}
+
+// A '<' in an attribute's value, refused: XML does not allow one there, and pugixml keeps it as
+// text, so that name="a<b" would load and a tool that reads XML as XML would refuse the file.
+Refusal refusedLessThan(const char* at) {
+  return {at,
+          "holds '<', which XML does not allow in an attribute value; write &lt; for the "
+          "character '<'"};
 }
 
 // Where the first of `a`, `b` or `c` from `i` on stands, or npos. A plain loop: find_first_of looks
@@ -1229,44 +1211,49 @@ std::size_t firstOf(std::string_view text, std::size_t i, char a, char b, char c
   return std::string_view::npos;
 }
 
-// Where the first '<' inside an attribute's quoted value stands, or npos. XML does not allow one
-// there, and pugixml keeps it as text: name="a<b" would load, and a tool that reads XML as XML
-// would refuse the file. Only tags hold values: text, comments, CDATA, processing instructions and
-// the DOCTYPE are stepped over as pugixml steps over them. Each byte is looked at once.
-std::size_t lessThanInValue(std::string_view text) {
-  constexpr auto npos = std::string_view::npos;
-  for (std::size_t i = 0; (i = text.find('<', i)) != npos;) {
-    if (const std::size_t past = pastSection(text, i); past != i) {
-      i = past;
-      continue;
-    }
-    // A tag: its quoted values, up to the '>' that ends it.
-    for (++i; (i = firstOf(text, i, '"', '\'', '>')) != npos && text[i] != '>'; ++i) {
-      const char quote = text[i];
-      i = firstOf(text, i + 1, quote, quote, '<');  // the value's end, or a '<' in it
-      if (i == npos) return npos;                   // the parse says so
-      if (text[i] == '<') return i;
-    }
+// The first refusal in the attribute value whose opening quote is at `i`: a '<', or an '&' that
+// refusedReference refuses. Leaves `i` at the value's closing quote, or at npos if it has none (the
+// parse says so).
+Refusal refusalInValue(std::string_view text, std::size_t& i) {
+  const char quote = text[i];
+  while ((i = firstOf(text, i + 1, quote, '&', '<')) != std::string_view::npos && text[i] != quote) {
+    if (text[i] == '<') return refusedLessThan(text.data() + i);
+    if (Refusal refused = refusedReference(text.substr(i)); refused.at != nullptr) return refused;
   }
-  return npos;
+  return {};
 }
 
-// The first '<' in an attribute's value (lessThanInValue), refused.
-Refusal refusedLessThan(std::string_view text) {
-  const std::size_t at = lessThanInValue(text);
-  if (at == std::string_view::npos) return {};
-  return {text.data() + at,
-          "holds '<', which XML does not allow in an attribute value; write &lt; for the "
-          "character '<'"};
+// The first refusal in the quoted values of the tag whose '<' is at `i`. Leaves `i` at the tag's
+// '>', or at npos if it has none. A quote of either kind starts a value, and a '>' in one ends
+// nothing, as pugixml reads a tag. Between its values pugixml takes no '&' and no '<' (the parse
+// fails there), so they are not looked for.
+Refusal refusalInTag(std::string_view text, std::size_t& i) {
+  while ((i = firstOf(text, i + 1, '"', '\'', '>')) != std::string_view::npos && text[i] != '>') {
+    Refusal refused = refusalInValue(text, i);
+    if (refused.at != nullptr || i == std::string_view::npos) return refused;
+  }
+  return {};
 }
 
-// The first in the text of what refusedReference and refusedLessThan refuse.
+// The first refusal in the text, whatever its kind, in one pass in the file's order: an '&' that
+// refusedReference refuses in an element's text or an attribute's value, or a '<' in a value.
+// Comments, CDATA, processing instructions and the DOCTYPE are stepped over as pugixml steps over
+// them (pastSection): it decodes nothing there, and a '<' or a quote there is only text.
 Refusal firstRefusal(std::string_view text) {
-  Refusal reference = refusedReference(text);
-  Refusal lessThan = refusedLessThan(text);
-  if (lessThan.at != nullptr && (reference.at == nullptr || std::less<>()(lessThan.at, reference.at)))
-    return lessThan;
-  return reference;
+  constexpr auto npos = std::string_view::npos;
+  for (std::size_t i = 0; (i = firstOf(text, i, '<', '&', '&')) != npos;) {
+    Refusal refused;
+    if (text[i] == '&') {
+      refused = refusedReference(text.substr(i));
+      ++i;
+    } else if (const std::size_t past = pastSection(text, i); past != i) {
+      i = past;  // npos if the section does not end: the parse says so
+    } else {
+      refused = refusalInTag(text, i);
+    }
+    if (refused.at != nullptr) return refused;
+  }
+  return {};
 }
 
 // Refuses `refused` (at a place in the buffer parsed in place) in the value that holds it: the
