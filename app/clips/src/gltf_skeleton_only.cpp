@@ -19,6 +19,7 @@
 
 #include "clips/clip_file.h"
 #include "skeleton_only.h"
+#include "text_tokens.h"
 
 namespace clips::detail {
 namespace {
@@ -29,12 +30,6 @@ using Json = nlohmann::json;
 // assimp's own limit for a stride, and keeps every sum and product below in 64 bits.
 constexpr std::uint64_t kMaxWhole = 0xffffffff;
 constexpr std::uint32_t kFloat = 5126;  // glTF's componentType for a 32-bit float
-
-std::size_t lineAt(std::string_view text, std::size_t offset) {
-  offset = std::min(offset, text.size());
-  return 1 + static_cast<std::size_t>(
-                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
-}
 
 // nlohmann's reason without its tag and line ("[json.exception.parse_error.101] parse error at
 // line 2, "): the line is given by the ClipError.
