@@ -370,39 +370,6 @@ TEST(ClipFormats, AGlbLengthPastTheFilesEndIsRefused) {
   EXPECT_TRUE(has(one, "one.gltf: not a clip assimp can read: ") && has(one, "1.0")) << one;
 }
 
-// assimp adds a glTF's offsets and lengths unchecked in 64 bits (a bufferView's byteOffset of
-// 2^64 - 8 wrapped its bounds check, and it read before its buffer) and allocates a sparse
-// accessor's elements before it reads any (400,000,000 vec4 asked for 6.4 GB). A clip's own bytes
-// hold every element and offset, so a size, offset or count past the file's bytes is refused.
-TEST(ClipFormats, AGltfSizePastTheFilesBytesIsRefused) {
-  const testing_app::TempFolder dir;
-  const std::string gltf = legFile(dir, "gltf2", "gltf");
-  // `gltf` with the number after the first `key` made `value`, and the line it is on.
-  const auto with = [&](const std::string& key, const std::string& value) {
-    const std::size_t digits = gltf.find_first_of("0123456789", gltf.find("\"" + key + "\""));
-    const std::size_t end = gltf.find_first_not_of("0123456789", digits);
-    const std::string line = std::to_string(1 + std::count(gltf.begin(), gltf.begin() + digits, '\n'));
-    return std::pair{gltf.substr(0, digits) + value + gltf.substr(end), line};
-  };
-  // What `file` named `name` is refused with when `what` is its size past its bytes.
-  const auto refusedFor = [](const std::pair<std::string, std::string>& file, const std::string& name,
-                             const std::string& what) {
-    return name + ":" + file.second + ": " + what + " is more than the file's " +
-           std::to_string(file.first.size()) + " bytes could hold";
-  };
-  const auto offset = with("byteOffset", "18446744073709551608");
-  EXPECT_EQ(refusal(offset.first, "offset.gltf"),
-            refusedFor(offset, "offset.gltf", R"("byteOffset": 18446744073709551608)"));
-  const auto count = with("count", "400000000");
-  EXPECT_EQ(refusal(count.first, "count.gltf"), refusedFor(count, "count.gltf", R"("count": 400000000)"));
-  const auto sparse = with("count", R"(3, "sparse": {"count": 400000000, "indices": {"bufferView": 0, )"
-                                    R"("componentType": 5125}, "values": {"bufferView": 0}})");
-  EXPECT_EQ(refusal(sparse.first, "sparse.gltf"), refusedFor(sparse, "sparse.gltf", R"("count": 400000000)"));
-  // What an application keeps in "extras" is its own.
-  const auto extras = with("count", R"(3, "extras": {"count": 400000000})");
-  EXPECT_EQ(refusal(extras.first, "extras.gltf").find("is more than the file's"), std::string::npos);
-}
-
 // assimp imports a glTF node under each node that lists it as a child, as often as it does: 25
 // nodes each listing the next twice unfolded to 2^25 (2 GB), and a chain whose nodes the root lists
 // too nests as deep as the chain, though each node is one level below the root.
@@ -492,6 +459,9 @@ TEST(ClipFormats, CountsTheFileDoesNotHoldAreRefusedWithTheLine) {
   const std::string bigFbx = replaced(fbx, keyTimes + " {", "KeyTime: *4000000000 {");
   const std::string f = refusal(bigFbx, "big.fbx");
   EXPECT_TRUE(has(f, ": KeyTime: *4000000000 holds ")) << f;
+  // assimp ends a key at its colon: "KeyTime:*N" is the key and the count, as with a space.
+  const std::string tight = refusal(replaced(fbx, keyTimes + " {", "KeyTime:*4000000000 {"), "tight.fbx");
+  EXPECT_TRUE(has(tight, ": KeyTime: *4000000000 holds ")) << tight;
 
   const std::string bigX =
       replaced(xFile(), "Frame root {", "Mesh m { 4000000000; 0.0;0.0;0.0;; }\nFrame root {");
@@ -589,6 +559,17 @@ TEST(ClipFormats, ColladaNodeInstancesAreRefusedWhereTheyNeverEnd) {
   EXPECT_EQ(refusalOf(doubling, ""),
             "nodes.dae:3: <node> unfolds through its <instance_node>s to more than 100000 nodes (a skeleton "
             "has tens)");
+  // A chain of 300 library nodes each instancing the next nests 300 deep: n43 is the first with more
+  // than 256 levels below it.
+  std::string chain;
+  for (int i = 0; i < 300; ++i)
+    chain += "<node id=\"n" + std::to_string(i) + "\"><instance_node url=\"#n" + std::to_string(i + 1) +
+             "\"/></node>";
+  chain += "<node id=\"n300\"/>";
+  EXPECT_EQ(
+      refusalOf(chain, ""),
+      "nodes.dae:3: <node> unfolds through its <instance_node>s to nodes below it nested more than 256 deep "
+      "(a skeleton's are tens deep)");
   // A node instanced twice, from the library, is no cycle.
   const std::string twice = refusalOf(
       R"(<node id="leg"><node id="foot"/></node>)",
@@ -625,6 +606,11 @@ TEST(ClipFormats, MeshesAndSkinsAreNotRead) {
                                         "template Mesh {\n <3D82AB44-62DA-11cf-AB39-0020AF71E433>\n DWORD "
                                         "nVertices;\n [...]\n}\nAnimTicksPerSecond");
   expectSameClip(clips::parseClip(declared, "template.x", "x"), plain, "template.x");
+  // assimp reads a quote as a character like any other: a Mesh after one is a Mesh.
+  const std::string quoted =
+      replaced(x, frame, frame + "Foo { \" }\nMesh m {\n 400000000;\n 0.0;0.0;0.0;;\n}\n\" }\n");
+  EXPECT_TRUE(has(refusal(quoted, "quoted.x"), "Mesh of 400000000, more than the "))
+      << refusal(quoted, "quoted.x");
   // assimp takes "#" as a comment, as the checks now do: the count after it is the mesh's.
   const std::string hashed = replaced(x, frame, frame + "Mesh m { # 9\n4000000000; 0.0;0.0;0.0;; 0;; }\n");
   EXPECT_TRUE(has(refusal(hashed, "hashed.x"), "Mesh of 4000000000, more than the "))
@@ -643,8 +629,12 @@ TEST(ClipFormats, MeshesAndSkinsAreNotRead) {
       " ReferenceInformationType: \"IndexToDirect\"\n UV: *2 {\n a: 0,0\n }\n UVIndex: *6 {\n a: "
       "0,0,0,0,0,0\n }\n}";
   const std::string layered = fbx.substr(0, polygons) + uv + fbx.substr(polygonsEnd);
-  expectSameClip(clips::parseClip(layered, "layered.fbx", "fbx"), clips::parseClip(fbx, "leg.fbx", "fbx"),
-                 "layered.fbx");
+  const phys::Clip leg = clips::parseClip(fbx, "leg.fbx", "fbx");
+  expectSameClip(clips::parseClip(layered, "layered.fbx", "fbx"), leg, "layered.fbx");
+  // assimp ends a key at its colon: "Geometry:1," is a Geometry as "Geometry: 1," is.
+  ASSERT_TRUE(has(layered, "\tGeometry: "));
+  expectSameClip(clips::parseClip(replaced(layered, "\tGeometry: ", "\tGeometry:"), "tight.fbx", "fbx"), leg,
+                 "tight.fbx");
 
   const std::string dae = legFile(dir, "collada", "dae");
   const std::string instance = "<instance_geometry url=\"#";
@@ -898,6 +888,17 @@ TEST(ClipFormats, FbxModelsThatNestWithoutEndAreRefusedAtTheLink) {
       refusal(textFbx(names, doubled), "twice.fbx"),
       "twice.fbx:49: model 4 'm4' unfolds, a copy under each model it is linked to, to more than 100000 "
       "nodes (a skeleton has tens)");
+  // A chain of 300 models nests 300 deep, which assimp and the clip's bones recurse through: model
+  // 300 - 257 = 43 is the first with more than 256 below it, linked on line 2 x 300 + 3 + 43.
+  std::vector<std::string> chainNames;
+  std::string chain = "\tC: \"OO\", 1, 0\n";
+  for (int i = 1; i <= 300; ++i) {
+    chainNames.push_back("c" + std::to_string(i));
+    if (i < 300) chain += "\tC: \"OO\", " + std::to_string(i + 1) + ", " + std::to_string(i) + "\n";
+  }
+  EXPECT_EQ(refusal(textFbx(chainNames, chain), "chain.fbx"),
+            "chain.fbx:646: model 43 'c43' has models linked 257 deep under it: more than 256 (a skeleton's "
+            "are tens deep)");
   // A model linked under two others is a copy under each, no cycle.
   EXPECT_FALSE(has(refusal(textFbx({"hips", "knee", "foot"},
                                    "\tC: \"OO\", 1, 0\n\tC: \"OO\", 2, 1\n"

@@ -1,7 +1,7 @@
 // What assimp is given of a glTF clip (app/clips/src/gltf_skeleton_only.cpp; docs/physics.md,
 // "Animation"): the nodes and the keys of their rotations, translations and scales alone, what
-// those keys are read from checked to lie within what holds them. The files are those the clip
-// fuzzer found crashing assimp 5.2's reader, each a change to one small clip.
+// those keys are read from checked to lie within what holds them. The files are those a probe of
+// assimp 5.2's reader found crashing it, each a change to one small clip.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -218,7 +218,7 @@ TEST(ClipGltf, IndicesPastWhatTheyIndexAreRefused) {
 
 TEST(ClipGltf, MeshesSkinsCamerasAndWeightsAreLeftOut) {
   expectTheClip(clipDocument().dump(), "clip.gltf");
-  // What the fuzzer found: a skin with no inverse bind matrices, WEIGHTS_1 with no JOINTS_1, line
+  // What the probe found: a skin with no inverse bind matrices, WEIGHTS_1 with no JOINTS_1, line
   // loops, strips and fans of too few vertices or indices past them; and a weights channel of no
   // times (a division by zero) or a cubic spline of one key a time (a stride that wrapped, 17 GB).
   Json doc = clipDocument();
@@ -226,13 +226,18 @@ TEST(ClipGltf, MeshesSkinsCamerasAndWeightsAreLeftOut) {
                                          "extensions": {"KHR_lights_punctual": {"light": 0}}, "extras": {"a": 1}})"));
   doc["accessors"].push_back(
       Json::parse(R"({"bufferView": 0, "componentType": 5121, "count": 0, "type": "SCALAR"})"));
+  // A compressed mesh's accessor (KHR_draco_mesh_compression) counts elements no buffer view holds:
+  // never read, so never refused for it.
+  doc["accessors"].push_back(Json::parse(R"({"componentType": 5126, "count": 4000000000, "type": "VEC3"})"));
   doc["meshes"] = Json::parse(R"([{"primitives": [
       {"attributes": {"POSITION": 2, "WEIGHTS_0": 1, "WEIGHTS_1": 1, "JOINTS_0": 0}},
       {"attributes": {"POSITION": 2}, "indices": 4, "mode": 2},
       {"attributes": {"POSITION": 4}, "mode": 3},
       {"attributes": {"POSITION": 2}, "indices": 4, "mode": 5},
       {"attributes": {"POSITION": 2}, "indices": 4, "mode": 6},
-      {"attributes": {"POSITION": 99}}]}])");
+      {"attributes": {"POSITION": 99}},
+      {"attributes": {"POSITION": 5}, "extensions": {"KHR_draco_mesh_compression": {"bufferView": 0,
+                                                                                  "attributes": {"POSITION": 0}}}}]}])");
   doc["skins"] = Json::parse(R"([{"joints": [1, 2]}])");
   doc["cameras"] = Json::parse(R"([{"type": "perspective", "perspective": {"yfov": -1, "znear": 0}}])");
   doc["animations"][0]["channels"].push_back(

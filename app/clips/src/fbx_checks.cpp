@@ -314,6 +314,7 @@ void FbxCurves::checkModels(const std::string& name) const {
   enum class Mark { open, done };
   std::map<std::int64_t, Mark> marks{{0, Mark::open}};
   std::map<std::int64_t, std::uint64_t> unfolded;
+  std::map<std::int64_t, int> height;  // the levels below a model, once unfolded
   struct Frame {
     Child self;  // the link that put the model here (none for the root)
     std::size_t next;
@@ -335,8 +336,17 @@ void FbxCurves::checkModels(const std::string& name) const {
       continue;
     }
     std::uint64_t nodes = 1;
-    for (const Child& child : children)
-      if (models_.contains(child.id)) nodes = std::min(nodes + unfolded[child.id], kMaxUnfoldedNodes + 1);
+    int levels = 0;
+    for (const Child& child : children) {
+      if (!models_.contains(child.id)) continue;
+      nodes = std::min(nodes + unfolded[child.id], kMaxUnfoldedNodes + 1);
+      levels = std::max(levels, height[child.id] + 1);
+    }
+    // assimp converts a model's children by recursing once a level, as the clip collects its bones.
+    if (levels > kMaxDepth && top.self.id != 0)
+      refuse(top.self, modelName(top.self.id) + " has models linked " + std::to_string(levels) +
+                           " deep under it: more than " + std::to_string(kMaxDepth) +
+                           " (a skeleton's are tens deep)");
     if (nodes > kMaxUnfoldedNodes && top.self.id != 0)
       refuse(top.self, modelName(top.self.id) +
                            " unfolds, a copy under each model it is linked to, to more than " +
@@ -345,6 +355,7 @@ void FbxCurves::checkModels(const std::string& name) const {
       throw ClipError(name, "the models unfold, a copy under each model they are linked to, to more than " +
                                 std::to_string(kMaxUnfoldedNodes) + " nodes (a skeleton has tens)");
     unfolded[top.self.id] = nodes;
+    height[top.self.id] = levels;
     marks[top.self.id] = Mark::done;
     path.pop_back();
   }

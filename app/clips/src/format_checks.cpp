@@ -30,7 +30,7 @@ std::string tooDeep(const std::string& what) {
 // ---- glTF ----
 
 // An open JSON container, and what it is in a glTF: the top-level "nodes" array, a node, or a
-// node's "children"; or what an "extras" holds.
+// node's "children".
 struct JsonFrame {
   char type;        // '{' or '['
   std::string key;  // an object's last key
@@ -39,20 +39,14 @@ struct JsonFrame {
   bool node = false;
   bool children = false;
   std::size_t nodeIndex = 0;  // a node's, or the node whose children these are
-  bool extras = false;        // the application's own data, which the reader does not interpret
 };
 
-// Sizes, offsets and counts of bytes or elements in the file: assimp adds and multiplies them in
-// 64 bits unchecked, and allocates a sparse accessor's elements before it reads any.
-bool isSize(std::string_view key) {
-  return key == "byteOffset" || key == "byteLength" || key == "byteStride" || key == "count";
-}
-
 // The JSON's containers, nested no deeper than kMaxDepth (assimp's JSON reader recurses once a level:
-// 200,000 '[' overflowed the stack), every size (isSize) no more than `fileBytes`, and each node's
-// children; a JSON that is not well formed is left for assimp's reader to refuse.
-std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, std::size_t fileBytes,
-                                                     const std::string& name, const std::string& where) {
+// 200,000 '[' overflowed the stack), and each node's children; a JSON that is not well formed is
+// left to the skeleton-only copy to refuse (gltf_skeleton_only.cpp), which also bounds every size
+// and index assimp is given.
+std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, const std::string& name,
+                                                     const std::string& where) {
   std::vector<std::vector<std::uint64_t>> children;
   std::vector<JsonFrame> stack;
   std::size_t i = 0;
@@ -74,7 +68,6 @@ std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, std:
         frame.nodes = c == '[' && stack.size() == 1 && parent.type == '{' && parent.key == "nodes";
         frame.node = c == '{' && parent.nodes;
         frame.children = c == '[' && parent.node && parent.key == "children";
-        frame.extras = parent.extras || (parent.type == '{' && parent.key == "extras");
         if (frame.node) {
           frame.nodeIndex = children.size();
           children.emplace_back();
@@ -105,16 +98,6 @@ std::vector<std::vector<std::uint64_t>> scanGltfJson(std::string_view json, std:
       if (!stack.empty() && stack.back().children) {
         if (const std::optional<std::uint64_t> child = wholeNumber(json.substr(start, i - start)))
           children[stack.back().nodeIndex].push_back(*child);
-      }
-      // A file's own bytes hold every element and every offset: a bufferView's byteOffset of 2^64 - 8
-      // wrapped assimp's bounds check and read before its buffer; 400,000,000 vec4 of a sparse
-      // accessor asked for 6.4 GB.
-      const JsonFrame* frame = stack.empty() ? nullptr : &stack.back();
-      if (frame != nullptr && frame->type == '{' && !frame->extras && isSize(frame->key)) {
-        const std::string_view value = json.substr(start, i - start);
-        if (wholeNumber(value).value_or(0) > fileBytes)
-          fail("\"" + frame->key + "\": " + std::string(value) + " is more than the file's " +
-               std::to_string(fileBytes) + " bytes could hold");
       }
     }
   }
@@ -267,12 +250,12 @@ constexpr std::uint64_t kMostValues = std::uint64_t{1} << 32;
 
 class ColladaWalker : public pugi::xml_tree_walker {
  public:
-  ColladaWalker(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+  ColladaWalker(std::string_view text, const std::string& name) : lines_(text), name_(name) {}
 
   bool for_each(pugi::xml_node& node) override {
     if (node.type() != pugi::node_element) return true;
     const std::size_t line =
-        lineAt(text_, static_cast<std::size_t>(std::max<std::ptrdiff_t>(node.offset_debug(), 0)));
+        lines_.lineOf(static_cast<std::size_t>(std::max<std::ptrdiff_t>(node.offset_debug(), 0)));
     if (depth() >= kMaxDepth) throw ClipError(name_, line, tooDeep("elements"));
     const std::string_view element = node.name();
     if (element.ends_with("_array") && node.attribute("count")) {
@@ -323,6 +306,7 @@ class ColladaWalker : public pugi::xml_tree_walker {
     enum class Mark { unseen, open, done };
     std::vector<Mark> marks(nodes_.size(), Mark::unseen);
     std::vector<std::uint64_t> unfolded(nodes_.size(), 1);
+    std::vector<int> height(nodes_.size(), 0);  // the levels below a node, once unfolded
     for (std::size_t root = 0; root < nodes_.size(); ++root) {
       if (marks[root] != Mark::unseen) continue;
       std::vector<std::pair<std::size_t, std::size_t>> path{{root, 0}};  // a node, and its next edge
@@ -331,7 +315,13 @@ class ColladaWalker : public pugi::xml_tree_walker {
         auto& [at, next] = path.back();
         if (next == nodes_[at].edges.size()) {
           marks[at] = Mark::done;
-          for (const Edge& edge : nodes_[at].edges) unfolded[at] = plus(unfolded[at], unfolded[edge.to]);
+          for (const Edge& edge : nodes_[at].edges) {
+            unfolded[at] = plus(unfolded[at], unfolded[edge.to]);
+            height[at] = std::max(height[at], height[edge.to] + 1);
+          }
+          if (height[at] > kMaxDepth)
+            throw ClipError(name_, nodes_[at].line,
+                            "<node> unfolds through its <instance_node>s to " + tooDeep("nodes below it"));
           if (unfolded[at] > kMaxUnfoldedNodes)
             throw ClipError(name_, nodes_[at].line,
                             "<node> unfolds through its <instance_node>s to more than " +
@@ -447,7 +437,7 @@ class ColladaWalker : public pugi::xml_tree_walker {
                           " indices, but holds " + std::to_string(counts) + " and " + std::to_string(held));
   }
 
-  std::string_view text_;
+  LineCounter lines_;  // elements come in the file's order
   const std::string& name_;
   std::map<std::string, std::uint64_t, std::less<>> arrays_;
   std::vector<Accessor> accessors_;
@@ -544,7 +534,7 @@ std::optional<std::uint64_t> wholeNumber(std::string_view word) {
 }
 
 void checkGltf(std::string_view json, const std::string& name) {
-  checkNodes(scanGltfJson(json, json.size(), name, ""), name);
+  checkNodes(scanGltfJson(json, name, ""), name);
 }
 
 void checkGlb(std::string_view content, const std::string& name) {
@@ -573,7 +563,7 @@ void checkGlb(std::string_view content, const std::string& name) {
     if (at == kHeader && content.substr(at + 4, 4) == "JSON") json = content.substr(start, length);
     at = (start + length + 3) / 4 * 4;
   }
-  checkNodes(scanGltfJson(json, content.size(), name, "its JSON chunk, "), name);
+  checkNodes(scanGltfJson(json, name, "its JSON chunk, "), name);
 }
 
 void checkCollada(std::string_view content, const std::string& name) {
@@ -590,7 +580,7 @@ void checkFbx(std::string_view content, const std::string& name) {
     checkBinaryFbx(content, name);
     return;
   }
-  Tokens tokens(content, {";"});
+  Tokens tokens(content, kFbxText);
   std::vector<std::string_view> path;  // the key before each open brace
   std::string_view key;
   std::size_t keyLine = 0;
@@ -655,7 +645,7 @@ void checkX(std::string_view content, const std::string& name) {
                                                      : "compressed binary") +
                         " .x file ('" + std::string(content.substr(0, 12)) +
                         "'): clips are read from .x files as text ('xof 0303txt 0032') alone");
-  Tokens tokens(content.substr(kXHeader), kXComments);
+  Tokens tokens(content.substr(kXHeader), kXText);
   int depth = 0;
   std::string_view first;  // the first word of the block's header: its template's name
   bool header = true;

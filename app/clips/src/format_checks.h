@@ -24,8 +24,8 @@ constexpr std::uint64_t kMaxUnfoldedNodes = 100000;
 /// holds), so anything else is refused, not read its way. A count past 64 bits is the largest.
 std::optional<std::uint64_t> wholeNumber(std::string_view word);
 
-/// glTF as text (.gltf): its JSON nested no deeper than kMaxDepth, its nodes' children no deeper,
-/// no size, offset or count in it past the file's bytes.
+/// glTF as text (.gltf): its JSON nested no deeper than kMaxDepth, its nodes no deeper once
+/// unfolded and no more than kMaxUnfoldedNodes.
 void checkGltf(std::string_view json, const std::string& name);
 /// Binary glTF (.glb): the lengths in its header and chunks within the file, and the JSON chunk as
 /// checkGltf checks a .gltf; what is not a .glb is left to assimp's reader.

@@ -74,7 +74,7 @@ std::vector<std::size_t> binaryFbxGeometries(std::string_view bytes) {
 // Where each "Geometry:" key under "Objects:" starts in a text FBX.
 std::vector<std::size_t> textFbxGeometries(std::string_view text) {
   std::vector<std::size_t> names;
-  Tokens tokens(text, {";"});
+  Tokens tokens(text, kFbxText);
   std::string_view key;  // the last key read
   int depth = 0;
   bool inObjects = false;
@@ -144,7 +144,7 @@ std::optional<std::string> xSkeletonOnly(std::string_view content, const std::st
         out.begin() + static_cast<std::ptrdiff_t>(kXHeader + from),
         out.begin() + static_cast<std::ptrdiff_t>(kXHeader + to), [](char c) { return c != '\n'; }, ' ');
   };
-  Tokens tokens(content.substr(kXHeader), kXComments);
+  Tokens tokens(content.substr(kXHeader), kXText);
   std::string_view first;  // the first word of the block's header: its template's name
   std::size_t firstAt = 0;
   bool header = true;
