@@ -49,8 +49,8 @@ std::vector<std::size_t> binaryFbxGeometries(std::string_view bytes) {
   if (bytes.size() < kFirstRecord) return names;
   const std::size_t word = little(bytes, 23, 4) >= 7500 ? 8 : 4;
   const std::size_t header = 3 * word + 1;
-  // The records from `at` to `limit`, each given to `visit` with where its name starts, its name and
-  // where its children start; false where one does not lie within them.
+  // The records from `at` to `limit`, each given to `visit` with where its name starts, its name,
+  // where its children start and where it ends; the walk stops at one that does not lie within them.
   const auto walk = [&](std::uint64_t at, std::uint64_t limit, const auto& visit) {
     while (limit >= header && at <= limit - header) {
       const std::uint64_t end = little(bytes, at, word);
