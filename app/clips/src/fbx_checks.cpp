@@ -38,12 +38,6 @@ constexpr std::uint64_t kMostArraysBytes = std::uint64_t{256} << 20;
 // by a record of zeros.
 constexpr std::size_t kFirstRecord = 27;
 
-std::uint64_t readLittle(std::string_view bytes, std::size_t at, std::size_t width) {
-  std::uint64_t value = 0;
-  for (std::size_t i = width; i-- > 0;) value = value << 8 | static_cast<unsigned char>(bytes[at + i]);
-  return value;
-}
-
 std::size_t strideOf(char type) {
   switch (type) {
     case 'f':

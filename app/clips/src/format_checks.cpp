@@ -544,11 +544,7 @@ void checkGlb(std::string_view content, const std::string& name) {
   constexpr std::size_t kHeader = 12, kChunkHeader = 8;
   if (content.size() < kHeader || !content.starts_with("glTF"))
     return;  // assimp's reader says what it is not
-  const auto word = [&](std::size_t at) {
-    std::uint32_t n = 0;
-    std::memcpy(&n, content.data() + at, sizeof n);
-    return std::uint64_t{n};
-  };
+  const auto word = [&](std::size_t at) { return readLittle(content, at, 4); };
   if (word(4) == 1) throw ClipError(name, "a glTF 1.0 file: clips are read from glTF 2.0");
   if (const std::uint64_t length = word(8); length > content.size())
     throw ClipError(name, "its header says the file has " + std::to_string(length) + " bytes, but it has " +

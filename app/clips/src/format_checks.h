@@ -19,6 +19,14 @@ constexpr int kMaxDepth = 256;
 /// so a few nodes each put twice under the next unfold to billions.
 constexpr std::uint64_t kMaxUnfoldedNodes = 100000;
 
+/// The little-endian number of `width` bytes (at most 8) at byte `at` of `bytes`: binary FBX and
+/// glTF store their lengths so, whatever the machine's order.
+inline std::uint64_t readLittle(std::string_view bytes, std::size_t at, std::size_t width) {
+  std::uint64_t value = 0;
+  for (std::size_t i = width; i-- > 0;) value = value << 8 | static_cast<unsigned char>(bytes[at + i]);
+  return value;
+}
+
 /// A count written as digits alone, nullopt otherwise (a sign, a point, a space): assimp reads a
 /// count as a float and truncates it ("Frames: 2.7" was 2 frames, "-1" more than any memory
 /// holds), so anything else is refused, not read its way. A count past 64 bits is the largest.

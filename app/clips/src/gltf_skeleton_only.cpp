@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <initializer_list>
 #include <map>
 #include <optional>
@@ -18,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "clips/clip_file.h"
+#include "format_checks.h"
 #include "skeleton_only.h"
 #include "text_tokens.h"
 
@@ -121,8 +121,12 @@ class SkeletonOnly {
     const Json& all = items(doc_, "animations", "");
     for (std::size_t a = 0; a < all.size(); ++a) animations.push_back(animation(all[a], a));
     out["animations"] = std::move(animations);
-    out["accessors"] = keptAccessors();
-    out["bufferViews"] = keptBufferViews();
+    // In this order: each kept accessor keeps its view, each kept view its buffer.
+    out["accessors"] = keptFrom("accessors", accessors_, [&](const Json& accessor, std::uint64_t a) {
+      return keptAccessor(accessor, a);
+    });
+    out["bufferViews"] = keptFrom("bufferViews", views_,
+                                  [&](const Json& view, std::uint64_t v) { return keptBufferView(view, v); });
     out["buffers"] = keptBuffers();
     return out;
   }
@@ -260,11 +264,13 @@ class SkeletonOnly {
              layout.type + " of floats (" + std::to_string(kFloat) + ")");
   }
 
-  Json keptAccessors() {
-    Json kept = Json::array();
-    const Json& all = items(doc_, "accessors", "");
-    for (const std::uint64_t a : accessors_.order()) kept.push_back(keptAccessor(all[a], a));
-    return kept;
+  // The items of the top-level array `key` that `kept` lists, in its order, each made by `keep`.
+  template <class Keep>
+  Json keptFrom(const char* key, const Kept& kept, Keep keep) {
+    Json out = Json::array();
+    const Json& all = items(doc_, key, "");
+    for (const std::uint64_t i : kept.order()) out.push_back(keep(all[i], i));
+    return out;
   }
 
   // An accessor of a kept sampler (its layout checked), its elements within its buffer view.
@@ -296,13 +302,6 @@ class SkeletonOnly {
     kept["bufferView"] = views_.keep(*v);
     kept["byteOffset"] = offset;
     kept["count"] = count;
-    return kept;
-  }
-
-  Json keptBufferViews() {
-    Json kept = Json::array();
-    const Json& all = items(doc_, "bufferViews", "");
-    for (const std::uint64_t v : views_.order()) kept.push_back(keptBufferView(all[v], v));
     return kept;
   }
 
@@ -375,12 +374,6 @@ class SkeletonOnly {
   Kept accessors_, views_, buffers_;
 };
 
-std::uint32_t wordAt(std::string_view bytes, std::size_t at) {
-  std::uint32_t n = 0;
-  std::memcpy(&n, bytes.data() + at, sizeof n);
-  return n;
-}
-
 void appendWord(std::string& out, std::uint64_t n) {
   const auto word = static_cast<std::uint32_t>(n);
   out.append(reinterpret_cast<const char*>(&word), sizeof word);
@@ -402,9 +395,9 @@ struct Glb {
 // assimp refuses by its header alone.
 std::optional<Glb> glbChunks(std::string_view content, const std::string& name) {
   if (content.size() < kHeaderBytes + kChunkHeaderBytes || !content.starts_with("glTF") ||
-      wordAt(content, 4) != 2 || content.substr(16, 4) != "JSON")
+      readLittle(content, 4, 4) != 2 || content.substr(16, 4) != "JSON")
     return std::nullopt;
-  const std::size_t jsonBytes = wordAt(content, kHeaderBytes);
+  const std::size_t jsonBytes = readLittle(content, kHeaderBytes, 4);
   if (jsonBytes > content.size() - kHeaderBytes - kChunkHeaderBytes)
     throw ClipError(name, "its JSON chunk is past the file's end");
   Glb glb;
@@ -414,7 +407,7 @@ std::optional<Glb> glbChunks(std::string_view content, const std::string& name) 
   const std::size_t binAt = padded(kHeaderBytes + kChunkHeaderBytes + jsonBytes);
   if (binAt + kChunkHeaderBytes <= content.size() &&
       content.substr(binAt + 4, 4) == std::string_view("BIN\0", 4)) {
-    const std::size_t binBytes = wordAt(content, binAt);
+    const std::size_t binBytes = readLittle(content, binAt, 4);
     if (binBytes > content.size() - binAt - kChunkHeaderBytes)
       throw ClipError(name, "its BIN chunk is past the file's end");
     glb.bin = content.substr(binAt + kChunkHeaderBytes, binBytes);

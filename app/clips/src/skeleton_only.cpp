@@ -9,6 +9,7 @@
 
 #include <pugixml.hpp>
 
+#include "format_checks.h"
 #include "text_tokens.h"
 
 namespace clips::detail {
@@ -28,13 +29,6 @@ bool unreadCollada(const pugi::xml_node& node) {
              std::end(kUnreadCollada);
 }
 
-// A little-endian number of `width` bytes at `at`.
-std::uint64_t little(std::string_view bytes, std::size_t at, std::size_t width) {
-  std::uint64_t value = 0;
-  for (std::size_t i = width; i-- > 0;) value = value << 8 | static_cast<unsigned char>(bytes[at + i]);
-  return value;
-}
-
 // An FBX object type assimp knows no class for, of the length of "Geometry": an object renamed to it
 // is read as a record and never made a mesh.
 constexpr std::string_view kFbxUnread = "Unread__";
@@ -47,16 +41,16 @@ std::vector<std::size_t> binaryFbxGeometries(std::string_view bytes) {
   constexpr std::size_t kFirstRecord = 27;
   std::vector<std::size_t> names;
   if (bytes.size() < kFirstRecord) return names;
-  const std::size_t word = little(bytes, 23, 4) >= 7500 ? 8 : 4;
+  const std::size_t word = readLittle(bytes, 23, 4) >= 7500 ? 8 : 4;
   const std::size_t header = 3 * word + 1;
   // The records from `at` to `limit`, each given to `visit` with where its name starts, its name,
   // where its children start and where it ends; the walk stops at one that does not lie within them.
   const auto walk = [&](std::uint64_t at, std::uint64_t limit, const auto& visit) {
     while (limit >= header && at <= limit - header) {
-      const std::uint64_t end = little(bytes, at, word);
+      const std::uint64_t end = readLittle(bytes, at, word);
       const std::uint64_t length = static_cast<unsigned char>(bytes[at + 3 * word]);
       if (end == 0 || end <= at || end > limit || at + header + length > end) return;
-      const std::uint64_t children = at + header + length + little(bytes, at + 2 * word, word);
+      const std::uint64_t children = at + header + length + readLittle(bytes, at + 2 * word, word);
       visit(at + header, bytes.substr(at + header, length), std::min(children, end), end);
       at = end;
     }
