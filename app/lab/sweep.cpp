@@ -33,14 +33,9 @@ constexpr double kErrorFloor = 1e-9;
 
 struct SweepOptions {
   std::string scene;
-  std::vector<phys::SolverMethod> methods;  // empty: the scene's own, and so on
-  std::vector<int> iterations;
-  std::vector<int> substeps;
-  std::vector<double> dts;
+  /// Empty lists take the scene's own; `models` is read once the scene is (modelChoices).
+  PlanRequest request;
   std::vector<std::string> models;
-  int repeats = 3;
-  std::optional<int> steps;
-  bool peers = true;
   std::filesystem::path dataDir;
   std::filesystem::path out;
   /// What the chart and the front measure: kRunMetricCount for the distance from the accuracy
@@ -67,39 +62,23 @@ void describeSweep(CommandLine& line, SweepOptions& o) {
       "times each and measures its error against the scene's accuracy target.");
   const std::string scenes = "(default: the scene's)";
   line.scene(o.scene);
-  line.option(option::kMethods, o.methods, scenes);
-  line.option(option::kIterations, o.iterations, scenes);
-  line.option(option::kSubsteps, o.substeps, scenes);
-  line.option(option::kDt, o.dts, scenes);
+  line.option(option::kMethods, o.request.methods, scenes);
+  line.option(option::kIterations, o.request.iterations, scenes);
+  line.option(option::kSubsteps, o.request.substeps, scenes);
+  line.option(option::kDt, o.request.dts, scenes);
   line.models(o.models, true, "(ragdolls: seed, lean or rigid)");
-  line.option(option::kRepeat, o.repeats, "(default 3)");
-  line.option(option::kSteps, o.steps, "at the scene's dt (default: 1 s of them); other dts run as long");
+  line.option(option::kRepeat, o.request.repeats, "(default 3)");
+  line.option(option::kSteps, o.request.steps,
+              "at the scene's dt (default: 1 s of them); other dts run as long");
   line.custom(
       option::kError, false, [&o](const std::string& text) { return readMeasure(text, o.measure); }, "");
-  line.flag(option::kNoPeers, o.peers, false, "");
+  line.flag(option::kNoPeers, o.request.peers, false, "");
   line.existingFolder(option::kData, o.dataDir, "");
   line.option(option::kOut, o.out, "results.csv, pareto.csv, sweep.gp and the chart (required)");
   line.require(option::kOut, "sweep needs --out DIR (where the CSV and the chart go)");
 }
 
-// ---- the plan -------------------------------------------------------------------------------
-
 using Row = SweepRow;
-
-// The plan of the options; throws UsageError for a --models that does not fit the scene, or too
-// many runs.
-Plan sweepPlan(const SweepOptions& o, const scenes::SceneSource& scene) {
-  return makePlan(scene, PlanRequest{.models = modelChoices(o.models, sceneModels(scene)),
-                                     .methods = o.methods,
-                                     .iterations = o.iterations,
-                                     .substeps = o.substeps,
-                                     .dts = o.dts,
-                                     .steps = o.steps,
-                                     .horizon = std::nullopt,
-                                     .repeats = o.repeats,
-                                     .peers = o.peers,
-                                     .peerSleep = false});
-}
 
 // ---- the front ------------------------------------------------------------------------------
 
@@ -150,40 +129,33 @@ std::vector<Row> frontByCost(const std::vector<Row>& rows) {
 
 // ---- files ----------------------------------------------------------------------------------
 
-std::string csvNumber(double v) {
-  return lab::csvNumber(v, 10);
-}
-
-std::string csvHeader() {
-  std::string header =
-      "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,"
-      "error,ref_uncertainty,";
-  for (const RunMetric& m : kRunMetrics) header += std::string(m.column) + ",";
-  return header + "error_first,pose_penetration,pose_joint_gap,energy_drift,frozen,blew_up,pareto,note\n";
-}
-
 std::string csvRow(const std::string& scene, const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
+  auto number = [](double v) { return csvNumber(v, 10); };
   // A blown-up run's errors are no figure: blank, as any figure that is not finite, and
   // `blew_up` says why.
   const bool blewUp = r.blewUp();  // a peer that did not run has no row
   std::vector<std::string> fields;
-  fields.insert(
-      fields.end(),
-      {csvField(scene), csvField(r.method), csvField(r.model), opt(r.iterations), opt(r.substeps),
-       csvNumber(r.dt), std::to_string(r.steps), std::to_string(r.repeats), csvNumber(r.msPerStep),
-       csvNumber(r.msPerSimSecond()), csvNumber(blewUp ? kNaN : r.figures.error), csvNumber(r.uncertainty)});
-  for (const double v : r.figures.maxima.worst) fields.push_back(csvNumber(v));
   fields.insert(fields.end(),
-                {csvNumber(blewUp ? kNaN : r.figures.errorFirst), csvNumber(r.figures.posePenetration),
-                 csvNumber(r.figures.poseJointGap), r.peer ? std::string() : csvNumber(r.figures.energyDrift),
+                {csvField(scene), csvField(r.method), csvField(r.model), opt(r.iterations), opt(r.substeps),
+                 number(r.dt), std::to_string(r.steps), std::to_string(r.repeats), number(r.msPerStep),
+                 number(r.msPerSimSecond()), number(blewUp ? kNaN : r.figures.error), number(r.uncertainty)});
+  for (const double v : r.figures.maxima.worst) fields.push_back(number(v));
+  fields.insert(fields.end(),
+                {number(blewUp ? kNaN : r.figures.errorFirst), number(r.figures.posePenetration),
+                 number(r.figures.poseJointGap), r.peer ? std::string() : number(r.figures.energyDrift),
                  r.peer ? std::string() : std::to_string(r.figures.frozen), blewUp ? "1" : "0",
                  r.pareto ? "1" : "0", csvField(r.note)});
   return csvLine(fields);
 }
 
+// The header, then a row for each run.
 std::string csvText(const std::string& scene, const std::vector<Row>& rows) {
-  std::string text = csvHeader();
+  std::string text =
+      "scene,method,model,iterations,substeps,dt,steps,repeats,ms_per_step,ms_per_sim_second,"
+      "error,ref_uncertainty,";
+  for (const RunMetric& m : kRunMetrics) text += std::string(m.column) + ",";
+  text += "error_first,pose_penetration,pose_joint_gap,energy_drift,frozen,blew_up,pareto,note\n";
   for (const Row& r : rows) text += csvRow(scene, r);
   return text;
 }
@@ -269,70 +241,48 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
 
 // ---- the report on stdout ---------------------------------------------------------------------
 
-// A line of the table: columns of fixed widths, each figure set apart from the one before by at
-// least a space. A figure wider than its column pushes what follows right only as far as it must,
-// and the line is back in its columns where later figures leave room ("1.00001e-05101666" was a dt
-// run into a step count).
-class TableLine {
- public:
-  TableLine& left(const std::string& text, std::size_t width) {
-    gapTo(end_);
-    line_ += text;
-    end_ += width;
-    return *this;
-  }
-  TableLine& right(const std::string& text, std::size_t width) {
-    end_ += width;
-    gapTo(end_ > text.size() ? end_ - text.size() : 0);
-    line_ += text;
-    return *this;
-  }
-  TableLine& skip(std::size_t width) {
-    end_ += width;
-    return *this;
-  }
-  /// Text right after the last column, with no gap of its own (the Pareto front's mark).
-  TableLine& append(const std::string& text) {
-    line_ += text;
-    return *this;
-  }
-  std::string str() const { return line_ + "\n"; }
-
- private:
-  void gapTo(std::size_t column) {
-    const bool touching = !line_.empty() && line_.back() != ' ';
-    const std::size_t spaces = column > line_.size() ? column - line_.size() : touching ? 1 : 0;
-    line_.append(spaces, ' ');
-  }
-
-  std::string line_;
-  std::size_t end_ = 0;  ///< where the last column ends when nothing overflowed
+// One column of the table: its width, and whether its text is set right in it.
+struct Column {
+  std::size_t width;
+  bool right;
 };
+// method, model, iterations, substeps, a gap, dt, steps, ms/step, error, stick error, penetration,
+// energy drift, frozen: the header and the rows through the same widths.
+constexpr Column kColumns[] = {{14, false}, {12, false}, {5, true},  {5, true},  {2, false},
+                               {10, false}, {6, true},   {10, true}, {11, true}, {10, true},
+                               {10, true},  {10, true},  {7, true}};
 
-// The columns: method, model, iterations, substeps, dt, steps, ms/step, error, stick error,
-// penetration, energy drift, frozen; the header and the rows through the same widths.
-TableLine tableColumns(const std::string& method, const std::string& model, const std::string& iterations,
-                       const std::string& substeps, const std::string& dt, const std::string& steps,
-                       const std::string& ms, const std::string& error, const std::string& stick,
-                       const std::string& penetration, const std::string& drift, const std::string& frozen) {
-  TableLine t;
-  t.left(method, 14).left(model, 12).right(iterations, 5).right(substeps, 5).skip(2).left(dt, 10);
-  t.right(steps, 6).right(ms, 10).right(error, 11).right(stick, 10).right(penetration, 10).right(drift, 10);
-  t.right(frozen, 7);
-  return t;
+// A line of the table, a cell for each of kColumns. Each figure is set apart from the one before
+// by at least a space: a figure wider than its column pushes what follows right only as far as it
+// must, and the line is back in its columns where later figures leave room ("1.00001e-05101666"
+// was a dt run into a step count).
+std::string tableLine(const std::vector<std::string>& cells, bool pareto = false) {
+  std::string line;
+  std::size_t end = 0;  // where the last column ends when nothing overflowed
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::string& text = cells[i];
+    const std::size_t columnEnd = end + kColumns[i].width;
+    const std::size_t start = !kColumns[i].right        ? end
+                              : columnEnd > text.size() ? columnEnd - text.size()
+                                                        : 0;
+    const bool touching = !line.empty() && line.back() != ' ';
+    line.append(start > line.size() ? start - line.size() : touching ? 1 : 0, ' ');
+    line += text;
+    end = columnEnd;
+  }
+  return line + (pareto ? "  *" : "") + "\n";
 }
 
 std::string tableLine(const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("-"); };
   auto ours = [&](double v) { return r.peer ? std::string("-") : formatNumber(v, 3); };
-  TableLine t = tableColumns(r.method, r.model.empty() ? "-" : r.model, opt(r.iterations), opt(r.substeps),
-                             formatNumber(r.dt, 6), std::to_string(r.steps), formatNumber(r.msPerStep, 4),
-                             formatNumber(r.blewUp() ? kInf : r.figures.error, 3),
-                             ours(r.figures.maxima[kStickErrorMetric]),
-                             formatNumber(r.figures.maxima[kPenetrationMetric], 3),
-                             ours(r.figures.energyDrift), r.peer ? "-" : std::to_string(r.figures.frozen));
-  if (r.pareto) t.append("  *");
-  return t.str();
+  return tableLine(
+      {r.method, r.model.empty() ? "-" : r.model, opt(r.iterations), opt(r.substeps), "",
+       formatNumber(r.dt, 6), std::to_string(r.steps), formatNumber(r.msPerStep, 4),
+       formatNumber(r.blewUp() ? kInf : r.figures.error, 3), ours(r.figures.maxima[kStickErrorMetric]),
+       formatNumber(r.figures.maxima[kPenetrationMetric], 3), ours(r.figures.energyDrift),
+       r.peer ? "-" : std::to_string(r.figures.frozen)},
+      r.pareto);
 }
 
 void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows,
@@ -343,9 +293,8 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
       << simulatedSeconds(rows) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
-  out << tableColumns("method", "model", "iter", "sub", "dt (s)", "steps", "ms/step", "error (m)",
-                      "stick err", "penet (m)", "drift (J)", "frozen")
-             .str();
+  out << tableLine({"method", "model", "iter", "sub", "", "dt (s)", "steps", "ms/step", "error (m)",
+                    "stick err", "penet (m)", "drift (J)", "frozen"});
   for (const Row& r : rows) out << tableLine(r);
 }
 
@@ -427,7 +376,11 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
 }
 
 int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
-  const Plan plan = sweepPlan(o, scenes::readSceneSource(sceneFile(o.scene, o.dataDir)));
+  const scenes::SceneSource scene = scenes::readSceneSource(sceneFile(o.scene, o.dataDir));
+  PlanRequest request = o.request;
+  // Throws UsageError for a --models that does not fit the scene (and makePlan for too many runs).
+  request.models = modelChoices(o.models, sceneModels(scene));
+  const Plan plan = makePlan(scene, request);
   prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
   return runSweep(plan, o.measure, o.out, out, err);
 }
