@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -27,7 +28,6 @@ namespace {
 /// both stays short, and fine enough (steps of 1.33 to 1.5 above 2) that the winner is near the
 /// true cheapest.
 constexpr int kLadder[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
-constexpr int kLadderSize = static_cast<int>(sizeof kLadder / sizeof kLadder[0]);
 
 // The ladder as the help and the output write it: "1,2,3,4,6,8,12,16,24,32".
 std::string ladderText() {
@@ -193,7 +193,8 @@ class Search {
   /// For each substep count, the fewest iterations that meet the targets (bisection over the
   /// ladder, which assumes more passes never hurt), stopping once more substeps cannot pay.
   void searchMethod(const ModelChoice& model, phys::SolverMethod method, double dt) {
-    int upper = kLadderSize - 1;  // the most iterations still worth trying, as a ladder index
+    // The most iterations still worth trying, as a ladder index.
+    int upper = static_cast<int>(std::size(kLadder)) - 1;
     for (int substeps : kLadder) {
       const Setting one{model, method, 1, substeps, dt};
       const Figures& f1 = evaluate(one);
@@ -315,15 +316,10 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   const int steps = o.steps ? *o.steps : defaultSteps(own.dt);
   Search search(source, steps, o.targets);
 
-  // The seed's defaults: its method and counts with its models (corners boxes, seed ragdolls).
-  ModelChoice seedModel = models.asFile;
-  std::string error;
-  if (models.boxes && models.ragdolls) {
-    seedModel = allModelChoices(models).front();  // corners+seed
-  } else if (models.boxes || models.ragdolls) {
-    seedModel = *modelChoice(models.boxes ? "corners" : "seed", models, error);
-  }
-  const Setting defaults{seedModel, kSeedMethod, kSeedIterations, kSeedSubsteps, own.dt};
+  // The seed's defaults: its method and counts with its models, the first of the choices (corners
+  // boxes, seed ragdolls; the file's own when it has neither).
+  const std::vector<ModelChoice> choices = allModelChoices(models);
+  const Setting defaults{choices.front(), kSeedMethod, kSeedIterations, kSeedSubsteps, own.dt};
   const Setting sceneOwn{models.asFile, own.method, own.iterations, own.substeps, own.dt};
 
   // An analytic answer later than the horizon lengthens every run to reach it.
@@ -337,7 +333,6 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   // The scene's and the seed's settings first: when they qualify, they bound the search early.
   const Candidate ownResult = search.measureAndTime(sceneOwn, o.repeats);
   const Candidate seedResult = search.measureAndTime(defaults, o.repeats);
-  std::vector<ModelChoice> choices = allModelChoices(models);
   std::vector<phys::SolverMethod> methods{own.method};
   for (phys::SolverMethod m : {phys::SolverMethod::GaussSeidel, phys::SolverMethod::Jacobi,
                                phys::SolverMethod::Xpbd, phys::SolverMethod::Shake})
