@@ -39,14 +39,6 @@ std::optional<ModelCounts> countsIfLoads(const scenes::SceneSource& source,
   }
 }
 
-scenes::LoadOptions withBoxModel(phys::BodyModel m) {
-  return {.boxModel = m};
-}
-
-scenes::LoadOptions withRagdollModel(phys::RagdollModel m) {
-  return {.ragdollModel = m};
-}
-
 // The first model whose world has `counts`: the one every body of its kind already has.
 template <class Model>
 std::optional<Model> modelWithCount(const ModelCounts& counts,
@@ -70,14 +62,14 @@ std::string inQuotes(std::string_view text) {
 
 SceneModels sceneModels(const scenes::SceneSource& source) {
   const ModelCounts asWritten = countsWhenLoadedWith(source, {});
-  const ModelCounts corners = countsWhenLoadedWith(source, withBoxModel(phys::BodyModel::Corners));
-  const ModelCounts tetra = countsWhenLoadedWith(source, withBoxModel(phys::BodyModel::Tetra));
+  const ModelCounts corners = countsWhenLoadedWith(source, {.boxModel = phys::BodyModel::Corners});
+  const ModelCounts tetra = countsWhenLoadedWith(source, {.boxModel = phys::BodyModel::Tetra});
   // The file as written loads (or has thrown above); a ragdoll model it refuses is not one to offer.
-  const std::optional<ModelCounts> seed = countsIfLoads(source, withRagdollModel(phys::RagdollModel::Seed));
-  const std::optional<ModelCounts> lean = countsIfLoads(source, withRagdollModel(phys::RagdollModel::Lean));
+  const std::optional<ModelCounts> seed = countsIfLoads(source, {.ragdollModel = phys::RagdollModel::Seed});
+  const std::optional<ModelCounts> lean = countsIfLoads(source, {.ragdollModel = phys::RagdollModel::Lean});
   // All of a kind is rigid when making it rigid changes no count.
-  const ModelCounts rigidBoxes = countsWhenLoadedWith(source, withBoxModel(phys::BodyModel::Rigid));
-  const ModelCounts rigidRagdolls = countsWhenLoadedWith(source, withRagdollModel(phys::RagdollModel::Rigid));
+  const ModelCounts rigidBoxes = countsWhenLoadedWith(source, {.boxModel = phys::BodyModel::Rigid});
+  const ModelCounts rigidRagdolls = countsWhenLoadedWith(source, {.ragdollModel = phys::RagdollModel::Rigid});
 
   SceneModels m;
   m.boxes = corners != tetra;
@@ -128,14 +120,14 @@ std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels&
       error = inQuotes(name) + " is a box model and the scene has no boxes";
       return std::nullopt;
     }
-    return ModelChoice{std::string(name), withBoxModel(*box)};
+    return ModelChoice{std::string(name), {.boxModel = *box}};
   }
   if (const auto ragdoll = phys::parseRagdollModel(name)) {
     if (!models.ragdolls) {
       error = inQuotes(name) + " is a ragdoll model and the scene has no ragdolls";
       return std::nullopt;
     }
-    return ModelChoice{std::string(name), withRagdollModel(*ragdoll)};
+    return ModelChoice{std::string(name), {.ragdollModel = *ragdoll}};
   }
   error = "unknown model " + inQuotes(name) + " (corners, tetra, seed, lean or rigid)";
   return std::nullopt;
@@ -155,8 +147,8 @@ std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, con
 std::vector<ModelChoice> allModelChoices(const SceneModels& models) {
   std::vector<ModelChoice> boxes{ModelChoice{"", {}}};
   if (models.boxes) {
-    boxes = {ModelChoice{"corners", withBoxModel(phys::BodyModel::Corners)},
-             ModelChoice{"tetra", withBoxModel(phys::BodyModel::Tetra)}};
+    boxes = {ModelChoice{"corners", {.boxModel = phys::BodyModel::Corners}},
+             ModelChoice{"tetra", {.boxModel = phys::BodyModel::Tetra}}};
   }
   if (!models.boxes && !models.ragdolls) return {models.asFile};
   std::vector<ModelChoice> out;
