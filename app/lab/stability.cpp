@@ -17,6 +17,7 @@
 #include "report.h"
 #include "stability_options.h"
 #include "stability_report.h"
+#include "text.h"
 
 namespace lab {
 namespace {
@@ -43,10 +44,8 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   SuiteResult r;
   r.scenes = scenes;
   r.settings = settingsOf(o);
-  for (const Setting& s : r.settings) {
-    if (r.methods.empty() || r.methods.back() != stability::settingGroup(s))
-      r.methods.push_back(stability::settingGroup(s));
-  }
+  // settingsOf lists each method's (and model's) settings together: a block each.
+  for (const Setting& s : r.settings) addOnce(r.methods, stability::settingGroup(s));
   if (o.peers) r.peers = peerEngines();
   r.peerNote = !o.peers ? "--no-peers" : "the lab was built without peer engines (LAB_PEERS)";
   const auto start = std::chrono::steady_clock::now();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 
@@ -36,23 +37,16 @@ std::optional<double> parseSignedNumber(std::string_view text) {
   return lab::parseNumber(withoutPlus(text));
 }
 
-std::optional<int> parseSignedCount(std::string_view text) {
-  return lab::parseWholeNumber(withoutPlus(text), 1, std::numeric_limits<int>::max());
-}
-
 // A flips bound: a whole count, printed whole ("2147483647", not %g's "2.14748e+09").
 std::string countText(double flips) {
   return std::to_string(std::llround(flips));
 }
 
-std::string withUnit(const std::string& unit) {
-  return unit.empty() ? "" : " (" + unit + ")";
-}
-
 double readPositive(ExpectReader& r, const std::string& name, const std::string& unit) {
-  const std::string& raw = r.required(name, "a number > 0" + withUnit(unit));
+  const std::string inUnit = unit.empty() ? "" : " (" + unit + ")";
+  const std::string& raw = r.required(name, "a number > 0" + inUnit);
   const std::optional<double> v = parseSignedNumber(raw);
-  if (!v || *v <= 0.0) r.fail(name, "'" + raw + "' must be a number > 0" + withUnit(unit));
+  if (!v || *v <= 0.0) r.fail(name, "'" + raw + "' must be a number > 0" + inUnit);
   return *v;
 }
 
@@ -135,7 +129,7 @@ void readFlips(ExpectReader& r, const scenes::Scene& scene, Criterion& c) {
   auto count = [&](const std::string& name) -> std::optional<int> {
     const std::string* raw = r.find(name);
     if (raw == nullptr) return std::nullopt;
-    const std::optional<int> n = parseSignedCount(*raw);
+    const std::optional<int> n = parseWholeNumber(withoutPlus(*raw), 1, std::numeric_limits<int>::max());
     if (!n) r.fail(name, "'" + *raw + "' must be a whole number >= 1");
     return n;
   };
@@ -175,35 +169,32 @@ const MetricInfo& metricInfo(Metric metric) {
 }
 
 std::string Criterion::describe() const {
-  // Built by appending: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string here.
-  std::string out;
+  // Streamed: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string.
+  std::ostringstream out;
+  const MetricInfo& info = metricInfo(metric);
   if (metric == Metric::StaysBehind) {
-    out.push_back(static_cast<char>('x' + axis));
-    out.append(" of ").append(body).append(atLeast ? " >= " : " <= ");
+    out << static_cast<char>('x' + axis) << " of " << body << (atLeast ? " >= " : " <= ");
   } else if (metric == Metric::Flips) {
-    out.append("flips of ").append(body);
+    out << "flips of " << body;
     if (limit == upper)
-      out.append(" = ").append(countText(limit));
+      out << " = " << countText(limit);
     else if (std::isinf(upper))
-      out.append(" >= ").append(countText(limit));
+      out << " >= " << countText(limit);
     else if (limit == 0.0)
-      out.append(" <= ").append(countText(upper));
+      out << " <= " << countText(upper);
     else
-      out.append(" from ").append(countText(limit)).append(" to ").append(countText(upper));
+      out << " from " << countText(limit) << " to " << countText(upper);
   } else {
-    out.append(metricInfo(metric).name);
+    out << info.name;
     if (body == "*")
-      out.append(" of every body");
+      out << " of every body";
     else if (!body.empty())
-      out.append(" of ").append(body);
-    out.append(" <= ");
+      out << " of " << body;
+    out << " <= ";
   }
-  if (metric != Metric::Flips) {
-    out.append(formatLimit(limit));
-    if (const std::string unit = metricInfo(metric).unit; !unit.empty()) out.append(" ").append(unit);
-  }
-  out.append(" over ").append(formatNumber(from)).append("-").append(formatNumber(to)).append(" s");
-  return out;
+  if (metric != Metric::Flips) out << formatLimit(limit) << (*info.unit == '\0' ? "" : " ") << info.unit;
+  out << " over " << formatNumber(from) << "-" << formatNumber(to) << " s";
+  return out.str();
 }
 
 std::vector<Criterion> parseCriteria(const scenes::Scene& scene) {

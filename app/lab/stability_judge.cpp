@@ -19,10 +19,6 @@ namespace {
 // twice, and a real Dzhanibekov flip swings the axis all the way round.
 constexpr double kFlipThreshold = 0.5;
 
-bool inWindow(const Criterion& c, int step) {
-  return step >= c.fromStep && step <= c.toStep;
-}
-
 // Keeps the extreme of a stays-behind coordinate: the highest for a max plane, the lowest for min.
 void keepExtreme(const Criterion& c, double& value, double sample) {
   if (std::isinf(value)) return;  // blown up already: stays so
@@ -105,7 +101,7 @@ void WorldJudge::observe(const phys::World& world, int step) {
   const auto orientation = [&](std::size_t b) { return world.bodyPose(phys::BodyId(b)).orientation; };
   std::optional<phys::Metrics> metrics;  // once per step, for all that need it
   for (std::size_t i = 0; i < criteria_.size(); ++i) {
-    if (!inWindow(criteria_[i], step)) continue;
+    if (step < criteria_[i].fromStep || step > criteria_[i].toStep) continue;  // outside its window
     if (const auto figure = metricInfo(criteria_[i].metric).figure) {
       if (!metrics) metrics = world.metrics();
       tallies_[i].sampleFigure(*metrics.*figure);

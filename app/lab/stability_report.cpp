@@ -39,18 +39,6 @@ std::string tableHead(const std::vector<std::string>& columns, const std::string
   return head + "\n" + below + "\n";
 }
 
-std::string criteriaText(const SuiteScene& s) {
-  std::vector<std::string> parts;
-  for (const Criterion& c : s.criteria) parts.push_back(c.describe());
-  return join(parts, "; ");
-}
-
-double sceneSeconds(const std::vector<Outcome>& row) {
-  double ms = 0.0;
-  for (const Outcome& o : row) ms += o.wallMs;
-  return ms / 1000.0;
-}
-
 // A run's entry in a grid: the worst ratio, bold when the run failed. An infinite ratio of a
 // finite figure is a body that never flipped under a flips min (min / 0): it did not blow up.
 std::string gridEntry(const Outcome& o) {
@@ -89,7 +77,9 @@ void summaryTable(std::ostringstream& md, const SuiteResult& r) {
   md << tableHead(columns);
   for (std::size_t s = 0; s < r.scenes.size(); ++s) {
     const SuiteScene& sc = r.scenes[s];
-    md << "| " << sc.name << " | " << cell(criteriaText(sc)) << " | " << formatNumber(sc.steps * sc.dt)
+    std::vector<std::string> criteria;
+    for (const Criterion& c : sc.criteria) criteria.push_back(c.describe());
+    md << "| " << sc.name << " | " << cell(join(criteria, "; ")) << " | " << formatNumber(sc.steps * sc.dt)
        << " s, " << sc.steps << " steps |";
     for (const std::string& m : r.methods) {
       const std::vector<std::size_t> runs = columnsOf(r, m);
@@ -101,7 +91,9 @@ void summaryTable(std::ostringstream& md, const SuiteResult& r) {
       const Outcome& o = r.outcomes[s][r.settings.size() + p];
       md << " " << (!o.judged ? "n/a" : o.passed ? "pass" : "**fail**") << " |";
     }
-    md << " " << formatNumber(sceneSeconds(r.outcomes[s])) << " s |\n";
+    double ms = 0.0;  // the scene's stepping over all its runs
+    for (const Outcome& o : r.outcomes[s]) ms += o.wallMs;
+    md << " " << formatNumber(ms / 1000.0) << " s |\n";
   }
 }
 
