@@ -115,6 +115,28 @@ TEST(Tune, OneStepIsSaidInTheSingular) {
   EXPECT_NE(two.out.find("), 2 steps at dt 0.0166667 s\n"), std::string::npos) << two.out;
 }
 
+// The seed's defaults take its models of each kind the scene has: corners boxes, seed ragdolls.
+TEST(Tune, TheDefaultsTakeTheSeedsModelsOfEachKindTheSceneHas) {
+  TempDir dir;
+  const std::string both = dir.write("both.xml",
+                                     "<scene name=\"both\">\n"
+                                     "  <ground/>\n"
+                                     "  <box name=\"box\" pos=\"2 1 0\" size=\"1 1 1\" model=\"tetra\"/>\n"
+                                     "  <ragdoll name=\"doll\" pos=\"0 2 0\" model=\"lean\"/>\n"
+                                     "</scene>\n")
+                               .string();
+  const std::vector<std::string> loose = {"--target", "stick-error=1e9", "--steps", "2", "--repeat", "1"};
+  for (const auto& [scene, defaults] :
+       {std::pair<std::string, std::string>{both, "model corners+seed:"}, {"ragdoll", "model seed:"}}) {
+    std::vector<std::string> args{scene};
+    args.insert(args.end(), loose.begin(), loose.end());
+    const Outcome o = tune(args);
+    ASSERT_EQ(o.code, 0) << o.err << o.out;
+    EXPECT_NE(o.out.find("defaults    gauss-seidel, 3 iterations, 1 substep, " + defaults), std::string::npos)
+        << o.out;
+  }
+}
+
 TEST(Tune, UsageErrorsNameTheArgument) {
   struct Case {
     std::vector<std::string> args;
