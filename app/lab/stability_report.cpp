@@ -130,23 +130,17 @@ void peerTable(std::ostringstream& md, const SuiteResult& r) {
   }
 }
 
-// Column labels for gnuplot's matrix header: one token each, no spaces.
-std::vector<std::string> columnLabels(const SuiteResult& r) {
-  std::vector<std::string> out;
-  for (const Setting& s : r.settings) {
-    std::string group = settingGroup(s);
-    std::replace(group.begin(), group.end(), ' ', '-');  // one token: "xpbd-rigid"
-    out.push_back(group + ":" + ixs(s.iterations, s.substeps));
-  }
-  for (const std::string& p : r.peers) out.push_back(p);
-  return out;
-}
-
 template <typename F>
 std::string matrix(const SuiteResult& r, F value) {
   std::ostringstream m;
+  // The column labels: one token each, no spaces.
   m << "scene";
-  for (const std::string& label : columnLabels(r)) m << " " << label;
+  for (const Setting& s : r.settings) {
+    std::string group = settingGroup(s);
+    std::replace(group.begin(), group.end(), ' ', '-');  // one token: "xpbd-rigid"
+    m << " " << group << ":" << ixs(s.iterations, s.substeps);
+  }
+  for (const std::string& p : r.peers) m << " " << p;
   m << "\n";
   // gnuplot draws the first row at the bottom; the scenes are written last first so that the
   // chart reads top-down in the report's order.

@@ -162,8 +162,7 @@ std::string csvText(const std::string& scene, const std::vector<Row>& rows) {
 
 // "3x1": iterations x substeps; nothing for a peer, whose method column names it.
 std::string pointLabel(const Row& r) {
-  if (r.peer) return {};
-  return ixs(*r.iterations, *r.substeps);
+  return r.peer ? std::string() : ixs(*r.iterations, *r.substeps);
 }
 
 // " tetra dt 0.01": what tells a row from the others of its method, the model (ours) and the dt,
