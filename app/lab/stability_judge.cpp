@@ -48,78 +48,6 @@ Verdict verdictOf(const Criterion& c, double value) {
   return v;
 }
 
-}  // namespace
-
-Tally::Tally(const Criterion& criterion, const phys::World& loaded)
-    : criterion_(&criterion),
-      // NaN for stays-behind: the first sample sets it (min and max both take a number over NaN).
-      value_(criterion.metric == Metric::StaysBehind ? kNaN : 0.0) {
-  if (criterion.metric == Metric::Flips)
-    middleAxis_ = middleAxis(loaded.bodies()[criterion.bodies.front()].halfExtents);
-}
-
-void Tally::samplePoses(int step, const std::function<phys::Vec3(std::size_t)>& position,
-                        const std::function<phys::Quat(std::size_t)>& orientation) {
-  const Criterion& c = *criterion_;
-  if (c.metric == Metric::Drift) {
-    if (step == c.fromStep) {
-      for (std::size_t b : c.bodies) reference_.push_back(position(b));
-      return;
-    }
-    for (std::size_t i = 0; i < c.bodies.size(); ++i)
-      sampleFigure(glm::length(position(c.bodies[i]) - reference_[i]));
-  } else if (c.metric == Metric::StaysBehind) {
-    keepExtreme(c, value_, position(c.bodies.front())[c.axis]);
-  } else if (c.metric == Metric::Flips) {
-    const phys::Vec3 axis = orientation(c.bodies.front()) * middleAxis_;
-    if (!phys::finite(axis)) value_ = kInf;  // blown up: stays so, as infinity + 1 is infinity
-    if (step == c.fromStep) {
-      axisAtStart_ = axis;
-    } else if (glm::dot(axis, axisAtStart_) * sign_ < -kFlipThreshold) {
-      sign_ = -sign_;  // a flip (kFlipThreshold)
-      value_ += 1.0;
-    }
-  }
-}
-
-void Tally::sampleFigure(double figure) {
-  keepLargest(value_, figure);
-}
-
-WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world)
-    : criteria_(criteria), loose_(looseParticles(world)) {
-  for (const Criterion& c : criteria_) tallies_.emplace_back(c, world);
-  observe(world, 0);
-}
-
-void WorldJudge::observe(const phys::World& world, int step) {
-  const std::size_t boxes = world.bodies().size();
-  const auto position = [&](std::size_t b) {
-    return b < boxes ? world.bodyPose(phys::BodyId(b)).center
-                     : world.particles().position[loose_.at(b - boxes)];
-  };
-  const auto orientation = [&](std::size_t b) { return world.bodyPose(phys::BodyId(b)).orientation; };
-  std::optional<phys::Metrics> metrics;  // once per step, for all that need it
-  for (std::size_t i = 0; i < criteria_.size(); ++i) {
-    if (step < criteria_[i].fromStep || step > criteria_[i].toStep) continue;  // outside its window
-    if (const auto figure = metricInfo(criteria_[i].metric).figure) {
-      if (!metrics) metrics = world.metrics();
-      tallies_[i].sampleFigure(*metrics.*figure);
-    } else {
-      tallies_[i].samplePoses(step, position, orientation);
-    }
-  }
-}
-
-std::vector<Verdict> WorldJudge::verdicts(bool blewUp) const {
-  std::vector<Verdict> out;
-  for (std::size_t i = 0; i < criteria_.size(); ++i)
-    out.push_back(verdictOf(criteria_[i], blewUp ? kInf : tallies_[i].value()));
-  return out;
-}
-
-namespace {
-
 // Whether a stick joins two loose particles, given particleBodies(world) (their places are after the boxes').
 bool isLooseStick(const phys::World& world, const std::vector<std::size_t>& body, const phys::Stick& s) {
   return body[s.a] >= world.bodies().size() && body[s.b] >= world.bodies().size();
@@ -200,6 +128,74 @@ double judgeOne(const Criterion& c, const phys::World& world, double dt, const P
 }
 
 }  // namespace
+
+Tally::Tally(const Criterion& criterion, const phys::World& loaded)
+    : criterion_(&criterion),
+      // NaN for stays-behind: the first sample sets it (min and max both take a number over NaN).
+      value_(criterion.metric == Metric::StaysBehind ? kNaN : 0.0) {
+  if (criterion.metric == Metric::Flips)
+    middleAxis_ = middleAxis(loaded.bodies()[criterion.bodies.front()].halfExtents);
+}
+
+void Tally::samplePoses(int step, const std::function<phys::Vec3(std::size_t)>& position,
+                        const std::function<phys::Quat(std::size_t)>& orientation) {
+  const Criterion& c = *criterion_;
+  if (c.metric == Metric::Drift) {
+    if (step == c.fromStep) {
+      for (std::size_t b : c.bodies) reference_.push_back(position(b));
+      return;
+    }
+    for (std::size_t i = 0; i < c.bodies.size(); ++i)
+      sampleFigure(glm::length(position(c.bodies[i]) - reference_[i]));
+  } else if (c.metric == Metric::StaysBehind) {
+    keepExtreme(c, value_, position(c.bodies.front())[c.axis]);
+  } else if (c.metric == Metric::Flips) {
+    const phys::Vec3 axis = orientation(c.bodies.front()) * middleAxis_;
+    if (!phys::finite(axis)) value_ = kInf;  // blown up: stays so, as infinity + 1 is infinity
+    if (step == c.fromStep) {
+      axisAtStart_ = axis;
+    } else if (glm::dot(axis, axisAtStart_) * sign_ < -kFlipThreshold) {
+      sign_ = -sign_;  // a flip (kFlipThreshold)
+      value_ += 1.0;
+    }
+  }
+}
+
+void Tally::sampleFigure(double figure) {
+  keepLargest(value_, figure);
+}
+
+WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world)
+    : criteria_(criteria), loose_(looseParticles(world)) {
+  for (const Criterion& c : criteria_) tallies_.emplace_back(c, world);
+  observe(world, 0);
+}
+
+void WorldJudge::observe(const phys::World& world, int step) {
+  const std::size_t boxes = world.bodies().size();
+  const auto position = [&](std::size_t b) {
+    return b < boxes ? world.bodyPose(phys::BodyId(b)).center
+                     : world.particles().position[loose_.at(b - boxes)];
+  };
+  const auto orientation = [&](std::size_t b) { return world.bodyPose(phys::BodyId(b)).orientation; };
+  std::optional<phys::Metrics> metrics;  // once per step, for all that need it
+  for (std::size_t i = 0; i < criteria_.size(); ++i) {
+    if (step < criteria_[i].fromStep || step > criteria_[i].toStep) continue;  // outside its window
+    if (const auto figure = metricInfo(criteria_[i].metric).figure) {
+      if (!metrics) metrics = world.metrics();
+      tallies_[i].sampleFigure(*metrics.*figure);
+    } else {
+      tallies_[i].samplePoses(step, position, orientation);
+    }
+  }
+}
+
+std::vector<Verdict> WorldJudge::verdicts(bool blewUp) const {
+  std::vector<Verdict> out;
+  for (std::size_t i = 0; i < criteria_.size(); ++i)
+    out.push_back(verdictOf(criteria_[i], blewUp ? kInf : tallies_[i].value()));
+  return out;
+}
 
 std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const scenes::Scene& scene, double dt,
                                const std::vector<std::vector<phys::Vec3>>& positions,

@@ -58,6 +58,59 @@ std::string inQuotes(std::string_view text) {
   return out;
 }
 
+// The model named by a --model value, or nullopt with `error` set: an unknown name, or one of a
+// kind the scene does not have ("lean" for a scene without ragdolls).
+std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error) {
+  // Rigid is a model of both kinds: imposed on the boxes and the ragdolls the scene has.
+  if (name == phys::toString(phys::BodyModel::Rigid)) {
+    if (!models.boxes && !models.ragdolls) {
+      error = inQuotes(name) + " is a box and ragdoll model and the scene has neither";
+      return std::nullopt;
+    }
+    ModelChoice c{std::string(name), {}};
+    if (models.boxes) c.options.boxModel = phys::BodyModel::Rigid;
+    if (models.ragdolls) c.options.ragdollModel = phys::RagdollModel::Rigid;
+    return c;
+  }
+  if (const auto box = phys::parseBodyModel(name)) {
+    if (!models.boxes) {
+      error = inQuotes(name) + " is a box model and the scene has no boxes";
+      return std::nullopt;
+    }
+    return ModelChoice{std::string(name), {.boxModel = *box}};
+  }
+  if (const auto ragdoll = phys::parseRagdollModel(name)) {
+    if (!models.ragdolls) {
+      error = inQuotes(name) + " is a ragdoll model and the scene has no ragdolls";
+      return std::nullopt;
+    }
+    return ModelChoice{std::string(name), {.ragdollModel = *ragdoll}};
+  }
+  error = "unknown model " + inQuotes(name) + " (corners, tetra, seed, lean or rigid)";
+  return std::nullopt;
+}
+
+// How a world steps, one line: "Verlet, 3 iterations x 1 substep" (or "rigid bodies", or "Verlet
+// and rigid bodies"), with body damping and sleeping when on.
+std::string settingsWords(const phys::World& world) {
+  const phys::SolverSettings& s = world.solverSettings();
+  const bool particles = world.particles().size() > 0, rigid = world.rigidBodies().size() > 0;
+  std::ostringstream o;
+  o << (particles && rigid ? "Verlet and rigid bodies, "
+        : rigid            ? "rigid bodies, "
+                           : "Verlet, ")
+    << ixsWords(s.iterations, s.substeps);
+  if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
+  if (s.sleep.enabled) o << ", sleeping";
+  if (s.jointProjection.enabled && !world.rigidJoints().empty()) o << ", joints projected";
+  return o.str();
+}
+
+// A target depends on the model, the dt and the steps alone.
+std::string cacheKey(const Setting& setting, int steps) {
+  return setting.model.label + "|" + formatNumber(setting.dt, 17) + "|" + std::to_string(steps);
+}
+
 }  // namespace
 
 SceneModels sceneModels(const scenes::SceneSource& source) {
@@ -101,36 +154,6 @@ SceneModels sceneModels(const scenes::SceneSource& source) {
   c.label = join(parts, "+");
   m.asFile = c;
   return m;
-}
-
-std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error) {
-  // Rigid is a model of both kinds: imposed on the boxes and the ragdolls the scene has.
-  if (name == phys::toString(phys::BodyModel::Rigid)) {
-    if (!models.boxes && !models.ragdolls) {
-      error = inQuotes(name) + " is a box and ragdoll model and the scene has neither";
-      return std::nullopt;
-    }
-    ModelChoice c{std::string(name), {}};
-    if (models.boxes) c.options.boxModel = phys::BodyModel::Rigid;
-    if (models.ragdolls) c.options.ragdollModel = phys::RagdollModel::Rigid;
-    return c;
-  }
-  if (const auto box = phys::parseBodyModel(name)) {
-    if (!models.boxes) {
-      error = inQuotes(name) + " is a box model and the scene has no boxes";
-      return std::nullopt;
-    }
-    return ModelChoice{std::string(name), {.boxModel = *box}};
-  }
-  if (const auto ragdoll = phys::parseRagdollModel(name)) {
-    if (!models.ragdolls) {
-      error = inQuotes(name) + " is a ragdoll model and the scene has no ragdolls";
-      return std::nullopt;
-    }
-    return ModelChoice{std::string(name), {.ragdollModel = *ragdoll}};
-  }
-  error = "unknown model " + inQuotes(name) + " (corners, tetra, seed, lean or rigid)";
-  return std::nullopt;
 }
 
 std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, const SceneModels& models) {
@@ -184,20 +207,6 @@ scenes::Scene loadSetting(const scenes::SceneSource& source, const Setting& sett
                                          .iterations = setting.iterations,
                                          .substeps = setting.substeps});
   return scene;
-}
-
-std::string settingsWords(const phys::World& world) {
-  const phys::SolverSettings& s = world.solverSettings();
-  const bool particles = world.particles().size() > 0, rigid = world.rigidBodies().size() > 0;
-  std::ostringstream o;
-  o << (particles && rigid ? "Verlet and rigid bodies, "
-        : rigid            ? "rigid bodies, "
-                           : "Verlet, ")
-    << ixsWords(s.iterations, s.substeps);
-  if (s.bodyDamping > 0.0) o << ", body damping " << s.bodyDamping;
-  if (s.sleep.enabled) o << ", sleeping";
-  if (s.jointProjection.enabled && !world.rigidJoints().empty()) o << ", joints projected";
-  return o.str();
 }
 
 double firstCheckpointError(const AccuracyTarget& target,
@@ -256,14 +265,6 @@ double timeSetting(const scenes::SceneSource& source, const Setting& setting, in
   }
   return median(std::move(msPerStep));
 }
-
-namespace {
-
-std::string cacheKey(const Setting& setting, int steps) {
-  return setting.model.label + "|" + formatNumber(setting.dt, 17) + "|" + std::to_string(steps);
-}
-
-}  // namespace
 
 const AccuracyTarget& TargetCache::get(const scenes::SceneSource& source, const Setting& setting, int steps) {
   const std::string key = cacheKey(setting, steps);

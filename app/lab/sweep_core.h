@@ -40,10 +40,6 @@ struct SceneModels {
 /// Throws scenes::LoadError like the loader.
 SceneModels sceneModels(const scenes::SceneSource& scene);
 
-/// The model named by a --model value, or nullopt with `error` set: an unknown name, or one of
-/// a kind the scene does not have ("lean" for a scene without ragdolls).
-std::optional<ModelChoice> modelChoice(std::string_view name, const SceneModels& models, std::string& error);
-
 /// The models a --models list names, in its order; throws UsageError "--models: <modelChoice's
 /// error>" at the first that does not fit the scene.
 std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, const SceneModels& models);
@@ -86,10 +82,6 @@ struct Figures {
   double poseJointGap = 0.0;
   std::string settings;  ///< what stepped the world, one line: ours settingsWords, a peer's its own
 };
-
-/// How a world steps, one line: "Verlet, 3 iterations x 1 substep" (or "rigid bodies", or
-/// "Verlet and rigid bodies"), with body damping and sleeping when on.
-std::string settingsWords(const phys::World& world);
 
 /// The error at the first of the target's checkpoints alone (`positions` per checkpoint, as for
 /// accuracyError); NaN when the target has no checkpoint.
