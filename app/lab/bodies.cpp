@@ -17,27 +17,22 @@ std::vector<phys::Quat> bodyOrientations(const phys::World& world) {
 }
 
 std::vector<phys::ParticleId> looseParticles(const phys::World& world) {
-  const std::vector<std::size_t> body = particleBodies(world);
+  const std::span<const phys::BodyId> owner = world.particleBodies();
   std::vector<phys::ParticleId> out;
-  for (phys::ParticleId p{}; p < body.size(); ++p) {
-    if (body[p] >= world.bodies().size()) out.push_back(p);
+  for (phys::ParticleId p{}; p < owner.size(); ++p) {
+    if (owner[p] == phys::kNoBody) out.push_back(p);
   }
   return out;
 }
 
 std::vector<std::size_t> particleBodies(const phys::World& world) {
-  const std::size_t boxes = world.bodies().size();
-  std::vector<std::size_t> body(world.particles().size(), boxes);
-  for (phys::BodyId id{}; id < boxes; ++id) {
-    const phys::Body& box = world.bodies()[id];
-    for (int k = 0; k < box.particleCount; ++k) body[box.firstParticle + k] = id;
-  }
-  // Loose particles (still marked `boxes`) take their places after the boxes, in id order.
-  std::size_t next = boxes;
-  for (std::size_t& b : body) {
-    if (b == boxes) b = next++;
-  }
-  return body;
+  // Loose particles take their places after the boxes, in id order.
+  std::size_t next = world.bodies().size();
+  std::vector<std::size_t> out;
+  out.reserve(world.particleBodies().size());
+  for (const phys::BodyId owner : world.particleBodies())
+    out.push_back(owner == phys::kNoBody ? next++ : owner);
+  return out;
 }
 
 }  // namespace lab
