@@ -109,8 +109,8 @@ FreeBodies freeBodyReference(const scenes::SceneSource& source, const std::vecto
     const auto [velocity, kept] = world.bodyVelocity(id);
     start.velocity = velocity;  // zero gravity: the same at every time
     // The kept spin was shifted with the rigid body's own moments: undone with the same.
-    const phys::Vec3 ownInertia = phys::Vec3(1.0) / world.rigidBodies().inverseInertia.at(body.rigid);
-    const std::optional<phys::Vec3> spin = spinAtStart(kept, pose.orientation, ownInertia, h);
+    const phys::BodyMass own = world.bodyMass(id);
+    const std::optional<phys::Vec3> spin = spinAtStart(kept, pose.orientation, own.inertia, h);
     // Beyond a radian a substep the physics keeps a spin unshifted, and the shift has no inverse.
     if (!spin || !(h * glm::length(*spin) <= 1.0)) {
       const double turn = h * glm::length(kept);  // inf for a spin of 1e300 on each axis
@@ -121,8 +121,7 @@ FreeBodies freeBodyReference(const scenes::SceneSource& source, const std::vecto
           " s)");
     }
     start.angularVelocity = *spin;
-    const phys::Real inverseMass = world.rigidBodies().inverseMass.at(body.rigid);
-    start.inertia = boxInertia ? phys::solidBoxInertia(body.halfExtents, 1.0 / inverseMass) : ownInertia;
+    start.inertia = boxInertia ? phys::solidBoxInertia(body.halfExtents, own.mass) : own.inertia;
     const double uncertainty = freeBodyUncertainty(start, times, body.halfExtents);
     if (!std::isfinite(uncertainty)) {
       throw std::invalid_argument(scene.name + ": body '" + body.name +
