@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <ostream>
 #include <set>
@@ -320,25 +319,15 @@ std::string convergeTable(const std::vector<ConvergeRow>& rows, const ConvergeTa
   s += "            against log h over the finest " + std::to_string(kOrderPoints) + " points above " +
        formatNumber(kConvergeFloor, 2) + " m (exact: every error below it)\n";
   const std::vector<std::vector<ConvergeRow>> lines = convergeLines(rows);
-  char cell[64];
-  std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", "method", "model", "order");
-  s += cell;
-  for (const ConvergeRow& r : lines.front()) {
-    std::snprintf(cell, sizeof cell, " %9s", ("S=" + std::to_string(r.substeps)).c_str());
-    s += cell;
-  }
+  s += printed("%-13s %-9s %6s", "method", "model", "order");
+  for (const ConvergeRow& r : lines.front())
+    s += printed(" %9s", ("S=" + std::to_string(r.substeps)).c_str());
   s += "\n";
   for (const std::vector<ConvergeRow>& line : lines) {
-    std::snprintf(cell, sizeof cell, "%-13s %-9s %6s", line.front().method.c_str(),
-                  line.front().model.c_str(), orderText(line).c_str());
-    s += cell;
-    for (const ConvergeRow& r : line) {
-      if (std::isfinite(r.error))
-        std::snprintf(cell, sizeof cell, " %9.2e", r.error);
-      else
-        std::snprintf(cell, sizeof cell, " %9s", "blew up");
-      s += cell;
-    }
+    s += printed("%-13s %-9s %6s", line.front().method.c_str(), line.front().model.c_str(),
+                 orderText(line).c_str());
+    for (const ConvergeRow& r : line)
+      s += std::isfinite(r.error) ? printed(" %9.2e", r.error) : printed(" %9s", kBlewUp);
     s += "\n";
   }
   return s;

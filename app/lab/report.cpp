@@ -4,7 +4,6 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <span>
 #include <sstream>
 #include <string_view>
@@ -32,9 +31,7 @@ constexpr std::size_t kMaxFreezesListed = 10;
 }  // namespace
 
 std::string hexHash(std::uint64_t hash) {
-  char buffer[24];
-  std::snprintf(buffer, sizeof buffer, "%016" PRIx64, hash);
-  return buffer;
+  return printed("%016" PRIx64, hash);
 }
 
 std::string jsonText(const RunResult& r) {

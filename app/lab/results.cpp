@@ -4,7 +4,6 @@
 // where are computed from the figures, so regenerating the report cannot leave them stale.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -55,9 +54,7 @@ std::string millimetres(double metres) {
 
 // Ratios to two decimals, so 1.04 does not read as "1 times".
 std::string ratio(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f", value);
-  return text;
+  return printed("%.2f", value);
 }
 
 // The commands write reports that start at "#"; inside results.md they sit under a "##".

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 
 #include "physics/character.h"
 #include "root_mean_square.h"
@@ -39,31 +38,27 @@ namespace {
 // minutes a step), so that it is not taken for a hang.
 class ProgressLine {
  public:
-  using Clock = std::chrono::steady_clock;
-  ProgressLine(std::ostream* out, int steps, Clock::time_point start, const ProgressTiming& timing)
-      : out_(out), steps_(steps), every_(timing.every), start_(start), next_(start + seconds(timing.after)) {}
+  ProgressLine(std::ostream* out, int steps, const ProgressTiming& timing)
+      : out_(out), steps_(steps), every_(timing.every), next_(timing.after) {}
 
   void after(int done) {
     if (out_ == nullptr) return;
-    const Clock::time_point now = Clock::now();
-    if (now < next_) return;
-    next_ = now + seconds(every_);
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (elapsed < next_) return;
+    next_ = elapsed + every_;
     const double perStep = elapsed / done;
-    char line[160];
-    std::snprintf(line, sizeof line, "lab: run: step %d of %d, %.3g s a step, about %.0f s left\n", done,
-                  steps_, perStep, perStep * (steps_ - done));
-    *out_ << line << std::flush;
+    *out_ << printed("lab: run: step %d of %d, %.3g s a step, about %.0f s left\n", done, steps_, perStep,
+                     perStep * (steps_ - done))
+          << std::flush;
   }
 
  private:
-  static Clock::duration seconds(double s) {
-    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
-  }
+  using Clock = std::chrono::steady_clock;
   std::ostream* out_;
   int steps_;
-  double every_;
-  Clock::time_point start_, next_;
+  double every_;  // unit: s
+  double next_;   // unit: s since the start; when the next line is due
+  Clock::time_point start_ = Clock::now();
 };
 
 // Each character part's drive read after every step (World::jointDriveTorque, bodyDriveLoad: the
@@ -141,7 +136,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   spec.steps = options.steps;
   spec.profile = true;
   spec.maxima = true;
-  ProgressLine line(progress, options.steps, std::chrono::steady_clock::now(), timing);
+  ProgressLine line(progress, options.steps, timing);
   DriveLog drives(world);
   spec.afterStep = [&line, &drives, &world](int step) {
     drives.after(world);

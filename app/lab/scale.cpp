@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <ostream>
 #include <stdexcept>
 
@@ -103,14 +102,12 @@ void describeScale(CommandLine& line, ScaleOptions& o) {
 std::string ragdollGrid(int n, const char* attributes) {
   const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   std::string xml;
-  char line[256];
   for (int i = 0; i < n; ++i) {
     const int row = i / side, column = i % side;
     const double x = 2.0 * (column - (side - 1) / 2.0), z = 2.0 * (row - (side - 1) / 2.0);
     const double tipX = (i % 2 == 0 ? 20.0 : -20.0), tipZ = ((i / 2) % 2 == 0 ? 20.0 : -20.0);
-    std::snprintf(line, sizeof line, "  <ragdoll name=\"r%d\" %s pos=\"%g 1.2 %g\" euler=\"%g 0 %g\"/>\n", i,
-                  attributes, x, z, tipX, tipZ);
-    xml += line;
+    xml += printed("  <ragdoll name=\"r%d\" %s pos=\"%g 1.2 %g\" euler=\"%g 0 %g\"/>\n", i, attributes, x, z,
+                   tipX, tipZ);
   }
   return xml;
 }
@@ -199,15 +196,12 @@ std::string scaleTable(const std::vector<ScaleRow>& rows) {
          settingLabel(solver.method, solver.iterations, solver.substeps) +
          " (iterations x substeps), median of the steps' own time\n";
   }
-  char line[160];
-  std::snprintf(line, sizeof line, "%8s %8s %8s %12s %16s %20s\n", "n", "threads", "bodies", "ms/step",
-                "us/body-step", "max joint gap (m)");
-  s += line;
+  s += printed("%8s %8s %8s %12s %16s %20s\n", "n", "threads", "bodies", "ms/step", "us/body-step",
+               "max joint gap (m)");
   for (const ScaleRow& r : rows) {
-    std::snprintf(line, sizeof line, "%8d %8d %8zu %12s %16s %20s\n", r.n, r.solver.threads, r.bodies,
-                  formatNumber(r.msPerStep, 4).c_str(), formatNumber(r.usPerBodyStep, 4).c_str(),
-                  formatNumber(r.maxJointGap, 3).c_str());
-    s += line;
+    s += printed("%8d %8d %8zu %12s %16s %20s\n", r.n, r.solver.threads, r.bodies,
+                 formatNumber(r.msPerStep, 4).c_str(), formatNumber(r.usPerBodyStep, 4).c_str(),
+                 formatNumber(r.maxJointGap, 3).c_str());
   }
   return s;
 }

@@ -11,9 +11,7 @@ namespace lab {
 std::string formatNumber(double value, int digits) {
   if (std::isnan(value)) return "n/a";
   if (std::isinf(value)) return kBlewUp;
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
+  return printed("%.*g", digits, value);
 }
 
 std::string formatFigure(double value, const std::string& unitAfter, int digits) {

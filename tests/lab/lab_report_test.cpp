@@ -13,6 +13,7 @@
 #include "lab_test_util.h"
 #include "report.h"
 #include "run.h"
+#include "text.h"
 
 namespace {
 
@@ -50,6 +51,13 @@ TEST(LabReport, Median) {
   EXPECT_EQ(lab::median({4.0}), 4.0);
   EXPECT_EQ(lab::median({5.0, 1.0, 3.0}), 3.0);
   EXPECT_EQ(lab::median({4.0, 1.0, 3.0, 100.0}), 3.5);
+}
+
+// The tables' one formatter: printf's widths, and a cell longer than any buffer kept whole.
+TEST(LabReport, PrintedFormatsCellsAndNeverCutsThemShort) {
+  EXPECT_EQ(lab::printed("%-6s|%6.2e|%3d", "xpbd", 0.000123, 7), "xpbd  |1.23e-04|  7");
+  const std::string longName(1000, 'x');
+  EXPECT_EQ(lab::printed("[%s]", longName.c_str()), "[" + longName + "]");
 }
 
 TEST(LabReport, JsonHasEveryKeyInOrderEvenWhenFiguresAreNotFinite) {
