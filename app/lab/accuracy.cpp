@@ -257,9 +257,8 @@ int stepsFor(const AccuracyTarget& target, int steps) {
 }
 
 double maxUncertainty(const AccuracyTarget& target) {
-  double worst = 0.0;
-  for (double u : target.uncertainty) worst = std::max(worst, u);
-  return worst;
+  const auto& u = target.uncertainty;
+  return u.empty() ? 0.0 : *std::max_element(u.begin(), u.end());
 }
 
 }  // namespace lab

@@ -116,14 +116,12 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
 }  // namespace
 
 Chart logChart(std::string title, std::string xLabel, std::string yLabel, bool logY, std::string output) {
-  Chart chart;
-  chart.title = std::move(title);
-  chart.xLabel = std::move(xLabel);
-  chart.yLabel = std::move(yLabel);
-  chart.logX = true;
-  chart.logY = logY;
-  chart.output = std::move(output);
-  return chart;
+  return {.title = std::move(title),
+          .xLabel = std::move(xLabel),
+          .yLabel = std::move(yLabel),
+          .logX = true,
+          .logY = logY,
+          .output = std::move(output)};
 }
 
 std::string gnuplotScript(const Chart& chart) {

@@ -54,20 +54,16 @@ std::string wrapped(const std::string& text, std::size_t first, std::size_t inde
   std::istringstream words(text);
   std::string word, out;
   std::size_t column = first;
-  bool lineStart = true;
   while (words >> word) {
-    if (!lineStart && column + 1 + word.size() > kHelpWidth) {
+    if (!out.empty() && column + 1 + word.size() > kHelpWidth) {
       out += "\n" + std::string(indent, ' ');
       column = indent;
-      lineStart = true;
-    }
-    if (!lineStart) {
+    } else if (!out.empty()) {
       out += ' ';
       ++column;
     }
     out += word;
     column += word.size();
-    lineStart = false;
   }
   return out;
 }
@@ -430,11 +426,10 @@ std::string CommandLine::help() const {
   all.push_back({"--help", "--help", "show this text", ""});
   for (const Entry& e : all) {
     std::string line = "  " + e.label;
-    if (line.size() + 1 >= kLabelWidth) {
+    if (line.size() + 1 >= kLabelWidth)
       line += "\n" + std::string(kLabelWidth, ' ');
-    } else {
-      line += std::string(kLabelWidth - line.size(), ' ');
-    }
+    else
+      line.resize(kLabelWidth, ' ');
     out += line + wrapped(e.help, kLabelWidth, kLabelWidth) + "\n";
   }
   return out;

@@ -160,9 +160,9 @@ std::vector<ScaleRow> runScale(ScaleKind kind, const std::vector<int>& sizes, co
 
 std::string scaleJson(const std::vector<ScaleRow>& rows) {
   // An array with one object a line, so that a person can read it and grep can find a size.
-  std::string s = "[\n";
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ScaleRow& r = rows[i];
+  std::vector<std::string> objects;
+  objects.reserve(rows.size());
+  for (const ScaleRow& r : rows) {
     const Json j = {{"scene", r.scene},
                     {"n", r.n},
                     {"threads", r.solver.threads},
@@ -170,12 +170,10 @@ std::string scaleJson(const std::vector<ScaleRow>& rows) {
                     {"ms_per_step", r.msPerStep},
                     {"us_per_body_step", r.usPerBodyStep},
                     {"max_joint_gap", r.maxJointGap}};
-    std::string line = jsonLine(j);
-    line.pop_back();  // its newline, which follows the comma between two objects
-    s += line;
-    s += i + 1 < rows.size() ? ",\n" : "\n";
+    objects.push_back(jsonLine(j));
+    objects.back().pop_back();  // its newline, which follows the comma between two objects
   }
-  return s + "]\n";
+  return "[\n" + join(objects, ",\n") + (objects.empty() ? "" : "\n") + "]\n";
 }
 
 std::string scaleCsv(const std::vector<ScaleRow>& rows) {

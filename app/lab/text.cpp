@@ -43,17 +43,16 @@ std::string joinNumbers(const std::vector<int>& numbers, const std::string& sepa
 }
 
 std::optional<std::vector<std::string>> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    const std::string item =
-        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (item.empty()) return std::nullopt;
-    items.push_back(item);
-    if (comma == std::string::npos) return items;
-    start = comma + 1;
+  std::vector<std::string> items(1);
+  for (const char c : text) {
+    if (c == ',')
+      items.emplace_back();
+    else
+      items.back() += c;
   }
+  const bool anyEmpty =
+      std::any_of(items.begin(), items.end(), [](const std::string& i) { return i.empty(); });
+  return anyEmpty ? std::nullopt : std::optional(items);
 }
 
 double median(std::vector<double> values) {

@@ -60,6 +60,13 @@ TEST(LabReport, PrintedFormatsCellsAndNeverCutsThemShort) {
   EXPECT_EQ(lab::printed("[%s]", longName.c_str()), "[" + longName + "]");
 }
 
+// Comma lists as the options take them: an empty item anywhere is refused.
+TEST(LabReport, SplitListRefusesAnEmptyItemAnywhere) {
+  EXPECT_EQ(lab::splitList("a"), std::vector<std::string>{"a"});
+  EXPECT_EQ(lab::splitList("1,22,333"), (std::vector<std::string>{"1", "22", "333"}));
+  for (const char* bad : {"", ",", "a,", ",a", "a,,b"}) EXPECT_FALSE(lab::splitList(bad)) << bad;
+}
+
 TEST(LabReport, JsonHasEveryKeyInOrderEvenWhenFiguresAreNotFinite) {
   lab::RunResult r;
   r.scene = "we\"ird";
