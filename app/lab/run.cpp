@@ -68,17 +68,16 @@ class DriveLog {
   explicit DriveLog(const phys::World& world) {
     for (const phys::Character& c : world.characters()) {
       for (const phys::CharacterBone& bone : c.bones)
-        figures_.push_back({c.ragdoll, c.now.clip->bones[std::size_t(bone.clipBone)], bone.parent < 0});
+        parts_.push_back(
+            {{c.ragdoll, c.now.clip->bones[std::size_t(bone.clipBone)], bone.parent < 0}, {}, {}});
     }
-    squares_.resize(figures_.size());
   }
 
   void after(const phys::World& world) {
-    std::size_t i = 0;
+    auto part = parts_.begin();
     for (const phys::Character& c : world.characters()) {
       for (const phys::CharacterBone& bone : c.bones) {
-        const std::size_t part = i++;
-        DriveFigures& f = figures_[part];
+        Part& p = *part++;
         double torque = 0.0, force = 0.0;
         if (bone.parent < 0) {
           const phys::DriveLoad load = world.bodyDriveLoad(bone.body);
@@ -88,28 +87,31 @@ class DriveLog {
           torque = c.particleParts ? world.particleJointDriveTorque(bone.joint)
                                    : world.jointDriveTorque(bone.joint);
         }
-        squares_[part].torque.add(torque);
-        squares_[part].force.add(force);
-        f.peakTorque = std::max(f.peakTorque, torque);
-        f.peakForce = std::max(f.peakForce, force);
+        p.torque.add(torque);
+        p.force.add(force);
+        p.figures.peakTorque = std::max(p.figures.peakTorque, torque);
+        p.figures.peakForce = std::max(p.figures.peakForce, force);
       }
     }
   }
 
-  std::vector<DriveFigures> finish() {
-    for (std::size_t i = 0; i < figures_.size(); ++i) {
-      figures_[i].rmsTorque = squares_[i].torque.value();
-      figures_[i].rmsForce = squares_[i].force.value();
+  std::vector<DriveFigures> finish() const {
+    std::vector<DriveFigures> out;
+    out.reserve(parts_.size());
+    for (const Part& p : parts_) {
+      out.push_back(p.figures);
+      out.back().rmsTorque = p.torque.value();
+      out.back().rmsForce = p.force.value();
     }
-    return std::move(figures_);
+    return out;
   }
 
  private:
-  struct Squares {
+  struct Part {
+    DriveFigures figures;  // its peaks as the run goes; its RMS figures at the end
     RootMeanSquare torque, force;
   };
-  std::vector<DriveFigures> figures_;
-  std::vector<Squares> squares_;  // one a part, as figures_
+  std::vector<Part> parts_;  // every character's parts, in order
 };
 
 }  // namespace
