@@ -92,9 +92,8 @@ std::string commandNames() {
 std::string usage() {
   std::string text = "usage: lab COMMAND [options]   (lab COMMAND --help lists a command's options)\n";
   for (const CommandEntry& c : kCommands) {
-    std::string head = std::string("  ") + c.name + " " + c.arguments;
-    head.resize(std::max<std::size_t>(head.size() + 1, 30), ' ');
-    text += head + c.summary + "\n";
+    const std::string head = std::string("  ") + c.name + " " + c.arguments;
+    text += printed("%-29s %s\n", head.c_str(), c.summary);
   }
   return text + "  help                        this text\n";
 }
