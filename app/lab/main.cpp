@@ -27,11 +27,7 @@ class StdoutBuffer : public std::streambuf {
   }
 
  protected:
-  std::streamsize xsputn(const char* s, std::streamsize n) override {
-    pending_.append(s, static_cast<std::size_t>(n));
-    const bool line = lineByLine_ && std::memchr(s, '\n', static_cast<std::size_t>(n)) != nullptr;
-    return (line || pending_.size() >= kBlock) && !flush() ? 0 : n;
-  }
+  // Without a put area every character comes here (streambuf's xsputn calls it for each one).
   int_type overflow(int_type c) override {
     if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
     pending_ += traits_type::to_char_type(c);
