@@ -19,6 +19,7 @@
 #include "lab_test_util.h"
 #include "peer.h"
 #include "peers/peer_scene.h"
+#include "runner.h"
 #include "scenes/scene.h"
 
 namespace {
@@ -58,6 +59,32 @@ std::vector<std::string> engines() {
   if (e.empty())
     std::cout << "[ note     ] no peer engines built in; the physical checks have nothing to run\n";
   return e;
+}
+
+// An engine is stepped by the lab's one step loop as it is, with no wrapper: the poses the runner
+// records at the last step are the engine's own, body for body in the description's order.
+TEST(PeerEngines, StepThroughTheRunnerAsTheyAre) {
+  const lab::peers::Description d = lab::peers::describe(load(kStack));
+  for (const std::string& engine : engines()) {
+    SCOPED_TRACE(engine);
+    const auto built = lab::peers::makeEngine(engine, d, kDt);
+    ASSERT_NE(built, nullptr);
+    lab::RunSpec spec;
+    spec.steps = 30;
+    spec.checkpoints = {10, 30};
+    spec.orientations = true;
+    const lab::RunRecord run = lab::runSteps(*built, spec);
+    EXPECT_EQ(run.stepsRun, 30);
+    ASSERT_EQ(run.positions.size(), 2u);
+    ASSERT_EQ(run.orientations.size(), 2u);
+    ASSERT_EQ(run.positions[1].size(), d.bodies.size());
+    for (int i = 0; i < static_cast<int>(d.bodies.size()); ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      EXPECT_TRUE(run.positions[1][k] == built->position(i)) << "body " << i;
+      EXPECT_TRUE(run.orientations[1][k] == built->orientation(i)) << "body " << i;
+      EXPECT_NEAR(run.positions[1][k].y, 0.5 + static_cast<double>(i), 0.05) << "body " << i;  // resting
+    }
+  }
 }
 
 TEST(PeerEngines, ListedInTheFixedOrder) {

@@ -131,7 +131,8 @@ class Filter : public btOverlapFilterCallback {
 class BulletEngine : public Engine {
  public:
   BulletEngine(const Description& scene, double dt)
-      : filter_(scene),
+      : Engine(scene.bodies.size()),
+        filter_(scene),
         dispatcher_(&config_),
         world_(&dispatcher_, &broadphase_, &solver_, &config_),
         dt_(static_cast<btScalar>(dt)) {

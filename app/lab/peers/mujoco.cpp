@@ -88,7 +88,8 @@ mjModel* compile(const std::string& xml) {
 
 class MujocoEngine : public Engine {
  public:
-  MujocoEngine(const Description& scene, double dt, bool forceTree) : scene_(scene) {
+  MujocoEngine(const Description& scene, double dt, bool forceTree)
+      : Engine(scene.bodies.size()), scene_(scene) {
     build(dt, forceTree);
     data_ = mj_makeData(model_);
     if (data_ == nullptr) {

@@ -93,7 +93,7 @@ int untag(dGeomID g) {
 
 class OdeEngine : public Engine {
  public:
-  OdeEngine(const Description& scene, double dt) : scene_(scene), dt_(dt) {
+  OdeEngine(const Description& scene, double dt) : Engine(scene.bodies.size()), scene_(scene), dt_(dt) {
     // Before anything of ODE's is made, so that a refusal leaves nothing to free.
     for (const Body& b : scene.bodies) {
       if (const std::string why = beyondReach(b.name, b.centre, b.angularVelocity, dt); !why.empty())

@@ -14,6 +14,7 @@
 
 #include "physics/body.h"
 #include "physics/types.h"
+#include "runner.h"
 #include "scenes/scene.h"
 
 namespace lab::peers {
@@ -117,17 +118,18 @@ Description describe(const scenes::Scene& scene);
 double groundPenetration(const Description& scene, const std::vector<phys::Vec3>& centres,
                          const std::vector<phys::Quat>& orientations);
 
-/// An engine built from a description, ready to step.
-class Engine {
+/// An engine built from a description, ready to step: the runner (runner.h) steps it as it steps
+/// our world, each step() advancing by the dt it was built with and afterStep() called outside
+/// the timing with the step's number (1-based).
+class Engine : public Stepper {
  public:
-  virtual ~Engine() = default;
-  /// Advances by the dt it was built with.
-  virtual void step() = 0;
+  /// `bodies`: the description's count, whose poses positions() and orientations() read.
+  explicit Engine(std::size_t bodies) : bodies_(bodies) {}
   /// Where body i (description order) is now.
   virtual phys::Vec3 position(int i) const = 0;
   virtual phys::Quat orientation(int i) const = 0;
-  /// Called after each step, outside the timing, with the step's number (1-based).
-  virtual void afterStep(int /*step*/) {}
+  std::vector<phys::Vec3> positions() const override { return each(&Engine::position); }
+  std::vector<phys::Quat> orientations() const override { return each(&Engine::orientation); }
   /// Called once after the last step, untimed: adds to `notes` what the run showed (an engine
   /// that dropped contacts or reset itself).
   virtual void finish() {}
@@ -139,6 +141,17 @@ class Engine {
   bool dropped = false;
   /// The solver and its settings, one line for the table.
   std::string settings;
+
+ private:
+  template <typename T>
+  std::vector<T> each(T (Engine::*read)(int) const) const {
+    std::vector<T> out;
+    out.reserve(bodies_);
+    for (std::size_t i = 0; i < bodies_; ++i) out.push_back((this->*read)(static_cast<int>(i)));
+    return out;
+  }
+
+  std::size_t bodies_;
 };
 
 // The adapters, each in its own file and built only when its library is found. They throw

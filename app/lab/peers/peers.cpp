@@ -1,9 +1,7 @@
 // peerEngines() and runPeer(): the part of the peers that does not depend on any engine. It
 // reads the scene once (peer_scene.cpp), builds it in the engine asked for, and steps it
 // through the lab's one step loop (runner.h), as `lab compare` steps ours: each step timed alone.
-#include <algorithm>
 #include <exception>
-#include <stdexcept>
 
 #include "peer.h"
 #include "peer_scene.h"
@@ -12,28 +10,6 @@
 
 namespace lab {
 namespace {
-
-// A peer engine as the runner steps it: its bodies in the description's order.
-class PeerStepper final : public Stepper {
- public:
-  PeerStepper(peers::Engine& engine, int bodies) : engine_(engine), bodies_(bodies) {}
-  void step() override { engine_.step(); }
-  void afterStep(int step) override { engine_.afterStep(step); }
-  std::vector<phys::Vec3> positions() const override { return each(&peers::Engine::position); }
-  std::vector<phys::Quat> orientations() const override { return each(&peers::Engine::orientation); }
-
- private:
-  template <typename T>
-  std::vector<T> each(T (peers::Engine::*read)(int) const) const {
-    std::vector<T> out;
-    out.reserve(static_cast<std::size_t>(bodies_));
-    for (int i = 0; i < bodies_; ++i) out.push_back((engine_.*read)(i));
-    return out;
-  }
-
-  peers::Engine& engine_;
-  int bodies_;
-};
 
 // The adapters built in, in the fixed order the tables use.
 struct Adapter {
@@ -60,14 +36,14 @@ const Adapter* findAdapter(std::string_view name) {
   return nullptr;
 }
 
-std::string joined(const std::vector<std::string>& parts) {
-  std::string out;
-  for (const std::string& p : parts) {
-    if (p.empty()) continue;
-    if (!out.empty()) out += "; ";
-    out += p;
-  }
-  return out;
+// What a run left out or showed, for the table: the scene's notes, the engine's, and then why
+// it stopped when it did.
+std::string notesOf(const peers::Description& description, const peers::Engine* engine,
+                    const std::string& stopped = {}) {
+  std::vector<std::string> parts = description.notes;
+  if (engine != nullptr) parts.insert(parts.end(), engine->notes.begin(), engine->notes.end());
+  if (!stopped.empty()) parts.push_back(stopped);
+  return join(parts, "; ");
 }
 
 }  // namespace
@@ -109,12 +85,11 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   try {
     built = adapter->make(description, dt);
   } catch (const std::exception& e) {
-    result.unsupported = joined({joined(description.notes), std::string(e.what()) + ": not run"});
+    result.unsupported = notesOf(description, nullptr, std::string(e.what()) + ": not run");
     return result;
   }
   result.settings = built->settings;
 
-  PeerStepper stepper(*built, static_cast<int>(description.bodies.size()));
   RunSpec spec;
   spec.steps = steps;
   spec.checkpoints = checkpoints;
@@ -122,23 +97,22 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   spec.stepTimes = true;
   RunRecord run;
   try {
-    run = runSteps(stepper, spec);
+    run = runSteps(*built, spec);
   } catch (const std::exception& e) {
     // An engine that gives up part way (MuJoCo's errors arrive as exceptions) has no run to
     // compare; say so rather than report half of one.
-    result.unsupported =
-        joined({joined(description.notes), joined(built->notes), std::string(e.what()) + ": run stopped"});
+    result.unsupported = notesOf(description, built.get(), std::string(e.what()) + ": run stopped");
     return result;
   }
   result.positions = std::move(run.positions);
   result.orientations = std::move(run.orientations);
 
   built->finish();
-  result.maxPenetration = peers::groundPenetration(description, stepper.positions(), stepper.orientations());
+  result.maxPenetration = peers::groundPenetration(description, built->positions(), built->orientations());
   result.dropped = built->dropped;
   result.meanMsPerStep = steps > 0 ? run.steppingMs / steps : 0.0;
   result.medianMsPerStep = median(std::move(run.stepMs));
-  result.unsupported = joined({joined(description.notes), joined(built->notes)});
+  result.unsupported = notesOf(description, built.get());
   result.ran = true;
   return result;
 }
