@@ -155,43 +155,51 @@ class MujocoEngine : public Engine {
   // Compiles the scene in the free-body form, or in the tree form when the free-body form's rows
   // do not fit 2.2.2's buffer, and sets the sizes (mujoco_size.h) on the compiled model.
   void build(double dt, bool forceTree) {
-    namespace ms = mujoco_size;
-    mjcf::Model free = mjcf::writeModel(scene_, dt, false);
-    model_ = compile(free.xml);
-    int rows = ms::largestRows(*model_, free.contacts, free.rowsWanted());
-    const mjcf::Model* chosen = &free;
-    mjcf::Model tree;
-    if (rows < free.rowsNeeded() || forceTree) {
-      const int freeRows = rows, freeDofs = model_->nv;
-      mj_deleteModel(model_);
-      model_ = nullptr;
-      tree = mjcf::writeModel(scene_, dt, true);
-      model_ = compile(tree.xml);
-      rows = ms::largestRows(*model_, tree.contacts, tree.rowsWanted());
-      if (rows < tree.rowsNeeded()) {
-        const std::string why = "too large for MuJoCo " + std::string(mj_versionString()) +
-                                ", whose mjData buffer (an int of bytes: 2 GiB) grows as " +
-                                "12 njmax^2 + 24 njmax nv: with free bodies it needs " +
-                                std::to_string(free.rowsNeeded()) + " constraint rows and holds " +
-                                std::to_string(freeRows) + " at nv " + std::to_string(freeDofs) +
-                                ", as a kinematic tree " + std::to_string(tree.rowsNeeded()) + " and " +
-                                std::to_string(rows) + " at nv " + std::to_string(model_->nv);
-        mj_deleteModel(model_);
-        throw std::runtime_error(why);
-      }
-      chosen = &tree;
-      tree_ = true;
-      if (!forceTree || freeRows < free.rowsNeeded()) {
-        tree.notes.push_back("joints as a kinematic tree: with free bodies the pins need " +
-                             std::to_string(free.equalityRows) + " rows, and MuJoCo 2.2.2's mjData holds " +
-                             std::to_string(freeRows) + " at nv " + std::to_string(freeDofs));
-      }
+    const mjcf::Model free = mjcf::writeModel(scene_, dt, false);
+    const int freeRows = compileSized(free), freeDofs = model_->nv;
+    const bool freeFits = freeRows >= free.rowsNeeded();
+    if (freeFits && !forceTree) {
+      use(free, freeRows);
+      return;
     }
-    notes = chosen->notes;
-    wanted_ = chosen->rowsWanted();
+    mj_deleteModel(model_);
+    model_ = nullptr;
+    mjcf::Model tree = mjcf::writeModel(scene_, dt, true);
+    const int rows = compileSized(tree);
+    if (rows < tree.rowsNeeded()) {
+      const std::string why = "too large for MuJoCo " + std::string(mj_versionString()) +
+                              ", whose mjData buffer (an int of bytes: 2 GiB) grows as " +
+                              "12 njmax^2 + 24 njmax nv: with free bodies it needs " +
+                              std::to_string(free.rowsNeeded()) + " constraint rows and holds " +
+                              std::to_string(freeRows) + " at nv " + std::to_string(freeDofs) +
+                              ", as a kinematic tree " + std::to_string(tree.rowsNeeded()) + " and " +
+                              std::to_string(rows) + " at nv " + std::to_string(model_->nv);
+      mj_deleteModel(model_);
+      throw std::runtime_error(why);
+    }
+    tree_ = true;
+    if (!freeFits) {
+      tree.notes.push_back("joints as a kinematic tree: with free bodies the pins need " +
+                           std::to_string(free.equalityRows) + " rows, and MuJoCo 2.2.2's mjData holds " +
+                           std::to_string(freeRows) + " at nv " + std::to_string(freeDofs));
+    }
+    use(tree, rows);
+  }
+
+  // Compiles the written model into model_; the most constraint rows its buffer holds.
+  int compileSized(const mjcf::Model& written) {
+    model_ = compile(written.xml);
+    return mujoco_size::largestRows(*model_, written.contacts, written.rowsWanted());
+  }
+
+  // Runs the compiled model_ as `written` with room for `rows` constraint rows.
+  void use(const mjcf::Model& written, int rows) {
+    notes = written.notes;
+    wanted_ = written.rowsWanted();
     model_->njmax = rows;
-    model_->nconmax = chosen->contacts;
-    model_->nstack = static_cast<int>(std::min<std::int64_t>(ms::stackFor(*model_, rows), 2147483647));
+    model_->nconmax = written.contacts;
+    model_->nstack =
+        static_cast<int>(std::min<std::int64_t>(mujoco_size::stackFor(*model_, rows), 2147483647));
   }
 
   // Each body's velocity as the description gives it: a root's free joint takes the centre's
