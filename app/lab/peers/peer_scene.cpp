@@ -29,6 +29,53 @@ Vec3 toLocal(const Body& body, const Vec3& p) {
   return glm::inverse(body.orientation) * (p - body.centre);
 }
 
+// Box id as a rigid body. Mass, inertia and motion as the physics has them (World::bodyMass,
+// poseVelocity). A capsule's particles sit on its box as a box's do, so it gets its box's inertia
+// and the engines turn it as ours turns.
+Body boxBody(const phys::World& world, phys::BodyId id) {
+  const phys::Body& box = world.bodies()[id];
+  const phys::BodyPose pose = world.bodyPose(id);
+  Body body;
+  body.shape = box.shape == phys::Shape::Capsule ? Body::Shape::Capsule : Body::Shape::Box;
+  body.name = box.name;
+  body.centre = pose.center;
+  body.orientation = pose.orientation;
+  body.halfExtents = box.halfExtents;
+  body.model = box.model;
+  if (body.shape == Body::Shape::Capsule) {
+    body.radius = box.capsuleRadius();
+    body.halfSegment = std::max(0.0, box.capsuleHalfSegment());
+  }
+  body.friction = box.material.dynamicFriction;
+  body.group = box.collisionGroup;
+  body.mask = box.collisionMask;
+  const phys::BodyMass mass = world.bodyMass(id);
+  body.fixed = mass.fixed();
+  if (!body.fixed) {
+    body.mass = mass.mass;
+    body.inertia = mass.inertia;
+    std::tie(body.velocity, body.angularVelocity) = world.poseVelocity(id);
+  }
+  return body;
+}
+
+// Loose particle i as a small solid sphere, with the friction of its ground contact (`contact`,
+// or null for none: the default material's).
+Body looseBody(const phys::World& world, phys::ParticleId i, const phys::GroundContact* contact) {
+  const phys::Particles& particles = world.particles();
+  Body body;
+  body.shape = Body::Shape::Sphere;
+  body.name = world.particleName(i);
+  body.centre = particles.position[i];
+  body.radius = kParticleRadius;
+  body.fixed = particles.inverseMass[i] == 0.0;
+  body.mass = body.fixed ? 0.0 : 1.0 / particles.inverseMass[i];
+  body.inertia = Vec3(0.4 * body.mass * kParticleRadius * kParticleRadius);
+  if (!body.fixed) body.velocity = particleVelocity(world, i);
+  body.friction = contact != nullptr ? contact->material.dynamicFriction : phys::Material{}.dynamicFriction;
+  return body;
+}
+
 }  // namespace
 
 Vec3 toWorld(const Vec3& centre, const phys::Quat& orientation, const Vec3& p) {
@@ -56,7 +103,6 @@ Description describe(const scenes::Scene& scene) {
   const phys::Particles& particles = world.particles();
 
   Description d;
-  d.name = scene.name;
   if (ws.gravityMode == phys::GravityMode::Point) {
     d.refused = "point gravity (a pull towards a point)";
   }
@@ -70,37 +116,9 @@ Description describe(const scenes::Scene& scene) {
 
   // Which body each particle belongs to, in bodies.h order: boxes by id, then loose particles.
   const std::vector<std::size_t> owner = particleBodies(world);
-  const auto boxes = world.bodies();
-  for (phys::BodyId id{}; id < boxes.size(); ++id) {
-    const phys::Body& box = boxes[id];
-    const phys::BodyPose pose = world.bodyPose(id);
-    Body body;
-    body.shape = box.shape == phys::Shape::Capsule ? Body::Shape::Capsule : Body::Shape::Box;
-    body.name = box.name;
-    body.centre = pose.center;
-    body.orientation = pose.orientation;
-    body.halfExtents = box.halfExtents;
-    body.model = box.model;
-    if (body.shape == Body::Shape::Capsule) {
-      body.radius = box.capsuleRadius();
-      body.halfSegment = std::max(0.0, box.capsuleHalfSegment());
-    }
-    body.friction = box.material.dynamicFriction;
-    body.group = box.collisionGroup;
-    body.mask = box.collisionMask;
-    if (box.collisionGroup != 1u || box.collisionMask != 0xffffffffu) d.defaultFiltering = false;
-
-    // Mass, inertia and motion as the physics has them (World::bodyMass, poseVelocity). A
-    // capsule's particles sit on its box as a box's do, so it gets its box's inertia and the
-    // engines turn it as ours turns.
-    const phys::BodyMass mass = world.bodyMass(id);
-    body.fixed = mass.fixed();
-    if (!body.fixed) {
-      body.mass = mass.mass;
-      body.inertia = mass.inertia;
-      std::tie(body.velocity, body.angularVelocity) = world.poseVelocity(id);
-    }
-    d.bodies.push_back(body);
+  for (phys::BodyId id{}; id < world.bodies().size(); ++id) {
+    d.bodies.push_back(boxBody(world, id));
+    if (d.bodies.back().group != 1u || d.bodies.back().mask != 0xffffffffu) d.defaultFiltering = false;
   }
 
   // Loose particles keep the material of their ground contact point.
@@ -108,20 +126,8 @@ Description describe(const scenes::Scene& scene) {
   for (const phys::GroundContact& c : world.groundContacts()) {
     if (c.body == phys::kNoBody && c.point.count == 1) contactOf[c.point.particle[0]] = &c;
   }
-  for (const phys::ParticleId i : looseParticles(world)) {
-    Body body;
-    body.shape = Body::Shape::Sphere;
-    body.name = world.particleName(i);
-    body.centre = particles.position[i];
-    body.radius = kParticleRadius;
-    body.fixed = particles.inverseMass[i] == 0.0;
-    body.mass = body.fixed ? 0.0 : 1.0 / particles.inverseMass[i];
-    body.inertia = Vec3(0.4 * body.mass * kParticleRadius * kParticleRadius);
-    if (!body.fixed) body.velocity = particleVelocity(world, i);
-    body.friction =
-        contactOf[i] != nullptr ? contactOf[i]->material.dynamicFriction : phys::Material{}.dynamicFriction;
-    d.bodies.push_back(body);
-  }
+  for (const phys::ParticleId i : looseParticles(world))
+    d.bodies.push_back(looseBody(world, i, contactOf[i]));
 
   // The body an embedded point belongs to: all its particles are one body's (a box's anchor
   // or a loose particle); -1 when they are not, which no scene file can make.

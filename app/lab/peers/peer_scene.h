@@ -79,7 +79,6 @@ struct Distance : Ends {
 };
 
 struct Description {
-  std::string name;
   phys::Vec3 gravity{0.0, -9.81, 0.0};  ///< unit: m/s^2
   bool ground = false;
   phys::Vec3 groundNormal{0.0, 1.0, 0.0};
