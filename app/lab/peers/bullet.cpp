@@ -177,15 +177,12 @@ class BulletEngine : public Engine {
       bodies_.push_back(body);
     }
 
-    for (const Pin& p : scene.pins) {
-      constraints_.push_back(std::make_unique<btPoint2PointConstraint>(
-          *bodies_[static_cast<std::size_t>(p.a)], *bodies_[static_cast<std::size_t>(p.b)], bt(p.localA),
-          bt(p.localB)));
-    }
+    for (const Pin& p : scene.pins)
+      constraints_.push_back(
+          std::make_unique<btPoint2PointConstraint>(body(p.a), body(p.b), bt(p.localA), bt(p.localB)));
     for (const Distance& d : scene.distances) {
-      constraints_.push_back(std::make_unique<DistanceLimit>(*bodies_[static_cast<std::size_t>(d.a)],
-                                                             *bodies_[static_cast<std::size_t>(d.b)],
-                                                             bt(d.localA), bt(d.localB), d.min, d.max));
+      constraints_.push_back(
+          std::make_unique<DistanceLimit>(body(d.a), body(d.b), bt(d.localA), bt(d.localB), d.min, d.max));
     }
     // Joined bodies still collide unless the scene says not (as ours do): the filter decides.
     for (auto& c : constraints_) world_.addConstraint(c.get(), false);
@@ -217,15 +214,18 @@ class BulletEngine : public Engine {
   }
 
   phys::Vec3 position(int i) const override {
-    const btVector3 p = bodies_[static_cast<std::size_t>(i)]->getCenterOfMassPosition();
+    const btVector3 p = body(i).getCenterOfMassPosition();
     return {p.x(), p.y(), p.z()};
   }
   phys::Quat orientation(int i) const override {
-    const btQuaternion q = bodies_[static_cast<std::size_t>(i)]->getOrientation();
+    const btQuaternion q = body(i).getOrientation();
     return {q.w(), q.x(), q.y(), q.z()};
   }
 
  private:
+  // The Bullet body of description body i.
+  btRigidBody& body(int i) const { return *bodies_[static_cast<std::size_t>(i)]; }
+
   int moving() const {
     int n = 0;
     for (const btRigidBody* b : bodies_) n += b->isStaticObject() ? 0 : 1;

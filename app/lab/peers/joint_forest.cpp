@@ -50,11 +50,6 @@ TreeNode jointOf(const std::vector<phys::Vec3>& points) {
 
 }  // namespace
 
-int dofsOf(TreeJoint joint) {
-  constexpr std::array<int, 5> kDofs{6, 0, 3, 1, 0};  // TreeJoint's order: free, fixed, ball, hinge, weld
-  return kDofs.at(static_cast<std::size_t>(joint));   // a value cast from outside the enum throws
-}
-
 JointForest jointForest(const Description& scene, bool tree) {
   const std::size_t n = scene.bodies.size();
   JointForest f;
@@ -118,7 +113,10 @@ JointForest jointForest(const Description& scene, bool tree) {
   }
   std::sort(f.roots.begin(), f.roots.end());
   for (auto& c : f.children) std::sort(c.begin(), c.end());
-  for (const TreeNode& node : f.nodes) f.dofs += dofsOf(node.joint);
+  // The coordinates each joint adds, in TreeJoint's order: free, fixed, ball, hinge, weld. at():
+  // a value cast from outside the enum throws.
+  constexpr std::array<int, 5> kDofs{6, 0, 3, 1, 0};
+  for (const TreeNode& node : f.nodes) f.dofs += kDofs.at(static_cast<std::size_t>(node.joint));
   return f;
 }
 

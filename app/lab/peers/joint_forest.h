@@ -42,7 +42,4 @@ struct JointForest {
 /// the forest above (tree true).
 JointForest jointForest(const Description& scene, bool tree);
 
-/// Coordinates a joint adds: 6, 0, 3, 1, 0.
-int dofsOf(TreeJoint joint);
-
 }  // namespace lab::peers

@@ -273,13 +273,10 @@ class OdeEngine : public Engine {
     return {};
   }
 
-  phys::Vec3 worldPoint(int i, const phys::Vec3& local) const {
-    return toWorld(position(i), orientation(i), local);
-  }
-
   // A range stick or link outside its range becomes a frictionless contact for this step.
   void limit(const Distance& d) {
-    const phys::Vec3 pa = worldPoint(d.a, d.localA), pb = worldPoint(d.b, d.localB);
+    const phys::Vec3 pa = toWorld(position(d.a), orientation(d.a), d.localA);
+    const phys::Vec3 pb = toWorld(position(d.b), orientation(d.b), d.localB);
     const phys::Vec3 between = pb - pa;
     const double length = glm::length(between);
     if (length >= d.min && length <= d.max) return;

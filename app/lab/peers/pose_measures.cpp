@@ -58,16 +58,6 @@ bool finitePose(const Vec3& c, const phys::Quat& q) {
 
 }  // namespace
 
-phys::Obb obbOf(const Body& body, const Vec3& centre, const phys::Quat& orientation) {
-  phys::Obb o;
-  o.center = centre;
-  // The engines' quaternions are unit up to their round-off (float in Bullet): normalized so
-  // the axes are, as the narrow phase assumes.
-  o.axes = glm::mat3_cast(glm::normalize(orientation));
-  o.halfExtents = body.halfExtents;
-  return o;
-}
-
 double bodyOverlap(const Description& scene, const std::vector<Vec3>& centres,
                    const std::vector<phys::Quat>& orientations) {
   const int n = static_cast<int>(scene.bodies.size());
@@ -78,7 +68,12 @@ double bodyOverlap(const Description& scene, const std::vector<Vec3>& centres,
     const Body& b = scene.bodies[k];
     if (!b.solid()) continue;
     if (!finitePose(centres[k], orientations[k])) return kInf;
-    obbs[k] = obbOf(b, centres[k], orientations[k]);
+    // The box itself, or for a capsule the box it is inscribed in (phys::capsuleInBox reads the
+    // capsule from it, as World does). The engines' quaternions are unit up to their round-off
+    // (float in Bullet): normalized so the axes are, as the narrow phase assumes.
+    obbs[k].center = centres[k];
+    obbs[k].axes = glm::mat3_cast(glm::normalize(orientations[k]));
+    obbs[k].halfExtents = b.halfExtents;
     bounds.push_back(boundsOf(i, obbs[k]));
   }
   // Sort and sweep on x: each body meets only those whose x range begins before its own ends.

@@ -11,10 +11,6 @@
 
 namespace lab::peers {
 
-/// Body i at a pose as our narrow phase sees it: the box itself, or for a capsule the box it is
-/// inscribed in (phys::capsuleInBox reads the capsule from it, as World does).
-phys::Obb obbOf(const Body& body, const phys::Vec3& centre, const phys::Quat& orientation);
-
 /// Deepest overlap (m) of any two bodies that collide (Description::collides): the deepest
 /// contact point our narrow phase finds between them (phys::collideBoxes, collideCapsules,
 /// collideCapsuleBox), 0 when none touch. A sort-and-sweep on x over the bodies' bounding
