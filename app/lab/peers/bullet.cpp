@@ -213,13 +213,10 @@ class BulletEngine : public Engine {
     }
   }
 
-  phys::Vec3 position(int i) const override {
+  phys::BodyPose pose(int i) const override {
     const btVector3 p = body(i).getCenterOfMassPosition();
-    return {p.x(), p.y(), p.z()};
-  }
-  phys::Quat orientation(int i) const override {
     const btQuaternion q = body(i).getOrientation();
-    return {q.w(), q.x(), q.y(), q.z()};
+    return {{p.x(), p.y(), p.z()}, {q.w(), q.x(), q.y(), q.z()}};
   }
 
  private:

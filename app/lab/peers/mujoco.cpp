@@ -140,15 +140,12 @@ class MujocoEngine : public Engine {
     }
   }
 
-  phys::Vec3 position(int i) const override {
+  phys::BodyPose pose(int i) const override {
     sync();
-    const mjtNum* p = data_->xpos + 3 * static_cast<std::ptrdiff_t>(ids_[static_cast<std::size_t>(i)]);
-    return {p[0], p[1], p[2]};
-  }
-  phys::Quat orientation(int i) const override {
-    sync();
-    const mjtNum* q = data_->xquat + 4 * static_cast<std::ptrdiff_t>(ids_[static_cast<std::size_t>(i)]);
-    return {q[0], q[1], q[2], q[3]};
+    const auto id = static_cast<std::ptrdiff_t>(ids_[static_cast<std::size_t>(i)]);
+    const mjtNum* p = data_->xpos + 3 * id;
+    const mjtNum* q = data_->xquat + 4 * id;
+    return {{p[0], p[1], p[2]}, {q[0], q[1], q[2], q[3]}};
   }
 
  private:

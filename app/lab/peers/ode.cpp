@@ -212,15 +212,12 @@ class OdeEngine : public Engine {
   }
 
   // The body's pose, not the geom's: a capsule's geom is turned from its body by the offset.
-  phys::Vec3 position(int i) const override {
-    if (body(i) == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].centre;  // fixed: never moves
+  phys::BodyPose pose(int i) const override {
+    const Body& b = scene_.bodies[static_cast<std::size_t>(i)];
+    if (body(i) == nullptr) return {b.centre, b.orientation};  // fixed: never moves
     const dReal* p = dBodyGetPosition(body(i));
-    return {p[0], p[1], p[2]};
-  }
-  phys::Quat orientation(int i) const override {
-    if (body(i) == nullptr) return scene_.bodies[static_cast<std::size_t>(i)].orientation;
     const dReal* q = dBodyGetQuaternion(body(i));
-    return {q[0], q[1], q[2], q[3]};
+    return {{p[0], p[1], p[2]}, {q[0], q[1], q[2], q[3]}};
   }
 
  private:

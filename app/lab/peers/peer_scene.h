@@ -124,9 +124,10 @@ class Engine : public Stepper {
  public:
   /// `bodies`: the description's count, whose poses positions() and orientations() read.
   explicit Engine(std::size_t bodies) : bodies_(bodies) {}
-  /// Where body i (description order) is now.
-  virtual phys::Vec3 position(int i) const = 0;
-  virtual phys::Quat orientation(int i) const = 0;
+  /// Where body i (description order) is now, and how it is turned.
+  virtual phys::BodyPose pose(int i) const = 0;
+  phys::Vec3 position(int i) const { return pose(i).center; }
+  phys::Quat orientation(int i) const { return pose(i).orientation; }
   std::vector<phys::Vec3> positions() const override { return each(&Engine::position); }
   std::vector<phys::Quat> orientations() const override { return each(&Engine::orientation); }
   /// Called once after the last step, untimed: adds to `notes` what the run showed (an engine
