@@ -257,8 +257,9 @@ int stepsFor(const AccuracyTarget& target, int steps) {
 }
 
 double maxUncertainty(const AccuracyTarget& target) {
-  const auto& u = target.uncertainty;
-  return u.empty() ? 0.0 : *std::max_element(u.begin(), u.end());
+  double worst = 0.0;  // std::max keeps it at 0 or above, and passes over a NaN
+  for (double u : target.uncertainty) worst = std::max(worst, u);
+  return worst;
 }
 
 }  // namespace lab

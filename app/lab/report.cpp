@@ -18,7 +18,8 @@ namespace {
 
 // A stage's summed time and its share of the summed step totals, in aligned columns.
 std::string stageLine(std::string_view name, double ms, double totalMs) {
-  std::string s = printed("%-14s", std::string(name).c_str()) + formatNumber(ms, 4) + " ms";
+  std::string s =
+      printed("%-14.*s", static_cast<int>(name.size()), name.data()) + formatNumber(ms, 4) + " ms";
   if (totalMs > 0.0) s += " (" + formatNumber(100.0 * ms / totalMs, 3) + "%)";
   return s + "\n";
 }

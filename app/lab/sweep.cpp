@@ -2,6 +2,7 @@
 // against the scene's accuracy target (accuracy.h), written as a CSV and drawn as error against
 // cost with the Pareto front. docs/lab.md, "lab sweep", documents the options and the files.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -255,7 +256,12 @@ constexpr Column kColumns[] = {{14, false}, {12, false}, {5, true},  {5, true}, 
 // by at least a space: a figure wider than its column pushes what follows right only as far as it
 // must, and the line is back in its columns where later figures leave room ("1.00001e-05101666"
 // was a dt run into a step count).
-std::string tableLine(const std::vector<std::string>& cells, bool pareto = false) {
+using TableCells = std::array<std::string, std::size(kColumns)>;
+
+// The two spaces between the setting and the dt: a column with nothing in it.
+constexpr const char* kGap = "";
+
+std::string tableLine(const TableCells& cells, bool pareto = false) {
   std::string line;
   std::size_t end = 0;  // where the last column ends when nothing overflowed
   for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -276,7 +282,7 @@ std::string tableLine(const Row& r) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("-"); };
   auto ours = [&](double v) { return r.peer ? std::string("-") : formatNumber(v, 3); };
   return tableLine(
-      {r.method, r.model.empty() ? "-" : r.model, opt(r.iterations), opt(r.substeps), "",
+      {r.method, r.model.empty() ? "-" : r.model, opt(r.iterations), opt(r.substeps), kGap,
        formatNumber(r.dt, 6), std::to_string(r.steps), formatNumber(r.msPerStep, 4),
        formatNumber(r.blewUp() ? kInf : r.figures.error, 3), ours(r.figures.maxima[kStickErrorMetric]),
        formatNumber(r.figures.maxima[kPenetrationMetric], 3), ours(r.figures.energyDrift),
@@ -292,7 +298,7 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
       << simulatedSeconds(rows) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
-  out << tableLine({"method", "model", "iter", "sub", "", "dt (s)", "steps", "ms/step", "error (m)",
+  out << tableLine({"method", "model", "iter", "sub", kGap, "dt (s)", "steps", "ms/step", "error (m)",
                     "stick err", "penet (m)", "drift (J)", "frozen"});
   for (const Row& r : rows) out << tableLine(r);
 }

@@ -40,8 +40,9 @@ struct SceneModels {
 /// Throws scenes::LoadError like the loader.
 SceneModels sceneModels(const scenes::SceneSource& scene);
 
-/// The models a --models list names, in its order; throws UsageError "--models: <modelChoice's
-/// error>" at the first that does not fit the scene.
+/// The models a --models list names, in its order; throws UsageError "--models: <why>" at the
+/// first that does not fit the scene: an unknown name, or a model of a kind the scene does not
+/// have ("lean" for a scene without ragdolls).
 std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, const SceneModels& models);
 
 /// Every model choice that applies: the box models times the ragdoll models the scene has
@@ -80,7 +81,8 @@ struct Figures {
   /// theirs compare at equal joint error.
   double posePenetration = 0.0;
   double poseJointGap = 0.0;
-  std::string settings;  ///< what stepped the world, one line: ours settingsWords, a peer's its own
+  std::string
+      settings;  ///< what stepped the world, one line ("Verlet, 3 iterations x 1 substep"); a peer's its own
 };
 
 /// The error at the first of the target's checkpoints alone (`positions` per checkpoint, as for

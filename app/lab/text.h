@@ -1,6 +1,7 @@
 #pragma once
-// The lab's small text helpers, one of each: numbers as its tables print them, comma lists as
-// its options take them, the setting label every command prints, and the median of timings.
+// The lab's small text helpers, one of each: numbers as its tables print them, printf's cells as
+// a string, comma lists as its options take them, the setting label every command prints, and the
+// median of timings.
 #include <algorithm>
 #include <cstdio>
 #include <limits>
@@ -30,13 +31,9 @@ std::string formatFigure(double value, const std::string& unitAfter, int digits 
 
 /// printf's formatting as a string, however long: the fixed-width cells of the lab's tables
 /// ("%-13s %9.2e"). The arguments are numbers and C strings, as printf takes them.
-template <typename... Args>
-std::string printed(const char* format, Args... args) {
-  const int size = std::snprintf(nullptr, 0, format, args...);
-  std::string out(static_cast<std::size_t>(std::max(size, 0)), '\0');
-  std::snprintf(out.data(), out.size() + 1, format, args...);
-  return out;
-}
+/// The format attribute lets -Wformat check every call's arguments against its format, as it
+/// checks printf's.
+std::string printed(const char* format, ...) __attribute__((format(printf, 1, 2)));
 
 /// A limit someone wrote (a --target bound, a criterion's max): the shortest text that reads back
 /// as the same double ("0.001", "1e-320", "2147483647"), so it prints as written wherever it

@@ -115,7 +115,8 @@ TEST(Tune, OneStepIsSaidInTheSingular) {
   EXPECT_NE(two.out.find("), 2 steps at dt 0.0166667 s\n"), std::string::npos) << two.out;
 }
 
-// The seed's defaults take its models of each kind the scene has: corners boxes, seed ragdolls.
+// The seed's defaults take its models of each kind the scene has: corners boxes, seed ragdolls;
+// a scene of boxes alone, corners alone.
 TEST(Tune, TheDefaultsTakeTheSeedsModelsOfEachKindTheSceneHas) {
   TempDir dir;
   const std::string both = dir.write("both.xml",
@@ -126,8 +127,9 @@ TEST(Tune, TheDefaultsTakeTheSeedsModelsOfEachKindTheSceneHas) {
                                      "</scene>\n")
                                .string();
   const std::vector<std::string> loose = {"--target", "stick-error=1e9", "--steps", "2", "--repeat", "1"};
-  for (const auto& [scene, defaults] :
-       {std::pair<std::string, std::string>{both, "model corners+seed:"}, {"ragdoll", "model seed:"}}) {
+  for (const auto& [scene, defaults] : {std::pair<std::string, std::string>{both, "model corners+seed:"},
+                                        {"ragdoll", "model seed:"},
+                                        {"stack", "model corners:"}}) {
     std::vector<std::string> args{scene};
     args.insert(args.end(), loose.begin(), loose.end());
     const Outcome o = tune(args);
