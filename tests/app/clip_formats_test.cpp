@@ -477,6 +477,22 @@ TEST(ClipFormats, ColladaAccessorsStayWithinTheirArrays) {
   const std::string strided = replaced(dae, "stride=\"16\"", "stride=\"4000000000\"");
   const std::string e = refusal(strided, "stride.dae");
   EXPECT_TRUE(has(e, "<accessor> of count=\"3\" reads ")) << e;
+
+  // An array without a count holds no values for assimp, whatever its text (the clip fuzzer's
+  // finding: a misspelt count aborted it on the first key time read).
+  const std::size_t array = dae.find("<float_array");
+  const std::size_t count = dae.find("count=\"", array);
+  const std::string uncounted = dae.substr(0, count) + "c0unt" + dae.substr(count + 5);
+  const std::string u = refusal(uncounted, "uncounted.dae");
+  EXPECT_TRUE(has(u, "values of '")) << u;
+  EXPECT_TRUE(has(u, "', which holds 0")) << u;
+  // ... and one without an id is the one an accessor's source="#" reads.
+  const std::size_t idAt = dae.find("id=\"", array);
+  const std::string id = dae.substr(idAt + 4, dae.find('"', idAt + 4) - idAt - 4);
+  const std::string unnamed =
+      replaced(replaced(uncounted, "id=\"" + id + "\"", ""), "source=\"#" + id + "\"", "source=\"#\"");
+  const std::string n = refusal(unnamed, "unnamed.dae");
+  EXPECT_TRUE(has(n, "values of '', which holds 0")) << n;
 }
 
 // assimp sizes a COLLADA mesh's indices and a skin's weights by their counts before it reads them:

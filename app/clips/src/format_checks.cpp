@@ -258,14 +258,16 @@ class ColladaWalker : public pugi::xml_tree_walker {
         lines_.lineOf(static_cast<std::size_t>(std::max<std::ptrdiff_t>(node.offset_debug(), 0)));
     if (depth() >= kMaxDepth) throw ClipError(name_, line, tooDeep("elements"));
     const std::string_view element = node.name();
-    if (element.ends_with("_array") && node.attribute("count")) {
-      const std::uint64_t count = countOf(node, "count", line);
+    if (element.ends_with("_array")) {
+      // assimp reads as many values as count says, none without it, and files an array without an
+      // id under "", where an accessor's source="#" finds it.
+      const std::uint64_t count = node.attribute("count") ? countOf(node, "count", line) : 0;
       const std::uint64_t held = wordsIn(node.child_value());
       if (held < count)
         throw ClipError(name_, line,
                         "<" + std::string(element) + "> says count=\"" + std::to_string(count) +
                             "\" but holds " + std::to_string(held) + " values");
-      if (const char* id = node.attribute("id").value(); *id != '\0') arrays_[id] = count;
+      arrays_[node.attribute("id").value()] = count;
     } else if (element == "accessor") {
       Accessor a{countOf(node, "count", line), 0, 1, 0, node.attribute("source").value(), line};
       if (node.attribute("offset")) a.offset = countOf(node, "offset", line);
