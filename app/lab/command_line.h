@@ -60,6 +60,11 @@ inline constexpr OptionSpec kPeerSleep{"--peer-sleep", "on|off",
                                        "whether the peers' bodies at rest sleep (Bullet's deactivation)"};
 inline constexpr OptionSpec kThreads{"--threads", "N", "threads the step may use, {range}",
                                      phys::kMaxThreads};
+// 64 runs at a time is more than any machine this lab runs on has cores for.
+inline constexpr OptionSpec kJobs{"--jobs", "N",
+                                  "runs of our engine at a time, {range}; above 1 each run's timing is of a "
+                                  "core shared with the others",
+                                  64};
 inline constexpr OptionSpec kRepeat{"--repeat", "R", "timed runs of each setting, {range}; the median counts",
                                     1000};
 inline constexpr OptionSpec kJson{"--json", "", "print JSON:"};

@@ -4,8 +4,13 @@
 #include <chrono>
 #include <exception>
 #include <filesystem>
+#include <mutex>
 #include <ostream>
 #include <utility>
+
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #include "charts.h"
 #include "commands.h"
@@ -49,25 +54,60 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   if (o.peers) r.peers = peerEngines();
   r.peerNote = !o.peers ? "--no-peers" : "the lab was built without peer engines (LAB_PEERS)";
   const auto start = std::chrono::steady_clock::now();
-  Progress progress(err, "stability", scenes.size() * (r.settings.size() + r.peers.size()));
+  const std::size_t ours = r.settings.size(), perScene = ours + r.peers.size();
+  r.outcomes.assign(scenes.size(), std::vector<stability::Outcome>(perScene));
+  Progress progress(err, "stability", scenes.size() * perScene);
+  std::mutex drawing;  // the bar and its counts, shared by the runs' threads
   std::size_t done = 0;
-  for (const SuiteScene& s : scenes) {
-    std::vector<stability::Outcome> row;
-    const bool first = done == 0;
-    for (const Setting& setting : r.settings) {
-      progress.show(done++, s.name + " " + stability::settingLabel(setting), row.empty() && !first);
-      row.push_back(stability::runSetting(s, setting));
+  std::vector<std::size_t> left(scenes.size(), perScene);
+  // A run of scene `s` starting, or finished ("... done"): it counts, and a scene with no run left
+  // gets a line of its own in a log ("stack-10 done").
+  auto show = [&](std::size_t s, const std::string& label, bool finished) {
+    const std::lock_guard lock(drawing);
+    done += finished ? 1 : 0;
+    const bool sceneDone = finished && --left[s] == 0;
+    progress.show(done, scenes[s].name + (sceneDone ? "" : " " + label) + (finished ? " done" : ""),
+                  sceneDone);
+  };
+  // Each run of ours has a world of its own, so they run --jobs at a time; each outcome goes to
+  // its slot, so every output keeps the order of --jobs 1.
+  tbb::task_arena(o.jobs).execute([&] {
+    tbb::parallel_for(
+        std::size_t{0}, scenes.size() * ours,
+        [&](std::size_t i) {
+          const std::size_t s = i / ours;
+          const Setting& setting = r.settings[i % ours];
+          show(s, stability::settingLabel(setting), false);
+          r.outcomes[s][i % ours] = stability::runSetting(scenes[s], setting);
+          show(s, stability::settingLabel(setting), true);
+        },
+        tbb::simple_partitioner());
+  });
+  // The peers one at a time, after ours: ODE and MuJoCo keep global state.
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    for (std::size_t k = 0; k < r.peers.size(); ++k) {
+      show(s, r.peers[k], false);
+      r.outcomes[s][ours + k] = stability::runPeerEngine(scenes[s], r.peers[k], o.sleep);
+      show(s, r.peers[k], true);
     }
-    for (const std::string& peer : r.peers) {
-      progress.show(done++, s.name + " " + peer, false);
-      row.push_back(stability::runPeerEngine(s, peer, o.sleep));
-    }
-    r.outcomes.push_back(std::move(row));
   }
   progress.show(done, "done", true);
   progress.finish();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
+}
+
+// With --jobs above 1 the timings are of shared cores: said under the report's first paragraph
+// (the runs and their time), where a reader of the timings looks.
+std::string withJobs(std::string md, int jobs) {
+  if (jobs <= 1) return md;
+  const std::size_t at = md.find("\n\n", md.find("\n\n") + 2);
+  const std::string n = std::to_string(jobs);
+  return md.insert(
+      at == std::string::npos ? md.size() : at + 2,
+      "The suite runs " + n + " at a time (--jobs " + n +
+          "; the peers one at a time): each of our runs' ms_per_step and each scene's "
+          "`stepping` are of a core shared with other runs, not comparable with --jobs 1's.\n\n");
 }
 
 // The files of --out, written as one set; without gnuplot they are written without the heat maps.
@@ -102,7 +142,7 @@ int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream&
     err << "\n";  // ends the progress line, so the message has a line of its own
     throw;
   }
-  const std::string md = stability::markdownReport(result);
+  const std::string md = withJobs(stability::markdownReport(result), o.jobs);
   out << md << std::flush;
   return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
 }

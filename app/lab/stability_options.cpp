@@ -34,6 +34,7 @@ void describeOptions(CommandLine& line, StabilityOptions& o) {
       "");
   line.option(option::kSleep, o.sleep, "(ours and the peers'; default off, whatever the scene says)");
   line.flag(option::kNoPeers, o.peers, false, "");
+  line.option(option::kJobs, o.jobs, "(default 1; the peers run one at a time)");
   line.existingFolder(option::kData, o.dataDir, "");
 }
 

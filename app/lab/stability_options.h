@@ -21,6 +21,7 @@ struct StabilityOptions {
   std::vector<std::string> models;
   std::vector<std::string> scenes;  ///< as given to --scene; empty: the whole suite
   bool peers = true;
+  int jobs = 1;        ///< our runs at a time (--jobs); the peers run one at a time whatever it says
   bool sleep = false;  ///< --sleep on: islands at rest sleep, ours and the peers' (Bullet's deactivation)
   std::filesystem::path dataDir;  ///< holds assets/; empty: the build's default
 };

@@ -19,6 +19,7 @@
 
 #include "bodies.h"
 #include "commands.h"
+#include "csv.h"
 #include "gnuplot.h"
 #include "lab.h"
 #include "lab_test_util.h"
@@ -671,10 +672,45 @@ TEST(StabilityCli, UsageErrorsExit2WithTheUsage) {
       {{"--models", "rigid,jelly"}, "--models: unknown model 'jelly' (corners, tetra or rigid)"},
       {{"--sleep", "maybe"}, "--sleep: 'maybe' is not on or off"},
       {{"--sleep"}, "--sleep needs a value (on or off)"},
+      {{"--jobs", "0"}, "--jobs: '0' is not a whole number from 1 to 64"},
+      {{"--jobs", "x"}, "--jobs: 'x' is not a whole number from 1 to 64"},
+      {{"--jobs", "65"}, "--jobs: '65' is not a whole number from 1 to 64"},
+      {{"--jobs"}, "--jobs needs a whole number"},
   };
   for (const auto& [args, message] : cases) {
     SCOPED_TRACE(message);
     lab_testing::expectUsageError(stability(args), "stability", message);
+  }
+}
+
+// Our runs two at a time write the rows of one at a time, in its order: only the timings differ,
+// and the report says they were taken on shared cores.
+TEST(StabilityCli, JobsRunOursAtOnceAndWriteTheSameRows) {
+  TempDir dir;
+  auto suite = [&dir](const std::string& jobs, Output& o) {
+    const std::filesystem::path out = dir.file("jobs-" + jobs);
+    o = stability({"--scene", "stack-10,face-face", "--methods", "gauss-seidel,jacobi", "--iterations", "1,3",
+                   "--substeps", "1,4", "--no-peers", "--jobs", jobs, "--out", out.string()});
+    lab::CsvTable csv = lab::readCsv(out / "stability.csv");
+    for (lab::CsvRow& row : csv.rows) row.erase("ms_per_step");
+    return csv;
+  };
+  Output one, two;
+  const lab::CsvTable serial = suite("1", one), parallel = suite("2", two);
+  ASSERT_EQ(one.code, lab::kExitOk) << one.err;
+  ASSERT_EQ(two.code, lab::kExitOk) << two.err;
+  EXPECT_EQ(serial.rows.size(), 16u);  // 2 scenes x 2 methods x 2 iterations x 2 substeps
+  EXPECT_EQ(serial.header, parallel.header);
+  EXPECT_EQ(serial.rows, parallel.rows);
+  EXPECT_EQ(one.out.find("at a time"), std::string::npos) << one.out;
+  EXPECT_NE(two.out.find("\n\nThe suite runs 2 at a time (--jobs 2; "), std::string::npos) << two.out;
+  // The bar counts every run, and each scene's end is one line of the log.
+  for (const Output* o : {&one, &two}) {
+    EXPECT_NE(o->err.find("16/16"), std::string::npos) << o->err;
+    for (const char* scene : {" stack-10 done\n", " face-face done\n"}) {
+      EXPECT_NE(o->err.find(scene), std::string::npos) << o->err;
+      EXPECT_EQ(o->err.find(scene), o->err.rfind(scene)) << o->err;
+    }
   }
 }
 
