@@ -106,8 +106,8 @@ std::string withJobs(std::string md, int jobs) {
   return md.insert(
       at == std::string::npos ? md.size() : at + 2,
       "The suite runs " + n + " at a time (--jobs " + n +
-          "; the peers one at a time): each of our runs' ms_per_step and each scene's "
-          "`stepping` are of a core shared with other runs, not comparable with --jobs 1's.\n\n");
+          "): each of our runs' ms_per_step and each scene's `stepping` are of a core shared with "
+          "other runs, not comparable with --jobs 1's.\n\n");
 }
 
 // The files of --out, written as one set; without gnuplot they are written without the heat maps.
