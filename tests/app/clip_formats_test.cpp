@@ -495,6 +495,46 @@ TEST(ClipFormats, ColladaAccessorsStayWithinTheirArrays) {
   EXPECT_TRUE(has(n, "values of '', which holds 0")) << n;
 }
 
+// A sampler's key times and values are numbers: assimp asserted (aborting) when one's accessor
+// read a <Name_array>, which it keeps as names (the clip fuzzer's finding), and a key of more than
+// 16 numbers overran the buffer it reads a key into.
+TEST(ClipFormats, ColladaKeysAreReadFromNumbersAndFitAMatrix) {
+  const testing_app::TempFolder dir;
+  const std::string dae = legFile(dir, "collada", "dae");
+  const std::size_t output = dae.find("-output-array");
+  ASSERT_NE(output, std::string::npos);
+  const std::size_t open = dae.rfind("<float_array", output);
+  const std::size_t close = dae.find("</float_array>", output);
+  const std::string words = dae.substr(open, close - open);
+  const std::string values = words.substr(words.find('>') + 1);
+  std::string names;
+  for (std::size_t i = 0, n = 0; i < values.size(); ++i)
+    if (values[i] != ' ' && (i == 0 || values[i - 1] == ' '))
+      names += (n++ == 0 ? "" : " ") + std::string("LINEAR");
+  const std::string named = dae.substr(0, open) + "<Name_array" + words.substr(12, words.find('>') - 11) +
+                            names + "</Name_array>" + dae.substr(close + 14);
+  const std::string e = refusal(named, "named.dae");
+  EXPECT_TRUE(has(e, "<input semantic=\"OUTPUT\"> reads numbers from '")) << e;
+  EXPECT_TRUE(has(e, "', which holds names")) << e;
+
+  // One key of 17 numbers, all within its array.
+  std::string params;
+  for (int i = 0; i < 17; ++i) params += "<param type=\"float\"/>";
+  const std::string wide =
+      "<?xml version=\"1.0\"?>\n<COLLADA version=\"1.4.1\"><library_animations><animation>\n"
+      "<source id=\"t\"><float_array id=\"ta\" count=\"1\">0</float_array><technique_common>"
+      "<accessor source=\"#ta\" count=\"1\"><param type=\"float\"/></accessor></technique_common>"
+      "</source>\n<source id=\"v\"><float_array id=\"va\" count=\"17\">" +
+      repeated("1 ", 17) +
+      "</float_array><technique_common>\n<accessor source=\"#va\" count=\"1\" stride=\"17\">" + params +
+      "</accessor></technique_common></source>\n"
+      "<sampler id=\"s\"><input semantic=\"INPUT\" source=\"#t\"/>"
+      "<input semantic=\"OUTPUT\" source=\"#v\"/></sampler>\n"
+      "</animation></library_animations></COLLADA>\n";
+  EXPECT_EQ(refusal(wide, "wide.dae"),
+            "wide.dae:5: <accessor> of a key of 17 numbers, more than a 4x4 matrix's 16");
+}
+
 // assimp sizes a COLLADA mesh's indices and a skin's weights by their counts before it reads them:
 // 1,000,000,000 triangles asked for 24 GB, an <input offset="100000000"> for 2.4 GB. What they need
 // must be there first, refused with the element's line.

@@ -241,6 +241,7 @@ std::uint64_t sumOf(std::string_view text) {
 
 struct Accessor {
   std::uint64_t count, offset, stride, width;
+  std::uint64_t key;  // the numbers assimp reads a key of an animation's output: a matrix 16, else 1 a param
   std::string source;
   std::size_t line;
 };
@@ -268,14 +269,32 @@ class ColladaWalker : public pugi::xml_tree_walker {
                         "<" + std::string(element) + "> says count=\"" + std::to_string(count) +
                             "\" but holds " + std::to_string(held) + " values");
       arrays_[node.attribute("id").value()] = count;
+      if (element == "float_array" || element == "Name_array" || element == "IDREF_array")
+        holdsNumbers_[node.attribute("id").value()] = element == "float_array";
     } else if (element == "accessor") {
-      Accessor a{countOf(node, "count", line), 0, 1, 0, node.attribute("source").value(), line};
+      Accessor a{countOf(node, "count", line), 0, 1, 0, 0, node.attribute("source").value(), line};
       if (node.attribute("offset")) a.offset = countOf(node, "offset", line);
       if (node.attribute("stride")) a.stride = countOf(node, "stride", line);
-      for (const pugi::xml_node param : node.children("param"))
-        a.width += paramWidth(param.attribute("type").value());
+      for (const pugi::xml_node param : node.children("param")) {
+        const std::string_view type = param.attribute("type").value();
+        a.width += paramWidth(type);
+        if (param.attribute("type")) a.key += type == "float4x4" ? 16 : 1;  // as assimp sizes a key
+      }
       if (a.source.starts_with('#')) a.source.erase(0, 1);
+      // assimp files the first accessor of a <technique_common> under the id of the <source> it
+      // reads: whichever encloses it, for a <source> in a <source>.
+      if (std::string_view(node.parent().name()) == "technique_common" &&
+          node.parent().child("accessor") == node)
+        for (pugi::xml_node up = node.parent(); up; up = up.parent())
+          if (std::string_view(up.name()) == "source")
+            accessorsOf_[up.attribute("id").value()].push_back(accessors_.size());
       accessors_.push_back(a);
+    } else if (element == "input" && std::string_view(node.parent().name()) == "sampler") {
+      const std::string_view semantic = node.attribute("semantic").value();
+      std::string source = node.attribute("source").value();
+      if (source.starts_with('#')) source.erase(0, 1);
+      if (semantic == "INPUT" || semantic == "OUTPUT")
+        keyInputs_.push_back({line, std::string(semantic), source});
     } else if (isPrimitives(element) && node.attribute("count")) {
       checkIndices(node, line);
     } else if (element == "vertex_weights" && node.attribute("count")) {
@@ -338,6 +357,28 @@ class ColladaWalker : public pugi::xml_tree_walker {
         if (marks[edge.to] == Mark::done) continue;
         marks[edge.to] = Mark::open;
         path.emplace_back(edge.to, 0);
+      }
+    }
+  }
+
+  // A sampler's key times and values are numbers: assimp reads them from the numbers its accessor's
+  // array holds, and asserted (aborting) on an accessor of a <Name_array>, which it keeps as names;
+  // and a key of values into a 16-number buffer on its stack.
+  void checkKeySources() const {
+    for (const KeyInput& input : keyInputs_) {
+      const auto accessors = accessorsOf_.find(input.source);
+      if (accessors == accessorsOf_.end()) continue;  // assimp refuses a source it cannot find
+      for (const std::size_t index : accessors->second) {
+        const Accessor& a = accessors_[index];
+        const auto kind = holdsNumbers_.find(a.source);
+        if (kind != holdsNumbers_.end() && !kind->second)
+          throw ClipError(name_, input.line,
+                          "<input semantic=\"" + input.semantic + "\"> reads numbers from '" + a.source +
+                              "', which holds names");
+        if (input.semantic == "OUTPUT" && a.key > 16)
+          throw ClipError(
+              name_, a.line,
+              "<accessor> of a key of " + std::to_string(a.key) + " numbers, more than a 4x4 matrix's 16");
       }
     }
   }
@@ -442,7 +483,14 @@ class ColladaWalker : public pugi::xml_tree_walker {
   LineCounter lines_;  // elements come in the file's order
   const std::string& name_;
   std::map<std::string, std::uint64_t, std::less<>> arrays_;
+  std::map<std::string, bool, std::less<>> holdsNumbers_;  // assimp's arrays: float_array, or names
   std::vector<Accessor> accessors_;
+  std::map<std::string, std::vector<std::size_t>, std::less<>> accessorsOf_;  // by <source> id
+  struct KeyInput {
+    std::size_t line;
+    std::string semantic, source;
+  };
+  std::vector<KeyInput> keyInputs_;  // samplers' INPUT and OUTPUT
 
   static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   // What a node holds (its child nodes, line 0) or instances (the <instance_node>'s line and url).
@@ -570,6 +618,7 @@ void checkCollada(std::string_view content, const std::string& name) {
   ColladaWalker walker(content, name);
   document.traverse(walker);
   walker.checkAccessors();
+  walker.checkKeySources();
   walker.checkNodeInstances();
 }
 
