@@ -49,6 +49,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   SuiteResult r;
   r.scenes = scenes;
   r.settings = settingsOf(o);
+  r.jobs = o.jobs;
   // settingsOf lists each method's (and model's) settings together: a block each.
   for (const Setting& s : r.settings) addOnce(r.methods, stability::settingGroup(s));
   if (o.peers) r.peers = peerEngines();
@@ -97,19 +98,6 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   return r;
 }
 
-// With --jobs above 1 the timings are of shared cores: said under the report's first paragraph
-// (the runs and their time), where a reader of the timings looks.
-std::string withJobs(std::string md, int jobs) {
-  if (jobs <= 1) return md;
-  const std::size_t at = md.find("\n\n", md.find("\n\n") + 2);
-  const std::string n = std::to_string(jobs);
-  return md.insert(
-      at == std::string::npos ? md.size() : at + 2,
-      "The suite runs " + n + " at a time (--jobs " + n +
-          "): each of our runs' ms_per_step and each scene's `stepping` are of a core shared with "
-          "other runs, not comparable with --jobs 1's.\n\n");
-}
-
 // The files of --out, written as one set; without gnuplot they are written without the heat maps.
 int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir,
                  std::ostream& err) {
@@ -142,7 +130,7 @@ int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream&
     err << "\n";  // ends the progress line, so the message has a line of its own
     throw;
   }
-  const std::string md = withJobs(stability::markdownReport(result), o.jobs);
+  const std::string md = stability::markdownReport(result);
   out << md << std::flush;
   return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
 }

@@ -178,6 +178,11 @@ std::string markdownReport(const SuiteResult& r) {
      << "; substeps " << joinNumbers(distinct(r.settings, [](const Setting& s) { return s.substeps; })) << ")"
      << (r.peers.empty() ? "" : " and the peers " + join(r.peers, ", ")) << ": " << runs << " runs in "
      << formatNumber(r.seconds) << " s.\n\n"
+     << (r.jobs > 1
+             ? "The suite runs " + std::to_string(r.jobs) + " at a time (--jobs " + std::to_string(r.jobs) +
+                   "): each of our runs' ms_per_step and each scene's `stepping` are of a core shared "
+                   "with other runs, not comparable with --jobs 1's.\n\n"
+             : "")
      << (!r.settings.empty() && r.settings.front().sleep
              ? "Sleeping on (--sleep on): islands at rest sleep, ours and Bullet's.\n\n"
              : "")

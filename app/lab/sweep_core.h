@@ -81,8 +81,8 @@ struct Figures {
   /// theirs compare at equal joint error.
   double posePenetration = 0.0;
   double poseJointGap = 0.0;
-  std::string
-      settings;  ///< what stepped the world, one line ("Verlet, 3 iterations x 1 substep"); a peer's its own
+  /// What stepped the world, one line ("Verlet, 3 iterations x 1 substep"); a peer's its own.
+  std::string settings;
 };
 
 /// The error at the first of the target's checkpoints alone (`positions` per checkpoint, as for

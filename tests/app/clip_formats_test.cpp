@@ -501,18 +501,13 @@ TEST(ClipFormats, ColladaAccessorsStayWithinTheirArrays) {
 TEST(ClipFormats, ColladaKeysAreReadFromNumbersAndFitAMatrix) {
   const testing_app::TempFolder dir;
   const std::string dae = legFile(dir, "collada", "dae");
+  // An output's array made a <Name_array>: its words are the same, but assimp keeps them as names.
   const std::size_t output = dae.find("-output-array");
   ASSERT_NE(output, std::string::npos);
   const std::size_t open = dae.rfind("<float_array", output);
   const std::size_t close = dae.find("</float_array>", output);
-  const std::string words = dae.substr(open, close - open);
-  const std::string values = words.substr(words.find('>') + 1);
-  std::string names;
-  for (std::size_t i = 0, n = 0; i < values.size(); ++i)
-    if (values[i] != ' ' && (i == 0 || values[i - 1] == ' '))
-      names += (n++ == 0 ? "" : " ") + std::string("LINEAR");
-  const std::string named = dae.substr(0, open) + "<Name_array" + words.substr(12, words.find('>') - 11) +
-                            names + "</Name_array>" + dae.substr(close + 14);
+  const std::string named = dae.substr(0, open) + "<Name_array" + dae.substr(open + 12, close - open - 12) +
+                            "</Name_array>" + dae.substr(close + 14);
   const std::string e = refusal(named, "named.dae");
   EXPECT_TRUE(has(e, "<input semantic=\"OUTPUT\"> reads numbers from '")) << e;
   EXPECT_TRUE(has(e, "', which holds names")) << e;
