@@ -63,6 +63,7 @@ std::string jsonText(const RunResult& r) {
   j["energy_final"] = m.energy();
   j["frozen"] = m.frozen;
   j["islands"] = r.islands;
+  j["largest_island"] = r.largestIsland;
   j["awake_bodies"] = r.awakeBodies;
   j["sleeping_bodies"] = r.sleepingBodies;
   j["hash"] = hexHash(r.hash);
@@ -137,8 +138,9 @@ std::string summaryText(const RunResult& r) {
       " s" + (r.solver.jointProjection.enabled ? ", rigid joints projected" : "") + "\n";
   s += "world        " + count(r.particles, "particle", "particles") + ", " +
        count(r.constraints, "constraint", "constraints") + ", " + count(r.bodies, "box", "boxes") + "\n";
-  s += "islands      " + std::to_string(r.islands) + " at the end, " + std::to_string(r.awakeBodies) +
-       " bodies awake, " + std::to_string(r.sleepingBodies) + " asleep" +
+  s += "islands      " + std::to_string(r.islands) + " at the end, " +
+       (r.largestIsland > 0 ? "the largest of " + count(r.largestIsland, "body", "bodies") + ", " : "") +
+       std::to_string(r.awakeBodies) + " bodies awake, " + std::to_string(r.sleepingBodies) + " asleep" +
        (r.solver.sleep.enabled ? "" : " (sleep off)") + "\n";
   s += "ran          " + count(static_cast<std::size_t>(r.steps), "step", "steps") + ", " +
        formatNumber(r.simulatedTime) + " s simulated, on " +

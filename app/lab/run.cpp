@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <vector>
 
 #include "physics/character.h"
 #include "root_mean_square.h"
@@ -114,6 +116,17 @@ class DriveLog {
   std::vector<Part> parts_;  // every character's parts, in order
 };
 
+// Bodies in the island with the most: how evenly islands could be shared between threads
+// (docs/performance.md, "The guard's look in ranges, and what the pile's second thread waits on").
+std::size_t largestIsland(const phys::Islands& islands) {
+  std::vector<std::size_t> bodies(islands.islandCount(), 0);  // loose particles' islands are numbered too
+  for (const std::uint32_t island : islands.bodyIsland()) {
+    if (island >= bodies.size()) bodies.resize(island + 1, 0);
+    ++bodies[island];
+  }
+  return bodies.empty() ? 0 : *std::max_element(bodies.begin(), bodies.end());
+}
+
 }  // namespace
 
 RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream* progress,
@@ -158,6 +171,7 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
   r.freezes.assign(world.freezes().begin(), world.freezes().end());
   r.hash = world.stateHash();
   r.islands = world.islands().islandCount();
+  r.largestIsland = largestIsland(world.islands());
   r.awakeBodies = world.islands().awakeBodies();
   r.sleepingBodies = world.islands().sleepingBodies();
   r.drives = drives.finish();

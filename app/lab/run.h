@@ -49,6 +49,7 @@ struct RunResult {
   std::vector<phys::FreezeReport> freezes;  ///< the guard's reports, oldest first
   std::uint64_t hash = 0;                   ///< World::stateHash() at the end
   std::size_t islands = 0;                  ///< Islands::islandCount() at the end
+  std::size_t largestIsland = 0;            ///< bodies in the island with the most, at the end
   std::size_t awakeBodies = 0;              ///< at the end
   std::size_t sleepingBodies = 0;           ///< at the end
   std::vector<DriveFigures> drives;         ///< every character's parts, root first, in order

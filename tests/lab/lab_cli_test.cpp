@@ -94,6 +94,27 @@ TEST(LabRun, JsonHasEveryKeyWithFiniteNumbers) {
   EXPECT_EQ(hash.find_first_not_of("0123456789abcdef"), std::string::npos) << hash;
 }
 
+// `largest_island` counts the bodies of the island with the most: two stacks apart are two islands
+// of 3 and 2 boxes, and loose particles added before them (islands of no body, numbered first) are
+// counted by `islands` alone.
+TEST(LabRun, CountsTheBodiesOfTheLargestIsland) {
+  const TempDir dir;
+  const auto scene = dir.write("s.xml",
+                               "<scene name=\"s\">\n"
+                               "  <ground/>\n"
+                               "  <particle name=\"p\" pos=\"9 1 0\"/>\n"
+                               "  <particle name=\"q\" pos=\"9 1 2\"/>\n"
+                               "  <stack name=\"a\" pos=\"0 0 0\" count=\"3\" size=\"1\" mass=\"1\"/>\n"
+                               "  <stack name=\"b\" pos=\"5 0 0\" count=\"2\" size=\"1\" mass=\"1\"/>\n"
+                               "</scene>\n");
+  const FlatJson r = runJson("run " + quoted(scene) + " --steps 30", dir);
+  EXPECT_EQ(number(r, "islands"), 4);
+  EXPECT_EQ(number(r, "largest_island"), 3);
+  const ProcessResult summary = runLab("run " + quoted(scene) + " --steps 30", dir);
+  EXPECT_NE(summary.out.find("islands      4 at the end, the largest of 3 bodies,"), std::string::npos)
+      << summary.out;
+}
+
 // The lab steps every body unless asked: a scene that says sleep="on" is stepped awake, and
 // `--sleep on` lets the resting stack sleep, the JSON counting its bodies asleep.
 TEST(LabRun, SleepsOnlyWhenAsked) {

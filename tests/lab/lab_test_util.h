@@ -55,6 +55,7 @@ inline const std::vector<std::string> kRunJsonKeys = {"scene",
                                                       "energy_final",
                                                       "frozen",
                                                       "islands",
+                                                      "largest_island",
                                                       "awake_bodies",
                                                       "sleeping_bodies",
                                                       "hash"};
