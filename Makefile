@@ -39,8 +39,9 @@ charts: build
 
 # The reliability checks CI runs besides `make test PRESET=ci` (docs/architecture.md, "CI").
 # make fuzz SECONDS=N: each fuzz target (fuzz preset, clang; FUZZ_TARGETS, by default scene files,
-# recording files and BVH clips) for N seconds on its corpus in build/fuzz/corpus/TARGET, seeded
-# by scripts/run-fuzzer; FUZZ_FLAGS adds libFuzzer options (FUZZ_FLAGS=-fork=2 runs two at once).
+# recording files and clip files of every format) for N seconds on its corpus in
+# build/fuzz/corpus/TARGET, seeded by scripts/run-fuzzer; FUZZ_FLAGS adds libFuzzer options
+# (FUZZ_FLAGS=-fork=2 runs two at once).
 # Every target runs even when one fails; findings go to build/fuzz/artifacts/TARGET/.
 fuzz: SECONDS ?= 60
 fuzz: FUZZ_TARGETS ?= scene recording clip
