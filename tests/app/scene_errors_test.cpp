@@ -729,6 +729,24 @@ TEST(SceneErrors, ACharactersOriginIsHeldToTheBound) {
   EXPECT_NO_THROW(scenes::loadSceneText(scene + "origin='0 0 99'/>\n</scene>", "near.xml"));
 }
 
+// A fade's shift and held root move the path the root's drive pulls along, as the origin does: a
+// from-shift of 1e308 made every part's pose NaN on the first step, and 1e7 flung them out.
+TEST(SceneErrors, ACharactersFadeShiftAndHeldRootAreHeldToTheBound) {
+  const std::string scene =
+      "<scene name='s'>\n<world bound='100'/><ragdoll name='r' pos='0 1 0' model='rigid'/>\n"
+      "<character ragdoll='r' clip='" DATA_DIR "/assets/clips/run.bvh' root-strength='1' blend='0.5'\n ";
+  const std::string from = "from-clip='" DATA_DIR "/assets/clips/run.bvh' ";
+  std::string turns = "1 0 0 0";
+  for (int bone = 1; bone < 10; ++bone) turns += ", 1 0 0 0";
+  const std::string held = "held-turns='" + turns + "' ";
+  testing_scenes::expectRefused({"far shift", (scene + from + "from-shift='1e308 0 0'/>\n</scene>").c_str(), 4,
+                                 "from-shift", "must be within the world's bound of 100 m along each axis"});
+  testing_scenes::expectRefused({"far held root", (scene + held + "held-root='0 -101 0'/>\n</scene>").c_str(), 4,
+                                 "held-root", "must be within the world's bound of 100 m along each axis"});
+  EXPECT_NO_THROW(scenes::loadSceneText(scene + from + "from-shift='99 0 -99'/>\n</scene>", "near.xml"));
+  EXPECT_NO_THROW(scenes::loadSceneText(scene + held + "held-root='0 99 0'/>\n</scene>", "near.xml"));
+}
+
 }  // namespace
 
 // pugixml decodes &#0; to a zero byte, which ended the value there (name='a&#0;b' loaded as "a"),

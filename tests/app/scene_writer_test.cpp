@@ -582,6 +582,42 @@ TEST(SceneWriter, WhatTheLoaderWouldRefuseIsNotWritten) {
   EXPECT_NO_THROW(scenes::loadSceneText(scenes::writeSceneXml(near, near.camera), "near.xml"));
 }
 
+// A fade's shift and held root are held to the bound by the loader, as the clip frame is; a clip
+// that loops on far along its path leaves them beyond it, and such a world would save a file that
+// does not reload.
+TEST(SceneWriter, AFadesShiftOrHeldRootPastTheBoundIsNotWritten) {
+  auto refusal = [](const scenes::Scene& scene) {
+    try {
+      scenes::writeSceneXml(scene, scene.camera);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string ragdoll = "<ragdoll name=\"r\" pos=\"0 1 0\" model=\"rigid\"/>";
+  const std::string character = "<character ragdoll=\"r\" clip=\"" DATA_DIR "/assets/clips/run.bvh\" blend=\"0.5\" ";
+  scenes::Scene fading =
+      load(ragdoll + character + "from-clip=\"" DATA_DIR "/assets/clips/run.bvh\" from-shift=\"5 0 0\"/>",
+           "<world bound=\"20\"/>");
+  EXPECT_EQ(refusal(fading), "");
+  phys::CharacterMotion motion = fading.world.characterMotion(0);
+  motion.beforeShift = phys::Vec3(0.0, 0.0, 21.0);
+  fading.world.setCharacterMotion(0, motion);
+  EXPECT_NE(refusal(fading).find("the shift of the clip character 'r' fades from lies at (0, 0, 21), beyond"),
+            std::string::npos)
+      << refusal(fading);
+  std::string turns = "1 0 0 0";
+  for (int bone = 1; bone < 10; ++bone) turns += ", 1 0 0 0";
+  scenes::Scene holding = load(ragdoll + character + "held-turns=\"" + turns + "\"/>", "<world bound=\"20\"/>");
+  EXPECT_EQ(refusal(holding), "");
+  motion = holding.world.characterMotion(0);
+  motion.held.root = phys::Vec3(-21.0, 0.0, 0.0);
+  holding.world.setCharacterMotion(0, motion);
+  EXPECT_NE(refusal(holding).find("the held pose's root of character 'r' lies at (-21, 0, 0), beyond"),
+            std::string::npos)
+      << refusal(holding);
+}
+
 // A box or capsule is saved as its pose and rebuilt from it at its rest shape: one pressed out of
 // shape with its particles just inside the bound would be rebuilt reaching past it, which the
 // loader refuses. Found by the soak test: a capsule squashed by 5.6 cm near a bound of 82 m saved a

@@ -712,14 +712,9 @@ class Builder {
     c.fromStrength = detail::readFraction(e, "from-strength");
     c.fromBalance = detail::readFraction(e, "from-balance");
     c.heading = e.number("heading", "degrees");
-    c.origin = e.vector("origin", "m");
     // Held to the bound as every position the file places: the root's drive pulls it along the
     // clip from here, and from beyond the bound it flung the ragdoll out for the guard to freeze.
-    if (c.origin && !detail::insideBound(*c.origin, scene_.world.worldSettings().bound)) {
-      e.fail("origin", "must be within the world's bound of " +
-                           detail::formatNumber(scene_.world.worldSettings().bound) +
-                           " m along each axis (<world bound>)");
-    }
+    c.origin = positionInBound(e, "origin");
     fade(e, playing, c);
     const bool any = c.state || c.stateTime || c.stillTime || c.strength || c.rootStrength || c.balance ||
                      c.fromStrength || c.fromBalance || c.heading || c.origin || c.blend || c.blendTime ||
@@ -744,8 +739,10 @@ class Builder {
       before->loop = e.boolean("from-loop").value_or(true);
     }
     c.before = before;
-    c.beforeShift = e.vector("from-shift", "m");
-    const std::optional<phys::Vec3> heldRoot = e.vector("held-root", "m");
+    // Both move the root's path the drive pulls along, as the origin does, and are held alike: a
+    // from-shift of 1e308 made every part's pose NaN on the first step.
+    c.beforeShift = positionInBound(e, "from-shift");
+    const std::optional<phys::Vec3> heldRoot = positionInBound(e, "held-root");
     if (auto turns = e.text("held-turns")) {
       phys::ClipPose pose;
       pose.root = heldRoot.value_or(phys::Vec3(0.0));
@@ -848,6 +845,17 @@ class Builder {
       e.fail(attribute, "'" + detail::formatNumber(*speed) + "' must be from 0 to " +
                             detail::formatNumber(detail::kMaxClipSpeed));
     return speed;
+  }
+
+  // A vector `attribute` (m), within the world's bound along each axis.
+  std::optional<phys::Vec3> positionInBound(ElementReader& e, const char* attribute) {
+    const std::optional<phys::Vec3> v = e.vector(attribute, "m");
+    const double bound = scene_.world.worldSettings().bound;
+    if (v && !detail::insideBound(*v, bound)) {
+      e.fail(attribute, "must be within the world's bound of " + detail::formatNumber(bound) +
+                            " m along each axis (<world bound>)");
+    }
+    return v;
   }
 
   // A length of time (s), >= 0.

@@ -579,11 +579,14 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     return relative.empty() ? clip.name : relative.generic_string();
   };
   // A fade under way: how far it has got, and what it fades from (the clip before, or a pose held).
-  const auto fade = [&clipPath](ElementWriter& e, const phys::Character& c) {
+  // The shift and the held root are held to the bound by the loader, as the origin is: a clip
+  // that loops on far along its path can leave them beyond it.
+  const auto fade = [&clipPath, bound](ElementWriter& e, const phys::Character& c) {
     if (c.blend >= 1.0) return;
     e.number("blend", c.blend).number("blend-time", c.blendTime);
     if (c.before.clip) {
       requireLoadableClock(c.before, "the clip character '" + c.ragdoll + "' fades from");
+      requireInsideBound(c.beforeShift, bound, "the shift of the clip character '" + c.ragdoll + "' fades from");
       e.text("from-clip", clipPath(*c.before.clip))
           .number("from-time", c.before.time)
           .number("from-speed", c.before.speed)
@@ -591,6 +594,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
           .vector("from-shift", c.beforeShift);
     }
     if (!c.holding) return;
+    requireInsideBound(c.held.root, bound, "the held pose's root of character '" + c.ragdoll + "'");
     std::string turns;
     for (const phys::Quat& q : c.held.turns) {
       if (!turns.empty()) turns += ", ";
