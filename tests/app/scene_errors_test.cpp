@@ -123,13 +123,13 @@ const BadScene kCases[] = {
      "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
      "model='rigid'/>\n"
      "<joint type='cone' a='a' b='b' pivot='0 1.5 0' axis='0 1 0' reference='0 2 0' swing='30'/>\n</scene>",
-     4, "", "the reference must not lie along the axis"},
+     4, "reference", "must not lie along axis"},
     {"joint axis whose length overflows",
      "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
      "model='rigid'/>\n"
      "<joint type='hinge' a='a' b='b' pivot='0 1.5 0' axis='1e200 0 0' reference='0 -1 0' min='-10' "
      "max='10'/>\n</scene>",
-     4, "", "the axis's length must be finite (is 1e+200 0 0)"},
+     4, "axis", "must be non-zero and of finite length (is 1e+200 0 0)"},
     {"drive strength above 1",
      "<scene name='s'>\n<box name='a' pos='0 1 0' model='rigid'/>\n<box name='b' pos='0 2 0' "
      "model='rigid'/>\n"
@@ -727,6 +727,27 @@ TEST(SceneErrors, ACharactersOriginIsHeldToTheBound) {
   testing_scenes::expectRefused({"far origin", (scene + "origin='0 0 101'/>\n</scene>").c_str(), 4, "origin",
                                  "must be within the world's bound of 100 m along each axis"});
   EXPECT_NO_THROW(scenes::loadSceneText(scene + "origin='0 0 99'/>\n</scene>", "near.xml"));
+}
+
+// A joint's axis and reference were handed to World::addJoint unchecked, whose refusal named no
+// attribute ("<joint>: addJoint: the axis must not be zero"), and said "the axis" of a zero b-axis.
+TEST(SceneErrors, AJointsAxisOrReferenceIsRefusedByItsAttribute) {
+  const std::string bodies =
+      "<scene name='s'>\n<box name='u' pos='0 1.5 0' size='0.1 0.6 0.1' model='rigid'/>\n"
+      "<box name='l' pos='0 0.9 0' size='0.1 0.6 0.1' model='rigid'/>\n"
+      "<joint type='hinge' a='u' b='l' pivot='0 1.2 0' min='-90' max='0'\n ";
+  const auto refused = [&](const char* what, const std::string& frame, const char* attribute, const char* says) {
+    testing_scenes::expectRefused({what, (bodies + frame + "/>\n</scene>").c_str(), 5, attribute, says});
+  };
+  refused("zero axis", "axis='0 0 0' reference='0 -1 0'", "axis", "must be non-zero and of finite length");
+  refused("overflowing axis", "axis='1e300 1e300 0' reference='0 -1 0'", "axis",
+          "must be non-zero and of finite length");
+  refused("reference along the axis", "axis='1 0 0' reference='-2 0 0'", "reference", "must not lie along");
+  refused("zero b-axis", "axis='1 0 0' reference='0 -1 0' b-axis='0 0 0' b-reference='0 -1 0'", "b-axis",
+          "must be non-zero and of finite length");
+  refused("b-reference along the b-axis", "axis='1 0 0' reference='0 -1 0' b-axis='0 1 0' b-reference='0 3 0'",
+          "b-reference", "must not lie along b-axis");
+  EXPECT_NO_THROW(scenes::loadSceneText(bodies + "axis='1e-5 0 0' reference='0 -1 0'/>\n</scene>", "ok.xml"));
 }
 
 // A fade's shift and held root move the path the root's drive pulls along, as the origin does: a

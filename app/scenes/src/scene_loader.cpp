@@ -444,6 +444,22 @@ class Builder {
     return phys::BodyPoint::embedded(phys::embedParticle(body.particle()));
   }
 
+  // What World::addJoint asks of an axis and its reference, refused here by attribute: its own
+  // message names neither, and says "the axis" of a b-axis. The values are not changed, so a joint
+  // is made from exactly what the file says.
+  static void checkJointFrame(ElementReader& e, const char* axisName, const phys::Vec3& axis,
+                              const char* referenceName, const phys::Vec3& reference) {
+    const phys::Real axisLength = glm::length(axis);  // 0 for a tiny axis, inf for a huge one
+    if (!(axisLength > 0.0 && std::isfinite(axisLength))) {
+      e.fail(axisName, "must be non-zero and of finite length (is " + detail::formatNumber(axis.x) + " " +
+                           detail::formatNumber(axis.y) + " " + detail::formatNumber(axis.z) + ")");
+    }
+    const phys::Vec3 unit = axis / axisLength;
+    const phys::Real across = glm::length(reference - glm::dot(reference, unit) * unit);
+    if (!(across > 1e-9 && std::isfinite(across)))
+      e.fail(referenceName, std::string("must not lie along ") + axisName + ", and be of finite length");
+  }
+
   // A hinge or a cone between two rigid bodies (World::addJoint). Angles in degrees; the b-
   // attributes give the child's own frame where it is not the parent's (a joint saved away from rest).
   void joint(ElementReader& e) {
@@ -474,11 +490,13 @@ class Builder {
     }
     d.axis = e.requiredVector("axis", "");
     d.reference = e.requiredVector("reference", "");
+    checkJointFrame(e, "axis", d.axis, "reference", d.reference);
     const std::optional<phys::Vec3> axisB = e.vector("b-axis", ""), referenceB = e.vector("b-reference", "");
     if (axisB.has_value() != referenceB.has_value())
       e.fail(axisB ? "b-reference" : "b-axis",
              "is required with " + std::string(axisB ? "b-axis" : "b-reference"));
     if (axisB) {
+      checkJointFrame(e, "b-axis", *axisB, "b-reference", *referenceB);
       d.axisB = *axisB;
       d.referenceB = *referenceB;
     }
