@@ -108,9 +108,11 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
   c.limit = *plane;
   c.atLeast = min != nullptr;
   c.start = bodyPositions(scene.world)[c.bodies.front()][c.axis];
+  // Strictly on its side: the figure is the share of the way from the start to the plane.
   if (c.atLeast ? c.start <= c.limit : c.start >= c.limit) {
-    r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", already " +
-                          (c.atLeast ? "below" : "above") + " the plane " + formatLimit(c.limit));
+    const std::string where = c.start == c.limit ? "on" : c.atLeast ? "already below" : "already above";
+    r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", " + where + " the plane " +
+                          formatLimit(c.limit) + " (it must start " + (c.atLeast ? "above" : "below") + " it)");
   }
 }
 

@@ -167,6 +167,11 @@ TEST(StabilityCriteria, MalformedExpectNamesTheLineAndTheAttribute) {
        "exactly one of max and min"},
       {R"(<expect kind="pass" metric="stays-behind" body="p" axis="x" max="1" over="0 1"/>)", "max",
        "starts at x = 3, already above the plane 1"},
+      // A body on the plane is not on its side either; it was said to be "already above" it.
+      {R"(<expect kind="pass" metric="stays-behind" body="p" axis="x" max="3" over="0 1"/>)", "max",
+       "starts at x = 3, on the plane 3 (it must start below it)"},
+      {R"(<expect kind="pass" metric="stays-behind" body="p" axis="x" min="3" over="0 1"/>)", "min",
+       "starts at x = 3, on the plane 3 (it must start above it)"},
   };
   TempDir dir;
   for (const BadExpect& c : cases) {
