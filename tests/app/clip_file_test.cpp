@@ -112,6 +112,18 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   EXPECT_EQ(clipError(dir.path / "two.bvh"), "loaded");
 }
 
+// An empty file reached assimp, whose refusal said nothing of the file ("Invalid parameters passed to
+// ReadFileFromMemory()"), in every format.
+TEST(ClipFile, AnEmptyClipFileIsSaidToBeEmpty) {
+  const testing_app::TempFolder dir;
+  for (const char* name : {"empty.bvh", "empty.fbx", "empty.gltf", "empty.glb", "empty.dae", "empty.x"}) {
+    std::ofstream{dir.path / name};
+    const std::string e = clipError(dir.path / name);
+    EXPECT_NE(e.find(std::string(name) + ": is empty"), std::string::npos) << e;
+    EXPECT_EQ(e.find("ReadFileFromMemory"), std::string::npos) << e;
+  }
+}
+
 // A reason quotes what the file holds, ours a number, assimp a keyword: a megabyte token that starts
 // with a terminal's "clear screen" is cut, saying how much more there was, and its control byte shown.
 TEST(ClipFile, AssimpsReasonIsCutAndItsControlBytesShown) {

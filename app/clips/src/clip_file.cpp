@@ -363,6 +363,9 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
     throw ClipError(name,
                     "not a clip file: clips are read from BVH (.bvh), FBX (.fbx), glTF (.gltf, .glb), "
                     "COLLADA (.dae) and DirectX (.x) files");
+  // assimp refuses no bytes as "Invalid parameters passed to ReadFileFromMemory()", which says
+  // nothing of the file.
+  if (content.empty()) throw ClipError(name, "is empty: a clip file holds a skeleton and its motion");
   known->check(content, name);
   const std::optional<std::string> skeleton =
       known->skeletonOnly == nullptr ? std::nullopt : known->skeletonOnly(content, name);
