@@ -111,8 +111,9 @@ void readStaysBehind(ExpectReader& r, const scenes::Scene& scene, Criterion& c) 
   // Strictly on its side: the figure is the share of the way from the start to the plane.
   if (c.atLeast ? c.start <= c.limit : c.start >= c.limit) {
     const std::string where = c.start == c.limit ? "on" : c.atLeast ? "already below" : "already above";
-    r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", " + where + " the plane " +
-                          formatLimit(c.limit) + " (it must start " + (c.atLeast ? "above" : "below") + " it)");
+    r.fail(attribute, "the body starts at " + axis + " = " + formatNumber(c.start) + ", " + where +
+                          " the plane " + formatLimit(c.limit) + " (it must start " +
+                          (c.atLeast ? "above" : "below") + " it)");
   }
 }
 

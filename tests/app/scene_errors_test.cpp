@@ -736,7 +736,8 @@ TEST(SceneErrors, AJointsAxisOrReferenceIsRefusedByItsAttribute) {
       "<scene name='s'>\n<box name='u' pos='0 1.5 0' size='0.1 0.6 0.1' model='rigid'/>\n"
       "<box name='l' pos='0 0.9 0' size='0.1 0.6 0.1' model='rigid'/>\n"
       "<joint type='hinge' a='u' b='l' pivot='0 1.2 0' min='-90' max='0'\n ";
-  const auto refused = [&](const char* what, const std::string& frame, const char* attribute, const char* says) {
+  const auto refused = [&](const char* what, const std::string& frame, const char* attribute,
+                           const char* says) {
     testing_scenes::expectRefused({what, (bodies + frame + "/>\n</scene>").c_str(), 5, attribute, says});
   };
   refused("zero axis", "axis='0 0 0' reference='0 -1 0'", "axis", "must be non-zero and of finite length");
@@ -745,8 +746,9 @@ TEST(SceneErrors, AJointsAxisOrReferenceIsRefusedByItsAttribute) {
   refused("reference along the axis", "axis='1 0 0' reference='-2 0 0'", "reference", "must not lie along");
   refused("zero b-axis", "axis='1 0 0' reference='0 -1 0' b-axis='0 0 0' b-reference='0 -1 0'", "b-axis",
           "must be non-zero and of finite length");
-  refused("b-reference along the b-axis", "axis='1 0 0' reference='0 -1 0' b-axis='0 1 0' b-reference='0 3 0'",
-          "b-reference", "must not lie along b-axis");
+  refused("b-reference along the b-axis",
+          "axis='1 0 0' reference='0 -1 0' b-axis='0 1 0' b-reference='0 3 0'", "b-reference",
+          "must not lie along b-axis");
   EXPECT_NO_THROW(scenes::loadSceneText(bodies + "axis='1e-5 0 0' reference='0 -1 0'/>\n</scene>", "ok.xml"));
 }
 
@@ -760,10 +762,12 @@ TEST(SceneErrors, ACharactersFadeShiftAndHeldRootAreHeldToTheBound) {
   std::string turns = "1 0 0 0";
   for (int bone = 1; bone < 10; ++bone) turns += ", 1 0 0 0";
   const std::string held = "held-turns='" + turns + "' ";
-  testing_scenes::expectRefused({"far shift", (scene + from + "from-shift='1e308 0 0'/>\n</scene>").c_str(), 4,
-                                 "from-shift", "must be within the world's bound of 100 m along each axis"});
-  testing_scenes::expectRefused({"far held root", (scene + held + "held-root='0 -101 0'/>\n</scene>").c_str(), 4,
-                                 "held-root", "must be within the world's bound of 100 m along each axis"});
+  testing_scenes::expectRefused({"far shift", (scene + from + "from-shift='1e308 0 0'/>\n</scene>").c_str(),
+                                 4, "from-shift",
+                                 "must be within the world's bound of 100 m along each axis"});
+  testing_scenes::expectRefused({"far held root", (scene + held + "held-root='0 -101 0'/>\n</scene>").c_str(),
+                                 4, "held-root",
+                                 "must be within the world's bound of 100 m along each axis"});
   EXPECT_NO_THROW(scenes::loadSceneText(scene + from + "from-shift='99 0 -99'/>\n</scene>", "near.xml"));
   EXPECT_NO_THROW(scenes::loadSceneText(scene + held + "held-root='0 99 0'/>\n</scene>", "near.xml"));
 }

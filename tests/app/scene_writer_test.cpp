@@ -595,7 +595,8 @@ TEST(SceneWriter, AFadesShiftOrHeldRootPastTheBoundIsNotWritten) {
     return std::string();
   };
   const std::string ragdoll = "<ragdoll name=\"r\" pos=\"0 1 0\" model=\"rigid\"/>";
-  const std::string character = "<character ragdoll=\"r\" clip=\"" DATA_DIR "/assets/clips/run.bvh\" blend=\"0.5\" ";
+  const std::string character =
+      "<character ragdoll=\"r\" clip=\"" DATA_DIR "/assets/clips/run.bvh\" blend=\"0.5\" ";
   scenes::Scene fading =
       load(ragdoll + character + "from-clip=\"" DATA_DIR "/assets/clips/run.bvh\" from-shift=\"5 0 0\"/>",
            "<world bound=\"20\"/>");
@@ -608,7 +609,8 @@ TEST(SceneWriter, AFadesShiftOrHeldRootPastTheBoundIsNotWritten) {
       << refusal(fading);
   std::string turns = "1 0 0 0";
   for (int bone = 1; bone < 10; ++bone) turns += ", 1 0 0 0";
-  scenes::Scene holding = load(ragdoll + character + "held-turns=\"" + turns + "\"/>", "<world bound=\"20\"/>");
+  scenes::Scene holding =
+      load(ragdoll + character + "held-turns=\"" + turns + "\"/>", "<world bound=\"20\"/>");
   EXPECT_EQ(refusal(holding), "");
   motion = holding.world.characterMotion(0);
   motion.held.root = phys::Vec3(-21.0, 0.0, 0.0);

@@ -586,7 +586,8 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     e.number("blend", c.blend).number("blend-time", c.blendTime);
     if (c.before.clip) {
       requireLoadableClock(c.before, "the clip character '" + c.ragdoll + "' fades from");
-      requireInsideBound(c.beforeShift, bound, "the shift of the clip character '" + c.ragdoll + "' fades from");
+      requireInsideBound(c.beforeShift, bound,
+                         "the shift of the clip character '" + c.ragdoll + "' fades from");
       e.text("from-clip", clipPath(*c.before.clip))
           .number("from-time", c.before.time)
           .number("from-speed", c.before.speed)
