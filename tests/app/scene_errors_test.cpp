@@ -17,6 +17,9 @@ using testing_scenes::BadScene;
 const BadScene kCases[] = {
     {"unknown element", "<scene name='s'>\n<ground/>\n<boxx pos='0 0 0'/>\n</scene>", 3, "",
      "unknown element"},
+    // Said to "take no child elements or text", as if it were an element of the format.
+    {"unknown element with content", "<scene name='s'>\n<ground/>\n<boxx pos='0 0 0'>crate</boxx>\n</scene>",
+     3, "", "<boxx>: unknown element"},
     {"unknown attribute", "<scene name='s'>\n<box pos='0 1 0'\n colour='red'/>\n</scene>", 3, "colour",
      "unknown attribute"},
     {"missing required attribute", "<scene name='s'>\n\n<box size='1'/>\n</scene>", 3, "pos", "is required"},
