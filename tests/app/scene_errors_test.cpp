@@ -677,6 +677,25 @@ TEST(SceneErrors, AControlCharacterInAValueIsRefused) {
   EXPECT_EQ(lines.bodies.at(0).name, "x\ny");
 }
 
+// U+009B is xterm's one-character ESC [: a name holding "\u009B2J" loaded, and the lab's summary
+// printed it to the terminal as it was. A C1 control is refused, as a byte or a reference, and a
+// character just past them (U+00A0) is not.
+TEST(SceneErrors, AC1ControlCharacterIsRefused) {
+  testing_scenes::expectRefused({"C1 bytes",
+                                 "<scene name='s'>\n<box pos='0 1 0'\n name='a\xC2\x9B"
+                                 "2J'/>\n</scene>",
+                                 3, "name", "holds the control character U+009B"});
+  testing_scenes::expectRefused({"C1 reference",
+                                 "<scene name='s'>\n<box pos='0 1 0' name='&#x85;'/>\n</scene>", 2, "name",
+                                 "holds the control character U+0085"});
+  testing_scenes::expectRefused({"C1 in the scene's name", "<scene name='&#128;'/>", 1, "name", "U+0080"});
+  const scenes::Scene spaced =
+      scenes::loadSceneText("<scene name='s'><box name='a&#xA0;b' pos='0 1 0'/></scene>", "ok.xml");
+  EXPECT_EQ(spaced.bodies.at(0).name,
+            "a\xC2\xA0"
+            "b");
+}
+
 // A clip's bone names reach a message whole, from the clip's file rather than the scene's: a
 // megabyte one that starts with "clear screen" is cut, its control byte shown as \x1b.
 TEST(SceneErrors, AClipsBoneNameIsCutAndItsControlBytesShown) {

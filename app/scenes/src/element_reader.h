@@ -70,8 +70,8 @@ class ElementReader {
   void material(phys::Material& material);
 
   /// Refuses a value that holds a control character XML does not allow (all below U+0020 but tab,
-  /// line feed and carriage return), as a byte or as a reference such as &#27;, which pugixml
-  /// takes. text() checks every value it reads.
+  /// line feed and carriage return), or a C1 control (U+0080 to U+009F), as a byte or as a
+  /// reference such as &#27;, which pugixml takes. text() checks every value it reads.
   void refuseControlCharacters(std::string_view attribute, std::string_view value) const;
 
   /// Call once every attribute has been read: any attribute not asked for is an error.
@@ -82,6 +82,8 @@ class ElementReader {
   const std::string& file() const { return file_; }
 
  private:
+  // Fails `attribute` if `value` holds a C1 control character starting at byte `at`.
+  void refuseC1Control(std::string_view attribute, std::string_view value, std::size_t at) const;
   pugi::xml_attribute find(std::string_view name);
 
   pugi::xml_node node_;
