@@ -44,7 +44,7 @@ void keepVolume(Particles& p, const Body& box) {
 
 // A tetra body is flat when its thinnest side is under half its middle one. The sticks hold its
 // tetrahedron's thickness t across a width w with a stiffness of (t / w)^2 per pass: a quarter or
-// more, and the passes hold it (a 1 x 0.5 x 1 m slab rests 1.6 mm down, a cube 0.4 mm). The
+// more, and the passes hold it (a 1 x 0.5 x 1 m slab rests 1.6 mm down, a cube 0.2 mm). The
 // volume is kept only below that, so that the lean ragdolls' parts (the torso's 0.2 / 0.34 is the
 // flattest) rest as their sticks alone leave them: kept in every part, the passes' residue moved
 // into the sticks, 1.4% off their length at rest after a fall, against 0.3%.
