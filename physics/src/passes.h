@@ -114,8 +114,8 @@ void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& 
 /// tetrahedron's thickness only as (thickness / edge)^2 per pass, so a slab lying on the ground let
 /// its top particles sink through its bottom ones; the volume's gradient at each particle is its
 /// opposite face's normal, which resists that squarely, and its sign keeps the tetrahedron from
-/// turning inside out.
-void keepTetraVolumes(Particles& p, std::span<const Body> bodies);
+/// turning inside out. `alongStart`: move along the gradient at x* (SHAKE's way) rather than at x.
+void keepTetraVolumes(Particles& p, std::span<const Body> bodies, bool alongStart);
 
 /// Projects every contact point below the ground plane n . x = height back onto it, writing the
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").
