@@ -108,15 +108,6 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                 const Workers* workers = nullptr);
 
-/// Holds each flat tetra body's tetrahedron at its rest volume, signed (the tetrahedral volume
-/// constraint of Bender, Müller and Macklin, "Position-Based Simulation Methods in Computer
-/// Graphics", Eurographics 2015 tutorial): the 6 sticks alone resist a change of a flat
-/// tetrahedron's thickness only as (thickness / edge)^2 per pass, so a slab lying on the ground let
-/// its top particles sink through its bottom ones; the volume's gradient at each particle is its
-/// opposite face's normal, which resists that squarely, and its sign keeps the tetrahedron from
-/// turning inside out. `alongStart`: move along the gradient at x* (SHAKE's way) rather than at x.
-void keepTetraVolumes(Particles& p, std::span<const Body> bodies, bool alongStart);
-
 /// Projects every contact point below the ground plane n . x = height back onto it, writing the
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").
 /// `allowance`, if not empty, is per point the depth it may keep in this substep

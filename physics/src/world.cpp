@@ -106,7 +106,7 @@ void World::settleWithoutVelocity() {
   // Links created apart keep their gaps: they close at their own pace (World::step).
   const std::span<const Real> slack = constraints_.linkSlack();
   for (int pass = 0; pass < 4 * solver_.iterations * solver_.substeps && pass < 200; ++pass) {
-    detail::keepTetraVolumes(particles_, bodies_, false);
+    tetraVolumes_.keep(particles_, false);
     constraints_.relaxSticks(particles_, SolverMethod::GaussSeidel, pass == 0, substepDt(), 0.0);
     constraints_.solveLinks(particles_, slack);
     detail::solveBodyContacts(particles_, narrowPhase_.contacts(), solver_.contactSlop,
@@ -452,6 +452,7 @@ BodyId World::registerBody(const Body& body) {
   broadPhase_.addBody();
   parting_.addBody();
   islands_.addBody(body.particleCount);  // its particles were added just before
+  tetraVolumes_.addBody(body);
   return id;
 }
 

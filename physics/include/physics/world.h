@@ -35,6 +35,7 @@
 #include "physics/rigid_joints.h"
 #include "physics/rigid_links.h"
 #include "physics/settings.h"
+#include "physics/tetra_volumes.h"
 #include "physics/workers.h"
 
 namespace phys {
@@ -485,7 +486,8 @@ class World {
   NarrowPhase narrowPhase_;
   ContactBins contactBins_;  // on two or more threads: the contact stages in two bins at once
   Parting parting_;
-  std::vector<RigidState> rigid_;                // per box: restitution's rigid-body view
+  TetraVolumes tetraVolumes_;      // the flat tetra bodies' volumes, kept before each pass over the sticks
+  std::vector<RigidState> rigid_;  // per box: restitution's rigid-body view
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
 
   RigidBodies rigidBodies_;

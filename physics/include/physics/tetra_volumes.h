@@ -1,0 +1,35 @@
+#pragma once
+// The tetra model's volume constraint, for its flat bodies (docs/physics.md, "Box models"): the
+// tetrahedral volume constraint of Bender, Müller and Macklin ("Position-Based Simulation Methods in
+// Computer Graphics", Eurographics 2015 tutorial). A tetra body's 6 sticks resist a change of its
+// tetrahedron's thickness t across a width w only as (t / w)^2 per pass, so a slab lying on the
+// ground let its top particles sink through its bottom ones and turned inside out. The volume's
+// gradient at each particle is its opposite face's normal, which resists that squarely, and its sign
+// keeps the tetrahedron from turning inside out.
+#include <vector>
+
+#include "physics/body.h"
+#include "physics/particles.h"
+#include "physics/types.h"
+
+namespace phys {
+
+class TetraVolumes {
+ public:
+  /// Keeps the volume of a tetra body whose thinnest side is under half its middle one; any other
+  /// body adds nothing. Called once for each body as it is added, its particles already added.
+  void addBody(const Body& body);
+  /// One Gauss-Seidel projection of each kept body's volume, before each pass over the sticks.
+  /// `alongStart`: along the gradient at x* (SHAKE's way, as it moves each stick along its direction
+  /// at the substep's start) rather than at x.
+  void keep(Particles& p, bool alongStart) const;
+
+ private:
+  struct Kept {
+    ParticleId first;    // the first of its four particles
+    Real restSixVolume;  // six times the rest tetrahedron's signed volume
+  };
+  std::vector<Kept> kept_;
+};
+
+}  // namespace phys
