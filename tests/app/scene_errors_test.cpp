@@ -772,6 +772,9 @@ TEST(SceneErrors, AJointsAxisOrReferenceIsRefusedByItsAttribute) {
           "axis='1 0 0' reference='0 -1 0' b-axis='0 1 0' b-reference='0 3 0'", "b-reference",
           "must not lie along b-axis");
   EXPECT_NO_THROW(scenes::loadSceneText(bodies + "axis='1e-5 0 0' reference='0 -1 0'/>\n</scene>", "ok.xml"));
+  // Both of length 0: World::addJoint's "the parent's frame", as leaving both out is.
+  EXPECT_NO_THROW(scenes::loadSceneText(
+      bodies + "axis='1 0 0' reference='0 -1 0' b-axis='0 0 0' b-reference='0 0 0'/>\n</scene>", "ok.xml"));
 }
 
 // A fade's shift and held root move the path the root's drive pulls along, as the origin does: a

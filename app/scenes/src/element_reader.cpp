@@ -164,31 +164,31 @@ std::optional<std::string> ElementReader::text(std::string_view name) {
 }
 
 // A name holding an escape would reach the sandbox's labels and the lab's terminal and files as
-// one; XML forbids them, so the file is wrong, whatever pugixml takes.
-void ElementReader::refuseControlCharacters(std::string_view attribute, std::string_view value) const {
+// one. Below U+0020 XML forbids them (but tab, line feed and carriage return), so the file is
+// wrong, whatever pugixml takes. U+0080 to U+009F (UTF-8 0xC2 0x80 to 0xC2 0x9F) XML 1.0 lets be,
+// but xterm takes U+009B as the start of an escape, as it does ESC [, so a name holding one drove
+// the lab's terminal.
+std::string controlCharacterProblem(std::string_view value) {
   for (std::size_t i = 0; i < value.size(); ++i) {
     const auto byte = static_cast<unsigned char>(value[i]);
+    char code[8];
     if (byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "0x%02X", byte);
-      fail(attribute, std::string("holds the control character ") + hex +
-                          ", which XML does not allow (only tab, line feed and carriage return)");
+      std::snprintf(code, sizeof code, "0x%02X", byte);
+      return std::string("holds the control character ") + code +
+             ", which XML does not allow (only tab, line feed and carriage return)";
     }
-    refuseC1Control(attribute, value, i);
+    if (byte != 0xC2 || i + 1 >= value.size()) continue;
+    const auto next = static_cast<unsigned char>(value[i + 1]);
+    if (next < 0x80 || next > 0x9F) continue;
+    std::snprintf(code, sizeof code, "U+%04X", next);
+    return std::string("holds the control character ") + code +
+           ", which a terminal may take as an escape (U+0080 to U+009F are refused)";
   }
+  return {};
 }
 
-// U+0080 to U+009F (UTF-8 0xC2 0x80 to 0xC2 0x9F): XML 1.0 lets them be, but xterm takes U+009B
-// as the start of an escape, as it does ESC [, so a name holding one drove the lab's terminal.
-void ElementReader::refuseC1Control(std::string_view attribute, std::string_view value,
-                                    std::size_t at) const {
-  if (static_cast<unsigned char>(value[at]) != 0xC2 || at + 1 >= value.size()) return;
-  const auto next = static_cast<unsigned char>(value[at + 1]);
-  if (next < 0x80 || next > 0x9F) return;
-  char code[8];
-  std::snprintf(code, sizeof code, "U+%04X", next);
-  fail(attribute, std::string("holds the control character ") + code +
-                      ", which a terminal may take as an escape (U+0080 to U+009F are refused)");
+void ElementReader::refuseControlCharacters(std::string_view attribute, std::string_view value) const {
+  if (const std::string problem = controlCharacterProblem(value); !problem.empty()) fail(attribute, problem);
 }
 
 std::string ElementReader::requiredText(std::string_view name) {

@@ -16,6 +16,11 @@
 
 namespace scenes::detail {
 
+/// What is wrong with a value that holds a control character a scene file refuses (below U+0020
+/// but tab, line feed and carriage return; U+0080 to U+009F), as "holds the control character
+/// ...", or empty: one test for the reader and the writer, so that what is written loads.
+std::string controlCharacterProblem(std::string_view value);
+
 /// Maps a pointer into the parsed buffer back to a 1-based line number.
 class LineIndex {
  public:
@@ -82,8 +87,6 @@ class ElementReader {
   const std::string& file() const { return file_; }
 
  private:
-  // Fails `attribute` if `value` holds a C1 control character starting at byte `at`.
-  void refuseC1Control(std::string_view attribute, std::string_view value, std::size_t at) const;
   pugi::xml_attribute find(std::string_view name);
 
   pugi::xml_node node_;

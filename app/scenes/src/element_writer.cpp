@@ -60,6 +60,12 @@ std::string escapeAttribute(std::string_view text) {
 ElementWriter::ElementWriter(std::string_view name) : name_(name) {}
 
 ElementWriter& ElementWriter::text(std::string_view attribute, std::string_view value) {
+  // A name from outside a scene file (a clip file found beside another) may hold what no file
+  // loads.
+  if (const std::string problem = controlCharacterProblem(value); !problem.empty()) {
+    throw std::invalid_argument("<" + name_ + "> attribute '" + std::string(attribute) + "' " + problem +
+                                ", which no scene file can hold");
+  }
   attributes_.append(" ").append(attribute).append("=\"").append(escapeAttribute(value)).append("\"");
   return *this;
 }

@@ -454,7 +454,7 @@ class Builder {
       e.fail(axisName, "must be non-zero and of finite length (is " + detail::formatNumber(axis.x) + " " +
                            detail::formatNumber(axis.y) + " " + detail::formatNumber(axis.z) + ")");
     }
-    const phys::Vec3 unit = axis / axisLength;
+    const phys::Vec3 unit = glm::normalize(axis);  // as World::addJoint makes it, to the last bit
     const phys::Real across = glm::length(reference - glm::dot(reference, unit) * unit);
     if (!(across > 1e-9 && std::isfinite(across)))
       e.fail(referenceName, std::string("must not lie along ") + axisName + ", and be of finite length");
@@ -496,7 +496,9 @@ class Builder {
       e.fail(axisB ? "b-reference" : "b-axis",
              "is required with " + std::string(axisB ? "b-axis" : "b-reference"));
     if (axisB) {
-      checkJointFrame(e, "b-axis", *axisB, "b-reference", *referenceB);
+      // Both of length 0 is World::addJoint's "the parent's frame", as leaving both out is.
+      if (glm::length(*axisB) > 0.0 || glm::length(*referenceB) > 0.0)
+        checkJointFrame(e, "b-axis", *axisB, "b-reference", *referenceB);
       d.axisB = *axisB;
       d.referenceB = *referenceB;
     }
