@@ -1,11 +1,11 @@
 #pragma once
-// The tetra model's volume constraint, for its flat bodies (docs/physics.md, "Box models"): the
-// tetrahedral volume constraint of Bender, Müller and Macklin ("Position-Based Simulation Methods in
-// Computer Graphics", Eurographics 2015 tutorial). A tetra body's 6 sticks resist a change of its
-// tetrahedron's thickness t across a width w only as (t / w)^2 per pass, so a slab lying on the
-// ground let its top particles sink through its bottom ones and turned inside out. The volume's
-// gradient at each particle is its opposite face's normal, which resists that squarely, and its sign
-// keeps the tetrahedron from turning inside out.
+// The tetra model's volume constraint, for its flat bodies (docs/physics.md, "Boxes", its paragraph
+// "Flat tetra bodies"): the tetrahedral volume constraint of Bender, Müller and Macklin
+// ("Position-Based Simulation Methods in Computer Graphics", Eurographics 2015 tutorial). A tetra
+// body's 6 sticks resist a change of its tetrahedron's thickness t across a width w only as
+// (t / w)^2 per pass, so a slab lying on the ground let its top particles sink through its bottom
+// ones and turned inside out. The volume's gradient at each particle is its opposite face's normal,
+// which resists that squarely, and its sign keeps the tetrahedron from turning inside out.
 #include <vector>
 
 #include "physics/body.h"
