@@ -119,11 +119,9 @@ class DriveLog {
 // Bodies in the island with the most: how evenly islands could be shared between threads
 // (docs/performance.md, "The guard's look in ranges, and what the pile's second thread waits on").
 std::size_t largestIsland(const phys::Islands& islands) {
-  std::vector<std::size_t> bodies(islands.islandCount(), 0);  // loose particles' islands are numbered too
-  for (const std::uint32_t island : islands.bodyIsland()) {
-    if (island >= bodies.size()) bodies.resize(island + 1, 0);
-    ++bodies[island];
-  }
+  // Numbered below islandCount(), loose particles' islands too: a body is never a pinned node.
+  std::vector<std::size_t> bodies(islands.islandCount(), 0);
+  for (const std::uint32_t island : islands.bodyIsland()) ++bodies[island];
   return bodies.empty() ? 0 : *std::max_element(bodies.begin(), bodies.end());
 }
 
