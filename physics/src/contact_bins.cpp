@@ -88,8 +88,11 @@ bool ContactBins::deal(std::span<const Manifold> manifolds, std::span<const Grou
 }
 
 void ContactBins::rangeContacts(std::span<const Manifold> manifolds) {
+  // Each manifold adds at most one range: room for them all, kept as the narrow phase keeps its
+  // own (room.h), so that a count of manifolds creeping up does not allocate in every step.
+  const std::size_t room = detail::kRoomPerBody * bin_.size();
   for (std::vector<Range>& ranges : contactRanges_) {
-    detail::keepRoom(ranges, ranges.size(), manifolds.size());
+    detail::keepRoom(ranges, manifolds.size(), room);
     ranges.clear();
   }
   if (!dealt_) return;

@@ -8,7 +8,9 @@
 namespace phys {
 
 struct Workers::Arena {
-  explicit Arena(int threads) : arena(threads) {}
+  // Initialised now, not at its first use, which may come in a step long after the world was
+  // made (the contact bins' first deal): the step must not allocate.
+  explicit Arena(int threads) : arena(threads) { arena.initialize(); }
   tbb::task_arena arena;
 };
 
