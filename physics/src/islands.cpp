@@ -27,6 +27,7 @@ NodeId Islands::addNode(bool fixed) {
   islandRest_.push_back(0.0);
   islandNumber_.push_back(0);
   if (!fixed) ++movableNodes_;
+  counted_ = false;
   return id;
 }
 
@@ -105,6 +106,7 @@ void Islands::join(NodeId a, NodeId b) {
   wake(a);
   wake(b);
   detail::unite(lasting_, a, b);
+  counted_ = false;
 }
 
 void Islands::joinParticles(ParticleId a, ParticleId b) {
@@ -131,10 +133,13 @@ void Islands::setAsleep(NodeId node, bool asleep) {
     rest_[node] = 0.0;  // woken: it must rest its whole time again before it sleeps
   }
   if (nodeBody_[node] != kNoBody) bodyAsleep_[nodeBody_[node]] = asleep_[node];
+  counted_ = false;
 }
 
 void Islands::wakeAll() {
   for (NodeId n{}; n < asleep_.size(); ++n) setAsleep(n, false);
+  // New settings (sleeping turned on among them): every clock starts again.
+  std::fill(rest_.begin(), rest_.end(), 0.0);
 }
 
 void Islands::wake(NodeId node) {
@@ -188,17 +193,27 @@ Real Islands::nodeSpeed(const IslandInput& in, NodeId node) const {
   return fastest;
 }
 
-void Islands::update(const IslandInput& in) {
+// This step's islands: the lasting joins, the sleeping islands as they fell asleep (their pairs
+// were not collided), and the step's manifolds.
+void Islands::uniteForStep(std::span<const Manifold> manifolds) {
   const std::size_t n = asleep_.size();
-  // This step's islands: the lasting joins, the sleeping islands as they fell asleep (their pairs
-  // were not collided), and the step's manifolds.
   for (NodeId i{}; i < n; ++i) parent_[i] = detail::findRoot(lasting_, i);
   for (NodeId i{}; i < n; ++i) {
     if (asleep_[i] != 0) unite(i, sleepGroup_[i]);
   }
-  for (const Manifold& m : in.manifolds) {
+  for (const Manifold& m : manifolds) {
     if (m.contactCount > 0) unite(bodyNode_[m.a], bodyNode_[m.b]);
   }
+}
+
+void Islands::count(std::span<const Manifold> manifolds) {
+  uniteForStep(manifolds);
+  number();
+}
+
+void Islands::update(const IslandInput& in) {
+  const std::size_t n = asleep_.size();
+  uniteForStep(in.manifolds);
 
   for (NodeId i{}; i < n; ++i) {
     islandAwake_[i] = islandAsleep_[i] = 0;
@@ -231,7 +246,12 @@ void Islands::update(const IslandInput& in) {
     }
   }
 
-  // Counts and each body's island number, for the sandbox and the lab.
+  number();
+}
+
+// Counts and each body's island number, for the sandbox and the lab.
+void Islands::number() {
+  const std::size_t n = asleep_.size();
   islandCount_ = sleepingIslands_ = 0;
   constexpr std::uint32_t kUnnumbered = std::numeric_limits<std::uint32_t>::max();
   std::fill(islandNumber_.begin(), islandNumber_.end(), kUnnumbered);
@@ -244,6 +264,7 @@ void Islands::update(const IslandInput& in) {
     }
     if (nodeBody_[i] != kNoBody) bodyIsland_[nodeBody_[i]] = islandNumber_[r];
   }
+  counted_ = true;
 }
 
 }  // namespace phys

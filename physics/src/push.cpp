@@ -26,6 +26,9 @@ void World::push(BodyId body, const Vec3& force, Real duration, const std::optio
   const BodyPose pose = poseOf(body);
   const Vec3 at = worldPoint ? *worldPoint - pose.center : Vec3(0.0);
   pushes_.push_back(Push{body, glm::conjugate(pose.orientation) * at, force, duration});
+  // Held awake while the push lasts, as a drag's body is (updateIslands): asleep, its mass masked,
+  // it would use up the push's time unmoved. Room for its node beside the characters' and a drag's.
+  held_.resize(std::max(held_.size(), characters_.size() + HeldNodes::kMost + pushes_.size()));
   islands_.wake(islands_.nodeOf(body));
 }
 

@@ -159,27 +159,21 @@ void World::updateIslands(std::size_t freezesBefore) {
     const std::span<const FreezeReport> freezes = guard_.freezes();
     for (std::size_t k = freezesBefore; k < freezes.size(); ++k) refreeze(freezes[k]);
   }
-  // Held awake: the moving characters' roots, then a drag's nodes (held_ has room for both).
+  // Held awake: the moving characters' roots, a drag's nodes, and the bodies pushed (held_ has
+  // room for all three).
   std::size_t held = holdMovingCharacters(held_);
   const HeldNodes drag = heldNodes();
   for (int i = 0; i < drag.count; ++i) held_[held++] = drag.nodes[static_cast<std::size_t>(i)];
+  for (const Push& p : pushes_) held_[held++] = islands_.nodeOf(p.body);
   islands_.update({particles_, rigidBodies_, bodies_, narrowPhase_.manifolds(), substepDt(), solver_.dt,
                    solver_.sleep, std::span<const NodeId>(held_.data(), held)});
 }
 
 const Islands& World::islands() const {
-  if (!islandsCounted_) {
-    // Counted only: a read must not time anyone's rest or put anything to sleep.
-    SleepSettings countOnly = solver_.sleep;
-    countOnly.enabled = false;
-    islands_.update({particles_,
-                     rigidBodies_,
-                     bodies_,
-                     narrowPhase_.manifolds(),
-                     substepDt(),
-                     solver_.dt,
-                     countOnly,
-                     {}});
+  // Counted only: a read must not time anyone's rest, wake or put anything to sleep. Counted again
+  // after a body, a particle or a join was added, or something woke, since the last count.
+  if (!islandsCounted_ || !islands_.counted()) {
+    islands_.count(narrowPhase_.manifolds());
     islandsCounted_ = true;
   }
   return islands_;

@@ -288,6 +288,44 @@ TEST(Islands, ADragWakesTheBodyAndHoldsItAwake) {
   EXPECT_GT(stepUntilAsleep(world, id, world.time() + 5.0), 0.0);
 }
 
+// A push holds its body awake while it lasts, as a drag does: a rigid box on the ground pushed
+// sideways by half what static friction holds (it does not move) for 2 s.
+TEST(Islands, APushHoldsItsBodyAwakeWhileItLasts) {
+  phys::World world({}, sleeping(phys::BodyModel::Rigid));
+  const BodyId id = world.addBody(box(Vec3(0.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  ASSERT_GT(stepUntilAsleep(world, id, 5.0), 0.0);
+  const phys::Material both = phys::combine(world.worldSettings().groundMaterial, phys::BodyDesc{}.material);
+  const double hold = 0.5 * both.staticFriction * 9.81 * world.bodyMass(id).mass;
+  world.push(id, Vec3(hold, 0.0, 0.0), 2.0);
+  const double start = world.time();
+  while (!world.pushes().empty()) {
+    world.step();
+    ASSERT_FALSE(world.islands().bodyAsleep(id)) << "t = " << world.time() << ": asleep while pushed";
+    ASSERT_LT(world.time(), start + 2.1);
+  }
+  EXPECT_GT(world.time(), start + 1.99);
+  EXPECT_GT(stepUntilAsleep(world, id, world.time() + 5.0), 0.0);
+}
+
+// What the islands say between steps counts what was added since the last step: a box added to a
+// world of one sleeping box is an island of its own at once, with sleeping on or off.
+TEST(Islands, TheCountBetweenStepsSeesWhatWasAdded) {
+  for (const bool sleep : {true, false}) {
+    phys::SolverSettings settings = sleeping(phys::BodyModel::Rigid);
+    settings.sleep.enabled = sleep;
+    phys::World world({}, settings);
+    world.addBody(box(Vec3(0.0, 0.5, 0.0), phys::BodyModel::Rigid));
+    for (int i = 0; i < 90; ++i) world.step();
+    ASSERT_EQ(world.islands().islandCount(), 1u);
+    ASSERT_EQ(world.islands().sleepingIslands(), sleep ? 1u : 0u);
+    const BodyId added = world.addBody(box(Vec3(5.0, 0.5, 0.0), phys::BodyModel::Rigid));
+    EXPECT_EQ(world.islands().islandCount(), 2u) << "sleep " << sleep;
+    EXPECT_EQ(world.islands().bodyIsland()[added], 1u) << "sleep " << sleep;
+    EXPECT_EQ(world.islands().awakeBodies(), sleep ? 1u : 2u);
+    EXPECT_EQ(world.islands().sleepingIslands(), sleep ? 1u : 0u);
+  }
+}
+
 // unmask() gives back exactly what mask() took, to the nodes it took it from, whatever woke in
 // between: three loose particles of different masses asleep, the first woken after the masks.
 TEST(Islands, UnmaskGivesEachNodeBackWhatMaskTookFromIt) {

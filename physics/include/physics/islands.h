@@ -60,6 +60,12 @@ class Islands {
   /// manifolds; wakes every sleeping island an awake node touched; times each node's rest; puts
   /// islands to sleep.
   void update(const IslandInput& in);
+  /// The islands of the lasting joins and the manifolds, numbered and counted as update() does,
+  /// without timing a rest, waking or putting anything to sleep: for a read between steps.
+  void count(std::span<const Manifold> manifolds);
+  /// False once a node, a lasting join or a node's sleep has changed since the islands were last
+  /// numbered: islandCount(), sleepingIslands() and bodyIsland() are then out of date.
+  bool counted() const { return counted_; }
   /// Wakes every node (settings changed, or sleeping turned off).
   void wakeAll();
   /// Wakes the island of the node.
@@ -111,6 +117,8 @@ class Islands {
   bool bodySleeps(BodyId id) const { return asleep_[bodyNode_[id]] != 0; }
 
   NodeId addNode(bool fixed);
+  void uniteForStep(std::span<const Manifold> manifolds);
+  void number();
   void keepMaskRoom();
   NodeId root(NodeId node);
   void unite(NodeId a, NodeId b);
@@ -147,6 +155,7 @@ class Islands {
   std::size_t movableNodes_ = 0;
   std::size_t islandCount_ = 0;
   std::size_t sleepingIslands_ = 0;
+  bool counted_ = false;
 };
 
 }  // namespace phys
