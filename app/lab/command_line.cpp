@@ -475,6 +475,14 @@ void prepareOutputFolder(const std::filesystem::path& folder, const char* option
   }
 }
 
+void checkOutputFile(const std::filesystem::path& file, const char* option) {
+  try {
+    fileio::checkWritable(file);
+  } catch (const fileio::FileError& e) {
+    throw CommandFailure(std::string(option) + ": " + e.what());
+  }
+}
+
 void requireFolder(const std::filesystem::path& folder, const char* option) {
   if (const std::string why = fileio::folderProblem(folder); !why.empty())
     throw CommandFailure(std::string(option) + ": " + folder.string() + ": " + why);

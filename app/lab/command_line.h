@@ -119,6 +119,10 @@ class CommandFailure : public std::runtime_error {
 /// run for minutes call it first, so a folder they cannot write to is said at once.
 void prepareOutputFolder(const std::filesystem::path& folder, const char* option = "--out");
 
+/// Throws CommandFailure "OPTION: FILE: <why>" for a file that writeAtomically would refuse before
+/// writing (fileio::checkWritable). Commands that write a file at the end of a long run call it first.
+void checkOutputFile(const std::filesystem::path& file, const char* option = "--out");
+
 /// Throws CommandFailure "OPTION: FOLDER: <the system's reason>" unless `folder` is an existing
 /// folder ("No such file or directory", "Not a directory"). A command that runs others and
 /// writes what they print calls it first, so a wrong folder is said before anything runs.

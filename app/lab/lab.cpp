@@ -17,9 +17,9 @@
 namespace lab {
 namespace {
 
-// What makes a dump unwritable that can be told before the run: its folder missing, a folder
-// where the file would go, or the scene itself there (by any name). What only writing finds out is
-// said after the report.
+// What makes a dump unwritable that can be told before the run: the scene itself there (by any
+// name), its folder missing, or anything writeAtomically would refuse before writing (a folder or a
+// device in its place, a folder it cannot create a file in). Only a full disk is found out after.
 std::string dumpProblem(const std::filesystem::path& file, const std::filesystem::path& scene) {
   std::error_code ec;
   if (std::filesystem::equivalent(file, scene, ec))
@@ -27,7 +27,11 @@ std::string dumpProblem(const std::filesystem::path& file, const std::filesystem
   const std::filesystem::path folder = file.parent_path().empty() ? "." : file.parent_path();
   if (const std::string why = fileio::folderProblem(folder); !why.empty())
     return folder.string() + ": " + why;
-  if (std::filesystem::is_directory(file, ec)) return file.string() + ": is a folder, not a file";
+  try {
+    fileio::checkWritable(file);
+  } catch (const fileio::FileError& e) {
+    return e.what();
+  }
   return {};
 }
 

@@ -334,6 +334,7 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   if (o.out.empty()) o.out = o.data / "docs";
   const fs::path results = o.out / "results";
   prepareOutputFolder(results);  // before the runs, which take minutes
+  checkOutputFile(o.out / "results.md");
   const std::string data = o.data.string();
   Report report{o, err};
   std::ostringstream& md = report.md;

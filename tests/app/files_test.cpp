@@ -317,6 +317,40 @@ TEST(PrepareFolder, CreatesTheFolderOrSaysWhyItCannotBeWritten) {
   fs::permissions(folder.path / "locked", fs::perms::owner_all);
 }
 
+std::string checkWritableError(const fs::path& file) {
+  try {
+    fileio::checkWritable(file);
+  } catch (const fileio::FileError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// What writeAtomically would refuse before writing is refused by checkWritable, which writes
+// nothing: a long run checks its output file first.
+TEST(CheckWritable, RefusesWhatWriteAtomicallyWouldAndLeavesNothingBehind) {
+  const TempFolder folder;
+  writeFile(folder.path / "old.csv", "old");
+  EXPECT_EQ(checkWritableError(folder.path / "old.csv"), "");
+  EXPECT_EQ(checkWritableError(folder.path / "new.csv"), "");
+  EXPECT_EQ(readFile(folder.path / "old.csv"), "old");
+  EXPECT_EQ(entries(folder.path), std::vector<std::string>{"old.csv"});
+  EXPECT_NE(checkWritableError("/dev/null").find("/dev/null: is not a regular file"), std::string::npos);
+  EXPECT_NE(checkWritableError(folder.path).find("is a folder"), std::string::npos);
+  EXPECT_NE(checkWritableError(folder.path / "missing" / "x.csv").find("No such file or directory"),
+            std::string::npos);
+  EXPECT_NE(checkWritableError("").find("no file name given"), std::string::npos);
+  fs::create_directory(folder.path / "locked");
+  fs::permissions(folder.path, fs::perms::owner_all | fs::perms::others_read | fs::perms::others_exec);
+  fs::permissions(folder.path / "locked", fs::perms::owner_read | fs::perms::owner_exec |
+                                              fs::perms::others_read | fs::perms::others_exec);
+  const fs::path locked = folder.path / "locked" / "out.csv";
+  const std::string error = testing_app::runAsNobody([&] { return checkWritableError(locked); });
+  EXPECT_NE(error.find(locked.string() + ": cannot create a temporary file"), std::string::npos) << error;
+  EXPECT_NE(error.find("Permission denied"), std::string::npos) << error;
+  fs::permissions(folder.path / "locked", fs::perms::owner_all);
+}
+
 // The one check of a folder named on a command line (the sandbox's --data and --screenshot, the
 // lab's --data and --dump): a folder, a link to one, or the OS's reason it is not one.
 TEST(FolderProblem, AFolderOrTheOsReason) {

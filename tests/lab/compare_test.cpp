@@ -734,6 +734,19 @@ TEST(Report, ADataThatIsNotAFolderIsRefusedBeforeAnythingRuns) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// results.md is written last, after minutes of runs: a folder or a device in its place is refused
+// before the first run, with the option and the file (it was found out at the end).
+TEST(Report, AResultsFileThatCannotBeWrittenIsRefusedBeforeAnythingRuns) {
+  TempDir dir;
+  const std::filesystem::path out = dir.file("out");
+  std::filesystem::create_directories(out / "results.md");
+  const Output r = lab::runCaptured("report", {"--quick", "--out", out.string(), "--data", DATA_DIR});
+  EXPECT_EQ(r.code, lab::kExitFailure);
+  EXPECT_EQ(r.err, "lab: --out: " + (out / "results.md").string() + ": is a folder, not a file\n");
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_TRUE(std::filesystem::is_empty(out / "results")) << "no part ran";
+}
+
 TEST(Report, BadArgumentsExitWithUsage) {
   const Output r = lab::runCaptured("report", {"--frobnicate"});
   EXPECT_EQ(r.code, 2);

@@ -126,6 +126,16 @@ void checkReplaceable(const fs::path& target, const fs::path& reported) {
   }
 }
 
+// The file a write of `file` replaces, once its name and what is there now are checked.
+fs::path replaceableTarget(const fs::path& file) {
+  if (file.empty()) throw FileError(file, "no file name given");
+  if (!file.has_filename()) throw FileError(file, "names a folder, not a file");
+  // Renaming over a symbolic link would replace the link; replace what it points at instead.
+  fs::path target = followLinks(file);
+  checkReplaceable(target, file);
+  return target;
+}
+
 }  // namespace
 
 FileError::FileError(fs::path file, const std::string& message)
@@ -152,15 +162,16 @@ void writeAtomically(const fs::path& file, std::string_view content) {
   writeAllAtomically(std::span(&one, 1));
 }
 
+void checkWritable(const fs::path& file) {
+  const fs::path target = replaceableTarget(file);
+  TemporaryFile probe(target, file);  // removed again as it goes out of scope
+}
+
 void writeAllAtomically(std::span<const FileContent> files) {
   std::vector<fs::path> targets;
   std::vector<std::unique_ptr<TemporaryFile>> written;  // unlinked as they go, unless renamed
   for (const FileContent& f : files) {
-    if (f.file.empty()) throw FileError(f.file, "no file name given");
-    if (!f.file.has_filename()) throw FileError(f.file, "names a folder, not a file");
-    // Renaming over a symbolic link would replace the link; replace what it points at instead.
-    targets.push_back(followLinks(f.file));
-    checkReplaceable(targets.back(), f.file);
+    targets.push_back(replaceableTarget(f.file));
     written.push_back(std::make_unique<TemporaryFile>(targets.back(), f.file));
     written.back()->write(f.content);
     written.back()->copyPermissionsOf(targets.back());

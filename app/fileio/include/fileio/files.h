@@ -56,6 +56,13 @@ void writeAllAtomically(std::span<const FileContent> files);
 /// commands that write their results at the end of a long run: they can say so at the start.
 void prepareFolder(const std::filesystem::path& folder);
 
+/// Fails as writeAtomically(file, ...) would before its first byte, and writes nothing: a name that
+/// is empty, a folder, a device or a pipe, a link loop, and a folder that is missing, read-only or
+/// full of names (by creating the temporary file there and removing it). For commands that write a
+/// file at the end of a long run: they can say so at the start. What only writing finds out (a
+/// full disk) is still said by writeAtomically.
+void checkWritable(const std::filesystem::path& file);
+
 /// What `file` names once symbolic links are followed (as many as the OS would, relative ones
 /// from the link's folder): the file writeAtomically replaces. The last one may not exist.
 /// Throws FileError on a loop or an unreadable link.
