@@ -87,22 +87,24 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
   std::filesystem::create_directory(dir.path / "folder.bvh");
   const std::string folder = clipError(dir.path / "folder.bvh");
   EXPECT_NE(folder.find("folder.bvh: is not a regular file"), std::string::npos) << folder;
-  // A well-formed BVH with a turn no quaternion can hold is refused by the clip's own check.
+  // A BVH with a turn no quaternion can hold is refused, with the line (BvhValuesOutOfRange...).
   std::ofstream(dir.path / "nan.bvh") << "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition "
                                          "Yposition Zposition Zrotation Xrotation Yrotation\n}\nMOTION\n"
                                          "Frames: 1\nFrame Time: 0.1\n0 0 0 0 nan 0\n";
-  EXPECT_THROW(clips::loadClip(dir.path / "nan.bvh"), clips::ClipError);
+  EXPECT_NE(clipError(dir.path / "nan.bvh").find("nan.bvh:10: "), std::string::npos);
   // A Frame Time that is no time, and a header of no frames: assimp took 25 frames a second for the
   // first (played at 0.04 s a frame) and one key of its own for the second; refused, not guessed.
   const std::string header =
       "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition "
       "Zrotation Xrotation Yrotation\n}\nMOTION\n";
-  for (const char* time : {"-1", "nan", "inf"}) {
+  for (const char* time : {"-1", "nan", "inf", "1e39", "1e-7", "soon"}) {
     SCOPED_TRACE(time);
     std::ofstream(dir.path / "time.bvh")
         << header << "Frames: 2\nFrame Time: " << time << "\n0 0 0 0 0 0\n0 0 0 0 0 0\n";
     const std::string e = clipError(dir.path / "time.bvh");
-    EXPECT_NE(e.find("time.bvh: its Frame Time is not a finite number of seconds > 0"), std::string::npos)
+    EXPECT_NE(e.find("time.bvh:9: Frame Time: '" + std::string(time) +
+                     "' is not a finite number of seconds >= 1e-6"),
+              std::string::npos)
         << e;
   }
   std::ofstream(dir.path / "none.bvh") << header << "Frames: 0\nFrame Time: 0.1\n";
@@ -229,6 +231,41 @@ TEST(ClipFile, AFrameCountTheFileDoesNotHoldIsRefusedWithTheLine) {
             std::string::npos)
       << extra;
   EXPECT_EQ(refusal("2", two), "loaded");
+}
+
+// A number past its range became inf or NaN in assimp's float (an angle of 1e308, an OFFSET of
+// 1e308), or a root too far for the clip: the clip's own check refused the turn without the line.
+// Each value is refused with its line, its frame and its channel.
+TEST(ClipFile, BvhValuesOutOfRangeAreRefusedWithTheLine) {
+  const testing_app::TempFolder dir;
+  const auto refusal = [&](const std::string& head, const std::string& motion) {
+    std::ofstream(dir.path / "values.bvh") << head << "Frames: 2\nFrame Time: 0.1\n0 0 0 0 0 0\n" << motion;
+    return clipError(dir.path / "values.bvh");
+  };
+  const std::pair<const char*, const char*> cases[] = {
+      {"0 0 0 1e308 0 0",
+       "values.bvh:11: frame 1, joint 'a' Zrotation: '1e308' is not an angle within 1e6 "
+       "degrees either way"},
+      {"0 0 0 0 nan 0", "values.bvh:11: frame 1, joint 'a' Xrotation: 'nan' is not an angle"},
+      {"0 0 0 0 0 -inf", "values.bvh:11: frame 1, joint 'a' Yrotation: '-inf' is not an angle"},
+      {"0 0 0 0 0 1e400", "values.bvh:11: frame 1, joint 'a' Yrotation: '1e400' is not an angle"},
+      {"0 0 0 0 0 2e6", "values.bvh:11: frame 1, joint 'a' Yrotation: '2e6' is not an angle"},
+      {"0 0 0 0 0 x", "values.bvh:11: frame 1, joint 'a' Yrotation: 'x' is not an angle"},
+      {"0 1e7 0 0 0 0",
+       "values.bvh:11: frame 1, joint 'a' Yposition: '1e7' is not a position within 1e6 "
+       "of the origin"},
+      {"9e5\n9e5 0 0 0 0", "values.bvh:12: frame 1: the root 'a' is farther than 1e6 from the origin"}};
+  for (const auto& [motion, says] : cases) {
+    SCOPED_TRACE(motion);
+    const std::string e = refusal(kBvhHeader, std::string(motion) + "\n");
+    EXPECT_NE(e.find(says), std::string::npos) << e;
+  }
+  std::string offset = kBvhHeader;
+  offset.replace(offset.find("OFFSET 0 0 0"), 12, "OFFSET 0 1e308 0");
+  const std::string e = refusal(offset, "0 0 0 0 0 0\n");
+  EXPECT_NE(e.find("values.bvh:4: OFFSET: '1e308' is not a finite number"), std::string::npos) << e;
+  // Every way of writing a number that assimp reads is still read.
+  EXPECT_EQ(refusal(kBvhHeader, "+1 .5 1. -0 1e2 -359.5\n"), "loaded");
 }
 
 TEST(ClipFile, AFileOfNoChannelsHoldsOneFrame) {

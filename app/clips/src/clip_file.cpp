@@ -35,28 +35,11 @@ namespace clips {
 namespace {
 
 // Larger than any clip we would play: minutes of motion capture of a full skeleton.
-constexpr std::size_t kMaxClipBytes = 64u << 20;
-
-// A skeleton nests tens of joints deep (hips to a fingertip is about fifteen). assimp's BVH reader
-// recurses once a level, as collectBones does, and 50,000 levels (a 4 MB file) overflowed the
-// stack; 256 is far from both.
-constexpr int kMaxBvhDepth = 256;
 
 // Ticks a second of an animation whose file does not say: a .x file's (DirectX's default), any
 // other's (assimp's).
 constexpr double kXDefaultTicks = 4800.0;
 constexpr double kAssimpDefaultTicks = 25.0;
-
-// A body with hands and a face has a few hundred joints; a BVH of more is refused before assimp
-// reads it (50,000 side by side took a minute to read).
-constexpr std::uint64_t kMaxBvhJoints = 1000;
-
-// The most keys (a joint at a frame) the largest clip file can hold: every joint's three turns at
-// every frame, each number a digit and a space. assimp keys every joint at every frame a BVH says
-// it has, a joint with no channels too, whatever the file holds: three such joints and "Frames:
-// 50000000", 200 bytes, made it allocate 3.5 GB. Under 2^24, so the count is exact in the float
-// assimp reads it into.
-constexpr std::uint64_t kMaxClipKeys = kMaxClipBytes / 6;
 
 // The animation's channels by the name of the node each moves, the first where two name one node
 // (as assimp's own lookups take it). A node's channel was looked for among all of them, once a node:
@@ -90,141 +73,6 @@ phys::Quat rotationOf(const aiMatrix4x4& m) {
   return glm::normalize(toQuat(rotation));
 }
 
-// A BVH file's words as assimp's reader splits it (runs of anything but white space, a brace that
-// starts one a word of its own), each with its line.
-class BvhWords {
- public:
-  explicit BvhWords(std::string_view text) : text_(text) {}
-
-  /// The next word, "" at the end of the file.
-  std::string_view next() {
-    while (at_ < text_.size() && isSpace(text_[at_])) {
-      if (text_[at_] == '\n') ++line_;
-      ++at_;
-    }
-    const std::size_t start = at_;
-    if (at_ < text_.size() && (text_[at_] == '{' || text_[at_] == '}')) {
-      ++at_;
-    } else {
-      while (at_ < text_.size() && !isSpace(text_[at_])) ++at_;
-    }
-    return text_.substr(start, at_ - start);
-  }
-  /// The line of the word last read.
-  std::size_t line() const { return line_; }
-
- private:
-  static bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
-
-  std::string_view text_;
-  std::size_t at_ = 0;
-  std::size_t line_ = 1;
-};
-
-// A BVH is what assimp reads as one: a file named so, or one of another name that starts as a BVH
-// does (assimp reads a .txt or a file with no extension so).
-bool isBvh(std::string_view content, const std::string& format) {
-  return format == "bvh" || BvhWords(content).next() == "HIERARCHY";
-}
-
-// The count a BVH's count too large for 64 bits is taken as (detail::wholeNumber's): more than any
-// file holds.
-constexpr std::uint64_t kMostCount = std::numeric_limits<std::uint64_t>::max();
-
-// The count `word` on `line`, after `what`.
-std::uint64_t countIn(std::string_view word, std::size_t line, const std::string& name,
-                      const std::string& what) {
-  const std::optional<std::uint64_t> n = detail::wholeNumber(word);
-  if (!n) throw ClipError(name, line, what + " '" + std::string(word) + "' is not a whole number >= 0");
-  return *n;
-}
-
-// A BVH's skeleton as far as the motion: its joints and the numbers each frame holds for them.
-struct BvhSkeleton {
-  std::uint64_t joints = 0;  // ROOT and JOINT: assimp keys each (an End Site is a node of no keys)
-  std::uint64_t channels = 0;
-  bool complete = false;  // MOTION was reached
-};
-
-// Reads the skeleton, refusing joints nested deeper than kMaxBvhDepth or more than kMaxBvhJoints
-// before assimp's reader meets them; what it does not follow is left for that reader to refuse.
-BvhSkeleton readBvhSkeleton(BvhWords& words, const std::string& name) {
-  BvhSkeleton skeleton;
-  int depth = 0;
-  for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
-    if (word == "ROOT" || word == "JOINT") {
-      if (++skeleton.joints > kMaxBvhJoints)
-        throw ClipError(name, words.line(),
-                        "more than " + std::to_string(kMaxBvhJoints) + " joints (a skeleton has tens)");
-      words.next();  // its name, which may be any word
-    } else if (word == "{") {
-      if (++depth > kMaxBvhDepth)
-        throw ClipError(
-            name, words.line(),
-            "joints nested more than " + std::to_string(kMaxBvhDepth) + " deep (a skeleton's are tens deep)");
-    } else if (word == "}") {
-      --depth;
-    } else if (word == "CHANNELS") {
-      const std::string_view count = words.next();
-      const std::uint64_t channels = countIn(count, words.line(), name, "CHANNELS");
-      for (std::uint64_t c = 0; c < channels; ++c) {
-        if (words.next().empty()) return skeleton;  // the file ends in the channels' names
-      }
-      skeleton.channels += channels;
-    } else if (word == "MOTION") {
-      skeleton.complete = true;
-      return skeleton;
-    }
-  }
-  return skeleton;
-}
-
-// Reads the motion's header and counts its numbers, refusing a frame count the file does not hold
-// (assimp allocates every key before it finds the numbers missing) or that more numbers follow
-// (assimp leaves them unread), and more keys than kMaxClipKeys.
-void checkBvhMotion(BvhWords& words, const BvhSkeleton& skeleton, const std::string& name) {
-  if (skeleton.joints == 0 || words.next() != "Frames:") return;  // assimp names what is missing
-  const std::string_view count = words.next();
-  const std::size_t framesLine = words.line();
-  const std::uint64_t frames = countIn(count, framesLine, name, "Frames:");
-  const std::string said = "Frames: " + std::string(count);
-  // Every frame would be an empty line, keyed by assimp at the rest pose; and a clip whose root
-  // has no position channels has one position, which is one frame.
-  if (skeleton.channels == 0 && frames > 1)
-    throw ClipError(name, framesLine,
-                    said + ", but no joint has a channel: a file of no motion holds one frame");
-  if (words.next() != "Frame" || words.next() != "Time:" || words.next().empty()) return;
-  // A product past 64 bits is also more than any file holds.
-  const std::uint64_t wanted = frames > kMostCount / std::max<std::uint64_t>(skeleton.channels, 1)
-                                   ? kMostCount
-                                   : frames * skeleton.channels;
-  std::uint64_t held = 0;
-  std::size_t lastLine = words.line();  // the Frame Time's, while no number is read
-  for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
-    if (++held > wanted)
-      throw ClipError(name, words.line(),
-                      "motion past its last frame (" + said + " on line " + std::to_string(framesLine) +
-                          ", " + std::to_string(skeleton.channels) + " numbers a frame)");
-    lastLine = words.line();
-  }
-  if (held < wanted)
-    throw ClipError(name, framesLine,
-                    said + " of " + std::to_string(skeleton.channels) +
-                        " numbers each is more than the file holds: its motion ends on line " +
-                        std::to_string(lastLine) + " after " + std::to_string(held) + " numbers");
-  if (frames > kMaxClipKeys / skeleton.joints)
-    throw ClipError(name, framesLine,
-                    said + " of " + std::to_string(skeleton.joints) +
-                        " joints is more keys than a clip file holds (" + std::to_string(kMaxClipKeys) + ")");
-}
-
-// What assimp would take on trust in a BVH, refused with its line before assimp reads the file.
-void checkBvh(std::string_view content, const std::string& name) {
-  BvhWords words(content);
-  const BvhSkeleton skeleton = readBvhSkeleton(words, name);
-  if (skeleton.complete) checkBvhMotion(words, skeleton, name);
-}
-
 // The formats a clip is read from, by extension (a BVH also by its first word), and the check each
 // is given before assimp reads it. assimp reads some forty more, most of them meshes with no
 // skeleton; each is a reader more for a hostile file to reach, so none of them is asked.
@@ -234,7 +82,7 @@ struct ClipFormat {
   // The file as assimp is given it (skeleton_only.h), if not as it is.
   std::optional<std::string> (*skeletonOnly)(std::string_view content, const std::string& name);
 };
-constexpr ClipFormat kClipFormats[] = {{"bvh", checkBvh, nullptr},
+constexpr ClipFormat kClipFormats[] = {{"bvh", detail::checkBvh, nullptr},
                                        {"fbx", detail::checkFbx, detail::fbxSkeletonOnly},
                                        {"gltf", detail::checkGltf, detail::gltfSkeletonOnly},
                                        {"glb", detail::checkGlb, detail::glbSkeletonOnly},
@@ -355,7 +203,7 @@ phys::Clip parseClip(std::string_view content, const std::string& name, const st
   std::string format = givenFormat;
   std::transform(format.begin(), format.end(), format.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const bool bvh = isBvh(content, format);
+  const bool bvh = detail::isBvh(content, format);
   if (bvh) format = "bvh";
   const auto* known = std::find_if(std::begin(kClipFormats), std::end(kClipFormats),
                                    [&](const ClipFormat& f) { return format == f.extension; });
@@ -457,7 +305,7 @@ phys::Clip loadClip(const std::filesystem::path& file) {
     throw ClipError(file, "is not a regular file (a folder, pipe, device or socket)");
   std::string content;
   try {
-    content = fileio::readWhole(file, kMaxClipBytes);
+    content = fileio::readWhole(file, detail::kMaxClipBytes);
   } catch (const fileio::FileError& e) {
     throw ClipError(file, e.message());
   }

@@ -1,5 +1,5 @@
 #pragma once
-// What assimp takes on trust in the clip formats other than BVH (docs/physics.md, "Animation"):
+// What assimp takes on trust in the clip formats (docs/physics.md, "Animation"):
 // each check refuses, with a ClipError naming the line or the item, a file that would make one of
 // assimp 5.2's readers recurse past the stack, allocate what a count claims, or crash, before that
 // reader sees it.
@@ -12,6 +12,18 @@
 #include <vector>
 
 namespace clips::detail {
+
+/// Larger than any clip we would play: minutes of motion capture of a full skeleton.
+constexpr std::size_t kMaxClipBytes = 64u << 20;
+
+/// Whether assimp reads `content` as a BVH: a file named so (`format`, its extension in lower
+/// case), or one of another name that starts as a BVH does (a .txt or a file with no extension).
+bool isBvh(std::string_view content, const std::string& format);
+
+/// BVH (bvh_checks.cpp): joints no deeper than kMaxDepth and no more than a skeleton has, a frame
+/// count the file holds, and every number (OFFSET, Frame Time, each channel's value) one assimp
+/// reads into a float in the range the clip keeps, each refused with its line.
+void checkBvh(std::string_view content, const std::string& name);
 
 /// A skeleton nests tens of nodes deep; the readers recurse once a level (BVH's limit too).
 constexpr int kMaxDepth = 256;
