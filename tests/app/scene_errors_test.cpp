@@ -922,6 +922,32 @@ TEST(SceneErrors, AnAmpersandThatStartsNoReferenceIsRefused) {
                                  3, "name", "holds '&\xC3\xA9\xC3\xA9\xC3\xA9\xC3\xA9\xC3\xA9', an"});
 }
 
+// XML allows processing instructions before, inside and after the root element, and the loader
+// skips them wherever they stand; the messages and docs/scene-format.md said only comments may
+// follow </scene>. An XML declaration past the file's start and a DOCTYPE after </scene>, which XML
+// does not allow, were taken (the second skipped unread); both are refused where they stand.
+TEST(SceneErrors, ProcessingInstructionsAreSkippedWhereverTheyStand) {
+  EXPECT_NO_THROW(scenes::loadSceneText(
+      "<?xml version='1.0'?>\n<?pi a?>\n<!DOCTYPE scene>\n<?pi b?>\n<scene name='s'>\n<?pi c?>\n"
+      "<particle pos='0 1 0'/>\n</scene>\n<?pi d?>\n<!-- e -->\n",
+      "s.xml"));
+  testing_scenes::expectRefused(
+      {"text after a processing instruction", "<scene name='s'>\n</scene>\n<?pi x?>\njunk\n", 4, "",
+       "nothing may follow </scene> but comments, processing instructions and white space"});
+  // The first element is taken for the root: the <scene> after it is the one said.
+  testing_scenes::expectRefused(
+      {"element before the root", "<box pos='0 1 0'/>\n<scene name='s'>\n</scene>\n", 2, "",
+       "nothing may follow or precede <scene> but comments and processing instructions"});
+  testing_scenes::expectRefused({"declaration after the root",
+                                 "<scene name='s'>\n</scene>\n<?xml version='1.0'?>\n", 3, "",
+                                 "an XML declaration (<?xml ...?>) may only start the file"});
+  testing_scenes::expectRefused({"declaration after a comment",
+                                 "<!-- c -->\n<?xml version='1.0'?>\n<scene name='s'/>\n", 2, "",
+                                 "an XML declaration (<?xml ...?>) may only start the file"});
+  testing_scenes::expectRefused({"DOCTYPE after the root", "<scene name='s'>\n</scene>\n<!DOCTYPE scene>\n",
+                                 3, "", "a <!DOCTYPE> may only precede <scene>"});
+}
+
 // In a comment, CDATA, a processing instruction or the DOCTYPE an '&' is only text, as XML has it:
 // nothing there is refused for it, and a reference XML allows loads as what it stands for.
 TEST(SceneErrors, AnAmpersandOutsideValuesAndTextIsOnlyText) {

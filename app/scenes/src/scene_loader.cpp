@@ -1319,6 +1319,53 @@ Refusal firstRefusal(std::string_view text) {
   throw LoadError(file, lines.lineOf(at), "", message);
 }
 
+// Whether the XML declaration named at `name` (its "xml") starts the file: pugixml keeps no
+// comment as a node, so a declaration after one is still the first node. A byte order mark and
+// white space before it are let be, as pugixml lets them.
+bool startsTheFile(std::string_view buffer, const char* name) {
+  const std::size_t at = static_cast<std::size_t>(name - buffer.data());
+  std::string_view before = buffer.substr(0, at < 2 ? 0 : at - 2);  // up to its "<?"
+  if (before.starts_with("\xEF\xBB\xBF")) before.remove_prefix(3);
+  return std::all_of(before.begin(), before.end(),
+                     [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; });
+}
+
+// What XML allows beside the root element, and the loader skips unread wherever it stands.
+constexpr const char* kOnlyMarkupBeside =
+    "nothing may follow or precede <scene> but comments and processing instructions";
+
+// Refuses what stands beside the root element (pugixml keeps it as a node) and would otherwise
+// vanish unread: a second element, stray text, an XML declaration anywhere but at the start of the
+// file, a DOCTYPE after </scene>. Comments and processing instructions are not kept as nodes.
+void checkBesideRoot(const pugi::xml_document& doc, std::string_view buffer, const LineIndex& lines,
+                     const std::string& file) {
+  const pugi::xml_node root = doc.document_element();
+  bool afterRoot = false;
+  for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
+    if (top == root) {
+      afterRoot = true;
+      continue;
+    }
+    if (top.type() == pugi::node_declaration) {
+      if (top != doc.first_child() || !startsTheFile(buffer, top.name()))
+        throw LoadError(file, lines.lineOf(top.name()), "",
+                        "an XML declaration (<?xml ...?>) may only start the file");
+      if (const auto encoding = declaredOtherEncoding(top)) {
+        throw LoadError(file, lines.lineOf(top.name()), "encoding",
+                        "<?xml?> attribute 'encoding': '" + *encoding +
+                            "' is not supported; scene files are UTF-8 (save it as UTF-8)");
+      }
+      continue;
+    }
+    if (top.type() == pugi::node_doctype) {
+      if (afterRoot)
+        throw LoadError(file, lines.lineOf(top.value()), "", "a <!DOCTYPE> may only precede <scene>");
+      continue;
+    }
+    ElementReader(top, lines, file).fail(kOnlyMarkupBeside);
+  }
+}
+
 // A file is read only up to kMaxSceneBytes (readSceneSource); text handed in whole is held to it
 // too, so that every offset fits LineIndex's.
 void refuseLargerThan(std::size_t size, std::size_t mostBytes, const std::string& file) {
@@ -1391,8 +1438,10 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
     }
   }
   const Refusal refused = firstRefusal(std::string_view(buffer.data(), size));
+  // The DOCTYPE is kept as a node only to be found where XML does not allow one (after </scene>).
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
-      buffer.data(), size, pugi::parse_default | pugi::parse_declaration, pugi::encoding_utf8);
+      buffer.data(), size, pugi::parse_default | pugi::parse_declaration | pugi::parse_doctype,
+      pugi::encoding_utf8);
   if (!parsed && badAt < static_cast<std::size_t>(parsed.offset))
     throw LoadError(file, badLine, "", badMessage);
   if (!parsed) {
@@ -1403,28 +1452,16 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
   // pugixml drops text outside <scene> unread, and nothing there could own a reference: an '&'
   // in it is stray text, said as that (after </scene>, below).
   if (refused.at != nullptr && std::less<>()(refused.at, root.name()))
-    throw LoadError(file, lines.lineOf(refused.at), "", "nothing may follow or precede <scene> but comments");
+    throw LoadError(file, lines.lineOf(refused.at), "", kOnlyMarkupBeside);
   if (refused.at != nullptr && (trailingFrom == nullptr || std::less<>()(refused.at, trailingFrom)))
     refuseInValue(doc, buffer.data(), refused, lines, file);
-  for (pugi::xml_node top = doc.first_child(); top; top = top.next_sibling()) {
-    if (top == root) continue;
-    if (top.type() == pugi::node_declaration && top == doc.first_child()) {
-      if (const auto encoding = declaredOtherEncoding(top)) {
-        throw LoadError(file, lines.lineOf(top.name()), "encoding",
-                        "<?xml?> attribute 'encoding': '" + *encoding +
-                            "' is not supported; scene files are UTF-8 (save it as UTF-8)");
-      }
-      continue;
-    }
-    // Anything beside the root (a second element, stray text) would otherwise vanish unread.
-    ElementReader stray(top, lines, file);
-    stray.fail("nothing may follow or precede <scene> but comments");
-  }
+  checkBesideRoot(doc, std::string_view(buffer.data(), size), lines, file);
   if (!badMessage.empty()) throw LoadError(file, badLine, "", badMessage);
   // pugixml drops text after the root element without a trace; look for it ourselves. The
   // buffer was parsed in place, so scan a copy of its end made before parsing (see above).
   if (!trailing.empty()) {
-    throw LoadError(file, trailingLine, "", "nothing may follow </scene> but comments and white space");
+    throw LoadError(file, trailingLine, "",
+                    "nothing may follow </scene> but comments, processing instructions and white space");
   }
   if (std::string_view(root.name()) != "scene") {
     throw LoadError(file, lines.lineOf(root.name()), "",
