@@ -41,33 +41,46 @@ bool flat(const Body& body) {
 }  // namespace
 
 void TetraVolumes::addBody(const Body& body) {
-  if (body.model != BodyModel::Tetra || body.shape != Shape::Box || !flat(body)) return;
+  if (body.model != BodyModel::Tetra) return;
+  const bool kept = body.shape == Shape::Box && flat(body);
   std::array<Vec3, 4> rest;
   for (int j = 0; j < 4; ++j) rest[j] = boxParticleLocal(BodyModel::Tetra, body.halfExtents, j);
-  kept_.push_back({body.firstParticle, sixVolume(rest[0], rest[1], rest[2], rest[3])});
+  const Real restSixVolume = sixVolume(rest[0], rest[1], rest[2], rest[3]);
+  (kept ? kept_ : floored_).push_back({body.firstParticle, restSixVolume});
 }
 
-// A Newton step of C = 6 (V - V0) along the gradient, in proportion to inverse mass. Along the
+// A Newton step of C = 6 (V - target) along the gradient, in proportion to inverse mass. Along the
 // moving gradient, SHAKE's tumbler of stability/dzhanibekov.xml lost 41% of its energy in 12 s;
 // along the start's, as SHAKE moves its sticks, it keeps it.
+void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart) {
+  const std::array<Vec3, 4> x = tetraOf(p.position, k.first);
+  const std::array<Vec3, 4> gradient = volumeGradient(x);
+  const std::array<Vec3, 4> direction = alongStart ? volumeGradient(tetraOf(p.previous, k.first)) : gradient;
+  Real denominator = 0.0;
+  for (int j = 0; j < 4; ++j) denominator += p.inverseMass[k.first + j] * glm::dot(gradient[j], direction[j]);
+  // Every particle pinned (or asleep), or the tetrahedron crushed to a point or a line: nothing
+  // to push along.
+  if (!(denominator > 0.0)) return;
+  const Real lambda = (targetSixVolume - sixVolume(x[0], x[1], x[2], x[3])) / denominator;
+  if (!std::isfinite(lambda)) return;  // the guard freezes such a body after the substep
+  for (int j = 0; j < 4; ++j) {
+    const Real w = p.inverseMass[k.first + j];
+    if (w != 0.0) p.position[k.first + j] += lambda * w * direction[j];
+  }
+}
+
+// The sticks cannot tell a tetrahedron from its mirror image, so a deep landing's contacts, which
+// push the embedded bottom corners up and, through their weights of -1/2, a top particle down,
+// can pass it through its base; the sticks then hold it inside out, squashed or whole. So a body
+// that is not flat keeps at least kVolumeFloor of its volume, signed: a floor, not its volume, so
+// that no body the passes keep whole is moved.
 void TetraVolumes::keep(Particles& p, bool alongStart) const {
-  for (const Kept& k : kept_) {
-    const std::array<Vec3, 4> x = tetraOf(p.position, k.first);
-    const std::array<Vec3, 4> gradient = volumeGradient(x);
-    const std::array<Vec3, 4> direction =
-        alongStart ? volumeGradient(tetraOf(p.previous, k.first)) : gradient;
-    Real denominator = 0.0;
-    for (int j = 0; j < 4; ++j)
-      denominator += p.inverseMass[k.first + j] * glm::dot(gradient[j], direction[j]);
-    // Every particle pinned (or asleep), or the tetrahedron crushed to a point or a line: nothing
-    // to push along.
-    if (!(denominator > 0.0)) continue;
-    const Real lambda = (k.restSixVolume - sixVolume(x[0], x[1], x[2], x[3])) / denominator;
-    if (!std::isfinite(lambda)) continue;  // the guard freezes such a body after the substep
-    for (int j = 0; j < 4; ++j) {
-      const Real w = p.inverseMass[k.first + j];
-      if (w != 0.0) p.position[k.first + j] += lambda * w * direction[j];
-    }
+  for (const Kept& k : kept_) project(p, k, k.restSixVolume, alongStart);
+  for (const Kept& k : floored_) {
+    const Real floor = kVolumeFloor * k.restSixVolume;
+    const Real now = sixVolume(p.position[k.first], p.position[k.first + 1], p.position[k.first + 2],
+                               p.position[k.first + 3]);
+    if (now / floor < 1.0) project(p, k, floor, alongStart);  // same sign as the rest volume's, and more
   }
 }
 

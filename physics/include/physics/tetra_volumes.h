@@ -16,10 +16,16 @@ namespace phys {
 
 class TetraVolumes {
  public:
-  /// Keeps the volume of a tetra body whose thinnest side is under half its middle one; any other
-  /// body adds nothing. Called once for each body as it is added, its particles already added.
+  /// Keeps the volume of a tetra box whose thinnest side is under half its middle one, and at least
+  /// kVolumeFloor of it, with its sign, for any other tetra body; a body of another model adds
+  /// nothing. Called once for each body as it is added, its particles already added.
   void addBody(const Body& body);
-  /// One Gauss-Seidel projection of each kept body's volume, before each pass over the sticks.
+  /// Share of its rest volume, signed, that a tetra body that is not flat keeps: below it (inside
+  /// out, or crushed to under half) it is projected back to it; above it nothing moves.
+  static constexpr Real kVolumeFloor = 0.5;
+
+  /// One Gauss-Seidel projection of each kept body's volume, and of each other tetra body's below
+  /// its floor, before each pass over the sticks.
   /// `alongStart`: along the gradient at x* (SHAKE's way, as it moves each stick along its direction
   /// at the substep's start) rather than at x.
   void keep(Particles& p, bool alongStart) const;
@@ -29,7 +35,10 @@ class TetraVolumes {
     ParticleId first;    // the first of its four particles
     Real restSixVolume;  // six times the rest tetrahedron's signed volume
   };
-  std::vector<Kept> kept_;
+  static void project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart);
+
+  std::vector<Kept> kept_;     // flat boxes: their rest volume
+  std::vector<Kept> floored_;  // every other tetra body: kVolumeFloor of it at least
 };
 
 }  // namespace phys
