@@ -438,7 +438,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     }
     if (!constraints_.sticks().empty()) {
       const detail::StageTimer timer(profile_, Stage::Sticks);
-      tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake);
+      tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake, workers());
       constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers());
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links

@@ -11,6 +11,7 @@
 #include "physics/body.h"
 #include "physics/particles.h"
 #include "physics/types.h"
+#include "physics/workers.h"
 
 namespace phys {
 
@@ -20,15 +21,19 @@ class TetraVolumes {
   /// kVolumeFloor of it, with its sign, for any other tetra body; a body of another model adds
   /// nothing. Called once for each body as it is added, its particles already added.
   void addBody(const Body& body);
-  /// Share of its rest volume, signed, that a tetra body that is not flat keeps: below it (inside
-  /// out, or crushed to under half) it is projected back to it; above it nothing moves.
+  /// Share of its rest volume, signed, below which a tetra body that is not flat (inside out, or
+  /// crushed to under half) is projected back to its whole volume; above it nothing moves. Back to
+  /// the floor only, a body past flat stayed there, the sticks pulling it on to its mirror image
+  /// and the floor pulling it back (a capsule landing at dt 1/20 s rested at 53% of its volume).
   static constexpr Real kVolumeFloor = 0.5;
 
   /// One Gauss-Seidel projection of each kept body's volume, and of each other tetra body's below
   /// its floor, before each pass over the sticks.
   /// `alongStart`: along the gradient at x* (SHAKE's way, as it moves each stick along its direction
   /// at the substep's start) rather than at x.
-  void keep(Particles& p, bool alongStart) const;
+  /// The floors are looked at in ranges of bodies on the step's threads (each body's particles are
+  /// its own), so that two threads do not wait on one reading what the other just moved.
+  void keep(Particles& p, bool alongStart, const Workers* workers = nullptr) const;
 
  private:
   struct Kept {
