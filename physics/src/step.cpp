@@ -60,6 +60,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
   profile_ = {};
   lastProjection_ = {};
   swept_ = 0;
+  workers_.prepare();
   if (restWhileAsleep()) {
     profile_.total = millisecondsSince(stepStart);
     return true;

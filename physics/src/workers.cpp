@@ -8,9 +8,7 @@
 namespace phys {
 
 struct Workers::Arena {
-  // Initialised now, not at its first use, which may come in a step long after the world was
-  // made (the contact bins' first deal): the step must not allocate.
-  explicit Arena(int threads) : arena(threads) { arena.initialize(); }
+  explicit Arena(int threads) : arena(threads) {}
   tbb::task_arena arena;
 };
 
@@ -33,6 +31,10 @@ void Workers::setThreads(int threads) {
   threads_ = threads;
   arena_.reset();
   if (threads > 1) arena_ = std::make_unique<Arena>(threads);
+}
+
+void Workers::prepare() const {
+  if (arena_ && !arena_->arena.is_active()) arena_->arena.initialize();
 }
 
 void Workers::forEach(std::size_t count, std::size_t grain, RangeFunction f) const {

@@ -119,7 +119,7 @@ TEST(ClipFile, BadFilesAreRefusedWithTheFileAndTheReason) {
 TEST(ClipFile, AnEmptyClipFileIsSaidToBeEmpty) {
   const testing_app::TempFolder dir;
   for (const char* name : {"empty.bvh", "empty.fbx", "empty.gltf", "empty.glb", "empty.dae", "empty.x"}) {
-    std::ofstream{dir.path / name};
+    { std::ofstream empty(dir.path / name); }  // created empty
     const std::string e = clipError(dir.path / name);
     EXPECT_NE(e.find(std::string(name) + ": is empty"), std::string::npos) << e;
     EXPECT_EQ(e.find("ReadFileFromMemory"), std::string::npos) << e;
@@ -264,8 +264,17 @@ TEST(ClipFile, BvhValuesOutOfRangeAreRefusedWithTheLine) {
   offset.replace(offset.find("OFFSET 0 0 0"), 12, "OFFSET 0 1e308 0");
   const std::string e = refusal(offset, "0 0 0 0 0 0\n");
   EXPECT_NE(e.find("values.bvh:4: OFFSET: '1e308' is not a finite number"), std::string::npos) << e;
-  // Every way of writing a number that assimp reads is still read.
+  // Every way of writing a number that assimp reads is still read: its fast_atoreal_move takes a
+  // decimal comma too.
   EXPECT_EQ(refusal(kBvhHeader, "+1 .5 1. -0 1e2 -359.5\n"), "loaded");
+  EXPECT_EQ(refusal(kBvhHeader, "0,5 1,5e2 -0,25 0 0 0\n"), "loaded");
+  // A joint's channels are each kept while the skeleton is read: a count past six is refused where
+  // it stands, before a file of 64 MB could have all its words kept.
+  std::string channels = kBvhHeader;
+  channels.replace(channels.find("CHANNELS 6"), 10, "CHANNELS 99999999999");
+  const std::string many = refusal(channels, "0 0 0 0 0 0\n");
+  EXPECT_NE(many.find("values.bvh:5: CHANNELS 99999999999: a joint has at most 6"), std::string::npos)
+      << many;
 }
 
 TEST(ClipFile, AFileOfNoChannelsHoldsOneFrame) {

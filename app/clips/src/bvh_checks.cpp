@@ -22,6 +22,8 @@ namespace {
 // A body with hands and a face has a few hundred joints; a BVH of more is refused before assimp
 // reads it (50,000 side by side took a minute to read).
 constexpr std::uint64_t kMaxBvhJoints = 1000;
+// Xposition, Yposition, Zposition, Xrotation, Yrotation, Zrotation.
+constexpr std::uint64_t kMaxBvhChannels = 6;
 
 // The most keys (a joint at a frame) the largest clip file can hold: every joint's three turns at
 // every frame, each number a digit and a space. assimp keys every joint at every frame a BVH says
@@ -79,12 +81,15 @@ std::uint64_t countIn(std::string_view word, std::size_t line, const std::string
 }
 
 // `word` as a number that stays finite in the float assimp reads it into, nullopt if it is not
-// one: not a number at all, nan or inf, or past a float's range (1e308 was read as inf).
+// one: not a number at all, nan or inf, or past a float's range (1e308 was read as inf). Read as
+// assimp's fast_atoreal_move reads it: a leading '+' and a decimal comma ("0,5") are taken.
 std::optional<double> floatNumber(std::string_view word) {
-  if (word.starts_with('+')) word.remove_prefix(1);  // assimp takes a sign either way
+  if (word.starts_with('+')) word.remove_prefix(1);
+  std::string text(word);
+  std::replace(text.begin(), text.end(), ',', '.');
   double value = 0.0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value) ||
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value) ||
       std::abs(value) > static_cast<double>(std::numeric_limits<float>::max()))
     return std::nullopt;
   return value;
@@ -140,6 +145,12 @@ BvhSkeleton readBvhSkeleton(BvhWords& words, const std::string& name) {
     } else if (word == "CHANNELS") {
       const std::string_view count = words.next();
       const std::uint64_t channels = countIn(count, words.line(), name, "CHANNELS");
+      // Each is kept below: a count past the six a joint can have (assimp refuses any other name)
+      // would have a file's words each kept, 2 GB of them for 64 MB of file.
+      if (channels > kMaxBvhChannels)
+        throw ClipError(name, words.line(),
+                        "CHANNELS " + std::string(count) + ": a joint has at most " +
+                            std::to_string(kMaxBvhChannels) + " (Xposition ... Zrotation)");
       for (std::uint64_t c = 0; c < channels; ++c) {
         const std::string_view channel = words.next();
         if (channel.empty()) return skeleton;  // the file ends in the channels' names
@@ -158,7 +169,8 @@ BvhSkeleton readBvhSkeleton(BvhWords& words, const std::string& name) {
 // second and nan as nan.
 void checkFrameTime(std::string_view word, std::size_t line, const std::string& name) {
   const std::optional<double> seconds = floatNumber(word);
-  if (!seconds || *seconds < phys::kMinFrameTime)
+  // As the float assimp keeps: 1e-6 is 9.99999997e-7 there, which the clip's own check refuses.
+  if (!seconds || static_cast<double>(static_cast<float>(*seconds)) < phys::kMinFrameTime)
     throw ClipError(name, line,
                     "Frame Time: '" + std::string(word) + "' is not a finite number of seconds >= 1e-6");
 }

@@ -40,8 +40,8 @@ struct IslandInput {
   Real h = 0.0;                         ///< unit: s; the last substep, over which x - x* was made
   Real dt = 0.0;                        ///< unit: s; the step
   SleepSettings sleep;
-  /// Nodes kept awake this step (a drag's, the roots of characters whose drives move them), or
-  /// none: their islands do not sleep.
+  /// Nodes kept awake this step (a drag's, the roots of characters whose drives move them, the
+  /// bodies pushed), or none: their islands do not sleep.
   std::span<const NodeId> held;
 };
 
@@ -97,10 +97,10 @@ class Islands {
   bool anyAsleep() const { return sleepingNodes_ > 0; }
   /// True when every node that can move sleeps: the step has nothing to do.
   bool allAsleep() const { return sleepingNodes_ > 0 && sleepingNodes_ == movableNodes_; }
-  /// The island of each body at the last update, numbered from 0 in order of first body (for
+  /// The island of each body at the last update or count(), numbered from 0 in order of first body (for
   /// drawing); a body that joins nothing is an island of its own.
   std::span<const std::uint32_t> bodyIsland() const { return bodyIsland_; }
-  /// At the last update: islands with at least one node that can move, awake and asleep.
+  /// At the last update or count(): islands with at least one node that can move, awake and asleep.
   std::size_t islandCount() const { return islandCount_; }
   std::size_t sleepingIslands() const { return sleepingIslands_; }
   /// Bodies awake and asleep now.

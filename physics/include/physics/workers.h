@@ -36,6 +36,10 @@ class Workers {
   /// included) when the number changes.
   void setThreads(int threads);
   int threads() const { return threads_; }
+  /// Sets up the threads' arena if it is not yet: World::step calls it first, so that the arena's
+  /// first use, which may come in a stage long after the world was made (the contact bins' first
+  /// deal), does not allocate, and a copy that never steps (a rewind's keyframe) sets up none.
+  void prepare() const;
   /// f(begin, end) over ranges that cover [0, count), none longer than `grain`: on the arena's
   /// threads, or once over all of it on the calling thread with one thread or count <= grain.
   /// The ranges must share nothing: they run in any order, at once.

@@ -271,9 +271,9 @@ class World {
   /// setMotion would refuse in a character.
   void setCharacterMotion(std::size_t k, const CharacterMotion& motion);
   /// Pushes body `id` with `force` (N, world) for `duration` (s) at `worldPoint` (m; its centre if
-  /// none), from the next substep, and wakes its island: the point is kept in the body's frame, the
-  /// force in the world's. Pushes add up. Throws std::invalid_argument (and pushes nothing) for a
-  /// body that does not exist, a force or point that is not finite, or a duration that is not
+  /// none), from the next substep, and wakes its island, held awake while the push lasts: the point is kept
+  /// in the body's frame, the force in the world's. Pushes add up. Throws std::invalid_argument (and pushes
+  /// nothing) for a body that does not exist, a force or point that is not finite, or a duration that is not
   /// finite and > 0.
   void push(BodyId id, const Vec3& force, Real duration, const std::optional<Vec3>& worldPoint = {});
   /// The pushes still acting.
@@ -368,8 +368,9 @@ class World {
   void setMotion(const Motion& motion);
   /// "" or why setMotion would refuse `motion` in a world that has not stepped.
   std::string motionProblem(const Motion& motion) const;
-  /// The islands and which of them sleep, as of the last step (Islands; SolverSettings::sleep).
-  /// With sleeping off the step does not count them: they are counted here, when asked.
+  /// The islands and which of them sleep (Islands; SolverSettings::sleep): as the last step left
+  /// them, counted again here when asked after a body, a particle or a join was added or something
+  /// woke since, and always here with sleeping off, which the step does not count them for.
   const Islands& islands() const;
   /// What the last step's joint projections did (SolverSettings::jointProjection): the solves of
   /// all its substeps, the widest error found before any, the widest left after the last; all zero
@@ -486,8 +487,8 @@ class World {
   NarrowPhase narrowPhase_;
   ContactBins contactBins_;  // on two or more threads: the contact stages in two bins at once
   Parting parting_;
-  TetraVolumes tetraVolumes_;      // the flat tetra bodies' volumes, kept before each pass over the sticks
-  std::vector<RigidState> rigid_;  // per box: restitution's rigid-body view
+  TetraVolumes tetraVolumes_;  // the tetra bodies' volumes, kept or floored before each pass over the sticks
+  std::vector<RigidState> rigid_;                // per box: restitution's rigid-body view
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
 
   RigidBodies rigidBodies_;
