@@ -17,9 +17,9 @@ namespace phys {
 
 class TetraVolumes {
  public:
-  /// Keeps the volume of a tetra box whose thinnest side is under half its middle one, and at least
-  /// kVolumeFloor of it, with its sign, for any other tetra body; a body of another model adds
-  /// nothing. Called once for each body as it is added, its particles already added.
+  /// Keeps the volume of a tetra box whose thinnest side is under half its middle one, and gives any
+  /// other tetra body its volume back once under kVolumeFloor of it, with its sign; a body of another
+  /// model adds nothing. Called once for each body as it is added, its particles already added.
   void addBody(const Body& body);
   /// Share of its rest volume, signed, below which a tetra body that is not flat (inside out, or
   /// crushed to under half) is projected back to its whole volume; above it nothing moves. Back to
@@ -27,8 +27,8 @@ class TetraVolumes {
   /// and the floor pulling it back (a capsule landing at dt 1/20 s rested at 53% of its volume).
   static constexpr Real kVolumeFloor = 0.5;
 
-  /// One Gauss-Seidel projection of each kept body's volume, and of each other tetra body's below
-  /// its floor, before each pass over the sticks.
+  /// One Gauss-Seidel projection of each kept body's volume, and of each other tetra body's under
+  /// its floor (back to its whole volume), before each pass over the sticks.
   /// `alongStart`: along the gradient at x* (SHAKE's way, as it moves each stick along its direction
   /// at the substep's start) rather than at x.
   /// The floors are looked at in ranges of bodies on the step's threads (each body's particles are
@@ -43,7 +43,7 @@ class TetraVolumes {
   static void project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart);
 
   std::vector<Kept> kept_;     // flat boxes: their rest volume
-  std::vector<Kept> floored_;  // every other tetra body: kVolumeFloor of it at least
+  std::vector<Kept> floored_;  // every other tetra body: its volume back once under kVolumeFloor of it
 };
 
 }  // namespace phys
