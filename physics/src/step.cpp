@@ -145,8 +145,10 @@ bool World::restWhileAsleep() {
 // manifolds, and some wake or fall asleep.
 void World::updateIslands(std::size_t freezesBefore) {
   // With sleeping off nothing of the step depends on the islands: islands() counts them if asked.
-  islandsCounted_ = solver_.sleep.enabled || islands_.masked();
-  if (!islandsCounted_) return;
+  if (!solver_.sleep.enabled && !islands_.masked()) {
+    islands_.forgetCount();  // the step moved the manifolds the last count was of
+    return;
+  }
   const detail::StageTimer timer(profile_, Stage::Islands);
   // masked(), not anyAsleep(): an island woken in the step was masked too.
   if (islands_.masked()) {
@@ -173,10 +175,7 @@ void World::updateIslands(std::size_t freezesBefore) {
 const Islands& World::islands() const {
   // Counted only: a read must not time anyone's rest, wake or put anything to sleep. Counted again
   // after a body, a particle or a join was added, or something woke, since the last count.
-  if (!islandsCounted_ || !islands_.counted()) {
-    islands_.count(narrowPhase_.manifolds());
-    islandsCounted_ = true;
-  }
+  if (!islands_.counted()) islands_.count(narrowPhase_.manifolds());
   return islands_;
 }
 

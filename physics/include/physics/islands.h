@@ -64,8 +64,11 @@ class Islands {
   /// without timing a rest, waking or putting anything to sleep: for a read between steps.
   void count(std::span<const Manifold> manifolds);
   /// False once a node, a lasting join or a node's sleep has changed since the islands were last
-  /// numbered: islandCount(), sleepingIslands() and bodyIsland() are then out of date.
+  /// numbered, or forgetCount() was called: islandCount(), sleepingIslands() and bodyIsland() are
+  /// then out of date.
   bool counted() const { return counted_; }
+  /// For a step that did not update() the islands (sleeping off): its contacts may have changed.
+  void forgetCount() { counted_ = false; }
   /// Wakes every node (settings changed, or sleeping turned off).
   void wakeAll();
   /// Wakes the island of the node.

@@ -506,7 +506,6 @@ class World {
   mutable Islands islands_;
   Workers workers_;  // SolverSettings::threads
   const Workers* workers() const { return workers_.threads() > 1 ? &workers_ : nullptr; }
-  mutable bool islandsCounted_ = false;  // false: islands() counts them (none stepped yet, or sleeping off)
   Profile profile_;
   Real time_ = 0.0;
   long steps_ = 0;
