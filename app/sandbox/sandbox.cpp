@@ -469,7 +469,9 @@ void Sandbox::moveCamera(float frameSeconds) {
 glm::vec3 Sandbox::focusPoint(const glm::vec3& origin, const glm::vec3& direction) const {
   const phys::World& world = session_->scene().world;
   if (followed_) return glm::vec3(world.bodyPose(*followed_).center);
-  if (const auto hit = world.raycast(phys::Vec3(origin), phys::Vec3(direction), 1000.0))
+  // A ray from inside a body hits at its origin, the eye: no point to orbit or zoom about.
+  if (const auto hit = world.raycast(phys::Vec3(origin), phys::Vec3(direction), 1000.0);
+      hit && hit->distance >= camera_.nearPlane)
     return glm::vec3(hit->point);
   if (const auto bounds = sceneBounds(world)) {
     const glm::vec3 middle = 0.5f * (bounds->first + bounds->second);
@@ -486,7 +488,7 @@ void Sandbox::frameScene() {
   }
   const ScreenRect view = sceneRect();
   camera_.frame(bounds->first, bounds->second, view.width / std::max(view.height, 1.0f));
-  if (followed_) followedAt_ = glm::vec3(session_->scene().world.bodyPose(*followed_).center);
+  if (following()) followedAt_ = glm::vec3(session_->scene().world.bodyPose(*followed_).center);
   ui_.message = "framed the scene";
 }
 
@@ -524,11 +526,16 @@ void Sandbox::stopFollowing() {
   followed_.reset();
 }
 
+bool Sandbox::following() {
+  // A rewind, a step back or a recording opened can take the followed body away between frames.
+  if (followed_ && *followed_ >= session_->scene().world.bodies().size()) followed_.reset();
+  return followed_.has_value();
+}
+
 void Sandbox::zoomOrbitFollow() {
   const ImGuiIO& io = ImGui::GetIO();
   const phys::World& world = session_->scene().world;
-  if (followed_ && *followed_ >= world.bodies().size()) followed_.reset();  // the world changed under it
-  if (followed_) {
+  if (following()) {
     const glm::vec3 at(world.bodyPose(*followed_).center);
     camera_.position += at - followedAt_;
     followedAt_ = at;

@@ -62,6 +62,8 @@ class Sandbox {
   glm::vec3 focusPoint(const glm::vec3& origin, const glm::vec3& direction) const;
   void frameScene();
   void stopFollowing();
+  /// Whether a body is followed; drops one that the world no longer has.
+  bool following();
   /// What is sized to the scene opened (loose particles, by its camera's distance), and its ghost.
   void fitToScene();
   void drawExactAnswers(const glm::mat4& viewProjection);

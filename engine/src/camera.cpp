@@ -47,7 +47,15 @@ void FirstPersonCamera::turn(float yawDegrees, float pitchDegrees) {
 
 void FirstPersonCamera::orbit(const glm::vec3& pivot, float yawDegrees, float pitchDegrees) {
   const float distance = glm::length(position - pivot);
-  *this = lookingAt(position, pivot);
+  // A pivot at the eye gives no direction to look along (normalising it would make every angle
+  // NaN): the camera turns where it stands.
+  if (!(distance >= nearPlane)) {
+    turn(yawDegrees, pitchDegrees);
+    return;
+  }
+  const FirstPersonCamera looking = lookingAt(position, pivot);
+  yaw = looking.yaw;
+  pitch = looking.pitch;
   turn(yawDegrees, pitchDegrees);
   position = pivot - forward() * distance;
 }

@@ -1,5 +1,6 @@
 // The first-person camera's angles, directions and matrices agree with each other.
 #include <algorithm>
+#include <cmath>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -63,6 +64,32 @@ TEST(Camera, OrbitKeepsTheDistanceAndEndsLookingAtThePivot) {
   expectNear(c.forward(), glm::normalize(pivot - c.position), 1e-5f);
   const auto looking = engine::FirstPersonCamera::lookingAt(c.position, pivot);
   EXPECT_NEAR(c.yaw, looking.yaw, 1e-3f);
+}
+
+// A pivot found inside a body is the eye itself (a ray from inside hits at 0): normalising the
+// way to it made every angle NaN, and the sandbox's next raycast from there threw.
+TEST(Camera, OrbitAboutThePointItStandsOnTurnsInPlace) {
+  auto c = engine::FirstPersonCamera::lookingAt({0.2f, 1.1f, 0.3f}, {0.0f, 1.0f, -5.0f});
+  const glm::vec3 eye = c.position;
+  const float yaw = c.yaw, pitch = c.pitch;
+  c.orbit(eye, 30.0f, 10.0f);
+  expectNear(c.position, eye, 0.0f);
+  EXPECT_FLOAT_EQ(c.yaw, yaw + 30.0f);
+  EXPECT_FLOAT_EQ(c.pitch, pitch + 10.0f);
+  c.orbit(eye + glm::vec3(0.0f, 0.0f, 0.01f), 5.0f, 0.0f);  // nearer than the near plane
+  EXPECT_TRUE(std::isfinite(c.yaw) && std::isfinite(c.pitch));
+  expectNear(c.position, eye, 0.0f);
+}
+
+TEST(Camera, OrbitKeepsTheLens) {
+  auto c = engine::FirstPersonCamera::lookingAt({0.0f, 2.0f, 8.0f}, {0.0f, 1.0f, 0.0f});
+  c.fovY = 35.0f;
+  c.nearPlane = 0.2f;
+  c.farPlane = 90.0f;
+  c.orbit({0.0f, 1.0f, 0.0f}, 20.0f, 5.0f);
+  EXPECT_EQ(c.fovY, 35.0f);
+  EXPECT_EQ(c.nearPlane, 0.2f);
+  EXPECT_EQ(c.farPlane, 90.0f);
 }
 
 TEST(Camera, DollyMovesAlongTheLineToThePivotAndStopsShortOfIt) {

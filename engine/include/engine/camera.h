@@ -28,7 +28,8 @@ struct FirstPersonCamera {
   /// Turns by the given degrees; pitch is clamped.
   void turn(float yawDegrees, float pitchDegrees);
   /// Turns by the given degrees about `pivot`, staying as far from it and ending up looking at it
-  /// (the orbit of MuJoCo's and Jolt's viewers).
+  /// (the orbit of MuJoCo's and Jolt's viewers). A pivot nearer than the near plane is turned
+  /// about where the camera stands.
   void orbit(const glm::vec3& pivot, float yawDegrees, float pitchDegrees);
   /// Moves along the line to `pivot`, to `factor` times the distance from it (< 1 nearer), so the
   /// pivot stays where it is on the screen; never nearer than twice the near plane.
