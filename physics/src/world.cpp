@@ -561,9 +561,8 @@ std::pair<Vec3, Vec3> World::poseVelocity(BodyId id) const {
   const Real h = substepDt();
   const BodyPose pose = poseOf(id);
   if (body.model == BodyModel::Rigid) {
-    const RigidId i = body.rigid;
-    if (rigidBodies_.inverseMass[i] == 0.0) return {Vec3(0.0), Vec3(0.0)};
-    return {rigidBodies_.velocity[i] + gravityAt(pose.center) * (h / 2), rigidBodies_.angularVelocity[i]};
+    if (rigidBodies_.inverseMass[body.rigid] == 0.0) return {Vec3(0.0), Vec3(0.0)};
+    return rigidDescVelocity(id);
   }
   const ParticleId first = body.firstParticle, end = first + body.particleCount;
   auto moved = [&](ParticleId p) { return velocityOf(p) + gravityAt(particles_.position[p]) * (0.5 * h); };

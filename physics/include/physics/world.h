@@ -339,7 +339,7 @@ class World {
   /// body placed at bodyPose() would start (what the lab gives the peer engines): each particle's
   /// velocity moved on half a substep (+ g h / 2), their mean by mass, and the spin that keeps
   /// their angular momentum about the pose's centre (0 for a body crushed flat). A rigid body's
-  /// own velocity + g h / 2 and its spin. Zero for a fixed body (BodyMass::fixed).
+  /// rigidDescVelocity. Zero for a fixed body (BodyMass::fixed).
   std::pair<Vec3, Vec3> poseVelocity(BodyId id) const;
   /// A rigid body's velocity and spin as a BodyDesc gives them, at the pose's time: bodyVelocity's
   /// moved on half a substep (v + g h / 2, and the spin by Euler's equations, the exact inverse of
