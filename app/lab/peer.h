@@ -23,7 +23,6 @@ struct PeerResult {
   bool ran = false;  ///< false when the scene could not be expressed at all
   /// The engine's version, solver and settings as run, one line for tables.
   std::string settings;
-  double medianMsPerStep = 0.0;  ///< unit: ms; median wall time of one step
   /// unit: ms; the steps' summed wall time over their number: the cost of a step, spikes
   /// included, as lab sweep and compare time ours (timeSetting)
   double meanMsPerStep = 0.0;

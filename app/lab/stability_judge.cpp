@@ -96,8 +96,11 @@ double peerSpeed(const PeerStates& p, int k, double dt) {
     }
     const phys::Quat& qNow = p.orientations[static_cast<std::size_t>(k)][b];
     const phys::Quat& qBefore = p.orientations[static_cast<std::size_t>(k - 1)][b];
-    for (int j = 0; j < phys::boxParticleCount(body.model); ++j) {
-      const phys::Vec3 local = phys::boxParticleLocal(body.model, body.halfExtents, j);
+    // A rigid body has no particles: its corners are where it is fastest.
+    const phys::BodyModel model =
+        body.model == phys::BodyModel::Rigid ? phys::BodyModel::Corners : body.model;
+    for (int j = 0; j < phys::boxParticleCount(model); ++j) {
+      const phys::Vec3 local = phys::boxParticleLocal(model, body.halfExtents, j);
       keepLargest(
           worst,
           glm::length(peers::toWorld(now[b], qNow, local) - peers::toWorld(before[b], qBefore, local)) / dt);

@@ -159,7 +159,6 @@ TEST(PeerStack, ThreeBoxesStandInEveryEngine) {
     const phys::Vec3 top = r.positions[1][2];
     EXPECT_LT(std::hypot(top.x, top.z), 0.05) << "top box drifted to " << top.x << ", " << top.z;
     EXPECT_NEAR(top.y, 2.5, 0.05);
-    EXPECT_GT(r.medianMsPerStep, 0.0);
     EXPECT_GT(r.meanMsPerStep, 0.0);
     EXPECT_LT(r.maxPenetration, 0.05);
   }

@@ -428,6 +428,34 @@ TEST(StabilityJudge, PeersAreJudgedOnTheirPoses) {
   EXPECT_NE(positionsOnly[1].why.find("needs orientations"), std::string::npos) << positionsOnly[1].why;
 }
 
+// A peer's speed is its bodies' fastest points, where ours has its particles: a rigid box has none,
+// so its corners stand for them (it read 0 for any motion, and passed any speed limit).
+TEST(StabilityJudge, APeersRigidBoxHasItsSpeedMeasured) {
+  TempDir dir;
+  const std::filesystem::path file =
+      dir.write("rigid.xml",
+                "<scene name=\"rigid\">\n"
+                "  <box name=\"crate\" pos=\"0 0.5 0\" model=\"rigid\"/>\n"
+                "  <expect kind=\"pass\" metric=\"speed\" max=\"0.01\" over=\"0 0.05\"/>\n"
+                "</scene>\n");
+  const scenes::Scene scene = scenes::loadSceneFile(file);
+  const std::vector<Criterion> criteria = lab::stability::parseCriteria(scene);
+  const double dt = scene.world.solverSettings().dt;
+  // Three steps: the centre still, the box turning 0.1 rad a step about y; its corners, 0.707 m
+  // from the axis, move 2 sin(0.05) 0.707 m a step.
+  std::vector<std::vector<phys::Vec3>> positions;
+  std::vector<std::vector<phys::Quat>> orientations;
+  for (int k = 1; k <= 3; ++k) {
+    positions.push_back({phys::Vec3(0.0, 0.5, 0.0)});
+    orientations.push_back({glm::angleAxis(0.1 * k, phys::Vec3(0.0, 1.0, 0.0))});
+  }
+  const auto v = lab::stability::judgePeer(criteria, scene, dt, positions, orientations);
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_TRUE(v[0].judged) << v[0].why;
+  EXPECT_NEAR(v[0].value, 2.0 * std::sin(0.05) * std::sqrt(0.5) / dt, 1e-9);
+  EXPECT_FALSE(v[0].passed);
+}
+
 // A peer's flips are counted from its orientations by the same counter as ours: the spinning box
 // of dzhanibekov.xml turned half a turn about x (its middle axis y reversing) three times over
 // its run, in small steps, counts 3; a wobble of the axis to 80 degrees and back counts none.
@@ -486,6 +514,24 @@ TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
   // The heat maps' matrices: the scene's row, our pass and the peer's grey.
   EXPECT_EQ(lab::stability::passMatrix(r), "scene gauss-seidel:3x4 fake\n\"face-face\" 1 0.5\n");
   EXPECT_NE(lab::stability::errorMatrix(r).find(" NaN\n"), std::string::npos);
+}
+
+// The summary's time is the scene's stepping in World::step over our runs: a peer's, timed around
+// its own engine's step, is not added in.
+TEST(StabilityReport, TheScenesTimeIsOurRunsAlone) {
+  lab::stability::SuiteResult r;
+  r.scenes.push_back(suiteScene("face-face"));
+  r.settings.push_back(setting(phys::SolverMethod::GaussSeidel, 3, 4));
+  r.methods.push_back("gauss-seidel");
+  r.peers.push_back("fake");
+  lab::stability::Outcome ours = lab::stability::runSetting(r.scenes[0], r.settings[0]);
+  ours.wallMs = 1500.0;
+  lab::stability::Outcome peer;
+  peer.verdicts.assign(2, lab::stability::Verdict{true, "", 0.0, 0.0, false});
+  peer.wallMs = 4000.0;
+  r.outcomes.push_back({ours, peer});
+  const std::string md = lab::stability::markdownReport(r);
+  EXPECT_NE(md.find("| 1.5 s |\n"), std::string::npos) << md;
 }
 
 // A run that blew up fails with the figure infinity; the CSV writes no such number (a blank value

@@ -111,7 +111,6 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   result.maxPenetration = peers::groundPenetration(description, built->positions(), built->orientations());
   result.dropped = built->dropped;
   result.meanMsPerStep = steps > 0 ? run.steppingMs / steps : 0.0;
-  result.medianMsPerStep = median(std::move(run.stepMs));
   result.unsupported = notesOf(description, built.get());
   result.ran = true;
   return result;
