@@ -232,7 +232,7 @@ void poseFigures(const peers::Description& scene, const std::vector<std::vector<
 Figures measureFigures(const scenes::SceneSource& source, const Setting& setting, int steps,
                        const AccuracyTarget& target) {
   scenes::Scene scene = loadSetting(source, setting);
-  const peers::Description loaded = peers::describe(scene);
+  const peers::Description loaded = peers::asOurs(peers::describe(scene));
   RunSpec spec;
   spec.steps = steps;
   spec.checkpoints = target.checkpoints;

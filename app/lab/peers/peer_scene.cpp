@@ -209,6 +209,12 @@ Description describe(const scenes::Scene& scene) {
   return d;
 }
 
+Description asOurs(Description scene) {
+  for (Body& b : scene.bodies)
+    if (b.shape == Body::Shape::Sphere) b.radius = 0.0;
+  return scene;
+}
+
 double groundPenetration(const Description& scene, const std::vector<phys::Vec3>& centres,
                          const std::vector<phys::Quat>& orientations) {
   if (!scene.ground) return 0.0;

@@ -112,6 +112,10 @@ struct Description {
 /// Reads the description from a loaded world (normally not yet stepped).
 Description describe(const scenes::Scene& scene);
 
+/// The description our own world's poses are measured by: a loose particle is a point, not the
+/// sphere that stands for it in a peer (which rests kParticleRadius up where ours rests at 0).
+Description asOurs(Description scene);
+
 /// Depth of the deepest point of any body below the ground: a box's corners, a sphere's surface,
 /// a capsule's core ends less its radius (its box's corners are not on it). 0 without a ground.
 double groundPenetration(const Description& scene, const std::vector<phys::Vec3>& centres,
