@@ -277,6 +277,7 @@ TEST(RigidBody, StackOfTenStands) {
 TEST(RigidBody, StackOfFortyStandsAMinuteAtOneSubstep) {
   phys::World world({}, xpbd(1));
   std::vector<BodyId> boxes;
+  boxes.reserve(40);
   for (int k = 0; k < 40; ++k)
     boxes.push_back(world.addBody(rigidBox({k % 2 == 1 ? 0.01 : 0.0, 0.5 + k, 0.0})));
   const Vec3 start = world.bodyPose(boxes.back()).center;
