@@ -240,12 +240,10 @@ void settingsSection(Session& session, UiState& ui) {
   // ground combines with the body's own (geometric mean).
   phys::WorldSettings w = world.worldSettings();
   double mu = w.groundMaterial.staticFriction;
+  if (mu > 0.0) ui.groundFrictionRatio = w.groundMaterial.dynamicFriction / mu;
   if (sliderReal("ground friction", mu, 0.0f, 2.0f, "%.2f")) {
-    const double ratio = w.groundMaterial.staticFriction > 0.0
-                             ? w.groundMaterial.dynamicFriction / w.groundMaterial.staticFriction
-                             : 5.0 / 6.0;
     w.groundMaterial.staticFriction = mu;
-    w.groundMaterial.dynamicFriction = mu * ratio;
+    w.groundMaterial.dynamicFriction = mu * ui.groundFrictionRatio;
     const std::string error = session.setWorldSettings(w);  // "" left the last command's words
     ui.message = error.empty() ? "world settings applied without restart" : error;
   }

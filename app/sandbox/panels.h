@@ -14,6 +14,7 @@
 #include "history.h"
 #include "lab_sweep.h"
 #include "options.h"
+#include "physics/settings.h"
 #include "real_time.h"
 #include "session.h"
 #include "user_settings.h"
@@ -57,6 +58,9 @@ struct UiState {
   bool saveRecordingRequested = false, openRecordingRequested = false;
   float timeScale = 1.0f;                              ///< simulated seconds per real second
   float throwSpeed = static_cast<float>(kThrowSpeed);  ///< unit: m/s; F, R and T throw at it
+  /// The ground's dynamic over static friction, as last seen with static friction above 0: the
+  /// ground friction slider keeps it through 0, where the world's materials no longer hold it.
+  double groundFrictionRatio = phys::Material{}.dynamicFriction / phys::Material{}.staticFriction;
   DrawOptions draw;
   /// Why the scene's exact answer is not drawn though it has one (ExactGhost::hiddenBecause):
   /// "gravity changed"; "" when it is drawn. The sandbox sets it every frame; the Draw section shows it.

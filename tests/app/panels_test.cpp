@@ -154,6 +154,21 @@ TEST_F(PanelsUi, TheStatusLineSaysWhatAControlDid) {
   EXPECT_EQ(statusLine(), "gravity: towards the point");
 }
 
+// The ground friction slider sets static friction and keeps the scene's dynamic share of it, also
+// through 0 (it fell back to 5/6 there, and the scene's own ratio was lost for the session).
+TEST_F(PanelsUi, GroundFrictionKeepsTheScenesRatioThroughZero) {
+  phys::WorldSettings w = session.scene().world.worldSettings();
+  w.groundMaterial.staticFriction = 0.8;
+  w.groundMaterial.dynamicFriction = 0.2;
+  ASSERT_EQ(session.setWorldSettings(w), "");
+  typeInto("ground friction", "0");
+  EXPECT_EQ(session.scene().world.worldSettings().groundMaterial.dynamicFriction, 0.0);
+  typeInto("ground friction", "0.4");
+  const phys::Material& ground = session.scene().world.worldSettings().groundMaterial;
+  EXPECT_NEAR(ground.staticFriction, 0.4, 1e-6);
+  EXPECT_NEAR(ground.dynamicFriction / ground.staticFriction, 0.25, 1e-12);
+}
+
 // The Simulation panel's "Step (N)" does what N does: after B or the timeline it shows the
 // recording's next step. It took a new step instead, forking the recording there and dropping
 // every later step.
