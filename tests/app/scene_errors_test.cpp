@@ -948,6 +948,27 @@ TEST(SceneErrors, ProcessingInstructionsAreSkippedWhereverTheyStand) {
                                  3, "", "a <!DOCTYPE> may only precede <scene>"});
 }
 
+// Text after </scene> that ends as a processing instruction or a comment ends ("junk?>", "junk-->")
+// is still text: the start of the instruction or comment it seems to close (an XML declaration, a
+// comment inside <scene>) lies before the root's end, not after it.
+TEST(SceneErrors, TextAfterTheRootEndingAsMarkupEndsIsRefusedWithItsLine) {
+  const char* says = "nothing may follow </scene> but comments, processing instructions and white space";
+  testing_scenes::expectRefused(
+      {"after a declaration", "<?xml version='1.0'?>\n<scene name='s'>\n</scene>\njunk?>\n", 4, "", says});
+  testing_scenes::expectRefused({"after a processing instruction in the scene",
+                                 "<scene name='s'>\n<?pi a?>\n</scene>\n\n  junk ?>", 5, "", says});
+  testing_scenes::expectRefused(
+      {"after a comment in the scene", "<scene name='s'><!-- c -->\n</scene>\njunk-->\n", 3, "", says});
+  testing_scenes::expectRefused({"between two processing instructions",
+                                 "<?xml version='1.0'?>\n<scene name='s'/>\n<?pi a?>junk<?pi b?>\n", 3, "",
+                                 says});
+  // A '>' in a value or in a comment inside <scene> does not end its tag or the root early.
+  EXPECT_NO_THROW(scenes::loadSceneText(
+      "<?xml version='1.0'?>\n<scene name='a>b' description=\"c?>d\"><!-- e > f -->\n<particle pos='0 1 "
+      "0'/></scene>\n<?pi g?>\n",
+      "s.xml"));
+}
+
 // In a comment, CDATA, a processing instruction or the DOCTYPE an '&' is only text, as XML has it:
 // nothing there is refused for it, and a reference XML allows loads as what it stands for.
 TEST(SceneErrors, AnAmpersandOutsideValuesAndTextIsOnlyText) {

@@ -1083,6 +1083,51 @@ std::size_t pastSection(std::string_view text, std::size_t i) {
   return i;
 }
 
+// Where the tag whose '<' is at `i` ends (its '>'), or npos if it does not end: a quote of either
+// kind starts a value, and a '>' in one ends nothing, as pugixml reads a tag.
+std::size_t tagEnd(std::string_view text, std::size_t i) {
+  while ((i = text.find_first_of("\"'>", i + 1)) != std::string_view::npos && text[i] != '>') {
+    i = text.find(text[i], i + 1);
+    if (i == std::string_view::npos) break;
+  }
+  return i;
+}
+
+// Where the first text after the root element stands: anything but white space and markup
+// (comments, processing instructions, and what pugixml keeps as a node for checkBesideRoot to
+// refuse: a second element, a DOCTYPE). npos when there is none, or when markup does not end (the
+// parse says so). Scanned forward, element by element, so that a "?>" or "-->" ending the stray
+// text is not taken for the end of a processing instruction or a comment that starts earlier.
+std::size_t textAfterRoot(std::string_view text) {
+  constexpr auto npos = std::string_view::npos;
+  int depth = 0;
+  bool rootClosed = false;
+  for (std::size_t i = 0; i < text.size();) {
+    if (text[i] != '<') {
+      if (!rootClosed) {
+        i = text.find('<', i);
+        continue;
+      }
+      if (depth == 0 && std::isspace(static_cast<unsigned char>(text[i])) == 0) return i;
+      ++i;
+      continue;
+    }
+    if (const std::size_t past = pastSection(text, i); past != i) {
+      i = past;
+      continue;
+    }
+    const std::size_t end = tagEnd(text, i);
+    if (end == npos) return npos;
+    if (text[i + 1] == '/')
+      --depth;
+    else if (text[end - 1] != '/')
+      ++depth;
+    rootClosed = rootClosed || depth == 0;
+    i = end + 1;
+  }
+  return npos;
+}
+
 // Whether XML forbids the character `code` as a character reference's, beyond the control
 // characters that every value refuses with its own message (ElementReader): U+0000, which pugixml
 // would end the value at; a surrogate, U+FFFE, U+FFFF and anything past U+10FFFF, which pugixml
@@ -1409,34 +1454,10 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
   const std::size_t badAt = bad.empty() ? size : static_cast<std::size_t>(bad.data() - buffer.data());
   const int badLine = bad.empty() ? 0 : lines.lineOf(bad.data());
   const std::string badMessage = bad.empty() ? std::string() : notUtf8Message(bad);
-  // What follows the last '>' before the comments and processing instructions that end the file
-  // (taken before in-place parsing rewrites the buffer): only white space may.
-  std::string trailing;
-  int trailingLine = 0;
-  const char* trailingFrom = nullptr;
-  {
-    std::size_t end = size;
-    for (;;) {
-      while (end > 0 && std::isspace(static_cast<unsigned char>(buffer[end - 1]))) --end;
-      const std::string_view head(buffer.data(), end);
-      std::size_t open = std::string_view::npos;
-      if (head.ends_with("-->"))
-        open = head.rfind("<!--", end - 3);
-      else if (head.ends_with("?>"))
-        open = head.rfind("<?", end - 2);
-      if (open == std::string_view::npos) break;
-      end = open;
-    }
-    std::size_t lastTag = end;
-    while (lastTag > 0 && buffer[lastTag - 1] != '>') --lastTag;
-    if (lastTag < end && lastTag > 0) {
-      trailingFrom = buffer.data() + lastTag;
-      trailing.assign(trailingFrom, end - lastTag);
-      std::size_t first = lastTag;
-      while (std::isspace(static_cast<unsigned char>(buffer[first]))) ++first;
-      trailingLine = lines.lineOf(buffer.data() + first);
-    }
-  }
+  // Where text stands after </scene> (taken before in-place parsing rewrites the buffer): pugixml
+  // drops it unread.
+  const std::size_t after = textAfterRoot(std::string_view(buffer.data(), size));
+  const char* trailingFrom = after == std::string_view::npos ? nullptr : buffer.data() + after;
   const Refusal refused = firstRefusal(std::string_view(buffer.data(), size));
   // The DOCTYPE is kept as a node only to be found where XML does not allow one (after </scene>).
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
@@ -1457,10 +1478,8 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
     refuseInValue(doc, buffer.data(), refused, lines, file);
   checkBesideRoot(doc, std::string_view(buffer.data(), size), lines, file);
   if (!badMessage.empty()) throw LoadError(file, badLine, "", badMessage);
-  // pugixml drops text after the root element without a trace; look for it ourselves. The
-  // buffer was parsed in place, so scan a copy of its end made before parsing (see above).
-  if (!trailing.empty()) {
-    throw LoadError(file, trailingLine, "",
+  if (trailingFrom != nullptr) {
+    throw LoadError(file, lines.lineOf(trailingFrom), "",
                     "nothing may follow </scene> but comments, processing instructions and white space");
   }
   if (std::string_view(root.name()) != "scene") {
