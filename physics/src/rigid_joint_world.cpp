@@ -77,6 +77,16 @@ void World::addLink(const BodyPoint& a, const BodyPoint& b, Real minLength, Real
   islands_.join(nodeOf(a), nodeOf(b));
 }
 
+JointFrameProblem jointFrameProblem(const Vec3& axis, const Vec3& reference) {
+  // A length that overflows (a component near 1e200) would normalise the vector to 0.
+  const Real axisLength = glm::length(axis);
+  if (!(axisLength > 0.0 && std::isfinite(axisLength))) return JointFrameProblem::Axis;
+  const Vec3 unit = glm::normalize(axis);
+  const Real across = glm::length(reference - glm::dot(reference, unit) * unit);
+  if (!(across > 1e-9 && std::isfinite(across))) return JointFrameProblem::Reference;
+  return JointFrameProblem::None;
+}
+
 void World::addJoint(const JointDesc& d) {
   requireIndex(d.a, bodies_.size(), "addJoint", "body");
   requireIndex(d.b, bodies_.size(), "addJoint", "body");
@@ -88,18 +98,15 @@ void World::addJoint(const JointDesc& d) {
               finite(d.referenceB),
           "addJoint: the pivot, axes and references must be finite");
   // Each body's axis made unit and its reference made normal to it, in the body's own frame.
-  // A length that overflows (a component near 1e200) would normalise the vector to 0.
   auto frame = [this](BodyId id, Vec3 axis, Vec3 reference, Vec3& axisOut, Vec3& referenceOut) {
-    const Real axisLength = glm::length(axis);
-    require(axisLength > 0.0, "addJoint: the axis must not be zero");
-    require(std::isfinite(axisLength),
-            "addJoint: the axis's length must be finite (is " + vectorText(axis) + ")");
+    const JointFrameProblem problem = jointFrameProblem(axis, reference);
+    require(problem != JointFrameProblem::Axis,
+            "addJoint: the axis must be non-zero and of finite length (is " + vectorText(axis) + ")");
+    require(problem != JointFrameProblem::Reference,
+            "addJoint: the reference must not lie along the axis, and be of finite length (is " +
+                vectorText(reference) + ")");
     axis = glm::normalize(axis);
     reference -= glm::dot(reference, axis) * axis;
-    const Real referenceLength = glm::length(reference);
-    require(referenceLength > 1e-9, "addJoint: the reference must not lie along the axis");
-    require(std::isfinite(referenceLength),
-            "addJoint: the reference's length must be finite (is " + vectorText(reference) + ")");
     const Quat toBody = glm::conjugate(rigidBodies_.orientation[bodies_[id].rigid]);
     axisOut = toBody * axis;
     referenceOut = toBody * glm::normalize(reference);

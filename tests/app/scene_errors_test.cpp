@@ -3,8 +3,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
 
 #include "bad_scene.h"
+#include "physics/rigid_joints.h"
 #include "scene_text.h"
 #include "scenes/scene.h"
 #include "temp_folder.h"
@@ -775,6 +779,47 @@ TEST(SceneErrors, AJointsAxisOrReferenceIsRefusedByItsAttribute) {
   // Both of length 0: World::addJoint's "the parent's frame", as leaving both out is.
   EXPECT_NO_THROW(scenes::loadSceneText(
       bodies + "axis='1 0 0' reference='0 -1 0' b-axis='0 0 0' b-reference='0 0 0'/>\n</scene>", "ok.xml"));
+}
+
+// The reader refuses a joint's frame by the rule World::addJoint holds (phys::jointFrameProblem), not
+// by a copy of it: at the rule's edges (a length that underflows or overflows, a reference 1e-9
+// across the axis) the file is refused exactly when the world refuses the joint, by the attribute.
+TEST(SceneErrors, AJointFrameIsRefusedExactlyWhenTheWorldRefusesIt) {
+  const std::string bodies =
+      "<scene name='s'>\n<box name='u' pos='0 1.5 0' size='0.1 0.6 0.1' model='rigid'/>\n"
+      "<box name='l' pos='0 0.9 0' size='0.1 0.6 0.1' model='rigid'/>\n";
+  const std::string joint = "<joint type='hinge' a='u' b='l' pivot='0 1.2 0' min='-90' max='0'\n ";
+  const std::pair<phys::Vec3, phys::Vec3> frames[] = {
+      {{1e-300, 0, 0}, {0, -1, 0}},   {{1e-160, 0, 0}, {0, -1, 0}}, {{1e154, 1e154, 0}, {0, 0, 1}},
+      {{1e155, 1e155, 0}, {0, 0, 1}}, {{1, 0, 0}, {1, 1e-9, 0}},    {{1, 0, 0}, {1, 2e-9, 0}},
+      {{0, 1, 0}, {1e300, 0, 1e300}}, {{0, 1, 0}, {1e150, 0, 0}},   {{1, 0, 0}, {0, -1, 0}}};
+  const auto text = [](const phys::Vec3& v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v.x << " " << v.y << " " << v.z;
+    return s.str();
+  };
+  for (const auto& [axis, reference] : frames) {
+    SCOPED_TRACE(text(axis) + " / " + text(reference));
+    const phys::JointFrameProblem problem = phys::jointFrameProblem(axis, reference);
+    const std::string file =
+        bodies + joint + "axis='" + text(axis) + "' reference='" + text(reference) + "'/>\n</scene>";
+    scenes::Scene world = scenes::loadSceneText(bodies + "</scene>", "bodies.xml");
+    phys::JointDesc d;
+    d.a = phys::BodyId{0};
+    d.b = phys::BodyId{1};
+    d.pivot = {0, 1.2, 0};
+    d.axis = axis;
+    d.reference = reference;
+    if (problem == phys::JointFrameProblem::None) {
+      EXPECT_NO_THROW(scenes::loadSceneText(file, "s.xml"));
+      EXPECT_NO_THROW(world.world.addJoint(d));
+      continue;
+    }
+    const char* attribute = problem == phys::JointFrameProblem::Axis ? "axis" : "reference";
+    testing_scenes::expectRefused({"frame", file.c_str(), 5, attribute, "must"});
+    EXPECT_THROW(world.world.addJoint(d), std::invalid_argument);
+  }
 }
 
 // A fade's shift and held root move the path the root's drive pulls along, as the origin does: a

@@ -25,6 +25,7 @@
 #include "fileio/files.h"
 #include "fileio/printable.h"
 #include "generators.h"
+#include "physics/rigid_joints.h"
 #include "scene_paths.h"
 #include "scene_text.h"
 #include "scenes/scene.h"
@@ -444,20 +445,20 @@ class Builder {
     return phys::BodyPoint::embedded(phys::embedParticle(body.particle()));
   }
 
-  // What World::addJoint asks of an axis and its reference, refused here by attribute: its own
-  // message names neither, and says "the axis" of a b-axis. The values are not changed, so a joint
-  // is made from exactly what the file says.
+  // What World::addJoint refuses in an axis and its reference (phys::jointFrameProblem), refused
+  // here by attribute: its own message names neither, and says "the axis" of a b-axis. The values
+  // are not changed, so a joint is made from exactly what the file says.
   static void checkJointFrame(ElementReader& e, const char* axisName, const phys::Vec3& axis,
                               const char* referenceName, const phys::Vec3& reference) {
-    const phys::Real axisLength = glm::length(axis);  // 0 for a tiny axis, inf for a huge one
-    if (!(axisLength > 0.0 && std::isfinite(axisLength))) {
-      e.fail(axisName, "must be non-zero and of finite length (is " + detail::formatNumber(axis.x) + " " +
-                           detail::formatNumber(axis.y) + " " + detail::formatNumber(axis.z) + ")");
+    switch (phys::jointFrameProblem(axis, reference)) {
+      case phys::JointFrameProblem::Axis:
+        e.fail(axisName, "must be non-zero and of finite length (is " + detail::formatNumber(axis.x) + " " +
+                             detail::formatNumber(axis.y) + " " + detail::formatNumber(axis.z) + ")");
+      case phys::JointFrameProblem::Reference:
+        e.fail(referenceName, std::string("must not lie along ") + axisName + ", and be of finite length");
+      case phys::JointFrameProblem::None:
+        break;
     }
-    const phys::Vec3 unit = glm::normalize(axis);  // as World::addJoint makes it, to the last bit
-    const phys::Real across = glm::length(reference - glm::dot(reference, unit) * unit);
-    if (!(across > 1e-9 && std::isfinite(across)))
-      e.fail(referenceName, std::string("must not lie along ") + axisName + ", and be of finite length");
   }
 
   // A hinge or a cone between two rigid bodies (World::addJoint). Angles in degrees; the b-

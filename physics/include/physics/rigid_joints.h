@@ -40,6 +40,12 @@ struct JointDesc {
   Real damping = 0.0;   ///< unit: 1/s; joint friction: the relative spin decays as exp(-damping t)
 };
 
+/// What World::addJoint refuses in one body's axis and reference: an axis of zero or infinite length
+/// (Axis), or a reference whose part across the axis is at most 1e-9 long or not finite
+/// (Reference). One rule, so that a reader that names the attribute refuses exactly what the world does.
+enum class JointFrameProblem : std::uint8_t { None, Axis, Reference };
+JointFrameProblem jointFrameProblem(const Vec3& axis, const Vec3& reference);
+
 /// A joint as the solver holds it: everything in the two bodies' frames.
 struct RigidJoint {
   JointKind kind = JointKind::Hinge;
