@@ -28,6 +28,12 @@ double trackingErrorDegrees(const phys::World& world) {
   return overParts.value() * 180.0 / std::numbers::pi;
 }
 
+const char* lacksContact(const phys::World& world) {
+  const bool something = !world.particles().inverseMass.empty() || world.rigidBodies().size() > 0;
+  if ((world.worldSettings().ground && something) || world.bodies().size() >= 2) return nullptr;
+  return world.worldSettings().ground ? "nothing to touch the ground" : "no ground and fewer than two bodies";
+}
+
 void keepLargest(double& worst, double sample) {
   worst = std::isfinite(sample) && std::isfinite(worst) ? std::max(worst, sample) : kInf;
 }

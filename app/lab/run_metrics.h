@@ -29,6 +29,9 @@ struct RunMetric {
   /// The figure after a step; `metrics` is world.metrics(), read once for all of them.
   double (*read)(const phys::World& world, const phys::Metrics& metrics);
   OverRun over = OverRun::Worst;
+  /// What the world lacks to make the figure anything but 0 whatever its settings ("no joint"),
+  /// or null when it has it: a bound on such a figure is met by every setting (tune refuses it).
+  const char* (*lacks)(const phys::World& world) = nullptr;
 
   /// "joint-error (m)", or the name alone for a ratio: the figure's heading.
   std::string nameAndUnit() const { return *unit == '\0' ? name : std::string(name) + " (" + unit + ")"; }
@@ -44,19 +47,29 @@ double maxAngularSpeed(const phys::World& world);
 /// square over every character's parts of phys::trackingError's angle; 0 without characters.
 double trackingErrorDegrees(const phys::World& world);
 
+/// What a world lacks to touch anything: the ground and something on it, or two bodies; null when it
+/// has them.
+const char* lacksContact(const phys::World& world);
+
 inline constexpr std::array kRunMetrics{
     RunMetric{"stick-error", "max_stick_error", "", "largest stick violation / rest length (0.01 = 1%)",
-              [](const phys::World&, const phys::Metrics& m) { return double(m.maxConstraintError); }},
+              [](const phys::World&, const phys::Metrics& m) { return double(m.maxConstraintError); },
+              OverRun::Worst, [](const phys::World& w) { return w.sticks().empty() ? "no stick" : nullptr; }},
     RunMetric{"joint-error", "max_joint_error", "m", "largest joint gap",
-              [](const phys::World&, const phys::Metrics& m) { return double(m.maxJointError); }},
+              [](const phys::World&, const phys::Metrics& m) { return double(m.maxJointError); },
+              OverRun::Worst,
+              [](const phys::World& w) { return w.jointCount() == 0 ? "no joint" : nullptr; }},
     RunMetric{"penetration", "max_penetration", "m", "deepest penetration",
-              [](const phys::World&, const phys::Metrics& m) { return double(m.maxPenetration); }},
+              [](const phys::World&, const phys::Metrics& m) { return double(m.maxPenetration); },
+              OverRun::Worst, lacksContact},
     RunMetric{"angular-speed", "max_angular_speed", "rad/s", "fastest spin of a body",
-              [](const phys::World& w, const phys::Metrics&) { return maxAngularSpeed(w); }},
+              [](const phys::World& w, const phys::Metrics&) { return maxAngularSpeed(w); }, OverRun::Worst,
+              [](const phys::World& w) { return w.bodies().empty() ? "no body" : nullptr; }},
     RunMetric{"tracking-error", "rms_tracking_error", "deg",
               "characters' parts from their clip's pose, RMS over the run",
               [](const phys::World& w, const phys::Metrics&) { return trackingErrorDegrees(w); },
-              OverRun::Rms},
+              OverRun::Rms,
+              [](const phys::World& w) { return w.characters().empty() ? "no character" : nullptr; }},
 };
 inline constexpr std::size_t kRunMetricCount = kRunMetrics.size();
 

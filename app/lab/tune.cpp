@@ -54,6 +54,8 @@ struct Target {
   std::string unit;                   ///< "m"; "" for a ratio
   std::string help;                   ///< what it is, for `lab tune --help`
   double bound = 0.0;
+  /// What a world lacks to make the figure other than 0 (RunMetric::lacks); null when any can.
+  const char* (*lacks)(const phys::World& world) = nullptr;
 
   /// " m" to put after a value; "" for a ratio.
   std::string unitAfter() const { return unit.empty() ? "" : " " + unit; }
@@ -62,15 +64,28 @@ struct Target {
 constexpr const char* kError = "error";
 constexpr const char* kDrift = "drift";
 
+// A world whose particles and bodies are all pinned: its error and drift are 0 whatever the settings.
+const char* lacksMotion(const phys::World& world) {
+  const auto moves = [](phys::Real inverseMass) { return inverseMass > 0.0; };
+  const auto& particles = world.particles().inverseMass;
+  const auto& bodies = world.rigidBodies().inverseMass;
+  return std::any_of(particles.begin(), particles.end(), moves) ||
+                 std::any_of(bodies.begin(), bodies.end(), moves)
+             ? nullptr
+             : "nothing that moves";
+}
+
 // Every figure a --target may bound, in the order the help and the output list them.
 std::vector<Target> boundable() {
-  std::vector<Target> all{
-      {kError, kRunMetricCount, "m", "largest distance from the accuracy target (analytic or reference)"}};
+  std::vector<Target> all{{kError, kRunMetricCount, "m",
+                           "largest distance from the accuracy target (analytic or reference)", 0.0,
+                           lacksMotion}};
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const RunMetric& m = kRunMetrics[i];
-    all.push_back({m.name, i, m.unit, std::string(m.help) + " after any step"});
+    all.push_back({m.name, i, m.unit, std::string(m.help) + " after any step", 0.0, m.lacks});
   }
-  all.push_back({kDrift, kRunMetricCount, "J", "|energy after the last step - energy before the first|"});
+  all.push_back({kDrift, kRunMetricCount, "J", "|energy after the last step - energy before the first|", 0.0,
+                 lacksMotion});
   return all;
 }
 
@@ -307,6 +322,22 @@ void printCompared(std::ostream& out, const char* label, const Candidate& c, con
 
 // ---- the command --------------------------------------------------------------------------------
 
+// Refuses (UsageError) a target whose figure is 0 in every model the search tries, whatever the
+// settings (a tracking error without a character): every setting would meet it at once, and the
+// cheapest would win for nothing. Said before any run.
+void requireMeasurable(const std::vector<Target>& targets, const scenes::SceneSource& source,
+                       const std::vector<ModelChoice>& choices, const std::string& sceneName) {
+  for (const Target& t : targets) {
+    const char* lacking = t.lacks == nullptr ? nullptr : "";
+    for (std::size_t k = 0; k < choices.size() && lacking != nullptr; ++k)
+      lacking = t.lacks(scenes::loadSceneSource(source, choices[k].options).world);
+    if (lacking == nullptr) continue;
+    throw UsageError("--target " + t.name + ": scene " + sceneName + " has " + lacking +
+                     (choices.size() > 1 ? " in any model searched" : "") +
+                     ", so every setting would meet it");
+  }
+}
+
 int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   const std::filesystem::path file = sceneFile(o.scene, o.dataDir);
   const scenes::SceneSource source = scenes::readSceneSource(file);
@@ -319,6 +350,7 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   // The seed's defaults: its method and counts with its models, the first of the choices (corners
   // boxes, seed ragdolls; the file's own when it has neither).
   const std::vector<ModelChoice> choices = allModelChoices(models);
+  requireMeasurable(o.targets, source, choices, scene.name);
   const Setting defaults{choices.front(), kSeedMethod, kSeedIterations, kSeedSubsteps, own.dt};
   const Setting sceneOwn{models.asFile, own.method, own.iterations, own.substeps, own.dt};
 

@@ -139,6 +139,40 @@ TEST(Tune, TheDefaultsTakeTheSeedsModelsOfEachKindTheSceneHas) {
   }
 }
 
+// A bound on a figure the scene cannot make other than 0 (a tracking error without a character)
+// was met by the first setting tried, which then "won": refused before any run, naming the target
+// and what the scene lacks.
+TEST(Tune, ATargetTheSceneCannotMeasureIsRefusedBeforeAnyRun) {
+  TempDir dir;
+  const std::string still =
+      dir.write("still.xml",
+                "<scene name=\"still\">\n  <particle pos=\"0 1 0\" pinned=\"true\"/>\n</scene>\n")
+          .string();
+  struct Case {
+    std::string scene;
+    std::string target;
+    std::string says;
+  };
+  const Case cases[] = {
+      {"falling-box", "tracking-error=1",
+       "--target tracking-error: scene falling-box has no character in any model searched"},
+      {"falling-box", "joint-error=0.01",
+       "--target joint-error: scene falling-box has no joint in any model searched"},
+      {"circular-orbit", "stick-error=0.01", "--target stick-error: scene circular-orbit has no stick"},
+      {"circular-orbit", "angular-speed=1", "--target angular-speed: scene circular-orbit has no body"},
+      {"circular-orbit", "penetration=0.01",
+       "--target penetration: scene circular-orbit has no ground and fewer than two bodies"},
+      {still, "error=1", "--target error: scene still has nothing that moves"},
+      {still, "drift=1", "--target drift: scene still has nothing that moves"},
+  };
+  for (const Case& c : cases) {
+    const Outcome o = tune({c.scene, "--target", c.target, "--repeat", "1"});
+    EXPECT_EQ(o.code, lab::kExitUsage) << c.target << "\n" << o.err;
+    EXPECT_NE(o.err.find(c.says + ", so every setting would meet it"), std::string::npos) << o.err;
+    EXPECT_EQ(o.out, "") << c.target;  // not one setting was run
+  }
+}
+
 TEST(Tune, UsageErrorsNameTheArgument) {
   struct Case {
     std::vector<std::string> args;
