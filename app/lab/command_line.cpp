@@ -483,6 +483,12 @@ void checkOutputFile(const std::filesystem::path& file, const char* option) {
   }
 }
 
+void prepareOutputFiles(const std::filesystem::path& folder, const std::vector<std::string>& names,
+                        const char* option) {
+  prepareOutputFolder(folder, option);
+  for (const std::string& name : names) checkOutputFile(folder / name, option);
+}
+
 void requireFolder(const std::filesystem::path& folder, const char* option) {
   if (const std::string why = fileio::folderProblem(folder); !why.empty())
     throw CommandFailure(std::string(option) + ": " + folder.string() + ": " + why);

@@ -123,6 +123,12 @@ void prepareOutputFolder(const std::filesystem::path& folder, const char* option
 /// writing (fileio::checkWritable). Commands that write a file at the end of a long run call it first.
 void checkOutputFile(const std::filesystem::path& file, const char* option = "--out");
 
+/// Creates the folder (prepareOutputFolder) and holds each FOLDER/NAME of `names` to checkOutputFile.
+/// A command calls it before its runs with every file it will write there (output_files.h), so a
+/// folder or a device in place of one is said before the work, not after it.
+void prepareOutputFiles(const std::filesystem::path& folder, const std::vector<std::string>& names,
+                        const char* option = "--out");
+
 /// Throws CommandFailure "OPTION: FOLDER: <the system's reason>" unless `folder` is an existing
 /// folder ("No such file or directory", "Not a directory"). A command that runs others and
 /// writes what they print calls it first, so a wrong folder is said before anything runs.

@@ -21,6 +21,7 @@
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
+#include "output_files.h"
 #include "physics/rigid_bodies.h"
 #include "runner.h"
 #include "sweep_core.h"
@@ -351,22 +352,17 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
 
 namespace {
 
-// A chart's files are named after its scene's name, which two files can share and which can hold
-// a '/': each chart gets a name of its own within the folder (the second of two overwrote the first).
-void nameChartsApart(std::vector<Chart>& charts) {
-  std::set<std::string> taken;
-  for (Chart& chart : charts) {
-    std::replace(chart.output.begin(), chart.output.end(), '/', '-');
-    const std::string base = chart.output;
-    for (int k = 2; !taken.insert(chart.output).second; ++k) chart.output = base + "-" + std::to_string(k);
-  }
-}
-
 // Every scene's runs and table, then the files of --out.
 int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) {
   if (o.scenes.empty()) o.scenes = kConvergeScenes;
   const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(o.dataDir));
-  if (o.out) prepareOutputFolder(*o.out);  // before the runs
+  // The charts are named after the scenes, read before the runs so that every file is checked then.
+  std::vector<std::string> chartNames;
+  if (o.out) {
+    const std::vector<std::string> names = convergeSceneNames(o.scenes, sceneDir);
+    chartNames = convergeChartNames(names);
+    prepareOutputFiles(*o.out, convergeFiles(names));
+  }
   std::vector<ConvergeRow> all;
   std::vector<Chart> charts;
   std::string current;
@@ -393,7 +389,7 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
     return kExitFailure;
   }
   if (!o.out) return kExitOk;
-  nameChartsApart(charts);
+  for (std::size_t k = 0; k < charts.size(); ++k) charts[k].output = chartNames.at(k);
   OutputFolder files(*o.out);
   files.write("converge.csv", convergeCsv(all));
   std::string problems;
@@ -409,6 +405,40 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
 }
 
 }  // namespace
+
+// A chart's files are named after its scene's name, which two files can share and which can hold
+// a '/': each chart gets a name of its own within the folder (the second of two overwrote the first).
+std::vector<std::string> convergeChartNames(const std::vector<std::string>& sceneNames) {
+  std::set<std::string> taken;
+  std::vector<std::string> names;
+  names.reserve(sceneNames.size());
+  for (const std::string& scene : sceneNames) {
+    std::string base = "converge-" + scene;
+    std::replace(base.begin(), base.end(), '/', '-');
+    std::string name = base;
+    for (int k = 2; !taken.insert(name).second; ++k) name = base + "-" + std::to_string(k);
+    names.push_back(name);
+  }
+  return names;
+}
+
+std::vector<std::string> convergeFiles(const std::vector<std::string>& sceneNames) {
+  std::vector<std::string> files{"converge.csv"};
+  files.reserve(1 + 3 * sceneNames.size());
+  for (const std::string& chart : convergeChartNames(sceneNames)) {
+    for (const char* extension : {".gp", ".png", ".svg"}) files.push_back(chart + extension);
+  }
+  return files;
+}
+
+std::vector<std::string> convergeSceneNames(const std::vector<std::string>& scenes,
+                                            const std::filesystem::path& sceneDir) {
+  std::vector<std::string> names;
+  names.reserve(scenes.size());
+  for (const std::string& scene : scenes)
+    names.push_back(scenes::loadSceneFile(scenes::resolveScene(scene, sceneDir)).name);
+  return names;
+}
 
 constinit const CommandMain convergeMain =
     commandMainOf<ConvergeOptions, describeConverge, runConvergeCommand>;

@@ -19,7 +19,9 @@
 #include "fileio/files.h"
 #include "json.h"
 #include "lab.h"
+#include "output_files.h"
 #include "report.h"
+#include "scenes/scene.h"
 #include "text.h"
 
 namespace lab {
@@ -327,14 +329,32 @@ void describeReport(CommandLine& line, ReportOptions& o) {
   line.option(option::kData, o.data, "");
 }
 
+// The scenes of the report's `lab converge`: one checks the pipeline.
+std::vector<std::string> convergeScenes(const ReportOptions& o) {
+  return o.quick ? std::vector<std::string>{"circular-orbit"} : kConvergeScenes;
+}
+
+// Every file the report and the commands it runs will write, checked before the first of them runs:
+// a folder in place of the last command's CSV is said before the sweeps, not after them.
+void prepareEveryOutput(const ReportOptions& o, const fs::path& results) {
+  prepareOutputFolder(results);
+  checkOutputFile(o.out / "results.md");
+  for (const SweepScene& s : kSweepScenes) prepareOutputFiles(results / s.name, sweepFiles());
+  for (const TrackingScene& t : kTrackingScenes) prepareOutputFiles(results / t.folder, sweepFiles());
+  for (const char* folder : {"stability", "stability-rigid"})
+    prepareOutputFiles(results / folder, stabilityFiles());
+  prepareOutputFiles(results / "scale", scaleFiles());
+  prepareOutputFiles(results / "converge",
+                     convergeFiles(convergeSceneNames(convergeScenes(o), scenes::sceneDirectory(o.data))));
+}
+
 int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   o.data = dataDir(o.data);
   // Every part would fail on it, and the default --out lies inside it: said before either.
   requireFolder(o.data, "--data");
   if (o.out.empty()) o.out = o.data / "docs";
   const fs::path results = o.out / "results";
-  prepareOutputFolder(results);  // before the runs, which take minutes
-  checkOutputFile(o.out / "results.md");
+  prepareEveryOutput(o, results);  // before the runs, which take minutes
   const std::string data = o.data.string();
   Report report{o, err};
   std::ostringstream& md = report.md;
@@ -446,8 +466,7 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
                          {"circular-orbit", "--substeps", "1,2"}),
       [&](const std::string& printed) {
         std::string charts;
-        for (const std::string& scene :
-             o.quick ? std::vector<std::string>{"circular-orbit"} : kConvergeScenes)
+        for (const std::string& scene : convergeScenes(o))
           charts += "![error against h, " + scene + "](results/converge/converge-" + scene + ".png)\n\n";
         return charts + tableBlock(printed) + "\nAll runs: [converge.csv](results/converge/converge.csv).\n";
       });

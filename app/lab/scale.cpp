@@ -16,6 +16,7 @@
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
+#include "output_files.h"
 #include "report.h"
 #include "run.h"
 #include "sweep_core.h"
@@ -236,7 +237,7 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
     o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
                                            : std::vector<int>{1, 4, 16, 64, 256, 1024};
   }
-  if (o.out) prepareOutputFolder(*o.out);  // before the runs, which can take minutes
+  if (o.out) prepareOutputFiles(*o.out, scaleFiles());  // before the runs, which can take minutes
   if (o.scenes) {
     // The generated scenes as files, so that `lab run` can show one size's stages.
     OutputFolder scenes(*o.scenes, "--save-scenes");
@@ -264,6 +265,10 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
 }
 
 }  // namespace
+
+std::vector<std::string> scaleFiles() {
+  return {"scale.csv", "scale.gp", "scale.png", "scale.svg"};
+}
 
 constinit const CommandMain scaleMain = commandMainOf<ScaleOptions, describeScale, runScaleCommand>;
 

@@ -17,6 +17,7 @@
 #include "gnuplot.h"
 #include "lab.h"
 #include "options.h"
+#include "output_files.h"
 #include "peer.h"
 #include "progress.h"
 #include "report.h"
@@ -26,6 +27,11 @@
 
 namespace lab {
 namespace {
+
+/// The heat maps' script and the pictures it draws.
+constexpr const char* kHeatMapScript = "stability.gp";
+const std::vector<std::string> kHeatMaps{"stability-pass.png", "stability-pass.svg", "stability-error.png",
+                                         "stability-error.svg"};
 
 using stability::Setting;
 using stability::StabilityOptions;
@@ -106,10 +112,9 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
   files.write("stability.csv", stability::csvReport(r));
   files.write("stability-pass.dat", stability::passMatrix(r));
   files.write("stability-error.dat", stability::errorMatrix(r));
-  files.write("stability.gp", stability::gnuplotScript(r));
+  files.write(kHeatMapScript, stability::gnuplotScript(r));
   // Unlike the other commands' charts, heat maps left undrawn for want of gnuplot fail the suite.
-  const std::string problem = files.render("stability.gp", {"stability-pass.png", "stability-pass.svg",
-                                                            "stability-error.png", "stability-error.svg"});
+  const std::string problem = files.render(kHeatMapScript, kHeatMaps);
   files.commit();
   if (!problem.empty()) {
     err << "lab: stability: the heat maps were not drawn: " << problem << "\n";
@@ -119,7 +124,8 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
 }
 
 int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream& err) {
-  if (!o.out.empty()) prepareOutputFolder(o.out);  // the suite takes minutes: say a bad --out now
+  if (!o.out.empty())
+    prepareOutputFiles(o.out, stabilityFiles());  // the suite takes minutes: say a bad --out now
   std::vector<SuiteScene> scenes;
   for (const std::filesystem::path& file : stability::sceneFiles(o))
     scenes.push_back(stability::loadSuiteScene(file));
@@ -136,6 +142,13 @@ int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream&
 }
 
 }  // namespace
+
+std::vector<std::string> stabilityFiles() {
+  std::vector<std::string> files{"stability.md", "stability.csv", "stability-pass.dat", "stability-error.dat",
+                                 kHeatMapScript};
+  files.insert(files.end(), kHeatMaps.begin(), kHeatMaps.end());
+  return files;
+}
 
 constinit const CommandMain stabilityMain =
     commandMainOf<StabilityOptions, stability::describeOptions, stabilityCommand>;

@@ -17,6 +17,7 @@
 #include "lab.h"
 #include "numbers.h"
 #include "options.h"
+#include "output_files.h"
 #include "peer.h"
 #include "report.h"
 #include "run.h"
@@ -26,6 +27,10 @@
 
 namespace lab {
 namespace {
+
+/// The chart of error against cost: its script, and its pictures NAME.png and NAME.svg.
+constexpr const char* kSweepScript = "sweep.gp";
+constexpr const char* kSweepChart = "error-vs-cost";
 
 /// Errors below this are round-off: a Verlet projectile, exact in exact arithmetic, collects
 /// 1e-11 m over a thousand substeps. They are drawn and compared as this, so the front does not
@@ -221,7 +226,7 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
       plan.sceneName + ": " + (measure < kRunMetricCount ? kRunMetrics[measure].name : "error") +
           " against cost (" + simulatedSeconds(rows) + " s simulated; labels: iterations x substeps)",
       perStep ? "ms per step (median wall time of the stepping loop)" : "wall ms per simulated second",
-      errorLabel(firstTarget, measure), true, "error-vs-cost");
+      errorLabel(firstTarget, measure), true, kSweepChart);
   // One series per method or engine (and per model and dt when there are several).
   std::vector<std::string> order;
   auto seriesName = [&](const Row& r) {
@@ -323,7 +328,7 @@ std::string writeOutputs(OutputFolder& files, const Plan& plan, const std::vecto
   files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
   const Chart chart = errorChart(plan, rows, firstTarget, measure);
   std::string problem =  // not const, so that the return moves it
-      files.draw("sweep.gp", chart,
+      files.draw(kSweepScript, chart,
                  "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
   files.commit();
   return problem;
@@ -397,11 +402,16 @@ int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
   // Throws UsageError for a --models that does not fit the scene (and makePlan for too many runs).
   request.models = modelChoices(o.models, sceneModels(scene));
   const Plan plan = makePlan(scene, request);
-  prepareOutputFolder(o.out);  // a sweep takes minutes: say a bad --out now
+  prepareOutputFiles(o.out, sweepFiles());  // a sweep takes minutes: say a bad --out now
   return runSweep(plan, o.measure, o.out, out, err);
 }
 
 }  // namespace
+
+std::vector<std::string> sweepFiles() {
+  return {"results.csv", "pareto.csv", kSweepScript, std::string(kSweepChart) + ".png",
+          std::string(kSweepChart) + ".svg"};
+}
 
 constinit const CommandMain sweepMain = commandMainOf<SweepOptions, describeSweep, sweepCommand>;
 

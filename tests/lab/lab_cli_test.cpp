@@ -1,5 +1,6 @@
 // The real `lab` program, run as a user would through the shell: JSON, free fall against the
 // closed form, determinism, overrides, the dump, and the exit codes.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "lab_test_util.h"
+#include "output_files.h"
 
 namespace {
 
@@ -390,6 +392,81 @@ TEST(LabExit, ADataThatIsNotAFolderIsRefusedBeforeAnyRun) {
   }
   EXPECT_FALSE(std::filesystem::exists(sweepOut));
   EXPECT_FALSE(std::filesystem::exists(dir.file("missing")));
+}
+
+// The commands that write --out at the end checked only that the folder could be written: a folder
+// standing where one of their files goes was found after all the runs. Each file is checked
+// before the first run (output_files.h), lab report's and those of every command it runs too.
+TEST(LabExit, AFolderInPlaceOfAnOutputFileIsRefusedBeforeAnyRun) {
+  const TempDir dir;
+  const std::string scene = dir.write("fall.xml", freeFallScene()).string();
+  const std::string out = dir.file("out").string();
+  struct Command {
+    std::vector<std::string> args;
+    std::vector<std::string> files;
+  };
+  const Command commands[] = {
+      {{"sweep", scene, "--steps", "2", "--repeat", "1", "--no-peers", "--out", out}, lab::sweepFiles()},
+      {{"stability", "--scene", "face-face", "--methods", "xpbd", "--iterations", "1", "--substeps", "1",
+        "--no-peers", "--out", out},
+       lab::stabilityFiles()},
+      {{"scale", "--sizes", "1", "--steps", "2", "--out", out}, lab::scaleFiles()},
+      {{"converge", "circular-orbit", "pendulum-exact", "--substeps", "1,2", "--out", out},
+       lab::convergeFiles({"circular-orbit", "pendulum-exact"})},
+  };
+  for (const Command& c : commands) {
+    ASSERT_FALSE(c.files.empty()) << c.args[0];
+    for (const std::string& file : c.files) {
+      const std::filesystem::path folder = dir.file("out/" + file);
+      std::filesystem::create_directories(folder);
+      const lab::CommandOutput o = lab::runCaptured(c.args);
+      EXPECT_EQ(o.code, lab::kExitFailure) << c.args[0] << " " << file;
+      EXPECT_EQ(o.err, "lab: --out: " + folder.string() + ": is a folder, not a file\n") << c.args[0];
+      EXPECT_EQ(o.out, "") << c.args[0] << ": nothing ran";
+      std::filesystem::remove(folder);
+    }
+  }
+  const std::filesystem::path last = dir.file("report/results/converge/converge-circular-orbit.svg");
+  std::filesystem::create_directories(last);
+  const lab::CommandOutput report =
+      lab::runCaptured({"report", "--quick", "--out", dir.file("report").string()});
+  EXPECT_EQ(report.code, lab::kExitFailure);
+  EXPECT_EQ(report.err, "lab: --out: " + last.string() + ": is a folder, not a file\n");
+  EXPECT_EQ(report.out, "");
+}
+
+// The lists the commands check before their runs hold every file they then write: a file left out
+// would again be found unwritable only after the work.
+TEST(LabExit, EachCommandWritesOnlyTheFilesItChecksFirst) {
+  const TempDir dir;
+  const std::string scene = dir.write("fall.xml", freeFallScene()).string();
+  struct Command {
+    std::vector<std::string> args;
+    std::vector<std::string> files;
+  };
+  const Command commands[] = {
+      {{"sweep", scene, "--steps", "2", "--repeat", "1", "--no-peers"}, lab::sweepFiles()},
+      {{"stability", "--scene", "face-face", "--methods", "xpbd", "--iterations", "1", "--substeps", "1",
+        "--no-peers"},
+       lab::stabilityFiles()},
+      {{"scale", "--sizes", "1", "--steps", "2"}, lab::scaleFiles()},
+      {{"converge", "circular-orbit", "--substeps", "1,2"}, lab::convergeFiles({"circular-orbit"})},
+  };
+  for (const Command& c : commands) {
+    const std::filesystem::path out = dir.file(c.args[0]);
+    std::vector<std::string> args = c.args;
+    args.insert(args.end(), {"--out", out.string()});
+    // Without gnuplot, stability fails for its heat maps, after writing the rest.
+    const lab::CommandOutput o = lab::runCaptured(args);
+    std::size_t written = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(out)) {
+      const std::string name = entry.path().filename().string();
+      EXPECT_NE(std::find(c.files.begin(), c.files.end(), name), c.files.end())
+          << c.args[0] << " wrote " << name;
+      ++written;
+    }
+    EXPECT_GT(written, 0u) << c.args[0] << ": " << o.err;
+  }
 }
 
 // A dump whose folder is missing or is a file, that names a folder, a device or the scene itself
