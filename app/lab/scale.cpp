@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "charts.h"
+#include "command_line.h"
 #include "commands.h"
 #include "csv.h"
 #include "lab.h"
@@ -19,6 +20,7 @@
 #include "output_files.h"
 #include "report.h"
 #include "run.h"
+#include "scenes/scene.h"
 #include "sweep_core.h"
 
 namespace lab {
@@ -86,7 +88,9 @@ void describeScale(CommandLine& line, ScaleOptions& o) {
                     }
                     return "unknown KIND '" + word + "' (capsule-ragdolls, box-ragdolls or pyramid)";
                   });
-  line.option(option::kSizes, o.sizes, "(default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)");
+  line.option(option::kSizes, o.sizes,
+              "(a pyramid's at most " + std::to_string(scenes::kMaxPyramidBase) +
+                  "; default 1,4,16,64,256,1024 ragdolls; 5,10,20,40 for a pyramid)");
   line.option(option::kSteps, o.run.steps, "at each size (default 60: 1 s)");
   line.option(option::kMethods, o.run.method, "(default: the generated scene's)");
   line.option(option::kIterations, o.run.iterations, "(default: the scene's)");
@@ -236,6 +240,13 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
   if (o.sizes.empty()) {
     o.sizes = o.kind == ScaleKind::Pyramid ? std::vector<int>{5, 10, 20, 40}
                                            : std::vector<int>{1, 4, 16, 64, 256, 1024};
+  }
+  // The generator's own limit, said as the option's before any scene is generated.
+  for (const int n : o.sizes) {
+    if (o.kind == ScaleKind::Pyramid && n > scenes::kMaxPyramidBase) {
+      throw UsageError("--sizes: '" + std::to_string(n) + "' is larger than a pyramid's largest base row, " +
+                       std::to_string(scenes::kMaxPyramidBase));
+    }
   }
   if (o.out) prepareOutputFiles(*o.out, scaleFiles());  // before the runs, which can take minutes
   if (o.scenes) {

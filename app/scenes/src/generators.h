@@ -20,8 +20,8 @@ struct BuildContext {
 
 /// Limits on what one generator may make; a larger count is an error that says so.
 inline constexpr long kMaxStack = 1000;
-inline constexpr long kMaxPyramidBase = 200;  // 20100 boxes
-inline constexpr int kMaxGridSide = 100;      // per axis
+using scenes::kMaxPyramidBase;            // scenes/scene.h
+inline constexpr int kMaxGridSide = 100;  // per axis
 inline constexpr long kMaxGridBoxes = 100000;
 inline constexpr long kMaxChainLinks = 100000;
 inline constexpr std::size_t kMaxParticles = 2000000;  // whole scene

@@ -22,6 +22,10 @@
 
 namespace scenes {
 
+/// The largest base row a <pyramid> takes (20100 boxes): public, so that a program generating
+/// one (lab scale) refuses a larger size as its own argument, before generating anything.
+inline constexpr long kMaxPyramidBase = 200;
+
 /// Where the camera starts, in metres.
 struct CameraStart {
   glm::vec3 eye{0.0f, 2.5f, 7.0f};
