@@ -284,4 +284,13 @@ int defaultSteps(double dt) {
   return std::max(1, static_cast<int>(std::lround(kDefaultHorizon / dt)));
 }
 
+const char* lackedByEveryModel(const char* (*lacks)(const phys::World& world),
+                               const scenes::SceneSource& scene, const std::vector<ModelChoice>& choices) {
+  if (lacks == nullptr || choices.empty()) return nullptr;
+  const char* lacking = "";  // by every model so far: none yet
+  for (std::size_t k = 0; k < choices.size() && lacking != nullptr; ++k)
+    lacking = lacks(scenes::loadSceneSource(scene, choices[k].options).world);
+  return lacking;
+}
+
 }  // namespace lab

@@ -50,6 +50,12 @@ std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, con
 /// neither kind.
 std::vector<ModelChoice> allModelChoices(const SceneModels& models);
 
+/// What the scene lacks, in every one of `choices`, to make a figure other than 0 whatever the
+/// settings (`lacks` is a RunMetric's), or null when one of them has it: a bound on, or a chart of,
+/// such a figure says nothing. Loads the scene under each choice; throws scenes::LoadError.
+const char* lackedByEveryModel(const char* (*lacks)(const phys::World& world),
+                               const scenes::SceneSource& scene, const std::vector<ModelChoice>& choices);
+
 /// One point of the settings space.
 struct Setting {
   ModelChoice model;

@@ -328,9 +328,7 @@ void printCompared(std::ostream& out, const char* label, const Candidate& c, con
 void requireMeasurable(const std::vector<Target>& targets, const scenes::SceneSource& source,
                        const std::vector<ModelChoice>& choices, const std::string& sceneName) {
   for (const Target& t : targets) {
-    const char* lacking = t.lacks == nullptr ? nullptr : "";
-    for (std::size_t k = 0; k < choices.size() && lacking != nullptr; ++k)
-      lacking = t.lacks(scenes::loadSceneSource(source, choices[k].options).world);
+    const char* lacking = lackedByEveryModel(t.lacks, source, choices);
     if (lacking == nullptr) continue;
     throw UsageError("--target " + t.name + ": scene " + sceneName + " has " + lacking +
                      (choices.size() > 1 ? " in any model searched" : "") +

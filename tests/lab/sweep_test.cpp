@@ -782,6 +782,17 @@ TEST(OutputFolder, AFolderItCannotWriteIsNamedByItsOption) {
   }
 }
 
+// A chart and a front of a figure that is 0 at every setting (a tracking error without a character)
+// were drawn as if they said something: refused before any run, as tune refuses such a target.
+TEST(Sweep, AnErrorFigureTheSceneCannotMakeIsRefusedBeforeAnyRun) {
+  TempDir dir;
+  const lab::CommandOutput o = lab::runCaptured("sweep", {"pendulum", "--error", "tracking-error", "--out",
+                                                          dir.file("out").string(), "--data", DATA_DIR});
+  lab_testing::expectUsageError(
+      o, "sweep", "--error tracking-error: scene pendulum has no character, so it is 0 at every setting");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
 TEST(Sweep, UsageErrorsNameTheArgument) {
   TempDir dir;
   const std::string out = dir.file("out").string();
