@@ -1,6 +1,9 @@
 #include "physics/workers.h"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
@@ -8,7 +11,10 @@
 namespace phys {
 
 struct Workers::Arena {
-  explicit Arena(int threads) : arena(threads) {}
+  // No more threads than the machine runs at once (oneTBB's default concurrency, which follows the
+  // process's affinity mask): oneTBB would run no more anyway, and warned on stderr that it had not.
+  // The pieces a stage is cut into follow the threads asked for, so the state does not change.
+  explicit Arena(int threads) : arena(std::min(threads, tbb::info::default_concurrency())) {}
   tbb::task_arena arena;
 };
 

@@ -2,6 +2,7 @@
 // bit: every piece it runs at once shares nothing with the others (docs/physics.md, "Threads").
 #include <algorithm>
 #include <set>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -72,6 +73,21 @@ TEST(Threads, TheSameStateOnOneTwoAndThreeThreads) {
     EXPECT_GT(mostManifolds, 2 * 256u) << phys::toString(method);
     EXPECT_GT(one.groundContacts().size(), 4096u);
   }
+}
+
+// Asked for more threads than the machine runs at once, the step runs on what it has: the same
+// state, and nothing on stderr (oneTBB warned that it ignored the workers beyond the machine's).
+TEST(Threads, MoreThreadsThanTheMachineHasGiveTheSameStateSilently) {
+  testing::internal::CaptureStderr();
+  phys::World one = pile(phys::SolverMethod::GaussSeidel, 1),
+              many = pile(phys::SolverMethod::GaussSeidel, 64);
+  for (int i = 0; i < 20; ++i) {
+    one.step();
+    many.step();
+  }
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(many.stateHash(), one.stateHash());
+  EXPECT_EQ(err, "");
 }
 
 // On two threads the pile's contacts go in two bins (ContactBins): the bodies of one bin's contacts
