@@ -2,7 +2,8 @@
 // The files each command writes into its output folder, by name: each command checks them all
 // before its runs (prepareOutputFiles, command_line.h), and lab report checks those of every
 // command it runs before the first. A file a command writes is listed here, or a folder in its
-// place is found only after the work (tests/lab/sweep_test.cpp holds each list to what is written).
+// place is found only after the work (`LabExit.EachCommandWritesOnlyTheFilesItChecksFirst` holds
+// each list to what is written).
 #include <filesystem>
 #include <string>
 #include <vector>
