@@ -492,14 +492,20 @@ TEST(StabilityReport, RatiosNeverReadAsTheWrongSideOfOne) {
   EXPECT_EQ(lab::stability::formatRatio(std::numeric_limits<double>::infinity()), "blew up");
 }
 
-// Peers are extra columns: a peer that did not run reads "n/a: why" in the report, and "n/a"
-// with the why in the CSV.
-TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
+// A suite of face-face at Gauss-Seidel 3 x 4 beside a peer "fake", its outcomes to be added.
+lab::stability::SuiteResult faceFaceBesideAPeer() {
   lab::stability::SuiteResult r;
   r.scenes.push_back(suiteScene("face-face"));
   r.settings.push_back(setting(phys::SolverMethod::GaussSeidel, 3, 4));
   r.methods.push_back("gauss-seidel");
   r.peers.push_back("fake");
+  return r;
+}
+
+// Peers are extra columns: a peer that did not run reads "n/a: why" in the report, and "n/a"
+// with the why in the CSV.
+TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
+  lab::stability::SuiteResult r = faceFaceBesideAPeer();
   lab::stability::Outcome ours = lab::stability::runSetting(r.scenes[0], r.settings[0]);
   lab::stability::Outcome peer;
   peer.note = "not built";
@@ -519,11 +525,7 @@ TEST(StabilityReport, APeerThatDidNotRunIsNotApplicable) {
 // The summary's time is the scene's stepping in World::step over our runs: a peer's, timed around
 // its own engine's step, is not added in.
 TEST(StabilityReport, TheScenesTimeIsOurRunsAlone) {
-  lab::stability::SuiteResult r;
-  r.scenes.push_back(suiteScene("face-face"));
-  r.settings.push_back(setting(phys::SolverMethod::GaussSeidel, 3, 4));
-  r.methods.push_back("gauss-seidel");
-  r.peers.push_back("fake");
+  lab::stability::SuiteResult r = faceFaceBesideAPeer();
   lab::stability::Outcome ours = lab::stability::runSetting(r.scenes[0], r.settings[0]);
   ours.wallMs = 1500.0;
   lab::stability::Outcome peer;
