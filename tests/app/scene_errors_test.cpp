@@ -1014,6 +1014,26 @@ TEST(SceneErrors, TextAfterTheRootEndingAsMarkupEndsIsRefusedWithItsLine) {
       "s.xml"));
 }
 
+// Text before <scene> is refused as text after </scene> is (pugixml drops both unread: plain words
+// before the root loaded without a word), and only XML's white space (space, tab, CR, LF) may stand
+// beside the root: a form feed or vertical tab, which XML allows nowhere, passed there as space.
+TEST(SceneErrors, TextBeforeTheRootIsRefusedWithItsLine) {
+  const char* says = "nothing may precede <scene> but comments, processing instructions and white space";
+  testing_scenes::expectRefused({"at the start", "junk\n<scene name='s'>\n</scene>\n", 1, "", says});
+  testing_scenes::expectRefused(
+      {"after a declaration", "<?xml version='1.0'?>\n\n junk\n<scene name='s'/>\n", 3, "", says});
+  testing_scenes::expectRefused({"after a comment", "<!-- c -->junk<scene name='s'/>\n", 1, "", says});
+  testing_scenes::expectRefused(
+      {"after a DOCTYPE", "<!DOCTYPE scene [ <!ENTITY a '>'> ]>\nx\n<scene name='s'/>\n", 2, "", says});
+  testing_scenes::expectRefused({"a vertical tab before", "\v<scene name='s'/>\n", 1, "", says});
+  testing_scenes::expectRefused(
+      {"a form feed after", "<scene name='s'/>\n\f\n", 2, "",
+       "nothing may follow </scene> but comments, processing instructions and white space"});
+  // A byte order mark, and XML's own white space, are no text.
+  EXPECT_NO_THROW(scenes::loadSceneText(
+      "\xEF\xBB\xBF<?xml version='1.0'?>\r\n\t <!-- c -->\n<scene name='s'/>\r\n", "s.xml"));
+}
+
 // In a comment, CDATA, a processing instruction or the DOCTYPE an '&' is only text, as XML has it:
 // nothing there is refused for it, and a reference XML allows loads as what it stands for.
 TEST(SceneErrors, AnAmpersandOutsideValuesAndTextIsOnlyText) {

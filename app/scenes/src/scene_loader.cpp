@@ -1094,22 +1094,34 @@ std::size_t tagEnd(std::string_view text, std::size_t i) {
   return i;
 }
 
-// Where the first text after the root element stands: anything but white space and markup
-// (comments, processing instructions, and what pugixml keeps as a node for checkBesideRoot to
-// refuse: a second element, a DOCTYPE). npos when there is none, or when markup does not end (the
-// parse says so). Scanned forward, element by element, so that a "?>" or "-->" ending the stray
-// text is not taken for the end of a processing instruction or a comment that starts earlier.
-std::size_t textAfterRoot(std::string_view text) {
+// XML's white space: space, tab, CR and LF (std::isspace also takes form feed and vertical tab,
+// which XML allows nowhere).
+bool xmlSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+// The first text beside the root element, before it or after it: anything but white space and
+// markup (comments, processing instructions, and what pugixml keeps as a node for checkBesideRoot
+// to refuse: a second element, a DOCTYPE). pugixml drops such text unread. `at` is npos when there
+// is none, or when markup does not end (the parse says so). Scanned forward, element by element,
+// so that a "?>" or "-->" ending the stray text is not taken for the end of a processing
+// instruction or a comment that starts earlier.
+struct TextBesideRoot {
+  std::size_t at = std::string_view::npos;
+  bool beforeRoot = false;
+};
+TextBesideRoot textBesideRoot(std::string_view text) {
   constexpr auto npos = std::string_view::npos;
   int depth = 0;
-  bool rootClosed = false;
-  for (std::size_t i = 0; i < text.size();) {
+  bool rootOpened = false, rootClosed = false;
+  // A byte order mark is no text: pugixml reads past it.
+  for (std::size_t i = text.starts_with("\xEF\xBB\xBF") ? 3 : 0; i < text.size();) {
     if (text[i] != '<') {
-      if (!rootClosed) {
+      if (rootOpened && !rootClosed) {
         i = text.find('<', i);
         continue;
       }
-      if (depth == 0 && std::isspace(static_cast<unsigned char>(text[i])) == 0) return i;
+      if (!xmlSpace(text[i])) return {i, !rootOpened};
       ++i;
       continue;
     }
@@ -1118,15 +1130,16 @@ std::size_t textAfterRoot(std::string_view text) {
       continue;
     }
     const std::size_t end = tagEnd(text, i);
-    if (end == npos) return npos;
+    if (end == npos) return {};
     if (text[i + 1] == '/')
       --depth;
     else if (text[end - 1] != '/')
       ++depth;
+    rootOpened = true;
     rootClosed = rootClosed || depth == 0;
     i = end + 1;
   }
-  return npos;
+  return {};
 }
 
 // Whether XML forbids the character `code` as a character reference's, beyond the control
@@ -1455,10 +1468,10 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
   const std::size_t badAt = bad.empty() ? size : static_cast<std::size_t>(bad.data() - buffer.data());
   const int badLine = bad.empty() ? 0 : lines.lineOf(bad.data());
   const std::string badMessage = bad.empty() ? std::string() : notUtf8Message(bad);
-  // Where text stands after </scene> (taken before in-place parsing rewrites the buffer): pugixml
-  // drops it unread.
-  const std::size_t after = textAfterRoot(std::string_view(buffer.data(), size));
-  const char* trailingFrom = after == std::string_view::npos ? nullptr : buffer.data() + after;
+  // Where text stands before <scene> or after </scene> (taken before in-place parsing rewrites the
+  // buffer): pugixml drops it unread.
+  const TextBesideRoot beside = textBesideRoot(std::string_view(buffer.data(), size));
+  const char* trailingFrom = beside.at == std::string_view::npos ? nullptr : buffer.data() + beside.at;
   const Refusal refused = firstRefusal(std::string_view(buffer.data(), size));
   // The DOCTYPE is kept as a node only to be found where XML does not allow one (after </scene>).
   const pugi::xml_parse_result parsed = doc.load_buffer_inplace(
@@ -1481,7 +1494,9 @@ void readDocument(std::vector<char>& buffer, const std::string& file, const Line
   if (!badMessage.empty()) throw LoadError(file, badLine, "", badMessage);
   if (trailingFrom != nullptr) {
     throw LoadError(file, lines.lineOf(trailingFrom), "",
-                    "nothing may follow </scene> but comments, processing instructions and white space");
+                    std::string("nothing may ") +
+                        (beside.beforeRoot ? "precede <scene>" : "follow </scene>") +
+                        " but comments, processing instructions and white space");
   }
   if (std::string_view(root.name()) != "scene") {
     throw LoadError(file, lines.lineOf(root.name()), "",
