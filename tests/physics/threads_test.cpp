@@ -30,7 +30,8 @@ phys::World pile(phys::SolverMethod method, int threads) {
   phys::World world({}, s);
   for (int k = 0; k < 40; ++k) {
     phys::RagdollDesc r;
-    r.hips = Vec3((k % 8) * 2.5, 1.5 + (k / 8) * 2.0, 0.0);
+    const int row = k / 8;
+    r.hips = Vec3((k % 8) * 2.5, 1.5 + row * 2.0, 0.0);
     r.model = k % 2 == 0 ? phys::RagdollModel::Seed : phys::RagdollModel::Lean;
     r.jointDamping = 2.0;
     phys::addRagdoll(world, r);
@@ -39,7 +40,8 @@ phys::World pile(phys::SolverMethod method, int threads) {
   }
   for (int k = 0; k < 100; ++k) {
     phys::BodyDesc box;
-    box.center = Vec3((k % 10) * 1.2, 0.5 + (k / 10) * 1.1, -4.0);
+    const int row = k / 10;
+    box.center = Vec3((k % 10) * 1.2, 0.5 + row * 1.1, -4.0);
     box.model = k % 3 == 0 ? phys::BodyModel::Tetra : phys::BodyModel::Corners;
     world.addBody(box);
   }
