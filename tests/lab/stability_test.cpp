@@ -431,14 +431,12 @@ TEST(StabilityJudge, PeersAreJudgedOnTheirPoses) {
 // A peer's speed is its bodies' fastest points, where ours has its particles: a rigid box has none,
 // so its corners stand for them (it read 0 for any motion, and passed any speed limit).
 TEST(StabilityJudge, APeersRigidBoxHasItsSpeedMeasured) {
-  TempDir dir;
-  const std::filesystem::path file =
-      dir.write("rigid.xml",
-                "<scene name=\"rigid\">\n"
-                "  <box name=\"crate\" pos=\"0 0.5 0\" model=\"rigid\"/>\n"
-                "  <expect kind=\"pass\" metric=\"speed\" max=\"0.01\" over=\"0 0.05\"/>\n"
-                "</scene>\n");
-  const scenes::Scene scene = scenes::loadSceneFile(file);
+  const scenes::Scene scene = scenes::loadSceneText(
+      "<scene name=\"rigid\">\n"
+      "  <box name=\"crate\" pos=\"0 0.5 0\" model=\"rigid\"/>\n"
+      "  <expect kind=\"pass\" metric=\"speed\" max=\"0.01\" over=\"0 0.05\"/>\n"
+      "</scene>\n",
+      "rigid.xml");
   const std::vector<Criterion> criteria = lab::stability::parseCriteria(scene);
   const double dt = scene.world.solverSettings().dt;
   // Three steps: the centre still, the box turning 0.1 rad a step about y; its corners, 0.707 m
