@@ -185,8 +185,8 @@ void contactAlong(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, 
 }  // namespace
 
 bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out,
-                  int previousAxis) {
-  out.sat = satTest(a, b, margin, previousAxis);
+                  int previousAxis, PreferFaces prefer) {
+  out.sat = satTest(a, b, margin, previousAxis, prefer);
   out.count = 0;
   if (!out.sat.overlap) return false;
   contactAlong(a, b, featureEpsilon, margin, out);

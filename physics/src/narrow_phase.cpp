@@ -86,7 +86,14 @@ bool NarrowPhase::collidePair(const NarrowPhaseInput& in, BodyId a, BodyId b, in
   const std::span<const Obb> frames = in.frames;
   const bool capsuleA = in.bodies[a].shape == Shape::Capsule, capsuleB = in.bodies[b].shape == Shape::Capsule;
   if (!capsuleA && !capsuleB) {
-    if (!collideBoxes(frames[a], frames[b], in.featureEpsilon, margin, contact, previousAxis)) return false;
+    // Between a rigid box and a particle box, the rigid one's faces (PreferFaces).
+    const bool rigidA = in.bodies[a].model == BodyModel::Rigid,
+               rigidB = in.bodies[b].model == BodyModel::Rigid;
+    const PreferFaces prefer = rigidA == rigidB ? PreferFaces::None
+                               : rigidA         ? PreferFaces::OfA
+                                                : PreferFaces::OfB;
+    if (!collideBoxes(frames[a], frames[b], in.featureEpsilon, margin, contact, previousAxis, prefer))
+      return false;
     reduceToFourPoints(contact, in.featureEpsilon);
     return true;
   }

@@ -64,15 +64,20 @@ Vec3 Obb::corner(int k) const {
          axes[2] * ((k & 4) ? halfExtents.z : -halfExtents.z);
 }
 
-SatResult satTest(const Obb& a, const Obb& b, Real margin, int previousAxis) {
+SatResult satTest(const Obb& a, const Obb& b, Real margin, int previousAxis, PreferFaces prefer) {
   const Vec3 t = b.center - a.center;
-  Best face, edge;
+  Best faceA, faceB, edge;
   for (int i = 0; i < 3; ++i) {
-    if (!testFace(a, b, a.axes[i], i, t, margin, face)) return {};
+    if (!testFace(a, b, a.axes[i], i, t, margin, faceA)) return {};
   }
   for (int j = 0; j < 3; ++j) {
-    if (!testFace(a, b, b.axes[j], 3 + j, t, margin, face)) return {};
+    if (!testFace(a, b, b.axes[j], 3 + j, t, margin, faceB)) return {};
   }
+  // The shallowest of the six, A's on a tie (as when the six were one list), unless the preferred
+  // box's shallowest is within the tolerance of it.
+  Best face = faceB.depth < faceA.depth ? faceB : faceA;
+  if (prefer == PreferFaces::OfA && faceA.depth <= face.depth + kPreferredFaceTolerance) face = faceA;
+  if (prefer == PreferFaces::OfB && faceB.depth <= face.depth + kPreferredFaceTolerance) face = faceB;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       if (!testEdge(a, b, a.axes[i], b.axes[j], 6 + 3 * i + j, t, margin, edge)) return {};

@@ -3,6 +3,7 @@
 // contact feature on each side, and the contact points. Pure geometry on oriented boxes, so it
 // is tested on its own; World turns the points into constraints on particles.
 #include <array>
+#include <cstdint>
 #include <limits>
 
 #include <glm/mat3x3.hpp>
@@ -40,6 +41,16 @@ struct SatResult {
 inline constexpr Real kFaceBiasRelative = 0.95;
 inline constexpr Real kFaceBiasAbsolute = 0.01;  ///< unit: m
 
+/// Which box's face axes a pair's face-face choice prefers: one whose frame is exact (a rigid body)
+/// against one whose frame is fitted to particles (a corners or tetra box), whose fitted axes wobble
+/// by the passes' residue (1e-4 rad on a corners box at rest at 3 x 1). With no preference, the
+/// shallower of two near-equal face axes was the particle box's every other step, and the normal
+/// tilted with it by turns: the box rocked by 2e-5 m a step for good and crept off a rigid box
+/// (docs/physics.md, "Failures at rest").
+enum class PreferFaces : std::uint8_t { None, OfA, OfB };
+/// unit: m; how much deeper the preferred box's face axis may be and still be taken.
+inline constexpr Real kPreferredFaceTolerance = 1e-3;
+
 /// The separating-axis test; stops at the first axis that separates. Boxes less than `margin`
 /// apart count as touching (depth down to -margin), so a resting contact that a relaxation pass
 /// left a hair open is still found in the next substep. `previousAxis` is the axis the pair's
@@ -47,7 +58,10 @@ inline constexpr Real kFaceBiasAbsolute = 0.01;  ///< unit: m
 /// it is shallower than every face axis (no bias), so that a pair between the biased and the
 /// unbiased choice does not take a face axis and an edge axis by turns (a limb rocked against
 /// another every other step: docs/physics.md, "Box-box contact").
-SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0, int previousAxis = -1);
+/// `prefer` takes the preferred box's shallowest face axis over the other's when it is no more than
+/// kPreferredFaceTolerance deeper.
+SatResult satTest(const Obb& a, const Obb& b, Real margin = 0.0, int previousAxis = -1,
+                  PreferFaces prefer = PreferFaces::None);
 
 /// The first touch of two oriented boxes as B moves by `moved` relative to A, neither turning: the
 /// separating-axis test swept over the move. On each of the 15 axes the projections overlap over
@@ -105,9 +119,9 @@ struct BoxContact {
 bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, BoxContact& out);
 /// The same, keeping boxes and points up to `margin` apart (>= featureEpsilon: a speculative
 /// margin), while the features are still told apart by featureEpsilon.
-/// `previousAxis` as satTest's.
+/// `previousAxis` and `prefer` as satTest's.
 bool collideBoxes(const Obb& a, const Obb& b, Real featureEpsilon, Real margin, BoxContact& out,
-                  int previousAxis = -1);
+                  int previousAxis = -1, PreferFaces prefer = PreferFaces::None);
 
 /// Keeps at most 4 of a contact's points: the deepest, the farthest from it, and the two that
 /// span the largest area with them. The solver uses this, so a face contact has 4 points
