@@ -189,6 +189,55 @@ struct PatchSide {
   Real particleWeight = 0.0;  // Particles: how far the centre moves per unit of impulse (1/kg)
 };
 
+// A particle side's pressing points as its particles answer them, each particle once: its inverse
+// mass, its weights in the points summed (s_j), and the same weights times each point's lever from
+// the patch's centre across the normal (R_j). The points of one face are carried by the same four
+// corners, so an impulse shared among them moves each corner by all of their weights at once.
+// Reckoned point by point (sum over the points of sum c^2 w), a corners box's patch on a rigid box
+// at 0.2 m off its centre moved 1.37 times as far as asked: each friction correction overshot, and
+// the last pass of every substep left a slip that no anchor undid (docs/physics.md, "Failures at
+// rest").
+struct PatchParticles {
+  static constexpr std::size_t kMost = 4 * PatchAnchor::kKeptPoints;
+  std::size_t count = 0;
+  std::array<ParticleId, kMost> id{};
+  std::array<Real, kMost> inverseMass{}, weight{};
+  std::array<Vec3, kMost> lever{};
+  Real levers = 0.0;  // unit: m^2; sum of the points' squared levers across the normal
+};
+
+// The lever of a point at `at` from the patch's centre, across the normal n.
+Vec3 leverAcross(const Vec3& at, const Vec3& centre, const Vec3& n) {
+  const Vec3 r = at - centre;
+  return r - glm::dot(r, n) * n;
+}
+
+PatchParticles patchParticles(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                              const RigidContactState& state, std::size_t lo, std::size_t hi, bool sideB,
+                              const Vec3& centre) {
+  PatchParticles out;
+  const Vec3 n = contacts[lo].normal;
+  for (std::size_t k = lo; k < hi; ++k) {
+    if (state.lambdaNormal[k] <= 0.0) continue;
+    const Embedding& e = sideB ? contacts[k].pointB : contacts[k].pointA;
+    const Vec3 r = leverAcross(embeddedPosition(in.particles.position, e), centre, n);
+    out.levers += glm::dot(r, r);
+    for (int i = 0; i < e.count; ++i) {
+      std::size_t j = 0;
+      while (j < out.count && out.id[j] != e.particle[i]) ++j;
+      if (j == out.count) {
+        if (out.count == PatchParticles::kMost) continue;  // cannot happen: 4 a point, 8 points
+        out.id[j] = e.particle[i];
+        out.inverseMass[j] = in.particles.inverseMass[e.particle[i]];
+        ++out.count;
+      }
+      out.weight[j] += e.weight[i];
+      out.lever[j] += e.weight[i] * r;
+    }
+  }
+  return out;
+}
+
 PatchSide patchSide(const RigidPassInput& in, std::span<const RigidContact> contacts,
                     const RigidContactState& state, std::size_t lo, std::size_t hi, bool sideB,
                     const Vec3& centre, int count, bool fixed) {
@@ -196,11 +245,11 @@ PatchSide patchSide(const RigidPassInput& in, std::span<const RigidContact> cont
   PatchSide s{sideB ? first.sideB : first.sideA, sideB ? first.rigidB : first.rigidA, fixed};
   if (s.side == ContactSide::Rigid) s.at = centre - in.rigid.position[s.rigid];
   if (s.side != ContactSide::Particles) return s;
-  for (std::size_t k = lo; k < hi; ++k) {
-    if (state.lambdaNormal[k] <= 0.0) continue;
-    s.particleWeight +=
-        embeddedWeight(in.particles.inverseMass, sideB ? contacts[k].pointB : contacts[k].pointA);
-  }
+  // An impulse p shared equally moves particle j by w_j s_j p / N, and the centre, the points' mean,
+  // by sum_j w_j s_j^2 p / N^2.
+  const PatchParticles particles = patchParticles(in, contacts, state, lo, hi, sideB, centre);
+  for (std::size_t j = 0; j < particles.count; ++j)
+    s.particleWeight += particles.inverseMass[j] * particles.weight[j] * particles.weight[j];
   s.particleWeight /= static_cast<Real>(count) * count;
   return s;
 }
@@ -283,6 +332,84 @@ void applyTwist(RigidPassInput& in, const RigidContact& c, Real L, bool velocity
   };
   if (c.sideB == ContactSide::Rigid && !hold.b && in.rigid.inverseMass[c.rigidB] != 0.0) turn(c.rigidB, L);
   if (c.sideA == ContactSide::Rigid && !hold.a && in.rigid.inverseMass[c.rigidA] != 0.0) turn(c.rigidA, -L);
+}
+
+// A patch's twist about its normal when a particle body is a side: each particle side's turn is read
+// from its pressing points (their least-squares turn about the centre across n), and an angular
+// impulse L reaches it as tangential impulses L (n x r_k) / sum |r|^2 at the points. Only the rigid
+// sides were twisted before: a corners box on a rigid box (held still by shock propagation) had
+// nothing against its turning, and turned 38 degrees in a minute.
+struct ParticleTwist {
+  std::array<PatchParticles, 2> side;  // A, B
+  std::array<bool, 2> moves{};         // a particle side that is not held
+  std::array<Vec3, 2> centre{};
+};
+
+ParticleTwist particleTwist(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                            const RigidContactState& state, std::size_t lo, std::size_t hi,
+                            const PatchCentre& centre, Hold hold) {
+  ParticleTwist t;
+  const RigidContact& c = contacts[lo];
+  const std::array<ContactSide, 2> sides{c.sideA, c.sideB};
+  t.centre = {centre.nowA, centre.nowB};
+  for (int s = 0; s < 2; ++s) {
+    if (sides[s] != ContactSide::Particles) continue;
+    t.moves[s] = !(s == 0 ? hold.a : hold.b);
+    t.side[s] = patchParticles(in, contacts, state, lo, hi, s == 1, t.centre[s]);
+  }
+  return t;
+}
+
+bool hasParticleSide(const RigidContact& c) {
+  return c.sideA == ContactSide::Particles || c.sideB == ContactSide::Particles;
+}
+
+// A particle side's turn about n over the substep so far (rad): sum_k n . (r_k x motion_k) / sum_k |r_k|^2.
+Real particleTurn(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                  const RigidContactState& state, std::size_t lo, std::size_t hi, bool sideB,
+                  const Vec3& centre, Real levers) {
+  if (levers <= 0.0) return 0.0;
+  const Vec3 n = contacts[lo].normal;
+  Real turn = 0.0;
+  for (std::size_t k = lo; k < hi; ++k) {
+    if (state.lambdaNormal[k] <= 0.0) continue;
+    const Embedding& e = sideB ? contacts[k].pointB : contacts[k].pointA;
+    const Vec3 now = embeddedPosition(in.particles.position, e);
+    const Vec3 moved = now - embeddedPosition(in.particles.previous, e);
+    turn += glm::dot(n, glm::cross(leverAcross(now, centre, n), moved));
+  }
+  return turn / levers;
+}
+
+// The patch's twist over the substep, B's less A's, its particle sides' included (rad).
+Real patchTwistOf(const RigidPassInput& in, std::span<const RigidContact> contacts,
+                  const RigidContactState& state, std::size_t lo, std::size_t hi, const ParticleTwist& t) {
+  Real twist = twistOf(in, contacts[lo]);
+  for (int s = 0; s < 2; ++s) {
+    if (t.side[s].count == 0) continue;
+    const Real turn = particleTurn(in, contacts, state, lo, hi, s == 1, t.centre[s], t.side[s].levers);
+    twist += s == 1 ? turn : -turn;
+  }
+  return twist;
+}
+
+// Turns B by the positional angular impulse L about n and A by -L: the rigid sides as applyTwist
+// does, each particle side by tangential impulses at its pressing points.
+void applyPatchTwist(RigidPassInput& in, std::span<const RigidContact> contacts,
+                     const RigidContactState& state, std::size_t lo, std::size_t hi, Real L, Hold hold,
+                     const ParticleTwist& t) {
+  applyTwist(in, contacts[lo], L, false, hold);
+  const Vec3 n = contacts[lo].normal;
+  for (int s = 0; s < 2; ++s) {
+    if (!t.moves[s] || t.side[s].levers <= 0.0) continue;
+    const Real amount = (s == 1 ? L : -L) / t.side[s].levers;
+    for (std::size_t k = lo; k < hi; ++k) {
+      if (state.lambdaNormal[k] <= 0.0) continue;
+      const Embedding& e = s == 1 ? contacts[k].pointB : contacts[k].pointA;
+      const Vec3 r = leverAcross(embeddedPosition(in.particles.position, e), t.centre[s], n);
+      shiftEmbedded(in.particles.position, in.particles.inverseMass, e, amount * glm::cross(n, r));
+    }
+  }
 }
 
 // One sweep of a patch's points along the normal; returns the patch's normal impulse so far in
@@ -640,6 +767,109 @@ Vec3 anchoredSlip(const RigidPassInput& in, std::span<const RigidContact> contac
   return heldNow(in, c.sideB, c.rigidB, anchor.onB) - heldNow(in, c.sideA, c.rigidA, anchor.onA);
 }
 
+// How a patch side's centre slides (along t1, t2) and turns about n for a positional impulse
+// (P1 t1 + P2 t2, L n) on it: a 3 x 3 response, columns by impulse. A rigid side answers at the
+// centre's lever r: P / m + (I^-1 (r x P + L n)) x r and n . I^-1 (r x P + L n). A particle side as
+// its particles do (PatchParticles): an impulse shared equally moves the centre by sum w s^2 / N^2,
+// a twist L (n x r_k) / sum |r|^2 turns it by sum w |R|^2 / (sum |r|^2)^2, and each moves the other
+// through the corners the points share (sum w s (n x R) / (N sum |r|^2), both ways).
+using Response = std::array<std::array<Real, 3>, 3>;
+
+void addRigidResponse(const RigidPassInput& in, RigidId rigid, const Vec3& r, const Vec3& n, const Vec3& t1,
+                      const Vec3& t2, Response& k) {
+  const std::array<Vec3, 3> impulse{t1, t2, Vec3(0.0)};
+  for (int col = 0; col < 3; ++col) {
+    const Vec3 turn = inverseInertiaTimes(in.rigid, rigid, col < 2 ? glm::cross(r, impulse[col]) : n);
+    const Vec3 moved = impulse[col] * in.rigid.inverseMass[rigid] + glm::cross(turn, r);
+    k[0][col] += glm::dot(t1, moved);
+    k[1][col] += glm::dot(t2, moved);
+    k[2][col] += glm::dot(n, turn);
+  }
+}
+
+void addParticleResponse(const PatchParticles& p, int points, const Vec3& n, const Vec3& t1, const Vec3& t2,
+                         Response& k) {
+  const Real count = static_cast<Real>(points);
+  Real slide = 0.0, turn = 0.0;
+  Vec3 both(0.0);
+  for (std::size_t j = 0; j < p.count; ++j) {
+    slide += p.inverseMass[j] * p.weight[j] * p.weight[j];
+    turn += p.inverseMass[j] * glm::dot(p.lever[j], p.lever[j]);
+    both += p.inverseMass[j] * p.weight[j] * glm::cross(n, p.lever[j]);
+  }
+  k[0][0] += slide / (count * count);
+  k[1][1] += slide / (count * count);
+  if (p.levers <= 0.0) return;  // one point: no lever to turn it by
+  turn /= p.levers * p.levers;
+  both /= count * p.levers;
+  k[2][2] += turn;
+  k[0][2] += glm::dot(t1, both);
+  k[2][0] += glm::dot(t1, both);
+  k[1][2] += glm::dot(t2, both);
+  k[2][1] += glm::dot(t2, both);
+}
+
+// Solves k x = b; false when k is singular (nothing on either side can move) or x is not finite.
+bool solve3(const Response& k, const std::array<Real, 3>& b, std::array<Real, 3>& x) {
+  const glm::dmat3 m(k[0][0], k[1][0], k[2][0], k[0][1], k[1][1], k[2][1], k[0][2], k[1][2], k[2][2]);
+  const Real det = glm::determinant(m);
+  if (!(std::abs(det) > 0.0)) return false;
+  const glm::dvec3 solved = glm::inverse(m) * glm::dvec3(b[0], b[1], b[2]);
+  x = {solved.x, solved.y, solved.z};
+  return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+}
+
+// Static friction of a patch with a particle body on a side: its centre's slide over the substep
+// and its twist about n undone together, by one tangential impulse at the centre and one angular
+// impulse, from the two sides' 3 x 3 responses, while the tangential impulse stays within mu_s
+// times the patch's normal impulse and the angular one within that times its radius. Undone one
+// after the other, each moved what the other had undone: a corners box on a rigid box was left
+// 1.9e-7 m of slip every substep, and with no anchor to pull it back it crept 0.55 mm in a minute
+// (docs/physics.md, "Failures at rest").
+void holdParticlePatch(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
+                       std::size_t lo, std::size_t hi, const PatchCentre& centre, Hold hold, Real limit) {
+  const RigidContact& c = contacts[lo];
+  const Vec3 n = c.normal;
+  Vec3 slide = (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
+  slide -= glm::dot(slide, n) * n;
+  const ParticleTwist particles = particleTwist(in, contacts, state, lo, hi, centre, hold);
+  const Real twist = centre.radius > 0.0 ? patchTwistOf(in, contacts, state, lo, hi, particles) : 0.0;
+  if (slide == Vec3(0.0) && twist == 0.0) return;
+  Vec3 t1, t2;
+  across(n, t1, t2);
+  Response k{};
+  const std::array<ContactSide, 2> sides{c.sideA, c.sideB};
+  const std::array<RigidId, 2> rigid{c.rigidA, c.rigidB};
+  const std::array<bool, 2> held{hold.a, hold.b};
+  const std::array<Vec3, 2> at{centre.nowA, centre.nowB};
+  for (int s = 0; s < 2; ++s) {
+    if (held[s]) continue;
+    if (sides[s] == ContactSide::Rigid && in.rigid.inverseMass[rigid[s]] != 0.0)
+      addRigidResponse(in, rigid[s], at[s] - in.rigid.position[rigid[s]], n, t1, t2, k);
+    if (sides[s] == ContactSide::Particles)
+      addParticleResponse(particles.side[s], centre.count, n, t1, t2, k);
+  }
+  // One pressing point has no lever against a twist: its slide alone is held.
+  if (centre.radius <= 0.0) {
+    k[2] = {0.0, 0.0, 1.0};
+    k[0][2] = k[1][2] = 0.0;
+  }
+  std::array<Real, 3> x{};
+  if (!solve3(k, {-glm::dot(slide, t1), -glm::dot(slide, t2), -twist}, x)) return;
+  const Real tangential = std::hypot(x[0], x[1]);
+  if (state.lambdaTangent[lo] + tangential > limit) return;  // it slides: the dynamic friction's
+  if (state.twist[lo] + std::abs(x[2]) > limit * centre.radius) return;
+  const Vec3 p = x[0] * t1 + x[1] * t2;  // on B; A takes -p
+  const PatchSide a = patchSide(in, contacts, state, lo, hi, false, centre.nowA, centre.count, hold.a);
+  const PatchSide b = patchSide(in, contacts, state, lo, hi, true, centre.nowB, centre.count, hold.b);
+  // The twist first: its tangential impulses are along the levers the response was read at.
+  if (x[2] != 0.0) applyPatchTwist(in, contacts, state, lo, hi, x[2], hold, particles);
+  applyAtCentre(in, contacts, state, lo, hi, false, a, -p, centre.count, false);
+  applyAtCentre(in, contacts, state, lo, hi, true, b, p, centre.count, false);
+  state.lambdaTangent[lo] += tangential;
+  state.twist[lo] += std::abs(x[2]);
+}
+
 // A patch of one or two points, or with a particle body on a side, point after point: each pushed
 // along n, then the patch's static friction and twist at its centre.
 void solvePatchByPoints(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
@@ -654,6 +884,7 @@ void solvePatchByPoints(RigidPassInput& in, std::span<const RigidContact> contac
   const RigidContact& c = contacts[lo];
   const Real limit = c.combined.staticFriction * normal;
   const PatchCentre centre = centreOf(in, contacts, state, lo, hi, true);
+  if (hasParticleSide(c)) return holdParticlePatch(in, contacts, state, lo, hi, centre, hold, limit);
   const bool anchored = anchorsByPoints(c);
   Vec3 slide = anchored ? anchoredSlip(in, contacts, state, patch, centre)
                         : (centre.nowB - centre.startB) - (centre.nowA - centre.startA);
