@@ -129,9 +129,7 @@ std::vector<std::vector<phys::Vec3>> recordRun(const phys::World& loaded,
                                                const std::vector<int>& checkpoints, std::size_t& froze) {
   phys::World world = loaded;
   world.setSolverSettings(settings);
-  RunSpec spec;
-  spec.steps = checkpoints.empty() ? 0 : checkpoints.back();
-  spec.checkpoints = checkpoints;
+  const RunSpec spec{.steps = checkpoints.empty() ? 0 : checkpoints.back(), .checkpoints = checkpoints};
   std::vector<std::vector<phys::Vec3>> positions = runSteps(world, spec).positions;
   froze = world.freezes().size();
   return positions;

@@ -145,18 +145,16 @@ RunResult runScene(scenes::Scene& scene, const RunOptions& options, std::ostream
 
   // Every step's total is kept for the median (up to 80 MB at the 10^7 step limit), reserved
   // before the first step by the runner.
-  RunSpec spec;
-  spec.steps = options.steps;
-  spec.profile = true;
-  spec.maxima = true;
   ProgressLine line(progress, options.steps, timing);
   DriveLog drives(world);
-  spec.afterStep = [&line, &drives, &world](int step) {
-    drives.after(world);
-    line.after(step);
-    return true;
-  };
-  RunRecord run = runSteps(world, spec);
+  RunRecord run = runSteps(world, {.steps = options.steps,
+                                   .maxima = true,
+                                   .profile = true,
+                                   .afterStep = [&line, &drives, &world](int step) {
+                                     drives.after(world);
+                                     line.after(step);
+                                     return true;
+                                   }});
 
   r.energyInitial = run.energyBefore;
   r.wallMs = run.steppingMs;

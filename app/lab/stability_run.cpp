@@ -64,14 +64,12 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   phys::World& world = scene.world;
   WorldJudge judge(s.criteria, world);
   Outcome o;
-  // Only the steps are timed (runSteps), not the judge's figures; the run stops at a freeze.
-  RunSpec spec;
-  spec.steps = s.steps;
-  spec.afterStep = [&judge, &world](int step) {
-    judge.observe(world, step);
-    return world.freezes().empty();
-  };
-  const RunRecord run = runSteps(world, spec);
+  // Only the steps are timed (runSteps), not the judge's figures; the run stops at a freeze. Named
+  // lab::runSteps: this namespace's runSteps (stability_criteria.h) hides it from a braced spec.
+  const RunRecord run = lab::runSteps(world, {.steps = s.steps, .afterStep = [&judge, &world](int step) {
+                                                judge.observe(world, step);
+                                                return world.freezes().empty();
+                                              }});
   const int steps = run.stepsRun;
   const bool blewUp = !world.freezes().empty();
   if (blewUp) {

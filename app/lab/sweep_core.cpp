@@ -233,12 +233,8 @@ Figures measureFigures(const scenes::SceneSource& source, const Setting& setting
                        const AccuracyTarget& target) {
   scenes::Scene scene = loadSetting(source, setting);
   const peers::Description loaded = peers::asOurs(peers::describe(scene));
-  RunSpec spec;
-  spec.steps = steps;
-  spec.checkpoints = target.checkpoints;
-  spec.orientations = true;
-  spec.maxima = true;
-  const RunRecord run = runSteps(scene.world, spec);
+  const RunRecord run = runSteps(
+      scene.world, {.steps = steps, .checkpoints = target.checkpoints, .orientations = true, .maxima = true});
   Figures f;
   f.maxima = run.maxima;
   // An energy that overflowed leaves no drift (a start of inf J gives -inf): NaN, which the CSV
@@ -259,9 +255,7 @@ double timeSetting(const scenes::SceneSource& source, const Setting& setting, in
   std::vector<double> msPerStep;
   for (int r = 0; r < repeats; ++r) {
     scenes::Scene scene = loadSetting(source, setting);  // each repeat from a fresh load
-    RunSpec bare;
-    bare.steps = steps;
-    msPerStep.push_back(runSteps(scene.world, bare).steppingMs / steps);
+    msPerStep.push_back(runSteps(scene.world, {.steps = steps}).steppingMs / steps);  // a bare loop
   }
   return median(std::move(msPerStep));
 }

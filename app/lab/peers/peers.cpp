@@ -90,14 +90,10 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
   }
   result.settings = built->settings;
 
-  RunSpec spec;
-  spec.steps = steps;
-  spec.checkpoints = checkpoints;
-  spec.orientations = true;
-  spec.stepTimes = true;
   RunRecord run;
   try {
-    run = runSteps(*built, spec);
+    run = runSteps(*built,
+                   {.steps = steps, .checkpoints = checkpoints, .orientations = true, .stepTimes = true});
   } catch (const std::exception& e) {
     // An engine that gives up part way (MuJoCo's errors arrive as exceptions) has no run to
     // compare; say so rather than report half of one.
