@@ -46,7 +46,6 @@ void RunMaxima::observe(const phys::World& world) {
 }
 
 void RunMaxima::observe(const std::array<double, kRunMetricCount>& figures) {
-  ++steps;
   for (std::size_t i = 0; i < kRunMetricCount; ++i) {
     const double v = figures[i];
     if (!std::isfinite(v) || std::isinf(worst[i])) {

@@ -95,7 +95,6 @@ void keepLargest(double& worst, double sample);
 struct RunMaxima {
   std::array<double, kRunMetricCount> worst{};
   std::array<RootMeanSquare, kRunMetricCount> rms{};  ///< of the OverRun::Rms figures
-  long steps = 0;                                     ///< observed
 
   /// Reads every figure of the world as it is now.
   void observe(const phys::World& world);

@@ -41,12 +41,11 @@ RunRecord runSteps(Stepper& stepper, const RunSpec& spec) {
   RunRecord r;
   if (world != nullptr) r.energyBefore = world->metrics().energy();
   const std::size_t steps = spec.steps > 0 ? static_cast<std::size_t>(spec.steps) : 0;
-  if (spec.stepTimes) r.stepMs.reserve(steps);
   if (spec.profile) r.profileTotals.reserve(steps);
   r.positions.reserve(spec.checkpoints.size());
   if (spec.orientations) r.orientations.reserve(spec.checkpoints.size());
   // A bare loop is timed whole; one that records between the steps times each step alone.
-  const bool between = spec.maxima || spec.profile || spec.stepTimes || !spec.checkpoints.empty() ||
+  const bool between = spec.maxima || spec.profile || !spec.checkpoints.empty() ||
                        static_cast<bool>(spec.afterStep) || world == nullptr;
   Clock::duration stepping{};
   if (!between) {
@@ -66,7 +65,6 @@ RunRecord runSteps(Stepper& stepper, const RunSpec& spec) {
     throwIfStopped();
     stepping += took;
     r.stepsRun = i;
-    if (spec.stepTimes) r.stepMs.push_back(std::chrono::duration<double, std::milli>(took).count());
     stepper.afterStep(i);
     if (world != nullptr && spec.profile) {
       r.profileTotals.push_back(world->profile().total);

@@ -2,8 +2,8 @@
 // The one step loop of the lab: every command that steps a scene (run, sweep, tune, compare,
 // stability, scale, converge, the accuracy references) and every peer engine runs through
 // runSteps, asking for what it needs: the bodies' poses at checkpoints, the figures of
-// run_metrics.h after every step, each step's time, the physics' own profile, or a look after
-// every step that may stop the run. Only the steps are timed; what is read between them is not.
+// run_metrics.h after every step, the physics' own profile, or a look after every step that may
+// stop the run. Only the steps are timed; what is read between them is not.
 #include <atomic>
 #include <exception>
 #include <functional>
@@ -21,7 +21,6 @@ struct RunSpec {
   std::vector<int> checkpoints;
   bool orientations = false;  ///< the bodies' orientations at the checkpoints too
   bool maxima = false;        ///< every figure of kRunMetrics after every step (our world only)
-  bool stepTimes = false;     ///< each step's wall time, for a median
   bool profile = false;       ///< each step's Profile::total, and every stage summed (our world only)
   /// After each step (its number from 1), once the above are recorded: false stops the run there.
   std::function<bool(int step)> afterStep;
@@ -36,7 +35,6 @@ struct RunRecord {
   RunMaxima maxima;                                   ///< with RunSpec::maxima
   std::vector<std::vector<phys::Vec3>> positions;     ///< per checkpoint, the bodies' centres
   std::vector<std::vector<phys::Quat>> orientations;  ///< per checkpoint, with RunSpec::orientations
-  std::vector<double> stepMs;                         ///< with RunSpec::stepTimes, unit: ms
   std::vector<double> profileTotals;                  ///< with RunSpec::profile, unit: ms
   phys::Profile stageSums;                            ///< with RunSpec::profile, unit: ms
 };

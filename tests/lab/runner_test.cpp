@@ -24,7 +24,7 @@ TEST(Runner, AStopFlagStopsTheRunAfterTheStepUnderWay) {
     phys::World world = fallingParticle();
     lab::RunSpec spec;
     spec.steps = 100;
-    spec.stepTimes = recording;
+    spec.maxima = recording;
     EXPECT_EQ(lab::runSteps(world, spec).stepsRun, 100) << recording;  // not set: runs whole
     stop.store(true);
     const double before = world.time();

@@ -92,8 +92,7 @@ PeerResult runPeer(std::string_view engine, const scenes::Scene& scene, double d
 
   RunRecord run;
   try {
-    run = runSteps(*built,
-                   {.steps = steps, .checkpoints = checkpoints, .orientations = true, .stepTimes = true});
+    run = runSteps(*built, {.steps = steps, .checkpoints = checkpoints, .orientations = true});
   } catch (const std::exception& e) {
     // An engine that gives up part way (MuJoCo's errors arrive as exceptions) has no run to
     // compare; say so rather than report half of one.
