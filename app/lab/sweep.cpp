@@ -405,11 +405,9 @@ int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
   // A chart of a figure that is 0 at every setting (a tracking error without a character) says nothing.
   if (o.measure < kRunMetricCount) {
     const RunMetric& m = kRunMetrics[o.measure];
-    if (const char* lacking = lackedByEveryModel(m.lacks, scene, plan.models); lacking != nullptr) {
-      throw UsageError("--error " + std::string(m.name) + ": scene " + plan.sceneName + " has " + lacking +
-                       (plan.models.size() > 1 ? " in any model swept" : "") +
-                       ", so it is 0 at every setting");
-    }
+    requireMeasurable(m.lacks, scene, plan.models,
+                      "--error " + std::string(m.name) + ": scene " + plan.sceneName, "swept",
+                      "it is 0 at every setting");
   }
   prepareOutputFiles(o.out, sweepFiles());  // a sweep takes minutes: say a bad --out now
   return runSweep(plan, o.measure, o.out, out, err);

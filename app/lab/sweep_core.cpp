@@ -278,13 +278,16 @@ int defaultSteps(double dt) {
   return std::max(1, static_cast<int>(std::lround(kDefaultHorizon / dt)));
 }
 
-const char* lackedByEveryModel(const char* (*lacks)(const phys::World& world),
-                               const scenes::SceneSource& scene, const std::vector<ModelChoice>& choices) {
-  if (lacks == nullptr || choices.empty()) return nullptr;
+void requireMeasurable(const char* (*lacks)(const phys::World& world), const scenes::SceneSource& scene,
+                       const std::vector<ModelChoice>& choices, const std::string& figure, const char* tried,
+                       const char* consequence) {
+  if (lacks == nullptr || choices.empty()) return;
   const char* lacking = "";  // by every model so far: none yet
   for (std::size_t k = 0; k < choices.size() && lacking != nullptr; ++k)
     lacking = lacks(scenes::loadSceneSource(scene, choices[k].options).world);
-  return lacking;
+  if (lacking == nullptr) return;
+  throw UsageError(figure + " has " + lacking +
+                   (choices.size() > 1 ? std::string(" in any model ") + tried : "") + ", so " + consequence);
 }
 
 }  // namespace lab

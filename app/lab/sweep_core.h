@@ -50,11 +50,15 @@ std::vector<ModelChoice> modelChoices(const std::vector<std::string>& names, con
 /// neither kind.
 std::vector<ModelChoice> allModelChoices(const SceneModels& models);
 
-/// What the scene lacks, in every one of `choices`, to make a figure other than 0 whatever the
-/// settings (`lacks` is a RunMetric's), or null when one of them has it: a bound on, or a chart of,
-/// such a figure says nothing. Loads the scene under each choice; throws scenes::LoadError.
-const char* lackedByEveryModel(const char* (*lacks)(const phys::World& world),
-                               const scenes::SceneSource& scene, const std::vector<ModelChoice>& choices);
+/// Refuses a figure the scene cannot make other than 0 in any of `choices`, whatever the settings
+/// (`lacks` is a RunMetric's): a bound on, or a chart of, such a figure says nothing. Throws
+/// UsageError "FIGURE has LACK, so CONSEQUENCE", with " in any model TRIED" after LACK when there
+/// are several choices ("--error tracking-error: scene pendulum has no character, so it is 0 at
+/// every setting"): sweep's --error and tune's --target say it alike. Loads the scene under each
+/// choice; throws scenes::LoadError.
+void requireMeasurable(const char* (*lacks)(const phys::World& world), const scenes::SceneSource& scene,
+                       const std::vector<ModelChoice>& choices, const std::string& figure, const char* tried,
+                       const char* consequence);
 
 /// One point of the settings space.
 struct Setting {

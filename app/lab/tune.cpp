@@ -322,20 +322,6 @@ void printCompared(std::ostream& out, const char* label, const Candidate& c, con
 
 // ---- the command --------------------------------------------------------------------------------
 
-// Refuses (UsageError) a target whose figure is 0 in every model the search tries, whatever the
-// settings (a tracking error without a character): every setting would meet it at once, and the
-// cheapest would win for nothing. Said before any run.
-void requireMeasurable(const std::vector<Target>& targets, const scenes::SceneSource& source,
-                       const std::vector<ModelChoice>& choices, const std::string& sceneName) {
-  for (const Target& t : targets) {
-    const char* lacking = lackedByEveryModel(t.lacks, source, choices);
-    if (lacking == nullptr) continue;
-    throw UsageError("--target " + t.name + ": scene " + sceneName + " has " + lacking +
-                     (choices.size() > 1 ? " in any model searched" : "") +
-                     ", so every setting would meet it");
-  }
-}
-
 int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   const std::filesystem::path file = sceneFile(o.scene, o.dataDir);
   const scenes::SceneSource source = scenes::readSceneSource(file);
@@ -348,7 +334,12 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   // The seed's defaults: its method and counts with its models, the first of the choices (corners
   // boxes, seed ragdolls; the file's own when it has neither).
   const std::vector<ModelChoice> choices = allModelChoices(models);
-  requireMeasurable(o.targets, source, choices, scene.name);
+  // A target whose figure is 0 in every model the search tries, whatever the settings (a tracking
+  // error without a character), would be met by every setting at once, and the cheapest would win
+  // for nothing: refused before any run.
+  for (const Target& t : o.targets)
+    requireMeasurable(t.lacks, source, choices, "--target " + t.name + ": scene " + scene.name, "searched",
+                      "every setting would meet it");
   const Setting defaults{choices.front(), kSeedMethod, kSeedIterations, kSeedSubsteps, own.dt};
   const Setting sceneOwn{models.asFile, own.method, own.iterations, own.substeps, own.dt};
 
