@@ -17,33 +17,22 @@
 namespace lab {
 namespace {
 
-// What makes a dump unwritable that can be told before the run: the scene itself there (by any
-// name), its folder missing, or anything writeAtomically would refuse before writing (a folder or a
-// device in its place, a folder it cannot create a file in). Only a full disk is found out after.
-std::string dumpProblem(const std::filesystem::path& file, const std::filesystem::path& scene) {
+// Refuses, as CommandFailure "--dump: ...", what makes a dump unwritable that can be told before
+// the run: the scene itself there (by any name), its folder missing (requireFolder), or anything
+// writeAtomically would refuse before writing (checkOutputFile: a folder or a device in its place,
+// a folder it cannot create a file in). Only a full disk is found out after.
+void checkDump(const std::filesystem::path& file, const std::filesystem::path& scene) {
   std::error_code ec;
   if (std::filesystem::equivalent(file, scene, ec))
-    return file.string() + ": is the scene being run; the dump would write over it";
-  const std::filesystem::path folder = file.parent_path().empty() ? "." : file.parent_path();
-  if (const std::string why = fileio::folderProblem(folder); !why.empty())
-    return folder.string() + ": " + why;
-  try {
-    fileio::checkWritable(file);
-  } catch (const fileio::FileError& e) {
-    return e.what();
-  }
-  return {};
+    throw CommandFailure("--dump: " + file.string() +
+                         ": is the scene being run; the dump would write over it");
+  requireFolder(file.parent_path().empty() ? "." : file.parent_path(), "--dump");
+  checkOutputFile(file, "--dump");
 }
 
 // Load, override, step, report, dump.
 int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
-  if (options.dump) {
-    if (const std::string problem = dumpProblem(*options.dump, sceneFile(options.scene, options.dataDir));
-        !problem.empty()) {
-      err << "lab: --dump: " << problem << "\n";
-      return kExitFailure;
-    }
-  }
+  if (options.dump) checkDump(*options.dump, sceneFile(options.scene, options.dataDir));
   scenes::Scene scene =
       scenes::loadSceneFile(sceneFile(options.scene, options.dataDir),
                             imposedAtLoad(options.model, options.sleep, options.jointProjection));
