@@ -7,6 +7,7 @@
 #include <ctime>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <ostream>
 #include <sstream>
@@ -100,9 +101,7 @@ struct Report {
   // `shown` makes of its output; if it failed, its message stands where its figures would be.
   void section(const std::string& command, const std::vector<std::string>& args,
                const std::function<std::string(const std::string&)>& shown = demoteHeadings) {
-    progress << "lab report: lab " << command;
-    for (const std::string& a : args) progress << ' ' << a;
-    progress << std::endl;
+    progress << "lab report: lab " << command << ' ' << join(args, " ") << std::endl;  // every one has args
     const CommandOutput r = runCaptured(command, args);
     failed |= r.code != 0;
     if (r.code == 0)
@@ -265,9 +264,8 @@ constexpr TrackingScene kTrackingScenes[] = {
 std::string trackingByMethod(const std::vector<CsvRow>& rows) {
   constexpr double kDt = 1.0 / 60.0;  // unit: s
   std::vector<CsvRow> atDt;
-  for (const CsvRow& r : rows) {
-    if (std::abs(dtOf(r) - kDt) <= 1e-9) atDt.push_back(r);
-  }
+  std::copy_if(rows.begin(), rows.end(), std::back_inserter(atDt),
+               [](const CsvRow& r) { return std::abs(dtOf(r) - kDt) <= 1e-9; });
   const auto cheapest = cheapestBy(atDt, methodOf, "ms_per_step", withinBar);
   if (cheapest.size() < 2) return {};
   std::ostringstream md;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -135,9 +136,7 @@ void markPareto(std::vector<Row>& rows, std::size_t measure) {
 
 std::vector<Row> frontByCost(const std::vector<Row>& rows) {
   std::vector<Row> front;
-  for (const Row& r : rows) {
-    if (r.pareto) front.push_back(r);
-  }
+  std::copy_if(rows.begin(), rows.end(), std::back_inserter(front), [](const Row& r) { return r.pareto; });
   const bool perStep = oneDt(rows);
   std::stable_sort(front.begin(), front.end(),
                    [&](const Row& a, const Row& b) { return cost(a, perStep) < cost(b, perStep); });

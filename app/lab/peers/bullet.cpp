@@ -15,6 +15,7 @@
 // (sqrt(e) each, so every contact gets e). The world's damping becomes Bullet's per-body linear
 // and angular damping, which Bullet applies as (1 - d)^dt: d = 1 - exp(-damping) decays both
 // velocities by exp(-damping t), as our wind resistance decays every particle's.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -224,15 +225,13 @@ class BulletEngine : public Engine {
   btRigidBody& body(int i) const { return *bodies_[static_cast<std::size_t>(i)]; }
 
   int moving() const {
-    int n = 0;
-    for (const btRigidBody* b : bodies_) n += b->isStaticObject() ? 0 : 1;
-    return n;
+    return static_cast<int>(std::count_if(bodies_.begin(), bodies_.end(),
+                                          [](const btRigidBody* b) { return !b->isStaticObject(); }));
   }
   int asleep() const {
-    int n = 0;
-    for (const btRigidBody* b : bodies_)
-      n += !b->isStaticObject() && b->getActivationState() == ISLAND_SLEEPING ? 1 : 0;
-    return n;
+    return static_cast<int>(std::count_if(bodies_.begin(), bodies_.end(), [](const btRigidBody* b) {
+      return !b->isStaticObject() && b->getActivationState() == ISLAND_SLEEPING;
+    }));
   }
 
   btRigidBody* addBody(btCollisionShape& shape, double mass, const btVector3& inertia,
