@@ -1,7 +1,7 @@
 #include "stability_options.h"
 
 #include <algorithm>
-#include <cctype>
+#include <cstring>
 #include <stdexcept>
 #include <system_error>
 
@@ -39,24 +39,7 @@ void describeOptions(CommandLine& line, StabilityOptions& o) {
 }
 
 bool naturalLess(const std::string& a, const std::string& b) {
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
-      std::size_t ie = i, je = j;
-      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
-      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
-      const std::string na = a.substr(i, ie - i), nb = b.substr(j, je - j);
-      if (na.size() != nb.size()) return na.size() < nb.size();
-      if (na != nb) return na < nb;
-      i = ie;
-      j = je;
-    } else {
-      if (a[i] != b[j]) return a[i] < b[j];
-      ++i;
-      ++j;
-    }
-  }
-  return a.size() - i < b.size() - j;
+  return ::strverscmp(a.c_str(), b.c_str()) < 0;  // glibc's version order: digit runs by value
 }
 
 std::vector<std::filesystem::path> sceneFiles(const StabilityOptions& o) {

@@ -30,7 +30,8 @@ struct StabilityOptions {
 void describeOptions(CommandLine& line, StabilityOptions& options);
 
 /// "stack-10" < "stack-20" < "stack-100": runs of digits compare as numbers, so the suite's
-/// files sort by size.
+/// files sort by size. glibc's strverscmp, which reads a run with leading zeros as a fraction
+/// ("a-01" before "a-1"; no name of the suite has one).
 bool naturalLess(const std::string& a, const std::string& b);
 
 /// The scene files to run: each --scene name (a file, or NAME.xml in the suite's folder
