@@ -262,11 +262,7 @@ std::string OutputFolder::drawInScratch(const std::string& name, const std::vect
 void OutputFolder::commit() {
   std::vector<fileio::FileContent> files;
   for (const auto& [name, content] : held_) files.push_back({folder_ / name, content});
-  try {
-    fileio::writeAllAtomically(files);
-  } catch (const fileio::FileError& e) {
-    throw CommandFailure(std::string(option_) + ": " + e.what());
-  }
+  asOptionFailure(option_, [&] { fileio::writeAllAtomically(files); });
   for (const std::string& name : stale_) {
     std::error_code ignored;
     std::filesystem::remove(folder_ / name, ignored);

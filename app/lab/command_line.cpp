@@ -465,20 +465,20 @@ int commandMain(CommandLine& line, const std::vector<std::string>& args, std::os
   return kExitFailure;
 }
 
-void prepareOutputFolder(const std::filesystem::path& folder, const char* option) {
+void asOptionFailure(const char* option, const std::function<void()>& fileWork) {
   try {
-    fileio::prepareFolder(folder);
+    fileWork();
   } catch (const fileio::FileError& e) {
     throw CommandFailure(std::string(option) + ": " + e.what());
   }
 }
 
+void prepareOutputFolder(const std::filesystem::path& folder, const char* option) {
+  asOptionFailure(option, [&] { fileio::prepareFolder(folder); });
+}
+
 void checkOutputFile(const std::filesystem::path& file, const char* option) {
-  try {
-    fileio::checkWritable(file);
-  } catch (const fileio::FileError& e) {
-    throw CommandFailure(std::string(option) + ": " + e.what());
-  }
+  asOptionFailure(option, [&] { fileio::checkWritable(file); });
 }
 
 void prepareOutputFiles(const std::filesystem::path& folder, const std::vector<std::string>& names,

@@ -115,6 +115,10 @@ class CommandFailure : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Runs `fileWork` (calls of fileio), saying a fileio::FileError it throws as CommandFailure
+/// "OPTION: <why>": how every file the lab writes or checks for an option reports a failure.
+void asOptionFailure(const char* option, const std::function<void()>& fileWork);
+
 /// Creates the folder an option names, or throws CommandFailure "OPTION: <why>". Commands that
 /// run for minutes call it first, so a folder they cannot write to is said at once.
 void prepareOutputFolder(const std::filesystem::path& folder, const char* option = "--out");
