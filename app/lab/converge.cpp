@@ -382,11 +382,9 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
   } catch (const UsageError&) {
     throw;  // an option the scene cannot take: commandMain says it with the usage, exit 2
   } catch (const std::invalid_argument& e) {
-    err << "lab: converge: " << e.what() << "\n";
-    return kExitFailure;
+    throw CommandFailure(std::string("converge: ") + e.what());  // it names its scene
   } catch (const std::exception& e) {
-    err << "lab: converge: " << current << ": " << e.what() << "\n";
-    return kExitFailure;
+    throw CommandFailure("converge: " + current + ": " + e.what());
   }
   if (!o.out) return kExitOk;
   for (std::size_t k = 0; k < charts.size(); ++k) charts[k].output = chartNames.at(k);

@@ -41,12 +41,8 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   out.flush();
   // The report goes out first, so a long run's figures survive a dump that cannot be written.
   if (options.dump) {
-    try {
-      fileio::writeAtomically(*options.dump, dumpCsv(scene.world, scene.bodies));
-    } catch (const std::exception& e) {
-      err << "lab: --dump: " << e.what() << "\n";
-      return kExitFailure;
-    }
+    asOptionFailure("--dump",
+                    [&] { fileio::writeAtomically(*options.dump, dumpCsv(scene.world, scene.bodies)); });
     if (!options.json) {
       out << "dump         " << scene.bodies.size() << " named bodies to " << options.dump->string() << "\n";
     }

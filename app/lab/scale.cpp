@@ -261,8 +261,7 @@ int runScaleCommand(ScaleOptions o, std::ostream& out, std::ostream& err) {
   try {
     rows = runScale(o.kind, o.sizes, o.run, o.threads, &err);
   } catch (const scenes::LoadError& e) {
-    err << "lab: scale: the generated scene: " << e.what() << "\n";  // a bug in the generator
-    return kExitFailure;
+    throw CommandFailure(std::string("scale: the generated scene: ") + e.what());  // a bug in the generator
   }
   out << (o.json ? scaleJson(rows) : scaleTable(rows));
   if (!o.out) return kExitOk;

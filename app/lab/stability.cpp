@@ -105,8 +105,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
 }
 
 // The files of --out, written as one set; without gnuplot they are written without the heat maps.
-int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir,
-                 std::ostream& err) {
+void writeOutputs(const SuiteResult& r, const std::string& md, const std::filesystem::path& dir) {
   OutputFolder files(dir);
   files.write("stability.md", md);
   files.write("stability.csv", stability::csvReport(r));
@@ -116,11 +115,7 @@ int writeOutputs(const SuiteResult& r, const std::string& md, const std::filesys
   // Unlike the other commands' charts, heat maps left undrawn for want of gnuplot fail the suite.
   const std::string problem = files.render(kHeatMapScript, kHeatMaps);
   files.commit();
-  if (!problem.empty()) {
-    err << "lab: stability: the heat maps were not drawn: " << problem << "\n";
-    return kExitFailure;
-  }
-  return kExitOk;
+  if (!problem.empty()) throw CommandFailure("stability: the heat maps were not drawn: " + problem);
 }
 
 int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream& err) {
@@ -138,7 +133,8 @@ int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream&
   }
   const std::string md = stability::markdownReport(result);
   out << md << std::flush;
-  return o.out.empty() ? kExitOk : writeOutputs(result, md, o.out, err);
+  if (!o.out.empty()) writeOutputs(result, md, o.out);
+  return kExitOk;
 }
 
 }  // namespace
