@@ -6,7 +6,6 @@
 #include <ostream>
 #include <sstream>
 #include <string_view>
-#include <system_error>
 #include <type_traits>
 #include <utility>
 

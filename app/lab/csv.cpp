@@ -1,7 +1,6 @@
 #include "csv.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 

@@ -1,10 +1,8 @@
 #include "lab.h"
 
 #include <filesystem>
-#include <optional>
 #include <ostream>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <system_error>
 

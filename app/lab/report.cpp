@@ -1,6 +1,5 @@
 #include "report.h"
 
-#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>

@@ -18,7 +18,6 @@
 #include "converge.h"
 #include "csv.h"
 #include "fileio/files.h"
-#include "json.h"
 #include "lab.h"
 #include "output_files.h"
 #include "report.h"

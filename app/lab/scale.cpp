@@ -5,7 +5,6 @@
 #include "json.h"
 #include "text.h"
 
-#include <algorithm>
 #include <cmath>
 #include <ostream>
 #include <stdexcept>
@@ -15,10 +14,8 @@
 #include "commands.h"
 #include "csv.h"
 #include "lab.h"
-#include "numbers.h"
 #include "options.h"
 #include "output_files.h"
-#include "report.h"
 #include "run.h"
 #include "scenes/scene.h"
 #include "sweep_core.h"

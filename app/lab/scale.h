@@ -1,7 +1,6 @@
 #pragma once
 // lab scale (docs/lab.md, "lab scale"): one scene generated at growing sizes, and what a step
 // costs at each. scaleMain (commands.h) is the command; the pieces are here for the tests.
-#include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>

@@ -2,11 +2,9 @@
 // each run under every setting asked for and in every peer engine, judged against the pass
 // criteria in its file (docs/lab.md, "lab stability").
 #include <chrono>
-#include <exception>
 #include <filesystem>
 #include <mutex>
 #include <ostream>
-#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
@@ -14,13 +12,10 @@
 
 #include "charts.h"
 #include "commands.h"
-#include "gnuplot.h"
 #include "lab.h"
-#include "options.h"
 #include "output_files.h"
 #include "peer.h"
 #include "progress.h"
-#include "report.h"
 #include "stability_options.h"
 #include "stability_report.h"
 #include "text.h"

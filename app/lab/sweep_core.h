@@ -3,11 +3,8 @@
 // passes, substeps, dt), the untimed pass that measures its figures, the timed runs that
 // measure its cost, which box and ragdoll models a scene can take, and the small parsers of
 // their command lines. docs/lab.md, "lab sweep" and "lab tune", describe the figures.
-#include <filesystem>
 #include <map>
-#include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "accuracy.h"
@@ -15,7 +12,6 @@
 #include "physics/settings.h"
 #include "run_metrics.h"
 #include "scenes/scene.h"
-#include "text.h"
 
 namespace lab {
 

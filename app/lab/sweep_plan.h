@@ -5,7 +5,6 @@
 // table or JSON lines: compare is the sweep over our four methods at one setting, with the peers.
 #include <cmath>
 #include <cstddef>
-#include <filesystem>
 #include <functional>
 #include <optional>
 #include <ostream>

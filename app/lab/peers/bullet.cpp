@@ -17,8 +17,6 @@
 // velocities by exp(-damping t), as our wind resistance decays every particle's.
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <stdexcept>
 #include <string>
 
 #include <btBulletDynamicsCommon.h>

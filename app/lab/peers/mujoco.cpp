@@ -14,7 +14,6 @@
 // MuJoCo refuses the scene and the message gives the numbers. Contacts or rows past what was
 // allocated are dropped by MuJoCo with a warning, and the table says that too.
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
