@@ -526,8 +526,9 @@ class Comparison {
 
   // A character is saved as the clip it plays, by the file that clip
   // came from, with its clock, the strengths last set and as a reaction has ramped them, each part's
-  // share, its reaction's settings and state, a queued change of clip, a fade under way and its clip
-  // frame's origin: every number to the bit; its heading, written in degrees, within 1e-12 rad.
+  // share, its reaction's settings and state, a queued change of clip, a fade under way, its clip
+  // frame's origin and its root drive's stiffnesses: every number to the bit; its heading, written in
+  // degrees, within 1e-12 rad.
   std::string characters() const {
     const auto a = s_.characters(), b = r_.characters();
     if (a.size() != b.size()) {
@@ -562,6 +563,8 @@ class Comparison {
           {"balance-now", {x.balance, y.balance}},
           {"from-strength", {x.fromStrength, y.fromStrength}},
           {"from-balance", {x.fromBalance, y.fromBalance}},
+          {"root stiffness", {x.rootStiffness, y.rootStiffness}},
+          {"root angular stiffness", {x.rootAngularStiffness, y.rootAngularStiffness}},
       };
       for (const auto& [name, pair] : numbers) {
         if (pair.first != pair.second) return unequal(who + ": " + name, pair.first, pair.second);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <span>
 #include <stdexcept>
@@ -533,8 +534,19 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     line(jointElement(world.jointDesc(k), world.jointDrive(k), world.jointRest(k), names));
   for (std::size_t k = 0; k < world.particleJoints().size(); ++k)
     line(particleJointElement(world, world.particleJoints()[k], world.particleJointDrive(k), names));
+  // A character's root drive is the character's to aim: each substep it rewrites the drive, and
+  // while it balances it sets the centre's stiffness to 0 (the balance only turns the root). The
+  // loader takes the root's stiffnesses from the <body-drive> before the character, so the file
+  // carries the stiffnesses the character was given, not the ones its drive has this substep:
+  // else a reloaded character's hand of god and get-up would no longer pull its centre.
+  std::map<phys::BodyId, const phys::Character*> rootOf;
+  for (const phys::Character& c : world.characters()) rootOf[c.bones[0].body] = &c;
   for (const phys::DrivenBody& d : world.bodyDrives()) {
-    const phys::BodyDrive& drive = d.drive;
+    phys::BodyDrive drive = d.drive;
+    if (const auto character = rootOf.find(d.body); character != rootOf.end()) {
+      drive.stiffness = character->second->rootStiffness;
+      drive.angularStiffness = character->second->rootAngularStiffness;
+    }
     if (!detail::insideBound(drive.position, bound)) {
       throw std::invalid_argument("a body drive's target is beyond the world's bound of " +
                                   detail::formatNumber(bound) + " m");
