@@ -37,6 +37,7 @@ StepRecord recordOf(const phys::World& world) {
 void Recording::clear() {
   keyframes_.clear();
   steps_.clear();
+  changes_.clear();
   bytes_ = 0;
 }
 
@@ -80,6 +81,7 @@ void Recording::setBudget(std::size_t bytes) {
 
 void Recording::dropAfter(long step) {
   while (!steps_.empty() && steps_.back().step > step) steps_.pop_back();
+  dropChangesFrom(step + 1);
   while (keyframes_.size() > 1 && keyframes_.back().step > step) {
     bytes_ -= keyframes_.back().bytes;
     keyframes_.pop_back();
@@ -111,6 +113,8 @@ void Recording::keyframe(const phys::World& world) {
       keyframes_.back().world->bodies().size() == world.bodies().size()) {
     bytes = keyframes_.back().bytes;
   }
+  // The copy holds the changes made at this step.
+  dropChangesFrom(step);
   if (!keyframes_.empty() && keyframes_.back().step == step) {  // a second command in one step
     bytes_ -= keyframes_.back().bytes;
     keyframes_.back() = {step, std::move(copy), nullptr, bytes, 0};
@@ -122,6 +126,31 @@ void Recording::keyframe(const phys::World& world) {
   if (!steps_.empty() && steps_.back().step == step) steps_.back() = recordOf(world);
   dt_ = world.solverSettings().dt;
   keepWithinBudget();
+}
+
+void Recording::changed(const phys::World& world, std::function<void(phys::World&)> redo, std::size_t bytes) {
+  if (!on_) return;
+  const long step = world.stepCount();
+  int atThisStep = 0;  // the changes at this step, the last ones kept
+  for (auto c = changes_.rbegin(); c != changes_.rend() && c->step == step; ++c) ++atThisStep;
+  if (keyframes_.empty() || step != last() || keyframes_.back().step == step || steps_.empty() ||
+      steps_.back().step != step || atThisStep >= kMaxChangesPerStep || world.solverSettings().dt != dt_) {
+    keyframe(world);
+    return;
+  }
+  bytes += sizeof(Change) + sizeof(std::function<void(phys::World&)>);
+  changes_.push_back(
+      {step, std::make_shared<const std::function<void(phys::World&)>>(std::move(redo)), bytes});
+  bytes_ += bytes;
+  steps_.back() = recordOf(world);  // the state this step is shown as is the one after the command
+  keepWithinBudget();
+}
+
+void Recording::dropChangesFrom(long step) {
+  while (!changes_.empty() && changes_.back().step >= step) {
+    bytes_ -= changes_.back().bytes;
+    changes_.pop_back();
+  }
 }
 
 void Recording::appendMotion(std::shared_ptr<const phys::World> base, std::size_t baseBytes,
@@ -166,6 +195,10 @@ void Recording::keepWithinBudget() {
     keyframes_.pop_front();
     const long start = keyframes_.front().step;
     while (!steps_.empty() && steps_.front().step <= start) steps_.pop_front();
+    while (!changes_.empty() && changes_.front().step <= start) {
+      bytes_ -= changes_.front().bytes;
+      changes_.pop_front();
+    }
   }
 }
 
@@ -173,6 +206,14 @@ std::unique_ptr<phys::World> Recording::build(const Keyframe& k) {
   auto world = std::make_unique<phys::World>(*k.world);
   if (k.motion) world->setMotion(*k.motion);
   return world;
+}
+
+void Recording::stepAgain(phys::World& world, const StepRecord& record) const {
+  if (record.dragTarget && world.drag()) world.setDragTarget(*record.dragTarget);
+  world.step();
+  auto c = std::lower_bound(changes_.begin(), changes_.end(), record.step,
+                            [](const Change& change, long s) { return change.step < s; });
+  for (; c != changes_.end() && c->step == record.step; ++c) (*c->redo)(world);
 }
 
 std::unique_ptr<phys::World> Recording::worldAt(long step, std::string& divergence,
@@ -204,8 +245,7 @@ std::unique_ptr<phys::World> Recording::worldAt(long step, std::string& divergen
       divergence = "no record of step " + std::to_string(s);
       break;
     }
-    if (record->dragTarget && world->drag()) world->setDragTarget(*record->dragTarget);
-    world->step();
+    stepAgain(*world, *record);
     if (world->stateHash() != record->hash && divergence.empty()) {
       divergence = "step " + std::to_string(s) + " rebuilt from step " + std::to_string(from) +
                    " differs from the recorded one";
@@ -232,8 +272,7 @@ bool Recording::replay(const std::function<void(const phys::World&, const StepRe
         divergence = "no record of step " + std::to_string(s);
         return false;
       }
-      if (record->dragTarget && world->drag()) world->setDragTarget(*record->dragTarget);
-      world->step();
+      stepAgain(*world, *record);
       if (world->stateHash() != record->hash) {
         divergence = "step " + std::to_string(s) + " rebuilt from the keyframe at step " +
                      std::to_string(from) + " differs from the recorded one";

@@ -1,8 +1,9 @@
 #pragma once
 // Rewind and replay (docs/sandbox.md, "Rewind"): the main run's history, kept so that any recorded
 // step can be shown again exactly and the run resumed from it. A full copy of the world (a
-// keyframe) every few steps and after every command that changed it, and for each step its state
-// hash and the drag's target. A step between keyframes is rebuilt from the keyframe before it,
+// keyframe) every few steps and after every command that changed it (or, for a command that only
+// sets values, as a slider does, the command itself), and for each step its state hash and the
+// drag's target. A step between keyframes is rebuilt from the keyframe before it,
 // stepped again with the same drag targets: the step is deterministic, so the rebuilt world is
 // the recorded one bit for bit, which the hashes check step by step. Keyframes are what costs
 // memory; the oldest go first when the recording is over its budget. A recording opened from a
@@ -57,6 +58,16 @@ class Recording {
   /// none is kept.
   void keyframe(const phys::World& world);
   void keyframeIfDue(const phys::World& world);
+  /// After a command that changed `world` by `redo` alone: kept as the change, applied again to the
+  /// world rebuilt at this step, instead of a copy of the world (a slider dragged while the world
+  /// runs changes it every frame, and a copy a frame filled the budget in seconds). `redo` must be
+  /// deterministic and hold its values by copy; `bytes` is what it holds besides itself. A copy
+  /// as keyframe() all the same where the change cannot be replayed from the steps kept: a world
+  /// not at the last step kept (a fork), one changed at the step of a keyframe (which the copy
+  /// replaces) or already changed kMaxChangesPerStep times there (a slider dragged while paused), or
+  /// a new dt (seconds() counts each keyframe's).
+  void changed(const phys::World& world, std::function<void(phys::World&)> redo, std::size_t bytes);
+  static constexpr int kMaxChangesPerStep = 4;
   /// Appends a step kept as its motion (a recording file's): shown as `base` put in it
   /// (World::setMotion), `base` being a world that has not stepped, of the structure and settings
   /// the motion was recorded with, shared by the steps of a file's part; `baseBytes` is its memory
@@ -84,7 +95,8 @@ class Recording {
   bool replay(const std::function<void(const phys::World&, const StepRecord&)>& visit,
               std::string& divergence) const;
 
-  /// Memory the keyframes hold (unit: bytes: the heap each copy took) and the budget.
+  /// Memory the keyframes hold (unit: bytes: the heap each copy took) and the changes kept, and
+  /// the budget.
   std::size_t bytes() const { return bytes_; }
   std::size_t budget() const { return budget_; }
   void setBudget(std::size_t bytes);
@@ -102,12 +114,22 @@ class Recording {
     std::size_t bytes = 0;
     std::size_t baseBytes = 0;  // of `bytes`, the base world's, counted with this step of its part
   };
+  // A command kept as what it did (changed()), applied after step `step` is taken again.
+  struct Change {
+    long step = 0;
+    std::shared_ptr<const std::function<void(phys::World&)>> redo;
+    std::size_t bytes = 0;
+  };
   static std::unique_ptr<phys::World> build(const Keyframe& k);
+  // Step `s` taken again in `world`: the drag's target it had, the step, the changes made after it.
+  void stepAgain(phys::World& world, const StepRecord& record) const;
   void dropAfter(long step);
+  void dropChangesFrom(long step);  // the changes kept after steps from `step` on
   void keepWithinBudget();
 
   std::deque<Keyframe> keyframes_;
   std::deque<StepRecord> steps_;  // from the first keyframe's step + 1 to last()
+  std::deque<Change> changes_;    // in order, each after a step between keyframes, none at one's
   std::size_t bytes_ = 0;
   std::size_t budget_ = kDefaultRecordingBudget;
   long interval_ = 60;

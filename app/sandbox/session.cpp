@@ -242,6 +242,12 @@ void Session::worldChanged() {
   recording_.keyframe(scene().world);
 }
 
+void Session::worldChanged(std::function<void(phys::World&)> redo, std::size_t bytes) {
+  recording_.setHeapShared(saver_.running());
+  rewound_ = false;
+  recording_.changed(scene().world, std::move(redo), bytes);
+}
+
 std::string Session::rewindTo(long step) {
   if (overlayActive()) return "nothing to rewind: the method overlay's runs are not recorded";
   if (!recording_.covers(step)) {
@@ -393,8 +399,9 @@ std::string Session::setWorldSettings(const phys::WorldSettings& settings) {
   const std::string why = phys::validate(settings);
   if (!why.empty()) return "world settings: " + why;
   cancelSteps();
-  forEachWorld([&](phys::World& w) { w.setWorldSettings(settings); });
-  worldChanged();
+  const auto apply = [settings](phys::World& w) { w.setWorldSettings(settings); };
+  forEachWorld(apply);
+  worldChanged(apply, sizeof(settings));
   return {};
 }
 
@@ -402,7 +409,7 @@ std::string Session::setSolverSettings(const phys::SolverSettings& settings) {
   try {
     cancelSteps();
     scene().world.setSolverSettings(settings);
-    worldChanged();
+    worldChanged([settings](phys::World& w) { w.setSolverSettings(settings); }, sizeof(settings));
     return {};
   } catch (const std::invalid_argument& e) {
     return e.what();
@@ -414,7 +421,7 @@ std::string Session::setDriveStrength(double strength) {
   if (scene().world.rigidJoints().empty() && scene().world.particleJoints().empty())
     return "drives: the scene has no joints with drives (rigid joints, or particle joints of ragdolls)";
   cancelSteps();
-  forEachWorld([strength](phys::World& w) {
+  const auto apply = [strength](phys::World& w) {
     for (std::size_t k = 0; k < w.rigidJoints().size(); ++k) {
       phys::JointDrive drive = w.jointDrive(k);
       drive.strength = strength;
@@ -429,8 +436,9 @@ std::string Session::setDriveStrength(double strength) {
     // too, or the slider would hold for one substep.
     for (std::size_t k = 0; k < w.characters().size(); ++k)
       w.setCharacterStrength(k, strength, w.characters()[k].goalRootStrength);
-  });
-  worldChanged();
+  };
+  forEachWorld(apply);
+  worldChanged(apply, 0);
   return {};
 }
 

@@ -216,6 +216,9 @@ class Session {
   /// A command changed the main run's world: the recording keeps it as it is now (and forks
   /// there if it was rewound).
   void worldChanged();
+  /// A command changed it by `redo` alone, which holds `bytes` by copy (Recording::changed): the
+  /// recording keeps the command, not a copy of the world, where it can.
+  void worldChanged(std::function<void(phys::World&)> redo, std::size_t bytes);
   /// Before the main run steps: a rewound world forks the recording at its step.
   void beforeStepping();
   /// After it stepped, synchronously or in the background.
