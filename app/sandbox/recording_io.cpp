@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "fileio/files.h"
 #include "scenes/scene_writer.h"
@@ -13,14 +14,37 @@
 namespace sandbox {
 namespace {
 
-struct Settings {
+// What a part's scene carries that a step's motion (phys::Motion) does not, and that a command can
+// change between two steps: the settings, and the joints' drives (the World panel's drive
+// strength), less the targets and strengths a character gives its joints every substep from its
+// own state, which its motion holds. A step whose world differs in any of these starts a new part,
+// or the opened file would put it in a world with the drives it had before the change.
+struct PartKey {
   phys::SolverSettings solver;
   phys::WorldSettings world;
-};
+  std::vector<phys::JointDrive> drives;  // rigid joints', then particle joints'
 
-bool sameSettings(const Settings& a, const phys::World& b) {
-  return a.solver == b.solverSettings() && a.world == b.worldSettings();
-}
+  explicit PartKey(const phys::World& w) : solver(w.solverSettings()), world(w.worldSettings()) {
+    const std::size_t rigid = w.rigidJoints().size();
+    drives.resize(rigid + w.particleJoints().size());
+    for (std::size_t k = 0; k < rigid; ++k) drives[k] = w.jointDrive(k);
+    for (std::size_t k = 0; k < w.particleJoints().size(); ++k) drives[rigid + k] = w.particleJointDrive(k);
+    for (const phys::Character& c : w.characters()) {
+      for (std::size_t b = 1; b < c.bones.size(); ++b) {
+        phys::JointDrive& aimed = drives[(c.particleParts ? rigid : 0) + c.bones[b].joint];
+        aimed.target = phys::Quat{1.0, 0.0, 0.0, 0.0};
+        aimed.strength = 0.0;
+      }
+    }
+  }
+  bool operator==(const PartKey& o) const {
+    auto same = [](const phys::JointDrive& a, const phys::JointDrive& b) {
+      return a.target == b.target && a.strength == b.strength && a.stiffness == b.stiffness;
+    };
+    return solver == o.solver && world == o.world &&
+           std::equal(drives.begin(), drives.end(), o.drives.begin(), o.drives.end(), same);
+  }
+};
 
 // The world as a scene file's text, checked to load back into the same structure: a file that
 // could not be opened again is never written.
@@ -52,15 +76,15 @@ SavedRecording toSaved(const Recording& recording, const scenes::Scene& scene,
                        const std::function<void()>& stepDone) {
   SavedRecording saved;
   saved.sceneName = scene.name;
-  Settings partSettings;  // of the current part
+  std::optional<PartKey> partKey;  // of the current part
   std::string divergence;
   const bool whole = recording.replay(
       [&](const phys::World& world, const StepRecord& record) {
         const std::uint64_t key = structureKey(world);
-        if (saved.parts.empty() || saved.parts.back().structure != key ||
-            !sameSettings(partSettings, world)) {
+        PartKey now(world);
+        if (saved.parts.empty() || saved.parts.back().structure != key || !(*partKey == now)) {
           saved.parts.push_back({partScene(scene, world, record.step), key, {}});
-          partSettings = {world.solverSettings(), world.worldSettings()};
+          partKey = std::move(now);
         }
         saved.parts.back().steps.push_back({record, world.motion()});
         if (stepDone) stepDone();

@@ -23,7 +23,8 @@ class RecordingIoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Every step `recording` holds, a new part wherever the structure or the settings change, each
+/// Every step `recording` holds, a new part wherever the structure, the settings or a joint's drive
+/// (other than a character's aim) change, each
 /// part's world written as a scene with `scene`'s name, description and camera. Throws
 /// RecordingIoError when a step cannot be rebuilt or a part's world cannot be written as a scene
 /// that loads back into the same structure. `stepDone`, if given, is called after each step.
