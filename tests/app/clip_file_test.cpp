@@ -588,6 +588,39 @@ TEST(ClipFile, SaveAsKeepsAFadeUnderWay) {
   }
 }
 
+// A clip file's name is bytes, and may be no UTF-8 (a Latin-1 name): Save As once wrote it as it was,
+// and the file it wrote did not load. It refuses, naming the attribute and the bytes, and the file
+// saved before stays as it was.
+TEST(ClipFile, SaveAsRefusesAClipNameThatIsNotUtf8) {
+  const testing_app::TempFolder dir;
+  const std::filesystem::path latin1 = dir.path / "r\xFFn.bvh";
+  std::filesystem::copy_file(kClips + "stand.bvh", latin1);
+  scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/run-cycle.xml");
+  const std::filesystem::path file = dir.path / "saved.xml";
+  scenes::saveSceneFile(scene, file);
+  auto content = [&file] {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string before = content();
+  scene.world.playClip(
+      0, phys::Playback{std::make_shared<const phys::Clip>(clips::loadClip(latin1.string())), 0.0, 1.0, true},
+      0.0);
+  try {
+    scenes::saveSceneFile(scene, file);
+    ADD_FAILURE() << "saved a clip name that is not UTF-8";
+  } catch (const std::exception& e) {
+    const std::string why = e.what();
+    EXPECT_NE(why.find("saved.xml: cannot save this world as a scene: <character> attribute 'clip' holds "
+                       "0xFF, which is not UTF-8"),
+              std::string::npos)
+        << why;
+  }
+  EXPECT_EQ(content(), before);
+  EXPECT_EQ(
+      std::distance(std::filesystem::directory_iterator(dir.path), std::filesystem::directory_iterator()), 2);
+}
+
 // Save As names each clip file relative to the saved file's folder, as the project's scenes do, so a
 // scene saved beside its clips can move with them; the text for a recording, which has no folder,
 // names them by absolute path. Either way the reload plays the same files.

@@ -187,6 +187,41 @@ std::string controlCharacterProblem(std::string_view value) {
   return {};
 }
 
+// The first bytes that are not UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing past
+// U+10FFFF): a sequence's lead up to the byte that breaks it; empty if there are none. pugixml
+// passes such bytes through, so a Latin-1 name would reach the sandbox's labels and the lab's
+// CSVs as bytes no reader can decode.
+std::string_view firstNotUtf8(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size()) {
+    const auto lead = static_cast<unsigned char>(bytes[i]);
+    std::size_t length = 0;
+    unsigned char low = 0x80, high = 0xBF;  // the second byte's range, narrowed for some leads
+    if (lead < 0x80) {
+      length = 1;
+    } else if (lead >= 0xC2 && lead <= 0xDF) {
+      length = 2;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+      length = 3;
+      if (lead == 0xE0) low = 0xA0;   // overlong below U+0800
+      if (lead == 0xED) high = 0x9F;  // the surrogates U+D800 to U+DFFF
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+      length = 4;
+      if (lead == 0xF0) low = 0x90;   // overlong below U+10000
+      if (lead == 0xF4) high = 0x8F;  // past U+10FFFF
+    } else {
+      return bytes.substr(i, 1);  // a continuation byte alone, an overlong lead (C0, C1) or F5 to FF
+    }
+    for (std::size_t k = 1; k < length; ++k) {
+      if (i + k == bytes.size()) return bytes.substr(i);  // cut short by the end of the file
+      const auto c = static_cast<unsigned char>(bytes[i + k]);
+      if (c < (k == 1 ? low : 0x80) || c > (k == 1 ? high : 0xBF)) return bytes.substr(i, k + 1);
+    }
+    i += length;
+  }
+  return {};
+}
+
 void ElementReader::refuseControlCharacters(std::string_view attribute, std::string_view value) const {
   if (const std::string problem = controlCharacterProblem(value); !problem.empty()) fail(attribute, problem);
 }

@@ -21,6 +21,11 @@ namespace scenes::detail {
 /// ...", or empty: one test for the reader and the writer, so that what is written loads.
 std::string controlCharacterProblem(std::string_view value);
 
+/// The first bytes of `bytes` that are not UTF-8 (RFC 3629), a sequence's lead up to the byte that
+/// breaks it; empty if there are none. One test for the loader, which refuses a file holding
+/// them, and the writer, which refuses to write them.
+std::string_view firstNotUtf8(std::string_view bytes);
+
 /// Maps a pointer into the parsed buffer back to a 1-based line number.
 class LineIndex {
  public:

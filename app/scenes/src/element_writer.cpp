@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "element_reader.h"
@@ -65,6 +66,18 @@ ElementWriter& ElementWriter::text(std::string_view attribute, std::string_view 
   if (const std::string problem = controlCharacterProblem(value); !problem.empty()) {
     throw std::invalid_argument("<" + name_ + "> attribute '" + std::string(attribute) + "' " + problem +
                                 ", which no scene file can hold");
+  }
+  // A file's name on Linux is bytes, and a clip's may be Latin-1: written as they are, the file
+  // would be refused by the loader (scene files are UTF-8).
+  if (const std::string_view bad = firstNotUtf8(value); !bad.empty()) {
+    std::string hex;
+    for (const char c : bad) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, " 0x%02X", static_cast<unsigned char>(c));
+      hex += byte;
+    }
+    throw std::invalid_argument("<" + name_ + "> attribute '" + std::string(attribute) + "' holds" + hex +
+                                ", which is not UTF-8, and scene files are UTF-8");
   }
   attributes_.append(" ").append(attribute).append("=\"").append(escapeAttribute(value)).append("\"");
   return *this;
