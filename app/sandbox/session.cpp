@@ -277,6 +277,14 @@ std::string Session::startSavingRecording(const std::filesystem::path& file) {
   if (recording_.empty()) return "nothing recorded yet";
   if (saver_.running()) return "a recording is being saved: wait for it to finish";
   finishSaving();  // an earlier one, done but not collected
+  // A folder that is missing or read-only is said now, not after every step was rebuilt (seconds
+  // for a big scene).
+  try {
+    fileio::checkWritable(file);
+  } catch (const std::exception& e) {
+    status_ = std::string("the recording was not saved: ") + e.what();
+    return e.what();
+  }
   saver_.start(recording_, scene(), file);
   status_ = "saving the recording to " + file.filename().string();
   return {};

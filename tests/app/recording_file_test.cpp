@@ -149,8 +149,11 @@ TEST(RecordingFile, ClosingWithASaveUnderWaySaysHowItEnded) {
   EXPECT_NE(saved.find("saved steps 0 to 60"), std::string::npos) << saved;
   EXPECT_EQ(sandbox::decodeRecording(contentOf(file)).lastStep(), 60);
   EXPECT_EQ(s.finishSavingOnClose(), "") << "said once";
-  const fs::path nowhere = dir.path / "missing" / "r.jrec";
-  ASSERT_EQ(s.startSavingRecording(nowhere), "");
+  // A folder missing from the start is said at once (NothingToSaveOrNowhereToSaveIt); one that goes
+  // while the steps are rebuilt (which takes far longer than removing it) only as the file is written.
+  fs::create_directory(dir.path / "going");
+  ASSERT_EQ(s.startSavingRecording(dir.path / "going" / "r.jrec"), "");
+  fs::remove_all(dir.path / "going");
   const std::string failed = s.finishSavingOnClose();
   EXPECT_EQ(failed.rfind("the recording was not saved: ", 0), 0u) << failed;
   EXPECT_NE(failed.find("No such file or directory"), std::string::npos) << failed;
@@ -496,6 +499,10 @@ TEST_F(BadRecording, APartSceneWithAGeneratorIsRefusedBeforeItIsBuilt) {
 TEST_F(BadRecording, NothingToSaveOrNowhereToSaveIt) {
   EXPECT_NE(session_.saveRecording(dir_.path / "no-such-folder" / "x.jrec").find("No such file or directory"),
             std::string::npos);
+  // Said as the save starts, before any step is rebuilt for it (seconds for a big scene).
+  const std::string missing = session_.startSavingRecording(dir_.path / "no-such-folder" / "y.jrec");
+  EXPECT_NE(missing.find("No such file or directory"), std::string::npos) << missing;
+  EXPECT_FALSE(session_.savingProgress().has_value());
   sandbox::Session empty = openSession("chain");
   empty.setRecordingBudget(0);  // keeps the latest keyframe only: still a recording of one step
   EXPECT_EQ(empty.saveRecording(dir_.path / "one.jrec"), "");
