@@ -80,7 +80,10 @@ void Recording::setBudget(std::size_t bytes) {
 }
 
 void Recording::dropAfter(long step) {
-  while (!steps_.empty() && steps_.back().step > step) steps_.pop_back();
+  while (!steps_.empty() && steps_.back().step > step) {
+    steps_.pop_back();
+    bytes_ -= sizeof(StepRecord);
+  }
   dropChangesFrom(step + 1);
   while (keyframes_.size() > 1 && keyframes_.back().step > step) {
     bytes_ -= keyframes_.back().bytes;
@@ -98,6 +101,7 @@ void Recording::stepped(const StepRecord& record) {
     return;
   }
   steps_.push_back(record);
+  bytes_ += sizeof(StepRecord);
 }
 
 void Recording::keyframe(const phys::World& world) {
@@ -168,7 +172,10 @@ void Recording::appendMotion(std::shared_ptr<const phys::World> base, std::size_
     bytes += c.partStrength.capacity() * sizeof(phys::Real) +
              (c.pose.turns.capacity() + c.held.turns.capacity()) * sizeof(phys::Quat);
   }
-  if (!keyframes_.empty()) steps_.push_back(record);
+  if (!keyframes_.empty()) {
+    steps_.push_back(record);
+    bytes_ += sizeof(StepRecord);
+  }
   dt_ = base->solverSettings().dt;
   keyframes_.push_back({record.step, std::move(base), std::make_shared<const phys::Motion>(std::move(motion)),
                         bytes, baseBytes});
@@ -194,7 +201,10 @@ void Recording::keepWithinBudget() {
     }
     keyframes_.pop_front();
     const long start = keyframes_.front().step;
-    while (!steps_.empty() && steps_.front().step <= start) steps_.pop_front();
+    while (!steps_.empty() && steps_.front().step <= start) {
+      steps_.pop_front();
+      bytes_ -= sizeof(StepRecord);
+    }
     while (!changes_.empty() && changes_.front().step <= start) {
       bytes_ -= changes_.front().bytes;
       changes_.pop_front();

@@ -95,8 +95,8 @@ class Recording {
   bool replay(const std::function<void(const phys::World&, const StepRecord&)>& visit,
               std::string& divergence) const;
 
-  /// Memory the keyframes hold (unit: bytes: the heap each copy took) and the changes kept, and
-  /// the budget.
+  /// Memory the recording holds (unit: bytes): the heap each keyframe's copy took, each step's
+  /// record and each change kept; and the budget.
   std::size_t bytes() const { return bytes_; }
   std::size_t budget() const { return budget_; }
   void setBudget(std::size_t bytes);

@@ -4,6 +4,7 @@
 // recorded alike, and the memory budget drops the oldest keyframes.
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -189,6 +190,21 @@ TEST(Rewind, ASliderDraggedWhileRunningKeepsItsChangesNotCopies) {
   ASSERT_EQ(s.rewindTo(199), "");
   ASSERT_EQ(s.rewindTo(200), "");
   EXPECT_EQ(hashOf(s), last);
+}
+
+// Each step's record (its hash and drag target) is memory too: an hour of a small scene at 60 steps
+// a second is 216,000 of them, 10 MB, which the recording once left out of its count and budget.
+TEST(Rewind, EveryStepsRecordCountsInTheMemory) {
+  const phys::World world;
+  sandbox::Recording recording;
+  recording.restart(world);
+  const std::size_t keyframe = recording.bytes();
+  for (long n = 1; n <= 1000; ++n) recording.stepped(sandbox::StepRecord{n, 0, std::nullopt});
+  ASSERT_EQ(recording.last(), 1000);
+  EXPECT_EQ(recording.bytes(), keyframe + 1000 * sizeof(sandbox::StepRecord));
+  recording.keyframe(world);  // at step 0: a command on a rewound world drops every step after it
+  EXPECT_EQ(recording.last(), 0);
+  EXPECT_LT(recording.bytes(), keyframe + 100 * sizeof(sandbox::StepRecord));
 }
 
 // The time recorded counts each step at the dt it was taken with.
