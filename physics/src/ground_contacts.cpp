@@ -61,6 +61,22 @@ void GroundContacts::markStill(std::span<const Real> inverseMass) {
   }
 }
 
+void GroundContacts::unmarkMoving(std::span<const Real> inverseMass) {
+  if (!anyMarked_) return;
+  anyStill_ = false;
+  for (std::size_t c = 0; c < points_.size(); ++c) {
+    if (wasStill_[c] == 0) continue;
+    const Embedding& e = points_[c].point;
+    bool still = true;
+    for (int i = 0; i < e.count && still; ++i) still = inverseMass[e.particle[i]] == 0.0;
+    if (!still) {
+      if (still_[c] != 0) state_.touched[c] = state_.hit[c] = 0;  // kept from the last step: cleared
+      still_[c] = wasStill_[c] = 0;
+    }
+    anyStill_ = anyStill_ || still_[c] != 0;
+  }
+}
+
 void GroundContacts::clearStill() {
   if (!anyMarked_) return;
   std::fill(still_.begin(), still_.end(), std::uint8_t{0});

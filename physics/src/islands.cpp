@@ -26,6 +26,7 @@ NodeId Islands::addNode(bool fixed) {
   islandAsleep_.push_back(0);
   islandRest_.push_back(0.0);
   islandNumber_.push_back(0);
+  wakeGroup_.push_back(0);
   if (!fixed) ++movableNodes_;
   counted_ = false;
   return id;
@@ -54,6 +55,7 @@ NodeId Islands::addBody(int particleCount) {
 // so that adding a particle does not allocate each time) and never in the step.
 void Islands::keepMaskRoom() {
   if (maskedNodes_.capacity() < asleep_.size()) maskedNodes_.reserve(2 * asleep_.size());
+  if (woken_.capacity() < asleep_.size()) woken_.reserve(2 * asleep_.size());
   if (maskedParticles_.capacity() < particleNode_.size()) maskedParticles_.reserve(2 * particleNode_.size());
   if (maskedRigid_.capacity() < bodyNode_.size()) maskedRigid_.reserve(2 * bodyNode_.size());
 }
@@ -79,6 +81,7 @@ void Islands::mask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
                             std::exchange(r.inverseInertia[i], Vec3(0.0)),
                             std::exchange(r.inverseInertiaWorld[i], glm::dmat3(0.0))});
   }
+  masking_ = !maskedNodes_.empty();
 }
 
 void Islands::unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
@@ -99,6 +102,67 @@ void Islands::unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies)
     r.inverseInertiaWorld[body.rigid] = m.inverseInertiaWorld;
   }
   maskedNodes_.clear();
+  masking_ = false;
+}
+
+// The masses of the nodes just woken go back; the others' stay in the lists, moved up in place
+// (a node's masses never move towards the end), in node order as mask() left them.
+void Islands::unmaskWoken(Particles& p, RigidBodies& r, std::span<const Body> bodies) {
+  std::size_t particle = 0, rigid = 0;                    // read
+  std::size_t node = 0, keptParticle = 0, keptRigid = 0;  // write
+  std::size_t next = 0;                                   // the next woken node, both lists in node order
+  for (const NodeId n : maskedNodes_) {
+    while (next < woken_.size() && woken_[next] < n) ++next;
+    const bool giveBack = next < woken_.size() && woken_[next] == n;
+    const BodyId id = nodeBody_[n];
+    const int particles = id == kNoBody ? 1 : bodies[id].particleCount;
+    for (int j = 0; j < particles; ++j, ++particle) {
+      if (!giveBack) {
+        maskedParticles_[keptParticle++] = maskedParticles_[particle];
+        continue;
+      }
+      p.inverseMass[id == kNoBody ? nodeParticle_[n] : bodies[id].firstParticle + j] =
+          maskedParticles_[particle];
+    }
+    if (id != kNoBody && bodies[id].model == BodyModel::Rigid) {
+      const RigidMass m = maskedRigid_[rigid++];
+      if (giveBack) {
+        const RigidId i = bodies[id].rigid;
+        r.inverseMass[i] = m.inverseMass;
+        r.inverseInertia[i] = m.inverseInertia;
+        r.inverseInertiaWorld[i] = m.inverseInertiaWorld;
+      } else {
+        maskedRigid_[keptRigid++] = m;
+      }
+    }
+    if (!giveBack) maskedNodes_[node++] = n;
+  }
+  maskedNodes_.resize(node);
+  maskedParticles_.resize(keptParticle);
+  maskedRigid_.resize(keptRigid);
+}
+
+std::span<const NodeId> Islands::wakeTouched(std::span<const Manifold> manifolds) {
+  woken_.clear();
+  if (sleepingNodes_ == 0) return {};
+  bool any = false;
+  for (const Manifold& m : manifolds) {
+    if (m.contactCount == 0) continue;
+    const NodeId a = bodyNode_[m.a], b = bodyNode_[m.b];
+    if (asleep_[a] == asleep_[b]) continue;  // both awake (two sleeping bodies are not collided)
+    wakeGroup_[sleepGroup_[asleep_[a] != 0 ? a : b]] = 1;
+    any = true;
+  }
+  if (!any) return {};
+  for (NodeId n{}; n < asleep_.size(); ++n) {
+    if (asleep_[n] == 0 || wakeGroup_[sleepGroup_[n]] == 0) continue;
+    woken_.push_back(n);
+  }
+  for (const NodeId n : woken_) {
+    wakeGroup_[sleepGroup_[n]] = 0;
+    setAsleep(n, false);
+  }
+  return woken_;
 }
 
 void Islands::join(NodeId a, NodeId b) {

@@ -131,6 +131,14 @@ void NarrowPhase::build(const NarrowPhaseInput& in) {
   sizeState();
 }
 
+void NarrowPhase::rebuild(const NarrowPhaseInput& in) {
+  // The last substep's manifolds back where build() finds them, then build() as before.
+  std::swap(contacts_, spareContacts_);
+  std::swap(rigidContacts_, spareRigidContacts_);
+  std::swap(manifolds_, spareManifolds_);
+  build(in);
+}
+
 // The last substep's manifolds are in the pairs' order, (a, b) ascending, as the new pairs are:
 // one walk from the run's first pair finds each pair's old manifold.
 void NarrowPhase::buildRange(const NarrowPhaseInput& in, std::size_t begin, std::size_t end,

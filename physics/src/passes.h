@@ -67,6 +67,9 @@ inline Real thinnestHalfExtent(const Obb& a, const Obb& b) {
 /// `workers`, if given, integrate ranges of particles at once (SolverSettings::threads).
 void integrate(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked,
                const Workers* workers = nullptr);
+/// The same for the particles [begin, end) alone: what integrate() does to each of them, bit for bit.
+void integrateRange(Particles& p, const WorldSettings& world, Real h, std::span<Vec3> checked,
+                    std::size_t begin, std::size_t end);
 
 /// Pulls an embedded point towards `target` by a spring of the given stiffness (N/m) and
 /// damping (N s/m), stepped implicitly over the substep h, so it is stable at any stiffness:

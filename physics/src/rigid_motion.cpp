@@ -101,8 +101,13 @@ Vec3 turnBetween(const Quat& from, const Quat& to) {
 
 void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h, std::span<Vec3> checkedPosition,
                     std::span<Quat> checkedOrientation) {
+  integrateRigidRange(r, world, h, checkedPosition, checkedOrientation, RigidId{}, RigidId(r.size()));
+}
+
+void integrateRigidRange(RigidBodies& r, const WorldSettings& world, Real h, std::span<Vec3> checkedPosition,
+                         std::span<Quat> checkedOrientation, RigidId begin, RigidId end) {
   const Real keep = std::exp(-world.damping * h);
-  for (RigidId i{}; i < r.size(); ++i) {
+  for (RigidId i = begin; i < end; ++i) {
     r.previousPosition[i] = checkedPosition[i] = r.position[i];
     r.previousOrientation[i] = checkedOrientation[i] = r.orientation[i];
     if (r.inverseMass[i] == 0.0) continue;

@@ -59,6 +59,9 @@ Quat nudged(const Quat& q, const Vec3& angle);
 /// Frozen bodies (inverse mass 0) do not move.
 void integrateRigid(RigidBodies& r, const WorldSettings& world, Real h, std::span<Vec3> checkedPosition,
                     std::span<Quat> checkedOrientation);
+/// The same for the bodies [begin, end) alone, bit for bit.
+void integrateRigidRange(RigidBodies& r, const WorldSettings& world, Real h, std::span<Vec3> checkedPosition,
+                         std::span<Quat> checkedOrientation, RigidId begin, RigidId end);
 /// After the position passes: v = (x - x*) / h, w = turnBetween(q*, q) / h.
 void deriveRigidVelocities(RigidBodies& r, Real h);
 

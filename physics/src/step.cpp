@@ -86,6 +86,7 @@ bool World::stepUnless(const std::atomic<bool>* stop) {
     const bool newPairs = findPairs(s == 0);
     stopFastBodies();
     findContacts(newPairs, s == 0, h);
+    if (newPairs) wakeTouched(s == 0, h);
     dealContacts(newPairs);
     partOverlaps();
     measureApproaches(h);
@@ -125,6 +126,48 @@ void World::skipSleepers() {
   constraints_.markStill(particles_.inverseMass);
   bodyLayout_.markStill(particles_.inverseMass);
   ground_.markStill(particles_.inverseMass);
+}
+
+// A sleeping island that one of the manifolds just found joins to an awake body wakes now, before
+// the passes, as Box2D v3 wakes what a new contact touches right after its narrow phase: woken only
+// at the step's end (updateIslands), it met the awake body as fixed for the whole step and took up
+// its impact (a box struck in a zero-gravity cradle stopped dead at the next box: 0.31 of 5 kg m/s
+// left). A woken island gets its masses back and what the masks let the step skip is done for it:
+// this substep's integration (the same arithmetic integrate() does, so its motion goes on as it
+// slept), its frames, its lane groups and ground points, and its pairs, among them the pairs of two
+// of its own bodies, which were not collided while both slept. The pairs found again may touch
+// another sleeping island, which wakes in turn.
+void World::wakeTouched(bool firstSubstep, Real h) {
+  if (!islands_.masked()) return;
+  for (std::span<const NodeId> woken = islands_.wakeTouched(narrowPhase_.manifolds()); !woken.empty();
+       woken = islands_.wakeTouched(narrowPhase_.manifolds())) {
+    {
+      const detail::StageTimer timer(profile_, Stage::Islands);
+      islands_.unmaskWoken(particles_, rigidBodies_, bodies_);
+      for (const NodeId n : woken) {
+        const BodyId id = islands_.nodeBody_[n];
+        if (id == kNoBody) {
+          const ParticleId i = islands_.nodeParticle_[n];
+          detail::integrateRange(particles_, world_, h, guard_.checked(), i, i + 1);
+          continue;
+        }
+        const Body& body = bodies_[id];
+        detail::integrateRange(particles_, world_, h, guard_.checked(), body.firstParticle,
+                               body.firstParticle + body.particleCount);
+        if (body.model == BodyModel::Rigid) {
+          detail::integrateRigidRange(rigidBodies_, world_, h, guard_.checkedRigidPositions(),
+                                      guard_.checkedRigidOrientations(), body.rigid, body.rigid + 1);
+        }
+        frameAsleep_[id] = 0;
+        fitFrame(id);
+      }
+      constraints_.markStill(particles_.inverseMass);
+      bodyLayout_.markStill(particles_.inverseMass);
+      ground_.unmarkMoving(particles_.inverseMass);
+    }
+    findPairs(true);
+    findContacts(true, firstSubstep, h, true);
+  }
 }
 
 // When every island sleeps, a step only passes the time (as the substeps would add it up) and
@@ -259,12 +302,15 @@ bool World::findPairs(bool firstSubstep) {
 // The contacts between bodies are found when the broad phase found its pairs (`newPairs`), and
 // measured again in the step's other substeps; the rigid bodies' ground contacts, in the first
 // substep and with new pairs.
-void World::findContacts(bool newPairs, bool firstSubstep, Real h) {
+// `again`: right after the same substep's, for islands woken since (wakeTouched).
+void World::findContacts(bool newPairs, bool firstSubstep, Real h, bool again) {
   if (bodies_.size() < 2 && !world_.ground && rigidGround_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::NarrowPhase);
   if (bodies_.size() >= 2) {
     const NarrowPhaseInput in = narrowPhaseInput();
-    if (newPairs)
+    if (again)
+      narrowPhase_.rebuild(in);
+    else if (newPairs)
       narrowPhase_.build(in);
     else
       narrowPhase_.refresh(in);

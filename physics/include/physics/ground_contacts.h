@@ -54,6 +54,9 @@ class GroundContacts {
   /// them and their push and flags as they are (their depths at x* are still measured: the
   /// parting reads them). clearStill marks none.
   void markStill(std::span<const Real> inverseMass);
+  /// In the step, after islands woke and got their masses back (World::wakeTouched): their points are
+  /// no longer still, and their flags start from none, as an awake body's do at the step's start.
+  void unmarkMoving(std::span<const Real> inverseMass);
   void clearStill();
   /// Per point, 1 when marked still; empty when none is.
   std::span<const std::uint8_t> still() const {

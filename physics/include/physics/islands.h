@@ -9,8 +9,9 @@
 // An island whose every node has been slower than SleepSettings::speed for SleepSettings::time
 // goes to sleep. The world then steps none of it (World::step: its particles and rigid bodies look
 // pinned to the passes, and pairs of two sleeping bodies are not collided), so its state is kept
-// to the bit. It wakes whole when an awake node joins it by a contact, a stick, a link or a joint,
-// when one of its nodes is dragged, and when the settings change.
+// to the bit. It wakes whole when an awake node joins it by a contact (in the step, as soon as the
+// narrow phase finds it: wakeTouched), a stick, a link or a joint, when one of its nodes is dragged,
+// and when the settings change.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -82,7 +83,16 @@ class Islands {
   void mask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
   void unmask(Particles& p, RigidBodies& r, std::span<const Body> bodies);
   /// True between mask() and unmask() when mask() took something.
-  bool masked() const { return !maskedNodes_.empty(); }
+  bool masked() const { return masking_; }
+
+  /// In the step, once its manifolds are found: wakes every sleeping island that one of them joins
+  /// to an awake node (speculative points included, as update() counts them), so that the passes
+  /// move it rather than hold it as fixed. Returns the nodes it woke (empty when none), in node
+  /// order, until the next call.
+  std::span<const NodeId> wakeTouched(std::span<const Manifold> manifolds);
+  /// Between mask() and unmask(): gives the nodes the last wakeTouched() woke their masses back now,
+  /// so the rest of the step moves them; unmask() leaves them be.
+  void unmaskWoken(Particles& p, RigidBodies& r, std::span<const Body> bodies);
 
   // The four queries below throw std::invalid_argument naming the call, the id and how many there
   // are for an id that does not exist: "bodyAsleep: body 7 does not exist (there are 2)".
@@ -154,6 +164,9 @@ class Islands {
   std::vector<NodeId> maskedNodes_;
   std::vector<Real> maskedParticles_;
   std::vector<RigidMass> maskedRigid_;
+  bool masking_ = false;                 // between a mask() that took something and unmask()
+  std::vector<NodeId> woken_;            // the nodes the last wakeTouched() woke; room for every node
+  std::vector<std::uint8_t> wakeGroup_;  // per node: scratch of wakeTouched, 1 for a group to wake
   std::size_t sleepingNodes_ = 0;
   std::size_t movableNodes_ = 0;
   std::size_t islandCount_ = 0;

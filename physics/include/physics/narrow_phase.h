@@ -79,6 +79,10 @@ class NarrowPhase {
   /// the last step whose bodies have stayed within ManifoldReuseSettings of where they were to each
   /// other when it was made is carried over, points, reference face and all.
   void build(const NarrowPhaseInput& in);
+  /// build() again, right after it, from the same manifolds it carried from (those of the last
+  /// substep, not its own): for pairs it skipped, two sleeping bodies of which an island woke since
+  /// (World::wakeTouched). The pairs it found before come out as they did.
+  void rebuild(const NarrowPhaseInput& in);
   /// In the step's other substeps: kept manifolds follow their reference face; the others are
   /// collided again.
   void refresh(const NarrowPhaseInput& in);

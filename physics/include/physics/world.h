@@ -426,7 +426,8 @@ class World {
   void fitBodyFrames();
   bool findPairs(bool firstSubstep);
   void stopFastBodies();
-  void findContacts(bool newPairs, bool firstSubstep, Real h);
+  void findContacts(bool newPairs, bool firstSubstep, Real h, bool again = false);
+  void wakeTouched(bool firstSubstep, Real h);
   void dealContacts(bool newPairs);
   void partOverlaps();
   void measureApproaches(Real h);
