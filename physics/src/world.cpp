@@ -61,6 +61,16 @@ constexpr Pair kCornerSticks[22] = {
 // The tetra model: all 6 edges of the tetrahedron, rigid with 4 particles (3 * 4 - 6 = 6).
 constexpr Pair kTetraSticks[6] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
+// Whether the new settings may step the world otherwise than the old: all but the thread count and
+// the broad phase's strips, under which the state is the same bit for bit (docs/physics.md,
+// "Threads"; BroadPhase.TheStripSettingsChangeNoPair). Those wake nothing: the sandbox sleeps by
+// default, and its threads slider woke every island and started every rest again.
+bool changesTheStep(const SolverSettings& before, SolverSettings after) {
+  after.threads = before.threads;
+  after.broadPhase = before.broadPhase;
+  return !(after == before);
+}
+
 }  // namespace
 
 World::World(const WorldSettings& world, const SolverSettings& solver) {
@@ -84,7 +94,7 @@ void World::setSolverSettings(const SolverSettings& settings) {
   if (hNew != hOld) keepVelocities(hOld, hNew);
   const bool stiffer = settings.iterations * settings.substeps > solver_.iterations * solver_.substeps;
   const bool projectionOn = settings.jointProjection.enabled && !solver_.jointProjection.enabled;
-  if (!(settings == solver_)) islands_.wakeAll();  // what rested under the old settings may not
+  if (changesTheStep(solver_, settings)) islands_.wakeAll();  // what rested under the old may not
   solver_ = settings;
   workers_.setThreads(settings.threads);
   if (stiffer) settleWithoutVelocity();
