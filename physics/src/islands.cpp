@@ -285,9 +285,15 @@ void Islands::update(const IslandInput& in) {
   }
   // Rest is timed only while sleeping is on: with it off the islands are counted, for the
   // sandbox and the lab, and nothing else is needed (and turning it on starts every clock at 0).
+  // A node faster than sleep.speed does not rest, and its island does not sleep, whatever the sleep
+  // time: with a time of 0 a rest of 0 would meet it (a box thrown up slept on its first step).
+  // Held nodes likewise.
+  constexpr Real kNever = -std::numeric_limits<Real>::infinity();
   for (NodeId i{}; i < n; ++i) {
     if (fixed_[i] != 0 || asleep_[i] != 0) continue;
-    rest_[i] = in.sleep.enabled && nodeSpeed(in, i) < in.sleep.speed ? rest_[i] + in.dt : 0.0;
+    const bool slow = in.sleep.enabled && nodeSpeed(in, i) < in.sleep.speed;
+    rest_[i] = slow ? rest_[i] + in.dt : 0.0;
+    if (!slow) islandRest_[root(i)] = kNever;
   }
   for (const NodeId held : in.held) rest_[held] = 0.0;
   for (NodeId i{}; i < n; ++i) {
@@ -296,8 +302,7 @@ void Islands::update(const IslandInput& in) {
     (asleep_[i] != 0 ? islandAsleep_[r] : islandAwake_[r]) = 1;
     islandRest_[r] = std::min(islandRest_[r], rest_[i]);
   }
-  // A held island never sleeps, even with a sleep time of 0 that a rest of 0 would meet.
-  for (const NodeId held : in.held) islandRest_[root(held)] = -std::numeric_limits<Real>::infinity();
+  for (const NodeId held : in.held) islandRest_[root(held)] = kNever;
   for (NodeId i{}; i < n; ++i) {
     if (fixed_[i] != 0) continue;
     const NodeId r = root(i);

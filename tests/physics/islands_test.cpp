@@ -437,6 +437,28 @@ TEST(Islands, AMovingBodyNeverSleeps) {
   }
 }
 
+// A body faster than the sleeping speed never sleeps, even with a sleep time of 0: its rest, 0, met
+// the time, 0, and a box thrown up slept on its first step, in the air. In zero gravity a box
+// drifting at 1 m/s must drift on: 1 m a second, awake.
+TEST(Islands, AFastBodyNeverSleepsEvenWithASleepTimeOfZero) {
+  for (const phys::BodyModel model : {phys::BodyModel::Rigid, phys::BodyModel::Corners}) {
+    phys::SolverSettings s = sleeping(model);
+    s.sleep.time = 0.0;
+    phys::WorldSettings space;
+    space.gravity = Vec3(0.0);
+    space.ground = false;
+    phys::World world(space, s);
+    phys::BodyDesc drifting = box(Vec3(0.0), model);
+    drifting.velocity = Vec3(1.0, 0.0, 0.0);
+    const BodyId id = world.addBody(drifting);
+    for (int i = 0; i < 60; ++i) {
+      world.step();
+      ASSERT_FALSE(world.islands().bodyAsleep(id)) << phys::toString(model) << ", t = " << world.time();
+    }
+    EXPECT_NEAR(world.bodyPose(id).center.x, 1.0, 1e-9) << phys::toString(model);
+  }
+}
+
 // A setting that changes wakes every island; one set again unchanged does not.
 TEST(Islands, ChangedSettingsWakeEverything) {
   phys::World world({}, sleeping(phys::BodyModel::Rigid));
