@@ -81,9 +81,13 @@ World::World(const WorldSettings& world, const SolverSettings& solver) {
 void World::setWorldSettings(const WorldSettings& settings) {
   const std::string why = validate(settings);
   require(why.empty(), "WorldSettings: " + why);
-  if (!(settings == world_)) islands_.wakeAll();  // new gravity, ground or bounds: all must answer
-  world_ = settings;
-  world_.groundNormal = glm::normalize(settings.groundNormal);
+  // Kept unit length, and compared as kept: the same normal given again, whatever its length, or the
+  // kept one given back, is no change (compared as given, a normal of length 2 woke everything).
+  WorldSettings kept = settings;
+  kept.groundNormal = glm::normalize(settings.groundNormal);
+  if (settings.groundNormal == world_.groundNormal) kept.groundNormal = world_.groundNormal;
+  if (!(kept == world_)) islands_.wakeAll();  // new gravity, ground or bounds: all must answer
+  world_ = kept;
   ground_.combineMaterials(world_.groundMaterial);
 }
 

@@ -467,6 +467,14 @@ TEST(Islands, ChangedSettingsWakeEverything) {
   world.setSolverSettings(world.solverSettings());
   world.setWorldSettings(world.worldSettings());
   EXPECT_TRUE(world.islands().bodyAsleep(id));
+  // A ground normal not of unit length is kept unit length: given again, it is no change.
+  phys::WorldSettings longNormal = world.worldSettings();
+  longNormal.groundNormal = Vec3(0.0, 2.0, 0.0);
+  world.setWorldSettings(longNormal);
+  EXPECT_TRUE(world.islands().bodyAsleep(id));
+  world.setWorldSettings(longNormal);
+  world.setWorldSettings(world.worldSettings());
+  EXPECT_TRUE(world.islands().bodyAsleep(id));
   phys::WorldSettings stronger = world.worldSettings();
   stronger.gravity *= 2.0;
   world.setWorldSettings(stronger);
