@@ -166,9 +166,11 @@ std::span<const NodeId> Islands::wakeTouched(std::span<const Manifold> manifolds
 }
 
 void Islands::join(NodeId a, NodeId b) {
-  if (fixed_[a] != 0 || fixed_[b] != 0 || a == b) return;
+  // Whatever the join, its ends must answer it: a stick from a pin, or within one body, pulls on its
+  // body too, and asleep the body would hold it stretched (a pinned node never sleeps).
   wake(a);
   wake(b);
+  if (fixed_[a] != 0 || fixed_[b] != 0 || a == b) return;
   detail::unite(lasting_, a, b);
   counted_ = false;
 }

@@ -459,6 +459,35 @@ TEST(Islands, AFastBodyNeverSleepsEvenWithASleepTimeOfZero) {
   }
 }
 
+// A stick or a link wakes the body it pulls on though it joins no island: from a pinned particle, or
+// within one body. Asleep, the body held it stretched: a 1 m stick from a pin 3 m up to a sleeping
+// box's top corner stayed 1.5 m too long.
+TEST(Islands, AStickFromAPinOrWithinABodyWakesTheBody) {
+  phys::World world({}, sleeping());
+  const BodyId hung = world.addBody(box(Vec3(0.0, 0.5, 0.0)));
+  const BodyId roped = world.addBody(box(Vec3(4.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  const BodyId braced = world.addBody(box(Vec3(-4.0, 0.5, 0.0)));
+  for (const BodyId id : {hung, roped, braced}) ASSERT_GT(stepUntilAsleep(world, id, 5.0), 0.0) << id;
+  const phys::ParticleId pin = world.addParticle({Vec3(0.0, 3.0, 0.0), Vec3(0.0), 1.0, true, "pin"});
+  const phys::ParticleId ropePin = world.addParticle({Vec3(4.0, 3.0, 0.0), Vec3(0.0), 1.0, true, "rope"});
+  const phys::ParticleId corner = world.bodies()[hung].firstParticle + 2;  // -x, +y, -z: a top corner
+  world.addStick(pin, corner, 1.0, 0.0);
+  EXPECT_FALSE(world.islands().bodyAsleep(hung));
+  phys::Embedding top;  // a rope of 1 m from the pin to the rigid box's top face
+  top.particle[0] = ropePin;
+  top.weight[0] = 1.0;
+  top.count = 1;
+  world.addLink(phys::BodyPoint::embedded(top), world.pointOn(roped, Vec3(4.0, 1.0, 0.0)), 0.0, 1.0);
+  EXPECT_FALSE(world.islands().bodyAsleep(roped));
+  const phys::Body& b = world.bodies()[braced];
+  world.addStick(b.firstParticle, b.firstParticle + 7);  // along a body diagonal, as it is
+  EXPECT_FALSE(world.islands().bodyAsleep(braced));
+  for (int i = 0; i < 180; ++i) world.step();
+  const auto& x = world.particles().position;
+  EXPECT_NEAR(glm::length(x[corner] - x[pin]), 1.0, 0.01);
+  EXPECT_NEAR(world.bodyPose(roped).center.y, 1.5, 0.01);  // hanging 1 m below the pin
+}
+
 // A setting that changes wakes every island; one set again unchanged does not.
 TEST(Islands, ChangedSettingsWakeEverything) {
   phys::World world({}, sleeping(phys::BodyModel::Rigid));

@@ -52,7 +52,8 @@ class Islands {
   NodeId addParticle(bool fixed);
   /// A body's node; its `particleCount` particles, added just before, are its own.
   NodeId addBody(int particleCount);
-  /// The two nodes are one island from now on (a stick, a link or a joint). Wakes both.
+  /// The two nodes are one island from now on (a stick, a link or a joint), unless one is fixed or
+  /// they are one node. Wakes both whatever the join: a stick from a pin pulls on its body too.
   void join(NodeId a, NodeId b);
   /// The nodes of particles a and b, unless either is fixed.
   void joinParticles(ParticleId a, ParticleId b);
