@@ -20,6 +20,10 @@ void World::ignoreCollision(BodyId a, BodyId b) {
   if (a == b) throw std::invalid_argument("ignoreCollision: the two bodies must differ");
   broadPhase_.ignore(a, b);
   layoutsStale_ = true;  // the filters' index
+  // Their contact goes: asleep, a box resting on the other would stay held by a contact that is no
+  // longer there.
+  islands_.wake(islands_.nodeOf(a));
+  islands_.wake(islands_.nodeOf(b));
 }
 
 std::vector<std::pair<BodyId, BodyId>> World::ignoredCollisions() const {

@@ -488,6 +488,20 @@ TEST(Islands, AStickFromAPinOrWithinABodyWakesTheBody) {
   EXPECT_NEAR(world.bodyPose(roped).center.y, 1.5, 0.01);  // hanging 1 m below the pin
 }
 
+// Ignoring the collision of two bodies wakes both: asleep, a box stacked on another stayed up,
+// held by the contact the filter had taken away. It must fall through to the ground.
+TEST(Islands, IgnoringACollisionWakesBothBodies) {
+  phys::World world({}, sleeping(phys::BodyModel::Rigid));
+  const BodyId below = world.addBody(box(Vec3(0.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  const BodyId above = world.addBody(box(Vec3(0.0, 1.5, 0.0), phys::BodyModel::Rigid));
+  ASSERT_GT(stepUntilAsleep(world, above, 5.0), 0.0);
+  world.ignoreCollision(below, above);
+  EXPECT_FALSE(world.islands().bodyAsleep(below));
+  EXPECT_FALSE(world.islands().bodyAsleep(above));
+  for (int i = 0; i < 120; ++i) world.step();
+  EXPECT_NEAR(world.bodyPose(above).center.y, 0.5, 0.01);
+}
+
 // A setting that changes wakes every island; one set again unchanged does not.
 TEST(Islands, ChangedSettingsWakeEverything) {
   phys::World world({}, sleeping(phys::BodyModel::Rigid));
