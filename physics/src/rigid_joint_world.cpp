@@ -271,6 +271,9 @@ std::size_t World::addParticleJoint(const ParticleJoint& joint) {
   ParticleJoint j = joint;
   j.rest = unitQuaternion(joint.rest, who + "the rest");
   constraints_.addParticleJoint(j, JointDrive{j.rest, 0.0, kDriveStiffness});
+  // Its drive turns the two against each other: one island, as a joint's links would make them (a
+  // joint may have none), so that setting the drive wakes both.
+  islands_.join(islands_.nodeOf(j.a), islands_.nodeOf(j.b));
   return constraints_.particleJoints().size() - 1;
 }
 

@@ -502,6 +502,25 @@ TEST(Islands, IgnoringACollisionWakesBothBodies) {
   EXPECT_NEAR(world.bodyPose(above).center.y, 0.5, 0.01);
 }
 
+// A particle joint joins its two bodies' islands, links or none, so that setting its drive wakes
+// both: two boxes asleep apart on the ground, joined by a joint without links, whose drive is set to
+// turn the child a quarter turn about y. Only the parent woke, and the child stayed as it was.
+TEST(Islands, AParticleJointJoinsItsBodiesSoItsDriveWakesBoth) {
+  phys::World world({}, sleeping());
+  const BodyId parent = world.addBody(box(Vec3(0.0, 0.5, 0.0)));
+  const BodyId child = world.addBody(box(Vec3(2.0, 0.5, 0.0)));
+  const std::size_t k = world.addParticleJoint(parent, child, Vec3(1.0, 0.5, 0.0));
+  EXPECT_EQ(world.islands().islandCount(), 1u);
+  ASSERT_GT(stepUntilAsleep(world, child, 5.0), 0.0);
+  ASSERT_TRUE(world.islands().bodyAsleep(parent));
+  phys::JointDrive drive = world.particleJointDrive(k);
+  drive.target = glm::angleAxis(glm::half_pi<phys::Real>(), Vec3(0.0, 1.0, 0.0)) * drive.target;
+  drive.strength = 0.9;
+  world.setParticleJointDrive(k, drive);
+  EXPECT_FALSE(world.islands().bodyAsleep(parent));
+  EXPECT_FALSE(world.islands().bodyAsleep(child));
+}
+
 // A setting that changes wakes every island; one set again unchanged does not.
 TEST(Islands, ChangedSettingsWakeEverything) {
   phys::World world({}, sleeping(phys::BodyModel::Rigid));
