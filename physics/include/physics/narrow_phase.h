@@ -81,7 +81,9 @@ class NarrowPhase {
   void build(const NarrowPhaseInput& in);
   /// build() again, right after it, from the same manifolds it carried from (those of the last
   /// substep, not its own): for pairs it skipped, two sleeping bodies of which an island woke since
-  /// (World::wakeTouched). The pairs it found before come out as they did.
+  /// (World::wakeTouched). The pairs it found before are found again from the bounds the broad
+  /// phase measured again: a body that World::stopFastBodies moved has a shorter travel there, so
+  /// its pairs' speculative margins may be narrower than in the first build.
   void rebuild(const NarrowPhaseInput& in);
   /// In the step's other substeps: kept manifolds follow their reference face; the others are
   /// collided again.
