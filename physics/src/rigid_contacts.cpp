@@ -336,9 +336,9 @@ void applyTwist(RigidPassInput& in, const RigidContact& c, Real L, bool velocity
 
 // A patch's twist about its normal when a particle body is a side: each particle side's turn is read
 // from its pressing points (their least-squares turn about the centre across n), and an angular
-// impulse L reaches it as tangential impulses L (n x r_k) / sum |r|^2 at the points. Only the rigid
-// sides were twisted before: a corners box on a rigid box (held still by shock propagation) had
-// nothing against its turning, and turned 38 degrees in a minute.
+// impulse L reaches it as tangential impulses L (n x r_k) / sum |r|^2 at the points. Twisting the
+// rigid sides alone leaves a corners box on a rigid box (held still by shock propagation) nothing
+// against its turning (docs/physics.md, "Failures at rest").
 struct ParticleTwist {
   std::array<PatchParticles, 2> side;  // A, B
   std::array<bool, 2> moves{};         // a particle side that is not held
@@ -822,10 +822,9 @@ bool solve3(const Response& k, const std::array<Real, 3>& b, std::array<Real, 3>
 // Static friction of a patch with a particle body on a side: its centre's slide over the substep
 // and its twist about n undone together, by one tangential impulse at the centre and one angular
 // impulse, from the two sides' 3 x 3 responses, while the tangential impulse stays within mu_s
-// times the patch's normal impulse and the angular one within that times its radius. Undone one
-// after the other, each moved what the other had undone: a corners box on a rigid box was left
-// 1.9e-7 m of slip every substep, and with no anchor to pull it back it crept 0.55 mm in a minute
-// (docs/physics.md, "Failures at rest").
+// times the patch's normal impulse and the angular one within that times its radius. Together,
+// since one after the other each moves what the other undid, and a patch with a particle side has no
+// anchor to pull back the slip the last pass leaves (docs/physics.md, "Failures at rest").
 void holdParticlePatch(RigidPassInput& in, std::span<const RigidContact> contacts, RigidContactState& state,
                        std::size_t lo, std::size_t hi, const PatchCentre& centre, Hold hold, Real limit) {
   const RigidContact& c = contacts[lo];

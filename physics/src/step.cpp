@@ -129,14 +129,13 @@ void World::skipSleepers() {
 }
 
 // A sleeping island that one of the manifolds just found joins to an awake body wakes now, before
-// the passes, as Box2D v3 wakes what a new contact touches right after its narrow phase: woken only
-// at the step's end (updateIslands), it met the awake body as fixed for the whole step and took up
-// its impact (a box struck in a zero-gravity cradle stopped dead at the next box: 0.31 of 5 kg m/s
-// left). A woken island gets its masses back and what the masks let the step skip is done for it:
-// this substep's integration (the same arithmetic integrate() does, so its motion goes on as it
-// slept), its frames, its lane groups and ground points, and its pairs, among them the pairs of two
-// of its own bodies, which were not collided while both slept. The pairs found again may touch
-// another sleeping island, which wakes in turn.
+// the passes, as Box2D v3 wakes what a new contact touches right after its narrow phase: woken at
+// the step's end (updateIslands), it would meet the awake body as fixed for the whole step and take
+// up its blow (docs/physics.md, "Islands and sleeping"). A woken island gets its masses back and
+// what the masks let the step skip is done for it: this substep's integration (the same arithmetic
+// integrate() does, so its motion goes on as it slept), its frames, its lane groups and ground
+// points, and its pairs, among them the pairs of two of its own bodies, which were not collided
+// while both slept. The pairs found again may touch another sleeping island, which wakes in turn.
 void World::wakeTouched(bool firstSubstep, Real h) {
   if (!islands_.masked()) return;
   for (std::span<const NodeId> woken = islands_.wakeTouched(narrowPhase_.manifolds()); !woken.empty();

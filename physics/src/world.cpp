@@ -63,8 +63,8 @@ constexpr Pair kTetraSticks[6] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}
 
 // Whether the new settings may step the world otherwise than the old: all but the thread count and
 // the broad phase's strips, under which the state is the same bit for bit (docs/physics.md,
-// "Threads"; BroadPhase.TheStripSettingsChangeNoPair). Those wake nothing: the sandbox sleeps by
-// default, and its threads slider woke every island and started every rest again.
+// "Threads"; BroadPhase.TheStripSettingsChangeNoPair). Those wake nothing, so the sandbox's threads
+// slider (it sleeps by default) does not change the run.
 bool changesTheStep(const SolverSettings& before, SolverSettings after) {
   after.threads = before.threads;
   after.broadPhase = before.broadPhase;

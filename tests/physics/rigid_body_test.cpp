@@ -373,16 +373,21 @@ TEST(RigidBody, RestitutionGivesBackTheSquareOfItsCoefficientInHeight) {
   EXPECT_NEAR(highest, 0.25, 0.02);
 }
 
+// A 1 m box on another at the origin, one rigid and the other a corners box; returns the upper one.
+BodyId addMixedPair(phys::World& world, bool rigidOnTop, const Vec3& upperAt) {
+  BodyDesc bottom = rigidBox({0.0, 0.5, 0.0}), top = rigidBox(upperAt);
+  (rigidOnTop ? bottom : top).model = BodyModel::Corners;
+  world.addBody(bottom);
+  return world.addBody(top);
+}
+
 // Mixed models: a rigid box on a particle box, and a particle box on a rigid one, rest where they
 // are put (the contacts between models are solved by the rigid passes, both sides by their own
 // inverse masses).
 TEST(RigidBody, RestsOnParticleBodiesAndCarriesThem) {
   for (const bool rigidOnTop : {true, false}) {
     phys::World world({}, xpbd(4, 2));
-    BodyDesc bottom = rigidBox({0.0, 0.5, 0.0}), top = rigidBox({0.0, 1.5, 0.0});
-    (rigidOnTop ? bottom : top).model = BodyModel::Corners;
-    world.addBody(bottom);
-    const BodyId upper = world.addBody(top);
+    const BodyId upper = addMixedPair(world, rigidOnTop, {0.0, 1.5, 0.0});
     for (int i = 0; i < 300; ++i) world.step();
     const phys::BodyPose pose = world.bodyPose(upper);
     EXPECT_NEAR(pose.center.y, 1.5, 0.01) << rigidOnTop;
@@ -401,10 +406,7 @@ TEST(RigidBody, RestsOnParticleBodiesAndCarriesThem) {
 TEST(RigidBody, AParticleBoxAndARigidBoxRestOnEachOtherStill) {
   for (const bool rigidOnTop : {false, true}) {
     phys::World world({}, phys::SolverSettings{});
-    BodyDesc bottom = rigidBox({0.0, 0.5, 0.0}), top = rigidBox({0.2, 1.5, 0.1});
-    (rigidOnTop ? bottom : top).model = BodyModel::Corners;
-    world.addBody(bottom);
-    const BodyId upper = world.addBody(top);
+    const BodyId upper = addMixedPair(world, rigidOnTop, {0.2, 1.5, 0.1});
     for (int i = 0; i < 600; ++i) world.step();
     const phys::BodyPose settled = world.bodyPose(upper);
     for (int i = 0; i < 3000; ++i) world.step();
