@@ -28,7 +28,6 @@ constexpr const char* kHeatMapScript = "stability.gp";
 const std::vector<std::string> kHeatMaps{"stability-pass.png", "stability-pass.svg", "stability-error.png",
                                          "stability-error.svg"};
 
-using stability::Setting;
 using stability::StabilityOptions;
 using stability::SuiteResult;
 using stability::SuiteScene;
@@ -39,7 +38,7 @@ std::vector<Setting> settingsOf(const StabilityOptions& o) {
   for (phys::SolverMethod m : o.methods) {
     for (const std::string& model : models) {
       for (int it : o.iterations) {
-        for (int sub : o.substeps) out.push_back({m, it, sub, model, o.sleep});
+        for (int sub : o.substeps) out.push_back(stability::suiteSetting(m, it, sub, model, o.sleep));
       }
     }
   }

@@ -183,7 +183,7 @@ std::string markdownReport(const SuiteResult& r) {
                    "): each of our runs' ms_per_step and each scene's `stepping` are of a core shared "
                    "with other runs, not comparable with --jobs 1's.\n\n"
              : "")
-     << (!r.settings.empty() && r.settings.front().sleep
+     << (!r.settings.empty() && r.settings.front().model.options.sleep == true
              ? "Sleeping on (--sleep on): islands at rest sleep, ours and Bullet's.\n\n"
              : "")
      << "A run passes when every criterion of its scene holds over its window and the guard froze nothing. "
@@ -213,7 +213,7 @@ std::string csvReport(const SuiteResult& r) {
         const Setting& setting = r.settings[k];
         // A model imposed on a scene with no body changed nothing: not named as if it ran.
         fields.insert(fields.end(), {std::string(phys::toString(setting.method)),
-                                     csvField(sc.boxes == 0 ? std::string() : setting.model),
+                                     csvField(sc.boxes == 0 ? std::string() : setting.model.label),
                                      std::to_string(setting.iterations), std::to_string(setting.substeps)});
       }
       if (!o.judged) {

@@ -41,26 +41,31 @@ SuiteScene loadSuiteScene(const std::filesystem::path& file) {
   return s;
 }
 
+Setting suiteSetting(phys::SolverMethod method, int iterations, int substeps, const std::string& model,
+                     bool sleep) {
+  // A box model and the ragdolls' of the same kind: corners and seed, tetra and lean, rigid.
+  scenes::LoadOptions load{.sleep = sleep};
+  if (const std::optional<phys::BodyModel> box = phys::parseBodyModel(model)) {
+    load.boxModel = *box;
+    load.ragdollModel = phys::ragdollModelOf(*box);
+  }
+  return {.model = {model, load}, .method = method, .iterations = iterations, .substeps = substeps};
+}
+
 std::string settingLabel(const Setting& setting) {
   return lab::settingLabel(setting.method, setting.iterations, setting.substeps) +
-         (setting.model.empty() ? "" : " " + setting.model);
+         (setting.model.label.empty() ? "" : " " + setting.model.label);
 }
 
 std::string settingGroup(const Setting& setting) {
-  return std::string(phys::toString(setting.method)) + (setting.model.empty() ? "" : " " + setting.model);
+  return std::string(phys::toString(setting.method)) +
+         (setting.model.label.empty() ? "" : " " + setting.model.label);
 }
 
 Outcome runSetting(const SuiteScene& s, const Setting& setting) {
-  // A box model and the ragdolls' of the same kind: corners and seed, tetra and lean, rigid.
-  scenes::LoadOptions load{.sleep = setting.sleep};
-  if (const std::optional<phys::BodyModel> model = phys::parseBodyModel(setting.model)) {
-    load.boxModel = *model;
-    load.ragdollModel = phys::ragdollModelOf(*model);
-  }
-  // At the scene's own dt, which the world keeps as it is.
-  scenes::Scene scene = loadSetting(
-      s.source,
-      lab::Setting{{setting.model, load}, setting.method, setting.iterations, setting.substeps, s.dt});
+  Setting atSceneDt = setting;  // the world keeps its own dt as it is
+  atSceneDt.dt = s.dt;
+  scenes::Scene scene = loadSetting(s.source, atSceneDt);
   phys::World& world = scene.world;
   WorldJudge judge(s.criteria, world);
   Outcome o;
@@ -75,9 +80,9 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
   if (blewUp) {
     const phys::FreezeReport& f = world.freezes().front();
     o.note = "froze " + f.name + " at " + formatNumber(f.time) + " s: " + f.reason;
-  } else if (!setting.model.empty() && s.boxes == 0) {
+  } else if (!setting.model.label.empty() && s.boxes == 0) {
     o.note = "no body for the model: the scene's own run";
-  } else if (setting.sleep) {
+  } else if (setting.model.options.sleep == true) {
     const phys::Islands& islands = world.islands();
     o.note = "asleep at the end: " + std::to_string(islands.sleepingBodies()) + " of " +
              std::to_string(world.bodies().size()) + " bodies";

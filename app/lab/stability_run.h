@@ -9,18 +9,15 @@
 #include "scenes/scene.h"
 #include "stability_criteria.h"
 #include "stability_judge.h"
+#include "sweep_core.h"
 
 namespace lab::stability {
 
-/// The solver choices of one run; everything else is the scene's own (dt included).
-struct Setting {
-  phys::SolverMethod method = phys::SolverMethod::GaussSeidel;
-  int iterations = 3;
-  int substeps = 1;
-  /// corners, tetra or rigid imposed on the scene's boxes and ragdolls (seed, lean, rigid); "": its own
-  std::string model;
-  bool sleep = false;  ///< islands at rest sleep (--sleep on), whatever the file says
-};
+/// A suite run's setting (sweep's): METHOD, ITERATIONS x SUBSTEPS, with MODEL imposed at load on
+/// the scene's boxes and the ragdolls of its kind (corners and seed, tetra and lean, rigid; "": the
+/// file's own) and sleeping on or off whatever the file says. Its dt is the scene's (runSetting).
+Setting suiteSetting(phys::SolverMethod method, int iterations, int substeps, const std::string& model = "",
+                     bool sleep = false);
 
 /// A scene of the suite, read once: every run builds its world afresh from that one text, so a
 /// file saved over during the suite changes no run.

@@ -32,9 +32,9 @@
 
 namespace {
 
+using lab::Setting;
 using lab::stability::Criterion;
 using lab::stability::Metric;
-using lab::stability::Setting;
 using lab_testing::TempDir;
 
 const std::filesystem::path kSuite = std::filesystem::path(DATA_DIR) / "assets" / "scenes" / "stability";
@@ -44,7 +44,7 @@ lab::stability::SuiteScene suiteScene(const std::string& name) {
 }
 
 Setting setting(phys::SolverMethod method, int iterations, int substeps) {
-  return {method, iterations, substeps};
+  return lab::stability::suiteSetting(method, iterations, substeps);
 }
 
 using Output = lab::CommandOutput;
@@ -336,7 +336,7 @@ TEST(StabilityRun, FaceToFaceStaysStackedAtAGoodSetting) {
 // its two boxes are asleep by the end (the run says so in its note).
 TEST(StabilityRun, FaceToFaceSleepsAndStaysStacked) {
   Setting asleep = setting(phys::SolverMethod::GaussSeidel, 3, 4);
-  asleep.sleep = true;
+  asleep.model.options.sleep = true;
   const lab::stability::SuiteScene s = suiteScene("face-face");
   const auto o = lab::stability::runSetting(s, asleep);
   EXPECT_TRUE(o.passed);
@@ -369,7 +369,8 @@ TEST(StabilityRun, TheFastestBulletStopsAtTheWallUnderEveryModel) {
   const lab::stability::SuiteScene s = suiteScene("bullet-200");
   const phys::SolverSettings own = scenes::loadSceneFile(s.source.file).world.solverSettings();
   for (const char* model : {"corners", "tetra", "rigid"}) {
-    const auto r = lab::stability::runSetting(s, {own.method, own.iterations, own.substeps, model});
+    const auto r = lab::stability::runSetting(
+        s, lab::stability::suiteSetting(own.method, own.iterations, own.substeps, model));
     EXPECT_TRUE(r.passed) << model << ": " << r.note;
     EXPECT_LT(r.verdicts[0].value, 0.0) << model;  // x of the bullet stays before the wall
   }
