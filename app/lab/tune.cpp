@@ -46,19 +46,15 @@ constexpr phys::SolverMethod kSeedMethod = phys::SolverMethod::GaussSeidel;
 constexpr int kSeedIterations = 3;
 constexpr int kSeedSubsteps = 1;
 
-/// What a --target bounds: the accuracy error, a figure of the run (run_metrics.h), or the energy
-/// drift; and its bound once a --target gives one.
+/// What a --target bounds: a figure of the run, or one of tune's own two, the accuracy error and
+/// the energy drift, each a row of the run table's kind (run_metrics.h: name, unit, help, what a
+/// world lacks for it); and its bound once a --target gives one.
 struct Target {
-  std::string name;                   ///< "error", "drift", or a RunMetric's name
-  std::size_t run = kRunMetricCount;  ///< its place in kRunMetrics; kRunMetricCount for the two others
-  std::string unit;                   ///< "m"; "" for a ratio
-  std::string help;                   ///< what it is, for `lab tune --help`
+  RunMetric metric;                   ///< tune's own two are read by figure(), not by `read`
+  std::size_t run = kRunMetricCount;  ///< its place in kRunMetrics; kRunMetricCount for tune's own
   double bound = 0.0;
-  /// What a world lacks to make the figure other than 0 (RunMetric::lacks); null when any can.
-  const char* (*lacks)(const phys::World& world) = nullptr;
 
-  /// " m" to put after a value; "" for a ratio.
-  std::string unitAfter() const { return unit.empty() ? "" : " " + unit; }
+  std::string name() const { return metric.name; }
 };
 
 constexpr const char* kError = "error";
@@ -77,30 +73,27 @@ const char* lacksMotion(const phys::World& world) {
 
 // Every figure a --target may bound, in the order the help and the output list them.
 std::vector<Target> boundable() {
-  std::vector<Target> all{{kError, kRunMetricCount, "m",
-                           "largest distance from the accuracy target (analytic or reference)", 0.0,
-                           lacksMotion}};
-  for (std::size_t i = 0; i < kRunMetricCount; ++i) {
-    const RunMetric& m = kRunMetrics[i];
-    all.push_back({m.name, i, m.unit, std::string(m.help) + " after any step", 0.0, m.lacks});
-  }
-  all.push_back({kDrift, kRunMetricCount, "J", "|energy after the last step - energy before the first|", 0.0,
-                 lacksMotion});
+  std::vector<Target> all{
+      {{kError, "", "m", "largest distance from the accuracy target (analytic or reference)", nullptr,
+        OverRun::Worst, lacksMotion}}};
+  for (std::size_t i = 0; i < kRunMetricCount; ++i) all.push_back({kRunMetrics[i], i});
+  all.push_back({{kDrift, "", "J", "|energy after the last step - energy before the first|", nullptr,
+                  OverRun::Worst, lacksMotion}});
   return all;
 }
 
 // "error, stick-error, ... or drift": every name a --target takes.
 std::string metricNames() {
   std::vector<std::string> names;
-  for (const Target& t : boundable()) names.push_back(t.name);
+  for (const Target& t : boundable()) names.push_back(t.name());
   const std::string last = names.back();
   names.pop_back();
   return join(names, ", ") + " or " + last;
 }
 
 double figure(const Figures& f, const Target& t) {
-  if (t.name == kError) return f.error;
-  if (t.name == kDrift) return std::abs(f.energyDrift);
+  if (t.name() == kError) return f.error;
+  if (t.name() == kDrift) return std::abs(f.energyDrift);
   return f.maxima[t.run];
 }
 
@@ -116,12 +109,12 @@ std::string readTarget(const std::string& text, TuneOptions& o) {
   const std::size_t eq = text.find('=');
   const std::string name = text.substr(0, eq);
   const std::vector<Target> all = boundable();
-  const auto known = std::find_if(all.begin(), all.end(), [&](const Target& t) { return t.name == name; });
+  const auto known = std::find_if(all.begin(), all.end(), [&](const Target& t) { return t.name() == name; });
   if (known == all.end()) return "unknown metric '" + name + "' in '" + text + "' (" + metricNames() + ")";
   const std::optional<double> v = eq == std::string::npos ? std::nullopt : parseNumber(text.substr(eq + 1));
   if (!v || *v <= 0.0) return "'" + text + "' needs METRIC=VALUE with a finite VALUE > 0";
   for (const Target& given : o.targets) {
-    if (given.name == name) return name + " is given twice";
+    if (given.name() == name) return name + " is given twice";
   }
   o.targets.push_back(*known);
   o.targets.back().bound = *v;
@@ -132,9 +125,11 @@ std::string readTarget(const std::string& text, TuneOptions& o) {
 std::string tuneAbout() {
   std::string metrics;
   for (const Target& t : boundable()) {
-    std::string line = "  " + t.name;
+    std::string line = "  " + t.name();
     line.resize(17, ' ');
-    metrics += line + (t.unit.empty() ? "" : t.unit + ", ") + t.help + "\n";
+    // A figure of the run is at its worst after any step; tune's own two are of the whole run.
+    metrics += line + (*t.metric.unit == '\0' ? "" : t.metric.unit + std::string(", ")) + t.metric.help +
+               (t.run < kRunMetricCount ? " after any step" : "") + "\n";
   }
   const std::string counts = "substeps and iterations over " + ladderText() + ", at the\nscene's dt.";
   return "The cheapest setting whose run meets every --target METRIC=VALUE, an upper bound on:\n" + metrics +
@@ -168,7 +163,7 @@ class Search {
       : scene_(std::move(scene)), steps_(steps), targets_(std::move(targets)) {}
 
   bool needsError() const {
-    return std::any_of(targets_.begin(), targets_.end(), [](const Target& t) { return t.name == kError; });
+    return std::any_of(targets_.begin(), targets_.end(), [](const Target& t) { return t.name() == kError; });
   }
 
   /// The target of the setting's model: the accuracy target when error is asked for, else
@@ -284,8 +279,8 @@ class Search {
 std::string figuresText(const Figures& f, bool withError) {
   std::string s;
   for (const Target& t : boundable()) {
-    if (t.name != kError || withError)
-      s += t.name + " " + formatFigure(figure(f, t), t.unitAfter(), 3) + ", ";
+    if (t.name() != kError || withError)
+      s += t.name() + " " + formatFigure(figure(f, t), t.metric.unitAfter(), 3) + ", ";
   }
   return s + "frozen " + std::to_string(f.frozen);
 }
@@ -297,8 +292,8 @@ std::string verdict(const Search& search, const Figures& f) {
   for (const Target& t : search.targets()) {
     const double v = figure(f, t);
     if (v <= t.bound) continue;
-    misses += (misses.empty() ? "" : ", ") + t.name + " " + formatFigure(v, t.unitAfter(), 3) + " > " +
-              formatLimit(t.bound) + t.unitAfter();
+    misses += (misses.empty() ? "" : ", ") + t.name() + " " + formatFigure(v, t.metric.unitAfter(), 3) +
+              " > " + formatLimit(t.bound) + t.metric.unitAfter();
   }
   return misses.empty() ? "meets the targets" : "misses: " + misses;
 }
@@ -306,7 +301,7 @@ std::string verdict(const Search& search, const Figures& f) {
 std::string targetsText(const std::vector<Target>& targets) {
   std::string s;
   for (const Target& t : targets) {
-    s += (s.empty() ? "" : ", ") + t.name + " <= " + formatLimit(t.bound) + t.unitAfter();
+    s += (s.empty() ? "" : ", ") + t.name() + " <= " + formatLimit(t.bound) + t.metric.unitAfter();
   }
   return s;
 }
@@ -338,8 +333,8 @@ int runTune(const TuneOptions& o, std::ostream& out, std::ostream& err) {
   // error without a character), would be met by every setting at once, and the cheapest would win
   // for nothing: refused before any run.
   for (const Target& t : o.targets)
-    requireMeasurable(t.lacks, source, choices, "--target " + t.name + ": scene " + scene.name, "searched",
-                      "every setting would meet it");
+    requireMeasurable(t.metric.lacks, source, choices, "--target " + t.name() + ": scene " + scene.name,
+                      "searched", "every setting would meet it");
   const Setting defaults{choices.front(), kSeedMethod, kSeedIterations, kSeedSubsteps, own.dt};
   const Setting sceneOwn{models.asFile, own.method, own.iterations, own.substeps, own.dt};
 
