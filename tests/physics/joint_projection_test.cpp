@@ -323,11 +323,11 @@ Crush crushChain(bool projected, Real weightMass) {
 }
 
 TEST(JointProjection, HoldsAChainTheContactsPullOpen) {
-  // At 50 kg the chain also sinks less into the ground and the weight less into the chain than
-  // when its joints give way (0.06 m against 0.12 m measured). At 200 kg, 200 times a link, it sinks
-  // more (0.40 m against 0.12 m): links held together cannot slip out from under the weight, and one
-  // pass does not carry 200 to 1 (docs/physics.md, "Joint projection"); only the joints are held to
-  // account there.
+  // The chain also sinks less into the ground and the weight less into the chain than when its
+  // joints give way: at 50 kg 0.052 m against 0.083 m measured, at 200 kg, 200 times a link, 0.060 m
+  // against 0.125 m. At 200 kg it sank more (0.40 m against 0.12 m) while the box's patches on the
+  // links were left to the block's eight sweeps, which do not carry 200 to 1; solved directly they
+  // do (docs/physics.md, "Joint projection" and "A slender body on its edge").
   for (const Real weight : {50.0, 200.0}) {
     const Crush loose = crushChain(false, weight), held = crushChain(true, weight);
     std::printf(
@@ -338,11 +338,7 @@ TEST(JointProjection, HoldsAChainTheContactsPullOpen) {
     EXPECT_GT(loose.worstJointError, 0.05) << weight;  // what the projection is for
     EXPECT_LT(held.worstJointError, 2e-4) << weight;   // its tolerance, 1e-4 m on pins, 1e-4 rad on axes
     EXPECT_GT(held.solves, 0) << weight;
-    if (weight == 50.0) {
-      EXPECT_LT(held.worstPenetration, loose.worstPenetration);
-    } else {
-      EXPECT_GT(held.worstPenetration, 2.0 * loose.worstPenetration);  // where it fails
-    }
+    EXPECT_LT(held.worstPenetration, loose.worstPenetration) << weight;
   }
 }
 
