@@ -84,7 +84,9 @@ bool ConstraintBlock::solveDirect(std::span<Real> delta) const {
     largest = std::max(largest, diagonal_[r]);
   }
   const Real linear = a_.inverseMass + b_.inverseMass;
-  std::array<std::array<Real, kMostBlockRows>, kMostBlockRows> k{};
+  // Only the first n rows and columns of k and l are written and read: left unset, not zeroed, as
+  // the arrays are larger than a typical block's work (7 rows: a face on the ground).
+  std::array<std::array<Real, kMostBlockRows>, kMostBlockRows> k;
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j <= i; ++j) {
       const std::size_t r = index[i], s = index[j];
@@ -103,7 +105,7 @@ bool ConstraintBlock::solveDirect(std::span<Real> delta) const {
     for (std::size_t i = 0; i < n; ++i) {
       if (held[i] == Held::No) free[m++] = i;
     }
-    std::array<std::array<Real, kMostBlockRows>, kMostBlockRows> l{};
+    std::array<std::array<Real, kMostBlockRows>, kMostBlockRows> l;
     std::array<Real, kMostBlockRows> y{};
     for (std::size_t a = 0; a < m; ++a) {
       Real rhs = -error_[index[free[a]]];
