@@ -349,9 +349,9 @@ TEST(RigidBody, StackOfFortyStandsAMinuteAtOneSubstep) {
 
 // A pyramid of 10 rows, each box across the seam of two below, stands 20 s at one substep: a box's
 // two patches are one block, so pushing on one does not tip it on the other. Measured: no box moves
-// more than 2e-11 m (0.1 mm before the blocks started where the last substep ended); pushed patch by patch
-// (and held only against each substep's slip) the top of the pyramid of 20 crept 0.57 m in a minute even at 8
-// substeps.
+// more than 1e-12 m (2e-11 m before a face's block was solved directly, 0.1 mm before the blocks started
+// where the last substep ended); pushed patch by patch (and held only against each substep's slip) the top of
+// the pyramid of 20 crept 0.57 m in a minute even at 8 substeps.
 TEST(RigidBody, PyramidStandsAtOneSubstep) {
   phys::World world({}, xpbd(1));
   std::vector<std::pair<BodyId, Vec3>> boxes;
