@@ -43,16 +43,26 @@ class PrivateFolder {
   int error_ = 0;
 };
 
+// Text on one line of a script: a control character becomes a space. A line break in a title
+// (a scene's name) would end the line, and what followed would run as gnuplot commands.
+std::string oneLine(const std::string& text) {
+  std::string out = text;
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == '\x7f') c = ' ';
+  }
+  return out;
+}
+
 // A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
 std::string quoted(const std::string& text) {
-  return singleQuoted(text, "''");
+  return singleQuoted(oneLine(text), "''");
 }
 
 // A label inside a datablock is one double-quoted column: keep it free of quotes and breaks.
 std::string labelColumn(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) out += (c == '"' || c == '\n' || c == '\r') ? ' ' : c;
-  return out + "\"";
+  std::string out = oneLine(text);
+  std::replace(out.begin(), out.end(), '"', ' ');
+  return "\"" + out + "\"";
 }
 
 bool drawable(const Chart& chart, const ChartPoint& p) {
@@ -128,8 +138,9 @@ std::string gnuplotScript(const Chart& chart) {
   std::vector<std::vector<ChartPoint>> kept;
   for (const ChartSeries& s : chart.series) kept.push_back(drawablePoints(chart, s));
 
-  std::string out = "# " + chart.title + "\n# Run gnuplot on this file in its folder: it writes " +
-                    chart.output + ".png and " + chart.output + ".svg. The data is inline, below.\n";
+  std::string out = "# " + oneLine(chart.title) + "\n# Run gnuplot on this file in its folder: it writes " +
+                    oneLine(chart.output) + ".png and " + oneLine(chart.output) +
+                    ".svg. The data is inline, below.\n";
   for (std::size_t i = 0; i < kept.size(); ++i) {
     if (!kept[i].empty()) out += seriesBlock(i, kept[i]);
   }

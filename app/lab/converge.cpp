@@ -412,7 +412,11 @@ std::vector<std::string> convergeChartNames(const std::vector<std::string>& scen
   names.reserve(sceneNames.size());
   for (const std::string& scene : sceneNames) {
     std::string base = "converge-" + scene;
-    std::replace(base.begin(), base.end(), '/', '-');
+    // A '/' would name a folder, a control character (a line break in a scene's name) has no
+    // place in a file name.
+    for (char& c : base) {
+      if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == '\x7f') c = '-';
+    }
     std::string name = base;
     for (int k = 2; !taken.insert(name).second; ++k) name = base + "-" + std::to_string(k);
     names.push_back(name);

@@ -6,6 +6,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "free_body.h"
 #include "gnuplot.h"
 #include "lab_test_util.h"
+#include "output_files.h"
 #include "scenes/scene.h"
 
 namespace {
@@ -204,6 +206,28 @@ TEST(Converge, ScenesOfOneNameGetChartsOfTheirOwn) {
   for (const char* gp :
        {"converge-circular-orbit.gp", "converge-circular-orbit-2.gp", "converge-orbit-slash.gp"})
     EXPECT_TRUE(std::filesystem::exists(dir.file("out") / gp)) << gp;
+}
+
+// A scene's name reaches the chart's title, its key and its file name. A line break in it ended
+// the script's comment line and its title's string, and what followed ran as gnuplot commands
+// (system() among them); it made a file name with a line break in it.
+TEST(Converge, AControlCharacterInASceneNameStaysText) {
+  const std::vector<std::string> names = lab::convergeChartNames({"fb\nsystem('touch x')\r\t"});
+  ASSERT_EQ(names.size(), 1u);
+  EXPECT_EQ(names[0], "converge-fb-system('touch x')--");
+  std::vector<ConvergeRow> rows = line({0.1, 0.05}, 1.0, 1.0);
+  for (ConvergeRow& r : rows)
+    r.scene = "fb\nsystem('touch x')\n", r.method = "shake\r\nreplot", r.model = "rigid";
+  lab::Chart chart = lab::convergeChart(rows);
+  chart.output = "out\nsystem('touch y')";
+  const std::string script = lab::gnuplotScript(chart);
+  std::istringstream lines(script);
+  for (std::string l; std::getline(lines, l);) {
+    EXPECT_FALSE(l.starts_with("system")) << script;
+    EXPECT_FALSE(l.starts_with("replot'")) << script;
+    EXPECT_EQ(l.find('\r'), std::string::npos) << script;
+  }
+  EXPECT_NE(script.find("fb system(''touch x'')"), std::string::npos) << script;
 }
 
 // Several lines on one chart are told apart: each in its own colour and point type, not the single
