@@ -138,6 +138,14 @@ std::string gnuplotScript(const Chart& chart) {
   std::vector<std::vector<ChartPoint>> kept;
   for (const ChartSeries& s : chart.series) kept.push_back(drawablePoints(chart, s));
 
+  if (!hasPoints(chart)) {
+    // A plot command with nothing to plot is no command: gnuplot failed on the `replot` left,
+    // after it had opened (emptied) both pictures. This script runs, and says why it draws nothing.
+    return "# " + oneLine(chart.title) +
+           "\n# No point of this run can be drawn (none is finite, and positive " +
+           "on a log axis), so this script draws nothing.\nprint " +
+           quoted("nothing to draw: no point of " + oneLine(chart.output) + " is finite") + "\n";
+  }
   std::string out = "# " + oneLine(chart.title) + "\n# Run gnuplot on this file in its folder: it writes " +
                     oneLine(chart.output) + ".png and " + oneLine(chart.output) +
                     ".svg. The data is inline, below.\n";

@@ -45,7 +45,9 @@ struct Chart {
 /// up when `logY`.
 Chart logChart(std::string title, std::string xLabel, std::string yLabel, bool logY, std::string output);
 
-/// The gnuplot script drawing the chart. A series left with no points is not drawn.
+/// The gnuplot script drawing the chart. A series left with no points is not drawn; a chart left
+/// with none at all gives a script that draws nothing (no empty picture) and prints why. Every
+/// text is written on its line with any control character made a space.
 std::string gnuplotScript(const Chart& chart);
 
 /// A command's output folder, written at the end of its runs (the one frame of sweep, scale,

@@ -681,6 +681,24 @@ TEST(OutputFolder, ListsThePicturesGnuplotDrew) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/c.svg")));
 }
 
+// A chart with no point to draw wrote a script of a lone `replot`: gnuplot failed on it after it
+// had opened both pictures, which it left empty. Its script now runs and draws nothing.
+TEST(OutputFolder, AChartWithNothingToDrawGetsAScriptThatRuns) {
+  lab::Chart empty = lab::logChart("t", "x", "y", true, "e");
+  empty.series.push_back({.title = "s", .points = {{0.0, 1.0, ""}, {1.0, std::nan(""), ""}}});
+  empty.guide = 1.0;
+  const std::string script = lab::gnuplotScript(empty);
+  EXPECT_EQ(script.find("replot"), std::string::npos) << script;
+  EXPECT_EQ(script.find("set output"), std::string::npos) << script;
+  EXPECT_NE(script.find("print 'nothing to draw"), std::string::npos) << script;
+  if (lab::findGnuplot().empty()) GTEST_SKIP() << "no gnuplot on PATH (scripts/install-deps installs it)";
+  TempDir dir;
+  const std::filesystem::path file = dir.write("e.gp", script);
+  EXPECT_EQ(lab::runGnuplot(file, dir.file("")), "");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("e.png")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("e.svg")));
+}
+
 // A gnuplot that fails, draws nothing, or draws pictures cut short (it says nothing of a write that
 // failed and exits 0) is a failure; and the charts an earlier run drew go, so that none stands
 // beside data it does not show.
