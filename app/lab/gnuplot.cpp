@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -36,6 +37,22 @@ std::string shellQuoted(const std::string& text) {
   return singleQuoted(text, "'\\''");
 }
 
+// What a wait status says: the exit status, or the signal that ended the program (the raw status
+// is neither: an exit status of 3 reads 768).
+// gnuplot runs under the shell, which exits 128 + N when its child is killed by signal N.
+std::string exitText(int status) {
+  const auto killedBy = [](int signal) {
+    const char* name = ::strsignal(signal);
+    return "killed by signal " + std::to_string(signal) + (name != nullptr ? std::string(", ") + name : "");
+  };
+  if (status == -1) return "its status could not be read";
+  if (WIFSIGNALED(status)) return killedBy(WTERMSIG(status));
+  if (!WIFEXITED(status)) return "wait status " + std::to_string(status);
+  const int code = WEXITSTATUS(status);
+  if (code > 128 && code < 128 + 65) return killedBy(code - 128);
+  return "exit status " + std::to_string(code);
+}
+
 }  // namespace
 
 std::string runGnuplot(const std::filesystem::path& script, const std::filesystem::path& folder,
@@ -56,7 +73,7 @@ std::string runGnuplot(const std::filesystem::path& script, const std::filesyste
   const int status = pclose(pipe);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return {};
   if (output.size() > 400) output = "..." + output.substr(output.size() - 400);
-  return "gnuplot failed on " + shown + " (status " + std::to_string(status) + "): " + output;
+  return "gnuplot failed on " + shown + " (" + exitText(status) + "): " + output;
 }
 
 }  // namespace lab

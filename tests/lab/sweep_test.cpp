@@ -712,7 +712,8 @@ TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
   lab::OutputFolder files(dir.file("out"));
   const std::string broken = files.draw("c.gp", onePointChart("c"), "none");
   EXPECT_NE(broken.find("broken"), std::string::npos) << broken;
-  EXPECT_NE(broken.find("gnuplot failed on " + dir.file("out/c.gp").string() + " "), std::string::npos)
+  EXPECT_NE(broken.find("gnuplot failed on " + dir.file("out/c.gp").string() + " (exit status 3)"),
+            std::string::npos)
       << broken;
   EXPECT_TRUE(files.failed());
   files.commit();
@@ -732,6 +733,11 @@ TEST(OutputFolder, AGnuplotThatFailsIsAFailure) {
     again.commit();
     EXPECT_FALSE(std::filesystem::exists(dir.file("again/c.png"))) << script;
   }
+  // A gnuplot ended by a signal says which, not a raw wait status.
+  dir.write("bin/gnuplot", "#!/bin/sh\nkill -TERM $$\n");
+  lab::OutputFolder killed(dir.file("killed"));
+  const std::string signalled = killed.draw("c.gp", onePointChart("c"), "none");
+  EXPECT_NE(signalled.find("(killed by signal 15"), std::string::npos) << signalled;
   // A chart with nothing to draw is said, not failed, whatever gnuplot would do.
   lab::OutputFolder other(dir.file("other"));
   EXPECT_EQ(other.draw("e.gp", lab::logChart("t", "x", "y", false, "e"), "no points"), "no points");
