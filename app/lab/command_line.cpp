@@ -486,6 +486,19 @@ void prepareOutputFiles(const std::filesystem::path& folder, const std::vector<s
   for (const std::string& name : names) checkOutputFile(folder / name, option);
 }
 
+void refuseOutputsOverScenes(const std::filesystem::path& folder, const std::vector<std::string>& names,
+                             const std::vector<std::filesystem::path>& scenes, const char* option) {
+  for (const std::string& name : names) {
+    for (const std::filesystem::path& scene : scenes) {
+      std::error_code ec;  // a file that is not there yet is no scene
+      if (std::filesystem::equivalent(folder / name, scene, ec)) {
+        throw CommandFailure(std::string(option) + ": " + (folder / name).string() + ": is the scene " +
+                             scene.string() + " being run; the output would write over it");
+      }
+    }
+  }
+}
+
 void requireFolder(const std::filesystem::path& folder, const char* option) {
   if (const std::string why = fileio::folderProblem(folder); !why.empty())
     throw CommandFailure(std::string(option) + ": " + folder.string() + ": " + why);

@@ -132,6 +132,12 @@ void checkOutputFile(const std::filesystem::path& file, const char* option = "--
 void prepareOutputFiles(const std::filesystem::path& folder, const std::vector<std::string>& names,
                         const char* option = "--out");
 
+/// Throws CommandFailure "OPTION: FOLDER/NAME: is the scene FILE being run; ..." when one of the
+/// files a command will write (FOLDER/NAME of `names`) is, by any name, one of the scene files it
+/// reads: the output would write over its own input (as `lab run --dump` refuses).
+void refuseOutputsOverScenes(const std::filesystem::path& folder, const std::vector<std::string>& names,
+                             const std::vector<std::filesystem::path>& scenes, const char* option = "--out");
+
 /// Throws CommandFailure "OPTION: FOLDER: <the system's reason>" unless `folder` is an existing
 /// folder ("No such file or directory", "Not a directory"). A command that runs others and
 /// writes what they print calls it first, so a wrong folder is said before anything runs.

@@ -361,6 +361,9 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
   if (o.out) {
     const std::vector<std::string> names = convergeSceneNames(o.scenes, sceneDir);
     chartNames = convergeChartNames(names);
+    std::vector<std::filesystem::path> files;
+    for (const std::string& scene : o.scenes) files.push_back(scenes::resolveScene(scene, sceneDir));
+    refuseOutputsOverScenes(*o.out, convergeFiles(names), files);
     prepareOutputFiles(*o.out, convergeFiles(names));
   }
   std::vector<ConvergeRow> all;

@@ -113,8 +113,10 @@ void writeOutputs(const SuiteResult& r, const std::string& md, const std::filesy
 }
 
 int stabilityCommand(const StabilityOptions& o, std::ostream& out, std::ostream& err) {
-  if (!o.out.empty())
+  if (!o.out.empty()) {
+    refuseOutputsOverScenes(o.out, stabilityFiles(), stability::sceneFiles(o));
     prepareOutputFiles(o.out, stabilityFiles());  // the suite takes minutes: say a bad --out now
+  }
   std::vector<SuiteScene> scenes;
   for (const std::filesystem::path& file : stability::sceneFiles(o))
     scenes.push_back(stability::loadSuiteScene(file));

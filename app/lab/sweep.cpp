@@ -404,6 +404,7 @@ int sweepCommand(const SweepOptions& o, std::ostream& out, std::ostream& err) {
                       "--error " + std::string(m.name) + ": scene " + plan.sceneName, "swept",
                       "it is 0 at every setting");
   }
+  refuseOutputsOverScenes(o.out, sweepFiles(), {sceneFile(o.scene, o.dataDir)});
   prepareOutputFiles(o.out, sweepFiles());  // a sweep takes minutes: say a bad --out now
   return runSweep(plan, o.measure, o.out, out, err);
 }

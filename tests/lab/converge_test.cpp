@@ -250,6 +250,21 @@ TEST(Converge, TheChartDrawsEachLineInItsOwnStyle) {
   EXPECT_NE(script.find("set logscale y"), std::string::npos);
 }
 
+// A scene file where converge writes its results was overwritten by them; it is refused before
+// any run, as lab run --dump refuses the scene it runs.
+TEST(Converge, RefusesToWriteOverASceneItRuns) {
+  TempDir dir;
+  const std::string scene =
+      lab_testing::readFile(std::filesystem::path(DATA_DIR) / "assets/scenes/circular-orbit.xml");
+  const std::filesystem::path file = dir.write("converge.csv", scene);
+  const auto o = converge({"pendulum-exact", file.string(), "--methods", "shake", "--substeps", "1,2",
+                           "--out", dir.file("").string()});
+  EXPECT_EQ(o.code, lab::kExitFailure) << o.err;
+  EXPECT_NE(o.err.find("converge.csv: is the scene " + file.string() + " being run"), std::string::npos)
+      << o.err;
+  EXPECT_EQ(lab_testing::readFile(file), scene);
+}
+
 TEST(Converge, ASceneWithoutAnExactAnswerIsAClearError) {
   const auto o = converge({"pyramid"});
   EXPECT_EQ(o.code, lab::kExitFailure);

@@ -622,6 +622,21 @@ class ScopedPath {
   std::optional<std::string> old_;
 };
 
+// A scene file where the sweep writes its results was deleted by the sweep's own output; it is
+// refused before any run, as lab run --dump refuses the scene it runs.
+TEST(Sweep, RefusesToWriteOverTheSceneItRuns) {
+  TempDir dir;
+  const std::string scene =
+      lab_testing::readFile(std::filesystem::path(DATA_DIR) / "assets/scenes/falling-box.xml");
+  const std::filesystem::path file = dir.write("results.csv", scene);
+  const auto o = sweep({file.string(), "--iterations", "1", "--no-peers", "--out", dir.file("").string()});
+  EXPECT_EQ(o.code, lab::kExitFailure) << o.err;
+  EXPECT_NE(o.err.find("results.csv: is the scene " + file.string() + " being run"), std::string::npos)
+      << o.err;
+  EXPECT_EQ(lab_testing::readFile(file), scene);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("pareto.csv")));
+}
+
 TEST(Sweep, SaysSoAndStillWritesTheDataWithoutGnuplot) {
   TempDir dir;
   std::filesystem::create_directories(dir.file("empty-bin"));
