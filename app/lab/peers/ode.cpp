@@ -100,6 +100,9 @@ class OdeEngine : public Engine {
         throw std::runtime_error(why);
     }
     dInitODE2(0);
+    // dWorldQuickStep shuffles its rows from one random state for the whole process: seeded here,
+    // a run is the same whatever ran before it (0 is ODE's own seed, so a first run is as it was).
+    dRandSetSeed(0);
     dSetMessageHandler(&countMessage);
     messagesBefore_ = g_odeMessages;
     world_ = dWorldCreate();
