@@ -112,6 +112,38 @@ TEST(PeerEngines, AnOdeRunDoesNotDependOnTheRunsBefore) {
   }
 }
 
+// MuJoCo meets bad numbers by putting the bodies back where they began and going on: the run
+// read as sound (a sweep row not blown up, on the front; compare gave it an error). A box thrown
+// at 1e12 m/s makes it reset: the poses after read not finite, and the sweep calls it blown up.
+TEST(PeerEngines, AMujocoRunThatResetItselfHasBlownUp) {
+  const std::vector<std::string> e = lab::peerEngines();
+  if (std::find(e.begin(), e.end(), "mujoco") == e.end()) GTEST_SKIP() << "MuJoCo is not built in";
+  TempDir dir;
+  const std::filesystem::path fly =
+      dir.write("fly.xml",
+                "<scene name=\"fly\">\n  <ground/>\n"
+                "  <box name=\"b\" pos=\"0 3 0\" velocity=\"1e12 0 0\" size=\"1\" mass=\"8\"/>\n</scene>\n");
+  const lab::PeerResult r = lab::runPeer("mujoco", scenes::loadSceneFile(fly), kDt, 60, {1, 60});
+  ASSERT_TRUE(r.ran) << r.unsupported;
+  EXPECT_NE(r.unsupported.find("MuJoCo reset the run after bad numbers"), std::string::npos) << r.unsupported;
+  ASSERT_EQ(r.positions.size(), 2u);
+  EXPECT_FALSE(std::isfinite(r.positions[1][0].x)) << r.positions[1][0].x;
+
+  const lab::CommandOutput s = lab::runCaptured(
+      {"sweep", fly.string(), "--iterations", "1", "--repeat", "1", "--out", dir.file("out").string()});
+  ASSERT_EQ(s.code, 0) << s.err;
+  const lab::CsvTable csv = lab::readCsv(dir.file("out/results.csv"));
+  int seen = 0;
+  for (const lab::CsvRow& row : csv.rows) {
+    if (row.at("method") != "mujoco") continue;
+    ++seen;
+    EXPECT_EQ(row.at("blew_up"), "1");
+    EXPECT_EQ(row.at("pareto"), "0");
+    EXPECT_EQ(row.at("error"), "");
+  }
+  EXPECT_EQ(seen, 1);
+}
+
 TEST(PeerEngines, ListedInTheFixedOrder) {
   const std::vector<std::string> e = lab::peerEngines();
   const std::vector<std::string> order = {"bullet", "ode", "mujoco"};

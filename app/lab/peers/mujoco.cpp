@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -121,6 +122,9 @@ class MujocoEngine : public Engine {
     if (scene_.damping > 0.0) damp();
     mj_step2(model_, data_);
     stale_ = true;
+    // MuJoCo answers bad numbers by putting the bodies back where they began and going on: poses
+    // that look sound but are no run's. From then on the run has blown up (pose reads NaN).
+    if (!reset_ && badNumbers()) reset_ = true;
   }
 
   void finish() override {
@@ -133,13 +137,15 @@ class MujocoEngine : public Engine {
                       std::to_string(wanted_) + " wanted; MuJoCo 2.2.2's 2 GiB mjData holds no more at nv " +
                       std::to_string(model_->nv) + ")");
     }
-    if (data_->warning[mjWARN_BADQACC].number > 0 || data_->warning[mjWARN_BADQPOS].number > 0 ||
-        data_->warning[mjWARN_BADQVEL].number > 0) {
-      notes.push_back("MuJoCo reset the run after bad numbers");
-    }
+    if (reset_)
+      notes.push_back("MuJoCo reset the run after bad numbers (its poses from then on read not finite)");
   }
 
   phys::BodyPose pose(int i) const override {
+    if (reset_) {
+      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+      return {{nan, nan, nan}, {nan, nan, nan, nan}};
+    }
     sync();
     const auto id = static_cast<std::ptrdiff_t>(ids_[static_cast<std::size_t>(i)]);
     const mjtNum* p = data_->xpos + 3 * id;
@@ -260,6 +266,11 @@ class MujocoEngine : public Engine {
     }
   }
 
+  bool badNumbers() const {
+    return data_->warning[mjWARN_BADQACC].number > 0 || data_->warning[mjWARN_BADQPOS].number > 0 ||
+           data_->warning[mjWARN_BADQVEL].number > 0;
+  }
+
   // A step computes the bodies' poses (xpos, xquat) from the coordinates it starts with and
   // then integrates them, so after it they are one step old. Read, they are brought up to date
   // first (mj_kinematics: the poses alone), outside the timed step.
@@ -272,6 +283,7 @@ class MujocoEngine : public Engine {
   const Description& scene_;
   Hooks hooks_;
   mutable bool stale_ = false;  // xpos and xquat lag qpos by the last step
+  bool reset_ = false;          // MuJoCo reset the data after bad numbers: no pose is the run's
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
   bool tree_ = false;     // written as a kinematic tree
