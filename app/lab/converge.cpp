@@ -152,6 +152,31 @@ std::vector<ModelChoice> chosenModels(const scenes::SceneSource& source, const s
 
 }  // namespace
 
+namespace {
+
+// Throws, as runConverge would after its first runs, for a scene converge cannot measure: one with
+// no exact answer, or a free-body scene whose --time is no whole number of steps in range.
+void checkMeasurable(const scenes::Scene& own, const ConvergeOptions& o) {
+  if (hasAnalyticAnswers(own)) return;
+  const double dt = own.world.solverSettings().dt;
+  const double time = o.time;
+  if (const std::string why = notFreeBodies(own.world); !why.empty()) {
+    throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " + why +
+                                " (a free-body reference needs boxes alone in zero gravity)");
+  }
+  if (std::llround(time / dt) > kMaxSteps) {
+    throw UsageError("--time: at the scene's dt " + formatNumber(dt) + " s the " + formatNumber(time) +
+                     " s asked take more than " + std::to_string(kMaxSteps) + " steps");
+  }
+  // Less than half a step rounds to none: refused, not run as one step the user did not ask for.
+  if (std::lround(time / dt) < 1) {
+    throw UsageError("--time: '" + formatNumber(time) + "' s is shorter than one step of the scene's dt " +
+                     formatNumber(dt) + " s");
+  }
+}
+
+}  // namespace
+
 std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const ConvergeOptions& o,
                                      ConvergeTarget& target, std::ostream* progress) {
   // Read once: every run and reference is built from this text, whatever happens to the file.
@@ -164,26 +189,14 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   std::vector<int> checkpoints;
   FreeBodies freeRigid, freeParticle;  // the references for the rigid model and the particle ones
   AccuracyTarget t;  // analytic: the answers, the same whatever the model (bodies.h's order)
+  checkMeasurable(own, o);
   if (analytic) {
     t = accuracyTarget(own, dt, 1);
     checkpoints = t.checkpoints;
     target.kind = "analytic";
     target.description = t.description;
   } else {
-    if (const std::string why = notFreeBodies(own.world); !why.empty()) {
-      throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " +
-                                  why + " (a free-body reference needs boxes alone in zero gravity)");
-    }
-    if (std::llround(o.time / dt) > kMaxSteps) {
-      throw UsageError("--time: at the scene's dt " + formatNumber(dt) + " s the " + formatNumber(o.time) +
-                       " s asked take more than " + std::to_string(kMaxSteps) + " steps");
-    }
-    // Less than half a step rounds to none: refused, not run as one step the user did not ask for.
     const int steps = static_cast<int>(std::lround(o.time / dt));
-    if (steps < 1) {
-      throw UsageError("--time: '" + formatNumber(o.time) +
-                       "' s is shorter than one step of the scene's dt " + formatNumber(dt) + " s");
-    }
     checkpoints = spreadCheckpoints(steps);
     std::vector<double> times;
     times.reserve(checkpoints.size());
@@ -370,6 +383,15 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
   std::vector<Chart> charts;
   std::string current;
   try {
+    // Every scene checked before the first run: one that cannot be measured was found only after
+    // the scenes before it had run (minutes), and nothing was written.
+    for (const std::string& name : o.scenes) {
+      current = name;
+      const scenes::SceneSource source = scenes::readSceneSource(scenes::resolveScene(name, sceneDir));
+      const scenes::Scene own = scenes::loadSceneSource(source);
+      chosenModels(source, own.name, o, nullptr);  // as runConverge: the options first
+      checkMeasurable(own, o);
+    }
     for (const std::string& name : o.scenes) {
       current = name;
       ConvergeTarget target;

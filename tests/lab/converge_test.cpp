@@ -272,6 +272,23 @@ TEST(Converge, ASceneWithoutAnExactAnswerIsAClearError) {
   EXPECT_NE(o.err.find("it has gravity"), std::string::npos) << o.err;
 }
 
+// Every scene is checked before the first run: a scene without an exact answer after others was
+// found only once they had run (56 s for tumbling-box before pyramid), with nothing written.
+TEST(Converge, ASceneWithoutAnExactAnswerIsSaidBeforeAnyRun) {
+  TempDir dir;
+  const auto o = converge({"pendulum-exact", "pyramid", "--methods", "shake", "--substeps", "1,2", "--out",
+                           dir.file("out").string()});
+  EXPECT_EQ(o.code, lab::kExitFailure);
+  EXPECT_NE(o.err.find("pyramid has no exact answer"), std::string::npos) << o.err;
+  EXPECT_EQ(o.out, "") << "pendulum-exact ran first";
+  // A --time no free-body scene can take is said before the runs too.
+  const auto time = converge(
+      {"pendulum-exact", "tumbling-box", "--time", "0.001", "--methods", "shake", "--substeps", "1,2"});
+  EXPECT_EQ(time.code, lab::kExitUsage) << time.err;
+  EXPECT_NE(time.err.find("--time: '0.001' s is shorter than one step"), std::string::npos) << time.err;
+  EXPECT_EQ(time.out, "");
+}
+
 TEST(Converge, FreeBodiesThatTouchAreAClearError) {
   TempDir dir;
   const auto file = dir.write("touch.xml",
