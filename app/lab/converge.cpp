@@ -159,7 +159,7 @@ namespace {
 void checkMeasurable(const scenes::Scene& own, const ConvergeOptions& o) {
   if (hasAnalyticAnswers(own)) return;
   const double dt = own.world.solverSettings().dt;
-  const double time = o.time;
+  const double time = o.time.value_or(kConvergeTime);
   if (const std::string why = notFreeBodies(own.world); !why.empty()) {
     throw std::invalid_argument(own.name + " has no exact answer: no <expect kind=\"position\">, and " + why +
                                 " (a free-body reference needs boxes alone in zero gravity)");
@@ -191,12 +191,15 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
   AccuracyTarget t;  // analytic: the answers, the same whatever the model (bodies.h's order)
   checkMeasurable(own, o);
   if (analytic) {
+    if (o.time && progress != nullptr)
+      *progress << "converge    " << own.name
+                << " has exact answers at their own times: --time does not apply to it\n";
     t = accuracyTarget(own, dt, 1);
     checkpoints = t.checkpoints;
     target.kind = "analytic";
     target.description = t.description;
   } else {
-    const int steps = static_cast<int>(std::lround(o.time / dt));
+    const int steps = static_cast<int>(std::lround(o.time.value_or(kConvergeTime) / dt));
     checkpoints = spreadCheckpoints(steps);
     std::vector<double> times;
     times.reserve(checkpoints.size());

@@ -53,7 +53,7 @@ struct ConvergeOptions {
   std::vector<std::string> models;                ///< model labels; empty: every one a scene takes
   std::vector<int> substeps = kConvergeSubsteps;  ///< ascending or not; h = dt / each
   int iterations = kConvergeIterations;
-  double time = kConvergeTime;  ///< unit: s; free-body scenes only
+  std::optional<double> time;  ///< unit: s; free-body scenes only; kConvergeTime when not given
   std::optional<std::filesystem::path> out;
   std::filesystem::path dataDir;  ///< holds assets/; empty: the build's default
 };

@@ -289,6 +289,19 @@ TEST(Converge, ASceneWithoutAnExactAnswerIsSaidBeforeAnyRun) {
   EXPECT_EQ(time.out, "");
 }
 
+// --time is for free-body scenes: a scene with exact answers measures at their times, and says
+// that it does not use --time (it was taken and ignored in silence).
+TEST(Converge, TimeGivenToAnAnalyticSceneIsSaid) {
+  const auto o = converge({"pendulum-exact", "--time", "2", "--methods", "shake", "--substeps", "1,2"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("pendulum-exact has exact answers at their own times: --time does not apply to it"),
+            std::string::npos)
+      << o.err;
+  const auto quiet = converge({"pendulum-exact", "--methods", "shake", "--substeps", "1,2"});
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("--time"), std::string::npos) << quiet.err;
+}
+
 TEST(Converge, FreeBodiesThatTouchAreAClearError) {
   TempDir dir;
   const auto file = dir.write("touch.xml",
