@@ -100,6 +100,12 @@ std::string engineOf(const Row& r) {
   return r.peer ? r.method : "ours";
 }
 
+// A figure of a run that blew up says nothing (its bodies are frozen or not finite): read as
+// infinite, it shows "blew up" in the table and null in the JSON, as the error does.
+double figureOf(const Row& r, double value) {
+  return r.blewUp() ? kInf : value;
+}
+
 void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest) {
   out << "| engine | method | settings | ms/step | vs our fastest | error, first checkpoint (m) | "
          "error, all (m) | penetration (m) | joint gap (m) |";
@@ -118,8 +124,8 @@ void printTable(std::ostream& out, const std::vector<Row>& rows, double fastest)
       const double depth = std::abs(f.posePenetration) < 1e-9 ? 0.0 : f.posePenetration;
       out << formatNumber(r.msPerStep, 4) << " | " << formatFigure(r.msPerStep / fastest, "x", 3) << " | "
           << formatNumber(f.errorFirst, 3) << " | " << formatNumber(f.error, 3) << " | "
-          << formatNumber(depth, 3) << " | " << formatNumber(f.poseJointGap, 3);
-      for (const double v : f.maxima.worst) out << " | " << (r.peer ? "-" : formatNumber(v, 3));
+          << formatNumber(figureOf(r, depth), 3) << " | " << formatNumber(figureOf(r, f.poseJointGap), 3);
+      for (const double v : f.maxima.worst) out << " | " << (r.peer ? "-" : formatNumber(figureOf(r, v), 3));
     } else {
       out << "not run | | | | | ";
       for (std::size_t i = 0; i < kRunMetricCount; ++i) out << " | ";
@@ -146,10 +152,11 @@ void printJson(std::ostream& out, const std::vector<Row>& rows, double fastest, 
     j["accuracy"] = target.kind;
     j["error_first"] = f.errorFirst;
     j["error"] = f.error;
-    j["max_penetration"] = f.posePenetration;
-    j["max_joint_gap"] = f.poseJointGap;
+    j["max_penetration"] = figureOf(r, f.posePenetration);
+    j["max_joint_gap"] = figureOf(r, f.poseJointGap);
     for (std::size_t i = 0; i < kRunMetricCount; ++i) {
-      j[std::string(kRunMetrics[i].column) + "_every_step"] = r.peer ? std::nan("") : f.maxima[i];
+      j[std::string(kRunMetrics[i].column) + "_every_step"] =
+          r.peer ? std::nan("") : figureOf(r, f.maxima[i]);
     }
     j["notes"] = r.note;
     out << jsonLine(j);

@@ -19,6 +19,7 @@
 #include "lab_test_util.h"
 #include "peer.h"
 #include "peers/peer_scene.h"
+#include "run_metrics.h"
 #include "runner.h"
 #include "scenes/scene.h"
 
@@ -590,12 +591,20 @@ TEST(Compare, AFrozenRunHasNoErrorAndSaysWhy) {
   const std::string row = o.out.substr(at, o.out.find('\n', at) - at);
   EXPECT_NE(row.find(" | blew up | blew up | "), std::string::npos) << row;
   EXPECT_NE(row.find("blew up: the guard froze 1 particle |"), std::string::npos) << row;
+  // Nor any other figure: the penetration, joint gap and every-step figures read 0.
+  std::string blewUp = " | blew up | blew up | blew up | blew up";
+  for (std::size_t i = 0; i < lab::kRunMetricCount; ++i) blewUp += " | blew up";
+  EXPECT_NE(row.find(blewUp + " | blew up: the guard"), std::string::npos) << row;
   const Output json = compare({"compare", file.string(), "--steps", "30", "--json"});
   ASSERT_EQ(json.code, 0) << json.err;
   const auto first = lab_testing::parseFlatJson(json.out.substr(0, json.out.find('\n')));
   ASSERT_TRUE(first.has_value()) << json.out;
   EXPECT_EQ(first->values.at("error"), "null") << json.out;
   EXPECT_EQ(first->values.at("error_first"), "null") << json.out;
+  EXPECT_EQ(first->values.at("max_penetration"), "null") << json.out;
+  EXPECT_EQ(first->values.at("max_joint_gap"), "null") << json.out;
+  for (const lab::RunMetric& m : lab::kRunMetrics)
+    EXPECT_EQ(first->values.at(std::string(m.column) + "_every_step"), "null") << m.column;
 }
 
 TEST(Compare, NamesAProjectSceneFromTheDataFolderAndAnyOtherAsGiven) {
