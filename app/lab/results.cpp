@@ -18,6 +18,7 @@
 #include "converge.h"
 #include "csv.h"
 #include "fileio/files.h"
+#include "gnuplot.h"
 #include "lab.h"
 #include "output_files.h"
 #include "report.h"
@@ -103,11 +104,29 @@ struct Report {
     progress << "lab report: lab " << command << ' ' << join(args, " ") << std::endl;  // every one has args
     const CommandOutput r = runCaptured(command, args);
     failed |= r.code != 0;
-    if (r.code == 0)
+    if (r.code == 0) {
       md << shown(r.out);
-    else
+      sayWarnings(r.err);
+    } else
       md << "The command failed (exit " << r.code << "):\n\n```\n" << r.err << "```\n";
     md << "\n";
+  }
+
+  // What a command that succeeded said on stderr as "lab: ..." (a chart with nothing to draw, say),
+  // which was dropped; but gnuplot missing, which the report says once.
+  void sayWarnings(const std::string& err) const {
+    std::istringstream lines(err);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.starts_with("lab: ") && line.find("gnuplot is not installed") == std::string::npos)
+        progress << line << "\n";
+    }
+  }
+
+  // The link to a chart, results/PATH, when the command before drew it: without gnuplot, or with
+  // nothing to draw, it is not there (a command removes a chart it did not draw), and a link
+  // would show a broken picture.
+  std::string picture(const std::string& alt, const std::string& path) const {
+    return fs::exists(o.out / "results" / path) ? "![" + alt + "](results/" + path + ")\n\n" : std::string();
   }
 
   // A sweep into results/FOLDER: its chart (`chart` its alt text), what `words` make of its
@@ -115,7 +134,7 @@ struct Report {
   void sweep(const std::string& folder, const std::string& chart,
              std::string (*words)(const std::vector<CsvRow>&), const std::vector<std::string>& args) {
     section("sweep", args, [&](const std::string&) {
-      return "![" + chart + "](results/" + folder + "/error-vs-cost.png)\n\n" +
+      return picture(chart, folder + "/error-vs-cost.png") +
              words(readCsv(o.out / "results" / folder / "results.csv").rows) +
              "\nAll runs: [results.csv](results/" + folder + "/results.csv).\n";
     });
@@ -364,6 +383,13 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
         "contact model and ours, which no setting of either removes.\n\n";
   if (o.quick)
     md << "**This is a --quick report: tiny sweeps that check the pipeline, not figures to quote.**\n\n";
+  // Said once here, not by every command it runs (and dropped from their stderr).
+  if (findGnuplot().empty()) {
+    err << "lab report: gnuplot is not installed (Debian: apt-get install gnuplot-nox): no chart is drawn, "
+           "results.md links none, and the stability suite, which needs its heat maps, fails\n";
+    md << "**gnuplot was not installed: no chart was drawn.** Each command's data and gnuplot script are "
+          "written; run gnuplot on a script in its folder to draw its chart.\n\n";
+  }
 
   md << "## Speed against accuracy\n\n"
      << "Each chart plots error against cost for every method x iterations x substeps combination "
@@ -404,23 +430,32 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
                    [&](const std::string& json) { return drivesTable(t.scene, json); });
   }
 
-  md << "## Where methods fail\n\n"
-     << "![pass or fail per scene and setting](results/stability/stability-pass.png)\n\n"
-     << "![error figure per scene and setting](results/stability/stability-error.png)\n\n";
-  report.section("stability", report.quickOrFull({"--out", (results / "stability").string(), "--data", data},
-                                                 {"--scene", "face-face", "--methods", "gauss-seidel,xpbd",
-                                                  "--iterations", "1", "--substeps", "1"}));
+  md << "## Where methods fail\n\n";
+  report.section(
+      "stability",
+      report.quickOrFull(
+          {"--out", (results / "stability").string(), "--data", data},
+          {"--scene", "face-face", "--methods", "gauss-seidel,xpbd", "--iterations", "1", "--substeps", "1"}),
+      [&](const std::string& printed) {
+        return report.picture("pass or fail per scene and setting", "stability/stability-pass.png") +
+               report.picture("error figure per scene and setting", "stability/stability-error.png") +
+               demoteHeadings(printed);
+      });
   // The same suite with every box and ragdoll rigid, the model as the map's axis: a rigid body
   // is solved by XPBD whatever the method, so one block of settings.
   md << "### The rigid model on the same suite\n\n"
      << "Every box and ragdoll of each scene made rigid (`lab stability --models rigid --methods xpbd "
         "--no-peers`): the chains have no body and run as they are. Set beside the table above, it shows "
-        "which model holds each scene at the fewest passes.\n\n"
-     << "![pass or fail per scene and setting, rigid](results/stability-rigid/stability-pass.png)\n\n";
+        "which model holds each scene at the fewest passes.\n\n";
   report.section("stability",
                  report.quickOrFull({"--out", (results / "stability-rigid").string(), "--data", data,
                                      "--models", "rigid", "--methods", "xpbd", "--no-peers"},
-                                    {"--scene", "face-face", "--iterations", "1", "--substeps", "1"}));
+                                    {"--scene", "face-face", "--iterations", "1", "--substeps", "1"}),
+                 [&](const std::string& printed) {
+                   return report.picture("pass or fail per scene and setting, rigid",
+                                         "stability-rigid/stability-pass.png") +
+                          demoteHeadings(printed);
+                 });
 
   md << "## Beside Bullet, ODE and MuJoCo\n\n";
   // The scenes set beside the peers, each with what the full report adds to its arguments.
@@ -447,8 +482,8 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   report.section("scale",
                  report.quickOrFull({"--out", (results / "scale").string()},
                                     {"--sizes", "1,2", "--steps", "5"}, {"--threads", "1,2"}),
-                 [](const std::string& printed) {
-                   return "![microseconds per body-step against bodies](results/scale/scale.png)\n\n" +
+                 [&](const std::string& printed) {
+                   return report.picture("microseconds per body-step against bodies", "scale/scale.png") +
                           tableBlock(printed);
                  });
 
@@ -464,7 +499,7 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
       [&](const std::string& printed) {
         std::string charts;
         for (const std::string& scene : convergeScenes(o))
-          charts += "![error against h, " + scene + "](results/converge/converge-" + scene + ".png)\n\n";
+          charts += report.picture("error against h, " + scene, "converge/converge-" + scene + ".png");
         return charts + tableBlock(printed) + "\nAll runs: [converge.csv](results/converge/converge.csv).\n";
       });
 

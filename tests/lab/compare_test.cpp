@@ -812,6 +812,31 @@ TEST(Report, AResultsFileThatCannotBeWrittenIsRefusedBeforeAnythingRuns) {
   EXPECT_TRUE(std::filesystem::is_empty(out / "results")) << "no part ran";
 }
 
+// Without gnuplot each command said so on its stderr, which the report dropped (a command that
+// succeeds), and results.md linked charts that were never drawn. The report says it once, links
+// no chart, and still writes every part's data.
+TEST(Report, WithoutGnuplotItSaysSoOnceAndLinksNoChart) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("empty-bin"));
+  const char* path = std::getenv("PATH");
+  const std::string old = path != nullptr ? path : "";
+  ::setenv("PATH", dir.file("empty-bin").c_str(), 1);
+  const Output r =
+      lab::runCaptured("report", {"--quick", "--out", dir.file("out").string(), "--data", DATA_DIR});
+  ::setenv("PATH", old.c_str(), 1);
+  EXPECT_EQ(r.code, lab::kExitFailure) << "the stability suite fails without its heat maps: " << r.err;
+  std::size_t said = 0;
+  for (std::size_t at = r.err.find("gnuplot is not installed"); at != std::string::npos;
+       at = r.err.find("gnuplot is not installed", at + 1))
+    ++said;
+  EXPECT_EQ(said, 1u) << r.err;
+  const std::string md = lab_testing::readFile(dir.file("out/results.md"));
+  EXPECT_EQ(md.find(".png)"), std::string::npos) << md;
+  EXPECT_NE(md.find("gnuplot was not installed"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/results/chain/sweep.gp")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/results/converge/converge.csv")));
+}
+
 TEST(Report, BadArgumentsExitWithUsage) {
   const Output r = lab::runCaptured("report", {"--frobnicate"});
   EXPECT_EQ(r.code, 2);
