@@ -437,6 +437,42 @@ TEST(Islands, AMovingBodyNeverSleeps) {
   }
 }
 
+// A body that starts to fall slowly from rest stays under the sleeping speed for the whole sleep
+// time when it speeds up by less than sleep.speed / sleep.time (0.1 m/s^2 at the defaults), and
+// slept mid-fall: a 1 x 4 x 1 m rigid column standing on a 1 m box with its centre 5 mm past the
+// box's edge slept from step 40, tipping at 0.033 m/s, leaning at x 0.510 for good. Its speed rises
+// step after step, which a settling body's does not, so it must tip over onto the ground (awake it
+// lies there with its centre at x 3.15, 0.5 m up) at the default sleep settings.
+TEST(Islands, AColumnTippingSlowlyOverAnEdgeDoesNotSleepMidFall) {
+  phys::SolverSettings s = sleeping(phys::BodyModel::Rigid);
+  s.method = phys::SolverMethod::Xpbd;
+  s.iterations = 1;
+  s.substeps = 4;
+  phys::World world({}, s);
+  world.addBody(box(Vec3(0.0, 0.5, 0.0), phys::BodyModel::Rigid));
+  phys::BodyDesc column = box(Vec3(0.505, 3.0, 0.0), phys::BodyModel::Rigid);
+  column.size = Vec3(1.0, 4.0, 1.0);
+  const BodyId id = world.addBody(column);
+  for (int i = 0; i < 1200; ++i) world.step();
+  const Vec3 centre = world.bodyPose(id).center;
+  EXPECT_GT(centre.x, 2.5);  // fallen off the box: 2 m of its own height past the edge
+  EXPECT_NEAR(centre.y, 0.5, 0.05);
+}
+
+// The same for a particle pendulum of 1 m balanced 1 mm off straight up over its pin: it speeds up
+// by a share of its speed each step (its angle grows as cosh(3.13 t)), and slept there, never
+// leaving the top. It must swing down past the pin's height within 3.5 s (a quarter turn takes
+// 2.57 s by that law).
+TEST(Islands, AnInvertedPendulumFallsFromItsBalance) {
+  phys::World world({}, sleeping());
+  const phys::ParticleId pin = world.addParticle({Vec3(0.0, 2.0, 0.0), Vec3(0.0), 1.0, true, "pin"});
+  const phys::ParticleId bob = world.addParticle({Vec3(0.001, 3.0, 0.0), Vec3(0.0), 1.0, false, "bob"});
+  world.addStick(pin, bob);
+  while (world.time() < 3.5 && world.particles().position[bob].y > 2.0) world.step();
+  EXPECT_LT(world.particles().position[bob].y, 2.0)
+      << "asleep " << world.islands().asleep(world.islands().particleNode(bob));
+}
+
 // A body faster than the sleeping speed never sleeps, even with a sleep time of 0: its rest, 0, met
 // the time, 0, and a box thrown up slept on its first step, in the air. In zero gravity a box
 // drifting at 1 m/s must drift on: 1 m a second, awake.

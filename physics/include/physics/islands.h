@@ -6,12 +6,12 @@
 // come and go, and rebuilding them all costs a pass over the nodes and the manifolds
 // (docs/performance.md, "Islands and sleeping").
 //
-// An island whose every node has been slower than SleepSettings::speed for SleepSettings::time
-// goes to sleep. The world then steps none of it (World::step: its particles and rigid bodies look
-// pinned to the passes, and pairs of two sleeping bodies are not collided), so its state is kept
-// to the bit. It wakes whole when an awake node joins it by a contact (in the step, as soon as the
-// narrow phase finds it: wakeTouched), a stick, a link or a joint, when one of its nodes is dragged,
-// and when the settings change.
+// An island whose every node has been slower than SleepSettings::speed for SleepSettings::time,
+// without speeding up step after step (Islands::speedingUp), goes to sleep. The world then steps none of it
+// (World::step: its particles and rigid bodies look pinned to the passes, and pairs of two sleeping bodies
+// are not collided), so its state is kept to the bit. It wakes whole when an awake node joins it by a contact
+// (in the step, as soon as the narrow phase finds it: wakeTouched), a stick, a link or a joint, when one of
+// its nodes is dragged, and when the settings change.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -138,6 +138,7 @@ class Islands {
   void unite(NodeId a, NodeId b);
   void setAsleep(NodeId node, bool asleep);
   Real nodeSpeed(const IslandInput& in, NodeId node) const;
+  bool speedingUp(NodeId node, Real speed, const IslandInput& in);  // per node, once a step
 
   std::vector<NodeId> particleNode_;        // per particle
   std::vector<NodeId> bodyNode_;            // per body
@@ -150,6 +151,8 @@ class Islands {
   std::vector<std::uint8_t> asleep_;        // per node
   std::vector<std::uint8_t> bodyAsleep_;    // per body
   std::vector<Real> rest_;                  // per node: unit: s; how long it has been slow
+  std::vector<Real> lastSpeed_;             // per node: unit: m/s; its speed at the step before
+  std::vector<Real> rising_;                // per node: unit: s; how long its speed has risen running
   std::vector<std::uint8_t> islandAwake_;   // per root: scratch
   std::vector<std::uint8_t> islandAsleep_;  // per root: scratch
   std::vector<Real> islandRest_;            // per root: scratch, the least rest of its nodes
