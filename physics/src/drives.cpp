@@ -8,6 +8,7 @@
 #include "physics/drives.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -30,12 +31,19 @@ Real driveCompliance(Real strength, Real stiffness) {
 namespace detail {
 namespace {
 
+// A drive's compliance over the substep squared hh, XPBD's alpha~; infinite for no drive: strength
+// 0, or a strength so small that (1 - s) / (s k), or that over hh, is not finite. Such a drive is
+// skipped as strength 0 is: stepped, 1e-310 made inf * 0 in complianceStep, NaN, and the guard froze
+// the ragdoll.
+Real complianceOver(Real strength, Real stiffness, Real hh) {
+  return driveCompliance(strength, stiffness) / hh;
+}
+
 // One XPBD update of a constraint whose error is `error` (> 0) with generalised inverse mass w and
-// compliance alpha over a substep of h squared hh: the multiplier's change, which the caller applies
-// along the error's direction. Converged, the error left is alpha lambda / h^2: the force (or torque)
-// lambda / h^2 a spring of stiffness 1 / alpha answers that error with.
-Real complianceStep(Real error, Real w, Real alpha, Real hh, Real& lambda) {
-  const Real a = alpha / hh;
+// compliance over h^2 `a` (finite): the multiplier's change, which the caller applies along the
+// error's direction. Converged, the error left is a lambda (alpha lambda / h^2): the force (or
+// torque) lambda / h^2 a spring of stiffness 1 / alpha answers that error with.
+Real complianceStep(Real error, Real w, Real a, Real& lambda) {
   const Real delta = (error - a * lambda) / (w + a);
   lambda += delta;
   return delta;
@@ -94,15 +102,15 @@ void driveRigidJoints(const RigidPassInput& in, std::span<const RigidJoint> join
   const Real hh = in.h * in.h;
   for (std::size_t k = 0; k < joints.size(); ++k) {
     const JointDrive& drive = drives[k];
-    if (drive.strength <= 0.0) continue;
+    const Real a = complianceOver(drive.strength, drive.stiffness, hh);
+    if (!std::isfinite(a)) continue;  // no drive
     const RigidJoint& j = joints[k];
     Real angle = 0.0;
     Vec3 n(0.0);
     if (!turnTowards(r.orientation[j.b], r.orientation[j.a] * drive.target, angle, n)) continue;
     const Real w = glm::dot(n, inverseInertiaTimes(r, j.a, n)) + glm::dot(n, inverseInertiaTimes(r, j.b, n));
     if (w <= 0.0) continue;  // both frozen
-    const Real delta =
-        complianceStep(angle, w, driveCompliance(drive.strength, drive.stiffness), hh, lambda[k]);
+    const Real delta = complianceStep(angle, w, a, lambda[k]);
     applyAngularImpulse(r, j.b, delta * n);
     applyAngularImpulse(r, j.a, -delta * n);
   }
@@ -122,18 +130,18 @@ void driveRigidBodies(const RigidPassInput& in, std::span<const DrivenBody> bodi
     if (drive.strength <= 0.0 || r.inverseMass[i] == 0.0) continue;  // none, or frozen
     const Vec3 gap = drive.position - r.position[i];
     const Real distance = glm::length(gap);
-    if (distance > 0.0 && drive.stiffness > 0.0) {  // stiffness 0: it only turns the body
+    const Real a = complianceOver(drive.strength, drive.stiffness, hh);
+    if (distance > 0.0 && drive.stiffness > 0.0 && std::isfinite(a)) {  // stiffness 0: it only turns the body
       const Real w = r.inverseMass[i];
-      const Real delta =
-          complianceStep(distance, w, driveCompliance(drive.strength, drive.stiffness), hh, lambda[2 * k]);
+      const Real delta = complianceStep(distance, w, a, lambda[2 * k]);
       applyPositionalImpulse(r, i, Vec3(0.0), (delta / distance) * gap);
     }
+    const Real angular = complianceOver(drive.strength, drive.angularStiffness, hh);
     Real angle = 0.0;
     Vec3 n(0.0);
-    if (!turnTowards(r.orientation[i], drive.orientation, angle, n)) continue;
+    if (!std::isfinite(angular) || !turnTowards(r.orientation[i], drive.orientation, angle, n)) continue;
     const Real w = glm::dot(n, inverseInertiaTimes(r, i, n));
-    const Real delta = complianceStep(angle, w, driveCompliance(drive.strength, drive.angularStiffness), hh,
-                                      lambda[2 * k + 1]);
+    const Real delta = complianceStep(angle, w, angular, lambda[2 * k + 1]);
     applyAngularImpulse(r, i, delta * n);
   }
 }
@@ -146,7 +154,8 @@ void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<c
   const Real hh = h * h;
   for (std::size_t k = 0; k < joints.size(); ++k) {
     const JointDrive& drive = drives[k];
-    if (drive.strength <= 0.0) continue;
+    const Real alpha = complianceOver(drive.strength, drive.stiffness, hh);
+    if (!std::isfinite(alpha)) continue;  // no drive
     const Body &bodyA = bodies[joints[k].a], &bodyB = bodies[joints[k].b];
     const ParticleFrame a = frameOf(p, bodyA), b = frameOf(p, bodyB);
     Real angle = 0.0;
@@ -154,8 +163,7 @@ void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<c
     if (!turnTowards(b.pose.orientation, a.pose.orientation * drive.target, angle, n)) continue;
     const Real w = glm::dot(n, a.inverseInertia * n) + glm::dot(n, b.inverseInertia * n);
     if (w <= 0.0) continue;  // both held still
-    const Real delta =
-        complianceStep(angle, w, driveCompliance(drive.strength, drive.stiffness), hh, lambda[k]);
+    const Real delta = complianceStep(angle, w, alpha, lambda[k]);
     turnParticles(p, bodyB, b, b.inverseInertia * (delta * n));
     turnParticles(p, bodyA, a, a.inverseInertia * (-delta * n));
   }
@@ -176,20 +184,20 @@ void driveParticleBodies(Particles& p, std::span<const Body> bodies, std::span<c
     if (!f.movable()) continue;
     const Vec3 gap = drive.position - f.centre;
     const Real distance = glm::length(gap);
-    if (distance > 0.0 && drive.stiffness > 0.0) {
-      const Real delta = complianceStep(distance, f.inverseMass,
-                                        driveCompliance(drive.strength, drive.stiffness), hh, lambda[2 * k]);
+    const Real a = complianceOver(drive.strength, drive.stiffness, hh);
+    if (distance > 0.0 && drive.stiffness > 0.0 && std::isfinite(a)) {
+      const Real delta = complianceStep(distance, f.inverseMass, a, lambda[2 * k]);
       const Vec3 move = (delta * f.inverseMass / distance) * gap;
       for (ParticleId i = body.firstParticle; i < body.firstParticle + body.particleCount; ++i)
         p.position[i] += move;
       f.centre += move;
     }
+    const Real angular = complianceOver(drive.strength, drive.angularStiffness, hh);
     Real angle = 0.0;
     Vec3 n(0.0);
-    if (!turnTowards(f.pose.orientation, drive.orientation, angle, n)) continue;
+    if (!std::isfinite(angular) || !turnTowards(f.pose.orientation, drive.orientation, angle, n)) continue;
     const Real w = glm::dot(n, f.inverseInertia * n);
-    const Real delta = complianceStep(angle, w, driveCompliance(drive.strength, drive.angularStiffness), hh,
-                                      lambda[2 * k + 1]);
+    const Real delta = complianceStep(angle, w, angular, lambda[2 * k + 1]);
     turnParticles(p, body, f, f.inverseInertia * (delta * n));
   }
 }

@@ -374,6 +374,29 @@ TEST(JointDrive, ARagdollsDrivesTakeItsStrengthAndAStiffnessForItsSize) {
   EXPECT_EQ(w.rigidJoints().size(), static_cast<std::size_t>(phys::kRagdollHinges + phys::kCapsuleJoints));
 }
 
+// A strength so small that its compliance, (1 - s) / (s k), or that over h^2, is infinite is no
+// drive: 1e-310 made the XPBD step inf * 0, NaN, and the guard froze the ragdoll at once. Such a
+// ragdoll falls limp, as one of strength 0, to the bit.
+TEST(JointDrive, AStrengthTooSmallForItsComplianceIsNoDrive) {
+  for (const phys::RagdollModel model : {phys::RagdollModel::Rigid, phys::RagdollModel::Lean}) {
+    SCOPED_TRACE(phys::toString(model));
+    auto limp = [model](Real strength) {
+      phys::World w(phys::WorldSettings{}, xpbd(2, 8));
+      phys::RagdollDesc d;
+      d.model = model;
+      d.hips = Vec3(0.0, 0.85, 0.0);
+      d.strength = strength;
+      phys::addRagdoll(w, d);
+      for (int step = 0; step < 120; ++step) w.step();
+      EXPECT_TRUE(w.freezes().empty()) << strength;
+      return w.stateHash();
+    };
+    const auto none = limp(0.0);
+    for (const Real tiny : {1e-310, 1e-320, std::numeric_limits<Real>::denorm_min()})
+      EXPECT_EQ(limp(tiny), none) << tiny;
+  }
+}
+
 // A body's drive holds it against gravity as a spring of its stiffness: started at the sag m g / k
 // below its target, a body stays there whatever the passes and substeps, bobbing only by what it
 // starts with: a body given no velocity at the pose's time keeps g h / 2 of gravity's for the
