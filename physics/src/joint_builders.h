@@ -91,8 +91,9 @@ AnyRagdoll startRagdoll(const World& world, const RagdollDesc& desc) {
 /// for rigid parts and 0 for particle ones (RagdollDesc::jointDamping).
 Real jointDamping(const RagdollDesc& desc);
 
-/// Gives each rigid joint from `firstJoint` on its drive at desc.strength, holding the pose it was
-/// made in (RagdollDesc::strength, driveStiffness). Nothing when the strength is 0.
+/// Gives each joint from `firstJoint` on (rigid, or particle joints for a particle ragdoll) its drive
+/// at desc.strength, holding the pose it was made in, and its stiffness (RagdollDesc::strength,
+/// driveStiffness): at strength 0 too, the stiffness a character driving the ragdoll takes.
 void driveRagdollJoints(World& world, const RagdollDesc& desc, std::size_t firstJoint);
 /// Gives the root its drive at desc.rootStrength, holding it where it is (RagdollDesc::rootStrength).
 /// Nothing when the strength is 0.

@@ -830,6 +830,34 @@ TEST(ClipFile, TheCapsuleRunCycleIsTrackedWithinFiveDegrees) {
   expectTheRunTracked("shape=\"capsule\" pos=\"0 0.95 0\"", kClips + "capsule/run.bvh");
 }
 
+// A ragdoll's drive stiffness grows with its mass (RagdollDesc::driveStiffness), and a character
+// drives the joints at it: it was set only for a ragdoll of strength > 0, and characters' ragdolls
+// have strength 0, so a 700 kg runner's joints held at a 70 kg ragdoll's stiffness tracked within
+// 10.1 degrees RMS where 70 kg tracks within 1.26. Ten times the mass and ten times the stiffness
+// is the same motion: the two track alike, within 1%.
+TEST(ClipFile, AHeavyRagdollsCharacterTracksAsALightOnes) {
+  auto tracking = [](const std::string& mass) {
+    scenes::Scene scene = scenes::loadSceneText(
+        "<scene name=\"c\"><ground/><solver method=\"xpbd\" iterations=\"2\" substeps=\"8\"/>"
+        "<ragdoll name=\"p\" pos=\"0 0.85 0\" model=\"rigid\" mass=\"" +
+            mass + "\" strength=\"0\"/><character ragdoll=\"p\" clip=\"" + kClips +
+            "run.bvh\" strength=\"0.9\" root-strength=\"1\"/></scene>",
+        "heavy.xml");
+    double sum = 0.0;
+    const int steps = 600;
+    for (int i = 0; i < steps; ++i) {
+      scene.world.step();
+      const double e = phys::trackingError(scene.world, 0);
+      sum += e * e;
+    }
+    EXPECT_TRUE(scene.world.freezes().empty()) << mass << " kg";
+    return std::sqrt(sum / steps) / kDeg;
+  };
+  const double light = tracking("70"), heavy = tracking("700");
+  std::printf("run cycle: RMS tracking error %.3f degrees at 70 kg, %.3f at 700 kg\n", light, heavy);
+  EXPECT_NEAR(heavy / light, 1.0, 0.01);
+}
+
 // The capsule ragdoll's clips (scripts/make-clips): Bullet's eleven bones, the pelvis the root, and its
 // arms, which rest in a T, turned down by a swing read back through BVH's three rotation channels in
 // their order (Z, X, Y): in the stand clip each upper arm's core points 72 degrees from the T, out to

@@ -374,6 +374,30 @@ TEST(JointDrive, ARagdollsDrivesTakeItsStrengthAndAStiffnessForItsSize) {
   EXPECT_EQ(w.rigidJoints().size(), static_cast<std::size_t>(phys::kRagdollHinges + phys::kCapsuleJoints));
 }
 
+// The stiffness for the ragdoll's size is set at strength 0 too, where a character takes the joints
+// up with strengths of its own: it was left at the 70 kg default unless the ragdoll had a strength.
+TEST(JointDrive, ALimpRagdollsDrivesHaveTheStiffnessForItsSize) {
+  phys::World w = testing_phys::openSpace(xpbd(2, 8));
+  phys::RagdollDesc d;
+  d.strength = 0.0;
+  d.mass = 700.0;
+  d.model = phys::RagdollModel::Rigid;
+  phys::addRagdoll(w, d);
+  d.model = phys::RagdollModel::Lean;
+  d.hips = Vec3(3.0, 0.0, 0.0);
+  phys::addRagdoll(w, d);
+  ASSERT_EQ(w.rigidJoints().size(), static_cast<std::size_t>(phys::kRagdollHinges));
+  ASSERT_FALSE(w.particleJoints().empty());
+  for (std::size_t k = 0; k < w.rigidJoints().size(); ++k) {
+    EXPECT_EQ(w.jointDrive(k).strength, 0.0);
+    EXPECT_DOUBLE_EQ(w.jointDrive(k).stiffness, 10.0 * phys::kDriveStiffness);
+  }
+  for (std::size_t k = 0; k < w.particleJoints().size(); ++k) {
+    EXPECT_EQ(w.particleJointDrive(k).strength, 0.0);
+    EXPECT_DOUBLE_EQ(w.particleJointDrive(k).stiffness, 10.0 * phys::kDriveStiffness);
+  }
+}
+
 // A strength so small that its compliance, (1 - s) / (s k), or that over h^2, is infinite is no
 // drive: 1e-310 made the XPBD step inf * 0, NaN, and the guard froze the ragdoll at once. Such a
 // ragdoll falls limp, as one of strength 0, to the bit.

@@ -81,7 +81,8 @@ struct RagdollDesc {
   Real strength = 0.0;
   /// unit: N m / rad; the drives' stiffness at strength 1/2 (JointDrive::stiffness). Unset:
   /// kDriveStiffness for a 70 kg ragdoll at scale 1, in proportion to mass times scale, so that a
-  /// ragdoll of any size leans as far under its own weight.
+  /// ragdoll of any size leans as far under its own weight. Set at any strength, 0 too: a character
+  /// on the ragdoll drives its joints at it.
   std::optional<Real> driveStiffness;
   /// unitless, 0 to 1: the root's drive (BodyDrive, the hand of god) holds the root part (the box
   /// ragdoll's torso, the capsule ragdoll's pelvis) at the pose it is made in; 0 is none. Rigid parts
