@@ -515,6 +515,9 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
   Character& c = characters_[k];
   c.strength = c.goalStrength = strength;
   c.rootStrength = c.goalRootStrength = rootStrength;
+  // The balance the reaction ramped (to 0 once down) comes back with the strengths: Active never
+  // ramps it again, so left as it was, a character set after a fall stood at balance 0 for good.
+  c.balance = c.goalBalance;
   enter(c, CharacterState::Active);  // set by hand: whatever the reaction was doing stops
   if (rootStrength > 0.0) makeRootDrive(c, rootStrength);
   islands_.wake(islands_.nodeOf(c.bones[0].body));

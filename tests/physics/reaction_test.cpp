@@ -167,6 +167,24 @@ TEST(Reaction, ParticleCharactersStandPushedAndGetUpAsTheRigidOne) {
   }
 }
 
+// Strengths set by hand end a reaction under way and give back the balance with them: it was left
+// where the fall had ramped it, 0 once down, and an active character never ramps it again, so a
+// knocked-down character set standing again stayed without balance for good (line-up.xml).
+TEST(Reaction, SettingTheStrengthsGivesTheBalanceBack) {
+  phys::Reaction reaction;
+  reaction.threshold = 1.5;
+  Standing s(reaction);
+  s.world.push(s.torso(), Vec3(0.0, 0.0, 2000.0), 0.2);
+  for (int i = 0; i < 3 * 60; ++i) s.world.step();
+  ASSERT_EQ(s.world.characters()[0].state, phys::CharacterState::Down);
+  ASSERT_EQ(s.world.characters()[0].balance, 0.0);
+  s.world.setCharacterStrength(0, 1.0, 0.0);
+  EXPECT_EQ(s.world.characters()[0].state, phys::CharacterState::Active);
+  EXPECT_EQ(s.world.characters()[0].balance, kBalance);
+  s.world.step();
+  EXPECT_EQ(s.world.characters()[0].balance, kBalance);  // and Active keeps it
+}
+
 // Under the threshold nothing changes: 200 N leaves it active at full strength.
 TEST(Reaction, APushUnderTheThresholdLeavesItActive) {
   phys::Reaction reaction;
