@@ -586,9 +586,10 @@ void World::animate(Real h) {
       setRootDrive(c, BodyDrive{rootCentre(c, c.pose), characterTargets_[0], c.rootStrength, c.rootStiffness,
                                 c.rootAngularStiffness});
     } else if (keepsRootDrive(c)) {
-      // Stiffness 0: the balance only turns the root, wherever it is.
+      // Stiffness 0: the balance only turns the root, wherever it is; and only while the feet touch
+      // something (Character::supported). Strength 0 keeps the drive, so it allocates nothing.
       setRootDrive(c, BodyDrive{poseOf(c.bones[0].body).center, balanceTarget(c, characterTargets_[0]),
-                                c.balance, 0.0, c.rootAngularStiffness});
+                                c.supported ? c.balance : 0.0, 0.0, c.rootAngularStiffness});
     } else {
       constraints_.clearBodyDrive(c.bones[0].body);
     }
@@ -635,6 +636,55 @@ Quat World::balanceTarget(const Character& c, const Quat& upright) const {
   if (distance < 1e-9) return upright;
   const Real lean = std::min(distance / height, kMaxBalanceLean);
   return glm::normalize(glm::angleAxis(lean, glm::cross(up, off / distance)) * upright);
+}
+
+// Whether the character's support, its two lowest parts (balanceTarget's), touches the ground or a
+// body that is not one of its own parts: of the last substep's contacts, and of the step's for the
+// ground points of particle parts.
+bool World::supportTouches(const Character& c) const {
+  BodyId low[2] = {kNoBody, kNoBody};
+  Real lowY[2] = {std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
+  for (const CharacterBone& bone : c.bones) {
+    const Real y = poseOf(bone.body).center.y;
+    if (y < lowY[0]) {
+      low[1] = low[0], lowY[1] = lowY[0];
+      low[0] = bone.body, lowY[0] = y;
+    } else if (y < lowY[1]) {
+      low[1] = bone.body, lowY[1] = y;
+    }
+  }
+  for (const BodyId part : low) {
+    if (part != kNoBody && touchesOutside(part)) return true;
+  }
+  return false;
+}
+
+// Whether a character's part touches the ground or a body that is not one of its character's parts.
+bool World::touchesOutside(BodyId part) const {
+  const int own = bodyCharacter_[part];
+  auto outside = [&](BodyId other) {
+    return other == kNoBody || other >= bodyCharacter_.size() || bodyCharacter_[other] != own;
+  };
+  auto touches = [&](BodyId a, BodyId b) { return (a == part && outside(b)) || (b == part && outside(a)); };
+  // Rigid parts' contacts with bodies, and with the ground (their own list, the ground kNoBody).
+  for (const auto& [rigid, state] :
+       {std::pair{narrowPhase_.rigidContacts(), &narrowPhase_.rigidState()},
+        std::pair{std::span<const RigidContact>(rigidGround_), &rigidGroundState_}}) {
+    for (std::size_t k = 0; k < std::min(rigid.size(), state->touched.size()); ++k) {
+      if (state->touched[k] && touches(rigid[k].bodyA, rigid[k].bodyB)) return true;
+    }
+  }
+  const std::span<const BodyContact> bodies = narrowPhase_.contacts();
+  const std::vector<std::uint8_t>& bodyTouched = narrowPhase_.state().touched;
+  for (std::size_t k = 0; k < std::min(bodies.size(), bodyTouched.size()); ++k) {
+    if (bodyTouched[k] && touches(bodies[k].bodyA, bodies[k].bodyB)) return true;
+  }
+  const std::span<const GroundContact> ground = ground_.points();
+  const std::vector<std::uint8_t>& groundTouched = ground_.state().touched;
+  for (std::size_t k = 0; k < std::min(ground.size(), groundTouched.size()); ++k) {
+    if (groundTouched[k] && ground[k].body == part) return true;
+  }
+  return false;
 }
 
 // Each substep, of the last one's contacts: a body that is not one of a character's parts striking
@@ -688,6 +738,7 @@ void World::react() {
       still = still && glm::length(partMotion(c.bones[b].body).velocity) < c.reaction.restSpeed;
     c.lastImpact = impact;
     c.stillTime = still ? c.stillTime + solver_.dt : 0.0;
+    if (c.balance > 0.0 || c.goalBalance > 0.0) c.supported = supportTouches(c);
     // Only an active character reacts, and only once it has been so for armTime: getting up, or
     // starting a run from standing at full speed, its drives' own jolts are not blows.
     const bool armed = c.state == CharacterState::Active && c.stateTime >= c.reaction.armTime;

@@ -137,6 +137,10 @@ struct Character {
   /// speed at which another body struck one of its parts, or its root part's speed change over
   /// the step, whichever is larger
   Real lastImpact = 0.0;
+  /// Whether its support (its two lowest parts) touched the ground or a body not its own in the
+  /// last step (World::react): the balance acts only then. A torque from the world on a body that
+  /// nothing carries, hung or thrown, is energy from nowhere. False until a step has found it so.
+  bool supported = false;
   Real stepBlow = 0.0;         ///< unit: m/s; the fastest strike so far in this step
   Real stillTime = 0.0;        ///< unit: s; how long every part has been slower than restSpeed
   Vec3 lastRootVelocity{0.0};  ///< unit: m/s; the root part's at the last step's end

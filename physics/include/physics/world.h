@@ -397,6 +397,8 @@ class World {
   void react();
   void noteBlows();
   Quat balanceTarget(const Character& c, const Quat& upright) const;
+  bool supportTouches(const Character& c) const;
+  bool touchesOutside(BodyId part) const;
   void makeRootDrive(const Character& c, Real strength);
   /// Sets the character's root part's drive (a rigid or a particle body's).
   void setRootDrive(const Character& c, const BodyDrive& drive);
