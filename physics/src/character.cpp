@@ -388,12 +388,20 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
     const Vec3& n = world_.groundNormal;
     c.origin -= n * (glm::dot(c.origin, n) - world_.groundHeight);
   }
-  // The root's drive: as stiff as the one it has, else the ragdolls' default for this mass.
+  // The root's drive: as stiff as asked, else as the one it has, else the ragdolls' default for
+  // this mass.
   Real mass = 0.0;
   for (const CharacterBone& bone : c.bones) mass += bodyMass(bone.body).mass;
   const std::optional<BodyDrive> had = bodyDrive(root);
-  c.rootStiffness = had ? had->stiffness : kBodyDriveStiffness * mass / kRagdollDriveMass / c.scale;
-  c.rootAngularStiffness = had ? had->angularStiffness : kDriveStiffness * mass / kRagdollDriveMass * c.scale;
+  c.rootStiffness = desc.rootStiffness.value_or(
+      had ? had->stiffness : kBodyDriveStiffness * mass / kRagdollDriveMass / c.scale);
+  c.rootAngularStiffness = desc.rootAngularStiffness.value_or(
+      had ? had->angularStiffness : kDriveStiffness * mass / kRagdollDriveMass * c.scale);
+  require(!desc.rootStiffness || (std::isfinite(*desc.rootStiffness) && *desc.rootStiffness >= 0.0),
+          who + ": root stiffness must be finite and >= 0 (N/m)");
+  require(!desc.rootAngularStiffness ||
+              (std::isfinite(*desc.rootAngularStiffness) && *desc.rootAngularStiffness > 0.0),
+          who + ": root angular stiffness must be finite and > 0 (N m/rad)");
   // The step gives the root these without setBodyDrive's checks: a scale near 0 or 1e308 overflows one
   // to inf, which the drive turns into non-finite motion (the guard freezes the ragdoll at once).
   require(std::isfinite(c.rootStiffness) && std::isfinite(c.rootAngularStiffness),

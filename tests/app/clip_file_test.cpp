@@ -563,6 +563,56 @@ TEST(ClipFile, SaveAsKeepsABalancingCharactersRootStiffness) {
 // character reloads with the fade where it had got to: the target poses of the saved and the
 // reloaded world agree to the bit for the rest of the fade (saved as the new clip alone, the target
 // jumped to it).
+// The root's stiffnesses are the character's own (root-stiffness, root-angular-stiffness): Save As
+// wrote them only through the root's <body-drive>, which a character with no root strength and no
+// balance does not hold, so 500 N/m and 200 N m/rad came back as the defaults, 10000 and 1000, and
+// the reload's hand of god, once given a strength, held the root elsewhere.
+TEST(ClipFile, SaveAsKeepsTheRootsStiffnessWithNoRootDrive) {
+  scenes::Scene scene = scenes::loadSceneText(
+      characterScene("<character ragdoll=\"r\" clip=\"" + kClips +
+                     "stand.bvh\" root-stiffness=\"500\" root-angular-stiffness=\"200\"/>"),
+      "k.xml");
+  const phys::World& world = scene.world;
+  ASSERT_EQ(world.characters()[0].rootStiffness, 500.0);
+  ASSERT_EQ(world.characters()[0].rootAngularStiffness, 200.0);
+  for (int i = 0; i < 10; ++i) scene.world.step();
+  ASSERT_FALSE(world.bodyDrive(world.characters()[0].bones[0].body).has_value());  // none held now
+  scenes::Scene again = scenes::loadSceneText(scenes::writeSceneXml(scene), "again.xml");
+  EXPECT_EQ(again.world.characters()[0].rootStiffness, 500.0);
+  EXPECT_EQ(again.world.characters()[0].rootAngularStiffness, 200.0);
+  EXPECT_EQ(testsupport::compareScenes(scene, again), "");
+  for (scenes::Scene* s : {&scene, &again}) s->world.setCharacterStrength(0, 1.0, 0.5);
+  for (int i = 0; i < 120; ++i) {
+    scene.world.step();
+    again.world.step();
+  }
+  const phys::BodyId root = world.characters()[0].bones[0].body;
+  EXPECT_LT(glm::length(again.world.bodyPose(root).center - world.bodyPose(root).center), 1e-3);
+}
+
+// The character drives its root every substep, so a drive the root had from the file was replaced at
+// the first (dropped, at root strength 0): a <body-drive> on a character's root, before or after it,
+// and a ragdoll's own root-strength are refused, saying where to give the root's drive instead.
+TEST(ClipFile, ADriveOnACharactersRootIsRefused) {
+  const std::string ragdoll =
+      "<scene name=\"c\"><ground/><ragdoll name=\"r\" pos=\"0 0.85 0\" model=\"rigid\"";
+  const std::string character = "<character ragdoll=\"r\" clip=\"" + kClips + "stand.bvh\"/>";
+  const std::string drive = "<body-drive body=\"r.torso\" strength=\"1\"/>";
+  const std::string before = ragdoll + "/>\n" + drive + "\n" + character + "\n</scene>";
+  testing_scenes::expectRefused({"a body drive before", before.c_str(), 3, "ragdoll",
+                                 "its root part 'r.torso' has the <body-drive> on line 2, which the "
+                                 "character would replace"});
+  const std::string after = ragdoll + "/>\n" + character + "\n" + drive + "\n</scene>";
+  testing_scenes::expectRefused({"a body drive after", after.c_str(), 3, "body",
+                                 "'r.torso' is the root of the <character> on line 2, which drives it"});
+  const std::string held = ragdoll + " root-strength=\"0.5\"/>\n" + character + "\n</scene>";
+  testing_scenes::expectRefused({"a ragdoll's root strength", held.c_str(), 2, "ragdoll",
+                                 "ragdoll 'r' holds its root part 'r.torso' by its root-strength"});
+  expectCharacterRefused("root-stiffness=\"-1\"", "root-stiffness", "'-1' must be >= 0 (N/m)");
+  expectCharacterRefused("root-angular-stiffness=\"0\"", "root-angular-stiffness",
+                         "'0' must be > 0 (N m/rad)");
+}
+
 TEST(ClipFile, SaveAsKeepsAFadeUnderWay) {
   scenes::Scene scene = scenes::loadSceneFile(DATA_DIR "/assets/scenes/run-cycle.xml");
   const std::shared_ptr<const phys::Clip> stand =

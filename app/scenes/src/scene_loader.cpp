@@ -590,6 +590,13 @@ class Builder {
       e.fail("body", "'" + named.name + "' already has a <body-drive>, on line " +
                          std::to_string(first->second) + "; a body has one drive");
     }
+    // A character's root drive is the character's: it sets it every substep, and this one would be
+    // replaced (or dropped) at the first.
+    if (const auto root = characterRootLines_.find(id); root != characterRootLines_.end()) {
+      e.fail("body", "'" + named.name + "' is the root of the <character> on line " +
+                         std::to_string(root->second) + ", which drives it: give its root-strength, " +
+                         "root-stiffness and root-angular-stiffness there");
+    }
     const phys::BodyPose pose = scene_.world.bodyPose(id);
     phys::BodyDrive drive{pose.center, pose.orientation};
     if (auto pos = e.vector("pos", "m")) {
@@ -642,6 +649,8 @@ class Builder {
     }
     if (auto parts = e.text("part-strengths"))
       desc.partStrengths = partStrengths(e, *parts, *desc.playback.clip);
+    desc.rootStiffness = stiffness(e, "root-stiffness", "N/m", true);
+    desc.rootAngularStiffness = stiffness(e, "root-angular-stiffness", "N m/rad", false);
     reaction(e, desc.reaction);
     if (desc.reaction.getUp.clip) {
       if (const std::string why = phys::skeletonDifference(*desc.reaction.getUp.clip, *desc.playback.clip);
@@ -662,13 +671,19 @@ class Builder {
     const std::optional<SavedCharacter> motion = savedCharacter(e, *desc.playback.clip);
     e.rejectUnknownAttributes();
     std::size_t k = 0;
+    std::vector<phys::CharacterBone> bones;
     try {
+      bones = phys::bindClip(scene_.world, desc.ragdoll, *desc.playback.clip);
+      // The character drives its root every substep: a drive the root has now would be replaced at
+      // the first (at root-strength 0, dropped), so it is refused rather than silently undone.
+      refuseRootDrive(e, desc.ragdoll, bones[0].body);
       k = scene_.world.addCharacter(desc);
     } catch (const std::invalid_argument& error) {
       // addCharacter's own checks are all made above, attribute by attribute; what is left is the
       // binding of the clip to the ragdoll's parts.
       e.fail("ragdoll", error.what());
     }
+    characterRootLines_.emplace(bones[0].body, e.line());
     if (then) {
       try {
         scene_.world.queueClip(k, then->playback, then->at, then->blendTime);
@@ -682,6 +697,31 @@ class Builder {
     } catch (const std::invalid_argument& error) {
       e.fail("state", error.what());  // every value is checked above: a safety net
     }
+  }
+
+  // A stiffness attribute of a drive: >= 0 where 0 is allowed (a drive that only turns the body),
+  // else > 0.
+  static std::optional<double> stiffness(ElementReader& e, const char* attribute, const char* unit,
+                                         bool zeroAllowed) {
+    const std::optional<double> given = e.number(attribute, unit);
+    if (given && (zeroAllowed ? !(*given >= 0.0) : !(*given > 0.0))) {
+      e.fail(attribute, "'" + detail::formatNumber(*given) + "' must be " + (zeroAllowed ? ">= 0" : "> 0") +
+                            " (" + unit + ")");
+    }
+    return given;
+  }
+
+  void refuseRootDrive(ElementReader& e, const std::string& ragdoll, phys::BodyId root) {
+    const std::string part = scene_.world.bodies()[root].name;
+    const std::string instead =
+        ", which the character would replace: it drives its root; give its "
+        "root-strength, root-stiffness and root-angular-stiffness here";
+    if (const auto line = bodyDriveLines_.find(root); line != bodyDriveLines_.end())
+      e.fail("ragdoll", "its root part '" + part + "' has the <body-drive> on line " +
+                            std::to_string(line->second) + instead);
+    if (scene_.world.bodyDrive(root))
+      e.fail("ragdoll",
+             "ragdoll '" + ragdoll + "' holds its root part '" + part + "' by its root-strength" + instead);
   }
 
   // Where a saved character was (Save As writes it): its reaction under way, its strengths as the
@@ -944,8 +984,9 @@ class Builder {
   const ReadClips* readBefore_;   // null when clips are read from their files
   BuildContext ctx_;
   std::map<std::string, std::size_t, std::less<>> byName_;
-  std::map<phys::BodyId, int> bodyDriveLines_;  // each <body-drive>'s body, and its line
-  ReadClips clips_;                             // read from their files as they are named, by absolute path
+  std::map<phys::BodyId, int> bodyDriveLines_;      // each <body-drive>'s body, and its line
+  std::map<phys::BodyId, int> characterRootLines_;  // each <character>'s root part, and its line
+  ReadClips clips_;  // read from their files as they are named, by absolute path
 };
 
 // Scene files are UTF-8 (ASCII is UTF-8). pugixml, told so, would read UTF-16 or UTF-32 as

@@ -534,19 +534,15 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     line(jointElement(world.jointDesc(k), world.jointDrive(k), world.jointRest(k), names));
   for (std::size_t k = 0; k < world.particleJoints().size(); ++k)
     line(particleJointElement(world, world.particleJoints()[k], world.particleJointDrive(k), names));
-  // A character's root drive is the character's to aim: each substep it rewrites the drive, and
-  // while it balances it sets the centre's stiffness to 0 (the balance only turns the root). The
-  // loader takes the root's stiffnesses from the <body-drive> before the character, so the file
-  // carries the stiffnesses the character was given, not the ones its drive has this substep:
-  // else a reloaded character's hand of god and get-up would no longer pull its centre.
-  std::map<phys::BodyId, const phys::Character*> rootOf;
-  for (const phys::Character& c : world.characters()) rootOf[c.bones[0].body] = &c;
+  // A character's root drive is the character's to aim: each substep it rewrites the drive (and
+  // drops it while nothing needs it), so the loader refuses a <body-drive> on a character's root.
+  // The character's element carries the root's stiffnesses instead, whether or not the root has a
+  // drive at this moment.
+  std::set<phys::BodyId> roots;
+  for (const phys::Character& c : world.characters()) roots.insert(c.bones[0].body);
   for (const phys::DrivenBody& d : world.bodyDrives()) {
-    phys::BodyDrive drive = d.drive;
-    if (const auto character = rootOf.find(d.body); character != rootOf.end()) {
-      drive.stiffness = character->second->rootStiffness;
-      drive.angularStiffness = character->second->rootAngularStiffness;
-    }
+    if (roots.contains(d.body)) continue;
+    const phys::BodyDrive& drive = d.drive;
     if (!detail::insideBound(drive.position, bound)) {
       throw std::invalid_argument("a body drive's target is beyond the world's bound of " +
                                   detail::formatNumber(bound) + " m");
@@ -629,6 +625,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     if (c.scale != 1.0) e.number("scale", c.scale);
     if (c.rootOffset != phys::Vec3(0.0)) e.vector("root-offset", c.rootOffset);
     if (c.goalBalance > 0.0) e.number("balance", c.goalBalance);
+    e.number("root-stiffness", c.rootStiffness).number("root-angular-stiffness", c.rootAngularStiffness);
     std::string parts;
     for (std::size_t b = 1; b < c.bones.size(); ++b) {
       if (c.partStrength[b] == 1.0) continue;

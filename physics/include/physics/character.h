@@ -94,6 +94,11 @@ struct CharacterDesc {
   /// the clip's root position. 0 for the project's clips, whose root is the root part's centre; a
   /// clip whose root is the hip joint (most motion capture) needs the centre's offset from it.
   Vec3 rootOffset{0.0};
+  /// unit: N/m, >= 0, and N m/rad, > 0: the root's body drive's stiffnesses at strength 1/2
+  /// (Character::rootStiffness). Unset: the drive the root has when the character is added, else
+  /// kBodyDriveStiffness and kDriveStiffness for a 70 kg ragdoll at scale 1, the first in proportion
+  /// to mass over scale, the second to mass times scale.
+  std::optional<Real> rootStiffness, rootAngularStiffness;
 };
 
 /// One part of a character, bound to a clip's bone.
