@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <unordered_map>
 #include <vector>
 
 #include "clips/clip_file.h"
@@ -127,12 +128,19 @@ BvhSkeleton readBvhSkeleton(BvhWords& words, const std::string& name) {
   BvhSkeleton skeleton;
   int depth = 0;
   std::string_view joint;
+  // Each joint's line by its name: a name used twice was refused only once assimp had read the file,
+  // as a clip's two bones of one name, with no line.
+  std::unordered_map<std::string_view, std::size_t> jointLines;
   for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
     if (word == "ROOT" || word == "JOINT") {
       if (++skeleton.joints > kMaxBvhJoints)
         throw ClipError(name, words.line(),
                         "more than " + std::to_string(kMaxBvhJoints) + " joints (a skeleton has tens)");
       joint = words.next();  // its name, which may be any word
+      if (const auto [first, added] = jointLines.emplace(joint, words.line()); !added)
+        throw ClipError(name, words.line(),
+                        "joint '" + std::string(joint) + "' is named as the one on line " +
+                            std::to_string(first->second) + " (a clip's bones are found by name)");
     } else if (word == "{") {
       if (++depth > kMaxDepth)
         throw ClipError(
@@ -225,6 +233,8 @@ void checkBvhMotion(BvhWords& words, const BvhSkeleton& skeleton, const std::str
   const std::size_t framesLine = words.line();
   const std::uint64_t frames = countIn(count, framesLine, name, "Frames:");
   const std::string said = "Frames: " + std::string(count);
+  // assimp keys "Frames: 0" once, as a frame the file does not hold; refused after it with no line.
+  if (frames == 0) throw ClipError(name, framesLine, said + ": a clip has at least one frame");
   // Every frame would be an empty line, keyed by assimp at the rest pose; and a clip whose root
   // has no position channels has one position, which is one frame.
   if (skeleton.channels == 0 && frames > 1)

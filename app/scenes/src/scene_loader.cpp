@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <memory>
@@ -667,6 +668,8 @@ class Builder {
       if (const std::string why = phys::skeletonDifference(*then->playback.clip, *desc.playback.clip);
           !why.empty())
         e.fail("then", why);
+    } else {
+      refuseWithout(e, {"then-at", "then-blend", "then-loop"}, "then");
     }
     const std::optional<SavedCharacter> motion = savedCharacter(e, *desc.playback.clip);
     e.rejectUnknownAttributes();
@@ -696,6 +699,15 @@ class Builder {
       scene_.world.setCharacterMotion(k, motion->applied(scene_.world.characterMotion(k)));
     } catch (const std::invalid_argument& error) {
       e.fail("state", error.what());  // every value is checked above: a safety net
+    }
+  }
+
+  // Attributes that only say something of another, given without it: named as such, where "unknown
+  // attribute" would deny what the format documents.
+  static void refuseWithout(ElementReader& e, std::initializer_list<const char*> attributes,
+                            const char* owner) {
+    for (const char* attribute : attributes) {
+      if (e.has(attribute)) e.fail(attribute, std::string("goes with ") + owner + ", which is not given");
     }
   }
 
@@ -799,6 +811,8 @@ class Builder {
       before->time = time(e, "from-time").value_or(0.0);
       if (auto speed = clipSpeed(e, "from-speed")) before->speed = *speed;
       before->loop = e.boolean("from-loop").value_or(true);
+    } else {
+      refuseWithout(e, {"from-time", "from-speed", "from-loop"}, "from-clip");
     }
     c.before = before;
     // Both move the root's path the drive pulls along, as the origin does, and are held alike: a
