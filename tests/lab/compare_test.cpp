@@ -546,7 +546,9 @@ TEST(Compare, OurRowsAreTheSweepsRows) {
       const double a = lab_testing::number(*j, key), b = lab::fieldNumber(row, column);
       EXPECT_NEAR(a, b, 1e-9 * std::max(1.0, std::abs(b))) << engine << " " << key;
     }
-    if (engine == "ours") EXPECT_GT(lab_testing::number(*j, "max_joint_gap"), 0.0) << engine;
+    if (engine == "ours") {
+      EXPECT_GT(lab_testing::number(*j, "max_joint_gap"), 0.0) << engine;
+    }
   }
   EXPECT_EQ(i, csv.rows.size());
 }
