@@ -296,6 +296,7 @@ Crush crushChain(bool projected, Real weightMass) {
   solver.jointProjection.enabled = projected;
   phys::World w(phys::WorldSettings{}, solver);
   std::vector<phys::BodyId> links;
+  links.reserve(5);
   for (int k = 0; k < 5; ++k)
     links.push_back(w.addBody(testing_phys::rigidBox(Vec3(0.5 * k, 0.1, 0.0), {0.5, 0.2, 0.3})));
   for (int k = 1; k < 5; ++k) {
@@ -351,6 +352,7 @@ TEST(JointProjection, OffChangesNothingAndTurnedOnClosesWithoutSpeed) {
     solver.jointProjection = projection;
     auto w = std::make_unique<phys::World>(phys::WorldSettings{}, solver);
     std::vector<phys::BodyId> links;
+    links.reserve(3);
     for (int k = 0; k < 3; ++k)
       links.push_back(w->addBody(testing_phys::rigidBox(Vec3(0.5 * k, 0.1, 0.0), {0.5, 0.2, 0.3})));
     for (int k = 1; k < 3; ++k) {
