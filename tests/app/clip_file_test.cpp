@@ -350,6 +350,17 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   EXPECT_EQ(c.now.time, 0.1);
   EXPECT_EQ(c.now.speed, 2.0);
   EXPECT_FALSE(c.now.loop);
+  // Put down by hand, a character lies limp: its strengths now 0, whatever it gets up to.
+  const scenes::Scene down = scenes::loadSceneText(
+      characterScene("<character ragdoll=\"r\" clip=\"" + kClips +
+                     "run.bvh\" strength=\"0.8\" root-strength=\"1\" balance=\"0.2\" state=\"down\"/>"),
+      "c.xml");
+  const phys::Character& limp = down.world.characters()[0];
+  EXPECT_EQ(limp.state, phys::CharacterState::Down);
+  EXPECT_EQ(limp.strength, 0.0);
+  EXPECT_EQ(limp.rootStrength, 0.0);
+  EXPECT_EQ(limp.balance, 0.0);
+  EXPECT_EQ(limp.goalStrength, 0.8);
   EXPECT_EQ(c.rootOffset, phys::Vec3(0.0, 0.29, 0.0));
   EXPECT_EQ(testsupport::compareScenes(ok, scenes::loadSceneText(scenes::writeSceneXml(ok), "again.xml")),
             "");
@@ -396,6 +407,14 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   const std::string early =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" state-time=\"-1\"/>");
   EXPECT_NE(early.find("attribute 'state-time'"), std::string::npos) << early;
+  const std::string strongDown =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" strength-now=\"0.5\"/>");
+  EXPECT_NE(strongDown.find("attribute 'strength-now': a character down is limp"), std::string::npos)
+      << strongDown;
+  const std::string balancedDown =
+      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" balance-now=\"0.2\"/>");
+  EXPECT_NE(balancedDown.find("attribute 'balance-now': a character down is limp"), std::string::npos)
+      << balancedDown;
   const std::string overStrong =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" strength-now=\"1.5\"/>");
   EXPECT_NE(overStrong.find("attribute 'strength-now'"), std::string::npos) << overStrong;

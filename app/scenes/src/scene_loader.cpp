@@ -783,6 +783,16 @@ class Builder {
     c.strength = detail::readFraction(e, "strength-now");
     c.rootStrength = detail::readFraction(e, "root-strength-now");
     c.balance = detail::readFraction(e, "balance-now");
+    if (c.state == phys::CharacterState::Down) {
+      // Down is limp, and nothing ramps its strengths until it gets up: any left would hold it at
+      // that strength for good, neither lying limp nor ever reacting again.
+      for (auto [attribute, value] :
+           {std::pair{"strength-now", &c.strength}, std::pair{"root-strength-now", &c.rootStrength},
+            std::pair{"balance-now", &c.balance}}) {
+        if (value->value_or(0.0) > 0.0) e.fail(attribute, "a character down is limp: it must be 0");
+        *value = 0.0;
+      }
+    }
     c.fromStrength = detail::readFraction(e, "from-strength");
     c.fromBalance = detail::readFraction(e, "from-balance");
     c.heading = e.number("heading", "degrees");
