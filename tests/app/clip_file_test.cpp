@@ -407,14 +407,11 @@ TEST(ClipFile, SceneCharactersLoadAndTheirErrorsNameTheAttribute) {
   const std::string early =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" state-time=\"-1\"/>");
   EXPECT_NE(early.find("attribute 'state-time'"), std::string::npos) << early;
-  const std::string strongDown =
-      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" strength-now=\"0.5\"/>");
-  EXPECT_NE(strongDown.find("attribute 'strength-now': a character down is limp"), std::string::npos)
-      << strongDown;
-  const std::string balancedDown =
-      error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" balance-now=\"0.2\"/>");
-  EXPECT_NE(balancedDown.find("attribute 'balance-now': a character down is limp"), std::string::npos)
-      << balancedDown;
+  for (const std::string now : {"strength-now", "root-strength-now", "balance-now"}) {
+    const std::string held =
+        error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" state=\"down\" " + now + "=\"0.5\"/>");
+    EXPECT_NE(held.find("attribute '" + now + "': a character down is limp"), std::string::npos) << held;
+  }
   const std::string overStrong =
       error("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" strength-now=\"1.5\"/>");
   EXPECT_NE(overStrong.find("attribute 'strength-now'"), std::string::npos) << overStrong;
