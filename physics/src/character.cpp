@@ -3,6 +3,7 @@
 #include "physics/character.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -646,53 +647,67 @@ Quat World::balanceTarget(const Character& c, const Quat& upright) const {
   return glm::normalize(glm::angleAxis(lean, glm::cross(up, off / distance)) * upright);
 }
 
-// Whether the character's support, its two lowest parts (balanceTarget's), touches the ground or a
-// body that is not one of its own parts: of the last substep's contacts, and of the step's for the
-// ground points of particle parts.
-bool World::supportTouches(const Character& c) const {
-  BodyId low[2] = {kNoBody, kNoBody};
-  Real lowY[2] = {std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
-  for (const CharacterBone& bone : c.bones) {
-    const Real y = poseOf(bone.body).center.y;
-    if (y < lowY[0]) {
-      low[1] = low[0], lowY[1] = lowY[0];
-      low[0] = bone.body, lowY[0] = y;
-    } else if (y < lowY[1]) {
-      low[1] = bone.body, lowY[1] = y;
+// Once a step, for each balancing character: whether its support, its two lowest parts
+// (balanceTarget's), touches the ground or a body that is not one of its own parts, of the last
+// substep's contacts and of the step's for the ground points of particle parts. One walk over the
+// contacts for every character, as noteBlows.
+void World::findSupports() {
+  supportParts_.resize(characters_.size());  // sized again only when a character is added
+  bool any = false;
+  for (std::size_t k = 0; k < characters_.size(); ++k) {
+    Character& c = characters_[k];
+    std::array<BodyId, 2>& low = supportParts_[k];
+    low = {kNoBody, kNoBody};
+    if (c.balance <= 0.0 && c.goalBalance <= 0.0) continue;  // never read: left as it was
+    c.supported = false;
+    any = true;
+    Real lowY[2] = {std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
+    for (const CharacterBone& bone : c.bones) {
+      const Real y = poseOf(bone.body).center.y;
+      if (y < lowY[0]) {
+        low[1] = low[0], lowY[1] = lowY[0];
+        low[0] = bone.body, lowY[0] = y;
+      } else if (y < lowY[1]) {
+        low[1] = bone.body, lowY[1] = y;
+      }
     }
   }
-  for (const BodyId part : low) {
-    if (part != kNoBody && touchesOutside(part)) return true;
-  }
-  return false;
-}
-
-// Whether a character's part touches the ground or a body that is not one of its character's parts.
-bool World::touchesOutside(BodyId part) const {
-  const int own = bodyCharacter_[part];
-  auto outside = [&](BodyId other) {
-    return other == kNoBody || other >= bodyCharacter_.size() || bodyCharacter_[other] != own;
+  if (!any) return;
+  auto characterOf = [this](BodyId body) {
+    return body != kNoBody && body < bodyCharacter_.size() ? bodyCharacter_[body] : -1;
   };
-  auto touches = [&](BodyId a, BodyId b) { return (a == part && outside(b)) || (b == part && outside(a)); };
+  // `part` touches `other` (kNoBody: the ground): a support part touching what is not its own.
+  auto touch = [&](BodyId part, BodyId other) {
+    const int k = characterOf(part);
+    if (k < 0) return;
+    const std::array<BodyId, 2>& low = supportParts_[static_cast<std::size_t>(k)];
+    if ((part == low[0] || part == low[1]) && characterOf(other) != k)
+      characters_[static_cast<std::size_t>(k)].supported = true;
+  };
   // Rigid parts' contacts with bodies, and with the ground (their own list, the ground kNoBody).
   for (const auto& [rigid, state] :
-       {std::pair{narrowPhase_.rigidContacts(), &narrowPhase_.rigidState()},
-        std::pair{std::span<const RigidContact>(rigidGround_), &rigidGroundState_}}) {
+       {std::pair{std::span<const RigidContact>(narrowPhase_.rigidContacts()),
+                  static_cast<const RigidContactState*>(&narrowPhase_.rigidState())},
+        std::pair{std::span<const RigidContact>(rigidGround_),
+                  static_cast<const RigidContactState*>(&rigidGroundState_)}}) {
     for (std::size_t k = 0; k < std::min(rigid.size(), state->touched.size()); ++k) {
-      if (state->touched[k] && touches(rigid[k].bodyA, rigid[k].bodyB)) return true;
+      if (state->touched[k] == 0) continue;
+      touch(rigid[k].bodyA, rigid[k].bodyB);
+      touch(rigid[k].bodyB, rigid[k].bodyA);
     }
   }
   const std::span<const BodyContact> bodies = narrowPhase_.contacts();
   const std::vector<std::uint8_t>& bodyTouched = narrowPhase_.state().touched;
   for (std::size_t k = 0; k < std::min(bodies.size(), bodyTouched.size()); ++k) {
-    if (bodyTouched[k] && touches(bodies[k].bodyA, bodies[k].bodyB)) return true;
+    if (bodyTouched[k] == 0) continue;
+    touch(bodies[k].bodyA, bodies[k].bodyB);
+    touch(bodies[k].bodyB, bodies[k].bodyA);
   }
   const std::span<const GroundContact> ground = ground_.points();
   const std::vector<std::uint8_t>& groundTouched = ground_.state().touched;
   for (std::size_t k = 0; k < std::min(ground.size(), groundTouched.size()); ++k) {
-    if (groundTouched[k] && ground[k].body == part) return true;
+    if (groundTouched[k] != 0) touch(ground[k].body, kNoBody);
   }
-  return false;
 }
 
 // Each substep, of the last one's contacts: a body that is not one of a character's parts striking
@@ -736,6 +751,7 @@ void World::noteBlows() {
 void World::react() {
   if (characters_.empty()) return;
   const detail::StageTimer timer(profile_, Stage::Animate);
+  findSupports();
   for (Character& c : characters_) {
     const PartMotion root = partMotion(c.bones[0].body);  // a particle part's is a pass over its particles
     const Real impact = std::max(c.stepBlow, glm::length(root.velocity - c.lastRootVelocity));
@@ -746,7 +762,6 @@ void World::react() {
       still = still && glm::length(partMotion(c.bones[b].body).velocity) < c.reaction.restSpeed;
     c.lastImpact = impact;
     c.stillTime = still ? c.stillTime + solver_.dt : 0.0;
-    if (c.balance > 0.0 || c.goalBalance > 0.0) c.supported = supportTouches(c);
     // Only an active character reacts, and only once it has been so for armTime: getting up, or
     // starting a run from standing at full speed, its drives' own jolts are not blows.
     const bool armed = c.state == CharacterState::Active && c.stateTime >= c.reaction.armTime;

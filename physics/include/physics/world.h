@@ -397,8 +397,7 @@ class World {
   void react();
   void noteBlows();
   Quat balanceTarget(const Character& c, const Quat& upright) const;
-  bool supportTouches(const Character& c) const;
-  bool touchesOutside(BodyId part) const;
+  void findSupports();
   void makeRootDrive(const Character& c, Real strength);
   /// Sets the character's root part's drive (a rigid or a particle body's).
   void setRootDrive(const Character& c, const BodyDrive& drive);
@@ -472,8 +471,9 @@ class World {
   ConstraintGraph constraints_;
   std::vector<Character> characters_;
   std::vector<Push> pushes_;
-  std::vector<int> bodyCharacter_;      // per body: the character whose part it is, or -1
-  std::vector<Quat> characterTargets_;  // scratch of animate(), sized to the longest skeleton
+  std::vector<int> bodyCharacter_;                   // per body: the character whose part it is, or -1
+  std::vector<std::array<BodyId, 2>> supportParts_;  // per character: scratch of findSupports
+  std::vector<Quat> characterTargets_;               // scratch of animate(), sized to the longest skeleton
   // Scratch of updateIslands, sized (a copy keeps sizes, not capacities) for a drag's nodes and
   // every character's root: the nodes held awake.
   std::vector<NodeId> held_ = std::vector<NodeId>(HeldNodes::kMost);
