@@ -138,13 +138,13 @@ std::string gnuplotScript(const Chart& chart) {
   std::vector<std::vector<ChartPoint>> kept;
   for (const ChartSeries& s : chart.series) kept.push_back(drawablePoints(chart, s));
 
-  if (!hasPoints(chart)) {
+  if (std::all_of(kept.begin(), kept.end(), [](const auto& points) { return points.empty(); })) {
     // A plot command with nothing to plot is no command: gnuplot failed on the `replot` left,
     // after it had opened (emptied) both pictures. This script runs, and says why it draws nothing.
     return "# " + oneLine(chart.title) +
            "\n# No point of this run can be drawn (none is finite, and positive " +
            "on a log axis), so this script draws nothing.\nprint " +
-           quoted("nothing to draw: no point of " + oneLine(chart.output) + " is finite") + "\n";
+           quoted("nothing to draw: no point of " + chart.output + " is finite") + "\n";
   }
   std::string out = "# " + oneLine(chart.title) + "\n# Run gnuplot on this file in its folder: it writes " +
                     oneLine(chart.output) + ".png and " + oneLine(chart.output) +

@@ -60,7 +60,7 @@ std::string runGnuplot(const std::filesystem::path& script, const std::filesyste
   const std::string shown = (shownAs.empty() ? script : shownAs).string();
   const std::filesystem::path gnuplot = findGnuplot();
   if (gnuplot.empty()) {
-    return "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the data and " + shown +
+    return std::string(kGnuplotMissing) + "; the data and " + shown +
            " are written, run gnuplot on it to draw the charts";
   }
   const std::string command = "cd " + shellQuoted(folder.string()) + " && " + shellQuoted(gnuplot.string()) +

@@ -16,6 +16,9 @@ std::string singleQuoted(const std::string& text, const std::string& quoteInside
 
 /// The lab's scripts write their charts into the folder `outdir` names: the script's own folder
 /// unless set (`gnuplot -e "outdir='charts'" sweep.gp` draws elsewhere).
+/// How runGnuplot's answer starts when gnuplot is not found: `lab report` says it once for all.
+inline constexpr const char* kGnuplotMissing =
+    "gnuplot is not installed (Debian: apt-get install gnuplot-nox)";
 inline constexpr const char* kOutdirDefault = "if (!exists('outdir')) outdir = '.'\n";
 
 /// Runs `gnuplot SCRIPT` in `folder` (so the script names its data files relative to it, and its

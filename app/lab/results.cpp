@@ -117,7 +117,7 @@ struct Report {
   void sayWarnings(const std::string& err) const {
     std::istringstream lines(err);
     for (std::string line; std::getline(lines, line);) {
-      if (line.starts_with("lab: ") && line.find("gnuplot is not installed") == std::string::npos)
+      if (line.starts_with("lab: ") && line.find(kGnuplotMissing) == std::string::npos)
         progress << line << "\n";
     }
   }
@@ -385,7 +385,8 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
     md << "**This is a --quick report: tiny sweeps that check the pipeline, not figures to quote.**\n\n";
   // Said once here, not by every command it runs (and dropped from their stderr).
   if (findGnuplot().empty()) {
-    err << "lab report: gnuplot is not installed (Debian: apt-get install gnuplot-nox): no chart is drawn, "
+    err << "lab report: " << kGnuplotMissing
+        << ": no chart is drawn, "
            "results.md links none, and the stability suite, which needs its heat maps, fails\n";
     md << "**gnuplot was not installed: no chart was drawn.** Each command's data and gnuplot script are "
           "written; run gnuplot on a script in its folder to draw its chart.\n\n";

@@ -592,7 +592,7 @@ TEST(Compare, AFrozenRunHasNoErrorAndSaysWhy) {
   const std::string row = o.out.substr(at, o.out.find('\n', at) - at);
   EXPECT_NE(row.find(" | blew up | blew up | "), std::string::npos) << row;
   EXPECT_NE(row.find("blew up: the guard froze 1 particle |"), std::string::npos) << row;
-  // Nor any other figure: the penetration, joint gap and every-step figures read 0.
+  // Nor any other figure: the penetration, joint gap and every-step figures read "blew up" (they read 0).
   std::string blewUp = " | blew up | blew up | blew up | blew up";
   for (std::size_t i = 0; i < lab::kRunMetricCount; ++i) blewUp += " | blew up";
   EXPECT_NE(row.find(blewUp + " | blew up: the guard"), std::string::npos) << row;
