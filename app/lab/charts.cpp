@@ -2,6 +2,7 @@
 
 #include "command_line.h"
 #include "fileio/files.h"
+#include "fileio/printable.h"
 #include "gnuplot.h"
 #include "text.h"
 
@@ -48,7 +49,7 @@ class PrivateFolder {
 std::string oneLine(const std::string& text) {
   std::string out = text;
   for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == '\x7f') c = ' ';
+    if (fileio::isControl(static_cast<unsigned char>(c))) c = ' ';
   }
   return out;
 }

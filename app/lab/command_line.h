@@ -134,7 +134,7 @@ void prepareOutputFiles(const std::filesystem::path& folder, const std::vector<s
 
 /// Throws CommandFailure "OPTION: FOLDER/NAME: is the scene FILE being run; ..." when one of the
 /// files a command will write (FOLDER/NAME of `names`) is, by any name, one of the scene files it
-/// reads: the output would write over its own input (as `lab run --dump` refuses).
+/// reads: the output would write over its own input (`lab run --dump` is refused by it too).
 void refuseOutputsOverScenes(const std::filesystem::path& folder, const std::vector<std::string>& names,
                              const std::vector<std::filesystem::path>& scenes, const char* option = "--out");
 

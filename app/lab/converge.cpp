@@ -17,6 +17,7 @@
 #include "bodies.h"
 #include "commands.h"
 #include "csv.h"
+#include "fileio/printable.h"
 #include "free_body.h"
 #include "lab.h"
 #include "numbers.h"
@@ -443,7 +444,7 @@ std::vector<std::string> convergeChartNames(const std::vector<std::string>& scen
     // A '/' would name a folder, a control character (a line break in a scene's name) has no
     // place in a file name.
     for (char& c : base) {
-      if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == '\x7f') c = '-';
+      if (c == '/' || fileio::isControl(static_cast<unsigned char>(c))) c = '-';
     }
     std::string name = base;
     for (int k = 2; !taken.insert(name).second; ++k) name = base + "-" + std::to_string(k);

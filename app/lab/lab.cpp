@@ -20,10 +20,7 @@ namespace {
 // writeAtomically would refuse before writing (checkOutputFile: a folder or a device in its place,
 // a folder it cannot create a file in). Only a full disk is found out after.
 void checkDump(const std::filesystem::path& file, const std::filesystem::path& scene) {
-  std::error_code ec;
-  if (std::filesystem::equivalent(file, scene, ec))
-    throw CommandFailure("--dump: " + file.string() +
-                         ": is the scene being run; the dump would write over it");
+  refuseOutputsOverScenes(file.parent_path(), {file.filename().string()}, {scene}, "--dump");
   requireFolder(file.parent_path().empty() ? "." : file.parent_path(), "--dump");
   checkOutputFile(file, "--dump");
 }

@@ -475,11 +475,11 @@ TEST(LabExit, EachCommandWritesOnlyTheFilesItChecksFirst) {
 TEST(LabExit, UnwritableDumpExitsOneBeforeTheRun) {
   const TempDir dir;
   const auto scene = dir.write("t.xml", freeFallScene());
-  const std::pair<std::filesystem::path, const char*> cases[] = {
+  const std::pair<std::filesystem::path, std::string> cases[] = {
       {dir.file("no/dir/x.csv"), "No such file or directory"},
       {dir.file(""), "a folder, not a file"},
       {scene / "x.csv", "Not a directory"},
-      {scene, "is the scene being run"},
+      {scene, "is the scene " + scene.string() + " being run"},
       {"/dev/null", "/dev/null: is not a regular file"},
       {"/proc/x.csv", "/proc/x.csv: cannot create a temporary file in '/proc'"}};
   for (const auto& [dump, says] : cases) {

@@ -11,10 +11,6 @@ bool startsCharacter(unsigned char byte) {
   return (byte & 0xc0) != 0x80;
 }
 
-bool isControl(unsigned char byte) {
-  return byte < 0x20 || byte == 0x7f;
-}
-
 void appendHex(std::string& out, unsigned char byte) {
   static constexpr std::string_view kHex = "0123456789abcdef";
   out += "\\x";

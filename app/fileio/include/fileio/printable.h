@@ -8,6 +8,12 @@
 
 namespace fileio {
 
+/// A control byte: below 0x20, or 0x7f (DEL). What printableReason writes \xNN, and what has no
+/// place in a line of a script or in a file name (the lab's charts).
+constexpr bool isControl(unsigned char byte) {
+  return byte < 0x20 || byte == 0x7f;
+}
+
 /// The most bytes of a reason printableReason keeps unless told otherwise.
 inline constexpr std::size_t kMostReasonBytes = 400;
 
