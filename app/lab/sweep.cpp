@@ -262,6 +262,13 @@ struct Column {
 constexpr Column kColumns[] = {{14, false}, {12, false}, {5, true},  {5, true},  {2, false},
                                {10, false}, {6, true},   {10, true}, {11, true}, {10, true},
                                {10, true},  {10, true},  {7, true}};
+constexpr std::size_t kErrorColumn = 8;
+
+// The error column's heading: the distance from the target, or the figure --error measures, named
+// (a column headed "error (m)" over a tracking error in degrees said the wrong figure).
+std::string errorHeading(std::size_t measure) {
+  return measure < kRunMetricCount ? kRunMetrics[measure].name : "error (m)";
+}
 
 // A line of the table, a cell for each of kColumns. Each figure is set apart from the one before
 // by at least a space: a figure wider than its column pushes what follows right only as far as it
@@ -272,12 +279,15 @@ using TableCells = std::array<std::string, std::size(kColumns)>;
 // The two spaces between the setting and the dt: a column with nothing in it.
 constexpr const char* kGap = "";
 
-std::string tableLine(const TableCells& cells, bool pareto = false) {
+// `measure` widens the error column to its heading's width and a space.
+std::string tableLine(const TableCells& cells, std::size_t measure, bool pareto = false) {
   std::string line;
   std::size_t end = 0;  // where the last column ends when nothing overflowed
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const std::string& text = cells[i];
-    const std::size_t columnEnd = end + kColumns[i].width;
+    const std::size_t width =
+        i == kErrorColumn ? std::max(kColumns[i].width, errorHeading(measure).size() + 1) : kColumns[i].width;
+    const std::size_t columnEnd = end + width;
     const std::size_t start = !kColumns[i].right        ? end
                               : columnEnd > text.size() ? columnEnd - text.size()
                                                         : 0;
@@ -289,19 +299,20 @@ std::string tableLine(const TableCells& cells, bool pareto = false) {
   return line + (pareto ? "  *" : "") + "\n";
 }
 
-std::string tableLine(const Row& r) {
+std::string tableLine(const Row& r, std::size_t measure) {
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("-"); };
   auto ours = [&](double v) { return r.peer ? std::string("-") : formatNumber(v, 3); };
+  const std::string error = measure < kRunMetricCount ? ours(r.figures.maxima[measure])
+                                                      : formatNumber(r.blewUp() ? kInf : r.figures.error, 3);
   return tableLine(
       {r.method, r.model.empty() ? "-" : r.model, opt(r.iterations), opt(r.substeps), kGap,
-       formatNumber(r.dt, 6), std::to_string(r.steps), formatNumber(r.msPerStep, 4),
-       formatNumber(r.blewUp() ? kInf : r.figures.error, 3), ours(r.figures.maxima[kStickErrorMetric]),
-       formatNumber(r.figures.maxima[kPenetrationMetric], 3), ours(r.figures.energyDrift),
-       r.peer ? "-" : std::to_string(r.figures.frozen)},
-      r.pareto);
+       formatNumber(r.dt, 6), std::to_string(r.steps), formatNumber(r.msPerStep, 4), error,
+       ours(r.figures.maxima[kStickErrorMetric]), formatNumber(r.figures.maxima[kPenetrationMetric], 3),
+       ours(r.figures.energyDrift), r.peer ? "-" : std::to_string(r.figures.frozen)},
+      measure, r.pareto);
 }
 
-void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows,
+void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& rows, std::size_t measure,
                  const std::vector<std::string>& accuracy, const std::vector<std::string>& notes) {
   out << "sweep       " << plan.sceneName << " (" << plan.scene.file.string() << ")\n";
   out << "runs        " << count(plan.settings.size(), "setting", "settings") << " x "
@@ -309,9 +320,12 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
       << simulatedSeconds(rows) << " s simulated\n";
   for (const std::string& a : accuracy) out << "accuracy    " << a << "\n";
   for (const std::string& n : notes) out << "peers       " << n << "\n";
-  out << tableLine({"method", "model", "iter", "sub", kGap, "dt (s)", "steps", "ms/step", "error (m)",
-                    "stick err", "penet (m)", "drift (J)", "frozen"});
-  for (const Row& r : rows) out << tableLine(r);
+  if (measure < kRunMetricCount)
+    out << "error       " << kRunMetrics[measure].nameAndUnit() << ": " << kRunMetrics[measure].help << "\n";
+  out << tableLine({"method", "model", "iter", "sub", kGap, "dt (s)", "steps", "ms/step",
+                    errorHeading(measure), "stick err", "penet (m)", "drift (J)", "frozen"},
+                   measure);
+  for (const Row& r : rows) out << tableLine(r, measure);
 }
 
 // ---- the command ----------------------------------------------------------------------------
@@ -379,7 +393,7 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
       accuracy.push_back(line);
     }
   }
-  printReport(out, plan, rows, accuracy, notes);
+  printReport(out, plan, rows, measure, accuracy, notes);
   OutputFolder files(outDir);
   const std::string chartProblem =
       writeOutputs(files, plan, rows, firstTarget(plan, targets, plan.dts.front()), measure);

@@ -357,6 +357,27 @@ TEST(Sweep, TheFrontCanMeasureAFigureOfTheRunTable) {
   EXPECT_NE(text.find("run-cycle: tracking-error against cost"), std::string::npos);
 }
 
+// The printed table's error column is the figure --error asks for, headed by its name: it showed
+// the distance from the accuracy target, headed "error (m)", whatever the chart and the front measured.
+TEST(Sweep, TheTableShowsTheFigureTheErrorOptionAsks) {
+  TempDir dir;
+  const Outcome o =
+      sweep({"run-cycle", "--error", "tracking-error", "--iterations", "1", "--substeps", "1", "--steps",
+             "20", "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::size_t header = o.out.find("\nmethod ");
+  ASSERT_NE(header, std::string::npos) << o.out;
+  const std::string headerLine = o.out.substr(header + 1, o.out.find('\n', header + 1) - header - 1);
+  EXPECT_NE(headerLine.find(" tracking-error "), std::string::npos) << headerLine;
+  EXPECT_EQ(headerLine.find("error (m)"), std::string::npos) << headerLine;
+  std::istringstream row(o.out.substr(o.out.find('\n', header + 1) + 1));
+  std::string cells[8];
+  for (std::string& cell : cells) row >> cell;  // method, model, iter, sub, dt, steps, ms/step, error
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_EQ(cells[7], lab::formatNumber(fieldNumber(csv.rows[0], "rms_tracking_error"), 3)) << o.out;
+}
+
 // Its error is no figure: the CSV leaves it blank (it wrote inf, a number no output may hold) and
 // says in blew_up why.
 TEST(Sweep, ARunThatBlowsUpHasNoErrorAndSaysItBlewUp) {
