@@ -117,9 +117,10 @@ std::string plotCommand(const Chart& chart, const std::vector<std::vector<ChartP
       plot += ", \\\n     " + block + " using 1:2:3 with labels left offset 0.7,0.6 font ',8' notitle";
     }
   }
-  if (chart.guide) {
-    plot += ", \\\n     " + formatNumber(*chart.guide, 17) + " with lines dt 2 lw 1.5 lc 'gray40' title " +
-            quoted(chart.guideTitle);
+  for (std::size_t i = 0; i < chart.guides.size(); ++i) {
+    const ChartGuide& g = chart.guides[i];
+    plot += ", \\\n     " + formatNumber(g.y, 17) + " with lines dt " + std::to_string(2 + i) +
+            " lw 1.5 lc 'gray40' title " + quoted(g.title);
   }
   return plot + "\n";
 }

@@ -3,7 +3,6 @@
 // (gnuplot's datablocks), so the one file redraws the chart anywhere, and writes the chart
 // twice: a PNG to look at and an SVG to put in documents.
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +26,12 @@ struct ChartSeries {
   bool labels = false;  ///< write each point's label beside it
 };
 
+/// A dashed horizontal line across a chart at `y`, with its key entry.
+struct ChartGuide {
+  double y = 0.0;
+  std::string title;
+};
+
 struct Chart {
   std::string title;
   std::string xLabel;
@@ -34,9 +39,9 @@ struct Chart {
   bool logX = false;
   bool logY = false;
   std::vector<ChartSeries> series;
-  /// A dashed horizontal line across the chart (a threshold), with its key entry.
-  std::optional<double> guide;
-  std::string guideTitle;
+  /// Dashed horizontal lines across the chart (thresholds), each with its key entry and a dash
+  /// of its own.
+  std::vector<ChartGuide> guides;
   /// Output files, relative to the folder the script runs in: OUTPUT.png and OUTPUT.svg.
   std::string output;
 };

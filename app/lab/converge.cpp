@@ -355,8 +355,7 @@ Chart convergeChart(const std::vector<ConvergeRow>& rows) {
   const std::string scene = rows.empty() ? std::string() : rows.front().scene;
   Chart chart = logChart("Error against substep size: " + scene, "substep h (s)", "error (m)", true,
                          "converge-" + scene);
-  chart.guide = kConvergeFloor;
-  chart.guideTitle = "floor: left out of the fit";
+  chart.guides.push_back({kConvergeFloor, "floor: left out of the fit"});
   for (const std::vector<ConvergeRow>& line : convergeLines(rows)) {
     ChartSeries series{.title = line.front().method + " " + line.front().model + ": order " + orderText(line),
                        .line = true,

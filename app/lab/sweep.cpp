@@ -214,8 +214,20 @@ std::string errorLabel(const AccuracyTarget& firstTarget, std::size_t measure) {
          (firstTarget.kind == "analytic" ? " answer" : " run");
 }
 
+// A reference's own uncertainty as a line on the chart, `which` naming its model and dt among
+// several; none for an analytic answer, a figure of the run table, or a reference that blew up
+// (gnuplot read "inf" as a variable).
+std::optional<ChartGuide> uncertaintyGuide(const AccuracyTarget& target, std::size_t measure,
+                                           const std::string& which) {
+  const double u = maxUncertainty(target);
+  if (measure < kRunMetricCount || target.kind != "reference" || !std::isfinite(u) || u <= kErrorFloor)
+    return std::nullopt;
+  return ChartGuide{u, "reference's own uncertainty" + which};
+}
+
+// `guides`: each target's uncertainty (uncertaintyGuide).
 Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyTarget& firstTarget,
-                 std::size_t measure) {
+                 std::size_t measure, std::vector<ChartGuide> guides) {
   const bool perStep = oneDt(rows);
   Chart c = logChart(
       plan.sceneName + ": " + (measure < kRunMetricCount ? kRunMetrics[measure].name : "error") +
@@ -241,12 +253,7 @@ Chart errorChart(const Plan& plan, const std::vector<Row>& rows, const AccuracyT
     }
     c.series.push_back(s);
   }
-  const double u = maxUncertainty(firstTarget);
-  // A reference that blew up has no uncertainty to draw (gnuplot read "inf" as a variable).
-  if (measure == kRunMetricCount && firstTarget.kind == "reference" && std::isfinite(u) && u > kErrorFloor) {
-    c.guide = u;
-    c.guideTitle = "reference's own uncertainty";
-  }
+  c.guides = std::move(guides);
   return c;
 }
 
@@ -332,10 +339,11 @@ void printReport(std::ostream& out, const Plan& plan, const std::vector<Row>& ro
 
 // The CSVs and the chart, into `files`: "" when the chart was drawn, else why not.
 std::string writeOutputs(OutputFolder& files, const Plan& plan, const std::vector<Row>& rows,
-                         const AccuracyTarget& firstTarget, std::size_t measure) {
+                         const AccuracyTarget& firstTarget, std::size_t measure,
+                         std::vector<ChartGuide> guides) {
   files.write("results.csv", csvText(plan.sceneName, rows));
   files.write("pareto.csv", csvText(plan.sceneName, frontByCost(rows)));
-  const Chart chart = errorChart(plan, rows, firstTarget, measure);
+  const Chart chart = errorChart(plan, rows, firstTarget, measure, std::move(guides));
   std::string problem =  // not const, so that the return moves it
       files.draw(kSweepScript, chart,
                  "no run has a finite error, so there is no chart to draw");  // a 0 is drawn at kErrorFloor
@@ -377,26 +385,30 @@ int runSweep(const Plan& plan, std::size_t measure, const std::filesystem::path&
   }
   markPareto(rows, measure);
 
-  // Each distinct target once, named by its model and dt when there are several.
+  // Each distinct target once, named by its model and dt when there are several; each reference's
+  // uncertainty a line of the chart (only the first target's was drawn).
   std::vector<std::string> accuracy;
+  std::vector<ChartGuide> guides;
   for (const ModelChoice& m : plan.models) {
     for (double dt : plan.dts) {
       const Setting key{m, phys::SolverMethod::GaussSeidel, 1, 1, dt};
-      std::string line = targets.get(plan.scene, key, plan.stepsAt(dt)).description;
+      const AccuracyTarget& target = targets.get(plan.scene, key, plan.stepsAt(dt));
+      std::string which;
       if (plan.models.size() > 1 || plan.dts.size() > 1) {
         // Built piecewise: "(" + std::string trips GCC 12's false -Wrestrict (bug 105329).
-        std::string which(1, '(');
+        which = "(";
         if (!m.label.empty()) which += m.label + ", ";
-        which += "dt " + formatNumber(dt) + ") ";
-        line = which + line;
+        which += "dt " + formatNumber(dt) + ")";
       }
-      accuracy.push_back(line);
+      accuracy.push_back(which.empty() ? target.description : which + " " + target.description);
+      if (auto guide = uncertaintyGuide(target, measure, which.empty() ? which : " " + which))
+        guides.push_back(*guide);
     }
   }
   printReport(out, plan, rows, measure, accuracy, notes);
   OutputFolder files(outDir);
-  const std::string chartProblem =
-      writeOutputs(files, plan, rows, firstTarget(plan, targets, plan.dts.front()), measure);
+  const std::string chartProblem = writeOutputs(
+      files, plan, rows, firstTarget(plan, targets, plan.dts.front()), measure, std::move(guides));
   const auto front = frontByCost(rows);
   out << "pareto      " << count(front.size(), "setting", "settings") << " (marked *):";
   for (std::size_t i = 0; i < front.size(); ++i) out << (i == 0 ? " " : ", ") << rowName(front[i], plan);

@@ -378,6 +378,24 @@ TEST(Sweep, TheTableShowsTheFigureTheErrorOptionAsks) {
   EXPECT_EQ(cells[7], lab::formatNumber(fieldNumber(csv.rows[0], "rms_tracking_error"), 3)) << o.out;
 }
 
+// A sweep over several models (or dts) measures each against its own reference, and each
+// reference's uncertainty is a line of the chart, named by its model: only the first one's was drawn.
+TEST(Sweep, EachReferencesUncertaintyIsALineOfTheChart) {
+  TempDir dir;
+  const Outcome o =
+      sweep({"falling-box", "--method", "gauss-seidel", "--iterations", "1", "--model", "corners,tetra",
+             "--repeat", "1", "--no-peers", "--out", dir.file("out").string()});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const CsvTable csv = readCsv(dir.file("out/results.csv"));
+  ASSERT_EQ(csv.rows.size(), 2u);
+  const std::string script = lab_testing::readFile(dir.file("out/sweep.gp"));
+  for (const CsvRow& r : csv.rows) {
+    ASSERT_GT(fieldNumber(r, "ref_uncertainty"), 1e-9) << "a line is drawn above the floor";
+    const std::string title = "'reference''s own uncertainty (" + r.at("model") + ", dt 0.0166667)'";
+    EXPECT_NE(script.find(title), std::string::npos) << title << "\n" << script;
+  }
+}
+
 // Its error is no figure: the CSV leaves it blank (it wrote inf, a number no output may hold) and
 // says in blew_up why.
 TEST(Sweep, ARunThatBlowsUpHasNoErrorAndSaysItBlewUp) {
@@ -722,7 +740,7 @@ TEST(OutputFolder, ListsThePicturesGnuplotDrew) {
 TEST(OutputFolder, AChartWithNothingToDrawGetsAScriptThatRuns) {
   lab::Chart empty = lab::logChart("t", "x", "y", true, "e");
   empty.series.push_back({.title = "s", .points = {{0.0, 1.0, ""}, {1.0, std::nan(""), ""}}});
-  empty.guide = 1.0;
+  empty.guides.push_back({1.0, "a guide"});
   const std::string script = lab::gnuplotScript(empty);
   EXPECT_EQ(script.find("replot"), std::string::npos) << script;
   EXPECT_EQ(script.find("set output"), std::string::npos) << script;
