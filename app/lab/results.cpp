@@ -340,7 +340,8 @@ void describeReport(CommandLine& line, ReportOptions& o) {
   line.about(
       "Runs the lab's commands and writes docs/results.md and its charts from what they print.\n"
       "Takes several minutes in full; `make charts` runs it.");
-  line.option(option::kOut, o.out, "results.md and its results/ folder (default: <data>/docs)");
+  line.option(option::kOut, o.out,
+              "results.md and its results/ folder (default: <data>/docs; required with --quick)");
   line.flag(option::kQuick, o.quick, true, "");
   line.option(option::kData, o.data, "");
 }
@@ -368,6 +369,11 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
   o.data = dataDir(o.data);
   // Every part would fail on it, and the default --out lies inside it: said before either.
   requireFolder(o.data, "--data");
+  // The default --out holds the checked-in results: a quick report's tiny figures there would
+  // replace them, so a quick report goes where it is told.
+  if (o.quick && o.out.empty())
+    throw UsageError("--quick needs --out DIR: its tiny figures would replace the checked-in " +
+                     (o.data / "docs" / "results.md").string());
   if (o.out.empty()) o.out = o.data / "docs";
   const fs::path results = o.out / "results";
   prepareEveryOutput(o, results);  // before the runs, which take minutes

@@ -800,6 +800,23 @@ TEST(Report, ADataThatIsNotAFolderIsRefusedBeforeAnythingRuns) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// Without --out the report writes <data>/docs/results.md, the checked-in results: a quick report,
+// whose figures only check the pipeline, wrote over them. It is refused before anything runs.
+TEST(Report, AQuickReportWithoutOutIsRefusedAndWritesNothing) {
+  TempDir dir;
+  const std::filesystem::path data = dir.file("data");
+  std::filesystem::create_directories(data);
+  const Output r = lab::runCaptured("report", {"--quick", "--data", data.string()});
+  EXPECT_EQ(r.code, lab::kExitUsage) << r.err;
+  EXPECT_EQ(r.err.rfind("lab: --quick needs --out DIR: its tiny figures would replace the checked-in " +
+                            (data / "docs" / "results.md").string() + "\n",
+                        0),
+            0u)
+      << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(data / "docs")) << "nothing written";
+}
+
 // results.md is written last, after minutes of runs: a folder or a device in its place is refused
 // before the first run, with the option and the file (it was found out at the end).
 TEST(Report, AResultsFileThatCannotBeWrittenIsRefusedBeforeAnythingRuns) {
