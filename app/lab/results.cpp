@@ -504,9 +504,14 @@ int writeReport(ReportOptions o, std::ostream& out, std::ostream& err) {
       report.quickOrFull({"--out", (results / "converge").string(), "--data", data},
                          {"circular-orbit", "--substeps", "1,2"}),
       [&](const std::string& printed) {
+        // Each chart by the name converge gave it, from the scene's own name and unique in the
+        // folder: a link made of the name given here missed a scene whose <scene name> differs.
+        const std::vector<std::string> names =
+            convergeSceneNames(convergeScenes(o), scenes::sceneDirectory(o.data));
+        const std::vector<std::string> files = convergeChartNames(names);
         std::string charts;
-        for (const std::string& scene : convergeScenes(o))
-          charts += report.picture("error against h, " + scene, "converge/converge-" + scene + ".png");
+        for (std::size_t k = 0; k < names.size(); ++k)
+          charts += report.picture("error against h, " + names[k], "converge/" + files[k] + ".png");
         return charts + tableBlock(printed) + "\nAll runs: [converge.csv](results/converge/converge.csv).\n";
       });
 

@@ -817,6 +817,37 @@ TEST(Report, AQuickReportWithoutOutIsRefusedAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(data / "docs")) << "nothing written";
 }
 
+// results.md linked each converge chart by the name the report gave the scene, but converge names
+// its charts after the scene's own <scene name> (unique within the folder): a scene whose name is
+// not its file's had its chart drawn and not linked. Here circular-orbit.xml is named "orbit-renamed".
+TEST(Report, LinksEachConvergeChartByTheNameConvergeGaveIt) {
+  if (lab::findGnuplot().empty()) GTEST_SKIP() << "no chart is linked without gnuplot";
+  TempDir dir;
+  const std::filesystem::path assets = std::filesystem::path(DATA_DIR) / "assets";
+  const std::filesystem::path data = dir.file("data");
+  std::filesystem::create_directories(data / "assets" / "scenes");
+  for (const auto& entry : std::filesystem::directory_iterator(assets)) {
+    if (entry.path().filename() != "scenes")
+      std::filesystem::create_directory_symlink(entry.path(), data / "assets" / entry.path().filename());
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(assets / "scenes")) {
+    const std::filesystem::path to = data / "assets" / "scenes" / entry.path().filename();
+    if (entry.path().filename() != "circular-orbit.xml") std::filesystem::create_symlink(entry.path(), to);
+  }
+  std::string orbit = lab_testing::readFile(assets / "scenes" / "circular-orbit.xml");
+  const std::string name = "<scene name=\"circular-orbit\"";
+  ASSERT_NE(orbit.find(name), std::string::npos);
+  orbit.replace(orbit.find(name), name.size(), "<scene name=\"orbit-renamed\"");
+  dir.write("data/assets/scenes/circular-orbit.xml", orbit);
+
+  const std::filesystem::path out = dir.file("out");
+  const Output r = lab::runCaptured("report", {"--quick", "--out", out.string(), "--data", data.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(out / "results" / "converge" / "converge-orbit-renamed.png"));
+  EXPECT_NE(lab_testing::readFile(out / "results.md").find("(results/converge/converge-orbit-renamed.png)"),
+            std::string::npos);
+}
+
 // results.md is written last, after minutes of runs: a folder or a device in its place is refused
 // before the first run, with the option and the file (it was found out at the end).
 TEST(Report, AResultsFileThatCannotBeWrittenIsRefusedBeforeAnythingRuns) {
