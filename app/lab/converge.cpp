@@ -182,7 +182,12 @@ std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const Co
                                      ConvergeTarget& target, std::ostream* progress) {
   // Read once: every run and reference is built from this text, whatever happens to the file.
   const scenes::SceneSource source = scenes::readSceneSource(file);
-  const scenes::Scene own = scenes::loadSceneSource(source);
+  return runConverge(source, scenes::loadSceneSource(source), o, target, progress);
+}
+
+std::vector<ConvergeRow> runConverge(const scenes::SceneSource& source, const scenes::Scene& own,
+                                     const ConvergeOptions& o, ConvergeTarget& target,
+                                     std::ostream* progress) {
   const double dt = own.world.solverSettings().dt;
   const bool analytic = hasAnalyticAnswers(own);
   // The options first: a model the scene has nothing for is said before what its bodies lack.
@@ -372,14 +377,22 @@ namespace {
 int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) {
   if (o.scenes.empty()) o.scenes = kConvergeScenes;
   const std::filesystem::path sceneDir = scenes::sceneDirectory(dataDir(o.dataDir));
-  // The charts are named after the scenes, read before the runs so that every file is checked then.
-  std::vector<std::string> chartNames;
+  // Each scene read and loaded once: its name (which names its chart), the check, and the runs
+  // all come from that read (it was read three times, and could change between them).
+  std::vector<std::filesystem::path> sceneFiles;
+  std::vector<scenes::SceneSource> sources;
+  std::vector<scenes::Scene> owns;
+  std::vector<std::string> names;
+  for (const std::string& scene : o.scenes) {
+    sceneFiles.push_back(scenes::resolveScene(scene, sceneDir));
+    sources.push_back(scenes::readSceneSource(sceneFiles.back()));
+    owns.push_back(scenes::loadSceneSource(sources.back()));
+    names.push_back(owns.back().name);
+  }
+  // The charts are named after the scenes, so that every file is checked before the runs.
+  const std::vector<std::string> chartNames = convergeChartNames(names);
   if (o.out) {
-    const std::vector<std::string> names = convergeSceneNames(o.scenes, sceneDir);
-    chartNames = convergeChartNames(names);
-    std::vector<std::filesystem::path> files;
-    for (const std::string& scene : o.scenes) files.push_back(scenes::resolveScene(scene, sceneDir));
-    refuseOutputsOverScenes(*o.out, convergeFiles(names), files);
+    refuseOutputsOverScenes(*o.out, convergeFiles(names), sceneFiles);
     prepareOutputFiles(*o.out, convergeFiles(names));
   }
   std::vector<ConvergeRow> all;
@@ -388,18 +401,15 @@ int runConvergeCommand(ConvergeOptions o, std::ostream& out, std::ostream& err) 
   try {
     // Every scene checked before the first run: one that cannot be measured was found only after
     // the scenes before it had run (minutes), and nothing was written.
-    for (const std::string& name : o.scenes) {
-      current = name;
-      const scenes::SceneSource source = scenes::readSceneSource(scenes::resolveScene(name, sceneDir));
-      const scenes::Scene own = scenes::loadSceneSource(source);
-      chosenModels(source, own.name, o, nullptr);  // as runConverge: the options first
-      checkMeasurable(own, o);
+    for (std::size_t k = 0; k < owns.size(); ++k) {
+      current = o.scenes[k];
+      chosenModels(sources[k], owns[k].name, o, nullptr);  // as runConverge: the options first
+      checkMeasurable(owns[k], o);
     }
-    for (const std::string& name : o.scenes) {
-      current = name;
+    for (std::size_t k = 0; k < owns.size(); ++k) {
+      current = o.scenes[k];
       ConvergeTarget target;
-      const std::vector<ConvergeRow> rows =
-          runConverge(scenes::resolveScene(name, sceneDir), o, target, &err);
+      const std::vector<ConvergeRow> rows = runConverge(sources[k], owns[k], o, target, &err);
       out << convergeTable(rows, target) << "\n";
       out.flush();
       all.insert(all.end(), rows.begin(), rows.end());

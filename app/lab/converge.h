@@ -12,6 +12,7 @@
 
 #include "charts.h"
 #include "physics/settings.h"
+#include "scenes/scene.h"
 
 namespace lab {
 
@@ -70,6 +71,10 @@ struct ConvergeTarget {
 /// free bodies touch something during a run.
 std::vector<ConvergeRow> runConverge(const std::filesystem::path& file, const ConvergeOptions& options,
                                      ConvergeTarget& target, std::ostream* progress = nullptr);
+/// The same for a file read before (`source`) and loaded as it is (`own`): nothing is read again.
+std::vector<ConvergeRow> runConverge(const scenes::SceneSource& source, const scenes::Scene& own,
+                                     const ConvergeOptions& options, ConvergeTarget& target,
+                                     std::ostream* progress = nullptr);
 
 /// The slope of log(error) against log(h) by least squares over the finest kOrderPoints points
 /// of one line whose errors are finite and above kConvergeFloor; nullopt with fewer than two

@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/inotify.h>
+#include <unistd.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
@@ -263,6 +266,34 @@ TEST(Converge, RefusesToWriteOverASceneItRuns) {
   EXPECT_NE(o.err.find("converge.csv: is the scene " + file.string() + " being run"), std::string::npos)
       << o.err;
   EXPECT_EQ(lab_testing::readFile(file), scene);
+}
+
+// With --out each scene file was read and loaded three times (for its name, the check before the
+// runs, the runs), and a file saved over between them gave a chart named after one text and runs of
+// another. It is opened once (inotify counts the opens; watching the closes too keeps two opens
+// from being merged into one event, as inotify merges identical events in a row).
+TEST(Converge, ReadsEachSceneFileOnce) {
+  TempDir dir;
+  const std::filesystem::path file =
+      dir.write("orbit.xml",
+                lab_testing::readFile(std::filesystem::path(DATA_DIR) / "assets/scenes/circular-orbit.xml"));
+  const int watch = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+  ASSERT_GE(watch, 0);
+  ASSERT_GE(::inotify_add_watch(watch, file.c_str(), IN_OPEN | IN_CLOSE), 0);
+  const auto o =
+      converge({file.string(), "--methods", "shake", "--substeps", "1,2", "--out", dir.file("out").string()});
+  EXPECT_EQ(o.code, 0) << o.err;
+  int opens = 0;
+  alignas(inotify_event) char buffer[4096];
+  for (ssize_t n; (n = ::read(watch, buffer, sizeof buffer)) > 0;) {
+    for (ssize_t at = 0; at < n;) {
+      const auto* event = reinterpret_cast<const inotify_event*>(buffer + at);
+      opens += (event->mask & IN_OPEN) != 0 ? 1 : 0;
+      at += static_cast<ssize_t>(sizeof(inotify_event) + event->len);
+    }
+  }
+  ::close(watch);
+  EXPECT_EQ(opens, 1);
 }
 
 TEST(Converge, ASceneWithoutAnExactAnswerIsAClearError) {
