@@ -22,7 +22,9 @@ constexpr Control kControls[] = {
      "orbit around the point at the crosshair (or the followed body)"},
     {"double-click",
      "follow the body under the cursor (the camera moves with it); on nothing, stop following"},
-    {"Z", "frame the scene: move along the view until every body is in it"},
+    {"Z",
+     "frame the scene: move along the view until every body is in it (one larger than the 500 m the view "
+     "reaches: its middle, and the status line says so)"},
     {"left mouse drag", "pick the body or particle under the cursor and pull it with a spring"},
     {"G", "gravity: uniform (down) or towards a point above the ground"},
     {"Y / H", "gravity stronger / weaker by 1 m/s^2"},

@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include "controls.h"
 #include "stats_text.h"
@@ -85,15 +86,15 @@ void overlaySection(Session& session, UiState& ui) {
     ImGui::ColorButton("##c", ImVec4(kRunColors[i].r, kRunColors[i].g, kRunColors[i].b, 1.0f), 0,
                        ImVec2(14, 14));
     ImGui::SameLine();
-    ImGui::InputText("##spec", ui.overlayText[i].data(), ui.overlayText[i].size());
+    ImGui::InputText("##spec", &ui.overlayText[static_cast<std::size_t>(i)]);
     ImGui::PopID();
   }
   if (ImGui::Button(session.overlayActive() ? "Restart overlay" : "Start overlay")) {
     std::vector<OverlaySpec> specs;
     std::string error;
-    for (const auto& text : ui.overlayText) {
-      if (text[0] == '\0') continue;
-      const ParsedOverlaySpec parsed = parseOverlaySpec(text.data());
+    for (const std::string& text : ui.overlayText) {
+      if (text.empty()) continue;
+      const ParsedOverlaySpec parsed = parseOverlaySpec(text);
       if (!parsed.error.empty() && error.empty()) error = parsed.error;
       specs.push_back(parsed.spec);
     }
@@ -144,9 +145,7 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   SectionFlags named = options.unfold.value_or(SectionFlags{});
   named[5] = named[5] || options.sweep;  // --sweep unfolds the Lab, for its progress and chart
   // A section the command line unfolds is shown, though the last run hid it (its close button).
-  bool* shown[] = {&ui.showSimulation, &ui.showRewind, &ui.showWorld,
-                   &ui.showDraw,       &ui.showStats,  &ui.showLab};
-  static_assert(std::size(shown) == kSectionNames.size());
+  const auto shown = sectionsShown(ui);
   for (std::size_t i = 0; i < kSectionNames.size(); ++i) {
     if (named[i]) ui.unfolded[i] = *shown[i] = true;
   }
@@ -155,12 +154,23 @@ void applyRemembered(const UserSettings& user, const Options& options, UiState& 
   if (user.throwSpeed) ui.throwSpeed = *user.throwSpeed;
   if (user.recordingBudgetMb) ui.recordingBudgetMb = *user.recordingBudgetMb;
   ui.draw.shadows = !options.noShadows;
-  const char* examples[kMaxOverlayRuns] = {"iterations=3", "substeps=8,iterations=1", "method=xpbd", ""};
-  for (std::size_t i = 0; i < static_cast<std::size_t>(kMaxOverlayRuns); ++i) {
-    const std::string text = i < options.overlay.size() ? options.overlay[i].text : examples[i];
-    ui.overlayText[i].fill('\0');
-    text.copy(ui.overlayText[i].data(), ui.overlayText[i].size() - 1);
+  // The overlay the command line started, so that Restart runs the same settings; else examples.
+  ui.overlayText = {"iterations=3", "substeps=8,iterations=1", "method=xpbd", ""};
+  if (!options.overlay.empty()) {
+    for (std::size_t i = 0; i < ui.overlayText.size(); ++i)
+      ui.overlayText[i] = i < options.overlay.size() ? options.overlay[i].text : "";
   }
+}
+
+std::array<bool*, kSectionNames.size()> sectionsShown(UiState& ui) {
+  return {&ui.showSimulation, &ui.showRewind, &ui.showWorld, &ui.showDraw, &ui.showStats, &ui.showLab};
+}
+
+void resetLayout(UiState& ui) {
+  for (bool* shown : sectionsShown(ui)) *shown = true;
+  ui.panelsHidden = false;
+  ui.unfolded = kDefaultUnfolded;
+  ui.resetLayout = true;
 }
 
 void remember(const UiState& ui, UserSettings& user) {
@@ -253,10 +263,15 @@ void settingsSection(Session& session, UiState& ui) {
 // or any command from a step shown resumes the run from it, and the recording forks.
 void rewindSection(Session& session, UiState& ui) {
   const Recording& r = session.recording();
-  if (!r.on() || r.empty()) {
-    greyWrapped(r.on() ? "nothing recorded yet"
-                       : "off while the method overlay runs: its runs are not recorded");
-    if (r.on() && ImGui::Button("Open...")) ui.openRecordingRequested = true;
+  if (session.overlayActive()) {
+    greyWrapped(
+        "paused while the method overlay runs: run 0's steps are recorded, to rewind once the overlay "
+        "stops (the other runs are not)");
+    return;
+  }
+  if (r.empty()) {
+    greyWrapped("nothing recorded yet");
+    if (ImGui::Button("Open...")) ui.openRecordingRequested = true;
     return;
   }
   const long now = session.scene().world.stepCount();
@@ -727,16 +742,16 @@ void drawPanels(Session& session, UiState& ui) {
                    ImGuiWindowFlags_NoBringToFrontOnFocus);
   // Sliders take what the labels leave: the longest label is "compliance (m/N, xpbd)".
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 12.5f);  // 162 pixels for the labels
-  if (beginSection("Simulation", &ui.showSimulation, ui.unfolded[0], reset)) {
+  if (beginSection(kSectionTitles[0], &ui.showSimulation, ui.unfolded[0], reset)) {
     settingsSection(session, ui);
     // Last: starting the overlay replaces the scene the section above drew from.
     overlaySection(session, ui);
   }
-  if (beginSection("Rewind", &ui.showRewind, ui.unfolded[1], reset)) rewindSection(session, ui);
-  if (beginSection("World", &ui.showWorld, ui.unfolded[2], reset)) worldSection(session, ui);
-  if (beginSection("Draw", &ui.showDraw, ui.unfolded[3], reset)) drawSection(ui);
-  if (beginSection("Stats", &ui.showStats, ui.unfolded[4], reset)) statsSection(session, ui);
-  if (beginSection("Lab", &ui.showLab, ui.unfolded[5], reset)) labSection(session, ui);
+  if (beginSection(kSectionTitles[1], &ui.showRewind, ui.unfolded[1], reset)) rewindSection(session, ui);
+  if (beginSection(kSectionTitles[2], &ui.showWorld, ui.unfolded[2], reset)) worldSection(session, ui);
+  if (beginSection(kSectionTitles[3], &ui.showDraw, ui.unfolded[3], reset)) drawSection(ui);
+  if (beginSection(kSectionTitles[4], &ui.showStats, ui.unfolded[4], reset)) statsSection(session, ui);
+  if (beginSection(kSectionTitles[5], &ui.showLab, ui.unfolded[5], reset)) labSection(session, ui);
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -749,17 +764,29 @@ void drawLegend(const Session& session, const UiState& ui) {
   ImGui::SetNextWindowPos(ImVec2(view.x + view.width * 0.5f, display.y - statusLineHeight() - 4.0f),
                           ImGuiCond_Always, ImVec2(0.5f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.85f);
+  // Within the scene's part of the window: a long setting wraps rather than covering the panels.
+  const float width = std::max(view.width - 16.0f, 200.0f);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(width, display.y * 0.5f));
   ImGui::Begin("Overlay", nullptr,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);
+  const double now = session.runs().front().scene->world.time();
   int id = 0;
   for (const Run& run : session.runs()) {
     const phys::SolverSettings& s = run.scene->world.solverSettings();
     ImGui::PushID(id++);
     ImGui::ColorButton("##c", ImVec4(run.color.r, run.color.g, run.color.b, 1.0f), 0, ImVec2(14, 14));
     ImGui::SameLine();
-    ImGui::Text("%-28s %-28s %.3f ms/step (median), error %s", run.label.c_str(), describeSolver(s).c_str(),
-                run.medianMs(), figure("%.1e", run.scene->world.metrics().maxConstraintError).c_str());
+    ImGui::PushTextWrapPos(width - 16.0f);
+    ImGui::TextWrapped("%s   %s   %.3f ms/step (median), error %s", run.label.c_str(),
+                       describeSolver(s).c_str(), run.medianMs(),
+                       figure("%.1e", run.scene->world.metrics().maxConstraintError).c_str());
+    ImGui::PopTextWrapPos();
+    // The runs are drawn at one moment only while each keeps up with run 0's clock.
+    if (const double behind = run.behind(now); behind > 0.0) {
+      ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1.0f), "%s s behind (%d steps a frame at most)",
+                         figure("%.3f", behind).c_str(), kMaxCatchUpSteps);
+    }
     ImGui::PopID();
   }
   ImGui::End();
@@ -799,15 +826,15 @@ void drawStatusAndCrosshair(const Session& session, const UiState& ui) {
   draw->AddLine(ImVec2(c.x - 8, c.y), ImVec2(c.x + 8, c.y), white);
   draw->AddLine(ImVec2(c.x, c.y - 8), ImVec2(c.x, c.y + 8), white);
   const std::string& text = ui.message.empty() ? session.status() : ui.message;
-  char line[512];
-  std::snprintf(line, sizeof line, "%s%s   |   %s   |   F1: controls, F2: panels",
-                ui.replaying ? "PLAYING THE RECORDING   |   "
-                : ui.paused  ? "PAUSED   |   "
-                             : "",
-                std::string(toString(ui.draw.mode)).c_str(), text.c_str());
+  // Whole: a fixed buffer cut long paths short, sometimes inside a UTF-8 character.
+  const std::string line = std::string(ui.replaying ? "PLAYING THE RECORDING   |   "
+                                       : ui.paused  ? "PAUSED   |   "
+                                                    : "") +
+                           std::string(toString(ui.draw.mode)) + "   |   " + text +
+                           "   |   F1: controls, F2: panels";
   const ImVec2 at(8.0f, display.y - statusLineHeight() + 2.0f);
   draw->AddRectFilled(ImVec2(0, at.y - 2), ImVec2(display.x, display.y), IM_COL32(20, 20, 24, 230));
-  draw->AddText(at, IM_COL32(235, 235, 235, 255), line);
+  draw->AddText(at, IM_COL32(235, 235, 235, 255), line.c_str(), line.c_str() + line.size());
 }
 
 }  // namespace sandbox

@@ -34,6 +34,9 @@ ScreenRect panelColumn(float windowWidth, float windowHeight, float top, float b
 /// hidden. Nothing of the scene is ever under a panel.
 ScreenRect sceneView(float windowWidth, float windowHeight, bool panelsShown);
 
+/// The sections' headers, and the View menu's entries that show them (kSectionNames' order).
+inline constexpr std::array<const char*, kSectionNames.size()> kSectionTitles = {
+    "Simulation", "Rewind", "World", "Draw", "Stats", "Lab"};
 /// The sections open at the start (kSectionNames' order): the settings and what they cost.
 inline constexpr SectionFlags kDefaultUnfolded = {true, true, false, false, true, false};
 
@@ -65,13 +68,20 @@ struct UiState {
   /// Why the scene's exact answer is not drawn though it has one (ExactGhost::hiddenBecause):
   /// "gravity changed"; "" when it is drawn. The sandbox sets it every frame; the Draw section shows it.
   std::string exactHidden;
-  std::array<char, 128> overlayText[kMaxOverlayRuns] = {};  ///< the overlay panel's settings
+  /// The overlay panel's settings, as typed (any length: a setting cut short would run as another).
+  std::array<std::string, kMaxOverlayRuns> overlayText;
   // For the Stats panel.
   float frameMs = 0.0f;  ///< unit: ms; the last frame
   History stepMs, maxError, rmsError;
   RealTimeMeter realTime;
   std::string message;  ///< the status line: what the last command did
 };
+
+/// Whether each section is shown (kSectionNames' order): its header's close button hides it, the
+/// View menu shows it again.
+std::array<bool*, kSectionNames.size()> sectionsShown(UiState& ui);
+/// View > Reset layout: the column and every section shown, each folded as at the start.
+void resetLayout(UiState& ui);
 
 /// N, and the panels' Step: while paused on a step of the recording with more after it (after B or
 /// the timeline), shows the next one, as recorded; else asks for a new step (ui.stepOnce), which

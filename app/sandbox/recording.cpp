@@ -43,12 +43,7 @@ void Recording::clear() {
 
 void Recording::restart(const phys::World& world) {
   clear();
-  if (on_) keyframe(world);
-}
-
-void Recording::setOn(bool on) {
-  on_ = on;
-  if (!on) clear();
+  keyframe(world);
 }
 
 long Recording::first() const {
@@ -105,7 +100,6 @@ void Recording::stepped(const StepRecord& record) {
 }
 
 void Recording::keyframe(const phys::World& world) {
-  if (!on_) return;
   const long step = world.stepCount();
   // Before everything kept (the budget dropped the keyframes up to a world rewound earlier):
   // nothing kept follows from it.
@@ -133,7 +127,6 @@ void Recording::keyframe(const phys::World& world) {
 }
 
 void Recording::changed(const phys::World& world, std::function<void(phys::World&)> redo, std::size_t bytes) {
-  if (!on_) return;
   const long step = world.stepCount();
   int atThisStep = 0;  // the changes at this step, the last ones kept
   for (auto c = changes_.rbegin(); c != changes_.rend() && c->step == step; ++c) ++atThisStep;
@@ -159,7 +152,6 @@ void Recording::dropChangesFrom(long step) {
 
 void Recording::appendMotion(std::shared_ptr<const phys::World> base, std::size_t baseBytes,
                              phys::Motion motion, const StepRecord& record) {
-  if (!on_) return;
   if (!keyframes_.empty() && record.step != last() + 1) clear();  // not the next step: start again
   std::size_t bytes = baseBytes + sizeof(phys::Motion);
   for (const auto* v : {&motion.position, &motion.previous, &motion.rigidPosition, &motion.rigidVelocity,
@@ -184,7 +176,6 @@ void Recording::appendMotion(std::shared_ptr<const phys::World> base, std::size_
 }
 
 void Recording::keyframeIfDue(const phys::World& world) {
-  if (!on_) return;
   if (keyframes_.empty() || world.stepCount() - keyframes_.back().step >= interval_) keyframe(world);
 }
 

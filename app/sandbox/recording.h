@@ -40,13 +40,9 @@ inline constexpr std::size_t kDefaultRecordingBudget = std::size_t{512} << 20;
 
 class Recording {
  public:
-  /// Forgets everything and starts from `world` as it is now (if on).
+  /// Forgets everything and starts from `world` as it is now.
   void restart(const phys::World& world);
   void clear();
-  /// Off, nothing is kept (the method overlay's runs are not recorded); on again, it starts at the
-  /// next keyframeIfDue.
-  void setOn(bool on);
-  bool on() const { return on_; }
   bool empty() const { return keyframes_.empty(); }
 
   /// Appends a step of the main run. A step that does not follow the last one recorded (a
@@ -134,7 +130,6 @@ class Recording {
   std::size_t budget_ = kDefaultRecordingBudget;
   long interval_ = 60;
   double dt_ = 0.0;  // of the latest keyframe, for seconds()
-  bool on_ = true;
   bool heapShared_ = false;
 };
 

@@ -20,10 +20,6 @@ bool timedStep(Run& run, const std::atomic<bool>* stop) {
   return true;
 }
 
-// A run far behind (dt a thousandth of the main run's) catches up over several frames rather
-// than stalling one.
-constexpr int kMaxCatchUpSteps = 1000;
-
 }  // namespace
 
 double Run::medianMs() const {
@@ -32,6 +28,11 @@ double Run::medianMs() const {
   std::array<double, kTimedSteps> sorted = recentMs;
   std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.begin() + n);
   return sorted[static_cast<std::size_t>(n / 2)];
+}
+
+double Run::behind(double now) const {
+  const phys::World& world = scene->world;
+  return world.time() + 0.5 * world.solverSettings().dt <= now ? now - world.time() : 0.0;
 }
 
 Run Run::copy() const {
@@ -50,8 +51,7 @@ bool stepRuns(std::vector<Run>& runs, const std::atomic<bool>* stop) {
   const double now = runs.front().scene->world.time();
   for (std::size_t i = 1; i < runs.size(); ++i) {
     Run& run = runs[i];
-    const double halfStep = 0.5 * run.scene->world.solverSettings().dt;
-    for (int n = 0; n < kMaxCatchUpSteps && run.scene->world.time() + halfStep <= now; ++n) {
+    for (int n = 0; n < kMaxCatchUpSteps && run.behind(now) > 0.0; ++n) {
       if (!timedStep(run, stop)) return false;
     }
   }

@@ -27,13 +27,21 @@ struct Run {
   /// Median wall time of the last kTimedSteps steps (one step's time is too noisy to compare
   /// runs by). unit: ms; 0 before the first step
   double medianMs() const;
+  /// How far its simulated time is behind `now`, the main run's (unit: s): 0 less than half its
+  /// own step behind, more when kMaxCatchUpSteps a frame could not keep up (its picture is of an earlier
+  /// moment).
+  double behind(double now) const;
   /// A run with a copy of the scene, steps and timings included.
   Run copy() const;
 };
 
+/// Most steps a run takes in one step of the main run: a run far behind (dt a thousandth of the
+/// main run's) catches up over several frames rather than stalling one.
+inline constexpr int kMaxCatchUpSteps = 1000;
+
 /// One step of the main run, and as many of every other run as it takes to reach the main run's
-/// simulated time (a run with half the dt takes two), timing each. False when `stop` (if given)
-/// came true before a substep: the runs are then part of the way through and fit only to be
+/// simulated time (a run with half the dt takes two, up to kMaxCatchUpSteps), timing each. False when `stop`
+/// (if given) came true before a substep: the runs are then part of the way through and fit only to be
 /// dropped (phys::World::step).
 bool stepRuns(std::vector<Run>& runs, const std::atomic<bool>* stop = nullptr);
 

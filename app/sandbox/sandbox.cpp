@@ -23,6 +23,7 @@
 #include "recording_file.h"
 #include "scene_bounds.h"
 #include "screenshot.h"
+#include "stats_text.h"
 
 namespace sandbox {
 namespace {
@@ -126,6 +127,8 @@ Sandbox::Sandbox(const Options& options, std::unique_ptr<scenes::Scene> named)
   applyRemembered(user_, options_, ui_);
   session_->setRecordingBudget(static_cast<std::size_t>(ui_.recordingBudgetMb) << 20);
   fitToScene();
+  // In the status line too: started from a desktop, nobody reads stderr.
+  if (!view_->modelWarnings().empty()) ui_.message = "warning: " + view_->modelWarnings();
   if (options_.sweep) ui_.lab.start(session_->file());  // its section unfolded by applyRemembered
   if (!options_.overlay.empty()) {
     const std::string error = session_->startOverlay(options_.overlay);
@@ -487,9 +490,11 @@ void Sandbox::frameScene() {
     return;
   }
   const ScreenRect view = sceneRect();
-  camera_.frame(bounds->first, bounds->second, view.width / std::max(view.height, 1.0f));
+  const bool framed = camera_.frame(bounds->first, bounds->second, view.width / std::max(view.height, 1.0f));
   if (following()) followedAt_ = glm::vec3(session_->scene().world.bodyPose(*followed_).center);
-  ui_.message = "framed the scene";
+  ui_.message = framed ? "framed the scene"
+                       : "the scene is larger than the view reaches (" + figure("%.0f", camera_.farPlane) +
+                             " m): looking at its middle";
 }
 
 void Sandbox::fitToScene() {
@@ -634,19 +639,11 @@ void Sandbox::drawMenuBar() {
   if (ImGui::BeginMenu("View")) {
     bool panelsShown = !ui_.panelsHidden;
     if (ImGui::MenuItem("Panels", "F2", &panelsShown)) ui_.panelsHidden = !panelsShown;
-    ImGui::MenuItem("Simulation", nullptr, &ui_.showSimulation);
-    ImGui::MenuItem("Rewind", nullptr, &ui_.showRewind);
-    ImGui::MenuItem("World", nullptr, &ui_.showWorld);
-    ImGui::MenuItem("Draw", nullptr, &ui_.showDraw);
-    ImGui::MenuItem("Stats", nullptr, &ui_.showStats);
+    const auto shown = sectionsShown(ui_);
+    for (std::size_t i = 0; i < shown.size(); ++i) ImGui::MenuItem(kSectionTitles[i], nullptr, shown[i]);
     ImGui::MenuItem("Controls", "F1", &ui_.showHelp);
     ImGui::Separator();
-    if (ImGui::MenuItem("Reset layout")) {
-      ui_.showSimulation = ui_.showRewind = ui_.showWorld = ui_.showDraw = ui_.showStats = true;
-      ui_.panelsHidden = false;
-      ui_.unfolded = kDefaultUnfolded;
-      ui_.resetLayout = true;
-    }
+    if (ImGui::MenuItem("Reset layout")) resetLayout(ui_);
     if (ImGui::MenuItem("Screenshot", "F12")) screenshotDue_ = true;
     ImGui::EndMenu();
   }
@@ -807,9 +804,10 @@ int Sandbox::run() {
     if (interactive_) zoomOrbitFollow();
     input_.endFrame();
     const glm::ivec2 size = window_.framebufferSize();
-    if (size.x == 0 || size.y == 0) {
-      // Minimised: nothing to draw, and vsync would not pace the loop, so wait for events (the
-      // simulation goes on in the background, up to kMaxStepsPerFrame steps per wake-up).
+    if (size.x == 0 || size.y == 0 || glfwGetWindowAttrib(window_.handle(), GLFW_ICONIFIED) != 0) {
+      // Minimised (a 0 x 0 framebuffer on some systems; on X11 the size stays and only the
+      // attribute says so): nothing to draw, and vsync would not pace the loop, so wait for events
+      // (the simulation goes on in the background, up to kMaxStepsPerFrame steps per wake-up).
       glfwWaitEventsTimeout(0.05);
       continue;
     }

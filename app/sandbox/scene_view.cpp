@@ -15,12 +15,15 @@
 namespace sandbox {
 namespace {
 
-// A missing or broken model must not stop the sandbox: fall back to a cube built in code.
-std::unique_ptr<engine::GpuMesh> loadModel(const std::filesystem::path& file) {
+// A missing or broken model must not stop the sandbox: fall back to a cube built in code, and say
+// why in `warnings`.
+std::unique_ptr<engine::GpuMesh> loadModel(const std::filesystem::path& file, std::string& warnings) {
   try {
     return std::make_unique<engine::GpuMesh>(engine::loadMeshData(file));
   } catch (const engine::Error& e) {
-    std::cerr << "warning: " << e.what() << "; drawing with the built-in cube instead\n";
+    const std::string warning = std::string(e.what()) + "; drawing with the built-in cube instead";
+    std::cerr << "sandbox: warning: " << warning << "\n";
+    warnings += (warnings.empty() ? "" : "; ") + warning;
     return std::make_unique<engine::GpuMesh>(engine::unitCubeMesh());
   }
 }
@@ -63,8 +66,8 @@ class TintedDraw : public phys::DebugDraw {
 
 SceneView::SceneView(engine::Renderer& renderer, const std::filesystem::path& modelsDir)
     : renderer_(renderer),
-      boxMesh_(loadModel(modelsDir / "box.obj")),
-      limbMesh_(loadModel(modelsDir / "limb.obj")) {}
+      boxMesh_(loadModel(modelsDir / "box.obj", modelWarnings_)),
+      limbMesh_(loadModel(modelsDir / "limb.obj", modelWarnings_)) {}
 
 // A soft dark disc on the ground where the key light throws each body's shadow, fainter the higher
 // the body: what makes contact with the ground read in a picture. A flattened sphere, blended

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -35,6 +36,8 @@ class SceneView {
   void draw(const phys::World& world, const glm::mat4& viewProjection, const DrawOptions& options,
             const std::optional<Tint>& tint = std::nullopt);
 
+  /// Why a model could not be loaded and is drawn as the built-in cube; "" when both loaded.
+  const std::string& modelWarnings() const { return modelWarnings_; }
   /// The capsule meshes, one per size drawn lately (tests look at how many there are).
   const engine::CapsuleMeshCache& capsuleMeshes() const { return capsuleMeshes_; }
 
@@ -44,6 +47,7 @@ class SceneView {
   void drawShadows(const phys::World& world, const glm::mat4& viewProjection);
 
   engine::Renderer& renderer_;
+  std::string modelWarnings_;  // filled while the meshes below load: declared before them
   std::unique_ptr<engine::GpuMesh> boxMesh_;
   std::unique_ptr<engine::GpuMesh> limbMesh_;
   // Trimmed after each draw(): sizes no longer in any world drawn are freed beyond its capacity.

@@ -121,7 +121,6 @@ void Session::replaceMain(std::unique_ptr<scenes::Scene> scene, const std::files
   file_ = file;
   status_ = "opened " + file.filename().string();
   rewound_ = false;
-  recording_.setOn(true);
   recording_.restart(runs_.front().scene->world);
 }
 
@@ -145,7 +144,15 @@ std::string Session::openBuiltin(std::string_view name) {
 
 std::string Session::saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera) {
   try {
-    scenes::saveSceneFile(scene(), camera, file);
+    if (overlayActive()) {
+      // Run 0 under the overlay's setting is a comparison, not the scene: the file gets the
+      // settings Stop gives back, so that Reload does not quietly keep the overlay's.
+      scenes::Scene main = scene();
+      main.world.setSolverSettings(beforeOverlay_);
+      scenes::saveSceneFile(main, camera, file);
+    } else {
+      scenes::saveSceneFile(scene(), camera, file);
+    }
     file_ = file;
     status_ = "saved " + file.filename().string();
     return {};
@@ -195,8 +202,10 @@ std::string Session::startOverlay(std::span<const OverlaySpec> specs) {
   }
   beforeOverlay_ = base;
   runs_ = std::move(runs);
-  recording_.setOn(false);  // the runs compare settings from here: nothing to rewind to
-  rewound_ = false;
+  // Run 0 is the main run under its overlay setting, recorded as a slider's change would be: the
+  // history before the overlay stays, and is still there to rewind to once it stops (the other
+  // runs are not recorded, so rewinding waits for Stop).
+  worldChanged();
   status_ = "overlay of " + std::to_string(runs_.size()) + " runs, each from the state the world was in";
   return {};
 }
@@ -209,8 +218,7 @@ void Session::stopOverlay() {
   runs_.front().label.clear();
   runs_.front().color = kRunColors[0];
   scene().world.setSolverSettings(beforeOverlay_);  // valid: the main run had them
-  recording_.setOn(true);
-  recording_.restart(scene().world);
+  worldChanged();
   status_ = "overlay off; the solver settings are as before it";
 }
 
@@ -249,7 +257,8 @@ void Session::worldChanged(std::function<void(phys::World&)> redo, std::size_t b
 }
 
 std::string Session::rewindTo(long step) {
-  if (overlayActive()) return "nothing to rewind: the method overlay's runs are not recorded";
+  if (overlayActive())
+    return "stop the method overlay first: only run 0 is recorded, and the others cannot go back";
   if (!recording_.covers(step)) {
     return "step " + std::to_string(step) + " is not recorded (the recording holds steps " +
            std::to_string(recording_.first()) + " to " + std::to_string(recording_.last()) + ")";

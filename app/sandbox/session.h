@@ -63,7 +63,8 @@ class Session {
   std::string open(const std::filesystem::path& file);
   std::string reload();
   /// Writes the main run's world and settings, with the camera where it is, atomically. The
-  /// saved file becomes the current one (what Reload reads), as in any editor's Save As.
+  /// saved file becomes the current one (what Reload reads), as in any editor's Save As. During
+  /// the method overlay: run 0's world with the solver settings from before the overlay.
   std::string saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera);
   /// Opens assets/scenes/<name>.xml (the seed's keys 1, 2, 3).
   std::string openBuiltin(std::string_view name);

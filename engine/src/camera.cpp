@@ -67,30 +67,51 @@ void FirstPersonCamera::dolly(const glm::vec3& pivot, float factor) {
   position = pivot + away * (std::max(distance * factor, 2.0f * nearPlane) / distance);
 }
 
-void FirstPersonCamera::frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float fill) {
+bool FirstPersonCamera::frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float fill) {
   const glm::vec3 centre = 0.5f * (lo + hi);
   const glm::vec3 f = forward();
   const glm::mat4 proj = projection(aspect);
+  auto corner = [&](int k) {
+    return glm::vec3((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+  };
+  auto view = [&](float distance) {
+    return glm::lookAt(centre - f * distance, centre, glm::vec3(0.0f, 1.0f, 0.0f));
+  };
   // The corners' places in the view shrink towards the middle as the camera backs away: the
   // nearest distance at which all of them are within `fill`, by bisection.
   auto fits = [&](float distance) {
-    const glm::mat4 v = glm::lookAt(centre - f * distance, centre, glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::mat4 v = view(distance);
     for (int k = 0; k < 8; ++k) {
-      const glm::vec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
-      const glm::vec4 eye = v * glm::vec4(corner, 1.0f);
+      const glm::vec4 eye = v * glm::vec4(corner(k), 1.0f);
       if (eye.z > -nearPlane) return false;
       const glm::vec4 clip = proj * eye;
       if (std::abs(clip.x / clip.w) > fill || std::abs(clip.y / clip.w) > fill) return false;
     }
     return true;
   };
-  float nearer = nearPlane, farther = std::max(farPlane * 0.5f, 1.0f);
-  if (fits(nearer)) farther = nearer;
-  for (int i = 0; i < 60 && farther - nearer > 1e-4f * farther; ++i) {
-    const float middle = 0.5f * (nearer + farther);
-    (fits(middle) ? farther : nearer) = middle;
+  auto withinFarPlane = [&](float distance) {
+    const glm::mat4 v = view(distance);
+    for (int k = 0; k < 8; ++k) {
+      if ((v * glm::vec4(corner(k), 1.0f)).z < -farPlane) return false;
+    }
+    return true;
+  };
+  float nearer = nearPlane, farther = farPlane;
+  const bool fitsSomewhere = fits(farther);
+  if (fitsSomewhere) {
+    if (fits(nearer)) farther = nearer;
+    for (int i = 0; i < 60 && farther - nearer > 1e-4f * farther; ++i) {
+      const float middle = 0.5f * (nearer + farther);
+      (fits(middle) ? farther : nearer) = middle;
+    }
+  }
+  if (!fitsSomewhere || !withinFarPlane(farther)) {
+    // Part of it would not be drawn: its middle, half the far plane away.
+    position = centre - f * (0.5f * farPlane);
+    return false;
   }
   position = centre - f * farther;
+  return true;
 }
 
 }  // namespace engine

@@ -135,11 +135,12 @@ TEST(Rewind, WhatCannotBeShownSaysWhy) {
   specs[0] = sandbox::parseOverlaySpec("iterations=2").spec;
   specs[1] = sandbox::parseOverlaySpec("iterations=4").spec;
   ASSERT_EQ(s.startOverlay(specs), "");
-  EXPECT_EQ(s.rewindTo(5), "nothing to rewind: the method overlay's runs are not recorded");
+  EXPECT_EQ(s.rewindTo(5),
+            "stop the method overlay first: only run 0 is recorded, and the others cannot go back");
   s.stopOverlay();
   s.step();
-  EXPECT_EQ(s.recording().first(), 10);  // recorded again from where the overlay stopped
-  EXPECT_EQ(s.rewindTo(10), "");
+  EXPECT_EQ(s.recording().first(), 0);  // the history from before the overlay is kept
+  EXPECT_EQ(s.rewindTo(5), "");
 }
 
 }  // namespace

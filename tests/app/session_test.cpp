@@ -3,10 +3,12 @@
 // dragging, the method overlay, and Save As.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <string>
 
 #include <unistd.h>
@@ -424,6 +426,42 @@ TEST(Session, TheOverlayRunsEachSettingFromTheSameStateAndRefusesBadCounts) {
   EXPECT_EQ(s.scene().world.solverSettings().substeps, 8);
 }
 
+// Starting the overlay once threw the recording away, and Stop started an empty one: minutes of
+// history lost to a comparison. Run 0 is recorded through the overlay instead.
+TEST(Session, TheOverlayKeepsTheRecordingAndRecordsRunZero) {
+  sandbox::Session s = open("chain");
+  std::map<long, std::uint64_t> hashes;  // the main run's state after each step
+  auto stepAndKeep = [&](int steps) {
+    for (int i = 0; i < steps; ++i) {
+      s.step();
+      hashes[s.scene().world.stepCount()] = s.scene().world.stateHash();
+    }
+  };
+  stepAndKeep(20);
+  auto spec = [](const char* text) { return sandbox::parseOverlaySpec(text).spec; };
+  const std::vector<sandbox::OverlaySpec> specs{spec("iterations=4"), spec("method=xpbd")};
+  ASSERT_EQ(s.startOverlay(specs), "");
+  // A step's state is the one after a command at it: more iterations settle the chain at once.
+  hashes[20] = s.scene().world.stateHash();
+  stepAndKeep(20);                // run 0, under iterations=4
+  EXPECT_NE(s.rewindTo(10), "");  // the other runs are not recorded: not while they run
+  s.stopOverlay();
+  hashes[40] = s.scene().world.stateHash();
+  stepAndKeep(10);
+  const sandbox::Recording& r = s.recording();
+  EXPECT_EQ(r.first(), 0);
+  EXPECT_EQ(r.last(), 50);
+  for (const long step : {5L, 20L, 21L, 35L, 40L, 41L, 50L}) {
+    ASSERT_EQ(s.rewindTo(step), "") << "step " << step;
+    EXPECT_EQ(s.scene().world.stateHash(), hashes[step]) << "step " << step;
+  }
+  // A step of the overlay's shows run 0's setting; one after it, the setting from before.
+  ASSERT_EQ(s.rewindTo(30), "");
+  EXPECT_EQ(s.scene().world.solverSettings().iterations, 4);
+  ASSERT_EQ(s.rewindTo(45), "");
+  EXPECT_EQ(s.scene().world.solverSettings().iterations, 1);  // chain.xml's
+}
+
 TEST(Session, OverlayRunsWithAnotherDtKeepTheMainRunsClock) {
   sandbox::Session s = open("falling-box");
   auto spec = [](const char* text) { return sandbox::parseOverlaySpec(text).spec; };
@@ -436,7 +474,22 @@ TEST(Session, OverlayRunsWithAnotherDtKeepTheMainRunsClock) {
   for (const sandbox::Run& run : s.runs()) {
     // Each within half its own step of the main run's time.
     EXPECT_LE(std::abs(run.scene->world.time() - now), 0.5 * run.scene->world.solverSettings().dt + 1e-9);
+    EXPECT_EQ(run.behind(now), 0.0);
   }
+}
+
+// A run whose dt is under a thousandth of run 0's takes kMaxCatchUpSteps a step and falls behind;
+// the legend shows by how much (its picture is of an earlier moment), rather than nothing.
+TEST(Session, AnOverlayRunThatCannotKeepUpSaysHowFarBehindItIs) {
+  sandbox::Session s = open("falling-box");
+  auto spec = [](const char* text) { return sandbox::parseOverlaySpec(text).spec; };
+  const std::vector<sandbox::OverlaySpec> specs{spec("dt=0.01"), spec("dt=0.000005")};
+  ASSERT_EQ(s.startOverlay(specs), "");
+  for (int i = 0; i < 3; ++i) s.step();
+  const double now = s.runs()[0].scene->world.time();
+  EXPECT_EQ(s.runs()[1].scene->world.stepCount(), 3 * sandbox::kMaxCatchUpSteps);
+  EXPECT_NEAR(s.runs()[1].behind(now), 3 * (0.01 - sandbox::kMaxCatchUpSteps * 0.000005), 1e-9);
+  EXPECT_EQ(s.runs()[0].behind(now), 0.0);
 }
 
 TEST(Session, StartingTheOverlayLetsGoOfADrag) {
@@ -563,6 +616,30 @@ TEST(History, KeepsOneSampleASixtiethOfASecondForTenSeconds) {
 
 namespace {
 
+// A setting longer than the panel's old 128-byte field was cut short and restarted as another.
+TEST(Remembered, ALongOverlaySettingComesIntoThePanelWhole) {
+  const std::string longSpec = "iterations=2,compliance=0.00012345" + std::string(280, '0');
+  const auto parsed = sandbox::parseOptions({"--overlay", "iterations=3", longSpec});
+  ASSERT_EQ(parsed.error, "");
+  sandbox::UiState ui;
+  sandbox::applyRemembered(sandbox::UserSettings{}, parsed.options, ui);
+  EXPECT_EQ(ui.overlayText[1], longSpec);
+}
+
+// The Lab section's close button hid it for good: the View menu and Reset layout knew five sections.
+TEST(Remembered, ResetLayoutShowsEverySectionTheLabToo) {
+  sandbox::UiState ui;
+  for (bool* shown : sandbox::sectionsShown(ui)) *shown = false;
+  ui.panelsHidden = true;
+  ui.unfolded = {};
+  sandbox::resetLayout(ui);
+  EXPECT_TRUE(ui.showLab);
+  for (bool* shown : sandbox::sectionsShown(ui)) EXPECT_TRUE(*shown);
+  EXPECT_FALSE(ui.panelsHidden);
+  EXPECT_EQ(ui.unfolded, sandbox::kDefaultUnfolded);
+  EXPECT_TRUE(ui.resetLayout);
+}
+
 // What the sandbox remembers between runs goes into the panels, and back out.
 TEST(Remembered, PanelsAndDrawModeComeBackAndTheCommandLineWins) {
   sandbox::UserSettings user;
@@ -575,14 +652,18 @@ TEST(Remembered, PanelsAndDrawModeComeBackAndTheCommandLineWins) {
   EXPECT_TRUE(ui.showSimulation);
   EXPECT_EQ(ui.draw.mode, sandbox::DrawMode::Constraints);
   EXPECT_TRUE(ui.draw.markers);
-  EXPECT_STREQ(ui.overlayText[0].data(), "iterations=3");  // an example to start from
+  EXPECT_EQ(ui.overlayText[0], "iterations=3");  // an example to start from
 
   const auto parsed =
       sandbox::parseOptions({"--draw", "wireframe", "--overlay", "method=xpbd", "iterations=9"});
   ASSERT_EQ(parsed.error, "");
   sandbox::applyRemembered(user, parsed.options, ui);
   EXPECT_EQ(ui.draw.mode, sandbox::DrawMode::Wireframe);
-  EXPECT_STREQ(ui.overlayText[1].data(), "iterations=9");
+  // The command line's overlay, and no example after it: Restart runs what was started.
+  EXPECT_EQ(ui.overlayText[0], "method=xpbd");
+  EXPECT_EQ(ui.overlayText[1], "iterations=9");
+  EXPECT_EQ(ui.overlayText[2], "");
+  EXPECT_EQ(ui.overlayText[3], "");
 
   ui.showWorld = false;
   ui.draw.mode = sandbox::DrawMode::Filled;
@@ -867,6 +948,26 @@ TEST(Session, CharacterClipsAreChosenFromFilesAndScrubbed) {
   EXPECT_NE(s.setCharacterPlayback(0, scrubbed, 0.0), "");
   EXPECT_EQ(std::filesystem::path(c.now.clip->name).filename(), "run.bvh");
   EXPECT_EQ(c.now.time, 0.5);
+}
+
+// Save As during the overlay wrote run 0's overlay setting, and the saved file, now the current
+// one, reloaded with it without a word.
+TEST(Session, SaveAsDuringTheOverlayWritesTheSettingsFromBeforeIt) {
+  const TempDir dir;
+  sandbox::Session s = open("chain");
+  const int sceneIterations = s.scene().world.solverSettings().iterations;
+  ASSERT_NE(sceneIterations, 7);
+  for (int i = 0; i < 10; ++i) s.step();
+  const std::vector<sandbox::OverlaySpec> specs{sandbox::parseOverlaySpec("iterations=7").spec,
+                                                sandbox::parseOverlaySpec("method=xpbd").spec};
+  ASSERT_EQ(s.startOverlay(specs), "");
+  for (int i = 0; i < 10; ++i) s.step();
+  const fs::path file = dir.path / "during-overlay.xml";
+  ASSERT_EQ(s.saveAs(file, scenes::CameraStart{}), "");
+  EXPECT_EQ(s.scene().world.solverSettings().iterations, 7);  // the overlay runs on
+  s.stopOverlay();
+  ASSERT_EQ(s.reload(), "");
+  EXPECT_EQ(s.scene().world.solverSettings().iterations, sceneIterations);
 }
 
 }  // namespace

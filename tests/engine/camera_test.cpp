@@ -107,7 +107,7 @@ TEST(Camera, FrameFitsTheBoxTightlyInTheMiddleOfTheView) {
   auto c = engine::FirstPersonCamera::lookingAt({5.0f, 6.0f, 9.0f}, {0.0f, 0.0f, 0.0f});
   const float yaw = c.yaw, pitch = c.pitch, aspect = 934.0f / 720.0f;
   const glm::vec3 lo{-1.0f, 0.0f, -0.5f}, hi{2.0f, 6.0f, 0.5f};
-  c.frame(lo, hi, aspect, 0.8f);
+  EXPECT_TRUE(c.frame(lo, hi, aspect, 0.8f));
   EXPECT_EQ(c.yaw, yaw);
   EXPECT_EQ(c.pitch, pitch);
   float most = 0.0f;
@@ -120,6 +120,20 @@ TEST(Camera, FrameFitsTheBoxTightlyInTheMiddleOfTheView) {
   EXPECT_GE(most, 0.799f);  // no farther than it needs to be
   const glm::vec3 centre = 0.5f * (lo + hi);
   expectNear(glm::normalize(centre - c.position), c.forward(), 1e-5f);
+}
+
+// A scene 2 km across (the bound allows 1e6 m) was "framed" from 250 m, showing none of it.
+TEST(Camera, FrameSaysWhenTheBoxIsLargerThanTheViewReaches) {
+  auto c = engine::FirstPersonCamera::lookingAt({0.0f, 10.0f, 30.0f}, {0.0f, 0.0f, 0.0f});
+  const float aspect = 934.0f / 720.0f;
+  const glm::vec3 lo{-1005.0f, 0.0f, -5.0f}, hi{1005.0f, 10.0f, 5.0f};
+  EXPECT_FALSE(c.frame(lo, hi, aspect));
+  expectNear(c.position, 0.5f * (lo + hi) - c.forward() * (0.5f * c.farPlane), 1e-3f);
+  // What fits within the far plane is framed, however far back that is.
+  const glm::vec3 wide{200.0f, 10.0f, 5.0f};
+  EXPECT_TRUE(c.frame(-wide, wide, aspect));
+  const glm::vec4 eye = c.view() * glm::vec4(-wide, 1.0f);
+  EXPECT_GT(eye.z, -c.farPlane);
 }
 
 }  // namespace

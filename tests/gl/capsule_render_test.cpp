@@ -274,6 +274,17 @@ TEST_F(CapsuleRender, OneMeshPerSizeAndTheCacheStaysBounded) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// A missing model was only a line on stderr, which a user who started the sandbox from a desktop
+// never sees; the view now says why, for the status line.
+TEST(SceneViewModels, AMissingModelIsDrawnAsTheCubeAndSaysWhy) {
+  engine::Renderer renderer(shaderDir());
+  const sandbox::SceneView view(renderer, fs::path(DATA_DIR) / "no-such-models");
+  EXPECT_NE(view.modelWarnings().find("box.obj"), std::string::npos) << view.modelWarnings();
+  EXPECT_NE(view.modelWarnings().find("limb.obj"), std::string::npos) << view.modelWarnings();
+  const sandbox::SceneView found(renderer, fs::path(DATA_DIR) / "assets" / "models");
+  EXPECT_EQ(found.modelWarnings(), "");
+}
+
 TEST(CapsuleMeshCache, SharesAMeshBetweenEqualSizesAndRefusesBadOnes) {
   testing_gl::context();
   engine::CapsuleMeshCache cache(2);

@@ -1141,9 +1141,9 @@ void Soak::collectBackgroundSteps(int expected) {
 // every rebuilt step's hash must be the one recorded (Session::rewindTo says which is not).
 void Soak::rewind() {
   const sandbox::Recording& r = session().recording();
-  if (!r.on() || r.empty()) {
-    begin(Kind::Rewind, "rewind: nothing recorded (the overlay is on)");
-    expect(!session().rewindTo(0).empty(), "a rewind with nothing recorded was not refused");
+  if (session().overlayActive() || r.empty()) {
+    begin(Kind::Rewind, "rewind: refused while the overlay is on");
+    expect(!session().rewindTo(r.last()).empty(), "a rewind with the overlay on was not refused");
     return;
   }
   const long span = r.last() - r.first();  // a soak's recording is far under 2^31 steps
@@ -1169,7 +1169,7 @@ void Soak::rewind() {
 void Soak::recordingFile() {
   const fs::path file = tempDir_ / ("recording-" + std::to_string(command_) + ".jrec");
   const sandbox::Recording& r = session().recording();
-  if (session().overlayActive() || !r.on() || r.empty()) {
+  if (session().overlayActive() || r.empty()) {
     begin(Kind::RecordingFile,
           "save the recording as " + file.filename().string() + ": nothing recorded (the overlay is on)");
     const SessionState before = snapshot(session());

@@ -35,8 +35,10 @@ struct FirstPersonCamera {
   /// pivot stays where it is on the screen; never nearer than twice the near plane.
   void dolly(const glm::vec3& pivot, float factor);
   /// Turned as it is, moved along its view so that the box [lo, hi] is in the middle of the view
-  /// and fills `fill` of its half-width or half-height, whichever is reached first.
-  void frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float fill = 0.85f);
+  /// and fills `fill` of its half-width or half-height, whichever is reached first, all of it
+  /// within the far plane. False when no distance does (a box larger than the view reaches): the
+  /// camera is then half the far plane from the box's centre.
+  [[nodiscard]] bool frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float fill = 0.85f);
 };
 
 }  // namespace engine
