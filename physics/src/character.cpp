@@ -222,10 +222,14 @@ std::vector<CharacterBone> bindClip(const World& world, const std::string& ragdo
   std::vector<BodyId> partIds;
   const std::span<const Body> bodies = world.bodies();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies[i].name.size() > prefix.size() && bodies[i].name.starts_with(prefix)) {
-      partNames.push_back(bodies[i].name.substr(prefix.size()));
-      partIds.push_back(BodyId(static_cast<std::uint32_t>(i)));
-    }
+    if (bodies[i].name.size() <= prefix.size() || !bodies[i].name.starts_with(prefix)) continue;
+    std::string part = bodies[i].name.substr(prefix.size());
+    // "a.b.torso" is ragdoll "a.b"'s torso, not ragdoll "a"'s part "b.torso": a dotted rest that is
+    // not one of the clip's bones belongs to another ragdoll whose name starts with this one's.
+    // Taken as a part, it was a part with no bone, and ragdoll "a" could have no character.
+    if (part.find('.') != std::string::npos && clip.bone(part) < 0) continue;
+    partNames.push_back(std::move(part));
+    partIds.push_back(BodyId(static_cast<std::uint32_t>(i)));
   }
   require(!partNames.empty(), who + ": the world has no body named '" + prefix + "<bone>'");
   std::vector<std::string> noPart, noBone;

@@ -540,6 +540,48 @@ TEST(ClipFile, ACharactersScaleIsHeldToARagdolls) {
   }
 }
 
+// Ragdoll "a"'s parts are the bodies "a.<bone>": "a.b.torso", ragdoll "a.b"'s torso, was taken for a part
+// "b.torso" of "a" that no bone of the clip has, so "a" could have no character while "a.b" stood
+// beside it, in either order. Each character binds its own ragdoll's parts, and a part that fits no
+// bone is still named.
+TEST(ClipFile, ARagdollWhoseNameHasADotLeavesAnothersCharacterBe) {
+  for (const bool dottedFirst : {false, true}) {
+    SCOPED_TRACE(dottedFirst ? "a.b first" : "a first");
+    const std::string plain = "<ragdoll name=\"a\" pos=\"0 0.85 0\" model=\"rigid\"/>\n";
+    const std::string dotted = "<ragdoll name=\"a.b\" pos=\"2 0.85 0\" model=\"rigid\"/>\n";
+    const std::string text = "<scene name=\"c\"><ground/>" + (dottedFirst ? dotted + plain : plain + dotted) +
+                             "<character ragdoll=\"a\" clip=\"" + kClips + "stand.bvh\"/>\n" +
+                             "<character ragdoll=\"a.b\" clip=\"" + kClips + "stand.bvh\"/>\n</scene>";
+    const scenes::Scene scene = scenes::loadSceneText(text, "dots.xml");
+    ASSERT_EQ(scene.world.characters().size(), 2u);
+    for (const phys::Character& c : scene.world.characters()) {
+      ASSERT_EQ(c.bones.size(), 10u) << c.ragdoll;
+      for (const phys::CharacterBone& bone : c.bones) {
+        const std::string& name = scene.world.bodies()[bone.body].name;
+        EXPECT_EQ(name, c.ragdoll + "." + c.now.clip->bones[static_cast<std::size_t>(bone.clipBone)]);
+      }
+    }
+  }
+  // A body "r.tail.tip" beside ragdoll "r" is another's ("r.tail"'s), not a part of "r" with no bone
+  // in the clip: "r" takes its character. A dotless part with no bone is still named.
+  const scenes::Scene tailed = scenes::loadSceneText(
+      characterScene(
+          "<box name=\"r.tail.tip\" pos=\"0 3 0\" size=\"0.1\"/>\n<character ragdoll=\"r\" clip=\"" + kClips +
+          "stand.bvh\"/>"),
+      "tail.xml");
+  EXPECT_EQ(tailed.world.characters()[0].bones.size(), 10u);
+  try {
+    scenes::loadSceneText(characterScene("<box name=\"r.tail\" pos=\"0 3 0\" size=\"0.1\"/>\n<character "
+                                         "ragdoll=\"r\" clip=\"" +
+                                         kClips + "stand.bvh\"/>"),
+                          "odd.xml");
+    ADD_FAILURE() << "loaded";
+  } catch (const scenes::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("the clip has no bone for the parts 'tail'"), std::string::npos)
+        << e.what();
+  }
+}
+
 // A bone named twice in part-strengths took the last share without a word.
 TEST(ClipFile, PartStrengthsNameEachBoneOnce) {
   expectCharacterRefused("part-strengths=\"head=0.5 lower-arm-left=0.1 head=0.2\"", "part-strengths",
