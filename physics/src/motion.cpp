@@ -99,6 +99,7 @@ void copyCharacterMotion(const From& from, To& to) {
   to.lastImpact = from.lastImpact;
   to.stillTime = from.stillTime;
   to.lastRootVelocity = from.lastRootVelocity;
+  to.supported = from.supported;
   to.queued = from.queued;
   to.frame = from.frame;
   to.origin = from.origin;

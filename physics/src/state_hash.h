@@ -64,6 +64,10 @@ void hashCharacter(StateHasher& h, const C& c) {
   h.playback(r.getUp);
   h.value(c.state);
   h.value(c.lastRootVelocity);
+  // Whether the balance may act in the next step. Hashed only when true: a world in which no
+  // character stands on its support (every one without the balance, as the pinned tackle) hashes
+  // as before the field was kept, and one whose reloaded character had lost it differs.
+  if (c.supported) h.value(c.supported);
   h.value(c.queued.has_value());
   if (c.queued) {
     h.playback(c.queued->playback);

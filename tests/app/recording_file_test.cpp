@@ -364,9 +364,9 @@ TEST_F(BadRecording, TruncatedAnywhere) {
 
 TEST_F(BadRecording, FromAnotherFormatVersion) {
   std::string other = bytes_;
-  other[8] = 1;  // the format, after the 8-byte magic: 1 held no characters
+  other[8] = 2;  // the format, after the 8-byte magic: 2 held no character's support
   expectRefused(other,
-                "a recording of format 1, from another version of the sandbox; this one reads format 2");
+                "a recording of format 2, from another version of the sandbox; this one reads format 3");
 }
 
 TEST_F(BadRecording, OfAnotherScene) {

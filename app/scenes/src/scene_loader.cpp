@@ -744,6 +744,7 @@ class Builder {
     std::optional<double> stateTime, stillTime, strength, rootStrength, balance, fromStrength, fromBalance,
         heading;
     std::optional<phys::Vec3> origin;
+    std::optional<bool> supported;
     // A fade under way: from the clip before, or from a pose held (a change of clip during a fade).
     std::optional<phys::Playback> before;
     std::optional<double> blend, blendTime;
@@ -761,6 +762,7 @@ class Builder {
       m.fromBalance = fromBalance.value_or(m.fromBalance);
       if (heading) m.frame = glm::angleAxis(glm::radians(*heading), phys::Vec3(0.0, 1.0, 0.0));
       m.origin = origin.value_or(m.origin);
+      m.supported = supported.value_or(m.supported);
       if (before) m.before = *before;
       m.blend = blend.value_or(m.blend);
       m.blendTime = blendTime.value_or(m.blendTime);
@@ -799,10 +801,11 @@ class Builder {
     // Held to the bound as every position the file places: the root's drive pulls it along the
     // clip from here, and from beyond the bound it flung the ragdoll out for the guard to freeze.
     c.origin = positionInBound(e, "origin");
+    c.supported = e.boolean("supported");
     fade(e, playing, c);
     const bool any = c.state || c.stateTime || c.stillTime || c.strength || c.rootStrength || c.balance ||
-                     c.fromStrength || c.fromBalance || c.heading || c.origin || c.blend || c.blendTime ||
-                     c.beforeShift;
+                     c.fromStrength || c.fromBalance || c.heading || c.origin || c.supported || c.blend ||
+                     c.blendTime || c.beforeShift;
     return any ? std::optional<SavedCharacter>(c) : std::nullopt;
   }
 

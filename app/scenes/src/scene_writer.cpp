@@ -575,6 +575,9 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     if (c.balance != c.goalBalance) e.number("balance-now", c.balance);
     if (c.fromStrength != 0.0) e.number("from-strength", c.fromStrength);
     if (c.fromBalance != 0.0) e.number("from-balance", c.fromBalance);
+    // What the last step found of its support, which the balance reads in the next: left out, the
+    // reload's first step had no balance and went its own way from the saved run's.
+    if (c.supported) e.text("supported", "true");
     e.number("heading", glm::degrees(2.0 * std::atan2(c.frame.y, c.frame.w)));
     // Each change of clip moves the frame on to where the new one starts, wherever the parts are.
     requireInsideBound(c.origin, bound, "the clip frame of character '" + c.ragdoll + "'");

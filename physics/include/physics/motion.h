@@ -39,6 +39,7 @@ struct CharacterMotion {
   Real lastImpact = 0.0;
   Real stillTime = 0.0;
   Vec3 lastRootVelocity{0.0};
+  bool supported = false;  ///< the balance acts in the next step only if so (Character::supported)
   std::optional<QueuedClip> queued;
   Quat frame{1.0, 0.0, 0.0, 0.0};
   Vec3 origin{0.0};
