@@ -338,6 +338,35 @@ void targetCentres(const World& world, const Character& c, std::span<const Quat>
   }
 }
 
+namespace {
+
+// The character's support parts, its two lowest in the rest pose (the feet of a standing skeleton),
+// and its centre of mass's height over their middle there: what the balance stands it on, and how
+// high it stands. Of the rest, not of where the parts are now, so that a body lying on its forearms
+// is not taken to stand on them.
+void findSupport(const World& world, Character& c) {
+  const std::size_t n = c.bones.size();
+  if (n < 2) return;
+  std::vector<Quat> rests(n);
+  std::vector<Vec3> centres(n);
+  for (std::size_t b = 0; b < n; ++b) rests[b] = c.bones[b].rest;
+  targetCentres(world, c, rests, Vec3(0.0), centres);  // the character's frame: y is up
+  std::vector<std::size_t> order(n);
+  for (std::size_t b = 0; b < n; ++b) order[b] = b;
+  std::partial_sort(order.begin(), order.begin() + 2, order.end(),
+                    [&](std::size_t a, std::size_t b) { return centres[a].y < centres[b].y; });
+  c.support = {order[0], order[1]};
+  Real mass = 0.0, height = 0.0;
+  for (std::size_t b = 0; b < n; ++b) {
+    const Real m = world.bodyMass(c.bones[b].body).mass;
+    mass += m;
+    height += m * centres[b].y;
+  }
+  if (mass > 0.0) c.standingHeight = height / mass - 0.5 * (centres[order[0]].y + centres[order[1]].y);
+}
+
+}  // namespace
+
 Real trackingError(const World& world, std::size_t k) {
   requireIndex(k, world.characters().size(), "trackingError", "character");
   const Character& c = world.characters()[k];
@@ -371,6 +400,7 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
     c.partStrength[partOf(c, *desc.playback.clip, bone, share, who)] = share;
   for (const Character& other : characters_)
     require(other.ragdoll != desc.ragdoll, who + ": ragdoll '" + desc.ragdoll + "' already has a character");
+  findSupport(*this, c);
   c.now = desc.playback;
   c.strength = c.goalStrength = desc.strength;
   c.rootStrength = c.goalRootStrength = desc.rootStrength;
@@ -651,10 +681,11 @@ Quat World::balanceTarget(const Character& c, const Quat& upright) const {
   return glm::normalize(glm::angleAxis(lean, glm::cross(up, off / distance)) * upright);
 }
 
-// Once a step, for each balancing character: whether its support, its two lowest parts
-// (balanceTarget's), touches the ground or a body that is not one of its own parts, of the last
-// substep's contacts and of the step's for the ground points of particle parts. One walk over the
-// contacts for every character, as noteBlows.
+// Once a step, for each balancing character: whether it stands on its support (Character::support,
+// its feet): its centre of mass at least kStandingShare of its standing height over them, and one of
+// them touching the ground or a body that is not one of its own parts, of the last substep's
+// contacts and of the step's for the ground points of particle parts. One walk over the contacts for
+// every character, as noteBlows.
 void World::findSupports() {
   supportParts_.resize(characters_.size());  // sized again only when a character is added
   bool any = false;
@@ -665,16 +696,7 @@ void World::findSupports() {
     if (c.balance <= 0.0 && c.goalBalance <= 0.0) continue;  // never read: left as it was
     c.supported = false;
     any = true;
-    Real lowY[2] = {std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
-    for (const CharacterBone& bone : c.bones) {
-      const Real y = poseOf(bone.body).center.y;
-      if (y < lowY[0]) {
-        low[1] = low[0], lowY[1] = lowY[0];
-        low[0] = bone.body, lowY[0] = y;
-      } else if (y < lowY[1]) {
-        low[1] = bone.body, lowY[1] = y;
-      }
-    }
+    if (standsOverSupport(c)) low = {c.bones[c.support[0]].body, c.bones[c.support[1]].body};
   }
   if (!any) return;
   auto characterOf = [this](BodyId body) {
@@ -712,6 +734,30 @@ void World::findSupports() {
   for (std::size_t k = 0; k < std::min(ground.size(), groundTouched.size()); ++k) {
     if (groundTouched[k] != 0) touch(ground[k].body, kNoBody);
   }
+}
+
+// Whether the character's centre of mass is over its support (Character::support) by at least
+// kStandingShare of its standing height, along the world's up there: standing, or leaning as far
+// as the balance can bring back, not fallen. Lying, its forearms or its torso touch the ground and
+// its feet may too; the balance, which leans a standing body about its feet, then turned the whole
+// body towards its clip's upright and flung it about.
+bool World::standsOverSupport(const Character& c) const {
+  if (c.bones.size() < 2) return false;
+  Real mass = 0.0;
+  Vec3 com(0.0);
+  for (const CharacterBone& bone : c.bones) {
+    const PartMotion part = partMotion(bone.body);
+    mass += part.mass;
+    com += part.mass * part.centre;
+  }
+  if (mass <= 0.0) return false;
+  com /= mass;
+  const Vec3 g = gravityAt(com);
+  const Real gLength = glm::length(g);
+  const Vec3 up = gLength > 0.0 ? -g / gLength : Vec3(0.0, 1.0, 0.0);
+  const Vec3 support =
+      0.5 * (poseOf(c.bones[c.support[0]].body).center + poseOf(c.bones[c.support[1]].body).center);
+  return glm::dot(com - support, up) >= kStandingShare * c.standingHeight;
 }
 
 // Each substep, of the last one's contacts: a body that is not one of a character's parts striking

@@ -205,6 +205,32 @@ TEST(Reaction, TheBalanceGivesAHungCharacterNoEnergy) {
   }
 }
 
+// A fallen character keeps its balance when nothing ramps it down (no reaction): the balance, which
+// leans a standing body about its feet, acted whenever its two lowest parts touched the ground, and
+// lying, those are its forearms or its torso: it turned the whole body towards its clip's upright and
+// flung it about, at balance 1 its head up to 95 m within 7 s of this fall (at 0.5 it lay still in
+// this one, and rose to 1.7 m in another). It acts only while the character stands over its feet
+// now, and a fallen one lies still, its head near the ground.
+TEST(Reaction, AFallenCharacterIsNotFlungByItsBalance) {
+  for (const Real balance : {0.5, 1.0}) {
+    Standing s({}, balance);
+    s.world.push(s.torso(), Vec3(0.0, 0.0, 2000.0), 0.2);
+    Real highest = 0.0;
+    bool supportedLying = false;
+    for (int i = 0; i < 10 * 60; ++i) {
+      s.world.step();
+      if (s.world.time() < 3.0) continue;  // fallen by 2 s
+      highest = std::max(highest, s.head());
+      supportedLying = supportedLying || s.world.characters()[0].supported;
+    }
+    std::printf("fallen at balance %.1f: head at most %.3f m from 3 s to 10 s, at 10 s %.3f m\n", balance,
+                highest, s.head());
+    EXPECT_LT(highest, 0.5) << "balance " << balance;
+    EXPECT_FALSE(supportedLying) << "balance " << balance;
+    EXPECT_TRUE(s.world.freezes().empty());
+  }
+}
+
 // Strengths set by hand end a reaction under way and give back the balance with them: it was left
 // where the fall had ramped it, 0 once down, and an active character never ramps it again, so a
 // knocked-down character set standing again stayed without balance for good (line-up.xml).

@@ -5,6 +5,7 @@
 // character samples its clip (blending from the clip before while a change of clip fades in) and sets each
 // joint's drive target, and, with a root strength, the root part's body drive (the hand of god) to carry it
 // along the clip's path.
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -31,6 +32,10 @@ struct Playback {
 
 /// unit: rad; the most the balance leans a character (20 degrees)
 inline constexpr Real kMaxBalanceLean = 0.35;
+/// unitless; the balance acts only while the character's centre of mass stands over its support at
+/// least this share of its standing height (Character::standingHeight): a body tipped 60 degrees
+/// about its feet, far past the 20 degrees the balance leans it, is falling, and lying it is down.
+inline constexpr Real kStandingShare = 0.5;
 
 /// How a character answers a blow: past the threshold it goes limp over fallTime, falls as a
 /// ragdoll and, with a get-up clip, once it has lain still for restTime, is lifted back onto its
@@ -142,10 +147,17 @@ struct Character {
   /// speed at which another body struck one of its parts, or its root part's speed change over
   /// the step, whichever is larger
   Real lastImpact = 0.0;
-  /// Whether its support (its two lowest parts) touched the ground or a body not its own in the
-  /// last step (World::react): the balance acts only then. A torque from the world on a body that
-  /// nothing carries, hung or thrown, is energy from nowhere. False until a step has found it so.
+  /// Whether it stood on its support in the last step (World::react): a support part touched the
+  /// ground or a body not its own, and its centre of mass stood over the support at least
+  /// kStandingShare of its height in the rest pose. The balance acts only then. A torque from the
+  /// world on a body that nothing carries, hung or thrown, is energy from nowhere, and on one lying
+  /// on the ground it lifts and flings it. False until a step has found it so.
   bool supported = false;
+  /// Its support parts (Character::bones' indices): its two lowest in the rest pose, its feet,
+  /// found when it is added; what the balance stands it on.
+  std::array<std::size_t, 2> support{0, 0};
+  /// unit: m; its centre of mass's height over the support's middle in the rest pose, standing
+  Real standingHeight = 0.0;
   Real stepBlow = 0.0;         ///< unit: m/s; the fastest strike so far in this step
   Real stillTime = 0.0;        ///< unit: s; how long every part has been slower than restSpeed
   Vec3 lastRootVelocity{0.0};  ///< unit: m/s; the root part's at the last step's end

@@ -398,6 +398,7 @@ class World {
   void noteBlows();
   Quat balanceTarget(const Character& c, const Quat& upright) const;
   void findSupports();
+  bool standsOverSupport(const Character& c) const;
   void makeRootDrive(const Character& c, Real strength);
   /// Sets the character's root part's drive (a rigid or a particle body's).
   void setRootDrive(const Character& c, const BodyDrive& drive);
