@@ -17,6 +17,7 @@
 #include "fileio/files.h"
 #include "open_scene.h"
 #include "physics/capsule_ragdoll.h"
+#include "physics/character.h"
 #include "physics/ragdoll.h"
 #include "recording_io.h"
 #include "scenes/scene_writer.h"
@@ -499,9 +500,9 @@ std::string Session::setReactionThreshold(std::size_t k, double threshold) {
 
 std::string Session::pushCharacter(std::size_t k, double newtons) {
   return changeCharacter(k, [k, newtons](phys::World& w) {
-    const phys::BodyId root = w.characters()[k].bones[0].body;
-    const phys::Vec3 facing = w.characters()[k].frame * phys::Vec3(0.0, 0.0, 1.0);  // clips face +z
-    w.push(root, newtons * facing, kPushTime);
+    // Where the body faces now, not where its clip's path was laid (the frame): a player turned
+    // away from it, limp or dragged round, was pushed sideways or from behind.
+    w.push(w.characters()[k].bones[0].body, newtons * phys::facing(w, k), kPushTime);
   });
 }
 

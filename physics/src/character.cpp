@@ -382,6 +382,13 @@ Real trackingError(const World& world, std::size_t k) {
   return std::sqrt(sum / static_cast<Real>(c.bones.size()));
 }
 
+Vec3 facing(const World& world, std::size_t k) {
+  requireIndex(k, world.characters().size(), "facing", "character");
+  const CharacterBone& root = world.characters()[k].bones[0];
+  const Quat forward = world.bodyPose(root.body).orientation * glm::conjugate(root.rest);
+  return headingOf(forward) * Vec3(0.0, 0.0, 1.0);  // clips face +z
+}
+
 std::size_t World::addCharacter(const CharacterDesc& desc) {
   const std::string who = "addCharacter";
   checkPlayback(desc.playback, who);

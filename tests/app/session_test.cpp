@@ -14,11 +14,14 @@
 #include <unistd.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include "body_colors.h"
 #include "history.h"
 #include "panels.h"
+#include "physics/character.h"
+#include "physics/motion.h"
 #include "real_time.h"
 #include "session.h"
 #include "stats_text.h"
@@ -920,6 +923,34 @@ TEST(Session, CharacterControlsReachTheWorldAndBadOnesAreRefused) {
   // line-up.xml's players face +x (euler 0 90 0)
   EXPECT_NEAR(world.pushes()[0].force.x, sandbox::kPushForce, 1e-9);
   EXPECT_NEAR(world.pushes()[0].remaining, sandbox::kPushTime, 1e-12);
+}
+
+// A push goes the way the player faces now, not the way its clip's path was laid (its clip frame):
+// turned away from the frame (limp, fallen, dragged round, or on a clip that turns) it was pushed
+// along the frame, sideways or from behind. Here the frame is turned to +z under a player that still
+// faces +x, and the push goes along +x; tipped onto its back it still goes along +x.
+TEST(Session, APushGoesTheWayThePlayerFacesNotItsClipFrame) {
+  sandbox::Session s = open("line-up");
+  phys::World& world = s.scene().world;
+  phys::CharacterMotion m = world.characterMotion(2);
+  m.frame = phys::Quat(1.0, 0.0, 0.0, 0.0);  // the clip's path along +z
+  world.setCharacterMotion(2, m);
+  EXPECT_EQ(s.pushCharacter(2, sandbox::kPushForce), "");
+  ASSERT_EQ(world.pushes().size(), 1u);
+  EXPECT_NEAR(world.pushes()[0].force.x, sandbox::kPushForce, 1e-9);
+  EXPECT_NEAR(world.pushes()[0].force.z, 0.0, 1e-9);
+  // Lying on its back, face up: its forward points at the sky, its heading still along +x.
+  const phys::Quat lying = glm::angleAxis(glm::radians(90.0), phys::Vec3(0.0, 1.0, 0.0)) *
+                           glm::angleAxis(glm::radians(-90.0), phys::Vec3(1.0, 0.0, 0.0));
+  const phys::Vec3 forward = phys::facing(world, 2);
+  EXPECT_NEAR(forward.x, 1.0, 1e-9);
+  phys::Motion motion = world.motion();  // the world has not stepped: its motion can be given back
+  motion.rigidOrientation[world.bodies()[world.characters()[2].bones[0].body].rigid] = lying;
+  world.setMotion(motion);
+  const phys::Vec3 up =
+      world.bodyPose(world.characters()[2].bones[0].body).orientation * phys::Vec3(0.0, 0.0, 1.0);
+  ASSERT_GT(up.y, 0.99);  // face up
+  EXPECT_NEAR(phys::facing(world, 2).x, 1.0, 1e-9);
 }
 
 // The Animation block's clip controls: a clip chosen from a file fades in from its start; the scrub

@@ -216,6 +216,13 @@ std::pair<Vec3, Vec3> bonePivots(const World& world, const Character& c, std::si
 void targetCentres(const World& world, const Character& c, std::span<const Quat> orientations,
                    const Vec3& rootCentre, std::span<Vec3> out);
 
+/// The way character k faces now, a unit vector across the world's up: its root part's forward
+/// (the clip's +z, turned by the part's rest) taken about the up alone, so a leaning or lying body
+/// faces where its heading points. Not the clip frame's (Character::frame), which stays where the
+/// clip's path was laid while the body turns away from it: limp, fallen, dragged round, or on a
+/// clip that turns.
+Vec3 facing(const World& world, std::size_t k);
+
 /// How far character k's parts are from its target pose (Character::pose, the last substep's): the
 /// root mean square, over its parts, of the angle between each part's orientation and its target.
 /// unit: rad
