@@ -77,6 +77,10 @@ inline constexpr OptionSpec kError{
     "joint-error, ...)",
     0.0, "a figure's name"};
 inline constexpr OptionSpec kNoPeers{"--no-peers", "", "leave out the peer engines (Bullet, ODE, MuJoCo)"};
+inline constexpr OptionSpec kWholeRuns{
+    "--whole-runs", "",
+    "step every run to its end, failing ones too, for how far each failing run "
+    "goes over its whole window"};
 inline constexpr OptionSpec kScene{
     "--scene", "NAME...",
     "only these scenes: names in the suite's folder, or scene files (repeatable; "

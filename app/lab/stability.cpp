@@ -50,6 +50,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
   r.scenes = scenes;
   r.settings = settingsOf(o);
   r.jobs = o.jobs;
+  r.wholeRuns = o.wholeRuns;
   // settingsOf lists each method's (and model's) settings together: a block each.
   for (const Setting& s : r.settings) addOnce(r.methods, stability::settingGroup(s));
   if (o.peers) r.peers = peerEngines();
@@ -70,6 +71,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
     progress.show(done, scenes[s].name + (sceneDone ? "" : " " + label) + (finished ? " done" : ""),
                   sceneDone);
   };
+  const auto length = o.wholeRuns ? stability::RunLength::Whole : stability::RunLength::UntilFailed;
   // Each run of ours has a world of its own, so they run --jobs at a time; each outcome goes to
   // its slot, so every output keeps the order of --jobs 1.
   tbb::task_arena(o.jobs).execute([&] {
@@ -79,7 +81,7 @@ SuiteResult runSuite(const StabilityOptions& o, const std::vector<SuiteScene>& s
           const std::size_t s = i / ours;
           const Setting& setting = r.settings[i % ours];
           show(s, stability::settingLabel(setting), false);
-          r.outcomes[s][i % ours] = stability::runSetting(scenes[s], setting);
+          r.outcomes[s][i % ours] = stability::runSetting(scenes[s], setting, length);
           show(s, stability::settingLabel(setting), true);
         },
         tbb::simple_partitioner());

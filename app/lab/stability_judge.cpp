@@ -168,6 +168,15 @@ void Tally::sampleFigure(double figure) {
   keepLargest(value_, figure);
 }
 
+bool Tally::failedForGood() const {
+  const Criterion& c = *criterion_;
+  // A count only grows: past its max it stays past, but under its min it may yet reach it.
+  if (c.metric == Metric::Flips) return value_ > c.upper;
+  // The rest keep their largest sample, or the extreme toward a plane the body starts strictly
+  // before, so their ratio never falls. NaN: stays-behind before its first sample.
+  return !std::isnan(value_) && errorRatio(c, value_) > 1.0;
+}
+
 WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World& world)
     : criteria_(criteria), loose_(looseParticles(world)) {
   for (const Criterion& c : criteria_) tallies_.emplace_back(c, world);
@@ -198,6 +207,12 @@ std::vector<Verdict> WorldJudge::verdicts(bool blewUp) const {
   for (std::size_t i = 0; i < criteria_.size(); ++i)
     out.push_back(verdictOf(criteria_[i], blewUp ? kInf : tallies_[i].value()));
   return out;
+}
+
+std::optional<std::size_t> WorldJudge::failedForGood() const {
+  for (std::size_t i = 0; i < tallies_.size(); ++i)
+    if (tallies_[i].failedForGood()) return i;
+  return std::nullopt;
 }
 
 std::vector<Verdict> judgePeer(const std::vector<Criterion>& criteria, const scenes::Scene& scene, double dt,

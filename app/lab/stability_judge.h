@@ -5,6 +5,7 @@
 // one geometry code for every engine (peers/pose_measures.h).
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ class Tally {
   /// A figure of the step: the largest counts, and infinity once one is not finite.
   void sampleFigure(double figure);
   double value() const { return value_; }
+  /// Whether the criterion has failed in a way no later sample can undo: every figure only moves
+  /// toward failing (the largest sample, the extreme toward the plane, a count of flips), but for
+  /// a count of flips under its min, which may yet reach it.
+  bool failedForGood() const;
 
  private:
   const Criterion* criterion_;
@@ -57,6 +62,9 @@ class WorldJudge {
   void observe(const phys::World& world, int step);
   /// The verdicts; `blewUp` (the guard froze something) fails every criterion with infinity.
   std::vector<Verdict> verdicts(bool blewUp) const;
+  /// The first criterion (its index) that has failed for good (Tally::failedForGood), if any: from
+  /// then on the run fails whatever its later steps do.
+  std::optional<std::size_t> failedForGood() const;
 
  private:
   const std::vector<Criterion>& criteria_;

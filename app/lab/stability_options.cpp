@@ -35,6 +35,8 @@ void describeOptions(CommandLine& line, StabilityOptions& o) {
   line.option(option::kSleep, o.sleep, "(ours and the peers'; default off, whatever the scene says)");
   line.flag(option::kNoPeers, o.peers, false, "");
   line.option(option::kJobs, o.jobs, "(default 1; the peers run one at a time)");
+  line.flag(option::kWholeRuns, o.wholeRuns, true,
+            "(default: a run of ours stops once a criterion is past its limit for good)");
   line.existingFolder(option::kData, o.dataDir, "");
 }
 

@@ -23,6 +23,9 @@ struct StabilityOptions {
   bool peers = true;
   int jobs = 1;        ///< our runs at a time (--jobs); the peers run one at a time whatever it says
   bool sleep = false;  ///< --sleep on: islands at rest sleep, ours and the peers' (Bullet's deactivation)
+  /// --whole-runs: every run of ours to its end; else a run stops once it has failed for good
+  /// (stability_run.h, RunLength)
+  bool wholeRuns = false;
   std::filesystem::path dataDir;  ///< holds assets/; empty: the build's default
 };
 

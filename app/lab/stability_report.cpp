@@ -183,6 +183,13 @@ std::string markdownReport(const SuiteResult& r) {
                    "): each of our runs' ms_per_step and each scene's `stepping` are of a core shared "
                    "with other runs, not comparable with --jobs 1's.\n\n"
              : "")
+     << (r.wholeRuns || r.settings.empty()
+             ? ""
+             : "A run of ours stops once a criterion has failed for good (past its limit, where no later "
+               "step "
+               "can bring it back; the CSV's note says at which step): its figures are those of the steps it "
+               "ran, past the limit but no more than the whole run would read. --whole-runs steps every run "
+               "to its end.\n\n")
      << (!r.settings.empty() && r.settings.front().model.options.sleep == true
              ? "Sleeping on (--sleep on): islands at rest sleep, ours and Bullet's.\n\n"
              : "")
@@ -223,10 +230,12 @@ std::string csvReport(const SuiteResult& r) {
         const Verdict& v = o.verdicts[o.worst];
         // A flips criterion with only a max has min 0; its max is the limit then.
         const double limit = c.metric == Metric::Flips && c.limit <= 0.0 ? c.upper : c.limit;
-        // A blow-up's figure is infinity: written blank, as every figure that is not finite.
-        fields.insert(fields.end(),
-                      {o.passed ? "1" : "0", std::isfinite(v.value) ? "0" : "1", csvNumber(v.value, 6),
-                       formatLimit(limit), csvNumber(v.ratio, 6), csvField(c.describe())});
+        // A blow-up's figure is infinity: written blank, as every figure that is not finite. A run
+        // stopped once it failed for good did not blow up in its steps, but might have in the
+        // rest: blank, not known.
+        const std::string blewUp = o.stoppedAt > 0 ? "" : std::isfinite(v.value) ? "0" : "1";
+        fields.insert(fields.end(), {o.passed ? "1" : "0", blewUp, csvNumber(v.value, 6), formatLimit(limit),
+                                     csvNumber(v.ratio, 6), csvField(c.describe())});
       }
       fields.insert(fields.end(), {csvNumber(o.msPerStep, 6), csvField(o.note)});
       csv += csvLine(fields);

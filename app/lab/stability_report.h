@@ -18,8 +18,9 @@ struct SuiteResult {
   std::vector<std::string> peers;
   std::string peerNote;  ///< why there are no peer columns ("--no-peers", none built), or ""
   std::vector<std::vector<Outcome>> outcomes;
-  double seconds = 0.0;  ///< unit: s; the whole run, wall clock
-  int jobs = 1;          ///< our runs at a time (--jobs); above 1 the timings are of shared cores
+  double seconds = 0.0;    ///< unit: s; the whole run, wall clock
+  int jobs = 1;            ///< our runs at a time (--jobs); above 1 the timings are of shared cores
+  bool wholeRuns = false;  ///< --whole-runs: failing runs stepped to their end, not stopped once failed
 };
 
 /// The report: the passes per scene and method (peers beside them), then one grid per method

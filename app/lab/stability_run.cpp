@@ -62,18 +62,22 @@ std::string settingGroup(const Setting& setting) {
          (setting.model.label.empty() ? "" : " " + setting.model.label);
 }
 
-Outcome runSetting(const SuiteScene& s, const Setting& setting) {
+Outcome runSetting(const SuiteScene& s, const Setting& setting, RunLength length) {
   Setting atSceneDt = setting;  // the world keeps its own dt as it is
   atSceneDt.dt = s.dt;
   scenes::Scene scene = loadSetting(s.source, atSceneDt);
   phys::World& world = scene.world;
   WorldJudge judge(s.criteria, world);
   Outcome o;
-  // Only the steps are timed (runSteps), not the judge's figures; the run stops at a freeze. Named
-  // lab::runSteps: this namespace's runSteps (stability_criteria.h) hides it from a braced spec.
-  const RunRecord run = lab::runSteps(world, {.steps = s.steps, .afterStep = [&judge, &world](int step) {
+  std::optional<std::size_t> failed;  // the criterion that stopped the run (RunLength::UntilFailed)
+  // Only the steps are timed (runSteps), not the judge's figures; the run stops at a freeze, and
+  // when asked once a criterion has failed for good. Named lab::runSteps: this namespace's
+  // runSteps (stability_criteria.h) hides it from a braced spec.
+  const RunRecord run = lab::runSteps(world, {.steps = s.steps, .afterStep = [&](int step) {
                                                 judge.observe(world, step);
-                                                return world.freezes().empty();
+                                                if (length == RunLength::UntilFailed && step < s.steps)
+                                                  failed = judge.failedForGood();
+                                                return world.freezes().empty() && !failed;
                                               }});
   const int steps = run.stepsRun;
   const bool blewUp = !world.freezes().empty();
@@ -84,8 +88,15 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting) {
     o.note = "no body for the model: the scene's own run";
   } else if (setting.model.options.sleep == true) {
     const phys::Islands& islands = world.islands();
-    o.note = "asleep at the end: " + std::to_string(islands.sleepingBodies()) + " of " +
-             std::to_string(world.bodies().size()) + " bodies";
+    o.note = std::string(failed ? "asleep at the stop: " : "asleep at the end: ") +
+             std::to_string(islands.sleepingBodies()) + " of " + std::to_string(world.bodies().size()) +
+             " bodies";
+  }
+  if (failed && !blewUp) {  // first: where the run's figures end (a blow-up in the same step says so)
+    o.stoppedAt = steps;
+    o.note = "stopped at step " + std::to_string(steps) + " of " + std::to_string(s.steps) + " (" +
+             formatNumber(steps * s.dt) + " s), failed for good: " + s.criteria[*failed].describe() +
+             (o.note.empty() ? "" : "; " + o.note);
   }
   o.verdicts = judge.verdicts(blewUp);
   o.wallMs = run.steppingMs;

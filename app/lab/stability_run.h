@@ -42,15 +42,26 @@ struct Outcome {
   std::size_t worst = 0;          ///< the judged criterion with the largest ratio
   double wallMs = 0.0;            ///< unit: ms; the stepping alone (World::step or the peer's)
   double msPerStep = 0.0;         ///< unit: ms
+  /// The step after which a run that had failed for good stopped (RunLength::UntilFailed); 0 for
+  /// a run that went to its end or blew up. Whether a stopped run would have blown up is not known.
+  int stoppedAt = 0;
   /// the guard's first freeze, what a peer could not do, or that the setting's model found nothing
   /// to apply to
   std::string note;
 };
 
-/// Runs the scene under the setting for its steps; stops at the first freeze (a blow-up).
+/// How far a run of ours steps: to its scene's last step, or only until it has failed for good (a
+/// criterion past its limit that no later step can bring back, WorldJudge::failedForGood), which
+/// saves the steps of a run whose verdict is already a failure. Such a run's figures are those of
+/// the steps it ran: its worst criterion's value then, past its limit but no more than the whole run
+/// would read.
+enum class RunLength { Whole, UntilFailed };
+
+/// Runs the scene under the setting for its steps; stops at the first freeze (a blow-up), and
+/// with RunLength::UntilFailed once the run has failed for good (its note says where).
 /// Throws scenes::LoadError for a model the file refuses, std::invalid_argument if the world
 /// refuses the setting.
-Outcome runSetting(const SuiteScene& scene, const Setting& setting);
+Outcome runSetting(const SuiteScene& scene, const Setting& setting, RunLength length = RunLength::Whole);
 
 /// Runs the scene in a peer engine (peer.h) and judges what its positions can answer.
 Outcome runPeerEngine(const SuiteScene& scene, const std::string& engine, bool sleep = false);

@@ -308,6 +308,67 @@ TEST(StabilityRun, TheHeaviestChainFailsAtOneSubstepAndHoldsAt64) {
   EXPECT_GT(good.msPerStep, 0.0);
 }
 
+// A run told to stop once it has failed for good: the chain's stretch, the largest so far, passes
+// its 5% limit within the run and cannot come back under it, so the run stops there with the whole
+// run's verdict, a figure past the limit but no more than the whole run's (96%), and a note
+// saying at which step. A passing run steps to its end either way, to the same figure.
+TEST(StabilityRun, AFailedRunStopsOnceItCannotPass) {
+  using lab::stability::RunLength;
+  const lab::stability::SuiteScene s = suiteScene("chain-10000");
+  const Setting bad = setting(phys::SolverMethod::GaussSeidel, 1, 1);
+  const auto whole = lab::stability::runSetting(s, bad);
+  const auto stopped = lab::stability::runSetting(s, bad, RunLength::UntilFailed);
+  EXPECT_FALSE(stopped.passed);
+  EXPECT_GT(stopped.verdicts[0].ratio, 1.0);
+  EXPECT_LE(stopped.verdicts[0].value, whole.verdicts[0].value);
+  EXPECT_TRUE(whole.note.empty()) << whole.note;
+  ASSERT_TRUE(stopped.note.starts_with("stopped at step ")) << stopped.note;
+  EXPECT_LT(std::stoi(stopped.note.substr(16)), s.steps) << stopped.note;
+  EXPECT_EQ(stopped.stoppedAt, std::stoi(stopped.note.substr(16)));
+  EXPECT_EQ(whole.stoppedAt, 0);
+  EXPECT_NE(stopped.note.find(" of " + std::to_string(s.steps) + " ("), std::string::npos) << stopped.note;
+  EXPECT_NE(stopped.note.find("failed for good: stick-error"), std::string::npos) << stopped.note;
+  const Setting good = setting(phys::SolverMethod::GaussSeidel, 1, 64);
+  const auto held = lab::stability::runSetting(s, good, RunLength::UntilFailed);
+  EXPECT_TRUE(held.passed);
+  EXPECT_EQ(held.verdicts[0].value, lab::stability::runSetting(s, good).verdicts[0].value);
+  EXPECT_TRUE(held.note.empty()) << held.note;
+}
+
+// Not every figure past its limit is final: a count of flips under its min may yet reach it.
+// SHAKE at 10 x 4 has not flipped for its first 1.9 s (min / 0, an infinite ratio) and makes its
+// 3 flips by the end; Gauss-Seidel at 3 x 16 is stopped at its 4th, past the max for good.
+TEST(StabilityRun, AFlipCountUnderItsMinDoesNotStopARun) {
+  using lab::stability::RunLength;
+  const lab::stability::SuiteScene s = suiteScene("dzhanibekov");
+  const auto shake =
+      lab::stability::runSetting(s, setting(phys::SolverMethod::Shake, 10, 4), RunLength::UntilFailed);
+  EXPECT_TRUE(shake.passed) << shake.note;
+  EXPECT_EQ(shake.verdicts[0].value, 3.0);
+  const auto gs =
+      lab::stability::runSetting(s, setting(phys::SolverMethod::GaussSeidel, 3, 16), RunLength::UntilFailed);
+  EXPECT_FALSE(gs.passed);
+  EXPECT_EQ(gs.verdicts[0].value, 4.0);
+  EXPECT_TRUE(gs.note.starts_with("stopped at step ")) << gs.note;
+}
+
+// A stays-behind figure has no value before its window opens (NaN), which is no failure: a
+// particle at rest behind its plane, judged from 0.5 s on, runs to its end and passes.
+TEST(StabilityRun, AWindowNotYetOpenDoesNotStopARun) {
+  const TempDir dir;
+  const std::filesystem::path file =
+      dir.write("still.xml",
+                "<scene name=\"still\">\n  <world gravity=\"0 0 0\"/>\n"
+                "  <particle name=\"p\" pos=\"0 1 0\"/>\n"
+                "  <expect kind=\"pass\" metric=\"stays-behind\" body=\"p\" axis=\"x\" max=\"1\" "
+                "over=\"0.5 1\"/>\n</scene>\n");
+  const lab::stability::Outcome o = lab::stability::runSetting(lab::stability::loadSuiteScene(file),
+                                                               setting(phys::SolverMethod::GaussSeidel, 1, 1),
+                                                               lab::stability::RunLength::UntilFailed);
+  EXPECT_TRUE(o.passed) << o.note;
+  EXPECT_TRUE(o.note.empty()) << o.note;
+}
+
 // A run the guard stops says who froze, when and why, in the note the report shows.
 TEST(StabilityRun, ABlowUpsNoteNamesTheFrozenBodyItsTimeAndReason) {
   const TempDir dir;
@@ -321,6 +382,24 @@ TEST(StabilityRun, ABlowUpsNoteNamesTheFrozenBodyItsTimeAndReason) {
   EXPECT_FALSE(o.passed);
   EXPECT_TRUE(o.note.starts_with("froze runner at 0.0")) << o.note;
   EXPECT_NE(o.note.find(" s: left the world bound of 2 m"), std::string::npos) << o.note;
+}
+
+// A run that blows up in the step its figure passes the limit is a blow-up, not a stop: the
+// particle is at 160 m/s (speed <= 100) in the step it leaves the 2 m bound.
+TEST(StabilityRun, ABlowUpInTheStepThatFailsIsABlowUpNotAStop) {
+  const TempDir dir;
+  const std::filesystem::path file =
+      dir.write("away.xml",
+                "<scene name=\"away\">\n  <world bound=\"2\" gravity=\"0 0 0\"/>\n"
+                "  <particle name=\"runner\" pos=\"0 1 0\" velocity=\"0 160 0\"/>\n"
+                "  <expect kind=\"pass\" metric=\"speed\" max=\"100\" over=\"0 1\"/>\n</scene>\n");
+  const lab::stability::Outcome o = lab::stability::runSetting(lab::stability::loadSuiteScene(file),
+                                                               setting(phys::SolverMethod::GaussSeidel, 1, 1),
+                                                               lab::stability::RunLength::UntilFailed);
+  EXPECT_FALSE(o.passed);
+  EXPECT_EQ(o.stoppedAt, 0);
+  EXPECT_TRUE(o.note.starts_with("froze runner at 0.0")) << o.note;
+  EXPECT_TRUE(std::isinf(o.verdicts[0].ratio));
 }
 
 TEST(StabilityRun, FaceToFaceStaysStackedAtAGoodSetting) {
@@ -685,6 +764,8 @@ TEST(StabilityCli, AModelOnASceneWithNoBodyIsNotNamed) {
   const std::string csv = lab_testing::readFile(out / "stability.csv");
   EXPECT_NE(csv.find("\nchain-100,xpbd,,1,1,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("no body for the model: the scene's own run"), std::string::npos) << csv;
+  // Stopped once it failed for good (at one substep the chain stretches past 5%), and said so too.
+  EXPECT_NE(csv.find("\"stopped at step "), std::string::npos) << csv;
 }
 
 TEST(StabilityOptions, TheSuiteRunsInNaturalOrder) {
@@ -766,6 +847,40 @@ TEST(StabilityCli, JobsRunOursAtOnceAndWriteTheSameRows) {
       EXPECT_EQ(o->err.find(scene), o->err.rfind(scene)) << o->err;
     }
   }
+}
+
+// By default a failing run stops once it has failed for good, and the report and the CSV's note
+// say so; --whole-runs steps it to its end, for the whole run's figure (96% of stretch).
+TEST(StabilityCli, WholeRunsStepFailingRunsToTheirEnd) {
+  TempDir dir;
+  auto suite = [&dir](const std::vector<std::string>& extra, Output& o) {
+    const std::filesystem::path out = dir.file(extra.empty() ? "stopped" : "whole");
+    std::vector<std::string> args{"--scene",      "chain-10000", "--methods",  "gauss-seidel",
+                                  "--iterations", "1",           "--substeps", "1",
+                                  "--no-peers",   "--out",       out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    o = stability(args);
+    return lab::readCsv(out / "stability.csv");
+  };
+  Output stoppedOut, wholeOut;
+  const lab::CsvTable stopped = suite({}, stoppedOut), whole = suite({"--whole-runs"}, wholeOut);
+  ASSERT_EQ(stoppedOut.code, lab::kExitOk) << stoppedOut.err;
+  ASSERT_EQ(wholeOut.code, lab::kExitOk) << wholeOut.err;
+  ASSERT_EQ(stopped.rows.size(), 1u);
+  ASSERT_EQ(whole.rows.size(), 1u);
+  EXPECT_EQ(stopped.rows[0].at("passed"), "0");
+  EXPECT_EQ(whole.rows[0].at("passed"), "0");
+  EXPECT_TRUE(stopped.rows[0].at("note").starts_with("stopped at step ")) << stopped.rows[0].at("note");
+  EXPECT_EQ(whole.rows[0].at("note"), "");
+  // Whether the stopped run would have blown up in its remaining steps is not known: blank.
+  EXPECT_EQ(stopped.rows[0].at("blew_up"), "");
+  EXPECT_EQ(whole.rows[0].at("blew_up"), "0");
+  EXPECT_GT(std::stod(whole.rows[0].at("value")), 0.5);
+  EXPECT_LE(std::stod(stopped.rows[0].at("value")), std::stod(whole.rows[0].at("value")));
+  EXPECT_NE(stoppedOut.out.find("\n\nA run of ours stops once a criterion has failed for good"),
+            std::string::npos)
+      << stoppedOut.out;
+  EXPECT_EQ(wholeOut.out.find("failed for good"), std::string::npos) << wholeOut.out;
 }
 
 TEST(StabilityCli, SleepOnIsSaidInTheReport) {
