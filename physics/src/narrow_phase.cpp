@@ -50,6 +50,12 @@ constexpr std::size_t kManifoldsPerPiece = 64;
 // points the narrow phase has just written, so below this many a run costs more on two threads
 // than on one (the other core fetches the lines).
 constexpr std::size_t kStartsPerPiece = 2048;
+// How near a new contact point must be to an old one, on both bodies, to be taken for it
+// (carrySlide): Jolt's contact cache keeps a point's state within 1 cm on both bodies
+// (PhysicsSettings::mContactPointPreserveLambdaMaxDistSq). The points of a box resting on a box move
+// by about a tenth of a millimetre a step, and the corners of a face's overlap are centimetres or
+// more apart, so no two old points are that near one new one.
+constexpr Real kSamePointDistance = 0.01;
 
 // Contact points are made in every substep: their room is made in each step's first substep, from
 // the last substep's count, before any is made.
@@ -165,8 +171,10 @@ void NarrowPhase::buildRange(const NarrowPhaseInput& in, std::size_t begin, std:
     }
     const auto [a, b] = pair;
     const bool had = old < spareManifolds_.size() && pairOf(spareManifolds_[old]) == pair;
-    if (collidePair(in, a, b, had ? spareManifolds_[old].axis : -1, contact))
-      addManifold(in, a, b, contact, out);
+    if (!collidePair(in, a, b, had ? spareManifolds_[old].axis : -1, contact)) continue;
+    const std::size_t first = out.contacts.size();
+    addManifold(in, a, b, contact, out);
+    if (had) carrySlide(in, spareManifolds_[old], std::span(out.contacts).subspan(first));
   }
 }
 
@@ -228,6 +236,43 @@ bool NarrowPhase::canCarry(const NarrowPhaseInput& in, const Manifold& m) const 
     if (glm::length(now.axes[k] - m.madeAt.axes[k]) > in.reuse.maxTurn) return false;
   }
   return true;
+}
+
+// A face-on-face manifold between a tetra box and a box, clipped again, hands each new point the
+// slide its own old point had left from its anchor at x*, so that the slide is taken back as if the
+// manifold had been carried. Anchored afresh where they are, the new points forgot it: a tetra
+// box's face shears under its load within a step (its points are carried by weights of both
+// signs, and the slanted sticks turn a squash into a stretch of the face along its particles'
+// diagonal), so the passes leave a slide of up to 0.1 mm a step that no pass takes back; the box
+// then moved more than the carry allows (SolverSettings::manifoldReuse) every step, so every step
+// clipped again and forgot, and the box walked 0.23 m in 20 s at 3 x 1 (docs/physics.md, "A tetra
+// box walking on a box").
+//
+// Point by point, as Jolt keeps a contact point's state: a new point is the old one that is within
+// kSamePointDistance of it on both bodies (its embedded points, at x*), and a new point with none
+// starts afresh. Only a point friction held in the last substep hands its slide on: one that slipped
+// was sliding, and its slide, carried, outlived the slip. One shift and twist fitted to all the old
+// points and handed to whichever points the clipping made kept two tetra boxes stacked face to face
+// rocking at 10 x 1 (docs/physics.md).
+void NarrowPhase::carrySlide(const NarrowPhaseInput& in, const Manifold& old,
+                             std::span<BodyContact> made) const {
+  if (!old.kept || old.rigid) return;
+  if (in.bodies[old.a].model != BodyModel::Tetra && in.bodies[old.b].model != BodyModel::Tetra) return;
+  const auto& at = in.particles.previous;
+  for (BodyContact& c : made) {
+    const Vec3 onA = detail::embeddedPosition(at, c.pointA), onB = detail::embeddedPosition(at, c.pointB);
+    Real nearest = kSamePointDistance;
+    for (std::uint32_t k = old.firstContact; k < old.firstContact + old.contactCount; ++k) {
+      const BodyContact& o = spareContacts_[k];
+      if (!o.anchored || o.grip != Grip::Held) continue;
+      const Vec3 oldA = detail::embeddedPosition(at, o.pointA), oldB = detail::embeddedPosition(at, o.pointB);
+      const Real apart = std::max(glm::length(oldA - onA), glm::length(oldB - onB));
+      if (apart > nearest) continue;
+      nearest = apart;
+      const Vec3 slide = oldB - oldA - o.anchor;
+      c.carriedSlide = slide - glm::dot(slide, o.normal) * o.normal;
+    }
+  }
 }
 
 // A kept manifold into contacts_ and manifolds_ as it is, its normal turned with its face.
@@ -449,13 +494,15 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
 }
 
 // A kept point's friction anchor at the substep's start: as it was if friction held it at the
-// last substep's end; where its last slip left it if it slipped; else where it is at x* (a new
-// point has not been held; a point that parted is not pulled back where it was).
+// last substep's end; where its last slip left it if it slipped; else where it is at x* (a point
+// that parted is not pulled back where it was), less the slide a new point was handed (carrySlide).
 void NarrowPhase::anchor(BodyContact& c, const Vec3& startApart) {
   if (c.grip == Grip::Slipped) {
     c.anchor = c.slipEnd;
   } else if (c.grip == Grip::None) {
     c.anchor = startApart - glm::dot(startApart, c.normal) * c.normal;
+    // A new point of a manifold clipped again keeps what its pair had slid (carrySlide).
+    if (!c.anchored) c.anchor -= c.carriedSlide - glm::dot(c.carriedSlide, c.normal) * c.normal;
     c.anchored = true;
   }
   c.grip = Grip::None;

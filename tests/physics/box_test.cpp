@@ -379,7 +379,7 @@ TEST_P(BoxModels, ABoxSlidingOnABoxSlidesAtTheCoulombRate) {
 // put (docs/physics.md, "A tetra box walking on a box"). The tetra box's face shears under the load
 // within each step and the passes leave up to 0.1 mm of slide; while the pair's manifold was clipped
 // again every step and its points anchored afresh, that slide was never taken back, and the top
-// box walked 0.23 m in 20 s on a tetra box (0.036 m a corners box). Now 2.6 and 3.6 mm: 1 cm is
+// box walked 0.23 m in 20 s on a tetra box (0.036 m a corners box). Now 5.6 and 2.3 mm: 1 cm is
 // the 3 mm a corners box on a corners box moves as the pair settles in its first steps (the bottom
 // box sags and tilts a milliradian under the off-centre load), with room, and a walk of the old
 // pace passes it in under a second.

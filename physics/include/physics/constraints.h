@@ -112,6 +112,11 @@ struct BodyContact {
   /// unit: m; where the pair's last slip left the tangential part of pointB - pointA, friction's
   /// cut made: the next substep's anchor if the substep's last push slipped.
   Vec3 slipEnd{0.0};
+  /// unit: m; when its face-on-face manifold was clipped again, what the old point at the same
+  /// place on both bodies had slid from its anchor while friction held it, taken off this point's
+  /// first anchor so that the slide is not forgotten; 0 for any other point. Only between a tetra
+  /// box and a box (NarrowPhase::carrySlide; docs/physics.md, "A tetra box walking on a box").
+  Vec3 carriedSlide{0.0};
   bool anchored = false;   ///< of a kept manifold: friction holds it to `anchor`
   Grip grip = Grip::None;  ///< what the substep's last pass that pushed it did
 };

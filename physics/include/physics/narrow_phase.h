@@ -142,6 +142,7 @@ class NarrowPhase {
                           Sink& out);
   static void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts);
   static void anchor(BodyContact& c, const Vec3& startApart);
+  void carrySlide(const NarrowPhaseInput& in, const Manifold& old, std::span<BodyContact> made) const;
   bool canCarry(const NarrowPhaseInput& in, const Manifold& m) const;
   void carry(const NarrowPhaseInput& in, const Manifold& m, Sink& out) const;
   void sizeState();
