@@ -147,6 +147,18 @@ Real pointInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec
   return r.inverseMass[i] + glm::dot(c, inverseInertiaTimes(r, i, c));
 }
 
+Vec3 pinLever(const RigidBodies& r, RigidId i, const Vec3& at, const Vec3& start, const Vec3& n) {
+  // Compared whole, with the 1/m of the move: a lever nearly along n turns the point little either
+  // way, and the turns' own ratio there is noise.
+  return leveredInverseMass(r, i, at, start, n) >= kLeastStartLeverShare * pointInverseMass(r, i, at, n)
+             ? start
+             : at;
+}
+
+Real leveredInverseMass(const RigidBodies& r, RigidId i, const Vec3& at, const Vec3& lever, const Vec3& n) {
+  return r.inverseMass[i] + glm::dot(glm::cross(at, n), inverseInertiaTimes(r, i, glm::cross(lever, n)));
+}
+
 void applyPositionalImpulse(RigidBodies& r, RigidId i, const Vec3& at, const Vec3& p) {
   if (r.inverseMass[i] == 0.0) return;
   r.position[i] += p * r.inverseMass[i];
