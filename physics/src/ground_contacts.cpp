@@ -15,6 +15,34 @@ Material combined(const GroundContact& c, const Material& ground) {
   return c.body != kNoBody ? combine(c.material, ground) : ground;
 }
 
+// The sum of a particle body's edges along its z axis, as its particles lie (fitFrame's sums for
+// x and y, for z): 4 edges of a corners box; of a tetra body's 4 particles at corners 0, 3, 5, 6
+// (kTetraCorner), the two with z set less the other two, twice.
+Vec3 particleEdgesZ(const Body& box, std::span<const Vec3> position) {
+  const Vec3* p = &position[box.firstParticle];
+  if (box.model == BodyModel::Tetra) return (p[2] + p[3] - p[0] - p[1]) * 2.0;
+  return (p[4] - p[0]) + (p[5] - p[1]) + (p[6] - p[2]) + (p[7] - p[3]);
+}
+
+// The frame to embed a capsule's ground point in. A body's frame is a rotation, its z axis
+// cross(x, y); its sticks hold its mirror image as well as its shape, and a capsule landing deeper
+// in a step than it is thick (a 0.1 m one at 7 m/s) has its bottom particles pushed up through its
+// top ones, whole and inside out for good. Then the frame's z runs against the particles' z: a
+// point at the frame's bottom was embedded in the particles on top, a radius up, and the pass held
+// those on the ground, the capsule's core a radius under it (docs/physics.md, "Capsules"). With z
+// along the particles' edges the point is on the face whose particles lie there. A capsule is
+// symmetric across its frame's planes, so inside out it is the same solid, and is left so.
+// Only past half its thickness inside out (its 4 z edges sum to 8 half extents when whole): a capsule
+// crushed flat has its z edges' sign at round-off's mercy, and flipping its points from face to
+// face with it shook a capsule ragdoll with flat legs at 1 m/s.
+Obb embeddingFrame(const Body& box, const Obb& f, std::span<const Vec3> position) {
+  if (box.model == BodyModel::Rigid) return f;
+  if (glm::dot(particleEdgesZ(box, position), f.axes[2]) > -4.0 * box.halfExtents.z) return f;
+  Obb mirrored = f;
+  mirrored.axes[2] = -f.axes[2];
+  return mirrored;
+}
+
 }  // namespace
 
 void GroundContacts::add(const Embedding& point, const Material& material, BodyId body,
@@ -92,7 +120,8 @@ void GroundContacts::combineMaterials(const Material& ground) {
 constexpr std::size_t kEndsPerPiece = 1024;
 
 void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
-                                        const Vec3& groundNormal, Real groundHeight, const Workers* workers) {
+                                        std::span<const Vec3> position, const Vec3& groundNormal,
+                                        Real groundHeight, const Workers* workers) {
   const Vec3 n = groundNormal;
   // Each end writes its own point alone: ranges of them at once on the step's threads.
   auto range = [&](std::size_t begin, std::size_t end) {
@@ -111,10 +140,11 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
       far_[g.point] = far ? 1 : 0;
       if (far) continue;
       GroundContact& contact = points_[g.point];
+      const Obb e = embeddingFrame(box, f, position);
       Vec3 moved(0.0);
-      contact.point = detail::surfacePoint(box, f, lowest, &moved);
+      contact.point = detail::surfacePoint(box, e, lowest, &moved);
       contact.lift = glm::dot(n, moved);
-      if (box.model == BodyModel::Corners) contact.surface = detail::rigidPoint(box, f, lowest);
+      if (box.model == BodyModel::Corners) contact.surface = detail::rigidPoint(box, e, lowest);
     }
   };
   forEachRange(workers, capsuleEnds_.size(), kEndsPerPiece, range);

@@ -316,7 +316,8 @@ void World::findContacts(bool newPairs, bool firstSubstep, Real h, bool again) {
     narrowPhase_.measureStarts(in);
   }
   if (world_.ground) {
-    ground_.placeCapsulePoints(bodies_, frames_, world_.groundNormal, world_.groundHeight, workers());
+    ground_.placeCapsulePoints(bodies_, frames_, particles_.position, world_.groundNormal,
+                               world_.groundHeight, workers());
     // Each contact's overlap at x*, where the substep starts: what the parting measures, and
     // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
     // Each point's own: pieces of them at once.

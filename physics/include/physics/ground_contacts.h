@@ -37,9 +37,12 @@ class GroundContacts {
   /// Re-embeds each capsule's points at the lowest points of its end spheres, at its frame of this
   /// substep (they move over its surface as it turns), on the step's threads (null: on this one).
   /// An end further above the ground (at groundHeight along groundNormal) than the capsule's half
-  /// length keeps the point it had, which no pass pushes from there, and is marked far.
-  void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames, const Vec3& groundNormal,
-                          Real groundHeight, const Workers* workers);
+  /// length keeps the point it had, which no pass pushes from there, and is marked far. `position`
+  /// (the particles') tells a capsule turned inside out, whose points go on the face its particles
+  /// lie on, not the one its frame names (see the definition).
+  void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
+                          std::span<const Vec3> position, const Vec3& groundNormal, Real groundHeight,
+                          const Workers* workers);
   /// Per point, 1 for a capsule's end that placeCapsulePoints left far above the ground in this
   /// substep: the collision pass skips it (no push) as it would find it above the ground. Its depth at
   /// x* is still measured: the parting reads it.
