@@ -134,10 +134,11 @@ Metrics World::metrics() const {
     if (narrowPhase_.state().touched[k] != 0) ++m.contacts;
   }
   if (world_.ground) {
-    for (RigidId i{}; i < r.size(); ++i) {
-      const Body& body = bodies_[r.body[i]];
-      m.maxPenetration = maxOf(m.maxPenetration, world_.groundHeight - lowestHeight(r.body[i], body));
-    }
+    // Every body's lowest point, whatever its contacts hold: a particle capsule's ground points are
+    // where the passes put them, and one the passes held wrong (turned inside out, its points on
+    // its top face: docs/physics.md, "Capsules") rested a radius under the ground reading 0 here.
+    for (BodyId id{}; id < bodies_.size(); ++id)
+      m.maxPenetration = maxOf(m.maxPenetration, world_.groundHeight - lowestHeight(id, bodies_[id]));
   }
   for (std::span<const RigidContact> list :
        {narrowPhase_.rigidContacts(), std::span<const RigidContact>(rigidGround_)}) {

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "passes.h"
 #include "physics/world.h"
 
 namespace phys {
@@ -85,8 +86,21 @@ void World::placeRigidCapsulePoints() {
 // The height over the ground plane's origin (n . x, m) of the body's lowest point now.
 Real World::lowestHeight(BodyId id, const Body& body) const {
   const Vec3 n = world_.groundNormal;
-  // A capsule by its pose; a box by its corners as they are, which a particle box may have bent.
-  if (body.shape == Shape::Capsule) return lowestAlong(Shape::Capsule, body.halfExtents, poseOf(id), n);
+  // A capsule by its core; a box by its corners as they are, which a particle box may have bent.
+  if (body.shape == Shape::Capsule) {
+    if (body.model == BodyModel::Rigid) return lowestAlong(Shape::Capsule, body.halfExtents, poseOf(id), n);
+    // A particle capsule: the sphere of its radius around each end of its core as its particles
+    // carry it, bent, twisted or inside out as they may be, as a box's corners are read below.
+    // Not its pose's (a fit, through which a tetra capsule landing on an end read 8 mm deeper than
+    // its carried core), nor its ground points' (placed at each substep's start, and on the wrong
+    // face of a capsule turned inside out: docs/physics.md, "Capsules").
+    const Real along = body.capsuleHalfSegment() / body.halfExtents.y;
+    Real lowest = std::numeric_limits<Real>::infinity();
+    for (const Real end : {-1.0, 1.0})
+      lowest = std::min(lowest,
+                        glm::dot(n, positionOf(detail::rigidEmbedding(body, Vec3(0.0, end * along, 0.0)))));
+    return lowest - body.capsuleRadius();
+  }
   Real lowest = std::numeric_limits<Real>::infinity();
   for (int k = 0; k < 8; ++k) lowest = std::min(lowest, glm::dot(n, cornerOf(id, k)));
   return lowest;
