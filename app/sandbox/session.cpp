@@ -149,7 +149,7 @@ std::string Session::saveAs(const std::filesystem::path& file, const scenes::Cam
       // Run 0 under the overlay's setting is a comparison, not the scene: the file gets the
       // settings Stop gives back, so that Reload does not quietly keep the overlay's.
       scenes::Scene main = scene();
-      main.world.setSolverSettings(beforeOverlay_);
+      main.world.setSolverSettings(savedSolverSettings());
       scenes::saveSceneFile(main, camera, file);
     } else {
       scenes::saveSceneFile(scene(), camera, file);

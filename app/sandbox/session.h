@@ -66,6 +66,10 @@ class Session {
   /// saved file becomes the current one (what Reload reads), as in any editor's Save As. During
   /// the method overlay: run 0's world with the solver settings from before the overlay.
   std::string saveAs(const std::filesystem::path& file, const scenes::CameraStart& camera);
+  /// The solver settings saveAs writes: the main run's, or during the overlay those Stop gives back.
+  const phys::SolverSettings& savedSolverSettings() const {
+    return overlayActive() ? beforeOverlay_ : runs_.front().scene->world.solverSettings();
+  }
   /// Opens assets/scenes/<name>.xml (the seed's keys 1, 2, 3).
   std::string openBuiltin(std::string_view name);
   /// Removes every body of every run, keeping the settings (the seed's key 0).

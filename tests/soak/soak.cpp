@@ -718,7 +718,7 @@ void Soak::saveAndOpen() {
   const phys::World& w = session().scene().world;
   const SessionState before = snapshot(session());
   const phys::WorldSettings world = w.worldSettings();
-  const phys::SolverSettings solver = w.solverSettings();
+  const phys::SolverSettings solver = session().savedSolverSettings();  // during the overlay, not run 0's
   const std::size_t boxes = w.bodies().size(), particles = w.particles().size(), sticks = w.sticks().size(),
                     links = w.links().size(), rigidLinks = w.rigidLinks().size(),
                     joints = w.rigidJoints().size(), ignored = w.ignoredCollisions().size();
