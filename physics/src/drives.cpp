@@ -148,23 +148,14 @@ void driveRigidBodies(const RigidPassInput& in, std::span<const DrivenBody> bodi
 
 // As driveRigidJoints, with each body's orientation read from its particles (shape matching) and its
 // inertia theirs, found again for every drive, since the drive before may have turned it.
-//
-// Its compliance over h^2 is held at least 3 w, so that a pass closes at most a quarter of the gap:
-// a stiffer drive (strength 1 is rigid: the whole gap in a pass) wins against the sticks that hold
-// each body's shape, which close theirs a share at a time. The seed ragdoll turned on the run clip
-// from the pose it was made in (2 x 8, root strength 1): its pins dragged its upper arms out of shape
-// in the first step (sticks 41% off at strength 1, 15% at 0.9), and from strength 0.98 up the drives
-// held them so for good, 13% off; at 1 x 32 at strength 1 too. Held to half the gap a pass the 2 x 8 run
-// came back and the 1 x 32 one did not; held to a quarter both come back within a second. A drive of
-// any strength still closes the gap within a few passes, and strengths above where it binds pull alike.
 void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<const ParticleJoint> joints,
                          std::span<const JointDrive> drives, std::span<Real> lambda, bool firstPass, Real h) {
   if (firstPass) std::fill(lambda.begin(), lambda.end(), 0.0);
   const Real hh = h * h;
   for (std::size_t k = 0; k < joints.size(); ++k) {
     const JointDrive& drive = drives[k];
-    const Real given = complianceOver(drive.strength, drive.stiffness, hh);
-    if (!std::isfinite(given)) continue;  // no drive
+    const Real alpha = complianceOver(drive.strength, drive.stiffness, hh);
+    if (!std::isfinite(alpha)) continue;  // no drive
     const Body &bodyA = bodies[joints[k].a], &bodyB = bodies[joints[k].b];
     const ParticleFrame a = frameOf(p, bodyA), b = frameOf(p, bodyB);
     Real angle = 0.0;
@@ -172,7 +163,7 @@ void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<c
     if (!turnTowards(b.pose.orientation, a.pose.orientation * drive.target, angle, n)) continue;
     const Real w = glm::dot(n, a.inverseInertia * n) + glm::dot(n, b.inverseInertia * n);
     if (w <= 0.0) continue;  // both held still
-    const Real delta = complianceStep(angle, w, std::max(given, 3.0 * w), lambda[k]);
+    const Real delta = complianceStep(angle, w, alpha, lambda[k]);
     turnParticles(p, bodyB, b, b.inverseInertia * (delta * n));
     turnParticles(p, bodyA, a, a.inverseInertia * (-delta * n));
   }
