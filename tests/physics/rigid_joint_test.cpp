@@ -212,9 +212,9 @@ TEST(RigidJoint, DampingTakesTheRelativeSpinAwayAtItsRate) {
 }
 
 // Two 1 x 0.2 x 0.2 m boxes of 1 kg pinned end to end at the origin, spinning as one at 1 turn/s
-// about y in empty space, by a link or by a cone whose stops are out of reach (the lab's
-// spin-pair scene). Nothing but the pin acts on them, so their angular momentum about the origin,
-// the sum of m (x cross v) + I w, and their kinetic energy must stay as they started.
+// about y in empty space, by a link or by a cone whose stops are out of reach (docs/physics.md gives
+// it as a scene file, beside the pin's figures). Nothing but the pin acts on them, so their angular momentum
+// about the origin, the sum of m (x cross v) + I w, and their kinetic energy must stay as they started.
 struct SpinningPair {
   Real momentumChange = 0.0;  // relative, of L_y, over the 10 s
   Real energyChange = 0.0;    // relative, over the 10 s
