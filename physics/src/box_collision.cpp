@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "particle_edges.h"
 #include "passes.h"
 #include "physics/world.h"
 #include "require.h"
@@ -67,21 +68,11 @@ void World::fitFrame(BodyId id) {
     f.halfExtents = box.halfExtents;
     return;
   }
-  Vec3 ex, ey;
-  if (box.model == BodyModel::Tetra) {
-    // The same sums from the 4 particles (at corners 0, 3, 5, 6): corner k is sum_j (1 + s_j .
-    // s_k) / 4 p_j, so the mean corner is the mean particle and the x edges sum to
-    // 2 sum_j s_jx p_j. A third of the work of embedding 8 corners.
-    const Vec3* p = &particles_.position[box.firstParticle];
-    f.center = (p[0] + p[1] + p[2] + p[3]) * 0.25;
-    ex = (p[1] + p[2] - p[0] - p[3]) * 2.0;
-    ey = (p[1] + p[3] - p[0] - p[2]) * 2.0;
-  } else {
-    const Vec3* c = &particles_.position[box.firstParticle];  // the corners are the particles
-    f.center = (c[0] + c[1] + c[2] + c[3] + c[4] + c[5] + c[6] + c[7]) * 0.125;
-    ex = (c[1] - c[0]) + (c[3] - c[2]) + (c[5] - c[4]) + (c[7] - c[6]);
-    ey = (c[2] - c[0]) + (c[3] - c[1]) + (c[6] - c[4]) + (c[7] - c[5]);
-  }
+  const Vec3* p = &particles_.position[box.firstParticle];
+  // A tetra body's mean corner is its mean particle; a corners box's corners are its particles.
+  f.center = box.model == BodyModel::Tetra ? (p[0] + p[1] + p[2] + p[3]) * 0.25
+                                           : (p[0] + p[1] + p[2] + p[3] + p[4] + p[5] + p[6] + p[7]) * 0.125;
+  Vec3 ex = detail::edgeSum(box.model, p, 0), ey = detail::edgeSum(box.model, p, 1);
   const Real lx = glm::length(ex);
   ex = lx > 0.0 ? ex / lx : Vec3(1.0, 0.0, 0.0);
   ey -= glm::dot(ey, ex) * ex;

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "particle_edges.h"
 #include "passes.h"
 
 namespace phys {
@@ -13,15 +14,6 @@ namespace {
 // A loose particle has no material of its own: it slides as the ground says.
 Material combined(const GroundContact& c, const Material& ground) {
   return c.body != kNoBody ? combine(c.material, ground) : ground;
-}
-
-// The sum of a particle body's edges along its z axis, as its particles lie (fitFrame's sums for
-// x and y, for z): 4 edges of a corners box; of a tetra body's 4 particles at corners 0, 3, 5, 6
-// (kTetraCorner), the two with z set less the other two, twice.
-Vec3 particleEdgesZ(const Body& box, std::span<const Vec3> position) {
-  const Vec3* p = &position[box.firstParticle];
-  if (box.model == BodyModel::Tetra) return (p[2] + p[3] - p[0] - p[1]) * 2.0;
-  return (p[4] - p[0]) + (p[5] - p[1]) + (p[6] - p[2]) + (p[7] - p[3]);
 }
 
 // The frame to embed a capsule's ground point in. A body's frame is a rotation, its z axis
@@ -37,7 +29,8 @@ Vec3 particleEdgesZ(const Body& box, std::span<const Vec3> position) {
 // face with it shook a capsule ragdoll with flat legs at 1 m/s.
 Obb embeddingFrame(const Body& box, const Obb& f, std::span<const Vec3> position) {
   if (box.model == BodyModel::Rigid) return f;
-  if (glm::dot(particleEdgesZ(box, position), f.axes[2]) > -4.0 * box.halfExtents.z) return f;
+  const Vec3 edgesZ = detail::edgeSum(box.model, &position[box.firstParticle], 2);
+  if (glm::dot(edgesZ, f.axes[2]) > -4.0 * box.halfExtents.z) return f;
   Obb mirrored = f;
   mirrored.axes[2] = -f.axes[2];
   return mirrored;

@@ -352,6 +352,13 @@ TEST(StabilityRun, AFlipCountUnderItsMinDoesNotStopARun) {
   EXPECT_TRUE(gs.note.starts_with("stopped at step ")) << gs.note;
 }
 
+// One run of the suite scene in `file` at Gauss-Seidel 1 x 1, stopped once it has failed for good.
+lab::stability::Outcome gaussSeidelOnceUntilFailed(const std::filesystem::path& file) {
+  return lab::stability::runSetting(lab::stability::loadSuiteScene(file),
+                                    setting(phys::SolverMethod::GaussSeidel, 1, 1),
+                                    lab::stability::RunLength::UntilFailed);
+}
+
 // A stays-behind figure has no value before its window opens (NaN), which is no failure: a
 // particle at rest behind its plane, judged from 0.5 s on, runs to its end and passes.
 TEST(StabilityRun, AWindowNotYetOpenDoesNotStopARun) {
@@ -362,9 +369,7 @@ TEST(StabilityRun, AWindowNotYetOpenDoesNotStopARun) {
                 "  <particle name=\"p\" pos=\"0 1 0\"/>\n"
                 "  <expect kind=\"pass\" metric=\"stays-behind\" body=\"p\" axis=\"x\" max=\"1\" "
                 "over=\"0.5 1\"/>\n</scene>\n");
-  const lab::stability::Outcome o = lab::stability::runSetting(lab::stability::loadSuiteScene(file),
-                                                               setting(phys::SolverMethod::GaussSeidel, 1, 1),
-                                                               lab::stability::RunLength::UntilFailed);
+  const lab::stability::Outcome o = gaussSeidelOnceUntilFailed(file);
   EXPECT_TRUE(o.passed) << o.note;
   EXPECT_TRUE(o.note.empty()) << o.note;
 }
@@ -393,9 +398,7 @@ TEST(StabilityRun, ABlowUpInTheStepThatFailsIsABlowUpNotAStop) {
                 "<scene name=\"away\">\n  <world bound=\"2\" gravity=\"0 0 0\"/>\n"
                 "  <particle name=\"runner\" pos=\"0 1 0\" velocity=\"0 160 0\"/>\n"
                 "  <expect kind=\"pass\" metric=\"speed\" max=\"100\" over=\"0 1\"/>\n</scene>\n");
-  const lab::stability::Outcome o = lab::stability::runSetting(lab::stability::loadSuiteScene(file),
-                                                               setting(phys::SolverMethod::GaussSeidel, 1, 1),
-                                                               lab::stability::RunLength::UntilFailed);
+  const lab::stability::Outcome o = gaussSeidelOnceUntilFailed(file);
   EXPECT_FALSE(o.passed);
   EXPECT_EQ(o.stoppedAt, 0);
   EXPECT_TRUE(o.note.starts_with("froze runner at 0.0")) << o.note;

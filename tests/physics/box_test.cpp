@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -385,19 +387,27 @@ TEST_P(BoxModels, ABoxSlidingOnABoxSlidesAtTheCoulombRate) {
 // pace passes it in under a second.
 class OnATetraBox : public ::testing::TestWithParam<BodyModel> {};
 
-TEST_P(OnATetraBox, ABoxRestingOffCentreDoesNotWalk) {
+// A 1 m tetra box on the ground (friction 0.6) under Gauss-Seidel at `iterations` x 1, and a 1 m box
+// of `model` on it at `top`: the world, and the top box's id.
+std::pair<phys::World, phys::BodyId> boxOnATetraBox(int iterations, BodyModel model, const Vec3& top) {
   phys::WorldSettings ws;
   ws.groundMaterial = {0.6, 0.6};
-  phys::World world(ws, testing_phys::solver(phys::SolverMethod::GaussSeidel, 3, 1));
+  phys::World world(ws, testing_phys::solver(phys::SolverMethod::GaussSeidel, iterations, 1));
   phys::BodyDesc desc;
   desc.model = BodyModel::Tetra;
   desc.center = {0.0, 0.5, 0.0};
   world.addBody(desc);
-  desc.model = GetParam();
-  desc.center = {0.2, 1.5, 0.1};
-  const phys::BodyId top = world.addBody(desc);
+  desc.model = model;
+  desc.center = top;
+  const phys::BodyId id = world.addBody(desc);
+  return {std::move(world), id};
+}
+
+TEST_P(OnATetraBox, ABoxRestingOffCentreDoesNotWalk) {
+  const Vec3 start{0.2, 1.5, 0.1};
+  auto [world, top] = boxOnATetraBox(3, GetParam(), start);
   for (int i = 0; i < 1200; ++i) world.step();  // 20 s
-  const Vec3 moved = world.bodyPose(top).center - desc.center;
+  const Vec3 moved = world.bodyPose(top).center - start;
   const double across = std::hypot(moved.x, moved.z);
   std::printf("%s box on a tetra box: moved %.4f m across in 20 s\n",
               std::string(toString(GetParam())).c_str(), across);
@@ -416,15 +426,7 @@ INSTANTIATE_TEST_SUITE_P(BothModels, OnATetraBox, ::testing::Values(BodyModel::C
 // corners kept 1.3 cm/s over 4 to 5 s (the suite's bar is 1 cm/s); with nothing handed on it comes
 // to rest at 0.26 mm from 1 to 5 s (the suite's bar 2 mm).
 TEST(OnATetraBox, ATetraBoxFaceToFaceOnATetraBoxComesToRest) {
-  phys::WorldSettings ws;
-  ws.groundMaterial = {0.6, 0.6};
-  phys::World world(ws, testing_phys::solver(phys::SolverMethod::GaussSeidel, 10, 1));
-  phys::BodyDesc desc;
-  desc.model = BodyModel::Tetra;
-  desc.center = {0.0, 0.5, 0.0};
-  world.addBody(desc);
-  desc.center = {0.0, 1.5, 0.0};
-  const phys::BodyId top = world.addBody(desc);
+  auto [world, top] = boxOnATetraBox(10, BodyModel::Tetra, {0.0, 1.5, 0.0});
   for (int i = 0; i < 60; ++i) world.step();  // 1 s to settle
   const Vec3 settled = world.bodyPose(top).center;
   double drift = 0.0, fastest = 0.0;
