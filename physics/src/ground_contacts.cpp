@@ -5,7 +5,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "particle_edges.h"
 #include "passes.h"
 
 namespace phys {
@@ -14,26 +13,6 @@ namespace {
 // A loose particle has no material of its own: it slides as the ground says.
 Material combined(const GroundContact& c, const Material& ground) {
   return c.body != kNoBody ? combine(c.material, ground) : ground;
-}
-
-// The frame to embed a capsule's ground point in. A body's frame is a rotation, its z axis
-// cross(x, y); its sticks hold its mirror image as well as its shape, and a capsule landing deeper
-// in a step than it is thick (a 0.1 m one at 7 m/s) has its bottom particles pushed up through its
-// top ones, whole and inside out for good. Then the frame's z runs against the particles' z: a
-// point at the frame's bottom was embedded in the particles on top, a radius up, and the pass held
-// those on the ground, the capsule's core a radius under it (docs/physics.md, "Capsules"). With z
-// along the particles' edges the point is on the face whose particles lie there. A capsule is
-// symmetric across its frame's planes, so inside out it is the same solid, and is left so.
-// Only past half its thickness inside out (its 4 z edges sum to 8 half extents when whole): a capsule
-// crushed flat has its z edges' sign at round-off's mercy, and flipping its points from face to
-// face with it shook a capsule ragdoll with flat legs at 1 m/s.
-Obb embeddingFrame(const Body& box, const Obb& f, std::span<const Vec3> position) {
-  if (box.model == BodyModel::Rigid) return f;
-  const Vec3 edgesZ = detail::edgeSum(box.model, &position[box.firstParticle], 2);
-  if (glm::dot(edgesZ, f.axes[2]) > -4.0 * box.halfExtents.z) return f;
-  Obb mirrored = f;
-  mirrored.axes[2] = -f.axes[2];
-  return mirrored;
 }
 
 }  // namespace
@@ -133,7 +112,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
       far_[g.point] = far ? 1 : 0;
       if (far) continue;
       GroundContact& contact = points_[g.point];
-      const Obb e = embeddingFrame(box, f, position);
+      const Obb e = detail::embeddingFrame(box, f, position);
       Vec3 moved(0.0);
       contact.point = detail::surfacePoint(box, e, lowest, &moved);
       contact.lift = glm::dot(n, moved);

@@ -360,11 +360,14 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
   }
   const Material combined = combine(bodyA.material, bodyB.material);
   const std::size_t first = out.contacts.size();
+  // Each point on the face whose particles lie there, also for a body turned inside out.
+  const Obb frameA = detail::embeddingFrame(bodyA, in.frames[a], in.particles.position);
+  const Obb frameB = detail::embeddingFrame(bodyB, in.frames[b], in.particles.position);
   for (int i = 0; i < contact.count; ++i) {
     BodyContact c;
     Vec3 movedA(0.0), movedB(0.0);
-    c.pointA = detail::surfacePoint(bodyA, in.frames[a], contact.points[i].onA, &movedA);
-    c.pointB = detail::surfacePoint(bodyB, in.frames[b], contact.points[i].onB, &movedB);
+    c.pointA = detail::surfacePoint(bodyA, frameA, contact.points[i].onA, &movedA);
+    c.pointB = detail::surfacePoint(bodyB, frameB, contact.points[i].onB, &movedB);
     c.normal = contact.sat.normal;
     c.combined = combined;
     c.bodyA = a;
@@ -372,8 +375,8 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
     c.kind = static_cast<std::uint8_t>(contact.kind);
     if (bodyA.shape == Shape::Capsule || bodyB.shape == Shape::Capsule) {
       c.offset = glm::dot(c.normal, movedB - movedA);  // a box's points are on its faces already
-      if (movedA != Vec3(0.0)) c.surfaceA = detail::rigidPoint(bodyA, in.frames[a], contact.points[i].onA);
-      if (movedB != Vec3(0.0)) c.surfaceB = detail::rigidPoint(bodyB, in.frames[b], contact.points[i].onB);
+      if (movedA != Vec3(0.0)) c.surfaceA = detail::rigidPoint(bodyA, frameA, contact.points[i].onA);
+      if (movedB != Vec3(0.0)) c.surfaceB = detail::rigidPoint(bodyB, frameB, contact.points[i].onB);
     }
     out.contacts.push_back(c);
   }
@@ -434,12 +437,15 @@ void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId 
   const Body &bodyA = in.bodies[a], &bodyB = in.bodies[b];
   const Material combined = combine(bodyA.material, bodyB.material);
   const std::size_t first = out.rigidContacts.size();
+  // A rigid body's frame is its pose; a particle body's as addManifold embeds in it.
+  const Obb frameA = detail::embeddingFrame(bodyA, in.frames[a], in.particles.position);
+  const Obb frameB = detail::embeddingFrame(bodyB, in.frames[b], in.particles.position);
   for (int i = 0; i < contact.count; ++i) {
     RigidContact c;
     c.bodyA = a;
     c.bodyB = b;
-    setSide(bodyA, in.frames[a], contact.points[i].onA, c.sideA, c.rigidA, c.localA, c.pointA);
-    setSide(bodyB, in.frames[b], contact.points[i].onB, c.sideB, c.rigidB, c.localB, c.pointB);
+    setSide(bodyA, frameA, contact.points[i].onA, c.sideA, c.rigidA, c.localA, c.pointA);
+    setSide(bodyB, frameB, contact.points[i].onB, c.sideB, c.rigidB, c.localB, c.pointB);
     c.normal = contact.sat.normal;
     c.combined = combined;
     c.kind = static_cast<std::uint8_t>(contact.kind);

@@ -1,7 +1,7 @@
 #pragma once
 // A particle box's edges along one of its axes, summed as its particles lie: World::fitFrame makes
-// its x and y axes from them, and the ground's embedding tells a capsule turned inside out by its z
-// edges against its frame's z (ground_contacts.cpp).
+// its x and y axes from them, and the contacts' embedding tells a body turned inside out by its z
+// edges against its frame's z (detail::embeddingFrame, surface_points.cpp).
 #include "physics/body.h"
 #include "physics/types.h"
 

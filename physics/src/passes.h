@@ -34,6 +34,11 @@ Embedding rigidPoint(const Body& body, const Obb& frame, const Vec3& point);
 /// tetra capsule's rigidly; a corners capsule's on the nearest face of its box. `moved`, if not
 /// null, gets how far the embedding carries the point off where it was (a capsule's: its face).
 Embedding surfacePoint(const Body& body, const Obb& frame, const Vec3& point, Vec3* moved = nullptr);
+/// The frame to embed a particle body's contact points in (rigidPoint, surfacePoint): its fitted
+/// frame, or, for a body turned inside out by more than half its thickness, that frame with its z
+/// axis reversed, so that a point goes on the face whose particles lie there. `position` is every
+/// particle's position, as the frame was fitted from. A rigid body's frame is its pose, unchanged.
+Obb embeddingFrame(const Body& body, const Obb& frame, std::span<const Vec3> position);
 
 /// A particle body's mean move in this substep, from x* to x (unit: m): what the sweep and the
 /// start overlaps take for the body's move when they put its frame back where the substep began.

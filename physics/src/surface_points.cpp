@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "particle_edges.h"
 #include "passes.h"
 
 namespace phys::detail {
@@ -23,6 +24,27 @@ Vec3 frameCoordinates(const Body& body, const Obb& f, const Vec3& point) {
 
 Embedding rigidPoint(const Body& body, const Obb& frame, const Vec3& point) {
   return rigidEmbedding(body, frameCoordinates(body, frame, point));
+}
+
+// A body's frame is a rotation, its z axis cross(x, y) of its particles' mean x and y edges
+// (World::fitFrame); its sticks hold its mirror image as well as its shape, and a thin body landing
+// deeper in a step than it is thick (a 0.1 m capsule at 7 m/s on the ground; a 0.05 m box thrown
+// onto a box, or laid on it under Jacobi) has its bottom particles pushed up through its top ones,
+// whole and inside out for good. Then the frame's z runs against the particles' z: a point at the
+// frame's bottom was embedded in the particles on top, and the passes held those on the surface
+// below, the body a thickness inside it (docs/physics.md, "Capsules", "Inside out"). With z along
+// the particles' edges the point is on the face whose particles lie there. A box or a capsule is
+// symmetric across its frame's planes, so inside out it is the same solid, and is left so.
+// Only past half its thickness inside out (its 4 z edges sum to 8 half extents when whole): a capsule
+// crushed flat has its z edges' sign at round-off's mercy, and flipping its points from face to
+// face with it shook a capsule ragdoll with flat legs at 1 m/s.
+Obb embeddingFrame(const Body& body, const Obb& frame, std::span<const Vec3> position) {
+  if (body.model == BodyModel::Rigid) return frame;
+  const Vec3 edgesZ = edgeSum(body.model, &position[body.firstParticle], 2);
+  if (glm::dot(edgesZ, frame.axes[2]) > -4.0 * body.halfExtents.z) return frame;
+  Obb mirrored = frame;
+  mirrored.axes[2] = -frame.axes[2];
+  return mirrored;
 }
 
 Embedding surfacePoint(const Body& box, const Obb& f, const Vec3& point, Vec3* moved) {
