@@ -254,9 +254,12 @@ TEST(RecordingFile, AnOpenedRecordingKeepsAChangeOfDriveStrength) {
   for (std::size_t k = 0; k < a.rigidJoints().size(); ++k)
     ASSERT_EQ(b.jointDrive(k).strength, a.jointDrive(k).strength) << "joint " << k;
   for (int i = 0; i < 60; ++i) other.step();
-  // Not bit for bit: the contacts' warm starts are not in the file (docs/sandbox.md).
+  // Not bit for bit: the contacts' warm starts are not in the file (docs/sandbox.md). Measured, the
+  // farthest is the dropped capsule ragdoll's head: 0.97 mm, and 1.10 mm since a rigid capsule's two
+  // ground points are a block that starts each substep where the last ended (docs/physics.md, "A
+  // capsule on the ground at long steps"). The fault this guards against put bodies 26 m apart.
   for (phys::BodyId id{}; id < a.bodies().size(); ++id)
-    EXPECT_LT(glm::length(b.bodyPose(id).center - a.bodyPose(id).center), 1e-3) << "body " << id;
+    EXPECT_LT(glm::length(b.bodyPose(id).center - a.bodyPose(id).center), 2e-3) << "body " << id;
 }
 
 // A clip file changed since the recording to other bones is found as the file is opened, naming the
