@@ -552,7 +552,7 @@ void addPositionRows(const RigidPassInput& in, std::span<const RigidContact> con
   p.radius /= static_cast<Real>(pressing);
   PatchAnchor& anchor = state.anchors[p.patch->anchor];
   // Held where it stuck while the same points press; a patch whose points move over B (a ball or a
-  // capsule rolling, its point on the ground placed anew each substep) holds only against the
+  // capsule rolling, its point on the ground placed anew each pass) holds only against the
   // substep's own motion, as the 2020 paper has it: held at the old point, a rolling ball was braked.
   holdAt(in, c, anchor, centre);
   const Vec3 onA = heldNow(in, c.sideA, c.rigidA, anchor.onA),

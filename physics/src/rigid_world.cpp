@@ -73,8 +73,8 @@ void World::collectRigidGround() {
   }
 }
 
-// Every substep: a capsule's ground points move over its surface as it turns, to the lowest point
-// of their end sphere.
+// Every substep, and again before each pass: a capsule's ground points move over its surface as it
+// turns, to the lowest point of their end sphere.
 void World::placeRigidCapsulePoints() {
   for (RigidContact& c : rigidGround_) {
     if (c.capsuleEnd == 0) continue;

@@ -524,6 +524,11 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     if (!rigidPatches_.empty() || !rigidGroundPatches_.empty()) {
       const detail::StageTimer timer(profile_, Stage::Contacts);
       const RigidPassInput in = rigidPassInput(h);
+      // Each pass pushes a capsule's ground points from where they are its lowest now. Placed once a
+      // substep, the points turned with the capsule as the joints and the passes turned it, a radian
+      // a pass at 0.3 s, and a pass left its end spheres' true lowest points under the ground, by
+      // up to their radius (RigidBody.ATumblingCapsuleLandsWithoutSinkingAtLongSteps).
+      placeRigidCapsulePoints();
       detail::solveRigidContacts(in, rigidGround_, rigidGroundPatches_, rigidGroundState_);
       detail::solveRigidContacts(in, narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState());
     }

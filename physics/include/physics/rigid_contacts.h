@@ -60,7 +60,7 @@ struct ContactPatch {
 /// 0.57 m in 60 s, and 0.29 m with anchors alone (docs/physics.md, "Standing for a minute"). A
 /// patch with a particle body on a side keeps no anchor, nor does one of one or two points between
 /// two bodies (solved point by point); a box's such patch on the ground does (a capsule's points
-/// are placed anew each substep, so its patch is anchored anew each substep).
+/// are placed anew before each pass, so its patch is anchored anew each pass).
 struct PatchAnchor {
   /// The most points whose impulses a patch keeps for the next substep (a block's most points).
   static constexpr std::size_t kKeptPoints = 8;
