@@ -2,7 +2,10 @@
 // island sleeps, that a sleeping island keeps its state to the bit and costs no step, and what
 // wakes it.
 #include <array>
+#include <cmath>
+#include <string>
 
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include "character_util.h"
@@ -471,6 +474,50 @@ TEST(Islands, AnInvertedPendulumFallsFromItsBalance) {
   while (world.time() < 3.5 && world.particles().position[bob].y > 2.0) world.step();
   EXPECT_LT(world.particles().position[bob].y, 2.0)
       << "asleep " << world.islands().asleep(world.islands().particleNode(bob));
+}
+
+// A box on a slope a little steeper than its friction speeds up uniformly from rest, by a share of
+// its speed that falls as it goes (1/n at its n-th step), so the step-by-step rise no longer
+// counts from its 50th step while it is still under the sleeping speed: it slept mid-slide, after
+// 1.9 cm. A 1 m box on a 20 degree slope (tan 20 = 0.364), ground friction 0.6 and the box's mu
+// (together sqrt(0.6 mu), 0.360 to 0.364), stepped as the lab does by default (Gauss-Seidel 3 x 1),
+// must slide for 20 s as the same box awake does, to the bit, never asleep: the corners box of
+// 0.216 slides 7.8 m in that time and that of 0.219 3.3 m, the tetra box of 0.218 5.2 m and that
+// of 0.2206 2.0 m (at 0.0050 to 0.039 m/s^2 from rest).
+TEST(Islands, ABoxSlidingSlowlyDownASlopeDoesNotSleepMidSlide) {
+  struct Slope {
+    phys::BodyModel model;
+    double mu;
+    double slides;  // m, at least, in 20 s
+  };
+  for (const Slope& slope :
+       {Slope{phys::BodyModel::Corners, 0.216, 7.0}, Slope{phys::BodyModel::Corners, 0.219, 3.0},
+        Slope{phys::BodyModel::Tetra, 0.218, 5.0}, Slope{phys::BodyModel::Tetra, 0.2206, 1.8}}) {
+    const double angle = glm::radians(20.0);
+    phys::WorldSettings ws;
+    ws.groundNormal = {-std::sin(angle), std::cos(angle), 0.0};
+    ws.groundMaterial = {0.6, 0.6};
+    phys::BodyDesc desc = box(ws.groundNormal * 0.5, slope.model);
+    desc.material = {slope.mu, slope.mu};
+    desc.orientation = glm::angleAxis(angle, Vec3(0.0, 0.0, 1.0));
+    phys::SolverSettings s;  // the lab's defaults
+    s.sleep.enabled = true;
+    phys::World asleep(ws, s);
+    s.sleep.enabled = false;
+    phys::World awake(ws, s);
+    const BodyId id = asleep.addBody(desc);
+    awake.addBody(desc);
+    const std::string what = std::string(phys::toString(slope.model)) + ", mu " + std::to_string(slope.mu);
+    for (int i = 0; i < 1200; ++i) {
+      asleep.step();
+      awake.step();
+      ASSERT_FALSE(asleep.islands().bodyAsleep(id))
+          << what << ": asleep at t = " << asleep.time() << ", "
+          << glm::length(asleep.bodyPose(id).center - desc.center) << " m down the slope";
+    }
+    EXPECT_EQ(asleep.stateHash(), awake.stateHash()) << what;
+    EXPECT_GT(glm::length(asleep.bodyPose(id).center - desc.center), slope.slides) << what;
+  }
 }
 
 // A body faster than the sleeping speed never sleeps, even with a sleep time of 0: its rest, 0, met

@@ -7,7 +7,8 @@
 // (docs/performance.md, "Islands and sleeping").
 //
 // An island whose every node has been slower than SleepSettings::speed for SleepSettings::time,
-// without speeding up step after step (Islands::speedingUp), goes to sleep. The world then steps none of it
+// without speeding up step after step (Islands::speedingUp) or from one half of its rest to the next
+// (Islands::fasterThanItsLastHalf), goes to sleep. The world then steps none of it
 // (World::step: its particles and rigid bodies look pinned to the passes, and pairs of two sleeping bodies
 // are not collided), so its state is kept to the bit. It wakes whole when an awake node joins it by a contact
 // (in the step, as soon as the narrow phase finds it: wakeTouched), a stick, a link or a joint, when one of
@@ -137,8 +138,13 @@ class Islands {
   NodeId root(NodeId node);
   void unite(NodeId a, NodeId b);
   void setAsleep(NodeId node, bool asleep);
-  Real nodeSpeed(const IslandInput& in, NodeId node) const;
+  struct NodeMotion {
+    Real speed = 0.0;  ///< unit: m/s; of its fastest point over the last substep
+    Vec3 centre{0.0};  ///< unit: m; its mean particle, a rigid body's centre, a loose particle
+  };
+  NodeMotion nodeMotion(const IslandInput& in, NodeId node) const;
   bool speedingUp(NodeId node, Real speed, const IslandInput& in);  // per node, once a step
+  bool fasterThanItsLastHalf(NodeId node, const Vec3& centre, const IslandInput& in);  // per resting node
 
   std::vector<NodeId> particleNode_;        // per particle
   std::vector<NodeId> bodyNode_;            // per body
@@ -158,6 +164,15 @@ class Islands {
   std::vector<Real> islandRest_;            // per root: scratch, the least rest of its nodes
   std::vector<std::uint32_t> bodyIsland_;
   std::vector<std::uint32_t> islandNumber_;  // per root: scratch
+  // Per node, for fasterThanItsLastHalf: its centre at the step before's end (once centred_ is 1), and
+  // since its rest began, the centre at the last mark (made each half sleep time), the time since,
+  // the centre's mean speed between the two marks before, and how many marks (0 to 2).
+  std::vector<Vec3> lastCentre_;  // unit: m
+  std::vector<std::uint8_t> centred_;
+  std::vector<Vec3> mark_;       // unit: m
+  std::vector<Real> sinceMark_;  // unit: s
+  std::vector<Real> halfSpeed_;  // unit: m/s
+  std::vector<std::uint8_t> marks_;
   // What mask() took and from which nodes, in node order; room for every node, particle and body,
   // made as they are added.
   struct RigidMass {
