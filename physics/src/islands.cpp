@@ -24,10 +24,8 @@ NodeId Islands::addNode(bool fixed) {
   rest_.push_back(0.0);
   lastSpeed_.push_back(0.0);
   rising_.push_back(0.0);
-  lastCentre_.push_back(Vec3(0.0));
-  centred_.push_back(0);
   mark_.push_back(Vec3(0.0));
-  sinceMark_.push_back(0.0);
+  markRest_.push_back(0.0);
   halfSpeed_.push_back(0.0);
   marks_.push_back(0);
   islandAwake_.push_back(0);
@@ -254,30 +252,33 @@ std::size_t Islands::sleepingBodies() const {
 }
 
 // The speed of the node's fastest point over the last substep: a particle body's fastest particle;
-// a rigid body's centre plus its spin times its half diagonal (a bound on any point's). And its
-// centre, from the same pass over its particles.
-Islands::NodeMotion Islands::nodeMotion(const IslandInput& in, NodeId node) const {
+// a rigid body's centre plus its spin times its half diagonal (a bound on any point's).
+Real Islands::nodeSpeed(const IslandInput& in, NodeId node) const {
   const Particles& p = in.particles;
   auto particleSpeed = [&](ParticleId i) { return glm::length(p.position[i] - p.previous[i]) / in.h; };
   const BodyId id = nodeBody_[node];
-  if (id == kNoBody) {
-    const ParticleId i = nodeParticle_[node];
-    return {particleSpeed(i), p.position[i]};
-  }
+  if (id == kNoBody) return particleSpeed(nodeParticle_[node]);
   const Body& body = in.bodies[id];
   if (body.model == BodyModel::Rigid) {
     const RigidId r = body.rigid;
-    return {glm::length(in.rigid.velocity[r]) +
-                glm::length(in.rigid.angularVelocity[r]) * glm::length(body.halfExtents),
-            in.rigid.position[r]};
+    return glm::length(in.rigid.velocity[r]) +
+           glm::length(in.rigid.angularVelocity[r]) * glm::length(body.halfExtents);
   }
-  NodeMotion m;
-  for (int j = 0; j < body.particleCount; ++j) {
-    m.speed = std::max(m.speed, particleSpeed(body.firstParticle + j));
-    m.centre += p.position[body.firstParticle + j];
-  }
-  m.centre /= static_cast<Real>(body.particleCount);
-  return m;
+  Real fastest = 0.0;
+  for (int j = 0; j < body.particleCount; ++j)
+    fastest = std::max(fastest, particleSpeed(body.firstParticle + j));
+  return fastest;
+}
+
+// A particle body's mean particle, a rigid body's centre, a loose particle.
+Vec3 Islands::nodeCentre(const IslandInput& in, NodeId node) const {
+  const BodyId id = nodeBody_[node];
+  if (id == kNoBody) return in.particles.position[nodeParticle_[node]];
+  const Body& body = in.bodies[id];
+  if (body.model == BodyModel::Rigid) return in.rigid.position[body.rigid];
+  Vec3 sum(0.0);
+  for (int j = 0; j < body.particleCount; ++j) sum += in.particles.position[body.firstParticle + j];
+  return sum / static_cast<Real>(body.particleCount);
 }
 
 // True when the node's speed has risen step after step for 0.3 of the sleep time (0.15 s at the
@@ -303,9 +304,11 @@ bool Islands::speedingUp(NodeId node, Real speed, const IslandInput& in) {
 
 // True when the node's centre moved faster over the half sleep time just ended than over the half
 // before it, by more than a twentieth of the sleeping speed. Called once a step while the node
-// rests; marks are made every half sleep time from the rest's start (the centre at the step before's
-// end), so its rest reaches sleep.time at a mark, and a node sleeps only after the two halves of its
-// rest were compared. A body that speeds up from rest by less than sleep.speed / sleep.time (0.1
+// rests, with its rest at the step's end; its centre is found at the marks alone: at the end of its
+// rest's first step, then where its rest reaches each whole number of half sleep times (so the
+// first half is a step short, and the speeds compared are means over each half's own length). Its
+// rest reaches sleep.time at a mark, and a node sleeps only after the two halves of its rest were
+// compared. A body that speeds up from rest by less than sleep.speed / sleep.time (0.1
 // m/s^2 at the defaults) stays under the sleeping speed for the whole sleep time, and its speed's
 // rise each step, a share that falls as 1/n at its n-th step, soon passes under the test of
 // speedingUp: a box sliding slowly down a slope slept mid-slide. Its centre's mean speed rises by
@@ -316,22 +319,25 @@ bool Islands::speedingUp(NodeId node, Real speed, const IslandInput& in) {
 // sleep.time (0.01 m/s^2); with less, the settling piles' centres, whose mean speeds rise by up to
 // 0.0067 m/s from one half to the next, kept them awake longer (docs/physics.md, "Islands and
 // sleeping").
-bool Islands::fasterThanItsLastHalf(NodeId node, const Vec3& centre, const IslandInput& in) {
+bool Islands::fasterThanItsLastHalf(NodeId node, Real rest, const IslandInput& in) {
   constexpr Real kMargin = 0.05;  // of sleep.speed
-  if (marks_[node] == 0) {        // its rest begins in this step, from the step before's end
-    mark_[node] = lastCentre_[node];
-    sinceMark_[node] = 0.0;
+  if (marks_[node] == 0) {        // its rest begins in this step: the first mark, at its end
+    mark_[node] = nodeCentre(in, node);
+    markRest_[node] = rest;
     marks_[node] = 1;
+    return false;
   }
-  sinceMark_[node] += in.dt;
-  // A half of whole steps is kept from falling short of its length by rounding.
-  if (sinceMark_[node] < 0.5 * in.sleep.time - 1e-9) return false;
-  const Real speed = glm::length(centre - mark_[node]) / sinceMark_[node];
+  // The next mark is where its rest reaches the next whole number of halves (the first half is
+  // one step short, from the end of the rest's first step); kept from falling short by rounding.
+  const Real half = 0.5 * in.sleep.time;
+  if (half > 0.0 && rest < (std::floor(markRest_[node] / half + 1e-9) + 1.0) * half - 1e-9) return false;
+  const Vec3 centre = nodeCentre(in, node);
+  const Real speed = glm::length(centre - mark_[node]) / (rest - markRest_[node]);
   const bool faster = marks_[node] == 2 && speed > halfSpeed_[node] + kMargin * in.sleep.speed;
   mark_[node] = centre;
-  sinceMark_[node] = 0.0;
+  markRest_[node] = faster ? 0.0 : rest;  // faster: its rest begins again from here
   halfSpeed_[node] = speed;
-  marks_[node] = faster ? 1 : 2;  // faster: its rest begins again from here
+  marks_[node] = faster ? 1 : 2;
   return faster;
 }
 
@@ -369,24 +375,11 @@ void Islands::update(const IslandInput& in) {
   constexpr Real kNever = -std::numeric_limits<Real>::infinity();
   for (NodeId i{}; i < n; ++i) {
     if (fixed_[i] != 0 || asleep_[i] != 0) continue;
-    if (!in.sleep.enabled) {
-      rest_[i] = 0.0;
-      islandRest_[root(i)] = kNever;
-      continue;
-    }
-    const NodeMotion motion = nodeMotion(in, i);
-    const bool slow = motion.speed < in.sleep.speed;
-    const bool speeding = speedingUp(i, motion.speed, in);  // every step: it follows the speed
-    bool resting = slow && !speeding;
-    // A node's rest is timed from a centre it had at a step's end: not in its first step.
-    if (resting && centred_[i] != 0) {
-      resting = !fasterThanItsLastHalf(i, motion.centre, in);
-    } else {
-      resting = false;
-      marks_[i] = 0;
-    }
-    lastCentre_[i] = motion.centre;
-    centred_[i] = 1;
+    const Real speed = in.sleep.enabled ? nodeSpeed(in, i) : 0.0;
+    const bool slow = in.sleep.enabled && speed < in.sleep.speed;
+    const bool speeding = in.sleep.enabled && speedingUp(i, speed, in);
+    if (!slow || speeding) marks_[i] = 0;  // its rest begins again, and its marks with it
+    const bool resting = slow && !speeding && !fasterThanItsLastHalf(i, rest_[i] + in.dt, in);
     rest_[i] = resting ? rest_[i] + in.dt : 0.0;
     if (!slow) islandRest_[root(i)] = kNever;
   }

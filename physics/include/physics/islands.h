@@ -138,13 +138,10 @@ class Islands {
   NodeId root(NodeId node);
   void unite(NodeId a, NodeId b);
   void setAsleep(NodeId node, bool asleep);
-  struct NodeMotion {
-    Real speed = 0.0;  ///< unit: m/s; of its fastest point over the last substep
-    Vec3 centre{0.0};  ///< unit: m; its mean particle, a rigid body's centre, a loose particle
-  };
-  NodeMotion nodeMotion(const IslandInput& in, NodeId node) const;
-  bool speedingUp(NodeId node, Real speed, const IslandInput& in);  // per node, once a step
-  bool fasterThanItsLastHalf(NodeId node, const Vec3& centre, const IslandInput& in);  // per resting node
+  Real nodeSpeed(const IslandInput& in, NodeId node) const;
+  Vec3 nodeCentre(const IslandInput& in, NodeId node) const;
+  bool speedingUp(NodeId node, Real speed, const IslandInput& in);            // per node, once a step
+  bool fasterThanItsLastHalf(NodeId node, Real rest, const IslandInput& in);  // per resting node
 
   std::vector<NodeId> particleNode_;        // per particle
   std::vector<NodeId> bodyNode_;            // per body
@@ -164,13 +161,10 @@ class Islands {
   std::vector<Real> islandRest_;            // per root: scratch, the least rest of its nodes
   std::vector<std::uint32_t> bodyIsland_;
   std::vector<std::uint32_t> islandNumber_;  // per root: scratch
-  // Per node, for fasterThanItsLastHalf: its centre at the step before's end (once centred_ is 1), and
-  // since its rest began, the centre at the last mark (made each half sleep time), the time since,
-  // the centre's mean speed between the two marks before, and how many marks (0 to 2).
-  std::vector<Vec3> lastCentre_;  // unit: m
-  std::vector<std::uint8_t> centred_;
+  // Per node, for fasterThanItsLastHalf, since its rest began: its centre at the last mark, its rest
+  // then, the centre's mean speed between the two marks before, and how many marks (0 to 2).
   std::vector<Vec3> mark_;       // unit: m
-  std::vector<Real> sinceMark_;  // unit: s
+  std::vector<Real> markRest_;   // unit: s
   std::vector<Real> halfSpeed_;  // unit: m/s
   std::vector<std::uint8_t> marks_;
   // What mask() took and from which nodes, in node order; room for every node, particle and body,
