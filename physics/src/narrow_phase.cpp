@@ -437,6 +437,10 @@ void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId 
   const Body &bodyA = in.bodies[a], &bodyB = in.bodies[b];
   const Material combined = combine(bodyA.material, bodyB.material);
   const std::size_t first = out.rigidContacts.size();
+  // Two points with a capsule: its core lies along the other's face or core, and the two are one
+  // block in the passes (solvesAsBlock in rigid_contacts.cpp), as on the ground.
+  const bool capsuleLying =
+      contact.count == 2 && (bodyA.shape == Shape::Capsule || bodyB.shape == Shape::Capsule);
   // A rigid body's frame is its pose; a particle body's as addManifold embeds in it.
   const Obb frameA = detail::embeddingFrame(bodyA, in.frames[a], in.particles.position);
   const Obb frameB = detail::embeddingFrame(bodyB, in.frames[b], in.particles.position);
@@ -449,6 +453,7 @@ void NarrowPhase::addRigidManifold(const NarrowPhaseInput& in, BodyId a, BodyId 
     c.normal = contact.sat.normal;
     c.combined = combined;
     c.kind = static_cast<std::uint8_t>(contact.kind);
+    c.capsuleLying = capsuleLying;
     out.rigidContacts.push_back(c);
   }
   pushManifold(in, a, b, contact, true, first, out);

@@ -464,15 +464,19 @@ void holdAt(const RigidPassInput& in, const RigidContact& c, PatchAnchor& anchor
 // on the ground) is solved as one block (rigid_block.h): its points, its friction and its twist
 // together; and a body resting on several held bodies (a box across two boxes of a pyramid) takes
 // all of those patches in one block, so that each patch's push does not tip it on the others.
-// Other patches are solved point by point: one or two points (an edge, a capsule's ends on another
+// Other patches are solved point by point: one or two points (an edge, a capsule's end on another
 // body) tip nothing that a face could hold, and as blocks they made the rigid ragdolls' step 0.49
 // to 0.81 ms. But a capsule's two points on the ground are one block: pushed one after the other,
 // each push tipped it on the other end, and a capsule lying on the ground rested tilted, its low
 // end under the ground by part of the g h^2 a substep takes it down (at 1 x 1: 1.2 mm at 1/60 s,
-// 2.2 cm at 0.1 s, 0.44 m at 0.3 s; RigidBody.ALyingCapsuleRestsAtItsRadiusAtAnyStep).
+// 2.2 cm at 0.1 s, 0.44 m at 0.3 s; RigidBody.ALyingCapsuleRestsAtItsRadiusAtAnyStep). So are a
+// capsule's two points lying along a rigid body (RigidContact::capsuleLying), for the same reason:
+// on a box at 1 x 1, 0.59 mm low at 1/60 s and 7.9 mm at 0.1 s; at 3 passes, 8 cm and 20 degrees
+// from level at 0.2 s (RigidBody.ACapsuleLyingOnABoxRestsAtItsRadiusAtAnyStep, docs/physics.md).
 bool solvesAsBlock(const RigidContact& first, std::size_t count) {
-  const bool capsuleOnTheGround = first.sideA == ContactSide::Ground && first.capsuleEnd != 0;
-  return (count >= 3 || (count == 2 && capsuleOnTheGround)) && count <= kMostBlockPoints &&
+  const bool capsuleLying =
+      (first.sideA == ContactSide::Ground && first.capsuleEnd != 0) || first.capsuleLying;
+  return (count >= 3 || (count == 2 && capsuleLying)) && count <= kMostBlockPoints &&
          first.sideA != ContactSide::Particles && first.sideB != ContactSide::Particles;
 }
 

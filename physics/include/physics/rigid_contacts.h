@@ -38,6 +38,9 @@ struct RigidContact {
   /// A capsule's point on the ground follows the lowest point of one end sphere (-1 or +1 along
   /// the body's y axis) as the capsule turns; 0 for a point fixed in its body.
   std::int8_t capsuleEnd = 0;
+  /// One of the two points of a capsule lying along another rigid body (its core along a face or a
+  /// core): the pair's patch is solved as one block, as a capsule's two ground points are.
+  bool capsuleLying = false;
 };
 
 /// The points of one pair of bodies (or of one body on the ground), consecutive in their list: the
