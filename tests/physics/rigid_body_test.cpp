@@ -408,6 +408,21 @@ TEST(RigidBody, ASlidingBallRollsOnAtFiveSeventhsOfItsSpeed) {
   EXPECT_NEAR(world.bodyPose(ball).center.y, 0.25, 1e-3);
 }
 
+// XPBD at one pass a substep and one substep of dt.
+phys::SolverSettings xpbdAt(Real dt) {
+  phys::SolverSettings s = xpbd(1);
+  s.dt = dt;
+  return s;
+}
+
+// A rigid capsule of `radius`, 0.4 m long, lying along x with its centre at `centre`.
+BodyDesc lyingCapsule(const Vec3& centre, Real radius) {
+  BodyDesc d = rigidBox(centre, {2.0 * radius, 0.4, 2.0 * radius});
+  d.shape = phys::Shape::Capsule;
+  d.orientation = glm::angleAxis(std::numbers::pi / 2.0, Vec3(0.0, 0.0, 1.0));
+  return d;
+}
+
 // A rigid capsule (radius 0.05 m, 0.4 m long) lying on the ground rests with its core at its
 // radius at any step: gravity takes it g h^2 into the ground each substep (0.88 m at dt 0.3), and
 // its two ground points, the lowest points of its end spheres, must lift it back level. Pushed one
@@ -419,13 +434,8 @@ TEST(RigidBody, ASlidingBallRollsOnAtFiveSeventhsOfItsSpeed) {
 TEST(RigidBody, ALyingCapsuleRestsAtItsRadiusAtAnyStep) {
   const Real radius = 0.05;
   for (const Real dt : {1.0 / 60.0, 0.1, 0.3}) {
-    phys::SolverSettings s = xpbd(1);
-    s.dt = dt;
-    phys::World world({}, s);
-    BodyDesc d = rigidBox({0.0, radius, 0.0}, {2.0 * radius, 0.4, 2.0 * radius});
-    d.shape = phys::Shape::Capsule;
-    d.orientation = glm::angleAxis(std::numbers::pi / 2.0, Vec3(0.0, 0.0, 1.0));  // along x
-    const BodyId id = world.addBody(d);
+    phys::World world({}, xpbdAt(dt));
+    const BodyId id = world.addBody(lyingCapsule({0.0, radius, 0.0}, radius));
     for (int i = 0; i < 60; ++i) world.step();
     const phys::BodyPose pose = world.bodyPose(id);
     const Vec3 along = pose.orientation * Vec3(0.0, 1.0, 0.0);
@@ -446,14 +456,9 @@ TEST(RigidBody, ALyingCapsuleRestsAtItsRadiusAtAnyStep) {
 TEST(RigidBody, ACapsuleLyingOnABoxRestsAtItsRadiusAtAnyStep) {
   const Real radius = 0.05;
   for (const Real dt : {1.0 / 60.0, 0.1, 0.2}) {
-    phys::SolverSettings s = xpbd(1);
-    s.dt = dt;
-    phys::World world({}, s);
+    phys::World world({}, xpbdAt(dt));
     const BodyId slab = world.addBody(rigidBox({0.0, 0.5, 0.0}, {4.0, 1.0, 4.0}, 1000.0));
-    BodyDesc d = rigidBox({0.0, 1.0 + radius, 0.0}, {2.0 * radius, 0.4, 2.0 * radius});
-    d.shape = phys::Shape::Capsule;
-    d.orientation = glm::angleAxis(std::numbers::pi / 2.0, Vec3(0.0, 0.0, 1.0));  // along x
-    const BodyId id = world.addBody(d);
+    const BodyId id = world.addBody(lyingCapsule({0.0, 1.0 + radius, 0.0}, radius));
     for (int i = 0; i < 60; ++i) world.step();
     const phys::BodyPose pose = world.bodyPose(id);
     const Vec3 along = pose.orientation * Vec3(0.0, 1.0, 0.0);
