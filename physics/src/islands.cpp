@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "pose.h"
 #include "require.h"
 #include "union_find.h"
 
@@ -276,9 +277,7 @@ Vec3 Islands::nodeCentre(const IslandInput& in, NodeId node) const {
   if (id == kNoBody) return in.particles.position[nodeParticle_[node]];
   const Body& body = in.bodies[id];
   if (body.model == BodyModel::Rigid) return in.rigid.position[body.rigid];
-  Vec3 sum(0.0);
-  for (int j = 0; j < body.particleCount; ++j) sum += in.particles.position[body.firstParticle + j];
-  return sum / static_cast<Real>(body.particleCount);
+  return detail::particleCentre(in.particles, body);
 }
 
 // True when the node's speed has risen step after step for 0.3 of the sleep time (0.15 s at the

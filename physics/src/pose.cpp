@@ -67,13 +67,20 @@ glm::dmat3 nearestRotation(const glm::dmat3& unscaled) {
   return X;
 }
 
-BodyPose particleBodyPose(const Particles& p, const Body& body) {
-  BodyPose pose;
+Vec3 particleCentre(const Particles& p, const Body& body) {
   const Vec3* x = &p.position[body.firstParticle];
   // Each particle's share summed, not the sum divided: the same digits for 4 or 8 particles (a
   // power of two), and no overflow for a body near the largest double (a bound of infinity).
   const Real share = 1.0 / static_cast<Real>(body.particleCount);
-  for (int j = 0; j < body.particleCount; ++j) pose.center += x[j] * share;
+  Vec3 centre(0.0);
+  for (int j = 0; j < body.particleCount; ++j) centre += x[j] * share;
+  return centre;
+}
+
+BodyPose particleBodyPose(const Particles& p, const Body& body) {
+  BodyPose pose;
+  const Vec3* x = &p.position[body.firstParticle];
+  pose.center = particleCentre(p, body);
   // A = sum (x_j - c) r_j^T is R S for a rigid motion.
   glm::dmat3 A(0.0);
   for (int j = 0; j < body.particleCount; ++j)

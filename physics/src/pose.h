@@ -13,6 +13,9 @@ namespace phys::detail {
 /// (det A <= 0), falls back to Gram-Schmidt on A's columns.
 glm::dmat3 nearestRotation(const glm::dmat3& A);
 
+/// A particle body's centre: the mean of its particles (they share its mass evenly).
+Vec3 particleCentre(const Particles& p, const Body& body);
+
 /// A particle body's pose read back from its particles: the centre their mean (a body's particles
 /// share its mass evenly), the orientation the rotation that best takes their rest places to where
 /// they are (shape matching, Müller et al. 2005).
