@@ -483,33 +483,33 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   GroundContactState& groundState = ground_.state();
   const bool contacts = ground || !bodyContacts.empty();
   const bool binned = contactBins_.dealt();  // only ever with workers (dealContacts)
+  detail::StageLaps laps(profile_);
   for (int it = 0; it < solver_.iterations; ++it) {
     if (!constraints_.particleJoints().empty() || !constraints_.bodyDrives().empty()) {
       // Particle bodies' drives first, so each pass ends with their links (the joints' pins and
       // stops) held, as the rigid drives come before their joints below. A drive turns or moves a
       // body whole, which its own sticks do not see.
-      const detail::StageTimer timer(profile_, Stage::Links);
       detail::driveParticleBodies(particles_, bodies_, constraints_.bodyDrives(),
                                   constraints_.bodyDriveLambda(), it == 0, h);
       detail::driveParticleJoints(particles_, bodies_, constraints_.particleJoints(),
                                   constraints_.particleDrives(), constraints_.particleDriveLambda(), it == 0,
                                   h);
+      laps.lap(Stage::Links);
     }
     if (!constraints_.sticks().empty()) {
-      const detail::StageTimer timer(profile_, Stage::Sticks);
       tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake, workers());
       constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers());
+      laps.lap(Stage::Sticks);
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links
     // between bodies, then the contacts. Links are rigid projections in every method, so the
     // world's compliance, which XPBD adds to the sticks, does not soften them.
     if (!constraints_.links().empty()) {
-      const detail::StageTimer timer(profile_, Stage::Links);
       constraints_.solveLinks(particles_, linkSlack, workers());
+      laps.lap(Stage::Links);
     }
     if (!constraints_.rigidLinks().empty() || !constraints_.rigidJoints().empty() ||
         !constraints_.bodyDrives().empty()) {
-      const detail::StageTimer timer(profile_, Stage::Links);
       const RigidPassInput in = rigidPassInput(h);
       detail::solveRigidLinks(in, constraints_.rigidLinks());
       // Drives before the joints' own constraints, so each pass ends with the joint's axes, stops
@@ -518,11 +518,11 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       detail::driveRigidJoints(in, constraints_.rigidJoints(), constraints_.drives(),
                                constraints_.driveLambda(), it == 0);
       detail::solveRigidJoints(in, constraints_.rigidJoints());
+      laps.lap(Stage::Links);
     }
 
     // Rigid bodies' contacts, each patch with its static friction (rigid_contacts.cpp).
     if (!rigidPatches_.empty() || !rigidGroundPatches_.empty()) {
-      const detail::StageTimer timer(profile_, Stage::Contacts);
       const RigidPassInput in = rigidPassInput(h);
       // Each pass pushes a capsule's ground points from where they are its lowest now. Placed once a
       // substep, the points turned with the capsule as the joints and the passes turned it, a radian
@@ -531,30 +531,29 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       placeRigidCapsulePoints();
       detail::solveRigidContacts(in, rigidGround_, rigidGroundPatches_, rigidGroundState_);
       detail::solveRigidContacts(in, narrowPhase_.rigidContacts(), rigidPatches_, narrowPhase_.rigidState());
+      laps.lap(Stage::Contacts);
     }
     // Contacts, each pass followed by its friction, so the next pass's sticks relax what
     // friction bent (run once after all passes, friction would leave every resting box
     // sheared by the last correction).
     if (!contacts) continue;
     if (binned) {
-      relaxContactBins(ground);
+      relaxContactBins(ground);  // times its own stages
+      laps.skip();
       continue;
     }
-    {
-      const detail::StageTimer timer(profile_, Stage::Contacts);
-      detail::solveBodyContacts(particles_, bodyContacts, solver_.contactSlop, bodyState.push,
-                                bodyState.allowance);
-      if (ground) {
-        // Each ground point moves its own body's particles: pieces of them at once (ground_pieces.h).
-        inGroundPieces([&](std::size_t b, std::size_t e) {
-          detail::collideGround(particles_, ground_.points().subspan(b, e - b), world_.groundNormal,
-                                world_.groundHeight, std::span(groundState.push).subspan(b, e - b),
-                                std::span(groundState.allowance).subspan(b, e - b), stillPart(b, e),
-                                flagsOf(ground_.far(), b, e));
-        });
-      }
+    detail::solveBodyContacts(particles_, bodyContacts, solver_.contactSlop, bodyState.push,
+                              bodyState.allowance);
+    if (ground) {
+      // Each ground point moves its own body's particles: pieces of them at once (ground_pieces.h).
+      inGroundPieces([&](std::size_t b, std::size_t e) {
+        detail::collideGround(particles_, ground_.points().subspan(b, e - b), world_.groundNormal,
+                              world_.groundHeight, std::span(groundState.push).subspan(b, e - b),
+                              std::span(groundState.allowance).subspan(b, e - b), stillPart(b, e),
+                              flagsOf(ground_.far(), b, e));
+      });
     }
-    const detail::StageTimer timer(profile_, Stage::Friction);
+    laps.lap(Stage::Contacts);
     detail::applyBodyFriction(particles_, narrowPhase_.movableContacts(), bodyState.push);
     flagPushed(bodyState.push, bodyState.touched);
     if (ground) {
@@ -566,6 +565,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
                    std::span(groundState.hit).subspan(b, e - b));
       });
     }
+    laps.lap(Stage::Friction);
   }
   if (!bodyContacts.empty()) {
     const detail::StageTimer timer(profile_, Stage::Contacts);
