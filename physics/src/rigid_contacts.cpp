@@ -36,8 +36,9 @@ SideView viewB(const RigidPassInput& in, const RigidContact& c, bool fixed = fal
   return viewOf(in, c.sideB, c.rigidB, c.localB, c.pointB, fixed);
 }
 
-// Which sides of a patch a shock-propagation pass holds still: the lower of two bodies (along the
-// ground's normal), so that each body is set on the one below it as on the ground.
+// Which sides of a patch a shock-propagation pass holds still: the lower of two bodies (the side
+// the patch's normal leaves upwards from), so that each body is set on the one below it as on the
+// ground.
 struct Hold {
   bool a = false, b = false;
 };
@@ -61,8 +62,13 @@ Hold holdFor(const RigidPassInput& in, std::span<const RigidContact> contacts, c
   for (std::size_t k = lo; k < hi; ++k) {
     if (-state.approach[k] > in.restingSpeed) return {};
   }
-  const bool aLower = glm::dot(in.groundNormal, sideCentre(in, c.sideA, c.rigidA, c.pointA)) <=
-                      glm::dot(in.groundNormal, sideCentre(in, c.sideB, c.rigidB, c.pointB));
+  // The lower side is the one the normal (from A to B) leaves upwards from: B rests on A when it
+  // points up. Not the two centres' heights as the passes have moved them: the first pass lifts a
+  // body out of its fall onto the ground, or onto the body under it, before the body above it is
+  // read, and once a substep's fall of g h^2 passes the centres' distance (a box 0.1 m thick on a
+  // slab 1 m thick at 0.25 s) the upper body read as the lower, was held, and pushed the lower down
+  // to it, every pass (docs/physics.md, "A slab and what rests on it at long steps").
+  const bool aLower = glm::dot(c.normal, in.groundNormal) > 0.0;
   return {aLower, !aLower};
 }
 
