@@ -52,6 +52,10 @@ void checkPlayback(const Playback& p, const std::string& who) {
   require(std::isfinite(p.speed) && p.speed >= 0.0, who + ": the clip's speed must be finite and >= 0");
 }
 
+void checkTurnInTime(Real seconds, const std::string& who) {
+  require(std::isfinite(seconds) && seconds >= 0.0, who + ": the turn-in time must be finite and >= 0 (s)");
+}
+
 void checkStrengths(Real strength, Real rootStrength, const std::string& who) {
   require(strength >= 0.0 && strength <= 1.0, who + ": strength must be in [0, 1]");
   require(rootStrength >= 0.0 && rootStrength <= 1.0, who + ": root strength must be in [0, 1]");
@@ -117,6 +121,9 @@ void changeClip(Character& c, const Playback& playback, Real blendTime, const Ve
   c.now = playback;
   c.blendTime = blendTime;
   c.blend = blendTime > 0.0 ? 0.0 : 1.0;
+  // A cut may leave the parts far from the new clip's pose; a fade starts from the pose it leaves,
+  // and the next substep finds it near, with no turn-in.
+  c.turnInDue = true;
 }
 
 // Where the clip's bone `bone` is among the character's bones, checked with the share to give it:
@@ -398,6 +405,7 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   require(finite(desc.rootOffset) && glm::length(desc.rootOffset) <= kMaxClipReach,
           who + ": root offset must be finite and within " + std::to_string(kMaxClipReach) + " m");
   checkReaction(desc.reaction, *desc.playback.clip, who);
+  checkTurnInTime(desc.turnInTime, who);
   Character c;
   c.ragdoll = desc.ragdoll;
   c.bones = bindClip(*this, desc.ragdoll, *desc.playback.clip);
@@ -415,6 +423,8 @@ std::size_t World::addCharacter(const CharacterDesc& desc) {
   c.scale = desc.scale;
   c.rootOffset = desc.rootOffset;
   c.reaction = desc.reaction;
+  c.turnInTime = desc.turnInTime;
+  c.turnInDue = true;  // from the pose it was made in: the first substep sees how far that is
   c.lastRootVelocity = bodyVelocity(c.bones[0].body).first;
   // The clip's frame is where the root is now: its root path starts at the root part's centre and
   // it faces the way the root part faces. Only the heading (the turn about the world's up) is
@@ -563,6 +573,8 @@ void World::setCharacterStrength(std::size_t k, Real strength, Real rootStrength
   requireIndex(k, characters_.size(), "setCharacterStrength", "character");
   checkStrengths(strength, rootStrength, "setCharacterStrength");
   Character& c = characters_[k];
+  // A limp or weak character given its strength back turns from wherever it lies: a turn-in if far.
+  if (strength > c.strength) c.turnInDue = true;
   c.strength = c.goalStrength = strength;
   c.rootStrength = c.goalRootStrength = rootStrength;
   // The balance the reaction ramped (to 0 once down) comes back with the strengths: Active never
@@ -588,6 +600,14 @@ void World::setCharacterBalance(std::size_t k, Real balance) {
   if (c.state == CharacterState::Active || c.state == CharacterState::LettingGo) c.balance = balance;
   if (balance > 0.0) makeRootDrive(c, 0.0);
   islands_.wake(islands_.nodeOf(c.bones[0].body));
+}
+
+void World::setCharacterTurnIn(std::size_t k, Real seconds) {
+  requireIndex(k, characters_.size(), "setCharacterTurnIn", "character");
+  checkTurnInTime(seconds, "setCharacterTurnIn");
+  Character& c = characters_[k];
+  c.turnInTime = seconds;
+  c.turnIn = std::min(c.turnIn, seconds);
 }
 
 void World::setCharacterReaction(std::size_t k, const Reaction& reaction) {
@@ -619,6 +639,11 @@ void World::animate(Real h) {
     }
     characterPose(c);
     targetOrientations(c, c.pose, characterTargets_);
+    if (c.turnInDue) {
+      c.turnInDue = false;
+      if (c.particleParts && c.turnInTime > 0.0 && farFromTargets(c)) c.turnIn = c.turnInTime;
+    }
+    const Real share = c.turnIn > 0.0 ? kTurnInShare : 1.0;
     for (std::size_t b = 1; b < c.bones.size(); ++b) {
       const CharacterBone& bone = c.bones[b];
       JointDrive drive =
@@ -627,11 +652,16 @@ void World::animate(Real h) {
       const Quat target = glm::normalize(glm::conjugate(parent) * characterTargets_[b]);
       drive.target = bone.reversed ? glm::conjugate(target) : target;
       drive.strength = c.strength * c.partStrength[b];
-      if (c.particleParts)
+      if (c.particleParts) {
         constraints_.setParticleDrive(bone.joint, drive);
-      else
+        constraints_.setParticleDriveShare(bone.joint, share);
+      } else {
         constraints_.setDrive(bone.joint, drive);
+      }
     }
+    // This substep's passes take the share; the turn-in ends after the last substep within it (a
+    // remainder of rounding, under a billionth of a substep, is none).
+    c.turnIn = c.turnIn - h > 1e-9 * h ? c.turnIn - h : 0.0;
     if (c.rootStrength > 0.0) {
       setRootDrive(c, BodyDrive{rootCentre(c, c.pose), characterTargets_[0], c.rootStrength, c.rootStiffness,
                                 c.rootAngularStiffness});
@@ -645,6 +675,17 @@ void World::animate(Real h) {
     }
     if (characterMoves(c)) islands_.wake(islands_.nodeOf(c.bones[0].body));
   }
+}
+
+// Whether some part of the character is further than kTurnInGap from its target (characterTargets_,
+// just found): far enough from its clip's pose for a turn-in.
+bool World::farFromTargets(const Character& c) const {
+  for (std::size_t b = 0; b < c.bones.size(); ++b) {
+    const Quat q = poseOf(c.bones[b].body).orientation;
+    const Real cosHalf = std::min(1.0, std::abs(glm::dot(q, characterTargets_[b])));
+    if (2.0 * std::acos(cosHalf) > kTurnInGap) return true;
+  }
+  return false;
 }
 
 // The balance (docs/physics.md, "Balance"): the root's clip orientation `upright`, leaned about the

@@ -49,6 +49,14 @@ Real complianceStep(Real error, Real w, Real a, Real& lambda) {
   return delta;
 }
 
+// complianceStep with the change held to at most `most` (> 0): a pass that may close only part of
+// the error (driveParticleJoints' share).
+Real complianceStep(Real error, Real w, Real a, Real& lambda, Real most) {
+  const Real delta = std::min((error - a * lambda) / (w + a), most);
+  lambda += delta;
+  return delta;
+}
+
 // The turn (rotation vector, rad, world frame) that takes `from` to `to`, split into its angle and
 // unit axis; false for none.
 bool turnTowards(const Quat& from, const Quat& to, Real& angle, Vec3& axis) {
@@ -149,7 +157,8 @@ void driveRigidBodies(const RigidPassInput& in, std::span<const DrivenBody> bodi
 // As driveRigidJoints, with each body's orientation read from its particles (shape matching) and its
 // inertia theirs, found again for every drive, since the drive before may have turned it.
 void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<const ParticleJoint> joints,
-                         std::span<const JointDrive> drives, std::span<Real> lambda, bool firstPass, Real h) {
+                         std::span<const JointDrive> drives, std::span<Real> lambda,
+                         std::span<const Real> share, bool firstPass, Real h) {
   if (firstPass) std::fill(lambda.begin(), lambda.end(), 0.0);
   const Real hh = h * h;
   for (std::size_t k = 0; k < joints.size(); ++k) {
@@ -163,7 +172,12 @@ void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<c
     if (!turnTowards(b.pose.orientation, a.pose.orientation * drive.target, angle, n)) continue;
     const Real w = glm::dot(n, a.inverseInertia * n) + glm::dot(n, b.inverseInertia * n);
     if (w <= 0.0) continue;  // both held still
-    const Real delta = complianceStep(angle, w, alpha, lambda[k]);
+    // Held to a share of what is left of the gap (a character turning in, Character::turnIn): a drive
+    // of compliance near 0 turns a part by the whole gap in a pass, and from a far pose the joints'
+    // pins then drag a box's corners into a fold that the drive, stiffer than the sticks, keeps. The
+    // multiplier takes only the change made, so later passes go on from it.
+    const Real delta = share[k] < 1.0 ? complianceStep(angle, w, alpha, lambda[k], share[k] * angle / w)
+                                      : complianceStep(angle, w, alpha, lambda[k]);
     turnParticles(p, bodyB, b, b.inverseInertia * (delta * n));
     turnParticles(p, bodyA, a, a.inverseInertia * (-delta * n));
   }

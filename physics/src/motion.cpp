@@ -63,6 +63,8 @@ std::string characterProblem(const CharacterMotion& c) {
        {c.blendTime, c.stateTime, c.stillTime, c.lastImpact, c.queued ? c.queued->blendTime : 0.0}) {
     if (span < 0.0) return "a negative blend time, time in a state, time lain still or blow";
   }
+  if (!(std::isfinite(c.turnInTime) && c.turnInTime >= 0.0 && c.turnIn >= 0.0 && c.turnIn <= c.turnInTime))
+    return "a turn-in time non-finite or negative, or a turn-in left beyond it";
   if (!validReaction(c.reaction)) return "a reaction's threshold or time non-finite or out of range";
   for (const Real unit : {c.blend, c.strength, c.rootStrength, c.balance, c.goalStrength, c.goalRootStrength,
                           c.goalBalance, c.fromStrength, c.fromBalance}) {
@@ -101,6 +103,9 @@ void copyCharacterMotion(const From& from, To& to) {
   to.lastRootVelocity = from.lastRootVelocity;
   to.supported = from.supported;
   to.queued = from.queued;
+  to.turnInTime = from.turnInTime;
+  to.turnIn = from.turnIn;
+  to.turnInDue = from.turnInDue;
   to.frame = from.frame;
   to.origin = from.origin;
   to.beforeShift = from.beforeShift;

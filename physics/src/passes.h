@@ -225,11 +225,13 @@ RigidMotion rigidMotion(const Particles& p, const Body& box, const MassPropertie
 void dampJointFriction(Particles& p, std::span<const Body> bodies, std::span<const JointFriction> frictions,
                        Real dt, std::span<BodySpin> spins);
 
-/// One pass over the particle joints' drives (drives.h), drives[k] and lambda[k] joint k's, each
-/// body turned about its centre as a rigid body of its particles' inertia; the first pass of a
-/// substep zeroes the multipliers. h: the substep (s).
+/// One pass over the particle joints' drives (drives.h), drives[k], lambda[k] and share[k] joint k's,
+/// each body turned about its centre as a rigid body of its particles' inertia, the pass closing at
+/// most share[k] of the drive's gap (1: as XPBD has it); the first pass of a substep zeroes the
+/// multipliers. h: the substep (s).
 void driveParticleJoints(Particles& p, std::span<const Body> bodies, std::span<const ParticleJoint> joints,
-                         std::span<const JointDrive> drives, std::span<Real> lambda, bool firstPass, Real h);
+                         std::span<const JointDrive> drives, std::span<Real> lambda,
+                         std::span<const Real> share, bool firstPass, Real h);
 /// One pass over the drives of particle bodies among `driven` (the rigid ones are driveRigidBodies'),
 /// lambda holding two multipliers a drive, as driveRigidBodies'.
 void driveParticleBodies(Particles& p, std::span<const Body> bodies, std::span<const DrivenBody> driven,

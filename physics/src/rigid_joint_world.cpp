@@ -288,6 +288,11 @@ Real World::particleJointDriveTorque(std::size_t k) const {
   return std::abs(constraints_.particleDriveLambda()[k]) / (h * h);
 }
 
+Real World::particleJointDriveShare(std::size_t k) const {
+  requireIndex(k, constraints_.particleJoints().size(), "particleJointDriveShare", "particle joint");
+  return constraints_.particleDriveShare()[k];
+}
+
 void World::setParticleJointDrive(std::size_t k, const JointDrive& drive) {
   const std::string who = "setParticleJointDrive: ";
   requireIndex(k, constraints_.particleJoints().size(), "setParticleJointDrive", "particle joint");

@@ -68,6 +68,12 @@ void hashCharacter(StateHasher& h, const C& c) {
   // character stands on its support (every one without the balance, as the pinned tackle) hashes
   // as before the field was kept, and one whose reloaded character had lost it differs.
   if (c.supported) h.value(c.supported);
+  // The turn-in (Character::turnIn), hashed only where it differs from a character that has none
+  // and the default time: a world without one (the pinned tackle, whose parts are rigid) hashes as
+  // before it was kept.
+  if (c.turnInTime != kTurnInTime) h.value(c.turnInTime);
+  if (c.turnIn > 0.0) h.value(c.turnIn);
+  if (c.turnInDue) h.value(c.turnInDue);
   h.value(c.queued.has_value());
   if (c.queued) {
     h.playback(c.queued->playback);

@@ -492,8 +492,8 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       detail::driveParticleBodies(particles_, bodies_, constraints_.bodyDrives(),
                                   constraints_.bodyDriveLambda(), it == 0, h);
       detail::driveParticleJoints(particles_, bodies_, constraints_.particleJoints(),
-                                  constraints_.particleDrives(), constraints_.particleDriveLambda(), it == 0,
-                                  h);
+                                  constraints_.particleDrives(), constraints_.particleDriveLambda(),
+                                  constraints_.particleDriveShare(), it == 0, h);
       laps.lap(Stage::Links);
     }
     if (!constraints_.sticks().empty()) {

@@ -513,6 +513,91 @@ TEST(Character, PlayClipFadesBetweenClips) {
   EXPECT_THROW(w.setCharacterStrength(1, 1.0, 0.0), std::invalid_argument);
 }
 
+// The turn-in (CharacterDesc::turnInTime): a particle character made far from its clip's pose (both
+// elbows to bend 80 degrees) holds each pass of its joints' drives to kTurnInShare of the gap for its
+// time, counted in substeps, and then lets them close the whole gap; one put in its clip's pose, and a
+// rigid one, never take it; a cut to a far clip and a strength given back start it again, a fade
+// does not; 0 turns it off.
+TEST(Character, ATurnInHoldsTheDrivesOnlyWhileTurningFromAFarPose) {
+  const auto bent = [](Real degrees) {
+    return std::make_shared<const Clip>(ragdollClip(2, [degrees](const std::string& bone, Real) {
+      return bone.starts_with("lower-arm") ? degrees * kDeg : 0.0;
+    }));
+  };
+  struct Case {
+    const char* what;
+    phys::RagdollModel model;
+    bool inPose;
+    Real time;
+    bool turns;
+  };
+  for (const Case& c :
+       {Case{"seed, as made", phys::RagdollModel::Seed, false, phys::kTurnInTime, true},
+        Case{"seed, in the clip's pose", phys::RagdollModel::Seed, true, phys::kTurnInTime, false},
+        Case{"seed, turn-in 0", phys::RagdollModel::Seed, false, 0.0, false},
+        Case{"rigid, as made", phys::RagdollModel::Rigid, false, phys::kTurnInTime, false}}) {
+    SCOPED_TRACE(c.what);
+    phys::World w = testing_phys::openSpace(testing_phys::solver(phys::SolverMethod::Xpbd, 2, 8), Vec3(0.0));
+    const phys::Ragdoll r = rigidRagdoll(w, "r", Vec3(0.0, 0.85, 0.0), c.model);
+    phys::CharacterDesc desc;
+    desc.ragdoll = "r";
+    desc.playback.clip = bent(-80.0);
+    desc.rootStrength = 1.0;
+    desc.startInPose = c.inPose;
+    desc.turnInTime = c.time;
+    w.addCharacter(desc);
+    const phys::Character& k = w.characters()[0];
+    EXPECT_TRUE(k.turnInDue);
+    const Real h = w.solverSettings().dt / 8.0;
+    const std::size_t elbow = r.firstJoint + 2;  // hinge 2: upper-arm-left to lower-arm-left
+    auto share = [&] {
+      return c.model == phys::RagdollModel::Rigid ? 1.0 : w.particleJointDriveShare(elbow);
+    };
+    w.step();
+    EXPECT_FALSE(k.turnInDue);
+    EXPECT_NEAR(k.turnIn, c.turns ? phys::kTurnInTime - 8.0 * h : 0.0, 1e-12);
+    EXPECT_EQ(share(), c.turns ? phys::kTurnInShare : 1.0);
+    for (int i = 0; i < 5; ++i) w.step();  // 0.1 s: 48 substeps, the whole turn-in
+    EXPECT_EQ(k.turnIn, 0.0);
+    w.step();
+    EXPECT_EQ(share(), 1.0);
+    if (!c.turns) continue;
+    // Near its pose now: a fade to a far clip starts from that pose and takes none; a cut does.
+    for (int i = 0; i < 60; ++i) w.step();
+    w.playClip(0, phys::Playback{bent(0.0), 0.0, 1.0, true}, 0.5);
+    w.step();
+    EXPECT_EQ(k.turnIn, 0.0);
+    for (int i = 0; i < 60; ++i) w.step();  // faded to 0 degrees, and followed
+    w.playClip(0, phys::Playback{bent(-80.0), 0.0, 1.0, true}, 0.0);
+    w.step();
+    EXPECT_GT(k.turnIn, 0.0);
+    // Limp (the root held), its targets faded away from where its elbows lie, then given its strength
+    // back: that starts a turn-in, letting go does not.
+    for (int i = 0; i < 60; ++i) w.step();
+    w.setCharacterStrength(0, 0.0, 1.0);
+    w.playClip(0, phys::Playback{bent(0.0), 0.0, 1.0, true}, 0.5);
+    for (int i = 0; i < 60; ++i) w.step();  // the targets faded to 0 degrees; the elbows limp at -80
+    EXPECT_EQ(k.turnIn, 0.0);
+    w.setCharacterStrength(0, 1.0, 1.0);
+    w.step();
+    EXPECT_GT(k.turnIn, 0.0);
+  }
+  phys::World w = testing_phys::openSpace();
+  rigidRagdoll(w, "r", Vec3(0.0, 0.85, 0.0), phys::RagdollModel::Seed);
+  phys::CharacterDesc desc;
+  desc.ragdoll = "r";
+  desc.playback.clip = bent(0.0);
+  desc.turnInTime = -0.1;
+  EXPECT_THROW(w.addCharacter(desc), std::invalid_argument);
+  EXPECT_TRUE(w.characters().empty());
+  desc.turnInTime = 0.2;
+  w.addCharacter(desc);
+  EXPECT_THROW(w.setCharacterTurnIn(0, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(w.setCharacterTurnIn(1, 0.1), std::invalid_argument);
+  w.setCharacterTurnIn(0, 0.05);
+  EXPECT_EQ(w.characters()[0].turnInTime, 0.05);
+}
+
 // A limp character (strength 0) lets its ragdoll fall asleep, and its clip keeps the world's time
 // while every island sleeps and the step does nothing else: the clock is not frozen with the bodies.
 TEST(Character, ALimpCharactersClipPlaysOnWhileEverythingSleeps) {

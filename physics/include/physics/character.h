@@ -37,6 +37,16 @@ inline constexpr Real kMaxBalanceLean = 0.35;
 /// about its feet, far past the 20 degrees the balance leans it, is falling, and lying it is down.
 inline constexpr Real kStandingShare = 0.5;
 
+/// unit: s; how long a character turns in (CharacterDesc::turnInTime) unless told: the first 0.1 s
+/// of a turn from a far pose is what folds a particle part (docs/physics.md, "Turn-in")
+inline constexpr Real kTurnInTime = 0.1;
+/// unitless; during a turn-in, the most of a particle joint drive's gap one pass closes: from 0.3
+/// down no setting of the seed ragdoll folded (docs/physics.md, "Turn-in")
+inline constexpr Real kTurnInShare = 0.25;
+/// unit: rad; a turn-in starts only for a character some part of which is further than this from
+/// its target: one already in its clip's pose (CharacterDesc::startInPose, a fade) is left alone
+inline constexpr Real kTurnInGap = 0.35;
+
 /// How a character answers a blow: past the threshold it goes limp over fallTime, falls as a
 /// ragdoll and, with a get-up clip, once it has lain still for restTime, is lifted back onto its
 /// feet over getUpTime by its root's drive, playing the clip, and let go again.
@@ -104,6 +114,12 @@ struct CharacterDesc {
   /// kBodyDriveStiffness and kDriveStiffness for a 70 kg ragdoll at scale 1, the first in proportion
   /// to mass over scale, the second to mass times scale.
   std::optional<Real> rootStiffness, rootAngularStiffness;
+  /// unit: s, >= 0: the turn-in (docs/physics.md, "Turn-in"): for this long after the character is
+  /// added, its clip is cut to another or its strength rises, if some part is further than
+  /// kTurnInGap from its target, each pass of a particle joint's drive closes at most kTurnInShare of
+  /// its gap, so that a stiff drive cannot fold a particle part on the way. 0 never does. Rigid
+  /// parts, which cannot fold, are not held.
+  Real turnInTime = kTurnInTime;
 };
 
 /// One part of a character, bound to a clip's bone.
@@ -162,6 +178,13 @@ struct Character {
   Real stillTime = 0.0;        ///< unit: s; how long every part has been slower than restSpeed
   Vec3 lastRootVelocity{0.0};  ///< unit: m/s; the root part's at the last step's end
   std::optional<QueuedClip> queued;
+  Real turnInTime = kTurnInTime;  ///< unit: s; CharacterDesc::turnInTime
+  /// unit: s; how much of a turn-in is left (0: none under way); a particle character's joint drives
+  /// close at most kTurnInShare of their gap a pass while it is above 0
+  Real turnIn = 0.0;
+  /// A turn-in may be due (added, its clip cut to another, its strength risen): the next substep
+  /// starts one if some part is further than kTurnInGap from its target, and clears this
+  bool turnInDue = false;
   Real rootStiffness = 0.0;         ///< unit: N/m; of the root's body drive at strength 1/2
   Real rootAngularStiffness = 0.0;  ///< unit: N m/rad; the same for its turn
   Quat frame{1.0, 0.0, 0.0, 0.0};   ///< the clip's frame in the world

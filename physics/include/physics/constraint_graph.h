@@ -45,9 +45,13 @@ class ConstraintGraph {
     particleJoints_.push_back(joint);
     particleDrives_.push_back(drive);
     particleDriveLambda_.push_back(0.0);
+    particleDriveShare_.push_back(1.0);
   }
   /// Replaces particle joint k's drive.
   void setParticleDrive(std::size_t k, const JointDrive& drive) { particleDrives_[k] = drive; }
+  /// Sets the most of particle joint k's drive's gap one pass closes (0 to 1; 1, the whole, unless
+  /// a character turning in holds it: Character::turnIn).
+  void setParticleDriveShare(std::size_t k, Real share) { particleDriveShare_[k] = share; }
   /// Sets a body's drive towards a pose (driven.drive), adding it when the body has none.
   void setBodyDrive(const DrivenBody& driven);
   /// Removes a body's drive, if it has one.
@@ -81,6 +85,8 @@ class ConstraintGraph {
   std::span<const JointDrive> particleDrives() const { return particleDrives_; }
   std::span<Real> particleDriveLambda() { return particleDriveLambda_; }
   std::span<const Real> particleDriveLambda() const { return particleDriveLambda_; }
+  /// Per particle joint, the most of its drive's gap one pass closes.
+  std::span<const Real> particleDriveShare() const { return particleDriveShare_; }
   /// The bodies' drives, in the order they were first set.
   std::span<const DrivenBody> bodyDrives() const { return bodyDrives_; }
   /// Their multipliers, two a drive: its centre's and its turn's.
@@ -113,6 +119,7 @@ class ConstraintGraph {
   std::vector<ParticleJoint> particleJoints_;
   std::vector<JointDrive> particleDrives_;  // per particle joint
   std::vector<Real> particleDriveLambda_;   // per particle joint
+  std::vector<Real> particleDriveShare_;    // per particle joint: of its gap, the most a pass closes
   std::vector<DrivenBody> bodyDrives_;
   std::vector<Real> bodyDriveLambda_;  // two per body drive
   std::vector<JointFriction> jointFrictions_;

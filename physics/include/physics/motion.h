@@ -41,6 +41,9 @@ struct CharacterMotion {
   Vec3 lastRootVelocity{0.0};
   bool supported = false;  ///< the balance acts in the next step only if so (Character::supported)
   std::optional<QueuedClip> queued;
+  Real turnInTime = kTurnInTime;  ///< unit: s; Character::turnInTime
+  Real turnIn = 0.0;              ///< unit: s; what is left of a turn-in (Character::turnIn)
+  bool turnInDue = false;         ///< Character::turnInDue
   Quat frame{1.0, 0.0, 0.0, 0.0};
   Vec3 origin{0.0};
   Vec3 beforeShift{0.0};

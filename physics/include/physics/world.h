@@ -200,6 +200,9 @@ class World {
   const JointDrive& particleJointDrive(std::size_t k) const;
   /// unit: N m; as jointDriveTorque, for particle joint k's drive.
   Real particleJointDriveTorque(std::size_t k) const;
+  /// The most of particle joint k's drive's gap one pass closes now (0 to 1): kTurnInShare while its
+  /// character turns in (Character::turnIn), else 1.
+  Real particleJointDriveShare(std::size_t k) const;
   /// Replaces particle joint k's drive and wakes its island; refuses what setJointDrive refuses.
   void setParticleJointDrive(std::size_t k, const JointDrive& drive);
   /// Joint k as addJoint would take it to make it again as it is now: both bodies' pivots and frames.
@@ -263,6 +266,10 @@ class World {
   /// Replaces character k's reaction (Reaction), from the next step. Throws std::invalid_argument
   /// (and changes nothing) as addCharacter would for it.
   void setCharacterReaction(std::size_t k, const Reaction& reaction);
+  /// Sets how long character k's turn-ins last (CharacterDesc::turnInTime; s, finite, >= 0), from
+  /// the next one; a turn-in under way is held to it. Throws std::invalid_argument (and changes
+  /// nothing) out of range.
+  void setCharacterTurnIn(std::size_t k, Real seconds);
   /// What of character k changes as it steps (motion.h): its clips' clocks, fade, strengths now,
   /// reaction state and clip frame. Throws std::invalid_argument for a character that does not exist.
   CharacterMotion characterMotion(std::size_t k) const;
@@ -399,6 +406,9 @@ class World {
   Quat balanceTarget(const Character& c, const Quat& upright) const;
   void findSupports();
   bool standsOverSupport(const Character& c) const;
+  /// Whether some part of c is further than kTurnInGap from its target orientation
+  /// (characterTargets_, as animate has just found them).
+  bool farFromTargets(const Character& c) const;
   void makeRootDrive(const Character& c, Real strength);
   /// Sets the character's root part's drive (a rigid or a particle body's).
   void setRootDrive(const Character& c, const BodyDrive& drive);
