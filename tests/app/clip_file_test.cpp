@@ -985,6 +985,82 @@ TEST(ClipFile, TheCapsuleRunCycleIsTrackedWithinFiveDegrees) {
   expectTheRunTracked("shape=\"capsule\" pos=\"0 0.95 0\"", kClips + "capsule/run.bvh");
 }
 
+// The seed ragdoll as a character on the run cycle at strength 1, turned from the pose it was made in
+// (not pose="clip"), root carried, XPBD 2 x 8 (docs/physics.md, "Turn-in"): a drive of compliance 0
+// turns a part by its whole gap in a pass, the joints' pins drag the box's corners, and the drive,
+// stiffer than the sticks, keeps the fold: without the turn-in its sticks stayed 13% out from 5 s on
+// (max_constraint_error 0.129). With it each pass closes a quarter of the gap for the first 0.1 s,
+// and at 5 s the sticks are within a few percent, the fold gone.
+TEST(ClipFile, TheSeedRagdollTurnsInFromAFarPoseWithoutFolding) {
+  auto sticksAt5s = [](const std::string& turnIn) {
+    scenes::Scene scene = scenes::loadSceneText(
+        "<scene name=\"c\"><ground/><solver method=\"xpbd\" iterations=\"2\" substeps=\"8\"/>"
+        "<ragdoll name=\"r\" pos=\"0 0.85 0\" euler=\"0 180 0\" model=\"seed\"/><character ragdoll=\"r\" "
+        "clip=\"" +
+            kClips + "run.bvh\" strength=\"1\" root-strength=\"1\" turn-in=\"" + turnIn + "\"/></scene>",
+        "seed.xml");
+    EXPECT_TRUE(scene.world.characters()[0].particleParts);
+    for (int i = 0; i < 300; ++i) scene.world.step();
+    EXPECT_TRUE(scene.world.freezes().empty()) << turnIn;
+    return scene.world.metrics().maxConstraintError;
+  };
+  const double without = sticksAt5s("0"), with = sticksAt5s("0.1");
+  std::printf(
+      "seed ragdoll on the run cycle at strength 1 from its made pose, sticks at 5 s: %.4f without "
+      "the turn-in, %.4f with it\n",
+      without, with);
+  EXPECT_GT(without, 0.1);  // folded: what the turn-in is for
+  EXPECT_LT(with, 0.03);
+}
+
+// A turn-in under way, and whether one is still due, are saved: a character saved in the middle of
+// its turn-in reloads with what is left of it, and one that has stepped past it reloads with none due
+// (looked for again, a character lying far from its pose would turn in where the saved run did not).
+TEST(ClipFile, SaveAsKeepsTheTurnIn) {
+  scenes::Scene scene = scenes::loadSceneText(
+      "<scene name=\"c\"><ground/><solver method=\"xpbd\" iterations=\"2\" substeps=\"8\"/>"
+      "<ragdoll name=\"r\" pos=\"0 0.85 0\" model=\"lean\"/><character ragdoll=\"r\" clip=\"" +
+          kClips + "run.bvh\" strength=\"1\" root-strength=\"1\" turn-in=\"0.25\"/></scene>",
+      "lean.xml");
+  EXPECT_TRUE(scene.world.characters()[0].turnInDue);
+  for (int i = 0; i < 6; ++i) scene.world.step();  // 0.1 s: the turn-in, found far, has 0.15 s left
+  const phys::Character& saved = scene.world.characters()[0];
+  EXPECT_FALSE(saved.turnInDue);
+  EXPECT_NEAR(saved.turnIn, 0.15, 1e-9);
+  const std::string text = scenes::writeSceneXml(scene);
+  EXPECT_NE(text.find("turn-in=\"0.25\""), std::string::npos) << text;
+  scenes::Scene again = scenes::loadSceneText(text, "again.xml");
+  const phys::Character& reloaded = again.world.characters()[0];
+  EXPECT_EQ(reloaded.turnInTime, 0.25);
+  EXPECT_EQ(reloaded.turnIn, saved.turnIn);
+  EXPECT_FALSE(reloaded.turnInDue);
+  EXPECT_EQ(testsupport::compareScenes(scene, again), "");
+  // More left than the turn-in lasts is refused, naming the line and the attribute.
+  const std::string turnIn = "<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" turn-in=\"0.1\" ";
+  for (const auto& [attributes, says] :
+       {std::pair<std::string, std::string>{
+            "turn-in-left=\"0.2\"", "attribute 'turn-in-left': '0.2' must be at most turn-in (0.1 s)"},
+        {"turn-in-left=\"-1\"", "attribute 'turn-in-left': '-1' must be >= 0"},
+        {"turn-in-due=\"maybe\"", "attribute 'turn-in-due'"}}) {
+    std::string message = "loaded";
+    try {
+      scenes::loadSceneText(characterScene(turnIn + attributes + "/>"), "c.xml");
+    } catch (const scenes::LoadError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find("c.xml:2: <character> " + says), std::string::npos) << message;
+  }
+  std::string negative = "loaded";
+  try {
+    scenes::loadSceneText(
+        characterScene("<character ragdoll=\"r\" clip=\"" + kClips + "run.bvh\" turn-in=\"-0.1\"/>"),
+        "c.xml");
+  } catch (const scenes::LoadError& e) {
+    negative = e.what();
+  }
+  EXPECT_NE(negative.find("attribute 'turn-in': '-0.1' must be >= 0 (s)"), std::string::npos) << negative;
+}
+
 // A ragdoll's drive stiffness grows with its mass (RagdollDesc::driveStiffness), and a character
 // drives the joints at it: it was set only for a ragdoll of strength > 0, and characters' ragdolls
 // have strength 0, so a 700 kg runner's joints held at a 70 kg ragdoll's stiffness tracked within

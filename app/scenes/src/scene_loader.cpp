@@ -653,6 +653,7 @@ class Builder {
     desc.rootStiffness = stiffness(e, "root-stiffness", "N/m", true);
     desc.rootAngularStiffness = stiffness(e, "root-angular-stiffness", "N m/rad", false);
     reaction(e, desc.reaction);
+    desc.turnInTime = duration(e, "turn-in").value_or(desc.turnInTime);
     if (desc.reaction.getUp.clip) {
       if (const std::string why = phys::skeletonDifference(*desc.reaction.getUp.clip, *desc.playback.clip);
           !why.empty())
@@ -672,6 +673,9 @@ class Builder {
       refuseWithout(e, {"then-at", "then-blend", "then-loop"}, "then");
     }
     const std::optional<SavedCharacter> motion = savedCharacter(e, *desc.playback.clip);
+    if (motion && motion->turnIn && *motion->turnIn > desc.turnInTime)
+      e.fail("turn-in-left", "'" + detail::formatNumber(*motion->turnIn) + "' must be at most turn-in (" +
+                                 detail::formatNumber(desc.turnInTime) + " s)");
     e.rejectUnknownAttributes();
     std::size_t k = 0;
     std::vector<phys::CharacterBone> bones;
@@ -745,6 +749,8 @@ class Builder {
         heading;
     std::optional<phys::Vec3> origin;
     std::optional<bool> supported;
+    std::optional<double> turnIn;  // what is left of a turn-in under way
+    std::optional<bool> turnInDue;
     // A fade under way: from the clip before, or from a pose held (a change of clip during a fade).
     std::optional<phys::Playback> before;
     std::optional<double> blend, blendTime;
@@ -763,6 +769,8 @@ class Builder {
       if (heading) m.frame = glm::angleAxis(glm::radians(*heading), phys::Vec3(0.0, 1.0, 0.0));
       m.origin = origin.value_or(m.origin);
       m.supported = supported.value_or(m.supported);
+      m.turnIn = turnIn.value_or(m.turnIn);
+      m.turnInDue = turnInDue.value_or(m.turnInDue);
       if (before) m.before = *before;
       m.blend = blend.value_or(m.blend);
       m.blendTime = blendTime.value_or(m.blendTime);
@@ -802,10 +810,12 @@ class Builder {
     // clip from here, and from beyond the bound it flung the ragdoll out for the guard to freeze.
     c.origin = positionInBound(e, "origin");
     c.supported = e.boolean("supported");
+    c.turnIn = duration(e, "turn-in-left");
+    c.turnInDue = e.boolean("turn-in-due");
     fade(e, playing, c);
     const bool any = c.state || c.stateTime || c.stillTime || c.strength || c.rootStrength || c.balance ||
-                     c.fromStrength || c.fromBalance || c.heading || c.origin || c.supported || c.blend ||
-                     c.blendTime || c.beforeShift;
+                     c.fromStrength || c.fromBalance || c.heading || c.origin || c.supported || c.turnIn ||
+                     c.turnInDue || c.blend || c.blendTime || c.beforeShift;
     return any ? std::optional<SavedCharacter>(c) : std::nullopt;
   }
 

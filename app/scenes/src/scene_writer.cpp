@@ -578,6 +578,12 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     // What the last step found of its support, which the balance reads in the next: left out, the
     // reload's first step had no balance and went its own way from the saved run's.
     if (c.supported) e.text("supported", "true");
+    // A turn-in under way (Character::turnIn), and whether one is still to be looked for: a character
+    // just added has one due, which its first substep settles; left out, the reload of a character
+    // that had stepped looked again, and one saved lying far from its pose turned in where the
+    // saved run did not.
+    if (c.turnIn > 0.0) e.number("turn-in-left", c.turnIn);
+    if (!c.turnInDue) e.text("turn-in-due", "false");
     e.number("heading", glm::degrees(2.0 * std::atan2(c.frame.y, c.frame.w)));
     // Each change of clip moves the frame on to where the new one starts, wherever the parts are.
     requireInsideBound(c.origin, bound, "the clip frame of character '" + c.ragdoll + "'");
@@ -628,6 +634,7 @@ std::string sceneXml(const Scene& scene, const CameraStart* camera, const std::f
     if (c.scale != 1.0) e.number("scale", c.scale);
     if (c.rootOffset != phys::Vec3(0.0)) e.vector("root-offset", c.rootOffset);
     if (c.goalBalance > 0.0) e.number("balance", c.goalBalance);
+    if (c.turnInTime != phys::kTurnInTime) e.number("turn-in", c.turnInTime);
     e.number("root-stiffness", c.rootStiffness).number("root-angular-stiffness", c.rootAngularStiffness);
     std::string parts;
     for (std::size_t b = 1; b < c.bones.size(); ++b) {
