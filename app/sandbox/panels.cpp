@@ -536,8 +536,8 @@ std::string clipControls(Session& session, std::size_t k) {
   return error;
 }
 
-// The scene's characters (phys::Character): each one's clip and state, its clip's controls, its strengths and
-// reaction threshold, and shoves to watch it stagger (200 N) or fall (2000 N).
+// The scene's characters (phys::Character): each one's clip and state, its clip's controls, its strengths,
+// reaction threshold and turn-in time, and shoves to watch it stagger (200 N) or fall (2000 N).
 void animationBlock(Session& session, UiState& ui) {
   const std::size_t count = session.scene().world.characters().size();
   if (count == 0) return;
@@ -562,6 +562,10 @@ void animationBlock(Session& session, UiState& ui) {
       if (sliderReal("balance", balance, 0.0f, 1.0f, "%.2f")) error = session.setCharacterBalance(k, balance);
       if (sliderReal("react at (m/s)", threshold, 0.0f, 10.0f, "%.2f"))
         error = session.setReactionThreshold(k, threshold);
+      // How long a turn from a far pose holds each pass to a share of the gap (phys::kTurnInShare).
+      double turnIn = c.turnInTime;
+      if (sliderReal("turn-in (s)", turnIn, 0.0f, 1.0f, "%.2f"))
+        error = session.setCharacterTurnIn(k, turnIn);
       // Each joint's share of the strength: an arm let hang, a stiff neck.
       if (ImGui::TreeNode("parts", "parts' share of the strength")) {
         for (std::size_t b = 1; b < c.bones.size(); ++b) {

@@ -136,9 +136,10 @@ std::vector<std::string> clipNames(const SavedPart& part) {
 // Bytes of one character's motion with `bones` bones (docs/sandbox.md, "Recording files"): four
 // playbacks of 21, 13 numbers (104), the reaction's 6 (48), the state (1), the root's velocity (24),
 // the queued flag and 2 numbers (17), the frame (32), origin and shift (48), the two poses' roots (48)
-// and the holding and support flags (2): 408; and per bone its strength and two turns, 72.
+// the holding and support flags (2), and the turn-in's time, what is left of it and its due flag (17):
+// 425; and per bone its strength and two turns, 72.
 std::size_t characterBytes(std::size_t bones) {
-  constexpr std::size_t kFixed = 408, kPerBone = 72;
+  constexpr std::size_t kFixed = 425, kPerBone = 72;
   return kFixed + bones * kPerBone;
 }
 
@@ -187,6 +188,9 @@ void writeCharacter(Writer& w, std::vector<std::string>& names, const phys::Char
   writePose(w, c.held);
   w.value(static_cast<std::uint8_t>(c.holding ? 1 : 0));
   w.value(static_cast<std::uint8_t>(c.supported ? 1 : 0));
+  w.value(c.turnInTime);
+  w.value(c.turnIn);
+  w.value(static_cast<std::uint8_t>(c.turnInDue ? 1 : 0));
 }
 
 void writeStep(Writer& w, std::vector<std::string>& names, const SavedStep& s) {
@@ -260,6 +264,9 @@ phys::CharacterMotion readCharacter(Reader& r, const Clips& clips, std::size_t b
   readPose(r, bones, c.held);
   c.holding = r.flag("the holding flag");
   c.supported = r.flag("the support flag");
+  c.turnInTime = r.value<double>();
+  c.turnIn = r.value<double>();
+  c.turnInDue = r.flag("the turn-in's due flag");
   return c;
 }
 

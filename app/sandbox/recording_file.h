@@ -21,8 +21,9 @@ namespace sandbox {
 /// What a recording file's name ends in.
 inline constexpr std::string_view kRecordingExtension = ".jrec";
 /// The format this sandbox writes, and the only one it reads (2: characters' motions added; 3: whether
-/// each stands on its support, without which a resumed balancing character lost its balance for a step).
-inline constexpr std::uint32_t kRecordingFormat = 3;
+/// each stands on its support, without which a resumed balancing character lost its balance for a step;
+/// 4: each one's turn-in, without which one resumed while turning in from a far pose could fold).
+inline constexpr std::uint32_t kRecordingFormat = 4;
 
 /// One step: its record (step, hash, drag target) and the world's motion after it.
 struct SavedStep {

@@ -498,6 +498,10 @@ std::string Session::setReactionThreshold(std::size_t k, double threshold) {
   });
 }
 
+std::string Session::setCharacterTurnIn(std::size_t k, double seconds) {
+  return changeCharacter(k, [k, seconds](phys::World& w) { w.setCharacterTurnIn(k, seconds); });
+}
+
 std::string Session::pushCharacter(std::size_t k, double newtons) {
   return changeCharacter(k, [k, newtons](phys::World& w) {
     // Where the body faces now, not where its clip's path was laid (the frame): a player turned

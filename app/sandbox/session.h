@@ -164,6 +164,9 @@ class Session {
   /// The share (0 to 1) of character k's strength its bone `bone`'s joint gets (World::setPartStrength).
   std::string setPartStrength(std::size_t k, const std::string& bone, double share);
   std::string setReactionThreshold(std::size_t k, double threshold);
+  /// How long character k's turn-ins last (s, >= 0; World::setCharacterTurnIn) in every run; "" or why
+  /// not (then nothing changes).
+  std::string setCharacterTurnIn(std::size_t k, double seconds);
   /// Pushes character k's root part forwards (along the way it faces) with `newtons` for 0.2 s in
   /// every run: the sandbox's shove, to watch it stagger or fall.
   std::string pushCharacter(std::size_t k, double newtons);

@@ -367,9 +367,9 @@ TEST_F(BadRecording, TruncatedAnywhere) {
 
 TEST_F(BadRecording, FromAnotherFormatVersion) {
   std::string other = bytes_;
-  other[8] = 2;  // the format, after the 8-byte magic: 2 held no character's support
+  other[8] = 3;  // the format, after the 8-byte magic: 3 held no character's turn-in
   expectRefused(other,
-                "a recording of format 2, from another version of the sandbox; this one reads format 3");
+                "a recording of format 3, from another version of the sandbox; this one reads format 4");
 }
 
 TEST_F(BadRecording, OfAnotherScene) {
