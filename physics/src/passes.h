@@ -116,6 +116,20 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                 const Workers* workers = nullptr);
 
+/// SolverSettings::keepSpin (stick_spin.cpp), for each body of `bodies` (`spin` indexed alike):
+/// `startStickSpin`, once a substep before its passes, sets each particle's lever m (x* - c*)
+/// and mass (`lever`, indexed by particle); `measureStickSpin`, before a pass over the
+/// sticks, each body's moment sum m (x*_i - c*) x x_i (h times its angular momentum about its centre);
+/// `restoreStickSpin`, after it, turns each body's particles rigidly about its centre back to that
+/// moment: what the sticks did to its angular momentum is undone and its momentum kept. A body with a
+/// pinned, frozen or sleeping particle, a rigid one, or one crushed flat, is left alone.
+void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<SpinLever> lever,
+                    std::span<StickSpin> spin);
+void measureStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const SpinLever> lever,
+                      std::span<StickSpin> spin);
+void restoreStickSpin(Particles& p, std::span<const Body> bodies, std::span<const SpinLever> lever,
+                      std::span<const StickSpin> spin);
+
 /// Projects every contact point below the ground plane n . x = height back onto it, writing the
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").
 /// `allowance`, if not empty, is per point the depth it may keep in this substep

@@ -266,6 +266,7 @@ void World::updateLayouts() {
   if (!layoutsStale_ && !constraints_.stale()) return;
   constraints_.layOut(bodies_, particles_.size());
   bodyLayout_.build(bodies_);
+  spinLever_.resize(particles_.size());  // every body's particles are in (keepSpin)
   contactBins_.indexGround(ground_.points());
   broadPhase_.indexFilters();
   layoutsStale_ = false;
@@ -497,8 +498,14 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       laps.lap(Stage::Links);
     }
     if (!constraints_.sticks().empty()) {
+      // The bodies' own sticks (and volumes) are internal: what they do to a body's angular
+      // momentum is undone (keepSpin). SHAKE's corrections keep it already.
+      const bool keepSpin = solver_.keepSpin && solver_.method != SolverMethod::Shake;
+      if (keepSpin && it == 0) detail::startStickSpin(particles_, bodies_, spinLever_, stickSpin_);
+      if (keepSpin) detail::measureStickSpin(particles_, bodies_, spinLever_, stickSpin_);
       tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake, workers());
       constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers());
+      if (keepSpin) detail::restoreStickSpin(particles_, bodies_, spinLever_, stickSpin_);
       laps.lap(Stage::Sticks);
     }
     // Joints after the boxes' own sticks, so each pass ends its constraints with the links

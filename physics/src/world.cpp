@@ -462,6 +462,7 @@ BodyId World::registerBody(const Body& body) {
   frames_.emplace_back();
   frameAsleep_.push_back(0);
   rigid_.emplace_back();
+  stickSpin_.emplace_back();
   guard_.addBody();
   broadPhase_.addBody();
   parting_.addBody();

@@ -117,6 +117,19 @@ struct RigidState {
   Vec3 spinChange{0.0};            ///< unit: rad/s; what the impulses added to spin
 };
 
+/// A particle body's scratch for keeping its angular momentum through its sticks' passes
+/// (SolverSettings::keepSpin), set at the start of each substep's passes.
+struct StickSpin {
+  bool kept = false;       ///< false: left alone (a particle pinned, frozen or asleep, or a rigid body)
+  Real inverseMass = 0.0;  ///< unit: 1/kg; of the whole body
+  Vec3 moment{0.0};        ///< unit: kg m^2; sum m s_i x x_i before the pass over the sticks
+};
+/// keepSpin's scratch per particle of a particle body: m (x* - c*) (unit: kg m) and m (kg).
+struct SpinLever {
+  Vec3 lever{0.0};
+  Real mass = 0.0;
+};
+
 /// The corners the tetra model's particles sit at: alternate corners, a regular tetrahedron for
 /// a cube. Their second moment is m diag(hx^2, hy^2, hz^2), three times a solid box's, as for the
 /// corners model; the ratios, hence a free body's tumbling, are a solid box's. Pulled in to

@@ -150,6 +150,11 @@ struct SolverSettings {
   /// plain scheme, where what the passes leave of a box's deformation turns into vibration.
   /// Ragdolls need it to come to rest; stacks creep with it (docs/physics.md), hence off.
   Real bodyDamping = 0.0;  ///< unitless, 0 to 1
+  /// Whether each particle body's own sticks keep its angular momentum: after every pass over the
+  /// sticks, the body is turned rigidly about its centre back to the angular momentum it had before
+  /// the pass. Gauss-Seidel, Jacobi and XPBD otherwise drag a spinning body's spin down (docs/physics.md,
+  /// "Keeping a body's spin through its sticks"); SHAKE keeps it already, and is left as it is.
+  bool keepSpin = false;
   /// Share of the normal speed a point keeps when it hits the ground or another box, reversed.
   /// 0 is Jakobsen's plain projection (the point stops); 1 bounces without loss. Impacts slower
   /// than kRestitutionMinSpeed, or than 2 |g| h (the speed a resting contact gains in a substep),

@@ -502,7 +502,9 @@ class World {
   ContactBins contactBins_;  // on two or more threads: the contact stages in two bins at once
   Parting parting_;
   TetraVolumes tetraVolumes_;  // the tetra bodies' volumes, kept or floored before each pass over the sticks
-  std::vector<RigidState> rigid_;                // per box: restitution's rigid-body view
+  std::vector<RigidState> rigid_;     // per box: restitution's rigid-body view
+  std::vector<StickSpin> stickSpin_;  // per box: keepSpin's scratch
+  std::vector<SpinLever> spinLever_;  // per particle: keepSpin's m (x* - c*) and m, sized with the layouts
   std::vector<std::uint8_t> movedByBoxContact_;  // per particle: moved by a box-box contact in the last step
 
   RigidBodies rigidBodies_;

@@ -1,0 +1,95 @@
+// Each particle body's angular momentum kept through its own sticks' passes
+// (SolverSettings::keepSpin; docs/physics.md, "Keeping a body's spin through its sticks").
+// Gauss-Seidel, Jacobi and XPBD move a stick's ends along its direction after the free move, not
+// along the one it had where the substep started. Verlet keeps sum m x* x x (x* the start of the
+// substep, x its end; h times the angular momentum), and a correction dx_i changes it by
+// m x*_i x dx_i: for a stick's pair of corrections, by (x*_a - x*_b) x k d, which is not zero once
+// the stick has turned in the substep. Summed over a spinning body it is a drag on its spin, though
+// the sticks are internal forces and should take none. The sticks' own change is measured around
+// each pass over them and undone by a rigid turn of the body's particles about its centre, which
+// keeps its momentum (Dahl and Bargteil 2019, "Global Momentum Preservation for Position-based
+// Dynamics", restore a whole body's momenta after its step; here only what the sticks did is
+// undone, since contacts and links change the angular momentum as they should).
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "passes.h"
+
+namespace phys::detail {
+
+// s_i = x*_i - c* is fixed for the substep (the passes never move x*), and sum m s_i = 0, so
+// sum m s_i x x_i is the moment about any point: the passes' changes of it are theirs alone.
+// Once a substep, before its passes: each particle's lever m s_i and mass, or the body left alone.
+void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<SpinLever> lever,
+                    std::span<StickSpin> spin) {
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const Body& b = bodies[k];
+    StickSpin& out = spin[k];
+    out.kept = false;
+    if (b.particleCount == 0) continue;  // a rigid body: no sticks
+    const ParticleId first = b.firstParticle, end = first + b.particleCount;
+    Real mass = 0.0;
+    Vec3 start(0.0);  // sum of m x*, from the first particle (digits far out)
+    bool free = true;
+    for (ParticleId i = first; i < end; ++i) {
+      if (p.inverseMass[i] == 0.0) free = false;  // pinned, frozen or asleep: not its own
+      if (!free) break;
+      const Real m = 1.0 / p.inverseMass[i];
+      mass += m;
+      start += m * (p.previous[i] - p.previous[first]);
+    }
+    if (!free) continue;
+    start = p.previous[first] + start / mass;
+    for (ParticleId i = first; i < end; ++i) {
+      const Real m = 1.0 / p.inverseMass[i];
+      lever[i] = {m * (p.previous[i] - start), m};
+    }
+    out.inverseMass = 1.0 / mass;
+    out.kept = true;
+  }
+}
+
+void measureStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const SpinLever> lever,
+                      std::span<StickSpin> spin) {
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (!spin[k].kept) continue;
+    const ParticleId first = bodies[k].firstParticle;
+    Vec3 sum(0.0);
+    for (ParticleId i = first; i < first + bodies[k].particleCount; ++i)
+      sum += glm::cross(lever[i].lever, p.position[i] - p.position[first]);
+    spin[k].moment = sum;
+  }
+}
+
+// A turn dw moves x_i by dw x r_i (r_i = x_i - c, which keeps sum m x) and changes the moment by
+// sum m s_i x (dw x r_i) = K dw, K = sum m ((s_i . r_i) 1 - r_i s_i^T): the inertia tensor but for
+// the substep's own turn between s and r. Since sum m s_i = 0, K is the same with r_i taken from
+// any point; from the first particle, so that one loop finds K, the moment and the centre. Solved
+// exactly, the moment is back to what it was before the pass, to round-off.
+void restoreStickSpin(Particles& p, std::span<const Body> bodies, std::span<const SpinLever> lever,
+                      std::span<const StickSpin> spin) {
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (!spin[k].kept) continue;
+    const Body& b = bodies[k];
+    const ParticleId first = b.firstParticle, end = first + b.particleCount;
+    Vec3 moment(0.0), centre(0.0);
+    glm::dmat3 turn(0.0);  // K
+    for (ParticleId i = first; i < end; ++i) {
+      const Vec3 r = p.position[i] - p.position[first];
+      const Vec3& ms = lever[i].lever;
+      moment += glm::cross(ms, r);
+      turn += glm::dot(ms, r) * glm::dmat3(1.0) - glm::outerProduct(r, ms);
+      centre += lever[i].mass * r;
+    }
+    const Real det = glm::determinant(turn);
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) continue;  // flat or not finite: left alone
+    const Vec3 dw = glm::inverse(turn) * (spin[k].moment - moment);
+    if (!std::isfinite(dw.x + dw.y + dw.z)) continue;
+    centre = p.position[first] + centre * spin[k].inverseMass;
+    for (ParticleId i = first; i < end; ++i) p.position[i] += glm::cross(dw, p.position[i] - centre);
+  }
+}
+
+}  // namespace phys::detail
