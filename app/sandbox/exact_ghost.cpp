@@ -82,6 +82,7 @@ std::vector<std::string> changedSettings(const phys::WorldSettings& w, const phy
   check(sameGravity(w, fw), "gravity");
   check(same(w.damping, fw.damping), "damping");
   check(sameGround(w, fw), "ground");
+  check(s.keepSpin == fs.keepSpin, "keep spin");
   check(same(s.contactSlop, fs.contactSlop), "contact slop");
   check(s.broadPhase == fs.broadPhase, "broad phase");
   check(sameParting(s.parting, fs.parting), "parting");

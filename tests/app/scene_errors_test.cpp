@@ -233,6 +233,8 @@ const BadScene kCases[] = {
      "name", "already"},
     {"body damping above 1", "<scene name='s'>\n<solver body-damping='1.5'/>\n</scene>", 2, "body-damping",
      "from 0 to 1"},
+    {"keep-spin not on or off", "<scene name='s'>\n<solver keep-spin='yes'/>\n</scene>", 2, "keep-spin",
+     "'yes' must be on or off"},
     {"settings twice", "<scene name='s'>\n<world/>\n<world/>\n</scene>", 3, "", "more than once"},
     {"text in an element", "<scene name='s'>\n<box pos='0 0 0'>big</box>\n</scene>", 2, "", "no child"},
     {"bad boolean", "<scene name='s'>\n<particle pos='0 0 0' pinned='yes'/>\n</scene>", 2, "pinned",

@@ -48,7 +48,7 @@ TEST(SceneFiles, WorldSolverGroundAndCamera) {
            "<world gravity=\"0 -3 0\" gravity-mode=\"point\" gravity-point=\"1 2 3\" "
            "gravity-strength=\"4\" damping=\"0.5\" bound=\"500\"/>"
            "<solver method=\"shake\" iterations=\"7\" substeps=\"4\" dt=\"0.01\" epsilon=\"0.02\" "
-           "slop=\"0.002\" body-damping=\"0.25\"/>"
+           "slop=\"0.002\" body-damping=\"0.25\" keep-spin=\"on\"/>"
            "<ground height=\"-1\" normal=\"0 2 0\" static-friction=\"0.9\" dynamic-friction=\"0.3\"/>"
            "<camera eye=\"1 2 3\" target=\"0 0 0\"/>");
   const phys::WorldSettings& w = s.world.worldSettings();
@@ -71,6 +71,7 @@ TEST(SceneFiles, WorldSolverGroundAndCamera) {
   EXPECT_EQ(v.featureEpsilon, 0.02);
   EXPECT_EQ(v.contactSlop, 0.002);
   EXPECT_EQ(v.bodyDamping, 0.25);
+  EXPECT_TRUE(v.keepSpin);
   EXPECT_EQ(s.camera.eye, glm::vec3(1, 2, 3));
   EXPECT_TRUE(s.camera.given);
   // Without <camera> the sandbox keeps its own view when the scene opens.

@@ -104,6 +104,7 @@ class SceneGenerator {
     if (chance(0.3)) e += attr("epsilon", num(real(0.0, 0.05)));
     if (chance(0.3)) e += attr("slop", num(real(0.0, 0.01)));
     if (chance(0.3)) e += attr("body-damping", num(real(0.0, 1.0)));
+    if (chance(0.3)) e += attr("keep-spin", chance(0.5) ? "on" : "off");
     if (chance(0.3)) e += attr("restitution", num(real(0.0, 1.0)));
     if (chance(0.3)) e += attr("compliance", num(real(0.0, 1e-3)));
     if (chance(0.3)) e += attr("depenetration-speed", chance(0.5) ? "none" : num(real(0.1, 10.0)));

@@ -70,6 +70,7 @@ void expectSameSettings(const phys::World& a, const phys::World& b, const std::s
   EXPECT_EQ(s.featureEpsilon, t.featureEpsilon) << what;
   EXPECT_EQ(s.contactSlop, t.contactSlop) << what;
   EXPECT_EQ(s.bodyDamping, t.bodyDamping) << what;
+  EXPECT_EQ(s.keepSpin, t.keepSpin) << what;
   EXPECT_EQ(s.restitution, t.restitution) << what;
   EXPECT_EQ(s.compliance, t.compliance) << what;
   EXPECT_EQ(s.maxDepenetrationSpeed, t.maxDepenetrationSpeed) << what;

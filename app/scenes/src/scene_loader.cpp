@@ -121,6 +121,10 @@ void readSolver(ElementReader& e, phys::SolverSettings& s) {
     if (*damping < 0.0 || *damping > 1.0) e.fail("body-damping", "must be from 0 to 1");
     s.bodyDamping = *damping;
   }
+  if (auto keep = e.text("keep-spin")) {
+    if (*keep != "on" && *keep != "off") e.fail("keep-spin", "'" + *keep + "' must be on or off");
+    s.keepSpin = *keep == "on";
+  }
   if (auto restitution = e.number("restitution", "")) {
     if (*restitution < 0.0 || *restitution > 1.0) e.fail("restitution", "must be from 0 to 1");
     s.restitution = *restitution;

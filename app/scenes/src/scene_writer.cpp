@@ -152,6 +152,7 @@ std::string solverElement(const phys::SolverSettings& s) {
       .number("epsilon", s.featureEpsilon)
       .number("slop", s.contactSlop)
       .number("body-damping", s.bodyDamping)
+      .text("keep-spin", s.keepSpin ? "on" : "off")
       .number("restitution", s.restitution)
       .number("compliance", s.compliance);
   if (std::isfinite(s.maxDepenetrationSpeed))
