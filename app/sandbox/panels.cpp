@@ -237,6 +237,9 @@ void settingsSection(Session& session, UiState& ui) {
   changed |= ImGui::Checkbox("joint projection", &s.jointProjection.enabled);
   ImGui::SameLine();
   greyWrapped("rigid joints closed exactly after each substep");
+  changed |= ImGui::Checkbox("keep spin", &s.keepSpin);
+  ImGui::SameLine();
+  greyWrapped("a particle body's own sticks keep its angular momentum (not under shake)");
   changed |= ImGui::Checkbox("sleep", &s.sleep.enabled);
   ImGui::SameLine();
   greyWrapped("islands at rest " + figure("%.1f", s.sleep.time) + " s under " +
