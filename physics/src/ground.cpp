@@ -7,21 +7,89 @@
 
 namespace phys::detail {
 
+namespace {
+
+// sum_k c_ak c_bk w_k over the particles two embedded points share: how far point a moves along n
+// when point b is pushed by a unit impulse (the weighted projection's coupling; K_aa is
+// embeddedWeight).
+Real sharedWeight(const std::vector<Real>& inverseMass, const Embedding& a, const Embedding& b) {
+  Real sum = 0.0;
+  for (int i = 0; i < a.count; ++i) {
+    for (int j = 0; j < b.count; ++j) {
+      if (a.particle[i] == b.particle[j]) sum += a.weight[i] * b.weight[j] * inverseMass[a.particle[i]];
+    }
+  }
+  return sum;
+}
+
+// A capsule's two ground points share their particles (a corners capsule's both lie on its box's
+// bottom face, a tetra capsule's on its 4 particles): pushed one after the other, the first push
+// lifted the other end's carriers too, so the second end was pushed less, every pass the same way,
+// and the box was pitched and sheared along its core; its sticks then moved both points along the
+// core in the later passes, whose pushes were too small for friction to stop (docs/physics.md,
+// "Capsules", "A capsule lying still"). Pushed as one block, the two impulses solve
+// K lambda = depth with K_ab = sharedWeight, each >= 0 (a 2-point complementarity problem: both
+// ends onto the plane, else the one whose push leaves the other above), and the two rise together.
+// Only while the capsule rests on the ground with its box whole (GroundContacts::placeCapsulePoints):
+// pushed so from its landing on, a thin capsule thrown down at 8 m/s, squashed through itself in a
+// step, stayed crushed flat and chattered 4 cm deep, where pushed one after the other it comes out
+// whole, inside out, and rests (CapsuleGround.AThinCapsuleThrownDownHardRestsAtItsRadiusEvenInsideOut).
+void collideCapsulePair(Particles& p, const GroundContact& a, const GroundContact& b, Real depthA,
+                        Real depthB, const Vec3& n, Real& pushA, Real& pushB) {
+  pushA = pushB = 0.0;
+  if (depthA <= 0.0 && depthB <= 0.0) return;
+  const Real kaa = embeddedWeight(p.inverseMass, a.point), kbb = embeddedWeight(p.inverseMass, b.point);
+  const Real kab = sharedWeight(p.inverseMass, a.point, b.point);
+  Real la = 0.0, lb = 0.0;
+  const Real det = kaa * kbb - kab * kab;
+  if (det > 1e-12 * kaa * kbb) {  // both ends on the plane after
+    la = (kbb * depthA - kab * depthB) / det;
+    lb = (kaa * depthB - kab * depthA) / det;
+  }
+  if (la < 0.0 || lb < 0.0 || (la == 0.0 && lb == 0.0)) {
+    // One alone: a's own push if it leaves b on or above the plane, else b's; with neither (the
+    // two carried alike, det 0), the deeper one's, which lifts the other as far.
+    la = lb = 0.0;
+    const bool aAlone = depthA > 0.0 && kaa > 0.0 && depthB - kab * depthA / kaa <= 0.0;
+    const bool bAlone = depthB > 0.0 && kbb > 0.0 && depthA - kab * depthB / kbb <= 0.0;
+    const bool aDeeper = depthA >= depthB;
+    if (aAlone || (!bAlone && aDeeper && kaa > 0.0))
+      la = depthA / kaa;
+    else if (kbb > 0.0)
+      lb = depthB / kbb;
+  }
+  if (la > 0.0) shiftEmbedded(p.position, p.inverseMass, a.point, la * n);
+  if (lb > 0.0) shiftEmbedded(p.position, p.inverseMass, b.point, lb * n);
+  // The push friction reads: what each point's own impulse alone would move it, as for a lone point.
+  pushA = la * kaa;
+  pushB = lb * kbb;
+}
+
+}  // namespace
+
 void collideGround(Particles& p, std::span<const GroundContact> contacts, const Vec3& n, Real height,
                    std::span<Real> normalPush, std::span<const Real> allowance,
                    std::span<const std::uint8_t> still, std::span<const std::uint8_t> far) {
+  // Depth along n below the plane, less what the point may keep.
+  auto depthOf = [&](std::size_t c) {
+    const Real allowed = allowance.empty() ? 0.0 : allowance[c];  // depth it may keep
+    return height + contacts[c].lift - glm::dot(n, embeddedPosition(p.position, contacts[c].point)) - allowed;
+  };
+  auto isFar = [&](std::size_t c) { return !far.empty() && far[c] != 0; };
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (!still.empty() && still[c] != 0) continue;
-    if (!far.empty() && far[c] != 0) {
-      normalPush[c] = 0.0;
+    // A capsule with an end far above the ground (standing) has one point to push: pushed alone.
+    if (contacts[c].pairedWithNext && c + 1 < contacts.size() && !isFar(c) && !isFar(c + 1)) {
+      collideCapsulePair(p, contacts[c], contacts[c + 1], depthOf(c), depthOf(c + 1), n, normalPush[c],
+                         normalPush[c + 1]);
+      ++c;
       continue;
     }
-    const Embedding& e = contacts[c].point;
-    const Real allowed = allowance.empty() ? 0.0 : allowance[c];  // depth it may keep
-    const Real depth = height + contacts[c].lift - glm::dot(n, embeddedPosition(p.position, e)) - allowed;
     normalPush[c] = 0.0;
+    if (isFar(c)) continue;
+    const Real depth = depthOf(c);
     if (depth <= 0.0) continue;
-    moveEmbedded(p.position, p.inverseMass, e, depth * n);
+    moveEmbedded(p.position, p.inverseMass, contacts[c].point, depth * n);
     normalPush[c] = depth;
   }
 }

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "particle_edges.h"
 #include "passes.h"
 
 namespace phys {
@@ -88,13 +89,30 @@ void GroundContacts::combineMaterials(const Material& ground) {
   for (GroundContact& c : points_) c.combined = combined(c, ground);
 }
 
+namespace {
+
+// Whether a particle capsule's box keeps more than half its volume right side out (the triple
+// product of its edges along x, y and z against its rest one's). With its approach slower than a
+// resting body's (placeCapsulePoints), it is what lets the ground push the two points as one block.
+bool whole(const Body& box, std::span<const Vec3> position) {
+  const Vec3* p = &position[box.firstParticle];
+  const Vec3 ex = detail::edgeSum(box.model, p, 0), ey = detail::edgeSum(box.model, p, 1),
+             ez = detail::edgeSum(box.model, p, 2);
+  const Vec3& h = box.halfExtents;
+  const Real rest = 512.0 * h.x * h.y * h.z;  // each axis's 4 edges sum to 8 half extents
+  return glm::dot(glm::cross(ex, ey), ez) > 0.5 * rest;
+}
+
+}  // namespace
+
 // Capsule ends one thread places at a time.
 constexpr std::size_t kEndsPerPiece = 1024;
 
 void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
-                                        std::span<const Vec3> position, const Vec3& groundNormal,
-                                        Real groundHeight, const Workers* workers) {
+                                        const Particles& particles, const Vec3& groundNormal,
+                                        Real groundHeight, Real restingMove, const Workers* workers) {
   const Vec3 n = groundNormal;
+  const std::span<const Vec3> position = particles.position;
   // Each end writes its own point alone: ranges of them at once on the step's threads.
   auto range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
@@ -112,6 +130,10 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
       far_[g.point] = far ? 1 : 0;
       if (far) continue;
       GroundContact& contact = points_[g.point];
+      if (g.end < 0.0) {
+        contact.pairedWithNext =
+            glm::dot(n, detail::meanParticleMove(particles, box)) > -restingMove && whole(box, position);
+      }
       const Obb e = detail::embeddingFrame(box, f, position);
       Vec3 moved(0.0);
       contact.point = detail::surfacePoint(box, e, lowest, &moved);

@@ -9,6 +9,7 @@
 #include "physics/body.h"
 #include "physics/collision.h"
 #include "physics/constraints.h"
+#include "physics/particles.h"
 #include "physics/workers.h"
 
 namespace phys {
@@ -39,10 +40,12 @@ class GroundContacts {
   /// An end further above the ground (at groundHeight along groundNormal) than the capsule's half
   /// length keeps the point it had, which no pass pushes from there, and is marked far. `position`
   /// (the particles') tells a capsule turned inside out, whose points go on the face its particles
-  /// lie on, not the one its frame names (see the definition).
+  /// lie on, not the one its frame names (see the definition). A capsule resting on the ground (its
+  /// particles' mean move of this substep no more than `restingMove` towards it, and its box whole)
+  /// has its two points paired, pushed as one block (GroundContact::pairedWithNext).
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
-                          std::span<const Vec3> position, const Vec3& groundNormal, Real groundHeight,
-                          const Workers* workers);
+                          const Particles& particles, const Vec3& groundNormal, Real groundHeight,
+                          Real restingMove, const Workers* workers);
   /// Per point, 1 for a capsule's end that placeCapsulePoints left far above the ground in this
   /// substep: the collision pass skips it (no push) as it would find it above the ground. Its depth at
   /// x* is still measured: the parting reads it.
