@@ -239,7 +239,7 @@ void settingsSection(Session& session, UiState& ui) {
   greyWrapped("rigid joints closed exactly after each substep");
   changed |= ImGui::Checkbox("keep spin", &s.keepSpin);
   ImGui::SameLine();
-  greyWrapped("a particle body's own sticks keep its angular momentum (not under shake)");
+  greyWrapped("its own sticks keep a body's spin");
   changed |= ImGui::Checkbox("sleep", &s.sleep.enabled);
   ImGui::SameLine();
   greyWrapped("islands at rest " + figure("%.1f", s.sleep.time) + " s under " +
