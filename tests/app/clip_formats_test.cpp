@@ -911,6 +911,45 @@ TEST(ClipFormats, BinaryFbxKeysOutOfTimeOrderAreRefusedNamingTheCurve) {
   }
 }
 
+// assimp 5.2 copies each model property it does not read into the node's metadata and aborts the
+// program (an assert) on one of a type it has no metadata for, KTime or ColorAndAlpha: the fuzzer
+// found it. Refused naming the property, at its line in text and its byte in binary; the same
+// properties elsewhere (the global settings' KTime) still load.
+TEST(ClipFormats, AnFbxModelPropertyAssimpCannotKeepIsRefused) {
+  const testing_app::TempFolder dir;
+  const std::string fbx = legFile(dir, "fbxa", "fbx");
+  const std::size_t model = fbx.find("\"Model::");
+  ASSERT_NE(model, std::string::npos);
+  const std::size_t table = fbx.find("Properties70:  {\n", model);
+  ASSERT_NE(table, std::string::npos);
+  const std::size_t at = table + std::string("Properties70:  {\n").size();
+  const std::size_t line = static_cast<std::size_t>(std::count(fbx.begin(), fbx.begin() + at, '\n')) + 1;
+  for (const std::string type : {"KTime", "ColorAndAlpha"}) {
+    std::string bad = fbx;
+    bad.insert(at, "\t\t\tP: \"Odd\", \"" + type + "\", \"\", \"\", 0, 0, 0, 0\n");
+    const std::string e = refusal(bad, "odd.fbx");
+    EXPECT_TRUE(has(e, "odd.fbx:" + std::to_string(line) + ": the model property \"Odd\" of type " + type +
+                           ": assimp 5.2 stops the program"))
+        << e;
+  }
+  EXPECT_TRUE(has(fbx, "\"KTime\"")) << "the file has KTime properties outside its models";
+  EXPECT_EQ(refusal(fbx, "leg.fbx"), "loaded");
+
+  const FbxRecord property{"P",
+                           stringProperty("Odd") + stringProperty("KTime") + stringProperty("Time") +
+                               stringProperty("") + longProperty(0),
+                           5,
+                           {}};
+  const FbxRecord binaryModel{
+      "Model",
+      longProperty(10) + stringProperty(std::string("knee\0\1Model", 11)) + stringProperty("LimbNode"),
+      3,
+      {{"Properties70", "", 0, {property}}}};
+  const std::string e = refusal(binaryFbx({{"Objects", "", 0, {binaryModel}}}), "odd.fbx");
+  EXPECT_TRUE(has(e, "odd.fbx: node record 'P' at byte ")) << e;
+  EXPECT_TRUE(has(e, ": the model property \"Odd\" of type KTime")) << e;
+}
+
 // assimp converts an FBX model under each model it is linked to, recursing once a level: a model
 // linked under a model below it overflowed the stack, and models each linked twice under the next
 // unfold to millions. Refused at the link, with its line in text and its byte in binary.

@@ -264,6 +264,11 @@ class BinaryFbx {
       curves_.keyTimes(curveId_, *properties[0].int64s, 0,
                        "node record 'KeyTime' at byte " + std::to_string(r.at) + ": ");
     }
+    if (r.name == "P" && open.size() == 3 && open[0].name == "Objects" && open[1].name == "Model" &&
+        open[2].name == "Properties70" && is(0, 'S') && is(1, 'S')) {
+      if (const std::string why = modelPropertyProblem(properties[0].text, properties[1].text); !why.empty())
+        fail(r, why);
+    }
     if (r.name == "AnimationCurve" && under(1, "Objects") && is(0, 'L')) curveId_ = properties[0].integer;
   }
 

@@ -555,6 +555,17 @@ std::string_view unquoted(std::string_view word) {
   return word;
 }
 
+// A text FBX's model property (`P: "name", "type", ...` under Objects, Model, Properties70) that
+// assimp cannot take, refused at `line`.
+void checkFbxModelProperty(const std::vector<std::string_view>& path, std::string_view key, std::size_t line,
+                           const std::vector<std::string_view>& values, const std::string& name) {
+  if (key != "P:" || values.size() < 2 || path.size() != 3 || path[0] != "Objects:" || path[1] != "Model:" ||
+      path[2] != "Properties70:")
+    return;
+  if (const std::string why = modelPropertyProblem(unquoted(values[0]), unquoted(values[1])); !why.empty())
+    throw ClipError(name, line, why);
+}
+
 // A text FBX's models and connections, for FbxCurves: `Model: id, "Model::name", ...` under
 // Objects, `C: "OO", source, target` and `C: "OP", source, target, "property"` under Connections,
 // the key at `line`.
@@ -573,6 +584,12 @@ void gatherFbxLink(const std::vector<std::string_view>& path, std::string_view k
 }
 
 }  // namespace
+
+std::string modelPropertyProblem(std::string_view property, std::string_view type) {
+  if (type != "KTime" && type != "ColorAndAlpha") return "";
+  return "the model property \"" + std::string(property) + "\" of type " + std::string(type) +
+         ": assimp 5.2 stops the program on a model's property of this type";
+}
 
 std::optional<std::uint64_t> wholeNumber(std::string_view word) {
   std::uint64_t n = 0;
@@ -637,6 +654,7 @@ void checkFbx(std::string_view content, const std::string& name) {
   for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next()) {
     if (word == "{") {
       gatherFbxLink(path, key, keyLine, values, curves);
+      checkFbxModelProperty(path, key, keyLine, values, name);
       if (path.size() == 1 && path[0] == "Objects:" && key == "AnimationCurve:" && !values.empty())
         curve = integer(values[0]).value_or(0);
       path.push_back(key);
@@ -645,6 +663,7 @@ void checkFbx(std::string_view content, const std::string& name) {
         throw ClipError(name, tokens.line(), tooDeep("braces"));
     } else if (word == "}") {
       gatherFbxLink(path, key, keyLine, values, curves);
+      checkFbxModelProperty(path, key, keyLine, values, name);
       if (!path.empty()) path.pop_back();
       key = {};
       values.clear();
@@ -670,6 +689,7 @@ void checkFbx(std::string_view content, const std::string& name) {
       if (times) curves.keyTimes(curve, integers, line, "");
     } else if (word.ends_with(':') && !word.starts_with('"')) {
       gatherFbxLink(path, key, keyLine, values, curves);
+      checkFbxModelProperty(path, key, keyLine, values, name);
       key = word;
       keyLine = tokens.line();
       values.clear();

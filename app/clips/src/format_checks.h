@@ -68,6 +68,12 @@ void checkBinaryFbx(std::string_view content, const std::string& name);
 /// whole number > 0. A binary or compressed .x is refused.
 void checkX(std::string_view content, const std::string& name);
 
+/// Why a model's property `property` of FBX type `type` (a `P` under a Model's Properties70) cannot
+/// be read, or "" if it can. assimp 5.2 copies each model property it does not itself read into the
+/// node's metadata, and stops the program (an assert, abort()) on one of a type it has no metadata
+/// for: KTime and ColorAndAlpha.
+std::string modelPropertyProblem(std::string_view property, std::string_view type);
+
 /// An FBX's models, the links between them and its animation curves, gathered from either form of
 /// the file. A model that is its own ancestor, or models that unfold to more than kMaxUnfoldedNodes,
 /// are refused: assimp converts a model once under each model it is linked to, recursing once a
