@@ -480,9 +480,7 @@ void holdAt(const RigidPassInput& in, const RigidContact& c, PatchAnchor& anchor
 // on a box at 1 x 1, 0.59 mm low at 1/60 s and 7.9 mm at 0.1 s; at 3 passes, 8 cm and 20 degrees
 // from level at 0.2 s (RigidBody.ACapsuleLyingOnABoxRestsAtItsRadiusAtAnyStep, docs/physics.md).
 bool solvesAsBlock(const RigidContact& first, std::size_t count) {
-  const bool capsuleLying =
-      (first.sideA == ContactSide::Ground && first.capsuleEnd != 0) || first.capsuleLying;
-  return (count >= 3 || (count == 2 && capsuleLying)) && count <= kMostBlockPoints &&
+  return (count >= 3 || (count == 2 && first.capsuleLying)) && count <= kMostBlockPoints &&
          first.sideA != ContactSide::Particles && first.sideB != ContactSide::Particles;
 }
 

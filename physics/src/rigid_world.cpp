@@ -60,6 +60,7 @@ void World::collectRigidGround() {
         if (glm::dot(n, x + q * lowest) - world_.groundHeight >= reach) continue;
         c.localB = lowest;
         c.capsuleEnd = static_cast<std::int8_t>(end);
+        c.capsuleLying = true;  // with the other end's point, if it is near too, one block
         rigidGround_.push_back(c);
       }
       continue;

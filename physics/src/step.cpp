@@ -487,6 +487,9 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   GroundContactState& groundState = ground_.state();
   const bool contacts = ground || !bodyContacts.empty();
   const bool binned = contactBins_.dealt();  // only ever with workers (dealContacts)
+  // The bodies' own sticks (and volumes) are internal: what they do to a body's angular momentum
+  // is undone (keepSpin). SHAKE's corrections keep it already.
+  const bool keepSpin = solver_.keepSpin && solver_.method != SolverMethod::Shake;
   detail::StageLaps laps(profile_);
   for (int it = 0; it < solver_.iterations; ++it) {
     if (!constraints_.particleJoints().empty() || !constraints_.bodyDrives().empty()) {
@@ -501,9 +504,6 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       laps.lap(Stage::Links);
     }
     if (!constraints_.sticks().empty()) {
-      // The bodies' own sticks (and volumes) are internal: what they do to a body's angular
-      // momentum is undone (keepSpin). SHAKE's corrections keep it already.
-      const bool keepSpin = solver_.keepSpin && solver_.method != SolverMethod::Shake;
       if (keepSpin && it == 0) detail::startStickSpin(particles_, bodies_, spinLever_, stickSpin_);
       if (keepSpin) detail::measureStickSpin(particles_, bodies_, spinLever_, stickSpin_);
       tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake, workers());

@@ -13,6 +13,7 @@
 #include "passes.h"
 #include "physics/collision.h"
 #include "physics/world.h"
+#include "test_util.h"
 
 namespace {
 
@@ -476,11 +477,7 @@ TEST(CapsuleGround, ALyingCornersCapsuleStaysWhereItWasLaid) {
   for (const Setting s :
        {Setting{phys::SolverMethod::GaussSeidel, 3, 1}, Setting{phys::SolverMethod::GaussSeidel, 10, 1},
         Setting{phys::SolverMethod::Xpbd, 3, 1}, Setting{phys::SolverMethod::Xpbd, 10, 1}}) {
-    phys::SolverSettings solver;
-    solver.method = s.method;
-    solver.iterations = s.iterations;
-    solver.substeps = s.substeps;
-    phys::World world({}, solver);
+    phys::World world({}, testing_phys::solver(s.method, s.iterations, s.substeps));
     phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
     d.orientation = kLying;
     const phys::BodyId id = world.addBody(d);

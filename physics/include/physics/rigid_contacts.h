@@ -38,8 +38,9 @@ struct RigidContact {
   /// A capsule's point on the ground follows the lowest point of one end sphere (-1 or +1 along
   /// the body's y axis) as the capsule turns; 0 for a point fixed in its body.
   std::int8_t capsuleEnd = 0;
-  /// One of the two points of a capsule lying along another rigid body (its core along a face or a
-  /// core): the pair's patch is solved as one block, as a capsule's two ground points are.
+  /// One of the two points of a capsule lying along the ground (its two ends' lowest points) or
+  /// along another rigid body (its core along a face or a core): such a patch of two is solved as
+  /// one block (solvesAsBlock in rigid_contacts.cpp).
   bool capsuleLying = false;
 };
 
