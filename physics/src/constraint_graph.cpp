@@ -112,18 +112,18 @@ void ConstraintGraph::clearStill() {
 }
 
 void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h,
-                                  Real compliance, const Workers* workers) {
+                                  Real compliance, const Workers* workers, std::span<const SpinLever> spin) {
   switch (method) {
     case SolverMethod::GaussSeidel:
-      detail::relaxGaussSeidel(particles, sticks_, stickLayout_, workers);
+      detail::relaxGaussSeidel(particles, sticks_, stickLayout_, workers, spin);
       break;
     case SolverMethod::Jacobi:
-      detail::relaxJacobi(particles, sticks_, stickLayout_, degree_, jacobiDelta_, workers);
+      detail::relaxJacobi(particles, sticks_, stickLayout_, degree_, jacobiDelta_, workers, spin);
       break;
     case SolverMethod::Xpbd:
       // The multipliers accumulate over the substep's passes (Macklin et al. 2016).
       if (firstPass) std::fill(lambda_.begin(), lambda_.end(), 0.0);
-      detail::relaxXpbd(particles, sticks_, stickLayout_, lambda_, h, compliance, workers);
+      detail::relaxXpbd(particles, sticks_, stickLayout_, lambda_, h, compliance, workers, spin);
       break;
     case SolverMethod::Shake:
       detail::relaxShake(particles, sticks_, stickLayout_, workers);

@@ -96,20 +96,25 @@ inline Real stickTarget(const Stick& s, Real length) {
 // creation order, faster.
 /// Jakobsen: each stick in turn, along its current direction, in proportion to inverse mass.
 /// `workers`, if given, relax the lane groups in pieces at once (they share no particle); the blocks
-/// and runs follow on the calling thread, as they would in one loop.
+/// and runs follow on the calling thread, as they would in one loop. `spin`, if not empty
+/// (keepSpin: startStickSpin's levers), keeps each lane's and block's body's moment through its
+/// sticks (keepStickMoment); the runs' bodies are the caller's (restoreStickSpin). Jacobi and XPBD
+/// take it alike.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                      const Workers* workers = nullptr);
+                      const Workers* workers = nullptr, std::span<const SpinLever> spin = {});
 /// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
 /// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
 /// particle. `workers` as for Gauss-Seidel: a lane group's bodies sum and apply their own.
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                 std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers = nullptr);
+                 std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers = nullptr,
+                 std::span<const SpinLever> spin = {});
 /// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
 /// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
 /// zeroed at the start of each substep.
 /// `compliance` (m/N, SolverSettings::compliance) is added to every stick's own.
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
-               Real h, Real compliance, const Workers* workers = nullptr);
+               Real h, Real compliance, const Workers* workers = nullptr,
+               std::span<const SpinLever> spin = {});
 /// SHAKE (Ryckaert, Ciccotti, Berendsen 1977): each stick moved along its direction at the
 /// start of the substep (x* after integration), by the root of a scalar quadratic. `workers` as
 /// for Gauss-Seidel.
@@ -118,17 +123,24 @@ void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& 
 
 /// SolverSettings::keepSpin (stick_spin.cpp), for each body of `bodies` (`spin` indexed alike):
 /// `startStickSpin`, once a substep before its passes, sets each particle's lever m (x* - c*)
-/// and mass (`lever`, indexed by particle); `measureStickSpin`, before a pass over the
-/// sticks, each body's moment sum m (x*_i - c*) x x_i (h times its angular momentum about its centre);
-/// `restoreStickSpin`, after it, turns each body's particles rigidly about its centre back to that
-/// moment: what the sticks did to its angular momentum is undone and its momentum kept. A body with a
-/// pinned, frozen or sleeping particle, a rigid one, or one crushed flat, is left alone.
+/// and mass (`lever`, indexed by particle; zeros for a body left alone). A pass keeps a body's
+/// moment sum m (x*_i - c*) x x_i (h times its angular momentum about its centre) through its sticks
+/// by `stickMoment` before them and `keepStickMoment` after, which turns the body's particles
+/// rigidly about its centre back to that moment: what the sticks did to its angular momentum is
+/// undone and its momentum kept. The lanes and blocks do it on their copies of a body (relax.cpp);
+/// `measureStickSpin` and `restoreStickSpin` do it around a whole pass for the bodies `which` lists
+/// (StickLayout::runBodies: those relaxed in the world's arrays). A body with a pinned, frozen or
+/// sleeping particle, a rigid one, or one crushed flat, is left alone.
 void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<SpinLever> lever,
                     std::span<StickSpin> spin);
-void measureStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const SpinLever> lever,
-                      std::span<StickSpin> spin);
-void restoreStickSpin(Particles& p, std::span<const Body> bodies, std::span<const SpinLever> lever,
-                      std::span<const StickSpin> spin);
+/// sum lever_i x (x_i - x_0) over a body's `count` particles.
+Vec3 stickMoment(const Vec3* x, const SpinLever* lever, int count);
+/// Turns the body's `count` particles about their centre back to the moment `before`.
+void keepStickMoment(Vec3* x, const SpinLever* lever, int count, const Vec3& before);
+void measureStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,
+                      std::span<const SpinLever> lever, std::span<StickSpin> spin);
+void restoreStickSpin(Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,
+                      std::span<const SpinLever> lever, std::span<const StickSpin> spin);
 
 /// Projects every contact point below the ground plane n . x = height back onto it, writing the
 /// distance moved into push (0 for a point not moved; friction needs it: Jakobsen, "Friction").

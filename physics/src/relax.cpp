@@ -50,9 +50,11 @@ inline void project(const View& v, std::uint32_t a, std::uint32_t b, const Stick
 // Runs `relaxStick(view, a, b, stick, index)` over every stick outside the lane groups (which
 // relax_lanes.h relaxes) in the layout's order: each block copied into locals (its previous
 // positions too when SHAKE needs them), then the runs.
+// `spin`, if not empty (keepSpin), keeps each block's moment through its sticks; the runs' bodies
+// are the caller's.
 template <bool kPrevious, class RelaxStick>
 void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                  RelaxStick relaxStick) {
+                  std::span<const SpinLever> spin, RelaxStick relaxStick) {
   Vec3 x[kMaxBlockParticles], previous[kMaxBlockParticles];
   Real w[kMaxBlockParticles];
   const View local{x, kPrevious ? previous : nullptr, w};
@@ -63,10 +65,12 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
       if constexpr (kPrevious) previous[i] = p.previous[first + i];
       w[i] = p.inverseMass[first + i];
     }
+    const Vec3 moment = spin.empty() ? Vec3(0.0) : stickMoment(x, &spin[first], block.particleCount);
     for (std::uint32_t k = block.firstStick; k < block.firstStick + block.stickCount; ++k) {
       const Stick& s = sticks[k];
       relaxStick(local, s.a - first, s.b - first, s, k);
     }
+    if (!spin.empty()) keepStickMoment(x, &spin[first], block.particleCount, moment);
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
   const View world{p.position.data(), kPrevious ? p.previous.data() : nullptr, p.inverseMass.data()};
@@ -76,14 +80,22 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
   }
 }
 
+// The lane arguments, with keepSpin's levers when `spin` has them.
+LaneArguments keepingSpin(Particles& p, const StickLayout& layout, std::span<const SpinLever> spin) {
+  LaneArguments a = laneArguments(p, layout);
+  if (!spin.empty()) a.spinLever = reinterpret_cast<const Real*>(spin.data());
+  return a;
+}
+
 }  // namespace
 
 // Jakobsen 2001, "Advanced Character Physics", stick constraint, with the sign of the printed
 // listing corrected (REFERENCES.md): s = (|d| - r) / (|d| (w1 + w2)); x1 += w1 s d; x2 -= w2 s d.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                      const Workers* workers) {
-  inLanePieces(laneArguments(p, layout), workers, [](const LaneArguments& a) { relaxGaussSeidelLanes(a); });
-  forEachStick<false>(p, sticks, layout,
+                      const Workers* workers, std::span<const SpinLever> spin) {
+  inLanePieces(keepingSpin(p, layout, spin), workers,
+               [](const LaneArguments& a) { relaxGaussSeidelLanes(a); });
+  forEachStick<false>(p, sticks, layout, spin,
                       [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
                         StickState m;
                         if (!measure(v, a, b, s, m) || m.length == 0.0) return;  // no direction at 0
@@ -98,7 +110,8 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLa
 // from overshooting (Müller et al. 2007 discuss both orders). A block shares no particle with
 // any other stick, so it can sum and apply its own corrections before the next block reads.
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                 std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers) {
+                 std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers,
+                 std::span<const SpinLever> spin) {
   auto correction = [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, Real scale,
                         Vec3* sum) {
     StickState m;
@@ -107,7 +120,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
     sum[a] += (m.w1 * k) * m.d;
     sum[b] -= (m.w2 * k) * m.d;
   };
-  LaneArguments lanes = laneArguments(p, layout);
+  LaneArguments lanes = keepingSpin(p, layout, spin);
   lanes.degree = degree.data();
   inLanePieces(lanes, workers, [](const LaneArguments& a) { relaxJacobiLanes(a); });
   for (const StickBlock& block : layout.blocks()) {
@@ -120,13 +133,16 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
       sum[i] = Vec3(0.0);
     }
     const View local{x, nullptr, w};
+    const Vec3 moment = spin.empty() ? Vec3(0.0) : stickMoment(x, &spin[first], block.particleCount);
     for (std::uint32_t k = block.firstStick; k < block.firstStick + block.stickCount; ++k) {
       const Stick& s = sticks[k];
       correction(local, s.a - first, s.b - first, s, std::max(degree[s.a], degree[s.b]), sum);
     }
     for (int i = 0; i < block.particleCount; ++i) {
-      if (w[i] != 0.0) p.position[first + i] = x[i] + sum[i];
+      if (w[i] != 0.0) x[i] += sum[i];
     }
+    if (!spin.empty()) keepStickMoment(x, &spin[first], block.particleCount, moment);
+    for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
   if (layout.runs().empty()) return;
   std::fill(delta.begin(), delta.end(), Vec3(0.0));
@@ -147,14 +163,14 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
 // a~ = compliance / h^2; gradient of C = |x2 - x1| - r is -n for x1 and +n for x2. The world's
 // compliance adds to each stick's: compliances in series add, as springs' inverse stiffnesses do.
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
-               Real h, Real compliance, const Workers* workers) {
+               Real h, Real compliance, const Workers* workers, std::span<const SpinLever> spin) {
   const Real inverseH2 = 1.0 / (h * h);
-  LaneArguments lanes = laneArguments(p, layout);
+  LaneArguments lanes = keepingSpin(p, layout, spin);
   lanes.lambda = lambda.data();
   lanes.inverseH2 = inverseH2;
   lanes.compliance = compliance;
   inLanePieces(lanes, workers, [](const LaneArguments& a) { relaxXpbdLanes(a); });
-  forEachStick<false>(p, sticks, layout,
+  forEachStick<false>(p, sticks, layout, spin,
                       [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t c) {
                         StickState m;
                         if (!measure(v, a, b, s, m) || m.length == 0.0) return;
@@ -175,7 +191,7 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                 const Workers* workers) {
   inLanePieces(laneArguments(p, layout), workers, [](const LaneArguments& a) { relaxShakeLanes(a); });
-  forEachStick<true>(p, sticks, layout,
+  forEachStick<true>(p, sticks, layout, {},
                      [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
                        StickState m;
                        if (!measure(v, a, b, s, m)) return;

@@ -30,6 +30,9 @@ struct LaneArguments {
   const Real* previous = nullptr;       ///< SHAKE: x* of each particle, x, y, z one after the other
   const Real* degree = nullptr;         ///< Jacobi: per particle, the number of sticks at it
   const std::uint8_t* still = nullptr;  ///< per group, 1 to skip it (StickLayout::still); or none
+  /// keepSpin (Gauss-Seidel, XPBD, Jacobi): per particle its SpinLever, m (x* - c*) then m, four
+  /// doubles; each lane's body is turned back to the moment it had before its sticks. Or none.
+  const Real* spinLever = nullptr;
 };
 
 /// The arguments for the world's particles and a layout (XPBD's and Jacobi's numbers not set).

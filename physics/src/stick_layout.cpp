@@ -49,6 +49,7 @@ void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> box
   }
   blocks_.clear();
   runs_.clear();
+  runBodies_.clear();
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     const Body& box = boxes[b];
     if (box.model == BodyModel::Rigid) continue;  // no particles, no sticks
@@ -57,6 +58,7 @@ void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> box
                          static_cast<std::uint16_t>(box.stickCount)});
     } else {
       for (int k = 0; k < box.stickCount; ++k) stickOwner[box.firstStick + k] = kNone;
+      runBodies_.push_back(static_cast<std::uint32_t>(b));
     }
   }
   for (std::size_t k = 0; k < sticks.size(); ++k) {

@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "passes.h"
+
 namespace phys {
 namespace {
 
@@ -56,8 +58,11 @@ void TetraVolumes::addBody(const Body& body) {
 // A Newton step of C = 6 (V - target) along the gradient, in proportion to inverse mass. Along the
 // moving gradient, SHAKE's tumbler of stability/dzhanibekov.xml lost 41% of its energy in 12 s;
 // along the start's, as SHAKE moves its sticks, it keeps it.
-void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart) {
+void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart,
+                           std::span<const SpinLever> spin) {
   const std::array<Vec3, 4> x = tetraOf(p.position, k.first);
+  Vec3* at = &p.position[k.first];
+  const Vec3 moment = spin.empty() ? Vec3(0.0) : detail::stickMoment(at, &spin[k.first], 4);
   const std::array<Vec3, 4> gradient = volumeGradient(x);
   const std::array<Vec3, 4> direction = alongStart ? volumeGradient(tetraOf(p.previous, k.first)) : gradient;
   Real denominator = 0.0;
@@ -71,6 +76,7 @@ void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bo
     const Real w = p.inverseMass[k.first + j];
     if (w != 0.0) p.position[k.first + j] += lambda * w * direction[j];
   }
+  if (!spin.empty()) detail::keepStickMoment(at, &spin[k.first], 4, moment);
 }
 
 // The sticks cannot tell a tetrahedron from its mirror image, so a deep landing's contacts, which
@@ -78,15 +84,16 @@ void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bo
 // can pass it through its base; the sticks then hold it inside out, squashed or whole. So a body
 // that is not flat and has fallen under kVolumeFloor of its volume, signed, is given its volume back:
 // a floor, not its volume kept, so that no body the passes keep whole is moved.
-void TetraVolumes::keep(Particles& p, bool alongStart, const Workers* workers) const {
-  for (const Kept& k : kept_) project(p, k, k.restSixVolume, alongStart);
+void TetraVolumes::keep(Particles& p, bool alongStart, const Workers* workers,
+                        std::span<const SpinLever> spin) const {
+  for (const Kept& k : kept_) project(p, k, k.restSixVolume, alongStart, spin);
   auto floors = [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Kept& k = floored_[i];
       const Real floor = kVolumeFloor * k.restSixVolume;
       const Real now = sixVolume(p.position[k.first], p.position[k.first + 1], p.position[k.first + 2],
                                  p.position[k.first + 3]);
-      if (now / floor < 1.0) project(p, k, k.restSixVolume, alongStart);
+      if (now / floor < 1.0) project(p, k, k.restSixVolume, alongStart, spin);
     }
   };
   forEachRange(workers, floored_.size(), kFloorsPerPiece, floors);

@@ -120,11 +120,11 @@ struct RigidState {
 /// A particle body's scratch for keeping its angular momentum through its sticks' passes
 /// (SolverSettings::keepSpin), set at the start of each substep's passes.
 struct StickSpin {
-  bool kept = false;       ///< false: left alone (a particle pinned, frozen or asleep, or a rigid body)
-  Real inverseMass = 0.0;  ///< unit: 1/kg; of the whole body
-  Vec3 moment{0.0};        ///< unit: kg m^2; sum m s_i x x_i before the pass over the sticks
+  bool kept = false;  ///< false: left alone (a particle pinned, frozen or asleep, or a rigid body)
+  Vec3 moment{0.0};   ///< unit: kg m^2; sum m s_i x x_i before the pass over the sticks
 };
-/// keepSpin's scratch per particle of a particle body: m (x* - c*) (unit: kg m) and m (kg).
+/// keepSpin's scratch per particle of a particle body: m (x* - c*) (unit: kg m) and m (kg); zeros
+/// for a body left alone. Four doubles, which the lane kernels read as such (relax_lanes.cpp).
 struct SpinLever {
   Vec3 lever{0.0};
   Real mass = 0.0;

@@ -97,8 +97,12 @@ class ConstraintGraph {
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
   /// multipliers). `h` (s) and `compliance` (m/N) are XPBD's.
   /// `workers`, if given, run the lane groups of Gauss-Seidel and XPBD in pieces at once.
+  /// `spin`, if not empty (keepSpin's levers, one per particle), keeps the moment of each body laid
+  /// out as a block or in lanes through its sticks; the run bodies' (stickRunBodies) are the caller's.
   void relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h, Real compliance,
-                   const Workers* workers = nullptr);
+                   const Workers* workers = nullptr, std::span<const SpinLever> spin = {});
+  /// StickLayout::runBodies.
+  std::span<const std::uint32_t> stickRunBodies() const { return stickLayout_.runBodies(); }
   /// Each link's slack: the violation at x* it may keep this substep, less `step` (m). Returns the
   /// slack, empty when every link is within its bounds.
   std::span<const Real> shrinkLinkSlack(const Particles& particles, Real step);

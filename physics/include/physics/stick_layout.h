@@ -73,6 +73,10 @@ class StickLayout {
   std::span<const LocalStick> localSticks() const { return localSticks_; }
   /// Per lane group and stick: kStickLanes min lengths, then max lengths, then compliances.
   std::span<const Real> laneValues() const { return laneValues_; }
+  /// The particle bodies (indices into build's `boxes`) not laid out as blocks or lanes: their
+  /// sticks are in the runs, relaxed in the world's arrays, so keepSpin brackets them around the
+  /// whole pass (restoreStickSpin) rather than in the lanes. Empty for inOrder.
+  std::span<const std::uint32_t> runBodies() const { return runBodies_; }
   /// Per lane group, 1 when every particle of its lanes has inverse mass 0 in this step (asleep,
   /// pinned or frozen), so that the passes skip it: they would move none of them. Empty unless
   /// markStill was called since the last clearStill.
@@ -89,6 +93,7 @@ class StickLayout {
   std::vector<StickRun> runs_;
   std::vector<LocalStick> localSticks_;
   std::vector<Real> laneValues_;
+  std::vector<std::uint32_t> runBodies_;
   std::vector<std::uint8_t> still_;
 };
 
