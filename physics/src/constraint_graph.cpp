@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "passes.h"
+#include "relax_lanes.h"
 
 namespace phys {
 
@@ -96,6 +97,7 @@ std::vector<std::size_t> cutFrictions(std::span<const JointFriction> frictions, 
 
 void ConstraintGraph::layOut(std::span<const Body> bodies, std::size_t particleCount) {
   stickLayout_.build(sticks_, bodies, particleCount);
+  laneSpin_.resize(stickLayout_.lanes().size() * detail::kLaneSpinValues);
   linkLayout_.build(links_, particleCount);
   frictionPieces_ = cutFrictions(jointFrictions_, spins_.size());
   stale_ = false;
@@ -112,7 +114,9 @@ void ConstraintGraph::clearStill() {
 }
 
 void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h,
-                                  Real compliance, const Workers* workers, std::span<const SpinLever> spin) {
+                                  Real compliance, const Workers* workers, bool keepSpin) {
+  detail::SpinPass pass{laneSpin_, firstPass};
+  const detail::SpinPass* spin = keepSpin ? &pass : nullptr;
   switch (method) {
     case SolverMethod::GaussSeidel:
       detail::relaxGaussSeidel(particles, sticks_, stickLayout_, workers, spin);

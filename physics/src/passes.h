@@ -92,51 +92,59 @@ inline Real stickTarget(const Stick& s, Real length) {
   return -1.0;
 }
 
+/// keepSpin's part in a pass over the sticks: `laneLevers`, kLaneSpinValues (relax_lanes.h) per
+/// lane group of the layout, the lanes' levers, computed on the substep's `firstPass` and read on
+/// the others.
+struct SpinPass {
+  std::span<Real> laneLevers;
+  bool firstPass = false;
+};
+
 // Each pass runs over `layout` (StickLayout): the same result as one loop over `sticks` in
 // creation order, faster.
 /// Jakobsen: each stick in turn, along its current direction, in proportion to inverse mass.
 /// `workers`, if given, relax the lane groups in pieces at once (they share no particle); the blocks
-/// and runs follow on the calling thread, as they would in one loop. `spin`, if not empty
-/// (keepSpin: startStickSpin's levers), keeps each lane's and block's body's moment through its
-/// sticks (keepStickMoment); the runs' bodies are the caller's (restoreStickSpin). Jacobi and XPBD
-/// take it alike.
+/// and runs follow on the calling thread, as they would in one loop. `spin`, if given (keepSpin),
+/// keeps each lane's and block's body's moment through its sticks (keepStickMoment); the runs'
+/// bodies are the caller's (restoreStickSpin). Jacobi and XPBD take it alike.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                      const Workers* workers = nullptr, std::span<const SpinLever> spin = {});
+                      const Workers* workers = nullptr, const SpinPass* spin = nullptr);
 /// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
 /// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
 /// particle. `workers` as for Gauss-Seidel: a lane group's bodies sum and apply their own.
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                  std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers = nullptr,
-                 std::span<const SpinLever> spin = {});
+                 const SpinPass* spin = nullptr);
 /// XPBD (Macklin, Müller, Chentanez 2016): Gauss-Seidel with a multiplier per stick so that
 /// compliance gives the same stiffness for any iteration count and step. lambda is per stick,
 /// zeroed at the start of each substep.
 /// `compliance` (m/N, SolverSettings::compliance) is added to every stick's own.
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
-               Real h, Real compliance, const Workers* workers = nullptr,
-               std::span<const SpinLever> spin = {});
+               Real h, Real compliance, const Workers* workers = nullptr, const SpinPass* spin = nullptr);
 /// SHAKE (Ryckaert, Ciccotti, Berendsen 1977): each stick moved along its direction at the
 /// start of the substep (x* after integration), by the root of a scalar quadratic. `workers` as
 /// for Gauss-Seidel.
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                 const Workers* workers = nullptr);
 
-/// SolverSettings::keepSpin (stick_spin.cpp), for each body of `bodies` (`spin` indexed alike):
-/// `startStickSpin`, once a substep before its passes, sets each particle's lever m (x* - c*)
-/// and mass (`lever`, indexed by particle; zeros for a body left alone). A pass keeps a body's
-/// moment sum m (x*_i - c*) x x_i (h times its angular momentum about its centre) through its sticks
-/// by `stickMoment` before them and `keepStickMoment` after, which turns the body's particles
-/// rigidly about its centre back to that moment: what the sticks did to its angular momentum is
-/// undone and its momentum kept. The lanes and blocks do it on their copies of a body (relax.cpp);
-/// `measureStickSpin` and `restoreStickSpin` do it around a whole pass for the bodies `which` lists
-/// (StickLayout::runBodies: those relaxed in the world's arrays). A body with a pinned, frozen or
-/// sleeping particle, a rigid one, or one crushed flat, is left alone.
-void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<SpinLever> lever,
-                    std::span<StickSpin> spin);
+/// SolverSettings::keepSpin (stick_spin.cpp). A pass keeps a body's moment sum m (x*_i - c*) x x_i
+/// (h times its angular momentum about its centre) through its sticks by `stickMoment` before them
+/// and `keepStickMoment` after, which turns the body's particles rigidly about its centre back to
+/// that moment: what the sticks did to its angular momentum is undone and its momentum kept. The
+/// lanes, blocks and tetra volumes do it on their copies of a body (relax.cpp, tetra_volumes.cpp);
+/// `startStickSpin` (once a substep, before its passes), `measureStickSpin` and `restoreStickSpin`
+/// do it around a whole pass for the bodies `which` lists (StickLayout::runBodies, those relaxed in
+/// the world's arrays), with `spin` indexed by body and `lever` by particle. A body with a pinned,
+/// frozen or sleeping particle, a rigid one, or one crushed flat, is left alone.
+/// `spinLevers`: a body's levers m (x*_i - c*) and masses from its `count` particles from `first`;
+/// false, and zeros, for a body with a particle that cannot move.
+bool spinLevers(const Particles& p, ParticleId first, int count, SpinLever* lever);
 /// sum lever_i x (x_i - x_0) over a body's `count` particles.
 Vec3 stickMoment(const Vec3* x, const SpinLever* lever, int count);
 /// Turns the body's `count` particles about their centre back to the moment `before`.
 void keepStickMoment(Vec3* x, const SpinLever* lever, int count, const Vec3& before);
+void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,
+                    std::span<SpinLever> lever, std::span<StickSpin> spin);
 void measureStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,
                       std::span<const SpinLever> lever, std::span<StickSpin> spin);
 void restoreStickSpin(Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,

@@ -50,13 +50,14 @@ inline void project(const View& v, std::uint32_t a, std::uint32_t b, const Stick
 // Runs `relaxStick(view, a, b, stick, index)` over every stick outside the lane groups (which
 // relax_lanes.h relaxes) in the layout's order: each block copied into locals (its previous
 // positions too when SHAKE needs them), then the runs.
-// `spin`, if not empty (keepSpin), keeps each block's moment through its sticks; the runs' bodies
-// are the caller's.
+// `spin`, if given (keepSpin), keeps each block's moment through its sticks; the runs' bodies are
+// the caller's.
 template <bool kPrevious, class RelaxStick>
 void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                  std::span<const SpinLever> spin, RelaxStick relaxStick) {
+                  const SpinPass* spin, RelaxStick relaxStick) {
   Vec3 x[kMaxBlockParticles], previous[kMaxBlockParticles];
   Real w[kMaxBlockParticles];
+  SpinLever lever[kMaxBlockParticles];
   const View local{x, kPrevious ? previous : nullptr, w};
   for (const StickBlock& block : layout.blocks()) {
     const std::uint32_t first = block.firstParticle;
@@ -65,12 +66,14 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
       if constexpr (kPrevious) previous[i] = p.previous[first + i];
       w[i] = p.inverseMass[first + i];
     }
-    const Vec3 moment = spin.empty() ? Vec3(0.0) : stickMoment(x, &spin[first], block.particleCount);
+    // the levers again each pass: a shape's few bodies left over from its lanes
+    if (spin != nullptr) spinLevers(p, block.firstParticle, block.particleCount, lever);
+    const Vec3 moment = spin != nullptr ? stickMoment(x, lever, block.particleCount) : Vec3(0.0);
     for (std::uint32_t k = block.firstStick; k < block.firstStick + block.stickCount; ++k) {
       const Stick& s = sticks[k];
       relaxStick(local, s.a - first, s.b - first, s, k);
     }
-    if (!spin.empty()) keepStickMoment(x, &spin[first], block.particleCount, moment);
+    if (spin != nullptr) keepStickMoment(x, lever, block.particleCount, moment);
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
   const View world{p.position.data(), kPrevious ? p.previous.data() : nullptr, p.inverseMass.data()};
@@ -80,10 +83,13 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
   }
 }
 
-// The lane arguments, with keepSpin's levers when `spin` has them.
-LaneArguments keepingSpin(Particles& p, const StickLayout& layout, std::span<const SpinLever> spin) {
+// The lane arguments, with keepSpin's lane levers when `spin` is given.
+LaneArguments keepingSpin(Particles& p, const StickLayout& layout, const SpinPass* spin) {
   LaneArguments a = laneArguments(p, layout);
-  if (!spin.empty()) a.spinLever = reinterpret_cast<const Real*>(spin.data());
+  if (spin != nullptr) {
+    a.laneSpin = spin->laneLevers.data();
+    a.firstPass = spin->firstPass;
+  }
   return a;
 }
 
@@ -92,7 +98,7 @@ LaneArguments keepingSpin(Particles& p, const StickLayout& layout, std::span<con
 // Jakobsen 2001, "Advanced Character Physics", stick constraint, with the sign of the printed
 // listing corrected (REFERENCES.md): s = (|d| - r) / (|d| (w1 + w2)); x1 += w1 s d; x2 -= w2 s d.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
-                      const Workers* workers, std::span<const SpinLever> spin) {
+                      const Workers* workers, const SpinPass* spin) {
   inLanePieces(keepingSpin(p, layout, spin), workers,
                [](const LaneArguments& a) { relaxGaussSeidelLanes(a); });
   forEachStick<false>(p, sticks, layout, spin,
@@ -111,7 +117,7 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLa
 // any other stick, so it can sum and apply its own corrections before the next block reads.
 void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                  std::span<const Real> degree, std::span<Vec3> delta, const Workers* workers,
-                 std::span<const SpinLever> spin) {
+                 const SpinPass* spin) {
   auto correction = [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, Real scale,
                         Vec3* sum) {
     StickState m;
@@ -133,7 +139,9 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
       sum[i] = Vec3(0.0);
     }
     const View local{x, nullptr, w};
-    const Vec3 moment = spin.empty() ? Vec3(0.0) : stickMoment(x, &spin[first], block.particleCount);
+    SpinLever lever[kMaxBlockParticles];
+    if (spin != nullptr) spinLevers(p, block.firstParticle, block.particleCount, lever);
+    const Vec3 moment = spin != nullptr ? stickMoment(x, lever, block.particleCount) : Vec3(0.0);
     for (std::uint32_t k = block.firstStick; k < block.firstStick + block.stickCount; ++k) {
       const Stick& s = sticks[k];
       correction(local, s.a - first, s.b - first, s, std::max(degree[s.a], degree[s.b]), sum);
@@ -141,7 +149,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
     for (int i = 0; i < block.particleCount; ++i) {
       if (w[i] != 0.0) x[i] += sum[i];
     }
-    if (!spin.empty()) keepStickMoment(x, &spin[first], block.particleCount, moment);
+    if (spin != nullptr) keepStickMoment(x, lever, block.particleCount, moment);
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
   if (layout.runs().empty()) return;
@@ -163,7 +171,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
 // a~ = compliance / h^2; gradient of C = |x2 - x1| - r is -n for x1 and +n for x2. The world's
 // compliance adds to each stick's: compliances in series add, as springs' inverse stiffnesses do.
 void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& layout, std::span<Real> lambda,
-               Real h, Real compliance, const Workers* workers, std::span<const SpinLever> spin) {
+               Real h, Real compliance, const Workers* workers, const SpinPass* spin) {
   const Real inverseH2 = 1.0 / (h * h);
   LaneArguments lanes = keepingSpin(p, layout, spin);
   lanes.lambda = lambda.data();
@@ -191,7 +199,7 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
 void relaxShake(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                 const Workers* workers) {
   inLanePieces(laneArguments(p, layout), workers, [](const LaneArguments& a) { relaxShakeLanes(a); });
-  forEachStick<true>(p, sticks, layout, {},
+  forEachStick<true>(p, sticks, layout, nullptr,
                      [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
                        StickState m;
                        if (!measure(v, a, b, s, m)) return;

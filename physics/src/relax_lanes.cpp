@@ -18,8 +18,6 @@ const LaneIsa kBest = detect();
 // The kernels read the positions as one array of doubles, x, y, z after one another. Cast, not
 // &v.data()->x: an empty world's array has no first element to take a member of.
 static_assert(sizeof(Vec3) == 3 * sizeof(Real) && alignof(Vec3) == alignof(Real));
-// keepSpin's levers the same way: lever x, y, z, then mass.
-static_assert(sizeof(SpinLever) == 4 * sizeof(Real) && alignof(SpinLever) == alignof(Real));
 Real* coordinates(std::vector<Vec3>& v) {
   return reinterpret_cast<Real*>(v.data());
 }
@@ -40,6 +38,7 @@ LaneArguments laneArguments(Particles& p, const StickLayout& layout) {
   a.laneValues = layout.laneValues().data();
   a.previous = coordinates(p.previous);
   a.still = layout.still().empty() ? nullptr : layout.still().data();
+  a.allGroups = a.groups;
   return a;
 }
 

@@ -30,10 +30,17 @@ struct LaneArguments {
   const Real* previous = nullptr;       ///< SHAKE: x* of each particle, x, y, z one after the other
   const Real* degree = nullptr;         ///< Jacobi: per particle, the number of sticks at it
   const std::uint8_t* still = nullptr;  ///< per group, 1 to skip it (StickLayout::still); or none
-  /// keepSpin (Gauss-Seidel, XPBD, Jacobi): per particle its SpinLever, m (x* - c*) then m, four
-  /// doubles; each lane's body is turned back to the moment it had before its sticks. Or none.
-  const Real* spinLever = nullptr;
+  /// keepSpin (Gauss-Seidel, XPBD, Jacobi): kLaneSpinValues per lane group of the layout, its
+  /// bodies' levers m (x* - c*) and masses, lane-major, so that each pass loads them as vectors;
+  /// computed from x* on the substep's first pass. Each lane's body is turned back to the moment it
+  /// had before its sticks (LaneSpin). Or none.
+  Real* laneSpin = nullptr;
+  const StickLanes* allGroups = nullptr;  ///< the layout's first group: where laneSpin starts
+  bool firstPass = false;                 ///< the substep's first: laneSpin is computed, not read
 };
+
+/// keepSpin's values per lane group: per particle a lever's x, y, z and a mass, one per lane.
+inline constexpr std::size_t kLaneSpinValues = std::size_t{kMaxBlockParticles} * 4 * kStickLanes;
 
 /// The arguments for the world's particles and a layout (XPBD's and Jacobi's numbers not set).
 LaneArguments laneArguments(Particles& p, const StickLayout& layout);

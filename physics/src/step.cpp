@@ -506,13 +506,12 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     if (!constraints_.sticks().empty()) {
       // The lanes, blocks and volumes keep their bodies' moments on their copies (stick_spin.cpp);
       // the bodies whose sticks are relaxed in the world's arrays are bracketed here.
-      const std::span<const SpinLever> spin =
-          keepSpin ? std::span<const SpinLever>(spinLever_) : std::span<const SpinLever>();
       const std::span<const std::uint32_t> runBodies = constraints_.stickRunBodies();
-      if (keepSpin && it == 0) detail::startStickSpin(particles_, bodies_, spinLever_, stickSpin_);
+      if (keepSpin && it == 0) detail::startStickSpin(particles_, bodies_, runBodies, spinLever_, stickSpin_);
       if (keepSpin) detail::measureStickSpin(particles_, bodies_, runBodies, spinLever_, stickSpin_);
-      tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake, workers(), spin);
-      constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers(), spin);
+      tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake, workers(), keepSpin);
+      constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers(),
+                               keepSpin);
       if (keepSpin) detail::restoreStickSpin(particles_, bodies_, runBodies, spinLever_, stickSpin_);
       laps.lap(Stage::Sticks);
     }

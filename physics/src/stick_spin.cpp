@@ -12,11 +12,12 @@
 // undone, since contacts and links change the angular momentum as they should).
 //
 // The passes bracket a body where they hold its particles: the lane kernels (relax_lanes_kernels.inc,
-// LaneSpin, the same operations per lane), the blocks (relax.cpp) and the tetra volumes
-// (tetra_volumes.cpp) call stickMoment and keepStickMoment on their copies; only the bodies whose
-// sticks are relaxed in the world's arrays (StickLayout::runBodies) are measured and restored here,
-// around the whole pass. Measured apart, as a first version did, it cost 1.18 times on
-// pyramid-20 at 10 x 16: two more trips through every body's particles a pass.
+// LaneSpin, the same operations per lane, with the levers kept lane-major from the substep's first
+// pass), the blocks (relax.cpp) and the tetra volumes (tetra_volumes.cpp) call spinLevers,
+// stickMoment and keepStickMoment on their copies; only the bodies whose sticks are relaxed in the
+// world's arrays (StickLayout::runBodies) are measured and restored here, around the whole pass. Measured
+// apart, as a first version did, it cost 1.18 times on pyramid-20 at 10 x 16: two more trips through every
+// body's particles a pass.
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -28,36 +29,34 @@ namespace phys::detail {
 
 // s_i = x*_i - c* is fixed for the substep (the passes never move x*), and sum m s_i = 0, so
 // sum m s_i x x_i is the moment about any point: the passes' changes of it are theirs alone.
-// Once a substep, before its passes: each particle's lever m s_i and mass, or zeros for a body left
-// alone (the lanes and blocks read zeros as a body with no turn to undo).
-void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<SpinLever> lever,
-                    std::span<StickSpin> spin) {
-  for (std::size_t k = 0; k < bodies.size(); ++k) {
+// LaneSpin::levers does the same operations in the same order: change one, change both.
+bool spinLevers(const Particles& p, ParticleId first, int count, SpinLever* lever) {
+  Real mass = 0.0;
+  Vec3 start(0.0);  // sum of m x*, from the first particle (digits far out)
+  for (int i = 0; i < count; ++i) {
+    if (p.inverseMass[first + i] == 0.0) {  // pinned, frozen or asleep: not its own
+      for (int j = 0; j < count; ++j) lever[j] = SpinLever{};
+      return false;
+    }
+    const Real m = 1.0 / p.inverseMass[first + i];
+    mass += m;
+    start += m * (p.previous[first + i] - p.previous[first]);
+  }
+  start = p.previous[first] + start / mass;
+  for (int i = 0; i < count; ++i) {
+    const Real m = 1.0 / p.inverseMass[first + i];
+    lever[i] = {m * (p.previous[first + i] - start), m};
+  }
+  return true;
+}
+
+// Once a substep, before its passes: each run body's levers, or the body left alone.
+void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,
+                    std::span<SpinLever> lever, std::span<StickSpin> spin) {
+  for (const std::uint32_t k : which) {
     const Body& b = bodies[k];
-    StickSpin& out = spin[k];
-    out.kept = false;
-    if (b.particleCount == 0) continue;  // a rigid body: no sticks
-    const ParticleId first = b.firstParticle, end = first + b.particleCount;
-    Real mass = 0.0;
-    Vec3 start(0.0);  // sum of m x*, from the first particle (digits far out)
-    bool free = true;
-    for (ParticleId i = first; i < end; ++i) {
-      if (p.inverseMass[i] == 0.0) free = false;  // pinned, frozen or asleep: not its own
-      if (!free) break;
-      const Real m = 1.0 / p.inverseMass[i];
-      mass += m;
-      start += m * (p.previous[i] - p.previous[first]);
-    }
-    if (!free) {
-      for (ParticleId i = first; i < end; ++i) lever[i] = SpinLever{};
-      continue;
-    }
-    start = p.previous[first] + start / mass;
-    for (ParticleId i = first; i < end; ++i) {
-      const Real m = 1.0 / p.inverseMass[i];
-      lever[i] = {m * (p.previous[i] - start), m};
-    }
-    out.kept = true;
+    spin[k].kept =
+        b.particleCount > 0 && spinLevers(p, b.firstParticle, b.particleCount, &lever[b.firstParticle]);
   }
 }
 

@@ -59,10 +59,12 @@ void TetraVolumes::addBody(const Body& body) {
 // moving gradient, SHAKE's tumbler of stability/dzhanibekov.xml lost 41% of its energy in 12 s;
 // along the start's, as SHAKE moves its sticks, it keeps it.
 void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart,
-                           std::span<const SpinLever> spin) {
+                           bool keepSpin) {
   const std::array<Vec3, 4> x = tetraOf(p.position, k.first);
   Vec3* at = &p.position[k.first];
-  const Vec3 moment = spin.empty() ? Vec3(0.0) : detail::stickMoment(at, &spin[k.first], 4);
+  SpinLever lever[4];
+  if (keepSpin) detail::spinLevers(p, k.first, 4, lever);
+  const Vec3 moment = keepSpin ? detail::stickMoment(at, lever, 4) : Vec3(0.0);
   const std::array<Vec3, 4> gradient = volumeGradient(x);
   const std::array<Vec3, 4> direction = alongStart ? volumeGradient(tetraOf(p.previous, k.first)) : gradient;
   Real denominator = 0.0;
@@ -76,7 +78,7 @@ void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bo
     const Real w = p.inverseMass[k.first + j];
     if (w != 0.0) p.position[k.first + j] += lambda * w * direction[j];
   }
-  if (!spin.empty()) detail::keepStickMoment(at, &spin[k.first], 4, moment);
+  if (keepSpin) detail::keepStickMoment(at, lever, 4, moment);
 }
 
 // The sticks cannot tell a tetrahedron from its mirror image, so a deep landing's contacts, which
@@ -84,16 +86,15 @@ void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bo
 // can pass it through its base; the sticks then hold it inside out, squashed or whole. So a body
 // that is not flat and has fallen under kVolumeFloor of its volume, signed, is given its volume back:
 // a floor, not its volume kept, so that no body the passes keep whole is moved.
-void TetraVolumes::keep(Particles& p, bool alongStart, const Workers* workers,
-                        std::span<const SpinLever> spin) const {
-  for (const Kept& k : kept_) project(p, k, k.restSixVolume, alongStart, spin);
+void TetraVolumes::keep(Particles& p, bool alongStart, const Workers* workers, bool keepSpin) const {
+  for (const Kept& k : kept_) project(p, k, k.restSixVolume, alongStart, keepSpin);
   auto floors = [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Kept& k = floored_[i];
       const Real floor = kVolumeFloor * k.restSixVolume;
       const Real now = sixVolume(p.position[k.first], p.position[k.first + 1], p.position[k.first + 2],
                                  p.position[k.first + 3]);
-      if (now / floor < 1.0) project(p, k, k.restSixVolume, alongStart, spin);
+      if (now / floor < 1.0) project(p, k, k.restSixVolume, alongStart, keepSpin);
     }
   };
   forEachRange(workers, floored_.size(), kFloorsPerPiece, floors);

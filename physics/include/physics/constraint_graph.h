@@ -97,10 +97,11 @@ class ConstraintGraph {
   /// One pass over every stick by `method`; `firstPass` of the substep (XPBD zeroes its
   /// multipliers). `h` (s) and `compliance` (m/N) are XPBD's.
   /// `workers`, if given, run the lane groups of Gauss-Seidel and XPBD in pieces at once.
-  /// `spin`, if not empty (keepSpin's levers, one per particle), keeps the moment of each body laid
-  /// out as a block or in lanes through its sticks; the run bodies' (stickRunBodies) are the caller's.
+  /// `keepSpin` (SolverSettings::keepSpin; not SHAKE's, whose sticks keep it): the moment of each body
+  /// laid out as a block or in lanes is kept through its sticks; the run bodies' (stickRunBodies) are
+  /// the caller's.
   void relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h, Real compliance,
-                   const Workers* workers = nullptr, std::span<const SpinLever> spin = {});
+                   const Workers* workers = nullptr, bool keepSpin = false);
   /// StickLayout::runBodies.
   std::span<const std::uint32_t> stickRunBodies() const { return stickLayout_.runBodies(); }
   /// Each link's slack: the violation at x* it may keep this substep, less `step` (m). Returns the
@@ -139,6 +140,7 @@ class ConstraintGraph {
   std::vector<Real> linkSlack_;    // per link: violation it may keep this substep (m)
   int linksApart_ = 0;             // links whose slack is not yet 0
   std::vector<Vec3> jacobiDelta_;  // per particle
+  std::vector<Real> laneSpin_;     // keepSpin: the lanes' levers, kLaneSpinValues per lane group
   std::vector<Real> degree_;       // per particle: sticks attached (Jacobi's scaling)
 };
 

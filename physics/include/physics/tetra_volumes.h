@@ -6,7 +6,6 @@
 // (t / w)^2 per pass, so a slab lying on the ground let its top particles sink through its bottom
 // ones and turned inside out. The volume's gradient at each particle is its opposite face's normal,
 // which resists that squarely, and its sign keeps the tetrahedron from turning inside out.
-#include <span>
 #include <vector>
 
 #include "physics/body.h"
@@ -34,19 +33,17 @@ class TetraVolumes {
   /// at the substep's start) rather than at x.
   /// The floors are looked at in ranges of bodies on the step's threads (each body's particles are
   /// its own), so that two threads do not wait on one reading what the other just moved.
-  /// `spin`, if not empty (keepSpin's levers, one per particle), keeps each projected body's moment
-  /// through its projection as the passes keep it through its sticks: the volume's gradient along
-  /// the moving tetrahedron takes angular momentum as a stick's direction does.
-  void keep(Particles& p, bool alongStart, const Workers* workers = nullptr,
-            std::span<const SpinLever> spin = {}) const;
+  /// `keepSpin` (SolverSettings::keepSpin) keeps each projected body's moment through its projection
+  /// as the passes keep it through its sticks: the volume's gradient at the moving tetrahedron takes
+  /// angular momentum as a stick's direction does.
+  void keep(Particles& p, bool alongStart, const Workers* workers = nullptr, bool keepSpin = false) const;
 
  private:
   struct Kept {
     ParticleId first;    // the first of its four particles
     Real restSixVolume;  // six times the rest tetrahedron's signed volume
   };
-  static void project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart,
-                      std::span<const SpinLever> spin);
+  static void project(Particles& p, const Kept& k, Real targetSixVolume, bool alongStart, bool keepSpin);
 
   std::vector<Kept> kept_;     // flat boxes: their rest volume
   std::vector<Kept> floored_;  // every other tetra body: its volume back once under kVolumeFloor of it
