@@ -30,8 +30,9 @@ Real sharedWeight(const std::vector<Real>& inverseMass, const Embedding& a, cons
 // "Capsules", "A capsule lying still"). Pushed as one block, the two impulses solve
 // K lambda = depth with K_ab = sharedWeight, each >= 0 (a 2-point complementarity problem: both
 // ends onto the plane, else the one whose push leaves the other above), and the two rise together.
-// Only while the capsule rests on the ground with its box whole (GroundContacts::placeCapsulePoints):
-// pushed so from its landing on, a thin capsule thrown down at 8 m/s, squashed through itself in a
+// Only a corners capsule's (a tetra capsule gains nothing from it, and its piles slept later), and
+// only while it rests on the ground with its box whole (GroundContacts::placeCapsulePoints): pushed
+// so from its landing on, a thin capsule thrown down at 8 m/s, squashed through itself in a
 // step, stayed crushed flat and chattered 4 cm deep, where pushed one after the other it comes out
 // whole, inside out, and rests (CapsuleGround.AThinCapsuleThrownDownHardRestsAtItsRadiusEvenInsideOut).
 void collideCapsulePair(Particles& p, const GroundContact& a, const GroundContact& b, Real depthA,

@@ -135,9 +135,10 @@ struct GroundContact {
   /// surface point, carried rigidly. Held at the face point, up to 0.29 r off the surface, friction
   /// stopped it slipping there, and the capsule rolled as on a larger radius, 11% fast.
   Embedding surface;
-  /// For the first of a particle capsule's two points (its ends' lowest points; the next point is
-  /// the other), set where they are placed each substep while its box is whole: the two share
-  /// their particles, and the ground pass pushes them as one block (collideGround).
+  /// For the first of a corners capsule's two points (its ends' lowest points; the next point is
+  /// the other), set where they are placed each substep while it rests with its box whole: the two
+  /// share their particles, and the ground pass pushes them as one block (collideGround). Never
+  /// for a tetra capsule (GroundContacts::placeCapsulePoints says why).
   bool pairedWithNext = false;
 };
 

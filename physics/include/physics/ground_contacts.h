@@ -40,9 +40,9 @@ class GroundContacts {
   /// An end further above the ground (at groundHeight along groundNormal) than the capsule's half
   /// length keeps the point it had, which no pass pushes from there, and is marked far. `position`
   /// (the particles') tells a capsule turned inside out, whose points go on the face its particles
-  /// lie on, not the one its frame names (see the definition). A capsule resting on the ground (its
-  /// particles' mean move of this substep no more than `restingMove` towards it, and its box whole)
-  /// has its two points paired, pushed as one block (GroundContact::pairedWithNext).
+  /// lie on, not the one its frame names (see the definition). A corners capsule resting on the ground
+  /// (its particles' mean move of this substep no more than `restingMove` towards it, and its box
+  /// whole) has its two points paired, pushed as one block (GroundContact::pairedWithNext).
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
                           const Particles& particles, const Vec3& groundNormal, Real groundHeight,
                           Real restingMove, const Workers* workers);
