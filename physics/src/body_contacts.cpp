@@ -51,13 +51,15 @@ void markPushedParticles(std::span<const BodyContact> contacts, std::span<const 
   }
 }
 
-void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<const Real> push) {
+void applyBodyFriction(Particles& p, std::span<BodyContact> contacts,
+                       std::span<const BodyContactExtra> extras, std::span<const Real> push) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (push[k] <= 0.0) continue;
     BodyContact& c = contacts[k];
-    // Friction acts where the surfaces touch (BodyContact::surfaceA, surfaceB).
-    const Embedding& a = c.surfaceA.count > 0 ? c.surfaceA : c.pointA;
-    const Embedding& b = c.surfaceB.count > 0 ? c.surfaceB : c.pointB;
+    // Friction acts where the surfaces touch (BodyContactExtra::surfaceA, surfaceB), which only a
+    // capsule's flags send it to read.
+    const Embedding& a = c.frictionAtSurfaceA ? extras[k].surfaceA : c.pointA;
+    const Embedding& b = c.frictionAtSurfaceB ? extras[k].surfaceB : c.pointB;
     Vec3 slide;
     if (c.anchored) {
       // Held to its anchor: what the pair has slid since static friction took hold, this substep's

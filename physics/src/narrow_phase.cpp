@@ -65,6 +65,7 @@ void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies, int threads) {
   for (Piece& piece : pieces_) {
     detail::keepRoom(piece.manifolds, pairs, room);
     detail::keepRoom(piece.contacts, contacts_.size(), room);
+    detail::keepRoom(piece.extras, contacts_.size(), room);
     detail::keepRoom(piece.rigidContacts, rigidContacts_.size(), room);
   }
   const std::size_t points = contacts_.size();
@@ -72,6 +73,8 @@ void NarrowPhase::reserve(std::size_t pairs, std::size_t bodies, int threads) {
   detail::keepRoom(spareManifolds_, pairs, room);
   detail::keepRoom(contacts_, points, room);
   detail::keepRoom(spareContacts_, points, room);
+  detail::keepRoom(extras_, points, room);
+  detail::keepRoom(spareExtras_, points, room);
   detail::keepRoom(rigidContacts_, rigidContacts_.size(), room);
   detail::keepRoom(spareRigidContacts_, rigidContacts_.size(), room);
   for (std::vector<Real>* v : {&rigidState_.lambdaNormal, &rigidState_.lambdaTangent, &rigidState_.twist,
@@ -140,6 +143,7 @@ void NarrowPhase::build(const NarrowPhaseInput& in) {
 void NarrowPhase::rebuild(const NarrowPhaseInput& in) {
   // The last substep's manifolds back where build() finds them, then build() as before.
   std::swap(contacts_, spareContacts_);
+  std::swap(extras_, spareExtras_);
   std::swap(rigidContacts_, spareRigidContacts_);
   std::swap(manifolds_, spareManifolds_);
   build(in);
@@ -174,13 +178,15 @@ void NarrowPhase::buildRange(const NarrowPhaseInput& in, std::size_t begin, std:
     if (!collidePair(in, a, b, had ? spareManifolds_[old].axis : -1, contact)) continue;
     const std::size_t first = out.contacts.size();
     addManifold(in, a, b, contact, out);
-    if (had) carrySlide(in, spareManifolds_[old], std::span(out.contacts).subspan(first));
+    if (had)
+      carrySlide(in, spareManifolds_[old], std::span(out.contacts).subspan(first),
+                 std::span(out.extras).subspan(first));
   }
 }
 
 template <class Work>
 void NarrowPhase::inPieces(const NarrowPhaseInput& in, std::size_t count, std::size_t perPiece, Work&& work) {
-  Sink own{manifolds_, contacts_, rigidContacts_};
+  Sink own{manifolds_, contacts_, extras_, rigidContacts_};
   const std::size_t pieces = in.workers == nullptr ? 1 : std::min(pieces_.size() + 1, count / perPiece);
   if (pieces <= 1) {
     work(own, 0, count);
@@ -192,8 +198,9 @@ void NarrowPhase::inPieces(const NarrowPhaseInput& in, std::size_t count, std::s
     Piece& piece = pieces_[k - 1];
     piece.manifolds.clear();
     piece.contacts.clear();
+    piece.extras.clear();
     piece.rigidContacts.clear();
-    return Sink{piece.manifolds, piece.contacts, piece.rigidContacts};
+    return Sink{piece.manifolds, piece.contacts, piece.extras, piece.rigidContacts};
   };
   auto range = [&](std::size_t first, std::size_t last) {
     for (std::size_t k = first; k < last; ++k) {
@@ -213,14 +220,17 @@ void NarrowPhase::append(Piece& piece) {
     manifolds_.push_back(m);
   }
   contacts_.insert(contacts_.end(), piece.contacts.begin(), piece.contacts.end());
+  extras_.insert(extras_.end(), piece.extras.begin(), piece.extras.end());
   rigidContacts_.insert(rigidContacts_.end(), piece.rigidContacts.begin(), piece.rigidContacts.end());
 }
 
 void NarrowPhase::swapToSpare() {
   std::swap(contacts_, spareContacts_);
+  std::swap(extras_, spareExtras_);
   std::swap(rigidContacts_, spareRigidContacts_);
   std::swap(manifolds_, spareManifolds_);
   contacts_.clear();
+  extras_.clear();
   rigidContacts_.clear();
   manifolds_.clear();
 }
@@ -255,11 +265,13 @@ bool NarrowPhase::canCarry(const NarrowPhaseInput& in, const Manifold& m) const 
 // points and handed to whichever points the clipping made kept two tetra boxes stacked face to face
 // rocking at 10 x 1 (docs/physics.md).
 void NarrowPhase::carrySlide(const NarrowPhaseInput& in, const Manifold& old,
-                             std::span<BodyContact> made) const {
+                             std::span<const BodyContact> made,
+                             std::span<BodyContactExtra> madeExtras) const {
   if (!old.kept || old.rigid) return;
   if (in.bodies[old.a].model != BodyModel::Tetra && in.bodies[old.b].model != BodyModel::Tetra) return;
   const auto& at = in.particles.previous;
-  for (BodyContact& c : made) {
+  for (std::size_t i = 0; i < made.size(); ++i) {
+    const BodyContact& c = made[i];
     const Vec3 onA = detail::embeddedPosition(at, c.pointA), onB = detail::embeddedPosition(at, c.pointB);
     Real nearest = kSamePointDistance;
     for (std::uint32_t k = old.firstContact; k < old.firstContact + old.contactCount; ++k) {
@@ -270,7 +282,7 @@ void NarrowPhase::carrySlide(const NarrowPhaseInput& in, const Manifold& old,
       if (apart > nearest) continue;
       nearest = apart;
       const Vec3 slide = oldB - oldA - o.anchor;
-      c.carriedSlide = slide - glm::dot(slide, o.normal) * o.normal;
+      madeExtras[i].carriedSlide = slide - glm::dot(slide, o.normal) * o.normal;
     }
   }
 }
@@ -289,6 +301,8 @@ void NarrowPhase::carry(const NarrowPhaseInput& in, const Manifold& m, Sink& out
   moved.firstContact = static_cast<std::uint32_t>(out.contacts.size());
   out.contacts.insert(out.contacts.end(), spareContacts_.begin() + m.firstContact,
                       spareContacts_.begin() + m.firstContact + m.contactCount);
+  out.extras.insert(out.extras.end(), spareExtras_.begin() + m.firstContact,
+                    spareExtras_.begin() + m.firstContact + m.contactCount);
   turnNormal(in, moved, out.contacts.data() + moved.firstContact);
   out.manifolds.push_back(moved);
 }
@@ -365,6 +379,7 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
   const Obb frameB = detail::embeddingFrame(bodyB, in.frames[b], in.particles.position);
   for (int i = 0; i < contact.count; ++i) {
     BodyContact c;
+    BodyContactExtra extra;
     Vec3 movedA(0.0), movedB(0.0);
     c.pointA = detail::surfacePoint(bodyA, frameA, contact.points[i].onA, &movedA);
     c.pointB = detail::surfacePoint(bodyB, frameB, contact.points[i].onB, &movedB);
@@ -375,10 +390,13 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
     c.kind = static_cast<std::uint8_t>(contact.kind);
     if (bodyA.shape == Shape::Capsule || bodyB.shape == Shape::Capsule) {
       c.offset = glm::dot(c.normal, movedB - movedA);  // a box's points are on its faces already
-      if (movedA != Vec3(0.0)) c.surfaceA = detail::rigidPoint(bodyA, frameA, contact.points[i].onA);
-      if (movedB != Vec3(0.0)) c.surfaceB = detail::rigidPoint(bodyB, frameB, contact.points[i].onB);
+      if (movedA != Vec3(0.0)) extra.surfaceA = detail::rigidPoint(bodyA, frameA, contact.points[i].onA);
+      if (movedB != Vec3(0.0)) extra.surfaceB = detail::rigidPoint(bodyB, frameB, contact.points[i].onB);
+      c.frictionAtSurfaceA = extra.surfaceA.count > 0;
+      c.frictionAtSurfaceB = extra.surfaceB.count > 0;
     }
     out.contacts.push_back(c);
+    out.extras.push_back(extra);
   }
   pushManifold(in, a, b, contact, false, first, out);
 }
@@ -507,13 +525,13 @@ void NarrowPhase::measureStarts(const NarrowPhaseInput& in) {
 // A kept point's friction anchor at the substep's start: as it was if friction held it at the
 // last substep's end; where its last slip left it if it slipped; else where it is at x* (a point
 // that parted is not pulled back where it was), less the slide a new point was handed (carrySlide).
-void NarrowPhase::anchor(BodyContact& c, const Vec3& startApart) {
+void NarrowPhase::anchor(BodyContact& c, const BodyContactExtra& extra, const Vec3& startApart) {
   if (c.grip == Grip::Slipped) {
     c.anchor = c.slipEnd;
   } else if (c.grip == Grip::None) {
     c.anchor = startApart - glm::dot(startApart, c.normal) * c.normal;
     // A new point of a manifold clipped again keeps what its pair had slid (carrySlide).
-    if (!c.anchored) c.anchor -= c.carriedSlide - glm::dot(c.carriedSlide, c.normal) * c.normal;
+    if (!c.anchored) c.anchor -= extra.carriedSlide - glm::dot(extra.carriedSlide, c.normal) * c.normal;
     c.anchored = true;
   }
   c.grip = Grip::None;
@@ -536,7 +554,7 @@ void NarrowPhase::measureStart(const NarrowPhaseInput& in, Manifold& m, const Pa
       const Vec3 startApart = detail::embeddedPosition(particles.previous, c.pointB) -
                               detail::embeddedPosition(particles.previous, c.pointA);
       const Real startGap = glm::dot(c.normal, startApart) - c.offset;
-      if (m.kept) anchor(c, startApart);
+      if (m.kept) anchor(c, extras_[k], startApart);
       start[k] = -(startGap + in.contactSlop);
     }
     overlap = std::max(overlap, start[k]);

@@ -192,7 +192,9 @@ void markPushedParticles(std::span<const BodyContact> contacts, std::span<const 
 /// Coulomb friction between the bodies of each contact the last pass pushed, as for the ground:
 /// the tangential part of the relative motion this substep (of an anchored point, since its
 /// anchor: BodyContact::anchor) is stopped within mu_s * push, else shortened by mu_d * push.
-void applyBodyFriction(Particles& p, std::span<BodyContact> contacts, std::span<const Real> push);
+/// `extras` are the contacts' own (NarrowPhase::contactExtras), at the same index.
+void applyBodyFriction(Particles& p, std::span<BodyContact> contacts,
+                       std::span<const BodyContactExtra> extras, std::span<const Real> push);
 
 /// What restitution needs to know in a substep (SolverSettings::restitution).
 struct Restitution {

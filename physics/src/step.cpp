@@ -568,7 +568,8 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       });
     }
     laps.lap(Stage::Contacts);
-    detail::applyBodyFriction(particles_, narrowPhase_.movableContacts(), bodyState.push);
+    detail::applyBodyFriction(particles_, narrowPhase_.movableContacts(), narrowPhase_.contactExtras(),
+                              bodyState.push);
     flagPushed(bodyState.push, bodyState.touched);
     if (ground) {
       inGroundPieces([&](std::size_t b, std::size_t e) {
@@ -596,6 +597,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
 void World::relaxContactBins(bool ground) {
   const std::span<const BodyContact> bodyContacts = narrowPhase_.contacts();
   const std::span<BodyContact> anchoredContacts = narrowPhase_.movableContacts();  // friction moves anchors
+  const std::span<const BodyContactExtra> extras = narrowPhase_.contactExtras();
   BodyContactState& bodyState = narrowPhase_.state();
   GroundContactState& groundState = ground_.state();
   const std::span<const GroundContact> points = ground_.points();
@@ -626,7 +628,8 @@ void World::relaxContactBins(bool ground) {
   const detail::StageTimer timer(profile_, Stage::Friction);
   inBins([&](int bin) {
     for (const ContactBins::Range r : contactBins_.contactRanges(bin)) {
-      detail::applyBodyFriction(particles_, part(anchoredContacts, r), part(bodyState.push, r));
+      detail::applyBodyFriction(particles_, part(anchoredContacts, r), part(extras, r),
+                                part(bodyState.push, r));
       flagPushed(part(bodyState.push, r), part(bodyState.touched, r));
     }
     if (!ground) return;

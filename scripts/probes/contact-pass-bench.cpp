@@ -172,6 +172,7 @@ int main() {
   for (int i = 0; i < 60; ++i) world.step();
   const Particles start = world.particles();
   std::vector<BodyContact> contacts(world.bodyContacts().begin(), world.bodyContacts().end());
+  const std::span<const BodyContactExtra> extras = world.narrowPhase_.contactExtras();
   std::vector<Real> push(contacts.size());
   int kinds[5][5] = {};  // points by the counts of their two sides' particles
   for (const BodyContact& c : contacts) ++kinds[c.pointA.count][c.pointB.count];
@@ -207,7 +208,7 @@ int main() {
         const double t = threadSeconds();
         forms[f].second(p, contacts, push);
         seconds += threadSeconds() - t;
-        applyBodyFriction(p, contacts, push);
+        applyBodyFriction(p, contacts, extras, push);
       }
       ns[f].push_back(seconds / 200.0 / static_cast<double>(contacts.size()) * 1e9);
     }

@@ -261,6 +261,34 @@ TEST_P(CapsuleModels, CapsuleLyingOnABoxRestsAtItsRadiusAboveTheFace) {
   EXPECT_NEAR(world.bodyPose(id).center.x, 0.1, 2e-3);  // two points: it does not rock or roll off
 }
 
+// Friction between a capsule and a box acts at the capsule's true surface point, which the
+// contact's seldom read part holds (BodyContactExtra): a corners capsule's points are carried by
+// its box's face, off the round surface, so each of its contacts says to read the surface point,
+// and that part, at the same index, has it; the box's side, on its face already, has none.
+TEST(CapsuleContacts, ACornersCapsuleOnABoxTakesFrictionAtItsSurfacePoints) {
+  phys::World world({}, ragdollSettings());
+  phys::BodyDesc box;
+  box.center = Vec3(0.0, 0.25, 0.0);
+  box.size = Vec3(1.0, 0.5, 1.0);
+  const phys::BodyId boxId = world.addBody(box);
+  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.1, 0.6, 0.0), 0.1, 0.6);
+  d.orientation = kLying;
+  const phys::BodyId id = world.addBody(d);
+  world.step();
+  const std::span<const phys::BodyContact> contacts = world.bodyContacts();
+  const std::span<const phys::BodyContactExtra> extras = world.bodyContactExtras();
+  ASSERT_EQ(contacts.size(), 2u);  // the core's two ends on the face
+  ASSERT_EQ(extras.size(), contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const bool capsuleIsA = contacts[k].bodyA == id;
+    ASSERT_EQ(capsuleIsA ? contacts[k].bodyB : contacts[k].bodyA, boxId);
+    EXPECT_EQ(contacts[k].frictionAtSurfaceA, capsuleIsA);
+    EXPECT_EQ(contacts[k].frictionAtSurfaceB, !capsuleIsA);
+    EXPECT_EQ(extras[k].surfaceA.count > 0, capsuleIsA);
+    EXPECT_EQ(extras[k].surfaceB.count > 0, !capsuleIsA);
+  }
+}
+
 TEST_P(CapsuleModels, ATumblingCapsuleLandsOnItsRoundSurface) {
   // Dropped from 3 m while it turns at 6 rad/s about a horizontal axis: its ground points are left
   // where they were while it is high (below), and must be its lowest points again by the time it

@@ -86,23 +86,20 @@ struct BodySpin {
 enum class Grip : std::uint8_t { None, Held, Slipped };
 
 /// A contact between two boxes for one substep: a point embedded in each, kept apart along the
-/// normal (from A towards B): n . (pointB - pointA) >= 0.
+/// normal (from A towards B): n . (pointB - pointA) >= 0. Only what the contact and friction passes
+/// read of every point is here, what the push reads first: the rest is in a BodyContactExtra of
+/// the same index (NarrowPhase::contactExtras), so that the passes, which are bound by loading
+/// their points, load 224 bytes a point instead of 368 (docs/performance.md, "The contact's
+/// seldom read part apart").
 struct BodyContact {
   Embedding pointA;
   Embedding pointB;
   Vec3 normal{0.0};
-  Material combined;       ///< geometric mean of the two boxes' materials
-  BodyId bodyA = kNoBody;  ///< for debug drawing and reports
-  BodyId bodyB = kNoBody;
-  std::uint8_t kind = 0;  ///< ContactKind, for debug drawing
   /// The least n . (pointB - pointA) (unit: m): 0 when both points are on the surfaces. A point
   /// of a corners-model capsule is carried by the box face nearest it (its own 4 particles,
   /// which hold it as they hold a box's contact), off the round surface: this is by how much.
   Real offset = 0.0;
-  /// Where friction acts on a corners capsule (count 0 for any other body): its true surface
-  /// point, carried rigidly, as GroundContact::surface.
-  Embedding surfaceA;
-  Embedding surfaceB;
+  Material combined;  ///< geometric mean of the two boxes' materials
   /// Static friction's anchor (unit: m), for a point of a face-on-face manifold between particle
   /// boxes: the tangential part of pointB - pointA that friction holds the two to. Set from x* at
   /// the point's first substep and after a substep in which it did not touch; set to slipEnd after
@@ -112,13 +109,30 @@ struct BodyContact {
   /// unit: m; where the pair's last slip left the tangential part of pointB - pointA, friction's
   /// cut made: the next substep's anchor if the substep's last push slipped.
   Vec3 slipEnd{0.0};
+  BodyId bodyA = kNoBody;  ///< for debug drawing and reports
+  BodyId bodyB = kNoBody;
+  std::uint8_t kind = 0;   ///< ContactKind, for debug drawing
+  bool anchored = false;   ///< of a kept manifold: friction holds it to `anchor`
+  Grip grip = Grip::None;  ///< what the substep's last pass that pushed it did
+  /// Friction acts at BodyContactExtra::surfaceA (surfaceB) instead of pointA (pointB): a side
+  /// that is a corners capsule.
+  bool frictionAtSurfaceA = false;
+  bool frictionAtSurfaceB = false;
+};
+
+/// What a BodyContact carries that the passes do not read of every point, at the same index as
+/// the contact (NarrowPhase::contactExtras): read only where a flag of the contact says, or once a
+/// substep.
+struct BodyContactExtra {
+  /// Where friction acts on a corners capsule (count 0 for any other body): its true surface
+  /// point, carried rigidly, as GroundContact::surface (BodyContact::frictionAtSurfaceA, B).
+  Embedding surfaceA;
+  Embedding surfaceB;
   /// unit: m; when its face-on-face manifold was clipped again, what the old point at the same
   /// place on both bodies had slid from its anchor while friction held it, taken off this point's
   /// first anchor so that the slide is not forgotten; 0 for any other point. Only between a tetra
   /// box and a box (NarrowPhase::carrySlide; docs/physics.md, "A tetra box walking on a box").
   Vec3 carriedSlide{0.0};
-  bool anchored = false;   ///< of a kept manifold: friction holds it to `anchor`
-  Grip grip = Grip::None;  ///< what the substep's last pass that pushed it did
 };
 
 /// A point that collides with the ground: a loose particle or a box corner.

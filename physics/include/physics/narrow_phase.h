@@ -102,6 +102,8 @@ class NarrowPhase {
   /// The same, for the stages that move the kept points' friction anchors: friction as they slip,
   /// the parting as it moves bodies.
   std::span<BodyContact> movableContacts() { return contacts_; }
+  /// What each point of contacts() carries that the passes seldom read, at the same index.
+  std::span<const BodyContactExtra> contactExtras() const { return extras_; }
   /// Points of pairs with a rigid body.
   std::span<const RigidContact> rigidContacts() const { return rigidContacts_; }
   std::span<RigidContact> rigidContacts() { return rigidContacts_; }
@@ -117,11 +119,13 @@ class NarrowPhase {
   struct Sink {
     std::vector<Manifold>& manifolds;
     std::vector<BodyContact>& contacts;
+    std::vector<BodyContactExtra>& extras;  ///< one a contact
     std::vector<RigidContact>& rigidContacts;
   };
   struct Piece {
     std::vector<Manifold> manifolds;
     std::vector<BodyContact> contacts;
+    std::vector<BodyContactExtra> extras;
     std::vector<RigidContact> rigidContacts;
   };
   /// work(sink, begin, end) over [0, count): at once in contiguous pieces of at least perPiece on
@@ -141,8 +145,9 @@ class NarrowPhase {
   static void addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, const BoxContact& contact,
                           Sink& out);
   static void turnNormal(const NarrowPhaseInput& in, Manifold& manifold, BodyContact* contacts);
-  static void anchor(BodyContact& c, const Vec3& startApart);
-  void carrySlide(const NarrowPhaseInput& in, const Manifold& old, std::span<BodyContact> made) const;
+  static void anchor(BodyContact& c, const BodyContactExtra& extra, const Vec3& startApart);
+  void carrySlide(const NarrowPhaseInput& in, const Manifold& old, std::span<const BodyContact> made,
+                  std::span<BodyContactExtra> madeExtras) const;
   bool canCarry(const NarrowPhaseInput& in, const Manifold& m) const;
   void carry(const NarrowPhaseInput& in, const Manifold& m, Sink& out) const;
   void sizeState();
@@ -154,14 +159,16 @@ class NarrowPhase {
   static void turnRigidNormal(const NarrowPhaseInput& in, Manifold& m, RigidContact* contacts);
 
   std::vector<BodyContact> contacts_;
+  std::vector<BodyContactExtra> extras_;  // contacts_'s, at the same index
   std::vector<RigidContact> rigidContacts_;
   std::vector<RigidContact> spareRigidContacts_;
   RigidContactState rigidState_;
   std::vector<Manifold> manifolds_;
   BodyContactState state_;
-  std::vector<Manifold> spareManifolds_;    // manifolds_'s room for refresh
-  std::vector<BodyContact> spareContacts_;  // contacts_'s room for refresh
-  std::vector<Piece> pieces_;               // the second piece's on, when pieces run at once
+  std::vector<Manifold> spareManifolds_;       // manifolds_'s room for refresh
+  std::vector<BodyContact> spareContacts_;     // contacts_'s room for refresh
+  std::vector<BodyContactExtra> spareExtras_;  // spareContacts_'s, at the same index
+  std::vector<Piece> pieces_;                  // the second piece's on, when pieces run at once
 };
 
 }  // namespace phys

@@ -298,6 +298,8 @@ class World {
   std::span<const GroundContact> groundContacts() const { return ground_.points(); }
   /// Box-box contacts of the last substep.
   std::span<const BodyContact> bodyContacts() const { return narrowPhase_.contacts(); }
+  /// What each of bodyContacts() carries that the passes seldom read, at the same index.
+  std::span<const BodyContactExtra> bodyContactExtras() const { return narrowPhase_.contactExtras(); }
   /// The last substep's contacts of particle bodies as two threads took them (dealt() false: on
   /// one thread, or as one loop; docs/physics.md, "Threads").
   const ContactBins& contactBins() const { return contactBins_; }
