@@ -154,10 +154,6 @@ struct GroundContact {
   /// share their particles, and the ground pass pushes them as one block (collideGround). Never
   /// for a tetra capsule (GroundContacts::placeCapsulePoints says why).
   bool pairedWithNext = false;
-  /// How many points from this one on (this one's body's) are pushed as one block moving its 4
-  /// particles as one rigid body, not by the points' barycentric weights (collideGround): a tetra
-  /// capsule's 2 while its box is whole; 0 for none.
-  std::uint8_t rigidBlock = 0;
 };
 
 }  // namespace phys

@@ -42,8 +42,7 @@ class GroundContacts {
   /// (the particles') tells a capsule turned inside out, whose points go on the face its particles
   /// lie on, not the one its frame names (see the definition). A corners capsule resting on the ground
   /// (its particles' mean move of this substep no more than `restingMove` towards it, and its box
-  /// whole) has its two points paired, pushed as one block (GroundContact::pairedWithNext); a tetra
-  /// capsule's, while its box is whole, as one rigid block (GroundContact::rigidBlock).
+  /// whole) has its two points paired, pushed as one block (GroundContact::pairedWithNext).
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
                           const Particles& particles, const Vec3& groundNormal, Real groundHeight,
                           Real restingMove, const Workers* workers);
