@@ -102,22 +102,75 @@ void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> 
   }
 }
 
+namespace {
+
+// The same point carried by the other inscribed tetrahedron (corners 1, 2, 4, 7: each of 0, 3, 5, 6
+// with its x bit flipped). `a` is a corners body's rigid embedding (rigidEmbedding), weights
+// c_j = (1 + s_j . u) / 4 over corners s_j; the mirrored corner's weight is c_j - s_jx u_x / 2,
+// with u_x = sum_j s_jx c_j (the four s_j of a regular tetrahedron have sum s_j s_j^T = 4 I).
+Embedding otherTetrahedron(const Embedding& a) {
+  Real ux = 0.0;
+  Real sx[4];
+  for (int j = 0; j < 4; ++j) {
+    sx[j] = (kTetraCorner[j] & 1) ? 1.0 : -1.0;
+    ux += sx[j] * a.weight[j];
+  }
+  Embedding b = a;
+  for (int j = 0; j < 4; ++j) {
+    b.weight[j] = a.weight[j] - 0.5 * sx[j] * ux;
+    b.particle[j] = sx[j] > 0.0 ? ParticleId(a.particle[j] - 1u) : ParticleId(a.particle[j] + 1u);
+  }
+  return b;
+}
+
+}  // namespace
+
 // Jakobsen 2001, "Friction", made Coulomb: a pass's push out of the ground is that pass's normal
 // impulse times h / m, and its tangential cut is bounded by mu times it.
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
                          std::span<const Real> normalPush, std::span<const std::uint8_t> still) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
-    const Real push = normalPush[c];
+    Real push = normalPush[c];
     if (push <= 0.0 || (!still.empty() && still[c] != 0)) continue;
-    const Embedding& e = contacts[c].surface.count > 0 ? contacts[c].surface : contacts[c].point;
+    const bool onSurface = contacts[c].surface.count > 0;
+    const Embedding& e = onSurface ? contacts[c].surface : contacts[c].point;
+    // A corners capsule's surface point is carried by both inscribed tetrahedra, half each: the
+    // one alone is chiral, and its cuts along a capsule's core twisted the box about the vertical,
+    // so that one held on a slope turned off the fall line and rolled (22 cm across in 20 s), and
+    // with friction right the seed's capsule ragdoll kept rocking its head. The two together are
+    // symmetric, as a box's corners are (docs/physics.md, "Capsules", "A capsule on a slope").
+    const Embedding mirror = onSurface ? otherTetrahedron(e) : Embedding{};
     Vec3 slide = embeddedPosition(p.position, e) - embeddedPosition(p.previous, e);
+    if (onSurface)
+      slide = 0.5 * (slide + embeddedPosition(p.position, mirror) - embeddedPosition(p.previous, mirror));
     slide -= glm::dot(slide, n) * n;
     const Real slideLength = glm::length(slide);
     if (slideLength == 0.0) continue;
+    Real kE = 0.0, kMirror = 0.0;
+    if (onSurface) {
+      // The push moved `point` (impulse push / K_point) and the cut moves `surface` (impulse
+      // cut / K_surface): Coulomb bounds impulses, so the push is counted at the surface point's
+      // K. Carried by one inscribed tetrahedron (K 5.02 w at a lying capsule's ends, its face point
+      // 3.02 w) and bounded by the bare push, a corners capsule's friction was mu / 1.66: lying along
+      // a 10 degree slope at mu 0.25 it slid 10.9 m in 10 s (docs/physics.md, "Capsules", "A capsule
+      // on a slope").
+      kE = embeddedWeight(p.inverseMass, e);
+      kMirror = embeddedWeight(p.inverseMass, mirror);
+      const Real kPoint = embeddedWeight(p.inverseMass, contacts[c].point);
+      // The mean of two points carried by disjoint particles: K = (K_e + K_mirror) / 4.
+      if (kPoint > 0.0) push *= 0.25 * (kE + kMirror) / kPoint;
+    }
     const Material& mu = contacts[c].combined;
     Real cut = 1.0;  // static: stop the slide entirely
     if (slideLength > mu.staticFriction * push) cut = std::min(1.0, mu.dynamicFriction * push / slideLength);
-    moveEmbedded(p.position, p.inverseMass, e, -cut * slide);
+    if (!onSurface) {
+      moveEmbedded(p.position, p.inverseMass, e, -cut * slide);
+      continue;
+    }
+    // Each of the two points moved by the cut, so their mean is (moveEmbedded's weighting, with
+    // the weights above).
+    if (kE > 0.0) shiftEmbedded(p.position, p.inverseMass, e, -cut * slide / kE);
+    if (kMirror > 0.0) shiftEmbedded(p.position, p.inverseMass, mirror, -cut * slide / kMirror);
   }
 }
 
