@@ -142,7 +142,7 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
     const Embedding mirror = onSurface ? otherTetrahedron(e) : Embedding{};
     Vec3 slide = embeddedPosition(p.position, e) - embeddedPosition(p.previous, e);
     if (onSurface)
-      slide = 0.5 * (slide + embeddedPosition(p.position, mirror) - embeddedPosition(p.previous, mirror));
+      slide = 0.5 * (slide + (embeddedPosition(p.position, mirror) - embeddedPosition(p.previous, mirror)));
     slide -= glm::dot(slide, n) * n;
     const Real slideLength = glm::length(slide);
     if (slideLength == 0.0) continue;
@@ -167,10 +167,15 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
       moveEmbedded(p.position, p.inverseMass, e, -cut * slide);
       continue;
     }
-    // Each of the two points moved by the cut, so their mean is (moveEmbedded's weighting, with
-    // the weights above).
-    if (kE > 0.0) shiftEmbedded(p.position, p.inverseMass, e, -cut * slide / kE);
-    if (kMirror > 0.0) shiftEmbedded(p.position, p.inverseMass, mirror, -cut * slide / kMirror);
+    // One impulse J on each of the two points moves their mean by (K_e + K_mirror) J / 2: the
+    // cut's, J = 2 cut slide / (K_e + K_mirror), is the mean point's impulse cut slide / K split
+    // evenly, so Coulomb's bound holds also when one side's particles weigh more (a pinned or
+    // frozen corner), and with one side immovable the other carries the whole cut.
+    const Real kSum = kE + kMirror;
+    if (kSum <= 0.0) continue;
+    const Vec3 impulse = -2.0 * cut * slide / kSum;
+    shiftEmbedded(p.position, p.inverseMass, e, impulse);
+    shiftEmbedded(p.position, p.inverseMass, mirror, impulse);
   }
 }
 

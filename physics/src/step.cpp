@@ -266,7 +266,7 @@ void World::updateLayouts() {
   if (!layoutsStale_ && !constraints_.stale()) return;
   constraints_.layOut(bodies_, particles_.size());
   bodyLayout_.build(bodies_);
-  spinLever_.resize(particles_.size());  // every body's particles are in (keepSpin)
+  spinLever_.resize(particles_.size());  // keepSpin: written for the run bodies only
   contactBins_.indexGround(ground_.points());
   broadPhase_.indexFilters();
   layoutsStale_ = false;

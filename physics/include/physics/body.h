@@ -123,8 +123,9 @@ struct StickSpin {
   bool kept = false;  ///< false: left alone (a particle pinned, frozen or asleep, or a rigid body)
   Vec3 moment{0.0};   ///< unit: kg m^2; sum m s_i x x_i before the pass over the sticks
 };
-/// keepSpin's scratch per particle of a particle body: m (x* - c*) (unit: kg m) and m (kg); zeros
-/// for a body left alone. Four doubles, which the lane kernels read as such (relax_lanes.cpp).
+/// keepSpin's scratch per particle of a body whose sticks are relaxed in the world's arrays
+/// (StickLayout::runBodies): m (x* - c*) (unit: kg m) and m (kg); zeros for a body left alone. The
+/// lanes and blocks keep their own levers (ConstraintGraph's lane-major copy, the blocks' locals).
 struct SpinLever {
   Vec3 lever{0.0};
   Real mass = 0.0;
