@@ -615,6 +615,37 @@ TEST(CapsuleGround, ACornersCapsuleLyingAlongASteeperSlopeSlidesAtTheCoulombRate
   }
 }
 
+TEST(CapsuleGround, ACornersCapsulesGroundFrictionIsBoundedByCoulombWithAHeavierSide) {
+  // A corners capsule's friction cuts at its surface point, carried by both inscribed tetrahedra.
+  // Moving each of the two points by the whole cut gave impulses cut slide / K_1 and / K_2, whose
+  // sum is mu times the normal impulse only while K_1 = K_2: with one side's particles heavier (or
+  // one pinned or frozen) it was (K_1 + K_2)^2 / (4 K_1 K_2) times too much. A sliding cut's
+  // impulse (the particles' change of momentum, none pinned) is mu_d times the push's, push /
+  // K_point, to round-off, whichever particle is the heavy one.
+  phys::World world({}, testing_phys::solver(phys::SolverMethod::GaussSeidel, 2, 4));
+  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+  d.orientation = kLying;
+  world.addBody(d);
+  for (int i = 0; i < 10; ++i) world.step();
+  const std::span<const phys::GroundContact> contacts = world.groundContacts();
+  ASSERT_EQ(contacts.size(), 2u);
+  ASSERT_GT(contacts[0].surface.count, 0);
+  for (std::size_t heavy = 0; heavy <= 8; ++heavy) {  // 8: all alike
+    phys::Particles p = world.particles();
+    if (heavy < 8) p.inverseMass[heavy] *= 0.25;
+    for (std::size_t i = 0; i < p.size(); ++i) p.position[i] = p.previous[i] + Vec3(0.05, 0.0, 0.02);
+    const phys::Particles before = p;
+    const std::vector<phys::Real> push{1e-4};  // its slide far past mu * push: a sliding cut
+    phys::detail::applyGroundFriction(p, contacts.first(1), Vec3(0.0, 1.0, 0.0), push, {});
+    Vec3 impulse(0.0);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      impulse += (p.position[i] - before.position[i]) / p.inverseMass[i];
+    const phys::Real kPoint = phys::detail::embeddedWeight(p.inverseMass, contacts[0].point);
+    const phys::Real expected = contacts[0].combined.dynamicFriction * push[0] / kPoint;
+    EXPECT_NEAR(glm::length(impulse), expected, 1e-9 * expected) << "particle " << heavy << " heavy";
+  }
+}
+
 TEST(CapsuleGround, PenetrationIsMeasuredAtEveryCapsulesLowestPointNotAtItsContacts) {
   // A particle capsule's ground points are where the passes put them, not where it is deepest: an
   // end high above the ground keeps its point as the capsule turns, and a capsule turned inside
