@@ -143,6 +143,27 @@ bool spinLevers(const Particles& p, ParticleId first, int count, SpinLever* leve
 Vec3 stickMoment(const Vec3* x, const SpinLever* lever, int count);
 /// Turns the body's `count` particles about their centre back to the moment `before`.
 void keepStickMoment(Vec3* x, const SpinLever* lever, int count, const Vec3& before);
+/// keepSpin around a pass over one body held in `x` (a block's copy, or a tetra volume's particles in
+/// place), its `count` (up to kMaxBlockParticles) particles from `first`: the levers and the moment
+/// when made, the turn back to that moment in `keep`; nothing when `on` is false.
+class KeptMoment {
+ public:
+  KeptMoment(const Particles& p, ParticleId first, int count, const Vec3* x, bool on)
+      : on_(on), count_(count) {
+    if (!on_) return;
+    spinLevers(p, first, count, lever_);
+    moment_ = stickMoment(x, lever_, count);
+  }
+  void keep(Vec3* x) const {
+    if (on_) keepStickMoment(x, lever_, count_, moment_);
+  }
+
+ private:
+  SpinLever lever_[kMaxBlockParticles];
+  Vec3 moment_{0.0};
+  bool on_;
+  int count_;
+};
 void startStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,
                     std::span<SpinLever> lever, std::span<StickSpin> spin);
 void measureStickSpin(const Particles& p, std::span<const Body> bodies, std::span<const std::uint32_t> which,

@@ -57,7 +57,6 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
                   const SpinPass* spin, RelaxStick relaxStick) {
   Vec3 x[kMaxBlockParticles], previous[kMaxBlockParticles];
   Real w[kMaxBlockParticles];
-  SpinLever lever[kMaxBlockParticles];
   const View local{x, kPrevious ? previous : nullptr, w};
   for (const StickBlock& block : layout.blocks()) {
     const std::uint32_t first = block.firstParticle;
@@ -67,13 +66,12 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
       w[i] = p.inverseMass[first + i];
     }
     // the levers again each pass: a shape's few bodies left over from its lanes
-    if (spin != nullptr) spinLevers(p, block.firstParticle, block.particleCount, lever);
-    const Vec3 moment = spin != nullptr ? stickMoment(x, lever, block.particleCount) : Vec3(0.0);
+    const KeptMoment moment(p, block.firstParticle, block.particleCount, x, spin != nullptr);
     for (std::uint32_t k = block.firstStick; k < block.firstStick + block.stickCount; ++k) {
       const Stick& s = sticks[k];
       relaxStick(local, s.a - first, s.b - first, s, k);
     }
-    if (spin != nullptr) keepStickMoment(x, lever, block.particleCount, moment);
+    moment.keep(x);
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
   const View world{p.position.data(), kPrevious ? p.previous.data() : nullptr, p.inverseMass.data()};
@@ -139,9 +137,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
       sum[i] = Vec3(0.0);
     }
     const View local{x, nullptr, w};
-    SpinLever lever[kMaxBlockParticles];
-    if (spin != nullptr) spinLevers(p, block.firstParticle, block.particleCount, lever);
-    const Vec3 moment = spin != nullptr ? stickMoment(x, lever, block.particleCount) : Vec3(0.0);
+    const KeptMoment moment(p, block.firstParticle, block.particleCount, x, spin != nullptr);
     for (std::uint32_t k = block.firstStick; k < block.firstStick + block.stickCount; ++k) {
       const Stick& s = sticks[k];
       correction(local, s.a - first, s.b - first, s, std::max(degree[s.a], degree[s.b]), sum);
@@ -149,7 +145,7 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
     for (int i = 0; i < block.particleCount; ++i) {
       if (w[i] != 0.0) x[i] += sum[i];
     }
-    if (spin != nullptr) keepStickMoment(x, lever, block.particleCount, moment);
+    moment.keep(x);
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
   if (layout.runs().empty()) return;

@@ -62,9 +62,7 @@ void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bo
                            bool keepSpin) {
   const std::array<Vec3, 4> x = tetraOf(p.position, k.first);
   Vec3* at = &p.position[k.first];
-  SpinLever lever[4];
-  if (keepSpin) detail::spinLevers(p, k.first, 4, lever);
-  const Vec3 moment = keepSpin ? detail::stickMoment(at, lever, 4) : Vec3(0.0);
+  const detail::KeptMoment moment(p, k.first, 4, at, keepSpin);
   const std::array<Vec3, 4> gradient = volumeGradient(x);
   const std::array<Vec3, 4> direction = alongStart ? volumeGradient(tetraOf(p.previous, k.first)) : gradient;
   Real denominator = 0.0;
@@ -78,7 +76,7 @@ void TetraVolumes::project(Particles& p, const Kept& k, Real targetSixVolume, bo
     const Real w = p.inverseMass[k.first + j];
     if (w != 0.0) p.position[k.first + j] += lambda * w * direction[j];
   }
-  if (keepSpin) detail::keepStickMoment(at, lever, 4, moment);
+  moment.keep(at);
 }
 
 // The sticks cannot tell a tetrahedron from its mirror image, so a deep landing's contacts, which
