@@ -21,4 +21,23 @@ Embedding rigidEmbedding(const Body& box, const Vec3& u) {
   return e;
 }
 
+// The same point carried by the other inscribed tetrahedron (corners 1, 2, 4, 7: each of 0, 3, 5, 6
+// with its x bit flipped). `a` is a corners body's rigid embedding (rigidEmbedding), weights
+// c_j = (1 + s_j . u) / 4 over corners s_j; the mirrored corner's weight is c_j - s_jx u_x / 2,
+// with u_x = sum_j s_jx c_j (the four s_j of a regular tetrahedron have sum s_j s_j^T = 4 I).
+Embedding otherTetrahedron(const Embedding& a) {
+  Real ux = 0.0;
+  Real sx[4];
+  for (int j = 0; j < 4; ++j) {
+    sx[j] = (kTetraCorner[j] & 1) ? 1.0 : -1.0;
+    ux += sx[j] * a.weight[j];
+  }
+  Embedding b = a;
+  for (int j = 0; j < 4; ++j) {
+    b.weight[j] = a.weight[j] - 0.5 * sx[j] * ux;
+    b.particle[j] = sx[j] > 0.0 ? ParticleId(a.particle[j] - 1u) : ParticleId(a.particle[j] + 1u);
+  }
+  return b;
+}
+
 }  // namespace phys::detail

@@ -24,6 +24,10 @@ namespace phys::detail {
 /// rigidly by the box: barycentric weights over its inscribed tetrahedron (its 4 particles, or
 /// corners 0, 3, 5, 6 of a corners box), exact for any point while the box keeps its shape.
 Embedding rigidEmbedding(const Body& box, const Vec3& u);
+/// The same point carried by a corners box's other inscribed tetrahedron (corners 1, 2, 4, 7), from
+/// its rigidEmbedding over corners 0, 3, 5, 6: the two together carry a point symmetrically, as the
+/// box's 8 corners do (docs/physics.md, "A capsule on a slope").
+Embedding otherTetrahedron(const Embedding& a);
 
 /// A world point in the body's frame `frame` (of this substep), in units of its half extents.
 Vec3 frameCoordinates(const Body& body, const Obb& frame, const Vec3& point);
