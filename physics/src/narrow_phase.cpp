@@ -390,8 +390,13 @@ void NarrowPhase::addManifold(const NarrowPhaseInput& in, BodyId a, BodyId b, co
     c.kind = static_cast<std::uint8_t>(contact.kind);
     if (bodyA.shape == Shape::Capsule || bodyB.shape == Shape::Capsule) {
       c.offset = glm::dot(c.normal, movedB - movedA);  // a box's points are on its faces already
-      if (movedA != Vec3(0.0)) extra.surfaceA = detail::rigidPoint(bodyA, frameA, contact.points[i].onA);
-      if (movedB != Vec3(0.0)) extra.surfaceB = detail::rigidPoint(bodyB, frameB, contact.points[i].onB);
+      // Only a capsule's side: a box's point is moved onto its face by round-off alone (1e-17 to
+      // 2e-16 m), which flagged most box sides of capsule-box contacts, and friction took the box
+      // at a point carried by its inscribed tetrahedron instead of its face.
+      if (bodyA.shape == Shape::Capsule && movedA != Vec3(0.0))
+        extra.surfaceA = detail::rigidPoint(bodyA, frameA, contact.points[i].onA);
+      if (bodyB.shape == Shape::Capsule && movedB != Vec3(0.0))
+        extra.surfaceB = detail::rigidPoint(bodyB, frameB, contact.points[i].onB);
       c.frictionAtSurfaceA = extra.surfaceA.count > 0;
       c.frictionAtSurfaceB = extra.surfaceB.count > 0;
     }

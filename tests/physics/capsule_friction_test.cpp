@@ -119,12 +119,14 @@ constexpr phys::SolverMethod kAll[] = {phys::SolverMethod::GaussSeidel, phys::So
                                        phys::SolverMethod::Xpbd, phys::SolverMethod::Shake};
 
 TEST(CapsuleFriction, ACornersCapsuleLyingAlongASlopeOnABoxItsFrictionHoldsStaysPut) {
-  // tan 10 degrees = 0.176 < 0.25. Bounded by the push at the face point while it cut at the surface
-  // point, friction was 0.25 / 1.66 in effect and the capsule slid at 0.255 m/s^2 (7.9 m in 10 s) at
-  // both settings; with the bound right but the surface point carried by one inscribed tetrahedron,
-  // chiral, it held along the slope but turned off the fall line and rolled across it, 0.23 m by 18 s
-  // (1.13 rad). Now, at the ragdoll scenes' 2 x 4 and the seed's 3 x 1, 0.5 to 1 mm down the slope in
-  // 20 s, under 1e-7 m across and 3e-4 rad turned: 3 mm and 1 mm, 1 mrad leave room for rounding.
+  // tan 10 degrees = 0.176 < 0.25. Bounded by the push at the face point while it cut at the
+  // surface point, friction was 0.25 / 1.66 in effect and the capsule slid at 0.255 m/s^2 (off the
+  // 8 m box within 20 s) at both settings; with the bound right but the surface point carried by
+  // one inscribed tetrahedron, chiral, it held along the slope but turned off the fall line and
+  // rolled across it, 0.23 m by 18 s (1.13 rad). Now, at the ragdoll scenes' 2 x 4 and the seed's
+  // 3 x 1, 0.17 and 0.32 mm down the slope in 20 s (0.5 to 1 mm while the box's side, flagged by
+  // round-off, was carried by its tetrahedron: below), under 1e-7 m across and 3e-4 rad turned:
+  // 3 mm and 1 mm, 1 mrad leave room for rounding.
   for (const auto& [iterations, substeps] : {std::pair{2, 4}, std::pair{3, 1}}) {
     for (const phys::SolverMethod method : kHolding) {
       const SlopeRun run = lyingOnASupport(Support::Box, phys::BodyModel::Corners, 10.0,
@@ -235,6 +237,45 @@ TEST(CapsuleFriction, AFrictionImpulseBetweenCornersCapsulesIsMuTimesThePushsWit
     const phys::Real expected = contacts[0].combined.dynamicFriction * push[0] / kFace;
     EXPECT_NEAR(glm::length(onB), expected, 1e-9 * expected) << "particle " << heavy << " heavy";
     EXPECT_NEAR(glm::length(onA + onB), 0.0, 1e-9 * expected) << "particle " << heavy << " heavy";
+  }
+}
+
+TEST(CapsuleFriction, ABoxsSideOfACapsuleContactTakesFrictionAtItsFacePoint) {
+  // A box's contact point is on its face already: the narrow phase "moves" it there by round-off
+  // alone (1e-17 to 2e-16 m), which flagged 280 (corners) and 405 (tetra) of the 480 box sides of
+  // the contacts below in 2 s, and friction took the box at a point carried by its inscribed
+  // tetrahedron. Two capsules of each model lying between two box walls (the groove above, its
+  // slope 10 degrees) touch them along their sides; no box side of those contacts is flagged.
+  phys::WorldSettings ws;
+  ws.gravity = kG * Vec3(std::sin(10.0 * kDegree), -std::cos(10.0 * kDegree), 0.0);
+  ws.groundMaterial = {4.0, 4.0};
+  for (const phys::BodyModel model : {phys::BodyModel::Corners, phys::BodyModel::Tetra}) {
+    phys::World world(ws, testing_phys::solver(phys::SolverMethod::GaussSeidel, 2, 4));
+    for (const double side : {-1.0, 1.0}) {
+      phys::BodyDesc wall;
+      wall.center = Vec3(0.0, 0.25, side * (2.0 * kRadius + 0.2 + 2e-4));
+      wall.size = Vec3(8.0, 0.5, 0.4);
+      wall.mass = 1000.0;
+      world.addBody(wall);
+    }
+    world.addBody(lyingCapsule(model, Vec3(0.0, kRadius, -kRadius - 1e-4), 8.0, 1000.0));
+    world.addBody(lyingCapsule(model, Vec3(0.0, kRadius, kRadius + 1e-4), 8.0, 1000.0));
+    int boxSides = 0, flagged = 0;
+    for (int i = 0; i < 120; ++i) {
+      world.step();
+      for (const phys::BodyContact& c : world.bodyContacts()) {
+        for (const auto& [body, atSurface] :
+             {std::pair{c.bodyA, c.frictionAtSurfaceA}, std::pair{c.bodyB, c.frictionAtSurfaceB}}) {
+          if (world.bodies()[body].shape != phys::Shape::Box) continue;
+          ++boxSides;
+          flagged += atSurface ? 1 : 0;
+        }
+      }
+    }
+    std::printf("%s capsules against box walls: %d of %d box sides flagged\n", phys::toString(model).data(),
+                flagged, boxSides);
+    EXPECT_GT(boxSides, 0) << phys::toString(model);
+    EXPECT_EQ(flagged, 0) << phys::toString(model);
   }
 }
 
