@@ -2,6 +2,8 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "passes.h"
 
@@ -35,13 +37,9 @@ Real sharedWeight(const std::vector<Real>& inverseMass, const Embedding& a, cons
 // so from its landing on, a thin capsule thrown down at 8 m/s, squashed through itself in a
 // step, stayed crushed flat and chattered 4 cm deep, where pushed one after the other it comes out
 // whole, inside out, and rests (CapsuleGround.AThinCapsuleThrownDownHardRestsAtItsRadiusEvenInsideOut).
-void collideCapsulePair(Particles& p, const GroundContact& a, const GroundContact& b, Real depthA,
-                        Real depthB, const Vec3& n, Real& pushA, Real& pushB) {
-  pushA = pushB = 0.0;
-  if (depthA <= 0.0 && depthB <= 0.0) return;
-  const Real kaa = embeddedWeight(p.inverseMass, a.point), kbb = embeddedWeight(p.inverseMass, b.point);
-  const Real kab = sharedWeight(p.inverseMass, a.point, b.point);
-  Real la = 0.0, lb = 0.0;
+// The 2 x 2 block's impulses: K lambda = depth, both >= 0 (see collideCapsulePair).
+void solvePair(Real kaa, Real kbb, Real kab, Real depthA, Real depthB, Real& la, Real& lb) {
+  la = lb = 0.0;
   const Real det = kaa * kbb - kab * kab;
   if (det > 1e-12 * kaa * kbb) {  // both ends on the plane after
     la = (kbb * depthA - kab * depthB) / det;
@@ -59,11 +57,134 @@ void collideCapsulePair(Particles& p, const GroundContact& a, const GroundContac
     else if (kbb > 0.0)
       lb = depthB / kbb;
   }
+}
+
+void collideCapsulePair(Particles& p, const GroundContact& a, const GroundContact& b, Real depthA,
+                        Real depthB, const Vec3& n, Real& pushA, Real& pushB) {
+  pushA = pushB = 0.0;
+  if (depthA <= 0.0 && depthB <= 0.0) return;
+  const Real kaa = embeddedWeight(p.inverseMass, a.point), kbb = embeddedWeight(p.inverseMass, b.point);
+  const Real kab = sharedWeight(p.inverseMass, a.point, b.point);
+  Real la = 0.0, lb = 0.0;
+  solvePair(kaa, kbb, kab, depthA, depthB, la, lb);
   if (la > 0.0) shiftEmbedded(p.position, p.inverseMass, a.point, la * n);
   if (lb > 0.0) shiftEmbedded(p.position, p.inverseMass, b.point, lb * n);
   // The push friction reads: what each point's own impulse alone would move it, as for a lone point.
   pushA = la * kaa;
   pushB = lb * kbb;
+}
+
+// A tetra capsule's 4 particles as one rigid body: their centre, total inverse mass and inverse
+// inertia about the centre (from the particles where they are). False if one is pinned or the
+// four are flat, where the barycentric push serves.
+struct RigidTetra {
+  Vec3 centre{0.0};
+  Real inverseMass = 0.0;
+  glm::dmat3 inverseInertia{0.0};
+};
+
+bool rigidTetra(const Particles& p, const Embedding& e, RigidTetra& t) {
+  if (e.count != 4) return false;
+  Real mass = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const Real w = p.inverseMass[e.particle[i]];
+    if (w == 0.0) return false;
+    mass += 1.0 / w;
+    t.centre += p.position[e.particle[i]] / w;
+  }
+  t.centre /= mass;
+  glm::dmat3 inertia(0.0);
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 r = p.position[e.particle[i]] - t.centre;
+    inertia += (glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r)) / p.inverseMass[e.particle[i]];
+  }
+  const Real det = glm::determinant(inertia);
+  const Real scale = inertia[0][0] + inertia[1][1] + inertia[2][2];
+  if (!(det > 1e-9 * scale * scale * scale)) return false;
+  t.inverseMass = 1.0 / mass;
+  t.inverseInertia = glm::inverse(inertia);
+  return true;
+}
+
+// The most points one rigid block holds: a tetra capsule's 2.
+constexpr int kMostRigidBlock = 2;
+
+// A tetra capsule's two ground points pushed as its 4 particles would move as one rigid body, by
+// impulses lambda_k n at the points: the centre by M^-1 sum lambda_k n, the particles turned about
+// it by I^-1 sum r_k x lambda_k n (linearised). By their barycentric weights the pushes lift only
+// its bottom particles (the two points weigh its top two +0.18 and -0.18 for a 0.2 m by 1 m
+// capsule), and no sum of the two lifts the top two with the bottom two: every step its sticks
+// lifted them after the pushes, and the chiral 4-particle body came out of each step turned a
+// little, rocking +-0.1 rad and +-2.5 cm for ever (docs/physics.md, "A tetra capsule lying still").
+// Pushed rigidly, a resting capsule's sticks have nothing to undo. The impulses solve the same 2 x 2
+// complementarity problem as the block by weights, K_ij = 1/M + (r_i x n) . I^-1 (r_j x n).
+bool collideRigidBlock(Particles& p, std::span<const GroundContact> block, const Real* depth, const Vec3& n,
+                       Real* push) {
+  RigidTetra t;
+  if (!rigidTetra(p, block[0].point, t)) return false;
+  const int count = static_cast<int>(block.size());
+  Real deepest = 0.0;
+  for (int k = 0; k < count; ++k) {
+    push[k] = 0.0;
+    deepest = std::max(deepest, depth[k]);
+  }
+  if (deepest <= 0.0) return true;
+  Vec3 arm[kMostRigidBlock], turn[kMostRigidBlock];  // r_k x n and I^-1 (r_k x n)
+  for (int k = 0; k < count; ++k) {
+    arm[k] = glm::cross(embeddedPosition(p.position, block[k].point) - t.centre, n);
+    turn[k] = t.inverseInertia * arm[k];
+  }
+  auto K = [&](int i, int j) { return t.inverseMass + glm::dot(arm[i], turn[j]); };
+  Real lambda[kMostRigidBlock] = {};
+  solvePair(K(0, 0), K(1, 1), K(0, 1), depth[0], depth[1], lambda[0], lambda[1]);
+  Real total = 0.0;
+  Vec3 turned(0.0);
+  for (int k = 0; k < count; ++k) {
+    total += lambda[k];
+    turned += lambda[k] * turn[k];
+    // Friction reads a push as the impulse times the point's mobility by weights, by which it moves
+    // the point: by K_kk, a tetra box's corners had a quarter of their friction and it slid down a
+    // slope that holds it (BoxModels.InclineHoldsWithFriction05AndSlidesAtCoulombRateWith02).
+    push[k] = lambda[k] * embeddedWeight(p.inverseMass, block[k].point);
+  }
+  const Vec3 move = total * t.inverseMass * n;
+  for (int i = 0; i < 4; ++i) {
+    Vec3& x = p.position[block[0].point.particle[i]];
+    x += move + glm::cross(turned, x - t.centre);
+  }
+  return true;
+}
+
+// A point of a rigid block's friction: its slide along the ground cut by a tangential impulse on the
+// 4 particles as one rigid body, as collideRigidBlock pushed them, bounded by mu times that pass's
+// normal impulse (the push it recorded is the impulse times the point's K by weights). Cut by the
+// point's weights instead, the cut bent the body that the push had kept whole, and the sticks, undoing
+// it in the next pass when no push (so no friction) held the point, let a capsule lying along a 10
+// degree slope its friction holds creep down it at 4.3 mm/s.
+void cutRigidly(Particles& p, const GroundContact& contact, const RigidTetra& t, const Vec3& n, Real push) {
+  const Embedding& e = contact.point;
+  const Vec3 at = embeddedPosition(p.position, e);
+  Vec3 slide = at - embeddedPosition(p.previous, e);
+  slide -= glm::dot(slide, n) * n;
+  const Real length = glm::length(slide);
+  const Real kWeights = embeddedWeight(p.inverseMass, e);
+  if (length == 0.0 || kWeights <= 0.0) return;
+  const Real normalImpulse = push / kWeights;
+  const Vec3 along = slide / length;
+  const Vec3 arm = glm::cross(at - t.centre, along);
+  const Vec3 turn = t.inverseInertia * arm;
+  const Real k = t.inverseMass + glm::dot(arm, turn);  // how far a unit impulse moves the point along
+  if (!(k > 0.0)) return;
+  const Material& mu = contact.combined;
+  Real impulse = length / k;  // static: stop the slide entirely
+  if (impulse > mu.staticFriction * normalImpulse)
+    impulse = std::min(impulse, mu.dynamicFriction * normalImpulse);
+  const Vec3 move = -impulse * t.inverseMass * along;
+  const Vec3 turned = -impulse * turn;
+  for (int i = 0; i < 4; ++i) {
+    Vec3& x = p.position[e.particle[i]];
+    x += move + glm::cross(turned, x - t.centre);
+  }
 }
 
 }  // namespace
@@ -79,6 +200,16 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
   auto isFar = [&](std::size_t c) { return !far.empty() && far[c] != 0; };
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (!still.empty() && still[c] != 0) continue;
+    // A free tetra capsule's two points as one rigid block (placeCapsulePoints), with both ends near.
+    const std::size_t block = contacts[c].rigidBlock;
+    if (block > 1 && c + block <= contacts.size() && block <= kMostRigidBlock && !isFar(c) && !isFar(c + 1)) {
+      Real depth[kMostRigidBlock];
+      for (std::size_t k = 0; k < block; ++k) depth[k] = depthOf(c + k);
+      if (collideRigidBlock(p, contacts.subspan(c, block), depth, n, &normalPush[c])) {
+        c += block - 1;
+        continue;
+      }
+    }
     // A capsule with an end far above the ground (standing) has one point to push: pushed alone.
     if (contacts[c].pairedWithNext && c + 1 < contacts.size() && !isFar(c) && !isFar(c + 1)) {
       collideCapsulePair(p, contacts[c], contacts[c + 1], depthOf(c), depthOf(c + 1), n, normalPush[c],
@@ -109,6 +240,13 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     Real push = normalPush[c];
     if (push <= 0.0 || (!still.empty() && still[c] != 0)) continue;
+    // A rigid block's points (the block's first names how many), cut as it was pushed.
+    const bool inBlock = contacts[c].rigidBlock > 1 || (c > 0 && contacts[c - 1].rigidBlock > 1 &&
+                                                        contacts[c - 1].body == contacts[c].body);
+    if (RigidTetra t; inBlock && rigidTetra(p, contacts[c].point, t)) {
+      cutRigidly(p, contacts[c], t, n, push);
+      continue;
+    }
     const bool onSurface = contacts[c].surface.count > 0;
     const Embedding& e = onSurface ? contacts[c].surface : contacts[c].point;
     // A corners capsule's surface point is carried by both inscribed tetrahedra, half each: the

@@ -52,6 +52,7 @@ NodeId Islands::addBody(int particleCount) {
   nodeBody_[id] = BodyId(bodyNode_.size());
   bodyNode_.push_back(id);
   bodyAsleep_.push_back(0);
+  bodyJoined_.push_back(0);
   bodyIsland_.push_back(0);
   particleNode_.insert(particleNode_.end(), static_cast<std::size_t>(particleCount), id);
   keepMaskRoom();
@@ -177,6 +178,9 @@ void Islands::join(NodeId a, NodeId b) {
   // body too, and asleep the body would hold it stretched (a pinned node never sleeps).
   wake(a);
   wake(b);
+  for (const NodeId n : {a, b}) {
+    if (nodeBody_[n] != kNoBody) bodyJoined_[nodeBody_[n]] = 1;
+  }
   if (fixed_[a] != 0 || fixed_[b] != 0 || a == b) return;
   detail::unite(lasting_, a, b);
   counted_ = false;

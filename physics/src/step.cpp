@@ -333,8 +333,9 @@ void World::findContacts(bool newPairs, bool firstSubstep, Real h, bool again) {
     // Resting: moving towards the ground no faster than twice a substep's gravity, Müller et al.
     // 2020's threshold below which a contact does not bounce (World::restitute).
     const Real restingMove = 2.0 * gravityMagnitude() * h * h;
-    ground_.placeCapsulePoints(bodies_, frames_, particles_, world_.groundNormal, world_.groundHeight,
-                               restingMove, workers());
+    ground_.placeCapsulePoints(bodies_, frames_, particles_, narrowPhase_.manifolds(),
+                               islands_.bodiesJoined(), world_.groundNormal, world_.groundHeight, restingMove,
+                               workers());
     // Each contact's overlap at x*, where the substep starts: what the parting measures, and
     // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
     // Each point's own: pieces of them at once.

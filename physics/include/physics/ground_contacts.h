@@ -14,6 +14,8 @@
 
 namespace phys {
 
+struct Manifold;
+
 /// Per ground contact point, index for index with GroundContacts::points().
 struct GroundContactState {
   std::vector<Real> push;             ///< unit: m; the ground's correction in the last pass
@@ -42,9 +44,13 @@ class GroundContacts {
   /// (the particles') tells a capsule turned inside out, whose points go on the face its particles
   /// lie on, not the one its frame names (see the definition). A corners capsule resting on the ground
   /// (its particles' mean move of this substep no more than `restingMove` towards it, and its box
-  /// whole) has its two points paired, pushed as one block (GroundContact::pairedWithNext).
+  /// whole) has its two points paired, pushed as one block (GroundContact::pairedWithNext); a tetra
+  /// capsule that is a free body, its box whole, as one rigid block (GroundContact::rigidBlock):
+  /// free, when nothing is joined to it (`joined`, per body: 1 for one a stick, link or joint
+  /// acts on; empty for none) and it is in none of this step's `manifolds`.
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
-                          const Particles& particles, const Vec3& groundNormal, Real groundHeight,
+                          const Particles& particles, std::span<const Manifold> manifolds,
+                          std::span<const std::uint8_t> joined, const Vec3& groundNormal, Real groundHeight,
                           Real restingMove, const Workers* workers);
   /// Per point, 1 for a capsule's end that placeCapsulePoints left far above the ground in this
   /// substep: the collision pass skips it (no push) as it would find it above the ground. Its depth at
@@ -86,6 +92,7 @@ class GroundContacts {
   std::vector<std::uint8_t> still_;     // per point: 1 to leave it in this step
   std::vector<std::uint8_t> far_;       // per point: 1 for a capsule's end far above the ground
   std::vector<std::uint8_t> wasStill_;  // per point: its particles had inverse mass 0 last step
+  std::vector<std::uint8_t> touching_;  // per body: in one of the step's manifolds (placeCapsulePoints)
   bool anyStill_ = false;
   bool anyMarked_ = false;  // markStill ran since the last clearStill
 };

@@ -106,6 +106,10 @@ class Islands {
   bool asleep(NodeId node) const;
   /// True when the body's island sleeps.
   bool bodyAsleep(BodyId id) const;
+  /// Per body: 1 once a stick, link or joint joined it to anything (a pin, another body, itself
+  /// excepted: its own sticks), kept when that is removed; what the ground reads a free body by
+  /// (GroundContacts::placeCapsulePoints).
+  std::span<const std::uint8_t> bodiesJoined() const { return bodyJoined_; }
   /// Per body: 1 when asleep (what the narrow phase skips pairs by).
   std::span<const std::uint8_t> bodiesAsleep() const { return bodyAsleep_; }
   /// True when some node sleeps: the step masks their masses.
@@ -153,6 +157,7 @@ class Islands {
   std::vector<NodeId> sleepGroup_;          // per node: the island it fell asleep in (a node of it)
   std::vector<std::uint8_t> asleep_;        // per node
   std::vector<std::uint8_t> bodyAsleep_;    // per body
+  std::vector<std::uint8_t> bodyJoined_;    // per body: see bodiesJoined
   std::vector<Real> rest_;                  // per node: unit: s; how long it has been slow
   std::vector<Real> lastSpeed_;             // per node: unit: m/s; its speed at the step before
   std::vector<Real> rising_;                // per node: unit: s; how long its speed has risen running
