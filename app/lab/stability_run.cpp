@@ -67,6 +67,7 @@ Outcome runSetting(const SuiteScene& s, const Setting& setting, RunLength length
   atSceneDt.dt = s.dt;
   scenes::Scene scene = loadSetting(s.source, atSceneDt);
   phys::World& world = scene.world;
+  world.setStageTiming(false);  // the suite times whole steps and reads no stage of them
   WorldJudge judge(s.criteria, world);
   Outcome o;
   std::optional<std::size_t> failed;  // the criterion that stopped the run (RunLength::UntilFailed)

@@ -623,7 +623,7 @@ void World::setCharacterReaction(std::size_t k, const Reaction& reaction) {
 // substep's end, so that the drives pull towards where the part should be when they are solved.
 void World::animate(Real h) {
   if (characters_.empty()) return;
-  const detail::StageTimer timer(profile_, Stage::Animate);
+  const detail::StageTimer timer(stageProfile(), Stage::Animate);
   noteBlows();
   for (Character& c : characters_) {
     rampStrengths(c, h);
@@ -848,7 +848,7 @@ void World::noteBlows() {
 // to get up.
 void World::react() {
   if (characters_.empty()) return;
-  const detail::StageTimer timer(profile_, Stage::Animate);
+  const detail::StageTimer timer(stageProfile(), Stage::Animate);
   findSupports();
   for (Character& c : characters_) {
     const PartMotion root = partMotion(c.bones[0].body);  // a particle part's is a pass over its particles

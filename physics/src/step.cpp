@@ -135,7 +135,7 @@ void World::skipSleepers() {
     ground_.clearStill();
     return;
   }
-  const detail::StageTimer timer(profile_, Stage::Islands);
+  const detail::StageTimer timer(stageProfile(), Stage::Islands);
   islands_.mask(particles_, rigidBodies_, bodies_);
   constraints_.markStill(particles_.inverseMass);
   bodyLayout_.markStill(particles_.inverseMass);
@@ -155,7 +155,7 @@ void World::wakeTouched(bool firstSubstep, Real h) {
   for (std::span<const NodeId> woken = islands_.wakeTouched(narrowPhase_.manifolds()); !woken.empty();
        woken = islands_.wakeTouched(narrowPhase_.manifolds())) {
     {
-      const detail::StageTimer timer(profile_, Stage::Islands);
+      const detail::StageTimer timer(stageProfile(), Stage::Islands);
       islands_.unmaskWoken(particles_, rigidBodies_, bodies_);
       for (const NodeId n : woken) {
         const BodyId id = islands_.nodeBody_[n];
@@ -205,7 +205,7 @@ void World::updateIslands(std::size_t freezesBefore) {
     islands_.forgetCount();  // the step moved the manifolds the last count was of
     return;
   }
-  const detail::StageTimer timer(profile_, Stage::Islands);
+  const detail::StageTimer timer(stageProfile(), Stage::Islands);
   // masked(), not anyAsleep(): an island woken in the step was masked too.
   if (islands_.masked()) {
     islands_.unmask(particles_, rigidBodies_, bodies_);
@@ -274,7 +274,7 @@ void World::updateLayouts() {
 }
 
 void World::integrateParticles(Real h) {
-  const detail::StageTimer timer(profile_, Stage::Integrate);
+  const detail::StageTimer timer(stageProfile(), Stage::Integrate);
   detail::integrate(particles_, world_, h, guard_.checked(), workers());
   detail::integrateRigid(rigidBodies_, world_, h, guard_.checkedRigidPositions(),
                          guard_.checkedRigidOrientations());
@@ -291,7 +291,7 @@ void World::integrateParticles(Real h) {
 
 void World::fitBodyFrames() {
   if (bodies_.size() < 2 && !ground_.hasCapsules()) return;
-  const detail::StageTimer timer(profile_, Stage::Frames);
+  const detail::StageTimer timer(stageProfile(), Stage::Frames);
   updateBodyFrames();
 }
 
@@ -299,7 +299,7 @@ void World::fitBodyFrames() {
 // found the pairs.
 bool World::findPairs(bool firstSubstep) {
   if (bodies_.size() < 2) return false;
-  const detail::StageTimer timer(profile_, Stage::BroadPhase);
+  const detail::StageTimer timer(stageProfile(), Stage::BroadPhase);
   const std::span<const std::uint8_t> asleep =
       islands_.anyAsleep() ? islands_.bodiesAsleep() : std::span<const std::uint8_t>();
   if (!(firstSubstep || drag_ || broadPhase_.needsUpdate(frames_, asleep, workers()))) return false;
@@ -319,7 +319,7 @@ bool World::findPairs(bool firstSubstep) {
 // `again`: right after the same substep's, for islands woken since (wakeTouched).
 void World::findContacts(bool newPairs, bool firstSubstep, Real h, bool again) {
   if (bodies_.size() < 2 && !world_.ground && rigidGround_.empty()) return;
-  const detail::StageTimer timer(profile_, Stage::NarrowPhase);
+  const detail::StageTimer timer(stageProfile(), Stage::NarrowPhase);
   if (bodies_.size() >= 2) {
     const NarrowPhaseInput in = narrowPhaseInput();
     if (again)
@@ -361,7 +361,7 @@ void World::dealContacts(bool newPairs) {
     contactBins_.clear();
     return;
   }
-  const detail::StageTimer timer(profile_, Stage::Contacts);
+  const detail::StageTimer timer(stageProfile(), Stage::Contacts);
   if (newPairs)
     contactBins_.deal(narrowPhase_.manifolds(), ground_.points(), bodies_.size());
   else if (contactBins_.dealt())
@@ -387,7 +387,7 @@ NarrowPhaseInput World::narrowPhaseInput() const {
 // maxDepenetrationSpeed h, its approach speed before the passes, and no impulse yet.
 void World::startRigidContacts(Real h) {
   if (rigidBodies_.size() == 0) return;
-  const detail::StageTimer timer(profile_, Stage::Contacts);
+  const detail::StageTimer timer(stageProfile(), Stage::Contacts);
   const RigidPassInput in = rigidPassInput(h);
   const Real depenetration = solver_.maxDepenetrationSpeed * h;
   // Room for the patches, as for the contacts (room.h): a patch has at least one point.
@@ -422,7 +422,7 @@ RigidPassInput World::rigidPassInput(Real h) {
 // resting contact gains in a substep, and never bounce.
 void World::rigidVelocities(Real h) {
   if (rigidBodies_.size() == 0) return;
-  const detail::StageTimer timer(profile_, Stage::Velocities);
+  const detail::StageTimer timer(stageProfile(), Stage::Velocities);
   detail::deriveRigidVelocities(rigidBodies_, h);
   const RigidPassInput in = rigidPassInput(h);
   detail::dampRigidJoints(in, constraints_.rigidJoints());
@@ -433,7 +433,7 @@ void World::rigidVelocities(Real h) {
 
 void World::partOverlaps() {
   if (bodies_.empty()) return;
-  const detail::StageTimer timer(profile_, Stage::Parting);
+  const detail::StageTimer timer(stageProfile(), Stage::Parting);
   const PartingGround ground{world_.ground, world_.groundNormal, ground_.points(), ground_.state().allowance};
   const PartingRigid rigid{rigidBodies_, narrowPhase_.rigidState().allowance, rigidGround_,
                            rigidGroundState_.allowance};
@@ -450,7 +450,7 @@ void World::measureApproaches(Real h) {
     return c.particleParts && c.reaction.threshold > 0.0;
   });
   if (solver_.restitution <= 0.0 && !blows) return;
-  const detail::StageTimer timer(profile_, Stage::Restitution);
+  const detail::StageTimer timer(stageProfile(), Stage::Restitution);
   detail::measureBodyApproach(particles_, narrowPhase_.contacts(), h, narrowPhase_.state().approach);
   if (solver_.restitution <= 0.0) return;
   clearUnlessStill(ground_.state().hit, ground_.still());
@@ -471,12 +471,12 @@ std::span<const Real> World::limitCorrections(Real h) {
   const Real depenetration = solver_.maxDepenetrationSpeed * h;
   std::vector<Real>& bodyAllowance = narrowPhase_.state().allowance;
   if (!bodyAllowance.empty() || world_.ground) {
-    const detail::StageTimer timer(profile_, Stage::Contacts);
+    const detail::StageTimer timer(stageProfile(), Stage::Contacts);
     detail::toAllowance(bodyAllowance, depenetration);
     if (world_.ground) detail::toAllowance(ground_.state().allowance, depenetration);
   }
   if (!constraints_.linksApart()) return {};
-  const detail::StageTimer timer(profile_, Stage::Links);
+  const detail::StageTimer timer(stageProfile(), Stage::Links);
   return constraints_.shrinkLinkSlack(particles_, depenetration);
 }
 
@@ -492,7 +492,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
   // The bodies' own sticks (and volumes) are internal: what they do to a body's angular momentum
   // is undone (keepSpin). SHAKE's corrections keep it already.
   const bool keepSpin = solver_.keepSpin && solver_.method != SolverMethod::Shake;
-  detail::StageLaps laps(profile_);
+  detail::StageLaps laps(stageProfile());
   for (int it = 0; it < solver_.iterations; ++it) {
     if (!constraints_.particleJoints().empty() || !constraints_.bodyDrives().empty()) {
       // Particle bodies' drives first, so each pass ends with their links (the joints' pins and
@@ -585,7 +585,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
     laps.lap(Stage::Friction);
   }
   if (!bodyContacts.empty()) {
-    const detail::StageTimer timer(profile_, Stage::Contacts);
+    const detail::StageTimer timer(stageProfile(), Stage::Contacts);
     detail::markPushedParticles(bodyContacts, bodyState.touched, movedByBoxContact_);
   }
 }
@@ -613,7 +613,7 @@ void World::relaxContactBins(bool ground) {
   auto stillPart = [this](ContactBins::Range r) { return flagsOf(ground_.still(), r.begin, r.end); };
   auto farPart = [this](ContactBins::Range r) { return flagsOf(ground_.far(), r.begin, r.end); };
   {
-    const detail::StageTimer timer(profile_, Stage::Contacts);
+    const detail::StageTimer timer(stageProfile(), Stage::Contacts);
     inBins([&](int bin) {
       for (const ContactBins::Range r : contactBins_.contactRanges(bin)) {
         detail::solveBodyContacts(particles_, part(bodyContacts, r), solver_.contactSlop,
@@ -627,7 +627,7 @@ void World::relaxContactBins(bool ground) {
       }
     });
   }
-  const detail::StageTimer timer(profile_, Stage::Friction);
+  const detail::StageTimer timer(stageProfile(), Stage::Friction);
   inBins([&](int bin) {
     for (const ContactBins::Range r : contactBins_.contactRanges(bin)) {
       detail::applyBodyFriction(particles_, part(anchoredContacts, r), part(extras, r),
@@ -652,7 +652,7 @@ void World::relaxContactBins(bool ground) {
 // (Müller et al. 2020's threshold), so coarse steps and strong gravity do not make boxes hop.
 void World::restitute(Real h) {
   if (solver_.restitution <= 0.0) return;
-  const detail::StageTimer timer(profile_, Stage::Restitution);
+  const detail::StageTimer timer(stageProfile(), Stage::Restitution);
   const Real g = gravityMagnitude();
   const detail::Restitution r{solver_.restitution, std::max(kRestitutionMinSpeed, 2.0 * g * h), h};
   detail::measureRigidStates(particles_, bodies_, h, rigid_);
@@ -669,7 +669,7 @@ void World::restitute(Real h) {
 
 void World::dampBodies() {
   if (solver_.bodyDamping <= 0.0 || bodies_.empty()) return;
-  const detail::StageTimer timer(profile_, Stage::BodyDamping);
+  const detail::StageTimer timer(stageProfile(), Stage::BodyDamping);
   detail::dampBodyMotion(particles_, bodies_, bodyLayout_, solver_.bodyDamping, workers());
 }
 
@@ -677,7 +677,7 @@ void World::dampBodies() {
 // over the last substep (x - x*), which the next step's Verlet carries on.
 void World::dampJoints() {
   if (constraints_.jointFrictions().empty()) return;
-  const detail::StageTimer timer(profile_, Stage::Links);
+  const detail::StageTimer timer(stageProfile(), Stage::Links);
   constraints_.dampJointFriction(particles_, bodies_, solver_.dt, workers());
 }
 
@@ -689,7 +689,7 @@ void World::dampJoints() {
 // and blew Bullet's pile apart (docs/physics.md, "Joint projection").
 void World::projectJoints() {
   if (!solver_.jointProjection.enabled || constraints_.rigidJoints().empty()) return;
-  const detail::StageTimer timer(profile_, Stage::Links);
+  const detail::StageTimer timer(stageProfile(), Stage::Links);
   const JointProjectionReport r =
       jointProjection_.project(rigidBodies_, constraints_.rigidJoints(), solver_.jointProjection);
   lastProjection_.iterations += r.iterations;
@@ -700,7 +700,7 @@ void World::projectJoints() {
 // A body is frozen whole, put back as it was at the end of the last substep (integrate() gave the
 // guard that), so all of it from one instant, whichever particle went bad.
 void World::guard(bool shapes) {
-  const detail::StageTimer timer(profile_, Stage::Guard);
+  const detail::StageTimer timer(stageProfile(), Stage::Guard);
   guardParticles();
   guard_.checkRigidBodies(rigidBodies_, bodies_, world_.bound, time_);
   if (shapes) guard_.checkShapes(guardInput(), world_.shapeCheckInterval);

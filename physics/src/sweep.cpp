@@ -24,7 +24,7 @@ namespace phys {
 
 void World::stopFastBodies() {
   if (bodies_.size() < 2 || broadPhase_.pairs().empty()) return;
-  const detail::StageTimer timer(profile_, Stage::Sweep);
+  const detail::StageTimer timer(stageProfile(), Stage::Sweep);
   // The body's mean move in this substep, from its start (x* or the previous pose) to now.
   auto shiftOf = [&](BodyId id) { return detail::bodyMove(particles_, rigidBodies_, bodies_[id]); };
   // The broad phase's motions are over the step at the speeds it measured; what a substep can add

@@ -101,4 +101,35 @@ TEST(Profile, AStackTimesItsCollisionStages) {
   EXPECT_LE(p.staged(), p.total);
 }
 
+// With stage timing off (what `lab stability` asks for: it times whole steps itself) no stage reads
+// the clock, so every stage reads exactly 0, the step still has its total, and the world moves as
+// one timed does, bit for bit.
+TEST(Profile, StageTimingOffTimesNoStageAndLeavesTheStateAlone) {
+  auto stack = [] {
+    phys::SolverSettings solver;
+    solver.restitution = 0.5;
+    solver.bodyDamping = 0.1;
+    phys::World world(phys::WorldSettings{}, solver);
+    phys::BodyDesc box;
+    box.center = {0.0, 0.5, 0.0};
+    world.addBody(box);
+    box.center = {0.1, 1.5, 0.0};
+    world.addBody(box);
+    return world;
+  };
+  phys::World timed = stack();
+  phys::World untimed = stack();
+  EXPECT_TRUE(untimed.stageTiming());
+  untimed.setStageTiming(false);
+  EXPECT_FALSE(untimed.stageTiming());
+  const phys::Profile on = profileOf(timed, 10);
+  const phys::Profile off = profileOf(untimed, 10);
+  EXPECT_GT(on.staged(), 0.0);
+  for (const Stage s : allStages()) EXPECT_EQ(off[s], 0.0) << phys::toString(s);
+  EXPECT_GT(off.total, 0.0);
+  EXPECT_EQ(untimed.stateHash(), timed.stateHash());
+  untimed.setStageTiming(true);  // and back on, the stages are timed again
+  EXPECT_GT(profileOf(untimed, 10).staged(), 0.0);
+}
+
 }  // namespace
