@@ -186,8 +186,8 @@ WorldJudge::WorldJudge(const std::vector<Criterion>& criteria, const phys::World
 void WorldJudge::observe(const phys::World& world, int step) {
   const std::size_t boxes = world.bodies().size();
   const auto position = [&](std::size_t b) {
-    return b < boxes ? world.bodyPose(phys::BodyId(b)).center
-                     : world.particles().position[loose_.at(b - boxes)];
+    // the centre alone: a pose's orientation is a polar decomposition, for no figure but flips
+    return b < boxes ? world.bodyCentre(phys::BodyId(b)) : world.particles().position[loose_.at(b - boxes)];
   };
   const auto orientation = [&](std::size_t b) { return world.bodyPose(phys::BodyId(b)).orientation; };
   std::optional<phys::Metrics> metrics;  // once per step, for all that need it

@@ -657,6 +657,13 @@ BodyPose World::bodyPose(BodyId id) const {
   return poseOf(id);
 }
 
+Vec3 World::bodyCentre(BodyId id) const {
+  requireIndex(id, bodies_.size(), "bodyCentre", "body");
+  const Body& box = bodies_[id];
+  if (box.model == BodyModel::Rigid) return rigidBodies_.position[box.rigid];
+  return detail::particleCentre(particles_, box);  // what particleBodyPose takes for the centre
+}
+
 BodyPose World::poseOf(BodyId id) const {
   const Body& box = bodies_[id];
   if (box.model == BodyModel::Rigid)

@@ -95,6 +95,7 @@ TEST(ApiInput, EveryCallRefusesAnIdThatDoesNotExistNamingItself) {
 
   const std::pair<std::string, std::function<void()>> onBodies[] = {
       {"bodyPose", [&] { (void)w.bodyPose(body); }},
+      {"bodyCentre", [&] { (void)w.bodyCentre(body); }},
       {"bodyMass", [&] { (void)w.bodyMass(body); }},
       {"bodyVelocity", [&] { (void)w.bodyVelocity(body); }},
       {"poseVelocity", [&] { (void)w.poseVelocity(body); }},

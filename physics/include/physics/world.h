@@ -337,6 +337,9 @@ class World {
   /// Centre and orientation of a body: a rigid body's own, a particle body's fitted to its
   /// particles (polar decomposition).
   BodyPose bodyPose(BodyId id) const;
+  /// bodyPose(id).center, bit for bit, without fitting the orientation: for callers that read where
+  /// bodies are every step (`lab stability`'s drift of every body of a pyramid). unit: m
+  Vec3 bodyCentre(BodyId id) const;
   /// A body's mass and principal inertia (BodyMass).
   BodyMass bodyMass(BodyId id) const;
   /// Velocity of a body's centre (m/s) and its angular velocity (rad/s, world frame) over the last
