@@ -1,8 +1,10 @@
 // The ground's contact points and their state (physics/ground_contacts.h).
 #include "physics/ground_contacts.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -105,6 +107,28 @@ bool whole(const Body& box, std::span<const Vec3> position) {
   return glm::dot(glm::cross(ex, ey), ez) > 0.5 * rest;
 }
 
+// Where the line through a corners capsule's lowest point along the ground's normal leaves its box
+// below that point (the point itself when it is on the box's surface). The lowest point lies inside
+// the box, off its faces unless the capsule lies with a face down. A push moves an embedded point's
+// carriers as an impulse at that point would (their weights sum to 1), so it turns the body by the
+// point's lever about the push's line, which runs through the end sphere's centre. Pushed at its
+// projection onto the nearest face, up to 0.207 r off that line, the ground turned the capsule about
+// its core towards its box's edge from either side, and there the nearest face switched from
+// substep to substep, turning it back and forth: a lone capsule laid turned 10 to 40 degrees about
+// its core rolled onto the edge and jittered there at 2.6 to 5 cm/s at 3 x 1, the seed capsule
+// ragdoll's head at 1.3 cm/s (docs/physics.md, "Capsules", "A capsule lying on an edge"). On the
+// line the lever is the true one's, and the point moves smoothly as the capsule turns.
+Vec3 belowOnBox(const Body& box, const Obb& frame, const Vec3& lowest, const Vec3& n) {
+  const Vec3 u = detail::frameCoordinates(box, frame, lowest);
+  Real t = std::numeric_limits<Real>::infinity();  // unit: m, along -n
+  for (int a = 0; a < 3; ++a) {
+    const Real d = -glm::dot(n, frame.axes[a]) / box.halfExtents[a];  // frame coordinate per metre
+    if (d > 0.0) t = std::min(t, (1.0 - u[a]) / d);
+    if (d < 0.0) t = std::min(t, (-1.0 - u[a]) / d);
+  }
+  return lowest - n * std::max(t, Real{0.0});
+}
+
 }  // namespace
 
 // Capsule ends one thread places at a time.
@@ -158,7 +182,13 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
       }
       const Obb e = detail::embeddingFrame(box, f, position);
       Vec3 moved(0.0);
-      contact.point = detail::surfacePoint(box, e, lowest, &moved);
+      if (box.model == BodyModel::Corners) {
+        const Vec3 below = belowOnBox(box, e, lowest, n);
+        contact.point = detail::surfacePoint(box, e, below, &moved);
+        moved += below - lowest;
+      } else {
+        contact.point = detail::surfacePoint(box, e, lowest, &moved);
+      }
       contact.lift = glm::dot(n, moved);
       if (box.model == BodyModel::Corners) contact.surface = detail::rigidPoint(box, e, lowest);
     }
