@@ -142,8 +142,10 @@ struct GroundContact {
   Material combined;      ///< geometric mean with the ground's, kept current by the world
   BodyId body = kNoBody;  ///< kNoBody for a loose particle
   /// How far above the plane the point is held (unit: m): 0 for a point on the surface; for a
-  /// corners-model capsule, whose point is carried by a face of its box, the height of that face
-  /// point over the capsule's lowest point (see BodyContact::offset).
+  /// corners-model capsule, whose point is carried by a face of its box where the ground's normal
+  /// through its lowest point leaves the box, the height of that face point over the capsule's
+  /// lowest point: 0 or negative, the face point lying on that line below it (see
+  /// BodyContact::offset).
   Real lift = 0.0;
   /// Where friction acts when it is not `point` (count 0 otherwise): a corners capsule's true
   /// surface point, carried rigidly. Held at the face point, up to 0.29 r off the surface, friction
