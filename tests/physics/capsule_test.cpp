@@ -493,6 +493,39 @@ TEST(CapsuleGround, AThinCapsuleThrownDownHardRestsAtItsRadiusEvenInsideOut) {
   }
 }
 
+// A 0.2 m radius, 1.4 m capsule of `model` laid on the ground and stepped 30 s under each of
+// `settings`: how far it got from where it was laid (horizontally) and how far it turned, the most
+// over the run (it rocked and came back), and its height at the end.
+struct Setting {
+  phys::SolverMethod method;
+  int iterations, substeps;
+};
+
+void expectLyingCapsuleStays(phys::BodyModel model, std::initializer_list<Setting> settings) {
+  for (const Setting s : settings) {
+    phys::World world({}, testing_phys::solver(s.method, s.iterations, s.substeps));
+    phys::BodyDesc d = capsuleDesc(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+    d.orientation = kLying;
+    const phys::BodyId id = world.addBody(d);
+    const phys::BodyPose start = world.bodyPose(id);
+    double farthest = 0.0, mostTurned = 0.0;
+    for (int i = 0; i < 30 * 60; ++i) {
+      world.step();
+      const phys::BodyPose now = world.bodyPose(id);
+      farthest = std::max(farthest, std::hypot(now.center.x - start.center.x, now.center.z - start.center.z));
+      mostTurned = std::max(
+          mostTurned, 2.0 * std::acos(std::min(1.0, std::abs(glm::dot(now.orientation, start.orientation)))));
+    }
+    const std::string what = std::string(phys::toString(model)) + " " +
+                             std::string(phys::toString(s.method)) + " " + std::to_string(s.iterations) +
+                             " x " + std::to_string(s.substeps);
+    EXPECT_LT(farthest, 1e-3) << what;
+    EXPECT_LT(mostTurned, 1e-3) << what;
+    // at its radius: the corners one sags 0.39 mm at 3 x 1, as a box of its size does
+    EXPECT_NEAR(world.bodyPose(id).center.y, 0.2, 1e-3) << what;
+  }
+}
+
 TEST(CapsuleGround, ALyingCornersCapsuleStaysWhereItWasLaid) {
   // A body at rest stays at rest. A 0.2 m radius, 1 m core corners capsule laid on the ground slid
   // along its core from the first step (0.69 mm in 0.5 s at 10 x 1) and rolled, 18 cm by 30 s at
@@ -500,29 +533,10 @@ TEST(CapsuleGround, ALyingCornersCapsuleStaysWhereItWasLaid) {
   // share its box's bottom face, and pushed one after the other they pitched and sheared it
   // (docs/physics.md, "Capsules", "A capsule lying still"). Now it stays to round-off; 1 mm (and
   // 1 mrad of roll) over 30 s leaves room for other builds' rounding, far below the failure.
-  struct Setting {
-    phys::SolverMethod method;
-    int iterations, substeps;
-  };
-  for (const Setting s :
-       {Setting{phys::SolverMethod::GaussSeidel, 3, 1}, Setting{phys::SolverMethod::GaussSeidel, 10, 1},
-        Setting{phys::SolverMethod::Xpbd, 3, 1}, Setting{phys::SolverMethod::Xpbd, 10, 1}}) {
-    phys::World world({}, testing_phys::solver(s.method, s.iterations, s.substeps));
-    phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
-    d.orientation = kLying;
-    const phys::BodyId id = world.addBody(d);
-    const phys::BodyPose start = world.bodyPose(id);
-    for (int i = 0; i < 30 * 60; ++i) world.step();
-    const phys::BodyPose end = world.bodyPose(id);
-    const std::string what = std::string(phys::toString(s.method)) + " " + std::to_string(s.iterations) +
-                             " x " + std::to_string(s.substeps);
-    EXPECT_LT(std::abs(end.center.x - start.center.x), 1e-3) << what;
-    EXPECT_LT(std::abs(end.center.z - start.center.z), 1e-3) << what;
-    EXPECT_NEAR(end.center.y, 0.2, 1e-3) << what;  // its sag at 3 x 1: 0.39 mm, a box's
-    const double turned =
-        2.0 * std::acos(std::min(1.0, std::abs(glm::dot(end.orientation, start.orientation))));
-    EXPECT_LT(turned, 1e-3) << what;
-  }
+  expectLyingCapsuleStays(phys::BodyModel::Corners, {{phys::SolverMethod::GaussSeidel, 3, 1},
+                                                     {phys::SolverMethod::GaussSeidel, 10, 1},
+                                                     {phys::SolverMethod::Xpbd, 3, 1},
+                                                     {phys::SolverMethod::Xpbd, 10, 1}});
 }
 
 TEST(CapsuleGround, ALyingCornersCapsuleTurnedAboutItsCoreStaysTurned) {
@@ -684,33 +698,12 @@ TEST(CapsuleGround, ALyingTetraCapsuleStaysWhereItWasLaid) {
   // still"). A free one's points are now pushed as its 4 particles would move as one rigid body, and
   // it stays to round-off (3e-12 m in 30 s, its quaternion as laid, at its radius to 3e-16 m); the
   // tolerances are the corners capsule's.
-  struct Setting {
-    phys::SolverMethod method;
-    int iterations, substeps;
-  };
-  for (const Setting s :
-       {Setting{phys::SolverMethod::GaussSeidel, 3, 1}, Setting{phys::SolverMethod::GaussSeidel, 2, 4},
-        Setting{phys::SolverMethod::GaussSeidel, 10, 1}, Setting{phys::SolverMethod::Xpbd, 3, 1},
-        Setting{phys::SolverMethod::Xpbd, 2, 4}, Setting{phys::SolverMethod::Xpbd, 10, 1}}) {
-    phys::World world({}, testing_phys::solver(s.method, s.iterations, s.substeps));
-    phys::BodyDesc d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
-    d.orientation = kLying;
-    const phys::BodyId id = world.addBody(d);
-    const phys::BodyPose start = world.bodyPose(id);
-    double farthest = 0.0, mostTurned = 0.0;  // over the run: it rocked and came back
-    for (int i = 0; i < 30 * 60; ++i) {
-      world.step();
-      const phys::BodyPose now = world.bodyPose(id);
-      farthest = std::max(farthest, std::hypot(now.center.x - start.center.x, now.center.z - start.center.z));
-      mostTurned = std::max(
-          mostTurned, 2.0 * std::acos(std::min(1.0, std::abs(glm::dot(now.orientation, start.orientation)))));
-    }
-    const std::string what = std::string(phys::toString(s.method)) + " " + std::to_string(s.iterations) +
-                             " x " + std::to_string(s.substeps);
-    EXPECT_LT(farthest, 1e-3) << what;
-    EXPECT_LT(mostTurned, 1e-3) << what;
-    EXPECT_NEAR(world.bodyPose(id).center.y, 0.2, 1e-3) << what;
-  }
+  expectLyingCapsuleStays(phys::BodyModel::Tetra, {{phys::SolverMethod::GaussSeidel, 3, 1},
+                                                   {phys::SolverMethod::GaussSeidel, 2, 4},
+                                                   {phys::SolverMethod::GaussSeidel, 10, 1},
+                                                   {phys::SolverMethod::Xpbd, 3, 1},
+                                                   {phys::SolverMethod::Xpbd, 2, 4},
+                                                   {phys::SolverMethod::Xpbd, 10, 1}});
 }
 
 TEST(CapsuleGround, AFreeTetraCapsuleLyingAlongASlopeItsFrictionHoldsStaysPut) {

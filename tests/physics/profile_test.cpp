@@ -78,17 +78,23 @@ TEST(Profile, AWorldOfParticlesTimesOnlyItsStages) {
 // Two boxes, one on the other, on the ground, bouncy, damped and allowed to sleep: every stage but
 // the links has work, and the two boxes' broad and narrow phases are timed. (Ten steps: they do
 // not rest long enough to fall asleep, after which no stage would be timed.)
-TEST(Profile, AStackTimesItsCollisionStages) {
+// Two unit boxes, one on the other (the top one `offset` m along x), bouncing a little and damped.
+phys::World stackOfTwo(bool sleep, double offset) {
   phys::SolverSettings solver;
   solver.restitution = 0.5;
   solver.bodyDamping = 0.1;
-  solver.sleep.enabled = true;
+  solver.sleep.enabled = sleep;
   phys::World world(phys::WorldSettings{}, solver);
   phys::BodyDesc box;
   box.center = {0.0, 0.5, 0.0};
   world.addBody(box);
-  box.center = {0.0, 1.5, 0.0};
+  box.center = {offset, 1.5, 0.0};
   world.addBody(box);
+  return world;
+}
+
+TEST(Profile, AStackTimesItsCollisionStages) {
+  phys::World world = stackOfTwo(true, 0.0);
   const phys::Profile p = profileOf(world, 10);
   for (const Stage s : allStages()) {
     if (s == Stage::Animate || s == Stage::Links ||
@@ -105,20 +111,8 @@ TEST(Profile, AStackTimesItsCollisionStages) {
 // the clock, so every stage reads exactly 0, the step still has its total, and the world moves as
 // one timed does, bit for bit.
 TEST(Profile, StageTimingOffTimesNoStageAndLeavesTheStateAlone) {
-  auto stack = [] {
-    phys::SolverSettings solver;
-    solver.restitution = 0.5;
-    solver.bodyDamping = 0.1;
-    phys::World world(phys::WorldSettings{}, solver);
-    phys::BodyDesc box;
-    box.center = {0.0, 0.5, 0.0};
-    world.addBody(box);
-    box.center = {0.1, 1.5, 0.0};
-    world.addBody(box);
-    return world;
-  };
-  phys::World timed = stack();
-  phys::World untimed = stack();
+  phys::World timed = stackOfTwo(false, 0.1);
+  phys::World untimed = stackOfTwo(false, 0.1);
   EXPECT_TRUE(untimed.stageTiming());
   untimed.setStageTiming(false);
   EXPECT_FALSE(untimed.stageTiming());
