@@ -31,11 +31,7 @@ constexpr double kStart = -3.0;  // the capsule's centre along the 8 m support, 
 const phys::Quat kLying = glm::angleAxis(std::numbers::pi / 2.0, Vec3(0.0, 0.0, 1.0));  // core along x
 
 phys::BodyDesc lyingCapsule(phys::BodyModel model, const Vec3& centre, double length, double mass) {
-  phys::BodyDesc d;
-  d.shape = phys::Shape::Capsule;
-  d.model = model;
-  d.center = centre;
-  d.size = Vec3(2.0 * kRadius, length, 2.0 * kRadius);
+  phys::BodyDesc d = testing_phys::capsule(model, centre, kRadius, length);
   d.orientation = kLying;
   d.mass = mass;
   d.material = {kMu, kMu};

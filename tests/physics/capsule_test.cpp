@@ -131,14 +131,7 @@ TEST(CapsuleCollision, CapsuleInABoxFrameRunsAlongItsYAxis) {
   EXPECT_NEAR(std::abs(c.p1.x - c.p0.x), 0.6, 1e-12);  // y turned onto x
 }
 
-phys::BodyDesc capsuleDesc(phys::BodyModel model, const Vec3& centre, double radius, double length) {
-  phys::BodyDesc d;
-  d.shape = phys::Shape::Capsule;
-  d.model = model;
-  d.center = centre;
-  d.size = Vec3(2.0 * radius, length, 2.0 * radius);
-  return d;
-}
+using testing_phys::capsule;
 
 const phys::Quat kLying = glm::angleAxis(std::numbers::pi / 2.0, Vec3(0.0, 0.0, 1.0));
 
@@ -161,7 +154,7 @@ Vec3 centreVelocity(const phys::World& w, phys::BodyId id) {
 
 TEST_P(CapsuleModels, LyingCapsuleRestsOnItsSideAtItsRadius) {
   phys::World world({}, ragdollSettings());
-  phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.3, 0.12, -0.2), 0.1, 0.8);
+  phys::BodyDesc d = capsule(GetParam(), Vec3(0.3, 0.12, -0.2), 0.1, 0.8);
   d.orientation = kLying;
   const phys::BodyId id = world.addBody(d);
   for (int i = 0; i < 180; ++i) world.step();
@@ -182,7 +175,7 @@ TEST_P(CapsuleModels, LyingCapsuleSagsNoMoreThanABoxOfItsModel) {
   // points are carried so that it sags as a box of its model and size does, no more.
   auto restHeight = [](phys::Shape shape) {
     phys::World world;
-    phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 0.8);
+    phys::BodyDesc d = capsule(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 0.8);
     d.shape = shape;
     d.orientation = kLying;
     const phys::BodyId id = world.addBody(d);
@@ -209,7 +202,7 @@ TEST_P(CapsuleModels, CapsuleRollsDownASlopeAtAThirdOfGSinTheta) {
   phys::SolverSettings ss;
   ss.substeps = 4;
   phys::World world(ws, ss);
-  phys::BodyDesc d = capsuleDesc(GetParam(), ws.groundNormal * (radius + 1e-4), radius, 0.8);
+  phys::BodyDesc d = capsule(GetParam(), ws.groundNormal * (radius + 1e-4), radius, 0.8);
   d.orientation =
       glm::angleAxis(std::numbers::pi / 2.0, Vec3(1.0, 0.0, 0.0));  // core along z, across the slope
   d.material = {1.0, 1.0};
@@ -230,9 +223,9 @@ TEST_P(CapsuleModels, CapsuleRollsDownASlopeAtAThirdOfGSinTheta) {
 
 TEST_P(CapsuleModels, CapsuleDroppedAcrossAnotherComesToRestOnTop) {
   phys::World world({}, ragdollSettings());
-  phys::BodyDesc below = capsuleDesc(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 1.0);
+  phys::BodyDesc below = capsule(GetParam(), Vec3(0.0, 0.1, 0.0), 0.1, 1.0);
   below.orientation = kLying;  // along x
-  phys::BodyDesc above = capsuleDesc(GetParam(), Vec3(0.0, 0.5, 0.0), 0.1, 0.6);
+  phys::BodyDesc above = capsule(GetParam(), Vec3(0.0, 0.5, 0.0), 0.1, 0.6);
   above.orientation = glm::angleAxis(std::numbers::pi / 2.0, Vec3(1.0, 0.0, 0.0));  // along z
   world.addBody(below);
   const phys::BodyId top = world.addBody(above);
@@ -255,7 +248,7 @@ TEST_P(CapsuleModels, CapsuleLyingOnABoxRestsAtItsRadiusAboveTheFace) {
   box.center = Vec3(0.0, 0.25, 0.0);
   box.size = Vec3(1.0, 0.5, 1.0);
   world.addBody(box);
-  phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.1, 0.62, 0.0), 0.1, 0.6);
+  phys::BodyDesc d = capsule(GetParam(), Vec3(0.1, 0.62, 0.0), 0.1, 0.6);
   d.orientation = kLying;
   const phys::BodyId id = world.addBody(d);
   for (int i = 0; i < 180; ++i) world.step();
@@ -273,7 +266,7 @@ TEST(CapsuleContacts, ACornersCapsuleOnABoxTakesFrictionAtItsSurfacePoints) {
   box.center = Vec3(0.0, 0.25, 0.0);
   box.size = Vec3(1.0, 0.5, 1.0);
   const phys::BodyId boxId = world.addBody(box);
-  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.1, 0.6, 0.0), 0.1, 0.6);
+  phys::BodyDesc d = capsule(phys::BodyModel::Corners, Vec3(0.1, 0.6, 0.0), 0.1, 0.6);
   d.orientation = kLying;
   const phys::BodyId id = world.addBody(d);
   world.step();
@@ -301,7 +294,7 @@ TEST_P(CapsuleModels, ATumblingCapsuleLandsOnItsRoundSurface) {
   // the end through by up to its radius, 0.1 m. From 1 s on, under 2.5 mm (1.8 and 2.2 measured,
   // as it rocks to rest).
   phys::World world({}, ragdollSettings());
-  phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.0, 3.0, 0.0), 0.1, 0.8);
+  phys::BodyDesc d = capsule(GetParam(), Vec3(0.0, 3.0, 0.0), 0.1, 0.8);
   d.angularVelocity = Vec3(0.0, 0.0, 6.0);
   const phys::BodyId id = world.addBody(d);
   double deepest = 0.0, deepestLater = 0.0;
@@ -322,7 +315,7 @@ TEST_P(CapsuleModels, GroundPointsFarAboveTheGroundAreNotPlacedAgain) {
   // from there). So a capsule turning high in the air keeps the points it was made with, and
   // one that comes down gets them placed at its lowest points again.
   phys::World world({}, ragdollSettings());
-  phys::BodyDesc d = capsuleDesc(GetParam(), Vec3(0.0, 3.0, 0.0), 0.1, 0.8);
+  phys::BodyDesc d = capsule(GetParam(), Vec3(0.0, 3.0, 0.0), 0.1, 0.8);
   d.angularVelocity = Vec3(0.0, 0.0, 6.0);
   const phys::BodyId id = world.addBody(d);
   auto heights = [&] {
@@ -361,7 +354,7 @@ TEST_P(CapsuleModels, CapsulesEndToEndFindTheirContact) {
   ws.gravity = Vec3(0.0);
   ws.ground = false;
   phys::World world(ws, ragdollSettings());
-  phys::BodyDesc a = capsuleDesc(GetParam(), Vec3(0.0, 1.0, 0.0), 0.1, 0.8);
+  phys::BodyDesc a = capsule(GetParam(), Vec3(0.0, 1.0, 0.0), 0.1, 0.8);
   a.orientation = kLying;
   phys::BodyDesc b = a;
   b.center.x = 0.8 - 1e-2;
@@ -401,13 +394,13 @@ INSTANTIATE_TEST_SUITE_P(Models, CapsuleModels,
 
 TEST(CapsuleDesc, RejectsUnequalDiametersAndShortLengths) {
   phys::World world;
-  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.1, 0.8);
+  phys::BodyDesc d = capsule(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.1, 0.8);
   d.size.z = 0.3;
   EXPECT_THROW(world.addBody(d), std::invalid_argument);
-  d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.5, 0.8);  // length < diameter
+  d = capsule(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.5, 0.8);  // length < diameter
   EXPECT_THROW(world.addBody(d), std::invalid_argument);
   EXPECT_TRUE(world.bodies().empty());
-  d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.4, 0.8);  // a sphere
+  d = capsule(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.4, 0.8);  // a sphere
   EXPECT_NO_THROW(world.addBody(d));
 }
 
@@ -421,7 +414,7 @@ TEST(CapsuleRaycast, HitsTheRoundSurfaceNotTheBox) {
   ws.gravity = Vec3(0.0);
   phys::World world(ws);
   phys::BodyDesc d =
-      capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.2, 1.0);  // core from y 0.7 to 1.3
+      capsule(phys::BodyModel::Tetra, Vec3(0.0, 1.0, 0.0), 0.2, 1.0);  // core from y 0.7 to 1.3
   const phys::BodyId id = world.addBody(d);
   // From the side at the core's middle: the side at x = -0.2.
   auto hit = world.raycast(Vec3(-2.0, 1.0, 0.0), Vec3(1.0, 0.0, 0.0), 10.0);
@@ -475,7 +468,7 @@ TEST(CapsuleGround, AThinCapsuleThrownDownHardRestsAtItsRadiusEvenInsideOut) {
     phys::SolverSettings solver = world.solverSettings();
     solver.method = method;
     world.setSolverSettings(solver);
-    phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.0, 1.0, 0.0), radius, 0.37);
+    phys::BodyDesc d = capsule(phys::BodyModel::Corners, Vec3(0.0, 1.0, 0.0), radius, 0.37);
     d.orientation = glm::angleAxis(30.0 * kDegree, Vec3(0.0, 1.0, 0.0)) *
                     glm::angleAxis(80.0 * kDegree, Vec3(1.0, 0.0, 0.0));
     d.velocity = Vec3(0.0, -8.0, 0.0);
@@ -504,7 +497,7 @@ struct Setting {
 void expectLyingCapsuleStays(phys::BodyModel model, std::initializer_list<Setting> settings) {
   for (const Setting s : settings) {
     phys::World world({}, testing_phys::solver(s.method, s.iterations, s.substeps));
-    phys::BodyDesc d = capsuleDesc(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+    phys::BodyDesc d = capsule(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
     d.orientation = kLying;
     const phys::BodyId id = world.addBody(d);
     const phys::BodyPose start = world.bodyPose(id);
@@ -553,7 +546,7 @@ TEST(CapsuleGround, ALyingCornersCapsuleTurnedAboutItsCoreStaysTurned) {
     phys::WorldSettings ws;
     ws.damping = 0.2;
     phys::World world(ws, testing_phys::solver(phys::SolverMethod::GaussSeidel, 10, 16));
-    phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+    phys::BodyDesc d = capsule(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
     d.orientation = glm::angleAxis(degrees * std::numbers::pi / 180.0, Vec3(1.0, 0.0, 0.0)) * kLying;
     const phys::BodyId id = world.addBody(d);
     const phys::BodyPose start = world.bodyPose(id);
@@ -576,7 +569,7 @@ TEST(CapsuleGround, OnlyACornersCapsuleHasItsGroundPointsPushedAsOneBlock) {
   // pushed one after the other, as before the block.
   for (const phys::BodyModel model : {phys::BodyModel::Corners, phys::BodyModel::Tetra}) {
     phys::World world({}, testing_phys::solver(phys::SolverMethod::GaussSeidel, 2, 4));
-    phys::BodyDesc d = capsuleDesc(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+    phys::BodyDesc d = capsule(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
     d.orientation = kLying;
     world.addBody(d);
     for (int i = 0; i < 10; ++i) world.step();
@@ -602,7 +595,7 @@ SlopeRun lyingAlongASlope(double degrees, phys::SolverSettings solver, std::init
   ws.gravity = 10.0 * Vec3(std::sin(degrees * kDegree), -std::cos(degrees * kDegree), 0.0);  // downhill +x
   ws.groundMaterial = {0.25, 0.25};
   phys::World world(ws, solver);
-  phys::BodyDesc d = capsuleDesc(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+  phys::BodyDesc d = capsule(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
   d.orientation = kLying;  // core along x, down the slope
   d.material = {0.25, 0.25};
   const phys::BodyId id = world.addBody(d);
@@ -666,7 +659,7 @@ TEST(CapsuleGround, ACornersCapsulesGroundFrictionIsBoundedByCoulombWithAHeavier
   // impulse (the particles' change of momentum, none pinned) is mu_d times the push's, push /
   // K_point, to round-off, whichever particle is the heavy one.
   phys::World world({}, testing_phys::solver(phys::SolverMethod::GaussSeidel, 2, 4));
-  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+  phys::BodyDesc d = capsule(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
   d.orientation = kLying;
   world.addBody(d);
   for (int i = 0; i < 10; ++i) world.step();
@@ -735,7 +728,7 @@ TEST(CapsuleGround, OnlyAFreeTetraCapsuleHasItsGroundPointsPushedAsARigidBlock) 
   // (docs/physics.md, "A tetra capsule lying still"). Three tetra capsules lying apart: one free, one
   // linked to a pin above it, one with a box lying across it.
   phys::World world({}, testing_phys::solver(phys::SolverMethod::GaussSeidel, 2, 4));
-  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Tetra, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
+  phys::BodyDesc d = capsule(phys::BodyModel::Tetra, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
   d.orientation = kLying;
   const phys::BodyId free = world.addBody(d);
   d.center = Vec3(0.0, 0.2, 3.0);
@@ -774,7 +767,7 @@ TEST(CapsuleGround, PenetrationIsMeasuredAtEveryCapsulesLowestPointNotAtItsConta
   // over a capsule turning in the air finds it as deep as its lowest point lies, to round-off.
   phys::WorldSettings ws;
   phys::World world(ws);
-  phys::BodyDesc d = capsuleDesc(phys::BodyModel::Corners, Vec3(0.0, 3.0, 0.0), 0.1, 0.8);
+  phys::BodyDesc d = capsule(phys::BodyModel::Corners, Vec3(0.0, 3.0, 0.0), 0.1, 0.8);
   d.angularVelocity = Vec3(0.0, 0.0, 6.0);
   const phys::BodyId id = world.addBody(d);
   for (int i = 0; i < 5; ++i) world.step();  // turned 0.5 rad: its points no longer its lowest

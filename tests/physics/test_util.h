@@ -47,6 +47,17 @@ inline phys::BodyDesc rigidBox(const phys::Vec3& centre, const phys::Vec3& size 
   return d;
 }
 
+/// A capsule of `model`, `radius` m and `length` m end to end (its core along its y axis).
+inline phys::BodyDesc capsule(phys::BodyModel model, const phys::Vec3& centre, phys::Real radius,
+                              phys::Real length) {
+  phys::BodyDesc d;
+  d.shape = phys::Shape::Capsule;
+  d.model = model;
+  d.center = centre;
+  d.size = phys::Vec3(2.0 * radius, length, 2.0 * radius);
+  return d;
+}
+
 /// A hinge or a cone from a to b at `pivot`; the caller sets its stops, swing or twist.
 inline phys::JointDesc joint(phys::JointKind kind, phys::BodyId a, phys::BodyId b, const phys::Vec3& pivot,
                              const phys::Vec3& axis, const phys::Vec3& reference) {
