@@ -131,9 +131,10 @@ TEST(CapsuleRagdoll, TheSeedModelComesToRest) {
   // the ground, jittered at 1.2 to 1.6 cm/s from 9 s to 30 s, never decaying (docs/physics.md,
   // "Capsules", "A capsule lying on an edge"). Now this drop is still, its fastest particle under
   // 3e-5 m/s from 15 s: 1 mm/s, a twelfth of the jitter, leaves room for other builds' rounding. The
-  // drop is chaotic and not every one is still so soon: of 12 at 0.90 to 1.12 m/s, 4 are under 1 mm/s
-  // from 15 s, and the others' parts still roll slowly, up to 8.9 mm/s at 30 s and decaying (a head
-  // at 0.05 mm/s by 64 s), where before none decayed.
+  // drop is chaotic and not every one is still so soon: of 12 at 0.90 to 1.12 m/s
+  // (scripts/probes/capsule-ragdoll-drops.cpp), 4 are under 1 mm/s at 15, 20 and 30 s, and the
+  // others' parts still roll slowly, up to 8.9 mm/s at 30 s and decaying (a head at 0.05 mm/s by
+  // 64 s), where before none decayed.
   phys::World world = ragdollWorld();
   phys::RagdollDesc d;
   d.hips = Vec3(0.0, 2.0, 0.0);
