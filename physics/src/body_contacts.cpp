@@ -26,43 +26,18 @@ void movePair(std::vector<Vec3>& x, const Particles& p, const Embedding& a, cons
 
 // Friction at a contact a side of which is a corners capsule (BodyContact::frictionAtSurfaceA, B:
 // docs/physics.md, "Capsules", "A capsule on a slope, on a body"). Such a side's friction point is
-// its surface point, not the face point of its box that the push moved, and is carried by both
-// inscribed tetrahedra, half each, as the ground's is (applyGroundFriction).
+// its surface point, not the face point of its box that the push moved, carried by both inscribed
+// tetrahedra, as the ground's is (FrictionPoint).
 namespace capsule_friction {
 
-// A side as friction reads and moves it: its contact point, or a corners capsule's surface point
-// as the mean of the point carried by each inscribed tetrahedron, K = (K_1 + K_2) / 4 (disjoint
-// particles), an impulse on it split evenly between the two.
-struct Side {
-  const Embedding* point;
-  Embedding mirror;  // count 0 unless a capsule's surface point
-  Vec3 at(const std::vector<Vec3>& x) const {
-    const Vec3 first = embeddedPosition(x, *point);
-    return mirror.count == 0 ? first : 0.5 * (first + embeddedPosition(x, mirror));
-  }
-  Real weight(const std::vector<Real>& w) const {
-    const Real first = embeddedWeight(w, *point);
-    return mirror.count == 0 ? first : 0.25 * (first + embeddedWeight(w, mirror));
-  }
-  void shift(std::vector<Vec3>& x, const std::vector<Real>& w, const Vec3& lambda) const {
-    if (mirror.count == 0) {
-      shiftEmbedded(x, w, *point, lambda);
-      return;
-    }
-    shiftEmbedded(x, w, *point, 0.5 * lambda);
-    shiftEmbedded(x, w, mirror, 0.5 * lambda);
-  }
-};
-
-Side side(bool atSurface, const Embedding& surface, const Embedding& point) {
-  if (!atSurface) return {&point, Embedding{}};
-  return {&surface, otherTetrahedron(surface)};
+FrictionPoint side(bool atSurface, const Embedding& surface, const Embedding& point) {
+  return atSurface ? FrictionPoint::of(surface, true) : FrictionPoint::of(point, false);
 }
 
 // Never anchored (only a face-on-face manifold between two boxes is: NarrowPhase::pushManifold).
 void apply(Particles& p, const BodyContact& c, const BodyContactExtra& extra, Real push) {
-  const Side a = side(c.frictionAtSurfaceA, extra.surfaceA, c.pointA);
-  const Side b = side(c.frictionAtSurfaceB, extra.surfaceB, c.pointB);
+  const FrictionPoint a = side(c.frictionAtSurfaceA, extra.surfaceA, c.pointA);
+  const FrictionPoint b = side(c.frictionAtSurfaceB, extra.surfaceB, c.pointB);
   Vec3 slide = (b.at(p.position) - b.at(p.previous)) - (a.at(p.position) - a.at(p.previous));
   slide -= glm::dot(slide, c.normal) * c.normal;
   const Real slide2 = glm::dot(slide, slide);

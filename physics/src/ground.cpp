@@ -247,21 +247,18 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
       cutRigidly(p, contacts[c], t, n, push);
       continue;
     }
+    // A corners capsule's friction acts at its surface point, carried by both inscribed tetrahedra.
     const bool onSurface = contacts[c].surface.count > 0;
-    const Embedding& e = onSurface ? contacts[c].surface : contacts[c].point;
-    // A corners capsule's surface point is carried by both inscribed tetrahedra, half each: the
-    // one alone is chiral, and its cuts along a capsule's core twisted the box about the vertical,
-    // so that one held on a slope turned off the fall line and rolled (22 cm across in 20 s), and
-    // with friction right the seed's capsule ragdoll kept rocking its head. The two together are
-    // symmetric, as a box's corners are (docs/physics.md, "Capsules", "A capsule on a slope").
-    const Embedding mirror = onSurface ? otherTetrahedron(e) : Embedding{};
+    const FrictionPoint f = FrictionPoint::of(onSurface ? contacts[c].surface : contacts[c].point, onSurface);
+    const Embedding& e = *f.point;
     Vec3 slide = embeddedPosition(p.position, e) - embeddedPosition(p.previous, e);
     if (onSurface)
-      slide = 0.5 * (slide + (embeddedPosition(p.position, mirror) - embeddedPosition(p.previous, mirror)));
+      slide =
+          0.5 * (slide + (embeddedPosition(p.position, f.mirror) - embeddedPosition(p.previous, f.mirror)));
     slide -= glm::dot(slide, n) * n;
     const Real slideLength = glm::length(slide);
     if (slideLength == 0.0) continue;
-    Real kE = 0.0, kMirror = 0.0;
+    Real k = 0.0;
     if (onSurface) {
       // The push moved `point` (impulse push / K_point) and the cut moves `surface` (impulse
       // cut / K_surface): Coulomb bounds impulses, so the push is counted at the surface point's
@@ -269,11 +266,9 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
       // 3.02 w) and bounded by the bare push, a corners capsule's friction was mu / 1.66: lying along
       // a 10 degree slope at mu 0.25 it slid 10.9 m in 10 s (docs/physics.md, "Capsules", "A capsule
       // on a slope").
-      kE = embeddedWeight(p.inverseMass, e);
-      kMirror = embeddedWeight(p.inverseMass, mirror);
+      k = f.weight(p.inverseMass);
       const Real kPoint = embeddedWeight(p.inverseMass, contacts[c].point);
-      // The mean of two points carried by disjoint particles: K = (K_e + K_mirror) / 4.
-      if (kPoint > 0.0) push *= 0.25 * (kE + kMirror) / kPoint;
+      if (kPoint > 0.0) push *= k / kPoint;
     }
     const Material& mu = contacts[c].combined;
     Real cut = 1.0;  // static: stop the slide entirely
@@ -282,15 +277,9 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
       moveEmbedded(p.position, p.inverseMass, e, -cut * slide);
       continue;
     }
-    // One impulse J on each of the two points moves their mean by (K_e + K_mirror) J / 2: the
-    // cut's, J = 2 cut slide / (K_e + K_mirror), is the mean point's impulse cut slide / K split
-    // evenly, so Coulomb's bound holds also when one side's particles weigh more (a pinned or
-    // frozen corner), and with one side immovable the other carries the whole cut.
-    const Real kSum = kE + kMirror;
-    if (kSum <= 0.0) continue;
-    const Vec3 impulse = -2.0 * cut * slide / kSum;
-    shiftEmbedded(p.position, p.inverseMass, e, impulse);
-    shiftEmbedded(p.position, p.inverseMass, mirror, impulse);
+    // The mean point's impulse, cut slide / K, split evenly between the two (FrictionPoint::shift).
+    if (k <= 0.0) continue;
+    f.shift(p.position, p.inverseMass, (-cut * slide) / k);
   }
 }
 

@@ -353,4 +353,38 @@ inline void shiftEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverse
 void moveEmbedded(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Embedding& e,
                   const Vec3& D);
 
+/// A point as friction reads and moves it: its embedding, or, for a corners capsule's surface point
+/// (GroundContact::surface, BodyContactExtra::surfaceA, B), the mean of that point carried by each
+/// of its box's two inscribed tetrahedra (otherTetrahedron). The one tetrahedron alone is chiral,
+/// and its cuts along a capsule's core twisted the box about the vertical, so that one held on a
+/// slope turned off the fall line and rolled; the two together are symmetric, as a box's corners
+/// are (docs/physics.md, "Capsules", "A capsule on a slope"). Their particles are disjoint, so the
+/// mean point's K is (K_1 + K_2) / 4, and an impulse on it is split evenly between the two: Coulomb's
+/// bound then holds when one side's particles weigh more (a pinned or frozen corner).
+struct FrictionPoint {
+  const Embedding* point;
+  Embedding mirror;  // count 0 unless carried by both tetrahedra
+
+  static FrictionPoint of(const Embedding& e, bool bothTetrahedra) {
+    return {&e, bothTetrahedra ? otherTetrahedron(e) : Embedding{}};
+  }
+  Vec3 at(const std::vector<Vec3>& x) const {
+    const Vec3 first = embeddedPosition(x, *point);
+    return mirror.count == 0 ? first : 0.5 * (first + embeddedPosition(x, mirror));
+  }
+  Real weight(const std::vector<Real>& inverseMass) const {
+    const Real first = embeddedWeight(inverseMass, *point);
+    return mirror.count == 0 ? first : 0.25 * (first + embeddedWeight(inverseMass, mirror));
+  }
+  /// The point moved by an impulse `lambda` (position units per unit of weight, as shiftEmbedded).
+  void shift(std::vector<Vec3>& x, const std::vector<Real>& inverseMass, const Vec3& lambda) const {
+    if (mirror.count == 0) {
+      shiftEmbedded(x, inverseMass, *point, lambda);
+      return;
+    }
+    shiftEmbedded(x, inverseMass, *point, 0.5 * lambda);
+    shiftEmbedded(x, inverseMass, mirror, 0.5 * lambda);
+  }
+};
+
 }  // namespace phys::detail
