@@ -96,7 +96,17 @@ std::vector<std::size_t> cutFrictions(std::span<const JointFriction> frictions, 
 }  // namespace
 
 void ConstraintGraph::layOut(std::span<const Body> bodies, std::size_t particleCount) {
-  stickLayout_.build(sticks_, bodies, particleCount);
+  // The particles that links move in the passes, besides the sticks: no chain may have them.
+  std::vector<std::uint8_t> held(particleCount, 0);
+  auto hold = [&](const Embedding& e) {
+    for (int i = 0; i < e.count; ++i) held[e.particle[static_cast<std::size_t>(i)]] = 1;
+  };
+  for (const Link& link : links_) hold(link.a), hold(link.b);
+  for (const RigidLink& link : rigidLinks_) hold(link.a.point), hold(link.b.point);
+  stickLayout_.build(sticks_, bodies, particleCount, held);
+  std::uint32_t longest = 0;
+  for (const StickRun& chain : stickLayout_.chains()) longest = std::max(longest, chain.end - chain.begin);
+  chainSaved_.assign(2 * static_cast<std::size_t>(longest), Vec3(0.0));
   laneSpin_.resize(stickLayout_.lanes().size() * detail::kLaneSpinValues);
   linkLayout_.build(links_, particleCount);
   frictionPieces_ = cutFrictions(jointFrictions_, spins_.size());
@@ -114,9 +124,15 @@ void ConstraintGraph::clearStill() {
 }
 
 void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h,
-                                  Real compliance, const Workers* workers, bool keepSpin) {
+                                  Real compliance, const Workers* workers, bool keepSpin,
+                                  const PassesAhead& ahead) {
   detail::SpinPass pass{laneSpin_, firstPass};
   const detail::SpinPass* spin = keepSpin ? &pass : nullptr;
+  if (method == SolverMethod::Xpbd && firstPass) {
+    // The multipliers accumulate over the substep's passes (Macklin et al. 2016).
+    std::fill(lambda_.begin(), lambda_.end(), 0.0);
+  }
+  if (firstPass) relaxChainsAhead(particles, method, h, compliance, ahead);
   switch (method) {
     case SolverMethod::GaussSeidel:
       detail::relaxGaussSeidel(particles, sticks_, stickLayout_, workers, spin);
@@ -125,13 +141,27 @@ void ConstraintGraph::relaxSticks(Particles& particles, SolverMethod method, boo
       detail::relaxJacobi(particles, sticks_, stickLayout_, degree_, jacobiDelta_, workers, spin);
       break;
     case SolverMethod::Xpbd:
-      // The multipliers accumulate over the substep's passes (Macklin et al. 2016).
-      if (firstPass) std::fill(lambda_.begin(), lambda_.end(), 0.0);
       detail::relaxXpbd(particles, sticks_, stickLayout_, lambda_, h, compliance, workers, spin);
       break;
     case SolverMethod::Shake:
       detail::relaxShake(particles, sticks_, stickLayout_, workers);
       break;
+  }
+}
+
+// Gauss-Seidel's and XPBD's chains run every pass now: the later passes skip them. Jacobi's
+// sticks do not depend on each other within a pass, and SHAKE's are left as they are.
+void ConstraintGraph::relaxChainsAhead(Particles& particles, SolverMethod method, Real h, Real compliance,
+                                       const PassesAhead& ahead) {
+  stickLayout_.clearAhead();
+  if (stickLayout_.chains().empty() || ahead.passes < 2) return;
+  const detail::GroundPlane plane{ahead.groundNormal, ahead.groundHeight};
+  const detail::GroundPlane* ground = ahead.ground ? &plane : nullptr;
+  if (method == SolverMethod::GaussSeidel) {
+    detail::relaxChainsAhead(particles, sticks_, stickLayout_, ahead.passes, ground, chainSaved_);
+  } else if (method == SolverMethod::Xpbd) {
+    detail::relaxChainsAheadXpbd(particles, sticks_, stickLayout_, ahead.passes, ground, chainSaved_, lambda_,
+                                 h, compliance);
   }
 }
 

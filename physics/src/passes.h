@@ -113,6 +113,22 @@ struct SpinPass {
 /// bodies are the caller's (restoreStickSpin). Jacobi and XPBD take it alike.
 void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                       const Workers* workers = nullptr, const SpinPass* spin = nullptr);
+/// The ground plane n . x = height, for the chains' passes at once.
+struct GroundPlane {
+  Vec3 normal{0.0, 1.0, 0.0};
+  Real height = 0.0;
+};
+/// `passes` passes of Gauss-Seidel over each chain of `layout` (StickLayout::chains) at once, on
+/// the substep's first pass, with the bits of one pass after the other; the chains done so are
+/// marked ahead, and the passes skip them. A chain with a particle at or below `ground` (if given)
+/// at any point of them, which the ground's passes between would have moved, is put back as it
+/// was and left to the passes. `saved` is scratch: two per stick of the longest chain.
+void relaxChainsAhead(Particles& p, std::span<const Stick> sticks, StickLayout& layout, int passes,
+                      const GroundPlane* ground, std::span<Vec3> saved);
+/// The same for XPBD, whose multipliers `lambda` were zeroed for the substep.
+void relaxChainsAheadXpbd(Particles& p, std::span<const Stick> sticks, StickLayout& layout, int passes,
+                          const GroundPlane* ground, std::span<Vec3> saved, std::span<Real> lambda, Real h,
+                          Real compliance);
 /// Every stick's correction from the same positions, each pair scaled by 1 / the larger number
 /// of sticks (`degree`) at its two ends, then summed per particle. delta is scratch, one per
 /// particle. `workers` as for Gauss-Seidel: a lane group's bodies sum and apply their own.

@@ -52,6 +52,18 @@ inline void project(const View& v, std::uint32_t a, std::uint32_t b, const Stick
 // positions too when SHAKE needs them), then the runs.
 // `spin`, if given (keepSpin), keeps each block's moment through its sticks; the runs' bodies are
 // the caller's.
+// Calls `f(k)` for every stick of the runs, then of the chains not run ahead (StickLayout::ahead).
+template <class F>
+void forEachRunStick(const StickLayout& layout, F f) {
+  for (const StickRun& run : layout.runs()) {
+    for (std::uint32_t k = run.begin; k < run.end; ++k) f(k);
+  }
+  for (std::size_t c = 0; c < layout.chains().size(); ++c) {
+    if (layout.ahead()[c] != 0) continue;
+    for (std::uint32_t k = layout.chains()[c].begin; k < layout.chains()[c].end; ++k) f(k);
+  }
+}
+
 template <bool kPrevious, class RelaxStick>
 void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                   const SpinPass* spin, RelaxStick relaxStick) {
@@ -75,11 +87,87 @@ void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
   const View world{p.position.data(), kPrevious ? p.previous.data() : nullptr, p.inverseMass.data()};
-  for (const StickRun& run : layout.runs()) {
-    for (std::uint32_t k = run.begin; k < run.end; ++k)
-      relaxStick(world, sticks[k].a, sticks[k].b, sticks[k], k);
+  forEachRunStick(layout,
+                  [&](std::uint32_t k) { relaxStick(world, sticks[k].a, sticks[k].b, sticks[k], k); });
+}
+
+// Passes `passes` times over each chain of the layout at once (StickLayout::chains), pass j at
+// stick t - 2j for t = 0, 1, ...: each stick reads what it would one pass after the other, so the
+// bits are those. The ground's passes come between the stick passes, and move a loose particle
+// only once it is below the plane: a chain with a particle at or below it at any point of this (on
+// `ground`, if given) is put back as it was (`saved`, two per stick) and left to the passes, with
+// `undo(k)` for each of its sticks. The others are marked ahead.
+template <class RelaxStick, class Undo>
+void chainsAhead(Particles& p, std::span<const Stick> sticks, StickLayout& layout, int passes,
+                 const GroundPlane* ground, std::span<Vec3> saved, RelaxStick relaxStick, Undo undo) {
+  const View world{p.position.data(), nullptr, p.inverseMass.data()};
+  const std::span<std::uint8_t> ahead = layout.setAhead();
+  auto below = [&](ParticleId i) {
+    return ground != nullptr && glm::dot(ground->normal, world.x[i]) <= ground->height;
+  };
+  for (std::size_t c = 0; c < layout.chains().size(); ++c) {
+    const StickRun chain = layout.chains()[c];
+    const std::uint32_t n = chain.end - chain.begin;
+    bool touches = false;
+    if (ground != nullptr) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const Stick& s = sticks[chain.begin + i];
+        saved[2 * i] = world.x[s.a];
+        saved[2 * i + 1] = world.x[s.b];
+        touches = touches || below(s.a) || below(s.b);
+      }
+    }
+    if (!touches) {
+      const std::uint32_t lag = 2;
+      const std::uint32_t span = n + lag * static_cast<std::uint32_t>(passes - 1);
+      for (std::uint32_t t = 0; t < span; ++t) {
+        for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(passes) && lag * j <= t; ++j) {
+          const std::uint32_t i = t - lag * j;
+          if (i >= n) continue;
+          const std::uint32_t k = chain.begin + i;
+          const Stick& s = sticks[k];
+          relaxStick(world, s.a, s.b, s, k);
+          if (ground != nullptr) touches = touches || below(s.a) || below(s.b);
+        }
+      }
+    }
+    if (touches) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const Stick& s = sticks[chain.begin + i];
+        world.x[s.a] = saved[2 * i];
+        world.x[s.b] = saved[2 * i + 1];
+        undo(chain.begin + static_cast<std::uint32_t>(i));
+      }
+    }
+    ahead[c] = touches ? 0 : 1;
   }
 }
+
+// Gauss-Seidel's stick: Jakobsen's projection.
+struct GaussSeidelStick {
+  void operator()(const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) const {
+    StickState m;
+    if (!measure(v, a, b, s, m) || m.length == 0.0) return;  // no direction at 0
+    project(v, a, b, m);
+  }
+};
+
+// XPBD's stick, with its multiplier lambda.
+struct XpbdStick {
+  Real* lambda;
+  Real inverseH2, compliance;
+  void operator()(const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t c) const {
+    StickState m;
+    if (!measure(v, a, b, s, m) || m.length == 0.0) return;
+    // finite: both compliances and h are bounded (settings.h)
+    const Real alpha = (s.compliance + compliance) * inverseH2;
+    const Real dLambda = (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
+    lambda[c] += dLambda;
+    const Vec3 n = m.d / m.length;
+    if (m.w1 != 0.0) v.x[a] -= (m.w1 * dLambda) * n;
+    if (m.w2 != 0.0) v.x[b] += (m.w2 * dLambda) * n;
+  }
+};
 
 // The lane arguments, with keepSpin's lane levers when `spin` is given.
 LaneArguments keepingSpin(Particles& p, const StickLayout& layout, const SpinPass* spin) {
@@ -99,12 +187,12 @@ void relaxGaussSeidel(Particles& p, std::span<const Stick> sticks, const StickLa
                       const Workers* workers, const SpinPass* spin) {
   inLanePieces(keepingSpin(p, layout, spin), workers,
                [](const LaneArguments& a) { relaxGaussSeidelLanes(a); });
-  forEachStick<false>(p, sticks, layout, spin,
-                      [](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t) {
-                        StickState m;
-                        if (!measure(v, a, b, s, m) || m.length == 0.0) return;  // no direction at 0
-                        project(v, a, b, m);
-                      });
+  forEachStick<false>(p, sticks, layout, spin, GaussSeidelStick{});
+}
+
+void relaxChainsAhead(Particles& p, std::span<const Stick> sticks, StickLayout& layout, int passes,
+                      const GroundPlane* ground, std::span<Vec3> saved) {
+  chainsAhead(p, sticks, layout, passes, ground, saved, GaussSeidelStick{}, [](std::uint32_t) {});
 }
 
 // Jacobi: every stick's correction from the same positions, summed per particle. Each stick's
@@ -148,15 +236,13 @@ void relaxJacobi(Particles& p, std::span<const Stick> sticks, const StickLayout&
     moment.keep(x);
     for (int i = 0; i < block.particleCount; ++i) p.position[first + i] = x[i];
   }
-  if (layout.runs().empty()) return;
+  if (layout.runs().empty() && layout.chains().empty()) return;
   std::fill(delta.begin(), delta.end(), Vec3(0.0));
   const View world{p.position.data(), nullptr, p.inverseMass.data()};
-  for (const StickRun& run : layout.runs()) {
-    for (std::uint32_t k = run.begin; k < run.end; ++k) {
-      const Stick& s = sticks[k];
-      correction(world, s.a, s.b, s, std::max(degree[s.a], degree[s.b]), delta.data());
-    }
-  }
+  forEachRunStick(layout, [&](std::uint32_t k) {
+    const Stick& s = sticks[k];
+    correction(world, s.a, s.b, s, std::max(degree[s.a], degree[s.b]), delta.data());
+  });
   const std::size_t n = p.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (p.inverseMass[i] != 0.0) p.position[i] += delta[i];
@@ -174,19 +260,15 @@ void relaxXpbd(Particles& p, std::span<const Stick> sticks, const StickLayout& l
   lanes.inverseH2 = inverseH2;
   lanes.compliance = compliance;
   inLanePieces(lanes, workers, [](const LaneArguments& a) { relaxXpbdLanes(a); });
-  forEachStick<false>(p, sticks, layout, spin,
-                      [&](const View& v, std::uint32_t a, std::uint32_t b, const Stick& s, std::uint32_t c) {
-                        StickState m;
-                        if (!measure(v, a, b, s, m) || m.length == 0.0) return;
-                        // finite: both compliances and h are bounded (settings.h)
-                        const Real alpha = (s.compliance + compliance) * inverseH2;
-                        const Real dLambda =
-                            (-(m.length - m.target) - alpha * lambda[c]) / (m.w1 + m.w2 + alpha);
-                        lambda[c] += dLambda;
-                        const Vec3 n = m.d / m.length;
-                        if (m.w1 != 0.0) v.x[a] -= (m.w1 * dLambda) * n;
-                        if (m.w2 != 0.0) v.x[b] += (m.w2 * dLambda) * n;
-                      });
+  forEachStick<false>(p, sticks, layout, spin, XpbdStick{lambda.data(), inverseH2, compliance});
+}
+
+void relaxChainsAheadXpbd(Particles& p, std::span<const Stick> sticks, StickLayout& layout, int passes,
+                          const GroundPlane* ground, std::span<Vec3> saved, std::span<Real> lambda, Real h,
+                          Real compliance) {
+  // The multipliers start the substep at 0, so a chain put back has its own zeroed again.
+  chainsAhead(p, sticks, layout, passes, ground, saved, XpbdStick{lambda.data(), 1.0 / (h * h), compliance},
+              [&](std::uint32_t k) { lambda[k] = 0.0; });
 }
 
 // SHAKE for one stick: move x1 by -w1 g r and x2 by +w2 g r, where r is the stick at the start

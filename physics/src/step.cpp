@@ -513,7 +513,8 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       if (keepSpin) detail::measureStickSpin(particles_, bodies_, runBodies, spinLever_, stickSpin_);
       tetraVolumes_.keep(particles_, solver_.method == SolverMethod::Shake, workers(), keepSpin);
       constraints_.relaxSticks(particles_, solver_.method, it == 0, h, solver_.compliance, workers(),
-                               keepSpin);
+                               keepSpin,
+                               {solver_.iterations, ground, world_.groundNormal, world_.groundHeight});
       if (keepSpin) detail::restoreStickSpin(particles_, bodies_, runBodies, spinLever_, stickSpin_);
       laps.lap(Stage::Sticks);
     }

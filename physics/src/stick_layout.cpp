@@ -1,5 +1,6 @@
 #include "physics/stick_layout.h"
 
+#include <algorithm>
 #include <map>
 
 #include "still_groups.h"
@@ -24,8 +25,8 @@ void StickLayout::addToRuns(std::uint32_t stick) {
   }
 }
 
-void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> boxes,
-                        std::size_t particleCount) {
+void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> boxes, std::size_t particleCount,
+                        std::span<const std::uint8_t> heldElsewhere) {
   constexpr std::int32_t kNone = -1;
   std::vector<std::int32_t> particleOwner(particleCount, kNone), stickOwner(sticks.size(), kNone);
   for (std::size_t b = 0; b < boxes.size(); ++b) {
@@ -64,9 +65,74 @@ void StickLayout::build(std::span<const Stick> sticks, std::span<const Body> box
   for (std::size_t k = 0; k < sticks.size(); ++k) {
     if (stickOwner[k] == kNone) addToRuns(static_cast<std::uint32_t>(k));
   }
+  std::vector<std::uint8_t> loose(particleCount, 0);
+  for (std::size_t i = 0; i < particleCount; ++i)
+    loose[i] = particleOwner[i] == kNone && (heldElsewhere.empty() || heldElsewhere[i] == 0) ? 1 : 0;
+  findChains(sticks, loose);
   groupIntoLanes(sticks);
   still_.clear();
   still_.reserve(lanes_.size());
+}
+
+// Takes the chains out of the runs (chains()): a chain starts at a stick with an end in no other
+// stick and follows, stick by stick in creation order, the particle it shares with the next, as
+// long as that particle is in exactly these two sticks, until it reaches the path's other end. So
+// no stick outside the chain touches it, and it cannot close on itself.
+void StickLayout::findChains(std::span<const Stick> sticks, std::span<const std::uint8_t> loose) {
+  chains_.clear();
+  std::vector<std::uint8_t> degree(loose.size(), 0);  // sticks at each particle, counted to 3
+  for (const Stick& s : sticks) {
+    for (const ParticleId end : {s.a, s.b})
+      degree[end] = static_cast<std::uint8_t>(std::min(degree[end] + 1, 3));
+  }
+  auto usable = [&](const Stick& s) {
+    return s.a != s.b && loose[s.a] != 0 && loose[s.b] != 0 && degree[s.a] <= 2 && degree[s.b] <= 2;
+  };
+  // The end of the whole chain that starts at stick k, within [k, limit); k when none does.
+  auto chainFrom = [&](std::uint32_t k, std::uint32_t limit) {
+    const Stick& first = sticks[k];
+    if (!usable(first)) return k;
+    ParticleId forward{};
+    if (degree[first.a] == 1) {
+      forward = first.b;
+    } else if (degree[first.b] == 1) {
+      forward = first.a;
+    } else {
+      return k;
+    }
+    std::uint32_t j = k + 1;
+    for (; degree[forward] == 2; ++j) {
+      if (j == limit || !usable(sticks[j])) return k;
+      if (sticks[j].a == forward) {
+        forward = sticks[j].b;
+      } else if (sticks[j].b == forward) {
+        forward = sticks[j].a;
+      } else {
+        return k;
+      }
+    }
+    return j;
+  };
+  std::vector<StickRun> left;  // the runs without their chains
+  auto keep = [&](std::uint32_t begin, std::uint32_t end) {
+    if (begin < end) left.push_back({begin, end});
+  };
+  for (const StickRun& run : runs_) {
+    std::uint32_t kept = run.begin;  // the first stick not yet placed
+    for (std::uint32_t k = run.begin; k < run.end;) {
+      const std::uint32_t end = chainFrom(k, run.end);
+      if (end - k >= kMinChainSticks) {
+        keep(kept, k);
+        chains_.push_back({k, end});
+        k = kept = end;
+      } else {
+        ++k;
+      }
+    }
+    keep(kept, run.end);
+  }
+  runs_ = std::move(left);
+  ahead_.assign(chains_.size(), 0);
 }
 
 // Blocks of one shape (particle count and local sticks), kStickLanes at a time, in body order;

@@ -20,6 +20,14 @@
 
 namespace phys {
 
+/// The substep's passes, for ConstraintGraph::relaxSticks to run the chains' passes at once.
+struct PassesAhead {
+  int passes = 1;  ///< the substep's passes (SolverSettings::iterations)
+  bool ground = false;
+  Vec3 groundNormal{0.0, 1.0, 0.0};
+  Real groundHeight = 0.0;  ///< unit: m
+};
+
 class ConstraintGraph {
  public:
   /// Makes room for one more particle's scratch.
@@ -100,8 +108,11 @@ class ConstraintGraph {
   /// `keepSpin` (SolverSettings::keepSpin; not SHAKE's, whose sticks keep it): the moment of each body
   /// laid out as a block or in lanes is kept through its sticks; the run bodies' (stickRunBodies) are
   /// the caller's.
+  /// `ahead`: on the first pass of Gauss-Seidel or XPBD with more than one pass, every pass of the
+  /// substep over the chains of loose particles at once (StickLayout::chains), the bits unchanged;
+  /// the ground's plane, if there is one, says which chains the ground's passes may move between.
   void relaxSticks(Particles& particles, SolverMethod method, bool firstPass, Real h, Real compliance,
-                   const Workers* workers = nullptr, bool keepSpin = false);
+                   const Workers* workers = nullptr, bool keepSpin = false, const PassesAhead& ahead = {});
   /// StickLayout::runBodies.
   std::span<const std::uint32_t> stickRunBodies() const { return stickLayout_.runBodies(); }
   /// Each link's slack: the violation at x* it may keep this substep, less `step` (m). Returns the
@@ -115,6 +126,9 @@ class ConstraintGraph {
   void solveLinks(Particles& particles, std::span<const Real> slack, const Workers* workers = nullptr) const;
 
  private:
+  void relaxChainsAhead(Particles& particles, SolverMethod method, Real h, Real compliance,
+                        const PassesAhead& ahead);
+
   std::vector<Stick> sticks_;
   std::vector<Link> links_;
   std::vector<RigidLink> rigidLinks_;
@@ -140,6 +154,7 @@ class ConstraintGraph {
   std::vector<Real> linkSlack_;    // per link: violation it may keep this substep (m)
   int linksApart_ = 0;             // links whose slack is not yet 0
   std::vector<Vec3> jacobiDelta_;  // per particle
+  std::vector<Vec3> chainSaved_;   // two per stick of the longest chain (relaxChainsAhead)
   std::vector<Real> laneSpin_;     // keepSpin: the lanes' levers, kLaneSpinValues per lane group
   std::vector<Real> degree_;       // per particle: sticks attached (Jacobi's scaling)
 };
