@@ -10,6 +10,7 @@
 
 #include "passes.h"
 #include "physics/world.h"
+#include "test_util.h"
 
 namespace {
 
@@ -78,15 +79,7 @@ TEST(ChainsAhead, AreWholePathsOfLooseParticlesThatNothingElseHolds) {
   EXPECT_EQ(layout.chains()[1].end, shapes.backwards + 12);
   EXPECT_EQ(layout.ahead().size(), 2u);
   // Every stick exactly once: the box's own as a block, the rest in runs or chains.
-  std::vector<int> seen(world.sticks().size(), 0);
-  for (const auto& list : {layout.runs(), layout.chains()}) {
-    for (const phys::StickRun& run : list) {
-      for (std::uint32_t k = run.begin; k < run.end; ++k) ++seen[k];
-    }
-  }
-  for (const phys::StickBlock& block : layout.blocks()) {
-    for (std::uint32_t k = 0; k < block.stickCount; ++k) ++seen[block.firstStick + k];
-  }
+  const std::vector<int> seen = testing_phys::timesLaidOut(layout, world.sticks().size());
   for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], 1) << "stick " << k;
 }
 

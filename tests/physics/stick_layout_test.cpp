@@ -12,6 +12,7 @@
 #include "passes.h"
 #include "physics/world.h"
 #include "relax_lanes.h"
+#include "test_util.h"
 
 namespace {
 
@@ -53,18 +54,7 @@ TEST(StickLayout, BodiesOfOneShapeGoIntoLanesTheRestIntoBlocksAndRuns) {
   for (const phys::StickRun& run : layout.runs()) inRuns += run.end - run.begin;
   EXPECT_EQ(inRuns, 6u + 1u + 9u) << "box 0's own sticks, the stick to it, the chain";
   // Every stick exactly once.
-  std::vector<int> seen(scene.world.sticks().size(), 0);
-  for (const phys::StickRun& run : layout.runs()) {
-    for (std::uint32_t k = run.begin; k < run.end; ++k) ++seen[k];
-  }
-  for (const phys::StickBlock& block : layout.blocks()) {
-    for (std::uint32_t k = 0; k < block.stickCount; ++k) ++seen[block.firstStick + k];
-  }
-  for (const phys::StickLanes& group : layout.lanes()) {
-    for (int l = 0; l < phys::kStickLanes; ++l) {
-      for (std::uint32_t k = 0; k < group.stickCount; ++k) ++seen[group.firstStick[l] + k];
-    }
-  }
+  const std::vector<int> seen = testing_phys::timesLaidOut(layout, scene.world.sticks().size());
   for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], 1) << "stick " << k;
 }
 

@@ -2,10 +2,12 @@
 // Small helpers shared by the physics tests.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "physics/stick_layout.h"
 #include "physics/world.h"
 
 namespace testing_phys {
@@ -62,6 +64,26 @@ inline phys::BodyDesc capsule(phys::BodyModel model, const phys::Vec3& centre, p
 inline phys::JointDesc joint(phys::JointKind kind, phys::BodyId a, phys::BodyId b, const phys::Vec3& pivot,
                              const phys::Vec3& axis, const phys::Vec3& reference) {
   return {.kind = kind, .a = a, .b = b, .pivot = pivot, .axis = axis, .reference = reference};
+}
+
+/// How many times `layout` relaxes each of `stickCount` sticks in a pass, over its runs, chains,
+/// blocks and lanes: once each, for a layout that loses and repeats none.
+inline std::vector<int> timesLaidOut(const phys::StickLayout& layout, std::size_t stickCount) {
+  std::vector<int> seen(stickCount, 0);
+  for (const auto& list : {layout.runs(), layout.chains()}) {
+    for (const phys::StickRun& run : list) {
+      for (std::uint32_t k = run.begin; k < run.end; ++k) ++seen[k];
+    }
+  }
+  for (const phys::StickBlock& block : layout.blocks()) {
+    for (std::uint32_t k = 0; k < block.stickCount; ++k) ++seen[block.firstStick + k];
+  }
+  for (const phys::StickLanes& group : layout.lanes()) {
+    for (int l = 0; l < phys::kStickLanes; ++l) {
+      for (std::uint32_t k = 0; k < group.stickCount; ++k) ++seen[group.firstStick[l] + k];
+    }
+  }
+  return seen;
 }
 
 }  // namespace testing_phys
