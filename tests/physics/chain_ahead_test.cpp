@@ -2,8 +2,8 @@
 // sticks are chains, and that running a substep's passes over them at once gives the bits of one
 // pass after the other, with the ground's passes between them or without.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
-#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -83,14 +83,14 @@ TEST(ChainsAhead, AreWholePathsOfLooseParticlesThatNothingElseHolds) {
   for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], 1) << "stick " << k;
 }
 
-// The two chains of Shapes, scattered so that every stick needs a correction, and unequal masses.
+// Shapes' particles moved off their places by up to 3 cm, so that every stick needs a correction,
+// with unequal masses (a swapped pair of weights would show).
 phys::Particles disturbed(const phys::World& world) {
   phys::Particles p = world.particles();
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> jitter(-0.03, 0.03), inverseMass(0.2, 5.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    p.inverseMass[i] = inverseMass(random);
-    p.position[i] += Vec3(jitter(random), jitter(random), jitter(random));
+    const double k = static_cast<double>(i);
+    p.position[i] += 0.03 * Vec3(std::sin(1.7 * k), std::cos(2.3 * k), std::sin(0.9 * k));
+    if (p.inverseMass[i] != 0.0) p.inverseMass[i] = 0.2 + static_cast<double>(i % 5);
   }
   return p;
 }
