@@ -74,29 +74,42 @@ void collideCapsulePair(Particles& p, const GroundContact& a, const GroundContac
   pushB = lb * kbb;
 }
 
-// A tetra capsule's 4 particles as one rigid body: their centre, total inverse mass and inverse
-// inertia about the centre (from the particles where they are). False if one is pinned or the
-// four are flat, where the barycentric push serves.
-struct RigidTetra {
+// A capsule's particles as one rigid body: a tetra capsule's 4 (its ground points' carriers) or a
+// corners capsule's 8 (its box's corners, from corner 0, its surface point's first carrier:
+// rigidEmbedding), their centre, total inverse mass and inverse inertia about the centre (from the
+// particles where they are). False if one is pinned or they are flat, where the push by weights
+// serves.
+struct RigidCapsule {
+  ParticleId particle[8] = {};
+  int count = 0;
   Vec3 centre{0.0};
   Real inverseMass = 0.0;
   glm::dmat3 inverseInertia{0.0};
 };
 
-bool rigidTetra(const Particles& p, const Embedding& e, RigidTetra& t) {
-  if (e.count != 4) return false;
+bool rigidCapsule(const Particles& p, const GroundContact& contact, RigidCapsule& t) {
+  if (contact.surface.count > 0) {  // a corners capsule
+    t.count = 8;
+    for (int i = 0; i < 8; ++i)
+      t.particle[i] = ParticleId(contact.surface.particle[0] + static_cast<std::uint32_t>(i));
+  } else if (contact.point.count == 4) {
+    t.count = 4;
+    for (int i = 0; i < 4; ++i) t.particle[i] = contact.point.particle[i];
+  } else {
+    return false;
+  }
   Real mass = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    const Real w = p.inverseMass[e.particle[i]];
+  for (int i = 0; i < t.count; ++i) {
+    const Real w = p.inverseMass[t.particle[i]];
     if (w == 0.0) return false;
     mass += 1.0 / w;
-    t.centre += p.position[e.particle[i]] / w;
+    t.centre += p.position[t.particle[i]] / w;
   }
   t.centre /= mass;
   glm::dmat3 inertia(0.0);
-  for (int i = 0; i < 4; ++i) {
-    const Vec3 r = p.position[e.particle[i]] - t.centre;
-    inertia += (glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r)) / p.inverseMass[e.particle[i]];
+  for (int i = 0; i < t.count; ++i) {
+    const Vec3 r = p.position[t.particle[i]] - t.centre;
+    inertia += (glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r)) / p.inverseMass[t.particle[i]];
   }
   const Real det = glm::determinant(inertia);
   const Real scale = inertia[0][0] + inertia[1][1] + inertia[2][2];
@@ -106,22 +119,37 @@ bool rigidTetra(const Particles& p, const Embedding& e, RigidTetra& t) {
   return true;
 }
 
-// The most points one rigid block holds: a tetra capsule's 2.
+// Moves a rigid capsule's particles by `move` and turns them by `turned` about its centre.
+void moveRigidly(Particles& p, const RigidCapsule& t, const Vec3& move, const Vec3& turned) {
+  for (int i = 0; i < t.count; ++i) {
+    Vec3& x = p.position[t.particle[i]];
+    x += move + glm::cross(turned, x - t.centre);
+  }
+}
+
+// The most points one rigid block holds: a capsule's 2.
 constexpr int kMostRigidBlock = 2;
 
-// A tetra capsule's two ground points pushed as its 4 particles would move as one rigid body, by
+// A capsule's two ground points pushed as its particles would move as one rigid body, by
 // impulses lambda_k n at the points: the centre by M^-1 sum lambda_k n, the particles turned about
 // it by I^-1 sum r_k x lambda_k n (linearised). By their barycentric weights the pushes lift only
 // its bottom particles (the two points weigh its top two +0.18 and -0.18 for a 0.2 m by 1 m
 // capsule), and no sum of the two lifts the top two with the bottom two: every step its sticks
 // lifted them after the pushes, and the chiral 4-particle body came out of each step turned a
 // little, rocking +-0.1 rad and +-2.5 cm for ever (docs/physics.md, "A tetra capsule lying still").
-// Pushed rigidly, a resting capsule's sticks have nothing to undo. The impulses solve the same 2 x 2
-// complementarity problem as the block by weights, K_ij = 1/M + (r_i x n) . I^-1 (r_j x n).
+// Pushed rigidly, a resting capsule's sticks have nothing to undo. A corners capsule's block by
+// weights lifts its bottom face's 4 corners: on its side turned about its core its box came out of
+// each pass sheared, the next pass's sticks undoing it along their present directions gave it spin
+// (Gauss-Seidel keeps no angular momentum, measured at x*, through such corrections) towards its box's
+// edge, and the face point the sheared face carried, off the push's line by 0.04 to 0.9 mm at 3 x 1,
+// turned it towards its face: laid turned 10 to 40 degrees, it rolled to where the two balanced,
+// 27 degrees at 3 x 1, 13 to 24 at 2 x 4 (docs/physics.md, "A capsule turned about its core").
+// The impulses solve the same 2 x 2 complementarity problem as the block by weights,
+// K_ij = 1/M + (r_i x n) . I^-1 (r_j x n).
 bool collideRigidBlock(Particles& p, std::span<const GroundContact> block, const Real* depth, const Vec3& n,
                        Real* push) {
-  RigidTetra t;
-  if (!rigidTetra(p, block[0].point, t)) return false;
+  RigidCapsule t;
+  if (!rigidCapsule(p, block[0], t)) return false;
   const int count = static_cast<int>(block.size());
   Real deepest = 0.0;
   for (int k = 0; k < count; ++k) {
@@ -147,24 +175,23 @@ bool collideRigidBlock(Particles& p, std::span<const GroundContact> block, const
     // slope that holds it (BoxModels.InclineHoldsWithFriction05AndSlidesAtCoulombRateWith02).
     push[k] = lambda[k] * embeddedWeight(p.inverseMass, block[k].point);
   }
-  const Vec3 move = total * t.inverseMass * n;
-  for (int i = 0; i < 4; ++i) {
-    Vec3& x = p.position[block[0].point.particle[i]];
-    x += move + glm::cross(turned, x - t.centre);
-  }
+  moveRigidly(p, t, total * t.inverseMass * n, turned);
   return true;
 }
 
 // A point of a rigid block's friction: its slide along the ground cut by a tangential impulse on the
-// 4 particles as one rigid body, as collideRigidBlock pushed them, bounded by mu times that pass's
+// particles as one rigid body, as collideRigidBlock pushed them, bounded by mu times that pass's
 // normal impulse (the push it recorded is the impulse times the point's K by weights). Cut by the
 // point's weights instead, the cut bent the body that the push had kept whole, and the sticks, undoing
-// it in the next pass when no push (so no friction) held the point, let a capsule lying along a 10
-// degree slope its friction holds creep down it at 4.3 mm/s.
-void cutRigidly(Particles& p, const GroundContact& contact, const RigidTetra& t, const Vec3& n, Real push) {
+// it in the next pass when no push (so no friction) held the point, let a tetra capsule lying along
+// a 10 degree slope its friction holds creep down it at 4.3 mm/s. A corners capsule's slide is its
+// surface point's (FrictionPoint), not its face point's, which lies below it and slips as it rolls.
+void cutRigidly(Particles& p, const GroundContact& contact, const RigidCapsule& t, const Vec3& n, Real push) {
   const Embedding& e = contact.point;
-  const Vec3 at = embeddedPosition(p.position, e);
-  Vec3 slide = at - embeddedPosition(p.previous, e);
+  const bool onSurface = contact.surface.count > 0;
+  const FrictionPoint f = FrictionPoint::of(onSurface ? contact.surface : e, onSurface);
+  const Vec3 at = f.at(p.position);
+  Vec3 slide = at - f.at(p.previous);
   slide -= glm::dot(slide, n) * n;
   const Real length = glm::length(slide);
   const Real kWeights = embeddedWeight(p.inverseMass, e);
@@ -179,12 +206,7 @@ void cutRigidly(Particles& p, const GroundContact& contact, const RigidTetra& t,
   Real impulse = length / k;  // static: stop the slide entirely
   if (impulse > mu.staticFriction * normalImpulse)
     impulse = std::min(impulse, mu.dynamicFriction * normalImpulse);
-  const Vec3 move = -impulse * t.inverseMass * along;
-  const Vec3 turned = -impulse * turn;
-  for (int i = 0; i < 4; ++i) {
-    Vec3& x = p.position[e.particle[i]];
-    x += move + glm::cross(turned, x - t.centre);
-  }
+  moveRigidly(p, t, -impulse * t.inverseMass * along, -impulse * turn);
 }
 
 }  // namespace
@@ -200,7 +222,7 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
   auto isFar = [&](std::size_t c) { return !far.empty() && far[c] != 0; };
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (!still.empty() && still[c] != 0) continue;
-    // A free tetra capsule's two points as one rigid block (placeCapsulePoints), with both ends near.
+    // A free capsule's two points as one rigid block (placeCapsulePoints), with both ends near.
     const std::size_t block = contacts[c].rigidBlock;
     if (block > 1 && c + block <= contacts.size() && block <= kMostRigidBlock && !isFar(c) && !isFar(c + 1)) {
       Real depth[kMostRigidBlock];
@@ -243,7 +265,7 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
     // A rigid block's points (the block's first names how many), cut as it was pushed.
     const bool inBlock = contacts[c].rigidBlock > 1 || (c > 0 && contacts[c - 1].rigidBlock > 1 &&
                                                         contacts[c - 1].body == contacts[c].body);
-    if (RigidTetra t; inBlock && rigidTetra(p, contacts[c].point, t)) {
+    if (RigidCapsule t; inBlock && rigidCapsule(p, contacts[c], t)) {
       cutRigidly(p, contacts[c], t, n, push);
       continue;
     }

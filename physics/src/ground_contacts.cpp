@@ -141,7 +141,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
   if (capsuleEnds_.empty()) return;
   const Vec3 n = groundNormal;
   const std::span<const Vec3> position = particles.position;
-  std::atomic<bool> unjoinedTetra{false};  // a whole tetra capsule with nothing joined to it
+  std::atomic<bool> unjoinedBlock{false};  // a capsule pushed as a rigid block, nothing joined to it
   // Each end writes its own point alone: ranges of them at once on the step's threads.
   auto range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
@@ -176,9 +176,13 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
         contact.pairedWithNext = box.model == BodyModel::Corners &&
                                  glm::dot(n, detail::meanParticleMove(particles, box)) > -restingMove &&
                                  isWhole;
+        // A corners capsule's block by weights lifts its bottom face's corners, and turned about its
+        // core it was turned further by the sticks that lifted the rest after them, as a tetra
+        // capsule was (collideRigidBlock): a free one resting is pushed as one rigid block as well.
         const bool unjoined = joined.empty() || joined[g.body] == 0;
-        contact.rigidBlock = box.model == BodyModel::Tetra && isWhole && unjoined ? 2 : 0;
-        if (contact.rigidBlock != 0) unjoinedTetra.store(true, std::memory_order_relaxed);
+        const bool rigidly = box.model == BodyModel::Tetra ? isWhole : contact.pairedWithNext;
+        contact.rigidBlock = rigidly && unjoined ? 2 : 0;
+        if (contact.rigidBlock != 0) unjoinedBlock.store(true, std::memory_order_relaxed);
       }
       const Obb e = detail::embeddingFrame(box, f, position);
       Vec3 moved(0.0);
@@ -194,7 +198,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
     }
   };
   forEachRange(workers, capsuleEnds_.size(), kEndsPerPiece, range);
-  if (!unjoinedTetra.load(std::memory_order_relaxed)) return;
+  if (!unjoinedBlock.load(std::memory_order_relaxed)) return;
   // The bodies another body acts on in this step: one of its manifolds (speculative ones too). Read
   // only when some block is left to take out: over every manifold each substep it cost `capsules`
   // (corners capsules only) 5% of its step.

@@ -153,13 +153,15 @@ struct GroundContact {
   Embedding surface;
   /// For the first of a corners capsule's two points (its ends' lowest points; the next point is
   /// the other), set where they are placed each substep while it rests with its box whole: the two
-  /// share their particles, and the ground pass pushes them as one block (collideGround). Never
-  /// for a tetra capsule (GroundContacts::placeCapsulePoints says why; see rigidBlock).
+  /// share their particles, and the ground pass pushes them as one block (collideGround), by their
+  /// weights unless rigidBlock says rigidly. Never for a tetra capsule (GroundContacts::placeCapsulePoints
+  /// says why; see rigidBlock).
   bool pairedWithNext = false;
-  /// How many points from this one on (this one's body's) are pushed as one block moving its 4
-  /// particles as one rigid body, not by the points' barycentric weights (collideGround): a tetra
-  /// capsule's 2 while its box is whole and it is a free body (nothing joined to it, no other body
-  /// touching it in the step; GroundContacts::placeCapsulePoints); 0 for none.
+  /// How many points from this one on (this one's body's) are pushed as one block moving its
+  /// particles (a tetra capsule's 4, a corners capsule's 8) as one rigid body, not by the points'
+  /// weights (collideGround): a capsule's 2 while it is a free body (nothing joined to it, no other
+  /// body touching it in the step) with its box whole, a corners one also only while its points are
+  /// paired (resting; GroundContacts::placeCapsulePoints); 0 for none.
   std::uint8_t rigidBlock = 0;
 };
 

@@ -44,10 +44,10 @@ class GroundContacts {
   /// (the particles') tells a capsule turned inside out, whose points go on the face its particles
   /// lie on, not the one its frame names (see the definition). A corners capsule resting on the ground
   /// (its particles' mean move of this substep no more than `restingMove` towards it, and its box
-  /// whole) has its two points paired, pushed as one block (GroundContact::pairedWithNext); a tetra
-  /// capsule that is a free body, its box whole, as one rigid block (GroundContact::rigidBlock):
-  /// free, when nothing is joined to it (`joined`, per body: 1 for one a stick, link or joint
-  /// acts on; empty for none) and it is in none of this step's `manifolds`.
+  /// whole) has its two points paired, pushed as one block (GroundContact::pairedWithNext); a
+  /// capsule that is a free body, its box whole (a corners one also paired), as one rigid block
+  /// (GroundContact::rigidBlock): free, when nothing is joined to it (`joined`, per body: 1 for one a
+  /// stick, link or joint acts on; empty for none) and it is in none of this step's `manifolds`.
   void placeCapsulePoints(std::span<const Body> bodies, std::span<const Obb> frames,
                           const Particles& particles, std::span<const Manifold> manifolds,
                           std::span<const std::uint8_t> joined, const Vec3& groundNormal, Real groundHeight,
