@@ -26,6 +26,19 @@
 #include "passes.h"
 
 namespace phys::detail {
+namespace {
+
+// Whether K (keepStickMoment) is positive definite in its symmetric part, from its diagonal and the
+// sums of its off-diagonal pairs (xy = K_xy + K_yx ...): Sylvester's leading minors of K + K^T.
+// LaneSpin::restore does the same operations in the same order.
+inline bool turnIsAnInertia(Real xx, Real yy, Real zz, Real xy, Real xz, Real yz) {
+  const Real a = 2.0 * xx, b = 2.0 * yy, c = 2.0 * zz;
+  const Real second = a * b - xy * xy;
+  const Real third = a * (b * c - yz * yz) - xy * (xy * c - yz * xz) + xz * (xy * yz - b * xz);
+  return a > 0.0 && second > 0.0 && third > 0.0;
+}
+
+}  // namespace
 
 // s_i = x*_i - c* is fixed for the substep (the passes never move x*), and sum m s_i = 0, so
 // sum m s_i x x_i is the moment about any point: the passes' changes of it are theirs alone.
@@ -84,6 +97,13 @@ void keepStickMoment(Vec3* x, const SpinLever* lever, int count, const Vec3& bef
     centre += lever[i].mass * r;
     mass += lever[i].mass;
   }
+  // Far from its start's shape (a corner yanked metres in a step), a body has no one rotation for a
+  // turn to restore: K is then no inertia, and where its symmetric part is not positive definite a
+  // turn about some axis takes the moment the wrong way, and solving for it threw such a box out of
+  // the world. Left as it is (its leading minors; a body left alone, K = 0, fails the first).
+  if (!turnIsAnInertia(turn[0][0], turn[1][1], turn[2][2], turn[0][1] + turn[1][0], turn[0][2] + turn[2][0],
+                       turn[1][2] + turn[2][1]))
+    return;
   const Real det = glm::determinant(turn);
   // flat, not finite, or left alone (levers of 0): as it is
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return;
