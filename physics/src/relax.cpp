@@ -1,7 +1,8 @@
 // The four ways to relax sticks. Each is one pass over all sticks; the caller repeats it. A pass
 // runs over the StickLayout: its lane groups eight bodies at a time (relax_lanes.h), each block
-// (a body) in locals, then the runs in the world's arrays. The same projection code serves blocks
-// and runs, and the lanes repeat its operations, so the result is the same.
+// (a body) in locals, then the runs in the world's arrays, then the chains of loose particles,
+// unless their passes were all run at once (relaxChainsAhead). The same projection code serves
+// blocks, runs and chains, and the lanes repeat its operations, so the result is the same.
 #include <algorithm>
 #include <cmath>
 
@@ -47,11 +48,6 @@ inline void project(const View& v, std::uint32_t a, std::uint32_t b, const Stick
   if (m.w2 != 0.0) v.x[b] -= (m.w2 * k) * m.d;
 }
 
-// Runs `relaxStick(view, a, b, stick, index)` over every stick outside the lane groups (which
-// relax_lanes.h relaxes) in the layout's order: each block copied into locals (its previous
-// positions too when SHAKE needs them), then the runs.
-// `spin`, if given (keepSpin), keeps each block's moment through its sticks; the runs' bodies are
-// the caller's.
 // Calls `f(k)` for every stick of the runs, then of the chains not run ahead (StickLayout::ahead).
 template <class F>
 void forEachRunStick(const StickLayout& layout, F f) {
@@ -64,6 +60,11 @@ void forEachRunStick(const StickLayout& layout, F f) {
   }
 }
 
+// Runs `relaxStick(view, a, b, stick, index)` over every stick outside the lane groups (which
+// relax_lanes.h relaxes) in the layout's order: each block copied into locals (its previous
+// positions too when SHAKE needs them), then the runs and chains (forEachRunStick).
+// `spin`, if given (keepSpin), keeps each block's moment through its sticks; the runs' bodies are
+// the caller's.
 template <bool kPrevious, class RelaxStick>
 void forEachStick(Particles& p, std::span<const Stick> sticks, const StickLayout& layout,
                   const SpinPass* spin, RelaxStick relaxStick) {
