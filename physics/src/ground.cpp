@@ -119,6 +119,119 @@ bool rigidCapsule(const Particles& p, const GroundContact& contact, RigidCapsule
   return true;
 }
 
+// A tetra box's 4 particles as one rigid body where they were at `x` (e's order): their centre, total
+// inverse mass and inverse inertia about the centre. False if one is pinned or the four are flat,
+// where the moves by weights stand. (The capsules' RigidCapsule, from the particles where they are.)
+struct RigidBox {
+  Vec3 centre{0.0};
+  Real inverseMass = 0.0;
+  glm::dmat3 inverseInertia{0.0};
+};
+
+bool rigidBoxAt(const Particles& p, const Embedding& e, const Vec3* x, RigidBox& t) {
+  if (e.count != 4) return false;
+  Real mass = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const Real w = p.inverseMass[e.particle[i]];
+    if (w == 0.0) return false;
+    mass += 1.0 / w;
+    t.centre += x[i] / w;
+  }
+  t.centre /= mass;
+  glm::dmat3 inertia(0.0);
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 r = x[i] - t.centre;
+    inertia += (glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r)) / p.inverseMass[e.particle[i]];
+  }
+  const Real det = glm::determinant(inertia);
+  const Real scale = inertia[0][0] + inertia[1][1] + inertia[2][2];
+  if (!(det > 1e-9 * scale * scale * scale)) return false;
+  t.inverseMass = 1.0 / mass;
+  t.inverseInertia = glm::inverse(inertia);
+  return true;
+}
+
+// A free tetra box's 8 corners (GroundContact::rigidBlock kBoxCorners, GroundContacts::markFreeTetraBoxes)
+// are pushed, and cut, by their weights, each by its depth (or slide) as the pass found it before any
+// of them moved, and then what the pass did to the box's 4 particles is made a rigid body's move: the
+// same momentum and angular momentum about their centre (the impulses the weights gave, sum m dx and
+// sum m r x dx), as a translation and an exact turn. Pushed one after the other by the weights alone,
+// the pushes lifted the box's bottom particles and left the top two where gravity took them (the two
+// embedded bottom corners weigh them +1/2 and -1/2), and every substep its sticks lifted them after
+// the push; Jakobsen's projection along a stick's present direction does not keep angular momentum,
+// and the chiral 4-particle body came out of each step turned a little about the vertical: lying
+// alone on frictionless ground it spun up, 2 rad in 30 s at 10 x 1, and with friction, which held its
+// corners against that turn and the sticks' sideways moves, it walked 6.4 cm in 30 s (docs/physics.md,
+// "A tetra box lying still"). Tried and not kept: each corner pushed alone as an impulse on the rigid
+// body, one after the other: the pushes tilted the box, its last corners' lifting the first ones
+// above the plane, and it rested on one corner 1.1 mm up at 10 x 1; the same with a corner above the
+// plane pulled back within the substep's impulse (projected Gauss-Seidel across the passes): the tilts
+// back and forth did not commute and spun it about the vertical as fast as before; the pushes by
+// weights one after the other, then made rigid: tilted 0.4 mrad and still spinning. Measured all
+// before any moves, a flat face's 4 equal depths give a rigid lift of exactly that depth, flat, and
+// the sticks have nothing to undo: the box stays to round-off.
+constexpr std::size_t kBoxCorners = 8;
+
+struct BoxStart {
+  Vec3 x[4];
+};
+
+BoxStart boxStart(const Particles& p, const Embedding& e) {
+  BoxStart s;
+  for (int i = 0; i < 4; ++i) s.x[i] = p.position[e.particle[i]];
+  return s;
+}
+
+// The particles' moves since `start` made one rigid body's (above); nothing if none moved, or if
+// the 4 are pinned or flat (rigidBoxAt), where the weights' moves stand.
+void makeRigid(Particles& p, const Embedding& e, const BoxStart& start) {
+  Vec3 moved[4];
+  bool any = false;
+  for (int i = 0; i < 4; ++i) {
+    moved[i] = p.position[e.particle[i]] - start.x[i];
+    any = any || moved[i] != Vec3(0.0);
+  }
+  RigidBox t;
+  if (!any || !rigidBoxAt(p, e, start.x, t)) return;
+  Vec3 momentum(0.0), moment(0.0);
+  for (int i = 0; i < 4; ++i) {
+    const Real m = 1.0 / p.inverseMass[e.particle[i]];
+    momentum += m * moved[i];
+    moment += m * glm::cross(start.x[i] - t.centre, moved[i]);
+  }
+  const Vec3 move = momentum * t.inverseMass;
+  const Vec3 turned = t.inverseInertia * moment;
+  const Real angle = glm::length(turned);
+  const Vec3 axis = angle > 0.0 ? turned / angle : Vec3(0.0);
+  const Real c = std::cos(angle), s = std::sin(angle);
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 r = start.x[i] - t.centre;
+    p.position[e.particle[i]] =
+        t.centre + move + r * c + glm::cross(axis, r) * s + axis * (glm::dot(axis, r) * (1.0 - c));
+  }
+}
+
+// The move by its weights that a box corner's friction makes of its slide (x - x*) along the ground:
+// the whole slide back within mu_s times the pass's push, else mu_d times it; never reversed.
+Vec3 boxCornerCut(const Particles& p, const GroundContact& contact, const Vec3& n, Real push) {
+  if (push <= 0.0) return Vec3(0.0);
+  Vec3 slide = embeddedPosition(p.position, contact.point) - embeddedPosition(p.previous, contact.point);
+  slide -= glm::dot(slide, n) * n;
+  const Real length = glm::length(slide);
+  if (length == 0.0) return Vec3(0.0);
+  const Material& mu = contact.combined;
+  Real cut = 1.0;
+  if (length > mu.staticFriction * push) cut = std::min(1.0, mu.dynamicFriction * push / length);
+  return -cut * slide;
+}
+
+// A capsule's 2 points of a rigid block (collideRigidBlock), not a tetra box's 8.
+bool inCapsuleBlock(std::span<const GroundContact> contacts, std::size_t c) {
+  auto capsuleBlock = [](const GroundContact& g) { return g.rigidBlock > 1 && g.rigidBlock < kBoxCorners; };
+  return capsuleBlock(contacts[c]) ||
+         (c > 0 && capsuleBlock(contacts[c - 1]) && contacts[c - 1].body == contacts[c].body);
+}
+
 // Moves a rigid capsule's particles by `move` and turns them by `turned` about its centre.
 void moveRigidly(Particles& p, const RigidCapsule& t, const Vec3& move, const Vec3& turned) {
   for (int i = 0; i < t.count; ++i) {
@@ -222,8 +335,21 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
   auto isFar = [&](std::size_t c) { return !far.empty() && far[c] != 0; };
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (!still.empty() && still[c] != 0) continue;
-    // A free capsule's two points as one rigid block (placeCapsulePoints), with both ends near.
     const std::size_t block = contacts[c].rigidBlock;
+    // A free tetra box's corners, their pushes made its rigid body's move (markFreeTetraBoxes).
+    if (block == kBoxCorners && c + block <= contacts.size()) {
+      const BoxStart start = boxStart(p, contacts[c].point);
+      Real depth[kBoxCorners];
+      for (std::size_t k = 0; k < block; ++k) depth[k] = depthOf(c + k);
+      for (std::size_t k = 0; k < block; ++k) {
+        normalPush[c + k] = std::max(depth[k], Real{0.0});
+        if (depth[k] > 0.0) moveEmbedded(p.position, p.inverseMass, contacts[c + k].point, depth[k] * n);
+      }
+      makeRigid(p, contacts[c].point, start);
+      c += block - 1;
+      continue;
+    }
+    // A free capsule's two points as one rigid block (placeCapsulePoints), with both ends near.
     if (block > 1 && c + block <= contacts.size() && block <= kMostRigidBlock && !isFar(c) && !isFar(c + 1)) {
       Real depth[kMostRigidBlock];
       for (std::size_t k = 0; k < block; ++k) depth[k] = depthOf(c + k);
@@ -260,12 +386,24 @@ void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> 
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
                          std::span<const Real> normalPush, std::span<const std::uint8_t> still) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
+    if (!still.empty() && still[c] != 0) continue;
+    // A free tetra box's corners, cut by their weights and made its rigid body's move, as pushed.
+    const std::size_t block = contacts[c].rigidBlock;
+    if (block == kBoxCorners && c + block <= contacts.size()) {
+      const BoxStart start = boxStart(p, contacts[c].point);
+      Vec3 cut[kBoxCorners];
+      for (std::size_t k = 0; k < block; ++k) cut[k] = boxCornerCut(p, contacts[c + k], n, normalPush[c + k]);
+      for (std::size_t k = 0; k < block; ++k) {
+        if (cut[k] != Vec3(0.0)) moveEmbedded(p.position, p.inverseMass, contacts[c + k].point, cut[k]);
+      }
+      makeRigid(p, contacts[c].point, start);
+      c += block - 1;
+      continue;
+    }
     Real push = normalPush[c];
-    if (push <= 0.0 || (!still.empty() && still[c] != 0)) continue;
+    if (push <= 0.0) continue;
     // A rigid block's points (the block's first names how many), cut as it was pushed.
-    const bool inBlock = contacts[c].rigidBlock > 1 || (c > 0 && contacts[c - 1].rigidBlock > 1 &&
-                                                        contacts[c - 1].body == contacts[c].body);
-    if (RigidCapsule t; inBlock && rigidCapsule(p, contacts[c], t)) {
+    if (RigidCapsule t; inCapsuleBlock(contacts, c) && rigidCapsule(p, contacts[c], t)) {
       cutRigidly(p, contacts[c], t, n, push);
       continue;
     }

@@ -337,6 +337,7 @@ void World::findContacts(bool newPairs, bool firstSubstep, Real h, bool again) {
     ground_.placeCapsulePoints(bodies_, frames_, particles_, narrowPhase_.manifolds(),
                                islands_.bodiesJoined(), world_.groundNormal, world_.groundHeight, restingMove,
                                workers());
+    ground_.markFreeTetraBoxes(bodies_, particles_, narrowPhase_.manifolds(), islands_.bodiesJoined());
     // Each contact's overlap at x*, where the substep starts: what the parting measures, and
     // what the depenetration limit is reckoned from (the narrow phase measures the box-box ones).
     // Each point's own: pieces of them at once.

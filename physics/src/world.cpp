@@ -437,6 +437,7 @@ BodyId World::addBody(const BodyDesc& desc) {
     corners_.push_back(corner);
     if (desc.shape == Shape::Box) ground_.add(corner, desc.material, id, world_.groundMaterial);
   }
+  if (desc.shape == Shape::Box && desc.model == BodyModel::Tetra) ground_.followTetraBox();
   if (desc.shape == Shape::Capsule) {
     // A capsule touches the ground with the lowest points of its two end spheres, which move
     // over its surface as it turns: GroundContacts::placeCapsulePoints re-embeds them every substep.

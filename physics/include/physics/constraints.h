@@ -161,7 +161,9 @@ struct GroundContact {
   /// particles (a tetra capsule's 4, a corners capsule's 8) as one rigid body, not by the points'
   /// weights (collideGround): a capsule's 2 while it is a free body (nothing joined to it, no other
   /// body touching it in the step) with its box whole, a corners one also only while its points are
-  /// paired (resting; GroundContacts::placeCapsulePoints); 0 for none.
+  /// paired (resting; GroundContacts::placeCapsulePoints); 8 on the first corner of a tetra box
+  /// under the capsules' rule: its 8 corners are pushed and cut by their weights, and each pass's
+  /// moves of its 4 particles made a rigid body's (GroundContacts::markFreeTetraBoxes); 0 for none.
   std::uint8_t rigidBlock = 0;
 };
 

@@ -33,6 +33,16 @@ class GroundContacts {
   /// A capsule's point that follows the lowest point of one end sphere (end -1 or +1 along the
   /// body's y axis): the point added last.
   void followCapsuleEnd(Real end);
+  /// The 8 points added last are a tetra box's corners (World::addBody): markFreeTetraBoxes
+  /// looks at them.
+  void followTetraBox();
+  /// Marks the 8 corners of each tetra box that is a free body (nothing joined to it: `joined`, per
+  /// body, 1 for one a stick, link or joint acts on, empty for none; in none of this step's
+  /// `manifolds`) with its box whole as one rigid block (GroundContact::rigidBlock 8 on its first
+  /// corner): each pass's pushes and cuts of them move its 4 particles as one rigid body. Every other
+  /// tetra box's are 0. Defined in ground_tetra_boxes.cpp, which says why.
+  void markFreeTetraBoxes(std::span<const Body> bodies, const Particles& particles,
+                          std::span<const Manifold> manifolds, std::span<const std::uint8_t> joined);
   /// Drops the points from `count` on (a box's particles' own points, replaced by its corners).
   void truncate(std::size_t count);
   /// The ground's material changed: every point's friction again.
@@ -89,10 +99,16 @@ class GroundContacts {
   std::vector<GroundContact> points_;
   GroundContactState state_;
   std::vector<CapsuleEnd> capsuleEnds_;
-  std::vector<std::uint8_t> still_;     // per point: 1 to leave it in this step
-  std::vector<std::uint8_t> far_;       // per point: 1 for a capsule's end far above the ground
-  std::vector<std::uint8_t> wasStill_;  // per point: its particles had inverse mass 0 last step
-  std::vector<std::uint8_t> touching_;  // per body: in one of the step's manifolds (placeCapsulePoints)
+  struct TetraBox {
+    std::uint32_t firstPoint;  // the first of its 8 corners
+    BodyId body;
+  };
+  std::vector<TetraBox> tetraBoxes_;
+  std::vector<std::uint8_t> boxTouching_;  // per body: in one of the step's manifolds (markFreeTetraBoxes)
+  std::vector<std::uint8_t> still_;        // per point: 1 to leave it in this step
+  std::vector<std::uint8_t> far_;          // per point: 1 for a capsule's end far above the ground
+  std::vector<std::uint8_t> wasStill_;     // per point: its particles had inverse mass 0 last step
+  std::vector<std::uint8_t> touching_;     // per body: in one of the step's manifolds (placeCapsulePoints)
   bool anyStill_ = false;
   bool anyMarked_ = false;  // markStill ran since the last clearStill
 };
