@@ -74,17 +74,43 @@ void collideCapsulePair(Particles& p, const GroundContact& a, const GroundContac
   pushB = lb * kbb;
 }
 
-// A capsule's particles as one rigid body: a tetra capsule's 4 (its ground points' carriers) or a
-// corners capsule's 8 (its box's corners, from corner 0, its surface point's first carrier:
-// rigidEmbedding), their centre, total inverse mass and inverse inertia about the centre (from the
-// particles where they are). False if one is pinned or they are flat, where the push by weights
-// serves.
-struct RigidCapsule {
-  ParticleId particle[8] = {};
-  int count = 0;
+// Particles as one rigid body where they are at `x` (`particle`'s masses): their centre, total
+// inverse mass and inverse inertia about the centre. False if one is pinned or they are flat, where
+// the moves by weights serve.
+struct RigidFit {
   Vec3 centre{0.0};
   Real inverseMass = 0.0;
   glm::dmat3 inverseInertia{0.0};
+};
+
+bool fitRigid(const Particles& p, const ParticleId* particle, const Vec3* x, int count, RigidFit& t) {
+  Real mass = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const Real w = p.inverseMass[particle[i]];
+    if (w == 0.0) return false;
+    mass += 1.0 / w;
+    t.centre += x[i] / w;
+  }
+  t.centre /= mass;
+  glm::dmat3 inertia(0.0);
+  for (int i = 0; i < count; ++i) {
+    const Vec3 r = x[i] - t.centre;
+    inertia += (glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r)) / p.inverseMass[particle[i]];
+  }
+  const Real det = glm::determinant(inertia);
+  const Real scale = inertia[0][0] + inertia[1][1] + inertia[2][2];
+  if (!(det > 1e-9 * scale * scale * scale)) return false;
+  t.inverseMass = 1.0 / mass;
+  t.inverseInertia = glm::inverse(inertia);
+  return true;
+}
+
+// A capsule's particles as one rigid body where they are (fitRigid): a tetra capsule's 4 (its ground
+// points' carriers) or a corners capsule's 8 (its box's corners, from corner 0, its surface point's
+// first carrier: rigidEmbedding).
+struct RigidCapsule : RigidFit {
+  ParticleId particle[8] = {};
+  int count = 0;
 };
 
 bool rigidCapsule(const Particles& p, const GroundContact& contact, RigidCapsule& t) {
@@ -98,57 +124,14 @@ bool rigidCapsule(const Particles& p, const GroundContact& contact, RigidCapsule
   } else {
     return false;
   }
-  Real mass = 0.0;
-  for (int i = 0; i < t.count; ++i) {
-    const Real w = p.inverseMass[t.particle[i]];
-    if (w == 0.0) return false;
-    mass += 1.0 / w;
-    t.centre += p.position[t.particle[i]] / w;
-  }
-  t.centre /= mass;
-  glm::dmat3 inertia(0.0);
-  for (int i = 0; i < t.count; ++i) {
-    const Vec3 r = p.position[t.particle[i]] - t.centre;
-    inertia += (glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r)) / p.inverseMass[t.particle[i]];
-  }
-  const Real det = glm::determinant(inertia);
-  const Real scale = inertia[0][0] + inertia[1][1] + inertia[2][2];
-  if (!(det > 1e-9 * scale * scale * scale)) return false;
-  t.inverseMass = 1.0 / mass;
-  t.inverseInertia = glm::inverse(inertia);
-  return true;
+  Vec3 x[8];
+  for (int i = 0; i < t.count; ++i) x[i] = p.position[t.particle[i]];
+  return fitRigid(p, t.particle, x, t.count, t);
 }
 
-// A tetra box's 4 particles as one rigid body where they were at `x` (e's order): their centre, total
-// inverse mass and inverse inertia about the centre. False if one is pinned or the four are flat,
-// where the moves by weights stand. (The capsules' RigidCapsule, from the particles where they are.)
-struct RigidBox {
-  Vec3 centre{0.0};
-  Real inverseMass = 0.0;
-  glm::dmat3 inverseInertia{0.0};
-};
-
-bool rigidBoxAt(const Particles& p, const Embedding& e, const Vec3* x, RigidBox& t) {
-  if (e.count != 4) return false;
-  Real mass = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    const Real w = p.inverseMass[e.particle[i]];
-    if (w == 0.0) return false;
-    mass += 1.0 / w;
-    t.centre += x[i] / w;
-  }
-  t.centre /= mass;
-  glm::dmat3 inertia(0.0);
-  for (int i = 0; i < 4; ++i) {
-    const Vec3 r = x[i] - t.centre;
-    inertia += (glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r)) / p.inverseMass[e.particle[i]];
-  }
-  const Real det = glm::determinant(inertia);
-  const Real scale = inertia[0][0] + inertia[1][1] + inertia[2][2];
-  if (!(det > 1e-9 * scale * scale * scale)) return false;
-  t.inverseMass = 1.0 / mass;
-  t.inverseInertia = glm::inverse(inertia);
-  return true;
+// A tetra box's 4 particles as one rigid body where they were at `x` (e's order).
+bool rigidBoxAt(const Particles& p, const Embedding& e, const Vec3* x, RigidFit& t) {
+  return e.count == 4 && fitRigid(p, e.particle.data(), x, 4, t);
 }
 
 // A free tetra box's 8 corners (GroundContact::rigidBlock kBoxCorners, GroundContacts::markFreeTetraBoxes)
@@ -191,7 +174,7 @@ void makeRigid(Particles& p, const Embedding& e, const BoxStart& start) {
     moved[i] = p.position[e.particle[i]] - start.x[i];
     any = any || moved[i] != Vec3(0.0);
   }
-  RigidBox t;
+  RigidFit t;
   if (!any || !rigidBoxAt(p, e, start.x, t)) return;
   Vec3 momentum(0.0), moment(0.0);
   for (int i = 0; i < 4; ++i) {

@@ -95,18 +95,6 @@ void GroundContacts::combineMaterials(const Material& ground) {
 
 namespace {
 
-// Whether a particle capsule's box keeps more than half its volume right side out (the triple
-// product of its edges along x, y and z against its rest one's). With its approach slower than a
-// resting body's (placeCapsulePoints), it is what lets the ground push the two points as one block.
-bool whole(const Body& box, std::span<const Vec3> position) {
-  const Vec3* p = &position[box.firstParticle];
-  const Vec3 ex = detail::edgeSum(box.model, p, 0), ey = detail::edgeSum(box.model, p, 1),
-             ez = detail::edgeSum(box.model, p, 2);
-  const Vec3& h = box.halfExtents;
-  const Real rest = 512.0 * h.x * h.y * h.z;  // each axis's 4 edges sum to 8 half extents
-  return glm::dot(glm::cross(ex, ey), ez) > 0.5 * rest;
-}
-
 // Where the line through a corners capsule's lowest point along the ground's normal leaves its box
 // below that point (the point itself when it is on the box's surface). The lowest point lies inside
 // the box, off its faces unless the capsule lies with a face down. A push moves an embedded point's
@@ -172,7 +160,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
         // arms, one end on the ground and the other held by the shoulder, walked outwards 10 cm in
         // 20 s, and Bullet's pile slept later, with the block on every capsule and also on those
         // touching the ground alone. Those touched by another body are taken out below.
-        const bool isWhole = whole(box, position);
+        const bool isWhole = detail::keepsItsVolume(box, position);
         contact.pairedWithNext = box.model == BodyModel::Corners &&
                                  glm::dot(n, detail::meanParticleMove(particles, box)) > -restingMove &&
                                  isWhole;

@@ -27,18 +27,6 @@ namespace {
 
 constexpr std::uint32_t kBoxCorners = 8;
 
-// Whether a tetra box keeps more than half its volume right side out (its edge sums' triple product
-// against its rest one's): one inside out is left to its weights and its volume floor
-// (TetraVolumes), which a rigid push would never turn back.
-bool wholeBox(const Body& box, std::span<const Vec3> position) {
-  const Vec3* p = &position[box.firstParticle];
-  const Vec3 ex = detail::edgeSum(box.model, p, 0), ey = detail::edgeSum(box.model, p, 1),
-             ez = detail::edgeSum(box.model, p, 2);
-  const Vec3& h = box.halfExtents;
-  const Real rest = 512.0 * h.x * h.y * h.z;  // each axis's 4 edges sum to 8 half extents
-  return glm::dot(glm::cross(ex, ey), ez) > 0.5 * rest;
-}
-
 }  // namespace
 
 void GroundContacts::followTetraBox() {
@@ -55,7 +43,8 @@ void GroundContacts::markFreeTetraBoxes(std::span<const Body> bodies, const Part
     if (anyStill_ && still_[t.firstPoint] != 0) continue;  // asleep: not pushed at all
     const Body& box = bodies[t.body];
     const bool free = (joined.empty() || joined[t.body] == 0) && boxTouching_[t.body] == 0;
-    const bool block = free && wholeBox(box, particles.position);
+    // one inside out is left to its weights and its volume floor, which a rigid push would never turn back
+    const bool block = free && detail::keepsItsVolume(box, particles.position);
     for (std::uint32_t k = 0; k < kBoxCorners; ++k) points_[t.firstPoint + k].rigidBlock = 0;
     if (block) points_[t.firstPoint].rigidBlock = kBoxCorners;
   }
