@@ -208,6 +208,31 @@ Vec3 boxCornerCut(const Particles& p, const GroundContact& contact, const Vec3& 
   return -cut * slide;
 }
 
+// A free tetra box's corners pushed by their depths, found before any moved, then made its rigid
+// body's move (makeRigid). Out of the ground's loop, so that the loop stays as small as it was for
+// every other point.
+[[gnu::noinline]] void pushFreeTetraBox(Particles& p, std::span<const GroundContact> corners,
+                                        const Real* depth, const Vec3& n, std::span<Real> push) {
+  const BoxStart start = boxStart(p, corners[0].point);
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    push[k] = std::max(depth[k], Real{0.0});
+    if (depth[k] > 0.0) moveEmbedded(p.position, p.inverseMass, corners[k].point, depth[k] * n);
+  }
+  makeRigid(p, corners[0].point, start);
+}
+
+// Its friction likewise: each corner's cut found before any moved, then made rigid.
+[[gnu::noinline]] void cutFreeTetraBox(Particles& p, std::span<const GroundContact> corners, const Vec3& n,
+                                       std::span<const Real> push) {
+  const BoxStart start = boxStart(p, corners[0].point);
+  Vec3 cut[kBoxCorners];
+  for (std::size_t k = 0; k < corners.size(); ++k) cut[k] = boxCornerCut(p, corners[k], n, push[k]);
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    if (cut[k] != Vec3(0.0)) moveEmbedded(p.position, p.inverseMass, corners[k].point, cut[k]);
+  }
+  makeRigid(p, corners[0].point, start);
+}
+
 // A capsule's 2 points of a rigid block (collideRigidBlock), not a tetra box's 8.
 bool inCapsuleBlock(std::span<const GroundContact> contacts, std::size_t c) {
   auto capsuleBlock = [](const GroundContact& g) { return g.rigidBlock > 1 && g.rigidBlock < kBoxCorners; };
@@ -321,14 +346,9 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
     const std::size_t block = contacts[c].rigidBlock;
     // A free tetra box's corners, their pushes made its rigid body's move (markFreeTetraBoxes).
     if (block == kBoxCorners && c + block <= contacts.size()) {
-      const BoxStart start = boxStart(p, contacts[c].point);
       Real depth[kBoxCorners];
       for (std::size_t k = 0; k < block; ++k) depth[k] = depthOf(c + k);
-      for (std::size_t k = 0; k < block; ++k) {
-        normalPush[c + k] = std::max(depth[k], Real{0.0});
-        if (depth[k] > 0.0) moveEmbedded(p.position, p.inverseMass, contacts[c + k].point, depth[k] * n);
-      }
-      makeRigid(p, contacts[c].point, start);
+      pushFreeTetraBox(p, contacts.subspan(c, block), depth, n, normalPush.subspan(c, block));
       c += block - 1;
       continue;
     }
@@ -367,28 +387,28 @@ void measureGroundStartDepth(const Particles& p, std::span<const GroundContact> 
 // Jakobsen 2001, "Friction", made Coulomb: a pass's push out of the ground is that pass's normal
 // impulse times h / m, and its tangential cut is bounded by mu times it.
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                         std::span<const Real> normalPush, std::span<const std::uint8_t> still) {
+                         std::span<const Real> normalPush, std::span<const std::uint8_t> still,
+                         bool freeTetraBoxes) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (!still.empty() && still[c] != 0) continue;
     // A free tetra box's corners, cut by their weights and made its rigid body's move, as pushed.
-    const std::size_t block = contacts[c].rigidBlock;
+    // Only looked for when there is one: most points have no push, and are passed over on it alone,
+    // without a read of their contact (a cache line each).
+    const std::size_t block = freeTetraBoxes ? contacts[c].rigidBlock : 0;
     if (block == kBoxCorners && c + block <= contacts.size()) {
-      const BoxStart start = boxStart(p, contacts[c].point);
-      Vec3 cut[kBoxCorners];
-      for (std::size_t k = 0; k < block; ++k) cut[k] = boxCornerCut(p, contacts[c + k], n, normalPush[c + k]);
-      for (std::size_t k = 0; k < block; ++k) {
-        if (cut[k] != Vec3(0.0)) moveEmbedded(p.position, p.inverseMass, contacts[c + k].point, cut[k]);
-      }
-      makeRigid(p, contacts[c].point, start);
+      cutFreeTetraBox(p, contacts.subspan(c, block), n, normalPush.subspan(c, block));
       c += block - 1;
       continue;
     }
     Real push = normalPush[c];
     if (push <= 0.0) continue;
     // A rigid block's points (the block's first names how many), cut as it was pushed.
-    if (RigidCapsule t; inCapsuleBlock(contacts, c) && rigidCapsule(p, contacts[c], t)) {
-      cutRigidly(p, contacts[c], t, n, push);
-      continue;
+    // (The rigid body made only then: zeroing it for every point pushed cost Bullet's pile 2%.)
+    if (inCapsuleBlock(contacts, c)) {
+      if (RigidCapsule t; rigidCapsule(p, contacts[c], t)) {
+        cutRigidly(p, contacts[c], t, n, push);
+        continue;
+      }
     }
     // A corners capsule's friction acts at its surface point, carried by both inscribed tetrahedra.
     const bool onSurface = contacts[c].surface.count > 0;

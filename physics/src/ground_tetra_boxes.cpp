@@ -36,6 +36,7 @@ void GroundContacts::followTetraBox() {
 void GroundContacts::markFreeTetraBoxes(std::span<const Body> bodies, const Particles& particles,
                                         std::span<const Manifold> manifolds,
                                         std::span<const std::uint8_t> joined) {
+  anyFreeTetraBox_ = false;
   if (tetraBoxes_.empty()) return;
   boxTouching_.assign(bodies.size(), 0);
   for (const Manifold& m : manifolds) boxTouching_[m.a] = boxTouching_[m.b] = 1;
@@ -47,6 +48,7 @@ void GroundContacts::markFreeTetraBoxes(std::span<const Body> bodies, const Part
     const bool block = free && detail::keepsItsVolume(box, particles.position);
     for (std::uint32_t k = 0; k < kBoxCorners; ++k) points_[t.firstPoint + k].rigidBlock = 0;
     if (block) points_[t.firstPoint].rigidBlock = kBoxCorners;
+    anyFreeTetraBox_ = anyFreeTetraBox_ || block;
   }
 }
 

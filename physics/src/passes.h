@@ -217,8 +217,11 @@ inline void toAllowance(std::span<Real> startOverlap, Real step) {
 /// it when it is within mu_s * push, else shortens it by mu_d * push, by moving the point's
 /// particles back along it; never reverses it. Run after each ground pass, so the sticks
 /// relax what friction bends, and the cuts of all passes together stay within mu * the push.
+/// `freeTetraBoxes` (GroundContacts::anyFreeTetraBox): whether some box's corners are marked to be cut
+/// as one rigid body; when not, a point with no push is passed over without reading its contact.
 void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, const Vec3& n,
-                         std::span<const Real> normalPush, std::span<const std::uint8_t> still = {});
+                         std::span<const Real> normalPush, std::span<const std::uint8_t> still,
+                         bool freeTetraBoxes);
 
 /// Pushes each pair of contact points apart along its normal until n . (pB - pA) >= -slop, moving
 /// both bodies' particles by their embedding weights and inverse masses; writes the distance

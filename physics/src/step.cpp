@@ -579,7 +579,7 @@ void World::relax(Real h, std::span<const Real> linkSlack) {
       inGroundPieces([&](std::size_t b, std::size_t e) {
         const std::span<const Real> push = std::span<const Real>(groundState.push).subspan(b, e - b);
         detail::applyGroundFriction(particles_, ground_.points().subspan(b, e - b), world_.groundNormal, push,
-                                    stillPart(b, e));
+                                    stillPart(b, e), ground_.anyFreeTetraBox());
         flagPushed(push, std::span(groundState.touched).subspan(b, e - b),
                    std::span(groundState.hit).subspan(b, e - b));
       });
@@ -639,7 +639,7 @@ void World::relaxContactBins(bool ground) {
     if (!ground) return;
     for (const ContactBins::Range r : contactBins_.groundRanges(bin)) {
       detail::applyGroundFriction(particles_, part(points, r), world_.groundNormal, part(groundState.push, r),
-                                  stillPart(r));
+                                  stillPart(r), ground_.anyFreeTetraBox());
       flagPushed(part(groundState.push, r), part(groundState.touched, r), part(groundState.hit, r));
     }
   });

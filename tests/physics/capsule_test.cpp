@@ -689,7 +689,7 @@ TEST(CapsuleGround, ACornersCapsulesGroundFrictionIsBoundedByCoulombWithAHeavier
     for (std::size_t i = 0; i < p.size(); ++i) p.position[i] = p.previous[i] + Vec3(0.05, 0.0, 0.02);
     const phys::Particles before = p;
     const std::vector<phys::Real> push{1e-4};  // its slide far past mu * push: a sliding cut
-    phys::detail::applyGroundFriction(p, contacts.first(1), Vec3(0.0, 1.0, 0.0), push, {});
+    phys::detail::applyGroundFriction(p, contacts.first(1), Vec3(0.0, 1.0, 0.0), push, {}, false);
     Vec3 impulse(0.0);
     for (std::size_t i = 0; i < p.size(); ++i)
       impulse += (p.position[i] - before.position[i]) / p.inverseMass[i];

@@ -43,6 +43,8 @@ class GroundContacts {
   /// tetra box's are 0. Defined in ground_tetra_boxes.cpp, which says why.
   void markFreeTetraBoxes(std::span<const Body> bodies, const Particles& particles,
                           std::span<const Manifold> manifolds, std::span<const std::uint8_t> joined);
+  /// Whether markFreeTetraBoxes marked any box in this step.
+  bool anyFreeTetraBox() const { return anyFreeTetraBox_; }
   /// Drops the points from `count` on (a box's particles' own points, replaced by its corners).
   void truncate(std::size_t count);
   /// The ground's material changed: every point's friction again.
@@ -110,6 +112,7 @@ class GroundContacts {
   std::vector<std::uint8_t> wasStill_;     // per point: its particles had inverse mass 0 last step
   std::vector<std::uint8_t> touching_;     // per body: in one of the step's manifolds (placeCapsulePoints)
   bool anyStill_ = false;
+  bool anyFreeTetraBox_ = false;
   bool anyMarked_ = false;  // markStill ran since the last clearStill
 };
 
