@@ -500,20 +500,12 @@ void expectLyingCapsuleStays(phys::BodyModel model, std::initializer_list<Settin
     phys::BodyDesc d = capsule(model, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
     d.orientation = kLying;
     const phys::BodyId id = world.addBody(d);
-    const phys::BodyPose start = world.bodyPose(id);
-    double farthest = 0.0, mostTurned = 0.0;
-    for (int i = 0; i < 30 * 60; ++i) {
-      world.step();
-      const phys::BodyPose now = world.bodyPose(id);
-      farthest = std::max(farthest, std::hypot(now.center.x - start.center.x, now.center.z - start.center.z));
-      mostTurned = std::max(
-          mostTurned, 2.0 * std::acos(std::min(1.0, std::abs(glm::dot(now.orientation, start.orientation)))));
-    }
+    const testing_phys::Wander w = testing_phys::wanderOver30s(world, id);
     const std::string what = std::string(phys::toString(model)) + " " +
                              std::string(phys::toString(s.method)) + " " + std::to_string(s.iterations) +
                              " x " + std::to_string(s.substeps);
-    EXPECT_LT(farthest, 1e-3) << what;
-    EXPECT_LT(mostTurned, 1e-3) << what;
+    EXPECT_LT(w.farthest, 1e-3) << what;
+    EXPECT_LT(w.mostTurned, 1e-3) << what;
     // at its radius (a corners one resting alone is pushed as a rigid block: no sag)
     EXPECT_NEAR(world.bodyPose(id).center.y, 0.2, 1e-3) << what;
   }
@@ -557,22 +549,12 @@ TEST(CapsuleGround, ALyingCornersCapsuleTurnedAboutItsCoreStaysTurned) {
       phys::BodyDesc d = capsule(phys::BodyModel::Corners, Vec3(0.0, 0.2, 0.0), 0.2, 1.4);
       d.orientation = glm::angleAxis(degrees * kDegree, Vec3(1.0, 0.0, 0.0)) * kLying;
       const phys::BodyId id = world.addBody(d);
-      const phys::BodyPose start = world.bodyPose(id);
-      double farthest = 0.0, mostTurned = 0.0;
-      for (int i = 0; i < 30 * 60; ++i) {
-        world.step();
-        const phys::BodyPose now = world.bodyPose(id);
-        farthest =
-            std::max(farthest, std::hypot(now.center.x - start.center.x, now.center.z - start.center.z));
-        mostTurned =
-            std::max(mostTurned,
-                     2.0 * std::acos(std::min(1.0, std::abs(glm::dot(now.orientation, start.orientation)))));
-      }
+      const testing_phys::Wander w = testing_phys::wanderOver30s(world, id);
       const std::string what = std::string(phys::toString(s.method)) + " " + std::to_string(s.iterations) +
                                " x " + std::to_string(s.substeps) + ", laid turned " +
                                std::to_string(static_cast<int>(degrees)) + " degrees";
-      EXPECT_LT(farthest, 1e-3) << what;
-      EXPECT_LT(mostTurned, 1e-3) << what;
+      EXPECT_LT(w.farthest, 1e-3) << what;
+      EXPECT_LT(w.mostTurned, 1e-3) << what;
       EXPECT_NEAR(world.bodyPose(id).center.y, 0.2, 1e-3) << what;
     }
   }

@@ -66,6 +66,26 @@ inline phys::JointDesc joint(phys::JointKind kind, phys::BodyId a, phys::BodyId 
   return {.kind = kind, .a = a, .b = b, .pivot = pivot, .axis = axis, .reference = reference};
 }
 
+/// How far a body wanders: its centre along the ground (x and z, m) and its turn (rad), the most of
+/// each over 30 s of steps of `world` (at its own step).
+struct Wander {
+  double farthest = 0.0, mostTurned = 0.0;
+};
+
+inline Wander wanderOver30s(phys::World& world, phys::BodyId id) {
+  const phys::BodyPose start = world.bodyPose(id);
+  Wander w;
+  const int steps = static_cast<int>(std::lround(30.0 / world.solverSettings().dt));
+  for (int i = 0; i < steps; ++i) {
+    world.step();
+    const phys::BodyPose now = world.bodyPose(id);
+    w.farthest =
+        std::max(w.farthest, std::hypot(now.center.x - start.center.x, now.center.z - start.center.z));
+    w.mostTurned = std::max(w.mostTurned, angleBetween(now.orientation, start.orientation));
+  }
+  return w;
+}
+
 /// How many times `layout` relaxes each of `stickCount` sticks in a pass, over its runs, chains,
 /// blocks and lanes: once each, for a layout that loses and repeats none.
 inline std::vector<int> timesLaidOut(const phys::StickLayout& layout, std::size_t stickCount) {

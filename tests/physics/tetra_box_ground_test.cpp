@@ -35,15 +35,10 @@ Lying layTetraBox(Setting s, double friction) {
   d.model = phys::BodyModel::Tetra;
   d.material = {friction, friction};
   const phys::BodyId id = world.addBody(d);
-  const phys::BodyPose start = world.bodyPose(id);
+  const testing_phys::Wander w = testing_phys::wanderOver30s(world, id);
   Lying run;
-  for (int i = 0; i < 30 * 60; ++i) {
-    world.step();
-    const phys::BodyPose now = world.bodyPose(id);
-    run.farthest =
-        std::max(run.farthest, std::hypot(now.center.x - start.center.x, now.center.z - start.center.z));
-    run.turned = std::max(run.turned, testing_phys::angleBetween(now.orientation, start.orientation));
-  }
+  run.farthest = w.farthest;
+  run.turned = w.mostTurned;
   run.height = world.bodyPose(id).center.y;
   std::printf("%d x %d, friction %.1f: %.3g m off, %.3g rad turned, centre %.6f m up\n", s.iterations,
               s.substeps, friction, run.farthest, run.turned, run.height);
