@@ -134,27 +134,17 @@ bool rigidBoxAt(const Particles& p, const Embedding& e, const Vec3* x, RigidFit&
   return e.count == 4 && fitRigid(p, e.particle.data(), x, 4, t);
 }
 
-// A free tetra box's 8 corners (GroundContact::rigidBlock kBoxCorners, GroundContacts::markFreeTetraBoxes)
-// are pushed, and cut, by their weights, each by its depth (or slide) as the pass found it before any
-// of them moved, and then what the pass did to the box's 4 particles is made a rigid body's move: the
-// same momentum and angular momentum about their centre (the impulses the weights gave, sum m dx and
-// sum m r x dx), as a translation and an exact turn. Pushed one after the other by the weights alone,
-// the pushes lifted the box's bottom particles and left the top two where gravity took them (the two
-// embedded bottom corners weigh them +1/2 and -1/2), and every substep its sticks lifted them after
-// the push; Jakobsen's projection along a stick's present direction does not keep angular momentum,
-// and the chiral 4-particle body came out of each step turned a little about the vertical: lying
-// alone on frictionless ground it spun up, 2 rad in 30 s at 10 x 1, and with friction, which held its
-// corners against that turn and the sticks' sideways moves, it walked 6.4 cm in 30 s (docs/physics.md,
-// "A tetra box lying still"). Tried and not kept: each corner pushed alone as an impulse on the rigid
-// body, one after the other: the pushes tilted the box, its last corners' lifting the first ones
-// above the plane, and it rested on one corner 1.1 mm up at 10 x 1; the same with a corner above the
-// plane pulled back within the substep's impulse (projected Gauss-Seidel across the passes): the tilts
-// back and forth did not commute and spun it about the vertical as fast as before; the pushes by
-// weights one after the other, then made rigid: tilted 0.4 mrad and still spinning. Measured all
-// before any moves, a flat face's 4 equal depths give a rigid lift of exactly that depth, flat, and
-// the sticks have nothing to undo: the box stays to round-off.
-constexpr std::size_t kBoxCorners = 8;
-
+// A free tetra box's 8 corners (GroundContact::rigidBlock kTetraBoxCorners,
+// GroundContacts::markFreeTetraBoxes) are pushed, and cut, by their weights, each by its depth (or slide) as
+// the pass found it before any of them moved, and then what the pass did to the box's 4 particles is made a
+// rigid body's move: the same momentum and angular momentum about their centre (the impulses the weights
+// gave, sum m dx and sum m r x dx), as a translation and an exact turn. Pushed by the weights alone, the
+// pushes lifted the box's bottom particles and left the top two where gravity took them (the two embedded
+// bottom corners weigh them +1/2 and -1/2); the sticks lifted them after the push, without keeping angular
+// momentum, and the chiral 4-particle body came out of each step turned a little: lying alone it walked, and
+// on frictionless ground it spun up (docs/physics.md, "A tetra box lying still", which also has the forms
+// tried and not kept). Measured all before any moves, a flat face's 4 equal depths give a rigid lift of
+// exactly that depth, flat, and the sticks have nothing to undo.
 struct BoxStart {
   Vec3 x[4];
 };
@@ -225,7 +215,7 @@ Vec3 boxCornerCut(const Particles& p, const GroundContact& contact, const Vec3& 
 [[gnu::noinline]] void cutFreeTetraBox(Particles& p, std::span<const GroundContact> corners, const Vec3& n,
                                        std::span<const Real> push) {
   const BoxStart start = boxStart(p, corners[0].point);
-  Vec3 cut[kBoxCorners];
+  Vec3 cut[kTetraBoxCorners];
   for (std::size_t k = 0; k < corners.size(); ++k) cut[k] = boxCornerCut(p, corners[k], n, push[k]);
   for (std::size_t k = 0; k < corners.size(); ++k) {
     if (cut[k] != Vec3(0.0)) moveEmbedded(p.position, p.inverseMass, corners[k].point, cut[k]);
@@ -235,7 +225,9 @@ Vec3 boxCornerCut(const Particles& p, const GroundContact& contact, const Vec3& 
 
 // A capsule's 2 points of a rigid block (collideRigidBlock), not a tetra box's 8.
 bool inCapsuleBlock(std::span<const GroundContact> contacts, std::size_t c) {
-  auto capsuleBlock = [](const GroundContact& g) { return g.rigidBlock > 1 && g.rigidBlock < kBoxCorners; };
+  auto capsuleBlock = [](const GroundContact& g) {
+    return g.rigidBlock > 1 && g.rigidBlock < kTetraBoxCorners;
+  };
   return capsuleBlock(contacts[c]) ||
          (c > 0 && capsuleBlock(contacts[c - 1]) && contacts[c - 1].body == contacts[c].body);
 }
@@ -345,8 +337,8 @@ void collideGround(Particles& p, std::span<const GroundContact> contacts, const 
     if (!still.empty() && still[c] != 0) continue;
     const std::size_t block = contacts[c].rigidBlock;
     // A free tetra box's corners, their pushes made its rigid body's move (markFreeTetraBoxes).
-    if (block == kBoxCorners && c + block <= contacts.size()) {
-      Real depth[kBoxCorners];
+    if (block == kTetraBoxCorners && c + block <= contacts.size()) {
+      Real depth[kTetraBoxCorners];
       for (std::size_t k = 0; k < block; ++k) depth[k] = depthOf(c + k);
       pushFreeTetraBox(p, contacts.subspan(c, block), depth, n, normalPush.subspan(c, block));
       c += block - 1;
@@ -395,7 +387,7 @@ void applyGroundFriction(Particles& p, std::span<const GroundContact> contacts, 
     // Only looked for when there is one: most points have no push, and are passed over on it alone,
     // without a read of their contact (a cache line each).
     const std::size_t block = freeTetraBoxes ? contacts[c].rigidBlock : 0;
-    if (block == kBoxCorners && c + block <= contacts.size()) {
+    if (block == kTetraBoxCorners && c + block <= contacts.size()) {
       cutFreeTetraBox(p, contacts.subspan(c, block), n, normalPush.subspan(c, block));
       c += block - 1;
       continue;

@@ -93,6 +93,11 @@ void GroundContacts::combineMaterials(const Material& ground) {
   for (GroundContact& c : points_) c.combined = combined(c, ground);
 }
 
+void GroundContacts::markTouching(std::size_t bodyCount, std::span<const Manifold> manifolds) {
+  touching_.assign(bodyCount, 0);
+  for (const Manifold& m : manifolds) touching_[m.a] = touching_[m.b] = 1;
+}
+
 namespace {
 
 // Where the line through a corners capsule's lowest point along the ground's normal leaves its box
@@ -190,8 +195,7 @@ void GroundContacts::placeCapsulePoints(std::span<const Body> bodies, std::span<
   // The bodies another body acts on in this step: one of its manifolds (speculative ones too). Read
   // only when some block is left to take out: over every manifold each substep it cost `capsules`
   // (corners capsules only) 5% of its step.
-  touching_.assign(bodies.size(), 0);
-  for (const Manifold& m : manifolds) touching_[m.a] = touching_[m.b] = 1;
+  markTouching(bodies.size(), manifolds);
   for (const CapsuleEnd& g : capsuleEnds_) {
     if (g.end < 0.0 && touching_[g.body] != 0) points_[g.point].rigidBlock = 0;
   }

@@ -23,14 +23,9 @@
 #include "physics/narrow_phase.h"
 
 namespace phys {
-namespace {
-
-constexpr std::uint32_t kBoxCorners = 8;
-
-}  // namespace
 
 void GroundContacts::followTetraBox() {
-  tetraBoxes_.push_back({static_cast<std::uint32_t>(points_.size() - kBoxCorners), points_.back().body});
+  tetraBoxes_.push_back({static_cast<std::uint32_t>(points_.size() - kTetraBoxCorners), points_.back().body});
 }
 
 void GroundContacts::markFreeTetraBoxes(std::span<const Body> bodies, const Particles& particles,
@@ -38,16 +33,15 @@ void GroundContacts::markFreeTetraBoxes(std::span<const Body> bodies, const Part
                                         std::span<const std::uint8_t> joined) {
   anyFreeTetraBox_ = false;
   if (tetraBoxes_.empty()) return;
-  boxTouching_.assign(bodies.size(), 0);
-  for (const Manifold& m : manifolds) boxTouching_[m.a] = boxTouching_[m.b] = 1;
+  markTouching(bodies.size(), manifolds);
   for (const TetraBox& t : tetraBoxes_) {
     if (anyStill_ && still_[t.firstPoint] != 0) continue;  // asleep: not pushed at all
     const Body& box = bodies[t.body];
-    const bool free = (joined.empty() || joined[t.body] == 0) && boxTouching_[t.body] == 0;
+    const bool free = (joined.empty() || joined[t.body] == 0) && touching_[t.body] == 0;
     // one inside out is left to its weights and its volume floor, which a rigid push would never turn back
     const bool block = free && detail::keepsItsVolume(box, particles.position);
-    for (std::uint32_t k = 0; k < kBoxCorners; ++k) points_[t.firstPoint + k].rigidBlock = 0;
-    if (block) points_[t.firstPoint].rigidBlock = kBoxCorners;
+    for (std::uint32_t k = 0; k < kTetraBoxCorners; ++k) points_[t.firstPoint + k].rigidBlock = 0;
+    if (block) points_[t.firstPoint].rigidBlock = kTetraBoxCorners;
     anyFreeTetraBox_ = anyFreeTetraBox_ || block;
   }
 }

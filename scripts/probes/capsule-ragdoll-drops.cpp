@@ -5,7 +5,7 @@
 // The drop is chaotic, so one drop says little: the table in the docs counts these. Not part of the
 // build. From the repository's root, after `cmake --build --preset release --target physics`:
 //
-//   g++ -std=c++20 -O2 -Iphysics/include scripts/probes/capsule-ragdoll-drops.cpp \
+//   g++ -std=c++20 -O2 -Iphysics/include -Itests/physics scripts/probes/capsule-ragdoll-drops.cpp \
 //     build/release/physics/libphysics.a -ltbb -o /tmp/capsule-ragdoll-drops
 //   /tmp/capsule-ragdoll-drops
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "physics/capsule_ragdoll.h"
+#include "test_util.h"  // the ragdoll scenes' world, as the test's
 
 int main() {
   const int checks[] = {8, 12, 15, 20, 30, 64};
@@ -21,13 +22,7 @@ int main() {
        {phys::RagdollModel::Seed, phys::RagdollModel::Lean, phys::RagdollModel::Rigid}) {
     for (int drop = 0; drop < 12; ++drop) {
       const double speed = 0.90 + 0.02 * drop;
-      phys::WorldSettings ws;
-      ws.damping = 0.2;
-      phys::SolverSettings s;
-      s.iterations = 2;
-      s.substeps = 4;
-      s.bodyDamping = 1.0;
-      phys::World world(ws, s);
+      phys::World world = testing_phys::ragdollWorld();
       phys::RagdollDesc d;
       d.hips = phys::Vec3(0.0, 2.0, 0.0);
       d.model = model;

@@ -10,23 +10,17 @@
 #include <gtest/gtest.h>
 
 #include "physics/capsule_ragdoll.h"
+#include "test_util.h"
 
 namespace {
 
 using phys::Vec3;
 
-// 2 iterations x 4 substeps, as the box ragdoll's scene, for every model. Rigid parts rest there
-// thanks to their inertia floor: with each capsule's true inertia a forearm kept turning on its long
-// axis at its elbow's stop, 0.2 m/s at 8 s (docs/physics.md, "Inertia floor").
-phys::World ragdollWorld() {
-  phys::WorldSettings ws;
-  ws.damping = 0.2;
-  phys::SolverSettings s;
-  s.iterations = 2;
-  s.substeps = 4;
-  s.bodyDamping = 1.0;
-  return phys::World(ws, s);
-}
+// testing_phys::ragdollWorld: 2 iterations x 4 substeps, as the box ragdoll's scene, for every
+// model. Rigid parts rest there thanks to their inertia floor: with each capsule's true inertia a
+// forearm kept turning on its long axis at its elbow's stop, 0.2 m/s at 8 s (docs/physics.md,
+// "Inertia floor").
+using testing_phys::ragdollWorld;
 
 double worstLinkGap(const phys::World& w) {
   double worst = 0.0;

@@ -66,6 +66,18 @@ inline phys::JointDesc joint(phys::JointKind kind, phys::BodyId a, phys::BodyId 
   return {.kind = kind, .a = a, .b = b, .pivot = pivot, .axis = axis, .reference = reference};
 }
 
+/// The world of our ragdoll scenes: wind resistance 0.2 1/s, Gauss-Seidel 2 iterations x 4
+/// substeps, body damping 1 (also scripts/probes/capsule-ragdoll-drops.cpp's).
+inline phys::World ragdollWorld() {
+  phys::WorldSettings ws;
+  ws.damping = 0.2;
+  phys::SolverSettings s;
+  s.iterations = 2;
+  s.substeps = 4;
+  s.bodyDamping = 1.0;
+  return phys::World(ws, s);
+}
+
 /// How far a body wanders: its centre along the ground (x and z, m) and its turn (rad), the most of
 /// each over 30 s of steps of `world` (at its own step).
 struct Wander {

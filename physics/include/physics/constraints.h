@@ -167,4 +167,7 @@ struct GroundContact {
   std::uint8_t rigidBlock = 0;
 };
 
+/// A tetra box's ground points: its 8 corners, added one after the other (GroundContact::rigidBlock).
+inline constexpr std::uint8_t kTetraBoxCorners = 8;
+
 }  // namespace phys

@@ -93,6 +93,10 @@ class GroundContacts {
   const GroundContactState& state() const { return state_; }
 
  private:
+  /// touching_: per body, 1 for one in any of `manifolds` (speculative ones too), for the rigid
+  /// blocks of capsules and tetra boxes, which only a body nothing else touches gets.
+  void markTouching(std::size_t bodyCount, std::span<const Manifold> manifolds);
+
   struct CapsuleEnd {
     std::uint32_t point;  // which point
     BodyId body;          // the capsule: a far end reads its frame, not its point
@@ -106,11 +110,10 @@ class GroundContacts {
     BodyId body;
   };
   std::vector<TetraBox> tetraBoxes_;
-  std::vector<std::uint8_t> boxTouching_;  // per body: in one of the step's manifolds (markFreeTetraBoxes)
-  std::vector<std::uint8_t> still_;        // per point: 1 to leave it in this step
-  std::vector<std::uint8_t> far_;          // per point: 1 for a capsule's end far above the ground
-  std::vector<std::uint8_t> wasStill_;     // per point: its particles had inverse mass 0 last step
-  std::vector<std::uint8_t> touching_;     // per body: in one of the step's manifolds (placeCapsulePoints)
+  std::vector<std::uint8_t> still_;     // per point: 1 to leave it in this step
+  std::vector<std::uint8_t> far_;       // per point: 1 for a capsule's end far above the ground
+  std::vector<std::uint8_t> wasStill_;  // per point: its particles had inverse mass 0 last step
+  std::vector<std::uint8_t> touching_;  // per body: in one of the step's manifolds (markTouching)
   bool anyStill_ = false;
   bool anyFreeTetraBox_ = false;
   bool anyMarked_ = false;  // markStill ran since the last clearStill
